@@ -1,0 +1,174 @@
+"""Blast parameters for a charge W at stand-off R: the model registry and one result type.
+
+``blast_parameters(W, R, model=...)`` evaluates an empirical model at Z = R / W^(1/3)
+and returns a :class:`BlastParameters` with every effective (not scaled) quantity in SI
+and the Friedlander decay fitted to the reflected impulse (paper Eq. 2).
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from .._validate import BlastscaleInputError, check_positive
+from .base import BlastModel
+from .pulses import Friedlander, Impulsive, Pulse, Triangular, friedlander_decay
+
+__all__ = ["BLAST_MODELS", "get_blast_model", "blast_parameters", "BlastParameters", "scaled_distance"]
+
+
+def _kingery_bulmash() -> BlastModel:
+    from .kingery_bulmash import KingeryBulmash
+
+    return KingeryBulmash()
+
+
+def _masi2021() -> BlastModel:
+    from .masi_fits import Masi2021
+
+    return Masi2021()
+
+
+#: Names accepted by ``model=`` everywhere; the first is the default.
+BLAST_MODELS = {"kingery-bulmash": _kingery_bulmash, "masi2021": _masi2021}
+DEFAULT_BLAST_MODEL = "kingery-bulmash"
+_CACHE: dict[str, BlastModel] = {}
+
+
+def get_blast_model(model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> BlastModel:
+    """Return the blast model named ``model`` (``"kingery-bulmash"`` or ``"masi2021"``),
+    or ``model`` itself when it already is a :class:`BlastModel` (user-supplied fits)."""
+    if isinstance(model, BlastModel):
+        return model
+    if model not in BLAST_MODELS:
+        raise BlastscaleInputError(f"blast model = {model!r} is not known: valid values are {', '.join(BLAST_MODELS)}")
+    if model not in _CACHE:
+        _CACHE[model] = BLAST_MODELS[model]()
+    return _CACHE[model]
+
+
+def scaled_distance(charge, standoff):
+    """Hopkinson-Cranz scaled distance :math:`Z = R / W^{1/3}` [m/kg^(1/3)].
+
+    ``charge`` W is the TNT-equivalent mass [kg], ``standoff`` R the distance [m]; both > 0.
+    """
+    W = check_positive("charge", charge, "kg")
+    R = check_positive("standoff", standoff, "m")
+    z = R / np.cbrt(W)
+    return z if z.ndim else float(z)
+
+
+@dataclass(frozen=True)
+class BlastParameters:
+    """Blast parameters at one point (hemispherical surface burst), all SI.
+
+    Attributes
+    ----------
+    model : str
+        Name of the empirical model used.
+    charge_kg, standoff_m : float
+        TNT-equivalent charge W [kg] and stand-off R [m].
+    scaled_distance : float
+        Z = R / W^(1/3) [m/kg^(1/3)].
+    reflected_pressure : float
+        Peak normally reflected overpressure P_ro [Pa].
+    reflected_impulse : float
+        Positive-phase reflected impulse i_ro [Pa*s].
+    arrival_time : float
+        Shock arrival time t_A [s].
+    positive_duration : float
+        Positive-phase duration t_o [s].
+    incident_pressure, incident_impulse : float or None
+        Side-on overpressure [Pa] and impulse [Pa*s]; None where the model has no fit.
+    shock_front_velocity : float or None
+        Shock-front velocity [m/s]; None where the model has no fit.
+    friedlander_decay : float
+        Decay coefficient d fitted so that the Friedlander pulse carries i_ro (Eq. 2).
+    """
+
+    model: str
+    charge_kg: float
+    standoff_m: float
+    scaled_distance: float
+    reflected_pressure: float
+    reflected_impulse: float
+    arrival_time: float
+    positive_duration: float
+    incident_pressure: float | None
+    incident_impulse: float | None
+    shock_front_velocity: float | None
+    friedlander_decay: float
+
+    def pulse(self, shape: str = "friedlander") -> Pulse:
+        """The reflected pulse on a face normal to the blast: ``"friedlander"`` (Eq. 1),
+        ``"triangular"`` (Eq. 3, cut at 2 i/P) or ``"impulsive"`` (Dirac of area i_ro)."""
+        if shape == "friedlander":
+            return Friedlander(self.reflected_pressure, self.positive_duration, self.friedlander_decay)
+        if shape == "triangular":
+            return Triangular(self.reflected_pressure, self.reflected_impulse)
+        if shape == "impulsive":
+            return Impulsive(self.reflected_impulse)
+        raise BlastscaleInputError(f"pulse = {shape!r} is not known: valid values are friedlander, triangular, impulsive")
+
+    def to_dict(self) -> dict:
+        """Plain dict with unit-suffixed keys (as written by the CLI's ``--json``)."""
+        d = asdict(self)
+        return {
+            "model": d["model"],
+            "charge_kg": d["charge_kg"],
+            "standoff_m": d["standoff_m"],
+            "scaled_distance_m_per_kg13": d["scaled_distance"],
+            "reflected_pressure_Pa": d["reflected_pressure"],
+            "reflected_impulse_Pa_s": d["reflected_impulse"],
+            "arrival_time_s": d["arrival_time"],
+            "positive_duration_s": d["positive_duration"],
+            "incident_pressure_Pa": d["incident_pressure"],
+            "incident_impulse_Pa_s": d["incident_impulse"],
+            "shock_front_velocity_m_s": d["shock_front_velocity"],
+            "friedlander_decay": d["friedlander_decay"],
+        }
+
+
+def blast_parameters(
+    charge: float,
+    standoff: float,
+    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    *,
+    extrapolate: bool = False,
+) -> BlastParameters:
+    """Blast parameters of a hemispherical surface burst of ``charge`` [kg TNT] at ``standoff`` [m].
+
+    Evaluates the chosen empirical model at :math:`Z = R/W^{1/3}` and scales time and impulse
+    by :math:`W^{1/3}` (Hopkinson-Cranz, Baker et al. 1983). The Friedlander decay is fitted
+    to the reflected impulse (paper Eq. 2). Raises
+    :class:`~blastscale._validate.OutOfRangeError` when Z is outside a fit's range (unless
+    ``extrapolate=True``).
+    """
+    m = get_blast_model(model)
+    z = scaled_distance(charge, standoff)
+    w13 = float(np.cbrt(float(charge)))
+    P = m.reflected_pressure(z, extrapolate=extrapolate)
+    i = m.scaled_reflected_impulse(z, extrapolate=extrapolate) * w13
+    ta = m.scaled_arrival_time(z, extrapolate=extrapolate) * w13
+    to = m.scaled_positive_duration(z, extrapolate=extrapolate) * w13
+
+    def opt(q: str, scale: float = 1.0):
+        return getattr(m, q)(z, extrapolate=extrapolate) * scale if m.provides(q) else None
+
+    return BlastParameters(
+        model=m.name,
+        charge_kg=float(charge),
+        standoff_m=float(standoff),
+        scaled_distance=float(z),
+        reflected_pressure=float(P),
+        reflected_impulse=float(i),
+        arrival_time=float(ta),
+        positive_duration=float(to),
+        incident_pressure=opt("incident_pressure"),
+        incident_impulse=opt("scaled_incident_impulse", w13),
+        shock_front_velocity=opt("shock_front_velocity"),
+        friedlander_decay=float(friedlander_decay(P, to, i)),
+    )
+
+

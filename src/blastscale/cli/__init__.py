@@ -1,0 +1,35 @@
+"""Command-line interface (typer), thin over the library.
+
+Each command lives in its own module and registers itself on :data:`app`:
+``blast``/``design`` (:mod:`.loads`), ``rock``/``critical`` (:mod:`.rocking`),
+``block3d`` (:mod:`.block3d`), ``run`` (:mod:`.main_job`). Units at this edge are those
+named in each option's help text; everything is converted to SI before calling the library.
+
+Bad input raises :class:`~blastscale._validate.BlastscaleInputError` in the library; ``main``
+prints its one-line message and exits with status 2, without a traceback.
+"""
+
+from __future__ import annotations
+
+import sys
+
+from ._app import app, console_err
+
+# command modules register themselves on `app` when imported
+from . import loads as _loads  # noqa: F401,E402
+from . import rocking as _rocking  # noqa: F401,E402
+from . import block3d as _block3d  # noqa: F401,E402
+from . import main_job as _main_job  # noqa: F401,E402
+
+__all__ = ["app", "main"]
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Entry point of the ``blastscale`` console script."""
+    from .._validate import BlastscaleInputError
+
+    try:
+        app(args=argv, prog_name="blastscale")
+    except BlastscaleInputError as exc:
+        console_err.print(f"[bold red]error:[/] {exc}", highlight=False, soft_wrap=True)
+        sys.exit(2)

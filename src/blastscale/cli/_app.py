@@ -1,0 +1,49 @@
+"""The typer application object and small output helpers shared by the commands."""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+app = typer.Typer(
+    name="blastscale",
+    help="Design safe reduced-scale blast experiments on masonry structures (Masi et al. scaling laws).",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+console = Console()
+console_err = Console(stderr=True)
+
+
+def _jsonable(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if hasattr(obj, "item") and callable(obj.item):  # numpy scalars
+        obj = obj.item()
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
+    return obj
+
+
+def print_json(obj: dict) -> None:
+    """Print one JSON object on stdout (numpy scalars converted, NaN -> null)."""
+    typer.echo(json.dumps(_jsonable(obj), indent=2))
+
+
+def table(title: str, rows: list[tuple[str, str, str]]) -> Table:
+    """A three-column (quantity, value, unit) rich table."""
+    t = Table(title=title, title_justify="left")
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    t.add_column("unit")
+    for r in rows:
+        t.add_row(*r)
+    return t
