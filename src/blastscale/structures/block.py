@@ -1,0 +1,129 @@
+"""Geometry and inertia of a monolithic rectangular block standing on a rigid base.
+
+Notation of the paper (Masi et al., Sec. "Validation of the scaling laws"): the block measures
+``2b x 2h x 2w`` (width along the blast direction x, height along z, depth along y);
+``r = sqrt(b^2 + h^2)`` is the distance from a base edge (rocking pivot) to the centre of
+mass, ``alpha = atan(b/h)`` the slenderness angle, ``J_o = 4/3 m r^2`` the moment of inertia
+about the pivot edge and ``p = sqrt(3 g / (4 r))`` the frequency parameter (Housner 1963).
+The blast loads the front face, of area ``S = 2h x 2w``, whose centre lies at height h.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+from .._validate import check_positive, check_range
+
+__all__ = ["RectangularBlock", "STANDARD_GRAVITY"]
+
+#: Standard gravity [m/s^2]; the paper's numbers are reproduced with 9.81.
+STANDARD_GRAVITY = 9.81
+
+
+@dataclass(frozen=True)
+class RectangularBlock:
+    """A homogeneous rectangular block, all sizes full lengths in SI.
+
+    Parameters
+    ----------
+    height : float
+        Full height 2h [m].
+    width : float
+        Full width 2b [m], measured along the blast direction (the rocking plane).
+    depth : float
+        Full depth 2w [m], across the rocking plane. It cancels out of the planar
+        equation of motion; default 1 m.
+    density : float
+        Material density rho [kg/m^3], default 2000 (the paper's prototype).
+    """
+
+    height: float
+    width: float
+    depth: float = 1.0
+    density: float = 2000.0
+
+    def __post_init__(self):
+        check_positive("height", self.height, "m")
+        check_positive("width", self.width, "m")
+        check_positive("depth", self.depth, "m")
+        check_positive("density", self.density, "kg/m^3")
+
+    @classmethod
+    def from_slenderness(cls, height: float, alpha: float, depth: float = 1.0, density: float = 2000.0):
+        """Block of full ``height`` [m] and slenderness angle ``alpha`` [rad], 0 < alpha < pi/2:
+        width = height * tan(alpha)."""
+        check_positive("height", height, "m")
+        check_range("slenderness angle alpha", alpha, 0.0, math.pi / 2, "rad", lo_open=True, hi_open=True)
+        return cls(height=height, width=height * math.tan(alpha), depth=depth, density=density)
+
+    # geometry ------------------------------------------------------------
+    @property
+    def b(self) -> float:
+        """Half-width b [m]."""
+        return 0.5 * self.width
+
+    @property
+    def h(self) -> float:
+        """Half-height h [m]."""
+        return 0.5 * self.height
+
+    @property
+    def w(self) -> float:
+        """Half-depth w [m]."""
+        return 0.5 * self.depth
+
+    @property
+    def r(self) -> float:
+        """Pivot-to-centre-of-mass distance r = sqrt(b^2 + h^2) [m]."""
+        return math.hypot(self.b, self.h)
+
+    @property
+    def alpha(self) -> float:
+        """Slenderness angle alpha = atan(b/h) [rad]."""
+        return math.atan2(self.b, self.h)
+
+    @property
+    def volume(self) -> float:
+        """Volume 2b * 2h * 2w [m^3]."""
+        return self.width * self.height * self.depth
+
+    @property
+    def mass(self) -> float:
+        """Mass m = rho V [kg]."""
+        return self.density * self.volume
+
+    @property
+    def front_area(self) -> float:
+        """Loaded front-face area S = 2h * 2w [m^2]."""
+        return self.height * self.depth
+
+    @property
+    def inertia_pivot(self) -> float:
+        """Moment of inertia about the pivot edge J_o = 4/3 m r^2 [kg m^2]."""
+        return 4.0 / 3.0 * self.mass * self.r**2
+
+    @property
+    def inertia_centroid(self) -> tuple[float, float, float]:
+        """Principal moments of inertia about the centre of mass (x, y, z axes) [kg m^2]."""
+        m = self.mass
+        a, d, c = self.width, self.depth, self.height
+        return (m * (d**2 + c**2) / 12.0, m * (a**2 + c**2) / 12.0, m * (a**2 + d**2) / 12.0)
+
+    def frequency_parameter(self, gravity: float = STANDARD_GRAVITY) -> float:
+        """Housner's frequency parameter p = sqrt(3 g / (4 r)) [rad/s] (Housner 1963)."""
+        check_positive("gravity", gravity, "m/s^2")
+        return math.sqrt(3.0 * gravity / (4.0 * self.r))
+
+    def scaled(self, length_factor: float, density_factor: float = 1.0) -> "RectangularBlock":
+        """The geometrically similar block: lengths x ``length_factor`` (lambda), density x
+        ``density_factor`` (gamma)."""
+        check_positive("scale", length_factor)
+        check_positive("density ratio", density_factor)
+        return replace(
+            self,
+            height=self.height * length_factor,
+            width=self.width * length_factor,
+            depth=self.depth * length_factor,
+            density=self.density * density_factor,
+        )
