@@ -1,0 +1,28 @@
+"""Similitude: pi-terms, scaling factors, the general law and Hopkinson-Cranz, model design."""
+
+from .design import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign, design_model, impulsive_check
+from .factors import FACTOR_UNITS, ScalingFactors, pi_terms, scaling_factors
+from .laws import (
+    LAWS,
+    ScaledDistanceSolution,
+    hopkinson_cranz_density_ratio,
+    masi2021_quadratic_roots,
+    solve_scaled_distance_factor,
+)
+
+__all__ = [
+    "DEFAULT_IMPULSIVE_THRESHOLD",
+    "FACTOR_UNITS",
+    "ImpulsiveCheck",
+    "LAWS",
+    "ModelDesign",
+    "ScaledDistanceSolution",
+    "ScalingFactors",
+    "design_model",
+    "hopkinson_cranz_density_ratio",
+    "impulsive_check",
+    "masi2021_quadratic_roots",
+    "pi_terms",
+    "scaling_factors",
+    "solve_scaled_distance_factor",
+]

@@ -1,0 +1,171 @@
+"""Blast scaling laws: the paper's general law (Eq. 8) and Hopkinson-Cranz.
+
+General law
+-----------
+With the stand-off scaled geometrically (R_model = lambda R), the charge factor is
+lambda_W = (lambda / lambda_Z)^3 and the reflected-impulse factor is
+lambda_i = [i_hat(lambda_Z Z) / i_hat(Z)] lambda / lambda_Z (paper Eq. 6). Matching it to the
+impulse factor the rigid-body response requires, gamma sqrt(varsigma lambda^3) (paper Eq. 7,
+generalised to a gravity ratio varsigma), gives paper Eq. (8):
+
+.. math:: \\text{find } \\lambda_Z:\\quad
+          \\frac{1}{\\lambda_Z}\\,\\frac{\\hat i(Z\\lambda_Z)}{\\hat i(Z)} = \\gamma\\sqrt{\\varsigma\\lambda}.
+
+In x = ln(lambda_Z) the residual g(x) = ln i_hat(Z e^x) - ln i_hat(Z) - x - ln(gamma sqrt(varsigma lambda))
+has slope d ln i_hat / d ln Z - 1 < 0 wherever the scaled impulse decreases with Z (true for
+both models over their ranges), so the root is unique on the fit's range; it is bracketed by that
+range and found with Brent's method. For the paper's fit (ln i_hat quadratic in ln Z) Eq. (8) is
+a quadratic in x with two roots: the physical one lies inside the fit's range and equals the
+bracketed root; the other is absurd (lambda_Z ~ 1e12) and is reported only for the record.
+
+Hopkinson-Cranz
+---------------
+lambda_Z = 1 (same scaled distance, same pressure), lambda_W = lambda^3, impulse factor lambda.
+Under the impulsive hypothesis it satisfies the rigid-body similarity only when
+gamma = 1 / sqrt(varsigma lambda) (= lambda^(-1/2) for equal gravity, paper Table 2).
+
+References: paper Sec. "Scaling laws", Eqs. (6)-(8); Baker, Westine & Dodge (1991), ch. 5.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from scipy.optimize import brentq
+
+from .._validate import BlastscaleInputError, OutOfRangeError, check_positive
+from ..blast.base import BlastModel
+from ..blast.masi_fits import MASI2021_COEFFICIENTS, Masi2021
+from ..blast.parameters import get_blast_model
+
+__all__ = [
+    "ScaledDistanceSolution",
+    "solve_scaled_distance_factor",
+    "masi2021_quadratic_roots",
+    "hopkinson_cranz_density_ratio",
+    "LAWS",
+]
+
+LAWS = ("general", "hopkinson-cranz")
+
+
+@dataclass(frozen=True)
+class ScaledDistanceSolution:
+    """Root of the general law.
+
+    Attributes
+    ----------
+    factor : float
+        lambda_Z = Z_model / Z_prototype [-].
+    residual : float
+        g(ln lambda_Z) at the root (natural-log units) [-].
+    note : str
+        Which root was taken and why.
+    other_roots : tuple[float, ...]
+        Non-physical roots of the closed form, when the model has one (paper fit).
+    """
+
+    factor: float
+    residual: float
+    note: str
+    other_roots: tuple[float, ...] = ()
+
+
+def masi2021_quadratic_roots(prototype_scaled_distance: float, target: float) -> tuple[float, float]:
+    """Both roots lambda_Z of Eq. (8) for the paper's impulse fit, in closed form.
+
+    With ln i_hat = c0 + c1 L + c2 L^2 (L = ln Z), Eq. (8) in x = ln lambda_Z reads
+    ``c2 x^2 + (c1 - 1 + 2 c2 ln Z) x - ln(target) = 0``, target = gamma sqrt(varsigma lambda).
+    Returns the two lambda_Z = e^x (physical one first: the root of smaller |x|).
+    """
+    _, c1, c2 = MASI2021_COEFFICIENTS["scaled_reflected_impulse"]
+    L = math.log(prototype_scaled_distance)
+    a, b, c = c2, c1 - 1.0 + 2.0 * c2 * L, -math.log(target)
+    disc = b * b - 4.0 * a * c
+    if disc < 0.0:
+        raise BlastscaleInputError(f"general law has no real root for Z = {prototype_scaled_distance:.6g}")
+    sq = math.sqrt(disc)
+    # numerically stable pair (no cancellation)
+    q = -0.5 * (b + math.copysign(sq, b))
+    x1, x2 = q / a, c / q
+    xs = sorted((x1, x2), key=abs)
+    return math.exp(xs[0]), math.exp(xs[1]) if xs[1] < 700 else math.inf
+
+
+def solve_scaled_distance_factor(
+    prototype_scaled_distance: float,
+    scale: float,
+    density_ratio: float = 1.0,
+    gravity_ratio: float = 1.0,
+    model: "str | BlastModel" = "kingery-bulmash",
+) -> ScaledDistanceSolution:
+    """Solve the general scaling law (paper Eq. 8) for the scaled-distance factor lambda_Z.
+
+    Parameters
+    ----------
+    prototype_scaled_distance : float
+        Z of the prototype [m/kg^(1/3)], inside the impulse fit's range.
+    scale : float
+        lambda [-].
+    density_ratio : float
+        gamma [-].
+    gravity_ratio : float
+        varsigma [-].
+    model : str or BlastModel
+        Blast model providing the scaled reflected impulse i_hat(Z).
+
+    Returns
+    -------
+    ScaledDistanceSolution
+        lambda_Z with |residual| < 1e-12 and a note on the root taken.
+
+    Raises
+    ------
+    OutOfRangeError
+        If the prototype Z, or the model Z the law requires, is outside the impulse fit's range.
+    """
+    m = get_blast_model(model)
+    z = float(check_positive("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)"))
+    lam = float(check_positive("scale", scale))
+    gam = float(check_positive("density ratio", density_ratio))
+    sig = float(check_positive("gravity ratio", gravity_ratio))
+    target = gam * math.sqrt(sig * lam)
+    ln_i0 = math.log(m.scaled_reflected_impulse(z))
+    zmin, zmax = m.valid_range("scaled_reflected_impulse")
+
+    def g(x: float) -> float:
+        zz = min(max(z * math.exp(x), zmin), zmax)  # guard round-off at the bracket ends
+        return math.log(m.scaled_reflected_impulse(zz)) - ln_i0 - x - math.log(target)
+
+    xlo, xhi = math.log(zmin / z), math.log(zmax / z)
+    glo, ghi = g(xlo), g(xhi)
+    if glo * ghi > 0.0:
+        # g decreases: g(xhi) > 0 means even Z_max gives too much impulse, etc.
+        need = "larger" if ghi > 0.0 else "smaller"
+        raise OutOfRangeError(
+            f"model scaled distance for scale = {lam:.6g}, density ratio = {gam:.6g} would be {need} than the "
+            f"{m.name} impulse fit allows: valid range of Z is [{zmin:g}, {zmax:g}] m/kg^(1/3) "
+            f"(prototype Z = {z:.6g})"
+        )
+    x = brentq(g, xlo, xhi, xtol=1e-15, rtol=1e-15, maxiter=200)
+    res = g(x)
+    lz = math.exp(x)
+    note = f"unique root of Eq. (8) on the {m.name} impulse range Z in [{zmin:g}, {zmax:g}] (Brent)"
+    others: tuple[float, ...] = ()
+    if isinstance(m, Masi2021):
+        phys, other = masi2021_quadratic_roots(z, target)
+        others = (other,)
+        note += (
+            f"; closed-form quadratic roots lambda_Z = {phys:.10g} (taken, inside the fit's range) and "
+            f"{other:.4g} (rejected: model Z = {other * z:.3g} m/kg^(1/3) is far outside it)"
+        )
+    return ScaledDistanceSolution(factor=lz, residual=res, note=note, other_roots=others)
+
+
+def hopkinson_cranz_density_ratio(scale: float, gravity_ratio: float = 1.0) -> float:
+    """Density ratio that Hopkinson-Cranz scaling imposes: gamma = 1 / sqrt(varsigma lambda) [-]
+    (paper Table 2 for varsigma = 1)."""
+    lam = float(check_positive("scale", scale))
+    sig = float(check_positive("gravity ratio", gravity_ratio))
+    return 1.0 / math.sqrt(sig * lam)
