@@ -1,0 +1,87 @@
+"""Pulse shapes: each integral equals its impulse; the Friedlander decay root; bad input."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from blastscale._validate import BlastscaleInputError
+from blastscale.blast import Friedlander, Impulsive, Tabulated, Triangular, blast_parameters, friedlander_decay
+from blastscale.blast.pulses import NegativeDecayWarning, friedlander_impulse_ratio
+
+
+@pytest.mark.parametrize("d", [-0.9, -0.3, 1e-9, 0.5, 3.377, 20.0, 300.0])
+def test_friedlander_integral_equals_eq2_impulse(d):
+    # Paper Eq. (2) vs adaptive quadrature of Eq. (1): quad's own error estimate is < 1e-10 relative.
+    p = Friedlander(3.0e7, 1.2e-3, d)
+    num, err = quad(p.pressure, 0.0, p.duration, epsabs=0, epsrel=1e-12, limit=200)
+    assert num == pytest.approx(p.impulse, rel=1e-9)
+    assert p.cumulative_impulse(p.duration) == pytest.approx(p.impulse, rel=1e-12)
+    t = np.linspace(0, p.duration, 7)[1:-1]
+    for ti in t:  # running integral vs quadrature
+        assert p.cumulative_impulse(ti) == pytest.approx(quad(p.pressure, 0, ti, epsrel=1e-12)[0], rel=1e-9)
+
+
+def test_friedlander_decay_inverts_eq2():
+    # Round trip k(d) -> d over 9 decades of d: relative error < 1e-10 (bisection + Newton polish).
+    d = np.array([-0.99, -0.5, -1e-5, 1e-7, 1e-3, 0.1, 1.0, 10.0, 1e3, 1e5])
+    k = friedlander_impulse_ratio(d)
+    with pytest.warns(NegativeDecayWarning):
+        back = friedlander_decay(1.0, 1.0, k)
+    np.testing.assert_allclose(back, d, rtol=1e-8, atol=1e-10)
+
+
+def test_friedlander_no_positive_decay():
+    # k >= 1/2: no positive decay; the default gives the negative root with a warning, strict mode refuses,
+    # and k >= e - 2 has no monotone Friedlander fit at all.
+    with pytest.warns(NegativeDecayWarning):
+        d = friedlander_decay(1.0, 1.0, 0.6)
+    assert -1.0 < d < 0.0
+    with pytest.raises(BlastscaleInputError, match="0.5"):
+        friedlander_decay(1.0, 1.0, 0.6, allow_negative=False)
+    with pytest.raises(BlastscaleInputError, match="impulse ratio"):
+        friedlander_decay(1.0, 1.0, 0.75)
+
+
+def test_triangular_is_cut_at_two_i_over_p():
+    # Paper Eq. (3) prints the cut at t_o; it must be at t_bar_o = 2 i / P for the area to be i.
+    b = blast_parameters(50.0, 2.0, "masi2021")
+    tri = b.pulse("triangular")
+    assert tri.duration == pytest.approx(2 * b.reflected_impulse / b.reflected_pressure, rel=1e-15)
+    assert tri.duration != pytest.approx(b.positive_duration, rel=0.05)  # the slip matters here (~ -17 %)
+    num = quad(tri.pressure, 0.0, tri.duration, epsrel=1e-12)[0]
+    assert num == pytest.approx(b.reflected_impulse, rel=1e-10)
+
+
+def test_tabulated_integral_and_scaling():
+    t = np.array([0.0, 1e-4, 5e-4, 2e-3])
+    p = np.array([1e6, 8e5, 2e5, 0.0])
+    pulse = Tabulated(t, p)
+    trap = float(np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(t)))
+    assert pulse.impulse == pytest.approx(trap, rel=1e-14)
+    assert quad(pulse.pressure, 0, 2e-3, points=t[1:-1])[0] == pytest.approx(trap, rel=1e-10)
+    s = pulse.scaled(0.1, 0.01)
+    assert s.impulse == pytest.approx(pulse.impulse * 1e-3, rel=1e-12)
+
+
+def test_impulsive_pulse():
+    p = Impulsive(123.0)
+    assert p.impulse == 123.0 and p.duration == 0.0 and math.isinf(p.peak)
+    assert p.cumulative_impulse(1e-9) == 123.0
+
+
+@pytest.mark.parametrize(
+    "make, match",
+    [
+        (lambda: Tabulated([0.0, 2e-3, 1e-3], [1.0, 0.5, 0.0]), "negative duration"),
+        (lambda: Tabulated([0.0, 1e-3], [1.0, -1.0]), "pulse pressure"),
+        (lambda: Friedlander(1e6, -1e-3, 1.0), "positive duration"),
+        (lambda: Friedlander(1e6, 1e-3, -2.0), "decay"),
+        (lambda: Triangular(float("nan"), 1.0), "peak pressure"),
+        (lambda: Impulsive(0.0), "impulse"),
+    ],
+)
+def test_bad_pulses_raise_named_errors(make, match):
+    with pytest.raises(BlastscaleInputError, match=match):
+        make()
