@@ -21,12 +21,12 @@ class OutOfRangeError(BlastscaleInputError):
     """An empirical fit was asked for outside the range where it was fitted."""
 
 
-def _fmt(value) -> str:
-    arr = np.asarray(value)
-    if arr.ndim == 0:
-        return f"{float(arr):.6g}"
-    bad = arr.ravel()
-    return f"array (first offending value {float(bad[0]):.6g})"
+def _fmt(bad: np.ndarray, whole: np.ndarray) -> str:
+    """The offending value(s): the value itself for a scalar input, else the first bad element."""
+    first = float(np.asarray(bad).ravel()[0])
+    if np.ndim(whole) == 0:
+        return f"{first:.6g}"
+    return f"{first:.6g} (first offending element of an array)"
 
 
 def check_finite(name: str, value, unit: str = "") -> np.ndarray:
@@ -37,7 +37,7 @@ def check_finite(name: str, value, unit: str = "") -> np.ndarray:
         raise BlastscaleInputError(f"{name} must be a number, got {value!r}") from exc
     if not np.all(np.isfinite(arr)):
         bad = arr[~np.isfinite(arr)]
-        raise BlastscaleInputError(f"{name} = {_fmt(bad)} {unit}".rstrip() + " is not a finite number")
+        raise BlastscaleInputError(f"{name} = {_fmt(bad, arr)} {unit}".rstrip() + " is not a finite number")
     return arr
 
 
@@ -47,7 +47,7 @@ def check_positive(name: str, value, unit: str = "") -> np.ndarray:
     if np.any(arr <= 0.0):
         bad = arr[arr <= 0.0]
         u = f" {unit}" if unit else ""
-        raise BlastscaleInputError(f"{name} = {_fmt(bad)}{u} is out of range: must be > 0{u}")
+        raise BlastscaleInputError(f"{name} = {_fmt(bad, arr)}{u} is out of range: must be > 0{u}")
     return arr
 
 
@@ -75,6 +75,6 @@ def check_range(
         lb = "(" if lo_open else "["
         rb = ")" if hi_open else "]"
         raise error(
-            f"{name} = {_fmt(arr[bad_mask])}{u} is out of range: valid range is {lb}{lo:g}, {hi:g}{rb}{u}"
+            f"{name} = {_fmt(arr[bad_mask], arr)}{u} is out of range: valid range is {lb}{lo:g}, {hi:g}{rb}{u}"
         )
     return arr

@@ -85,7 +85,7 @@ class BlastModel(abc.ABC):
                 f"the fit's valid range [{lo:g}, {hi:g}] m/kg^(1/3)"
             )
             if not extrapolate:
-                raise OutOfRangeError(msg + " (pass extrapolate=True to evaluate it anyway)")
+                raise OutOfRangeError(msg + " (opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)")
             warnings.warn(msg + "; extrapolating", ExtrapolationWarning, stacklevel=3)
         res = getattr(self, "_raw_" + quantity)(z)
         return res if np.ndim(Z) else float(res)

@@ -17,8 +17,9 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
 )
-console = Console()
-console_err = Console(stderr=True)
+# Wide enough for the tables when output is piped (rich falls back to 80 columns otherwise).
+console = Console(width=None if Console().is_terminal else 160)
+console_err = Console(stderr=True, width=None if Console(stderr=True).is_terminal else 160)
 
 
 def _jsonable(obj: Any) -> Any:

@@ -1,1 +1,135 @@
-"""CLI commands (being written)."""
+"""``blastscale blast`` and ``blastscale design``: blast parameters and model design."""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+import typer
+from rich.table import Table
+
+from .._validate import BlastscaleInputError
+from ..blast import blast_parameters
+from ..similitude import FACTOR_UNITS, design_model
+from ..structures import RectangularBlock
+from ._app import app, console, print_json, table
+
+MODEL_HELP = "Blast model: kingery-bulmash (Swisdak 1994, default) or masi2021 (the paper's Appendix A fits)."
+
+
+def block_from_options(
+    height: Optional[float], width: Optional[float], alpha_deg: Optional[float], depth: float, density: float
+) -> Optional[RectangularBlock]:
+    """The prototype block from CLI options (m, deg, kg/m^3), or None when no geometry is given.
+
+    Accepts ``--height`` with ``--width``, or ``--height`` with ``--alpha-deg`` (width = height tan alpha).
+    """
+    if height is None and width is None and alpha_deg is None:
+        return None
+    if height is None:
+        raise BlastscaleInputError("height = None is out of range: give --height (m) with --width or --alpha-deg")
+    if (width is None) == (alpha_deg is None):
+        raise BlastscaleInputError(
+            f"width = {width}, alpha-deg = {alpha_deg}: give exactly one of --width (m) or --alpha-deg (deg, in (0, 90))"
+        )
+    if width is not None:
+        return RectangularBlock(height=height, width=width, depth=depth, density=density)
+    if not (0.0 < alpha_deg < 90.0):
+        raise BlastscaleInputError(f"alpha-deg = {alpha_deg:g} deg is out of range: valid range is (0, 90) deg")
+    return RectangularBlock.from_slenderness(height, math.radians(alpha_deg), depth=depth, density=density)
+
+
+def _g(x: Optional[float], fmt: str = ".6g") -> str:
+    return "-" if x is None else format(x, fmt)
+
+
+@app.command("blast")
+def blast_cmd(
+    charge: float = typer.Option(..., "--charge", help="TNT-equivalent charge W [kg]."),
+    standoff: float = typer.Option(..., "--standoff", help="Stand-off distance R [m]."),
+    model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
+    extrapolate: bool = typer.Option(False, "--extrapolate", help="Evaluate fits outside their range (warns)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
+) -> None:
+    """Blast parameters of a hemispherical surface burst of W kg TNT at R m (SI output)."""
+    b = blast_parameters(charge, standoff, model, extrapolate=extrapolate)
+    if as_json:
+        print_json(b.to_dict())
+        return
+    rows = [
+        ("scaled distance Z", f"{b.scaled_distance:.6g}", "m/kg^(1/3)"),
+        ("reflected peak pressure P_ro", f"{b.reflected_pressure:.6g}", "Pa"),
+        ("reflected impulse i_ro", f"{b.reflected_impulse:.6g}", "Pa s"),
+        ("arrival time t_A", f"{b.arrival_time:.6g}", "s"),
+        ("positive duration t_o", f"{b.positive_duration:.6g}", "s"),
+        ("incident peak pressure P_so", _g(b.incident_pressure), "Pa"),
+        ("incident impulse i_so", _g(b.incident_impulse), "Pa s"),
+        ("shock-front velocity U", _g(b.shock_front_velocity), "m/s"),
+        ("Friedlander decay d", f"{b.friedlander_decay:.6g}", "-"),
+    ]
+    console.print(table(f"Blast: {charge:g} kg TNT at {standoff:g} m ({b.model})", rows))
+
+
+def print_design(d) -> None:
+    """Human-readable design tables (prototype vs model, factors, impulsive check)."""
+    t = Table(title=f"Model design: law {d.law}, lambda = {d.scale:.6g}, gamma = {d.density_ratio:.6g}, "
+              f"gravity ratio = {d.gravity_ratio:.6g} ({d.prototype.model})", title_justify="left")
+    for c in ("quantity", "prototype", "model", "model/prototype", "required", "unit"):
+        t.add_column(c, justify="left" if c in ("quantity", "unit") else "right")
+    p, m, f = d.prototype, d.model, d.factors
+    t.add_row("charge W", f"{p.charge_kg:.6g}", f"{m.charge_kg:.6g}", f"{f.charge:.6g}", "", "kg")
+    t.add_row("stand-off R", f"{p.standoff_m:.6g}", f"{m.standoff_m:.6g}", f"{d.scale:.6g}", "", "m")
+    t.add_row("scaled distance Z", f"{p.scaled_distance:.6g}", f"{m.scaled_distance:.6g}",
+              f"{d.scaled_distance_factor:.6g}", "", "m/kg^(1/3)")
+    t.add_row("reflected pressure", f"{p.reflected_pressure:.6g}", f"{m.reflected_pressure:.6g}",
+              f"{d.pressure_ratio:.6g}", f"{f.pressure:.6g}", "Pa")
+    t.add_row("reflected impulse", f"{p.reflected_impulse:.6g}", f"{m.reflected_impulse:.6g}",
+              f"{d.impulse_ratio:.6g}", f"{f.impulse:.6g}", "Pa s")
+    t.add_row("positive duration", f"{p.positive_duration:.6g}", f"{m.positive_duration:.6g}",
+              f"{d.duration_ratio:.6g}", f"{f.time:.6g}", "s")
+    t.add_row("arrival time", f"{p.arrival_time:.6g}", f"{m.arrival_time:.6g}",
+              f"{m.arrival_time / p.arrival_time:.6g}", "", "s")
+    console.print(t)
+    console.print(f"[dim]{d.root_note}[/]")
+    ft = table("Scaling factors (model / prototype)", [
+        (k, _g(v), FACTOR_UNITS.get(k, "")) for k, v in f.to_dict().items()
+    ])
+    console.print(ft)
+    if d.impulsive is not None:
+        i = d.impulsive
+        verdict = "[green]impulsive[/]" if i.impulsive else "[red]NOT impulsive: similarity is not guaranteed[/]"
+        console.print(
+            f"Impulsive check t_o*p: prototype {i.prototype_ratio:.3g}, model {i.model_ratio:.3g} "
+            f"(threshold {i.threshold:g}) -> {verdict}"
+        )
+
+
+@app.command("design")
+def design_cmd(
+    charge: float = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W [kg]."),
+    standoff: float = typer.Option(..., "--standoff", help="Prototype stand-off R [m]."),
+    scale: float = typer.Option(..., "--scale", help="Geometric scale lambda = model/prototype [-], e.g. 0.005."),
+    density_ratio: Optional[float] = typer.Option(
+        None, "--density-ratio", help="gamma = rho_model/rho_prototype [-] (default 1; imposed by hopkinson-cranz)."
+    ),
+    gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="g_model/g_prototype [-]."),
+    law: str = typer.Option("general", "--law", help="general (paper Eq. 8) or hopkinson-cranz."),
+    model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
+    height: Optional[float] = typer.Option(None, "--height", help="Prototype block height 2h [m]."),
+    width: Optional[float] = typer.Option(None, "--width", help="Prototype block width 2b [m]."),
+    alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle [deg] (with --height)."),
+    depth: float = typer.Option(1.0, "--depth", help="Prototype block depth 2w [m] (cancels)."),
+    density: float = typer.Option(2000.0, "--density", help="Prototype density [kg/m^3]."),
+    extrapolate: bool = typer.Option(False, "--extrapolate", help="Evaluate fits outside their range (warns)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
+) -> None:
+    """Design the reduced-scale model: model charge and stand-off, every factor, impulsive check."""
+    block = block_from_options(height, width, alpha_deg, depth, density)
+    if density_ratio is None and law == "general":
+        density_ratio = 1.0
+    d = design_model(charge, standoff, scale, density_ratio, gravity_ratio, law, model, block,
+                     extrapolate=extrapolate)
+    if as_json:
+        print_json(d.to_dict())
+    else:
+        print_design(d)
