@@ -1,0 +1,34 @@
+"""3D rigid-body response on MuJoCo: single blocks rocking, sliding and lifting off.
+
+* :class:`ContactSettings` -- contact, time step and solver in physical terms, ``.scaled(lambda)``.
+* :func:`block_scene` / :func:`build_scene` -- the MuJoCo model built from the geometry.
+* :func:`step_forces` -- the paper's Method A blast force, exact impulse per time step.
+* :class:`Block3DSimulator` / :func:`simulate_block` -- run and record; :class:`Block3DResult`.
+
+MuJoCo is imported lazily, inside the functions that need it.
+"""
+
+from .blast_force import step_forces
+from .contact import CONES, SOLVERS, ContactSettings
+from .model import BodySpec, BoxShape, FrontFace, Scene, block_scene, build_scene
+from .results import Block3DResult, quaternion_to_matrix, tilt_angle
+from .simulate import SETTLE_TIME_CONSTANTS, Block3DSimulator, simulate_block
+
+__all__ = [
+    "Block3DResult",
+    "Block3DSimulator",
+    "BodySpec",
+    "BoxShape",
+    "CONES",
+    "ContactSettings",
+    "FrontFace",
+    "SETTLE_TIME_CONSTANTS",
+    "SOLVERS",
+    "Scene",
+    "block_scene",
+    "build_scene",
+    "quaternion_to_matrix",
+    "simulate_block",
+    "step_forces",
+    "tilt_angle",
+]

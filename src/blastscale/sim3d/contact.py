@@ -1,0 +1,225 @@
+"""Contact and solver settings of the MuJoCo rigid-body model, in physical terms.
+
+MuJoCo's contacts are soft constraints: each contact behaves like a mass-normalised
+spring-damper of time constant ``tau`` and damping ratio ``zeta`` (``solref``), weighted by an
+impedance ``d`` in (0, 1) that ramps from ``dmin`` to ``dmax`` over a penetration ``width``
+(``solimp``). :class:`ContactSettings` states these in SI (seconds, metres) and scales them
+with the geometric factor lambda so that a reduced-scale model run, up-scaled, reproduces the
+prototype run (time x sqrt(lambda / lambda_g), length x lambda).
+
+One setting is ours and not MuJoCo's default: ``friction_time_constant``. MuJoCo gives the
+frictional directions of a contact the same reference damping ``b = 2 / (dmax tau)`` as the
+normal direction. With a convex (elliptic or pyramidal) friction cone the solver's optimality
+conditions then tie the normal "acceleration error" to the tangential one (the Lorentz-cone
+complementarity, see docs/sim3d.md), so a sliding body is pushed off the plane by roughly
+``mu b |v_t| / k`` -- the spurious hop of several millimetres. Giving the frictional
+directions their own, longer time constant (MuJoCo's ``solreffriction`` of an explicit contact
+pair) shrinks the tangential reference term and the hop by the same ratio, while Coulomb
+sliding is unchanged as long as ``b_f |v_t| >> mu g`` (below a creep speed
+``v_c ~ mu g dmax tau_f / 2`` friction acts as a stiff viscous damper and brings the body to
+rest within ~tau_f).
+
+References
+----------
+.. [1] MuJoCo documentation, "Computation: Soft constraints" and XML reference
+       (``solref``, ``solimp``, ``solreffriction``, ``impratio``, ``cone``).
+.. [2] E. Todorov (2014), Convex and analytically-invertible dynamics with contacts and
+       constraints, ICRA 2014.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+from .._validate import BlastscaleInputError, check_positive, check_range
+
+__all__ = ["ContactSettings", "CONES", "SOLVERS"]
+
+#: Friction-cone types accepted by MuJoCo.
+CONES = ("elliptic", "pyramidal")
+#: Constraint solvers accepted by MuJoCo.
+SOLVERS = ("Newton", "CG", "PGS")
+
+
+@dataclass(frozen=True)
+class ContactSettings:
+    """Contact, integration and solver settings of a 3D rigid-body run, all SI.
+
+    The defaults are for full-scale masonry blocks (metres, tonnes) loaded by blast pulses
+    of about a millisecond; use :meth:`scaled` for a reduced-scale model.
+
+    Parameters
+    ----------
+    friction : float
+        Coulomb friction coefficient mu = tan(phi) [-], >= 0 (paper: phi = 35 deg, mu = 0.7).
+    time_constant : float
+        Time constant tau of the normal contact spring-damper [s] (MuJoCo ``solref[0]``).
+        Must be >= 2 ``timestep``. 2 ms makes the static penetration of a 10 m block ~5 um and
+        the impact effectively plastic (Housner); MuJoCo's default 20 ms is far too soft.
+    damping_ratio : float
+        Damping ratio zeta of the normal contact [-] (``solref[1]``); 1 = critical, no bounce.
+    friction_time_constant : float or None
+        Time constant tau_f [s] of the reference damping ``b_f = 2/(dmax tau_f)`` of the
+        frictional directions (``solreffriction``). None reproduces MuJoCo's default
+        (tau_f = tau) and with it the spurious hop of a sliding block; the default 20 ms
+        removes it (< 0.1 mm for a 1 m block sliding at 1.8 m/s, docs/sim3d.md).
+    impedance_min, impedance_max : float
+        Constraint impedance ``solimp[0:2]`` (dmin, dmax) [-], 0 < dmin <= dmax < 1.
+    impedance_width : float
+        Penetration [m] over which the impedance ramps from dmin to dmax (``solimp[2]``).
+    timestep : float
+        Integration time step dt [s] (semi-implicit Euler).
+    cone : {"elliptic", "pyramidal"}
+        Friction-cone model.
+    impratio : float
+        Ratio of frictional to normal constraint impedance (elliptic cone only) [-], >= 1
+        makes friction stiffer than contact (less creep of a "sticking" pivot).
+    solver : {"Newton", "CG", "PGS"}
+        Constraint solver.
+    iterations : int
+        Maximum solver iterations per step.
+    tolerance : float
+        Solver tolerance [-] (relative cost improvement).
+    noslip_iterations : int
+        Iterations of MuJoCo's post-hoc no-slip solver (0 = off; it does not affect the hop).
+
+    Notes
+    -----
+    Scale consistency (lambda = length factor, lambda_t = time factor = sqrt(lambda/lambda_g)):
+    every time (``time_constant``, ``friction_time_constant``, ``timestep``) is multiplied by
+    lambda_t and ``impedance_width`` by lambda; dimensionless settings are unchanged. The
+    MuJoCo stiffness ``k = d / (dmax^2 tau^2 zeta^2)`` [1/s^2] and damping ``b = 2/(dmax tau)``
+    [1/s] then scale as 1/lambda_t^2 and 1/lambda_t, exactly like gravity/length and the
+    block's natural frequencies, so the dimensionless equations of motion are identical.
+    """
+
+    friction: float = 0.7
+    time_constant: float = 2e-3
+    damping_ratio: float = 1.0
+    friction_time_constant: float | None = 20e-3
+    impedance_min: float = 0.9
+    impedance_max: float = 0.95
+    impedance_width: float = 1e-3
+    timestep: float = 2e-4
+    cone: str = "elliptic"
+    impratio: float = 10.0
+    solver: str = "Newton"
+    iterations: int = 100
+    tolerance: float = 1e-10
+    noslip_iterations: int = 0
+
+    def __post_init__(self):
+        check_range("friction", self.friction, 0.0, math.inf, "")
+        check_positive("contact time constant", self.time_constant, "s")
+        check_positive("contact damping ratio", self.damping_ratio)
+        if self.friction_time_constant is not None:
+            check_positive("friction time constant", self.friction_time_constant, "s")
+        check_range("impedance_min", self.impedance_min, 0.0, 1.0, lo_open=True, hi_open=True)
+        check_range("impedance_max", self.impedance_max, self.impedance_min, 1.0, hi_open=True)
+        check_positive("impedance width", self.impedance_width, "m")
+        check_positive("timestep", self.timestep, "s")
+        if self.time_constant < 2.0 * self.timestep * (1.0 - 1e-12):
+            raise BlastscaleInputError(
+                f"contact time constant = {self.time_constant:.6g} s is out of range: must be >= 2 x timestep "
+                f"= {2 * self.timestep:.6g} s (MuJoCo clamps softer, stability)"
+            )
+        if self.cone not in CONES:
+            raise BlastscaleInputError(f"cone = {self.cone!r} is not known: valid values are {', '.join(CONES)}")
+        if self.solver not in SOLVERS:
+            raise BlastscaleInputError(f"solver = {self.solver!r} is not known: valid values are {', '.join(SOLVERS)}")
+        check_range("impratio", self.impratio, 0.0, math.inf, lo_open=True)
+        check_range("iterations", self.iterations, 1, 10_000)
+        check_positive("tolerance", self.tolerance)
+        check_range("noslip_iterations", self.noslip_iterations, 0, 10_000)
+
+    # -- derived MuJoCo quantities ----------------------------------------------------
+    @property
+    def stiffness(self) -> float:
+        """Mass-normalised normal stiffness k = dmax / (dmax^2 tau^2 zeta^2) at full impedance [1/s^2]."""
+        dmax = self.impedance_max
+        return dmax / (dmax**2 * self.time_constant**2 * self.damping_ratio**2)
+
+    @property
+    def damping(self) -> float:
+        """Mass-normalised normal damping b = 2 / (dmax tau) [1/s]."""
+        return 2.0 / (self.impedance_max * self.time_constant)
+
+    @property
+    def friction_damping(self) -> float:
+        """Reference damping of the frictional directions b_f = 2 / (dmax tau_f) [1/s]."""
+        tf = self.time_constant if self.friction_time_constant is None else self.friction_time_constant
+        return 2.0 / (self.impedance_max * tf)
+
+    def static_penetration(self, gravity: float) -> float:
+        """Static penetration of a body resting on the plane, g / k [m] (at dmax)."""
+        return gravity / self.stiffness
+
+    def creep_speed(self, gravity: float) -> float:
+        """Slip speed below which friction acts as a viscous damper, mu g / b_f [m/s]."""
+        return self.friction * gravity / self.friction_damping
+
+    # -- scaling -----------------------------------------------------------------------
+    def scaled(self, length_factor: float, time_factor: float | None = None) -> "ContactSettings":
+        """Settings for the geometrically similar model.
+
+        Parameters
+        ----------
+        length_factor : float
+            lambda = model length / prototype length [-].
+        time_factor : float, optional
+            model time / prototype time [-]; default ``sqrt(length_factor)`` (same gravity).
+
+        Returns
+        -------
+        ContactSettings
+            Times x ``time_factor``, ``impedance_width`` x ``length_factor``, the rest unchanged.
+        """
+        lam = float(check_positive("scale", length_factor))
+        lt = math.sqrt(lam) if time_factor is None else float(check_positive("time factor", time_factor))
+        return replace(
+            self,
+            time_constant=self.time_constant * lt,
+            friction_time_constant=None if self.friction_time_constant is None else self.friction_time_constant * lt,
+            impedance_width=self.impedance_width * lam,
+            timestep=self.timestep * lt,
+        )
+
+    # -- MJCF fragments ----------------------------------------------------------------
+    def mjcf_option(self, gravity: float) -> str:
+        """The ``<option>`` element (time step, cone, solver, gravity)."""
+        return (
+            f'<option timestep="{self.timestep!r}" gravity="0 0 {-gravity!r}" cone="{self.cone}" '
+            f'impratio="{self.impratio!r}" solver="{self.solver}" iterations="{int(self.iterations)}" '
+            f'tolerance="{self.tolerance!r}" noslip_iterations="{int(self.noslip_iterations)}" integrator="Euler"/>'
+        )
+
+    def mjcf_pair_attributes(self) -> str:
+        """Attributes of an explicit ``<pair>``: condim 3, friction, solref, solreffriction, solimp."""
+        mu = float(self.friction)
+        attrs = (
+            f'condim="3" friction="{mu!r} {mu!r} 0 0 0" solref="{self.time_constant!r} {self.damping_ratio!r}" '
+            f'solimp="{self.impedance_min!r} {self.impedance_max!r} {self.impedance_width!r} 0.5 2" margin="0" gap="0"'
+        )
+        if self.friction_time_constant is not None:
+            attrs += f' solreffriction="{self.friction_time_constant!r} 1"'
+        return attrs
+
+    def to_dict(self) -> dict:
+        """Plain dict with unit-suffixed keys."""
+        return {
+            "friction": self.friction,
+            "time_constant_s": self.time_constant,
+            "damping_ratio": self.damping_ratio,
+            "friction_time_constant_s": self.friction_time_constant,
+            "impedance_min": self.impedance_min,
+            "impedance_max": self.impedance_max,
+            "impedance_width_m": self.impedance_width,
+            "timestep_s": self.timestep,
+            "cone": self.cone,
+            "impratio": self.impratio,
+            "solver": self.solver,
+            "iterations": self.iterations,
+            "tolerance": self.tolerance,
+            "noslip_iterations": self.noslip_iterations,
+        }
