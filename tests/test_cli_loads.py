@@ -1,0 +1,83 @@
+"""CLI `blast`, `design` and `run`: JSON keys, values, and one-line errors with exit status 2."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from blastscale.cli import main
+
+BLAST_KEYS = {
+    "scaled_distance_m_per_kg13", "reflected_pressure_Pa", "reflected_impulse_Pa_s", "arrival_time_s",
+    "positive_duration_s", "incident_pressure_Pa", "incident_impulse_Pa_s", "friedlander_decay",
+}
+DESIGN_KEYS = {
+    "prototype_scaled_distance", "model_scaled_distance", "scaled_distance_factor", "model_charge_kg",
+    "model_standoff_m", "pressure_ratio", "impulse_ratio", "duration_ratio", "density_ratio", "factors",
+}
+
+
+def run_json(capsys, *argv):
+    with pytest.raises(SystemExit) as e:
+        main(list(argv))
+    assert e.value.code in (0, None)
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.mark.parametrize("model", ["kingery-bulmash", "masi2021"])
+def test_blast_json_keys(capsys, model):
+    out = run_json(capsys, "blast", "--charge", "50", "--standoff", "2", "--model", model, "--json")
+    assert BLAST_KEYS <= out.keys()
+    assert out["scaled_distance_m_per_kg13"] == pytest.approx(2 / 50 ** (1 / 3), rel=1e-12)
+
+
+def test_design_json_reproduces_paper_model_2(capsys):
+    out = run_json(capsys, "design", "--charge", "50", "--standoff", "2", "--scale", "0.005", "--model", "masi2021",
+                   "--height", "10", "--alpha-deg", "15", "--json")
+    assert DESIGN_KEYS <= out.keys()
+    assert out["model_charge_kg"] * 1e6 == pytest.approx(0.233, rel=1e-2)  # paper Table: 0.233 (mg, corrected)
+    assert out["impulse_ratio"] == pytest.approx(0.005**1.5, rel=1e-9)
+    assert {"length", "time", "mass", "inertia", "velocity", "angular_velocity", "charge"} <= out["factors"].keys()
+    assert out["impulsive"]["impulsive"] is True
+    assert out["impulsive"]["prototype_to_p"] == pytest.approx(1.39e-3, rel=0.01)  # DESIGN.md: ~1e-3
+
+
+def test_design_hopkinson_cranz(capsys):
+    out = run_json(capsys, "design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--law",
+                   "hopkinson-cranz", "--json")
+    assert out["scaled_distance_factor"] == 1.0
+    assert out["density_ratio"] == pytest.approx(10.0, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "argv, words",
+    [
+        (["blast", "--charge", "-5", "--standoff", "2"], ["charge", "-5", "> 0"]),
+        (["blast", "--charge", "0", "--standoff", "2"], ["charge", "0", "> 0"]),
+        (["blast", "--charge", "nan", "--standoff", "2"], ["charge", "nan"]),
+        (["blast", "--charge", "5", "--standoff", "-1"], ["standoff", "-1"]),
+        (["blast", "--charge", "1", "--standoff", "100", "--model", "masi2021"], ["Z = 100", "[0.2, 20]"]),
+        (["design", "--charge", "50", "--standoff", "2", "--scale", "0"], ["scale", "0", "> 0"]),
+        (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "-1"],
+         ["density ratio", "-1"]),
+        (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--height", "10", "--alpha-deg", "95"],
+         ["alpha-deg", "95", "(0, 90)"]),
+        (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-6", "--model", "masi2021"], ["scaled_positive_duration", "Z = 11.7", "[0.2, 6.5]"]),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(argv, words):
+    # The real console script in a subprocess: exit status 2, one line on stderr, no traceback.
+    r = subprocess.run([sys.executable, "-c", "from blastscale.cli import main; main()", *argv],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2, r.stderr
+    err = r.stderr.strip()
+    assert "Traceback" not in err
+    assert len(err.splitlines()) == 1, err
+    for w in words:
+        assert w in err
+
+
+def test_run_default_scenario_json(capsys):
+    out = run_json(capsys, "run", "--json")
+    assert out["design"]["model_charge_kg"] * 1e6 == pytest.approx(0.233, rel=1e-2)
