@@ -45,9 +45,9 @@ UFC_ROWS = _ufc_rows()
 # ------------------------------------------------------------------ (a) UFC 3-340-02 Fig. 2-15
 @pytest.mark.parametrize("quantity, z, ufc_value", UFC_ROWS)
 def test_ufc_3_340_02_fig_2_15_hemispherical_surface_burst(quantity, z, ufc_value):
-    # Tolerance 4 %: Swisdak's fits reproduce Kingery-Bulmash within ~1 % and Fig. 2-15 is drawn
+    # Tolerance 4 % (DESIGN.md: ~3.5 %): Swisdak's fits follow Kingery-Bulmash and Fig. 2-15 is drawn
     # from Kingery-Bulmash, so the remainder is chart-reading error (1-2 % per coordinate on a
-    # log-log chart). Measured over the 94 points: max 3.3 % (P_r at Z = 37.9, P_so at Z = 37.8).
+    # log-log chart). Measured over the 96 points: max 3.3 % (P_r at Z = 37.9, P_so at Z = 37.8).
     model = getattr(KB, quantity)(z)
     assert model == pytest.approx(ufc_value, rel=0.04)
 
@@ -160,7 +160,7 @@ def _jumps():
 def test_piece_boundaries_join_within_published_accuracy(quantity, boundary, jump):
     # A mistyped digit shows as a jump. Measured: largest 2.40 % (i_s at Z = 2.38), then
     # t_o -1.19 % (1.02), -0.90 % (2.8), P_so +0.70 % (23.8), all others < 0.25 %.
-    # Tolerance 2.5 %: below the 4 % UFC agreement, above Swisdak's own ~1-2 % fit error.
+    # Tolerance 2.5 %: below the 4 % UFC agreement; a wrong digit gives far more.
     assert abs(jump) < 0.025
 
 

@@ -1,8 +1,7 @@
 """Kingery-Bulmash air-blast parameters of a hemispherical TNT surface burst (Swisdak 1994).
 
 Kingery & Bulmash (1984) fitted polynomials in log Z to the air-blast data of TNT charges;
-Swisdak (1994) refitted them in a simpler form that is accurate to about 1 % against the
-original equations:
+Swisdak (1994) refitted them in a simpler form (fewer terms, natural logarithms):
 
 .. math::
 
