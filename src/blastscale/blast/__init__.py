@@ -1,11 +1,19 @@
 """Blast loads: empirical air-blast models, pulse shapes and per-point parameters (SI)."""
 
 from .base import BlastModel, ExtrapolationWarning
+from .faces import FaceLoads, face_loads, oblique_combination
+from .kingery_bulmash import KingeryBulmash
+from .masi_fits import Masi2021
 from .parameters import BLAST_MODELS, BlastParameters, blast_parameters, get_blast_model, scaled_distance
 from .pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular, friedlander_decay
 
 __all__ = [
     "BlastModel",
+    "KingeryBulmash",
+    "Masi2021",
+    "FaceLoads",
+    "face_loads",
+    "oblique_combination",
     "ExtrapolationWarning",
     "BLAST_MODELS",
     "BlastParameters",
