@@ -1,0 +1,408 @@
+"""Fast rocking solver (compiled Dormand-Prince 5(4) with events) and its result types.
+
+The equation (paper Eq. eq:eom, see :mod:`blastscale.rocking.system`) is integrated in the
+dimensionless time ``tau = p t`` with the state ``(theta, theta_dot / p)``, so that the
+tolerances mean the same thing at every scale. Time ``t = 0`` is the arrival of the shock at
+the loaded face; the pulse acts from there on.
+
+Overturning criterion (rigorous for the piecewise equation):
+
+* Rocking away from the blast (theta > 0): once theta reaches alpha with theta_dot > 0 the
+  centre of mass has passed over the pivot; gravity and the (non-negative) blast pressure
+  then both push the body further, so it can never come back. The *overturn time* is the
+  time of that crossing.
+* Rocking toward the blast (theta < 0): the pressure pushes back, so crossing -alpha counts
+  only once the pulse is over (and, if the body is then already past -alpha moving back,
+  only if its kinetic energy cannot lift it back over the top).
+* After overturning the motion is followed until the body lies on its side
+  (|theta| = pi/2), where it is then held (theta = +-pi/2, theta_dot = 0).
+
+Impacts: at theta = 0 the angular velocity is multiplied by the restitution e and the pivot
+changes (Housner 1963). When the rebound velocity falls below ``rest_velocity * p`` the body
+is at rest (this ends the Zeno sequence of ever smaller impacts; the excursions cut off are
+below ``rest_velocity^2 / (2 sin alpha)`` rad). A body at rest lifts off whenever the
+load-to-weight ratio exceeds ``tan(alpha)`` (``P S h > m g b`` for a rectangle).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Sequence
+
+import numpy as np
+
+from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
+from ..blast.pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular
+from ..structures.block import RectangularBlock
+from . import _kernel as K
+from .system import RockingSystem, as_rocking_system
+
+__all__ = ["RockingSolver", "RockingResult", "RockingBatchResult", "encode_pulse", "simulate"]
+
+
+def encode_pulse(pulse: Pulse, system: RockingSystem, theta0: float = 0.0):
+    """Kernel form of a pulse for ``system``: ``(kind, par[3], tab_t, tab_f, dw0)``.
+
+    Times are made dimensionless with p, pressures turned into load-to-weight ratios;
+    ``dw0`` is the jump of ``theta_dot / p`` given by an impulsive load at ``theta0``
+    (impulse-momentum about the pivot: ``J_o dtheta_dot = i S l cos(alpha s - theta0)/cos alpha``).
+    """
+    if not isinstance(pulse, Pulse):
+        raise BlastscaleInputError(f"pulse must be a blastscale Pulse, got {type(pulse).__name__}")
+    p = system.frequency_parameter
+    q = system.load_ratio_per_pascal
+    empty = np.zeros(0)
+    par = np.zeros(3)
+    if isinstance(pulse, Impulsive):
+        s = -1.0 if theta0 < 0.0 else 1.0
+        a = system.alpha * s - theta0
+        dw = q * p * pulse.impulse * math.cos(a)
+        return 0, par, empty, empty, dw
+    if not (pulse.duration > 0.0 and math.isfinite(pulse.duration)):
+        raise BlastscaleInputError(f"pulse duration = {pulse.duration:.6g} s is out of range: must be > 0 s")
+    if isinstance(pulse, Friedlander):
+        par[:] = (q * pulse.peak_pressure, p * pulse.positive_duration, pulse.decay)
+        return 1, par, empty, empty, 0.0
+    if isinstance(pulse, Triangular):
+        par[:] = (q * pulse.peak_pressure, p * pulse.duration, 0.0)
+        return 2, par, empty, empty, 0.0
+    if isinstance(pulse, Tabulated):
+        return 3, par, np.ascontiguousarray(pulse.times * p), np.ascontiguousarray(pulse.pressures * q), 0.0
+    raise BlastscaleInputError(
+        f"pulse kind {pulse.kind!r} is not supported by the rocking solver: "
+        "use Friedlander, Triangular, Impulsive or Tabulated"
+    )
+
+
+@dataclass(frozen=True)
+class RockingResult:
+    """Response of one rocking body (SI; times from the shock arrival).
+
+    Attributes
+    ----------
+    t, theta, theta_dot : ndarray
+        History at every accepted solver step and event [s], [rad], [rad/s]; an impact
+        appears twice at the same time (velocity before, then after).
+    t_eval, theta_eval, theta_dot_eval : ndarray or None
+        The history sampled at the requested times (dense output, 4th order), when asked.
+    impact_times, impact_velocity_before, impact_velocity_after : ndarray
+        Every impact [s], [rad/s], [rad/s].
+    peak_times, peak_angles : ndarray
+        Every local extremum of |theta| [s], [rad] (signed angle).
+    overturned : bool
+        Whether the body overturned (see the module docstring for the criterion).
+    overturn_time : float or None
+        Time it passed its tipping point [s].
+    first_impact_time : float or None
+        Time of the first impact [s].
+    max_angle : float
+        Largest |theta| over the run [rad] (pi/2 once it lies on its side).
+    end_time : float
+        Time the simulated motion ends [s] (the requested duration, or when it lay down or
+        the requested early stop happened).
+    n_steps, n_rejected : int
+        Solver steps (accepted + rejected) and rejected steps.
+    restitution : float
+        Restitution used [-].
+    """
+
+    t: np.ndarray
+    theta: np.ndarray
+    theta_dot: np.ndarray
+    impact_times: np.ndarray
+    impact_velocity_before: np.ndarray
+    impact_velocity_after: np.ndarray
+    peak_times: np.ndarray
+    peak_angles: np.ndarray
+    overturned: bool
+    overturn_time: float | None
+    first_impact_time: float | None
+    max_angle: float
+    end_time: float
+    n_steps: int
+    n_rejected: int
+    restitution: float
+    angular_velocity_at_tipping: float | None = None
+    t_eval: np.ndarray | None = None
+    theta_eval: np.ndarray | None = None
+    theta_dot_eval: np.ndarray | None = None
+    system: RockingSystem | None = field(default=None, repr=False)
+
+    @property
+    def n_impacts(self) -> int:
+        """Number of impacts [-]."""
+        return int(self.impact_times.size)
+
+    def summary(self) -> dict:
+        """Plain dict of the scalar results (unit-suffixed keys, None where absent)."""
+        return {
+            "overturned": bool(self.overturned),
+            "max_angle_rad": float(self.max_angle),
+            "overturn_time_s": self.overturn_time,
+            "first_impact_time_s": self.first_impact_time,
+            "n_impacts": self.n_impacts,
+            "end_time_s": float(self.end_time),
+        }
+
+
+@dataclass(frozen=True)
+class RockingBatchResult:
+    """Responses of n cases sampled at m common times (arrays shaped ``(n,)`` / ``(n, m)``).
+
+    ``theta``/``theta_dot`` are NaN only after an early stop the caller asked for
+    (``stop_at_overturn``/``max_impacts``); elsewhere every sample is simulated.
+    """
+
+    t: np.ndarray
+    theta: np.ndarray
+    theta_dot: np.ndarray
+    overturned: np.ndarray
+    overturn_time: np.ndarray  # NaN where none [s]
+    first_impact_time: np.ndarray  # NaN where none [s]
+    max_angle: np.ndarray
+    first_peak_angle: np.ndarray  # NaN where none [rad]
+    angular_velocity_at_tipping: np.ndarray  # NaN where none [rad/s]
+    n_impacts: np.ndarray
+    n_steps: np.ndarray
+    end_time: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.overturned.size)
+
+
+def _none_if_nan(x: float) -> float | None:
+    return None if not math.isfinite(x) else float(x)
+
+
+@dataclass(frozen=True)
+class RockingSolver:
+    """Adaptive Dormand-Prince 5(4) rocking solver with impact, peak and overturn events.
+
+    Parameters
+    ----------
+    rtol, atol : float
+        Relative and absolute tolerances on (theta [rad], theta_dot / p [-]) per step
+        (defaults 1e-10, 1e-12). The global error over seconds of rocking with tens of
+        impacts stays below ~1e-8 rad (checked against scipy's DOP853 at rtol 1e-10,
+        atol 1e-12 in the tests).
+    rest_velocity : float
+        Rebound velocity below which the body is taken to be at rest, as a fraction of p
+        [-] (default 1e-8).
+    max_steps : int
+        Step budget per case (default 20 million); exceeding it raises an error.
+    """
+
+    rtol: float = 1e-10
+    atol: float = 1e-12
+    rest_velocity: float = 1e-8
+    max_steps: int = 20_000_000
+
+    def __post_init__(self):
+        check_range("rtol", self.rtol, 1e-14, 1e-2)
+        check_range("atol", self.atol, 1e-16, 1e-2)
+        check_range("rest_velocity", self.rest_velocity, 0.0, 1e-2)
+        check_positive("max_steps", self.max_steps)
+
+    # ------------------------------------------------------------------ one case
+    def simulate(
+        self,
+        body: "RockingSystem | RectangularBlock",
+        pulse: Pulse | None,
+        duration: float,
+        *,
+        theta0: float = 0.0,
+        theta_dot0: float = 0.0,
+        t_eval=None,
+        stop_at_overturn: bool = False,
+        max_impacts: int | None = None,
+        gravity: float | None = None,
+        restitution: float | None = None,
+    ) -> RockingResult:
+        """Simulate one body under one pulse.
+
+        Parameters
+        ----------
+        body : RockingSystem or RectangularBlock
+            The rocking body (a block is converted with ``gravity`` [m/s^2] and ``restitution``).
+        pulse : Pulse or None
+            Pressure pulse on the loaded face from the shock arrival (t = 0); None: no load.
+        duration : float
+            Simulated time [s], > 0.
+        theta0, theta_dot0 : float
+            Initial angle [rad] (|theta0| < pi/2) and angular velocity [rad/s].
+        t_eval : array_like, optional
+            Increasing times in [0, duration] [s] at which to sample the solution.
+        stop_at_overturn : bool
+            Stop at the tipping point instead of following the fall.
+        max_impacts : int, optional
+            Stop after this many impacts.
+
+        Returns
+        -------
+        RockingResult
+        """
+        system = as_rocking_system(body, gravity, restitution)
+        dur = float(check_positive("duration", duration, "s"))
+        th0 = float(check_range("initial angle theta0", theta0, -math.pi / 2, math.pi / 2, "rad", lo_open=True, hi_open=True))
+        om0 = float(check_finite("initial angular velocity", theta_dot0, "rad/s"))
+        p = system.frequency_parameter
+        tev = self._check_t_eval(t_eval, dur)
+        kind, par, tt, tf, dw = (0, np.zeros(3), np.zeros(0), np.zeros(0), 0.0) if pulse is None else encode_pulse(pulse, system, th0)
+        mi = -1 if max_impacts is None else int(check_range("max_impacts", max_impacts, 0, math.inf))
+        e = system.coefficient_of_restitution
+        summ, the, we, hist, imp, pk = K.solve_case(
+            system.alpha, e, th0, om0 / p + dw, dur * p, kind, par, tt, tf,
+            (tev if tev is not None else np.zeros(0)) * p,
+            float(self.rtol), float(self.atol), float(self.rest_velocity), mi, bool(stop_at_overturn),
+            int(self.max_steps), True,
+        )
+        self._check_status(summ[K.S_STATUS])
+        return RockingResult(
+            t=hist[:, 0] / p,
+            theta=hist[:, 1].copy(),
+            theta_dot=hist[:, 2] * p,
+            impact_times=imp[:, 0] / p,
+            impact_velocity_before=imp[:, 1] * p,
+            impact_velocity_after=imp[:, 2] * p,
+            peak_times=pk[:, 0] / p,
+            peak_angles=pk[:, 1].copy(),
+            overturned=bool(summ[K.S_OVERTURNED]),
+            overturn_time=_none_if_nan(summ[K.S_OVERTURN_TAU] / p),
+            first_impact_time=_none_if_nan(summ[K.S_FIRST_IMPACT_TAU] / p),
+            max_angle=float(summ[K.S_MAX_ABS_THETA]),
+            end_time=float(summ[K.S_END_TAU] / p),
+            n_steps=int(summ[K.S_NSTEPS]),
+            n_rejected=int(summ[K.S_NREJECT]),
+            restitution=e,
+            angular_velocity_at_tipping=_none_if_nan(summ[K.S_W_AT_ALPHA] * p),
+            t_eval=tev,
+            theta_eval=None if tev is None else the,
+            theta_dot_eval=None if tev is None else we * p,
+            system=system,
+        )
+
+    # --------------------------------------------------------------- many cases
+    def simulate_batch(
+        self,
+        bodies: "RockingSystem | RectangularBlock | Sequence",
+        pulses: "Pulse | None | Sequence",
+        duration: float,
+        t_eval,
+        *,
+        theta0=0.0,
+        theta_dot0=0.0,
+        stop_at_overturn: bool = False,
+        max_impacts: int | None = None,
+        gravity: float | None = None,
+    ) -> RockingBatchResult:
+        """Simulate n cases in one compiled call, sampled at the same times.
+
+        ``bodies`` and ``pulses`` are single objects or sequences of length n (a single one is
+        broadcast); ``theta0`` / ``theta_dot0`` scalars or arrays of length n [rad], [rad/s];
+        ``t_eval`` (m,) increasing times in [0, duration] [s]. Wrong lengths raise a
+        :class:`~blastscale._validate.BlastscaleInputError` naming them.
+        """
+        dur = float(check_positive("duration", duration, "s"))
+        tev = self._check_t_eval(t_eval, dur)
+        if tev is None:
+            raise BlastscaleInputError("t_eval is required for a batch (the common sampling times)")
+        blist = list(bodies) if isinstance(bodies, (list, tuple)) else [bodies]
+        plist = list(pulses) if isinstance(pulses, (list, tuple)) else [pulses]
+        th0 = np.atleast_1d(check_range("initial angle theta0", theta0, -math.pi / 2, math.pi / 2, "rad", lo_open=True, hi_open=True))
+        om0 = np.atleast_1d(check_finite("initial angular velocity", theta_dot0, "rad/s"))
+        lens = {len(blist), len(plist), th0.size, om0.size} - {1}
+        if len(lens) > 1:
+            raise BlastscaleInputError(
+                f"batch lengths disagree: bodies {len(blist)}, pulses {len(plist)}, "
+                f"theta0 {th0.size}, theta_dot0 {om0.size} (each must be n or 1)"
+            )
+        n = lens.pop() if lens else 1
+        blist = blist * n if len(blist) == 1 else blist
+        plist = plist * n if len(plist) == 1 else plist
+        th0 = np.broadcast_to(th0, (n,)).astype(float)
+        om0 = np.broadcast_to(om0, (n,)).astype(float)
+        systems = [as_rocking_system(b, gravity) for b in blist]
+        alpha = np.empty(n)
+        e = np.empty(n)
+        pvec = np.empty(n)
+        w0 = np.empty(n)
+        kinds = np.empty(n, dtype=np.int64)
+        par = np.zeros((n, 3))
+        tabs_t, tabs_f = [], []
+        off = np.zeros(n + 1, dtype=np.int64)
+        for i, (sysi, pul) in enumerate(zip(systems, plist)):
+            pvec[i] = sysi.frequency_parameter
+            alpha[i] = sysi.alpha
+            e[i] = sysi.coefficient_of_restitution
+            if pul is None:
+                k, pr, tt, tf, dw = 0, np.zeros(3), np.zeros(0), np.zeros(0), 0.0
+            else:
+                k, pr, tt, tf, dw = encode_pulse(pul, sysi, th0[i])
+            kinds[i] = k
+            par[i] = pr
+            tabs_t.append(tt)
+            tabs_f.append(tf)
+            off[i + 1] = off[i] + tt.size
+            w0[i] = om0[i] / pvec[i] + dw
+        tab_t = np.concatenate(tabs_t) if off[-1] else np.zeros(0)
+        tab_f = np.concatenate(tabs_f) if off[-1] else np.zeros(0)
+        mi = -1 if max_impacts is None else int(max_impacts)
+        summ, th, w = K.solve_batch(
+            alpha, e, th0, w0, dur * pvec, kinds, par, tab_t, tab_f, off,
+            np.ascontiguousarray(tev[None, :] * pvec[:, None]),
+            float(self.rtol), float(self.atol), float(self.rest_velocity), mi, bool(stop_at_overturn),
+            int(self.max_steps),
+        )
+        bad = summ[:, K.S_STATUS] != 0
+        if np.any(bad):
+            self._check_status(summ[np.argmax(bad), K.S_STATUS], int(np.argmax(bad)))
+        return RockingBatchResult(
+            t=tev,
+            theta=th,
+            theta_dot=w * pvec[:, None],
+            overturned=summ[:, K.S_OVERTURNED].astype(bool),
+            overturn_time=summ[:, K.S_OVERTURN_TAU] / pvec,
+            first_impact_time=summ[:, K.S_FIRST_IMPACT_TAU] / pvec,
+            max_angle=summ[:, K.S_MAX_ABS_THETA].copy(),
+            first_peak_angle=summ[:, K.S_FIRST_PEAK].copy(),
+            angular_velocity_at_tipping=summ[:, K.S_W_AT_ALPHA] * pvec,
+            n_impacts=summ[:, K.S_N_IMPACTS].astype(np.int64),
+            n_steps=summ[:, K.S_NSTEPS].astype(np.int64),
+            end_time=summ[:, K.S_END_TAU] / pvec,
+        )
+
+    # ------------------------------------------------------------------ helpers
+    @staticmethod
+    def _check_t_eval(t_eval, duration: float):
+        if t_eval is None:
+            return None
+        t = check_finite("t_eval", t_eval, "s")
+        if t.ndim != 1:
+            raise BlastscaleInputError(f"t_eval must be 1-D, got shape {t.shape}")
+        if t.size and (t[0] < 0.0 or t[-1] > duration * (1 + 1e-12)):
+            raise BlastscaleInputError(
+                f"t_eval spans [{t[0]:.6g}, {t[-1]:.6g}] s: out of range, valid range is [0, {duration:.6g}] s"
+            )
+        if np.any(np.diff(t) < 0.0):
+            raise BlastscaleInputError("t_eval must be non-decreasing")
+        return np.ascontiguousarray(t)
+
+    def _check_status(self, status: float, case: int | None = None) -> None:
+        where = "" if case is None else f" (case {case})"
+        if status == 1:
+            raise BlastscaleInputError(
+                f"rocking solver step budget max_steps = {self.max_steps} exhausted{where}: "
+                "shorten the duration or raise max_steps"
+            )
+        if status == 2:
+            raise BlastscaleInputError(f"rocking solver step size underflow{where}: the tolerances cannot be met")
+
+
+#: Solver with the default tolerances (rtol 1e-10, atol 1e-12).
+DEFAULT_SOLVER = RockingSolver()
+
+
+def simulate(body, pulse, duration, **kwargs) -> RockingResult:
+    """Shortcut for ``RockingSolver().simulate(body, pulse, duration, **kwargs)``."""
+    return DEFAULT_SOLVER.simulate(body, pulse, duration, **kwargs)
