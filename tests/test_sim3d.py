@@ -1,0 +1,225 @@
+"""3D single-block response on MuJoCo (issue #4) against closed forms and the planar equation.
+
+Reference block of the paper: 2h = 10 m, alpha = 15 deg, rho = 2000 kg/m^3, depth 1 m
+(depth cancels). Loads: paper Appendix A fits (model="masi2021"), Friedlander pulse.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from blastscale._validate import BlastscaleInputError
+from blastscale.blast.parameters import blast_parameters
+from blastscale.blast.pulses import Friedlander, Impulsive, Triangular
+from blastscale.sim3d import (
+    Block3DSimulator,
+    ContactSettings,
+    block_scene,
+    quaternion_to_matrix,
+    simulate_block,
+    step_forces,
+)
+from blastscale.structures.block import STANDARD_GRAVITY as G
+from blastscale.structures.block import RectangularBlock
+
+PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+SQUAT_BLOCK = RectangularBlock(height=0.5, width=1.0, depth=1.0)  # the "1 m squat block", 1000 kg
+
+
+def planar_peak_rotation(block, pulse, t_end=3.0):
+    """Independent reference: paper Eq. (eom) integrated with scipy (LSODA, rtol 1e-10) up to
+    the first return to theta = 0 or overturning (theta = alpha). Returns (peak, overturned)."""
+    m, r, a, J, S = block.mass, block.r, block.alpha, block.inertia_pivot, block.front_area
+
+    def rhs(t, y):
+        s = 1.0 if y[0] >= 0 else -1.0
+        return [y[1], (S * r * pulse.pressure(t) * math.cos(a * s - y[0]) - m * G * r * math.sin(a * s - y[0])) / J]
+
+    over = lambda t, y: y[0] - a  # noqa: E731
+    over.terminal = True
+    back = lambda t, y: y[0]  # noqa: E731
+    back.terminal, back.direction = True, -1
+    sol = solve_ivp(rhs, (0, t_end), [0.0, 0.0], method="LSODA", rtol=1e-10, atol=1e-12,
+                    max_step=pulse.duration / 50, events=[over, back])
+    return float(sol.y[0].max()), sol.t_events[0].size > 0
+
+
+def paper_pulse(charge, standoff=2.0):
+    return blast_parameters(charge, standoff, model="masi2021").pulse("friedlander")
+
+
+# -- settings and load ------------------------------------------------------------------
+def test_contact_settings_scale_times_by_sqrt_lambda_and_width_by_lambda():
+    c = ContactSettings()
+    lam = 1 / 200
+    s = c.scaled(lam)
+    assert s.timestep == pytest.approx(c.timestep * math.sqrt(lam), rel=1e-15)
+    assert s.time_constant == pytest.approx(c.time_constant * math.sqrt(lam), rel=1e-15)
+    assert s.friction_time_constant == pytest.approx(c.friction_time_constant * math.sqrt(lam), rel=1e-15)
+    assert s.impedance_width == pytest.approx(c.impedance_width * lam, rel=1e-15)
+    assert (s.friction, s.damping_ratio, s.impratio, s.cone) == (c.friction, c.damping_ratio, c.impratio, c.cone)
+    # MuJoCo stiffness k [1/s^2] scales like g/l = 1/lambda_t^2
+    assert s.stiffness == pytest.approx(c.stiffness / lam, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [dict(friction=-0.1), dict(time_constant=1e-4, timestep=1e-4), dict(cone="round"), dict(solver="X"),
+     dict(impedance_max=1.0), dict(friction_time_constant=0.0)],
+)
+def test_contact_settings_reject_bad_input(kwargs):
+    with pytest.raises(BlastscaleInputError):
+        ContactSettings(**kwargs)
+
+
+def test_step_forces_carry_exact_impulse_of_friedlander_pulse():
+    p = Friedlander(5e6, 1.1e-3, 1.3)
+    t = np.arange(0, 12) * 2e-4  # steps do not resolve the pulse and do not divide t_o
+    F = step_forces(p, 2.5, t)
+    # the sum telescopes: exact to round-off (1e-12 relative)
+    assert np.sum(F * np.diff(t)) == pytest.approx(p.impulse * 2.5, rel=1e-12)
+    assert np.all(F[t[1:] > p.duration + 2e-4] == 0.0)
+
+
+def test_step_forces_put_a_dirac_into_the_first_step():
+    F = step_forces(Impulsive(100.0), 2.0, [0.0, 1e-3, 2e-3])
+    assert F[0] == pytest.approx(100.0 * 2.0 / 1e-3, rel=1e-15) and F[1] == 0.0
+
+
+def test_tilted_scene_rests_on_its_edge_with_rotation_theta0():
+    import mujoco
+
+    th0 = 0.1
+    sc = block_scene(PAPER_BLOCK, ContactSettings(), rotation=th0)
+    d = mujoco.MjData(sc.model)
+    mujoco.mj_forward(sc.model, d)
+    R = quaternion_to_matrix(d.qpos[3:7])
+    corners_z = d.qpos[2] + sc.bodies[0].shape.base_points() @ R[2]
+    assert corners_z.min() == pytest.approx(0.0, abs=1e-12)  # rests exactly on the +x edge
+    assert math.atan2(R[0, 2], R[2, 2]) == pytest.approx(th0, rel=1e-14)
+
+
+# -- closed forms -----------------------------------------------------------------------
+@pytest.mark.parametrize("mu", [0.3, 0.7])
+def test_pure_sliding_distance_v0_squared_over_2_mu_g(mu):
+    v0 = 1.8
+    i = v0 * SQUAT_BLOCK.mass / SQUAT_BLOCK.front_area  # v0 = i S / m
+    r = simulate_block(SQUAT_BLOCK, Triangular(2 * i / 1e-3, i), 1.0, contact=ContactSettings(friction=mu))
+    expected = v0**2 / (2 * mu * G)
+    # 3% (issue): covers friction during the 1 ms pulse (mu g t_o / v0 = 0.4%) and the viscous
+    # creep below mu g / b_f at the end of the slide (~0.1%); measured -0.09% / -0.13%
+    assert r.final_sliding == pytest.approx(expected, rel=0.03)
+    assert r.impulse_delivered == pytest.approx(i * SQUAT_BLOCK.front_area, rel=1e-12)
+
+
+def test_spurious_hop_of_a_sliding_block_below_2_mm():
+    v0 = 1.8
+    i = v0 * SQUAT_BLOCK.mass / SQUAT_BLOCK.front_area
+    pulse = Triangular(2 * i / 1e-3, i)
+    fixed = simulate_block(SQUAT_BLOCK, pulse, 0.5, contact=ContactSettings(friction=0.7))
+    # issue #4 target: <= 2 mm; measured 0.02 mm
+    assert fixed.max_uplift <= 2e-3
+    # the hop is a solver artefact, reproduced by MuJoCo's defaults: blast as a force while the
+    # contact slides (4.4 mm measured) -- shows this test can fail
+    raw = simulate_block(SQUAT_BLOCK, pulse, 0.5, contact=ContactSettings(friction=0.7, friction_time_constant=None),
+                         blast_mode="force")
+    assert raw.max_uplift > 3e-3
+
+
+def test_pivot_threshold_decides_stick_or_slip_during_the_pulse():
+    b, h = PAPER_BLOCK.b, PAPER_BLOCK.h
+    mu_star = (4 * b**2 + h**2) / (3 * b * h)
+    assert mu_star == pytest.approx(1.60, abs=0.01)  # the paper's block (issue: 1.6)
+    pulse = paper_pulse(50.0)
+    stick = simulate_block(PAPER_BLOCK, pulse, 0.01, contact=ContactSettings(friction=2.0))
+    slip = simulate_block(PAPER_BLOCK, pulse, 0.01, contact=ContactSettings(friction=0.7))
+    assert stick.settings["kick_steps"] == 0 and abs(stick.sliding[-1]) < 1e-4
+    assert slip.settings["kick_steps"] > 0 and slip.sliding[-1] > 1e-3
+
+
+def test_pivoting_50kg_peak_rotation_matches_planar_equation():
+    pulse = paper_pulse(50.0)
+    ref, over = planar_peak_rotation(PAPER_BLOCK, pulse)
+    assert not over
+    r = simulate_block(PAPER_BLOCK, pulse, 1.5, contact=ContactSettings(friction=2.0))
+    # 3% (issue); measured 0.001%: the pivot sticks (mu = 2 > 1.6), no uplift
+    assert r.max_rotation == pytest.approx(ref, rel=0.03)
+    assert not r.overturned
+
+
+def test_pivoting_100kg_overturns_like_planar_equation():
+    pulse = paper_pulse(100.0)
+    _, over = planar_peak_rotation(PAPER_BLOCK, pulse)
+    assert over
+    r = simulate_block(PAPER_BLOCK, pulse, 1.5, contact=ContactSettings(friction=2.0), record_every=10)
+    assert r.overturned
+
+
+def test_housner_restitution_emerges_from_inelastic_contact():
+    a = PAPER_BLOCK.alpha
+    e_housner = 1 - 1.5 * math.sin(a) ** 2
+    th0 = 0.5 * a
+    r = simulate_block(PAPER_BLOCK, None, 3.0, contact=ContactSettings(friction=2.0), initial_rotation=th0)
+    th = r.rotation
+    k = int(np.argmax(th < 0))  # first impact
+    th1 = -th[k:][: int(np.argmax(np.diff(th[k:]) > 0)) + 1].min()  # peak on the other side
+    # energy after one impact: cos(a - th1) - cos(a) = e^2 [cos(a - th0) - cos(a)]
+    e_eff = math.sqrt((math.cos(a - th1) - math.cos(a)) / (math.cos(a - th0) - math.cos(a)))
+    # 2% (issue); measured +0.04%
+    assert e_eff == pytest.approx(e_housner, rel=0.02)
+
+
+@pytest.mark.parametrize("factor, overturns", [(0.97, False), (1.03, True)])
+def test_overturning_threshold_within_3_percent(factor, overturns):
+    a = PAPER_BLOCK.alpha
+    crit = PAPER_BLOCK.frequency_parameter(G) * math.sqrt(2 * (1 - math.cos(a)))  # Housner 1963
+    r = simulate_block(PAPER_BLOCK, None, 4.0, contact=ContactSettings(friction=2.0),
+                       initial_angular_velocity=factor * crit, record_every=20)
+    assert r.overturned is overturns
+
+
+def test_block_at_rest_stays_put_for_5_seconds():
+    r = simulate_block(PAPER_BLOCK, None, 5.0, contact=ContactSettings(friction=0.7), record_every=50)
+    # 1 um / 1 urad: far below anything reported (static penetration g/k ~ 4 um is constant)
+    assert np.max(np.abs(r.sliding)) < 1e-6
+    assert np.max(np.abs(r.rotation)) < 1e-6
+    assert np.ptp(r.uplift) < 1e-6
+
+
+# -- similarity -------------------------------------------------------------------------
+def test_scale_invariance_lambda_1_200_upscaled_equals_full_scale():
+    lam = 1 / 200
+    lt = math.sqrt(lam)
+    c = ContactSettings(friction=0.7)
+    pulse = paper_pulse(50.0)
+    proto = Block3DSimulator(c).run(PAPER_BLOCK, pulse, 0.4)
+    # the exactly similar pulse: pressure x lambda (gamma = varsigma = 1), time x sqrt(lambda)
+    model = Block3DSimulator(c.scaled(lam)).run(PAPER_BLOCK.scaled(lam), pulse.scaled(lam, lt), 0.4 * lt)
+    up = model.upscaled(lam, lt)
+    assert np.allclose(up.time, proto.time, rtol=1e-12, atol=0)
+    # 1e-6 relative to the response's size (issue); measured ~1e-9 (round-off through the solver)
+    assert np.max(np.abs(up.rotation - proto.rotation)) <= 1e-6 * np.max(np.abs(proto.rotation))
+    assert np.max(np.abs(up.sliding - proto.sliding)) <= 1e-6 * np.max(np.abs(proto.sliding))
+
+
+@pytest.mark.parametrize(
+    "block, charge, standoff, duration",
+    [
+        (PAPER_BLOCK, 50.0, 2.0, 2.0),
+        (PAPER_BLOCK, 100.0, 2.0, 2.0),
+        (RectangularBlock(height=10.0, width=3.5, depth=3.5), 2500.0, 3.0, 1.0),
+    ],
+    ids=["slender-50kg", "slender-100kg", "non-slender-2500kg"],
+)
+def test_paper_cases_mu_07_model_upscaled_sliding_within_1_percent(block, charge, standoff, duration):
+    from blastscale.analysis.block3d_similarity import compare_block3d
+
+    c = compare_block3d(block, charge, standoff, 1 / 200, model="masi2021", contact=ContactSettings(friction=0.7),
+                        duration=duration, record_every=5)
+    p, m = c.prototype, c.model_upscaled
+    # 1% (issue): the model's pulse is not exactly similar (the blast fixes only the impulse),
+    # measured 0.08-0.5%
+    assert m.max_sliding == pytest.approx(p.max_sliding, rel=0.01)
+    assert m.overturned == p.overturned
