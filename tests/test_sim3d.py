@@ -199,7 +199,7 @@ def test_scale_invariance_lambda_1_200_upscaled_equals_full_scale():
     model = Block3DSimulator(c.scaled(lam)).run(PAPER_BLOCK.scaled(lam), pulse.scaled(lam, lt), 0.4 * lt)
     up = model.upscaled(lam, lt)
     assert np.allclose(up.time, proto.time, rtol=1e-12, atol=0)
-    # 1e-6 relative to the response's size (issue); measured ~1e-9 (round-off through the solver)
+    # 1e-6 relative to the response's size (issue); measured 1e-13 (round-off)
     assert np.max(np.abs(up.rotation - proto.rotation)) <= 1e-6 * np.max(np.abs(proto.rotation))
     assert np.max(np.abs(up.sliding - proto.sliding)) <= 1e-6 * np.max(np.abs(proto.sliding))
 

@@ -1,0 +1,1 @@
+"""Plotting (matplotlib). Every function takes ``ax=`` and returns it; no numerics live here."""

@@ -1,0 +1,164 @@
+"""Plots of 3D single-block runs: histories (prototype vs up-scaled model) and pose snapshots.
+
+Every function takes ``ax=`` (created when None) and returns it. Inputs are
+:class:`~blastscale.sim3d.results.Block3DResult` objects, already in the units to show
+(up-scale a model run with ``result.upscaled(lambda, lambda_t)`` first).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = [
+    "HISTORY_QUANTITIES",
+    "plot_history",
+    "plot_rotation",
+    "plot_sliding",
+    "plot_velocity",
+    "plot_angular_velocity",
+    "plot_snapshots",
+    "plot_comparison",
+]
+
+#: attribute -> (axis label with units, scale factor to the unit shown)
+HISTORY_QUANTITIES = {
+    "rotation": ("rotation theta [rad]", 1.0),
+    "angular_velocity": ("angular velocity [rad/s]", 1.0),
+    "sliding": ("sliding of the base [m]", 1.0),
+    "velocity_x": ("velocity x of the centre of mass [m/s]", 1.0),
+    "uplift": ("uplift of the lowest base corner [mm]", 1e3),
+    "com_x": ("displacement x of the centre of mass [m]", 1.0),
+}
+
+
+def _ax(ax):
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots()
+    return ax
+
+
+def _as_dict(results, labels=None) -> dict:
+    if isinstance(results, dict):
+        return results
+    if not isinstance(results, (list, tuple)):
+        results = [results]
+    labels = labels or (["prototype", "model (up-scaled)"] + [f"run {k}" for k in range(2, len(results))])
+    return dict(zip(labels, results))
+
+
+def plot_history(results, quantity: str = "rotation", ax=None, labels=None, styles=("-", "--", ":", "-.")):
+    """Time history of one recorded quantity for one or several runs.
+
+    Parameters
+    ----------
+    results : Block3DResult, sequence of them, or dict label -> result
+        Runs to overlay (a sequence is labelled prototype, model (up-scaled), ...).
+    quantity : str
+        One of :data:`HISTORY_QUANTITIES`.
+    ax : matplotlib Axes, optional
+    labels : sequence of str, optional
+    styles : sequence of str
+        Line styles cycled over the runs (dashed model over solid prototype).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    if quantity not in HISTORY_QUANTITIES:
+        raise ValueError(f"quantity = {quantity!r} is not known: valid values are {', '.join(HISTORY_QUANTITIES)}")
+    ax = _ax(ax)
+    label, k = HISTORY_QUANTITIES[quantity]
+    for j, (name, r) in enumerate(_as_dict(results, labels).items()):
+        ax.plot(r.time, k * getattr(r, quantity), styles[j % len(styles)], label=name)
+    ax.set_xlabel("time after arrival [s]")
+    ax.set_ylabel(label)
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    return ax
+
+
+def plot_rotation(results, ax=None, labels=None):
+    """Rocking angle theta [rad] vs time; see :func:`plot_history`."""
+    return plot_history(results, "rotation", ax, labels)
+
+
+def plot_sliding(results, ax=None, labels=None):
+    """Sliding of the base [m] vs time; see :func:`plot_history`."""
+    return plot_history(results, "sliding", ax, labels)
+
+
+def plot_velocity(results, ax=None, labels=None):
+    """Horizontal velocity of the centre of mass [m/s] vs time; see :func:`plot_history`."""
+    return plot_history(results, "velocity_x", ax, labels)
+
+
+def plot_angular_velocity(results, ax=None, labels=None):
+    """Angular velocity [rad/s] vs time; see :func:`plot_history`."""
+    return plot_history(results, "angular_velocity", ax, labels)
+
+
+def block_outline(com_x: float, com_z: float, theta: float, b: float, h: float) -> np.ndarray:
+    """Closed outline (5, 2) of the block's x-z section [m]: corners of the 2b x 2h rectangle
+    rotated by theta about y (top towards +x when theta > 0) and centred on the centre of mass."""
+    c, s = math.cos(theta), math.sin(theta)
+    local = np.array([[-b, -h], [b, -h], [b, h], [-b, h], [-b, -h]])
+    # rotation about +y: x' = x c + z s, z' = -x s + z c
+    return np.column_stack([com_x + local[:, 0] * c + local[:, 1] * s, com_z - local[:, 0] * s + local[:, 1] * c])
+
+
+def plot_snapshots(result, times=None, ax=None, n: int = 6, cmap: str = "viridis"):
+    """Outlines of the block in the x-z plane at chosen times (the blast comes from the left).
+
+    Parameters
+    ----------
+    result : Block3DResult
+    times : sequence of float, optional
+        Times [s]; default ``n`` times evenly spread over the run.
+    ax : matplotlib Axes, optional
+    n : int
+        Number of snapshots when ``times`` is None.
+    cmap : str
+        Colormap for time.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    import matplotlib
+
+    ax = _ax(ax)
+    t = result.time
+    times = np.linspace(t[0], t[-1], n) if times is None else np.asarray(times, dtype=float)
+    colors = matplotlib.colormaps[cmap](np.linspace(0, 1, max(len(times), 2)))
+    for k, tk in enumerate(times):
+        i = int(np.clip(np.searchsorted(t, tk), 0, t.size - 1))
+        xy = block_outline(result.com_x[i], result.com_z[i], result.rotation[i], result.half_width, result.half_height)
+        ax.plot(xy[:, 0], xy[:, 1], color=colors[k], label=f"t = {t[i]:.3g} s")
+    xs = ax.get_xlim()
+    ax.axhline(0.0, color="k", lw=1)
+    ax.set_xlim(xs)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m] (blast from -x)")
+    ax.set_ylabel("z [m]")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def plot_comparison(prototype, model_upscaled=None, fig=None):
+    """A 2 x 2 figure: rotation, sliding, velocity histories (prototype vs up-scaled model)
+    and the prototype's pose snapshots. Returns the figure."""
+    import matplotlib.pyplot as plt
+
+    fig = fig or plt.figure(figsize=(11, 8))
+    axs = fig.subplots(2, 2)
+    runs = [prototype] if model_upscaled is None else [prototype, model_upscaled]
+    plot_rotation(runs, ax=axs[0, 0])
+    plot_sliding(runs, ax=axs[0, 1])
+    plot_velocity(runs, ax=axs[1, 0])
+    plot_snapshots(prototype, ax=axs[1, 1])
+    fig.tight_layout()
+    return fig
