@@ -41,7 +41,7 @@ def _lift_time(pulse: Pulse | None, t: float, p_lift: float) -> float:
         a = t
         for b in knots:
             if pulse.pressure(b) > p_lift:
-                r = brentq(lambda x: pulse.pressure(x) - p_lift, a, b, xtol=1e-15, rtol=4e-16)
+                r = brentq(lambda x: pulse.pressure(x) - p_lift, a, b, xtol=1e-15, rtol=1e-15)
                 return min(np.nextafter(r, math.inf), b)
             a = b
     return math.inf  # analytical pulses decrease monotonically
