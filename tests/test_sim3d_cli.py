@@ -1,0 +1,90 @@
+"""CLI `block3d` (JSON keys, similarity block, errors with status 2) and the sim3d plots."""
+
+import json
+import math
+
+import matplotlib
+import numpy as np
+import pytest
+
+matplotlib.use("Agg")
+
+from blastscale.cli import main  # noqa: E402
+
+OUTCOME_KEYS = {"overturned", "max_rotation_rad", "max_sliding_m", "final_sliding_m", "max_uplift_m"}
+
+
+def run(capsys, *argv):
+    with pytest.raises(SystemExit) as e:
+        main(list(argv))
+    return e.value.code, capsys.readouterr()
+
+
+def test_block3d_json_prototype_model_and_similarity(capsys, tmp_path):
+    png = tmp_path / "b3d.png"
+    code, out = run(capsys, "block3d", "--height", "10", "--alpha-deg", "15", "--charge", "50", "--standoff", "2",
+                    "--model", "masi2021", "--friction", "2.0", "--duration", "0.8", "--scale", "0.005",
+                    "--plot", str(png), "--json")
+    assert code in (0, None)
+    d = json.loads(out.out)
+    assert OUTCOME_KEYS <= d["prototype"].keys() and OUTCOME_KEYS <= d["model"].keys()
+    assert {"max_abs_rotation_diff_rad", "max_abs_sliding_diff_m"} <= d["similarity"].keys()
+    # mu = 2 > 1.6: pure rocking, peak 0.06874 rad (planar Eq. eom, see test_sim3d); 0.1% of it
+    assert d["prototype"]["max_rotation_rad"] == pytest.approx(0.06874, rel=1e-3)
+    # the model's blast only matches the impulse: up-scaled rotation within 0.3% (measured 0.06%)
+    assert d["model"]["max_rotation_rad"] == pytest.approx(d["prototype"]["max_rotation_rad"], rel=3e-3)
+    assert png.stat().st_size > 10_000
+
+
+def test_block3d_without_scale_has_no_model_block(capsys):
+    code, out = run(capsys, "block3d", "--width", "2", "--charge", "10", "--standoff", "5", "--model", "masi2021",
+                    "--duration", "0.2", "--json")
+    assert code in (0, None)
+    d = json.loads(out.out)
+    assert OUTCOME_KEYS <= d["prototype"].keys() and "model" not in d and "similarity" not in d
+
+
+@pytest.mark.parametrize(
+    "argv, word",
+    [
+        (["--alpha-deg", "15", "--restitution", "0.9"], "restitution"),
+        (["--alpha-deg", "15", "--friction", "-1"], "friction"),
+        (["--alpha-deg", "15", "--timestep", "0"], "timestep"),
+        (["--alpha-deg", "95"], "alpha"),
+        ([], "width"),
+        (["--alpha-deg", "15", "--pulse", "square"], "pulse"),
+    ],
+)
+def test_block3d_bad_input_exits_2_with_one_line(capsys, argv, word):
+    code, out = run(capsys, "block3d", "--charge", "50", "--standoff", "2", "--model", "masi2021",
+                    "--duration", "0.1", *argv)
+    assert code == 2
+    msg = out.err.strip()
+    assert word in msg and "Traceback" not in msg and len(msg.splitlines()) == 1
+
+
+def test_snapshot_outline_is_the_rotated_rectangle():
+    from blastscale.plots.sim3d import block_outline
+
+    b, h, th = 1.0, 5.0, 0.3
+    xy = block_outline(0.0, 0.0, th, b, h)
+    # the top face centre of a block rotated by theta about y moves to (h sin th, h cos th)
+    top = 0.5 * (xy[2] + xy[3])
+    assert top == pytest.approx([h * math.sin(th), h * math.cos(th)], abs=1e-12)
+    assert np.linalg.norm(xy[1] - xy[0]) == pytest.approx(2 * b, rel=1e-12)
+
+
+def test_plots_take_ax_and_return_it():
+    import matplotlib.pyplot as plt
+
+    from blastscale.plots.sim3d import plot_angular_velocity, plot_rotation, plot_sliding, plot_snapshots
+    from blastscale.sim3d import ContactSettings, simulate_block
+    from blastscale.structures.block import RectangularBlock
+
+    r = simulate_block(RectangularBlock(2.0, 1.0), None, 0.05, contact=ContactSettings(), initial_angular_velocity=0.5)
+    fig, axs = plt.subplots(1, 4)
+    for f, ax in zip((plot_rotation, plot_sliding, plot_angular_velocity), axs):
+        assert f([r, r], ax=ax) is ax
+        assert len(ax.get_lines()) == 2
+    assert plot_snapshots(r, times=[0.0, 0.05], ax=axs[3]) is axs[3]
+    plt.close(fig)
