@@ -1,0 +1,96 @@
+"""Overturning capacity: the paper's critical charge (79.8 kg), critical stand-off, P-I diagram."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from blastscale._validate import BlastscaleInputError
+from blastscale.blast import Triangular, blast_parameters
+from blastscale.rocking import RockingSystem, critical_charge, critical_standoff, overturn_margin, pi_diagram, simulate
+from blastscale.structures.block import RectangularBlock
+
+BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+SYSTEM = RockingSystem.from_block(BLOCK)
+
+# DESIGN.md: 79.84-79.87 kg depending on the pulse shape (impulsive / triangular / Friedlander);
+# the paper prints 79.8 kg. Our values are 79.844, 79.864, 79.870 (see docs/rocking.md);
+# +-0.005 kg brackets the independent calculation quoted in DESIGN.md.
+PAPER_CRITICAL = {"impulsive": 79.84, "triangular": 79.86, "friedlander": 79.87}
+
+
+@pytest.mark.parametrize("shape", ["impulsive", "triangular", "friedlander"])
+def test_paper_critical_charge_79_8_kg(shape):
+    res = critical_charge(BLOCK, 2.0, pulse=shape, model="masi2021")
+    assert math.floor(res.charge_kg * 10) / 10 == 79.8  # the paper truncates (DESIGN.md)
+    assert res.charge_kg == pytest.approx(PAPER_CRITICAL[shape], abs=0.0051)
+    # the full simulation agrees on both sides of the threshold (1e-5 relative in charge
+    # is ~1e4 times the search tolerance)
+    bp_hi = blast_parameters(res.charge_kg * (1 + 1e-5), 2.0, model="masi2021")
+    bp_lo = blast_parameters(res.charge_kg * (1 - 1e-5), 2.0, model="masi2021")
+    assert simulate(BLOCK, bp_hi.pulse(shape), 10.0).overturned
+    assert not simulate(BLOCK, bp_lo.pulse(shape), 10.0).overturned
+
+
+def test_impulsive_critical_charge_delivers_the_critical_impulse():
+    """Impulsive limit: at the critical charge the reflected impulse equals J_o w_c / (S h)."""
+    res = critical_charge(BLOCK, 2.0, pulse="impulsive", model="masi2021")
+    i = blast_parameters(res.charge_kg, 2.0, model="masi2021").reflected_impulse
+    wc = SYSTEM.critical_angular_velocity
+    # the search stops at 1e-9 in ln W; i ~ W^0.9 here, so 1e-8 relative is safe
+    assert i == pytest.approx(BLOCK.inertia_pivot * wc / (BLOCK.front_area * BLOCK.h), rel=1e-8)
+
+
+def test_critical_standoff_inverts_critical_charge():
+    W = critical_charge(BLOCK, 2.0, model="masi2021").charge_kg
+    R = critical_standoff(BLOCK, W, model="masi2021").standoff_m
+    assert R == pytest.approx(2.0, rel=1e-7)  # both searches at 1e-9; margin slope is finite
+
+
+def test_depth_and_density_scaling_of_the_critical_charge():
+    """Depth cancels (S and m both scale with it)."""
+    deep = RectangularBlock(BLOCK.height, BLOCK.width, depth=3.0)
+    a = critical_charge(BLOCK, 2.0, model="masi2021").charge_kg
+    b = critical_charge(deep, 2.0, model="masi2021").charge_kg
+    assert b == pytest.approx(a, rel=1e-8)
+
+
+def test_overturn_margin_is_continuous_and_increasing():
+    Ws = np.linspace(79.0, 80.7, 18)
+    m = [overturn_margin(BLOCK, blast_parameters(W, 2.0, model="masi2021").pulse()) for W in Ws]
+    assert np.all(np.diff(m) > 0)
+    assert m[0] < 0 < m[-1]
+    assert max(abs(x) for x in m) < 0.2  # no jump across the threshold
+
+
+def test_pi_diagram_asymptotes():
+    pi = pi_diagram(BLOCK, n=8)
+    # impulsive asymptote: J_o p sqrt(2(1-cos a)) / (S h)
+    assert pi.impulse_asymptote == pytest.approx(
+        BLOCK.inertia_pivot * SYSTEM.critical_angular_velocity / (BLOCK.front_area * BLOCK.h), rel=1e-14
+    )
+    # quasi-static asymptote: uplift P S h = m g b
+    assert pi.pressure_asymptote * BLOCK.front_area * BLOCK.h == pytest.approx(BLOCK.mass * 9.81 * BLOCK.b, rel=1e-12)
+    assert np.all(np.diff(pi.critical_impulse) < 0)  # monotone: more pressure, less impulse needed
+    assert np.all(pi.critical_impulse > pi.impulse_asymptote)
+    # at 1e4 x the uplift pressure the pulse lasts ~1e-4/p: impulsive within 0.1 %
+    assert pi.critical_impulse[-1] == pytest.approx(pi.impulse_asymptote, rel=1e-3)
+    assert pi.critical_impulse[0] > 10 * pi.impulse_asymptote  # near uplift it diverges
+    # each point is on the boundary: 0.1 % more impulse overturns, 0.1 % less does not
+    P, i = pi.peak_pressure[3], pi.critical_impulse[3]
+    assert simulate(BLOCK, Triangular(P, i * 1.001), 30.0).overturned
+    assert not simulate(BLOCK, Triangular(P, i * 0.999), 30.0).overturned
+
+
+def test_capacity_bad_input():
+    with pytest.raises(BlastscaleInputError, match="standoff"):
+        critical_charge(BLOCK, -2.0, model="masi2021")
+    with pytest.raises(BlastscaleInputError, match="pulse"):
+        critical_charge(BLOCK, 2.0, pulse="square", model="masi2021")
+    with pytest.raises(BlastscaleInputError, match="uplift"):
+        pi_diagram(BLOCK, peak_pressures=[1.0])
+    # a tiny block far away: the outcome never changes within the fits' range of Z
+    with pytest.raises(BlastscaleInputError, match="critical charge"):
+        critical_charge(RectangularBlock(100.0, 60.0), 50.0, model="masi2021")

@@ -1,0 +1,83 @@
+"""Prototype vs up-scaled model in planar rocking (paper Figs. 6-9, Sec. "Equations of motion")."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from blastscale._validate import BlastscaleInputError
+from blastscale.analysis.rocking_similarity import compare_rocking
+from blastscale.structures.block import RectangularBlock
+
+BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+SCALES = [1 / 10, 1 / 20, 1 / 200]
+DENSITY_RATIOS = [0.07, 1.0]  # balsa (paper: 140 kg/m^3) and the same material
+
+
+@pytest.mark.parametrize("scale", SCALES)
+@pytest.mark.parametrize("gamma", DENSITY_RATIOS)
+@pytest.mark.parametrize("charge", [50.0, 100.0])
+def test_impulsive_load_upscaled_model_equals_prototype(scale, gamma, charge):
+    """Impulsive limit: the model is an exact similarity transform of the prototype. The solver
+    works in dimensionless time, so only the round-off of the design's impulse (solved by the
+    general law to ~1e-13) and of the coefficients remains: 1e-10 rad is the acceptance level
+    (observed < 1e-13)."""
+    s = compare_rocking(BLOCK, charge, 2.0, scale, gamma, pulse="impulsive", model="masi2021", duration=8.0)
+    assert s.max_abs_angle_diff <= 1e-10
+    assert s.outcomes_agree
+    assert s.peak_ratio == pytest.approx(1.0, abs=1e-10)
+
+
+@pytest.mark.parametrize("scale", SCALES)
+@pytest.mark.parametrize("gamma", DENSITY_RATIOS)
+@pytest.mark.parametrize("shape", ["friedlander", "triangular"])
+def test_finite_pulse_paper_50kg_rocking_similarity(scale, gamma, shape):
+    """W = 50 kg (rocks, ~15 impacts in 8 s): the up-scaled model stays within 5e-4 rad of the
+    prototype over the whole run (observed 1.2e-4..3.1e-4; the paper's Figs. 7-9 show
+    coinciding curves), both survive, and the first peaks agree to 0.1 %."""
+    s = compare_rocking(BLOCK, 50.0, 2.0, scale, gamma, pulse=shape, model="masi2021", duration=8.0)
+    assert s.max_abs_angle_diff <= 5e-4
+    assert s.outcomes_agree and not s.prototype.overturned
+    assert s.peak_ratio == pytest.approx(1.0, abs=1e-3)
+    assert s.model.n_impacts == s.prototype.n_impacts
+
+
+@pytest.mark.parametrize("scale", SCALES)
+@pytest.mark.parametrize("gamma", DENSITY_RATIOS)
+def test_finite_pulse_paper_100kg_both_overturn(scale, gamma):
+    """W = 100 kg: both overturn; up to the tipping point the angles agree within 5e-4 rad
+    (observed <= 1.5e-4); the fall that follows amplifies the ~1 ms shift of the tipping time
+    to ~2e-3 rad, which the whole-run figure reports honestly."""
+    s = compare_rocking(BLOCK, 100.0, 2.0, scale, gamma, model="masi2021", duration=3.0)
+    assert s.prototype.overturned and s.model.overturned
+    assert s.max_abs_angle_diff_to_tipping <= 5e-4
+    up = s.to_dict()["model"]["overturn_time_s"]
+    assert up == pytest.approx(s.prototype.overturn_time, abs=2e-3)
+
+
+@pytest.mark.parametrize("scale", [1 / 20, 1 / 200])
+def test_paper_critical_charge_outcomes_agree(scale):
+    """W = 79.8 kg (the paper's critical charge): both survive. Near the threshold the motion
+    is sensitive (the paper notes 'a negligible offset'), so only the outcome and the first
+    peak (1 %: near the tipping point theta_max responds to the energy like a square root,
+    so the 0.07 % impulse-like difference of 50 kg grows to ~0.7 %) are asserted."""
+    s = compare_rocking(BLOCK, 79.8, 2.0, scale, 1.0, model="masi2021", duration=8.0)
+    assert s.outcomes_agree and not s.prototype.overturned
+    assert s.peak_ratio == pytest.approx(1.0, abs=1e-2)
+
+
+def test_to_dict_has_the_cli_keys():
+    d = compare_rocking(BLOCK, 50.0, 2.0, 1 / 20, model="masi2021", duration=2.0).to_dict()
+    for part in ("prototype", "model"):
+        assert {"overturned", "max_angle_rad", "overturn_time_s", "first_impact_time_s"} <= set(d[part])
+    assert "max_abs_angle_diff_rad" in d["similarity"]
+    # the model's first impact, up-scaled, is at the prototype's (~1.38 s)
+    assert d["model"]["first_impact_time_s"] == pytest.approx(d["prototype"]["first_impact_time_s"], abs=2e-3)
+
+
+def test_similarity_bad_input():
+    with pytest.raises(BlastscaleInputError, match="pulse"):
+        compare_rocking(BLOCK, 50.0, 2.0, 0.1, pulse="square", model="masi2021")
+    with pytest.raises(BlastscaleInputError, match="scale"):
+        compare_rocking(BLOCK, 50.0, 2.0, -0.1, model="masi2021")
