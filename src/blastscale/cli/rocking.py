@@ -1,1 +1,250 @@
-"""CLI commands (being written)."""
+"""``blastscale rock`` and ``blastscale critical``: planar rocking under blast (paper Eq. eom).
+
+Units at this edge: lengths in m, density in kg/m^3, charge in kg TNT, times in s, the
+slenderness angle in degrees (``--alpha-deg``); results are SI (rad, rad/s, s, kg, m).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+import typer
+
+from .._validate import BlastscaleInputError
+from ._app import app, console, console_err, print_json, table
+from .loads import MODEL_HELP, block_from_options
+
+PULSE_HELP = "Pulse shape: friedlander (paper Eq. 1), triangular (Eq. 3) or impulsive (Dirac of the same impulse)."
+RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts [-], in [0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
+
+
+def _block(height, width, alpha_deg, depth, density):
+    if width is None and alpha_deg is None:
+        raise BlastscaleInputError("width = None is out of range: give --width (m) or --alpha-deg (deg, in (0, 90))")
+    return block_from_options(height, width, alpha_deg, depth, density)
+
+
+def _fmt(x, spec=".6g") -> str:
+    if x is None:
+        return "-"
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    return format(x, spec)
+
+
+def _summary_rows(s: dict) -> list[tuple[str, str, str]]:
+    return [
+        ("overturned", _fmt(s["overturned"]), ""),
+        ("max |angle|", _fmt(s["max_angle_rad"]), "rad"),
+        ("overturn (tipping) time", _fmt(s["overturn_time_s"]), "s"),
+        ("first impact time", _fmt(s["first_impact_time_s"]), "s"),
+        ("impacts", str(s["n_impacts"]), ""),
+    ]
+
+
+def _inputs(block, **kw) -> dict:
+    d = {
+        "height_m": block.height,
+        "width_m": block.width,
+        "depth_m": block.depth,
+        "density_kg_m3": block.density,
+        "alpha_rad": block.alpha,
+    }
+    d.update(kw)
+    return d
+
+
+@app.command("rock")
+def rock_cmd(
+    height: float = typer.Option(10.0, "--height", help="Block height 2h [m]."),
+    width: Optional[float] = typer.Option(None, "--width", help="Block width 2b along the blast [m]."),
+    alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle [deg], in (0, 90) (instead of --width)."),
+    depth: float = typer.Option(1.0, "--depth", help="Block depth 2w [m] (it cancels out of the planar response)."),
+    density: float = typer.Option(2000.0, "--density", help="Density rho [kg/m^3]."),
+    charge: float = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W [kg]."),
+    standoff: float = typer.Option(..., "--standoff", help="Prototype stand-off R [m]."),
+    duration: float = typer.Option(5.0, "--duration", help="Simulated time after the shock arrival [s] (prototype)."),
+    pulse: str = typer.Option("friedlander", "--pulse", help=PULSE_HELP),
+    restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP),
+    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda [-]: also design, run and up-scale the model."),
+    density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype [-]."),
+    gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype [-] (centrifuge)."),
+    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g [m/s^2]."),
+    model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
+    samples: int = typer.Option(2001, "--samples", help="Sampling times for the comparison and the plot [-]."),
+    plot: Optional[str] = typer.Option(None, "--plot", help="Write theta(t), theta_dot(t) and the phase portrait to this image file."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
+) -> None:
+    """Rocking response of a rigid block to a blast: overturning, its time, the first impact.
+
+    The reflected pulse at the stand-off loads the front face uniformly (paper Method A,
+    Eq. eom). With --scale the model experiment is designed with the paper's general law,
+    simulated, up-scaled to prototype units and compared with the prototype.
+    """
+    import numpy as np
+
+    from ..blast import blast_parameters
+    from ..rocking import RockingSystem, simulate
+
+    block = _block(height, width, alpha_deg, depth, density)
+    if samples < 2:
+        raise BlastscaleInputError(f"samples = {samples} is out of range: must be >= 2")
+    out: dict = {
+        "inputs": _inputs(
+            block, charge_kg=charge, standoff_m=standoff, duration_s=duration, pulse=pulse, model=model,
+            restitution=restitution, gravity_m_s2=gravity, scale=scale,
+            density_ratio=density_ratio if scale is not None else None,
+            gravity_ratio=gravity_ratio if scale is not None else None,
+        )
+    }
+    sim = None
+    with console_err.status("simulating the rocking response ...", spinner="dots"):
+        if scale is None:
+            bp = blast_parameters(charge, standoff, model)
+            system = RockingSystem.from_block(block, gravity, restitution)
+            res = simulate(system, bp.pulse(pulse), duration, t_eval=np.linspace(0.0, duration, samples))
+            out["prototype"] = res.summary()
+        else:
+            from ..analysis.rocking_similarity import compare_rocking
+
+            sim = compare_rocking(
+                block, charge, standoff, scale, density_ratio, gravity_ratio, pulse=pulse, model=model,
+                duration=duration, n_samples=samples, gravity=gravity, restitution=restitution,
+            )
+            res = sim.prototype
+            out.update(sim.to_dict())
+            d = sim.design
+            out["model_experiment"] = {
+                "charge_kg": d.model_charge_kg,
+                "standoff_m": d.model_standoff_m,
+                "height_m": block.height * scale,
+                "width_m": block.width * scale,
+                "density_kg_m3": block.density * d.density_ratio,
+                "time_factor": d.factors.time,
+                "angular_velocity_factor": d.factors.angular_velocity,
+            }
+    out["prototype"]["restitution"] = res.restitution
+    if plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        from ..plots.rocking import rocking_figure
+
+        fig = rocking_figure(res, sim)
+        fig.savefig(plot, dpi=120)
+        out["plot"] = plot
+    if as_json:
+        print_json(out)
+        return
+    console.print(table(
+        f"Prototype: {block.height:g} x {block.width:.4g} m block (alpha = {math.degrees(block.alpha):.4g} deg), "
+        f"{charge:g} kg TNT at {standoff:g} m ({model}, {pulse})", _summary_rows(out["prototype"])))
+    if sim is not None:
+        me = out["model_experiment"]
+        console.print(table(
+            f"Model lambda = {scale:g}, gamma = {density_ratio:g}: {me['charge_kg']:.4g} kg at {me['standoff_m']:.4g} m, "
+            "up-scaled to prototype units", _summary_rows(out["model"])))
+        s = out["similarity"]
+        console.print(table("Similarity (prototype vs up-scaled model)", [
+            ("max |angle difference|", f"{s['max_abs_angle_diff_rad']:.3g}", "rad"),
+            ("  up to the tipping point", f"{s['max_abs_angle_diff_to_tipping_rad']:.3g}", "rad"),
+            ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
+            ("first-peak ratio model/prototype", f"{s['peak_ratio']:.6g}", "-"),
+            ("outcomes agree", _fmt(s["outcomes_agree"]), ""),
+        ]))
+    if plot:
+        console.print(f"plot written to {plot}")
+
+
+@app.command("critical")
+def critical_cmd(
+    height: float = typer.Option(10.0, "--height", help="Block height 2h [m]."),
+    width: Optional[float] = typer.Option(None, "--width", help="Block width 2b along the blast [m]."),
+    alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle [deg], in (0, 90) (instead of --width)."),
+    depth: float = typer.Option(1.0, "--depth", help="Block depth 2w [m] (it cancels)."),
+    density: float = typer.Option(2000.0, "--density", help="Density rho [kg/m^3]."),
+    standoff: Optional[float] = typer.Option(None, "--standoff", help="Stand-off R [m]: find the critical charge."),
+    charge: Optional[float] = typer.Option(None, "--charge", help="Charge W [kg TNT]: find the critical stand-off instead."),
+    pulse: str = typer.Option("friedlander", "--pulse", help=PULSE_HELP),
+    restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP + " (does not affect the first excursion)"),
+    duration: Optional[float] = typer.Option(None, "--duration", help="Accepted for symmetry with `rock`; the search simulates to the first impact or the tipping point [s]."),
+    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda [-]: also give the model's charge for the critical scenario."),
+    density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype [-]."),
+    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g [m/s^2]."),
+    model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
+    plot: Optional[str] = typer.Option(None, "--plot", help="Write the P-I overturning diagram (with the critical point) to this image file."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
+) -> None:
+    """Critical charge at a stand-off (largest charge without overturning), or with --charge the
+    critical stand-off; robust bracketing + Brent's method on a continuous overturning margin."""
+    from ..blast import blast_parameters
+    from ..rocking import RockingSystem, critical_charge, critical_standoff
+
+    block = _block(height, width, alpha_deg, depth, density)
+    if (standoff is None) == (charge is None):
+        raise BlastscaleInputError(
+            f"standoff = {standoff}, charge = {charge}: give exactly one of --standoff (m, finds the critical charge) "
+            "or --charge (kg, finds the critical stand-off)"
+        )
+    if duration is not None and duration <= 0:
+        raise BlastscaleInputError(f"duration = {duration:g} s is out of range: must be > 0 s")
+    system = RockingSystem.from_block(block, gravity, restitution)
+    with console_err.status("searching the critical scenario ...", spinner="dots"):
+        if standoff is not None:
+            res = critical_charge(system, standoff, pulse=pulse, model=model)
+        else:
+            res = critical_standoff(system, charge, pulse=pulse, model=model)
+    out = {"inputs": _inputs(block, pulse=pulse, model=model, gravity_m_s2=gravity)}
+    out.update(res.to_dict())
+    bp = blast_parameters(res.charge_kg, res.standoff_m, model)
+    out["critical_blast"] = {
+        "scaled_distance_m_per_kg13": bp.scaled_distance,
+        "reflected_pressure_Pa": bp.reflected_pressure,
+        "reflected_impulse_Pa_s": bp.reflected_impulse,
+        "positive_duration_s": bp.positive_duration,
+    }
+    out["impulsive_critical_impulse_Pa_s"] = system.critical_impulse
+    out["uplift_pressure_Pa"] = system.uplift_pressure
+    if scale is not None:
+        from ..similitude import design_model
+
+        d = design_model(res.charge_kg, res.standoff_m, scale, density_ratio, model=model, geometry=block, gravity=gravity)
+        out["model_experiment"] = {"scale": scale, "density_ratio": density_ratio,
+                                   "critical_charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m}
+    if plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        from ..plots.rocking import plot_pi_diagram
+        from ..rocking import pi_diagram
+
+        with console_err.status("computing the P-I diagram ...", spinner="dots"):
+            pi = pi_diagram(system, n=30)
+        fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+        plot_pi_diagram(pi, ax=ax)
+        ax.plot([bp.reflected_impulse], [bp.reflected_pressure], "o", color="C3",
+                label=f"critical: {res.charge_kg:.4g} kg at {res.standoff_m:.4g} m")
+        ax.legend(fontsize=8)
+        fig.savefig(plot, dpi=120)
+        out["plot"] = plot
+    if as_json:
+        print_json(out)
+        return
+    key, unit = ("critical_charge_kg", "kg") if res.searched == "charge" else ("critical_standoff_m", "m")
+    rows = [
+        (key.replace("_kg", "").replace("_m", "").replace("_", " "), f"{out[key]:.6g}", unit),
+        ("charge W", f"{res.charge_kg:.6g}", "kg"),
+        ("stand-off R", f"{res.standoff_m:.6g}", "m"),
+        ("scaled distance Z", f"{bp.scaled_distance:.6g}", "m/kg^(1/3)"),
+        ("reflected impulse at the critical point", f"{bp.reflected_impulse:.6g}", "Pa s"),
+        ("impulsive-limit critical impulse", f"{system.critical_impulse:.6g}", "Pa s"),
+        ("simulations", str(res.evaluations), ""),
+    ]
+    if scale is not None:
+        rows.append((f"model charge (lambda = {scale:g})", f"{out['model_experiment']['critical_charge_kg']:.6g}", "kg"))
+    console.print(table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({model}, {pulse})", rows))
+    if plot:
+        console.print(f"plot written to {plot}")

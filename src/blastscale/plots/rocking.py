@@ -1,0 +1,168 @@
+"""Plots of planar rocking: theta(t), theta_dot(t), phase portrait, prototype vs up-scaled
+model (paper Figs. 6-9) and the pressure-impulse (P-I) overturning diagram.
+
+Every function takes ``ax=`` (a new figure's axes when None) and returns it; matplotlib is
+imported only when a plot is drawn. Inputs are :class:`~blastscale.rocking.RockingResult`,
+:class:`~blastscale.analysis.rocking_similarity.RockingSimilarity` and
+:class:`~blastscale.rocking.PIDiagram` objects (SI; angles shown in rad, times in s).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "plot_angle",
+    "plot_angular_velocity",
+    "plot_phase_portrait",
+    "plot_similarity",
+    "plot_pi_diagram",
+    "rocking_figure",
+]
+
+
+def _ax(ax):
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots()
+    return ax
+
+
+def _runs(results, labels):
+    if isinstance(results, dict):
+        return list(results.items())
+    if not isinstance(results, (list, tuple)):
+        results = [results]
+    labels = labels or [None] * len(results)
+    return list(zip(labels, results))
+
+
+def _series(res, quantity):
+    return res.t, (res.theta if quantity == "theta" else res.theta_dot)
+
+
+def _mark_events(ax, res, quantity):
+    if quantity == "theta" and res.impact_times.size:
+        ax.plot(res.impact_times, np.zeros(res.impact_times.size), "|", ms=8, color="0.4", label=None)
+    if res.overturn_time is not None:
+        ax.axvline(res.overturn_time, color="C3", lw=0.8, ls=":", label=None)
+
+
+def plot_angle(results, ax=None, labels=None, alpha_line: bool = True):
+    """Rocking angle theta(t) [rad] vs time [s] of one or several runs.
+
+    ``results``: a RockingResult, a sequence of them or a dict label -> result. Impacts are
+    ticked on the axis, the overturn time (if any) is a dotted line and, with ``alpha_line``,
+    +-alpha (the tipping angles) are drawn dashed.
+    """
+    ax = _ax(ax)
+    runs = _runs(results, labels)
+    for k, (lab, res) in enumerate(runs):
+        t, y = _series(res, "theta")
+        ax.plot(t, y, ls=("-", "--", ":", "-.")[k % 4], label=lab)
+        _mark_events(ax, res, "theta")
+    if alpha_line and runs and runs[0][1].system is not None:
+        a = runs[0][1].system.alpha
+        for v in (a, -a):
+            ax.axhline(v, color="0.5", lw=0.6, ls="--")
+    ax.set_xlabel("time after arrival t [s]")
+    ax.set_ylabel("rocking angle theta [rad]")
+    if any(lab for lab, _ in runs):
+        ax.legend()
+    return ax
+
+
+def plot_angular_velocity(results, ax=None, labels=None):
+    """Angular velocity theta_dot(t) [rad/s] vs time [s] (jumps at impacts: restitution)."""
+    ax = _ax(ax)
+    runs = _runs(results, labels)
+    for k, (lab, res) in enumerate(runs):
+        t, y = _series(res, "theta_dot")
+        ax.plot(t, y, ls=("-", "--", ":", "-.")[k % 4], label=lab)
+        _mark_events(ax, res, "theta_dot")
+    ax.set_xlabel("time after arrival t [s]")
+    ax.set_ylabel("angular velocity theta_dot [rad/s]")
+    if any(lab for lab, _ in runs):
+        ax.legend()
+    return ax
+
+
+def plot_phase_portrait(results, ax=None, labels=None):
+    """Phase portrait theta_dot [rad/s] vs theta [rad] (paper Fig. 8, last panel)."""
+    ax = _ax(ax)
+    runs = _runs(results, labels)
+    for k, (lab, res) in enumerate(runs):
+        ax.plot(res.theta, res.theta_dot, ls=("-", "--", ":", "-.")[k % 4], label=lab)
+    ax.set_xlabel("rocking angle theta [rad]")
+    ax.set_ylabel("angular velocity theta_dot [rad/s]")
+    if any(lab for lab, _ in runs):
+        ax.legend()
+    return ax
+
+
+def plot_similarity(sim, quantity: str = "theta", ax=None):
+    """Prototype vs up-scaled model overlay (paper Figs. 8-9) from a RockingSimilarity.
+
+    ``quantity``: ``"theta"`` (angle [rad] vs t [s]), ``"theta_dot"`` (angular velocity
+    [rad/s] vs t [s]) or ``"phase"`` (theta_dot vs theta). Model values are already in
+    prototype units (t / f.time, theta_dot / f.angular_velocity).
+    """
+    ax = _ax(ax)
+    lam = sim.design.scale
+    lab_m = f"model lambda = 1/{1 / lam:.4g}, up-scaled" if lam < 1 else f"model lambda = {lam:.4g}, up-scaled"
+    if quantity == "theta":
+        ax.plot(sim.t, sim.theta_prototype, "-", label="prototype")
+        ax.plot(sim.t, sim.theta_model, "--", label=lab_m)
+        ax.set_xlabel("time after arrival t [s]")
+        ax.set_ylabel("rocking angle theta [rad]")
+    elif quantity == "theta_dot":
+        ax.plot(sim.t, sim.theta_dot_prototype, "-", label="prototype")
+        ax.plot(sim.t, sim.theta_dot_model, "--", label=lab_m)
+        ax.set_xlabel("time after arrival t [s]")
+        ax.set_ylabel("angular velocity theta_dot [rad/s]")
+    elif quantity == "phase":
+        ax.plot(sim.theta_prototype, sim.theta_dot_prototype, "-", label="prototype")
+        ax.plot(sim.theta_model, sim.theta_dot_model, "--", label=lab_m)
+        ax.set_xlabel("rocking angle theta [rad]")
+        ax.set_ylabel("angular velocity theta_dot [rad/s]")
+    else:
+        from .._validate import BlastscaleInputError
+
+        raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are theta, theta_dot, phase")
+    ax.set_title(f"max |delta theta| = {sim.max_abs_angle_diff:.2e} rad", fontsize=9)
+    ax.legend()
+    return ax
+
+
+def plot_pi_diagram(pi, ax=None, label: str | None = None, asymptotes: bool = True):
+    """Pressure-impulse overturning diagram: peak pressure [Pa] vs impulse [Pa s], log-log.
+
+    Pulses above and to the right of the curve overturn the body. With ``asymptotes`` the
+    impulsive (vertical) and quasi-static (horizontal) limits are drawn dashed.
+    """
+    ax = _ax(ax)
+    ax.loglog(pi.critical_impulse, pi.peak_pressure, "-", label=label or f"critical ({pi.shape} pulse)")
+    if asymptotes:
+        ax.axvline(pi.impulse_asymptote, color="0.4", ls="--", lw=0.8, label="impulsive limit")
+        ax.axhline(pi.pressure_asymptote, color="0.4", ls=":", lw=0.8, label="quasi-static limit (uplift)")
+    ax.set_xlabel("reflected impulse i [Pa s]")
+    ax.set_ylabel("peak reflected pressure P [Pa]")
+    ax.legend()
+    return ax
+
+
+def rocking_figure(result, similarity=None):
+    """A 3-panel figure (theta, theta_dot, phase portrait) of a run, or of a prototype vs
+    up-scaled model comparison when ``similarity`` is given. Returns the figure."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4), layout="constrained")
+    if similarity is None:
+        plot_angle(result, ax=axes[0])
+        plot_angular_velocity(result, ax=axes[1])
+        plot_phase_portrait(result, ax=axes[2])
+    else:
+        for ax, q in zip(axes, ("theta", "theta_dot", "phase")):
+            plot_similarity(similarity, q, ax=ax)
+    return fig
