@@ -182,7 +182,7 @@ def test_overturning_threshold_within_3_percent(factor, overturns):
 
 def test_block_at_rest_stays_put_for_5_seconds():
     r = simulate_block(PAPER_BLOCK, None, 5.0, contact=ContactSettings(friction=0.7), record_every=50)
-    # 1 um / 1 urad: far below anything reported (static penetration g/k ~ 4 um is constant)
+    # 1 um / 1 urad: far below anything reported (the ~1 um static penetration is constant)
     assert np.max(np.abs(r.sliding)) < 1e-6
     assert np.max(np.abs(r.rotation)) < 1e-6
     assert np.ptp(r.uplift) < 1e-6

@@ -55,8 +55,8 @@ class ContactSettings:
         Coulomb friction coefficient mu = tan(phi) [-], >= 0 (paper: phi = 35 deg, mu = 0.7).
     time_constant : float
         Time constant tau of the normal contact spring-damper [s] (MuJoCo ``solref[0]``).
-        Must be >= 2 ``timestep``. 2 ms makes the static penetration of a 10 m block ~5 um and
-        the impact effectively plastic (Housner); MuJoCo's default 20 ms is far too soft.
+        Must be >= 2 ``timestep``. 2 ms makes the static penetration of the paper's 10 m block 1.1 um
+        (measured; it grows as tau^2) and the impact effectively plastic (Housner); MuJoCo's default 20 ms is far too soft.
     damping_ratio : float
         Damping ratio zeta of the normal contact [-] (``solref[1]``); 1 = critical, no bounce.
     friction_time_constant : float or None
@@ -150,10 +150,6 @@ class ContactSettings:
         """Reference damping of the frictional directions b_f = 2 / (dmax tau_f) [1/s]."""
         tf = self.time_constant if self.friction_time_constant is None else self.friction_time_constant
         return 2.0 / (self.impedance_max * tf)
-
-    def static_penetration(self, gravity: float) -> float:
-        """Static penetration of a body resting on the plane, g / k [m] (at dmax)."""
-        return gravity / self.stiffness
 
     def creep_speed(self, gravity: float) -> float:
         """Slip speed below which friction acts as a viscous damper, mu g / b_f [m/s]."""

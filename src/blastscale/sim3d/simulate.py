@@ -45,7 +45,7 @@ __all__ = ["Block3DSimulator", "simulate_block", "SETTLE_TIME_CONSTANTS", "BLAST
 BLAST_MODES = ("auto", "force", "kick")
 
 #: Settling before the blast arrives, in contact time constants: the soft contact starts
-#: with zero penetration and relaxes to its static value g/k; with critical damping the
+#: with zero penetration and relaxes to its static value (~1 um); with critical damping the
 #: transient has decayed by exp(-20) after 20 tau. It scales with the time constant, so
 #: prototype and model settle identically.
 SETTLE_TIME_CONSTANTS = 20.0

@@ -1,0 +1,139 @@
+"""Benchmark of the 3D single-block runs (MuJoCo) and the spurious-hop study of docs/sim3d.md.
+
+Usage::
+
+    python benchmarks/bench_sim3d.py [--json] [--repeat N] [--hop-study]
+
+Speed: simulated seconds per wall second for the paper's block (2h = 10 m, alpha = 15 deg,
+50 kg TNT at 2 m, mu = 0.7, masi2021 fits) at prototype scale and at lambda = 1/200 (model
+time step x sqrt(lambda), so a model second costs 1/sqrt(lambda) more steps).
+``--hop-study`` re-measures every hypothesis of the hop investigation (max uplift of a 1 m
+squat block pushed to 1.8 m/s) and prints them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import platform
+import time
+
+import numpy as np
+
+from blastscale.blast.parameters import blast_parameters
+from blastscale.blast.pulses import Triangular
+from blastscale.sim3d import Block3DSimulator, ContactSettings
+from blastscale.structures.block import RectangularBlock
+
+PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+SQUAT_BLOCK = RectangularBlock(height=0.5, width=1.0, depth=1.0)
+
+
+def speed(repeat: int = 3, duration: float = 3.0) -> dict:
+    """Best-of-``repeat`` wall time of a ``duration`` [s] prototype run and its 1/200 model."""
+    lam = 1 / 200
+    lt = math.sqrt(lam)
+    c = ContactSettings(friction=0.7)
+    pulse = blast_parameters(50.0, 2.0, model="masi2021").pulse("friedlander")
+    cases = {
+        "prototype": (Block3DSimulator(c), PAPER_BLOCK, pulse, duration),
+        "model_1_200": (Block3DSimulator(c.scaled(lam)), PAPER_BLOCK.scaled(lam), pulse.scaled(lam, lt), duration * lt),
+    }
+    out = {}
+    for name, (sim, blk, p, T) in cases.items():
+        best = math.inf
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            sim.run(blk, p, T)
+            best = min(best, time.perf_counter() - t0)
+        steps = T / sim.contact.timestep
+        out[name] = {
+            "simulated_s": T,
+            "timestep_s": sim.contact.timestep,
+            "wall_s": best,
+            "simulated_s_per_wall_s": T / best,
+            "prototype_equivalent_s_per_wall_s": (T / (lt if name != "prototype" else 1.0)) / best,
+            "steps_per_wall_s": steps / best,
+        }
+    return out
+
+
+def _hop_case(contact: ContactSettings, mode: str, v0: float = 1.8, initial_velocity: bool = False) -> dict:
+    sim = Block3DSimulator(contact, blast_mode=mode)
+    if initial_velocity:
+        r = sim.run(SQUAT_BLOCK, None, 0.5, initial_velocity=(v0, 0.0, 0.0))
+    else:
+        i = v0 * SQUAT_BLOCK.mass / SQUAT_BLOCK.front_area
+        r = sim.run(SQUAT_BLOCK, Triangular(2 * i / 1e-3, i), 0.5)
+    expected = v0**2 / (2 * contact.friction * 9.81)
+    return {
+        "max_uplift_mm": 1e3 * r.max_uplift,
+        "com_rise_mm": 1e3 * float(r.com_z.max() - r.com_z[0]),
+        "peak_velocity_x_m_s": float(r.velocity_x.max()),
+        "max_rotation_rad": r.max_rotation,
+        "sliding_error_pct": 100 * (r.final_sliding / expected - 1),
+    }
+
+
+def hop_study() -> dict:
+    """Each hypothesis of the spurious hop, measured (1 m x 1 m x 0.5 m block, mu = 0.7, 1.8 m/s)."""
+    raw = ContactSettings(friction=0.7, friction_time_constant=None)  # MuJoCo: friction shares solref
+    cases = {
+        "blast as force, MuJoCo friction reference (baseline)": (raw, "force", False),
+        "  timestep 50 us": (ContactSettings(friction=0.7, friction_time_constant=None, timestep=5e-5), "force", False),
+        "  contact time constant 1 ms": (ContactSettings(friction=0.7, friction_time_constant=None, time_constant=1e-3,
+                                                         timestep=1e-4), "force", False),
+        "  contact time constant 4 ms": (ContactSettings(friction=0.7, friction_time_constant=None, time_constant=4e-3),
+                                         "force", False),
+        "  contact time constant 20 ms": (ContactSettings(friction=0.7, friction_time_constant=None,
+                                                          time_constant=2e-2), "force", False),
+        "  impratio 1": (ContactSettings(friction=0.7, friction_time_constant=None, impratio=1.0), "force", False),
+        "  impratio 100": (ContactSettings(friction=0.7, friction_time_constant=None, impratio=100.0), "force", False),
+        "  pyramidal cone": (ContactSettings(friction=0.7, friction_time_constant=None, cone="pyramidal"), "force",
+                             False),
+        "  noslip 20 iterations": (ContactSettings(friction=0.7, friction_time_constant=None, noslip_iterations=20),
+                                   "force", False),
+        "  solimp width 10 mm": (ContactSettings(friction=0.7, friction_time_constant=None, impedance_width=1e-2),
+                                 "force", False),
+        "  solimp dmax 0.99": (ContactSettings(friction=0.7, friction_time_constant=None, impedance_min=0.95,
+                                               impedance_max=0.99), "force", False),
+        "  damping ratio 0.5": (ContactSettings(friction=0.7, friction_time_constant=None, damping_ratio=0.5), "force",
+                                False),
+        "  friction time constant 20 ms": (ContactSettings(friction=0.7), "force", False),
+        "blast as momentum kick, MuJoCo friction reference": (raw, "kick", False),
+        "blast as momentum kick, friction time constant 20 ms": (ContactSettings(friction=0.7), "kick", False),
+        "default: auto (force if sticking, kick if sliding), 20 ms": (ContactSettings(friction=0.7), "auto", False),
+        "initial velocity, no blast, MuJoCo friction reference": (raw, "auto", True),
+        "initial velocity, no blast, friction time constant 20 ms": (ContactSettings(friction=0.7), "auto", True),
+    }
+    return {name: _hop_case(c, mode, initial_velocity=iv) for name, (c, mode, iv) in cases.items()}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--json", action="store_true", help="print one JSON object")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--hop-study", action="store_true", help="also run the spurious-hop study")
+    a = ap.parse_args()
+    out = {"machine": platform.processor() or platform.machine(), "python": platform.python_version()}
+    import mujoco
+
+    out["mujoco"] = mujoco.__version__
+    out["speed"] = speed(a.repeat)
+    if a.hop_study:
+        out["hop_study"] = hop_study()
+    if a.json:
+        print(json.dumps(out, indent=2))
+        return
+    for k, v in out["speed"].items():
+        print(f"{k:12s} dt = {v['timestep_s']:.3g} s: {v['simulated_s_per_wall_s']:8.2f} simulated s / wall s "
+              f"({v['prototype_equivalent_s_per_wall_s']:.2f} prototype s / wall s, {v['steps_per_wall_s']:.0f} steps/s)")
+    for k, v in out.get("hop_study", {}).items():
+        print(f"{k:60s} uplift {v['max_uplift_mm']:7.3f} mm  v_x peak {v['peak_velocity_x_m_s']:.4f} m/s  "
+              f"rot {v['max_rotation_rad']:.1e} rad  sliding err {v['sliding_error_pct']:+.2f}%")
+    np.seterr()
+
+
+if __name__ == "__main__":
+    main()
