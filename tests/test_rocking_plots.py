@@ -1,0 +1,66 @@
+"""Rocking plots draw the data they are given (checked on the artists), take ax= and return it."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+mpl = pytest.importorskip("matplotlib")
+mpl.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from blastscale._validate import BlastscaleInputError  # noqa: E402
+from blastscale.analysis.rocking_similarity import compare_rocking  # noqa: E402
+from blastscale.blast import blast_parameters  # noqa: E402
+from blastscale.plots.rocking import (  # noqa: E402
+    plot_angle,
+    plot_angular_velocity,
+    plot_phase_portrait,
+    plot_pi_diagram,
+    plot_similarity,
+    rocking_figure,
+)
+from blastscale.rocking import pi_diagram, simulate  # noqa: E402
+from blastscale.structures.block import RectangularBlock  # noqa: E402
+
+BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+
+
+@pytest.fixture(scope="module")
+def run():
+    return simulate(BLOCK, blast_parameters(50.0, 2.0, model="masi2021").pulse(), 3.0)
+
+
+def test_history_plots_draw_the_history(run):
+    fig, axes = plt.subplots(1, 3)
+    assert plot_angle(run, ax=axes[0]) is axes[0]
+    assert plot_angular_velocity(run, ax=axes[1]) is axes[1]
+    assert plot_phase_portrait(run, ax=axes[2]) is axes[2]
+    np.testing.assert_array_equal(axes[0].lines[0].get_ydata(), run.theta)
+    np.testing.assert_array_equal(axes[1].lines[0].get_ydata(), run.theta_dot)
+    np.testing.assert_array_equal(axes[2].lines[0].get_xdata(), run.theta)
+    assert "[rad]" in axes[0].get_ylabel() and "[s]" in axes[0].get_xlabel()
+    plt.close(fig)
+
+
+def test_similarity_overlay_and_figure():
+    sim = compare_rocking(BLOCK, 50.0, 2.0, 1 / 20, model="masi2021", duration=2.0, n_samples=201)
+    ax = plot_similarity(sim, "theta")
+    np.testing.assert_array_equal(ax.lines[1].get_ydata(), sim.theta_model)
+    assert "up-scaled" in ax.get_legend().get_texts()[1].get_text()
+    fig = rocking_figure(sim.prototype, sim)
+    assert len(fig.axes) == 3
+    with pytest.raises(BlastscaleInputError, match="quantity"):
+        plot_similarity(sim, "sliding")
+    plt.close("all")
+
+
+def test_pi_plot_shows_curve_and_asymptotes():
+    pi = pi_diagram(BLOCK, n=5)
+    ax = plot_pi_diagram(pi)
+    np.testing.assert_array_equal(ax.lines[0].get_xdata(), pi.critical_impulse)
+    assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
+    assert len(ax.lines) == 3
+    plt.close("all")
