@@ -23,7 +23,7 @@ import numpy as np
 
 from blastscale.blast.parameters import blast_parameters
 from blastscale.blast.pulses import Triangular
-from blastscale.sim3d import Block3DSimulator, ContactSettings
+from blastscale.sim3d import Block3DSimulator, BoxShape, ContactSettings
 from blastscale.structures.block import RectangularBlock
 
 PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
@@ -59,8 +59,34 @@ def speed(repeat: int = 3, duration: float = 3.0) -> dict:
     return out
 
 
-def _hop_case(contact: ContactSettings, mode: str, v0: float = 1.8, initial_velocity: bool = False) -> dict:
-    sim = Block3DSimulator(contact, blast_mode=mode)
+class GridBaseBox(BoxShape):
+    """A box whose contact with the ground is a 5 x 5 grid of 2 mm spheres on its base
+    (25 contact points instead of box-plane's 4 corners); the spheres carry no mass."""
+
+    n = 5
+    radius = 2e-3
+
+    def _points(self):
+        xs = np.linspace(-self.half_width + self.radius, self.half_width - self.radius, self.n)
+        ys = np.linspace(-self.half_depth + self.radius, self.half_depth - self.radius, self.n)
+        return [(x, y) for x in xs for y in ys]
+
+    def contact_geoms(self, name):
+        return [f"{name}_s{k}" for k in range(self.n * self.n)]
+
+    def mjcf_geom(self, name):
+        z = -self.half_height + self.radius
+        spheres = "".join(
+            f'<geom name="{name}_s{k}" type="sphere" size="{float(self.radius)!r}" pos="{float(x)!r} {float(y)!r} {float(z)!r}" density="0" '
+            'contype="0" conaffinity="0"/>'
+            for k, (x, y) in enumerate(self._points())
+        )
+        return super().mjcf_geom(name) + spheres
+
+
+def _hop_case(contact: ContactSettings, mode: str, v0: float = 1.8, initial_velocity: bool = False,
+              shape_type=BoxShape) -> dict:
+    sim = Block3DSimulator(contact, blast_mode=mode, shape_type=shape_type)
     if initial_velocity:
         r = sim.run(SQUAT_BLOCK, None, 0.5, initial_velocity=(v0, 0.0, 0.0))
     else:
@@ -101,13 +127,15 @@ def hop_study() -> dict:
         "  damping ratio 0.5": (ContactSettings(friction=0.7, friction_time_constant=None, damping_ratio=0.5), "force",
                                 False),
         "  friction time constant 20 ms": (ContactSettings(friction=0.7), "force", False),
+        "  25-point base (5 x 5 spheres)": (raw, "force", False, GridBaseBox),
         "blast as momentum kick, MuJoCo friction reference": (raw, "kick", False),
         "blast as momentum kick, friction time constant 20 ms": (ContactSettings(friction=0.7), "kick", False),
         "default: auto (force if sticking, kick if sliding), 20 ms": (ContactSettings(friction=0.7), "auto", False),
         "initial velocity, no blast, MuJoCo friction reference": (raw, "auto", True),
         "initial velocity, no blast, friction time constant 20 ms": (ContactSettings(friction=0.7), "auto", True),
     }
-    return {name: _hop_case(c, mode, initial_velocity=iv) for name, (c, mode, iv) in cases.items()}
+    return {name: _hop_case(c, mode, 1.8, *v)
+            for name, (c, mode, *v) in cases.items()}
 
 
 def main() -> None:

@@ -223,3 +223,11 @@ def test_paper_cases_mu_07_model_upscaled_sliding_within_1_percent(block, charge
     # measured 0.08-0.5%
     assert m.max_sliding == pytest.approx(p.max_sliding, rel=0.01)
     assert m.overturned == p.overturned
+
+
+def test_numpy_scalars_are_accepted_in_the_mjcf():
+    # numpy 2 reprs scalars as np.float64(...): the MJCF writer must print plain numbers
+    blk = RectangularBlock(np.float64(2.0), np.float64(1.0))
+    c = ContactSettings(friction=np.float64(0.5), timestep=np.float64(1e-4))
+    r = simulate_block(blk, None, 0.01, contact=c)
+    assert abs(r.rotation[-1]) < 1e-9

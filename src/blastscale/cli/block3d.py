@@ -34,7 +34,7 @@ def block3d_cmd(
     density: float = typer.Option(2000.0, "--density", help="Density rho [kg/m^3]."),
     charge: float = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W [kg]."),
     standoff: float = typer.Option(..., "--standoff", help="Prototype stand-off R [m]."),
-    duration: float = typer.Option(3.0, "--duration", help="Simulated time after shock arrival [s] (prototype)."),
+    duration: float = typer.Option(5.0, "--duration", help="Simulated time after shock arrival [s] (prototype)."),
     pulse: str = typer.Option("friedlander", "--pulse", help="Pulse shape: friedlander, triangular or impulsive."),
     restitution: Optional[float] = typer.Option(
         None, "--restitution",
@@ -45,6 +45,8 @@ def block3d_cmd(
     timestep: float = typer.Option(2e-4, "--timestep", help="Prototype time step [s] (the model's is x sqrt(lambda)); the 2 ms contact time constant is raised to 4 steps if needed."),
     scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda [-]: also run the model."),
     density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype [-]."),
+    gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype [-] (centrifuge)."),
+    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g [m/s^2]."),
     model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
     record_every: int = typer.Option(5, "--record-every", help="Keep one state every N steps."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write histories and pose snapshots to this image file."),
@@ -78,17 +80,20 @@ def block3d_cmd(
         "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "density_kg_m3": block.density,
         "charge_kg": charge, "standoff_m": standoff, "pulse": pulse, "model": model, "duration_s": duration,
         "scale": scale, "density_ratio": density_ratio if scale is not None else None,
+        "gravity_ratio": gravity_ratio if scale is not None else None, "gravity_m_s2": gravity,
     }, "contact": contact.to_dict()}
     if scale is None:
         bp = blast_parameters(charge, standoff, model)
-        proto = simulate_block(block, bp.pulse(pulse), duration, contact=contact, record_every=record_every)
+        proto = simulate_block(block, bp.pulse(pulse), duration, contact=contact, gravity=gravity,
+                               record_every=record_every)
         upscaled = None
         out["prototype"] = proto.summary()
     else:
         from ..analysis.block3d_similarity import compare_block3d
 
-        cmp = compare_block3d(block, charge, standoff, scale, density_ratio=density_ratio, model=model, pulse=pulse,
-                              contact=contact, duration=duration, record_every=record_every)
+        cmp = compare_block3d(block, charge, standoff, scale, density_ratio=density_ratio, gravity_ratio=gravity_ratio,
+                              model=model, pulse=pulse, contact=contact, duration=duration, gravity=gravity,
+                              record_every=record_every)
         proto, upscaled = cmp.prototype, cmp.model_upscaled
         out.update(cmp.summary())
         out["model_experiment"] = {"charge_kg": cmp.design.model_charge_kg, "standoff_m": cmp.design.model_standoff_m,

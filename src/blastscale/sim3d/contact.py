@@ -125,9 +125,9 @@ class ContactSettings:
                 f"= {2 * self.timestep:.6g} s (MuJoCo clamps softer, stability)"
             )
         if self.cone not in CONES:
-            raise BlastscaleInputError(f"cone = {self.cone!r} is not known: valid values are {', '.join(CONES)}")
+            raise BlastscaleInputError(f"cone = {float(self.cone)!r} is not known: valid values are {', '.join(CONES)}")
         if self.solver not in SOLVERS:
-            raise BlastscaleInputError(f"solver = {self.solver!r} is not known: valid values are {', '.join(SOLVERS)}")
+            raise BlastscaleInputError(f"solver = {float(self.solver)!r} is not known: valid values are {', '.join(SOLVERS)}")
         check_range("impratio", self.impratio, 0.0, math.inf, lo_open=True)
         check_range("iterations", self.iterations, 1, 10_000)
         check_positive("tolerance", self.tolerance)
@@ -185,20 +185,20 @@ class ContactSettings:
     def mjcf_option(self, gravity: float) -> str:
         """The ``<option>`` element (time step, cone, solver, gravity)."""
         return (
-            f'<option timestep="{self.timestep!r}" gravity="0 0 {-gravity!r}" cone="{self.cone}" '
-            f'impratio="{self.impratio!r}" solver="{self.solver}" iterations="{int(self.iterations)}" '
-            f'tolerance="{self.tolerance!r}" noslip_iterations="{int(self.noslip_iterations)}" integrator="Euler"/>'
+            f'<option timestep="{float(self.timestep)!r}" gravity="0 0 {float(-gravity)!r}" cone="{self.cone}" '
+            f'impratio="{float(self.impratio)!r}" solver="{self.solver}" iterations="{int(self.iterations)}" '
+            f'tolerance="{float(self.tolerance)!r}" noslip_iterations="{int(self.noslip_iterations)}" integrator="Euler"/>'
         )
 
     def mjcf_pair_attributes(self) -> str:
         """Attributes of an explicit ``<pair>``: condim 3, friction, solref, solreffriction, solimp."""
         mu = float(self.friction)
         attrs = (
-            f'condim="3" friction="{mu!r} {mu!r} 0 0 0" solref="{self.time_constant!r} {self.damping_ratio!r}" '
-            f'solimp="{self.impedance_min!r} {self.impedance_max!r} {self.impedance_width!r} 0.5 2" margin="0" gap="0"'
+            f'condim="3" friction="{float(mu)!r} {float(mu)!r} 0 0 0" solref="{float(self.time_constant)!r} {float(self.damping_ratio)!r}" '
+            f'solimp="{float(self.impedance_min)!r} {float(self.impedance_max)!r} {float(self.impedance_width)!r} 0.5 2" margin="0" gap="0"'
         )
         if self.friction_time_constant is not None:
-            attrs += f' solreffriction="{self.friction_time_constant!r} 1"'
+            attrs += f' solreffriction="{float(self.friction_time_constant)!r} 1"'
         return attrs
 
     def to_dict(self) -> dict:

@@ -5,8 +5,9 @@ The geometry comes from :mod:`blastscale.structures`. Each body is described by 
 mass, the points of its base (for uplift and sliding recorders) and its loaded front face
 (for the blast force). Boxes (:class:`BoxShape`, from
 :class:`~blastscale.structures.block.RectangularBlock`) are implemented; a convex-mesh shape
-for the drums of multi-drum columns only has to provide the same four members
-(``mjcf_geom``, ``mjcf_assets``, ``base_points``, ``front_face``).
+for the drums of multi-drum columns only has to provide the same members
+(``mjcf_geom``, ``mjcf_assets``, ``contact_geoms``, ``base_points``, ``pivot_points``,
+``front_face``, ``mass``).
 
 Conventions (world frame): z up, the ground plane is z = 0, the blast comes from -x and
 pushes towards +x; the loaded front face is the body's -x face, its inward normal the
@@ -94,11 +95,16 @@ class BoxShape:
         """No assets for a primitive box."""
         return ""
 
+    def contact_geoms(self, name: str) -> list[str]:
+        """Names of the geoms paired with the ground (one box here; a drum or a base made of
+        several geoms lists them all)."""
+        return [name]
+
     def mjcf_geom(self, name: str) -> str:
         """The ``<geom>`` element. Collisions come from explicit pairs only (contype = conaffinity = 0)."""
         return (
-            f'<geom name="{name}" type="box" size="{self.half_width!r} {self.half_depth!r} {self.half_height!r}" '
-            f'density="{self.density!r}" contype="0" conaffinity="0"/>'
+            f'<geom name="{name}" type="box" size="{float(self.half_width)!r} {float(self.half_depth)!r} {float(self.half_height)!r}" '
+            f'density="{float(self.density)!r}" contype="0" conaffinity="0"/>'
         )
 
 
@@ -170,10 +176,13 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
         px, py, pz = (float(v) for v in b.position)
         qw, qx, qy, qz = (float(v) for v in b.quaternion)
         worldbody.append(
-            f'<body name="{b.name}" pos="{px!r} {py!r} {pz!r}" quat="{qw!r} {qx!r} {qy!r} {qz!r}">'
+            f'<body name="{b.name}" pos="{float(px)!r} {float(py)!r} {float(pz)!r}" quat="{float(qw)!r} {float(qx)!r} {float(qy)!r} {float(qz)!r}">'
             f'<freejoint name="{b.name}_free"/>{b.shape.mjcf_geom(f"{b.name}_geom")}</body>'
         )
-        pairs.append(f'<pair geom1="ground" geom2="{b.name}_geom" {contact.mjcf_pair_attributes()}/>')
+        pairs.extend(
+            f'<pair geom1="ground" geom2="{g}" {contact.mjcf_pair_attributes()}/>'
+            for g in b.shape.contact_geoms(f"{b.name}_geom")
+        )
     asset_block = f"<asset>{assets}</asset>" if assets else ""
     xml = (
         '<mujoco model="blastscale">'
@@ -191,6 +200,7 @@ def block_scene(
     gravity: float = STANDARD_GRAVITY,
     *,
     rotation: float = 0.0,
+    shape_type: type = None,
 ) -> Scene:
     """A single rectangular block standing on the ground (optionally tilted onto its +x edge).
 
@@ -205,13 +215,15 @@ def block_scene(
     rotation : float
         Initial tilt theta_0 [rad] about the y axis, resting on the +x base edge when > 0 and on
         the -x edge when < 0; |theta_0| < pi/2.
+    shape_type : type, optional
+        Class with ``from_block(block)`` building the body's shape; default :class:`BoxShape`.
 
     Returns
     -------
     Scene
     """
     contact = ContactSettings() if contact is None else contact
-    shape = BoxShape.from_block(block)
+    shape = (BoxShape if shape_type is None else shape_type).from_block(block)
     th = float(rotation)
     if not abs(th) < math.pi / 2:
         raise BlastscaleInputError(f"initial rotation = {th:.6g} rad is out of range: valid range is (-pi/2, pi/2)")

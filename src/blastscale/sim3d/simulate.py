@@ -36,7 +36,7 @@ from .._validate import BlastscaleInputError, check_finite, check_positive, chec
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .blast_force import step_forces
 from .contact import ContactSettings
-from .model import Scene, block_scene
+from .model import BoxShape, Scene, block_scene
 from .results import Block3DResult, quaternion_to_matrix, tilt_angle
 
 __all__ = ["Block3DSimulator", "simulate_block", "SETTLE_TIME_CONSTANTS", "BLAST_MODES"]
@@ -67,6 +67,8 @@ class Block3DSimulator:
     blast_mode : {"auto", "force", "kick"}
         How each step's blast impulse is applied (module docstring); "auto" is right for
         sticking and for sliding contacts.
+    shape_type : type
+        Shape class built from the block (``from_block``); :class:`~.model.BoxShape` by default.
     settle : bool
         Let the upright block settle on its soft contact for ``SETTLE_TIME_CONSTANTS`` time
         constants before t = 0 (ignored when starting tilted).
@@ -83,6 +85,7 @@ class Block3DSimulator:
     record_every: int = 1
     settle: bool = True
     blast_mode: str = "auto"
+    shape_type: type = BoxShape
 
     def __post_init__(self):
         check_positive("gravity", self.gravity, "m/s^2")
@@ -133,7 +136,7 @@ class Block3DSimulator:
         if v0.shape != (3,):
             raise BlastscaleInputError(f"initial velocity must have 3 components, got shape {v0.shape}")
         c = self.contact
-        scene: Scene = block_scene(block, c, self.gravity, rotation=th0)
+        scene: Scene = block_scene(block, c, self.gravity, rotation=th0, shape_type=self.shape_type)
         m, d = scene.model, mujoco.MjData(scene.model)
         shape = scene.bodies[0].shape
         bid = scene.body_id(0)
