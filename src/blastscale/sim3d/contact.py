@@ -125,9 +125,9 @@ class ContactSettings:
                 f"= {2 * self.timestep:.6g} s (MuJoCo clamps softer, stability)"
             )
         if self.cone not in CONES:
-            raise BlastscaleInputError(f"cone = {float(self.cone)!r} is not known: valid values are {', '.join(CONES)}")
+            raise BlastscaleInputError(f"cone = {self.cone!r} is not known: valid values are {', '.join(CONES)}")
         if self.solver not in SOLVERS:
-            raise BlastscaleInputError(f"solver = {float(self.solver)!r} is not known: valid values are {', '.join(SOLVERS)}")
+            raise BlastscaleInputError(f"solver = {self.solver!r} is not known: valid values are {', '.join(SOLVERS)}")
         check_range("impratio", self.impratio, 0.0, math.inf, lo_open=True)
         check_range("iterations", self.iterations, 1, 10_000)
         check_positive("tolerance", self.tolerance)
