@@ -225,3 +225,10 @@ def test_numpy_scalars_are_accepted_in_the_mjcf():
     c = ContactSettings(friction=np.float64(0.5), timestep=np.float64(1e-4))
     r = simulate_block(blk, None, 0.01, contact=c)
     assert abs(r.rotation[-1]) < 1e-9
+
+
+def test_result_to_dataset_carries_units():
+    r = simulate_block(PAPER_BLOCK, None, 0.01, contact=ContactSettings())
+    ds = r.to_dataset()
+    assert ds["rotation"].attrs["units"] == "rad" and ds["time"].attrs["units"] == "s"
+    assert ds.sizes["time"] == r.time.size and ds.attrs["overturned"] == 0

@@ -139,6 +139,23 @@ class Block3DResult:
             "peak_velocity_x_m_s": float(np.max(np.abs(self.velocity_x))),
         }
 
+    def to_dataset(self):
+        """The histories as an ``xarray.Dataset`` (dimension ``time``), units in attributes,
+        scalar outcomes and settings as dataset attributes (NetCDF-ready)."""
+        import xarray as xr
+
+        units = {
+            "rotation": "rad", "angular_velocity": "rad/s", "sliding": "m", "base_centre_x": "m", "com_x": "m",
+            "com_z": "m", "velocity_x": "m/s", "velocity_z": "m/s", "uplift": "m", "n_contacts": "1",
+        }
+        data = {k: ("time", getattr(self, k), {"units": u}) for k, u in units.items()}
+        attrs = {k: (int(v) if isinstance(v, bool) else v) for k, v in self.summary().items()}
+        attrs.update(alpha_rad=self.alpha, half_width_m=self.half_width, half_height_m=self.half_height,
+                     impulse_delivered_N_s=self.impulse_delivered, source="blastscale.sim3d (MuJoCo)")
+        attrs.update({f"setting_{k}": ("none" if v is None else v) for k, v in self.settings.items()
+                      if isinstance(v, (int, float, str)) or v is None})
+        return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})}, attrs=attrs)
+
     def upscaled(self, length_factor: float, time_factor: float) -> "Block3DResult":
         """This (model) result in prototype units: lengths / lambda, times / lambda_t,
         velocities / (lambda / lambda_t), angular velocities x lambda_t; angles unchanged."""
