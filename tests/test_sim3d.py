@@ -196,6 +196,8 @@ def test_scale_invariance_lambda_1_200_upscaled_equals_full_scale():
     # 1e-6 relative to the response's size (issue); measured 1e-13 (round-off)
     assert np.max(np.abs(up.rotation - proto.rotation)) <= 1e-6 * np.max(np.abs(proto.rotation))
     assert np.max(np.abs(up.sliding - proto.sliding)) <= 1e-6 * np.max(np.abs(proto.sliding))
+    assert np.max(np.abs(up.angular_velocity - proto.angular_velocity)) <= 1e-6 * np.max(np.abs(proto.angular_velocity))
+    assert np.max(np.abs(up.velocity_x - proto.velocity_x)) <= 1e-6 * np.max(np.abs(proto.velocity_x))
 
 
 @pytest.mark.parametrize(
