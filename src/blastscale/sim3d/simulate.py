@@ -174,6 +174,7 @@ class Block3DSimulator:
         qpos = np.empty((nrec, 7))
         qvel = np.empty((nrec, 6))
         ncon = np.empty(nrec, dtype=np.int32)
+        mujoco.mj_forward(m, d)  # contacts of the initial state (does not advance it)
         qpos[0], qvel[0], ncon[0] = d.qpos, d.qvel, d.ncon
         rec_mask = np.zeros(nsteps + 1, dtype=bool)
         rec_mask[idx] = True
