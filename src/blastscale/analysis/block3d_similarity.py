@@ -86,7 +86,7 @@ def compare_block3d(
     standoff: float,
     scale: float,
     *,
-    density_ratio: float = 1.0,
+    density_ratio: float | None = 1.0,
     gravity_ratio: float = 1.0,
     law: str = "general",
     model: str = DEFAULT_BLAST_MODEL,
@@ -107,8 +107,10 @@ def compare_block3d(
         Prototype charge W [kg TNT] and stand-off R [m].
     scale : float
         Geometric scale lambda [-].
-    density_ratio, gravity_ratio : float
-        gamma and varsigma [-].
+    density_ratio : float or None
+        gamma [-]; None with ``law="hopkinson-cranz"`` (that law imposes 1/sqrt(varsigma lambda)).
+    gravity_ratio : float
+        varsigma [-].
     law : {"general", "hopkinson-cranz"}
         Scaling law used to design the model charge.
     model : str
