@@ -81,3 +81,11 @@ def test_similarity_bad_input():
         compare_rocking(BLOCK, 50.0, 2.0, 0.1, pulse="square", model="masi2021")
     with pytest.raises(BlastscaleInputError, match="scale"):
         compare_rocking(BLOCK, 50.0, 2.0, -0.1, model="masi2021")
+
+
+def test_centrifuge_gravity_ratio_impulsive_exact():
+    """With a gravity ratio (centrifuge model, varsigma = 20) the factors change
+    (time sqrt(lambda/varsigma)) and the impulsive similarity stays exact (1e-10 rad)."""
+    s = compare_rocking(BLOCK, 50.0, 2.0, 1 / 20, 1.0, 20.0, pulse="impulsive", model="masi2021", duration=5.0)
+    assert s.design.factors.time == pytest.approx(math.sqrt(1 / 20 / 20), rel=1e-14)
+    assert s.max_abs_angle_diff <= 1e-10 and s.outcomes_agree
