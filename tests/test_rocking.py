@@ -280,3 +280,12 @@ def test_random_blocks_fast_matches_reference_and_energy_decays(height, alpha_de
     e = sysm.coefficient_of_restitution
     np.testing.assert_allclose(fast.impact_velocity_after, e * fast.impact_velocity_before, rtol=1e-15)
     assert not np.any(np.isnan(fast.theta)) and not np.any(np.isnan(fast.theta_eval))
+
+
+def test_result_to_dataset_keeps_units_and_history(tmp_path):
+    pytest.importorskip("xarray")
+    res = simulate(BLOCK, paper_pulse(50.0), 2.0)
+    ds = res.to_dataset()
+    np.testing.assert_array_equal(ds["theta"].values, res.theta)
+    assert ds["theta"].attrs["units"] == "rad" and ds["time"].attrs["units"] == "s"
+    assert ds.attrs["overturned"] == 0 and ds.attrs["first_impact_time_s"] == pytest.approx(res.first_impact_time)

@@ -134,6 +134,25 @@ class RockingResult:
         """Number of impacts [-]."""
         return int(self.impact_times.size)
 
+    def to_dataset(self):
+        """The history as an ``xarray.Dataset`` (dimension ``time`` [s]; ``theta`` [rad],
+        ``theta_dot`` [rad/s]; units and the scalar results in the attributes). Needs the
+        ``io`` extra (xarray); imported only here."""
+        import xarray as xr
+
+        ds = xr.Dataset(
+            {
+                "theta": ("time", self.theta, {"units": "rad", "long_name": "rocking angle"}),
+                "theta_dot": ("time", self.theta_dot, {"units": "rad/s", "long_name": "angular velocity"}),
+            },
+            coords={"time": ("time", self.t, {"units": "s", "long_name": "time after shock arrival"})},
+        )
+        for k, v in self.summary().items():
+            ds.attrs[k] = "none" if v is None else (int(v) if isinstance(v, bool) else v)
+        ds.attrs["restitution"] = self.restitution
+        ds.attrs["equation"] = "Masi, Stefanou & Maffi-Berthier, Eq. (eom); Housner (1963) impacts"
+        return ds
+
     def summary(self) -> dict:
         """Plain dict of the scalar results (unit-suffixed keys, None where absent)."""
         return {
