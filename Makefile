@@ -15,7 +15,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 run: install
-	$(BIN)/blastscale run
+	$(BIN)/blastscale run --out results/default
 
 test: install
 	MPLBACKEND=Agg $(BIN)/python -m pytest -q
