@@ -39,6 +39,21 @@ def print_json(obj: dict) -> None:
     typer.echo(json.dumps(_jsonable(obj), indent=2))
 
 
+def save_figure(build, path) -> None:
+    """Build a matplotlib figure with the non-interactive Agg backend and write it to ``path``.
+
+    ``build`` is a no-argument callable returning the figure (called after the backend is set).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig = build()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
 def table(title: str, rows: list[tuple[str, str, str]]) -> Table:
     """A three-column (quantity, value, unit) rich table."""
     t = Table(title=title, title_justify="left")

@@ -7,7 +7,7 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, print_json, table
+from ._app import app, console, print_json, save_figure, table
 from .loads import MODEL_HELP, block_from_options
 
 _SUMMARY_ROWS = (
@@ -66,9 +66,7 @@ def block3d_cmd(
             f"restitution = {restitution:g} is not applicable to block3d: in 3D the impact loss emerges from "
             "the inelastic contact (omit --restitution)"
         )
-    if width is None and alpha_deg is None:
-        raise BlastscaleInputError("width = None is out of range: give --width (m) or --alpha-deg (deg, in (0, 90))")
-    block = block_from_options(height, width, alpha_deg, depth, density)
+    block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     base = ContactSettings()
     contact = ContactSettings(
         friction=friction,
@@ -99,13 +97,9 @@ def block3d_cmd(
         out["model_experiment"] = {"charge_kg": cmp.design.model_charge_kg, "standoff_m": cmp.design.model_standoff_m,
                                    "height_m": block.height * scale}
     if plot:
-        import matplotlib
-
-        matplotlib.use("Agg")
         from ..plots.sim3d import plot_comparison
 
-        fig = plot_comparison(proto, upscaled)
-        fig.savefig(plot, dpi=120)
+        save_figure(lambda: plot_comparison(proto, upscaled), plot)
         out["plot"] = plot
     if as_json:
         print_json(out)

@@ -18,12 +18,20 @@ MODEL_HELP = "Blast model: kingery-bulmash (Swisdak 1994, default) or masi2021 (
 
 
 def block_from_options(
-    height: Optional[float], width: Optional[float], alpha_deg: Optional[float], depth: float, density: float
+    height: Optional[float],
+    width: Optional[float],
+    alpha_deg: Optional[float],
+    depth: float,
+    density: float,
+    required: bool = False,
 ) -> Optional[RectangularBlock]:
-    """The prototype block from CLI options (m, deg, kg/m^3), or None when no geometry is given.
+    """The prototype block from CLI options (m, deg, kg/m^3), or None when no geometry is given
+    (an error instead when ``required``).
 
     Accepts ``--height`` with ``--width``, or ``--height`` with ``--alpha-deg`` (width = height tan alpha).
     """
+    if required and width is None and alpha_deg is None:
+        raise BlastscaleInputError("width = None is out of range: give --width (m) or --alpha-deg (deg, in (0, 90))")
     if height is None and width is None and alpha_deg is None:
         return None
     if height is None:

@@ -35,7 +35,7 @@ from ..rocking import RockingSystem, critical_charge
 from ..sim3d import ContactSettings
 from ..similitude import design_model
 from ..structures import RectangularBlock
-from ._app import _jsonable, app, console, console_err, print_json
+from ._app import _jsonable, app, console, console_err, print_json, save_figure
 from .loads import MODEL_HELP, print_design
 
 #: The built-in default scenario (SI), the paper's case (a) for model 2.
@@ -147,16 +147,11 @@ def run_cmd(
     if out is not None:
         status = console_err.status("writing figures ...")
         with status:
-            import matplotlib
-
-            matplotlib.use("Agg")
             from ..plots.rocking import rocking_figure
             from ..plots.sim3d import plot_comparison
 
-            fig = rocking_figure(rock.prototype, similarity=rock)
-            fig.savefig(out / "rocking.png", dpi=120)
-            fig = plot_comparison(b3.prototype, b3.model_upscaled)
-            fig.savefig(out / "block3d.png", dpi=120)
+            save_figure(lambda: rocking_figure(rock.prototype, similarity=rock), out / "rocking.png")
+            save_figure(lambda: plot_comparison(b3.prototype, b3.model_upscaled), out / "block3d.png")
             _write_json_atomic(out / "summary.json", result)
     if as_json:
         print_json(result)

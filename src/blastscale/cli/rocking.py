@@ -12,17 +12,11 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, console_err, print_json, table
+from ._app import app, console, console_err, print_json, save_figure, table
 from .loads import MODEL_HELP, block_from_options
 
 PULSE_HELP = "Pulse shape: friedlander (paper Eq. 1), triangular (Eq. 3) or impulsive (Dirac of the same impulse)."
 RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts [-], in [0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
-
-
-def _block(height, width, alpha_deg, depth, density):
-    if width is None and alpha_deg is None:
-        raise BlastscaleInputError("width = None is out of range: give --width (m) or --alpha-deg (deg, in (0, 90))")
-    return block_from_options(height, width, alpha_deg, depth, density)
 
 
 def _fmt(x, spec=".6g") -> str:
@@ -87,7 +81,7 @@ def rock_cmd(
     from ..blast import blast_parameters
     from ..rocking import RockingSystem, simulate
 
-    block = _block(height, width, alpha_deg, depth, density)
+    block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     if samples < 2:
         raise BlastscaleInputError(f"samples = {samples} is out of range: must be >= 2")
     out: dict = {
@@ -126,13 +120,9 @@ def rock_cmd(
             }
     out["prototype"]["restitution"] = res.restitution
     if plot:
-        import matplotlib
-
-        matplotlib.use("Agg")
         from ..plots.rocking import rocking_figure
 
-        fig = rocking_figure(res, sim)
-        fig.savefig(plot, dpi=120)
+        save_figure(lambda: rocking_figure(res, sim), plot)
         out["plot"] = plot
     if as_json:
         print_json(out)
@@ -181,7 +171,7 @@ def critical_cmd(
     from ..blast import blast_parameters
     from ..rocking import RockingSystem, critical_charge, critical_standoff
 
-    block = _block(height, width, alpha_deg, depth, density)
+    block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     if (standoff is None) == (charge is None):
         raise BlastscaleInputError(
             f"standoff = {standoff}, charge = {charge}: give exactly one of --standoff (m, finds the critical charge) "
@@ -213,22 +203,23 @@ def critical_cmd(
         out["model_experiment"] = {"scale": scale, "density_ratio": density_ratio,
                                    "critical_charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m}
     if plot:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
         from ..plots.rocking import plot_pi_diagram
         from ..rocking import pi_diagram
 
         with console_err.status("computing the P-I diagram ...", spinner="dots"):
             pi = pi_diagram(system, n=30)
-        fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
-        plot_pi_diagram(pi, ax=ax)
-        ax.plot([bp.reflected_impulse], [bp.reflected_pressure], "o", color="C3",
-                label=f"critical: {res.charge_kg:.4g} kg at {res.standoff_m:.4g} m")
-        ax.legend(fontsize=8)
-        fig.savefig(plot, dpi=120)
+
+        def build():
+            import matplotlib.pyplot as plt
+
+            fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+            plot_pi_diagram(pi, ax=ax)
+            ax.plot([bp.reflected_impulse], [bp.reflected_pressure], "o", color="C3",
+                    label=f"critical: {res.charge_kg:.4g} kg at {res.standoff_m:.4g} m")
+            ax.legend(fontsize=8)
+            return fig
+
+        save_figure(build, plot)
         out["plot"] = plot
     if as_json:
         print_json(out)
