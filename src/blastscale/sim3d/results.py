@@ -101,10 +101,11 @@ class Block3DResult:
         return bool(np.max(np.abs(self.rotation)) > self.alpha)
 
     @property
-    def overturn_time(self) -> float:
-        """First time |theta| > alpha [s]; NaN if the block did not overturn."""
+    def overturn_time(self) -> float | None:
+        """First recorded time with |theta| > alpha [s]; None if the block did not overturn
+        (as :attr:`blastscale.rocking.RockingResult.overturn_time`; JSON ``null``)."""
         idx = np.flatnonzero(np.abs(self.rotation) > self.alpha)
-        return float(self.time[idx[0]]) if idx.size else math.nan
+        return float(self.time[idx[0]]) if idx.size else None
 
     @property
     def max_rotation(self) -> float:
@@ -127,7 +128,8 @@ class Block3DResult:
         return float(np.max(self.uplift))
 
     def summary(self) -> dict:
-        """The scalar outcomes, keys with units (the CLI's JSON)."""
+        """The scalar outcomes, keys with units (the CLI's JSON); ``overturn_time_s`` is None
+        when the block did not overturn, so the dict is strict JSON (no NaN)."""
         return {
             "overturned": self.overturned,
             "overturn_time_s": self.overturn_time,
@@ -149,7 +151,7 @@ class Block3DResult:
             "com_z": "m", "velocity_x": "m/s", "velocity_z": "m/s", "uplift": "m", "n_contacts": "1",
         }
         data = {k: ("time", getattr(self, k), {"units": u}) for k, u in units.items()}
-        attrs = {k: (int(v) if isinstance(v, bool) else v) for k, v in self.summary().items()}
+        attrs = {k: ("none" if v is None else int(v) if isinstance(v, bool) else v) for k, v in self.summary().items()}
         attrs.update(alpha_rad=self.alpha, half_width_m=self.half_width, half_height_m=self.half_height,
                      impulse_delivered_N_s=self.impulse_delivered, source="blastscale.sim3d (MuJoCo)")
         attrs.update({f"setting_{k}": ("none" if v is None else v) for k, v in self.settings.items()
