@@ -7,7 +7,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from blastscale._validate import OutOfRangeError
-from blastscale.similitude import design_model, pi_terms, scaling_factors
+from blastscale.blast import get_blast_model
+from blastscale.similitude import design_model, pi_terms, scaling_factors, solve_scaled_distance_factor
 
 models = st.sampled_from(["masi2021", "kingery-bulmash"])
 charges = st.floats(1.0, 5000.0)
@@ -73,3 +74,30 @@ def test_pi_terms_are_invariant_under_the_factors(lam, gam, sig, l, m, P, i, t, 
                   angular_acceleration=4.0 * f.angular_acceleration)
     for k in p0:
         assert p1[k] == pytest.approx(p0[k], rel=1e-10, abs=1e-14), k
+
+
+@settings(max_examples=60, deadline=None)
+@given(Z=proto_Z, gam=gammas, sig=gravities, model=models)
+def test_law_out_of_range_error_gives_the_exact_admissible_scales(Z, gam, sig, model):
+    # The scale that puts the model exactly at an end Z_e of the impulse fit follows from Eq. (8) by hand:
+    # gamma sqrt(varsigma lambda) = (Z / Z_e) i_hat(Z_e) / i_hat(Z). Just inside it the law solves with the
+    # model at Z_e (rel 1e-6: the scale is moved by 1e-6); just outside it raises, naming the scale, its
+    # value and that bound (printed to 6 significant digits).
+    m = get_blast_model(model)
+    zmin, zmax = m.valid_range("scaled_reflected_impulse")
+    i = m.scaled_reflected_impulse
+
+    def scale_at(ze):
+        return ((Z / ze) * i(ze) / i(Z) / gam) ** 2 / sig
+
+    lam_lo, lam_hi = scale_at(zmax), scale_at(zmin)  # far model <-> small scale
+    for lam_edge, z_edge, inside in ((lam_lo, zmax, 1 + 1e-6), (lam_hi, zmin, 1 - 1e-6)):
+        sol = solve_scaled_distance_factor(Z, lam_edge * inside, gam, sig, model)
+        assert sol.factor * Z == pytest.approx(z_edge, rel=1e-6)
+        outside = lam_edge / inside
+        with pytest.raises(OutOfRangeError) as e:
+            solve_scaled_distance_factor(Z, outside, gam, sig, model)
+        msg = str(e.value)
+        assert msg.startswith(f"scale = {outside:.6g} is out of range")
+        assert f"valid range of scale is [{lam_lo:.6g}, {lam_hi:.6g}]" in msg
+        assert "\n" not in msg

@@ -111,3 +111,40 @@ def test_table_1_acceleration_factors_follow_the_pi_terms():
     assert f.angular_acceleration == pytest.approx(20.0, rel=1e-15)
     assert f.velocity == pytest.approx(math.sqrt(1 / 20), rel=1e-15)
     assert f.time == pytest.approx(math.sqrt(1 / 20), rel=1e-15)
+
+
+@pytest.mark.parametrize("sig", [1.0, 1000.0])
+def test_impulsive_check_is_to_times_housner_p_for_prototype_and_model(sig):
+    # The paper's 10 m block (alpha = 15 deg), 50 kg at 2 m, lambda = 1/200, in a centrifuge (varsigma = 1000:
+    # the model's ratio then exceeds the prototype's, 3.1e-3 vs 1.4e-3; at varsigma = 1 it is 6x smaller) or
+    # not. By hand: r = h / cos(alpha) (h = 5 m), p = sqrt(3 g / (4 r)), the model has r lambda and g varsigma.
+    # Same formula, evaluated independently: round-off tolerance (1e-12).
+    from blastscale.structures import RectangularBlock
+
+    lam, g = 1 / 200, 9.81
+    block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+    d = design_model(50.0, 2.0, lam, 1.0, sig, model="masi2021", geometry=block)
+    r = 5.0 / math.cos(math.radians(15.0))
+    p_proto = math.sqrt(3 * g / (4 * r))
+    p_model = math.sqrt(3 * g * sig / (4 * r * lam))
+    assert d.impulsive.prototype_ratio == pytest.approx(d.prototype.positive_duration * p_proto, rel=1e-12)
+    assert d.impulsive.model_ratio == pytest.approx(d.model.positive_duration * p_model, rel=1e-12)
+    assert d.impulsive.prototype_ratio == pytest.approx(1.39e-3, rel=0.01)  # DESIGN.md: "about 1e-3"
+    assert d.impulsive.impulsive  # both far below the 0.4 bound
+    # The verdict needs BOTH systems impulsive: with the bound between the two ratios it must be False.
+    between = math.sqrt(d.impulsive.prototype_ratio * d.impulsive.model_ratio)
+    assert d.impulsive.prototype_ratio != pytest.approx(d.impulsive.model_ratio, rel=1e-3)
+    d2 = design_model(50.0, 2.0, lam, 1.0, sig, model="masi2021", geometry=block, impulsive_threshold=between)
+    assert d2.impulsive.impulsive is False
+    assert design_model(50.0, 2.0, lam, model="masi2021").impulsive is None  # no geometry, no check
+
+
+def test_centrifuge_at_one_over_lambda_gives_complete_similarity():
+    # gamma = 1, varsigma = 1/lambda: Eq. (8) has the root lambda_Z = 1 (Hopkinson-Cranz), durations scale
+    # as lambda and p as 1/lambda, so t_o p is the same in model and prototype. Exact to round-off (1e-12).
+    from blastscale.structures import RectangularBlock
+
+    block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+    d = design_model(50.0, 2.0, 1 / 200, 1.0, 200.0, model="masi2021", geometry=block)
+    assert d.scaled_distance_factor == pytest.approx(1.0, abs=1e-12)
+    assert d.impulsive.model_ratio == pytest.approx(d.impulsive.prototype_ratio, rel=1e-12)

@@ -71,7 +71,8 @@ def friedlander_decay(peak, duration, impulse, *, allow_negative: bool = True):
 
     Solves paper Eq. (2), :math:`i = P_{ro} t_o (e^{-d} + d - 1)/d^2`, for d. The left side
     is strictly decreasing in d, so the root is unique; it is found by vectorised bisection
-    on a bracket in ``asinh(d)`` followed by Newton polishing (relative accuracy ~1e-14).
+    on the bracket ``-1 < d < 1/k`` in ``asinh(d)``, followed by Newton polishing (relative
+    accuracy ~1e-14 over k in (0, e - 2), i.e. d from -1 to beyond 1e12).
 
     Parameters
     ----------
@@ -118,10 +119,11 @@ def friedlander_decay(peak, duration, impulse, *, allow_negative: bool = True):
         if not allow_negative:
             raise BlastscaleInputError(msg + "; valid range for a positive decay is (0, 0.5)")
         warnings.warn(msg + "; using the negative decay in (-1, 0]", NegativeDecayWarning, stacklevel=2)
-    # bisection in u = asinh(d): k(sinh u) is decreasing in u
+    # bisection in u = asinh(d): k(sinh u) is decreasing in u. Bracket: k(-1) = e - 2 > k, and
+    # k(d) < 1/d for every d > 0 (as e^{-d} < 1), so the root lies below d = 1/k.
     lo = np.full(k.shape, math.asinh(-1.0))
-    hi = np.full(k.shape, math.asinh(1e9))
-    for _ in range(80):
+    hi = np.arcsinh(1.0 / k)
+    for _ in range(90):
         mid = 0.5 * (lo + hi)
         f = friedlander_impulse_ratio(np.sinh(mid)) - k
         lo = np.where(f > 0.0, mid, lo)

@@ -123,7 +123,15 @@ def solve_scaled_distance_factor(
     Raises
     ------
     OutOfRangeError
-        If the prototype Z, or the model Z the law requires, is outside the impulse fit's range.
+        If the prototype Z is outside the impulse fit's range, or if the model Z the law requires
+        would be: the message then gives the range of ``scale`` that keeps it inside (for the given
+        gamma and varsigma). The law is never solved on an extrapolated fit.
+
+    Notes
+    -----
+    Valid range: the prototype and the model scaled distances both inside the range of the model's
+    scaled reflected impulse (Kingery-Bulmash: Z in [0.06, 40]; masi2021: [0.2, 20] m/kg^(1/3)).
+    Reference: paper Eq. (8) (Sec. "Scaling laws").
     """
     m = get_blast_model(model)
     z = float(check_positive("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)"))
@@ -141,12 +149,16 @@ def solve_scaled_distance_factor(
     xlo, xhi = math.log(zmin / z), math.log(zmax / z)
     glo, ghi = g(xlo), g(xhi)
     if glo * ghi > 0.0:
-        # g decreases: g(xhi) > 0 means even Z_max gives too much impulse, etc.
-        need = "larger" if ghi > 0.0 else "smaller"
+        # g decreases in x: g(xhi) > 0 means that even Z_max gives too much impulse (scale too small
+        # for this gamma), g(xlo) < 0 that even Z_min gives too little. The admissible targets are
+        # [target e^{g(xhi)}, target e^{g(xlo)}]; target = gamma sqrt(varsigma lambda) gives the scales.
+        lam_lo = (target * math.exp(ghi) / gam) ** 2 / sig
+        lam_hi = (target * math.exp(glo) / gam) ** 2 / sig
+        side = "Z_max" if ghi > 0.0 else "Z_min"
         raise OutOfRangeError(
-            f"model scaled distance for scale = {lam:.6g}, density ratio = {gam:.6g} would be {need} than the "
-            f"{m.name} impulse fit allows: valid range of Z is [{zmin:g}, {zmax:g}] m/kg^(1/3) "
-            f"(prototype Z = {z:.6g})"
+            f"scale = {lam:.6g} is out of range for the general law: with density ratio = {gam:.6g}, gravity ratio "
+            f"= {sig:.6g} and prototype Z = {z:.6g} m/kg^(1/3), the model Z would lie beyond {side} of the "
+            f"{m.name} impulse fit [{zmin:g}, {zmax:g}] m/kg^(1/3); valid range of scale is [{lam_lo:.6g}, {lam_hi:.6g}]"
         )
     x = brentq(g, xlo, xhi, xtol=1e-15, rtol=1e-15, maxiter=200)
     res = g(x)
