@@ -50,32 +50,74 @@ def test_design_hopkinson_cranz(capsys):
     assert out["density_ratio"] == pytest.approx(10.0, rel=1e-12)
 
 
-@pytest.mark.parametrize(
-    "argv, words",
-    [
-        (["blast", "--charge", "-5", "--standoff", "2"], ["charge", "-5", "> 0"]),
-        (["blast", "--charge", "0", "--standoff", "2"], ["charge", "0", "> 0"]),
-        (["blast", "--charge", "nan", "--standoff", "2"], ["charge", "nan"]),
-        (["blast", "--charge", "5", "--standoff", "-1"], ["standoff", "-1"]),
-        (["blast", "--charge", "1", "--standoff", "100", "--model", "masi2021"], ["Z = 100", "[0.2, 20]"]),
-        (["design", "--charge", "50", "--standoff", "2", "--scale", "0"], ["scale", "0", "> 0"]),
-        (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "-1"],
-         ["density ratio", "-1"]),
-        (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--height", "10", "--alpha-deg", "95"],
-         ["alpha-deg", "95", "(0, 90)"]),
-        (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-6", "--model", "masi2021"], ["scaled_positive_duration", "Z = 11.7", "[0.2, 6.5]"]),
-    ],
-)
-def test_bad_input_exits_2_with_one_line(argv, words):
-    # The real console script in a subprocess: exit status 2, one line on stderr, no traceback.
-    r = subprocess.run([sys.executable, "-c", "from blastscale.cli import main; main()", *argv],
-                       capture_output=True, text=True, timeout=120)
-    assert r.returncode == 2, r.stderr
-    err = r.stderr.strip()
-    assert "Traceback" not in err
-    assert len(err.splitlines()) == 1, err
+BAD_INPUT = [
+    (["blast", "--charge", "-5", "--standoff", "2"], ["charge", "-5", "> 0"]),
+    (["blast", "--charge", "0", "--standoff", "2"], ["charge", "0", "> 0"]),
+    (["blast", "--charge", "nan", "--standoff", "2"], ["charge", "nan"]),
+    (["blast", "--charge", "inf", "--standoff", "2"], ["charge", "inf"]),
+    (["blast", "--charge", "5", "--standoff", "-1"], ["standoff", "-1"]),
+    (["blast", "--charge", "5", "--standoff", "2", "--model", "foo"], ["blast model", "foo", "kingery-bulmash"]),
+    (["blast", "--charge", "1", "--standoff", "100", "--model", "masi2021"], ["Z = 100", "[0.2, 20]"]),
+    (["blast", "--charge", "1e-30", "--standoff", "2", "--extrapolate"], ["reflected_pressure", "Z = 2e+10"]),
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "0"], ["scale", "0", "> 0"]),
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "nan"], ["scale", "nan"]),
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "-1"],
+     ["density ratio", "-1"]),
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "0"],
+     ["density ratio", "0", "> 0"]),
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--gravity-ratio", "0"],
+     ["gravity ratio", "0", "> 0"]),
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--law", "hopkinson-cranz",
+      "--density-ratio", "1"], ["density ratio", "1", "10"]),
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--height", "10", "--alpha-deg", "95"],
+     ["alpha-deg", "95", "(0, 90)"]),
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--height", "10"], ["--width", "--alpha-deg"]),
+    # the general law's model Z beyond the impulse fit: names the scale and the admissible range
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-9"], ["scale = 1e-09", "valid range of scale"]),
+    # masi2021: the law is solvable but the model Z = 11.7 is outside the duration fit's guarded range
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-6", "--model", "masi2021"],
+     ["scaled_positive_duration", "Z = 11.7", "[0.2, 6.5]"]),
+    # click's own usage errors, also one line, exit 2
+    (["blast", "--charge", "abc", "--standoff", "2"], ["--charge", "blastscale blast --help"]),
+    (["blast", "--charge", "5"], ["Missing option", "--standoff"]),
+    (["design", "--charge", "5", "--standoff", "2", "--scale", "0.1", "--bogus"], ["--bogus"]),
+]
+
+
+@pytest.mark.parametrize("argv, words", BAD_INPUT)
+def test_bad_input_exits_2_with_one_line(capsys, argv, words):
+    # In process (fast): SystemExit 2, one "error:" line on stderr naming parameter and value, nothing on stdout.
+    with pytest.raises(SystemExit) as e:
+        main(argv)
+    assert e.value.code == 2
+    cap = capsys.readouterr()
+    lines = cap.err.strip().splitlines()
+    assert cap.out == ""
+    # exactly one error line, last; --extrapolate may precede it with one-line warnings
+    assert lines[-1].startswith("error: ") and all(ln.startswith("warning: ") for ln in lines[:-1]), lines
     for w in words:
-        assert w in err
+        assert w in lines[-1]
+
+
+def test_console_script_exits_2_without_traceback():
+    # The real entry point in a subprocess (one case: the others run in process above).
+    r = subprocess.run([sys.executable, "-c", "from blastscale.cli import main; main()", "blast", "--charge", "-5",
+                        "--standoff", "2"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert "Traceback" not in r.stderr
+    assert r.stderr.strip().splitlines() == ["error: charge = -5 kg is out of range: must be > 0 kg"]
+
+
+def test_extrapolation_warnings_are_one_line_each(capsys):
+    # --extrapolate: the JSON still comes out on stdout, and each fit used outside its range is one
+    # "warning:" line on stderr (no Python file/line prefix).
+    with pytest.raises(SystemExit) as e:
+        main(["blast", "--charge", "1", "--standoff", "30", "--model", "masi2021", "--extrapolate", "--json"])
+    assert e.value.code in (0, None)
+    cap = capsys.readouterr()
+    assert json.loads(cap.out)["scaled_distance_m_per_kg13"] == pytest.approx(30.0, rel=1e-12)
+    lines = cap.err.strip().splitlines()
+    assert len(lines) == 4 and all(ln.startswith("warning: ") and "Z = 30" in ln for ln in lines), lines
 
 
 def test_run_default_scenario_json(capsys, tmp_path):

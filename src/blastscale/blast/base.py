@@ -87,7 +87,16 @@ class BlastModel(abc.ABC):
             if not extrapolate:
                 raise OutOfRangeError(msg + " (opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)")
             warnings.warn(msg + "; extrapolating", ExtrapolationWarning, stacklevel=3)
-        res = getattr(self, "_raw_" + quantity)(z)
+        with np.errstate(over="ignore", under="ignore"):
+            res = getattr(self, "_raw_" + quantity)(z)
+        bad = ~(np.isfinite(res) & (res > 0.0))
+        if np.any(bad):  # reachable only by extrapolating far out: the fit overflows or vanishes
+            zb = float(z[bad].ravel()[0])
+            raise OutOfRangeError(
+                f"{quantity} ({self.name}): scaled distance Z = {zb:.6g} m/kg^(1/3) is too far outside the fit's "
+                f"valid range [{lo:g}, {hi:g}] m/kg^(1/3) even to extrapolate (the fit gives "
+                f"{float(np.asarray(res)[bad].ravel()[0]):.3g})"
+            )
         return res if np.ndim(Z) else float(res)
 
     # ------------------------------------------------------------- public API

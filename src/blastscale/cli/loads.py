@@ -12,7 +12,7 @@ from .._validate import BlastscaleInputError
 from ..blast import blast_parameters
 from ..similitude import FACTOR_UNITS, design_model
 from ..structures import RectangularBlock
-from ._app import app, console, print_json, table
+from ._app import app, console, one_line_warnings, print_json, table
 
 MODEL_HELP = "Blast model: kingery-bulmash (Swisdak 1994, default) or masi2021 (the paper's Appendix A fits)."
 
@@ -60,7 +60,8 @@ def blast_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Blast parameters of a hemispherical surface burst of W kg TNT at R m (SI output)."""
-    b = blast_parameters(charge, standoff, model, extrapolate=extrapolate)
+    with one_line_warnings():
+        b = blast_parameters(charge, standoff, model, extrapolate=extrapolate)
     if as_json:
         print_json(b.to_dict())
         return
@@ -135,8 +136,9 @@ def design_cmd(
     block = block_from_options(height, width, alpha_deg, depth, density)
     if density_ratio is None and law == "general":
         density_ratio = 1.0
-    d = design_model(charge, standoff, scale, density_ratio, gravity_ratio, law, model, block,
-                     extrapolate=extrapolate)
+    with one_line_warnings():
+        d = design_model(charge, standoff, scale, density_ratio, gravity_ratio, law, model, block,
+                         extrapolate=extrapolate)
     if as_json:
         print_json(d.to_dict())
     else:
