@@ -50,11 +50,36 @@ def test_contact_settings_scale_times_by_sqrt_lambda_and_width_by_lambda():
 @pytest.mark.parametrize(
     "kwargs",
     [dict(friction=-0.1), dict(time_constant=1e-4, timestep=1e-4), dict(cone="round"), dict(solver="X"),
-     dict(impedance_max=1.0), dict(friction_time_constant=0.0)],
+     dict(impedance_max=1.0), dict(friction_time_constant=0.0), dict(friction=float("nan")),
+     dict(timestep=float("inf")), dict(iterations=2.5), dict(friction=np.array([0.5, 0.6]))],
 )
 def test_contact_settings_reject_bad_input(kwargs):
-    with pytest.raises(BlastscaleInputError):
+    with pytest.raises(BlastscaleInputError) as e:
         ContactSettings(**kwargs)
+    assert len(str(e.value).splitlines()) == 1
+
+
+@pytest.mark.parametrize(
+    "call, word",
+    [
+        (lambda: simulate_block(PAPER_BLOCK, "friedlander", 0.01), "pulse"),
+        (lambda: simulate_block(None, None, 0.01), "block"),
+        (lambda: simulate_block(PAPER_BLOCK, None, 0.01, record_every=1.5), "record_every"),
+        (lambda: simulate_block(PAPER_BLOCK, None, float("nan")), "duration"),
+        (lambda: simulate_block(PAPER_BLOCK, None, 0.01, initial_rotation=2.0), "initial rotation"),
+        (lambda: simulate_block(PAPER_BLOCK, None, 0.01, initial_velocity=(1.0, 0.0)), "initial velocity"),
+        (lambda: simulate_block(PAPER_BLOCK, None, 0.01, blast_mode="push"), "blast_mode"),
+        (lambda: step_forces(Impulsive(1.0), 1.0, [0.0, 2e-3, 1e-3]), "step times"),
+        (lambda: step_forces(Impulsive(1.0), 1.0, [0.0]), "step times"),
+        (lambda: simulate_block(PAPER_BLOCK, None, 1e-3).upscaled(0.0, 1.0), "length factor"),
+    ],
+    ids=["pulse", "block", "record_every", "duration", "rotation", "velocity", "mode", "times-order", "times-size",
+         "upscale"],
+)
+def test_simulation_rejects_bad_input_with_one_line_naming_it(call, word):
+    with pytest.raises(BlastscaleInputError) as e:
+        call()
+    assert word in str(e.value) and len(str(e.value).splitlines()) == 1
 
 
 def test_step_forces_carry_exact_impulse_of_friedlander_pulse():

@@ -6,7 +6,7 @@ from typing import Optional
 
 import typer
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_positive
 from ._app import app, console, print_json, save_figure, table
 from .loads import MODEL_HELP, block_from_options
 
@@ -67,6 +67,7 @@ def block3d_cmd(
             "the inelastic contact (omit --restitution)"
         )
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
+    check_positive("timestep", timestep, "s")  # before it sets the contact time constant below
     base = ContactSettings()
     contact = ContactSettings(
         friction=friction,

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite, check_positive
+from .._validate import BlastscaleInputError, check_finite, check_positive
 
 __all__ = ["step_forces"]
 
@@ -56,8 +56,15 @@ def step_forces(pulse, area: float, times) -> np.ndarray:
     """
     S = float(check_positive("loaded area", area, "m^2"))
     t = check_finite("step times", times, "s")
-    if t.ndim != 1 or t.size < 2 or np.any(np.diff(t) <= 0.0):
-        raise ValueError(f"step times must be 1-D, strictly increasing, length >= 2; got shape {t.shape}")
+    if t.ndim != 1 or t.size < 2:
+        raise BlastscaleInputError(f"step times must be 1-D with at least 2 values, got shape {t.shape}")
+    if np.any(np.diff(t) <= 0.0):
+        k = int(np.flatnonzero(np.diff(t) <= 0.0)[0])
+        raise BlastscaleInputError(
+            f"step times = {t[k + 1]:.6g} s (element {k + 1}) is out of range: must be > the previous time {t[k]:.6g} s"
+        )
+    if not hasattr(pulse, "cumulative_impulse"):
+        raise BlastscaleInputError(f"pulse = {pulse!r} is not a pulse: expected a blastscale.blast.pulses.Pulse")
     cum = np.array(pulse.cumulative_impulse(t), dtype=float)
     if t[0] <= 0.0:
         cum[0] = 0.0  # no impulse before arrival: a Dirac at t = 0 falls into the first step

@@ -42,6 +42,12 @@ CONES = ("elliptic", "pyramidal")
 SOLVERS = ("Newton", "CG", "PGS")
 
 
+def _check_scalar(name: str, value) -> None:
+    """One number (or None), not an array: settings are per run."""
+    if value is not None and not isinstance(value, str) and getattr(value, "ndim", 0) != 0:
+        raise BlastscaleInputError(f"{name} must be a single number, got shape {value.shape}")
+
+
 @dataclass(frozen=True)
 class ContactSettings:
     """Contact, integration and solver settings of a 3D rigid-body run, all SI.
@@ -110,6 +116,14 @@ class ContactSettings:
     noslip_iterations: int = 0
 
     def __post_init__(self):
+        for name in ("friction", "time_constant", "damping_ratio", "friction_time_constant", "impedance_min",
+                     "impedance_max", "impedance_width", "timestep", "impratio", "iterations", "tolerance",
+                     "noslip_iterations"):
+            _check_scalar(name, getattr(self, name))
+        for name in ("iterations", "noslip_iterations"):
+            v = getattr(self, name)
+            if isinstance(v, (int, float)) and not float(v).is_integer():
+                raise BlastscaleInputError(f"{name} = {v!r} is out of range: must be a whole number")
         check_range("friction", self.friction, 0.0, math.inf, "")
         check_positive("contact time constant", self.time_constant, "s")
         check_positive("contact damping ratio", self.damping_ratio)

@@ -21,6 +21,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._validate import check_positive
+
 __all__ = ["Block3DResult", "quaternion_to_matrix", "tilt_angle"]
 
 
@@ -161,7 +163,8 @@ class Block3DResult:
     def upscaled(self, length_factor: float, time_factor: float) -> "Block3DResult":
         """This (model) result in prototype units: lengths / lambda, times / lambda_t,
         velocities / (lambda / lambda_t), angular velocities x lambda_t; angles unchanged."""
-        L, T = float(length_factor), float(time_factor)
+        L = float(check_positive("length factor", length_factor))
+        T = float(check_positive("time factor", time_factor))
         V = L / T
         return Block3DResult(
             time=self.time / T,

@@ -88,8 +88,14 @@ class Block3DSimulator:
     shape_type: type = BoxShape
 
     def __post_init__(self):
+        if self.contact is None:  # as simulate_block: None means the full-scale defaults
+            object.__setattr__(self, "contact", ContactSettings())
+        if not isinstance(self.contact, ContactSettings):
+            raise BlastscaleInputError(f"contact = {self.contact!r} is not a ContactSettings")
         check_positive("gravity", self.gravity, "m/s^2")
         check_range("record_every", self.record_every, 1, math.inf)
+        if not float(self.record_every).is_integer():
+            raise BlastscaleInputError(f"record_every = {self.record_every!r} is out of range: must be a whole number >= 1")
         if self.blast_mode not in BLAST_MODES:
             raise BlastscaleInputError(
                 f"blast_mode = {self.blast_mode!r} is not known: valid values are {', '.join(BLAST_MODES)}"
@@ -129,6 +135,10 @@ class Block3DSimulator:
         """
         import mujoco
 
+        if not isinstance(block, RectangularBlock):
+            raise BlastscaleInputError(f"block = {block!r} is not a RectangularBlock")
+        if pulse is not None and not hasattr(pulse, "cumulative_impulse"):
+            raise BlastscaleInputError(f"pulse = {pulse!r} is not a pulse: expected a blastscale.blast.pulses.Pulse or None")
         T = float(check_positive("duration", duration, "s"))
         th0 = float(check_finite("initial rotation", initial_rotation, "rad"))
         om0 = float(check_finite("initial angular velocity", initial_angular_velocity, "rad/s"))
