@@ -287,3 +287,29 @@ def test_default_model_is_kingery_bulmash_with_incident_quantities():
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # a valid point must not warn
         KB.reflected_pressure(z)
+
+
+@pytest.mark.parametrize("model", ["kingery-bulmash", "masi2021"])
+def test_blast_parameters_vectorised_equals_scalar_path(model):
+    # Arrays broadcast (charges x stand-offs); each element equals the scalar call (1e-12: same arithmetic,
+    # the Friedlander root solved per element to ~1e-14).
+    W = np.array([[10.0], [50.0], [200.0]])
+    R = np.array([2.0, 3.0, 5.0])
+    b = blast_parameters(W, R, model)
+    assert b.reflected_pressure.shape == (3, 3)
+    for (j, k), _ in np.ndenumerate(b.reflected_pressure):
+        s = blast_parameters(float(W[j, 0]), float(R[k]), model)
+        for f in ("reflected_pressure", "reflected_impulse", "arrival_time", "positive_duration", "friedlander_decay"):
+            assert getattr(b, f)[j, k] == pytest.approx(getattr(s, f), rel=1e-12), f
+    assert isinstance(b.to_dict()["reflected_pressure_Pa"], list)
+
+
+def test_blast_parameters_bad_shapes_and_values():
+    from blastscale._validate import BlastscaleInputError
+
+    with pytest.raises(BlastscaleInputError, match=r"shapes \(3,\) and \(2,\)"):
+        blast_parameters([1.0, 2.0, 3.0], [1.0, 2.0])
+    with pytest.raises(BlastscaleInputError, match=r"standoff = -1 m .*> 0"):
+        blast_parameters([1.0, 2.0], [1.0, -1.0])
+    with pytest.raises(BlastscaleInputError, match="a pulse needs one charge"):
+        blast_parameters([10.0, 20.0], 5.0).pulse()

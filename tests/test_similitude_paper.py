@@ -148,3 +148,25 @@ def test_centrifuge_at_one_over_lambda_gives_complete_similarity():
     d = design_model(50.0, 2.0, 1 / 200, 1.0, 200.0, model="masi2021", geometry=block)
     assert d.scaled_distance_factor == pytest.approx(1.0, abs=1e-12)
     assert d.impulsive.model_ratio == pytest.approx(d.impulsive.prototype_ratio, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "kwargs, words",
+    [
+        (dict(charge=[50.0, 60.0]), ["charge has shape (2,)", "single number"]),
+        (dict(scale=float("inf")), ["scale = inf", "finite"]),
+        (dict(density_ratio=0.0), ["density ratio = 0", "> 0"]),
+        (dict(gravity_ratio=-1.0), ["gravity ratio = -1", "> 0"]),
+        (dict(density_ratio=None), ["density ratio = None"]),
+        (dict(law="cube-root"), ["law = 'cube-root'", "general, hopkinson-cranz"]),
+        (dict(impulsive_threshold=0.0), ["impulsive threshold = 0", "> 0"]),
+    ],
+)
+def test_design_bad_input_names_parameter_value_range(kwargs, words):
+    from blastscale._validate import BlastscaleInputError
+
+    args = dict(charge=50.0, standoff=2.0, scale=1 / 200) | kwargs
+    with pytest.raises(BlastscaleInputError) as e:
+        design_model(**args)
+    msg = str(e.value)
+    assert "\n" not in msg and all(w in msg for w in words), msg

@@ -10,7 +10,14 @@ import math
 
 import numpy as np
 
-__all__ = ["BlastscaleInputError", "OutOfRangeError", "check_positive", "check_range", "check_finite"]
+__all__ = [
+    "BlastscaleInputError",
+    "OutOfRangeError",
+    "check_positive",
+    "check_positive_scalar",
+    "check_range",
+    "check_finite",
+]
 
 
 class BlastscaleInputError(ValueError):
@@ -21,12 +28,13 @@ class OutOfRangeError(BlastscaleInputError):
     """An empirical fit was asked for outside the range where it was fitted."""
 
 
-def _fmt(bad: np.ndarray, whole: np.ndarray) -> str:
-    """The offending value(s): the value itself for a scalar input, else the first bad element."""
+def _fmt(bad: np.ndarray, whole: np.ndarray, unit: str = "") -> str:
+    """The offending value with its unit: the value itself for a scalar input, else the first bad element."""
     first = float(np.asarray(bad).ravel()[0])
+    u = f" {unit}" if unit else ""
     if np.ndim(whole) == 0:
-        return f"{first:.6g}"
-    return f"{first:.6g} (first offending element of an array)"
+        return f"{first:.6g}{u}"
+    return f"{first:.6g}{u} (first offending element of an array)"
 
 
 def check_finite(name: str, value, unit: str = "") -> np.ndarray:
@@ -37,7 +45,7 @@ def check_finite(name: str, value, unit: str = "") -> np.ndarray:
         raise BlastscaleInputError(f"{name} must be a number, got {value!r}") from exc
     if not np.all(np.isfinite(arr)):
         bad = arr[~np.isfinite(arr)]
-        raise BlastscaleInputError(f"{name} = {_fmt(bad, arr)} {unit}".rstrip() + " is not a finite number")
+        raise BlastscaleInputError(f"{name} = {_fmt(bad, arr, unit)} is not a finite number")
     return arr
 
 
@@ -47,7 +55,7 @@ def check_positive(name: str, value, unit: str = "") -> np.ndarray:
     if np.any(arr <= 0.0):
         bad = arr[arr <= 0.0]
         u = f" {unit}" if unit else ""
-        raise BlastscaleInputError(f"{name} = {_fmt(bad, arr)}{u} is out of range: must be > 0{u}")
+        raise BlastscaleInputError(f"{name} = {_fmt(bad, arr, unit)} is out of range: must be > 0{u}")
     return arr
 
 
@@ -75,6 +83,14 @@ def check_range(
         lb = "(" if lo_open else "["
         rb = ")" if hi_open else "]"
         raise error(
-            f"{name} = {_fmt(arr[bad_mask], arr)}{u} is out of range: valid range is {lb}{lo:g}, {hi:g}{rb}{u}"
+            f"{name} = {_fmt(arr[bad_mask], arr, unit)} is out of range: valid range is {lb}{lo:g}, {hi:g}{rb}{u}"
         )
     return arr
+
+
+def check_positive_scalar(name: str, value, unit: str = "") -> float:
+    """Return ``value`` as a float; raise unless it is a single finite number > 0 (not an array)."""
+    arr = check_positive(name, value, unit)
+    if arr.ndim != 0:
+        raise BlastscaleInputError(f"{name} has shape {arr.shape}: must be a single number (not an array)")
+    return float(arr)

@@ -63,6 +63,9 @@ def scaled_distance(charge, standoff):
 class BlastParameters:
     """Blast parameters at one point (hemispherical surface burst), all SI.
 
+    Every numeric field is a float for one charge and stand-off, or an array of their broadcast
+    shape when :func:`blast_parameters` was given arrays.
+
     Attributes
     ----------
     model : str
@@ -103,6 +106,11 @@ class BlastParameters:
     def pulse(self, shape: str = "friedlander") -> Pulse:
         """The reflected pulse on a face normal to the blast: ``"friedlander"`` (Eq. 1),
         ``"triangular"`` (Eq. 3, cut at 2 i/P) or ``"impulsive"`` (Dirac of area i_ro)."""
+        if np.ndim(self.reflected_pressure) != 0:
+            raise BlastscaleInputError(
+                f"pulse of blast parameters with shape {np.shape(self.reflected_pressure)}: a pulse needs one "
+                "charge and one stand-off (index the arrays first)"
+            )
         if shape == "friedlander":
             return Friedlander(self.reflected_pressure, self.positive_duration, self.friedlander_decay)
         if shape == "triangular":
@@ -113,7 +121,7 @@ class BlastParameters:
 
     def to_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (as written by the CLI's ``--json``)."""
-        d = asdict(self)
+        d = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in asdict(self).items()}
         return {
             "model": d["model"],
             "charge_kg": d["charge_kg"],
@@ -131,8 +139,8 @@ class BlastParameters:
 
 
 def blast_parameters(
-    charge: float,
-    standoff: float,
+    charge,
+    standoff,
     model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
     *,
     extrapolate: bool = False,
@@ -140,35 +148,72 @@ def blast_parameters(
     """Blast parameters of a hemispherical surface burst of ``charge`` [kg TNT] at ``standoff`` [m].
 
     Evaluates the chosen empirical model at :math:`Z = R/W^{1/3}` and scales time and impulse
-    by :math:`W^{1/3}` (Hopkinson-Cranz, Baker et al. 1983). The Friedlander decay is fitted
-    to the reflected impulse (paper Eq. 2). Raises
-    :class:`~blastscale._validate.OutOfRangeError` when Z is outside a fit's range (unless
-    ``extrapolate=True``).
+    by :math:`W^{1/3}` (Hopkinson-Cranz cube-root scaling, Baker et al. 1983):
+
+    .. math:: P_{ro} = \\hat P(Z),\\quad i_{ro} = W^{1/3}\\,\\hat i(Z),\\quad
+              t_A = W^{1/3}\\,\\hat t_A(Z),\\quad t_o = W^{1/3}\\,\\hat t_o(Z),
+
+    and fits the Friedlander decay d to the reflected impulse (paper Eq. 2).
+
+    Parameters
+    ----------
+    charge : float or array_like
+        TNT-equivalent charge W [kg], > 0.
+    standoff : float or array_like
+        Stand-off distance R [m], > 0; broadcast against ``charge``.
+    model : str or BlastModel
+        ``"kingery-bulmash"`` (Swisdak 1994, default) or ``"masi2021"`` (paper Appendix A).
+    extrapolate : bool
+        Evaluate the fits outside their validity ranges (with an ``ExtrapolationWarning``).
+
+    Returns
+    -------
+    BlastParameters
+        Floats for scalar input, arrays of the broadcast shape otherwise (SI units, see the class).
+
+    Raises
+    ------
+    BlastscaleInputError
+        For a charge or stand-off that is not finite and > 0, or shapes that do not broadcast.
+    OutOfRangeError
+        When Z is outside a fit's validity range (unless ``extrapolate=True``); each quantity has
+        its own range (``get_blast_model(model).valid_range(quantity)``).
     """
     m = get_blast_model(model)
-    z = scaled_distance(charge, standoff)
-    w13 = float(np.cbrt(float(charge)))
+    W = check_positive("charge", charge, "kg")
+    R = check_positive("standoff", standoff, "m")
+    try:
+        W, R = np.broadcast_arrays(W, R)
+    except ValueError:
+        raise BlastscaleInputError(
+            f"charge and standoff have shapes {W.shape} and {R.shape}, which do not broadcast together"
+        ) from None
+    scalar = W.ndim == 0
+
+    def out(x):
+        return float(x) if scalar else np.asarray(x, dtype=float)
+
+    w13 = np.cbrt(W)
+    z = R / w13
     P = m.reflected_pressure(z, extrapolate=extrapolate)
     i = m.scaled_reflected_impulse(z, extrapolate=extrapolate) * w13
     ta = m.scaled_arrival_time(z, extrapolate=extrapolate) * w13
     to = m.scaled_positive_duration(z, extrapolate=extrapolate) * w13
 
-    def opt(q: str, scale: float = 1.0):
-        return getattr(m, q)(z, extrapolate=extrapolate) * scale if m.provides(q) else None
+    def opt(q: str, scale=1.0):
+        return out(getattr(m, q)(z, extrapolate=extrapolate) * scale) if m.provides(q) else None
 
     return BlastParameters(
         model=m.name,
-        charge_kg=float(charge),
-        standoff_m=float(standoff),
-        scaled_distance=float(z),
-        reflected_pressure=float(P),
-        reflected_impulse=float(i),
-        arrival_time=float(ta),
-        positive_duration=float(to),
+        charge_kg=out(W),
+        standoff_m=out(R),
+        scaled_distance=out(z),
+        reflected_pressure=out(P),
+        reflected_impulse=out(i),
+        arrival_time=out(ta),
+        positive_duration=out(to),
         incident_pressure=opt("incident_pressure"),
         incident_impulse=opt("scaled_incident_impulse", w13),
         shock_front_velocity=opt("shock_front_velocity"),
-        friedlander_decay=float(friedlander_decay(P, to, i)),
+        friedlander_decay=out(friedlander_decay(P, to, i)),
     )
-
-

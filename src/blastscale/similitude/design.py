@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .._validate import BlastscaleInputError, check_positive
+from .._validate import BlastscaleInputError, check_positive, check_positive_scalar
 from ..blast.base import BlastModel
 from ..blast.parameters import BlastParameters, blast_parameters, get_blast_model
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
@@ -230,28 +230,29 @@ def design_model(
     >>> round(d.model_charge_kg * 1e6, 3), round(d.model.scaled_distance, 2)
     (0.233, 1.62)
     """
-    W = float(check_positive("charge", charge, "kg"))
-    R = float(check_positive("standoff", standoff, "m"))
-    lam = float(check_positive("scale", scale))
-    sig = float(check_positive("gravity ratio", gravity_ratio))
-    check_positive("gravity", gravity, "m/s^2")
-    check_positive("impulsive threshold", impulsive_threshold)
+    W = check_positive_scalar("charge", charge, "kg")
+    R = check_positive_scalar("standoff", standoff, "m")
+    lam = check_positive_scalar("scale", scale)
+    sig = check_positive_scalar("gravity ratio", gravity_ratio)
+    check_positive_scalar("gravity", gravity, "m/s^2")
+    check_positive_scalar("impulsive threshold", impulsive_threshold)
     if law not in LAWS:
         raise BlastscaleInputError(f"law = {law!r} is not known: valid values are {', '.join(LAWS)}")
     bm = get_blast_model(model)
     proto = blast_parameters(W, R, bm, extrapolate=extrapolate)
     if law == "hopkinson-cranz":
         gam_hc = hopkinson_cranz_density_ratio(lam, sig)
-        if density_ratio is not None and abs(float(density_ratio) - gam_hc) > 1e-9 * gam_hc:
+        given = None if density_ratio is None else check_positive_scalar("density ratio", density_ratio)
+        if given is not None and abs(given - gam_hc) > 1e-9 * gam_hc:
             raise BlastscaleInputError(
-                f"density ratio = {float(density_ratio):.6g} is out of range for the Hopkinson-Cranz law: it "
+                f"density ratio = {given:.6g} is out of range for the Hopkinson-Cranz law: it "
                 f"imposes gamma = 1/sqrt(gravity_ratio * scale) = {gam_hc:.6g} (use law='general' for another gamma)"
             )
         gam, lz, res_note = gam_hc, 1.0, "Hopkinson-Cranz: lambda_Z = 1 (same scaled distance and pressure)"
     else:
         if density_ratio is None:
             raise BlastscaleInputError("density ratio = None is out of range: the general law needs gamma > 0")
-        gam = float(check_positive("density ratio", density_ratio))
+        gam = check_positive_scalar("density ratio", density_ratio)
         sol = solve_scaled_distance_factor(proto.scaled_distance, lam, gam, sig, bm)
         lz, res_note = sol.factor, sol.note
     f = scaling_factors(lam, gam, sig, lz)

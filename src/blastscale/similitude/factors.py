@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from .._validate import check_positive
+from .._validate import check_finite, check_positive_scalar, check_range
 
 __all__ = ["ScalingFactors", "scaling_factors", "pi_terms", "FACTOR_UNITS"]
 
@@ -137,10 +137,10 @@ def scaling_factors(
     -------
     ScalingFactors
     """
-    lam = float(check_positive("scale", scale))
-    gam = float(check_positive("density ratio", density_ratio))
-    sig = float(check_positive("gravity ratio", gravity_ratio))
-    lz = None if scaled_distance_factor is None else float(check_positive("scaled distance factor", scaled_distance_factor))
+    lam = check_positive_scalar("scale", scale)
+    gam = check_positive_scalar("density ratio", density_ratio)
+    sig = check_positive_scalar("gravity ratio", gravity_ratio)
+    lz = None if scaled_distance_factor is None else check_positive_scalar("scaled distance factor", scaled_distance_factor)
     return ScalingFactors(
         length=lam,
         density=gam,
@@ -209,9 +209,16 @@ def pi_terms(
     dict
         ``pi_02 .. pi_24`` by the paper's names.
     """
-    l = float(check_positive("length", length, "m"))
-    g = float(check_positive("gravity", gravity, "m/s^2"))
-    m = float(check_positive("mass", mass, "kg"))
+    l = check_positive_scalar("length", length, "m")
+    g = check_positive_scalar("gravity", gravity, "m/s^2")
+    m = check_positive_scalar("mass", mass, "kg")
+    check_positive_scalar("inertia", inertia, "kg m^2")
+    for name, value, unit in (("pressure", pressure, "Pa"), ("impulse", impulse, "Pa s"), ("friction", friction, "")):
+        check_range(name, value, 0.0, unit=unit)
+    for name, value in (("time", time), ("displacement", displacement), ("velocity", velocity),
+                        ("acceleration", acceleration), ("angle", angle), ("angular velocity", angular_velocity),
+                        ("angular acceleration", angular_acceleration)):
+        check_finite(name, value)
     return {
         "pi_02": displacement / l,
         "pi_03": angle,

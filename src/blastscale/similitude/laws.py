@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 from scipy.optimize import brentq
 
-from .._validate import BlastscaleInputError, OutOfRangeError, check_positive
+from .._validate import BlastscaleInputError, OutOfRangeError, check_positive_scalar
 from ..blast.base import BlastModel
 from ..blast.masi_fits import MASI2021_COEFFICIENTS, Masi2021
 from ..blast.parameters import get_blast_model
@@ -80,8 +80,8 @@ def masi2021_quadratic_roots(prototype_scaled_distance: float, target: float) ->
     Returns the two lambda_Z = e^x (physical one first: the root of smaller |x|).
     """
     _, c1, c2 = MASI2021_COEFFICIENTS["scaled_reflected_impulse"]
-    L = math.log(prototype_scaled_distance)
-    a, b, c = c2, c1 - 1.0 + 2.0 * c2 * L, -math.log(target)
+    L = math.log(check_positive_scalar("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)"))
+    a, b, c = c2, c1 - 1.0 + 2.0 * c2 * L, -math.log(check_positive_scalar("target impulse factor", target))
     disc = b * b - 4.0 * a * c
     if disc < 0.0:
         raise BlastscaleInputError(f"general law has no real root for Z = {prototype_scaled_distance:.6g}")
@@ -134,10 +134,10 @@ def solve_scaled_distance_factor(
     Reference: paper Eq. (8) (Sec. "Scaling laws").
     """
     m = get_blast_model(model)
-    z = float(check_positive("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)"))
-    lam = float(check_positive("scale", scale))
-    gam = float(check_positive("density ratio", density_ratio))
-    sig = float(check_positive("gravity ratio", gravity_ratio))
+    z = check_positive_scalar("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)")
+    lam = check_positive_scalar("scale", scale)
+    gam = check_positive_scalar("density ratio", density_ratio)
+    sig = check_positive_scalar("gravity ratio", gravity_ratio)
     target = gam * math.sqrt(sig * lam)
     ln_i0 = math.log(m.scaled_reflected_impulse(z))
     zmin, zmax = m.valid_range("scaled_reflected_impulse")
@@ -178,6 +178,6 @@ def solve_scaled_distance_factor(
 def hopkinson_cranz_density_ratio(scale: float, gravity_ratio: float = 1.0) -> float:
     """Density ratio that Hopkinson-Cranz scaling imposes: gamma = 1 / sqrt(varsigma lambda) [-]
     (paper Table 2 for varsigma = 1)."""
-    lam = float(check_positive("scale", scale))
-    sig = float(check_positive("gravity ratio", gravity_ratio))
+    lam = check_positive_scalar("scale", scale)
+    sig = check_positive_scalar("gravity ratio", gravity_ratio)
     return 1.0 / math.sqrt(sig * lam)
