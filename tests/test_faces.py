@@ -145,3 +145,23 @@ def test_bad_inputs_name_the_parameter():
     # Z = 100 m / 2 = 50 > 40: the reflected-pressure fit's range
     with pytest.raises(OutOfRangeError, match="reflected_pressure"):
         face_loads(W, ORIGIN, [100.0, 0.0, 0.0], [-1.0, 0.0, 0.0])
+    with pytest.raises(BlastscaleInputError, match=r"charge has shape \(2,\)"):
+        face_loads([W, W], ORIGIN, [4.0, 0.0, 0.0], [-1.0, 0.0, 0.0])
+    with pytest.raises(BlastscaleInputError, match="face centres = nan"):
+        face_loads(W, ORIGIN, [np.nan, 0.0, 0.0], [-1.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        ((2.0, 1.0, float("nan")), ["cosine of the angle of incidence = nan", "finite"]),
+        ((2.0, 1.0, 1.5), ["cosine of the angle of incidence = 1.5", "[-1, 1]"]),
+        ((-2.0, 1.0, 0.5), ["reflected value = -2", "[0, inf]"]),
+        ((2.0, float("inf"), 0.5), ["incident value = inf", "finite"]),
+    ],
+)
+def test_oblique_combination_rejects_nan_and_out_of_range(args, words):
+    # Never a silent NaN or a silently clipped cosine: a named one-line error.
+    with pytest.raises(BlastscaleInputError) as e:
+        oblique_combination(*args)
+    assert all(w in str(e.value) for w in words), str(e.value)

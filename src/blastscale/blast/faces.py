@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_finite, check_positive
+from .._validate import BlastscaleInputError, check_finite, check_positive, check_positive_scalar, check_range
 from .base import BlastModel
 from .parameters import DEFAULT_BLAST_MODEL, get_blast_model
 from .pulses import Friedlander, Impulsive, Pulse, Triangular, friedlander_decay
@@ -77,9 +77,10 @@ def oblique_combination(reflected, incident, cos_incidence):
     ndarray or float
         Y on the face, same unit; broadcast shape of the inputs.
     """
-    yr = np.asarray(reflected, dtype=float)
-    ys = np.asarray(incident, dtype=float)
-    c = np.asarray(cos_incidence, dtype=float)
+    yr = check_range("reflected value", reflected, 0.0)
+    ys = check_range("incident value", incident, 0.0)
+    # [-1, 1] up to round-off of a normalised dot product
+    c = check_range("cosine of the angle of incidence", cos_incidence, -1.0 - 1e-9, 1.0 + 1e-9)
     cp = np.clip(c, 0.0, 1.0)  # cos a <= 0 -> incident only (the formula gives Y_s at c = 0)
     out = yr * cp**2 + ys * (1.0 + cp - 2.0 * cp**2)
     return out if out.ndim else float(out)
@@ -222,7 +223,7 @@ def face_loads(
         Wrong shapes, non-unit normals, a face centre at the charge, or a model without
         incident quantities; OutOfRangeError for Z outside a fit's range.
     """
-    W = float(check_positive("charge", charge, "kg"))
+    W = check_positive_scalar("charge", charge, "kg")
     xc = _as_points("charge position", charge_position)
     if xc.shape != (3,):
         raise BlastscaleInputError(f"charge position must have shape (3,), got {xc.shape}")
