@@ -52,8 +52,8 @@ class BlastModel(abc.ABC):
     """Abstract empirical blast model: scaled blast parameters as functions of Z.
 
     Subclasses set :attr:`name`, :attr:`ranges` (quantity -> (Z_min, Z_max) in
-    m/kg^(1/3)) and implement the ``_raw_<quantity>`` methods on plain float arrays,
-    in SI. Quantities a model does not provide are absent from :attr:`ranges`.
+    m/kg^(1/3)) and implement the ``_raw_<quantity>`` methods (or one ``_raw(quantity, z)``)
+    on plain float arrays, in SI. Quantities a model does not provide are absent from :attr:`ranges`.
     """
 
     name: ClassVar[str]
@@ -69,6 +69,13 @@ class BlastModel(abc.ABC):
         if quantity not in self.ranges:
             raise NotImplementedError(f"blast model {self.name!r} provides no fit for {quantity}")
         return self.ranges[quantity]
+
+    def _raw(self, quantity: str, z: np.ndarray) -> np.ndarray:
+        """The fit of ``quantity`` at Z [m/kg^(1/3)] (float array), in SI, without range checks.
+
+        Dispatches to ``_raw_<quantity>``; a model with one formula for every quantity overrides this.
+        """
+        return getattr(self, "_raw_" + quantity)(z)
 
     def _evaluate(self, quantity: str, Z, extrapolate: bool):
         z = check_finite("scaled distance Z", Z, "m/kg^(1/3)")
@@ -88,7 +95,7 @@ class BlastModel(abc.ABC):
                 raise OutOfRangeError(msg + " (opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)")
             warnings.warn(msg + "; extrapolating", ExtrapolationWarning, stacklevel=3)
         with np.errstate(over="ignore", under="ignore"):
-            res = getattr(self, "_raw_" + quantity)(z)
+            res = self._raw(quantity, z)
         bad = ~(np.isfinite(res) & (res > 0.0))
         if np.any(bad):  # reachable only by extrapolating far out: the fit overflows or vanishes
             zb = float(z[bad].ravel()[0])

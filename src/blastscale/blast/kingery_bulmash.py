@@ -186,30 +186,5 @@ class KingeryBulmash(BlastModel):
     name = "kingery-bulmash"
     ranges = {q: (p[0][0], p[-1][1]) for q, p in SWISDAK_1994_COEFFICIENTS.items()}
 
-    @staticmethod
-    def _raw_reflected_pressure(z):
-        return _swisdak("reflected_pressure", z)
-
-    @staticmethod
-    def _raw_incident_pressure(z):
-        return _swisdak("incident_pressure", z)
-
-    @staticmethod
-    def _raw_scaled_reflected_impulse(z):
-        return _swisdak("scaled_reflected_impulse", z)
-
-    @staticmethod
-    def _raw_scaled_incident_impulse(z):
-        return _swisdak("scaled_incident_impulse", z)
-
-    @staticmethod
-    def _raw_scaled_arrival_time(z):
-        return _swisdak("scaled_arrival_time", z)
-
-    @staticmethod
-    def _raw_scaled_positive_duration(z):
-        return _swisdak("scaled_positive_duration", z)
-
-    @staticmethod
-    def _raw_shock_front_velocity(z):
-        return _swisdak("shock_front_velocity", z)
+    def _raw(self, quantity: str, z: np.ndarray) -> np.ndarray:
+        return _swisdak(quantity, z)

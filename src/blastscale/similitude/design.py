@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 from .._validate import BlastscaleInputError, check_positive, check_positive_scalar
 from ..blast.base import BlastModel
-from ..blast.parameters import BlastParameters, blast_parameters, get_blast_model
+from ..blast.parameters import DEFAULT_BLAST_MODEL, BlastParameters, blast_parameters, get_blast_model
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .factors import ScalingFactors, scaling_factors
 from .laws import LAWS, hopkinson_cranz_density_ratio, solve_scaled_distance_factor
@@ -180,7 +180,7 @@ def design_model(
     density_ratio: float | None = 1.0,
     gravity_ratio: float = 1.0,
     law: str = "general",
-    model: "str | BlastModel" = "kingery-bulmash",
+    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
     geometry: RectangularBlock | None = None,
     *,
     gravity: float = STANDARD_GRAVITY,

@@ -37,7 +37,7 @@ from scipy.optimize import brentq
 from .._validate import BlastscaleInputError, OutOfRangeError, check_positive_scalar
 from ..blast.base import BlastModel
 from ..blast.masi_fits import MASI2021_COEFFICIENTS, Masi2021
-from ..blast.parameters import get_blast_model
+from ..blast.parameters import DEFAULT_BLAST_MODEL, get_blast_model
 
 __all__ = [
     "ScaledDistanceSolution",
@@ -98,7 +98,7 @@ def solve_scaled_distance_factor(
     scale: float,
     density_ratio: float = 1.0,
     gravity_ratio: float = 1.0,
-    model: "str | BlastModel" = "kingery-bulmash",
+    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
 ) -> ScaledDistanceSolution:
     """Solve the general scaling law (paper Eq. 8) for the scaled-distance factor lambda_Z.
 
