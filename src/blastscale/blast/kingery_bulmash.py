@@ -60,6 +60,9 @@ sign of D in the reflected-impulse polynomial is -0.01123: the highest-order coe
 polynomial in ln Z is unchanged by the unit change ft/lb^(1/3) -> m/kg^(1/3) (a shift of ln Z),
 and Swisdak's imperial table has D = -0.01123; with +0.01123 (as some transcriptions print it)
 the fit would be 36 % below UFC Fig. 2-15 at Z = 0.067 and 2.9 times above it at Z = 38.
+The metric table is also checked against Swisdak's imperial table (an independent transcription,
+``tests/data/swisdak_1994_imperial.csv``): P_so, i_s, i_r agree within 0.1 %, P_r, t_o, U within
+1.5 % away from the piece boundaries (``test_metric_coefficients_agree_with_swisdak_imperial_table``).
 
 References
 ----------
