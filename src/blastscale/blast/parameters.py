@@ -51,7 +51,9 @@ def get_blast_model(model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> BlastMod
 def scaled_distance(charge, standoff):
     """Hopkinson-Cranz scaled distance :math:`Z = R / W^{1/3}` [m/kg^(1/3)].
 
-    ``charge`` W is the TNT-equivalent mass [kg], ``standoff`` R the distance [m]; both > 0.
+    ``charge`` W is the TNT-equivalent mass [kg], ``standoff`` R the distance [m]; both finite
+    and > 0, scalars or arrays (broadcast). Reference: Baker et al. (1983), *Explosion Hazards
+    and Evaluation*, ch. 2 (cube-root scaling); paper Sec. "Blast loading".
     """
     W = check_positive("charge", charge, "kg")
     R = check_positive("standoff", standoff, "m")

@@ -70,8 +70,15 @@ class ImpulsiveCheck:
 def impulsive_check(
     duration: float, block: RectangularBlock, gravity: float = STANDARD_GRAVITY
 ) -> float:
-    """The impulsiveness measure ``t_o * p`` [-] of a pulse of ``duration`` t_o [s] on ``block``,
-    with p = sqrt(3 g / (4 r)) (Housner 1963) at ``gravity`` [m/s^2]."""
+    """The impulsiveness measure of a pulse on a rocking block [-].
+
+    .. math:: t_o\\,p, \\qquad p = \\sqrt{3 g / (4 r)}
+
+    with ``duration`` t_o [s] (> 0), ``block`` (r = half-diagonal [m]) and ``gravity`` g [m/s^2].
+    The load acts as an impulse when t_o p << 1; :func:`design_model` flags it below 0.4 (the
+    impulsive regime omega t_d < 0.4 of Baker et al. 1983, ch. 4). References: Housner (1963)
+    for p; DESIGN.md on why this, not the paper's "pi_23 << 1", is the meaningful check.
+    """
     check_positive("positive duration", duration, "s")
     return float(duration) * block.frequency_parameter(gravity)
 
@@ -220,6 +227,23 @@ def design_model(
     Returns
     -------
     ModelDesign
+
+    Raises
+    ------
+    BlastscaleInputError
+        A parameter that is not a finite number in its range (message names it, its value and
+        the range).
+    OutOfRangeError
+        Prototype or model Z outside a blast fit's range; for the general law the message gives
+        the admissible range of ``scale``.
+
+    Notes
+    -----
+    Validity: the prototype's and the model's scaled distances must lie inside every fit used
+    (Kingery-Bulmash: Z in [0.2, 40] for all seven quantities; masi2021: [0.2, 20], duration
+    [0.2, 6.5] m/kg^(1/3)). The general law matches only the impulse (impulsive hypothesis,
+    checked a posteriori with ``geometry``). References: paper Sec. "Scaling laws", Eqs. (5)-(8),
+    Tables 1-2.
 
     Examples
     --------

@@ -75,9 +75,30 @@ class ScaledDistanceSolution:
 def masi2021_quadratic_roots(prototype_scaled_distance: float, target: float) -> tuple[float, float]:
     """Both roots lambda_Z of Eq. (8) for the paper's impulse fit, in closed form.
 
-    With ln i_hat = c0 + c1 L + c2 L^2 (L = ln Z), Eq. (8) in x = ln lambda_Z reads
-    ``c2 x^2 + (c1 - 1 + 2 c2 ln Z) x - ln(target) = 0``, target = gamma sqrt(varsigma lambda).
-    Returns the two lambda_Z = e^x (physical one first: the root of smaller |x|).
+    With ln i_hat = c0 + c1 L + c2 L^2 (L = ln Z, coefficients of paper Appendix A), Eq. (8) in
+    x = ln lambda_Z reads
+
+    .. math:: c_2 x^2 + (c_1 - 1 + 2 c_2 \\ln Z)\\,x - \\ln(\\gamma\\sqrt{\\varsigma\\lambda}) = 0.
+
+    Parameters
+    ----------
+    prototype_scaled_distance : float
+        Z of the prototype [m/kg^(1/3)], > 0 (the fit holds for Z in [0.2, 20]).
+    target : float
+        Required impulse ratio over the charge factor, gamma sqrt(varsigma lambda) [-], > 0.
+
+    Returns
+    -------
+    (float, float)
+        The two lambda_Z = e^x [-], physical one first (the root of smaller |x|; inside the fit's
+        range); the other is ~1e12 (inf if it overflows).
+
+    Raises
+    ------
+    BlastscaleInputError
+        Non-positive input, or no real root.
+
+    References: paper Eq. (8) and Appendix A.
     """
     _, c1, c2 = MASI2021_COEFFICIENTS["scaled_reflected_impulse"]
     L = math.log(check_positive_scalar("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)"))
@@ -176,8 +197,13 @@ def solve_scaled_distance_factor(
 
 
 def hopkinson_cranz_density_ratio(scale: float, gravity_ratio: float = 1.0) -> float:
-    """Density ratio that Hopkinson-Cranz scaling imposes: gamma = 1 / sqrt(varsigma lambda) [-]
-    (paper Table 2 for varsigma = 1)."""
+    """Density ratio that Hopkinson-Cranz scaling imposes on rigid-body similarity [-].
+
+    .. math:: \\gamma = 1 / \\sqrt{\\varsigma\\lambda}
+
+    from Eq. (8) with lambda_Z = 1. ``scale`` lambda [-] and ``gravity_ratio`` varsigma [-], both > 0.
+    Reference: paper Table 2 (varsigma = 1).
+    """
     lam = check_positive_scalar("scale", scale)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
     return 1.0 / math.sqrt(sig * lam)
