@@ -4,6 +4,7 @@
 * :func:`block_scene` / :func:`build_scene` -- the MuJoCo model built from the geometry.
 * :func:`step_forces` -- the paper's Method A blast force, exact impulse per time step.
 * :class:`Block3DSimulator` / :func:`simulate_block` -- run and record; :class:`Block3DResult`.
+* :func:`pivot_friction_threshold` -- least friction for pivoting without slip under an impulse.
 
 MuJoCo is imported lazily, inside the functions that need it.
 """
@@ -12,7 +13,7 @@ from .blast_force import step_forces
 from .contact import CONES, SOLVERS, ContactSettings
 from .model import BodySpec, BoxShape, FrontFace, Scene, block_scene, build_scene
 from .results import Block3DResult, quaternion_to_matrix, tilt_angle
-from .simulate import SETTLE_TIME_CONSTANTS, Block3DSimulator, simulate_block
+from .simulate import SETTLE_TIME_CONSTANTS, Block3DSimulator, pivot_friction_threshold, simulate_block
 
 __all__ = [
     "Block3DResult",
@@ -27,6 +28,7 @@ __all__ = [
     "Scene",
     "block_scene",
     "build_scene",
+    "pivot_friction_threshold",
     "quaternion_to_matrix",
     "simulate_block",
     "step_forces",
