@@ -170,3 +170,20 @@ def test_design_bad_input_names_parameter_value_range(kwargs, words):
         design_model(**args)
     msg = str(e.value)
     assert "\n" not in msg and all(w in msg for w in words), msg
+
+
+@pytest.mark.parametrize(
+    "kwargs, words",
+    [
+        (dict(height=[10.0, 5.0], width=2.0), ["height has shape (2,)"]),
+        (dict(height=10.0, width=float("nan")), ["width = nan m", "finite"]),
+        (dict(height=10.0, width=2.0, density=0.0), ["density = 0 kg/m^3", "> 0"]),
+    ],
+)
+def test_block_bad_input_names_parameter(kwargs, words):
+    from blastscale._validate import BlastscaleInputError
+    from blastscale.structures import RectangularBlock
+
+    with pytest.raises(BlastscaleInputError) as e:
+        RectangularBlock(**kwargs)
+    assert all(w in str(e.value) for w in words), str(e.value)

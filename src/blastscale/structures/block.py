@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from .._validate import check_positive, check_range
+from .._validate import check_positive_scalar, check_range
 
 __all__ = ["RectangularBlock", "STANDARD_GRAVITY"]
 
@@ -44,16 +44,16 @@ class RectangularBlock:
     density: float = 2000.0
 
     def __post_init__(self):
-        check_positive("height", self.height, "m")
-        check_positive("width", self.width, "m")
-        check_positive("depth", self.depth, "m")
-        check_positive("density", self.density, "kg/m^3")
+        check_positive_scalar("height", self.height, "m")
+        check_positive_scalar("width", self.width, "m")
+        check_positive_scalar("depth", self.depth, "m")
+        check_positive_scalar("density", self.density, "kg/m^3")
 
     @classmethod
     def from_slenderness(cls, height: float, alpha: float, depth: float = 1.0, density: float = 2000.0):
         """Block of full ``height`` [m] and slenderness angle ``alpha`` [rad], 0 < alpha < pi/2:
         width = height * tan(alpha)."""
-        check_positive("height", height, "m")
+        check_positive_scalar("height", height, "m")
         check_range("slenderness angle alpha", alpha, 0.0, math.pi / 2, "rad", lo_open=True, hi_open=True)
         return cls(height=height, width=height * math.tan(alpha), depth=depth, density=density)
 
@@ -112,14 +112,14 @@ class RectangularBlock:
 
     def frequency_parameter(self, gravity: float = STANDARD_GRAVITY) -> float:
         """Housner's frequency parameter p = sqrt(3 g / (4 r)) [rad/s] (Housner 1963)."""
-        check_positive("gravity", gravity, "m/s^2")
+        check_positive_scalar("gravity", gravity, "m/s^2")
         return math.sqrt(3.0 * gravity / (4.0 * self.r))
 
     def scaled(self, length_factor: float, density_factor: float = 1.0) -> "RectangularBlock":
         """The geometrically similar block: lengths x ``length_factor`` (lambda), density x
         ``density_factor`` (gamma)."""
-        check_positive("scale", length_factor)
-        check_positive("density ratio", density_factor)
+        check_positive_scalar("scale", length_factor)
+        check_positive_scalar("density ratio", density_factor)
         return replace(
             self,
             height=self.height * length_factor,
