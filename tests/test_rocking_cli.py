@@ -44,6 +44,8 @@ def test_rock_paper_100kg_with_model_overturns(capsys):
     # up-scaled tipping times agree within 2 ms (observed 0.7 ms; finite-pulse effect)
     assert out["model"]["overturn_time_s"] == pytest.approx(out["prototype"]["overturn_time_s"], abs=2e-3)
     assert out["similarity"]["max_abs_angle_diff_to_tipping_rad"] <= 5e-4
+    assert out["similarity"]["overturn_time_diff_s"] == pytest.approx(
+        out["model"]["overturn_time_s"] - out["prototype"]["overturn_time_s"], abs=1e-12)
     assert out["model_experiment"]["charge_kg"] * 1e6 == pytest.approx(0.492, rel=1e-2)  # paper Table 4: 0.492 (mg, corrected)
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from blastscale._validate import BlastscaleInputError
@@ -45,23 +46,46 @@ def test_finite_pulse_paper_50kg_rocking_similarity(scale, gamma, shape):
 
 @pytest.mark.parametrize("scale", SCALES)
 @pytest.mark.parametrize("gamma", DENSITY_RATIOS)
-def test_finite_pulse_paper_100kg_both_overturn(scale, gamma):
-    """W = 100 kg: both overturn; up to the tipping point the angles agree within 5e-4 rad
-    (observed <= 1.5e-4); the fall that follows amplifies the ~1 ms shift of the tipping time
-    to ~2e-3 rad, which the whole-run figure reports honestly."""
-    s = compare_rocking(BLOCK, 100.0, 2.0, scale, gamma, model="masi2021", duration=3.0)
-    assert s.prototype.overturned and s.model.overturned
+@pytest.mark.parametrize("shape", ["friedlander", "triangular"])
+def test_finite_pulse_paper_100kg_both_overturn_rocking_phase_and_fall(scale, gamma, shape):
+    """W = 100 kg: both overturn and, after 4 s, both lie on their side (the whole run, fall
+    included, is compared). The acceptance level 5e-4 rad holds on the two phases that carry
+    the physics:
+
+    * the rocking phase, at equal times up to the earlier tipping point (observed 7e-5..1.5e-4);
+    * the fall, on a common phase: the angular velocity at equal angle, in the dimensionless
+      time p t (observed 6e-5..1.2e-4). The pulse is long over, so energy conservation makes
+      that difference at most the difference at the tipping point (+1e-6 for the linear
+      interpolation of the model's samples at the prototype's angles).
+
+    At equal times over the whole run the angles differ by 0.9e-3..1.8e-3 rad (documented,
+    not a failure of similarity): the ~1e-4 energy difference shifts the tipping time by
+    0.3-0.7 ms and the fall turns that into (fall speed) x (shift), which the last assertion
+    checks (1 % for sampling the speed)."""
+    s = compare_rocking(BLOCK, 100.0, 2.0, scale, gamma, pulse=shape, model="masi2021", duration=4.0)
+    assert s.prototype.overturned and s.model.overturned and s.outcomes_agree
+    assert s.theta_prototype[-1] == s.theta_model[-1] == pytest.approx(math.pi / 2, abs=1e-15)
+    p = s.prototype.system.frequency_parameter
     assert s.max_abs_angle_diff_to_tipping <= 5e-4
-    up = s.to_dict()["model"]["overturn_time_s"]
-    assert up == pytest.approx(s.prototype.overturn_time, abs=2e-3)
+    assert abs(s.tipping_angular_velocity_diff) / p <= 5e-4
+    assert s.max_fall_phase_diff <= 5e-4
+    assert s.max_fall_phase_diff <= abs(s.tipping_angular_velocity_diff) / p + 1e-6
+    assert abs(s.overturn_time_diff) <= 2e-3
+    lie_shift = s.model.end_time / s.design.factors.time - s.prototype.end_time
+    speed = float(np.max(np.abs(s.theta_dot_prototype)))
+    shift_bound = 1.01 * speed * max(abs(s.overturn_time_diff), abs(lie_shift))
+    assert s.max_abs_angle_diff <= max(s.max_abs_angle_diff_to_tipping, shift_bound)
 
 
 @pytest.mark.parametrize("scale", [1 / 20, 1 / 200])
 def test_paper_critical_charge_outcomes_agree(scale):
     """W = 79.8 kg (the paper's critical charge): both survive. Near the threshold the motion
-    is sensitive (the paper notes 'a negligible offset'), so only the outcome and the first
-    peak (1 %: near the tipping point theta_max responds to the energy like a square root,
-    so the 0.07 % impulse-like difference of 50 kg grows to ~0.7 %) are asserted."""
+    is ill-conditioned (the paper notes 'a negligible offset'): the first excursion climbs
+    close to the top, where the time spent diverges, so the equal-time difference over 8 s is
+    4e-2..9e-2 rad (lambda 1/10..1/200, gamma 0.07..1; not asserted, see docs/rocking.md).
+    Only the outcome and the first peak (1 %: near the tipping point theta_max responds to
+    the energy like a square root, so the 0.07 % impulse-like difference of 50 kg grows to
+    ~0.7 %) are asserted."""
     s = compare_rocking(BLOCK, 79.8, 2.0, scale, 1.0, model="masi2021", duration=8.0)
     assert s.outcomes_agree and not s.prototype.overturned
     assert s.peak_ratio == pytest.approx(1.0, abs=1e-2)

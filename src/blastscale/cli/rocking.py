@@ -7,6 +7,7 @@ slenderness angle in degrees (``--alpha-deg``); results are SI (rad, rad/s, s, k
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from typing import Optional
 
 import typer
@@ -35,6 +36,14 @@ def _summary_rows(s: dict) -> list[tuple[str, str, str]]:
         ("first impact time", _fmt(s["first_impact_time_s"]), "s"),
         ("impacts", str(s["n_impacts"]), ""),
     ]
+
+
+def _check_plot_path(plot: Optional[str]) -> None:
+    """Fail before the (long) computation when the figure cannot be written."""
+    if plot:
+        parent = Path(plot).expanduser().resolve().parent
+        if not parent.is_dir():
+            raise BlastscaleInputError(f"plot = {plot!r}: the folder {str(parent)!r} does not exist")
 
 
 def _inputs(block, **kw) -> dict:
@@ -82,6 +91,7 @@ def rock_cmd(
     from ..rocking import RockingSystem, simulate
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
+    _check_plot_path(plot)
     if samples < 2:
         raise BlastscaleInputError(f"samples = {samples} is out of range: must be >= 2")
     out: dict = {
@@ -140,6 +150,8 @@ def rock_cmd(
             ("max |angle difference|", f"{s['max_abs_angle_diff_rad']:.3g}", "rad"),
             ("  up to the tipping point", f"{s['max_abs_angle_diff_to_tipping_rad']:.3g}", "rad"),
             ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
+            ("overturn time difference (model - prototype)", _fmt(s["overturn_time_diff_s"], ".3g"), "s"),
+            ("fall, |theta_dot difference| / p at equal angle", _fmt(s["max_fall_phase_diff_rad"], ".3g"), "rad"),
             ("first-peak ratio model/prototype", f"{s['peak_ratio']:.6g}", "-"),
             ("outcomes agree", _fmt(s["outcomes_agree"]), ""),
         ]))
@@ -172,6 +184,7 @@ def critical_cmd(
     from ..rocking import RockingSystem, critical_charge, critical_standoff
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
+    _check_plot_path(plot)
     if (standoff is None) == (charge is None):
         raise BlastscaleInputError(
             f"standoff = {standoff}, charge = {charge}: give exactly one of --standoff (m, finds the critical charge) "
@@ -207,7 +220,12 @@ def critical_cmd(
         from ..rocking import pi_diagram
 
         with console_err.status("computing the P-I diagram ...", spinner="dots"):
-            pi = pi_diagram(system, n=30)
+            # the curve for the pulse shape searched (impulsive: the triangular curve, whose
+            # high-pressure end is the impulsive limit)
+            if pulse == "friedlander":
+                pi = pi_diagram(system, n=30, shape="friedlander", decay=bp.pulse("friedlander").decay)
+            else:
+                pi = pi_diagram(system, n=30)
 
         def build():
             import matplotlib.pyplot as plt

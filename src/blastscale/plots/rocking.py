@@ -135,17 +135,34 @@ def plot_similarity(sim, quantity: str = "theta", ax=None):
     return ax
 
 
+def _log_ticks(axis, lo: float, hi: float) -> None:
+    """Readable log-axis labels: no minor-tick labels (matplotlib labels them on short spans,
+    where '3x10^4' and '4x10^4' collide), and majors at 1, 2, 5 x 10^k when the data span
+    less than 1.5 decades (so that at least two ticks are labelled)."""
+    from matplotlib.ticker import LogFormatterSciNotation, LogLocator, NullFormatter
+
+    axis.set_minor_formatter(NullFormatter())
+    if hi > lo > 0 and np.log10(hi / lo) < 1.5:
+        axis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+        axis.set_major_formatter(LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(np.inf, np.inf)))
+
+
 def plot_pi_diagram(pi, ax=None, label: str | None = None, asymptotes: bool = True):
     """Pressure-impulse overturning diagram: peak pressure [Pa] vs impulse [Pa s], log-log.
 
     Pulses above and to the right of the curve overturn the body. With ``asymptotes`` the
-    impulsive (vertical) and quasi-static (horizontal) limits are drawn dashed.
+    impulsive (vertical) and quasi-static (horizontal) limits are drawn dashed. Minor ticks
+    are not labelled (see ``_log_ticks``).
     """
     ax = _ax(ax)
     ax.loglog(pi.critical_impulse, pi.peak_pressure, "-", label=label or f"critical ({pi.shape} pulse)")
     if asymptotes:
         ax.axvline(pi.impulse_asymptote, color="0.4", ls="--", lw=0.8, label="impulsive limit")
         ax.axhline(pi.pressure_asymptote, color="0.4", ls=":", lw=0.8, label="quasi-static limit (uplift)")
+    i_all = np.append(pi.critical_impulse, pi.impulse_asymptote)
+    p_all = np.append(pi.peak_pressure, pi.pressure_asymptote)
+    _log_ticks(ax.xaxis, float(i_all.min()), float(i_all.max()))
+    _log_ticks(ax.yaxis, float(p_all.min()), float(p_all.max()))
     ax.set_xlabel("reflected impulse i [Pa s]")
     ax.set_ylabel("peak reflected pressure P [Pa]")
     ax.legend()

@@ -278,7 +278,9 @@ def _grow(buf, n):
     if n < buf.shape[0]:
         return buf
     nb = np.empty((2 * buf.shape[0] + 16, buf.shape[1]))
-    nb[: buf.shape[0]] = buf
+    for i in range(buf.shape[0]):  # plain loops: a slice assignment here cost ~3 s of compile time
+        for j in range(buf.shape[1]):
+            nb[i, j] = buf[i, j]
     return nb
 
 
@@ -384,8 +386,9 @@ def solve_case(
         hist[0, 1] = th
         hist[0, 2] = w
         nh = 1
-    # an initial state beyond alpha is already past the tipping point
-    if abs(th) >= alpha and s * w >= 0.0 and not resting:
+    # an initial state beyond alpha, moving outward, is already past the tipping point (toward
+    # the blast, s < 0, only without a pulse: a pulse may still push it back over the top)
+    if abs(th) >= alpha and s * w >= 0.0 and not resting and (s > 0.0 or tau_pend <= 0.0):
         overturned = True
         summ[S_OVERTURN_TAU] = 0.0
         summ[S_W_AT_ALPHA] = abs(w)
@@ -486,8 +489,10 @@ def solve_case(
             if xl < x_ev:
                 x_ev = xl
                 ev = 2
-        # tipping point: |theta| crosses alpha outward
-        if not overturned and s * thn >= alpha and (s > 0.0 or taun >= tau_pend):
+        # tipping point: |theta| crosses alpha outward. Toward the blast (s < 0) only in a step
+        # that starts once the pulse is over (steps never cross the pulse end): while the load
+        # acts it pushes the body back and a crossing of -alpha decides nothing.
+        if not overturned and s * thn >= alpha and (s > 0.0 or tau >= tau_pend):
             if s * th < alpha:
                 xo = _root(th, w, hstep, Q, 0, s * alpha, s, 0.0, 1.0)
             else:
@@ -667,6 +672,7 @@ def solve_batch(
     max_impacts,
     stop_at_overturn,
     max_steps,
+    record,
 ):
     """Loop :func:`solve_case` over n cases (arrays of length n; ``par`` (n, 3);
     tabulated pulses concatenated in ``tab_t``/``tab_f`` with case i at
@@ -684,9 +690,11 @@ def solve_batch(
         pr = par[i].copy()
         r = solve_case(
             alpha[i], e[i], th0[i], w0[i], tau_end[i], kind[i], pr, tt, tf, te,
-            rtol, atol, w_rest, max_impacts, stop_at_overturn, max_steps, False,
+            rtol, atol, w_rest, max_impacts, stop_at_overturn, max_steps, record,
         )
-        summ[i] = r[0]
-        th_out[i] = r[1]
-        w_out[i] = r[2]
+        for k in range(N_SUMMARY):  # plain loops: row slice assignments are slow to compile
+            summ[i, k] = r[0][k]
+        for k in range(m):
+            th_out[i, k] = r[1][k]
+            w_out[i, k] = r[2][k]
     return summ, th_out, w_out

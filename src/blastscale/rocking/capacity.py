@@ -29,10 +29,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from .._validate import BlastscaleInputError, OutOfRangeError, check_positive
+from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_range
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters
 from ..blast.pulses import Friedlander, Pulse, Triangular, friedlander_impulse_ratio
-from .solver import DEFAULT_SOLVER, RockingSolver
+from .solver import DEFAULT_SOLVER, RockingSolver, _check_count
 from .system import RockingSystem, as_rocking_system
 
 __all__ = ["overturn_margin", "critical_charge", "critical_standoff", "CriticalResult", "pi_diagram", "PIDiagram"]
@@ -49,6 +49,8 @@ def overturn_margin(body, pulse: Pulse, *, solver: RockingSolver | None = None, 
     """Continuous overturning margin mu [-] of ``body`` under ``pulse`` (module docstring):
     < 0 survives (theta_max / alpha - 1), >= 0 overturns."""
     system = as_rocking_system(body, gravity, restitution)
+    if not isinstance(pulse, Pulse):
+        raise BlastscaleInputError(f"pulse must be a blastscale Pulse, got {type(pulse).__name__}")
     solver = solver or DEFAULT_SOLVER
     res = solver.simulate(system, pulse, _horizon(system, pulse), stop_at_overturn=True, max_impacts=1)
     if res.overturned:
@@ -91,6 +93,7 @@ class CriticalResult:
 
 def _search(fun, x0: float, increasing: bool, xtol_rel: float, name: str, unit: str):
     """Root of fun(x) (monotone, continuous) by bracketing in ln x then brentq."""
+    check_range("xtol_rel", xtol_rel, 1e-14, 0.1)
     count = [0]
 
     def f(u):
@@ -241,9 +244,11 @@ def pi_diagram(
     p_up = system.uplift_pressure
     i_imp = system.critical_impulse
     if peak_pressures is None:
-        P = p_up * np.logspace(math.log10(1.02), 4.0, int(n))
+        P = p_up * np.logspace(math.log10(1.02), 4.0, _check_count("n", n, 1))
     else:
         P = np.atleast_1d(check_positive("peak pressure", peak_pressures, "Pa")).astype(float)
+        if P.ndim != 1 or P.size == 0:
+            raise BlastscaleInputError(f"peak_pressures must be a non-empty 1-D list of pressures [Pa], got shape {P.shape}")
         if np.any(P <= p_up):
             raise BlastscaleInputError(
                 f"peak pressure = {float(P[P <= p_up][0]):.6g} Pa is out of range: must exceed the uplift "

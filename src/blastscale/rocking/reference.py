@@ -143,8 +143,12 @@ def simulate_reference(
             max_abs = max(max_abs, abs(yp[0]))
         if check_tip and sol.t_events[3].size:
             overturned, t_over, om_over = True, float(sol.t_events[3][0]), abs(float(sol.y_events[3][0][1]))
-        if check_tip and sm < 0 and t >= t_pend and abs(th) >= al and not overturned:
-            overturned, t_over, om_over = True, t, abs(om)  # already past -alpha when the load ended
+        if check_tip and abs(th) >= al and not overturned:
+            # already past the top at the segment start (the initial state, or -alpha when the
+            # load ended): it overturns unless it moves back inward with the kinetic energy to
+            # climb over the top, J_o om^2 / 2 > m g r (1 - cos(|th| - alpha))
+            if not (sm * om < 0 and 0.5 * (om / p) ** 2 > 1.0 - math.cos(abs(th) - al)):
+                overturned, t_over, om_over = True, t, abs(om)
         t_end = float(sol.t[-1])
         fill(sol.sol, t, t_end)
         if sol.status == 1:  # a terminal event

@@ -194,6 +194,16 @@ def _none_if_nan(x: float) -> float | None:
     return None if not math.isfinite(x) else float(x)
 
 
+def _check_count(name: str, value, lo: int) -> int:
+    """Return ``value`` as an int; raise unless it is a whole number >= ``lo``."""
+    ok = isinstance(value, (int, np.integer)) and not isinstance(value, bool)
+    if not ok and isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
+        ok = True
+    if not ok or int(value) < lo:
+        raise BlastscaleInputError(f"{name} = {value!r} is out of range: must be a whole number >= {lo}")
+    return int(value)
+
+
 @dataclass(frozen=True)
 class RockingSolver:
     """Adaptive Dormand-Prince 5(4) rocking solver with impact, peak and overturn events.
@@ -221,7 +231,7 @@ class RockingSolver:
         check_range("rtol", self.rtol, 1e-14, 1e-2)
         check_range("atol", self.atol, 1e-16, 1e-2)
         check_range("rest_velocity", self.rest_velocity, 0.0, 1e-2)
-        check_positive("max_steps", self.max_steps)
+        _check_count("max_steps", self.max_steps, 1)
 
     # ------------------------------------------------------------------ one case
     def simulate(
@@ -268,7 +278,7 @@ class RockingSolver:
         p = system.frequency_parameter
         tev = self._check_t_eval(t_eval, dur)
         kind, par, tt, tf, dw = (0, np.zeros(3), np.zeros(0), np.zeros(0), 0.0) if pulse is None else encode_pulse(pulse, system, th0)
-        mi = -1 if max_impacts is None else int(check_range("max_impacts", max_impacts, 0, math.inf))
+        mi = -1 if max_impacts is None else _check_count("max_impacts", max_impacts, 0)
         e = system.coefficient_of_restitution
         summ, the, we, hist, imp, pk = K.solve_case(
             system.alpha, e, th0, om0 / p + dw, dur * p, kind, par, tt, tf,
@@ -330,6 +340,10 @@ class RockingSolver:
         plist = list(pulses) if isinstance(pulses, (list, tuple)) else [pulses]
         th0 = np.atleast_1d(check_range("initial angle theta0", theta0, -math.pi / 2, math.pi / 2, "rad", lo_open=True, hi_open=True))
         om0 = np.atleast_1d(check_finite("initial angular velocity", theta_dot0, "rad/s"))
+        if th0.ndim != 1 or om0.ndim != 1:
+            raise BlastscaleInputError(
+                f"theta0 and theta_dot0 must be scalars or 1-D arrays, got shapes {th0.shape} and {om0.shape}"
+            )
         lens = {len(blist), len(plist), th0.size, om0.size} - {1}
         if len(lens) > 1:
             raise BlastscaleInputError(
@@ -366,12 +380,13 @@ class RockingSolver:
             w0[i] = om0[i] / pvec[i] + dw
         tab_t = np.concatenate(tabs_t) if off[-1] else np.zeros(0)
         tab_f = np.concatenate(tabs_f) if off[-1] else np.zeros(0)
-        mi = -1 if max_impacts is None else int(max_impacts)
+        mi = -1 if max_impacts is None else _check_count("max_impacts", max_impacts, 0)
         summ, th, w = K.solve_batch(
             alpha, e, th0, w0, dur * pvec, kinds, par, tab_t, tab_f, off,
             np.ascontiguousarray(tev[None, :] * pvec[:, None]),
             float(self.rtol), float(self.atol), float(self.rest_velocity), mi, bool(stop_at_overturn),
-            int(self.max_steps),
+            int(self.max_steps), False,  # record=False passed from Python (a plain bool): a literal
+            # False inside the kernel would compile a second specialisation of solve_case (~3 s)
         )
         bad = summ[:, K.S_STATUS] != 0
         if np.any(bad):
