@@ -92,3 +92,16 @@ def test_plots_take_ax_and_return_it():
         assert len(ax.get_lines()) == 2
     assert plot_snapshots(r, times=[0.0, 0.05], ax=axs[3]) is axs[3]
     plt.close(fig)
+
+
+def test_plots_reject_unknown_quantity_and_bad_snapshot_count():
+    from blastscale._validate import BlastscaleInputError
+    from blastscale.plots.sim3d import plot_history, plot_snapshots
+    from blastscale.sim3d import simulate_block
+    from blastscale.structures.block import RectangularBlock
+
+    r = simulate_block(RectangularBlock(2.0, 1.0), None, 0.002)
+    with pytest.raises(BlastscaleInputError, match="quantity"):
+        plot_history(r, "spin")
+    with pytest.raises(BlastscaleInputError, match="n = 0"):
+        plot_snapshots(r, n=0)

@@ -29,10 +29,24 @@ __all__ = ["Block3DComparison", "compare_block3d", "history_differences"]
 def history_differences(prototype: Block3DResult, upscaled: Block3DResult) -> dict:
     """Largest absolute differences between two histories in prototype units.
 
-    The up-scaled history is interpolated linearly onto the prototype's times (where they
-    overlap). Returns ``max_abs_rotation_diff_rad``, ``max_abs_sliding_diff_m``,
-    and ``max_abs_uplift_diff_m``. (Velocities are not compared: during the pulse they rise
-    over the blast's own duration, whose model/prototype ratio differs from lambda_t.)
+    .. math:: \\Delta_q = \\max_{t_k} |q_p(t_k) - q_m^{up}(t_k)|
+
+    with the up-scaled history interpolated linearly onto the prototype's times t_k (where
+    they overlap). Velocities are not compared: during the pulse they rise over the blast's
+    own duration, whose model/prototype ratio differs from lambda_t.
+
+    Parameters
+    ----------
+    prototype : Block3DResult
+        Prototype run [SI, prototype units].
+    upscaled : Block3DResult
+        Model run already up-scaled (:meth:`Block3DResult.upscaled`) [prototype units].
+
+    Returns
+    -------
+    dict
+        ``max_abs_rotation_diff_rad`` [rad], ``max_abs_sliding_diff_m`` [m],
+        ``max_abs_uplift_diff_m`` [m].
     """
     t = prototype.time
     mask = t <= upscaled.time[-1] * (1 + 1e-12)

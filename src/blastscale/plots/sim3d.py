@@ -11,6 +11,8 @@ import math
 
 import numpy as np
 
+from .._validate import BlastscaleInputError, check_finite
+
 __all__ = [
     "HISTORY_QUANTITIES",
     "plot_history",
@@ -69,7 +71,7 @@ def plot_history(results, quantity: str = "rotation", ax=None, labels=None, styl
     matplotlib Axes
     """
     if quantity not in HISTORY_QUANTITIES:
-        raise ValueError(f"quantity = {quantity!r} is not known: valid values are {', '.join(HISTORY_QUANTITIES)}")
+        raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are {', '.join(HISTORY_QUANTITIES)}")
     ax = _ax(ax)
     label, k = HISTORY_QUANTITIES[quantity]
     for j, (name, r) in enumerate(_as_dict(results, labels).items()):
@@ -130,9 +132,11 @@ def plot_snapshots(result, times=None, ax=None, n: int = 6, cmap: str = "viridis
     """
     import matplotlib
 
+    if times is None and not (isinstance(n, (int, np.integer)) and n >= 1):
+        raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 1")
     ax = _ax(ax)
     t = result.time
-    times = np.linspace(t[0], t[-1], n) if times is None else np.asarray(times, dtype=float)
+    times = np.linspace(t[0], t[-1], n) if times is None else np.atleast_1d(check_finite("snapshot times", times, "s"))
     colors = matplotlib.colormaps[cmap](np.linspace(0, 1, max(len(times), 2)))
     for k, tk in enumerate(times):
         i = int(np.clip(np.searchsorted(t, tk), 0, t.size - 1))

@@ -338,7 +338,33 @@ def simulate_block(
     blast_mode: str = "auto",
     **initial,
 ) -> Block3DResult:
-    """One-call form of :meth:`Block3DSimulator.run` (same parameters)."""
+    """Run one block under a Method A blast: ``Block3DSimulator(contact, gravity, record_every,
+    blast_mode=blast_mode).run(block, pulse, duration, **initial)``.
+
+    Parameters
+    ----------
+    block : RectangularBlock
+        The block; the blast loads its -x face (area 2h x 2w) towards +x.
+    pulse : blastscale.blast.pulses.Pulse or None
+        Reflected pressure pulse [Pa over s], t = 0 at shock arrival; None for no blast.
+    duration : float
+        Simulated time after arrival [s], > 0.
+    contact : ContactSettings, optional
+        Contact, time-step and solver settings; default ``ContactSettings()`` (full scale).
+    gravity : float
+        g [m/s^2], > 0.
+    record_every : int
+        Keep one state every ``record_every`` steps, >= 1.
+    blast_mode : {"auto", "force", "kick"}
+        How each step's impulse is applied (module docstring).
+    **initial
+        ``initial_rotation`` [rad], ``initial_angular_velocity`` [rad/s], ``initial_velocity``
+        (3,) [m/s], as in :meth:`Block3DSimulator.run`.
+
+    Returns
+    -------
+    Block3DResult
+    """
     sim = Block3DSimulator(
         ContactSettings() if contact is None else contact, gravity, record_every, blast_mode=blast_mode
     )
