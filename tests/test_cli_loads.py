@@ -80,9 +80,13 @@ BAD_INPUT = [
     (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--height", "10"], ["--width", "--alpha-deg"]),
     # the general law's model Z beyond the impulse fit: names the scale and the admissible range
     (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-9"], ["scale = 1e-09", "valid range of scale"]),
-    # masi2021: the law is solvable but the model Z = 11.7 is outside the duration fit's guarded range
+    # masi2021: the law is solvable but its model Z = 11.7 is outside the duration fit's guarded range: the
+    # scale range keeps the model inside [0.2, 6.5] (lambda = 1.10e-5 puts it at 6.5, test_design_properties)
     (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-6", "--model", "masi2021"],
-     ["scaled_positive_duration", "Z = 11.7", "[0.2, 6.5]"]),
+     ["scale = 1e-06", "valid range of scale is [1.10124e-05, 177.874]", "[0.2, 6.5]"]),
+    # --extrapolate lets the model Z leave the duration fit (with warnings), never the impulse fit of the law
+    (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-9", "--model", "masi2021", "--extrapolate"],
+     ["scale = 1e-09", "impulse fit [0.2, 20]"]),
     # click's own usage errors, also one line, exit 2
     (["blast", "--charge", "abc", "--standoff", "2"], ["--charge", "blastscale blast --help"]),
     (["blast", "--charge", "5"], ["Missing option", "--standoff"]),

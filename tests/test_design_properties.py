@@ -7,8 +7,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from blastscale._validate import OutOfRangeError
-from blastscale.blast import get_blast_model
-from blastscale.similitude import design_model, pi_terms, scaling_factors, solve_scaled_distance_factor
+from blastscale.blast import get_blast_model, valid_scaled_distance_range
+from blastscale.similitude import admissible_scales, design_model, pi_terms, scaling_factors, solve_scaled_distance_factor
 
 models = st.sampled_from(["masi2021", "kingery-bulmash"])
 charges = st.floats(1.0, 5000.0)
@@ -101,3 +101,24 @@ def test_law_out_of_range_error_gives_the_exact_admissible_scales(Z, gam, sig, m
         assert msg.startswith(f"scale = {outside:.6g} is out of range")
         assert f"valid range of scale is [{lam_lo:.6g}, {lam_hi:.6g}]" in msg
         assert "\n" not in msg
+
+
+@settings(max_examples=40, deadline=None)
+@given(Z=st.floats(0.25, 2.0), gam=gammas, sig=st.floats(0.5, 5.0), model=models)
+def test_design_out_of_range_gives_scales_that_keep_every_fit_valid(Z, gam, sig, model):
+    # design_model evaluates all fits at the model's Z (masi2021's duration only up to 6.5). The scale range
+    # it reports, from admissible_scales on valid_scaled_distance_range, is checked at both ends: just inside
+    # (scale moved by 1e-6) the design succeeds with the model at the end of that Z range (rel 1e-5); just
+    # outside it fails and names the scale and the range. W = 50 kg; R from Z.
+    W = 50.0
+    R = Z * W ** (1 / 3)
+    zr = valid_scaled_distance_range(model)
+    lo, hi = admissible_scales(Z, gam, sig, model, zr)
+    for lam_edge, z_edge, inside in ((lo, zr[1], 1 + 1e-6), (hi, zr[0], 1 - 1e-6)):
+        d = design_model(W, R, lam_edge * inside, gam, sig, model=model)
+        assert d.model.scaled_distance == pytest.approx(z_edge, rel=1e-5)
+        with pytest.raises(OutOfRangeError) as e:
+            design_model(W, R, lam_edge / inside, gam, sig, model=model)
+        msg = str(e.value)
+        assert "\n" not in msg and f"scale = {lam_edge / inside:.6g}" in msg
+        assert f"[{lo:.6g}, {hi:.6g}]" in msg

@@ -4,7 +4,14 @@ from .base import BlastModel, ExtrapolationWarning
 from .faces import FaceLoads, face_loads, oblique_combination
 from .kingery_bulmash import KingeryBulmash
 from .masi_fits import Masi2021
-from .parameters import BLAST_MODELS, BlastParameters, blast_parameters, get_blast_model, scaled_distance
+from .parameters import (
+    BLAST_MODELS,
+    BlastParameters,
+    blast_parameters,
+    get_blast_model,
+    scaled_distance,
+    valid_scaled_distance_range,
+)
 from .pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular, friedlander_decay
 
 __all__ = [
@@ -20,6 +27,7 @@ __all__ = [
     "blast_parameters",
     "get_blast_model",
     "scaled_distance",
+    "valid_scaled_distance_range",
     "Pulse",
     "Friedlander",
     "Triangular",

@@ -15,7 +15,14 @@ from .._validate import BlastscaleInputError, check_positive
 from .base import BlastModel
 from .pulses import Friedlander, Impulsive, Pulse, Triangular, friedlander_decay
 
-__all__ = ["BLAST_MODELS", "get_blast_model", "blast_parameters", "BlastParameters", "scaled_distance"]
+__all__ = [
+    "BLAST_MODELS",
+    "get_blast_model",
+    "blast_parameters",
+    "BlastParameters",
+    "scaled_distance",
+    "valid_scaled_distance_range",
+]
 
 
 def _kingery_bulmash() -> BlastModel:
@@ -46,6 +53,20 @@ def get_blast_model(model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> BlastMod
     if model not in _CACHE:
         _CACHE[model] = BLAST_MODELS[model]()
     return _CACHE[model]
+
+
+#: Quantities :func:`blast_parameters` evaluates (the last three only where the model provides them).
+_USED = ("reflected_pressure", "scaled_reflected_impulse", "scaled_arrival_time", "scaled_positive_duration",
+         "incident_pressure", "scaled_incident_impulse", "shock_front_velocity")
+
+
+def valid_scaled_distance_range(model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> tuple[float, float]:
+    """Range of Z [m/kg^(1/3)] over which :func:`blast_parameters` evaluates every fit it uses
+    without extrapolating: the intersection of the quantities' ranges (kingery-bulmash [0.2, 40],
+    masi2021 [0.2, 6.5], limited by the duration fits; Swisdak 1994 and paper Appendix A)."""
+    m = get_blast_model(model)
+    ranges = [m.valid_range(q) for q in _USED if m.provides(q)]
+    return max(r[0] for r in ranges), min(r[1] for r in ranges)
 
 
 def scaled_distance(charge, standoff):

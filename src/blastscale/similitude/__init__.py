@@ -4,6 +4,7 @@ from .design import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign, de
 from .factors import FACTOR_UNITS, ScalingFactors, pi_terms, scaling_factors
 from .laws import (
     LAWS,
+    admissible_scales,
     ScaledDistanceSolution,
     hopkinson_cranz_density_ratio,
     masi2021_quadratic_roots,
@@ -11,6 +12,7 @@ from .laws import (
 )
 
 __all__ = [
+    "admissible_scales",
     "DEFAULT_IMPULSIVE_THRESHOLD",
     "FACTOR_UNITS",
     "ImpulsiveCheck",

@@ -24,12 +24,18 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .._validate import BlastscaleInputError, check_positive, check_positive_scalar
+from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_positive_scalar
 from ..blast.base import BlastModel
-from ..blast.parameters import DEFAULT_BLAST_MODEL, BlastParameters, blast_parameters, get_blast_model
+from ..blast.parameters import (
+    DEFAULT_BLAST_MODEL,
+    BlastParameters,
+    blast_parameters,
+    get_blast_model,
+    valid_scaled_distance_range,
+)
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .factors import ScalingFactors, scaling_factors
-from .laws import LAWS, hopkinson_cranz_density_ratio, solve_scaled_distance_factor
+from .laws import LAWS, admissible_scales, hopkinson_cranz_density_ratio, solve_scaled_distance_factor
 
 __all__ = ["ImpulsiveCheck", "ModelDesign", "design_model", "impulsive_check", "DEFAULT_IMPULSIVE_THRESHOLD"]
 
@@ -277,6 +283,16 @@ def design_model(
         if density_ratio is None:
             raise BlastscaleInputError("density ratio = None is out of range: the general law needs gamma > 0")
         gam = check_positive_scalar("density ratio", density_ratio)
+        if not extrapolate:  # the model's Z must lie where every fit holds, not only the impulse fit
+            zr = valid_scaled_distance_range(bm)
+            lo, hi = admissible_scales(proto.scaled_distance, gam, sig, bm, zr)
+            if not lo <= lam <= hi:
+                raise OutOfRangeError(
+                    f"scale = {lam:.6g} is out of range for the general law: valid range of scale is "
+                    f"[{lo:.6g}, {hi:.6g}] (it keeps the model's Z inside [{zr[0]:g}, {zr[1]:g}] m/kg^(1/3), where "
+                    f"every {bm.name} fit holds, for density ratio = {gam:.6g}, gravity ratio = {sig:.6g} and "
+                    f"prototype Z = {proto.scaled_distance:.6g} m/kg^(1/3))"
+                )
         sol = solve_scaled_distance_factor(proto.scaled_distance, lam, gam, sig, bm)
         lz, res_note = sol.factor, sol.note
     f = scaling_factors(lam, gam, sig, lz)

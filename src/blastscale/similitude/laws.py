@@ -40,6 +40,7 @@ from ..blast.masi_fits import MASI2021_COEFFICIENTS, Masi2021
 from ..blast.parameters import DEFAULT_BLAST_MODEL, get_blast_model
 
 __all__ = [
+    "admissible_scales",
     "ScaledDistanceSolution",
     "solve_scaled_distance_factor",
     "masi2021_quadratic_roots",
@@ -114,6 +115,55 @@ def masi2021_quadratic_roots(prototype_scaled_distance: float, target: float) ->
     return math.exp(xs[0]), math.exp(xs[1]) if xs[1] < 700 else math.inf
 
 
+def admissible_scales(
+    prototype_scaled_distance: float,
+    density_ratio: float = 1.0,
+    gravity_ratio: float = 1.0,
+    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    z_range: tuple[float, float] | None = None,
+) -> tuple[float, float]:
+    """Range of the scale lambda for which the general law puts the model's Z inside ``z_range``.
+
+    Eq. (8) solved for lambda at a given model scaled distance Z_m:
+
+    .. math:: \\lambda(Z_m) = \\frac{1}{\\varsigma}\\left[\\frac{Z}{\\gamma Z_m}\\,
+              \\frac{\\hat i(Z_m)}{\\hat i(Z)}\\right]^2,
+
+    decreasing in Z_m where the scaled impulse falls faster than 1/Z (the law's monotone range).
+
+    Parameters
+    ----------
+    prototype_scaled_distance : float
+        Z of the prototype [m/kg^(1/3)], inside the impulse fit's range.
+    density_ratio, gravity_ratio : float
+        gamma and varsigma [-], > 0.
+    model : str or BlastModel
+        Blast model giving the scaled reflected impulse i_hat.
+    z_range : (float, float), optional
+        Allowed model Z [m/kg^(1/3)]; default the impulse fit's range. It is intersected with it.
+
+    Returns
+    -------
+    (float, float)
+        (lambda_min, lambda_max) [-]: lambda_min puts the model at the far end of ``z_range``.
+
+    Reference: paper Eq. (8).
+    """
+    m = get_blast_model(model)
+    z = check_positive_scalar("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)")
+    gam = check_positive_scalar("density ratio", density_ratio)
+    sig = check_positive_scalar("gravity ratio", gravity_ratio)
+    lo, hi = m.valid_range("scaled_reflected_impulse")
+    if z_range is not None:
+        lo, hi = max(lo, float(z_range[0])), min(hi, float(z_range[1]))
+    i0 = m.scaled_reflected_impulse(z)
+
+    def lam_at(zm: float) -> float:
+        return ((z / zm) * m.scaled_reflected_impulse(zm) / i0 / gam) ** 2 / sig
+
+    return lam_at(hi), lam_at(lo)
+
+
 def solve_scaled_distance_factor(
     prototype_scaled_distance: float,
     scale: float,
@@ -173,8 +223,7 @@ def solve_scaled_distance_factor(
         # g decreases in x: g(xhi) > 0 means that even Z_max gives too much impulse (scale too small
         # for this gamma), g(xlo) < 0 that even Z_min gives too little. The admissible targets are
         # [target e^{g(xhi)}, target e^{g(xlo)}]; target = gamma sqrt(varsigma lambda) gives the scales.
-        lam_lo = (target * math.exp(ghi) / gam) ** 2 / sig
-        lam_hi = (target * math.exp(glo) / gam) ** 2 / sig
+        lam_lo, lam_hi = admissible_scales(z, gam, sig, m)
         side = "Z_max" if ghi > 0.0 else "Z_min"
         raise OutOfRangeError(
             f"scale = {lam:.6g} is out of range for the general law: with density ratio = {gam:.6g}, gravity ratio "
