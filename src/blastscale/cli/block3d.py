@@ -7,7 +7,7 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError, check_positive
-from ._app import app, console, print_json, save_figure, table
+from ._app import app, console, one_line_warnings, print_json, save_figure, table
 from .loads import MODEL_HELP, block_from_options
 
 _SUMMARY_ROWS = (
@@ -81,22 +81,23 @@ def block3d_cmd(
         "scale": scale, "density_ratio": density_ratio if scale is not None else None,
         "gravity_ratio": gravity_ratio if scale is not None else None, "gravity_m_s2": gravity,
     }, "contact": contact.to_dict()}
-    if scale is None:
-        bp = blast_parameters(charge, standoff, model)
-        proto = simulate_block(block, bp.pulse(pulse), duration, contact=contact, gravity=gravity,
-                               record_every=record_every)
-        upscaled = None
-        out["prototype"] = proto.summary()
-    else:
-        from ..analysis.block3d_similarity import compare_block3d
+    with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
+        if scale is None:
+            bp = blast_parameters(charge, standoff, model)
+            proto = simulate_block(block, bp.pulse(pulse), duration, contact=contact, gravity=gravity,
+                                   record_every=record_every)
+            upscaled = None
+            out["prototype"] = proto.summary()
+        else:
+            from ..analysis.block3d_similarity import compare_block3d
 
-        cmp = compare_block3d(block, charge, standoff, scale, density_ratio=density_ratio, gravity_ratio=gravity_ratio,
-                              model=model, pulse=pulse, contact=contact, duration=duration, gravity=gravity,
-                              record_every=record_every)
-        proto, upscaled = cmp.prototype, cmp.model_upscaled
-        out.update(cmp.summary())
-        out["model_experiment"] = {"charge_kg": cmp.design.model_charge_kg, "standoff_m": cmp.design.model_standoff_m,
-                                   "height_m": block.height * scale}
+            cmp = compare_block3d(block, charge, standoff, scale, density_ratio=density_ratio, gravity_ratio=gravity_ratio,
+                                  model=model, pulse=pulse, contact=contact, duration=duration, gravity=gravity,
+                                  record_every=record_every)
+            proto, upscaled = cmp.prototype, cmp.model_upscaled
+            out.update(cmp.summary())
+            out["model_experiment"] = {"charge_kg": cmp.design.model_charge_kg, "standoff_m": cmp.design.model_standoff_m,
+                                       "height_m": block.height * scale}
     if plot:
         from ..plots.sim3d import plot_comparison
 
