@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from blastscale._validate import OutOfRangeError
+from blastscale._validate import BlastscaleInputError, OutOfRangeError
 from blastscale.blast import ExtrapolationWarning, get_blast_model
 
 M = get_blast_model("masi2021")
@@ -48,9 +48,19 @@ def test_vectorised_shape_and_scalar_type():
     assert np.all(np.diff(M.scaled_reflected_impulse(zz)) < 0)
 
 
-@pytest.mark.parametrize("z", [0.0, -1.0, 0.1, 25.0, float("nan")])
-def test_out_of_range_z_names_quantity_value_and_range(z):
-    with pytest.raises(Exception) as e:
+@pytest.mark.parametrize(
+    "z, words",
+    [
+        (0.0, ["Z = 0", "must be > 0"]),
+        (-1.0, ["Z = -1", "must be > 0"]),
+        (0.1, ["reflected_pressure (masi2021)", "Z = 0.1 m/kg^(1/3)", "[0.2, 20]"]),
+        (25.0, ["reflected_pressure (masi2021)", "Z = 25 m/kg^(1/3)", "[0.2, 20]"]),
+        (float("nan"), ["Z = nan", "not a finite number"]),
+    ],
+)
+def test_out_of_range_z_names_quantity_value_and_range(z, words):
+    # A named one-line error (never a NaN): the quantity where it applies, the Z value and the valid range.
+    with pytest.raises(BlastscaleInputError) as e:
         M.reflected_pressure(z)
     msg = str(e.value)
-    assert "Z" in msg and ("range" in msg or "finite" in msg)
+    assert "\n" not in msg and all(w in msg for w in words), msg
