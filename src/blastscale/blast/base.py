@@ -18,7 +18,12 @@ shock_front_velocity          m/s                         (not scaled)
 Each quantity has its own validity range in Z (``valid_range(quantity)``). Outside it the
 model raises :class:`~blastscale._validate.OutOfRangeError` naming the quantity, the Z value
 and the range, unless ``extrapolate=True`` is passed, which evaluates the fit anyway and
-emits an :class:`ExtrapolationWarning`.
+emits an :class:`ExtrapolationWarning`. A fit extrapolated so far that it overflows or vanishes
+raises :class:`~blastscale._validate.OutOfRangeError` even then (never an inf, 0 or NaN).
+
+References: Swisdak (1994), DTIC ADA526744 (:mod:`.kingery_bulmash`); the paper's Appendix A
+(:mod:`.masi_fits`); Baker et al. (1983), *Explosion Hazards and Evaluation*, ch. 2 (cube-root
+scaling of time and impulse).
 """
 
 from __future__ import annotations
