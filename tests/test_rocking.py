@@ -315,6 +315,24 @@ def test_toward_blast_past_the_top_during_the_pulse_is_pushed_back():
     assert fast.overturn_time == pytest.approx(ref.overturn_time, abs=1e-8)
 
 
+@pytest.mark.parametrize("duration", [0.1, 0.4])
+def test_toward_blast_overturn_is_timed_at_the_end_of_the_pulse(duration):
+    """Thrown toward the blast (theta0 = -0.2 rad, theta_dot0 = -p) against a long, weak pulse
+    (2x the uplift pressure): it passes -alpha while the load still pushes back, is beyond it
+    and moving outward when the load ends, and only then is it sure to overturn. The overturn
+    time is the pulse end (both paths; 1e-12 s: a breakpoint, not a located event). The
+    earlier criterion, which checked the last pulse step as if the load were over, timed it
+    at the start of that step (0.09 s and 0.38 s here)."""
+    pulse = Triangular(2.0 * SYSTEM.uplift_pressure, SYSTEM.uplift_pressure * duration)
+    p = SYSTEM.frequency_parameter
+    fast = simulate(SYSTEM, pulse, 5.0, theta0=-0.2, theta_dot0=-p)
+    ref = simulate_reference(SYSTEM, pulse, 5.0, theta0=-0.2, theta_dot0=-p)
+    assert pulse.duration == pytest.approx(duration, rel=1e-12)
+    for res in (fast, ref):
+        assert res.overturned and res.max_angle == pytest.approx(math.pi / 2, abs=1e-15)
+        assert res.overturn_time == pytest.approx(duration, abs=1e-12)
+
+
 @settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     theta0_ratio=st.floats(-1.5, 1.5),

@@ -46,8 +46,24 @@ def _horizon(system: RockingSystem, pulse: Pulse) -> float:
 
 
 def overturn_margin(body, pulse: Pulse, *, solver: RockingSolver | None = None, gravity=None, restitution=None) -> float:
-    """Continuous overturning margin mu [-] of ``body`` under ``pulse`` (module docstring):
-    < 0 survives (theta_max / alpha - 1), >= 0 overturns."""
+    """Continuous overturning margin mu [-] of ``body`` under ``pulse`` (module docstring).
+
+    Parameters
+    ----------
+    body : RockingSystem or RectangularBlock
+        The body (a block is converted with ``gravity`` [m/s^2] and ``restitution`` [-]).
+    pulse : Pulse
+        Pressure pulse on the loaded face from the shock arrival.
+    solver : RockingSolver, optional
+        Solver (default rtol 1e-10, atol 1e-12).
+
+    Returns
+    -------
+    mu : float
+        ``theta_max / alpha - 1`` (< 0, survives; theta_max the first excursion peak [rad])
+        or ``theta_dot_alpha / (p sqrt(2 (1 - cos alpha)))`` (>= 0, overturns); simulated up
+        to the first impact or the tipping point (``pulse.duration + 50 / p`` at most).
+    """
     system = as_rocking_system(body, gravity, restitution)
     if not isinstance(pulse, Pulse):
         raise BlastscaleInputError(f"pulse must be a blastscale Pulse, got {type(pulse).__name__}")
@@ -78,6 +94,7 @@ class CriticalResult:
     bracket: tuple[float, float]
 
     def to_dict(self) -> dict:
+        """Plain dict with unit-suffixed keys (``critical_charge_kg`` or ``critical_standoff_m``)."""
         return {
             "critical_charge_kg" if self.searched == "charge" else "critical_standoff_m": (
                 self.charge_kg if self.searched == "charge" else self.standoff_m
@@ -147,10 +164,33 @@ def critical_charge(
 ) -> CriticalResult:
     """Largest TNT charge [kg] at ``standoff`` [m] that the body survives without overturning.
 
-    The reflected pulse of shape ``pulse`` (``"friedlander"``, ``"triangular"``,
-    ``"impulsive"``) from ``blast_parameters(W, standoff, model)`` loads the front face
-    uniformly (paper Method A). The margin (module docstring) is bracketed from ``guess`` [kg]
-    by factors of 2 and solved by brentq in ln W to ``xtol_rel`` (relative).
+    The reflected pulse of shape ``pulse`` from ``blast_parameters(W, standoff, model)`` loads
+    the front face uniformly (paper Method A, Eq. eom). The margin mu(W) (module docstring) is
+    bracketed from ``guess`` by factors of 2 and its root found by brentq in ln W.
+
+    Parameters
+    ----------
+    body : RockingSystem or RectangularBlock
+        The body (a block is converted with ``gravity`` [m/s^2] and ``restitution`` [-];
+        the restitution does not affect the first excursion).
+    standoff : float
+        Stand-off R [m], > 0.
+    pulse : {"friedlander", "triangular", "impulsive"}
+        Reflected pulse shape (paper Eqs. 1, 3, impulsive limit).
+    model : str
+        Blast model, ``"kingery-bulmash"`` (Swisdak 1994) or ``"masi2021"`` (paper App. A);
+        valid over its range of scaled distance Z (0.2-20 m/kg^(1/3) for masi2021).
+    solver : RockingSolver, optional
+        Solver (default rtol 1e-10, atol 1e-12).
+    guess : float
+        Starting charge [kg], > 0.
+    xtol_rel : float
+        Relative tolerance on the charge [-], in [1e-14, 0.1].
+
+    Returns
+    -------
+    CriticalResult
+        ``charge_kg`` [kg] (the critical charge), ``standoff_m`` [m], evaluations, bracket.
 
     Raises
     ------
@@ -187,7 +227,10 @@ def critical_standoff(
     xtol_rel: float = 1e-9,
 ) -> CriticalResult:
     """Smallest stand-off [m] at which the body survives ``charge`` [kg TNT] without
-    overturning (same method as :func:`critical_charge`; the margin decreases with distance)."""
+    overturning (same method and parameters as :func:`critical_charge`, with ``charge`` W
+    [kg] > 0 fixed and ``guess`` the starting stand-off [m]; the margin decreases with
+    distance). Returns a :class:`CriticalResult` whose ``standoff_m`` [m] is the critical
+    stand-off. References: paper Sec. "Equations of motion"; Masi et al. (2019)."""
     system = as_rocking_system(body, gravity, restitution)
     W = float(check_positive("charge", charge, "kg"))
     check_positive("guess", guess, "m")
@@ -232,12 +275,35 @@ def pi_diagram(
 ) -> PIDiagram:
     """Pressure-impulse (P-I) overturning diagram of a body.
 
-    For each peak pressure P [Pa] (default: ``n`` values log-spaced from 1.02 to 1e4 times the
-    uplift pressure) the critical impulse i_c(P) [Pa*s] that just overturns the body is
-    found with :func:`overturn_margin` and brentq in ln i. The pulse is ``"triangular"``
-    (paper Eq. 3) or ``"friedlander"`` with the given ``decay`` d [-] (duration
-    ``i / (P k(d))``, paper Eq. 2). i_c tends to the impulsive asymptote as P grows and
-    diverges as P falls to the uplift pressure.
+    For each peak pressure P the critical impulse i_c(P) that just overturns the body is found
+    with :func:`overturn_margin` and brentq in ln i. i_c tends to the impulsive asymptote
+    ``J_o p sqrt(2 (1 - cos alpha)) / (S l)`` as P grows and diverges as P falls to the uplift
+    pressure ``m g r sin(alpha) / (S l)`` (``P S h = m g b`` for a block).
+
+    Parameters
+    ----------
+    body : RockingSystem or RectangularBlock
+        The body (a block is converted with ``gravity`` [m/s^2] and ``restitution`` [-]).
+    peak_pressures : array_like, optional
+        Non-empty 1-D peak pressures [Pa], each above the uplift pressure; default ``n``
+        values log-spaced from 1.02 to 1e4 times the uplift pressure.
+    n : int
+        Number of default pressures (>= 1).
+    shape : {"triangular", "friedlander"}
+        Pulse shape: triangular (paper Eq. 3, duration ``2 i / P``) or Friedlander with decay
+        ``decay`` d [-] (duration ``i / (P k(d))``, paper Eq. 2).
+    solver : RockingSolver, optional
+        Solver (default rtol 1e-10, atol 1e-12).
+    xtol_rel : float
+        Relative tolerance on each critical impulse [-].
+
+    Returns
+    -------
+    PIDiagram
+        ``peak_pressure`` [Pa], ``critical_impulse`` [Pa*s] and the two asymptotes.
+
+    References: Krauthammer (2008), *Modern Protective Structures*, Ch. 5 (P-I diagrams);
+    Masi et al. (2019), Int. J. Mech. Sci. 157 (impulsive limit).
     """
     system = as_rocking_system(body, gravity, restitution)
     solver = solver or DEFAULT_SOLVER
