@@ -104,3 +104,15 @@ def test_bad_input_one_line_error_exit_2(capsys, argv, word):
     err = run_error(capsys, *argv)
     assert word in err
     assert len(err.strip().splitlines()) <= 2  # one message (rich may wrap a long line once)
+
+
+@pytest.mark.parametrize("command", ["rock", "critical"])
+def test_help_shows_the_units(capsys, command):
+    """Units in square brackets must survive rich's markup (an unescaped "[m]" is eaten as a
+    style tag, and the help then shows "Block height 2h ." with no unit)."""
+    with pytest.raises(SystemExit) as e:
+        main([command, "--help"])
+    assert e.value.code in (0, None)
+    out = capsys.readouterr().out
+    for unit in ("[m]", "[kg/m^3]", "[deg]", "[m/s^2]"):
+        assert unit in out

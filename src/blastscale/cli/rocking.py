@@ -17,7 +17,13 @@ from ._app import app, console, console_err, print_json, save_figure, table
 from .loads import MODEL_HELP, block_from_options
 
 PULSE_HELP = "Pulse shape: friedlander (paper Eq. 1), triangular (Eq. 3) or impulsive (Dirac of the same impulse)."
-RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts [-], in [0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
+# the block options shared by `rock` and `critical` (one OptionInfo may serve several commands)
+HEIGHT_OPTION = typer.Option(10.0, "--height", help="Block height 2h \\[m].")
+WIDTH_OPTION = typer.Option(None, "--width", help="Block width 2b along the blast \\[m].")
+ALPHA_OPTION = typer.Option(None, "--alpha-deg", help="Slenderness angle \\[deg], in (0, 90) (instead of --width).")
+DEPTH_OPTION = typer.Option(1.0, "--depth", help="Block depth 2w \\[m] (it cancels out of the planar response).")
+DENSITY_OPTION = typer.Option(2000.0, "--density", help="Density rho \\[kg/m^3].")
+RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts \\[-], in \\[0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
 
 
 def _fmt(x, spec=".6g") -> str:
@@ -60,22 +66,22 @@ def _inputs(block, **kw) -> dict:
 
 @app.command("rock")
 def rock_cmd(
-    height: float = typer.Option(10.0, "--height", help="Block height 2h [m]."),
-    width: Optional[float] = typer.Option(None, "--width", help="Block width 2b along the blast [m]."),
-    alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle [deg], in (0, 90) (instead of --width)."),
-    depth: float = typer.Option(1.0, "--depth", help="Block depth 2w [m] (it cancels out of the planar response)."),
-    density: float = typer.Option(2000.0, "--density", help="Density rho [kg/m^3]."),
-    charge: float = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W [kg]."),
-    standoff: float = typer.Option(..., "--standoff", help="Prototype stand-off R [m]."),
-    duration: float = typer.Option(5.0, "--duration", help="Simulated time after the shock arrival [s] (prototype)."),
+    height: float = HEIGHT_OPTION,
+    width: Optional[float] = WIDTH_OPTION,
+    alpha_deg: Optional[float] = ALPHA_OPTION,
+    depth: float = DEPTH_OPTION,
+    density: float = DENSITY_OPTION,
+    charge: float = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W \\[kg]."),
+    standoff: float = typer.Option(..., "--standoff", help="Prototype stand-off R \\[m]."),
+    duration: float = typer.Option(5.0, "--duration", help="Simulated time after the shock arrival \\[s] (prototype)."),
     pulse: str = typer.Option("friedlander", "--pulse", help=PULSE_HELP),
     restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP),
-    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda [-]: also design, run and up-scale the model."),
-    density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype [-]."),
-    gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype [-] (centrifuge)."),
-    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g [m/s^2]."),
+    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also design, run and up-scale the model."),
+    density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-]."),
+    gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype \\[-] (centrifuge)."),
+    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2]."),
     model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
-    samples: int = typer.Option(2001, "--samples", help="Sampling times for the comparison and the plot [-]."),
+    samples: int = typer.Option(2001, "--samples", help="Sampling times for the comparison and the plot \\[-]."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write theta(t), theta_dot(t) and the phase portrait to this image file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
 ) -> None:
@@ -161,19 +167,19 @@ def rock_cmd(
 
 @app.command("critical")
 def critical_cmd(
-    height: float = typer.Option(10.0, "--height", help="Block height 2h [m]."),
-    width: Optional[float] = typer.Option(None, "--width", help="Block width 2b along the blast [m]."),
-    alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle [deg], in (0, 90) (instead of --width)."),
-    depth: float = typer.Option(1.0, "--depth", help="Block depth 2w [m] (it cancels)."),
-    density: float = typer.Option(2000.0, "--density", help="Density rho [kg/m^3]."),
-    standoff: Optional[float] = typer.Option(None, "--standoff", help="Stand-off R [m]: find the critical charge."),
-    charge: Optional[float] = typer.Option(None, "--charge", help="Charge W [kg TNT]: find the critical stand-off instead."),
+    height: float = HEIGHT_OPTION,
+    width: Optional[float] = WIDTH_OPTION,
+    alpha_deg: Optional[float] = ALPHA_OPTION,
+    depth: float = DEPTH_OPTION,
+    density: float = DENSITY_OPTION,
+    standoff: Optional[float] = typer.Option(None, "--standoff", help="Stand-off R \\[m]: find the critical charge."),
+    charge: Optional[float] = typer.Option(None, "--charge", help="Charge W \\[kg TNT]: find the critical stand-off instead."),
     pulse: str = typer.Option("friedlander", "--pulse", help=PULSE_HELP),
     restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP + " (does not affect the first excursion)"),
-    duration: Optional[float] = typer.Option(None, "--duration", help="Accepted for symmetry with `rock`; the search simulates to the first impact or the tipping point [s]."),
-    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda [-]: also give the model's charge for the critical scenario."),
-    density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype [-]."),
-    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g [m/s^2]."),
+    duration: Optional[float] = typer.Option(None, "--duration", help="Accepted for symmetry with `rock`; the search simulates to the first impact or the tipping point \\[s]."),
+    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also give the model's charge for the critical scenario."),
+    density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-]."),
+    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2]."),
     model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the P-I overturning diagram (with the critical point) to this image file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),

@@ -38,8 +38,12 @@ def _runs(results, labels):
     return list(zip(labels, results))
 
 
-def _series(res, quantity):
-    return res.t, (res.theta if quantity == "theta" else res.theta_dot)
+_STYLES = ("-", "--", ":", "-.")
+_LABELS = {
+    "t": "time after arrival t [s]",
+    "theta": "rocking angle theta [rad]",
+    "theta_dot": "angular velocity theta_dot [rad/s]",
+}
 
 
 def _mark_events(ax, res, quantity):
@@ -49,6 +53,22 @@ def _mark_events(ax, res, quantity):
         ax.axvline(res.overturn_time, color="C3", lw=0.8, ls=":", label=None)
 
 
+def _draw_runs(ax, results, labels, x: str, y: str):
+    """Plot ``res.<y>`` against ``res.<x>`` ("t", "theta", "theta_dot") for every run, one
+    line style per run; events are marked on time plots. Returns the runs."""
+    ax = _ax(ax)
+    runs = _runs(results, labels)
+    for k, (lab, res) in enumerate(runs):
+        ax.plot(getattr(res, x), getattr(res, y), ls=_STYLES[k % len(_STYLES)], label=lab)
+        if x == "t":
+            _mark_events(ax, res, y)
+    ax.set_xlabel(_LABELS[x])
+    ax.set_ylabel(_LABELS[y])
+    if any(lab for lab, _ in runs):
+        ax.legend()
+    return ax, runs
+
+
 def plot_angle(results, ax=None, labels=None, alpha_line: bool = True):
     """Rocking angle theta(t) [rad] vs time [s] of one or several runs.
 
@@ -56,49 +76,22 @@ def plot_angle(results, ax=None, labels=None, alpha_line: bool = True):
     ticked on the axis, the overturn time (if any) is a dotted line and, with ``alpha_line``,
     +-alpha (the tipping angles) are drawn dashed.
     """
-    ax = _ax(ax)
-    runs = _runs(results, labels)
-    for k, (lab, res) in enumerate(runs):
-        t, y = _series(res, "theta")
-        ax.plot(t, y, ls=("-", "--", ":", "-.")[k % 4], label=lab)
-        _mark_events(ax, res, "theta")
+    ax, runs = _draw_runs(ax, results, labels, "t", "theta")
     if alpha_line and runs and runs[0][1].system is not None:
         a = runs[0][1].system.alpha
         for v in (a, -a):
             ax.axhline(v, color="0.5", lw=0.6, ls="--")
-    ax.set_xlabel("time after arrival t [s]")
-    ax.set_ylabel("rocking angle theta [rad]")
-    if any(lab for lab, _ in runs):
-        ax.legend()
     return ax
 
 
 def plot_angular_velocity(results, ax=None, labels=None):
     """Angular velocity theta_dot(t) [rad/s] vs time [s] (jumps at impacts: restitution)."""
-    ax = _ax(ax)
-    runs = _runs(results, labels)
-    for k, (lab, res) in enumerate(runs):
-        t, y = _series(res, "theta_dot")
-        ax.plot(t, y, ls=("-", "--", ":", "-.")[k % 4], label=lab)
-        _mark_events(ax, res, "theta_dot")
-    ax.set_xlabel("time after arrival t [s]")
-    ax.set_ylabel("angular velocity theta_dot [rad/s]")
-    if any(lab for lab, _ in runs):
-        ax.legend()
-    return ax
+    return _draw_runs(ax, results, labels, "t", "theta_dot")[0]
 
 
 def plot_phase_portrait(results, ax=None, labels=None):
     """Phase portrait theta_dot [rad/s] vs theta [rad] (paper Fig. 8, last panel)."""
-    ax = _ax(ax)
-    runs = _runs(results, labels)
-    for k, (lab, res) in enumerate(runs):
-        ax.plot(res.theta, res.theta_dot, ls=("-", "--", ":", "-.")[k % 4], label=lab)
-    ax.set_xlabel("rocking angle theta [rad]")
-    ax.set_ylabel("angular velocity theta_dot [rad/s]")
-    if any(lab for lab, _ in runs):
-        ax.legend()
-    return ax
+    return _draw_runs(ax, results, labels, "theta", "theta_dot")[0]
 
 
 def plot_similarity(sim, quantity: str = "theta", ax=None):

@@ -201,17 +201,9 @@ def critical_charge(
     --------
     The paper's 10 m block (alpha = 15 deg) at 2 m: 79.8 kg (paper Sec. "Equations of motion").
     """
-    system = as_rocking_system(body, gravity, restitution)
     R = float(check_positive("standoff", standoff, "m"))
     check_positive("guess", guess, "kg")
-    solver = solver or DEFAULT_SOLVER
-
-    def margin(W):
-        return overturn_margin(system, _pulse_from_params(blast_parameters(W, R, model), pulse), solver=solver)
-
-    W, br, n = _search(margin, guess, True, xtol_rel, "charge", "kg")
-    name = model if isinstance(model, str) else getattr(model, "name", str(model))
-    return CriticalResult(W, R, "charge", pulse, name, xtol_rel, n, br)
+    return _critical(body, "charge", R, pulse, model, gravity, restitution, solver, guess, xtol_rel)
 
 
 def critical_standoff(
@@ -231,17 +223,27 @@ def critical_standoff(
     [kg] > 0 fixed and ``guess`` the starting stand-off [m]; the margin decreases with
     distance). Returns a :class:`CriticalResult` whose ``standoff_m`` [m] is the critical
     stand-off. References: paper Sec. "Equations of motion"; Masi et al. (2019)."""
-    system = as_rocking_system(body, gravity, restitution)
     W = float(check_positive("charge", charge, "kg"))
     check_positive("guess", guess, "m")
-    solver = solver or DEFAULT_SOLVER
+    return _critical(body, "standoff", W, pulse, model, gravity, restitution, solver, guess, xtol_rel)
 
-    def margin(R):
+
+def _critical(body, searched, fixed, pulse, model, gravity, restitution, solver, guess, xtol_rel) -> CriticalResult:
+    """Critical charge (``searched="charge"``, ``fixed`` the stand-off [m]; the margin grows
+    with the charge) or stand-off (``"standoff"``, ``fixed`` the charge [kg]; it falls with
+    the distance)."""
+    system = as_rocking_system(body, gravity, restitution)
+    solver = solver or DEFAULT_SOLVER
+    by_charge = searched == "charge"
+
+    def margin(x):
+        W, R = (x, fixed) if by_charge else (fixed, x)
         return overturn_margin(system, _pulse_from_params(blast_parameters(W, R, model), pulse), solver=solver)
 
-    R, br, n = _search(margin, guess, False, xtol_rel, "standoff", "m")
+    x, br, n = _search(margin, guess, by_charge, xtol_rel, searched, "kg" if by_charge else "m")
+    W, R = (x, fixed) if by_charge else (fixed, x)
     name = model if isinstance(model, str) else getattr(model, "name", str(model))
-    return CriticalResult(W, R, "standoff", pulse, name, xtol_rel, n, br)
+    return CriticalResult(W, R, searched, pulse, name, xtol_rel, n, br)
 
 
 @dataclass(frozen=True)
