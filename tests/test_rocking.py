@@ -249,6 +249,27 @@ def test_bad_block_and_pulse_inputs_give_clear_errors():
         RockingSystem(mass=1.0, inertia_pivot=0.5, radius=1.0, alpha=0.2, loaded_area=1.0, lever_arm=0.5)
 
 
+@pytest.mark.parametrize(
+    "call, word",
+    [
+        (lambda: RockingSolver(max_steps=1.5), "max_steps"),
+        (lambda: simulate(BLOCK, None, 1.0, max_impacts=-1), "max_impacts"),
+        (lambda: RockingSolver().simulate_batch(BLOCK, None, 1.0, [0.0], max_impacts=-3), "max_impacts"),
+        (lambda: RockingSolver().simulate_batch(BLOCK, None, 1.0, [0.0], theta0=[[0.1, 0.2]]), "theta0"),
+        (lambda: RockingSolver().simulate_batch(BLOCK, None, 1.0, [0.0], theta_dot0=[float("inf")]), "angular velocity"),
+        (lambda: simulate(BLOCK, "friedlander", 1.0), "pulse"),
+        (lambda: simulate(BLOCK, None, float("inf")), "duration"),
+        (lambda: simulate(BLOCK, None, 1.0, theta0=math.pi / 2), "theta0"),
+        (lambda: simulate(BLOCK, None, 1.0, gravity=0.0), "gravity"),
+    ],
+)
+def test_odd_solver_inputs_give_named_errors(call, word):
+    """Counts that are not whole numbers, wrong shapes, infinities, angles at +-90 deg and
+    non-pulses: a BlastscaleInputError naming the parameter (never a numpy error or a NaN)."""
+    with pytest.raises(BlastscaleInputError, match=word):
+        call()
+
+
 # ------------------------------------------------------------------ property-based checks
 from hypothesis import HealthCheck, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402

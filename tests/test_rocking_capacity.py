@@ -94,3 +94,12 @@ def test_capacity_bad_input():
     # a tiny block far away: the outcome never changes within the fits' range of Z
     with pytest.raises(BlastscaleInputError, match="critical charge"):
         critical_charge(RectangularBlock(100.0, 60.0), 50.0, model="masi2021")
+    # odd counts, empty tables, non-pulses, a tolerance of 0: named errors, not numpy/scipy ones
+    with pytest.raises(BlastscaleInputError, match="n = 0"):
+        pi_diagram(BLOCK, n=0)
+    with pytest.raises(BlastscaleInputError, match="peak_pressures"):
+        pi_diagram(BLOCK, peak_pressures=[])
+    with pytest.raises(BlastscaleInputError, match="pulse"):
+        overturn_margin(BLOCK, None)
+    with pytest.raises(BlastscaleInputError, match="xtol_rel"):
+        critical_charge(BLOCK, 2.0, model="masi2021", xtol_rel=0.0)

@@ -98,6 +98,8 @@ def test_plots_are_written(tmp_path, capsys):
         (["rock", "--charge", "50", "--standoff", "2"], "width"),
         (["critical", "--alpha-deg", "15"], "standoff"),
         (["critical", "--alpha-deg", "15", "--standoff", "2", "--pulse", "square"], "pulse"),
+        (["critical", "--alpha-deg", "15", "--standoff", "2", "--plot", "/no/such/folder/pi.png"], "plot"),
+        (["rock", "--alpha-deg", "15", "--charge", "50", "--standoff", "2", "--plot", "/no/such/folder/r.png"], "plot"),
     ],
 )
 def test_bad_input_one_line_error_exit_2(capsys, argv, word):

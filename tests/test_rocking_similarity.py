@@ -105,6 +105,8 @@ def test_similarity_bad_input():
         compare_rocking(BLOCK, 50.0, 2.0, 0.1, pulse="square", model="masi2021")
     with pytest.raises(BlastscaleInputError, match="scale"):
         compare_rocking(BLOCK, 50.0, 2.0, -0.1, model="masi2021")
+    with pytest.raises(BlastscaleInputError, match="n_samples"):
+        compare_rocking(BLOCK, 50.0, 2.0, 0.1, n_samples=2.5, model="masi2021")
 
 
 def test_centrifuge_gravity_ratio_impulsive_exact():

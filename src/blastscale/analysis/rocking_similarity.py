@@ -132,8 +132,9 @@ class RockingSimilarity:
     max_fall_phase_diff : float or None
         Both overturn to the same side: max over the common part of the falls (after both
         tipped, before either lies down) of ``|theta_dot_m - theta_dot_p| / p`` at equal angle
-        [rad, i.e. the angle-velocity phase plane in the dimensionless time p t]. Bounded by
-        ``|tipping_angular_velocity_diff| / p`` (energy conservation); None otherwise.
+        [rad, i.e. the angle-velocity phase plane in the dimensionless time p t]. When the
+        pulse is over at the tipping point (ms-long pulses, tipping after ~1 s) it is bounded
+        by ``|tipping_angular_velocity_diff| / p`` (energy conservation); None otherwise.
     peak_ratio : float
         First-peak angle of the model over that of the prototype [-] (largest angles when
         either has no peak; 1 when both overturn).
