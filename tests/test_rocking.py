@@ -271,7 +271,7 @@ def test_odd_solver_inputs_give_named_errors(call, word):
 
 
 # ------------------------------------------------------------------ property-based checks
-from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 
@@ -367,6 +367,9 @@ def test_overturned_if_and_only_if_it_falls(theta0_ratio, w0, impulse_ratio, dur
     flagged as overturned lies on its side at the end (40/p later: long enough for any fall
     that is not balanced on the top to within round-off), and one not flagged never reaches
     it; the scipy reference reaches the same outcome."""
+    # exactly on the edge at rest and unloaded is an unstable equilibrium: flagged as overturned
+    # (it is at its tipping point; docs/rocking.md) although the exact equations keep it there
+    assume(not (abs(theta0_ratio) == 1.0 and w0 == 0.0 and impulse_ratio == 0.0))
     p = SYSTEM.frequency_parameter
     i = impulse_ratio * SYSTEM.critical_impulse
     pulse = Triangular(2 * i * p / duration_ratio, i) if i > 0 else None
