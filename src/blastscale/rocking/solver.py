@@ -329,8 +329,16 @@ class RockingSolver:
 
         ``bodies`` and ``pulses`` are single objects or sequences of length n (a single one is
         broadcast); ``theta0`` / ``theta_dot0`` scalars or arrays of length n [rad], [rad/s];
-        ``t_eval`` (m,) increasing times in [0, duration] [s]. Wrong lengths raise a
+        ``t_eval`` (m,) increasing times in [0, duration] [s]; ``duration`` [s] > 0;
+        ``max_impacts`` / ``stop_at_overturn`` / ``gravity`` [m/s^2] as in :meth:`simulate`
+        (each body keeps its own restitution). Wrong lengths raise a
         :class:`~blastscale._validate.BlastscaleInputError` naming them.
+
+        Returns
+        -------
+        RockingBatchResult
+            ``theta`` [rad] and ``theta_dot`` [rad/s] shaped (n, m) at ``t`` [s]; outcome,
+            overturn and first-impact times [s], peak angles [rad], counts, shaped (n,).
         """
         dur = float(check_positive("duration", duration, "s"))
         tev = self._check_t_eval(t_eval, dur)
