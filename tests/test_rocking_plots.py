@@ -55,6 +55,11 @@ def test_similarity_overlay_and_figure():
     with pytest.raises(BlastscaleInputError, match="quantity"):
         plot_similarity(sim, "sliding")
     plt.close("all")
+    # both overturn: the title gives the figures that measure similarity (rocking phase, fall)
+    over = compare_rocking(BLOCK, 100.0, 2.0, 1 / 20, model="masi2021", duration=4.0, n_samples=401)
+    title = plot_similarity(over, "theta").get_title()
+    assert f"to tipping {over.max_abs_angle_diff_to_tipping:.2e}" in title and "tipping shift" in title
+    plt.close("all")
 
 
 def test_pi_plot_shows_curve_and_asymptotes():
