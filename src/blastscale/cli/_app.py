@@ -14,6 +14,8 @@ from rich.console import Console
 from rich.table import Table
 from typer.core import TyperGroup
 
+from .._validate import BlastscaleInputError
+
 # Wide enough for the tables when output is piped (rich falls back to 80 columns otherwise).
 console = Console(width=None if Console().is_terminal else 160)
 console_err = Console(stderr=True, width=None if Console(stderr=True).is_terminal else 160)
@@ -104,8 +106,12 @@ def save_figure(build, path) -> None:
     import matplotlib.pyplot as plt
 
     fig = build()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    try:
+        fig.savefig(path, dpi=120)
+    except (OSError, ValueError) as exc:  # missing folder, no permission, unknown image format
+        raise BlastscaleInputError(f"plot = {str(path)!r} cannot be written: {exc}") from exc
+    finally:
+        plt.close(fig)
 
 
 def table(title: str, rows: list[tuple[str, str, str]]) -> Table:

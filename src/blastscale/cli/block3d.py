@@ -8,7 +8,8 @@ import typer
 
 from .._validate import BlastscaleInputError, check_positive
 from ._app import app, console, one_line_warnings, print_json, save_figure, table
-from .loads import MODEL_HELP, block_from_options
+from . import options as opt
+from .options import block_from_options, check_plot_path
 
 _SUMMARY_ROWS = (
     ("overturned", "overturned", "", None),
@@ -27,30 +28,30 @@ def _rows(summary: dict) -> list[tuple[str, str, str]]:
 
 @app.command("block3d")
 def block3d_cmd(
-    height: float = typer.Option(10.0, "--height", help="Block height 2h [m]."),
-    width: Optional[float] = typer.Option(None, "--width", help="Block width 2b along the blast [m]."),
-    alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle [deg] (instead of --width)."),
-    depth: float = typer.Option(1.0, "--depth", help="Block depth 2w across the blast [m]."),
-    density: float = typer.Option(2000.0, "--density", help="Density rho [kg/m^3]."),
-    charge: float = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W [kg]."),
-    standoff: float = typer.Option(..., "--standoff", help="Prototype stand-off R [m]."),
-    duration: float = typer.Option(5.0, "--duration", help="Simulated time after shock arrival [s] (prototype)."),
-    pulse: str = typer.Option("friedlander", "--pulse", help="Pulse shape: friedlander, triangular or impulsive."),
+    height: float = opt.HEIGHT,
+    width: Optional[float] = opt.WIDTH,
+    alpha_deg: Optional[float] = opt.ALPHA_DEG,
+    depth: float = opt.DEPTH,
+    density: float = opt.DENSITY,
+    charge: float = opt.CHARGE,
+    standoff: float = opt.STANDOFF,
+    duration: float = opt.DURATION,
+    pulse: str = opt.PULSE,
     restitution: Optional[float] = typer.Option(
         None, "--restitution",
         help="Not applicable in 3D: restitution emerges from the inelastic contact (Housner's value is "
              "reproduced within 0.1%). Accepted for compatibility with `rock`; a value is rejected.",
     ),
-    friction: float = typer.Option(0.7, "--friction", help="Coulomb friction coefficient mu [-] (paper: tan 35 deg)."),
-    timestep: float = typer.Option(2e-4, "--timestep", help="Prototype time step [s] (the model's is x sqrt(lambda)); the 2 ms contact time constant is raised to 4 steps if needed."),
-    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda [-]: also run the model."),
-    density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype [-]."),
-    gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype [-] (centrifuge)."),
-    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g [m/s^2]."),
-    model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
+    friction: float = typer.Option(0.7, "--friction", help="Coulomb friction coefficient mu \\[-] (paper: tan 35 deg)."),
+    timestep: float = typer.Option(2e-4, "--timestep", help="Prototype time step \\[s] (the model's is x sqrt(lambda)); the 2 ms contact time constant is raised to 4 steps if needed."),
+    scale: Optional[float] = opt.SCALE,
+    density_ratio: float = opt.DENSITY_RATIO,
+    gravity_ratio: float = opt.GRAVITY_RATIO,
+    gravity: float = opt.GRAVITY,
+    model: str = opt.MODEL,
     record_every: int = typer.Option(5, "--record-every", help="Keep one state every N steps."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write histories and pose snapshots to this image file."),
-    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
+    as_json: bool = opt.JSON,
 ) -> None:
     """Rocking, sliding and uplift of a rigid block under a blast (MuJoCo, the paper's Method A).
 
@@ -67,6 +68,7 @@ def block3d_cmd(
             "the inelastic contact (omit --restitution)"
         )
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
+    check_plot_path(plot)
     check_positive("timestep", timestep, "s")  # before it sets the contact time constant below
     base = ContactSettings()
     contact = ContactSettings(

@@ -13,39 +13,7 @@ from ..blast import blast_parameters
 from ..similitude import FACTOR_UNITS, design_model
 from ..structures import RectangularBlock
 from ._app import app, console, one_line_warnings, print_json, table
-
-MODEL_HELP = "Blast model: kingery-bulmash (Swisdak 1994, default) or masi2021 (the paper's Appendix A fits)."
-
-
-def block_from_options(
-    height: Optional[float],
-    width: Optional[float],
-    alpha_deg: Optional[float],
-    depth: float,
-    density: float,
-    required: bool = False,
-) -> Optional[RectangularBlock]:
-    """The prototype block from CLI options (m, deg, kg/m^3), or None when no geometry is given
-    (an error instead when ``required``).
-
-    Accepts ``--height`` with ``--width``, or ``--height`` with ``--alpha-deg`` (width = height tan alpha).
-    """
-    if required and width is None and alpha_deg is None:
-        raise BlastscaleInputError("width = None is out of range: give --width (m) or --alpha-deg (deg, in (0, 90))")
-    if height is None and width is None and alpha_deg is None:
-        return None
-    if height is None:
-        raise BlastscaleInputError("height = None is out of range: give --height (m) with --width or --alpha-deg")
-    if (width is None) == (alpha_deg is None):
-        raise BlastscaleInputError(
-            f"width = {width}, alpha-deg = {alpha_deg}: give exactly one of --width (m) or --alpha-deg (deg, in (0, 90))"
-        )
-    if width is not None:
-        return RectangularBlock(height=height, width=width, depth=depth, density=density)
-    if not (0.0 < alpha_deg < 90.0):
-        raise BlastscaleInputError(f"alpha-deg = {alpha_deg:g} deg is out of range: valid range is (0, 90) deg")
-    return RectangularBlock.from_slenderness(height, math.radians(alpha_deg), depth=depth, density=density)
-
+from .options import MODEL, MODEL_HELP, block_from_options
 
 def _g(x: Optional[float], fmt: str = ".6g") -> str:
     return "-" if x is None else format(x, fmt)
@@ -53,8 +21,8 @@ def _g(x: Optional[float], fmt: str = ".6g") -> str:
 
 @app.command("blast")
 def blast_cmd(
-    charge: float = typer.Option(..., "--charge", help="TNT-equivalent charge W [kg]."),
-    standoff: float = typer.Option(..., "--standoff", help="Stand-off distance R [m]."),
+    charge: float = typer.Option(..., "--charge", help="TNT-equivalent charge W \\[kg]."),
+    standoff: float = typer.Option(..., "--standoff", help="Stand-off distance R \\[m]."),
     model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
     extrapolate: bool = typer.Option(False, "--extrapolate", help="Evaluate fits outside their range (warns)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
@@ -115,20 +83,20 @@ def print_design(d) -> None:
 
 @app.command("design")
 def design_cmd(
-    charge: float = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W [kg]."),
-    standoff: float = typer.Option(..., "--standoff", help="Prototype stand-off R [m]."),
-    scale: float = typer.Option(..., "--scale", help="Geometric scale lambda = model/prototype [-], e.g. 0.005."),
+    charge: float = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W \\[kg]."),
+    standoff: float = typer.Option(..., "--standoff", help="Prototype stand-off R \\[m]."),
+    scale: float = typer.Option(..., "--scale", help="Geometric scale lambda = model/prototype \\[-], e.g. 0.005."),
     density_ratio: Optional[float] = typer.Option(
-        None, "--density-ratio", help="gamma = rho_model/rho_prototype [-] (default 1; imposed by hopkinson-cranz)."
+        None, "--density-ratio", help="gamma = rho_model/rho_prototype \\[-] (default 1; imposed by hopkinson-cranz)."
     ),
-    gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="g_model/g_prototype [-]."),
+    gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="g_model/g_prototype \\[-]."),
     law: str = typer.Option("general", "--law", help="general (paper Eq. 8) or hopkinson-cranz."),
     model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
-    height: Optional[float] = typer.Option(None, "--height", help="Prototype block height 2h [m]."),
-    width: Optional[float] = typer.Option(None, "--width", help="Prototype block width 2b [m]."),
-    alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle [deg] (with --height)."),
-    depth: float = typer.Option(1.0, "--depth", help="Prototype block depth 2w [m] (cancels)."),
-    density: float = typer.Option(2000.0, "--density", help="Prototype density [kg/m^3]."),
+    height: Optional[float] = typer.Option(None, "--height", help="Prototype block height 2h \\[m]."),
+    width: Optional[float] = typer.Option(None, "--width", help="Prototype block width 2b \\[m]."),
+    alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle \\[deg] (with --height)."),
+    depth: float = typer.Option(1.0, "--depth", help="Prototype block depth 2w \\[m] (cancels)."),
+    density: float = typer.Option(2000.0, "--density", help="Prototype density \\[kg/m^3]."),
     extrapolate: bool = typer.Option(False, "--extrapolate", help="Evaluate fits outside their range (warns)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
 ) -> None:

@@ -110,9 +110,9 @@ def _compare_table(title: str, rows: list[tuple[str, object, object, str]]) -> T
 @app.command("run")
 def run_cmd(
     model: str = typer.Option(DEFAULT_SCENARIO["blast_model"], "--model", help=MODEL_HELP),
-    charge: float = typer.Option(DEFAULT_SCENARIO["charge_kg"], "--charge", help="Prototype charge W [kg]."),
-    friction: float = typer.Option(DEFAULT_SCENARIO["friction"], "--friction", help="Coulomb friction mu [-] (3D)."),
-    duration: float = typer.Option(DEFAULT_SCENARIO["duration_s"], "--duration", help="Simulated time [s]."),
+    charge: float = typer.Option(DEFAULT_SCENARIO["charge_kg"], "--charge", help="Prototype charge W \\[kg]."),
+    friction: float = typer.Option(DEFAULT_SCENARIO["friction"], "--friction", help="Coulomb friction mu \\[-] (3D)."),
+    duration: float = typer.Option(DEFAULT_SCENARIO["duration_s"], "--duration", help="Simulated time \\[s]."),
     out: Optional[Path] = typer.Option(None, "--out", help="Folder for summary.json and figures."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
 ) -> None:

@@ -14,15 +14,9 @@ import typer
 
 from .._validate import BlastscaleInputError
 from ._app import app, console, console_err, print_json, save_figure, table
-from .loads import MODEL_HELP, block_from_options
+from . import options as opt
+from .options import PULSE_HELP, block_from_options, check_plot_path
 
-PULSE_HELP = "Pulse shape: friedlander (paper Eq. 1), triangular (Eq. 3) or impulsive (Dirac of the same impulse)."
-# the block options shared by `rock` and `critical` (one OptionInfo may serve several commands)
-HEIGHT_OPTION = typer.Option(10.0, "--height", help="Block height 2h \\[m].")
-WIDTH_OPTION = typer.Option(None, "--width", help="Block width 2b along the blast \\[m].")
-ALPHA_OPTION = typer.Option(None, "--alpha-deg", help="Slenderness angle \\[deg], in (0, 90) (instead of --width).")
-DEPTH_OPTION = typer.Option(1.0, "--depth", help="Block depth 2w \\[m] (it cancels out of the planar response).")
-DENSITY_OPTION = typer.Option(2000.0, "--density", help="Density rho \\[kg/m^3].")
 RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts \\[-], in \\[0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
 
 
@@ -44,14 +38,6 @@ def _summary_rows(s: dict) -> list[tuple[str, str, str]]:
     ]
 
 
-def _check_plot_path(plot: Optional[str]) -> None:
-    """Fail before the (long) computation when the figure cannot be written."""
-    if plot:
-        parent = Path(plot).expanduser().resolve().parent
-        if not parent.is_dir():
-            raise BlastscaleInputError(f"plot = {plot!r}: the folder {str(parent)!r} does not exist")
-
-
 def _inputs(block, **kw) -> dict:
     d = {
         "height_m": block.height,
@@ -66,24 +52,24 @@ def _inputs(block, **kw) -> dict:
 
 @app.command("rock")
 def rock_cmd(
-    height: float = HEIGHT_OPTION,
-    width: Optional[float] = WIDTH_OPTION,
-    alpha_deg: Optional[float] = ALPHA_OPTION,
-    depth: float = DEPTH_OPTION,
-    density: float = DENSITY_OPTION,
-    charge: float = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W \\[kg]."),
-    standoff: float = typer.Option(..., "--standoff", help="Prototype stand-off R \\[m]."),
-    duration: float = typer.Option(5.0, "--duration", help="Simulated time after the shock arrival \\[s] (prototype)."),
-    pulse: str = typer.Option("friedlander", "--pulse", help=PULSE_HELP),
+    height: float = opt.HEIGHT,
+    width: Optional[float] = opt.WIDTH,
+    alpha_deg: Optional[float] = opt.ALPHA_DEG,
+    depth: float = opt.DEPTH,
+    density: float = opt.DENSITY,
+    charge: float = opt.CHARGE,
+    standoff: float = opt.STANDOFF,
+    duration: float = opt.DURATION,
+    pulse: str = opt.PULSE,
     restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP),
-    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also design, run and up-scale the model."),
-    density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-]."),
-    gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype \\[-] (centrifuge)."),
-    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2]."),
-    model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
+    scale: Optional[float] = opt.SCALE,
+    density_ratio: float = opt.DENSITY_RATIO,
+    gravity_ratio: float = opt.GRAVITY_RATIO,
+    gravity: float = opt.GRAVITY,
+    model: str = opt.MODEL,
     samples: int = typer.Option(2001, "--samples", help="Sampling times for the comparison and the plot \\[-]."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write theta(t), theta_dot(t) and the phase portrait to this image file."),
-    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
+    as_json: bool = opt.JSON,
 ) -> None:
     """Rocking response of a rigid block to a blast: overturning, its time, the first impact.
 
@@ -97,7 +83,7 @@ def rock_cmd(
     from ..rocking import RockingSystem, simulate
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
-    _check_plot_path(plot)
+    check_plot_path(plot)
     if samples < 2:
         raise BlastscaleInputError(f"samples = {samples} is out of range: must be >= 2")
     out: dict = {
@@ -167,20 +153,20 @@ def rock_cmd(
 
 @app.command("critical")
 def critical_cmd(
-    height: float = HEIGHT_OPTION,
-    width: Optional[float] = WIDTH_OPTION,
-    alpha_deg: Optional[float] = ALPHA_OPTION,
-    depth: float = DEPTH_OPTION,
-    density: float = DENSITY_OPTION,
+    height: float = opt.HEIGHT,
+    width: Optional[float] = opt.WIDTH,
+    alpha_deg: Optional[float] = opt.ALPHA_DEG,
+    depth: float = opt.DEPTH,
+    density: float = opt.DENSITY,
     standoff: Optional[float] = typer.Option(None, "--standoff", help="Stand-off R \\[m]: find the critical charge."),
     charge: Optional[float] = typer.Option(None, "--charge", help="Charge W \\[kg TNT]: find the critical stand-off instead."),
-    pulse: str = typer.Option("friedlander", "--pulse", help=PULSE_HELP),
+    pulse: str = opt.PULSE,
     restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP + " (does not affect the first excursion)"),
     duration: Optional[float] = typer.Option(None, "--duration", help="Accepted for symmetry with `rock`; the search simulates to the first impact or the tipping point \\[s]."),
     scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also give the model's charge for the critical scenario."),
-    density_ratio: float = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-]."),
-    gravity: float = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2]."),
-    model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
+    density_ratio: float = opt.DENSITY_RATIO,
+    gravity: float = opt.GRAVITY,
+    model: str = opt.MODEL,
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the P-I overturning diagram (with the critical point) to this image file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
@@ -190,7 +176,7 @@ def critical_cmd(
     from ..rocking import RockingSystem, critical_charge, critical_standoff
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
-    _check_plot_path(plot)
+    check_plot_path(plot)
     if (standoff is None) == (charge is None):
         raise BlastscaleInputError(
             f"standoff = {standoff}, charge = {charge}: give exactly one of --standoff (m, finds the critical charge) "

@@ -1,0 +1,76 @@
+"""Command-line options shared by several commands, and the geometry / output-path checks.
+
+One ``typer.Option`` object may serve several commands. Help texts write units as ``\\[m]``:
+rich would otherwise read ``[m]`` as markup and drop it from ``--help``.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from .._validate import BlastscaleInputError
+from ..structures import RectangularBlock
+
+MODEL_HELP = "Blast model: kingery-bulmash (Swisdak 1994, default) or masi2021 (the paper's Appendix A fits)."
+
+
+def block_from_options(
+    height: Optional[float],
+    width: Optional[float],
+    alpha_deg: Optional[float],
+    depth: float,
+    density: float,
+    required: bool = False,
+) -> Optional[RectangularBlock]:
+    """The prototype block from CLI options (m, deg, kg/m^3), or None when no geometry is given
+    (an error instead when ``required``).
+
+    Accepts ``--height`` with ``--width``, or ``--height`` with ``--alpha-deg`` (width = height tan alpha).
+    """
+    if required and width is None and alpha_deg is None:
+        raise BlastscaleInputError("width = None is out of range: give --width (m) or --alpha-deg (deg, in (0, 90))")
+    if height is None and width is None and alpha_deg is None:
+        return None
+    if height is None:
+        raise BlastscaleInputError("height = None is out of range: give --height (m) with --width or --alpha-deg")
+    if (width is None) == (alpha_deg is None):
+        raise BlastscaleInputError(
+            f"width = {width}, alpha-deg = {alpha_deg}: give exactly one of --width (m) or --alpha-deg (deg, in (0, 90))"
+        )
+    if width is not None:
+        return RectangularBlock(height=height, width=width, depth=depth, density=density)
+    if not (0.0 < alpha_deg < 90.0):
+        raise BlastscaleInputError(f"alpha-deg = {alpha_deg:g} deg is out of range: valid range is (0, 90) deg")
+    return RectangularBlock.from_slenderness(height, math.radians(alpha_deg), depth=depth, density=density)
+
+
+def check_plot_path(plot: Optional[str]) -> None:
+    """Fail before a (long) computation when the figure cannot be written: its folder must exist."""
+    if plot:
+        parent = Path(plot).expanduser().resolve().parent
+        if not parent.is_dir():
+            raise BlastscaleInputError(f"plot = {plot!r}: the folder {str(parent)!r} does not exist")
+
+
+PULSE_HELP = "Pulse shape: friedlander (paper Eq. 1), triangular (Eq. 3) or impulsive (Dirac of the same impulse)."
+
+# the block, scenario and output options shared by rock, critical and block3d
+HEIGHT = typer.Option(10.0, "--height", help="Block height 2h \\[m].")
+WIDTH = typer.Option(None, "--width", help="Block width 2b along the blast \\[m].")
+ALPHA_DEG = typer.Option(None, "--alpha-deg", help="Slenderness angle \\[deg], in (0, 90) (instead of --width).")
+DEPTH = typer.Option(1.0, "--depth", help="Block depth 2w across the blast \\[m] (it cancels out of the planar response).")
+DENSITY = typer.Option(2000.0, "--density", help="Density rho \\[kg/m^3].")
+CHARGE = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W \\[kg].")
+STANDOFF = typer.Option(..., "--standoff", help="Prototype stand-off R \\[m].")
+DURATION = typer.Option(5.0, "--duration", help="Simulated time after the shock arrival \\[s] (prototype).")
+PULSE = typer.Option("friedlander", "--pulse", help=PULSE_HELP)
+SCALE = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also design, run and up-scale the model.")
+DENSITY_RATIO = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-].")
+GRAVITY_RATIO = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype \\[-] (centrifuge).")
+GRAVITY = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2].")
+MODEL = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP)
+JSON = typer.Option(False, "--json", help="Print one JSON object instead of tables.")
