@@ -168,6 +168,11 @@ def run_cmd(
     ]))
     console.print(f"similarity: max |angle difference| {rs['max_abs_angle_diff_rad']:.3g} rad, peak ratio "
                   f"{rs['peak_ratio']:.6f}, outcomes agree: {rs['outcomes_agree']}")
+    if rp["overturned"] and rm["overturned"]:
+        # after tipping, equal-time differences measure the tipping-time shift times the fall speed;
+        # the meaningful figures are up to tipping and along the fall at equal angle (docs/rocking.md)
+        console.print(f"  up to tipping {rs['max_abs_angle_diff_to_tipping_rad']:.3g} rad; tipping time shift "
+                      f"{rs['overturn_time_diff_s']:.3g} s; fall at equal angle {rs['max_fall_phase_diff_rad']:.3g} rad")
     console.print(f"critical charge at {s['standoff_m']:g} m (planar, {s['pulse']}): "
                   f"[bold]{crit.charge_kg:.4g} kg[/] ({crit.evaluations} simulations)")
     bs = b3.summary()
