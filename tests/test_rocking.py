@@ -271,7 +271,7 @@ def test_odd_solver_inputs_give_named_errors(call, word):
 
 
 # ------------------------------------------------------------------ property-based checks
-from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
+from hypothesis import HealthCheck, assume, example, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 
@@ -361,6 +361,11 @@ def test_toward_blast_overturn_is_timed_at_the_end_of_the_pulse(duration):
     impulse_ratio=st.floats(0.0, 1.5),
     duration_ratio=st.floats(1e-3, 0.5),
 )
+# found by hypothesis: a rest-speed start (1e-16 p) and a near-zero start under a large load, whose
+# initial step estimate collapsed below the step-size floor (step size underflow)
+@example(theta0_ratio=0.0, w0=1e-16, impulse_ratio=0.0, duration_ratio=0.5)
+@example(theta0_ratio=1e-14, w0=0.0, impulse_ratio=1.0, duration_ratio=0.125)
+@example(theta0_ratio=-1e-15, w0=0.0, impulse_ratio=1.0, duration_ratio=0.125)
 def test_overturned_if_and_only_if_it_falls(theta0_ratio, w0, impulse_ratio, duration_ratio):
     """Rigour of the overturning criterion: from any initial state (|theta0| up to 1.5 alpha,
     theta_dot0 up to 1.2 p either way, past the top included) and any triangular pulse, a body

@@ -358,6 +358,8 @@ def solve_case(
     tau = 0.0
     th = th0
     w = w0
+    if th == 0.0 and abs(w) <= w_rest:
+        w = 0.0  # upright and slower than the rest velocity (as after an impact): at rest
     if th > 0.0:
         s = 1.0
     elif th < 0.0:
@@ -433,6 +435,9 @@ def solve_case(
             h = _initial_step(tau, th, w, s, alpha, kind, par, tab_t, tab_f, rtol, atol)
             if tau < tau_pend:
                 h = min(h, 0.01 * (tbp - tau))
+            # Hairer's estimate collapses for a state near zero under a large load (theta0 ~ 1e-15):
+            # floor it; the error control shrinks it again where that is really needed
+            h = max(h, 1e-9 * (tbp - tau))
         hit_bp = False
         if tau + h >= tbp:
             h = tbp - tau
