@@ -378,3 +378,17 @@ def test_similarity_is_exact_in_the_impulsive_limit():
     # the general law matches the impulse exactly, so with a Dirac load the model is exactly
     # similar: round-off only (measured 4e-15 rad); 1e-9 rad leaves room for solver round-off
     assert c.differences["max_abs_rotation_diff_rad"] < 1e-9
+
+
+def test_upscaled_model_receives_the_prototype_momentum():
+    # The general law makes the model's delivered blast momentum (impulse x area = momentum factor
+    # gamma lambda^(7/2) of the prototype's) scale exactly: up-scaled by the momentum factor it equals the
+    # prototype's i_r S. The exact-impulse force routine delivers i S to round-off (1e-12 relative).
+    from blastscale.analysis.block3d_similarity import compare_block3d
+
+    block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+    c = compare_block3d(block, 50.0, 2.0, 1 / 200, density_ratio=0.5, model="masi2021", duration=0.05)
+    expected = c.design.prototype.reflected_impulse * block.front_area
+    assert c.prototype.impulse_delivered == pytest.approx(expected, rel=1e-12)
+    assert c.model_upscaled.impulse_delivered == pytest.approx(expected, rel=1e-9)
+    assert c.model.upscaled(c.design.factors.length, c.design.factors.time).impulse_delivered is None

@@ -169,5 +169,5 @@ def compare_block3d(
     )
     proto = proto_sim.run(block, design.prototype.pulse(pulse), duration)
     mod = model_sim.run(model_block, design.model.pulse(pulse), duration * f.time)
-    up = mod.upscaled(f.length, f.time)
+    up = mod.upscaled(f.length, f.time, f.momentum)
     return Block3DComparison(design, proto, mod, up, history_differences(proto, up))

@@ -16,7 +16,6 @@ Definitions (world frame: z up, blast towards +x):
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -74,8 +73,9 @@ class Block3DResult:
         Slenderness angle atan(b/h) [rad].
     half_width, half_height : float
         b and h of the block [m] (for drawings).
-    impulse_delivered : float
-        Blast momentum applied to the body, sum of F_n dt [N*s].
+    impulse_delivered : float or None
+        Blast momentum applied to the body, sum of F_n dt [N*s] (None for an up-scaled result
+        made without the momentum factor).
     settings : dict
         Contact settings and run parameters used.
     """
@@ -94,7 +94,7 @@ class Block3DResult:
     alpha: float
     half_width: float
     half_height: float
-    impulse_delivered: float
+    impulse_delivered: float | None
     settings: dict = field(default_factory=dict)
 
     @property
@@ -160,11 +160,16 @@ class Block3DResult:
                       if isinstance(v, (int, float, str)) or v is None})
         return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})}, attrs=attrs)
 
-    def upscaled(self, length_factor: float, time_factor: float) -> "Block3DResult":
+    def upscaled(
+        self, length_factor: float, time_factor: float, momentum_factor: float | None = None
+    ) -> "Block3DResult":
         """This (model) result in prototype units: lengths / lambda, times / lambda_t,
-        velocities / (lambda / lambda_t), angular velocities x lambda_t; angles unchanged."""
+        velocities / (lambda / lambda_t), angular velocities x lambda_t; angles unchanged; the
+        delivered impulse [N*s] / ``momentum_factor`` (gamma sqrt(varsigma) lambda^(7/2), see
+        :class:`~blastscale.similitude.ScalingFactors`), or None when that factor is not given."""
         L = float(check_positive("length factor", length_factor))
         T = float(check_positive("time factor", time_factor))
+        M = None if momentum_factor is None else float(check_positive("momentum factor", momentum_factor))
         V = L / T
         return Block3DResult(
             time=self.time / T,
@@ -181,6 +186,6 @@ class Block3DResult:
             alpha=self.alpha,
             half_width=self.half_width / L,
             half_height=self.half_height / L,
-            impulse_delivered=math.nan,
+            impulse_delivered=None if M is None else self.impulse_delivered / M,
             settings={**self.settings, "upscaled_from": {"length_factor": L, "time_factor": T}},
         )
