@@ -1,5 +1,7 @@
-"""Similitude: pi-terms, scaling factors, the general law and Hopkinson-Cranz, model design."""
+"""Similitude: pi-terms, scaling factors, the general law and Hopkinson-Cranz, model design,
+and sweeps of the factors over the scale or the density ratio (the paper's Figures 5 and 8)."""
 
+from .curves import ScalingCurves, scaling_curves
 from .design import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign, design_model, impulsive_check
 from .factors import FACTOR_UNITS, ScalingFactors, pi_terms, scaling_factors
 from .laws import (
@@ -19,12 +21,14 @@ __all__ = [
     "LAWS",
     "ModelDesign",
     "ScaledDistanceSolution",
+    "ScalingCurves",
     "ScalingFactors",
     "design_model",
     "hopkinson_cranz_density_ratio",
     "impulsive_check",
     "masi2021_quadratic_roots",
     "pi_terms",
+    "scaling_curves",
     "scaling_factors",
     "solve_scaled_distance_factor",
 ]
