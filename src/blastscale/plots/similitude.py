@@ -110,7 +110,11 @@ def plot_scaling_factor(curves, quantity: str = "pressure", ax=None, x: str | No
     lab = label or _default_label(curves, x)
     (line,) = ax.plot(xs, np.ravel(getattr(curves, gen)), "-", color=color, label=f"{lab}, general law")
     if hopkinson_cranz:
-        ax.plot(xs, np.ravel(getattr(curves, hc)), "--", color=line.get_color(), label=f"{lab}, Hopkinson-Cranz")
+        if x == "scale":  # Hopkinson-Cranz imposes its own density ratio: it is not the general law's gamma
+            hc_lab = "Hopkinson-Cranz (gamma = 1/sqrt(varsigma lambda) imposed)"
+        else:
+            hc_lab = f"{lab}, Hopkinson-Cranz (gamma = {float(np.ravel(curves.hc_density_ratio)[0]):.3g} imposed)"
+        ax.plot(xs, np.ravel(getattr(curves, hc)), "--", color=line.get_color(), label=hc_lab)
     ax.set_xscale("log")
     if logy:
         ax.set_yscale("log")
