@@ -95,6 +95,17 @@ def print_json(obj: dict) -> None:
     typer.echo(json.dumps(_jsonable(obj), indent=2))
 
 
+def fmt_value(x, spec: str = ".6g") -> str:
+    """A table cell: ``-`` for None (not applicable), yes/no for booleans, numbers with ``spec``."""
+    if x is None:
+        return "-"
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    if isinstance(x, str):
+        return x
+    return format(x, spec)
+
+
 def save_figure(build, path) -> None:
     """Build a matplotlib figure with the non-interactive Agg backend and write it to ``path``.
 

@@ -7,12 +7,12 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError, check_positive
-from ._app import app, console, one_line_warnings, print_json, save_figure, table
+from ._app import app, console, fmt_value, one_line_warnings, print_json, save_figure, table
 from . import options as opt
 from .options import block_from_options, check_plot_path
 
 _SUMMARY_ROWS = (
-    ("overturned", "overturned", "", None),
+    ("overturned", "overturned", "", ".6g"),
     ("max rotation", "max_rotation_rad", "rad", ".6g"),
     ("max sliding", "max_sliding_m", "m", ".6g"),
     ("final sliding", "final_sliding_m", "m", ".6g"),
@@ -23,7 +23,7 @@ _SUMMARY_ROWS = (
 
 
 def _rows(summary: dict) -> list[tuple[str, str, str]]:
-    return [(name, str(summary[k]) if fmt is None else format(summary[k], fmt), u) for name, k, u, fmt in _SUMMARY_ROWS]
+    return [(name, fmt_value(summary[k], fmt), u) for name, k, u, fmt in _SUMMARY_ROWS]
 
 
 @app.command("block3d")

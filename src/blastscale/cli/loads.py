@@ -12,12 +12,8 @@ from .._validate import BlastscaleInputError
 from ..blast import blast_parameters
 from ..similitude import FACTOR_UNITS, design_model
 from ..structures import RectangularBlock
-from ._app import app, console, one_line_warnings, print_json, table
+from ._app import app, console, fmt_value, one_line_warnings, print_json, table
 from .options import MODEL, MODEL_HELP, block_from_options
-
-def _g(x: Optional[float], fmt: str = ".6g") -> str:
-    return "-" if x is None else format(x, fmt)
-
 
 @app.command("blast")
 def blast_cmd(
@@ -39,9 +35,9 @@ def blast_cmd(
         ("reflected impulse i_ro", f"{b.reflected_impulse:.6g}", "Pa s"),
         ("arrival time t_A", f"{b.arrival_time:.6g}", "s"),
         ("positive duration t_o", f"{b.positive_duration:.6g}", "s"),
-        ("incident peak pressure P_so", _g(b.incident_pressure), "Pa"),
-        ("incident impulse i_so", _g(b.incident_impulse), "Pa s"),
-        ("shock-front velocity U", _g(b.shock_front_velocity), "m/s"),
+        ("incident peak pressure P_so", fmt_value(b.incident_pressure), "Pa"),
+        ("incident impulse i_so", fmt_value(b.incident_impulse), "Pa s"),
+        ("shock-front velocity U", fmt_value(b.shock_front_velocity), "m/s"),
         ("Friedlander decay d", f"{b.friedlander_decay:.6g}", "-"),
     ]
     console.print(table(f"Blast: {charge:g} kg TNT at {standoff:g} m ({b.model})", rows))
@@ -69,7 +65,7 @@ def print_design(d) -> None:
     console.print(t)
     console.print(f"[dim]{d.root_note}[/]")
     ft = table("Scaling factors (model / prototype)", [
-        (k, _g(v), FACTOR_UNITS.get(k, "")) for k, v in f.to_dict().items()
+        (k, fmt_value(v), FACTOR_UNITS.get(k, "")) for k, v in f.to_dict().items()
     ])
     console.print(ft)
     if d.impulsive is not None:

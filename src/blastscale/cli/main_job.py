@@ -35,7 +35,7 @@ from ..rocking import RockingSystem, critical_charge
 from ..sim3d import ContactSettings
 from ..similitude import design_model
 from ..structures import RectangularBlock
-from ._app import _jsonable, app, console, console_err, print_json, save_figure
+from ._app import _jsonable, app, console, console_err, fmt_value, print_json, save_figure
 from .loads import MODEL_HELP, print_design
 
 #: The built-in default scenario (SI), the paper's case (a) for model 2.
@@ -94,16 +94,8 @@ def _compare_table(title: str, rows: list[tuple[str, object, object, str]]) -> T
     t = Table(title=title, title_justify="left")
     for c in ("quantity", "prototype", "model (up-scaled)", "unit"):
         t.add_column(c, justify="left" if c in ("quantity", "unit") else "right")
-
-    def fmt(v):
-        if v is None:
-            return "-"
-        if isinstance(v, bool):
-            return "yes" if v else "no"
-        return f"{v:.6g}" if isinstance(v, float) else str(v)
-
     for q, p, m, u in rows:
-        t.add_row(q, fmt(p), fmt(m), u)
+        t.add_row(q, fmt_value(p), fmt_value(m), u)
     return t
 
 

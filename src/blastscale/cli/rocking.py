@@ -13,27 +13,19 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, console_err, print_json, save_figure, table
+from ._app import app, console, console_err, fmt_value, print_json, save_figure, table
 from . import options as opt
 from .options import PULSE_HELP, block_from_options, check_plot_path
 
 RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts \\[-], in \\[0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
 
 
-def _fmt(x, spec=".6g") -> str:
-    if x is None:
-        return "-"
-    if isinstance(x, bool):
-        return "yes" if x else "no"
-    return format(x, spec)
-
-
 def _summary_rows(s: dict) -> list[tuple[str, str, str]]:
     return [
-        ("overturned", _fmt(s["overturned"]), ""),
-        ("max |angle|", _fmt(s["max_angle_rad"]), "rad"),
-        ("overturn (tipping) time", _fmt(s["overturn_time_s"]), "s"),
-        ("first impact time", _fmt(s["first_impact_time_s"]), "s"),
+        ("overturned", fmt_value(s["overturned"]), ""),
+        ("max |angle|", fmt_value(s["max_angle_rad"]), "rad"),
+        ("overturn (tipping) time", fmt_value(s["overturn_time_s"]), "s"),
+        ("first impact time", fmt_value(s["first_impact_time_s"]), "s"),
         ("impacts", str(s["n_impacts"]), ""),
     ]
 
@@ -142,10 +134,10 @@ def rock_cmd(
             ("max |angle difference|", f"{s['max_abs_angle_diff_rad']:.3g}", "rad"),
             ("  up to the tipping point", f"{s['max_abs_angle_diff_to_tipping_rad']:.3g}", "rad"),
             ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
-            ("overturn time difference (model - prototype)", _fmt(s["overturn_time_diff_s"], ".3g"), "s"),
-            ("fall, |theta_dot difference| / p at equal angle", _fmt(s["max_fall_phase_diff_rad"], ".3g"), "rad"),
+            ("overturn time difference (model - prototype)", fmt_value(s["overturn_time_diff_s"], ".3g"), "s"),
+            ("fall, |theta_dot difference| / p at equal angle", fmt_value(s["max_fall_phase_diff_rad"], ".3g"), "rad"),
             ("first-peak ratio model/prototype", f"{s['peak_ratio']:.6g}", "-"),
-            ("outcomes agree", _fmt(s["outcomes_agree"]), ""),
+            ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
         ]))
     if plot:
         console.print(f"plot written to {plot}")
