@@ -2,24 +2,22 @@
 
 from __future__ import annotations
 
-import math
 from typing import Optional
 
 import typer
 from rich.table import Table
 
-from .._validate import BlastscaleInputError
 from ..blast import blast_parameters
+from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ..similitude import FACTOR_UNITS, design_model
-from ..structures import RectangularBlock
 from ._app import app, console, fmt_value, one_line_warnings, print_json, table
-from .options import MODEL, MODEL_HELP, block_from_options
+from .options import MODEL_HELP, block_from_options
 
 @app.command("blast")
 def blast_cmd(
     charge: float = typer.Option(..., "--charge", help="TNT-equivalent charge W \\[kg]."),
     standoff: float = typer.Option(..., "--standoff", help="Stand-off distance R \\[m]."),
-    model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
+    model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP),
     extrapolate: bool = typer.Option(False, "--extrapolate", help="Evaluate fits outside their range (warns)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
@@ -87,7 +85,7 @@ def design_cmd(
     ),
     gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="g_model/g_prototype \\[-]."),
     law: str = typer.Option("general", "--law", help="general (paper Eq. 8) or hopkinson-cranz."),
-    model: str = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP),
+    model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP),
     height: Optional[float] = typer.Option(None, "--height", help="Prototype block height 2h \\[m]."),
     width: Optional[float] = typer.Option(None, "--width", help="Prototype block width 2b \\[m]."),
     alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle \\[deg] (with --height)."),

@@ -151,7 +151,7 @@ def run_cmd(
     console.rule("[bold]blastscale: default scenario[/] — the paper's 10 m block, "
                  f"{s['charge_kg']:g} kg TNT at {s['standoff_m']:g} m, lambda = 1/{1 / s['scale']:g}")
     print_design(d)
-    rp, rm, rs = rock.to_dict()["prototype"], rock.to_dict()["model"], rock.to_dict()["similarity"]
+    rp, rm, rs = (result["rocking"][k] for k in ("prototype", "model", "similarity"))
     console.print(_compare_table(f"Planar rocking ({s['pulse']} pulse, {duration:g} s)", [
         ("overturned", rp["overturned"], rm["overturned"], ""),
         ("max angle", rp["max_angle_rad"], rm["max_angle_rad"], "rad"),
@@ -167,7 +167,7 @@ def run_cmd(
                       f"{rs['overturn_time_diff_s']:.3g} s; fall at equal angle {rs['max_fall_phase_diff_rad']:.3g} rad")
     console.print(f"critical charge at {s['standoff_m']:g} m (planar, {s['pulse']}): "
                   f"[bold]{crit.charge_kg:.4g} kg[/] ({crit.evaluations} simulations)")
-    bs = b3.summary()
+    bs = result["block3d"]
     bp, bm, bsim = bs["prototype"], bs["model"], bs["similarity"]
     console.print(_compare_table(f"3D rigid body, MuJoCo (friction {friction:g}, Method A)", [
         ("overturned", bp["overturned"], bm["overturned"], ""),

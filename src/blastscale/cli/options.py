@@ -13,6 +13,7 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
+from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ..structures import RectangularBlock
 
 MODEL_HELP = "Blast model: kingery-bulmash (Swisdak 1994, default) or masi2021 (the paper's Appendix A fits)."
@@ -72,5 +73,5 @@ SCALE = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also d
 DENSITY_RATIO = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-].")
 GRAVITY_RATIO = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype \\[-] (centrifuge).")
 GRAVITY = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2].")
-MODEL = typer.Option("kingery-bulmash", "--model", help=MODEL_HELP)
+MODEL = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP)
 JSON = typer.Option(False, "--json", help="Print one JSON object instead of tables.")

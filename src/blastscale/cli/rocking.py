@@ -7,7 +7,6 @@ slenderness angle in degrees (``--alpha-deg``); results are SI (rad, rad/s, s, k
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from typing import Optional
 
 import typer
@@ -15,7 +14,7 @@ import typer
 from .._validate import BlastscaleInputError
 from ._app import app, console, console_err, fmt_value, print_json, save_figure, table
 from . import options as opt
-from .options import PULSE_HELP, block_from_options, check_plot_path
+from .options import block_from_options, check_plot_path
 
 RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts \\[-], in \\[0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
 
