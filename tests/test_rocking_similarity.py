@@ -116,3 +116,28 @@ def test_centrifuge_gravity_ratio_impulsive_exact():
     s = compare_rocking(BLOCK, 50.0, 2.0, 1 / 20, 1.0, 20.0, pulse="impulsive", model="masi2021", duration=5.0)
     assert s.design.factors.time == pytest.approx(math.sqrt(1 / 20 / 20), rel=1e-14)
     assert s.max_abs_angle_diff <= 1e-10 and s.outcomes_agree
+
+
+@pytest.mark.parametrize("charge", [50.0, 100.0])
+def test_contract_reproduces_the_direct_comparison(charge):
+    """The rocking comparison goes through the package's comparison contract (datasets with
+    ``dimension`` attributes, one up-scaling, interpolation onto the prototype's grid). It must
+    give the numbers of the direct computation on the exactly corresponding samples
+    (theta_m(t lambda_t) / f.angle): the up-scaled times equal the prototype's to round-off, so
+    the interpolation moves the angle by (slope) x 1e-16 s: 1e-13 rad is the acceptance level.
+    The contract's first peak from the samples (every 4 ms) agrees with the solver's exact peak
+    event to (omega dt)^2 / 8 ~ 1e-5 relative; 1e-4 is asserted."""
+    s = compare_rocking(BLOCK, charge, 2.0, 1 / 20, pulse="friedlander", model="masi2021", duration=4.0)
+    f = s.design.factors
+    direct_th = s.model.theta_eval / f.angle
+    direct_om = s.model.theta_dot_eval / f.angular_velocity
+    assert s.max_abs_angle_diff == pytest.approx(float(np.max(np.abs(direct_th - s.prototype.theta_eval))), abs=1e-13)
+    assert s.max_abs_angular_velocity_diff == pytest.approx(
+        float(np.max(np.abs(direct_om - s.prototype.theta_dot_eval))), abs=1e-12)
+    assert np.max(np.abs(s.theta_model - direct_th)) <= 1e-13
+    c = s.comparison
+    assert c["outcomes_agree"] == s.outcomes_agree and c["outcome_prototype"] == s.prototype.overturned
+    if not s.prototype.overturned:
+        r = c["variables"]["rotation_y"]["block"]
+        assert r["first_peak_prototype"] == pytest.approx(s.prototype.peak_angles[0], rel=1e-4)
+        assert r["first_peak_ratio"] == pytest.approx(s.peak_ratio, rel=1e-4)

@@ -8,8 +8,9 @@ gamma (density) and varsigma (gravity), :func:`compare_rocking`
 2. simulates the prototype (its pulse from ``d.prototype``) and the model
    (``block.scaled(lambda, gamma)``, pulse from ``d.model``, gravity ``g varsigma``) with the
    same rocking solver and restitution,
-3. up-scales the model history to prototype units with the paper's factors
-   (``t_p = t_m / f.time``, ``theta_p = theta_m / f.angle``,
+3. writes both histories as response datasets (:func:`rocking_dataset`) and up-scales and
+   compares them with the package's one comparison contract (:mod:`.compare`:
+   ``t_p = t_m / f.time``, ``theta_p = theta_m / f.angle``,
    ``theta_dot_p = theta_dot_m / f.angular_velocity``), sampling the model exactly at the
    model times that correspond to the prototype's sampling times (no interpolation error),
 4. reports the largest angle difference over the run, the peak ratio and whether the
@@ -51,8 +52,9 @@ from ..rocking.solver import DEFAULT_SOLVER, RockingResult, RockingSolver, _chec
 from ..rocking.system import RockingSystem
 from ..similitude import ModelDesign, design_model
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
+from .compare import align, compare_responses, upscale_dataset
 
-__all__ = ["RockingSimilarity", "compare_rocking", "upscaled_summary"]
+__all__ = ["RockingSimilarity", "compare_rocking", "rocking_dataset", "upscaled_summary"]
 
 _SHAPES = ("friedlander", "triangular", "impulsive")
 
@@ -82,6 +84,37 @@ def _fall_phase_diff(t, th_p, om_p, th_m, om_m, t_tipped: float, p: float) -> fl
         return None
     om_m_at = np.interp(ap[mp], am[mm], om_m[mm])
     return float(np.max(np.abs(om_m_at - om_p[mp]))) / p
+
+
+def rocking_dataset(result: RockingResult):
+    """A planar rocking history as a response dataset of the comparison contract.
+
+    Parameters
+    ----------
+    result : RockingResult
+        A run simulated with ``t_eval`` (the sampled history).
+
+    Returns
+    -------
+    xarray.Dataset
+        Coordinates ``time`` [s], ``body`` = ["block"], ``component`` = ["y"]; variables
+        ``rotation_y`` (time, body) [rad] (dimension ``angle``) and ``angular_velocity``
+        (time, body, component) [rad/s] (``angular_velocity``, about +y, top towards +x
+        positive); attribute ``overturned`` (0/1).
+    """
+    import xarray as xr
+
+    if result.t_eval is None:
+        raise BlastscaleInputError("t_eval = None: simulate with t_eval to compare sampled histories")
+    return xr.Dataset(
+        {
+            "rotation_y": (("time", "body"), result.theta_eval[:, None], {"units": "rad", "dimension": "angle"}),
+            "angular_velocity": (("time", "body", "component"), result.theta_dot_eval[:, None, None],
+                                 {"units": "rad/s", "dimension": "angular_velocity"}),
+        },
+        coords={"time": ("time", result.t_eval, {"units": "s"}), "body": ["block"], "component": ["y"]},
+        attrs={"overturned": int(result.overturned), "source": "blastscale.rocking"},
+    )
 
 
 def upscaled_summary(model: RockingResult, design: ModelDesign) -> dict:
@@ -142,6 +175,9 @@ class RockingSimilarity:
         Both overturn or both survive.
     pulse : str
         Pulse shape used.
+    comparison : dict
+        The contract's comparison (:func:`~blastscale.analysis.compare.compare_responses`) of
+        ``rotation_y`` and ``angular_velocity`` (first peaks from the samples, differences).
     """
 
     design: ModelDesign
@@ -162,6 +198,7 @@ class RockingSimilarity:
     outcomes_agree: bool
     pulse: str
     extra: dict = field(default_factory=dict, repr=False)
+    comparison: dict = field(default_factory=dict, repr=False)
 
     def to_dict(self) -> dict:
         """Plain dict: ``prototype`` and ``model`` (up-scaled) summaries and ``similarity``."""
@@ -249,10 +286,14 @@ def compare_rocking(
     dur_m = dur * f.time
     t_m = np.minimum(t * f.time, dur_m)
     res_m = solver.simulate(sys_m, d.model.pulse(pulse), dur_m, t_eval=t_m)
-    th_m = res_m.theta_eval / f.angle
-    om_m = res_m.theta_dot_eval / f.angular_velocity
-    dth = float(np.max(np.abs(th_m - res_p.theta_eval)))
-    dom = float(np.max(np.abs(om_m - res_p.theta_dot_eval)))
+    proto_ds = rocking_dataset(res_p)
+    up_ds = upscale_dataset(rocking_dataset(res_m), f)
+    cmp = compare_responses(proto_ds, up_ds, outcome="overturned")
+    _, model_at = align(proto_ds, up_ds)
+    th_m = model_at["rotation_y"].values[:, 0]
+    om_m = model_at["angular_velocity"].values[:, 0, 0]
+    dth = cmp["variables"]["rotation_y"]["block"]["max_abs_diff"]
+    dom = cmp["variables"]["angular_velocity"]["block"]["max_abs_diff"]
     tips = [x for x in (res_p.overturn_time, _opt_div(res_m.overturn_time, f.time)) if x is not None]
     upto = t <= min(tips) if tips else np.ones(t.size, dtype=bool)
     dtip = float(np.max(np.abs(th_m - res_p.theta_eval)[upto]))
@@ -286,6 +327,7 @@ def compare_rocking(
         tipping_angular_velocity_diff=dw_tip,
         max_fall_phase_diff=fall,
         peak_ratio=ratio,
-        outcomes_agree=bool(res_p.overturned == res_m.overturned),
+        outcomes_agree=bool(cmp["outcomes_agree"]),
         pulse=pulse,
+        comparison=cmp,
     )
