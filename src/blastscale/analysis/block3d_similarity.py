@@ -110,6 +110,7 @@ def compare_block3d(
     gravity: float = STANDARD_GRAVITY,
     record_every: int = 1,
     blast_mode: str = "auto",
+    design=None,
 ) -> Block3DComparison:
     """Run a block and its reduced-scale model in 3D and compare them in prototype units.
 
@@ -142,6 +143,9 @@ def compare_block3d(
         Recording interval in steps (the same at both scales, so the grids coincide).
     blast_mode : str
         See :class:`~blastscale.sim3d.simulate.Block3DSimulator`.
+    design : blastscale.similitude.ModelDesign, optional
+        A design made beforehand (a caller that designs once, e.g. :class:`blastscale.study.Study`);
+        it then replaces the design from ``charge`` ... ``gravity``, which must describe the same scenario.
 
     Returns
     -------
@@ -150,7 +154,7 @@ def compare_block3d(
     from ..similitude import design_model
 
     contact = ContactSettings() if contact is None else contact
-    design = design_model(
+    design = design if design is not None else design_model(
         charge,
         standoff,
         scale,

@@ -234,6 +234,7 @@ def compare_rocking(
     gravity: float = STANDARD_GRAVITY,
     restitution: float | None = None,
     solver: RockingSolver | None = None,
+    design: ModelDesign | None = None,
 ) -> RockingSimilarity:
     """Simulate a prototype block and its reduced-scale model and compare them.
 
@@ -263,6 +264,10 @@ def compare_rocking(
         Restitution e for both (default Housner's, the same for both since alpha is).
     solver : RockingSolver, optional
         Solver (default tolerances rtol 1e-10, atol 1e-12).
+    design : ModelDesign, optional
+        A design made beforehand with ``geometry=block`` (a caller that designs once, e.g.
+        :class:`blastscale.study.Study`); it then replaces the design from ``charge`` ...
+        ``gravity``, which must describe the same scenario.
 
     Returns
     -------
@@ -275,7 +280,7 @@ def compare_rocking(
     dur = float(check_positive("duration", duration, "s"))
     n_samples = _check_count("n_samples", n_samples, 2)
     solver = solver or DEFAULT_SOLVER
-    d = design_model(
+    d = design if design is not None else design_model(
         charge, standoff, scale, density_ratio, gravity_ratio, law=law, model=model, geometry=block, gravity=gravity
     )
     f = d.factors
