@@ -3,6 +3,7 @@
 * :class:`ContactSettings` -- contact, time step and solver in physical terms, ``.scaled(lambda)``.
 * :func:`block_scene` / :func:`build_scene` -- the MuJoCo model built from the geometry.
 * :func:`step_forces` -- the paper's Method A blast force, exact impulse per time step.
+* :mod:`.loads` -- the load interface (:class:`LoadStrategy`), :class:`MethodA`, :func:`make_load`.
 * :class:`Block3DSimulator` / :func:`simulate_block` -- run and record; :class:`Block3DResult`.
 * :func:`pivot_friction_threshold` -- least friction for pivoting without slip under an impulse.
 
@@ -11,6 +12,7 @@ MuJoCo is imported lazily, inside the functions that need it.
 
 from .blast_force import step_forces
 from .contact import CONES, SOLVERS, ContactSettings
+from .loads import LOAD_METHODS, LoadStrategy, MethodA, make_load, register_load_method
 from .model import BodySpec, BoxShape, FrontFace, Scene, block_scene, build_scene
 from .results import Block3DResult, quaternion_to_matrix, tilt_angle
 from .simulate import SETTLE_TIME_CONSTANTS, Block3DSimulator, pivot_friction_threshold, simulate_block
@@ -23,13 +25,18 @@ __all__ = [
     "CONES",
     "ContactSettings",
     "FrontFace",
+    "LOAD_METHODS",
+    "LoadStrategy",
+    "MethodA",
     "SETTLE_TIME_CONSTANTS",
     "SOLVERS",
     "Scene",
     "block_scene",
     "build_scene",
     "pivot_friction_threshold",
+    "make_load",
     "quaternion_to_matrix",
+    "register_load_method",
     "simulate_block",
     "step_forces",
     "tilt_angle",

@@ -33,7 +33,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive
 
-__all__ = ["step_forces"]
+__all__ = ["mean_pressures", "step_forces"]
 
 
 def step_forces(pulse, area: float, times) -> np.ndarray:
@@ -65,7 +65,26 @@ def step_forces(pulse, area: float, times) -> np.ndarray:
         )
     if not hasattr(pulse, "cumulative_impulse"):
         raise BlastscaleInputError(f"pulse = {pulse!r} is not a pulse: expected a blastscale.blast.pulses.Pulse")
-    cum = np.array(pulse.cumulative_impulse(t), dtype=float)
-    if t[0] <= 0.0:
-        cum[0] = 0.0  # no impulse before arrival: a Dirac at t = 0 falls into the first step
-    return S * np.diff(cum) / np.diff(t)
+    return S * mean_pressures(pulse, t)
+
+
+def mean_pressures(pulse, times) -> np.ndarray:
+    """Mean pressure of each step, (I(t_{n+1}) - I(t_n)) / (t_{n+1} - t_n) [Pa].
+
+    Parameters
+    ----------
+    pulse : blastscale.blast.pulses.Pulse
+        Pulse with ``cumulative_impulse(t)`` [Pa*s], t = 0 at shock arrival.
+    times : ndarray (N + 1,)
+        Increasing step boundaries [s] (not validated: the callers check them once).
+
+    Returns
+    -------
+    ndarray (N,)
+        [Pa]. The running impulse is zero up to t = 0 included, so a Dirac at t = 0 falls into
+        the step that starts there, and steps before the arrival get zero.
+    """
+    t = np.asarray(times, dtype=float)
+    cum = np.array(pulse.cumulative_impulse(np.maximum(t, 0.0)), dtype=float)
+    cum[t <= 0.0] = 0.0  # no impulse before (or at) arrival
+    return np.diff(cum) / np.diff(t)

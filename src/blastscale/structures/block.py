@@ -14,6 +14,7 @@ import math
 from dataclasses import dataclass, replace
 
 from .._validate import check_positive_scalar, check_range
+from .base import BoxGeometry, Face, MonitoringPoint, RigidBody
 
 __all__ = ["RectangularBlock", "STANDARD_GRAVITY"]
 
@@ -114,6 +115,42 @@ class RectangularBlock:
         """Housner's frequency parameter p = sqrt(3 g / (4 r)) [rad/s] (Housner 1963)."""
         check_positive_scalar("gravity", gravity, "m/s^2")
         return math.sqrt(3.0 * gravity / (4.0 * self.r))
+
+    # the structure interface (structures.base) ----------------------------------------
+    @property
+    def bodies(self) -> tuple:
+        """The one rigid body, named "block", standing on the ground centred on x = y = 0."""
+        b, w, h = self.b, self.w, self.h
+        faces = (
+            Face("front", (-b, 0.0, 0.0), (-1.0, 0.0, 0.0), self.height * self.depth),
+            Face("rear", (b, 0.0, 0.0), (1.0, 0.0, 0.0), self.height * self.depth),
+            Face("side", (0.0, -w, 0.0), (0.0, -1.0, 0.0), self.height * self.width),
+            Face("side", (0.0, w, 0.0), (0.0, 1.0, 0.0), self.height * self.width),
+            Face("top", (0.0, 0.0, h), (0.0, 0.0, 1.0), self.width * self.depth),
+            Face("bottom", (0.0, 0.0, -h), (0.0, 0.0, -1.0), self.width * self.depth, True),
+        )
+        return (RigidBody("block", self.mass, (0.0, 0.0, h), self.inertia_centroid, BoxGeometry(b, w, h), faces,
+                          faces[0], -h, self.alpha),)
+
+    @property
+    def interfaces(self) -> tuple:
+        """((-1, 0),): the block on the ground."""
+        return ((-1, 0),)
+
+    @property
+    def monitoring_points(self) -> tuple:
+        """One point, "P-1", at the front-face centre."""
+        return (MonitoringPoint("P-1", 0, (-self.b, 0.0, 0.0)),)
+
+    @property
+    def front_x(self) -> float:
+        """x of the front face [m] (the block is centred on x = 0)."""
+        return -self.b
+
+    def describe(self) -> dict:
+        """Geometry and material, SI keys."""
+        return {"kind": "rectangular block", "height_m": self.height, "width_m": self.width, "depth_m": self.depth,
+                "density_kg_m3": self.density, "mass_kg": self.mass, "alpha_rad": self.alpha}
 
     def scaled(self, length_factor: float, density_factor: float = 1.0) -> "RectangularBlock":
         """The geometrically similar block: lengths x ``length_factor`` (lambda), density x

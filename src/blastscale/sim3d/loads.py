@@ -1,0 +1,198 @@
+"""Blast loads on a structure's bodies: the load interface and the paper's Method A.
+
+A load strategy turns the blast into one world wrench (force, moment about the centre of mass)
+per body and per time step, from the bodies' current poses. It carries the **exact impulse** of
+the pressure over the step (see :mod:`.blast_force`): the step's force is the pressure's impulse
+over [t0, t1] divided by the step, so the momentum delivered does not depend on the step.
+
+Conventions (CONTRACTS.md, section 2): one time origin, the detonation (t = 0); outward face
+normals; a pressure p on a face of area A pushes with ``-p A (R n_outward)`` applied at the face
+centre, R the body's current rotation (body -> world).
+
+Method A (paper, Sec. "Application to multi-drum columns"; the single block of Sec.
+"Validation"): the reflected pulse at the stand-off acts on each body's front (``load_face``)
+at once, uniformly and simultaneously, along the face's current normal. For a tapered square
+drum the face is the slanted trapezoid; its horizontal resultant at rest is p times the
+projected trapezoid ``(s0 + s1) H / 2``. For a polygonal ("circular") drum the loaded face is
+the projected silhouette, diameter x height (tapered).
+
+Methods B and C (per-face distance, arrival and incidence) register themselves in
+:data:`LOAD_METHODS` from :mod:`.face_loads`.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+
+from .._validate import BlastscaleInputError, check_finite, check_positive
+from .blast_force import mean_pressures
+
+__all__ = ["LOAD_METHODS", "LoadStrategy", "MethodA", "make_load", "register_load_method"]
+
+
+@runtime_checkable
+class LoadStrategy(Protocol):
+    """What the simulator needs from a load.
+
+    Attributes
+    ----------
+    first_arrival : float
+        Earliest time any face is loaded [s] since detonation.
+    end_time : float
+        Time after which every load is zero [s] since detonation.
+    """
+
+    first_arrival: float
+    end_time: float
+
+    def step_wrenches(self, t0: float, t1: float, positions: np.ndarray, rotations: np.ndarray) -> np.ndarray:
+        """World wrenches (nbody, 6): force [N] and moment about each centre of mass [N m],
+        constant over [t0, t1] [s since detonation], carrying the exact impulse of the step;
+        ``positions`` (nbody, 3) [m] and ``rotations`` (nbody, 3, 3) body -> world at t0."""
+        ...
+
+
+def _faces_array(structure, faces):
+    c = np.array([f.centre for f in faces], dtype=float).reshape(-1, 3)
+    n = np.array([f.normal for f in faces], dtype=float).reshape(-1, 3)
+    a = np.array([f.area for f in faces], dtype=float)
+    return c, n, a
+
+
+class MethodA:
+    """The reflected pulse on every body's ``load_face``, uniform and simultaneous.
+
+    Parameters
+    ----------
+    structure : structure
+        Any structure of :mod:`blastscale.structures` (``.bodies`` with ``load_face``).
+    pulse : blastscale.blast.pulses.Pulse
+        Reflected pressure pulse [Pa over s], its t = 0 at the shock arrival.
+    arrival_time : float
+        Shock arrival time since detonation [s], >= 0 (the same for every face).
+    bodies : sequence of int, optional
+        Indices of the loaded bodies; default all.
+
+    Notes
+    -----
+    The moment about the centre of mass is ``(R c) x F`` with c the face centre in the body
+    frame. Exact impulse: :func:`.blast_force.mean_pressures` over [t0 - t_A, t1 - t_A].
+    """
+
+    method = "A"
+
+    def __init__(self, structure, pulse, arrival_time: float = 0.0, bodies=None):
+        if not hasattr(pulse, "cumulative_impulse"):
+            raise BlastscaleInputError(f"pulse = {pulse!r} is not a pulse: expected a blastscale.blast.pulses.Pulse")
+        if not hasattr(structure, "bodies"):
+            raise BlastscaleInputError(f"structure = {structure!r} is not a structure (no .bodies)")
+        ta = float(check_finite("arrival time", arrival_time, "s"))
+        if ta < 0.0:
+            raise BlastscaleInputError(f"arrival time = {ta:.6g} s is out of range: must be >= 0 s")
+        nb = len(structure.bodies)
+        idx = np.arange(nb) if bodies is None else np.asarray(bodies, dtype=int)
+        if idx.size and (idx.min() < 0 or idx.max() >= nb):
+            raise BlastscaleInputError(f"bodies = {list(idx)} is out of range: valid indices are 0-{nb - 1}")
+        self.structure = structure
+        self.pulse = pulse
+        self.arrival_time = ta
+        self.first_arrival = ta
+        self.end_time = ta + float(pulse.duration)
+        self.loaded = idx
+        self.nbody = nb
+        self.centres, self.normals, self.areas = _faces_array(structure, [structure.bodies[i].load_face for i in idx])
+
+    def mean_pressure(self, t0: float, t1: float) -> float:
+        """Mean reflected pressure over [t0, t1] [Pa] (times since detonation [s])."""
+        ta = self.arrival_time
+        return float(mean_pressures(self.pulse, [t0 - ta, t1 - ta])[0])
+
+    def step_wrenches(self, t0, t1, positions, rotations) -> np.ndarray:
+        """See :class:`LoadStrategy`."""
+        out = np.zeros((self.nbody, 6))
+        p = self.mean_pressure(t0, t1)
+        if p == 0.0:
+            return out
+        R = np.asarray(rotations, dtype=float)[self.loaded]
+        n_world = np.einsum("bij,bj->bi", R, self.normals)
+        F = -p * self.areas[:, None] * n_world
+        out[self.loaded, 0:3] = F
+        out[self.loaded, 3:6] = np.cross(np.einsum("bij,bj->bi", R, self.centres), F)
+        return out
+
+    def delivered_impulse(self) -> np.ndarray:
+        """Impulse of the whole pulse on each body at the rest pose, (nbody, 3) [N s]."""
+        out = np.zeros((self.nbody, 3))
+        out[self.loaded] = -self.pulse.impulse * self.areas[:, None] * self.normals
+        return out
+
+    def describe(self) -> dict:
+        """Load metadata (SI keys)."""
+        return {"load_method": "A", "pulse": type(self.pulse).__name__, "reflected_pressure_Pa": float(self.pulse.peak),
+                "reflected_impulse_Pa_s": float(self.pulse.impulse), "positive_duration_s": float(self.pulse.duration),
+                "arrival_time_s": self.arrival_time}
+
+
+def _method_a(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash", pulse="friedlander",
+              incidence="ufc", extrapolate=False) -> MethodA:
+    """Method A from a charge and stand-off: the reflected pulse at ``standoff_m`` (normal incidence;
+    ``incidence`` does not apply)."""
+    from ..blast.parameters import blast_parameters
+
+    check_positive("charge", charge_kg, "kg")
+    check_positive("standoff", standoff_m, "m")
+    bp = blast_parameters(float(charge_kg), float(standoff_m), blast_model, extrapolate=extrapolate)
+    return MethodA(structure, bp.pulse(pulse), arrival_time=float(bp.arrival_time))
+
+
+#: Load methods by name: factory(structure, *, charge_kg, standoff_m, blast_model, pulse, incidence,
+#: extrapolate) -> LoadStrategy. Methods B and C are registered by :mod:`.face_loads`.
+LOAD_METHODS: dict = {"A": _method_a}
+
+
+def register_load_method(name: str, factory) -> None:
+    """Add (or replace) a load method in :data:`LOAD_METHODS`."""
+    LOAD_METHODS[str(name)] = factory
+
+
+def make_load(method: str, structure, *, charge_kg, standoff_m, blast_model: str = "kingery-bulmash",
+              pulse: str = "friedlander", incidence: str = "ufc", extrapolate: bool = False) -> LoadStrategy:
+    """The blast load of a charge on a structure.
+
+    Parameters
+    ----------
+    method : str
+        "A" (here), "B", "C" (:mod:`.face_loads`).
+    structure : structure
+        Any structure of :mod:`blastscale.structures`; the charge lies on the ground at
+        ``x = structure.front_x - standoff_m``, y = 0.
+    charge_kg : float
+        TNT-equivalent charge W [kg].
+    standoff_m : float
+        Stand-off R from the charge to the front face [m].
+    blast_model : str
+        "kingery-bulmash" or "masi2021".
+    pulse : str
+        "friedlander", "triangular" or "impulsive".
+    incidence : str
+        Angle-of-incidence model for B and C ("ufc" or "closed-form").
+    extrapolate : bool
+        Use the blast fits outside their ranges (with a warning).
+
+    Returns
+    -------
+    LoadStrategy
+    """
+    try:
+        import importlib
+
+        importlib.import_module(f"{__package__}.face_loads")  # registers B and C where present
+    except ModuleNotFoundError as e:
+        if e.name != f"{__package__}.face_loads":
+            raise
+    if method not in LOAD_METHODS:
+        raise BlastscaleInputError(f"load method = {method!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
+    return LOAD_METHODS[method](structure, charge_kg=charge_kg, standoff_m=standoff_m, blast_model=blast_model,
+                                pulse=pulse, incidence=incidence, extrapolate=extrapolate)

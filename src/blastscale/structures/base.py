@@ -1,0 +1,294 @@
+"""The structure interface read by the 3D engine and the blast loads: rigid bodies, faces, points.
+
+Every structure (:class:`~.block.RectangularBlock`, :class:`~.column.MultiDrumColumn`) exposes
+
+* ``bodies``: :class:`RigidBody` from the base up, each with its exact mass properties, the
+  shape the engine builds its contact geometry from (:class:`BoxGeometry`,
+  :class:`PrismGeometry`) and its faces (:class:`Face`, body frame, outward unit normals);
+* ``interfaces``: pairs ``(i, j)`` of bodies in contact at rest (ground = -1);
+* ``monitoring_points``: :class:`MonitoringPoint` (default: the front-face centre of each body);
+* ``front_x``: x of the lowest front face (the charge stands at ``front_x - standoff``);
+* ``scaled(length_factor, density_factor)`` and ``describe()``.
+
+Frames: world z up, ground z = 0, blast from -x towards +x; each body frame sits at the centre
+of mass with axes along the world axes at rest.
+
+Mass properties of a linearly tapered prism (frustum) of height H whose cross-section is a
+fixed shape scaled by ``s(z) = s0 + (s1 - s0) z / H`` (side of a square, circumradius of a
+regular polygon): with section area ``A(z) = a s^2`` and section second moment about an in-plane
+centroidal axis ``I(z) = k s^4``,
+
+.. math:: m = \\rho \\int_0^H A\\,dz,\\quad z_c = \\frac{\\int A z\\,dz}{\\int A\\,dz},\\quad
+          I_{xx} = I_{yy} = \\rho\\int_0^H [I + A (z - z_c)^2]\\,dz,\\quad I_{zz} = 2\\rho\\int_0^H I\\,dz .
+
+The integrands are polynomials of degree <= 4 in z, so 3-point Gauss-Legendre quadrature is
+exact. Square of side s: a = 1, k = 1/12. Regular n-gon of circumradius R:
+``a = (n/2) sin(2 pi/n)``, ``k = (n/24) sin(2 pi/n) (2 + cos(2 pi/n))`` (polar moment
+``J = (n R^4/12) sin(2 pi/n)(2 + cos(2 pi/n))``, which tends to pi R^4/2 for a circle).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = [
+    "BoxGeometry",
+    "Face",
+    "FrustumMassProperties",
+    "MonitoringPoint",
+    "PrismGeometry",
+    "RigidBody",
+    "frustum_mass_properties",
+    "polygon_section_constants",
+    "tapered_face",
+]
+
+
+@dataclass(frozen=True)
+class Face:
+    """A plane face of a rigid body, in the body frame.
+
+    Attributes
+    ----------
+    label : str
+        "front" (faces -x, towards the charge), "rear", "side", "top" or "bottom".
+    centre : tuple of float
+        Centroid relative to the body's centre of mass [m].
+    normal : tuple of float
+        OUTWARD unit normal [-]; a pressure p pushes with ``-p * area * (R @ normal)``.
+    area : float
+        True face area [m^2] (for a tapered front face the slanted trapezoid; its projection
+        on the y-z plane is ``area * |normal_x|``).
+    in_contact : bool
+        True when the face touches the ground or a neighbouring body at rest.
+    """
+
+    label: str
+    centre: tuple
+    normal: tuple
+    area: float
+    in_contact: bool = False
+
+
+@dataclass(frozen=True)
+class MonitoringPoint:
+    """A point fixed to a body whose motion is recorded.
+
+    Attributes
+    ----------
+    name : str
+        "P-1", "P-2", ... (or a user name).
+    body : int
+        Index of the body in ``structure.bodies``.
+    position : tuple of float
+        Position in the body frame (relative to the centre of mass) [m].
+    """
+
+    name: str
+    body: int
+    position: tuple
+
+
+@dataclass(frozen=True)
+class BoxGeometry:
+    """Contact geometry: a box of half-sizes (b, w, h) [m] along body x, y, z whose centre lies
+    ``centre_z`` [m] above the body's centre of mass."""
+
+    half_width: float
+    half_depth: float
+    half_height: float
+    centre_z: float = 0.0
+
+    def base_points(self) -> np.ndarray:
+        """The four base corners in the body frame, shape (4, 3) [m]."""
+        b, w, z = self.half_width, self.half_depth, self.centre_z - self.half_height
+        return np.array([[b, w, z], [b, -w, z], [-b, w, z], [-b, -w, z]], dtype=float)
+
+    @property
+    def support_radius(self) -> tuple:
+        """Half-extent of the base along body x and y [m] (toppling and overhang checks)."""
+        return (self.half_width, self.half_depth)
+
+
+@dataclass(frozen=True)
+class PrismGeometry:
+    """Contact geometry: a right prism on a regular polygon of ``sides`` vertices and
+    circumradius ``radius`` [m], half-height ``half_height`` [m], centred ``centre_z`` [m] above
+    the centre of mass. A flat faces -x (the polygon is turned by pi/sides)."""
+
+    radius: float
+    sides: int
+    half_height: float
+    centre_z: float = 0.0
+
+    def polygon(self) -> np.ndarray:
+        """Polygon vertices (sides, 2) [m] in the body x-y plane, a flat facing -x."""
+        a = (np.arange(self.sides) + 0.5) * 2.0 * math.pi / self.sides + math.pi
+        return self.radius * np.column_stack([np.cos(a), np.sin(a)])
+
+    def vertices(self) -> np.ndarray:
+        """Prism vertices (2 sides, 3) [m] in the body frame (base ring, then top ring)."""
+        p = self.polygon()
+        lo = np.column_stack([p, np.full(self.sides, self.centre_z - self.half_height)])
+        hi = np.column_stack([p, np.full(self.sides, self.centre_z + self.half_height)])
+        return np.vstack([lo, hi])
+
+    def base_points(self) -> np.ndarray:
+        """The base ring's vertices in the body frame, shape (sides, 3) [m]."""
+        return self.vertices()[: self.sides]
+
+    @property
+    def support_radius(self) -> tuple:
+        """Inradius of the base polygon along x and y [m] (a conservative support extent)."""
+        r = self.radius * math.cos(math.pi / self.sides)
+        return (r, r)
+
+
+@dataclass(frozen=True)
+class RigidBody:
+    """One rigid body of a structure.
+
+    Attributes
+    ----------
+    name : str
+        "block", "D-1", "D-2", ...
+    mass : float
+        Mass [kg].
+    com : tuple of float
+        World position of the centre of mass at rest [m].
+    inertia : tuple of float
+        Principal moments about body axes x, y, z through the centre of mass [kg m^2] (the axes
+        are the world axes at rest).
+    shape : BoxGeometry or PrismGeometry
+        Contact geometry for the engine (body frame).
+    faces : tuple of Face
+        Faces in the body frame, outward normals.
+    load_face : Face
+        The face Method A loads (the reflected pulse on the whole projected front): the front
+        face of a box or a square drum; for a polygonal drum the projected silhouette of its
+        front (width = diameter, tapered), normal as a square drum's front face.
+    base_height : float
+        Height of the body's base above its centre of mass, negative [m] (``-z_c``).
+    toppling_angle : float
+        Tilt [rad] at which the body's centre of mass passes over its base edge
+        (``atan(support half-width / z_c)``).
+    """
+
+    name: str
+    mass: float
+    com: tuple
+    inertia: tuple
+    shape: object
+    faces: tuple
+    load_face: Face
+    base_height: float
+    toppling_angle: float
+
+
+@dataclass(frozen=True)
+class FrustumMassProperties:
+    """Mass properties of a linearly tapered prism (module docstring).
+
+    Attributes
+    ----------
+    mass : float
+        [kg].
+    volume : float
+        [m^3].
+    z_com : float
+        Height of the centre of mass above the base [m].
+    inertia : tuple of float
+        (I_xx, I_yy, I_zz) about the centre of mass [kg m^2].
+    """
+
+    mass: float
+    volume: float
+    z_com: float
+    inertia: tuple
+
+
+def polygon_section_constants(sides: int) -> tuple:
+    """(a, k) of a regular polygon of circumradius R: area a R^2, centroidal in-plane second
+    moment k R^4 [-] (module docstring)."""
+    n = int(sides)
+    s2 = math.sin(2.0 * math.pi / n)
+    return 0.5 * n * s2, n * s2 * (2.0 + math.cos(2.0 * math.pi / n)) / 24.0
+
+
+def frustum_mass_properties(s0: float, s1: float, height: float, density: float, a: float = 1.0,
+                            k: float = 1.0 / 12.0) -> FrustumMassProperties:
+    """Exact mass properties of a frustum whose section size tapers linearly from s0 to s1.
+
+    Parameters
+    ----------
+    s0, s1 : float
+        Section size at the base and at the top [m] (side of a square, circumradius of a polygon).
+    height : float
+        Height H [m].
+    density : float
+        rho [kg/m^3].
+    a, k : float
+        Section constants: area a s^2 [m^2], in-plane centroidal second moment k s^4 [m^4]
+        (square: 1, 1/12; polygon: :func:`polygon_section_constants`).
+
+    Returns
+    -------
+    FrustumMassProperties
+    """
+    x, w = np.polynomial.legendre.leggauss(3)  # exact for degree <= 5
+    z = 0.5 * height * (x + 1.0)
+    w = 0.5 * height * w
+    s = s0 + (s1 - s0) * z / height
+    A = a * s**2
+    vol = float(w @ A)
+    zc = float(w @ (A * z)) / vol
+    sec = k * s**4
+    ixx = density * float(w @ (sec + A * (z - zc) ** 2))
+    izz = density * 2.0 * float(w @ sec)
+    return FrustumMassProperties(density * vol, vol, zc, (ixx, ixx, izz))
+
+
+def tapered_face(label: str, d0: float, d1: float, w0: float, w1: float, height: float, z_com: float,
+                 angle: float, in_contact: bool = False) -> Face:
+    """A side face of a linearly tapered prism, as a trapezoid in the body frame.
+
+    The face lies at the horizontal distance d(z) = d0 + (d1 - d0) z / H from the body axis,
+    in the horizontal direction ``angle`` [rad] (pi: -x, the front), and is w(z) wide
+    (w0 at the base, w1 at the top). Centroid at ``z_f = H (w0 + 2 w1) / (3 (w0 + w1))`` above
+    the base; outward normal ``(H e, d0 - d1) / slant`` with e the horizontal unit vector of
+    ``angle`` and ``slant = sqrt(H^2 + (d0 - d1)^2)``; area ``(w0 + w1)/2 * slant`` [m^2], whose
+    projection on the vertical plane normal to e is the trapezoid ``(w0 + w1) H / 2``.
+
+    Parameters
+    ----------
+    label : str
+        Face label.
+    d0, d1 : float
+        Distance of the face from the axis at the base and at the top [m].
+    w0, w1 : float
+        Face width at the base and at the top [m].
+    height : float
+        H [m].
+    z_com : float
+        Height of the body's centre of mass above its base [m] (the body frame origin).
+    angle : float
+        Direction of the outward normal's horizontal part [rad], from +x towards +y.
+    in_contact : bool
+        Whether the face touches a neighbour.
+
+    Returns
+    -------
+    Face
+    """
+    H = height
+    zf = H * (w0 + 2.0 * w1) / (3.0 * (w0 + w1))
+    d = d0 + (d1 - d0) * zf / H
+    slant = math.hypot(H, d0 - d1)
+    c, s = math.cos(angle), math.sin(angle)
+    c, s = (0.0 if abs(c) < 1e-15 else c), (0.0 if abs(s) < 1e-15 else s)
+    centre = (d * c, d * s, zf - z_com)
+    normal = (H * c / slant, H * s / slant, (d0 - d1) / slant)
+    return Face(label, centre, normal, 0.5 * (w0 + w1) * slant, in_contact)
