@@ -1,0 +1,250 @@
+"""Ensembles of prototype and model runs: similarity of chaotic structures (wobbling columns).
+
+A circular multi-drum column wobbles and its motion is chaotic: a change of 1e-10 in the load
+moves its 8 s history by 20-57 % of the peak (docs/columns.md). One prototype trajectory and
+one model trajectory then differ after the first impact whatever the scaling law, and their
+difference measures the chaos, not the similarity. :func:`ensemble_compare` runs ``n`` members
+of each system with the load multiplied by ``1 + perturbation * u_k`` (``u_k`` evenly spread
+over [-1, 1]) and compares the ensembles:
+
+* the first peak of each monitoring point (x displacement): mean and spread (max - min) over
+  the members, prototype and up-scaled model;
+* the envelope (min, max over the members at each prototype time) of each point's x
+  displacement, and how much of the prototype's envelope the model's covers;
+* the collapse probability (fraction of members that collapse);
+* the noise floor: the largest spread of the prototype ensemble over time relative to the
+  peak, and the *predictability horizon*: the first time the prototype ensemble's spread at
+  the top point exceeds ``horizon_fraction`` of its peak (trajectory comparison is
+  meaningful before it, not after).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._validate import BlastscaleInputError, check_positive, check_range
+
+__all__ = ["EnsembleComparison", "PerturbedLoad", "ensemble_compare", "ensemble_statistics"]
+
+
+class PerturbedLoad:
+    """A load strategy whose wrenches are those of ``load`` times ``factor`` (the same arrival
+    and end times): a relative perturbation of the blast of ``factor - 1``.
+
+    Parameters
+    ----------
+    load : LoadStrategy
+        The load to perturb.
+    factor : float
+        Multiplier of every wrench [-], > 0.
+    """
+
+    def __init__(self, load, factor: float):
+        self.load = load
+        self.factor = float(check_positive("load factor", factor))
+        self.first_arrival = load.first_arrival
+        self.end_time = load.end_time
+
+    def step_wrenches(self, t0, t1, positions, rotations):
+        """``factor`` x the wrapped load's wrenches (nbody, 6) [N, N m]."""
+        return self.factor * np.asarray(self.load.step_wrenches(t0, t1, positions, rotations))
+
+    def __getattr__(self, name):  # other helpers (delivered_impulse, ...) of the wrapped load
+        return getattr(self.__dict__["load"], name)
+
+
+def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05, peak_fraction: float = 0.1) -> dict:
+    """Statistics of an ensemble of histories of one quantity at several points.
+
+    Parameters
+    ----------
+    time : array (n,)
+        Common times [s].
+    members : array (k, n, p)
+        k members, n times, p points [unit].
+    collapsed : array (k,) of bool
+        Outcome of each member.
+    horizon_fraction : float
+        Spread / peak above which the members are considered to have diverged [-].
+    peak_fraction : float
+        See :func:`~.compare.first_peak`.
+
+    Returns
+    -------
+    dict
+        ``first_peak_mean``, ``first_peak_spread`` (max - min over members), ``first_peak_std``
+        (p,) [unit]; ``envelope_min``, ``envelope_max`` (n, p); ``peak`` (p,) (largest |q| of
+        all members); ``spread`` (n, p) (max - min over members); ``max_spread_rel_peak`` (p,);
+        ``horizon_s`` (p,) first time spread > ``horizon_fraction`` x peak (nan: never);
+        ``collapse_probability``.
+    """
+    from .compare import first_peak
+
+    q = np.asarray(members, dtype=float)
+    if q.ndim != 3:
+        raise BlastscaleInputError(f"members shape = {q.shape} is not (members, times, points)")
+    frac = float(check_range("horizon_fraction", horizon_fraction, 0.0, 1.0))
+    t = np.asarray(time, dtype=float)
+    fp = np.array([[first_peak(t, q[k, :, j], peak_fraction)[1] for j in range(q.shape[2])] for k in range(q.shape[0])])
+    spread = q.max(axis=0) - q.min(axis=0)
+    peak = np.max(np.abs(q), axis=(0, 1))
+    safe = np.where(peak > 0, peak, np.inf)
+    horizon = np.full(q.shape[2], math.nan)
+    for j in range(q.shape[2]):
+        idx = np.flatnonzero(spread[:, j] > frac * peak[j])
+        if idx.size and peak[j] > 0:
+            horizon[j] = t[idx[0]]
+    return {
+        "first_peak_mean": fp.mean(axis=0),
+        "first_peak_spread": fp.max(axis=0) - fp.min(axis=0),
+        "first_peak_std": fp.std(axis=0),
+        "envelope_min": q.min(axis=0),
+        "envelope_max": q.max(axis=0),
+        "peak": peak,
+        "spread": spread,
+        "max_spread_rel_peak": spread.max(axis=0) / safe,
+        "horizon_s": horizon,
+        "collapse_probability": float(np.mean(np.asarray(collapsed, dtype=bool))),
+    }
+
+
+@dataclass(frozen=True, eq=False)
+class EnsembleComparison:
+    """Result of :func:`ensemble_compare` (prototype units).
+
+    Attributes
+    ----------
+    time : ndarray (n,)
+        Common prototype times [s] after the first arrival.
+    points : tuple of str
+        Monitoring points (x displacement compared).
+    prototype, model : dict
+        :func:`ensemble_statistics` of the prototype members and of the up-scaled model members.
+    factors : tuple of float
+        The load multipliers of the members [-].
+    prototype_members, model_members : ndarray (k, n, p)
+        The members' x displacements [m] (model up-scaled, on the prototype's times).
+    settings : dict
+        Inputs (perturbation, n, load method, duration).
+    """
+
+    time: np.ndarray
+    points: tuple
+    prototype: dict
+    model: dict
+    factors: tuple
+    prototype_members: np.ndarray
+    model_members: np.ndarray
+    settings: dict = field(default_factory=dict)
+
+    def summary(self) -> dict:
+        """Per point: first-peak mean and spread of each system [m], their ratio, the model's
+        first-peak mean offset relative to the prototype's spread, envelope coverage, the
+        prototype's noise floor and horizon; collapse probabilities."""
+        p, m = self.prototype, self.model
+        pts = {}
+        for j, name in enumerate(self.points):
+            lo, hi = p["envelope_min"][:, j], p["envelope_max"][:, j]
+            mlo, mhi = m["envelope_min"][:, j], m["envelope_max"][:, j]
+            # difference of the envelopes relative to the prototype's peak: how far the model's band
+            # lies outside the prototype's band (0 when inside)
+            outside = np.maximum(np.maximum(mhi - hi, 0.0), np.maximum(lo - mlo, 0.0))
+            pts[name] = {
+                "first_peak_prototype_mean_m": float(p["first_peak_mean"][j]),
+                "first_peak_prototype_spread_m": float(p["first_peak_spread"][j]),
+                "first_peak_model_mean_m": float(m["first_peak_mean"][j]),
+                "first_peak_model_spread_m": float(m["first_peak_spread"][j]),
+                "first_peak_ratio": float(m["first_peak_mean"][j] / p["first_peak_mean"][j])
+                if p["first_peak_mean"][j] != 0 else math.nan,
+                "peak_prototype_m": float(p["peak"][j]),
+                "peak_model_m": float(m["peak"][j]),
+                "noise_floor_rel_peak": float(p["max_spread_rel_peak"][j]),
+                "model_noise_floor_rel_peak": float(m["max_spread_rel_peak"][j]),
+                "envelope_mismatch_rel_peak": float(np.max(outside) / p["peak"][j]) if p["peak"][j] > 0 else math.nan,
+                "horizon_prototype_s": float(p["horizon_s"][j]),
+                "horizon_model_s": float(m["horizon_s"][j]),
+            }
+        return {
+            "n_members": len(self.factors),
+            "perturbation": self.settings.get("perturbation"),
+            "collapse_probability_prototype": p["collapse_probability"],
+            "collapse_probability_model": m["collapse_probability"],
+            "points": pts,
+        }
+
+
+def ensemble_compare(
+    structure,
+    design,
+    *,
+    n: int = 8,
+    perturbation: float = 1e-6,
+    load: str = "A",
+    pulse: str = "friedlander",
+    incidence: str | None = None,
+    contact=None,
+    duration: float = 8.0,
+    record_every: int = 4,
+    horizon_fraction: float = 0.05,
+    progress=None,
+) -> EnsembleComparison:
+    """Ensembles of a structure and of its reduced-scale model under slightly perturbed loads.
+
+    Parameters
+    ----------
+    structure, design, load, pulse, incidence, contact, duration, record_every
+        As :func:`~.structure3d.compare_structure3d` (duration [s] prototype time).
+    n : int
+        Members per system, >= 2.
+    perturbation : float
+        Largest relative change of the load [-], in (0, 0.1]; member k multiplies every
+        wrench by ``1 + perturbation * u_k``, u evenly spread over [-1, 1].
+    horizon_fraction : float
+        See :func:`ensemble_statistics`.
+    progress : callable, optional
+        Called as ``progress(k, n)`` after each member pair.
+
+    Returns
+    -------
+    EnsembleComparison
+    """
+    from .compare import align, upscale_dataset
+    from .structure3d import _run_pair
+
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
+        raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 2")
+    eps = float(check_range("perturbation", perturbation, 0.0, 0.1))
+    if eps == 0.0:
+        raise BlastscaleInputError("perturbation = 0 is out of range: must be in (0, 0.1]")
+    factors = tuple(1.0 + eps * u for u in np.linspace(-1.0, 1.0, int(n)))
+    proto_q, model_q, proto_c, model_c = [], [], [], []
+    t = points = None
+    for k, fac in enumerate(factors):
+        _, pr, mo = _run_pair(structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact,
+                              duration=duration, record_every=record_every, load_factor=fac)
+        pds, up = align(pr.dataset, upscale_dataset(mo.dataset, design.factors))
+        if t is None:
+            t = pds["time"].values
+            points = tuple(str(p) for p in pds["point"].values)
+        elif pds.sizes["time"] != t.size:  # a member ended early: compare on the shortest common span
+            m = min(t.size, pds.sizes["time"])
+            t = t[:m]
+            proto_q, model_q = [x[:m] for x in proto_q], [x[:m] for x in model_q]
+            pds, up = pds.isel(time=slice(0, m)), up.isel(time=slice(0, m))
+        proto_q.append(pds["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
+        model_q.append(up["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
+        proto_c.append(bool(pr.summary()["collapsed"]))
+        model_c.append(bool(mo.summary()["collapsed"]))
+        if progress is not None:
+            progress(k + 1, len(factors))
+    P, M = np.stack(proto_q), np.stack(model_q)
+    return EnsembleComparison(
+        time=t, points=points,
+        prototype=ensemble_statistics(t, P, proto_c, horizon_fraction),
+        model=ensemble_statistics(t, M, model_c, horizon_fraction),
+        factors=factors, prototype_members=P, model_members=M,
+        settings={"perturbation": eps, "n": int(n), "load_method": load, "pulse": pulse, "duration_s": float(duration)},
+    )

@@ -1,0 +1,222 @@
+"""Plots of multi-body 3D runs (multi-drum columns): monitoring-point histories, prototype vs
+up-scaled model (the paper's Sec. 6 figures), pose snapshots, ensemble envelopes.
+
+Inputs are response datasets of the comparison contract (``Response3D.dataset``, up-scaled
+with :func:`blastscale.analysis.compare.upscale_dataset`), already in the units to show. Every
+function takes ``ax=`` (created when None) and returns it; no numerics beyond drawing live here.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._validate import BlastscaleInputError, check_finite
+
+__all__ = [
+    "POINT_QUANTITIES",
+    "drum_outline",
+    "plot_column_comparison",
+    "plot_column_snapshots",
+    "plot_ensemble_envelope",
+    "plot_point_histories",
+]
+
+#: dataset variable -> (axis label with units, factor to the unit shown)
+POINT_QUANTITIES = {
+    "point_displacement": ("horizontal displacement [m]", 1.0),
+    "point_velocity": ("horizontal velocity [m/s]", 1.0),
+}
+
+
+def _ax(ax):
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots()
+    return ax
+
+
+def _colours(n: int, cmap: str):
+    import matplotlib
+
+    return matplotlib.colormaps[cmap](np.linspace(0.0, 0.9, max(n, 2)))
+
+
+def plot_point_histories(prototype, model=None, quantity: str = "point_displacement", points=None, ax=None,
+                         component: str = "x", cmap: str = "viridis"):
+    """Histories of the monitoring points, prototype solid and up-scaled model dashed, one
+    colour per point (paper, Sec. 6 figures (a) displacement and (b) velocity).
+
+    Parameters
+    ----------
+    prototype : xarray.Dataset
+        Prototype response.
+    model : xarray.Dataset, optional
+        Up-scaled model response (prototype units).
+    quantity : str
+        One of :data:`POINT_QUANTITIES`.
+    points : sequence of str, optional
+        Points to draw (default all).
+    ax : matplotlib Axes, optional
+    component : {"x", "y", "z"}
+        Component drawn (default x: along the blast, horizontal).
+    cmap : str
+        Colormap of the points.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    if quantity not in POINT_QUANTITIES:
+        raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are {', '.join(POINT_QUANTITIES)}")
+    names = [str(p) for p in prototype["point"].values]
+    points = names if points is None else [str(p) for p in points]
+    unknown = [p for p in points if p not in names]
+    if unknown:
+        raise BlastscaleInputError(f"points = {unknown[0]!r} is not recorded: valid values are {', '.join(names)}")
+    ax = _ax(ax)
+    label, k = POINT_QUANTITIES[quantity]
+    colours = _colours(len(points), cmap)
+    for j, p in enumerate(points):
+        v = prototype[quantity].sel(point=p, component=component)
+        ax.plot(prototype["time"].values, k * v.values, "-", color=colours[j], lw=1.2, label=f"{p} prototype")
+        if model is not None:
+            vm = model[quantity].sel(point=p, component=component)
+            ax.plot(model["time"].values, k * vm.values, "--", color=colours[j], lw=1.2, label=f"{p} model (up-scaled)")
+    ax.set_xlabel("time after arrival [s] (prototype)")
+    ax.set_ylabel(label.replace("horizontal", f"{component}") if component != "x" else label)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize="x-small", ncol=2 if model is not None else 1)
+    return ax
+
+
+def drum_outline(com_x: float, com_z: float, theta: float, half_bottom: float, half_top: float,
+                 z_bottom: float, z_top: float) -> np.ndarray:
+    """Closed outline (5, 2) of a drum's x-z section [m]: the trapezoid of half-widths
+    ``half_bottom`` at ``z_bottom`` and ``half_top`` at ``z_top`` (body frame, relative to the
+    centre of mass), rotated by theta about y (top towards +x when theta > 0) and placed at the
+    centre of mass (com_x, com_z)."""
+    c, s = math.cos(theta), math.sin(theta)
+    local = np.array([[-half_bottom, z_bottom], [half_bottom, z_bottom], [half_top, z_top],
+                      [-half_top, z_top], [-half_bottom, z_bottom]])
+    return np.column_stack([com_x + local[:, 0] * c + local[:, 1] * s, com_z - local[:, 0] * s + local[:, 1] * c])
+
+
+def _drum_sections(structure) -> list[tuple[float, float, float, float]]:
+    """(half_bottom, half_top, z_bottom, z_top) of each body in its frame [m]: the tapered
+    silhouette when the structure has ``width_at`` (a column), else the contact shape's box."""
+    out = []
+    for b in structure.bodies:
+        shape = b.shape
+        zc = getattr(shape, "centre_z", 0.0)
+        hh = shape.half_height
+        z0, z1 = zc - hh, zc + hh
+        if hasattr(structure, "width_at"):
+            wb, wt = (0.5 * float(structure.width_at(b.com[2] + z)) for z in (z0, z1))
+        else:
+            wb = wt = getattr(shape, "half_width", None) or getattr(shape, "radius")
+        out.append((wb, wt, z0, z1))
+    return out
+
+
+def plot_column_snapshots(structure, dataset, times=None, ax=None, n: int = 4, cmap: str = "plasma"):
+    """Side view (x-z) of the structure's pose at a few times: each body a polygon, one colour
+    per time (the blast comes from -x, the left).
+
+    Parameters
+    ----------
+    structure : structure
+        The structure simulated (its bodies' rest positions and shapes, in the dataset's units).
+    dataset : xarray.Dataset
+        Its response (``com_displacement``, ``rotation_y``).
+    times : sequence of float, optional
+        Times [s]; default ``n`` times evenly spread over the run.
+    ax : matplotlib Axes, optional
+    n : int
+        Number of snapshots when ``times`` is None, >= 1.
+    cmap : str
+        Colormap for time.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    if times is None and not (isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 1):
+        raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 1")
+    if dataset.sizes.get("body", 0) != len(structure.bodies):
+        raise BlastscaleInputError(
+            f"dataset bodies = {dataset.sizes.get('body', 0)} do not match the structure's {len(structure.bodies)}")
+    ax = _ax(ax)
+    t = dataset["time"].values
+    times = np.linspace(t[0], t[-1], n) if times is None else np.atleast_1d(check_finite("snapshot times", times, "s"))
+    colours = _colours(len(times), cmap)
+    sections = _drum_sections(structure)
+    disp = dataset["com_displacement"]
+    rot = dataset["rotation_y"]
+    for k, tk in enumerate(times):
+        i = int(np.clip(np.searchsorted(t, tk), 0, t.size - 1))
+        for j, (b, sec) in enumerate(zip(structure.bodies, sections)):
+            dx = float(disp.isel(time=i, body=j).sel(component="x"))
+            dz = float(disp.isel(time=i, body=j).sel(component="z"))
+            xy = drum_outline(b.com[0] + dx, b.com[2] + dz, float(rot.isel(time=i, body=j)), *sec)
+            ax.plot(xy[:, 0], xy[:, 1], color=colours[k], lw=1.0, label=f"t = {t[i]:.3g} s" if j == 0 else None)
+    xs = ax.get_xlim()
+    ax.axhline(0.0, color="k", lw=1)
+    ax.set_xlim(xs)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m] (blast from -x)")
+    ax.set_ylabel("z [m]")
+    ax.legend(fontsize="x-small")
+    return ax
+
+
+def plot_column_comparison(structure, prototype, model=None, points=None, fig=None):
+    """A three-panel figure: horizontal displacement and velocity of the monitoring points
+    (prototype solid, up-scaled model dashed) and the prototype's pose snapshots. Returns the
+    figure."""
+    import matplotlib.pyplot as plt
+
+    fig = fig or plt.figure(figsize=(15, 5))
+    axs = fig.subplots(1, 3, gridspec_kw={"width_ratios": [2, 2, 1]})
+    plot_point_histories(prototype, model, "point_displacement", points, ax=axs[0])
+    plot_point_histories(prototype, model, "point_velocity", points, ax=axs[1])
+    plot_column_snapshots(structure, prototype, ax=axs[2])
+    fig.tight_layout()
+    return fig
+
+
+def plot_ensemble_envelope(ensemble, point=None, ax=None):
+    """Envelopes (min-max over the members) of a point's x displacement, prototype and
+    up-scaled model, with each ensemble's mean.
+
+    Parameters
+    ----------
+    ensemble : blastscale.analysis.ensemble.EnsembleComparison
+    point : str, optional
+        Monitoring point (default the last, the top).
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    names = list(ensemble.points)
+    point = names[-1] if point is None else str(point)
+    if point not in names:
+        raise BlastscaleInputError(f"point = {point!r} is not recorded: valid values are {', '.join(names)}")
+    j = names.index(point)
+    ax = _ax(ax)
+    t = ensemble.time
+    for stats, members, colour, name in ((ensemble.prototype, ensemble.prototype_members, "C0", "prototype"),
+                                         (ensemble.model, ensemble.model_members, "C3", "model (up-scaled)")):
+        ax.fill_between(t, stats["envelope_min"][:, j], stats["envelope_max"][:, j], color=colour, alpha=0.25,
+                        lw=0, label=f"{name}: envelope of {len(members)} runs")
+        ax.plot(t, members[:, :, j].mean(axis=0), color=colour, lw=1.0, ls="-" if name == "prototype" else "--",
+                label=f"{name}: mean")
+    ax.set_xlabel("time after arrival [s] (prototype)")
+    ax.set_ylabel(f"horizontal displacement of {point} [m]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize="x-small")
+    return ax
