@@ -1,77 +1,377 @@
-"""Overturning capacity: critical charge, critical stand-off and the P-I diagram.
+"""Overturning capacity: critical charge, critical stand-off, capacity curves and the P-I diagram.
 
-All three rest on one continuous *overturning margin* of a body under a pulse, computed by
-the rocking solver up to the first impact (or the tipping point):
+First-swing energy criterion
+----------------------------
+Everything rests on one statement about the planar rocking equation (paper Eq. eom, divided
+by ``m g r``, in the dimensionless time ``tau = p t``; see :mod:`blastscale.rocking.system`):
+once the pulse is over the motion is free and conservative between impacts, with the energy
 
-.. math::
+.. math:: E = \\tfrac12 \\dot\\theta^2 + \\cos(\\alpha - s\\theta) - \\cos\\alpha
+          \\qquad (\\dot\\theta \\text{ in units of } p),
 
-    \\mu = \\begin{cases}
-      \\theta_{max}/\\alpha - 1 \\le 0 & \\text{no overturning (first excursion peak)}\\\\
-      \\dot\\theta_\\alpha / (p\\sqrt{2(1-\\cos\\alpha)}) \\ge 0 & \\text{overturning}
-    \\end{cases}
+whose barrier (the centre of mass over the pivot, ``s theta = alpha``) is
+``B = 1 - cos(alpha)`` in both rocking directions. Every impact multiplies the angular velocity
+by the restitution e, hence the energy by e^2 <= 1 (Housner 1963). So, with ``(theta, theta_dot)``
+the state when the pulse ends, the outcome of the whole motion is decided on the first free
+swing:
 
-(theta_dot_alpha: angular velocity when |theta| passes alpha). Both branches tend to 0 at
-the threshold, so mu is continuous and increases with the load; roots are found with
-Brent's method (scipy ``brentq``) in the logarithm of the charge / stand-off / impulse
-after a geometric bracket search. Only the first excursion matters: after the pulse the
-energy only decreases (every impact removes a fraction 1 - e^2 of it).
+* moving outward (``s theta_dot >= 0``) below the top: it overturns iff ``E > B``; otherwise
+  it comes back, impacts, and every later swing has less energy than ``E <= B``;
+* moving inward below the top: it impacts first; it overturns (in the other direction) iff
+  ``e^2 E > B``;
+* beyond the top (possible only toward the blast: the pulse pushes back, and a crossing of
+  ``-alpha`` decides nothing while it acts, docs/rocking.md): moving outward it overturns;
+  moving inward it overturns unless ``E > B`` (it climbs back over the top), and then the
+  previous case applies;
+* at rest when the pulse ends (never lifted off, or already still): it survives;
+* tipped away from the blast while the pulse still acts: it has overturned (the compiled
+  solver stops there; gravity and the non-negative pressure both push it on).
+
+The pulse phase alone is integrated, with the compiled rocking kernel
+(:func:`blastscale.rocking._kernel.solve_batch`, impacts included, vectorised over cases):
+a pulse lasts ``p t_o ~ 1e-3..1e-1`` in dimensionless time against ``~ 1..10`` for the first
+swing, so one evaluation costs a few tens of steps instead of a full simulation. The signed
+*first-swing margin* ``mu`` (``> 0``: overturns) is
+
+=========================================  =============================================
+state when the pulse ends                  mu
+=========================================  =============================================
+tipped away during the pulse               ``E / B - 1`` (``>= 0``; the kinetic energy at the top)
+below the top, outward                     ``E / B - 1``
+below the top, inward                      ``e^2 E / B - 1``
+beyond the top, outward                    ``(theta_dot^2 / 2 + 1 - cos(s theta - alpha)) / B``
+beyond the top, inward, ``E <= B``         ``(1 - cos(s theta - alpha) - theta_dot^2 / 2) / B``
+beyond the top, inward, ``E > B``          ``e^2 E / B - 1``
+at rest                                    ``-1``
+=========================================  =============================================
+
+It is 0 at the threshold on the common branches and increases with the load, so the critical
+load is a root of mu. The test suite checks the criterion against the bisection on full
+simulations (to rest, every impact) over random blocks, stand-offs and pulse shapes.
+
+Search
+------
+The root is found in ``u = ln x`` (x the charge, the stand-off or the impulse), for all the
+cases of a call at once: a starting point from the structure's own scale (the impulsive closed
+form ``J_o theta_dot_c = i S l`` gives the critical impulse; the blast model is inverted for
+the charge or stand-off that delivers it), a geometric bracket search within the blast model's
+valid range of Z, then the Illinois variant of regula falsi with a bisection safeguard to a
+relative tolerance ``xtol_rel`` (default 1e-9). A case whose outcome does not change within the
+range gives NaN in the curves and a one-line error in the scalar functions.
 
 References: paper Sec. "Equations of motion" (W_pc = 79.8 kg for the 10 m block at 2 m);
-Masi et al. (2019), Int. J. Mech. Sci. 157 (critical impulse); P-I diagrams: Krauthammer,
-*Modern Protective Structures* (2008), Ch. 5.
+Housner (1963), Bull. Seismol. Soc. Am. 53(2) (energy and restitution); Masi et al. (2019),
+Int. J. Mech. Sci. 157 (critical impulse); P-I diagrams: Krauthammer, *Modern Protective
+Structures* (2008), Ch. 5; Illinois method: Dowell & Jarratt (1971), BIT 11, 168-174.
 """
 
 from __future__ import annotations
 
 import math
+import time
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_range
-from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters
-from ..blast.pulses import Friedlander, Pulse, Triangular, friedlander_impulse_ratio
-from .solver import DEFAULT_SOLVER, RockingSolver, _check_count
+from ..blast.base import ExtrapolationWarning
+from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters, get_blast_model, valid_scaled_distance_range
+from ..blast.pulses import Pulse, friedlander_impulse_ratio
+from . import _kernel as K
+from .solver import DEFAULT_SOLVER, RockingSolver, _check_count, encode_pulse
 from .system import RockingSystem, as_rocking_system
 
-__all__ = ["overturn_margin", "critical_charge", "critical_standoff", "CriticalResult", "pi_diagram", "PIDiagram"]
+__all__ = [
+    "overturn_margin",
+    "first_swing_margin",
+    "critical_charge",
+    "critical_standoff",
+    "CriticalResult",
+    "capacity_curve",
+    "CapacityCurve",
+    "pi_diagram",
+    "PIDiagram",
+]
 
 PULSE_SHAPES = ("friedlander", "triangular", "impulsive")
+_KIND = {"impulsive": 0, "friedlander": 1, "triangular": 2}
+# widening of the blast model's valid Z range with extrapolate=True (factor each side)
+_EXTRAPOLATE_WIDENING = 5.0
 
 
-def _horizon(system: RockingSystem, pulse: Pulse) -> float:
-    """Simulated time long enough to reach the first impact or the tipping point [s]."""
-    return float(pulse.duration) + 50.0 / system.frequency_parameter
+# ----------------------------------------------------------------------------- criterion
+def first_swing_margin(alpha, e, theta, w, tipped):
+    """First-swing margin mu [-] from the state when the pulse ends (module docstring table).
+
+    Parameters
+    ----------
+    alpha : array_like
+        Slenderness angle [rad].
+    e : array_like
+        Restitution on the angular velocity [-].
+    theta : array_like
+        Angle when the pulse ends [rad].
+    w : array_like
+        Angular velocity when the pulse ends, divided by p [-].
+    tipped : array_like of bool
+        Whether the body tipped away from the blast while the pulse acted.
+
+    Returns
+    -------
+    mu : ndarray
+        > 0 where the body overturns, <= 0 where it survives.
+    """
+    alpha, e, th, w = (np.asarray(x, dtype=float) for x in (alpha, e, theta, w))
+    s = np.sign(th)
+    s = np.where(s == 0.0, np.sign(w), s)
+    u = s * th  # distance from upright in the current rocking mode [rad]
+    v = s * w  # outward angular velocity
+    B = 1.0 - np.cos(alpha)
+    E = 0.5 * w * w + np.cos(alpha - u) - np.cos(alpha)
+    below = (E / B - 1.0, e * e * E / B - 1.0)
+    past = 1.0 - np.cos(u - alpha)  # depth below the top once beyond it
+    mu = np.where(
+        u < alpha,
+        np.where(v >= 0.0, below[0], below[1]),
+        np.where(v >= 0.0, (0.5 * w * w + past) / B, np.where(E > B, below[1], (past - 0.5 * w * w) / B)),
+    )
+    mu = np.where(np.asarray(tipped, dtype=bool), np.maximum(below[0], np.finfo(float).tiny), mu)
+    return np.where(s == 0.0, -1.0, mu)
+
+
+def _pulse_phase_margin(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab_f=None, off=None):
+    """Integrate the pulse phase of n encoded cases with the compiled kernel and return mu (n,).
+
+    ``kind`` (n,) pulse codes, ``par`` (n, 3) kernel parameters, ``w0`` (n,) initial theta_dot / p
+    (the jump of an impulsive load); tabulated pulses concatenated as in ``solve_batch``.
+    """
+    n = kind.size
+    tab_t = np.zeros(0) if tab_t is None else tab_t
+    tab_f = np.zeros(0) if tab_f is None else tab_f
+    off = np.zeros(n + 1, dtype=np.int64) if off is None else off
+    tau_end = np.where(kind == 1, par[:, 1], np.where(kind == 2, par[:, 1], 0.0))
+    if np.any(kind == 3):
+        tau_end = np.where(kind == 3, tab_t[np.maximum(off[1:] - 1, 0)], tau_end)
+    summ, _, _ = K.solve_batch(
+        np.ascontiguousarray(alpha, dtype=float), np.ascontiguousarray(e, dtype=float), np.zeros(n),
+        np.ascontiguousarray(w0, dtype=float), np.ascontiguousarray(tau_end), kind.astype(np.int64),
+        np.ascontiguousarray(par), tab_t, tab_f, off, np.empty((n, 0)),
+        float(solver.rtol), float(solver.atol), float(solver.rest_velocity), -1, True, int(solver.max_steps), False,
+    )
+    bad = summ[:, K.S_STATUS] != 0
+    if np.any(bad):
+        solver._check_status(summ[np.argmax(bad), K.S_STATUS], int(np.argmax(bad)))
+    return first_swing_margin(alpha, e, summ[:, K.S_FINAL_THETA], summ[:, K.S_FINAL_W], summ[:, K.S_OVERTURNED] == 1.0)
 
 
 def overturn_margin(body, pulse: Pulse, *, solver: RockingSolver | None = None, gravity=None, restitution=None) -> float:
-    """Continuous overturning margin mu [-] of ``body`` under ``pulse`` (module docstring).
+    """First-swing overturning margin mu [-] of ``body`` at rest under ``pulse`` (module docstring).
 
     Parameters
     ----------
     body : RockingSystem or RectangularBlock
         The body (a block is converted with ``gravity`` [m/s^2] and ``restitution`` [-]).
     pulse : Pulse
-        Pressure pulse on the loaded face from the shock arrival.
+        Pressure pulse on the loaded face from the shock arrival (any kind: Friedlander,
+        triangular, impulsive, tabulated).
     solver : RockingSolver, optional
-        Solver (default rtol 1e-10, atol 1e-12).
+        Solver of the pulse phase (default rtol 1e-10, atol 1e-12).
 
     Returns
     -------
     mu : float
-        ``theta_max / alpha - 1`` (< 0, survives; theta_max the first excursion peak [rad])
-        or ``theta_dot_alpha / (p sqrt(2 (1 - cos alpha)))`` (>= 0, overturns); simulated up
-        to the first impact or the tipping point (``pulse.duration + 50 / p`` at most).
+        > 0 iff the body overturns (0 at the threshold; in units of the potential barrier
+        ``m g r (1 - cos alpha)``).
     """
     system = as_rocking_system(body, gravity, restitution)
-    if not isinstance(pulse, Pulse):
-        raise BlastscaleInputError(f"pulse must be a blastscale Pulse, got {type(pulse).__name__}")
-    solver = solver or DEFAULT_SOLVER
-    res = solver.simulate(system, pulse, _horizon(system, pulse), stop_at_overturn=True, max_impacts=1)
-    if res.overturned:
-        return float(res.angular_velocity_at_tipping) / system.critical_angular_velocity
-    return res.max_angle / system.alpha - 1.0
+    kind, par, tt, tf, dw = encode_pulse(pulse, system)
+    off = np.array([0, tt.size], dtype=np.int64)
+    mu = _pulse_phase_margin(
+        solver or DEFAULT_SOLVER, np.array([system.alpha]), np.array([system.coefficient_of_restitution]),
+        np.array([dw]), np.array([kind]), par[None, :], tt, tf, off,
+    )
+    return float(mu[0])
+
+
+# ----------------------------------------------------------------------------- root finder
+def _vector_root(evaluate, u0, ulo, uhi, xtol: float, max_iter: int = 200):
+    """Roots in u of n increasing functions, evaluated together.
+
+    ``evaluate(idx, u) -> mu`` for the cases ``idx`` at ``u``; ``u0``, ``ulo``, ``uhi`` (n,)
+    the start and the search bounds. Returns ``(u_survive, u_overturn, evaluations, status)``:
+    the final bracket (mu <= 0 at u_survive, > 0 at u_overturn), the number of evaluations per
+    case and a status per case (0 found; 1 survives up to ``uhi``; 2 overturns down to ``ulo``).
+    """
+    n = u0.size
+    u0 = np.clip(u0, ulo, uhi)
+    f0 = evaluate(np.arange(n), u0)
+    nev = np.ones(n, dtype=np.int64)
+    status = np.zeros(n, dtype=np.int64)
+    # bracket: step away from the start, geometrically growing, capped at the bounds
+    a, fa = u0.copy(), f0.copy()  # the last point on the start's side
+    b, fb = u0.copy(), f0.copy()
+    up = f0 <= 0.0
+    step = np.full(n, 0.02)
+    todo = np.ones(n, dtype=bool)
+    while np.any(todo):
+        idx = np.flatnonzero(todo)
+        bound = np.where(up[idx], uhi[idx], ulo[idx])
+        at_bound = np.where(up[idx], a[idx] >= uhi[idx], a[idx] <= ulo[idx])
+        if np.any(at_bound):
+            status[idx[at_bound]] = np.where(up[idx[at_bound]], 1, 2)
+            todo[idx[at_bound]] = False
+            idx, bound = idx[~at_bound], bound[~at_bound]
+            if idx.size == 0:
+                break
+        un = np.where(up[idx], np.minimum(a[idx] + step[idx], bound), np.maximum(a[idx] - step[idx], bound))
+        fn = evaluate(idx, un)
+        nev[idx] += 1
+        changed = (fn > 0.0) != (fa[idx] > 0.0)
+        b[idx], fb[idx] = un, fn
+        keep = idx[~changed]
+        a[keep], fa[keep] = un[~changed], fn[~changed]
+        step[keep] *= 3.0
+        todo[idx[changed]] = False
+    ok = status == 0
+    # order each bracket as (survive, overturn)
+    lo = np.where(fa <= 0.0, a, b)
+    flo = np.where(fa <= 0.0, fa, fb)
+    hi = np.where(fa <= 0.0, b, a)
+    fhi = np.where(fa <= 0.0, fb, fa)
+    side = np.zeros(n, dtype=np.int64)  # Illinois: which end was kept last (-1 lo, +1 hi)
+    width0 = np.abs(hi - lo)
+    act = ok & (np.abs(hi - lo) > xtol)
+    it = 0
+    while np.any(act) and it < max_iter:
+        it += 1
+        idx = np.flatnonzero(act)
+        l, h, fl, fh = lo[idx], hi[idx], flo[idx], fhi[idx]
+        x = (l * fh - h * fl) / (fh - fl)
+        # bisection safeguard every third iteration without halving, and for a degenerate secant
+        bis = (it % 3 == 0) & (np.abs(h - l) > 0.5 * width0[idx])
+        bad = ~np.isfinite(x) | (x <= np.minimum(l, h)) | (x >= np.maximum(l, h)) | bis
+        x = np.where(bad, 0.5 * (l + h), x)
+        if it % 3 == 0:
+            width0[idx] = np.abs(h - l)
+        fx = evaluate(idx, x)
+        nev[idx] += 1
+        surv = fx <= 0.0
+        i_s, i_o = idx[surv], idx[~surv]
+        lo[i_s], flo[i_s] = x[surv], fx[surv]
+        fhi[i_s] = np.where(side[i_s] == -1, 0.5 * fhi[i_s], fhi[i_s])
+        side[i_s] = -1
+        hi[i_o], fhi[i_o] = x[~surv], fx[~surv]
+        flo[i_o] = np.where(side[i_o] == 1, 0.5 * flo[i_o], flo[i_o])
+        side[i_o] = 1
+        act[idx] = np.abs(hi[idx] - lo[idx]) > xtol
+    return lo, hi, nev, status
+
+
+# ----------------------------------------------------------------------------- blast search
+def _model_name(model) -> str:
+    return model if isinstance(model, str) else getattr(model, "name", str(model))
+
+
+def _z_range(model, extrapolate: bool) -> tuple[float, float]:
+    zlo, zhi = valid_scaled_distance_range(model)
+    if extrapolate:
+        return zlo / _EXTRAPOLATE_WIDENING, zhi * _EXTRAPOLATE_WIDENING
+    return zlo * (1.0 + 1e-12), zhi * (1.0 - 1e-12)
+
+
+def _blast_margin(system: RockingSystem, shape: str, model, extrapolate: bool, solver: RockingSolver, W, R):
+    """mu of ``system`` under the reflected pulse of charges W [kg] at stand-offs R [m] (arrays)."""
+    bp = blast_parameters(W, R, model, extrapolate=extrapolate)
+    p, q, a = system.frequency_parameter, system.load_ratio_per_pascal, system.alpha
+    n = np.size(W)
+    par = np.zeros((n, 3))
+    w0 = np.zeros(n)
+    if shape == "friedlander":
+        par[:, 0] = q * bp.reflected_pressure
+        par[:, 1] = p * bp.positive_duration
+        par[:, 2] = bp.friedlander_decay
+    elif shape == "triangular":
+        par[:, 0] = q * bp.reflected_pressure
+        par[:, 1] = p * (2.0 * bp.reflected_impulse / bp.reflected_pressure)
+    else:  # impulsive: theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
+        w0[:] = q * p * bp.reflected_impulse * math.cos(a)
+    kind = np.full(n, _KIND[shape], dtype=np.int64)
+    return _pulse_phase_margin(solver, np.full(n, a), np.full(n, system.coefficient_of_restitution), w0, kind, par)
+
+
+def _impulse_guess(system: RockingSystem, model, by_charge: bool, fixed, ulo, uhi, extrapolate: bool):
+    """ln of the charge (or stand-off) whose reflected impulse is the impulsive critical one,
+    ``J_o theta_dot_c / (S l)``, by bisection on the blast model alone (clipped to the bounds)."""
+    bm = get_blast_model(model)
+    target = system.critical_impulse
+    lo, hi = ulo.copy(), uhi.copy()
+
+    def impulse(u):
+        W, R = (np.exp(u), fixed) if by_charge else (fixed, np.exp(u))
+        w13 = np.cbrt(W)
+        return bm.scaled_reflected_impulse(R / w13, extrapolate=extrapolate) * w13
+
+    for _ in range(45):  # the ln-range is < 40 wide: 45 halvings leave < 1e-12
+        mid = 0.5 * (lo + hi)
+        more = impulse(mid) > target  # too much impulse: less load
+        if by_charge:
+            hi, lo = np.where(more, mid, hi), np.where(more, lo, mid)
+        else:
+            lo, hi = np.where(more, mid, lo), np.where(more, hi, mid)
+    return 0.5 * (lo + hi)
+
+
+def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver, xtol_rel, guess=None):
+    """Vectorised critical charge (``searched="charge"``, ``fixed`` stand-offs [m]) or stand-off
+    (``"standoff"``, ``fixed`` charges [kg]). Returns (x_critical, bracket_lo, bracket_hi,
+    evaluations, status) arrays; x is the survive side of the final bracket."""
+    if pulse not in PULSE_SHAPES:
+        raise BlastscaleInputError(f"pulse = {pulse!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
+    check_range("xtol_rel", xtol_rel, 1e-14, 0.1)
+    by_charge = searched == "charge"
+    fixed = np.atleast_1d(np.asarray(fixed, dtype=float))
+    zlo, zhi = _z_range(model, extrapolate)
+    if by_charge:  # W = (R / Z)^3: large Z, small charge
+        ulo, uhi = 3.0 * np.log(fixed / zhi), 3.0 * np.log(fixed / zlo)
+    else:  # R = Z W^(1/3): the margin decreases with R, so search in -ln R
+        ulo, uhi = -np.log(zhi * np.cbrt(fixed)), -np.log(zlo * np.cbrt(fixed))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        if guess is None:
+            u0 = _impulse_guess(system, model, by_charge, fixed, ulo if by_charge else -uhi, uhi if by_charge else -ulo, extrapolate)
+            u0 = u0 if by_charge else -u0
+        else:
+            u0 = np.full(fixed.size, math.log(guess) if by_charge else -math.log(guess))
+
+        def evaluate(idx, u):
+            x = np.exp(u if by_charge else -u)
+            W, R = (x, fixed[idx]) if by_charge else (fixed[idx], x)
+            return _blast_margin(system, pulse, model, extrapolate, solver, W, R)
+
+        lo, hi, nev, status = _vector_root(evaluate, u0, ulo, uhi, xtol_rel)
+    # the search visits many points: pass on one warning of each other kind (extrapolation is
+    # reported once for the results, by _check_extrapolated)
+    seen = set()
+    for w in caught:
+        if w.category is not ExtrapolationWarning and w.category not in seen:
+            seen.add(w.category)
+            warnings.warn(w.message, w.category, stacklevel=4)
+    if not by_charge:
+        lo, hi = -lo, -hi
+    x = np.where(status == 0, np.exp(lo), np.nan)
+    return x, np.exp(np.minimum(lo, hi)), np.exp(np.maximum(lo, hi)), nev, status
+
+
+def _check_extrapolated(model, values_z, extrapolate):
+    if extrapolate:
+        zlo, zhi = valid_scaled_distance_range(model)
+        z = np.asarray(values_z)[np.isfinite(values_z)]
+        if np.any((z < zlo) | (z > zhi)):
+            warnings.warn(
+                f"critical scenarios at Z outside the {_model_name(model)} fits' range [{zlo:g}, {zhi:g}] m/kg^(1/3): "
+                "extrapolated", ExtrapolationWarning, stacklevel=3,
+            )
 
 
 @dataclass(frozen=True)
@@ -80,8 +380,8 @@ class CriticalResult:
 
     ``charge_kg`` [kg] and ``standoff_m`` [m] define the critical scenario (the one searched
     for and the one held fixed); ``pulse`` the pulse shape; ``relative_tolerance`` the
-    relative accuracy of the searched quantity; ``evaluations`` the number of simulations;
-    ``bracket`` the final bracket of the searched quantity.
+    relative accuracy of the searched quantity; ``evaluations`` the number of pulse-phase
+    integrations (first-swing criterion); ``bracket`` the final bracket of the searched quantity.
     """
 
     charge_kg: float
@@ -108,48 +408,6 @@ class CriticalResult:
         }
 
 
-def _search(fun, x0: float, increasing: bool, xtol_rel: float, name: str, unit: str):
-    """Root of fun(x) (monotone, continuous) by bracketing in ln x then brentq."""
-    check_range("xtol_rel", xtol_rel, 1e-14, 0.1)
-    count = [0]
-
-    def f(u):
-        count[0] += 1
-        return fun(math.exp(u))
-
-    u0 = math.log(x0)
-    try:
-        f0 = f(u0)
-    except OutOfRangeError as exc:
-        raise BlastscaleInputError(f"critical {name} search: the starting {name} {x0:.6g} {unit} is outside the blast model's range ({exc})") from exc
-    # move towards the root: if f0 > 0 (overturns) and f increasing, decrease x
-    step = -math.log(2.0) if (f0 > 0) == increasing else math.log(2.0)
-    ua, fa = u0, f0
-    for _ in range(60):
-        ub = ua + step
-        try:
-            fb = f(ub)
-        except OutOfRangeError as exc:
-            raise BlastscaleInputError(
-                f"no critical {name} within the blast model's valid range: reached {math.exp(ub):.6g} {unit} "
-                f"without a change of outcome ({exc})"
-            ) from exc
-        if (fb > 0) != (fa > 0):
-            break
-        ua, fa = ub, fb
-    else:
-        raise BlastscaleInputError(f"no critical {name} found between {x0:.6g} and {math.exp(ub):.6g} {unit}")
-    lo, hi = sorted((ua, ub))
-    root = brentq(f, lo, hi, xtol=xtol_rel, rtol=4 * np.finfo(float).eps, maxiter=200)
-    return math.exp(root), (math.exp(lo), math.exp(hi)), count[0]
-
-
-def _pulse_from_params(bp, shape: str) -> Pulse:
-    if shape not in PULSE_SHAPES:
-        raise BlastscaleInputError(f"pulse = {shape!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
-    return bp.pulse(shape)
-
-
 def critical_charge(
     body,
     standoff: float,
@@ -159,33 +417,37 @@ def critical_charge(
     gravity: float | None = None,
     restitution: float | None = None,
     solver: RockingSolver | None = None,
-    guess: float = 10.0,
+    guess: float | None = None,
     xtol_rel: float = 1e-9,
+    extrapolate: bool = False,
 ) -> CriticalResult:
     """Largest TNT charge [kg] at ``standoff`` [m] that the body survives without overturning.
 
     The reflected pulse of shape ``pulse`` from ``blast_parameters(W, standoff, model)`` loads
-    the front face uniformly (paper Method A, Eq. eom). The margin mu(W) (module docstring) is
-    bracketed from ``guess`` by factors of 2 and its root found by brentq in ln W.
+    the front face uniformly (paper Method A, Eq. eom); the first-swing energy criterion
+    (module docstring) decides the outcome, and the search starts from the charge that
+    delivers the impulsive critical impulse (the structure's own scale).
 
     Parameters
     ----------
     body : RockingSystem or RectangularBlock
-        The body (a block is converted with ``gravity`` [m/s^2] and ``restitution`` [-];
-        the restitution does not affect the first excursion).
+        The body (a block is converted with ``gravity`` [m/s^2] and ``restitution`` [-]).
     standoff : float
         Stand-off R [m], > 0.
     pulse : {"friedlander", "triangular", "impulsive"}
         Reflected pulse shape (paper Eqs. 1, 3, impulsive limit).
     model : str
         Blast model, ``"kingery-bulmash"`` (Swisdak 1994) or ``"masi2021"`` (paper App. A);
-        valid over its range of scaled distance Z (0.2-20 m/kg^(1/3) for masi2021).
+        searched over its valid range of scaled distance Z (widened 5x each way with
+        ``extrapolate``).
     solver : RockingSolver, optional
-        Solver (default rtol 1e-10, atol 1e-12).
-    guess : float
-        Starting charge [kg], > 0.
+        Solver of the pulse phase (default rtol 1e-10, atol 1e-12).
+    guess : float, optional
+        Starting charge [kg], > 0 (default: from the impulsive closed form).
     xtol_rel : float
         Relative tolerance on the charge [-], in [1e-14, 0.1].
+    extrapolate : bool
+        Allow the blast fits outside their ranges.
 
     Returns
     -------
@@ -200,10 +462,17 @@ def critical_charge(
     Examples
     --------
     The paper's 10 m block (alpha = 15 deg) at 2 m: 79.8 kg (paper Sec. "Equations of motion").
+
+    >>> import math
+    >>> from blastscale.structures import RectangularBlock
+    >>> blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+    >>> round(critical_charge(blk, 2.0, model="masi2021").charge_kg, 2)
+    79.87
     """
     R = float(check_positive("standoff", standoff, "m"))
-    check_positive("guess", guess, "kg")
-    return _critical(body, "charge", R, pulse, model, gravity, restitution, solver, guess, xtol_rel)
+    if guess is not None:
+        check_positive("guess", guess, "kg")
+    return _critical(body, "charge", R, pulse, model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
 
 
 def critical_standoff(
@@ -215,37 +484,118 @@ def critical_standoff(
     gravity: float | None = None,
     restitution: float | None = None,
     solver: RockingSolver | None = None,
-    guess: float = 5.0,
+    guess: float | None = None,
     xtol_rel: float = 1e-9,
+    extrapolate: bool = False,
 ) -> CriticalResult:
     """Smallest stand-off [m] at which the body survives ``charge`` [kg TNT] without
     overturning (same method and parameters as :func:`critical_charge`, with ``charge`` W
-    [kg] > 0 fixed and ``guess`` the starting stand-off [m]; the margin decreases with
+    [kg] > 0 fixed and ``guess`` an optional starting stand-off [m]; the margin decreases with
     distance). Returns a :class:`CriticalResult` whose ``standoff_m`` [m] is the critical
-    stand-off. References: paper Sec. "Equations of motion"; Masi et al. (2019)."""
+    (safe) stand-off. References: paper Sec. "Equations of motion"; Masi et al. (2019)."""
     W = float(check_positive("charge", charge, "kg"))
-    check_positive("guess", guess, "m")
-    return _critical(body, "standoff", W, pulse, model, gravity, restitution, solver, guess, xtol_rel)
+    if guess is not None:
+        check_positive("guess", guess, "m")
+    return _critical(body, "standoff", W, pulse, model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
 
 
-def _critical(body, searched, fixed, pulse, model, gravity, restitution, solver, guess, xtol_rel) -> CriticalResult:
-    """Critical charge (``searched="charge"``, ``fixed`` the stand-off [m]; the margin grows
-    with the charge) or stand-off (``"standoff"``, ``fixed`` the charge [kg]; it falls with
-    the distance)."""
+def _critical(body, searched, fixed, pulse, model, gravity, restitution, solver, guess, xtol_rel, extrapolate):
     system = as_rocking_system(body, gravity, restitution)
-    solver = solver or DEFAULT_SOLVER
     by_charge = searched == "charge"
+    x, blo, bhi, nev, status = _critical_arrays(
+        system, searched, fixed, pulse, model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel, guess
+    )
+    if status[0] != 0:
+        zlo, zhi = _z_range(model, extrapolate)
+        what = ("survives up to" if status[0] == 1 else "overturns down to") + (
+            f" Z = {zlo if status[0] == 1 else zhi:.6g} m/kg^(1/3)"
+        )
+        raise BlastscaleInputError(
+            f"no critical {searched} within the blast model's valid range of Z [{zlo:.6g}, {zhi:.6g}] m/kg^(1/3) "
+            f"({'stand-off' if by_charge else 'charge'} = {fixed:.6g} {'m' if by_charge else 'kg'}): the body {what}"
+            + ("" if extrapolate else "; --extrapolate (extrapolate=True) widens the range")
+        )
+    W, R = (float(x[0]), fixed) if by_charge else (fixed, float(x[0]))
+    _check_extrapolated(model, [R / np.cbrt(W)], extrapolate)
+    return CriticalResult(W, R, searched, pulse, _model_name(model), xtol_rel, int(nev[0]), (float(blo[0]), float(bhi[0])))
 
-    def margin(x):
-        W, R = (x, fixed) if by_charge else (fixed, x)
-        return overturn_margin(system, _pulse_from_params(blast_parameters(W, R, model), pulse), solver=solver)
 
-    x, br, n = _search(margin, guess, by_charge, xtol_rel, searched, "kg" if by_charge else "m")
-    W, R = (x, fixed) if by_charge else (fixed, x)
-    name = model if isinstance(model, str) else getattr(model, "name", str(model))
-    return CriticalResult(W, R, searched, pulse, name, xtol_rel, n, br)
+# ----------------------------------------------------------------------------- capacity curve
+@dataclass(frozen=True)
+class CapacityCurve:
+    """Critical charge against stand-off, W_c(R), of one body (SI).
+
+    ``standoff_m`` (n,) [m], ``critical_charge_kg`` (n,) [kg] (NaN where the outcome does not
+    change within the blast model's range), ``evaluations`` (n,) pulse-phase integrations per
+    case, ``seconds`` [s] the wall time of the search, ``pulse``, ``model``.
+    """
+
+    standoff_m: np.ndarray
+    critical_charge_kg: np.ndarray
+    evaluations: np.ndarray
+    seconds: float
+    pulse: str
+    model: str
+
+    @property
+    def seconds_per_case(self) -> float:
+        """Wall time per stand-off [s]."""
+        return self.seconds / max(1, self.standoff_m.size)
+
+    def safe_standoff(self, charge: float) -> float:
+        """Stand-off [m] beyond which ``charge`` [kg] no longer overturns the body, interpolated
+        on the curve (log-log linear; NaN outside it). For an exact value use
+        :func:`critical_standoff`."""
+        ok = np.isfinite(self.critical_charge_kg)
+        R, W = self.standoff_m[ok], self.critical_charge_kg[ok]
+        if R.size < 2:
+            return float("nan")
+        order = np.argsort(W)
+        lw, lr = np.log(W[order]), np.log(R[order])
+        x = math.log(float(check_positive("charge", charge, "kg")))
+        return float(np.exp(np.interp(x, lw, lr))) if lw[0] <= x <= lw[-1] else float("nan")
+
+    def to_dict(self) -> dict:
+        """Plain dict (lists; None for NaN)."""
+        return {
+            "standoff_m": self.standoff_m.tolist(),
+            "critical_charge_kg": [None if not math.isfinite(w) else float(w) for w in self.critical_charge_kg],
+            "seconds_per_case": self.seconds_per_case,
+            "pulse": self.pulse,
+            "model": self.model,
+        }
 
 
+def capacity_curve(
+    body,
+    standoffs,
+    *,
+    pulse: str = "friedlander",
+    model=DEFAULT_BLAST_MODEL,
+    gravity: float | None = None,
+    restitution: float | None = None,
+    solver: RockingSolver | None = None,
+    xtol_rel: float = 1e-9,
+    extrapolate: bool = False,
+) -> CapacityCurve:
+    """Critical charge W_c(R) [kg] at every stand-off R [m] of ``standoffs``, vectorised.
+
+    Same method and parameters as :func:`critical_charge` (first-swing energy criterion, the
+    cases searched together); ``standoffs`` a non-empty 1-D array of stand-offs [m] > 0. A
+    stand-off whose outcome does not change within the blast model's range of Z gives NaN.
+    """
+    R = np.atleast_1d(check_positive("standoffs", standoffs, "m")).astype(float)
+    if R.ndim != 1 or R.size == 0:
+        raise BlastscaleInputError(f"standoffs must be a non-empty 1-D list of stand-offs [m], got shape {R.shape}")
+    system = as_rocking_system(body, gravity, restitution)
+    t0 = time.perf_counter()
+    W, _, _, nev, _ = _critical_arrays(system, "charge", R, pulse, model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel)
+    dt = time.perf_counter() - t0
+    _check_extrapolated(model, R / np.cbrt(W), extrapolate)
+    return CapacityCurve(R, W, nev, dt, pulse, _model_name(model))
+
+
+# ----------------------------------------------------------------------------- P-I diagram
 @dataclass(frozen=True)
 class PIDiagram:
     """Pressure-impulse overturning curve of a body (SI).
@@ -278,9 +628,10 @@ def pi_diagram(
     """Pressure-impulse (P-I) overturning diagram of a body.
 
     For each peak pressure P the critical impulse i_c(P) that just overturns the body is found
-    with :func:`overturn_margin` and brentq in ln i. i_c tends to the impulsive asymptote
-    ``J_o p sqrt(2 (1 - cos alpha)) / (S l)`` as P grows and diverges as P falls to the uplift
-    pressure ``m g r sin(alpha) / (S l)`` (``P S h = m g b`` for a block).
+    with the first-swing criterion (module docstring), all pressures at once, in ln i. i_c
+    tends to the impulsive asymptote ``J_o p sqrt(2 (1 - cos alpha)) / (S l)`` as P grows and
+    diverges as P falls to the uplift pressure ``m g r sin(alpha) / (S l)`` (``P S h = m g b``
+    for a block).
 
     Parameters
     ----------
@@ -309,6 +660,7 @@ def pi_diagram(
     """
     system = as_rocking_system(body, gravity, restitution)
     solver = solver or DEFAULT_SOLVER
+    check_range("xtol_rel", xtol_rel, 1e-14, 0.1)
     p_up = system.uplift_pressure
     i_imp = system.critical_impulse
     if peak_pressures is None:
@@ -323,16 +675,28 @@ def pi_diagram(
                 f"pressure {p_up:.6g} Pa (below it the body never lifts off)"
             )
     if shape == "triangular":
-        def make(Pk, i):
-            return Triangular(Pk, i)
+        kind, dur_per_impulse, d = 2, 2.0 / P, 0.0
     elif shape == "friedlander":
-        k = friedlander_impulse_ratio(decay)
-
-        def make(Pk, i):
-            return Friedlander(Pk, i / (Pk * k), decay)
+        kind, dur_per_impulse, d = 1, 1.0 / (P * float(friedlander_impulse_ratio(decay))), float(decay)
     else:
         raise BlastscaleInputError(f"P-I pulse shape = {shape!r} is not known: valid values are triangular, friedlander")
-    ic = np.empty(P.size)
-    for j, Pk in enumerate(P):
-        ic[j] = _search(lambda i: overturn_margin(system, make(Pk, i), solver=solver), i_imp, True, xtol_rel, "impulse", "Pa*s")[0]
-    return PIDiagram(P, ic, i_imp, p_up, shape)
+    pf, q = system.frequency_parameter, system.load_ratio_per_pascal
+
+    def evaluate(idx, u):
+        m = idx.size
+        par = np.empty((m, 3))
+        par[:, 0] = q * P[idx]
+        par[:, 1] = pf * np.exp(u) * dur_per_impulse[idx]
+        par[:, 2] = d
+        return _pulse_phase_margin(
+            solver, np.full(m, system.alpha), np.full(m, system.coefficient_of_restitution), np.zeros(m),
+            np.full(m, kind, dtype=np.int64), par,
+        )
+
+    u0 = np.full(P.size, math.log(i_imp))
+    lo, hi, _, status = _vector_root(evaluate, u0, u0 - 1.0, u0 + 40.0, xtol_rel)
+    if np.any(status != 0):
+        raise BlastscaleInputError(
+            f"peak pressure = {float(P[status != 0][0]):.6g} Pa: no critical impulse found up to e^40 times the impulsive one"
+        )
+    return PIDiagram(P, np.exp(hi), i_imp, p_up, shape)
