@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from .._validate import BlastscaleInputError, check_positive
 from .compare import _factor, align, compare_responses, upscale_dataset
 
-__all__ = ["Comparison3D", "compare_structure3d", "upscale_summary", "SUMMARY_UNIT_DIMENSIONS"]
+__all__ = ["Comparison3D", "compare_structure3d", "simulate_system", "upscale_summary", "SUMMARY_UNIT_DIMENSIONS"]
 
 #: Unit suffix of a summary key -> physical dimension (the keys of Response3D.summary()).
 SUMMARY_UNIT_DIMENSIONS = {
@@ -190,28 +190,59 @@ class Comparison3D:
         return ds
 
 
-def _run_pair(structure, design, *, load, pulse, incidence, contact, duration, record_every, load_factor=1.0):
-    """Simulate the prototype and the model (model units). Returns
-    ``(model_structure, prototype Response3D, model Response3D)``."""
+def simulate_system(structure, design, system: str = "prototype", *, load: str = "A", pulse: str = "friedlander",
+                    incidence: str | None = None, contact=None, duration: float = 8.0, record_every: int = 4,
+                    load_factor: float = 1.0):
+    """Simulate one side of a model experiment: the prototype, or the model at its own size.
+
+    Parameters
+    ----------
+    structure : structure
+        Prototype structure.
+    design : ModelDesign
+        The model experiment.
+    system : {"prototype", "model"}
+        Which one: the model is ``structure.scaled(lambda, gamma)`` under ``design.model``'s
+        charge and stand-off, gravity ``varsigma g``, contact ``contact.scaled(lambda, lambda_t)``
+        (or the engine's defaults for its size), for ``duration * lambda_t``.
+    load, pulse, incidence, contact, record_every
+        See :func:`compare_structure3d`.
+    duration : float
+        Prototype simulated time [s].
+    load_factor : float
+        Multiplier of the load's wrenches [-] (ensembles, :class:`~.ensemble.PerturbedLoad`).
+
+    Returns
+    -------
+    (structure, Response3D)
+        The structure simulated and its response (in its own units).
+    """
     from ..sim3d import simulate_structure
     from ..sim3d.loads import make_load
     from .ensemble import PerturbedLoad
 
     f = design.factors
-    model_structure = structure.scaled(f.length, f.density)
-    runs = []
-    for struct, blast, dur, g, cont in (
-        (structure, design.prototype, duration, design.gravity, contact),
-        (model_structure, design.model, duration * f.time, design.gravity * f.gravity,
-         None if contact is None else contact.scaled(f.length, f.time)),
-    ):
-        inc = {} if incidence is None else {"incidence": incidence}
-        ld = make_load(load, struct, charge_kg=blast.charge_kg, standoff_m=blast.standoff_m,
-                       blast_model=blast.model, pulse=pulse, **inc)
-        if load_factor != 1.0:
-            ld = PerturbedLoad(ld, load_factor)
-        runs.append(simulate_structure(struct, ld, dur, contact=cont, gravity=g, record_every=record_every))
-    return model_structure, runs[0], runs[1]
+    if system == "prototype":
+        struct, blast, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
+    elif system == "model":
+        struct, blast = structure.scaled(f.length, f.density), design.model
+        dur, g = duration * f.time, design.gravity * f.gravity
+        cont = None if contact is None else contact.scaled(f.length, f.time)
+    else:
+        raise BlastscaleInputError(f"system = {system!r} is not known: valid values are prototype, model")
+    inc = {} if incidence is None else {"incidence": incidence}
+    ld = make_load(load, struct, charge_kg=blast.charge_kg, standoff_m=blast.standoff_m, blast_model=blast.model,
+                   pulse=pulse, **inc)
+    if load_factor != 1.0:
+        ld = PerturbedLoad(ld, load_factor)
+    return struct, simulate_structure(struct, ld, dur, contact=cont, gravity=g, record_every=record_every)
+
+
+def _run_pair(structure, design, **kw):
+    """Simulate the prototype and the model: ``(model_structure, prototype Response3D, model Response3D)``."""
+    _, proto = simulate_system(structure, design, "prototype", **kw)
+    model_structure, mod = simulate_system(structure, design, "model", **kw)
+    return model_structure, proto, mod
 
 
 def compare_structure3d(

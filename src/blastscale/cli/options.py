@@ -75,3 +75,31 @@ GRAVITY_RATIO = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / 
 GRAVITY = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2].")
 MODEL = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP)
 JSON = typer.Option(False, "--json", help="Print one JSON object instead of tables.")
+
+# the 3D load options shared by block3d and column (names checked before any run)
+LOAD = typer.Option("A", "--load", help="Load method: A (the paper's Method A: uniform, simultaneous reflected pulse on "
+                                        "the front faces); B, C when registered (per-face arrival and incidence).")
+INCIDENCE = typer.Option(None, "--incidence", help="Angle-of-incidence model of loads B and C (default ufc; see "
+                                                   "blastscale.blast.incidence).")
+
+
+def check_load_options(load: str, incidence: Optional[str]) -> None:
+    """One-line errors for an unknown --load (valid: the keys of sim3d.loads.LOAD_METHODS, B and C
+    included once registered) or --incidence (valid: blast.incidence.INCIDENCE_MODELS)."""
+    import importlib
+
+    from ..sim3d.loads import LOAD_METHODS
+
+    try:  # the module that registers B and C, where present
+        importlib.import_module("blastscale.sim3d.face_loads")
+    except ModuleNotFoundError as e:
+        if e.name != "blastscale.sim3d.face_loads":
+            raise
+    if load not in LOAD_METHODS:
+        raise BlastscaleInputError(f"load = {load!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
+    if incidence is not None:
+        from ..blast.incidence import INCIDENCE_MODELS
+
+        if incidence not in INCIDENCE_MODELS:
+            raise BlastscaleInputError(
+                f"incidence = {incidence!r} is not known: valid values are {', '.join(INCIDENCE_MODELS)}")
