@@ -1,7 +1,8 @@
-"""Per-face blast loads (Methods B/C): geometry, incidence and the Randers-Pehrson & Bannister blend.
+"""Per-face blast loads (Methods B/C): geometry, incidence models, vectorised pulses, time origin.
 
-Reference values are hand computations: the blend formula evaluated by hand at chosen angles on
-the model's own P_r, P_so (which are tested against UFC Fig. 2-15 in test_kingery_bulmash.py).
+Reference values are hand computations: the closed-form blend evaluated by hand at chosen angles on
+the model's own P_r, P_so (which are tested against UFC Fig. 2-15 in test_kingery_bulmash.py); the
+vectorised pulses are checked against the scalar pulse classes of blast.pulses (an independent path).
 """
 
 import math
@@ -12,18 +13,21 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from blastscale._validate import BlastscaleInputError, OutOfRangeError
-from blastscale.blast import Friedlander, Impulsive, Triangular
-from blastscale.blast.faces import face_loads, oblique_combination
+from blastscale.blast import Friedlander, Triangular
+from blastscale.blast.faces import MixedModelWarning, face_loads, oblique_combination
+from blastscale.blast.incidence import INCIDENCE_MODELS
 from blastscale.blast.kingery_bulmash import KingeryBulmash
+from blastscale.blast.masi_fits import Masi2021
 
 KB = KingeryBulmash()
 W = 8.0  # kg, W^(1/3) = 2 exactly
 ORIGIN = np.zeros(3)
 
 
-def test_face_looking_at_charge_gets_normal_reflection():
-    # a = 0: P = P_r, i = i_r, t_A = W^(1/3) t_A(Z); R = 4 m -> Z = 2
-    f = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-1.0, 0.0, 0.0])
+@pytest.mark.parametrize("incidence", INCIDENCE_MODELS)
+def test_face_looking_at_charge_gets_normal_reflection(incidence):
+    # a = 0: P = P_r, i = i_r, t_A = W^(1/3) t_A(Z) since detonation; R = 4 m -> Z = 2
+    f = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-1.0, 0.0, 0.0], incidence=incidence)
     assert f.distance == pytest.approx(4.0, rel=1e-15) and f.scaled_distance == pytest.approx(2.0, rel=1e-15)
     assert f.angle_of_incidence == pytest.approx(0.0, abs=1e-7)
     assert f.pressure == pytest.approx(KB.reflected_pressure(2.0), rel=1e-12)
@@ -32,18 +36,20 @@ def test_face_looking_at_charge_gets_normal_reflection():
     assert f.positive_duration == pytest.approx(2.0 * KB.scaled_positive_duration(2.0), rel=1e-12)
 
 
-def test_grazing_face_gets_incident_pressure():
+@pytest.mark.parametrize("incidence", INCIDENCE_MODELS)
+def test_grazing_face_gets_incident_pressure(incidence):
     # a = 90 deg (a side face): P = P_so, i = i_s
-    f = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [0.0, 1.0, 0.0])
+    f = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [0.0, 1.0, 0.0], incidence=incidence)
     assert f.angle_of_incidence == pytest.approx(math.pi / 2, rel=1e-12)
     assert f.pressure == pytest.approx(KB.incident_pressure(2.0), rel=1e-12)
     assert f.impulse == pytest.approx(2.0 * KB.scaled_incident_impulse(2.0), rel=1e-12)
 
 
-def test_face_turned_away_gets_incident_only():
+@pytest.mark.parametrize("incidence", INCIDENCE_MODELS)
+def test_face_turned_away_gets_incident_only(incidence):
     # a = 180 deg (rear face) and a = 120 deg: incident values, not a negative blend
     for normal in ([1.0, 0.0, 0.0], [0.5, math.sqrt(3) / 2, 0.0]):
-        f = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], normal)
+        f = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], normal, incidence=incidence)
         assert f.cos_incidence < 0
         assert f.pressure == pytest.approx(KB.incident_pressure(2.0), rel=1e-12)
         assert f.impulse == pytest.approx(2.0 * KB.scaled_incident_impulse(2.0), rel=1e-12)
@@ -54,16 +60,16 @@ def test_45_and_60_degrees_by_hand():
     # cos 60 = 1/2:     P = P_r/4 + P_so (1 + 1/2 - 1/2)  = 0.25 P_r + P_so
     Pr, Pso = KB.reflected_pressure(2.0), KB.incident_pressure(2.0)
     s = math.sqrt(0.5)
-    f45 = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-s, s, 0.0])
+    f45 = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-s, s, 0.0], incidence="closed-form")
     assert math.degrees(f45.angle_of_incidence) == pytest.approx(45.0, rel=1e-9)
     assert f45.pressure == pytest.approx(0.5 * Pr + 0.7071067811865476 * Pso, rel=1e-12)
-    f60 = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-0.5, math.sqrt(3) / 2, 0.0])
+    f60 = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-0.5, math.sqrt(3) / 2, 0.0], incidence="closed-form")
     assert f60.pressure == pytest.approx(0.25 * Pr + Pso, rel=1e-12)
 
 
 def test_distance_3_4_5_and_incidence_from_geometry():
     # charge at (1, 1, 0); face centre at (4, 5, 0): R = 5; normal -x: cos a = 3/5
-    f = face_loads(W, [1.0, 1.0, 0.0], [4.0, 5.0, 0.0], [-1.0, 0.0, 0.0])
+    f = face_loads(W, [1.0, 1.0, 0.0], [4.0, 5.0, 0.0], [-1.0, 0.0, 0.0], incidence="closed-form")
     assert f.distance == pytest.approx(5.0, rel=1e-15)
     assert f.cos_incidence == pytest.approx(0.6, rel=1e-14)
     Pr, Pso = KB.reflected_pressure(2.5), KB.incident_pressure(2.5)
@@ -117,16 +123,58 @@ def test_blend_continuous_at_grazing_incidence():
     assert oblique_combination(10.0, 1.0, -1e-12) == 1.0
 
 
-def test_face_pulses():
-    f = face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-1.0, 0.0, 0.0])
-    fr = f.pulse(shape="friedlander")
-    assert isinstance(fr, Friedlander)
-    assert fr.peak == pytest.approx(float(f.pressure), rel=1e-12)
-    assert fr.impulse == pytest.approx(float(f.impulse), rel=1e-9)  # decay solved to ~1e-14
-    assert isinstance(f.pulse(shape="triangular"), Triangular)
-    assert isinstance(f.pulse(shape="impulsive"), Impulsive)
-    with pytest.raises(BlastscaleInputError, match="pulse"):
-        f.pulse(shape="square")
+@pytest.mark.parametrize("shape, cls", [("friedlander", Friedlander), ("triangular", Triangular)])
+def test_vectorised_pulses_equal_the_scalar_pulses_face_by_face(shape, cls):
+    # independent slow path: one blast.pulses object per face, time shifted by the face's own arrival
+    centres, normals, areas = _cube_faces([5.0, 0.0, 1.0], 0.5)
+    f = face_loads(W, ORIGIN, centres, normals, areas)
+    fp = f.pulses(shape)
+    ts = np.linspace(0.0, fp.end_time * 1.1, 157)
+    for k in range(5):
+        if shape == "friedlander":
+            ref = Friedlander.from_impulse(f.pressure[k], f.positive_duration[k], f.impulse[k])
+        else:
+            ref = Triangular(f.pressure[k], f.impulse[k])
+        for t0, t1 in zip(ts[:-1], ts[1:]):
+            ta = f.arrival_time[k]
+            assert fp.pressure(t1)[k] == pytest.approx(ref.pressure(t1 - ta), rel=1e-9, abs=1e-9 * ref.peak)
+            exact = ref.cumulative_impulse(t1 - ta) - ref.cumulative_impulse(t0 - ta)
+            assert fp.impulse_between(t0, t1)[k] == pytest.approx(exact, rel=1e-9, abs=1e-12 * ref.impulse)
+    # time origin is the detonation: nothing before each face's arrival, the full impulse after its end
+    np.testing.assert_array_equal(fp.cumulative_impulse(0.999999 * f.arrival_time.min()), 0.0)
+    np.testing.assert_allclose(fp.cumulative_impulse(fp.end_time), f.impulse, rtol=1e-10)
+
+
+def test_step_impulses_telescope_to_the_face_impulse_for_any_step():
+    # exact impulse per step: the sum over any partition equals i (no sampling of the peak)
+    f = face_loads(W, ORIGIN, *_cube_faces([5.0, 0.0, 1.0], 0.5))
+    for shape in ("friedlander", "triangular", "impulsive"):
+        fp = f.pulses(shape)
+        for n in (3, 17, 1000):
+            t = np.linspace(0.0, max(fp.end_time, f.arrival_time.max()) * 1.01, n)
+            total = sum(fp.impulse_between(a, b) for a, b in zip(t[:-1], t[1:]))
+            np.testing.assert_allclose(total, f.impulse, rtol=1e-12)
+
+
+def test_newton_refinement_from_a_nearby_geometry_equals_the_cold_solve():
+    centres, normals, areas = _cube_faces([5.0, 0.0, 1.0], 0.5)
+    cold = face_loads(W, ORIGIN, centres, normals, areas).pulses()
+    moved = face_loads(W, ORIGIN, centres + [0.01, 0.003, 0.0], normals, areas)
+    warm = moved.pulses(decay_guess=cold.decay)
+    np.testing.assert_allclose(warm.decay, moved.pulses().decay, rtol=1e-10, atol=1e-12)
+    with pytest.raises(BlastscaleInputError, match="pulse = 'square' is not known"):
+        moved.pulses("square")
+
+
+def test_masi2021_uses_its_reflected_values_and_kingery_bulmash_side_on_values():
+    m = Masi2021()
+    with pytest.warns(MixedModelWarning, match="Kingery-Bulmash side-on"):
+        f = face_loads(W, ORIGIN, [[4.0, 0.0, 0.0], [4.0, 0.0, 0.0]], [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+                       model="masi2021")
+    assert f.pressure[0] == pytest.approx(m.reflected_pressure(2.0), rel=1e-12)  # the paper's P_r at 0 deg
+    assert f.arrival_time[0] == pytest.approx(2.0 * m.scaled_arrival_time(2.0), rel=1e-12)
+    assert f.pressure[1] == pytest.approx(KB.incident_pressure(2.0), rel=1e-12)  # side-on from KB at 90 deg
+    assert f.impulse[1] == pytest.approx(2.0 * KB.scaled_incident_impulse(2.0), rel=1e-12)
 
 
 def test_bad_inputs_name_the_parameter():
@@ -138,8 +186,8 @@ def test_bad_inputs_name_the_parameter():
         face_loads(W, ORIGIN, [0.0, 0.0, 0.0], [-1.0, 0.0, 0.0])
     with pytest.raises(BlastscaleInputError, match="face area"):
         face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-1.0, 0.0, 0.0], areas=0.0)
-    with pytest.raises(BlastscaleInputError, match="masi2021"):
-        face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-1.0, 0.0, 0.0], model="masi2021")
+    with pytest.raises(BlastscaleInputError, match="incidence model = 'flat' is not known"):
+        face_loads(W, ORIGIN, [4.0, 0.0, 0.0], [-1.0, 0.0, 0.0], incidence="flat")
     with pytest.raises(BlastscaleInputError, match="do not broadcast"):
         face_loads(W, ORIGIN, np.ones((3, 3)) * 4, np.tile([-1.0, 0, 0], (2, 1)))
     # Z = 100 m / 2 = 50 > 40: the reflected-pressure fit's range

@@ -1,7 +1,8 @@
 """Blast loads: empirical air-blast models, pulse shapes and per-point parameters (SI)."""
 
 from .base import BlastModel, ExtrapolationWarning
-from .faces import FaceLoads, face_loads, oblique_combination
+from .faces import FaceLoads, FacePulses, face_loads, oblique_combination
+from .incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS
 from .kingery_bulmash import KingeryBulmash
 from .masi_fits import Masi2021
 from .parameters import (
@@ -19,6 +20,9 @@ __all__ = [
     "KingeryBulmash",
     "Masi2021",
     "FaceLoads",
+    "FacePulses",
+    "INCIDENCE_MODELS",
+    "DEFAULT_INCIDENCE",
     "face_loads",
     "oblique_combination",
     "ExtrapolationWarning",

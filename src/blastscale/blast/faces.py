@@ -1,89 +1,147 @@
 """Per-face blast loads: distance, arrival time, angle of incidence, oblique pressure and impulse.
 
-Used by the paper's Methods B and C (Sec. 5 and Appendix B): instead of loading the whole
-front face at once with the reflected pulse at the stand-off (Method A), every face gets the
-blast parameters of its own centre point:
+Used by the paper's Methods B and C (Sec. "Application to multi-drum columns", Appendix B):
+instead of loading the whole front face at once with the reflected pulse at the stand-off
+(Method A), every face gets the blast parameters of its own centre point:
 
 * distance :math:`R_k = |\\mathbf{x}_k - \\mathbf{x}_c|` from the charge to the face centre,
   scaled distance :math:`Z_k = R_k / W^{1/3}`;
-* arrival time :math:`t_{A,k} = W^{1/3}\\,\\hat t_A(Z_k)`, positive duration likewise;
-* angle of incidence :math:`a_k` between the face's outward unit normal
+* arrival time :math:`t_{A,k} = W^{1/3}\\,\\hat t_A(Z_k)` **since detonation**, positive
+  duration :math:`t_{o,k} = W^{1/3}\\,\\hat t_o(Z_k)`;
+* angle of incidence :math:`a_k` between the face's **outward** unit normal
   :math:`\\mathbf{n}_k` and the unit vector from the face centre to the charge,
-  :math:`\\cos a_k = \\mathbf{n}_k \\cdot (\\mathbf{x}_c - \\mathbf{x}_k) / R_k`
+  :math:`\\cos a_k = -\\mathbf{n}_k \\cdot (\\mathbf{x}_k - \\mathbf{x}_c) / R_k`
   (a = 0: the face looks straight at the charge; a = 90 deg: grazing; a > 90 deg: turned away);
-* peak pressure on the face from the normally reflected and the incident values at Z_k
-  (Randers-Pehrson & Bannister 1997, the form used by CONWEP-type loaders),
+* peak pressure and impulse on the face from the normally reflected and the side-on values at
+  Z_k, by the chosen incidence model (:mod:`.incidence`: ``"ufc"``, UFC 3-340-02 Figs.
+  2-193/2-194, the default, or ``"closed-form"``, Randers-Pehrson & Bannister 1997). A face
+  turned away gets the side-on pulse at its own arrival time.
 
-  .. math::
+A pressure p on a face pushes with ``-p * area * n_outward`` (the one sign convention of the
+package). :class:`FacePulses` gives the pressure of every face at a time and the **exact**
+impulse of every face over a step [t0, t1] in one vectorised call; the Friedlander decays are
+solved once, on arrays, when the pulses are built (and refined by Newton from a previous
+solution when the geometry moves, :meth:`FaceLoads.pulses`).
 
-      P_k = \\begin{cases}
-          P_r \\cos^2 a + P_{so}\\,(1 + \\cos a - 2\\cos^2 a) & \\cos a > 0 \\\\
-          P_{so} & \\cos a \\le 0,
-      \\end{cases}
+Incident values for ``masi2021``: the paper's Appendix A fits give the reflected pressure,
+impulse, arrival time and duration only. Oblique faces need the side-on pressure and impulse at
+the same Z; they are taken from Kingery-Bulmash (Swisdak 1994), to which the paper's fits were
+themselves fitted (agreement within 7-9 %), and a :class:`MixedModelWarning` says so (once per
+call site). Everything else (P_r, i_r, t_A, t_o) stays the paper's.
 
-  and the same combination of the reflected and incident impulses for the face impulse.
-  The form gives P_r at a = 0 and P_so at a = 90 deg, and is continuous there.
-
-Limits (see ``docs/blast_models.md`` and DESIGN.md): the closed form ignores Mach
-reflection; near a = 40-45 deg it is 27-40 % below the tabulated reflection coefficient of
-UFC 3-340-02 Fig. 2-193. Faces turned away get the side-on values, without diffraction,
-clearing or shadowing. The distance is the straight (slant) distance to the face centre; the
-underlying fits are those of a hemispherical surface burst.
+Limits (see ``docs/face_loads.md``): no diffraction, clearing or shadowing; the distance is the
+straight (slant) distance to the face centre; the fits are those of a hemispherical surface burst.
 
 References
 ----------
-.. [1] Randers-Pehrson, G. & Bannister, K. A. (1997). *Airblast loading model for DYNA2D and
-       DYNA3D*. ARL-TR-1310, Army Research Laboratory.
+.. [1] Randers-Pehrson, G. & Bannister, K. A. (1997). ARL-TR-1310.
 .. [2] Masi, Stefanou & Maffi-Berthier, *Scaling laws ...*, Methods A/B/C and Appendix B.
-.. [3] UFC 3-340-02 (2008), Fig. 2-193 (reflection coefficient vs angle of incidence).
+.. [3] UFC 3-340-02 (2008), Figs. 2-193 and 2-194.
 """
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_finite, check_positive, check_positive_scalar, check_range
+from .._validate import BlastscaleInputError, check_finite, check_positive, check_positive_scalar
 from .base import BlastModel
+from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_combination, oblique_values
 from .parameters import DEFAULT_BLAST_MODEL, get_blast_model
-from .pulses import Friedlander, Impulsive, Pulse, Triangular, friedlander_decay
+from .pulses import (
+    MAX_IMPULSE_RATIO,
+    friedlander_cumulative,
+    friedlander_decay,
+    friedlander_decay_newton,
+)
 
-__all__ = ["FaceLoads", "face_loads", "oblique_combination", "UNIT_NORMAL_TOLERANCE"]
+__all__ = [
+    "FaceLoads",
+    "FacePulses",
+    "face_loads",
+    "oblique_combination",
+    "MixedModelWarning",
+    "PULSE_SHAPES",
+    "UNIT_NORMAL_TOLERANCE",
+]
 
 #: Largest accepted | |n| - 1 | for a face normal (catches non-normalised input).
 UNIT_NORMAL_TOLERANCE = 1.0e-6
 
+#: Pulse shapes of :meth:`FaceLoads.pulses`.
+PULSE_SHAPES = ("friedlander", "triangular", "impulsive")
 
-def oblique_combination(reflected, incident, cos_incidence):
-    """Randers-Pehrson & Bannister (1997) blend of reflected and incident values [same unit].
+_INCIDENT = ("incident_pressure", "scaled_incident_impulse")
 
-    .. math::
 
-        Y(a) = Y_r \\cos^2 a + Y_{s}\\,(1 + \\cos a - 2\\cos^2 a)\\quad(\\cos a > 0),
-        \\qquad Y(a) = Y_s \\quad(\\cos a \\le 0).
+class MixedModelWarning(UserWarning):
+    """Side-on values for oblique faces come from Kingery-Bulmash beside another model's reflected ones."""
 
-    Parameters
+
+def _check_shape(shape: str) -> str:
+    if shape not in PULSE_SHAPES:
+        raise BlastscaleInputError(f"pulse = {shape!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
+    return shape
+
+
+@dataclass(frozen=True)
+class FacePulses:
+    """Positive-phase pulses of many faces, all arrays of shape (nface,), times since detonation.
+
+    Attributes
     ----------
-    reflected : array_like
-        Normally reflected value Y_r (pressure [Pa] or impulse [Pa*s]).
-    incident : array_like
-        Incident (side-on) value Y_s, same unit.
-    cos_incidence : array_like
-        Cosine of the angle of incidence [-], in [-1, 1].
-
-    Returns
-    -------
-    ndarray or float
-        Y on the face, same unit; broadcast shape of the inputs.
+    kind : str
+        ``"friedlander"`` (paper Eq. 1, decay fitted to the impulse, Eq. 2), ``"triangular"``
+        (equal peak and impulse, duration 2 i / P, Eq. 3) or ``"impulsive"`` (a Dirac of area i at
+        the arrival).
+    arrival_time : ndarray
+        Shock arrival at each face [s] since detonation.
+    peak : ndarray
+        Peak overpressure [Pa] (inf for impulsive).
+    duration : ndarray
+        Time from arrival to the end of the pulse [s] (0 for impulsive).
+    decay : ndarray
+        Friedlander decay coefficient d [-] (0 for the other shapes).
+    impulse : ndarray
+        Total impulse [Pa*s].
     """
-    yr = check_range("reflected value", reflected, 0.0)
-    ys = check_range("incident value", incident, 0.0)
-    # [-1, 1] up to round-off of a normalised dot product
-    c = check_range("cosine of the angle of incidence", cos_incidence, -1.0 - 1e-9, 1.0 + 1e-9)
-    cp = np.clip(c, 0.0, 1.0)  # cos a <= 0 -> incident only (the formula gives Y_s at c = 0)
-    out = yr * cp**2 + ys * (1.0 + cp - 2.0 * cp**2)
-    return out if out.ndim else float(out)
+
+    kind: str
+    arrival_time: np.ndarray
+    peak: np.ndarray
+    duration: np.ndarray
+    decay: np.ndarray
+    impulse: np.ndarray
+
+    @property
+    def end_time(self) -> float:
+        """Latest end of any pulse [s] since detonation."""
+        return float(np.max(self.arrival_time + self.duration))
+
+    def pressure(self, t: float) -> np.ndarray:
+        """Overpressure on every face at time t [s] since detonation, shape (nface,) [Pa]."""
+        if self.kind == "impulsive":
+            return np.zeros_like(self.arrival_time)
+        x = (t - self.arrival_time) / self.duration
+        inside = (x >= 0.0) & (x <= 1.0)
+        shape = (1.0 - x) * (np.exp(-self.decay * x) if self.kind == "friedlander" else 1.0)
+        return np.where(inside, self.peak * shape, 0.0)
+
+    def cumulative_impulse(self, t: float) -> np.ndarray:
+        """Impulse delivered to every face from detonation to t [s], shape (nface,) [Pa*s] (exact)."""
+        s = t - self.arrival_time
+        if self.kind == "impulsive":
+            return np.where(s >= 0.0, self.impulse, 0.0)
+        x = np.clip(s / self.duration, 0.0, 1.0)
+        if self.kind == "friedlander":
+            return self.peak * self.duration * friedlander_cumulative(x, self.decay)
+        return self.peak * self.duration * (x - 0.5 * x**2)
+
+    def impulse_between(self, t0: float, t1: float) -> np.ndarray:
+        """Exact impulse of every face over [t0, t1] [s since detonation], shape (nface,) [Pa*s]."""
+        return self.cumulative_impulse(t1) - self.cumulative_impulse(t0)
 
 
 @dataclass(frozen=True)
@@ -93,7 +151,9 @@ class FaceLoads:
     Attributes
     ----------
     model : str
-        Empirical blast model used.
+        Empirical blast model used (its reflected values; see the module docstring for masi2021).
+    incidence : str
+        Incidence model (``"ufc"`` or ``"closed-form"``).
     charge_kg : float
         TNT-equivalent charge W [kg].
     distance : ndarray
@@ -103,7 +163,7 @@ class FaceLoads:
     cos_incidence, angle_of_incidence : ndarray
         Cosine [-] and angle [rad] between the outward normal and the direction to the charge.
     arrival_time : ndarray
-        Shock arrival time t_A [s].
+        Shock arrival time t_A [s] since detonation.
     positive_duration : ndarray
         Positive-phase duration t_o [s].
     reflected_pressure, incident_pressure : ndarray
@@ -111,16 +171,17 @@ class FaceLoads:
     reflected_impulse, incident_impulse : ndarray
         Positive-phase reflected and incident impulses at Z [Pa*s].
     pressure : ndarray
-        Peak overpressure on the face, oblique blend (module docstring) [Pa].
+        Peak overpressure on the face by the incidence model [Pa].
     impulse : ndarray
-        Positive-phase impulse on the face, same blend [Pa*s].
+        Positive-phase impulse on the face by the incidence model [Pa*s].
     area : ndarray
         Face area S [m^2].
-    force_direction : ndarray, shape ``shape + (3,)``
-        Unit vector of the pressure force on the face (= -outward normal).
+    normal : ndarray, shape ``shape + (3,)``
+        Outward unit normal of each face [-]; the force pushes along ``-normal``.
     """
 
     model: str
+    incidence: str
     charge_kg: float
     distance: np.ndarray
     scaled_distance: np.ndarray
@@ -135,12 +196,17 @@ class FaceLoads:
     pressure: np.ndarray
     impulse: np.ndarray
     area: np.ndarray
-    force_direction: np.ndarray
+    normal: np.ndarray
 
     @property
     def shape(self) -> tuple[int, ...]:
         """Shape of the face set (``()`` for a single face)."""
         return self.distance.shape
+
+    @property
+    def force_direction(self) -> np.ndarray:
+        """Unit vector of the pressure force on each face (= -outward normal)."""
+        return -self.normal
 
     @property
     def peak_force(self) -> np.ndarray:
@@ -152,24 +218,50 @@ class FaceLoads:
         """Impulse of the force on each face, i S [N*s] (along :attr:`force_direction`)."""
         return self.impulse * self.area
 
-    def pulse(self, index=(), shape: str = "friedlander") -> Pulse:
-        """Pressure pulse of one face (t = 0 at that face's arrival time).
+    def total_impulse(self) -> np.ndarray:
+        """Vector sum of the face impulses, -sum i S n [N*s], shape (3,)."""
+        return -np.einsum("...,...k->k", self.impulse * self.area, self.normal)
 
-        ``"friedlander"`` (peak :attr:`pressure`, duration :attr:`positive_duration`, decay
-        fitted to :attr:`impulse`, paper Eq. 2), ``"triangular"`` (equal peak and impulse,
-        cut at 2 i / P) or ``"impulsive"`` (Dirac of area :attr:`impulse`). ``index`` selects
-        the face (an int or tuple for the face array; ``()`` for a single face).
+    def pulses(self, shape: str = "friedlander", decay_guess=None) -> FacePulses:
+        """The faces' pulses at their own arrival times (arrays flattened to (nface,)).
+
+        Parameters
+        ----------
+        shape : str
+            ``"friedlander"`` (peak :attr:`pressure`, duration :attr:`positive_duration`,
+            decay fitted to :attr:`impulse`, paper Eq. 2), ``"triangular"`` (equal peak and
+            impulse, cut at 2 i / P) or ``"impulsive"`` (Dirac of area :attr:`impulse`).
+        decay_guess : ndarray, optional
+            Friedlander decays of a nearby geometry (e.g. the previous time step), shape
+            (nface,): the decays are then refined by vectorised Newton iterations instead of
+            solved from scratch.
+
+        Returns
+        -------
+        FacePulses
         """
-        P = float(self.pressure[index])
-        i = float(self.impulse[index])
-        if shape == "friedlander":
-            to = float(self.positive_duration[index])
-            return Friedlander(P, to, float(friedlander_decay(P, to, i)))
-        if shape == "triangular":
-            return Triangular(P, i)
+        _check_shape(shape)
+        ta = self.arrival_time.ravel()
+        P = self.pressure.ravel()
+        i = self.impulse.ravel()
+        zero = np.zeros_like(P)
         if shape == "impulsive":
-            return Impulsive(i)
-        raise BlastscaleInputError(f"pulse = {shape!r} is not known: valid values are friedlander, triangular, impulsive")
+            return FacePulses(shape, ta, np.full_like(P, np.inf), zero, zero, i)
+        if shape == "triangular":
+            return FacePulses(shape, ta, P, 2.0 * i / P, zero, i)
+        to = self.positive_duration.ravel()
+        k = i / (P * to)
+        if np.any(k >= MAX_IMPULSE_RATIO):  # the cold solver names the failing ratio
+            friedlander_decay(P, to, i)
+        if decay_guess is None:
+            with warnings.catch_warnings():
+                # k >= 1/2 (a negative decay) happens on side-on faces at small Z; the pulse is
+                # still monotone (friedlander_decay documents it), so no warning per face
+                warnings.simplefilter("ignore")
+                d = np.asarray(friedlander_decay(P, to, i), dtype=float).reshape(P.shape)
+        else:
+            d = friedlander_decay_newton(k, decay_guess)
+        return FacePulses(shape, ta, P, to, d, i)
 
 
 def _as_points(name: str, value) -> np.ndarray:
@@ -177,6 +269,21 @@ def _as_points(name: str, value) -> np.ndarray:
     if arr.ndim == 0 or arr.shape[-1] != 3:
         raise BlastscaleInputError(f"{name} must have a last axis of length 3 (x, y, z), got shape {arr.shape}")
     return arr
+
+
+def incident_source(model: "str | BlastModel") -> BlastModel:
+    """The model that supplies side-on values next to ``model``: itself, or Kingery-Bulmash
+    (with a :class:`MixedModelWarning`) when ``model`` has no incident fits (``masi2021``)."""
+    m = get_blast_model(model)
+    if all(m.provides(q) for q in _INCIDENT):
+        return m
+    warnings.warn(
+        f"blast model {m.name!r} has no side-on fits: oblique faces use Kingery-Bulmash side-on pressure and "
+        f"impulse at the same Z beside {m.name!r}'s reflected values, arrival times and durations",
+        MixedModelWarning,
+        stacklevel=3,
+    )
+    return get_blast_model("kingery-bulmash")
 
 
 def face_loads(
@@ -187,7 +294,9 @@ def face_loads(
     areas=1.0,
     model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
     *,
+    incidence: str = DEFAULT_INCIDENCE,
     extrapolate: bool = False,
+    incident_model: "BlastModel | None" = None,
 ) -> FaceLoads:
     """Blast load on each face from a charge ``charge`` [kg TNT] at ``charge_position`` [m].
 
@@ -200,30 +309,36 @@ def face_loads(
     centres : array_like, shape (..., 3)
         Face centre points [m].
     normals : array_like, shape (..., 3)
-        Outward unit normals of the faces [-] (| |n| - 1 | <= :data:`UNIT_NORMAL_TOLERANCE`),
+        OUTWARD unit normals of the faces [-] (| |n| - 1 | <= :data:`UNIT_NORMAL_TOLERANCE`),
         broadcast against ``centres``.
     areas : array_like, shape (...)
         Face areas S [m^2], > 0 (default 1, i.e. loads per unit area), broadcast.
     model : str or BlastModel
-        Empirical model; it must provide the incident pressure and impulse
-        (``"kingery-bulmash"``, the default; ``"masi2021"`` does not).
+        Empirical model (``"kingery-bulmash"``, the default, or ``"masi2021"``: its side-on
+        values then come from Kingery-Bulmash, module docstring).
+    incidence : str
+        Incidence model, ``"ufc"`` (default) or ``"closed-form"`` (:mod:`.incidence`).
     extrapolate : bool
         Evaluate the fits outside their Z ranges (with an ExtrapolationWarning) instead of
         raising :class:`~blastscale._validate.OutOfRangeError`.
+    incident_model : BlastModel, optional
+        Source of the side-on values (default: :func:`incident_source` of ``model``; pass it to
+        skip the check and its warning in a loop).
 
     Returns
     -------
     FaceLoads
-        Per-face distance, Z, incidence, arrival time, duration, reflected/incident and blended
-        peak pressure and impulse (equations in the module docstring), in SI.
+        Per-face distance, Z, incidence, arrival time, duration, reflected/incident and oblique
+        peak pressure and impulse, in SI.
 
     Raises
     ------
     BlastscaleInputError
-        Wrong shapes, non-unit normals, a face centre at the charge, or a model without
-        incident quantities; OutOfRangeError for Z outside a fit's range.
+        Wrong shapes, non-unit normals, a face centre at the charge, an unknown incidence model;
+        OutOfRangeError for Z outside a fit's range.
     """
     W = check_positive_scalar("charge", charge, "kg")
+    check_incidence(incidence)
     xc = _as_points("charge position", charge_position)
     if xc.shape != (3,):
         raise BlastscaleInputError(f"charge position must have shape (3,), got {xc.shape}")
@@ -246,41 +361,43 @@ def face_loads(
             f"(| |n| - 1 | <= {UNIT_NORMAL_TOLERANCE:g})"
         )
     m = get_blast_model(model)
-    for q in ("incident_pressure", "scaled_incident_impulse"):
-        if not m.provides(q):
-            raise BlastscaleInputError(
-                f"blast model = {m.name!r} provides no {q}, needed for oblique faces: "
-                "valid models are those with incident quantities (e.g. 'kingery-bulmash')"
-            )
-
+    mi = incident_source(m) if incident_model is None else incident_model
     to_charge = xc - x
     R = np.linalg.norm(to_charge, axis=-1)
     if np.any(R <= 0.0):
         raise BlastscaleInputError("face centre distance to the charge = 0 m is out of range: must be > 0 m")
-    cos_a = np.clip(np.einsum("...k,...k->...", n, to_charge) / R, -1.0, 1.0)
+    return _evaluate(m, mi, incidence, W, R, np.einsum("...k,...k->...", n, to_charge) / R, np.array(S, dtype=float),
+                     np.array(n, dtype=float), extrapolate)
+
+
+def _evaluate(m, mi, incidence, W, R, cos_a, S, n, extrapolate) -> FaceLoads:
+    """FaceLoads from distances R [m] and cosines (no input checks: the callers made them)."""
+    cos_a = np.clip(cos_a, -1.0, 1.0)
     w13 = float(np.cbrt(W))
     Z = R / w13
 
-    def q(name, scale=1.0):
-        return np.asarray(getattr(m, name)(Z, extrapolate=extrapolate), dtype=float) * scale
+    def q(src, name, scale=1.0):
+        return np.asarray(getattr(src, name)(Z, extrapolate=extrapolate), dtype=float) * scale
 
-    Pr, Pso = q("reflected_pressure"), q("incident_pressure")
-    ir, i_s = q("scaled_reflected_impulse", w13), q("scaled_incident_impulse", w13)
+    Pr, Pso = q(m, "reflected_pressure"), q(mi, "incident_pressure")
+    ir, i_s = q(m, "scaled_reflected_impulse", w13), q(mi, "scaled_incident_impulse", w13)
+    P, i = oblique_values(incidence, cos_a, Pr, Pso, ir, i_s)
     return FaceLoads(
         model=m.name,
+        incidence=incidence,
         charge_kg=W,
         distance=R,
         scaled_distance=Z,
         cos_incidence=cos_a,
         angle_of_incidence=np.arccos(cos_a),
-        arrival_time=q("scaled_arrival_time", w13),
-        positive_duration=q("scaled_positive_duration", w13),
+        arrival_time=q(m, "scaled_arrival_time", w13),
+        positive_duration=q(m, "scaled_positive_duration", w13),
         reflected_pressure=Pr,
         incident_pressure=Pso,
         reflected_impulse=ir,
         incident_impulse=i_s,
-        pressure=np.asarray(oblique_combination(Pr, Pso, cos_a), dtype=float),
-        impulse=np.asarray(oblique_combination(ir, i_s, cos_a), dtype=float),
-        area=np.array(S, dtype=float),
-        force_direction=-np.array(n, dtype=float),
+        pressure=np.asarray(P, dtype=float),
+        impulse=np.asarray(i, dtype=float),
+        area=S,
+        normal=n,
     )
