@@ -28,10 +28,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
+from ..structures.base import BoxGeometry, PrismGeometry
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .contact import ContactSettings
 
-__all__ = ["BoxShape", "FrontFace", "BodySpec", "Scene", "build_scene", "block_scene"]
+__all__ = ["BoxShape", "PrismShape", "FrontFace", "BodySpec", "Scene", "build_scene", "block_scene", "structure_scene",
+           "engine_shape"]
 
 
 @dataclass(frozen=True)
@@ -55,12 +57,15 @@ class FrontFace:
 
 @dataclass(frozen=True)
 class BoxShape:
-    """A homogeneous box of half-sizes (b, w, h) [m] along body x, y, z and density [kg/m^3]."""
+    """A box of half-sizes (b, w, h) [m] along body x, y, z, density [kg/m^3], its centre
+    ``centre_z`` [m] above the body's centre of mass (a square drum: the box of its base section
+    carrying the frustum's inertia)."""
 
     half_width: float
     half_depth: float
     half_height: float
     density: float
+    centre_z: float = 0.0
 
     @classmethod
     def from_block(cls, block: RectangularBlock) -> "BoxShape":
@@ -69,34 +74,34 @@ class BoxShape:
 
     @property
     def mass(self) -> float:
-        """Mass [kg]."""
+        """Mass of the box [kg]."""
         return 8.0 * self.half_width * self.half_depth * self.half_height * self.density
 
     @property
     def half_height_below_com(self) -> float:
         """Distance from the centre of mass down to the base [m]."""
-        return self.half_height
+        return self.half_height - self.centre_z
 
     def base_points(self) -> np.ndarray:
         """The four base corners in the body frame, shape (4, 3) [m]."""
-        b, w, h = self.half_width, self.half_depth, self.half_height
-        return np.array([[b, w, -h], [b, -w, -h], [-b, w, -h], [-b, -w, -h]], dtype=float)
+        b, w, z = self.half_width, self.half_depth, self.centre_z - self.half_height
+        return np.array([[b, w, z], [b, -w, z], [-b, w, z], [-b, -w, z]], dtype=float)
 
     def pivot_points(self) -> np.ndarray:
         """Mid-points of the rear (+x) and front (-x) base edges in the body frame, shape (2, 3) [m]."""
-        b, h = self.half_width, self.half_height
-        return np.array([[b, 0.0, -h], [-b, 0.0, -h]], dtype=float)
+        b, z = self.half_width, self.centre_z - self.half_height
+        return np.array([[b, 0.0, z], [-b, 0.0, z]], dtype=float)
 
     def front_face(self) -> FrontFace:
         """The -x face, loaded towards +x: area 2h x 2w."""
-        return FrontFace((-self.half_width, 0.0, 0.0), (1.0, 0.0, 0.0), 4.0 * self.half_height * self.half_depth)
+        return FrontFace((-self.half_width, 0.0, self.centre_z), (1.0, 0.0, 0.0), 4.0 * self.half_height * self.half_depth)
 
     def mjcf_assets(self, name: str) -> str:
         """No assets for a primitive box."""
         return ""
 
     def contact_geoms(self, name: str) -> list[str]:
-        """Names of the geoms paired with the ground (one box here; a drum or a base made of
+        """Names of the geoms in this body's contact pairs (one box here; a base made of
         several geoms lists them all)."""
         return [name]
 
@@ -104,18 +109,69 @@ class BoxShape:
         """The ``<geom>`` element. Collisions come from explicit pairs only (contype = conaffinity = 0)."""
         return (
             f'<geom name="{name}" type="box" size="{float(self.half_width)!r} {float(self.half_depth)!r} {float(self.half_height)!r}" '
-            f'density="{float(self.density)!r}" contype="0" conaffinity="0"/>'
+            f'pos="0 0 {float(self.centre_z)!r}" density="{float(self.density)!r}" contype="0" conaffinity="0"/>'
         )
 
 
 @dataclass(frozen=True)
+class PrismShape:
+    """A convex mesh: the right prism on a regular polygon (a "circular" drum), from
+    :class:`~blastscale.structures.base.PrismGeometry`; never a cylinder primitive (MuJoCo's
+    cylinder contacts gained energy in our column tests, DESIGN.md)."""
+
+    geometry: PrismGeometry
+    density: float
+
+    def base_points(self) -> np.ndarray:
+        """The base polygon's vertices in the body frame (sides, 3) [m]."""
+        return self.geometry.base_points()
+
+    def mjcf_assets(self, name: str) -> str:
+        """The ``<mesh>`` asset (vertices in the body frame; MuJoCo takes their convex hull)."""
+        v = " ".join(repr(float(x)) for x in self.geometry.vertices().ravel())
+        return f'<mesh name="{name}_mesh" vertex="{v}"/>'
+
+    def contact_geoms(self, name: str) -> list[str]:
+        """The one mesh geom."""
+        return [name]
+
+    def mjcf_geom(self, name: str) -> str:
+        """The mesh ``<geom>``; collisions from explicit pairs only."""
+        return (f'<geom name="{name}" type="mesh" mesh="{name}_mesh" density="{float(self.density)!r}" '
+                'contype="0" conaffinity="0"/>')
+
+
+def engine_shape(geometry, density: float):
+    """The engine shape of a structure body's contact geometry
+    (:class:`~blastscale.structures.base.BoxGeometry` -> :class:`BoxShape`,
+    :class:`~blastscale.structures.base.PrismGeometry` -> :class:`PrismShape`)."""
+    if isinstance(geometry, BoxGeometry):
+        return BoxShape(geometry.half_width, geometry.half_depth, geometry.half_height, density, geometry.centre_z)
+    if isinstance(geometry, PrismGeometry):
+        return PrismShape(geometry, density)
+    raise BlastscaleInputError(f"shape = {geometry!r} is not known: valid kinds are BoxGeometry, PrismGeometry")
+
+
+@dataclass(frozen=True)
 class BodySpec:
-    """One free rigid body: a shape and the world position of its centre of mass [m]."""
+    """One free rigid body: a shape, the world position of its centre of mass [m], its
+    orientation (unit quaternion w, x, y, z) and, optionally, explicit mass [kg] and principal
+    inertia (3,) [kg m^2] about the body axes (otherwise MuJoCo computes them from the shape's
+    density)."""
 
     name: str
-    shape: BoxShape
+    shape: object
     position: tuple[float, float, float]
     quaternion: tuple[float, float, float, float] = (1.0, 0.0, 0.0, 0.0)
+    mass: float | None = None
+    inertia: tuple | None = None
+
+    def mjcf_inertial(self) -> str:
+        """The ``<inertial>`` element at the body origin (the centre of mass), or ""."""
+        if self.mass is None:
+            return ""
+        i = " ".join(repr(float(x)) for x in self.inertia)
+        return f'<inertial pos="0 0 0" mass="{float(self.mass)!r}" diaginertia="{i}"/>'
 
 
 @dataclass(frozen=True, eq=False)
@@ -147,7 +203,7 @@ class Scene:
         return index + 1
 
 
-def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY) -> Scene:
+def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None) -> Scene:
     """Compile free rigid bodies on a rigid ground plane into a MuJoCo model.
 
     Parameters
@@ -158,10 +214,21 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
         Contact, time-step and solver settings.
     gravity : float
         Gravitational acceleration g [m/s^2], > 0, along -z.
+    pairs : sequence of (int, int), optional
+        Bodies in contact, by index (-1 = ground): one explicit ``<pair>`` per geom pair with
+        the settings of ``contact``. Default: every body with the ground.
 
     Returns
     -------
     Scene
+
+    Notes
+    -----
+    Multi-point convex collision (MuJoCo's ``multiccd``) is required for flat drum-on-drum
+    contacts: without it a 10-drum column drifts 41-119 mm at rest (DESIGN.md). It is on by
+    default in MuJoCo >= 3.17 (a disable flag); the MJCF says ``multiccd="enable"`` and the
+    compiled model is checked. The Jacobian is dense: MuJoCo 4.0.0's sparse factorisation has
+    a bug (fixed in 4.0.1) that a 60-dof column reaches.
     """
     import mujoco  # imported here: the rest of blastscale works without MuJoCo installed
 
@@ -169,29 +236,58 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     bodies = tuple(bodies)
     if not bodies:
         raise BlastscaleInputError("bodies = () is out of range: at least one body is needed")
+    pairs = tuple((-1, i) for i in range(len(bodies))) if pairs is None else tuple(pairs)
     assets = "".join(b.shape.mjcf_assets(f"{b.name}_geom") for b in bodies)
     worldbody = ['<geom name="ground" type="plane" size="0 0 1" contype="0" conaffinity="0"/>']
-    pairs = []
     for b in bodies:
         px, py, pz = (float(v) for v in b.position)
         qw, qx, qy, qz = (float(v) for v in b.quaternion)
         worldbody.append(
             f'<body name="{b.name}" pos="{float(px)!r} {float(py)!r} {float(pz)!r}" quat="{float(qw)!r} {float(qx)!r} {float(qy)!r} {float(qz)!r}">'
-            f'<freejoint name="{b.name}_free"/>{b.shape.mjcf_geom(f"{b.name}_geom")}</body>'
+            f'<freejoint name="{b.name}_free"/>{b.mjcf_inertial()}{b.shape.mjcf_geom(f"{b.name}_geom")}</body>'
         )
-        pairs.extend(
-            f'<pair geom1="ground" geom2="{g}" {contact.mjcf_pair_attributes()}/>'
-            for g in b.shape.contact_geoms(f"{b.name}_geom")
-        )
+
+    def geoms(i):
+        return ["ground"] if i < 0 else bodies[i].shape.contact_geoms(f"{bodies[i].name}_geom")
+
+    attrs = contact.mjcf_pair_attributes()
+    xml_pairs = [f'<pair geom1="{g1}" geom2="{g2}" {attrs}/>' for i, j in pairs for g1 in geoms(i) for g2 in geoms(j)]
     asset_block = f"<asset>{assets}</asset>" if assets else ""
     xml = (
         '<mujoco model="blastscale">'
         '<compiler angle="radian" boundmass="0" boundinertia="0"/>'
         f"{contact.mjcf_option(g)}{asset_block}"
-        f'<worldbody>{"".join(worldbody)}</worldbody><contact>{"".join(pairs)}</contact></mujoco>'
+        f'<worldbody>{"".join(worldbody)}</worldbody><contact>{"".join(xml_pairs)}</contact></mujoco>'
     )
     model = mujoco.MjModel.from_xml_string(xml)
+    if model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_MULTICCD:
+        raise RuntimeError("MuJoCo multiccd is disabled: flat drum-on-drum contacts would get one point")
     return Scene(xml=xml, model=model, bodies=bodies, contact=contact, gravity=g)
+
+
+def structure_scene(structure, contact: ContactSettings, gravity: float = STANDARD_GRAVITY) -> Scene:
+    """The MuJoCo model of any structure of :mod:`blastscale.structures` at rest: one free body
+    per ``structure.bodies`` entry with its exact mass and inertia, its contact geometry
+    (:func:`engine_shape`) and one contact pair per ``structure.interfaces`` entry.
+
+    Parameters
+    ----------
+    structure : structure
+        E.g. :class:`~blastscale.structures.RectangularBlock`,
+        :class:`~blastscale.structures.MultiDrumColumn`.
+    contact : ContactSettings
+        Contact, time-step and solver settings (the same on every interface).
+    gravity : float
+        g [m/s^2].
+
+    Returns
+    -------
+    Scene
+    """
+    density = float(structure.describe()["density_kg_m3"])
+    specs = [BodySpec(b.name, engine_shape(b.shape, density), tuple(b.com), mass=b.mass, inertia=tuple(b.inertia))
+             for b in structure.bodies]
+    return build_scene(specs, contact, gravity, structure.interfaces)
 
 
 def block_scene(
@@ -233,4 +329,6 @@ def block_scene(
     x = s * b - s * b * math.cos(th) + h * math.sin(th)
     z = b * abs(math.sin(th)) + h * math.cos(th)
     quat = (math.cos(th / 2), 0.0, math.sin(th / 2), 0.0)  # rotation th about +y: body z tilts towards +x
-    return build_scene([BodySpec("block", shape, (x, 0.0, z), quat)], contact, gravity)
+    body = block.bodies[0]
+    return build_scene([BodySpec("block", shape, (x, 0.0, z), quat, body.mass, tuple(body.inertia))], contact, gravity,
+                       block.interfaces)

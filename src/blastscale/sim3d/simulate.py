@@ -1,4 +1,15 @@
-"""Run a single rigid block on MuJoCo under a blast pulse (paper's Method A) and record it.
+"""Run any structure of rigid bodies on MuJoCo under a blast load and record it.
+
+One path for every structure (:func:`simulate_structure`): N free bodies on a rigid ground
+(:func:`~.model.structure_scene`), explicit contact pairs ground-base and between adjacent
+bodies, a :class:`~.loads.LoadStrategy` giving one wrench per body per step from the current
+poses, recorded as a :class:`~.results.Response3D` (xarray). The single block
+(:class:`Block3DSimulator`, :func:`simulate_block`, :class:`~.results.Block3DResult`) is the
+one-body case of that path, with its planar recorders on top.
+
+Time: the structure stands at rest (settled on its soft contacts) until the load's first
+arrival; the run integrates ``duration`` seconds from there, and ``time`` in the results is the
+time after first arrival (attribute ``first_arrival_time_s``).
 
 How the blast impulse enters a step (``blast_mode``)
 ----------------------------------------------------
@@ -15,7 +26,7 @@ tangential momentum)/mu: a 1 m block pushed to 1.8 m/s loses 12% of its velocity
 the solver then only sees the slip *velocity*. Exact for a sliding contact, but a sticking
 pivot must then cancel the slip through the soft reference dynamics and slips ~v/b_f.
 
-``"auto"`` (default): every load step is first classified with ``mj_forward`` under the
+``"auto"`` (default for a single body): every load step is first classified with ``mj_forward`` under the
 force; if any contact force lies on its friction-cone boundary (sliding), that step is taken
 as a kick, otherwise as a force. For a rigid block loaded through its centre of mass the
 impulsive rigid-body problem admits stick-and-rock about the rear edge only if
@@ -30,8 +41,13 @@ would take as sticking, and the peak rotation comes out up to 3% low (mu = 1.58-
 mu* = 1.60): a warning is issued for 0.9 mu* < mu < 1.1 mu*; use ``blast_mode="force"`` with a
 hard contact there (docs/sim3d.md).
 
-:class:`Block3DSimulator` is the solver object (settings stated once: contact, time step,
-recording interval); :func:`simulate_block` is the one-call form.
+For several bodies (columns) the default is ``"force"``: the all-stick / all-slip argument
+behind "auto" holds for one box loaded through its centre of mass only, and the column
+settings of DESIGN.md (1 ms contact, no separate friction time constant) were measured with
+the blast as a force.
+
+:class:`Block3DSimulator` is the single-block solver object (settings stated once: contact,
+time step, recording interval); :func:`simulate_block` is its one-call form.
 """
 
 from __future__ import annotations
@@ -44,12 +60,28 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
-from .blast_force import step_forces
-from .contact import ContactSettings
-from .model import BoxShape, Scene, block_scene
-from .results import Block3DResult, quaternion_to_matrix, tilt_angle
+from .contact import (
+    MAX_TIMESTEP_FRACTION,
+    SOFT_CONTACT_FACTOR,
+    ContactSettings,
+    default_contact,
+    structure_length,
+)
+from .loads import MethodA
+from .model import BoxShape, Scene, block_scene, structure_scene
+from .results import Block3DResult, Response3D, block_result, response_from_states
 
-__all__ = ["Block3DSimulator", "simulate_block", "pivot_friction_threshold", "SETTLE_TIME_CONSTANTS", "BLAST_MODES"]
+__all__ = [
+    "BLAST_MODES",
+    "Block3DSimulator",
+    "ENGINE_LENGTH_RANGE",
+    "ENGINE_MASS_RANGE",
+    "SETTLE_TIME_CONSTANTS",
+    "check_simulable",
+    "pivot_friction_threshold",
+    "simulate_block",
+    "simulate_structure",
+]
 
 #: Ways of applying a step's blast impulse (see the module docstring).
 BLAST_MODES = ("auto", "force", "kick")
@@ -60,28 +92,267 @@ BLAST_MODES = ("auto", "force", "kick")
 #: prototype and model settle identically.
 SETTLE_TIME_CONSTANTS = 20.0
 
+#: Lengths [m] the engine accepts (every dimension of the structure): below 0.1 mm the
+#: inertia of a stone body (~rho L^5) falls towards MuJoCo's mjMINVAL (1e-15) and the
+#: solver's tolerances; above 1 km nothing in this library applies.
+ENGINE_LENGTH_RANGE = (1e-4, 1e3)
+#: Body masses [kg] the engine accepts (a lighter body crashed MuJoCo with mjMINVAL errors).
+ENGINE_MASS_RANGE = (1e-6, 1e12)
 
-@dataclass(frozen=True)
-class Block3DSimulator:
-    """Simulate rectangular blocks on a rigid plane under a Method A blast load.
+
+def _lengths(structure) -> dict:
+    """The structure's lengths by parameter name [m] (``describe()`` keys ending in "_m")."""
+    out = {}
+    for k, v in structure.describe().items():
+        if k.endswith("_m") and v is not None:
+            vals = np.atleast_1d(np.asarray(v, dtype=float))
+            out[k[:-2].replace("_", " ")] = float(vals.min())
+    return out
+
+
+def check_simulable(structure, contact: ContactSettings, gravity: float) -> None:
+    """Raise :class:`BlastscaleInputError` (one line naming the parameter, its value and the
+    valid range) unless the engine can run ``structure`` with ``contact``.
+
+    * every length in [1e-4, 1e3] m (:data:`ENGINE_LENGTH_RANGE`);
+    * every body mass in [1e-6, 1e12] kg (:data:`ENGINE_MASS_RANGE`);
+    * the time step at most ``MAX_TIMESTEP_FRACTION * sqrt(L / g)`` (L the structure's height):
+      a step beyond it resolves neither the rocking nor the impacts (semi-implicit Euler), and
+      ``ContactSettings`` already demands ``time_constant >= 2 timestep`` (MuJoCo's stability).
+    """
+    if not hasattr(structure, "bodies") or not hasattr(structure, "describe"):
+        raise BlastscaleInputError(f"structure = {structure!r} is not a structure (blastscale.structures)")
+    if not isinstance(contact, ContactSettings):
+        raise BlastscaleInputError(f"contact = {contact!r} is not a ContactSettings")
+    lo, hi = ENGINE_LENGTH_RANGE
+    for name, v in _lengths(structure).items():
+        check_range(name, v, lo, hi, "m")
+    lo, hi = ENGINE_MASS_RANGE
+    for b in structure.bodies:
+        check_range(f"mass of body {b.name}", b.mass, lo, hi, "kg")
+    L = structure_length(structure)
+    dt_max = MAX_TIMESTEP_FRACTION * math.sqrt(L / gravity)
+    if contact.timestep > dt_max * (1 + 1e-12):
+        raise BlastscaleInputError(
+            f"timestep = {contact.timestep:.6g} s is out of range: valid range is (0, {dt_max:.6g}] s "
+            f"({MAX_TIMESTEP_FRACTION:g} x sqrt(L/g), L = {L:.6g} m)")
+
+
+def _warn_if_soft(contact: ContactSettings, structure, load, gravity: float) -> None:
+    """One-line RuntimeWarning when an explicit contact is soft relative to the blast."""
+    if load is None:
+        return
+    pulse_t = float(load.end_time - load.first_arrival)
+    ref = default_contact(structure, contact.friction, gravity).time_constant
+    bound = SOFT_CONTACT_FACTOR * max(pulse_t, ref)
+    if contact.time_constant > bound:
+        warnings.warn(
+            f"contact time constant = {contact.time_constant:.3g} s is soft relative to the blast "
+            f"(load duration {pulse_t:.3g} s, scale-consistent default {ref:.3g} s): the response will depend on it; "
+            "use contact=None (scale-consistent defaults) or a time constant <= "
+            f"{bound:.3g} s", RuntimeWarning, stacklevel=3)
+
+
+def _any_contact_slides(m, d, c: ContactSettings) -> bool:
+    """Classify the current step: does any contact force lie on its friction-cone boundary?
+
+    Runs ``mj_forward`` (with the step's applied forces in place) and compares each contact's
+    tangential force with mu times its normal force (elliptic: Euclidean norm; pyramidal: the
+    pyramid's |f1| + |f2|), within 0.1%.
+    """
+    import mujoco
+
+    mujoco.mj_forward(m, d)
+    f = np.zeros(6)
+    for i in range(d.ncon):
+        mujoco.mj_contactForce(m, d, i, f)
+        fn = f[0]
+        if fn <= 0.0:
+            continue
+        ft = math.hypot(f[1], f[2]) if c.cone == "elliptic" else abs(f[1]) + abs(f[2])
+        if ft >= (1.0 - 1e-3) * c.friction * fn:
+            return True
+    return False
+
+
+def _kick(m, d, wrench_impulses: np.ndarray) -> None:
+    """Add to qvel the velocity change of world-frame impulses (nbody, 6) (linear [N*s],
+    angular [N*m*s]) applied at each body's centre of mass: dv = M^-1 sum_b J_b^T I_b."""
+    import mujoco
+
+    jacp = np.zeros((3, m.nv))
+    jacr = np.zeros((3, m.nv))
+    gen = np.zeros(m.nv)
+    for k, w in enumerate(wrench_impulses):
+        if not np.any(w):
+            continue
+        mujoco.mj_jacBodyCom(m, d, jacp, jacr, k + 1)
+        gen += jacp.T @ w[0:3] + jacr.T @ w[3:6]
+    dq = np.zeros((1, m.nv))
+    mujoco.mj_solveM(m, d, dq, gen.reshape(1, -1))
+    d.qvel[:] += dq[0]
+
+
+def _integrate(scene: Scene, load, duration: float, *, record_every: int, blast_mode: str, settle: bool,
+               initial_velocity=None) -> dict:
+    """The one integration loop: settle, start at the load's first arrival, apply each step's
+    wrenches (force or kick), step, record. Returns the recorded states and counters."""
+    import mujoco
+
+    m, d = scene.model, mujoco.MjData(scene.model)
+    c = scene.contact
+    dt = c.timestep
+    T = float(duration)
+    nsteps = max(1, int(math.ceil(T / dt - 1e-9)))
+    nb = len(scene.bodies)
+    if settle:
+        for _ in range(int(math.ceil(SETTLE_TIME_CONSTANTS * c.time_constant / dt))):
+            mujoco.mj_step(m, d)
+        d.qvel[:] = 0.0  # remove the (exp(-20)-small) residual transient exactly
+    d.time = 0.0
+    if initial_velocity is not None:
+        initial_velocity(m, d)
+    k = int(record_every)
+    idx = np.unique(np.r_[np.arange(0, nsteps + 1, k), nsteps])
+    nrec = idx.size
+    qpos = np.empty((nrec, m.nq))
+    qvel = np.empty((nrec, m.nv))
+    ncon = np.empty(nrec, dtype=np.int32)
+    mujoco.mj_forward(m, d)  # kinematics and contacts of the initial state (does not advance it)
+    qpos[0], qvel[0], ncon[0] = d.qpos, d.qvel, d.ncon
+    rec_mask = np.zeros(nsteps + 1, dtype=bool)
+    rec_mask[idx] = True
+    j = 1
+    xfrc = d.xfrc_applied
+    delivered = np.zeros((nb, 3))
+    delivered_abs = np.zeros(nb)
+    t_start = 0.0 if load is None else float(load.first_arrival)
+    loading = False
+    kicks = 0
+    for n in range(nsteps):
+        t0 = t_start + n * dt
+        if load is not None and t0 <= load.end_time:
+            W = load.step_wrenches(t0, t0 + dt, d.xipos[1:], d.xmat[1:].reshape(nb, 3, 3))
+            delivered += W[:, 0:3] * dt
+            delivered_abs += np.linalg.norm(W[:, 0:3], axis=1) * dt
+            xfrc[1:] = W
+            loading = True
+            if blast_mode == "kick" or (blast_mode == "auto" and np.any(W) and _any_contact_slides(m, d, c)):
+                _kick(m, d, W * dt)
+                xfrc[1:] = 0.0
+                kicks += 1
+        elif loading:
+            xfrc[:] = 0.0
+            loading = False
+        mujoco.mj_step(m, d)
+        if rec_mask[n + 1]:
+            qpos[j], qvel[j], ncon[j] = d.qpos, d.qvel, d.ncon
+            j += 1
+    return {"time": idx * dt, "qpos": qpos, "qvel": qvel, "ncon": ncon, "delivered": delivered, "delivered_abs": delivered_abs, "kicks": kicks,
+            "first_arrival": t_start, "duration": T}
+
+
+def _check_common(duration, gravity, record_every, blast_mode):
+    T = float(check_positive("duration", duration, "s"))
+    g = float(check_positive("gravity", gravity, "m/s^2"))
+    check_range("record_every", record_every, 1, math.inf)
+    if not float(record_every).is_integer():
+        raise BlastscaleInputError(f"record_every = {record_every!r} is out of range: must be a whole number >= 1")
+    if blast_mode is not None and blast_mode not in BLAST_MODES:
+        raise BlastscaleInputError(f"blast_mode = {blast_mode!r} is not known: valid values are {', '.join(BLAST_MODES)}")
+    return T, g
+
+
+def simulate_structure(
+    structure,
+    load=None,
+    duration: float = 8.0,
+    *,
+    contact: ContactSettings | None = None,
+    gravity: float = STANDARD_GRAVITY,
+    record_every: int = 1,
+    blast_mode: str | None = None,
+    settle: bool = True,
+) -> Response3D:
+    """Simulate any structure of rigid bodies on a rigid ground under a blast load.
 
     Parameters
     ----------
-    contact : ContactSettings
-        Contact, time-step and solver settings (full scale by default; use
-        ``contact.scaled(lambda)`` for a model).
+    structure : structure
+        :class:`~blastscale.structures.RectangularBlock`,
+        :class:`~blastscale.structures.MultiDrumColumn`, or anything with the same interface.
+    load : LoadStrategy or None
+        E.g. ``make_load("A", structure, charge_kg=..., standoff_m=...)`` or
+        :class:`~.loads.MethodA`; None for gravity alone.
+    duration : float
+        Simulated time after the load's first arrival [s], > 0.
+    contact : ContactSettings, optional
+        None (default): the scale-consistent defaults of :func:`~.contact.default_contact`
+        (derived from the structure's height and gravity). An explicit setting much softer
+        than the blast gets a RuntimeWarning; one whose time step exceeds
+        ``0.01 sqrt(L/g)`` an error.
+    gravity : float
+        g [m/s^2], > 0.
+    record_every : int
+        Keep one state every ``record_every`` steps (the first and last are always kept).
+    blast_mode : {"auto", "force", "kick"}, optional
+        How a step's impulse is applied (module docstring); default "auto" for one body,
+        "force" for several.
+    settle : bool
+        Let the structure settle on its soft contacts for ``SETTLE_TIME_CONSTANTS`` time
+        constants before the first arrival.
+
+    Returns
+    -------
+    Response3D
+    """
+    T, g = _check_common(duration, gravity, record_every, blast_mode)
+    if load is not None and not (hasattr(load, "step_wrenches") and hasattr(load, "first_arrival")):
+        raise BlastscaleInputError(f"load = {load!r} is not a LoadStrategy (see blastscale.sim3d.loads)")
+    explicit = contact is not None
+    if not explicit:
+        if not hasattr(structure, "bodies"):
+            raise BlastscaleInputError(f"structure = {structure!r} is not a structure (blastscale.structures)")
+        contact = default_contact(structure, gravity=g)
+    check_simulable(structure, contact, g)
+    if explicit:
+        _warn_if_soft(contact, structure, load, g)
+    mode = blast_mode or ("auto" if len(structure.bodies) == 1 else "force")
+    scene = structure_scene(structure, contact, g)
+    st = _integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle)
+    return response_from_states(structure, st, _settings(contact, g, T, mode, st, load, explicit))
+
+
+def _settings(c: ContactSettings, g, T, mode, st, load, explicit) -> dict:
+    out = {**c.to_dict(), "contact_source": "explicit" if explicit else "scale-consistent default",
+           "gravity_m_s2": g, "duration_s": T, "blast_mode": mode, "kick_steps": st["kicks"]}
+    if load is not None and hasattr(load, "describe"):
+        out.update(load.describe())
+    return out
+
+
+@dataclass(frozen=True)
+class Block3DSimulator:
+    """Simulate a rectangular block on a rigid plane under a Method A blast load: the one-body
+    case of :func:`simulate_structure`, with the block's planar recorders.
+
+    Parameters
+    ----------
+    contact : ContactSettings or None
+        Contact, time-step and solver settings; None: the scale-consistent defaults of the
+        block run (:func:`~.contact.default_contact`; the full-scale settings for a 10 m block).
     gravity : float
         g [m/s^2].
     record_every : int
         Keep one state every ``record_every`` steps (the first and last are always kept).
+    settle : bool
+        Let the upright block settle on its soft contact for ``SETTLE_TIME_CONSTANTS`` time
+        constants before t = 0 (ignored when starting tilted).
     blast_mode : {"auto", "force", "kick"}
         How each step's blast impulse is applied (module docstring); "auto" is right for
         sticking and for sliding contacts.
     shape_type : type
         Shape class built from the block (``from_block``); :class:`~.model.BoxShape` by default.
-    settle : bool
-        Let the upright block settle on its soft contact for ``SETTLE_TIME_CONSTANTS`` time
-        constants before t = 0 (ignored when starting tilted).
 
     Notes
     -----
@@ -90,7 +361,7 @@ class Block3DSimulator:
     bitwise deterministic for given inputs.
     """
 
-    contact: ContactSettings = ContactSettings()
+    contact: ContactSettings | None = None
     gravity: float = STANDARD_GRAVITY
     record_every: int = 1
     settle: bool = True
@@ -98,30 +369,21 @@ class Block3DSimulator:
     shape_type: type = BoxShape
 
     def __post_init__(self):
-        if self.contact is None:  # as simulate_block: None means the full-scale defaults
-            object.__setattr__(self, "contact", ContactSettings())
-        if not isinstance(self.contact, ContactSettings):
+        if self.contact is not None and not isinstance(self.contact, ContactSettings):
             raise BlastscaleInputError(f"contact = {self.contact!r} is not a ContactSettings")
-        check_positive("gravity", self.gravity, "m/s^2")
-        check_range("record_every", self.record_every, 1, math.inf)
-        if not float(self.record_every).is_integer():
-            raise BlastscaleInputError(f"record_every = {self.record_every!r} is out of range: must be a whole number >= 1")
-        if self.blast_mode not in BLAST_MODES:
-            raise BlastscaleInputError(
-                f"blast_mode = {self.blast_mode!r} is not known: valid values are {', '.join(BLAST_MODES)}"
-            )
+        _check_common(1.0, self.gravity, self.record_every, self.blast_mode)
 
     def run(
         self,
         block: RectangularBlock,
-        pulse=None,
-        duration: float = 5.0,
+        pulse,
+        duration: float,
         *,
         initial_rotation: float = 0.0,
         initial_angular_velocity: float = 0.0,
-        initial_velocity: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        initial_velocity=(0.0, 0.0, 0.0),
     ) -> Block3DResult:
-        """Run one block.
+        """Simulate ``duration`` seconds after the shock arrival (t = 0).
 
         Parameters
         ----------
@@ -142,24 +404,26 @@ class Block3DSimulator:
         Returns
         -------
         Block3DResult
+            With ``.response`` the :class:`~.results.Response3D` of the same run.
         """
-        import mujoco
-
         if not isinstance(block, RectangularBlock):
             raise BlastscaleInputError(f"block = {block!r} is not a RectangularBlock")
         if pulse is not None and not hasattr(pulse, "cumulative_impulse"):
             raise BlastscaleInputError(f"pulse = {pulse!r} is not a pulse: expected a blastscale.blast.pulses.Pulse or None")
-        T = float(check_positive("duration", duration, "s"))
+        T, g = _check_common(duration, self.gravity, self.record_every, self.blast_mode)
         th0 = float(check_finite("initial rotation", initial_rotation, "rad"))
         om0 = float(check_finite("initial angular velocity", initial_angular_velocity, "rad/s"))
         v0 = check_finite("initial velocity", initial_velocity, "m/s")
         if v0.shape != (3,):
             raise BlastscaleInputError(f"initial velocity must have 3 components, got shape {v0.shape}")
-        c = self.contact
-        scene: Scene = block_scene(block, c, self.gravity, rotation=th0, shape_type=self.shape_type)
-        m, d = scene.model, mujoco.MjData(scene.model)
+        explicit = self.contact is not None
+        c = self.contact if explicit else default_contact(block, gravity=g)
+        check_simulable(block, c, g)
+        load = None if pulse is None else MethodA(block, pulse)
+        if explicit:
+            _warn_if_soft(c, block, load, g)
+        scene = block_scene(block, c, g, rotation=th0, shape_type=self.shape_type)
         shape = scene.bodies[0].shape
-        bid = scene.body_id(0)
         mu_star = pivot_friction_threshold(shape.half_width, shape.half_height)
         if pulse is not None and self.blast_mode == "auto" and 0.9 < c.friction / mu_star < 1.1:
             warnings.warn(
@@ -169,70 +433,26 @@ class Block3DSimulator:
                 RuntimeWarning,
                 stacklevel=2,
             )
-        dt = c.timestep
-        nsteps = max(1, int(math.ceil(T / dt - 1e-9)))
 
-        if self.settle and th0 == 0.0:
-            for _ in range(int(math.ceil(SETTLE_TIME_CONSTANTS * c.time_constant / dt))):
-                mujoco.mj_step(m, d)
-            d.qvel[:] = 0.0  # remove the (exp(-20)-small) residual transient exactly
-        d.time = 0.0
-        # initial velocities: rigid rotation about the supporting edge + translation
-        if om0 != 0.0 or np.any(v0 != 0.0):
+        def initial(m, d):  # rigid rotation about the supporting edge + translation
+            import mujoco
+
+            if om0 == 0.0 and not np.any(v0 != 0.0):
+                return
             s = 1.0 if (th0 > 0.0 or (th0 == 0.0 and om0 >= 0.0)) else -1.0
             mujoco.mj_forward(m, d)
-            R = d.xmat[bid].reshape(3, 3)
-            pivot = R @ np.array([s * shape.half_width, 0.0, -shape.half_height]) + d.xpos[bid]
-            rel = d.xpos[bid] - pivot
+            R = d.xmat[1].reshape(3, 3)
+            pivot = R @ np.array([s * shape.half_width, 0.0, -shape.half_height]) + d.xpos[1]
+            rel = d.xpos[1] - pivot
             w = np.array([0.0, om0, 0.0])
             d.qvel[0:3] = np.cross(w, rel) + v0
             d.qvel[3:6] = R.T @ w  # free-joint angular velocity is in the body frame
 
-        # blast: exact impulse per step over the pulse, zero afterwards
-        face = shape.front_face()
-        if pulse is not None:
-            n_load = min(nsteps, int(math.ceil(pulse.duration / dt)) + 1)
-            forces = step_forces(pulse, face.area, np.arange(n_load + 1) * dt)
-        else:
-            n_load, forces = 0, np.zeros(0)
-        cb, nb = np.asarray(face.centre), np.asarray(face.normal)
-
-        k = int(self.record_every)
-        idx = np.unique(np.r_[np.arange(0, nsteps + 1, k), nsteps])
-        nrec = idx.size
-        qpos = np.empty((nrec, 7))
-        qvel = np.empty((nrec, 6))
-        ncon = np.empty(nrec, dtype=np.int32)
-        mujoco.mj_forward(m, d)  # contacts of the initial state (does not advance it)
-        qpos[0], qvel[0], ncon[0] = d.qpos, d.qvel, d.ncon
-        rec_mask = np.zeros(nsteps + 1, dtype=bool)
-        rec_mask[idx] = True
-        j = 1
-        xfrc = d.xfrc_applied
-        delivered = 0.0
-        mode = self.blast_mode
-        kicks = 0
-        for n in range(nsteps):
-            if n < n_load:
-                R = d.xmat[bid].reshape(3, 3)
-                F = forces[n] * (R @ nb)
-                xfrc[bid, 0:3] = F
-                xfrc[bid, 3:6] = np.cross(R @ cb, F)  # moment about the centre of mass
-                delivered += forces[n] * dt
-                if mode == "kick" or (mode == "auto" and _any_contact_slides(m, d, c)):
-                    _kick(m, d, bid, xfrc[bid] * dt)
-                    xfrc[bid] = 0.0
-                    kicks += 1
-            elif n == n_load and n_load:
-                xfrc[bid] = 0.0
-            mujoco.mj_step(m, d)
-            if rec_mask[n + 1]:
-                qpos[j], qvel[j], ncon[j] = d.qpos, d.qvel, d.ncon
-                j += 1
-        return _record(idx * dt, qpos, qvel, ncon, shape, delivered, {**c.to_dict(), "gravity_m_s2": self.gravity,
-                                                                       "duration_s": T, "blast_mode": mode,
-                                                                       "kick_steps": kicks,
-                                                                       "pivot_friction_threshold": mu_star})
+        st = _integrate(scene, load, T, record_every=self.record_every, blast_mode=self.blast_mode,
+                        settle=self.settle and th0 == 0.0, initial_velocity=initial)
+        settings = {**_settings(c, g, T, self.blast_mode, st, load, explicit), "pivot_friction_threshold": mu_star}
+        resp = response_from_states(block, st, settings)
+        return block_result(resp, shape, st, settings)
 
 
 def pivot_friction_threshold(half_width: float, half_height: float) -> float:
@@ -260,74 +480,6 @@ def pivot_friction_threshold(half_width: float, half_height: float) -> float:
     return (4.0 * b * b + h * h) / (3.0 * b * h)
 
 
-def _any_contact_slides(m, d, c: ContactSettings) -> bool:
-    """Classify the current step: does any contact force lie on its friction-cone boundary?
-
-    Runs ``mj_forward`` (with the step's applied force in place) and compares each contact's
-    tangential force with mu times its normal force (elliptic: Euclidean norm; pyramidal: the
-    pyramid's |f1| + |f2|), within 0.1%.
-    """
-    import mujoco
-
-    mujoco.mj_forward(m, d)
-    f = np.zeros(6)
-    for i in range(d.ncon):
-        mujoco.mj_contactForce(m, d, i, f)
-        fn = f[0]
-        if fn <= 0.0:
-            continue
-        ft = math.hypot(f[1], f[2]) if c.cone == "elliptic" else abs(f[1]) + abs(f[2])
-        if ft >= (1.0 - 1e-3) * c.friction * fn:
-            return True
-    return False
-
-
-def _kick(m, d, bid: int, wrench_impulse: np.ndarray) -> None:
-    """Add to qvel the velocity change of a world-frame impulse (linear [N*s], angular [N*m*s])
-    applied at the centre of mass of body ``bid``: dv = M^-1 J^T (impulse)."""
-    import mujoco
-
-    jacp = np.zeros((3, m.nv))
-    jacr = np.zeros((3, m.nv))
-    mujoco.mj_jacBodyCom(m, d, jacp, jacr, bid)
-    gen = jacp.T @ wrench_impulse[0:3] + jacr.T @ wrench_impulse[3:6]
-    dq = np.zeros((1, m.nv))
-    mujoco.mj_solveM(m, d, dq, gen.reshape(1, -1))
-    d.qvel[:] += dq[0]
-
-
-def _record(time, qpos, qvel, ncon, shape, delivered, settings) -> Block3DResult:
-    R = quaternion_to_matrix(qpos[:, 3:7])
-    pos = qpos[:, 0:3]
-    theta = tilt_angle(R)
-    omega_world = np.einsum("nij,nj->ni", R, qvel[:, 3:6])
-    pivots = shape.pivot_points()  # (+x edge, -x edge) in body frame
-    edge_x = pos[:, None, 0] + np.einsum("nj,kj->nk", R[:, 0, :], pivots)  # (n, 2) world x
-    disp = edge_x - pivots[None, :, 0]  # from the upright pose centred at x = 0
-    sliding = np.where(theta >= 0.0, disp[:, 0], disp[:, 1])
-    base_c = np.array([0.0, 0.0, -shape.half_height])
-    base_x = pos[:, 0] + R[:, 0, :] @ base_c
-    corners_z = pos[:, None, 2] + np.einsum("nj,kj->nk", R[:, 2, :], shape.base_points())
-    return Block3DResult(
-        time=time,
-        rotation=theta,
-        angular_velocity=omega_world[:, 1],
-        sliding=sliding,
-        base_centre_x=base_x,
-        com_x=pos[:, 0].copy(),
-        com_z=pos[:, 2].copy(),
-        velocity_x=qvel[:, 0].copy(),
-        velocity_z=qvel[:, 2].copy(),
-        uplift=corners_z.min(axis=1),
-        n_contacts=ncon,
-        alpha=math.atan2(shape.half_width, shape.half_height),
-        half_width=shape.half_width,
-        half_height=shape.half_height,
-        impulse_delivered=delivered,
-        settings=settings,
-    )
-
-
 def simulate_block(
     block: RectangularBlock,
     pulse=None,
@@ -351,7 +503,8 @@ def simulate_block(
     duration : float
         Simulated time after arrival [s], > 0.
     contact : ContactSettings, optional
-        Contact, time-step and solver settings; default ``ContactSettings()`` (full scale).
+        Contact, time-step and solver settings; default: scale-consistent
+        (:func:`~.contact.default_contact`, the full-scale settings for a 10 m block).
     gravity : float
         g [m/s^2], > 0.
     record_every : int
@@ -366,7 +519,4 @@ def simulate_block(
     -------
     Block3DResult
     """
-    sim = Block3DSimulator(
-        ContactSettings() if contact is None else contact, gravity, record_every, blast_mode=blast_mode
-    )
-    return sim.run(block, pulse, duration, **initial)
+    return Block3DSimulator(contact, gravity, record_every, blast_mode=blast_mode).run(block, pulse, duration, **initial)
