@@ -12,9 +12,14 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, console_err, fmt_value, print_json, save_figure, table
+from ._app import app, console, console_err, fmt_value, one_line_warnings, print_json, save_figure, table
 from . import options as opt
 from .options import block_from_options, check_plot_path
+
+def opt_extrapolate():
+    """The ``--extrapolate`` option of the capacity commands."""
+    return typer.Option(False, "--extrapolate", help="Search beyond the blast fits' valid range of Z (5x each way; warns).")
+
 
 RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts \\[-], in \\[0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
 
@@ -153,7 +158,7 @@ def critical_cmd(
     charge: Optional[float] = typer.Option(None, "--charge", help="Charge W \\[kg TNT]: find the critical stand-off instead."),
     pulse: str = opt.PULSE,
     restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP + " (does not affect the first excursion)"),
-    duration: Optional[float] = typer.Option(None, "--duration", help="Accepted for symmetry with `rock`; the search simulates to the first impact or the tipping point \\[s]."),
+    extrapolate: bool = opt_extrapolate(),
     scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also give the model's charge for the critical scenario."),
     density_ratio: float = opt.DENSITY_RATIO,
     gravity: float = opt.GRAVITY,
@@ -162,7 +167,8 @@ def critical_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Critical charge at a stand-off (largest charge without overturning), or with --charge the
-    critical stand-off; robust bracketing + Brent's method on a continuous overturning margin."""
+    critical stand-off: the first-swing energy criterion after the pulse (docs/capacity.md),
+    searched from the structure's own scale (any size, lab specimens included)."""
     from ..blast import blast_parameters
     from ..rocking import RockingSystem, critical_charge, critical_standoff
 
@@ -173,17 +179,15 @@ def critical_cmd(
             f"standoff = {standoff}, charge = {charge}: give exactly one of --standoff (m, finds the critical charge) "
             "or --charge (kg, finds the critical stand-off)"
         )
-    if duration is not None and duration <= 0:
-        raise BlastscaleInputError(f"duration = {duration:g} s is out of range: must be > 0 s")
     system = RockingSystem.from_block(block, gravity, restitution)
-    with console_err.status("searching the critical scenario ...", spinner="dots"):
+    with one_line_warnings(), console_err.status("searching the critical scenario ...", spinner="dots"):
         if standoff is not None:
-            res = critical_charge(system, standoff, pulse=pulse, model=model)
+            res = critical_charge(system, standoff, pulse=pulse, model=model, extrapolate=extrapolate)
         else:
-            res = critical_standoff(system, charge, pulse=pulse, model=model)
+            res = critical_standoff(system, charge, pulse=pulse, model=model, extrapolate=extrapolate)
     out = {"inputs": _inputs(block, pulse=pulse, model=model, gravity_m_s2=gravity)}
     out.update(res.to_dict())
-    bp = blast_parameters(res.charge_kg, res.standoff_m, model)
+    bp = blast_parameters(res.charge_kg, res.standoff_m, model, extrapolate=extrapolate)
     out["critical_blast"] = {
         "scaled_distance_m_per_kg13": bp.scaled_distance,
         "reflected_pressure_Pa": bp.reflected_pressure,
@@ -195,7 +199,9 @@ def critical_cmd(
     if scale is not None:
         from ..similitude import design_model
 
-        d = design_model(res.charge_kg, res.standoff_m, scale, density_ratio, model=model, geometry=block, gravity=gravity)
+        with one_line_warnings():
+            d = design_model(res.charge_kg, res.standoff_m, scale, density_ratio, model=model, geometry=block,
+                             gravity=gravity, extrapolate=extrapolate)
         out["model_experiment"] = {"scale": scale, "density_ratio": density_ratio,
                                    "critical_charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m}
     if plot:
@@ -238,5 +244,99 @@ def critical_cmd(
     if scale is not None:
         rows.append((f"model charge (lambda = {scale:g})", f"{out['model_experiment']['critical_charge_kg']:.6g}", "kg"))
     console.print(table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({model}, {pulse})", rows))
+    if plot:
+        console.print(f"plot written to {plot}")
+
+
+@app.command("capacity")
+def capacity_cmd(
+    height: float = opt.HEIGHT,
+    width: Optional[float] = opt.WIDTH,
+    alpha_deg: Optional[float] = opt.ALPHA_DEG,
+    depth: float = opt.DEPTH,
+    density: float = opt.DENSITY,
+    standoffs: str = typer.Option("1:20:40:log", "--standoffs",
+                                  help="Stand-offs R \\[m]: \"a,b,c\" or \"start:stop:n\" (\":log\" for geometric spacing)."),
+    charge: Optional[float] = typer.Option(None, "--charge", help="Charge W \\[kg TNT]: also give its safe (critical) stand-off."),
+    pulse: str = opt.PULSE,
+    restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP),
+    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also the model's curve, up-scaled."),
+    density_ratio: float = opt.DENSITY_RATIO,
+    gravity_ratio: float = opt.GRAVITY_RATIO,
+    gravity: float = opt.GRAVITY,
+    model: str = opt.MODEL,
+    extrapolate: bool = opt_extrapolate(),
+    plot: Optional[str] = typer.Option(None, "--plot", help="Write the capacity curve W_c(R) to this image file."),
+    as_json: bool = opt.JSON,
+) -> None:
+    """Capacity curve: the critical charge W_c(R) at every stand-off and, with --charge, the safe
+    stand-off of that charge; with --scale also the reduced-scale model's curve, up-scaled to
+    prototype charges (paper Eq. 8). First-swing energy criterion, all stand-offs at once."""
+    import numpy as np
+
+    from ..analysis.grids import parse_grid
+    from ..rocking import RockingSystem
+    from ..rocking.capacity import capacity_curve, critical_standoff, model_capacity_curve
+
+    block = block_from_options(height, width, alpha_deg, depth, density, required=True)
+    check_plot_path(plot)
+    R = parse_grid(standoffs, "standoffs")
+    if np.any(R <= 0):
+        raise BlastscaleInputError(f"standoffs = {standoffs!r} is out of range: every stand-off must be > 0 m")
+    if charge is not None and not charge > 0:
+        raise BlastscaleInputError(f"charge = {charge:g} kg is out of range: must be > 0 kg")
+    system = RockingSystem.from_block(block, gravity, restitution)
+    kw = dict(pulse=pulse, model=model, extrapolate=extrapolate)
+    with one_line_warnings(), console_err.status(f"capacity at {R.size} stand-offs ...", spinner="dots"):
+        curve = capacity_curve(system, R, **kw)
+        mcap = None
+        if scale is not None:
+            mcap = model_capacity_curve(system, R, scale, density_ratio, gravity_ratio, **kw)
+        safe = None
+        if charge is not None:
+            safe = critical_standoff(system, charge, **kw).standoff_m
+    out = {"inputs": _inputs(block, pulse=pulse, model=model, gravity_m_s2=gravity, restitution=restitution,
+                             extrapolate=extrapolate)}
+    out.update(curve.to_dict())
+    if mcap is not None:
+        out["model"] = mcap.to_dict()
+        ratio = mcap.upscaled_charge_kg / curve.critical_charge_kg
+        out["model"]["max_abs_relative_difference"] = float(np.nanmax(np.abs(ratio - 1.0))) if np.any(np.isfinite(ratio)) else None
+    if charge is not None:
+        out["safe_standoff"] = {"charge_kg": charge, "standoff_m": safe}
+    if plot:
+        from ..plots.capacity import plot_capacity
+
+        def build():
+            import matplotlib.pyplot as plt
+
+            fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+            plot_capacity(curve, mcap, charge=charge, safe_standoff=safe, ax=ax)
+            return fig
+
+        save_figure(build, plot)
+        out["plot"] = plot
+    if as_json:
+        print_json(out)
+        return
+    from rich.table import Table
+
+    t = Table(title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({model}, {pulse})", title_justify="left")
+    t.add_column("stand-off R \\[m]", justify="right")
+    t.add_column("critical charge W_c \\[kg]", justify="right")
+    if mcap is not None:
+        t.add_column(f"model R \\[m] (lambda = {scale:g})", justify="right")
+        t.add_column("model W_c \\[kg]", justify="right")
+        t.add_column("up-scaled W_c \\[kg]", justify="right")
+    for k in range(R.size):
+        row = [f"{R[k]:.6g}", fmt_value(out["critical_charge_kg"][k], ".6g")]
+        if mcap is not None:
+            row += [f"{mcap.curve.standoff_m[k]:.6g}", fmt_value(out["model"]["critical_charge_kg"][k], ".6g"),
+                    fmt_value(out["model"]["upscaled_critical_charge_kg"][k], ".6g")]
+        t.add_row(*row)
+    console.print(t)
+    console.print(f"{curve.seconds_per_case * 1e3:.3g} ms per stand-off")
+    if charge is not None:
+        console.print(f"safe stand-off for {charge:g} kg: {safe:.6g} m (it overturns the block closer than that)")
     if plot:
         console.print(f"plot written to {plot}")

@@ -7,10 +7,20 @@
   :meth:`~RockingSolver.simulate_batch` (many cases per call), results :class:`RockingResult`
   and :class:`RockingBatchResult`;
 * :func:`simulate_reference` — the slow scipy ``solve_ivp`` (DOP853) reference path;
-* capacity: :func:`critical_charge`, :func:`critical_standoff`, :func:`pi_diagram`.
+* capacity (first-swing energy criterion, docs/capacity.md): :func:`critical_charge`,
+  :func:`critical_standoff`, :func:`capacity_curve`, :func:`pi_diagram`.
 """
 
-from .capacity import CriticalResult, PIDiagram, critical_charge, critical_standoff, overturn_margin, pi_diagram
+from .capacity import (
+    CapacityCurve,
+    CriticalResult,
+    PIDiagram,
+    capacity_curve,
+    critical_charge,
+    critical_standoff,
+    overturn_margin,
+    pi_diagram,
+)
 from .reference import simulate_reference
 from .solver import RockingBatchResult, RockingResult, RockingSolver, simulate
 from .system import RockingSystem, as_rocking_system, housner_restitution
@@ -25,6 +35,8 @@ __all__ = [
     "simulate",
     "simulate_reference",
     "CriticalResult",
+    "CapacityCurve",
+    "capacity_curve",
     "PIDiagram",
     "critical_charge",
     "critical_standoff",

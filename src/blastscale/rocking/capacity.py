@@ -90,6 +90,9 @@ __all__ = [
     "CriticalResult",
     "capacity_curve",
     "CapacityCurve",
+    "charge_for_impulse",
+    "model_capacity_curve",
+    "ModelCapacity",
     "pi_diagram",
     "PIDiagram",
 ]
@@ -300,12 +303,13 @@ def _blast_margin(system: RockingSystem, shape: str, model, extrapolate: bool, s
     return _pulse_phase_margin(solver, np.full(n, a), np.full(n, system.coefficient_of_restitution), w0, kind, par)
 
 
-def _impulse_guess(system: RockingSystem, model, by_charge: bool, fixed, ulo, uhi, extrapolate: bool):
-    """ln of the charge (or stand-off) whose reflected impulse is the impulsive critical one,
-    ``J_o theta_dot_c / (S l)``, by bisection on the blast model alone (clipped to the bounds)."""
+def _invert_impulse(target, model, by_charge: bool, fixed, lo, hi, extrapolate: bool):
+    """ln of the charge [kg] (``by_charge``, ``fixed`` the stand-offs [m]) or of the stand-off [m]
+    (``fixed`` the charges [kg]) whose reflected impulse is ``target`` [Pa*s], by bisection on the
+    blast model alone between ``lo`` and ``hi`` (ln x; the result is clipped to them). The
+    reflected impulse grows with the charge and falls with the distance (Hopkinson-Cranz)."""
     bm = get_blast_model(model)
-    target = system.critical_impulse
-    lo, hi = ulo.copy(), uhi.copy()
+    lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
 
     def impulse(u):
         W, R = (np.exp(u), fixed) if by_charge else (fixed, np.exp(u))
@@ -320,6 +324,26 @@ def _impulse_guess(system: RockingSystem, model, by_charge: bool, fixed, ulo, uh
         else:
             lo, hi = np.where(more, mid, lo), np.where(more, hi, mid)
     return 0.5 * (lo + hi)
+
+
+def charge_for_impulse(impulse, standoff, model=DEFAULT_BLAST_MODEL, *, extrapolate: bool = False):
+    """TNT charge [kg] whose reflected impulse at ``standoff`` [m] is ``impulse`` [Pa*s] (arrays
+    broadcast), inverting the blast model over its valid range of Z (NaN where out of it).
+
+    Used to up-scale a model's critical charge to the prototype: under the paper's general law
+    only the impulse is matched (Eq. 8), so the prototype charge that corresponds to a model
+    charge is the one delivering the model's impulse divided by the impulse factor
+    ``gamma sqrt(varsigma lambda^3)``.
+    """
+    i, R = np.broadcast_arrays(check_positive("impulse", impulse, "Pa*s"), check_positive("standoff", standoff, "m"))
+    i, R = i.astype(float).ravel(), R.astype(float).ravel()
+    zlo, zhi = _z_range(model, extrapolate)
+    ulo, uhi = 3.0 * np.log(R / zhi), 3.0 * np.log(R / zlo)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        u = _invert_impulse(i, model, True, R, ulo, uhi, extrapolate)
+    W = np.where((u - ulo > 1e-9) & (uhi - u > 1e-9), np.exp(u), np.nan)
+    return W.reshape(np.shape(np.broadcast_arrays(impulse, standoff)[0]))
 
 
 def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver, xtol_rel, guess=None):
@@ -339,7 +363,8 @@ def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver,
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         if guess is None:
-            u0 = _impulse_guess(system, model, by_charge, fixed, ulo if by_charge else -uhi, uhi if by_charge else -ulo, extrapolate)
+            u0 = _invert_impulse(system.critical_impulse, model, by_charge, fixed, ulo if by_charge else -uhi,
+                                 uhi if by_charge else -ulo, extrapolate)
             u0 = u0 if by_charge else -u0
         else:
             u0 = np.full(fixed.size, math.log(guess) if by_charge else -math.log(guess))
@@ -593,6 +618,90 @@ def capacity_curve(
     dt = time.perf_counter() - t0
     _check_extrapolated(model, R / np.cbrt(W), extrapolate)
     return CapacityCurve(R, W, nev, dt, pulse, _model_name(model))
+
+
+@dataclass(frozen=True)
+class ModelCapacity:
+    """Capacity curve of a reduced-scale model and its up-scaling to the prototype (SI).
+
+    ``curve`` is the model's own W_c at the model stand-offs ``lambda R`` [m] (model charges
+    [kg]); ``upscaled_charge_kg`` (n,) [kg] the prototype charges they correspond to under the
+    paper's general law (equal impulse up to the factor ``gamma sqrt(varsigma lambda^3)``, Eq. 8),
+    to be read against the prototype's W_c(R); ``scale``, ``density_ratio``, ``gravity_ratio``
+    are lambda, gamma, varsigma [-].
+    """
+
+    curve: CapacityCurve
+    upscaled_charge_kg: np.ndarray
+    scale: float
+    density_ratio: float
+    gravity_ratio: float
+
+    def to_dict(self) -> dict:
+        """Plain dict (lists; None for NaN)."""
+        d = self.curve.to_dict()
+        return {
+            "scale": self.scale,
+            "density_ratio": self.density_ratio,
+            "gravity_ratio": self.gravity_ratio,
+            "standoff_m": d["standoff_m"],
+            "critical_charge_kg": d["critical_charge_kg"],
+            "upscaled_critical_charge_kg": [None if not math.isfinite(w) else float(w) for w in self.upscaled_charge_kg],
+            "seconds_per_case": d["seconds_per_case"],
+        }
+
+
+def model_capacity_curve(
+    body,
+    standoffs,
+    scale: float,
+    density_ratio: float = 1.0,
+    gravity_ratio: float = 1.0,
+    *,
+    pulse: str = "friedlander",
+    model=DEFAULT_BLAST_MODEL,
+    gravity: float | None = None,
+    restitution: float | None = None,
+    solver: RockingSolver | None = None,
+    xtol_rel: float = 1e-9,
+    extrapolate: bool = False,
+) -> ModelCapacity:
+    """Capacity curve of the reduced-scale model of ``body`` and its up-scaling to the prototype.
+
+    The model is the prototype with lengths x ``scale`` (lambda), density x ``density_ratio``
+    (gamma) and gravity x ``gravity_ratio`` (varsigma), same restitution; its critical charges
+    are searched at the stand-offs ``scale * standoffs`` [m] (as :func:`capacity_curve`) and each
+    is up-scaled to the prototype charge that delivers, at the prototype stand-off, the model's
+    reflected impulse divided by ``gamma sqrt(varsigma lambda^3)`` (paper Eq. 8, Table 1).
+    In the impulsive limit the up-scaled curve equals the prototype's exactly; finite pulses
+    depart from it by the effect of the pulse duration, which the law does not match.
+    """
+    from dataclasses import replace
+
+    from ..similitude import scaling_factors
+
+    lam = float(check_positive("scale", scale))
+    gam = float(check_positive("density ratio", density_ratio))
+    sig = float(check_positive("gravity ratio", gravity_ratio))
+    R = np.atleast_1d(check_positive("standoffs", standoffs, "m")).astype(float)
+    proto = as_rocking_system(body, gravity, restitution)
+    m_sys = replace(
+        proto,
+        mass=proto.mass * gam * lam**3,
+        inertia_pivot=proto.inertia_pivot * gam * lam**5,
+        radius=proto.radius * lam,
+        loaded_area=proto.loaded_area * lam**2,
+        lever_arm=proto.lever_arm * lam,
+        gravity=proto.gravity * sig,
+        restitution=proto.coefficient_of_restitution,
+    )
+    curve = capacity_curve(m_sys, lam * R, pulse=pulse, model=model, solver=solver, xtol_rel=xtol_rel, extrapolate=extrapolate)
+    ok = np.isfinite(curve.critical_charge_kg)
+    up = np.full(R.size, np.nan)
+    if np.any(ok):
+        im = blast_parameters(curve.critical_charge_kg[ok], lam * R[ok], model, extrapolate=extrapolate).reflected_impulse
+        up[ok] = charge_for_impulse(im / scaling_factors(lam, gam, sig).impulse, R[ok], model, extrapolate=extrapolate)
+    return ModelCapacity(curve, up, lam, gam, sig)
 
 
 # ----------------------------------------------------------------------------- P-I diagram
