@@ -1,0 +1,181 @@
+"""The multi-body 3D engine (issue 8): columns at rest, Method A momentum, exact scaling,
+specimens simulated at their own size with the scale-consistent defaults, time-step
+independence, results (xarray, NetCDF) and bad input. Runs are shortened to keep the suite fast;
+the full-length figures are in docs/sim3d.md (benchmarks/bench_sim3d.py --acceptance)."""
+
+import json
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from blastscale._validate import BlastscaleInputError
+from blastscale.blast.parameters import blast_parameters
+from blastscale.sim3d import ContactSettings, MethodA, make_load, simulate_block
+from blastscale.sim3d.contact import default_contact
+from blastscale.sim3d.results import VARIABLES
+from blastscale.sim3d.simulate import simulate_structure
+from blastscale.structures import MultiDrumColumn, RectangularBlock
+
+SQUARE = MultiDrumColumn("square")  # the paper's: 10 x 1 m drums, 1.65 -> 1.28 m, 2700 kg/m^3
+CIRCULAR = MultiDrumColumn("circular")
+
+
+def _top_x(resp, lam=1.0):
+    return resp.dataset["point_displacement"].sel(point="P-10", component="x").values / lam
+
+
+@pytest.mark.parametrize("col", [SQUARE, CIRCULAR], ids=["square", "circular"])
+def test_column_stands_still_under_gravity(col):
+    # issue: top drift <= 0.1 mm over 10 s (measured over 10 s: docs/sim3d.md); 2 s here
+    r = simulate_structure(col, None, 2.0, record_every=100)
+    drift = np.abs(r.dataset["point_displacement"].sel(point="P-10").values).max()
+    assert drift <= 1e-4
+    assert not r.summary()["collapsed"]
+    assert r.dataset["n_contacts"].values[-1] >= 4 * 10  # multiccd: >= 4 points per flat joint
+
+
+@pytest.mark.parametrize("col", [SQUARE, CIRCULAR], ids=["square", "circular"])
+def test_method_a_delivers_reflected_impulse_times_projected_front_area(col):
+    load = make_load("A", col, charge_kg=250.0, standoff_m=10.0)
+    r = simulate_structure(col, load, 0.03, record_every=10)
+    ix, iy, iz = r.summary()["delivered_impulse_Ns"]
+    # i_r x front area: the projected trapezoids, (s0 + s1)/2 x H per drum, summed
+    z = col.joint_heights
+    s = col.width_at(z)
+    area = float(np.sum((s[:-1] + s[1:]) / 2 * np.diff(z)))
+    # 1% (issue); the exact-impulse steps give ~1e-6 (the front faces turn during the pulse)
+    assert ix == pytest.approx(load.pulse.impulse * area, rel=1e-2)
+    # no sideways component: the load is symmetric about y = 0; the polygon drums' mesh contacts
+    # let them turn by ~1e-7 rad while settling (measured |iy| / ix = 3e-7), boxes not at all
+    assert abs(iy) <= 1e-6 * ix
+    # the tapered faces lean back: a small downward component, (s0 - s1) / (2 H) of the thrust
+    assert iz < 0 and abs(iz) < 0.03 * ix
+    assert r.dataset.attrs["first_arrival_time_s"] == pytest.approx(load.first_arrival, rel=1e-15)
+
+
+def test_exact_scaling_model_upscaled_equals_prototype():
+    # the exactly similar pulse (gamma = varsigma = 1): pressure x lambda, times x sqrt(lambda),
+    # impulse x lambda^1.5; contact=None scales the contact with the structure's height
+    lam, T = 0.01, 0.8  # issue: 8 s, 1e-4 of the peak (measured: docs/sim3d.md); first peak here
+    lt = math.sqrt(lam)
+    pulse = blast_parameters(250.0, 10.0).pulse("friedlander")
+    proto = simulate_structure(SQUARE, MethodA(SQUARE, pulse, 0.0069), T, record_every=20)
+    model = simulate_structure(SQUARE.scaled(lam), MethodA(SQUARE.scaled(lam), pulse.scaled(lam, lt), 0.0069 * lt),
+                               T * lt, record_every=20)
+    p, m = _top_x(proto), _top_x(model, lam)
+    assert np.allclose(model.time / lt, proto.time, rtol=1e-12)
+    assert np.max(np.abs(m - p)) <= 1e-4 * np.max(np.abs(p))
+    tilt_p, tilt_m = proto.dataset["tilt"].values, model.dataset["tilt"].values
+    assert np.max(np.abs(tilt_m - tilt_p)) <= 1e-4 * np.max(tilt_p)
+
+
+def test_block_specimen_at_its_own_size_reproduces_the_prototype():
+    # issue: the 1/200 specimen of the paper's block (2h = 5 cm, alpha = 15 deg, 5 mm deep,
+    # 2000 kg/m^3, masi2021, mu = 0.7, 2.3318e-7 kg at 0.01 m, 0.2121 s) gave 0.0355 rad with the
+    # absolute full-scale contact, against the prototype's 0.0611 (50 kg at 2 m, 3 s)
+    proto_blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
+    spec_blk = proto_blk.scaled(1 / 200)
+    proto = simulate_block(proto_blk, blast_parameters(50.0, 2.0, model="masi2021").pulse(), 3.0,
+                           contact=default_contact(proto_blk, friction=0.7), record_every=10)
+    spec = simulate_block(spec_blk, blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(), 0.2121,
+                          record_every=10)  # contact=None: scale-consistent defaults
+    # 2% (issue); measured 0.003% on the angle, 0.5% on the sliding (the general law matches
+    # the impulse, not the pulse shape)
+    assert spec.max_rotation == pytest.approx(proto.max_rotation, rel=0.02)
+    assert spec.max_sliding * 200 == pytest.approx(proto.max_sliding, rel=0.02)
+    assert proto.max_rotation == pytest.approx(0.0611, abs=5e-4)
+    # the old absolute setting is now flagged as soft relative to this specimen's blast
+    with pytest.warns(RuntimeWarning, match="soft relative to the blast"):
+        simulate_block(spec_blk, blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(), 1e-3,
+                       contact=ContactSettings(friction=0.7))
+
+
+def test_column_specimen_at_its_own_size_reproduces_the_prototype():
+    from blastscale.similitude import design_model
+
+    lam, T = 0.01, 0.8  # to past the first peak (0.5 s); 8 s in docs/sim3d.md
+    d = design_model(250.0, 10.0, lam)  # general law, gamma = 1
+    proto = simulate_structure(SQUARE, make_load("A", SQUARE, charge_kg=250.0, standoff_m=10.0), T, record_every=20)
+    spec_col = SQUARE.scaled(lam)
+    spec = simulate_structure(spec_col, make_load("A", spec_col, charge_kg=d.model_charge_kg,
+                                                  standoff_m=d.model_standoff_m), T * math.sqrt(lam), record_every=20)
+    p, m = _top_x(proto), _top_x(spec, lam)
+    # 2% (issue) on the first peak (measured 0.4%) and on the largest tilt (measured 0.2%)
+    assert np.max(m) == pytest.approx(np.max(p), rel=0.02)
+    assert spec.summary()["max_tilt_rad"] == pytest.approx(proto.summary()["max_tilt_rad"], rel=0.02)
+
+
+def test_halving_the_time_step_moves_the_first_peak_by_less_than_1_percent():
+    load = make_load("A", SQUARE, charge_kg=250.0, standoff_m=10.0)
+    c = default_contact(SQUARE)
+    half = ContactSettings(friction=c.friction, time_constant=c.time_constant, friction_time_constant=None,
+                           timestep=c.timestep / 2)
+    peaks = [np.max(_top_x(simulate_structure(SQUARE, load, 0.7, contact=cs, record_every=8))) for cs in (c, half)]
+    assert peaks[1] == pytest.approx(peaks[0], rel=0.01)  # issue: 1%; measured in docs/sim3d.md
+
+
+def test_the_block_is_the_one_body_case_of_the_same_path():
+    blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+    pulse = blast_parameters(50.0, 2.0, model="masi2021").pulse()
+    one = simulate_block(blk, pulse, 0.3, contact=ContactSettings(friction=2.0))
+    gen = simulate_structure(blk, MethodA(blk, pulse), 0.3, contact=ContactSettings(friction=2.0))
+    # the same loop and the same scene: bitwise
+    assert np.array_equal(gen.dataset["rotation_y"].values[:, 0], one.rotation)
+    assert np.array_equal(one.response.dataset["tilt"].values, gen.dataset["tilt"].values)
+    assert one.summary()["delivered_impulse_Ns"] == gen.summary()["delivered_impulse_Ns"]
+
+
+def test_response_dataset_units_dimensions_netcdf_and_summary(tmp_path):
+    import xarray as xr
+
+    r = simulate_structure(CIRCULAR, make_load("A", CIRCULAR, charge_kg=200.0, standoff_m=10.0), 0.02,
+                           record_every=10)
+    ds = r.dataset
+    assert dict(ds.sizes) == {"time": ds.sizes["time"], "body": 10, "point": 10, "component": 3}
+    for name, (dims, units, dim, _) in VARIABLES.items():
+        assert ds[name].dims == dims and ds[name].attrs["units"] == units and ds[name].attrs["dimension"] == dim
+    assert ds["time"].attrs["units"] == "s" and "version_mujoco" in ds.attrs
+    path = r.to_netcdf(tmp_path / "col.nc")
+    back = xr.load_dataset(path)
+    assert np.array_equal(back["tilt"].values, ds["tilt"].values)
+    assert json.loads(back.attrs["structure"])["section"] == "circular"
+    assert [p.name for p in tmp_path.iterdir()] == ["col.nc"]  # no temporary file left
+    s = r.summary()
+    json.dumps(s, allow_nan=False)
+    assert set(s["points"]) == {f"P-{i}" for i in range(1, 11)} and s["collapsed"] is False
+
+
+def test_collapse_is_flagged_when_the_column_falls():
+    # an initial shove far beyond any rocking capacity: the stack passes over its base edge
+    r = simulate_structure(SQUARE, MethodA(SQUARE, blast_parameters(250.0, 10.0).pulse().scaled(30.0, 1.0)), 2.5,
+                           record_every=50)
+    s = r.summary()
+    assert s["collapsed"] and 0.0 < s["collapse_time_s"] <= 2.5
+
+
+@pytest.mark.parametrize(
+    "make, word",
+    [
+        (lambda: simulate_structure(SQUARE, None, 0.01, contact=ContactSettings(timestep=0.1, time_constant=0.4)),
+         "timestep"),
+        (lambda: simulate_block(RectangularBlock(10.0, 2.0), None, 0.01,
+                                contact=ContactSettings(timestep=1.0, time_constant=4.0)), "timestep"),
+        (lambda: simulate_block(RectangularBlock(10.0, 2.68).scaled(1e-4), None, 0.01), "mass"),
+        (lambda: simulate_block(RectangularBlock(1e-6, 2.68e-7), None, 0.01), "height"),
+        (lambda: simulate_block(RectangularBlock(10.0, 2.68, 1e-9), None, 0.01), "depth"),
+        (lambda: simulate_structure(SQUARE, "friedlander", 0.01), "load"),
+        (lambda: simulate_structure(SQUARE, None, -1.0), "duration"),
+        (lambda: make_load("D", SQUARE, charge_kg=1.0, standoff_m=1.0), "load method"),
+        (lambda: MethodA(SQUARE, None), "pulse"),
+    ],
+    ids=["timestep-column", "timestep-block", "tiny-mass", "tiny-height", "tiny-depth", "load", "duration",
+         "method", "pulse"],
+)
+def test_engine_rejects_bad_input_with_one_line_naming_it(make, word):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        with pytest.raises(BlastscaleInputError) as e:
+            make()
+    assert word in str(e.value) and len(str(e.value).splitlines()) == 1
