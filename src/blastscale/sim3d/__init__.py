@@ -1,4 +1,8 @@
-"""3D rigid-body response on MuJoCo: single blocks rocking, sliding and lifting off.
+"""3D rigid-body response on MuJoCo: any structure of rigid bodies (blocks, multi-drum columns)
+rocking, sliding, wobbling and lifting off.
+
+* :func:`simulate_structure` -> :class:`Response3D` (xarray) -- the one engine;
+  :func:`default_contact` -- scale-consistent contact defaults.
 
 * :class:`ContactSettings` -- contact, time step and solver in physical terms, ``.scaled(lambda)``.
 * :func:`block_scene` / :func:`build_scene` -- the MuJoCo model built from the geometry.
@@ -11,11 +15,18 @@ MuJoCo is imported lazily, inside the functions that need it.
 """
 
 from .blast_force import step_forces
-from .contact import CONES, SOLVERS, ContactSettings
+from .contact import CONES, SOLVERS, ContactSettings, default_contact
 from .loads import LOAD_METHODS, LoadStrategy, MethodA, make_load, register_load_method
-from .model import BodySpec, BoxShape, FrontFace, Scene, block_scene, build_scene
-from .results import Block3DResult, quaternion_to_matrix, tilt_angle
-from .simulate import SETTLE_TIME_CONSTANTS, Block3DSimulator, pivot_friction_threshold, simulate_block
+from .model import BodySpec, BoxShape, FrontFace, PrismShape, Scene, block_scene, build_scene, structure_scene
+from .results import Block3DResult, Response3D, quaternion_to_matrix, tilt_angle
+from .simulate import (
+    SETTLE_TIME_CONSTANTS,
+    Block3DSimulator,
+    check_simulable,
+    pivot_friction_threshold,
+    simulate_block,
+    simulate_structure,
+)
 
 __all__ = [
     "Block3DResult",
@@ -25,6 +36,8 @@ __all__ = [
     "CONES",
     "ContactSettings",
     "FrontFace",
+    "PrismShape",
+    "Response3D",
     "LOAD_METHODS",
     "LoadStrategy",
     "MethodA",
@@ -33,11 +46,15 @@ __all__ = [
     "Scene",
     "block_scene",
     "build_scene",
+    "check_simulable",
+    "default_contact",
     "pivot_friction_threshold",
     "make_load",
     "quaternion_to_matrix",
     "register_load_method",
     "simulate_block",
+    "simulate_structure",
     "step_forces",
+    "structure_scene",
     "tilt_angle",
 ]
