@@ -87,6 +87,11 @@ BAD_INPUT = [
     # --extrapolate lets the model Z leave the duration fit (with warnings), never the impulse fit of the law
     (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-9", "--model", "masi2021", "--extrapolate"],
      ["scale = 1e-09", "impulse fit [0.2, 20]"]),
+    (["blast", "--charge", "5", "--standoff", "2", "--incidence-deg", "190"],
+     ["incidence angle = 190 deg", "[0, 180]"]),
+    (["blast", "--charge", "5", "--standoff", "2", "--incidence-deg", "-1"], ["incidence angle = -1 deg"]),
+    (["blast", "--charge", "5", "--standoff", "2", "--incidence-deg", "30", "--incidence", "cosine"],
+     ["incidence model = 'cosine'", "ufc, closed-form"]),
     # click's own usage errors, also one line, exit 2
     (["blast", "--charge", "abc", "--standoff", "2"], ["--charge", "blastscale blast --help"]),
     (["blast", "--charge", "5"], ["Missing option", "--standoff"]),
@@ -107,6 +112,27 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, words):
     assert lines[-1].startswith("error: ") and all(ln.startswith("warning: ") for ln in lines[:-1]), lines
     for w in words:
         assert w in lines[-1]
+
+
+@pytest.mark.parametrize("incidence", ["ufc", "closed-form"])
+def test_blast_face_at_an_angle_of_incidence(capsys, incidence):
+    # limits of both models (blast.incidence): 0 deg -> the normally reflected values, 90 and 135 deg -> side-on
+    ref = run_json(capsys, "blast", "--charge", "250", "--standoff", "10", "--json")
+    for deg, p, i in ((0, "reflected_pressure_Pa", "reflected_impulse_Pa_s"),
+                      (90, "incident_pressure_Pa", "incident_impulse_Pa_s"),
+                      (135, "incident_pressure_Pa", "incident_impulse_Pa_s")):
+        out = run_json(capsys, "blast", "--charge", "250", "--standoff", "10", "--incidence-deg", str(deg),
+                       "--incidence", incidence, "--json")
+        assert out["face_pressure_Pa"] == pytest.approx(ref[p], rel=1e-12)
+        assert out["face_impulse_Pa_s"] == pytest.approx(ref[i], rel=1e-12)
+        assert out["incidence_model"] == incidence and out["angle_of_incidence_deg"] == deg
+    # between: below normal reflection, above side-on; the table prints the two rows
+    out = run_json(capsys, "blast", "--charge", "250", "--standoff", "10", "--incidence-deg", "60",
+                   "--incidence", incidence, "--json")
+    assert ref["incident_pressure_Pa"] < out["face_pressure_Pa"] < ref["reflected_pressure_Pa"]
+    with pytest.raises(SystemExit):
+        main(["blast", "--charge", "250", "--standoff", "10", "--incidence-deg", "60", "--incidence", incidence])
+    assert "face at 60 deg" in capsys.readouterr().out
 
 
 def test_console_script_exits_2_without_traceback():

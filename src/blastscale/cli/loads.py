@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+import math
 from typing import Optional
 
 import typer
 from rich.table import Table
 
+from .._validate import check_range
 from ..blast import blast_parameters
+from ..blast.faces import face_loads
+from ..blast.incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS, check_incidence
 from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ..similitude import FACTOR_UNITS, design_model
 from ._app import app, console, fmt_value, one_line_warnings, print_json, table
@@ -19,13 +23,21 @@ def blast_cmd(
     standoff: float = typer.Option(..., "--standoff", help="Stand-off distance R \\[m]."),
     model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP),
     extrapolate: bool = typer.Option(False, "--extrapolate", help="Evaluate fits outside their range (warns)."),
+    incidence_deg: Optional[float] = typer.Option(
+        None, "--incidence-deg", help="Angle of incidence of a face \\[deg], 0 (facing the charge) to 180: adds the "
+        "face's peak pressure and impulse."),
+    incidence: str = typer.Option(DEFAULT_INCIDENCE, "--incidence",
+                                  help=f"Angle-of-incidence model: {' or '.join(INCIDENCE_MODELS)}."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Blast parameters of a hemispherical surface burst of W kg TNT at R m (SI output)."""
+    check_incidence(incidence)
     with one_line_warnings():
         b = blast_parameters(charge, standoff, model, extrapolate=extrapolate)
+        face = None if incidence_deg is None else oblique_face(charge, standoff, incidence_deg, model, incidence,
+                                                               extrapolate)
     if as_json:
-        print_json(b.to_dict())
+        print_json({**b.to_dict(), **(face or {})})
         return
     rows = [
         ("scaled distance Z", f"{b.scaled_distance:.6g}", "m/kg^(1/3)"),
@@ -38,7 +50,23 @@ def blast_cmd(
         ("shock-front velocity U", fmt_value(b.shock_front_velocity), "m/s"),
         ("Friedlander decay d", f"{b.friedlander_decay:.6g}", "-"),
     ]
+    if face is not None:
+        rows += [
+            (f"face at {incidence_deg:g} deg ({incidence}): peak pressure", f"{face['face_pressure_Pa']:.6g}", "Pa"),
+            (f"face at {incidence_deg:g} deg ({incidence}): impulse", f"{face['face_impulse_Pa_s']:.6g}", "Pa s"),
+        ]
     console.print(table(f"Blast: {charge:g} kg TNT at {standoff:g} m ({b.model})", rows))
+
+
+def oblique_face(charge: float, standoff: float, angle_deg: float, model: str, incidence: str,
+                 extrapolate: bool = False) -> dict:
+    """Peak pressure [Pa] and impulse [Pa*s] on a face at ``standoff`` [m] whose outward normal makes
+    ``angle_deg`` [deg] (0-180) with the direction to the charge, by the incidence model ``incidence``."""
+    a = math.radians(float(check_range("incidence angle", angle_deg, 0.0, 180.0, "deg")))
+    f = face_loads(charge, [0.0, 0.0, 0.0], [standoff, 0.0, 0.0], [-math.cos(a), math.sin(a), 0.0], model=model,
+                   incidence=incidence, extrapolate=extrapolate)
+    return {"incidence_model": incidence, "angle_of_incidence_deg": float(angle_deg),
+            "face_pressure_Pa": float(f.pressure), "face_impulse_Pa_s": float(f.impulse)}
 
 
 def print_design(d) -> None:
