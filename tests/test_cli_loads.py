@@ -160,6 +160,7 @@ def test_run_default_scenario_json(capsys, tmp_path):
     # The main job on the paper's default scenario: design (0.233 mg, paper Table, units corrected), planar
     # rocking that rocks without overturning and is similar (<= 5e-4 rad, issue #3), the critical charge
     # 79.87 kg (Friedlander, DESIGN.md: 79.84-79.87), and 3D up-scaled sliding within 1 % (issue #4).
+    tmp_path = tmp_path / "run"  # `run` refuses an existing output folder without --force
     out = run_json(capsys, "run", "--json", "--out", str(tmp_path))
     assert out["design"]["model_charge_kg"] * 1e6 == pytest.approx(0.233, rel=1e-2)
     assert out["rocking"]["prototype"]["overturned"] is False
