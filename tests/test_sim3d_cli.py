@@ -115,3 +115,27 @@ def test_block3d_warns_in_one_line_near_the_pivoting_threshold(capsys):
     lines = [ln for ln in out.err.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("warning:") and "pivoting threshold" in lines[0]
     assert json.loads(out.out)["prototype"]["overturn_time_s"] is None
+
+
+def test_block_comparison_through_the_contract_reproduces_the_direct_differences():
+    """compare_block3d's differences come from the comparison contract (block_dataset,
+    upscale_dataset, compare_responses). They must equal the direct computation on the planar
+    view (Block3DResult.upscaled, np.interp onto the prototype's times) to round-off: both
+    divide by the same factors and interpolate at the same times (1e-12 of the largest value)."""
+    from blastscale.analysis.block3d_similarity import compare_block3d
+    from blastscale.structures.block import RectangularBlock
+
+    block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+    c = compare_block3d(block, 50.0, 2.0, 1 / 20, model="masi2021", duration=0.6, record_every=5)
+    p, u = c.prototype, c.model_upscaled
+    mask = p.time <= u.time[-1] * (1 + 1e-12)
+    for key, attr in (("max_abs_rotation_diff_rad", "rotation"), ("max_abs_sliding_diff_m", "sliding"),
+                      ("max_abs_uplift_diff_m", "uplift")):
+        a = getattr(p, attr)
+        direct = float(np.max(np.abs(a[mask] - np.interp(p.time[mask], u.time, getattr(u, attr)))))
+        assert c.differences[key] == pytest.approx(direct, rel=1e-9, abs=1e-12 * float(np.max(np.abs(a)))), key
+    s = c.summary()["similarity"]
+    assert s["outcomes_agree"] is True
+    # the first rocking peak of the up-scaled model within 1 % of the prototype's (general law, finite pulse)
+    assert s["first_peak_rotation_ratio"] == pytest.approx(1.0, abs=1e-2)
+    assert c.summary()["prototype"]["delivered_impulse_Ns"][0] > 0

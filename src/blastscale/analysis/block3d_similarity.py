@@ -3,9 +3,10 @@
 The model experiment is designed with :func:`blastscale.similitude.design_model` (charge and
 stand-off from the scaling law), the model block is ``block.scaled(lambda, gamma)``, the
 contact settings are ``contact.scaled(lambda, lambda_t)`` with lambda_t the time factor, and
-gravity is ``varsigma g``. Both runs use the paper's Method A load. The model's histories are
-up-scaled (lengths / lambda, times / lambda_t, velocities / (lambda/lambda_t), angles unchanged)
-and compared with the prototype's on the prototype's time grid.
+gravity is ``varsigma g``. Both runs use the paper's Method A load. The block's planar
+histories are written as response datasets (:func:`block_dataset`), up-scaled and compared with
+the package's one comparison contract (:mod:`.compare`: lengths / lambda, times / lambda_t,
+velocities / (lambda/lambda_t), angles unchanged, on the prototype's time grid).
 
 Reference: Masi, Stefanou & Maffi-Berthier, *Scaling laws ...*, Sec. "FEM simulations"
 (prototype vs lambda = 1/200 model, slender and non-slender blocks).
@@ -22,25 +23,59 @@ from ..sim3d.contact import ContactSettings
 from ..sim3d.results import Block3DResult
 from ..sim3d.simulate import Block3DSimulator
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
+from .compare import compare_responses, upscale_dataset
 
-__all__ = ["Block3DComparison", "compare_block3d", "history_differences"]
+__all__ = ["Block3DComparison", "block_dataset", "compare_block3d", "history_differences"]
+
+#: Block variable -> (Block3DResult attribute, units, dimension) of :func:`block_dataset`.
+_BLOCK_VARIABLES = {
+    "rotation_y": ("rotation", "rad", "angle"),
+    "sliding": ("sliding", "m", "length"),
+    "uplift": ("uplift", "m", "length"),
+}
 
 
-def history_differences(prototype: Block3DResult, upscaled: Block3DResult) -> dict:
-    """Largest absolute differences between two histories in prototype units.
+def block_dataset(result: Block3DResult):
+    """A single-block run's planar histories as a response dataset of the comparison contract.
+
+    Parameters
+    ----------
+    result : Block3DResult
+        A run, in its own units.
+
+    Returns
+    -------
+    xarray.Dataset
+        Coordinates ``time`` [s], ``body`` = ["block"]; variables ``rotation_y`` [rad]
+        (dimension ``angle``), ``sliding`` and ``uplift`` [m] (``length``), each (time, body);
+        attribute ``overturned`` (0/1).
+    """
+    import xarray as xr
+
+    data = {name: (("time", "body"), np.asarray(getattr(result, attr), dtype=float)[:, None],
+                   {"units": u, "dimension": dim})
+            for name, (attr, u, dim) in _BLOCK_VARIABLES.items()}
+    return xr.Dataset(data, coords={"time": ("time", np.asarray(result.time, dtype=float), {"units": "s"}),
+                                    "body": ["block"]},
+                      attrs={"overturned": int(result.overturned), "source": "blastscale.sim3d (MuJoCo), block"})
+
+
+def history_differences(prototype_ds, upscaled_ds) -> dict:
+    """Largest absolute differences between two block histories in prototype units.
 
     .. math:: \\Delta_q = \\max_{t_k} |q_p(t_k) - q_m^{up}(t_k)|
 
     with the up-scaled history interpolated linearly onto the prototype's times t_k (where
-    they overlap). Velocities are not compared: during the pulse they rise over the blast's
-    own duration, whose model/prototype ratio differs from lambda_t.
+    they overlap), by :func:`~.compare.compare_responses`. Velocities are not compared: during
+    the pulse they rise over the blast's own duration, whose model/prototype ratio differs
+    from lambda_t.
 
     Parameters
     ----------
-    prototype : Block3DResult
-        Prototype run [SI, prototype units].
-    upscaled : Block3DResult
-        Model run already up-scaled (:meth:`Block3DResult.upscaled`) [prototype units].
+    prototype_ds : xarray.Dataset
+        :func:`block_dataset` of the prototype run [SI, prototype units].
+    upscaled_ds : xarray.Dataset
+        :func:`block_dataset` of the model run up-scaled by :func:`~.compare.upscale_dataset`.
 
     Returns
     -------
@@ -48,16 +83,12 @@ def history_differences(prototype: Block3DResult, upscaled: Block3DResult) -> di
         ``max_abs_rotation_diff_rad`` [rad], ``max_abs_sliding_diff_m`` [m],
         ``max_abs_uplift_diff_m`` [m].
     """
-    t = prototype.time
-    mask = t <= upscaled.time[-1] * (1 + 1e-12)
-
-    def diff(a, b):
-        return float(np.max(np.abs(a[mask] - np.interp(t[mask], upscaled.time, b))))
-
+    c = compare_responses(prototype_ds, upscaled_ds, variables=list(_BLOCK_VARIABLES), outcome="overturned")
+    v = c["variables"]
     return {
-        "max_abs_rotation_diff_rad": diff(prototype.rotation, upscaled.rotation),
-        "max_abs_sliding_diff_m": diff(prototype.sliding, upscaled.sliding),
-        "max_abs_uplift_diff_m": diff(prototype.uplift, upscaled.uplift),
+        "max_abs_rotation_diff_rad": v["rotation_y"]["block"]["max_abs_diff"],
+        "max_abs_sliding_diff_m": v["sliding"]["block"]["max_abs_diff"],
+        "max_abs_uplift_diff_m": v["uplift"]["block"]["max_abs_diff"],
     }
 
 
@@ -77,6 +108,9 @@ class Block3DComparison:
         Model run in prototype units.
     differences : dict
         :func:`history_differences` of prototype vs up-scaled model.
+    comparison : dict
+        The contract's full comparison (:func:`~.compare.compare_responses` of
+        :func:`block_dataset`): first peaks, differences relative to the peak, outcomes.
     """
 
     design: object
@@ -84,13 +118,17 @@ class Block3DComparison:
     model: Block3DResult
     model_upscaled: Block3DResult
     differences: dict
+    comparison: dict = None
 
     def summary(self) -> dict:
         """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block."""
+        c = self.comparison or {}
+        rot = c.get("variables", {}).get("rotation_y", {}).get("block", {})
         return {
             "prototype": self.prototype.summary(),
             "model": self.model_upscaled.summary(),
-            "similarity": dict(self.differences),
+            "similarity": {**self.differences, "first_peak_rotation_ratio": rot.get("first_peak_ratio"),
+                           "outcomes_agree": c.get("outcomes_agree")},
         }
 
 
@@ -173,5 +211,7 @@ def compare_block3d(
     )
     proto = proto_sim.run(block, design.prototype.pulse(pulse), duration)
     mod = model_sim.run(model_block, design.model.pulse(pulse), duration * f.time)
-    up = mod.upscaled(f.length, f.time, f.momentum)
-    return Block3DComparison(design, proto, mod, up, history_differences(proto, up))
+    up = mod.upscaled(f.length, f.time, f.momentum)  # the planar view, for summaries and plots
+    pds, uds = block_dataset(proto), upscale_dataset(block_dataset(mod), f)
+    cmp = compare_responses(pds, uds, outcome="overturned")
+    return Block3DComparison(design, proto, mod, up, history_differences(pds, uds), cmp)

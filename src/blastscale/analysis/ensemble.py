@@ -223,7 +223,7 @@ def ensemble_compare(
     proto_q, model_q, proto_c, model_c = [], [], [], []
     t = points = None
     for k, fac in enumerate(factors):
-        _, pr, mo = _run_pair(structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact,
+        _, pr, mo, _ = _run_pair(structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact,
                               duration=duration, record_every=record_every, load_factor=fac)
         pds, up = align(pr.dataset, upscale_dataset(mo.dataset, design.factors))
         if t is None:

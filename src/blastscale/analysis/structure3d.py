@@ -135,10 +135,13 @@ class Comparison3D:
             name -> ``first_peak_prototype_m``, ``first_peak_model_m``, ``first_peak_time_s``,
             ``first_peak_ratio``, ``max_abs_displacement_diff_m``,
             ``max_abs_displacement_diff_rel_peak``, ``max_abs_velocity_diff_m_s``,
-            ``max_abs_velocity_diff_rel_peak``; ``time_compared_s``.
+            ``max_abs_velocity_diff_rel_peak`` (velocities after the load, ``load_end_s``: during a
+            finite pulse they rise over the blast's own duration, whose model/prototype ratio is
+            not the time factor); ``time_compared_s``; ``load_end_s``.
         """
         c = self.comparison["variables"]
-        disp, vel = c["point_displacement"], c["point_velocity"]
+        disp = c["point_displacement"]
+        vel = self.comparison.get("after_load", self.comparison)["variables"]["point_velocity"]
         points = {
             name: {
                 "first_peak_prototype_m": d["first_peak_prototype"],
@@ -161,6 +164,7 @@ class Comparison3D:
             "outcomes_agree": self.comparison["outcomes_agree"],
             "points": points,
             "time_compared_s": self.comparison["time_compared_s"],
+            "load_end_s": self.settings.get("load_end_s"),
         }
 
     def summary(self) -> dict:
@@ -179,8 +183,10 @@ class Comparison3D:
 
         p, m = align(self.prototype_dataset, self.upscaled_dataset)
         keep = [n for n in p.data_vars if n in m.data_vars]
-        ds = xr.concat([p[keep], m[keep]], dim="system", combine_attrs="drop_conflicts")
+        ds = xr.concat([p[keep], m[keep]], dim="system", combine_attrs="override")  # the prototype's attributes
         ds = ds.assign_coords(system=["prototype", "model"])
+        ds.attrs.pop("upscaled", None)
+        ds.attrs["model_first_arrival_time_s"] = self.upscaled_dataset.attrs.get("first_arrival_time_s", "none")
         s = self.similarity()
         attrs = {k: v for k, v in s.items() if isinstance(v, (int, float, str)) and not isinstance(v, bool)}
         attrs["outcomes_agree"] = "none" if s["outcomes_agree"] is None else int(s["outcomes_agree"])
@@ -214,8 +220,9 @@ def simulate_system(structure, design, system: str = "prototype", *, load: str =
 
     Returns
     -------
-    (structure, Response3D)
-        The structure simulated and its response (in its own units).
+    (structure, Response3D, float)
+        The structure simulated, its response (in its own units) and the load's duration
+        after its first arrival [s] (its own units).
     """
     from ..sim3d import simulate_structure
     from ..sim3d.loads import make_load
@@ -235,14 +242,17 @@ def simulate_system(structure, design, system: str = "prototype", *, load: str =
                    pulse=pulse, **inc)
     if load_factor != 1.0:
         ld = PerturbedLoad(ld, load_factor)
-    return struct, simulate_structure(struct, ld, dur, contact=cont, gravity=g, record_every=record_every)
+    resp = simulate_structure(struct, ld, dur, contact=cont, gravity=g, record_every=record_every)
+    return struct, resp, float(ld.end_time - ld.first_arrival)
 
 
 def _run_pair(structure, design, **kw):
-    """Simulate the prototype and the model: ``(model_structure, prototype Response3D, model Response3D)``."""
-    _, proto = simulate_system(structure, design, "prototype", **kw)
-    model_structure, mod = simulate_system(structure, design, "model", **kw)
-    return model_structure, proto, mod
+    """Simulate the prototype and the model: ``(model_structure, prototype Response3D, model
+    Response3D, load end [s after first arrival, prototype time])``: the later of the two loads'
+    ends, the model's up-scaled."""
+    _, proto, end_p = simulate_system(structure, design, "prototype", **kw)
+    model_structure, mod, end_m = simulate_system(structure, design, "model", **kw)
+    return model_structure, proto, mod, max(end_p, end_m / design.factors.time)
 
 
 def compare_structure3d(
@@ -291,20 +301,20 @@ def compare_structure3d(
         raise BlastscaleInputError(
             f"design = {type(design).__name__} is not a model design: give blastscale.similitude.design_model(...)"
         )
-    from ..sim3d.loads import LOAD_METHODS
-
-    if load not in LOAD_METHODS:
-        raise BlastscaleInputError(f"load = {load!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
-    model_structure, proto, mod = _run_pair(structure, design, load=load, pulse=pulse, incidence=incidence,
-                                            contact=contact, duration=dur, record_every=record_every)
+    model_structure, proto, mod, load_end = _run_pair(
+        structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact, duration=dur,
+        record_every=record_every)
     pds = _with_outcome(proto.dataset, proto.summary())
     up = upscale_dataset(_with_outcome(mod.dataset, mod.summary()), design.factors)
     cmp = compare_responses(pds, up, variables=_COMPARED, outcome="collapsed")
+    if load_end < pds["time"].values[-1]:  # velocities after the load (see compare_responses' start)
+        cmp["after_load"] = compare_responses(pds, up, variables=("point_velocity",), start=load_end)
+        cmp["after_load"]["start_s"] = load_end
     return Comparison3D(
         design=design, structure=structure, model_structure=model_structure, prototype=proto, model=mod,
         prototype_dataset=pds, upscaled_dataset=up, comparison=cmp,
         settings={"load_method": load, "pulse": pulse, "incidence": incidence or "default", "duration_s": dur,
-                  "record_every": int(record_every)},
+                  "record_every": int(record_every), "load_end_s": load_end},
     )
 
 

@@ -19,7 +19,9 @@ from ._app import app, console_err
 from . import loads as _loads  # noqa: F401,E402
 from . import rocking as _rocking  # noqa: F401,E402
 from . import block3d as _block3d  # noqa: F401,E402
+from . import column as _column  # noqa: F401,E402
 from . import main_job as _main_job  # noqa: F401,E402
+from . import sweeps as _sweeps  # noqa: F401,E402
 
 __all__ = ["app", "main"]
 

@@ -9,7 +9,7 @@ import typer
 from .._validate import BlastscaleInputError, check_positive
 from ._app import app, console, fmt_value, one_line_warnings, print_json, save_figure, table
 from . import options as opt
-from .options import block_from_options, check_plot_path
+from .options import block_from_options, check_load_options, check_plot_path
 
 _SUMMARY_ROWS = (
     ("overturned", "overturned", "", ".6g"),
@@ -37,6 +37,8 @@ def block3d_cmd(
     standoff: float = opt.STANDOFF,
     duration: float = opt.DURATION,
     pulse: str = opt.PULSE,
+    load: str = opt.LOAD,
+    incidence: Optional[str] = opt.INCIDENCE,
     restitution: Optional[float] = typer.Option(
         None, "--restitution",
         help="Not applicable in 3D: restitution emerges from the inelastic contact (Housner's value is "
@@ -68,6 +70,11 @@ def block3d_cmd(
             "the inelastic contact (omit --restitution)"
         )
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
+    check_load_options(load, incidence)
+    if load != "A":
+        raise BlastscaleInputError(
+            f"load = {load!r} is not available for block3d yet: valid values are A (the single-block path takes "
+            "Method A's pulse; run a per-face load on a block with blastscale.sim3d.simulate_structure)")
     check_plot_path(plot)
     check_positive("timestep", timestep, "s")  # before it sets the contact time constant below
     base = ContactSettings()
@@ -80,6 +87,7 @@ def block3d_cmd(
     out: dict = {"inputs": {
         "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "density_kg_m3": block.density,
         "charge_kg": charge, "standoff_m": standoff, "pulse": pulse, "model": model, "duration_s": duration,
+        "load": load, "incidence": incidence,
         "scale": scale, "density_ratio": density_ratio if scale is not None else None,
         "gravity_ratio": gravity_ratio if scale is not None else None, "gravity_m_s2": gravity,
     }, "contact": contact.to_dict()}
