@@ -424,6 +424,7 @@ class Study:
         if not isinstance(scenario, Scenario):
             raise BlastscaleInputError(f"scenario must be a Scenario, got {type(scenario).__name__}")
         self.scenario = scenario
+        self._checked = None  # (structure, engines, skipped, design) once checked: the design runs once
 
     def structure(self):
         """The prototype structure, built by the registry entry of its kind."""
@@ -469,11 +470,12 @@ class Study:
         """Everything that can be checked before simulating: the structure, the engines, the
         design (blast fits' ranges, scale range) and the memory. Returns (structure, engines,
         skipped, design)."""
-        structure = self.structure()
-        engines, skipped = self.engines(structure)
-        check_memory(self.scenario, structure)
-        d = self.design(structure)
-        return structure, engines, skipped, d
+        if self._checked is None:
+            structure = self.structure()
+            engines, skipped = self.engines(structure)
+            check_memory(self.scenario, structure)
+            self._checked = (structure, engines, skipped, self.design(structure))
+        return self._checked
 
     def run(self, progress: Optional[Progress] = None) -> StudyResult:
         """Run the study.

@@ -2,19 +2,33 @@
 
 from __future__ import annotations
 
-import contextlib
+import os
+import signal
+import sys
+
+
+def _interrupted_while_starting(signum, frame):  # pragma: no cover - timing dependent
+    """Ctrl-C while the command line tool is still importing: one line, exit 130, nothing written."""
+    os.write(2, b"error: interrupted (Ctrl-C): nothing was written\n")
+    os._exit(130)
+
+
+if os.path.basename(sys.argv[0]) == "blastscale" and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+    signal.signal(signal.SIGINT, _interrupted_while_starting)  # replaced by the command's own handler
+
+import contextlib  # noqa: E402
 import json
 import math
-import sys
 import warnings
 from typing import Any
 
 import typer
 from rich.console import Console
 from rich.table import Table
-from typer.core import TyperGroup
+from typer.core import TyperGroup, TyperOption
 
 from .._validate import BlastscaleInputError
+from ..io.results import jsonable
 
 # Wide enough for the tables when output is piped (rich falls back to 80 columns otherwise).
 console = Console(width=None if Console().is_terminal else 160)
@@ -27,6 +41,34 @@ def print_error(message: str) -> None:
                       markup=True)
 
 
+_display_type_rich = TyperOption.display_type_rich
+
+
+def _flag_display_type(self, ctx):
+    """A flag takes no value: --help shows ``--json`` alone, not ``--json <bool>`` (typer >= 0.16
+    prints the value type of every option)."""
+    if getattr(self, "is_flag", False) and self.metavar is None:
+        return None
+    return _display_type_rich(self, ctx)
+
+
+TyperOption.display_type_rich = _flag_display_type
+
+
+class Interrupted(BaseException):
+    """Ctrl-C (SIGINT) inside a command. Raised instead of KeyboardInterrupt so that click does
+    not turn it into its two-line "Aborted!"; a BaseException, so that no ``except Exception``
+    swallows it; clean-ups (``finally``, the output folder) still run."""
+
+
+_INTERRUPTED: list = []  # set by the handler: an import that turns Interrupted into ImportError is still Ctrl-C
+
+
+def _raise_interrupted(signum, frame):
+    _INTERRUPTED.append(signum)
+    raise Interrupted()
+
+
 class OneLineErrorGroup(TyperGroup):
     """The command group, with click's usage errors (bad number, missing or unknown option) printed as
     one ``error:`` line naming the option, exit status 2, instead of typer's multi-line box."""
@@ -34,19 +76,87 @@ class OneLineErrorGroup(TyperGroup):
     def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
         if not standalone_mode:
             return super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        previous = signal.getsignal(signal.SIGINT)
+        if previous is not signal.SIG_IGN:  # a background job keeps ignoring Ctrl-C
+            signal.signal(signal.SIGINT, _raise_interrupted)
+        args = normalise_ratios(list(sys.argv[1:] if args is None else args))
         try:
             rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
-        except typer.TyperException as exc:  # click's ClickException / UsageError
-            message = exc.format_message().strip()
-            if message and type(exc).__name__ != "NoArgsIsHelpError":  # that one has printed the help
-                ctx = getattr(exc, "ctx", None)
-                hint = f" (see '{ctx.command_path} --help')" if ctx is not None else ""
-                print_error(message + hint)
-            sys.exit(getattr(exc, "exit_code", 2))
-        except typer.Abort:
-            print_error("aborted")
-            sys.exit(1)
+        except BaseException as exc:
+            if isinstance(exc, Interrupted) or (_INTERRUPTED and not isinstance(exc, SystemExit)):
+                print_error("interrupted (Ctrl-C): nothing was written")
+                sys.exit(130)
+            if isinstance(exc, BlastscaleInputError):
+                print_error(_adapt_hint(str(exc), self, args))
+                sys.exit(2)
+            if isinstance(exc, typer.TyperException):  # click's ClickException / UsageError
+                message = exc.format_message().strip()
+                if message and type(exc).__name__ != "NoArgsIsHelpError":  # that one has printed the help
+                    ctx = getattr(exc, "ctx", None)
+                    hint = f" (see '{ctx.command_path} --help')" if ctx is not None else ""
+                    print_error(message + hint)
+                sys.exit(getattr(exc, "exit_code", 2))
+            if isinstance(exc, typer.Abort):
+                print_error("aborted")
+                sys.exit(1)
+            raise
+        finally:
+            signal.signal(signal.SIGINT, previous)
         sys.exit(rv if isinstance(rv, int) else 0)
+
+
+#: Options whose value is a dimensionless ratio: they also accept a fraction such as 1/200.
+RATIO_OPTIONS = ("--scale", "--density-ratio", "--gravity-ratio")
+
+
+def normalise_ratios(args: list[str]) -> list[str]:
+    """The command line with fraction values of :data:`RATIO_OPTIONS` (``--scale 1/200``,
+    ``--scale=1/200``) turned into decimals, for every command at once; anything that is not a
+    fraction is left for the option's own check."""
+    from fractions import Fraction
+
+    def conv(text: str) -> str:
+        if "/" not in text:
+            return text
+        try:
+            return repr(float(Fraction(text.replace(" ", ""))))
+        except (ValueError, ZeroDivisionError):
+            return text
+
+    out = list(args)
+    for i, a in enumerate(out):
+        if a in RATIO_OPTIONS and i + 1 < len(out):
+            out[i + 1] = conv(out[i + 1])
+        elif "=" in a and a.split("=", 1)[0] in RATIO_OPTIONS:
+            name, value = a.split("=", 1)
+            out[i] = f"{name}={conv(value)}"
+    return out
+
+
+def _adapt_hint(message: str, group, args) -> str:
+    """Library messages suggest ``--extrapolate``; a command without that option gets the hint
+    that works for it (``run``: the scenario key), or none."""
+    hint = "CLI --extrapolate, "
+    if hint not in message:
+        return message
+    argv = list(sys.argv[1:] if args is None else args)
+    name = next((a for a in argv if not a.startswith("-")), None)
+    cmd = group.commands.get(name) if name else None
+    opts = {o for p in (cmd.params if cmd is not None else []) for o in getattr(p, "opts", [])}
+    if "--extrapolate" in opts:
+        return message
+    if name == "run":
+        return message.replace(hint, "in a scenario: blast.extrapolate = true or --set blast.extrapolate=true, ")
+    return message.replace("(opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)",
+                           f"(`{name}` has no --extrapolate: choose values inside the range)").replace(hint, "")
+
+
+def _version(value: bool) -> None:
+    if value:
+        from .. import __version__
+
+        typer.echo(f"blastscale {__version__}")
+        raise typer.Exit()
 
 
 app = typer.Typer(
@@ -57,6 +167,31 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
 )
+
+
+@app.callback()
+def _main(
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                 help="Print the version and exit."),
+) -> None:
+    """Design safe reduced-scale blast experiments on masonry structures (Masi et al. scaling laws)."""
+
+
+@contextlib.contextmanager
+def stage_progress():
+    """A rich progress bar on stderr for a staged job; yields ``tell(stage, done, total)``.
+    Transient: it disappears when the job ends."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    with Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                  TimeElapsedColumn(), console=console_err, transient=True,
+                  disable=not console_err.is_terminal) as bar:
+        task = bar.add_task("starting", total=None)
+
+        def tell(stage: str, done: int, total: int) -> None:
+            bar.update(task, description=stage, completed=done, total=total)
+
+        yield tell
 
 
 @contextlib.contextmanager
@@ -76,18 +211,7 @@ def one_line_warnings():
                     console_err.print(f"[yellow]warning:[/] {msg}", highlight=False, soft_wrap=True)
 
 
-def _jsonable(obj: Any) -> Any:
-    if isinstance(obj, dict):
-        return {str(k): _jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
-    if hasattr(obj, "tolist") and getattr(obj, "ndim", 0) > 0:  # numpy arrays
-        return _jsonable(obj.tolist())
-    if hasattr(obj, "item") and callable(obj.item):  # numpy scalars
-        obj = obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
-    return obj
+_jsonable = jsonable  # the one JSON conversion (blastscale.io.results)
 
 
 def print_json(obj: dict) -> None:

@@ -49,10 +49,23 @@ def block_from_options(
     return RectangularBlock.from_slenderness(height, math.radians(alpha_deg), depth=depth, density=density)
 
 
+#: Image formats a --plot file may have (matplotlib's common writers).
+PLOT_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp")
+
+
 def check_plot_path(plot: Optional[str]) -> None:
-    """Fail before a (long) computation when the figure cannot be written: its folder must exist."""
+    """Fail before a (long) computation when the figure cannot be written where the command says
+    it is: the folder must exist, the path must not be a folder, and it must name an image file
+    (matplotlib would otherwise write ``PLOT.png`` while the command reports ``PLOT``)."""
     if plot:
-        parent = Path(plot).expanduser().resolve().parent
+        p = Path(plot).expanduser()
+        if p.is_dir():
+            raise BlastscaleInputError(f"plot = {plot!r} is a folder: give an image file, e.g. {str(p / 'plot.png')!r}")
+        if p.suffix.lower() not in PLOT_SUFFIXES:
+            raise BlastscaleInputError(
+                f"plot = {plot!r} has no image extension: valid extensions are {', '.join(PLOT_SUFFIXES)} "
+                f"(e.g. {plot}.png)")
+        parent = p.resolve().parent
         if not parent.is_dir():
             raise BlastscaleInputError(f"plot = {plot!r}: the folder {str(parent)!r} does not exist")
 
@@ -69,7 +82,7 @@ CHARGE = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W \
 STANDOFF = typer.Option(..., "--standoff", help="Prototype stand-off R \\[m].")
 DURATION = typer.Option(5.0, "--duration", help="Simulated time after the shock arrival \\[s] (prototype).")
 PULSE = typer.Option("friedlander", "--pulse", help=PULSE_HELP)
-SCALE = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also design, run and up-scale the model.")
+SCALE = typer.Option(None, "--scale", help="Geometric scale lambda \\[-] (0.005 or 1/200): also design, run and up-scale the model.")
 DENSITY_RATIO = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-].")
 GRAVITY_RATIO = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype \\[-] (centrifuge).")
 GRAVITY = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2].")

@@ -1,0 +1,210 @@
+"""Result files: JSON (strict, NaN -> null), tidy CSV of the histories, provenance, and an
+output folder that appears complete or not at all.
+
+:func:`output_folder` writes into a temporary sibling folder and renames it into place at the
+end; an error or Ctrl-C (``KeyboardInterrupt``) removes the temporary folder, so a reader never
+sees a half-written result. The rename itself runs with SIGINT blocked.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import datetime as _dt
+import json
+import math
+import os
+import platform
+import shutil
+import signal
+import subprocess
+import tempfile
+from pathlib import Path
+from typing import Any, Iterator
+
+from .. import __version__
+from .._validate import BlastscaleInputError
+
+__all__ = ["jsonable", "write_json", "histories_tidy", "write_histories_csv", "versions", "git_commit",
+           "provenance", "output_folder", "check_output_folder", "write_atomic"]
+
+#: Marker file of a blastscale output folder (``--force`` replaces only such folders or empty ones).
+MARKER = "summary.json"
+
+
+def jsonable(obj: Any) -> Any:
+    """``obj`` with numpy scalars/arrays converted, NaN -> None and +-inf -> "inf"/"-inf" (strict JSON)."""
+    if isinstance(obj, dict):
+        return {str(k): jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [jsonable(v) for v in obj]
+    if hasattr(obj, "tolist") and getattr(obj, "ndim", 0) > 0:  # numpy arrays
+        return jsonable(obj.tolist())
+    if hasattr(obj, "item") and callable(obj.item):  # numpy scalars
+        obj = obj.item()
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
+    return obj
+
+
+def write_atomic(path: "str | Path", data: "str | bytes") -> None:
+    """Write a file through a temporary sibling renamed into place (permissions from the umask,
+    like any file the user creates)."""
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.partial")
+    with open(tmp, "wb") as fh:
+        fh.write(data.encode("utf-8") if isinstance(data, str) else data)
+    os.replace(tmp, path)
+
+
+def write_json(path: "str | Path", obj: Any) -> None:
+    """Write ``obj`` as indented strict JSON (:func:`jsonable`), atomically."""
+    write_atomic(path, json.dumps(jsonable(obj), indent=2) + "\n")
+
+
+def histories_tidy(ds):
+    """The histories of a study dataset as a tidy table (one value per row).
+
+    Columns: ``engine``, ``system`` (prototype / model up-scaled), ``variable``, ``time_s``,
+    ``element`` (body or monitoring point, "" when none), ``component`` ("" when none),
+    ``value`` and ``units``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :meth:`blastscale.study.StudyResult.to_dataset`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    import pandas as pd
+
+    frames = []
+    for name, da in ds.data_vars.items():
+        engine = name.split("_", 1)[0]
+        var = name[len(engine) + 1:]
+        df = da.to_dataframe(name="value").reset_index()
+        ren = {}
+        for d in da.dims:
+            if d == "system":
+                continue
+            short = d[len(engine) + 1:] if d.startswith(engine + "_") else d
+            ren[d] = "time_s" if short == "time" else ("component" if short == "component" else "element")
+        df = df.rename(columns=ren)
+        for col, empty in (("element", ""), ("component", ""), ("time_s", math.nan)):  # e.g. totals: no time
+            if col not in df:
+                df[col] = empty
+        df["engine"], df["variable"], df["units"] = engine, var, da.attrs.get("units", "1")
+        frames.append(df[["engine", "system", "variable", "time_s", "element", "component", "value", "units"]])
+    cols = ["engine", "system", "variable", "time_s", "element", "component", "value", "units"]
+    return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=cols)
+
+
+def write_histories_csv(ds, path: "str | Path") -> None:
+    """Write :func:`histories_tidy` of ``ds`` as CSV."""
+    write_atomic(path, histories_tidy(ds).to_csv(index=False, float_format="%.10g"))
+
+
+def versions() -> dict:
+    """Versions of blastscale, Python and the numerical libraries that shape the results."""
+    import importlib.metadata as md
+
+    out = {"blastscale": __version__, "python": platform.python_version()}
+    for pkg in ("numpy", "scipy", "numba", "mujoco", "xarray", "pydantic"):
+        try:
+            out[pkg] = md.version(pkg)
+        except md.PackageNotFoundError:
+            out[pkg] = None
+    return out
+
+
+def git_commit() -> str | None:
+    """The git commit of the blastscale source tree (``+dirty`` when modified), or None when it
+    is not a git checkout or git is missing."""
+    here = Path(__file__).resolve().parent
+    try:
+        head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=here, capture_output=True, text=True, timeout=5)
+        if head.returncode != 0:
+            return None
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=here,
+                               capture_output=True, text=True, timeout=5)
+        return head.stdout.strip() + ("+dirty" if dirty.stdout.strip() else "")
+    except (OSError, subprocess.SubprocessError):
+        return None
+
+
+def provenance() -> dict:
+    """``versions``, ``git_commit`` and an ISO ``timestamp`` (UTC)."""
+    return {"versions": versions(), "git_commit": git_commit(),
+            "timestamp": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")}
+
+
+def check_output_folder(out: "str | Path", force: bool = False) -> Path:
+    """Check, before any work, that ``out`` can become a result folder; returns it absolute.
+
+    Refused (one line): an existing file; an existing folder without ``force``; with ``force``
+    a folder that is neither empty nor a blastscale result (no ``summary.json``), or one that
+    holds the current directory.
+    """
+    p = Path(out).expanduser()
+    a = p.resolve()
+    if a.exists() and not a.is_dir():
+        raise BlastscaleInputError(f"out = {str(out)!r} is a file, not a folder: give the path of a new folder")
+    if a.is_dir():
+        if not force:
+            raise BlastscaleInputError(f"out = {str(out)!r} exists: refused (give --force to replace it)")
+        cwd = Path.cwd().resolve()
+        if a == cwd or a in cwd.parents:
+            raise BlastscaleInputError(f"out = {str(out)!r} holds the current folder: refused even with --force")
+        if any(a.iterdir()) and not (a / MARKER).is_file():
+            raise BlastscaleInputError(
+                f"out = {str(out)!r} is not a blastscale result folder (no {MARKER}): --force replaces only those "
+                "or empty folders")
+    return a
+
+
+@contextlib.contextmanager
+def _sigint_blocked() -> Iterator[None]:
+    """SIGINT held back (delivered afterwards) while a few file-system calls must not be split."""
+    can = hasattr(signal, "pthread_sigmask")
+    if can:
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        if can:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+@contextlib.contextmanager
+def output_folder(out: "str | Path", force: bool = False) -> Iterator[Path]:
+    """A temporary sibling folder of ``out`` to write into, renamed to ``out`` on success.
+
+    On any exception (Ctrl-C included) the temporary folder is removed and the exception
+    propagates; an existing ``out`` is replaced only with ``force`` (:func:`check_output_folder`),
+    after the new folder is complete.
+    """
+    dest = check_output_folder(out, force)
+    try:
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.partial-", dir=dest.parent))
+    except OSError as exc:
+        raise BlastscaleInputError(
+            f"out = {str(out)!r} cannot be created: {exc.strerror or exc} ({str(dest.parent)!r})") from None
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes it 0700; a result folder is an ordinary folder
+    try:
+        yield tmp
+        with _sigint_blocked():
+            trash = None
+            if dest.exists():
+                trash = dest.with_name(f".{dest.name}.old-{os.getpid()}")
+                os.rename(dest, trash)
+            os.rename(tmp, dest)
+            if trash is not None:
+                shutil.rmtree(trash, ignore_errors=True)
+    except BaseException:
+        with _sigint_blocked():
+            shutil.rmtree(tmp, ignore_errors=True)
+        raise

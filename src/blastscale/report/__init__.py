@@ -1,0 +1,71 @@
+"""The study's result folder and its self-contained HTML report.
+
+:func:`write_study` writes ``summary.json``, ``histories.nc``, ``histories.csv``, one PNG per
+figure, ``scenario.toml`` and ``report.html`` into a folder (the CLI gives it a temporary
+folder that :func:`blastscale.io.results.output_folder` renames into place).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable, Optional
+
+from .figures import FIGURES, render_figures
+from .html import SECTIONS, format_charge, render_report
+from .slips import SLIPS, applicable_slips
+
+__all__ = ["FIGURES", "SECTIONS", "SLIPS", "applicable_slips", "format_charge", "render_figures", "render_report",
+           "summary_dict", "write_study", "UNITS"]
+
+#: Units of the summary (keys carry their unit; this says it once for readers of summary.json).
+UNITS = {
+    "convention": "every key ends with its unit: _m, _kg, _s, _rad, _rad_s, _m_s, _Pa, _Pa_s, _Ns, _kg_m3; "
+                  "ratios and counts are dimensionless",
+    "model results": "up-scaled to prototype units (prototype = model / scaling factor)",
+    "design.factors": "model / prototype [-]",
+}
+
+
+def write_study(result, folder, progress: Optional[Callable[[str], None]] = None) -> list[str]:
+    """Write every result file of a study into ``folder`` (which must exist).
+
+    Parameters
+    ----------
+    result : blastscale.study.StudyResult
+    folder : path
+    progress : callable, optional
+        ``progress(stage)`` before each file group.
+
+    Returns
+    -------
+    list of str
+        The file names written.
+    """
+    from ..io.results import provenance, write_atomic, write_histories_csv, write_json
+
+    folder = Path(folder)
+    tell = progress or (lambda stage: None)
+    meta = provenance()
+    tell("histories (NetCDF, CSV)")
+    ds = result.to_dataset()
+    result.to_netcdf(folder / "histories.nc")
+    write_histories_csv(ds, folder / "histories.csv")
+    tell("figures")
+    figures = render_figures(result)
+    for f, png in figures:
+        write_atomic(folder / f"{f.name}.png", png)
+    write_atomic(folder / "scenario.toml", result.scenario.to_toml())
+    files = ["summary.json", "histories.nc", "histories.csv", "scenario.toml"] + [f"{f.name}.png" for f, _ in figures]
+    tell("report")
+    write_atomic(folder / "report.html", render_report(result, figures, meta, files))
+    write_json(folder / "summary.json", summary_dict(result, meta))
+    return ["report.html"] + files
+
+
+def summary_dict(result, meta: Optional[dict] = None) -> dict:
+    """The content of ``summary.json``: provenance (versions, git commit, timestamp), units, the
+    study's nested summary (scenario included) and its flat ``scalars``."""
+    from ..io.results import provenance
+
+    return {**(provenance() if meta is None else meta), "units": UNITS, **result.summary(),
+            "scalars": result.scalars()}

@@ -1,0 +1,109 @@
+"""The report's figures, chosen from the study result (a registry: a new engine adds a builder).
+
+Each :class:`Figure` says when it applies to a :class:`~blastscale.study.StudyResult` and
+builds a matplotlib figure; :func:`render_figures` returns PNG bytes (Agg backend, no display).
+"""
+
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+__all__ = ["Figure", "FIGURES", "render_figures", "png_bytes"]
+
+
+@dataclass(frozen=True)
+class Figure:
+    """One figure of the report: file ``name`` (.png), ``title``, ``caption``, ``applies(result)``,
+    ``build(result) -> matplotlib Figure``."""
+
+    name: str
+    title: str
+    caption: str
+    applies: Callable
+    build: Callable
+
+
+def _pulses(result):
+    import matplotlib.pyplot as plt
+
+    d, sc = result.design, result.scenario
+    fig, axes = plt.subplots(1, 2, figsize=(11, 3.6), layout="constrained")
+    for ax, bp, who, tu, tf, pu, pf in (
+        (axes[0], d.prototype, "prototype", "ms", 1e3, "MPa", 1e-6),
+        (axes[1], d.model, "model", "us", 1e6, "MPa", 1e-6),
+    ):
+        p = bp.pulse(sc.blast.pulse)
+        dur = p.duration if np.isfinite(p.duration) and p.duration > 0 else bp.positive_duration
+        t = np.linspace(0.0, 1.2 * dur, 400)
+        ax.plot(t * tf, np.asarray(p.pressure(t)) * pf, color="C0" if who == "prototype" else "C1")
+        ax.set_xlabel(f"time after arrival [{tu}]")
+        ax.set_ylabel(f"reflected overpressure [{pu}]")
+        ax.set_title(f"{who}: {bp.charge_kg:.4g} kg at {bp.standoff_m:.4g} m (Z = {bp.scaled_distance:.3g} "
+                     "m/kg$^{1/3}$)", fontsize=9)
+        ax.grid(alpha=0.3)
+    return fig
+
+
+def _planar(result):
+    from ..plots.rocking import rocking_figure
+
+    return rocking_figure(result.planar.prototype, similarity=result.planar)
+
+
+def _three_d(result):
+    cmp = result.response3d
+    if hasattr(cmp, "model_upscaled"):  # single block, Block3DComparison
+        from ..plots.sim3d import plot_comparison
+
+        return plot_comparison(cmp.prototype, cmp.model_upscaled)
+    import matplotlib.pyplot as plt
+
+    if result.scenario.structure.kind == "column":
+        from ..plots.column import plot_column_comparison
+
+        return plot_column_comparison(cmp.structure, cmp.prototype_dataset, cmp.upscaled_dataset)
+    from ..plots.column import plot_point_histories
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
+    plot_point_histories(cmp.prototype_dataset, cmp.upscaled_dataset, "point_displacement", ax=axes[0])
+    plot_point_histories(cmp.prototype_dataset, cmp.upscaled_dataset, "point_velocity", ax=axes[1])
+    return fig
+
+
+#: The report's figures, in order.
+FIGURES: tuple[Figure, ...] = (
+    Figure("blast_pulses", "Blast loads of the prototype and the model",
+           "Reflected pressure on the front face at the stand-off, each system in its own units: the model's "
+           "pulse is shorter and weaker; only its impulse follows the scaling law exactly.",
+           lambda r: True, _pulses),
+    Figure("planar_rocking", "Planar rocking: prototype and up-scaled model",
+           "Rocking angle, angular velocity and phase portrait of the prototype (solid) and of the model "
+           "up-scaled to prototype units (dashed).", lambda r: r.planar is not None, _planar),
+    Figure("response_3d", "3D rigid-body response (MuJoCo): prototype and up-scaled model",
+           "Histories of the prototype (solid) and of the model up-scaled to prototype units (dashed).",
+           lambda r: r.response3d is not None, _three_d),
+)
+
+
+def png_bytes(fig, dpi: int = 110) -> bytes:
+    """The figure as PNG bytes (closed afterwards)."""
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    try:
+        fig.savefig(buf, format="png", dpi=dpi)
+    finally:
+        plt.close(fig)
+    return buf.getvalue()
+
+
+def render_figures(result) -> list[tuple[Figure, bytes]]:
+    """Every applicable figure of ``result`` as (Figure, PNG bytes), Agg backend."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    return [(f, png_bytes(f.build(result))) for f in FIGURES if f.applies(result)]

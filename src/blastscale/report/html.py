@@ -1,0 +1,288 @@
+"""A self-contained HTML report of a study, for someone who never ran the tool.
+
+One file, no external resources: the figures are embedded as base64 PNG. Sections (each a
+``<section id=...>``): ``experiment`` (what to build and detonate), ``loads`` (blast loads of
+both systems, delivered vs required ratios), ``impulsive`` (the a-posteriori check),
+``similarity`` (figures and numbers per engine, the critical charge), ``warnings``, ``slips``
+(the paper's slips that apply), ``scenario`` (the inputs, as TOML) and ``provenance``.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import math
+from typing import Any, Iterable
+
+from .slips import applicable_slips
+
+__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
+
+#: Section ids of the report, in order.
+SECTIONS = ("experiment", "loads", "impulsive", "similarity", "warnings", "slips", "scenario", "provenance")
+
+#: key suffix -> unit, longest first.
+_SUFFIX_UNITS = (
+    ("_kg_m3", "kg/m^3"), ("_m_s2", "m/s^2"), ("_rad_s", "rad/s"), ("_m_s", "m/s"), ("_Pa_s", "Pa s"),
+    ("_N_s", "N s"), ("_Ns", "N s"), ("_rel_peak", "of the peak"), ("_Pa", "Pa"), ("_rad", "rad"),
+    ("_deg", "deg"), ("_kg", "kg"), ("_m", "m"), ("_s", "s"),
+)
+
+_CSS = """
+body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:1100px;margin:2em auto;
+padding:0 1em;color:#1d2329;line-height:1.45}
+h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #d0d7de;padding-bottom:.2em;margin-top:1.8em}
+table{border-collapse:collapse;margin:.6em 0 1em}th,td{border:1px solid #d0d7de;padding:.25em .6em}
+th{background:#f3f5f7;text-align:left}td.n{text-align:right;font-variant-numeric:tabular-nums}
+.lead{font-size:1.1em;background:#eef6ee;border-left:4px solid #3a8f3a;padding:.6em 1em}
+.warn{background:#fff5e0;border-left:4px solid #d08a00;padding:.4em 1em}
+.ok{color:#2b7a2b;font-weight:600}.bad{color:#b02a2a;font-weight:600}
+figure{margin:1em 0}figure img{max-width:100%;border:1px solid #d0d7de}figcaption{font-size:.9em;color:#57606a}
+pre{background:#f6f8fa;padding:.8em;overflow-x:auto;font-size:.85em}.muted{color:#57606a;font-size:.9em}
+"""
+
+
+def split_unit(key: str) -> tuple[str, str]:
+    """``"max_rotation_rad"`` -> (``"max rotation"``, ``"rad"``): label and unit from a key's suffix."""
+    for suf, unit in _SUFFIX_UNITS:
+        if key.endswith(suf) and len(key) > len(suf):
+            return key[: -len(suf)].replace("_", " "), unit
+    return key.replace("_", " "), ""
+
+
+def format_value(x: Any, spec: str = ".4g") -> str:
+    """A table cell: '-' for None/NaN, yes/no for booleans, numbers with ``spec``."""
+    if x is None:
+        return "-"
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    if isinstance(x, (int, float)):
+        if isinstance(x, float) and math.isnan(x):
+            return "-"
+        return format(x, spec)
+    if isinstance(x, (list, tuple)):
+        return "[" + ", ".join(format_value(v, spec) for v in x) + "]"
+    return str(x)
+
+
+def format_charge(kg: float) -> str:
+    """A TNT mass in the unit a test designer weighs it in: kg, g, mg or ug (4 significant digits).
+
+    The largest unit in which the value is at least 0.1 (the paper's 0.233 mg, 14.27 mg, 1.004 g).
+
+    >>> format_charge(2.3318e-07), format_charge(1.0044e-3), format_charge(50.0)
+    ('0.2332 mg', '1.004 g', '50 kg')
+    """
+    for unit, f in (("kg", 1.0), ("g", 1e-3), ("mg", 1e-6)):
+        if kg >= 0.1 * f:
+            return f"{kg / f:.4g} {unit}"
+    return f"{kg / 1e-9:.4g} µg"
+
+
+def _e(x: Any) -> str:
+    return html.escape(str(x), quote=True)
+
+
+def _table(header: Iterable[str], rows: Iterable[Iterable[Any]], numeric_from: int = 1) -> str:
+    h = "".join(f"<th>{_e(c)}</th>" for c in header)
+    body = []
+    for r in rows:
+        cells = []
+        for i, c in enumerate(r):
+            cls = ' class="n"' if i >= numeric_from and not isinstance(c, str) else ""
+            cells.append(f"<td{cls}>{_e(format_value(c) if not isinstance(c, str) else c)}</td>")
+        body.append("<tr>" + "".join(cells) + "</tr>")
+    return f"<table><thead><tr>{h}</tr></thead><tbody>{''.join(body)}</tbody></table>"
+
+
+def _flat(d: dict, prefix: str = "") -> list[tuple[str, Any]]:
+    out = []
+    for k, v in d.items():
+        if isinstance(v, dict):
+            out.extend(_flat(v, f"{prefix}{k}."))
+        else:
+            out.append((f"{prefix}{k}", v))
+    return out
+
+
+def _compare_rows(prototype: dict, model: dict) -> list[tuple]:
+    keys = [k for k, v in _flat(prototype) if not isinstance(v, str)]
+    mflat = dict(_flat(model))
+    rows = []
+    for k, v in _flat(prototype):
+        if k not in keys:
+            continue
+        label, unit = split_unit(k.split(".")[-1])
+        label = ".".join(k.split(".")[:-1] + [label])
+        rows.append((label, v, mflat.get(k), unit))
+    return rows
+
+
+def _experiment(result) -> str:
+    exp = result.experiment()
+    p, m = exp["prototype"], exp["model"]
+    kind = result.scenario.structure.kind
+    dims = ("height_m", "width_m", "depth_m")
+    if kind == "block":
+        size = " x ".join(f"{m[k] * 100:.4g}" for k in dims if k in m) + " cm (height x width x depth)"
+    else:
+        size = f"{m.get('height_m', float('nan')) * 100:.4g} cm high"
+    mat = m.get("material", "")
+    lead = (f"Build a {_e(kind)} of {_e(size)}, {format_value(m.get('mass_kg', float('nan')) * 1e3)} g, "
+            f"in {_e(mat)} (density {format_value(m.get('density_kg_m3'))} kg/m^3), and detonate "
+            f"<b>{_e(format_charge(m['charge_kg']))} of TNT</b> (equivalent) at <b>{m['standoff_m'] * 100:.4g} cm</b> "
+            "from its front face.")
+    keys = [k for k in p if k in m and not isinstance(p[k], str)]
+    rows = []
+    for k in keys:
+        label, unit = split_unit(k)
+        rows.append((label, p[k], m[k], unit))
+    rows.append(("charge (TNT equivalent)", format_charge(p["charge_kg"]), format_charge(m["charge_kg"]), ""))
+    rows.append(("material", "prototype", str(mat), ""))
+    scales = (f"Geometric scale lambda = {exp['scale']:.6g} (1/{1 / exp['scale']:.4g}), density ratio gamma = "
+              f"{exp['density_ratio']:.4g}, gravity ratio = {exp['gravity_ratio']:.4g}, law: {_e(exp['law'])}.")
+    return (f'<p class="lead">{lead}</p><p>{scales}</p>'
+            + _table(("quantity", "prototype", "model", "unit"), rows))
+
+
+def _loads(result) -> str:
+    d = result.design
+    p, m, f = d.prototype, d.model, d.factors
+    rows = [
+        ("scaled distance Z", p.scaled_distance, m.scaled_distance, d.scaled_distance_factor, None, "m/kg^(1/3)"),
+        ("reflected peak pressure", p.reflected_pressure, m.reflected_pressure, d.pressure_ratio, f.pressure, "Pa"),
+        ("reflected impulse", p.reflected_impulse, m.reflected_impulse, d.impulse_ratio, f.impulse, "Pa s"),
+        ("positive duration", p.positive_duration, m.positive_duration, d.duration_ratio, f.time, "s"),
+        ("arrival time", p.arrival_time, m.arrival_time, m.arrival_time / p.arrival_time, None, "s"),
+    ]
+    note = ("<p>Only the impulse follows the scaling law exactly (delivered = required); the peak pressure and "
+            "the duration do not, which is harmless while the load is impulsive (next section). Blast model: "
+            f"<b>{_e(p.model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse)}</b>, load method "
+            f"<b>{_e(result.scenario.blast.load)}</b>. {_e(d.root_note)}</p>")
+    return _table(("quantity", "prototype", "model", "delivered ratio", "required ratio", "unit"), rows) + note
+
+
+def _impulsive(result) -> str:
+    imp = result.design.impulsive
+    if imp is None:
+        return ("<p>The impulsive check t<sub>o</sub> p needs a rocking frequency p; it is computed for a single "
+                "block. For this structure, compare the blast duration with the response time in the figures.</p>")
+    ok = imp.impulsive
+    verdict = ('<span class="ok">impulsive: the general law applies</span>' if ok else
+               '<span class="bad">NOT impulsive: similarity is not guaranteed</span>')
+    return (f"<p>The general law matches the impulse only. It holds while the pulse is short compared with the "
+            f"structure's own time: t<sub>o</sub> p &lt; {imp.threshold:g} with p = sqrt(3 g / 4 r) "
+            f"(Housner). Prototype: t<sub>o</sub> p = {imp.prototype_ratio:.3g}; model: {imp.model_ratio:.3g} "
+            f"&rarr; {verdict}.</p>")
+
+
+def _img(png: bytes, title: str, caption: str, name: str) -> str:
+    data = base64.b64encode(png).decode("ascii")
+    return (f'<figure id="fig-{_e(name)}"><img alt="{_e(title)}" src="data:image/png;base64,{data}">'
+            f"<figcaption><b>{_e(title)}.</b> {_e(caption)}</figcaption></figure>")
+
+
+def _similarity(result, figures) -> str:
+    out = []
+    s = result.summary()
+    figs = {f.name: (f, png) for f, png in figures}
+    if result.planar is not None:
+        pl = s["planar"]
+        out.append("<h3>Planar rocking (paper Eq. of motion, Housner impacts)</h3>")
+        out.append(_table(("quantity", "prototype", "model (up-scaled)", "unit"),
+                          _compare_rows(pl["prototype"], pl["model"])))
+        out.append(_table(("similarity figure", "value", "unit"),
+                          [(split_unit(k)[0], v, split_unit(k)[1]) for k, v in pl["similarity"].items()]))
+        if "planar_rocking" in figs:
+            f, png = figs["planar_rocking"]
+            out.append(_img(png, f.title, f.caption, f.name))
+    if result.response3d is not None:
+        r3 = s["3d"]
+        out.append("<h3>3D rigid bodies (MuJoCo, Coulomb friction "
+                   f"{result.scenario.structure.friction:g})</h3>")
+        out.append(_table(("quantity", "prototype", "model (up-scaled)", "unit"),
+                          _compare_rows(r3["prototype"], r3["model"])))
+        out.append(_table(("similarity figure", "value", "unit"),
+                          [(split_unit(k.split(".")[-1])[0] if "." not in k else k, v, split_unit(k)[1])
+                           for k, v in _flat(r3["similarity"]) if not isinstance(v, str)]))
+        if "response_3d" in figs:
+            f, png = figs["response_3d"]
+            out.append(_img(png, f.title, f.caption, f.name))
+    if result.critical is not None:
+        c = result.critical
+        out.append(f"<h3>Capacity</h3><p>Critical charge of the prototype at {c.standoff_m:g} m (planar, the largest "
+                   f"charge it survives without overturning): <b>{c.charge_kg:.4g} kg</b> "
+                   f"({c.evaluations} simulations). The scenario's charge is "
+                   f"{result.scenario.blast.charge_kg / c.charge_kg:.3g} of it.</p>")
+    if not out:
+        out.append("<p>No engine was run.</p>")
+    return "".join(out)
+
+
+def _warnings(result) -> str:
+    if not result.warnings:
+        return "<p>None.</p>"
+    return "<ul>" + "".join(f'<li class="warn">{_e(w)}</li>' for w in result.warnings) + "</ul>"
+
+
+def _slips(result) -> str:
+    rows = [(f"#{s.number}", s.where, s.text) for s in applicable_slips(result.scenario, result.design)]
+    return ("<p>Where the printed paper is wrong or ambiguous blastscale implements the physics; these items "
+            "concern this scenario (details and the tests that hold each: docs/paper_slips.md).</p>"
+            + _table(("#", "where", "what blastscale does"), rows, numeric_from=99))
+
+
+def _provenance(meta: dict, files: Iterable[str]) -> str:
+    v = meta.get("versions", {})
+    rows = [(k, str(val)) for k, val in v.items()]
+    rows += [("git commit", str(meta.get("git_commit") or "not a git checkout")),
+             ("written (UTC)", str(meta.get("timestamp", "")))]
+    return (_table(("item", "value"), rows, numeric_from=99)
+            + f"<p class=\"muted\">Files next to this report: {_e(', '.join(files))}. Model results are "
+              "up-scaled to prototype units; every history carries its unit in histories.nc.</p>")
+
+
+def render_report(result, figures, meta: dict, files: Iterable[str] = ()) -> str:
+    """The report as one HTML string.
+
+    Parameters
+    ----------
+    result : blastscale.study.StudyResult
+        The study.
+    figures : list of (Figure, bytes)
+        :func:`blastscale.report.figures.render_figures` output (embedded as base64 PNG).
+    meta : dict
+        :func:`blastscale.io.results.provenance`.
+    files : iterable of str
+        Names of the other files of the result folder.
+
+    Returns
+    -------
+    str
+    """
+    sc = result.scenario
+    title = sc.title or "blast experiment"
+    figs = {f.name: (f, png) for f, png in figures}
+    pulses = ""
+    if "blast_pulses" in figs:
+        f, png = figs["blast_pulses"]
+        pulses = _img(png, f.title, f.caption, f.name)
+    body = {
+        "experiment": ("1. The experiment to build", _experiment(result)),
+        "loads": ("2. Blast loads of the prototype and the model", _loads(result) + pulses),
+        "impulsive": ("3. Impulsive check", _impulsive(result)),
+        "similarity": ("4. Similarity: prototype vs up-scaled model", _similarity(result, figures)),
+        "warnings": ("5. Warnings", _warnings(result)),
+        "slips": ("6. The paper's slips that apply", _slips(result)),
+        "scenario": ("7. Scenario (inputs)", f"<pre>{_e(sc.to_toml())}</pre>"),
+        "provenance": ("8. Provenance", _provenance(meta, files)),
+    }
+    sections = "".join(f'<section id="{sid}"><h2>{_e(h)}</h2>{content}</section>'
+                       for sid, (h, content) in ((k, body[k]) for k in SECTIONS))
+    return ("<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f"<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>blastscale: {_e(title)}"
+            f"</title><style>{_CSS}</style></head><body><header><h1>blastscale report: {_e(title)}</h1>"
+            "<p class=\"muted\">Reduced-scale blast experiment designed with the scaling laws of Masi, Stefanou "
+            "&amp; Maffi-Berthier (general law), checked by simulating prototype and model. All values SI unless "
+            "stated; model results are up-scaled to prototype units.</p></header>"
+            f"<main>{sections}</main></body></html>\n")
