@@ -31,6 +31,12 @@ CASES = {
         ["--quick"], ["figure_fe_slender_blocks.png", "figure_fe_non_slender_block.png"], ["2b = 3.50 m", "alpha = 19.3 deg"]
     ),
     "pi_diagram.py": (["--quick"], ["pi_diagram.png"], ["79.870 kg", "79.864 kg", "79.844 kg"]),
+    "paper_columns_method_a.py": (  # --quick: a 3-drum column for 0.5 s (full length: docs/columns.md)
+        ["--quick"],
+        ["figure_column_square_250kg.png", "figure_column_circular_200kg.png",
+         "figure_column_ensemble_circular_200kg.png"],
+        ["square 250 kg: prototype collapsed False", "ensemble circular 200 kg (2 runs, 1e-6)"],
+    ),
 }
 
 

@@ -1,0 +1,152 @@
+"""Paper Sec. 6 (Figs. of the multi-drum columns, Method A): prototype vs 1/100 model on MuJoCo.
+
+The paper's columns (10 m, ten 1 m drums, 1.65 -> 1.28 m, marble 2700 kg/m^3, friction 0.7),
+loaded by Method A (the reflected pulse, uniform and simultaneous on every drum's front face;
+Kingery-Bulmash, Friedlander pulse), and their lambda = 1/100 models (gamma = 1) designed by the
+general law, run at their own size and up-scaled (``blastscale.analysis.compare_structure3d``):
+
+* square section, 250 kg and 500 kg at 10 m; circular section (32-gon drums), 200 kg and 400 kg
+  at 10 m; 8 s of prototype time. Per case: outcome, first peak and similarity at every
+  monitoring point (P-1 base drum ... P-10 top drum), and a figure of the horizontal
+  displacement and velocity of P-1, P-3, P-5, P-7, P-10 (prototype solid, model dashed) with
+  pose snapshots (``figure_column_<section>_<W>kg.png``);
+* the collapse thresholds of the prototype and of the model (bisection on the prototype charge,
+  +-10 kg);
+* ensembles (8 runs each, load x (1 + 1e-6 u), u in [-1, 1]) of the circular cases and of the
+  square 250 kg case: first peak mean and spread, envelopes, collapse probability, noise floor
+  and horizon (``figure_column_ensemble_<section>_<W>kg.png``).
+
+All numbers go to ``paper_columns_method_a.json`` in the output folder; docs/columns.md gives them.
+
+What to look for
+----------------
+* Square columns: the up-scaled model lies on the prototype (first peaks within a fraction of a
+  per cent, differences a small fraction of the peak), as the paper says; they are not chaotic
+  (the ensemble spread stays tiny).
+* Circular columns: the first peak is reproduced, but the histories part after the first impact;
+  the prototype's own ensemble parts just as much, so from there on only the envelopes and the
+  collapse probabilities can be compared (docs/columns.md).
+
+Run time: about 15-30 min on one core (``--quick``: a 3-drum column for 0.5 s, about 30 s).
+
+Usage: ``python examples/paper_columns_method_a.py [OUT] [--quick]`` (default ./results/examples).
+"""
+
+from __future__ import annotations
+
+import json
+
+from _gallery import done, parse_args, plt, save
+
+from blastscale.analysis.ensemble import ensemble_compare
+from blastscale.analysis.structure3d import compare_structure3d, simulate_system
+from blastscale.plots.column import plot_column_comparison, plot_ensemble_envelope
+from blastscale.similitude import design_model
+from blastscale.structures import MultiDrumColumn
+
+SCALE, GAMMA, STANDOFF, MODEL = 1 / 100, 1.0, 10.0, "kingery-bulmash"
+CASES = (("square", 250.0), ("square", 500.0), ("circular", 200.0), ("circular", 400.0))
+#: bisection brackets [kg] (collapse expected inside; widened if not)
+BRACKETS = {"square": (300.0, 900.0), "circular": (200.0, 600.0)}
+SHOWN_POINTS = ("P-1", "P-3", "P-5", "P-7", "P-10")
+
+
+def run_case(col, charge, duration, record_every):
+    design = design_model(charge, STANDOFF, SCALE, GAMMA, model=MODEL)
+    return compare_structure3d(col, design, duration=duration, record_every=record_every)
+
+
+def collapses(col, charge, duration, record_every, system):
+    """Outcome of the prototype ("prototype") or of the model ("model") at a prototype charge."""
+    design = design_model(charge, STANDOFF, SCALE, GAMMA, model=MODEL)
+    _, response, _ = simulate_system(col, design, system, duration=duration, record_every=record_every)
+    return bool(response.summary()["collapsed"])
+
+
+def threshold(col, lo, hi, duration, record_every, system, tol=10.0):
+    """Bisection on the prototype charge: (largest charge seen standing, smallest seen collapsing)."""
+    while collapses(col, lo, duration, record_every, system) and lo > 10.0:
+        lo, hi = lo / 2.0, lo
+    while not collapses(col, hi, duration, record_every, system) and hi < 1e4:
+        lo, hi = hi, hi * 2.0
+    while hi - lo > 2.0 * tol:
+        mid = 0.5 * (lo + hi)
+        if collapses(col, mid, duration, record_every, system):
+            hi = mid
+        else:
+            lo = mid
+    return lo, hi
+
+
+def main() -> None:
+    args = parse_args(__doc__, quick_help="a 3-drum column for 0.5 s, 2-member ensembles, no thresholds")
+    if args.quick:
+        columns = {s: MultiDrumColumn(section=s, drums=3, height=3.0, base_width=1.65, top_width=1.54, sides=16)
+                   for s in ("square", "circular")}
+        duration, n_members, cases = 0.5, 2, (("square", 250.0), ("circular", 200.0))
+    else:
+        columns = {s: MultiDrumColumn(section=s) for s in ("square", "circular")}
+        duration, n_members, cases = 8.0, 8, CASES
+    record_every = 8
+    results: dict = {"settings": {"scale": SCALE, "density_ratio": GAMMA, "standoff_m": STANDOFF, "blast_model": MODEL,
+                                  "pulse": "friedlander", "load": "A", "duration_s": duration}, "cases": {}}
+    for section, W in cases:
+        col = columns[section]
+        cmp = run_case(col, W, duration, record_every)
+        s = cmp.summary()
+        key = f"{section}_{W:g}kg"
+        results["cases"][key] = s
+        sim = s["similarity"]
+        print(f"{section} {W:g} kg: prototype collapsed {s['prototype']['collapsed']}, model collapsed "
+              f"{s['model']['collapsed']}, top first peak ratio {sim['top_first_peak_ratio']:.4f}, "
+              f"max |top diff| {sim['max_abs_top_displacement_diff_m']:.4g} m "
+              f"({100 * sim['max_abs_top_displacement_diff_rel_peak']:.2f} % of the peak)")
+        for name, p in sim["points"].items():
+            print(f"  {name}: first peak {p['first_peak_prototype_m']:.4g} m (model {p['first_peak_model_m']:.4g} m, "
+                  f"ratio {p['first_peak_ratio']:.4f}), max |diff| {100 * p['max_abs_displacement_diff_rel_peak']:.2f} % "
+                  "of the peak")
+        pts = [p for p in SHOWN_POINTS if p in sim["points"]] or None
+        fig = plot_column_comparison(col, cmp.prototype_dataset, cmp.upscaled_dataset, points=pts)
+        fig.suptitle(f"{section} column, {W:g} kg at {STANDOFF:g} m, Method A: prototype (solid) vs "
+                     f"lambda = 1/100 model up-scaled (dashed)")
+        save(fig, args.out, f"figure_column_{key}.png")
+
+    if not args.quick:
+        results["thresholds_kg"] = {}
+        for section, (lo, hi) in BRACKETS.items():
+            for system in ("prototype", "model"):
+                a, b = threshold(columns[section], lo, hi, duration, record_every, system)
+                results["thresholds_kg"][f"{section}_{system}"] = [a, b]
+                print(f"collapse threshold, {section}, {system}: between {a:.0f} and {b:.0f} kg (prototype charge)")
+
+    results["ensembles"] = {}
+    ens_cases = cases if args.quick else (("square", 250.0), ("circular", 200.0), ("circular", 400.0))
+    for section, W in ens_cases:
+        col = columns[section]
+        design = design_model(W, STANDOFF, SCALE, GAMMA, model=MODEL)
+        ens = ensemble_compare(col, design, n=n_members, perturbation=1e-6, duration=duration,
+                               record_every=record_every,
+                               progress=lambda k, n: print(f"  ensemble {section} {W:g} kg: {k}/{n}", flush=True))
+        key = f"{section}_{W:g}kg"
+        es = ens.summary()
+        results["ensembles"][key] = es
+        top = es["points"][ens.points[-1]]
+        print(f"ensemble {section} {W:g} kg ({n_members} runs, 1e-6): top first peak prototype "
+              f"{top['first_peak_prototype_mean_m']:.4g} +- {top['first_peak_prototype_spread_m']:.2g} m, model "
+              f"{top['first_peak_model_mean_m']:.4g} +- {top['first_peak_model_spread_m']:.2g} m; noise floor "
+              f"{100 * top['noise_floor_rel_peak']:.1f} % of the peak, horizon {top['horizon_prototype_s']:.3g} s; "
+              f"collapse probability prototype {es['collapse_probability_prototype']:.2f}, model "
+              f"{es['collapse_probability_model']:.2f}")
+        fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
+        plot_ensemble_envelope(ens, ax=ax)
+        ax.set_title(f"{section} column, {W:g} kg at {STANDOFF:g} m: ensembles of {n_members} (load x (1 +- 1e-6))")
+        save(fig, args.out, f"figure_column_ensemble_{key}.png")
+
+    path = args.out / "paper_columns_method_a.json"
+    path.write_text(json.dumps(results, indent=1, default=float))
+    print(f"wrote {path}")
+    done(args)
+
+
+if __name__ == "__main__":
+    main()
