@@ -1,0 +1,195 @@
+"""Sweeps: the planar batch path equals the Study bit for bit, a sweep equals the plain serial
+loop over its cases, on a Dask cluster started as separate processes, after a kill -9 and a
+re-run, and bad grids/distributions are one-line errors (exit 2)."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("zarr")
+pytest.importorskip("distributed")
+import xarray as xr  # noqa: E402
+
+from blastscale.analysis.grids import parse_distribution  # noqa: E402
+from blastscale.analysis.sweeps import SweepSpec, planar_scalars, run_sweep, study_scalars  # noqa: E402
+from blastscale.cli import main  # noqa: E402
+from blastscale.io.scenario import Scenario  # noqa: E402
+
+BIN = Path(sys.executable).parent
+# short planar runs (the paper's block): 1.5 s, 301 samples; critical charge on (searched once per stand-off)
+BASE = Scenario.default().with_values({"engine": "planar", "duration_s": 1.5, "samples": 301})
+
+
+def same(a, b) -> bool:
+    """Bit-for-bit equality of two scalars (NaN equals NaN)."""
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return type(a) is type(b) and a == b
+
+
+def test_planar_batch_path_equals_the_study_bit_for_bit():
+    cases = [BASE.with_values(v) for v in (
+        {"charge_kg": 30.0}, {"charge_kg": 79.0}, {"charge_kg": 150.0, "standoff_m": 2.5},
+        {"charge_kg": 50.0, "pulse": "impulsive", "restitution": 0.4, "critical_charge": False},
+        {"charge_kg": 50.0, "pulse": "triangular", "length": 0.02, "density_ratio": 0.5},
+    )]
+    for sc, got in zip(cases, planar_scalars(cases)):
+        want = study_scalars(sc)
+        assert set(got) == set(want)  # every Study key
+        bad = {k: (got[k], want[k]) for k in want if not same(got[k], want[k])}
+        assert not bad
+
+
+def sweep_store_values(path) -> dict:
+    ds = xr.open_zarr(path, consolidated=False)
+    return {k: ds[k].values for k in ds.data_vars}, ds
+
+
+def assert_store_equals_loop(path, spec):
+    vals, ds = sweep_store_values(path)
+    assert tuple(ds.sizes[d] for d in spec.dims) == spec.shape
+    for k in range(spec.n_cases):
+        want = study_scalars(spec.scenario(k))  # the plain serial loop: one Study per case
+        idx = np.unravel_index(k, spec.shape)
+        for key, v in want.items():
+            assert same(vals[key][idx].item(), v), (k, key)
+
+
+def test_sweep_equals_the_serial_loop_with_monte_carlo(tmp_path):
+    spec = SweepSpec.build(BASE, {"charge_kg": [40.0, 90.0]}, {"restitution": parse_distribution("uniform:0.3,0.9")},
+                           samples=3, seed=7)
+    run = run_sweep(spec, tmp_path / "s.zarr", workers=0, chunk=4)
+    assert run.chunks_run == 2 and spec.dims == ("charge_kg", "sample")
+    assert_store_equals_loop(tmp_path / "s.zarr", spec)
+    _, ds = sweep_store_values(tmp_path / "s.zarr")
+    r = ds["restitution"].values  # the draws: coordinate on `sample`, the same at every charge
+    assert r.shape == (3,) and np.all((r >= 0.3) & (r <= 0.9))
+    assert ds["charge_kg"].attrs["units"] == "kg"
+    # a second run finds the finished store and does nothing
+    assert run_sweep(spec, tmp_path / "s.zarr", workers=0).chunks_run == 0
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """`dask scheduler` and one `dask worker` as separate processes on 127.0.0.1 (terminated after)."""
+    from distributed import Client
+
+    port = free_port()
+    addr = f"tcp://127.0.0.1:{port}"
+    env = {**os.environ, "DASK_DISTRIBUTED__WORKER__DAEMON": "False"}
+    procs = [subprocess.Popen([str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
+                               "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)]
+    try:
+        procs.append(subprocess.Popen([str(BIN / "dask"), "worker", addr, "--nthreads", "1", "--nworkers", "1",
+                                       "--no-dashboard", "--host", "127.0.0.1"],
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env))
+        deadline = time.time() + 60
+        while True:
+            try:
+                with Client(addr, timeout="2s") as c:
+                    if c.scheduler_info()["workers"]:
+                        break
+            except OSError:
+                pass
+            assert time.time() < deadline, "dask cluster did not start"
+            time.sleep(0.3)
+        yield addr
+    finally:
+        for p in reversed(procs):
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+
+
+def cli(*argv) -> dict:
+    """`blastscale ...` in a subprocess; returns its JSON."""
+    r = subprocess.run([str(BIN / "blastscale"), *argv], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    return json.loads(r.stdout)
+
+
+def test_sweep_on_a_separate_dask_cluster_equals_the_local_result(tmp_path, cluster):
+    argv = ["sweep", "--vary", "charge_kg=40:120:3", "--vary", "standoff_m=2,3", "--sample",
+            "restitution=triangular:0.3,0.8,0.9", "--samples", "2", "--seed", "3", "--chunk", "2"]
+    toml = tmp_path / "planar.toml"
+    toml.write_text(BASE.to_toml())
+    remote = cli(*argv[:0], "sweep", str(toml), *argv[1:], "--out", str(tmp_path / "remote.zarr"),
+                 "--scheduler", cluster, "--json")
+    local = cli("sweep", str(toml), *argv[1:], "--out", str(tmp_path / "local.zarr"), "--workers", "0", "--json")
+    assert remote["n_cases"] == local["n_cases"] == 12 and remote["workers"] == 1
+    a, _ = sweep_store_values(tmp_path / "remote.zarr")
+    b, _ = sweep_store_values(tmp_path / "local.zarr")
+    assert a.keys() == b.keys()
+    for k in a:
+        np.testing.assert_array_equal(a[k], b[k])  # bit for bit (NaN where both NaN)
+
+
+def test_kill_9_midway_then_rerun_gives_the_uninterrupted_result(tmp_path, cluster):
+    toml = tmp_path / "planar.toml"
+    toml.write_text(BASE.to_toml())
+    # 24 cases, one per task; each searches its own critical charge (distinct stand-offs): slow enough to stop
+    argv = ["sweep", str(toml), "--vary", "standoff_m=1.5:4:12", "--vary", "charge_kg=60,120", "--chunk", "1"]
+    store = tmp_path / "k.zarr"
+    parts = tmp_path / "k.zarr.parts"
+    p = subprocess.Popen([str(BIN / "blastscale"), *argv, "--out", str(store), "--scheduler", cluster, "--json"],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 120
+    while time.time() < deadline and len(list(parts.glob("chunk-*.npz"))) < 2 and p.poll() is None:
+        time.sleep(0.01)
+    os.kill(p.pid, signal.SIGKILL)
+    p.wait()
+    done = len(list(parts.glob("chunk-*.npz")))
+    assert 2 <= done < 24 and not store.exists()  # killed midway: some chunks written, no store yet
+    again = cli(*argv, "--out", str(store), "--scheduler", cluster, "--json")
+    assert again["chunks_skipped"] == done and again["chunks_run"] + done == 24  # nothing lost or repeated
+    full = cli(*argv, "--out", str(tmp_path / "full.zarr"), "--workers", "0", "--json")
+    assert full["chunks_run"] == 24
+    a, _ = sweep_store_values(store)
+    b, _ = sweep_store_values(tmp_path / "full.zarr")
+    for k in b:
+        np.testing.assert_array_equal(a[k], b[k])
+    assert not parts.exists()
+
+
+@pytest.mark.parametrize(
+    "argv, word",
+    [
+        (["--vary", "charge_kg=100:10:3"], "empty range"),
+        (["--vary", "charge_kg=10:100:0"], "n = 0"),
+        (["--vary", "charge_kg=10:100:-2"], "n = -2"),
+        (["--vary", "no_such_field=1,2"], "no_such_field"),
+        (["--vary", "charge_kg"], "FIELD=SPEC"),
+        (["--sample", "friction=lognormal:0.6,-0.1", "--samples", "3"], "beta"),
+        (["--sample", "friction=weibull:1,2", "--samples", "3"], "distribution"),
+        (["--sample", "friction=uniform:0.8,0.5", "--samples", "3"], "empty range"),
+        (["--sample", "friction=uniform:0.5,0.8"], "samples"),
+        (["--vary", "charge_kg=-5,10"], "charge_kg"),
+    ],
+)
+def test_bad_grids_and_distributions_one_line_exit_2(tmp_path, capsys, argv, word):
+    with pytest.raises(SystemExit) as e:
+        main(["sweep", *argv, "--out", str(tmp_path / "x.zarr"), "--workers", "0"])
+    assert e.value.code == 2
+    err = capsys.readouterr().err
+    assert word in err and "Traceback" not in err and len(err.strip().splitlines()) <= 2
+    assert not (tmp_path / "x.zarr").exists() and not (tmp_path / "x.zarr.parts").exists()
