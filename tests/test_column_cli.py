@@ -160,7 +160,7 @@ def test_column_plots_take_ax_and_return_it(short_comparison):
     c = short_comparison
     fig, axs = plt.subplots(1, 3)
     assert plot_point_histories(c.prototype_dataset, c.upscaled_dataset, ax=axs[0]) is axs[0]
-    assert len(axs[0].get_lines()) == 20  # 10 points x (prototype, model)
+    assert len(axs[0].get_lines()) == 22  # 10 points x (prototype, model) + 2 style keys
     assert plot_point_histories(c.prototype_dataset, None, "point_velocity", points=["P-3"], ax=axs[1]) is axs[1]
     assert len(axs[1].get_lines()) == 1
     assert plot_column_snapshots(c.structure, c.prototype_dataset, times=[0.0, 0.5], ax=axs[2]) is axs[2]

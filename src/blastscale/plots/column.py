@@ -81,14 +81,17 @@ def plot_point_histories(prototype, model=None, quantity: str = "point_displacem
     colours = _colours(len(points), cmap)
     for j, p in enumerate(points):
         v = prototype[quantity].sel(point=p, component=component)
-        ax.plot(prototype["time"].values, k * v.values, "-", color=colours[j], lw=1.2, label=f"{p} prototype")
+        ax.plot(prototype["time"].values, k * v.values, "-", color=colours[j], lw=1.2, label=p)
         if model is not None:
             vm = model[quantity].sel(point=p, component=component)
-            ax.plot(model["time"].values, k * vm.values, "--", color=colours[j], lw=1.2, label=f"{p} model (up-scaled)")
+            ax.plot(model["time"].values, k * vm.values, "--", color=colours[j], lw=1.2)
+    if model is not None:  # one legend entry per point, and the two line styles
+        ax.plot([], [], "-", color="0.4", label="prototype")
+        ax.plot([], [], "--", color="0.4", label="model (up-scaled)")
     ax.set_xlabel("time after arrival [s] (prototype)")
     ax.set_ylabel(label.replace("horizontal", f"{component}") if component != "x" else label)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="x-small", ncol=2 if model is not None else 1)
+    ax.legend(fontsize="x-small")
     return ax
 
 
@@ -178,12 +181,15 @@ def plot_column_comparison(structure, prototype, model=None, points=None, fig=No
     figure."""
     import matplotlib.pyplot as plt
 
-    fig = fig or plt.figure(figsize=(15, 5))
+    fig = fig or plt.figure(figsize=(15, 5.5), layout="constrained")
     axs = fig.subplots(1, 3, gridspec_kw={"width_ratios": [2, 2, 1]})
     plot_point_histories(prototype, model, "point_displacement", points, ax=axs[0])
     plot_point_histories(prototype, model, "point_velocity", points, ax=axs[1])
-    plot_column_snapshots(structure, prototype, ax=axs[2])
-    fig.tight_layout()
+    # snapshots at rest, at the top point's two largest excursions, and at the end
+    top = prototype["point_displacement"].isel(point=-1).sel(component="x").values
+    t = prototype["time"].values
+    times = sorted({float(t[0]), float(t[int(np.argmax(top))]), float(t[int(np.argmin(top))]), float(t[-1])})
+    plot_column_snapshots(structure, prototype, times=times, ax=axs[2])
     return fig
 
 
