@@ -121,54 +121,56 @@ def cluster():
                 p.kill()
 
 
-def cli(*argv) -> dict:
-    """`blastscale ...` in a subprocess; returns its JSON."""
-    r = subprocess.run([str(BIN / "blastscale"), *argv], capture_output=True, text=True, timeout=300)
-    assert r.returncode == 0, r.stderr
-    return json.loads(r.stdout)
+def run_cli(capsys, *argv) -> dict:
+    """`blastscale ...` in this process; returns its JSON."""
+    with pytest.raises(SystemExit) as e:
+        main(list(argv))
+    assert e.value.code in (0, None)
+    return json.loads(capsys.readouterr().out)
 
 
-def test_sweep_on_a_separate_dask_cluster_equals_the_local_result(tmp_path, cluster):
-    argv = ["sweep", "--vary", "charge_kg=40:120:3", "--vary", "standoff_m=2,3", "--sample",
-            "restitution=triangular:0.3,0.8,0.9", "--samples", "2", "--seed", "3", "--chunk", "2"]
+def assert_same_stores(a, b):
+    va, _ = sweep_store_values(a)
+    vb, _ = sweep_store_values(b)
+    assert va.keys() == vb.keys()
+    for k in va:
+        np.testing.assert_array_equal(va[k], vb[k])  # bit for bit (NaN where both NaN)
+
+
+def test_sweep_on_a_separate_dask_cluster_equals_the_local_result(tmp_path, capsys, cluster):
     toml = tmp_path / "planar.toml"
     toml.write_text(BASE.to_toml())
-    remote = cli(*argv[:0], "sweep", str(toml), *argv[1:], "--out", str(tmp_path / "remote.zarr"),
-                 "--scheduler", cluster, "--json")
-    local = cli("sweep", str(toml), *argv[1:], "--out", str(tmp_path / "local.zarr"), "--workers", "0", "--json")
-    assert remote["n_cases"] == local["n_cases"] == 12 and remote["workers"] == 1
-    a, _ = sweep_store_values(tmp_path / "remote.zarr")
-    b, _ = sweep_store_values(tmp_path / "local.zarr")
-    assert a.keys() == b.keys()
-    for k in a:
-        np.testing.assert_array_equal(a[k], b[k])  # bit for bit (NaN where both NaN)
+    remote = run_cli(capsys, "sweep", str(toml), "--vary", "charge_kg=40:120:3", "--vary", "standoff_m=2,3",
+                     "--sample", "restitution=triangular:0.3,0.8,0.9", "--samples", "2", "--seed", "3", "--chunk", "2",
+                     "--out", str(tmp_path / "remote.zarr"), "--scheduler", cluster, "--json")
+    assert remote["n_cases"] == 12 and remote["workers"] == 1 and remote["chunks_run"] == 6
+    spec = SweepSpec.build(BASE, {"charge_kg": [40.0, 80.0, 120.0], "standoff_m": [2.0, 3.0]},
+                           {"restitution": parse_distribution("triangular:0.3,0.8,0.9")}, samples=2, seed=3)
+    run_sweep(spec, tmp_path / "local.zarr", workers=0, chunk=5)  # another chunking, in this process
+    assert_same_stores(tmp_path / "remote.zarr", tmp_path / "local.zarr")
 
 
 def test_kill_9_midway_then_rerun_gives_the_uninterrupted_result(tmp_path, cluster):
     toml = tmp_path / "planar.toml"
     toml.write_text(BASE.to_toml())
     # 24 cases, one per task; each searches its own critical charge (distinct stand-offs): slow enough to stop
-    argv = ["sweep", str(toml), "--vary", "standoff_m=1.5:4:12", "--vary", "charge_kg=60,120", "--chunk", "1"]
-    store = tmp_path / "k.zarr"
-    parts = tmp_path / "k.zarr.parts"
-    p = subprocess.Popen([str(BIN / "blastscale"), *argv, "--out", str(store), "--scheduler", cluster, "--json"],
+    store, parts = tmp_path / "k.zarr", tmp_path / "k.zarr.parts"
+    p = subprocess.Popen([str(BIN / "blastscale"), "sweep", str(toml), "--vary", "standoff_m=1.5:4:12", "--vary",
+                          "charge_kg=60,120", "--chunk", "1", "--out", str(store), "--scheduler", cluster],
                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = time.time() + 120
     while time.time() < deadline and len(list(parts.glob("chunk-*.npz"))) < 2 and p.poll() is None:
-        time.sleep(0.01)
+        time.sleep(0.005)
     os.kill(p.pid, signal.SIGKILL)
     p.wait()
     done = len(list(parts.glob("chunk-*.npz")))
     assert 2 <= done < 24 and not store.exists()  # killed midway: some chunks written, no store yet
-    again = cli(*argv, "--out", str(store), "--scheduler", cluster, "--json")
-    assert again["chunks_skipped"] == done and again["chunks_run"] + done == 24  # nothing lost or repeated
-    full = cli(*argv, "--out", str(tmp_path / "full.zarr"), "--workers", "0", "--json")
-    assert full["chunks_run"] == 24
-    a, _ = sweep_store_values(store)
-    b, _ = sweep_store_values(tmp_path / "full.zarr")
-    for k in b:
-        np.testing.assert_array_equal(a[k], b[k])
+    spec = SweepSpec.build(BASE, {"standoff_m": np.linspace(1.5, 4, 12), "charge_kg": [60.0, 120.0]})
+    again = run_sweep(spec, store, scheduler=cluster)  # the same sweep (the same fingerprint), resumed
+    assert again.chunks_skipped == done and again.chunks_run + done == 24  # nothing lost or repeated
     assert not parts.exists()
+    run_sweep(spec, tmp_path / "full.zarr", workers=0, chunk=24)  # uninterrupted, in one chunk
+    assert_same_stores(store, tmp_path / "full.zarr")
 
 
 @pytest.mark.parametrize(
