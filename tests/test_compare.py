@@ -158,3 +158,24 @@ def test_contract_errors_name_the_problem():
     late = m.assign_coords(time=m["time"].values + 10.0)
     with pytest.raises(BlastscaleInputError, match="overlap"):
         compare_responses(p, upscale_dataset(late, f))
+
+
+def test_time_window_restricts_the_comparison():
+    """An offset of 0.05 m on P-2 only after t = 3 s: compared over [0, 2.5] s it is invisible,
+    over [3, 4] s it is 0.05 m; the first peak over [2, 4] s is the trough at t = 3 s (-2 m)."""
+    f = scaling_factors(1 / 100)
+    t = np.linspace(0.0, 4.0, 401)
+    p, m = model_of(t, f)
+    off = m["point_displacement"].values.copy()
+    off[t >= 3.0, 1, 0] += 0.05 * f.length
+    m["point_displacement"] = (m["point_displacement"].dims, off, m["point_displacement"].attrs)
+    up = upscale_dataset(m, f)
+    early = compare_responses(p, up, variables=["point_displacement"], end=2.5)
+    late = compare_responses(p, up, variables=["point_displacement"], start=3.0)
+    assert early["variables"]["point_displacement"]["P-2"]["max_abs_diff"] <= 1e-12
+    assert late["variables"]["point_displacement"]["P-2"]["max_abs_diff"] == pytest.approx(0.05, rel=1e-10)
+    assert early["time_compared_s"] == pytest.approx([0.0, 2.5], abs=1e-12)
+    mid = compare_responses(p, up, variables=["point_displacement"], start=2.0)
+    assert mid["variables"]["point_displacement"]["P-2"]["first_peak_prototype"] == pytest.approx(-2.0, rel=1e-12)
+    with pytest.raises(BlastscaleInputError, match="time window"):
+        compare_responses(p, up, start=5.0)

@@ -224,6 +224,7 @@ def compare_responses(
     outcome: str = "collapsed",
     peak_fraction: float = FIRST_PEAK_FRACTION,
     start: float | None = None,
+    end: float | None = None,
 ) -> dict:
     """Compare a prototype response with an up-scaled model response, per body and per point.
 
@@ -248,6 +249,9 @@ def compare_responses(
         Compare only the prototype times >= ``start`` [s] (e.g. after the load: during a
         finite pulse velocities rise over the blast's own duration, whose model/prototype
         ratio is not the time factor; paper Eq. 8 matches only the impulse).
+    end : float, optional
+        Compare only the prototype times <= ``end`` [s] (e.g. up to the earlier collapse: a
+        fall amplifies any time shift, as a rocking block's after its tipping point).
 
     Returns
     -------
@@ -263,12 +267,16 @@ def compare_responses(
         times), ``n_times`` (samples compared).
     """
     proto, model = align(prototype_ds, upscaled_ds)
-    if start is not None:
-        later = np.flatnonzero(proto["time"].values >= float(start))
-        if later.size == 0:
+    if start is not None or end is not None:
+        tt = proto["time"].values
+        lo = -np.inf if start is None else float(start)
+        hi = np.inf if end is None else float(end)
+        inside = np.flatnonzero((tt >= lo) & (tt <= hi))
+        if inside.size == 0:
             raise BlastscaleInputError(
-                f"start = {float(start):.6g} s is out of range: the common times end at {proto['time'].values[-1]:.6g} s")
-        proto, model = proto.isel(time=later), model.isel(time=later)
+                f"time window = [{lo:.6g}, {hi:.6g}] s is out of range: the common times are "
+                f"[{tt[0]:.6g}, {tt[-1]:.6g}] s")
+        proto, model = proto.isel(time=inside), model.isel(time=inside)
     t = proto["time"].values
     components = {} if components is None else components
     if variables is None:

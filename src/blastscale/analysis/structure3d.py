@@ -137,7 +137,11 @@ class Comparison3D:
             ``max_abs_displacement_diff_rel_peak``, ``max_abs_velocity_diff_m_s``,
             ``max_abs_velocity_diff_rel_peak`` (velocities after the load, ``load_end_s``: during a
             finite pulse they rise over the blast's own duration, whose model/prototype ratio is
-            not the time factor); ``time_compared_s``; ``load_end_s``.
+            not the time factor); ``time_compared_s``; ``load_end_s``. When either collapses:
+            ``collapse_time_diff_s`` (model up-scaled minus prototype; None unless both collapse),
+            ``compared_to_collapse_s`` (the earlier collapse time), and per point the first peaks
+            taken up to it and ``max_abs_displacement_diff_to_collapse_m`` / ``_rel_peak`` (the fall
+            amplifies any time shift, as a rocking block's after tipping).
         """
         c = self.comparison["variables"]
         disp = c["point_displacement"]
@@ -156,8 +160,21 @@ class Comparison3D:
             for name, d in disp.items()
         }
         top = self.top_point
+        ps, ms = self.prototype.summary(), upscale_summary(self.model.summary(), self.design.factors)
+        tcp, tcm = ps.get("collapse_time_s"), ms.get("collapse_time_s")
+        coll = self.comparison.get("to_collapse")
+        if coll is not None:  # first peaks and differences up to the earlier collapse
+            for name, d in coll["variables"]["point_displacement"].items():
+                points[name].update({
+                    "first_peak_prototype_m": d["first_peak_prototype"], "first_peak_model_m": d["first_peak_model"],
+                    "first_peak_time_s": d["first_peak_time_prototype_s"], "first_peak_ratio": d["first_peak_ratio"],
+                    "max_abs_displacement_diff_to_collapse_m": d["max_abs_diff"],
+                    "max_abs_displacement_diff_to_collapse_rel_peak": d["max_abs_diff_rel_peak"],
+                })
         return {
             "top_point": top,
+            "collapse_time_diff_s": None if tcp is None or tcm is None else tcm - tcp,
+            "compared_to_collapse_s": None if coll is None else coll["end_s"],
             "top_first_peak_ratio": points[top]["first_peak_ratio"],
             "max_abs_top_displacement_diff_m": points[top]["max_abs_displacement_diff_m"],
             "max_abs_top_displacement_diff_rel_peak": points[top]["max_abs_displacement_diff_rel_peak"],
@@ -310,6 +327,11 @@ def compare_structure3d(
     if load_end < pds["time"].values[-1]:  # velocities after the load (see compare_responses' start)
         cmp["after_load"] = compare_responses(pds, up, variables=("point_velocity",), start=load_end)
         cmp["after_load"]["start_s"] = load_end
+    tc = [x for x in (proto.summary().get("collapse_time_s"), upscale_summary(mod.summary(), design.factors).get(
+        "collapse_time_s")) if x is not None]
+    if tc:  # up to the earlier collapse: the fall amplifies any time shift
+        cmp["to_collapse"] = compare_responses(pds, up, variables=("point_displacement",), end=min(tc))
+        cmp["to_collapse"]["end_s"] = min(tc)
     return Comparison3D(
         design=design, structure=structure, model_structure=model_structure, prototype=proto, model=mod,
         prototype_dataset=pds, upscaled_dataset=up, comparison=cmp,
