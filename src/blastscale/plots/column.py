@@ -12,7 +12,8 @@ import math
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_finite
+from .._validate import BlastscaleInputError
+from .sim3d import _ax, finish_side_view, snapshot_times
 
 __all__ = [
     "POINT_QUANTITIES",
@@ -28,14 +29,6 @@ POINT_QUANTITIES = {
     "point_displacement": ("horizontal displacement [m]", 1.0),
     "point_velocity": ("horizontal velocity [m/s]", 1.0),
 }
-
-
-def _ax(ax):
-    if ax is None:
-        import matplotlib.pyplot as plt
-
-        _, ax = plt.subplots()
-    return ax
 
 
 def _colours(n: int, cmap: str):
@@ -146,33 +139,23 @@ def plot_column_snapshots(structure, dataset, times=None, ax=None, n: int = 4, c
     -------
     matplotlib Axes
     """
-    if times is None and not (isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 1):
-        raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 1")
     if dataset.sizes.get("body", 0) != len(structure.bodies):
         raise BlastscaleInputError(
             f"dataset bodies = {dataset.sizes.get('body', 0)} do not match the structure's {len(structure.bodies)}")
-    ax = _ax(ax)
     t = dataset["time"].values
-    times = np.linspace(t[0], t[-1], n) if times is None else np.atleast_1d(check_finite("snapshot times", times, "s"))
+    times, idx = snapshot_times(t, times, n)
+    ax = _ax(ax)
     colours = _colours(len(times), cmap)
     sections = _drum_sections(structure)
     disp = dataset["com_displacement"]
     rot = dataset["rotation_y"]
-    for k, tk in enumerate(times):
-        i = int(np.clip(np.searchsorted(t, tk), 0, t.size - 1))
+    for k, i in enumerate(idx):
         for j, (b, sec) in enumerate(zip(structure.bodies, sections)):
             dx = float(disp.isel(time=i, body=j).sel(component="x"))
             dz = float(disp.isel(time=i, body=j).sel(component="z"))
             xy = drum_outline(b.com[0] + dx, b.com[2] + dz, float(rot.isel(time=i, body=j)), *sec)
             ax.plot(xy[:, 0], xy[:, 1], color=colours[k], lw=1.0, label=f"t = {t[i]:.3g} s" if j == 0 else None)
-    xs = ax.get_xlim()
-    ax.axhline(0.0, color="k", lw=1)
-    ax.set_xlim(xs)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m] (blast from -x)")
-    ax.set_ylabel("z [m]")
-    ax.legend(fontsize="x-small")
-    return ax
+    return finish_side_view(ax)
 
 
 def plot_column_comparison(structure, prototype, model=None, points=None, fig=None):

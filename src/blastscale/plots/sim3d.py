@@ -43,6 +43,28 @@ def _ax(ax):
     return ax
 
 
+def snapshot_times(t, times=None, n: int = 6):
+    """The snapshot times [s]: ``times`` checked finite, or ``n`` (>= 1) times evenly spread over
+    the recorded times ``t``; and, for each, the index of the first recorded time >= it."""
+    if times is None and not (isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 1):
+        raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 1")
+    t = np.asarray(t, dtype=float)
+    times = np.linspace(t[0], t[-1], n) if times is None else np.atleast_1d(check_finite("snapshot times", times, "s"))
+    return times, [int(np.clip(np.searchsorted(t, tk), 0, t.size - 1)) for tk in times]
+
+
+def finish_side_view(ax):
+    """Ground line, equal axes, x-z labels and legend of a side view (blast from -x)."""
+    xs = ax.get_xlim()
+    ax.axhline(0.0, color="k", lw=1)
+    ax.set_xlim(xs)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m] (blast from -x)")
+    ax.set_ylabel("z [m]")
+    ax.legend(fontsize="small")
+    return ax
+
+
 def _as_dict(results, labels=None) -> dict:
     if isinstance(results, dict):
         return results
@@ -132,24 +154,14 @@ def plot_snapshots(result, times=None, ax=None, n: int = 6, cmap: str = "viridis
     """
     import matplotlib
 
-    if times is None and not (isinstance(n, (int, np.integer)) and n >= 1):
-        raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 1")
+    times, idx = snapshot_times(result.time, times, n)
     ax = _ax(ax)
     t = result.time
-    times = np.linspace(t[0], t[-1], n) if times is None else np.atleast_1d(check_finite("snapshot times", times, "s"))
     colors = matplotlib.colormaps[cmap](np.linspace(0, 1, max(len(times), 2)))
-    for k, tk in enumerate(times):
-        i = int(np.clip(np.searchsorted(t, tk), 0, t.size - 1))
+    for k, i in enumerate(idx):
         xy = block_outline(result.com_x[i], result.com_z[i], result.rotation[i], result.half_width, result.half_height)
         ax.plot(xy[:, 0], xy[:, 1], color=colors[k], label=f"t = {t[i]:.3g} s")
-    xs = ax.get_xlim()
-    ax.axhline(0.0, color="k", lw=1)
-    ax.set_xlim(xs)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m] (blast from -x)")
-    ax.set_ylabel("z [m]")
-    ax.legend(fontsize="small")
-    return ax
+    return finish_side_view(ax)
 
 
 def plot_comparison(prototype, model_upscaled=None, fig=None):
