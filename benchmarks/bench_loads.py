@@ -29,7 +29,6 @@ import math
 import platform
 import time
 import warnings
-from dataclasses import replace
 
 import numpy as np
 
@@ -72,8 +71,11 @@ PAPER_CASES = (
 
 def paper_case(section: str, charge: float, method: str, incidence: str, duration: float = 8.0) -> dict:
     """One prototype vs model comparison (general law, lambda = 1/100, gamma = 1) as a flat dict."""
+    import blastscale.sim3d as sim3d
     from blastscale.analysis.structure3d import compare_structure3d
 
+    if not hasattr(sim3d, "simulate_structure"):  # the engine's export lands with issue 8
+        sim3d.simulate_structure = simulate_structure
     col = MultiDrumColumn(section=section)
     design = design_model(charge, STANDOFF, SCALE)
     t0 = time.perf_counter()
@@ -102,42 +104,6 @@ def paper_case(section: str, charge: float, method: str, incidence: str, duratio
     }
 
 
-class CorrectedLoad:
-    """A face load corrected at load time: arrival times stretched about the first,
-    ``t_A,k -> t_A,0 + s (t_A,k - t_A,0)``, and each face's pulse scaled by a weight.
-
-    The corrections tested in docs/face_loads.md: the general law's model sees an arrival-time
-    spread too short by ``1/s`` (re-timing: a delay per face, as sequenced charges would give) and
-    a distribution of impulse over the faces that is not the prototype's (weights: the
-    prototype's face impulses times the impulse factor over the model's).
-    """
-
-    def __init__(self, load, stretch: float = 1.0, weights=None):
-        self.load = load
-        ta = load.rest_loads.arrival_time
-        self.shift = (ta - ta.min()) * (float(stretch) - 1.0)
-        self.weights = np.ones_like(ta) if weights is None else np.asarray(weights, dtype=float)
-        self.first_arrival = load.first_arrival
-        self.end_time = load.end_time + float(self.shift.max())
-
-    def step_wrenches(self, t0, t1, positions, rotations):
-        L = self.load
-        out = np.zeros((L.nbody, 6))
-        if t1 <= self.first_arrival or t0 >= self.end_time:
-            return out
-        fl = L.face_loads_at(positions, rotations)
-        fp = fl.pulses(L.shape, decay_guess=L._decay)
-        L._decay = fp.decay
-        fp = replace(fp, arrival_time=fp.arrival_time + self.shift)
-        di = fp.impulse_between(t0, t1) * self.weights
-        F = -(di * L.areas / (t1 - t0))[:, None] * fl.normal
-        M = np.cross(np.einsum("fij,fj->fi", np.asarray(rotations, dtype=float)[L.body], L.centres), F)
-        for k in range(3):
-            out[:, k] = np.bincount(L.body, F[:, k], L.nbody)
-            out[:, 3 + k] = np.bincount(L.body, M[:, k], L.nbody)
-        return out
-
-
 def correction(section: str, charge: float, duration: float = 8.0, incidence: str = "ufc") -> dict:
     """Method B on a column: prototype, the general-law model as designed, and the model re-timed."""
     from blastscale.analysis.compare import compare_responses, upscale_dataset
@@ -154,8 +120,10 @@ def correction(section: str, charge: float, duration: float = 8.0, incidence: st
     out = {"section": section, "charge_kg": charge, "incidence": incidence, "stretch": stretch, **sp}
     weights = f.impulse * lp.rest_loads.impulse / lm.rest_loads.impulse
     out["impulse_weights"] = weights.tolist()
-    variants = (("as_designed", CorrectedLoad(lm)), ("retimed", CorrectedLoad(lm, stretch)),
-                ("reweighted", CorrectedLoad(lm, 1.0, weights)), ("retimed_reweighted", CorrectedLoad(lm, stretch, weights)))
+    # load-time corrections (FaceLoadStrategy.corrected): re-timed = the prototype's arrival spread in
+    # model time (a delay per face); re-weighted = the prototype's distribution of impulse over the faces
+    variants = (("as_designed", lm), ("retimed", lm.corrected(stretch)), ("reweighted", lm.corrected(1.0, weights)),
+                ("retimed_reweighted", lm.corrected(stretch, weights)))
     for name, load in variants:
         mod = simulate_structure(mcol, load, duration * f.time)
         cmp = compare_responses(proto.dataset, upscale_dataset(mod.dataset, f), variables=("point_displacement",))

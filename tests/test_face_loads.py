@@ -173,3 +173,19 @@ def test_bad_input_is_one_line():
         make_load("C", SQUARE, charge_kg=250.0, standoff_m=10.0, pulse="box")
     with pytest.raises(BlastscaleInputError, match="standoff = -1"):
         make_load("B", SQUARE, charge_kg=250.0, standoff_m=-1.0)
+
+
+def test_load_time_correction_moves_arrivals_and_scales_impulses():
+    # the corrections of docs/face_loads.md: stretch the spread about the first arrival, weight the faces
+    load = make_load("B", SQUARE, charge_kg=250.0, standoff_m=10.0)
+    w = np.linspace(0.5, 1.5, 10)
+    c = load.corrected(2.0, w)
+    np.testing.assert_allclose(_integrate(c, SQUARE)[:, :3], load.face_impulses() * w[:, None], rtol=1e-9,
+                               atol=1e-9 * np.abs(load.face_impulses()).max())
+    assert c.end_time == pytest.approx(load.end_time + arrival_spread(load), rel=1e-12)
+    pos, rot = _rest(SQUARE)
+    ta = load.rest_loads.arrival_time
+    t_top = ta.min() + 2.0 * (ta[-1] - ta.min())  # the top drum's corrected arrival
+    assert not np.any(c.step_wrenches(t_top - 1e-4, t_top - 1e-6, pos, rot)[-1])
+    assert np.any(c.step_wrenches(t_top, t_top + 1e-4, pos, rot)[-1])
+    assert load.weights.tolist() == [1.0] * 10  # the original is untouched

@@ -22,6 +22,8 @@ The charge stands on the ground at ``(front_x - standoff, 0, 0)`` (a hemispheric
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
@@ -99,6 +101,34 @@ class FaceLoadStrategy:
         self._decay = rest.decay
         self.first_arrival = float(self.rest_loads.arrival_time.min())
         self.end_time = rest.end_time + END_MARGIN * float(self.rest_loads.positive_duration.max())
+        self.arrival_shift = np.zeros(self.body.size)
+        self.weights = np.ones(self.body.size)
+
+    def corrected(self, stretch: float = 1.0, weights=None) -> "FaceLoadStrategy":
+        """A copy corrected at load time (the corrections tested in ``docs/face_loads.md``).
+
+        Parameters
+        ----------
+        stretch : float
+            Arrival times stretched about the first, ``t_A,k -> t_A,0 + stretch (t_A,k - t_A,0)``
+            (a delay per face) [-], > 0.
+        weights : array_like (nface,), optional
+            Each face's pulse (pressure and impulse) multiplied by its weight [-], > 0.
+
+        Returns
+        -------
+        FaceLoadStrategy
+        """
+        import copy
+
+        out = copy.copy(self)
+        ta = self.rest_loads.arrival_time
+        out.arrival_shift = (ta - ta.min()) * (float(check_positive("stretch", stretch)) - 1.0)
+        out.weights = np.ones(self.body.size) if weights is None else np.broadcast_to(
+            check_positive("face weights", weights), (self.body.size,)).astype(float)
+        out.end_time = self.end_time + float(out.arrival_shift.max())
+        out.method = f"{self.method} (corrected)"
+        return out
 
     # ------------------------------------------------------------------ geometry
     def world_faces(self, positions, rotations):
@@ -127,7 +157,9 @@ class FaceLoadStrategy:
         fl = self.face_loads_at(positions, rotations)
         fp = fl.pulses(self.shape, decay_guess=self._decay)
         self._decay = fp.decay
-        di = fp.impulse_between(t0, t1)
+        if np.any(self.arrival_shift):
+            fp = replace(fp, arrival_time=fp.arrival_time + self.arrival_shift)
+        di = fp.impulse_between(t0, t1) * self.weights
         if not np.any(di):
             return out
         R = np.asarray(rotations, dtype=float)[self.body]
@@ -141,7 +173,7 @@ class FaceLoadStrategy:
     def face_impulses(self) -> np.ndarray:
         """Impulse vector of each loaded face at rest, -i S n, shape (nface, 3) [N s]."""
         fl = self.rest_loads
-        return -(fl.impulse * fl.area)[:, None] * fl.normal
+        return -(self.weights * fl.impulse * fl.area)[:, None] * fl.normal
 
     def delivered_impulse(self) -> np.ndarray:
         """Impulse of the whole blast on each body at the rest pose, (nbody, 3) [N s]."""
