@@ -98,3 +98,80 @@ def sweep_cmd(
         ("cases per minute", f"{run.cases_per_minute:.4g}", "1/min"),
         ("workers", str(run.workers), ""),
     ]))
+
+
+def _uniform_range(text: str, name: str) -> tuple:
+    lo, sep, hi = text.partition(":")
+    from ..analysis.grids import _num
+
+    if not sep:
+        raise BlastscaleInputError(f"--uniform {name} = {text!r} is not lo:hi")
+    return _num(lo, name, "lo"), _num(hi, name, "hi")
+
+
+def _beta(text: str, name: str) -> float:
+    from ..analysis.grids import _num
+
+    b = _num(text, name, "beta")
+    if b < 0:
+        raise BlastscaleInputError(f"--lognormal {name} = {text!r}: beta = {b:g} is out of range: must be >= 0")
+    return b
+
+
+@app.command("fragility")
+def fragility_cmd(
+    scenario: Optional[Path] = SCENARIO_ARG,
+    charges: str = typer.Option(..., "--charges", help="Charges W \\[kg TNT]: start:stop:n[:log] or a,b,c."),
+    lognormal: Optional[List[str]] = typer.Option(None, "--lognormal", help="FIELD=beta: the field times a lognormal factor (median 1, log-sd beta) (repeatable)."),
+    uniform: Optional[List[str]] = typer.Option(None, "--uniform", help="FIELD=lo:hi: uniform values in the field's unit (repeatable)."),
+    samples: int = typer.Option(1000, "--samples", help="Monte Carlo draws per charge."),
+    seed: int = SEED,
+    plot: Optional[str] = typer.Option(None, "--plot", help="Write the fragility curve to this image file."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
+) -> None:
+    """Probability that the prototype block overturns against the charge, under uncertain fields,
+    with a maximum-likelihood lognormal fit (median charge, beta, 95 % bounds). Each draw is
+    decided by the first-swing energy criterion (docs/capacity.md), vectorised."""
+    from ..analysis.fragility import fragility
+    from ..analysis.grids import parse_grid
+    from .options import check_plot_path
+
+    check_plot_path(plot)
+    base = _scenario(scenario)
+    W = parse_grid(charges, "charges")
+    res = fragility(base, W, lognormal=_assignments(lognormal, "--lognormal", _beta),
+                    uniform=_assignments(uniform, "--uniform", _uniform_range), samples=samples, seed=seed)
+    out = res.to_dict()
+    out["scenario"] = base.title or "default"
+    if plot:
+        from ..plots.fragility import plot_fragility
+        from ._app import save_figure
+
+        def build():
+            import matplotlib.pyplot as plt
+
+            fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
+            plot_fragility(res, ax=ax)
+            return fig
+
+        save_figure(build, plot)
+        out["plot"] = plot
+    if as_json:
+        print_json(out)
+        return
+    from rich.table import Table
+
+    t = Table(title=f"Fragility ({samples} draws per charge, seed {seed})", title_justify="left")
+    for c in ("charge W \\[kg]", "overturned", "P(overturn)", "binomial s.e."):
+        t.add_column(c, justify="right")
+    for w, k, p, s in zip(out["charge_kg"], out["overturned"], out["probability"], out["binomial_standard_error"]):
+        t.add_row(f"{w:.6g}", str(k), f"{p:.4f}", f"{s:.4f}")
+    console.print(t)
+    if res.fit is None:
+        console.print("no transition in the charge range: no lognormal fit (widen --charges)")
+    else:
+        f = res.fit
+        console.print(f"lognormal fit: median {f.median_charge_kg:.6g} kg (95 %: {f.median_ci_kg[0]:.6g} - "
+                      f"{f.median_ci_kg[1]:.6g}), beta {f.beta:.4g} (95 %: {f.beta_ci[0]:.4g} - {f.beta_ci[1]:.4g})")
+    if plot:
+        console.print(f"plot written to {plot}")

@@ -85,6 +85,7 @@ from .system import RockingSystem, as_rocking_system
 __all__ = [
     "overturn_margin",
     "first_swing_margin",
+    "overturns",
     "critical_charge",
     "critical_standoff",
     "CriticalResult",
@@ -283,11 +284,23 @@ def _z_range(model, extrapolate: bool) -> tuple[float, float]:
     return zlo * (1.0 + 1e-12), zhi * (1.0 - 1e-12)
 
 
-def _blast_margin(system: RockingSystem, shape: str, model, extrapolate: bool, solver: RockingSolver, W, R):
-    """mu of ``system`` under the reflected pulse of charges W [kg] at stand-offs R [m] (arrays)."""
+def _system_arrays(systems, n: int):
+    """(alpha, e, p, q) arrays of length n from one RockingSystem (broadcast) or a sequence of n."""
+    if isinstance(systems, RockingSystem):
+        systems = [systems]
+    vals = np.array([(s.alpha, s.coefficient_of_restitution, s.frequency_parameter, s.load_ratio_per_pascal)
+                     for s in systems])
+    if len(systems) not in (1, n):
+        raise BlastscaleInputError(f"systems: {len(systems)} bodies for {n} cases (give 1 or {n})")
+    return tuple(np.broadcast_to(vals[:, j], (n,)) for j in range(4))
+
+
+def _blast_margin(system, shape: str, model, extrapolate: bool, solver: RockingSolver, W, R):
+    """mu of ``system`` (one RockingSystem, or a sequence, one per case) under the reflected pulse
+    of charges W [kg] at stand-offs R [m] (arrays of the same length)."""
     bp = blast_parameters(W, R, model, extrapolate=extrapolate)
-    p, q, a = system.frequency_parameter, system.load_ratio_per_pascal, system.alpha
     n = np.size(W)
+    a, e, p, q = _system_arrays(system, n)
     par = np.zeros((n, 3))
     w0 = np.zeros(n)
     if shape == "friedlander":
@@ -298,9 +311,34 @@ def _blast_margin(system: RockingSystem, shape: str, model, extrapolate: bool, s
         par[:, 0] = q * bp.reflected_pressure
         par[:, 1] = p * (2.0 * bp.reflected_impulse / bp.reflected_pressure)
     else:  # impulsive: theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
-        w0[:] = q * p * bp.reflected_impulse * math.cos(a)
+        w0[:] = q * p * bp.reflected_impulse * np.cos(a)
     kind = np.full(n, _KIND[shape], dtype=np.int64)
-    return _pulse_phase_margin(solver, np.full(n, a), np.full(n, system.coefficient_of_restitution), w0, kind, par)
+    return _pulse_phase_margin(solver, a, e, w0, kind, par)
+
+
+def overturns(systems, charge, standoff, *, pulse: str = "friedlander", model=DEFAULT_BLAST_MODEL,
+              extrapolate: bool = False, solver: RockingSolver | None = None) -> np.ndarray:
+    """Whether each body overturns, at any time, under the reflected pulse of ``charge`` [kg TNT]
+    at ``standoff`` [m] (first-swing energy criterion; arrays of n cases, vectorised).
+
+    Parameters
+    ----------
+    systems : RockingSystem or sequence of RockingSystem
+        One body for every case, or one per case.
+    charge, standoff : array_like
+        Charges W [kg] and stand-offs R [m], broadcast to n cases.
+    pulse, model, extrapolate, solver
+        As in :func:`critical_charge`.
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+    """
+    if pulse not in PULSE_SHAPES:
+        raise BlastscaleInputError(f"pulse = {pulse!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
+    W, R = np.broadcast_arrays(np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
+                               np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float))
+    return _blast_margin(systems, pulse, model, extrapolate, solver or DEFAULT_SOLVER, W.ravel(), R.ravel()) > 0.0
 
 
 def _invert_impulse(target, model, by_charge: bool, fixed, lo, hi, extrapolate: bool):

@@ -1,0 +1,84 @@
+"""Fragility: the known answer with the charge alone uncertain, the maximum-likelihood fit, CLI."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.stats import norm
+
+from blastscale.analysis.fragility import fit_lognormal_fragility, fragility
+from blastscale.cli import main
+from blastscale.io.scenario import Scenario
+from blastscale.rocking import RockingSystem, critical_charge
+from blastscale.study import Study
+
+BASE = Scenario.default().with_values({"engine": "planar"})  # paper block, 2 m, masi2021, Friedlander
+
+
+@pytest.fixture(scope="module")
+def wc():
+    sc = BASE
+    return critical_charge(RockingSystem.from_block(Study(sc).structure()), 2.0, model="masi2021").charge_kg
+
+
+def test_charge_uncertainty_alone_gives_the_lognormal_with_median_the_critical_charge(wc):
+    """W eps (eps lognormal, median 1, log-sd beta) overturns iff W eps > W_c, so
+    P(overturn | W) = Phi(ln(W / W_c) / beta) exactly."""
+    beta, n = 0.25, 3000
+    W = np.geomspace(45.0, 140.0, 9)
+    res = fragility(BASE, W, lognormal={"charge_kg": beta}, samples=n, seed=11)
+    # exact: the counts are those of the draws beyond the threshold (the same draws at every charge)
+    eps = np.exp(beta * np.random.default_rng(11).standard_normal(n))
+    np.testing.assert_array_equal(res.overturned, [(w * eps > wc).sum() for w in W])
+    # and they sample Phi(ln(W/W_c)/beta): within 4 binomial standard errors at every charge
+    p = norm.cdf(np.log(W / wc) / beta)
+    assert np.all(np.abs(res.probability - p) <= 4 * np.sqrt(p * (1 - p) / n) + 1e-12)
+    # the fit returns W_c and beta within sampling error: 3 standard errors from the observed
+    # information (here se(ln theta) ~ 0.003, se(ln beta) ~ 0.014)
+    f = res.fit
+    assert abs(math.log(f.median_charge_kg / wc)) <= 3 * f.se_ln_median
+    assert abs(math.log(f.beta / beta)) <= 3 * f.se_ln_beta
+    assert f.median_ci_kg[0] < wc < f.median_ci_kg[1]
+    assert f.se_ln_median < 0.01 and f.se_ln_beta < 0.03
+
+
+def test_fit_recovers_exact_expected_counts():
+    """Counts equal to N Phi(ln(W/theta)/beta) (no noise): the likelihood is maximal at the truth."""
+    W = np.geomspace(10.0, 100.0, 12)
+    k = 1e6 * norm.cdf(np.log(W / 31.6) / 0.35)
+    f = fit_lognormal_fragility(W, k, 1e6)
+    assert f.median_charge_kg == pytest.approx(31.6, rel=1e-6) and f.beta == pytest.approx(0.35, rel=1e-5)
+
+
+def test_fragility_cli_json_plot_and_other_fields(tmp_path, capsys):
+    png = tmp_path / "f.png"
+    with pytest.raises(SystemExit) as e:
+        main(["fragility", "--charges", "50:130:5:log", "--lognormal", "charge_kg=0.1", "--uniform",
+              "restitution=0.5:0.9", "--uniform", "alpha_deg=14:16", "--samples", "60", "--seed", "3",
+              "--plot", str(png), "--json"])
+    assert e.value.code in (0, None)
+    out = json.loads(capsys.readouterr().out)
+    assert len(out["probability"]) == 5 and out["samples"] == 60
+    assert out["probability"][0] < 0.5 < out["probability"][-1]
+    assert out["median_charge_kg"] is not None and out["beta"] > 0 and len(out["median_charge_ci_kg"]) == 2
+    assert set(out["fields"]) == {"charge_kg_factor", "restitution", "alpha_deg"}
+    assert png.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("argv, word", [
+    (["--charges", "50:130:5", "--lognormal", "charge_kg=-0.2"], "beta"),
+    (["--charges", "50:130:5"], "uncertain fields"),
+    (["--charges", "130:50:5", "--lognormal", "charge_kg=0.2"], "empty range"),
+    (["--charges", "50:130:0", "--lognormal", "charge_kg=0.2"], "n = 0"),
+    (["--charges", "50:130:5", "--uniform", "restitution=0.9:0.5"], "empty range"),
+    (["--charges", "50:130:5", "--uniform", "nonsense=0.1:0.5"], "nonsense"),
+])
+def test_fragility_bad_input_one_line_exit_2(capsys, argv, word):
+    with pytest.raises(SystemExit) as e:
+        main(["fragility", *argv, "--samples", "10"])
+    assert e.value.code == 2
+    err = capsys.readouterr().err
+    assert word in err and len(err.strip().splitlines()) <= 2
