@@ -66,7 +66,23 @@ _INTERRUPTED: list = []  # set by the handler: an import that turns Interrupted 
 
 def _raise_interrupted(signum, frame):
     _INTERRUPTED.append(signum)
+    f, depth = frame, 0
+    while f is not None and depth < 30:  # inside a finaliser Python would ignore the exception:
+        if f.f_code.co_name == "__del__":  # the flag is checked at the next stage instead
+            return
+        f, depth = f.f_back, depth + 1
     raise Interrupted()
+
+
+def raise_if_interrupted() -> None:
+    """Raise :class:`Interrupted` when Ctrl-C came at a moment that could not raise (a finaliser)."""
+    if _INTERRUPTED:
+        raise Interrupted()
+
+
+def ignore_interrupts() -> None:
+    """From here on Ctrl-C is ignored: the results are in place, only the printing remains."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 class OneLineErrorGroup(TyperGroup):
@@ -189,6 +205,7 @@ def stage_progress():
         task = bar.add_task("starting", total=None)
 
         def tell(stage: str, done: int, total: int) -> None:
+            raise_if_interrupted()
             bar.update(task, description=stage, completed=done, total=total)
 
         yield tell

@@ -20,7 +20,8 @@ import typer
 from rich.table import Table
 
 from ..io.scenario import Scenario, load_scenario
-from ._app import app, console, console_err, fmt_value, one_line_warnings, print_json, stage_progress
+from ._app import (app, console, console_err, fmt_value, ignore_interrupts, one_line_warnings, print_json,
+                   raise_if_interrupted, stage_progress)
 from .loads import print_design
 
 
@@ -144,7 +145,8 @@ def run_cmd(
             if out is None:
                 result = study.run(progress=on_study)
             else:
-                with output_folder(out, force) as tmp:
+                with output_folder(out, force, before_commit=raise_if_interrupted,
+                                   after_commit=ignore_interrupts) as tmp:
                     result = study.run(progress=on_study)
                     written = write_study(result, tmp, progress=on_write)
     if as_json:

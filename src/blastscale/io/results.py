@@ -177,12 +177,13 @@ def _sigint_blocked() -> Iterator[None]:
 
 
 @contextlib.contextmanager
-def output_folder(out: "str | Path", force: bool = False) -> Iterator[Path]:
+def output_folder(out: "str | Path", force: bool = False, before_commit=None, after_commit=None) -> Iterator[Path]:
     """A temporary sibling folder of ``out`` to write into, renamed to ``out`` on success.
 
     On any exception (Ctrl-C included) the temporary folder is removed and the exception
     propagates; an existing ``out`` is replaced only with ``force`` (:func:`check_output_folder`),
-    after the new folder is complete.
+    after the new folder is complete. ``before_commit()`` (may raise to abandon the folder) and
+    ``after_commit()`` run with SIGINT held back, just before and just after the rename.
     """
     dest = check_output_folder(out, force)
     try:
@@ -197,6 +198,8 @@ def output_folder(out: "str | Path", force: bool = False) -> Iterator[Path]:
     try:
         yield tmp
         with _sigint_blocked():
+            if before_commit is not None:
+                before_commit()
             trash = None
             if dest.exists():
                 trash = dest.with_name(f".{dest.name}.old-{os.getpid()}")
@@ -204,6 +207,8 @@ def output_folder(out: "str | Path", force: bool = False) -> Iterator[Path]:
             os.rename(tmp, dest)
             if trash is not None:
                 shutil.rmtree(trash, ignore_errors=True)
+            if after_commit is not None:
+                after_commit()
     except BaseException:
         with _sigint_blocked():
             shutil.rmtree(tmp, ignore_errors=True)

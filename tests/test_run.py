@@ -1,0 +1,145 @@
+"""``blastscale run``: the result folder (complete or absent), its files, refusals, and Ctrl-C."""
+
+import json
+import os
+import signal
+import stat
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+from blastscale.cli import main
+
+# the console script (as a user runs it), else the same entry point under that name
+_SCRIPT = Path(sys.executable).with_name("blastscale")
+BLASTSCALE = [str(_SCRIPT)] if _SCRIPT.exists() else [
+    sys.executable, "-c", "import sys; sys.argv[0] = 'blastscale'; from blastscale.cli import main; main()"]
+
+
+def run_cli(capsys, *argv) -> tuple[int, str, str]:
+    with pytest.raises(SystemExit) as e:
+        main(list(argv))
+    cap = capsys.readouterr()
+    return (e.value.code or 0), cap.out, cap.err
+
+
+def test_run_default_scenario_json(capsys, tmp_path):
+    # The main job on the paper's default scenario: design (0.233 mg, paper Table, units corrected), planar
+    # rocking that rocks without overturning and is similar (<= 5e-4 rad, issue #3), the critical charge
+    # 79.87 kg (Friedlander, DESIGN.md: 79.84-79.87), and the 3D up-scaled first peak of the block's front
+    # point within 1 % (the contact is scale-consistent, docs/sim3d.md).
+    out_dir = tmp_path / "run"
+    code, out, err = run_cli(capsys, "run", "--json", "--out", str(out_dir))
+    assert code == 0, err
+    s = json.loads(out)
+    assert s["design"]["model_charge_kg"] * 1e6 == pytest.approx(0.233, rel=1e-2)
+    assert s["planar"]["prototype"]["overturned"] is False
+    assert s["planar"]["similarity"]["max_abs_angle_diff_rad"] <= 5e-4
+    assert s["critical"]["critical_charge_kg"] == pytest.approx(79.87, abs=0.01)
+    assert s["3d"]["similarity"]["top_first_peak_ratio"] == pytest.approx(1.0, abs=0.01)
+    assert {"blastscale", "numpy", "mujoco"} <= s["versions"].keys() and s["timestamp"]
+    saved = json.loads((out_dir / "summary.json").read_text())
+    assert saved["critical"] == s["critical"] and saved["scalars"] == s["scalars"]
+    names = {p.name for p in out_dir.iterdir()}
+    assert {"summary.json", "histories.nc", "histories.csv", "report.html", "scenario.toml", "blast_pulses.png",
+            "planar_rocking.png", "response_3d.png"} <= names
+    # an ordinary file and folder (the old summary.json was 0600 via tempfile)
+    assert stat.S_IMODE((out_dir / "summary.json").stat().st_mode) & 0o044 == 0o044
+    assert stat.S_IMODE(out_dir.stat().st_mode) & 0o055 == 0o055
+    assert [p.name for p in tmp_path.iterdir()] == ["run"]  # no temporary sibling left
+
+
+def test_histories_files_have_units_and_match(capsys, tmp_path):
+    out_dir = tmp_path / "r"
+    code, _, err = run_cli(capsys, "run", "--out", str(out_dir), "--duration", "0.3", "--set", "critical_charge=false")
+    assert code == 0, err
+    with xr.open_dataset(out_dir / "histories.nc") as ds:
+        missing = [v for v in ds.variables if "units" not in ds[v].attrs]
+        assert not missing
+        theta = ds["planar_rotation_y"].sel(system="prototype").values[:, 0]
+    import pandas as pd
+
+    csv = pd.read_csv(out_dir / "histories.csv")
+    assert list(csv.columns) == ["engine", "system", "variable", "time_s", "element", "component", "value", "units"]
+    rows = csv[(csv.engine == "planar") & (csv.system == "prototype") & (csv.variable == "rotation_y")]
+    assert rows["value"].to_numpy() == pytest.approx(theta, rel=1e-9)  # CSV holds 10 significant digits
+    assert set(rows["units"]) == {"rad"}
+
+
+def test_existing_folder_refused_then_replaced_with_force(capsys, tmp_path):
+    out_dir = tmp_path / "r"
+    args = ["run", "--out", str(out_dir), "--duration", "0.1", "--set", "engine=planar", "--set",
+            "critical_charge=false"]
+    assert run_cli(capsys, *args)[0] == 0
+    first = (out_dir / "summary.json").read_text()
+    code, _, err = run_cli(capsys, *args)
+    assert code == 2 and "exists: refused (give --force to replace it)" in err and err.count("\n") == 1
+    assert (out_dir / "summary.json").read_text() == first
+    assert run_cli(capsys, *args, "--force", "--charge", "60")[0] == 0
+    assert json.loads((out_dir / "summary.json").read_text())["scenario"]["blast"]["charge_kg"] == 60.0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r"]
+
+
+@pytest.mark.parametrize("case", ["file", "parent_is_file", "not_a_result_folder", "huge_duration", "bad_set"])
+def test_refusals_are_one_line_exit_2_nothing_written(capsys, tmp_path, case):
+    target = tmp_path / "out"
+    extra = []
+    if case == "file":
+        target.write_text("x")
+    elif case == "parent_is_file":
+        (tmp_path / "f").write_text("x")
+        target = tmp_path / "f" / "out"
+    elif case == "not_a_result_folder":
+        target.mkdir()
+        (target / "thesis.tex").write_text("x")
+        extra = ["--force"]
+    elif case == "huge_duration":
+        extra = ["--duration", "1e5"]  # ~260 GiB of histories at the default 0.2 ms step
+    else:
+        extra = ["--set", "blast.charge_kg"]
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    code, _, err = run_cli(capsys, "run", "--out", str(target), *extra)
+    assert code == 2 and err.startswith("error: ") and err.count("\n") == 1, err
+    assert "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before
+
+
+def test_extrapolation_hint_names_the_scenario_key(capsys, tmp_path):
+    code, _, err = run_cli(capsys, "run", "--set", "blast.standoff_m=100", "--charge", "1")
+    assert code == 2 and "blast.extrapolate = true" in err and "CLI --extrapolate" not in err
+
+
+def _wait_for(pred, timeout: float) -> bool:
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < timeout:
+        if pred():
+            return True
+        time.sleep(0.02)
+    return False
+
+
+@pytest.mark.parametrize("moment", ["starting", "simulating", "writing"])
+def test_ctrl_c_exits_130_one_line_no_partial_folder(tmp_path, moment):
+    out_dir = tmp_path / "r"
+    proc = subprocess.Popen(BLASTSCALE + ["run", "--out", str(out_dir), "--duration", "3"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    partial = lambda: any(p.name.startswith(".r.partial-") for p in tmp_path.iterdir())  # noqa: E731
+    if moment == "starting":
+        time.sleep(0.3)  # importing the package
+    elif moment == "simulating":
+        assert _wait_for(partial, 60)  # the temporary folder exists: the study runs
+        time.sleep(0.5)
+    else:  # figures and report are being written into the temporary folder
+        assert _wait_for(lambda: any((p / "histories.nc").exists() for p in tmp_path.glob(".r.partial-*")), 60)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=60)
+    if moment == "writing" and proc.returncode == 0:  # pragma: no cover - finished before the signal arrived
+        assert out_dir.is_dir() and (out_dir / "report.html").exists()
+        return
+    assert proc.returncode == 130, err
+    assert err.strip() == "error: interrupted (Ctrl-C): nothing was written"
+    assert list(tmp_path.iterdir()) == []
