@@ -46,9 +46,18 @@ def test_planar_batch_path_equals_the_study_bit_for_bit():
     )]
     for sc, got in zip(cases, planar_scalars(cases)):
         want = study_scalars(sc)
+        assert want["sweep.valid"] is True
         assert set(got) == set(want)  # every Study key
         bad = {k: (got[k], want[k]) for k in want if not same(got[k], want[k])}
         assert not bad
+
+
+def test_a_case_the_study_refuses_is_marked_invalid_not_fatal():
+    """lambda = 1e-5: the model's scaled distance leaves the blast fits; that case only is invalid."""
+    cases = [BASE.with_values({"length": x, "critical_charge": False}) for x in (1e-5, 0.01)]
+    got = planar_scalars(cases)
+    assert got[0] == {"sweep.valid": False} and got[1]["sweep.valid"] is True
+    assert study_scalars(cases[0]) == {"sweep.valid": False}
 
 
 def sweep_store_values(path) -> dict:

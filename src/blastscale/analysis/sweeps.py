@@ -59,6 +59,7 @@ __all__ = [
     "run_sweep",
     "SweepRun",
     "PLANAR_KEYS",
+    "VALID_KEY",
     "field_unit",
 ]
 
@@ -71,6 +72,9 @@ PLANAR_KEYS = tuple(
                                           "overturn_time_diff_s", "tipping_angular_velocity_diff_rad_s",
                                           "peak_ratio", "outcomes_agree")]
 )
+
+#: Key of every case's result: False where the Study refused the case (its other values are NaN).
+VALID_KEY = "sweep.valid"
 
 _UNIT_SUFFIX = (("_kg_m3", "kg/m^3"), ("_m_s2", "m/s^2"), ("_rad_s", "rad/s"), ("_kg", "kg"), ("_m", "m"),
                 ("_s", "s"), ("_rad", "rad"), ("_deg", "deg"), ("_Pa_s", "Pa*s"), ("_Pa", "Pa"), ("_Ns", "N*s"))
@@ -279,15 +283,20 @@ def _planar_case(sc) -> bool:
 
 
 def study_scalars(scenario) -> dict:
-    """The Study path: ``Study(scenario).run().scalars()`` (warnings silenced: a sweep reports
-    results, not one warning per case)."""
+    """The Study path: ``Study(scenario).run().scalars()`` plus ``sweep.valid`` (warnings
+    silenced: a sweep reports results, not one warning per case). A case the Study refuses
+    (e.g. a model scaled distance outside the blast fits) gives ``{"sweep.valid": False}``:
+    its other values are NaN in the store."""
     import warnings
 
     from ..study import Study
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return Study(scenario).run().scalars()
+        try:
+            return {**Study(scenario).run().scalars(), VALID_KEY: True}
+        except BlastscaleInputError:
+            return {VALID_KEY: False}
 
 
 def _block_key(b) -> tuple:
@@ -307,8 +316,9 @@ def planar_scalars(scenarios) -> list[dict]:
     Returns
     -------
     list of dict
-        The Study's ``experiment.*``, ``design.*``, ``critical.*``, ``3d`` keys and
-        :data:`PLANAR_KEYS` (SI; NaN where not applicable).
+        The Study's ``experiment.*``, ``design.*``, ``critical.*``, ``3d`` keys,
+        :data:`PLANAR_KEYS` (SI; NaN where not applicable) and ``sweep.valid`` (True; a case
+        whose design the blast fits refuse gives only ``{"sweep.valid": False}``).
     """
     import warnings
 
@@ -335,8 +345,14 @@ def planar_scalars(scenarios) -> list[dict]:
             dkey = (_block_key(structure), bl.charge_kg, bl.standoff_m, sc.scale.length, sc.density_ratio,
                     sc.scale.gravity_ratio, sc.scale.law, bl.model, sim.gravity_m_s2, bl.extrapolate)
             if dkey not in designs:
-                designs[dkey] = st.design(structure)
+                try:
+                    designs[dkey] = st.design(structure)
+                except BlastscaleInputError as exc:  # e.g. the model's Z outside the blast fits
+                    designs[dkey] = exc
             d = designs[dkey]
+            if isinstance(d, BlastscaleInputError):
+                rows.append((sc, structure, None, {VALID_KEY: False}))
+                continue
             crit = None
             if sim.critical_charge:
                 ckey = (_block_key(structure), sim.gravity_m_s2, sim.restitution, bl.standoff_m, bl.pulse, bl.model,
@@ -349,12 +365,14 @@ def planar_scalars(scenarios) -> list[dict]:
             base = StudyResult(scenario=sc, structure=structure, model_structure=structure.scaled(d.scale, d.density_ratio),
                                design=d, critical=crit).scalars()
             base.pop("planar", None)
+            base[VALID_KEY] = True
             rows.append((sc, structure, d, base))
     # the kernel inputs, exactly as RockingSolver.simulate builds them in compare_rocking
-    n = len(rows)
     per = {"alpha": [], "e": [], "w0": [], "tau_end": [], "kind": [], "par": [], "tt": [], "tf": [], "tev": [], "p": []}
     times = []
-    for sc, structure, d, _ in rows:
+    ok_rows = [r for r in rows if r[2] is not None]
+    n = len(ok_rows)
+    for sc, structure, d, _ in ok_rows:
         sim = sc.simulation
         dur = float(sim.duration_s)
         t = np.linspace(0.0, dur, int(sim.samples))
@@ -382,7 +400,7 @@ def planar_scalars(scenarios) -> list[dict]:
     summ = np.empty((2 * n, K.N_SUMMARY))
     theta = [None] * (2 * n)
     wdot = [None] * (2 * n)
-    sizes = np.array([x.size for x in per["tev"]])
+    sizes = np.array([x.size for x in per["tev"]], dtype=np.int64)
     for m in np.unique(sizes):  # one compiled call per sampling size
         idx = np.flatnonzero(sizes == m)
         off = np.zeros(idx.size + 1, dtype=np.int64)
@@ -403,7 +421,12 @@ def planar_scalars(scenarios) -> list[dict]:
         for j, i in enumerate(idx):
             theta[i], wdot[i] = th[j], w[j]
     out = []
-    for c, (sc, structure, d, base) in enumerate(rows):
+    c = -1
+    for sc, structure, d, base in rows:
+        if d is None:
+            out.append(dict(base))
+            continue
+        c += 1
         f = d.factors
         ip, im = 2 * c, 2 * c + 1
         pp, pm = per["p"][ip], per["p"][im]
