@@ -30,6 +30,8 @@ class Figure:
 def _pulses(result):
     import matplotlib.pyplot as plt
 
+    from .html import format_charge
+
     d, sc = result.design, result.scenario
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.6), layout="constrained")
     for ax, bp, who, tu, tf, pu, pf in (
@@ -42,8 +44,8 @@ def _pulses(result):
         ax.plot(t * tf, np.asarray(p.pressure(t)) * pf, color="C0" if who == "prototype" else "C1")
         ax.set_xlabel(f"time after arrival [{tu}]")
         ax.set_ylabel(f"reflected overpressure [{pu}]")
-        ax.set_title(f"{who}: {bp.charge_kg:.4g} kg at {bp.standoff_m:.4g} m (Z = {bp.scaled_distance:.3g} "
-                     "m/kg$^{1/3}$)", fontsize=9)
+        ax.set_title(f"{who}: {format_charge(bp.charge_kg)} TNT at {bp.standoff_m:.4g} m (Z = "
+                     f"{bp.scaled_distance:.3g} m/kg$^{{1/3}}$)", fontsize=9)
         ax.grid(alpha=0.3)
     return fig
 
