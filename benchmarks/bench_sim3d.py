@@ -1,8 +1,15 @@
-"""Benchmark of the 3D single-block runs (MuJoCo) and the spurious-hop study of docs/sim3d.md.
+"""Benchmark of the 3D runs (MuJoCo): single block, 10-drum columns, the spurious-hop study and
+the full-length acceptance figures of issue 8 (docs/sim3d.md).
 
 Usage::
 
-    python benchmarks/bench_sim3d.py [--json] [--repeat N] [--hop-study] [--mode-study]
+    python benchmarks/bench_sim3d.py [--json] [--repeat N] [--hop-study] [--mode-study] [--acceptance]
+
+Columns (``speed.column_square`` / ``speed.column_circular``): the paper's 10-drum columns under
+250 kg at 10 m (Method A), 4 s at prototype scale and their lambda = 1/100 models (``model``,
+exactly scaled pulse, same number of steps), one thread. ``--acceptance`` re-measures the
+full-length figures: drift at rest over 10 s, exact scaling over 8 s, the 1/100 column and
+1/200 block specimens simulated at their own size, and the time-step halving.
 
 Speed: simulated seconds per wall second for the paper's block (2h = 10 m, alpha = 15 deg,
 50 kg TNT at 2 m, mu = 0.7, masi2021 fits) at prototype scale and at lambda = 1/200 (model
@@ -25,7 +32,9 @@ import numpy as np
 
 from blastscale.blast.parameters import blast_parameters
 from blastscale.blast.pulses import Triangular
-from blastscale.sim3d import Block3DSimulator, BoxShape, ContactSettings
+from blastscale.sim3d import Block3DSimulator, BoxShape, ContactSettings, MethodA, make_load, simulate_structure
+from blastscale.sim3d.contact import default_contact
+from blastscale.structures import MultiDrumColumn
 from blastscale.structures.block import RectangularBlock
 
 PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
@@ -58,6 +67,80 @@ def speed(repeat: int = 3, duration: float = 3.0) -> dict:
             "prototype_equivalent_s_per_wall_s": (T / (lt if name != "prototype" else 1.0)) / best,
             "steps_per_wall_s": steps / best,
         }
+    return out
+
+
+def column_speed(section: str, repeat: int = 1, duration: float = 4.0, lam: float = 0.01) -> dict:
+    """Best-of-``repeat`` wall time of the paper's 10-drum column under 250 kg at 10 m, prototype
+    and exactly scaled 1/``lam`` model (the model runs ``duration * sqrt(lam)``)."""
+    col = MultiDrumColumn(section)
+    lt = math.sqrt(lam)
+    proto_load = make_load("A", col, charge_kg=250.0, standoff_m=10.0)
+    model_col = col.scaled(lam)
+    model_load = MethodA(model_col, proto_load.pulse.scaled(lam, lt), proto_load.arrival_time * lt)
+    simulate_structure(col, proto_load, 0.01)  # imports and first compile outside the timing
+    out = {}
+    for name, (st, load, T) in {"prototype": (col, proto_load, duration),
+                                "model": (model_col, model_load, duration * lt)}.items():
+        best = math.inf
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            r = simulate_structure(st, load, T, record_every=20)
+            best = min(best, time.perf_counter() - t0)
+        dt = r.dataset.attrs["setting_timestep_s"]
+        out[name] = {"scale": 1.0 if name == "prototype" else lam, "simulated_s": T, "timestep_s": dt, "wall_s": best,
+                     "simulated_s_per_wall_s": T / best,
+                     "prototype_equivalent_s_per_wall_s": (T / (1.0 if name == "prototype" else lt)) / best,
+                     "steps_per_wall_s": T / dt / best}
+    return out
+
+
+def _top_x(resp, lam=1.0):
+    return resp.dataset["point_displacement"].sel(point="P-10", component="x").values / lam
+
+
+def acceptance() -> dict:
+    """The full-length figures of issue 8 (docs/sim3d.md)."""
+    out = {}
+    for section in ("square", "circular"):
+        r = simulate_structure(MultiDrumColumn(section), None, 10.0, record_every=100)
+        out[f"rest_10s_{section}_top_drift_mm"] = 1e3 * float(
+            np.abs(r.dataset["point_displacement"].sel(point="P-10").values).max())
+    col = MultiDrumColumn("square")
+    lam = 0.01
+    lt = math.sqrt(lam)
+    load = make_load("A", col, charge_kg=250.0, standoff_m=10.0)
+    proto = simulate_structure(col, load, 8.0, record_every=20)
+    model = simulate_structure(col.scaled(lam), MethodA(col.scaled(lam), load.pulse.scaled(lam, lt),
+                                                        load.arrival_time * lt), 8.0 * lt, record_every=20)
+    p, m = _top_x(proto), _top_x(model, lam)
+    out["exact_scaling_8s_max_diff_rel_peak"] = float(np.max(np.abs(m - p)) / np.max(np.abs(p)))
+    out["square_250kg_top_first_peak_m"] = float(np.max(p))
+    out["square_250kg_delivered_impulse_Ns"] = proto.summary()["delivered_impulse_Ns"]
+    from blastscale.similitude import design_model
+
+    d = design_model(250.0, 10.0, lam)
+    spec_col = col.scaled(lam)
+    spec = simulate_structure(spec_col, make_load("A", spec_col, charge_kg=d.model_charge_kg,
+                                                  standoff_m=d.model_standoff_m), 8.0 * lt, record_every=20)
+    s = _top_x(spec, lam)
+    out["column_specimen_1_100_first_peak_ratio"] = float(np.max(s) / np.max(p))
+    out["column_specimen_1_100_max_tilt_ratio"] = spec.summary()["max_tilt_rad"] / proto.summary()["max_tilt_rad"]
+    out["column_specimen_1_100_8s_max_diff_rel_peak"] = float(np.max(np.abs(s - p)) / np.max(np.abs(p)))
+    c = default_contact(col)
+    half = ContactSettings(friction=c.friction, time_constant=c.time_constant, friction_time_constant=None,
+                           timestep=c.timestep / 2)
+    ph = _top_x(simulate_structure(col, load, 1.0, contact=half, record_every=8))
+    out["timestep_halving_first_peak_change"] = float(np.max(ph) / np.max(p) - 1.0)
+    blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
+    pb = Block3DSimulator(default_contact(blk), record_every=10).run(
+        blk, blast_parameters(50.0, 2.0, model="masi2021").pulse(), 3.0)
+    sb = Block3DSimulator(None, record_every=10).run(
+        blk.scaled(1 / 200), blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(), 0.2121)
+    out["block_prototype_max_rotation_rad"] = pb.max_rotation
+    out["block_specimen_1_200_max_rotation_rad"] = sb.max_rotation
+    out["block_specimen_1_200_max_sliding_upscaled_m"] = sb.max_sliding * 200
+    out["block_prototype_max_sliding_m"] = pb.max_sliding
     return out
 
 
@@ -194,12 +277,17 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--hop-study", action="store_true", help="also run the spurious-hop study")
     ap.add_argument("--mode-study", action="store_true", help="also compare blast modes (auto vs force)")
+    ap.add_argument("--acceptance", action="store_true", help="also measure the full-length figures of issue 8")
     a = ap.parse_args()
     out = {"machine": platform.processor() or platform.machine(), "python": platform.python_version()}
     import mujoco
 
     out["mujoco"] = mujoco.__version__
     out["speed"] = speed(a.repeat)
+    for section in ("square", "circular"):
+        out["speed"][f"column_{section}"] = column_speed(section, max(1, a.repeat // 3))
+    if a.acceptance:
+        out["acceptance"] = acceptance()
     if a.hop_study:
         out["hop_study"] = hop_study()
     if a.mode_study:
@@ -208,11 +296,18 @@ def main() -> None:
         print(json.dumps(out, indent=2))
         return
     for k, v in out["speed"].items():
+        if k.startswith("column_"):
+            for kind, w in v.items():
+                print(f"{k} {kind:9s} dt = {w['timestep_s']:.3g} s: {w['simulated_s_per_wall_s']:8.2f} simulated s / wall s "
+                      f"({w['prototype_equivalent_s_per_wall_s']:.2f} prototype s / wall s)")
+            continue
         print(f"{k:12s} dt = {v['timestep_s']:.3g} s: {v['simulated_s_per_wall_s']:8.2f} simulated s / wall s "
               f"({v['prototype_equivalent_s_per_wall_s']:.2f} prototype s / wall s, {v['steps_per_wall_s']:.0f} steps/s)")
     for k, v in out.get("hop_study", {}).items():
         print(f"{k:60s} uplift {v['max_uplift_mm']:7.3f} mm  v_x peak {v['peak_velocity_x_m_s']:.4f} m/s  "
               f"rot {v['max_rotation_rad']:.1e} rad  sliding err {v['sliding_error_pct']:+.2f}%")
+    for k, v in out.get("acceptance", {}).items():
+        print(f"{k:48s} {v}")
     ms = out.get("mode_study")
     if ms:
         for case, rows in ms["after_pulse"].items():

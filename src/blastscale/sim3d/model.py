@@ -30,7 +30,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_positive
 from ..structures.base import BoxGeometry, PrismGeometry
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
-from .contact import ContactSettings
+from .contact import ContactSettings, mjcf_number
 
 __all__ = ["BoxShape", "PrismShape", "FrontFace", "BodySpec", "Scene", "build_scene", "block_scene", "structure_scene",
            "engine_shape"]
@@ -108,8 +108,8 @@ class BoxShape:
     def mjcf_geom(self, name: str) -> str:
         """The ``<geom>`` element. Collisions come from explicit pairs only (contype = conaffinity = 0)."""
         return (
-            f'<geom name="{name}" type="box" size="{float(self.half_width)!r} {float(self.half_depth)!r} {float(self.half_height)!r}" '
-            f'pos="0 0 {float(self.centre_z)!r}" density="{float(self.density)!r}" contype="0" conaffinity="0"/>'
+            f'<geom name="{name}" type="box" size="{mjcf_number(self.half_width)} {mjcf_number(self.half_depth)} {mjcf_number(self.half_height)}" '
+            f'pos="0 0 {mjcf_number(self.centre_z)}" density="{mjcf_number(self.density)}" contype="0" conaffinity="0"/>'
         )
 
 
@@ -128,7 +128,7 @@ class PrismShape:
 
     def mjcf_assets(self, name: str) -> str:
         """The ``<mesh>`` asset (vertices in the body frame; MuJoCo takes their convex hull)."""
-        v = " ".join(repr(float(x)) for x in self.geometry.vertices().ravel())
+        v = " ".join(mjcf_number(x) for x in self.geometry.vertices().ravel())
         return f'<mesh name="{name}_mesh" vertex="{v}"/>'
 
     def contact_geoms(self, name: str) -> list[str]:
@@ -137,7 +137,7 @@ class PrismShape:
 
     def mjcf_geom(self, name: str) -> str:
         """The mesh ``<geom>``; collisions from explicit pairs only."""
-        return (f'<geom name="{name}" type="mesh" mesh="{name}_mesh" density="{float(self.density)!r}" '
+        return (f'<geom name="{name}" type="mesh" mesh="{name}_mesh" density="{mjcf_number(self.density)}" '
                 'contype="0" conaffinity="0"/>')
 
 
@@ -170,8 +170,8 @@ class BodySpec:
         """The ``<inertial>`` element at the body origin (the centre of mass), or ""."""
         if self.mass is None:
             return ""
-        i = " ".join(repr(float(x)) for x in self.inertia)
-        return f'<inertial pos="0 0 0" mass="{float(self.mass)!r}" diaginertia="{i}"/>'
+        i = " ".join(mjcf_number(x) for x in self.inertia)
+        return f'<inertial pos="0 0 0" mass="{mjcf_number(self.mass)}" diaginertia="{i}"/>'
 
 
 @dataclass(frozen=True, eq=False)
@@ -243,7 +243,7 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
         px, py, pz = (float(v) for v in b.position)
         qw, qx, qy, qz = (float(v) for v in b.quaternion)
         worldbody.append(
-            f'<body name="{b.name}" pos="{float(px)!r} {float(py)!r} {float(pz)!r}" quat="{float(qw)!r} {float(qx)!r} {float(qy)!r} {float(qz)!r}">'
+            f'<body name="{b.name}" pos="{mjcf_number(px)} {mjcf_number(py)} {mjcf_number(pz)}" quat="{mjcf_number(qw)} {mjcf_number(qx)} {mjcf_number(qy)} {mjcf_number(qz)}">'
             f'<freejoint name="{b.name}_free"/>{b.mjcf_inertial()}{b.shape.mjcf_geom(f"{b.name}_geom")}</body>'
         )
 

@@ -54,15 +54,19 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .contact import (
+    BLOCK_REFERENCE,
     MAX_TIMESTEP_FRACTION,
+    REFERENCE_GRAVITY,
+    REFERENCE_LENGTH,
     SOFT_CONTACT_FACTOR,
+    STACK_REFERENCE,
     ContactSettings,
     default_contact,
     structure_length,
@@ -79,6 +83,7 @@ __all__ = [
     "SETTLE_TIME_CONSTANTS",
     "check_simulable",
     "pivot_friction_threshold",
+    "reference_factors",
     "simulate_block",
     "simulate_structure",
 ]
@@ -193,20 +198,58 @@ def _kick(m, d, wrench_impulses: np.ndarray) -> None:
     d.qvel[:] += dq[0]
 
 
+def reference_factors(structure, gravity: float) -> tuple:
+    """Length and time factors (a, b) from a structure's own units to the engine's reference units.
+
+    The engine always integrates the structure geometrically scaled to the reference height
+    ``REFERENCE_LENGTH`` (10 m) under ``REFERENCE_GRAVITY`` (9.81 m/s^2), same density:
+
+    .. math:: a = L_{ref} / L,\\qquad b = \\sqrt{a\\, g / g_{ref}},
+
+    lengths x a, times x b, velocities x a/b, angular velocities / b, forces x a^4/b^2, moments
+    x a^5/b^2. This is the exact similitude of rigid bodies under gravity, so the equations of
+    motion are unchanged; what it removes is MuJoCo's *absolute* thresholds (mjMINVAL on masses
+    and inertias, collision tolerances in metres), which otherwise make a 1/100 model and its
+    prototype differ by ~1e-8 of the response after the first contact transitions (growing to
+    ~1e-3 of the peak over 8 s), and crash for bodies of a few milligrams. A structure of 10 m
+    under 9.81 m/s^2 runs with a = b = 1 exactly.
+    """
+    L = structure_length(structure)
+    a = REFERENCE_LENGTH / L
+    return a, math.sqrt(a * gravity / REFERENCE_GRAVITY)
+
+
+def _to_reference(structure, a: float):
+    return structure if a == 1.0 else structure.scaled(a)
+
+
+def _reference_contact(contact: ContactSettings | None, structure, a: float, b: float) -> ContactSettings:
+    """The contact settings in reference units: the reference defaults themselves for
+    ``contact=None`` (so that a structure and its scaled model get bitwise the same), else the
+    explicit settings scaled by (a, b)."""
+    if contact is None:
+        return replace(BLOCK_REFERENCE if len(structure.bodies) == 1 else STACK_REFERENCE, friction=0.7)
+    return contact if (a == 1.0 and b == 1.0) else contact.scaled(a, b)
+
+
 def _integrate(scene: Scene, load, duration: float, *, record_every: int, blast_mode: str, settle: bool,
-               initial_velocity=None) -> dict:
-    """The one integration loop: settle, start at the load's first arrival, apply each step's
-    wrenches (force or kick), step, record. Returns the recorded states and counters."""
+               factors=(1.0, 1.0), initial_velocity=None) -> dict:
+    """The one integration loop, in reference units (:func:`reference_factors`): settle, start at
+    the load's first arrival, apply each step's wrenches (force or kick), step, record. The load
+    is evaluated in physical units; returns the recorded states in physical units."""
     import mujoco
 
+    a, b = factors
+    fF, fM = a**4 / b**2, a**5 / b**2
     m, d = scene.model, mujoco.MjData(scene.model)
     c = scene.contact
-    dt = c.timestep
+    dt = c.timestep  # reference
+    dtp = dt / b  # physical
     T = float(duration)
-    nsteps = max(1, int(math.ceil(T / dt - 1e-9)))
+    nsteps = max(1, int(math.ceil(T / dtp - 1e-9)))
     nb = len(scene.bodies)
     if settle:
-        for _ in range(int(math.ceil(SETTLE_TIME_CONSTANTS * c.time_constant / dt))):
+        for _ in range(int(math.ceil(SETTLE_TIME_CONSTANTS * c.time_constant / dt - 1e-9))):  # round-off safe
             mujoco.mj_step(m, d)
         d.qvel[:] = 0.0  # remove the (exp(-20)-small) residual transient exactly
     d.time = 0.0
@@ -230,15 +273,16 @@ def _integrate(scene: Scene, load, duration: float, *, record_every: int, blast_
     loading = False
     kicks = 0
     for n in range(nsteps):
-        t0 = t_start + n * dt
+        t0 = t_start + n * dtp
         if load is not None and t0 <= load.end_time:
-            W = load.step_wrenches(t0, t0 + dt, d.xipos[1:], d.xmat[1:].reshape(nb, 3, 3))
-            delivered += W[:, 0:3] * dt
-            delivered_abs += np.linalg.norm(W[:, 0:3], axis=1) * dt
-            xfrc[1:] = W
+            W = load.step_wrenches(t0, t0 + dtp, d.xipos[1:] / a, d.xmat[1:].reshape(nb, 3, 3))
+            delivered += W[:, 0:3] * dtp
+            delivered_abs += np.linalg.norm(W[:, 0:3], axis=1) * dtp
+            xfrc[1:, 0:3] = W[:, 0:3] * fF
+            xfrc[1:, 3:6] = W[:, 3:6] * fM
             loading = True
             if blast_mode == "kick" or (blast_mode == "auto" and np.any(W) and _any_contact_slides(m, d, c)):
-                _kick(m, d, W * dt)
+                _kick(m, d, xfrc[1:] * dt)
                 xfrc[1:] = 0.0
                 kicks += 1
         elif loading:
@@ -248,8 +292,14 @@ def _integrate(scene: Scene, load, duration: float, *, record_every: int, blast_
         if rec_mask[n + 1]:
             qpos[j], qvel[j], ncon[j] = d.qpos, d.qvel, d.ncon
             j += 1
-    return {"time": idx * dt, "qpos": qpos, "qvel": qvel, "ncon": ncon, "delivered": delivered, "delivered_abs": delivered_abs, "kicks": kicks,
-            "first_arrival": t_start, "duration": T}
+    qpos = qpos.reshape(nrec, nb, 7)
+    qvel = qvel.reshape(nrec, nb, 6)
+    qpos[:, :, 0:3] /= a
+    qvel[:, :, 0:3] *= b / a
+    qvel[:, :, 3:6] *= b
+    return {"time": idx * dtp, "qpos": qpos.reshape(nrec, -1), "qvel": qvel.reshape(nrec, -1), "ncon": ncon,
+            "delivered": delivered, "delivered_abs": delivered_abs, "kicks": kicks, "first_arrival": t_start,
+            "duration": T}
 
 
 def _check_common(duration, gravity, record_every, blast_mode):
@@ -318,8 +368,10 @@ def simulate_structure(
     if explicit:
         _warn_if_soft(contact, structure, load, g)
     mode = blast_mode or ("auto" if len(structure.bodies) == 1 else "force")
-    scene = structure_scene(structure, contact, g)
-    st = _integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle)
+    a, b = reference_factors(structure, g)
+    ref = _to_reference(structure, a)
+    scene = structure_scene(ref, _reference_contact(contact if explicit else None, structure, a, b), REFERENCE_GRAVITY)
+    st = _integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle, factors=(a, b))
     return response_from_states(structure, st, _settings(contact, g, T, mode, st, load, explicit))
 
 
@@ -422,8 +474,10 @@ class Block3DSimulator:
         load = None if pulse is None else MethodA(block, pulse)
         if explicit:
             _warn_if_soft(c, block, load, g)
-        scene = block_scene(block, c, g, rotation=th0, shape_type=self.shape_type)
-        shape = scene.bodies[0].shape
+        a, b = reference_factors(block, g)
+        scene = block_scene(_to_reference(block, a), _reference_contact(self.contact, block, a, b), REFERENCE_GRAVITY,
+                            rotation=th0, shape_type=self.shape_type)
+        shape = scene.bodies[0].shape  # reference units
         mu_star = pivot_friction_threshold(shape.half_width, shape.half_height)
         if pulse is not None and self.blast_mode == "auto" and 0.9 < c.friction / mu_star < 1.1:
             warnings.warn(
@@ -444,15 +498,15 @@ class Block3DSimulator:
             R = d.xmat[1].reshape(3, 3)
             pivot = R @ np.array([s * shape.half_width, 0.0, -shape.half_height]) + d.xpos[1]
             rel = d.xpos[1] - pivot
-            w = np.array([0.0, om0, 0.0])
-            d.qvel[0:3] = np.cross(w, rel) + v0
+            w = np.array([0.0, om0 / b, 0.0])
+            d.qvel[0:3] = np.cross(w, rel) + v0 * (a / b)
             d.qvel[3:6] = R.T @ w  # free-joint angular velocity is in the body frame
 
         st = _integrate(scene, load, T, record_every=self.record_every, blast_mode=self.blast_mode,
-                        settle=self.settle and th0 == 0.0, initial_velocity=initial)
+                        settle=self.settle and th0 == 0.0, factors=(a, b), initial_velocity=initial)
         settings = {**_settings(c, g, T, self.blast_mode, st, load, explicit), "pivot_friction_threshold": mu_star}
         resp = response_from_states(block, st, settings)
-        return block_result(resp, shape, st, settings)
+        return block_result(resp, self.shape_type.from_block(block), st, settings)
 
 
 def pivot_friction_threshold(half_width: float, half_height: float) -> float:
