@@ -175,3 +175,65 @@ def fragility_cmd(
                       f"{f.median_ci_kg[1]:.6g}), beta {f.beta:.4g} (95 %: {f.beta_ci[0]:.4g} - {f.beta_ci[1]:.4g})")
     if plot:
         console.print(f"plot written to {plot}")
+
+
+@app.command("similarity-map")
+def similarity_map_cmd(
+    scenario: Optional[Path] = SCENARIO_ARG,
+    scales: str = typer.Option("0.005,0.01,0.05,0.1,0.5", "--scales", help="lambda values \\[-]: a,b,c or start:stop:n[:log]."),
+    density_ratios: str = typer.Option("0.1,0.3,1,3", "--density-ratios", help="gamma values \\[-]."),
+    charges: str = typer.Option("50,100", "--charges", help="Prototype charges W \\[kg TNT]."),
+    standoffs: str = typer.Option("2,4", "--standoffs", help="Prototype stand-offs R \\[m]."),
+    tolerance: float = typer.Option(5e-4, "--tolerance", help="Angle error \\[rad] below which an agreeing model is trustworthy."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Zarr store of the underlying sweep (resumable)."),
+    scheduler: Optional[str] = SCHEDULER,
+    workers: Optional[int] = typer.Option(0, "--workers", help="Local worker processes (default 0: in this process)."),
+    chunk: Optional[int] = CHUNK,
+    plot: Optional[str] = typer.Option(None, "--plot", help="Write the map (one panel per charge and stand-off)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
+) -> None:
+    """Where in (lambda, gamma, charge, stand-off) the up-scaled model is trustworthy: its angle
+    error against the prototype (planar rocking) and whether the outcomes agree (docs/sweeps.md)."""
+    import numpy as np
+
+    from ..analysis.grids import parse_grid
+    from ..analysis.similarity_map import similarity_map
+    from .options import check_plot_path
+
+    check_plot_path(plot)
+    base = _scenario(scenario)
+    grids = [parse_grid(t, n) for t, n in ((scales, "scales"), (density_ratios, "density-ratios"),
+                                          (charges, "charges"), (standoffs, "standoffs"))]
+    with one_line_warnings():
+        ds = similarity_map(base, *grids, tolerance=tolerance, store=out, workers=workers, scheduler=scheduler,
+                            chunk=chunk)
+    res = {
+        "dims": {k: ds[k].values.tolist() for k in ("length", "density_ratio", "charge_kg", "standoff_m")},
+        "tolerance_rad": tolerance,
+        "n_cases": int(ds["valid"].size),
+        "n_valid": int(ds["valid"].sum()),
+        "n_outcomes_agree": int((ds["outcomes_agree"].where(ds["valid"].astype(bool), False).astype(bool)).sum()),
+        "n_trustworthy": int(ds["trustworthy"].sum()),
+    }
+    for name in ("angle_error_rad", "peak_ratio_error", "outcomes_agree", "trustworthy", "valid", "model_to_p",
+                 "model_charge_kg"):
+        v = ds[name].values
+        res[name] = np.where(np.isfinite(v.astype(float)), v, np.nan).tolist() if v.dtype.kind == "f" else v.tolist()
+    if plot:
+        from ..plots.similarity_map import plot_similarity_map
+        from ._app import save_figure
+
+        save_figure(lambda: plot_similarity_map(ds), plot)
+        res["plot"] = plot
+    if as_json:
+        print_json(res)
+        return
+    console.print(table("Similarity map (planar rocking, up-scaled model vs prototype)", [
+        ("cases", str(res["n_cases"]), ""),
+        ("valid designs (model Z inside the blast fits)", str(res["n_valid"]), ""),
+        ("outcomes agree", str(res["n_outcomes_agree"]), ""),
+        (f"trustworthy (agree, angle error <= {tolerance:g} rad)", str(res["n_trustworthy"]), ""),
+        ("largest angle error where valid", f"{float(np.nanmax(ds['angle_error_rad'].values)):.3g}", "rad"),
+    ]))
+    if plot:
+        console.print(f"plot written to {plot}")

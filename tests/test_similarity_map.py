@@ -1,0 +1,47 @@
+"""Similarity map: identity at lambda = gamma = 1, exactness of the impulsive limit, invalid
+designs marked, CLI and plot."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+pytest.importorskip("zarr")
+
+from blastscale.analysis.similarity_map import similarity_map  # noqa: E402
+from blastscale.cli import main  # noqa: E402
+from blastscale.io.scenario import Scenario  # noqa: E402
+
+BASE = Scenario.default().with_values({"duration_s": 2.0, "samples": 401})
+
+
+def test_identity_and_impulsive_exactness():
+    ds = similarity_map(BASE, [1e-5, 0.01, 1.0], [0.3, 1.0], [50.0], [2.0]).squeeze()
+    # lambda = gamma = 1: the model is the prototype, up to the round-off of the design's root for
+    # lambda_Z (observed 4e-16 rad)
+    assert float(ds["angle_error_rad"].sel(length=1.0, density_ratio=1.0)) < 1e-12
+    assert bool(ds["trustworthy"].sel(length=1.0, density_ratio=1.0))
+    # lambda = 1e-5: the model's Z leaves the fits (no design): marked, not fatal
+    assert not ds["valid"].sel(length=1e-5).any() and not ds["trustworthy"].sel(length=1e-5).any()
+    # a Friedlander pulse at lambda = 0.01: ~1e-4 rad (the finite-pulse effect, docs/rocking.md)
+    e = float(ds["angle_error_rad"].sel(length=0.01, density_ratio=1.0))
+    assert 1e-6 < e < 5e-4
+    imp = similarity_map(BASE.with_values({"pulse": "impulsive"}), [0.01, 0.1], [0.3, 1.0], [50.0], [2.0]).squeeze()
+    # the impulsive limit is an exact similarity transform: round-off only (target 1e-10 rad)
+    assert float(imp["angle_error_rad"].max()) < 1e-10 and bool(imp["trustworthy"].all())
+
+
+def test_similarity_map_cli(tmp_path, capsys):
+    png = tmp_path / "map.png"
+    toml = tmp_path / "s.toml"
+    toml.write_text(BASE.to_toml())
+    with pytest.raises(SystemExit) as e:
+        main(["similarity-map", str(toml), "--scales", "0.01,0.1", "--density-ratios", "0.5,1", "--charges", "50",
+              "--standoffs", "2,3", "--plot", str(png), "--json"])
+    assert e.value.code in (0, None)
+    out = json.loads(capsys.readouterr().out)
+    assert out["n_cases"] == 8 and out["n_valid"] == 8 and out["n_outcomes_agree"] == 8
+    assert np.asarray(out["angle_error_rad"]).shape == (2, 2, 1, 2)
+    assert png.stat().st_size > 10_000
