@@ -58,7 +58,10 @@ def test_method_a_delivers_reflected_impulse_times_projected_front_area(col):
 def test_exact_scaling_model_upscaled_equals_prototype():
     # the exactly similar pulse (gamma = varsigma = 1): pressure x lambda, times x sqrt(lambda),
     # impulse x lambda^1.5; contact=None scales the contact with the structure's height
-    lam, T = 0.01, 0.8  # issue: 8 s, 1e-4 of the peak (measured: docs/sim3d.md); first peak here
+    # issue: 1e-4 of the peak over 8 s; measured 5e-10 over 8 s (docs/sim3d.md), 2e-14 over the
+    # first peak here: the engine runs both in the same reference units (reference_factors), so
+    # only round-off of the scaled inputs remains; 1e-8 leaves room for its growth
+    lam, T = 0.01, 0.8
     lt = math.sqrt(lam)
     pulse = blast_parameters(250.0, 10.0).pulse("friedlander")
     proto = simulate_structure(SQUARE, MethodA(SQUARE, pulse, 0.0069), T, record_every=20)
@@ -66,9 +69,9 @@ def test_exact_scaling_model_upscaled_equals_prototype():
                                T * lt, record_every=20)
     p, m = _top_x(proto), _top_x(model, lam)
     assert np.allclose(model.time / lt, proto.time, rtol=1e-12)
-    assert np.max(np.abs(m - p)) <= 1e-4 * np.max(np.abs(p))
+    assert np.max(np.abs(m - p)) <= 1e-8 * np.max(np.abs(p))
     tilt_p, tilt_m = proto.dataset["tilt"].values, model.dataset["tilt"].values
-    assert np.max(np.abs(tilt_m - tilt_p)) <= 1e-4 * np.max(tilt_p)
+    assert np.max(np.abs(tilt_m - tilt_p)) <= 1e-8 * np.max(tilt_p)
 
 
 def test_block_specimen_at_its_own_size_reproduces_the_prototype():
