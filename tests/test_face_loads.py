@@ -70,8 +70,8 @@ def test_no_net_sideways_impulse_on_a_symmetric_column(method, structure):
 @pytest.mark.parametrize("incidence", INCIDENCE_MODELS)
 @pytest.mark.parametrize("structure", [SQUARE, CIRCULAR], ids=["square", "circular"])
 def test_rear_faces_reduce_the_push_c_below_b_below_a(incidence, structure):
-    push = {m: make_load(m, structure, charge_kg=250.0, standoff_m=10.0, incidence=incidence).delivered_impulse()[:, 0].sum()
-            for m in "ABC"}
+    push = {m: make_load(m, structure, charge_kg=250.0, standoff_m=10.0,
+                         incidence=incidence).delivered_impulse()[:, 0].sum() for m in "ABC"}
     assert push["C"] < push["B"] < push["A"]
 
 

@@ -232,7 +232,8 @@ def arrival_spread_similarity(structure, design, load: str = "A", *, pulse: str 
     kw = dict(blast_model=p.model, pulse=pulse, incidence=incidence)
     lp = make_load(load, structure, charge_kg=p.charge_kg, standoff_m=p.standoff_m, **kw)
     lm = make_load(load, structure.scaled(f.length, f.density), charge_kg=m.charge_kg, standoff_m=m.standoff_m, **kw)
-    return {"arrival_spread_prototype_s": arrival_spread(lp), "arrival_spread_model_upscaled_s": arrival_spread(lm) / f.time}
+    return {"arrival_spread_prototype_s": arrival_spread(lp),
+            "arrival_spread_model_upscaled_s": arrival_spread(lm) / f.time}
 
 
 def _charge_position(structure, standoff_m) -> np.ndarray:
@@ -244,18 +245,18 @@ def method_b(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash",
              incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
     """Method B: each body's front (``load_face``) with its own distance, arrival, duration and incidence."""
     faces = [(i, b.load_face) for i, b in enumerate(structure.bodies)]
-    return FaceLoadStrategy(structure, faces, charge_kg=charge_kg, charge_position=_charge_position(structure, standoff_m),
-                            blast_model=blast_model, pulse=pulse, incidence=incidence, extrapolate=extrapolate,
-                            method="B")
+    return FaceLoadStrategy(structure, faces, charge_kg=charge_kg,
+                            charge_position=_charge_position(structure, standoff_m), blast_model=blast_model,
+                            pulse=pulse, incidence=incidence, extrapolate=extrapolate, method="B")
 
 
 def method_c(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash", pulse="friedlander",
              incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
     """Method C: every exposed face (``in_contact`` False) of every body, each with its own blast."""
     faces = [(i, f) for i, b in enumerate(structure.bodies) for f in b.faces if not f.in_contact]
-    return FaceLoadStrategy(structure, faces, charge_kg=charge_kg, charge_position=_charge_position(structure, standoff_m),
-                            blast_model=blast_model, pulse=pulse, incidence=incidence, extrapolate=extrapolate,
-                            method="C")
+    return FaceLoadStrategy(structure, faces, charge_kg=charge_kg,
+                            charge_position=_charge_position(structure, standoff_m), blast_model=blast_model,
+                            pulse=pulse, incidence=incidence, extrapolate=extrapolate, method="C")
 
 
 register_load_method("B", method_b)
