@@ -141,5 +141,5 @@ def test_ctrl_c_exits_130_one_line_no_partial_folder(tmp_path, moment):
         assert out_dir.is_dir() and (out_dir / "report.html").exists()
         return
     assert proc.returncode == 130, err
-    assert err.strip() == "error: interrupted (Ctrl-C): nothing was written"
+    assert err.strip() == "error: interrupted (Ctrl-C): no partial results left"
     assert list(tmp_path.iterdir()) == []

@@ -9,7 +9,7 @@ import sys
 
 def _interrupted_while_starting(signum, frame):  # pragma: no cover - timing dependent
     """Ctrl-C while the command line tool is still importing: one line, exit 130, nothing written."""
-    os.write(2, b"error: interrupted (Ctrl-C): nothing was written\n")
+    os.write(2, b"error: interrupted (Ctrl-C): no partial results left\n")
     os._exit(130)
 
 
@@ -100,7 +100,7 @@ class OneLineErrorGroup(TyperGroup):
             rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
         except BaseException as exc:
             if isinstance(exc, Interrupted) or (_INTERRUPTED and not isinstance(exc, SystemExit)):
-                print_error("interrupted (Ctrl-C): nothing was written")
+                print_error("interrupted (Ctrl-C): no partial results left")
                 sys.exit(130)
             if isinstance(exc, BlastscaleInputError):
                 print_error(_adapt_hint(str(exc), self, args))

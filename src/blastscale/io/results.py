@@ -139,7 +139,7 @@ def provenance() -> dict:
             "timestamp": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")}
 
 
-def check_output_folder(out: "str | Path", force: bool = False) -> Path:
+def check_output_folder(out: "str | Path", force: bool = False, markers: tuple = (MARKER,)) -> Path:
     """Check, before any work, that ``out`` can become a result folder; returns it absolute.
 
     Refused (one line): an existing file; an existing folder without ``force``; with ``force``
@@ -156,10 +156,10 @@ def check_output_folder(out: "str | Path", force: bool = False) -> Path:
         cwd = Path.cwd().resolve()
         if a == cwd or a in cwd.parents:
             raise BlastscaleInputError(f"out = {str(out)!r} holds the current folder: refused even with --force")
-        if any(a.iterdir()) and not (a / MARKER).is_file():
+        if any(a.iterdir()) and not any((a / m).is_file() for m in markers):
             raise BlastscaleInputError(
-                f"out = {str(out)!r} is not a blastscale result folder (no {MARKER}): --force replaces only those "
-                "or empty folders")
+                f"out = {str(out)!r} is not a blastscale result folder (no {' or '.join(markers)}): --force "
+                "replaces only those or empty folders")
     return a
 
 
@@ -177,15 +177,16 @@ def _sigint_blocked() -> Iterator[None]:
 
 
 @contextlib.contextmanager
-def output_folder(out: "str | Path", force: bool = False, before_commit=None, after_commit=None) -> Iterator[Path]:
+def output_folder(out: "str | Path", force: bool = False, before_commit=None, after_commit=None,
+                  markers: tuple = (MARKER,)) -> Iterator[Path]:
     """A temporary sibling folder of ``out`` to write into, renamed to ``out`` on success.
 
     On any exception (Ctrl-C included) the temporary folder is removed and the exception
     propagates; an existing ``out`` is replaced only with ``force`` (:func:`check_output_folder`),
-    after the new folder is complete. ``before_commit()`` (may raise to abandon the folder) and
+    after the new folder is complete (``markers``: the files that make a folder replaceable). ``before_commit()`` (may raise to abandon the folder) and
     ``after_commit()`` run with SIGINT held back, just before and just after the rename.
     """
-    dest = check_output_folder(out, force)
+    dest = check_output_folder(out, force, markers)
     try:
         dest.parent.mkdir(parents=True, exist_ok=True)
         tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.partial-", dir=dest.parent))

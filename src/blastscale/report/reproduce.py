@@ -1,0 +1,333 @@
+"""``blastscale reproduce``: every table and figure of the paper blastscale can make, paper beside ours.
+
+Each :class:`Item` computes its numbers with the library, writes its files into its own folder
+and returns :class:`Row`s (quantity, the paper's printed value, blastscale's, unit, the slip of
+docs/paper_slips.md that explains a difference). Items are:
+
+* the paper's tables and numbers computed directly (geometry, blast loading, scaling factors,
+  critical charge),
+* every paper scenario of ``examples/scenarios/`` run through :class:`~blastscale.study.Study`
+  (its own result folder and report),
+* every script of the ``examples/`` gallery (its figures), where the source tree is present.
+
+Each item is written through a temporary folder renamed into place with an ``item.json``
+marker: a second run skips the items already done (resumable after Ctrl-C), and
+:func:`render_reproduce_report` puts every item's rows in one self-contained page.
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import math
+import os
+import subprocess
+import sys
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Callable, Optional
+
+__all__ = ["Row", "Item", "items", "run_item", "item_done", "render_reproduce_report", "MARKER"]
+
+#: Marker written last into an item's folder: the item is complete.
+MARKER = "item.json"
+
+_ROOT = Path(__file__).resolve().parents[3]  # the source tree (src/blastscale/report -> repository root)
+EXAMPLES = _ROOT / "examples"
+SCENARIOS = EXAMPLES / "scenarios"
+
+
+@dataclass(frozen=True)
+class Row:
+    """One number of the paper beside blastscale's.
+
+    Attributes
+    ----------
+    quantity : str
+    paper : str
+        As printed (text, with its printed unit), or "" when the paper gives no number.
+    ours : float or str
+    unit : str
+        Unit of ``ours``.
+    slip : int or None
+        Row of docs/paper_slips.md explaining a difference.
+    """
+
+    quantity: str
+    paper: str
+    ours: object
+    unit: str = ""
+    slip: Optional[int] = None
+
+
+@dataclass(frozen=True)
+class Item:
+    """One reproducible table, figure or case: ``compute(folder, quick) -> list[Row]``."""
+
+    name: str
+    title: str
+    paper_ref: str
+    compute: Callable[[Path, bool], list]
+    notes: str = ""
+    kind: str = "number"
+    extra: dict = field(default_factory=dict)
+
+
+# -- numbers computed directly ---------------------------------------------------------------
+_CHARGES = {"a": 50.0, "b": 100.0, "c": 79.8}
+_PAPER_TABLE = {  # paper Table "Blast loading characteristics": (Z_p, W_m1 "mg", Z_m1, W_m2 "ug", Z_m2)
+    "a": ("0.54", "1.0 mg", "0.99", "0.233 ug", "1.62"),
+    "b": ("0.43", "2.06 mg", "0.78", "0.492 ug", "1.26"),
+    "c": ("0.46", "1.635 mg", "0.85", "0.386 ug", "1.37"),
+}
+
+
+def _geometry(folder: Path, quick: bool) -> list:
+    from ..similitude import design_model
+    from ..structures import RectangularBlock
+
+    block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
+    rows = [Row("prototype width 2b", "2.68 m", block.width, "m")]
+    for lam, tag, paper in ((1 / 20, "model 1", ("50", "13.40", "10")), (1 / 200, "model 2", ("5", "1.34", "1"))):
+        d = design_model(50.0, 2.0, lam, 1.0, model="masi2021", geometry=block)
+        mb = d.model_block
+        rows += [Row(f"{tag} height", f"{paper[0]} cm", mb.height * 100, "cm"),
+                 Row(f"{tag} width", f"{paper[1]} cm", mb.width * 100, "cm"),
+                 Row(f"{tag} stand-off", f"{paper[2]} cm", d.model_standoff_m * 100, "cm")]
+    return rows
+
+
+def _blast_loading(folder: Path, quick: bool) -> list:
+    from ..similitude import design_model
+
+    rows = []
+    for case, W in _CHARGES.items():
+        zp, w1, z1, w2, z2 = _PAPER_TABLE[case]
+        d1 = design_model(W, 2.0, 1 / 20, 1.0, model="masi2021")
+        d2 = design_model(W, 2.0, 1 / 200, 1.0, model="masi2021")
+        rows += [
+            Row(f"({case}) W_p = {W:g} kg: Z_p", zp, d1.prototype.scaled_distance, "m/kg^(1/3)"),
+            Row(f"({case}) model 1 (1/20) charge", w1, d1.model_charge_kg * 1e3, "g", 4),
+            Row(f"({case}) model 1 Z", z1, d1.model.scaled_distance, "m/kg^(1/3)"),
+            Row(f"({case}) model 2 (1/200) charge", w2, d2.model_charge_kg * 1e6, "mg", 4),
+            Row(f"({case}) model 2 Z", z2, d2.model.scaled_distance, "m/kg^(1/3)"),
+        ]
+    ns = design_model(2500.0, 3.0, 1 / 200, 1.0, model="masi2021")
+    rows.append(Row("non-slender 2500 kg at 3 m: model charge (1/200)", "14.26 mg", ns.model_charge_kg * 1e6, "mg"))
+    return rows
+
+
+def _scaling_factors(folder: Path, quick: bool) -> list:
+    from ..similitude import design_model
+
+    d = design_model(50.0, 2.0, 1 / 200, 1.0, model="masi2021")
+    d05 = design_model(50.0, 2.0, 1 / 200, 0.05, model="masi2021")
+    return [
+        Row("Fig. 5: pressure ratio, lambda = 1/200, gamma = 1", "5.8 %", d.pressure_ratio * 100, "%"),
+        Row("Fig. 5: impulse ratio, general law", "0.3 %", d.impulse_ratio * 100, "%", 5),
+        Row("Fig. 5: impulse ratio, Hopkinson-Cranz (= lambda)", "5 %", 100 / 200, "%", 5),
+        Row("Fig. 8: pressure ratio, lambda = 1/200, gamma = 0.05", "0.18 %", d05.pressure_ratio * 100, "%"),
+        Row("lambda_Z at lambda = 1/200 (Fig. 5b)", "", d.scaled_distance_factor, "-"),
+    ]
+
+
+def _critical(folder: Path, quick: bool) -> list:
+    from ..rocking import RockingSystem, critical_charge
+    from ..structures import RectangularBlock
+
+    block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
+    c = critical_charge(RockingSystem.from_block(block), 2.0, model="masi2021")
+    return [Row("critical charge at 2 m (case c)", "79.8 kg", c.charge_kg, "kg")]
+
+
+# -- scenarios --------------------------------------------------------------------------------
+_SCENARIO_PAPER = {  # scenario file stem -> rows of (quantity, paper as printed, summary path, unit, slip)
+    "paper_block_50kg_lambda20": [("model charge", "1.0 mg", "design.model_charge_kg", "g", 4)],
+    "paper_block_50kg_lambda200": [("model charge", "0.233 ug", "design.model_charge_kg", "mg", 4),
+                                   ("prototype first impact (planar)", "1.3 ms",
+                                    "planar.prototype.first_impact_time_s", "s", 10)],
+    "paper_block_100kg_lambda20": [("model charge", "2.06 mg", "design.model_charge_kg", "g", 4)],
+    "paper_block_100kg_lambda200": [("model charge", "0.492 ug", "design.model_charge_kg", "mg", 4),
+                                    ("prototype overturns (planar)", "yes", "planar.prototype.overturned", "", None)],
+    "paper_block_50kg_lambda200_balsa": [("density ratio gamma", "0.07", "experiment.density_ratio", "-", None)],
+    "paper_block_non_slender_2500kg": [("model charge", "14.26 mg", "design.model_charge_kg", "mg", None),
+                                       ("sliding of the front face", "approximately 1 m",
+                                        "3d.prototype.points.P-1.max_displacement_m", "m", 12)],
+}
+_UNIT_FACTOR = {"g": 1e3, "mg": 1e6}
+
+
+def _dig(d: dict, path: str):
+    for part in path.split("."):
+        if not isinstance(d, dict) or part not in d:
+            return None
+        d = d[part]
+    return d
+
+
+def _scenario_item(path: Path) -> Item:
+    def compute(folder: Path, quick: bool) -> list:
+        from ..io import load_scenario
+        from ..study import Study
+        from . import write_study
+
+        sc = load_scenario(path)
+        if quick:
+            sc = sc.with_values({"duration_s": min(sc.simulation.duration_s, 0.2), "critical_charge": False})
+        result = Study(sc).run()
+        write_study(result, folder)
+        s = result.summary()
+        rows = []
+        for q, paper, key, unit, slip in _SCENARIO_PAPER.get(path.stem, []):
+            v = _dig(s, key)
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and unit in _UNIT_FACTOR:
+                v = v * _UNIT_FACTOR[unit]
+            rows.append(Row(q, paper, v, unit, slip))
+        if result.planar is not None:
+            sim = s["planar"]["similarity"]
+            rows.append(Row("planar: outcomes agree (prototype vs up-scaled model)", "yes (curves coincide)",
+                            sim["outcomes_agree"], ""))
+            rows.append(Row("planar: max |angle difference| up to tipping", "negligible",
+                            sim["max_abs_angle_diff_to_tipping_rad"], "rad"))
+        if result.response3d is not None:
+            sim = s["3d"]["similarity"]
+            for k in ("outcomes_agree", "top_first_peak_ratio", "max_abs_top_displacement_diff_rel_peak"):
+                if k in sim:
+                    rows.append(Row(f"3D: {k.replace('_', ' ')}", "prototype and model coincide", sim[k], ""))
+        return rows
+
+    import tomllib
+
+    try:
+        title = tomllib.loads(path.read_text()).get("title") or path.name
+    except (OSError, tomllib.TOMLDecodeError):
+        title = path.name
+    return Item(f"scenario-{path.stem.replace('_', '-')}", f"Scenario: {title}", f"examples/scenarios/{path.name}",
+                compute, kind="scenario")
+
+
+# -- gallery scripts ---------------------------------------------------------------------------
+def _script_item(path: Path) -> Item:
+    def compute(folder: Path, quick: bool) -> list:
+        cmd = [sys.executable, str(path), str(folder)] + (["--quick"] if quick and "--quick" in path.read_text()
+                                                             else [])
+        env = {**os.environ, "MPLBACKEND": "Agg"}
+        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=path.parent, env=env)
+        (folder / "stdout.txt").write_text(proc.stdout)
+        if proc.returncode != 0:
+            tail = " ".join((proc.stderr or proc.stdout).strip().splitlines()[-1:])
+            raise RuntimeError(f"{path.name} failed (exit {proc.returncode}): {tail}")
+        figs = sorted(p.name for p in folder.glob("*.png"))
+        return [Row("figures written", "", ", ".join(figs) or "none", "")]
+
+    doc = path.read_text().split('"""')[1].strip().splitlines()[0] if '"""' in path.read_text() else path.stem
+    return Item(f"example-{path.stem.replace('_', '-')}", doc, f"examples/{path.name}", compute, kind="figures")
+
+
+def items() -> list[Item]:
+    """Every reproducible item, in the paper's order (numbers first, scenarios, then the gallery)."""
+    out = [
+        Item("table-geometry", "Table \"Geometry parameters\" (prototype and models 1, 2)", "Sec. Equations of motion",
+             _geometry),
+        Item("table-blast-loading", "Table \"Blast loading characteristics\"", "Sec. Equations of motion",
+             _blast_loading),
+        Item("scaling-factors", "Figures 5 and 8, the numbers quoted in the text", "Secs. 5.1, 5.2", _scaling_factors),
+        Item("critical-charge", "Critical charge of the slender block at 2 m (case c)", "Sec. Equations of motion",
+             _critical),
+    ]
+    if SCENARIOS.is_dir():
+        out += [_scenario_item(p) for p in sorted(SCENARIOS.glob("*.toml"))]
+    if EXAMPLES.is_dir():
+        out += [_script_item(p) for p in sorted(EXAMPLES.glob("*.py")) if not p.name.startswith("_")]
+    return out
+
+
+def item_done(folder: Path, quick: bool) -> bool:
+    """The item's folder is complete (its marker exists) and was made in the same mode."""
+    marker = folder / MARKER
+    if not marker.is_file():
+        return False
+    try:
+        return bool(json.loads(marker.read_text()).get("quick")) == bool(quick)
+    except (OSError, ValueError):
+        return False
+
+
+def run_item(item: Item, out: Path, quick: bool, output_folder) -> dict:
+    """Compute ``item`` into ``out/<name>`` through ``output_folder`` (atomic, replaces an item
+    made in the other mode); returns the marker's content."""
+    import time
+
+    from ..io.results import jsonable
+
+    dest = out / item.name
+    with output_folder(dest, force=dest.exists(), markers=(MARKER,)) as tmp:
+        t0 = time.perf_counter()
+        rows = item.compute(Path(tmp), quick)
+        info = {"name": item.name, "title": item.title, "paper_ref": item.paper_ref, "kind": item.kind,
+                "quick": bool(quick), "wall_time_s": time.perf_counter() - t0,
+                "rows": [asdict(r) for r in rows]}
+        (Path(tmp) / MARKER).write_text(json.dumps(jsonable(info), indent=2))
+    return info
+
+
+def _slip_link(slip) -> str:
+    return f'<a href="#slip-{int(slip)}">#{int(slip)}</a>' if slip else ""
+
+
+def _cell(v) -> str:
+    from .html import format_value
+
+    if isinstance(v, float):
+        return format_value(v, ".4g")
+    return format_value(v)
+
+
+def render_reproduce_report(out: Path, infos: list[dict], meta: dict) -> str:
+    """One self-contained page: per item, the paper's values beside blastscale's, the slips, the figures."""
+    import html as _html
+
+    from .html import _CSS
+    from .slips import SLIPS
+
+    e = lambda x: _html.escape(str(x), quote=True)  # noqa: E731
+    slip_text = {s.number: f"#{s.number} {s.where}: {s.text}" for s in SLIPS}
+    parts, used = [], set()
+    toc = []
+    for info in infos:
+        rows = info.get("rows", [])
+        body = []
+        for r in rows:
+            slip = r.get("slip")
+            if slip:
+                used.add(slip)
+            body.append(f"<tr><td>{e(r['quantity'])}</td><td>{e(r['paper'] or '-')}</td>"
+                        f"<td class=\"n\">{e(_cell(r['ours']))}</td><td>{e(r['unit'])}</td>"
+                        f"<td>{_slip_link(slip)}</td></tr>")
+        table = ("<table><thead><tr><th>quantity</th><th>paper (as printed)</th><th>blastscale</th><th>unit</th>"
+                 f"<th>slip</th></tr></thead><tbody>{''.join(body)}</tbody></table>") if body else ""
+        folder = out / info["name"]
+        figs = []
+        if info.get("kind") == "figures":
+            for png in sorted(folder.glob("*.png")):
+                data = base64.b64encode(png.read_bytes()).decode("ascii")
+                figs.append(f"<figure><img alt=\"{e(png.name)}\" src=\"data:image/png;base64,{data}\">"
+                            f"<figcaption>{e(png.name)}</figcaption></figure>")
+        link = (f"<p><a href=\"{e(info['name'])}/report.html\">the full report of this scenario</a></p>"
+                if (folder / "report.html").exists() else "")
+        mode = " (quick run: shortened durations)" if info.get("quick") else ""
+        toc.append(f"<li><a href=\"#{e(info['name'])}\">{e(info['title'])}</a></li>")
+        parts.append(f"<section id=\"{e(info['name'])}\"><h2>{e(info['title'])}</h2><p class=\"muted\">"
+                     f"{e(info.get('paper_ref', ''))}; {info.get('wall_time_s', 0):.1f} s{e(mode)}</p>"
+                     f"{table}{link}{''.join(figs)}</section>")
+    slips = "".join(f"<li id=\"slip-{n}\">{e(slip_text[n])}</li>" for n in sorted(used))
+    v = meta.get("versions", {})
+    return ("<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>blastscale reproduce</title>"
+            f"<style>{_CSS}</style></head><body><header><h1>The paper, reproduced by blastscale</h1>"
+            "<p class=\"muted\">Masi, Stefanou &amp; Maffi-Berthier, <i>Scaling laws for the rigid-body response of "
+            "masonry structures under blast loads</i>. Each item puts the paper's printed value beside "
+            "blastscale's; a slip number marks a known error of the printed paper (docs/paper_slips.md). "
+            f"blastscale {e(v.get('blastscale', ''))}, git {e(meta.get('git_commit') or '-')}, "
+            f"{e(meta.get('timestamp', ''))}.</p></header><nav><ol>{''.join(toc)}</ol></nav>"
+            f"<main>{''.join(parts)}<section id=\"slips\"><h2>Slips marked above</h2><ul>{slips}</ul></section>"
+            "</main></body></html>\n")
