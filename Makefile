@@ -23,6 +23,7 @@ test: install
 bench: install
 	$(BIN)/python benchmarks/bench_rocking.py --json
 	$(BIN)/python benchmarks/bench_sim3d.py --json
+	$(BIN)/python benchmarks/bench_sweeps.py --json
 
 clean:
 	rm -rf $(VENV) build *.egg-info src/*.egg-info .pytest_cache

@@ -15,10 +15,9 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from blastscale.blast import blast_parameters
 from blastscale.blast.base import ExtrapolationWarning
 from blastscale.rocking import RockingSystem, critical_charge, critical_standoff, simulate
-from blastscale.rocking.capacity import capacity_curve, first_swing_margin
+from blastscale.rocking.capacity import capacity_curve, critical_charge_by_bisection, first_swing_margin
 from blastscale.structures.block import RectangularBlock
 
 BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
@@ -54,20 +53,6 @@ def test_free_motion_outcome_is_the_first_swing_criterion(alpha_deg, e, theta_fr
     assert (mu > 0) == full_overturns(sysm, None, theta0=th, theta_dot0=w * p)
 
 
-def bisection_on_full_simulations(system, R, shape, model, w_guess, rel=1e-8):
-    """Critical charge by bisection in ln W on full simulations, from a bracket 1.5x wide
-    around ``w_guess`` that is checked first (independent of the first-swing criterion)."""
-    def over(W):
-        return full_overturns(system, blast_parameters(W, R, model).pulse(shape))
-
-    lo, hi = w_guess / 1.5, w_guess * 1.5
-    assert not over(lo) and over(hi)
-    while math.log(hi / lo) > rel:
-        mid = math.sqrt(lo * hi)
-        lo, hi = (lo, mid) if over(mid) else (mid, hi)
-    return math.sqrt(lo * hi)
-
-
 @settings(max_examples=12, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(
     height=st.floats(0.05, 20.0),
@@ -87,7 +72,7 @@ def test_critical_charge_equals_bisection_on_full_simulations(height, alpha_deg,
     except Exception as exc:  # no critical charge within the fits' range of Z for this draw
         assume("no critical" not in str(exc))
         raise
-    wb = bisection_on_full_simulations(system, R, shape, "kingery-bulmash", wc)
+    wb = critical_charge_by_bisection(system, R, wc, pulse=shape)  # full simulations, to rest
     assert wc == pytest.approx(wb, rel=1e-6)
 
 

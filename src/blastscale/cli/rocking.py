@@ -307,14 +307,7 @@ def capacity_cmd(
     if plot:
         from ..plots.capacity import plot_capacity
 
-        def build():
-            import matplotlib.pyplot as plt
-
-            fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
-            plot_capacity(curve, mcap, charge=charge, safe_standoff=safe, ax=ax)
-            return fig
-
-        save_figure(build, plot)
+        save_figure(lambda: plot_capacity(curve, mcap, charge=charge, safe_standoff=safe).figure, plot)
         out["plot"] = plot
     if as_json:
         print_json(out)

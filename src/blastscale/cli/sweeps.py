@@ -147,14 +147,7 @@ def fragility_cmd(
         from ..plots.fragility import plot_fragility
         from ._app import save_figure
 
-        def build():
-            import matplotlib.pyplot as plt
-
-            fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
-            plot_fragility(res, ax=ax)
-            return fig
-
-        save_figure(build, plot)
+        save_figure(lambda: plot_fragility(res).figure, plot)
         out["plot"] = plot
     if as_json:
         print_json(out)

@@ -17,7 +17,7 @@ def plot_fragility(result, ax=None, label: str = "Monte Carlo"):
     if ax is None:
         import matplotlib.pyplot as plt
 
-        _, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+        _, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
     W, p, n = result.charge_kg, result.probability, result.samples
     se = np.sqrt(p * (1 - p) / n)
     ax.errorbar(W, p, yerr=1.96 * se, fmt="o", ms=4, capsize=2, color="C0", label=f"{label} ({n} draws per charge)")

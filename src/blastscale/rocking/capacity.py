@@ -88,6 +88,7 @@ __all__ = [
     "overturns",
     "critical_charge",
     "critical_standoff",
+    "critical_charge_by_bisection",
     "CriticalResult",
     "capacity_curve",
     "CapacityCurve",
@@ -581,6 +582,29 @@ def _critical(body, searched, fixed, pulse, model, gravity, restitution, solver,
     W, R = (float(x[0]), fixed) if by_charge else (fixed, float(x[0]))
     _check_extrapolated(model, [R / np.cbrt(W)], extrapolate)
     return CriticalResult(W, R, searched, pulse, _model_name(model), xtol_rel, int(nev[0]), (float(blo[0]), float(bhi[0])))
+
+
+def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse: str = "friedlander",
+                                 model=DEFAULT_BLAST_MODEL, rel: float = 1e-8, solver: RockingSolver | None = None,
+                                 gravity: float | None = None, restitution: float | None = None) -> float:
+    """The slow reference: critical charge [kg] by bisection in ln W on full simulations (to rest:
+    ``pulse + 200 / p`` of motion, every impact, no early stop), independent of the first-swing
+    criterion. The bracket ``[guess / 1.5, 1.5 guess]`` [kg] must straddle the threshold (checked);
+    ``rel`` is the relative width at which it stops. For tests and benchmarks."""
+    system = as_rocking_system(body, gravity, restitution)
+    solver = solver or DEFAULT_SOLVER
+
+    def over(W):
+        p = blast_parameters(W, standoff, model).pulse(pulse)
+        return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).overturned
+
+    lo, hi = guess / 1.5, guess * 1.5
+    if over(lo) or not over(hi):
+        raise BlastscaleInputError(f"guess = {guess:.6g} kg: [guess/1.5, 1.5 guess] does not straddle the critical charge")
+    while math.log(hi / lo) > rel:
+        mid = math.sqrt(lo * hi)
+        lo, hi = (lo, mid) if over(mid) else (mid, hi)
+    return math.sqrt(lo * hi)
 
 
 # ----------------------------------------------------------------------------- capacity curve

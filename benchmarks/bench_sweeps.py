@@ -1,0 +1,169 @@
+"""Benchmark: capacity (critical charge per case), sweep throughput (planar, 3D), Dask 1 vs 2 workers.
+
+1. **Critical charge per case**: ``capacity_curve`` (first-swing energy criterion, all stand-offs
+   at once) over ``--standoffs`` stand-offs of the paper's block (masi2021, Friedlander), and one
+   scalar ``critical_charge`` call; against, in the same run, the bisection on full simulations
+   (to rest, every impact; bracket [W/1.5, 1.5 W] checked, bisected in ln W to 1e-7) on a subset
+   of the stand-offs: seconds per case, their ratio, and the largest relative difference.
+2. **Planar cases per minute**: ``run_sweep`` of a planar scenario (paper block, 5 s, 2001
+   samples, no critical charge; every Study scalar) in this process, varying charge x stand-off
+   (a design per case) and varying the restitution (one design); and the outcome-only rate of
+   the first-swing criterion (what ``fragility`` uses).
+3. **3D cases per minute**: ``run_sweep`` of the 3D engine (paper block, short duration).
+4. **1 vs 2 workers**: the same planar sweep on a ``LocalCluster`` of 1 and of 2 worker
+   processes (wall time including the cluster start, and the speed-up).
+
+Usage: ``python benchmarks/bench_sweeps.py --json`` prints one JSON object.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import platform
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+def bench_capacity(n: int, n_bisect: int) -> dict:
+    from blastscale.rocking import RockingSystem, capacity_curve, critical_charge
+    from blastscale.rocking.capacity import critical_charge_by_bisection
+    from blastscale.structures import RectangularBlock
+
+    blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+    system = RockingSystem.from_block(blk)
+    R = np.geomspace(1.0, 6.0, n)
+    capacity_curve(system, R[:2], model="masi2021")  # warm the compiled kernel
+    t0 = time.perf_counter()
+    curve = capacity_curve(system, R, model="masi2021")
+    t_curve = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    for r in (1.5, 2.0, 3.0, 4.0, 5.0):
+        single = critical_charge(system, r, model="masi2021")
+    t_single = (time.perf_counter() - t0) / 5
+    single = critical_charge(system, 2.0, model="masi2021")
+    idx = np.linspace(0, n - 1, n_bisect).astype(int)
+    t0 = time.perf_counter()
+    wb = [critical_charge_by_bisection(system, R[i], curve.critical_charge_kg[i], model="masi2021", rel=1e-7)
+          for i in idx]
+    t_bis = (time.perf_counter() - t0) / len(idx)
+    rel = np.abs(curve.critical_charge_kg[idx] / np.array(wb) - 1.0)
+    return {
+        "standoffs": int(n),
+        "critical_charge_ms_per_case_curve": 1e3 * t_curve / n,
+        "critical_charge_ms_single_call": 1e3 * t_single,
+        "critical_charge_kg_at_2m": single.charge_kg,
+        "evaluations_per_case_mean": float(curve.evaluations.mean()),
+        "bisection_full_simulations_ms_per_case": 1e3 * t_bis,
+        "bisection_cases": int(len(idx)),
+        "speedup_vs_bisection_curve": t_bis / (t_curve / n),
+        "speedup_vs_bisection_single_call": t_bis / t_single,
+        "max_relative_difference_vs_bisection": float(rel.max()),
+        "target_ms_per_case": 2.0,
+    }
+
+
+def planar_spec(vary: dict):
+    from blastscale.analysis.sweeps import SweepSpec
+    from blastscale.io.scenario import Scenario
+
+    base = Scenario.default().with_values({"engine": "planar", "critical_charge": False})
+    return SweepSpec.build(base, vary)
+
+
+def timed_sweep(spec, **kw) -> dict:
+    from blastscale.analysis.sweeps import run_sweep
+
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        run = run_sweep(spec, Path(tmp) / "b.zarr", **kw)
+        wall = time.perf_counter() - t0
+    return {"cases": spec.n_cases, "wall_s": wall, "compute_s": run.seconds,
+            "cases_per_minute": spec.n_cases / wall * 60.0, "workers": run.workers}
+
+
+def bench_planar(n_side: int) -> dict:
+    import warnings
+
+    from blastscale.analysis.fragility import overturning_outcomes
+    from blastscale.analysis.grids import Distribution
+    from blastscale.analysis.sweeps import SweepSpec
+    from blastscale.io.scenario import Scenario
+
+    timed_sweep(planar_spec({"charge_kg": [40.0, 60.0]}), workers=0)  # warm up
+    designs = timed_sweep(planar_spec({"charge_kg": np.linspace(30, 150, n_side),
+                                       "standoff_m": np.linspace(1.5, 4.0, n_side)}), workers=0)
+    shared = timed_sweep(planar_spec({"restitution": np.linspace(0.3, 0.95, n_side * n_side)}), workers=0)
+    base = Scenario.default().with_values({"engine": "planar"})
+    spec = SweepSpec.build(base, {"charge_kg": np.geomspace(40, 160, 20)},
+                           relative={"charge_kg": Distribution("lognormal", (1.0, 0.2))}, samples=20000, seed=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        t0 = time.perf_counter()
+        overturning_outcomes(spec)
+        dt = time.perf_counter() - t0
+    return {
+        "full_study_scalars_design_per_case": designs,
+        "full_study_scalars_one_design": shared,
+        "outcome_only_first_swing": {"cases": spec.n_cases, "wall_s": dt, "cases_per_minute": spec.n_cases / dt * 60.0},
+        "target_cases_per_minute": 1e6,
+    }
+
+
+def bench_3d(n: int, duration: float) -> dict:
+    from blastscale.analysis.sweeps import SweepSpec
+    from blastscale.io.scenario import Scenario
+
+    base = Scenario.default().with_values({"engine": "3d", "critical_charge": False, "duration_s": duration})
+    spec = SweepSpec.build(base, {"charge_kg": np.linspace(30, 120, n)})
+    timed_sweep(SweepSpec.build(base, {"charge_kg": [50.0]}), workers=0)  # warm up (MuJoCo, kernels)
+    out = timed_sweep(spec, workers=0)
+    out["duration_s"] = duration
+    return out
+
+
+def bench_workers(n_side: int) -> dict:
+    spec = planar_spec({"charge_kg": np.linspace(30, 150, n_side), "standoff_m": np.linspace(1.5, 4.0, n_side)})
+    one = timed_sweep(spec, workers=1)
+    two = timed_sweep(spec, workers=2)
+    return {"cases": spec.n_cases, "one_worker": one, "two_workers": two,
+            "speedup_wall": one["wall_s"] / two["wall_s"], "speedup_compute": one["compute_s"] / two["compute_s"]}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--standoffs", type=int, default=200, help="stand-offs of the capacity curve")
+    ap.add_argument("--bisect", type=int, default=10, help="stand-offs also bisected on full simulations")
+    ap.add_argument("--side", type=int, default=20, help="planar sweep grid side (side^2 cases)")
+    ap.add_argument("--cases3d", type=int, default=4)
+    ap.add_argument("--duration3d", type=float, default=1.0, help="3D simulated time per case [s]")
+    ap.add_argument("--json", action="store_true")
+    a = ap.parse_args(argv)
+    out = {
+        "capacity": bench_capacity(a.standoffs, a.bisect),
+        "planar": bench_planar(a.side),
+        "3d": bench_3d(a.cases3d, a.duration3d),
+        "workers": bench_workers(a.side),
+        "machine": {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform()},
+    }
+    if a.json:
+        print(json.dumps(out, indent=2))
+    else:
+        c, p = out["capacity"], out["planar"]
+        print(f"critical charge: {c['critical_charge_ms_per_case_curve']:.3g} ms/case (curve), "
+              f"{c['critical_charge_ms_single_call']:.3g} ms (one call); bisection on full simulations "
+              f"{c['bisection_full_simulations_ms_per_case']:.3g} ms/case; max rel. diff {c['max_relative_difference_vs_bisection']:.2g}")
+        print(f"planar: {p['full_study_scalars_design_per_case']['cases_per_minute']:.4g} cases/min (design per case), "
+              f"{p['full_study_scalars_one_design']['cases_per_minute']:.4g} (one design), outcome only "
+              f"{p['outcome_only_first_swing']['cases_per_minute']:.4g}")
+        print(f"3D: {out['3d']['cases_per_minute']:.4g} cases/min; 1 vs 2 workers: x{out['workers']['speedup_wall']:.3g}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
