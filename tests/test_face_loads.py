@@ -105,18 +105,19 @@ def test_in_contact_faces_carry_nothing_and_polygon_faces_one_by_one():
 
 
 def test_far_field_b_equals_a_within_one_percent_of_the_peak_response():
-    # a 1 m block 40 m from 2000 kg: its front centre is 0.04 % farther than the stand-off and at
-    # 0.7 deg incidence, so B must reproduce A's rocking within 1 % of the peak.
+    # a 1 m block 40 m from 300 kg: its front centre is 0.08 % farther than the stand-off and at
+    # 0.7 deg incidence, so B must reproduce A's rocking (0.041 rad, no overturning) within 1 % of
+    # the peak (measured 0.44 %).
     from blastscale.sim3d.simulate import simulate_structure
 
-    blk = RectangularBlock(height=1.0, width=0.25, depth=1.0)
+    blk = RectangularBlock(height=1.0, width=0.5, depth=1.0)
     peaks = {}
     for m in "AB":
-        load = make_load(m, blk, charge_kg=2000.0, standoff_m=40.0)
+        load = make_load(m, blk, charge_kg=300.0, standoff_m=40.0)
         r = simulate_structure(blk, load, 0.6, record_every=4)
         peaks[m] = r.dataset["rotation_y"].values[:, 0]
     ref = np.abs(peaks["A"]).max()
-    assert ref > 0.005  # it rocks
+    assert 0.02 < ref < 0.2  # it rocks and does not overturn
     n = min(peaks["A"].size, peaks["B"].size)
     assert np.abs(peaks["B"][:n] - peaks["A"][:n]).max() < 0.01 * ref
 
