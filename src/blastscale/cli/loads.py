@@ -13,7 +13,7 @@ from ..blast import blast_parameters
 from ..blast.faces import face_loads
 from ..blast.incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS, check_incidence
 from ..blast.parameters import DEFAULT_BLAST_MODEL
-from ..similitude import FACTOR_UNITS, design_model
+from ..similitude import design_model
 from ._app import app, console, fmt_value, one_line_warnings, print_json, table
 from .options import MODEL_HELP, block_from_options
 
@@ -90,8 +90,8 @@ def print_design(d) -> None:
               f"{m.arrival_time / p.arrival_time:.6g}", "", "s")
     console.print(t)
     console.print(f"[dim]{d.root_note}[/]")
-    ft = table("Scaling factors (model / prototype)", [
-        (k, fmt_value(v), FACTOR_UNITS.get(k, "")) for k, v in f.to_dict().items()
+    ft = table("Scaling factors: model / prototype, each a ratio of like quantities (dimensionless)", [
+        (k, fmt_value(v), "-") for k, v in f.to_dict().items()
     ])
     console.print(ft)
     if d.impulsive is not None:
