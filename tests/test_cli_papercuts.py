@@ -53,10 +53,9 @@ def test_bad_fraction_is_still_a_one_line_error(capsys):
     assert code == 2 and err.count("\n") == 1 and "--scale" in err
 
 
-@pytest.mark.parametrize("command", ["rock", "critical", "block3d"])
+@pytest.mark.parametrize("command", ["rock", "block3d"])  # `run`: tests/test_run.py
 def test_no_command_suggests_a_flag_it_lacks(capsys, command):
     args = {"rock": ["--charge", "1", "--standoff", "100", "--alpha-deg", "15"],
-            "critical": ["--standoff", "100", "--alpha-deg", "15"],
             "block3d": ["--charge", "1", "--standoff", "100", "--alpha-deg", "15"]}[command]
     code, _, err = cli(capsys, command, *args, "--model", "masi2021")
     assert code == 2 and err.count("\n") == 1, err
