@@ -4,18 +4,25 @@ VENV    := .venv
 BIN     := $(VENV)/bin
 STAMP   := $(VENV)/.installed
 
-.PHONY: install run test bench clean
+.PHONY: install run test bench clean check-python
 
 install: $(STAMP)
 
-$(STAMP): pyproject.toml
+# blastscale needs Python >= 3.11 (tomllib, typing); say so instead of failing deep inside pip
+check-python:
+	@$(PY) -c 'import sys; sys.exit(sys.version_info < (3, 11))' 2>/dev/null || { \
+	  echo "error: blastscale needs Python >= 3.11, but $(PY) is '$$($(PY) --version 2>&1 | head -n1)'; run e.g. 'make PY=python3.11 $(MAKECMDGOALS)'" >&2; \
+	  exit 1; }
+
+$(STAMP): pyproject.toml | check-python
 	test -x $(BIN)/python || $(PY) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[all]'
 	touch $(STAMP)
 
+# --force: a second `make run` replaces the previous results/default (only a blastscale result folder)
 run: install
-	$(BIN)/blastscale run --out results/default
+	$(BIN)/blastscale run --out results/default --force
 
 test: install
 	MPLBACKEND=Agg $(BIN)/python -m pytest -q

@@ -41,18 +41,19 @@ def print_error(message: str) -> None:
                       markup=True)
 
 
-_display_type_rich = TyperOption.display_type_rich
+_display_type_rich = getattr(TyperOption, "display_type_rich", None)
 
 
 def _flag_display_type(self, ctx):
-    """A flag takes no value: --help shows ``--json`` alone, not ``--json <bool>`` (typer >= 0.16
-    prints the value type of every option)."""
+    """A flag takes no value: --help shows ``--json`` alone, not ``--json <bool>`` (recent typer
+    prints the value type of every option, flags included)."""
     if getattr(self, "is_flag", False) and self.metavar is None:
         return None
     return _display_type_rich(self, ctx)
 
 
-TyperOption.display_type_rich = _flag_display_type
+if _display_type_rich is not None:  # older typer prints no types at all
+    TyperOption.display_type_rich = _flag_display_type
 
 
 class Interrupted(BaseException):
