@@ -33,7 +33,7 @@ length = 0.005
 
 # (name, TOML text, the field path the one-line error must name)
 MALFORMED = [
-    ("unknown key", GOOD.replace("height_m = 10.0", "heigth_m = 10.0"), "structure.heigth_m"),
+    ("unknown key", GOOD.replace("height_m = 10.0", "heigth_m = 10.0"), "valid keys of [structure] are kind"),
     ("unknown table", GOOD + "\n[blasts]\ncharge_kg = 1.0\n", "blasts"),
     ("missing charge", GOOD.replace("charge_kg = 50.0", ""), "blast.charge_kg"),
     ("missing kind", GOOD.replace('kind = "block"', ""), "structure.kind"),

@@ -37,8 +37,11 @@ console_err = Console(stderr=True, width=None if Console(stderr=True).is_termina
 
 def print_error(message: str) -> None:
     """Print ``error: <message>`` as one line on stderr (newlines folded)."""
-    console_err.print(f"[bold red]error:[/] {' '.join(str(message).split())}", highlight=False, soft_wrap=True,
-                      markup=True)
+    from rich.markup import escape
+
+    # escaped: "[structure]" or "[0.2, 20]" in a message are text, not rich markup
+    console_err.print(f"[bold red]error:[/] {escape(' '.join(str(message).split()))}", highlight=False,
+                      soft_wrap=True, markup=True)
 
 
 _display_type_rich = getattr(TyperOption, "display_type_rich", None)
@@ -226,7 +229,9 @@ def one_line_warnings():
                 msg = " ".join(str(w.message).split())
                 if msg not in seen:
                     seen.add(msg)
-                    console_err.print(f"[yellow]warning:[/] {msg}", highlight=False, soft_wrap=True)
+                    from rich.markup import escape
+
+                    console_err.print(f"[yellow]warning:[/] {escape(msg)}", highlight=False, soft_wrap=True)
 
 
 _jsonable = jsonable  # the one JSON conversion (blastscale.io.results)

@@ -139,7 +139,9 @@ def _experiment(result) -> str:
         label, unit = split_unit(k)
         rows.append((label, p[k], m[k], unit))
     rows.append(("charge (TNT equivalent)", format_charge(p["charge_kg"]), format_charge(m["charge_kg"]), ""))
-    rows.append(("material", "prototype", str(mat), ""))
+    rows.append(("material", "-", str(mat), ""))
+    if "alpha_rad" in p:
+        rows.append(("slenderness alpha", math.degrees(p["alpha_rad"]), math.degrees(m["alpha_rad"]), "deg"))
     scales = (f"Geometric scale lambda = {exp['scale']:.6g} (1/{1 / exp['scale']:.4g}), density ratio gamma = "
               f"{exp['density_ratio']:.4g}, gravity ratio = {exp['gravity_ratio']:.4g}, law: {_e(exp['law'])}.")
     return (f'<p class="lead">{lead}</p><p>{scales}</p>'
