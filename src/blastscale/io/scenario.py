@@ -108,6 +108,14 @@ def _check_name(value: str, names: tuple[str, ...]) -> str:
     return value
 
 
+def _at_most_one(model: BaseModel, a: str, b: str) -> BaseModel:
+    """Refuse two keys that say the same thing (width and slenderness; density ratio and material)."""
+    va, vb = getattr(model, a), getattr(model, b)
+    if va is not None and vb is not None:
+        raise ValueError(f"{a} = {_show(va)} and {b} = {_show(vb)}: give one of them, not both")
+    return model
+
+
 Pos = Annotated[float, at.Gt(0)]
 
 
@@ -132,10 +140,7 @@ class BlockSpec(BaseModel):
 
     @model_validator(mode="after")
     def _one_width(self) -> "BlockSpec":
-        if self.alpha_deg is not None and self.width_m is not None:
-            raise ValueError(f"alpha_deg = {self.alpha_deg:g} and width_m = {self.width_m:g}: give one of them, "
-                             "not both")
-        return self
+        return _at_most_one(self, "alpha_deg", "width_m")
 
 
 class ColumnSpec(BaseModel):
@@ -219,10 +224,7 @@ class ScaleSpec(BaseModel):
 
     @model_validator(mode="after")
     def _one_density(self) -> "ScaleSpec":
-        if self.density_ratio is not None and self.model_material is not None:
-            raise ValueError(f"density_ratio = {self.density_ratio:g} and model_material = {self.model_material!r}: "
-                             "give one of them, not both")
-        return self
+        return _at_most_one(self, "density_ratio", "model_material")
 
 
 class ContactSpec(BaseModel):
