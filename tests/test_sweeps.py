@@ -195,6 +195,8 @@ def test_kill_9_midway_then_rerun_gives_the_uninterrupted_result(tmp_path, clust
         (["--sample", "friction=uniform:0.8,0.5", "--samples", "3"], "empty range"),
         (["--sample", "friction=uniform:0.5,0.8"], "samples"),
         (["--vary", "charge_kg=-5,10"], "charge_kg"),
+        (["--vary", "charge_kg=10,-5,20"], "charge_kg"),  # inside the grid, not only at its corners
+        (["--sample", "restitution=normal:0.8,0.3", "--samples", "50"], "restitution"),  # draws beyond 1
     ],
 )
 def test_bad_grids_and_distributions_one_line_exit_2(tmp_path, capsys, argv, word):

@@ -187,7 +187,15 @@ class SweepSpec:
         if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or seed < 0:
             raise BlastscaleInputError(f"seed = {seed!r} is out of range: must be a whole number >= 0")
         spec = cls(base, tuple(axes), tuple(samp), int(samples) if samp else 0, int(seed))
-        # every case must be a valid scenario: check the corners of the grid now (one line, before any work)
+        # every case must be a valid scenario: check each grid value, the extreme draws and the
+        # corners now (one line, before any work is written)
+        for a in spec.axes:
+            for v in a.values:
+                base.with_values({a.path: v})
+        for sm in spec.sampled:
+            d = spec.draws()[sm.name]
+            for x in (d.min(), d.max()):
+                base.with_values({sm.path: _scenario_value(base, sm.path) * x if sm.relative else x})
         for k in {0, spec.n_cases - 1}:
             spec.scenario(k)
         return spec
