@@ -149,7 +149,11 @@ class GridBaseBox(BoxShape):
     (25 contact points instead of box-plane's 4 corners); the spheres carry no mass."""
 
     n = 5
-    radius = 2e-3
+
+    @property
+    def radius(self):
+        """2 mm on the 0.5 m high squat block, scaled with the block (the engine runs in reference units)."""
+        return 8e-3 * self.half_height
 
     def _points(self):
         xs = np.linspace(-self.half_width + self.radius, self.half_width - self.radius, self.n)
