@@ -127,9 +127,10 @@ def _experiment(result) -> str:
         size = " x ".join(f"{m[k] * 100:.4g}" for k in dims if k in m) + " cm (height x width x depth)"
     else:
         size = f"{m.get('height_m', float('nan')) * 100:.4g} cm high"
+    of = "of " if kind == "block" else ""
     mat = m.get("material", "")
     mat_words = "the prototype's material" if mat == "same as the prototype" else mat
-    lead = (f"Build a {_e(kind)} of {_e(size)}, {format_value(m.get('mass_kg', float('nan')) * 1e3)} g, "
+    lead = (f"Build a {_e(kind)} {of}{_e(size)}, {format_value(m.get('mass_kg', float('nan')) * 1e3)} g, "
             f"in {_e(mat_words)} (density {format_value(m.get('density_kg_m3'))} kg/m^3), and detonate "
             f"<b>{_e(format_charge(m['charge_kg']))} of TNT</b> (equivalent) at <b>{m['standoff_m'] * 100:.4g} cm</b> "
             "from its front face.")
