@@ -182,7 +182,21 @@ class Comparison3D:
             "points": points,
             "time_compared_s": self.comparison["time_compared_s"],
             "load_end_s": self.settings.get("load_end_s"),
+            **self._arrival_spreads(),
         }
+
+    def _arrival_spreads(self) -> dict:
+        """``arrival_spread_prototype_s`` and ``arrival_spread_model_upscaled_s`` [s]: first to last
+        shock arrival over the loaded faces, the model's divided by the time factor (issue 9,
+        :func:`blastscale.sim3d.face_loads.arrival_spread_similarity`; 0 for Method A)."""
+        from ..blast.incidence import DEFAULT_INCIDENCE
+        from ..sim3d.face_loads import arrival_spread_similarity
+
+        s = self.settings
+        inc = s.get("incidence", "default")
+        return arrival_spread_similarity(self.structure, self.design, s.get("load_method", "A"),
+                                         pulse=s.get("pulse", "friedlander"),
+                                         incidence=DEFAULT_INCIDENCE if inc == "default" else inc)
 
     def summary(self) -> dict:
         """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block."""
