@@ -190,3 +190,17 @@ def test_load_time_correction_moves_arrivals_and_scales_impulses():
     assert not np.any(c.step_wrenches(t_top - 1e-4, t_top - 1e-6, pos, rot)[-1])
     assert np.any(c.step_wrenches(t_top, t_top + 1e-4, pos, rot)[-1])
     assert load.weights.tolist() == [1.0] * 10  # the original is untouched
+
+
+def test_comparison_similarity_reports_the_arrival_spreads():
+    # compare_structure3d's similarity block carries the spreads (prototype, model / time factor)
+    from blastscale.analysis.structure3d import compare_structure3d
+
+    col = MultiDrumColumn(section="square", drums=3, height=3.0)
+    design = design_model(50.0, 5.0, 0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        s = compare_structure3d(col, design, load="B", duration=0.05).similarity()
+    ref = arrival_spread_similarity(col, design, "B")
+    assert s["arrival_spread_prototype_s"] == ref["arrival_spread_prototype_s"] > 0
+    assert s["arrival_spread_model_upscaled_s"] == ref["arrival_spread_model_upscaled_s"] > 0
