@@ -6,18 +6,19 @@ material (gamma) for a campaign of charges and stand-offs needs the whole pictur
 law matches the impulse only (paper Eq. 8), so the model is exact in the impulsive limit and
 departs from the prototype as the pulse lasts longer relative to the model's own time scale
 (``t_o p`` grows as the model shrinks: ``p ~ lambda^-1/2``), and near the overturning threshold a
-tiny energy difference can flip the outcome. The map runs one sweep (:mod:`.sweeps`, planar batch
-path, on Dask when asked) and returns, per case:
+tiny energy difference can flip the outcome. The map runs one sweep (:mod:`.sweeps`: the planar
+batch path, or one 3D Study per case; on Dask when asked) and returns, per case:
 
-* ``angle_error_rad``: max |theta_model_up - theta_prototype| up to the earlier tipping point
-  (the rocking phase; docs/rocking.md explains why the fall is compared on its phase instead),
+* ``error``: planar, max |theta_model_up - theta_prototype| up to the earlier tipping point [rad]
+  (the rocking phase; docs/rocking.md explains why the fall is compared on its phase instead);
+  3D, max |top displacement difference| relative to the prototype's peak [-],
 * ``peak_ratio_error``: |first-peak ratio - 1|,
 * ``outcomes_agree``: both overturn or both survive,
 * ``model_to_p``: the model's t_o p (the a priori impulsive check of ``design_model``),
 * ``model_charge_kg``, ``prototype_overturned``,
 * ``valid``: False where the model's scaled distance leaves the blast fits (no design),
-* ``trustworthy``: valid, outcomes agree and ``angle_error_rad <= tolerance`` (default 5e-4 rad,
-  the acceptance level of the paper's comparisons).
+* ``trustworthy``: valid, outcomes agree and ``error <= tolerance`` (default 5e-4 rad planar, the
+  acceptance level of the paper's comparisons; 5 % 3D).
 
 References: paper Secs. "Scaling laws" (Eq. 8) and "Equations of motion" (Figs. 6-9).
 """
@@ -30,24 +31,44 @@ from typing import Optional
 
 import numpy as np
 
-__all__ = ["similarity_map", "MAP_FIELDS", "DEFAULT_TOLERANCE_RAD"]
+from .._validate import BlastscaleInputError
+
+__all__ = ["similarity_map", "MAP_FIELDS", "DEFAULT_TOLERANCE", "ENGINE_VARIABLES"]
 
 #: The scenario fields of the map's axes, in order.
 MAP_FIELDS = ("length", "density_ratio", "charge_kg", "standoff_m")
-#: Angle error below which an agreeing model is called trustworthy [rad].
-DEFAULT_TOLERANCE_RAD = 5e-4
 
-_VARS = {
-    "angle_error_rad": ("planar.similarity.max_abs_angle_diff_to_tipping_rad", "rad"),
-    "peak_ratio": ("planar.similarity.peak_ratio", "-"),
-    "outcomes_agree": ("planar.similarity.outcomes_agree", "-"),
+#: Error below which an agreeing model is called trustworthy, per engine: planar, the angle error
+#: [rad] (the paper's acceptance level); 3d, the top-displacement difference relative to the
+#: prototype's peak [-].
+DEFAULT_TOLERANCE = {"planar": 5e-4, "3d": 0.05}
+
+_COMMON = {
     "model_to_p": ("design.impulsive.model_to_p", "-"),
     "prototype_to_p": ("design.impulsive.prototype_to_p", "-"),
     "model_charge_kg": ("design.model_charge_kg", "kg"),
     "model_standoff_m": ("design.model_standoff_m", "m"),
-    "prototype_overturned": ("planar.prototype.overturned", "-"),
-    "model_overturned": ("planar.model.overturned", "-"),
     "valid": ("sweep.valid", "-"),
+}
+
+#: map variable -> (Study scalar key, unit), per engine
+ENGINE_VARIABLES = {
+    "planar": {
+        "error": ("planar.similarity.max_abs_angle_diff_to_tipping_rad", "rad"),
+        "peak_ratio": ("planar.similarity.peak_ratio", "-"),
+        "outcomes_agree": ("planar.similarity.outcomes_agree", "-"),
+        "prototype_overturned": ("planar.prototype.overturned", "-"),
+        "model_overturned": ("planar.model.overturned", "-"),
+        **_COMMON,
+    },
+    "3d": {
+        "error": ("3d.similarity.max_abs_top_displacement_diff_rel_peak", "-"),
+        "peak_ratio": ("3d.similarity.top_first_peak_ratio", "-"),
+        "outcomes_agree": ("3d.similarity.outcomes_agree", "-"),
+        "prototype_overturned": ("3d.prototype.collapsed", "-"),
+        "model_overturned": ("3d.model.collapsed", "-"),
+        **_COMMON,
+    },
 }
 
 
@@ -58,7 +79,8 @@ def similarity_map(
     charges,
     standoffs,
     *,
-    tolerance: float = DEFAULT_TOLERANCE_RAD,
+    engine: str = "planar",
+    tolerance: Optional[float] = None,
     store=None,
     workers: Optional[int] = 0,
     scheduler: Optional[str] = None,
@@ -69,13 +91,17 @@ def similarity_map(
     Parameters
     ----------
     scenario : Scenario
-        The base scenario (a block; its engine is set to ``"planar"``, no critical charge).
+        The base scenario (its engine is set to ``engine``, no critical charge).
     scales, density_ratios : array_like
         lambda and gamma values [-] (non-empty 1-D).
     charges, standoffs : array_like
         Prototype charges [kg] and stand-offs [m].
-    tolerance : float
-        Angle error [rad] below which an agreeing model counts as trustworthy.
+    engine : {"planar", "3d"}
+        Planar rocking (a block; the batch path) or the 3D engine (any structure; one Study per
+        case: use a coarse grid).
+    tolerance : float, optional
+        Error below which an agreeing model counts as trustworthy (default
+        :data:`DEFAULT_TOLERANCE`: 5e-4 rad planar, 0.05 relative 3D).
     store : path, optional
         Zarr store of the underlying sweep (resumable); a temporary one when None.
     workers, scheduler, chunk
@@ -84,30 +110,35 @@ def similarity_map(
     Returns
     -------
     xarray.Dataset
-        Dims ``length``, ``density_ratio``, ``charge_kg``, ``standoff_m``; the variables of the
-        module docstring plus ``peak_ratio_error`` and ``trustworthy``; attrs ``tolerance_rad``.
+        Dims ``length``, ``density_ratio``, ``charge_kg``, ``standoff_m``; the variables of
+        :data:`ENGINE_VARIABLES` plus ``peak_ratio_error`` and ``trustworthy``; attrs
+        ``engine``, ``tolerance``, ``error_units``.
     """
     import xarray as xr
 
     from .._validate import check_positive
     from .sweeps import SweepSpec, run_sweep
 
-    check_positive("tolerance", tolerance, "rad")
-    base = scenario.with_values({"engine": "planar", "critical_charge": False})
+    if engine not in ENGINE_VARIABLES:
+        raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINE_VARIABLES)}")
+    tolerance = DEFAULT_TOLERANCE[engine] if tolerance is None else float(check_positive("tolerance", tolerance))
+    base = scenario.with_values({"engine": engine, "critical_charge": False})
     spec = SweepSpec.build(base, dict(zip(MAP_FIELDS, (scales, density_ratios, charges, standoffs))))
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(store) if store is not None else Path(tmp) / "map.zarr"
         run_sweep(spec, path, workers=workers, scheduler=scheduler, chunk=chunk)
         src = xr.open_zarr(path, consolidated=False).load()
     out = xr.Dataset(coords={k: src[k] for k in MAP_FIELDS})
-    for name, (key, unit) in _VARS.items():
+    for name, (key, unit) in ENGINE_VARIABLES[engine].items():
         v = src[key] if key in src else xr.full_like(src["sweep.valid"], np.nan, dtype=float)
         out[name] = v.assign_attrs(units=unit, source=key)
     valid = out["valid"].astype(bool)
     agree = out["outcomes_agree"].where(valid, False).astype(bool)
     out["peak_ratio_error"] = np.abs(out["peak_ratio"] - 1.0).assign_attrs(units="-")
-    out["trustworthy"] = (valid & agree & (out["angle_error_rad"] <= tolerance)).assign_attrs(
-        units="-", definition=f"valid, outcomes agree, angle error <= {tolerance:g} rad")
-    out.attrs.update({"tolerance_rad": float(tolerance), "title": "blastscale similarity map (planar rocking)",
-                      "sweep": src.attrs.get("sweep", "")})
+    unit = out["error"].attrs["units"]
+    out["trustworthy"] = (valid & agree & (out["error"] <= tolerance)).assign_attrs(
+        units="-", definition=f"valid, outcomes agree, error <= {tolerance:g} {unit}")
+    out.attrs.update({"engine": engine, "tolerance": float(tolerance), "error_units": unit,
+                      "error_definition": ENGINE_VARIABLES[engine]["error"][0],
+                      "title": f"blastscale similarity map ({engine})", "sweep": src.attrs.get("sweep", "")})
     return out

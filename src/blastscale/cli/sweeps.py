@@ -177,7 +177,8 @@ def similarity_map_cmd(
     density_ratios: str = typer.Option("0.1,0.3,1,3", "--density-ratios", help="gamma values \\[-]."),
     charges: str = typer.Option("50,100", "--charges", help="Prototype charges W \\[kg TNT]."),
     standoffs: str = typer.Option("2,4", "--standoffs", help="Prototype stand-offs R \\[m]."),
-    tolerance: float = typer.Option(5e-4, "--tolerance", help="Angle error \\[rad] below which an agreeing model is trustworthy."),
+    engine: str = typer.Option("planar", "--engine", help="planar (rocking, batch path) or 3d (MuJoCo, one Study per case: a coarse grid)."),
+    tolerance: Optional[float] = typer.Option(None, "--tolerance", help="Error below which an agreeing model is trustworthy (default 5e-4 rad planar, 0.05 relative 3D)."),
     out: Optional[Path] = typer.Option(None, "--out", help="Zarr store of the underlying sweep (resumable)."),
     scheduler: Optional[str] = SCHEDULER,
     workers: Optional[int] = typer.Option(0, "--workers", help="Local worker processes (default 0: in this process)."),
@@ -185,8 +186,8 @@ def similarity_map_cmd(
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the map (one panel per charge and stand-off)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
-    """Where in (lambda, gamma, charge, stand-off) the up-scaled model is trustworthy: its angle
-    error against the prototype (planar rocking) and whether the outcomes agree (docs/sweeps.md)."""
+    """Where in (lambda, gamma, charge, stand-off) the up-scaled model is trustworthy: its error
+    against the prototype (planar rocking or 3D) and whether the outcomes agree (docs/sweeps.md)."""
     import numpy as np
 
     from ..analysis.grids import parse_grid
@@ -198,17 +199,20 @@ def similarity_map_cmd(
     grids = [parse_grid(t, n) for t, n in ((scales, "scales"), (density_ratios, "density-ratios"),
                                           (charges, "charges"), (standoffs, "standoffs"))]
     with one_line_warnings():
-        ds = similarity_map(base, *grids, tolerance=tolerance, store=out, workers=workers, scheduler=scheduler,
-                            chunk=chunk)
+        ds = similarity_map(base, *grids, engine=engine, tolerance=tolerance, store=out, workers=workers,
+                            scheduler=scheduler, chunk=chunk)
     res = {
         "dims": {k: ds[k].values.tolist() for k in ("length", "density_ratio", "charge_kg", "standoff_m")},
-        "tolerance_rad": tolerance,
+        "engine": engine,
+        "tolerance": ds.attrs["tolerance"],
+        "error_units": ds.attrs["error_units"],
+        "error_definition": ds.attrs["error_definition"],
         "n_cases": int(ds["valid"].size),
         "n_valid": int(ds["valid"].sum()),
         "n_outcomes_agree": int((ds["outcomes_agree"].where(ds["valid"].astype(bool), False).astype(bool)).sum()),
         "n_trustworthy": int(ds["trustworthy"].sum()),
     }
-    for name in ("angle_error_rad", "peak_ratio_error", "outcomes_agree", "trustworthy", "valid", "model_to_p",
+    for name in ("error", "peak_ratio_error", "outcomes_agree", "trustworthy", "valid", "model_to_p",
                  "model_charge_kg"):
         v = ds[name].values
         res[name] = np.where(np.isfinite(v.astype(float)), v, np.nan).tolist() if v.dtype.kind == "f" else v.tolist()
@@ -221,12 +225,13 @@ def similarity_map_cmd(
     if as_json:
         print_json(res)
         return
-    console.print(table("Similarity map (planar rocking, up-scaled model vs prototype)", [
+    unit = res["error_units"]
+    console.print(table(f"Similarity map ({engine}, up-scaled model vs prototype)", [
         ("cases", str(res["n_cases"]), ""),
         ("valid designs (model Z inside the blast fits)", str(res["n_valid"]), ""),
         ("outcomes agree", str(res["n_outcomes_agree"]), ""),
-        (f"trustworthy (agree, angle error <= {tolerance:g} rad)", str(res["n_trustworthy"]), ""),
-        ("largest angle error where valid", f"{float(np.nanmax(ds['angle_error_rad'].values)):.3g}", "rad"),
+        (f"trustworthy (agree, error <= {res['tolerance']:g} {unit})", str(res["n_trustworthy"]), ""),
+        ("largest error where valid", f"{float(np.nanmax(ds['error'].values)):.3g}", unit),
     ]))
     if plot:
         console.print(f"plot written to {plot}")

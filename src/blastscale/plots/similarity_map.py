@@ -14,8 +14,9 @@ __all__ = ["plot_similarity_map"]
 
 
 def plot_similarity_map(ds, fig=None):
-    """One panel per (charge, stand-off): log10 of the angle error [rad] against lambda (x) and
-    gamma (y); x: outcomes disagree; grey: no valid design; white contour: the tolerance."""
+    """One panel per (charge, stand-off): the model's error (log colour scale; planar: angle [rad],
+    3D: relative top displacement [-]) against lambda (x) and gamma (y); x: outcomes disagree;
+    grey: no valid design; white contour: the tolerance."""
     import matplotlib.pyplot as plt
     from matplotlib.colors import LogNorm
 
@@ -24,10 +25,11 @@ def plot_similarity_map(ds, fig=None):
     if fig is None:
         fig = plt.figure(figsize=(3.2 * R.size + 1.2, 2.8 * W.size + 0.6), layout="constrained")
     axes = np.atleast_2d(fig.subplots(W.size, R.size, squeeze=False))
-    err = ds["angle_error_rad"].values
+    err = ds["error"].values
     finite = err[np.isfinite(err) & (err > 0)]
     norm = LogNorm(vmin=max(finite.min(), 1e-16), vmax=finite.max()) if finite.size else None
-    tol = ds.attrs.get("tolerance_rad", 5e-4)
+    tol = ds.attrs.get("tolerance", 5e-4)
+    unit = ds.attrs.get("error_units", "rad")
     im = None
     for i, w in enumerate(W):
         for j, r in enumerate(R):
@@ -50,6 +52,8 @@ def plot_similarity_map(ds, fig=None):
             if j == 0:
                 ax.set_ylabel("gamma [-]")
     if im is not None and norm is not None:
-        fig.colorbar(im, ax=axes, label="angle error to tipping [rad]", shrink=0.8)
-    fig.suptitle(f"Similarity map: x outcome differs, grey no design, white line {tol:g} rad", fontsize=10)
+        what = "angle error to tipping [rad]" if unit == "rad" else "top displacement error / peak [-]"
+        fig.colorbar(im, ax=axes, label=what, shrink=0.8)
+    fig.suptitle(f"Similarity map ({ds.attrs.get('engine', 'planar')}): x outcome differs, grey no design, "
+                 f"white line {tol:g} {unit}", fontsize=10)
     return fig
