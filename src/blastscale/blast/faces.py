@@ -126,7 +126,8 @@ class FacePulses:
             return np.zeros_like(self.arrival_time)
         x = (t - self.arrival_time) / self.duration
         inside = (x >= 0.0) & (x <= 1.0)
-        shape = (1.0 - x) * (np.exp(-self.decay * x) if self.kind == "friedlander" else 1.0)
+        xc = np.clip(x, 0.0, 1.0)  # no overflow of exp(-d x) far before an arrival
+        shape = (1.0 - xc) * (np.exp(-self.decay * xc) if self.kind == "friedlander" else 1.0)
         return np.where(inside, self.peak * shape, 0.0)
 
     def cumulative_impulse(self, t: float) -> np.ndarray:
