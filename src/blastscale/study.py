@@ -10,9 +10,9 @@ model, scaling law, contact settings, time step, solver settings). What is built
 from small registries, so that a new structure kind or engine needs no change here:
 
 * :data:`STRUCTURE_BUILDERS` -- ``structure.kind`` -> builder(structure table) -> structure;
-* :data:`ENGINES` -- ``"planar"`` (rocking, :func:`~blastscale.analysis.rocking_similarity.compare_rocking`)
-  and ``"3d"`` (MuJoCo: :func:`compare_structure3d` where it exists, else
-  :func:`~blastscale.analysis.block3d_similarity.compare_block3d` for a block).
+* :data:`ENGINES` -- ``"planar"`` (rocking, :func:`~blastscale.analysis.rocking_similarity.compare_rocking`,
+  single blocks) and ``"3d"`` (MuJoCo, :func:`~blastscale.analysis.structure3d.compare_structure3d`,
+  any structure).
 
 No CLI code: the ``blastscale run`` command and the sweeps only call :class:`Study` and read
 the :class:`StudyResult`. Example (the built-in default, shortened):
@@ -136,42 +136,17 @@ def contact_settings(scenario: Scenario, structure=None):
         raise BlastscaleInputError(f"simulation.contact: {exc}") from None
 
 
-def _compare_structure3d():
-    """E8b's general 3D comparison when this version has it, else None."""
-    try:
-        from .analysis.structure3d import compare_structure3d
-        from .sim3d import simulate_structure  # noqa: F401  (the engine it runs on)
-    except ImportError:
-        return None
-    return compare_structure3d
-
-
 def _3d_supports(structure) -> Optional[str]:
-    if _compare_structure3d() is not None or _is_block(structure):
-        return None
-    return "the 3D comparison of multi-drum columns is not available in this version of blastscale"
+    return None  # every structure of blastscale.structures runs on the 3D engine
 
 
 def _run_3d(ctx: _Context):
-    sc, sim = ctx.scenario, ctx.scenario.simulation
-    contact = contact_settings(sc, ctx.structure)
-    general = _compare_structure3d()
-    if general is not None:
-        return general(ctx.structure, ctx.design, load=sc.blast.load, pulse=sc.blast.pulse,
-                       incidence=sc.blast.incidence, contact=contact, duration=sim.duration_s,
-                       record_every=sim.record_every)
-    if sc.blast.load != "A":
-        raise BlastscaleInputError(
-            f"blast.load = {sc.blast.load!r} needs the general 3D comparison, not available in this version: "
-            "valid value here is A")
-    from .analysis.block3d_similarity import compare_block3d
+    from .analysis.structure3d import compare_structure3d
 
-    return compare_block3d(
-        ctx.structure, sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, density_ratio=ctx.design.density_ratio,
-        gravity_ratio=sc.scale.gravity_ratio, law=sc.scale.law, model=sc.blast.model, pulse=sc.blast.pulse,
-        contact=contact, duration=sim.duration_s, gravity=sim.gravity_m_s2, record_every=sim.record_every,
-        design=ctx.design,
-    )
+    sc, sim = ctx.scenario, ctx.scenario.simulation
+    return compare_structure3d(ctx.structure, ctx.design, load=sc.blast.load, pulse=sc.blast.pulse,
+                               incidence=sc.blast.incidence, contact=contact_settings(sc, ctx.structure),
+                               duration=sim.duration_s, record_every=sim.record_every)
 
 
 @dataclass(frozen=True)
@@ -372,14 +347,7 @@ def _describe(structure) -> dict:
 
 def _datasets_3d(cmp) -> tuple:
     """(prototype, up-scaled model) datasets of a 3D comparison."""
-    if hasattr(cmp, "model_upscaled") and hasattr(cmp.prototype, "to_dataset"):
-        return cmp.prototype.to_dataset(), cmp.model_upscaled.to_dataset()
-    proto = getattr(cmp, "prototype_dataset", None)
-    up = getattr(cmp, "upscaled_dataset", None)
-    if proto is None:
-        proto = cmp.prototype.dataset
-        up = cmp.model_upscaled.dataset if hasattr(cmp, "model_upscaled") else cmp.upscaled.dataset
-    return proto, up
+    return cmp.prototype_dataset, cmp.upscaled_dataset
 
 
 def _system_stack(engine: str, proto, up):

@@ -58,10 +58,6 @@ def _planar(result):
 
 def _three_d(result):
     cmp = result.response3d
-    if hasattr(cmp, "model_upscaled"):  # single block, Block3DComparison
-        from ..plots.sim3d import plot_comparison
-
-        return plot_comparison(cmp.prototype, cmp.model_upscaled)
     import matplotlib.pyplot as plt
 
     if result.scenario.structure.kind == "column":
