@@ -86,3 +86,32 @@ def test_impulsive_pulse():
 def test_bad_pulses_raise_named_errors(make, match):
     with pytest.raises(BlastscaleInputError, match=match):
         make()
+
+
+def test_friedlander_cumulative_vectorised_against_quadrature():
+    # J(x, d) = int_0^x (1 - s) e^{-d s} ds, by composite Simpson on 2001 points (relative error
+    # ~ h^4 d^4 / 180 ~ 1e-9 at d = 40, far smaller below), over decays on both sides of the series
+    # switch (|d| < 1e-4) and negative ones
+    import numpy as np
+
+    from blastscale.blast.pulses import friedlander_cumulative, friedlander_impulse_ratio
+
+    d = np.array([-0.9, -1e-5, 0.0, 3e-5, 0.3, 5.0, 40.0])
+    x = np.linspace(0.0, 1.0, 2001)
+    f = (1.0 - x)[None, :] * np.exp(-d[:, None] * x[None, :])
+    h = x[1] - x[0]
+    simpson = h / 3.0 * (f[:, 0] + f[:, -1] + 4.0 * f[:, 1:-1:2].sum(axis=1) + 2.0 * f[:, 2:-1:2].sum(axis=1))
+    np.testing.assert_allclose(friedlander_cumulative(1.0, d), simpson, rtol=1e-8)
+    np.testing.assert_allclose(friedlander_cumulative(1.0, d), friedlander_impulse_ratio(d), rtol=1e-10)
+
+
+def test_decay_newton_from_a_nearby_guess_equals_the_bisection():
+    import numpy as np
+
+    from blastscale.blast.pulses import friedlander_decay, friedlander_decay_newton
+
+    k = np.linspace(0.02, 0.7, 60)
+    with pytest.warns(Warning):  # k >= 1/2: negative decays (documented warning)
+        cold = friedlander_decay(np.ones_like(k), np.ones_like(k), k)
+    warm = friedlander_decay_newton(k, cold * 1.05 + 0.01)
+    np.testing.assert_allclose(warm, cold, rtol=1e-10, atol=1e-12)
