@@ -81,3 +81,16 @@ def test_ensemble_bad_input():
         ensemble_compare(col, d, perturbation=0.5)
     with pytest.raises(BlastscaleInputError, match="members shape"):
         ensemble_statistics(np.arange(3.0), np.zeros((3, 2)), [False])
+
+
+def test_first_peak_of_a_collapsed_member_is_taken_before_its_collapse():
+    """Member 0 collapses at t = 1 s and its history then runs away (2 + 5 (t - 1)): its first
+    peak is the value at collapse (q grows monotonically up to it), not the run-away maximum;
+    member 1 stands: its first peak is the sine's (1 at t = pi/2)."""
+    t = np.linspace(0.0, 3.0, 3001)
+    run_away = np.where(t <= 1.0, 2.0 * t, 2.0 + 5.0 * (t - 1.0))
+    q = np.stack([run_away, np.sin(t)])[:, :, None]
+    s = ensemble_statistics(t, q, [True, False], collapse_times=[1.0, None])
+    assert s["first_peak_mean"][0] == pytest.approx(0.5 * (2.0 + 1.0), rel=1e-6)
+    assert s["collapse_time_mean"] == 1.0 and s["collapse_time_spread"] == 0.0
+    assert s["collapse_probability"] == 0.5

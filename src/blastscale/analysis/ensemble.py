@@ -8,10 +8,10 @@ of each system with the load multiplied by ``1 + perturbation * u_k`` (``u_k`` e
 over [-1, 1]) and compares the ensembles:
 
 * the first peak of each monitoring point (x displacement): mean and spread (max - min) over
-  the members, prototype and up-scaled model;
+  the members, prototype and up-scaled model (a collapsed member's up to its collapse);
 * the envelope (min, max over the members at each prototype time) of each point's x
   displacement, and how much of the prototype's envelope the model's covers;
-* the collapse probability (fraction of members that collapse);
+* the collapse probability (fraction of members that collapse) and the collapse times;
 * the noise floor: the largest spread of the prototype ensemble over time relative to the
   peak, and the *predictability horizon*: the first time the prototype ensemble's spread at
   the top point exceeds ``horizon_fraction`` of its peak (trajectory comparison is
@@ -56,7 +56,8 @@ class PerturbedLoad:
         return getattr(self.__dict__["load"], name)
 
 
-def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05, peak_fraction: float = 0.1) -> dict:
+def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05, peak_fraction: float = 0.1,
+                        collapse_times=None) -> dict:
     """Statistics of an ensemble of histories of one quantity at several points.
 
     Parameters
@@ -71,6 +72,10 @@ def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05
         Spread / peak above which the members are considered to have diverged [-].
     peak_fraction : float
         See :func:`~.compare.first_peak`.
+    collapse_times : array (k,), optional
+        Collapse time of each member [s] (nan or None: it stands); a collapsed member's first
+        peak is taken up to its collapse (after it the drums fall, and the engine's contacts,
+        ground-base and adjacent drums only, no longer describe the motion).
 
     Returns
     -------
@@ -79,7 +84,8 @@ def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05
         (p,) [unit]; ``envelope_min``, ``envelope_max`` (n, p); ``peak`` (p,) (largest |q| of
         all members); ``spread`` (n, p) (max - min over members); ``max_spread_rel_peak`` (p,);
         ``horizon_s`` (p,) first time spread > ``horizon_fraction`` x peak (nan: never);
-        ``collapse_probability``.
+        ``collapse_probability``; ``collapse_time_mean``, ``collapse_time_spread`` [s] over the
+        collapsed members (nan when none).
     """
     from .compare import first_peak
 
@@ -88,7 +94,11 @@ def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05
         raise BlastscaleInputError(f"members shape = {q.shape} is not (members, times, points)")
     frac = float(check_range("horizon_fraction", horizon_fraction, 0.0, 1.0))
     t = np.asarray(time, dtype=float)
-    fp = np.array([[first_peak(t, q[k, :, j], peak_fraction)[1] for j in range(q.shape[2])] for k in range(q.shape[0])])
+    tc = np.full(q.shape[0], np.nan) if collapse_times is None else np.array(
+        [np.nan if x is None else float(x) for x in collapse_times])
+    upto = [t <= tc[k] if np.isfinite(tc[k]) else np.ones(t.size, dtype=bool) for k in range(q.shape[0])]
+    fp = np.array([[first_peak(t[upto[k]], q[k, upto[k], j], peak_fraction)[1] for j in range(q.shape[2])]
+                   for k in range(q.shape[0])])
     spread = q.max(axis=0) - q.min(axis=0)
     peak = np.max(np.abs(q), axis=(0, 1))
     safe = np.where(peak > 0, peak, np.inf)
@@ -108,6 +118,8 @@ def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05
         "max_spread_rel_peak": spread.max(axis=0) / safe,
         "horizon_s": horizon,
         "collapse_probability": float(np.mean(np.asarray(collapsed, dtype=bool))),
+        "collapse_time_mean": float(np.nanmean(tc)) if np.any(np.isfinite(tc)) else math.nan,
+        "collapse_time_spread": float(np.nanmax(tc) - np.nanmin(tc)) if np.any(np.isfinite(tc)) else math.nan,
     }
 
 
@@ -172,6 +184,10 @@ class EnsembleComparison:
             "perturbation": self.settings.get("perturbation"),
             "collapse_probability_prototype": p["collapse_probability"],
             "collapse_probability_model": m["collapse_probability"],
+            "collapse_time_prototype_mean_s": p["collapse_time_mean"],
+            "collapse_time_prototype_spread_s": p["collapse_time_spread"],
+            "collapse_time_model_mean_s": m["collapse_time_mean"],
+            "collapse_time_model_spread_s": m["collapse_time_spread"],
             "points": pts,
         }
 
@@ -220,7 +236,7 @@ def ensemble_compare(
     if eps == 0.0:
         raise BlastscaleInputError("perturbation = 0 is out of range: must be in (0, 0.1]")
     factors = tuple(1.0 + eps * u for u in np.linspace(-1.0, 1.0, int(n)))
-    proto_q, model_q, proto_c, model_c = [], [], [], []
+    proto_q, model_q, proto_c, model_c, proto_tc, model_tc = [], [], [], [], [], []
     t = points = None
     for k, fac in enumerate(factors):
         _, pr, mo, _ = _run_pair(structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact,
@@ -236,15 +252,18 @@ def ensemble_compare(
             pds, up = pds.isel(time=slice(0, m)), up.isel(time=slice(0, m))
         proto_q.append(pds["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
         model_q.append(up["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
-        proto_c.append(bool(pr.summary()["collapsed"]))
-        model_c.append(bool(mo.summary()["collapsed"]))
+        ps, ms = pr.summary(), mo.summary()
+        proto_c.append(bool(ps["collapsed"]))
+        model_c.append(bool(ms["collapsed"]))
+        proto_tc.append(ps.get("collapse_time_s"))
+        model_tc.append(None if ms.get("collapse_time_s") is None else ms["collapse_time_s"] / design.factors.time)
         if progress is not None:
             progress(k + 1, len(factors))
     P, M = np.stack(proto_q), np.stack(model_q)
     return EnsembleComparison(
         time=t, points=points,
-        prototype=ensemble_statistics(t, P, proto_c, horizon_fraction),
-        model=ensemble_statistics(t, M, model_c, horizon_fraction),
+        prototype=ensemble_statistics(t, P, proto_c, horizon_fraction, collapse_times=proto_tc),
+        model=ensemble_statistics(t, M, model_c, horizon_fraction, collapse_times=model_tc),
         factors=factors, prototype_members=P, model_members=M,
         settings={"perturbation": eps, "n": int(n), "load_method": load, "pulse": pulse, "duration_s": float(duration)},
     )
