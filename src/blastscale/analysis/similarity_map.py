@@ -85,6 +85,7 @@ def similarity_map(
     workers: Optional[int] = 0,
     scheduler: Optional[str] = None,
     chunk: Optional[int] = None,
+    progress=None,
 ):
     """The similarity map of a scenario (module docstring).
 
@@ -104,7 +105,7 @@ def similarity_map(
         :data:`DEFAULT_TOLERANCE`: 5e-4 rad planar, 0.05 relative 3D).
     store : path, optional
         Zarr store of the underlying sweep (resumable); a temporary one when None.
-    workers, scheduler, chunk
+    workers, scheduler, chunk, progress
         As in :func:`~blastscale.analysis.sweeps.run_sweep` (default: in this process).
 
     Returns
@@ -126,7 +127,7 @@ def similarity_map(
     spec = SweepSpec.build(base, dict(zip(MAP_FIELDS, (scales, density_ratios, charges, standoffs))))
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(store) if store is not None else Path(tmp) / "map.zarr"
-        run_sweep(spec, path, workers=workers, scheduler=scheduler, chunk=chunk)
+        run_sweep(spec, path, workers=workers, scheduler=scheduler, chunk=chunk, progress=progress)
         src = xr.open_zarr(path, consolidated=False).load()
     out = xr.Dataset(coords={k: src[k] for k in MAP_FIELDS})
     for name, (key, unit) in ENGINE_VARIABLES[engine].items():

@@ -139,8 +139,9 @@ def fragility_cmd(
     check_plot_path(plot)
     base = _scenario(scenario)
     W = parse_grid(charges, "charges")
-    res = fragility(base, W, lognormal=_assignments(lognormal, "--lognormal", _beta),
-                    uniform=_assignments(uniform, "--uniform", _uniform_range), samples=samples, seed=seed)
+    with console_err.status(f"fragility: {W.size} charges x {samples} draws ...", spinner="dots"):
+        res = fragility(base, W, lognormal=_assignments(lognormal, "--lognormal", _beta),
+                        uniform=_assignments(uniform, "--uniform", _uniform_range), samples=samples, seed=seed)
     out = res.to_dict()
     out["scenario"] = base.title or "default"
     if plot:
@@ -198,9 +199,10 @@ def similarity_map_cmd(
     base = _scenario(scenario)
     grids = [parse_grid(t, n) for t, n in ((scales, "scales"), (density_ratios, "density-ratios"),
                                           (charges, "charges"), (standoffs, "standoffs"))]
-    with one_line_warnings():
+    bar, tick = _progress_bar(f"similarity map ({engine})")
+    with one_line_warnings(), bar:
         ds = similarity_map(base, *grids, engine=engine, tolerance=tolerance, store=out, workers=workers,
-                            scheduler=scheduler, chunk=chunk)
+                            scheduler=scheduler, chunk=chunk, progress=tick)
     res = {
         "dims": {k: ds[k].values.tolist() for k in ("length", "density_ratio", "charge_kg", "standoff_m")},
         "engine": engine,
