@@ -58,7 +58,7 @@ def test_method_a_delivers_reflected_impulse_times_projected_front_area(col):
 def test_exact_scaling_model_upscaled_equals_prototype():
     # the exactly similar pulse (gamma = varsigma = 1): pressure x lambda, times x sqrt(lambda),
     # impulse x lambda^1.5; contact=None scales the contact with the structure's height
-    # issue: 1e-4 of the peak over 8 s; measured 5e-10 over 8 s (docs/sim3d.md), 2e-14 over the
+    # issue: 1e-4 of the peak over 8 s; measured 5e-11 over 8 s (docs/sim3d.md), 3e-15 over the
     # first peak here: the engine runs both in the same reference units (reference_factors), so
     # only round-off of the scaled inputs remains; 1e-8 leaves room for its growth
     lam, T = 0.01, 0.8
