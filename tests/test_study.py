@@ -122,3 +122,11 @@ def test_engine_that_does_not_fit_the_structure_is_one_line():
 def test_study_rejects_a_non_scenario():
     with pytest.raises(BlastscaleInputError, match="scenario must be a Scenario"):
         Study({"blast": {}})
+
+
+def test_both_engines_on_a_column_runs_3d_and_says_why_planar_is_skipped():
+    sc = load_scenario(EXAMPLES[-1]).with_values({"engine": "both", "duration_s": 0.1})
+    r = Study(sc).run()
+    assert r.planar is None and r.response3d is not None
+    assert any(w.startswith("planar engine skipped: planar rocking applies to a single rectangular block")
+               for w in r.warnings)
