@@ -206,3 +206,12 @@ def test_bad_grids_and_distributions_one_line_exit_2(tmp_path, capsys, argv, wor
     err = capsys.readouterr().err
     assert word in err and "Traceback" not in err and len(err.strip().splitlines()) <= 2
     assert not (tmp_path / "x.zarr").exists() and not (tmp_path / "x.zarr.parts").exists()
+
+
+def test_default_local_cluster_path_equals_in_process(tmp_path):
+    """The default path: a LocalCluster of worker processes (here one, on 127.0.0.1)."""
+    spec = SweepSpec.build(BASE.with_values({"critical_charge": False}), {"charge_kg": [40.0, 100.0, 160.0]})
+    run = run_sweep(spec, tmp_path / "lc.zarr", workers=1, chunk=2)
+    assert run.workers == 1 and run.chunks_run == 2
+    run_sweep(spec, tmp_path / "ip.zarr", workers=0)
+    assert_same_stores(tmp_path / "lc.zarr", tmp_path / "ip.zarr")
