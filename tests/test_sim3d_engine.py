@@ -16,7 +16,7 @@ from blastscale.sim3d import ContactSettings, MethodA, make_load, simulate_block
 from blastscale.sim3d.contact import default_contact
 from blastscale.sim3d.results import VARIABLES
 from blastscale.sim3d.simulate import simulate_structure
-from blastscale.structures import MultiDrumColumn, RectangularBlock
+from blastscale.structures import MonitoringPoint, MultiDrumColumn, RectangularBlock
 
 SQUARE = MultiDrumColumn("square")  # the paper's: 10 x 1 m drums, 1.65 -> 1.28 m, 2700 kg/m^3
 CIRCULAR = MultiDrumColumn("circular")
@@ -182,3 +182,16 @@ def test_engine_rejects_bad_input_with_one_line_naming_it(make, word):
         with pytest.raises(BlastscaleInputError) as e:
             make()
     assert word in str(e.value) and len(str(e.value).splitlines()) == 1
+
+
+def test_milligram_specimen_runs_in_reference_units_and_user_points_are_recorded():
+    # a 1 cm block (54 mg) and a 1/1000 column run as the 10 m structures in reference units
+    # (MuJoCo's absolute thresholds never see their size): at rest they stay put
+    tiny = RectangularBlock(10.0, 2.68).scaled(1e-3)
+    r = simulate_block(tiny, None, 0.05)
+    assert tiny.mass < 1e-4 and np.max(np.abs(r.rotation)) < 1e-9 and np.max(np.abs(r.sliding)) < 1e-11
+    col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54,
+                          extra_points=(MonitoringPoint("cap", 2, (0.0, 0.0, 0.5)),)).scaled(1e-3)
+    resp = simulate_structure(col, None, 0.02, record_every=10)
+    assert list(resp.dataset["point"].values) == ["P-1", "P-2", "P-3", "cap"]
+    assert np.abs(resp.dataset["point_displacement"].values).max() < 1e-9 * 3e-3
