@@ -215,3 +215,23 @@ def test_default_local_cluster_path_equals_in_process(tmp_path):
     assert run.workers == 1 and run.chunks_run == 2
     run_sweep(spec, tmp_path / "ip.zarr", workers=0)
     assert_same_stores(tmp_path / "lc.zarr", tmp_path / "ip.zarr")
+
+
+def test_grid_and_distribution_strings():
+    from blastscale.analysis.grids import parse_grid
+
+    np.testing.assert_array_equal(parse_grid("1:3:3"), [1.0, 2.0, 3.0])
+    np.testing.assert_allclose(parse_grid("1:100:3:log"), [1.0, 10.0, 100.0], rtol=1e-15)
+    np.testing.assert_array_equal(parse_grid("2.5"), [2.5])
+    assert parse_grid("friedlander,impulsive", numeric=False).tolist() == ["friedlander", "impulsive"]
+    assert parse_grid("1,2", numeric=False).dtype == float
+    rng = np.random.default_rng(0)
+    # sample moments against the closed forms: 1e5 draws, 5 standard errors of the mean
+    n = 100_000
+    for text, mean, sd in (("normal:2,0.5", 2.0, 0.5), ("uniform:1,3", 2.0, 2 / math.sqrt(12)),
+                           ("triangular:0,1,4", 5 / 3, math.sqrt((0 + 1 + 16 - 0 - 0 - 4) / 18)),
+                           ("lognormal:2,0.3", 2 * math.exp(0.045), 2 * math.exp(0.045) * math.sqrt(math.expm1(0.09)))):
+        x = parse_distribution(text).sample(rng, n)
+        assert abs(x.mean() - mean) < 5 * sd / math.sqrt(n), text
+    x = parse_distribution("loguniform:1,100").sample(rng, n)
+    assert x.min() >= 1 and x.max() <= 100 and abs(np.log10(x).mean() - 1.0) < 0.01

@@ -34,7 +34,15 @@ def _num(text: str, name: str, what: str) -> float:
     return x
 
 
-def parse_grid(text: str, name: str = "grid") -> np.ndarray:
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def parse_grid(text: str, name: str = "grid", numeric: bool = True) -> np.ndarray:
     """Values of a grid string (module docstring) as a float array.
 
     Parameters
@@ -43,6 +51,9 @@ def parse_grid(text: str, name: str = "grid") -> np.ndarray:
         ``"start:stop:n[:log]"``, ``"a,b,c"`` or ``"a"`` (in the field's own unit).
     name : str
         Field name for the error messages.
+    numeric : bool
+        With False, a list ``"a,b,c"`` whose items are not all numbers is returned as strings
+        (e.g. ``pulse=friedlander,triangular``; the scenario then validates them).
 
     Raises
     ------
@@ -72,7 +83,12 @@ def parse_grid(text: str, name: str = "grid") -> np.ndarray:
         if n == 1:
             return np.array([a])
         return np.geomspace(a, b, n) if log else np.linspace(a, b, n)
-    vals = np.array([_num(x, name, "value") for x in t.split(",") if x.strip()] or [], dtype=float)
+    items = [x.strip() for x in t.split(",") if x.strip()]
+    if not numeric and items and not all(_is_number(x) for x in items):
+        if len(set(items)) != len(items):
+            raise BlastscaleInputError(f"{name} = {text!r} repeats a value: each grid value must be distinct")
+        return np.array(items)
+    vals = np.array([_num(x, name, "value") for x in items] or [], dtype=float)
     if vals.size == 0:
         raise BlastscaleInputError(f"{name} = {text!r} is empty: give start:stop:n[:log] or a,b,c")
     if np.unique(vals).size != vals.size:

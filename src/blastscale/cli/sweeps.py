@@ -76,7 +76,7 @@ def sweep_cmd(
     from ..analysis.sweeps import SweepSpec, run_sweep
 
     base = _scenario(scenario)
-    grid = _assignments(vary, "--vary", parse_grid)
+    grid = _assignments(vary, "--vary", lambda text, key: parse_grid(text, key, numeric=False))
     dists = _assignments(sample, "--sample", parse_distribution)
     if dists and samples < 1:
         raise BlastscaleInputError(f"samples = {samples} is out of range: --sample needs --samples >= 1")
