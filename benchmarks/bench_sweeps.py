@@ -5,10 +5,11 @@
    scalar ``critical_charge`` call; against, in the same run, the bisection on full simulations
    (to rest, every impact; bracket [W/1.5, 1.5 W] checked, bisected in ln W to 1e-7) on a subset
    of the stand-offs: seconds per case, their ratio, and the largest relative difference.
-2. **Planar cases per minute**: ``run_sweep`` of a planar scenario (paper block, 5 s, 2001
-   samples, no critical charge; every Study scalar) in this process, varying charge x stand-off
-   (a design per case) and varying the restitution (one design); and the outcome-only rate of
-   the first-swing criterion (what ``fragility`` uses).
+2. **Planar cases per minute**: the compiled batch kernel alone (one 5 s simulation per case);
+   ``run_sweep`` of a planar scenario (paper block, 5 s, 2001 samples, no critical charge; every
+   Study scalar) in this process, varying charge x stand-off (a design per case) and varying the
+   restitution (one design); and the outcome-only rate of the first-swing criterion (what
+   ``fragility`` uses).
 3. **3D cases per minute**: ``run_sweep`` of the 3D engine (paper block, short duration).
 4. **1 vs 2 workers**: the same planar sweep on a ``LocalCluster`` of 1 and of 2 worker
    processes (wall time including the cluster start, and the speed-up).
@@ -107,12 +108,37 @@ def bench_planar(n_side: int) -> dict:
         t0 = time.perf_counter()
         overturning_outcomes(spec)
         dt = time.perf_counter() - t0
+    kernel = bench_kernel_only(2000)
     return {
+        "kernel_only_prototype_simulations": kernel,
         "full_study_scalars_design_per_case": designs,
         "full_study_scalars_one_design": shared,
         "outcome_only_first_swing": {"cases": spec.n_cases, "wall_s": dt, "cases_per_minute": spec.n_cases / dt * 60.0},
         "target_cases_per_minute": 1e6,
     }
+
+
+def bench_kernel_only(n: int, duration: float = 5.0) -> dict:
+    """One planar simulation per case (the paper's block, random charges 30-150 kg at 2-4 m,
+    Friedlander, 5 s, 201 samples), compiled batch kernel alone: what a planar case costs without
+    the Study's design and result dictionaries."""
+    from blastscale.blast import blast_parameters
+    from blastscale.blast.pulses import Friedlander
+    from blastscale.rocking import RockingSolver, RockingSystem
+    from blastscale.structures import RectangularBlock
+
+    rng = np.random.default_rng(0)
+    system = RockingSystem.from_block(RectangularBlock.from_slenderness(10.0, math.radians(15.0)))
+    bp = blast_parameters(rng.uniform(30, 150, n), rng.uniform(2, 4, n), "masi2021")
+    pulses = [Friedlander(bp.reflected_pressure[k], bp.positive_duration[k], bp.friedlander_decay[k]) for k in range(n)]
+    t = np.linspace(0.0, duration, 201)
+    solver = RockingSolver()
+    solver.simulate_batch(system, pulses[:2], duration, t)  # warm
+    t0 = time.perf_counter()
+    res = solver.simulate_batch(system, pulses, duration, t)
+    dt = time.perf_counter() - t0
+    return {"cases": n, "duration_s": duration, "wall_s": dt, "cases_per_minute": n / dt * 60.0,
+            "overturned": int(res.overturned.sum()), "processes": 1}
 
 
 def bench_3d(n: int, duration: float) -> dict:
