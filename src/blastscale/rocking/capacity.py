@@ -217,7 +217,9 @@ def _vector_root(evaluate, u0, ulo, uhi, xtol: float, max_iter: int = 200):
     a, fa = u0.copy(), f0.copy()  # the last point on the start's side
     b, fb = u0.copy(), f0.copy()
     up = f0 <= 0.0
-    step = np.full(n, 0.02)
+    # first step: about the distance to the root (mu grows like 2 ln W near it: E ~ i^2), so a
+    # good start (the impulsive closed form is exact for an impulsive pulse) gives a tight bracket
+    step = np.clip(1.5 * np.abs(f0), 2.0 * xtol, 0.5)
     todo = np.ones(n, dtype=bool)
     while np.any(todo):
         idx = np.flatnonzero(todo)
@@ -257,6 +259,10 @@ def _vector_root(evaluate, u0, ulo, uhi, xtol: float, max_iter: int = 200):
         bis = (it % 3 == 0) & (np.abs(h - l) > 0.5 * width0[idx])
         bad = ~np.isfinite(x) | (x <= np.minimum(l, h)) | (x >= np.maximum(l, h)) | bis
         x = np.where(bad, 0.5 * (l + h), x)
+        # at least 0.4 xtol from either end (as Brent's method): once one end sits on the root,
+        # the next point lands beyond it and closes the bracket instead of creeping along
+        a_, b_ = np.minimum(l, h) + 0.4 * xtol, np.maximum(l, h) - 0.4 * xtol
+        x = np.where(a_ < b_, np.clip(x, a_, b_), x)
         if it % 3 == 0:
             width0[idx] = np.abs(h - l)
         fx = evaluate(idx, x)
