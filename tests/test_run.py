@@ -143,3 +143,16 @@ def test_ctrl_c_exits_130_one_line_no_partial_folder(tmp_path, moment):
     assert proc.returncode == 130, err
     assert err.strip() == "error: interrupted (Ctrl-C): no partial results left"
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("exc", [OSError(28, "No space left on device"), KeyboardInterrupt()])
+def test_output_folder_leaves_nothing_when_writing_fails(tmp_path, exc):
+    from blastscale._validate import BlastscaleInputError
+    from blastscale.io.results import output_folder
+
+    expected = BlastscaleInputError if isinstance(exc, OSError) else KeyboardInterrupt
+    with pytest.raises(expected):
+        with output_folder(tmp_path / "r") as tmp:
+            (tmp / "summary.json").write_text("{}")
+            raise exc
+    assert list(tmp_path.iterdir()) == []

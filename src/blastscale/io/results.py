@@ -210,6 +210,10 @@ def output_folder(out: "str | Path", force: bool = False, before_commit=None, af
                 shutil.rmtree(trash, ignore_errors=True)
             if after_commit is not None:
                 after_commit()
+    except OSError as exc:  # disk full, permissions changed underneath: one line, nothing left
+        with _sigint_blocked():
+            shutil.rmtree(tmp, ignore_errors=True)
+        raise BlastscaleInputError(f"out = {str(out)!r} cannot be written: {exc.strerror or exc}") from None
     except BaseException:
         with _sigint_blocked():
             shutil.rmtree(tmp, ignore_errors=True)
