@@ -515,7 +515,9 @@ def evaluate_chunk(payload: dict, start: int, stop: int) -> dict:
 @dataclass(frozen=True)
 class SweepRun:
     """What :func:`run_sweep` did: the store, the number of cases, chunks computed now and
-    skipped (already written), wall time [s], workers."""
+    skipped (already written), ``seconds`` [s] computing them (on Dask: from the first submission
+    to the last chunk written; the cluster's start and stop and the final consolidation are not
+    counted), workers, and the rate of that computing."""
 
     store: str
     n_cases: int
@@ -700,15 +702,16 @@ def run_sweep(
     if progress:
         progress(done_cases, n)
     used = nw
-    if todo and scheduler is None and nw == 0:
+    if todo and scheduler is None and nw == 0:  # in this process
         for i, a, b in todo:
             _write_chunk(parts, i, evaluate_chunk(payload, a, b))
             done_cases += b - a
             if progress:
                 progress(done_cases, n)
-    elif todo:
-        used = _run_dask(payload, todo, parts, scheduler, nw, lambda k: progress(done_cases + k, n) if progress else None)
     dt = time.perf_counter() - t0
+    if todo and not (scheduler is None and nw == 0):
+        used, dt = _run_dask(payload, todo, parts, scheduler, nw,
+                             lambda k: progress(done_cases + k, n) if progress else None)
     _consolidate(spec, parts, len(bounds), store, _metadata(spec, chunk))
     shutil.rmtree(parts, ignore_errors=True)
     ran = sum(b - a for _, a, b in todo)
@@ -725,8 +728,9 @@ def _store_fingerprint(store: Path) -> Optional[str]:
         return None
 
 
-def _run_dask(payload, todo, parts: Path, scheduler, nw: int, tick) -> int:
-    """Submit the chunks, write each as it completes; returns the number of workers used."""
+def _run_dask(payload, todo, parts: Path, scheduler, nw: int, tick) -> tuple:
+    """Submit the chunks, write each as it completes; returns the number of workers used and the
+    seconds from the first submission to the last chunk written (cluster start and stop excluded)."""
     from dask.distributed import Client, LocalCluster, as_completed
 
     cluster = None
@@ -741,6 +745,7 @@ def _run_dask(payload, todo, parts: Path, scheduler, nw: int, tick) -> int:
             raise BlastscaleInputError(f"scheduler = {scheduler!r} cannot be reached: {exc}") from None
     try:
         used = len(client.scheduler_info().get("workers", {})) or nw
+        t0 = time.perf_counter()
         futs = {client.submit(evaluate_chunk, payload, a, b, key=f"blastscale-chunk-{i}-{payload_hash(payload)}",
                               pure=False): (i, a, b) for i, a, b in todo}
         k = 0
@@ -749,7 +754,7 @@ def _run_dask(payload, todo, parts: Path, scheduler, nw: int, tick) -> int:
             _write_chunk(parts, i, fut.result())
             k += b - a
             tick(k)
-        return used
+        return used, time.perf_counter() - t0
     finally:
         client.close()
         if cluster is not None:

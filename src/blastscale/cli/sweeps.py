@@ -94,7 +94,7 @@ def sweep_cmd(
     console.print(table(f"Sweep of {spec.n_cases} cases into {out}", [
         ("dimensions", " x ".join(f"{d} ({n})" for d, n in zip(spec.dims, spec.shape)) or "-", ""),
         ("chunks computed / already done", f"{run.chunks_run} / {run.chunks_skipped}", ""),
-        ("wall time", f"{run.seconds:.3g}", "s"),
+        ("computing time (cluster start/stop excluded)", f"{run.seconds:.3g}", "s"),
         ("cases per minute", f"{run.cases_per_minute:.4g}", "1/min"),
         ("workers", str(run.workers), ""),
     ]))
