@@ -120,14 +120,15 @@ def cluster():
             assert time.time() < deadline, "dask cluster did not start"
             time.sleep(0.3)
         yield addr
-    finally:
+    finally:  # our two processes, by their ids: terminate, and kill what has not exited after 2 s
         for p in reversed(procs):
             p.terminate()
         for p in procs:
             try:
-                p.wait(10)
+                p.wait(2)
             except subprocess.TimeoutExpired:
                 p.kill()
+                p.wait()
 
 
 def run_cli(capsys, *argv) -> dict:

@@ -21,10 +21,11 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 
-__all__ = ["parse_grid", "parse_assignment", "Distribution", "parse_distribution", "DISTRIBUTIONS"]
+__all__ = ["parse_grid", "parse_number", "parse_assignment", "Distribution", "parse_distribution", "DISTRIBUTIONS"]
 
 
-def _num(text: str, name: str, what: str) -> float:
+def parse_number(text: str, name: str, what: str = "value") -> float:
+    """``text`` as a finite float (one-line error naming ``name`` and ``what`` otherwise)."""
     try:
         x = float(text)
     except ValueError:
@@ -68,7 +69,7 @@ def parse_grid(text: str, name: str = "grid", numeric: bool = True) -> np.ndarra
         parts = t.split(":")
         if len(parts) not in (3, 4) or (len(parts) == 4 and parts[3] not in ("log", "lin")):
             raise BlastscaleInputError(f"{name} = {text!r} is not a grid: valid forms are start:stop:n[:log] or a,b,c")
-        a, b = _num(parts[0], name, "start"), _num(parts[1], name, "stop")
+        a, b = parse_number(parts[0], name, "start"), parse_number(parts[1], name, "stop")
         try:
             n = int(parts[2])
         except ValueError:
@@ -88,7 +89,7 @@ def parse_grid(text: str, name: str = "grid", numeric: bool = True) -> np.ndarra
         if len(set(items)) != len(items):
             raise BlastscaleInputError(f"{name} = {text!r} repeats a value: each grid value must be distinct")
         return np.array(items)
-    vals = np.array([_num(x, name, "value") for x in items] or [], dtype=float)
+    vals = np.array([parse_number(x, name, "value") for x in items] or [], dtype=float)
     if vals.size == 0:
         raise BlastscaleInputError(f"{name} = {text!r} is empty: give start:stop:n[:log] or a,b,c")
     if np.unique(vals).size != vals.size:
@@ -163,7 +164,7 @@ def parse_distribution(text: str, name: str = "distribution") -> Distribution:
     vals = [x for x in rest.split(",") if x.strip()]
     if len(vals) != len(names):
         raise BlastscaleInputError(f"{name} = {text!r}: {kind} takes {len(names)} parameters ({', '.join(names)})")
-    p = tuple(_num(x, name, pn) for x, pn in zip(vals, names))
+    p = tuple(parse_number(x, name, pn) for x, pn in zip(vals, names))
     if kind in ("normal", "lognormal") and p[1] < 0:
         raise BlastscaleInputError(f"{name} = {text!r}: {names[1]} = {p[1]:g} is out of range: must be >= 0")
     if kind == "lognormal" and p[0] <= 0:

@@ -735,8 +735,13 @@ def _run_dask(payload, todo, parts: Path, scheduler, nw: int, tick) -> tuple:
 
     cluster = None
     if scheduler is None:
-        cluster = LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
-                               dashboard_address=None)
+        import warnings
+
+        with warnings.catch_warnings():
+            # the scheduler's HTTP (health) server takes another port when 8787 is busy: not our concern
+            warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
+            cluster = LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                   dashboard_address=None)
         client = Client(cluster)
     else:
         try:

@@ -102,17 +102,17 @@ def sweep_cmd(
 
 def _uniform_range(text: str, name: str) -> tuple:
     lo, sep, hi = text.partition(":")
-    from ..analysis.grids import _num
+    from ..analysis.grids import parse_number
 
     if not sep:
         raise BlastscaleInputError(f"--uniform {name} = {text!r} is not lo:hi")
-    return _num(lo, name, "lo"), _num(hi, name, "hi")
+    return parse_number(lo, name, "lo"), parse_number(hi, name, "hi")
 
 
 def _beta(text: str, name: str) -> float:
-    from ..analysis.grids import _num
+    from ..analysis.grids import parse_number
 
-    b = _num(text, name, "beta")
+    b = parse_number(text, name, "beta")
     if b < 0:
         raise BlastscaleInputError(f"--lognormal {name} = {text!r}: beta = {b:g} is out of range: must be >= 0")
     return b
