@@ -110,3 +110,25 @@ def test_lab_specimen_and_extrapolation():
     with pytest.warns(ExtrapolationWarning):
         w = critical_charge(rod, 1.0, extrapolate=True).charge_kg
     assert 40.0 < 1.0 / w ** (1 / 3) < 200.0
+
+
+@pytest.mark.parametrize("ratio", [1.05, 1.5, 30.0])
+def test_pi_diagram_point_is_the_full_simulation_threshold(ratio):
+    """Long pulses (near the uplift pressure the block tips while the pulse still acts) and short
+    ones: the critical impulse of the P-I diagram separates the full simulations' outcomes at
+    +-1e-6 (the search tolerance is 1e-8 here)."""
+    from blastscale.blast import Triangular
+    from blastscale.rocking import pi_diagram
+
+    system = RockingSystem.from_block(BLOCK)
+    P = system.uplift_pressure * ratio
+    ic = pi_diagram(system, [P], xtol_rel=1e-8).critical_impulse[0]
+    p = system.frequency_parameter
+    tipped_during = []
+    for f, want in ((1 + 1e-6, True), (1 - 1e-6, False)):
+        pulse = Triangular(P, ic * f)
+        res = simulate(system, pulse, pulse.duration + 200.0 / p)
+        assert res.overturned is want
+        tipped_during.append(res.overturn_time is not None and res.overturn_time < pulse.duration)
+    if ratio < 1.1:
+        assert tipped_during[0]  # the case the criterion must get right: tipping before the pulse ends
