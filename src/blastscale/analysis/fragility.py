@@ -185,8 +185,12 @@ class FragilityResult:
 
     def to_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (JSON-ready)."""
+        from .. import __version__
+
         f = self.fit
         return {
+            "blastscale_version": __version__,
+            "method": "first-swing energy criterion (planar rocking of the prototype), binomial maximum likelihood",
             "charge_kg": self.charge_kg.tolist(),
             "overturned": self.overturned.tolist(),
             "samples": self.samples,

@@ -295,8 +295,12 @@ def capacity_cmd(
         safe = None
         if charge is not None:
             safe = critical_standoff(system, charge, **kw).standoff_m
+    from .. import __version__
+
     out = {"inputs": _inputs(block, pulse=pulse, model=model, gravity_m_s2=gravity, restitution=restitution,
-                             extrapolate=extrapolate)}
+                             extrapolate=extrapolate),
+           "blastscale_version": __version__,
+           "method": "first-swing energy criterion after the pulse (docs/capacity.md)"}
     out.update(curve.to_dict())
     if mcap is not None:
         out["model"] = mcap.to_dict()
