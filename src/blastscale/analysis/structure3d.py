@@ -229,7 +229,7 @@ class Comparison3D:
 
 def simulate_system(structure, design, system: str = "prototype", *, load: str = "A", pulse: str = "friedlander",
                     incidence: str | None = None, contact=None, duration: float = 8.0, record_every: int = 4,
-                    load_factor: float = 1.0):
+                    load_factor: float = 1.0, extrapolate: bool = False):
     """Simulate one side of a model experiment: the prototype, or the model at its own size.
 
     Parameters
@@ -248,6 +248,8 @@ def simulate_system(structure, design, system: str = "prototype", *, load: str =
         Prototype simulated time [s].
     load_factor : float
         Multiplier of the load's wrenches [-] (ensembles, :class:`~.ensemble.PerturbedLoad`).
+    extrapolate : bool
+        Let the blast fits run outside their ranges (with a warning), passed to ``make_load``.
 
     Returns
     -------
@@ -270,7 +272,7 @@ def simulate_system(structure, design, system: str = "prototype", *, load: str =
         raise BlastscaleInputError(f"system = {system!r} is not known: valid values are prototype, model")
     inc = {} if incidence is None else {"incidence": incidence}
     ld = make_load(load, struct, charge_kg=blast.charge_kg, standoff_m=blast.standoff_m, blast_model=blast.model,
-                   pulse=pulse, **inc)
+                   pulse=pulse, extrapolate=bool(extrapolate), **inc)
     if load_factor != 1.0:
         ld = PerturbedLoad(ld, load_factor)
     resp = simulate_structure(struct, ld, dur, contact=cont, gravity=g, record_every=record_every)
@@ -296,6 +298,7 @@ def compare_structure3d(
     contact=None,
     duration: float = 8.0,
     record_every: int = 4,
+    extrapolate: bool = False,
 ) -> Comparison3D:
     """Run a structure and its reduced-scale model in 3D and compare them in prototype units.
 
@@ -322,6 +325,8 @@ def compare_structure3d(
         lambda_t``).
     record_every : int
         Recording interval in steps (the same at both scales, so the grids correspond).
+    extrapolate : bool
+        Let the blast fits run outside their ranges (with a warning), for both loads.
 
     Returns
     -------
@@ -334,7 +339,7 @@ def compare_structure3d(
         )
     model_structure, proto, mod, load_end = _run_pair(
         structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact, duration=dur,
-        record_every=record_every)
+        record_every=record_every, extrapolate=extrapolate)
     pds = _with_outcome(proto.dataset, proto.summary())
     up = upscale_dataset(_with_outcome(mod.dataset, mod.summary()), design.factors)
     cmp = compare_responses(pds, up, variables=_COMPARED, outcome="collapsed")
