@@ -64,7 +64,8 @@ def test_histories_files_have_units_and_match(capsys, tmp_path):
     import pandas as pd
 
     csv = pd.read_csv(out_dir / "histories.csv")
-    assert list(csv.columns) == ["engine", "system", "variable", "time_s", "element", "component", "value", "units"]
+    assert list(csv.columns) == ["engine", "system", "variable", "time_s", "element", "component", "member", "value",
+                                 "units"]
     rows = csv[(csv.engine == "planar") & (csv.system == "prototype") & (csv.variable == "rotation_y")]
     assert rows["value"].to_numpy() == pytest.approx(theta, rel=1e-9)  # CSV holds 10 significant digits
     assert set(rows["units"]) == {"rad"}

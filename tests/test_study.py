@@ -65,10 +65,12 @@ def test_progress_reports_every_stage_in_order():
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
 def test_each_paper_scenario_runs_end_to_end(path, tmp_path):
-    sc = load_scenario(path).with_values(SHORT)
+    sc = load_scenario(path)
+    sc = sc.with_values({**SHORT, "ensemble_members": min(sc.simulation.ensemble_members, 2)})
     r = Study(sc).run()
     assert (r.planar is not None) == (sc.structure.kind == "block" and sc.simulation.engine in ("planar", "both"))
     assert r.response3d is not None
+    assert (r.ensemble is not None) == (sc.simulation.ensemble_members >= 2)  # the circular columns
     s = r.scalars()
     assert all(isinstance(v, (bool, int, float)) for v in s.values())
     assert s["design.model_charge_kg"] == pytest.approx(r.design.model_charge_kg)
@@ -130,3 +132,12 @@ def test_both_engines_on_a_column_runs_3d_and_says_why_planar_is_skipped():
     assert r.planar is None and r.response3d is not None
     assert any(w.startswith("planar engine skipped: planar rocking applies to a single rectangular block")
                for w in r.warnings)
+
+
+def test_ensemble_settings_are_checked_before_running():
+    with pytest.raises(BlastscaleInputError, match=r"simulation\.ensemble_members = 1 is out of range: valid values "
+                                                   r"are 0 \(no ensemble\) or 2 to 64"):
+        Scenario.default().with_values({"ensemble_members": 1})
+    sc = Scenario.default().with_values({"ensemble_members": 2, "engine": "planar"})
+    with pytest.raises(BlastscaleInputError, match=r"simulation\.ensemble_members = 2 needs the 3D engine"):
+        Study(sc).check()

@@ -157,6 +157,16 @@ def _run_3d(ctx: _Context):
                                duration=sim.duration_s, record_every=sim.record_every, **kw)
 
 
+def _run_ensemble(ctx: _Context):
+    from .analysis.ensemble import ensemble_compare
+
+    sc, sim = ctx.scenario, ctx.scenario.simulation
+    return ensemble_compare(ctx.structure, ctx.design, n=sim.ensemble_members, perturbation=sim.ensemble_perturbation,
+                            load=sc.blast.load, pulse=sc.blast.pulse, incidence=sc.blast.incidence,
+                            contact=contact_settings(sc, ctx.structure), duration=sim.duration_s,
+                            record_every=sim.record_every)
+
+
 @dataclass(frozen=True)
 class Engine:
     """One response engine: ``supports(structure)`` returns None or why not; ``run(ctx)``."""
@@ -172,6 +182,10 @@ ENGINES: dict[str, Engine] = {
     "planar": Engine("planar", "planar rocking: prototype and model", _planar_supports, _run_planar),
     "3d": Engine("3d", "3D rigid bodies (MuJoCo): prototype and model", _3d_supports, _run_3d),
 }
+
+#: Runs added to the 3D engine when ``simulation.ensemble_members >= 2``: perturbed-load ensembles
+#: of prototype and model (chaotic structures are compared by envelopes, not single trajectories).
+ENSEMBLE = Engine("ensemble", "3D ensembles under perturbed loads: prototype and model", _3d_supports, _run_ensemble)
 
 
 # -- memory -----------------------------------------------------------------------------------
@@ -257,6 +271,8 @@ class StudyResult:
         Prototype's critical charge at the stand-off (planar), when asked for.
     response3d : object or None
         3D comparison (``.summary()`` with prototype, model, similarity), when run.
+    ensemble : EnsembleComparison or None
+        3D ensembles of prototype and model under perturbed loads, when asked for.
     warnings : tuple of str
         Library warnings and the study's own (not impulsive, outcomes disagree, engine skipped).
     timings : dict
@@ -270,6 +286,7 @@ class StudyResult:
     planar: Any = None
     critical: Any = None
     response3d: Any = None
+    ensemble: Any = None
     warnings: tuple = ()
     timings: dict = field(default_factory=dict)
 
@@ -299,6 +316,7 @@ class StudyResult:
             "planar": None if self.planar is None else self.planar.to_dict(),
             "critical": None if self.critical is None else self.critical.to_dict(),
             "3d": None if self.response3d is None else self.response3d.summary(),
+            "ensemble": None if self.ensemble is None else self.ensemble.summary(),
             "warnings": list(self.warnings),
             "timings_s": dict(self.timings),
         }
@@ -308,7 +326,7 @@ class StudyResult:
         str -> float / int / bool; None (not applicable) -> NaN. Inputs and timings are left out."""
         s = self.summary()
         out: dict = {}
-        for key in ("experiment", "design", "planar", "critical", "3d"):
+        for key in ("experiment", "design", "planar", "critical", "3d", "ensemble"):
             _flatten(s[key], key, out)
         return out
 
@@ -330,6 +348,8 @@ class StudyResult:
                                        upscale_dataset(rocking_dataset(self.planar.model), self.design.factors)))
         if self.response3d is not None:
             parts.append(_system_stack("3d", *_datasets_3d(self.response3d)))
+        if self.ensemble is not None:
+            parts.append(_ensemble_dataset(self.ensemble))
         ds = xr.merge(parts, combine_attrs="drop_conflicts") if parts else xr.Dataset()
         for name in ds.variables:  # labels (system, body, point, component) are dimensionless
             ds[name].attrs.setdefault("units", "1")
@@ -356,6 +376,22 @@ def _describe(structure) -> dict:
 def _datasets_3d(cmp) -> tuple:
     """(prototype, up-scaled model) datasets of a 3D comparison."""
     return cmp.prototype_dataset, cmp.upscaled_dataset
+
+
+def _ensemble_dataset(ens):
+    """The ensemble members' x displacements, prototype and up-scaled model, as one variable."""
+    import numpy as np
+    import xarray as xr
+
+    data = np.stack([ens.prototype_members, ens.model_members])  # (system, member, time, point)
+    return xr.Dataset(
+        {"ensemble_point_displacement_x": (("system", "ensemble_member", "ensemble_time", "ensemble_point"), data,
+                                           {"units": "m", "long_name": "x displacement of the monitoring points"})},
+        coords={"system": ["prototype", "model"], "ensemble_member": np.arange(data.shape[1]),
+                "ensemble_load_factor": ("ensemble_member", np.asarray(ens.factors), {"units": "1"}),
+                "ensemble_time": ("ensemble_time", ens.time, {"units": "s"}),
+                "ensemble_point": list(ens.points)},
+    )
 
 
 def _system_stack(engine: str, proto, up):
@@ -428,6 +464,12 @@ class Study:
         if not run:
             raise BlastscaleInputError(
                 f"structure.kind = {self.scenario.structure.kind!r} cannot be simulated here: {'; '.join(skipped)}")
+        members = self.scenario.simulation.ensemble_members
+        if members >= 2:
+            if not any(e.name == "3d" for e in run):
+                raise BlastscaleInputError(f"simulation.ensemble_members = {members} needs the 3D engine: valid "
+                                           "simulation.engine values are \"3d\" or \"both\" (or 0 members)")
+            run.append(ENSEMBLE)
         return run, skipped
 
     def design(self, structure=None):
@@ -501,7 +543,7 @@ class Study:
         model_structure = structure.scaled(d.scale, d.density_ratio)
         return StudyResult(
             scenario=sc, structure=structure, model_structure=model_structure, design=d,
-            planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
+            planar=results.get("planar"), critical=crit, response3d=results.get("3d"), ensemble=results.get("ensemble"),
             warnings=tuple(lib + notes), timings=timings,
         )
 
@@ -520,6 +562,10 @@ def _critical(sc: Scenario, structure):
                            extrapolate=sc.blast.extrapolate)
 
 
+def _is_circular(cmp) -> bool:
+    return getattr(getattr(cmp, "structure", None), "section", None) == "circular"
+
+
 def _study_warnings(design, results: dict, skipped: list) -> list:
     """The study's own warnings, in words for the report."""
     out = list(skipped)
@@ -530,6 +576,15 @@ def _study_warnings(design, results: dict, skipped: list) -> list:
     planar = results.get("planar")
     if planar is not None and not planar.outcomes_agree:
         out.append("planar rocking: prototype and model outcomes disagree (one overturns, the other does not)")
+    ens = results.get("ensemble")
+    if ens is None and results.get("3d") is not None and _is_circular(results["3d"]):
+        out.append("circular drums wobble chaotically: one trajectory after the first impact means little; compare "
+                   "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities")
+    if ens is not None:
+        e = ens.summary()
+        if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
+            out.append(f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
+                       f"{e['collapse_probability_model']:.2g} (model)")
     r3 = results.get("3d")
     if r3 is not None:
         s = r3.summary()

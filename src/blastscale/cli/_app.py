@@ -78,6 +78,14 @@ def _raise_interrupted(signum, frame):
     raise Interrupted()
 
 
+def _unraisable(info) -> None:
+    """Ctrl-C that landed where Python cannot raise (a finaliser, a ctypes callback of the JIT):
+    not printed; the flag stays set and :func:`raise_if_interrupted` raises at the next stage."""
+    if isinstance(info.exc_value, Interrupted) or _INTERRUPTED:  # or a consequence of it (a half-made
+        return  # file object closed at exit): the one line printed says what happened
+    sys.__unraisablehook__(info)
+
+
 def raise_if_interrupted() -> None:
     """Raise :class:`Interrupted` when Ctrl-C came at a moment that could not raise (a finaliser)."""
     if _INTERRUPTED:
@@ -97,8 +105,10 @@ class OneLineErrorGroup(TyperGroup):
         if not standalone_mode:
             return super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
         previous = signal.getsignal(signal.SIGINT)
+        previous_hook = sys.unraisablehook
         if previous is not signal.SIG_IGN:  # a background job keeps ignoring Ctrl-C
             signal.signal(signal.SIGINT, _raise_interrupted)
+            sys.unraisablehook = _unraisable
         args = normalise_ratios(list(sys.argv[1:] if args is None else args))
         try:
             rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
@@ -122,6 +132,8 @@ class OneLineErrorGroup(TyperGroup):
             raise
         finally:
             signal.signal(signal.SIGINT, previous)
+            if not _INTERRUPTED:  # after Ctrl-C, keep quiet about finalisers that run at exit
+                sys.unraisablehook = previous_hook
         sys.exit(rv if isinstance(rv, int) else 0)
 
 

@@ -66,7 +66,7 @@ def histories_tidy(ds):
 
     Columns: ``engine``, ``system`` (prototype / model up-scaled), ``variable``, ``time_s``,
     ``element`` (body or monitoring point, "" when none), ``component`` ("" when none),
-    ``value`` and ``units``.
+    ``member`` (ensemble member, "" when none), ``value`` and ``units``.
 
     Parameters
     ----------
@@ -89,15 +89,17 @@ def histories_tidy(ds):
             if d == "system":
                 continue
             short = d[len(engine) + 1:] if d.startswith(engine + "_") else d
-            ren[d] = "time_s" if short == "time" else ("component" if short == "component" else "element")
+            ren[d] = {"time": "time_s", "component": "component", "member": "member"}.get(short, "element")
         df = df.rename(columns=ren)
-        for col, empty in (("element", ""), ("component", ""), ("time_s", math.nan)):  # e.g. totals: no time
-            if col not in df:
+        for col, empty in (("element", ""), ("component", ""), ("member", ""), ("time_s", math.nan)):
+            if col not in df:  # e.g. totals have no time, single runs no member
                 df[col] = empty
         df["engine"], df["variable"], df["units"] = engine, var, da.attrs.get("units", "1")
-        frames.append(df[["engine", "system", "variable", "time_s", "element", "component", "value", "units"]])
-    cols = ["engine", "system", "variable", "time_s", "element", "component", "value", "units"]
-    return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=cols)
+        frames.append(df[_TIDY_COLUMNS])
+    return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=_TIDY_COLUMNS)
+
+
+_TIDY_COLUMNS = ["engine", "system", "variable", "time_s", "element", "component", "member", "value", "units"]
 
 
 def write_histories_csv(ds, path: "str | Path") -> None:

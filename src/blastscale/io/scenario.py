@@ -261,7 +261,18 @@ class SimulationSpec(BaseModel):
     restitution: Optional[float] = Field(None, ge=0, le=1,
                                          description="Planar restitution e [-] (default Housner's)")
     critical_charge: bool = Field(True, description="Also search the prototype's critical charge (planar)")
+    ensemble_members: int = Field(0, ge=0, le=64, description="Members per system of a 3D ensemble under slightly "
+                                  "perturbed loads, for chaotic structures (circular columns); 0: none [-]")
+    ensemble_perturbation: float = Field(1e-6, gt=0, le=0.1, description="Largest relative load change of an "
+                                         "ensemble member [-]")
     contact: ContactSpec = Field(default_factory=ContactSpec, description="3D contact settings")
+
+    @field_validator("ensemble_members")
+    @classmethod
+    def _members(cls, v: int) -> int:
+        if v == 1:
+            raise ValueError("= 1 is out of range: valid values are 0 (no ensemble) or 2 to 64 members")
+        return v
 
 
 Structure = Annotated[Union[BlockSpec, ColumnSpec], Field(discriminator="kind")]

@@ -72,6 +72,18 @@ def _three_d(result):
     return fig
 
 
+def _ensemble(result):
+    import matplotlib.pyplot as plt
+
+    from ..plots.column import plot_ensemble_envelope
+
+    ens = result.ensemble
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
+    for ax, point in zip(axes, (ens.points[0], ens.points[-1])):
+        plot_ensemble_envelope(ens, point=point, ax=ax)
+    return fig
+
+
 #: The report's figures, in order.
 FIGURES: tuple[Figure, ...] = (
     Figure("blast_pulses", "Blast loads of the prototype and the model",
@@ -84,6 +96,10 @@ FIGURES: tuple[Figure, ...] = (
     Figure("response_3d", "3D rigid-body response (MuJoCo): prototype and up-scaled model",
            "Histories of the prototype (solid) and of the model up-scaled to prototype units (dashed).",
            lambda r: r.response3d is not None, _three_d),
+    Figure("ensemble_envelopes", "3D ensembles: envelopes of the prototype and of the up-scaled model",
+           "Minimum-maximum envelopes and means of the x displacement over the members (loads perturbed by a "
+           "relative 1e-6 or as set), lowest and highest monitoring points. For a chaotic structure the "
+           "envelopes, not single histories, measure similarity.", lambda r: r.ensemble is not None, _ensemble),
 )
 
 

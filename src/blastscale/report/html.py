@@ -212,6 +212,16 @@ def _similarity(result, figures) -> str:
         if "response_3d" in figs:
             f, png = figs["response_3d"]
             out.append(_img(png, f.title, f.caption, f.name))
+    if result.ensemble is not None:
+        en = s["ensemble"]
+        out.append(f"<h3>3D ensembles ({en['n_members']} members per system, loads perturbed by up to "
+                   f"{en['perturbation']:g})</h3>")
+        out.append(_table(("quantity", "value", "unit"),
+                          [(k, v, split_unit(k.split(".")[-1])[1]) for k, v in _flat(en)
+                           if not isinstance(v, str) and k not in ("n_members", "perturbation")]))
+        if "ensemble_envelopes" in figs:
+            f, png = figs["ensemble_envelopes"]
+            out.append(_img(png, f.title, f.caption, f.name))
     if result.critical is not None:
         c = result.critical
         out.append(f"<h3>Capacity</h3><p>Critical charge of the prototype at {c.standoff_m:g} m (planar, the largest "
