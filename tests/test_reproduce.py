@@ -90,3 +90,28 @@ def test_unknown_item_and_file_target_are_one_line(capsys, tmp_path):
     with pytest.raises(SystemExit) as e:
         main(["reproduce", "--out", str(tmp_path / "f")])
     assert e.value.code == 2 and "is a file" in capsys.readouterr().err
+
+
+def test_a_changed_scenario_runs_again(capsys, tmp_path, monkeypatch):
+    import shutil
+
+    import blastscale.report.reproduce as rp
+
+    scen = tmp_path / "scenarios"
+    scen.mkdir()
+    shutil.copy(SCENARIOS / "paper_block_50kg_lambda20.toml", scen)
+    monkeypatch.setattr(rp, "SCENARIOS", scen)
+    monkeypatch.setattr(rp, "EXAMPLES", tmp_path / "no-gallery")
+    out = tmp_path / "paper"
+    args = ["reproduce", "--out", str(out), "--quick", "--only", "scenario-*"]
+    for _ in range(2):
+        with pytest.raises(SystemExit):
+            main(args)
+    assert capsys.readouterr().out.count("skipped (done)") == 1
+    (scen / "paper_block_50kg_lambda20.toml").write_text(
+        (scen / "paper_block_50kg_lambda20.toml").read_text().replace("charge_kg = 50.0", "charge_kg = 40.0"))
+    with pytest.raises(SystemExit):
+        main(args)
+    assert "skipped (done)" not in capsys.readouterr().out
+    info = json.loads((out / "scenario-paper-block-50kg-lambda20" / "item.json").read_text())
+    assert info["rows"][0]["ours"] < 1.004  # the model charge of 40 kg, below the 50 kg case's 1.004 g

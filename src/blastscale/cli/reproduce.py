@@ -1,7 +1,8 @@
 """``blastscale reproduce``: every table and figure of the paper that blastscale can make.
 
 Each item (:mod:`blastscale.report.reproduce`) is written into ``OUT/<item>/`` through a
-temporary folder; items already done are skipped on a second run (resumable after Ctrl-C).
+temporary folder; items already done (same mode, same scenario or script) are skipped on a
+second run (resumable after Ctrl-C).
 ``OUT/report.html`` puts the paper's numbers beside blastscale's and marks the paper's slips;
 ``OUT/summary.json`` holds every row.
 """
@@ -53,7 +54,7 @@ def reproduce_cmd(
     with one_line_warnings(), stage_progress() as tell:
         for i, it in enumerate(chosen):
             tell(f"{it.name}", i, len(chosen))
-            if item_done(out / it.name, quick):
+            if item_done(it, out, quick):
                 status[it.name] = "skipped (done)"
                 continue
             try:

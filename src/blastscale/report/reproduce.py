@@ -23,7 +23,7 @@ import math
 import os
 import subprocess
 import sys
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Callable, Optional
 
@@ -70,7 +70,13 @@ class Item:
     compute: Callable[[Path, bool], list]
     notes: str = ""
     kind: str = "number"
-    extra: dict = field(default_factory=dict)
+    source: Optional[Path] = None  # the scenario or script it runs: a changed file makes the item run again
+
+    def fingerprint(self) -> str:
+        """SHA-256 of the item's source file ("" for the numbers computed in this module)."""
+        import hashlib
+
+        return "" if self.source is None else hashlib.sha256(self.source.read_bytes()).hexdigest()
 
 
 # -- numbers computed directly ---------------------------------------------------------------
@@ -203,7 +209,7 @@ def _scenario_item(path: Path) -> Item:
     except (OSError, tomllib.TOMLDecodeError):
         title = path.name
     return Item(f"scenario-{path.stem.replace('_', '-')}", f"Scenario: {title}", f"examples/scenarios/{path.name}",
-                compute, kind="scenario")
+                compute, kind="scenario", source=path)
 
 
 # -- gallery scripts ---------------------------------------------------------------------------
@@ -221,7 +227,8 @@ def _script_item(path: Path) -> Item:
         return [Row("figures written", "", ", ".join(figs) or "none", "")]
 
     doc = path.read_text().split('"""')[1].strip().splitlines()[0] if '"""' in path.read_text() else path.stem
-    return Item(f"example-{path.stem.replace('_', '-')}", doc, f"examples/{path.name}", compute, kind="figures")
+    return Item(f"example-{path.stem.replace('_', '-')}", doc, f"examples/{path.name}", compute, kind="figures",
+                source=path)
 
 
 def items() -> list[Item]:
@@ -242,15 +249,16 @@ def items() -> list[Item]:
     return out
 
 
-def item_done(folder: Path, quick: bool) -> bool:
-    """The item's folder is complete (its marker exists) and was made in the same mode."""
-    marker = folder / MARKER
+def item_done(item: Item, out: Path, quick: bool) -> bool:
+    """The item's folder is complete (its marker exists), made in the same mode from the same source."""
+    marker = out / item.name / MARKER
     if not marker.is_file():
         return False
     try:
-        return bool(json.loads(marker.read_text()).get("quick")) == bool(quick)
+        info = json.loads(marker.read_text())
     except (OSError, ValueError):
         return False
+    return bool(info.get("quick")) == bool(quick) and info.get("fingerprint", "") == item.fingerprint()
 
 
 def run_item(item: Item, out: Path, quick: bool, output_folder) -> dict:
@@ -265,7 +273,7 @@ def run_item(item: Item, out: Path, quick: bool, output_folder) -> dict:
         t0 = time.perf_counter()
         rows = item.compute(Path(tmp), quick)
         info = {"name": item.name, "title": item.title, "paper_ref": item.paper_ref, "kind": item.kind,
-                "quick": bool(quick), "wall_time_s": time.perf_counter() - t0,
+                "quick": bool(quick), "fingerprint": item.fingerprint(), "wall_time_s": time.perf_counter() - t0,
                 "rows": [asdict(r) for r in rows]}
         (Path(tmp) / MARKER).write_text(json.dumps(jsonable(info), indent=2))
     return info
