@@ -12,7 +12,8 @@ from small registries, so that a new structure kind or engine needs no change he
 * :data:`STRUCTURE_BUILDERS` -- ``structure.kind`` -> builder(structure table) -> structure;
 * :data:`ENGINES` -- ``"planar"`` (rocking, :func:`~blastscale.analysis.rocking_similarity.compare_rocking`,
   single blocks) and ``"3d"`` (MuJoCo, :func:`~blastscale.analysis.structure3d.compare_structure3d`,
-  any structure).
+  any structure), plus :data:`ENSEMBLE` (:func:`~blastscale.analysis.ensemble.ensemble_compare`)
+  when ``simulation.ensemble_members >= 2``.
 
 No CLI code: the ``blastscale run`` command and the sweeps only call :class:`Study` and read
 the :class:`StudyResult`. Example (the built-in default, shortened):
@@ -35,7 +36,8 @@ from typing import Any, Callable, Optional
 from ._validate import BlastscaleInputError
 from .io.scenario import Scenario
 
-__all__ = ["Study", "StudyResult", "STRUCTURE_BUILDERS", "ENGINES", "estimate_memory", "MEMORY_FRACTION"]
+__all__ = ["Study", "StudyResult", "STRUCTURE_BUILDERS", "ENGINES", "ENSEMBLE", "estimate_memory", "MEMORY_FRACTION",
+           "contact_settings", "check_memory"]
 
 #: Progress callback: ``progress(stage, done, total)`` with a short stage description.
 Progress = Callable[[str, int, int], None]
@@ -56,12 +58,8 @@ def _build_block(spec) -> Any:
 
 
 def _build_column(spec) -> Any:
-    try:
-        from .structures import MultiDrumColumn
-    except ImportError:
-        raise BlastscaleInputError(
-            "structure.kind = 'column' is not available in this version of blastscale (no MultiDrumColumn)"
-        ) from None
+    from .structures import MultiDrumColumn
+
     return MultiDrumColumn(section=spec.section, drums=spec.drums, height=spec.height_m,
                            base_width=spec.base_width_m, top_width=spec.top_width_m, sides=spec.sides,
                            density=spec.density_kg_m3)
@@ -206,7 +204,8 @@ def estimate_memory(scenario: Scenario, structure=None) -> int:
         dt = sim.timestep_s if sim.timestep_s is not None else 2e-4
         steps = sim.duration_s / dt
         recs = steps / sim.record_every + 1
-        total += 2 * (steps * 1 + recs * 8 * (13 * nb + 4 * 20 * (2 * nb)))
+        runs = 1 + sim.ensemble_members  # an ensemble keeps every member's point histories too
+        total += runs * 2 * (steps * 1 + recs * 8 * (13 * nb + 4 * 20 * (2 * nb)))
     return int(total)
 
 
