@@ -139,3 +139,40 @@ def test_block_comparison_through_the_contract_reproduces_the_direct_differences
     # the first rocking peak of the up-scaled model within 1 % of the prototype's (general law, finite pulse)
     assert s["first_peak_rotation_ratio"] == pytest.approx(1.0, abs=1e-2)
     assert c.summary()["prototype"]["delivered_impulse_Ns"][0] > 0
+
+
+def test_block_keys_from_the_structure_path_equal_the_planar_view():
+    """block_summary / block_dataset of a Response3D (the structure path, any load method) must
+    give the planar view's numbers (Block3DResult of simulate_block) for the same run under
+    Method A: same engine, same steps, so equal to round-off (1e-12 relative); the sliding from
+    dx + s b (cos th - 1) - h sin th equals the recorder's R-row formula for planar motion."""
+    from blastscale.analysis.block3d_similarity import block_dataset, block_summary
+    from blastscale.blast import blast_parameters
+    from blastscale.sim3d import simulate_block, simulate_structure
+    from blastscale.sim3d.loads import make_load
+    from blastscale.structures.block import RectangularBlock
+
+    b = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+    planar = simulate_block(b, blast_parameters(50.0, 2.0, "masi2021").pulse("friedlander"), 0.7, record_every=5)
+    resp = simulate_structure(b, make_load("A", b, charge_kg=50.0, standoff_m=2.0, blast_model="masi2021"), 0.7,
+                              record_every=5)
+    s1, s2 = planar.summary(), block_summary(resp, b)
+    assert s1.keys() == s2.keys() and s1["overturned"] == s2["overturned"]
+    for k in ("max_rotation_rad", "max_sliding_m", "final_sliding_m", "peak_angular_velocity_rad_s",
+              "peak_velocity_x_m_s"):
+        assert s2[k] == pytest.approx(s1[k], rel=1e-12), k
+    assert s2["delivered_impulse_Ns"][0] == pytest.approx(s1["delivered_impulse_Ns"][0], rel=1e-12)
+    d1, d2 = block_dataset(planar), block_dataset(resp, b)
+    assert np.max(np.abs(d1["sliding"].values - d2["sliding"].values)) <= 1e-12 * s1["max_sliding_m"]
+
+
+def test_block3d_per_face_load_keeps_the_keys(capsys, tmp_path):
+    png = tmp_path / "b.png"
+    code, out = run(capsys, "block3d", "--width", "2", "--charge", "10", "--standoff", "5", "--duration", "0.2",
+                    "--load", "B", "--incidence", "closed-form", "--scale", "0.01", "--plot", str(png), "--json")
+    assert code in (0, None), out.err
+    d = json.loads(out.out)
+    assert OUTCOME_KEYS <= d["prototype"].keys() and OUTCOME_KEYS <= d["model"].keys()
+    assert {"max_abs_rotation_diff_rad", "max_abs_sliding_diff_m", "max_abs_uplift_diff_m"} <= d["similarity"].keys()
+    assert d["inputs"]["load"] == "B" and len(d["prototype"]["delivered_impulse_Ns"]) == 3
+    assert png.stat().st_size > 10_000

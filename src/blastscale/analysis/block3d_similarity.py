@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import BlastscaleInputError
 from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ..sim3d.contact import ContactSettings
 from ..sim3d.results import Block3DResult
@@ -25,7 +26,7 @@ from ..sim3d.simulate import Block3DSimulator
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .compare import compare_responses, upscale_dataset
 
-__all__ = ["Block3DComparison", "block_dataset", "compare_block3d", "history_differences"]
+__all__ = ["Block3DComparison", "block_dataset", "block_summary", "compare_block3d", "history_differences"]
 
 #: Block variable -> (Block3DResult attribute, units, dimension) of :func:`block_dataset`.
 _BLOCK_VARIABLES = {
@@ -35,13 +36,41 @@ _BLOCK_VARIABLES = {
 }
 
 
-def block_dataset(result: Block3DResult):
+def _planar_histories(result, block) -> dict:
+    """time, rotation, sliding, uplift, angular velocity about y, velocity x and the outcome of a
+    block run: a :class:`Block3DResult`, or a :class:`~blastscale.sim3d.Response3D` of the block
+    (any load method), whose sliding of the supporting base edge is then
+    ``dx_com + s b (cos theta - 1) - h sin theta`` (s = sign of theta; exact for motion in the
+    x-z plane, as Block3DResult's)."""
+    if hasattr(result, "rotation"):
+        return {"time": result.time, "rotation_y": result.rotation, "sliding": result.sliding,
+                "uplift": result.uplift, "omega_y": result.angular_velocity, "velocity_x": result.velocity_x,
+                "overturned": result.overturned, "overturn_time_s": result.overturn_time,
+                "delivered_impulse_Ns": result.summary().get("delivered_impulse_Ns")}
+    if block is None:
+        raise BlastscaleInputError("block = None: a Response3D needs its RectangularBlock (half-width, half-height)")
+    ds = result.dataset
+    th = ds["rotation_y"].values[:, 0]
+    dx = ds["com_displacement"].sel(component="x").values[:, 0]
+    side = np.where(th >= 0.0, 1.0, -1.0)
+    summ = result.summary()
+    return {"time": ds["time"].values, "rotation_y": th,
+            "sliding": dx + side * block.b * (np.cos(th) - 1.0) - block.h * np.sin(th),
+            "uplift": ds["uplift"].values[:, 0], "omega_y": ds["angular_velocity"].sel(component="y").values[:, 0],
+            "velocity_x": ds["com_velocity"].sel(component="x").values[:, 0],
+            "overturned": bool(summ["collapsed"]), "overturn_time_s": summ.get("collapse_time_s"),
+            "delivered_impulse_Ns": summ.get("delivered_impulse_Ns")}
+
+
+def block_dataset(result, block: RectangularBlock | None = None):
     """A single-block run's planar histories as a response dataset of the comparison contract.
 
     Parameters
     ----------
-    result : Block3DResult
-        A run, in its own units.
+    result : Block3DResult or Response3D
+        A run, in its own units (a Response3D of the block from any load method).
+    block : RectangularBlock, optional
+        The block simulated (needed for a Response3D: the supporting edge's sliding).
 
     Returns
     -------
@@ -52,12 +81,33 @@ def block_dataset(result: Block3DResult):
     """
     import xarray as xr
 
-    data = {name: (("time", "body"), np.asarray(getattr(result, attr), dtype=float)[:, None],
-                   {"units": u, "dimension": dim})
-            for name, (attr, u, dim) in _BLOCK_VARIABLES.items()}
-    return xr.Dataset(data, coords={"time": ("time", np.asarray(result.time, dtype=float), {"units": "s"}),
+    h = _planar_histories(result, block)
+    data = {name: (("time", "body"), np.asarray(h[name], dtype=float)[:, None], {"units": u, "dimension": dim})
+            for name, (_, u, dim) in _BLOCK_VARIABLES.items()}
+    return xr.Dataset(data, coords={"time": ("time", np.asarray(h["time"], dtype=float), {"units": "s"}),
                                     "body": ["block"]},
-                      attrs={"overturned": int(result.overturned), "source": "blastscale.sim3d (MuJoCo), block"})
+                      attrs={"overturned": int(h["overturned"]), "source": "blastscale.sim3d (MuJoCo), block"})
+
+
+def block_summary(result, block: RectangularBlock | None = None) -> dict:
+    """The ``block3d`` outcome keys of a block run (Block3DResult or Response3D, SI): ``overturned``,
+    ``overturn_time_s``, ``max_rotation_rad``, ``max_sliding_m``, ``final_sliding_m``,
+    ``max_uplift_m``, ``peak_angular_velocity_rad_s``, ``peak_velocity_x_m_s``,
+    ``delivered_impulse_Ns`` ([x, y, z]); a Block3DResult's own ``summary()``."""
+    if isinstance(result, Block3DResult):
+        return result.summary()
+    h = _planar_histories(result, block)
+    return {
+        "overturned": bool(h["overturned"]),
+        "overturn_time_s": h["overturn_time_s"],
+        "max_rotation_rad": float(np.max(np.abs(h["rotation_y"]))),
+        "max_sliding_m": float(np.max(np.abs(h["sliding"]))),
+        "final_sliding_m": float(h["sliding"][-1]),
+        "max_uplift_m": float(np.max(h["uplift"])),
+        "peak_angular_velocity_rad_s": float(np.max(np.abs(h["omega_y"]))),
+        "peak_velocity_x_m_s": float(np.max(np.abs(h["velocity_x"]))),
+        "delivered_impulse_Ns": h["delivered_impulse_Ns"],
+    }
 
 
 def history_differences(prototype_ds, upscaled_ds) -> dict:

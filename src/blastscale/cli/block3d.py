@@ -26,6 +26,42 @@ def _rows(summary: dict) -> list[tuple[str, str, str]]:
     return [(name, fmt_value(summary[k], fmt), u) for name, k, u, fmt in _SUMMARY_ROWS]
 
 
+def _per_face_load_run(out, block, load, incidence, charge, standoff, scale, density_ratio, gravity_ratio, gravity,
+                       model, pulse, contact, duration, record_every, plot) -> None:
+    """Fill ``out`` for a per-face load (B, C) on the block: the structure path
+    (:func:`~blastscale.analysis.structure3d.compare_structure3d` / ``simulate_system``), the
+    block3d keys from its dataset (:func:`~blastscale.analysis.block3d_similarity.block_summary`)."""
+    from ..analysis.block3d_similarity import block_dataset, block_summary, history_differences
+    from ..analysis.compare import upscale_dataset
+    from ..analysis.structure3d import compare_structure3d, simulate_system, upscale_summary
+    from ..similitude import design_model
+
+    design = design_model(charge, standoff, 1.0 if scale is None else scale, density_ratio, gravity_ratio,
+                          model=model, gravity=gravity)
+    kw = {"load": load, "pulse": pulse, "incidence": incidence, "contact": contact, "duration": duration,
+          "record_every": record_every}
+    if scale is None:
+        _, proto, _ = simulate_system(block, design, "prototype", **kw)
+        out["prototype"] = block_summary(proto, block)
+        model_ds = None
+    else:
+        cmp = compare_structure3d(block, design, **kw)
+        f = design.factors
+        proto = cmp.prototype
+        out["prototype"] = block_summary(proto, block)
+        out["model"] = upscale_summary(block_summary(cmp.model, cmp.model_structure), f)
+        out["similarity"] = history_differences(
+            block_dataset(proto, block), upscale_dataset(block_dataset(cmp.model, cmp.model_structure), f))
+        out["model_experiment"] = {"charge_kg": design.model_charge_kg, "standoff_m": design.model_standoff_m,
+                                   "height_m": block.height * scale}
+        model_ds = cmp.upscaled_dataset
+    if plot:
+        from ..plots.column import plot_column_comparison
+
+        save_figure(lambda: plot_column_comparison(block, proto.dataset, model_ds), plot)
+        out["plot"] = plot
+
+
 @app.command("block3d")
 def block3d_cmd(
     height: float = opt.HEIGHT,
@@ -71,10 +107,6 @@ def block3d_cmd(
         )
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_load_options(load, incidence)
-    if load != "A":
-        raise BlastscaleInputError(
-            f"load = {load!r} is not available for block3d yet: valid values are A (the single-block path takes "
-            "Method A's pulse; run a per-face load on a block with blastscale.sim3d.simulate_structure)")
     check_plot_path(plot)
     check_positive("timestep", timestep, "s")  # before it sets the contact time constant below
     base = ContactSettings()
@@ -92,7 +124,10 @@ def block3d_cmd(
         "gravity_ratio": gravity_ratio if scale is not None else None, "gravity_m_s2": gravity,
     }, "contact": contact.to_dict()}
     with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
-        if scale is None:
+        if load != "A":  # per-face loads (B, C): the structure path, the block's keys from its dataset
+            _per_face_load_run(out, block, load, incidence, charge, standoff, scale, density_ratio, gravity_ratio,
+                               gravity, model, pulse, contact, duration, record_every, plot)
+        elif scale is None:
             bp = blast_parameters(charge, standoff, model)
             proto = simulate_block(block, bp.pulse(pulse), duration, contact=contact, gravity=gravity,
                                    record_every=record_every)
@@ -108,7 +143,7 @@ def block3d_cmd(
             out.update(cmp.summary())
             out["model_experiment"] = {"charge_kg": cmp.design.model_charge_kg, "standoff_m": cmp.design.model_standoff_m,
                                        "height_m": block.height * scale}
-    if plot:
+    if plot and load == "A":
         from ..plots.sim3d import plot_comparison
 
         save_figure(lambda: plot_comparison(proto, upscaled), plot)
