@@ -91,7 +91,7 @@ JSON = typer.Option(False, "--json", help="Print one JSON object instead of tabl
 
 # the 3D load options shared by block3d and column (names checked before any run)
 LOAD = typer.Option("A", "--load", help="Load method: A (the paper's Method A: uniform, simultaneous reflected pulse on "
-                                        "the front faces); B, C when registered (per-face arrival and incidence).")
+                                        "the front faces); B, C: per-face distance, arrival and incidence (docs/face_loads.md).")
 INCIDENCE = typer.Option(None, "--incidence", help="Angle-of-incidence model of loads B and C (default ufc; see "
                                                    "blastscale.blast.incidence).")
 
