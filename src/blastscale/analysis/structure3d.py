@@ -17,7 +17,6 @@ Method A) and Sec. "FEM simulations" (single blocks).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 from .._validate import BlastscaleInputError, check_positive
