@@ -39,6 +39,7 @@ __all__ = [
     "DEFAULT_COMPONENTS",
     "align",
     "compare_responses",
+    "dimension_factor",
     "first_peak",
     "upscale_dataset",
 ]
@@ -55,7 +56,10 @@ DEFAULT_COMPONENTS = {"angular_velocity": "y"}
 FIRST_PEAK_FRACTION = 0.1
 
 
-def _factor(factors, dimension: str, name: str) -> float:
+def dimension_factor(factors, dimension: str, name: str = "variable") -> float:
+    """The model / prototype factor [-] of a physical ``dimension``: 1 for dimensionless and
+    count, else the :class:`~blastscale.similitude.ScalingFactors` field of that name (``name``
+    labels the error)."""
     if dimension in DIMENSIONLESS:
         return 1.0
     value = getattr(factors, dimension, None) if isinstance(dimension, str) else None
@@ -105,7 +109,7 @@ def upscale_dataset(ds, factors):
                     f"variable {name!r} has no 'dimension' attribute: every data variable needs one "
                     f"({', '.join(DIMENSIONLESS)} or a ScalingFactors field)"
                 )
-        f = _factor(factors, dim, name)
+        f = dimension_factor(factors, dim, name)
         used[dim] = f
         if f != 1.0:
             attrs = dict(var.attrs)

@@ -20,7 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from .._validate import BlastscaleInputError, check_positive
-from .compare import _factor, align, compare_responses, upscale_dataset
+from .compare import align, compare_responses, dimension_factor, upscale_dataset
 
 __all__ = ["Comparison3D", "compare_structure3d", "simulate_system", "upscale_summary", "SUMMARY_UNIT_DIMENSIONS"]
 
@@ -64,7 +64,7 @@ def upscale_summary(summary, factors):
             return value
         for suffix, dim in SUMMARY_UNIT_DIMENSIONS.items():
             if key.endswith(suffix):
-                return float(value) / _factor(factors, dim, key)
+                return float(value) / dimension_factor(factors, dim, key)
         return value
 
     return {k: scale(k, v) for k, v in summary.items()}
