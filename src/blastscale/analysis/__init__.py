@@ -6,5 +6,6 @@
   ``simulate_system``, ``upscale_summary``;
 * :mod:`.ensemble` -- ``ensemble_compare`` for chaotic structures (circular columns);
 * :mod:`.rocking_similarity`, :mod:`.block3d_similarity` -- planar rocking and the single block
-  through the same contract (with their overturning / planar figures).
+  through the same contract (with their overturning / planar figures);
+* :mod:`.sweeps`, :mod:`.fragility`, :mod:`.similarity_map` -- many cases (docs/sweeps.md).
 """
