@@ -135,6 +135,19 @@ def test_short_column_comparison_through_the_contract(short_comparison):
     assert ds["point_displacement"].dims[0] == "system" and "upscaled" not in ds.attrs
 
 
+def test_comparison_dataset_round_trips_through_netcdf(short_comparison, tmp_path):
+    import xarray as xr
+
+    ds = short_comparison.to_dataset()
+    path = tmp_path / "cmp.nc"
+    ds.to_netcdf(path)
+    with xr.open_dataset(path) as back:
+        assert back["point_displacement"].attrs["dimension"] == "length"
+        assert back.attrs["top_first_peak_ratio"] == pytest.approx(ds.attrs["top_first_peak_ratio"], rel=0)
+        assert back.attrs["factor_length"] == pytest.approx(0.01, rel=1e-12)
+        np.testing.assert_array_equal(back["point_displacement"].values, ds["point_displacement"].values)
+
+
 def test_upscale_summary_by_unit_suffix():
     from blastscale.analysis.structure3d import upscale_summary
     from blastscale.similitude import scaling_factors
