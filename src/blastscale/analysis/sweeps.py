@@ -55,6 +55,8 @@ __all__ = [
     "SweepSample",
     "evaluate_chunk",
     "planar_scalars",
+    "planar_outcomes",
+    "OUTCOME_KEYS",
     "study_scalars",
     "run_sweep",
     "SweepRun",
@@ -129,11 +131,12 @@ class SweepSpec:
     sampled: tuple = ()
     samples: int = 0
     seed: int = 0
+    outcomes: bool = False
     _draws: dict = field(default_factory=dict, compare=False, repr=False)
 
     @classmethod
     def build(cls, base, vary: Optional[dict] = None, sample: Optional[dict] = None, *, samples: int = 0,
-              seed: int = 0, relative: Optional[dict] = None) -> "SweepSpec":
+              seed: int = 0, relative: Optional[dict] = None, outcomes: bool = False) -> "SweepSpec":
         """A validated spec.
 
         Parameters
@@ -150,11 +153,15 @@ class SweepSpec:
             Number of Monte Carlo samples (>= 1 when something is sampled).
         seed : int
             Seed of numpy's ``default_rng``.
+        outcomes : bool
+            Outcome mode (:func:`planar_outcomes`): the first-swing results of planar block cases
+            only, vectorised, instead of every Study scalar.
 
         Raises
         ------
         BlastscaleInputError
-            Unknown or ambiguous field, a field given twice, an empty grid, samples < 1.
+            Unknown or ambiguous field, a field given twice, an empty grid, samples < 1, outcome
+            mode on cases that are not planar blocks.
         """
         vary, sample, relative = dict(vary or {}), dict(sample or {}), dict(relative or {})
         paths: dict[str, str] = {}
@@ -186,7 +193,7 @@ class SweepSpec:
             raise BlastscaleInputError(f"samples = {samples!r} is out of range: must be a whole number >= 1")
         if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or seed < 0:
             raise BlastscaleInputError(f"seed = {seed!r} is out of range: must be a whole number >= 0")
-        spec = cls(base, tuple(axes), tuple(samp), int(samples) if samp else 0, int(seed))
+        spec = cls(base, tuple(axes), tuple(samp), int(samples) if samp else 0, int(seed), bool(outcomes))
         # every case must be a valid scenario: check each grid value, the extreme draws and the
         # corners now (one line, before any work is written)
         for a in spec.axes:
@@ -198,6 +205,11 @@ class SweepSpec:
                 base.with_values({sm.path: _scenario_value(base, sm.path) * x if sm.relative else x})
         for k in {0, spec.n_cases - 1}:
             spec.scenario(k)
+        if spec.outcomes and not spec.planar_only:
+            raise BlastscaleInputError(
+                f"simulation.engine = {base.simulation.engine!r}, structure.kind = {base.structure.kind!r}: the "
+                "outcome mode takes planar block cases only (set engine = \"planar\", or drop --outcomes to run "
+                "the Study per case)")
         return spec
 
     # -- geometry of the case set ---------------------------------------------------------------
@@ -224,17 +236,26 @@ class SweepSpec:
                 self._draws[s.name] = s.distribution.sample(rng, self.samples)
         return self._draws
 
-    def values(self, k: int) -> dict:
-        """Field values (dotted path -> value) of case ``k``."""
-        idx = np.unravel_index(int(k), self.shape) if self.shape else ()
-        out = {a.path: a.values[i] for a, i in zip(self.axes, idx)}
+    def value_arrays(self, start: int, stop: int) -> dict:
+        """Field values (dotted path -> array over the cases ``start .. stop - 1``): grid values
+        as an object array of the values given, draws as floats."""
+        idx = np.unravel_index(np.arange(int(start), int(stop)), self.shape) if self.shape else ()
+        out = {a.path: np.array(a.values, dtype=object)[i] for a, i in zip(self.axes, idx)}
         if self.sampled:
             j = idx[-1]
             for s in self.sampled:
-                x = float(self.draws()[s.name][j])
-                out[s.path] = (out[s.path] if s.path in out else _scenario_value(self.base, s.path)) * x \
-                    if s.relative else x
+                x = self.draws()[s.name][j]
+                if s.relative:
+                    nominal = out[s.path].astype(float) if s.path in out else _scenario_value(self.base, s.path)
+                    out[s.path] = nominal * x
+                else:
+                    out[s.path] = x
         return out
+
+    def values(self, k: int) -> dict:
+        """Field values (dotted path -> value) of case ``k``."""
+        return {p: (v[0].item() if isinstance(v[0], np.generic) else v[0])
+                for p, v in self.value_arrays(k, k + 1).items()}
 
     def scenario(self, k: int):
         """The scenario of case ``k`` (validated; an out-of-range value raises one line)."""
@@ -250,6 +271,7 @@ class SweepSpec:
                          "params": list(s.distribution.params), "relative": s.relative} for s in self.sampled],
             "samples": self.samples,
             "seed": self.seed,
+            **({"outcomes": True} if self.outcomes else {}),  # absent otherwise: older fingerprints hold
         }
 
     def fingerprint(self) -> str:
@@ -271,7 +293,7 @@ class SweepSpec:
         axes = tuple(SweepAxis(a["name"], a["path"], tuple(a["values"])) for a in payload["axes"])
         samp = tuple(SweepSample(s["name"], s["path"], Distribution(s["distribution"], tuple(s["params"])), s["relative"])
                      for s in payload["sampled"])
-        return cls(base, axes, samp, payload["samples"], payload["seed"])
+        return cls(base, axes, samp, payload["samples"], payload["seed"], bool(payload.get("outcomes", False)))
 
     @property
     def planar_only(self) -> bool:
@@ -491,12 +513,148 @@ def planar_scalars(scenarios) -> list[dict]:
     return out
 
 
+#: Keys of the outcome mode (:func:`planar_outcomes`), the Study's names where they mean the same.
+OUTCOME_KEYS = (
+    "planar.prototype.overturned", "planar.prototype.max_angle_rad", "planar.model.overturned",
+    "planar.model.max_angle_rad", "planar.similarity.max_angle_ratio", "planar.similarity.outcomes_agree",
+    "design.model_charge_kg", "design.model_standoff_m", VALID_KEY,
+)
+#: Fields the outcome mode vectorises over; the others group the cases (one body and law per group).
+_LOAD_PATHS = ("blast.charge_kg", "blast.standoff_m", "simulation.restitution")
+
+
+def _groups(vals: dict, paths: list, n: int) -> list:
+    """Index arrays of the cases sharing the values of ``paths`` (one group when none)."""
+    if not paths:
+        return [np.arange(n)]
+    codes = []
+    for p in paths:
+        col = vals[p]
+        try:
+            _, inv = np.unique(col, return_inverse=True)
+        except TypeError:  # unorderable mix (e.g. None and numbers): by first occurrence
+            seen: dict = {}
+            inv = np.array([seen.setdefault(v, len(seen)) for v in col.tolist()])
+        codes.append(inv.ravel())
+    _, inv = np.unique(np.stack(codes), axis=1, return_inverse=True)
+    inv = inv.ravel()
+    return [np.flatnonzero(inv == g) for g in range(int(inv.max()) + 1)]
+
+
+def _outcome_group(sc, W, R, e) -> dict:
+    """Outcome-mode arrays for n load cases ``W`` [kg], ``R`` [m], restitution ``e`` [-] (NaN:
+    Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse)."""
+    from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
+    from ..rocking.capacity import charge_for_impulse, first_swing_blast
+    from ..rocking.system import RockingSystem, housner_restitution
+    from ..similitude import scaling_factors
+    from ..similitude.laws import hopkinson_cranz_density_ratio
+    from ..study import Study
+
+    n = W.size
+    out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
+    out[VALID_KEY] = np.zeros(n, dtype=bool)
+    bl, sim, scl = sc.blast, sc.simulation, sc.scale
+    lam, sig, gam = scl.length, scl.gravity_ratio, sc.density_ratio
+    if scl.law == "hopkinson-cranz":  # the law imposes gamma (design_model refuses another one)
+        g_hc = hopkinson_cranz_density_ratio(lam, sig)
+        if gam is not None and abs(gam - g_hc) > 1e-9 * g_hc:
+            return out
+        gam = g_hc
+    structure = Study(sc).structure()
+    proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
+    model = RockingSystem.from_block(structure.scaled(lam, gam), sim.gravity_m_s2 * sig)
+    e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)
+    bm = get_blast_model(bl.model)
+    # the Z range where the Study designs the model: every fit used (the impulse fit only with
+    # extrapolate, where the general law is still solved on it), for the prototype and the model
+    zr = bm.valid_range("scaled_reflected_impulse") if bl.extrapolate else valid_scaled_distance_range(bm)
+    Z = R / np.cbrt(W)
+    ok = (Z >= zr[0]) & (Z <= zr[1])
+    Rm = lam * R
+    Wm = np.full(n, np.nan)
+    if np.any(ok):
+        if scl.law == "hopkinson-cranz":
+            Wm[ok] = W[ok] * scaling_factors(lam, gam, sig, 1.0).charge
+        else:  # general law (paper Eq. 8): the model delivers the impulse x gamma sqrt(varsigma lambda^3)
+            ip = bm.scaled_reflected_impulse(Z[ok], extrapolate=bl.extrapolate) * np.cbrt(W[ok])
+            Wm[ok] = charge_for_impulse(ip * gam * math.sqrt(sig * lam**3), Rm[ok], bm,
+                                        extrapolate=bl.extrapolate, z_range=zr)
+        ok &= np.isfinite(Wm)
+    if np.any(ok):
+        bp = blast_parameters(W[ok], R[ok], bm, extrapolate=bl.extrapolate)
+        bpm = blast_parameters(Wm[ok], Rm[ok], bm, extrapolate=bl.extrapolate)
+        fp = first_swing_blast(proto.alpha, e[ok], proto.frequency_parameter, proto.load_ratio_per_pascal, bp,
+                               bl.pulse)
+        fm = first_swing_blast(model.alpha, e[ok], model.frequency_parameter, model.load_ratio_per_pascal, bpm,
+                               bl.pulse)
+        out["planar.prototype.overturned"][ok] = fp.overturned
+        out["planar.prototype.max_angle_rad"][ok] = fp.max_rotation
+        out["planar.model.overturned"][ok] = fm.overturned
+        out["planar.model.max_angle_rad"][ok] = fm.max_rotation  # angles are not scaled (factor 1)
+        out["planar.similarity.max_angle_ratio"][ok] = fm.max_rotation / fp.max_rotation
+        out["planar.similarity.outcomes_agree"][ok] = fp.overturned == fm.overturned
+        out["design.model_charge_kg"][ok] = Wm[ok]
+        out["design.model_standoff_m"][ok] = Rm[ok]
+        out[VALID_KEY][ok] = True
+    return out
+
+
+def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
+    """The outcome mode: first-swing results of the planar block cases ``start .. stop - 1`` of a
+    sweep, vectorised over the cases (the design in numpy, the pulse phases in the compiled
+    kernel, the first free swing in closed form; :func:`blastscale.rocking.capacity.first_swing`).
+
+    For the prototype and the model (designed by the scenario's law; the general law's model
+    charge found by inverting the blast model's reflected impulse, which equals the Study's
+    ``design_model`` to ~1e-12): ``overturned`` (at any time), ``max_angle_rad`` (the largest
+    |theta| of the whole motion; pi/2 where it overturns), their ratio (model / prototype) and
+    outcome agreement, the model charge and stand-off, and ``sweep.valid`` (False where the Study
+    would refuse the design: a scaled distance outside the blast fits; NaN values there).
+    Cases are grouped by the fields other than charge, stand-off and restitution (one body,
+    scale and law per group); within a group everything is array arithmetic.
+
+    Returns
+    -------
+    dict
+        :data:`OUTCOME_KEYS` -> array over the cases (booleans as floats with NaN where some case
+        of the chunk is invalid).
+    """
+    import warnings
+
+    vals = spec.value_arrays(start, stop)
+    n = int(stop) - int(start)
+    base = spec.base
+    col = {p: (vals[p].astype(float) if p in vals else np.full(n, np.nan if v is None else float(v)))
+           for p, v in zip(_LOAD_PATHS, (base.blast.charge_kg, base.blast.standoff_m, base.simulation.restitution))}
+    others = [p for p in vals if p not in _LOAD_PATHS]
+    out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for idx in _groups(vals, others, n):
+            sc = base.with_values({p: _plain(vals[p][idx[0]]) for p in others}) if others else base
+            res = _outcome_group(sc, *(col[p][idx] for p in _LOAD_PATHS))
+            for k in OUTCOME_KEYS:
+                out[k][idx] = res[k]
+    valid = out[VALID_KEY] == 1.0
+    for k in ("planar.prototype.overturned", "planar.model.overturned", "planar.similarity.outcomes_agree", VALID_KEY):
+        if k == VALID_KEY or valid.all():
+            out[k] = out[k] == 1.0
+    return out
+
+
+def _plain(v):
+    return v.item() if isinstance(v, np.generic) else v
+
+
 def evaluate_chunk(payload: dict, start: int, stop: int) -> dict:
     """Scalars of the cases ``start .. stop - 1`` of a sweep (``payload`` from
     :meth:`SweepSpec.to_payload`): ``{"start", "stop", "values": {key: list}}``. Planar block
     cases take the batch path, the others the Study path; a case's values never depend on the
     other cases of its chunk."""
     spec = SweepSpec.from_payload(payload)
+    if spec.outcomes:
+        return {"start": start, "stop": stop, "values": planar_outcomes(spec, start, stop)}
     scen = [spec.scenario(k) for k in range(start, stop)]
     planar = [i for i, sc in enumerate(scen) if _planar_case(sc)]
     rows: list = [None] * len(scen)
@@ -609,13 +767,17 @@ def _metadata(spec: SweepSpec, chunk: int) -> dict:
         "numpy_version": np.__version__,
         "numba_version": numba.__version__,
         "python_version": platform.python_version(),
-        "scalars": "Study(scenario).run().scalars() per case (planar block cases: the planar batch path, "
-                   "blastscale.analysis.sweeps.planar_scalars)",
+        "scalars": ("outcome mode: first-swing outcomes and largest rotations of the prototype and the model "
+                    "(blastscale.analysis.sweeps.planar_outcomes)") if spec.outcomes else
+                   ("Study(scenario).run().scalars() per case (planar block cases: the planar batch path, "
+                    "blastscale.analysis.sweeps.planar_scalars)"),
         "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
     }
 
 
 def _default_chunk(spec: SweepSpec, workers: int) -> int:
+    if spec.outcomes:  # ~70 us per case: 20000 cases are ~1.5 s per task
+        return int(max(1, min(20000, math.ceil(spec.n_cases / max(1, 2 * workers)))))
     if spec.planar_only:  # enough cases per task to amortise the task overhead, enough tasks to balance
         return int(max(1, min(2000, math.ceil(spec.n_cases / max(1, 4 * workers)))))
     return 1
@@ -645,7 +807,8 @@ def run_sweep(
         Without ``scheduler``: a ``LocalCluster`` of this many single-threaded worker processes on
         127.0.0.1, no dashboard (default: the machine's CPU count); 0 runs in this process.
     chunk : int, optional
-        Cases per task (default: planar sweeps ~n / (4 workers), at most 2000; else 1).
+        Cases per task (default: outcome mode ~n / (2 workers), at most 20000; planar sweeps
+        ~n / (4 workers), at most 2000; else 1).
     force : bool
         Replace a store of a different sweep (else refused).
     progress : callable, optional

@@ -19,7 +19,7 @@ from ._app import app, console, console_err, one_line_warnings, print_json, tabl
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")
 SCHEDULER = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (e.g. tcp://127.0.0.1:8786).")
 WORKERS = typer.Option(None, "--workers", help="Local worker processes (default: one per CPU; 0: in this process).")
-CHUNK = typer.Option(None, "--chunk", help="Cases per task (default: planar ~cases / (4 workers), at most 2000; else 1).")
+CHUNK = typer.Option(None, "--chunk", help="Cases per task (default: --outcomes ~cases / (2 workers), at most 20000; planar ~cases / (4 workers), at most 2000; else 1).")
 SEED = typer.Option(0, "--seed", help="Seed of the Monte Carlo draws (numpy default_rng).")
 
 
@@ -67,11 +67,13 @@ def sweep_cmd(
     workers: Optional[int] = WORKERS,
     chunk: Optional[int] = CHUNK,
     force: bool = typer.Option(False, "--force", help="Replace a store (or unfinished chunks) of another sweep."),
+    outcomes: bool = typer.Option(False, "--outcomes", help="Outcome mode (planar blocks): overturned and largest rotation of prototype and model at any time, vectorised (docs/sweeps.md)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Run the Study for every case of a grid (and Monte Carlo samples) of scenario fields and
     store its scalar results in a Zarr store (coordinates named after the fields). A sweep
-    killed and run again skips the chunks already done."""
+    killed and run again skips the chunks already done. With --outcomes (planar blocks): only
+    the first-swing outcomes and largest rotations, about a million cases per minute."""
     from ..analysis.grids import parse_distribution, parse_grid
     from ..analysis.sweeps import SweepSpec, run_sweep
 
@@ -82,7 +84,7 @@ def sweep_cmd(
         raise BlastscaleInputError(f"samples = {samples} is out of range: --sample needs --samples >= 1")
     if samples and not dists:
         raise BlastscaleInputError(f"samples = {samples}: give the sampled fields with --sample FIELD=dist:params")
-    spec = SweepSpec.build(base, grid, dists, samples=samples, seed=seed)
+    spec = SweepSpec.build(base, grid, dists, samples=samples, seed=seed, outcomes=outcomes)
     bar, tick = _progress_bar(f"sweep: {spec.n_cases} cases")
     with one_line_warnings(), bar:
         run = run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, force=force, progress=tick)

@@ -86,6 +86,10 @@ __all__ = [
     "overturn_margin",
     "first_swing_margin",
     "overturns",
+    "first_swing",
+    "first_swing_blast",
+    "first_swing_peak",
+    "FirstSwing",
     "critical_charge",
     "critical_standoff",
     "critical_charge_by_bisection",
@@ -145,8 +149,76 @@ def first_swing_margin(alpha, e, theta, w, tipped):
     return np.where(s == 0.0, -1.0, mu)
 
 
-def _pulse_phase_margin(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab_f=None, off=None):
-    """Integrate the pulse phase of n encoded cases with the compiled kernel and return mu (n,).
+def first_swing_peak(alpha, e, theta, w, pulse_max, rest_velocity: float = 0.0):
+    """Largest |theta| [rad] of the whole motion of a body that survives, from the state when
+    the pulse ends (first-swing energy argument, module docstring).
+
+    After the pulse the motion is free: between impacts the energy ``E = w^2/2 + cos(alpha -
+    s theta) - cos(alpha)`` is conserved and each impact multiplies it by ``e^2`` (Housner 1963),
+    so every later peak is lower than the first free one. With ``y = alpha - |theta_peak|`` the
+    distance of a peak below the top, ``w = 0`` there gives ``1 - cos(y) = B - E``, i.e.
+    ``sin^2(y / 2) = sin^2((alpha - s theta) / 2) - w^2 / 4``, written without cancellation:
+
+    * moving outward (below the top): the peak of this swing, ``|theta_peak| = alpha - y``;
+    * moving inward (or beyond the top, climbing back over it): the body impacts with
+      ``w^2 = 2 E``, rebounds with ``e w`` (at rest if ``e |w| <= rest_velocity``) and peaks on
+      the other side, ``sin^2(y / 2) = sin^2(alpha / 2) - e^2 E / 2``;
+    * at rest: no further peak.
+
+    The result is the larger of that peak and ``pulse_max`` (the largest |theta| while the pulse
+    acted). Where the body overturns (:func:`first_swing_margin` > 0) the value is meaningless;
+    :func:`first_swing` returns pi/2 there (it ends lying on its side).
+
+    Parameters
+    ----------
+    alpha, e : array_like
+        Slenderness [rad] and restitution [-].
+    theta, w : array_like
+        Angle [rad] and angular velocity / p [-] when the pulse ends.
+    pulse_max : array_like
+        Largest |theta| [rad] while the pulse acted.
+    rest_velocity : float
+        Rebound velocity / p [-] below which the body is at rest (the solver's ``rest_velocity``).
+
+    Returns
+    -------
+    ndarray
+        Largest |theta| [rad] over the whole motion.
+    """
+    alpha, e, th, w = (np.asarray(x, dtype=float) for x in (alpha, e, theta, w))
+    s = np.sign(th)
+    s = np.where(s == 0.0, np.sign(w), s)
+    u, v = s * th, s * w
+    ha = np.sin(0.5 * alpha) ** 2  # B / 2
+    r_out = np.sin(0.5 * (alpha - u)) ** 2 - 0.25 * w * w  # (B - E) / 2
+    E = 2.0 * (ha - r_out)
+    r_in = ha - 0.5 * e * e * E
+    with np.errstate(invalid="ignore"):
+        y_out = 2.0 * np.arcsin(np.sqrt(np.maximum(r_out, 0.0)))
+        y_in = 2.0 * np.arcsin(np.sqrt(np.maximum(r_in, 0.0)))
+    rebound = e * np.sqrt(np.maximum(2.0 * E, 0.0))
+    inward_peak = np.where((rebound > rest_velocity) & (e > 0.0), alpha - y_in, 0.0)
+    peak = np.where((u < alpha) & (v >= 0.0), alpha - y_out, inward_peak)
+    peak = np.where(s == 0.0, 0.0, peak)
+    return np.maximum(np.asarray(pulse_max, dtype=float), peak)
+
+
+@dataclass(frozen=True)
+class FirstSwing:
+    """Outcome of n bodies at rest under n pulses, from the pulse phase and the first free swing.
+
+    ``overturned`` (n,) bool: at any time; ``max_rotation`` (n,) [rad]: the largest |theta| of the
+    whole motion (pi/2 where it overturns: it ends lying on its side); ``margin`` (n,) [-]: the
+    first-swing margin mu (> 0 overturns)."""
+
+    overturned: np.ndarray
+    max_rotation: np.ndarray
+    margin: np.ndarray
+
+
+def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab_f=None, off=None) -> FirstSwing:
+    """Integrate the pulse phase of n encoded cases with the compiled kernel; the first free swing
+    from there in closed form.
 
     ``kind`` (n,) pulse codes, ``par`` (n, 3) kernel parameters, ``w0`` (n,) initial theta_dot / p
     (the jump of an impulsive load); tabulated pulses concatenated as in ``solve_batch``.
@@ -167,7 +239,11 @@ def _pulse_phase_margin(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=No
     bad = summ[:, K.S_STATUS] != 0
     if np.any(bad):
         solver._check_status(summ[np.argmax(bad), K.S_STATUS], int(np.argmax(bad)))
-    return first_swing_margin(alpha, e, summ[:, K.S_FINAL_THETA], summ[:, K.S_FINAL_W], summ[:, K.S_OVERTURNED] == 1.0)
+    th, w = summ[:, K.S_FINAL_THETA], summ[:, K.S_FINAL_W]
+    mu = first_swing_margin(alpha, e, th, w, summ[:, K.S_OVERTURNED] == 1.0)
+    over = mu > 0.0
+    peak = first_swing_peak(alpha, e, th, w, summ[:, K.S_MAX_ABS_THETA], float(solver.rest_velocity))
+    return FirstSwing(over, np.where(over, 0.5 * math.pi, peak), mu)
 
 
 def overturn_margin(body, pulse: Pulse, *, solver: RockingSolver | None = None, gravity=None, restitution=None) -> float:
@@ -192,11 +268,11 @@ def overturn_margin(body, pulse: Pulse, *, solver: RockingSolver | None = None, 
     system = as_rocking_system(body, gravity, restitution)
     kind, par, tt, tf, dw = encode_pulse(pulse, system)
     off = np.array([0, tt.size], dtype=np.int64)
-    mu = _pulse_phase_margin(
+    fs = _pulse_phase(
         solver or DEFAULT_SOLVER, np.array([system.alpha]), np.array([system.coefficient_of_restitution]),
         np.array([dw]), np.array([kind]), par[None, :], tt, tf, off,
     )
-    return float(mu[0])
+    return float(fs.margin[0])
 
 
 # ----------------------------------------------------------------------------- root finder
@@ -302,31 +378,54 @@ def _system_arrays(systems, n: int):
     return tuple(np.broadcast_to(vals[:, j], (n,)) for j in range(4))
 
 
+def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse: str = "friedlander", *,
+                      solver: RockingSolver | None = None) -> FirstSwing:
+    """:class:`FirstSwing` of n bodies given as arrays under n reflected blast pulses (vectorised:
+    the pulse phases in one compiled kernel call, the first free swings in numpy).
+
+    Parameters
+    ----------
+    alpha, restitution, frequency, load_ratio : array_like
+        Per body (broadcast to n): slenderness [rad], restitution e [-], frequency parameter p
+        [rad/s], load-to-weight ratio per pascal ``S l / (m g r cos alpha)`` [1/Pa].
+    blast : BlastParameters
+        Reflected pressure [Pa], positive duration [s], Friedlander decay [-] and reflected
+        impulse [Pa*s] of the n cases (:func:`~blastscale.blast.blast_parameters` on arrays).
+    pulse : {"friedlander", "triangular", "impulsive"}
+        Pulse shape (paper Eqs. 1, 3, impulsive limit).
+    solver : RockingSolver, optional
+        Solver of the pulse phase (default rtol 1e-10, atol 1e-12).
+    """
+    if pulse not in PULSE_SHAPES:
+        raise BlastscaleInputError(f"pulse = {pulse!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
+    n = np.size(blast.reflected_impulse)
+    a, e, p, q = (np.broadcast_to(np.asarray(x, dtype=float), (n,)) for x in (alpha, restitution, frequency, load_ratio))
+    par = np.zeros((n, 3))
+    w0 = np.zeros(n)
+    if pulse == "friedlander":
+        par[:, 0] = q * blast.reflected_pressure
+        par[:, 1] = p * blast.positive_duration
+        par[:, 2] = blast.friedlander_decay
+    elif pulse == "triangular":
+        par[:, 0] = q * blast.reflected_pressure
+        par[:, 1] = p * (2.0 * blast.reflected_impulse / blast.reflected_pressure)
+    else:  # impulsive: theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
+        w0[:] = q * p * blast.reflected_impulse * np.cos(a)
+    kind = np.full(n, _KIND[pulse], dtype=np.int64)
+    return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par)
+
+
 def _blast_margin(system, shape: str, model, extrapolate: bool, solver: RockingSolver, W, R):
     """mu of ``system`` (one RockingSystem, or a sequence, one per case) under the reflected pulse
     of charges W [kg] at stand-offs R [m] (arrays of the same length)."""
-    bp = blast_parameters(W, R, model, extrapolate=extrapolate)
-    n = np.size(W)
-    a, e, p, q = _system_arrays(system, n)
-    par = np.zeros((n, 3))
-    w0 = np.zeros(n)
-    if shape == "friedlander":
-        par[:, 0] = q * bp.reflected_pressure
-        par[:, 1] = p * bp.positive_duration
-        par[:, 2] = bp.friedlander_decay
-    elif shape == "triangular":
-        par[:, 0] = q * bp.reflected_pressure
-        par[:, 1] = p * (2.0 * bp.reflected_impulse / bp.reflected_pressure)
-    else:  # impulsive: theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
-        w0[:] = q * p * bp.reflected_impulse * np.cos(a)
-    kind = np.full(n, _KIND[shape], dtype=np.int64)
-    return _pulse_phase_margin(solver, a, e, w0, kind, par)
+    return first_swing(system, W, R, pulse=shape, model=model, extrapolate=extrapolate, solver=solver).margin
 
 
-def overturns(systems, charge, standoff, *, pulse: str = "friedlander", model=DEFAULT_BLAST_MODEL,
-              extrapolate: bool = False, solver: RockingSolver | None = None) -> np.ndarray:
-    """Whether each body overturns, at any time, under the reflected pulse of ``charge`` [kg TNT]
-    at ``standoff`` [m] (first-swing energy criterion; arrays of n cases, vectorised).
+def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", model=DEFAULT_BLAST_MODEL,
+                extrapolate: bool = False, solver: RockingSolver | None = None) -> FirstSwing:
+    """Outcome and largest rotation of each body at rest under the reflected pulse of
+    ``charge`` [kg TNT] at ``standoff`` [m], at any time (first-swing energy criterion and peak;
+    arrays of n cases, vectorised).
 
     Parameters
     ----------
@@ -339,13 +438,31 @@ def overturns(systems, charge, standoff, *, pulse: str = "friedlander", model=DE
 
     Returns
     -------
-    ndarray of bool, shape (n,)
+    FirstSwing
+        ``overturned`` (n,), ``max_rotation`` (n,) [rad] (pi/2 where it overturns), ``margin``.
     """
     if pulse not in PULSE_SHAPES:
         raise BlastscaleInputError(f"pulse = {pulse!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
     W, R = np.broadcast_arrays(np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
                                np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float))
-    return _blast_margin(systems, pulse, model, extrapolate, solver or DEFAULT_SOLVER, W.ravel(), R.ravel()) > 0.0
+    W, R = W.ravel(), R.ravel()
+    a, e, p, q = _system_arrays(systems, W.size)
+    bp = blast_parameters(W, R, model, extrapolate=extrapolate)
+    return first_swing_blast(a, e, p, q, bp, pulse, solver=solver)
+
+
+def overturns(systems, charge, standoff, *, pulse: str = "friedlander", model=DEFAULT_BLAST_MODEL,
+              extrapolate: bool = False, solver: RockingSolver | None = None) -> np.ndarray:
+    """Whether each body overturns, at any time, under the reflected pulse of ``charge`` [kg TNT]
+    at ``standoff`` [m] (first-swing energy criterion; arrays of n cases, vectorised; the
+    ``overturned`` of :func:`first_swing`).
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+    """
+    return first_swing(systems, charge, standoff, pulse=pulse, model=model, extrapolate=extrapolate,
+                       solver=solver).overturned
 
 
 def _invert_impulse(target, model, by_charge: bool, fixed, lo, hi, extrapolate: bool):
@@ -371,9 +488,10 @@ def _invert_impulse(target, model, by_charge: bool, fixed, lo, hi, extrapolate: 
     return 0.5 * (lo + hi)
 
 
-def charge_for_impulse(impulse, standoff, model=DEFAULT_BLAST_MODEL, *, extrapolate: bool = False):
+def charge_for_impulse(impulse, standoff, model=DEFAULT_BLAST_MODEL, *, extrapolate: bool = False, z_range=None):
     """TNT charge [kg] whose reflected impulse at ``standoff`` [m] is ``impulse`` [Pa*s] (arrays
-    broadcast), inverting the blast model over its valid range of Z (NaN where out of it).
+    broadcast), inverting the blast model over its valid range of Z (NaN where out of it), or over
+    ``z_range`` (Z_min, Z_max) [m/kg^(1/3)] when given.
 
     Used to up-scale a model's critical charge to the prototype: under the paper's general law
     only the impulse is matched (Eq. 8), so the prototype charge that corresponds to a model
@@ -382,7 +500,7 @@ def charge_for_impulse(impulse, standoff, model=DEFAULT_BLAST_MODEL, *, extrapol
     """
     i, R = np.broadcast_arrays(check_positive("impulse", impulse, "Pa*s"), check_positive("standoff", standoff, "m"))
     i, R = i.astype(float).ravel(), R.astype(float).ravel()
-    zlo, zhi = _z_range(model, extrapolate)
+    zlo, zhi = _z_range(model, extrapolate) if z_range is None else (float(z_range[0]), float(z_range[1]))
     ulo, uhi = 3.0 * np.log(R / zhi), 3.0 * np.log(R / zlo)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
@@ -865,10 +983,10 @@ def pi_diagram(
         par[:, 0] = q * P[idx]
         par[:, 1] = pf * np.exp(u) * dur_per_impulse[idx]
         par[:, 2] = d
-        return _pulse_phase_margin(
+        return _pulse_phase(
             solver, np.full(m, system.alpha), np.full(m, system.coefficient_of_restitution), np.zeros(m),
             np.full(m, kind, dtype=np.int64), par,
-        )
+        ).margin
 
     u0 = np.full(P.size, math.log(i_imp))
     lo, hi, _, status = _vector_root(evaluate, u0, u0 - 1.0, u0 + 40.0, xtol_rel)
