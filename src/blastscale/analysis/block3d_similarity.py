@@ -174,9 +174,11 @@ class Block3DComparison:
         """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block."""
         c = self.comparison or {}
         rot = c.get("variables", {}).get("rotation_y", {}).get("block", {})
+        from .structure3d import upscale_summary
+
         return {
             "prototype": self.prototype.summary(),
-            "model": self.model_upscaled.summary(),
+            "model": upscale_summary(self.model.summary(), self.design.factors),
             "similarity": {**self.differences, "first_peak_rotation_ratio": rot.get("first_peak_ratio"),
                            "outcomes_agree": c.get("outcomes_agree")},
         }
