@@ -67,6 +67,17 @@ def test_column_without_scale_is_the_prototype_only(capsys):
     assert d["structure"]["section"] == "circular" and d["structure"]["sides"] == 16
 
 
+def test_column_ensemble_option(capsys):
+    code, out = run(capsys, "column", *SHORT, "--section", "circular", "--sides", "16", "--charge", "200",
+                    "--standoff", "10", "--scale", "0.01", "--ensemble", "2", "--json")
+    assert code in (0, None), out.err
+    e = json.loads(out.out)["ensemble"]
+    assert e["n_members"] == 2 and e["perturbation"] == 1e-6
+    assert {"first_peak_prototype_mean_m", "first_peak_model_spread_m", "noise_floor_rel_peak",
+            "horizon_prototype_s"} <= e["points"]["P-3"].keys()
+    assert 0.0 <= e["collapse_probability_prototype"] <= 1.0
+
+
 def test_column_tables(capsys):
     code, out = run(capsys, "column", *SHORT, "--charge", "250", "--standoff", "10", "--scale", "0.01")
     assert code in (0, None), out.err
@@ -89,6 +100,8 @@ def test_column_tables(capsys):
         (["--incidence", "guess"], ["incidence", "guess", "ufc"]),
         (["--density", "0"], ["density", "0", "> 0"]),
         (["--scale", "-0.01"], ["scale", "-0.01"]),
+        (["--scale", "0.01", "--ensemble", "1"], ["ensemble", "1", ">= 2"]),
+        (["--ensemble", "4"], ["ensemble", "4", "--scale"]),
     ],
 )
 def test_column_bad_input_exits_2_with_one_line(capsys, argv, words):

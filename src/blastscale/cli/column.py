@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import math
 from typing import Optional
 
 import typer
 
-from .._validate import check_positive
+from .._validate import BlastscaleInputError, check_positive
 from . import options as opt
 from ._app import app, console, fmt_value, one_line_warnings, print_json, save_figure, table
 from .options import check_load_options, check_plot_path
@@ -65,6 +66,10 @@ def column_cmd(
         None, "--timestep", help="Prototype time step \\[s] (default: derived from the structure's size; the model's "
                                  "is x sqrt(lambda)); rejected past the engine's stability bound."),
     record_every: int = typer.Option(4, "--record-every", help="Keep one state every N steps."),
+    ensemble: int = typer.Option(
+        0, "--ensemble", help="With --scale: also run N prototypes and N models with the load x (1 + 1e-6 u), u in "
+                              "[-1, 1], and report first-peak spreads, noise floor, horizon and collapse probabilities "
+                              "(circular columns are chaotic: compare them this way; docs/columns.md). 0: off."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the monitoring-point histories and pose snapshots to this image file."),
     as_json: bool = opt.JSON,
 ) -> None:
@@ -86,6 +91,9 @@ def column_cmd(
     check_load_options(load, incidence)
     check_plot_path(plot)
     check_positive("duration", duration, "s")
+    if isinstance(ensemble, bool) or ensemble < 0 or ensemble == 1 or (ensemble and scale is None):
+        raise BlastscaleInputError(
+            f"ensemble = {ensemble} is out of range: valid values are 0 (off) or >= 2 members, with --scale")
     contact = _contact(col, friction, timestep)
     inc = {} if incidence is None else {"incidence": incidence}
     out: dict = {"inputs": {
@@ -109,6 +117,12 @@ def column_cmd(
                 "structure": cmp.model_structure.describe(),
             }
             proto_ds, model_ds = cmp.prototype_dataset, cmp.upscaled_dataset
+            if ensemble:
+                from ..analysis.ensemble import ensemble_compare
+
+                ens = ensemble_compare(col, design, n=ensemble, load=load, pulse=pulse, incidence=incidence,
+                                       contact=contact, duration=duration, record_every=record_every)
+                out["ensemble"] = ens.summary()
     if plot:
         from ..plots.column import plot_column_comparison
 
@@ -134,5 +148,20 @@ def column_cmd(
                          f"{fmt_value(p['first_peak_ratio'], '.4f')} / "
                          f"{fmt_value(p['max_abs_displacement_diff_rel_peak'], '.3g')}", "-"))
         console.print(table("Similarity (prototype vs up-scaled model, x displacement)", rows))
+        if "ensemble" in out:
+            e = out["ensemble"]
+            top = e["points"][s["top_point"]]
+            console.print(table(f"Ensembles of {e['n_members']} (load x (1 +- {e['perturbation']:g})), top point", [
+                ("first peak, prototype mean / spread", f"{top['first_peak_prototype_mean_m']:.4g} / "
+                                                       f"{top['first_peak_prototype_spread_m']:.2g}", "m"),
+                ("first peak, model mean / spread", f"{top['first_peak_model_mean_m']:.4g} / "
+                                                   f"{top['first_peak_model_spread_m']:.2g}", "m"),
+                ("noise floor (prototype spread / peak)", fmt_value(top["noise_floor_rel_peak"], ".3g"), "-"),
+                ("horizon (spread > 5 % of the peak; - never)",
+                 fmt_value(top["horizon_prototype_s"] if math.isfinite(top["horizon_prototype_s"]) else None, ".3g"),
+                 "s"),
+                ("collapse probability, prototype / model",
+                 f"{e['collapse_probability_prototype']:.2f} / {e['collapse_probability_model']:.2f}", "-"),
+            ]))
     if plot:
         console.print(f"plot written to {plot}")
