@@ -200,6 +200,16 @@ def _scenario_item(path: Path) -> Item:
             for k in ("outcomes_agree", "top_first_peak_ratio", "max_abs_top_displacement_diff_rel_peak"):
                 if k in sim:
                     rows.append(Row(f"3D: {k.replace('_', ' ')}", "prototype and model coincide", sim[k], ""))
+        if result.ensemble is not None:
+            en = s["ensemble"]
+            top = result.ensemble.points[-1]
+            rows += [
+                Row(f"ensembles ({en['n_members']} members): collapse probability, prototype", "",
+                    en["collapse_probability_prototype"], ""),
+                Row("ensembles: collapse probability, model (up-scaled)", "", en["collapse_probability_model"], ""),
+                Row(f"ensembles: first-peak ratio at {top} (model / prototype means)", "prototype and model coincide",
+                    en["points"][top]["first_peak_ratio"], ""),
+            ]
         return rows
 
     import tomllib
