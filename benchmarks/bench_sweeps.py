@@ -7,9 +7,13 @@
    of the stand-offs: seconds per case, their ratio, and the largest relative difference.
 2. **Planar cases per minute**: the compiled batch kernel alone (one 5 s simulation per case);
    ``run_sweep`` of a planar scenario (paper block, 5 s, 2001 samples, no critical charge; every
-   Study scalar) in this process, varying charge x stand-off (a design per case) and varying the
-   restitution (one design); and the outcome-only rate of the first-swing criterion (what
-   ``fragility`` uses).
+   Study scalar: the Study-equivalent batch path) in this process, varying charge x stand-off (a
+   design per case) and varying the restitution (one design); the outcome-only rate of the
+   first-swing criterion (what ``fragility`` uses, prototype only); and the sweep **outcome
+   mode** (``--outcomes``: prototype and model, overturned and largest rotation, a design per
+   case) over a charge x stand-off grid of ``--outcome-cases`` cases, in this process and on a
+   LocalCluster of 1 and 2 workers (wall time including the cluster start and the Zarr store),
+   with its ratios to the kernel alone and to the Study-equivalent path.
 3. **3D cases per minute**: ``run_sweep`` of the 3D engine (paper block, short duration).
 4. **1 vs 2 workers**: the same planar sweep on a ``LocalCluster`` of 1 and of 2 worker
    processes (wall time including the cluster start, and the speed-up).
@@ -69,12 +73,12 @@ def bench_capacity(n: int, n_bisect: int) -> dict:
     }
 
 
-def planar_spec(vary: dict):
+def planar_spec(vary: dict, outcomes: bool = False):
     from blastscale.analysis.sweeps import SweepSpec
     from blastscale.io.scenario import Scenario
 
     base = Scenario.default().with_values({"engine": "planar", "critical_charge": False})
-    return SweepSpec.build(base, vary)
+    return SweepSpec.build(base, vary, outcomes=outcomes)
 
 
 def timed_sweep(spec, **kw) -> dict:
@@ -116,6 +120,28 @@ def bench_planar(n_side: int) -> dict:
         "outcome_only_first_swing": {"cases": spec.n_cases, "wall_s": dt, "cases_per_minute": spec.n_cases / dt * 60.0},
         "target_cases_per_minute": 1e6,
     }
+
+
+def bench_outcomes(n_cases: int, study_rate: float, kernel_rate: float) -> dict:
+    """The sweep outcome mode over a charge (20-200 kg, geometric) x stand-off (1.5-6 m) grid of
+    about ``n_cases`` cases (paper block, masi2021, lambda = 1/200: a design per case; the
+    cases outside the fits are marked invalid), in this process and on 1 and 2 local workers."""
+    side = max(2, int(round(math.sqrt(n_cases))))
+    spec = planar_spec({"charge_kg": np.geomspace(20, 200, side), "standoff_m": np.linspace(1.5, 6.0, side)},
+                       outcomes=True)
+    timed_sweep(planar_spec({"charge_kg": [40.0, 60.0]}, outcomes=True), workers=0)  # warm up
+    out = {"cases": spec.n_cases, "in_process": timed_sweep(spec, workers=0)}
+    for w in (1, 2):
+        out[f"workers_{w}"] = timed_sweep(spec, workers=w)
+    best = max(out[k]["cases_per_minute"] for k in ("in_process", "workers_1", "workers_2"))
+    out.update({
+        "best_cases_per_minute": best,
+        "speedup_2_vs_1_workers_wall": out["workers_1"]["wall_s"] / out["workers_2"]["wall_s"],
+        "ratio_to_kernel_only": best / kernel_rate,
+        "ratio_to_study_equivalent_path": best / study_rate,
+        "target_cases_per_minute": 1e6,
+    })
+    return out
 
 
 def bench_kernel_only(n: int, duration: float = 5.0) -> dict:
@@ -168,15 +194,21 @@ def main(argv=None) -> int:
     ap.add_argument("--side", type=int, default=20, help="planar sweep grid side (side^2 cases)")
     ap.add_argument("--cases3d", type=int, default=4)
     ap.add_argument("--duration3d", type=float, default=1.0, help="3D simulated time per case [s]")
+    ap.add_argument("--outcome-cases", type=int, default=1_000_000, help="cases of the outcome-mode sweep")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args(argv)
     out = {
         "capacity": bench_capacity(a.standoffs, a.bisect),
         "planar": bench_planar(a.side),
         "3d": bench_3d(a.cases3d, a.duration3d),
+        "load_average_before_outcomes": os.getloadavg(),
         "workers": bench_workers(a.side),
-        "machine": {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform()},
     }
+    p = out["planar"]
+    out["outcomes"] = bench_outcomes(a.outcome_cases, p["full_study_scalars_design_per_case"]["cases_per_minute"],
+                                     p["kernel_only_prototype_simulations"]["cases_per_minute"])
+    out["machine"] = {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform(),
+                      "load_average_end": os.getloadavg()}
     if a.json:
         print(json.dumps(out, indent=2))
     else:
@@ -188,6 +220,9 @@ def main(argv=None) -> int:
               f"{p['full_study_scalars_one_design']['cases_per_minute']:.4g} (one design), outcome only "
               f"{p['outcome_only_first_swing']['cases_per_minute']:.4g}")
         print(f"3D: {out['3d']['cases_per_minute']:.4g} cases/min; 1 vs 2 workers: x{out['workers']['speedup_wall']:.3g}")
+        o = out["outcomes"]
+        print(f"outcome mode, {o['cases']} cases: {o['in_process']['cases_per_minute']:.4g} cases/min in process, "
+              f"{o['workers_1']['cases_per_minute']:.4g} (1 worker), {o['workers_2']['cases_per_minute']:.4g} (2 workers)")
     return 0
 
 
