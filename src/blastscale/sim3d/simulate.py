@@ -2,8 +2,9 @@
 
 One path for every structure (:func:`simulate_structure`): N free bodies on a rigid ground
 (:func:`~.model.structure_scene`), explicit contact pairs ground-base and between adjacent
-bodies, a :class:`~.loads.LoadStrategy` giving one wrench per body per step from the current
-poses, recorded as a :class:`~.results.Response3D` (xarray). The single block
+bodies (then every body with the ground and with every other body, for falling drums), a
+:class:`~.loads.LoadStrategy` giving one wrench per body per step from the current poses,
+recorded as a :class:`~.results.Response3D` (xarray). The single block
 (:class:`Block3DSimulator`, :func:`simulate_block`, :class:`~.results.Block3DResult`) is the
 one-body case of that path, with its planar recorders on top.
 
