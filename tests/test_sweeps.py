@@ -236,3 +236,25 @@ def test_grid_and_distribution_strings():
         assert abs(x.mean() - mean) < 5 * sd / math.sqrt(n), text
     x = parse_distribution("loguniform:1,100").sample(rng, n)
     assert x.min() >= 1 and x.max() <= 100 and abs(np.log10(x).mean() - 1.0) < 0.01
+
+
+def test_one_friedlander_decay_is_the_array_bisection_bit_for_bit():
+    """The one-decay path of friedlander_decay (float decisions away from the root, a stop once the
+    bracket cannot move; the planar batch path calls it twice per design) returns the 90-step
+    array bisection's value bit for bit: each scalar call against one array call over all the
+    ratios (the array path is the plain bisection), across (0, e - 2), near k = 1/2 (d = 0, the
+    series branch), near e - 2 (d = -1) and for tiny ratios (d up to ~1e12)."""
+    import warnings
+
+    from blastscale.blast.pulses import MAX_IMPULSE_RATIO, friedlander_decay
+
+    rng = np.random.default_rng(7)
+    k = np.concatenate([rng.uniform(1e-6, 0.999999 * MAX_IMPULSE_RATIO, 400), 10 ** rng.uniform(-12, -0.3, 200),
+                        0.5 + rng.normal(0.0, 1e-4, 200), 0.5 - 10 ** rng.uniform(-16, -1, 200), [0.5],
+                        MAX_IMPULSE_RATIO - 10 ** rng.uniform(-14, -2, 100)])
+    P, t = rng.uniform(1e3, 1e7, k.size), rng.uniform(1e-5, 1e-1, k.size)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        whole = friedlander_decay(P, t, k * P * t)
+        one = np.array([friedlander_decay(P[j], t[j], k[j] * P[j] * t[j]) for j in range(k.size)])
+    assert np.array_equal(one, whole)
