@@ -8,6 +8,13 @@ histories are written as response datasets (:func:`block_dataset`), up-scaled an
 the package's one comparison contract (:mod:`.compare`: lengths / lambda, times / lambda_t,
 velocities / (lambda/lambda_t), angles unchanged, on the prototype's time grid).
 
+Two views of the same engine path: :func:`block_summary`, :func:`block_dataset` and
+:func:`block_similarity` read the block3d figures from any run's ``Response3D`` (the ``block3d``
+command runs every load method through :func:`~.structure3d.compare_structure3d`), and
+:func:`compare_block3d` keeps the planar recorders of :class:`~blastscale.sim3d.Block3DResult`
+(pivot-edge sliding in the body frame, the blast momentum sum |F| dt, up-scaling of the planar
+histories) for library users of the Method A block.
+
 Reference: Masi, Stefanou & Maffi-Berthier, *Scaling laws ...*, Sec. "FEM simulations"
 (prototype vs lambda = 1/200 model, slender and non-slender blocks).
 """
@@ -26,7 +33,7 @@ from ..sim3d.simulate import Block3DSimulator
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .compare import compare_responses, upscale_dataset
 
-__all__ = ["Block3DComparison", "block_dataset", "block_summary", "compare_block3d", "history_differences"]
+__all__ = ["Block3DComparison", "block_dataset", "block_similarity", "block_summary", "compare_block3d"]
 
 #: Block variable -> (Block3DResult attribute, units, dimension) of :func:`block_dataset`.
 _BLOCK_VARIABLES = {
@@ -110,8 +117,21 @@ def block_summary(result, block: RectangularBlock | None = None) -> dict:
     }
 
 
-def history_differences(prototype_ds, upscaled_ds) -> dict:
-    """Largest absolute differences between two block histories in prototype units.
+def _figures(comparison: dict) -> dict:
+    """The block3d ``similarity`` figures of a :func:`~.compare.compare_responses` dict of two
+    :func:`block_dataset` s (outcome ``overturned``)."""
+    v = comparison["variables"]
+    return {
+        "max_abs_rotation_diff_rad": v["rotation_y"]["block"]["max_abs_diff"],
+        "max_abs_sliding_diff_m": v["sliding"]["block"]["max_abs_diff"],
+        "max_abs_uplift_diff_m": v["uplift"]["block"]["max_abs_diff"],
+        "first_peak_rotation_ratio": v["rotation_y"]["block"].get("first_peak_ratio"),
+        "outcomes_agree": comparison.get("outcomes_agree"),
+    }
+
+
+def block_similarity(prototype_ds, upscaled_ds) -> dict:
+    """The block3d ``similarity`` block of two block histories in prototype units.
 
     .. math:: \\Delta_q = \\max_{t_k} |q_p(t_k) - q_m^{up}(t_k)|
 
@@ -131,15 +151,11 @@ def history_differences(prototype_ds, upscaled_ds) -> dict:
     -------
     dict
         ``max_abs_rotation_diff_rad`` [rad], ``max_abs_sliding_diff_m`` [m],
-        ``max_abs_uplift_diff_m`` [m].
+        ``max_abs_uplift_diff_m`` [m], ``first_peak_rotation_ratio`` [-] (up-scaled model /
+        prototype first rocking peak) and ``outcomes_agree`` (both overturn or neither).
     """
-    c = compare_responses(prototype_ds, upscaled_ds, variables=list(_BLOCK_VARIABLES), outcome="overturned")
-    v = c["variables"]
-    return {
-        "max_abs_rotation_diff_rad": v["rotation_y"]["block"]["max_abs_diff"],
-        "max_abs_sliding_diff_m": v["sliding"]["block"]["max_abs_diff"],
-        "max_abs_uplift_diff_m": v["uplift"]["block"]["max_abs_diff"],
-    }
+    return _figures(compare_responses(prototype_ds, upscaled_ds, variables=list(_BLOCK_VARIABLES),
+                                      outcome="overturned"))
 
 
 @dataclass(frozen=True, eq=False)
@@ -157,7 +173,7 @@ class Block3DComparison:
     model_upscaled : Block3DResult
         Model run in prototype units.
     differences : dict
-        :func:`history_differences` of prototype vs up-scaled model.
+        The three ``max_abs_*_diff`` figures of :func:`block_similarity` (prototype vs up-scaled model).
     comparison : dict
         The contract's full comparison (:func:`~.compare.compare_responses` of
         :func:`block_dataset`): first peaks, differences relative to the peak, outcomes.
@@ -171,16 +187,14 @@ class Block3DComparison:
     comparison: dict = None
 
     def summary(self) -> dict:
-        """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block."""
-        c = self.comparison or {}
-        rot = c.get("variables", {}).get("rotation_y", {}).get("block", {})
+        """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block
+        (:func:`block_similarity`'s keys)."""
         from .structure3d import upscale_summary
 
         return {
             "prototype": self.prototype.summary(),
             "model": upscale_summary(self.model.summary(), self.design.factors),
-            "similarity": {**self.differences, "first_peak_rotation_ratio": rot.get("first_peak_ratio"),
-                           "outcomes_agree": c.get("outcomes_agree")},
+            "similarity": {**self.differences, **(_figures(self.comparison) if self.comparison else {})},
         }
 
 
@@ -223,8 +237,9 @@ def compare_block3d(
     pulse : {"friedlander", "triangular", "impulsive"}
         Pulse shape (the same for both).
     contact : ContactSettings, optional
-        Prototype contact settings (default full-scale settings); the model uses
-        ``contact.scaled(lambda, lambda_t)``.
+        Prototype contact settings; the model uses ``contact.scaled(lambda, lambda_t)``. None
+        (default): the engine's scale-consistent defaults for each block
+        (:func:`~blastscale.sim3d.contact.default_contact`, mu = 0.7).
     duration : float
         Prototype simulated time [s]; the model runs ``duration * lambda_t``.
     gravity : float
@@ -243,7 +258,6 @@ def compare_block3d(
     """
     from ..similitude import design_model
 
-    contact = ContactSettings() if contact is None else contact
     design = design if design is not None else design_model(
         charge,
         standoff,
@@ -258,12 +272,12 @@ def compare_block3d(
     f = design.factors
     model_block = block.scaled(f.length, f.density)
     proto_sim = Block3DSimulator(contact, gravity, record_every, blast_mode=blast_mode)
-    model_sim = Block3DSimulator(
-        contact.scaled(f.length, f.time), gravity * f.gravity, record_every, blast_mode=blast_mode
-    )
+    model_sim = Block3DSimulator(None if contact is None else contact.scaled(f.length, f.time), gravity * f.gravity,
+                                 record_every, blast_mode=blast_mode)
     proto = proto_sim.run(block, design.prototype.pulse(pulse), duration)
     mod = model_sim.run(model_block, design.model.pulse(pulse), duration * f.time)
     up = mod.upscaled(f.length, f.time, f.momentum)  # the planar view, for summaries and plots
     pds, uds = block_dataset(proto), upscale_dataset(block_dataset(mod), f)
-    cmp = compare_responses(pds, uds, outcome="overturned")
-    return Block3DComparison(design, proto, mod, up, history_differences(pds, uds), cmp)
+    cmp = compare_responses(pds, uds, variables=list(_BLOCK_VARIABLES), outcome="overturned")
+    diffs = {k: v for k, v in _figures(cmp).items() if k.startswith("max_abs_")}
+    return Block3DComparison(design, proto, mod, up, diffs, cmp)

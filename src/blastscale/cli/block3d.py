@@ -1,4 +1,4 @@
-"""``blastscale block3d``: 3D rigid-body response of a single block on MuJoCo (Method A load)."""
+"""``blastscale block3d``: 3D rigid-body response of a single block on MuJoCo (the structure path, load A, B or C)."""
 
 from __future__ import annotations
 
@@ -6,10 +6,10 @@ from typing import Optional
 
 import typer
 
-from .._validate import BlastscaleInputError, check_positive
+from .._validate import BlastscaleInputError
 from ._app import app, console, fmt_value, one_line_warnings, print_json, save_figure, table
 from . import options as opt
-from .options import block_from_options, check_load_options, check_plot_path
+from .options import block_from_options, check_load_options, check_plot_path, contact_from_options
 
 _SUMMARY_ROWS = (
     ("overturned", "overturned", "", ".6g"),
@@ -26,12 +26,14 @@ def _rows(summary: dict) -> list[tuple[str, str, str]]:
     return [(name, fmt_value(summary[k], fmt), u) for name, k, u, fmt in _SUMMARY_ROWS]
 
 
-def _per_face_load_run(out, block, load, incidence, charge, standoff, scale, density_ratio, gravity_ratio, gravity,
-                       model, pulse, contact, duration, record_every, plot) -> None:
-    """Fill ``out`` for a per-face load (B, C) on the block: the structure path
-    (:func:`~blastscale.analysis.structure3d.compare_structure3d` / ``simulate_system``), the
-    block3d keys from its dataset (:func:`~blastscale.analysis.block3d_similarity.block_summary`)."""
-    from ..analysis.block3d_similarity import block_dataset, block_summary, history_differences
+def _run(out, block, load, incidence, charge, standoff, scale, density_ratio, gravity_ratio, gravity, model, pulse,
+         contact, duration, record_every, plot) -> None:
+    """Fill ``out`` with the block's run(s) through the one structure path (every load method:
+    :func:`~blastscale.analysis.structure3d.simulate_system` for the prototype alone,
+    :func:`~blastscale.analysis.structure3d.compare_structure3d` with a model), the block3d keys
+    from its dataset (:func:`~blastscale.analysis.block3d_similarity.block_summary`,
+    :func:`~blastscale.analysis.block3d_similarity.block_similarity`)."""
+    from ..analysis.block3d_similarity import block_dataset, block_similarity, block_summary
     from ..analysis.compare import upscale_dataset
     from ..analysis.structure3d import compare_structure3d, simulate_system, upscale_summary
     from ..similitude import design_model
@@ -50,7 +52,7 @@ def _per_face_load_run(out, block, load, incidence, charge, standoff, scale, den
         proto = cmp.prototype
         out["prototype"] = block_summary(proto, block)
         out["model"] = upscale_summary(block_summary(cmp.model, cmp.model_structure), f)
-        out["similarity"] = history_differences(
+        out["similarity"] = block_similarity(
             block_dataset(proto, block), upscale_dataset(block_dataset(cmp.model, cmp.model_structure), f))
         out["model_experiment"] = {"charge_kg": design.model_charge_kg, "standoff_m": design.model_standoff_m,
                                    "height_m": block.height * scale}
@@ -81,7 +83,10 @@ def block3d_cmd(
              "reproduced within 0.1%). Accepted for compatibility with `rock`; a value is rejected.",
     ),
     friction: float = typer.Option(0.7, "--friction", help="Coulomb friction coefficient mu \\[-] (paper: tan 35 deg)."),
-    timestep: float = typer.Option(2e-4, "--timestep", help="Prototype time step \\[s] (the model's is x sqrt(lambda)); the 2 ms contact time constant is raised to 4 steps if needed."),
+    timestep: Optional[float] = typer.Option(
+        None, "--timestep", help="Prototype time step \\[s] (default: derived from the block's size, 0.2 ms for a 10 m "
+                                 "block; the model's is x sqrt(lambda)); the contact time constant is raised to 4 "
+                                 "steps if needed; rejected past the engine's stability bound."),
     scale: Optional[float] = opt.SCALE,
     density_ratio: float = opt.DENSITY_RATIO,
     gravity_ratio: float = opt.GRAVITY_RATIO,
@@ -91,15 +96,13 @@ def block3d_cmd(
     plot: Optional[str] = typer.Option(None, "--plot", help="Write histories and pose snapshots to this image file."),
     as_json: bool = opt.JSON,
 ) -> None:
-    """Rocking, sliding and uplift of a rigid block under a blast (MuJoCo, the paper's Method A).
+    """Rocking, sliding and uplift of a rigid block under a blast (MuJoCo; the paper's Method A by default).
 
-    The reflected pulse at the stand-off loads the whole front face at once; with --scale the
-    model experiment is designed by the general law, run at model scale with scaled contact
-    settings, up-scaled and compared with the prototype.
+    Method A: the reflected pulse at the stand-off loads the whole front face at once (--load B,
+    C: per face). Contact settings are derived from the block's own size; with --scale the model
+    experiment is designed by the general law, run at model scale with scaled contact settings,
+    up-scaled and compared with the prototype.
     """
-    from ..blast import blast_parameters
-    from ..sim3d import ContactSettings, simulate_block
-
     if restitution is not None:
         raise BlastscaleInputError(
             f"restitution = {restitution:g} is not applicable to block3d: in 3D the impact loss emerges from "
@@ -108,14 +111,7 @@ def block3d_cmd(
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_load_options(load, incidence)
     check_plot_path(plot)
-    check_positive("timestep", timestep, "s")  # before it sets the contact time constant below
-    base = ContactSettings()
-    contact = ContactSettings(
-        friction=friction,
-        timestep=timestep,
-        # the contact time constant (2 ms) is kept >= 4 steps when the user coarsens the step
-        time_constant=max(base.time_constant, 4.0 * timestep),
-    )
+    contact = contact_from_options(block, friction, timestep, gravity)
     out: dict = {"inputs": {
         "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "density_kg_m3": block.density,
         "charge_kg": charge, "standoff_m": standoff, "pulse": pulse, "model": model, "duration_s": duration,
@@ -124,30 +120,8 @@ def block3d_cmd(
         "gravity_ratio": gravity_ratio if scale is not None else None, "gravity_m_s2": gravity,
     }, "contact": contact.to_dict()}
     with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
-        if load != "A":  # per-face loads (B, C): the structure path, the block's keys from its dataset
-            _per_face_load_run(out, block, load, incidence, charge, standoff, scale, density_ratio, gravity_ratio,
-                               gravity, model, pulse, contact, duration, record_every, plot)
-        elif scale is None:
-            bp = blast_parameters(charge, standoff, model)
-            proto = simulate_block(block, bp.pulse(pulse), duration, contact=contact, gravity=gravity,
-                                   record_every=record_every)
-            upscaled = None
-            out["prototype"] = proto.summary()
-        else:
-            from ..analysis.block3d_similarity import compare_block3d
-
-            cmp = compare_block3d(block, charge, standoff, scale, density_ratio=density_ratio, gravity_ratio=gravity_ratio,
-                                  model=model, pulse=pulse, contact=contact, duration=duration, gravity=gravity,
-                                  record_every=record_every)
-            proto, upscaled = cmp.prototype, cmp.model_upscaled
-            out.update(cmp.summary())
-            out["model_experiment"] = {"charge_kg": cmp.design.model_charge_kg, "standoff_m": cmp.design.model_standoff_m,
-                                       "height_m": block.height * scale}
-    if plot and load == "A":
-        from ..plots.sim3d import plot_comparison
-
-        save_figure(lambda: plot_comparison(proto, upscaled), plot)
-        out["plot"] = plot
+        _run(out, block, load, incidence, charge, standoff, scale, density_ratio, gravity_ratio, gravity, model, pulse,
+             contact, duration, record_every, plot)
     if as_json:
         print_json(out)
         return

@@ -367,7 +367,8 @@ def simulate_structure(
         Keep one state every ``record_every`` steps (the first and last are always kept).
     blast_mode : {"auto", "force", "kick"}, optional
         How a step's impulse is applied (module docstring); default "auto" for one body,
-        "force" for several.
+        "force" for several. A block in "auto" mode with mu within 10 % of its pivoting
+        threshold (:func:`pivot_friction_threshold`) gets a one-line RuntimeWarning.
     settle : bool
         Let the structure settle on its soft contacts for ``SETTLE_TIME_CONSTANTS`` time
         constants before the first arrival.
@@ -391,6 +392,7 @@ def simulate_structure(
     a, b = reference_factors(structure, g)
     ref = _to_reference(structure, a)
     scene = structure_scene(ref, _reference_contact(contact if explicit else None, structure, a, b), REFERENCE_GRAVITY)
+    _warn_near_pivot_threshold(scene, contact.friction, load, mode)
     st = _integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle, factors=(a, b))
     return response_from_states(structure, st, _settings(contact, g, T, mode, st, load, explicit))
 
@@ -498,15 +500,7 @@ class Block3DSimulator:
         scene = block_scene(_to_reference(block, a), _reference_contact(self.contact, block, a, b), REFERENCE_GRAVITY,
                             rotation=th0, shape_type=self.shape_type)
         shape = scene.bodies[0].shape  # reference units
-        mu_star = pivot_friction_threshold(shape.half_width, shape.half_height)
-        if pulse is not None and self.blast_mode == "auto" and 0.9 < c.friction / mu_star < 1.1:
-            warnings.warn(
-                f"friction = {c.friction:.4g} is within 10% of the pivoting threshold mu* = {mu_star:.4g}: "
-                'blast_mode="auto" may under-estimate the rocking there by up to ~3%; compare with '
-                'blast_mode="force" and a hard contact (time_constant ~ pulse duration / 50)',
-                RuntimeWarning,
-                stacklevel=2,
-            )
+        mu_star = _warn_near_pivot_threshold(scene, c.friction, load, self.blast_mode)
 
         def initial(m, d):  # rigid rotation about the supporting edge + translation
             import mujoco
@@ -527,6 +521,25 @@ class Block3DSimulator:
         settings = {**_settings(c, g, T, self.blast_mode, st, load, explicit), "pivot_friction_threshold": mu_star}
         resp = response_from_states(block, st, settings)
         return block_result(resp, self.shape_type.from_block(block), st, settings)
+
+
+def _warn_near_pivot_threshold(scene: Scene, friction: float, load, mode: str):
+    """mu* of a one-box scene (:func:`pivot_friction_threshold`, None for any other scene), with a
+    one-line RuntimeWarning when a loaded run in "auto" mode has mu within 10 % of it (module
+    docstring: "auto" may under-estimate the rocking there by up to ~3 %)."""
+    shape = scene.bodies[0].shape
+    if len(scene.bodies) != 1 or not isinstance(shape, BoxShape):
+        return None
+    mu_star = pivot_friction_threshold(shape.half_width, shape.half_height)
+    if load is not None and mode == "auto" and 0.9 < friction / mu_star < 1.1:
+        warnings.warn(
+            f"friction = {friction:.4g} is within 10% of the pivoting threshold mu* = {mu_star:.4g}: "
+            'blast_mode="auto" may under-estimate the rocking there by up to ~3%; compare with '
+            'blast_mode="force" and a hard contact (time_constant ~ pulse duration / 50)',
+            RuntimeWarning,
+            stacklevel=3,
+        )
+    return mu_star
 
 
 def pivot_friction_threshold(half_width: float, half_height: float) -> float:
