@@ -239,7 +239,7 @@ def test_simulate_system_passes_extrapolate_to_the_load(monkeypatch):
 def test_collapsing_column_is_compared_up_to_the_earlier_collapse():
     """A slender 3-drum column (3 m, 0.5 -> 0.45 m) under 100 kg at 5 m topples in both systems
     within 0.17 s. The comparison stops at the earlier collapse (the fall amplifies any time
-    shift, and the engine's contacts do not follow falling drums): compared_to_collapse_s is
+    shift, and a tumbling stack's impacts are not what the scaling laws describe): compared_to_collapse_s is
     that time, the per-point figures up to it are present, and the x displacement grows
     monotonically to it, so the "first peak" is the value there. Measured: collapse times
     0.1621 / 0.1632 s, top first-peak ratio 1.0018, difference up to collapse 0.7 % of the peak;

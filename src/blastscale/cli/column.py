@@ -10,7 +10,7 @@ import typer
 from .._validate import BlastscaleInputError, check_positive
 from . import options as opt
 from ._app import app, console, fmt_value, one_line_warnings, print_json, save_figure, table
-from .options import check_load_options, check_plot_path
+from .options import check_load_options, check_plot_path, contact_from_options
 
 _SUMMARY_ROWS = (
     ("collapsed", "collapsed", "", ".6g"),
@@ -26,21 +26,6 @@ def _rows(summary: dict) -> list[tuple[str, str, str]]:
     for name, p in summary.get("points", {}).items():
         rows.append((f"{name} max displacement", fmt_value(p.get("max_displacement_m"), ".4g"), "m"))
     return rows
-
-
-def _contact(structure, friction: float, timestep: Optional[float]):
-    """The prototype's contact settings: the engine's scale-consistent defaults for this
-    structure with the user's friction and, when given, time step (the contact time constant
-    then kept >= 4 steps); the engine rejects a step past its stability bound."""
-    from dataclasses import replace
-
-    from ..sim3d.contact import default_contact
-
-    base = default_contact(structure, friction=friction)
-    if timestep is None:
-        return base
-    dt = float(check_positive("timestep", timestep, "s"))
-    return replace(base, timestep=dt, time_constant=max(base.time_constant, 4.0 * dt))
 
 
 @app.command("column")
@@ -94,7 +79,7 @@ def column_cmd(
     if isinstance(ensemble, bool) or ensemble < 0 or ensemble == 1 or (ensemble and scale is None):
         raise BlastscaleInputError(
             f"ensemble = {ensemble} is out of range: valid values are 0 (off) or >= 2 members, with --scale")
-    contact = _contact(col, friction, timestep)
+    contact = contact_from_options(col, friction, timestep)
     inc = {} if incidence is None else {"incidence": incidence}
     out: dict = {"inputs": {
         "charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse, "load": load,
