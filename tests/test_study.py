@@ -15,7 +15,7 @@ from blastscale._validate import BlastscaleInputError
 from blastscale.analysis.rocking_similarity import compare_rocking
 from blastscale.io import Scenario, load_scenario
 from blastscale.structures import RectangularBlock
-from blastscale.study import Study, contact_settings, estimate_memory
+from blastscale.study import Study, StudyWarning, contact_settings, estimate_memory
 
 EXAMPLES = sorted((Path(__file__).parents[1] / "examples" / "scenarios").glob("*.toml"))
 SHORT = {"duration_s": 0.15, "critical_charge": False}
@@ -128,7 +128,8 @@ def test_study_rejects_a_non_scenario():
 
 def test_both_engines_on_a_column_runs_3d_and_says_why_planar_is_skipped():
     sc = load_scenario(EXAMPLES[-1]).with_values({"engine": "both", "duration_s": 0.1})
-    r = Study(sc).run()
+    with pytest.warns(StudyWarning, match="planar engine skipped"):  # said to the caller as well
+        r = Study(sc).run()
     assert r.planar is None and r.response3d is not None
     assert any(w.startswith("planar engine skipped: planar rocking applies to a single rectangular block")
                for w in r.warnings)

@@ -36,8 +36,13 @@ from typing import Any, Callable, Optional
 from ._validate import BlastscaleInputError
 from .io.scenario import Scenario
 
-__all__ = ["Study", "StudyResult", "STRUCTURE_BUILDERS", "ENGINES", "ENSEMBLE", "estimate_memory", "MEMORY_FRACTION",
+__all__ = ["Study", "StudyResult", "StudyWarning", "STRUCTURE_BUILDERS", "ENGINES", "ENSEMBLE", "estimate_memory", "MEMORY_FRACTION",
            "contact_settings", "check_memory"]
+
+class StudyWarning(UserWarning):
+    """What a study noticed about its own result (load not impulsive, outcomes that disagree, an
+    engine skipped, a chaotic structure compared by single trajectories)."""
+
 
 #: Progress callback: ``progress(stage, done, total)`` with a short stage description.
 Progress = Callable[[str, int, int], None]
@@ -288,6 +293,7 @@ class StudyResult:
     ensemble: Any = None
     warnings: tuple = ()
     timings: dict = field(default_factory=dict)
+    _summary: dict = field(default_factory=dict, repr=False)  # computed once (the 3D similarity builds loads)
 
     # -- views -----------------------------------------------------------------------------
     def experiment(self) -> dict:
@@ -306,8 +312,16 @@ class StudyResult:
 
     def summary(self) -> dict:
         """Nested dict of every result (JSON-ready apart from NaN/inf): ``experiment``,
-        ``design``, ``planar``, ``critical``, ``3d`` (None where not run), ``warnings``,
-        ``timings_s``. The scenario is under ``scenario``."""
+        ``design``, ``planar``, ``critical``, ``3d``, ``ensemble`` (None where not run),
+        ``warnings``, ``timings_s``. The scenario is under ``scenario``. Computed once (a copy
+        is returned)."""
+        import copy
+
+        if not self._summary:
+            self._summary.update(self._compute_summary())
+        return copy.deepcopy(self._summary)
+
+    def _compute_summary(self) -> dict:
         return {
             "scenario": self.scenario.to_dict(),
             "experiment": self.experiment(),
@@ -532,6 +546,12 @@ class Study:
                 timings["critical"] = time.perf_counter() - t0
                 step += 1
             _tell(progress, "done", total, total)
+            partial = StudyResult(scenario=sc, structure=structure, model_structure=structure.scaled(d.scale,
+                                                                                                    d.density_ratio),
+                                  design=d,
+                                  planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
+                                  ensemble=results.get("ensemble"))
+            summary = partial._compute_summary()  # inside the capture: its warnings are the study's
         notes = _study_warnings(d, results, skipped)
         lib = []
         for w in caught:
@@ -539,12 +559,10 @@ class Study:
             if msg not in lib:
                 lib.append(msg)
                 warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)  # still seen by callers
-        model_structure = structure.scaled(d.scale, d.density_ratio)
-        return StudyResult(
-            scenario=sc, structure=structure, model_structure=model_structure, design=d,
-            planar=results.get("planar"), critical=crit, response3d=results.get("3d"), ensemble=results.get("ensemble"),
-            warnings=tuple(lib + notes), timings=timings,
-        )
+        for note in notes:
+            warnings.warn(note, StudyWarning, stacklevel=2)
+        summary.update(warnings=list(lib + notes), timings_s=dict(timings))
+        return replace(partial, warnings=tuple(lib + notes), timings=timings, _summary=summary)
 
 
 def _tell(progress: Optional[Progress], stage: str, done: int, total: int) -> None:

@@ -84,10 +84,7 @@ def _print_result(result) -> None:
                                      f"Method {sc.blast.load})", r3["prototype"], r3["model"]))
         console.print("similarity: " + ", ".join(
             f"{k} {fmt_value(v, '.3g')}" for k, v in r3["similarity"].items() if not isinstance(v, (dict, list))))
-    from rich.markup import escape
-
-    for w in result.warnings:
-        console_err.print(f"[yellow]warning:[/] {escape(w)}", highlight=False, soft_wrap=True)
+    # result.warnings were printed as they came, one line each (one_line_warnings)
 
 
 @app.command("run")
