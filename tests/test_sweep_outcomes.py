@@ -107,12 +107,14 @@ def test_outcome_mode_equals_the_study(extra):
 
 
 def test_outcome_sweep_is_independent_of_chunking_and_refuses_other_engines(tmp_path):
-    """Sampled restitution and a varied body (two groups): the store is the same whatever the chunk
-    size (and equals planar_outcomes over all the cases at once); engine 'both' is refused."""
+    """Sampled restitution (and friction, which plays no part) and a varied body (two groups): the
+    store is the same whatever the chunk size (and equals planar_outcomes over all the cases at
+    once); engine 'both' is refused."""
     from blastscale.analysis.grids import Distribution
 
     spec = SweepSpec.build(BASE, {"charge_kg": np.geomspace(30, 150, 7), "height_m": [8.0, 10.0]},
-                           {"restitution": Distribution("uniform", (0.3, 0.95))}, samples=5, seed=2, outcomes=True)
+                           {"restitution": Distribution("uniform", (0.3, 0.95)), "friction": Distribution("uniform", (0.5, 0.8))},
+                           samples=5, seed=2, outcomes=True)
     stores = []
     for chunk in (7, 70):
         run_sweep(spec, tmp_path / f"c{chunk}.zarr", workers=0, chunk=chunk)

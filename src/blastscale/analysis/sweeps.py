@@ -519,8 +519,15 @@ OUTCOME_KEYS = (
     "planar.model.max_angle_rad", "planar.similarity.max_angle_ratio", "planar.similarity.outcomes_agree",
     "design.model_charge_kg", "design.model_standoff_m", VALID_KEY,
 )
-#: Fields the outcome mode vectorises over; the others group the cases (one body and law per group).
+#: Fields the outcome mode vectorises over; the others that matter group the cases (one body, scale,
+#: law, blast model and pulse per group); the rest (friction, duration, samples, 3D settings, ...)
+#: play no part in it.
 _LOAD_PATHS = ("blast.charge_kg", "blast.standoff_m", "simulation.restitution")
+
+
+def _outcome_field(path: str) -> bool:
+    return (path.startswith(("structure.", "blast.", "scale.")) or path == "simulation.gravity_m_s2") \
+        and path not in _LOAD_PATHS + ("structure.friction", "blast.load", "blast.incidence")
 
 
 def _groups(vals: dict, paths: list, n: int) -> list:
@@ -611,8 +618,10 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
     |theta| of the whole motion; pi/2 where it overturns), their ratio (model / prototype) and
     outcome agreement, the model charge and stand-off, and ``sweep.valid`` (False where the Study
     would refuse the design: a scaled distance outside the blast fits; NaN values there).
-    Cases are grouped by the fields other than charge, stand-off and restitution (one body,
-    scale and law per group); within a group everything is array arithmetic.
+    Cases are grouped by the fields that matter other than charge, stand-off and restitution
+    (structure, blast model and pulse, scale, gravity: one body, scale and law per group; friction,
+    duration, samples and the 3D settings play no part); within a group everything is array
+    arithmetic.
 
     Returns
     -------
@@ -627,7 +636,7 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
     base = spec.base
     col = {p: (vals[p].astype(float) if p in vals else np.full(n, np.nan if v is None else float(v)))
            for p, v in zip(_LOAD_PATHS, (base.blast.charge_kg, base.blast.standoff_m, base.simulation.restitution))}
-    others = [p for p in vals if p not in _LOAD_PATHS]
+    others = [p for p in vals if _outcome_field(p)]
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -900,7 +909,13 @@ def _run_dask(payload, todo, parts: Path, scheduler, nw: int, tick) -> tuple:
     if scheduler is None:
         import warnings
 
-        with warnings.catch_warnings():
+        import dask
+
+        # Dask's nannies set MALLOC_TRIM_THRESHOLD_=65536 in their workers: glibc then hands every
+        # freed block above 64 kB back to the system, and the numpy temporaries of a planar chunk
+        # come back as fresh pages each time (measured: +55 % CPU per outcome-mode chunk); the
+        # local workers keep glibc's own (dynamic) threshold
+        with warnings.catch_warnings(), dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
             # the scheduler's HTTP (health) server takes another port when 8787 is busy: not our concern
             warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
             cluster = LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
