@@ -144,20 +144,13 @@ def _3d_supports(structure) -> Optional[str]:
 
 
 def _run_3d(ctx: _Context):
-    import inspect
-
     from .analysis.structure3d import compare_structure3d
 
     sc, sim = ctx.scenario, ctx.scenario.simulation
-    kw = {}
-    if "extrapolate" in inspect.signature(compare_structure3d).parameters:
-        kw["extrapolate"] = sc.blast.extrapolate
-    elif sc.blast.extrapolate:
-        raise BlastscaleInputError("blast.extrapolate = true is not available to the 3D comparison of this version: "
-                                   "valid value is false (or simulation.engine = \"planar\")")
     return compare_structure3d(ctx.structure, ctx.design, load=sc.blast.load, pulse=sc.blast.pulse,
                                incidence=sc.blast.incidence, contact=contact_settings(sc, ctx.structure),
-                               duration=sim.duration_s, record_every=sim.record_every, **kw)
+                               duration=sim.duration_s, record_every=sim.record_every,
+                               extrapolate=sc.blast.extrapolate)
 
 
 def _run_ensemble(ctx: _Context):
