@@ -72,12 +72,14 @@ BASE = Scenario.default().with_values({"engine": "planar", "critical_charge": Fa
 @pytest.mark.parametrize("extra", [
     {"length": [0.005, 0.2], "pulse": ["friedlander", "impulsive"]},
     {"law": ["hopkinson-cranz"], "density_ratio": [None], "model": ["kingery-bulmash"], "restitution": [0.5]},
+    {"extrapolate": [True], "model": ["masi2021", "kingery-bulmash"], "standoff_m": [0.3, 2.0, 40.0]},
 ])
 def test_outcome_mode_equals_the_study(extra):
     """Against the Study (its planar batch path, bit-identical to Study.scalars(), tests/test_sweeps.py)
-    on a grid with cases the Study refuses (a scaled distance outside the masi2021 fits): validity,
-    outcomes, model charge; the largest angle where neither overturns (20 s of motion: every
-    first swing is over by then)."""
+    on a grid with cases the Study refuses (a scaled distance outside the masi2021 fits; with
+    extrapolate, outside the impulse fit the general law is solved on): validity, outcomes, model
+    charge; the largest angle where neither overturns (20 s of motion: every first swing is over
+    by then)."""
     spec = SweepSpec.build(BASE, {"charge_kg": [20.0, 60.0, 200.0], "standoff_m": [1.0, 2.0, 9.0], **extra},
                            outcomes=True)
     got = planar_outcomes(spec, 0, spec.n_cases)
