@@ -142,3 +142,14 @@ def test_ensemble_settings_are_checked_before_running():
     sc = Scenario.default().with_values({"ensemble_members": 2, "engine": "planar"})
     with pytest.raises(BlastscaleInputError, match=r"simulation\.ensemble_members = 2 needs the 3D engine"):
         Study(sc).check()
+
+
+def test_blast_extrapolate_reaches_the_3d_loads_and_the_ensemble():
+    # Method C on the paper's 1/200 block puts the model's rear faces beyond the masi2021 duration
+    # fit (Z > 6.5): refused with one line unless blast.extrapolate, which must reach the loads of
+    # the 3D comparison and of every ensemble member (both would fail otherwise).
+    sc = Scenario.default().with_values({"load": "C", "engine": "3d", "duration_s": 0.05, "critical_charge": False})
+    with pytest.raises(BlastscaleInputError, match=r"outside the fit's valid range"):
+        Study(sc).run()
+    r = Study(sc.with_values({"extrapolate": True, "ensemble_members": 2})).run()
+    assert r.response3d is not None and r.ensemble is not None

@@ -160,7 +160,7 @@ def _run_ensemble(ctx: _Context):
     return ensemble_compare(ctx.structure, ctx.design, n=sim.ensemble_members, perturbation=sim.ensemble_perturbation,
                             load=sc.blast.load, pulse=sc.blast.pulse, incidence=sc.blast.incidence,
                             contact=contact_settings(sc, ctx.structure), duration=sim.duration_s,
-                            record_every=sim.record_every)
+                            record_every=sim.record_every, extrapolate=sc.blast.extrapolate)
 
 
 @dataclass(frozen=True)

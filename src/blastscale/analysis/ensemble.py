@@ -206,12 +206,13 @@ def ensemble_compare(
     record_every: int = 4,
     horizon_fraction: float = 0.05,
     progress=None,
+    extrapolate: bool = False,
 ) -> EnsembleComparison:
     """Ensembles of a structure and of its reduced-scale model under slightly perturbed loads.
 
     Parameters
     ----------
-    structure, design, load, pulse, incidence, contact, duration, record_every
+    structure, design, load, pulse, incidence, contact, duration, record_every, extrapolate
         As :func:`~.structure3d.compare_structure3d` (duration [s] prototype time).
     n : int
         Members per system, >= 2.
@@ -240,7 +241,8 @@ def ensemble_compare(
     t = points = None
     for k, fac in enumerate(factors):
         _, pr, mo, _ = _run_pair(structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact,
-                              duration=duration, record_every=record_every, load_factor=fac)
+                              duration=duration, record_every=record_every, load_factor=fac,
+                              extrapolate=extrapolate)
         pds, up = align(pr.dataset, upscale_dataset(mo.dataset, design.factors))
         if t is None:
             t = pds["time"].values

@@ -195,7 +195,8 @@ class Comparison3D:
         inc = s.get("incidence", "default")
         return arrival_spread_similarity(self.structure, self.design, s.get("load_method", "A"),
                                          pulse=s.get("pulse", "friedlander"),
-                                         incidence=DEFAULT_INCIDENCE if inc == "default" else inc)
+                                         incidence=DEFAULT_INCIDENCE if inc == "default" else inc,
+                                         extrapolate=s.get("extrapolate", False))
 
     def summary(self) -> dict:
         """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block."""
@@ -354,7 +355,7 @@ def compare_structure3d(
         design=design, structure=structure, model_structure=model_structure, prototype=proto, model=mod,
         prototype_dataset=pds, upscaled_dataset=up, comparison=cmp,
         settings={"load_method": load, "pulse": pulse, "incidence": incidence or "default", "duration_s": dur,
-                  "record_every": int(record_every), "load_end_s": load_end},
+                  "record_every": int(record_every), "load_end_s": load_end, "extrapolate": bool(extrapolate)},
     )
 
 

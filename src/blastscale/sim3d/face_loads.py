@@ -204,7 +204,7 @@ def arrival_spread(load) -> float:
 
 
 def arrival_spread_similarity(structure, design, load: str = "A", *, pulse: str = "friedlander",
-                              incidence: str = "ufc") -> dict:
+                              incidence: str = "ufc", extrapolate: bool = False) -> dict:
     """Arrival-time spreads of a model experiment, for a comparison's ``similarity`` block.
 
     Parameters
@@ -216,6 +216,8 @@ def arrival_spread_similarity(structure, design, load: str = "A", *, pulse: str 
         charge and stand-off, ``factors.length``, ``factors.density`` and ``factors.time``.
     load, pulse, incidence : str
         As for :func:`~.loads.make_load`.
+    extrapolate : bool
+        As for :func:`~.loads.make_load` (the blast fits outside their ranges, with a warning).
 
     Returns
     -------
@@ -229,7 +231,7 @@ def arrival_spread_similarity(structure, design, load: str = "A", *, pulse: str 
 
     f = design.factors
     p, m = design.prototype, design.model
-    kw = dict(blast_model=p.model, pulse=pulse, incidence=incidence)
+    kw = dict(blast_model=p.model, pulse=pulse, incidence=incidence, extrapolate=extrapolate)
     lp = make_load(load, structure, charge_kg=p.charge_kg, standoff_m=p.standoff_m, **kw)
     lm = make_load(load, structure.scaled(f.length, f.density), charge_kg=m.charge_kg, standoff_m=m.standoff_m, **kw)
     return {"arrival_spread_prototype_s": arrival_spread(lp),
