@@ -292,24 +292,34 @@ def _integrate(scene: Scene, load, duration: float, *, record_every: int, blast_
     t_start = 0.0 if load is None else float(load.first_arrival)
     loading = False
     kicks = 0
-    for n in range(nsteps):
+    n = 0
+    while n < nsteps:
         t0 = t_start + n * dtp
-        if load is not None and t0 <= load.end_time:
-            W = load.step_wrenches(t0, t0 + dtp, d.xipos[1:] / a, d.xmat[1:].reshape(nb, 3, 3))
-            delivered += W[:, 0:3] * dtp
-            delivered_abs += np.linalg.norm(W[:, 0:3], axis=1) * dtp
-            xfrc[1:, 0:3] = W[:, 0:3] * fF
-            xfrc[1:, 3:6] = W[:, 3:6] * fM
-            loading = True
-            if blast_mode == "kick" or (blast_mode == "auto" and np.any(W) and _any_contact_slides(m, d, c)):
-                _kick(m, d, xfrc[1:] * dt)
-                xfrc[1:] = 0.0
-                kicks += 1
-        elif loading:
-            xfrc[:] = 0.0
-            loading = False
+        if load is None or t0 > load.end_time:
+            if loading:
+                xfrc[:] = 0.0
+                loading = False
+            # free motion: advance to the next recorded state in one call (MuJoCo loops mj_step
+            # in C: bitwise the same states, without a Python round trip per step)
+            nxt = int(idx[j])
+            mujoco.mj_step(m, d, nxt - n)
+            qpos[j], qvel[j], ncon[j] = d.qpos, d.qvel, d.ncon
+            j += 1
+            n = nxt
+            continue
+        W = load.step_wrenches(t0, t0 + dtp, d.xipos[1:] / a, d.xmat[1:].reshape(nb, 3, 3))
+        delivered += W[:, 0:3] * dtp
+        delivered_abs += np.linalg.norm(W[:, 0:3], axis=1) * dtp
+        xfrc[1:, 0:3] = W[:, 0:3] * fF
+        xfrc[1:, 3:6] = W[:, 3:6] * fM
+        loading = True
+        if blast_mode == "kick" or (blast_mode == "auto" and np.any(W) and _any_contact_slides(m, d, c)):
+            _kick(m, d, xfrc[1:] * dt)
+            xfrc[1:] = 0.0
+            kicks += 1
         mujoco.mj_step(m, d)
-        if rec_mask[n + 1]:
+        n += 1
+        if rec_mask[n]:
             qpos[j], qvel[j], ncon[j] = d.qpos, d.qvel, d.ncon
             j += 1
     qpos = qpos.reshape(nrec, nb, 7)
