@@ -115,15 +115,11 @@ def contact_settings(scenario: Scenario, structure=None):
     from .sim3d import ContactSettings
 
     sim = scenario.simulation
-    base = None
-    if structure is not None:
-        try:  # scale-consistent defaults derived from the structure, where the engine has them
-            from .sim3d.contact import default_contact
-        except ImportError:
-            default_contact = None
-        if default_contact is not None:
-            base = default_contact(structure, friction=scenario.structure.friction, gravity=sim.gravity_m_s2)
-    base = base if base is not None else ContactSettings()
+    base = ContactSettings()
+    if structure is not None:  # scale-consistent defaults derived from the structure
+        from .sim3d.contact import default_contact
+
+        base = default_contact(structure, friction=scenario.structure.friction, gravity=sim.gravity_m_s2)
     given = {k: v for k, v in sim.contact.model_dump().items() if v is not None}
     names = {"time_constant_s": "time_constant", "friction_time_constant_s": "friction_time_constant",
              "impedance_width_m": "impedance_width"}

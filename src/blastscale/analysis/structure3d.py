@@ -222,7 +222,8 @@ class Comparison3D:
         attrs = {k: v for k, v in s.items() if isinstance(v, (int, float, str)) and not isinstance(v, bool)}
         attrs["outcomes_agree"] = "none" if s["outcomes_agree"] is None else int(s["outcomes_agree"])
         attrs.update({f"factor_{k}": v for k, v in self.design.factors.to_dict().items() if v is not None})
-        attrs.update({k: v for k, v in self.settings.items() if isinstance(v, (int, float, str))})
+        attrs.update({k: int(v) if isinstance(v, bool) else v for k, v in self.settings.items()
+                      if isinstance(v, (int, float, str))})  # NetCDF has no booleans
         ds.attrs.update(attrs)
         return ds
 

@@ -118,17 +118,18 @@ def check_load_options(load: str, incidence: Optional[str]) -> None:
                 f"incidence = {incidence!r} is not known: valid values are {', '.join(INCIDENCE_MODELS)}")
 
 
-def contact_from_options(structure, friction: float, timestep: Optional[float], gravity: float = 9.81):
+def contact_from_options(structure, friction: float, timestep: Optional[float], gravity: float = 9.81,
+                         jacobian: str = "dense"):
     """The prototype's contact settings of a 3D command: the engine's scale-consistent defaults
     for ``structure`` under ``gravity`` [m/s^2] (:func:`blastscale.sim3d.contact.default_contact`)
-    with the user's friction [-] and, when given, time step [s] (the contact time constant then
-    kept >= 4 steps); the engine rejects a step past its stability bound."""
+    with the user's friction [-], constraint-Jacobian layout and, when given, time step [s] (the
+    contact time constant then kept >= 4 steps); the engine rejects a step past its stability bound."""
     from dataclasses import replace
 
     from .._validate import check_positive
     from ..sim3d.contact import default_contact
 
-    base = default_contact(structure, friction=friction, gravity=gravity)
+    base = replace(default_contact(structure, friction=friction, gravity=gravity), jacobian=jacobian)
     if timestep is None:
         return base
     dt = float(check_positive("timestep", timestep, "s"))

