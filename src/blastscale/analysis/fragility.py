@@ -158,12 +158,12 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     one = None if per_case_body else system_of(base)
     bl = base.blast
     for a in range(0, n, block_size):
-        ks = range(a, min(n, a + block_size))
-        vals = [spec.values(k) for k in ks]
-        W = np.array([v.get("blast.charge_kg", bl.charge_kg) for v in vals], dtype=float)
-        R = np.array([v.get("blast.standoff_m", bl.standoff_m) for v in vals], dtype=float)
-        systems = [system_of(spec.scenario(k)) for k in ks] if per_case_body else one
-        out[a:a + len(vals)] = overturns(systems, W, R, pulse=bl.pulse, model=bl.model, extrapolate=bl.extrapolate)
+        b = min(n, a + block_size)
+        vals = spec.value_arrays(a, b)  # the whole block at once, not case by case
+        W, R = (vals[p].astype(float) if p in vals else np.full(b - a, float(v))
+                for p, v in zip(_LOAD_FIELDS, (bl.charge_kg, bl.standoff_m)))
+        systems = [system_of(spec.scenario(k)) for k in range(a, b)] if per_case_body else one
+        out[a:b] = overturns(systems, W, R, pulse=bl.pulse, model=bl.model, extrapolate=bl.extrapolate)
     return out.reshape(spec.shape)
 
 
