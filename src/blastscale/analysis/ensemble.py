@@ -229,7 +229,7 @@ def ensemble_compare(
     EnsembleComparison
     """
     from .compare import align, upscale_dataset
-    from .structure3d import _run_pair
+    from .structure3d import _run_pair, upscale_summary
 
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
         raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 2")
@@ -254,11 +254,11 @@ def ensemble_compare(
             pds, up = pds.isel(time=slice(0, m)), up.isel(time=slice(0, m))
         proto_q.append(pds["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
         model_q.append(up["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
-        ps, ms = pr.summary(), mo.summary()
+        ps, ms = pr.summary(), upscale_summary(mo.summary(), design.factors)
         proto_c.append(bool(ps["collapsed"]))
         model_c.append(bool(ms["collapsed"]))
         proto_tc.append(ps.get("collapse_time_s"))
-        model_tc.append(None if ms.get("collapse_time_s") is None else ms["collapse_time_s"] / design.factors.time)
+        model_tc.append(ms.get("collapse_time_s"))
         if progress is not None:
             progress(k + 1, len(factors))
     P, M = np.stack(proto_q), np.stack(model_q)
