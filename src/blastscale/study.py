@@ -541,7 +541,7 @@ class Study:
                                   planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
                                   ensemble=results.get("ensemble"))
             summary = partial._compute_summary()  # inside the capture: its warnings are the study's
-        notes = _study_warnings(d, results, skipped)
+        notes = _study_warnings(d, results, skipped, summary)
         lib = []
         for w in caught:
             msg = " ".join(str(w.message).split())
@@ -572,8 +572,9 @@ def _is_circular(cmp) -> bool:
     return getattr(getattr(cmp, "structure", None), "section", None) == "circular"
 
 
-def _study_warnings(design, results: dict, skipped: list) -> list:
-    """The study's own warnings, in words for the report."""
+def _study_warnings(design, results: dict, skipped: list, summary: dict) -> list:
+    """The study's own warnings, in words for the report (the 3D and ensemble figures read from
+    the study's ``summary``, computed once)."""
     out = list(skipped)
     imp = design.impulsive
     if imp is not None and not imp.impulsive:
@@ -587,13 +588,12 @@ def _study_warnings(design, results: dict, skipped: list) -> list:
         out.append("circular drums wobble chaotically: one trajectory after the first impact means little; compare "
                    "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities")
     if ens is not None:
-        e = ens.summary()
+        e = summary["ensemble"]
         if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
             out.append(f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
                        f"{e['collapse_probability_model']:.2g} (model)")
-    r3 = results.get("3d")
-    if r3 is not None:
-        s = r3.summary()
+    s = summary["3d"]
+    if s is not None:
         p, m = s.get("prototype", {}), s.get("model", {})
         for key in ("overturned", "collapsed"):
             if key in p and key in m and bool(p[key]) != bool(m[key]):
