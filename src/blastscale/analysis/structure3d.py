@@ -341,14 +341,15 @@ def compare_structure3d(
     model_structure, proto, mod, load_end = _run_pair(
         structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact, duration=dur,
         record_every=record_every, extrapolate=extrapolate)
-    pds = _with_outcome(proto.dataset, proto.summary())
-    up = upscale_dataset(_with_outcome(mod.dataset, mod.summary()), design.factors)
+    ps, ms = proto.summary(), mod.summary()
+    pds = _with_outcome(proto.dataset, ps)
+    up = upscale_dataset(_with_outcome(mod.dataset, ms), design.factors)
     cmp = compare_responses(pds, up, variables=_COMPARED, outcome="collapsed")
     if load_end < pds["time"].values[-1]:  # velocities after the load (see compare_responses' start)
         cmp["after_load"] = compare_responses(pds, up, variables=("point_velocity",), start=load_end)
         cmp["after_load"]["start_s"] = load_end
-    tc = [x for x in (proto.summary().get("collapse_time_s"), upscale_summary(mod.summary(), design.factors).get(
-        "collapse_time_s")) if x is not None]
+    tc = [x for x in (ps.get("collapse_time_s"), upscale_summary(ms, design.factors).get("collapse_time_s"))
+          if x is not None]
     if tc:  # up to the earlier collapse: the fall amplifies any time shift
         cmp["to_collapse"] = compare_responses(pds, up, variables=("point_displacement",), end=min(tc))
         cmp["to_collapse"]["end_s"] = min(tc)
