@@ -198,10 +198,6 @@ class Scene:
     contact: ContactSettings
     gravity: float
 
-    def body_id(self, index: int = 0) -> int:
-        """MuJoCo id of body ``index``."""
-        return index + 1
-
 
 def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None) -> Scene:
     """Compile free rigid bodies on a rigid ground plane into a MuJoCo model.
