@@ -48,7 +48,7 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     meta = provenance()
     tell("histories (NetCDF, CSV)")
     ds = result.to_dataset()
-    result.to_netcdf(folder / "histories.nc")
+    ds.to_netcdf(folder / "histories.nc", engine="h5netcdf")  # as StudyResult.to_netcdf, without a second to_dataset
     write_histories_csv(ds, folder / "histories.csv")
     tell("figures")
     figures = render_figures(result)
