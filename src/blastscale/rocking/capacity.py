@@ -76,6 +76,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_range
 from ..blast.base import ExtrapolationWarning
+from ..blast.faces import _check_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters, get_blast_model, valid_scaled_distance_range
 from ..blast.pulses import Pulse, friedlander_impulse_ratio
 from . import _kernel as K
@@ -103,7 +104,6 @@ __all__ = [
     "PIDiagram",
 ]
 
-PULSE_SHAPES = ("friedlander", "triangular", "impulsive")
 _KIND = {"impulsive": 0, "friedlander": 1, "triangular": 2}
 # widening of the blast model's valid Z range with extrapolate=True (factor each side)
 _EXTRAPOLATE_WIDENING = 5.0
@@ -396,8 +396,7 @@ def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse: s
     solver : RockingSolver, optional
         Solver of the pulse phase (default rtol 1e-10, atol 1e-12).
     """
-    if pulse not in PULSE_SHAPES:
-        raise BlastscaleInputError(f"pulse = {pulse!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
+    _check_shape(pulse)
     n = np.size(blast.reflected_impulse)
     a, e, p, q = (np.broadcast_to(np.asarray(x, dtype=float), (n,)) for x in (alpha, restitution, frequency, load_ratio))
     par = np.zeros((n, 3))
@@ -441,8 +440,7 @@ def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", model=
     FirstSwing
         ``overturned`` (n,), ``max_rotation`` (n,) [rad] (pi/2 where it overturns), ``margin``.
     """
-    if pulse not in PULSE_SHAPES:
-        raise BlastscaleInputError(f"pulse = {pulse!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
+    _check_shape(pulse)
     W, R = np.broadcast_arrays(np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
                                np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float))
     W, R = W.ravel(), R.ravel()
@@ -513,8 +511,7 @@ def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver,
     """Vectorised critical charge (``searched="charge"``, ``fixed`` stand-offs [m]) or stand-off
     (``"standoff"``, ``fixed`` charges [kg]). Returns (x_critical, bracket_lo, bracket_hi,
     evaluations, status) arrays; x is the survive side of the final bracket."""
-    if pulse not in PULSE_SHAPES:
-        raise BlastscaleInputError(f"pulse = {pulse!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
+    _check_shape(pulse)
     check_range("xtol_rel", xtol_rel, 1e-14, 0.1)
     by_charge = searched == "charge"
     fixed = np.atleast_1d(np.asarray(fixed, dtype=float))
