@@ -30,7 +30,7 @@ from .._validate import BlastscaleInputError, check_positive
 from ..blast.faces import _evaluate, _check_shape, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
-from .loads import register_load_method
+from .loads import _faces_array, register_load_method
 
 __all__ = ["FaceLoadStrategy", "arrival_spread", "arrival_spread_similarity", "method_b", "method_c"]
 
@@ -90,9 +90,7 @@ class FaceLoadStrategy:
         self.structure = structure
         self.nbody = len(structure.bodies)
         self.body = np.array([b for b, _ in faces], dtype=int)
-        self.centres = np.array([f.centre for _, f in faces], dtype=float).reshape(-1, 3)
-        self.normals = np.array([f.normal for _, f in faces], dtype=float).reshape(-1, 3)
-        self.areas = np.array([f.area for _, f in faces], dtype=float)
+        self.centres, self.normals, self.areas = _faces_array([f for _, f in faces])
         self.labels = tuple(f.label for _, f in faces)
         pos0 = np.array([b.com for b in structure.bodies], dtype=float)
         rot0 = np.broadcast_to(np.eye(3), (self.nbody, 3, 3))

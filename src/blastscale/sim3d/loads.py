@@ -54,7 +54,8 @@ class LoadStrategy(Protocol):
         ...
 
 
-def _faces_array(structure, faces):
+def _faces_array(faces):
+    """Centres (nface, 3) [m], outward normals (nface, 3) and areas (nface,) [m^2] of body-frame faces."""
     c = np.array([f.centre for f in faces], dtype=float).reshape(-1, 3)
     n = np.array([f.normal for f in faces], dtype=float).reshape(-1, 3)
     a = np.array([f.area for f in faces], dtype=float)
@@ -102,7 +103,7 @@ class MethodA:
         self.end_time = ta + float(pulse.duration)
         self.loaded = idx
         self.nbody = nb
-        self.centres, self.normals, self.areas = _faces_array(structure, [structure.bodies[i].load_face for i in idx])
+        self.centres, self.normals, self.areas = _faces_array([structure.bodies[i].load_face for i in idx])
 
     def mean_pressure(self, t0: float, t1: float) -> float:
         """Mean reflected pressure over [t0, t1] [Pa] (times since detonation [s])."""
