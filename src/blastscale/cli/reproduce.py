@@ -30,7 +30,7 @@ def reproduce_cmd(
     list_items: bool = typer.Option(False, "--list", help="List the items and exit."),
 ) -> None:
     """Reproduce the paper's tables and figures; the report puts the paper's numbers beside ours."""
-    from ..io.results import jsonable, output_folder, provenance, write_atomic, write_json
+    from ..io.results import output_folder, provenance, write_atomic, write_json
     from ..report.reproduce import MARKER, item_done, items, render_reproduce_report, run_item
 
     every = items()
@@ -73,7 +73,7 @@ def reproduce_cmd(
             infos.append(json.loads(marker.read_text()))
     meta = provenance()
     write_atomic(out / "report.html", render_reproduce_report(out, infos, meta))
-    write_json(out / "summary.json", jsonable({**meta, "items": infos}))
+    write_json(out / "summary.json", {**meta, "items": infos})
     t = Table(title=f"blastscale reproduce -> {out}", title_justify="left")
     t.add_column("item")
     t.add_column("status")

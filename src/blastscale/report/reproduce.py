@@ -276,7 +276,7 @@ def run_item(item: Item, out: Path, quick: bool, output_folder) -> dict:
     made in the other mode); returns the marker's content."""
     import time
 
-    from ..io.results import jsonable
+    from ..io.results import write_json
 
     dest = out / item.name
     with output_folder(dest, force=dest.exists(), markers=(MARKER,)) as tmp:
@@ -285,7 +285,7 @@ def run_item(item: Item, out: Path, quick: bool, output_folder) -> dict:
         info = {"name": item.name, "title": item.title, "paper_ref": item.paper_ref, "kind": item.kind,
                 "quick": bool(quick), "fingerprint": item.fingerprint(), "wall_time_s": time.perf_counter() - t0,
                 "rows": [asdict(r) for r in rows]}
-        (Path(tmp) / MARKER).write_text(json.dumps(jsonable(info), indent=2))
+        write_json(Path(tmp) / MARKER, info)
     return info
 
 
