@@ -414,12 +414,6 @@ def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse: s
     return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par)
 
 
-def _blast_margin(system, shape: str, model, extrapolate: bool, solver: RockingSolver, W, R):
-    """mu of ``system`` (one RockingSystem, or a sequence, one per case) under the reflected pulse
-    of charges W [kg] at stand-offs R [m] (arrays of the same length)."""
-    return first_swing(system, W, R, pulse=shape, model=model, extrapolate=extrapolate, solver=solver).margin
-
-
 def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", model=DEFAULT_BLAST_MODEL,
                 extrapolate: bool = False, solver: RockingSolver | None = None) -> FirstSwing:
     """Outcome and largest rotation of each body at rest under the reflected pulse of
@@ -532,7 +526,7 @@ def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver,
         def evaluate(idx, u):
             x = np.exp(u if by_charge else -u)
             W, R = (x, fixed[idx]) if by_charge else (fixed[idx], x)
-            return _blast_margin(system, pulse, model, extrapolate, solver, W, R)
+            return first_swing(system, W, R, pulse=pulse, model=model, extrapolate=extrapolate, solver=solver).margin
 
         lo, hi, nev, status = _vector_root(evaluate, u0, ulo, uhi, xtol_rel)
     # the search visits many points: pass on one warning of each other kind (extrapolation is
