@@ -30,7 +30,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validate import check_positive
-from .model import engine_shape
 
 __all__ = ["Block3DResult", "Response3D", "VARIABLES", "block_result", "quaternion_to_matrix",
            "response_from_states", "tilt_angle"]
@@ -385,7 +384,7 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
     tilt = np.arccos(np.clip(R[:, :, 2, 2], -1.0, 1.0))
     base_z = []
     for k, b in enumerate(bodies):
-        bp = engine_shape(b.shape, 1.0).base_points()
+        bp = b.shape.base_points()
         z = pos[:, k, None, 2] + np.einsum("nj,pj->np", R[:, k, 2, :], bp)
         base_z.append(z.min(axis=1) - (b.com[2] + bp[:, 2].min()))
     uplift = np.stack(base_z, axis=1)
