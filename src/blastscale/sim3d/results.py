@@ -402,7 +402,7 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
         "com_velocity": vel,
         "angular_velocity": omega,
         "tilt": tilt,
-        "rotation_y": np.arctan2(R[:, :, 0, 2], R[:, :, 2, 2]),
+        "rotation_y": tilt_angle(R),
         "point_displacement": pw - pw[0],
         "point_velocity": pvel,
         "n_contacts": np.asarray(states["ncon"]),
