@@ -18,9 +18,7 @@ if os.path.basename(sys.argv[0]) == "blastscale" and signal.getsignal(signal.SIG
 
 import contextlib  # noqa: E402
 import json
-import math
 import warnings
-from typing import Any
 
 import typer
 from rich.console import Console
@@ -246,12 +244,9 @@ def one_line_warnings():
                     console_err.print(f"[yellow]warning:[/] {escape(msg)}", highlight=False, soft_wrap=True)
 
 
-_jsonable = jsonable  # the one JSON conversion (blastscale.io.results)
-
-
 def print_json(obj: dict) -> None:
     """Print one JSON object on stdout (numpy scalars converted, NaN -> null)."""
-    typer.echo(json.dumps(_jsonable(obj), indent=2))
+    typer.echo(json.dumps(jsonable(obj), indent=2))
 
 
 def fmt_value(x, spec: str = ".6g") -> str:
