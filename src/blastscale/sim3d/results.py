@@ -225,13 +225,13 @@ VARIABLES = {
 }
 
 
-def _collapse(structure, pos, R) -> tuple:
+def _collapse(structure, pos, R, tilt) -> np.ndarray:
     """Per recorded time: did any body or sub-stack pass its toppling limit (module docstring of
-    :class:`Response3D`)? Returns (flag per time (n,), index of the first failing body per time)."""
+    :class:`Response3D`)? ``tilt`` (n, nbody) [rad] is each body's z axis from the vertical.
+    Returns the flag per time (n,)."""
     bodies = structure.bodies
-    n, nb = pos.shape[0], len(bodies)
+    nb = len(bodies)
     masses = np.array([b.mass for b in bodies])
-    tilt = np.arccos(np.clip(R[:, :, 2, 2], -1.0, 1.0))
     top_angle = np.array([b.toppling_angle for b in bodies])
     bad = tilt > top_angle[None, :]
     # sub-stack j..N-1: its centre of mass, projected vertically onto the base plane of body j,
@@ -247,7 +247,7 @@ def _collapse(structure, pos, R) -> tuple:
         sx, sy = bodies[j].shape.support_radius
         out = (np.abs(foot[:, 0]) > sx) | (np.abs(foot[:, 1]) > sy) | ~np.isfinite(t) | (down[:, 2] >= 0.0)
         bad[:, j] |= out
-    return bad.any(axis=1), bad
+    return bad.any(axis=1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -394,7 +394,7 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
     rel = np.einsum("npij,pj->npi", R[:, pb], local)
     pw = pos[:, pb] + rel
     pvel = vel[:, pb] + np.cross(omega[:, pb], rel)
-    collapsed_t, _ = _collapse(structure, pos, R)
+    collapsed_t = _collapse(structure, pos, R, tilt)
     hit = np.flatnonzero(collapsed_t)
     time = np.asarray(states["time"], dtype=float)
     data = {
