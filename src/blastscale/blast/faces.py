@@ -363,12 +363,17 @@ def face_loads(
         )
     m = get_blast_model(model)
     mi = incident_source(m) if incident_model is None else incident_model
+    return _loads_at(m, mi, incidence, W, xc, x, np.array(n, dtype=float), np.array(S, dtype=float), extrapolate)
+
+
+def _loads_at(m, mi, incidence, W, xc, x, n, S, extrapolate) -> FaceLoads:
+    """FaceLoads of faces at centres ``x`` [m] with outward normals ``n`` and areas ``S`` [m^2]
+    from a charge at ``xc`` [m] (distance and incidence here; the other checks by the callers)."""
     to_charge = xc - x
     R = np.linalg.norm(to_charge, axis=-1)
     if np.any(R <= 0.0):
         raise BlastscaleInputError("face centre distance to the charge = 0 m is out of range: must be > 0 m")
-    return _evaluate(m, mi, incidence, W, R, np.einsum("...k,...k->...", n, to_charge) / R, np.array(S, dtype=float),
-                     np.array(n, dtype=float), extrapolate)
+    return _evaluate(m, mi, incidence, W, R, np.einsum("...k,...k->...", n, to_charge) / R, S, n, extrapolate)
 
 
 def _evaluate(m, mi, incidence, W, R, cos_a, S, n, extrapolate) -> FaceLoads:

@@ -27,7 +27,7 @@ from dataclasses import replace
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
-from ..blast.faces import _evaluate, _check_shape, incident_source
+from ..blast.faces import _check_shape, _loads_at, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
 from .loads import _faces_array, register_load_method
@@ -138,13 +138,8 @@ class FaceLoadStrategy:
     def face_loads_at(self, positions, rotations):
         """:class:`~blastscale.blast.faces.FaceLoads` of the loaded faces at the given poses."""
         x, n = self.world_faces(positions, rotations)
-        d = self.charge_position - x
-        R = np.linalg.norm(d, axis=1)
-        if np.any(R <= 0.0):
-            raise BlastscaleInputError("face centre distance to the charge = 0 m is out of range: must be > 0 m")
-        cos_a = np.einsum("fk,fk->f", n, d) / R
-        return _evaluate(self.model, self.incident_model, self.incidence, self.W, R, cos_a, self.areas, n,
-                         self.extrapolate)
+        return _loads_at(self.model, self.incident_model, self.incidence, self.W, self.charge_position, x, n,
+                         self.areas, self.extrapolate)
 
     # --------------------------------------------------------------- interface
     def step_wrenches(self, t0, t1, positions, rotations) -> np.ndarray:
