@@ -8,12 +8,10 @@ function takes ``ax=`` (created when None) and returns it; no numerics beyond dr
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from .sim3d import _ax, finish_side_view, snapshot_times
+from .sim3d import _ax, drum_outline, finish_side_view, snapshot_times
 
 __all__ = [
     "POINT_QUANTITIES",
@@ -86,18 +84,6 @@ def plot_point_histories(prototype, model=None, quantity: str = "point_displacem
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="x-small")
     return ax
-
-
-def drum_outline(com_x: float, com_z: float, theta: float, half_bottom: float, half_top: float,
-                 z_bottom: float, z_top: float) -> np.ndarray:
-    """Closed outline (5, 2) of a drum's x-z section [m]: the trapezoid of half-widths
-    ``half_bottom`` at ``z_bottom`` and ``half_top`` at ``z_top`` (body frame, relative to the
-    centre of mass), rotated by theta about y (top towards +x when theta > 0) and placed at the
-    centre of mass (com_x, com_z)."""
-    c, s = math.cos(theta), math.sin(theta)
-    local = np.array([[-half_bottom, z_bottom], [half_bottom, z_bottom], [half_top, z_top],
-                      [-half_top, z_top], [-half_bottom, z_bottom]])
-    return np.column_stack([com_x + local[:, 0] * c + local[:, 1] * s, com_z - local[:, 0] * s + local[:, 1] * c])
 
 
 def _drum_sections(structure) -> list[tuple[float, float, float, float]]:

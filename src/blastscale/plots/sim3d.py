@@ -125,13 +125,23 @@ def plot_angular_velocity(results, ax=None, labels=None):
     return plot_history(results, "angular_velocity", ax, labels)
 
 
+def drum_outline(com_x: float, com_z: float, theta: float, half_bottom: float, half_top: float,
+                 z_bottom: float, z_top: float) -> np.ndarray:
+    """Closed outline (5, 2) of a drum's x-z section [m]: the trapezoid of half-widths
+    ``half_bottom`` at ``z_bottom`` and ``half_top`` at ``z_top`` (body frame, relative to the
+    centre of mass), rotated by theta about y (top towards +x when theta > 0) and placed at the
+    centre of mass (com_x, com_z)."""
+    c, s = math.cos(theta), math.sin(theta)  # rotation about +y: x' = x c + z s, z' = -x s + z c
+    local = np.array([[-half_bottom, z_bottom], [half_bottom, z_bottom], [half_top, z_top],
+                      [-half_top, z_top], [-half_bottom, z_bottom]])
+    return np.column_stack([com_x + local[:, 0] * c + local[:, 1] * s, com_z - local[:, 0] * s + local[:, 1] * c])
+
+
 def block_outline(com_x: float, com_z: float, theta: float, b: float, h: float) -> np.ndarray:
     """Closed outline (5, 2) of the block's x-z section [m]: corners of the 2b x 2h rectangle
-    rotated by theta about y (top towards +x when theta > 0) and centred on the centre of mass."""
-    c, s = math.cos(theta), math.sin(theta)
-    local = np.array([[-b, -h], [b, -h], [b, h], [-b, h], [-b, -h]])
-    # rotation about +y: x' = x c + z s, z' = -x s + z c
-    return np.column_stack([com_x + local[:, 0] * c + local[:, 1] * s, com_z - local[:, 0] * s + local[:, 1] * c])
+    rotated by theta about y (top towards +x when theta > 0) and centred on the centre of mass
+    (:func:`drum_outline` of an untapered section)."""
+    return drum_outline(com_x, com_z, theta, b, b, -h, h)
 
 
 def plot_snapshots(result, times=None, ax=None, n: int = 6, cmap: str = "viridis"):
