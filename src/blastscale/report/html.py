@@ -106,11 +106,10 @@ def _flat(d: dict, prefix: str = "") -> list[tuple[str, Any]]:
 
 
 def _compare_rows(prototype: dict, model: dict) -> list[tuple]:
-    keys = [k for k, v in _flat(prototype) if not isinstance(v, str)]
     mflat = dict(_flat(model))
     rows = []
     for k, v in _flat(prototype):
-        if k not in keys:
+        if isinstance(v, str):
             continue
         label, unit = split_unit(k.split(".")[-1])
         label = ".".join(k.split(".")[:-1] + [label])
