@@ -349,7 +349,7 @@ class StudyResult:
             parts.append(_system_stack("planar", rocking_dataset(self.planar.prototype),
                                        upscale_dataset(rocking_dataset(self.planar.model), self.design.factors)))
         if self.response3d is not None:
-            parts.append(_system_stack("3d", *_datasets_3d(self.response3d)))
+            parts.append(_system_stack("3d", self.response3d.prototype_dataset, self.response3d.upscaled_dataset))
         if self.ensemble is not None:
             parts.append(_ensemble_dataset(self.ensemble))
         ds = xr.merge(parts, combine_attrs="drop_conflicts") if parts else xr.Dataset()
@@ -373,11 +373,6 @@ def _describe(structure) -> dict:
     if "mass_kg" not in d and hasattr(structure, "bodies"):
         d["mass_kg"] = float(sum(b.mass for b in structure.bodies))
     return d
-
-
-def _datasets_3d(cmp) -> tuple:
-    """(prototype, up-scaled model) datasets of a 3D comparison."""
-    return cmp.prototype_dataset, cmp.upscaled_dataset
 
 
 def _ensemble_dataset(ens):
