@@ -183,6 +183,11 @@ class FragilityResult:
     seconds: float
     extra: dict = field(default_factory=dict)
 
+    @property
+    def standard_error(self) -> np.ndarray:
+        """Binomial standard error of each probability, sqrt(p (1 - p) / samples) [-]."""
+        return np.sqrt(self.probability * (1 - self.probability) / self.samples)
+
     def to_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (JSON-ready)."""
         from .. import __version__
@@ -195,7 +200,7 @@ class FragilityResult:
             "overturned": self.overturned.tolist(),
             "samples": self.samples,
             "probability": self.probability.tolist(),
-            "binomial_standard_error": np.sqrt(self.probability * (1 - self.probability) / self.samples).tolist(),
+            "binomial_standard_error": self.standard_error.tolist(),
             "median_charge_kg": None if f is None else f.median_charge_kg,
             "beta": None if f is None else f.beta,
             "median_charge_ci_kg": None if f is None else list(f.median_ci_kg),

@@ -19,8 +19,7 @@ def plot_fragility(result, ax=None, label: str = "Monte Carlo"):
 
         _, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
     W, p, n = result.charge_kg, result.probability, result.samples
-    se = np.sqrt(p * (1 - p) / n)
-    ax.errorbar(W, p, yerr=1.96 * se, fmt="o", ms=4, capsize=2, color="C0", label=f"{label} ({n} draws per charge)")
+    ax.errorbar(W, p, yerr=1.96 * result.standard_error, fmt="o", ms=4, capsize=2, color="C0", label=f"{label} ({n} draws per charge)")
     f = result.fit
     if f is not None:
         x = np.geomspace(W.min() / 1.2, W.max() * 1.2, 300)
