@@ -34,7 +34,7 @@ from dataclasses import dataclass, replace
 
 from .._validate import BlastscaleInputError, check_positive, check_range
 
-__all__ = ["ContactSettings", "CONES", "SOLVERS", "default_contact", "mjcf_number"]
+__all__ = ["ContactSettings", "CONES", "SOLVERS", "default_contact", "mjcf_number", "reference_contact"]
 
 #: Friction-cone types accepted by MuJoCo.
 CONES = ("elliptic", "pyramidal")
@@ -285,6 +285,12 @@ def structure_length(structure) -> float:
     return float(structure.describe()["height_m"])
 
 
+def reference_contact(structure, friction: float = 0.7) -> ContactSettings:
+    """The full-scale (10 m, 9.81 m/s^2) settings of ``structure`` with friction mu [-]:
+    :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several."""
+    return replace(BLOCK_REFERENCE if len(structure.bodies) == 1 else STACK_REFERENCE, friction=friction)
+
+
 def default_contact(structure, friction: float = 0.7, gravity: float = REFERENCE_GRAVITY) -> ContactSettings:
     """Scale-consistent contact settings for ``structure`` (used when ``contact=None``).
 
@@ -315,5 +321,4 @@ def default_contact(structure, friction: float = 0.7, gravity: float = REFERENCE
     L = float(check_positive("structure height", structure_length(structure), "m"))
     g = float(check_positive("gravity", gravity, "m/s^2"))
     lam = L / REFERENCE_LENGTH
-    ref = BLOCK_REFERENCE if len(structure.bodies) == 1 else STACK_REFERENCE
-    return replace(ref, friction=friction).scaled(lam, math.sqrt(lam * REFERENCE_GRAVITY / g))
+    return reference_contact(structure, friction).scaled(lam, math.sqrt(lam * REFERENCE_GRAVITY / g))

@@ -62,14 +62,13 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .contact import (
-    BLOCK_REFERENCE,
     MAX_TIMESTEP_FRACTION,
     REFERENCE_GRAVITY,
     REFERENCE_LENGTH,
     SOFT_CONTACT_FACTOR,
-    STACK_REFERENCE,
     ContactSettings,
     default_contact,
+    reference_contact,
     structure_length,
 )
 from .loads import MethodA
@@ -248,7 +247,7 @@ def _reference_contact(contact: ContactSettings | None, structure, a: float, b: 
     ``contact=None`` (so that a structure and its scaled model get bitwise the same), else the
     explicit settings scaled by (a, b)."""
     if contact is None:
-        return replace(BLOCK_REFERENCE if len(structure.bodies) == 1 else STACK_REFERENCE, friction=0.7)
+        return reference_contact(structure)
     return contact if (a == 1.0 and b == 1.0) else contact.scaled(a, b)
 
 
