@@ -520,7 +520,7 @@ def _constraint_text(info: Any) -> str:
         return ""
     lo = hi = None
     lo_open = hi_open = False
-    for m in list(info.metadata) + [a for arg in getattr(info.annotation, "__metadata__", ()) for a in [arg]]:
+    for m in list(info.metadata) + list(getattr(info.annotation, "__metadata__", ())):
         if isinstance(m, at.Gt):
             lo, lo_open = m.gt, True
         elif isinstance(m, at.Ge):
