@@ -254,8 +254,7 @@ class SweepSpec:
 
     def values(self, k: int) -> dict:
         """Field values (dotted path -> value) of case ``k``."""
-        return {p: (v[0].item() if isinstance(v[0], np.generic) else v[0])
-                for p, v in self.value_arrays(k, k + 1).items()}
+        return {p: _plain(v[0]) for p, v in self.value_arrays(k, k + 1).items()}
 
     def scenario(self, k: int):
         """The scenario of case ``k`` (validated; an out-of-range value raises one line)."""
