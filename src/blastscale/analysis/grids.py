@@ -105,7 +105,7 @@ def parse_assignment(text: str, option: str) -> tuple[str, str]:
     return field.strip(), spec.strip()
 
 
-#: Distribution name -> (parameter names, closed form sampler)
+#: Distribution name -> its parameter names (the samplers: Distribution.sample)
 DISTRIBUTIONS = {
     "normal": ("mean", "sd"),
     "lognormal": ("median", "beta"),
