@@ -236,7 +236,8 @@ def _script_item(path: Path) -> Item:
         figs = sorted(p.name for p in folder.glob("*.png"))
         return [Row("figures written", "", ", ".join(figs) or "none", "")]
 
-    doc = path.read_text().split('"""')[1].strip().splitlines()[0] if '"""' in path.read_text() else path.stem
+    text = path.read_text()
+    doc = text.split('"""')[1].strip().splitlines()[0] if '"""' in text else path.stem
     return Item(f"example-{path.stem.replace('_', '-')}", doc, f"examples/{path.name}", compute, kind="figures",
                 source=path)
 
