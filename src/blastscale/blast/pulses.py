@@ -134,10 +134,10 @@ def friedlander_decay(peak, duration, impulse, *, allow_negative: bool = True):
         lo = np.where(f > 0.0, mid, lo)
         hi = np.where(f > 0.0, hi, mid)
     d = np.sinh(0.5 * (lo + hi))
-    for _ in range(3):  # Newton polish: dk/dd = (-e^{-d} + 1)/d^2 - 2 k/d
+    for _ in range(3):  # Newton polish
         kd = friedlander_impulse_ratio(d)
         dsafe = np.where(np.abs(d) < 1e-6, 1e-6, d)
-        dk = (-np.expm1(-dsafe)) / dsafe**2 - 2.0 * friedlander_impulse_ratio(dsafe) / dsafe
+        dk = _impulse_ratio_slope(dsafe, friedlander_impulse_ratio(dsafe))
         step = np.where(np.abs(d) < 1e-6, 0.0, (kd - k) / dk)
         d = d - step
     return d if d.ndim else float(d)
@@ -168,6 +168,12 @@ def _bisect_one(k, lo: float, hi: float) -> tuple:
             up = kd > kf
         lo, hi = (mid, hi) if up else (lo, mid)
     return lo, hi
+
+
+def _impulse_ratio_slope(d, k):
+    """dk/dd = (1 - e^{-d}) / d^2 - 2 k / d [-] of :func:`friedlander_impulse_ratio` at decays d
+    (|d| >= 1e-6; the callers keep d away from 0), given k = k(d); < 0 everywhere."""
+    return (-np.expm1(-d)) / d**2 - 2.0 * k / d
 
 
 def friedlander_cumulative(x, d):
@@ -219,7 +225,7 @@ def friedlander_decay_newton(impulse_ratio, initial, iterations: int = 4):
         small = np.abs(d) < 1e-6
         ds = np.where(small, 1e-6, d)
         kd = friedlander_impulse_ratio(ds)
-        dk = (-np.expm1(-ds)) / ds**2 - 2.0 * kd / ds  # dk/dd < 0 everywhere
+        dk = _impulse_ratio_slope(ds, kd)
         d = np.maximum(d - (kd - k) / dk, -1.0 + 1e-9)
     return d
 
