@@ -723,6 +723,11 @@ def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse: 
 
 
 # ----------------------------------------------------------------------------- capacity curve
+def _finite_or_none(values) -> list:
+    """Plain list of floats, None for NaN (JSON)."""
+    return [None if not math.isfinite(w) else float(w) for w in values]
+
+
 @dataclass(frozen=True)
 class CapacityCurve:
     """Critical charge against stand-off, W_c(R), of one body (SI).
@@ -761,7 +766,7 @@ class CapacityCurve:
         """Plain dict (lists; None for NaN)."""
         return {
             "standoff_m": self.standoff_m.tolist(),
-            "critical_charge_kg": [None if not math.isfinite(w) else float(w) for w in self.critical_charge_kg],
+            "critical_charge_kg": _finite_or_none(self.critical_charge_kg),
             "seconds_per_case": self.seconds_per_case,
             "pulse": self.pulse,
             "model": self.model,
@@ -823,7 +828,7 @@ class ModelCapacity:
             "gravity_ratio": self.gravity_ratio,
             "standoff_m": d["standoff_m"],
             "critical_charge_kg": d["critical_charge_kg"],
-            "upscaled_critical_charge_kg": [None if not math.isfinite(w) else float(w) for w in self.upscaled_charge_kg],
+            "upscaled_critical_charge_kg": _finite_or_none(self.upscaled_charge_kg),
             "seconds_per_case": d["seconds_per_case"],
         }
 
