@@ -113,6 +113,7 @@ def contact_settings(scenario: Scenario, structure=None):
     When the time step is given without a contact time constant, the time constant is kept
     at >= 4 steps (MuJoCo needs >= 2)."""
     from .sim3d import ContactSettings
+    from .sim3d.contact import time_constant_for_step
 
     sim = scenario.simulation
     base = ContactSettings()
@@ -128,7 +129,7 @@ def contact_settings(scenario: Scenario, structure=None):
     if sim.timestep_s is not None:
         kw["timestep"] = sim.timestep_s
         if "time_constant" not in kw:
-            kw["time_constant"] = max(base.time_constant, 4.0 * sim.timestep_s)
+            kw["time_constant"] = time_constant_for_step(base.time_constant, sim.timestep_s)
     try:
         return replace(base, **kw)
     except BlastscaleInputError as exc:

@@ -127,10 +127,10 @@ def contact_from_options(structure, friction: float, timestep: Optional[float], 
     from dataclasses import replace
 
     from .._validate import check_positive
-    from ..sim3d.contact import default_contact
+    from ..sim3d.contact import default_contact, time_constant_for_step
 
     base = replace(default_contact(structure, friction=friction, gravity=gravity), jacobian=jacobian)
     if timestep is None:
         return base
     dt = float(check_positive("timestep", timestep, "s"))
-    return replace(base, timestep=dt, time_constant=max(base.time_constant, 4.0 * dt))
+    return replace(base, timestep=dt, time_constant=time_constant_for_step(base.time_constant, dt))

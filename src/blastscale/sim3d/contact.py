@@ -34,7 +34,8 @@ from dataclasses import dataclass, replace
 
 from .._validate import BlastscaleInputError, check_positive, check_range
 
-__all__ = ["ContactSettings", "CONES", "SOLVERS", "default_contact", "mjcf_number", "reference_contact"]
+__all__ = ["ContactSettings", "CONES", "SOLVERS", "default_contact", "mjcf_number", "reference_contact",
+           "time_constant_for_step"]
 
 #: Friction-cone types accepted by MuJoCo.
 CONES = ("elliptic", "pyramidal")
@@ -289,6 +290,17 @@ def reference_contact(structure, friction: float = 0.7) -> ContactSettings:
     """The full-scale (10 m, 9.81 m/s^2) settings of ``structure`` with friction mu [-]:
     :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several."""
     return replace(BLOCK_REFERENCE if len(structure.bodies) == 1 else STACK_REFERENCE, friction=friction)
+
+
+#: Contact time constants per time step kept when a user coarsens the step (MuJoCo needs >= 2).
+MIN_STEPS_PER_TIME_CONSTANT = 4.0
+
+
+def time_constant_for_step(time_constant: float, timestep: float) -> float:
+    """The contact time constant [s] to use with a user-chosen time step [s]: ``time_constant``,
+    raised to :data:`MIN_STEPS_PER_TIME_CONSTANT` steps when the step is coarse (MuJoCo clamps a
+    time constant below 2 steps, which would silently soften the contact)."""
+    return max(float(time_constant), MIN_STEPS_PER_TIME_CONSTANT * float(timestep))
 
 
 def default_contact(structure, friction: float = 0.7, gravity: float = REFERENCE_GRAVITY) -> ContactSettings:
