@@ -966,9 +966,9 @@ def pi_diagram(
                 f"pressure {p_up:.6g} Pa (below it the body never lifts off)"
             )
     if shape == "triangular":
-        kind, dur_per_impulse, d = 2, 2.0 / P, 0.0
+        kind, dur_per_impulse, d = _KIND[shape], 2.0 / P, 0.0
     elif shape == "friedlander":
-        kind, dur_per_impulse, d = 1, 1.0 / (P * float(friedlander_impulse_ratio(decay))), float(decay)
+        kind, dur_per_impulse, d = _KIND[shape], 1.0 / (P * float(friedlander_impulse_ratio(decay))), float(decay)
     else:
         raise BlastscaleInputError(f"P-I pulse shape = {shape!r} is not known: valid values are triangular, friedlander")
     pf, q = system.frequency_parameter, system.load_ratio_per_pascal
