@@ -99,15 +99,8 @@ INCIDENCE = typer.Option(None, "--incidence", help="Angle-of-incidence model of 
 def check_load_options(load: str, incidence: Optional[str]) -> None:
     """One-line errors for an unknown --load (valid: the keys of sim3d.loads.LOAD_METHODS, B and C
     included once registered) or --incidence (valid: blast.incidence.INCIDENCE_MODELS)."""
-    import importlib
-
     from ..sim3d.loads import LOAD_METHODS
 
-    try:  # the module that registers B and C, where present
-        importlib.import_module("blastscale.sim3d.face_loads")
-    except ModuleNotFoundError as e:
-        if e.name != "blastscale.sim3d.face_loads":
-            raise
     if load not in LOAD_METHODS:
         raise BlastscaleInputError(f"load = {load!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
     if incidence is not None:

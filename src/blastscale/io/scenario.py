@@ -179,12 +179,6 @@ class BlastSpec(BaseModel):
     @field_validator("load")
     @classmethod
     def _load(cls, v: str) -> str:
-        import importlib
-
-        try:  # Methods B and C register themselves from their own module (as make_load does)
-            importlib.import_module("blastscale.sim3d.face_loads")
-        except ImportError:
-            pass
         return _check_name(v, _registry_names("blastscale.sim3d.loads", "LOAD_METHODS", ("A", "B", "C")))
 
     @field_validator("incidence")

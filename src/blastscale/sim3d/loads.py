@@ -186,14 +186,12 @@ def make_load(method: str, structure, *, charge_kg, standoff_m, blast_model: str
     -------
     LoadStrategy
     """
-    try:
-        import importlib
-
-        importlib.import_module(f"{__package__}.face_loads")  # registers B and C where present
-    except ModuleNotFoundError as e:
-        if e.name != f"{__package__}.face_loads":
-            raise
     if method not in LOAD_METHODS:
         raise BlastscaleInputError(f"load method = {method!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
     return LOAD_METHODS[method](structure, charge_kg=charge_kg, standoff_m=standoff_m, blast_model=blast_model,
                                 pulse=pulse, incidence=incidence, extrapolate=extrapolate)
+
+
+# Methods B and C register themselves in LOAD_METHODS from their own module; importing it here
+# (after every name it uses from this module exists) makes the registry complete for every user.
+from . import face_loads as _face_loads  # noqa: E402,F401
