@@ -74,15 +74,15 @@ def bench_capacity(n: int, n_bisect: int) -> dict:
 
 
 def planar_spec(vary: dict, outcomes: bool = False):
-    from blastscale.analysis.sweeps import SweepSpec
-    from blastscale.io.scenario import Scenario
+    from blastscale.sweeps import SweepSpec
+    from blastscale.scenario import Scenario
 
     base = Scenario.default().with_values({"engine": "planar", "critical_charge": False})
     return SweepSpec.build(base, vary, outcomes=outcomes)
 
 
 def timed_sweep(spec, **kw) -> dict:
-    from blastscale.analysis.sweeps import run_sweep
+    from blastscale.io.sweep_store import run_sweep
 
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
@@ -95,10 +95,10 @@ def timed_sweep(spec, **kw) -> dict:
 def bench_planar(n_side: int) -> dict:
     import warnings
 
-    from blastscale.analysis.fragility import overturning_outcomes
-    from blastscale.analysis.grids import Distribution
-    from blastscale.analysis.sweeps import SweepSpec
-    from blastscale.io.scenario import Scenario
+    from blastscale.sweeps.fragility import overturning_outcomes
+    from blastscale.sweeps.grids import Distribution
+    from blastscale.sweeps import SweepSpec
+    from blastscale.scenario import Scenario
 
     timed_sweep(planar_spec({"charge_kg": [40.0, 60.0]}), workers=0)  # warm up
     designs = timed_sweep(planar_spec({"charge_kg": np.linspace(30, 150, n_side),
@@ -168,8 +168,8 @@ def bench_kernel_only(n: int, duration: float = 5.0) -> dict:
 
 
 def bench_3d(n: int, duration: float) -> dict:
-    from blastscale.analysis.sweeps import SweepSpec
-    from blastscale.io.scenario import Scenario
+    from blastscale.sweeps import SweepSpec
+    from blastscale.scenario import Scenario
 
     base = Scenario.default().with_values({"engine": "3d", "critical_charge": False, "duration_s": duration})
     spec = SweepSpec.build(base, {"charge_kg": np.linspace(30, 120, n)})

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from blastscale.analysis.fragility import fit_lognormal_fragility, fragility
+from blastscale.sweeps.fragility import fit_lognormal_fragility, fragility
 from blastscale.cli import main
-from blastscale.io.scenario import Scenario
+from blastscale.scenario import Scenario
 from blastscale.rocking import RockingSystem, critical_charge
 from blastscale.study import Study
 

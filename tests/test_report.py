@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from blastscale.io import Scenario, load_scenario
+from blastscale.scenario import Scenario, load_scenario
 from blastscale.report import SECTIONS, applicable_slips, format_charge, write_study
 from blastscale.study import Study
 

@@ -12,8 +12,9 @@ import pytest
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.cli import main
-from blastscale.io import MATERIALS, Scenario, load_scenario, material_density, parse_ratio
-from blastscale.io.scenario import _to_toml
+from blastscale.scenario import Scenario, load_scenario, parse_ratio
+from blastscale.structures.materials import MATERIALS, material_density
+from blastscale.scenario import to_toml as _to_toml
 
 EXAMPLES = sorted((Path(__file__).parents[1] / "examples" / "scenarios").glob("*.toml"))
 

@@ -13,7 +13,7 @@ import xarray as xr
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.analysis.rocking_similarity import compare_rocking
-from blastscale.io import Scenario, load_scenario
+from blastscale.scenario import Scenario, load_scenario
 from blastscale.structures import RectangularBlock
 from blastscale.study import Study, StudyWarning, contact_settings, estimate_memory
 

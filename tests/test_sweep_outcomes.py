@@ -20,9 +20,10 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.analysis.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, planar_scalars, run_sweep
+from blastscale.io.sweep_store import run_sweep
+from blastscale.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, planar_scalars
 from blastscale.blast import blast_parameters
-from blastscale.io.scenario import Scenario
+from blastscale.scenario import Scenario
 from blastscale.rocking import RockingSystem, critical_charge, simulate
 from blastscale.rocking.capacity import first_swing
 from blastscale.structures.block import RectangularBlock
@@ -112,7 +113,7 @@ def test_outcome_sweep_is_independent_of_chunking_and_refuses_other_engines(tmp_
     """Sampled restitution (and friction, which plays no part) and a varied body (two groups): the
     store is the same whatever the chunk size (and equals planar_outcomes over all the cases at
     once); engine 'both' is refused."""
-    from blastscale.analysis.grids import Distribution
+    from blastscale.sweeps.grids import Distribution
 
     spec = SweepSpec.build(BASE, {"charge_kg": np.geomspace(30, 150, 7), "height_m": [8.0, 10.0]},
                            {"restitution": Distribution("uniform", (0.3, 0.95)), "friction": Distribution("uniform", (0.5, 0.8))},

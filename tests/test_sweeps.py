@@ -21,10 +21,11 @@ pytest.importorskip("zarr")
 pytest.importorskip("distributed")
 import xarray as xr  # noqa: E402
 
-from blastscale.analysis.grids import parse_distribution  # noqa: E402
-from blastscale.analysis.sweeps import SweepSpec, planar_scalars, run_sweep, study_scalars  # noqa: E402
+from blastscale.sweeps.grids import parse_distribution  # noqa: E402
+from blastscale.io.sweep_store import run_sweep  # noqa: E402
+from blastscale.sweeps import SweepSpec, planar_scalars, study_scalars  # noqa: E402
 from blastscale.cli import main  # noqa: E402
-from blastscale.io.scenario import Scenario  # noqa: E402
+from blastscale.scenario import Scenario  # noqa: E402
 
 BIN = Path(sys.executable).parent
 # short planar runs (the paper's block): 1.5 s, 301 samples; critical charge on (searched once per stand-off)
@@ -219,7 +220,7 @@ def test_default_local_cluster_path_equals_in_process(tmp_path):
 
 
 def test_grid_and_distribution_strings():
-    from blastscale.analysis.grids import parse_grid
+    from blastscale.sweeps.grids import parse_grid
 
     np.testing.assert_array_equal(parse_grid("1:3:3"), [1.0, 2.0, 3.0])
     np.testing.assert_allclose(parse_grid("1:100:3:log"), [1.0, 10.0, 100.0], rtol=1e-15)

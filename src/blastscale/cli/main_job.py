@@ -1,7 +1,7 @@
 """``blastscale run``: one scenario file (or the built-in default) through the whole method.
 
 ``blastscale run [SCENARIO.toml] --out DIR`` loads and validates the scenario
-(:mod:`blastscale.io.scenario`), checks everything that can be checked before simulating
+(:mod:`blastscale.scenario`), checks everything that can be checked before simulating
 (blast-fit ranges, engines, memory, the output folder), runs
 :class:`blastscale.study.Study` and writes, through a temporary sibling folder renamed into
 place at the end: ``summary.json``, ``histories.nc``, ``histories.csv``, the figures,
@@ -19,7 +19,7 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from ..io.scenario import Scenario, load_scenario
+from ..scenario import Scenario, load_scenario
 from ._app import (app, console, console_err, fmt_value, ignore_interrupts, one_line_warnings, print_json,
                    raise_if_interrupted, stage_progress)
 from .loads import print_design

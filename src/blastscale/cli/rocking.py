@@ -274,7 +274,7 @@ def capacity_cmd(
     prototype charges (paper Eq. 8). First-swing energy criterion, all stand-offs at once."""
     import numpy as np
 
-    from ..analysis.grids import parse_grid
+    from ..sweeps.grids import parse_grid
     from ..rocking import RockingSystem
     from ..rocking.capacity import capacity_curve, critical_standoff, model_capacity_curve
 

@@ -24,13 +24,13 @@ SEED = typer.Option(0, "--seed", help="Seed of the Monte Carlo draws (numpy defa
 
 
 def _scenario(path: Optional[Path]):
-    from ..io.scenario import Scenario, load_scenario
+    from ..scenario import Scenario, load_scenario
 
     return Scenario.default() if path is None else load_scenario(path)
 
 
 def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
-    from ..analysis.grids import parse_assignment
+    from ..sweeps.grids import parse_assignment
 
     out = {}
     for text in items or []:
@@ -74,8 +74,9 @@ def sweep_cmd(
     store its scalar results in a Zarr store (coordinates named after the fields). A sweep
     killed and run again skips the chunks already done. With --outcomes (planar blocks): only
     the first-swing outcomes and largest rotations, about a million cases per minute."""
-    from ..analysis.grids import parse_distribution, parse_grid
-    from ..analysis.sweeps import SweepSpec, run_sweep
+    from ..sweeps.grids import parse_distribution, parse_grid
+    from ..io.sweep_store import run_sweep
+    from ..sweeps import SweepSpec
 
     base = _scenario(scenario)
     grid = _assignments(vary, "--vary", lambda text, key: parse_grid(text, key, numeric=False))
@@ -104,7 +105,7 @@ def sweep_cmd(
 
 def _uniform_range(text: str, name: str) -> tuple:
     lo, sep, hi = text.partition(":")
-    from ..analysis.grids import parse_number
+    from ..sweeps.grids import parse_number
 
     if not sep:
         raise BlastscaleInputError(f"--uniform {name} = {text!r} is not lo:hi")
@@ -112,7 +113,7 @@ def _uniform_range(text: str, name: str) -> tuple:
 
 
 def _beta(text: str, name: str) -> float:
-    from ..analysis.grids import parse_number
+    from ..sweeps.grids import parse_number
 
     b = parse_number(text, name, "beta")
     if b < 0:
@@ -134,8 +135,8 @@ def fragility_cmd(
     """Probability that the prototype block overturns against the charge, under uncertain fields,
     with a maximum-likelihood lognormal fit (median charge, beta, 95 % bounds). Each draw is
     decided by the first-swing energy criterion (docs/capacity.md), vectorised."""
-    from ..analysis.fragility import fragility
-    from ..analysis.grids import parse_grid
+    from ..sweeps.fragility import fragility
+    from ..sweeps.grids import parse_grid
     from .options import check_plot_path
 
     check_plot_path(plot)
@@ -193,8 +194,10 @@ def similarity_map_cmd(
     against the prototype (planar rocking or 3D) and whether the outcomes agree (docs/sweeps.md)."""
     import numpy as np
 
-    from ..analysis.grids import parse_grid
-    from ..analysis.similarity_map import similarity_map
+    from ..io.sweep_store import open_sweep, run_sweep
+    from ..sweeps.grids import parse_grid
+    from ..sweeps.runner import run_in_memory
+    from ..sweeps.similarity_map import similarity_map
     from .options import check_plot_path
 
     check_plot_path(plot)
@@ -203,8 +206,13 @@ def similarity_map_cmd(
                                           (charges, "charges"), (standoffs, "standoffs"))]
     bar, tick = _progress_bar(f"similarity map ({engine})")
     with one_line_warnings(), bar:
-        ds = similarity_map(base, *grids, engine=engine, tolerance=tolerance, store=out, workers=workers,
-                            scheduler=scheduler, chunk=chunk, progress=tick)
+        def run(spec):
+            if out is None:
+                return run_in_memory(spec, scheduler=scheduler, workers=workers or 0, chunk=chunk, progress=tick)
+            run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, progress=tick)
+            return open_sweep(out)
+
+        ds = similarity_map(base, *grids, engine=engine, tolerance=tolerance, run=run)
     res = {
         "dims": {k: ds[k].values.tolist() for k in ("length", "density_ratio", "charge_kg", "standoff_m")},
         "engine": engine,

@@ -1,7 +1,2 @@
-"""Input and output at the edges: scenario files (TOML), the material density library,
-result files and the HTML report."""
-
-from .materials import MATERIALS, material_density
-from .scenario import Scenario, load_scenario, parse_ratio
-
-__all__ = ["MATERIALS", "Scenario", "load_scenario", "material_density", "parse_ratio"]
+"""Files at the edge: result files (JSON, NetCDF and CSV histories, Zarr sweep stores), atomic
+writes and output folders, versions and provenance. The only package that writes files."""

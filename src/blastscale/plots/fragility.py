@@ -1,7 +1,7 @@
 """Fragility plot: the empirical probability of overturning against the charge (binomial 95 %
 bars) and the fitted lognormal curve with its median.
 
-Takes a :class:`~blastscale.analysis.fragility.FragilityResult` (charges in kg TNT); ``ax=`` as
+Takes a :class:`~blastscale.sweeps.fragility.FragilityResult` (charges in kg TNT); ``ax=`` as
 every plot function (a new figure's axes when None); matplotlib imported only when drawn.
 """
 

@@ -2,7 +2,7 @@
 the (lambda, gamma) plane, with the cases whose outcome disagrees crossed out and those the blast
 fits cannot design left grey.
 
-Takes the dataset of :func:`blastscale.analysis.similarity_map.similarity_map`; matplotlib is
+Takes the dataset of :func:`blastscale.sweeps.similarity_map.similarity_map`; matplotlib is
 imported only when drawn. Returns the figure.
 """
 

@@ -173,7 +173,7 @@ def _dig(d: dict, path: str):
 
 def _scenario_item(path: Path) -> Item:
     def compute(folder: Path, quick: bool) -> list:
-        from ..io import load_scenario
+        from ..scenario import load_scenario
         from ..study import Study
         from . import write_study
 

@@ -5,6 +5,8 @@ monitoring points."""
 from .base import BoxGeometry, Face, MonitoringPoint, PrismGeometry, RigidBody, frustum_mass_properties
 from .block import STANDARD_GRAVITY, RectangularBlock
 from .column import SECTIONS, MultiDrumColumn
+from .from_spec import STRUCTURE_BUILDERS, from_spec, is_block
+from .materials import MATERIALS, Material, material_density
 
 __all__ = [
     "BoxGeometry",
@@ -17,4 +19,10 @@ __all__ = [
     "SECTIONS",
     "STANDARD_GRAVITY",
     "frustum_mass_properties",
+    "STRUCTURE_BUILDERS",
+    "from_spec",
+    "is_block",
+    "MATERIALS",
+    "Material",
+    "material_density",
 ]

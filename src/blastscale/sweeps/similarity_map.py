@@ -25,8 +25,6 @@ References: paper Secs. "Scaling laws" (Eq. 8) and "Equations of motion" (Figs. 
 
 from __future__ import annotations
 
-import tempfile
-from pathlib import Path
 from typing import Optional
 
 import numpy as np
@@ -81,11 +79,7 @@ def similarity_map(
     *,
     engine: str = "planar",
     tolerance: Optional[float] = None,
-    store=None,
-    workers: Optional[int] = 0,
-    scheduler: Optional[str] = None,
-    chunk: Optional[int] = None,
-    progress=None,
+    run=None,
 ):
     """The similarity map of a scenario (module docstring).
 
@@ -103,10 +97,10 @@ def similarity_map(
     tolerance : float, optional
         Error below which an agreeing model counts as trustworthy (default
         :data:`DEFAULT_TOLERANCE`: 5e-4 rad planar, 0.05 relative 3D).
-    store : path, optional
-        Zarr store of the underlying sweep (resumable); a temporary one when None.
-    workers, scheduler, chunk, progress
-        As in :func:`~blastscale.analysis.sweeps.run_sweep` (default: in this process).
+    run : callable, optional
+        ``run(spec) -> xarray.Dataset`` of the sweep's scalars (e.g. the resumable store of
+        :func:`blastscale.io.sweep_store.run_sweep`, on Dask); default :func:`.runner.run_in_memory`
+        in this process.
 
     Returns
     -------
@@ -118,17 +112,15 @@ def similarity_map(
     import xarray as xr
 
     from .._validate import check_positive
-    from .sweeps import SweepSpec, run_sweep
+    from .runner import run_in_memory
+    from .spec import SweepSpec
 
     if engine not in ENGINE_VARIABLES:
         raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINE_VARIABLES)}")
     tolerance = DEFAULT_TOLERANCE[engine] if tolerance is None else float(check_positive("tolerance", tolerance))
     base = scenario.with_values({"engine": engine, "critical_charge": False})
     spec = SweepSpec.build(base, dict(zip(MAP_FIELDS, (scales, density_ratios, charges, standoffs))))
-    with tempfile.TemporaryDirectory() as tmp:
-        path = Path(store) if store is not None else Path(tmp) / "map.zarr"
-        run_sweep(spec, path, workers=workers, scheduler=scheduler, chunk=chunk, progress=progress)
-        src = xr.open_zarr(path, consolidated=False).load()
+    src = (run or run_in_memory)(spec)
     out = xr.Dataset(coords={k: src[k] for k in MAP_FIELDS})
     for name, (key, unit) in ENGINE_VARIABLES[engine].items():
         v = src[key] if key in src else xr.full_like(src["sweep.valid"], np.nan, dtype=float)

@@ -140,7 +140,7 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     """
     from ..rocking.capacity import overturns
     from ..rocking.system import RockingSystem
-    from ..study import Study
+    from ..structures import from_spec
 
     base = spec.base
     if base.structure.kind != "block":
@@ -153,7 +153,7 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
 
     def system_of(sc):
         sim = sc.simulation
-        return RockingSystem.from_block(Study(sc).structure(), sim.gravity_m_s2, sim.restitution)
+        return RockingSystem.from_block(from_spec(sc.structure), sim.gravity_m_s2, sim.restitution)
 
     one = None if per_case_body else system_of(base)
     bl = base.blast
@@ -237,7 +237,7 @@ def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int =
     -------
     FragilityResult
     """
-    from .sweeps import SweepSpec
+    from .spec import SweepSpec
 
     W = np.atleast_1d(np.asarray(charges, dtype=float))
     if W.ndim != 1 or W.size == 0 or not np.all(np.isfinite(W) & (W > 0)):

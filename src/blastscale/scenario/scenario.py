@@ -1,0 +1,178 @@
+"""The whole scenario: one blast experiment (structure, blast, scales, simulation), its built-in
+default, its variants (:meth:`Scenario.with_values`) and its derived values."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from pydantic import BaseModel, Field, ValidationError
+
+from .._validate import BlastscaleInputError
+from ..structures.materials import MATERIALS
+from .messages import one_line, submodels
+from .specs import _CONFIG, KINDS, BlastSpec, BlockSpec, ScaleSpec, SimulationSpec, Structure
+
+__all__ = ["Scenario"]
+
+#: Keys of which at most one may be given: setting one through ``with_values`` clears the other.
+_EXCLUSIVE = {
+    "structure.alpha_deg": "structure.width_m",
+    "structure.width_m": "structure.alpha_deg",
+    "scale.density_ratio": "scale.model_material",
+    "scale.model_material": "scale.density_ratio",
+}
+
+
+class Scenario(BaseModel):
+    """One blast experiment: prototype structure, charge, model scales, simulation settings.
+
+    Build it from a TOML file (:func:`load_scenario`), from a dict (:meth:`from_dict`) or take
+    :meth:`default`; derive variants with :meth:`with_values`. Every value is SI or a
+    dimensionless ratio; the unit is in each key's name.
+    """
+
+    model_config = _CONFIG
+    title: str = Field("", description="A one-line description")
+    structure: Structure
+    blast: BlastSpec
+    scale: ScaleSpec
+    simulation: SimulationSpec = Field(default_factory=SimulationSpec)
+
+    # -- construction ----------------------------------------------------------------
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], source: str = "scenario") -> "Scenario":
+        """Validate a nested dict (as read from TOML); errors become one
+        :class:`BlastscaleInputError` line prefixed with ``source``."""
+        if not isinstance(data, Mapping):
+            raise BlastscaleInputError(f"{source}: a scenario must be a table of keys, got {type(data).__name__}")
+        try:
+            return cls.model_validate(dict(data))
+        except ValidationError as exc:
+            raise BlastscaleInputError(f"{source}: {one_line(exc, cls, KINDS)}") from None
+
+    @classmethod
+    def default(cls) -> "Scenario":
+        """The built-in default: the paper's slender 10 m block (alpha = 15 deg, 2000 kg/m^3),
+        50 kg TNT at 2 m, lambda = 1/200, same material, the paper's blast fits (masi2021),
+        friction 0.7 (tan 35 deg), 5 s, planar and 3D."""
+        return cls.from_dict({
+            "title": "The paper's slender block: 50 kg TNT at 2 m, lambda = 1/200 (model 2)",
+            "structure": {"kind": "block", "height_m": 10.0, "alpha_deg": 15.0, "depth_m": 1.0,
+                          "density_kg_m3": 2000.0, "friction": 0.7},
+            "blast": {"charge_kg": 50.0, "standoff_m": 2.0, "model": "masi2021"},
+            "scale": {"length": 1.0 / 200.0, "density_ratio": 1.0},
+        }, source="default scenario")
+
+    # -- variants ----------------------------------------------------------------------
+    @classmethod
+    def field_paths(cls) -> list[str]:
+        """Dotted paths of every scalar field (``"blast.charge_kg"``, ``"simulation.contact.cone"``);
+        the structure's are the union over the structure kinds."""
+        out: list[str] = []
+
+        def walk(model: type[BaseModel], prefix: str) -> None:
+            for name, info in model.model_fields.items():
+                sub = submodels(info.annotation)
+                if sub:
+                    for m in sub:
+                        walk(m, f"{prefix}{name}.")
+                elif f"{prefix}{name}" not in out:
+                    out.append(f"{prefix}{name}")
+
+        walk(cls, "")
+        return out
+
+    def resolve_key(self, key: str) -> str:
+        """The full dotted path of ``key``: itself when it is one, else the unique path ending in
+        ``.key`` (``"friction"`` -> ``"structure.friction"``)."""
+        paths = self._paths()
+        if key in paths:
+            return key
+        hits = [p for p in paths if p.endswith("." + key)]
+        if len(hits) == 1:
+            return hits[0]
+        if not hits:
+            raise BlastscaleInputError(
+                f"key = {key!r} is not a scenario field of a {self.structure.kind}: valid keys are "
+                f"{', '.join(paths)}")
+        raise BlastscaleInputError(f"key = {key!r} is ambiguous: it may be {', '.join(hits)} (give the full path)")
+
+    def _paths(self) -> list[str]:
+        """The field paths of this scenario (the structure's of its own kind)."""
+        kind = self.structure.kind
+        others = [f"structure.{n}" for k, m in KINDS.items() if k != kind for n in m.model_fields]
+        mine = {f"structure.{n}" for n in KINDS[kind].model_fields}
+        return [p for p in self.field_paths() if p in mine or p not in others]
+
+    def with_values(self, values: Mapping[str, Any]) -> "Scenario":
+        """A validated copy with some values replaced.
+
+        Parameters
+        ----------
+        values : mapping
+            Dotted path (``"blast.charge_kg"``) or unambiguous bare key (``"friction"``) ->
+            new value, in the key's unit. Setting ``structure.alpha_deg`` clears
+            ``structure.width_m`` (and vice versa), likewise ``scale.density_ratio`` and
+            ``scale.model_material``. A new ``structure.kind`` starts that kind's defaults
+            (plus the structure keys given in the same call).
+
+        Returns
+        -------
+        Scenario
+
+        Raises
+        ------
+        BlastscaleInputError
+            An unknown or ambiguous key, or a value out of range (one line).
+        """
+        data = self.model_dump(exclude_none=True)
+        resolved: dict[str, Any] = {}
+        new_kind = values.get("structure.kind", values.get("kind"))
+        if new_kind is not None and new_kind != self.structure.kind:
+            data["structure"] = {"kind": new_kind}
+            resolved["structure.kind"] = new_kind
+        for key, value in values.items():
+            if key in ("kind", "structure.kind"):
+                continue
+            path = f"structure.{key.split('.')[-1]}" if new_kind is not None and new_kind != self.structure.kind \
+                and (key.startswith("structure.") or key in KINDS.get(str(new_kind), BlockSpec).model_fields) \
+                else self.resolve_key(key)
+            resolved[path] = value
+        for path, value in resolved.items():
+            node = data
+            *parents, leaf = path.split(".")
+            for p in parents:
+                node = node.setdefault(p, {})
+            if hasattr(value, "item") and callable(value.item):  # numpy scalars from sweeps
+                value = value.item()
+            node[leaf] = value
+            other = _EXCLUSIVE.get(path)
+            if other and other not in resolved:
+                *op, ol = other.split(".")
+                onode = data
+                for p in op:
+                    onode = onode.get(p, {})
+                onode.pop(ol, None)
+        return type(self).from_dict(data, source="with_values")
+
+    # -- derived values ----------------------------------------------------------------
+    @property
+    def density_ratio(self) -> float | None:
+        """gamma [-]: from ``model_material`` (library density / prototype density), else
+        ``scale.density_ratio``, else 1; None for Hopkinson-Cranz without one (the law imposes it)."""
+        sc = self.scale
+        if sc.model_material is not None:
+            return MATERIALS[sc.model_material].density / self.structure.density_kg_m3
+        if sc.density_ratio is not None:
+            return sc.density_ratio
+        return None if sc.law == "hopkinson-cranz" else 1.0
+
+    def to_dict(self) -> dict:
+        """Plain JSON-able dict (None for keys left to the engine's defaults)."""
+        return self.model_dump(mode="json")
+
+    def to_toml(self) -> str:
+        """The scenario as TOML text (keys left to defaults omitted); ``load_scenario`` reads it back."""
+        from .files import to_toml
+
+        return to_toml(self.model_dump(mode="json", exclude_none=True))

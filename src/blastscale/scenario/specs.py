@@ -1,0 +1,225 @@
+"""The scenario schema: the tables of a scenario file as pydantic models (SI, unit in each key).
+
+Names of blast models, load methods and incidence models are checked against the library's own
+registries (imported directly: a model registered there is accepted here with no change). The
+whole scenario, its variants and its defaults: :mod:`.scenario`; reading a file: :mod:`.files`;
+the one-line error messages: :mod:`.messages`.
+"""
+
+from __future__ import annotations
+
+import re
+from fractions import Fraction
+from typing import Annotated, Any, Literal, Optional, Union
+
+import annotated_types as at
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from .._validate import BlastscaleInputError
+from ..blast.incidence import INCIDENCE_MODELS
+from ..blast.parameters import BLAST_MODELS
+from ..sim3d.loads import LOAD_METHODS
+from ..structures.materials import MATERIALS
+from .messages import show
+
+__all__ = ["parse_ratio", "BlockSpec", "ColumnSpec", "BlastSpec", "ScaleSpec", "SimulationSpec", "ContactSpec",
+           "Structure", "KINDS"]
+
+_CONFIG = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True, frozen=True, validate_default=True)
+
+def parse_ratio(value: Any, name: str = "scale") -> float:
+    """A dimensionless ratio from a number or a fraction string (``"1/200"``, ``"0.005"``) [-].
+
+    Raises :class:`BlastscaleInputError` naming ``name`` for anything else (a finite, > 0 number
+    is checked by the caller).
+
+    >>> parse_ratio("1/200")
+    0.005
+    """
+    if isinstance(value, bool):
+        raise BlastscaleInputError(f"{name} = {value!r} is not a number: give a ratio such as 0.005 or 1/200")
+    if isinstance(value, (int, float)):
+        return float(value)
+    text = str(value).strip()
+    try:
+        if re.fullmatch(r"[0-9.eE+-]+\s*/\s*[0-9.eE+-]+", text):
+            num, den = (float(x) for x in text.split("/"))
+            if den == 0:
+                raise ZeroDivisionError
+            return num / den
+        return float(Fraction(text)) if "/" in text else float(text)
+    except (ValueError, ZeroDivisionError):
+        raise BlastscaleInputError(
+            f"{name} = {value!r} is not a ratio: give a number such as 0.005 or a fraction such as 1/200"
+        ) from None
+
+
+def _check_name(value: str, names: tuple[str, ...]) -> str:
+    if value not in names:
+        raise ValueError(f"= {value!r} is not known: valid values are {', '.join(names)}")
+    return value
+
+
+def _at_most_one(model: BaseModel, a: str, b: str) -> BaseModel:
+    """Refuse two keys that say the same thing (width and slenderness; density ratio and material)."""
+    va, vb = getattr(model, a), getattr(model, b)
+    if va is not None and vb is not None:
+        raise ValueError(f"{a} = {show(va)} and {b} = {show(vb)}: give one of them, not both")
+    return model
+
+
+Pos = Annotated[float, at.Gt(0)]
+
+
+class BlockSpec(BaseModel):
+    """A monolithic rectangular block (paper Sec. "Equations of motion")."""
+
+    model_config = _CONFIG
+    kind: Literal["block"] = Field(description="Structure kind")
+    height_m: float = Field(10.0, gt=0, le=1000, description="Height 2h [m]")
+    alpha_deg: Optional[float] = Field(None, gt=0, lt=90, description="Slenderness angle atan(b/h) [deg]")
+    width_m: Optional[float] = Field(None, gt=0, le=1000, description="Width 2b along the blast [m]")
+    depth_m: float = Field(1.0, gt=0, le=1000, description="Depth 2w across the blast [m]")
+    density_kg_m3: float = Field(2000.0, gt=0, le=25000, description="Density [kg/m^3]")
+    friction: float = Field(0.7, ge=0, le=10, description="Coulomb friction coefficient mu [-] (3D)")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _default_slenderness(cls, data: Any) -> Any:
+        if isinstance(data, dict) and data.get("alpha_deg") is None and data.get("width_m") is None:
+            data = {**data, "alpha_deg": 15.0}  # the paper's slender block
+        return data
+
+    @model_validator(mode="after")
+    def _one_width(self) -> "BlockSpec":
+        return _at_most_one(self, "alpha_deg", "width_m")
+
+
+class ColumnSpec(BaseModel):
+    """A multi-drum column (paper Sec. "Application to multi-drum masonry columns")."""
+
+    model_config = _CONFIG
+    kind: Literal["column"] = Field(description="Structure kind")
+    section: Literal["square", "circular"] = Field("square", description="Drum cross-section")
+    drums: int = Field(10, ge=1, le=200, description="Number of drums [-]")
+    height_m: float = Field(10.0, gt=0, le=1000, description="Total height [m]")
+    base_width_m: float = Field(1.65, gt=0, le=100, description="Side or diameter at the base [m]")
+    top_width_m: float = Field(1.28, gt=0, le=100, description="Side or diameter at the top [m]")
+    sides: int = Field(32, ge=3, le=256, description="Polygon sides of a circular drum [-]")
+    density_kg_m3: float = Field(2700.0, gt=0, le=25000, description="Density [kg/m^3] (marble)")
+    friction: float = Field(0.7, ge=0, le=10, description="Coulomb friction coefficient mu [-]")
+
+
+class BlastSpec(BaseModel):
+    """The prototype's charge, where it stands and how its load is modelled."""
+
+    model_config = _CONFIG
+    charge_kg: Pos = Field(description="TNT-equivalent charge W [kg]")
+    standoff_m: Pos = Field(description="Stand-off R from the front face [m]")
+    model: str = Field("masi2021", description="Blast model (the paper's Appendix A fits by default)")
+    load: str = Field("A", description="Load method of the 3D engine (paper Methods A, B, C)")
+    pulse: Literal["friedlander", "triangular", "impulsive"] = Field("friedlander", description="Pulse shape")
+    incidence: str = Field("ufc", description="Angle-of-incidence model (Methods B, C)")
+    extrapolate: bool = Field(False, description="Evaluate the blast fits outside their ranges (warns)")
+
+    @field_validator("model")
+    @classmethod
+    def _model(cls, v: str) -> str:
+        return _check_name(v, tuple(BLAST_MODELS))
+
+    @field_validator("load")
+    @classmethod
+    def _load(cls, v: str) -> str:
+        return _check_name(v, tuple(LOAD_METHODS))
+
+    @field_validator("incidence")
+    @classmethod
+    def _incidence(cls, v: str) -> str:
+        return _check_name(v, INCIDENCE_MODELS)
+
+
+class ScaleSpec(BaseModel):
+    """The model's scales: lambda, the density ratio (or the model's material), varsigma."""
+
+    model_config = _CONFIG
+    length: Annotated[float, at.Gt(0), at.Le(1000)] = Field(
+        description="Geometric scale lambda = l_model / l_prototype [-] (a number or a fraction \"1/200\")")
+    density_ratio: Optional[float] = Field(None, gt=0, le=100,
+                                           description="gamma = rho_model / rho_prototype [-] (default 1)")
+    model_material: Optional[str] = Field(None, description="Model material from the density library")
+    gravity_ratio: float = Field(1.0, gt=0, le=1000, description="varsigma = g_model / g_prototype [-]")
+    law: Literal["general", "hopkinson-cranz"] = Field("general", description="Scaling law")
+
+    @field_validator("length", mode="before")
+    @classmethod
+    def _fraction(cls, v: Any) -> Any:
+        if isinstance(v, str):
+            try:
+                return parse_ratio(v, "length")
+            except BlastscaleInputError as exc:
+                raise ValueError(f"= {v!r} is not a ratio: give a number such as 0.005 or a fraction such as "
+                                 "\"1/200\"") from exc
+        return v
+
+    @field_validator("model_material")
+    @classmethod
+    def _material(cls, v: Optional[str]) -> Optional[str]:
+        return None if v is None else _check_name(v, tuple(MATERIALS))
+
+    @model_validator(mode="after")
+    def _one_density(self) -> "ScaleSpec":
+        return _at_most_one(self, "density_ratio", "model_material")
+
+
+class ContactSpec(BaseModel):
+    """3D contact settings of the prototype (the model's are scaled from them); each key left
+    out takes the engine's default for the structure (docs/sim3d.md)."""
+
+    model_config = _CONFIG
+    time_constant_s: Optional[float] = Field(None, gt=0, le=10, description="Normal contact time constant [s]")
+    damping_ratio: Optional[float] = Field(None, gt=0, le=100, description="Normal contact damping ratio [-]")
+    friction_time_constant_s: Optional[float] = Field(None, gt=0, le=10,
+                                                      description="Friction reference time constant [s]")
+    impedance_min: Optional[float] = Field(None, gt=0, lt=1, description="solimp dmin [-]")
+    impedance_max: Optional[float] = Field(None, gt=0, lt=1, description="solimp dmax [-]")
+    impedance_width_m: Optional[float] = Field(None, gt=0, le=10, description="solimp width [m]")
+    cone: Optional[Literal["elliptic", "pyramidal"]] = Field(None, description="Friction cone")
+    impratio: Optional[float] = Field(None, gt=0, le=1e4, description="Friction/normal impedance ratio [-]")
+    solver: Optional[Literal["Newton", "CG", "PGS"]] = Field(None, description="Constraint solver")
+    iterations: Optional[int] = Field(None, ge=1, le=10000, description="Solver iterations [-]")
+    tolerance: Optional[float] = Field(None, gt=0, le=1, description="Solver tolerance [-]")
+    noslip_iterations: Optional[int] = Field(None, ge=0, le=10000, description="No-slip iterations [-]")
+    jacobian: Optional[Literal["dense", "sparse", "auto"]] = Field(
+        None, description="Constraint Jacobian layout (dense by default; sparse is 2.5-3.4x faster on columns)")
+
+
+class SimulationSpec(BaseModel):
+    """Which engines run, for how long, and their numerical settings."""
+
+    model_config = _CONFIG
+    engine: Literal["planar", "3d", "both"] = Field("both", description="Planar rocking, 3D rigid bodies or both")
+    duration_s: float = Field(5.0, gt=0, le=1e5, description="Prototype time simulated after the shock arrival [s]")
+    timestep_s: Optional[float] = Field(None, gt=0, le=0.1,
+                                        description="Prototype 3D time step [s] (default from the structure)")
+    record_every: int = Field(5, ge=1, le=100000, description="Keep one 3D state every N steps [-]")
+    samples: int = Field(2001, ge=2, le=10_000_000, description="Planar sampling times over the duration [-]")
+    gravity_m_s2: float = Field(9.81, gt=0, le=1000, description="Prototype gravity g [m/s^2]")
+    restitution: Optional[float] = Field(None, ge=0, le=1,
+                                         description="Planar restitution e [-] (default Housner's)")
+    critical_charge: bool = Field(True, description="Also search the prototype's critical charge (planar)")
+    ensemble_members: int = Field(0, ge=0, le=64, description="Members per system of a 3D ensemble under slightly "
+                                  "perturbed loads, for chaotic structures (circular columns); 0: none [-]")
+    ensemble_perturbation: float = Field(1e-6, gt=0, le=0.1, description="Largest relative load change of an "
+                                         "ensemble member [-]")
+    contact: ContactSpec = Field(default_factory=ContactSpec, description="3D contact settings")
+
+    @field_validator("ensemble_members")
+    @classmethod
+    def _members(cls, v: int) -> int:
+        if v == 1:
+            raise ValueError("= 1 is out of range: valid values are 0 (no ensemble) or 2 to 64 members")
+        return v
+
+
+Structure = Annotated[Union[BlockSpec, ColumnSpec], Field(discriminator="kind")]
+KINDS = {"block": BlockSpec, "column": ColumnSpec}

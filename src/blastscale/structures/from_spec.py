@@ -1,0 +1,45 @@
+"""Structures from the structure table of a scenario (any object with its attributes: ``kind``,
+``height_m``, ...): one builder per kind, :data:`STRUCTURE_BUILDERS`, and :func:`from_spec`."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Callable
+
+from .._validate import BlastscaleInputError
+from .block import RectangularBlock
+from .column import MultiDrumColumn
+
+__all__ = ["STRUCTURE_BUILDERS", "from_spec", "is_block"]
+
+
+def _build_block(spec) -> RectangularBlock:
+    if spec.width_m is not None:
+        return RectangularBlock(height=spec.height_m, width=spec.width_m, depth=spec.depth_m,
+                                density=spec.density_kg_m3)
+    return RectangularBlock.from_slenderness(spec.height_m, math.radians(spec.alpha_deg), depth=spec.depth_m,
+                                             density=spec.density_kg_m3)
+
+
+def _build_column(spec) -> MultiDrumColumn:
+    return MultiDrumColumn(section=spec.section, drums=spec.drums, height=spec.height_m,
+                           base_width=spec.base_width_m, top_width=spec.top_width_m, sides=spec.sides,
+                           density=spec.density_kg_m3)
+
+
+#: structure kind -> builder(structure table of the scenario) -> structure object.
+STRUCTURE_BUILDERS: dict[str, Callable[[Any], Any]] = {"block": _build_block, "column": _build_column}
+
+
+def is_block(structure) -> bool:
+    """Whether ``structure`` is a single rectangular block (the planar engine's body)."""
+    return isinstance(structure, RectangularBlock)
+
+
+def from_spec(spec) -> Any:
+    """The prototype structure described by a scenario's ``[structure]`` table."""
+    kind = spec.kind
+    if kind not in STRUCTURE_BUILDERS:
+        raise BlastscaleInputError(
+            f"structure.kind = {kind!r} is not known: valid values are {', '.join(STRUCTURE_BUILDERS)}")
+    return STRUCTURE_BUILDERS[kind](spec)

@@ -1,0 +1,15 @@
+"""The Study: the one door from a scenario to the similarity verdict (like pvlib's ModelChain).
+
+* :class:`Study` (:mod:`.study`) -- design once, run the engines that apply, compare once;
+* :data:`ENGINES`, :data:`ENSEMBLE` (:mod:`.engines`) -- planar rocking, 3D rigid bodies, ensembles;
+* :class:`StudyResult` (:mod:`.result`) -- summary, scalars, histories;
+* :func:`estimate_memory`, :func:`check_memory` (:mod:`.memory`).
+"""
+
+from .engines import ENGINES, ENSEMBLE, Engine, contact_settings
+from .memory import MEMORY_FRACTION, check_memory, estimate_memory
+from .result import StudyResult
+from .study import Progress, Study, StudyWarning
+
+__all__ = ["Study", "StudyResult", "StudyWarning", "Progress", "ENGINES", "ENSEMBLE", "Engine", "estimate_memory",
+           "MEMORY_FRACTION", "contact_settings", "check_memory"]

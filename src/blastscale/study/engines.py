@@ -1,0 +1,124 @@
+"""The response engines of a study, chosen by name (:data:`ENGINES`): planar rocking and 3D rigid
+bodies (MuJoCo), plus 3D ensembles (:data:`ENSEMBLE`) for chaotic structures. Each engine says
+whether it supports a structure and runs prototype and specimen from the study's one design."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any, Callable, Optional
+
+from .._validate import BlastscaleInputError
+from ..scenario import Scenario
+from ..structures import is_block
+
+__all__ = ["Engine", "ENGINES", "ENSEMBLE", "Context", "contact_settings", "critical_charge_of"]
+
+
+@dataclass(frozen=True)
+class Context:
+    """What every engine receives: the scenario, the built prototype and the one design."""
+
+    scenario: Scenario
+    structure: Any
+    design: Any
+
+
+def _planar_supports(structure) -> Optional[str]:
+    return None if is_block(structure) else "planar rocking applies to a single rectangular block"
+
+
+def _run_planar(ctx: Context):
+    from ..analysis.rocking_similarity import compare_rocking
+
+    sc, sim = ctx.scenario, ctx.scenario.simulation
+    return compare_rocking(
+        ctx.structure, sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, ctx.design.density_ratio,
+        sc.scale.gravity_ratio, pulse=sc.blast.pulse, model=sc.blast.model, law=sc.scale.law,
+        duration=sim.duration_s, n_samples=sim.samples, gravity=sim.gravity_m_s2, restitution=sim.restitution,
+        design=ctx.design,
+    )
+
+
+def contact_settings(scenario: Scenario, structure=None):
+    """The prototype's 3D contact settings: the engine's defaults for the structure, the
+    scenario's friction, time step and every ``[simulation.contact]`` key given.
+
+    When the time step is given without a contact time constant, the time constant is kept
+    at >= 4 steps (MuJoCo needs >= 2)."""
+    from ..sim3d import ContactSettings
+    from ..sim3d.contact import time_constant_for_step
+
+    sim = scenario.simulation
+    base = ContactSettings()
+    if structure is not None:  # scale-consistent defaults derived from the structure
+        from ..sim3d.contact import default_contact
+
+        base = default_contact(structure, friction=scenario.structure.friction, gravity=sim.gravity_m_s2)
+    given = {k: v for k, v in sim.contact.model_dump().items() if v is not None}
+    names = {"time_constant_s": "time_constant", "friction_time_constant_s": "friction_time_constant",
+             "impedance_width_m": "impedance_width"}
+    kw = {names.get(k, k): v for k, v in given.items()}
+    kw["friction"] = scenario.structure.friction
+    if sim.timestep_s is not None:
+        kw["timestep"] = sim.timestep_s
+        if "time_constant" not in kw:
+            kw["time_constant"] = time_constant_for_step(base.time_constant, sim.timestep_s)
+    try:
+        return replace(base, **kw)
+    except BlastscaleInputError as exc:
+        raise BlastscaleInputError(f"simulation.contact: {exc}") from None
+
+
+def _3d_supports(structure) -> Optional[str]:
+    return None  # every structure of blastscale.structures runs on the 3D engine
+
+
+def _run_3d(ctx: Context):
+    from ..analysis.structure3d import compare_structure3d
+
+    sc, sim = ctx.scenario, ctx.scenario.simulation
+    return compare_structure3d(ctx.structure, ctx.design, load=sc.blast.load, pulse=sc.blast.pulse,
+                               incidence=sc.blast.incidence, contact=contact_settings(sc, ctx.structure),
+                               duration=sim.duration_s, record_every=sim.record_every,
+                               extrapolate=sc.blast.extrapolate)
+
+
+def _run_ensemble(ctx: Context):
+    from ..analysis.ensemble import ensemble_compare
+
+    sc, sim = ctx.scenario, ctx.scenario.simulation
+    return ensemble_compare(ctx.structure, ctx.design, n=sim.ensemble_members, perturbation=sim.ensemble_perturbation,
+                            load=sc.blast.load, pulse=sc.blast.pulse, incidence=sc.blast.incidence,
+                            contact=contact_settings(sc, ctx.structure), duration=sim.duration_s,
+                            record_every=sim.record_every, extrapolate=sc.blast.extrapolate)
+
+
+@dataclass(frozen=True)
+class Engine:
+    """One response engine: ``supports(structure)`` returns None or why not; ``run(ctx)``."""
+
+    name: str
+    label: str
+    supports: Callable[[Any], Optional[str]]
+    run: Callable[[Context], Any]
+
+
+#: engine name -> Engine. ``simulation.engine = "both"`` runs every engine that supports the structure.
+ENGINES: dict[str, Engine] = {
+    "planar": Engine("planar", "planar rocking: prototype and model", _planar_supports, _run_planar),
+    "3d": Engine("3d", "3D rigid bodies (MuJoCo): prototype and model", _3d_supports, _run_3d),
+}
+
+#: Runs added to the 3D engine when ``simulation.ensemble_members >= 2``: perturbed-load ensembles
+#: of prototype and model (chaotic structures are compared by envelopes, not single trajectories).
+ENSEMBLE = Engine("ensemble", "3D ensembles under perturbed loads: prototype and model", _3d_supports, _run_ensemble)
+
+
+def critical_charge_of(sc: Scenario, structure):
+    """The prototype block's critical charge at the scenario's stand-off (planar, first-swing criterion)."""
+    from ..rocking import RockingSystem, critical_charge
+
+    sim = sc.simulation
+    system = RockingSystem.from_block(structure, sim.gravity_m_s2, sim.restitution)
+    return critical_charge(system, sc.blast.standoff_m, pulse=sc.blast.pulse, model=sc.blast.model,
+                           extrapolate=sc.blast.extrapolate)

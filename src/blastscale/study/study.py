@@ -1,0 +1,216 @@
+"""``Study``: one scenario from the structure to the similarity verdict (like pvlib's ModelChain).
+
+The data flow of the method, once, in one direction::
+
+    scenario -> structure -> model design (once) -> engines (planar rocking, 3D rigid bodies):
+    prototype and model runs, the model up-scaled and compared -> StudyResult
+
+Every choice of the scenario passes through (blast model, load method, pulse, incidence
+model, scaling law, contact settings, time step, solver settings). What is built is chosen
+from small registries, so that a new structure kind or engine needs no change here:
+
+* :data:`blastscale.structures.STRUCTURE_BUILDERS` -- ``structure.kind`` -> builder(structure table) -> structure;
+* :data:`ENGINES` -- ``"planar"`` (rocking, :func:`~blastscale.analysis.rocking_similarity.compare_rocking`,
+  single blocks) and ``"3d"`` (MuJoCo, :func:`~blastscale.analysis.structure3d.compare_structure3d`,
+  any structure), plus :data:`ENSEMBLE` (:func:`~blastscale.analysis.ensemble.ensemble_compare`)
+  when ``simulation.ensemble_members >= 2``.
+
+No CLI code: the ``blastscale run`` command and the sweeps only call :class:`Study` and read
+the :class:`StudyResult`. Example (the built-in default, shortened):
+
+>>> from blastscale.scenario import Scenario
+>>> sc = Scenario.default().with_values({"duration_s": 0.05, "engine": "planar", "critical_charge": False})
+>>> r = Study(sc).run()
+>>> round(r.design.model_charge_kg * 1e6, 3)     # mg of TNT for the 1/200 model (paper: 0.233)
+0.233
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+from dataclasses import replace
+from typing import Callable, Optional
+
+from .._validate import BlastscaleInputError
+from ..scenario import Scenario
+from ..structures import from_spec, is_block
+from .engines import ENGINES, ENSEMBLE, Context, Engine, critical_charge_of
+from .memory import check_memory
+from .result import StudyResult
+
+__all__ = ["Study", "StudyWarning", "Progress"]
+
+
+class StudyWarning(UserWarning):
+    """What a study noticed about its own result (load not impulsive, outcomes that disagree, an
+    engine skipped, a chaotic structure compared by single trajectories)."""
+
+
+#: Progress callback: ``progress(stage, done, total)`` with a short stage description.
+Progress = Callable[[str, int, int], None]
+
+
+class Study:
+    """Design the model of a scenario, run the engines, compare (``Study(scenario).run()``).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The experiment (see :mod:`blastscale.scenario`).
+    """
+
+    def __init__(self, scenario: Scenario):
+        if not isinstance(scenario, Scenario):
+            raise BlastscaleInputError(f"scenario must be a Scenario, got {type(scenario).__name__}")
+        self.scenario = scenario
+        self._checked = None  # (structure, engines, skipped, design) once checked: the design runs once
+
+    def structure(self):
+        """The prototype structure, built by the registry entry of its kind
+        (:data:`blastscale.structures.STRUCTURE_BUILDERS`)."""
+        return from_spec(self.scenario.structure)
+
+    def engines(self, structure) -> tuple[list[Engine], list[str]]:
+        """The engines to run and the reasons for those skipped (``engine = "both"``); a single
+        engine asked for that does not support the structure is an error."""
+        asked = self.scenario.simulation.engine
+        names = list(ENGINES) if asked == "both" else [asked]
+        run, skipped = [], []
+        for n in names:
+            why = ENGINES[n].supports(structure)
+            if why is None:
+                run.append(ENGINES[n])
+            elif asked == "both":
+                skipped.append(f"{n} engine skipped: {why}")
+            else:
+                raise BlastscaleInputError(
+                    f"simulation.engine = {asked!r} is not available for a {self.scenario.structure.kind}: {why}")
+        if not run:
+            raise BlastscaleInputError(
+                f"structure.kind = {self.scenario.structure.kind!r} cannot be simulated here: {'; '.join(skipped)}")
+        members = self.scenario.simulation.ensemble_members
+        if members >= 2:
+            if not any(e.name == "3d" for e in run):
+                raise BlastscaleInputError(f"simulation.ensemble_members = {members} needs the 3D engine: valid "
+                                           "simulation.engine values are \"3d\" or \"both\" (or 0 members)")
+            run.append(ENSEMBLE)
+        return run, skipped
+
+    def design(self, structure=None):
+        """The model experiment (:func:`~blastscale.similitude.design_model`), once per study."""
+        from ..similitude import design_model
+
+        sc = self.scenario
+        structure = self.structure() if structure is None else structure
+        return design_model(
+            sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, sc.density_ratio, sc.scale.gravity_ratio,
+            sc.scale.law, sc.blast.model, structure if is_block(structure) else None,
+            gravity=sc.simulation.gravity_m_s2, extrapolate=sc.blast.extrapolate,
+        )
+
+    def check(self):
+        """Everything that can be checked before simulating: the structure, the engines, the
+        design (blast fits' ranges, scale range) and the memory. Returns (structure, engines,
+        skipped, design)."""
+        if self._checked is None:
+            structure = self.structure()
+            engines, skipped = self.engines(structure)
+            check_memory(self.scenario, structure)
+            self._checked = (structure, engines, skipped, self.design(structure))
+        return self._checked
+
+    def run(self, progress: Optional[Progress] = None) -> StudyResult:
+        """Run the study.
+
+        Parameters
+        ----------
+        progress : callable, optional
+            ``progress(stage, done, total)``, called before each stage and once at the end.
+
+        Returns
+        -------
+        StudyResult
+        """
+        sc = self.scenario
+        timings: dict = {}
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            t0 = time.perf_counter()
+            structure, engines, skipped, d = self.check()
+            want_critical = sc.simulation.critical_charge and any(e.name == "planar" for e in engines)
+            total = 1 + len(engines) + int(want_critical)
+            step = 1
+            timings["design"] = time.perf_counter() - t0
+            results: dict = {}
+            ctx = Context(sc, structure, d)
+            for eng in engines:
+                _tell(progress, eng.label, step, total)
+                t0 = time.perf_counter()
+                results[eng.name] = eng.run(ctx)
+                timings[eng.name] = time.perf_counter() - t0
+                step += 1
+            crit = None
+            if want_critical:
+                _tell(progress, "critical charge of the prototype (planar)", step, total)
+                t0 = time.perf_counter()
+                crit = critical_charge_of(sc, structure)
+                timings["critical"] = time.perf_counter() - t0
+                step += 1
+            _tell(progress, "done", total, total)
+            partial = StudyResult(scenario=sc, structure=structure, model_structure=structure.scaled(d.scale,
+                                                                                                    d.density_ratio),
+                                  design=d,
+                                  planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
+                                  ensemble=results.get("ensemble"))
+            summary = partial._compute_summary()  # inside the capture: its warnings are the study's
+        notes = _study_warnings(d, results, skipped, summary)
+        lib = []
+        for w in caught:
+            msg = " ".join(str(w.message).split())
+            if msg not in lib:
+                lib.append(msg)
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)  # still seen by callers
+        for note in notes:
+            warnings.warn(note, StudyWarning, stacklevel=2)
+        summary.update(warnings=list(lib + notes), timings_s=dict(timings))
+        return replace(partial, warnings=tuple(lib + notes), timings=timings, _summary=summary)
+
+
+
+def _tell(progress: Optional[Progress], stage: str, done: int, total: int) -> None:
+    if progress is not None:
+        progress(stage, done, total)
+
+
+def _is_circular(cmp) -> bool:
+    return getattr(getattr(cmp, "structure", None), "section", None) == "circular"
+
+
+def _study_warnings(design, results: dict, skipped: list, summary: dict) -> list:
+    """The study's own warnings, in words for the report (the 3D and ensemble figures read from
+    the study's ``summary``, computed once)."""
+    out = list(skipped)
+    imp = design.impulsive
+    if imp is not None and not imp.impulsive:
+        out.append(f"the load is not impulsive (t_o p = {imp.prototype_ratio:.3g} prototype, {imp.model_ratio:.3g} "
+                   f"model, threshold {imp.threshold:g}): the general law's similarity is not guaranteed")
+    planar = results.get("planar")
+    if planar is not None and not planar.outcomes_agree:
+        out.append("planar rocking: prototype and model outcomes disagree (one overturns, the other does not)")
+    ens = results.get("ensemble")
+    if ens is None and results.get("3d") is not None and _is_circular(results["3d"]):
+        out.append("circular drums wobble chaotically: one trajectory after the first impact means little; compare "
+                   "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities")
+    if ens is not None:
+        e = summary["ensemble"]
+        if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
+            out.append(f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
+                       f"{e['collapse_probability_model']:.2g} (model)")
+    s = summary["3d"]
+    if s is not None:
+        p, m = s.get("prototype", {}), s.get("model", {})
+        for key in ("overturned", "collapsed"):
+            if key in p and key in m and bool(p[key]) != bool(m[key]):
+                out.append(f"3D: prototype and model disagree on '{key}' ({p[key]} vs {m[key]})")
+    return out

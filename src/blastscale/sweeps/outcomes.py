@@ -1,0 +1,154 @@
+"""The outcome mode of a sweep: first-swing outcomes and largest rotations of planar block cases,
+vectorised over the cases (the design in numpy, the pulse phases in the compiled kernel, the
+first free swing in closed form)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .spec import SweepSpec, _plain
+
+__all__ = ["OUTCOME_KEYS", "VALID_KEY", "planar_outcomes"]
+
+#: Key of every case's result: False where the Study refused the case (its other values are NaN).
+VALID_KEY = "sweep.valid"
+
+#: Keys of the outcome mode (:func:`planar_outcomes`), the Study's names where they mean the same.
+OUTCOME_KEYS = (
+    "planar.prototype.overturned", "planar.prototype.max_angle_rad", "planar.model.overturned",
+    "planar.model.max_angle_rad", "planar.similarity.max_angle_ratio", "planar.similarity.outcomes_agree",
+    "design.model_charge_kg", "design.model_standoff_m", VALID_KEY,
+)
+#: Fields the outcome mode vectorises over; the others that matter group the cases (one body, scale,
+#: law, blast model and pulse per group); the rest (friction, duration, samples, 3D settings, ...)
+#: play no part in it.
+_LOAD_PATHS = ("blast.charge_kg", "blast.standoff_m", "simulation.restitution")
+
+
+def _outcome_field(path: str) -> bool:
+    return (path.startswith(("structure.", "blast.", "scale.")) or path == "simulation.gravity_m_s2") \
+        and path not in _LOAD_PATHS + ("structure.friction", "blast.load", "blast.incidence")
+
+
+def _groups(vals: dict, paths: list, n: int) -> list:
+    """Index arrays of the cases sharing the values of ``paths`` (one group when none)."""
+    if not paths:
+        return [np.arange(n)]
+    codes = []
+    for p in paths:
+        col = vals[p]
+        try:
+            _, inv = np.unique(col, return_inverse=True)
+        except TypeError:  # unorderable mix (e.g. None and numbers): by first occurrence
+            seen: dict = {}
+            inv = np.array([seen.setdefault(v, len(seen)) for v in col.tolist()])
+        codes.append(inv.ravel())
+    _, inv = np.unique(np.stack(codes), axis=1, return_inverse=True)
+    inv = inv.ravel()
+    return [np.flatnonzero(inv == g) for g in range(int(inv.max()) + 1)]
+
+
+def _outcome_group(sc, W, R, e) -> dict:
+    """Outcome-mode arrays for n load cases ``W`` [kg], ``R`` [m], restitution ``e`` [-] (NaN:
+    Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse)."""
+    from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
+    from ..rocking.capacity import charge_for_impulse, first_swing_blast
+    from ..rocking.system import RockingSystem, housner_restitution
+    from ..similitude import scaling_factors
+    from ..similitude.laws import hopkinson_cranz_density_ratio
+    from ..structures import from_spec
+
+    n = W.size
+    out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
+    out[VALID_KEY] = np.zeros(n, dtype=bool)
+    bl, sim, scl = sc.blast, sc.simulation, sc.scale
+    lam, sig, gam = scl.length, scl.gravity_ratio, sc.density_ratio
+    if scl.law == "hopkinson-cranz":  # the law imposes gamma (design_model refuses another one)
+        g_hc = hopkinson_cranz_density_ratio(lam, sig)
+        if gam is not None and abs(gam - g_hc) > 1e-9 * g_hc:
+            return out
+        gam = g_hc
+    structure = from_spec(sc.structure)
+    proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
+    model = RockingSystem.from_block(structure.scaled(lam, gam), sim.gravity_m_s2 * sig)
+    e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)
+    bm = get_blast_model(bl.model)
+    # the Z range where the Study designs the model: every fit used (the impulse fit only with
+    # extrapolate, where the general law is still solved on it), for the prototype and the model
+    zr = bm.valid_range("scaled_reflected_impulse") if bl.extrapolate else valid_scaled_distance_range(bm)
+    Z = R / np.cbrt(W)
+    ok = (Z >= zr[0]) & (Z <= zr[1])
+    Rm = lam * R
+    Wm = np.full(n, np.nan)
+    if np.any(ok):
+        if scl.law == "hopkinson-cranz":
+            Wm[ok] = W[ok] * scaling_factors(lam, gam, sig, 1.0).charge
+        else:  # general law (paper Eq. 8): the model delivers the impulse x gamma sqrt(varsigma lambda^3)
+            ip = bm.scaled_reflected_impulse(Z[ok], extrapolate=bl.extrapolate) * np.cbrt(W[ok])
+            Wm[ok] = charge_for_impulse(ip * gam * math.sqrt(sig * lam**3), Rm[ok], bm,
+                                        extrapolate=bl.extrapolate, z_range=zr)
+        ok &= np.isfinite(Wm)
+    if np.any(ok):
+        bp = blast_parameters(W[ok], R[ok], bm, extrapolate=bl.extrapolate)
+        bpm = blast_parameters(Wm[ok], Rm[ok], bm, extrapolate=bl.extrapolate)
+        fp = first_swing_blast(proto.alpha, e[ok], proto.frequency_parameter, proto.load_ratio_per_pascal, bp,
+                               bl.pulse)
+        fm = first_swing_blast(model.alpha, e[ok], model.frequency_parameter, model.load_ratio_per_pascal, bpm,
+                               bl.pulse)
+        out["planar.prototype.overturned"][ok] = fp.overturned
+        out["planar.prototype.max_angle_rad"][ok] = fp.max_rotation
+        out["planar.model.overturned"][ok] = fm.overturned
+        out["planar.model.max_angle_rad"][ok] = fm.max_rotation  # angles are not scaled (factor 1)
+        out["planar.similarity.max_angle_ratio"][ok] = fm.max_rotation / fp.max_rotation
+        out["planar.similarity.outcomes_agree"][ok] = fp.overturned == fm.overturned
+        out["design.model_charge_kg"][ok] = Wm[ok]
+        out["design.model_standoff_m"][ok] = Rm[ok]
+        out[VALID_KEY][ok] = True
+    return out
+
+
+def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
+    """The outcome mode: first-swing results of the planar block cases ``start .. stop - 1`` of a
+    sweep, vectorised over the cases (the design in numpy, the pulse phases in the compiled
+    kernel, the first free swing in closed form; :func:`blastscale.rocking.capacity.first_swing`).
+
+    For the prototype and the model (designed by the scenario's law; the general law's model
+    charge found by inverting the blast model's reflected impulse, which equals the Study's
+    ``design_model`` to ~1e-12): ``overturned`` (at any time), ``max_angle_rad`` (the largest
+    |theta| of the whole motion; pi/2 where it overturns), their ratio (model / prototype) and
+    outcome agreement, the model charge and stand-off, and ``sweep.valid`` (False where the Study
+    would refuse the design: a scaled distance outside the blast fits; NaN values there).
+    Cases are grouped by the fields that matter other than charge, stand-off and restitution
+    (structure, blast model and pulse, scale, gravity: one body, scale and law per group; friction,
+    duration, samples and the 3D settings play no part); within a group everything is array
+    arithmetic.
+
+    Returns
+    -------
+    dict
+        :data:`OUTCOME_KEYS` -> array over the cases (booleans as floats with NaN where some case
+        of the chunk is invalid).
+    """
+    import warnings
+
+    vals = spec.value_arrays(start, stop)
+    n = int(stop) - int(start)
+    base = spec.base
+    col = {p: (vals[p].astype(float) if p in vals else np.full(n, np.nan if v is None else float(v)))
+           for p, v in zip(_LOAD_PATHS, (base.blast.charge_kg, base.blast.standoff_m, base.simulation.restitution))}
+    others = [p for p in vals if _outcome_field(p)]
+    out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for idx in _groups(vals, others, n):
+            sc = base.with_values({p: _plain(vals[p][idx[0]]) for p in others}) if others else base
+            res = _outcome_group(sc, *(col[p][idx] for p in _LOAD_PATHS))
+            for k in OUTCOME_KEYS:
+                out[k][idx] = res[k]
+    valid = out[VALID_KEY] == 1.0
+    for k in ("planar.prototype.overturned", "planar.model.overturned", "planar.similarity.outcomes_agree", VALID_KEY):
+        if k == VALID_KEY or valid.all():
+            out[k] = out[k] == 1.0
+    return out

@@ -1,0 +1,169 @@
+"""Running a sweep's chunks: in this process, on a local Dask cluster (single-threaded worker
+processes on 127.0.0.1) or on any running scheduler. The runner writes nothing: each finished
+chunk goes to a ``sink(index, result)`` (the resumable store of :mod:`blastscale.io.sweep_store`,
+or memory)."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import time
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+from .._validate import BlastscaleInputError
+from .cases import evaluate_chunk
+from .spec import SweepSpec
+
+__all__ = ["SweepRun", "default_chunk", "run_chunks", "run_in_memory", "payload_hash"]
+
+
+@dataclass(frozen=True)
+class SweepRun:
+    """What :func:`run_sweep` did: the store, the number of cases, chunks computed now and
+    skipped (already written), ``seconds`` [s] computing them (on Dask: from the first submission
+    to the last chunk written; the cluster's start and stop and the final consolidation are not
+    counted), workers, and the rate of that computing."""
+
+    store: str
+    n_cases: int
+    chunks_run: int
+    chunks_skipped: int
+    seconds: float
+    workers: int
+    cases_per_minute: float
+
+    def to_dict(self) -> dict:
+        return dict(self.__dict__)
+
+
+def default_chunk(spec: SweepSpec, workers: int) -> int:
+    """Cases per task: outcome mode ~n / (2 workers), at most 20000; planar ~n / (4 workers), at most
+    2000; else 1."""
+    if spec.outcomes:  # ~70 us per case: 20000 cases are ~1.5 s per task
+        return int(max(1, min(20000, math.ceil(spec.n_cases / max(1, 2 * workers)))))
+    if spec.planar_only:  # enough cases per task to amortise the task overhead, enough tasks to balance
+        return int(max(1, min(2000, math.ceil(spec.n_cases / max(1, 4 * workers)))))
+    return 1
+
+
+def run_chunks(payload: dict, todo, sink: Callable[[int, dict], None], *, scheduler: Optional[str] = None,
+               workers: int = 0, tick: Optional[Callable[[int], None]] = None) -> tuple:
+    """Evaluate the chunks ``todo`` (``(index, start, stop)`` each) of a sweep and hand each result
+    to ``sink(index, result)`` as it completes.
+
+    Parameters
+    ----------
+    payload : dict
+        :meth:`SweepSpec.to_payload`.
+    todo : list of (int, int, int)
+        Chunk index and the case range ``start .. stop - 1``.
+    sink : callable
+        Receives every finished chunk (in completion order).
+    scheduler : str, optional
+        Address of a running Dask scheduler.
+    workers : int
+        Without ``scheduler``: local worker processes (0: in this process).
+    tick : callable, optional
+        ``tick(cases_done_now)`` after each chunk.
+
+    Returns
+    -------
+    (int, float)
+        Workers used and the seconds from the first submission to the last chunk handed over.
+    """
+    tick = tick or (lambda k: None)
+    if scheduler is None and workers == 0:
+        t0 = time.perf_counter()
+        k = 0
+        for i, a, b in todo:
+            sink(i, evaluate_chunk(payload, a, b))
+            k += b - a
+            tick(k)
+        return 0, time.perf_counter() - t0
+    return _run_dask(payload, todo, sink, scheduler, workers, tick)
+
+
+def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
+    """Submit the chunks, write each as it completes; returns the number of workers used and the
+    seconds from the first submission to the last chunk written (cluster start and stop excluded)."""
+    from dask.distributed import Client, LocalCluster, as_completed
+
+    cluster = None
+    if scheduler is None:
+        import warnings
+
+        import dask
+
+        # Dask's nannies set MALLOC_TRIM_THRESHOLD_=65536 in their workers: glibc then hands every
+        # freed block above 64 kB back to the system, and the numpy temporaries of a planar chunk
+        # come back as fresh pages each time (measured: +55 % CPU per outcome-mode chunk); the
+        # local workers keep glibc's own (dynamic) threshold
+        with warnings.catch_warnings(), dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+            # the scheduler's HTTP (health) server takes another port when 8787 is busy: not our concern
+            warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
+            cluster = LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                   dashboard_address=None)
+        client = Client(cluster)
+    else:
+        try:
+            client = Client(scheduler, timeout="20s")
+        except (OSError, TimeoutError) as exc:
+            raise BlastscaleInputError(f"scheduler = {scheduler!r} cannot be reached: {exc}") from None
+    try:
+        used = len(client.scheduler_info().get("workers", {})) or nw
+        t0 = time.perf_counter()
+        futs = {client.submit(evaluate_chunk, payload, a, b, key=f"blastscale-chunk-{i}-{payload_hash(payload)}",
+                              pure=False): (i, a, b) for i, a, b in todo}
+        k = 0
+        for fut in as_completed(futs):
+            i, a, b = futs[fut]
+            sink(i, fut.result())
+            k += b - a
+            tick(k)
+        return used, time.perf_counter() - t0
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def payload_hash(payload: dict) -> str:
+    """Short hash of a sweep payload (task keys unique per sweep)."""
+    return hashlib.sha1(json.dumps(payload, sort_keys=True, default=str).encode()).hexdigest()[:12]
+
+
+def run_in_memory(spec: SweepSpec, *, scheduler: Optional[str] = None, workers: int = 0,
+                  chunk: Optional[int] = None, progress: Optional[Callable[[int, int], None]] = None):
+    """Run every case of a sweep and return its dataset (:func:`.dataset.assemble`), keeping the
+    chunks in memory (nothing written, nothing resumable: for small sweeps and maps).
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    scheduler, workers
+        As :func:`run_chunks` (default: in this process).
+    chunk : int, optional
+        Cases per task (default :func:`default_chunk`).
+    progress : callable, optional
+        ``progress(cases_done, n_cases)``.
+
+    Returns
+    -------
+    xarray.Dataset
+    """
+    from .dataset import assemble, metadata
+
+    if workers < 0:
+        raise BlastscaleInputError(f"workers = {workers} is out of range: must be >= 0 (0: in this process)")
+    chunk = default_chunk(spec, max(1, workers)) if chunk is None else chunk
+    if not isinstance(chunk, int) or isinstance(chunk, bool) or chunk < 1:
+        raise BlastscaleInputError(f"chunk = {chunk!r} is out of range: must be a whole number >= 1")
+    n = spec.n_cases
+    todo = [(i, s, min(n, s + chunk)) for i, s in enumerate(range(0, n, chunk))]
+    done: dict = {}
+    run_chunks(spec.to_payload(), todo, done.__setitem__, scheduler=scheduler, workers=workers,
+               tick=(lambda k: progress(k, n)) if progress else None)
+    return assemble(spec, (done[i] for i, _, _ in todo), metadata(spec, chunk))
+
