@@ -35,8 +35,7 @@ import warnings
 
 import numpy as np
 
-from blastscale.sim3d.face_loads import arrival_spread_similarity
-from blastscale.sim3d.loads import make_load
+from blastscale.sim3d.load_methods import arrival_spread_similarity, make_load
 from blastscale.sim3d.simulate import simulate_structure
 from blastscale.similitude import design_model
 from blastscale.structures import MultiDrumColumn

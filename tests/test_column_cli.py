@@ -215,7 +215,7 @@ def test_column_plots_reject_unknown_names(short_comparison):
 def test_simulate_system_passes_extrapolate_to_the_load(monkeypatch):
     """compare_structure3d / simulate_system hand ``extrapolate`` to make_load (E10's scenarios
     with blast.extrapolate = true); the load built is then used as is."""
-    import blastscale.sim3d.loads as loads
+    import blastscale.sim3d.load_methods as loads
     from blastscale.analysis.structure3d import simulate_system
     from blastscale.similitude import design_model
     from blastscale.structures import MultiDrumColumn

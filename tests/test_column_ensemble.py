@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.analysis.ensemble import PerturbedLoad, ensemble_compare, ensemble_statistics
+from blastscale.analysis.ensemble import ensemble_compare, ensemble_statistics
+from blastscale.sim3d.loads import PerturbedLoad
 
 
 def test_ensemble_statistics_closed_form():
@@ -33,7 +34,7 @@ def test_ensemble_statistics_closed_form():
 
 
 def test_perturbed_load_scales_every_wrench_exactly():
-    from blastscale.sim3d.loads import make_load
+    from blastscale.sim3d.load_methods import make_load
     from blastscale.structures import MultiDrumColumn
 
     col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54)

@@ -13,8 +13,9 @@ import pytest
 from blastscale._validate import BlastscaleInputError
 from blastscale.blast.faces import MixedModelWarning
 from blastscale.blast.incidence import INCIDENCE_MODELS
-from blastscale.sim3d.face_loads import FaceLoadStrategy, arrival_spread, arrival_spread_similarity
-from blastscale.sim3d.loads import LOAD_METHODS, LoadStrategy, make_load
+from blastscale.sim3d.face_loads import FaceLoadStrategy, arrival_spread
+from blastscale.sim3d.load_methods import LOAD_METHODS, arrival_spread_similarity, make_load
+from blastscale.sim3d.loads import LoadStrategy
 from blastscale.similitude import design_model
 from blastscale.structures import MultiDrumColumn, RectangularBlock
 

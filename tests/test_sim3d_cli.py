@@ -203,7 +203,7 @@ def test_block_keys_from_the_structure_path_equal_the_planar_view():
     from blastscale.analysis.block3d_similarity import block_dataset, block_summary
     from blastscale.blast import blast_parameters
     from blastscale.sim3d import simulate_block, simulate_structure
-    from blastscale.sim3d.loads import make_load
+    from blastscale.sim3d.load_methods import make_load
     from blastscale.structures.block import RectangularBlock
 
     b = RectangularBlock.from_slenderness(10.0, math.radians(15.0))

@@ -25,35 +25,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive, check_range
+from .._validate import BlastscaleInputError, check_range
 
-__all__ = ["EnsembleComparison", "PerturbedLoad", "ensemble_compare", "ensemble_statistics"]
-
-
-class PerturbedLoad:
-    """A load strategy whose wrenches are those of ``load`` times ``factor`` (the same arrival
-    and end times): a relative perturbation of the blast of ``factor - 1``.
-
-    Parameters
-    ----------
-    load : LoadStrategy
-        The load to perturb.
-    factor : float
-        Multiplier of every wrench [-], > 0.
-    """
-
-    def __init__(self, load, factor: float):
-        self.load = load
-        self.factor = float(check_positive("load factor", factor))
-        self.first_arrival = load.first_arrival
-        self.end_time = load.end_time
-
-    def step_wrenches(self, t0, t1, positions, rotations):
-        """``factor`` x the wrapped load's wrenches (nbody, 6) [N, N m]."""
-        return self.factor * np.asarray(self.load.step_wrenches(t0, t1, positions, rotations))
-
-    def __getattr__(self, name):  # other helpers (delivered_impulse, ...) of the wrapped load
-        return getattr(self.__dict__["load"], name)
+__all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics"]
 
 
 def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05, peak_fraction: float = 0.1,

@@ -187,9 +187,9 @@ class Comparison3D:
     def _arrival_spreads(self) -> dict:
         """``arrival_spread_prototype_s`` and ``arrival_spread_model_upscaled_s`` [s]: first to last
         shock arrival over the loaded faces, the model's divided by the time factor (issue 9,
-        :func:`blastscale.sim3d.face_loads.arrival_spread_similarity`; 0 for Method A)."""
+        :func:`blastscale.sim3d.load_methods.arrival_spread_similarity`; 0 for Method A)."""
         from ..blast.incidence import DEFAULT_INCIDENCE
-        from ..sim3d.face_loads import arrival_spread_similarity
+        from ..sim3d.load_methods import arrival_spread_similarity
 
         s = self.settings
         inc = s.get("incidence", "default")
@@ -248,7 +248,7 @@ def simulate_system(structure, design, system: str = "prototype", *, load: str =
     duration : float
         Prototype simulated time [s].
     load_factor : float
-        Multiplier of the load's wrenches [-] (ensembles, :class:`~.ensemble.PerturbedLoad`).
+        Multiplier of the load's wrenches [-] (ensembles, :class:`~blastscale.sim3d.loads.PerturbedLoad`).
     extrapolate : bool
         Let the blast fits run outside their ranges (with a warning), passed to ``make_load``.
 
@@ -259,8 +259,8 @@ def simulate_system(structure, design, system: str = "prototype", *, load: str =
         after its first arrival [s] (its own units).
     """
     from ..sim3d import simulate_structure
-    from ..sim3d.loads import make_load
-    from .ensemble import PerturbedLoad
+    from ..sim3d.load_methods import make_load
+    from ..sim3d.loads import PerturbedLoad
 
     f = design.factors
     if system == "prototype":

@@ -71,7 +71,7 @@ def column_cmd(
     """
     from ..analysis.structure3d import compare_structure3d
     from ..sim3d import simulate_structure
-    from ..sim3d.loads import make_load
+    from ..sim3d.load_methods import make_load
     from ..similitude import design_model
     from ..structures import MultiDrumColumn
 

@@ -99,7 +99,7 @@ INCIDENCE = typer.Option(None, "--incidence", help="Angle-of-incidence model of 
 def check_load_options(load: str, incidence: Optional[str]) -> None:
     """One-line errors for an unknown --load (valid: the keys of sim3d.loads.LOAD_METHODS, B and C
     included once registered) or --incidence (valid: blast.incidence.INCIDENCE_MODELS)."""
-    from ..sim3d.loads import LOAD_METHODS
+    from ..sim3d.load_methods import LOAD_METHODS
 
     if load not in LOAD_METHODS:
         raise BlastscaleInputError(f"load = {load!r} is not known: valid values are {', '.join(LOAD_METHODS)}")

@@ -5,10 +5,9 @@ from __future__ import annotations
 
 import tomllib
 from pathlib import Path
-from typing import Any
-
 from .._validate import BlastscaleInputError
 from .scenario import Scenario
+from .text import to_toml
 
 __all__ = ["load_scenario", "to_toml"]
 
@@ -42,23 +41,3 @@ def load_scenario(path: "str | Path") -> Scenario:
     except tomllib.TOMLDecodeError as exc:
         raise BlastscaleInputError(f"{p.name}: TOML syntax error: {exc}") from None
     return Scenario.from_dict(data, source=p.name)
-
-
-
-def _toml_value(v: Any) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v)
-    s = str(v).replace("\\", "\\\\").replace('"', '\\"')
-    return f'"{s}"'
-
-
-def to_toml(data: dict, prefix: str = "") -> str:
-    """TOML text of a nested dict of plain values (tables for sub-dicts)."""
-    lines = [f"{k} = {_toml_value(v)}" for k, v in data.items() if not isinstance(v, dict)]
-    for k, v in data.items():
-        if isinstance(v, dict):
-            sub = to_toml(v, f"{prefix}{k}.")
-            lines.append(f"\n[{prefix}{k}]\n{sub}" if sub else f"\n[{prefix}{k}]")
-    return "\n".join(lines).strip("\n") + ("\n" if not prefix else "")

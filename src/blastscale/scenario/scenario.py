@@ -10,6 +10,7 @@ from pydantic import BaseModel, Field, ValidationError
 from .._validate import BlastscaleInputError
 from ..structures.materials import MATERIALS
 from .messages import one_line, submodels
+from .text import to_toml
 from .specs import _CONFIG, KINDS, BlastSpec, BlockSpec, ScaleSpec, SimulationSpec, Structure
 
 __all__ = ["Scenario"]
@@ -173,6 +174,4 @@ class Scenario(BaseModel):
 
     def to_toml(self) -> str:
         """The scenario as TOML text (keys left to defaults omitted); ``load_scenario`` reads it back."""
-        from .files import to_toml
-
         return to_toml(self.model_dump(mode="json", exclude_none=True))

@@ -18,7 +18,7 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 from .._validate import BlastscaleInputError
 from ..blast.incidence import INCIDENCE_MODELS
 from ..blast.parameters import BLAST_MODELS
-from ..sim3d.loads import LOAD_METHODS
+from ..sim3d.load_methods import LOAD_METHODS
 from ..structures.materials import MATERIALS
 from .messages import show
 

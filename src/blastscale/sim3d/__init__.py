@@ -16,7 +16,8 @@ MuJoCo is imported lazily, inside the functions that need it.
 
 from .blast_force import step_forces
 from .contact import CONES, SOLVERS, ContactSettings, default_contact
-from .loads import LOAD_METHODS, LoadStrategy, MethodA, make_load, register_load_method
+from .load_methods import LOAD_METHODS, make_load, register_load_method
+from .loads import LoadStrategy, MethodA, PerturbedLoad
 from .model import BodySpec, BoxShape, FrontFace, PrismShape, Scene, block_scene, build_scene, structure_scene
 from .results import Block3DResult, Response3D, quaternion_to_matrix, tilt_angle
 from .simulate import (
@@ -41,6 +42,7 @@ __all__ = [
     "LOAD_METHODS",
     "LoadStrategy",
     "MethodA",
+    "PerturbedLoad",
     "SETTLE_TIME_CONSTANTS",
     "SOLVERS",
     "Scene",

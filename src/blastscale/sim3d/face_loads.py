@@ -30,9 +30,9 @@ from .._validate import BlastscaleInputError, check_positive
 from ..blast.faces import _check_shape, _loads_at, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
-from .loads import _faces_array, register_load_method
+from .loads import faces_array
 
-__all__ = ["FaceLoadStrategy", "arrival_spread", "arrival_spread_similarity", "method_b", "method_c"]
+__all__ = ["FaceLoadStrategy", "arrival_spread", "method_b", "method_c"]
 
 #: Margin added to the latest pulse end at rest, as a fraction of the longest positive duration:
 #: the faces move by millimetres while the blast acts, shifting arrivals by microseconds.
@@ -90,7 +90,7 @@ class FaceLoadStrategy:
         self.structure = structure
         self.nbody = len(structure.bodies)
         self.body = np.array([b for b, _ in faces], dtype=int)
-        self.centres, self.normals, self.areas = _faces_array([f for _, f in faces])
+        self.centres, self.normals, self.areas = faces_array([f for _, f in faces])
         self.labels = tuple(f.label for _, f in faces)
         pos0 = np.array([b.com for b in structure.bodies], dtype=float)
         rot0 = np.broadcast_to(np.eye(3), (self.nbody, 3, 3))
@@ -196,41 +196,6 @@ def arrival_spread(load) -> float:
     return float(getattr(load, "arrival_spread", 0.0))
 
 
-def arrival_spread_similarity(structure, design, load: str = "A", *, pulse: str = "friedlander",
-                              incidence: str = "ufc", extrapolate: bool = False) -> dict:
-    """Arrival-time spreads of a model experiment, for a comparison's ``similarity`` block.
-
-    Parameters
-    ----------
-    structure : structure
-        Prototype structure.
-    design : ModelDesign
-        The model experiment (:func:`blastscale.similitude.design_model`): prototype and model
-        charge and stand-off, ``factors.length``, ``factors.density`` and ``factors.time``.
-    load, pulse, incidence : str
-        As for :func:`~.loads.make_load`.
-    extrapolate : bool
-        As for :func:`~.loads.make_load` (the blast fits outside their ranges, with a warning).
-
-    Returns
-    -------
-    dict
-        ``arrival_spread_prototype_s`` (first to last arrival over the loaded faces [s]) and
-        ``arrival_spread_model_upscaled_s`` (the model's, divided by the time factor lambda_t,
-        in prototype seconds [s]). Under exact similarity the two are equal; see
-        ``docs/face_loads.md`` for why the general law's model does not keep them equal.
-    """
-    from .loads import make_load
-
-    f = design.factors
-    p, m = design.prototype, design.model
-    kw = dict(blast_model=p.model, pulse=pulse, incidence=incidence, extrapolate=extrapolate)
-    lp = make_load(load, structure, charge_kg=p.charge_kg, standoff_m=p.standoff_m, **kw)
-    lm = make_load(load, structure.scaled(f.length, f.density), charge_kg=m.charge_kg, standoff_m=m.standoff_m, **kw)
-    return {"arrival_spread_prototype_s": arrival_spread(lp),
-            "arrival_spread_model_upscaled_s": arrival_spread(lm) / f.time}
-
-
 def _charge_position(structure, standoff_m) -> np.ndarray:
     R = float(check_positive("standoff", standoff_m, "m"))
     return np.array([float(structure.front_x) - R, 0.0, 0.0])
@@ -252,7 +217,3 @@ def method_c(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash",
     return FaceLoadStrategy(structure, faces, charge_kg=charge_kg,
                             charge_position=_charge_position(structure, standoff_m), blast_model=blast_model,
                             pulse=pulse, incidence=incidence, extrapolate=extrapolate, method="C")
-
-
-register_load_method("B", method_b)
-register_load_method("C", method_c)

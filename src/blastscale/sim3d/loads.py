@@ -16,8 +16,8 @@ drum the face is the slanted trapezoid; its horizontal resultant at rest is p ti
 projected trapezoid ``(s0 + s1) H / 2``. For a polygonal ("circular") drum the loaded face is
 the projected silhouette, diameter x height (tapered).
 
-Methods B and C (per-face distance, arrival and incidence) register themselves in
-:data:`LOAD_METHODS` from :mod:`.face_loads`.
+Methods B and C (per-face distance, arrival and incidence): :mod:`.face_loads`; every method by
+name: :mod:`.load_methods`.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_finite, check_positive
 from .blast_force import mean_pressures
 
-__all__ = ["LOAD_METHODS", "LoadStrategy", "MethodA", "make_load", "register_load_method"]
+__all__ = ["LoadStrategy", "MethodA", "PerturbedLoad", "faces_array", "method_a"]
 
 
 @runtime_checkable
@@ -54,7 +54,7 @@ class LoadStrategy(Protocol):
         ...
 
 
-def _faces_array(faces):
+def faces_array(faces):
     """Centres (nface, 3) [m], outward normals (nface, 3) and areas (nface,) [m^2] of body-frame faces."""
     c = np.array([f.centre for f in faces], dtype=float).reshape(-1, 3)
     n = np.array([f.normal for f in faces], dtype=float).reshape(-1, 3)
@@ -103,7 +103,7 @@ class MethodA:
         self.end_time = ta + float(pulse.duration)
         self.loaded = idx
         self.nbody = nb
-        self.centres, self.normals, self.areas = _faces_array([structure.bodies[i].load_face for i in idx])
+        self.centres, self.normals, self.areas = faces_array([structure.bodies[i].load_face for i in idx])
 
     def mean_pressure(self, t0: float, t1: float) -> float:
         """Mean reflected pressure over [t0, t1] [Pa] (times since detonation [s])."""
@@ -136,7 +136,7 @@ class MethodA:
                 "arrival_time_s": self.arrival_time}
 
 
-def _method_a(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash", pulse="friedlander",
+def method_a(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash", pulse="friedlander",
               incidence="ufc", extrapolate=False) -> MethodA:
     """Method A from a charge and stand-off: the reflected pulse at ``standoff_m`` (normal incidence;
     ``incidence`` does not apply)."""
@@ -148,50 +148,27 @@ def _method_a(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash"
     return MethodA(structure, bp.pulse(pulse), arrival_time=float(bp.arrival_time))
 
 
-#: Load methods by name: factory(structure, *, charge_kg, standoff_m, blast_model, pulse, incidence,
-#: extrapolate) -> LoadStrategy. Methods B and C are registered by :mod:`.face_loads`.
-LOAD_METHODS: dict = {"A": _method_a}
-
-
-def register_load_method(name: str, factory) -> None:
-    """Add (or replace) a load method in :data:`LOAD_METHODS`."""
-    LOAD_METHODS[str(name)] = factory
-
-
-def make_load(method: str, structure, *, charge_kg, standoff_m, blast_model: str = "kingery-bulmash",
-              pulse: str = "friedlander", incidence: str = "ufc", extrapolate: bool = False) -> LoadStrategy:
-    """The blast load of a charge on a structure.
+class PerturbedLoad:
+    """A load strategy whose wrenches are those of ``load`` times ``factor`` (the same arrival
+    and end times): a relative perturbation of the blast of ``factor - 1``.
 
     Parameters
     ----------
-    method : str
-        "A" (here), "B", "C" (:mod:`.face_loads`).
-    structure : structure
-        Any structure of :mod:`blastscale.structures`; the charge lies on the ground at
-        ``x = structure.front_x - standoff_m``, y = 0.
-    charge_kg : float
-        TNT-equivalent charge W [kg].
-    standoff_m : float
-        Stand-off R from the charge to the front face [m].
-    blast_model : str
-        "kingery-bulmash" or "masi2021".
-    pulse : str
-        "friedlander", "triangular" or "impulsive".
-    incidence : str
-        Angle-of-incidence model for B and C ("ufc" or "closed-form").
-    extrapolate : bool
-        Use the blast fits outside their ranges (with a warning).
-
-    Returns
-    -------
-    LoadStrategy
+    load : LoadStrategy
+        The load to perturb.
+    factor : float
+        Multiplier of every wrench [-], > 0.
     """
-    if method not in LOAD_METHODS:
-        raise BlastscaleInputError(f"load method = {method!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
-    return LOAD_METHODS[method](structure, charge_kg=charge_kg, standoff_m=standoff_m, blast_model=blast_model,
-                                pulse=pulse, incidence=incidence, extrapolate=extrapolate)
 
+    def __init__(self, load, factor: float):
+        self.load = load
+        self.factor = float(check_positive("load factor", factor))
+        self.first_arrival = load.first_arrival
+        self.end_time = load.end_time
 
-# Methods B and C register themselves in LOAD_METHODS from their own module; importing it here
-# (after every name it uses from this module exists) makes the registry complete for every user.
-from . import face_loads as _face_loads  # noqa: E402,F401
+    def step_wrenches(self, t0, t1, positions, rotations):
+        """``factor`` x the wrapped load's wrenches (nbody, 6) [N, N m]."""
+        return self.factor * np.asarray(self.load.step_wrenches(t0, t1, positions, rotations))
+
+    def __getattr__(self, name):  # other helpers (delivered_impulse, ...) of the wrapped load
+        return getattr(self.__dict__["load"], name)
