@@ -38,7 +38,7 @@ MALFORMED = [
     ("unknown table", GOOD + "\n[blasts]\ncharge_kg = 1.0\n", "blasts"),
     ("missing charge", GOOD.replace("charge_kg = 50.0", ""), "blast.charge_kg"),
     ("missing kind", GOOD.replace('kind = "block"', ""), "structure.kind"),
-    ("missing scale table", GOOD.replace("[scale]\nlength = 0.005", ""), "scale"),
+    ("missing scale length", GOOD.replace("[scale]\nlength = 0.005", "[scale]\ngravity_ratio = 1.0"), "scale.length"),
     ("wrong type string", GOOD.replace("charge_kg = 50.0", 'charge_kg = "50"'), "blast.charge_kg"),
     ("wrong type bool", GOOD.replace("standoff_m = 2.0", "standoff_m = true"), "blast.standoff_m"),
     ("wrong type table", GOOD.replace("[scale]\nlength = 0.005", "scale = 5"), "scale"),

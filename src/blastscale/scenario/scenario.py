@@ -3,7 +3,7 @@ default, its variants (:meth:`Scenario.with_values`) and its derived values."""
 
 from __future__ import annotations
 
-from typing import Any, Mapping
+from typing import Any, Mapping, Optional
 
 from pydantic import BaseModel, Field, ValidationError
 
@@ -36,7 +36,8 @@ class Scenario(BaseModel):
     title: str = Field("", description="A one-line description")
     structure: Structure
     blast: BlastSpec
-    scale: ScaleSpec
+    scale: Optional[ScaleSpec] = Field(None, description="The specimen's scales; absent: the prototype alone "
+                                       "(no design, no comparison)")
     simulation: SimulationSpec = Field(default_factory=SimulationSpec)
 
     # -- construction ----------------------------------------------------------------
@@ -160,8 +161,11 @@ class Scenario(BaseModel):
     @property
     def density_ratio(self) -> float | None:
         """gamma [-]: from ``model_material`` (library density / prototype density), else
-        ``scale.density_ratio``, else 1; None for Hopkinson-Cranz without one (the law imposes it)."""
+        ``scale.density_ratio``, else 1; None for Hopkinson-Cranz without one (the law imposes it)
+        and for a prototype-only scenario (no ``[scale]``)."""
         sc = self.scale
+        if sc is None:
+            return None
         if sc.model_material is not None:
             return MATERIALS[sc.model_material].density / self.structure.density_kg_m3
         if sc.density_ratio is not None:

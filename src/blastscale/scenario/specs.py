@@ -16,8 +16,9 @@ import annotated_types as at
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from .._validate import BlastscaleInputError
+from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from ..blast.incidence import INCIDENCE_MODELS
-from ..blast.parameters import BLAST_MODELS
+from ..blast.parameters import BLAST_MODELS, DEFAULT_BLAST_MODEL
 from ..sim3d.load_methods import LOAD_METHODS
 from ..structures.materials import MATERIALS
 from .messages import show
@@ -81,7 +82,7 @@ class BlockSpec(BaseModel):
     width_m: Optional[float] = Field(None, gt=0, le=1000, description="Width 2b along the blast [m]")
     depth_m: float = Field(1.0, gt=0, le=1000, description="Depth 2w across the blast [m]")
     density_kg_m3: float = Field(2000.0, gt=0, le=25000, description="Density [kg/m^3]")
-    friction: float = Field(0.7, ge=0, le=10, description="Coulomb friction coefficient mu [-] (3D)")
+    friction: float = Field(DEFAULT_FRICTION, ge=0, le=10, description="Coulomb friction coefficient mu [-] (3D)")
 
     @model_validator(mode="before")
     @classmethod
@@ -107,7 +108,7 @@ class ColumnSpec(BaseModel):
     top_width_m: float = Field(1.28, gt=0, le=100, description="Side or diameter at the top [m]")
     sides: int = Field(32, ge=3, le=256, description="Polygon sides of a circular drum [-]")
     density_kg_m3: float = Field(2700.0, gt=0, le=25000, description="Density [kg/m^3] (marble)")
-    friction: float = Field(0.7, ge=0, le=10, description="Coulomb friction coefficient mu [-]")
+    friction: float = Field(DEFAULT_FRICTION, ge=0, le=10, description="Coulomb friction coefficient mu [-]")
 
 
 class BlastSpec(BaseModel):
@@ -116,7 +117,8 @@ class BlastSpec(BaseModel):
     model_config = _CONFIG
     charge_kg: Pos = Field(description="TNT-equivalent charge W [kg]")
     standoff_m: Pos = Field(description="Stand-off R from the front face [m]")
-    model: str = Field("masi2021", description="Blast model (the paper's Appendix A fits by default)")
+    model: str = Field(DEFAULT_BLAST_MODEL, description="Blast model (the empirical fit): kingery-bulmash (Swisdak "
+                       "1994, the library-wide default) or masi2021 (the paper's Appendix A fits)")
     load: str = Field("A", description="Load method of the 3D engine (paper Methods A, B, C)")
     pulse: Literal["friedlander", "triangular", "impulsive"] = Field("friedlander", description="Pulse shape")
     incidence: str = Field("ufc", description="Angle-of-incidence model (Methods B, C)")
@@ -201,9 +203,11 @@ class SimulationSpec(BaseModel):
     duration_s: float = Field(5.0, gt=0, le=1e5, description="Prototype time simulated after the shock arrival [s]")
     timestep_s: Optional[float] = Field(None, gt=0, le=0.1,
                                         description="Prototype 3D time step [s] (default from the structure)")
-    record_every: int = Field(5, ge=1, le=100000, description="Keep one 3D state every N steps [-]")
+    record_every: Optional[int] = Field(None, ge=1, le=100000, description="Keep one 3D state every N steps [-] "
+                                        "(default: one per millisecond of the 10 m reference structure, 5 for a "
+                                        "block and 4 for a column at any size)")
     samples: int = Field(2001, ge=2, le=10_000_000, description="Planar sampling times over the duration [-]")
-    gravity_m_s2: float = Field(9.81, gt=0, le=1000, description="Prototype gravity g [m/s^2]")
+    gravity_m_s2: float = Field(STANDARD_GRAVITY, gt=0, le=1000, description="Prototype gravity g [m/s^2]")
     restitution: Optional[float] = Field(None, ge=0, le=1,
                                          description="Planar restitution e [-] (default Housner's)")
     critical_charge: bool = Field(True, description="Also search the prototype's critical charge (planar)")

@@ -11,7 +11,8 @@ from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..structures import is_block
 
-__all__ = ["Engine", "ENGINES", "ENSEMBLE", "Context", "contact_settings", "critical_charge_of"]
+__all__ = ["Engine", "ENGINES", "ENSEMBLE", "Context", "contact_settings", "critical_charge_of", "record_every",
+           "REFERENCE_RECORD_INTERVAL"]
 
 
 @dataclass(frozen=True)
@@ -69,6 +70,24 @@ def contact_settings(scenario: Scenario, structure=None):
         raise BlastscaleInputError(f"simulation.contact: {exc}") from None
 
 
+#: Recording interval of the 3D histories at the 10 m reference [s]: one state per millisecond,
+#: i.e. every 5 steps of a block (0.2 ms) and every 4 of a drum stack (0.25 ms), at any size (the
+#: steps scale with the structure, docs/sim3d.md).
+REFERENCE_RECORD_INTERVAL = 1e-3
+
+
+def record_every(scenario: Scenario, structure) -> int:
+    """The 3D recording interval in steps: ``simulation.record_every`` when given, else one state per
+    :data:`REFERENCE_RECORD_INTERVAL` of the structure's reference time step (the same number of
+    steps for the prototype and the specimen, so their grids correspond)."""
+    from ..sim3d.contact import reference_contact
+
+    given = scenario.simulation.record_every
+    if given is not None:
+        return int(given)
+    return max(1, round(REFERENCE_RECORD_INTERVAL / reference_contact(structure).timestep))
+
+
 def _3d_supports(structure) -> Optional[str]:
     return None  # every structure of blastscale.structures runs on the 3D engine
 
@@ -79,7 +98,7 @@ def _run_3d(ctx: Context):
     sc, sim = ctx.scenario, ctx.scenario.simulation
     return compare_structure3d(ctx.structure, ctx.design, load=sc.blast.load, pulse=sc.blast.pulse,
                                incidence=sc.blast.incidence, contact=contact_settings(sc, ctx.structure),
-                               duration=sim.duration_s, record_every=sim.record_every,
+                               duration=sim.duration_s, record_every=record_every(sc, ctx.structure),
                                extrapolate=sc.blast.extrapolate)
 
 
@@ -90,7 +109,7 @@ def _run_ensemble(ctx: Context):
     return ensemble_compare(ctx.structure, ctx.design, n=sim.ensemble_members, perturbation=sim.ensemble_perturbation,
                             load=sc.blast.load, pulse=sc.blast.pulse, incidence=sc.blast.incidence,
                             contact=contact_settings(sc, ctx.structure), duration=sim.duration_s,
-                            record_every=sim.record_every, extrapolate=sc.blast.extrapolate)
+                            record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
 
 
 @dataclass(frozen=True)

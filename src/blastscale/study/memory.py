@@ -27,7 +27,7 @@ def estimate_memory(scenario: Scenario, structure=None) -> int:
         nb = len(getattr(structure, "bodies", ())) or 1
         dt = sim.timestep_s if sim.timestep_s is not None else 2e-4
         steps = sim.duration_s / dt
-        recs = steps / sim.record_every + 1
+        recs = steps / (sim.record_every or 4) + 1  # the default keeps one state per 4 or 5 steps
         runs = 1 + sim.ensemble_members  # an ensemble keeps every member's point histories too
         total += runs * 2 * (steps * 1 + recs * 8 * (13 * nb + 4 * 20 * (2 * nb)))
     return int(total)
