@@ -8,7 +8,7 @@ from scipy.integrate import quad
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.blast import Friedlander, Impulsive, Tabulated, Triangular, blast_parameters, friedlander_decay
-from blastscale.blast.pulses import NegativeDecayWarning, friedlander_impulse_ratio
+from blastscale.blast.friedlander import NegativeDecayWarning, friedlander_impulse_ratio
 
 
 @pytest.mark.parametrize("d", [-0.9, -0.3, 1e-9, 0.5, 3.377, 20.0, 300.0])
@@ -94,7 +94,7 @@ def test_friedlander_cumulative_vectorised_against_quadrature():
     # switch (|d| < 1e-4) and negative ones
     import numpy as np
 
-    from blastscale.blast.pulses import friedlander_cumulative, friedlander_impulse_ratio
+    from blastscale.blast.friedlander import friedlander_cumulative, friedlander_impulse_ratio
 
     d = np.array([-0.9, -1e-5, 0.0, 3e-5, 0.3, 5.0, 40.0])
     x = np.linspace(0.0, 1.0, 2001)
@@ -108,7 +108,7 @@ def test_friedlander_cumulative_vectorised_against_quadrature():
 def test_decay_newton_from_a_nearby_guess_equals_the_bisection():
     import numpy as np
 
-    from blastscale.blast.pulses import friedlander_decay, friedlander_decay_newton
+    from blastscale.blast.friedlander import friedlander_decay, friedlander_decay_newton
 
     k = np.linspace(0.02, 0.7, 60)
     with pytest.warns(Warning):  # k >= 1/2: negative decays (documented warning)

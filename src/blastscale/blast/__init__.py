@@ -2,6 +2,7 @@
 
 from .base import BlastModel, ExtrapolationWarning
 from .faces import FaceLoads, FacePulses, face_loads, oblique_combination
+from .friedlander import friedlander_decay
 from .incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS
 from .kingery_bulmash import KingeryBulmash
 from .masi_fits import Masi2021
@@ -13,7 +14,7 @@ from .parameters import (
     scaled_distance,
     valid_scaled_distance_range,
 )
-from .pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular, friedlander_decay
+from .pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular
 
 __all__ = [
     "BlastModel",

@@ -50,7 +50,7 @@ from .._validate import BlastscaleInputError, check_finite, check_positive, chec
 from .base import BlastModel
 from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_combination, oblique_values
 from .parameters import DEFAULT_BLAST_MODEL, get_blast_model
-from .pulses import (
+from .friedlander import (
     MAX_IMPULSE_RATIO,
     friedlander_cumulative,
     friedlander_decay,

@@ -13,7 +13,8 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
 from .base import BlastModel
-from .pulses import Friedlander, Impulsive, Pulse, Triangular, friedlander_decay
+from .friedlander import friedlander_decay
+from .pulses import Friedlander, Impulsive, Pulse, Triangular
 
 __all__ = [
     "BLAST_MODELS",
