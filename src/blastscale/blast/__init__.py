@@ -1,7 +1,8 @@
 """Blast loads: empirical air-blast models, pulse shapes and per-point parameters (SI)."""
 
 from .base import BlastModel, ExtrapolationWarning
-from .faces import FaceLoads, FacePulses, face_loads, oblique_combination
+from .face_pulses import FacePulses
+from .faces import FaceLoads, face_loads, oblique_combination
 from .friedlander import friedlander_decay
 from .incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS
 from .kingery_bulmash import KingeryBulmash

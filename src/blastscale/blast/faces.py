@@ -18,10 +18,10 @@ instead of loading the whole front face at once with the reflected pulse at the 
   turned away gets the side-on pulse at its own arrival time.
 
 A pressure p on a face pushes with ``-p * area * n_outward`` (the one sign convention of the
-package). :class:`FacePulses` gives the pressure of every face at a time and the **exact**
-impulse of every face over a step [t0, t1] in one vectorised call; the Friedlander decays are
-solved once, on arrays, when the pulses are built (and refined by Newton from a previous
-solution when the geometry moves, :meth:`FaceLoads.pulses`).
+package). :class:`~.face_pulses.FacePulses` gives the pressure of every face at a time and the
+**exact** impulse of every face over a step [t0, t1] in one vectorised call; the Friedlander
+decays are solved once, on arrays, when the pulses are built (and refined by Newton from a
+previous solution when the geometry moves, :meth:`FaceLoads.pulses`).
 
 Incident values for ``masi2021``: the paper's Appendix A fits give the reflected pressure,
 impulse, arrival time and duration only. Oblique faces need the side-on pressure and impulse at
@@ -50,16 +50,11 @@ from .._validate import BlastscaleInputError, check_finite, check_positive, chec
 from .base import BlastModel
 from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_combination, oblique_values
 from .parameters import DEFAULT_BLAST_MODEL, get_blast_model
-from .friedlander import (
-    MAX_IMPULSE_RATIO,
-    friedlander_cumulative,
-    friedlander_decay,
-    friedlander_decay_newton,
-)
+from .face_pulses import FacePulses
+from .friedlander import MAX_IMPULSE_RATIO, friedlander_decay, friedlander_decay_newton
 
 __all__ = [
     "FaceLoads",
-    "FacePulses",
     "face_loads",
     "oblique_combination",
     "MixedModelWarning",
@@ -84,65 +79,6 @@ def _check_shape(shape: str) -> str:
     if shape not in PULSE_SHAPES:
         raise BlastscaleInputError(f"pulse = {shape!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
     return shape
-
-
-@dataclass(frozen=True)
-class FacePulses:
-    """Positive-phase pulses of many faces, all arrays of shape (nface,), times since detonation.
-
-    Attributes
-    ----------
-    kind : str
-        ``"friedlander"`` (paper Eq. 1, decay fitted to the impulse, Eq. 2), ``"triangular"``
-        (equal peak and impulse, duration 2 i / P, Eq. 3) or ``"impulsive"`` (a Dirac of area i at
-        the arrival).
-    arrival_time : ndarray
-        Shock arrival at each face [s] since detonation.
-    peak : ndarray
-        Peak overpressure [Pa] (inf for impulsive).
-    duration : ndarray
-        Time from arrival to the end of the pulse [s] (0 for impulsive).
-    decay : ndarray
-        Friedlander decay coefficient d [-] (0 for the other shapes).
-    impulse : ndarray
-        Total impulse [Pa*s].
-    """
-
-    kind: str
-    arrival_time: np.ndarray
-    peak: np.ndarray
-    duration: np.ndarray
-    decay: np.ndarray
-    impulse: np.ndarray
-
-    @property
-    def end_time(self) -> float:
-        """Latest end of any pulse [s] since detonation."""
-        return float(np.max(self.arrival_time + self.duration))
-
-    def pressure(self, t: float) -> np.ndarray:
-        """Overpressure on every face at time t [s] since detonation, shape (nface,) [Pa]."""
-        if self.kind == "impulsive":
-            return np.zeros_like(self.arrival_time)
-        x = (t - self.arrival_time) / self.duration
-        inside = (x >= 0.0) & (x <= 1.0)
-        xc = np.clip(x, 0.0, 1.0)  # no overflow of exp(-d x) far before an arrival
-        shape = (1.0 - xc) * (np.exp(-self.decay * xc) if self.kind == "friedlander" else 1.0)
-        return np.where(inside, self.peak * shape, 0.0)
-
-    def cumulative_impulse(self, t: float) -> np.ndarray:
-        """Impulse delivered to every face from detonation to t [s], shape (nface,) [Pa*s] (exact)."""
-        s = t - self.arrival_time
-        if self.kind == "impulsive":
-            return np.where(s >= 0.0, self.impulse, 0.0)
-        x = np.clip(s / self.duration, 0.0, 1.0)
-        if self.kind == "friedlander":
-            return self.peak * self.duration * friedlander_cumulative(x, self.decay)
-        return self.peak * self.duration * (x - 0.5 * x**2)
-
-    def impulse_between(self, t0: float, t1: float) -> np.ndarray:
-        """Exact impulse of every face over [t0, t1] [s since detonation], shape (nface,) [Pa*s]."""
-        return self.cumulative_impulse(t1) - self.cumulative_impulse(t0)
 
 
 @dataclass(frozen=True)

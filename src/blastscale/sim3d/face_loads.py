@@ -13,9 +13,9 @@ carry nothing; faces turned away from the charge get the side-on pulse at their 
 Both follow the load interface of :mod:`.loads` (CONTRACTS.md section 2): one time origin, the
 detonation; outward normals, a pressure p on a face pushing with ``-p S (R n)`` at the face
 centre; each step's wrench carries the **exact** impulse of every face over [t0, t1]
-(:class:`~blastscale.blast.faces.FacePulses`). Outside [first_arrival, end_time] a step costs
-nothing; inside, the faces' pulses are rebuilt from the current pose in one vectorised call
-(the Friedlander decays refined by Newton from the previous step's).
+(:class:`~blastscale.blast.face_pulses.FacePulses`). Outside [first_arrival, end_time] a step
+costs nothing; inside, the faces' pulses are rebuilt from the current pose in one vectorised
+call (the Friedlander decays refined by Newton from the previous step's).
 
 The charge stands on the ground at ``(front_x - standoff, 0, 0)`` (a hemispherical surface burst).
 """
