@@ -15,7 +15,7 @@ from .parameters import (
     scaled_distance,
     valid_scaled_distance_range,
 )
-from .pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular
+from .pulses import PULSE_SHAPES, Friedlander, Impulsive, Pulse, Tabulated, Triangular, check_pulse_shape
 
 __all__ = [
     "BlastModel",
@@ -34,6 +34,8 @@ __all__ = [
     "get_blast_model",
     "scaled_distance",
     "valid_scaled_distance_range",
+    "PULSE_SHAPES",
+    "check_pulse_shape",
     "Pulse",
     "Friedlander",
     "Triangular",

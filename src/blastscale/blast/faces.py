@@ -52,33 +52,24 @@ from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_combination, 
 from .parameters import DEFAULT_BLAST_MODEL, get_blast_model
 from .face_pulses import FacePulses
 from .friedlander import MAX_IMPULSE_RATIO, friedlander_decay, friedlander_decay_newton
+from .pulses import check_pulse_shape
 
 __all__ = [
     "FaceLoads",
     "face_loads",
     "oblique_combination",
     "MixedModelWarning",
-    "PULSE_SHAPES",
     "UNIT_NORMAL_TOLERANCE",
 ]
 
 #: Largest accepted | |n| - 1 | for a face normal (catches non-normalised input).
 UNIT_NORMAL_TOLERANCE = 1.0e-6
 
-#: Pulse shapes of :meth:`FaceLoads.pulses`.
-PULSE_SHAPES = ("friedlander", "triangular", "impulsive")
-
 _INCIDENT = ("incident_pressure", "scaled_incident_impulse")
 
 
 class MixedModelWarning(UserWarning):
     """Side-on values for oblique faces come from Kingery-Bulmash beside another model's reflected ones."""
-
-
-def _check_shape(shape: str) -> str:
-    if shape not in PULSE_SHAPES:
-        raise BlastscaleInputError(f"pulse = {shape!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
-    return shape
 
 
 @dataclass(frozen=True)
@@ -177,7 +168,7 @@ class FaceLoads:
         -------
         FacePulses
         """
-        _check_shape(shape)
+        check_pulse_shape(shape)
         ta = self.arrival_time.ravel()
         P = self.pressure.ravel()
         i = self.impulse.ravel()

@@ -7,7 +7,9 @@ All pulses are small immutable objects with SI attributes and vectorised methods
 * ``peak`` [Pa], ``duration`` [s] (time at which the pressure returns to zero),
   ``impulse`` [Pa*s] (total area), and ``kind`` (a short string).
 
-The Friedlander decay coefficient itself (paper Eq. 2 and its inverse) is in :mod:`.friedlander`.
+:data:`PULSE_SHAPES` names the shapes built from blast parameters (peak, duration, impulse) all
+over the package, and :func:`check_pulse_shape` checks a name against it. The Friedlander decay
+coefficient itself (paper Eq. 2 and its inverse) is in :mod:`.friedlander`.
 
 References
 ----------
@@ -35,7 +37,38 @@ __all__ = [
     "Triangular",
     "Impulsive",
     "Tabulated",
+    "PULSE_SHAPES",
+    "check_pulse_shape",
 ]
+
+#: Pulse shapes built from blast parameters (peak, duration, impulse): the modified Friedlander
+#: pulse (paper Eq. 1, decay fitted to the impulse, Eq. 2), the triangle of equal peak and
+#: impulse (Eq. 3) and the impulsive limit (a Dirac of the same impulse). The one vocabulary of
+#: ``pulse=`` arguments across the package (``tabulated`` pulses are built from a table instead).
+PULSE_SHAPES = ("friedlander", "triangular", "impulsive")
+
+
+def check_pulse_shape(name: str) -> str:
+    """Check a pulse-shape name against :data:`PULSE_SHAPES`.
+
+    Parameters
+    ----------
+    name : str
+        ``"friedlander"``, ``"triangular"`` or ``"impulsive"``.
+
+    Returns
+    -------
+    str
+        ``name`` itself.
+
+    Raises
+    ------
+    BlastscaleInputError
+        If ``name`` is not one of :data:`PULSE_SHAPES`.
+    """
+    if name not in PULSE_SHAPES:
+        raise BlastscaleInputError(f"pulse = {name!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
+    return name
 
 
 class Pulse(abc.ABC):

@@ -53,14 +53,13 @@ import annotated_types as at
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from .._validate import BlastscaleInputError
+from ..blast.pulses import PULSE_SHAPES
 from .materials import MATERIALS
 
 __all__ = ["Scenario", "load_scenario", "parse_ratio", "BlockSpec", "ColumnSpec", "BlastSpec", "ScaleSpec",
            "SimulationSpec", "ContactSpec"]
 
 _CONFIG = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True, frozen=True, validate_default=True)
-
-PULSES = ("friedlander", "triangular", "impulsive")
 
 
 def parse_ratio(value: Any, name: str = "scale") -> float:
@@ -166,7 +165,7 @@ class BlastSpec(BaseModel):
     standoff_m: Pos = Field(description="Stand-off R from the front face [m]")
     model: str = Field("masi2021", description="Blast model (the paper's Appendix A fits by default)")
     load: str = Field("A", description="Load method of the 3D engine (paper Methods A, B, C)")
-    pulse: Literal["friedlander", "triangular", "impulsive"] = Field("friedlander", description="Pulse shape")
+    pulse: Literal[PULSE_SHAPES] = Field("friedlander", description="Pulse shape")
     incidence: str = Field("ufc", description="Angle-of-incidence model (Methods B, C)")
     extrapolate: bool = Field(False, description="Evaluate the blast fits outside their ranges (warns)")
 

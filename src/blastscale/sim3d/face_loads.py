@@ -27,9 +27,10 @@ from dataclasses import replace
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
-from ..blast.faces import _check_shape, _loads_at, incident_source
+from ..blast.faces import _loads_at, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
+from ..blast.pulses import check_pulse_shape
 from .loads import _faces_array, register_load_method
 
 __all__ = ["FaceLoadStrategy", "arrival_spread", "arrival_spread_similarity", "method_b", "method_c"]
@@ -81,7 +82,7 @@ class FaceLoadStrategy:
             raise BlastscaleInputError("faces = () is out of range: at least one loaded face is needed")
         self.W = float(check_positive("charge", charge_kg, "kg"))
         self.charge_position = np.asarray(charge_position, dtype=float).reshape(3)
-        self.shape = _check_shape(pulse)
+        self.shape = check_pulse_shape(pulse)
         self.incidence = check_incidence(incidence)
         self.model = get_blast_model(blast_model)
         self.incident_model = incident_source(self.model)
