@@ -48,15 +48,17 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_positive_scalar
 from .base import BlastModel
-from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_combination, oblique_values
-from .parameters import DEFAULT_BLAST_MODEL, get_blast_model
 from .face_pulses import FacePulses
 from .friedlander import MAX_IMPULSE_RATIO, friedlander_decay, friedlander_decay_newton
+from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_combination, oblique_values
+from .parameters import DEFAULT_BLAST_MODEL, get_blast_model
 from .pulses import check_pulse_shape
 
 __all__ = [
     "FaceLoads",
     "face_loads",
+    "face_loads_unchecked",
+    "incident_source",
     "oblique_combination",
     "MixedModelWarning",
     "UNIT_NORMAL_TOLERANCE",
@@ -290,17 +292,56 @@ def face_loads(
         )
     m = get_blast_model(model)
     mi = incident_source(m) if incident_model is None else incident_model
-    return _loads_at(m, mi, incidence, W, xc, x, np.array(n, dtype=float), np.array(S, dtype=float), extrapolate)
+    return face_loads_unchecked(m, mi, incidence, W, xc, x, np.array(n, dtype=float), np.array(S, dtype=float),
+                                extrapolate)
 
 
-def _loads_at(m, mi, incidence, W, xc, x, n, S, extrapolate) -> FaceLoads:
-    """FaceLoads of faces at centres ``x`` [m] with outward normals ``n`` and areas ``S`` [m^2]
-    from a charge at ``xc`` [m] (distance and incidence here; the other checks by the callers)."""
-    to_charge = xc - x
+def face_loads_unchecked(model, incident_model, incidence, charge, charge_position, centres, normals, areas,
+                         extrapolate) -> FaceLoads:
+    """:func:`face_loads` without its input checks, for callers that re-evaluate the same faces
+    at new positions many times (the faces of moving bodies, :mod:`blastscale.sim3d.face_loads`).
+
+    Computes the distances :math:`R = |\\mathbf{x}_c - \\mathbf{x}|` and the cosines of incidence
+    :math:`\\cos a = \\mathbf{n} \\cdot (\\mathbf{x}_c - \\mathbf{x}) / R` (module docstring), then the
+    blast parameters at :math:`Z = R / W^{1/3}` and the oblique values; only R > 0 is checked.
+
+    Parameters
+    ----------
+    model : BlastModel
+        Empirical model of the reflected values, arrival times and durations (already resolved,
+        :func:`~blastscale.blast.get_blast_model`).
+    incident_model : BlastModel
+        Source of the side-on values (:func:`incident_source` of ``model``).
+    incidence : str
+        Incidence model, already checked (``"ufc"`` or ``"closed-form"``).
+    charge : float
+        TNT-equivalent charge W [kg], > 0.
+    charge_position : ndarray, shape (3,)
+        Charge centre [m].
+    centres : ndarray, shape (..., 3)
+        Face centre points [m].
+    normals : ndarray, shape (..., 3)
+        Outward unit normals of the faces [-], same shape as ``centres``.
+    areas : ndarray, shape (...)
+        Face areas S [m^2], > 0, the shape of the face set.
+    extrapolate : bool
+        Evaluate the fits outside their Z ranges (with an ExtrapolationWarning).
+
+    Returns
+    -------
+    FaceLoads
+
+    Raises
+    ------
+    BlastscaleInputError
+        If a face centre is at the charge (R = 0); OutOfRangeError for Z outside a fit's range.
+    """
+    to_charge = charge_position - centres
     R = np.linalg.norm(to_charge, axis=-1)
     if np.any(R <= 0.0):
         raise BlastscaleInputError("face centre distance to the charge = 0 m is out of range: must be > 0 m")
-    return _evaluate(m, mi, incidence, W, R, np.einsum("...k,...k->...", n, to_charge) / R, S, n, extrapolate)
+    cos_a = np.einsum("...k,...k->...", normals, to_charge) / R
+    return _evaluate(model, incident_model, incidence, charge, R, cos_a, areas, normals, extrapolate)
 
 
 def _evaluate(m, mi, incidence, W, R, cos_a, S, n, extrapolate) -> FaceLoads:

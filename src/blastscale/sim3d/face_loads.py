@@ -27,7 +27,7 @@ from dataclasses import replace
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
-from ..blast.faces import _loads_at, incident_source
+from ..blast.faces import face_loads_unchecked, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
 from ..blast.pulses import check_pulse_shape
@@ -139,8 +139,8 @@ class FaceLoadStrategy:
     def face_loads_at(self, positions, rotations):
         """:class:`~blastscale.blast.faces.FaceLoads` of the loaded faces at the given poses."""
         x, n = self.world_faces(positions, rotations)
-        return _loads_at(self.model, self.incident_model, self.incidence, self.W, self.charge_position, x, n,
-                         self.areas, self.extrapolate)
+        return face_loads_unchecked(self.model, self.incident_model, self.incidence, self.W, self.charge_position,
+                                    x, n, self.areas, self.extrapolate)
 
     # --------------------------------------------------------------- interface
     def step_wrenches(self, t0, t1, positions, rotations) -> np.ndarray:
