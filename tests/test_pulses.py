@@ -115,3 +115,37 @@ def test_decay_newton_from_a_nearby_guess_equals_the_bisection():
         cold = friedlander_decay(np.ones_like(k), np.ones_like(k), k)
     warm = friedlander_decay_newton(k, cold * 1.05 + 0.01)
     np.testing.assert_allclose(warm, cold, rtol=1e-10, atol=1e-12)
+
+
+def test_one_pulse_shape_vocabulary_for_every_entry_point():
+    # blast.pulses is the one home of the pulse names: the blast parameters, the faces' pulses and
+    # a scenario accept exactly PULSE_SHAPES, and refuse anything else with the same message.
+    from blastscale.blast import PULSE_SHAPES, check_pulse_shape, face_loads
+    from blastscale.io.scenario import BlastSpec
+
+    assert PULSE_SHAPES == ("friedlander", "triangular", "impulsive")
+    msg = "pulse = 'tabulated' is not known: valid values are friedlander, triangular, impulsive"
+    for shape in PULSE_SHAPES:
+        assert check_pulse_shape(shape) == shape
+    bp = blast_parameters(10.0, 5.0)
+    fl = face_loads(10.0, (0.0, 0.0, 0.0), (5.0, 0.0, 0.5), (-1.0, 0.0, 0.0))
+    for check in (check_pulse_shape, bp.pulse, fl.pulses):
+        with pytest.raises(BlastscaleInputError) as err:
+            check("tabulated")
+        assert str(err.value) == msg
+    assert [bp.pulse(s).kind for s in PULSE_SHAPES] == [fl.pulses(s).kind for s in PULSE_SHAPES] == list(PULSE_SHAPES)
+    assert BlastSpec.model_json_schema()["properties"]["pulse"]["enum"] == list(PULSE_SHAPES)
+
+
+def test_blast_package_exports_every_public_name():
+    # the names blastscale.blast exported before the pulses/faces split (#14), and the new ones
+    import blastscale.blast as blast
+
+    before = {"BlastModel", "KingeryBulmash", "Masi2021", "FaceLoads", "FacePulses", "INCIDENCE_MODELS",
+              "DEFAULT_INCIDENCE", "face_loads", "oblique_combination", "ExtrapolationWarning", "BLAST_MODELS",
+              "BlastParameters", "blast_parameters", "get_blast_model", "scaled_distance",
+              "valid_scaled_distance_range", "Pulse", "Friedlander", "Triangular", "Impulsive", "Tabulated",
+              "friedlander_decay"}
+    assert before | {"PULSE_SHAPES", "check_pulse_shape", "face_loads_unchecked"} <= set(blast.__all__)
+    for name in blast.__all__:
+        assert getattr(blast, name) is not None, name
