@@ -8,7 +8,7 @@ from scipy.integrate import quad
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.blast import Friedlander, Impulsive, Tabulated, Triangular, blast_parameters, friedlander_decay
-from blastscale.blast.pulses import NegativeDecayWarning, friedlander_impulse_ratio
+from blastscale.blast.friedlander import NegativeDecayWarning, friedlander_impulse_ratio
 
 
 @pytest.mark.parametrize("d", [-0.9, -0.3, 1e-9, 0.5, 3.377, 20.0, 300.0])
@@ -94,7 +94,7 @@ def test_friedlander_cumulative_vectorised_against_quadrature():
     # switch (|d| < 1e-4) and negative ones
     import numpy as np
 
-    from blastscale.blast.pulses import friedlander_cumulative, friedlander_impulse_ratio
+    from blastscale.blast.friedlander import friedlander_cumulative, friedlander_impulse_ratio
 
     d = np.array([-0.9, -1e-5, 0.0, 3e-5, 0.3, 5.0, 40.0])
     x = np.linspace(0.0, 1.0, 2001)
@@ -108,10 +108,44 @@ def test_friedlander_cumulative_vectorised_against_quadrature():
 def test_decay_newton_from_a_nearby_guess_equals_the_bisection():
     import numpy as np
 
-    from blastscale.blast.pulses import friedlander_decay, friedlander_decay_newton
+    from blastscale.blast.friedlander import friedlander_decay, friedlander_decay_newton
 
     k = np.linspace(0.02, 0.7, 60)
     with pytest.warns(Warning):  # k >= 1/2: negative decays (documented warning)
         cold = friedlander_decay(np.ones_like(k), np.ones_like(k), k)
     warm = friedlander_decay_newton(k, cold * 1.05 + 0.01)
     np.testing.assert_allclose(warm, cold, rtol=1e-10, atol=1e-12)
+
+
+def test_one_pulse_shape_vocabulary_for_every_entry_point():
+    # blast.pulses is the one home of the pulse names: the blast parameters, the faces' pulses and
+    # a scenario accept exactly PULSE_SHAPES, and refuse anything else with the same message.
+    from blastscale.blast import PULSE_SHAPES, check_pulse_shape, face_loads
+    from blastscale.scenario import BlastSpec
+
+    assert PULSE_SHAPES == ("friedlander", "triangular", "impulsive")
+    msg = "pulse = 'tabulated' is not known: valid values are friedlander, triangular, impulsive"
+    for shape in PULSE_SHAPES:
+        assert check_pulse_shape(shape) == shape
+    bp = blast_parameters(10.0, 5.0)
+    fl = face_loads(10.0, (0.0, 0.0, 0.0), (5.0, 0.0, 0.5), (-1.0, 0.0, 0.0))
+    for check in (check_pulse_shape, bp.pulse, fl.pulses):
+        with pytest.raises(BlastscaleInputError) as err:
+            check("tabulated")
+        assert str(err.value) == msg
+    assert [bp.pulse(s).kind for s in PULSE_SHAPES] == [fl.pulses(s).kind for s in PULSE_SHAPES] == list(PULSE_SHAPES)
+    assert BlastSpec.model_json_schema()["properties"]["pulse"]["enum"] == list(PULSE_SHAPES)
+
+
+def test_blast_package_exports_every_public_name():
+    # the names blastscale.blast exported before the pulses/faces split (#14), and the new ones
+    import blastscale.blast as blast
+
+    before = {"BlastModel", "KingeryBulmash", "Masi2021", "FaceLoads", "FacePulses", "INCIDENCE_MODELS",
+              "DEFAULT_INCIDENCE", "face_loads", "oblique_combination", "ExtrapolationWarning", "BLAST_MODELS",
+              "BlastParameters", "blast_parameters", "get_blast_model", "scaled_distance",
+              "valid_scaled_distance_range", "Pulse", "Friedlander", "Triangular", "Impulsive", "Tabulated",
+              "friedlander_decay"}
+    assert before | {"PULSE_SHAPES", "check_pulse_shape", "face_loads_unchecked"} <= set(blast.__all__)
+    for name in blast.__all__:
+        assert getattr(blast, name) is not None, name

@@ -48,6 +48,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
 from ..blast.parameters import DEFAULT_BLAST_MODEL
+from ..blast.pulses import check_pulse_shape
 from ..rocking.solver import DEFAULT_SOLVER, RockingResult, RockingSolver, _check_count
 from ..rocking.system import RockingSystem
 from ..similitude import ModelDesign, design_model
@@ -55,8 +56,6 @@ from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .compare import align, compare_responses, upscale_dataset
 
 __all__ = ["RockingSimilarity", "compare_rocking", "rocking_dataset", "upscaled_summary"]
-
-_SHAPES = ("friedlander", "triangular", "impulsive")
 
 
 def _opt_div(x: float | None, f: float) -> float | None:
@@ -275,8 +274,7 @@ def compare_rocking(
     """
     if not isinstance(block, RectangularBlock):
         raise BlastscaleInputError(f"block must be a RectangularBlock, got {type(block).__name__}")
-    if pulse not in _SHAPES:
-        raise BlastscaleInputError(f"pulse = {pulse!r} is not known: valid values are {', '.join(_SHAPES)}")
+    check_pulse_shape(pulse)
     dur = float(check_positive("duration", duration, "s"))
     n_samples = _check_count("n_samples", n_samples, 2)
     solver = solver or DEFAULT_SOLVER

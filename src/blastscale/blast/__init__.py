@@ -1,7 +1,9 @@
 """Blast loads: empirical air-blast models, pulse shapes and per-point parameters (SI)."""
 
 from .base import BlastModel, ExtrapolationWarning
-from .faces import FaceLoads, FacePulses, face_loads, oblique_combination
+from .face_pulses import FacePulses
+from .faces import FaceLoads, face_loads, face_loads_unchecked, oblique_combination
+from .friedlander import friedlander_decay
 from .incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS
 from .kingery_bulmash import KingeryBulmash
 from .masi_fits import Masi2021
@@ -13,7 +15,7 @@ from .parameters import (
     scaled_distance,
     valid_scaled_distance_range,
 )
-from .pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular, friedlander_decay
+from .pulses import PULSE_SHAPES, Friedlander, Impulsive, Pulse, Tabulated, Triangular, check_pulse_shape
 
 __all__ = [
     "BlastModel",
@@ -24,6 +26,7 @@ __all__ = [
     "INCIDENCE_MODELS",
     "DEFAULT_INCIDENCE",
     "face_loads",
+    "face_loads_unchecked",
     "oblique_combination",
     "ExtrapolationWarning",
     "BLAST_MODELS",
@@ -32,6 +35,8 @@ __all__ = [
     "get_blast_model",
     "scaled_distance",
     "valid_scaled_distance_range",
+    "PULSE_SHAPES",
+    "check_pulse_shape",
     "Pulse",
     "Friedlander",
     "Triangular",

@@ -18,10 +18,10 @@ instead of loading the whole front face at once with the reflected pulse at the 
   turned away gets the side-on pulse at its own arrival time.
 
 A pressure p on a face pushes with ``-p * area * n_outward`` (the one sign convention of the
-package). :class:`FacePulses` gives the pressure of every face at a time and the **exact**
-impulse of every face over a step [t0, t1] in one vectorised call; the Friedlander decays are
-solved once, on arrays, when the pulses are built (and refined by Newton from a previous
-solution when the geometry moves, :meth:`FaceLoads.pulses`).
+package). :class:`~.face_pulses.FacePulses` gives the pressure of every face at a time and the
+**exact** impulse of every face over a step [t0, t1] in one vectorised call; the Friedlander
+decays are solved once, on arrays, when the pulses are built (and refined by Newton from a
+previous solution when the geometry moves, :meth:`FaceLoads.pulses`).
 
 Incident values for ``masi2021``: the paper's Appendix A fits give the reflected pressure,
 impulse, arrival time and duration only. Oblique faces need the side-on pressure and impulse at
@@ -48,101 +48,30 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_positive_scalar
 from .base import BlastModel
+from .face_pulses import FacePulses
+from .friedlander import MAX_IMPULSE_RATIO, friedlander_decay, friedlander_decay_newton
 from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_combination, oblique_values
 from .parameters import DEFAULT_BLAST_MODEL, get_blast_model
-from .pulses import (
-    MAX_IMPULSE_RATIO,
-    friedlander_cumulative,
-    friedlander_decay,
-    friedlander_decay_newton,
-)
+from .pulses import check_pulse_shape
 
 __all__ = [
     "FaceLoads",
-    "FacePulses",
     "face_loads",
+    "face_loads_unchecked",
+    "incident_source",
     "oblique_combination",
     "MixedModelWarning",
-    "PULSE_SHAPES",
     "UNIT_NORMAL_TOLERANCE",
 ]
 
 #: Largest accepted | |n| - 1 | for a face normal (catches non-normalised input).
 UNIT_NORMAL_TOLERANCE = 1.0e-6
 
-#: Pulse shapes of :meth:`FaceLoads.pulses`.
-PULSE_SHAPES = ("friedlander", "triangular", "impulsive")
-
 _INCIDENT = ("incident_pressure", "scaled_incident_impulse")
 
 
 class MixedModelWarning(UserWarning):
     """Side-on values for oblique faces come from Kingery-Bulmash beside another model's reflected ones."""
-
-
-def _check_shape(shape: str) -> str:
-    if shape not in PULSE_SHAPES:
-        raise BlastscaleInputError(f"pulse = {shape!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
-    return shape
-
-
-@dataclass(frozen=True)
-class FacePulses:
-    """Positive-phase pulses of many faces, all arrays of shape (nface,), times since detonation.
-
-    Attributes
-    ----------
-    kind : str
-        ``"friedlander"`` (paper Eq. 1, decay fitted to the impulse, Eq. 2), ``"triangular"``
-        (equal peak and impulse, duration 2 i / P, Eq. 3) or ``"impulsive"`` (a Dirac of area i at
-        the arrival).
-    arrival_time : ndarray
-        Shock arrival at each face [s] since detonation.
-    peak : ndarray
-        Peak overpressure [Pa] (inf for impulsive).
-    duration : ndarray
-        Time from arrival to the end of the pulse [s] (0 for impulsive).
-    decay : ndarray
-        Friedlander decay coefficient d [-] (0 for the other shapes).
-    impulse : ndarray
-        Total impulse [Pa*s].
-    """
-
-    kind: str
-    arrival_time: np.ndarray
-    peak: np.ndarray
-    duration: np.ndarray
-    decay: np.ndarray
-    impulse: np.ndarray
-
-    @property
-    def end_time(self) -> float:
-        """Latest end of any pulse [s] since detonation."""
-        return float(np.max(self.arrival_time + self.duration))
-
-    def pressure(self, t: float) -> np.ndarray:
-        """Overpressure on every face at time t [s] since detonation, shape (nface,) [Pa]."""
-        if self.kind == "impulsive":
-            return np.zeros_like(self.arrival_time)
-        x = (t - self.arrival_time) / self.duration
-        inside = (x >= 0.0) & (x <= 1.0)
-        xc = np.clip(x, 0.0, 1.0)  # no overflow of exp(-d x) far before an arrival
-        shape = (1.0 - xc) * (np.exp(-self.decay * xc) if self.kind == "friedlander" else 1.0)
-        return np.where(inside, self.peak * shape, 0.0)
-
-    def cumulative_impulse(self, t: float) -> np.ndarray:
-        """Impulse delivered to every face from detonation to t [s], shape (nface,) [Pa*s] (exact)."""
-        s = t - self.arrival_time
-        if self.kind == "impulsive":
-            return np.where(s >= 0.0, self.impulse, 0.0)
-        x = np.clip(s / self.duration, 0.0, 1.0)
-        if self.kind == "friedlander":
-            return self.peak * self.duration * friedlander_cumulative(x, self.decay)
-        return self.peak * self.duration * (x - 0.5 * x**2)
-
-    def impulse_between(self, t0: float, t1: float) -> np.ndarray:
-        """Exact impulse of every face over [t0, t1] [s since detonation], shape (nface,) [Pa*s]."""
-        return self.cumulative_impulse(t1) - self.cumulative_impulse(t0)
 
 
 @dataclass(frozen=True)
@@ -241,7 +170,7 @@ class FaceLoads:
         -------
         FacePulses
         """
-        _check_shape(shape)
+        check_pulse_shape(shape)
         ta = self.arrival_time.ravel()
         P = self.pressure.ravel()
         i = self.impulse.ravel()
@@ -363,17 +292,56 @@ def face_loads(
         )
     m = get_blast_model(model)
     mi = incident_source(m) if incident_model is None else incident_model
-    return _loads_at(m, mi, incidence, W, xc, x, np.array(n, dtype=float), np.array(S, dtype=float), extrapolate)
+    return face_loads_unchecked(m, mi, incidence, W, xc, x, np.array(n, dtype=float), np.array(S, dtype=float),
+                                extrapolate)
 
 
-def _loads_at(m, mi, incidence, W, xc, x, n, S, extrapolate) -> FaceLoads:
-    """FaceLoads of faces at centres ``x`` [m] with outward normals ``n`` and areas ``S`` [m^2]
-    from a charge at ``xc`` [m] (distance and incidence here; the other checks by the callers)."""
-    to_charge = xc - x
+def face_loads_unchecked(model, incident_model, incidence, charge, charge_position, centres, normals, areas,
+                         extrapolate) -> FaceLoads:
+    """:func:`face_loads` without its input checks, for callers that re-evaluate the same faces
+    at new positions many times (the faces of moving bodies, :mod:`blastscale.sim3d.face_loads`).
+
+    Computes the distances :math:`R = |\\mathbf{x}_c - \\mathbf{x}|` and the cosines of incidence
+    :math:`\\cos a = \\mathbf{n} \\cdot (\\mathbf{x}_c - \\mathbf{x}) / R` (module docstring), then the
+    blast parameters at :math:`Z = R / W^{1/3}` and the oblique values; only R > 0 is checked.
+
+    Parameters
+    ----------
+    model : BlastModel
+        Empirical model of the reflected values, arrival times and durations (already resolved,
+        :func:`~blastscale.blast.get_blast_model`).
+    incident_model : BlastModel
+        Source of the side-on values (:func:`incident_source` of ``model``).
+    incidence : str
+        Incidence model, already checked (``"ufc"`` or ``"closed-form"``).
+    charge : float
+        TNT-equivalent charge W [kg], > 0.
+    charge_position : ndarray, shape (3,)
+        Charge centre [m].
+    centres : ndarray, shape (..., 3)
+        Face centre points [m].
+    normals : ndarray, shape (..., 3)
+        Outward unit normals of the faces [-], same shape as ``centres``.
+    areas : ndarray, shape (...)
+        Face areas S [m^2], > 0, the shape of the face set.
+    extrapolate : bool
+        Evaluate the fits outside their Z ranges (with an ExtrapolationWarning).
+
+    Returns
+    -------
+    FaceLoads
+
+    Raises
+    ------
+    BlastscaleInputError
+        If a face centre is at the charge (R = 0); OutOfRangeError for Z outside a fit's range.
+    """
+    to_charge = charge_position - centres
     R = np.linalg.norm(to_charge, axis=-1)
     if np.any(R <= 0.0):
         raise BlastscaleInputError("face centre distance to the charge = 0 m is out of range: must be > 0 m")
-    return _evaluate(m, mi, incidence, W, R, np.einsum("...k,...k->...", n, to_charge) / R, S, n, extrapolate)
+    cos_a = np.einsum("...k,...k->...", normals, to_charge) / R
+    return _evaluate(model, incident_model, incidence, charge, R, cos_a, areas, normals, extrapolate)
 
 
 def _evaluate(m, mi, incidence, W, R, cos_a, S, n, extrapolate) -> FaceLoads:

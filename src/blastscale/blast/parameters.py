@@ -13,7 +13,8 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
 from .base import BlastModel
-from .pulses import Friedlander, Impulsive, Pulse, Triangular, friedlander_decay
+from .friedlander import friedlander_decay
+from .pulses import Friedlander, Impulsive, Pulse, Triangular, check_pulse_shape
 
 __all__ = [
     "BLAST_MODELS",
@@ -134,13 +135,12 @@ class BlastParameters:
                 f"pulse of blast parameters with shape {np.shape(self.reflected_pressure)}: a pulse needs one "
                 "charge and one stand-off (index the arrays first)"
             )
+        check_pulse_shape(shape)
         if shape == "friedlander":
             return Friedlander(self.reflected_pressure, self.positive_duration, self.friedlander_decay)
         if shape == "triangular":
             return Triangular(self.reflected_pressure, self.reflected_impulse)
-        if shape == "impulsive":
-            return Impulsive(self.reflected_impulse)
-        raise BlastscaleInputError(f"pulse = {shape!r} is not known: valid values are friedlander, triangular, impulsive")
+        return Impulsive(self.reflected_impulse)
 
     def to_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (as written by the CLI's ``--json``)."""

@@ -76,7 +76,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_range
 from ..blast.base import ExtrapolationWarning
-from ..blast.faces import _check_shape
+from ..blast.pulses import check_pulse_shape as _check_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters, get_blast_model, valid_scaled_distance_range
 from ..blast.pulses import Pulse, friedlander_impulse_ratio
 from . import _kernel as K

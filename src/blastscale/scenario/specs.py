@@ -19,6 +19,7 @@ from .._validate import BlastscaleInputError
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from ..blast.incidence import INCIDENCE_MODELS
 from ..blast.parameters import BLAST_MODELS, DEFAULT_BLAST_MODEL
+from ..blast.pulses import PULSE_SHAPES
 from ..sim3d.load_methods import LOAD_METHODS
 from ..structures.materials import MATERIALS
 from .messages import show
@@ -120,7 +121,7 @@ class BlastSpec(BaseModel):
     model: str = Field(DEFAULT_BLAST_MODEL, description="Blast model (the empirical fit): kingery-bulmash (Swisdak "
                        "1994, the library-wide default) or masi2021 (the paper's Appendix A fits)")
     load: str = Field("A", description="Load method of the 3D engine (paper Methods A, B, C)")
-    pulse: Literal["friedlander", "triangular", "impulsive"] = Field("friedlander", description="Pulse shape")
+    pulse: Literal[PULSE_SHAPES] = Field("friedlander", description="Pulse shape")
     incidence: str = Field("ufc", description="Angle-of-incidence model (Methods B, C)")
     extrapolate: bool = Field(False, description="Evaluate the blast fits outside their ranges (warns)")
 

@@ -13,9 +13,9 @@ carry nothing; faces turned away from the charge get the side-on pulse at their 
 Both follow the load interface of :mod:`.loads` (CONTRACTS.md section 2): one time origin, the
 detonation; outward normals, a pressure p on a face pushing with ``-p S (R n)`` at the face
 centre; each step's wrench carries the **exact** impulse of every face over [t0, t1]
-(:class:`~blastscale.blast.faces.FacePulses`). Outside [first_arrival, end_time] a step costs
-nothing; inside, the faces' pulses are rebuilt from the current pose in one vectorised call
-(the Friedlander decays refined by Newton from the previous step's).
+(:class:`~blastscale.blast.face_pulses.FacePulses`). Outside [first_arrival, end_time] a step
+costs nothing; inside, the faces' pulses are rebuilt from the current pose in one vectorised
+call (the Friedlander decays refined by Newton from the previous step's).
 
 The charge stands on the ground at ``(front_x - standoff, 0, 0)`` (a hemispherical surface burst).
 """
@@ -27,9 +27,10 @@ from dataclasses import replace
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
-from ..blast.faces import _check_shape, _loads_at, incident_source
+from ..blast.faces import face_loads_unchecked, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
+from ..blast.pulses import check_pulse_shape
 from .loads import faces_array
 
 __all__ = ["FaceLoadStrategy", "arrival_spread", "method_b", "method_c"]
@@ -81,7 +82,7 @@ class FaceLoadStrategy:
             raise BlastscaleInputError("faces = () is out of range: at least one loaded face is needed")
         self.W = float(check_positive("charge", charge_kg, "kg"))
         self.charge_position = np.asarray(charge_position, dtype=float).reshape(3)
-        self.shape = _check_shape(pulse)
+        self.shape = check_pulse_shape(pulse)
         self.incidence = check_incidence(incidence)
         self.model = get_blast_model(blast_model)
         self.incident_model = incident_source(self.model)
@@ -138,8 +139,8 @@ class FaceLoadStrategy:
     def face_loads_at(self, positions, rotations):
         """:class:`~blastscale.blast.faces.FaceLoads` of the loaded faces at the given poses."""
         x, n = self.world_faces(positions, rotations)
-        return _loads_at(self.model, self.incident_model, self.incidence, self.W, self.charge_position, x, n,
-                         self.areas, self.extrapolate)
+        return face_loads_unchecked(self.model, self.incident_model, self.incidence, self.W, self.charge_position,
+                                    x, n, self.areas, self.extrapolate)
 
     # --------------------------------------------------------------- interface
     def step_wrenches(self, t0, t1, positions, rotations) -> np.ndarray:
