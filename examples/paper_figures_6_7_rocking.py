@@ -37,10 +37,11 @@ import math
 
 from _gallery import done, parse_args, plt, save
 
-from blastscale.analysis.rocking_similarity import compare_rocking
 from blastscale.plots.rocking import plot_angle, plot_angular_velocity, plot_similarity
 from blastscale.rocking import RockingSystem, critical_charge
+from blastscale.scenario import Scenario
 from blastscale.structures import RectangularBlock
+from blastscale.study import Study
 
 CHARGES = (50.0, 100.0, 79.8)  # paper cases (a), (b), (c) [kg]
 STANDOFF, SCALE, MODEL = 2.0, 1 / 200, "masi2021"
@@ -79,8 +80,14 @@ def main() -> None:
 
     for gamma, fig_name, label in ((1.0, "figure_9_upscaled_gamma_1.png", "same material"),
                                    (0.07, "figure_10_upscaled_gamma_0p07.png", "balsa model")):
-        sims = {W: compare_rocking(BLOCK, W, STANDOFF, SCALE, gamma, model=MODEL, duration=duration, n_samples=n)
-                for W in CHARGES}
+        base = Scenario.from_dict({
+            "title": f"paper block, lambda = 1/200, gamma = {gamma:g}",
+            "structure": {"kind": "block", "height_m": BLOCK.height, "alpha_deg": 15.0, "density_kg_m3": 2000.0},
+            "blast": {"charge_kg": CHARGES[0], "standoff_m": STANDOFF, "model": MODEL},
+            "scale": {"length": SCALE, "density_ratio": gamma},
+            "simulation": {"engine": "planar", "duration_s": duration, "samples": n, "critical_charge": False},
+        })
+        sims = {W: Study(base.with_values({"charge_kg": W})).run().planar for W in CHARGES}
         for W, s in sims.items():
             d = s.design
             print(f"gamma = {gamma:g}, W_p = {W:5.1f} kg: model {d.model_charge_kg * 1e6:.4g} mg at "

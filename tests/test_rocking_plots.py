@@ -12,7 +12,8 @@ mpl.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from blastscale._validate import BlastscaleInputError  # noqa: E402
-from blastscale.analysis.rocking_similarity import compare_rocking  # noqa: E402
+from blastscale.scenario import Scenario  # noqa: E402
+from blastscale.study import Study  # noqa: E402
 from blastscale.blast import blast_parameters  # noqa: E402
 from blastscale.plots.rocking import (  # noqa: E402
     plot_angle,
@@ -26,6 +27,13 @@ from blastscale.rocking import pi_diagram, simulate  # noqa: E402
 from blastscale.structures.block import RectangularBlock  # noqa: E402
 
 BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+
+
+def _planar(charge, duration, samples):
+    """The Study's planar comparison of the paper's block at lambda = 1/20 (masi2021)."""
+    sc = Scenario.default().with_values({"engine": "planar", "critical_charge": False, "charge_kg": charge,
+                                         "length": 1 / 20, "duration_s": duration, "samples": samples})
+    return Study(sc).run().planar
 
 
 @pytest.fixture(scope="module")
@@ -46,7 +54,7 @@ def test_history_plots_draw_the_history(run):
 
 
 def test_similarity_overlay_and_figure():
-    sim = compare_rocking(BLOCK, 50.0, 2.0, 1 / 20, model="masi2021", duration=2.0, n_samples=201)
+    sim = _planar(50.0, 2.0, 201)
     ax = plot_similarity(sim, "theta")
     np.testing.assert_array_equal(ax.lines[1].get_ydata(), sim.theta_model)
     assert "up-scaled" in ax.get_legend().get_texts()[1].get_text()
@@ -56,7 +64,7 @@ def test_similarity_overlay_and_figure():
         plot_similarity(sim, "sliding")
     plt.close("all")
     # both overturn: the title gives the figures that measure similarity (rocking phase, fall)
-    over = compare_rocking(BLOCK, 100.0, 2.0, 1 / 20, model="masi2021", duration=4.0, n_samples=401)
+    over = _planar(100.0, 4.0, 401)
     title = plot_similarity(over, "theta").get_title()
     assert f"to tipping {over.max_abs_angle_diff_to_tipping:.2e}" in title and "tipping shift" in title
     plt.close("all")

@@ -8,10 +8,20 @@ import numpy as np
 import pytest
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.analysis.rocking_similarity import compare_rocking
-from blastscale.structures.block import RectangularBlock
+from blastscale.scenario import Scenario
+from blastscale.study import Study
 
-BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+# the paper's 10 m block (alpha = 15 deg, 2000 kg/m^3), 2 m stand-off, its Appendix A fits
+BASE = Scenario.default().with_values({"engine": "planar", "critical_charge": False, "blast.model": "masi2021"})
+
+
+def compare_rocking(charge, scale, gamma=1.0, gravity_ratio=1.0, *, pulse="friedlander", duration=5.0,
+                    samples=2001):
+    """The Study's planar comparison of the paper's block (prototype vs up-scaled specimen)."""
+    sc = BASE.with_values({"charge_kg": charge, "length": scale, "density_ratio": gamma,
+                           "gravity_ratio": gravity_ratio, "pulse": pulse, "duration_s": duration,
+                           "samples": samples})
+    return Study(sc).run().planar
 SCALES = [1 / 10, 1 / 20, 1 / 200]
 DENSITY_RATIOS = [0.07, 1.0]  # balsa (paper: 140 kg/m^3) and the same material
 
@@ -24,7 +34,7 @@ def test_impulsive_load_upscaled_model_equals_prototype(scale, gamma, charge):
     works in dimensionless time, so only the round-off of the design's impulse (solved by the
     general law to ~1e-13) and of the coefficients remains: 1e-10 rad is the acceptance level
     (observed < 1e-13)."""
-    s = compare_rocking(BLOCK, charge, 2.0, scale, gamma, pulse="impulsive", model="masi2021", duration=8.0)
+    s = compare_rocking(charge, scale, gamma, pulse="impulsive", duration=8.0)
     assert s.max_abs_angle_diff <= 1e-10
     assert s.outcomes_agree
     assert s.peak_ratio == pytest.approx(1.0, abs=1e-10)
@@ -37,7 +47,7 @@ def test_finite_pulse_paper_50kg_rocking_similarity(scale, gamma, shape):
     """W = 50 kg (rocks, ~15 impacts in 8 s): the up-scaled model stays within 5e-4 rad of the
     prototype over the whole run (observed 1.2e-4..3.1e-4; the paper's Figs. 7-9 show
     coinciding curves), both survive, and the first peaks agree to 0.1 %."""
-    s = compare_rocking(BLOCK, 50.0, 2.0, scale, gamma, pulse=shape, model="masi2021", duration=8.0)
+    s = compare_rocking(50.0, scale, gamma, pulse=shape, duration=8.0)
     assert s.max_abs_angle_diff <= 5e-4
     assert s.outcomes_agree and not s.prototype.overturned
     assert s.peak_ratio == pytest.approx(1.0, abs=1e-3)
@@ -62,7 +72,7 @@ def test_finite_pulse_paper_100kg_both_overturn_rocking_phase_and_fall(scale, ga
     not a failure of similarity): the ~1e-4 energy difference shifts the tipping time by
     0.3-0.7 ms and the fall turns that into (fall speed) x (shift), which the last assertion
     checks (1 % for sampling the speed)."""
-    s = compare_rocking(BLOCK, 100.0, 2.0, scale, gamma, pulse=shape, model="masi2021", duration=4.0)
+    s = compare_rocking(100.0, scale, gamma, pulse=shape, duration=4.0)
     assert s.prototype.overturned and s.model.overturned and s.outcomes_agree
     assert s.theta_prototype[-1] == s.theta_model[-1] == pytest.approx(math.pi / 2, abs=1e-15)
     p = s.prototype.system.frequency_parameter
@@ -87,13 +97,13 @@ def test_paper_critical_charge_outcomes_agree(scale, gamma):
     Only the outcome and the first peak (1 %: near the tipping point theta_max responds to
     the energy like a square root, so the 0.07 % impulse-like difference of 50 kg grows to
     ~0.7 %) are asserted."""
-    s = compare_rocking(BLOCK, 79.8, 2.0, scale, gamma, model="masi2021", duration=8.0)
+    s = compare_rocking(79.8, scale, gamma, duration=8.0)
     assert s.outcomes_agree and not s.prototype.overturned
     assert s.peak_ratio == pytest.approx(1.0, abs=1e-2)
 
 
 def test_to_dict_has_the_cli_keys():
-    d = compare_rocking(BLOCK, 50.0, 2.0, 1 / 20, model="masi2021", duration=2.0).to_dict()
+    d = compare_rocking(50.0, 1 / 20, duration=2.0).to_dict()
     for part in ("prototype", "model"):
         assert {"overturned", "max_angle_rad", "overturn_time_s", "first_impact_time_s"} <= set(d[part])
     assert "max_abs_angle_diff_rad" in d["similarity"]
@@ -103,17 +113,17 @@ def test_to_dict_has_the_cli_keys():
 
 def test_similarity_bad_input():
     with pytest.raises(BlastscaleInputError, match="pulse"):
-        compare_rocking(BLOCK, 50.0, 2.0, 0.1, pulse="square", model="masi2021")
-    with pytest.raises(BlastscaleInputError, match="scale"):
-        compare_rocking(BLOCK, 50.0, 2.0, -0.1, model="masi2021")
-    with pytest.raises(BlastscaleInputError, match="n_samples"):
-        compare_rocking(BLOCK, 50.0, 2.0, 0.1, n_samples=2.5, model="masi2021")
+        compare_rocking(50.0, 0.1, pulse="square")
+    with pytest.raises(BlastscaleInputError, match="scale.length"):
+        compare_rocking(50.0, -0.1)
+    with pytest.raises(BlastscaleInputError, match="samples"):
+        compare_rocking(50.0, 0.1, samples=2.5)
 
 
 def test_centrifuge_gravity_ratio_impulsive_exact():
     """With a gravity ratio (centrifuge model, varsigma = 20) the factors change
     (time sqrt(lambda/varsigma)) and the impulsive similarity stays exact (1e-10 rad)."""
-    s = compare_rocking(BLOCK, 50.0, 2.0, 1 / 20, 1.0, 20.0, pulse="impulsive", model="masi2021", duration=5.0)
+    s = compare_rocking(50.0, 1 / 20, 1.0, 20.0, pulse="impulsive", duration=5.0)
     assert s.design.factors.time == pytest.approx(math.sqrt(1 / 20 / 20), rel=1e-14)
     assert s.max_abs_angle_diff <= 1e-10 and s.outcomes_agree
 
@@ -127,7 +137,7 @@ def test_contract_reproduces_the_direct_comparison(charge):
     the interpolation moves the angle by (slope) x 1e-16 s: 1e-13 rad is the acceptance level.
     The contract's first peak from the samples (every 4 ms) agrees with the solver's exact peak
     event to (omega dt)^2 / 8 ~ 1e-5 relative; 1e-4 is asserted."""
-    s = compare_rocking(BLOCK, charge, 2.0, 1 / 20, pulse="friedlander", model="masi2021", duration=4.0)
+    s = compare_rocking(charge, 1 / 20, pulse="friedlander", duration=4.0)
     f = s.design.factors
     direct_th = s.model.theta_eval / f.angle
     direct_om = s.model.theta_dot_eval / f.angular_velocity

@@ -57,10 +57,12 @@ def test_histories_files_have_units_and_match(capsys, tmp_path):
     out_dir = tmp_path / "r"
     code, _, err = run_cli(capsys, "run", "--out", str(out_dir), "--duration", "0.3", "--set", "critical_charge=false")
     assert code == 0, err
-    with xr.open_dataset(out_dir / "histories.nc") as ds:
-        missing = [v for v in ds.variables if "units" not in ds[v].attrs]
-        assert not missing
-        theta = ds["planar_rotation_y"].sel(system="prototype").values[:, 0]
+    tree = xr.open_datatree(out_dir / "histories.nc")
+    assert set(tree.children) == {"planar", "sim3d"}
+    for node in tree.subtree:
+        missing = [v for v in node.ds.variables if "units" not in node.ds[v].attrs]
+        assert not missing, (node.path, missing)
+    theta = tree["planar"]["rotation_y"].sel(system="prototype").values[:, 0]
     import pandas as pd
 
     csv = pd.read_csv(out_dir / "histories.csv")

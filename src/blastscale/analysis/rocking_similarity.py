@@ -1,19 +1,16 @@
 """Prototype vs reduced-scale model in planar rocking (paper Sec. "Equations of motion", Figs. 6-9).
 
-Given a prototype block, a scenario (charge W at stand-off R) and the scales lambda (length),
-gamma (density) and varsigma (gravity), :func:`compare_rocking`
+The Study designs the specimen once and its planar engine (:mod:`blastscale.study.engines`)
+simulates the prototype (its pulse from ``d.prototype``) and the specimen (``d.model_block``,
+pulse from ``d.model``, gravity ``g varsigma``) with the same rocking solver and restitution;
+:func:`compare_rocking` then
 
-1. designs the model with :func:`blastscale.similitude.design_model` (model charge and
-   stand-off from the general law, or Hopkinson-Cranz),
-2. simulates the prototype (its pulse from ``d.prototype``) and the model
-   (``block.scaled(lambda, gamma)``, pulse from ``d.model``, gravity ``g varsigma``) with the
-   same rocking solver and restitution,
-3. writes both histories as response datasets (:func:`rocking_dataset`) and up-scales and
+1. writes both histories as response datasets (:func:`rocking_dataset`) and up-scales and
    compares them with the package's one comparison contract (:mod:`.compare`:
    ``t_p = t_m / f.time``, ``theta_p = theta_m / f.angle``,
    ``theta_dot_p = theta_dot_m / f.angular_velocity``), sampling the model exactly at the
    model times that correspond to the prototype's sampling times (no interpolation error),
-4. reports the largest angle difference over the run, the peak ratio and whether the
+2. reports the largest angle difference over the run, the peak ratio and whether the
    outcomes (rock / overturn) agree; for overturning bodies also the difference up to the
    tipping point, the tipping-time and tipping-velocity differences and the difference of
    the two falls on a common phase (angular velocity at equal angle).
@@ -46,16 +43,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive
-from ..blast.parameters import DEFAULT_BLAST_MODEL
-from ..blast.pulses import check_pulse_shape
-from ..rocking.solver import DEFAULT_SOLVER, RockingResult, RockingSolver, _check_count
-from ..rocking.system import RockingSystem
-from ..similitude import ModelDesign, design_model
-from ..structures.block import STANDARD_GRAVITY, RectangularBlock
+from .._validate import BlastscaleInputError
+from ..rocking import RockingResult
+from ..similitude import ModelDesign
 from .compare import align, compare_responses, upscale_dataset
+from .upscale import upscale, upscale_summary
 
-__all__ = ["RockingSimilarity", "compare_rocking", "rocking_dataset", "upscaled_summary"]
+__all__ = ["RockingSimilarity", "PrototypeRocking", "compare_rocking", "rocking_dataset"]
 
 
 def _opt_div(x: float | None, f: float) -> float | None:
@@ -116,21 +110,6 @@ def rocking_dataset(result: RockingResult):
     )
 
 
-def upscaled_summary(model: RockingResult, design: ModelDesign) -> dict:
-    """The model's scalar results in prototype units (times / f.time, angles / f.angle):
-    keys ``overturned``, ``max_angle_rad``, ``overturn_time_s``, ``first_impact_time_s``,
-    ``n_impacts``, ``end_time_s``."""
-    f = design.factors
-    return {
-        "overturned": bool(model.overturned),
-        "max_angle_rad": float(model.max_angle) / f.angle,
-        "overturn_time_s": _opt_div(model.overturn_time, f.time),
-        "first_impact_time_s": _opt_div(model.first_impact_time, f.time),
-        "n_impacts": model.n_impacts,
-        "end_time_s": float(model.end_time) / f.time,
-    }
-
-
 @dataclass(frozen=True)
 class RockingSimilarity:
     """Prototype and up-scaled model rocking histories and their agreement (SI, prototype units).
@@ -172,8 +151,6 @@ class RockingSimilarity:
         either has no peak; 1 when both overturn).
     outcomes_agree : bool
         Both overturn or both survive.
-    pulse : str
-        Pulse shape used.
     comparison : dict
         The contract's comparison (:func:`~blastscale.analysis.compare.compare_responses`) of
         ``rotation_y`` and ``angular_velocity`` (first peaks from the samples, differences).
@@ -195,7 +172,6 @@ class RockingSimilarity:
     max_fall_phase_diff: float | None
     peak_ratio: float
     outcomes_agree: bool
-    pulse: str
     extra: dict = field(default_factory=dict, repr=False)
     comparison: dict = field(default_factory=dict, repr=False)
 
@@ -203,7 +179,7 @@ class RockingSimilarity:
         """Plain dict: ``prototype`` and ``model`` (up-scaled) summaries and ``similarity``."""
         return {
             "prototype": self.prototype.summary(),
-            "model": upscaled_summary(self.model, self.design),
+            "model": upscale_summary(self.model.summary(), self.design.factors),
             "similarity": {
                 "max_abs_angle_diff_rad": self.max_abs_angle_diff,
                 "max_abs_angular_velocity_diff_rad_s": self.max_abs_angular_velocity_diff,
@@ -217,111 +193,62 @@ class RockingSimilarity:
         }
 
 
-def compare_rocking(
-    block: RectangularBlock,
-    charge: float,
-    standoff: float,
-    scale: float,
-    density_ratio: float = 1.0,
-    gravity_ratio: float = 1.0,
-    *,
-    pulse: str = "friedlander",
-    model: str = DEFAULT_BLAST_MODEL,
-    law: str = "general",
-    duration: float = 5.0,
-    n_samples: int = 2001,
-    gravity: float = STANDARD_GRAVITY,
-    restitution: float | None = None,
-    solver: RockingSolver | None = None,
-    design: ModelDesign | None = None,
-) -> RockingSimilarity:
-    """Simulate a prototype block and its reduced-scale model and compare them.
+def compare_rocking(prototype: RockingResult, model: RockingResult, design: ModelDesign,
+                    frequency_parameter: float) -> RockingSimilarity:
+    """Compare a prototype's rocking history with its specimen's, up-scaled (the planar engine's
+    one comparison; the Study simulates both, :mod:`blastscale.study.engines`).
 
     Parameters
     ----------
-    block : RectangularBlock
-        Prototype block.
-    charge : float
-        Prototype TNT charge W [kg].
-    standoff : float
-        Prototype stand-off R [m].
-    scale, density_ratio, gravity_ratio : float
-        lambda, gamma, varsigma = model / prototype [-].
-    pulse : {"friedlander", "triangular", "impulsive"}
-        Reflected pulse shape (paper Eqs. 1, 3, impulsive limit).
-    model : str
-        Blast model (``"kingery-bulmash"`` or ``"masi2021"``).
-    law : {"general", "hopkinson-cranz"}
-        Scaling law for the model charge.
-    duration : float
-        Prototype time to simulate [s] (the model runs ``duration * f.time``).
-    n_samples : int
-        Number of common sampling times over [0, duration] (>= 2).
-    gravity : float
-        Prototype gravity [m/s^2]; the model's is ``gravity * gravity_ratio``.
-    restitution : float, optional
-        Restitution e for both (default Housner's, the same for both since alpha is).
-    solver : RockingSolver, optional
-        Solver (default tolerances rtol 1e-10, atol 1e-12).
-    design : ModelDesign, optional
-        A design made beforehand with ``geometry=block`` (a caller that designs once, e.g.
-        :class:`blastscale.study.Study`); it then replaces the design from ``charge`` ...
-        ``gravity``, which must describe the same scenario.
+    prototype : RockingResult
+        The prototype's run, sampled at ``t_eval`` = the common times t [s].
+    model : RockingResult
+        The specimen's run, sampled at ``min(t * f.time, duration * f.time)`` (the specimen times
+        that correspond to t exactly: no interpolation error) [specimen units].
+    design : ModelDesign
+        The experiment (its ``factors`` up-scale the specimen).
+    frequency_parameter : float
+        The prototype's p = sqrt(m g r / J_o) [1/s] (the fall's phase plane).
 
     Returns
     -------
     RockingSimilarity
     """
-    if not isinstance(block, RectangularBlock):
-        raise BlastscaleInputError(f"block must be a RectangularBlock, got {type(block).__name__}")
-    check_pulse_shape(pulse)
-    dur = float(check_positive("duration", duration, "s"))
-    n_samples = _check_count("n_samples", n_samples, 2)
-    solver = solver or DEFAULT_SOLVER
-    d = design if design is not None else design_model(
-        charge, standoff, scale, density_ratio, gravity_ratio, law=law, model=model, geometry=block, gravity=gravity
-    )
-    f = d.factors
-    t = np.linspace(0.0, dur, int(n_samples))
-    sys_p = RockingSystem.from_block(block, gravity, restitution)
-    sys_m = RockingSystem.from_block(d.model_block, gravity * d.gravity_ratio, restitution)
-    res_p = solver.simulate(sys_p, d.prototype.pulse(pulse), dur, t_eval=t)
-    dur_m = dur * f.time
-    t_m = np.minimum(t * f.time, dur_m)
-    res_m = solver.simulate(sys_m, d.model.pulse(pulse), dur_m, t_eval=t_m)
-    proto_ds = rocking_dataset(res_p)
-    up_ds = upscale_dataset(rocking_dataset(res_m), f)
+    f = design.factors
+    t = prototype.t_eval
+    proto_ds = rocking_dataset(prototype)
+    up_ds = upscale_dataset(rocking_dataset(model), f)
     cmp = compare_responses(proto_ds, up_ds, outcome="overturned")
     _, model_at = align(proto_ds, up_ds)
     th_m = model_at["rotation_y"].values[:, 0]
     om_m = model_at["angular_velocity"].values[:, 0, 0]
     dth = cmp["variables"]["rotation_y"]["block"]["max_abs_diff"]
     dom = cmp["variables"]["angular_velocity"]["block"]["max_abs_diff"]
-    tips = [x for x in (res_p.overturn_time, _opt_div(res_m.overturn_time, f.time)) if x is not None]
+    tips = [x for x in (prototype.overturn_time, upscale(model.overturn_time, f, "time")) if x is not None]
     upto = t <= min(tips) if tips else np.ones(t.size, dtype=bool)
-    dtip = float(np.max(np.abs(th_m - res_p.theta_eval)[upto]))
+    dtip = float(np.max(np.abs(th_m - prototype.theta_eval)[upto]))
     dt_tip = dw_tip = fall = None
-    if res_p.overturned and res_m.overturned:
-        dt_tip = res_m.overturn_time / f.time - res_p.overturn_time
-        dw_tip = res_m.angular_velocity_at_tipping / f.angular_velocity - res_p.angular_velocity_at_tipping
+    if prototype.overturned and model.overturned:
+        dt_tip = model.overturn_time / f.time - prototype.overturn_time
+        dw_tip = model.angular_velocity_at_tipping / f.angular_velocity - prototype.angular_velocity_at_tipping
         fall = _fall_phase_diff(
-            t, res_p.theta_eval, res_p.theta_dot_eval, th_m, om_m,
-            max(res_p.overturn_time, res_m.overturn_time / f.time), sys_p.frequency_parameter,
+            t, prototype.theta_eval, prototype.theta_dot_eval, th_m, om_m,
+            max(prototype.overturn_time, model.overturn_time / f.time), frequency_parameter,
         )
-    if res_p.overturned and res_m.overturned:
+    if prototype.overturned and model.overturned:
         ratio = 1.0
-    elif res_p.peak_angles.size and res_m.peak_angles.size:
-        ratio = float(abs(res_m.peak_angles[0]) / abs(res_p.peak_angles[0]))
+    elif prototype.peak_angles.size and model.peak_angles.size:
+        ratio = float(abs(model.peak_angles[0]) / abs(prototype.peak_angles[0]))
     else:
-        ratio = float(res_m.max_angle / res_p.max_angle) if res_p.max_angle > 0 else math.nan
+        ratio = float(model.max_angle / prototype.max_angle) if prototype.max_angle > 0 else math.nan
     return RockingSimilarity(
-        design=d,
-        prototype=res_p,
-        model=res_m,
+        design=design,
+        prototype=prototype,
+        model=model,
         t=t,
-        theta_prototype=res_p.theta_eval,
+        theta_prototype=prototype.theta_eval,
         theta_model=th_m,
-        theta_dot_prototype=res_p.theta_dot_eval,
+        theta_dot_prototype=prototype.theta_dot_eval,
         theta_dot_model=om_m,
         max_abs_angle_diff=dth,
         max_abs_angular_velocity_diff=dom,
@@ -331,6 +258,25 @@ def compare_rocking(
         max_fall_phase_diff=fall,
         peak_ratio=ratio,
         outcomes_agree=bool(cmp["outcomes_agree"]),
-        pulse=pulse,
         comparison=cmp,
     )
+
+
+@dataclass(frozen=True)
+class PrototypeRocking:
+    """The planar engine's result for a prototype-only study (no specimen, no comparison).
+
+    Attributes
+    ----------
+    prototype : RockingResult
+        The prototype's run, sampled at ``t_eval``.
+    """
+
+    prototype: RockingResult
+    model = None
+    design = None
+    outcomes_agree = None
+
+    def to_dict(self) -> dict:
+        """``prototype`` summary; ``model`` and ``similarity`` are None."""
+        return {"prototype": self.prototype.summary(), "model": None, "similarity": None}

@@ -73,15 +73,20 @@ def rock_cmd(
     Eq. eom). With --scale the model experiment is designed with the paper's general law,
     simulated, up-scaled to prototype units and compared with the prototype.
     """
-    import numpy as np
-
-    from ..blast import blast_parameters
-    from ..rocking import RockingSystem, simulate
+    from ..study import Study
+    from .flags import scenario_from_flags
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
-    if samples < 2:
-        raise BlastscaleInputError(f"samples = {samples} is out of range: must be >= 2")
+    sc = scenario_from_flags(
+        structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
+                   "density_kg_m3": density},
+        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse},
+        scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
+                                          "gravity_ratio": gravity_ratio},
+        simulation={"engine": "planar", "duration_s": duration, "samples": samples, "gravity_m_s2": gravity,
+                    "restitution": restitution, "critical_charge": False},
+    )
     out: dict = {
         "inputs": _inputs(
             block, charge_kg=charge, standoff_m=standoff, duration_s=duration, pulse=pulse, model=model,
@@ -90,32 +95,23 @@ def rock_cmd(
             gravity_ratio=gravity_ratio if scale is not None else None,
         )
     }
-    sim = None
     with console_err.status("simulating the rocking response ...", spinner="dots"):
-        if scale is None:
-            bp = blast_parameters(charge, standoff, model)
-            system = RockingSystem.from_block(block, gravity, restitution)
-            res = simulate(system, bp.pulse(pulse), duration, t_eval=np.linspace(0.0, duration, samples))
-            out["prototype"] = res.summary()
-        else:
-            from ..analysis.rocking_similarity import compare_rocking
-
-            sim = compare_rocking(
-                block, charge, standoff, scale, density_ratio, gravity_ratio, pulse=pulse, model=model,
-                duration=duration, n_samples=samples, gravity=gravity, restitution=restitution,
-            )
-            res = sim.prototype
-            out.update(sim.to_dict())
-            d = sim.design
-            out["model_experiment"] = {
-                "charge_kg": d.model_charge_kg,
-                "standoff_m": d.model_standoff_m,
-                "height_m": block.height * scale,
-                "width_m": block.width * scale,
-                "density_kg_m3": block.density * d.density_ratio,
-                "time_factor": d.factors.time,
-                "angular_velocity_factor": d.factors.angular_velocity,
-            }
+        result = Study(sc).run()
+    planar = result.planar
+    res = planar.prototype
+    sim = planar if result.design is not None else None
+    out.update({k: v for k, v in planar.to_dict().items() if v is not None})
+    if sim is not None:
+        d = result.design
+        out["model_experiment"] = {
+            "charge_kg": d.model_charge_kg,
+            "standoff_m": d.model_standoff_m,
+            "height_m": block.height * scale,
+            "width_m": block.width * scale,
+            "density_kg_m3": block.density * d.density_ratio,
+            "time_factor": d.factors.time,
+            "angular_velocity_factor": d.factors.angular_velocity,
+        }
     out["prototype"]["restitution"] = res.restitution
     if plot:
         from ..plots.rocking import rocking_figure

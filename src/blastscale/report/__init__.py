@@ -41,15 +41,15 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     list of str
         The file names written.
     """
-    from ..io.results import provenance, write_atomic, write_histories_csv, write_json
+    from ..io.results import provenance, write_atomic, write_histories_csv, write_json, write_netcdf
 
     folder = Path(folder)
     tell = progress or (lambda stage: None)
     meta = provenance()
     tell("histories (NetCDF, CSV)")
-    ds = result.to_dataset()
-    ds.to_netcdf(folder / "histories.nc", engine="h5netcdf")  # as StudyResult.to_netcdf, without a second to_dataset
-    write_histories_csv(ds, folder / "histories.csv")
+    tree = result.to_datatree()
+    write_netcdf(tree, folder / "histories.nc")
+    write_histories_csv(tree, folder / "histories.csv")
     tell("figures")
     figures = render_figures(result)
     for f, png in figures:

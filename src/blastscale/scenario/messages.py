@@ -80,14 +80,16 @@ def _constraint_text(info: Any) -> str:
     return f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}{unit}"
 
 
-def one_line(exc: ValidationError, root: type[BaseModel], kinds: dict) -> str:
+def one_line(exc: ValidationError, root: type[BaseModel], kinds: dict, names: dict | None = None) -> str:
     """The first pydantic error of ``root`` as one line: field path, value, valid range (``kinds``:
-    structure kind -> its table's model, to follow the structure union)."""
+    structure kind -> its table's model, to follow the structure union; ``names``: field path ->
+    the name the user gave it, e.g. a command-line flag)."""
     err = exc.errors(include_url=False)[0]
     loc = tuple(err["loc"])
     # drop the discriminator tag of the structure union from the path
     shown = tuple(p for i, p in enumerate(loc) if not (i == 1 and loc[0] == "structure" and p in kinds))
     path = ".".join(str(p) for p in shown) or "scenario"
+    path = (names or {}).get(path, path)
     kind, value, ctx = err["type"], err.get("input"), err.get("ctx") or {}
     model, info = _model_at(loc, root, kinds)
     rng = _constraint_text(info)

@@ -42,15 +42,18 @@ class Scenario(BaseModel):
 
     # -- construction ----------------------------------------------------------------
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "scenario") -> "Scenario":
+    def from_dict(cls, data: Mapping[str, Any], source: Optional[str] = "scenario",
+                  names: Optional[Mapping[str, str]] = None) -> "Scenario":
         """Validate a nested dict (as read from TOML); errors become one
-        :class:`BlastscaleInputError` line prefixed with ``source``."""
+        :class:`BlastscaleInputError` line prefixed with ``source`` (none when None), naming each
+        field by its dotted path or by ``names[path]`` (e.g. the command-line flag that set it)."""
+        prefix = "" if source is None else f"{source}: "
         if not isinstance(data, Mapping):
-            raise BlastscaleInputError(f"{source}: a scenario must be a table of keys, got {type(data).__name__}")
+            raise BlastscaleInputError(f"{prefix}a scenario must be a table of keys, got {type(data).__name__}")
         try:
             return cls.model_validate(dict(data))
         except ValidationError as exc:
-            raise BlastscaleInputError(f"{source}: {one_line(exc, cls, KINDS)}") from None
+            raise BlastscaleInputError(f"{prefix}{one_line(exc, cls, KINDS, dict(names or {}))}") from None
 
     @classmethod
     def default(cls) -> "Scenario":

@@ -17,11 +17,13 @@ __all__ = ["Engine", "ENGINES", "ENSEMBLE", "Context", "contact_settings", "crit
 
 @dataclass(frozen=True)
 class Context:
-    """What every engine receives: the scenario, the built prototype and the one design."""
+    """What every engine receives: the scenario, the built prototype, the one design (None for a
+    prototype-only scenario) and the prototype's blast parameters (the design's when there is one)."""
 
     scenario: Scenario
     structure: Any
     design: Any
+    blast: Any
 
 
 def _planar_supports(structure) -> Optional[str]:
@@ -29,15 +31,27 @@ def _planar_supports(structure) -> Optional[str]:
 
 
 def _run_planar(ctx: Context):
-    from ..analysis.rocking_similarity import compare_rocking
+    """Planar rocking of the prototype block and, with a design, of its specimen (its block, pulse
+    and gravity from the design: the blast parameters are the design's, never recomputed), sampled
+    at corresponding times and compared (:func:`~blastscale.analysis.rocking_similarity.compare_rocking`)."""
+    import numpy as np
 
-    sc, sim = ctx.scenario, ctx.scenario.simulation
-    return compare_rocking(
-        ctx.structure, sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, ctx.design.density_ratio,
-        sc.scale.gravity_ratio, pulse=sc.blast.pulse, model=sc.blast.model, law=sc.scale.law,
-        duration=sim.duration_s, n_samples=sim.samples, gravity=sim.gravity_m_s2, restitution=sim.restitution,
-        design=ctx.design,
-    )
+    from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
+    from ..rocking import RockingSystem
+    from ..rocking.solver import DEFAULT_SOLVER
+
+    sc, sim, d = ctx.scenario, ctx.scenario.simulation, ctx.design
+    shape, dur = sc.blast.pulse, float(sim.duration_s)
+    t = np.linspace(0.0, dur, int(sim.samples))
+    sys_p = RockingSystem.from_block(ctx.structure, sim.gravity_m_s2, sim.restitution)
+    res_p = DEFAULT_SOLVER.simulate(sys_p, ctx.blast.pulse(shape), dur, t_eval=t)
+    if d is None:
+        return PrototypeRocking(res_p)
+    f = d.factors
+    sys_m = RockingSystem.from_block(d.model_block, sim.gravity_m_s2 * d.gravity_ratio, sim.restitution)
+    dur_m = dur * f.time
+    res_m = DEFAULT_SOLVER.simulate(sys_m, d.model.pulse(shape), dur_m, t_eval=np.minimum(t * f.time, dur_m))
+    return compare_rocking(res_p, res_m, d, sys_p.frequency_parameter)
 
 
 def contact_settings(scenario: Scenario, structure=None):

@@ -37,8 +37,11 @@ class StudyResult:
         The inputs.
     structure, model_structure : structure
         The prototype and the model specimen (lengths x lambda, density x gamma).
-    design : blastscale.similitude.ModelDesign
-        The model experiment: charge, stand-off, every factor, blast parameters, impulsive check.
+    design : blastscale.similitude.ModelDesign or None
+        The model experiment: charge, stand-off, every factor, blast parameters, impulsive check
+        (None for a prototype-only scenario, and then ``model_structure`` is None too).
+    blast : BlastParameters
+        The prototype's blast parameters (``design.prototype`` when there is a design).
     planar : RockingSimilarity or None
         Planar rocking comparison (blocks), when run.
     critical : CriticalResult or None
@@ -57,6 +60,7 @@ class StudyResult:
     structure: Any
     model_structure: Any
     design: Any
+    blast: Any = None
     planar: Any = None
     critical: Any = None
     response3d: Any = None
@@ -70,6 +74,9 @@ class StudyResult:
         """The model experiment to build, SI keys: structure description of the specimen,
         mass, material, density, charge and stand-off, and the prototype's for reference."""
         sc, d = self.scenario, self.design
+        if d is None:
+            return {"prototype": {**_describe(self.structure), "charge_kg": sc.blast.charge_kg,
+                                  "standoff_m": sc.blast.standoff_m}, "model": None}
         mat = sc.scale.model_material or ("same as the prototype" if abs(d.density_ratio - 1.0) < 1e-12
                                           else "density ratio " + format(d.density_ratio, ".6g"))
         return {
@@ -95,7 +102,7 @@ class StudyResult:
         return {
             "scenario": self.scenario.to_dict(),
             "experiment": self.experiment(),
-            "design": self.design.to_dict(),
+            "design": None if self.design is None else self.design.to_dict(),
             "planar": None if self.planar is None else self.planar.to_dict(),
             "critical": None if self.critical is None else self.critical.to_dict(),
             "3d": None if self.response3d is None else self.response3d.summary(),
@@ -113,40 +120,40 @@ class StudyResult:
             _flatten(s[key], key, out)
         return out
 
-    def to_dataset(self):
-        """Time histories of the prototype and the up-scaled model as one ``xarray.Dataset``.
+    def to_datatree(self):
+        """Time histories of the prototype and the up-scaled specimen as an ``xarray.DataTree``.
 
-        Each engine's variables are prefixed with its name (``planar_rotation_y``,
-        ``3d_rotation``) and its dimensions too (``planar_time``, ``3d_time``); the dimension
-        ``system`` = ("prototype", "model") holds the prototype and the up-scaled model, the
-        model interpolated onto the prototype's times. Every variable has ``units``."""
+        One group per engine (``planar``, ``sim3d``, ``ensemble``), each with its own ``time``
+        dimension [s] and a ``system`` dimension: ``prototype`` and, with a design, ``model`` (the
+        specimen up-scaled to prototype units and interpolated onto the prototype's times).
+        Variable names are identifiers; every variable has ``units`` (UDUNITS) and ``long_name``.
+        The root carries the title, the scenario (TOML) and the CF conventions."""
         import xarray as xr
 
-        parts = []
-        if self.planar is not None:
-            from ..analysis.rocking_similarity import rocking_dataset
-            from ..analysis.compare import upscale_dataset
+        from ..analysis.compare import upscale_dataset
+        from ..analysis.rocking_similarity import rocking_dataset
 
-            parts.append(_system_stack("planar", rocking_dataset(self.planar.prototype),
-                                       upscale_dataset(rocking_dataset(self.planar.model), self.design.factors)))
+        groups = {}
+        if self.planar is not None:
+            up = None if self.planar.model is None else upscale_dataset(rocking_dataset(self.planar.model),
+                                                                          self.design.factors)
+            groups["planar"] = _system_stack(rocking_dataset(self.planar.prototype), up)
         if self.response3d is not None:
-            parts.append(_system_stack("3d", self.response3d.prototype_dataset, self.response3d.upscaled_dataset))
+            groups["sim3d"] = _system_stack(self.response3d.prototype_dataset,
+                                            getattr(self.response3d, "upscaled_dataset", None))
         if self.ensemble is not None:
-            parts.append(_ensemble_dataset(self.ensemble))
-        ds = xr.merge(parts, combine_attrs="drop_conflicts") if parts else xr.Dataset()
-        for name in ds.variables:  # labels (system, body, point, component) are dimensionless
-            ds[name].attrs.setdefault("units", "1")
-        ds.attrs.update({
+            groups["ensemble"] = _ensemble_dataset(self.ensemble)
+        root = xr.Dataset(attrs={
             "title": self.scenario.title or "blastscale study",
+            "Conventions": "CF-1.10",
             "source": "blastscale.study.Study",
             "scenario_toml": self.scenario.to_toml(),
-            "model_results": "up-scaled to prototype units (system = model)",
+            "model_results": ("system = model: the specimen up-scaled to prototype units (x_prototype = "
+                              "x_specimen / factor) on the prototype's times") if self.design is not None
+            else "prototype only (no [scale]: no specimen, no comparison)",
+            "engines": ", ".join(groups) or "none",
         })
-        return ds
-
-    def to_netcdf(self, path) -> None:
-        """Write :meth:`to_dataset` to a NetCDF file (h5netcdf engine)."""
-        self.to_dataset().to_netcdf(path, engine="h5netcdf")
+        return xr.DataTree.from_dict({"/": root, **{f"/{k}": v for k, v in groups.items()}})
 
 
 def _describe(structure) -> dict:
@@ -157,44 +164,52 @@ def _describe(structure) -> dict:
 
 
 def _ensemble_dataset(ens):
-    """The ensemble members' x displacements, prototype and up-scaled model, as one variable."""
+    """The ensemble members' x displacements, prototype and up-scaled model (system, member, time, point)."""
     import numpy as np
     import xarray as xr
 
-    data = np.stack([ens.prototype_members, ens.model_members])  # (system, member, time, point)
+    data = np.stack([ens.prototype_members, ens.model_members])
     return xr.Dataset(
-        {"ensemble_point_displacement_x": (("system", "ensemble_member", "ensemble_time", "ensemble_point"), data,
-                                           {"units": "m", "long_name": "x displacement of the monitoring points"})},
-        coords={"system": ["prototype", "model"], "ensemble_member": np.arange(data.shape[1]),
-                "ensemble_load_factor": ("ensemble_member", np.asarray(ens.factors), {"units": "1"}),
-                "ensemble_time": ("ensemble_time", ens.time, {"units": "s"}),
-                "ensemble_point": list(ens.points)},
+        {"point_displacement_x": (("system", "member", "time", "point"), data,
+                                  {"units": "m", "long_name": "x displacement of the monitoring point"})},
+        coords={"system": ("system", ["prototype", "model"], {"units": "1"}),
+                "member": ("member", np.arange(data.shape[1]), {"units": "1"}),
+                "load_factor": ("member", np.asarray(ens.factors),
+                                {"units": "1", "long_name": "factor on the member's blast load"}),
+                "time": ("time", ens.time, {"units": "s", "long_name": "time since detonation (prototype)"}),
+                "point": ("point", list(ens.points), {"units": "1"})},
     )
 
 
-def _system_stack(engine: str, proto, up):
-    """Prototype and up-scaled model on the prototype's times, stacked along ``system``, names prefixed."""
+def _system_stack(proto, up=None):
+    """Prototype and (when given) the up-scaled specimen on the prototype's times, stacked along
+    ``system``; every variable with ``units`` and ``long_name``, labels dimensionless."""
     import numpy as np
     import xarray as xr
 
-    t = proto["time"].values
-    keep = t <= float(up["time"].values[-1]) * (1 + 1e-12)
-    proto = proto.isel(time=np.flatnonzero(keep))
-    up = up.drop_vars([v for v in up.data_vars if v not in proto.data_vars])
-    up_on = up.interp(time=proto["time"].values, kwargs={"fill_value": "extrapolate"}) \
-        if up.sizes["time"] != proto.sizes["time"] or not np.allclose(up["time"].values, proto["time"].values,
-                                                                       rtol=1e-9, atol=0) \
-        else up.assign_coords(time=proto["time"])
-    both = xr.concat([proto[list(proto.data_vars)], up_on[list(proto.data_vars)]],
-                     dim=xr.DataArray(["prototype", "model"], dims="system", name="system"),
-                     coords="minimal", compat="override", combine_attrs="override")
+    names = list(proto.data_vars)
+    if up is None:
+        parts, labels = [proto[names]], ["prototype"]
+    else:
+        t = proto["time"].values
+        keep = t <= float(up["time"].values[-1]) * (1 + 1e-12)
+        proto = proto.isel(time=np.flatnonzero(keep))
+        up = up[[v for v in up.data_vars if v in names]]
+        same = up.sizes["time"] == proto.sizes["time"] and np.allclose(up["time"].values, proto["time"].values,
+                                                                       rtol=1e-9, atol=0)
+        up_on = up.assign_coords(time=proto["time"]) if same else \
+            up.interp(time=proto["time"].values, kwargs={"fill_value": "extrapolate"})
+        parts, labels = [proto[names], up_on[names]], ["prototype", "model"]
+    both = xr.concat(parts, dim=xr.DataArray(labels, dims="system", name="system"), coords="minimal",
+                     compat="override", combine_attrs="override")
     for name in both.data_vars:
-        both[name].attrs = dict(proto[name].attrs)
-        both[name].attrs.setdefault("units", "1")
-    both = both.rename({v: f"{engine}_{v}" for v in both.data_vars})
-    both = both.rename({d: f"{engine}_{d}" for d in list(both.dims) if d != "system"})
-    for c in both.coords:
-        if c.startswith(engine) and c.endswith("time"):
-            both[c].attrs["units"] = "s"
+        attrs = {k: v for k, v in proto[name].attrs.items() if k in ("units", "long_name", "dimension")}
+        attrs.setdefault("units", "1")
+        attrs.setdefault("long_name", name.replace("_", " "))
+        both[name].attrs = attrs
+    both["time"].attrs.update(units="s", long_name="time since detonation (prototype)")
+    both["system"].attrs.update(long_name="prototype, or the specimen up-scaled to prototype units")
+    for label in both.coords:  # labels (system, body, point, component) are dimensionless
+        both[label].attrs.setdefault("units", "1")
     both.attrs = {}
     return both

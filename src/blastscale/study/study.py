@@ -98,10 +98,13 @@ class Study:
         return run, skipped
 
     def design(self, structure=None):
-        """The model experiment (:func:`~blastscale.similitude.design_model`), once per study."""
+        """The model experiment (:func:`~blastscale.similitude.design_model`), once per study; None
+        for a prototype-only scenario (no ``[scale]``)."""
         from ..similitude import design_model
 
         sc = self.scenario
+        if sc.scale is None:
+            return None
         structure = self.structure() if structure is None else structure
         return design_model(
             sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, sc.density_ratio, sc.scale.gravity_ratio,
@@ -112,12 +115,21 @@ class Study:
     def check(self):
         """Everything that can be checked before simulating: the structure, the engines, the
         design (blast fits' ranges, scale range) and the memory. Returns (structure, engines,
-        skipped, design)."""
+        skipped, design, prototype blast parameters)."""
         if self._checked is None:
             structure = self.structure()
             engines, skipped = self.engines(structure)
             check_memory(self.scenario, structure)
-            self._checked = (structure, engines, skipped, self.design(structure))
+            d = self.design(structure)
+            if d is None:  # the prototype's blast alone (with a design: the design's, never recomputed)
+                from ..blast import blast_parameters
+
+                sc = self.scenario
+                blast = blast_parameters(sc.blast.charge_kg, sc.blast.standoff_m, sc.blast.model,
+                                         extrapolate=sc.blast.extrapolate)
+            else:
+                blast = d.prototype
+            self._checked = (structure, engines, skipped, d, blast)
         return self._checked
 
     def run(self, progress: Optional[Progress] = None) -> StudyResult:
@@ -137,13 +149,13 @@ class Study:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             t0 = time.perf_counter()
-            structure, engines, skipped, d = self.check()
+            structure, engines, skipped, d, blast = self.check()
             want_critical = sc.simulation.critical_charge and any(e.name == "planar" for e in engines)
             total = 1 + len(engines) + int(want_critical)
             step = 1
             timings["design"] = time.perf_counter() - t0
             results: dict = {}
-            ctx = Context(sc, structure, d)
+            ctx = Context(sc, structure, d, blast)
             for eng in engines:
                 _tell(progress, eng.label, step, total)
                 t0 = time.perf_counter()
@@ -158,9 +170,8 @@ class Study:
                 timings["critical"] = time.perf_counter() - t0
                 step += 1
             _tell(progress, "done", total, total)
-            partial = StudyResult(scenario=sc, structure=structure, model_structure=structure.scaled(d.scale,
-                                                                                                    d.density_ratio),
-                                  design=d,
+            specimen = None if d is None else structure.scaled(d.scale, d.density_ratio)
+            partial = StudyResult(scenario=sc, structure=structure, model_structure=specimen, design=d, blast=blast,
                                   planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
                                   ensemble=results.get("ensemble"))
             summary = partial._compute_summary()  # inside the capture: its warnings are the study's
@@ -191,12 +202,12 @@ def _study_warnings(design, results: dict, skipped: list, summary: dict) -> list
     """The study's own warnings, in words for the report (the 3D and ensemble figures read from
     the study's ``summary``, computed once)."""
     out = list(skipped)
-    imp = design.impulsive
+    imp = None if design is None else design.impulsive
     if imp is not None and not imp.impulsive:
         out.append(f"the load is not impulsive (t_o p = {imp.prototype_ratio:.3g} prototype, {imp.model_ratio:.3g} "
                    f"model, threshold {imp.threshold:g}): the general law's similarity is not guaranteed")
     planar = results.get("planar")
-    if planar is not None and not planar.outcomes_agree:
+    if planar is not None and planar.outcomes_agree is False:
         out.append("planar rocking: prototype and model outcomes disagree (one overturns, the other does not)")
     ens = results.get("ensemble")
     if ens is None and results.get("3d") is not None and _is_circular(results["3d"]):

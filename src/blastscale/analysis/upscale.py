@@ -1,0 +1,75 @@
+"""Up-scaling: a specimen quantity in prototype units, ``x_prototype = x_specimen / factor``.
+
+The one up-scaling rule of blastscale (paper, Sec. "Validation": "the model is up-scaled, i.e., all
+quantities are multiplied by the inverse of the scaling factor"). The factor of a quantity is that
+of its physical dimension (:class:`~blastscale.similitude.ScalingFactors`: length lambda, time
+sqrt(lambda / varsigma), velocity sqrt(varsigma lambda), angle 1, momentum gamma sqrt(varsigma)
+lambda^(7/2), ...); a summary key names its dimension by its unit suffix (:mod:`blastscale.units`).
+Summaries are up-scaled by :func:`upscale_summary`, histories by
+:func:`~blastscale.analysis.compare.upscale_dataset`; both divide by :func:`dimension_factor`.
+"""
+
+from __future__ import annotations
+
+from .._validate import BlastscaleInputError
+from ..units import dimension_of
+
+__all__ = ["DIMENSIONLESS", "dimension_factor", "upscale", "upscale_summary"]
+
+#: Dimensions that no scaling factor changes.
+DIMENSIONLESS = ("dimensionless", "count")
+
+
+def dimension_factor(factors, dimension: str, name: str = "variable") -> float:
+    """The specimen / prototype factor [-] of a physical ``dimension``: 1 for dimensionless and
+    count, else the :class:`~blastscale.similitude.ScalingFactors` field of that name (``name``
+    labels the error)."""
+    if dimension in DIMENSIONLESS:
+        return 1.0
+    value = getattr(factors, dimension, None) if isinstance(dimension, str) else None
+    if value is None:
+        raise BlastscaleInputError(
+            f"dimension of {name!r} = {dimension!r} has no scaling factor: valid values are "
+            f"{', '.join(DIMENSIONLESS)} or a ScalingFactors field (length, velocity, angle, angular_velocity, "
+            "time, momentum, force, mass, ...)"
+        )
+    return float(value)
+
+
+def upscale(value, factors, dimension: str, name: str = "value"):
+    """``value`` (specimen units) in prototype units: ``value / factor(dimension)``; None stays None."""
+    if value is None:
+        return None
+    return value / dimension_factor(factors, dimension, name)
+
+
+def upscale_summary(summary, factors):
+    """A specimen's summary dict in prototype units: each number divided by the factor of the
+    dimension its key's unit suffix names (``_m`` length, ``_s`` time, ``_m_s`` velocity, ``_rad``
+    angle, ``_Ns`` momentum, ...: :func:`blastscale.units.dimension_of`); booleans, counts, None and
+    keys without a unit are kept. Nested dicts (``points``) and lists (``[x, y, z]``) are handled
+    recursively, a list taking its key's dimension.
+
+    Parameters
+    ----------
+    summary : dict
+        A specimen run's summary [specimen units].
+    factors : ScalingFactors
+        Specimen / prototype factors.
+
+    Returns
+    -------
+    dict
+    """
+
+    def scale(key: str, value):
+        if isinstance(value, dict):
+            return {k: scale(k, v) for k, v in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [scale(key, v) for v in value]
+        if isinstance(value, bool) or value is None or not isinstance(value, (int, float)):
+            return value
+        dim = dimension_of(key)
+        return value if dim is None else float(value) / dimension_factor(factors, dim, key)
+
+    return {k: scale(k, v) for k, v in summary.items()}

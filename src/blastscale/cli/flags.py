@@ -1,0 +1,47 @@
+"""Command-line flags -> a :class:`~blastscale.scenario.Scenario`: every command that simulates
+builds one and runs it through the Study, so a flag and the scenario key it sets are validated
+by the same schema, and an error names the flag the user typed."""
+
+from __future__ import annotations
+
+from typing import Optional
+
+from ..scenario import Scenario
+
+__all__ = ["FLAG_NAMES", "scenario_from_flags"]
+
+#: Scenario field path -> the command-line flag that sets it (one-line errors name the flag).
+FLAG_NAMES = {
+    "structure.height_m": "--height", "structure.width_m": "--width", "structure.alpha_deg": "--alpha-deg",
+    "structure.depth_m": "--depth", "structure.density_kg_m3": "--density", "structure.friction": "--friction",
+    "structure.section": "--section", "structure.drums": "--drums", "structure.base_width_m": "--base-width",
+    "structure.top_width_m": "--top-width", "structure.sides": "--sides",
+    "blast.charge_kg": "--charge", "blast.standoff_m": "--standoff", "blast.model": "--model",
+    "blast.pulse": "--pulse", "blast.load": "--load", "blast.incidence": "--incidence",
+    "blast.extrapolate": "--extrapolate",
+    "scale.length": "--scale", "scale.density_ratio": "--density-ratio", "scale.gravity_ratio": "--gravity-ratio",
+    "scale.law": "--law",
+    "simulation.duration_s": "--duration", "simulation.samples": "--samples", "simulation.gravity_m_s2": "--gravity",
+    "simulation.restitution": "--restitution", "simulation.timestep_s": "--timestep",
+    "simulation.record_every": "--record-every", "simulation.ensemble_members": "--ensemble",
+    "simulation.contact.jacobian": "--jacobian",
+}
+
+
+def _given(table: Optional[dict]) -> dict:
+    """The keys of a table that a flag set (None: left to the scenario's default)."""
+    return {k: v for k, v in (table or {}).items() if v is not None}
+
+
+def scenario_from_flags(structure: dict, blast: dict, scale: Optional[dict] = None,
+                        simulation: Optional[dict] = None, title: str = "") -> Scenario:
+    """The scenario of a command's flags (each table: scenario key -> value, None for a flag not
+    given). ``scale`` None: a prototype-only scenario. Raises one line naming the flag."""
+    data = {"title": title, "structure": _given(structure), "blast": _given(blast)}
+    sim = _given(simulation)
+    if "contact" in sim:
+        sim["contact"] = _given(sim["contact"])
+    data["simulation"] = sim
+    if scale is not None:
+        data["scale"] = _given(scale)
+    return Scenario.from_dict(data, source=None, names=FLAG_NAMES)
