@@ -14,7 +14,6 @@ from blastscale.report import SECTIONS, applicable_slips, format_charge, write_s
 from blastscale.study import Study
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
-EXAMPLES = Path(__file__).parents[1] / "examples" / "scenarios"
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync", "--hide-scrollbars"]
 
@@ -82,7 +81,7 @@ def test_slips_follow_the_scenario():
     assert {1, 2, 4, 5, 10} <= numbers(Scenario.default())
     kb = Scenario.default().with_values({"blast.model": "kingery-bulmash", "length": 0.01})
     assert not {1, 2, 4, 5} & numbers(kb)
-    assert {11, 12} <= numbers(load_scenario(EXAMPLES / "paper_block_non_slender_2500kg.toml"))
+    assert {11, 12} <= numbers(load_scenario("paper_block_non_slender_2500kg"))
     assert 6 in numbers(Scenario.default().with_values({"pulse": "triangular"}))
 
 

@@ -7,7 +7,10 @@ from pathlib import Path
 import pytest
 
 from blastscale.cli import main
-from blastscale.report.reproduce import EXAMPLES, SCENARIOS, items
+from blastscale.report.reproduce import gallery_folder, items, skipped
+from blastscale.scenario import library_names, library_text
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 # a representative subset (the whole list with --quick takes about a minute: measured and reported in the
 # engineer's report); one of each kind: numbers, a scenario through Study, a gallery script
@@ -26,8 +29,10 @@ def reproduce(capsys, out, *extra):
 
 def test_items_cover_every_scenario_and_gallery_script():
     names = {it.name for it in items()}
-    for p in SCENARIOS.glob("*.toml"):
-        assert f"scenario-{p.stem.replace('_', '-')}" in names
+    assert len(library_names()) == 10  # the paper's cases ship as package data
+    for name in library_names():
+        assert f"scenario-{name.replace('_', '-')}" in names
+    assert gallery_folder() == EXAMPLES and skipped() == []  # a source checkout finds its gallery
     for p in EXAMPLES.glob("*.py"):
         if not p.name.startswith("_"):
             assert f"example-{p.stem.replace('_', '-')}" in names
@@ -93,15 +98,15 @@ def test_unknown_item_and_file_target_are_one_line(capsys, tmp_path):
 
 
 def test_a_changed_scenario_runs_again(capsys, tmp_path, monkeypatch):
-    import shutil
-
     import blastscale.report.reproduce as rp
+
+    import blastscale.scenario.library as lib
 
     scen = tmp_path / "scenarios"
     scen.mkdir()
-    shutil.copy(SCENARIOS / "paper_block_50kg_lambda20.toml", scen)
-    monkeypatch.setattr(rp, "SCENARIOS", scen)
-    monkeypatch.setattr(rp, "EXAMPLES", tmp_path / "no-gallery")
+    (scen / "paper_block_50kg_lambda20.toml").write_text(library_text("paper_block_50kg_lambda20"))
+    monkeypatch.setattr(lib, "_files", lambda: scen)  # the shipped scenarios, as a changed installation
+    monkeypatch.setattr(rp, "_SOURCE_GALLERY", tmp_path / "no-gallery")
     out = tmp_path / "paper"
     args = ["reproduce", "--out", str(out), "--quick", "--only", "scenario-*"]
     for _ in range(2):

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import fnmatch
 from pathlib import Path
+from typing import Optional
 
 import typer
 from rich.table import Table
@@ -28,15 +29,20 @@ def reproduce_cmd(
     quick: bool = typer.Option(False, "--quick", help="Shortened runs (0.2 s scenarios, quick gallery): a smoke "
                                                       "test of every item, not the paper's numbers."),
     list_items: bool = typer.Option(False, "--list", help="List the items and exit."),
+    examples: Optional[Path] = typer.Option(None, "--examples", help="Folder of the gallery scripts (default: "
+                                                                      "examples/ of a source checkout)."),
 ) -> None:
     """Reproduce the paper's tables and figures; the report puts the paper's numbers beside ours."""
     from ..io.results import output_folder, provenance, write_atomic, write_json
-    from ..report.reproduce import MARKER, item_done, items, render_reproduce_report, run_item
+    from ..report.reproduce import MARKER, item_done, items, render_reproduce_report, run_item, skipped
 
-    every = items()
+    every = items(examples)
+    left_out = skipped(examples)
     if list_items:
         for it in every:
             console.print(f"{it.name:45s} {it.title}", highlight=False)
+        for why in left_out:
+            console_err.print(f"skipped: {why}", highlight=False)
         return
     chosen = [it for it in every if not only or any(fnmatch.fnmatch(it.name, pat) for pat in only)]
     if not chosen:
@@ -81,6 +87,8 @@ def reproduce_cmd(
         t.add_row(it.name, status[it.name])
     console.print(t)
     console_err.print(f"wrote {out / 'report.html'} ({len(infos)} items)", highlight=False)
+    for why in left_out:
+        console_err.print(f"skipped: {why}", highlight=False)
     if failures:
         for f in failures:
             console_err.print(f"[bold red]error:[/] {f}", highlight=False, soft_wrap=True)

@@ -6,9 +6,11 @@ docs/paper_slips.md that explains a difference). Items are:
 
 * the paper's tables and numbers computed directly (geometry, blast loading, scaling factors,
   critical charge),
-* every paper scenario of ``examples/scenarios/`` run through :class:`~blastscale.study.Study`
-  (its own result folder and report),
-* every script of the ``examples/`` gallery (its figures), where the source tree is present.
+* every paper scenario shipped with blastscale (package data, :mod:`blastscale.scenario.library`)
+  run through :class:`~blastscale.study.Study` (its own result folder and report),
+* every script of the ``examples/`` gallery (its figures). The gallery ships with the source tree,
+  not with the installed package: it is found next to the package in a source checkout or given
+  explicitly (``reproduce --examples DIR``); :func:`skipped` says when it is not there.
 
 Each item is written through a temporary folder renamed into place with an ``item.json``
 marker: a second run skips the items already done (resumable after Ctrl-C), and
@@ -27,14 +29,21 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Callable, Optional
 
-__all__ = ["Row", "Item", "items", "run_item", "item_done", "render_reproduce_report", "MARKER"]
+__all__ = ["Row", "Item", "items", "skipped", "gallery_folder", "run_item", "item_done", "render_reproduce_report",
+           "MARKER"]
 
 #: Marker written last into an item's folder: the item is complete.
 MARKER = "item.json"
 
-_ROOT = Path(__file__).resolve().parents[3]  # the source tree (src/blastscale/report -> repository root)
-EXAMPLES = _ROOT / "examples"
-SCENARIOS = EXAMPLES / "scenarios"
+#: The gallery of a source checkout: src/blastscale/report -> the repository's examples/ (absent in a wheel).
+_SOURCE_GALLERY = Path(__file__).resolve().parents[3] / "examples"
+
+
+def gallery_folder(given: Optional[Path] = None) -> Optional[Path]:
+    """The folder of the gallery scripts: ``given``, else the source checkout's ``examples/`` when
+    this package runs from one (it holds ``_gallery.py``), else None."""
+    folder = _SOURCE_GALLERY if given is None else Path(given)
+    return folder if (folder / "_gallery.py").is_file() else None
 
 
 @dataclass(frozen=True)
@@ -70,13 +79,20 @@ class Item:
     compute: Callable[[Path, bool], list]
     notes: str = ""
     kind: str = "number"
-    source: Optional[Path] = None  # the scenario or script it runs: a changed file makes the item run again
+    source: "Optional[Path | str]" = None  # a script, or a shipped scenario's name: a change makes it run again
 
     def fingerprint(self) -> str:
-        """SHA-256 of the item's source file ("" for the numbers computed in this module)."""
+        """SHA-256 of the item's source (a script's bytes, a shipped scenario's text; "" for the numbers
+        computed in this module)."""
         import hashlib
 
-        return "" if self.source is None else hashlib.sha256(self.source.read_bytes()).hexdigest()
+        if self.source is None:
+            return ""
+        if isinstance(self.source, Path):
+            return hashlib.sha256(self.source.read_bytes()).hexdigest()
+        from ..scenario import library_text
+
+        return hashlib.sha256(library_text(self.source).encode("utf-8")).hexdigest()
 
 
 # -- numbers computed directly ---------------------------------------------------------------
@@ -171,20 +187,20 @@ def _dig(d: dict, path: str):
     return d
 
 
-def _scenario_item(path: Path) -> Item:
+def _scenario_item(name: str) -> Item:
     def compute(folder: Path, quick: bool) -> list:
         from ..scenario import load_scenario
         from ..study import Study
         from . import write_study
 
-        sc = load_scenario(path)
+        sc = load_scenario(name)
         if quick:
             sc = sc.with_values({"duration_s": min(sc.simulation.duration_s, 0.2), "critical_charge": False})
         result = Study(sc).run()
         write_study(result, folder)
         s = result.summary()
         rows = []
-        for q, paper, key, unit, slip in _SCENARIO_PAPER.get(path.stem, []):
+        for q, paper, key, unit, slip in _SCENARIO_PAPER.get(name, []):
             v = _dig(s, key)
             if isinstance(v, (int, float)) and not isinstance(v, bool) and unit in _UNIT_FACTOR:
                 v = v * _UNIT_FACTOR[unit]
@@ -214,12 +230,11 @@ def _scenario_item(path: Path) -> Item:
 
     import tomllib
 
-    try:
-        title = tomllib.loads(path.read_text()).get("title") or path.name
-    except (OSError, tomllib.TOMLDecodeError):
-        title = path.name
-    return Item(f"scenario-{path.stem.replace('_', '-')}", f"Scenario: {title}", f"examples/scenarios/{path.name}",
-                compute, kind="scenario", source=path)
+    from ..scenario import library_text
+
+    title = tomllib.loads(library_text(name)).get("title") or name
+    return Item(f"scenario-{name.replace('_', '-')}", f"Scenario: {title}", f"blastscale:{name}",
+                compute, kind="scenario", source=name)
 
 
 # -- gallery scripts ---------------------------------------------------------------------------
@@ -242,8 +257,11 @@ def _script_item(path: Path) -> Item:
                 source=path)
 
 
-def items() -> list[Item]:
-    """Every reproducible item, in the paper's order (numbers first, scenarios, then the gallery)."""
+def items(examples: Optional[Path] = None) -> list[Item]:
+    """Every reproducible item, in the paper's order (numbers first, the shipped scenarios, then the
+    gallery of :func:`gallery_folder` when there is one)."""
+    from ..scenario import library_names
+
     out = [
         Item("table-geometry", "Table \"Geometry parameters\" (prototype and models 1, 2)", "Sec. Equations of motion",
              _geometry),
@@ -253,11 +271,19 @@ def items() -> list[Item]:
         Item("critical-charge", "Critical charge of the slender block at 2 m (case c)", "Sec. Equations of motion",
              _critical),
     ]
-    if SCENARIOS.is_dir():
-        out += [_scenario_item(p) for p in sorted(SCENARIOS.glob("*.toml"))]
-    if EXAMPLES.is_dir():
-        out += [_script_item(p) for p in sorted(EXAMPLES.glob("*.py")) if not p.name.startswith("_")]
+    out += [_scenario_item(name) for name in library_names()]
+    gallery = gallery_folder(examples)
+    if gallery is not None:
+        out += [_script_item(p) for p in sorted(gallery.glob("*.py")) if not p.name.startswith("_")]
     return out
+
+
+def skipped(examples: Optional[Path] = None) -> list[str]:
+    """What :func:`items` leaves out and why (one line each; empty when nothing is left out)."""
+    if gallery_folder(examples) is not None:
+        return []
+    where = "the folder given" if examples is not None else "this installation (the gallery ships with the source tree)"
+    return [f"the examples/ gallery (figure scripts): not found in {where}; give it with --examples DIR"]
 
 
 def item_done(item: Item, out: Path, quick: bool) -> bool:
