@@ -48,7 +48,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
 from ..blast.parameters import DEFAULT_BLAST_MODEL
-from ..rocking.solver import DEFAULT_SOLVER, RockingResult, RockingSolver, _check_count
+from ..rocking import DEFAULT_SOLVER, RockingResult, RockingSolver, check_count
 from ..rocking.system import RockingSystem
 from ..similitude import ModelDesign, design_model
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
@@ -278,7 +278,7 @@ def compare_rocking(
     if pulse not in _SHAPES:
         raise BlastscaleInputError(f"pulse = {pulse!r} is not known: valid values are {', '.join(_SHAPES)}")
     dur = float(check_positive("duration", duration, "s"))
-    n_samples = _check_count("n_samples", n_samples, 2)
+    n_samples = check_count("n_samples", n_samples, 2)
     solver = solver or DEFAULT_SOLVER
     d = design if design is not None else design_model(
         charge, standoff, scale, density_ratio, gravity_ratio, law=law, model=model, geometry=block, gravity=gravity

@@ -80,7 +80,8 @@ from ..blast.faces import _check_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters, get_blast_model, valid_scaled_distance_range
 from ..blast.pulses import Pulse, friedlander_impulse_ratio
 from . import _kernel as K
-from .solver import DEFAULT_SOLVER, RockingSolver, _check_count, encode_pulse
+from .encoding import PULSE_CODES, encode_pulse
+from .solver import DEFAULT_SOLVER, RockingSolver, check_count
 from .system import RockingSystem, as_rocking_system
 
 __all__ = [
@@ -104,7 +105,6 @@ __all__ = [
     "PIDiagram",
 ]
 
-_KIND = {"impulsive": 0, "friedlander": 1, "triangular": 2}
 # widening of the blast model's valid Z range with extrapolate=True (factor each side)
 _EXTRAPOLATE_WIDENING = 5.0
 
@@ -410,7 +410,7 @@ def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse: s
         par[:, 1] = p * (2.0 * blast.reflected_impulse / blast.reflected_pressure)
     else:  # impulsive: theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
         w0[:] = q * p * blast.reflected_impulse * np.cos(a)
-    kind = np.full(n, _KIND[pulse], dtype=np.int64)
+    kind = np.full(n, PULSE_CODES[pulse], dtype=np.int64)
     return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par)
 
 
@@ -955,7 +955,7 @@ def pi_diagram(
     p_up = system.uplift_pressure
     i_imp = system.critical_impulse
     if peak_pressures is None:
-        P = p_up * np.logspace(math.log10(1.02), 4.0, _check_count("n", n, 1))
+        P = p_up * np.logspace(math.log10(1.02), 4.0, check_count("n", n, 1))
     else:
         P = np.atleast_1d(check_positive("peak pressure", peak_pressures, "Pa")).astype(float)
         if P.ndim != 1 or P.size == 0:
@@ -966,9 +966,9 @@ def pi_diagram(
                 f"pressure {p_up:.6g} Pa (below it the body never lifts off)"
             )
     if shape == "triangular":
-        kind, dur_per_impulse, d = _KIND[shape], 2.0 / P, 0.0
+        kind, dur_per_impulse, d = PULSE_CODES[shape], 2.0 / P, 0.0
     elif shape == "friedlander":
-        kind, dur_per_impulse, d = _KIND[shape], 1.0 / (P * float(friedlander_impulse_ratio(decay))), float(decay)
+        kind, dur_per_impulse, d = PULSE_CODES[shape], 1.0 / (P * float(friedlander_impulse_ratio(decay))), float(decay)
     else:
         raise BlastscaleInputError(f"P-I pulse shape = {shape!r} is not known: valid values are triangular, friedlander")
     pf, q = system.frequency_parameter, system.load_ratio_per_pascal
