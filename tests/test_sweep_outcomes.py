@@ -23,8 +23,7 @@ from blastscale._validate import BlastscaleInputError
 from blastscale.analysis.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, planar_scalars, run_sweep
 from blastscale.blast import blast_parameters
 from blastscale.io.scenario import Scenario
-from blastscale.rocking import RockingSystem, critical_charge, simulate
-from blastscale.rocking.capacity import first_swing
+from blastscale.rocking import RockingSystem, critical_charge, first_swing, simulate
 from blastscale.structures.block import RectangularBlock
 
 ANGLE_TOL = 1e-8  # rad (module docstring)
