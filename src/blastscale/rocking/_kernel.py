@@ -21,7 +21,8 @@ dense output; an impact is then reached by one exact Runge-Kutta step to the loc
 
 Pulse codes: 0 no pressure (impulsive loads enter as an initial velocity), 1 Friedlander
 ``par = (f0, tau_o, d)``, 2 triangular ``par = (f0, tau_d, 0)``, 3 tabulated (``tab_t``
-[dimensionless time], ``tab_f`` [load ratio], linear in between).
+[dimensionless time], ``tab_f`` [load ratio], linear in between); named in :mod:`._load`
+(``NO_PULSE`` ... ``TABULATED``) and :data:`blastscale.rocking.encoding.PULSE_CODES`.
 
 Modules: this one holds the driver (:func:`solve_case`, :func:`solve_batch`) and re-exports the
 summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load ``f(tau)``; :mod:`._dopri`
