@@ -36,8 +36,7 @@ import numpy as np
 
 
 def bench_capacity(n: int, n_bisect: int) -> dict:
-    from blastscale.rocking import RockingSystem, capacity_curve, critical_charge
-    from blastscale.rocking.capacity import critical_charge_by_bisection
+    from blastscale.rocking import RockingSystem, capacity_curve, critical_charge, critical_charge_by_bisection
     from blastscale.structures import RectangularBlock
 
     blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0))

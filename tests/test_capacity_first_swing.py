@@ -1,7 +1,7 @@
 """First-swing energy criterion of the capacity search against full simulations.
 
 The capacity functions integrate only the pulse and decide overturning by energy on the first
-free swing (rocking/capacity.py). These tests compare with the plain rocking solver run to
+free swing (rocking/first_swing.py). These tests compare with the plain rocking solver run to
 rest (every impact, no early stop): the outcome from arbitrary states, and the critical charge
 against a bisection on full simulations.
 """
@@ -16,9 +16,17 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from blastscale.blast.base import ExtrapolationWarning
-from blastscale.rocking import RockingSystem, critical_charge, critical_standoff, simulate
-from blastscale.rocking.capacity import capacity_curve, critical_charge_by_bisection, first_swing_margin, first_swing_peak
-from blastscale.rocking.solver import DEFAULT_SOLVER
+from blastscale.rocking import (
+    DEFAULT_SOLVER,
+    RockingSystem,
+    capacity_curve,
+    critical_charge,
+    critical_charge_by_bisection,
+    critical_standoff,
+    first_swing_margin,
+    first_swing_peak,
+    simulate,
+)
 from blastscale.structures.block import RectangularBlock
 
 BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))

@@ -1,7 +1,6 @@
 """``blastscale run``: the result folder (complete or absent), its files, refusals, and Ctrl-C."""
 
 import json
-import os
 import signal
 import stat
 import subprocess

@@ -6,7 +6,6 @@ malformed files; each must name the offending field path.
 
 import math
 import tomllib
-from pathlib import Path
 
 import pytest
 

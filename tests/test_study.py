@@ -5,7 +5,6 @@ against the independent direct calls it must reproduce exactly.
 """
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest

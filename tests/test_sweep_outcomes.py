@@ -24,8 +24,7 @@ from blastscale.io.sweep_store import run_sweep
 from blastscale.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, planar_scalars
 from blastscale.blast import blast_parameters
 from blastscale.scenario import Scenario
-from blastscale.rocking import RockingSystem, critical_charge, simulate
-from blastscale.rocking.capacity import first_swing
+from blastscale.rocking import RockingSystem, critical_charge, first_swing, simulate
 from blastscale.structures.block import RectangularBlock
 
 ANGLE_TOL = 1e-8  # rad (module docstring)

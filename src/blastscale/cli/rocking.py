@@ -272,7 +272,7 @@ def capacity_cmd(
 
     from ..sweeps.grids import parse_grid
     from ..rocking import RockingSystem
-    from ..rocking.capacity import capacity_curve, critical_standoff, model_capacity_curve
+    from ..rocking import capacity_curve, critical_standoff, model_capacity_curve
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)

@@ -1,28 +1,37 @@
 """Planar rocking of a rigid body on a rigid base under blast (paper Eq. eq:eom).
 
 * :class:`RockingSystem` (general body) / :func:`RockingSystem.from_block` (rectangular block),
-  :func:`housner_restitution`;
+  :func:`housner_restitution` (:mod:`.system`);
 * :class:`RockingSolver` (compiled Dormand-Prince 5(4), impacts, peaks, overturning) with
   :meth:`~RockingSolver.simulate` (one case, full history) and
-  :meth:`~RockingSolver.simulate_batch` (many cases per call), results :class:`RockingResult`
-  and :class:`RockingBatchResult`;
+  :meth:`~RockingSolver.simulate_batch` (many cases per call), :data:`DEFAULT_SOLVER`,
+  :func:`simulate` (:mod:`.solver`); results :class:`RockingResult` and
+  :class:`RockingBatchResult` (:mod:`.results`); :func:`encode_pulse` and
+  :data:`PULSE_CODES`, the kernel form of a pulse (:mod:`.encoding`);
 * :func:`simulate_reference` — the slow scipy ``solve_ivp`` (DOP853) reference path;
-* capacity (first-swing energy criterion, docs/capacity.md): :func:`critical_charge`,
-  :func:`critical_standoff`, :func:`capacity_curve`, :func:`pi_diagram`.
+* capacity (first-swing energy criterion, docs/capacity.md): :func:`overturn_margin`,
+  :func:`first_swing`, :func:`overturns` (:mod:`.first_swing`); :func:`critical_charge`,
+  :func:`critical_standoff`, :func:`charge_for_impulse` (:mod:`.critical`);
+  :func:`capacity_curve`, :func:`model_capacity_curve` (:mod:`.capacity_curve`);
+  :func:`pi_diagram` (:mod:`.pi_diagram`).
 """
 
-from .capacity import (
-    CapacityCurve,
-    CriticalResult,
-    PIDiagram,
-    capacity_curve,
-    critical_charge,
-    critical_standoff,
+from .capacity_curve import CapacityCurve, ModelCapacity, capacity_curve, model_capacity_curve
+from .critical import CriticalResult, charge_for_impulse, critical_charge, critical_charge_by_bisection, critical_standoff
+from .encoding import PULSE_CODES, encode_pulse
+from .first_swing import (
+    FirstSwing,
+    first_swing,
+    first_swing_blast,
+    first_swing_margin,
+    first_swing_peak,
     overturn_margin,
-    pi_diagram,
+    overturns,
 )
+from .pi_diagram import PIDiagram, pi_diagram
 from .reference import simulate_reference
-from .solver import RockingBatchResult, RockingResult, RockingSolver, simulate
+from .results import RockingBatchResult, RockingResult
+from .solver import DEFAULT_SOLVER, RockingSolver, check_count, simulate
 from .system import RockingSystem, as_rocking_system, housner_restitution
 
 __all__ = [
@@ -30,16 +39,30 @@ __all__ = [
     "as_rocking_system",
     "housner_restitution",
     "RockingSolver",
+    "DEFAULT_SOLVER",
     "RockingResult",
     "RockingBatchResult",
     "simulate",
     "simulate_reference",
+    "check_count",
+    "PULSE_CODES",
+    "encode_pulse",
     "CriticalResult",
     "CapacityCurve",
     "capacity_curve",
+    "ModelCapacity",
+    "model_capacity_curve",
     "PIDiagram",
     "critical_charge",
     "critical_standoff",
+    "critical_charge_by_bisection",
+    "charge_for_impulse",
+    "FirstSwing",
+    "first_swing",
+    "first_swing_blast",
+    "first_swing_margin",
+    "first_swing_peak",
     "overturn_margin",
+    "overturns",
     "pi_diagram",
 ]

@@ -18,7 +18,7 @@ from scipy.optimize import brentq
 
 from .._validate import check_positive
 from ..blast.pulses import Impulsive, Pulse, Tabulated
-from .solver import RockingResult, _none_if_nan
+from .results import RockingResult, _none_if_nan
 from .system import RockingSystem, as_rocking_system
 
 __all__ = ["simulate_reference"]

@@ -1,4 +1,4 @@
-"""Fast rocking solver (compiled Dormand-Prince 5(4) with events) and its result types.
+"""Fast rocking solver (compiled Dormand-Prince 5(4) with events); results in :mod:`.results`.
 
 The equation (paper Eq. eq:eom, see :mod:`blastscale.rocking.system`) is integrated in the
 dimensionless time ``tau = p t`` with the state ``(theta, theta_dot / p)``, so that the
@@ -27,175 +27,43 @@ load-to-weight ratio exceeds ``tan(alpha)`` (``P S h > m g b`` for a rectangle).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
-from ..blast.pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular
+from ..blast.pulses import Pulse
 from ..structures.block import RectangularBlock
 from . import _kernel as K
+from .encoding import encode_pulse
+from .results import RockingBatchResult, RockingResult, _none_if_nan
 from .system import RockingSystem, as_rocking_system
 
-__all__ = ["RockingSolver", "RockingResult", "RockingBatchResult", "encode_pulse", "simulate"]
+__all__ = ["RockingSolver", "DEFAULT_SOLVER", "simulate", "check_count"]
 
 
-def encode_pulse(pulse: Pulse, system: RockingSystem, theta0: float = 0.0):
-    """Kernel form of a pulse for ``system``: ``(kind, par[3], tab_t, tab_f, dw0)``.
+def check_count(name: str, value, lo: int) -> int:
+    """``value`` as an int; raise unless it is a whole number >= ``lo``.
 
-    Times are made dimensionless with p, pressures turned into load-to-weight ratios;
-    ``dw0`` is the jump of ``theta_dot / p`` given by an impulsive load at ``theta0``
-    (impulse-momentum about the pivot: ``J_o dtheta_dot = i S l cos(alpha s - theta0)/cos alpha``).
-    """
-    if not isinstance(pulse, Pulse):
-        raise BlastscaleInputError(f"pulse must be a blastscale Pulse, got {type(pulse).__name__}")
-    p = system.frequency_parameter
-    q = system.load_ratio_per_pascal
-    empty = np.zeros(0)
-    par = np.zeros(3)
-    if isinstance(pulse, Impulsive):
-        s = -1.0 if theta0 < 0.0 else 1.0
-        a = system.alpha * s - theta0
-        dw = q * p * pulse.impulse * math.cos(a)
-        return 0, par, empty, empty, dw
-    if not (pulse.duration > 0.0 and math.isfinite(pulse.duration)):
-        raise BlastscaleInputError(f"pulse duration = {pulse.duration:.6g} s is out of range: must be > 0 s")
-    if isinstance(pulse, Friedlander):
-        par[:] = (q * pulse.peak_pressure, p * pulse.positive_duration, pulse.decay)
-        return 1, par, empty, empty, 0.0
-    if isinstance(pulse, Triangular):
-        par[:] = (q * pulse.peak_pressure, p * pulse.duration, 0.0)
-        return 2, par, empty, empty, 0.0
-    if isinstance(pulse, Tabulated):
-        return 3, par, np.ascontiguousarray(pulse.times * p), np.ascontiguousarray(pulse.pressures * q), 0.0
-    raise BlastscaleInputError(
-        f"pulse kind {pulse.kind!r} is not supported by the rocking solver: "
-        "use Friedlander, Triangular, Impulsive or Tabulated"
-    )
-
-
-@dataclass(frozen=True)
-class RockingResult:
-    """Response of one rocking body (SI; times from the shock arrival).
-
-    Attributes
+    Parameters
     ----------
-    t, theta, theta_dot : ndarray
-        History at every accepted solver step and event [s], [rad], [rad/s]; an impact
-        appears twice at the same time (velocity before, then after).
-    t_eval, theta_eval, theta_dot_eval : ndarray or None
-        The history sampled at the requested times (dense output, 4th order), when asked.
-    impact_times, impact_velocity_before, impact_velocity_after : ndarray
-        Every impact [s], [rad/s], [rad/s].
-    peak_times, peak_angles : ndarray
-        Every local extremum of |theta| [s], [rad] (signed angle).
-    overturned : bool
-        Whether the body overturned (see the module docstring for the criterion).
-    overturn_time : float or None
-        Time it passed its tipping point [s].
-    first_impact_time : float or None
-        Time of the first impact [s].
-    max_angle : float
-        Largest |theta| over the run [rad] (pi/2 once it lies on its side).
-    end_time : float
-        Time the simulated motion ends [s] (the requested duration, or when it lay down or
-        the requested early stop happened).
-    n_steps, n_rejected : int
-        Solver steps (accepted + rejected) and rejected steps.
-    restitution : float
-        Restitution used [-].
+    name : str
+        Name of the quantity in the error message.
+    value : int or float
+        A count (an integral float such as ``3.0`` is accepted; a bool is not).
+    lo : int
+        Smallest valid value.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    BlastscaleInputError
+        If ``value`` is not a whole number >= ``lo``.
     """
-
-    t: np.ndarray
-    theta: np.ndarray
-    theta_dot: np.ndarray
-    impact_times: np.ndarray
-    impact_velocity_before: np.ndarray
-    impact_velocity_after: np.ndarray
-    peak_times: np.ndarray
-    peak_angles: np.ndarray
-    overturned: bool
-    overturn_time: float | None
-    first_impact_time: float | None
-    max_angle: float
-    end_time: float
-    n_steps: int
-    n_rejected: int
-    restitution: float
-    angular_velocity_at_tipping: float | None = None
-    t_eval: np.ndarray | None = None
-    theta_eval: np.ndarray | None = None
-    theta_dot_eval: np.ndarray | None = None
-    system: RockingSystem | None = field(default=None, repr=False)
-
-    @property
-    def n_impacts(self) -> int:
-        """Number of impacts [-]."""
-        return int(self.impact_times.size)
-
-    def to_dataset(self):
-        """The history as an ``xarray.Dataset`` (dimension ``time`` [s]; ``theta`` [rad],
-        ``theta_dot`` [rad/s]; units and the scalar results in the attributes). Needs the
-        ``io`` extra (xarray); imported only here."""
-        import xarray as xr
-
-        ds = xr.Dataset(
-            {
-                "theta": ("time", self.theta, {"units": "rad", "long_name": "rocking angle"}),
-                "theta_dot": ("time", self.theta_dot, {"units": "rad/s", "long_name": "angular velocity"}),
-            },
-            coords={"time": ("time", self.t, {"units": "s", "long_name": "time after shock arrival"})},
-        )
-        for k, v in self.summary().items():
-            ds.attrs[k] = "none" if v is None else (int(v) if isinstance(v, bool) else v)
-        ds.attrs["restitution"] = self.restitution
-        ds.attrs["equation"] = "Masi, Stefanou & Maffi-Berthier, Eq. (eom); Housner (1963) impacts"
-        return ds
-
-    def summary(self) -> dict:
-        """Plain dict of the scalar results (unit-suffixed keys, None where absent)."""
-        return {
-            "overturned": bool(self.overturned),
-            "max_angle_rad": float(self.max_angle),
-            "overturn_time_s": self.overturn_time,
-            "first_impact_time_s": self.first_impact_time,
-            "n_impacts": self.n_impacts,
-            "end_time_s": float(self.end_time),
-        }
-
-
-@dataclass(frozen=True)
-class RockingBatchResult:
-    """Responses of n cases sampled at m common times (arrays shaped ``(n,)`` / ``(n, m)``).
-
-    ``theta``/``theta_dot`` are NaN only after an early stop the caller asked for
-    (``stop_at_overturn``/``max_impacts``); elsewhere every sample is simulated.
-    """
-
-    t: np.ndarray
-    theta: np.ndarray
-    theta_dot: np.ndarray
-    overturned: np.ndarray
-    overturn_time: np.ndarray  # NaN where none [s]
-    first_impact_time: np.ndarray  # NaN where none [s]
-    max_angle: np.ndarray
-    first_peak_angle: np.ndarray  # NaN where none [rad]
-    angular_velocity_at_tipping: np.ndarray  # NaN where none [rad/s]
-    n_impacts: np.ndarray
-    n_steps: np.ndarray
-    end_time: np.ndarray
-
-    def __len__(self) -> int:
-        return int(self.overturned.size)
-
-
-def _none_if_nan(x: float) -> float | None:
-    return None if not math.isfinite(x) else float(x)
-
-
-def _check_count(name: str, value, lo: int) -> int:
-    """Return ``value`` as an int; raise unless it is a whole number >= ``lo``."""
     ok = isinstance(value, (int, np.integer)) and not isinstance(value, bool)
     if not ok and isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
         ok = True
@@ -231,7 +99,7 @@ class RockingSolver:
         check_range("rtol", self.rtol, 1e-14, 1e-2)
         check_range("atol", self.atol, 1e-16, 1e-2)
         check_range("rest_velocity", self.rest_velocity, 0.0, 1e-2)
-        _check_count("max_steps", self.max_steps, 1)
+        check_count("max_steps", self.max_steps, 1)
 
     # ------------------------------------------------------------------ one case
     def simulate(
@@ -278,7 +146,7 @@ class RockingSolver:
         p = system.frequency_parameter
         tev = self._check_t_eval(t_eval, dur)
         kind, par, tt, tf, dw = (0, np.zeros(3), np.zeros(0), np.zeros(0), 0.0) if pulse is None else encode_pulse(pulse, system, th0)
-        mi = -1 if max_impacts is None else _check_count("max_impacts", max_impacts, 0)
+        mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
         e = system.coefficient_of_restitution
         summ, the, we, hist, imp, pk = K.solve_case(
             system.alpha, e, th0, om0 / p + dw, dur * p, kind, par, tt, tf,
@@ -388,7 +256,7 @@ class RockingSolver:
             w0[i] = om0[i] / pvec[i] + dw
         tab_t = np.concatenate(tabs_t) if off[-1] else np.zeros(0)
         tab_f = np.concatenate(tabs_f) if off[-1] else np.zeros(0)
-        mi = -1 if max_impacts is None else _check_count("max_impacts", max_impacts, 0)
+        mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
         summ, th, w = K.solve_batch(
             alpha, e, th0, w0, dur * pvec, kinds, par, tab_t, tab_f, off,
             np.ascontiguousarray(tev[None, :] * pvec[:, None]),

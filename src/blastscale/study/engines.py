@@ -38,7 +38,7 @@ def _run_planar(ctx: Context):
 
     from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
     from ..rocking import RockingSystem
-    from ..rocking.solver import DEFAULT_SOLVER
+    from ..rocking import DEFAULT_SOLVER
 
     sc, sim, d = ctx.scenario, ctx.scenario.simulation, ctx.design
     shape, dur = sc.blast.pulse, float(sim.duration_s)

@@ -69,8 +69,8 @@ def planar_scalars(scenarios) -> list[dict]:
 
     from ..rocking import _kernel as K
     from ..analysis.rocking_similarity import _fall_phase_diff
-    from ..rocking.capacity import critical_charge
-    from ..rocking.solver import DEFAULT_SOLVER, encode_pulse
+    from ..rocking import critical_charge
+    from ..rocking import DEFAULT_SOLVER, encode_pulse
     from ..rocking.system import RockingSystem
     from ..study import Study, StudyResult
 

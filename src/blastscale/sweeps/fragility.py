@@ -5,7 +5,7 @@ For every charge W of a grid, N Monte Carlo samples of the uncertain fields (a l
 of median 1 and log-standard deviation beta on a field's nominal value, or uniform absolute
 values) give N scenarios (the same draws at every charge: common random numbers, so the
 empirical curve is monotone when the outcome is). Each is decided by the first-swing energy
-criterion of :mod:`blastscale.rocking.capacity` (overturns at any time; planar rocking of a
+criterion of :mod:`blastscale.rocking.first_swing` (overturns at any time; planar rocking of a
 block; vectorised through the compiled kernel), and the counts k_j / N are fitted by maximum
 likelihood with the lognormal fragility
 
@@ -138,7 +138,7 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     The scenario must be a block (planar rocking). Fields that change only the load (charge,
     stand-off) are vectorised over one body; any other field builds the body of each case.
     """
-    from ..rocking.capacity import overturns
+    from ..rocking import overturns
     from ..rocking.system import RockingSystem
     from ..structures import from_spec
 

@@ -54,7 +54,7 @@ def _outcome_group(sc, W, R, e) -> dict:
     """Outcome-mode arrays for n load cases ``W`` [kg], ``R`` [m], restitution ``e`` [-] (NaN:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse)."""
     from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
-    from ..rocking.capacity import charge_for_impulse, first_swing_blast
+    from ..rocking import charge_for_impulse, first_swing_blast
     from ..rocking.system import RockingSystem, housner_restitution
     from ..similitude import scaling_factors
     from ..similitude.laws import hopkinson_cranz_density_ratio
@@ -112,7 +112,7 @@ def _outcome_group(sc, W, R, e) -> dict:
 def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
     """The outcome mode: first-swing results of the planar block cases ``start .. stop - 1`` of a
     sweep, vectorised over the cases (the design in numpy, the pulse phases in the compiled
-    kernel, the first free swing in closed form; :func:`blastscale.rocking.capacity.first_swing`).
+    kernel, the first free swing in closed form; :func:`blastscale.rocking.first_swing`).
 
     For the prototype and the model (designed by the scenario's law; the general law's model
     charge found by inverting the blast model's reflected impulse, which equals the Study's

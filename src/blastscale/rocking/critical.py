@@ -1,0 +1,329 @@
+"""Critical charge and critical stand-off of a rocking body (first-swing energy criterion).
+
+The critical charge W_c(R) [kg TNT] is the largest charge at the stand-off R [m] that the
+body survives without overturning, the critical stand-off the smallest R at which it survives
+W; the outcome of each trial is the first-swing margin mu of
+:mod:`blastscale.rocking.first_swing` (> 0 overturns) under the reflected pulse of the blast
+model (paper Method A, Eq. eom).
+
+Search
+------
+The root is found in ``u = ln x`` (x the charge, the stand-off or the impulse), for all the
+cases of a call at once: a starting point from the structure's own scale (the impulsive closed
+form ``J_o theta_dot_c = i S l`` gives the critical impulse; the blast model is inverted for
+the charge or stand-off that delivers it), a geometric bracket search within the blast model's
+valid range of Z, then the Illinois variant of regula falsi with a bisection safeguard to a
+relative tolerance ``xtol_rel`` (default 1e-9). A case whose outcome does not change within the
+range gives NaN in the curves and a one-line error in the scalar functions.
+
+The root finder is :func:`blastscale.rocking._roots.vector_root`;
+:func:`critical_charge_by_bisection` is the slow independent reference (full simulations).
+
+References: paper Sec. "Equations of motion" (W_pc = 79.8 kg for the 10 m block at 2 m);
+Masi et al. (2019), Int. J. Mech. Sci. 157 (critical impulse); Hopkinson-Cranz scaling (Baker
+et al. 1983); Illinois method: Dowell & Jarratt (1971), BIT 11, 168-174.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validate import BlastscaleInputError, check_positive, check_range
+from ..blast.base import ExtrapolationWarning
+from ..blast.pulses import check_pulse_shape
+from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters, get_blast_model, valid_scaled_distance_range
+from ._roots import vector_root
+from .first_swing import first_swing
+from .solver import DEFAULT_SOLVER, RockingSolver
+from .system import as_rocking_system
+
+__all__ = [
+    "critical_charge",
+    "critical_standoff",
+    "critical_charge_by_bisection",
+    "CriticalResult",
+    "charge_for_impulse",
+]
+
+# widening of the blast model's valid Z range with extrapolate=True (factor each side)
+_EXTRAPOLATE_WIDENING = 5.0
+
+
+def _model_name(model) -> str:
+    return model if isinstance(model, str) else getattr(model, "name", str(model))
+
+
+def _z_range(model, extrapolate: bool) -> tuple[float, float]:
+    zlo, zhi = valid_scaled_distance_range(model)
+    if extrapolate:
+        return zlo / _EXTRAPOLATE_WIDENING, zhi * _EXTRAPOLATE_WIDENING
+    return zlo * (1.0 + 1e-12), zhi * (1.0 - 1e-12)
+
+
+def _invert_impulse(target, model, by_charge: bool, fixed, lo, hi, extrapolate: bool):
+    """ln of the charge [kg] (``by_charge``, ``fixed`` the stand-offs [m]) or of the stand-off [m]
+    (``fixed`` the charges [kg]) whose reflected impulse is ``target`` [Pa*s], by bisection on the
+    blast model alone between ``lo`` and ``hi`` (ln x; the result is clipped to them). The
+    reflected impulse grows with the charge and falls with the distance (Hopkinson-Cranz)."""
+    bm = get_blast_model(model)
+    lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
+
+    def impulse(u):
+        W, R = (np.exp(u), fixed) if by_charge else (fixed, np.exp(u))
+        w13 = np.cbrt(W)
+        return bm.scaled_reflected_impulse(R / w13, extrapolate=extrapolate) * w13
+
+    for _ in range(45):  # the ln-range is < 40 wide: 45 halvings leave < 1e-12
+        mid = 0.5 * (lo + hi)
+        more = impulse(mid) > target  # too much impulse: less load
+        if by_charge:
+            hi, lo = np.where(more, mid, hi), np.where(more, lo, mid)
+        else:
+            lo, hi = np.where(more, mid, lo), np.where(more, hi, mid)
+    return 0.5 * (lo + hi)
+
+
+def charge_for_impulse(impulse, standoff, model=DEFAULT_BLAST_MODEL, *, extrapolate: bool = False, z_range=None):
+    """TNT charge [kg] whose reflected impulse at ``standoff`` [m] is ``impulse`` [Pa*s] (arrays
+    broadcast), inverting the blast model over its valid range of Z (NaN where out of it), or over
+    ``z_range`` (Z_min, Z_max) [m/kg^(1/3)] when given.
+
+    Used to up-scale a model's critical charge to the prototype: under the paper's general law
+    only the impulse is matched (Eq. 8), so the prototype charge that corresponds to a model
+    charge is the one delivering the model's impulse divided by the impulse factor
+    ``gamma sqrt(varsigma lambda^3)``.
+    """
+    i, R = np.broadcast_arrays(check_positive("impulse", impulse, "Pa*s"), check_positive("standoff", standoff, "m"))
+    i, R = i.astype(float).ravel(), R.astype(float).ravel()
+    zlo, zhi = _z_range(model, extrapolate) if z_range is None else (float(z_range[0]), float(z_range[1]))
+    ulo, uhi = 3.0 * np.log(R / zhi), 3.0 * np.log(R / zlo)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        u = _invert_impulse(i, model, True, R, ulo, uhi, extrapolate)
+    W = np.where((u - ulo > 1e-9) & (uhi - u > 1e-9), np.exp(u), np.nan)
+    return W.reshape(np.shape(np.broadcast_arrays(impulse, standoff)[0]))
+
+
+def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver, xtol_rel, guess=None):
+    """Vectorised critical charge (``searched="charge"``, ``fixed`` stand-offs [m]) or stand-off
+    (``"standoff"``, ``fixed`` charges [kg]). Returns (x_critical, bracket_lo, bracket_hi,
+    evaluations, status) arrays; x is the survive side of the final bracket."""
+    check_pulse_shape(pulse)
+    check_range("xtol_rel", xtol_rel, 1e-14, 0.1)
+    by_charge = searched == "charge"
+    fixed = np.atleast_1d(np.asarray(fixed, dtype=float))
+    zlo, zhi = _z_range(model, extrapolate)
+    if by_charge:  # W = (R / Z)^3: large Z, small charge
+        ulo, uhi = 3.0 * np.log(fixed / zhi), 3.0 * np.log(fixed / zlo)
+    else:  # R = Z W^(1/3): the margin decreases with R, so search in -ln R
+        ulo, uhi = -np.log(zhi * np.cbrt(fixed)), -np.log(zlo * np.cbrt(fixed))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        if guess is None:
+            u0 = _invert_impulse(system.critical_impulse, model, by_charge, fixed, ulo if by_charge else -uhi,
+                                 uhi if by_charge else -ulo, extrapolate)
+            u0 = u0 if by_charge else -u0
+        else:
+            u0 = np.full(fixed.size, math.log(guess) if by_charge else -math.log(guess))
+
+        def evaluate(idx, u):
+            x = np.exp(u if by_charge else -u)
+            W, R = (x, fixed[idx]) if by_charge else (fixed[idx], x)
+            return first_swing(system, W, R, pulse=pulse, model=model, extrapolate=extrapolate, solver=solver).margin
+
+        lo, hi, nev, status = vector_root(evaluate, u0, ulo, uhi, xtol_rel)
+    # the search visits many points: pass on one warning of each other kind (extrapolation is
+    # reported once for the results, by _check_extrapolated)
+    seen = set()
+    for w in caught:
+        if w.category is not ExtrapolationWarning and w.category not in seen:
+            seen.add(w.category)
+            warnings.warn(w.message, w.category, stacklevel=4)
+    if not by_charge:
+        lo, hi = -lo, -hi
+    x = np.where(status == 0, np.exp(lo), np.nan)
+    return x, np.exp(np.minimum(lo, hi)), np.exp(np.maximum(lo, hi)), nev, status
+
+
+def _check_extrapolated(model, values_z, extrapolate):
+    if extrapolate:
+        zlo, zhi = valid_scaled_distance_range(model)
+        z = np.asarray(values_z)[np.isfinite(values_z)]
+        if np.any((z < zlo) | (z > zhi)):
+            warnings.warn(
+                f"critical scenarios at Z outside the {_model_name(model)} fits' range [{zlo:g}, {zhi:g}] m/kg^(1/3): "
+                "extrapolated", ExtrapolationWarning, stacklevel=3,
+            )
+
+
+@dataclass(frozen=True)
+class CriticalResult:
+    """Result of a critical charge / stand-off search (SI).
+
+    ``charge_kg`` [kg] and ``standoff_m`` [m] define the critical scenario (the one searched
+    for and the one held fixed); ``pulse`` the pulse shape; ``relative_tolerance`` the
+    relative accuracy of the searched quantity; ``evaluations`` the number of pulse-phase
+    integrations (first-swing criterion); ``bracket`` the final bracket of the searched quantity.
+    """
+
+    charge_kg: float
+    standoff_m: float
+    searched: str
+    pulse: str
+    model: str
+    relative_tolerance: float
+    evaluations: int
+    bracket: tuple[float, float]
+
+    def to_dict(self) -> dict:
+        """Plain dict with unit-suffixed keys (``critical_charge_kg`` or ``critical_standoff_m``)."""
+        return {
+            "critical_charge_kg" if self.searched == "charge" else "critical_standoff_m": (
+                self.charge_kg if self.searched == "charge" else self.standoff_m
+            ),
+            "charge_kg": self.charge_kg,
+            "standoff_m": self.standoff_m,
+            "pulse": self.pulse,
+            "model": self.model,
+            "relative_tolerance": self.relative_tolerance,
+            "evaluations": self.evaluations,
+        }
+
+
+def critical_charge(
+    body,
+    standoff: float,
+    *,
+    pulse: str = "friedlander",
+    model=DEFAULT_BLAST_MODEL,
+    gravity: float | None = None,
+    restitution: float | None = None,
+    solver: RockingSolver | None = None,
+    guess: float | None = None,
+    xtol_rel: float = 1e-9,
+    extrapolate: bool = False,
+) -> CriticalResult:
+    """Largest TNT charge [kg] at ``standoff`` [m] that the body survives without overturning.
+
+    The reflected pulse of shape ``pulse`` from ``blast_parameters(W, standoff, model)`` loads
+    the front face uniformly (paper Method A, Eq. eom); the first-swing energy criterion
+    (:mod:`blastscale.rocking.first_swing`) decides the outcome, and the search starts from the charge that
+    delivers the impulsive critical impulse (the structure's own scale).
+
+    Parameters
+    ----------
+    body : RockingSystem or RectangularBlock
+        The body (a block is converted with ``gravity`` [m/s^2] and ``restitution`` [-]).
+    standoff : float
+        Stand-off R [m], > 0.
+    pulse : {"friedlander", "triangular", "impulsive"}
+        Reflected pulse shape (paper Eqs. 1, 3, impulsive limit).
+    model : str
+        Blast model, ``"kingery-bulmash"`` (Swisdak 1994) or ``"masi2021"`` (paper App. A);
+        searched over its valid range of scaled distance Z (widened 5x each way with
+        ``extrapolate``).
+    solver : RockingSolver, optional
+        Solver of the pulse phase (default rtol 1e-10, atol 1e-12).
+    guess : float, optional
+        Starting charge [kg], > 0 (default: from the impulsive closed form).
+    xtol_rel : float
+        Relative tolerance on the charge [-], in [1e-14, 0.1].
+    extrapolate : bool
+        Allow the blast fits outside their ranges.
+
+    Returns
+    -------
+    CriticalResult
+        ``charge_kg`` [kg] (the critical charge), ``standoff_m`` [m], evaluations, bracket.
+
+    Raises
+    ------
+    BlastscaleInputError
+        If no change of outcome is found within the blast model's valid range of Z.
+
+    Examples
+    --------
+    The paper's 10 m block (alpha = 15 deg) at 2 m: 79.8 kg (paper Sec. "Equations of motion").
+
+    >>> import math
+    >>> from blastscale.structures import RectangularBlock
+    >>> blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
+    >>> round(critical_charge(blk, 2.0, model="masi2021").charge_kg, 2)
+    79.87
+    """
+    R = float(check_positive("standoff", standoff, "m"))
+    if guess is not None:
+        check_positive("guess", guess, "kg")
+    return _critical(body, "charge", R, pulse, model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
+
+
+def critical_standoff(
+    body,
+    charge: float,
+    *,
+    pulse: str = "friedlander",
+    model=DEFAULT_BLAST_MODEL,
+    gravity: float | None = None,
+    restitution: float | None = None,
+    solver: RockingSolver | None = None,
+    guess: float | None = None,
+    xtol_rel: float = 1e-9,
+    extrapolate: bool = False,
+) -> CriticalResult:
+    """Smallest stand-off [m] at which the body survives ``charge`` [kg TNT] without
+    overturning (same method and parameters as :func:`critical_charge`, with ``charge`` W
+    [kg] > 0 fixed and ``guess`` an optional starting stand-off [m]; the margin decreases with
+    distance). Returns a :class:`CriticalResult` whose ``standoff_m`` [m] is the critical
+    (safe) stand-off. References: paper Sec. "Equations of motion"; Masi et al. (2019)."""
+    W = float(check_positive("charge", charge, "kg"))
+    if guess is not None:
+        check_positive("guess", guess, "m")
+    return _critical(body, "standoff", W, pulse, model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
+
+
+def _critical(body, searched, fixed, pulse, model, gravity, restitution, solver, guess, xtol_rel, extrapolate):
+    system = as_rocking_system(body, gravity, restitution)
+    by_charge = searched == "charge"
+    x, blo, bhi, nev, status = _critical_arrays(
+        system, searched, fixed, pulse, model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel, guess
+    )
+    if status[0] != 0:
+        zlo, zhi = _z_range(model, extrapolate)
+        what = ("survives up to" if status[0] == 1 else "overturns down to") + (
+            f" Z = {zlo if status[0] == 1 else zhi:.6g} m/kg^(1/3)"
+        )
+        raise BlastscaleInputError(
+            f"no critical {searched} within the blast model's valid range of Z [{zlo:.6g}, {zhi:.6g}] m/kg^(1/3) "
+            f"({'stand-off' if by_charge else 'charge'} = {fixed:.6g} {'m' if by_charge else 'kg'}): the body {what}"
+            + ("" if extrapolate else "; --extrapolate (extrapolate=True) widens the range")
+        )
+    W, R = (float(x[0]), fixed) if by_charge else (fixed, float(x[0]))
+    _check_extrapolated(model, [R / np.cbrt(W)], extrapolate)
+    return CriticalResult(W, R, searched, pulse, _model_name(model), xtol_rel, int(nev[0]), (float(blo[0]), float(bhi[0])))
+
+
+def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse: str = "friedlander",
+                                 model=DEFAULT_BLAST_MODEL, rel: float = 1e-8, solver: RockingSolver | None = None,
+                                 gravity: float | None = None, restitution: float | None = None) -> float:
+    """The slow reference: critical charge [kg] by bisection in ln W on full simulations (to rest:
+    ``pulse + 200 / p`` of motion, every impact, no early stop), independent of the first-swing
+    criterion. The bracket ``[guess / 1.5, 1.5 guess]`` [kg] must straddle the threshold (checked);
+    ``rel`` is the relative width at which it stops. For tests and benchmarks."""
+    system = as_rocking_system(body, gravity, restitution)
+    solver = solver or DEFAULT_SOLVER
+
+    def over(W):
+        p = blast_parameters(W, standoff, model).pulse(pulse)
+        return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).overturned
+
+    lo, hi = guess / 1.5, guess * 1.5
+    if over(lo) or not over(hi):
+        raise BlastscaleInputError(f"guess = {guess:.6g} kg: [guess/1.5, 1.5 guess] does not straddle the critical charge")
+    while math.log(hi / lo) > rel:
+        mid = math.sqrt(lo * hi)
+        lo, hi = (lo, mid) if over(mid) else (mid, hi)
+    return math.sqrt(lo * hi)

@@ -1,0 +1,338 @@
+"""First-swing energy criterion: does a rocking body at rest overturn under a pulse, at any time?
+
+Everything rests on one statement about the planar rocking equation (paper Eq. eom, divided
+by ``m g r``, in the dimensionless time ``tau = p t``; see :mod:`blastscale.rocking.system`):
+once the pulse is over the motion is free and conservative between impacts, with the energy
+
+.. math:: E = \\tfrac12 \\dot\\theta^2 + \\cos(\\alpha - s\\theta) - \\cos\\alpha
+          \\qquad (\\dot\\theta \\text{ in units of } p),
+
+whose barrier (the centre of mass over the pivot, ``s theta = alpha``) is
+``B = 1 - cos(alpha)`` in both rocking directions. Every impact multiplies the angular velocity
+by the restitution e, hence the energy by e^2 <= 1 (Housner 1963). So, with ``(theta, theta_dot)``
+the state when the pulse ends, the outcome of the whole motion is decided on the first free
+swing:
+
+* moving outward (``s theta_dot >= 0``) below the top: it overturns iff ``E > B``; otherwise
+  it comes back, impacts, and every later swing has less energy than ``E <= B``;
+* moving inward below the top: it impacts first; it overturns (in the other direction) iff
+  ``e^2 E > B``;
+* beyond the top (possible only toward the blast: the pulse pushes back, and a crossing of
+  ``-alpha`` decides nothing while it acts, docs/rocking.md): moving outward it overturns;
+  moving inward it overturns unless ``E > B`` (it climbs back over the top), and then the
+  previous case applies;
+* at rest when the pulse ends (never lifted off, or already still): it survives;
+* tipped away from the blast while the pulse still acts: it has overturned (the compiled
+  solver stops there; gravity and the non-negative pressure both push it on).
+
+The pulse phase alone is integrated, with the compiled rocking kernel
+(:func:`blastscale.rocking._kernel.solve_batch`, impacts included, vectorised over cases):
+a pulse lasts ``p t_o ~ 1e-3..1e-1`` in dimensionless time against ``~ 1..10`` for the first
+swing, so one evaluation costs a few tens of steps instead of a full simulation. The signed
+*first-swing margin* ``mu`` (``> 0``: overturns) is
+
+=========================================  =============================================
+state when the pulse ends                  mu
+=========================================  =============================================
+tipped away during the pulse               ``E / B - 1`` (``>= 0``; the kinetic energy at the top)
+below the top, outward                     ``E / B - 1``
+below the top, inward                      ``e^2 E / B - 1``
+beyond the top, outward                    ``(theta_dot^2 / 2 + 1 - cos(s theta - alpha)) / B``
+beyond the top, inward, ``E <= B``         ``(1 - cos(s theta - alpha) - theta_dot^2 / 2) / B``
+beyond the top, inward, ``E > B``          ``e^2 E / B - 1``
+at rest                                    ``-1``
+=========================================  =============================================
+
+It is 0 at the threshold on the common branches and increases with the load, so the critical
+load is a root of mu. The test suite checks the criterion against the bisection on full
+simulations (to rest, every impact) over random blocks, stand-offs and pulse shapes.
+
+:func:`first_swing_peak` gives, from the same state, the largest rotation of a body that
+survives. The critical loads (:mod:`blastscale.rocking.critical`), the capacity curves
+(:mod:`blastscale.rocking.capacity_curve`) and the P-I diagram
+(:mod:`blastscale.rocking.pi_diagram`) are roots of the margin mu.
+
+References: paper Sec. "Equations of motion"; Housner (1963), Bull. Seismol. Soc. Am. 53(2)
+(energy and restitution); Masi et al. (2019), Int. J. Mech. Sci. 157.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validate import BlastscaleInputError, check_positive
+from ..blast.pulses import check_pulse_shape
+from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters
+from ..blast.pulses import Pulse
+from . import _kernel as K
+from .encoding import PULSE_CODES, encode_pulse
+from .solver import DEFAULT_SOLVER, RockingSolver
+from .system import RockingSystem, as_rocking_system
+
+__all__ = [
+    "overturn_margin",
+    "first_swing_margin",
+    "overturns",
+    "first_swing",
+    "first_swing_blast",
+    "first_swing_peak",
+    "FirstSwing",
+]
+
+
+def first_swing_margin(alpha, e, theta, w, tipped):
+    """First-swing margin mu [-] from the state when the pulse ends (module docstring table).
+
+    Parameters
+    ----------
+    alpha : array_like
+        Slenderness angle [rad].
+    e : array_like
+        Restitution on the angular velocity [-].
+    theta : array_like
+        Angle when the pulse ends [rad].
+    w : array_like
+        Angular velocity when the pulse ends, divided by p [-].
+    tipped : array_like of bool
+        Whether the body tipped away from the blast while the pulse acted.
+
+    Returns
+    -------
+    mu : ndarray
+        > 0 where the body overturns, <= 0 where it survives.
+    """
+    alpha, e, th, w = (np.asarray(x, dtype=float) for x in (alpha, e, theta, w))
+    s = np.sign(th)
+    s = np.where(s == 0.0, np.sign(w), s)
+    u = s * th  # distance from upright in the current rocking mode [rad]
+    v = s * w  # outward angular velocity
+    B = 1.0 - np.cos(alpha)
+    E = 0.5 * w * w + np.cos(alpha - u) - np.cos(alpha)
+    below = (E / B - 1.0, e * e * E / B - 1.0)
+    past = 1.0 - np.cos(u - alpha)  # depth below the top once beyond it
+    mu = np.where(
+        u < alpha,
+        np.where(v >= 0.0, below[0], below[1]),
+        np.where(v >= 0.0, (0.5 * w * w + past) / B, np.where(E > B, below[1], (past - 0.5 * w * w) / B)),
+    )
+    mu = np.where(np.asarray(tipped, dtype=bool), np.maximum(below[0], np.finfo(float).tiny), mu)
+    return np.where(s == 0.0, -1.0, mu)
+
+
+def first_swing_peak(alpha, e, theta, w, pulse_max, rest_velocity: float = 0.0):
+    """Largest |theta| [rad] of the whole motion of a body that survives, from the state when
+    the pulse ends (first-swing energy argument, module docstring).
+
+    After the pulse the motion is free: between impacts the energy ``E = w^2/2 + cos(alpha -
+    s theta) - cos(alpha)`` is conserved and each impact multiplies it by ``e^2`` (Housner 1963),
+    so every later peak is lower than the first free one. With ``y = alpha - |theta_peak|`` the
+    distance of a peak below the top, ``w = 0`` there gives ``1 - cos(y) = B - E``, i.e.
+    ``sin^2(y / 2) = sin^2((alpha - s theta) / 2) - w^2 / 4``, written without cancellation:
+
+    * moving outward (below the top): the peak of this swing, ``|theta_peak| = alpha - y``;
+    * moving inward (or beyond the top, climbing back over it): the body impacts with
+      ``w^2 = 2 E``, rebounds with ``e w`` (at rest if ``e |w| <= rest_velocity``) and peaks on
+      the other side, ``sin^2(y / 2) = sin^2(alpha / 2) - e^2 E / 2``;
+    * at rest: no further peak.
+
+    The result is the larger of that peak and ``pulse_max`` (the largest |theta| while the pulse
+    acted). Where the body overturns (:func:`first_swing_margin` > 0) the value is meaningless;
+    :func:`first_swing` returns pi/2 there (it ends lying on its side).
+
+    Parameters
+    ----------
+    alpha, e : array_like
+        Slenderness [rad] and restitution [-].
+    theta, w : array_like
+        Angle [rad] and angular velocity / p [-] when the pulse ends.
+    pulse_max : array_like
+        Largest |theta| [rad] while the pulse acted.
+    rest_velocity : float
+        Rebound velocity / p [-] below which the body is at rest (the solver's ``rest_velocity``).
+
+    Returns
+    -------
+    ndarray
+        Largest |theta| [rad] over the whole motion.
+    """
+    alpha, e, th, w = (np.asarray(x, dtype=float) for x in (alpha, e, theta, w))
+    s = np.sign(th)
+    s = np.where(s == 0.0, np.sign(w), s)
+    u, v = s * th, s * w
+    ha = np.sin(0.5 * alpha) ** 2  # B / 2
+    r_out = np.sin(0.5 * (alpha - u)) ** 2 - 0.25 * w * w  # (B - E) / 2
+    E = 2.0 * (ha - r_out)
+    r_in = ha - 0.5 * e * e * E
+    with np.errstate(invalid="ignore"):
+        y_out = 2.0 * np.arcsin(np.sqrt(np.maximum(r_out, 0.0)))
+        y_in = 2.0 * np.arcsin(np.sqrt(np.maximum(r_in, 0.0)))
+    rebound = e * np.sqrt(np.maximum(2.0 * E, 0.0))
+    inward_peak = np.where((rebound > rest_velocity) & (e > 0.0), alpha - y_in, 0.0)
+    peak = np.where((u < alpha) & (v >= 0.0), alpha - y_out, inward_peak)
+    peak = np.where(s == 0.0, 0.0, peak)
+    return np.maximum(np.asarray(pulse_max, dtype=float), peak)
+
+
+@dataclass(frozen=True)
+class FirstSwing:
+    """Outcome of n bodies at rest under n pulses, from the pulse phase and the first free swing.
+
+    ``overturned`` (n,) bool: at any time; ``max_rotation`` (n,) [rad]: the largest |theta| of the
+    whole motion (pi/2 where it overturns: it ends lying on its side); ``margin`` (n,) [-]: the
+    first-swing margin mu (> 0 overturns)."""
+
+    overturned: np.ndarray
+    max_rotation: np.ndarray
+    margin: np.ndarray
+
+
+def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab_f=None, off=None) -> FirstSwing:
+    """Integrate the pulse phase of n encoded cases with the compiled kernel; the first free swing
+    from there in closed form.
+
+    ``kind`` (n,) pulse codes, ``par`` (n, 3) kernel parameters, ``w0`` (n,) initial theta_dot / p
+    (the jump of an impulsive load); tabulated pulses concatenated as in ``solve_batch``.
+    """
+    n = kind.size
+    tab_t = np.zeros(0) if tab_t is None else tab_t
+    tab_f = np.zeros(0) if tab_f is None else tab_f
+    off = np.zeros(n + 1, dtype=np.int64) if off is None else off
+    tau_end = np.where(kind == 1, par[:, 1], np.where(kind == 2, par[:, 1], 0.0))
+    if np.any(kind == 3):
+        tau_end = np.where(kind == 3, tab_t[np.maximum(off[1:] - 1, 0)], tau_end)
+    summ, _, _ = K.solve_batch(
+        np.ascontiguousarray(alpha, dtype=float), np.ascontiguousarray(e, dtype=float), np.zeros(n),
+        np.ascontiguousarray(w0, dtype=float), np.ascontiguousarray(tau_end), kind.astype(np.int64),
+        np.ascontiguousarray(par), tab_t, tab_f, off, np.empty((n, 0)),
+        float(solver.rtol), float(solver.atol), float(solver.rest_velocity), -1, True, int(solver.max_steps), False,
+    )
+    bad = summ[:, K.S_STATUS] != 0
+    if np.any(bad):
+        solver._check_status(summ[np.argmax(bad), K.S_STATUS], int(np.argmax(bad)))
+    th, w = summ[:, K.S_FINAL_THETA], summ[:, K.S_FINAL_W]
+    mu = first_swing_margin(alpha, e, th, w, summ[:, K.S_OVERTURNED] == 1.0)
+    over = mu > 0.0
+    peak = first_swing_peak(alpha, e, th, w, summ[:, K.S_MAX_ABS_THETA], float(solver.rest_velocity))
+    return FirstSwing(over, np.where(over, 0.5 * math.pi, peak), mu)
+
+
+def overturn_margin(body, pulse: Pulse, *, solver: RockingSolver | None = None, gravity=None, restitution=None) -> float:
+    """First-swing overturning margin mu [-] of ``body`` at rest under ``pulse`` (module docstring).
+
+    Parameters
+    ----------
+    body : RockingSystem or RectangularBlock
+        The body (a block is converted with ``gravity`` [m/s^2] and ``restitution`` [-]).
+    pulse : Pulse
+        Pressure pulse on the loaded face from the shock arrival (any kind: Friedlander,
+        triangular, impulsive, tabulated).
+    solver : RockingSolver, optional
+        Solver of the pulse phase (default rtol 1e-10, atol 1e-12).
+
+    Returns
+    -------
+    mu : float
+        > 0 iff the body overturns (0 at the threshold; in units of the potential barrier
+        ``m g r (1 - cos alpha)``).
+    """
+    system = as_rocking_system(body, gravity, restitution)
+    kind, par, tt, tf, dw = encode_pulse(pulse, system)
+    off = np.array([0, tt.size], dtype=np.int64)
+    fs = _pulse_phase(
+        solver or DEFAULT_SOLVER, np.array([system.alpha]), np.array([system.coefficient_of_restitution]),
+        np.array([dw]), np.array([kind]), par[None, :], tt, tf, off,
+    )
+    return float(fs.margin[0])
+
+
+def _system_arrays(systems, n: int):
+    """(alpha, e, p, q) arrays of length n from one RockingSystem (broadcast) or a sequence of n."""
+    if isinstance(systems, RockingSystem):
+        systems = [systems]
+    vals = np.array([(s.alpha, s.coefficient_of_restitution, s.frequency_parameter, s.load_ratio_per_pascal)
+                     for s in systems])
+    if len(systems) not in (1, n):
+        raise BlastscaleInputError(f"systems: {len(systems)} bodies for {n} cases (give 1 or {n})")
+    return tuple(np.broadcast_to(vals[:, j], (n,)) for j in range(4))
+
+
+def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse: str = "friedlander", *,
+                      solver: RockingSolver | None = None) -> FirstSwing:
+    """:class:`FirstSwing` of n bodies given as arrays under n reflected blast pulses (vectorised:
+    the pulse phases in one compiled kernel call, the first free swings in numpy).
+
+    Parameters
+    ----------
+    alpha, restitution, frequency, load_ratio : array_like
+        Per body (broadcast to n): slenderness [rad], restitution e [-], frequency parameter p
+        [rad/s], load-to-weight ratio per pascal ``S l / (m g r cos alpha)`` [1/Pa].
+    blast : BlastParameters
+        Reflected pressure [Pa], positive duration [s], Friedlander decay [-] and reflected
+        impulse [Pa*s] of the n cases (:func:`~blastscale.blast.blast_parameters` on arrays).
+    pulse : {"friedlander", "triangular", "impulsive"}
+        Pulse shape (paper Eqs. 1, 3, impulsive limit).
+    solver : RockingSolver, optional
+        Solver of the pulse phase (default rtol 1e-10, atol 1e-12).
+    """
+    check_pulse_shape(pulse)
+    n = np.size(blast.reflected_impulse)
+    a, e, p, q = (np.broadcast_to(np.asarray(x, dtype=float), (n,)) for x in (alpha, restitution, frequency, load_ratio))
+    par = np.zeros((n, 3))
+    w0 = np.zeros(n)
+    if pulse == "friedlander":
+        par[:, 0] = q * blast.reflected_pressure
+        par[:, 1] = p * blast.positive_duration
+        par[:, 2] = blast.friedlander_decay
+    elif pulse == "triangular":
+        par[:, 0] = q * blast.reflected_pressure
+        par[:, 1] = p * (2.0 * blast.reflected_impulse / blast.reflected_pressure)
+    else:  # impulsive: theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
+        w0[:] = q * p * blast.reflected_impulse * np.cos(a)
+    kind = np.full(n, PULSE_CODES[pulse], dtype=np.int64)
+    return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par)
+
+
+def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", model=DEFAULT_BLAST_MODEL,
+                extrapolate: bool = False, solver: RockingSolver | None = None) -> FirstSwing:
+    """Outcome and largest rotation of each body at rest under the reflected pulse of
+    ``charge`` [kg TNT] at ``standoff`` [m], at any time (first-swing energy criterion and peak;
+    arrays of n cases, vectorised).
+
+    Parameters
+    ----------
+    systems : RockingSystem or sequence of RockingSystem
+        One body for every case, or one per case.
+    charge, standoff : array_like
+        Charges W [kg] and stand-offs R [m], broadcast to n cases.
+    pulse, model, extrapolate, solver
+        As in :func:`critical_charge`.
+
+    Returns
+    -------
+    FirstSwing
+        ``overturned`` (n,), ``max_rotation`` (n,) [rad] (pi/2 where it overturns), ``margin``.
+    """
+    check_pulse_shape(pulse)
+    W, R = np.broadcast_arrays(np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
+                               np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float))
+    W, R = W.ravel(), R.ravel()
+    a, e, p, q = _system_arrays(systems, W.size)
+    bp = blast_parameters(W, R, model, extrapolate=extrapolate)
+    return first_swing_blast(a, e, p, q, bp, pulse, solver=solver)
+
+
+def overturns(systems, charge, standoff, *, pulse: str = "friedlander", model=DEFAULT_BLAST_MODEL,
+              extrapolate: bool = False, solver: RockingSolver | None = None) -> np.ndarray:
+    """Whether each body overturns, at any time, under the reflected pulse of ``charge`` [kg TNT]
+    at ``standoff`` [m] (first-swing energy criterion; arrays of n cases, vectorised; the
+    ``overturned`` of :func:`first_swing`).
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+    """
+    return first_swing(systems, charge, standoff, pulse=pulse, model=model, extrapolate=extrapolate,
+                       solver=solver).overturned
