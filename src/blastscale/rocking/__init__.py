@@ -16,10 +16,10 @@
   :func:`pi_diagram` (:mod:`.pi_diagram`).
 """
 
-from .capacity_curve import CapacityCurve, ModelCapacity, capacity_curve, model_capacity_curve
+from .capacity import CapacityCurve, ModelCapacity, capacity_curve, model_capacity_curve
 from .critical import CriticalResult, charge_for_impulse, critical_charge, critical_charge_by_bisection, critical_standoff
 from .encoding import PULSE_CODES, encode_pulse
-from .first_swing import (
+from .swing import (
     FirstSwing,
     first_swing,
     first_swing_blast,
@@ -28,7 +28,7 @@ from .first_swing import (
     overturn_margin,
     overturns,
 )
-from .pi_diagram import PIDiagram, pi_diagram
+from .pressure_impulse import PIDiagram, pi_diagram
 from .reference import simulate_reference
 from .results import RockingBatchResult, RockingResult
 from .solver import DEFAULT_SOLVER, RockingSolver, check_count, simulate

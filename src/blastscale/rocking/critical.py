@@ -3,7 +3,7 @@
 The critical charge W_c(R) [kg TNT] is the largest charge at the stand-off R [m] that the
 body survives without overturning, the critical stand-off the smallest R at which it survives
 W; the outcome of each trial is the first-swing margin mu of
-:mod:`blastscale.rocking.first_swing` (> 0 overturns) under the reflected pulse of the blast
+:mod:`blastscale.rocking.swing` (> 0 overturns) under the reflected pulse of the blast
 model (paper Method A, Eq. eom).
 
 Search
@@ -37,7 +37,7 @@ from ..blast.base import ExtrapolationWarning
 from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters, get_blast_model, valid_scaled_distance_range
 from ._roots import vector_root
-from .first_swing import first_swing
+from .swing import first_swing
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
 
@@ -211,7 +211,7 @@ def critical_charge(
 
     The reflected pulse of shape ``pulse`` from ``blast_parameters(W, standoff, model)`` loads
     the front face uniformly (paper Method A, Eq. eom); the first-swing energy criterion
-    (:mod:`blastscale.rocking.first_swing`) decides the outcome, and the search starts from the charge that
+    (:mod:`blastscale.rocking.swing`) decides the outcome, and the search starts from the charge that
     delivers the impulsive critical impulse (the structure's own scale).
 
     Parameters

@@ -5,7 +5,7 @@ For every charge W of a grid, N Monte Carlo samples of the uncertain fields (a l
 of median 1 and log-standard deviation beta on a field's nominal value, or uniform absolute
 values) give N scenarios (the same draws at every charge: common random numbers, so the
 empirical curve is monotone when the outcome is). Each is decided by the first-swing energy
-criterion of :mod:`blastscale.rocking.first_swing` (overturns at any time; planar rocking of a
+criterion of :mod:`blastscale.rocking.swing` (overturns at any time; planar rocking of a
 block; vectorised through the compiled kernel), and the counts k_j / N are fitted by maximum
 likelihood with the lognormal fragility
 

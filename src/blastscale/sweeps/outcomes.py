@@ -112,7 +112,7 @@ def _outcome_group(sc, W, R, e) -> dict:
 def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
     """The outcome mode: first-swing results of the planar block cases ``start .. stop - 1`` of a
     sweep, vectorised over the cases (the design in numpy, the pulse phases in the compiled
-    kernel, the first free swing in closed form; :func:`blastscale.rocking.first_swing`).
+    kernel, the first free swing in closed form; :func:`blastscale.rocking.swing`).
 
     For the prototype and the model (designed by the scenario's law; the general law's model
     charge found by inverting the blast model's reflected impulse, which equals the Study's

@@ -1,7 +1,7 @@
 """Pressure-impulse (P-I) overturning diagram of a rocking body.
 
 For each peak pressure P the critical impulse i_c(P) that just overturns the body is a root
-of the first-swing margin (:mod:`blastscale.rocking.first_swing`) in ln i, all pressures at
+of the first-swing margin (:mod:`blastscale.rocking.swing`) in ln i, all pressures at
 once (:func:`blastscale.rocking._roots.vector_root`). i_c tends to the impulsive asymptote
 ``J_o p sqrt(2 (1 - cos alpha)) / (S l)`` as P grows and diverges as P falls to the uplift
 pressure ``m g r sin(alpha) / (S l)``.
@@ -21,7 +21,7 @@ from .._validate import BlastscaleInputError, check_positive, check_range
 from ..blast.friedlander import friedlander_impulse_ratio
 from ._roots import vector_root
 from .encoding import PULSE_CODES
-from .first_swing import _pulse_phase
+from .swing import _pulse_phase
 from .solver import DEFAULT_SOLVER, RockingSolver, check_count
 from .system import as_rocking_system
 
@@ -60,7 +60,7 @@ def pi_diagram(
     """Pressure-impulse (P-I) overturning diagram of a body.
 
     For each peak pressure P the critical impulse i_c(P) that just overturns the body is found
-    with the first-swing criterion (:mod:`blastscale.rocking.first_swing`), all pressures at once, in ln i. i_c
+    with the first-swing criterion (:mod:`blastscale.rocking.swing`), all pressures at once, in ln i. i_c
     tends to the impulsive asymptote ``J_o p sqrt(2 (1 - cos alpha)) / (S l)`` as P grows and
     diverges as P falls to the uplift pressure ``m g r sin(alpha) / (S l)`` (``P S h = m g b``
     for a block).

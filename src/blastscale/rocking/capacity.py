@@ -2,7 +2,7 @@
 reduced-scale model's curve up-scaled to the prototype.
 
 Each point is a critical charge of :mod:`blastscale.rocking.critical` (first-swing energy
-criterion, :mod:`blastscale.rocking.first_swing`), all stand-offs searched together. The
+criterion, :mod:`blastscale.rocking.swing`), all stand-offs searched together. The
 model's curve is up-scaled with the paper's general law: equal impulse up to the factor
 ``gamma sqrt(varsigma lambda^3)`` (paper Eq. 8, Table 1).
 

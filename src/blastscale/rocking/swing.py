@@ -49,8 +49,8 @@ simulations (to rest, every impact) over random blocks, stand-offs and pulse sha
 
 :func:`first_swing_peak` gives, from the same state, the largest rotation of a body that
 survives. The critical loads (:mod:`blastscale.rocking.critical`), the capacity curves
-(:mod:`blastscale.rocking.capacity_curve`) and the P-I diagram
-(:mod:`blastscale.rocking.pi_diagram`) are roots of the margin mu.
+(:mod:`blastscale.rocking.capacity`) and the P-I diagram
+(:mod:`blastscale.rocking.pressure_impulse`) are roots of the margin mu.
 
 References: paper Sec. "Equations of motion"; Housner (1963), Bull. Seismol. Soc. Am. 53(2)
 (energy and restitution); Masi et al. (2019), Int. J. Mech. Sci. 157.
