@@ -10,10 +10,10 @@
   :data:`PULSE_CODES`, the kernel form of a pulse (:mod:`.encoding`);
 * :func:`simulate_reference` — the slow scipy ``solve_ivp`` (DOP853) reference path;
 * capacity (first-swing energy criterion, docs/capacity.md): :func:`overturn_margin`,
-  :func:`first_swing`, :func:`overturns` (:mod:`.first_swing`); :func:`critical_charge`,
+  :func:`first_swing`, :func:`overturns` (:mod:`.swing`); :func:`critical_charge`,
   :func:`critical_standoff`, :func:`charge_for_impulse` (:mod:`.critical`);
-  :func:`capacity_curve`, :func:`model_capacity_curve` (:mod:`.capacity_curve`);
-  :func:`pi_diagram` (:mod:`.pi_diagram`).
+  :func:`capacity_curve`, :func:`model_capacity_curve` (:mod:`.capacity`);
+  :func:`pi_diagram` (:mod:`.pressure_impulse`).
 """
 
 from .capacity import CapacityCurve, ModelCapacity, capacity_curve, model_capacity_curve
