@@ -23,10 +23,21 @@ GOLDEN = Path(__file__).parent / "data" / "cli_golden"
 
 #: Keys whose value differs from the golden on purpose: {(case, dotted key prefix): reason}.
 CHANGED: dict = {
+    ("design_general", "root"): "the note names the root finder: bisection (vectorised, one code path for one "
+                                "design and for the sweeps' arrays) instead of Brent; lambda_Z moves by ~1e-15",
+    ("run_default", "design.root"): "as design_general",
     ("run_default", "scenario.simulation.record_every"):
         "the echoed scenario gives null: the recording interval is derived from the structure when not given "
         "(one state per millisecond of the 10 m reference: still 5 steps for this block)",
 }
+
+#: Chaotic runs: {(case, key prefix): reason}. A circular column is chaotic (DESIGN.md: 1e-10 on the load
+#: moves its history by 19-57 % of its peak). Since the goldens, the design's lambda_Z moved by ~1e-15 (the
+#: general law is solved by vectorised bisection, one code path for one design and for the sweeps' arrays,
+#: instead of Brent): the specimen's trajectory then moves by ~4e-4 of its peak, the differences and the
+#: ensemble spreads (statistics of the chaos itself) by much more. These keys must still exist; their numbers
+#: are not compared. The prototype side does not depend on the design's root and is held to 1e-9.
+CHAOTIC = {("column_circ_ens", k): "chaotic specimen trajectory" for k in ("model", "similarity", "ensemble")}
 
 #: Keys that record the run rather than its result.
 VOLATILE = ("versions", "git_commit", "timestamp", "timings_s", "files", "out", "folder", "wrote", "seconds",
@@ -93,4 +104,6 @@ def test_json_keys_and_numbers_unchanged(name, cmd, capsys, tmp_path):
             assert value == old, f"{name}: {key} = {value!r}, was {old!r}"
         else:
             assert isinstance(value, (int, float)) and not isinstance(value, bool), f"{name}: {key} = {value!r}"
+            if any(c == name and (key == p or key.startswith(p + ".")) for c, p in CHAOTIC):
+                continue  # present, and a number: its value is chaos (see CHAOTIC)
             assert value == pytest.approx(old, rel=REL, abs=floor), f"{name}: {key} = {value!r}, was {old!r}"

@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.io.sweep_store import run_sweep
-from blastscale.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, planar_scalars
+from blastscale.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, study_scalars
 from blastscale.blast import blast_parameters
 from blastscale.scenario import Scenario
 from blastscale.rocking import RockingSystem, critical_charge, first_swing, simulate
@@ -75,8 +75,7 @@ BASE = Scenario.default().with_values({"engine": "planar", "critical_charge": Fa
     {"extrapolate": [True], "model": ["masi2021", "kingery-bulmash"], "standoff_m": [0.3, 2.0, 40.0]},
 ])
 def test_outcome_mode_equals_the_study(extra):
-    """Against the Study (its planar batch path, bit-identical to Study.scalars(), tests/test_sweeps.py)
-    on a grid with cases the Study refuses (a scaled distance outside the masi2021 fits; with
+    """Against the Study on a grid with cases the Study refuses (a scaled distance outside the masi2021 fits; with
     extrapolate, outside the impulse fit the general law is solved on): validity, outcomes, model
     charge; the largest angle where neither overturns (20 s of motion: every first swing is over
     by then)."""
@@ -85,7 +84,7 @@ def test_outcome_mode_equals_the_study(extra):
     got = planar_outcomes(spec, 0, spec.n_cases)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        rows = planar_scalars([spec.scenario(k) for k in range(spec.n_cases)])
+        rows = [study_scalars(spec.scenario(k)) for k in range(spec.n_cases)]
     valid = np.array([r["sweep.valid"] for r in rows])
     assert np.array_equal(got["sweep.valid"], valid)
     assert valid.any() and (spec.n_cases > valid.sum() or "law" in extra)

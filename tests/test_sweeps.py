@@ -23,7 +23,7 @@ import xarray as xr  # noqa: E402
 
 from blastscale.sweeps.grids import parse_distribution  # noqa: E402
 from blastscale.io.sweep_store import run_sweep  # noqa: E402
-from blastscale.sweeps import SweepSpec, planar_scalars, study_scalars  # noqa: E402
+from blastscale.sweeps import SweepSpec, study_scalars  # noqa: E402
 from blastscale.cli import main  # noqa: E402
 from blastscale.scenario import Scenario  # noqa: E402
 
@@ -39,26 +39,11 @@ def same(a, b) -> bool:
     return type(a) is type(b) and a == b
 
 
-def test_planar_batch_path_equals_the_study_bit_for_bit():
-    cases = [BASE.with_values(v) for v in (
-        {"charge_kg": 30.0}, {"charge_kg": 79.0}, {"charge_kg": 150.0, "standoff_m": 2.5},
-        {"charge_kg": 50.0, "pulse": "impulsive", "restitution": 0.4, "critical_charge": False},
-        {"charge_kg": 50.0, "pulse": "triangular", "length": 0.02, "density_ratio": 0.5},
-    )]
-    for sc, got in zip(cases, planar_scalars(cases)):
-        want = study_scalars(sc)
-        assert want["sweep.valid"] is True
-        assert set(got) == set(want)  # every Study key
-        bad = {k: (got[k], want[k]) for k in want if not same(got[k], want[k])}
-        assert not bad
-
-
 def test_a_case_the_study_refuses_is_marked_invalid_not_fatal():
     """lambda = 1e-5: the model's scaled distance leaves the blast fits; that case only is invalid."""
     cases = [BASE.with_values({"length": x, "critical_charge": False}) for x in (1e-5, 0.01)]
-    got = planar_scalars(cases)
+    got = [study_scalars(sc) for sc in cases]
     assert got[0] == {"sweep.valid": False} and got[1]["sweep.valid"] is True
-    assert study_scalars(cases[0]) == {"sweep.valid": False}
 
 
 def sweep_store_values(path) -> dict:

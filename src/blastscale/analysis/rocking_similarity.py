@@ -39,14 +39,15 @@ the outcomes agree and the first peaks agree to 0.7 %).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from .._validate import BlastscaleInputError
 from ..rocking import RockingResult
 from ..similitude import ModelDesign
-from .compare import align, compare_responses, upscale_dataset
+from .compare import compare_responses, upscale_dataset
 from .upscale import upscale, upscale_summary
 
 __all__ = ["RockingSimilarity", "PrototypeRocking", "compare_rocking", "rocking_dataset"]
@@ -172,8 +173,14 @@ class RockingSimilarity:
     max_fall_phase_diff: float | None
     peak_ratio: float
     outcomes_agree: bool
-    extra: dict = field(default_factory=dict, repr=False)
-    comparison: dict = field(default_factory=dict, repr=False)
+
+    @cached_property
+    def comparison(self) -> dict:
+        """The comparison contract's view (:func:`~blastscale.analysis.compare.compare_responses`)
+        of ``rotation_y`` and ``angular_velocity``: first peaks from the samples, differences,
+        outcomes (computed when first asked: xarray datasets are not needed for the figures above)."""
+        up = upscale_dataset(rocking_dataset(self.model), self.design.factors)
+        return compare_responses(rocking_dataset(self.prototype), up, outcome="overturned")
 
     def to_dict(self) -> dict:
         """Plain dict: ``prototype`` and ``model`` (up-scaled) summaries and ``similarity``."""
@@ -216,14 +223,12 @@ def compare_rocking(prototype: RockingResult, model: RockingResult, design: Mode
     """
     f = design.factors
     t = prototype.t_eval
-    proto_ds = rocking_dataset(prototype)
-    up_ds = upscale_dataset(rocking_dataset(model), f)
-    cmp = compare_responses(proto_ds, up_ds, outcome="overturned")
-    _, model_at = align(proto_ds, up_ds)
-    th_m = model_at["rotation_y"].values[:, 0]
-    om_m = model_at["angular_velocity"].values[:, 0, 0]
-    dth = cmp["variables"]["rotation_y"]["block"]["max_abs_diff"]
-    dom = cmp["variables"]["angular_velocity"]["block"]["max_abs_diff"]
+    # the specimen is sampled at exactly the times that correspond to t: up-scaled, its samples are
+    # the prototype's times (no interpolation), so the comparison works on the arrays themselves
+    th_m = model.theta_eval / f.angle
+    om_m = model.theta_dot_eval / f.angular_velocity
+    dth = float(np.max(np.abs(th_m - prototype.theta_eval)))
+    dom = float(np.max(np.abs(om_m - prototype.theta_dot_eval)))
     tips = [x for x in (prototype.overturn_time, upscale(model.overturn_time, f, "time")) if x is not None]
     upto = t <= min(tips) if tips else np.ones(t.size, dtype=bool)
     dtip = float(np.max(np.abs(th_m - prototype.theta_eval)[upto]))
@@ -257,8 +262,7 @@ def compare_rocking(prototype: RockingResult, model: RockingResult, design: Mode
         tipping_angular_velocity_diff=dw_tip,
         max_fall_phase_diff=fall,
         peak_ratio=ratio,
-        outcomes_agree=bool(cmp["outcomes_agree"]),
-        comparison=cmp,
+        outcomes_agree=bool(prototype.overturned) == bool(model.overturned),
     )
 
 

@@ -142,6 +142,14 @@ class BlastParameters:
             return Triangular(self.reflected_pressure, self.reflected_impulse)
         return Impulsive(self.reflected_impulse)
 
+    def select(self, index) -> "BlastParameters":
+        """The parameters of some of the points of an array of them (``index``: a boolean mask or
+        indices into the arrays)."""
+        if np.ndim(self.charge_kg) == 0:
+            raise BlastscaleInputError("select needs blast parameters of arrays (these are of one point)")
+        return BlastParameters(**{k: (v if isinstance(v, str) or v is None else np.asarray(v)[index])
+                                  for k, v in asdict(self).items()})
+
     def to_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (as written by the CLI's ``--json``)."""
         d = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in asdict(self).items()}

@@ -2,7 +2,8 @@
 and sweeps of the factors over the scale or the density ratio (the paper's Figures 5 and 8)."""
 
 from .curves import ScalingCurves, scaling_curves
-from .design import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign, design_model, impulsive_check
+from .design import design_model
+from .experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign, impulsive_check
 from .factors import FACTOR_UNITS, ScalingFactors, pi_terms, scaling_factors
 from .laws import (
     LAWS,

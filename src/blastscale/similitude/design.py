@@ -5,24 +5,13 @@ the density ratio gamma and the gravity ratio varsigma, applies a scaling law an
 :class:`ModelDesign`: the model's charge and stand-off, lambda_Z, every factor, the blast
 parameters of both systems, the ratios the blast actually delivers next to those the
 rigid-body response requires, and (when the structure is given) the a-posteriori check that
-the load is impulsive.
-
-Impulsive check
----------------
-The general law matches the impulse only; the pulse duration and peak do not scale as the
-response requires (paper Sec. "Scaling laws"). This is harmless when the pulse is short
-compared with the structure's characteristic time: for a rocking block, when
-``t_o * p << 1`` with Housner's frequency parameter ``p = sqrt(3 g / (4 r))``. We flag the
-load as impulsive when ``t_o p`` is below ``impulsive_threshold`` (default 0.4) in *both*
-prototype and model; 0.4 is the bound of the impulsive regime of a linear oscillator,
-``omega t_d < 0.4`` (Baker et al. 1983, *Explosion Hazards and Evaluation*, ch. 4), applied
-with p in place of omega. The paper's wording "pi_23 << 1" is not literally true (the peak
-force exceeds the weight by orders of magnitude); t_o p is the meaningful measure.
+the load is impulsive (:mod:`.experiment`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+
+import numpy as np
 
 from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_positive_scalar
 from ..blast.base import BlastModel
@@ -34,157 +23,17 @@ from ..blast.parameters import (
     valid_scaled_distance_range,
 )
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
-from .factors import ScalingFactors, scaling_factors
-from .laws import LAWS, admissible_scales, hopkinson_cranz_density_ratio, solve_scaled_distance_factor
+from .experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign, impulsive_check
+from .factors import scaling_factors
+from .laws import (
+    LAWS,
+    admissible_scales,
+    hopkinson_cranz_density_ratio,
+    solve_scaled_distance_factor,
+    solve_scaled_distance_factors,
+)
 
-__all__ = ["ImpulsiveCheck", "ModelDesign", "design_model", "impulsive_check", "DEFAULT_IMPULSIVE_THRESHOLD"]
-
-DEFAULT_IMPULSIVE_THRESHOLD = 0.4
-
-
-@dataclass(frozen=True)
-class ImpulsiveCheck:
-    """A-posteriori check of the impulsive hypothesis.
-
-    Attributes
-    ----------
-    prototype_ratio, model_ratio : float
-        t_o * p of prototype and model [-] (t_o the positive duration [s], p = sqrt(3 g / 4 r) [rad/s]).
-    threshold : float
-        Bound below which the load counts as impulsive [-].
-    impulsive : bool
-        Both ratios below the threshold.
-    """
-
-    prototype_ratio: float
-    model_ratio: float
-    threshold: float
-
-    @property
-    def impulsive(self) -> bool:
-        return max(self.prototype_ratio, self.model_ratio) < self.threshold
-
-    def to_dict(self) -> dict:
-        return {
-            "prototype_to_p": self.prototype_ratio,
-            "model_to_p": self.model_ratio,
-            "threshold": self.threshold,
-            "impulsive": self.impulsive,
-        }
-
-
-def impulsive_check(
-    duration: float, block: RectangularBlock, gravity: float = STANDARD_GRAVITY
-) -> float:
-    """The impulsiveness measure of a pulse on a rocking block [-].
-
-    .. math:: t_o\\,p, \\qquad p = \\sqrt{3 g / (4 r)}
-
-    with ``duration`` t_o [s] (> 0), ``block`` (r = half-diagonal [m]) and ``gravity`` g [m/s^2].
-    The load acts as an impulse when t_o p << 1; :func:`design_model` flags it below 0.4 (the
-    impulsive regime omega t_d < 0.4 of Baker et al. 1983, ch. 4). References: Housner (1963)
-    for p; DESIGN.md on why this, not the paper's "pi_23 << 1", is the meaningful check.
-    """
-    check_positive("positive duration", duration, "s")
-    return float(duration) * block.frequency_parameter(gravity)
-
-
-@dataclass(frozen=True)
-class ModelDesign:
-    """A designed reduced-scale experiment (all SI; ratios are model / prototype).
-
-    Attributes
-    ----------
-    law : str
-        ``"general"`` (paper Eq. 8) or ``"hopkinson-cranz"``.
-    scale, density_ratio, gravity_ratio : float
-        lambda, gamma, varsigma [-].
-    scaled_distance_factor : float
-        lambda_Z = Z_model / Z_prototype [-].
-    root_note : str
-        Which root of the law was taken.
-    prototype, model : BlastParameters
-        Blast parameters at the prototype and model stand-offs.
-    factors : ScalingFactors
-        Every factor (charge and scaled distance included).
-    impulsive : ImpulsiveCheck or None
-        Present when the structure was given.
-    prototype_block, model_block : RectangularBlock or None
-        The structures, when given.
-    gravity : float
-        Prototype gravity [m/s^2].
-    """
-
-    law: str
-    scale: float
-    density_ratio: float
-    gravity_ratio: float
-    scaled_distance_factor: float
-    root_note: str
-    prototype: BlastParameters
-    model: BlastParameters
-    factors: ScalingFactors
-    impulsive: ImpulsiveCheck | None = None
-    prototype_block: RectangularBlock | None = None
-    model_block: RectangularBlock | None = None
-    gravity: float = STANDARD_GRAVITY
-
-    # convenient views -------------------------------------------------------
-    @property
-    def model_charge_kg(self) -> float:
-        """Model TNT-equivalent charge [kg]."""
-        return self.model.charge_kg
-
-    @property
-    def model_standoff_m(self) -> float:
-        """Model stand-off [m] (= lambda R)."""
-        return self.model.standoff_m
-
-    @property
-    def pressure_ratio(self) -> float:
-        """Delivered peak reflected pressure ratio P_model / P_prototype [-]."""
-        return self.model.reflected_pressure / self.prototype.reflected_pressure
-
-    @property
-    def impulse_ratio(self) -> float:
-        """Delivered reflected impulse ratio i_model / i_prototype [-] (= gamma sqrt(varsigma lambda^3))."""
-        return self.model.reflected_impulse / self.prototype.reflected_impulse
-
-    @property
-    def duration_ratio(self) -> float:
-        """Delivered positive-duration ratio t_o,model / t_o,prototype [-]."""
-        return self.model.positive_duration / self.prototype.positive_duration
-
-    def to_dict(self) -> dict:
-        """Plain dict (the CLI's ``design --json`` object)."""
-        out = {
-            "law": self.law,
-            "blast_model": self.prototype.model,
-            "scale": self.scale,
-            "density_ratio": self.density_ratio,
-            "gravity_ratio": self.gravity_ratio,
-            "prototype_charge_kg": self.prototype.charge_kg,
-            "prototype_standoff_m": self.prototype.standoff_m,
-            "prototype_scaled_distance": self.prototype.scaled_distance,
-            "model_scaled_distance": self.model.scaled_distance,
-            "scaled_distance_factor": self.scaled_distance_factor,
-            "root": self.root_note,
-            "model_charge_kg": self.model_charge_kg,
-            "model_standoff_m": self.model_standoff_m,
-            "pressure_ratio": self.pressure_ratio,
-            "impulse_ratio": self.impulse_ratio,
-            "duration_ratio": self.duration_ratio,
-            "required_pressure_ratio": self.factors.pressure,
-            "required_impulse_ratio": self.factors.impulse,
-            "required_duration_ratio": self.factors.time,
-            "factors": self.factors.to_dict(),
-            "prototype": self.prototype.to_dict(),
-            "model": self.model.to_dict(),
-        }
-        if self.impulsive is not None:
-            out["impulsive"] = self.impulsive.to_dict()
-        return out
-
+__all__ = ["design_model"]
 
 def design_model(
     charge: float,
@@ -251,6 +100,11 @@ def design_model(
     checked a posteriori with ``geometry``). References: paper Sec. "Scaling laws", Eqs. (5)-(8),
     Tables 1-2.
 
+    Arrays of charges and stand-offs (broadcast; the scales are single numbers) are designed at
+    once, with the same solution of the law: every numeric field of the design is then an array,
+    NaN where a case cannot be designed (a scaled distance outside the blast fits; ``valid`` says
+    which), and nothing is raised for such a case.
+
     Examples
     --------
     The paper's 10 m block, 50 kg at 2 m, lambda = 1/200, same material (model 2 of the
@@ -260,6 +114,9 @@ def design_model(
     >>> round(d.model_charge_kg * 1e6, 3), round(d.model.scaled_distance, 2)
     (0.233, 1.62)
     """
+    if np.ndim(charge) or np.ndim(standoff):
+        return _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, model, geometry,
+                              gravity, impulsive_threshold, extrapolate)
     W = check_positive_scalar("charge", charge, "kg")
     R = check_positive_scalar("standoff", standoff, "m")
     lam = check_positive_scalar("scale", scale)
@@ -323,3 +180,75 @@ def design_model(
     )
 
 
+def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, model, geometry, gravity,
+                   impulsive_threshold, extrapolate) -> ModelDesign:
+    """:func:`design_model` for arrays of charges and stand-offs (its docstring): the law solved for
+    every case at once (:func:`~.laws.solve_scaled_distance_factors`), the invalid cases NaN."""
+    import warnings
+    from dataclasses import replace
+
+    from ..blast.base import ExtrapolationWarning
+
+    try:
+        W, R = np.broadcast_arrays(check_positive("charge", charge, "kg"), check_positive("standoff", standoff, "m"))
+    except ValueError:
+        raise BlastscaleInputError(f"charge and standoff have shapes {np.shape(charge)} and {np.shape(standoff)}, "
+                                   "which do not broadcast together") from None
+    W, R = W.astype(float), R.astype(float)
+    lam = check_positive_scalar("scale", scale)
+    sig = check_positive_scalar("gravity ratio", gravity_ratio)
+    check_positive_scalar("gravity", gravity, "m/s^2")
+    if law not in LAWS:
+        raise BlastscaleInputError(f"law = {law!r} is not known: valid values are {', '.join(LAWS)}")
+    bm = get_blast_model(model)
+    # where the design holds: every fit used, or (extrapolate) the impulse fit the law is solved on
+    zr = bm.valid_range("scaled_reflected_impulse") if extrapolate else valid_scaled_distance_range(bm)
+    Z = R / np.cbrt(W)
+    if law == "hopkinson-cranz":
+        gam = hopkinson_cranz_density_ratio(lam, sig)
+        given = None if density_ratio is None else check_positive_scalar("density ratio", density_ratio)
+        if given is not None and abs(given - gam) > 1e-9 * gam:
+            raise BlastscaleInputError(
+                f"density ratio = {given:.6g} is out of range for the Hopkinson-Cranz law: it imposes gamma = "
+                f"1/sqrt(gravity_ratio * scale) = {gam:.6g} (use law='general' for another gamma)")
+        lz = np.ones_like(Z)
+        note = "Hopkinson-Cranz: lambda_Z = 1 (same scaled distance and pressure)"
+    else:
+        if density_ratio is None:
+            raise BlastscaleInputError("density ratio = None is out of range: the general law needs gamma > 0")
+        gam = check_positive_scalar("density ratio", density_ratio)
+        lz = np.asarray(solve_scaled_distance_factors(Z, lam, gam, sig, bm), dtype=float)
+        note = f"roots of Eq. (8) on the {bm.name} impulse range (bisection, every case at once)"
+    ok = (Z >= zr[0]) & (Z <= zr[1]) & np.isfinite(lz) & (Z * lz >= zr[0]) & (Z * lz <= zr[1])
+    f = scaling_factors(lam, gam, sig)
+    f = replace(f, scaled_distance=np.where(ok, lz, np.nan), charge=np.where(ok, (lam / lz) ** 3, np.nan))
+    with warnings.catch_warnings():
+        if extrapolate:
+            warnings.simplefilter("ignore", ExtrapolationWarning)
+        proto = _scatter(blast_parameters(W[ok], R[ok], bm, extrapolate=extrapolate), ok)
+        mod = _scatter(blast_parameters(W[ok] * f.charge[ok], R[ok] * lam, bm, extrapolate=extrapolate), ok)
+    imp = mblock = None
+    if geometry is not None:  # t_o p (impulsive_check) over arrays, NaN where invalid
+        mblock = geometry.scaled(lam, gam)
+        imp = ImpulsiveCheck(prototype_ratio=proto.positive_duration * geometry.frequency_parameter(gravity),
+                             model_ratio=mod.positive_duration * mblock.frequency_parameter(gravity * sig),
+                             threshold=float(impulsive_threshold))
+    return ModelDesign(law=law, scale=lam, density_ratio=gam, gravity_ratio=sig, scaled_distance_factor=f.scaled_distance,
+                       root_note=note, prototype=proto, model=mod, factors=f, impulsive=imp, prototype_block=geometry,
+                       model_block=mblock, gravity=float(gravity), valid=ok)
+
+
+def _scatter(bp: BlastParameters, ok: np.ndarray) -> BlastParameters:
+    """Blast parameters of the valid cases spread over every case (NaN elsewhere)."""
+    from dataclasses import fields
+
+    out = {}
+    for fld in fields(bp):
+        v = getattr(bp, fld.name)
+        if isinstance(v, str) or v is None:
+            out[fld.name] = v
+        else:
+            full = np.full(ok.shape, np.nan)
+            full[ok] = v
+            out[fld.name] = full
+    return BlastParameters(**out)

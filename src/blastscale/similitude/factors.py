@@ -83,7 +83,7 @@ class ScalingFactors:
     ============================  =================================
 
     ``pressure`` and ``time`` are the factors the rigid-body response *requires*; the blast
-    delivers its own ratios (see :class:`~blastscale.similitude.design.ModelDesign`), and only
+    delivers its own ratios (see :class:`~blastscale.similitude.experiment.ModelDesign`), and only
     the impulse can be matched (impulsive hypothesis, paper Eq. 8).
     """
 

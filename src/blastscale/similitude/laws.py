@@ -14,7 +14,9 @@ generalised to a gravity ratio varsigma), gives paper Eq. (8):
 In x = ln(lambda_Z) the residual g(x) = ln i_hat(Z e^x) - ln i_hat(Z) - x - ln(gamma sqrt(varsigma lambda))
 has slope d ln i_hat / d ln Z - 1 < 0 wherever the scaled impulse decreases with Z (true for
 both models over their ranges), so the root is unique on the fit's range; it is bracketed by that
-range and found with Brent's method. For the paper's fit (ln i_hat quadratic in ln Z) Eq. (8) is
+range and found by bisection to double precision, for one prototype Z or an array of them at once
+(:func:`solve_scaled_distance_factors`: the Study's design and the sweeps' vectorised outcome mode
+solve the law with the same code). For the paper's fit (ln i_hat quadratic in ln Z) Eq. (8) is
 a quadratic in x with two roots: the physical one lies inside the fit's range and equals the
 bracketed root; the other is absurd (lambda_Z ~ 1e12) and is reported only for the record.
 
@@ -32,9 +34,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from scipy.optimize import brentq
+import numpy as np
 
-from .._validate import BlastscaleInputError, OutOfRangeError, check_positive_scalar
+from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_positive_scalar
 from ..blast.base import BlastModel
 from ..blast.masi_fits import MASI2021_COEFFICIENTS, Masi2021
 from ..blast.parameters import DEFAULT_BLAST_MODEL, get_blast_model
@@ -43,6 +45,7 @@ __all__ = [
     "admissible_scales",
     "ScaledDistanceSolution",
     "solve_scaled_distance_factor",
+    "solve_scaled_distance_factors",
     "masi2021_quadratic_roots",
     "hopkinson_cranz_density_ratio",
     "LAWS",
@@ -210,30 +213,22 @@ def solve_scaled_distance_factor(
     gam = check_positive_scalar("density ratio", density_ratio)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
     target = gam * math.sqrt(sig * lam)
-    ln_i0 = math.log(m.scaled_reflected_impulse(z))
     zmin, zmax = m.valid_range("scaled_reflected_impulse")
-
-    def g(x: float) -> float:
-        zz = min(max(z * math.exp(x), zmin), zmax)  # guard round-off at the bracket ends
-        return math.log(m.scaled_reflected_impulse(zz)) - ln_i0 - x - math.log(target)
-
-    xlo, xhi = math.log(zmin / z), math.log(zmax / z)
-    glo, ghi = g(xlo), g(xhi)
-    if glo * ghi > 0.0:
-        # g decreases in x: g(xhi) > 0 means that even Z_max gives too much impulse (scale too small
-        # for this gamma), g(xlo) < 0 that even Z_min gives too little. The admissible targets are
-        # [target e^{g(xhi)}, target e^{g(xlo)}]; target = gamma sqrt(varsigma lambda) gives the scales.
+    lz_arr = solve_scaled_distance_factors(z, lam, gam, sig, m)
+    if not np.isfinite(lz_arr):
+        # the residual decreases in lambda_Z: positive at Z_max means that even Z_max gives too much
+        # impulse (scale too small for this gamma), negative at Z_min that even Z_min gives too little.
         lam_lo, lam_hi = admissible_scales(z, gam, sig, m)
-        side = "Z_max" if ghi > 0.0 else "Z_min"
+        side = "Z_max" if _residual(m, z, math.log(zmax / z), target) > 0.0 else "Z_min"
         raise OutOfRangeError(
             f"scale = {lam:.6g} is out of range for the general law: with density ratio = {gam:.6g}, gravity ratio "
             f"= {sig:.6g} and prototype Z = {z:.6g} m/kg^(1/3), the model Z would lie beyond {side} of the "
             f"{m.name} impulse fit [{zmin:g}, {zmax:g}] m/kg^(1/3); valid range of scale is [{lam_lo:.6g}, {lam_hi:.6g}]"
         )
-    x = brentq(g, xlo, xhi, xtol=1e-15, rtol=1e-15, maxiter=200)
-    res = g(x)
-    lz = math.exp(x)
-    note = f"unique root of Eq. (8) on the {m.name} impulse range Z in [{zmin:g}, {zmax:g}] (Brent)"
+    x = math.log(float(lz_arr))
+    res = _residual(m, z, x, target)
+    lz = float(lz_arr)
+    note = f"unique root of Eq. (8) on the {m.name} impulse range Z in [{zmin:g}, {zmax:g}] (bisection)"
     others: tuple[float, ...] = ()
     if isinstance(m, Masi2021):
         phys, other = masi2021_quadratic_roots(z, target)
@@ -243,6 +238,60 @@ def solve_scaled_distance_factor(
             f"{other:.4g} (rejected: model Z = {other * z:.3g} m/kg^(1/3) is far outside it)"
         )
     return ScaledDistanceSolution(factor=lz, residual=res, note=note, other_roots=others)
+
+
+def _residual(m, z, x, target):
+    """g(x) = ln i_hat(Z e^x) - ln i_hat(Z) - x - ln(target), the general law (Eq. 8) in x = ln lambda_Z:
+    decreasing in x where the law is monotone (arrays broadcast; Z e^x clipped to the impulse fit)."""
+    zmin, zmax = m.valid_range("scaled_reflected_impulse")
+    zz = np.clip(z * np.exp(x), zmin, zmax)  # guard round-off at the bracket ends
+    return np.log(m.scaled_reflected_impulse(zz)) - np.log(m.scaled_reflected_impulse(z)) - x - np.log(target)
+
+
+def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, density_ratio: float = 1.0,
+                                  gravity_ratio: float = 1.0, model: "str | BlastModel" = DEFAULT_BLAST_MODEL):
+    """lambda_Z of the general law (paper Eq. 8) for every prototype Z of an array, at once.
+
+    Bisection in x = ln lambda_Z on the impulse fit's range of the model Z, to the resolution of
+    double precision (the residual decreases in x where the law is monotone, so a root is bracketed
+    exactly when the residual changes sign between Z_min and Z_max).
+
+    Parameters
+    ----------
+    prototype_scaled_distance : float or array_like
+        Z of the prototype [m/kg^(1/3)], > 0 (inside the impulse fit's range for a root).
+    scale, density_ratio, gravity_ratio : float
+        lambda, gamma, varsigma [-], > 0.
+    model : str or BlastModel
+        Blast model providing the scaled reflected impulse i_hat(Z).
+
+    Returns
+    -------
+    float or ndarray
+        lambda_Z [-] of the shape of ``prototype_scaled_distance``; NaN where no root lies in the
+        impulse fit's range (the prototype Z itself outside it, or a model Z beyond Z_min or Z_max).
+
+    Reference: paper Eq. (8) (Sec. "Scaling laws").
+    """
+    m = get_blast_model(model)
+    z = np.asarray(check_positive("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)"), dtype=float)
+    lam = check_positive_scalar("scale", scale)
+    gam = check_positive_scalar("density ratio", density_ratio)
+    sig = check_positive_scalar("gravity ratio", gravity_ratio)
+    target = gam * math.sqrt(sig * lam)
+    zmin, zmax = m.valid_range("scaled_reflected_impulse")
+    inside = (z >= zmin) & (z <= zmax)
+    zs = np.where(inside, z, 1.0 if zmin <= 1.0 <= zmax else zmin)  # a placeholder where Z itself is out
+    lo, hi = np.log(zmin / zs), np.log(zmax / zs)
+    ok = inside & (_residual(m, zs, lo, target) >= 0.0) & (_residual(m, zs, hi, target) <= 0.0)
+    for _ in range(200):  # the x-range is < 7 wide: ~60 halvings reach double precision
+        mid = 0.5 * (lo + hi)
+        if not np.any((mid > lo) & (mid < hi)):
+            break
+        above = _residual(m, zs, mid, target) > 0.0  # too much impulse: the root lies further out
+        lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
+    lz = np.where(ok, np.exp(0.5 * (lo + hi)), np.nan)
+    return float(lz) if lz.ndim == 0 else lz
 
 
 def hopkinson_cranz_density_ratio(scale: float, gravity_ratio: float = 1.0) -> float:

@@ -1,14 +1,13 @@
 """Many cases: parameter sweeps over scenario fields (grids and Monte Carlo samples) run in chunks,
 in this process or on Dask, resumable; the outcome mode (a million planar cases a minute);
-fragility curves; the similarity map. Above the Study: every case is a Study or the batch path
-that gives the Study's numbers (docs/sweeps.md). Files are written by :mod:`blastscale.io`."""
+fragility curves; the similarity map. Above the Study: every case is a Study (docs/sweeps.md). Files are written by :mod:`blastscale.io`."""
 
-from .cases import PLANAR_KEYS, VALID_KEY, evaluate_chunk, planar_scalars, study_scalars
+from .cases import VALID_KEY, evaluate_chunk, study_scalars
 from .grids import Distribution, parse_distribution, parse_grid
 from .outcomes import OUTCOME_KEYS, planar_outcomes
 from .runner import SweepRun, default_chunk, run_chunks
 from .spec import SweepAxis, SweepSample, SweepSpec
 
-__all__ = ["PLANAR_KEYS", "VALID_KEY", "OUTCOME_KEYS", "SweepAxis", "SweepSample", "SweepSpec", "SweepRun",
-           "Distribution", "parse_distribution", "parse_grid", "evaluate_chunk", "planar_scalars", "planar_outcomes",
+__all__ = ["VALID_KEY", "OUTCOME_KEYS", "SweepAxis", "SweepSample", "SweepSpec", "SweepRun",
+           "Distribution", "parse_distribution", "parse_grid", "evaluate_chunk", "planar_outcomes",
            "study_scalars", "default_chunk", "run_chunks"]

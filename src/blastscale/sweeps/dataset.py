@@ -83,7 +83,6 @@ def metadata(spec: SweepSpec, chunk: int) -> dict:
         "python_version": platform.python_version(),
         "scalars": ("outcome mode: first-swing outcomes and largest rotations of the prototype and the model "
                     "(blastscale.sweeps.outcomes.planar_outcomes)") if spec.outcomes else
-                   ("Study(scenario).run().scalars() per case (planar block cases: the planar batch path, "
-                    "blastscale.sweeps.cases.planar_scalars)"),
+                   "Study(scenario).run().scalars() per case",
         "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
     }

@@ -4,7 +4,6 @@ first free swing in closed form)."""
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
@@ -52,60 +51,44 @@ def _groups(vals: dict, paths: list, n: int) -> list:
 
 def _outcome_group(sc, W, R, e) -> dict:
     """Outcome-mode arrays for n load cases ``W`` [kg], ``R`` [m], restitution ``e`` [-] (NaN:
-    Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse)."""
-    from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
-    from ..rocking import charge_for_impulse, first_swing_blast
+    Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
+    design (:func:`~blastscale.similitude.design_model` over the arrays), then the first swing of
+    prototype and specimen."""
+    from .._validate import BlastscaleInputError
+    from ..rocking import first_swing_blast
     from ..rocking.system import RockingSystem, housner_restitution
-    from ..similitude import scaling_factors
-    from ..similitude.laws import hopkinson_cranz_density_ratio
+    from ..similitude import design_model
     from ..structures import from_spec
 
     n = W.size
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
     out[VALID_KEY] = np.zeros(n, dtype=bool)
     bl, sim, scl = sc.blast, sc.simulation, sc.scale
-    lam, sig, gam = scl.length, scl.gravity_ratio, sc.density_ratio
-    if scl.law == "hopkinson-cranz":  # the law imposes gamma (design_model refuses another one)
-        g_hc = hopkinson_cranz_density_ratio(lam, sig)
-        if gam is not None and abs(gam - g_hc) > 1e-9 * g_hc:
-            return out
-        gam = g_hc
     structure = from_spec(sc.structure)
+    try:
+        d = design_model(W, R, scl.length, sc.density_ratio, scl.gravity_ratio, scl.law, bl.model, geometry=None,
+                         gravity=sim.gravity_m_s2, extrapolate=bl.extrapolate)
+    except BlastscaleInputError:  # e.g. a density ratio the Hopkinson-Cranz law refuses: every case
+        return out
+    ok = d.valid
+    if not np.any(ok):
+        return out
     proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
-    model = RockingSystem.from_block(structure.scaled(lam, gam), sim.gravity_m_s2 * sig)
-    e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)
-    bm = get_blast_model(bl.model)
-    # the Z range where the Study designs the model: every fit used (the impulse fit only with
-    # extrapolate, where the general law is still solved on it), for the prototype and the model
-    zr = bm.valid_range("scaled_reflected_impulse") if bl.extrapolate else valid_scaled_distance_range(bm)
-    Z = R / np.cbrt(W)
-    ok = (Z >= zr[0]) & (Z <= zr[1])
-    Rm = lam * R
-    Wm = np.full(n, np.nan)
-    if np.any(ok):
-        if scl.law == "hopkinson-cranz":
-            Wm[ok] = W[ok] * scaling_factors(lam, gam, sig, 1.0).charge
-        else:  # general law (paper Eq. 8): the model delivers the impulse x gamma sqrt(varsigma lambda^3)
-            ip = bm.scaled_reflected_impulse(Z[ok], extrapolate=bl.extrapolate) * np.cbrt(W[ok])
-            Wm[ok] = charge_for_impulse(ip * gam * math.sqrt(sig * lam**3), Rm[ok], bm,
-                                        extrapolate=bl.extrapolate, z_range=zr)
-        ok &= np.isfinite(Wm)
-    if np.any(ok):
-        bp = blast_parameters(W[ok], R[ok], bm, extrapolate=bl.extrapolate)
-        bpm = blast_parameters(Wm[ok], Rm[ok], bm, extrapolate=bl.extrapolate)
-        fp = first_swing_blast(proto.alpha, e[ok], proto.frequency_parameter, proto.load_ratio_per_pascal, bp,
-                               bl.pulse)
-        fm = first_swing_blast(model.alpha, e[ok], model.frequency_parameter, model.load_ratio_per_pascal, bpm,
-                               bl.pulse)
-        out["planar.prototype.overturned"][ok] = fp.overturned
-        out["planar.prototype.max_angle_rad"][ok] = fp.max_rotation
-        out["planar.model.overturned"][ok] = fm.overturned
-        out["planar.model.max_angle_rad"][ok] = fm.max_rotation  # angles are not scaled (factor 1)
-        out["planar.similarity.max_angle_ratio"][ok] = fm.max_rotation / fp.max_rotation
-        out["planar.similarity.outcomes_agree"][ok] = fp.overturned == fm.overturned
-        out["design.model_charge_kg"][ok] = Wm[ok]
-        out["design.model_standoff_m"][ok] = Rm[ok]
-        out[VALID_KEY][ok] = True
+    model = RockingSystem.from_block(structure.scaled(d.scale, d.density_ratio), sim.gravity_m_s2 * d.gravity_ratio)
+    e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
+    fp = first_swing_blast(proto.alpha, e, proto.frequency_parameter, proto.load_ratio_per_pascal,
+                           d.prototype.select(ok), bl.pulse)
+    fm = first_swing_blast(model.alpha, e, model.frequency_parameter, model.load_ratio_per_pascal,
+                           d.model.select(ok), bl.pulse)
+    out["planar.prototype.overturned"][ok] = fp.overturned
+    out["planar.prototype.max_angle_rad"][ok] = fp.max_rotation
+    out["planar.model.overturned"][ok] = fm.overturned
+    out["planar.model.max_angle_rad"][ok] = fm.max_rotation  # angles are not scaled (factor 1)
+    out["planar.similarity.max_angle_ratio"][ok] = fm.max_rotation / fp.max_rotation
+    out["planar.similarity.outcomes_agree"][ok] = fp.overturned == fm.overturned
+    out["design.model_charge_kg"][ok] = d.model.charge_kg[ok]
+    out["design.model_standoff_m"][ok] = d.model.standoff_m[ok]
+    out[VALID_KEY][ok] = True
     return out
 
 
@@ -114,9 +97,8 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
     sweep, vectorised over the cases (the design in numpy, the pulse phases in the compiled
     kernel, the first free swing in closed form; :func:`blastscale.rocking.swing`).
 
-    For the prototype and the model (designed by the scenario's law; the general law's model
-    charge found by inverting the blast model's reflected impulse, which equals the Study's
-    ``design_model`` to ~1e-12): ``overturned`` (at any time), ``max_angle_rad`` (the largest
+    For the prototype and the model (designed by the Study's own ``design_model``, given the
+    arrays of charges and stand-offs): ``overturned`` (at any time), ``max_angle_rad`` (the largest
     |theta| of the whole motion; pi/2 where it overturns), their ratio (model / prototype) and
     outcome agreement, the model charge and stand-off, and ``sweep.valid`` (False where the Study
     would refuse the design: a scaled distance outside the blast fits; NaN values there).

@@ -1,0 +1,184 @@
+"""A designed experiment as data: :class:`ModelDesign` (the specimen's charge and stand-off, every
+factor, the blast parameters of both systems, the delivered and the required ratios) and the
+a-posteriori check that the load is impulsive (:class:`ImpulsiveCheck`, :func:`impulsive_check`).
+
+Impulsive check
+---------------
+The general law matches the impulse only; the pulse duration and peak do not scale as the
+response requires (paper Sec. "Scaling laws"). This is harmless when the pulse is short
+compared with the structure's characteristic time: for a rocking block, when
+``t_o * p << 1`` with Housner's frequency parameter ``p = sqrt(3 g / (4 r))``. We flag the
+load as impulsive when ``t_o p`` is below ``impulsive_threshold`` (default 0.4) in *both*
+prototype and model; 0.4 is the bound of the impulsive regime of a linear oscillator,
+``omega t_d < 0.4`` (Baker et al. 1983, *Explosion Hazards and Evaluation*, ch. 4), applied
+with p in place of omega. The paper's wording "pi_23 << 1" is not literally true (the peak
+force exceeds the weight by orders of magnitude); t_o p is the meaningful measure.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validate import check_positive
+from ..blast.parameters import BlastParameters
+from ..constants import STANDARD_GRAVITY
+from ..structures.block import RectangularBlock
+from .factors import ScalingFactors
+
+__all__ = ["ImpulsiveCheck", "ModelDesign", "impulsive_check", "DEFAULT_IMPULSIVE_THRESHOLD"]
+
+DEFAULT_IMPULSIVE_THRESHOLD = 0.4
+
+
+@dataclass(frozen=True)
+class ImpulsiveCheck:
+    """A-posteriori check of the impulsive hypothesis.
+
+    Attributes
+    ----------
+    prototype_ratio, model_ratio : float
+        t_o * p of prototype and model [-] (t_o the positive duration [s], p = sqrt(3 g / 4 r) [rad/s]).
+    threshold : float
+        Bound below which the load counts as impulsive [-].
+    impulsive : bool
+        Both ratios below the threshold.
+    """
+
+    prototype_ratio: float
+    model_ratio: float
+    threshold: float
+
+    @property
+    def impulsive(self) -> "bool | np.ndarray":
+        """Both t_o p below the threshold (an array for a design of arrays; False where NaN)."""
+        if np.ndim(self.prototype_ratio) or np.ndim(self.model_ratio):
+            return np.maximum(self.prototype_ratio, self.model_ratio) < self.threshold
+        return max(self.prototype_ratio, self.model_ratio) < self.threshold
+
+    def to_dict(self) -> dict:
+        return {
+            "prototype_to_p": self.prototype_ratio,
+            "model_to_p": self.model_ratio,
+            "threshold": self.threshold,
+            "impulsive": self.impulsive,
+        }
+
+
+def impulsive_check(
+    duration: float, block: RectangularBlock, gravity: float = STANDARD_GRAVITY
+) -> float:
+    """The impulsiveness measure of a pulse on a rocking block [-].
+
+    .. math:: t_o\\,p, \\qquad p = \\sqrt{3 g / (4 r)}
+
+    with ``duration`` t_o [s] (> 0), ``block`` (r = half-diagonal [m]) and ``gravity`` g [m/s^2].
+    The load acts as an impulse when t_o p << 1; :func:`design_model` flags it below 0.4 (the
+    impulsive regime omega t_d < 0.4 of Baker et al. 1983, ch. 4). References: Housner (1963)
+    for p; DESIGN.md on why this, not the paper's "pi_23 << 1", is the meaningful check.
+    """
+    check_positive("positive duration", duration, "s")
+    return float(duration) * block.frequency_parameter(gravity)
+
+
+@dataclass(frozen=True)
+class ModelDesign:
+    """A designed reduced-scale experiment (all SI; ratios are model / prototype).
+
+    Attributes
+    ----------
+    law : str
+        ``"general"`` (paper Eq. 8) or ``"hopkinson-cranz"``.
+    scale, density_ratio, gravity_ratio : float
+        lambda, gamma, varsigma [-].
+    scaled_distance_factor : float
+        lambda_Z = Z_model / Z_prototype [-].
+    root_note : str
+        Which root of the law was taken.
+    prototype, model : BlastParameters
+        Blast parameters at the prototype and model stand-offs.
+    factors : ScalingFactors
+        Every factor (charge and scaled distance included).
+    impulsive : ImpulsiveCheck or None
+        Present when the structure was given.
+    prototype_block, model_block : RectangularBlock or None
+        The structures, when given.
+    gravity : float
+        Prototype gravity [m/s^2].
+    valid : bool or ndarray
+        True for a design of one charge and stand-off (an invalid one raises); for arrays, the
+        cases that could be designed (their scaled distances inside the blast fits); the numbers of
+        the others are NaN.
+    """
+
+    law: str
+    scale: float
+    density_ratio: float
+    gravity_ratio: float
+    scaled_distance_factor: float
+    root_note: str
+    prototype: BlastParameters
+    model: BlastParameters
+    factors: ScalingFactors
+    impulsive: ImpulsiveCheck | None = None
+    prototype_block: RectangularBlock | None = None
+    model_block: RectangularBlock | None = None
+    gravity: float = STANDARD_GRAVITY
+    valid: "bool | np.ndarray" = True
+
+    # convenient views -------------------------------------------------------
+    @property
+    def model_charge_kg(self) -> float:
+        """Model TNT-equivalent charge [kg]."""
+        return self.model.charge_kg
+
+    @property
+    def model_standoff_m(self) -> float:
+        """Model stand-off [m] (= lambda R)."""
+        return self.model.standoff_m
+
+    @property
+    def pressure_ratio(self) -> float:
+        """Delivered peak reflected pressure ratio P_model / P_prototype [-]."""
+        return self.model.reflected_pressure / self.prototype.reflected_pressure
+
+    @property
+    def impulse_ratio(self) -> float:
+        """Delivered reflected impulse ratio i_model / i_prototype [-] (= gamma sqrt(varsigma lambda^3))."""
+        return self.model.reflected_impulse / self.prototype.reflected_impulse
+
+    @property
+    def duration_ratio(self) -> float:
+        """Delivered positive-duration ratio t_o,model / t_o,prototype [-]."""
+        return self.model.positive_duration / self.prototype.positive_duration
+
+    def to_dict(self) -> dict:
+        """Plain dict (the CLI's ``design --json`` object)."""
+        out = {
+            "law": self.law,
+            "blast_model": self.prototype.model,
+            "scale": self.scale,
+            "density_ratio": self.density_ratio,
+            "gravity_ratio": self.gravity_ratio,
+            "prototype_charge_kg": self.prototype.charge_kg,
+            "prototype_standoff_m": self.prototype.standoff_m,
+            "prototype_scaled_distance": self.prototype.scaled_distance,
+            "model_scaled_distance": self.model.scaled_distance,
+            "scaled_distance_factor": self.scaled_distance_factor,
+            "root": self.root_note,
+            "model_charge_kg": self.model_charge_kg,
+            "model_standoff_m": self.model_standoff_m,
+            "pressure_ratio": self.pressure_ratio,
+            "impulse_ratio": self.impulse_ratio,
+            "duration_ratio": self.duration_ratio,
+            "required_pressure_ratio": self.factors.pressure,
+            "required_impulse_ratio": self.factors.impulse,
+            "required_duration_ratio": self.factors.time,
+            "factors": self.factors.to_dict(),
+            "prototype": self.prototype.to_dict(),
+            "model": self.model.to_dict(),
+        }
+        if self.impulsive is not None:
+            out["impulsive"] = self.impulsive.to_dict()
+        return out
