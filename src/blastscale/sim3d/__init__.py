@@ -1,15 +1,17 @@
 """3D rigid-body response on MuJoCo: any structure of rigid bodies (blocks, multi-drum columns)
 rocking, sliding, wobbling and lifting off.
 
-* :func:`simulate_structure` -> :class:`Response3D` (xarray) -- the one engine;
+* :func:`simulate_structure` -> :class:`Response3D` (xarray) -- the one engine; a single block
+  is its one-body case (its planar view: :mod:`blastscale.analysis.block3d_similarity`);
   :func:`default_contact` -- scale-consistent contact defaults.
-
 * :class:`ContactSettings` -- contact, time step and solver in physical terms, ``.scaled(lambda)``.
-* :func:`block_scene` / :func:`build_scene` -- the MuJoCo model built from the geometry.
+* :func:`structure_scene` / :func:`block_scene` / :func:`build_scene` -- the MuJoCo model built
+  from the geometry (optionally tilted onto a base edge).
 * :func:`step_forces` -- the paper's Method A blast force, exact impulse per time step.
-* :mod:`.loads` -- the load interface (:class:`LoadStrategy`), :class:`MethodA`, :func:`make_load`.
-* :class:`Block3DSimulator` / :func:`simulate_block` -- run and record; :class:`Block3DResult`.
+* :mod:`.loads` -- the load interface (:class:`LoadStrategy`), :class:`MethodA`,
+  :class:`PerturbedLoad`; :mod:`.load_methods` -- :func:`make_load` (A, B, C by name).
 * :func:`pivot_friction_threshold` -- least friction for pivoting without slip under an impulse.
+* :func:`check_simulable` -- the engine's ranges of lengths, masses and time steps.
 
 MuJoCo is imported lazily, inside the functions that need it.
 """
@@ -19,19 +21,10 @@ from .contact import CONES, SOLVERS, ContactSettings, default_contact
 from .load_methods import LOAD_METHODS, make_load, register_load_method
 from .loads import LoadStrategy, MethodA, PerturbedLoad
 from .model import BodySpec, BoxShape, FrontFace, PrismShape, Scene, block_scene, build_scene, structure_scene
-from .results import Block3DResult, Response3D, quaternion_to_matrix, tilt_angle
-from .simulate import (
-    SETTLE_TIME_CONSTANTS,
-    Block3DSimulator,
-    check_simulable,
-    pivot_friction_threshold,
-    simulate_block,
-    simulate_structure,
-)
+from .results import Response3D, quaternion_to_matrix, tilt_angle
+from .simulate import SETTLE_TIME_CONSTANTS, check_simulable, pivot_friction_threshold, simulate_structure
 
 __all__ = [
-    "Block3DResult",
-    "Block3DSimulator",
     "BodySpec",
     "BoxShape",
     "CONES",
@@ -54,7 +47,6 @@ __all__ = [
     "make_load",
     "quaternion_to_matrix",
     "register_load_method",
-    "simulate_block",
     "simulate_structure",
     "step_forces",
     "structure_scene",

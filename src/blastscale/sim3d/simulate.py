@@ -4,9 +4,8 @@ One path for every structure (:func:`simulate_structure`): N free bodies on a ri
 (:func:`~.model.structure_scene`), explicit contact pairs ground-base and between adjacent
 bodies (then every body with the ground and with every other body, for falling drums), a
 :class:`~.loads.LoadStrategy` giving one wrench per body per step from the current poses,
-recorded as a :class:`~.results.Response3D` (xarray). The single block
-(:class:`Block3DSimulator`, :func:`simulate_block`, :class:`~.results.Block3DResult`) is the
-one-body case of that path, with its planar recorders on top.
+recorded as a :class:`~.results.Response3D` (xarray). The single block is the one-body case
+of that path (its planar view: :mod:`blastscale.analysis.block3d_similarity`).
 
 Time: the structure stands at rest (settled on its soft contacts) until the load's first
 arrival; the run integrates ``duration`` seconds from there, and ``time`` in the results is the
@@ -46,21 +45,18 @@ For several bodies (columns) the default is ``"force"``: the all-stick / all-sli
 behind "auto" holds for one box loaded through its centre of mass only, and the column
 settings of DESIGN.md (1 ms contact, no separate friction time constant) were measured with
 the blast as a force.
-
-:class:`Block3DSimulator` is the single-block solver object (settings stated once: contact,
-time step, recording interval); :func:`simulate_block` is its one-call form.
 """
 
 from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, fields, is_dataclass, replace
+from dataclasses import fields, is_dataclass, replace
 
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
-from ..structures.block import STANDARD_GRAVITY, RectangularBlock
+from ..structures.block import STANDARD_GRAVITY
 from .contact import (
     MAX_TIMESTEP_FRACTION,
     REFERENCE_GRAVITY,
@@ -71,20 +67,18 @@ from .contact import (
     reference_contact,
     structure_length,
 )
-from .loads import MethodA
-from .model import BoxShape, Scene, block_scene, structure_scene
-from .results import Block3DResult, Response3D, block_result, response_from_states
+from .initial import rigid_rocking_velocity
+from .model import BoxShape, Scene, structure_scene
+from .results import Response3D, response_from_states
 
 __all__ = [
     "BLAST_MODES",
-    "Block3DSimulator",
     "ENGINE_LENGTH_RANGE",
     "ENGINE_MASS_RANGE",
     "SETTLE_TIME_CONSTANTS",
     "check_simulable",
     "pivot_friction_threshold",
     "reference_factors",
-    "simulate_block",
     "simulate_structure",
 ]
 
@@ -352,6 +346,9 @@ def simulate_structure(
     record_every: int = 1,
     blast_mode: str | None = None,
     settle: bool = True,
+    initial_rotation: float = 0.0,
+    initial_angular_velocity: float = 0.0,
+    initial_velocity=(0.0, 0.0, 0.0),
 ) -> Response3D:
     """Simulate any structure of rigid bodies on a rigid ground under a blast load.
 
@@ -380,13 +377,27 @@ def simulate_structure(
         threshold (:func:`pivot_friction_threshold`) gets a one-line RuntimeWarning.
     settle : bool
         Let the structure settle on its soft contacts for ``SETTLE_TIME_CONSTANTS`` time
-        constants before the first arrival.
+        constants before the first arrival (not when it starts tilted).
+    initial_rotation : float
+        Initial tilt theta_0 [rad], |theta_0| < pi/2: the whole structure turned rigidly about
+        its lowest body's base edge (the +x edge when > 0), top towards +x when > 0
+        (:func:`~.initial.tilt_bodies`; a block's free rocking from theta_0).
+    initial_angular_velocity : float
+        Initial rocking velocity omega_0 [rad/s] about that edge (the +x edge when omega_0 >= 0
+        and theta_0 = 0), every body moving rigidly (:func:`~.initial.rigid_rocking_velocity`).
+    initial_velocity : tuple of float
+        Extra initial velocity of every centre of mass [m/s], (3,).
 
     Returns
     -------
     Response3D
     """
     T, g = _check_common(duration, gravity, record_every, blast_mode)
+    th0 = float(check_finite("initial rotation", initial_rotation, "rad"))
+    om0 = float(check_finite("initial angular velocity", initial_angular_velocity, "rad/s"))
+    v0 = check_finite("initial velocity", initial_velocity, "m/s")
+    if v0.shape != (3,):
+        raise BlastscaleInputError(f"initial velocity must have 3 components, got shape {v0.shape}")
     if load is not None and not (hasattr(load, "step_wrenches") and hasattr(load, "first_arrival")):
         raise BlastscaleInputError(f"load = {load!r} is not a LoadStrategy (see blastscale.sim3d.loads)")
     explicit = contact is not None
@@ -400,9 +411,11 @@ def simulate_structure(
     mode = blast_mode or ("auto" if len(structure.bodies) == 1 else "force")
     a, b = reference_factors(structure, g)
     ref = _to_reference(structure, a)
-    scene = structure_scene(ref, _reference_contact(contact if explicit else None, structure, a, b), REFERENCE_GRAVITY)
+    scene = structure_scene(ref, _reference_contact(contact if explicit else None, structure, a, b), REFERENCE_GRAVITY,
+                            rotation=th0)
     _warn_near_pivot_threshold(scene, contact.friction, load, mode)
-    st = _integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle, factors=(a, b))
+    st = _integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle and th0 == 0.0,
+                    factors=(a, b), initial_velocity=rigid_rocking_velocity(scene, th0, om0, v0, (a, b)))
     return response_from_states(structure, st, _settings(contact, g, T, mode, st, load, explicit))
 
 
@@ -412,124 +425,6 @@ def _settings(c: ContactSettings, g, T, mode, st, load, explicit) -> dict:
     if load is not None and hasattr(load, "describe"):
         out.update(load.describe())
     return out
-
-
-@dataclass(frozen=True)
-class Block3DSimulator:
-    """Simulate a rectangular block on a rigid plane under a Method A blast load: the one-body
-    case of :func:`simulate_structure`, with the block's planar recorders.
-
-    Parameters
-    ----------
-    contact : ContactSettings or None
-        Contact, time-step and solver settings; None: the scale-consistent defaults of the
-        block run (:func:`~.contact.default_contact`; the full-scale settings for a 10 m block).
-    gravity : float
-        g [m/s^2].
-    record_every : int
-        Keep one state every ``record_every`` steps (the first and last are always kept).
-    settle : bool
-        Let the upright block settle on its soft contact for ``SETTLE_TIME_CONSTANTS`` time
-        constants before t = 0 (ignored when starting tilted).
-    blast_mode : {"auto", "force", "kick"}
-        How each step's blast impulse is applied (module docstring); "auto" is right for
-        sticking and for sliding contacts.
-    shape_type : type
-        Shape class built from the block (``from_block``); :class:`~.model.BoxShape` by default.
-
-    Notes
-    -----
-    Accuracy is set by ``contact.timestep`` (semi-implicit Euler, first order) and the contact
-    time constant; see docs/sim3d.md for the measured errors against closed forms. Results are
-    bitwise deterministic for given inputs.
-    """
-
-    contact: ContactSettings | None = None
-    gravity: float = STANDARD_GRAVITY
-    record_every: int = 1
-    settle: bool = True
-    blast_mode: str = "auto"
-    shape_type: type = BoxShape
-
-    def __post_init__(self):
-        if self.contact is not None and not isinstance(self.contact, ContactSettings):
-            raise BlastscaleInputError(f"contact = {self.contact!r} is not a ContactSettings")
-        _check_common(1.0, self.gravity, self.record_every, self.blast_mode)
-
-    def run(
-        self,
-        block: RectangularBlock,
-        pulse,
-        duration: float,
-        *,
-        initial_rotation: float = 0.0,
-        initial_angular_velocity: float = 0.0,
-        initial_velocity=(0.0, 0.0, 0.0),
-    ) -> Block3DResult:
-        """Simulate ``duration`` seconds after the shock arrival (t = 0).
-
-        Parameters
-        ----------
-        block : RectangularBlock
-            The block; the blast loads its -x face (area 2h x 2w) towards +x.
-        pulse : blastscale.blast.pulses.Pulse or None
-            Reflected pressure pulse, t = 0 at shock arrival; None for no blast.
-        duration : float
-            Simulated time after arrival [s].
-        initial_rotation : float
-            Initial tilt theta_0 [rad], resting on a base edge (see :func:`~.model.block_scene`).
-        initial_angular_velocity : float
-            Initial rocking velocity d theta/dt [rad/s] about the supporting edge (the +x edge
-            when >= 0 and theta_0 = 0); the centre of mass gets the matching rigid velocity.
-        initial_velocity : tuple of float
-            Extra initial velocity of the centre of mass [m/s].
-
-        Returns
-        -------
-        Block3DResult
-            With ``.response`` the :class:`~.results.Response3D` of the same run.
-        """
-        if not isinstance(block, RectangularBlock):
-            raise BlastscaleInputError(f"block = {block!r} is not a RectangularBlock")
-        if pulse is not None and not hasattr(pulse, "cumulative_impulse"):
-            raise BlastscaleInputError(f"pulse = {pulse!r} is not a pulse: expected a blastscale.blast.pulses.Pulse or None")
-        T, g = _check_common(duration, self.gravity, self.record_every, self.blast_mode)
-        th0 = float(check_finite("initial rotation", initial_rotation, "rad"))
-        om0 = float(check_finite("initial angular velocity", initial_angular_velocity, "rad/s"))
-        v0 = check_finite("initial velocity", initial_velocity, "m/s")
-        if v0.shape != (3,):
-            raise BlastscaleInputError(f"initial velocity must have 3 components, got shape {v0.shape}")
-        explicit = self.contact is not None
-        c = self.contact if explicit else default_contact(block, gravity=g)
-        check_simulable(block, c, g)
-        load = None if pulse is None else MethodA(block, pulse)
-        if explicit:
-            _warn_if_soft(c, block, load, g)
-        a, b = reference_factors(block, g)
-        scene = block_scene(_to_reference(block, a), _reference_contact(self.contact, block, a, b), REFERENCE_GRAVITY,
-                            rotation=th0, shape_type=self.shape_type)
-        shape = scene.bodies[0].shape  # reference units
-        mu_star = _warn_near_pivot_threshold(scene, c.friction, load, self.blast_mode)
-
-        def initial(m, d):  # rigid rotation about the supporting edge + translation
-            import mujoco
-
-            if om0 == 0.0 and not np.any(v0 != 0.0):
-                return
-            s = 1.0 if (th0 > 0.0 or (th0 == 0.0 and om0 >= 0.0)) else -1.0
-            mujoco.mj_forward(m, d)
-            R = d.xmat[1].reshape(3, 3)
-            pivot = R @ np.array([s * shape.half_width, 0.0, -shape.half_height]) + d.xpos[1]
-            rel = d.xpos[1] - pivot
-            w = np.array([0.0, om0 / b, 0.0])
-            d.qvel[0:3] = np.cross(w, rel) + v0 * (a / b)
-            d.qvel[3:6] = R.T @ w  # free-joint angular velocity is in the body frame
-
-        st = _integrate(scene, load, T, record_every=self.record_every, blast_mode=self.blast_mode,
-                        settle=self.settle and th0 == 0.0, factors=(a, b), initial_velocity=initial)
-        settings = {**_settings(c, g, T, self.blast_mode, st, load, explicit), "pivot_friction_threshold": mu_star}
-        resp = response_from_states(block, st, settings)
-        return block_result(resp, self.shape_type.from_block(block), st, settings)
 
 
 def _warn_near_pivot_threshold(scene: Scene, friction: float, load, mode: str):
@@ -574,45 +469,3 @@ def pivot_friction_threshold(half_width: float, half_height: float) -> float:
     b = float(check_positive("half width", half_width, "m"))
     h = float(check_positive("half height", half_height, "m"))
     return (4.0 * b * b + h * h) / (3.0 * b * h)
-
-
-def simulate_block(
-    block: RectangularBlock,
-    pulse=None,
-    duration: float = 5.0,
-    *,
-    contact: ContactSettings | None = None,
-    gravity: float = STANDARD_GRAVITY,
-    record_every: int = 1,
-    blast_mode: str = "auto",
-    **initial,
-) -> Block3DResult:
-    """Run one block under a Method A blast: ``Block3DSimulator(contact, gravity, record_every,
-    blast_mode=blast_mode).run(block, pulse, duration, **initial)``.
-
-    Parameters
-    ----------
-    block : RectangularBlock
-        The block; the blast loads its -x face (area 2h x 2w) towards +x.
-    pulse : blastscale.blast.pulses.Pulse or None
-        Reflected pressure pulse [Pa over s], t = 0 at shock arrival; None for no blast.
-    duration : float
-        Simulated time after arrival [s], > 0.
-    contact : ContactSettings, optional
-        Contact, time-step and solver settings; default: scale-consistent
-        (:func:`~.contact.default_contact`, the full-scale settings for a 10 m block).
-    gravity : float
-        g [m/s^2], > 0.
-    record_every : int
-        Keep one state every ``record_every`` steps, >= 1.
-    blast_mode : {"auto", "force", "kick"}
-        How each step's impulse is applied (module docstring).
-    **initial
-        ``initial_rotation`` [rad], ``initial_angular_velocity`` [rad/s], ``initial_velocity``
-        (3,) [m/s], as in :meth:`Block3DSimulator.run`.
-
-    Returns
-    -------
-    Block3DResult
-    """
-    return Block3DSimulator(contact, gravity, record_every, blast_mode=blast_mode).run(block, pulse, duration, **initial)
