@@ -145,6 +145,8 @@ def test_the_block_is_the_one_body_case_of_the_same_path():
 def test_response_dataset_units_dimensions_netcdf_and_summary(tmp_path):
     import xarray as xr
 
+    from blastscale.io.histories import write_netcdf
+
     r = simulate_structure(CIRCULAR, make_load("A", CIRCULAR, charge_kg=200.0, standoff_m=10.0), 0.02,
                            record_every=10)
     ds = r.dataset
@@ -152,7 +154,7 @@ def test_response_dataset_units_dimensions_netcdf_and_summary(tmp_path):
     for name, (dims, units, dim, _) in VARIABLES.items():
         assert ds[name].dims == dims and ds[name].attrs["units"] == units and ds[name].attrs["dimension"] == dim
     assert ds["time"].attrs["units"] == "s" and "version_mujoco" in ds.attrs
-    path = r.to_netcdf(tmp_path / "col.nc")
+    path = write_netcdf(r.dataset, tmp_path / "col.nc")
     back = xr.load_dataset(path)
     assert np.array_equal(back["tilt"].values, ds["tilt"].values)
     assert json.loads(back.attrs["structure"])["section"] == "circular"

@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import tempfile
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -146,22 +144,6 @@ class Response3D:
                            "max_displacement_x_m": float(np.abs(pd[:, k, 0]).max()),
                            "max_velocity_m_s": float(hv[:, k].max())} for k, n in enumerate(names)},
         }
-
-    def to_netcdf(self, path) -> str:
-        """Write the dataset to NetCDF atomically (a temporary file in the same folder, then
-        renamed), so that a failed write leaves nothing half-written. Returns the path."""
-        path = os.fspath(path)
-        folder = os.path.dirname(os.path.abspath(path))
-        fd, tmp = tempfile.mkstemp(suffix=".nc.tmp", dir=folder)
-        os.close(fd)
-        try:
-            self.dataset.to_netcdf(tmp)
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.remove(tmp)
-            raise
-        return path
 
 
 def _versions() -> dict:
