@@ -22,7 +22,6 @@ frictional directions can get their own ``solreffriction``.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
