@@ -274,3 +274,29 @@ def test_sparse_jacobian_opt_in_gives_the_dense_history():
     assert np.max(np.abs(xs - xd)) <= 1e-9 * np.max(np.abs(xd))
     with pytest.raises(BlastscaleInputError, match=r"jacobian = 'csr' is not known: valid values are dense, sparse, auto"):
         replace(default_contact(col), jacobian="csr")
+
+
+def test_initial_tilt_and_rocking_velocity_are_rigid_about_the_base_edge():
+    """initial_rotation turns the whole structure rigidly about its lowest body's +x base edge
+    (every distance kept, the edge where it stood, each body's rotation_y = theta_0);
+    initial_angular_velocity gives every body the rigid velocity w x (x - P) about that edge and
+    the angular velocity w (round-off: 1e-12)."""
+    from blastscale.sim3d.model import structure_scene
+    from blastscale.sim3d.rotations import quaternion_to_matrix, tilt_angle
+
+    col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54)
+    th0, w0 = 0.05, 0.3
+    up = structure_scene(col, default_contact(col)).bodies
+    tilted = structure_scene(col, default_contact(col), rotation=th0).bodies
+    p0 = np.array([b.position for b in up])
+    p1 = np.array([b.position for b in tilted])
+    assert np.allclose(np.linalg.norm(p0[:, None] - p0[None], axis=2), np.linalg.norm(p1[:, None] - p1[None], axis=2),
+                       rtol=0, atol=1e-12)
+    edge = np.array([0.5 * col.base_width, 0.0, 0.0])  # the +x base edge of the lowest drum, on the ground
+    assert np.allclose(np.linalg.norm(p0 - edge, axis=1), np.linalg.norm(p1 - edge, axis=1), rtol=0, atol=1e-12)
+    assert np.allclose(tilt_angle(quaternion_to_matrix([b.quaternion for b in tilted])), th0, rtol=0, atol=1e-15)
+    r = simulate_structure(col, None, 1e-3, initial_angular_velocity=w0, record_every=1).dataset
+    x = np.array([b.com for b in col.bodies])  # rest positions; the settled ones sink by the static penetration
+    v_rigid = np.cross([0.0, w0, 0.0], x - edge)  # so 1e-6 x w0 [m/s] (1 um lever arm) on the velocities
+    assert np.allclose(r["com_velocity"].values[0], v_rigid, rtol=0, atol=1e-6 * w0)
+    assert np.allclose(r["angular_velocity"].values[0], [0.0, w0, 0.0], rtol=0, atol=1e-12)
