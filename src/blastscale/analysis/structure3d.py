@@ -253,7 +253,7 @@ def compare_structure3d(
         prototype's charge and stand-off (its ``factors`` give lambda, gamma, varsigma,
         lambda_t; ``design.gravity`` the prototype's gravity [m/s^2]).
     load : str
-        Load method, a key of :data:`blastscale.sim3d.loads.LOAD_METHODS` (``"A"``: the paper's
+        Load method, a key of :data:`blastscale.sim3d.load_methods.LOAD_METHODS` (``"A"``: the paper's
         Method A, uniform and simultaneous reflected pulse on the front faces).
     pulse : {"friedlander", "triangular", "impulsive"}
         Pulse shape.

@@ -17,9 +17,24 @@ __all__ = ["collapse_flags", "response_from_states"]
 
 
 def collapse_flags(structure, pos, R, tilt) -> np.ndarray:
-    """Per recorded time: did any body or sub-stack pass its toppling limit (module docstring of
-    :class:`Response3D`)? ``tilt`` (n, nbody) [rad] is each body's z axis from the vertical.
-    Returns the flag per time (n,)."""
+    """Per recorded time: did any body or sub-stack pass its toppling limit (the collapse
+    criterion in the Notes of :class:`~.results.Response3D`)?
+
+    Parameters
+    ----------
+    structure : structure
+        The structure simulated.
+    pos : array (n, nbody, 3)
+        Centres of mass [m].
+    R : array (n, nbody, 3, 3)
+        Rotation matrices.
+    tilt : array (n, nbody)
+        Angle of each body's z axis from the vertical [rad].
+
+    Returns
+    -------
+    ndarray (n,) of bool
+    """
     bodies = structure.bodies
     nb = len(bodies)
     masses = np.array([b.mass for b in bodies])
