@@ -35,13 +35,20 @@ import numpy as np
 
 from blastscale.blast.parameters import blast_parameters
 from blastscale.blast.pulses import Triangular
-from blastscale.sim3d import Block3DSimulator, BoxShape, ContactSettings, MethodA, make_load, simulate_structure
+from blastscale.analysis.block3d_similarity import block_dataset, block_summary
+from blastscale.sim3d import BoxShape, ContactSettings, MethodA, make_load, simulate_structure
 from blastscale.sim3d.contact import default_contact
 from blastscale.structures import MultiDrumColumn
 from blastscale.structures.block import RectangularBlock
 
 PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
 SQUAT_BLOCK = RectangularBlock(height=0.5, width=1.0, depth=1.0)
+
+
+def run_block(block, pulse, duration, contact=None, **kw):
+    """The block under Method A (``pulse`` on its front face at t = 0; None: no blast): the
+    one-body structure run, its Response3D."""
+    return simulate_structure(block, None if pulse is None else MethodA(block, pulse), duration, contact=contact, **kw)
 
 
 def speed(repeat: int = 3, duration: float = 3.0) -> dict:
@@ -51,20 +58,20 @@ def speed(repeat: int = 3, duration: float = 3.0) -> dict:
     c = ContactSettings(friction=0.7)
     pulse = blast_parameters(50.0, 2.0, model="masi2021").pulse("friedlander")
     cases = {
-        "prototype": (Block3DSimulator(c), PAPER_BLOCK, pulse, duration),
-        "model_1_200": (Block3DSimulator(c.scaled(lam)), PAPER_BLOCK.scaled(lam), pulse.scaled(lam, lt), duration * lt),
+        "prototype": (c, PAPER_BLOCK, pulse, duration),
+        "model_1_200": (c.scaled(lam), PAPER_BLOCK.scaled(lam), pulse.scaled(lam, lt), duration * lt),
     }
     out = {}
-    for name, (sim, blk, p, T) in cases.items():
+    for name, (cs, blk, p, T) in cases.items():
         best = math.inf
         for _ in range(repeat):
             t0 = time.perf_counter()
-            sim.run(blk, p, T)
+            run_block(blk, p, T, cs)
             best = min(best, time.perf_counter() - t0)
-        steps = T / sim.contact.timestep
+        steps = T / cs.timestep
         out[name] = {
             "simulated_s": T,
-            "timestep_s": sim.contact.timestep,
+            "timestep_s": cs.timestep,
             "wall_s": best,
             "simulated_s_per_wall_s": T / best,
             "prototype_equivalent_s_per_wall_s": (T / (lt if name != "prototype" else 1.0)) / best,
@@ -150,14 +157,14 @@ def acceptance() -> dict:
     ph = _top_x(simulate_structure(col, load, 1.0, contact=half, record_every=8))
     out["timestep_halving_first_peak_change"] = float(np.max(ph) / np.max(p) - 1.0)
     blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
-    pb = Block3DSimulator(default_contact(blk), record_every=10).run(
-        blk, blast_parameters(50.0, 2.0, model="masi2021").pulse(), 3.0)
-    sb = Block3DSimulator(None, record_every=10).run(
-        blk.scaled(1 / 200), blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(), 0.2121)
-    out["block_prototype_max_rotation_rad"] = pb.max_rotation
-    out["block_specimen_1_200_max_rotation_rad"] = sb.max_rotation
-    out["block_specimen_1_200_max_sliding_upscaled_m"] = sb.max_sliding * 200
-    out["block_prototype_max_sliding_m"] = pb.max_sliding
+    pb = block_summary(run_block(blk, blast_parameters(50.0, 2.0, model="masi2021").pulse(), 3.0,
+                                 default_contact(blk), record_every=10))
+    sb = block_summary(run_block(blk.scaled(1 / 200), blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(),
+                                 0.2121, None, record_every=10))
+    out["block_prototype_max_rotation_rad"] = pb["max_rotation_rad"]
+    out["block_specimen_1_200_max_rotation_rad"] = sb["max_rotation_rad"]
+    out["block_specimen_1_200_max_sliding_upscaled_m"] = sb["max_sliding_m"] * 200
+    out["block_prototype_max_sliding_m"] = pb["max_sliding_m"]
     return out
 
 
@@ -166,6 +173,11 @@ class GridBaseBox(BoxShape):
     (25 contact points instead of box-plane's 4 corners); the spheres carry no mass."""
 
     n = 5
+
+    @property
+    def support_radius(self):
+        """Half-extent of the base along x and y [m] (the structure geometry's, for the collapse check)."""
+        return (self.half_width, self.half_depth)
 
     @property
     def radius(self):
@@ -190,21 +202,34 @@ class GridBaseBox(BoxShape):
         return super().mjcf_geom(name) + spheres
 
 
+class GridBaseBlock(RectangularBlock):
+    """The block whose engine shape is a :class:`GridBaseBox` (the structure interface hands an
+    engine shape to the scene as it is; scaling keeps the class)."""
+
+    @property
+    def bodies(self):
+        (body,) = super().bodies
+        g = body.shape
+        return (replace(body, shape=GridBaseBox(g.half_width, g.half_depth, g.half_height, self.density, g.centre_z)),)
+
+
 def _hop_case(contact: ContactSettings, mode: str, v0: float = 1.8, initial_velocity: bool = False,
-              shape_type=BoxShape) -> dict:
-    sim = Block3DSimulator(contact, blast_mode=mode, shape_type=shape_type)
+              block_type=RectangularBlock) -> dict:
+    blk = block_type(SQUAT_BLOCK.height, SQUAT_BLOCK.width, SQUAT_BLOCK.depth, SQUAT_BLOCK.density)
     if initial_velocity:
-        r = sim.run(SQUAT_BLOCK, None, 0.5, initial_velocity=(v0, 0.0, 0.0))
+        resp = run_block(blk, None, 0.5, contact, blast_mode=mode, initial_velocity=(v0, 0.0, 0.0))
     else:
-        i = v0 * SQUAT_BLOCK.mass / SQUAT_BLOCK.front_area
-        r = sim.run(SQUAT_BLOCK, Triangular(2 * i / 1e-3, i), 0.5)
+        i = v0 * blk.mass / blk.front_area
+        resp = run_block(blk, Triangular(2 * i / 1e-3, i), 0.5, contact, blast_mode=mode)
+    r, ds = block_summary(resp), block_dataset(resp)
+    com_z = ds["com_z"].values[:, 0]
     expected = v0**2 / (2 * contact.friction * 9.81)
     return {
-        "max_uplift_mm": 1e3 * r.max_uplift,
-        "com_rise_mm": 1e3 * float(r.com_z.max() - r.com_z[0]),
-        "peak_velocity_x_m_s": float(r.velocity_x.max()),
-        "max_rotation_rad": r.max_rotation,
-        "sliding_error_pct": 100 * (r.final_sliding / expected - 1),
+        "max_uplift_mm": 1e3 * r["max_uplift_m"],
+        "com_rise_mm": 1e3 * float(com_z.max() - com_z[0]),
+        "peak_velocity_x_m_s": float(ds["velocity_x"].values.max()),
+        "max_rotation_rad": r["max_rotation_rad"],
+        "sliding_error_pct": 100 * (r["final_sliding_m"] / expected - 1),
     }
 
 
@@ -233,7 +258,7 @@ def hop_study() -> dict:
         "  damping ratio 0.5": (ContactSettings(friction=0.7, friction_time_constant=None, damping_ratio=0.5), "force",
                                 False),
         "  friction time constant 20 ms": (ContactSettings(friction=0.7), "force", False),
-        "  25-point base (5 x 5 spheres)": (raw, "force", False, GridBaseBox),
+        "  25-point base (5 x 5 spheres)": (raw, "force", False, GridBaseBlock),
         "blast as momentum kick, MuJoCo friction reference": (raw, "kick", False),
         "blast as momentum kick, friction time constant 20 ms": (ContactSettings(friction=0.7), "kick", False),
         "default: auto (force if sticking, kick if sliding), 20 ms": (ContactSettings(friction=0.7), "auto", False),
@@ -252,11 +277,13 @@ HARD = dict(time_constant=2e-5, timestep=2e-6)
 def _after_pulse(block, pulse, contact: ContactSettings, mode: str) -> dict:
     """COM velocity x and angular velocity at the first recorded time after the load steps."""
     t_end = pulse.duration + contact.timestep
-    r = Block3DSimulator(contact, blast_mode=mode).run(block, pulse, t_end + 2 * contact.timestep)
-    k = int(np.searchsorted(r.time, t_end))
-    exact = pulse.impulse * block.front_area / block.mass - contact.friction * 9.81 * r.time[k]
-    return {"velocity_x_m_s": float(r.velocity_x[k]), "velocity_error_pct": 100 * (r.velocity_x[k] / exact - 1),
-            "angular_velocity_rad_s": float(r.angular_velocity[k]), "kick_steps": r.settings["kick_steps"]}
+    resp = run_block(block, pulse, t_end + 2 * contact.timestep, contact, blast_mode=mode)
+    r = block_dataset(resp)
+    t, vx, om = r["time"].values, r["velocity_x"].values[:, 0], r["angular_velocity_y"].values[:, 0]
+    k = int(np.searchsorted(t, t_end))
+    exact = pulse.impulse * block.front_area / block.mass - contact.friction * 9.81 * t[k]
+    return {"velocity_x_m_s": float(vx[k]), "velocity_error_pct": 100 * (vx[k] / exact - 1),
+            "angular_velocity_rad_s": float(om[k]), "kick_steps": int(resp.dataset.attrs["setting_kick_steps"])}
 
 
 def mode_study(mus=(0.7, 0.9, 1.2, 1.4, 1.5, 1.58, 1.62, 1.65, 1.7, 2.0)) -> dict:
@@ -283,12 +310,13 @@ def mode_study(mus=(0.7, 0.9, 1.2, 1.4, 1.5, 1.58, 1.62, 1.65, 1.7, 2.0)) -> dic
     for mu in mus:
         with warnings.catch_warnings():  # the near-mu* warning is what this study measures
             warnings.simplefilter("ignore", RuntimeWarning)
-            a = Block3DSimulator(ContactSettings(friction=mu)).run(PAPER_BLOCK, paper, 1.5)
-        h = Block3DSimulator(ContactSettings(friction=mu, **HARD), blast_mode="force", record_every=50).run(
-            PAPER_BLOCK, paper, 1.5)
-        peak[f"mu={mu:g}"] = {"auto_rad": a.max_rotation, "hard_force_rad": h.max_rotation,
-                              "difference_pct": 100 * (a.max_rotation / h.max_rotation - 1),
-                              "auto_kick_steps": a.settings["kick_steps"]}
+            ra = run_block(PAPER_BLOCK, paper, 1.5, ContactSettings(friction=mu), blast_mode="auto")
+        h = block_summary(run_block(PAPER_BLOCK, paper, 1.5, ContactSettings(friction=mu, **HARD), blast_mode="force",
+                                    record_every=50))
+        a = block_summary(ra)
+        peak[f"mu={mu:g}"] = {"auto_rad": a["max_rotation_rad"], "hard_force_rad": h["max_rotation_rad"],
+                              "difference_pct": 100 * (a["max_rotation_rad"] / h["max_rotation_rad"] - 1),
+                              "auto_kick_steps": int(ra.dataset.attrs["setting_kick_steps"])}
     return {"after_pulse": after, "peak_rotation": peak}
 
 
@@ -319,6 +347,11 @@ def main() -> None:
     for k, v in out["speed"].items():
         if k.startswith("column_"):
             for kind, w in v.items():
+                if "timestep_s" not in w:  # the sparse-Jacobian run: speed-up and agreement with dense
+                    print(f"{k} {kind}: {w['simulated_s_per_wall_s']:.2f} simulated s / wall s, "
+                          f"x{w['speedup_vs_dense']:.2f} vs dense, top history within "
+                          f"{w['max_abs_top_diff_vs_dense_rel_peak']:.1e} of the peak")
+                    continue
                 print(f"{k} {kind:9s} dt = {w['timestep_s']:.3g} s: {w['simulated_s_per_wall_s']:8.2f} simulated s / wall s "
                       f"({w['prototype_equivalent_s_per_wall_s']:.2f} prototype s / wall s)")
             continue

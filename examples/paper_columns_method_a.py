@@ -43,7 +43,8 @@ import json
 from _gallery import done, parse_args, plt, save
 
 from blastscale.analysis.ensemble import ensemble_compare
-from blastscale.analysis.structure3d import compare_structure3d, simulate_system
+from blastscale.analysis.structure3d import compare_structure3d
+from blastscale.analysis.systems import run_system
 from blastscale.plots.column import plot_column_comparison, plot_ensemble_envelope
 from blastscale.similitude import design_model
 from blastscale.structures import MultiDrumColumn
@@ -63,8 +64,8 @@ def run_case(col, charge, duration, record_every):
 def collapses(col, charge, duration, record_every, system):
     """Outcome of the prototype ("prototype") or of the model ("model") at a prototype charge."""
     design = design_model(charge, STANDOFF, SCALE, GAMMA, model=MODEL)
-    _, response, _ = simulate_system(col, design, system, duration=duration, record_every=record_every)
-    return bool(response.summary()["collapsed"])
+    run = run_system(col, design, system, duration=duration, record_every=record_every)
+    return bool(run.response.summary()["collapsed"])
 
 
 def threshold(col, lo, hi, duration, record_every, system, tol=10.0):

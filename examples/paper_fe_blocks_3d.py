@@ -38,9 +38,12 @@ import math
 
 from _gallery import done, parse_args, plt, save
 
-from blastscale.analysis.block3d_similarity import compare_block3d
+from blastscale.analysis.block3d_similarity import block_dataset, block_similarity, block_summary
+from blastscale.analysis.compare import upscale_dataset
+from blastscale.analysis.structure3d import compare_structure3d, upscale_summary
 from blastscale.plots.sim3d import plot_history
 from blastscale.rocking import simulate
+from blastscale.similitude import design_model
 from blastscale.sim3d import ContactSettings
 from blastscale.structures import RectangularBlock
 
@@ -52,28 +55,41 @@ NON_SLENDER = {  # the paper's two incompatible readings of the non-slender bloc
 }
 
 
-def report(name: str, cmp) -> None:
+def run_block(block, charge, standoff, duration):
+    """The block and its 1/200 model (general law, gamma = 1) on MuJoCo through the structure
+    comparison, read through the block's planar view: a dict with the ``design``, the ``prototype``
+    and up-scaled ``model`` histories (block datasets, prototype units), their ``summaries`` and
+    the ``similarity`` figures."""
+    design = design_model(charge, standoff, SCALE, model=MODEL, geometry=block)
+    cmp = compare_structure3d(block, design, contact=ContactSettings(friction=MU), duration=duration, record_every=5)
+    proto, model = block_dataset(cmp.prototype), upscale_dataset(block_dataset(cmp.model), design.factors)
+    return {"design": design, "prototype": proto, "model": model,
+            "summaries": (block_summary(cmp.prototype), upscale_summary(block_summary(cmp.model), design.factors)),
+            "similarity": block_similarity(proto, model)}
+
+
+def report(name: str, run: dict) -> None:
     """Print prototype outcome and prototype-vs-model differences."""
-    p, d = cmp.prototype, cmp.differences
-    print(f"{name}: prototype max rotation {p.max_rotation:.4f} rad, max sliding {p.max_sliding:.4f} m, "
-          f"overturned {p.overturned} | up-scaled model: max rotation {cmp.model_upscaled.max_rotation:.4f} rad, "
-          f"max sliding {cmp.model_upscaled.max_sliding:.4f} m | max |d rotation| "
+    (p, m), d = run["summaries"], run["similarity"]
+    print(f"{name}: prototype max rotation {p['max_rotation_rad']:.4f} rad, max sliding {p['max_sliding_m']:.4f} m, "
+          f"overturned {p['overturned']} | up-scaled model: max rotation {m['max_rotation_rad']:.4f} rad, "
+          f"max sliding {m['max_sliding_m']:.4f} m | max |d rotation| "
           f"{d['max_abs_rotation_diff_rad']:.2e} rad, max |d sliding| {d['max_abs_sliding_diff_m']:.2e} m")
 
 
 def slender_figure(runs: dict):
     """Rotation, angular velocity, phase portrait and sliding (rows) for each charge (columns)."""
     fig, axes = plt.subplots(4, len(runs), figsize=(6 * len(runs), 14), layout="constrained")
-    for k, (W, (cmp, planar)) in enumerate(runs.items()):
-        three_d = {"3D prototype": cmp.prototype, "3D model 1/200, up-scaled": cmp.model_upscaled}
-        for j, q in enumerate(("rotation", "angular_velocity")):
+    for k, (W, (run, planar)) in enumerate(runs.items()):
+        three_d = {"3D prototype": run["prototype"], "3D model 1/200, up-scaled": run["model"]}
+        for j, q in enumerate(("rotation_y", "angular_velocity_y")):
             ax = plot_history(three_d, q, ax=axes[j, k])
-            ax.plot(planar.t, planar.theta if q == "rotation" else planar.theta_dot, ":", color="k",
+            ax.plot(planar.t, planar.theta if q == "rotation_y" else planar.theta_dot, ":", color="k",
                     label="planar Eq. (eom), fixed pivot")
             ax.legend(fontsize="small")
         ax = axes[2, k]
-        for lab, r, ls in (("3D prototype", cmp.prototype, "-"), ("3D model, up-scaled", cmp.model_upscaled, "--")):
-            ax.plot(r.rotation, r.angular_velocity, ls, label=lab)
+        for lab, r, ls in (("3D prototype", run["prototype"], "-"), ("3D model, up-scaled", run["model"], "--")):
+            ax.plot(r["rotation_y"].values[:, 0], r["angular_velocity_y"].values[:, 0], ls, label=lab)
         ax.plot(planar.theta, planar.theta_dot, ":", color="k", label="planar Eq. (eom)")
         ax.set_xlabel("rotation theta [rad]")
         ax.set_ylabel("angular velocity [rad/s]")
@@ -85,11 +101,11 @@ def slender_figure(runs: dict):
     return fig
 
 
-def non_slender_figure(cmp, reading: str):
+def non_slender_figure(run: dict, reading: str):
     """Paper Fig. 14 layout: rotation, horizontal displacement, angular velocity, horizontal velocity."""
     fig, axes = plt.subplots(2, 2, figsize=(12, 8), layout="constrained")
-    runs = {"prototype": cmp.prototype, "model 1/200, up-scaled": cmp.model_upscaled}
-    for ax, q in zip(axes.ravel(), ("rotation", "com_x", "angular_velocity", "velocity_x")):
+    runs = {"prototype": run["prototype"], "model 1/200, up-scaled": run["model"]}
+    for ax, q in zip(axes.ravel(), ("rotation_y", "com_x", "angular_velocity_y", "velocity_x")):
         plot_history(runs, q, ax=ax)
     fig.suptitle(f"Non-slender block, 2500 kg at 3 m, {reading} (2h = 10 m, 2w = 3.5 m), mu = {MU:g}")
     return fig
@@ -100,27 +116,27 @@ def main() -> None:
                       flags={"alpha35": "run the non-slender block as angled (alpha = 35 deg, 2b = 7.0 m) "
                                         "instead of as dimensioned (2b = 3.5 m)"})
     t_slender, t_non = (1.5, 0.6) if args.quick else (3.0, 2.0)
-    contact = ContactSettings(friction=MU)
 
     runs = {}
     for W in (50.0, 100.0):
-        cmp = compare_block3d(SLENDER, W, 2.0, SCALE, model=MODEL, contact=contact, duration=t_slender, record_every=5)
-        planar = simulate(SLENDER, cmp.design.prototype.pulse(), t_slender)
-        report(f"slender, {W:g} kg", cmp)
+        run = run_block(SLENDER, W, 2.0, t_slender)
+        planar = simulate(SLENDER, run["design"].prototype.pulse(), t_slender)
+        report(f"slender, {W:g} kg", run)
         print(f"  planar Eq. (eom): max |theta| {planar.max_angle:.4f} rad, overturned {planar.overturned}")
-        runs[W] = (cmp, planar)
+        runs[W] = (run, planar)
     save(slender_figure(runs), args.out, "figure_fe_slender_blocks.png")
 
     reading = list(NON_SLENDER)[1 if args.alpha35 else 0]
     block = NON_SLENDER[reading]
     print(f"non-slender block {reading}: 2b = {block.width:.2f} m, alpha = {math.degrees(block.alpha):.1f} deg "
           f"(the paper states both 2b = 3.5 m and alpha = 35 deg, which contradict each other)")
-    cmp = compare_block3d(block, 2500.0, 3.0, SCALE, model=MODEL, contact=contact, duration=t_non, record_every=5)
-    i, S, m = cmp.design.prototype.reflected_impulse, block.front_area, block.mass
-    print(f"  model charge {cmp.design.model_charge_kg * 1e6:.4f} mg (paper 14.26 mg); momentum balance "
-          f"v0 = i S / m = {i * S / m:.2f} m/s, prototype peak velocity {cmp.prototype.velocity_x.max():.2f} m/s")
-    report(f"non-slender, 2500 kg at 3 m ({t_non:g} s)", cmp)
-    save(non_slender_figure(cmp, reading), args.out, "figure_fe_non_slender_block.png")
+    run = run_block(block, 2500.0, 3.0, t_non)
+    i, S, m = run["design"].prototype.reflected_impulse, block.front_area, block.mass
+    print(f"  model charge {run['design'].model_charge_kg * 1e6:.4f} mg (paper 14.26 mg); momentum balance "
+          f"v0 = i S / m = {i * S / m:.2f} m/s, prototype peak velocity "
+          f"{float(run['prototype']['velocity_x'].max()):.2f} m/s")
+    report(f"non-slender, 2500 kg at 3 m ({t_non:g} s)", run)
+    save(non_slender_figure(run, reading), args.out, "figure_fe_non_slender_block.png")
     done(args)
 
 

@@ -212,11 +212,11 @@ def test_column_plots_reject_unknown_names(short_comparison):
         plot_column_snapshots(c.structure, c.prototype_dataset, n=0)
 
 
-def test_simulate_system_passes_extrapolate_to_the_load(monkeypatch):
-    """compare_structure3d / simulate_system hand ``extrapolate`` to make_load (E10's scenarios
+def test_run_system_passes_extrapolate_to_the_load(monkeypatch):
+    """compare_structure3d / run_system hand ``extrapolate`` to make_load (E10's scenarios
     with blast.extrapolate = true); the load built is then used as is."""
     import blastscale.sim3d.load_methods as loads
-    from blastscale.analysis.structure3d import simulate_system
+    from blastscale.analysis.systems import run_system
     from blastscale.similitude import design_model
     from blastscale.structures import MultiDrumColumn
 
@@ -230,8 +230,8 @@ def test_simulate_system_passes_extrapolate_to_the_load(monkeypatch):
     monkeypatch.setattr(loads, "make_load", spy)
     col = MultiDrumColumn(drums=2, height=2.0, top_width=1.6)
     for flag in (False, True):
-        _, r, load_s = simulate_system(col, design_model(250.0, 10.0, 1 / 100), "model", duration=0.01,
-                                       record_every=8, extrapolate=flag)
+        _, r, load_s = run_system(col, design_model(250.0, 10.0, 1 / 100), "model", duration=0.01,
+                                  record_every=8, extrapolate=flag)
         assert r.summary()["collapsed"] is False and 0 < load_s < 0.01
     assert seen == [False, True]
 

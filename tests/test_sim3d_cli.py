@@ -135,30 +135,36 @@ def test_snapshot_outline_is_the_rotated_rectangle():
 def test_plots_take_ax_and_return_it():
     import matplotlib.pyplot as plt
 
-    from blastscale.plots.sim3d import plot_angular_velocity, plot_rotation, plot_sliding, plot_snapshots
-    from blastscale.sim3d import ContactSettings, simulate_block
+    from blastscale.analysis.block3d_similarity import block_dataset
+    from blastscale.plots.sim3d import plot_angular_velocity, plot_comparison, plot_rotation, plot_sliding, plot_snapshots
+    from blastscale.sim3d import ContactSettings, simulate_structure
     from blastscale.structures.block import RectangularBlock
 
-    r = simulate_block(RectangularBlock(2.0, 1.0), None, 0.05, contact=ContactSettings(), initial_angular_velocity=0.5)
+    block = RectangularBlock(2.0, 1.0)
+    r = block_dataset(simulate_structure(block, None, 0.05, contact=ContactSettings(), initial_angular_velocity=0.5))
     fig, axs = plt.subplots(1, 4)
     for f, ax in zip((plot_rotation, plot_sliding, plot_angular_velocity), axs):
         assert f([r, r], ax=ax) is ax
         assert len(ax.get_lines()) == 2
-    assert plot_snapshots(r, times=[0.0, 0.05], ax=axs[3]) is axs[3]
+    assert plot_snapshots(block, r, times=[0.0, 0.05], ax=axs[3]) is axs[3]
+    assert len(axs[3].get_lines()) == 2 + 1  # two outlines and the ground line
     plt.close(fig)
+    plt.close(plot_comparison(block, r, r))
 
 
 def test_plots_reject_unknown_quantity_and_bad_snapshot_count():
     from blastscale._validate import BlastscaleInputError
+    from blastscale.analysis.block3d_similarity import block_dataset
     from blastscale.plots.sim3d import plot_history, plot_snapshots
-    from blastscale.sim3d import simulate_block
+    from blastscale.sim3d import simulate_structure
     from blastscale.structures.block import RectangularBlock
 
-    r = simulate_block(RectangularBlock(2.0, 1.0), None, 0.002)
+    block = RectangularBlock(2.0, 1.0)
+    r = block_dataset(simulate_structure(block, None, 0.002))
     with pytest.raises(BlastscaleInputError, match="quantity"):
         plot_history(r, "spin")
     with pytest.raises(BlastscaleInputError, match="n = 0"):
-        plot_snapshots(r, n=0)
+        plot_snapshots(block, r, n=0)
 
 
 def test_block3d_warns_in_one_line_near_the_pivoting_threshold(capsys):
@@ -172,52 +178,73 @@ def test_block3d_warns_in_one_line_near_the_pivoting_threshold(capsys):
 
 
 def test_block_comparison_through_the_contract_reproduces_the_direct_differences():
-    """compare_block3d's differences come from the comparison contract (block_dataset,
+    """block_similarity's differences come from the comparison contract (block_dataset,
     upscale_dataset, compare_responses). They must equal the direct computation on the planar
-    view (Block3DResult.upscaled, np.interp onto the prototype's times) to round-off: both
-    divide by the same factors and interpolate at the same times (1e-12 of the largest value)."""
-    from blastscale.analysis.block3d_similarity import compare_block3d
+    view (the model's histories divided by the factors, np.interp onto the prototype's times) to
+    round-off: both divide by the same factors and interpolate at the same times (1e-12 of the
+    largest value)."""
+    from blastscale.analysis.block3d_similarity import block_dataset, block_similarity, block_summary
+    from blastscale.analysis.compare import upscale_dataset
+    from blastscale.analysis.structure3d import compare_structure3d
+    from blastscale.similitude import design_model
     from blastscale.structures.block import RectangularBlock
 
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
-    c = compare_block3d(block, 50.0, 2.0, 1 / 20, model="masi2021", duration=0.6, record_every=5)
-    p, u = c.prototype, c.model_upscaled
-    mask = p.time <= u.time[-1] * (1 + 1e-12)
-    for key, attr in (("max_abs_rotation_diff_rad", "rotation"), ("max_abs_sliding_diff_m", "sliding"),
+    design = design_model(50.0, 2.0, 1 / 20, model="masi2021", geometry=block)
+    c = compare_structure3d(block, design, duration=0.6, record_every=5)
+    f = design.factors
+    p, m = block_dataset(c.prototype), block_dataset(c.model)
+    s = block_similarity(p, upscale_dataset(m, f))
+    tp, tu = p["time"].values, m["time"].values / f.time
+    mask = tp <= tu[-1] * (1 + 1e-12)
+    for key, name in (("max_abs_rotation_diff_rad", "rotation_y"), ("max_abs_sliding_diff_m", "sliding"),
                       ("max_abs_uplift_diff_m", "uplift")):
-        a = getattr(p, attr)
-        direct = float(np.max(np.abs(a[mask] - np.interp(p.time[mask], u.time, getattr(u, attr)))))
-        assert c.differences[key] == pytest.approx(direct, rel=1e-9, abs=1e-12 * float(np.max(np.abs(a)))), key
-    s = c.summary()["similarity"]
+        a = p[name].values[:, 0]
+        u = m[name].values[:, 0] / (f.angle if name == "rotation_y" else f.length)
+        direct = float(np.max(np.abs(a[mask] - np.interp(tp[mask], tu, u))))
+        assert s[key] == pytest.approx(direct, rel=1e-9, abs=1e-12 * float(np.max(np.abs(a)))), key
     assert s["outcomes_agree"] is True
     # the first rocking peak of the up-scaled model within 1 % of the prototype's (general law, finite pulse)
     assert s["first_peak_rotation_ratio"] == pytest.approx(1.0, abs=1e-2)
-    assert c.summary()["prototype"]["delivered_impulse_Ns"][0] > 0
+    assert block_summary(c.prototype)["delivered_impulse_Ns"][0] > 0
 
 
-def test_block_keys_from_the_structure_path_equal_the_planar_view():
-    """block_summary / block_dataset of a Response3D (the structure path, any load method) must
-    give the planar view's numbers (Block3DResult of simulate_block) for the same run under
-    Method A: same engine, same steps, so equal to round-off (1e-12 relative); the sliding from
-    dx + s b (cos th - 1) - h sin th equals the recorder's R-row formula for planar motion."""
+def test_block_keys_from_the_structure_path_equal_the_body_frame_recorders():
+    """block_summary / block_dataset read the planar view from a Response3D: the sliding from
+    dx + s b (cos th - 1) - h sin th must equal the x displacement of the supporting base edge
+    tracked as a point of the body (the body-frame recorder: the edge (s b, 0, -h) carried by
+    the full 3D rotation) for planar motion, to round-off (1e-12 of the largest sliding); the
+    other keys are the response's own histories and impulse."""
     from blastscale.analysis.block3d_similarity import block_dataset, block_summary
     from blastscale.blast import blast_parameters
-    from blastscale.sim3d import simulate_block, simulate_structure
-    from blastscale.sim3d.load_methods import make_load
+    from blastscale.sim3d import MethodA, simulate_structure
+    from blastscale.structures.base import MonitoringPoint
     from blastscale.structures.block import RectangularBlock
 
-    b = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
-    planar = simulate_block(b, blast_parameters(50.0, 2.0, "masi2021").pulse("friedlander"), 0.7, record_every=5)
-    resp = simulate_structure(b, make_load("A", b, charge_kg=50.0, standoff_m=2.0, blast_model="masi2021"), 0.7,
+    class EdgeBlock(RectangularBlock):
+        """The block with its two base edges' mid-points recorded as monitoring points."""
+
+        @property
+        def monitoring_points(self):
+            return super().monitoring_points + (MonitoringPoint("rear-edge", 0, (self.b, 0.0, -self.h)),
+                                                 MonitoringPoint("front-edge", 0, (-self.b, 0.0, -self.h)))
+
+    b = EdgeBlock.from_slenderness(10.0, math.radians(15.0))
+    resp = simulate_structure(b, MethodA(b, blast_parameters(50.0, 2.0, "masi2021").pulse("friedlander")), 0.7,
                               record_every=5)
-    s1, s2 = planar.summary(), block_summary(resp, b)
-    assert s1.keys() == s2.keys() and s1["overturned"] == s2["overturned"]
-    for k in ("max_rotation_rad", "max_sliding_m", "final_sliding_m", "peak_angular_velocity_rad_s",
-              "peak_velocity_x_m_s"):
-        assert s2[k] == pytest.approx(s1[k], rel=1e-12), k
-    assert s2["delivered_impulse_Ns"][0] == pytest.approx(s1["delivered_impulse_Ns"][0], rel=1e-12)
-    d1, d2 = block_dataset(planar), block_dataset(resp, b)
-    assert np.max(np.abs(d1["sliding"].values - d2["sliding"].values)) <= 1e-12 * s1["max_sliding_m"]
+    s, ds = block_summary(resp), block_dataset(resp)
+    th = ds["rotation_y"].values[:, 0]
+    edge = np.where(th >= 0.0, resp.dataset["point_displacement"].sel(point="rear-edge", component="x").values,
+                    resp.dataset["point_displacement"].sel(point="front-edge", component="x").values)
+    sliding = ds["sliding"].values[:, 0]
+    assert np.max(np.abs(sliding - edge)) <= 1e-12 * s["max_sliding_m"]
+    assert s["max_sliding_m"] == pytest.approx(float(np.max(np.abs(edge))), rel=1e-12)
+    assert s["final_sliding_m"] == pytest.approx(float(edge[-1]), rel=1e-9, abs=1e-12 * s["max_sliding_m"])
+    assert s["max_rotation_rad"] == float(np.max(np.abs(resp.dataset["rotation_y"].values)))
+    assert s["peak_angular_velocity_rad_s"] == float(
+        np.max(np.abs(resp.dataset["angular_velocity"].sel(component="y").values)))
+    assert s["peak_velocity_x_m_s"] == float(np.max(np.abs(resp.dataset["com_velocity"].sel(component="x").values)))
+    assert s["delivered_impulse_Ns"] == resp.summary()["delivered_impulse_Ns"] and s["overturned"] is False
 
 
 def test_block3d_per_face_load_keeps_the_keys(capsys, tmp_path):

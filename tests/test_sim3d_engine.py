@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 from blastscale._validate import BlastscaleInputError
+from blastscale.analysis.block3d_similarity import block_dataset, block_summary
 from blastscale.blast.parameters import blast_parameters
-from blastscale.sim3d import ContactSettings, MethodA, make_load, simulate_block
+from blastscale.sim3d import ContactSettings, MethodA, block_scene, make_load
 from blastscale.sim3d.contact import default_contact
 from blastscale.sim3d.results import VARIABLES
 from blastscale.sim3d.simulate import simulate_structure
@@ -80,19 +81,20 @@ def test_block_specimen_at_its_own_size_reproduces_the_prototype():
     # absolute full-scale contact, against the prototype's 0.0611 (50 kg at 2 m, 3 s)
     proto_blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
     spec_blk = proto_blk.scaled(1 / 200)
-    proto = simulate_block(proto_blk, blast_parameters(50.0, 2.0, model="masi2021").pulse(), 3.0,
-                           contact=default_contact(proto_blk, friction=0.7), record_every=10)
-    spec = simulate_block(spec_blk, blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(), 0.2121,
-                          record_every=10)  # contact=None: scale-consistent defaults
+    proto_pulse = blast_parameters(50.0, 2.0, model="masi2021").pulse()
+    spec_pulse = blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse()
+    proto = block_summary(simulate_structure(proto_blk, MethodA(proto_blk, proto_pulse), 3.0,
+                                             contact=default_contact(proto_blk, friction=0.7), record_every=10))
+    spec = block_summary(simulate_structure(spec_blk, MethodA(spec_blk, spec_pulse), 0.2121,
+                                            record_every=10))  # contact=None: scale-consistent defaults
     # 2% (issue); measured 0.003% on the angle, 0.5% on the sliding (the general law matches
     # the impulse, not the pulse shape)
-    assert spec.max_rotation == pytest.approx(proto.max_rotation, rel=0.02)
-    assert spec.max_sliding * 200 == pytest.approx(proto.max_sliding, rel=0.02)
-    assert proto.max_rotation == pytest.approx(0.0611, abs=5e-4)
+    assert spec["max_rotation_rad"] == pytest.approx(proto["max_rotation_rad"], rel=0.02)
+    assert spec["max_sliding_m"] * 200 == pytest.approx(proto["max_sliding_m"], rel=0.02)
+    assert proto["max_rotation_rad"] == pytest.approx(0.0611, abs=5e-4)
     # the old absolute setting is now flagged as soft relative to this specimen's blast
     with pytest.warns(RuntimeWarning, match="soft relative to the blast"):
-        simulate_block(spec_blk, blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(), 1e-3,
-                       contact=ContactSettings(friction=0.7))
+        simulate_structure(spec_blk, MethodA(spec_blk, spec_pulse), 1e-3, contact=ContactSettings(friction=0.7))
 
 
 def test_column_specimen_at_its_own_size_reproduces_the_prototype():
@@ -120,18 +122,30 @@ def test_halving_the_time_step_moves_the_first_peak_by_less_than_1_percent():
 
 
 def test_the_block_is_the_one_body_case_of_the_same_path():
-    blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
-    pulse = blast_parameters(50.0, 2.0, model="masi2021").pulse()
-    one = simulate_block(blk, pulse, 0.3, contact=ContactSettings(friction=2.0))
-    gen = simulate_structure(blk, MethodA(blk, pulse), 0.3, contact=ContactSettings(friction=2.0))
-    # the same loop and the same scene: bitwise
-    assert np.array_equal(gen.dataset["rotation_y"].values[:, 0], one.rotation)
-    assert np.array_equal(one.response.dataset["tilt"].values, gen.dataset["tilt"].values)
+    """A block and a one-drum prismatic square column of the same box (2.68 m square, 10 m high)
+    are the same structure to the engine: the same body (mass, inertia, loaded face, point), the
+    same one-body contact defaults and blast mode, the same scene: bitwise the same response (the
+    column's quadrature inertia differs from the block's closed form by round-off, which the
+    reference units' 12-digit rounding removes)."""
+    from blastscale.sim3d.model import structure_scene
+
+    blk = RectangularBlock(10.0, 2.68, depth=2.68, density=2000.0)
+    col = MultiDrumColumn(section="square", drums=1, height=10.0, base_width=2.68, top_width=2.68, density=2000.0)
+    pulse = blast_parameters(200.0, 2.0, model="masi2021").pulse()
+    one = simulate_structure(blk, MethodA(blk, pulse), 0.3, contact=ContactSettings(friction=2.0))
+    gen = simulate_structure(col, MethodA(col, pulse), 0.3, contact=ContactSettings(friction=2.0))
+    assert one.dataset.attrs["setting_blast_mode"] == gen.dataset.attrs["setting_blast_mode"] == "auto"
+    for name in ("rotation_y", "tilt", "com_displacement", "point_displacement", "uplift", "n_contacts"):
+        np.testing.assert_array_equal(one.dataset[name].values, gen.dataset[name].values)
     assert one.summary()["delivered_impulse_Ns"] == gen.summary()["delivered_impulse_Ns"]
+    # and the block's own scene builder is the structure's (tilted or not)
+    assert block_scene(blk, rotation=0.1).xml == structure_scene(blk, ContactSettings(), rotation=0.1).xml
 
 
 def test_response_dataset_units_dimensions_netcdf_and_summary(tmp_path):
     import xarray as xr
+
+    from blastscale.io.histories import write_netcdf
 
     r = simulate_structure(CIRCULAR, make_load("A", CIRCULAR, charge_kg=200.0, standoff_m=10.0), 0.02,
                            record_every=10)
@@ -140,7 +154,7 @@ def test_response_dataset_units_dimensions_netcdf_and_summary(tmp_path):
     for name, (dims, units, dim, _) in VARIABLES.items():
         assert ds[name].dims == dims and ds[name].attrs["units"] == units and ds[name].attrs["dimension"] == dim
     assert ds["time"].attrs["units"] == "s" and "version_mujoco" in ds.attrs
-    path = r.to_netcdf(tmp_path / "col.nc")
+    path = write_netcdf(r.dataset, tmp_path / "col.nc")
     back = xr.load_dataset(path)
     assert np.array_equal(back["tilt"].values, ds["tilt"].values)
     assert json.loads(back.attrs["structure"])["section"] == "circular"
@@ -205,11 +219,11 @@ def test_extra_contact_pairs_leave_the_motion_before_they_touch_bitwise_unchange
     [
         (lambda: simulate_structure(SQUARE, None, 0.01, contact=ContactSettings(timestep=0.1, time_constant=0.4)),
          "timestep"),
-        (lambda: simulate_block(RectangularBlock(10.0, 2.0), None, 0.01,
-                                contact=ContactSettings(timestep=1.0, time_constant=4.0)), "timestep"),
-        (lambda: simulate_block(RectangularBlock(10.0, 2.68).scaled(1e-4), None, 0.01), "mass"),
-        (lambda: simulate_block(RectangularBlock(1e-6, 2.68e-7), None, 0.01), "height"),
-        (lambda: simulate_block(RectangularBlock(10.0, 2.68, 1e-9), None, 0.01), "depth"),
+        (lambda: simulate_structure(RectangularBlock(10.0, 2.0), None, 0.01,
+                                    contact=ContactSettings(timestep=1.0, time_constant=4.0)), "timestep"),
+        (lambda: simulate_structure(RectangularBlock(10.0, 2.68).scaled(1e-4), None, 0.01), "mass"),
+        (lambda: simulate_structure(RectangularBlock(1e-6, 2.68e-7), None, 0.01), "height"),
+        (lambda: simulate_structure(RectangularBlock(10.0, 2.68, 1e-9), None, 0.01), "depth"),
         (lambda: simulate_structure(SQUARE, "friedlander", 0.01), "load"),
         (lambda: simulate_structure(SQUARE, None, -1.0), "duration"),
         (lambda: make_load("D", SQUARE, charge_kg=1.0, standoff_m=1.0), "load method"),
@@ -230,8 +244,9 @@ def test_milligram_specimen_runs_in_reference_units_and_user_points_are_recorded
     # a 1 cm block (54 mg) and a 1/1000 column run as the 10 m structures in reference units
     # (MuJoCo's absolute thresholds never see their size): at rest they stay put
     tiny = RectangularBlock(10.0, 2.68).scaled(1e-3)
-    r = simulate_block(tiny, None, 0.05)
-    assert tiny.mass < 1e-4 and np.max(np.abs(r.rotation)) < 1e-9 and np.max(np.abs(r.sliding)) < 1e-11
+    r = block_dataset(simulate_structure(tiny, None, 0.05))
+    assert tiny.mass < 1e-4 and np.max(np.abs(r["rotation_y"].values)) < 1e-9
+    assert np.max(np.abs(r["sliding"].values)) < 1e-11
     col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54,
                           extra_points=(MonitoringPoint("cap", 2, (0.0, 0.0, 0.5)),)).scaled(1e-3)
     resp = simulate_structure(col, None, 0.02, record_every=10)
@@ -259,3 +274,29 @@ def test_sparse_jacobian_opt_in_gives_the_dense_history():
     assert np.max(np.abs(xs - xd)) <= 1e-9 * np.max(np.abs(xd))
     with pytest.raises(BlastscaleInputError, match=r"jacobian = 'csr' is not known: valid values are dense, sparse, auto"):
         replace(default_contact(col), jacobian="csr")
+
+
+def test_initial_tilt_and_rocking_velocity_are_rigid_about_the_base_edge():
+    """initial_rotation turns the whole structure rigidly about its lowest body's +x base edge
+    (every distance kept, the edge where it stood, each body's rotation_y = theta_0);
+    initial_angular_velocity gives every body the rigid velocity w x (x - P) about that edge and
+    the angular velocity w (round-off: 1e-12)."""
+    from blastscale.sim3d.model import structure_scene
+    from blastscale.sim3d.rotations import quaternion_to_matrix, tilt_angle
+
+    col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54)
+    th0, w0 = 0.05, 0.3
+    up = structure_scene(col, default_contact(col)).bodies
+    tilted = structure_scene(col, default_contact(col), rotation=th0).bodies
+    p0 = np.array([b.position for b in up])
+    p1 = np.array([b.position for b in tilted])
+    assert np.allclose(np.linalg.norm(p0[:, None] - p0[None], axis=2), np.linalg.norm(p1[:, None] - p1[None], axis=2),
+                       rtol=0, atol=1e-12)
+    edge = np.array([0.5 * col.base_width, 0.0, 0.0])  # the +x base edge of the lowest drum, on the ground
+    assert np.allclose(np.linalg.norm(p0 - edge, axis=1), np.linalg.norm(p1 - edge, axis=1), rtol=0, atol=1e-12)
+    assert np.allclose(tilt_angle(quaternion_to_matrix([b.quaternion for b in tilted])), th0, rtol=0, atol=1e-15)
+    r = simulate_structure(col, None, 1e-3, initial_angular_velocity=w0, record_every=1).dataset
+    x = np.array([b.com for b in col.bodies])  # rest positions; the settled ones sink by the static penetration
+    v_rigid = np.cross([0.0, w0, 0.0], x - edge)  # so 1e-6 x w0 [m/s] (1 um lever arm) on the velocities
+    assert np.allclose(r["com_velocity"].values[0], v_rigid, rtol=0, atol=1e-6 * w0)
+    assert np.allclose(r["angular_velocity"].values[0], [0.0, w0, 0.0], rtol=0, atol=1e-12)

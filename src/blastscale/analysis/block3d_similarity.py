@@ -1,19 +1,31 @@
-"""Prototype vs reduced-scale model of a single block in 3D (MuJoCo), up-scaled and compared.
+"""The single block's planar view of a 3D run, and its prototype-vs-model figures.
 
-The model experiment is designed with :func:`blastscale.similitude.design_model` (charge and
-stand-off from the scaling law), the model block is ``block.scaled(lambda, gamma)``, the
-contact settings are ``contact.scaled(lambda, lambda_t)`` with lambda_t the time factor, and
-gravity is ``varsigma g``. Both runs use the paper's Method A load. The block's planar
-histories are written as response datasets (:func:`block_dataset`), up-scaled and compared with
-the package's one comparison contract (:mod:`.compare`: lengths / lambda, times / lambda_t,
-velocities / (lambda/lambda_t), angles unchanged, on the prototype's time grid).
+A block is the one-body case of the structure engine (:func:`blastscale.sim3d.simulate_structure`
+-> :class:`~blastscale.sim3d.Response3D`, any load method); its planar view is computed from that
+response only (world frame: z up, blast towards +x; b, h the block's half-width and half-height):
 
-Two views of the same engine path: :func:`block_summary`, :func:`block_dataset` and
-:func:`block_similarity` read the block3d figures from any run's ``Response3D`` (the ``block3d``
-command runs every load method through :func:`~.structure3d.compare_structure3d`), and
-:func:`compare_block3d` keeps the planar recorders of :class:`~blastscale.sim3d.Block3DResult`
-(pivot-edge sliding in the body frame, the blast momentum sum |F| dt, up-scaling of the planar
-histories) for library users of the Method A block.
+* rotation theta [rad]: ``rotation_y`` of the response, ``atan2(R_xz, R_zz)``, positive when
+  the top moves towards +x (rocking about the rear, +x, base edge). For planar motion it is the
+  rocking angle of the paper's Eq. (eom).
+* sliding [m]: x displacement of the base edge the block rests on (the +x edge when
+  theta >= 0, the -x edge otherwise) from its position at time 0,
+
+  .. math:: s = \\Delta x_G + \\sigma b (\\cos\\theta - 1) - h \\sin\\theta,\\qquad \\sigma = \\operatorname{sign}\\theta,
+
+  exact for motion in the x-z plane (the edge at (sigma b, 0, -h) in the body frame). Pure
+  rocking about a fixed edge gives zero sliding; pure translation the displacement of the block.
+* uplift [m]: height of the lowest base corner above its rest height (negative values are the
+  soft contact's penetration, a few micrometres at full scale); > 0 means flight.
+* overturned: the response's collapse, which for one block is |theta| > alpha = atan(b/h) (the
+  centre of mass passed over a base edge; beyond it gravity drives the block down; Housner 1963).
+
+:func:`block_dataset` gives these histories as a response dataset of the comparison contract
+(:mod:`.compare`), :func:`block_summary` the ``block3d`` outcome keys, :func:`block_similarity`
+the ``block3d`` similarity figures of a prototype and an up-scaled model
+(:func:`~.compare.upscale_dataset`: lengths / lambda, times / lambda_t, velocities /
+(lambda/lambda_t), angles unchanged, on the prototype's time grid). The runs themselves come
+from :func:`~.structure3d.compare_structure3d` (prototype and model) or
+:func:`~blastscale.sim3d.simulate_structure`.
 
 Reference: Masi, Stefanou & Maffi-Berthier, *Scaling laws ...*, Sec. "FEM simulations"
 (prototype vs lambda = 1/200 model, slender and non-slender blocks).
@@ -21,88 +33,95 @@ Reference: Masi, Stefanou & Maffi-Berthier, *Scaling laws ...*, Sec. "FEM simula
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from ..blast.parameters import DEFAULT_BLAST_MODEL
-from ..sim3d.contact import ContactSettings
-from ..sim3d.results import Block3DResult
-from ..sim3d.simulate import Block3DSimulator
-from ..structures.block import STANDARD_GRAVITY, RectangularBlock
-from .compare import compare_responses, upscale_dataset
+from .compare import compare_responses
 
-__all__ = ["Block3DComparison", "block_dataset", "block_similarity", "block_summary", "compare_block3d"]
+__all__ = ["BLOCK_VARIABLES", "COMPARED", "block_dataset", "block_similarity", "block_summary"]
 
-#: Block variable -> (Block3DResult attribute, units, dimension) of :func:`block_dataset`.
-_BLOCK_VARIABLES = {
-    "rotation_y": ("rotation", "rad", "angle"),
-    "sliding": ("sliding", "m", "length"),
-    "uplift": ("uplift", "m", "length"),
+#: The variables of :func:`block_dataset`: name -> (units, physical dimension, description).
+BLOCK_VARIABLES = {
+    "rotation_y": ("rad", "angle", "rocking angle about +y, positive top towards +x"),
+    "sliding": ("m", "length", "x displacement of the supporting base edge"),
+    "uplift": ("m", "length", "height of the lowest base corner above its rest height"),
+    "angular_velocity_y": ("rad/s", "angular_velocity", "angular velocity about +y, world frame"),
+    "velocity_x": ("m/s", "velocity", "velocity x of the centre of mass"),
+    "com_x": ("m", "length", "x of the centre of mass (0 at rest)"),
+    "com_z": ("m", "length", "height of the centre of mass above the ground"),
 }
+
+#: The variables compared by :func:`block_similarity`.
+COMPARED = ("rotation_y", "sliding", "uplift")
+
+
+def _block_of(result, block):
+    """The block simulated: ``block`` if given, else the response's own structure."""
+    block = getattr(result, "structure", None) if block is None else block
+    if block is None or not hasattr(block, "b") or not hasattr(block, "h") or len(block.bodies) != 1:
+        raise BlastscaleInputError(f"block = {block!r} is not a RectangularBlock: the planar view needs one block")
+    return block
 
 
 def _planar_histories(result, block) -> dict:
-    """time, rotation, sliding, uplift, angular velocity about y, velocity x and the outcome of a
-    block run: a :class:`Block3DResult`, or a :class:`~blastscale.sim3d.Response3D` of the block
-    (any load method), whose sliding of the supporting base edge is then
-    ``dx_com + s b (cos theta - 1) - h sin theta`` (s = sign of theta; exact for motion in the
-    x-z plane, as Block3DResult's)."""
-    if hasattr(result, "rotation"):
-        return {"time": result.time, "rotation_y": result.rotation, "sliding": result.sliding,
-                "uplift": result.uplift, "omega_y": result.angular_velocity, "velocity_x": result.velocity_x,
-                "overturned": result.overturned, "overturn_time_s": result.overturn_time,
-                "delivered_impulse_Ns": result.summary().get("delivered_impulse_Ns")}
-    if block is None:
-        raise BlastscaleInputError("block = None: a Response3D needs its RectangularBlock (half-width, half-height)")
+    """The planar histories and outcome of a block's :class:`~blastscale.sim3d.Response3D`
+    (module docstring), SI, in the run's own units."""
+    if not hasattr(result, "dataset") or not hasattr(result, "summary"):
+        raise BlastscaleInputError(f"result = {type(result).__name__} is not a Response3D (blastscale.sim3d)")
+    block = _block_of(result, block)
     ds = result.dataset
     th = ds["rotation_y"].values[:, 0]
     dx = ds["com_displacement"].sel(component="x").values[:, 0]
+    dz = ds["com_displacement"].sel(component="z").values[:, 0]
     side = np.where(th >= 0.0, 1.0, -1.0)
     summ = result.summary()
+    rest = block.bodies[0].com
     return {"time": ds["time"].values, "rotation_y": th,
             "sliding": dx + side * block.b * (np.cos(th) - 1.0) - block.h * np.sin(th),
-            "uplift": ds["uplift"].values[:, 0], "omega_y": ds["angular_velocity"].sel(component="y").values[:, 0],
+            "uplift": ds["uplift"].values[:, 0],
+            "angular_velocity_y": ds["angular_velocity"].sel(component="y").values[:, 0],
             "velocity_x": ds["com_velocity"].sel(component="x").values[:, 0],
+            "com_x": rest[0] + dx, "com_z": rest[2] + dz,
             "overturned": bool(summ["collapsed"]), "overturn_time_s": summ.get("collapse_time_s"),
             "delivered_impulse_Ns": summ.get("delivered_impulse_Ns")}
 
 
-def block_dataset(result, block: RectangularBlock | None = None):
+def block_dataset(result, block=None):
     """A single-block run's planar histories as a response dataset of the comparison contract.
 
     Parameters
     ----------
-    result : Block3DResult or Response3D
-        A run, in its own units (a Response3D of the block from any load method).
+    result : Response3D
+        The block's run, in its own units (any load method).
     block : RectangularBlock, optional
-        The block simulated (needed for a Response3D: the supporting edge's sliding).
+        The block simulated (b, h of the supporting edge); default ``result.structure``.
 
     Returns
     -------
     xarray.Dataset
-        Coordinates ``time`` [s], ``body`` = ["block"]; variables ``rotation_y`` [rad]
-        (dimension ``angle``), ``sliding`` and ``uplift`` [m] (``length``), each (time, body);
-        attribute ``overturned`` (0/1).
+        Coordinates ``time`` [s], ``body`` = ["block"]; variables :data:`BLOCK_VARIABLES`, each
+        (time, body) with ``units``, ``dimension`` and ``long_name``; attribute ``overturned``
+        (0/1). No attribute carries a unit: :func:`~.compare.upscale_dataset` scales variables
+        only (draw a pose with the block itself, :func:`blastscale.plots.sim3d.plot_snapshots`).
     """
     import xarray as xr
 
+    block = _block_of(result, block)
     h = _planar_histories(result, block)
-    data = {name: (("time", "body"), np.asarray(h[name], dtype=float)[:, None], {"units": u, "dimension": dim})
-            for name, (_, u, dim) in _BLOCK_VARIABLES.items()}
+    data = {name: (("time", "body"), np.asarray(h[name], dtype=float)[:, None],
+                   {"units": u, "dimension": dim, "long_name": text})
+            for name, (u, dim, text) in BLOCK_VARIABLES.items()}
     return xr.Dataset(data, coords={"time": ("time", np.asarray(h["time"], dtype=float), {"units": "s"}),
                                     "body": ["block"]},
                       attrs={"overturned": int(h["overturned"]), "source": "blastscale.sim3d (MuJoCo), block"})
 
 
-def block_summary(result, block: RectangularBlock | None = None) -> dict:
-    """The ``block3d`` outcome keys of a block run (Block3DResult or Response3D, SI): ``overturned``,
-    ``overturn_time_s``, ``max_rotation_rad``, ``max_sliding_m``, ``final_sliding_m``,
-    ``max_uplift_m``, ``peak_angular_velocity_rad_s``, ``peak_velocity_x_m_s``,
-    ``delivered_impulse_Ns`` ([x, y, z]); a Block3DResult's own ``summary()``."""
-    if isinstance(result, Block3DResult):
-        return result.summary()
+def block_summary(result, block=None) -> dict:
+    """The ``block3d`` outcome keys of a block run (:class:`~blastscale.sim3d.Response3D`, SI, its
+    own units): ``overturned``, ``overturn_time_s`` (None when it stands), ``max_rotation_rad``,
+    ``max_sliding_m``, ``final_sliding_m``, ``max_uplift_m``, ``peak_angular_velocity_rad_s``,
+    ``peak_velocity_x_m_s``, ``delivered_impulse_Ns`` ([x, y, z]). ``block`` defaults to
+    ``result.structure``."""
     h = _planar_histories(result, block)
     return {
         "overturned": bool(h["overturned"]),
@@ -111,22 +130,9 @@ def block_summary(result, block: RectangularBlock | None = None) -> dict:
         "max_sliding_m": float(np.max(np.abs(h["sliding"]))),
         "final_sliding_m": float(h["sliding"][-1]),
         "max_uplift_m": float(np.max(h["uplift"])),
-        "peak_angular_velocity_rad_s": float(np.max(np.abs(h["omega_y"]))),
+        "peak_angular_velocity_rad_s": float(np.max(np.abs(h["angular_velocity_y"]))),
         "peak_velocity_x_m_s": float(np.max(np.abs(h["velocity_x"]))),
         "delivered_impulse_Ns": h["delivered_impulse_Ns"],
-    }
-
-
-def _figures(comparison: dict) -> dict:
-    """The block3d ``similarity`` figures of a :func:`~.compare.compare_responses` dict of two
-    :func:`block_dataset` s (outcome ``overturned``)."""
-    v = comparison["variables"]
-    return {
-        "max_abs_rotation_diff_rad": v["rotation_y"]["block"]["max_abs_diff"],
-        "max_abs_sliding_diff_m": v["sliding"]["block"]["max_abs_diff"],
-        "max_abs_uplift_diff_m": v["uplift"]["block"]["max_abs_diff"],
-        "first_peak_rotation_ratio": v["rotation_y"]["block"].get("first_peak_ratio"),
-        "outcomes_agree": comparison.get("outcomes_agree"),
     }
 
 
@@ -154,130 +160,12 @@ def block_similarity(prototype_ds, upscaled_ds) -> dict:
         ``max_abs_uplift_diff_m`` [m], ``first_peak_rotation_ratio`` [-] (up-scaled model /
         prototype first rocking peak) and ``outcomes_agree`` (both overturn or neither).
     """
-    return _figures(compare_responses(prototype_ds, upscaled_ds, variables=list(_BLOCK_VARIABLES),
-                                      outcome="overturned"))
-
-
-@dataclass(frozen=True, eq=False)
-class Block3DComparison:
-    """Result of :func:`compare_block3d`.
-
-    Attributes
-    ----------
-    design : blastscale.similitude.ModelDesign
-        The designed model experiment (charges, stand-offs, factors).
-    prototype : Block3DResult
-        Prototype run.
-    model : Block3DResult
-        Model run, in model units.
-    model_upscaled : Block3DResult
-        Model run in prototype units.
-    differences : dict
-        The three ``max_abs_*_diff`` figures of :func:`block_similarity` (prototype vs up-scaled model).
-    comparison : dict
-        The contract's full comparison (:func:`~.compare.compare_responses` of
-        :func:`block_dataset`): first peaks, differences relative to the peak, outcomes.
-    """
-
-    design: object
-    prototype: Block3DResult
-    model: Block3DResult
-    model_upscaled: Block3DResult
-    differences: dict
-    comparison: dict = None
-
-    def summary(self) -> dict:
-        """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block
-        (:func:`block_similarity`'s keys)."""
-        from .structure3d import upscale_summary
-
-        return {
-            "prototype": self.prototype.summary(),
-            "model": upscale_summary(self.model.summary(), self.design.factors),
-            "similarity": {**self.differences, **(_figures(self.comparison) if self.comparison else {})},
-        }
-
-
-def compare_block3d(
-    block: RectangularBlock,
-    charge: float,
-    standoff: float,
-    scale: float,
-    *,
-    density_ratio: float | None = 1.0,
-    gravity_ratio: float = 1.0,
-    law: str = "general",
-    model: str = DEFAULT_BLAST_MODEL,
-    pulse: str = "friedlander",
-    contact: ContactSettings | None = None,
-    duration: float = 5.0,
-    gravity: float = STANDARD_GRAVITY,
-    record_every: int = 1,
-    blast_mode: str = "auto",
-    design=None,
-) -> Block3DComparison:
-    """Run a block and its reduced-scale model in 3D and compare them in prototype units.
-
-    Parameters
-    ----------
-    block : RectangularBlock
-        Prototype block.
-    charge, standoff : float
-        Prototype charge W [kg TNT] and stand-off R [m].
-    scale : float
-        Geometric scale lambda [-].
-    density_ratio : float or None
-        gamma [-]; None with ``law="hopkinson-cranz"`` (that law imposes 1/sqrt(varsigma lambda)).
-    gravity_ratio : float
-        varsigma [-].
-    law : {"general", "hopkinson-cranz"}
-        Scaling law used to design the model charge.
-    model : str
-        Blast model (``"kingery-bulmash"``, ``"masi2021"``).
-    pulse : {"friedlander", "triangular", "impulsive"}
-        Pulse shape (the same for both).
-    contact : ContactSettings, optional
-        Prototype contact settings; the model uses ``contact.scaled(lambda, lambda_t)``. None
-        (default): the engine's scale-consistent defaults for each block
-        (:func:`~blastscale.sim3d.contact.default_contact`, mu = 0.7).
-    duration : float
-        Prototype simulated time [s]; the model runs ``duration * lambda_t``.
-    gravity : float
-        Prototype gravity [m/s^2].
-    record_every : int
-        Recording interval in steps (the same at both scales, so the grids coincide).
-    blast_mode : str
-        See :class:`~blastscale.sim3d.simulate.Block3DSimulator`.
-    design : blastscale.similitude.ModelDesign, optional
-        A design made beforehand (a caller that designs once, e.g. :class:`blastscale.study.Study`);
-        it then replaces the design from ``charge`` ... ``gravity``, which must describe the same scenario.
-
-    Returns
-    -------
-    Block3DComparison
-    """
-    from ..similitude import design_model
-
-    design = design if design is not None else design_model(
-        charge,
-        standoff,
-        scale,
-        density_ratio=density_ratio,
-        gravity_ratio=gravity_ratio,
-        law=law,
-        model=model,
-        geometry=block,
-        gravity=gravity,
-    )
-    f = design.factors
-    model_block = block.scaled(f.length, f.density)
-    proto_sim = Block3DSimulator(contact, gravity, record_every, blast_mode=blast_mode)
-    model_sim = Block3DSimulator(None if contact is None else contact.scaled(f.length, f.time), gravity * f.gravity,
-                                 record_every, blast_mode=blast_mode)
-    proto = proto_sim.run(block, design.prototype.pulse(pulse), duration)
-    mod = model_sim.run(model_block, design.model.pulse(pulse), duration * f.time)
-    up = mod.upscaled(f.length, f.time, f.momentum)  # the planar view, for summaries and plots
-    pds, uds = block_dataset(proto), upscale_dataset(block_dataset(mod), f)
-    cmp = compare_responses(pds, uds, variables=list(_BLOCK_VARIABLES), outcome="overturned")
-    diffs = {k: v for k, v in _figures(cmp).items() if k.startswith("max_abs_")}
-    return Block3DComparison(design, proto, mod, up, diffs, cmp)
+    c = compare_responses(prototype_ds, upscaled_ds, variables=list(COMPARED), outcome="overturned")
+    v = c["variables"]
+    return {
+        "max_abs_rotation_diff_rad": v["rotation_y"]["block"]["max_abs_diff"],
+        "max_abs_sliding_diff_m": v["sliding"]["block"]["max_abs_diff"],
+        "max_abs_uplift_diff_m": v["uplift"]["block"]["max_abs_diff"],
+        "first_peak_rotation_ratio": v["rotation_y"]["block"].get("first_peak_ratio"),
+        "outcomes_agree": c.get("outcomes_agree"),
+    }

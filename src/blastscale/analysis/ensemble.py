@@ -203,7 +203,8 @@ def ensemble_compare(
     EnsembleComparison
     """
     from .compare import align, upscale_dataset
-    from .structure3d import _run_pair, upscale_summary
+    from .structure3d import upscale_summary
+    from .systems import SYSTEMS, run_system
 
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
         raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 2")
@@ -214,9 +215,9 @@ def ensemble_compare(
     proto_q, model_q, proto_c, model_c, proto_tc, model_tc = [], [], [], [], [], []
     t = points = None
     for k, fac in enumerate(factors):
-        _, pr, mo, _ = _run_pair(structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact,
-                              duration=duration, record_every=record_every, load_factor=fac,
-                              extrapolate=extrapolate)
+        pr, mo = (run_system(structure, design, system, load=load, pulse=pulse, incidence=incidence, contact=contact,
+                             duration=duration, record_every=record_every, load_factor=fac,
+                             extrapolate=extrapolate).response for system in SYSTEMS)
         pds, up = align(pr.dataset, upscale_dataset(mo.dataset, design.factors))
         if t is None:
             t = pds["time"].values

@@ -5,9 +5,10 @@
 1. the model structure is ``structure.scaled(lambda, gamma)``, its gravity ``varsigma g``, its
    contact settings the engine's scale-consistent defaults (``contact=None``) or
    ``contact.scaled(lambda, lambda_t)``;
-2. each is loaded by :func:`blastscale.sim3d.loads.make_load` with its own charge and stand-off
-   (``design.prototype``, ``design.model``) and simulated by
-   :func:`blastscale.sim3d.simulate_structure` (the model for ``duration * lambda_t``);
+2. each is loaded by :func:`blastscale.sim3d.load_methods.make_load` with its own charge and
+   stand-off (``design.prototype``, ``design.model``) and simulated by
+   :func:`blastscale.sim3d.simulate_structure` (the model for ``duration * lambda_t``): one
+   :func:`~.systems.run_system` each;
 3. the model's dataset is up-scaled by :func:`~.compare.upscale_dataset` and compared with the
    prototype's by :func:`~.compare.compare_responses` (the package's one comparison).
 
@@ -21,8 +22,9 @@ from dataclasses import dataclass, field
 
 from .._validate import BlastscaleInputError, check_positive
 from .compare import align, compare_responses, dimension_factor, upscale_dataset
+from .systems import SYSTEMS, run_system
 
-__all__ = ["Comparison3D", "compare_structure3d", "simulate_system", "upscale_summary", "SUMMARY_UNIT_DIMENSIONS"]
+__all__ = ["Comparison3D", "compare_structure3d", "upscale_summary", "SUMMARY_UNIT_DIMENSIONS"]
 
 #: Unit suffix of a summary key -> physical dimension (the keys of Response3D.summary()).
 SUMMARY_UNIT_DIMENSIONS = {
@@ -228,67 +230,6 @@ class Comparison3D:
         return ds
 
 
-def simulate_system(structure, design, system: str = "prototype", *, load: str = "A", pulse: str = "friedlander",
-                    incidence: str | None = None, contact=None, duration: float = 8.0, record_every: int = 4,
-                    load_factor: float = 1.0, extrapolate: bool = False):
-    """Simulate one side of a model experiment: the prototype, or the model at its own size.
-
-    Parameters
-    ----------
-    structure : structure
-        Prototype structure.
-    design : ModelDesign
-        The model experiment.
-    system : {"prototype", "model"}
-        Which one: the model is ``structure.scaled(lambda, gamma)`` under ``design.model``'s
-        charge and stand-off, gravity ``varsigma g``, contact ``contact.scaled(lambda, lambda_t)``
-        (or the engine's defaults for its size), for ``duration * lambda_t``.
-    load, pulse, incidence, contact, record_every
-        See :func:`compare_structure3d`.
-    duration : float
-        Prototype simulated time [s].
-    load_factor : float
-        Multiplier of the load's wrenches [-] (ensembles, :class:`~blastscale.sim3d.loads.PerturbedLoad`).
-    extrapolate : bool
-        Let the blast fits run outside their ranges (with a warning), passed to ``make_load``.
-
-    Returns
-    -------
-    (structure, Response3D, float)
-        The structure simulated, its response (in its own units) and the load's duration
-        after its first arrival [s] (its own units).
-    """
-    from ..sim3d import simulate_structure
-    from ..sim3d.load_methods import make_load
-    from ..sim3d.loads import PerturbedLoad
-
-    f = design.factors
-    if system == "prototype":
-        struct, blast, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
-    elif system == "model":
-        struct, blast = structure.scaled(f.length, f.density), design.model
-        dur, g = duration * f.time, design.gravity * f.gravity
-        cont = None if contact is None else contact.scaled(f.length, f.time)
-    else:
-        raise BlastscaleInputError(f"system = {system!r} is not known: valid values are prototype, model")
-    inc = {} if incidence is None else {"incidence": incidence}
-    ld = make_load(load, struct, charge_kg=blast.charge_kg, standoff_m=blast.standoff_m, blast_model=blast.model,
-                   pulse=pulse, extrapolate=bool(extrapolate), **inc)
-    if load_factor != 1.0:
-        ld = PerturbedLoad(ld, load_factor)
-    resp = simulate_structure(struct, ld, dur, contact=cont, gravity=g, record_every=record_every)
-    return struct, resp, float(ld.end_time - ld.first_arrival)
-
-
-def _run_pair(structure, design, **kw):
-    """Simulate the prototype and the model: ``(model_structure, prototype Response3D, model
-    Response3D, load end [s after first arrival, prototype time])``: the later of the two loads'
-    ends, the model's up-scaled."""
-    _, proto, end_p = simulate_system(structure, design, "prototype", **kw)
-    model_structure, mod, end_m = simulate_system(structure, design, "model", **kw)
-    return model_structure, proto, mod, max(end_p, end_m / design.factors.time)
-
-
 def compare_structure3d(
     structure,
     design,
@@ -312,7 +253,7 @@ def compare_structure3d(
         prototype's charge and stand-off (its ``factors`` give lambda, gamma, varsigma,
         lambda_t; ``design.gravity`` the prototype's gravity [m/s^2]).
     load : str
-        Load method, a key of :data:`blastscale.sim3d.loads.LOAD_METHODS` (``"A"``: the paper's
+        Load method, a key of :data:`blastscale.sim3d.load_methods.LOAD_METHODS` (``"A"``: the paper's
         Method A, uniform and simultaneous reflected pulse on the front faces).
     pulse : {"friedlander", "triangular", "impulsive"}
         Pulse shape.
@@ -338,9 +279,12 @@ def compare_structure3d(
         raise BlastscaleInputError(
             f"design = {type(design).__name__} is not a model design: give blastscale.similitude.design_model(...)"
         )
-    model_structure, proto, mod, load_end = _run_pair(
-        structure, design, load=load, pulse=pulse, incidence=incidence, contact=contact, duration=dur,
-        record_every=record_every, extrapolate=extrapolate)
+    kw = dict(load=load, pulse=pulse, incidence=incidence, contact=contact, duration=dur, record_every=record_every,
+              extrapolate=extrapolate)
+    p_run, m_run = (run_system(structure, design, system, **kw) for system in SYSTEMS)
+    model_structure, proto, mod = m_run.structure, p_run.response, m_run.response
+    # the later of the two loads' ends [s after the first arrival, prototype time]
+    load_end = max(p_run.load_duration_s, m_run.load_duration_s / design.factors.time)
     ps, ms = proto.summary(), mod.summary()
     pds = _with_outcome(proto.dataset, ps)
     up = upscale_dataset(_with_outcome(mod.dataset, ms), design.factors)

@@ -29,13 +29,14 @@ def _rows(summary: dict) -> list[tuple[str, str, str]]:
 def _run(out, block, load, incidence, charge, standoff, scale, density_ratio, gravity_ratio, gravity, model, pulse,
          contact, duration, record_every, plot) -> None:
     """Fill ``out`` with the block's run(s) through the one structure path (every load method:
-    :func:`~blastscale.analysis.structure3d.simulate_system` for the prototype alone,
+    :func:`~blastscale.analysis.systems.run_system` for the prototype alone,
     :func:`~blastscale.analysis.structure3d.compare_structure3d` with a model), the block3d keys
     from its dataset (:func:`~blastscale.analysis.block3d_similarity.block_summary`,
     :func:`~blastscale.analysis.block3d_similarity.block_similarity`)."""
     from ..analysis.block3d_similarity import block_dataset, block_similarity, block_summary
     from ..analysis.compare import upscale_dataset
-    from ..analysis.structure3d import compare_structure3d, simulate_system, upscale_summary
+    from ..analysis.structure3d import compare_structure3d, upscale_summary
+    from ..analysis.systems import run_system
     from ..similitude import design_model
 
     design = design_model(charge, standoff, 1.0 if scale is None else scale, density_ratio, gravity_ratio,
@@ -43,7 +44,7 @@ def _run(out, block, load, incidence, charge, standoff, scale, density_ratio, gr
     kw = {"load": load, "pulse": pulse, "incidence": incidence, "contact": contact, "duration": duration,
           "record_every": record_every}
     if scale is None:
-        _, proto, _ = simulate_system(block, design, "prototype", **kw)
+        proto = run_system(block, design, "prototype", **kw).response
         out["prototype"] = block_summary(proto, block)
         model_ds = None
     else:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from .sim3d import _ax, drum_outline, finish_side_view, snapshot_times
+from .sim3d import axes_or_new, drum_outline, finish_side_view, snapshot_times
 
 __all__ = [
     "POINT_QUANTITIES",
@@ -67,7 +67,7 @@ def plot_point_histories(prototype, model=None, quantity: str = "point_displacem
     unknown = [p for p in points if p not in names]
     if unknown:
         raise BlastscaleInputError(f"points = {unknown[0]!r} is not recorded: valid values are {', '.join(names)}")
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     label, k = POINT_QUANTITIES[quantity]
     colours = _colours(len(points), cmap)
     for j, p in enumerate(points):
@@ -130,7 +130,7 @@ def plot_column_snapshots(structure, dataset, times=None, ax=None, n: int = 4, c
             f"dataset bodies = {dataset.sizes.get('body', 0)} do not match the structure's {len(structure.bodies)}")
     t = dataset["time"].values
     times, idx = snapshot_times(t, times, n)
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     colours = _colours(len(times), cmap)
     sections = _drum_sections(structure)
     disp = dataset["com_displacement"]
@@ -182,7 +182,7 @@ def plot_ensemble_envelope(ensemble, point=None, ax=None):
     if point not in names:
         raise BlastscaleInputError(f"point = {point!r} is not recorded: valid values are {', '.join(names)}")
     j = names.index(point)
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     t = ensemble.time
     for stats, members, colour, name in ((ensemble.prototype, ensemble.prototype_members, "C0", "prototype"),
                                          (ensemble.model, ensemble.model_members, "C3", "model (up-scaled)")):

@@ -1,8 +1,9 @@
 """Plots of 3D single-block runs: histories (prototype vs up-scaled model) and pose snapshots.
 
-Every function takes ``ax=`` (created when None) and returns it. Inputs are
-:class:`~blastscale.sim3d.results.Block3DResult` objects, already in the units to show
-(up-scale a model run with ``result.upscaled(lambda, lambda_t)`` first).
+Every function takes ``ax=`` (created when None) and returns it. Inputs are the block's planar
+view, :func:`blastscale.analysis.block3d_similarity.block_dataset` of a run's ``Response3D``,
+already in the units to show (up-scale a model's with
+:func:`blastscale.analysis.compare.upscale_dataset` first); no numerics beyond drawing live here.
 """
 
 from __future__ import annotations
@@ -15,6 +16,10 @@ from .._validate import BlastscaleInputError, check_finite
 
 __all__ = [
     "HISTORY_QUANTITIES",
+    "axes_or_new",
+    "block_outline",
+    "drum_outline",
+    "finish_side_view",
     "plot_history",
     "plot_rotation",
     "plot_sliding",
@@ -22,12 +27,13 @@ __all__ = [
     "plot_angular_velocity",
     "plot_snapshots",
     "plot_comparison",
+    "snapshot_times",
 ]
 
-#: attribute -> (axis label with units, scale factor to the unit shown)
+#: block dataset variable -> (axis label with units, scale factor to the unit shown)
 HISTORY_QUANTITIES = {
-    "rotation": ("rotation theta [rad]", 1.0),
-    "angular_velocity": ("angular velocity [rad/s]", 1.0),
+    "rotation_y": ("rotation theta [rad]", 1.0),
+    "angular_velocity_y": ("angular velocity [rad/s]", 1.0),
     "sliding": ("sliding of the base [m]", 1.0),
     "velocity_x": ("velocity x of the centre of mass [m/s]", 1.0),
     "uplift": ("uplift of the lowest base corner [mm]", 1e3),
@@ -35,7 +41,8 @@ HISTORY_QUANTITIES = {
 }
 
 
-def _ax(ax):
+def axes_or_new(ax):
+    """``ax``, or the axes of a new figure when None."""
     if ax is None:
         import matplotlib.pyplot as plt
 
@@ -66,7 +73,7 @@ def finish_side_view(ax):
 
 
 def _as_dict(results, labels=None) -> dict:
-    if isinstance(results, dict):
+    if isinstance(results, dict) and not hasattr(results, "data_vars"):
         return results
     if not isinstance(results, (list, tuple)):
         results = [results]
@@ -74,13 +81,14 @@ def _as_dict(results, labels=None) -> dict:
     return dict(zip(labels, results))
 
 
-def plot_history(results, quantity: str = "rotation", ax=None, labels=None, styles=("-", "--", ":", "-.")):
+def plot_history(results, quantity: str = "rotation_y", ax=None, labels=None, styles=("-", "--", ":", "-.")):
     """Time history of one recorded quantity for one or several runs.
 
     Parameters
     ----------
-    results : Block3DResult, sequence of them, or dict label -> result
-        Runs to overlay (a sequence is labelled prototype, model (up-scaled), ...).
+    results : xarray.Dataset, sequence of them, or dict label -> dataset
+        Block datasets (:func:`~blastscale.analysis.block3d_similarity.block_dataset`) to overlay
+        (a sequence is labelled prototype, model (up-scaled), ...).
     quantity : str
         One of :data:`HISTORY_QUANTITIES`.
     ax : matplotlib Axes, optional
@@ -94,10 +102,10 @@ def plot_history(results, quantity: str = "rotation", ax=None, labels=None, styl
     """
     if quantity not in HISTORY_QUANTITIES:
         raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are {', '.join(HISTORY_QUANTITIES)}")
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     label, k = HISTORY_QUANTITIES[quantity]
-    for j, (name, r) in enumerate(_as_dict(results, labels).items()):
-        ax.plot(r.time, k * getattr(r, quantity), styles[j % len(styles)], label=name)
+    for j, (name, ds) in enumerate(_as_dict(results, labels).items()):
+        ax.plot(ds["time"].values, k * ds[quantity].values[:, 0], styles[j % len(styles)], label=name)
     ax.set_xlabel("time after arrival [s]")
     ax.set_ylabel(label)
     ax.grid(True, alpha=0.3)
@@ -107,7 +115,7 @@ def plot_history(results, quantity: str = "rotation", ax=None, labels=None, styl
 
 def plot_rotation(results, ax=None, labels=None):
     """Rocking angle theta [rad] vs time; see :func:`plot_history`."""
-    return plot_history(results, "rotation", ax, labels)
+    return plot_history(results, "rotation_y", ax, labels)
 
 
 def plot_sliding(results, ax=None, labels=None):
@@ -122,7 +130,7 @@ def plot_velocity(results, ax=None, labels=None):
 
 def plot_angular_velocity(results, ax=None, labels=None):
     """Angular velocity [rad/s] vs time; see :func:`plot_history`."""
-    return plot_history(results, "angular_velocity", ax, labels)
+    return plot_history(results, "angular_velocity_y", ax, labels)
 
 
 def drum_outline(com_x: float, com_z: float, theta: float, half_bottom: float, half_top: float,
@@ -144,12 +152,16 @@ def block_outline(com_x: float, com_z: float, theta: float, b: float, h: float) 
     return drum_outline(com_x, com_z, theta, b, b, -h, h)
 
 
-def plot_snapshots(result, times=None, ax=None, n: int = 6, cmap: str = "viridis"):
+def plot_snapshots(block, dataset, times=None, ax=None, n: int = 6, cmap: str = "viridis"):
     """Outlines of the block in the x-z plane at chosen times (the blast comes from the left).
 
     Parameters
     ----------
-    result : Block3DResult
+    block : RectangularBlock
+        The block drawn (its half-width and half-height, in the dataset's units).
+    dataset : xarray.Dataset
+        Its :func:`~blastscale.analysis.block3d_similarity.block_dataset` (``com_x``,
+        ``com_z``, ``rotation_y``).
     times : sequence of float, optional
         Times [s]; default ``n`` times evenly spread over the run.
     ax : matplotlib Axes, optional
@@ -164,19 +176,20 @@ def plot_snapshots(result, times=None, ax=None, n: int = 6, cmap: str = "viridis
     """
     import matplotlib
 
-    times, idx = snapshot_times(result.time, times, n)
-    ax = _ax(ax)
-    t = result.time
+    t = dataset["time"].values
+    times, idx = snapshot_times(t, times, n)
+    ax = axes_or_new(ax)
+    x, z, th = (dataset[v].values[:, 0] for v in ("com_x", "com_z", "rotation_y"))
     colors = matplotlib.colormaps[cmap](np.linspace(0, 1, max(len(times), 2)))
     for k, i in enumerate(idx):
-        xy = block_outline(result.com_x[i], result.com_z[i], result.rotation[i], result.half_width, result.half_height)
+        xy = block_outline(x[i], z[i], th[i], block.b, block.h)
         ax.plot(xy[:, 0], xy[:, 1], color=colors[k], label=f"t = {t[i]:.3g} s")
     return finish_side_view(ax)
 
 
-def plot_comparison(prototype, model_upscaled=None, fig=None):
-    """A 2 x 2 figure: rotation, sliding, velocity histories (prototype vs up-scaled model)
-    and the prototype's pose snapshots. Returns the figure."""
+def plot_comparison(block, prototype, model_upscaled=None, fig=None):
+    """A 2 x 2 figure: rotation, sliding, velocity histories (prototype vs up-scaled model block
+    datasets) and the prototype's pose snapshots (``block``: the prototype). Returns the figure."""
     import matplotlib.pyplot as plt
 
     fig = fig or plt.figure(figsize=(11, 8))
@@ -185,6 +198,6 @@ def plot_comparison(prototype, model_upscaled=None, fig=None):
     plot_rotation(runs, ax=axs[0, 0])
     plot_sliding(runs, ax=axs[0, 1])
     plot_velocity(runs, ax=axs[1, 0])
-    plot_snapshots(prototype, ax=axs[1, 1])
+    plot_snapshots(block, prototype, ax=axs[1, 1])
     fig.tight_layout()
     return fig

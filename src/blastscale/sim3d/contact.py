@@ -49,7 +49,7 @@ def mjcf_number(x) -> str:
     """A number for the MJCF text, rounded to 15 significant digits.
 
     Rounding makes a structure and its exactly scaled model, both brought to the engine's
-    reference units (:func:`~.simulate.reference_factors`), compile to the *same* MuJoCo model:
+    reference units (:func:`~.reference.reference_factors`), compile to the *same* MuJoCo model:
     with full ``repr`` their inputs differ by round-off (1e-16), which decides, e.g., whether two
     drums placed exactly face to face start in contact, and seeds a 1e-8 difference of the
     response that the dynamics amplify to 1e-3 of the peak over 8 s.

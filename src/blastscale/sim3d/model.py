@@ -22,7 +22,6 @@ frictional directions can get their own ``solreffriction``.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -31,6 +30,7 @@ from .._validate import BlastscaleInputError, check_positive
 from ..structures.base import BoxGeometry, PrismGeometry
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .contact import ContactSettings, mjcf_number
+from .initial import tilt_bodies
 
 __all__ = ["BoxShape", "PrismShape", "FrontFace", "BodySpec", "Scene", "build_scene", "block_scene", "structure_scene",
            "engine_shape", "contact_pairs"]
@@ -149,6 +149,8 @@ def engine_shape(geometry, density: float):
         return BoxShape(geometry.half_width, geometry.half_depth, geometry.half_height, density, geometry.centre_z)
     if isinstance(geometry, PrismGeometry):
         return PrismShape(geometry, density)
+    if hasattr(geometry, "mjcf_geom") and hasattr(geometry, "contact_geoms"):
+        return geometry  # already an engine shape (e.g. a custom contact base, benchmarks/bench_sim3d.py)
     raise BlastscaleInputError(f"shape = {geometry!r} is not known: valid kinds are BoxGeometry, PrismGeometry")
 
 
@@ -290,7 +292,8 @@ def contact_pairs(interfaces, nbody: int) -> tuple:
     return tuple(pairs + [p for p in extra if p not in seen])
 
 
-def structure_scene(structure, contact: ContactSettings, gravity: float = STANDARD_GRAVITY) -> Scene:
+def structure_scene(structure, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, *,
+                    rotation: float = 0.0) -> Scene:
     """The MuJoCo model of any structure of :mod:`blastscale.structures` at rest: one free body
     per ``structure.bodies`` entry with its exact mass and inertia, its contact geometry
     (:func:`engine_shape`), one contact pair per ``structure.interfaces`` entry and one
@@ -305,6 +308,9 @@ def structure_scene(structure, contact: ContactSettings, gravity: float = STANDA
         Contact, time-step and solver settings (the same on every interface).
     gravity : float
         g [m/s^2].
+    rotation : float
+        Initial tilt theta_0 [rad] of the whole structure about its lowest body's base edge
+        (:func:`tilt_bodies`); 0: standing upright.
 
     Returns
     -------
@@ -313,7 +319,7 @@ def structure_scene(structure, contact: ContactSettings, gravity: float = STANDA
     density = float(structure.describe()["density_kg_m3"])
     specs = [BodySpec(b.name, engine_shape(b.shape, density), tuple(b.com), mass=b.mass, inertia=tuple(b.inertia))
              for b in structure.bodies]
-    return build_scene(specs, contact, gravity, contact_pairs(structure.interfaces, len(specs)))
+    return build_scene(tilt_bodies(specs, rotation), contact, gravity, contact_pairs(structure.interfaces, len(specs)))
 
 
 def block_scene(
@@ -322,9 +328,9 @@ def block_scene(
     gravity: float = STANDARD_GRAVITY,
     *,
     rotation: float = 0.0,
-    shape_type: type = None,
 ) -> Scene:
-    """A single rectangular block standing on the ground (optionally tilted onto its +x edge).
+    """A single rectangular block standing on the ground (optionally tilted onto a base edge):
+    :func:`structure_scene` of the block.
 
     Parameters
     ----------
@@ -337,24 +343,11 @@ def block_scene(
     rotation : float
         Initial tilt theta_0 [rad] about the y axis, resting on the +x base edge when > 0 and on
         the -x edge when < 0; |theta_0| < pi/2.
-    shape_type : type, optional
-        Class with ``from_block(block)`` building the body's shape; default :class:`BoxShape`.
 
     Returns
     -------
     Scene
     """
-    contact = ContactSettings() if contact is None else contact
-    shape = (BoxShape if shape_type is None else shape_type).from_block(block)
-    th = float(rotation)
-    if not abs(th) < math.pi / 2:
-        raise BlastscaleInputError(f"initial rotation = {th:.6g} rad is out of range: valid range is (-pi/2, pi/2)")
-    b, h = shape.half_width, shape.half_height
-    s = 1.0 if th >= 0 else -1.0
-    # pivot edge at x = s*b, z = 0; centre of mass rotated about it by th (positive: top towards +x)
-    x = s * b - s * b * math.cos(th) + h * math.sin(th)
-    z = b * abs(math.sin(th)) + h * math.cos(th)
-    quat = (math.cos(th / 2), 0.0, math.sin(th / 2), 0.0)  # rotation th about +y: body z tilts towards +x
-    body = block.bodies[0]
-    return build_scene([BodySpec("block", shape, (x, 0.0, z), quat, body.mass, tuple(body.inertia))], contact, gravity,
-                       block.interfaces)
+    if not isinstance(block, RectangularBlock):
+        raise BlastscaleInputError(f"block = {block!r} is not a RectangularBlock")
+    return structure_scene(block, ContactSettings() if contact is None else contact, gravity, rotation=rotation)

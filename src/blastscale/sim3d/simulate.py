@@ -4,98 +4,51 @@ One path for every structure (:func:`simulate_structure`): N free bodies on a ri
 (:func:`~.model.structure_scene`), explicit contact pairs ground-base and between adjacent
 bodies (then every body with the ground and with every other body, for falling drums), a
 :class:`~.loads.LoadStrategy` giving one wrench per body per step from the current poses,
-recorded as a :class:`~.results.Response3D` (xarray). The single block
-(:class:`Block3DSimulator`, :func:`simulate_block`, :class:`~.results.Block3DResult`) is the
-one-body case of that path, with its planar recorders on top.
+recorded as a :class:`~.results.Response3D` (xarray). The single block is the one-body case
+of that path (its planar view: :mod:`blastscale.analysis.block3d_similarity`).
 
 Time: the structure stands at rest (settled on its soft contacts) until the load's first
 arrival; the run integrates ``duration`` seconds from there, and ``time`` in the results is the
 time after first arrival (attribute ``first_arrival_time_s``).
 
-How the blast impulse enters a step (``blast_mode``)
-----------------------------------------------------
-``"force"``: the step's exact impulse is applied as a constant force (``xfrc_applied``). The
-constraint solver then sees the blast acceleration (hundreds of g). While a contact *sticks*
-(a rocking block's pivot) this is exactly right. While a contact *slides*, MuJoCo's convex
-cone couples the normal to the tangential constraint error (Lorentz-cone complementarity:
-zero force only when the normal acceleration error exceeds mu times the tangential one), so
-the blast's tangential acceleration produces a spurious normal impulse of order (lost
-tangential momentum)/mu: a 1 m block pushed to 1.8 m/s loses 12% of its velocity and hops
-4.4 mm (docs/sim3d.md).
-
-``"kick"``: the step's impulse is added to the velocity before the step (the same momentum);
-the solver then only sees the slip *velocity*. Exact for a sliding contact, but a sticking
-pivot must then cancel the slip through the soft reference dynamics and slips ~v/b_f.
-
-``"auto"`` (default for a single body): every load step is first classified with ``mj_forward`` under the
-force; if any contact force lies on its friction-cone boundary (sliding), that step is taken
-as a kick, otherwise as a force. For a rigid block loaded through its centre of mass the
-impulsive rigid-body problem admits stick-and-rock about the rear edge only if
-mu >= mu* = (4b^2+h^2)/(3bh); below mu* the only solution is pure slip with no impulsive
-normal force, so "auto" is exact in both regimes away from mu*. Checked against plain force
-mode with a hard contact (tau = 20 us << t_o, dt = 2 us), where force mode is accurate: the
-velocity after the pulse agrees within 0.5% at mu = 0.7 (squat and slender blocks), and the
-paper's block's peak rotation within 1% for mu <= 0.93 mu* and mu >= 1.06 mu* (identical, no
-kick, above). Near mu* the classification,
-made on the soft contact's force at the start of a step, kicks 1-3 steps that a hard contact
-would take as sticking, and the peak rotation comes out up to 3% low (mu = 1.58-1.65 for
-mu* = 1.60): a warning is issued for 0.9 mu* < mu < 1.1 mu*; use ``blast_mode="force"`` with a
-hard contact there (docs/sim3d.md).
-
-For several bodies (columns) the default is ``"force"``: the all-stick / all-slip argument
-behind "auto" holds for one box loaded through its centre of mass only, and the column
-settings of DESIGN.md (1 ms contact, no separate friction time constant) were measured with
-the blast as a force.
-
-:class:`Block3DSimulator` is the single-block solver object (settings stated once: contact,
-time step, recording interval); :func:`simulate_block` is its one-call form.
+The pieces: :mod:`.reference` (the reference units, the one place where absolute size is
+removed), :mod:`.model` (the MuJoCo scene), :mod:`.initial` (initial tilt and velocity),
+:mod:`.integrate` (the integration loop and how a step's blast impulse enters, ``blast_mode``),
+:mod:`.record` (the recorded states as a :class:`~.results.Response3D`). This module is the
+entry: the checks of the inputs, the defaults, the warnings, and the call sequence.
 """
 
 from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, fields, is_dataclass, replace
 
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
-from ..structures.block import STANDARD_GRAVITY, RectangularBlock
+from ..structures.block import STANDARD_GRAVITY
 from .contact import (
     MAX_TIMESTEP_FRACTION,
     REFERENCE_GRAVITY,
-    REFERENCE_LENGTH,
     SOFT_CONTACT_FACTOR,
     ContactSettings,
     default_contact,
-    reference_contact,
     structure_length,
 )
-from .loads import MethodA
-from .model import BoxShape, Scene, block_scene, structure_scene
-from .results import Block3DResult, Response3D, block_result, response_from_states
+from .initial import rigid_rocking_velocity
+from .integrate import BLAST_MODES, integrate
+from .model import BoxShape, Scene, structure_scene
+from .record import response_from_states
+from .reference import reference_factors, reference_settings, to_reference
+from .results import Response3D
 
 __all__ = [
-    "BLAST_MODES",
-    "Block3DSimulator",
     "ENGINE_LENGTH_RANGE",
     "ENGINE_MASS_RANGE",
-    "SETTLE_TIME_CONSTANTS",
     "check_simulable",
     "pivot_friction_threshold",
-    "reference_factors",
-    "simulate_block",
     "simulate_structure",
 ]
-
-#: Ways of applying a step's blast impulse (see the module docstring).
-BLAST_MODES = ("auto", "force", "kick")
-
-#: Settling before the blast arrives, in contact time constants: the soft contact starts
-#: with zero penetration and relaxes to its static value (~1 um); with critical damping the
-#: transient has decayed by exp(-20) after 20 tau. It scales with the time constant, so
-#: prototype and model settle identically.
-SETTLE_TIME_CONSTANTS = 20.0
 
 #: Lengths [m] the engine accepts (every dimension of the structure): below 0.1 mm the
 #: inertia of a stone body (~rho L^5) falls towards MuJoCo's mjMINVAL (1e-15) and the
@@ -158,179 +111,6 @@ def _warn_if_soft(contact: ContactSettings, structure, load, gravity: float) -> 
             f"{bound:.3g} s", RuntimeWarning, stacklevel=3)
 
 
-def _any_contact_slides(m, d, c: ContactSettings) -> bool:
-    """Classify the current step: does any contact force lie on its friction-cone boundary?
-
-    Runs ``mj_forward`` (with the step's applied forces in place) and compares each contact's
-    tangential force with mu times its normal force (elliptic: Euclidean norm; pyramidal: the
-    pyramid's |f1| + |f2|), within 0.1%.
-    """
-    import mujoco
-
-    mujoco.mj_forward(m, d)
-    f = np.zeros(6)
-    for i in range(d.ncon):
-        mujoco.mj_contactForce(m, d, i, f)
-        fn = f[0]
-        if fn <= 0.0:
-            continue
-        ft = math.hypot(f[1], f[2]) if c.cone == "elliptic" else abs(f[1]) + abs(f[2])
-        if ft >= (1.0 - 1e-3) * c.friction * fn:
-            return True
-    return False
-
-
-def _kick(m, d, wrench_impulses: np.ndarray) -> None:
-    """Add to qvel the velocity change of world-frame impulses (nbody, 6) (linear [N*s],
-    angular [N*m*s]) applied at each body's centre of mass: dv = M^-1 sum_b J_b^T I_b."""
-    import mujoco
-
-    jacp = np.zeros((3, m.nv))
-    jacr = np.zeros((3, m.nv))
-    gen = np.zeros(m.nv)
-    for k, w in enumerate(wrench_impulses):
-        if not np.any(w):
-            continue
-        mujoco.mj_jacBodyCom(m, d, jacp, jacr, k + 1)
-        gen += jacp.T @ w[0:3] + jacr.T @ w[3:6]
-    dq = np.zeros((1, m.nv))
-    mujoco.mj_solveM(m, d, dq, gen.reshape(1, -1))
-    d.qvel[:] += dq[0]
-
-
-def reference_factors(structure, gravity: float) -> tuple:
-    """Length and time factors (a, b) from a structure's own units to the engine's reference units.
-
-    The engine always integrates the structure geometrically scaled to the reference height
-    ``REFERENCE_LENGTH`` (10 m) under ``REFERENCE_GRAVITY`` (9.81 m/s^2), same density:
-
-    .. math:: a = L_{ref} / L,\\qquad b = \\sqrt{a\\, g / g_{ref}},
-
-    lengths x a, times x b, velocities x a/b, angular velocities / b, forces x a^4/b^2, moments
-    x a^5/b^2. This is the exact similitude of rigid bodies under gravity, so the equations of
-    motion are unchanged; what it removes is MuJoCo's *absolute* thresholds (mjMINVAL on masses
-    and inertias, collision tolerances in metres), which otherwise make a 1/100 model and its
-    prototype differ by ~1e-8 of the response after the first contact transitions (growing to
-    ~1e-3 of the peak over 8 s), and crash for bodies of a few milligrams. A structure of 10 m
-    under 9.81 m/s^2 runs with a = b = 1 exactly.
-    """
-    L = structure_length(structure)
-    a = REFERENCE_LENGTH / L
-    return a, math.sqrt(a * gravity / REFERENCE_GRAVITY)
-
-
-#: Significant digits of a structure's parameters in reference units (:func:`_to_reference`).
-REFERENCE_DIGITS = 12
-
-
-def _to_reference(structure, a: float):
-    """The structure in reference units, its float parameters rounded to ``REFERENCE_DIGITS``
-    significant digits (dataclass structures): a structure and its exactly scaled model then
-    give bitwise the same bodies, faces and mesh vertices (their scaled inputs differ only by
-    round-off), so MuJoCo integrates the same model. The rounding moves the geometry by
-    < 5e-13 relative."""
-    ref = structure if a == 1.0 else structure.scaled(a)
-    if not is_dataclass(ref):
-        return ref
-    changes = {}
-    for f in fields(ref):
-        v = getattr(ref, f.name)
-        if isinstance(v, float):
-            changes[f.name] = float(f"{v:.{REFERENCE_DIGITS}g}")
-        elif isinstance(v, tuple) and v and all(isinstance(x, float) for x in v):
-            changes[f.name] = tuple(float(f"{x:.{REFERENCE_DIGITS}g}") for x in v)
-    return replace(ref, **changes)
-
-
-def _reference_contact(contact: ContactSettings | None, structure, a: float, b: float) -> ContactSettings:
-    """The contact settings in reference units: the reference defaults themselves for
-    ``contact=None`` (so that a structure and its scaled model get bitwise the same), else the
-    explicit settings scaled by (a, b)."""
-    if contact is None:
-        return reference_contact(structure)
-    return contact if (a == 1.0 and b == 1.0) else contact.scaled(a, b)
-
-
-def _integrate(scene: Scene, load, duration: float, *, record_every: int, blast_mode: str, settle: bool,
-               factors=(1.0, 1.0), initial_velocity=None) -> dict:
-    """The one integration loop, in reference units (:func:`reference_factors`): settle, start at
-    the load's first arrival, apply each step's wrenches (force or kick), step, record. The load
-    is evaluated in physical units; returns the recorded states in physical units."""
-    import mujoco
-
-    a, b = factors
-    fF, fM = a**4 / b**2, a**5 / b**2
-    m, d = scene.model, mujoco.MjData(scene.model)
-    c = scene.contact
-    dt = c.timestep  # reference
-    dtp = dt / b  # physical
-    T = float(duration)
-    nsteps = max(1, int(math.ceil(T / dtp - 1e-9)))
-    nb = len(scene.bodies)
-    if settle:
-        for _ in range(int(math.ceil(SETTLE_TIME_CONSTANTS * c.time_constant / dt - 1e-9))):  # round-off safe
-            mujoco.mj_step(m, d)
-        d.qvel[:] = 0.0  # remove the (exp(-20)-small) residual transient exactly
-    d.time = 0.0
-    if initial_velocity is not None:
-        initial_velocity(m, d)
-    k = int(record_every)
-    idx = np.unique(np.r_[np.arange(0, nsteps + 1, k), nsteps])
-    nrec = idx.size
-    qpos = np.empty((nrec, m.nq))
-    qvel = np.empty((nrec, m.nv))
-    ncon = np.empty(nrec, dtype=np.int32)
-    mujoco.mj_forward(m, d)  # kinematics and contacts of the initial state (does not advance it)
-    qpos[0], qvel[0], ncon[0] = d.qpos, d.qvel, d.ncon
-    rec_mask = np.zeros(nsteps + 1, dtype=bool)
-    rec_mask[idx] = True
-    j = 1
-    xfrc = d.xfrc_applied
-    delivered = np.zeros((nb, 3))
-    delivered_abs = np.zeros(nb)
-    t_start = 0.0 if load is None else float(load.first_arrival)
-    loading = False
-    kicks = 0
-    n = 0
-    while n < nsteps:
-        t0 = t_start + n * dtp
-        if load is None or t0 > load.end_time:
-            if loading:
-                xfrc[:] = 0.0
-                loading = False
-            # free motion: advance to the next recorded state in one call (MuJoCo loops mj_step
-            # in C: bitwise the same states, without a Python round trip per step)
-            nxt = int(idx[j])
-            mujoco.mj_step(m, d, nxt - n)
-            qpos[j], qvel[j], ncon[j] = d.qpos, d.qvel, d.ncon
-            j += 1
-            n = nxt
-            continue
-        W = load.step_wrenches(t0, t0 + dtp, d.xipos[1:] / a, d.xmat[1:].reshape(nb, 3, 3))
-        delivered += W[:, 0:3] * dtp
-        delivered_abs += np.linalg.norm(W[:, 0:3], axis=1) * dtp
-        xfrc[1:, 0:3] = W[:, 0:3] * fF
-        xfrc[1:, 3:6] = W[:, 3:6] * fM
-        loading = True
-        if blast_mode == "kick" or (blast_mode == "auto" and np.any(W) and _any_contact_slides(m, d, c)):
-            _kick(m, d, xfrc[1:] * dt)
-            xfrc[1:] = 0.0
-            kicks += 1
-        mujoco.mj_step(m, d)
-        n += 1
-        if rec_mask[n]:
-            qpos[j], qvel[j], ncon[j] = d.qpos, d.qvel, d.ncon
-            j += 1
-    qpos = qpos.reshape(nrec, nb, 7)
-    qvel = qvel.reshape(nrec, nb, 6)
-    qpos[:, :, 0:3] /= a
-    qvel[:, :, 0:3] *= b / a
-    qvel[:, :, 3:6] *= b
-    return {"time": idx * dtp, "qpos": qpos.reshape(nrec, -1), "qvel": qvel.reshape(nrec, -1), "ncon": ncon,
-            "delivered": delivered, "delivered_abs": delivered_abs, "kicks": kicks, "first_arrival": t_start,
-            "duration": T}
-
-
 def _check_common(duration, gravity, record_every, blast_mode):
     T = float(check_positive("duration", duration, "s"))
     g = float(check_positive("gravity", gravity, "m/s^2"))
@@ -352,6 +132,9 @@ def simulate_structure(
     record_every: int = 1,
     blast_mode: str | None = None,
     settle: bool = True,
+    initial_rotation: float = 0.0,
+    initial_angular_velocity: float = 0.0,
+    initial_velocity=(0.0, 0.0, 0.0),
 ) -> Response3D:
     """Simulate any structure of rigid bodies on a rigid ground under a blast load.
 
@@ -375,18 +158,32 @@ def simulate_structure(
     record_every : int
         Keep one state every ``record_every`` steps (the first and last are always kept).
     blast_mode : {"auto", "force", "kick"}, optional
-        How a step's impulse is applied (module docstring); default "auto" for one body,
+        How a step's impulse is applied (:mod:`.integrate`); default "auto" for one body,
         "force" for several. A block in "auto" mode with mu within 10 % of its pivoting
         threshold (:func:`pivot_friction_threshold`) gets a one-line RuntimeWarning.
     settle : bool
-        Let the structure settle on its soft contacts for ``SETTLE_TIME_CONSTANTS`` time
-        constants before the first arrival.
+        Let the structure settle on its soft contacts for :data:`~.integrate.SETTLE_TIME_CONSTANTS` time
+        constants before the first arrival (not when it starts tilted).
+    initial_rotation : float
+        Initial tilt theta_0 [rad], |theta_0| < pi/2: the whole structure turned rigidly about
+        its lowest body's base edge (the +x edge when > 0), top towards +x when > 0
+        (:func:`~.initial.tilt_bodies`; a block's free rocking from theta_0).
+    initial_angular_velocity : float
+        Initial rocking velocity omega_0 [rad/s] about that edge (the +x edge when omega_0 >= 0
+        and theta_0 = 0), every body moving rigidly (:func:`~.initial.rigid_rocking_velocity`).
+    initial_velocity : tuple of float
+        Extra initial velocity of every centre of mass [m/s], (3,).
 
     Returns
     -------
     Response3D
     """
     T, g = _check_common(duration, gravity, record_every, blast_mode)
+    th0 = float(check_finite("initial rotation", initial_rotation, "rad"))
+    om0 = float(check_finite("initial angular velocity", initial_angular_velocity, "rad/s"))
+    v0 = check_finite("initial velocity", initial_velocity, "m/s")
+    if v0.shape != (3,):
+        raise BlastscaleInputError(f"initial velocity must have 3 components, got shape {v0.shape}")
     if load is not None and not (hasattr(load, "step_wrenches") and hasattr(load, "first_arrival")):
         raise BlastscaleInputError(f"load = {load!r} is not a LoadStrategy (see blastscale.sim3d.loads)")
     explicit = contact is not None
@@ -398,11 +195,13 @@ def simulate_structure(
     if explicit:
         _warn_if_soft(contact, structure, load, g)
     mode = blast_mode or ("auto" if len(structure.bodies) == 1 else "force")
-    a, b = reference_factors(structure, g)
-    ref = _to_reference(structure, a)
-    scene = structure_scene(ref, _reference_contact(contact if explicit else None, structure, a, b), REFERENCE_GRAVITY)
+    a, b = reference_factors(structure, g)  # the one place where absolute size is removed (.reference)
+    ref = to_reference(structure, a)
+    scene = structure_scene(ref, reference_settings(contact if explicit else None, structure, a, b), REFERENCE_GRAVITY,
+                            rotation=th0)
     _warn_near_pivot_threshold(scene, contact.friction, load, mode)
-    st = _integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle, factors=(a, b))
+    st = integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle and th0 == 0.0,
+                   factors=(a, b), initial_velocity=rigid_rocking_velocity(scene, th0, om0, v0, (a, b)))
     return response_from_states(structure, st, _settings(contact, g, T, mode, st, load, explicit))
 
 
@@ -414,128 +213,10 @@ def _settings(c: ContactSettings, g, T, mode, st, load, explicit) -> dict:
     return out
 
 
-@dataclass(frozen=True)
-class Block3DSimulator:
-    """Simulate a rectangular block on a rigid plane under a Method A blast load: the one-body
-    case of :func:`simulate_structure`, with the block's planar recorders.
-
-    Parameters
-    ----------
-    contact : ContactSettings or None
-        Contact, time-step and solver settings; None: the scale-consistent defaults of the
-        block run (:func:`~.contact.default_contact`; the full-scale settings for a 10 m block).
-    gravity : float
-        g [m/s^2].
-    record_every : int
-        Keep one state every ``record_every`` steps (the first and last are always kept).
-    settle : bool
-        Let the upright block settle on its soft contact for ``SETTLE_TIME_CONSTANTS`` time
-        constants before t = 0 (ignored when starting tilted).
-    blast_mode : {"auto", "force", "kick"}
-        How each step's blast impulse is applied (module docstring); "auto" is right for
-        sticking and for sliding contacts.
-    shape_type : type
-        Shape class built from the block (``from_block``); :class:`~.model.BoxShape` by default.
-
-    Notes
-    -----
-    Accuracy is set by ``contact.timestep`` (semi-implicit Euler, first order) and the contact
-    time constant; see docs/sim3d.md for the measured errors against closed forms. Results are
-    bitwise deterministic for given inputs.
-    """
-
-    contact: ContactSettings | None = None
-    gravity: float = STANDARD_GRAVITY
-    record_every: int = 1
-    settle: bool = True
-    blast_mode: str = "auto"
-    shape_type: type = BoxShape
-
-    def __post_init__(self):
-        if self.contact is not None and not isinstance(self.contact, ContactSettings):
-            raise BlastscaleInputError(f"contact = {self.contact!r} is not a ContactSettings")
-        _check_common(1.0, self.gravity, self.record_every, self.blast_mode)
-
-    def run(
-        self,
-        block: RectangularBlock,
-        pulse,
-        duration: float,
-        *,
-        initial_rotation: float = 0.0,
-        initial_angular_velocity: float = 0.0,
-        initial_velocity=(0.0, 0.0, 0.0),
-    ) -> Block3DResult:
-        """Simulate ``duration`` seconds after the shock arrival (t = 0).
-
-        Parameters
-        ----------
-        block : RectangularBlock
-            The block; the blast loads its -x face (area 2h x 2w) towards +x.
-        pulse : blastscale.blast.pulses.Pulse or None
-            Reflected pressure pulse, t = 0 at shock arrival; None for no blast.
-        duration : float
-            Simulated time after arrival [s].
-        initial_rotation : float
-            Initial tilt theta_0 [rad], resting on a base edge (see :func:`~.model.block_scene`).
-        initial_angular_velocity : float
-            Initial rocking velocity d theta/dt [rad/s] about the supporting edge (the +x edge
-            when >= 0 and theta_0 = 0); the centre of mass gets the matching rigid velocity.
-        initial_velocity : tuple of float
-            Extra initial velocity of the centre of mass [m/s].
-
-        Returns
-        -------
-        Block3DResult
-            With ``.response`` the :class:`~.results.Response3D` of the same run.
-        """
-        if not isinstance(block, RectangularBlock):
-            raise BlastscaleInputError(f"block = {block!r} is not a RectangularBlock")
-        if pulse is not None and not hasattr(pulse, "cumulative_impulse"):
-            raise BlastscaleInputError(f"pulse = {pulse!r} is not a pulse: expected a blastscale.blast.pulses.Pulse or None")
-        T, g = _check_common(duration, self.gravity, self.record_every, self.blast_mode)
-        th0 = float(check_finite("initial rotation", initial_rotation, "rad"))
-        om0 = float(check_finite("initial angular velocity", initial_angular_velocity, "rad/s"))
-        v0 = check_finite("initial velocity", initial_velocity, "m/s")
-        if v0.shape != (3,):
-            raise BlastscaleInputError(f"initial velocity must have 3 components, got shape {v0.shape}")
-        explicit = self.contact is not None
-        c = self.contact if explicit else default_contact(block, gravity=g)
-        check_simulable(block, c, g)
-        load = None if pulse is None else MethodA(block, pulse)
-        if explicit:
-            _warn_if_soft(c, block, load, g)
-        a, b = reference_factors(block, g)
-        scene = block_scene(_to_reference(block, a), _reference_contact(self.contact, block, a, b), REFERENCE_GRAVITY,
-                            rotation=th0, shape_type=self.shape_type)
-        shape = scene.bodies[0].shape  # reference units
-        mu_star = _warn_near_pivot_threshold(scene, c.friction, load, self.blast_mode)
-
-        def initial(m, d):  # rigid rotation about the supporting edge + translation
-            import mujoco
-
-            if om0 == 0.0 and not np.any(v0 != 0.0):
-                return
-            s = 1.0 if (th0 > 0.0 or (th0 == 0.0 and om0 >= 0.0)) else -1.0
-            mujoco.mj_forward(m, d)
-            R = d.xmat[1].reshape(3, 3)
-            pivot = R @ np.array([s * shape.half_width, 0.0, -shape.half_height]) + d.xpos[1]
-            rel = d.xpos[1] - pivot
-            w = np.array([0.0, om0 / b, 0.0])
-            d.qvel[0:3] = np.cross(w, rel) + v0 * (a / b)
-            d.qvel[3:6] = R.T @ w  # free-joint angular velocity is in the body frame
-
-        st = _integrate(scene, load, T, record_every=self.record_every, blast_mode=self.blast_mode,
-                        settle=self.settle and th0 == 0.0, factors=(a, b), initial_velocity=initial)
-        settings = {**_settings(c, g, T, self.blast_mode, st, load, explicit), "pivot_friction_threshold": mu_star}
-        resp = response_from_states(block, st, settings)
-        return block_result(resp, self.shape_type.from_block(block), st, settings)
-
-
 def _warn_near_pivot_threshold(scene: Scene, friction: float, load, mode: str):
     """mu* of a one-box scene (:func:`pivot_friction_threshold`, None for any other scene), with a
-    one-line RuntimeWarning when a loaded run in "auto" mode has mu within 10 % of it (module
-    docstring: "auto" may under-estimate the rocking there by up to ~3 %)."""
+    one-line RuntimeWarning when a loaded run in "auto" mode has mu within 10 % of it
+    (:mod:`.integrate`: "auto" may under-estimate the rocking there by up to ~3 %)."""
     shape = scene.bodies[0].shape
     if len(scene.bodies) != 1 or not isinstance(shape, BoxShape):
         return None
@@ -574,45 +255,3 @@ def pivot_friction_threshold(half_width: float, half_height: float) -> float:
     b = float(check_positive("half width", half_width, "m"))
     h = float(check_positive("half height", half_height, "m"))
     return (4.0 * b * b + h * h) / (3.0 * b * h)
-
-
-def simulate_block(
-    block: RectangularBlock,
-    pulse=None,
-    duration: float = 5.0,
-    *,
-    contact: ContactSettings | None = None,
-    gravity: float = STANDARD_GRAVITY,
-    record_every: int = 1,
-    blast_mode: str = "auto",
-    **initial,
-) -> Block3DResult:
-    """Run one block under a Method A blast: ``Block3DSimulator(contact, gravity, record_every,
-    blast_mode=blast_mode).run(block, pulse, duration, **initial)``.
-
-    Parameters
-    ----------
-    block : RectangularBlock
-        The block; the blast loads its -x face (area 2h x 2w) towards +x.
-    pulse : blastscale.blast.pulses.Pulse or None
-        Reflected pressure pulse [Pa over s], t = 0 at shock arrival; None for no blast.
-    duration : float
-        Simulated time after arrival [s], > 0.
-    contact : ContactSettings, optional
-        Contact, time-step and solver settings; default: scale-consistent
-        (:func:`~.contact.default_contact`, the full-scale settings for a 10 m block).
-    gravity : float
-        g [m/s^2], > 0.
-    record_every : int
-        Keep one state every ``record_every`` steps, >= 1.
-    blast_mode : {"auto", "force", "kick"}
-        How each step's impulse is applied (module docstring).
-    **initial
-        ``initial_rotation`` [rad], ``initial_angular_velocity`` [rad/s], ``initial_velocity``
-        (3,) [m/s], as in :meth:`Block3DSimulator.run`.
-
-    Returns
-    -------
-    Block3DResult
-    """
-    return Block3DSimulator(contact, gravity, record_every, blast_mode=blast_mode).run(block, pulse, duration, **initial)
