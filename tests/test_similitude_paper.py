@@ -119,7 +119,6 @@ def test_impulsive_check_is_to_times_housner_p_for_prototype_and_model(sig):
     # the model's ratio then exceeds the prototype's, 3.1e-3 vs 1.4e-3; at varsigma = 1 it is 6x smaller) or
     # not. By hand: r = h / cos(alpha) (h = 5 m), p = sqrt(3 g / (4 r)), the model has r lambda and g varsigma.
     # Same formula, evaluated independently: round-off tolerance (1e-12).
-    from blastscale._validate import BlastscaleInputError
     from blastscale.structures import RectangularBlock
 
     lam, g = 1 / 200, 9.81
@@ -143,7 +142,6 @@ def test_impulsive_check_is_to_times_housner_p_for_prototype_and_model(sig):
 def test_centrifuge_at_one_over_lambda_gives_complete_similarity():
     # gamma = 1, varsigma = 1/lambda: Eq. (8) has the root lambda_Z = 1 (Hopkinson-Cranz), durations scale
     # as lambda and p as 1/lambda, so t_o p is the same in model and prototype. Exact to round-off (1e-12).
-    from blastscale._validate import BlastscaleInputError
     from blastscale.structures import RectangularBlock
 
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
@@ -183,7 +181,6 @@ def test_design_bad_input_names_parameter_value_range(kwargs, words):
     ],
 )
 def test_block_bad_input_names_parameter(kwargs, words):
-    from blastscale._validate import BlastscaleInputError
     from blastscale._validate import BlastscaleInputError
     from blastscale.structures import RectangularBlock
 

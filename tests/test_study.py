@@ -12,7 +12,7 @@ import xarray as xr
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.analysis.rocking_similarity import compare_rocking
-from blastscale.io.results import write_netcdf
+from blastscale.io.histories import write_netcdf
 from blastscale.rocking import RockingSystem, simulate
 from blastscale.scenario import Scenario, library_names, load_scenario
 from blastscale.similitude import design_model

@@ -24,7 +24,7 @@ from typing import Any, Iterator
 from .. import __version__
 from .._validate import BlastscaleInputError
 
-__all__ = ["jsonable", "write_json", "histories_tidy", "write_histories_csv", "write_netcdf", "versions", "git_commit",
+__all__ = ["jsonable", "write_json", "versions", "git_commit",
            "provenance", "output_folder", "check_output_folder", "write_atomic"]
 
 #: Marker file of a blastscale output folder (``--force`` replaces only such folders or empty ones).
@@ -59,62 +59,6 @@ def write_atomic(path: "str | Path", data: "str | bytes") -> None:
 def write_json(path: "str | Path", obj: Any) -> None:
     """Write ``obj`` as indented strict JSON (:func:`jsonable`), atomically."""
     write_atomic(path, json.dumps(jsonable(obj), indent=2) + "\n")
-
-
-def histories_tidy(tree):
-    """The histories of a study as a tidy table (one value per row), flat for spreadsheets.
-
-    Columns: ``engine`` (the group: planar, sim3d, ensemble), ``system`` (prototype / model
-    up-scaled), ``variable``, ``time_s``, ``element`` (body or monitoring point, "" when none),
-    ``component`` ("" when none), ``member`` (ensemble member, "" when none), ``value`` and ``units``.
-
-    Parameters
-    ----------
-    tree : xarray.DataTree
-        :meth:`blastscale.study.StudyResult.to_datatree`.
-
-    Returns
-    -------
-    pandas.DataFrame
-    """
-    import pandas as pd
-
-    frames = []
-    for node in tree.subtree:
-        engine = node.name if node.parent is not None else ""
-        for var, da in node.ds.data_vars.items():
-            df = da.to_dataframe(name="value").reset_index()
-            ren = {d: {"time": "time_s", "component": "component", "member": "member"}.get(d, "element")
-                   for d in da.dims if d != "system"}
-            df = df.rename(columns=ren)
-            for col, empty in (("element", ""), ("component", ""), ("member", ""), ("time_s", math.nan)):
-                if col not in df:  # e.g. totals have no time, single runs no member
-                    df[col] = empty
-            df["engine"], df["variable"], df["units"] = engine, var, da.attrs.get("units", "1")
-            frames.append(df[_TIDY_COLUMNS])
-    return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=_TIDY_COLUMNS)
-
-
-_TIDY_COLUMNS = ["engine", "system", "variable", "time_s", "element", "component", "member", "value", "units"]
-
-
-def write_histories_csv(tree, path: "str | Path") -> None:
-    """Write :func:`histories_tidy` of ``tree`` as CSV, atomically."""
-    write_atomic(path, histories_tidy(tree).to_csv(index=False, float_format="%.10g"))
-
-
-def write_netcdf(data, path: "str | Path") -> None:
-    """Write an ``xarray.Dataset`` or ``DataTree`` (NetCDF-4 groups) to ``path`` atomically (a temporary
-    file in the same folder, renamed into place; h5netcdf engine)."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    try:
-        data.to_netcdf(tmp, engine="h5netcdf")
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def versions() -> dict:

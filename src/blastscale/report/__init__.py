@@ -41,7 +41,8 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     list of str
         The file names written.
     """
-    from ..io.results import provenance, write_atomic, write_histories_csv, write_json, write_netcdf
+    from ..io.histories import write_histories_csv, write_netcdf
+    from ..io.results import provenance, write_atomic, write_json
 
     folder = Path(folder)
     tell = progress or (lambda stage: None)
