@@ -24,7 +24,9 @@ $(STAMP): pyproject.toml | check-python
 run: install
 	$(BIN)/blastscale run --out results/default --force
 
+# the architecture (import-linter contracts in pyproject.toml), then the whole suite
 test: install
+	$(BIN)/lint-imports --no-cache
 	MPLBACKEND=Agg $(BIN)/python -m pytest -q
 
 bench: install

@@ -1,0 +1,83 @@
+"""The architecture is checked, not hoped for (issue #14): the layers and the absence of cycles are
+import-linter contracts (pyproject.toml, run by ``make test`` and here); this file adds what
+import-linter does not check: no package imports another package's private names or modules, and
+no module exceeds 400 lines."""
+
+from __future__ import annotations
+
+import ast
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+SRC = Path(__file__).resolve().parents[1] / "src" / "blastscale"
+
+#: The one module that is private to blastscale as a whole and shared by every subpackage.
+SHARED_PRIVATE = {"blastscale._validate"}
+
+
+def _module_name(path: Path) -> str:
+    rel = path.relative_to(SRC.parent).with_suffix("")
+    parts = list(rel.parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _imports(path: Path):
+    """(imported module, imported names) of every ``from ... import`` and ``import`` in a module,
+    relative imports resolved."""
+    mod = _module_name(path)
+    pkg = mod if path.name == "__init__.py" else mod.rsplit(".", 1)[0]
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = pkg.split(".")
+                base = base[: len(base) - (node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            yield node.lineno, target, [a.name for a in node.names]
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                yield node.lineno, a.name, []
+
+
+def _top(module: str) -> str:
+    parts = module.split(".")
+    return ".".join(parts[:2]) if len(parts) > 1 else module
+
+
+def test_no_package_imports_another_packages_private_names():
+    bad = []
+    for path in SRC.rglob("*.py"):
+        mod = _module_name(path)
+        for line, target, names in _imports(path):
+            if not target.startswith("blastscale") or _top(target) == _top(mod) or target in SHARED_PRIVATE:
+                continue
+            private_module = any(p.startswith("_") and not p.startswith("__") for p in target.split(".")[1:])
+            private_names = [n for n in names if n.startswith("_") and not n.startswith("__")]
+            if private_module or private_names:
+                bad.append(f"{path.relative_to(SRC)}:{line}: from {target} import {', '.join(names)}")
+    assert not bad, "\n".join(bad)
+
+
+def test_import_linter_contracts_are_kept():
+    exe = shutil.which("lint-imports", path=str(Path(sys.executable).parent))
+    if exe is None:
+        pytest.skip("import-linter is not installed (pip install -e '.[dev]')")
+    proc = subprocess.run([exe, "--no-cache"], capture_output=True, text=True, cwd=SRC.parents[1])
+    assert proc.returncode == 0, proc.stdout[-3000:]
+
+
+#: The largest module the project allows (issue #14: split along physical seams, DESIGN.md "Layout").
+MAX_LINES = 400
+
+
+def test_no_module_over_400_lines():
+    big = {str(p.relative_to(SRC)): n for p in SRC.rglob("*.py") if (n := len(p.read_text().splitlines())) > MAX_LINES}
+    assert not big, big
