@@ -130,7 +130,7 @@ def correction(section: str, charge: float, duration: float = 8.0, incidence: st
     col = MultiDrumColumn(section=section)
     d = design_model(charge, STANDOFF, SCALE)
     f = d.factors
-    mcol = col.scaled(f.length, f.density)
+    mcol = col.scaled(f)
     lp = make_load("B", col, charge_kg=charge, standoff_m=STANDOFF, incidence=incidence)
     proto = simulate_structure(col, lp, duration)
     lm = make_load("B", mcol, charge_kg=d.model.charge_kg, standoff_m=d.model.standoff_m, incidence=incidence)

@@ -33,6 +33,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from blastscale.similitude import scaling_factors
 from blastscale.blast.parameters import blast_parameters
 from blastscale.blast.pulses import Triangular
 from blastscale.analysis.block3d_similarity import block_dataset, block_summary
@@ -59,7 +60,7 @@ def speed(repeat: int = 3, duration: float = 3.0) -> dict:
     pulse = blast_parameters(50.0, 2.0, model="masi2021").pulse("friedlander")
     cases = {
         "prototype": (c, PAPER_BLOCK, pulse, duration),
-        "model_1_200": (c.scaled(lam), PAPER_BLOCK.scaled(lam), pulse.scaled(lam, lt), duration * lt),
+        "model_1_200": (c.scaled(scaling_factors(lam)), PAPER_BLOCK.scaled(scaling_factors(lam)), pulse.scaled(scaling_factors(lam)), duration * lt),
     }
     out = {}
     for name, (cs, blk, p, T) in cases.items():
@@ -86,8 +87,8 @@ def column_speed(section: str, repeat: int = 1, duration: float = 4.0, lam: floa
     col = MultiDrumColumn(section)
     lt = math.sqrt(lam)
     proto_load = make_load("A", col, charge_kg=250.0, standoff_m=10.0)
-    model_col = col.scaled(lam)
-    model_load = MethodA(model_col, proto_load.pulse.scaled(lam, lt), proto_load.arrival_time * lt)
+    model_col = col.scaled(scaling_factors(lam))
+    model_load = MethodA(model_col, proto_load.pulse.scaled(scaling_factors(lam)), proto_load.arrival_time * lt)
     simulate_structure(col, proto_load, 0.01)  # imports and first compile outside the timing
     out = {}
     for name, (st, load, T) in {"prototype": (col, proto_load, duration),
@@ -135,7 +136,7 @@ def acceptance() -> dict:
     lt = math.sqrt(lam)
     load = make_load("A", col, charge_kg=250.0, standoff_m=10.0)
     proto = simulate_structure(col, load, 8.0, record_every=20)
-    model = simulate_structure(col.scaled(lam), MethodA(col.scaled(lam), load.pulse.scaled(lam, lt),
+    model = simulate_structure(col.scaled(scaling_factors(lam)), MethodA(col.scaled(scaling_factors(lam)), load.pulse.scaled(scaling_factors(lam)),
                                                         load.arrival_time * lt), 8.0 * lt, record_every=20)
     p, m = _top_x(proto), _top_x(model, lam)
     out["exact_scaling_8s_max_diff_rel_peak"] = float(np.max(np.abs(m - p)) / np.max(np.abs(p)))
@@ -144,7 +145,7 @@ def acceptance() -> dict:
     from blastscale.similitude import design_model
 
     d = design_model(250.0, 10.0, lam)
-    spec_col = col.scaled(lam)
+    spec_col = col.scaled(scaling_factors(lam))
     spec = simulate_structure(spec_col, make_load("A", spec_col, charge_kg=d.model_charge_kg,
                                                   standoff_m=d.model_standoff_m), 8.0 * lt, record_every=20)
     s = _top_x(spec, lam)
@@ -159,7 +160,7 @@ def acceptance() -> dict:
     blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
     pb = block_summary(run_block(blk, blast_parameters(50.0, 2.0, model="masi2021").pulse(), 3.0,
                                  default_contact(blk), record_every=10))
-    sb = block_summary(run_block(blk.scaled(1 / 200), blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(),
+    sb = block_summary(run_block(blk.scaled(scaling_factors(1 / 200)), blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(),
                                  0.2121, None, record_every=10))
     out["block_prototype_max_rotation_rad"] = pb["max_rotation_rad"]
     out["block_specimen_1_200_max_rotation_rad"] = sb["max_rotation_rad"]

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from blastscale.similitude import scaling_factors
 from blastscale._validate import BlastscaleInputError
 from blastscale.blast import Friedlander, Impulsive, Tabulated, Triangular, blast_parameters, friedlander_decay
 from blastscale.blast.friedlander import NegativeDecayWarning, friedlander_impulse_ratio
@@ -62,7 +63,9 @@ def test_tabulated_integral_and_scaling():
     trap = float(np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(t)))
     assert pulse.impulse == pytest.approx(trap, rel=1e-14)
     assert quad(pulse.pressure, 0, 2e-3, points=t[1:-1])[0] == pytest.approx(trap, rel=1e-10)
-    s = pulse.scaled(0.1, 0.01)
+    f = scaling_factors(0.1, 0.001, 1000.0)  # pressure factor gamma varsigma lambda = 0.1, time sqrt(lambda/varsigma) = 0.01
+    assert (f.pressure, f.time) == pytest.approx((0.1, 0.01), rel=1e-14)
+    s = pulse.scaled(f)
     assert s.impulse == pytest.approx(pulse.impulse * 1e-3, rel=1e-12)
 
 

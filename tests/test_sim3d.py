@@ -65,7 +65,7 @@ def planar(response):
 def test_contact_settings_scale_times_by_sqrt_lambda_and_width_by_lambda():
     c = ContactSettings()
     lam = 1 / 200
-    s = c.scaled(lam)
+    s = c.scaled(scaling_factors(lam))
     assert s.timestep == pytest.approx(c.timestep * math.sqrt(lam), rel=1e-15)
     assert s.time_constant == pytest.approx(c.time_constant * math.sqrt(lam), rel=1e-15)
     assert s.friction_time_constant == pytest.approx(c.friction_time_constant * math.sqrt(lam), rel=1e-15)

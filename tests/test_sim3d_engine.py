@@ -10,8 +10,10 @@ import warnings
 import numpy as np
 import pytest
 
+from blastscale.similitude import scaling_factors
 from blastscale._validate import BlastscaleInputError
 from blastscale.analysis.block3d_similarity import block_dataset, block_summary
+from blastscale.blast import Friedlander
 from blastscale.blast.parameters import blast_parameters
 from blastscale.sim3d import ContactSettings, MethodA, block_scene, make_load
 from blastscale.sim3d.contact import default_contact
@@ -66,7 +68,8 @@ def test_exact_scaling_model_upscaled_equals_prototype():
     lt = math.sqrt(lam)
     pulse = blast_parameters(250.0, 10.0).pulse("friedlander")
     proto = simulate_structure(SQUARE, MethodA(SQUARE, pulse, 0.0069), T, record_every=20)
-    model = simulate_structure(SQUARE.scaled(lam), MethodA(SQUARE.scaled(lam), pulse.scaled(lam, lt), 0.0069 * lt),
+    f = scaling_factors(lam)
+    model = simulate_structure(SQUARE.scaled(f), MethodA(SQUARE.scaled(f), pulse.scaled(f), 0.0069 * lt),
                                T * lt, record_every=20)
     p, m = _top_x(proto), _top_x(model, lam)
     assert np.allclose(model.time / lt, proto.time, rtol=1e-12)
@@ -80,7 +83,7 @@ def test_block_specimen_at_its_own_size_reproduces_the_prototype():
     # 2000 kg/m^3, masi2021, mu = 0.7, 2.3318e-7 kg at 0.01 m, 0.2121 s) gave 0.0355 rad with the
     # absolute full-scale contact, against the prototype's 0.0611 (50 kg at 2 m, 3 s)
     proto_blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
-    spec_blk = proto_blk.scaled(1 / 200)
+    spec_blk = proto_blk.scaled(scaling_factors(1 / 200))
     proto_pulse = blast_parameters(50.0, 2.0, model="masi2021").pulse()
     spec_pulse = blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse()
     proto = block_summary(simulate_structure(proto_blk, MethodA(proto_blk, proto_pulse), 3.0,
@@ -103,7 +106,7 @@ def test_column_specimen_at_its_own_size_reproduces_the_prototype():
     lam, T = 0.01, 0.8  # to past the first peak (0.5 s); 8 s in docs/sim3d.md
     d = design_model(250.0, 10.0, lam)  # general law, gamma = 1
     proto = simulate_structure(SQUARE, make_load("A", SQUARE, charge_kg=250.0, standoff_m=10.0), T, record_every=20)
-    spec_col = SQUARE.scaled(lam)
+    spec_col = SQUARE.scaled(scaling_factors(lam))
     spec = simulate_structure(spec_col, make_load("A", spec_col, charge_kg=d.model_charge_kg,
                                                   standoff_m=d.model_standoff_m), T * math.sqrt(lam), record_every=20)
     p, m = _top_x(proto), _top_x(spec, lam)
@@ -166,7 +169,9 @@ def test_response_dataset_units_dimensions_netcdf_and_summary(tmp_path):
 
 def test_collapse_is_flagged_when_the_column_falls():
     # an initial shove far beyond any rocking capacity: the stack passes over its base edge
-    r = simulate_structure(SQUARE, MethodA(SQUARE, blast_parameters(250.0, 10.0).pulse().scaled(30.0, 1.0)), 2.5,
+    bp = blast_parameters(250.0, 10.0)
+    shove = Friedlander(30.0 * bp.reflected_pressure, bp.positive_duration, bp.friedlander_decay)  # 30x the pressure
+    r = simulate_structure(SQUARE, MethodA(SQUARE, shove), 2.5,
                            record_every=50)
     s = r.summary()
     assert s["collapsed"] and 0.0 < s["collapse_time_s"] <= 2.5
@@ -221,7 +226,7 @@ def test_extra_contact_pairs_leave_the_motion_before_they_touch_bitwise_unchange
          "timestep"),
         (lambda: simulate_structure(RectangularBlock(10.0, 2.0), None, 0.01,
                                     contact=ContactSettings(timestep=1.0, time_constant=4.0)), "timestep"),
-        (lambda: simulate_structure(RectangularBlock(10.0, 2.68).scaled(1e-4), None, 0.01), "mass"),
+        (lambda: simulate_structure(RectangularBlock(10.0, 2.68).scaled(scaling_factors(1e-4)), None, 0.01), "mass"),
         (lambda: simulate_structure(RectangularBlock(1e-6, 2.68e-7), None, 0.01), "height"),
         (lambda: simulate_structure(RectangularBlock(10.0, 2.68, 1e-9), None, 0.01), "depth"),
         (lambda: simulate_structure(SQUARE, "friedlander", 0.01), "load"),
@@ -243,12 +248,12 @@ def test_engine_rejects_bad_input_with_one_line_naming_it(make, word):
 def test_milligram_specimen_runs_in_reference_units_and_user_points_are_recorded():
     # a 1 cm block (54 mg) and a 1/1000 column run as the 10 m structures in reference units
     # (MuJoCo's absolute thresholds never see their size): at rest they stay put
-    tiny = RectangularBlock(10.0, 2.68).scaled(1e-3)
+    tiny = RectangularBlock(10.0, 2.68).scaled(scaling_factors(1e-3))
     r = block_dataset(simulate_structure(tiny, None, 0.05))
     assert tiny.mass < 1e-4 and np.max(np.abs(r["rotation_y"].values)) < 1e-9
     assert np.max(np.abs(r["sliding"].values)) < 1e-11
     col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54,
-                          extra_points=(MonitoringPoint("cap", 2, (0.0, 0.0, 0.5)),)).scaled(1e-3)
+                          extra_points=(MonitoringPoint("cap", 2, (0.0, 0.0, 0.5)),)).scaled(scaling_factors(1e-3))
     resp = simulate_structure(col, None, 0.02, record_every=10)
     assert list(resp.dataset["point"].values) == ["P-1", "P-2", "P-3", "cap"]
     assert np.abs(resp.dataset["point_displacement"].values).max() < 1e-9 * 3e-3

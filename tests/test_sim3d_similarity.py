@@ -56,7 +56,7 @@ def test_scale_invariance_lambda_1_200_upscaled_equals_full_scale():
     pulse = paper_pulse(50.0)
     proto = block_dataset(run_block(PAPER_BLOCK, pulse, 0.4, contact=c))
     # the exactly similar pulse: pressure x lambda (gamma = varsigma = 1), time x sqrt(lambda)
-    model = run_block(PAPER_BLOCK.scaled(lam), pulse.scaled(lam, lt), 0.4 * lt, contact=c.scaled(lam))
+    model = run_block(PAPER_BLOCK.scaled(scaling_factors(lam)), pulse.scaled(scaling_factors(lam)), 0.4 * lt, contact=c.scaled(scaling_factors(lam)))
     up = upscale_dataset(block_dataset(model), scaling_factors(lam))
     assert np.allclose(up["time"].values, proto["time"].values, rtol=1e-12, atol=0)
     # 1e-6 relative to the response's size (issue); measured 1e-13 (round-off)

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from blastscale.similitude import scaling_factors
 from blastscale._validate import BlastscaleInputError
 from blastscale.structures import MonitoringPoint, MultiDrumColumn, RectangularBlock
 from blastscale.structures.base import frustum_mass_properties, polygon_section_constants
@@ -126,7 +127,7 @@ def test_scaled_column_mass_and_inertia_follow_lambda_cubed_and_fifth():
     col = MultiDrumColumn("circular", drum_heights=(1.5,) + (8.5 / 9,) * 9,
                           extra_points=(MonitoringPoint("top", 9, (0.0, 0.0, 0.5)),))
     lam, gam = 0.01, 0.5
-    s = col.scaled(lam, gam)
+    s = col.scaled(scaling_factors(lam, gam))
     for b, bs in zip(col.bodies, s.bodies):
         assert bs.mass == pytest.approx(b.mass * gam * lam**3, rel=1e-12)
         assert bs.inertia == pytest.approx(np.array(b.inertia) * gam * lam**5, rel=1e-12)

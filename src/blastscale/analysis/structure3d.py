@@ -2,9 +2,9 @@
 
 :func:`compare_structure3d` runs a structure and its model experiment through the same path:
 
-1. the model structure is ``structure.scaled(lambda, gamma)``, its gravity ``varsigma g``, its
+1. the model structure is ``structure.scaled(factors)``, its gravity ``varsigma g``, its
    contact settings the engine's scale-consistent defaults (``contact=None``) or
-   ``contact.scaled(lambda, lambda_t)``;
+   ``contact.scaled(factors)``;
 2. each is loaded by :func:`blastscale.sim3d.load_methods.make_load` with its own charge and
    stand-off (``design.prototype``, ``design.model``) and simulated by
    :func:`blastscale.sim3d.simulate_structure` (the model for ``duration * lambda_t``): one
@@ -261,7 +261,7 @@ def compare_structure3d(
         Incidence model passed to ``make_load`` (default: its own default).
     contact : ContactSettings, optional
         Prototype contact settings; None uses the engine's scale-consistent defaults for each
-        structure, else the model uses ``contact.scaled(lambda, lambda_t)``.
+        structure, else the model uses ``contact.scaled(factors)``.
     duration : float
         Prototype simulated time after the first arrival [s] (the model runs ``duration *
         lambda_t``).

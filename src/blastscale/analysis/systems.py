@@ -3,10 +3,10 @@
 The one place where a designed experiment (:func:`blastscale.similitude.design_model`) becomes
 a structure, a load and a run of the 3D engine. The model system is
 
-* the structure ``structure.scaled(lambda, gamma)``;
+* the structure ``structure.scaled(factors)``;
 * its own load, built by :func:`blastscale.sim3d.load_methods.make_load` from ``design.model``'s
   charge, stand-off and blast fit;
-* gravity ``varsigma g``, contact ``contact.scaled(lambda, lambda_t)`` (or the engine's
+* gravity ``varsigma g``, contact ``contact.scaled(factors)`` (or the engine's
   scale-consistent defaults for its size when ``contact`` is None);
 * run for ``duration * lambda_t``.
 
@@ -78,9 +78,9 @@ def run_system(structure, design, system: str = "prototype", *, load: str = "A",
     if system == "prototype":
         struct, blast, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
     elif system == "model":
-        struct, blast = structure.scaled(f.length, f.density), design.model
+        struct, blast = structure.scaled(f), design.model
         dur, g = duration * f.time, design.gravity * f.gravity
-        cont = None if contact is None else contact.scaled(f.length, f.time)
+        cont = None if contact is None else contact.scaled(f)
     else:
         raise BlastscaleInputError(f"system = {system!r} is not known: valid values are {', '.join(SYSTEMS)}")
     inc = {} if incidence is None else {"incidence": incidence}

@@ -99,7 +99,14 @@ class Pulse(abc.ABC):
     def cumulative_impulse(self, t):
         """Running impulse [Pa*s] from arrival to t [s] (equals ``impulse`` after the pulse)."""
 
-    def scaled(self, pressure_factor: float, time_factor: float) -> "Tabulated | Pulse":
+    def scaled(self, factors) -> "Pulse":
+        """The exactly similar pulse of a specimen: pressure x ``factors.pressure`` and time x
+        ``factors.time`` (``factors``: a :class:`~blastscale.similitude.ScalingFactors`), the pulse
+        the rigid-body response requires (a real blast delivers its own ratios: paper Eq. 8 matches
+        the impulse only)."""
+        return self._rescaled(float(factors.pressure), float(factors.time))
+
+    def _rescaled(self, pressure_factor: float, time_factor: float) -> "Pulse":
         """The same pulse shape with pressure x ``pressure_factor`` and time x ``time_factor``."""
         raise NotImplementedError  # overridden by every concrete pulse
 
@@ -162,7 +169,7 @@ class Friedlander(Pulse):
         x = np.clip(np.asarray(t, dtype=float) / self.positive_duration, 0.0, 1.0)
         return _ret(self.peak_pressure * self.positive_duration * friedlander_cumulative(x, self.decay), t)
 
-    def scaled(self, pressure_factor: float, time_factor: float) -> "Friedlander":
+    def _rescaled(self, pressure_factor: float, time_factor: float) -> "Friedlander":
         return Friedlander(self.peak_pressure * pressure_factor, self.positive_duration * time_factor, self.decay)
 
 
@@ -205,7 +212,7 @@ class Triangular(Pulse):
         x = np.clip(np.asarray(t, dtype=float) / self.duration, 0.0, 1.0)
         return _ret(self.peak_pressure * self.duration * (x - 0.5 * x**2), t)
 
-    def scaled(self, pressure_factor: float, time_factor: float) -> "Triangular":
+    def _rescaled(self, pressure_factor: float, time_factor: float) -> "Triangular":
         return Triangular(self.peak_pressure * pressure_factor, self.total_impulse * pressure_factor * time_factor)
 
 
@@ -240,7 +247,7 @@ class Impulsive(Pulse):
     def cumulative_impulse(self, t):
         return _ret(np.where(np.asarray(t, dtype=float) >= 0.0, self.total_impulse, 0.0), t)
 
-    def scaled(self, pressure_factor: float, time_factor: float) -> "Impulsive":
+    def _rescaled(self, pressure_factor: float, time_factor: float) -> "Impulsive":
         return Impulsive(self.total_impulse * pressure_factor * time_factor)
 
 
@@ -302,7 +309,7 @@ class Tabulated(Pulse):
         dt = tt - t0
         return _ret(self._cum[j] + p0 * dt + 0.5 * slope * dt**2, t)
 
-    def scaled(self, pressure_factor: float, time_factor: float) -> "Tabulated":
+    def _rescaled(self, pressure_factor: float, time_factor: float) -> "Tabulated":
         return Tabulated(self.times * time_factor, self.pressures * pressure_factor)
 
     def __repr__(self) -> str:

@@ -8,7 +8,7 @@ rocking, sliding, wobbling and lifting off.
 * :func:`reference_factors` -- the engine's reference units (10 m, 9.81 m/s^2), the one place
   where a structure's absolute size is removed (:mod:`.reference`);
   :func:`default_contact` -- scale-consistent contact defaults.
-* :class:`ContactSettings` -- contact, time step and solver in physical terms, ``.scaled(lambda)``.
+* :class:`ContactSettings` -- contact, time step and solver in physical terms, ``.scaled(factors)``.
 * :func:`structure_scene` / :func:`block_scene` / :func:`build_scene` -- the MuJoCo model built
   from the geometry (optionally tilted onto a base edge).
 * :func:`step_forces` -- the paper's Method A blast force, exact impulse per time step.

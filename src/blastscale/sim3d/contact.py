@@ -196,23 +196,22 @@ class ContactSettings:
         return self.friction * gravity / self.friction_damping
 
     # -- scaling -----------------------------------------------------------------------
-    def scaled(self, length_factor: float, time_factor: float | None = None) -> "ContactSettings":
+    def scaled(self, factors) -> "ContactSettings":
         """Settings for the geometrically similar model.
 
         Parameters
         ----------
-        length_factor : float
-            lambda = model length / prototype length [-].
-        time_factor : float, optional
-            model time / prototype time [-]; default ``sqrt(length_factor)`` (same gravity).
+        factors : ScalingFactors
+            Model / prototype factors (:func:`blastscale.similitude.scaling_factors`): ``length``
+            lambda and ``time`` lambda_t [-] are used.
 
         Returns
         -------
         ContactSettings
-            Times x ``time_factor``, ``impedance_width`` x ``length_factor``, the rest unchanged.
+            Times x lambda_t, ``impedance_width`` x lambda, the rest unchanged.
         """
-        lam = float(check_positive("scale", length_factor))
-        lt = math.sqrt(lam) if time_factor is None else float(check_positive("time factor", time_factor))
+        lam = float(check_positive("scale", factors.length))
+        lt = float(check_positive("time factor", factors.time))
         return replace(
             self,
             time_constant=self.time_constant * lt,
@@ -261,6 +260,17 @@ class ContactSettings:
             "noslip_iterations": self.noslip_iterations,
             "jacobian": self.jacobian,
         }
+
+
+def length_time_factors(length: float, time: float):
+    """The scaling factors of a length factor and a time factor given exactly (the gravity ratio
+    they imply is length / time^2): for :meth:`ContactSettings.scaled` and structures' ``scaled``
+    where a change of units, not a scaling law, fixes the two."""
+    from ..similitude import scaling_factors
+
+    lam = float(check_positive("scale", length))
+    lt = float(check_positive("time factor", time))
+    return replace(scaling_factors(lam, 1.0, lam / lt**2), length=lam, time=lt)
 
 
 # -- scale-consistent defaults --------------------------------------------------------------
@@ -333,4 +343,4 @@ def default_contact(structure, friction: float = 0.7, gravity: float = REFERENCE
     L = float(check_positive("structure height", structure_length(structure), "m"))
     g = float(check_positive("gravity", gravity, "m/s^2"))
     lam = L / REFERENCE_LENGTH
-    return reference_contact(structure, friction).scaled(lam, math.sqrt(lam * REFERENCE_GRAVITY / g))
+    return reference_contact(structure, friction).scaled(length_time_factors(lam, math.sqrt(lam * REFERENCE_GRAVITY / g)))

@@ -84,6 +84,6 @@ def arrival_spread_similarity(structure, design, load: str = "A", *, pulse: str 
     p, m = design.prototype, design.model
     kw = dict(blast_model=p.model, pulse=pulse, incidence=incidence, extrapolate=extrapolate)
     lp = make_load(load, structure, charge_kg=p.charge_kg, standoff_m=p.standoff_m, **kw)
-    lm = make_load(load, structure.scaled(f.length, f.density), charge_kg=m.charge_kg, standoff_m=m.standoff_m, **kw)
+    lm = make_load(load, structure.scaled(f), charge_kg=m.charge_kg, standoff_m=m.standoff_m, **kw)
     return {"arrival_spread_prototype_s": arrival_spread(lp),
             "arrival_spread_model_upscaled_s": arrival_spread(lm) / f.time}

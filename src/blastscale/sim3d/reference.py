@@ -24,7 +24,14 @@ from __future__ import annotations
 import math
 from dataclasses import fields, is_dataclass, replace
 
-from .contact import REFERENCE_GRAVITY, REFERENCE_LENGTH, ContactSettings, reference_contact, structure_length
+from .contact import (
+    REFERENCE_GRAVITY,
+    REFERENCE_LENGTH,
+    ContactSettings,
+    length_time_factors,
+    reference_contact,
+    structure_length,
+)
 
 __all__ = ["REFERENCE_DIGITS", "REFERENCE_GRAVITY", "REFERENCE_LENGTH", "reference_factors", "reference_settings",
            "to_reference"]
@@ -61,7 +68,7 @@ def to_reference(structure, a: float):
     give bitwise the same bodies, faces and mesh vertices (their scaled inputs differ only by
     round-off), so MuJoCo integrates the same model. The rounding moves the geometry by
     < 5e-13 relative."""
-    ref = structure if a == 1.0 else structure.scaled(a)
+    ref = structure if a == 1.0 else structure.scaled(length_time_factors(a, 1.0))
     if not is_dataclass(ref):
         return ref
     changes = {}
@@ -80,4 +87,4 @@ def reference_settings(contact: ContactSettings | None, structure, a: float, b: 
     explicit settings scaled by (a, b)."""
     if contact is None:
         return reference_contact(structure)
-    return contact if (a == 1.0 and b == 1.0) else contact.scaled(a, b)
+    return contact if (a == 1.0 and b == 1.0) else contact.scaled(length_time_factors(a, b))

@@ -157,7 +157,7 @@ def design_model(
     imp = None
     mblock = None
     if geometry is not None:
-        mblock = geometry.scaled(lam, gam)
+        mblock = geometry.scaled(f)
         imp = ImpulsiveCheck(
             prototype_ratio=impulsive_check(proto.positive_duration, geometry, gravity),
             model_ratio=impulsive_check(model_params.positive_duration, mblock, gravity * sig),
@@ -229,7 +229,7 @@ def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, m
         mod = _scatter(blast_parameters(W[ok] * f.charge[ok], R[ok] * lam, bm, extrapolate=extrapolate), ok)
     imp = mblock = None
     if geometry is not None:  # t_o p (impulsive_check) over arrays, NaN where invalid
-        mblock = geometry.scaled(lam, gam)
+        mblock = geometry.scaled(f)
         imp = ImpulsiveCheck(prototype_ratio=proto.positive_duration * geometry.frequency_parameter(gravity),
                              model_ratio=mod.positive_duration * mblock.frequency_parameter(gravity * sig),
                              threshold=float(impulsive_threshold))

@@ -152,11 +152,11 @@ class RectangularBlock:
         return {"kind": "rectangular block", "height_m": self.height, "width_m": self.width, "depth_m": self.depth,
                 "density_kg_m3": self.density, "mass_kg": self.mass, "alpha_rad": self.alpha}
 
-    def scaled(self, length_factor: float, density_factor: float = 1.0) -> "RectangularBlock":
-        """The geometrically similar block: lengths x ``length_factor`` (lambda), density x
-        ``density_factor`` (gamma)."""
-        check_positive_scalar("scale", length_factor)
-        check_positive_scalar("density ratio", density_factor)
+    def scaled(self, factors) -> "RectangularBlock":
+        """The geometrically similar block: lengths x ``factors.length`` (lambda), density x
+        ``factors.density`` (gamma) (``factors``: a :class:`~blastscale.similitude.ScalingFactors`)."""
+        length_factor = check_positive_scalar("scale", factors.length)
+        density_factor = check_positive_scalar("density ratio", factors.density)
         return replace(
             self,
             height=self.height * length_factor,

@@ -164,11 +164,11 @@ class MultiDrumColumn:
                 "sides": self.sides if self.section == "circular" else None, "density_kg_m3": self.density,
                 "drum_heights_m": list(self.heights), "mass_kg": self.mass}
 
-    def scaled(self, length_factor: float, density_factor: float = 1.0) -> "MultiDrumColumn":
-        """The geometrically similar column: lengths x ``length_factor`` (lambda), density x
-        ``density_factor`` (gamma)."""
-        L = check_positive_scalar("scale", length_factor)
-        g = check_positive_scalar("density ratio", density_factor)
+    def scaled(self, factors) -> "MultiDrumColumn":
+        """The geometrically similar column: lengths x ``factors.length`` (lambda), density x
+        ``factors.density`` (gamma) (``factors``: a :class:`~blastscale.similitude.ScalingFactors`)."""
+        L = check_positive_scalar("scale", factors.length)
+        g = check_positive_scalar("density ratio", factors.density)
         return replace(
             self, height=self.height * L, base_width=self.base_width * L, top_width=self.top_width * L,
             density=self.density * g,

@@ -170,7 +170,7 @@ class Study:
                 timings["critical"] = time.perf_counter() - t0
                 step += 1
             _tell(progress, "done", total, total)
-            specimen = None if d is None else structure.scaled(d.scale, d.density_ratio)
+            specimen = None if d is None else structure.scaled(d.factors)
             partial = StudyResult(scenario=sc, structure=structure, model_structure=specimen, design=d, blast=blast,
                                   planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
                                   ensemble=results.get("ensemble"))

@@ -74,7 +74,7 @@ def _outcome_group(sc, W, R, e) -> dict:
     if not np.any(ok):
         return out
     proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
-    model = RockingSystem.from_block(structure.scaled(d.scale, d.density_ratio), sim.gravity_m_s2 * d.gravity_ratio)
+    model = RockingSystem.from_block(structure.scaled(d.factors), sim.gravity_m_s2 * d.gravity_ratio)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
     fp = first_swing_blast(proto.alpha, e, proto.frequency_parameter, proto.load_ratio_per_pascal,
                            d.prototype.select(ok), bl.pulse)
