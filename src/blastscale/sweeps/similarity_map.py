@@ -98,9 +98,9 @@ def similarity_map(
         Error below which an agreeing model counts as trustworthy (default
         :data:`DEFAULT_TOLERANCE`: 5e-4 rad planar, 0.05 relative 3D).
     run : callable, optional
-        ``run(spec) -> xarray.Dataset`` of the sweep's scalars (e.g. the resumable store of
-        :func:`blastscale.io.sweep_store.run_sweep`, on Dask); default :func:`.runner.run_in_memory`
-        in this process.
+        ``run(spec) -> xarray.DataTree``: the sweep's store (e.g. the resumable store of
+        :func:`blastscale.io.sweep_store.run_sweep` read back by ``open_sweep``, on Dask); default
+        :func:`.runner.run_in_memory` in this process.
 
     Returns
     -------
@@ -112,6 +112,7 @@ def similarity_map(
     import xarray as xr
 
     from .._validate import check_positive
+    from .layout import VALID_NAME, select
     from .runner import run_in_memory
     from .spec import SweepSpec
 
@@ -123,8 +124,11 @@ def similarity_map(
     src = (run or run_in_memory)(spec)
     out = xr.Dataset(coords={k: src[k] for k in MAP_FIELDS})
     for name, (key, unit) in ENGINE_VARIABLES[engine].items():
-        v = src[key] if key in src else xr.full_like(src["sweep.valid"], np.nan, dtype=float)
-        out[name] = v.assign_attrs(units=unit, source=key)
+        try:
+            v = select(src, key)
+        except KeyError:  # e.g. no case valid: the engine's group is empty
+            v = xr.full_like(src[VALID_NAME], np.nan, dtype=float)
+        out[name] = v.drop_attrs().assign_attrs(units=unit, source=key)
     valid = out["valid"].astype(bool)
     agree = out["outcomes_agree"].where(valid, False).astype(bool)
     out["peak_ratio_error"] = np.abs(out["peak_ratio"] - 1.0).assign_attrs(units="-")

@@ -108,8 +108,8 @@ class SweepSpec:
         all_paths = grid_paths + abs_paths + [p for p in rel_paths if p not in grid_paths]
         last = [p.split(".")[-1] for p in all_paths]
 
-        def name(p):
-            return p.split(".")[-1] if last.count(p.split(".")[-1]) == 1 else p
+        def name(p):  # an identifier: the field's own name, its whole path where two fields share it
+            return p.split(".")[-1] if last.count(p.split(".")[-1]) == 1 else p.replace(".", "_")
 
         axes = []
         for key, vals in vary.items():
