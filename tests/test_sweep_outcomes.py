@@ -145,3 +145,17 @@ def test_cli_outcomes_refuses_a_3d_scenario_in_one_line(tmp_path, capsys):
     assert e.value.code == 2 and len(err) == 1 and "outcome mode" in err[0]
     assert not (tmp_path / "x.zarr").exists()
 
+
+def test_cli_outcomes_refuses_a_prototype_only_scenario_in_one_line(tmp_path, capsys):
+    """The outcome mode compares the prototype with its specimen: without [scale] it has none."""
+    from blastscale.cli import main
+
+    data = BASE.to_dict()
+    data.pop("scale")
+    toml = tmp_path / "prototype.toml"
+    toml.write_text(Scenario.from_dict(data, source="test").to_toml())
+    with pytest.raises(SystemExit) as e:
+        main(["sweep", str(toml), "--vary", "charge_kg=30,60", "--out", str(tmp_path / "x.zarr"), "--outcomes"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert e.value.code == 2 and len(err) == 1 and "prototype-only" in err[0] and "outcome mode" in err[0]
+    assert not (tmp_path / "x.zarr").exists() and not (tmp_path / "x.zarr.parts").exists()

@@ -119,8 +119,11 @@ def similarity_map(
     if engine not in ENGINE_VARIABLES:
         raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINE_VARIABLES)}")
     tolerance = DEFAULT_TOLERANCE[engine] if tolerance is None else float(check_positive("tolerance", tolerance))
-    base = scenario.with_values({"engine": engine, "critical_charge": False})
-    spec = SweepSpec.build(base, dict(zip(MAP_FIELDS, (scales, density_ratios, charges, standoffs))))
+    grids = dict(zip(MAP_FIELDS, (scales, density_ratios, charges, standoffs)))
+    values = {"engine": engine, "critical_charge": False}
+    if scenario.scale is None:  # a prototype-only scenario: every case has its own scale (the map's axes)
+        values.update({k: np.atleast_1d(grids[k])[0] for k in ("length", "density_ratio")})
+    spec = SweepSpec.build(scenario.with_values(values), grids)
     src = (run or run_in_memory)(spec)
     out = xr.Dataset(coords={k: src[k] for k in MAP_FIELDS})
     for name, (key, unit) in ENGINE_VARIABLES[engine].items():

@@ -91,7 +91,7 @@ class SweepSpec:
         ------
         BlastscaleInputError
             Unknown or ambiguous field, a field given twice, an empty grid, samples < 1, outcome
-            mode on cases that are not planar blocks.
+            mode on cases that are not planar blocks or on a prototype-only scenario (no ``[scale]``).
         """
         vary, sample, relative = dict(vary or {}), dict(sample or {}), dict(relative or {})
         paths: dict[str, str] = {}
@@ -135,6 +135,10 @@ class SweepSpec:
                 base.with_values({sm.path: _scenario_value(base, sm.path) * x if sm.relative else x})
         for k in {0, spec.n_cases - 1}:
             spec.scenario(k)
+        if spec.outcomes and base.scale is None:
+            raise BlastscaleInputError(
+                "scale = none (a prototype-only scenario): the outcome mode compares the prototype with its "
+                "specimen; add a [scale] section, or drop --outcomes to run the Study per case (prototype only)")
         if spec.outcomes and not spec.planar_only:
             raise BlastscaleInputError(
                 f"simulation.engine = {base.simulation.engine!r}, structure.kind = {base.structure.kind!r}: the "
