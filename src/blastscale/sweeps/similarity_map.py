@@ -6,8 +6,8 @@ material (gamma) for a campaign of charges and stand-offs needs the whole pictur
 law matches the impulse only (paper Eq. 8), so the model is exact in the impulsive limit and
 departs from the prototype as the pulse lasts longer relative to the model's own time scale
 (``t_o p`` grows as the model shrinks: ``p ~ lambda^-1/2``), and near the overturning threshold a
-tiny energy difference can flip the outcome. The map runs one sweep (:mod:`.sweeps`: the planar
-batch path, or one 3D Study per case; on Dask when asked) and returns, per case:
+tiny energy difference can flip the outcome. The map runs one sweep (:mod:`.sweeps`: one planar
+or 3D Study per case; on Dask when asked) and returns, per case:
 
 * ``error``: planar, max |theta_model_up - theta_prototype| up to the earlier tipping point [rad]
   (the rocking phase; docs/rocking.md explains why the fall is compared on its phase instead);
@@ -92,7 +92,7 @@ def similarity_map(
     charges, standoffs : array_like
         Prototype charges [kg] and stand-offs [m].
     engine : {"planar", "3d"}
-        Planar rocking (a block; the batch path) or the 3D engine (any structure; one Study per
+        Planar rocking (a block; about 2 ms per case) or the 3D engine (any structure; one Study per
         case: use a coarse grid).
     tolerance : float, optional
         Error below which an agreeing model counts as trustworthy (default

@@ -230,7 +230,7 @@ class SweepSpec:
 
     @property
     def planar_only(self) -> bool:
-        """Whether every case takes the planar batch path (planar engine, block structure, and
+        """Whether every case is a planar block case (planar engine, block structure, and
         no varied or sampled field that changes that)."""
         try:
             return all(planar_case(self.scenario(k)) for k in {0, self.n_cases - 1}) and not any(
@@ -241,7 +241,7 @@ class SweepSpec:
 
 
 def planar_case(sc) -> bool:
-    """Whether a scenario is a planar block case (the planar batch path, the outcome mode)."""
+    """Whether a scenario is a planar block case (large chunks, the outcome mode)."""
     return sc.simulation.engine == "planar" and sc.structure.kind == "block"
 
 
