@@ -7,7 +7,7 @@
    of the stand-offs: seconds per case, their ratio, and the largest relative difference.
 2. **Planar cases per minute**: the compiled batch kernel alone (one 5 s simulation per case);
    ``run_sweep`` of a planar scenario (paper block, 5 s, 2001 samples, no critical charge; every
-   Study scalar: the Study-equivalent batch path) in this process, varying charge x stand-off (a
+   Study scalar: one Study per case) in this process, varying charge x stand-off (a
    design per case) and varying the restitution (one design); the outcome-only rate of the
    first-swing criterion (what ``fragility`` uses, prototype only); and the sweep **outcome
    mode** (``--outcomes``: prototype and model, overturned and largest rotation, a design per

@@ -82,3 +82,22 @@ def test_fragility_bad_input_one_line_exit_2(capsys, argv, word):
     assert e.value.code == 2
     err = capsys.readouterr().err
     assert word in err and len(err.strip().splitlines()) <= 2
+
+
+def test_prototype_only_fragility_through_the_cli_equals_the_scaled_scenarios(tmp_path, capsys):
+    """A scenario without [scale] (the monument alone): fragility needs no specimen, and gives the
+    same counts as the same prototype with a [scale] section (the first swing of the prototype
+    does not depend on the specimen)."""
+    data = BASE.to_dict()
+    data.pop("scale")
+    outs = []
+    for name, sc in (("scaled", BASE), ("prototype", Scenario.from_dict(data, source="test: no [scale]"))):
+        toml = tmp_path / f"{name}.toml"
+        toml.write_text(sc.to_toml())
+        with pytest.raises(SystemExit) as e:
+            main(["fragility", str(toml), "--charges", "50:130:5:log", "--lognormal", "charge_kg=0.2", "--uniform",
+                  "restitution=0.5:0.9", "--samples", "200", "--seed", "5", "--json"])
+        assert e.value.code in (0, None)
+        outs.append(json.loads(capsys.readouterr().out))
+    assert outs[1]["overturned"] == outs[0]["overturned"] and outs[1]["median_charge_kg"] == outs[0]["median_charge_kg"]
+    assert 0 < outs[1]["overturned"][2] < 200

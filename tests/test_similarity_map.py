@@ -55,3 +55,22 @@ def test_3d_map_on_a_coarse_grid():
     assert ds.attrs["engine"] == "3d" and ds.attrs["error_units"] == "-"
     assert bool(ds["valid"]) and bool(ds["outcomes_agree"])
     assert 0.0 <= float(ds["error"]) < 0.05 and bool(ds["trustworthy"])
+
+
+def test_map_through_a_store_and_of_a_prototype_only_scenario(tmp_path, capsys):
+    """--out (the resumable store, read back as its tree) gives the JSON of the in-memory run; a
+    scenario without [scale] maps the same (every case sets its own lambda and gamma)."""
+    data = BASE.to_dict()
+    data.pop("scale")
+    outs = []
+    for sc, extra in ((BASE, []), (BASE, ["--out", str(tmp_path / "m.zarr")]),
+                      (Scenario.from_dict(data, source="test: no [scale]"), [])):
+        toml = tmp_path / "s.toml"
+        toml.write_text(sc.to_toml())
+        with pytest.raises(SystemExit) as e:
+            main(["similarity-map", str(toml), "--scales", "0.01,0.1", "--density-ratios", "1", "--charges", "50",
+                  "--standoffs", "2", "--json", *extra])
+        assert e.value.code in (0, None)
+        outs.append(json.loads(capsys.readouterr().out))
+    assert outs[0] == outs[1] == outs[2] and outs[0]["n_valid"] == 2
+    assert (tmp_path / "m.zarr" / ".zmetadata").exists()

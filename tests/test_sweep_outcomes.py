@@ -20,8 +20,8 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.io.sweep_store import run_sweep
-from blastscale.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, study_scalars
+from blastscale.io.sweep_store import open_sweep, run_sweep
+from blastscale.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, select, store_location, study_scalars
 from blastscale.blast import blast_parameters
 from blastscale.scenario import Scenario
 from blastscale.rocking import RockingSystem, critical_charge, first_swing, simulate
@@ -119,12 +119,16 @@ def test_outcome_sweep_is_independent_of_chunking_and_refuses_other_engines(tmp_
     stores = []
     for chunk in (7, 70):
         run_sweep(spec, tmp_path / f"c{chunk}.zarr", workers=0, chunk=chunk)
-        stores.append(__import__("xarray").open_zarr(tmp_path / f"c{chunk}.zarr", consolidated=False).load())
-    assert stores[0].equals(stores[1])  # values and coordinates (the attributes carry the chunk size)
+        stores.append(open_sweep(tmp_path / f"c{chunk}.zarr"))
+    assert stores[0].equals(stores[1])  # values and coordinates (the root attributes carry the chunk size)
+    assert stores[0]["design"].attrs == stores[1]["design"].attrs  # the constants
     whole = planar_outcomes(spec, 0, spec.n_cases)
     for k in OUTCOME_KEYS:
-        assert np.array_equal(stores[0][k].values.ravel(), whole[k], equal_nan=True)
-    assert set(stores[0].data_vars) == set(OUTCOME_KEYS)
+        assert np.array_equal(select(stores[0], k).values.ravel(), whole[k], equal_nan=True)
+    held = {(n.path.strip("/"), v) for n in stores[0].subtree for v in n.data_vars} | \
+        {("design", a) for a in stores[0]["design"].attrs if not a.endswith("_units")}
+    assert held == {store_location(k)[:2] for k in OUTCOME_KEYS}
+    assert stores[0]["planar"]["overturned"].dims == ("charge_kg", "height_m", "sample", "system")
     assert "outcomes" not in SweepSpec.build(BASE, {"charge_kg": [30.0]}).describe()  # old fingerprints hold
     with pytest.raises(BlastscaleInputError, match="outcome mode takes planar block cases only"):
         SweepSpec.build(BASE.with_values({"engine": "both"}), {"charge_kg": [30.0]}, outcomes=True)
@@ -140,3 +144,18 @@ def test_cli_outcomes_refuses_a_3d_scenario_in_one_line(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert e.value.code == 2 and len(err) == 1 and "outcome mode" in err[0]
     assert not (tmp_path / "x.zarr").exists()
+
+
+def test_cli_outcomes_refuses_a_prototype_only_scenario_in_one_line(tmp_path, capsys):
+    """The outcome mode compares the prototype with its specimen: without [scale] it has none."""
+    from blastscale.cli import main
+
+    data = BASE.to_dict()
+    data.pop("scale")
+    toml = tmp_path / "prototype.toml"
+    toml.write_text(Scenario.from_dict(data, source="test").to_toml())
+    with pytest.raises(SystemExit) as e:
+        main(["sweep", str(toml), "--vary", "charge_kg=30,60", "--out", str(tmp_path / "x.zarr"), "--outcomes"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert e.value.code == 2 and len(err) == 1 and "prototype-only" in err[0] and "outcome mode" in err[0]
+    assert not (tmp_path / "x.zarr").exists() and not (tmp_path / "x.zarr.parts").exists()

@@ -22,8 +22,8 @@ pytest.importorskip("distributed")
 import xarray as xr  # noqa: E402
 
 from blastscale.sweeps.grids import parse_distribution  # noqa: E402
-from blastscale.io.sweep_store import run_sweep  # noqa: E402
-from blastscale.sweeps import SweepSpec, study_scalars  # noqa: E402
+from blastscale.io.sweep_store import open_sweep, run_sweep  # noqa: E402
+from blastscale.sweeps import SweepSpec, select, store_location, study_scalars  # noqa: E402
 from blastscale.cli import main  # noqa: E402
 from blastscale.scenario import Scenario  # noqa: E402
 
@@ -46,19 +46,47 @@ def test_a_case_the_study_refuses_is_marked_invalid_not_fatal():
     assert got[0] == {"sweep.valid": False} and got[1]["sweep.valid"] is True
 
 
-def sweep_store_values(path) -> dict:
-    ds = xr.open_zarr(path, consolidated=False)
-    return {k: ds[k].values for k in ds.data_vars}, ds
+def store_contents(tree) -> dict:
+    """Everything a store holds, root attributes aside (they carry the chunk size and the time):
+    (group, name) -> values, for data variables and coordinates ("var") and group attributes
+    (the constants, "attr")."""
+    out = {}
+    for node in tree.subtree:
+        for name, v in node.to_dataset(inherit=False).variables.items():
+            out[(node.path, name, "var")] = v.values
+        if node.path != "/":
+            for name, v in node.attrs.items():
+                out[(node.path, name, "attr")] = v
+    return out
+
+
+def stored_names(tree) -> set:
+    """(group, name) of every data variable and constant (``NAME_units`` aside) of a store."""
+    out = set()
+    for node in tree.subtree:
+        group = node.path.strip("/")
+        out |= {(group, n) for n in node.data_vars}
+        if group:
+            out |= {(group, n) for n in node.attrs if not n.endswith("_units")}
+    return out
 
 
 def assert_store_equals_loop(path, spec):
-    vals, ds = sweep_store_values(path)
-    assert tuple(ds.sizes[d] for d in spec.dims) == spec.shape
+    tree = open_sweep(path)
+    assert tuple(tree.sizes[d] for d in spec.dims) == spec.shape
+    places = set()
     for k in range(spec.n_cases):
         want = study_scalars(spec.scenario(k))  # the plain serial loop: one Study per case
         idx = np.unravel_index(k, spec.shape)
         for key, v in want.items():
-            assert same(vals[key][idx].item(), v), (k, key)
+            loc = store_location(key)
+            if loc is None:  # a part that did not run (prototype only, an engine not asked for): a NaN marker
+                assert math.isnan(v), key
+                continue
+            places.add((loc.group, loc.name))
+            assert same(select(tree, key).values[idx].item(), v), (k, key)
+    assert stored_names(tree) == places  # and nothing else
+    return tree
 
 
 def test_sweep_equals_the_serial_loop_with_monte_carlo(tmp_path):
@@ -66,11 +94,16 @@ def test_sweep_equals_the_serial_loop_with_monte_carlo(tmp_path):
                            samples=3, seed=7)
     run = run_sweep(spec, tmp_path / "s.zarr", workers=0, chunk=4)
     assert run.chunks_run == 2 and spec.dims == ("charge_kg", "sample")
-    assert_store_equals_loop(tmp_path / "s.zarr", spec)
-    _, ds = sweep_store_values(tmp_path / "s.zarr")
-    r = ds["restitution"].values  # the draws: coordinate on `sample`, the same at every charge
+    tree = assert_store_equals_loop(tmp_path / "s.zarr", spec)
+    r = tree["restitution"].values  # the draws: coordinate on `sample`, the same at every charge
     assert r.shape == (3,) and np.all((r >= 0.3) & (r <= 0.9))
-    assert ds["charge_kg"].attrs["units"] == "kg"
+    assert tree["charge_kg"].attrs["units"] == "kg"
+    # the layout: prototype and model on `system`, constants of the design once, as attributes
+    assert tree["planar"]["max_angle"].dims == ("charge_kg", "sample", "system")
+    assert list(tree["planar"]["system"].values) == ["prototype", "model"]
+    assert tree["planar"]["max_angle"].attrs == {"units": "rad", "long_name": "max angle (planar rocking)"}
+    assert tree["design"].attrs["scale"] == 0.005 and tree["design"].attrs["scale_units"] == "1"
+    assert "model_charge" in tree["design"].data_vars  # varies with the charge
     # a second run finds the finished store and does nothing
     assert run_sweep(spec, tmp_path / "s.zarr", workers=0).chunks_run == 0
 
@@ -126,8 +159,7 @@ def run_cli(capsys, *argv) -> dict:
 
 
 def assert_same_stores(a, b):
-    va, _ = sweep_store_values(a)
-    vb, _ = sweep_store_values(b)
+    va, vb = store_contents(open_sweep(a)), store_contents(open_sweep(b))
     assert va.keys() == vb.keys()
     for k in va:
         np.testing.assert_array_equal(va[k], vb[k])  # bit for bit (NaN where both NaN)
@@ -244,3 +276,148 @@ def test_one_friedlander_decay_is_the_array_bisection_bit_for_bit():
         whole = friedlander_decay(P, t, k * P * t)
         one = np.array([friedlander_decay(P[j], t[j], k[j] * P[j] * t[j]) for j in range(k.size)])
     assert np.array_equal(one, whole)
+
+
+# -- the store's layout -------------------------------------------------------------------------
+
+@pytest.mark.parametrize("key, group, name, labels, units", [
+    ("sweep.valid", "", "valid", (), "1"),
+    ("planar.prototype.max_angle_rad", "planar", "max_angle", (("system", "prototype"),), "rad"),
+    ("planar.similarity.peak_ratio", "planar", "peak_ratio", (), "1"),
+    ("planar.similarity.max_abs_angular_velocity_diff_rad_s", "planar", "max_abs_angular_velocity_diff", (), "rad/s"),
+    ("3d.model.points.P-10.max_velocity_m_s", "sim3d", "max_velocity", (("system", "model"), ("point", "P-10")), "m/s"),
+    ("3d.prototype.delivered_impulse_Ns.1", "sim3d", "delivered_impulse", (("system", "prototype"), ("component", "y")),
+     "N s"),
+    ("3d.similarity.points.P-2.max_abs_displacement_diff_rel_peak", "sim3d", "max_abs_displacement_diff_rel_peak",
+     (("point", "P-2"),), "1"),  # _rel_peak is part of the meaning, not a unit: kept
+    ("3d.similarity.max_abs_top_displacement_diff_m", "sim3d", "max_abs_top_displacement_diff", (), "m"),
+    ("3d.similarity.time_compared_s.1", "sim3d", "time_compared", (("bound", "end"),), "s"),
+    ("experiment.model.drum_heights_m.3", "experiment", "drum_heights", (("system", "model"), ("drum", 3)), "m"),
+    ("experiment.density_ratio", "experiment", "density_ratio", (), "1"),
+    ("design.prototype.reflected_impulse_Pa_s", "design", "reflected_impulse", (("system", "prototype"),), "Pa s"),
+    ("design.model.shock_front_velocity_m_s", "design", "shock_front_velocity", (("system", "model"),), "m/s"),
+    ("design.model.scaled_distance_m_per_kg13", "design", "scaled_distance", (("system", "model"),), "m/kg^(1/3)"),
+    ("design.model_charge_kg", "design", "model_charge", (), "kg"),
+    ("design.factors.scaled_distance", "design/factors", "scaled_distance", (), "1"),
+    ("design.impulsive.model_to_p", "design/impulsive", "model_to_p", (), "1"),
+    ("critical.critical_charge_kg", "critical", "critical_charge", (), "kg"),
+    ("ensemble.points.P-1.horizon_model_s", "ensemble", "horizon_model", (("point", "P-1"),), "s"),
+])
+def test_store_location_of_each_kind_of_key(key, group, name, labels, units):
+    loc = store_location(key)
+    assert (loc.group, loc.name, loc.labels, loc.units) == (group, name, labels, units)
+    assert loc.long_name and loc.name.isidentifier()
+
+
+def test_placeholders_have_no_place_and_unknown_sections_are_refused():
+    for key in ("design", "3d", "ensemble", "planar.model", "planar.similarity", "experiment.model", "3d.similarity"):
+        assert store_location(key) is None
+    with pytest.raises(ValueError, match="section"):
+        store_location("nonsense.max_angle_rad")
+
+
+def test_store_locations_are_one_to_one_over_every_study_key():
+    """Every scalar key of real Studies (a column in 3D, a block with both engines and an ensemble,
+    a prototype-only block, the outcome mode) has its own place: no two keys meet."""
+    from blastscale.scenario import load_scenario
+    from blastscale.sweeps import OUTCOME_KEYS
+
+    keys = set(OUTCOME_KEYS)
+    for sc in (load_scenario("paper_column_square_250kg").with_values({"duration_s": 0.2, "critical_charge": False}),
+               Scenario.default().with_values({"engine": "both", "duration_s": 0.3, "samples": 101, "ensemble_members": 2}),
+               prototype_only(BASE)):
+        keys |= set(study_scalars(sc))
+    places = {}
+    for k in keys:
+        loc = store_location(k)
+        if loc is not None:
+            assert places.setdefault(loc[:3], k) == k, (k, places[loc[:3]])
+    assert len(places) > 300
+
+
+#: Units by key suffix, written out here as the oracle (independent of blastscale.units).
+UNIT_ORACLE = (("_rel_peak", "1"), ("_m_per_kg13", "m/kg^(1/3)"), ("_kg_m3", "kg/m^3"), ("_rad_s", "rad/s"),
+               ("_m_s", "m/s"), ("_Pa_s", "Pa s"), ("_N_s", "N s"), ("_Ns", "N s"), ("_Pa", "Pa"),
+               ("_rad", "rad"), ("_kg", "kg"), ("_m", "m"), ("_s", "s"))
+
+
+def oracle_unit(key: str) -> str:
+    leaf = [p for p in key.split(".") if not p.isdigit()][-1]
+    return next((u for suffix, u in UNIT_ORACLE if leaf.endswith(suffix)), "1")
+
+
+def prototype_only(scenario):
+    data = scenario.to_dict()
+    data.pop("scale")
+    return Scenario.from_dict(data, source="test: no [scale]")
+
+
+def assert_xarray_ready(path, keys) -> "xr.DataTree":
+    """Opened with no warning (consolidated metadata); every variable and coordinate an identifier
+    with units and a long name; every constant an identifier with its units; each flat key's
+    units those of its suffix."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        tree = xr.open_datatree(path, engine="zarr")
+        xr.open_zarr(path)  # the root alone, as a Dataset
+    for node in tree.subtree:
+        for name, v in node.to_dataset(inherit=False).variables.items():
+            assert name.isidentifier() and v.attrs.get("units") and v.attrs.get("long_name"), (node.path, name)
+        consts = [a for a in node.attrs if not a.endswith("_units")] if node.path != "/" else []
+        assert all(a.isidentifier() and f"{a}_units" in node.attrs for a in consts), node.path
+    for key in keys:
+        loc = store_location(key)
+        if loc is None:
+            continue
+        node = tree[loc.group] if loc.group else tree
+        got = node[loc.name].attrs["units"] if loc.name in node.data_vars else node.attrs[f"{loc.name}_units"]
+        assert got == oracle_unit(key), (key, got)
+    return tree
+
+
+def test_every_store_is_xarray_ready_with_the_right_units(tmp_path):
+    """The Study path (a column in 3D: points, drums), a block with engine both and an ensemble,
+    and the outcome mode: velocities m/s, specific impulse Pa s, momentum N s, lengths m, times s,
+    angles rad, ratios 1, on every variable and constant."""
+    from blastscale.scenario import load_scenario
+    from blastscale.sweeps import OUTCOME_KEYS
+
+    column = load_scenario("paper_column_square_250kg").with_values({"duration_s": 0.2, "critical_charge": False})
+    both = Scenario.default().with_values({"engine": "both", "duration_s": 0.3, "samples": 101, "ensemble_members": 2,
+                                           "critical_charge": False})
+    for label, spec in (("column", SweepSpec.build(column, {"charge_kg": [200.0, 250.0]})),
+                        ("both", SweepSpec.build(both, {"standoff_m": [2.0, 3.0]})),
+                        ("outcomes", SweepSpec.build(BASE, {"charge_kg": [40.0, 90.0]}, outcomes=True))):
+        run_sweep(spec, tmp_path / f"{label}.zarr", workers=0)
+        keys = OUTCOME_KEYS if spec.outcomes else study_scalars(spec.scenario(0))
+        tree = assert_xarray_ready(tmp_path / f"{label}.zarr", keys)
+        if label == "column":
+            sim = tree["sim3d"]
+            assert sim["max_velocity"].attrs["units"] == "m/s" and sim["max_velocity"].dims[-1] == "point"
+            assert list(sim["point"].values) == [f"P-{i}" for i in range(1, 11)]  # natural order
+            assert sim["delivered_impulse"].attrs["units"] == "N s" and list(sim["component"].values) == ["x", "y", "z"]
+            assert len(tree["experiment"].attrs["drum_heights"]["model"]) == 10  # constant: stored once
+            assert tree["design"]["reflected_impulse"].attrs["units"] == "Pa s"
+        if label == "both":
+            assert tree["ensemble"]["first_peak_ratio"].dims == ("standoff_m", "point")
+            assert tree["design"].attrs["shock_front_velocity_units"] == "m/s"
+            assert set(tree.children) == {"experiment", "design", "planar", "sim3d", "ensemble"}
+
+
+def test_prototype_only_sweep_through_the_cli_holds_the_prototype_alone(tmp_path, capsys):
+    """A scenario without [scale]: the Study runs the prototype alone; the store has no design
+    group and no model on `system`, and equals the plain loop of Studies."""
+    toml = tmp_path / "prototype.toml"
+    toml.write_text(prototype_only(BASE).to_toml())
+    out = run_cli(capsys, "sweep", str(toml), "--vary", "charge_kg=40,120", "--out", str(tmp_path / "p.zarr"),
+                  "--workers", "0", "--json")
+    assert out["n_cases"] == 2 and out["chunks_run"] >= 1
+    spec = SweepSpec.build(prototype_only(BASE), {"charge_kg": [40.0, 120.0]})
+    tree = assert_store_equals_loop(tmp_path / "p.zarr", spec)
+    assert set(tree.children) == {"experiment", "planar", "critical"}
+    for group in ("experiment", "planar"):
+        assert list(tree[group]["system"].values) == ["prototype"]
+    assert list(tree["planar"]["overturned"].sel(system="prototype").values) == [False, True]
+    assert_xarray_ready(tmp_path / "p.zarr", study_scalars(spec.scenario(0)))

@@ -11,6 +11,8 @@ prototype).
 ('m/s', 'Pa s', '1')
 >>> dimension_of("delivered_impulse_Ns"), dimension_of("outcomes_agree")
 ('momentum', None)
+>>> unit_of("scaled_distance_m_per_kg13")
+'m/kg^(1/3)'
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ class Suffix(NamedTuple):
 #: Unit suffixes, longest first (``_m_s`` before ``_s``, ``_Pa_s`` before ``_Pa`` and ``_s``).
 SUFFIXES: tuple[Suffix, ...] = (
     Suffix("_rel_peak", "1", "dimensionless"),  # a difference as a fraction of the prototype's peak
+    Suffix("_m_per_kg13", "m/kg^(1/3)", "scaled_distance"),  # Hopkinson-Cranz scaled distance Z = R / W^(1/3)
     Suffix("_kg_m3", "kg/m^3", "density"),
     Suffix("_kg_m2", "kg m^2", "inertia"),
     Suffix("_rad_s2", "rad/s^2", "angular_acceleration"),

@@ -71,9 +71,11 @@ def sweep_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Run the Study for every case of a grid (and Monte Carlo samples) of scenario fields and
-    store its scalar results in a Zarr store (coordinates named after the fields). A sweep
-    killed and run again skips the chunks already done. With --outcomes (planar blocks): only
-    the first-swing outcomes and largest rotations, about a million cases per minute."""
+    store its scalar results in a Zarr store: an xarray DataTree, a group per engine (dimensions
+    named after the fields, then system, point, component). A sweep killed and run again skips
+    the chunks already done. A scenario without \\[scale]: the prototype alone. With --outcomes
+    (planar blocks, a \\[scale]): only the first-swing outcomes and largest rotations, about a
+    million cases per minute."""
     from ..sweeps.grids import parse_distribution, parse_grid
     from ..io.sweep_store import run_sweep
     from ..sweeps import SweepSpec
@@ -181,7 +183,7 @@ def similarity_map_cmd(
     density_ratios: str = typer.Option("0.1,0.3,1,3", "--density-ratios", help="gamma values \\[-]."),
     charges: str = typer.Option("50,100", "--charges", help="Prototype charges W \\[kg TNT]."),
     standoffs: str = typer.Option("2,4", "--standoffs", help="Prototype stand-offs R \\[m]."),
-    engine: str = typer.Option("planar", "--engine", help="planar (rocking, batch path) or 3d (MuJoCo, one Study per case: a coarse grid)."),
+    engine: str = typer.Option("planar", "--engine", help="planar (rocking, ~2 ms per case) or 3d (MuJoCo, one Study per case: a coarse grid)."),
     tolerance: Optional[float] = typer.Option(None, "--tolerance", help="Error below which an agreeing model is trustworthy (default 5e-4 rad planar, 0.05 relative 3D)."),
     out: Optional[Path] = typer.Option(None, "--out", help="Zarr store of the underlying sweep (resumable)."),
     scheduler: Optional[str] = SCHEDULER,

@@ -1,7 +1,9 @@
 """The resumable Zarr store of a sweep: finished chunks wait in ``STORE.parts/`` (one ``.npz`` per
 chunk, written atomically, with the sweep's fingerprint in ``sweep.json``); a sweep killed and run
 again skips the chunks already there; at the end they are consolidated into the store (written
-to ``STORE.tmp`` and renamed into place)."""
+to ``STORE.tmp`` and renamed into place): an ``xarray.DataTree`` (a group per engine or section,
+:mod:`blastscale.sweeps.dataset`) in Zarr format 2 with consolidated metadata, so that
+``xarray.open_datatree(STORE, engine="zarr")`` opens it without a warning."""
 
 from __future__ import annotations
 
@@ -18,7 +20,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 from ..sweeps.runner import SweepRun, default_chunk, run_chunks
-from ..sweeps.dataset import assemble, metadata
+from ..sweeps.dataset import STORE_VERSION, assemble, metadata
 from ..sweeps.spec import SweepSpec
 
 __all__ = ["run_sweep", "open_sweep"]
@@ -47,11 +49,13 @@ def _read_chunk(path: Path) -> dict:
 
 def _consolidate(spec: SweepSpec, parts: Path, n_chunks: int, store: Path, meta: dict) -> None:
     """The chunks in ``parts`` assembled into the store (written to ``STORE.tmp``, renamed into place)."""
-    ds = assemble(spec, (_read_chunk(_chunk_path(parts, i)) for i in range(n_chunks)), meta)
+    tree = assemble(spec, (_read_chunk(_chunk_path(parts, i)) for i in range(n_chunks)), meta)
     tmp = store.with_name(store.name + ".tmp")
     if tmp.exists():
         shutil.rmtree(tmp)
-    ds.to_zarr(tmp, mode="w", consolidated=False)
+    # Zarr format 2: its consolidated metadata (.zmetadata) is part of the format (zarr 3 warns that
+    # format 3's is not yet), so a reader opens the whole tree with one read and no warning
+    tree.to_zarr(tmp, mode="w", consolidated=True, zarr_format=2)
     if store.exists():
         shutil.rmtree(store)
     os.replace(tmp, store)
@@ -153,14 +157,28 @@ def _store_fingerprint(store: Path) -> Optional[str]:
     try:
         import zarr
 
-        return zarr.open_group(str(store), mode="r").attrs.get("fingerprint")
+        attrs = zarr.open_group(str(store), mode="r").attrs
+        # a store of an older layout (one flat dataset) is not this sweep's finished store
+        return attrs.get("fingerprint") if attrs.get("store_version") == STORE_VERSION else None
     except Exception:  # not a zarr store (or unreadable): treated as foreign
         return None
 
 
 def open_sweep(store):
-    """A sweep store read back into memory (``xarray.Dataset``)."""
+    """A sweep store read back into memory.
+
+    Parameters
+    ----------
+    store : str or path
+        The Zarr store written by :func:`run_sweep`.
+
+    Returns
+    -------
+    xarray.DataTree
+        The groups of :mod:`blastscale.sweeps.dataset`; a flat key's values over the case grid:
+        :func:`blastscale.sweeps.layout.select`.
+    """
     import xarray as xr
 
-    return xr.open_zarr(Path(store), consolidated=False).load()
+    return xr.open_datatree(Path(store), engine="zarr", consolidated=True).load()
 

@@ -4,10 +4,11 @@ fragility curves; the similarity map. Above the Study: every case is a Study (do
 
 from .cases import VALID_KEY, evaluate_chunk, study_scalars
 from .grids import Distribution, parse_distribution, parse_grid
+from .layout import StoreLocation, select, store_location
 from .outcomes import OUTCOME_KEYS, planar_outcomes
 from .runner import SweepRun, default_chunk, run_chunks
 from .spec import SweepAxis, SweepSample, SweepSpec
 
 __all__ = ["VALID_KEY", "OUTCOME_KEYS", "SweepAxis", "SweepSample", "SweepSpec", "SweepRun",
            "Distribution", "parse_distribution", "parse_grid", "evaluate_chunk", "planar_outcomes",
-           "study_scalars", "default_chunk", "run_chunks"]
+           "study_scalars", "default_chunk", "run_chunks", "StoreLocation", "store_location", "select"]

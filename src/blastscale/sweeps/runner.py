@@ -136,8 +136,9 @@ def payload_hash(payload: dict) -> str:
 
 def run_in_memory(spec: SweepSpec, *, scheduler: Optional[str] = None, workers: int = 0,
                   chunk: Optional[int] = None, progress: Optional[Callable[[int, int], None]] = None):
-    """Run every case of a sweep and return its dataset (:func:`.dataset.assemble`), keeping the
-    chunks in memory (nothing written, nothing resumable: for small sweeps and maps).
+    """Run every case of a sweep and return its tree (:func:`.dataset.assemble`: the layout of a
+    sweep store), keeping the chunks in memory (nothing written, nothing resumable: for small
+    sweeps and maps).
 
     Parameters
     ----------
@@ -151,7 +152,7 @@ def run_in_memory(spec: SweepSpec, *, scheduler: Optional[str] = None, workers: 
 
     Returns
     -------
-    xarray.Dataset
+    xarray.DataTree
     """
     from .dataset import assemble, metadata
 

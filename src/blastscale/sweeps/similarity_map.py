@@ -6,8 +6,8 @@ material (gamma) for a campaign of charges and stand-offs needs the whole pictur
 law matches the impulse only (paper Eq. 8), so the model is exact in the impulsive limit and
 departs from the prototype as the pulse lasts longer relative to the model's own time scale
 (``t_o p`` grows as the model shrinks: ``p ~ lambda^-1/2``), and near the overturning threshold a
-tiny energy difference can flip the outcome. The map runs one sweep (:mod:`.sweeps`: the planar
-batch path, or one 3D Study per case; on Dask when asked) and returns, per case:
+tiny energy difference can flip the outcome. The map runs one sweep (:mod:`.sweeps`: one planar
+or 3D Study per case; on Dask when asked) and returns, per case:
 
 * ``error``: planar, max |theta_model_up - theta_prototype| up to the earlier tipping point [rad]
   (the rocking phase; docs/rocking.md explains why the fall is compared on its phase instead);
@@ -92,15 +92,15 @@ def similarity_map(
     charges, standoffs : array_like
         Prototype charges [kg] and stand-offs [m].
     engine : {"planar", "3d"}
-        Planar rocking (a block; the batch path) or the 3D engine (any structure; one Study per
+        Planar rocking (a block; about 2 ms per case) or the 3D engine (any structure; one Study per
         case: use a coarse grid).
     tolerance : float, optional
         Error below which an agreeing model counts as trustworthy (default
         :data:`DEFAULT_TOLERANCE`: 5e-4 rad planar, 0.05 relative 3D).
     run : callable, optional
-        ``run(spec) -> xarray.Dataset`` of the sweep's scalars (e.g. the resumable store of
-        :func:`blastscale.io.sweep_store.run_sweep`, on Dask); default :func:`.runner.run_in_memory`
-        in this process.
+        ``run(spec) -> xarray.DataTree``: the sweep's store (e.g. the resumable store of
+        :func:`blastscale.io.sweep_store.run_sweep` read back by ``open_sweep``, on Dask); default
+        :func:`.runner.run_in_memory` in this process.
 
     Returns
     -------
@@ -112,19 +112,26 @@ def similarity_map(
     import xarray as xr
 
     from .._validate import check_positive
+    from .layout import VALID_NAME, select
     from .runner import run_in_memory
     from .spec import SweepSpec
 
     if engine not in ENGINE_VARIABLES:
         raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINE_VARIABLES)}")
     tolerance = DEFAULT_TOLERANCE[engine] if tolerance is None else float(check_positive("tolerance", tolerance))
-    base = scenario.with_values({"engine": engine, "critical_charge": False})
-    spec = SweepSpec.build(base, dict(zip(MAP_FIELDS, (scales, density_ratios, charges, standoffs))))
+    grids = dict(zip(MAP_FIELDS, (scales, density_ratios, charges, standoffs)))
+    values = {"engine": engine, "critical_charge": False}
+    if scenario.scale is None:  # a prototype-only scenario: every case has its own scale (the map's axes)
+        values.update({k: np.atleast_1d(grids[k])[0] for k in ("length", "density_ratio")})
+    spec = SweepSpec.build(scenario.with_values(values), grids)
     src = (run or run_in_memory)(spec)
     out = xr.Dataset(coords={k: src[k] for k in MAP_FIELDS})
     for name, (key, unit) in ENGINE_VARIABLES[engine].items():
-        v = src[key] if key in src else xr.full_like(src["sweep.valid"], np.nan, dtype=float)
-        out[name] = v.assign_attrs(units=unit, source=key)
+        try:
+            v = select(src, key)
+        except KeyError:  # e.g. no case valid: the engine's group is empty
+            v = xr.full_like(src[VALID_NAME], np.nan, dtype=float)
+        out[name] = v.drop_attrs().assign_attrs(units=unit, source=key)
     valid = out["valid"].astype(bool)
     agree = out["outcomes_agree"].where(valid, False).astype(bool)
     out["peak_ratio_error"] = np.abs(out["peak_ratio"] - 1.0).assign_attrs(units="-")

@@ -91,7 +91,7 @@ class SweepSpec:
         ------
         BlastscaleInputError
             Unknown or ambiguous field, a field given twice, an empty grid, samples < 1, outcome
-            mode on cases that are not planar blocks.
+            mode on cases that are not planar blocks or on a prototype-only scenario (no ``[scale]``).
         """
         vary, sample, relative = dict(vary or {}), dict(sample or {}), dict(relative or {})
         paths: dict[str, str] = {}
@@ -108,8 +108,8 @@ class SweepSpec:
         all_paths = grid_paths + abs_paths + [p for p in rel_paths if p not in grid_paths]
         last = [p.split(".")[-1] for p in all_paths]
 
-        def name(p):
-            return p.split(".")[-1] if last.count(p.split(".")[-1]) == 1 else p
+        def name(p):  # an identifier: the field's own name, its whole path where two fields share it
+            return p.split(".")[-1] if last.count(p.split(".")[-1]) == 1 else p.replace(".", "_")
 
         axes = []
         for key, vals in vary.items():
@@ -135,6 +135,10 @@ class SweepSpec:
                 base.with_values({sm.path: _scenario_value(base, sm.path) * x if sm.relative else x})
         for k in {0, spec.n_cases - 1}:
             spec.scenario(k)
+        if spec.outcomes and base.scale is None:
+            raise BlastscaleInputError(
+                "scale = none (a prototype-only scenario): the outcome mode compares the prototype with its "
+                "specimen; add a [scale] section, or drop --outcomes to run the Study per case (prototype only)")
         if spec.outcomes and not spec.planar_only:
             raise BlastscaleInputError(
                 f"simulation.engine = {base.simulation.engine!r}, structure.kind = {base.structure.kind!r}: the "
@@ -226,7 +230,7 @@ class SweepSpec:
 
     @property
     def planar_only(self) -> bool:
-        """Whether every case takes the planar batch path (planar engine, block structure, and
+        """Whether every case is a planar block case (planar engine, block structure, and
         no varied or sampled field that changes that)."""
         try:
             return all(planar_case(self.scenario(k)) for k in {0, self.n_cases - 1}) and not any(
@@ -237,7 +241,7 @@ class SweepSpec:
 
 
 def planar_case(sc) -> bool:
-    """Whether a scenario is a planar block case (the planar batch path, the outcome mode)."""
+    """Whether a scenario is a planar block case (large chunks, the outcome mode)."""
     return sc.simulation.engine == "planar" and sc.structure.kind == "block"
 
 
