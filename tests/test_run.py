@@ -158,3 +158,23 @@ def test_output_folder_leaves_nothing_when_writing_fails(tmp_path, exc):
             (tmp / "summary.json").write_text("{}")
             raise exc
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_scenario_without_scale_runs_the_prototype_alone(capsys, tmp_path):
+    """Issue #14: [scale] is optional. Without it there is no design and no comparison: the summary
+    says so (design, model and similarity null), the histories hold the prototype only, and the
+    report says it is a prototype-only study."""
+    path = tmp_path / "proto.toml"
+    path.write_text('title = "prototype only"\n[structure]\nkind = "block"\n[blast]\ncharge_kg = 50.0\n'
+                    'standoff_m = 2.0\n[simulation]\nengine = "planar"\nduration_s = 1.0\n')
+    out_dir = tmp_path / "out"
+    code, out, err = run_cli(capsys, "run", str(path), "--out", str(out_dir), "--json")
+    assert code == 0, err
+    s = json.loads(out)
+    assert s["design"] is None and s["experiment"]["model"] is None
+    assert s["planar"]["model"] is None and s["planar"]["similarity"] is None
+    assert s["planar"]["prototype"]["max_angle_rad"] > 0 and s["critical"]["critical_charge_kg"] > 50
+    tree = xr.open_datatree(out_dir / "histories.nc")
+    assert list(tree["planar"]["system"].values) == ["prototype"]
+    html = (out_dir / "report.html").read_text()
+    assert "Prototype only" in html and "<th>model (up-scaled)</th>" not in html

@@ -180,3 +180,36 @@ def test_example_scenarios_validate(path):
     assert sc.title
     assert load_scenario(path) == Scenario.from_dict(tomllib.loads(_to_toml(sc.model_dump(mode="json",
                                                                                            exclude_none=True))))
+
+
+def test_contact_ranges_are_the_engines_own():
+    """[simulation.contact] takes its bounds from sim3d.contact.SETTING_RANGES: a value just outside an
+    end is refused by the scenario and by ContactSettings alike, a value at a closed end accepted by both."""
+    from blastscale.sim3d.contact import SETTING_RANGES, ContactSettings
+
+    keys = {"time_constant": "time_constant_s", "friction_time_constant": "friction_time_constant_s",
+            "impedance_width": "impedance_width_m"}
+    base = Scenario.default()
+    for name, r in SETTING_RANGES.items():
+        if name in ("friction", "timestep", "impedance_max"):
+            continue  # friction and timestep are keys of [structure] / [simulation]; dmax also needs dmin
+        key = f"simulation.contact.{keys.get(name, name)}"
+        integer = name in ("iterations", "noslip_iterations")
+        for end, is_open, outside in ((r.lo, r.lo_open, r.lo - (1 if integer else 1e-9)),
+                                      (r.hi, r.hi_open, r.hi + (1 if integer else 1e-9 * max(1.0, r.hi)))):
+            for value, ok in ((outside, False), (end, not is_open)):
+                value = int(value) if integer else float(value)
+                try:
+                    base.with_values({key: value})
+                    scen_ok = True
+                except BlastscaleInputError:
+                    scen_ok = False
+                kw = {name: value}
+                if name == "time_constant" and ok:
+                    kw["timestep"] = min(2e-4, value / 2)
+                try:
+                    ContactSettings(**kw)
+                    lib_ok = True
+                except BlastscaleInputError:
+                    lib_ok = False
+                assert scen_ok == lib_ok == ok, (key, value, scen_ok, lib_ok)

@@ -49,13 +49,16 @@ def _compare_table(title: str, prototype: dict, model: dict) -> Table:
     from ..report.html import split_unit
 
     t = Table(title=title, title_justify="left")
-    for c in ("quantity", "prototype", "model (up-scaled)", "unit"):
+    columns = ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)",
+                                                                        "unit")
+    for c in columns:
         t.add_column(c, justify="left" if c in ("quantity", "unit") else "right")
     for k, v in prototype.items():
         if isinstance(v, (dict, list, str)):
             continue
         label, unit = split_unit(k)
-        t.add_row(label, fmt_value(v), fmt_value(model.get(k)), unit)
+        values = (fmt_value(v),) if model is None else (fmt_value(v), fmt_value(model.get(k)))
+        t.add_row(label, *values, unit)
     return t
 
 
@@ -65,16 +68,20 @@ def _print_result(result) -> None:
     from ..report.html import format_charge
 
     console.rule(f"[bold]blastscale run[/] — {sc.title or 'scenario'}")
-    print_design(result.design)
     m = exp["model"]
-    console.print(f"[bold]Model experiment:[/] {m.get('height_m', float('nan')):.4g} m high {sc.structure.kind}, "
-                  f"{m.get('mass_kg', float('nan')):.4g} kg ({m['material']}), "
-                  f"[bold]{format_charge(m['charge_kg'])} TNT at {m['standoff_m']:.4g} m[/]")
+    if m is None:
+        console.print("[bold]Prototype only[/] (the scenario has no \\[scale] table): no specimen, no comparison.")
+    else:
+        print_design(result.design)
+        console.print(f"[bold]Model experiment:[/] {m.get('height_m', float('nan')):.4g} m high {sc.structure.kind}, "
+                      f"{m.get('mass_kg', float('nan')):.4g} kg ({m['material']}), "
+                      f"[bold]{format_charge(m['charge_kg'])} TNT at {m['standoff_m']:.4g} m[/]")
     if s["planar"] is not None:
         pl = s["planar"]
         console.print(_compare_table(f"Planar rocking ({sc.blast.pulse} pulse, {sc.simulation.duration_s:g} s)",
                                      pl["prototype"], pl["model"]))
-        console.print("similarity: " + ", ".join(f"{k} {fmt_value(v, '.3g')}" for k, v in pl["similarity"].items()))
+        if pl["similarity"] is not None:
+            console.print("similarity: " + ", ".join(f"{k} {fmt_value(v, '.3g')}" for k, v in pl["similarity"].items()))
     if s["critical"] is not None:
         console.print(f"critical charge at {sc.blast.standoff_m:g} m (planar, {sc.blast.pulse}): "
                       f"[bold]{result.critical.charge_kg:.4g} kg[/] ({result.critical.evaluations} simulations)")
@@ -82,8 +89,9 @@ def _print_result(result) -> None:
         r3 = s["3d"]
         console.print(_compare_table(f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, "
                                      f"Method {sc.blast.load})", r3["prototype"], r3["model"]))
-        console.print("similarity: " + ", ".join(
-            f"{k} {fmt_value(v, '.3g')}" for k, v in r3["similarity"].items() if not isinstance(v, (dict, list))))
+        if r3.get("similarity") is not None:
+            console.print("similarity: " + ", ".join(
+                f"{k} {fmt_value(v, '.3g')}" for k, v in r3["similarity"].items() if not isinstance(v, (dict, list))))
     # result.warnings were printed as they came, one line each (one_line_warnings)
 
 

@@ -33,11 +33,11 @@ def _pulses(result):
     from .html import format_charge
 
     d, sc = result.design, result.scenario
-    fig, axes = plt.subplots(1, 2, figsize=(11, 3.6), layout="constrained")
-    for ax, bp, who, tu, tf, pu, pf in (
-        (axes[0], d.prototype, "prototype", "ms", 1e3, "MPa", 1e-6),
-        (axes[1], d.model, "model", "us", 1e6, "MPa", 1e-6),
-    ):
+    systems = [(result.blast, "prototype", "ms", 1e3, "MPa", 1e-6)]
+    if d is not None:
+        systems.append((d.model, "model", "us", 1e6, "MPa", 1e-6))
+    fig, axes = plt.subplots(1, len(systems), figsize=(5.5 * len(systems), 3.6), layout="constrained", squeeze=False)
+    for ax, (bp, who, tu, tf, pu, pf) in zip(axes[0], systems):
         p = bp.pulse(sc.blast.pulse)
         dur = p.duration if np.isfinite(p.duration) and p.duration > 0 else bp.positive_duration
         t = np.linspace(0.0, 1.2 * dur, 400)
@@ -53,7 +53,7 @@ def _pulses(result):
 def _planar(result):
     from ..plots.rocking import rocking_figure
 
-    return rocking_figure(result.planar.prototype, similarity=result.planar)
+    return rocking_figure(result.planar.prototype, similarity=None if result.design is None else result.planar)
 
 
 def _three_d(result):

@@ -14,19 +14,13 @@ import html
 import math
 from typing import Any, Iterable
 
+from ..units import split_unit as _split_unit
 from .slips import applicable_slips
 
 __all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
 
 #: Section ids of the report, in order.
 SECTIONS = ("experiment", "loads", "impulsive", "similarity", "warnings", "slips", "scenario", "provenance")
-
-#: key suffix -> unit, longest first.
-_SUFFIX_UNITS = (
-    ("_kg_m3", "kg/m^3"), ("_m_s2", "m/s^2"), ("_rad_s", "rad/s"), ("_m_s", "m/s"), ("_Pa_s", "Pa s"),
-    ("_N_s", "N s"), ("_Ns", "N s"), ("_rel_peak", "of the peak"), ("_Pa", "Pa"), ("_rad", "rad"),
-    ("_deg", "deg"), ("_kg", "kg"), ("_m", "m"), ("_s", "s"),
-)
 
 _CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:1100px;margin:2em auto;
@@ -43,11 +37,10 @@ pre{background:#f6f8fa;padding:.8em;overflow-x:auto;font-size:.85em}.muted{color
 
 
 def split_unit(key: str) -> tuple[str, str]:
-    """``"max_rotation_rad"`` -> (``"max rotation"``, ``"rad"``): label and unit from a key's suffix."""
-    for suf, unit in _SUFFIX_UNITS:
-        if key.endswith(suf) and len(key) > len(suf):
-            return key[: -len(suf)].replace("_", " "), unit
-    return key.replace("_", " "), ""
+    """``"max_rotation_rad"`` -> (``"max rotation"``, ``"rad"``): label and unit from a key's suffix
+    (:func:`blastscale.units.split_unit`; a difference relative to the peak reads "of the peak")."""
+    label, unit = _split_unit(key)
+    return label, ("of the peak" if key.endswith("_rel_peak") else unit)
 
 
 def format_value(x: Any, spec: str = ".4g") -> str:
@@ -105,22 +98,31 @@ def _flat(d: dict, prefix: str = "") -> list[tuple[str, Any]]:
     return out
 
 
-def _compare_rows(prototype: dict, model: dict) -> list[tuple]:
-    mflat = dict(_flat(model))
+def _compare_table(prototype: dict, model: dict | None) -> str:
+    """Prototype and up-scaled model side by side (the prototype alone when there is no model)."""
+    mflat = dict(_flat(model or {}))
     rows = []
     for k, v in _flat(prototype):
         if isinstance(v, str):
             continue
         label, unit = split_unit(k.split(".")[-1])
         label = ".".join(k.split(".")[:-1] + [label])
-        rows.append((label, v, mflat.get(k), unit))
-    return rows
+        rows.append((label, v, unit) if model is None else (label, v, mflat.get(k), unit))
+    head = ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)",
+                                                                    "unit")
+    return _table(head, rows)
 
 
 def _experiment(result) -> str:
     exp = result.experiment()
     p, m = exp["prototype"], exp["model"]
     kind = result.scenario.structure.kind
+    if m is None:
+        rows = [(*split_unit(k), v) for k, v in p.items() if not isinstance(v, str)]
+        return ('<p class="lead">Prototype only: this scenario has no <code>[scale]</code> table, so no specimen '
+                "is designed and nothing is compared. The sections below give the prototype's blast load and "
+                "response (add a <code>[scale]</code> table to design a reduced-scale test).</p>"
+                + _table(("quantity", "unit", "prototype"), [(q, v, u) for q, u, v in rows]))
     dims = ("height_m", "width_m", "depth_m")
     if kind == "block":
         size = " x ".join(f"{m[k] * 100:.4g}" for k in dims if k in m) + " cm (height x width x depth)"
@@ -150,6 +152,14 @@ def _experiment(result) -> str:
 
 def _loads(result) -> str:
     d = result.design
+    if d is None:
+        b = result.blast
+        rows = [("scaled distance Z", b.scaled_distance, "m/kg^(1/3)"), ("reflected peak pressure",
+                 b.reflected_pressure, "Pa"), ("reflected impulse", b.reflected_impulse, "Pa s"),
+                ("positive duration", b.positive_duration, "s"), ("arrival time", b.arrival_time, "s")]
+        return (_table(("quantity", "prototype", "unit"), rows)
+                + f"<p>Blast model: <b>{_e(b.model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse)}</b>, load "
+                  f"method <b>{_e(result.scenario.blast.load)}</b>.</p>")
     p, m, f = d.prototype, d.model, d.factors
     rows = [
         ("scaled distance Z", p.scaled_distance, m.scaled_distance, d.scaled_distance_factor, None, "m/kg^(1/3)"),
@@ -166,6 +176,8 @@ def _loads(result) -> str:
 
 
 def _impulsive(result) -> str:
+    if result.design is None:
+        return "<p>No specimen: the impulsive check of the scaling law does not apply.</p>"
     imp = result.design.impulsive
     if imp is None:
         return ("<p>The impulsive check t<sub>o</sub> p needs a rocking frequency p; it is computed for a single "
@@ -192,10 +204,10 @@ def _similarity(result, figures) -> str:
     if result.planar is not None:
         pl = s["planar"]
         out.append("<h3>Planar rocking (paper Eq. of motion, Housner impacts)</h3>")
-        out.append(_table(("quantity", "prototype", "model (up-scaled)", "unit"),
-                          _compare_rows(pl["prototype"], pl["model"])))
-        out.append(_table(("similarity figure", "value", "unit"),
-                          [(split_unit(k)[0], v, split_unit(k)[1]) for k, v in pl["similarity"].items()]))
+        out.append(_compare_table(pl["prototype"], pl["model"]))
+        if pl["similarity"] is not None:
+            out.append(_table(("similarity figure", "value", "unit"),
+                              [(split_unit(k)[0], v, split_unit(k)[1]) for k, v in pl["similarity"].items()]))
         if "planar_rocking" in figs:
             f, png = figs["planar_rocking"]
             out.append(_img(png, f.title, f.caption, f.name))
@@ -203,11 +215,11 @@ def _similarity(result, figures) -> str:
         r3 = s["3d"]
         out.append("<h3>3D rigid bodies (MuJoCo, Coulomb friction "
                    f"{result.scenario.structure.friction:g})</h3>")
-        out.append(_table(("quantity", "prototype", "model (up-scaled)", "unit"),
-                          _compare_rows(r3["prototype"], r3["model"])))
-        out.append(_table(("similarity figure", "value", "unit"),
-                          [(split_unit(k.split(".")[-1])[0] if "." not in k else k, v, split_unit(k)[1])
-                           for k, v in _flat(r3["similarity"]) if not isinstance(v, str)]))
+        out.append(_compare_table(r3["prototype"], r3["model"]))
+        if r3.get("similarity") is not None:
+            out.append(_table(("similarity figure", "value", "unit"),
+                              [(split_unit(k.split(".")[-1])[0] if "." not in k else k, v, split_unit(k)[1])
+                               for k, v in _flat(r3["similarity"]) if not isinstance(v, str)]))
         if "response_3d" in figs:
             f, png = figs["response_3d"]
             out.append(_img(png, f.title, f.caption, f.name))
@@ -282,9 +294,11 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = ()) -> str
         pulses = _img(png, f.title, f.caption, f.name)
     body = {
         "experiment": ("1. The experiment to build", _experiment(result)),
-        "loads": ("2. Blast loads of the prototype and the model", _loads(result) + pulses),
+        "loads": ("2. Blast loads of the prototype" + ("" if result.design is None else " and the model"),
+                  _loads(result) + pulses),
         "impulsive": ("3. Impulsive check", _impulsive(result)),
-        "similarity": ("4. Similarity: prototype vs up-scaled model", _similarity(result, figures)),
+        "similarity": ("4. Response of the prototype" if result.design is None else
+                       "4. Similarity: prototype vs up-scaled model", _similarity(result, figures)),
         "warnings": ("5. Warnings", _warnings(result)),
         "slips": ("6. The paper's slips that apply", _slips(result)),
         "scenario": ("7. Scenario (inputs)", f"<pre>{_e(sc.to_toml())}</pre>"),

@@ -20,6 +20,7 @@ from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from ..blast.incidence import INCIDENCE_MODELS
 from ..blast.parameters import BLAST_MODELS, DEFAULT_BLAST_MODEL
 from ..blast.pulses import PULSE_SHAPES
+from ..sim3d.contact import CONES, JACOBIANS, SETTING_RANGES, SOLVERS
 from ..sim3d.load_methods import LOAD_METHODS
 from ..structures.materials import MATERIALS
 from .messages import show
@@ -73,6 +74,13 @@ def _at_most_one(model: BaseModel, a: str, b: str) -> BaseModel:
 Pos = Annotated[float, at.Gt(0)]
 
 
+def _limits(setting: str) -> dict:
+    """pydantic bounds of a field that sets the 3D engine's ``setting``: the engine's own valid range
+    (:data:`blastscale.sim3d.contact.SETTING_RANGES`), one source for both."""
+    r = SETTING_RANGES[setting]
+    return {("gt" if r.lo_open else "ge"): r.lo, ("lt" if r.hi_open else "le"): r.hi}
+
+
 class BlockSpec(BaseModel):
     """A monolithic rectangular block (paper Sec. "Equations of motion")."""
 
@@ -83,7 +91,7 @@ class BlockSpec(BaseModel):
     width_m: Optional[float] = Field(None, gt=0, le=1000, description="Width 2b along the blast [m]")
     depth_m: float = Field(1.0, gt=0, le=1000, description="Depth 2w across the blast [m]")
     density_kg_m3: float = Field(2000.0, gt=0, le=25000, description="Density [kg/m^3]")
-    friction: float = Field(DEFAULT_FRICTION, ge=0, le=10, description="Coulomb friction coefficient mu [-] (3D)")
+    friction: float = Field(DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-] (3D)", **_limits("friction"))
 
     @model_validator(mode="before")
     @classmethod
@@ -109,7 +117,7 @@ class ColumnSpec(BaseModel):
     top_width_m: float = Field(1.28, gt=0, le=100, description="Side or diameter at the top [m]")
     sides: int = Field(32, ge=3, le=256, description="Polygon sides of a circular drum [-]")
     density_kg_m3: float = Field(2700.0, gt=0, le=25000, description="Density [kg/m^3] (marble)")
-    friction: float = Field(DEFAULT_FRICTION, ge=0, le=10, description="Coulomb friction coefficient mu [-]")
+    friction: float = Field(DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-]", **_limits("friction"))
 
 
 class BlastSpec(BaseModel):
@@ -176,23 +184,26 @@ class ScaleSpec(BaseModel):
 
 class ContactSpec(BaseModel):
     """3D contact settings of the prototype (the model's are scaled from them); each key left
-    out takes the engine's default for the structure (docs/sim3d.md)."""
+    out takes the engine's default for the structure (docs/sim3d.md). Valid ranges: the engine's
+    own (:data:`blastscale.sim3d.contact.SETTING_RANGES`)."""
 
     model_config = _CONFIG
-    time_constant_s: Optional[float] = Field(None, gt=0, le=10, description="Normal contact time constant [s]")
-    damping_ratio: Optional[float] = Field(None, gt=0, le=100, description="Normal contact damping ratio [-]")
-    friction_time_constant_s: Optional[float] = Field(None, gt=0, le=10,
-                                                      description="Friction reference time constant [s]")
-    impedance_min: Optional[float] = Field(None, gt=0, lt=1, description="solimp dmin [-]")
-    impedance_max: Optional[float] = Field(None, gt=0, lt=1, description="solimp dmax [-]")
-    impedance_width_m: Optional[float] = Field(None, gt=0, le=10, description="solimp width [m]")
-    cone: Optional[Literal["elliptic", "pyramidal"]] = Field(None, description="Friction cone")
-    impratio: Optional[float] = Field(None, gt=0, le=1e4, description="Friction/normal impedance ratio [-]")
-    solver: Optional[Literal["Newton", "CG", "PGS"]] = Field(None, description="Constraint solver")
-    iterations: Optional[int] = Field(None, ge=1, le=10000, description="Solver iterations [-]")
-    tolerance: Optional[float] = Field(None, gt=0, le=1, description="Solver tolerance [-]")
-    noslip_iterations: Optional[int] = Field(None, ge=0, le=10000, description="No-slip iterations [-]")
-    jacobian: Optional[Literal["dense", "sparse", "auto"]] = Field(
+    time_constant_s: Optional[float] = Field(
+        None, description="Normal contact time constant [s]", **_limits("time_constant"))
+    damping_ratio: Optional[float] = Field(
+        None, description="Normal contact damping ratio [-]", **_limits("damping_ratio"))
+    friction_time_constant_s: Optional[float] = Field(
+        None, description="Friction reference time constant [s]", **_limits("friction_time_constant"))
+    impedance_min: Optional[float] = Field(None, description="solimp dmin [-]", **_limits("impedance_min"))
+    impedance_max: Optional[float] = Field(None, description="solimp dmax [-]", **_limits("impedance_max"))
+    impedance_width_m: Optional[float] = Field(None, description="solimp width [m]", **_limits("impedance_width"))
+    cone: Optional[Literal[CONES]] = Field(None, description="Friction cone")
+    impratio: Optional[float] = Field(None, description="Friction/normal impedance ratio [-]", **_limits("impratio"))
+    solver: Optional[Literal[SOLVERS]] = Field(None, description="Constraint solver")
+    iterations: Optional[int] = Field(None, description="Solver iterations [-]", **_limits("iterations"))
+    tolerance: Optional[float] = Field(None, description="Solver tolerance [-]", **_limits("tolerance"))
+    noslip_iterations: Optional[int] = Field(None, description="No-slip iterations [-]", **_limits("noslip_iterations"))
+    jacobian: Optional[Literal[JACOBIANS]] = Field(
         None, description="Constraint Jacobian layout (dense by default; sparse is 2.5-3.4x faster on columns)")
 
 
@@ -202,8 +213,8 @@ class SimulationSpec(BaseModel):
     model_config = _CONFIG
     engine: Literal["planar", "3d", "both"] = Field("both", description="Planar rocking, 3D rigid bodies or both")
     duration_s: float = Field(5.0, gt=0, le=1e5, description="Prototype time simulated after the shock arrival [s]")
-    timestep_s: Optional[float] = Field(None, gt=0, le=0.1,
-                                        description="Prototype 3D time step [s] (default from the structure)")
+    timestep_s: Optional[float] = Field(None, description="Prototype 3D time step [s] (default from the structure)",
+                                        **_limits("timestep"))
     record_every: Optional[int] = Field(None, ge=1, le=100000, description="Keep one 3D state every N steps [-] "
                                         "(default: one per millisecond of the 10 m reference structure, 5 for a "
                                         "block and 4 for a column at any size)")

@@ -31,10 +31,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 from .._validate import BlastscaleInputError, check_positive, check_range
 
-__all__ = ["ContactSettings", "CONES", "SOLVERS", "default_contact", "mjcf_number", "reference_contact",
+__all__ = ["ContactSettings", "CONES", "SOLVERS", "SETTING_RANGES", "Range", "default_contact", "mjcf_number", "reference_contact",
            "time_constant_for_step"]
 
 #: Friction-cone types accepted by MuJoCo.
@@ -61,6 +62,36 @@ def _check_scalar(name: str, value) -> None:
     """One number (or None), not an array: settings are per run."""
     if value is not None and not isinstance(value, str) and getattr(value, "ndim", 0) != 0:
         raise BlastscaleInputError(f"{name} must be a single number, got shape {value.shape}")
+
+
+class Range(NamedTuple):
+    """A valid range ``lo .. hi`` [unit], each end open or closed."""
+
+    lo: float
+    hi: float
+    lo_open: bool = False
+    hi_open: bool = False
+    unit: str = ""
+
+
+#: The valid range of every numeric setting of :class:`ContactSettings` (its own checks and the
+#: scenario's ``[simulation.contact]`` keys read them here). The upper bounds are generous physical
+#: limits (a 10 s contact time constant is already five thousand times MuJoCo's default); the
+#: friction coefficient bounds a scenario's too (mu = 10 is beyond any masonry interface).
+SETTING_RANGES: dict[str, Range] = {
+    "friction": Range(0.0, 10.0),
+    "time_constant": Range(0.0, 10.0, lo_open=True, unit="s"),
+    "damping_ratio": Range(0.0, 100.0, lo_open=True),
+    "friction_time_constant": Range(0.0, 10.0, lo_open=True, unit="s"),
+    "impedance_min": Range(0.0, 1.0, lo_open=True, hi_open=True),
+    "impedance_max": Range(0.0, 1.0, lo_open=True, hi_open=True),  # and >= impedance_min
+    "impedance_width": Range(0.0, 10.0, lo_open=True, unit="m"),
+    "timestep": Range(0.0, 0.1, lo_open=True, unit="s"),
+    "impratio": Range(0.0, 1e4, lo_open=True),
+    "iterations": Range(1, 10_000),
+    "tolerance": Range(0.0, 1.0, lo_open=True),
+    "noslip_iterations": Range(0, 10_000),
+}
 
 
 @dataclass(frozen=True)
@@ -139,23 +170,18 @@ class ContactSettings:
     jacobian: str = "dense"
 
     def __post_init__(self):
-        for name in ("friction", "time_constant", "damping_ratio", "friction_time_constant", "impedance_min",
-                     "impedance_max", "impedance_width", "timestep", "impratio", "iterations", "tolerance",
-                     "noslip_iterations"):
+        for name in SETTING_RANGES:
             _check_scalar(name, getattr(self, name))
         for name in ("iterations", "noslip_iterations"):
             v = getattr(self, name)
             if isinstance(v, (int, float)) and not float(v).is_integer():
                 raise BlastscaleInputError(f"{name} = {v!r} is out of range: must be a whole number")
-        check_range("friction", self.friction, 0.0, math.inf, "")
-        check_positive("contact time constant", self.time_constant, "s")
-        check_positive("contact damping ratio", self.damping_ratio)
-        if self.friction_time_constant is not None:
-            check_positive("friction time constant", self.friction_time_constant, "s")
-        check_range("impedance_min", self.impedance_min, 0.0, 1.0, lo_open=True, hi_open=True)
-        check_range("impedance_max", self.impedance_max, self.impedance_min, 1.0, hi_open=True)
-        check_positive("impedance width", self.impedance_width, "m")
-        check_positive("timestep", self.timestep, "s")
+        for name, r in SETTING_RANGES.items():
+            v = getattr(self, name)
+            if v is None and name == "friction_time_constant":  # None: MuJoCo's default (tau_f = tau)
+                continue
+            lo = self.impedance_min if name == "impedance_max" else r.lo  # dmin <= dmax
+            check_range(name, v, lo, r.hi, r.unit, lo_open=r.lo_open, hi_open=r.hi_open)
         if self.time_constant < 2.0 * self.timestep * (1.0 - 1e-12):
             raise BlastscaleInputError(
                 f"contact time constant = {self.time_constant:.6g} s is out of range: must be >= 2 x timestep "
@@ -165,10 +191,6 @@ class ContactSettings:
             raise BlastscaleInputError(f"cone = {self.cone!r} is not known: valid values are {', '.join(CONES)}")
         if self.solver not in SOLVERS:
             raise BlastscaleInputError(f"solver = {self.solver!r} is not known: valid values are {', '.join(SOLVERS)}")
-        check_range("impratio", self.impratio, 0.0, math.inf, lo_open=True)
-        check_range("iterations", self.iterations, 1, 10_000)
-        check_positive("tolerance", self.tolerance)
-        check_range("noslip_iterations", self.noslip_iterations, 0, 10_000)
         if self.jacobian not in JACOBIANS:
             raise BlastscaleInputError(
                 f"jacobian = {self.jacobian!r} is not known: valid values are {', '.join(JACOBIANS)}")
