@@ -61,3 +61,23 @@ def test_the_prototype_alone_is_the_prototype_side_of_the_scaled_study(structure
     if structure["kind"] == "block":  # the block's planar view is there, prototype only
         assert {"overturned", "max_rotation_rad", "max_sliding_m", "collapsed"} <= set(alone["prototype"])
         assert {"max_abs_rotation_diff_rad", "top_first_peak_ratio"} <= set(scaled["similarity"])
+
+
+def test_run_writes_a_prototype_only_3d_study_with_its_ensemble(tmp_path, capsys):
+    """``blastscale run`` of a column scenario without ``[scale]`` (3D engine, a 2-member ensemble):
+    summary, histories and report written; the ensemble figure shows the prototype alone."""
+    import json
+
+    from blastscale.cli import main
+
+    sc = _prototype_only(COLUMN, {"duration_s": 0.1, "ensemble_members": 2})
+    path = tmp_path / "column.toml"
+    path.write_text(sc.to_toml())
+    out = tmp_path / "out"
+    with pytest.raises(SystemExit) as e:
+        main(["run", str(path), "--out", str(out)])
+    assert (e.value.code or 0) == 0, capsys.readouterr().err
+    s = json.loads((out / "summary.json").read_text())
+    assert s["design"] is None and s["3d"]["model"] is None and s["ensemble"]["collapse_probability_model"] is None
+    for name in ("histories.nc", "report.html", "ensemble_envelopes.png", "response_3d.png"):
+        assert (out / name).stat().st_size > 1000, name
