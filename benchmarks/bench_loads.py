@@ -35,6 +35,7 @@ import warnings
 
 import numpy as np
 
+from blastscale.blast import blast_parameters
 from blastscale.sim3d.load_methods import arrival_spread_similarity, make_load
 from blastscale.sim3d.simulate import simulate_structure
 from blastscale.similitude import design_model
@@ -53,7 +54,7 @@ def speed(duration: float = 3.0, repeat: int = 1, charge: float = 250.0) -> dict
         for method in ("A", "B", "C"):
             best = math.inf
             for _ in range(repeat):
-                load = make_load(method, col, charge_kg=charge, standoff_m=STANDOFF)
+                load = make_load(method, col, blast_parameters(charge, STANDOFF))
                 t0 = time.perf_counter()
                 simulate_structure(col, load, duration)
                 best = min(best, time.perf_counter() - t0)
@@ -102,8 +103,7 @@ def paper_case(section: str, charge: float, method: str, incidence: str, duratio
         warnings.simplefilter("ignore")
         cmp = compare_structure3d(col, design, load=method, incidence=incidence, duration=duration)
     s = cmp.summary()
-    sim = s["similarity"]
-    sim.update(arrival_spread_similarity(col, design, method, incidence=incidence))
+    sim = s["similarity"]  # with the arrival spreads of the two runs' loads
     top = sim["top_point"]
     return {
         "section": section, "charge_kg": charge, "method": method, "incidence": incidence, "duration_s": duration,
@@ -131,10 +131,10 @@ def correction(section: str, charge: float, duration: float = 8.0, incidence: st
     d = design_model(charge, STANDOFF, SCALE)
     f = d.factors
     mcol = col.scaled(f)
-    lp = make_load("B", col, charge_kg=charge, standoff_m=STANDOFF, incidence=incidence)
+    lp = make_load("B", col, d.prototype, incidence=incidence)
     proto = simulate_structure(col, lp, duration)
-    lm = make_load("B", mcol, charge_kg=d.model.charge_kg, standoff_m=d.model.standoff_m, incidence=incidence)
-    sp = arrival_spread_similarity(col, d, "B", incidence=incidence)
+    lm = make_load("B", mcol, d.model, incidence=incidence)
+    sp = arrival_spread_similarity(lp, lm, f)
     stretch = sp["arrival_spread_prototype_s"] / sp["arrival_spread_model_upscaled_s"]
     out = {"section": section, "charge_kg": charge, "incidence": incidence, "stretch": stretch, **sp}
     weights = f.impulse * lp.rest_loads.impulse / lm.rest_loads.impulse

@@ -86,7 +86,7 @@ def column_speed(section: str, repeat: int = 1, duration: float = 4.0, lam: floa
     and exactly scaled 1/``lam`` model (the model runs ``duration * sqrt(lam)``)."""
     col = MultiDrumColumn(section)
     lt = math.sqrt(lam)
-    proto_load = make_load("A", col, charge_kg=250.0, standoff_m=10.0)
+    proto_load = make_load("A", col, blast_parameters(250.0, 10.0))
     model_col = col.scaled(scaling_factors(lam))
     model_load = MethodA(model_col, proto_load.pulse.scaled(scaling_factors(lam)), proto_load.arrival_time * lt)
     simulate_structure(col, proto_load, 0.01)  # imports and first compile outside the timing
@@ -134,7 +134,7 @@ def acceptance() -> dict:
     col = MultiDrumColumn("square")
     lam = 0.01
     lt = math.sqrt(lam)
-    load = make_load("A", col, charge_kg=250.0, standoff_m=10.0)
+    load = make_load("A", col, blast_parameters(250.0, 10.0))
     proto = simulate_structure(col, load, 8.0, record_every=20)
     model = simulate_structure(col.scaled(scaling_factors(lam)), MethodA(col.scaled(scaling_factors(lam)), load.pulse.scaled(scaling_factors(lam)),
                                                         load.arrival_time * lt), 8.0 * lt, record_every=20)
@@ -146,8 +146,7 @@ def acceptance() -> dict:
 
     d = design_model(250.0, 10.0, lam)
     spec_col = col.scaled(scaling_factors(lam))
-    spec = simulate_structure(spec_col, make_load("A", spec_col, charge_kg=d.model_charge_kg,
-                                                  standoff_m=d.model_standoff_m), 8.0 * lt, record_every=20)
+    spec = simulate_structure(spec_col, make_load("A", spec_col, d.model), 8.0 * lt, record_every=20)
     s = _top_x(spec, lam)
     out["column_specimen_1_100_first_peak_ratio"] = float(np.max(s) / np.max(p))
     out["column_specimen_1_100_max_tilt_ratio"] = spec.summary()["max_tilt_rad"] / proto.summary()["max_tilt_rad"]

@@ -3,7 +3,8 @@
 The paper's columns (10 m, ten 1 m drums, 1.65 -> 1.28 m, marble 2700 kg/m^3, friction 0.7),
 loaded by Method A (the reflected pulse, uniform and simultaneous on every drum's front face;
 Kingery-Bulmash, Friedlander pulse), and their lambda = 1/100 models (gamma = 1) designed by the
-general law, run at their own size and up-scaled (``blastscale.analysis.compare_structure3d``):
+general law, run at their own size and up-scaled: each case a scenario run by the Study (the
+collapse thresholds through prototype-only scenarios of the prototype and of the specimen):
 
 * square section, 250 kg and 500 kg at 10 m; circular section (32-gon drums), 200 kg and 400 kg
   at 10 m; 8 s of prototype time. Per case: outcome, first peak and similarity at every
@@ -42,41 +43,71 @@ import json
 
 from _gallery import done, parse_args, plt, save
 
-from blastscale.analysis.ensemble import ensemble_compare
-from blastscale.analysis.structure3d import compare_structure3d
-from blastscale.analysis.systems import run_system
 from blastscale.plots.column import plot_column_comparison, plot_ensemble_envelope
-from blastscale.similitude import design_model
-from blastscale.structures import MultiDrumColumn
+from blastscale.scenario import Scenario
+from blastscale.study import Study
 
 SCALE, GAMMA, STANDOFF, MODEL = 1 / 100, 1.0, 10.0, "kingery-bulmash"
 CASES = (("square", 250.0), ("square", 500.0), ("circular", 200.0), ("circular", 400.0))
 #: bisection brackets [kg] (collapse expected inside; widened if not)
 BRACKETS = {"square": (300.0, 900.0), "circular": (200.0, 600.0)}
 SHOWN_POINTS = ("P-1", "P-3", "P-5", "P-7", "P-10")
+#: the paper's column (the scenario's defaults: 10 drums, 10 m, 1.65 -> 1.28 m, marble, friction 0.7)
+PAPER = {"kind": "column"}
+#: --quick: a 3-drum column (the paper's taper over 3 m), 16-gon circular drums
+SHORT = {"kind": "column", "drums": 3, "height_m": 3.0, "base_width_m": 1.65, "top_width_m": 1.54, "sides": 16}
 
 
-def run_case(col, charge, duration, record_every):
-    design = design_model(charge, STANDOFF, SCALE, GAMMA, model=MODEL)
-    return compare_structure3d(col, design, duration=duration, record_every=record_every)
+def scenario(column: dict, section: str, charge: float, duration: float, record_every: int, scale=SCALE,
+             ensemble_members: int = 0) -> Scenario:
+    """The case as a scenario: the column, ``charge`` [kg] at 10 m (Kingery-Bulmash, Friedlander,
+    Method A), the 1/100 specimen (gamma = 1; ``scale`` None: the prototype alone), the 3D engine."""
+    data = {"title": f"{section} column, {charge:g} kg at {STANDOFF:g} m",
+            "structure": {**column, "section": section},
+            "blast": {"charge_kg": charge, "standoff_m": STANDOFF, "model": MODEL},
+            "simulation": {"engine": "3d", "duration_s": duration, "record_every": record_every,
+                           "ensemble_members": ensemble_members, "critical_charge": False}}
+    if scale is not None:
+        data["scale"] = {"length": scale, "density_ratio": GAMMA}
+    return Scenario.from_dict(data)
 
 
-def collapses(col, charge, duration, record_every, system):
-    """Outcome of the prototype ("prototype") or of the model ("model") at a prototype charge."""
-    design = design_model(charge, STANDOFF, SCALE, GAMMA, model=MODEL)
-    run = run_system(col, design, system, duration=duration, record_every=record_every)
-    return bool(run.response.summary()["collapsed"])
+def specimen_scenario(column: dict, section: str, charge: float, duration: float, record_every: int) -> Scenario:
+    """The specimen of the case alone, at its own size: a prototype-only scenario of the scaled
+    column (lengths x lambda, density x gamma) under the model charge and stand-off that the case's
+    design gives (the general law), for the specimen's duration (x lambda_t)."""
+    sc = scenario(column, section, charge, duration, record_every)
+    study = Study(sc)
+    d, col = study.design(), study.structure().scaled(study.design().factors)
+    spec = {"kind": "column", "section": section, "drums": col.drums, "height_m": col.height,
+            "base_width_m": col.base_width, "top_width_m": col.top_width, "sides": col.sides,
+            "density_kg_m3": col.density}
+    return Scenario.from_dict({
+        "title": f"{sc.title}: the 1/100 specimen alone",
+        "structure": {k: v for k, v in spec.items() if v is not None},
+        "blast": {"charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m, "model": MODEL},
+        "simulation": {"engine": "3d", "duration_s": duration * d.factors.time, "record_every": record_every,
+                       "critical_charge": False}})
 
 
-def threshold(col, lo, hi, duration, record_every, system, tol=10.0):
+def collapses(column, section, charge, duration, record_every, system):
+    """Outcome of the prototype ("prototype") or of the specimen ("model") at a prototype charge:
+    one prototype-only study of that system alone."""
+    sc = (scenario(column, section, charge, duration, record_every, scale=None) if system == "prototype"
+          else specimen_scenario(column, section, charge, duration, record_every))
+    return bool(Study(sc).run().summary()["3d"]["prototype"]["collapsed"])
+
+
+def threshold(column, section, lo, hi, duration, record_every, system, tol=10.0):
     """Bisection on the prototype charge: (largest charge seen standing, smallest seen collapsing)."""
-    while collapses(col, lo, duration, record_every, system) and lo > 10.0:
+    args = (column, section)
+    while collapses(*args, lo, duration, record_every, system) and lo > 10.0:
         lo, hi = lo / 2.0, lo
-    while not collapses(col, hi, duration, record_every, system) and hi < 1e4:
+    while not collapses(*args, hi, duration, record_every, system) and hi < 1e4:
         lo, hi = hi, hi * 2.0
     while hi - lo > 2.0 * tol:
         mid = 0.5 * (lo + hi)
-        if collapses(col, mid, duration, record_every, system):
+        if collapses(*args, mid, duration, record_every, system):
             hi = mid
         else:
             lo = mid
@@ -86,21 +117,23 @@ def threshold(col, lo, hi, duration, record_every, system, tol=10.0):
 def main() -> None:
     args = parse_args(__doc__, quick_help="a 3-drum column for 0.5 s, 2-member ensembles, no thresholds")
     if args.quick:
-        columns = {s: MultiDrumColumn(section=s, drums=3, height=3.0, base_width=1.65, top_width=1.54, sides=16)
-                   for s in ("square", "circular")}
-        duration, n_members, cases = 0.5, 2, (("square", 250.0), ("circular", 200.0))
+        column, duration, n_members, cases = SHORT, 0.5, 2, (("square", 250.0), ("circular", 200.0))
+        ens_cases = cases
     else:
-        columns = {s: MultiDrumColumn(section=s) for s in ("square", "circular")}
-        duration, n_members, cases = 8.0, 8, CASES
+        column, duration, n_members, cases = PAPER, 8.0, 8, CASES
+        ens_cases = (("square", 250.0), ("circular", 200.0), ("circular", 400.0))
     record_every = 8
     results: dict = {"settings": {"scale": SCALE, "density_ratio": GAMMA, "standoff_m": STANDOFF, "blast_model": MODEL,
                                   "pulse": "friedlander", "load": "A", "duration_s": duration}, "cases": {}}
+    ensembles = {}
     for section, W in cases:
-        col = columns[section]
-        cmp = run_case(col, W, duration, record_every)
-        s = cmp.summary()
+        members = n_members if (section, W) in ens_cases else 0  # the ensembles run in the same study
+        r = Study(scenario(column, section, W, duration, record_every, ensemble_members=members)).run()
+        s = r.summary()["3d"]
         key = f"{section}_{W:g}kg"
         results["cases"][key] = s
+        if r.ensemble is not None:
+            ensembles[(section, W)] = r
         sim = s["similarity"]
         print(f"{section} {W:g} kg: prototype collapsed {s['prototype']['collapsed']}, model collapsed "
               f"{s['model']['collapsed']}, top first peak ratio {sim['top_first_peak_ratio']:.4f}, "
@@ -111,7 +144,8 @@ def main() -> None:
                   f"ratio {p['first_peak_ratio']:.4f}), max |diff| {100 * p['max_abs_displacement_diff_rel_peak']:.2f} % "
                   "of the peak")
         pts = [p for p in SHOWN_POINTS if p in sim["points"]] or None
-        fig = plot_column_comparison(col, cmp.prototype_dataset, cmp.upscaled_dataset, points=pts)
+        cmp = r.response3d
+        fig = plot_column_comparison(r.structure, cmp.prototype_dataset, cmp.upscaled_dataset, points=pts)
         fig.suptitle(f"{section} column, {W:g} kg at {STANDOFF:g} m, Method A: prototype (solid) vs "
                      f"lambda = 1/100 model up-scaled (dashed)")
         save(fig, args.out, f"figure_column_{key}.png")
@@ -120,20 +154,14 @@ def main() -> None:
         results["thresholds_kg"] = {}
         for section, (lo, hi) in BRACKETS.items():
             for system in ("prototype", "model"):
-                a, b = threshold(columns[section], lo, hi, duration, record_every, system)
+                a, b = threshold(column, section, lo, hi, duration, record_every, system)
                 results["thresholds_kg"][f"{section}_{system}"] = [a, b]
                 print(f"collapse threshold, {section}, {system}: between {a:.0f} and {b:.0f} kg (prototype charge)")
 
     results["ensembles"] = {}
-    ens_cases = cases if args.quick else (("square", 250.0), ("circular", 200.0), ("circular", 400.0))
-    for section, W in ens_cases:
-        col = columns[section]
-        design = design_model(W, STANDOFF, SCALE, GAMMA, model=MODEL)
-        ens = ensemble_compare(col, design, n=n_members, perturbation=1e-6, duration=duration,
-                               record_every=record_every,
-                               progress=lambda k, n: print(f"  ensemble {section} {W:g} kg: {k}/{n}", flush=True))
-        key = f"{section}_{W:g}kg"
-        es = ens.summary()
+    for (section, W), r in ensembles.items():
+        ens, key = r.ensemble, f"{section}_{W:g}kg"
+        es = r.summary()["ensemble"]
         results["ensembles"][key] = es
         top = es["points"][ens.points[-1]]
         print(f"ensemble {section} {W:g} kg ({n_members} runs, 1e-6): top first peak prototype "

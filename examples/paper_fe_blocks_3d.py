@@ -1,7 +1,9 @@
 """Paper Sec. "FEM simulations" (Figs. 13-14 style): 3D rigid blocks on MuJoCo, prototype vs 1/200 model.
 
 The paper's FE section with blastscale's MuJoCo rigid-body model (Coulomb friction
-mu = tan 35 deg = 0.7, rigid base, paper Method A load, blast model ``masi2021``):
+mu = tan 35 deg = 0.7, rigid base, paper Method A load, blast model ``masi2021``), each case a
+scenario run by the Study (the specimen designed once, its loads from the design's blast
+parameters, the block's planar view in the study's 3D summary):
 
 * Slender block (2h = 10 m, alpha = 15 deg, 2000 kg/m^3) under 50 kg and 100 kg at 2 m:
   prototype, lambda = 1/200 model up-scaled, and the planar equation of motion (paper Eq. eom)
@@ -38,34 +40,40 @@ import math
 
 from _gallery import done, parse_args, plt, save
 
-from blastscale.analysis.block3d_similarity import block_dataset, block_similarity, block_summary
+from blastscale.analysis.block3d_similarity import BLOCK_SIMILARITY_KEYS, BLOCK_SUMMARY_KEYS, block_dataset
 from blastscale.analysis.compare import upscale_dataset
-from blastscale.analysis.structure3d import compare_structure3d, upscale_summary
 from blastscale.plots.sim3d import plot_history
-from blastscale.rocking import simulate
-from blastscale.similitude import design_model
-from blastscale.sim3d import ContactSettings
-from blastscale.structures import RectangularBlock
+from blastscale.scenario import Scenario
+from blastscale.study import Study
 
 SCALE, MODEL, MU = 1 / 200, "masi2021", 0.7
-SLENDER = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
+SLENDER = {"kind": "block", "height_m": 10.0, "alpha_deg": 15.0, "density_kg_m3": 2000.0}
 NON_SLENDER = {  # the paper's two incompatible readings of the non-slender block
-    "as dimensioned, 2b = 3.5 m": RectangularBlock(height=10.0, width=3.5, depth=3.5),
-    "as angled, alpha = 35 deg": RectangularBlock.from_slenderness(10.0, math.radians(35.0), depth=3.5),
+    "as dimensioned, 2b = 3.5 m": {"kind": "block", "height_m": 10.0, "width_m": 3.5, "depth_m": 3.5},
+    "as angled, alpha = 35 deg": {"kind": "block", "height_m": 10.0, "alpha_deg": 35.0, "depth_m": 3.5},
 }
 
 
-def run_block(block, charge, standoff, duration):
-    """The block and its 1/200 model (general law, gamma = 1) on MuJoCo through the structure
-    comparison, read through the block's planar view: a dict with the ``design``, the ``prototype``
-    and up-scaled ``model`` histories (block datasets, prototype units), their ``summaries`` and
-    the ``similarity`` figures."""
-    design = design_model(charge, standoff, SCALE, model=MODEL, geometry=block)
-    cmp = compare_structure3d(block, design, contact=ContactSettings(friction=MU), duration=duration, record_every=5)
-    proto, model = block_dataset(cmp.prototype), upscale_dataset(block_dataset(cmp.model), design.factors)
-    return {"design": design, "prototype": proto, "model": model,
-            "summaries": (block_summary(cmp.prototype), upscale_summary(block_summary(cmp.model), design.factors)),
-            "similarity": block_similarity(proto, model)}
+def run_block(block: dict, charge, standoff, duration, planar: bool = False):
+    """The block and its 1/200 model (general law, gamma = 1) through the Study: a scenario with
+    the block, the charge and the scale, friction mu, the 3D engine (and the planar one when
+    ``planar``). Returns a dict with the ``study`` result, the ``prototype`` and up-scaled ``model``
+    histories of the block's planar view (block datasets, prototype units), their ``summaries``
+    and the ``similarity`` figures (the block3d keys of the study's 3D summary)."""
+    sc = Scenario.from_dict({
+        "title": f"FE section block, {charge:g} kg at {standoff:g} m, lambda = 1/200",
+        "structure": {**block, "friction": MU},
+        "blast": {"charge_kg": charge, "standoff_m": standoff, "model": MODEL},
+        "scale": {"length": SCALE, "density_ratio": 1.0},
+        "simulation": {"engine": "both" if planar else "3d", "duration_s": duration, "critical_charge": False},
+    })
+    r = Study(sc).run()
+    s3, c = r.summary()["3d"], r.response3d
+    return {"study": r, "design": r.design, "block": r.structure,
+            "prototype": block_dataset(c.prototype, r.structure),
+            "model": upscale_dataset(block_dataset(c.model, r.model_structure), r.design.factors),
+            "summaries": tuple({k: s3[side][k] for k in BLOCK_SUMMARY_KEYS} for side in ("prototype", "model")),
+            "similarity": {k: s3["similarity"][k] for k in BLOCK_SIMILARITY_KEYS}}
 
 
 def report(name: str, run: dict) -> None:
@@ -119,18 +127,18 @@ def main() -> None:
 
     runs = {}
     for W in (50.0, 100.0):
-        run = run_block(SLENDER, W, 2.0, t_slender)
-        planar = simulate(SLENDER, run["design"].prototype.pulse(), t_slender)
+        run = run_block(SLENDER, W, 2.0, t_slender, planar=True)
+        planar = run["study"].planar.prototype  # the planar equation of motion, from the same study
         report(f"slender, {W:g} kg", run)
         print(f"  planar Eq. (eom): max |theta| {planar.max_angle:.4f} rad, overturned {planar.overturned}")
         runs[W] = (run, planar)
     save(slender_figure(runs), args.out, "figure_fe_slender_blocks.png")
 
     reading = list(NON_SLENDER)[1 if args.alpha35 else 0]
-    block = NON_SLENDER[reading]
+    run = run_block(NON_SLENDER[reading], 2500.0, 3.0, t_non)
+    block = run["block"]
     print(f"non-slender block {reading}: 2b = {block.width:.2f} m, alpha = {math.degrees(block.alpha):.1f} deg "
           f"(the paper states both 2b = 3.5 m and alpha = 35 deg, which contradict each other)")
-    run = run_block(block, 2500.0, 3.0, t_non)
     i, S, m = run["design"].prototype.reflected_impulse, block.front_area, block.mass
     print(f"  model charge {run['design'].model_charge_kg * 1e6:.4f} mg (paper 14.26 mg); momentum balance "
           f"v0 = i S / m = {i * S / m:.2f} m/s, prototype peak velocity "

@@ -78,6 +78,25 @@ def test_column_ensemble_option(capsys):
     assert 0.0 <= e["collapse_probability_prototype"] <= 1.0
 
 
+def test_column_ensemble_of_the_prototype_alone(capsys):
+    """Without --scale the ensemble is the prototype's (a prototype-only scenario through the
+    Study): its figures, the model's None, no model or similarity block; the table says so."""
+    argv = ("column", *SHORT, "--section", "circular", "--sides", "16", "--charge", "200", "--standoff", "10",
+            "--ensemble", "2")
+    code, out = run(capsys, *argv, "--json")
+    assert code in (0, None), out.err
+    d = json.loads(out.out)
+    assert "model" not in d and "similarity" not in d and d["inputs"]["scale"] is None
+    e = d["ensemble"]
+    assert e["n_members"] == 2 and 0.0 <= e["collapse_probability_prototype"] <= 1.0
+    assert e["collapse_probability_model"] is None
+    top = e["points"]["P-3"]
+    assert top["first_peak_prototype_mean_m"] > 0 and top["first_peak_model_mean_m"] is None
+    code, out = run(capsys, *argv)
+    assert code in (0, None), out.err
+    assert "collapse probability, prototype" in out.out and "model mean" not in out.out
+
+
 def test_column_tables(capsys):
     code, out = run(capsys, "column", *SHORT, "--charge", "250", "--standoff", "10", "--scale", "0.01")
     assert code in (0, None), out.err
@@ -87,21 +106,21 @@ def test_column_tables(capsys):
 @pytest.mark.parametrize(
     "argv, words",
     [
-        (["--drums", "0"], ["drums", "0", "1-200"]),
-        (["--base-width", "-1"], ["base width", "-1", "> 0"]),
-        (["--base-width", "nan"], ["base width", "nan"]),
-        (["--top-width", "nan"], ["top width", "nan"]),
+        (["--drums", "0"], ["--drums", "0", "[1, 200]"]),
+        (["--base-width", "-1"], ["--base-width", "-1", "(0, 100] m"]),
+        (["--base-width", "nan"], ["--base-width", "nan"]),
+        (["--top-width", "nan"], ["--top-width", "nan"]),
         (["--top-width", "2.0"], ["top width", "2", "1.65"]),
         (["--section", "hexagonal"], ["section", "hexagonal", "square, circular"]),
         (["--section", "circular", "--sides", "3"], ["sides", "3", "8-256"]),
         (["--timestep", "0.5"], ["timestep", "0.5", "valid range"]),
-        (["--timestep", "-1e-3"], ["timestep", "-0.001", "> 0"]),
+        (["--timestep", "-1e-3"], ["--timestep", "-0.001", "(0, 0.1] s"]),
         (["--load", "Z"], ["load", "'Z'", "A"]),
         (["--incidence", "guess"], ["incidence", "guess", "ufc"]),
-        (["--density", "0"], ["density", "0", "> 0"]),
+        (["--density", "0"], ["--density", "0", "(0, 25000] kg/m^3"]),
         (["--scale", "-0.01"], ["scale", "-0.01"]),
-        (["--scale", "0.01", "--ensemble", "1"], ["ensemble", "1", ">= 2"]),
-        (["--ensemble", "4"], ["ensemble", "4", "--scale"]),
+        (["--scale", "0.01", "--ensemble", "1"], ["--ensemble", "1", "2 to 64"]),
+        (["--ensemble", "-1"], ["--ensemble", "-1", "[0, 64]"]),
     ],
 )
 def test_column_bad_input_exits_2_with_one_line(capsys, argv, words):
@@ -230,8 +249,8 @@ def test_run_system_passes_extrapolate_to_the_load(monkeypatch):
     monkeypatch.setattr(loads, "make_load", spy)
     col = MultiDrumColumn(drums=2, height=2.0, top_width=1.6)
     for flag in (False, True):
-        _, r, load_s = run_system(col, design_model(250.0, 10.0, 1 / 100), "model", duration=0.01,
-                                  record_every=8, extrapolate=flag)
+        _, r, load_s, _ = run_system(col, design_model(250.0, 10.0, 1 / 100), "model", duration=0.01,
+                                     record_every=8, extrapolate=flag)
         assert r.summary()["collapsed"] is False and 0 < load_s < 0.01
     assert seen == [False, True]
 

@@ -34,11 +34,12 @@ def test_ensemble_statistics_closed_form():
 
 
 def test_perturbed_load_scales_every_wrench_exactly():
+    from blastscale.blast import blast_parameters
     from blastscale.sim3d.load_methods import make_load
     from blastscale.structures import MultiDrumColumn
 
     col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54)
-    base = make_load("A", col, charge_kg=250.0, standoff_m=10.0)
+    base = make_load("A", col, blast_parameters(250.0, 10.0))
     pert = PerturbedLoad(base, 1 + 1e-6)
     pos = np.array([b.com for b in col.bodies])
     rot = np.repeat(np.eye(3)[None], 3, axis=0)

@@ -82,3 +82,13 @@ def test_every_example_is_tested_and_documented():
 def test_help_documents_quick():
     r = _run("paper_fe_blocks_3d.py", ["--help"], EXAMPLES)
     assert r.returncode == 0 and "--quick" in r.stdout and "--alpha35" in r.stdout
+
+
+@pytest.mark.parametrize("script", ["paper_fe_blocks_3d.py", "paper_columns_method_a.py"])
+def test_3d_examples_go_through_the_study(script):
+    """The 3D examples build scenarios and run the Study (one way in): no engine or comparison
+    function is called directly."""
+    text = (EXAMPLES / script).read_text()
+    assert "from blastscale.study import Study" in text and "Scenario.from_dict(" in text
+    for name in ("compare_structure3d(", "ensemble_compare(", "run_system(", "design_model(", "simulate_structure("):
+        assert name not in text, (script, name)

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from blastscale._validate import BlastscaleInputError
+from blastscale.blast import blast_parameters
 from blastscale.blast.faces import MixedModelWarning
 from blastscale.blast.incidence import INCIDENCE_MODELS
 from blastscale.sim3d.face_loads import FaceLoadStrategy, arrival_spread
@@ -37,7 +38,7 @@ def _integrate(load, structure, dt=2.5e-4):
 
 def test_b_and_c_are_registered_load_strategies():
     assert {"A", "B", "C"} <= set(LOAD_METHODS)
-    load = make_load("C", SQUARE, charge_kg=250.0, standoff_m=10.0)
+    load = make_load("C", SQUARE, blast_parameters(250.0, 10.0))
     assert isinstance(load, LoadStrategy) and isinstance(load, FaceLoadStrategy)
 
 
@@ -46,7 +47,7 @@ def test_b_and_c_are_registered_load_strategies():
 def test_momentum_bookkeeping_step_wrenches_carry_every_face_impulse(method, structure):
     # delivered impulse = sum over faces of i S (-n), per body, for any step (exact step impulses);
     # the moment impulse = sum of (R c) x (i S (-n)). Round-off only: 1e-9 relative.
-    load = make_load(method, structure, charge_kg=250.0, standoff_m=10.0)
+    load = make_load(method, structure, blast_parameters(250.0, 10.0))
     got = _integrate(load, structure)
     fi = load.face_impulses()
     per_body = np.zeros((len(structure.bodies), 3))
@@ -64,21 +65,21 @@ def test_momentum_bookkeeping_step_wrenches_carry_every_face_impulse(method, str
 @pytest.mark.parametrize("method", ["B", "C"])
 @pytest.mark.parametrize("structure", [SQUARE, CIRCULAR], ids=["square", "circular"])
 def test_no_net_sideways_impulse_on_a_symmetric_column(method, structure):
-    imp = make_load(method, structure, charge_kg=250.0, standoff_m=10.0).delivered_impulse().sum(axis=0)
+    imp = make_load(method, structure, blast_parameters(250.0, 10.0)).delivered_impulse().sum(axis=0)
     assert abs(imp[1]) < 1e-10 * abs(imp[0])
 
 
 @pytest.mark.parametrize("incidence", INCIDENCE_MODELS)
 @pytest.mark.parametrize("structure", [SQUARE, CIRCULAR], ids=["square", "circular"])
 def test_rear_faces_reduce_the_push_c_below_b_below_a(incidence, structure):
-    push = {m: make_load(m, structure, charge_kg=250.0, standoff_m=10.0,
+    push = {m: make_load(m, structure, blast_parameters(250.0, 10.0),
                          incidence=incidence).delivered_impulse()[:, 0].sum() for m in "ABC"}
     assert push["C"] < push["B"] < push["A"]
 
 
 def test_b_and_c_read_the_current_pose():
     # moving the top drum 1 m towards the charge: nearer (earlier arrival) and more oblique
-    load = make_load("B", SQUARE, charge_kg=250.0, standoff_m=10.0)
+    load = make_load("B", SQUARE, blast_parameters(250.0, 10.0))
     pos, rot = _rest(SQUARE)
     moved = pos.copy()
     moved[-1, 0] -= 1.0
@@ -94,7 +95,7 @@ def test_b_and_c_read_the_current_pose():
 
 
 def test_in_contact_faces_carry_nothing_and_polygon_faces_one_by_one():
-    load = make_load("C", CIRCULAR, charge_kg=250.0, standoff_m=10.0)
+    load = make_load("C", CIRCULAR, blast_parameters(250.0, 10.0))
     n_exposed = sum(not f.in_contact for b in CIRCULAR.bodies for f in b.faces)
     assert load.body.size == n_exposed == 10 * 16 + 1  # 16 sides per drum and the top of the top drum
     assert "bottom" not in load.labels and load.labels.count("top") == 1
@@ -114,7 +115,7 @@ def test_far_field_b_equals_a_within_one_percent_of_the_peak_response():
     blk = RectangularBlock(height=1.0, width=0.5, depth=1.0)
     peaks = {}
     for m in "AB":
-        load = make_load(m, blk, charge_kg=300.0, standoff_m=40.0)
+        load = make_load(m, blk, blast_parameters(300.0, 40.0))
         r = simulate_structure(blk, load, 0.6, record_every=4)
         peaks[m] = r.dataset["rotation_y"].values[:, 0]
     ref = np.abs(peaks["A"]).max()
@@ -126,15 +127,15 @@ def test_far_field_b_equals_a_within_one_percent_of_the_peak_response():
 def test_masi2021_works_for_b_and_c_with_one_warning():
     with warnings.catch_warnings(record=True) as rec:
         warnings.simplefilter("always")
-        load = make_load("C", SQUARE, charge_kg=250.0, standoff_m=10.0, blast_model="masi2021")
+        load = make_load("C", SQUARE, blast_parameters(250.0, 10.0, "masi2021"))
     assert sum(issubclass(w.category, MixedModelWarning) for w in rec) == 1
     assert load.describe()["incident_values_from"] == "kingery-bulmash"
     assert _integrate(load, SQUARE)[:, 0].sum() > 0
 
 
 def test_arrival_spread_and_its_similarity_block():
-    a = make_load("A", SQUARE, charge_kg=250.0, standoff_m=10.0)
-    b = make_load("B", SQUARE, charge_kg=250.0, standoff_m=10.0)
+    a = make_load("A", SQUARE, blast_parameters(250.0, 10.0))
+    b = make_load("B", SQUARE, blast_parameters(250.0, 10.0))
     assert arrival_spread(a) == 0.0
     ta = b.rest_loads.arrival_time
     assert arrival_spread(b) == pytest.approx(ta.max() - ta.min(), rel=1e-15) and 4e-3 < arrival_spread(b) < 8e-3
@@ -150,36 +151,42 @@ def test_arrival_spread_and_its_similarity_block():
     assert arrival_spread(b) == pytest.approx(travel, rel=0.05)
 
 
+def _spreads(structure, design, method):
+    """The arrival spreads of a design's two loads (prototype, specimen at its size)."""
+    return arrival_spread_similarity(make_load(method, structure, design.prototype),
+                                     make_load(method, structure.scaled(design.factors), design.model), design.factors)
+
+
 def test_arrival_spread_scaling_hopkinson_cranz_and_general_law():
     # Hopkinson-Cranz: same Z at every face, so every blast time (arrivals, spread) scales with lambda
     # exactly; the comparison up-scales by the rigid-body time factor sqrt(lambda), hence the ratio
     # sqrt(lambda) (docs/face_loads.md)
     lam = 0.25
     hc = design_model(250.0, 10.0, lam, None, law="hopkinson-cranz")
-    s = arrival_spread_similarity(SQUARE, hc, "B")
+    s = _spreads(SQUARE, hc, "B")
     assert s["arrival_spread_model_upscaled_s"] * hc.factors.time / lam == pytest.approx(
         s["arrival_spread_prototype_s"], rel=1e-9)
     # general law (gamma = 1): the model is farther out in Z, its shock slower, its spread
     # sqrt(lambda) U(Z_p) / U(Z_m) of the prototype's: 0.17 at lambda = 1/100 (U ratio ~1.7)
-    g = arrival_spread_similarity(SQUARE, design_model(250.0, 10.0, 0.01), "B")
+    g = _spreads(SQUARE, design_model(250.0, 10.0, 0.01), "B")
     ratio = g["arrival_spread_model_upscaled_s"] / g["arrival_spread_prototype_s"]
     assert 0.12 < ratio < 0.25
 
 
 def test_bad_input_is_one_line():
     with pytest.raises(BlastscaleInputError, match="load method = 'D' is not known: valid values are A, B, C"):
-        make_load("D", SQUARE, charge_kg=250.0, standoff_m=10.0)
+        make_load("D", SQUARE, blast_parameters(250.0, 10.0))
     with pytest.raises(BlastscaleInputError, match="incidence model = 'x' is not known"):
-        make_load("B", SQUARE, charge_kg=250.0, standoff_m=10.0, incidence="x")
+        make_load("B", SQUARE, blast_parameters(250.0, 10.0), incidence="x")
     with pytest.raises(BlastscaleInputError, match="pulse = 'box' is not known"):
-        make_load("C", SQUARE, charge_kg=250.0, standoff_m=10.0, pulse="box")
-    with pytest.raises(BlastscaleInputError, match="standoff = -1"):
-        make_load("B", SQUARE, charge_kg=250.0, standoff_m=-1.0)
+        make_load("C", SQUARE, blast_parameters(250.0, 10.0), pulse="box")
+    with pytest.raises(BlastscaleInputError, match="blast = float is not blast parameters"):
+        make_load("B", SQUARE, 250.0)
 
 
 def test_load_time_correction_moves_arrivals_and_scales_impulses():
     # the corrections of docs/face_loads.md: stretch the spread about the first arrival, weight the faces
-    load = make_load("B", SQUARE, charge_kg=250.0, standoff_m=10.0)
+    load = make_load("B", SQUARE, blast_parameters(250.0, 10.0))
     w = np.linspace(0.5, 1.5, 10)
     c = load.corrected(2.0, w)
     np.testing.assert_allclose(_integrate(c, SQUARE)[:, :3], load.face_impulses() * w[:, None], rtol=1e-9,
@@ -202,6 +209,6 @@ def test_comparison_similarity_reports_the_arrival_spreads():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         s = compare_structure3d(col, design, load="B", duration=0.05).similarity()
-    ref = arrival_spread_similarity(col, design, "B")
+    ref = _spreads(col, design, "B")
     assert s["arrival_spread_prototype_s"] == ref["arrival_spread_prototype_s"] > 0
     assert s["arrival_spread_model_upscaled_s"] == ref["arrival_spread_model_upscaled_s"] > 0

@@ -107,7 +107,7 @@ def test_block3d_without_scale_has_no_model_block(capsys):
         (["--alpha-deg", "15", "--timestep", "inf"], "timestep"),
         (["--alpha-deg", "15", "--scale", "0"], "scale"),
         (["--alpha-deg", "15", "--duration", "nan"], "duration"),
-        (["--alpha-deg", "15", "--record-every", "0"], "record_every"),
+        (["--alpha-deg", "15", "--record-every", "0"], "--record-every"),
         (["--alpha-deg", "95"], "alpha"),
         ([], "width"),
         (["--alpha-deg", "15", "--pulse", "square"], "pulse"),

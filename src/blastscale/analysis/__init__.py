@@ -2,12 +2,15 @@
 
 * :mod:`.compare` -- ``upscale_dataset`` (each variable / its ``dimension``'s factor),
   ``compare_responses`` (per body and point: first peaks, differences, outcomes), ``first_peak``;
-* :mod:`.structure3d` -- ``compare_structure3d`` (any structure on MuJoCo, any load method),
-  ``upscale_summary``;
-* :mod:`.ensemble` -- ``ensemble_compare`` for chaotic structures (circular columns);
+* :mod:`.upscale` -- ``upscale``, ``upscale_summary``: the one up-scaling rule;
+* :mod:`.structure3d` -- ``compare_structure3d`` (any structure on MuJoCo, any load method; a
+  block's summary carries its planar view), ``prototype_structure3d`` (the prototype alone);
+* :mod:`.ensemble` -- ``ensemble_compare`` for chaotic structures (circular columns; the
+  prototype's ensemble alone without a design);
 * :mod:`.rocking_similarity` -- planar rocking through the same contract (with its overturning figures);
 * :mod:`.block3d_similarity` -- the single block's planar view of a 3D run (``block_dataset``,
-  ``block_summary``, ``block_similarity``: rotation about y, sliding of the supporting edge, uplift);
+  ``block_summary``, ``block_similarity``, ``block_view``: rotation about y, sliding of the
+  supporting edge, uplift);
 * :mod:`.systems` -- internal: ``run_system``, one side of a model experiment on the 3D engine.
 
 Many-case studies (sweeps, fragility, similarity maps) live in :mod:`blastscale.sweeps`.

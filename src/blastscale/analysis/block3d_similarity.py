@@ -38,7 +38,8 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from .compare import compare_responses
 
-__all__ = ["BLOCK_VARIABLES", "COMPARED", "block_dataset", "block_similarity", "block_summary"]
+__all__ = ["BLOCK_VARIABLES", "COMPARED", "BLOCK_SUMMARY_KEYS", "BLOCK_SIMILARITY_KEYS", "block_dataset",
+           "block_similarity", "block_summary", "block_view"]
 
 #: The variables of :func:`block_dataset`: name -> (units, physical dimension, description).
 BLOCK_VARIABLES = {
@@ -53,6 +54,14 @@ BLOCK_VARIABLES = {
 
 #: The variables compared by :func:`block_similarity`.
 COMPARED = ("rotation_y", "sliding", "uplift")
+
+#: The keys of :func:`block_summary` (the ``block3d`` outcome keys), in order.
+BLOCK_SUMMARY_KEYS = ("overturned", "overturn_time_s", "max_rotation_rad", "max_sliding_m", "final_sliding_m",
+                      "max_uplift_m", "peak_angular_velocity_rad_s", "peak_velocity_x_m_s", "delivered_impulse_Ns")
+
+#: The keys of :func:`block_similarity` (the ``block3d`` similarity keys), in order.
+BLOCK_SIMILARITY_KEYS = ("max_abs_rotation_diff_rad", "max_abs_sliding_diff_m", "max_abs_uplift_diff_m",
+                         "first_peak_rotation_ratio", "outcomes_agree")
 
 
 def _block_of(result, block):
@@ -169,3 +178,40 @@ def block_similarity(prototype_ds, upscaled_ds) -> dict:
         "first_peak_rotation_ratio": v["rotation_y"]["block"].get("first_peak_ratio"),
         "outcomes_agree": c.get("outcomes_agree"),
     }
+
+
+def block_view(prototype, block=None, model=None, model_block=None, factors=None) -> dict:
+    """The block's planar view of a prototype run and, when given, of its specimen's run: the
+    ``block3d`` keys.
+
+    Parameters
+    ----------
+    prototype : Response3D
+        The prototype block's run [SI].
+    block : RectangularBlock, optional
+        The prototype block (default ``prototype.structure``).
+    model : Response3D, optional
+        The specimen's run, in its own units.
+    model_block : RectangularBlock, optional
+        The specimen block (default ``model.structure``).
+    factors : ScalingFactors, optional
+        Specimen / prototype factors (needed with ``model``).
+
+    Returns
+    -------
+    dict
+        ``prototype``: :func:`block_summary`; ``model``: the specimen's, up-scaled to prototype units
+        (:func:`~.upscale.upscale_summary`); ``similarity``: :func:`block_similarity` of the
+        prototype and the up-scaled specimen (both None without ``model``).
+    """
+    from .compare import upscale_dataset
+    from .upscale import upscale_summary
+
+    out = {"prototype": block_summary(prototype, block), "model": None, "similarity": None}
+    if model is not None:
+        if factors is None:
+            raise BlastscaleInputError("factors = None: the specimen's run needs the design's factors to be up-scaled")
+        out["model"] = upscale_summary(block_summary(model, model_block), factors)
+        out["similarity"] = block_similarity(block_dataset(prototype, block),
+                                             upscale_dataset(block_dataset(model, model_block), factors))
+    return out

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_range
+from ..constants import STANDARD_GRAVITY
 
 __all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics"]
 
@@ -108,11 +109,13 @@ class EnsembleComparison:
     points : tuple of str
         Monitoring points (x displacement compared).
     prototype, model : dict
-        :func:`ensemble_statistics` of the prototype members and of the up-scaled model members.
+        :func:`ensemble_statistics` of the prototype members and of the up-scaled model members
+        (``model`` None for a prototype-only ensemble).
     factors : tuple of float
         The load multipliers of the members [-].
     prototype_members, model_members : ndarray (k, n, p)
-        The members' x displacements [m] (model up-scaled, on the prototype's times).
+        The members' x displacements [m] (model up-scaled, on the prototype's times; None
+        without a model).
     settings : dict
         Inputs (perturbation, n, load method, duration).
     """
@@ -129,39 +132,51 @@ class EnsembleComparison:
     def summary(self) -> dict:
         """Per point: first-peak mean and spread of each system [m], their ratio, the model's
         first-peak mean offset relative to the prototype's spread, envelope coverage, the
-        prototype's noise floor and horizon; collapse probabilities."""
+        prototype's noise floor and horizon; collapse probabilities. Without a model (a
+        prototype-only ensemble) the model's figures are None."""
         p, m = self.prototype, self.model
         pts = {}
         for j, name in enumerate(self.points):
+            pts[name] = {
+                "first_peak_prototype_mean_m": float(p["first_peak_mean"][j]),
+                "first_peak_prototype_spread_m": float(p["first_peak_spread"][j]),
+                "first_peak_model_mean_m": None,
+                "first_peak_model_spread_m": None,
+                "first_peak_ratio": None,
+                "peak_prototype_m": float(p["peak"][j]),
+                "peak_model_m": None,
+                "noise_floor_rel_peak": float(p["max_spread_rel_peak"][j]),
+                "model_noise_floor_rel_peak": None,
+                "envelope_mismatch_rel_peak": None,
+                "horizon_prototype_s": float(p["horizon_s"][j]),
+                "horizon_model_s": None,
+            }
+            if m is None:
+                continue
             lo, hi = p["envelope_min"][:, j], p["envelope_max"][:, j]
             mlo, mhi = m["envelope_min"][:, j], m["envelope_max"][:, j]
             # difference of the envelopes relative to the prototype's peak: how far the model's band
             # lies outside the prototype's band (0 when inside)
             outside = np.maximum(np.maximum(mhi - hi, 0.0), np.maximum(lo - mlo, 0.0))
-            pts[name] = {
-                "first_peak_prototype_mean_m": float(p["first_peak_mean"][j]),
-                "first_peak_prototype_spread_m": float(p["first_peak_spread"][j]),
+            pts[name].update({
                 "first_peak_model_mean_m": float(m["first_peak_mean"][j]),
                 "first_peak_model_spread_m": float(m["first_peak_spread"][j]),
                 "first_peak_ratio": float(m["first_peak_mean"][j] / p["first_peak_mean"][j])
                 if p["first_peak_mean"][j] != 0 else math.nan,
-                "peak_prototype_m": float(p["peak"][j]),
                 "peak_model_m": float(m["peak"][j]),
-                "noise_floor_rel_peak": float(p["max_spread_rel_peak"][j]),
                 "model_noise_floor_rel_peak": float(m["max_spread_rel_peak"][j]),
                 "envelope_mismatch_rel_peak": float(np.max(outside) / p["peak"][j]) if p["peak"][j] > 0 else math.nan,
-                "horizon_prototype_s": float(p["horizon_s"][j]),
                 "horizon_model_s": float(m["horizon_s"][j]),
-            }
+            })
         return {
             "n_members": len(self.factors),
             "perturbation": self.settings.get("perturbation"),
             "collapse_probability_prototype": p["collapse_probability"],
-            "collapse_probability_model": m["collapse_probability"],
+            "collapse_probability_model": None if m is None else m["collapse_probability"],
             "collapse_time_prototype_mean_s": p["collapse_time_mean"],
             "collapse_time_prototype_spread_s": p["collapse_time_spread"],
-            "collapse_time_model_mean_s": m["collapse_time_mean"],
-            "collapse_time_model_spread_s": m["collapse_time_spread"],
+            "collapse_time_model_mean_s": None if m is None else m["collapse_time_mean"],
+            "collapse_time_model_spread_s": None if m is None else m["collapse_time_spread"],
             "points": pts,
         }
 
@@ -181,13 +196,16 @@ def ensemble_compare(
     horizon_fraction: float = 0.05,
     progress=None,
     extrapolate: bool = False,
+    blast=None,
+    gravity: float = STANDARD_GRAVITY,
 ) -> EnsembleComparison:
     """Ensembles of a structure and of its reduced-scale model under slightly perturbed loads.
 
     Parameters
     ----------
     structure, design, load, pulse, incidence, contact, duration, record_every, extrapolate
-        As :func:`~.structure3d.compare_structure3d` (duration [s] prototype time).
+        As :func:`~.structure3d.compare_structure3d` (duration [s] prototype time). ``design``
+        None: the prototype's ensemble alone (a prototype-only study), from ``blast``.
     n : int
         Members per system, >= 2.
     perturbation : float
@@ -196,15 +214,20 @@ def ensemble_compare(
     horizon_fraction : float
         See :func:`ensemble_statistics`.
     progress : callable, optional
-        Called as ``progress(k, n)`` after each member pair.
+        Called as ``progress(k, n)`` after each member (pair).
+    blast : BlastParameters, optional
+        The prototype's blast parameters when ``design`` is None.
+    gravity : float
+        The prototype's gravity [m/s^2] when ``design`` is None.
 
     Returns
     -------
     EnsembleComparison
+        Without a design, ``model`` and ``model_members`` are None.
     """
     from .compare import align, upscale_dataset
-    from .structure3d import upscale_summary
     from .systems import SYSTEMS, run_system
+    from .upscale import upscale_summary
 
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
         raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 2")
@@ -212,35 +235,39 @@ def ensemble_compare(
     if eps == 0.0:
         raise BlastscaleInputError("perturbation = 0 is out of range: must be in (0, 0.1]")
     factors = tuple(1.0 + eps * u for u in np.linspace(-1.0, 1.0, int(n)))
-    proto_q, model_q, proto_c, model_c, proto_tc, model_tc = [], [], [], [], [], []
+    systems = SYSTEMS if design is not None else ("prototype",)
+    q: dict = {s: [] for s in systems}
+    collapsed: dict = {s: [] for s in systems}
+    times: dict = {s: [] for s in systems}
     t = points = None
+    kw = dict(blast=blast, gravity=gravity, load=load, pulse=pulse, incidence=incidence, contact=contact,
+              duration=duration, record_every=record_every, extrapolate=extrapolate)
     for k, fac in enumerate(factors):
-        pr, mo = (run_system(structure, design, system, load=load, pulse=pulse, incidence=incidence, contact=contact,
-                             duration=duration, record_every=record_every, load_factor=fac,
-                             extrapolate=extrapolate).response for system in SYSTEMS)
-        pds, up = align(pr.dataset, upscale_dataset(mo.dataset, design.factors))
+        runs = {s: run_system(structure, design, s, load_factor=fac, **kw).response for s in systems}
+        ds = {"prototype": runs["prototype"].dataset}
+        summ = {"prototype": runs["prototype"].summary()}
+        if design is not None:
+            ds["prototype"], ds["model"] = align(ds["prototype"], upscale_dataset(runs["model"].dataset, design.factors))
+            summ["model"] = upscale_summary(runs["model"].summary(), design.factors)
         if t is None:
-            t = pds["time"].values
-            points = tuple(str(p) for p in pds["point"].values)
-        elif pds.sizes["time"] != t.size:  # a member ended early: compare on the shortest common span
-            m = min(t.size, pds.sizes["time"])
+            t = ds["prototype"]["time"].values
+            points = tuple(str(p) for p in ds["prototype"]["point"].values)
+        elif ds["prototype"].sizes["time"] != t.size:  # a member ended early: compare on the shortest common span
+            m = min(t.size, ds["prototype"].sizes["time"])
             t = t[:m]
-            proto_q, model_q = [x[:m] for x in proto_q], [x[:m] for x in model_q]
-            pds, up = pds.isel(time=slice(0, m)), up.isel(time=slice(0, m))
-        proto_q.append(pds["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
-        model_q.append(up["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
-        ps, ms = pr.summary(), upscale_summary(mo.summary(), design.factors)
-        proto_c.append(bool(ps["collapsed"]))
-        model_c.append(bool(ms["collapsed"]))
-        proto_tc.append(ps.get("collapse_time_s"))
-        model_tc.append(ms.get("collapse_time_s"))
+            q = {s: [x[:m] for x in v] for s, v in q.items()}
+            ds = {s: d.isel(time=slice(0, m)) for s, d in ds.items()}
+        for s in systems:
+            q[s].append(ds[s]["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
+            collapsed[s].append(bool(summ[s]["collapsed"]))
+            times[s].append(summ[s].get("collapse_time_s"))
         if progress is not None:
             progress(k + 1, len(factors))
-    P, M = np.stack(proto_q), np.stack(model_q)
+    stats = {s: ensemble_statistics(t, np.stack(q[s]), collapsed[s], horizon_fraction, collapse_times=times[s])
+             for s in systems}
     return EnsembleComparison(
-        time=t, points=points,
-        prototype=ensemble_statistics(t, P, proto_c, horizon_fraction, collapse_times=proto_tc),
-        model=ensemble_statistics(t, M, model_c, horizon_fraction, collapse_times=model_tc),
-        factors=factors, prototype_members=P, model_members=M,
+        time=t, points=points, prototype=stats["prototype"], model=stats.get("model"),
+        factors=factors, prototype_members=np.stack(q["prototype"]),
+        model_members=np.stack(q["model"]) if design is not None else None,
         settings={"perturbation": eps, "n": int(n), "load_method": load, "pulse": pulse, "duration_s": float(duration)},
     )

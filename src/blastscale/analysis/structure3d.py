@@ -5,12 +5,17 @@
 1. the model structure is ``structure.scaled(factors)``, its gravity ``varsigma g``, its
    contact settings the engine's scale-consistent defaults (``contact=None``) or
    ``contact.scaled(factors)``;
-2. each is loaded by :func:`blastscale.sim3d.load_methods.make_load` with its own charge and
-   stand-off (``design.prototype``, ``design.model``) and simulated by
-   :func:`blastscale.sim3d.simulate_structure` (the model for ``duration * lambda_t``): one
-   :func:`~.systems.run_system` each;
+2. each is loaded by :func:`blastscale.sim3d.load_methods.make_load` from its own blast
+   parameters (``design.prototype``, ``design.model``: the design's, never recomputed) and
+   simulated by :func:`blastscale.sim3d.simulate_structure` (the model for ``duration *
+   lambda_t``): one :func:`~.systems.run_system` each;
 3. the model's dataset is up-scaled by :func:`~.compare.upscale_dataset` and compared with the
-   prototype's by :func:`~.compare.compare_responses` (the package's one comparison).
+   prototype's by :func:`~.compare.compare_responses` (the package's one comparison); the
+   arrival-time spreads are read from the two loads as run.
+
+A single block also gets its planar view (:mod:`.block3d_similarity`: rotation, sliding, uplift)
+in the summary, next to the structure's keys. :func:`prototype_structure3d` runs the prototype
+alone (a prototype-only study: no design, no comparison).
 
 Reference: Masi, Stefanou & Maffi-Berthier, Sec. 6 (multi-drum columns, lambda = 1/100,
 Method A) and Sec. "FEM simulations" (single blocks).
@@ -21,55 +26,29 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from .._validate import BlastscaleInputError, check_positive
-from .compare import align, compare_responses, dimension_factor, upscale_dataset
+from ..constants import STANDARD_GRAVITY
+from ..structures import is_block
+from .compare import align, compare_responses, upscale_dataset
 from .systems import SYSTEMS, run_system
+from .upscale import upscale_summary
 
-__all__ = ["Comparison3D", "compare_structure3d", "upscale_summary", "SUMMARY_UNIT_DIMENSIONS"]
-
-#: Unit suffix of a summary key -> physical dimension (the keys of Response3D.summary()).
-SUMMARY_UNIT_DIMENSIONS = {
-    "_m_s": "velocity",
-    "_rad_s": "angular_velocity",
-    "_Ns": "momentum",
-    "_N_s": "momentum",
-    "_rad": "angle",
-    "_kg": "mass",
-    "_m": "length",
-    "_s": "time",
-}
+__all__ = ["Comparison3D", "Prototype3D", "compare_structure3d", "prototype_structure3d", "upscale_summary"]
 
 
-def upscale_summary(summary, factors):
-    """A model's summary dict in prototype units, each number divided by the factor of the
-    dimension its key's unit suffix names (:data:`SUMMARY_UNIT_DIMENSIONS`, e.g. ``_m`` length,
-    ``_m_s`` velocity, ``_Ns`` momentum); booleans, counts and keys without a unit are kept.
-    Nested dicts (``points``) and lists (``[x, y, z]``) are handled recursively.
+def _merged(base: dict, extra: dict) -> dict:
+    """``base`` with the keys of ``extra`` it does not have (added, never replacing one)."""
+    return {**base, **{k: v for k, v in extra.items() if k not in base}}
 
-    Parameters
-    ----------
-    summary : dict
-        ``Response3D.summary()`` of the model run [model units].
-    factors : ScalingFactors
-        Model / prototype factors.
 
-    Returns
-    -------
-    dict
-    """
+def _block_keys(structure, prototype, model=None, model_structure=None, factors=None) -> dict:
+    """The block3d keys of a single block's runs (:func:`~.block3d_similarity.block_view`), or
+    empty dicts for any other structure."""
+    if not is_block(structure):
+        return {"prototype": {}, "model": {}, "similarity": {}}
+    from .block3d_similarity import block_view
 
-    def scale(key: str, value):
-        if isinstance(value, dict):
-            return {k: scale(k, v) for k, v in value.items()}
-        if isinstance(value, (list, tuple)):
-            return [scale(key, v) for v in value]
-        if isinstance(value, bool) or value is None or not isinstance(value, (int, float)):
-            return value
-        for suffix, dim in SUMMARY_UNIT_DIMENSIONS.items():
-            if key.endswith(suffix):
-                return float(value) / dimension_factor(factors, dim, key)
-        return value
-
-    return {k: scale(k, v) for k, v in summary.items()}
+    v = block_view(prototype, structure, model, model_structure, factors)
+    return {k: v[k] or {} for k in ("prototype", "model", "similarity")}
 
 
 def _with_outcome(ds, summary: dict):
@@ -107,6 +86,9 @@ class Comparison3D:
         ``com_displacement``, ``rotation_y`` (x components, rotation about y).
     settings : dict
         Load method, pulse, incidence, duration [s], record interval.
+    arrival_spreads : dict
+        ``arrival_spread_prototype_s``, ``arrival_spread_model_upscaled_s`` [s], from the two runs'
+        loads (:func:`blastscale.sim3d.load_methods.arrival_spread_similarity`).
     """
 
     design: object
@@ -118,6 +100,7 @@ class Comparison3D:
     upscaled_dataset: object
     comparison: dict
     settings: dict = field(default_factory=dict)
+    arrival_spreads: dict = field(default_factory=dict)
 
     @property
     def top_point(self) -> str:
@@ -189,23 +172,20 @@ class Comparison3D:
     def _arrival_spreads(self) -> dict:
         """``arrival_spread_prototype_s`` and ``arrival_spread_model_upscaled_s`` [s]: first to last
         shock arrival over the loaded faces, the model's divided by the time factor (issue 9,
-        :func:`blastscale.sim3d.load_methods.arrival_spread_similarity`; 0 for Method A)."""
-        from ..blast.incidence import DEFAULT_INCIDENCE
-        from ..sim3d.load_methods import arrival_spread_similarity
-
-        s = self.settings
-        inc = s.get("incidence", "default")
-        return arrival_spread_similarity(self.structure, self.design, s.get("load_method", "A"),
-                                         pulse=s.get("pulse", "friedlander"),
-                                         incidence=DEFAULT_INCIDENCE if inc == "default" else inc,
-                                         extrapolate=s.get("extrapolate", False))
+        :func:`blastscale.sim3d.load_methods.arrival_spread_similarity`; 0 for Method A), read
+        from the loads the runs used."""
+        return dict(self.arrival_spreads)
 
     def summary(self) -> dict:
-        """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block."""
+        """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block; for a
+        single block each also carries the block's planar keys (``overturned``,
+        ``max_rotation_rad``, ``max_sliding_m``, ...; similarity ``max_abs_rotation_diff_rad``, ...:
+        :func:`~.block3d_similarity.block_view`), added next to the structure's keys."""
+        blk = _block_keys(self.structure, self.prototype, self.model, self.model_structure, self.design.factors)
         return {
-            "prototype": self.prototype.summary(),
-            "model": upscale_summary(self.model.summary(), self.design.factors),
-            "similarity": self.similarity(),
+            "prototype": _merged(self.prototype.summary(), blk["prototype"]),
+            "model": _merged(upscale_summary(self.model.summary(), self.design.factors), blk["model"]),
+            "similarity": _merged(self.similarity(), blk["similarity"]),
         }
 
     def to_dataset(self):
@@ -281,6 +261,8 @@ def compare_structure3d(
         )
     kw = dict(load=load, pulse=pulse, incidence=incidence, contact=contact, duration=dur, record_every=record_every,
               extrapolate=extrapolate)
+    from ..sim3d.load_methods import arrival_spread_similarity
+
     p_run, m_run = (run_system(structure, design, system, **kw) for system in SYSTEMS)
     model_structure, proto, mod = m_run.structure, p_run.response, m_run.response
     # the later of the two loads' ends [s after the first arrival, prototype time]
@@ -302,8 +284,90 @@ def compare_structure3d(
         prototype_dataset=pds, upscaled_dataset=up, comparison=cmp,
         settings={"load_method": load, "pulse": pulse, "incidence": incidence or "default", "duration_s": dur,
                   "record_every": int(record_every), "load_end_s": load_end, "extrapolate": bool(extrapolate)},
+        arrival_spreads=arrival_spread_similarity(p_run.load, m_run.load, design.factors),
     )
 
 
 #: Variables compared by :func:`compare_structure3d` (x components; rotation about y).
 _COMPARED = ("point_displacement", "point_velocity", "com_displacement", "rotation_y")
+
+
+@dataclass(frozen=True, eq=False)
+class Prototype3D:
+    """The 3D run of a prototype alone (a study without ``[scale]``: no specimen, no comparison).
+
+    The same views as :class:`Comparison3D` where they apply: ``summary()`` gives the prototype's
+    outcome (with a single block's planar keys) and ``model`` / ``similarity`` None;
+    ``upscaled_dataset`` is None.
+
+    Attributes
+    ----------
+    structure : structure
+        The prototype.
+    prototype : Response3D
+        Its run [SI].
+    prototype_dataset : xarray.Dataset
+        Its response (with the outcome ``collapsed`` as an attribute).
+    settings : dict
+        Load method, pulse, incidence, duration [s], record interval, load end [s], arrival spread [s].
+    """
+
+    structure: object
+    prototype: object
+    prototype_dataset: object
+    settings: dict = field(default_factory=dict)
+    design: object = None
+    model_structure: object = None
+    model: object = None
+    upscaled_dataset: object = None
+
+    def summary(self) -> dict:
+        """``prototype`` (the structure's keys and, for a single block, its planar keys);
+        ``model`` and ``similarity`` None."""
+        blk = _block_keys(self.structure, self.prototype)
+        return {"prototype": _merged(self.prototype.summary(), blk["prototype"]), "model": None, "similarity": None}
+
+
+def prototype_structure3d(
+    structure,
+    blast,
+    *,
+    gravity: float = STANDARD_GRAVITY,
+    load: str = "A",
+    pulse: str = "friedlander",
+    incidence: str | None = None,
+    contact=None,
+    duration: float = 8.0,
+    record_every: int = 4,
+    extrapolate: bool = False,
+) -> Prototype3D:
+    """Run a prototype alone in 3D (no model design: a prototype-only study).
+
+    Parameters
+    ----------
+    structure : structure
+        The prototype.
+    blast : BlastParameters
+        Its blast parameters (:func:`blastscale.blast.blast_parameters` of its charge and stand-off).
+    gravity : float
+        Gravity [m/s^2].
+    load, pulse, incidence, contact, duration, record_every, extrapolate
+        As :func:`compare_structure3d` (``contact`` None: the engine's defaults for the structure).
+
+    Returns
+    -------
+    Prototype3D
+    """
+    from ..sim3d.face_loads import arrival_spread
+
+    dur = float(check_positive("duration", duration, "s"))
+    run = run_system(structure, None, "prototype", blast=blast, gravity=gravity, load=load, pulse=pulse,
+                     incidence=incidence, contact=contact, duration=dur, record_every=record_every,
+                     extrapolate=extrapolate)
+    resp = run.response
+    return Prototype3D(
+        structure=structure, prototype=resp, prototype_dataset=_with_outcome(resp.dataset, resp.summary()),
+        settings={"load_method": load, "pulse": pulse, "incidence": incidence or "default", "duration_s": dur,
+                  "record_every": int(record_every), "load_end_s": run.load_duration_s,
+                  "extrapolate": bool(extrapolate), "arrival_spread_prototype_s": arrival_spread(run.load)},
+    )

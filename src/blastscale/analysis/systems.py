@@ -4,14 +4,18 @@ The one place where a designed experiment (:func:`blastscale.similitude.design_m
 a structure, a load and a run of the 3D engine. The model system is
 
 * the structure ``structure.scaled(factors)``;
-* its own load, built by :func:`blastscale.sim3d.load_methods.make_load` from ``design.model``'s
-  charge, stand-off and blast fit;
+* its own load, built by :func:`blastscale.sim3d.load_methods.make_load` from ``design.model``
+  (the design's blast parameters of the specimen: never recomputed);
 * gravity ``varsigma g``, contact ``contact.scaled(factors)`` (or the engine's
   scale-consistent defaults for its size when ``contact`` is None);
 * run for ``duration * lambda_t``.
 
-Used by :func:`~.structure3d.compare_structure3d` and :func:`~.ensemble.ensemble_compare`
-(internal: not part of the package's listed API; the Study and the comparisons are the way in).
+The prototype system is the structure itself, loaded from ``design.prototype`` or, for a
+prototype-only study (no design), from the prototype's own blast parameters.
+
+Used by :func:`~.structure3d.compare_structure3d`, :func:`~.structure3d.prototype_structure3d`
+and :func:`~.ensemble.ensemble_compare` (internal: not part of the package's listed API; the
+Study and the comparisons are the way in).
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 from .._validate import BlastscaleInputError
+from ..constants import STANDARD_GRAVITY
 
 __all__ = ["SYSTEMS", "SystemRun", "run_system"]
 
@@ -37,26 +42,35 @@ class SystemRun(NamedTuple):
         Its response.
     load_duration_s : float
         The load's duration after its first arrival [s].
+    load : LoadStrategy
+        The load it ran under (unperturbed; its arrival spread feeds the similarity block).
     """
 
     structure: object
     response: object
     load_duration_s: float
+    load: object = None
 
 
-def run_system(structure, design, system: str = "prototype", *, load: str = "A", pulse: str = "friedlander",
-               incidence: str | None = None, contact=None, duration: float = 8.0, record_every: int = 4,
-               load_factor: float = 1.0, extrapolate: bool = False) -> SystemRun:
+def run_system(structure, design, system: str = "prototype", *, blast=None, gravity: float = STANDARD_GRAVITY,
+               load: str = "A", pulse: str = "friedlander", incidence: str | None = None, contact=None,
+               duration: float = 8.0, record_every: int = 4, load_factor: float = 1.0,
+               extrapolate: bool = False) -> SystemRun:
     """Simulate the prototype, or the model at its own size (module docstring).
 
     Parameters
     ----------
     structure : structure
         Prototype structure.
-    design : ModelDesign
-        The model experiment.
+    design : ModelDesign or None
+        The model experiment; None for the prototype alone (then ``blast`` and ``gravity``).
     system : {"prototype", "model"}
         Which one.
+    blast : BlastParameters, optional
+        The prototype's blast parameters when there is no design (with a design: ``design.prototype``
+        and ``design.model``).
+    gravity : float
+        The prototype's gravity [m/s^2] when there is no design (with one: ``design.gravity``).
     load, pulse, incidence, contact, record_every
         See :func:`~.structure3d.compare_structure3d`.
     duration : float
@@ -64,7 +78,8 @@ def run_system(structure, design, system: str = "prototype", *, load: str = "A",
     load_factor : float
         Multiplier of the load's wrenches [-] (ensembles, :class:`~blastscale.sim3d.loads.PerturbedLoad`).
     extrapolate : bool
-        Let the blast fits run outside their ranges (with a warning), passed to ``make_load``.
+        Let the blast fits run outside their ranges (with a warning), passed to ``make_load``
+        (Methods B and C evaluate the fits at each face's distance).
 
     Returns
     -------
@@ -74,19 +89,23 @@ def run_system(structure, design, system: str = "prototype", *, load: str = "A",
     from ..sim3d.loads import PerturbedLoad
     from ..sim3d.simulate import simulate_structure
 
-    f = design.factors
-    if system == "prototype":
-        struct, blast, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
-    elif system == "model":
-        struct, blast = structure.scaled(f), design.model
+    if system not in SYSTEMS:
+        raise BlastscaleInputError(f"system = {system!r} is not known: valid values are {', '.join(SYSTEMS)}")
+    if design is None:
+        if system != "prototype" or blast is None:
+            raise BlastscaleInputError(
+                f"design = None with system = {system!r}{' and no blast' if blast is None else ''}: without a model "
+                "design only the prototype runs, from its blast parameters (blast=blast_parameters(W, R))")
+        struct, bp, dur, g, cont = structure, blast, duration, gravity, contact
+    elif system == "prototype":
+        struct, bp, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
+    else:
+        f = design.factors
+        struct, bp = structure.scaled(f), design.model
         dur, g = duration * f.time, design.gravity * f.gravity
         cont = None if contact is None else contact.scaled(f)
-    else:
-        raise BlastscaleInputError(f"system = {system!r} is not known: valid values are {', '.join(SYSTEMS)}")
     inc = {} if incidence is None else {"incidence": incidence}
-    ld = make_load(load, struct, charge_kg=blast.charge_kg, standoff_m=blast.standoff_m, blast_model=blast.model,
-                   pulse=pulse, extrapolate=bool(extrapolate), **inc)
-    if load_factor != 1.0:
-        ld = PerturbedLoad(ld, load_factor)
-    resp = simulate_structure(struct, ld, dur, contact=cont, gravity=g, record_every=record_every)
-    return SystemRun(struct, resp, float(ld.end_time - ld.first_arrival))
+    ld = make_load(load, struct, bp, pulse=pulse, extrapolate=bool(extrapolate), **inc)
+    run_load = ld if load_factor == 1.0 else PerturbedLoad(ld, load_factor)
+    resp = simulate_structure(struct, run_load, dur, contact=cont, gravity=g, record_every=record_every)
+    return SystemRun(struct, resp, float(ld.end_time - ld.first_arrival), ld)

@@ -1,4 +1,9 @@
-"""``blastscale block3d``: 3D rigid-body response of a single block on MuJoCo (the structure path, load A, B or C)."""
+"""``blastscale block3d``: 3D rigid-body response of a single block on MuJoCo (the structure path, load A, B or C).
+
+The flags build a :class:`~blastscale.scenario.Scenario` (engine ``3d``; no ``--scale``: the
+prototype alone) and the :class:`~blastscale.study.Study` runs it; ``--json`` is formatted from
+the study's result (its ``3d`` summary carries the block's planar keys).
+"""
 
 from __future__ import annotations
 
@@ -9,7 +14,7 @@ import typer
 from .._validate import BlastscaleInputError
 from ._app import app, console, fmt_value, one_line_warnings, print_json, save_figure, table
 from . import options as opt
-from .options import block_from_options, check_load_options, check_plot_path, contact_from_options
+from .options import block_from_options, check_plot_path
 
 _SUMMARY_ROWS = (
     ("overturned", "overturned", "", ".6g"),
@@ -26,43 +31,30 @@ def _rows(summary: dict) -> list[tuple[str, str, str]]:
     return [(name, fmt_value(summary[k], fmt), u) for name, k, u, fmt in _SUMMARY_ROWS]
 
 
-def _run(out, block, load, incidence, charge, standoff, scale, density_ratio, gravity_ratio, gravity, model, pulse,
-         contact, duration, record_every, plot) -> None:
-    """Fill ``out`` with the block's run(s) through the one structure path (every load method:
-    :func:`~blastscale.analysis.systems.run_system` for the prototype alone,
-    :func:`~blastscale.analysis.structure3d.compare_structure3d` with a model), the block3d keys
-    from its dataset (:func:`~blastscale.analysis.block3d_similarity.block_summary`,
-    :func:`~blastscale.analysis.block3d_similarity.block_similarity`)."""
-    from ..analysis.block3d_similarity import block_dataset, block_similarity, block_summary
-    from ..analysis.compare import upscale_dataset
-    from ..analysis.structure3d import compare_structure3d, upscale_summary
-    from ..analysis.systems import run_system
-    from ..similitude import design_model
+def block3d_output(result, contact, incidence: Optional[str] = None) -> dict:
+    """The ``block3d --json`` object of a study of a block on the 3D engine: ``inputs`` (from the
+    scenario; ``incidence`` as given, None for the default), ``contact`` (the prototype's contact
+    settings), ``prototype`` and, with a design, ``model`` (up-scaled), ``similarity`` and
+    ``model_experiment``: the block's planar keys of the study's ``3d`` summary."""
+    from ..analysis.block3d_similarity import BLOCK_SIMILARITY_KEYS, BLOCK_SUMMARY_KEYS
 
-    design = design_model(charge, standoff, 1.0 if scale is None else scale, density_ratio, gravity_ratio,
-                          model=model, gravity=gravity)
-    kw = {"load": load, "pulse": pulse, "incidence": incidence, "contact": contact, "duration": duration,
-          "record_every": record_every}
-    if scale is None:
-        proto = run_system(block, design, "prototype", **kw).response
-        out["prototype"] = block_summary(proto, block)
-        model_ds = None
-    else:
-        cmp = compare_structure3d(block, design, **kw)
-        f = design.factors
-        proto = cmp.prototype
-        out["prototype"] = block_summary(proto, block)
-        out["model"] = upscale_summary(block_summary(cmp.model, cmp.model_structure), f)
-        out["similarity"] = block_similarity(
-            block_dataset(proto, block), upscale_dataset(block_dataset(cmp.model, cmp.model_structure), f))
-        out["model_experiment"] = {"charge_kg": design.model_charge_kg, "standoff_m": design.model_standoff_m,
+    sc, block, d = result.scenario, result.structure, result.design
+    scale = None if d is None else d.scale
+    out: dict = {"inputs": {
+        "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "density_kg_m3": block.density,
+        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "pulse": sc.blast.pulse,
+        "model": sc.blast.model, "duration_s": sc.simulation.duration_s, "load": sc.blast.load, "incidence": incidence,
+        "scale": scale, "density_ratio": None if d is None else d.density_ratio,
+        "gravity_ratio": None if d is None else d.gravity_ratio, "gravity_m_s2": sc.simulation.gravity_m_s2,
+    }, "contact": contact.to_dict()}
+    s3 = result.summary()["3d"]
+    out["prototype"] = {k: s3["prototype"][k] for k in BLOCK_SUMMARY_KEYS}
+    if d is not None:
+        out["model"] = {k: s3["model"][k] for k in BLOCK_SUMMARY_KEYS}
+        out["similarity"] = {k: s3["similarity"][k] for k in BLOCK_SIMILARITY_KEYS}
+        out["model_experiment"] = {"charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m,
                                    "height_m": block.height * scale}
-        model_ds = cmp.upscaled_dataset
-    if plot:
-        from ..plots.column import plot_column_comparison
-
-        save_figure(lambda: plot_column_comparison(block, proto.dataset, model_ds), plot)
-        out["plot"] = plot
+    return out
 
 
 @app.command("block3d")
@@ -74,16 +66,16 @@ def block3d_cmd(
     density: float = opt.DENSITY,
     charge: float = opt.CHARGE,
     standoff: float = opt.STANDOFF,
-    duration: float = opt.DURATION,
-    pulse: str = opt.PULSE,
-    load: str = opt.LOAD,
+    duration: Optional[float] = opt.DURATION_3D,
+    pulse: Optional[str] = opt.PULSE_3D,
+    load: Optional[str] = opt.LOAD,
     incidence: Optional[str] = opt.INCIDENCE,
     restitution: Optional[float] = typer.Option(
         None, "--restitution",
         help="Not applicable in 3D: restitution emerges from the inelastic contact (Housner's value is "
              "reproduced within 0.1%). Accepted for compatibility with `rock`; a value is rejected.",
     ),
-    friction: float = typer.Option(0.7, "--friction", help="Coulomb friction coefficient mu \\[-] (paper: tan 35 deg)."),
+    friction: Optional[float] = opt.FRICTION_3D,
     timestep: Optional[float] = typer.Option(
         None, "--timestep", help="Prototype time step \\[s] (default: derived from the block's size, 0.2 ms for a 10 m "
                                  "block; the model's is x sqrt(lambda)); the contact time constant is raised to 4 "
@@ -92,8 +84,8 @@ def block3d_cmd(
     density_ratio: float = opt.DENSITY_RATIO,
     gravity_ratio: float = opt.GRAVITY_RATIO,
     gravity: float = opt.GRAVITY,
-    model: str = opt.MODEL,
-    record_every: int = typer.Option(5, "--record-every", help="Keep one state every N steps."),
+    model: Optional[str] = opt.MODEL_3D,
+    record_every: Optional[int] = opt.RECORD_EVERY,
     plot: Optional[str] = typer.Option(None, "--plot", help="Write histories and pose snapshots to this image file."),
     as_json: bool = opt.JSON,
 ) -> None:
@@ -104,30 +96,44 @@ def block3d_cmd(
     experiment is designed by the general law, run at model scale with scaled contact settings,
     up-scaled and compared with the prototype.
     """
+    from ..study import Study, contact_settings
+    from .flags import scenario_from_flags
+
     if restitution is not None:
         raise BlastscaleInputError(
             f"restitution = {restitution:g} is not applicable to block3d: in 3D the impact loss emerges from "
             "the inelastic contact (omit --restitution)"
         )
-    block = block_from_options(height, width, alpha_deg, depth, density, required=True)
-    check_load_options(load, incidence)
+    block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
-    contact = contact_from_options(block, friction, timestep, gravity)
-    out: dict = {"inputs": {
-        "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "density_kg_m3": block.density,
-        "charge_kg": charge, "standoff_m": standoff, "pulse": pulse, "model": model, "duration_s": duration,
-        "load": load, "incidence": incidence,
-        "scale": scale, "density_ratio": density_ratio if scale is not None else None,
-        "gravity_ratio": gravity_ratio if scale is not None else None, "gravity_m_s2": gravity,
-    }, "contact": contact.to_dict()}
+    sc = scenario_from_flags(
+        structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
+                   "density_kg_m3": density, "friction": friction},
+        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse, "load": load,
+               "incidence": incidence},
+        scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
+                                          "gravity_ratio": gravity_ratio},
+        simulation={"engine": "3d", "duration_s": duration, "gravity_m_s2": gravity, "timestep_s": timestep,
+                    "record_every": record_every, "critical_charge": False},
+    )
+    study = Study(sc)
     with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
-        _run(out, block, load, incidence, charge, standoff, scale, density_ratio, gravity_ratio, gravity, model, pulse,
-             contact, duration, record_every, plot)
+        contact = contact_settings(sc, study.check()[0])  # a step past the stability bound: before any run
+        result = study.run()
+    out = block3d_output(result, contact, incidence)
+    if plot:
+        from ..plots.column import plot_column_comparison
+
+        r3 = result.response3d
+        save_figure(lambda: plot_column_comparison(result.structure, r3.prototype.dataset, r3.upscaled_dataset), plot)
+        out["plot"] = plot
     if as_json:
         print_json(out)
         return
+    block, b = result.structure, sc.blast
     console.print(table(f"Prototype: {block.height:g} x {block.width:.4g} x {block.depth:g} m block, "
-                        f"{charge:g} kg TNT at {standoff:g} m ({model}, {pulse}, mu = {friction:g})", _rows(out["prototype"])))
+                        f"{b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.model}, {b.pulse}, "
+                        f"mu = {sc.structure.friction:g})", _rows(out["prototype"])))
     if scale is not None:
         console.print(table(f"Model lambda = {scale:g}, up-scaled to prototype units "
                             f"(model charge {out['model_experiment']['charge_kg']:.4g} kg)", _rows(out["model"])))

@@ -1,4 +1,9 @@
-"""``blastscale column``: a multi-drum column under a blast in 3D (MuJoCo), prototype and model."""
+"""``blastscale column``: a multi-drum column under a blast in 3D (MuJoCo), prototype and model.
+
+The flags build a :class:`~blastscale.scenario.Scenario` (engine ``3d``; no ``--scale``: the
+prototype alone; ``--ensemble N``: ``simulation.ensemble_members``) and the
+:class:`~blastscale.study.Study` runs it; a flag not given takes the scenario's default.
+"""
 
 from __future__ import annotations
 
@@ -7,10 +12,9 @@ from typing import Optional
 
 import typer
 
-from .._validate import BlastscaleInputError, check_positive
 from . import options as opt
 from ._app import app, console, fmt_value, one_line_warnings, print_json, save_figure, table
-from .options import check_load_options, check_plot_path, contact_from_options
+from .options import check_plot_path, scenario_default
 
 _SUMMARY_ROWS = (
     ("collapsed", "collapsed", "", ".6g"),
@@ -28,37 +32,72 @@ def _rows(summary: dict) -> list[tuple[str, str, str]]:
     return rows
 
 
+def _column_default(key: str, unit: str = "") -> str:
+    v = scenario_default("column", key)
+    return f" (default {v:g}{unit})" if isinstance(v, (int, float)) else f" (default {v})"
+
+
+def column_output(result, contact, incidence: Optional[str] = None, timestep: Optional[float] = None) -> dict:
+    """The ``column --json`` object of a study of a column on the 3D engine: ``inputs`` (from the
+    scenario; ``incidence`` and ``timestep`` as given, None for the defaults), ``structure``,
+    ``prototype`` and, with a design, ``model`` (up-scaled), ``similarity`` and
+    ``model_experiment``; ``ensemble`` when run."""
+    sc, d = result.scenario, result.design
+    out: dict = {"inputs": {
+        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "model": sc.blast.model,
+        "pulse": sc.blast.pulse, "load": sc.blast.load, "incidence": incidence, "friction": sc.structure.friction,
+        "duration_s": sc.simulation.duration_s, "timestep_s": timestep, "jacobian": contact.jacobian,
+        "scale": None if d is None else d.scale, "density_ratio": None if d is None else d.density_ratio,
+    }, "structure": result.structure.describe()}
+    s = result.summary()
+    out.update({k: v for k, v in s["3d"].items() if v is not None})
+    if d is not None:
+        out["model_experiment"] = {"charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m,
+                                   "structure": result.model_structure.describe()}
+    if s["ensemble"] is not None:
+        out["ensemble"] = s["ensemble"]
+    return out
+
+
 @app.command("column")
 def column_cmd(
-    section: str = typer.Option("square", "--section", help="Cross-section: square or circular (a regular polygon, --sides)."),
-    drums: int = typer.Option(10, "--drums", help="Number of drums N \\[-]."),
-    height: float = typer.Option(10.0, "--height", help="Total height of the column \\[m] (drums of equal height)."),
-    base_width: float = typer.Option(1.65, "--base-width", help="Side (square) or diameter (circular) at the base \\[m]."),
-    top_width: float = typer.Option(1.28, "--top-width", help="Side or diameter at the top \\[m] (linear taper; at most the base width)."),
-    sides: int = typer.Option(32, "--sides", help="Polygon sides of a circular drum \\[-]."),
-    density: float = typer.Option(2700.0, "--density", help="Density rho \\[kg/m^3] (marble 2700)."),
-    friction: float = typer.Option(0.7, "--friction", help="Coulomb friction coefficient mu at every joint \\[-] (paper: tan 35 deg)."),
+    section: Optional[str] = typer.Option(None, "--section", help="Cross-section: square or circular (a regular "
+                                          "polygon, --sides)" + _column_default("section") + "."),
+    drums: Optional[int] = typer.Option(None, "--drums", help="Number of drums N \\[-]" + _column_default("drums") + "."),
+    height: Optional[float] = typer.Option(None, "--height", help="Total height of the column \\[m] (drums of equal "
+                                           "height)" + _column_default("height_m", " m") + "."),
+    base_width: Optional[float] = typer.Option(None, "--base-width", help="Side (square) or diameter (circular) at the "
+                                               "base \\[m]" + _column_default("base_width_m", " m") + "."),
+    top_width: Optional[float] = typer.Option(None, "--top-width", help="Side or diameter at the top \\[m] (linear "
+                                              "taper; at most the base width)" + _column_default("top_width_m", " m")
+                                              + "."),
+    sides: Optional[int] = typer.Option(None, "--sides", help="Polygon sides of a circular drum \\[-]"
+                                        + _column_default("sides") + "."),
+    density: Optional[float] = typer.Option(None, "--density", help="Density rho \\[kg/m^3]"
+                                            + _column_default("density_kg_m3", " kg/m^3, marble") + "."),
+    friction: Optional[float] = opt.FRICTION_3D,
     charge: float = opt.CHARGE,
     standoff: float = opt.STANDOFF,
-    model: str = opt.MODEL,
-    pulse: str = opt.PULSE,
-    load: str = opt.LOAD,
+    model: Optional[str] = opt.MODEL_3D,
+    pulse: Optional[str] = opt.PULSE_3D,
+    load: Optional[str] = opt.LOAD,
     incidence: Optional[str] = opt.INCIDENCE,
     scale: Optional[float] = opt.SCALE,
     density_ratio: float = opt.DENSITY_RATIO,
-    duration: float = typer.Option(8.0, "--duration", help="Simulated time after the first arrival \\[s] (prototype)."),
+    duration: Optional[float] = opt.DURATION_3D,
     timestep: Optional[float] = typer.Option(
         None, "--timestep", help="Prototype time step \\[s] (default: derived from the structure's size; the model's "
                                  "is x sqrt(lambda)); rejected past the engine's stability bound."),
-    jacobian: str = typer.Option(
-        "dense", "--jacobian",
+    jacobian: Optional[str] = typer.Option(
+        None, "--jacobian",
         help="MuJoCo constraint Jacobian: dense (default) or sparse (2.8x faster on the square column, the same "
              "history to round-off; opt-in because of a reported MuJoCo 4.0.0 bug, docs/sim3d.md)."),
-    record_every: int = typer.Option(4, "--record-every", help="Keep one state every N steps."),
-    ensemble: int = typer.Option(
-        0, "--ensemble", help="With --scale: also run N prototypes and N models with the load x (1 + 1e-6 u), u in "
-                              "[-1, 1], and report first-peak spreads, noise floor, horizon and collapse probabilities "
-                              "(circular columns are chaotic: compare them this way; docs/columns.md). 0: off."),
+    record_every: Optional[int] = opt.RECORD_EVERY,
+    ensemble: Optional[int] = typer.Option(
+        None, "--ensemble", help="Also run N prototypes (and, with --scale, N models) with the load x (1 + 1e-6 u), u "
+                                 "in [-1, 1], and report first-peak spreads, noise floor, horizon and collapse "
+                                 "probabilities (circular columns are chaotic: compare them this way; "
+                                 "docs/columns.md). 0 (default): off; else 2 to 64."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the monitoring-point histories and pose snapshots to this image file."),
     as_json: bool = opt.JSON,
 ) -> None:
@@ -69,59 +108,38 @@ def column_cmd(
     own size with scale-consistent contact settings, up-scaled and compared with the prototype
     per monitoring point (P-1 at the base drum's front face ... P-N at the top drum's).
     """
-    from ..analysis.structure3d import compare_structure3d
-    from ..sim3d import simulate_structure
-    from ..sim3d.load_methods import make_load
-    from ..similitude import design_model
-    from ..structures import MultiDrumColumn
+    from ..study import Study, contact_settings
+    from .flags import scenario_from_flags
 
-    col = MultiDrumColumn(section=section, drums=drums, height=height, base_width=base_width, top_width=top_width,
-                          sides=sides, density=density)
-    check_load_options(load, incidence)
     check_plot_path(plot)
-    check_positive("duration", duration, "s")
-    if isinstance(ensemble, bool) or ensemble < 0 or ensemble == 1 or (ensemble and scale is None):
-        raise BlastscaleInputError(
-            f"ensemble = {ensemble} is out of range: valid values are 0 (off) or >= 2 members, with --scale")
-    contact = contact_from_options(col, friction, timestep, jacobian=jacobian)
-    inc = {} if incidence is None else {"incidence": incidence}
-    out: dict = {"inputs": {
-        "charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse, "load": load,
-        "incidence": incidence, "friction": friction, "duration_s": duration, "timestep_s": timestep, "jacobian": jacobian,
-        "scale": scale, "density_ratio": density_ratio if scale is not None else None,
-    }, "structure": col.describe()}
+    sc = scenario_from_flags(
+        structure={"kind": "column", "section": section, "drums": drums, "height_m": height,
+                   "base_width_m": base_width, "top_width_m": top_width, "sides": sides, "density_kg_m3": density,
+                   "friction": friction},
+        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse, "load": load,
+               "incidence": incidence},
+        scale=None if scale is None else {"length": scale, "density_ratio": density_ratio},
+        simulation={"engine": "3d", "duration_s": duration, "timestep_s": timestep, "record_every": record_every,
+                    "ensemble_members": ensemble, "critical_charge": False, "contact": {"jacobian": jacobian}},
+    )
+    study = Study(sc)
     with one_line_warnings():
-        if scale is None:
-            ld = make_load(load, col, charge_kg=charge, standoff_m=standoff, blast_model=model, pulse=pulse, **inc)
-            proto = simulate_structure(col, ld, duration, contact=contact, record_every=record_every)
-            out["prototype"] = proto.summary()
-            proto_ds, model_ds = proto.dataset, None
-        else:
-            design = design_model(charge, standoff, scale, density_ratio, model=model)
-            cmp = compare_structure3d(col, design, load=load, pulse=pulse, incidence=incidence, contact=contact,
-                                      duration=duration, record_every=record_every)
-            out.update(cmp.summary())
-            out["model_experiment"] = {
-                "charge_kg": design.model_charge_kg, "standoff_m": design.model_standoff_m,
-                "structure": cmp.model_structure.describe(),
-            }
-            proto_ds, model_ds = cmp.prototype_dataset, cmp.upscaled_dataset
-            if ensemble:
-                from ..analysis.ensemble import ensemble_compare
-
-                ens = ensemble_compare(col, design, n=ensemble, load=load, pulse=pulse, incidence=incidence,
-                                       contact=contact, duration=duration, record_every=record_every)
-                out["ensemble"] = ens.summary()
+        contact = contact_settings(sc, study.check()[0])  # a step past the stability bound: before any run
+        result = study.run()
+    out = column_output(result, contact, incidence, timestep)
     if plot:
         from ..plots.column import plot_column_comparison
 
-        save_figure(lambda: plot_column_comparison(col, proto_ds, model_ds), plot)
+        r3 = result.response3d
+        save_figure(lambda: plot_column_comparison(result.structure, r3.prototype_dataset, r3.upscaled_dataset), plot)
         out["plot"] = plot
     if as_json:
         print_json(out)
         return
-    title = (f"Prototype: {col.drums}-drum {section} column, {height:g} m, {base_width:g} -> {top_width:g} m; "
-             f"{charge:g} kg TNT at {standoff:g} m ({model}, {pulse}, load {load}, mu = {friction:g})")
+    col, b = result.structure, sc.blast
+    title = (f"Prototype: {col.drums}-drum {col.section} column, {col.height:g} m, {col.base_width:g} -> "
+             f"{col.top_width:g} m; {b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.model}, {b.pulse}, load {b.load}, "
+             f"mu = {sc.structure.friction:g})")
     console.print(table(title, _rows(out["prototype"])))
     if scale is not None:
         console.print(table(f"Model lambda = {scale:g}, up-scaled to prototype units (model charge "
@@ -137,20 +155,27 @@ def column_cmd(
                          f"{fmt_value(p['first_peak_ratio'], '.4f')} / "
                          f"{fmt_value(p['max_abs_displacement_diff_rel_peak'], '.3g')}", "-"))
         console.print(table("Similarity (prototype vs up-scaled model, x displacement)", rows))
-        if "ensemble" in out:
-            e = out["ensemble"]
-            top = e["points"][s["top_point"]]
-            console.print(table(f"Ensembles of {e['n_members']} (load x (1 +- {e['perturbation']:g})), top point", [
-                ("first peak, prototype mean / spread", f"{top['first_peak_prototype_mean_m']:.4g} / "
-                                                       f"{top['first_peak_prototype_spread_m']:.2g}", "m"),
-                ("first peak, model mean / spread", f"{top['first_peak_model_mean_m']:.4g} / "
-                                                   f"{top['first_peak_model_spread_m']:.2g}", "m"),
-                ("noise floor (prototype spread / peak)", fmt_value(top["noise_floor_rel_peak"], ".3g"), "-"),
-                ("horizon (spread > 5 % of the peak; - never)",
-                 fmt_value(top["horizon_prototype_s"] if math.isfinite(top["horizon_prototype_s"]) else None, ".3g"),
-                 "s"),
-                ("collapse probability, prototype / model",
-                 f"{e['collapse_probability_prototype']:.2f} / {e['collapse_probability_model']:.2f}", "-"),
-            ]))
+    if "ensemble" in out:
+        _print_ensemble(out["ensemble"], result.ensemble.points[-1], scale is not None)
     if plot:
         console.print(f"plot written to {plot}")
+
+
+def _print_ensemble(e: dict, top_point: str, with_model: bool) -> None:
+    top = e["points"][top_point]
+    horizon = top["horizon_prototype_s"]
+    rows = [("first peak, prototype mean / spread", f"{top['first_peak_prototype_mean_m']:.4g} / "
+                                                    f"{top['first_peak_prototype_spread_m']:.2g}", "m")]
+    if with_model:
+        rows.append(("first peak, model mean / spread", f"{top['first_peak_model_mean_m']:.4g} / "
+                                                        f"{top['first_peak_model_spread_m']:.2g}", "m"))
+    rows += [
+        ("noise floor (prototype spread / peak)", fmt_value(top["noise_floor_rel_peak"], ".3g"), "-"),
+        ("horizon (spread > 5 % of the peak; - never)", fmt_value(horizon if math.isfinite(horizon) else None, ".3g"),
+         "s"),
+        ("collapse probability, prototype / model" if with_model else "collapse probability, prototype",
+         f"{e['collapse_probability_prototype']:.2f}"
+         + (f" / {e['collapse_probability_model']:.2f}" if with_model else ""), "-"),
+    ]
+    console.print(table(f"Ensembles of {e['n_members']} (load x (1 +- {e['perturbation']:g})), top point "
+                        f"({top_point})", rows))

@@ -89,41 +89,30 @@ GRAVITY = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2].")
 MODEL = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP)
 JSON = typer.Option(False, "--json", help="Print one JSON object instead of tables.")
 
-# the 3D load options shared by block3d and column (names checked before any run)
-LOAD = typer.Option("A", "--load", help="Load method: A (the paper's Method A: uniform, simultaneous reflected pulse on "
-                                        "the front faces); B, C: per-face distance, arrival and incidence (docs/face_loads.md).")
-INCIDENCE = typer.Option(None, "--incidence", help="Angle-of-incidence model of loads B and C (default ufc; see "
+# the options of the 3D commands (block3d, column) whose defaults are the scenario's
+# (blastscale.scenario): None when not given, so that the scenario's default applies
+def scenario_default(table: str, key: str):
+    """The scenario schema's default of ``[table] key`` (for a help text)."""
+    from ..scenario.specs import KINDS, BlastSpec, SimulationSpec
+
+    model = {"blast": BlastSpec, "simulation": SimulationSpec}.get(table) or KINDS[table]
+    return model.model_fields[key].default
+
+
+LOAD = typer.Option(None, "--load", help="Load method: A (the paper's Method A: uniform, simultaneous reflected pulse on "
+                                         "the front faces); B, C: per-face distance, arrival and incidence "
+                                         f"(docs/face_loads.md). Default {scenario_default('blast', 'load')}.")
+INCIDENCE = typer.Option(None, "--incidence", help="Angle-of-incidence model of loads B and C (default "
+                                                   f"{scenario_default('blast', 'incidence')}; see "
                                                    "blastscale.blast.incidence).")
-
-
-def check_load_options(load: str, incidence: Optional[str]) -> None:
-    """One-line errors for an unknown --load (valid: the keys of sim3d.loads.LOAD_METHODS, B and C
-    included once registered) or --incidence (valid: blast.incidence.INCIDENCE_MODELS)."""
-    from ..sim3d.load_methods import LOAD_METHODS
-
-    if load not in LOAD_METHODS:
-        raise BlastscaleInputError(f"load = {load!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
-    if incidence is not None:
-        from ..blast.incidence import INCIDENCE_MODELS
-
-        if incidence not in INCIDENCE_MODELS:
-            raise BlastscaleInputError(
-                f"incidence = {incidence!r} is not known: valid values are {', '.join(INCIDENCE_MODELS)}")
-
-
-def contact_from_options(structure, friction: float, timestep: Optional[float], gravity: float = 9.81,
-                         jacobian: str = "dense"):
-    """The prototype's contact settings of a 3D command: the engine's scale-consistent defaults
-    for ``structure`` under ``gravity`` [m/s^2] (:func:`blastscale.sim3d.contact.default_contact`)
-    with the user's friction [-], constraint-Jacobian layout and, when given, time step [s] (the
-    contact time constant then kept >= 4 steps); the engine rejects a step past its stability bound."""
-    from dataclasses import replace
-
-    from .._validate import check_positive
-    from ..sim3d.contact import default_contact, time_constant_for_step
-
-    base = replace(default_contact(structure, friction=friction, gravity=gravity), jacobian=jacobian)
-    if timestep is None:
-        return base
-    dt = float(check_positive("timestep", timestep, "s"))
-    return replace(base, timestep=dt, time_constant=time_constant_for_step(base.time_constant, dt))
+MODEL_3D = typer.Option(None, "--model", help=MODEL_HELP)
+PULSE_3D = typer.Option(None, "--pulse", help=f"{PULSE_HELP} Default {scenario_default('blast', 'pulse')}.")
+DURATION_3D = typer.Option(None, "--duration", help="Simulated time after the shock arrival \\[s] (prototype; default "
+                                                    f"{scenario_default('simulation', 'duration_s'):g} s, the "
+                                                    "scenario's).")
+FRICTION_3D = typer.Option(None, "--friction", help="Coulomb friction coefficient mu \\[-] at every contact (default "
+                                                    f"{scenario_default('block', 'friction'):g} = tan 35 deg, the "
+                                                    "paper's).")
+RECORD_EVERY = typer.Option(None, "--record-every", help="Keep one state every N steps (default: one state per "
+                                                         "millisecond of the 10 m reference structure, 5 steps for a "
+                                                         "block and 4 for a drum stack, at any size).")

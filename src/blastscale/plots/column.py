@@ -164,7 +164,7 @@ def plot_column_comparison(structure, prototype, model=None, points=None, fig=No
 
 def plot_ensemble_envelope(ensemble, point=None, ax=None):
     """Envelopes (min-max over the members) of a point's x displacement, prototype and
-    up-scaled model, with each ensemble's mean.
+    up-scaled model (the prototype alone for a prototype-only ensemble), with each ensemble's mean.
 
     Parameters
     ----------
@@ -186,6 +186,8 @@ def plot_ensemble_envelope(ensemble, point=None, ax=None):
     t = ensemble.time
     for stats, members, colour, name in ((ensemble.prototype, ensemble.prototype_members, "C0", "prototype"),
                                          (ensemble.model, ensemble.model_members, "C3", "model (up-scaled)")):
+        if stats is None:  # a prototype-only ensemble
+            continue
         ax.fill_between(t, stats["envelope_min"][:, j], stats["envelope_max"][:, j], color=colour, alpha=0.25,
                         lw=0, label=f"{name}: envelope of {len(members)} runs")
         ax.plot(t, members[:, :, j].mean(axis=0), color=colour, lw=1.0, ls="-" if name == "prototype" else "--",

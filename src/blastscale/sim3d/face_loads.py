@@ -31,7 +31,7 @@ from ..blast.faces import face_loads_unchecked, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
 from ..blast.pulses import check_pulse_shape
-from .loads import faces_array
+from .loads import check_blast, faces_array
 
 __all__ = ["FaceLoadStrategy", "arrival_spread", "method_b", "method_c"]
 
@@ -202,19 +202,25 @@ def _charge_position(structure, standoff_m) -> np.ndarray:
     return np.array([float(structure.front_x) - R, 0.0, 0.0])
 
 
-def method_b(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash", pulse="friedlander",
-             incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
-    """Method B: each body's front (``load_face``) with its own distance, arrival, duration and incidence."""
+def _face_load(structure, faces, blast, pulse, incidence, extrapolate, method) -> FaceLoadStrategy:
+    """The per-face load of a system's blast parameters: the charge, stand-off and blast model are
+    ``blast``'s; each face's blast is evaluated at its own distance (that is the method)."""
+    bp = check_blast(blast)
+    return FaceLoadStrategy(structure, faces, charge_kg=bp.charge_kg,
+                            charge_position=_charge_position(structure, bp.standoff_m), blast_model=bp.model,
+                            pulse=pulse, incidence=incidence, extrapolate=extrapolate, method=method)
+
+
+def method_b(structure, blast, *, pulse="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
+    """Method B: each body's front (``load_face``) with its own distance, arrival, duration and
+    incidence, for the charge, stand-off and blast model of ``blast``
+    (:class:`~blastscale.blast.BlastParameters`)."""
     faces = [(i, b.load_face) for i, b in enumerate(structure.bodies)]
-    return FaceLoadStrategy(structure, faces, charge_kg=charge_kg,
-                            charge_position=_charge_position(structure, standoff_m), blast_model=blast_model,
-                            pulse=pulse, incidence=incidence, extrapolate=extrapolate, method="B")
+    return _face_load(structure, faces, blast, pulse, incidence, extrapolate, "B")
 
 
-def method_c(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash", pulse="friedlander",
-             incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
-    """Method C: every exposed face (``in_contact`` False) of every body, each with its own blast."""
+def method_c(structure, blast, *, pulse="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
+    """Method C: every exposed face (``in_contact`` False) of every body, each with its own blast,
+    for the charge, stand-off and blast model of ``blast`` (:class:`~blastscale.blast.BlastParameters`)."""
     faces = [(i, f) for i, b in enumerate(structure.bodies) for f in b.faces if not f.in_contact]
-    return FaceLoadStrategy(structure, faces, charge_kg=charge_kg,
-                            charge_position=_charge_position(structure, standoff_m), blast_model=blast_model,
-                            pulse=pulse, incidence=incidence, extrapolate=extrapolate, method="C")
+    return _face_load(structure, faces, blast, pulse, incidence, extrapolate, "C")

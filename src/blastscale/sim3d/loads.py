@@ -29,7 +29,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_finite, check_positive
 from .blast_force import mean_pressures
 
-__all__ = ["LoadStrategy", "MethodA", "PerturbedLoad", "faces_array", "method_a"]
+__all__ = ["LoadStrategy", "MethodA", "PerturbedLoad", "check_blast", "faces_array", "method_a"]
 
 
 @runtime_checkable
@@ -136,15 +136,25 @@ class MethodA:
                 "arrival_time_s": self.arrival_time}
 
 
-def method_a(structure, *, charge_kg, standoff_m, blast_model="kingery-bulmash", pulse="friedlander",
-              incidence="ufc", extrapolate=False) -> MethodA:
-    """Method A from a charge and stand-off: the reflected pulse at ``standoff_m`` (normal incidence;
-    ``incidence`` does not apply)."""
-    from ..blast.parameters import blast_parameters
+def check_blast(blast):
+    """``blast`` itself when it is the :class:`~blastscale.blast.BlastParameters` of one charge and
+    stand-off (a load is built from a system's blast parameters, never from a charge recomputed);
+    one-line error otherwise."""
+    if not hasattr(blast, "pulse") or not hasattr(blast, "charge_kg") or not hasattr(blast, "arrival_time"):
+        raise BlastscaleInputError(
+            f"blast = {type(blast).__name__} is not blast parameters: give blastscale.blast.blast_parameters(W, R) "
+            "or a design's prototype / model")
+    if np.ndim(blast.charge_kg) != 0:
+        raise BlastscaleInputError(
+            f"blast parameters of shape {np.shape(blast.charge_kg)}: a load needs one charge and one stand-off")
+    return blast
 
-    check_positive("charge", charge_kg, "kg")
-    check_positive("standoff", standoff_m, "m")
-    bp = blast_parameters(float(charge_kg), float(standoff_m), blast_model, extrapolate=extrapolate)
+
+def method_a(structure, blast, *, pulse="friedlander", incidence="ufc", extrapolate=False) -> MethodA:
+    """Method A from a system's blast parameters (:class:`~blastscale.blast.BlastParameters`): the
+    reflected pulse of shape ``pulse`` at the stand-off, arriving at ``blast.arrival_time``
+    (normal incidence; ``incidence`` and ``extrapolate`` do not apply: nothing is evaluated here)."""
+    bp = check_blast(blast)
     return MethodA(structure, bp.pulse(pulse), arrival_time=float(bp.arrival_time))
 
 

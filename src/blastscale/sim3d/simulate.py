@@ -144,7 +144,7 @@ def simulate_structure(
         :class:`~blastscale.structures.RectangularBlock`,
         :class:`~blastscale.structures.MultiDrumColumn`, or anything with the same interface.
     load : LoadStrategy or None
-        E.g. ``make_load("A", structure, charge_kg=..., standoff_m=...)`` or
+        E.g. ``make_load("A", structure, blast_parameters(W, R))`` or
         :class:`~.loads.MethodA`; None for gravity alone.
     duration : float
         Simulated time after the load's first arrival [s], > 0.

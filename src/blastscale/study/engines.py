@@ -106,24 +106,34 @@ def _3d_supports(structure) -> Optional[str]:
     return None  # every structure of blastscale.structures runs on the 3D engine
 
 
-def _run_3d(ctx: Context):
-    from ..analysis.structure3d import compare_structure3d
+def _settings_3d(ctx: Context) -> dict:
+    """The 3D settings of a study, shared by the 3D and the ensemble engines."""
+    sc = ctx.scenario
+    return dict(load=sc.blast.load, pulse=sc.blast.pulse, incidence=sc.blast.incidence,
+                contact=contact_settings(sc, ctx.structure), duration=sc.simulation.duration_s,
+                record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
 
-    sc, sim = ctx.scenario, ctx.scenario.simulation
-    return compare_structure3d(ctx.structure, ctx.design, load=sc.blast.load, pulse=sc.blast.pulse,
-                               incidence=sc.blast.incidence, contact=contact_settings(sc, ctx.structure),
-                               duration=sim.duration_s, record_every=record_every(sc, ctx.structure),
-                               extrapolate=sc.blast.extrapolate)
+
+def _run_3d(ctx: Context):
+    """Prototype and specimen in 3D from the design's blast parameters, compared
+    (:func:`~blastscale.analysis.structure3d.compare_structure3d`); without a design the prototype
+    alone from ``ctx.blast`` (:func:`~blastscale.analysis.structure3d.prototype_structure3d`)."""
+    from ..analysis.structure3d import compare_structure3d, prototype_structure3d
+
+    if ctx.design is None:
+        return prototype_structure3d(ctx.structure, ctx.blast, gravity=ctx.scenario.simulation.gravity_m_s2,
+                                     **_settings_3d(ctx))
+    return compare_structure3d(ctx.structure, ctx.design, **_settings_3d(ctx))
 
 
 def _run_ensemble(ctx: Context):
+    """Ensembles under perturbed loads (:func:`~blastscale.analysis.ensemble.ensemble_compare`):
+    prototype and specimen, or the prototype alone without a design."""
     from ..analysis.ensemble import ensemble_compare
 
-    sc, sim = ctx.scenario, ctx.scenario.simulation
+    sim = ctx.scenario.simulation
     return ensemble_compare(ctx.structure, ctx.design, n=sim.ensemble_members, perturbation=sim.ensemble_perturbation,
-                            load=sc.blast.load, pulse=sc.blast.pulse, incidence=sc.blast.incidence,
-                            contact=contact_settings(sc, ctx.structure), duration=sim.duration_s,
-                            record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
+                            blast=ctx.blast, gravity=sim.gravity_m_s2, **_settings_3d(ctx))
 
 
 @dataclass(frozen=True)

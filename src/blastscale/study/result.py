@@ -164,15 +164,17 @@ def _describe(structure) -> dict:
 
 
 def _ensemble_dataset(ens):
-    """The ensemble members' x displacements, prototype and up-scaled model (system, member, time, point)."""
+    """The ensemble members' x displacements, prototype and (with a design) up-scaled model
+    (system, member, time, point)."""
     import numpy as np
     import xarray as xr
 
-    data = np.stack([ens.prototype_members, ens.model_members])
+    members = [ens.prototype_members] + ([] if ens.model_members is None else [ens.model_members])
+    data = np.stack(members)
     return xr.Dataset(
         {"point_displacement_x": (("system", "member", "time", "point"), data,
                                   {"units": "m", "long_name": "x displacement of the monitoring point"})},
-        coords={"system": ("system", ["prototype", "model"], {"units": "1"}),
+        coords={"system": ("system", ["prototype", "model"][:len(members)], {"units": "1"}),
                 "member": ("member", np.arange(data.shape[1]), {"units": "1"}),
                 "load_factor": ("member", np.asarray(ens.factors),
                                 {"units": "1", "long_name": "factor on the member's blast load"}),

@@ -213,14 +213,14 @@ def _study_warnings(design, results: dict, skipped: list, summary: dict) -> list
     if ens is None and results.get("3d") is not None and _is_circular(results["3d"]):
         out.append("circular drums wobble chaotically: one trajectory after the first impact means little; compare "
                    "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities")
-    if ens is not None:
+    if ens is not None and summary["ensemble"]["collapse_probability_model"] is not None:
         e = summary["ensemble"]
         if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
             out.append(f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
                        f"{e['collapse_probability_model']:.2g} (model)")
     s = summary["3d"]
     if s is not None:
-        p, m = s.get("prototype", {}), s.get("model", {})
+        p, m = s.get("prototype") or {}, s.get("model") or {}
         for key in ("overturned", "collapsed"):
             if key in p and key in m and bool(p[key]) != bool(m[key]):
                 out.append(f"3D: prototype and model disagree on '{key}' ({p[key]} vs {m[key]})")
