@@ -181,7 +181,7 @@ def test_comparison_dataset_round_trips_through_netcdf(short_comparison, tmp_pat
 
 
 def test_upscale_summary_by_unit_suffix():
-    from blastscale.analysis.structure3d import upscale_summary
+    from blastscale.analysis.upscale import upscale_summary
     from blastscale.similitude import scaling_factors
 
     f = scaling_factors(1 / 100)

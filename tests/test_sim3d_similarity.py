@@ -16,7 +16,8 @@ import pytest
 
 from blastscale.analysis.block3d_similarity import block_dataset, block_similarity, block_summary
 from blastscale.analysis.compare import upscale_dataset
-from blastscale.analysis.structure3d import compare_structure3d, upscale_summary
+from blastscale.analysis.structure3d import compare_structure3d
+from blastscale.analysis.upscale import upscale_summary
 from blastscale.blast.parameters import blast_parameters
 from blastscale.similitude import design_model, scaling_factors
 from blastscale.sim3d import ContactSettings, MethodA, simulate_structure

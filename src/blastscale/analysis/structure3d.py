@@ -32,7 +32,7 @@ from .compare import align, compare_responses, upscale_dataset
 from .systems import SYSTEMS, run_system
 from .upscale import upscale_summary
 
-__all__ = ["Comparison3D", "Prototype3D", "compare_structure3d", "prototype_structure3d", "upscale_summary"]
+__all__ = ["Comparison3D", "Prototype3D", "compare_structure3d", "prototype_structure3d"]
 
 
 def _merged(base: dict, extra: dict) -> dict:

@@ -22,6 +22,7 @@ from ..blast.parameters import BLAST_MODELS, DEFAULT_BLAST_MODEL
 from ..blast.pulses import PULSE_SHAPES
 from ..sim3d.contact import CONES, JACOBIANS, SETTING_RANGES, SOLVERS
 from ..sim3d.load_methods import LOAD_METHODS
+from ..structures.column import MAX_DRUMS, MAX_SIDES, MIN_SIDES
 from ..structures.materials import MATERIALS
 from .messages import show
 
@@ -111,11 +112,11 @@ class ColumnSpec(BaseModel):
     model_config = _CONFIG
     kind: Literal["column"] = Field(description="Structure kind")
     section: Literal["square", "circular"] = Field("square", description="Drum cross-section")
-    drums: int = Field(10, ge=1, le=200, description="Number of drums [-]")
+    drums: int = Field(10, ge=1, le=MAX_DRUMS, description="Number of drums [-]")
     height_m: float = Field(10.0, gt=0, le=1000, description="Total height [m]")
     base_width_m: float = Field(1.65, gt=0, le=100, description="Side or diameter at the base [m]")
     top_width_m: float = Field(1.28, gt=0, le=100, description="Side or diameter at the top [m]")
-    sides: int = Field(32, ge=3, le=256, description="Polygon sides of a circular drum [-]")
+    sides: int = Field(32, ge=MIN_SIDES, le=MAX_SIDES, description="Polygon sides of a circular drum [-]")
     density_kg_m3: float = Field(2700.0, gt=0, le=25000, description="Density [kg/m^3] (marble)")
     friction: float = Field(DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-]", **_limits("friction"))
 
