@@ -112,7 +112,7 @@ def test_column_tables(capsys):
         (["--top-width", "nan"], ["--top-width", "nan"]),
         (["--top-width", "2.0"], ["top width", "2", "1.65"]),
         (["--section", "hexagonal"], ["section", "hexagonal", "square, circular"]),
-        (["--section", "circular", "--sides", "3"], ["sides", "3", "8-256"]),
+        (["--section", "circular", "--sides", "3"], ["--sides = 3", "[8, 256]"]),
         (["--timestep", "0.5"], ["timestep", "0.5", "valid range"]),
         (["--timestep", "-1e-3"], ["--timestep", "-0.001", "(0, 0.1] s"]),
         (["--load", "Z"], ["load", "'Z'", "A"]),
