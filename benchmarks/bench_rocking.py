@@ -39,7 +39,7 @@ def make_cases(n: int, seed: int):
         blk = RectangularBlock.from_slenderness(
             rng.uniform(1.0, 20.0), math.radians(rng.uniform(8.0, 30.0)), density=rng.uniform(1500.0, 2700.0)
         )
-        bp = blast_parameters(math.exp(rng.uniform(math.log(5.0), math.log(500.0))), rng.uniform(2.0, 8.0), model="masi2021")
+        bp = blast_parameters(math.exp(rng.uniform(math.log(5.0), math.log(500.0))), rng.uniform(2.0, 8.0), blast_model="masi2021")
         shape = shapes[k % 4]
         if shape == "tabulated":  # the Friedlander pulse sampled at 16 points
             f = bp.pulse("friedlander")
@@ -90,9 +90,9 @@ def main(argv=None) -> int:
     ref_over = np.array([r.overturned for r in refs])
 
     paper_block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
-    critical_charge(paper_block, 2.0, model="masi2021")  # warm the blast-model cache
+    critical_charge(paper_block, 2.0, blast_model="masi2021")  # warm the blast-model cache
     t0 = time.perf_counter()
-    crit = critical_charge(paper_block, 2.0, model="masi2021")
+    crit = critical_charge(paper_block, 2.0, blast_model="masi2021")
     crit_s = time.perf_counter() - t0
 
     out = {

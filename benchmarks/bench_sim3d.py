@@ -57,7 +57,7 @@ def speed(repeat: int = 3, duration: float = 3.0) -> dict:
     lam = 1 / 200
     lt = math.sqrt(lam)
     c = ContactSettings(friction=0.7)
-    pulse = blast_parameters(50.0, 2.0, model="masi2021").pulse("friedlander")
+    pulse = blast_parameters(50.0, 2.0, blast_model="masi2021").pulse("friedlander")
     cases = {
         "prototype": (c, PAPER_BLOCK, pulse, duration),
         "model_1_200": (c.scaled(scaling_factors(lam)), PAPER_BLOCK.scaled(scaling_factors(lam)), pulse.scaled(scaling_factors(lam)), duration * lt),
@@ -157,9 +157,9 @@ def acceptance() -> dict:
     ph = _top_x(simulate_structure(col, load, 1.0, contact=half, record_every=8))
     out["timestep_halving_first_peak_change"] = float(np.max(ph) / np.max(p) - 1.0)
     blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
-    pb = block_summary(run_block(blk, blast_parameters(50.0, 2.0, model="masi2021").pulse(), 3.0,
+    pb = block_summary(run_block(blk, blast_parameters(50.0, 2.0, blast_model="masi2021").pulse(), 3.0,
                                  default_contact(blk), record_every=10))
-    sb = block_summary(run_block(blk.scaled(scaling_factors(1 / 200)), blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse(),
+    sb = block_summary(run_block(blk.scaled(scaling_factors(1 / 200)), blast_parameters(2.3318e-7, 0.01, blast_model="masi2021").pulse(),
                                  0.2121, None, record_every=10))
     out["block_prototype_max_rotation_rad"] = pb["max_rotation_rad"]
     out["block_specimen_1_200_max_rotation_rad"] = sb["max_rotation_rad"]
@@ -295,7 +295,7 @@ def mode_study(mus=(0.7, 0.9, 1.2, 1.4, 1.5, 1.58, 1.62, 1.65, 1.7, 2.0)) -> dic
     ``peak_rotation``: the paper's block, 50 kg at 2 m, 1.5 s, for mu around mu* = 1.60.
     """
     i = 1.8 * SQUAT_BLOCK.mass / SQUAT_BLOCK.front_area
-    paper = blast_parameters(50.0, 2.0, model="masi2021").pulse("friedlander")
+    paper = blast_parameters(50.0, 2.0, blast_model="masi2021").pulse("friedlander")
     variants = {
         "auto, default contact, dt 0.2 ms": ({}, "auto"),
         "force, default contact, dt 0.2 ms": ({}, "force"),

@@ -42,18 +42,18 @@ def bench_capacity(n: int, n_bisect: int) -> dict:
     blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
     system = RockingSystem.from_block(blk)
     R = np.geomspace(1.0, 6.0, n)
-    capacity_curve(system, R[:2], model="masi2021")  # warm the compiled kernel
+    capacity_curve(system, R[:2], blast_model="masi2021")  # warm the compiled kernel
     t0 = time.perf_counter()
-    curve = capacity_curve(system, R, model="masi2021")
+    curve = capacity_curve(system, R, blast_model="masi2021")
     t_curve = time.perf_counter() - t0
     t0 = time.perf_counter()
     for r in (1.5, 2.0, 3.0, 4.0, 5.0):
-        single = critical_charge(system, r, model="masi2021")
+        single = critical_charge(system, r, blast_model="masi2021")
     t_single = (time.perf_counter() - t0) / 5
-    single = critical_charge(system, 2.0, model="masi2021")
+    single = critical_charge(system, 2.0, blast_model="masi2021")
     idx = np.linspace(0, n - 1, n_bisect).astype(int)
     t0 = time.perf_counter()
-    wb = [critical_charge_by_bisection(system, R[i], curve.critical_charge_kg[i], model="masi2021", rel=1e-7)
+    wb = [critical_charge_by_bisection(system, R[i], curve.critical_charge_kg[i], blast_model="masi2021", rel=1e-7)
           for i in idx]
     t_bis = (time.perf_counter() - t0) / len(idx)
     rel = np.abs(curve.critical_charge_kg[idx] / np.array(wb) - 1.0)

@@ -75,7 +75,7 @@ def main() -> None:
     args = parse_args(__doc__, quick_help="simulate 2.5 s of prototype time instead of 5 s (and 801 samples)")
     duration, n = (2.5, 801) if args.quick else (5.0, 2001)
     print(f"prototype: {BLOCK.height:g} x {BLOCK.width:.3f} m block, alpha = 15 deg, R = {STANDOFF:g} m, {MODEL}")
-    crit = critical_charge(RockingSystem.from_block(BLOCK), STANDOFF, model=MODEL)
+    crit = critical_charge(RockingSystem.from_block(BLOCK), STANDOFF, blast_model=MODEL)
     print(f"critical charge (Friedlander pulse): {crit.charge_kg:.2f} kg (paper: 79.8 kg)")
 
     for gamma, fig_name, label in ((1.0, "figure_9_upscaled_gamma_1.png", "same material"),

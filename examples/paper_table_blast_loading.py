@@ -41,7 +41,7 @@ def rows(model: str) -> list[list]:
     for W in CHARGES:
         row = [model, W, None]
         for lam, _, k in SCALES:
-            d = design_model(W, STANDOFF, lam, 1.0, model=model)
+            d = design_model(W, STANDOFF, lam, 1.0, blast_model=model)
             row[2] = d.prototype.scaled_distance
             row += [d.model_charge_kg * k, d.model.scaled_distance]
         out.append(row)
@@ -58,7 +58,7 @@ def main() -> None:
     print(" | ".join(header))
     for r in table:
         print(f"{r[0]:>15} | {r[1]:6.1f} | {r[2]:.4f} | {r[3]:7.4f} g | {r[4]:.4f} | {r[5]:7.4f} mg | {r[6]:.4f}")
-    ns = design_model(2500.0, 3.0, 1 / 200, 1.0, model="masi2021")
+    ns = design_model(2500.0, 3.0, 1 / 200, 1.0, blast_model="masi2021")
     print(f"non-slender block, 2500 kg at 3 m, lambda = 1/200 (masi2021): model charge "
           f"{ns.model_charge_kg * 1e6:.4f} mg (paper 14.26 mg, truncated), Z_m = {ns.model.scaled_distance:.4f}")
 

@@ -89,18 +89,18 @@ def test_paper_critical_charge_79_87_kg():
     """Paper Sec. "Equations of motion": 79.8 kg at 2 m (masi2021, Friedlander); DESIGN.md and
     docs/rocking.md: 79.870 kg with the Friedlander pulse (+-0.005 kg brackets the independent
     calculation)."""
-    assert critical_charge(BLOCK, 2.0, model="masi2021").charge_kg == pytest.approx(79.87, abs=0.005)
+    assert critical_charge(BLOCK, 2.0, blast_model="masi2021").charge_kg == pytest.approx(79.87, abs=0.005)
 
 
 def test_capacity_curve_is_the_scalar_search_and_inverts():
     R = np.array([1.5, 2.0, 3.0, 5.0])
-    c = capacity_curve(BLOCK, R, model="masi2021")
-    one = [critical_charge(BLOCK, r, model="masi2021").charge_kg for r in R]
+    c = capacity_curve(BLOCK, R, blast_model="masi2021")
+    one = [critical_charge(BLOCK, r, blast_model="masi2021").charge_kg for r in R]
     # the same search, vectorised: equal to the tolerance 1e-9 (different iteration paths)
     np.testing.assert_allclose(c.critical_charge_kg, one, rtol=3e-9)
     assert np.all(np.diff(c.critical_charge_kg) > 0)  # farther away, more charge
     # the safe stand-off of the curve's charge at 3 m is 3 m (exact search; log-log interpolation 1 %)
-    assert critical_standoff(BLOCK, c.critical_charge_kg[2], model="masi2021").standoff_m == pytest.approx(3.0, rel=1e-7)
+    assert critical_standoff(BLOCK, c.critical_charge_kg[2], blast_model="masi2021").standoff_m == pytest.approx(3.0, rel=1e-7)
     assert c.safe_standoff(c.critical_charge_kg[2]) == pytest.approx(3.0, rel=1e-12)
 
 

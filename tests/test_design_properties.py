@@ -25,7 +25,7 @@ def test_designed_impulse_ratio_equals_gamma_sqrt_varsigma_lambda_cubed(W, Z, la
     # General law, paper Eq. (8): the model's reflected impulse / prototype's = gamma sqrt(varsigma lambda^3).
     # Brent's method on ln-impulse with xtol 1e-15 -> relative error ~1e-13; we assert 1e-9 (issue spec).
     try:
-        d = design_model(W, R, lam, gam, sig, model=model)
+        d = design_model(W, R, lam, gam, sig, blast_model=model)
     except OutOfRangeError:
         assume(False)  # prototype or model Z outside the fit's range: rejected by design (tested elsewhere)
     target = gam * math.sqrt(sig * lam**3)
@@ -115,10 +115,10 @@ def test_design_out_of_range_gives_scales_that_keep_every_fit_valid(Z, gam, sig,
     zr = valid_scaled_distance_range(model)
     lo, hi = admissible_scales(Z, gam, sig, model, zr)
     for lam_edge, z_edge, inside in ((lo, zr[1], 1 + 1e-6), (hi, zr[0], 1 - 1e-6)):
-        d = design_model(W, R, lam_edge * inside, gam, sig, model=model)
+        d = design_model(W, R, lam_edge * inside, gam, sig, blast_model=model)
         assert d.model.scaled_distance == pytest.approx(z_edge, rel=1e-5)
         with pytest.raises(OutOfRangeError) as e:
-            design_model(W, R, lam_edge / inside, gam, sig, model=model)
+            design_model(W, R, lam_edge / inside, gam, sig, blast_model=model)
         msg = str(e.value)
         assert "\n" not in msg and f"scale = {lam_edge / inside:.6g}" in msg
         assert f"[{lo:.6g}, {hi:.6g}]" in msg

@@ -21,7 +21,7 @@ BASE = Scenario.default().with_values({"engine": "planar"})  # paper block, 2 m,
 @pytest.fixture(scope="module")
 def wc():
     sc = BASE
-    return critical_charge(RockingSystem.from_block(Study(sc).structure()), 2.0, model="masi2021").charge_kg
+    return critical_charge(RockingSystem.from_block(Study(sc).structure()), 2.0, blast_model="masi2021").charge_kg
 
 
 def test_charge_uncertainty_alone_gives_the_lognormal_with_median_the_critical_charge(wc):

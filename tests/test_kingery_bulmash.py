@@ -276,7 +276,7 @@ def test_array_in_array_out_scalar_in_float_out(quantity):
 def test_default_model_is_kingery_bulmash_with_incident_quantities():
     assert isinstance(get_blast_model(), KingeryBulmash)
     bp = blast_parameters(100.0, 10.0)  # Z = 2.154 m/kg^(1/3)
-    assert bp.model == "kingery-bulmash"
+    assert bp.blast_model == "kingery-bulmash"
     w13 = 100.0 ** (1.0 / 3.0)
     z = 10.0 / w13
     assert bp.reflected_pressure == pytest.approx(KB.reflected_pressure(z), rel=1e-12)

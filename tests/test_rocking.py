@@ -28,7 +28,7 @@ SYSTEM = RockingSystem.from_block(BLOCK)
 
 
 def paper_pulse(charge, shape="friedlander"):
-    return blast_parameters(charge, 2.0, model="masi2021").pulse(shape)
+    return blast_parameters(charge, 2.0, blast_model="masi2021").pulse(shape)
 
 
 # ----------------------------------------------------------------------------- closed forms

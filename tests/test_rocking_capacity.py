@@ -23,43 +23,43 @@ PAPER_CRITICAL = {"impulsive": 79.84, "triangular": 79.86, "friedlander": 79.87}
 
 @pytest.mark.parametrize("shape", ["impulsive", "triangular", "friedlander"])
 def test_paper_critical_charge_79_8_kg(shape):
-    res = critical_charge(BLOCK, 2.0, pulse=shape, model="masi2021")
+    res = critical_charge(BLOCK, 2.0, pulse=shape, blast_model="masi2021")
     assert math.floor(res.charge_kg * 10) / 10 == 79.8  # the paper truncates (DESIGN.md)
     assert res.charge_kg == pytest.approx(PAPER_CRITICAL[shape], abs=0.0051)
     # the full simulation agrees on both sides of the threshold (1e-5 relative in charge
     # is ~1e4 times the search tolerance)
-    bp_hi = blast_parameters(res.charge_kg * (1 + 1e-5), 2.0, model="masi2021")
-    bp_lo = blast_parameters(res.charge_kg * (1 - 1e-5), 2.0, model="masi2021")
+    bp_hi = blast_parameters(res.charge_kg * (1 + 1e-5), 2.0, blast_model="masi2021")
+    bp_lo = blast_parameters(res.charge_kg * (1 - 1e-5), 2.0, blast_model="masi2021")
     assert simulate(BLOCK, bp_hi.pulse(shape), 10.0).overturned
     assert not simulate(BLOCK, bp_lo.pulse(shape), 10.0).overturned
 
 
 def test_impulsive_critical_charge_delivers_the_critical_impulse():
     """Impulsive limit: at the critical charge the reflected impulse equals J_o w_c / (S h)."""
-    res = critical_charge(BLOCK, 2.0, pulse="impulsive", model="masi2021")
-    i = blast_parameters(res.charge_kg, 2.0, model="masi2021").reflected_impulse
+    res = critical_charge(BLOCK, 2.0, pulse="impulsive", blast_model="masi2021")
+    i = blast_parameters(res.charge_kg, 2.0, blast_model="masi2021").reflected_impulse
     wc = SYSTEM.critical_angular_velocity
     # the search stops at 1e-9 in ln W; i ~ W^0.9 here, so 1e-8 relative is safe
     assert i == pytest.approx(BLOCK.inertia_pivot * wc / (BLOCK.front_area * BLOCK.h), rel=1e-8)
 
 
 def test_critical_standoff_inverts_critical_charge():
-    W = critical_charge(BLOCK, 2.0, model="masi2021").charge_kg
-    R = critical_standoff(BLOCK, W, model="masi2021").standoff_m
+    W = critical_charge(BLOCK, 2.0, blast_model="masi2021").charge_kg
+    R = critical_standoff(BLOCK, W, blast_model="masi2021").standoff_m
     assert R == pytest.approx(2.0, rel=1e-7)  # both searches at 1e-9; margin slope is finite
 
 
 def test_depth_and_density_scaling_of_the_critical_charge():
     """Depth cancels (S and m both scale with it)."""
     deep = RectangularBlock(BLOCK.height, BLOCK.width, depth=3.0)
-    a = critical_charge(BLOCK, 2.0, model="masi2021").charge_kg
-    b = critical_charge(deep, 2.0, model="masi2021").charge_kg
+    a = critical_charge(BLOCK, 2.0, blast_model="masi2021").charge_kg
+    b = critical_charge(deep, 2.0, blast_model="masi2021").charge_kg
     assert b == pytest.approx(a, rel=1e-8)
 
 
 def test_overturn_margin_is_continuous_and_increasing():
     Ws = np.linspace(79.0, 80.7, 18)
-    m = [overturn_margin(BLOCK, blast_parameters(W, 2.0, model="masi2021").pulse()) for W in Ws]
+    m = [overturn_margin(BLOCK, blast_parameters(W, 2.0, blast_model="masi2021").pulse()) for W in Ws]
     assert np.all(np.diff(m) > 0)
     assert m[0] < 0 < m[-1]
     assert max(abs(x) for x in m) < 0.2  # no jump across the threshold
@@ -86,9 +86,9 @@ def test_pi_diagram_asymptotes():
 
 def test_capacity_bad_input():
     with pytest.raises(BlastscaleInputError, match="standoff"):
-        critical_charge(BLOCK, -2.0, model="masi2021")
+        critical_charge(BLOCK, -2.0, blast_model="masi2021")
     with pytest.raises(BlastscaleInputError, match="pulse"):
-        critical_charge(BLOCK, 2.0, pulse="square", model="masi2021")
+        critical_charge(BLOCK, 2.0, pulse="square", blast_model="masi2021")
     with pytest.raises(BlastscaleInputError, match="uplift"):
         pi_diagram(BLOCK, peak_pressures=[1.0])
     # a slender 5 cm rod 1 m away overturns at every Z of the fits' range (0.2-40 m/kg^(1/3))
@@ -102,4 +102,4 @@ def test_capacity_bad_input():
     with pytest.raises(BlastscaleInputError, match="pulse"):
         overturn_margin(BLOCK, None)
     with pytest.raises(BlastscaleInputError, match="xtol_rel"):
-        critical_charge(BLOCK, 2.0, model="masi2021", xtol_rel=0.0)
+        critical_charge(BLOCK, 2.0, blast_model="masi2021", xtol_rel=0.0)

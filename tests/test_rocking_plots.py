@@ -38,7 +38,7 @@ def _planar(charge, duration, samples):
 
 @pytest.fixture(scope="module")
 def run():
-    return simulate(BLOCK, blast_parameters(50.0, 2.0, model="masi2021").pulse(), 3.0)
+    return simulate(BLOCK, blast_parameters(50.0, 2.0, blast_model="masi2021").pulse(), 3.0)
 
 
 def test_history_plots_draw_the_history(run):

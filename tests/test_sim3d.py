@@ -41,7 +41,7 @@ SQUAT_I = 1.8 * SQUAT_BLOCK.mass / SQUAT_BLOCK.front_area  # impulse [Pa s] givi
 
 
 def paper_pulse(charge, standoff=2.0):
-    return blast_parameters(charge, standoff, model="masi2021").pulse("friedlander")
+    return blast_parameters(charge, standoff, blast_model="masi2021").pulse("friedlander")
 
 
 def run_block(block, pulse=None, duration=5.0, **kw):

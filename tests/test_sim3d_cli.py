@@ -190,7 +190,7 @@ def test_block_comparison_through_the_contract_reproduces_the_direct_differences
     from blastscale.structures.block import RectangularBlock
 
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
-    design = design_model(50.0, 2.0, 1 / 20, model="masi2021", geometry=block)
+    design = design_model(50.0, 2.0, 1 / 20, blast_model="masi2021", geometry=block)
     c = compare_structure3d(block, design, duration=0.6, record_every=5)
     f = design.factors
     p, m = block_dataset(c.prototype), block_dataset(c.model)

@@ -84,8 +84,8 @@ def test_block_specimen_at_its_own_size_reproduces_the_prototype():
     # absolute full-scale contact, against the prototype's 0.0611 (50 kg at 2 m, 3 s)
     proto_blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
     spec_blk = proto_blk.scaled(scaling_factors(1 / 200))
-    proto_pulse = blast_parameters(50.0, 2.0, model="masi2021").pulse()
-    spec_pulse = blast_parameters(2.3318e-7, 0.01, model="masi2021").pulse()
+    proto_pulse = blast_parameters(50.0, 2.0, blast_model="masi2021").pulse()
+    spec_pulse = blast_parameters(2.3318e-7, 0.01, blast_model="masi2021").pulse()
     proto = block_summary(simulate_structure(proto_blk, MethodA(proto_blk, proto_pulse), 3.0,
                                              contact=default_contact(proto_blk, friction=0.7), record_every=10))
     spec = block_summary(simulate_structure(spec_blk, MethodA(spec_blk, spec_pulse), 0.2121,
@@ -134,7 +134,7 @@ def test_the_block_is_the_one_body_case_of_the_same_path():
 
     blk = RectangularBlock(10.0, 2.68, depth=2.68, density=2000.0)
     col = MultiDrumColumn(section="square", drums=1, height=10.0, base_width=2.68, top_width=2.68, density=2000.0)
-    pulse = blast_parameters(200.0, 2.0, model="masi2021").pulse()
+    pulse = blast_parameters(200.0, 2.0, blast_model="masi2021").pulse()
     one = simulate_structure(blk, MethodA(blk, pulse), 0.3, contact=ContactSettings(friction=2.0))
     gen = simulate_structure(col, MethodA(col, pulse), 0.3, contact=ContactSettings(friction=2.0))
     assert one.dataset.attrs["setting_blast_mode"] == gen.dataset.attrs["setting_blast_mode"] == "auto"

@@ -27,7 +27,7 @@ PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
 
 
 def paper_pulse(charge, standoff=2.0):
-    return blast_parameters(charge, standoff, model="masi2021").pulse("friedlander")
+    return blast_parameters(charge, standoff, blast_model="masi2021").pulse("friedlander")
 
 
 def run_block(block, pulse, duration, **kw):
@@ -40,7 +40,7 @@ def compare_block(block, charge, standoff, scale, *, density_ratio=1.0, law="gen
     """The prototype block and its model experiment (masi2021 fits, Method A) through the
     structure comparison, read through the block's planar view: (design, comparison, prototype
     summary, up-scaled model summary, similarity figures)."""
-    design = design_model(charge, standoff, scale, density_ratio=density_ratio, law=law, model="masi2021",
+    design = design_model(charge, standoff, scale, density_ratio=density_ratio, law=law, blast_model="masi2021",
                           geometry=block)
     c = compare_structure3d(block, design, pulse=pulse, contact=contact, duration=duration, record_every=record_every)
     sim = block_similarity(block_dataset(c.prototype), upscale_dataset(block_dataset(c.model), design.factors))

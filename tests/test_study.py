@@ -33,7 +33,7 @@ def test_planar_results_equal_the_direct_comparison_with_every_choice_passed_thr
     r = Study(sc).run()
     # the same experiment composed by hand from the library's parts, every choice written out
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
-    d = design_model(50.0, 2.0, 1 / 200, 0.5, 2.0, model="kingery-bulmash", geometry=block, gravity=9.5)
+    d = design_model(50.0, 2.0, 1 / 200, 0.5, 2.0, blast_model="kingery-bulmash", geometry=block, gravity=9.5)
     t = np.linspace(0.0, 1.5, 301)
     sys_p = RockingSystem.from_block(block, 9.5, 0.8)
     res_p = simulate(sys_p, d.prototype.pulse("triangular"), 1.5, t_eval=t)

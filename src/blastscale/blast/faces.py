@@ -80,7 +80,7 @@ class FaceLoads:
 
     Attributes
     ----------
-    model : str
+    blast_model : str
         Empirical blast model used (its reflected values; see the module docstring for masi2021).
     incidence : str
         Incidence model (``"ufc"`` or ``"closed-form"``).
@@ -110,7 +110,7 @@ class FaceLoads:
         Outward unit normal of each face [-]; the force pushes along ``-normal``.
     """
 
-    model: str
+    blast_model: str
     incidence: str
     charge_kg: float
     distance: np.ndarray
@@ -201,10 +201,10 @@ def _as_points(name: str, value) -> np.ndarray:
     return arr
 
 
-def incident_source(model: "str | BlastModel") -> BlastModel:
-    """The model that supplies side-on values next to ``model``: itself, or Kingery-Bulmash
-    (with a :class:`MixedModelWarning`) when ``model`` has no incident fits (``masi2021``)."""
-    m = get_blast_model(model)
+def incident_source(blast_model: "str | BlastModel") -> BlastModel:
+    """The model that supplies side-on values next to ``blast_model``: itself, or Kingery-Bulmash
+    (with a :class:`MixedModelWarning`) when ``blast_model`` has no incident fits (``masi2021``)."""
+    m = get_blast_model(blast_model)
     if all(m.provides(q) for q in _INCIDENT):
         return m
     warnings.warn(
@@ -222,7 +222,7 @@ def face_loads(
     centres,
     normals,
     areas=1.0,
-    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
     *,
     incidence: str = DEFAULT_INCIDENCE,
     extrapolate: bool = False,
@@ -243,7 +243,7 @@ def face_loads(
         broadcast against ``centres``.
     areas : array_like, shape (...)
         Face areas S [m^2], > 0 (default 1, i.e. loads per unit area), broadcast.
-    model : str or BlastModel
+    blast_model : str or BlastModel
         Empirical model (``"kingery-bulmash"``, the default, or ``"masi2021"``: its side-on
         values then come from Kingery-Bulmash, module docstring).
     incidence : str
@@ -252,7 +252,7 @@ def face_loads(
         Evaluate the fits outside their Z ranges (with an ExtrapolationWarning) instead of
         raising :class:`~blastscale._validate.OutOfRangeError`.
     incident_model : BlastModel, optional
-        Source of the side-on values (default: :func:`incident_source` of ``model``; pass it to
+        Source of the side-on values (default: :func:`incident_source` of ``blast_model``; pass it to
         skip the check and its warning in a loop).
 
     Returns
@@ -290,13 +290,13 @@ def face_loads(
             f"face normal length = {bad:.6g} is out of range: normals must be unit vectors "
             f"(| |n| - 1 | <= {UNIT_NORMAL_TOLERANCE:g})"
         )
-    m = get_blast_model(model)
+    m = get_blast_model(blast_model)
     mi = incident_source(m) if incident_model is None else incident_model
     return face_loads_unchecked(m, mi, incidence, W, xc, x, np.array(n, dtype=float), np.array(S, dtype=float),
                                 extrapolate)
 
 
-def face_loads_unchecked(model, incident_model, incidence, charge, charge_position, centres, normals, areas,
+def face_loads_unchecked(blast_model, incident_model, incidence, charge, charge_position, centres, normals, areas,
                          extrapolate) -> FaceLoads:
     """:func:`face_loads` without its input checks, for callers that re-evaluate the same faces
     at new positions many times (the faces of moving bodies, :mod:`blastscale.sim3d.face_loads`).
@@ -307,11 +307,11 @@ def face_loads_unchecked(model, incident_model, incidence, charge, charge_positi
 
     Parameters
     ----------
-    model : BlastModel
+    blast_model : BlastModel
         Empirical model of the reflected values, arrival times and durations (already resolved,
         :func:`~blastscale.blast.get_blast_model`).
     incident_model : BlastModel
-        Source of the side-on values (:func:`incident_source` of ``model``).
+        Source of the side-on values (:func:`incident_source` of ``blast_model``).
     incidence : str
         Incidence model, already checked (``"ufc"`` or ``"closed-form"``).
     charge : float
@@ -341,7 +341,7 @@ def face_loads_unchecked(model, incident_model, incidence, charge, charge_positi
     if np.any(R <= 0.0):
         raise BlastscaleInputError("face centre distance to the charge = 0 m is out of range: must be > 0 m")
     cos_a = np.einsum("...k,...k->...", normals, to_charge) / R
-    return _evaluate(model, incident_model, incidence, charge, R, cos_a, areas, normals, extrapolate)
+    return _evaluate(blast_model, incident_model, incidence, charge, R, cos_a, areas, normals, extrapolate)
 
 
 def _evaluate(m, mi, incidence, W, R, cos_a, S, n, extrapolate) -> FaceLoads:
@@ -357,7 +357,7 @@ def _evaluate(m, mi, incidence, W, R, cos_a, S, n, extrapolate) -> FaceLoads:
     ir, i_s = q(m, "scaled_reflected_impulse", w13), q(mi, "scaled_incident_impulse", w13)
     P, i = oblique_values(incidence, cos_a, Pr, Pso, ir, i_s)
     return FaceLoads(
-        model=m.name,
+        blast_model=m.name,
         incidence=incidence,
         charge_kg=W,
         distance=R,

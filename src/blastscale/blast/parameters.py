@@ -1,6 +1,6 @@
 """Blast parameters for a charge W at stand-off R: the model registry and one result type.
 
-``blast_parameters(W, R, model=...)`` evaluates an empirical model at Z = R / W^(1/3)
+``blast_parameters(W, R, blast_model=...)`` evaluates an empirical model at Z = R / W^(1/3)
 and returns a :class:`BlastParameters` with every effective (not scaled) quantity in SI
 and the Friedlander decay fitted to the reflected impulse (paper Eq. 2).
 """
@@ -38,22 +38,23 @@ def _masi2021() -> BlastModel:
     return Masi2021()
 
 
-#: Names accepted by ``model=`` everywhere; the first is the default.
+#: Names accepted by ``blast_model=`` everywhere; the first is the default.
 BLAST_MODELS = {"kingery-bulmash": _kingery_bulmash, "masi2021": _masi2021}
 DEFAULT_BLAST_MODEL = "kingery-bulmash"
 _CACHE: dict[str, BlastModel] = {}
 
 
-def get_blast_model(model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> BlastModel:
-    """Return the blast model named ``model`` (``"kingery-bulmash"`` or ``"masi2021"``),
-    or ``model`` itself when it already is a :class:`BlastModel` (user-supplied fits)."""
-    if isinstance(model, BlastModel):
-        return model
-    if model not in BLAST_MODELS:
-        raise BlastscaleInputError(f"blast model = {model!r} is not known: valid values are {', '.join(BLAST_MODELS)}")
-    if model not in _CACHE:
-        _CACHE[model] = BLAST_MODELS[model]()
-    return _CACHE[model]
+def get_blast_model(blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> BlastModel:
+    """Return the blast model named ``blast_model`` (``"kingery-bulmash"`` or ``"masi2021"``),
+    or ``blast_model`` itself when it already is a :class:`BlastModel` (user-supplied fits)."""
+    if isinstance(blast_model, BlastModel):
+        return blast_model
+    if blast_model not in BLAST_MODELS:
+        raise BlastscaleInputError(
+            f"blast model = {blast_model!r} is not known: valid values are {', '.join(BLAST_MODELS)}")
+    if blast_model not in _CACHE:
+        _CACHE[blast_model] = BLAST_MODELS[blast_model]()
+    return _CACHE[blast_model]
 
 
 #: Quantities :func:`blast_parameters` evaluates (the last three only where the model provides them).
@@ -61,11 +62,11 @@ _USED = ("reflected_pressure", "scaled_reflected_impulse", "scaled_arrival_time"
          "incident_pressure", "scaled_incident_impulse", "shock_front_velocity")
 
 
-def valid_scaled_distance_range(model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> tuple[float, float]:
+def valid_scaled_distance_range(blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> tuple[float, float]:
     """Range of Z [m/kg^(1/3)] over which :func:`blast_parameters` evaluates every fit it uses
     without extrapolating: the intersection of the quantities' ranges (kingery-bulmash [0.2, 40],
     masi2021 [0.2, 6.5], limited by the duration fits; Swisdak 1994 and paper Appendix A)."""
-    m = get_blast_model(model)
+    m = get_blast_model(blast_model)
     ranges = [m.valid_range(q) for q in _USED if m.provides(q)]
     return max(r[0] for r in ranges), min(r[1] for r in ranges)
 
@@ -92,8 +93,8 @@ class BlastParameters:
 
     Attributes
     ----------
-    model : str
-        Name of the empirical model used.
+    blast_model : str
+        Name of the empirical blast model used.
     charge_kg, standoff_m : float
         TNT-equivalent charge W [kg] and stand-off R [m].
     scaled_distance : float
@@ -114,7 +115,7 @@ class BlastParameters:
         Decay coefficient d fitted so that the Friedlander pulse carries i_ro (Eq. 2).
     """
 
-    model: str
+    blast_model: str
     charge_kg: float
     standoff_m: float
     scaled_distance: float
@@ -151,10 +152,11 @@ class BlastParameters:
                                   for k, v in asdict(self).items()})
 
     def to_dict(self) -> dict:
-        """Plain dict with unit-suffixed keys (as written by the CLI's ``--json``)."""
+        """Plain dict with unit-suffixed keys (as written by the CLI's ``--json``, which adds the
+        deprecated alias ``model`` of ``blast_model``: :func:`blastscale.io.results.with_legacy_keys`)."""
         d = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in asdict(self).items()}
         return {
-            "model": d["model"],
+            "blast_model": d["blast_model"],
             "charge_kg": d["charge_kg"],
             "standoff_m": d["standoff_m"],
             "scaled_distance_m_per_kg13": d["scaled_distance"],
@@ -172,7 +174,7 @@ class BlastParameters:
 def blast_parameters(
     charge,
     standoff,
-    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
     *,
     extrapolate: bool = False,
 ) -> BlastParameters:
@@ -192,7 +194,7 @@ def blast_parameters(
         TNT-equivalent charge W [kg], > 0.
     standoff : float or array_like
         Stand-off distance R [m], > 0; broadcast against ``charge``.
-    model : str or BlastModel
+    blast_model : str or BlastModel
         ``"kingery-bulmash"`` (Swisdak 1994, default) or ``"masi2021"`` (paper Appendix A).
     extrapolate : bool
         Evaluate the fits outside their validity ranges (with an ``ExtrapolationWarning``).
@@ -208,9 +210,9 @@ def blast_parameters(
         For a charge or stand-off that is not finite and > 0, or shapes that do not broadcast.
     OutOfRangeError
         When Z is outside a fit's validity range (unless ``extrapolate=True``); each quantity has
-        its own range (``get_blast_model(model).valid_range(quantity)``).
+        its own range (``get_blast_model(blast_model).valid_range(quantity)``).
     """
-    m = get_blast_model(model)
+    m = get_blast_model(blast_model)
     W = check_positive("charge", charge, "kg")
     R = check_positive("standoff", standoff, "m")
     try:
@@ -235,7 +237,7 @@ def blast_parameters(
         return out(getattr(m, q)(z, extrapolate=extrapolate) * scale) if m.provides(q) else None
 
     return BlastParameters(
-        model=m.name,
+        blast_model=m.name,
         charge_kg=out(W),
         standoff_m=out(R),
         scaled_distance=out(z),

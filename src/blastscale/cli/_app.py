@@ -26,7 +26,7 @@ from rich.table import Table
 from typer.core import TyperGroup, TyperOption
 
 from .._validate import BlastscaleInputError
-from ..io.results import jsonable
+from ..io.results import jsonable, with_legacy_keys
 
 # Wide enough for the tables when output is piped (rich falls back to 80 columns otherwise).
 console = Console(width=None if Console().is_terminal else 160)
@@ -244,9 +244,11 @@ def one_line_warnings():
                     console_err.print(f"[yellow]warning:[/] {escape(msg)}", highlight=False, soft_wrap=True)
 
 
-def print_json(obj: dict) -> None:
-    """Print one JSON object on stdout (numpy scalars converted, NaN -> null)."""
-    typer.echo(json.dumps(jsonable(obj), indent=2))
+def print_json(obj: dict, engine: "str | None" = None) -> None:
+    """Print one JSON object on stdout (numpy scalars converted, NaN -> null), each renamed key
+    with its deprecated name beside it (:func:`blastscale.io.results.with_legacy_keys`; ``engine``:
+    the engine of the command's outcome keys, ``"planar"`` or ``"3d"``)."""
+    typer.echo(json.dumps(jsonable(with_legacy_keys(obj, engine)), indent=2))
 
 
 def fmt_value(x, spec: str = ".6g") -> str:

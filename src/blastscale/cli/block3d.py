@@ -128,7 +128,7 @@ def block3d_cmd(
         save_figure(lambda: plot_column_comparison(result.structure, r3.prototype.dataset, r3.upscaled_dataset), plot)
         out["plot"] = plot
     if as_json:
-        print_json(out)
+        print_json(out, engine="3d")
         return
     block, b = result.structure, sc.blast
     console.print(table(f"Prototype: {block.height:g} x {block.width:.4g} x {block.depth:g} m block, "

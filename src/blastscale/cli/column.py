@@ -134,7 +134,7 @@ def column_cmd(
         save_figure(lambda: plot_column_comparison(result.structure, r3.prototype_dataset, r3.upscaled_dataset), plot)
         out["plot"] = plot
     if as_json:
-        print_json(out)
+        print_json(out, engine="3d")
         return
     col, b = result.structure, sc.blast
     title = (f"Prototype: {col.drums}-drum {col.section} column, {col.height:g} m, {col.base_width:g} -> "

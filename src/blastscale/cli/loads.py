@@ -21,7 +21,7 @@ from .options import MODEL_HELP, block_from_options
 def blast_cmd(
     charge: float = typer.Option(..., "--charge", help="TNT-equivalent charge W \\[kg]."),
     standoff: float = typer.Option(..., "--standoff", help="Stand-off distance R \\[m]."),
-    model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP),
+    blast_model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP),
     extrapolate: bool = typer.Option(False, "--extrapolate", help="Evaluate fits outside their range (warns)."),
     incidence_deg: Optional[float] = typer.Option(
         None, "--incidence-deg", help="Angle of incidence of a face \\[deg], 0 (facing the charge) to 180: adds the "
@@ -33,8 +33,8 @@ def blast_cmd(
     """Blast parameters of a hemispherical surface burst of W kg TNT at R m (SI output)."""
     check_incidence(incidence)
     with one_line_warnings():
-        b = blast_parameters(charge, standoff, model, extrapolate=extrapolate)
-        face = None if incidence_deg is None else oblique_face(charge, standoff, incidence_deg, model, incidence,
+        b = blast_parameters(charge, standoff, blast_model, extrapolate=extrapolate)
+        face = None if incidence_deg is None else oblique_face(charge, standoff, incidence_deg, blast_model, incidence,
                                                                extrapolate)
     if as_json:
         print_json({**b.to_dict(), **(face or {})})
@@ -55,15 +55,15 @@ def blast_cmd(
             (f"face at {incidence_deg:g} deg ({incidence}): peak pressure", f"{face['face_pressure_Pa']:.6g}", "Pa"),
             (f"face at {incidence_deg:g} deg ({incidence}): impulse", f"{face['face_impulse_Pa_s']:.6g}", "Pa s"),
         ]
-    console.print(table(f"Blast: {charge:g} kg TNT at {standoff:g} m ({b.model})", rows))
+    console.print(table(f"Blast: {charge:g} kg TNT at {standoff:g} m ({b.blast_model})", rows))
 
 
-def oblique_face(charge: float, standoff: float, angle_deg: float, model: str, incidence: str,
+def oblique_face(charge: float, standoff: float, angle_deg: float, blast_model: str, incidence: str,
                  extrapolate: bool = False) -> dict:
     """Peak pressure [Pa] and impulse [Pa*s] on a face at ``standoff`` [m] whose outward normal makes
     ``angle_deg`` [deg] (0-180) with the direction to the charge, by the incidence model ``incidence``."""
     a = math.radians(float(check_range("incidence angle", angle_deg, 0.0, 180.0, "deg")))
-    f = face_loads(charge, [0.0, 0.0, 0.0], [standoff, 0.0, 0.0], [-math.cos(a), math.sin(a), 0.0], model=model,
+    f = face_loads(charge, [0.0, 0.0, 0.0], [standoff, 0.0, 0.0], [-math.cos(a), math.sin(a), 0.0], blast_model=blast_model,
                    incidence=incidence, extrapolate=extrapolate)
     return {"incidence_model": incidence, "angle_of_incidence_deg": float(angle_deg),
             "face_pressure_Pa": float(f.pressure), "face_impulse_Pa_s": float(f.impulse)}
@@ -72,7 +72,7 @@ def oblique_face(charge: float, standoff: float, angle_deg: float, model: str, i
 def print_design(d) -> None:
     """Human-readable design tables (prototype vs model, factors, impulsive check)."""
     t = Table(title=f"Model design: law {d.law}, lambda = {d.scale:.6g}, gamma = {d.density_ratio:.6g}, "
-              f"gravity ratio = {d.gravity_ratio:.6g} ({d.prototype.model})", title_justify="left")
+              f"gravity ratio = {d.gravity_ratio:.6g} ({d.prototype.blast_model})", title_justify="left")
     for c in ("quantity", "prototype", "model", "model/prototype", "required", "unit"):
         t.add_column(c, justify="left" if c in ("quantity", "unit") else "right")
     p, m, f = d.prototype, d.model, d.factors
@@ -113,7 +113,7 @@ def design_cmd(
     ),
     gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="g_model/g_prototype \\[-]."),
     law: str = typer.Option("general", "--law", help="general (paper Eq. 8) or hopkinson-cranz."),
-    model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP),
+    blast_model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP),
     height: Optional[float] = typer.Option(None, "--height", help="Prototype block height 2h \\[m]."),
     width: Optional[float] = typer.Option(None, "--width", help="Prototype block width 2b \\[m]."),
     alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle \\[deg] (with --height)."),
@@ -127,7 +127,7 @@ def design_cmd(
     if density_ratio is None and law == "general":
         density_ratio = 1.0
     with one_line_warnings():
-        d = design_model(charge, standoff, scale, density_ratio, gravity_ratio, law, model, block,
+        d = design_model(charge, standoff, scale, density_ratio, gravity_ratio, law, blast_model, block,
                          extrapolate=extrapolate)
     if as_json:
         print_json(d.to_dict())

@@ -62,7 +62,7 @@ def rock_cmd(
     density_ratio: float = opt.DENSITY_RATIO,
     gravity_ratio: float = opt.GRAVITY_RATIO,
     gravity: float = opt.GRAVITY,
-    model: str = opt.MODEL,
+    blast_model: str = opt.MODEL,
     samples: int = typer.Option(2001, "--samples", help="Sampling times for the comparison and the plot \\[-]."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write theta(t), theta_dot(t) and the phase portrait to this image file."),
     as_json: bool = opt.JSON,
@@ -81,7 +81,7 @@ def rock_cmd(
     sc = scenario_from_flags(
         structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
                    "density_kg_m3": density},
-        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse},
+        blast={"charge_kg": charge, "standoff_m": standoff, "model": blast_model, "pulse": pulse},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
                                           "gravity_ratio": gravity_ratio},
         simulation={"engine": "planar", "duration_s": duration, "samples": samples, "gravity_m_s2": gravity,
@@ -89,7 +89,7 @@ def rock_cmd(
     )
     out: dict = {
         "inputs": _inputs(
-            block, charge_kg=charge, standoff_m=standoff, duration_s=duration, pulse=pulse, model=model,
+            block, charge_kg=charge, standoff_m=standoff, duration_s=duration, pulse=pulse, blast_model=blast_model,
             restitution=restitution, gravity_m_s2=gravity, scale=scale,
             density_ratio=density_ratio if scale is not None else None,
             gravity_ratio=gravity_ratio if scale is not None else None,
@@ -119,11 +119,11 @@ def rock_cmd(
         save_figure(lambda: rocking_figure(res, sim), plot)
         out["plot"] = plot
     if as_json:
-        print_json(out)
+        print_json(out, engine="planar")
         return
     console.print(table(
         f"Prototype: {block.height:g} x {block.width:.4g} m block (alpha = {math.degrees(block.alpha):.4g} deg), "
-        f"{charge:g} kg TNT at {standoff:g} m ({model}, {pulse})", _summary_rows(out["prototype"])))
+        f"{charge:g} kg TNT at {standoff:g} m ({blast_model}, {pulse})", _summary_rows(out["prototype"])))
     if sim is not None:
         me = out["model_experiment"]
         console.print(table(
@@ -158,7 +158,7 @@ def critical_cmd(
     scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also give the model's charge for the critical scenario."),
     density_ratio: float = opt.DENSITY_RATIO,
     gravity: float = opt.GRAVITY,
-    model: str = opt.MODEL,
+    blast_model: str = opt.MODEL,
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the P-I overturning diagram (with the critical point) to this image file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
@@ -178,12 +178,12 @@ def critical_cmd(
     system = RockingSystem.from_block(block, gravity, restitution)
     with one_line_warnings(), console_err.status("searching the critical scenario ...", spinner="dots"):
         if standoff is not None:
-            res = critical_charge(system, standoff, pulse=pulse, model=model, extrapolate=extrapolate)
+            res = critical_charge(system, standoff, pulse=pulse, blast_model=blast_model, extrapolate=extrapolate)
         else:
-            res = critical_standoff(system, charge, pulse=pulse, model=model, extrapolate=extrapolate)
-    out = {"inputs": _inputs(block, pulse=pulse, model=model, gravity_m_s2=gravity)}
+            res = critical_standoff(system, charge, pulse=pulse, blast_model=blast_model, extrapolate=extrapolate)
+    out = {"inputs": _inputs(block, pulse=pulse, blast_model=blast_model, gravity_m_s2=gravity)}
     out.update(res.to_dict())
-    bp = blast_parameters(res.charge_kg, res.standoff_m, model, extrapolate=extrapolate)
+    bp = blast_parameters(res.charge_kg, res.standoff_m, blast_model, extrapolate=extrapolate)
     out["critical_blast"] = {
         "scaled_distance_m_per_kg13": bp.scaled_distance,
         "reflected_pressure_Pa": bp.reflected_pressure,
@@ -196,7 +196,7 @@ def critical_cmd(
         from ..similitude import design_model
 
         with one_line_warnings():
-            d = design_model(res.charge_kg, res.standoff_m, scale, density_ratio, model=model, geometry=block,
+            d = design_model(res.charge_kg, res.standoff_m, scale, density_ratio, blast_model=blast_model, geometry=block,
                              gravity=gravity, extrapolate=extrapolate)
         out["model_experiment"] = {"scale": scale, "density_ratio": density_ratio,
                                    "critical_charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m}
@@ -225,7 +225,7 @@ def critical_cmd(
         save_figure(build, plot)
         out["plot"] = plot
     if as_json:
-        print_json(out)
+        print_json(out, engine="planar")
         return
     key, unit = ("critical_charge_kg", "kg") if res.searched == "charge" else ("critical_standoff_m", "m")
     rows = [
@@ -239,7 +239,7 @@ def critical_cmd(
     ]
     if scale is not None:
         rows.append((f"model charge (lambda = {scale:g})", f"{out['model_experiment']['critical_charge_kg']:.6g}", "kg"))
-    console.print(table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({model}, {pulse})", rows))
+    console.print(table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse})", rows))
     if plot:
         console.print(f"plot written to {plot}")
 
@@ -260,7 +260,7 @@ def capacity_cmd(
     density_ratio: float = opt.DENSITY_RATIO,
     gravity_ratio: float = opt.GRAVITY_RATIO,
     gravity: float = opt.GRAVITY,
-    model: str = opt.MODEL,
+    blast_model: str = opt.MODEL,
     extrapolate: bool = opt_extrapolate(),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the capacity curve W_c(R) to this image file."),
     as_json: bool = opt.JSON,
@@ -282,7 +282,7 @@ def capacity_cmd(
     if charge is not None and not charge > 0:
         raise BlastscaleInputError(f"charge = {charge:g} kg is out of range: must be > 0 kg")
     system = RockingSystem.from_block(block, gravity, restitution)
-    kw = dict(pulse=pulse, model=model, extrapolate=extrapolate)
+    kw = dict(pulse=pulse, blast_model=blast_model, extrapolate=extrapolate)
     with one_line_warnings(), console_err.status(f"capacity at {R.size} stand-offs ...", spinner="dots"):
         curve = capacity_curve(system, R, **kw)
         mcap = None
@@ -293,7 +293,7 @@ def capacity_cmd(
             safe = critical_standoff(system, charge, **kw).standoff_m
     from .. import __version__
 
-    out = {"inputs": _inputs(block, pulse=pulse, model=model, gravity_m_s2=gravity, restitution=restitution,
+    out = {"inputs": _inputs(block, pulse=pulse, blast_model=blast_model, gravity_m_s2=gravity, restitution=restitution,
                              extrapolate=extrapolate),
            "blastscale_version": __version__,
            "method": "first-swing energy criterion after the pulse (docs/capacity.md)"}
@@ -310,11 +310,11 @@ def capacity_cmd(
         save_figure(lambda: plot_capacity(curve, mcap, charge=charge, safe_standoff=safe).figure, plot)
         out["plot"] = plot
     if as_json:
-        print_json(out)
+        print_json(out, engine="planar")
         return
     from rich.table import Table
 
-    t = Table(title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({model}, {pulse})", title_justify="left")
+    t = Table(title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse})", title_justify="left")
     t.add_column("stand-off R \\[m]", justify="right")
     t.add_column("critical charge W_c \\[kg]", justify="right")
     if mcap is not None:

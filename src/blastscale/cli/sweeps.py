@@ -156,7 +156,7 @@ def fragility_cmd(
         save_figure(lambda: plot_fragility(res).figure, plot)
         out["plot"] = plot
     if as_json:
-        print_json(out)
+        print_json(out, engine="planar")
         return
     from rich.table import Table
 
@@ -237,7 +237,7 @@ def similarity_map_cmd(
         save_figure(lambda: plot_similarity_map(ds), plot)
         res["plot"] = plot
     if as_json:
-        print_json(res)
+        print_json(res, engine=engine)
         return
     unit = res["error_units"]
     console.print(table(f"Similarity map ({engine}, up-scaled model vs prototype)", [

@@ -24,8 +24,8 @@ from typing import Any, Iterator
 from .. import __version__
 from .._validate import BlastscaleInputError
 
-__all__ = ["jsonable", "write_json", "versions", "git_commit",
-           "provenance", "output_folder", "check_output_folder", "write_atomic"]
+__all__ = ["jsonable", "write_json", "versions", "git_commit", "provenance", "output_folder",
+           "check_output_folder", "write_atomic", "LEGACY_KEYS", "with_legacy_keys"]
 
 #: Marker file of a blastscale output folder (``--force`` replaces only such folders or empty ones).
 MARKER = "summary.json"
@@ -44,6 +44,61 @@ def jsonable(obj: Any) -> Any:
     if isinstance(obj, float) and not math.isfinite(obj):
         return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
     return obj
+
+
+#: The deprecated names of result keys (CHANGELOG.md, docs/glossary.md): {(engine, new key): old key}. An
+#: engine of None: in any part of a result; "planar" or "3d": in that engine's part only (the section
+#: ``planar`` or ``3d`` of a study's summary, the first part of a flat ``scalars`` key, or the engine the
+#: command ran, :func:`with_legacy_keys`). ``--json`` and ``summary.json`` print each old key beside its
+#: new one; everything else (sweep stores, the Python API) knows the new names only.
+LEGACY_KEYS: dict = {
+    (None, "blast_model"): "model",
+}
+
+#: Keys of a result whose content belongs to one engine.
+_ENGINE_SECTIONS = {"planar": "planar", "3d": "3d", "ensemble": "3d"}
+
+
+def _old_name(key: str, engine: "str | None") -> "str | None":
+    """The deprecated name of ``key`` in ``engine``'s part of a result, or None. A flat dotted key
+    (``planar.model.collapsed``) is renamed part by part, its engine read from its first part."""
+    if "." not in key:
+        return LEGACY_KEYS.get((engine, key)) or LEGACY_KEYS.get((None, key))
+    parts = key.split(".")
+    engine = _ENGINE_SECTIONS.get(parts[0], engine)
+    old = [LEGACY_KEYS.get((engine, p)) or LEGACY_KEYS.get((None, p)) or p for p in parts]
+    return ".".join(old) if old != parts else None
+
+
+def with_legacy_keys(obj: Any, engine: "str | None" = None) -> Any:
+    """``obj`` with, beside each renamed key, its deprecated name carrying the same value
+    (:data:`LEGACY_KEYS`), in nested dicts and lists and in flat dotted keys; an existing key is
+    never replaced (the design's ``model`` section keeps its meaning beside ``blast_model``).
+
+    Parameters
+    ----------
+    obj : dict, list or value
+        A result as printed by ``--json`` or written to ``summary.json``.
+    engine : {None, "planar", "3d"}
+        The engine of the result's outcome keys (the command's); within it a section ``planar``
+        or ``3d`` (``ensemble``: 3d) sets its own.
+
+    Returns
+    -------
+    The same structure with the old keys added (a new dict; ``obj`` is not modified).
+    """
+    if isinstance(obj, list):
+        return [with_legacy_keys(v, engine) for v in obj]
+    if not isinstance(obj, dict):
+        return obj
+    out: dict = {}
+    for k, v in obj.items():
+        sub = _ENGINE_SECTIONS.get(k, engine) if isinstance(k, str) else engine
+        out[k] = with_legacy_keys(v, sub)
+        old = _old_name(k, engine) if isinstance(k, str) else None
+        if old is not None and old not in obj and old not in out:
+            out[old] = out[k]
+    return out
 
 
 def write_atomic(path: "str | Path", data: "str | bytes") -> None:

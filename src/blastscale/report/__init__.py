@@ -65,8 +65,9 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
 
 def summary_dict(result, meta: Optional[dict] = None) -> dict:
     """The content of ``summary.json``: provenance (versions, git commit, timestamp), units, the
-    study's nested summary (scenario included) and its flat ``scalars``."""
-    from ..io.results import provenance
+    study's nested summary (scenario included) and its flat ``scalars``, each renamed key with its
+    deprecated name beside it (:func:`blastscale.io.results.with_legacy_keys`)."""
+    from ..io.results import provenance, with_legacy_keys
 
-    return {**(provenance() if meta is None else meta), "units": UNITS, **result.summary(),
-            "scalars": result.scalars()}
+    return with_legacy_keys({**(provenance() if meta is None else meta), "units": UNITS, **result.summary(),
+                             "scalars": result.scalars()})

@@ -111,7 +111,7 @@ def _geometry(folder: Path, quick: bool) -> list:
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
     rows = [Row("prototype width 2b", "2.68 m", block.width, "m")]
     for lam, tag, paper in ((1 / 20, "model 1", ("50", "13.40", "10")), (1 / 200, "model 2", ("5", "1.34", "1"))):
-        d = design_model(50.0, 2.0, lam, 1.0, model="masi2021", geometry=block)
+        d = design_model(50.0, 2.0, lam, 1.0, blast_model="masi2021", geometry=block)
         mb = d.model_block
         rows += [Row(f"{tag} height", f"{paper[0]} cm", mb.height * 100, "cm"),
                  Row(f"{tag} width", f"{paper[1]} cm", mb.width * 100, "cm"),
@@ -125,8 +125,8 @@ def _blast_loading(folder: Path, quick: bool) -> list:
     rows = []
     for case, W in _CHARGES.items():
         zp, w1, z1, w2, z2 = _PAPER_TABLE[case]
-        d1 = design_model(W, 2.0, 1 / 20, 1.0, model="masi2021")
-        d2 = design_model(W, 2.0, 1 / 200, 1.0, model="masi2021")
+        d1 = design_model(W, 2.0, 1 / 20, 1.0, blast_model="masi2021")
+        d2 = design_model(W, 2.0, 1 / 200, 1.0, blast_model="masi2021")
         rows += [
             Row(f"({case}) W_p = {W:g} kg: Z_p", zp, d1.prototype.scaled_distance, "m/kg^(1/3)"),
             Row(f"({case}) model 1 (1/20) charge", w1, d1.model_charge_kg * 1e3, "g", 4),
@@ -134,7 +134,7 @@ def _blast_loading(folder: Path, quick: bool) -> list:
             Row(f"({case}) model 2 (1/200) charge", w2, d2.model_charge_kg * 1e6, "mg", 4),
             Row(f"({case}) model 2 Z", z2, d2.model.scaled_distance, "m/kg^(1/3)"),
         ]
-    ns = design_model(2500.0, 3.0, 1 / 200, 1.0, model="masi2021")
+    ns = design_model(2500.0, 3.0, 1 / 200, 1.0, blast_model="masi2021")
     rows.append(Row("non-slender 2500 kg at 3 m: model charge (1/200)", "14.26 mg", ns.model_charge_kg * 1e6, "mg"))
     return rows
 
@@ -142,8 +142,8 @@ def _blast_loading(folder: Path, quick: bool) -> list:
 def _scaling_factors(folder: Path, quick: bool) -> list:
     from ..similitude import design_model
 
-    d = design_model(50.0, 2.0, 1 / 200, 1.0, model="masi2021")
-    d05 = design_model(50.0, 2.0, 1 / 200, 0.05, model="masi2021")
+    d = design_model(50.0, 2.0, 1 / 200, 1.0, blast_model="masi2021")
+    d05 = design_model(50.0, 2.0, 1 / 200, 0.05, blast_model="masi2021")
     return [
         Row("Fig. 5: pressure ratio, lambda = 1/200, gamma = 1", "5.8 %", d.pressure_ratio * 100, "%"),
         Row("Fig. 5: impulse ratio, general law", "0.3 %", d.impulse_ratio * 100, "%", 5),
@@ -158,7 +158,7 @@ def _critical(folder: Path, quick: bool) -> list:
     from ..structures import RectangularBlock
 
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
-    c = critical_charge(RockingSystem.from_block(block), 2.0, model="masi2021")
+    c = critical_charge(RockingSystem.from_block(block), 2.0, blast_model="masi2021")
     return [Row("critical charge at 2 m (case c)", "79.8 kg", c.charge_kg, "kg")]
 
 

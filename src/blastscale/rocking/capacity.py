@@ -38,7 +38,7 @@ class CapacityCurve:
 
     ``standoff_m`` (n,) [m], ``critical_charge_kg`` (n,) [kg] (NaN where the outcome does not
     change within the blast model's range), ``evaluations`` (n,) pulse-phase integrations per
-    case, ``seconds`` [s] the wall time of the search, ``pulse``, ``model``.
+    case, ``seconds`` [s] the wall time of the search, ``pulse``, ``blast_model``.
     """
 
     standoff_m: np.ndarray
@@ -46,7 +46,7 @@ class CapacityCurve:
     evaluations: np.ndarray
     seconds: float
     pulse: str
-    model: str
+    blast_model: str
 
     @property
     def seconds_per_case(self) -> float:
@@ -73,7 +73,7 @@ class CapacityCurve:
             "critical_charge_kg": _finite_or_none(self.critical_charge_kg),
             "seconds_per_case": self.seconds_per_case,
             "pulse": self.pulse,
-            "model": self.model,
+            "blast_model": self.blast_model,
         }
 
 
@@ -82,7 +82,7 @@ def capacity_curve(
     standoffs,
     *,
     pulse: str = "friedlander",
-    model=DEFAULT_BLAST_MODEL,
+    blast_model=DEFAULT_BLAST_MODEL,
     gravity: float | None = None,
     restitution: float | None = None,
     solver: RockingSolver | None = None,
@@ -100,10 +100,10 @@ def capacity_curve(
         raise BlastscaleInputError(f"standoffs must be a non-empty 1-D list of stand-offs [m], got shape {R.shape}")
     system = as_rocking_system(body, gravity, restitution)
     t0 = time.perf_counter()
-    W, _, _, nev, _ = _critical_arrays(system, "charge", R, pulse, model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel)
+    W, _, _, nev, _ = _critical_arrays(system, "charge", R, pulse, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel)
     dt = time.perf_counter() - t0
-    _check_extrapolated(model, R / np.cbrt(W), extrapolate)
-    return CapacityCurve(R, W, nev, dt, pulse, _model_name(model))
+    _check_extrapolated(blast_model, R / np.cbrt(W), extrapolate)
+    return CapacityCurve(R, W, nev, dt, pulse, _model_name(blast_model))
 
 
 @dataclass(frozen=True)
@@ -145,7 +145,7 @@ def model_capacity_curve(
     gravity_ratio: float = 1.0,
     *,
     pulse: str = "friedlander",
-    model=DEFAULT_BLAST_MODEL,
+    blast_model=DEFAULT_BLAST_MODEL,
     gravity: float | None = None,
     restitution: float | None = None,
     solver: RockingSolver | None = None,
@@ -181,10 +181,10 @@ def model_capacity_curve(
         gravity=proto.gravity * sig,
         restitution=proto.coefficient_of_restitution,
     )
-    curve = capacity_curve(m_sys, lam * R, pulse=pulse, model=model, solver=solver, xtol_rel=xtol_rel, extrapolate=extrapolate)
+    curve = capacity_curve(m_sys, lam * R, pulse=pulse, blast_model=blast_model, solver=solver, xtol_rel=xtol_rel, extrapolate=extrapolate)
     ok = np.isfinite(curve.critical_charge_kg)
     up = np.full(R.size, np.nan)
     if np.any(ok):
-        im = blast_parameters(curve.critical_charge_kg[ok], lam * R[ok], model, extrapolate=extrapolate).reflected_impulse
-        up[ok] = charge_for_impulse(im / scaling_factors(lam, gam, sig).impulse, R[ok], model, extrapolate=extrapolate)
+        im = blast_parameters(curve.critical_charge_kg[ok], lam * R[ok], blast_model, extrapolate=extrapolate).reflected_impulse
+        up[ok] = charge_for_impulse(im / scaling_factors(lam, gam, sig).impulse, R[ok], blast_model, extrapolate=extrapolate)
     return ModelCapacity(curve, up, lam, gam, sig)

@@ -53,23 +53,23 @@ __all__ = [
 _EXTRAPOLATE_WIDENING = 5.0
 
 
-def _model_name(model) -> str:
-    return model if isinstance(model, str) else getattr(model, "name", str(model))
+def _model_name(blast_model) -> str:
+    return blast_model if isinstance(blast_model, str) else getattr(blast_model, "name", str(blast_model))
 
 
-def _z_range(model, extrapolate: bool) -> tuple[float, float]:
-    zlo, zhi = valid_scaled_distance_range(model)
+def _z_range(blast_model, extrapolate: bool) -> tuple[float, float]:
+    zlo, zhi = valid_scaled_distance_range(blast_model)
     if extrapolate:
         return zlo / _EXTRAPOLATE_WIDENING, zhi * _EXTRAPOLATE_WIDENING
     return zlo * (1.0 + 1e-12), zhi * (1.0 - 1e-12)
 
 
-def _invert_impulse(target, model, by_charge: bool, fixed, lo, hi, extrapolate: bool):
+def _invert_impulse(target, blast_model, by_charge: bool, fixed, lo, hi, extrapolate: bool):
     """ln of the charge [kg] (``by_charge``, ``fixed`` the stand-offs [m]) or of the stand-off [m]
     (``fixed`` the charges [kg]) whose reflected impulse is ``target`` [Pa*s], by bisection on the
     blast model alone between ``lo`` and ``hi`` (ln x; the result is clipped to them). The
     reflected impulse grows with the charge and falls with the distance (Hopkinson-Cranz)."""
-    bm = get_blast_model(model)
+    bm = get_blast_model(blast_model)
     lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
 
     def impulse(u):
@@ -87,7 +87,7 @@ def _invert_impulse(target, model, by_charge: bool, fixed, lo, hi, extrapolate: 
     return 0.5 * (lo + hi)
 
 
-def charge_for_impulse(impulse, standoff, model=DEFAULT_BLAST_MODEL, *, extrapolate: bool = False, z_range=None):
+def charge_for_impulse(impulse, standoff, blast_model=DEFAULT_BLAST_MODEL, *, extrapolate: bool = False, z_range=None):
     """TNT charge [kg] whose reflected impulse at ``standoff`` [m] is ``impulse`` [Pa*s] (arrays
     broadcast), inverting the blast model over its valid range of Z (NaN where out of it), or over
     ``z_range`` (Z_min, Z_max) [m/kg^(1/3)] when given.
@@ -99,16 +99,16 @@ def charge_for_impulse(impulse, standoff, model=DEFAULT_BLAST_MODEL, *, extrapol
     """
     i, R = np.broadcast_arrays(check_positive("impulse", impulse, "Pa*s"), check_positive("standoff", standoff, "m"))
     i, R = i.astype(float).ravel(), R.astype(float).ravel()
-    zlo, zhi = _z_range(model, extrapolate) if z_range is None else (float(z_range[0]), float(z_range[1]))
+    zlo, zhi = _z_range(blast_model, extrapolate) if z_range is None else (float(z_range[0]), float(z_range[1]))
     ulo, uhi = 3.0 * np.log(R / zhi), 3.0 * np.log(R / zlo)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
-        u = _invert_impulse(i, model, True, R, ulo, uhi, extrapolate)
+        u = _invert_impulse(i, blast_model, True, R, ulo, uhi, extrapolate)
     W = np.where((u - ulo > 1e-9) & (uhi - u > 1e-9), np.exp(u), np.nan)
     return W.reshape(np.shape(np.broadcast_arrays(impulse, standoff)[0]))
 
 
-def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver, xtol_rel, guess=None):
+def _critical_arrays(system, searched, fixed, pulse, blast_model, extrapolate, solver, xtol_rel, guess=None):
     """Vectorised critical charge (``searched="charge"``, ``fixed`` stand-offs [m]) or stand-off
     (``"standoff"``, ``fixed`` charges [kg]). Returns (x_critical, bracket_lo, bracket_hi,
     evaluations, status) arrays; x is the survive side of the final bracket."""
@@ -116,7 +116,7 @@ def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver,
     check_range("xtol_rel", xtol_rel, 1e-14, 0.1)
     by_charge = searched == "charge"
     fixed = np.atleast_1d(np.asarray(fixed, dtype=float))
-    zlo, zhi = _z_range(model, extrapolate)
+    zlo, zhi = _z_range(blast_model, extrapolate)
     if by_charge:  # W = (R / Z)^3: large Z, small charge
         ulo, uhi = 3.0 * np.log(fixed / zhi), 3.0 * np.log(fixed / zlo)
     else:  # R = Z W^(1/3): the margin decreases with R, so search in -ln R
@@ -124,7 +124,7 @@ def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver,
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         if guess is None:
-            u0 = _invert_impulse(system.critical_impulse, model, by_charge, fixed, ulo if by_charge else -uhi,
+            u0 = _invert_impulse(system.critical_impulse, blast_model, by_charge, fixed, ulo if by_charge else -uhi,
                                  uhi if by_charge else -ulo, extrapolate)
             u0 = u0 if by_charge else -u0
         else:
@@ -133,7 +133,7 @@ def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver,
         def evaluate(idx, u):
             x = np.exp(u if by_charge else -u)
             W, R = (x, fixed[idx]) if by_charge else (fixed[idx], x)
-            return first_swing(system, W, R, pulse=pulse, model=model, extrapolate=extrapolate, solver=solver).margin
+            return first_swing(system, W, R, pulse=pulse, blast_model=blast_model, extrapolate=extrapolate, solver=solver).margin
 
         lo, hi, nev, status = vector_root(evaluate, u0, ulo, uhi, xtol_rel)
     # the search visits many points: pass on one warning of each other kind (extrapolation is
@@ -149,13 +149,13 @@ def _critical_arrays(system, searched, fixed, pulse, model, extrapolate, solver,
     return x, np.exp(np.minimum(lo, hi)), np.exp(np.maximum(lo, hi)), nev, status
 
 
-def _check_extrapolated(model, values_z, extrapolate):
+def _check_extrapolated(blast_model, values_z, extrapolate):
     if extrapolate:
-        zlo, zhi = valid_scaled_distance_range(model)
+        zlo, zhi = valid_scaled_distance_range(blast_model)
         z = np.asarray(values_z)[np.isfinite(values_z)]
         if np.any((z < zlo) | (z > zhi)):
             warnings.warn(
-                f"critical scenarios at Z outside the {_model_name(model)} fits' range [{zlo:g}, {zhi:g}] m/kg^(1/3): "
+                f"critical scenarios at Z outside the {_model_name(blast_model)} fits' range [{zlo:g}, {zhi:g}] m/kg^(1/3): "
                 "extrapolated", ExtrapolationWarning, stacklevel=3,
             )
 
@@ -165,7 +165,7 @@ class CriticalResult:
     """Result of a critical charge / stand-off search (SI).
 
     ``charge_kg`` [kg] and ``standoff_m`` [m] define the critical scenario (the one searched
-    for and the one held fixed); ``pulse`` the pulse shape; ``relative_tolerance`` the
+    for and the one held fixed); ``pulse`` the pulse shape; ``blast_model`` the blast fit; ``relative_tolerance`` the
     relative accuracy of the searched quantity; ``evaluations`` the number of pulse-phase
     integrations (first-swing criterion); ``bracket`` the final bracket of the searched quantity.
     """
@@ -174,7 +174,7 @@ class CriticalResult:
     standoff_m: float
     searched: str
     pulse: str
-    model: str
+    blast_model: str
     relative_tolerance: float
     evaluations: int
     bracket: tuple[float, float]
@@ -188,7 +188,7 @@ class CriticalResult:
             "charge_kg": self.charge_kg,
             "standoff_m": self.standoff_m,
             "pulse": self.pulse,
-            "model": self.model,
+            "blast_model": self.blast_model,
             "relative_tolerance": self.relative_tolerance,
             "evaluations": self.evaluations,
         }
@@ -199,7 +199,7 @@ def critical_charge(
     standoff: float,
     *,
     pulse: str = "friedlander",
-    model=DEFAULT_BLAST_MODEL,
+    blast_model=DEFAULT_BLAST_MODEL,
     gravity: float | None = None,
     restitution: float | None = None,
     solver: RockingSolver | None = None,
@@ -209,7 +209,7 @@ def critical_charge(
 ) -> CriticalResult:
     """Largest TNT charge [kg] at ``standoff`` [m] that the body survives without overturning.
 
-    The reflected pulse of shape ``pulse`` from ``blast_parameters(W, standoff, model)`` loads
+    The reflected pulse of shape ``pulse`` from ``blast_parameters(W, standoff, blast_model)`` loads
     the front face uniformly (paper Method A, Eq. eom); the first-swing energy criterion
     (:mod:`blastscale.rocking.swing`) decides the outcome, and the search starts from the charge that
     delivers the impulsive critical impulse (the structure's own scale).
@@ -222,7 +222,7 @@ def critical_charge(
         Stand-off R [m], > 0.
     pulse : {"friedlander", "triangular", "impulsive"}
         Reflected pulse shape (paper Eqs. 1, 3, impulsive limit).
-    model : str
+    blast_model : str
         Blast model, ``"kingery-bulmash"`` (Swisdak 1994) or ``"masi2021"`` (paper App. A);
         searched over its valid range of scaled distance Z (widened 5x each way with
         ``extrapolate``).
@@ -252,13 +252,13 @@ def critical_charge(
     >>> import math
     >>> from blastscale.structures import RectangularBlock
     >>> blk = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
-    >>> round(critical_charge(blk, 2.0, model="masi2021").charge_kg, 2)
+    >>> round(critical_charge(blk, 2.0, blast_model="masi2021").charge_kg, 2)
     79.87
     """
     R = float(check_positive("standoff", standoff, "m"))
     if guess is not None:
         check_positive("guess", guess, "kg")
-    return _critical(body, "charge", R, pulse, model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
+    return _critical(body, "charge", R, pulse, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
 
 
 def critical_standoff(
@@ -266,7 +266,7 @@ def critical_standoff(
     charge: float,
     *,
     pulse: str = "friedlander",
-    model=DEFAULT_BLAST_MODEL,
+    blast_model=DEFAULT_BLAST_MODEL,
     gravity: float | None = None,
     restitution: float | None = None,
     solver: RockingSolver | None = None,
@@ -282,17 +282,17 @@ def critical_standoff(
     W = float(check_positive("charge", charge, "kg"))
     if guess is not None:
         check_positive("guess", guess, "m")
-    return _critical(body, "standoff", W, pulse, model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
+    return _critical(body, "standoff", W, pulse, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
 
 
-def _critical(body, searched, fixed, pulse, model, gravity, restitution, solver, guess, xtol_rel, extrapolate):
+def _critical(body, searched, fixed, pulse, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate):
     system = as_rocking_system(body, gravity, restitution)
     by_charge = searched == "charge"
     x, blo, bhi, nev, status = _critical_arrays(
-        system, searched, fixed, pulse, model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel, guess
+        system, searched, fixed, pulse, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel, guess
     )
     if status[0] != 0:
-        zlo, zhi = _z_range(model, extrapolate)
+        zlo, zhi = _z_range(blast_model, extrapolate)
         what = ("survives up to" if status[0] == 1 else "overturns down to") + (
             f" Z = {zlo if status[0] == 1 else zhi:.6g} m/kg^(1/3)"
         )
@@ -302,12 +302,12 @@ def _critical(body, searched, fixed, pulse, model, gravity, restitution, solver,
             + ("" if extrapolate else "; --extrapolate (extrapolate=True) widens the range")
         )
     W, R = (float(x[0]), fixed) if by_charge else (fixed, float(x[0]))
-    _check_extrapolated(model, [R / np.cbrt(W)], extrapolate)
-    return CriticalResult(W, R, searched, pulse, _model_name(model), xtol_rel, int(nev[0]), (float(blo[0]), float(bhi[0])))
+    _check_extrapolated(blast_model, [R / np.cbrt(W)], extrapolate)
+    return CriticalResult(W, R, searched, pulse, _model_name(blast_model), xtol_rel, int(nev[0]), (float(blo[0]), float(bhi[0])))
 
 
 def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse: str = "friedlander",
-                                 model=DEFAULT_BLAST_MODEL, rel: float = 1e-8, solver: RockingSolver | None = None,
+                                 blast_model=DEFAULT_BLAST_MODEL, rel: float = 1e-8, solver: RockingSolver | None = None,
                                  gravity: float | None = None, restitution: float | None = None) -> float:
     """The slow reference: critical charge [kg] by bisection in ln W on full simulations (to rest:
     ``pulse + 200 / p`` of motion, every impact, no early stop), independent of the first-swing
@@ -317,7 +317,7 @@ def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse: 
     solver = solver or DEFAULT_SOLVER
 
     def over(W):
-        p = blast_parameters(W, standoff, model).pulse(pulse)
+        p = blast_parameters(W, standoff, blast_model).pulse(pulse)
         return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).overturned
 
     lo, hi = guess / 1.5, guess * 1.5

@@ -295,7 +295,7 @@ def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse: s
     return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par)
 
 
-def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", model=DEFAULT_BLAST_MODEL,
+def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
                 extrapolate: bool = False, solver: RockingSolver | None = None) -> FirstSwing:
     """Outcome and largest rotation of each body at rest under the reflected pulse of
     ``charge`` [kg TNT] at ``standoff`` [m], at any time (first-swing energy criterion and peak;
@@ -307,7 +307,7 @@ def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", model=
         One body for every case, or one per case.
     charge, standoff : array_like
         Charges W [kg] and stand-offs R [m], broadcast to n cases.
-    pulse, model, extrapolate, solver
+    pulse, blast_model, extrapolate, solver
         As in :func:`critical_charge`.
 
     Returns
@@ -320,11 +320,11 @@ def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", model=
                                np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float))
     W, R = W.ravel(), R.ravel()
     a, e, p, q = _system_arrays(systems, W.size)
-    bp = blast_parameters(W, R, model, extrapolate=extrapolate)
+    bp = blast_parameters(W, R, blast_model, extrapolate=extrapolate)
     return first_swing_blast(a, e, p, q, bp, pulse, solver=solver)
 
 
-def overturns(systems, charge, standoff, *, pulse: str = "friedlander", model=DEFAULT_BLAST_MODEL,
+def overturns(systems, charge, standoff, *, pulse: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
               extrapolate: bool = False, solver: RockingSolver | None = None) -> np.ndarray:
     """Whether each body overturns, at any time, under the reflected pulse of ``charge`` [kg TNT]
     at ``standoff`` [m] (first-swing energy criterion; arrays of n cases, vectorised; the
@@ -334,5 +334,5 @@ def overturns(systems, charge, standoff, *, pulse: str = "friedlander", model=DE
     -------
     ndarray of bool, shape (n,)
     """
-    return first_swing(systems, charge, standoff, pulse=pulse, model=model, extrapolate=extrapolate,
+    return first_swing(systems, charge, standoff, pulse=pulse, blast_model=blast_model, extrapolate=extrapolate,
                        solver=solver).overturned

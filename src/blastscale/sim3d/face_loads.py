@@ -84,8 +84,8 @@ class FaceLoadStrategy:
         self.charge_position = np.asarray(charge_position, dtype=float).reshape(3)
         self.shape = check_pulse_shape(pulse)
         self.incidence = check_incidence(incidence)
-        self.model = get_blast_model(blast_model)
-        self.incident_model = incident_source(self.model)
+        self.blast_model = get_blast_model(blast_model)
+        self.incident_model = incident_source(self.blast_model)
         self.extrapolate = bool(extrapolate)
         self.method = str(method)
         self.structure = structure
@@ -139,7 +139,7 @@ class FaceLoadStrategy:
     def face_loads_at(self, positions, rotations):
         """:class:`~blastscale.blast.faces.FaceLoads` of the loaded faces at the given poses."""
         x, n = self.world_faces(positions, rotations)
-        return face_loads_unchecked(self.model, self.incident_model, self.incidence, self.W, self.charge_position,
+        return face_loads_unchecked(self.blast_model, self.incident_model, self.incidence, self.W, self.charge_position,
                                     x, n, self.areas, self.extrapolate)
 
     # --------------------------------------------------------------- interface
@@ -184,7 +184,7 @@ class FaceLoadStrategy:
         """Load metadata (SI keys)."""
         fl = self.rest_loads
         return {"load_method": self.method, "pulse": self.shape, "incidence": self.incidence,
-                "blast_model": self.model.name, "incident_values_from": self.incident_model.name,
+                "blast_model": self.blast_model.name, "incident_values_from": self.incident_model.name,
                 "charge_kg": self.W, "charge_position_m": self.charge_position.tolist(),
                 "loaded_faces": int(self.body.size), "first_arrival_s": self.first_arrival,
                 "arrival_spread_s": self.arrival_spread, "end_time_s": self.end_time,
@@ -207,7 +207,7 @@ def _face_load(structure, faces, blast, pulse, incidence, extrapolate, method) -
     ``blast``'s; each face's blast is evaluated at its own distance (that is the method)."""
     bp = check_blast(blast)
     return FaceLoadStrategy(structure, faces, charge_kg=bp.charge_kg,
-                            charge_position=_charge_position(structure, bp.standoff_m), blast_model=bp.model,
+                            charge_position=_charge_position(structure, bp.standoff_m), blast_model=bp.blast_model,
                             pulse=pulse, incidence=incidence, extrapolate=extrapolate, method=method)
 
 

@@ -47,7 +47,7 @@ class ScalingCurves:
         Prototype charge W [kg TNT] and stand-off R [m].
     prototype_scaled_distance : float
         Z = R / W^(1/3) of the prototype [m/kg^(1/3)].
-    model : str
+    blast_model : str
         Blast model used (``"kingery-bulmash"`` or ``"masi2021"``).
     gravity_ratio : float
         varsigma [-].
@@ -82,7 +82,7 @@ class ScalingCurves:
     charge: float
     standoff: float
     prototype_scaled_distance: float
-    model: str
+    blast_model: str
     gravity_ratio: float
     z_range: tuple[float, float]
     scale: np.ndarray
@@ -108,7 +108,7 @@ def scaling_curves(
     scale,
     density_ratio=1.0,
     gravity_ratio: float = 1.0,
-    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
 ) -> ScalingCurves:
     """Scaling factors of scaled distance, pressure, impulse and duration over a sweep.
 
@@ -126,7 +126,7 @@ def scaling_curves(
     charge : float
         Prototype TNT-equivalent charge W [kg], > 0.
     standoff : float
-        Prototype stand-off R [m], > 0; Z = R / W^(1/3) must lie where every fit of ``model``
+        Prototype stand-off R [m], > 0; Z = R / W^(1/3) must lie where every fit of ``blast_model``
         holds (kingery-bulmash [0.2, 40], masi2021 [0.2, 6.5] m/kg^(1/3)).
     scale : array_like
         Geometric scales lambda [-], > 0 (paper Fig. 5: a sweep; Fig. 8: one value).
@@ -134,7 +134,7 @@ def scaling_curves(
         Density ratios gamma [-], > 0, broadcast against ``scale`` (Fig. 5: 1; Fig. 8: a sweep).
     gravity_ratio : float
         varsigma [-], > 0.
-    model : str or BlastModel
+    blast_model : str or BlastModel
         Blast model (``"kingery-bulmash"`` default, ``"masi2021"`` the paper's fits).
 
     Returns
@@ -164,7 +164,7 @@ def scaling_curves(
     The text near Fig. 8: lambda = 1/200, masi2021, pressure ratio 5.8 % for gamma = 1 and
     0.19 % for gamma = 0.05:
 
-    >>> c = scaling_curves(50.0, 2.0, 1 / 200, [1.0, 0.05], model="masi2021")
+    >>> c = scaling_curves(50.0, 2.0, 1 / 200, [1.0, 0.05], blast_model="masi2021")
     >>> [round(100 * float(p), 2) for p in c.pressure_ratio]
     [5.85, 0.19]
     """
@@ -179,7 +179,7 @@ def scaling_curves(
         raise BlastscaleInputError(
             f"scale and density ratio have shapes {lam_in.shape} and {gam_in.shape}, which do not broadcast together"
         ) from None
-    bm = get_blast_model(model)
+    bm = get_blast_model(blast_model)
     zr = valid_scaled_distance_range(bm)
     proto = blast_parameters(W, R, bm)  # raises for a prototype outside the fits
     z = proto.scaled_distance
@@ -214,7 +214,7 @@ def scaling_curves(
         charge=W,
         standoff=R,
         prototype_scaled_distance=z,
-        model=bm.name,
+        blast_model=bm.name,
         gravity_ratio=sig,
         z_range=zr,
         scale=lam.reshape(shape),

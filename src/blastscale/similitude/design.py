@@ -42,7 +42,7 @@ def design_model(
     density_ratio: float | None = 1.0,
     gravity_ratio: float = 1.0,
     law: str = "general",
-    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
     geometry: RectangularBlock | None = None,
     *,
     gravity: float = STANDARD_GRAVITY,
@@ -68,7 +68,7 @@ def design_model(
     law : {"general", "hopkinson-cranz"}
         Scaling law: the paper's general law (Eq. 8, model Z solved so that the impulse
         factor equals gamma sqrt(varsigma lambda^3)) or Hopkinson-Cranz (lambda_Z = 1).
-    model : str or BlastModel
+    blast_model : str or BlastModel
         Blast model (``"kingery-bulmash"`` default, ``"masi2021"`` the paper's fits).
     geometry : RectangularBlock, optional
         Prototype structure; enables the impulsive check and fills the model block.
@@ -110,12 +110,12 @@ def design_model(
     The paper's 10 m block, 50 kg at 2 m, lambda = 1/200, same material (model 2 of the
     paper's Table 4: 0.233 mg at Z = 1.62 m/kg^(1/3)):
 
-    >>> d = design_model(50.0, 2.0, 1 / 200, model="masi2021")
+    >>> d = design_model(50.0, 2.0, 1 / 200, blast_model="masi2021")
     >>> round(d.model_charge_kg * 1e6, 3), round(d.model.scaled_distance, 2)
     (0.233, 1.62)
     """
     if np.ndim(charge) or np.ndim(standoff):
-        return _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, model, geometry,
+        return _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, blast_model, geometry,
                               gravity, impulsive_threshold, extrapolate)
     W = check_positive_scalar("charge", charge, "kg")
     R = check_positive_scalar("standoff", standoff, "m")
@@ -125,7 +125,7 @@ def design_model(
     check_positive_scalar("impulsive threshold", impulsive_threshold)
     if law not in LAWS:
         raise BlastscaleInputError(f"law = {law!r} is not known: valid values are {', '.join(LAWS)}")
-    bm = get_blast_model(model)
+    bm = get_blast_model(blast_model)
     proto = blast_parameters(W, R, bm, extrapolate=extrapolate)
     if law == "hopkinson-cranz":
         gam_hc = hopkinson_cranz_density_ratio(lam, sig)
@@ -180,7 +180,7 @@ def design_model(
     )
 
 
-def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, model, geometry, gravity,
+def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, blast_model, geometry, gravity,
                    impulsive_threshold, extrapolate) -> ModelDesign:
     """:func:`design_model` for arrays of charges and stand-offs (its docstring): the law solved for
     every case at once (:func:`~.laws.solve_scaled_distance_factors`), the invalid cases NaN."""
@@ -200,7 +200,7 @@ def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, m
     check_positive_scalar("gravity", gravity, "m/s^2")
     if law not in LAWS:
         raise BlastscaleInputError(f"law = {law!r} is not known: valid values are {', '.join(LAWS)}")
-    bm = get_blast_model(model)
+    bm = get_blast_model(blast_model)
     # where the design holds: every fit used, or (extrapolate) the impulse fit the law is solved on
     zr = bm.valid_range("scaled_reflected_impulse") if extrapolate else valid_scaled_distance_range(bm)
     Z = R / np.cbrt(W)

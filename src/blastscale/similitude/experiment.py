@@ -157,7 +157,7 @@ class ModelDesign:
         """Plain dict (the CLI's ``design --json`` object)."""
         out = {
             "law": self.law,
-            "blast_model": self.prototype.model,
+            "blast_model": self.prototype.blast_model,
             "scale": self.scale,
             "density_ratio": self.density_ratio,
             "gravity_ratio": self.gravity_ratio,

@@ -122,7 +122,7 @@ def admissible_scales(
     prototype_scaled_distance: float,
     density_ratio: float = 1.0,
     gravity_ratio: float = 1.0,
-    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
     z_range: tuple[float, float] | None = None,
 ) -> tuple[float, float]:
     """Range of the scale lambda for which the general law puts the model's Z inside ``z_range``.
@@ -140,7 +140,7 @@ def admissible_scales(
         Z of the prototype [m/kg^(1/3)], inside the impulse fit's range.
     density_ratio, gravity_ratio : float
         gamma and varsigma [-], > 0.
-    model : str or BlastModel
+    blast_model : str or BlastModel
         Blast model giving the scaled reflected impulse i_hat.
     z_range : (float, float), optional
         Allowed model Z [m/kg^(1/3)]; default the impulse fit's range. It is intersected with it.
@@ -152,7 +152,7 @@ def admissible_scales(
 
     Reference: paper Eq. (8).
     """
-    m = get_blast_model(model)
+    m = get_blast_model(blast_model)
     z = check_positive_scalar("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)")
     gam = check_positive_scalar("density ratio", density_ratio)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
@@ -172,7 +172,7 @@ def solve_scaled_distance_factor(
     scale: float,
     density_ratio: float = 1.0,
     gravity_ratio: float = 1.0,
-    model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
 ) -> ScaledDistanceSolution:
     """Solve the general scaling law (paper Eq. 8) for the scaled-distance factor lambda_Z.
 
@@ -186,7 +186,7 @@ def solve_scaled_distance_factor(
         gamma [-].
     gravity_ratio : float
         varsigma [-].
-    model : str or BlastModel
+    blast_model : str or BlastModel
         Blast model providing the scaled reflected impulse i_hat(Z).
 
     Returns
@@ -207,7 +207,7 @@ def solve_scaled_distance_factor(
     scaled reflected impulse (Kingery-Bulmash: Z in [0.06, 40]; masi2021: [0.2, 20] m/kg^(1/3)).
     Reference: paper Eq. (8) (Sec. "Scaling laws").
     """
-    m = get_blast_model(model)
+    m = get_blast_model(blast_model)
     z = check_positive_scalar("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)")
     lam = check_positive_scalar("scale", scale)
     gam = check_positive_scalar("density ratio", density_ratio)
@@ -249,7 +249,7 @@ def _residual(m, z, x, target):
 
 
 def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, density_ratio: float = 1.0,
-                                  gravity_ratio: float = 1.0, model: "str | BlastModel" = DEFAULT_BLAST_MODEL):
+                                  gravity_ratio: float = 1.0, blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL):
     """lambda_Z of the general law (paper Eq. 8) for every prototype Z of an array, at once.
 
     Bisection in x = ln lambda_Z on the impulse fit's range of the model Z, to the resolution of
@@ -262,7 +262,7 @@ def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, densi
         Z of the prototype [m/kg^(1/3)], > 0 (inside the impulse fit's range for a root).
     scale, density_ratio, gravity_ratio : float
         lambda, gamma, varsigma [-], > 0.
-    model : str or BlastModel
+    blast_model : str or BlastModel
         Blast model providing the scaled reflected impulse i_hat(Z).
 
     Returns
@@ -273,7 +273,7 @@ def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, densi
 
     Reference: paper Eq. (8) (Sec. "Scaling laws").
     """
-    m = get_blast_model(model)
+    m = get_blast_model(blast_model)
     z = np.asarray(check_positive("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)"), dtype=float)
     lam = check_positive_scalar("scale", scale)
     gam = check_positive_scalar("density ratio", density_ratio)

@@ -163,5 +163,5 @@ def critical_charge_of(sc: Scenario, structure):
 
     sim = sc.simulation
     system = RockingSystem.from_block(structure, sim.gravity_m_s2, sim.restitution)
-    return critical_charge(system, sc.blast.standoff_m, pulse=sc.blast.pulse, model=sc.blast.model,
+    return critical_charge(system, sc.blast.standoff_m, pulse=sc.blast.pulse, blast_model=sc.blast.model,
                            extrapolate=sc.blast.extrapolate)
