@@ -133,7 +133,7 @@ def correction(section: str, charge: float, duration: float = 8.0, incidence: st
     mcol = col.scaled(f)
     lp = make_load("B", col, d.prototype, incidence=incidence)
     proto = simulate_structure(col, lp, duration)
-    lm = make_load("B", mcol, d.model, incidence=incidence)
+    lm = make_load("B", mcol, d.specimen, incidence=incidence)
     sp = arrival_spread_similarity(lp, lm, f)
     stretch = sp["arrival_spread_prototype_s"] / sp["arrival_spread_model_upscaled_s"]
     out = {"section": section, "charge_kg": charge, "incidence": incidence, "stretch": stretch, **sp}

@@ -146,7 +146,7 @@ def acceptance() -> dict:
 
     d = design_model(250.0, 10.0, lam)
     spec_col = col.scaled(scaling_factors(lam))
-    spec = simulate_structure(spec_col, make_load("A", spec_col, d.model), 8.0 * lt, record_every=20)
+    spec = simulate_structure(spec_col, make_load("A", spec_col, d.specimen), 8.0 * lt, record_every=20)
     s = _top_x(spec, lam)
     out["column_specimen_1_100_first_peak_ratio"] = float(np.max(s) / np.max(p))
     out["column_specimen_1_100_max_tilt_ratio"] = spec.summary()["max_tilt_rad"] / proto.summary()["max_tilt_rad"]

@@ -85,7 +85,7 @@ def specimen_scenario(column: dict, section: str, charge: float, duration: float
     return Scenario.from_dict({
         "title": f"{sc.title}: the 1/100 specimen alone",
         "structure": {k: v for k, v in spec.items() if v is not None},
-        "blast": {"charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m, "model": MODEL},
+        "blast": {"charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m, "model": MODEL},
         "simulation": {"engine": "3d", "duration_s": duration * d.factors.time, "record_every": record_every,
                        "critical_charge": False}})
 

@@ -71,7 +71,7 @@ def run_block(block: dict, charge, standoff, duration, planar: bool = False):
     s3, c = r.summary()["3d"], r.response3d
     return {"study": r, "design": r.design, "block": r.structure,
             "prototype": block_dataset(c.prototype, r.structure),
-            "model": upscale_dataset(block_dataset(c.model, r.model_structure), r.design.factors),
+            "model": upscale_dataset(block_dataset(c.model, r.specimen_structure), r.design.factors),
             "summaries": tuple({k: s3[side][k] for k in BLOCK_SUMMARY_KEYS} for side in ("prototype", "model")),
             "similarity": {k: s3["similarity"][k] for k in BLOCK_SIMILARITY_KEYS}}
 
@@ -140,7 +140,7 @@ def main() -> None:
     print(f"non-slender block {reading}: 2b = {block.width:.2f} m, alpha = {math.degrees(block.alpha):.1f} deg "
           f"(the paper states both 2b = 3.5 m and alpha = 35 deg, which contradict each other)")
     i, S, m = run["design"].prototype.reflected_impulse, block.front_area, block.mass
-    print(f"  model charge {run['design'].model_charge_kg * 1e6:.4f} mg (paper 14.26 mg); momentum balance "
+    print(f"  model charge {run['design'].specimen_charge_kg * 1e6:.4f} mg (paper 14.26 mg); momentum balance "
           f"v0 = i S / m = {i * S / m:.2f} m/s, prototype peak velocity "
           f"{float(run['prototype']['velocity_x'].max()):.2f} m/s")
     report(f"non-slender, 2500 kg at 3 m ({t_non:g} s)", run)

@@ -90,8 +90,8 @@ def main() -> None:
         sims = {W: Study(base.with_values({"charge_kg": W})).run().planar for W in CHARGES}
         for W, s in sims.items():
             d = s.design
-            print(f"gamma = {gamma:g}, W_p = {W:5.1f} kg: model {d.model_charge_kg * 1e6:.4g} mg at "
-                  f"{d.model_standoff_m * 100:g} cm | prototype max |theta| {s.prototype.max_angle:.4f} rad, "
+            print(f"gamma = {gamma:g}, W_p = {W:5.1f} kg: model {d.specimen_charge_kg * 1e6:.4g} mg at "
+                  f"{d.specimen_standoff_m * 100:g} cm | prototype max |theta| {s.prototype.max_angle:.4f} rad, "
                   f"{'overturns' if s.prototype.overturned else 'rocks'} | outcomes agree: {s.outcomes_agree} | "
                   f"max |dtheta| {s.max_abs_angle_diff:.2e} rad (to tipping {s.max_abs_angle_diff_to_tipping:.2e}), "
                   f"first-peak ratio {s.peak_ratio:.4f}")

@@ -43,7 +43,7 @@ def rows(model: str) -> list[list]:
         for lam, _, k in SCALES:
             d = design_model(W, STANDOFF, lam, 1.0, blast_model=model)
             row[2] = d.prototype.scaled_distance
-            row += [d.model_charge_kg * k, d.model.scaled_distance]
+            row += [d.specimen_charge_kg * k, d.specimen.scaled_distance]
         out.append(row)
     return out
 
@@ -60,7 +60,7 @@ def main() -> None:
         print(f"{r[0]:>15} | {r[1]:6.1f} | {r[2]:.4f} | {r[3]:7.4f} g | {r[4]:.4f} | {r[5]:7.4f} mg | {r[6]:.4f}")
     ns = design_model(2500.0, 3.0, 1 / 200, 1.0, blast_model="masi2021")
     print(f"non-slender block, 2500 kg at 3 m, lambda = 1/200 (masi2021): model charge "
-          f"{ns.model_charge_kg * 1e6:.4f} mg (paper 14.26 mg, truncated), Z_m = {ns.model.scaled_distance:.4f}")
+          f"{ns.specimen_charge_kg * 1e6:.4f} mg (paper 14.26 mg, truncated), Z_m = {ns.specimen.scaled_distance:.4f}")
 
     with open(args.out / "table_blast_loading.csv", "w", newline="") as fh:
         w = csv.writer(fh)
@@ -73,7 +73,7 @@ def main() -> None:
     cells = [[r[0], f"{r[1]:g}", f"{r[2]:.3f}", f"{r[3]:.4g}", f"{r[4]:.3f}", f"{r[5]:.4g}", f"{r[6]:.3f}"]
              for r in table]
     cells.append(["masi2021", "2500 (R = 3 m)", f"{ns.prototype.scaled_distance:.3f}", "-", "-",
-                  f"{ns.model_charge_kg * 1e6:.4g}", f"{ns.model.scaled_distance:.3f}"])
+                  f"{ns.specimen_charge_kg * 1e6:.4g}", f"{ns.specimen.scaled_distance:.3f}"])
     t = ax.table(cellText=cells, colLabels=header, loc="center", cellLoc="center")
     t.auto_set_font_size(False)
     t.set_fontsize(9)

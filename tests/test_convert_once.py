@@ -77,14 +77,14 @@ def test_one_default_study_designs_once_and_evaluates_each_systems_blast_once(mo
 
     d = r.design
     systems = {(d.prototype.charge_kg, d.prototype.standoff_m): "prototype",
-               (d.model.charge_kg, d.model.standoff_m): "model"}
+               (d.specimen.charge_kg, d.specimen.standoff_m): "model"}
     per_system = Counter(systems.get((w, R), f"other {w} kg at {R} m") for _, scalar, w, R in blasts if scalar)
     assert per_system == {"prototype": 1, "model": 1}, (per_system, blasts)
     assert all(n <= 2 for n in per_system.values())  # the acceptance bound
 
     # the 3D engine builds one load per system, from the design's own BlastParameters objects (the
     # arrival-spread similarity reads those loads)
-    assert len(loads) == 2 and loads[0] is d.prototype and loads[1] is d.model
+    assert len(loads) == 2 and loads[0] is d.prototype and loads[1] is d.specimen
 
     search = [c for c in blasts if not c[1]]
     assert search and all(caller == "blastscale.rocking.swing" for caller, *_ in search), search

@@ -32,10 +32,10 @@ def test_designed_impulse_ratio_equals_gamma_sqrt_varsigma_lambda_cubed(W, Z, la
     assert d.impulse_ratio == pytest.approx(target, rel=1e-9)
     assert d.factors.impulse == pytest.approx(target, rel=1e-12)
     # consistency of the derived quantities with their definitions (round-off tolerance)
-    assert d.model_standoff_m == pytest.approx(lam * R, rel=1e-12)
-    assert d.model.scaled_distance == pytest.approx(d.scaled_distance_factor * d.prototype.scaled_distance, rel=1e-12)
-    assert d.model_charge_kg == pytest.approx(W * (lam / d.scaled_distance_factor) ** 3, rel=1e-12)
-    assert d.factors.charge == pytest.approx(d.model_charge_kg / W, rel=1e-12)
+    assert d.specimen_standoff_m == pytest.approx(lam * R, rel=1e-12)
+    assert d.specimen.scaled_distance == pytest.approx(d.scaled_distance_factor * d.prototype.scaled_distance, rel=1e-12)
+    assert d.specimen_charge_kg == pytest.approx(W * (lam / d.scaled_distance_factor) ** 3, rel=1e-12)
+    assert d.factors.charge == pytest.approx(d.specimen_charge_kg / W, rel=1e-12)
 
 
 @settings(max_examples=200, deadline=None)
@@ -116,7 +116,7 @@ def test_design_out_of_range_gives_scales_that_keep_every_fit_valid(Z, gam, sig,
     lo, hi = admissible_scales(Z, gam, sig, model, zr)
     for lam_edge, z_edge, inside in ((lo, zr[1], 1 + 1e-6), (hi, zr[0], 1 - 1e-6)):
         d = design_model(W, R, lam_edge * inside, gam, sig, blast_model=model)
-        assert d.model.scaled_distance == pytest.approx(z_edge, rel=1e-5)
+        assert d.specimen.scaled_distance == pytest.approx(z_edge, rel=1e-5)
         with pytest.raises(OutOfRangeError) as e:
             design_model(W, R, lam_edge / inside, gam, sig, blast_model=model)
         msg = str(e.value)

@@ -154,7 +154,7 @@ def test_arrival_spread_and_its_similarity_block():
 def _spreads(structure, design, method):
     """The arrival spreads of a design's two loads (prototype, specimen at its size)."""
     return arrival_spread_similarity(make_load(method, structure, design.prototype),
-                                     make_load(method, structure.scaled(design.factors), design.model), design.factors)
+                                     make_load(method, structure.scaled(design.factors), design.specimen), design.factors)
 
 
 def test_arrival_spread_scaling_hopkinson_cranz_and_general_law():

@@ -28,7 +28,7 @@ def _prototype_only(structure: dict, simulation: dict, **blast) -> Scenario:
 def test_a_column_without_scale_runs_3d_and_its_ensemble_on_the_prototype_alone(tmp_path):
     sc = _prototype_only(COLUMN, {"duration_s": 0.2, "ensemble_members": 2})
     r = Study(sc).run()
-    assert r.design is None and r.model_structure is None
+    assert r.design is None and r.specimen_structure is None
     s = r.summary()
     assert s["3d"]["model"] is None and s["3d"]["similarity"] is None
     assert {"collapsed", "max_top_displacement_m", "points"} <= set(s["3d"]["prototype"])

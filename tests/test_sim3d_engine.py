@@ -107,7 +107,7 @@ def test_column_specimen_at_its_own_size_reproduces_the_prototype():
     d = design_model(250.0, 10.0, lam)  # general law, gamma = 1
     proto = simulate_structure(SQUARE, make_load("A", SQUARE, blast_parameters(250.0, 10.0)), T, record_every=20)
     spec_col = SQUARE.scaled(scaling_factors(lam))
-    spec = simulate_structure(spec_col, make_load("A", spec_col, d.model), T * math.sqrt(lam),
+    spec = simulate_structure(spec_col, make_load("A", spec_col, d.specimen), T * math.sqrt(lam),
                               record_every=20)
     p, m = _top_x(proto), _top_x(spec, lam)
     # 2% (issue) on the first peak (measured 0.4%) and on the largest tilt (measured 0.2%)

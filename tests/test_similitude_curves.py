@@ -24,7 +24,7 @@ def test_points_equal_design_model(model, lam, gam):
     assert c.valid[0]
     for got, want in (
         (c.scaled_distance_factor[0], d.scaled_distance_factor),
-        (c.model_scaled_distance[0], d.model.scaled_distance),
+        (c.model_scaled_distance[0], d.specimen.scaled_distance),
         (c.charge_ratio[0], d.factors.charge),
         (c.pressure_ratio[0], d.pressure_ratio),
         (c.impulse_ratio[0], d.impulse_ratio),

@@ -36,17 +36,17 @@ def test_table_blast_loading_characteristics(W, Zp, lam, Wm, Zm):
     # Scaled distances are printed with 2 decimals and truncated (0.9985 -> 0.99), so the computed value
     # must lie in [printed, printed + 0.01) up to rounding: tolerance 0.01 m/kg^(1/3) one-sided, +-0.005 slack.
     assert Zp - 0.005 <= d.prototype.scaled_distance < Zp + 0.01
-    assert Zm - 0.005 <= d.model.scaled_distance < Zm + 0.01
+    assert Zm - 0.005 <= d.specimen.scaled_distance < Zm + 0.01
     # Charges: 3 printed significant figures -> relative tolerance 1 % (largest printed rounding error is
     # 1.0 g for 1.0044 g: 0.44 %; 2.06 g for 2.0685 g: 0.41 %).
-    assert d.model_charge_kg == pytest.approx(Wm, rel=1e-2)
+    assert d.specimen_charge_kg == pytest.approx(Wm, rel=1e-2)
 
 
 def test_non_slender_block_2500kg_at_3m():
     # Paper Sec. "Non-slender blocks": 2500 kg at 3 m, lambda = 1/200, gamma = 1 -> 14.26 mg (14.27 by our
     # calculation: 14.2656 mg, the paper truncates). Tolerance: 0.01 mg on a 4-digit figure.
     d = design_model(2500.0, 3.0, 1 / 200, blast_model="masi2021")
-    assert d.model_charge_kg * 1e6 == pytest.approx(14.27, abs=0.01)
+    assert d.specimen_charge_kg * 1e6 == pytest.approx(14.27, abs=0.01)
 
 
 def test_overpressure_ratio_near_figure_5_gamma_1():
@@ -79,8 +79,8 @@ def test_hopkinson_cranz_identities(lam):
     # mass lambda^(5/2), inertia lambda^(9/2). Identities hold to round-off (1e-12).
     d = design_model(100.0, 5.0, lam, None, law="hopkinson-cranz", blast_model="masi2021")
     assert d.scaled_distance_factor == 1.0
-    assert d.model.scaled_distance == pytest.approx(d.prototype.scaled_distance, rel=1e-12)
-    assert d.model_charge_kg == pytest.approx(100.0 * lam**3, rel=1e-12)
+    assert d.specimen.scaled_distance == pytest.approx(d.prototype.scaled_distance, rel=1e-12)
+    assert d.specimen_charge_kg == pytest.approx(100.0 * lam**3, rel=1e-12)
     assert d.density_ratio == pytest.approx(lam**-0.5, rel=1e-12)
     assert d.pressure_ratio == pytest.approx(1.0, rel=1e-12)
     assert d.impulse_ratio == pytest.approx(lam, rel=1e-12)
@@ -128,7 +128,7 @@ def test_impulsive_check_is_to_times_housner_p_for_prototype_and_model(sig):
     p_proto = math.sqrt(3 * g / (4 * r))
     p_model = math.sqrt(3 * g * sig / (4 * r * lam))
     assert d.impulsive.prototype_ratio == pytest.approx(d.prototype.positive_duration * p_proto, rel=1e-12)
-    assert d.impulsive.model_ratio == pytest.approx(d.model.positive_duration * p_model, rel=1e-12)
+    assert d.impulsive.model_ratio == pytest.approx(d.specimen.positive_duration * p_model, rel=1e-12)
     assert d.impulsive.prototype_ratio == pytest.approx(1.39e-3, rel=0.01)  # DESIGN.md: "about 1e-3"
     assert d.impulsive.impulsive  # both far below the 0.4 bound
     # The verdict needs BOTH systems impulsive: with the bound between the two ratios it must be False.
@@ -208,12 +208,12 @@ def test_a_design_of_arrays_equals_the_designs_of_its_elements(model, law):
         try:
             one = design_model(W[k], R[k], 1 / 200, gamma, law=law, blast_model=model, geometry=block)
         except BlastscaleInputError:
-            assert not d.valid[k] and np.isnan(d.model_charge_kg[k])
+            assert not d.valid[k] and np.isnan(d.specimen_charge_kg[k])
             continue
         assert d.valid[k]
-        for got, want in ((d.model_charge_kg[k], one.model_charge_kg), (d.factors.charge[k], one.factors.charge),
-                          (d.model.reflected_impulse[k], one.model.reflected_impulse),
-                          (d.model.friedlander_decay[k], one.model.friedlander_decay),
+        for got, want in ((d.specimen_charge_kg[k], one.specimen_charge_kg), (d.factors.charge[k], one.factors.charge),
+                          (d.specimen.reflected_impulse[k], one.specimen.reflected_impulse),
+                          (d.specimen.friedlander_decay[k], one.specimen.friedlander_decay),
                           (d.impulsive.model_ratio[k], one.impulsive.model_ratio)):
             assert got == pytest.approx(want, rel=1e-12)
     assert d.valid.sum() >= 3 and not d.valid.all()

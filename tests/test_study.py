@@ -37,13 +37,13 @@ def test_planar_results_equal_the_direct_comparison_with_every_choice_passed_thr
     t = np.linspace(0.0, 1.5, 301)
     sys_p = RockingSystem.from_block(block, 9.5, 0.8)
     res_p = simulate(sys_p, d.prototype.pulse("triangular"), 1.5, t_eval=t)
-    res_m = simulate(RockingSystem.from_block(d.model_block, 9.5 * 2.0, 0.8), d.model.pulse("triangular"),
+    res_m = simulate(RockingSystem.from_block(d.specimen_block, 9.5 * 2.0, 0.8), d.specimen.pulse("triangular"),
                      1.5 * d.factors.time, t_eval=np.minimum(t * d.factors.time, 1.5 * d.factors.time))
     direct = compare_rocking(res_p, res_m, d, sys_p.frequency_parameter)
     # same inputs, same deterministic solver: equal to round-off
     np.testing.assert_allclose(r.planar.theta_model, direct.theta_model, rtol=0, atol=1e-15)
     assert r.planar.to_dict() == direct.to_dict()
-    assert r.design.model_charge_kg == direct.design.model_charge_kg
+    assert r.design.specimen_charge_kg == direct.design.specimen_charge_kg
     assert r.response3d is None and r.critical is None
 
 
@@ -79,7 +79,7 @@ def test_each_paper_scenario_runs_end_to_end(path, tmp_path):
     assert (r.ensemble is not None) == (sc.simulation.ensemble_members >= 2)  # the circular columns
     s = r.scalars()
     assert all(isinstance(v, (bool, int, float)) for v in s.values())
-    assert s["design.model_charge_kg"] == pytest.approx(r.design.model_charge_kg)
+    assert s["design.model_charge_kg"] == pytest.approx(r.design.specimen_charge_kg)
     nc = tmp_path / "h.nc"
     write_netcdf(r.to_datatree(), nc)
     tree = xr.open_datatree(nc)

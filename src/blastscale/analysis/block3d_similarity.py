@@ -180,7 +180,7 @@ def block_similarity(prototype_ds, upscaled_ds) -> dict:
     }
 
 
-def block_view(prototype, block=None, model=None, model_block=None, factors=None) -> dict:
+def block_view(prototype, block=None, model=None, specimen_block=None, factors=None) -> dict:
     """The block's planar view of a prototype run and, when given, of its specimen's run: the
     ``block3d`` keys.
 
@@ -192,7 +192,7 @@ def block_view(prototype, block=None, model=None, model_block=None, factors=None
         The prototype block (default ``prototype.structure``).
     model : Response3D, optional
         The specimen's run, in its own units.
-    model_block : RectangularBlock, optional
+    specimen_block : RectangularBlock, optional
         The specimen block (default ``model.structure``).
     factors : ScalingFactors, optional
         Specimen / prototype factors (needed with ``model``).
@@ -211,7 +211,7 @@ def block_view(prototype, block=None, model=None, model_block=None, factors=None
     if model is not None:
         if factors is None:
             raise BlastscaleInputError("factors = None: the specimen's run needs the design's factors to be up-scaled")
-        out["model"] = upscale_summary(block_summary(model, model_block), factors)
+        out["model"] = upscale_summary(block_summary(model, specimen_block), factors)
         out["similarity"] = block_similarity(block_dataset(prototype, block),
-                                             upscale_dataset(block_dataset(model, model_block), factors))
+                                             upscale_dataset(block_dataset(model, specimen_block), factors))
     return out

@@ -1,8 +1,8 @@
 """Prototype vs reduced-scale model in planar rocking (paper Sec. "Equations of motion", Figs. 6-9).
 
 The Study designs the specimen once and its planar engine (:mod:`blastscale.study.engines`)
-simulates the prototype (its pulse from ``d.prototype``) and the specimen (``d.model_block``,
-pulse from ``d.model``, gravity ``g varsigma``) with the same rocking solver and restitution;
+simulates the prototype (its pulse from ``d.prototype``) and the specimen (``d.specimen_block``,
+pulse from ``d.specimen``, gravity ``g varsigma``) with the same rocking solver and restitution;
 :func:`compare_rocking` then
 
 1. writes both histories as response datasets (:func:`rocking_dataset`) and up-scales and

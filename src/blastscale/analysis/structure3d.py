@@ -6,7 +6,7 @@
    contact settings the engine's scale-consistent defaults (``contact=None``) or
    ``contact.scaled(factors)``;
 2. each is loaded by :func:`blastscale.sim3d.load_methods.make_load` from its own blast
-   parameters (``design.prototype``, ``design.model``: the design's, never recomputed) and
+   parameters (``design.prototype``, ``design.specimen``: the design's, never recomputed) and
    simulated by :func:`blastscale.sim3d.simulate_structure` (the model for ``duration *
    lambda_t``): one :func:`~.systems.run_system` each;
 3. the model's dataset is up-scaled by :func:`~.compare.upscale_dataset` and compared with the
@@ -40,14 +40,14 @@ def _merged(base: dict, extra: dict) -> dict:
     return {**base, **{k: v for k, v in extra.items() if k not in base}}
 
 
-def _block_keys(structure, prototype, model=None, model_structure=None, factors=None) -> dict:
+def _block_keys(structure, prototype, model=None, specimen_structure=None, factors=None) -> dict:
     """The block3d keys of a single block's runs (:func:`~.block3d_similarity.block_view`), or
     empty dicts for any other structure."""
     if not is_block(structure):
         return {"prototype": {}, "model": {}, "similarity": {}}
     from .block3d_similarity import block_view
 
-    v = block_view(prototype, structure, model, model_structure, factors)
+    v = block_view(prototype, structure, model, specimen_structure, factors)
     return {k: v[k] or {} for k in ("prototype", "model", "similarity")}
 
 
@@ -73,7 +73,7 @@ class Comparison3D:
     ----------
     design : ModelDesign
         The model experiment (charges, stand-offs, factors).
-    structure, model_structure : structure
+    structure, specimen_structure : structure
         Prototype and model structures.
     prototype, model : Response3D
         The two runs, each in its own units.
@@ -93,7 +93,7 @@ class Comparison3D:
 
     design: object
     structure: object
-    model_structure: object
+    specimen_structure: object
     prototype: object
     model: object
     prototype_dataset: object
@@ -181,7 +181,7 @@ class Comparison3D:
         single block each also carries the block's planar keys (``overturned``,
         ``max_rotation_rad``, ``max_sliding_m``, ...; similarity ``max_abs_rotation_diff_rad``, ...:
         :func:`~.block3d_similarity.block_view`), added next to the structure's keys."""
-        blk = _block_keys(self.structure, self.prototype, self.model, self.model_structure, self.design.factors)
+        blk = _block_keys(self.structure, self.prototype, self.model, self.specimen_structure, self.design.factors)
         return {
             "prototype": _merged(self.prototype.summary(), blk["prototype"]),
             "model": _merged(upscale_summary(self.model.summary(), self.design.factors), blk["model"]),
@@ -264,7 +264,7 @@ def compare_structure3d(
     from ..sim3d.load_methods import arrival_spread_similarity
 
     p_run, m_run = (run_system(structure, design, system, **kw) for system in SYSTEMS)
-    model_structure, proto, mod = m_run.structure, p_run.response, m_run.response
+    specimen_structure, proto, mod = m_run.structure, p_run.response, m_run.response
     # the later of the two loads' ends [s after the first arrival, prototype time]
     load_end = max(p_run.load_duration_s, m_run.load_duration_s / design.factors.time)
     ps, ms = proto.summary(), mod.summary()
@@ -280,7 +280,7 @@ def compare_structure3d(
         cmp["to_collapse"] = compare_responses(pds, up, variables=("point_displacement",), end=min(tc))
         cmp["to_collapse"]["end_s"] = min(tc)
     return Comparison3D(
-        design=design, structure=structure, model_structure=model_structure, prototype=proto, model=mod,
+        design=design, structure=structure, specimen_structure=specimen_structure, prototype=proto, model=mod,
         prototype_dataset=pds, upscaled_dataset=up, comparison=cmp,
         settings={"load_method": load, "pulse": pulse, "incidence": incidence or "default", "duration_s": dur,
                   "record_every": int(record_every), "load_end_s": load_end, "extrapolate": bool(extrapolate)},
@@ -317,7 +317,7 @@ class Prototype3D:
     prototype_dataset: object
     settings: dict = field(default_factory=dict)
     design: object = None
-    model_structure: object = None
+    specimen_structure: object = None
     model: object = None
     upscaled_dataset: object = None
 

@@ -4,7 +4,7 @@ The one place where a designed experiment (:func:`blastscale.similitude.design_m
 a structure, a load and a run of the 3D engine. The model system is
 
 * the structure ``structure.scaled(factors)``;
-* its own load, built by :func:`blastscale.sim3d.load_methods.make_load` from ``design.model``
+* its own load, built by :func:`blastscale.sim3d.load_methods.make_load` from ``design.specimen``
   (the design's blast parameters of the specimen: never recomputed);
 * gravity ``varsigma g``, contact ``contact.scaled(factors)`` (or the engine's
   scale-consistent defaults for its size when ``contact`` is None);
@@ -68,7 +68,7 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
         Which one.
     blast : BlastParameters, optional
         The prototype's blast parameters when there is no design (with a design: ``design.prototype``
-        and ``design.model``).
+        and ``design.specimen``).
     gravity : float
         The prototype's gravity [m/s^2] when there is no design (with one: ``design.gravity``).
     load, pulse, incidence, contact, record_every
@@ -101,7 +101,7 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
         struct, bp, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
     else:
         f = design.factors
-        struct, bp = structure.scaled(f), design.model
+        struct, bp = structure.scaled(f), design.specimen
         dur, g = duration * f.time, design.gravity * f.gravity
         cont = None if contact is None else contact.scaled(f)
     inc = {} if incidence is None else {"incidence": incidence}

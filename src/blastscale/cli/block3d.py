@@ -52,7 +52,7 @@ def block3d_output(result, contact, incidence: Optional[str] = None) -> dict:
     if d is not None:
         out["model"] = {k: s3["model"][k] for k in BLOCK_SUMMARY_KEYS}
         out["similarity"] = {k: s3["similarity"][k] for k in BLOCK_SIMILARITY_KEYS}
-        out["model_experiment"] = {"charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m,
+        out["model_experiment"] = {"charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m,
                                    "height_m": block.height * scale}
     return out
 

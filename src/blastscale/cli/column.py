@@ -52,8 +52,8 @@ def column_output(result, contact, incidence: Optional[str] = None, timestep: Op
     s = result.summary()
     out.update({k: v for k, v in s["3d"].items() if v is not None})
     if d is not None:
-        out["model_experiment"] = {"charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m,
-                                   "structure": result.model_structure.describe()}
+        out["model_experiment"] = {"charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m,
+                                   "structure": result.specimen_structure.describe()}
     if s["ensemble"] is not None:
         out["ensemble"] = s["ensemble"]
     return out

@@ -75,7 +75,7 @@ def print_design(d) -> None:
               f"gravity ratio = {d.gravity_ratio:.6g} ({d.prototype.blast_model})", title_justify="left")
     for c in ("quantity", "prototype", "model", "model/prototype", "required", "unit"):
         t.add_column(c, justify="left" if c in ("quantity", "unit") else "right")
-    p, m, f = d.prototype, d.model, d.factors
+    p, m, f = d.prototype, d.specimen, d.factors
     t.add_row("charge W", f"{p.charge_kg:.6g}", f"{m.charge_kg:.6g}", f"{f.charge:.6g}", "", "kg")
     t.add_row("stand-off R", f"{p.standoff_m:.6g}", f"{m.standoff_m:.6g}", f"{d.scale:.6g}", "", "m")
     t.add_row("scaled distance Z", f"{p.scaled_distance:.6g}", f"{m.scaled_distance:.6g}",

@@ -104,8 +104,8 @@ def rock_cmd(
     if sim is not None:
         d = result.design
         out["model_experiment"] = {
-            "charge_kg": d.model_charge_kg,
-            "standoff_m": d.model_standoff_m,
+            "charge_kg": d.specimen_charge_kg,
+            "standoff_m": d.specimen_standoff_m,
             "height_m": block.height * scale,
             "width_m": block.width * scale,
             "density_kg_m3": block.density * d.density_ratio,
@@ -199,7 +199,7 @@ def critical_cmd(
             d = design_model(res.charge_kg, res.standoff_m, scale, density_ratio, blast_model=blast_model, geometry=block,
                              gravity=gravity, extrapolate=extrapolate)
         out["model_experiment"] = {"scale": scale, "density_ratio": density_ratio,
-                                   "critical_charge_kg": d.model_charge_kg, "standoff_m": d.model_standoff_m}
+                                   "critical_charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
     if plot:
         from ..plots.rocking import plot_pi_diagram
         from ..rocking import pi_diagram

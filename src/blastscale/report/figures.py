@@ -35,7 +35,7 @@ def _pulses(result):
     d, sc = result.design, result.scenario
     systems = [(result.blast, "prototype", "ms", 1e3, "MPa", 1e-6)]
     if d is not None:
-        systems.append((d.model, "model", "us", 1e6, "MPa", 1e-6))
+        systems.append((d.specimen, "model", "us", 1e6, "MPa", 1e-6))
     fig, axes = plt.subplots(1, len(systems), figsize=(5.5 * len(systems), 3.6), layout="constrained", squeeze=False)
     for ax, (bp, who, tu, tf, pu, pf) in zip(axes[0], systems):
         p = bp.pulse(sc.blast.pulse)

@@ -160,7 +160,7 @@ def _loads(result) -> str:
         return (_table(("quantity", "prototype", "unit"), rows)
                 + f"<p>Blast model: <b>{_e(b.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse)}</b>, load "
                   f"method <b>{_e(result.scenario.blast.load)}</b>.</p>")
-    p, m, f = d.prototype, d.model, d.factors
+    p, m, f = d.prototype, d.specimen, d.factors
     rows = [
         ("scaled distance Z", p.scaled_distance, m.scaled_distance, d.scaled_distance_factor, None, "m/kg^(1/3)"),
         ("reflected peak pressure", p.reflected_pressure, m.reflected_pressure, d.pressure_ratio, f.pressure, "Pa"),

@@ -112,10 +112,10 @@ def _geometry(folder: Path, quick: bool) -> list:
     rows = [Row("prototype width 2b", "2.68 m", block.width, "m")]
     for lam, tag, paper in ((1 / 20, "model 1", ("50", "13.40", "10")), (1 / 200, "model 2", ("5", "1.34", "1"))):
         d = design_model(50.0, 2.0, lam, 1.0, blast_model="masi2021", geometry=block)
-        mb = d.model_block
+        mb = d.specimen_block
         rows += [Row(f"{tag} height", f"{paper[0]} cm", mb.height * 100, "cm"),
                  Row(f"{tag} width", f"{paper[1]} cm", mb.width * 100, "cm"),
-                 Row(f"{tag} stand-off", f"{paper[2]} cm", d.model_standoff_m * 100, "cm")]
+                 Row(f"{tag} stand-off", f"{paper[2]} cm", d.specimen_standoff_m * 100, "cm")]
     return rows
 
 
@@ -129,13 +129,13 @@ def _blast_loading(folder: Path, quick: bool) -> list:
         d2 = design_model(W, 2.0, 1 / 200, 1.0, blast_model="masi2021")
         rows += [
             Row(f"({case}) W_p = {W:g} kg: Z_p", zp, d1.prototype.scaled_distance, "m/kg^(1/3)"),
-            Row(f"({case}) model 1 (1/20) charge", w1, d1.model_charge_kg * 1e3, "g", 4),
-            Row(f"({case}) model 1 Z", z1, d1.model.scaled_distance, "m/kg^(1/3)"),
-            Row(f"({case}) model 2 (1/200) charge", w2, d2.model_charge_kg * 1e6, "mg", 4),
-            Row(f"({case}) model 2 Z", z2, d2.model.scaled_distance, "m/kg^(1/3)"),
+            Row(f"({case}) model 1 (1/20) charge", w1, d1.specimen_charge_kg * 1e3, "g", 4),
+            Row(f"({case}) model 1 Z", z1, d1.specimen.scaled_distance, "m/kg^(1/3)"),
+            Row(f"({case}) model 2 (1/200) charge", w2, d2.specimen_charge_kg * 1e6, "mg", 4),
+            Row(f"({case}) model 2 Z", z2, d2.specimen.scaled_distance, "m/kg^(1/3)"),
         ]
     ns = design_model(2500.0, 3.0, 1 / 200, 1.0, blast_model="masi2021")
-    rows.append(Row("non-slender 2500 kg at 3 m: model charge (1/200)", "14.26 mg", ns.model_charge_kg * 1e6, "mg"))
+    rows.append(Row("non-slender 2500 kg at 3 m: model charge (1/200)", "14.26 mg", ns.specimen_charge_kg * 1e6, "mg"))
     return rows
 
 

@@ -71,7 +71,7 @@ def design_model(
     blast_model : str or BlastModel
         Blast model (``"kingery-bulmash"`` default, ``"masi2021"`` the paper's fits).
     geometry : RectangularBlock, optional
-        Prototype structure; enables the impulsive check and fills the model block.
+        Prototype structure; enables the impulsive check and fills the specimen block.
     gravity : float
         Prototype gravity g [m/s^2].
     impulsive_threshold : float
@@ -111,7 +111,7 @@ def design_model(
     paper's Table 4: 0.233 mg at Z = 1.62 m/kg^(1/3)):
 
     >>> d = design_model(50.0, 2.0, 1 / 200, blast_model="masi2021")
-    >>> round(d.model_charge_kg * 1e6, 3), round(d.model.scaled_distance, 2)
+    >>> round(d.specimen_charge_kg * 1e6, 3), round(d.specimen.scaled_distance, 2)
     (0.233, 1.62)
     """
     if np.ndim(charge) or np.ndim(standoff):
@@ -171,11 +171,11 @@ def design_model(
         scaled_distance_factor=lz,
         root_note=res_note,
         prototype=proto,
-        model=model_params,
+        specimen=model_params,
         factors=f,
         impulsive=imp,
         prototype_block=geometry,
-        model_block=mblock,
+        specimen_block=mblock,
         gravity=float(gravity),
     )
 
@@ -234,8 +234,8 @@ def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, b
                              model_ratio=mod.positive_duration * mblock.frequency_parameter(gravity * sig),
                              threshold=float(impulsive_threshold))
     return ModelDesign(law=law, scale=lam, density_ratio=gam, gravity_ratio=sig, scaled_distance_factor=f.scaled_distance,
-                       root_note=note, prototype=proto, model=mod, factors=f, impulsive=imp, prototype_block=geometry,
-                       model_block=mblock, gravity=float(gravity), valid=ok)
+                       root_note=note, prototype=proto, specimen=mod, factors=f, impulsive=imp, prototype_block=geometry,
+                       specimen_block=mblock, gravity=float(gravity), valid=ok)
 
 
 def _scatter(bp: BlastParameters, ok: np.ndarray) -> BlastParameters:

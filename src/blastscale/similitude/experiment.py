@@ -96,13 +96,14 @@ class ModelDesign:
         lambda_Z = Z_model / Z_prototype [-].
     root_note : str
         Which root of the law was taken.
-    prototype, model : BlastParameters
-        Blast parameters at the prototype and model stand-offs.
+    prototype, specimen : BlastParameters
+        Blast parameters at the prototype's and the specimen's stand-offs (the specimen: the
+        reduced-scale physical model, the paper's "model").
     factors : ScalingFactors
         Every factor (charge and scaled distance included).
     impulsive : ImpulsiveCheck or None
         Present when the structure was given.
-    prototype_block, model_block : RectangularBlock or None
+    prototype_block, specimen_block : RectangularBlock or None
         The structures, when given.
     gravity : float
         Prototype gravity [m/s^2].
@@ -119,42 +120,43 @@ class ModelDesign:
     scaled_distance_factor: float
     root_note: str
     prototype: BlastParameters
-    model: BlastParameters
+    specimen: BlastParameters
     factors: ScalingFactors
     impulsive: ImpulsiveCheck | None = None
     prototype_block: RectangularBlock | None = None
-    model_block: RectangularBlock | None = None
+    specimen_block: RectangularBlock | None = None
     gravity: float = STANDARD_GRAVITY
     valid: "bool | np.ndarray" = True
 
     # convenient views -------------------------------------------------------
     @property
-    def model_charge_kg(self) -> float:
-        """Model TNT-equivalent charge [kg]."""
-        return self.model.charge_kg
+    def specimen_charge_kg(self) -> float:
+        """The specimen's TNT-equivalent charge [kg]."""
+        return self.specimen.charge_kg
 
     @property
-    def model_standoff_m(self) -> float:
-        """Model stand-off [m] (= lambda R)."""
-        return self.model.standoff_m
+    def specimen_standoff_m(self) -> float:
+        """The specimen's stand-off [m] (= lambda R)."""
+        return self.specimen.standoff_m
 
     @property
     def pressure_ratio(self) -> float:
         """Delivered peak reflected pressure ratio P_model / P_prototype [-]."""
-        return self.model.reflected_pressure / self.prototype.reflected_pressure
+        return self.specimen.reflected_pressure / self.prototype.reflected_pressure
 
     @property
     def impulse_ratio(self) -> float:
         """Delivered reflected impulse ratio i_model / i_prototype [-] (= gamma sqrt(varsigma lambda^3))."""
-        return self.model.reflected_impulse / self.prototype.reflected_impulse
+        return self.specimen.reflected_impulse / self.prototype.reflected_impulse
 
     @property
     def duration_ratio(self) -> float:
         """Delivered positive-duration ratio t_o,model / t_o,prototype [-]."""
-        return self.model.positive_duration / self.prototype.positive_duration
+        return self.specimen.positive_duration / self.prototype.positive_duration
 
     def to_dict(self) -> dict:
-        """Plain dict (the CLI's ``design --json`` object)."""
+        """Plain dict (the CLI's ``design --json`` object; its keys keep the paper's label
+        ``model`` for the specimen: ``model_charge_kg``, ``model``)."""
         out = {
             "law": self.law,
             "blast_model": self.prototype.blast_model,
@@ -164,11 +166,11 @@ class ModelDesign:
             "prototype_charge_kg": self.prototype.charge_kg,
             "prototype_standoff_m": self.prototype.standoff_m,
             "prototype_scaled_distance": self.prototype.scaled_distance,
-            "model_scaled_distance": self.model.scaled_distance,
+            "model_scaled_distance": self.specimen.scaled_distance,
             "scaled_distance_factor": self.scaled_distance_factor,
             "root": self.root_note,
-            "model_charge_kg": self.model_charge_kg,
-            "model_standoff_m": self.model_standoff_m,
+            "model_charge_kg": self.specimen_charge_kg,
+            "model_standoff_m": self.specimen_standoff_m,
             "pressure_ratio": self.pressure_ratio,
             "impulse_ratio": self.impulse_ratio,
             "duration_ratio": self.duration_ratio,
@@ -177,7 +179,7 @@ class ModelDesign:
             "required_duration_ratio": self.factors.time,
             "factors": self.factors.to_dict(),
             "prototype": self.prototype.to_dict(),
-            "model": self.model.to_dict(),
+            "model": self.specimen.to_dict(),
         }
         if self.impulsive is not None:
             out["impulsive"] = self.impulsive.to_dict()

@@ -48,9 +48,9 @@ def _run_planar(ctx: Context):
     if d is None:
         return PrototypeRocking(res_p)
     f = d.factors
-    sys_m = RockingSystem.from_block(d.model_block, sim.gravity_m_s2 * d.gravity_ratio, sim.restitution)
+    sys_m = RockingSystem.from_block(d.specimen_block, sim.gravity_m_s2 * d.gravity_ratio, sim.restitution)
     dur_m = dur * f.time
-    res_m = DEFAULT_SOLVER.simulate(sys_m, d.model.pulse(shape), dur_m, t_eval=np.minimum(t * f.time, dur_m))
+    res_m = DEFAULT_SOLVER.simulate(sys_m, d.specimen.pulse(shape), dur_m, t_eval=np.minimum(t * f.time, dur_m))
     return compare_rocking(res_p, res_m, d, sys_p.frequency_parameter)
 
 

@@ -35,11 +35,11 @@ class StudyResult:
     ----------
     scenario : Scenario
         The inputs.
-    structure, model_structure : structure
+    structure, specimen_structure : structure
         The prototype and the model specimen (lengths x lambda, density x gamma).
     design : blastscale.similitude.ModelDesign or None
         The model experiment: charge, stand-off, every factor, blast parameters, impulsive check
-        (None for a prototype-only scenario, and then ``model_structure`` is None too).
+        (None for a prototype-only scenario, and then ``specimen_structure`` is None too).
     blast : BlastParameters
         The prototype's blast parameters (``design.prototype`` when there is a design).
     planar : RockingSimilarity or None
@@ -58,7 +58,7 @@ class StudyResult:
 
     scenario: Scenario
     structure: Any
-    model_structure: Any
+    specimen_structure: Any
     design: Any
     blast: Any = None
     planar: Any = None
@@ -82,8 +82,8 @@ class StudyResult:
         return {
             "prototype": {**_describe(self.structure), "charge_kg": d.prototype.charge_kg,
                           "standoff_m": d.prototype.standoff_m},
-            "model": {**_describe(self.model_structure), "material": mat, "charge_kg": d.model_charge_kg,
-                      "standoff_m": d.model_standoff_m},
+            "model": {**_describe(self.specimen_structure), "material": mat, "charge_kg": d.specimen_charge_kg,
+                      "standoff_m": d.specimen_standoff_m},
             "scale": d.scale, "density_ratio": d.density_ratio, "gravity_ratio": d.gravity_ratio, "law": d.law,
         }
 

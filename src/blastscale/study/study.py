@@ -21,7 +21,7 @@ the :class:`StudyResult`. Example (the built-in default, shortened):
 >>> from blastscale.scenario import Scenario
 >>> sc = Scenario.default().with_values({"duration_s": 0.05, "engine": "planar", "critical_charge": False})
 >>> r = Study(sc).run()
->>> round(r.design.model_charge_kg * 1e6, 3)     # mg of TNT for the 1/200 model (paper: 0.233)
+>>> round(r.design.specimen_charge_kg * 1e6, 3)     # mg of TNT for the 1/200 model (paper: 0.233)
 0.233
 """
 
@@ -171,7 +171,7 @@ class Study:
                 step += 1
             _tell(progress, "done", total, total)
             specimen = None if d is None else structure.scaled(d.factors)
-            partial = StudyResult(scenario=sc, structure=structure, model_structure=specimen, design=d, blast=blast,
+            partial = StudyResult(scenario=sc, structure=structure, specimen_structure=specimen, design=d, blast=blast,
                                   planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
                                   ensemble=results.get("ensemble"))
             summary = partial._compute_summary()  # inside the capture: its warnings are the study's

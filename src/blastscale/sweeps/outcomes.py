@@ -79,15 +79,15 @@ def _outcome_group(sc, W, R, e) -> dict:
     fp = first_swing_blast(proto.alpha, e, proto.frequency_parameter, proto.load_ratio_per_pascal,
                            d.prototype.select(ok), bl.pulse)
     fm = first_swing_blast(model.alpha, e, model.frequency_parameter, model.load_ratio_per_pascal,
-                           d.model.select(ok), bl.pulse)
+                           d.specimen.select(ok), bl.pulse)
     out["planar.prototype.overturned"][ok] = fp.overturned
     out["planar.prototype.max_angle_rad"][ok] = fp.max_rotation
     out["planar.model.overturned"][ok] = fm.overturned
     out["planar.model.max_angle_rad"][ok] = fm.max_rotation  # angles are not scaled (factor 1)
     out["planar.similarity.max_angle_ratio"][ok] = fm.max_rotation / fp.max_rotation
     out["planar.similarity.outcomes_agree"][ok] = fp.overturned == fm.overturned
-    out["design.model_charge_kg"][ok] = d.model.charge_kg[ok]
-    out["design.model_standoff_m"][ok] = d.model.standoff_m[ok]
+    out["design.model_charge_kg"][ok] = d.specimen.charge_kg[ok]
+    out["design.model_standoff_m"][ok] = d.specimen.standoff_m[ok]
     out[VALID_KEY][ok] = True
     return out
 
