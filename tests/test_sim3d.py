@@ -130,8 +130,8 @@ def test_tilted_scene_rests_on_its_edge_with_rotation_theta0():
 
     th0 = 0.1
     sc = block_scene(PAPER_BLOCK, ContactSettings(), rotation=th0)
-    d = mujoco.MjData(sc.model)
-    mujoco.mj_forward(sc.model, d)
+    d = mujoco.MjData(sc.mj_model)
+    mujoco.mj_forward(sc.mj_model, d)
     R = quaternion_to_matrix(d.qpos[3:7])
     corners_z = d.qpos[2] + sc.bodies[0].shape.base_points() @ R[2]
     assert corners_z.min() == pytest.approx(0.0, abs=1e-12)  # rests exactly on the +x edge

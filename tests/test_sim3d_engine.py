@@ -214,7 +214,7 @@ def test_extra_contact_pairs_leave_the_motion_before_they_touch_bitwise_unchange
     load = make_load("A", SLENDER, blast_parameters(100.0, 5.0))
     full = simulate_structure(SLENDER, load, 0.15, record_every=8).dataset
     monkeypatch.setattr(model, "contact_pairs", lambda interfaces, nbody: tuple(interfaces))
-    assert model.structure_scene(SLENDER, default_contact(SLENDER)).model.npair == 3  # interfaces only
+    assert model.structure_scene(SLENDER, default_contact(SLENDER)).mj_model.npair == 3  # interfaces only
     rest = simulate_structure(SLENDER, load, 0.15, record_every=8).dataset
     for name in ("com_displacement", "angular_velocity", "n_contacts"):
         np.testing.assert_array_equal(full[name].values, rest[name].values)

@@ -78,7 +78,7 @@ def tilt_bodies(bodies, rotation: float) -> tuple:
 
 def rigid_rocking_velocity(scene, rotation: float, angular_velocity: float, velocity, factors=(1.0, 1.0)):
     """The initial velocity of a rigid rotation about the supporting base edge plus a translation,
-    as a function ``initial(model, data)`` setting MuJoCo's ``qvel`` (None when both are zero).
+    as a function ``initial(mj_model, data)`` setting MuJoCo's ``qvel`` (None when both are zero).
 
     .. math:: v_k = \\omega \\times (x_k - P) + v_0,\\qquad \\omega = (0, \\omega_0, 0),
 

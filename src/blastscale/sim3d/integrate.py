@@ -125,7 +125,7 @@ def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_m
     factors : (float, float)
         (a, b) of :func:`~.reference.reference_factors`.
     initial_velocity : callable, optional
-        ``initial_velocity(model, data)`` sets the initial ``qvel`` after settling
+        ``initial_velocity(mj_model, data)`` sets the initial ``qvel`` after settling
         (:func:`~.initial.rigid_rocking_velocity`).
 
     Returns
@@ -139,7 +139,7 @@ def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_m
 
     a, b = factors
     fF, fM = a**4 / b**2, a**5 / b**2
-    m, d = scene.model, mujoco.MjData(scene.model)
+    m, d = scene.mj_model, mujoco.MjData(scene.mj_model)
     c = scene.contact
     dt = c.timestep  # reference
     dtp = dt / b  # physical

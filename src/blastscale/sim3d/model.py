@@ -184,8 +184,8 @@ class Scene:
     ----------
     xml : str
         The MJCF text.
-    model : mujoco.MjModel
-        The compiled model.
+    mj_model : mujoco.MjModel
+        The compiled MuJoCo model.
     bodies : tuple of BodySpec
         The free bodies, in MuJoCo body order (body id = index + 1).
     contact : ContactSettings
@@ -195,7 +195,7 @@ class Scene:
     """
 
     xml: str
-    model: object = field(repr=False)
+    mj_model: object = field(repr=False)
     bodies: tuple
     contact: ContactSettings
     gravity: float
@@ -257,10 +257,10 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
         f"{contact.mjcf_option(g)}{asset_block}"
         f'<worldbody>{"".join(worldbody)}</worldbody><contact>{"".join(xml_pairs)}</contact></mujoco>'
     )
-    model = mujoco.MjModel.from_xml_string(xml)
-    if model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_MULTICCD:
+    mj_model = mujoco.MjModel.from_xml_string(xml)
+    if mj_model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_MULTICCD:
         raise RuntimeError("MuJoCo multiccd is disabled: flat drum-on-drum contacts would get one point")
-    return Scene(xml=xml, model=model, bodies=bodies, contact=contact, gravity=g)
+    return Scene(xml=xml, mj_model=mj_model, bodies=bodies, contact=contact, gravity=g)
 
 
 def contact_pairs(interfaces, nbody: int) -> tuple:
