@@ -87,7 +87,7 @@ def main(argv=None) -> int:
     ref_theta = np.array([r.theta_eval for r in refs])
     diff = np.abs(batch.theta - ref_theta)
     worst = int(np.argmax(np.max(diff, axis=1)))
-    ref_over = np.array([r.overturned for r in refs])
+    ref_over = np.array([r.collapsed for r in refs])
 
     paper_block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
     critical_charge(paper_block, 2.0, blast_model="masi2021")  # warm the blast-model cache
@@ -101,10 +101,10 @@ def main(argv=None) -> int:
         "scipy_s": scipy_s,
         "speedup": scipy_s / fast_s,
         "max_abs_diff_rad": float(diff.max()),
-        "worst_case": {"index": worst, "pulse": kinds[worst], "overturned": bool(batch.overturned[worst])},
-        "overturned_cases": int(batch.overturned.sum()),
-        "rocking_cases": int((~batch.overturned).sum()),
-        "outcomes_agree": int((batch.overturned == ref_over).sum()),
+        "worst_case": {"index": worst, "pulse": kinds[worst], "collapsed": bool(batch.collapsed[worst])},
+        "overturned_cases": int(batch.collapsed.sum()),
+        "rocking_cases": int((~batch.collapsed).sum()),
+        "outcomes_agree": int((batch.collapsed == ref_over).sum()),
         "impacts_total": int(batch.n_impacts.sum()),
         "steps_total": int(batch.n_steps.sum()),
         "pulse_mix": {k: kinds.count(k) for k in sorted(set(kinds))},

@@ -163,7 +163,7 @@ def bench_kernel_only(n: int, duration: float = 5.0) -> dict:
     res = solver.simulate_batch(system, pulses, duration, t)
     dt = time.perf_counter() - t0
     return {"cases": n, "duration_s": duration, "wall_s": dt, "cases_per_minute": n / dt * 60.0,
-            "overturned": int(res.overturned.sum()), "processes": 1}
+            "collapsed": int(res.collapsed.sum()), "processes": 1}
 
 
 def bench_3d(n: int, duration: float) -> dict:

@@ -80,7 +80,7 @@ def report(name: str, run: dict) -> None:
     """Print prototype outcome and prototype-vs-model differences."""
     (p, m), d = run["summaries"], run["similarity"]
     print(f"{name}: prototype max rotation {p['max_rotation_rad']:.4f} rad, max sliding {p['max_sliding_m']:.4f} m, "
-          f"overturned {p['overturned']} | up-scaled model: max rotation {m['max_rotation_rad']:.4f} rad, "
+          f"overturned {p['collapsed']} | up-scaled model: max rotation {m['max_rotation_rad']:.4f} rad, "
           f"max sliding {m['max_sliding_m']:.4f} m | max |d rotation| "
           f"{d['max_abs_rotation_diff_rad']:.2e} rad, max |d sliding| {d['max_abs_sliding_diff_m']:.2e} m")
 
@@ -130,7 +130,7 @@ def main() -> None:
         run = run_block(SLENDER, W, 2.0, t_slender, planar=True)
         planar = run["study"].planar.prototype  # the planar equation of motion, from the same study
         report(f"slender, {W:g} kg", run)
-        print(f"  planar Eq. (eom): max |theta| {planar.max_angle:.4f} rad, overturned {planar.overturned}")
+        print(f"  planar Eq. (eom): max |theta| {planar.max_angle:.4f} rad, overturned {planar.collapsed}")
         runs[W] = (run, planar)
     save(slender_figure(runs), args.out, "figure_fe_slender_blocks.png")
 

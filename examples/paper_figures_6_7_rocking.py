@@ -54,7 +54,7 @@ def response_figure(results: dict, title: str):
     for k, (W, res) in enumerate(results.items()):
         plot_angle(res, ax=axes[0, k])
         plot_angular_velocity(res, ax=axes[1, k])
-        axes[0, k].set_title(f"W_p = {W:g} kg: {'overturns' if res.overturned else 'rocks'}")
+        axes[0, k].set_title(f"W_p = {W:g} kg: {'overturns' if res.collapsed else 'rocks'}")
     fig.suptitle(title)
     return fig
 
@@ -92,7 +92,7 @@ def main() -> None:
             d = s.design
             print(f"gamma = {gamma:g}, W_p = {W:5.1f} kg: model {d.specimen_charge_kg * 1e6:.4g} mg at "
                   f"{d.specimen_standoff_m * 100:g} cm | prototype max |theta| {s.prototype.max_angle:.4f} rad, "
-                  f"{'overturns' if s.prototype.overturned else 'rocks'} | outcomes agree: {s.outcomes_agree} | "
+                  f"{'overturns' if s.prototype.collapsed else 'rocks'} | outcomes agree: {s.outcomes_agree} | "
                   f"max |dtheta| {s.max_abs_angle_diff:.2e} rad (to tipping {s.max_abs_angle_diff_to_tipping:.2e}), "
                   f"first-peak ratio {s.peak_ratio:.4f}")
         if gamma == 1.0:

@@ -56,7 +56,7 @@ def test_free_motion_outcome_is_the_first_swing_criterion(alpha_deg, e, theta_fr
     assume(abs(mu) > 1e-9)
     assume(not (abs(abs(th) - alpha) < 1e-9))
     full = simulate(sysm, None, 200.0 / p, theta0=th, theta_dot0=w * p)
-    assert (mu > 0) == full.overturned
+    assert (mu > 0) == full.collapsed
     if mu < 0:
         peak = float(first_swing_peak(alpha, e, th, w, abs(th), DEFAULT_SOLVER.rest_velocity))
         assert abs(peak - full.max_angle) < 1e-8
@@ -137,7 +137,7 @@ def test_pi_diagram_point_is_the_full_simulation_threshold(ratio):
     for f, want in ((1 + 1e-6, True), (1 - 1e-6, False)):
         pulse = Triangular(P, ic * f)
         res = simulate(system, pulse, pulse.duration + 200.0 / p)
-        assert res.overturned is want
-        tipped_during.append(res.overturn_time is not None and res.overturn_time < pulse.duration)
+        assert res.collapsed is want
+        tipped_during.append(res.collapse_time is not None and res.collapse_time < pulse.duration)
     if ratio < 1.1:
         assert tipped_during[0]  # the case the criterion must get right: tipping before the pulse ends

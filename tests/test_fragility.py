@@ -32,7 +32,7 @@ def test_charge_uncertainty_alone_gives_the_lognormal_with_median_the_critical_c
     res = fragility(BASE, W, lognormal={"charge_kg": beta}, samples=n, seed=11)
     # exact: the counts are those of the draws beyond the threshold (the same draws at every charge)
     eps = np.exp(beta * np.random.default_rng(11).standard_normal(n))
-    np.testing.assert_array_equal(res.overturned, [(w * eps > wc).sum() for w in W])
+    np.testing.assert_array_equal(res.collapsed, [(w * eps > wc).sum() for w in W])
     # and they sample Phi(ln(W/W_c)/beta): within 4 binomial standard errors at every charge
     p = norm.cdf(np.log(W / wc) / beta)
     assert np.all(np.abs(res.probability - p) <= 4 * np.sqrt(p * (1 - p) / n) + 1e-12)
@@ -99,5 +99,5 @@ def test_prototype_only_fragility_through_the_cli_equals_the_scaled_scenarios(tm
                   "restitution=0.5:0.9", "--samples", "200", "--seed", "5", "--json"])
         assert e.value.code in (0, None)
         outs.append(json.loads(capsys.readouterr().out))
-    assert outs[1]["overturned"] == outs[0]["overturned"] and outs[1]["median_charge_kg"] == outs[0]["median_charge_kg"]
-    assert 0 < outs[1]["overturned"][2] < 200
+    assert outs[1]["collapsed"] == outs[0]["collapsed"] and outs[1]["median_charge_kg"] == outs[0]["median_charge_kg"]
+    assert 0 < outs[1]["collapsed"][2] < 200

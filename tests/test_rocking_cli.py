@@ -10,7 +10,7 @@ import pytest
 from blastscale.cli import main
 
 PAPER = ["--height", "10", "--alpha-deg", "15", "--standoff", "2", "--model", "masi2021"]
-SUMMARY_KEYS = {"overturned", "max_angle_rad", "overturn_time_s", "first_impact_time_s"}
+SUMMARY_KEYS = {"collapsed", "max_angle_rad", "collapse_time_s", "first_impact_time_s"}
 
 
 def run_json(capsys, *argv):
@@ -32,20 +32,20 @@ def run_error(capsys, *argv) -> str:
 def test_rock_paper_50kg_rocks(capsys):
     out = run_json(capsys, "rock", *PAPER, "--charge", "50", "--duration", "4", "--json")
     assert SUMMARY_KEYS <= out["prototype"].keys()
-    assert out["prototype"]["overturned"] is False
+    assert out["prototype"]["collapsed"] is False
     assert out["prototype"]["first_impact_time_s"] == pytest.approx(1.38, abs=0.01)  # DESIGN.md
     assert "model" not in out and "similarity" not in out
 
 
 def test_rock_paper_100kg_with_model_overturns(capsys):
     out = run_json(capsys, "rock", *PAPER, "--charge", "100", "--duration", "2", "--scale", "0.005", "--json")
-    assert out["prototype"]["overturned"] is True and out["model"]["overturned"] is True
+    assert out["prototype"]["collapsed"] is True and out["model"]["collapsed"] is True
     assert SUMMARY_KEYS <= out["model"].keys()
     # up-scaled tipping times agree within 2 ms (observed 0.7 ms; finite-pulse effect)
-    assert out["model"]["overturn_time_s"] == pytest.approx(out["prototype"]["overturn_time_s"], abs=2e-3)
+    assert out["model"]["collapse_time_s"] == pytest.approx(out["prototype"]["collapse_time_s"], abs=2e-3)
     assert out["similarity"]["max_abs_angle_diff_to_tipping_rad"] <= 5e-4
-    assert out["similarity"]["overturn_time_diff_s"] == pytest.approx(
-        out["model"]["overturn_time_s"] - out["prototype"]["overturn_time_s"], abs=1e-12)
+    assert out["similarity"]["collapse_time_diff_s"] == pytest.approx(
+        out["model"]["collapse_time_s"] - out["prototype"]["collapse_time_s"], abs=1e-12)
     assert out["model_experiment"]["charge_kg"] * 1e6 == pytest.approx(0.492, rel=1e-2)  # paper Table 4: 0.492 (mg, corrected)
 
 

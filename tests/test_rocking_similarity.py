@@ -49,7 +49,7 @@ def test_finite_pulse_paper_50kg_rocking_similarity(scale, gamma, shape):
     coinciding curves), both survive, and the first peaks agree to 0.1 %."""
     s = compare_rocking(50.0, scale, gamma, pulse=shape, duration=8.0)
     assert s.max_abs_angle_diff <= 5e-4
-    assert s.outcomes_agree and not s.prototype.overturned
+    assert s.outcomes_agree and not s.prototype.collapsed
     assert s.peak_ratio == pytest.approx(1.0, abs=1e-3)
     assert s.model.n_impacts == s.prototype.n_impacts
 
@@ -73,17 +73,17 @@ def test_finite_pulse_paper_100kg_both_overturn_rocking_phase_and_fall(scale, ga
     0.3-0.7 ms and the fall turns that into (fall speed) x (shift), which the last assertion
     checks (1 % for sampling the speed)."""
     s = compare_rocking(100.0, scale, gamma, pulse=shape, duration=4.0)
-    assert s.prototype.overturned and s.model.overturned and s.outcomes_agree
+    assert s.prototype.collapsed and s.model.collapsed and s.outcomes_agree
     assert s.theta_prototype[-1] == s.theta_model[-1] == pytest.approx(math.pi / 2, abs=1e-15)
     p = s.prototype.system.frequency_parameter
     assert s.max_abs_angle_diff_to_tipping <= 5e-4
     assert abs(s.tipping_angular_velocity_diff) / p <= 5e-4
     assert s.max_fall_phase_diff <= 5e-4
     assert s.max_fall_phase_diff <= abs(s.tipping_angular_velocity_diff) / p + 1e-6
-    assert abs(s.overturn_time_diff) <= 2e-3
+    assert abs(s.collapse_time_diff) <= 2e-3
     lie_shift = s.model.end_time / s.design.factors.time - s.prototype.end_time
     speed = float(np.max(np.abs(s.theta_dot_prototype)))
-    shift_bound = 1.01 * speed * max(abs(s.overturn_time_diff), abs(lie_shift))
+    shift_bound = 1.01 * speed * max(abs(s.collapse_time_diff), abs(lie_shift))
     assert s.max_abs_angle_diff <= max(s.max_abs_angle_diff_to_tipping, shift_bound)
 
 
@@ -98,14 +98,14 @@ def test_paper_critical_charge_outcomes_agree(scale, gamma):
     the energy like a square root, so the 0.07 % impulse-like difference of 50 kg grows to
     ~0.7 %) are asserted."""
     s = compare_rocking(79.8, scale, gamma, duration=8.0)
-    assert s.outcomes_agree and not s.prototype.overturned
+    assert s.outcomes_agree and not s.prototype.collapsed
     assert s.peak_ratio == pytest.approx(1.0, abs=1e-2)
 
 
 def test_to_dict_has_the_cli_keys():
     d = compare_rocking(50.0, 1 / 20, duration=2.0).to_dict()
     for part in ("prototype", "model"):
-        assert {"overturned", "max_angle_rad", "overturn_time_s", "first_impact_time_s"} <= set(d[part])
+        assert {"collapsed", "max_angle_rad", "collapse_time_s", "first_impact_time_s"} <= set(d[part])
     assert "max_abs_angle_diff_rad" in d["similarity"]
     # the model's first impact, up-scaled, is at the prototype's (~1.38 s)
     assert d["model"]["first_impact_time_s"] == pytest.approx(d["prototype"]["first_impact_time_s"], abs=2e-3)
@@ -146,8 +146,8 @@ def test_contract_reproduces_the_direct_comparison(charge):
         float(np.max(np.abs(direct_om - s.prototype.theta_dot_eval))), abs=1e-12)
     assert np.max(np.abs(s.theta_model - direct_th)) <= 1e-13
     c = s.comparison
-    assert c["outcomes_agree"] == s.outcomes_agree and c["outcome_prototype"] == s.prototype.overturned
-    if not s.prototype.overturned:
+    assert c["outcomes_agree"] == s.outcomes_agree and c["outcome_prototype"] == s.prototype.collapsed
+    if not s.prototype.collapsed:
         r = c["variables"]["rotation_y"]["block"]
         assert r["first_peak_prototype"] == pytest.approx(s.prototype.peak_angles[0], rel=1e-4)
         assert r["first_peak_ratio"] == pytest.approx(s.peak_ratio, rel=1e-4)

@@ -36,7 +36,7 @@ def test_run_default_scenario_json(capsys, tmp_path):
     assert code == 0, err
     s = json.loads(out)
     assert s["design"]["model_charge_kg"] * 1e6 == pytest.approx(0.233, rel=1e-2)
-    assert s["planar"]["prototype"]["overturned"] is False
+    assert s["planar"]["prototype"]["collapsed"] is False
     assert s["planar"]["similarity"]["max_abs_angle_diff_rad"] <= 5e-4
     assert s["critical"]["critical_charge_kg"] == pytest.approx(79.87, abs=0.01)
     assert s["3d"]["similarity"]["top_first_peak_ratio"] == pytest.approx(1.0, abs=0.01)

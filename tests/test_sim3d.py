@@ -242,11 +242,11 @@ def test_pivoting_50kg_peak_rotation_and_first_impact_match_planar_equation():
 
     pulse = paper_pulse(50.0)
     ref = planar_rocking(PAPER_BLOCK, pulse, 3.0)  # paper Eq. (eom), blastscale.rocking
-    assert not ref.overturned
+    assert not ref.collapsed
     r = planar(run_block(PAPER_BLOCK, pulse, 1.5, contact=ContactSettings(friction=2.0)))
     # 3% (issue); measured 0.001%: the pivot sticks (mu = 2 > 1.6), no uplift
     assert r.summary["max_rotation_rad"] == pytest.approx(ref.max_angle, rel=0.03)
-    assert not r.summary["overturned"]
+    assert not r.summary["collapsed"]
     # the pivot (rear edge) does not slip: 1 mm; measured 0.08 mm of soft-contact creep, while
     # the lifting front edge moves 2b (1 - cos theta) = 6.3 mm (a recorder on the wrong edge fails)
     assert r.summary["max_sliding_m"] < 1e-3
@@ -260,11 +260,11 @@ def test_pivoting_100kg_overturns_like_planar_equation():
 
     pulse = paper_pulse(100.0)
     ref = planar_rocking(PAPER_BLOCK, pulse, 3.0)
-    assert ref.overturned
+    assert ref.collapsed
     r = block_summary(run_block(PAPER_BLOCK, pulse, 1.5, contact=ContactSettings(friction=2.0), record_every=10))
-    assert r["overturned"]
+    assert r["collapsed"]
     # theta passes alpha at the planar solution's time (0.99 s); 2% (record_every = 10 steps = 2 ms)
-    assert r["overturn_time_s"] == pytest.approx(ref.overturn_time, rel=0.02)
+    assert r["collapse_time_s"] == pytest.approx(ref.collapse_time, rel=0.02)
 
 
 def test_housner_restitution_emerges_from_inelastic_contact():
@@ -295,16 +295,16 @@ def test_overturning_threshold_within_3_percent(factor, overturns):
     a = PAPER_BLOCK.alpha
     crit = PAPER_BLOCK.frequency_parameter(G) * math.sqrt(2 * (1 - math.cos(a)))  # Housner 1963
     ref = planar_rocking(PAPER_BLOCK, None, 4.0, theta_dot0=factor * crit)
-    assert ref.overturned is overturns
+    assert ref.collapsed is overturns
     # stop 0.1 s after the planar solution passes alpha: the 3D block must have passed it too
     # (|theta| > alpha is the criterion, not a fall far beyond it)
-    T = 4.0 if ref.overturn_time is None else ref.overturn_time + 0.1
+    T = 4.0 if ref.collapse_time is None else ref.collapse_time + 0.1
     r = block_summary(run_block(PAPER_BLOCK, None, T, contact=ContactSettings(friction=2.0),
                                 initial_angular_velocity=factor * crit, record_every=20))
-    assert r["overturned"] is overturns
+    assert r["collapsed"] is overturns
     if overturns:
         # 1% (the time to creep over the unstable top is sensitive): measured +0.07%
-        assert r["overturn_time_s"] == pytest.approx(ref.overturn_time, rel=0.01)
+        assert r["collapse_time_s"] == pytest.approx(ref.collapse_time, rel=0.01)
         assert r["max_rotation_rad"] < 1.2 * a
 
 
@@ -330,7 +330,7 @@ def test_block_dataset_carries_units_and_dimensions():
     ds = block_dataset(r)
     assert ds["rotation_y"].attrs["units"] == "rad" and ds["time"].attrs["units"] == "s"
     assert ds["velocity_x"].attrs["dimension"] == "velocity" and ds["sliding"].attrs["dimension"] == "length"
-    assert ds.sizes["time"] == r.time.size and ds.attrs["overturned"] == 0
+    assert ds.sizes["time"] == r.time.size and ds.attrs["collapsed"] == 0
 
 
 def test_summary_is_strict_json_with_overturn_time_none_like_rocking():
@@ -339,12 +339,12 @@ def test_summary_is_strict_json_with_overturn_time_none_like_rocking():
     from blastscale.rocking import simulate as planar_rocking
 
     still = block_summary(run_block(PAPER_BLOCK, None, 0.01, contact=ContactSettings()))
-    assert still["overturn_time_s"] is None
-    assert planar_rocking(PAPER_BLOCK, None, 0.01).overturn_time is None  # the same convention
+    assert still["collapse_time_s"] is None
+    assert planar_rocking(PAPER_BLOCK, None, 0.01).collapse_time is None  # the same convention
     json.dumps(still, allow_nan=False)  # strict JSON: no NaN anywhere
     # a fall: the first recorded time with |theta| > alpha
     crit = PAPER_BLOCK.frequency_parameter(G) * math.sqrt(2 * (1 - math.cos(PAPER_BLOCK.alpha)))
     fall = planar(run_block(PAPER_BLOCK, None, 2.0, contact=ContactSettings(friction=2.0),
                             initial_angular_velocity=1.2 * crit, record_every=10))
     k = int(np.argmax(np.abs(fall.rotation_y) > PAPER_BLOCK.alpha))
-    assert k > 0 and fall.summary["overturn_time_s"] == fall.time[k]
+    assert k > 0 and fall.summary["collapse_time_s"] == fall.time[k]

@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 
 from blastscale.cli import main  # noqa: E402
 
-OUTCOME_KEYS = {"overturned", "max_rotation_rad", "max_sliding_m", "final_sliding_m", "max_uplift_m"}
+OUTCOME_KEYS = {"collapsed", "max_rotation_rad", "max_sliding_m", "final_sliding_m", "max_uplift_m"}
 
 
 def run(capsys, *argv):
@@ -174,7 +174,7 @@ def test_block3d_warns_in_one_line_near_the_pivoting_threshold(capsys):
     assert code in (0, None)
     lines = [ln for ln in out.err.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("warning:") and "pivoting threshold" in lines[0]
-    assert json.loads(out.out)["prototype"]["overturn_time_s"] is None
+    assert json.loads(out.out)["prototype"]["collapse_time_s"] is None
 
 
 def test_block_comparison_through_the_contract_reproduces_the_direct_differences():
@@ -244,7 +244,7 @@ def test_block_keys_from_the_structure_path_equal_the_body_frame_recorders():
     assert s["peak_angular_velocity_rad_s"] == float(
         np.max(np.abs(resp.dataset["angular_velocity"].sel(component="y").values)))
     assert s["peak_velocity_x_m_s"] == float(np.max(np.abs(resp.dataset["com_velocity"].sel(component="x").values)))
-    assert s["delivered_impulse_Ns"] == resp.summary()["delivered_impulse_Ns"] and s["overturned"] is False
+    assert s["delivered_impulse_Ns"] == resp.summary()["delivered_impulse_Ns"] and s["collapsed"] is False
 
 
 def test_block3d_per_face_load_keeps_the_keys(capsys, tmp_path):

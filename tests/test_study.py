@@ -107,7 +107,7 @@ def test_scalars_keep_their_keys_when_an_outcome_changes():
     falls = Study(Scenario.default().with_values({"duration_s": 2.0, "engine": "planar",
                                                   "charge_kg": 100.0})).run().scalars()
     assert rocks.keys() == falls.keys()
-    assert math.isnan(rocks["planar.prototype.overturn_time_s"]) and falls["planar.prototype.overturn_time_s"] > 0
+    assert math.isnan(rocks["planar.prototype.collapse_time_s"]) and falls["planar.prototype.collapse_time_s"] > 0
     assert rocks["critical.critical_charge_kg"] == pytest.approx(79.87, abs=0.01)  # paper: 79.8 kg
 
 

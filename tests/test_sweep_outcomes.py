@@ -58,8 +58,8 @@ def test_first_swing_equals_full_simulation(height, alpha_deg, r_over_h, load, s
         fs = first_swing(system, W, R, pulse=shape, blast_model="kingery-bulmash")
         pulse = blast_parameters(W, R, "kingery-bulmash").pulse(shape)
     full = simulate(system, pulse, pulse.duration + 200.0 / system.frequency_parameter)
-    assert bool(fs.overturned[0]) == full.overturned
-    if full.overturned:
+    assert bool(fs.collapsed[0]) == full.collapsed
+    if full.collapsed:
         assert fs.max_rotation[0] == 0.5 * math.pi
     else:
         assert abs(fs.max_rotation[0] - full.max_angle) < ANGLE_TOL
@@ -94,11 +94,11 @@ def test_outcome_mode_equals_the_study(extra):
             assert all(math.isnan(got[k][i]) for k in OUTCOME_KEYS if k != "sweep.valid")
             continue
         for who in ("prototype", "model"):
-            assert bool(got[f"planar.{who}.overturned"][i]) == r[f"planar.{who}.overturned"]
+            assert bool(got[f"planar.{who}.collapsed"][i]) == r[f"planar.{who}.collapsed"]
         assert bool(got["planar.similarity.outcomes_agree"][i]) == r["planar.similarity.outcomes_agree"]
         assert got["design.model_charge_kg"][i] == pytest.approx(r["design.model_charge_kg"], rel=1e-10)
         assert got["design.model_standoff_m"][i] == r["design.model_standoff_m"]
-        if not (r["planar.prototype.overturned"] or r["planar.model.overturned"]):
+        if not (r["planar.prototype.collapsed"] or r["planar.model.collapsed"]):
             survive += 1
             for who in ("prototype", "model"):
                 assert abs(got[f"planar.{who}.max_angle_rad"][i] - r[f"planar.{who}.max_angle_rad"]) < ANGLE_TOL
@@ -128,7 +128,7 @@ def test_outcome_sweep_is_independent_of_chunking_and_refuses_other_engines(tmp_
     held = {(n.path.strip("/"), v) for n in stores[0].subtree for v in n.data_vars} | \
         {("design", a) for a in stores[0]["design"].attrs if not a.endswith("_units")}
     assert held == {store_location(k)[:2] for k in OUTCOME_KEYS}
-    assert stores[0]["planar"]["overturned"].dims == ("charge_kg", "height_m", "sample", "system")
+    assert stores[0]["planar"]["collapsed"].dims == ("charge_kg", "height_m", "sample", "system")
     assert "outcomes" not in SweepSpec.build(BASE, {"charge_kg": [30.0]}).describe()  # old fingerprints hold
     with pytest.raises(BlastscaleInputError, match="outcome mode takes planar block cases only"):
         SweepSpec.build(BASE.with_values({"engine": "both"}), {"charge_kg": [30.0]}, outcomes=True)

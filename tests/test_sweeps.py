@@ -419,5 +419,5 @@ def test_prototype_only_sweep_through_the_cli_holds_the_prototype_alone(tmp_path
     assert set(tree.children) == {"experiment", "planar", "critical"}
     for group in ("experiment", "planar"):
         assert list(tree[group]["system"].values) == ["prototype"]
-    assert list(tree["planar"]["overturned"].sel(system="prototype").values) == [False, True]
+    assert list(tree["planar"]["collapsed"].sel(system="prototype").values) == [False, True]
     assert_xarray_ready(tmp_path / "p.zarr", study_scalars(spec.scenario(0)))

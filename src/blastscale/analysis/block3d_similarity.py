@@ -16,7 +16,7 @@ response only (world frame: z up, blast towards +x; b, h the block's half-width 
   rocking about a fixed edge gives zero sliding; pure translation the displacement of the block.
 * uplift [m]: height of the lowest base corner above its rest height (negative values are the
   soft contact's penetration, a few micrometres at full scale); > 0 means flight.
-* overturned: the response's collapse, which for one block is |theta| > alpha = atan(b/h) (the
+* collapsed: the response's collapse, which for one block is |theta| > alpha = atan(b/h) (the
   centre of mass passed over a base edge; beyond it gravity drives the block down; Housner 1963).
 
 :func:`block_dataset` gives these histories as a response dataset of the comparison contract
@@ -56,7 +56,7 @@ BLOCK_VARIABLES = {
 COMPARED = ("rotation_y", "sliding", "uplift")
 
 #: The keys of :func:`block_summary` (the ``block3d`` outcome keys), in order.
-BLOCK_SUMMARY_KEYS = ("overturned", "overturn_time_s", "max_rotation_rad", "max_sliding_m", "final_sliding_m",
+BLOCK_SUMMARY_KEYS = ("collapsed", "collapse_time_s", "max_rotation_rad", "max_sliding_m", "final_sliding_m",
                       "max_uplift_m", "peak_angular_velocity_rad_s", "peak_velocity_x_m_s", "delivered_impulse_Ns")
 
 #: The keys of :func:`block_similarity` (the ``block3d`` similarity keys), in order.
@@ -91,7 +91,7 @@ def _planar_histories(result, block) -> dict:
             "angular_velocity_y": ds["angular_velocity"].sel(component="y").values[:, 0],
             "velocity_x": ds["com_velocity"].sel(component="x").values[:, 0],
             "com_x": rest[0] + dx, "com_z": rest[2] + dz,
-            "overturned": bool(summ["collapsed"]), "overturn_time_s": summ.get("collapse_time_s"),
+            "collapsed": bool(summ["collapsed"]), "collapse_time_s": summ.get("collapse_time_s"),
             "delivered_impulse_Ns": summ.get("delivered_impulse_Ns")}
 
 
@@ -109,7 +109,7 @@ def block_dataset(result, block=None):
     -------
     xarray.Dataset
         Coordinates ``time`` [s], ``body`` = ["block"]; variables :data:`BLOCK_VARIABLES`, each
-        (time, body) with ``units``, ``dimension`` and ``long_name``; attribute ``overturned``
+        (time, body) with ``units``, ``dimension`` and ``long_name``; attribute ``collapsed``
         (0/1). No attribute carries a unit: :func:`~.compare.upscale_dataset` scales variables
         only (draw a pose with the block itself, :func:`blastscale.plots.sim3d.plot_snapshots`).
     """
@@ -122,19 +122,19 @@ def block_dataset(result, block=None):
             for name, (u, dim, text) in BLOCK_VARIABLES.items()}
     return xr.Dataset(data, coords={"time": ("time", np.asarray(h["time"], dtype=float), {"units": "s"}),
                                     "body": ["block"]},
-                      attrs={"overturned": int(h["overturned"]), "source": "blastscale.sim3d (MuJoCo), block"})
+                      attrs={"collapsed": int(h["collapsed"]), "source": "blastscale.sim3d (MuJoCo), block"})
 
 
 def block_summary(result, block=None) -> dict:
     """The ``block3d`` outcome keys of a block run (:class:`~blastscale.sim3d.Response3D`, SI, its
-    own units): ``overturned``, ``overturn_time_s`` (None when it stands), ``max_rotation_rad``,
+    own units): ``collapsed``, ``collapse_time_s`` (None when it stands), ``max_rotation_rad``,
     ``max_sliding_m``, ``final_sliding_m``, ``max_uplift_m``, ``peak_angular_velocity_rad_s``,
     ``peak_velocity_x_m_s``, ``delivered_impulse_Ns`` ([x, y, z]). ``block`` defaults to
     ``result.structure``."""
     h = _planar_histories(result, block)
     return {
-        "overturned": bool(h["overturned"]),
-        "overturn_time_s": h["overturn_time_s"],
+        "collapsed": bool(h["collapsed"]),
+        "collapse_time_s": h["collapse_time_s"],
         "max_rotation_rad": float(np.max(np.abs(h["rotation_y"]))),
         "max_sliding_m": float(np.max(np.abs(h["sliding"]))),
         "final_sliding_m": float(h["sliding"][-1]),
@@ -169,7 +169,7 @@ def block_similarity(prototype_ds, upscaled_ds) -> dict:
         ``max_abs_uplift_diff_m`` [m], ``first_peak_rotation_ratio`` [-] (up-scaled model /
         prototype first rocking peak) and ``outcomes_agree`` (both overturn or neither).
     """
-    c = compare_responses(prototype_ds, upscaled_ds, variables=list(COMPARED), outcome="overturned")
+    c = compare_responses(prototype_ds, upscaled_ds, variables=list(COMPARED), outcome="collapsed")
     v = c["variables"]
     return {
         "max_abs_rotation_diff_rad": v["rotation_y"]["block"]["max_abs_diff"],

@@ -94,7 +94,7 @@ def rocking_dataset(result: RockingResult):
         Coordinates ``time`` [s], ``body`` = ["block"], ``component`` = ["y"]; variables
         ``rotation_y`` (time, body) [rad] (dimension ``angle``) and ``angular_velocity``
         (time, body, component) [rad/s] (``angular_velocity``, about +y, top towards +x
-        positive); attribute ``overturned`` (0/1).
+        positive); attribute ``collapsed`` (0/1).
     """
     import xarray as xr
 
@@ -107,7 +107,7 @@ def rocking_dataset(result: RockingResult):
                                  {"units": "rad/s", "dimension": "angular_velocity"}),
         },
         coords={"time": ("time", result.t_eval, {"units": "s"}), "body": ["block"], "component": ["y"]},
-        attrs={"overturned": int(result.overturned), "source": "blastscale.rocking"},
+        attrs={"collapsed": int(result.collapsed), "source": "blastscale.rocking"},
     )
 
 
@@ -136,7 +136,7 @@ class RockingSimilarity:
         overturn times [rad]; equals ``max_abs_angle_diff`` when neither overturns. The fall
         after the tipping point amplifies any time shift, so this is the figure that measures
         the similarity of the rocking phase of an overturning block.
-    overturn_time_diff : float or None
+    collapse_time_diff : float or None
         Up-scaled model overturn time minus the prototype's [s]; None unless both overturn.
     tipping_angular_velocity_diff : float or None
         Up-scaled model |theta_dot| at the tipping point minus the prototype's [rad/s]; None
@@ -168,7 +168,7 @@ class RockingSimilarity:
     max_abs_angle_diff: float
     max_abs_angular_velocity_diff: float
     max_abs_angle_diff_to_tipping: float
-    overturn_time_diff: float | None
+    collapse_time_diff: float | None
     tipping_angular_velocity_diff: float | None
     max_fall_phase_diff: float | None
     peak_ratio: float
@@ -180,7 +180,7 @@ class RockingSimilarity:
         of ``rotation_y`` and ``angular_velocity``: first peaks from the samples, differences,
         outcomes (computed when first asked: xarray datasets are not needed for the figures above)."""
         up = upscale_dataset(rocking_dataset(self.model), self.design.factors)
-        return compare_responses(rocking_dataset(self.prototype), up, outcome="overturned")
+        return compare_responses(rocking_dataset(self.prototype), up, outcome="collapsed")
 
     def to_dict(self) -> dict:
         """Plain dict: ``prototype`` and ``model`` (up-scaled) summaries and ``similarity``."""
@@ -191,7 +191,7 @@ class RockingSimilarity:
                 "max_abs_angle_diff_rad": self.max_abs_angle_diff,
                 "max_abs_angular_velocity_diff_rad_s": self.max_abs_angular_velocity_diff,
                 "max_abs_angle_diff_to_tipping_rad": self.max_abs_angle_diff_to_tipping,
-                "overturn_time_diff_s": self.overturn_time_diff,
+                "collapse_time_diff_s": self.collapse_time_diff,
                 "tipping_angular_velocity_diff_rad_s": self.tipping_angular_velocity_diff,
                 "max_fall_phase_diff_rad": self.max_fall_phase_diff,
                 "peak_ratio": self.peak_ratio,
@@ -229,18 +229,18 @@ def compare_rocking(prototype: RockingResult, model: RockingResult, design: Mode
     om_m = model.theta_dot_eval / f.angular_velocity
     dth = float(np.max(np.abs(th_m - prototype.theta_eval)))
     dom = float(np.max(np.abs(om_m - prototype.theta_dot_eval)))
-    tips = [x for x in (prototype.overturn_time, upscale(model.overturn_time, f, "time")) if x is not None]
+    tips = [x for x in (prototype.collapse_time, upscale(model.collapse_time, f, "time")) if x is not None]
     upto = t <= min(tips) if tips else np.ones(t.size, dtype=bool)
     dtip = float(np.max(np.abs(th_m - prototype.theta_eval)[upto]))
     dt_tip = dw_tip = fall = None
-    if prototype.overturned and model.overturned:
-        dt_tip = model.overturn_time / f.time - prototype.overturn_time
+    if prototype.collapsed and model.collapsed:
+        dt_tip = model.collapse_time / f.time - prototype.collapse_time
         dw_tip = model.angular_velocity_at_tipping / f.angular_velocity - prototype.angular_velocity_at_tipping
         fall = _fall_phase_diff(
             t, prototype.theta_eval, prototype.theta_dot_eval, th_m, om_m,
-            max(prototype.overturn_time, model.overturn_time / f.time), frequency_parameter,
+            max(prototype.collapse_time, model.collapse_time / f.time), frequency_parameter,
         )
-    if prototype.overturned and model.overturned:
+    if prototype.collapsed and model.collapsed:
         ratio = 1.0
     elif prototype.peak_angles.size and model.peak_angles.size:
         ratio = float(abs(model.peak_angles[0]) / abs(prototype.peak_angles[0]))
@@ -258,11 +258,11 @@ def compare_rocking(prototype: RockingResult, model: RockingResult, design: Mode
         max_abs_angle_diff=dth,
         max_abs_angular_velocity_diff=dom,
         max_abs_angle_diff_to_tipping=dtip,
-        overturn_time_diff=dt_tip,
+        collapse_time_diff=dt_tip,
         tipping_angular_velocity_diff=dw_tip,
         max_fall_phase_diff=fall,
         peak_ratio=ratio,
-        outcomes_agree=bool(prototype.overturned) == bool(model.overturned),
+        outcomes_agree=bool(prototype.collapsed) == bool(model.collapsed),
     )
 
 

@@ -178,8 +178,8 @@ class Comparison3D:
 
     def summary(self) -> dict:
         """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block; for a
-        single block each also carries the block's planar keys (``overturned``,
-        ``max_rotation_rad``, ``max_sliding_m``, ...; similarity ``max_abs_rotation_diff_rad``, ...:
+        single block each also carries the block's planar keys (``max_sliding_m``,
+        ``max_uplift_m``, ``peak_angular_velocity_rad_s``, ...; similarity ``max_abs_rotation_diff_rad``, ...:
         :func:`~.block3d_similarity.block_view`), added next to the structure's keys."""
         blk = _block_keys(self.structure, self.prototype, self.model, self.specimen_structure, self.design.factors)
         return {

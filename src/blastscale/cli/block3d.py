@@ -17,7 +17,7 @@ from . import options as opt
 from .options import block_from_options, check_plot_path
 
 _SUMMARY_ROWS = (
-    ("overturned", "overturned", "", ".6g"),
+    ("collapsed", "collapsed", "", ".6g"),
     ("max rotation", "max_rotation_rad", "rad", ".6g"),
     ("max sliding", "max_sliding_m", "m", ".6g"),
     ("final sliding", "final_sliding_m", "m", ".6g"),

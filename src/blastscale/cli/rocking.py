@@ -26,9 +26,9 @@ RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impa
 
 def _summary_rows(s: dict) -> list[tuple[str, str, str]]:
     return [
-        ("overturned", fmt_value(s["overturned"]), ""),
+        ("collapsed", fmt_value(s["collapsed"]), ""),
         ("max |angle|", fmt_value(s["max_angle_rad"]), "rad"),
-        ("overturn (tipping) time", fmt_value(s["overturn_time_s"]), "s"),
+        ("overturn (tipping) time", fmt_value(s["collapse_time_s"]), "s"),
         ("first impact time", fmt_value(s["first_impact_time_s"]), "s"),
         ("impacts", str(s["n_impacts"]), ""),
     ]
@@ -134,7 +134,7 @@ def rock_cmd(
             ("max |angle difference|", f"{s['max_abs_angle_diff_rad']:.3g}", "rad"),
             ("  up to the tipping point", f"{s['max_abs_angle_diff_to_tipping_rad']:.3g}", "rad"),
             ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
-            ("overturn time difference (model - prototype)", fmt_value(s["overturn_time_diff_s"], ".3g"), "s"),
+            ("overturn time difference (model - prototype)", fmt_value(s["collapse_time_diff_s"], ".3g"), "s"),
             ("fall, |theta_dot difference| / p at equal angle", fmt_value(s["max_fall_phase_diff_rad"], ".3g"), "rad"),
             ("first-peak ratio model/prototype", f"{s['peak_ratio']:.6g}", "-"),
             ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),

@@ -161,9 +161,9 @@ def fragility_cmd(
     from rich.table import Table
 
     t = Table(title=f"Fragility ({samples} draws per charge, seed {seed})", title_justify="left")
-    for c in ("charge W \\[kg]", "overturned", "P(overturn)", "binomial s.e."):
+    for c in ("charge W \\[kg]", "collapsed", "P(overturn)", "binomial s.e."):
         t.add_column(c, justify="right")
-    for w, k, p, s in zip(out["charge_kg"], out["overturned"], out["probability"], out["binomial_standard_error"]):
+    for w, k, p, s in zip(out["charge_kg"], out["collapsed"], out["probability"], out["binomial_standard_error"]):
         t.add_row(f"{w:.6g}", str(k), f"{p:.4f}", f"{s:.4f}")
     console.print(t)
     if res.fit is None:

@@ -53,6 +53,11 @@ def jsonable(obj: Any) -> Any:
 #: new one; everything else (sweep stores, the Python API) knows the new names only.
 LEGACY_KEYS: dict = {
     (None, "blast_model"): "model",
+    ("planar", "collapsed"): "overturned",
+    ("planar", "collapse_time_s"): "overturn_time_s",
+    ("planar", "collapse_time_diff_s"): "overturn_time_diff_s",
+    ("3d", "collapsed"): "overturned",
+    ("3d", "collapse_time_s"): "overturn_time_s",
 }
 
 #: Keys of a result whose content belongs to one engine.

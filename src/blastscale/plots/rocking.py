@@ -49,8 +49,8 @@ _LABELS = {
 def _mark_events(ax, res, quantity):
     if quantity == "theta" and res.impact_times.size:
         ax.plot(res.impact_times, np.zeros(res.impact_times.size), "|", ms=8, color="0.4", label=None)
-    if res.overturn_time is not None:
-        ax.axvline(res.overturn_time, color="C3", lw=0.8, ls=":", label=None)
+    if res.collapse_time is not None:
+        ax.axvline(res.collapse_time, color="C3", lw=0.8, ls=":", label=None)
 
 
 def _draw_runs(ax, results, labels, x: str, y: str):
@@ -124,10 +124,10 @@ def plot_similarity(sim, quantity: str = "theta", ax=None):
 
         raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are theta, theta_dot, phase")
     title = f"max |delta theta| = {sim.max_abs_angle_diff:.2e} rad"
-    if sim.overturn_time_diff is not None:  # both overturn: the figures that measure similarity
+    if sim.collapse_time_diff is not None:  # both overturn: the figures that measure similarity
         fall = "-" if sim.max_fall_phase_diff is None else f"{sim.max_fall_phase_diff:.2e}"
         title = (f"to tipping {sim.max_abs_angle_diff_to_tipping:.2e} rad, fall (equal angle) {fall}\n"
-                 f"whole run {sim.max_abs_angle_diff:.2e} rad (tipping shift {sim.overturn_time_diff * 1e3:+.2f} ms)")
+                 f"whole run {sim.max_abs_angle_diff:.2e} rad (tipping shift {sim.collapse_time_diff * 1e3:+.2f} ms)")
     ax.set_title(title, fontsize=9)
     ax.legend()
     return ax

@@ -170,7 +170,7 @@ _SCENARIO_PAPER = {  # scenario file stem -> rows of (quantity, paper as printed
                                     "planar.prototype.first_impact_time_s", "s", 10)],
     "paper_block_100kg_lambda20": [("model charge", "2.06 mg", "design.model_charge_kg", "g", 4)],
     "paper_block_100kg_lambda200": [("model charge", "0.492 ug", "design.model_charge_kg", "mg", 4),
-                                    ("prototype overturns (planar)", "yes", "planar.prototype.overturned", "", None)],
+                                    ("prototype overturns (planar)", "yes", "planar.prototype.collapsed", "", None)],
     "paper_block_50kg_lambda200_balsa": [("density ratio gamma", "0.07", "experiment.density_ratio", "-", None)],
     "paper_block_non_slender_2500kg": [("model charge", "14.26 mg", "design.model_charge_kg", "mg", None),
                                        ("sliding of the front face", "approximately 1 m",

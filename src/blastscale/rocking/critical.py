@@ -318,7 +318,7 @@ def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse: 
 
     def over(W):
         p = blast_parameters(W, standoff, blast_model).pulse(pulse)
-        return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).overturned
+        return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).collapsed
 
     lo, hi = guess / 1.5, guess * 1.5
     if over(lo) or not over(hi):

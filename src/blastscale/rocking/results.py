@@ -33,9 +33,9 @@ class RockingResult:
         Every impact [s], [rad/s], [rad/s].
     peak_times, peak_angles : ndarray
         Every local extremum of |theta| [s], [rad] (signed angle).
-    overturned : bool
-        Whether the body overturned (criterion: :mod:`blastscale.rocking.solver`).
-    overturn_time : float or None
+    collapsed : bool
+        Whether the body overturned (the outcome word of every engine: collapsed) (criterion: :mod:`blastscale.rocking.solver`).
+    collapse_time : float or None
         Time it passed its tipping point [s].
     first_impact_time : float or None
         Time of the first impact [s].
@@ -62,8 +62,8 @@ class RockingResult:
     impact_velocity_after: np.ndarray
     peak_times: np.ndarray
     peak_angles: np.ndarray
-    overturned: bool
-    overturn_time: float | None
+    collapsed: bool
+    collapse_time: float | None
     first_impact_time: float | None
     max_angle: float
     end_time: float
@@ -103,9 +103,9 @@ class RockingResult:
     def summary(self) -> dict:
         """Plain dict of the scalar results (unit-suffixed keys, None where absent)."""
         return {
-            "overturned": bool(self.overturned),
+            "collapsed": bool(self.collapsed),
             "max_angle_rad": float(self.max_angle),
-            "overturn_time_s": self.overturn_time,
+            "collapse_time_s": self.collapse_time,
             "first_impact_time_s": self.first_impact_time,
             "n_impacts": self.n_impacts,
             "end_time_s": float(self.end_time),
@@ -123,8 +123,8 @@ class RockingBatchResult:
     t: np.ndarray
     theta: np.ndarray
     theta_dot: np.ndarray
-    overturned: np.ndarray
-    overturn_time: np.ndarray  # NaN where none [s]
+    collapsed: np.ndarray
+    collapse_time: np.ndarray  # NaN where none [s]
     first_impact_time: np.ndarray  # NaN where none [s]
     max_angle: np.ndarray
     first_peak_angle: np.ndarray  # NaN where none [rad]
@@ -134,7 +134,7 @@ class RockingBatchResult:
     end_time: np.ndarray
 
     def __len__(self) -> int:
-        return int(self.overturned.size)
+        return int(self.collapsed.size)
 
 
 

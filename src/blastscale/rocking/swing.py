@@ -180,11 +180,11 @@ def first_swing_peak(alpha, e, theta, w, pulse_max, rest_velocity: float = 0.0):
 class FirstSwing:
     """Outcome of n bodies at rest under n pulses, from the pulse phase and the first free swing.
 
-    ``overturned`` (n,) bool: at any time; ``max_rotation`` (n,) [rad]: the largest |theta| of the
+    ``collapsed`` (n,) bool: at any time; ``max_rotation`` (n,) [rad]: the largest |theta| of the
     whole motion (pi/2 where it overturns: it ends lying on its side); ``margin`` (n,) [-]: the
     first-swing margin mu (> 0 overturns)."""
 
-    overturned: np.ndarray
+    collapsed: np.ndarray
     max_rotation: np.ndarray
     margin: np.ndarray
 
@@ -313,7 +313,7 @@ def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", blast_
     Returns
     -------
     FirstSwing
-        ``overturned`` (n,), ``max_rotation`` (n,) [rad] (pi/2 where it overturns), ``margin``.
+        ``collapsed`` (n,), ``max_rotation`` (n,) [rad] (pi/2 where it overturns), ``margin``.
     """
     check_pulse_shape(pulse)
     W, R = np.broadcast_arrays(np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
@@ -328,11 +328,11 @@ def overturns(systems, charge, standoff, *, pulse: str = "friedlander", blast_mo
               extrapolate: bool = False, solver: RockingSolver | None = None) -> np.ndarray:
     """Whether each body overturns, at any time, under the reflected pulse of ``charge`` [kg TNT]
     at ``standoff`` [m] (first-swing energy criterion; arrays of n cases, vectorised; the
-    ``overturned`` of :func:`first_swing`).
+    ``collapsed`` of :func:`first_swing`).
 
     Returns
     -------
     ndarray of bool, shape (n,)
     """
     return first_swing(systems, charge, standoff, pulse=pulse, blast_model=blast_model, extrapolate=extrapolate,
-                       solver=solver).overturned
+                       solver=solver).collapsed

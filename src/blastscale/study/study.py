@@ -221,7 +221,7 @@ def _study_warnings(design, results: dict, skipped: list, summary: dict) -> list
     s = summary["3d"]
     if s is not None:
         p, m = s.get("prototype") or {}, s.get("model") or {}
-        for key in ("overturned", "collapsed"):
+        for key in ("collapsed",):
             if key in p and key in m and bool(p[key]) != bool(m[key]):
                 out.append(f"3D: prototype and model disagree on '{key}' ({p[key]} vs {m[key]})")
     return out

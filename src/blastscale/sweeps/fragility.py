@@ -62,14 +62,14 @@ class LognormalFit:
         return norm.cdf(np.log(np.asarray(charge, dtype=float) / self.median_charge_kg) / self.beta)
 
 
-def fit_lognormal_fragility(charges, overturned, samples) -> LognormalFit:
+def fit_lognormal_fragility(charges, collapsed, samples) -> LognormalFit:
     """Fit ``P = Phi(ln(W / theta) / beta)`` to binomial counts by maximum likelihood.
 
     Parameters
     ----------
     charges : array_like
         Charges W_j [kg] > 0.
-    overturned : array_like
+    collapsed : array_like
         Overturning counts k_j [-].
     samples : int or array_like
         Trials N_j [-] per charge.
@@ -88,11 +88,11 @@ def fit_lognormal_fragility(charges, overturned, samples) -> LognormalFit:
     from scipy.stats import norm
 
     W = np.asarray(charges, dtype=float)
-    k = np.asarray(overturned, dtype=float)
+    k = np.asarray(collapsed, dtype=float)
     n = np.broadcast_to(np.asarray(samples, dtype=float), W.shape)
     if np.all(k == 0) or np.all(k == n):
         raise BlastscaleInputError(
-            f"overturned = {'none' if np.all(k == 0) else 'all'} of the samples at every charge in "
+            f"collapsed = {'none' if np.all(k == 0) else 'all'} of the samples at every charge in "
             f"[{W.min():.6g}, {W.max():.6g}] kg: widen --charges to cover the transition")
     lw = np.log(W)
 
@@ -169,12 +169,12 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
 
 @dataclass(frozen=True)
 class FragilityResult:
-    """A fragility curve (SI): ``charge_kg`` (n,) [kg], ``overturned`` (n,) counts over ``samples``
+    """A fragility curve (SI): ``charge_kg`` (n,) [kg], ``collapsed`` (n,) counts over ``samples``
     draws, ``probability`` (n,) [-], the lognormal ``fit`` (None when no transition was seen),
     the uncertain ``fields`` (description), ``seed``, ``seconds`` [s] of computing."""
 
     charge_kg: np.ndarray
-    overturned: np.ndarray
+    collapsed: np.ndarray
     samples: int
     probability: np.ndarray
     fit: LognormalFit | None
@@ -197,7 +197,7 @@ class FragilityResult:
             "blastscale_version": __version__,
             "method": "first-swing energy criterion (planar rocking of the prototype), binomial maximum likelihood",
             "charge_kg": self.charge_kg.tolist(),
-            "overturned": self.overturned.tolist(),
+            "collapsed": self.collapsed.tolist(),
             "samples": self.samples,
             "probability": self.probability.tolist(),
             "binomial_standard_error": self.standard_error.tolist(),
@@ -209,7 +209,7 @@ class FragilityResult:
             "fields": self.fields,
             "seed": self.seed,
             "seconds": self.seconds,
-            "cases_per_minute": self.overturned.size * self.samples / self.seconds * 60.0 if self.seconds > 0 else None,
+            "cases_per_minute": self.collapsed.size * self.samples / self.seconds * 60.0 if self.seconds > 0 else None,
             **self.extra,
         }
 

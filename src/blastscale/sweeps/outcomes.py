@@ -16,7 +16,7 @@ VALID_KEY = "sweep.valid"
 
 #: Keys of the outcome mode (:func:`planar_outcomes`), the Study's names where they mean the same.
 OUTCOME_KEYS = (
-    "planar.prototype.overturned", "planar.prototype.max_angle_rad", "planar.model.overturned",
+    "planar.prototype.collapsed", "planar.prototype.max_angle_rad", "planar.model.collapsed",
     "planar.model.max_angle_rad", "planar.similarity.max_angle_ratio", "planar.similarity.outcomes_agree",
     "design.model_charge_kg", "design.model_standoff_m", VALID_KEY,
 )
@@ -80,12 +80,12 @@ def _outcome_group(sc, W, R, e) -> dict:
                            d.prototype.select(ok), bl.pulse)
     fm = first_swing_blast(model.alpha, e, model.frequency_parameter, model.load_ratio_per_pascal,
                            d.specimen.select(ok), bl.pulse)
-    out["planar.prototype.overturned"][ok] = fp.overturned
+    out["planar.prototype.collapsed"][ok] = fp.collapsed
     out["planar.prototype.max_angle_rad"][ok] = fp.max_rotation
-    out["planar.model.overturned"][ok] = fm.overturned
+    out["planar.model.collapsed"][ok] = fm.collapsed
     out["planar.model.max_angle_rad"][ok] = fm.max_rotation  # angles are not scaled (factor 1)
     out["planar.similarity.max_angle_ratio"][ok] = fm.max_rotation / fp.max_rotation
-    out["planar.similarity.outcomes_agree"][ok] = fp.overturned == fm.overturned
+    out["planar.similarity.outcomes_agree"][ok] = fp.collapsed == fm.collapsed
     out["design.model_charge_kg"][ok] = d.specimen.charge_kg[ok]
     out["design.model_standoff_m"][ok] = d.specimen.standoff_m[ok]
     out[VALID_KEY][ok] = True
@@ -98,7 +98,7 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
     kernel, the first free swing in closed form; :func:`blastscale.rocking.swing`).
 
     For the prototype and the model (designed by the Study's own ``design_model``, given the
-    arrays of charges and stand-offs): ``overturned`` (at any time), ``max_angle_rad`` (the largest
+    arrays of charges and stand-offs): ``collapsed`` (at any time), ``max_angle_rad`` (the largest
     |theta| of the whole motion; pi/2 where it overturns), their ratio (model / prototype) and
     outcome agreement, the model charge and stand-off, and ``sweep.valid`` (False where the Study
     would refuse the design: a scaled distance outside the blast fits; NaN values there).
@@ -130,7 +130,7 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
             for k in OUTCOME_KEYS:
                 out[k][idx] = res[k]
     valid = out[VALID_KEY] == 1.0
-    for k in ("planar.prototype.overturned", "planar.model.overturned", "planar.similarity.outcomes_agree", VALID_KEY):
+    for k in ("planar.prototype.collapsed", "planar.model.collapsed", "planar.similarity.outcomes_agree", VALID_KEY):
         if k == VALID_KEY or valid.all():
             out[k] = out[k] == 1.0
     return out

@@ -15,7 +15,7 @@ or 3D Study per case; on Dask when asked) and returns, per case:
 * ``peak_ratio_error``: |first-peak ratio - 1|,
 * ``outcomes_agree``: both overturn or both survive,
 * ``model_to_p``: the model's t_o p (the a priori impulsive check of ``design_model``),
-* ``model_charge_kg``, ``prototype_overturned``,
+* ``model_charge_kg``, ``prototype_collapsed``,
 * ``valid``: False where the model's scaled distance leaves the blast fits (no design),
 * ``trustworthy``: valid, outcomes agree and ``error <= tolerance`` (default 5e-4 rad planar, the
   acceptance level of the paper's comparisons; 5 % 3D).
@@ -55,16 +55,16 @@ ENGINE_VARIABLES = {
         "error": ("planar.similarity.max_abs_angle_diff_to_tipping_rad", "rad"),
         "peak_ratio": ("planar.similarity.peak_ratio", "-"),
         "outcomes_agree": ("planar.similarity.outcomes_agree", "-"),
-        "prototype_overturned": ("planar.prototype.overturned", "-"),
-        "model_overturned": ("planar.model.overturned", "-"),
+        "prototype_collapsed": ("planar.prototype.collapsed", "-"),
+        "model_collapsed": ("planar.model.collapsed", "-"),
         **_COMMON,
     },
     "3d": {
         "error": ("3d.similarity.max_abs_top_displacement_diff_rel_peak", "-"),
         "peak_ratio": ("3d.similarity.top_first_peak_ratio", "-"),
         "outcomes_agree": ("3d.similarity.outcomes_agree", "-"),
-        "prototype_overturned": ("3d.prototype.collapsed", "-"),
-        "model_overturned": ("3d.model.collapsed", "-"),
+        "prototype_collapsed": ("3d.prototype.collapsed", "-"),
+        "model_collapsed": ("3d.model.collapsed", "-"),
         **_COMMON,
     },
 }
