@@ -149,7 +149,7 @@ def acceptance() -> dict:
     spec = simulate_structure(spec_col, make_load("A", spec_col, d.specimen), 8.0 * lt, record_every=20)
     s = _top_x(spec, lam)
     out["column_specimen_1_100_first_peak_ratio"] = float(np.max(s) / np.max(p))
-    out["column_specimen_1_100_max_tilt_ratio"] = spec.summary()["max_tilt_rad"] / proto.summary()["max_tilt_rad"]
+    out["column_specimen_1_100_max_rotation_ratio"] = spec.summary()["max_rotation_rad"] / proto.summary()["max_rotation_rad"]
     out["column_specimen_1_100_8s_max_diff_rel_peak"] = float(np.max(np.abs(s - p)) / np.max(np.abs(p)))
     c = default_contact(col)
     half = ContactSettings(friction=c.friction, time_constant=c.time_constant, friction_time_constant=None,

@@ -130,7 +130,7 @@ def main() -> None:
         run = run_block(SLENDER, W, 2.0, t_slender, planar=True)
         planar = run["study"].planar.prototype  # the planar equation of motion, from the same study
         report(f"slender, {W:g} kg", run)
-        print(f"  planar Eq. (eom): max |theta| {planar.max_angle:.4f} rad, overturned {planar.collapsed}")
+        print(f"  planar Eq. (eom): max |theta| {planar.max_rotation:.4f} rad, overturned {planar.collapsed}")
         runs[W] = (run, planar)
     save(slender_figure(runs), args.out, "figure_fe_slender_blocks.png")
 

@@ -91,9 +91,9 @@ def main() -> None:
         for W, s in sims.items():
             d = s.design
             print(f"gamma = {gamma:g}, W_p = {W:5.1f} kg: model {d.specimen_charge_kg * 1e6:.4g} mg at "
-                  f"{d.specimen_standoff_m * 100:g} cm | prototype max |theta| {s.prototype.max_angle:.4f} rad, "
+                  f"{d.specimen_standoff_m * 100:g} cm | prototype max |theta| {s.prototype.max_rotation:.4f} rad, "
                   f"{'overturns' if s.prototype.collapsed else 'rocks'} | outcomes agree: {s.outcomes_agree} | "
-                  f"max |dtheta| {s.max_abs_angle_diff:.2e} rad (to tipping {s.max_abs_angle_diff_to_tipping:.2e}), "
+                  f"max |dtheta| {s.max_abs_rotation_diff:.2e} rad (to tipping {s.max_abs_rotation_diff_to_tipping:.2e}), "
                   f"first-peak ratio {s.peak_ratio:.4f}")
         if gamma == 1.0:
             fi = sims[50.0].prototype.first_impact_time

@@ -59,7 +59,7 @@ def test_free_motion_outcome_is_the_first_swing_criterion(alpha_deg, e, theta_fr
     assert (mu > 0) == full.collapsed
     if mu < 0:
         peak = float(first_swing_peak(alpha, e, th, w, abs(th), DEFAULT_SOLVER.rest_velocity))
-        assert abs(peak - full.max_angle) < 1e-8
+        assert abs(peak - full.max_rotation) < 1e-8
 
 
 @settings(max_examples=12, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])

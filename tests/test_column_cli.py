@@ -187,9 +187,9 @@ def test_upscale_summary_by_unit_suffix():
     f = scaling_factors(1 / 100)
     s = {"collapsed": True, "max_top_displacement_m": 0.01, "delivered_impulse_Ns": [2.0, 0.0, 0.0],
          "points": {"P-1": {"max_displacement_m": 0.001, "max_velocity_m_s": 0.1, "n_impacts": 3}},
-         "max_tilt_rad": 0.1, "collapse_time_s": 0.2}
+         "max_rotation_rad": 0.1, "collapse_time_s": 0.2}
     u = upscale_summary(s, f)
-    assert u["collapsed"] is True and u["max_tilt_rad"] == 0.1
+    assert u["collapsed"] is True and u["max_rotation_rad"] == 0.1
     assert u["max_top_displacement_m"] == pytest.approx(1.0, rel=1e-12)
     assert u["delivered_impulse_Ns"][0] == pytest.approx(2.0 / 1e-7, rel=1e-12)  # momentum lambda^3.5
     assert u["points"]["P-1"]["max_velocity_m_s"] == pytest.approx(1.0, rel=1e-12)  # velocity sqrt(lambda)

@@ -10,7 +10,7 @@ import pytest
 from blastscale.cli import main
 
 PAPER = ["--height", "10", "--alpha-deg", "15", "--standoff", "2", "--model", "masi2021"]
-SUMMARY_KEYS = {"collapsed", "max_angle_rad", "collapse_time_s", "first_impact_time_s"}
+SUMMARY_KEYS = {"collapsed", "max_rotation_rad", "collapse_time_s", "first_impact_time_s"}
 
 
 def run_json(capsys, *argv):
@@ -43,7 +43,7 @@ def test_rock_paper_100kg_with_model_overturns(capsys):
     assert SUMMARY_KEYS <= out["model"].keys()
     # up-scaled tipping times agree within 2 ms (observed 0.7 ms; finite-pulse effect)
     assert out["model"]["collapse_time_s"] == pytest.approx(out["prototype"]["collapse_time_s"], abs=2e-3)
-    assert out["similarity"]["max_abs_angle_diff_to_tipping_rad"] <= 5e-4
+    assert out["similarity"]["max_abs_rotation_diff_to_tipping_rad"] <= 5e-4
     assert out["similarity"]["collapse_time_diff_s"] == pytest.approx(
         out["model"]["collapse_time_s"] - out["prototype"]["collapse_time_s"], abs=1e-12)
     assert out["model_experiment"]["charge_kg"] * 1e6 == pytest.approx(0.492, rel=1e-2)  # paper Table 4: 0.492 (mg, corrected)
@@ -52,9 +52,9 @@ def test_rock_paper_100kg_with_model_overturns(capsys):
 def test_rock_impulsive_model_is_exact_and_depth_cancels(capsys):
     a = run_json(capsys, "rock", *PAPER, "--charge", "50", "--pulse", "impulsive", "--scale", "0.1",
                  "--density-ratio", "0.07", "--duration", "3", "--json")
-    assert a["similarity"]["max_abs_angle_diff_rad"] <= 1e-10
+    assert a["similarity"]["max_abs_rotation_diff_rad"] <= 1e-10
     b = run_json(capsys, "rock", *PAPER, "--charge", "50", "--pulse", "impulsive", "--depth", "4", "--duration", "3", "--json")
-    assert b["prototype"]["max_angle_rad"] == pytest.approx(a["prototype"]["max_angle_rad"], rel=1e-12)
+    assert b["prototype"]["max_rotation_rad"] == pytest.approx(a["prototype"]["max_rotation_rad"], rel=1e-12)
 
 
 def test_rock_restitution_option(capsys):

@@ -66,7 +66,7 @@ def test_similarity_overlay_and_figure():
     # both overturn: the title gives the figures that measure similarity (rocking phase, fall)
     over = _planar(100.0, 4.0, 401)
     title = plot_similarity(over, "theta").get_title()
-    assert f"to tipping {over.max_abs_angle_diff_to_tipping:.2e}" in title and "tipping shift" in title
+    assert f"to tipping {over.max_abs_rotation_diff_to_tipping:.2e}" in title and "tipping shift" in title
     plt.close("all")
 
 

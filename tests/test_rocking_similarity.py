@@ -35,7 +35,7 @@ def test_impulsive_load_upscaled_model_equals_prototype(scale, gamma, charge):
     general law to ~1e-13) and of the coefficients remains: 1e-10 rad is the acceptance level
     (observed < 1e-13)."""
     s = compare_rocking(charge, scale, gamma, pulse="impulsive", duration=8.0)
-    assert s.max_abs_angle_diff <= 1e-10
+    assert s.max_abs_rotation_diff <= 1e-10
     assert s.outcomes_agree
     assert s.peak_ratio == pytest.approx(1.0, abs=1e-10)
 
@@ -48,7 +48,7 @@ def test_finite_pulse_paper_50kg_rocking_similarity(scale, gamma, shape):
     prototype over the whole run (observed 1.2e-4..3.1e-4; the paper's Figs. 7-9 show
     coinciding curves), both survive, and the first peaks agree to 0.1 %."""
     s = compare_rocking(50.0, scale, gamma, pulse=shape, duration=8.0)
-    assert s.max_abs_angle_diff <= 5e-4
+    assert s.max_abs_rotation_diff <= 5e-4
     assert s.outcomes_agree and not s.prototype.collapsed
     assert s.peak_ratio == pytest.approx(1.0, abs=1e-3)
     assert s.model.n_impacts == s.prototype.n_impacts
@@ -76,7 +76,7 @@ def test_finite_pulse_paper_100kg_both_overturn_rocking_phase_and_fall(scale, ga
     assert s.prototype.collapsed and s.model.collapsed and s.outcomes_agree
     assert s.theta_prototype[-1] == s.theta_model[-1] == pytest.approx(math.pi / 2, abs=1e-15)
     p = s.prototype.system.frequency_parameter
-    assert s.max_abs_angle_diff_to_tipping <= 5e-4
+    assert s.max_abs_rotation_diff_to_tipping <= 5e-4
     assert abs(s.tipping_angular_velocity_diff) / p <= 5e-4
     assert s.max_fall_phase_diff <= 5e-4
     assert s.max_fall_phase_diff <= abs(s.tipping_angular_velocity_diff) / p + 1e-6
@@ -84,7 +84,7 @@ def test_finite_pulse_paper_100kg_both_overturn_rocking_phase_and_fall(scale, ga
     lie_shift = s.model.end_time / s.design.factors.time - s.prototype.end_time
     speed = float(np.max(np.abs(s.theta_dot_prototype)))
     shift_bound = 1.01 * speed * max(abs(s.collapse_time_diff), abs(lie_shift))
-    assert s.max_abs_angle_diff <= max(s.max_abs_angle_diff_to_tipping, shift_bound)
+    assert s.max_abs_rotation_diff <= max(s.max_abs_rotation_diff_to_tipping, shift_bound)
 
 
 @pytest.mark.parametrize("scale", SCALES)
@@ -105,8 +105,8 @@ def test_paper_critical_charge_outcomes_agree(scale, gamma):
 def test_to_dict_has_the_cli_keys():
     d = compare_rocking(50.0, 1 / 20, duration=2.0).to_dict()
     for part in ("prototype", "model"):
-        assert {"collapsed", "max_angle_rad", "collapse_time_s", "first_impact_time_s"} <= set(d[part])
-    assert "max_abs_angle_diff_rad" in d["similarity"]
+        assert {"collapsed", "max_rotation_rad", "collapse_time_s", "first_impact_time_s"} <= set(d[part])
+    assert "max_abs_rotation_diff_rad" in d["similarity"]
     # the model's first impact, up-scaled, is at the prototype's (~1.38 s)
     assert d["model"]["first_impact_time_s"] == pytest.approx(d["prototype"]["first_impact_time_s"], abs=2e-3)
 
@@ -125,7 +125,7 @@ def test_centrifuge_gravity_ratio_impulsive_exact():
     (time sqrt(lambda/varsigma)) and the impulsive similarity stays exact (1e-10 rad)."""
     s = compare_rocking(50.0, 1 / 20, 1.0, 20.0, pulse="impulsive", duration=5.0)
     assert s.design.factors.time == pytest.approx(math.sqrt(1 / 20 / 20), rel=1e-14)
-    assert s.max_abs_angle_diff <= 1e-10 and s.outcomes_agree
+    assert s.max_abs_rotation_diff <= 1e-10 and s.outcomes_agree
 
 
 @pytest.mark.parametrize("charge", [50.0, 100.0])
@@ -141,7 +141,7 @@ def test_contract_reproduces_the_direct_comparison(charge):
     f = s.design.factors
     direct_th = s.model.theta_eval / f.angle
     direct_om = s.model.theta_dot_eval / f.angular_velocity
-    assert s.max_abs_angle_diff == pytest.approx(float(np.max(np.abs(direct_th - s.prototype.theta_eval))), abs=1e-13)
+    assert s.max_abs_rotation_diff == pytest.approx(float(np.max(np.abs(direct_th - s.prototype.theta_eval))), abs=1e-13)
     assert s.max_abs_angular_velocity_diff == pytest.approx(
         float(np.max(np.abs(direct_om - s.prototype.theta_dot_eval))), abs=1e-12)
     assert np.max(np.abs(s.theta_model - direct_th)) <= 1e-13

@@ -37,7 +37,7 @@ def test_run_default_scenario_json(capsys, tmp_path):
     s = json.loads(out)
     assert s["design"]["model_charge_kg"] * 1e6 == pytest.approx(0.233, rel=1e-2)
     assert s["planar"]["prototype"]["collapsed"] is False
-    assert s["planar"]["similarity"]["max_abs_angle_diff_rad"] <= 5e-4
+    assert s["planar"]["similarity"]["max_abs_rotation_diff_rad"] <= 5e-4
     assert s["critical"]["critical_charge_kg"] == pytest.approx(79.87, abs=0.01)
     assert s["3d"]["similarity"]["top_first_peak_ratio"] == pytest.approx(1.0, abs=0.01)
     assert {"blastscale", "numpy", "mujoco"} <= s["versions"].keys() and s["timestamp"]
@@ -173,7 +173,7 @@ def test_a_scenario_without_scale_runs_the_prototype_alone(capsys, tmp_path):
     s = json.loads(out)
     assert s["design"] is None and s["experiment"]["model"] is None
     assert s["planar"]["model"] is None and s["planar"]["similarity"] is None
-    assert s["planar"]["prototype"]["max_angle_rad"] > 0 and s["critical"]["critical_charge_kg"] > 50
+    assert s["planar"]["prototype"]["max_rotation_rad"] > 0 and s["critical"]["critical_charge_kg"] > 50
     tree = xr.open_datatree(out_dir / "histories.nc")
     assert list(tree["planar"]["system"].values) == ["prototype"]
     html = (out_dir / "report.html").read_text()

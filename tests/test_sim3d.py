@@ -245,7 +245,7 @@ def test_pivoting_50kg_peak_rotation_and_first_impact_match_planar_equation():
     assert not ref.collapsed
     r = planar(run_block(PAPER_BLOCK, pulse, 1.5, contact=ContactSettings(friction=2.0)))
     # 3% (issue); measured 0.001%: the pivot sticks (mu = 2 > 1.6), no uplift
-    assert r.summary["max_rotation_rad"] == pytest.approx(ref.max_angle, rel=0.03)
+    assert r.summary["max_rotation_rad"] == pytest.approx(ref.max_rotation, rel=0.03)
     assert not r.summary["collapsed"]
     # the pivot (rear edge) does not slip: 1 mm; measured 0.08 mm of soft-contact creep, while
     # the lifting front edge moves 2b (1 - cos theta) = 6.3 mm (a recorder on the wrong edge fails)

@@ -62,7 +62,7 @@ def test_first_swing_equals_full_simulation(height, alpha_deg, r_over_h, load, s
     if full.collapsed:
         assert fs.max_rotation[0] == 0.5 * math.pi
     else:
-        assert abs(fs.max_rotation[0] - full.max_angle) < ANGLE_TOL
+        assert abs(fs.max_rotation[0] - full.max_rotation) < ANGLE_TOL
 
 
 BASE = Scenario.default().with_values({"engine": "planar", "critical_charge": False, "duration_s": 20.0,
@@ -101,9 +101,9 @@ def test_outcome_mode_equals_the_study(extra):
         if not (r["planar.prototype.collapsed"] or r["planar.model.collapsed"]):
             survive += 1
             for who in ("prototype", "model"):
-                assert abs(got[f"planar.{who}.max_angle_rad"][i] - r[f"planar.{who}.max_angle_rad"]) < ANGLE_TOL
-            ratio = r["planar.model.max_angle_rad"] / r["planar.prototype.max_angle_rad"]
-            assert got["planar.similarity.max_angle_ratio"][i] == pytest.approx(ratio, rel=1e-6)
+                assert abs(got[f"planar.{who}.max_rotation_rad"][i] - r[f"planar.{who}.max_rotation_rad"]) < ANGLE_TOL
+            ratio = r["planar.model.max_rotation_rad"] / r["planar.prototype.max_rotation_rad"]
+            assert got["planar.similarity.max_rotation_ratio"][i] == pytest.approx(ratio, rel=1e-6)
     assert survive >= 3
 
 

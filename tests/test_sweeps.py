@@ -99,9 +99,9 @@ def test_sweep_equals_the_serial_loop_with_monte_carlo(tmp_path):
     assert r.shape == (3,) and np.all((r >= 0.3) & (r <= 0.9))
     assert tree["charge_kg"].attrs["units"] == "kg"
     # the layout: prototype and model on `system`, constants of the design once, as attributes
-    assert tree["planar"]["max_angle"].dims == ("charge_kg", "sample", "system")
+    assert tree["planar"]["max_rotation"].dims == ("charge_kg", "sample", "system")
     assert list(tree["planar"]["system"].values) == ["prototype", "model"]
-    assert tree["planar"]["max_angle"].attrs == {"units": "rad", "long_name": "max angle (planar rocking)"}
+    assert tree["planar"]["max_rotation"].attrs == {"units": "rad", "long_name": "max rotation (planar rocking)"}
     assert tree["design"].attrs["scale"] == 0.005 and tree["design"].attrs["scale_units"] == "1"
     assert "model_charge" in tree["design"].data_vars  # varies with the charge
     # a second run finds the finished store and does nothing
@@ -282,7 +282,7 @@ def test_one_friedlander_decay_is_the_array_bisection_bit_for_bit():
 
 @pytest.mark.parametrize("key, group, name, labels, units", [
     ("sweep.valid", "", "valid", (), "1"),
-    ("planar.prototype.max_angle_rad", "planar", "max_angle", (("system", "prototype"),), "rad"),
+    ("planar.prototype.max_rotation_rad", "planar", "max_rotation", (("system", "prototype"),), "rad"),
     ("planar.similarity.peak_ratio", "planar", "peak_ratio", (), "1"),
     ("planar.similarity.max_abs_angular_velocity_diff_rad_s", "planar", "max_abs_angular_velocity_diff", (), "rad/s"),
     ("3d.model.points.P-10.max_velocity_m_s", "sim3d", "max_velocity", (("system", "model"), ("point", "P-10")), "m/s"),
@@ -313,7 +313,7 @@ def test_placeholders_have_no_place_and_unknown_sections_are_refused():
     for key in ("design", "3d", "ensemble", "planar.model", "planar.similarity", "experiment.model", "3d.similarity"):
         assert store_location(key) is None
     with pytest.raises(ValueError, match="section"):
-        store_location("nonsense.max_angle_rad")
+        store_location("nonsense.max_rotation_rad")
 
 
 def test_store_locations_are_one_to_one_over_every_study_key():

@@ -127,13 +127,13 @@ class RockingSimilarity:
         Rocking angle of the prototype and of the up-scaled model at ``t`` [rad].
     theta_dot_prototype, theta_dot_model : ndarray
         Angular velocity of the prototype and of the up-scaled model at ``t`` [rad/s].
-    max_abs_angle_diff : float
+    max_abs_rotation_diff : float
         max_t |theta_model - theta_prototype| [rad].
     max_abs_angular_velocity_diff : float
         max_t |theta_dot_model - theta_dot_prototype| [rad/s] (prototype units).
-    max_abs_angle_diff_to_tipping : float
+    max_abs_rotation_diff_to_tipping : float
         The same angle difference over the times up to the earlier of the two (up-scaled)
-        overturn times [rad]; equals ``max_abs_angle_diff`` when neither overturns. The fall
+        overturn times [rad]; equals ``max_abs_rotation_diff`` when neither overturns. The fall
         after the tipping point amplifies any time shift, so this is the figure that measures
         the similarity of the rocking phase of an overturning block.
     collapse_time_diff : float or None
@@ -165,9 +165,9 @@ class RockingSimilarity:
     theta_model: np.ndarray
     theta_dot_prototype: np.ndarray
     theta_dot_model: np.ndarray
-    max_abs_angle_diff: float
+    max_abs_rotation_diff: float
     max_abs_angular_velocity_diff: float
-    max_abs_angle_diff_to_tipping: float
+    max_abs_rotation_diff_to_tipping: float
     collapse_time_diff: float | None
     tipping_angular_velocity_diff: float | None
     max_fall_phase_diff: float | None
@@ -188,9 +188,9 @@ class RockingSimilarity:
             "prototype": self.prototype.summary(),
             "model": upscale_summary(self.model.summary(), self.design.factors),
             "similarity": {
-                "max_abs_angle_diff_rad": self.max_abs_angle_diff,
+                "max_abs_rotation_diff_rad": self.max_abs_rotation_diff,
                 "max_abs_angular_velocity_diff_rad_s": self.max_abs_angular_velocity_diff,
-                "max_abs_angle_diff_to_tipping_rad": self.max_abs_angle_diff_to_tipping,
+                "max_abs_rotation_diff_to_tipping_rad": self.max_abs_rotation_diff_to_tipping,
                 "collapse_time_diff_s": self.collapse_time_diff,
                 "tipping_angular_velocity_diff_rad_s": self.tipping_angular_velocity_diff,
                 "max_fall_phase_diff_rad": self.max_fall_phase_diff,
@@ -245,7 +245,7 @@ def compare_rocking(prototype: RockingResult, model: RockingResult, design: Mode
     elif prototype.peak_angles.size and model.peak_angles.size:
         ratio = float(abs(model.peak_angles[0]) / abs(prototype.peak_angles[0]))
     else:
-        ratio = float(model.max_angle / prototype.max_angle) if prototype.max_angle > 0 else math.nan
+        ratio = float(model.max_rotation / prototype.max_rotation) if prototype.max_rotation > 0 else math.nan
     return RockingSimilarity(
         design=design,
         prototype=prototype,
@@ -255,9 +255,9 @@ def compare_rocking(prototype: RockingResult, model: RockingResult, design: Mode
         theta_model=th_m,
         theta_dot_prototype=prototype.theta_dot_eval,
         theta_dot_model=om_m,
-        max_abs_angle_diff=dth,
+        max_abs_rotation_diff=dth,
         max_abs_angular_velocity_diff=dom,
-        max_abs_angle_diff_to_tipping=dtip,
+        max_abs_rotation_diff_to_tipping=dtip,
         collapse_time_diff=dt_tip,
         tipping_angular_velocity_diff=dw_tip,
         max_fall_phase_diff=fall,

@@ -27,7 +27,7 @@ RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impa
 def _summary_rows(s: dict) -> list[tuple[str, str, str]]:
     return [
         ("collapsed", fmt_value(s["collapsed"]), ""),
-        ("max |angle|", fmt_value(s["max_angle_rad"]), "rad"),
+        ("max |rotation|", fmt_value(s["max_rotation_rad"]), "rad"),
         ("overturn (tipping) time", fmt_value(s["collapse_time_s"]), "s"),
         ("first impact time", fmt_value(s["first_impact_time_s"]), "s"),
         ("impacts", str(s["n_impacts"]), ""),
@@ -131,8 +131,8 @@ def rock_cmd(
             "up-scaled to prototype units", _summary_rows(out["model"])))
         s = out["similarity"]
         console.print(table("Similarity (prototype vs up-scaled model)", [
-            ("max |angle difference|", f"{s['max_abs_angle_diff_rad']:.3g}", "rad"),
-            ("  up to the tipping point", f"{s['max_abs_angle_diff_to_tipping_rad']:.3g}", "rad"),
+            ("max |rotation difference|", f"{s['max_abs_rotation_diff_rad']:.3g}", "rad"),
+            ("  up to the tipping point", f"{s['max_abs_rotation_diff_to_tipping_rad']:.3g}", "rad"),
             ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
             ("overturn time difference (model - prototype)", fmt_value(s["collapse_time_diff_s"], ".3g"), "s"),
             ("fall, |theta_dot difference| / p at equal angle", fmt_value(s["max_fall_phase_diff_rad"], ".3g"), "rad"),

@@ -196,6 +196,7 @@ def similarity_map_cmd(
     against the prototype (planar rocking or 3D) and whether the outcomes agree (docs/sweeps.md)."""
     import numpy as np
 
+    from ..io.results import legacy_name
     from ..io.sweep_store import open_sweep, run_sweep
     from ..sweeps.grids import parse_grid
     from ..sweeps.runner import run_in_memory
@@ -220,7 +221,8 @@ def similarity_map_cmd(
         "engine": engine,
         "tolerance": ds.attrs["tolerance"],
         "error_units": ds.attrs["error_units"],
-        "error_definition": ds.attrs["error_definition"],
+        "error_definition": legacy_name(ds.attrs["error_definition"]),  # deprecated: the key's old name
+        "error_key": ds.attrs["error_definition"],
         "n_cases": int(ds["valid"].size),
         "n_valid": int(ds["valid"].sum()),
         "n_outcomes_agree": int((ds["outcomes_agree"].where(ds["valid"].astype(bool), False).astype(bool)).sum()),

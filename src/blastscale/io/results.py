@@ -25,7 +25,7 @@ from .. import __version__
 from .._validate import BlastscaleInputError
 
 __all__ = ["jsonable", "write_json", "versions", "git_commit", "provenance", "output_folder",
-           "check_output_folder", "write_atomic", "LEGACY_KEYS", "with_legacy_keys"]
+           "check_output_folder", "write_atomic", "LEGACY_KEYS", "legacy_name", "with_legacy_keys"]
 
 #: Marker file of a blastscale output folder (``--force`` replaces only such folders or empty ones).
 MARKER = "summary.json"
@@ -56,8 +56,13 @@ LEGACY_KEYS: dict = {
     ("planar", "collapsed"): "overturned",
     ("planar", "collapse_time_s"): "overturn_time_s",
     ("planar", "collapse_time_diff_s"): "overturn_time_diff_s",
+    ("planar", "max_rotation_rad"): "max_angle_rad",
+    ("planar", "max_abs_rotation_diff_rad"): "max_abs_angle_diff_rad",
+    ("planar", "max_abs_rotation_diff_to_tipping_rad"): "max_abs_angle_diff_to_tipping_rad",
+    ("planar", "max_rotation_ratio"): "max_angle_ratio",
     ("3d", "collapsed"): "overturned",
     ("3d", "collapse_time_s"): "overturn_time_s",
+    ("3d", "max_rotation_rad"): "max_tilt_rad",
 }
 
 #: Keys of a result whose content belongs to one engine.
@@ -73,6 +78,12 @@ def _old_name(key: str, engine: "str | None") -> "str | None":
     engine = _ENGINE_SECTIONS.get(parts[0], engine)
     old = [LEGACY_KEYS.get((engine, p)) or LEGACY_KEYS.get((None, p)) or p for p in parts]
     return ".".join(old) if old != parts else None
+
+
+def legacy_name(key: str, engine: "str | None" = None) -> str:
+    """The deprecated name of a result key (:data:`LEGACY_KEYS`), or ``key`` itself when it was not
+    renamed: for outputs whose *value* names a key (``similarity-map --json``'s ``error_definition``)."""
+    return _old_name(key, engine) or key
 
 
 def with_legacy_keys(obj: Any, engine: "str | None" = None) -> Any:

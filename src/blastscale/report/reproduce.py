@@ -210,7 +210,7 @@ def _scenario_item(name: str) -> Item:
             rows.append(Row("planar: outcomes agree (prototype vs up-scaled model)", "yes (curves coincide)",
                             sim["outcomes_agree"], ""))
             rows.append(Row("planar: max |angle difference| up to tipping", "negligible",
-                            sim["max_abs_angle_diff_to_tipping_rad"], "rad"))
+                            sim["max_abs_rotation_diff_to_tipping_rad"], "rad"))
         if result.response3d is not None:
             sim = s["3d"]["similarity"]
             for k in ("outcomes_agree", "top_first_peak_ratio", "max_abs_top_displacement_diff_rel_peak"):

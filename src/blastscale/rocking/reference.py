@@ -191,7 +191,7 @@ def simulate_reference(
         collapsed=overturned,
         collapse_time=_none_if_nan(t_over),
         first_impact_time=float(imp[0, 0]) if imp.shape[0] else None,
-        max_angle=float(max_abs),
+        max_rotation=float(max_abs),
         end_time=float(t),
         n_steps=int(nsteps),
         n_rejected=0,

@@ -39,7 +39,7 @@ class RockingResult:
         Time it passed its tipping point [s].
     first_impact_time : float or None
         Time of the first impact [s].
-    max_angle : float
+    max_rotation : float
         Largest |theta| over the run [rad] (pi/2 once it lies on its side).
     end_time : float
         Time the simulated motion ends [s] (the requested duration, or when it lay down or
@@ -65,7 +65,7 @@ class RockingResult:
     collapsed: bool
     collapse_time: float | None
     first_impact_time: float | None
-    max_angle: float
+    max_rotation: float
     end_time: float
     n_steps: int
     n_rejected: int
@@ -104,7 +104,7 @@ class RockingResult:
         """Plain dict of the scalar results (unit-suffixed keys, None where absent)."""
         return {
             "collapsed": bool(self.collapsed),
-            "max_angle_rad": float(self.max_angle),
+            "max_rotation_rad": float(self.max_rotation),
             "collapse_time_s": self.collapse_time,
             "first_impact_time_s": self.first_impact_time,
             "n_impacts": self.n_impacts,
@@ -126,7 +126,7 @@ class RockingBatchResult:
     collapsed: np.ndarray
     collapse_time: np.ndarray  # NaN where none [s]
     first_impact_time: np.ndarray  # NaN where none [s]
-    max_angle: np.ndarray
+    max_rotation: np.ndarray
     first_peak_angle: np.ndarray  # NaN where none [rad]
     angular_velocity_at_tipping: np.ndarray  # NaN where none [rad/s]
     n_impacts: np.ndarray

@@ -76,7 +76,7 @@ class Response3D:
     def summary(self) -> dict:
         """Scalar outcomes (strict JSON): ``collapsed``, ``collapse_time_s`` (None if not),
         ``max_top_displacement_m`` (largest horizontal displacement of the top point),
-        ``max_tilt_rad``, ``delivered_impulse_Ns`` ([x, y, z] total), ``first_arrival_time_s``,
+        ``max_rotation_rad``, ``delivered_impulse_Ns`` ([x, y, z] total), ``first_arrival_time_s``,
         and per point ``max_displacement_m`` (horizontal), ``max_displacement_x_m``,
         ``max_velocity_m_s`` (horizontal)."""
         ds = self.dataset
@@ -91,7 +91,7 @@ class Response3D:
             "collapsed": bool(ds.attrs["collapsed"]),
             "collapse_time_s": None if (isinstance(ct, str) or not math.isfinite(ct)) else float(ct),
             "max_top_displacement_m": float(hd[:, top].max()),
-            "max_tilt_rad": float(ds["tilt"].values.max()),
+            "max_rotation_rad": float(ds["tilt"].values.max()),
             "delivered_impulse_Ns": [float(x) for x in ds["delivered_impulse"].values.sum(axis=0)],
             "first_arrival_time_s": float(ds.attrs["first_arrival_time_s"]),
             "points": {n: {"max_displacement_m": float(hd[:, k].max()),

@@ -7,7 +7,7 @@ A key ``section[.system][.similarity][.points.P][.sub...].leaf_unit[.i]`` goes t
 * the group of its section (``planar``, ``sim3d`` for the Study's ``3d``, ``ensemble``, ``design``,
   ``experiment``, ``critical``), with a sub-group per other path part (``design/factors``,
   ``design/impulsive``); ``sweep.valid`` is the root's ``valid``;
-* the name of its leaf without the unit suffix (``max_angle_rad`` -> ``max_angle``; a suffix that
+* the name of its leaf without the unit suffix (``max_rotation_rad`` -> ``max_rotation``; a suffix that
   is no unit, ``_rel_peak``, stays), with ``units`` from :func:`blastscale.units.unit_of`;
 * labels: ``system`` (``prototype`` / ``model``) from the path, ``point`` from ``points.P``, and a
   list index as ``component`` (x, y, z), ``bound`` (start, end), ``drum`` (0, 1, ...) or
@@ -96,7 +96,7 @@ def store_location(key: str) -> Optional[StoreLocation]:
     Parameters
     ----------
     key : str
-        A key of ``StudyResult.scalars()`` or of the outcome mode (``planar.prototype.max_angle_rad``).
+        A key of ``StudyResult.scalars()`` or of the outcome mode (``planar.prototype.max_rotation_rad``).
 
     Returns
     -------
@@ -192,7 +192,7 @@ def select(tree, key: str):
         A sweep store (:func:`blastscale.io.sweep_store.open_sweep`, or the tree of a sweep run
         in memory).
     key : str
-        A flat key (``planar.prototype.max_angle_rad``, ``design.model_charge_kg``).
+        A flat key (``planar.prototype.max_rotation_rad``, ``design.model_charge_kg``).
 
     Returns
     -------

@@ -16,8 +16,8 @@ VALID_KEY = "sweep.valid"
 
 #: Keys of the outcome mode (:func:`planar_outcomes`), the Study's names where they mean the same.
 OUTCOME_KEYS = (
-    "planar.prototype.collapsed", "planar.prototype.max_angle_rad", "planar.model.collapsed",
-    "planar.model.max_angle_rad", "planar.similarity.max_angle_ratio", "planar.similarity.outcomes_agree",
+    "planar.prototype.collapsed", "planar.prototype.max_rotation_rad", "planar.model.collapsed",
+    "planar.model.max_rotation_rad", "planar.similarity.max_rotation_ratio", "planar.similarity.outcomes_agree",
     "design.model_charge_kg", "design.model_standoff_m", VALID_KEY,
 )
 #: Fields the outcome mode vectorises over; the others that matter group the cases (one body, scale,
@@ -81,10 +81,10 @@ def _outcome_group(sc, W, R, e) -> dict:
     fm = first_swing_blast(model.alpha, e, model.frequency_parameter, model.load_ratio_per_pascal,
                            d.specimen.select(ok), bl.pulse)
     out["planar.prototype.collapsed"][ok] = fp.collapsed
-    out["planar.prototype.max_angle_rad"][ok] = fp.max_rotation
+    out["planar.prototype.max_rotation_rad"][ok] = fp.max_rotation
     out["planar.model.collapsed"][ok] = fm.collapsed
-    out["planar.model.max_angle_rad"][ok] = fm.max_rotation  # angles are not scaled (factor 1)
-    out["planar.similarity.max_angle_ratio"][ok] = fm.max_rotation / fp.max_rotation
+    out["planar.model.max_rotation_rad"][ok] = fm.max_rotation  # angles are not scaled (factor 1)
+    out["planar.similarity.max_rotation_ratio"][ok] = fm.max_rotation / fp.max_rotation
     out["planar.similarity.outcomes_agree"][ok] = fp.collapsed == fm.collapsed
     out["design.model_charge_kg"][ok] = d.specimen.charge_kg[ok]
     out["design.model_standoff_m"][ok] = d.specimen.standoff_m[ok]
@@ -98,7 +98,7 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
     kernel, the first free swing in closed form; :func:`blastscale.rocking.swing`).
 
     For the prototype and the model (designed by the Study's own ``design_model``, given the
-    arrays of charges and stand-offs): ``collapsed`` (at any time), ``max_angle_rad`` (the largest
+    arrays of charges and stand-offs): ``collapsed`` (at any time), ``max_rotation_rad`` (the largest
     |theta| of the whole motion; pi/2 where it overturns), their ratio (model / prototype) and
     outcome agreement, the model charge and stand-off, and ``sweep.valid`` (False where the Study
     would refuse the design: a scaled distance outside the blast fits; NaN values there).

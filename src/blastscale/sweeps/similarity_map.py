@@ -52,7 +52,7 @@ _COMMON = {
 #: map variable -> (Study scalar key, unit), per engine
 ENGINE_VARIABLES = {
     "planar": {
-        "error": ("planar.similarity.max_abs_angle_diff_to_tipping_rad", "rad"),
+        "error": ("planar.similarity.max_abs_rotation_diff_to_tipping_rad", "rad"),
         "peak_ratio": ("planar.similarity.peak_ratio", "-"),
         "outcomes_agree": ("planar.similarity.outcomes_agree", "-"),
         "prototype_collapsed": ("planar.prototype.collapsed", "-"),
