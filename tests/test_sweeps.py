@@ -283,7 +283,7 @@ def test_one_friedlander_decay_is_the_array_bisection_bit_for_bit():
 @pytest.mark.parametrize("key, group, name, labels, units", [
     ("sweep.valid", "", "valid", (), "1"),
     ("planar.prototype.max_rotation_rad", "planar", "max_rotation", (("system", "prototype"),), "rad"),
-    ("planar.similarity.peak_ratio", "planar", "peak_ratio", (), "1"),
+    ("planar.similarity.first_peak_ratio", "planar", "first_peak_ratio", (), "1"),
     ("planar.similarity.max_abs_angular_velocity_diff_rad_s", "planar", "max_abs_angular_velocity_diff", (), "rad/s"),
     ("3d.model.points.P-10.max_velocity_m_s", "sim3d", "max_velocity", (("system", "model"), ("point", "P-10")), "m/s"),
     ("3d.prototype.delivered_impulse_Ns.1", "sim3d", "delivered_impulse", (("system", "prototype"), ("component", "y")),

@@ -147,7 +147,7 @@ class RockingSimilarity:
         [rad, i.e. the angle-velocity phase plane in the dimensionless time p t]. When the
         pulse is over at the tipping point (ms-long pulses, tipping after ~1 s) it is bounded
         by ``|tipping_angular_velocity_diff| / p`` (energy conservation); None otherwise.
-    peak_ratio : float
+    first_peak_ratio : float
         First-peak angle of the model over that of the prototype [-] (largest angles when
         either has no peak; 1 when both overturn).
     outcomes_agree : bool
@@ -171,7 +171,7 @@ class RockingSimilarity:
     collapse_time_diff: float | None
     tipping_angular_velocity_diff: float | None
     max_fall_phase_diff: float | None
-    peak_ratio: float
+    first_peak_ratio: float
     outcomes_agree: bool
 
     @cached_property
@@ -194,7 +194,7 @@ class RockingSimilarity:
                 "collapse_time_diff_s": self.collapse_time_diff,
                 "tipping_angular_velocity_diff_rad_s": self.tipping_angular_velocity_diff,
                 "max_fall_phase_diff_rad": self.max_fall_phase_diff,
-                "peak_ratio": self.peak_ratio,
+                "first_peak_ratio": self.first_peak_ratio,
                 "outcomes_agree": self.outcomes_agree,
             },
         }
@@ -261,7 +261,7 @@ def compare_rocking(prototype: RockingResult, model: RockingResult, design: Mode
         collapse_time_diff=dt_tip,
         tipping_angular_velocity_diff=dw_tip,
         max_fall_phase_diff=fall,
-        peak_ratio=ratio,
+        first_peak_ratio=ratio,
         outcomes_agree=bool(prototype.collapsed) == bool(model.collapsed),
     )
 

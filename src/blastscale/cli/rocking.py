@@ -136,7 +136,7 @@ def rock_cmd(
             ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
             ("overturn time difference (model - prototype)", fmt_value(s["collapse_time_diff_s"], ".3g"), "s"),
             ("fall, |theta_dot difference| / p at equal angle", fmt_value(s["max_fall_phase_diff_rad"], ".3g"), "rad"),
-            ("first-peak ratio model/prototype", f"{s['peak_ratio']:.6g}", "-"),
+            ("first-peak ratio model/prototype", f"{s['first_peak_ratio']:.6g}", "-"),
             ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
         ]))
     if plot:

@@ -228,7 +228,7 @@ def similarity_map_cmd(
         "n_outcomes_agree": int((ds["outcomes_agree"].where(ds["valid"].astype(bool), False).astype(bool)).sum()),
         "n_trustworthy": int(ds["trustworthy"].sum()),
     }
-    for name in ("error", "peak_ratio_error", "outcomes_agree", "trustworthy", "valid", "model_to_p",
+    for name in ("error", "first_peak_ratio_error", "outcomes_agree", "trustworthy", "valid", "model_to_p",
                  "model_charge_kg"):
         v = ds[name].values
         res[name] = np.where(np.isfinite(v.astype(float)), v, np.nan).tolist() if v.dtype.kind == "f" else v.tolist()

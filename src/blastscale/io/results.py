@@ -53,6 +53,7 @@ def jsonable(obj: Any) -> Any:
 #: new one; everything else (sweep stores, the Python API) knows the new names only.
 LEGACY_KEYS: dict = {
     (None, "blast_model"): "model",
+    (None, "first_peak_ratio_error"): "peak_ratio_error",
     ("planar", "collapsed"): "overturned",
     ("planar", "collapse_time_s"): "overturn_time_s",
     ("planar", "collapse_time_diff_s"): "overturn_time_diff_s",
@@ -60,6 +61,7 @@ LEGACY_KEYS: dict = {
     ("planar", "max_abs_rotation_diff_rad"): "max_abs_angle_diff_rad",
     ("planar", "max_abs_rotation_diff_to_tipping_rad"): "max_abs_angle_diff_to_tipping_rad",
     ("planar", "max_rotation_ratio"): "max_angle_ratio",
+    ("planar", "first_peak_ratio"): "peak_ratio",
     ("3d", "collapsed"): "overturned",
     ("3d", "collapse_time_s"): "overturn_time_s",
     ("3d", "max_rotation_rad"): "max_tilt_rad",

@@ -11,7 +11,7 @@ A key ``section[.system][.similarity][.points.P][.sub...].leaf_unit[.i]`` goes t
   is no unit, ``_rel_peak``, stays), with ``units`` from :func:`blastscale.units.unit_of`;
 * labels: ``system`` (``prototype`` / ``model``) from the path, ``point`` from ``points.P``, and a
   list index as ``component`` (x, y, z), ``bound`` (start, end), ``drum`` (0, 1, ...) or
-  ``<name>_index``. Similarity measures (``planar.similarity.peak_ratio``) join their engine's
+  ``<name>_index``. Similarity measures (``planar.similarity.first_peak_ratio``) join their engine's
   group without a ``system``.
 
 Keys that only say a section did not run (``design``, ``planar.model``, ``experiment.model``:

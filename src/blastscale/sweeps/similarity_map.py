@@ -12,7 +12,7 @@ or 3D Study per case; on Dask when asked) and returns, per case:
 * ``error``: planar, max |theta_model_up - theta_prototype| up to the earlier tipping point [rad]
   (the rocking phase; docs/rocking.md explains why the fall is compared on its phase instead);
   3D, max |top displacement difference| relative to the prototype's peak [-],
-* ``peak_ratio_error``: |first-peak ratio - 1|,
+* ``first_peak_ratio_error``: |first-peak ratio - 1|,
 * ``outcomes_agree``: both overturn or both survive,
 * ``model_to_p``: the model's t_o p (the a priori impulsive check of ``design_model``),
 * ``model_charge_kg``, ``prototype_collapsed``,
@@ -53,7 +53,7 @@ _COMMON = {
 ENGINE_VARIABLES = {
     "planar": {
         "error": ("planar.similarity.max_abs_rotation_diff_to_tipping_rad", "rad"),
-        "peak_ratio": ("planar.similarity.peak_ratio", "-"),
+        "first_peak_ratio": ("planar.similarity.first_peak_ratio", "-"),
         "outcomes_agree": ("planar.similarity.outcomes_agree", "-"),
         "prototype_collapsed": ("planar.prototype.collapsed", "-"),
         "model_collapsed": ("planar.model.collapsed", "-"),
@@ -61,7 +61,7 @@ ENGINE_VARIABLES = {
     },
     "3d": {
         "error": ("3d.similarity.max_abs_top_displacement_diff_rel_peak", "-"),
-        "peak_ratio": ("3d.similarity.top_first_peak_ratio", "-"),
+        "first_peak_ratio": ("3d.similarity.top_first_peak_ratio", "-"),
         "outcomes_agree": ("3d.similarity.outcomes_agree", "-"),
         "prototype_collapsed": ("3d.prototype.collapsed", "-"),
         "model_collapsed": ("3d.model.collapsed", "-"),
@@ -106,7 +106,7 @@ def similarity_map(
     -------
     xarray.Dataset
         Dims ``length``, ``density_ratio``, ``charge_kg``, ``standoff_m``; the variables of
-        :data:`ENGINE_VARIABLES` plus ``peak_ratio_error`` and ``trustworthy``; attrs
+        :data:`ENGINE_VARIABLES` plus ``first_peak_ratio_error`` and ``trustworthy``; attrs
         ``engine``, ``tolerance``, ``error_units``.
     """
     import xarray as xr
@@ -134,7 +134,7 @@ def similarity_map(
         out[name] = v.drop_attrs().assign_attrs(units=unit, source=key)
     valid = out["valid"].astype(bool)
     agree = out["outcomes_agree"].where(valid, False).astype(bool)
-    out["peak_ratio_error"] = np.abs(out["peak_ratio"] - 1.0).assign_attrs(units="-")
+    out["first_peak_ratio_error"] = np.abs(out["first_peak_ratio"] - 1.0).assign_attrs(units="-")
     unit = out["error"].attrs["units"]
     out["trustworthy"] = (valid & agree & (out["error"] <= tolerance)).assign_attrs(
         units="-", definition=f"valid, outcomes agree, error <= {tolerance:g} {unit}")
