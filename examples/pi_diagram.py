@@ -48,7 +48,7 @@ def main() -> None:
     pi = curves["triangular"]
     print(f"uplift pressure {pi.pressure_asymptote:.4g} Pa, impulsive asymptote {pi.impulse_asymptote:.4g} Pa s")
     for shape in ("friedlander", "triangular", "impulsive"):
-        c = critical_charge(system, STANDOFF, pulse=shape, blast_model=MODEL)
+        c = critical_charge(system, STANDOFF, pulse_shape=shape, blast_model=MODEL)
         print(f"critical charge at {STANDOFF:g} m ({shape} pulse, {MODEL}): {c.charge_kg:.3f} kg")
 
     fig, ax = plt.subplots(figsize=(8, 6), layout="constrained")

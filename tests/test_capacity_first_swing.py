@@ -77,11 +77,11 @@ def test_critical_charge_equals_bisection_on_full_simulations(height, alpha_deg,
     system = RockingSystem.from_block(blk, restitution=restitution)
     R = r_over_h * height
     try:
-        wc = critical_charge(system, R, pulse=shape, xtol_rel=1e-10).charge_kg
+        wc = critical_charge(system, R, pulse_shape=shape, xtol_rel=1e-10).charge_kg
     except Exception as exc:  # no critical charge within the fits' range of Z for this draw
         assume("no critical" not in str(exc))
         raise
-    wb = critical_charge_by_bisection(system, R, wc, pulse=shape)  # full simulations, to rest
+    wb = critical_charge_by_bisection(system, R, wc, pulse_shape=shape)  # full simulations, to rest
     assert wc == pytest.approx(wb, rel=1e-6)
 
 

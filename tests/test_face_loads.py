@@ -179,7 +179,7 @@ def test_bad_input_is_one_line():
     with pytest.raises(BlastscaleInputError, match="incidence model = 'x' is not known"):
         make_load("B", SQUARE, blast_parameters(250.0, 10.0), incidence="x")
     with pytest.raises(BlastscaleInputError, match="pulse = 'box' is not known"):
-        make_load("C", SQUARE, blast_parameters(250.0, 10.0), pulse="box")
+        make_load("C", SQUARE, blast_parameters(250.0, 10.0), pulse_shape="box")
     with pytest.raises(BlastscaleInputError, match="blast = float is not blast parameters"):
         make_load("B", SQUARE, 250.0)
 

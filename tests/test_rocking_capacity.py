@@ -23,7 +23,7 @@ PAPER_CRITICAL = {"impulsive": 79.84, "triangular": 79.86, "friedlander": 79.87}
 
 @pytest.mark.parametrize("shape", ["impulsive", "triangular", "friedlander"])
 def test_paper_critical_charge_79_8_kg(shape):
-    res = critical_charge(BLOCK, 2.0, pulse=shape, blast_model="masi2021")
+    res = critical_charge(BLOCK, 2.0, pulse_shape=shape, blast_model="masi2021")
     assert math.floor(res.charge_kg * 10) / 10 == 79.8  # the paper truncates (DESIGN.md)
     assert res.charge_kg == pytest.approx(PAPER_CRITICAL[shape], abs=0.0051)
     # the full simulation agrees on both sides of the threshold (1e-5 relative in charge
@@ -36,7 +36,7 @@ def test_paper_critical_charge_79_8_kg(shape):
 
 def test_impulsive_critical_charge_delivers_the_critical_impulse():
     """Impulsive limit: at the critical charge the reflected impulse equals J_o w_c / (S h)."""
-    res = critical_charge(BLOCK, 2.0, pulse="impulsive", blast_model="masi2021")
+    res = critical_charge(BLOCK, 2.0, pulse_shape="impulsive", blast_model="masi2021")
     i = blast_parameters(res.charge_kg, 2.0, blast_model="masi2021").reflected_impulse
     wc = SYSTEM.critical_angular_velocity
     # the search stops at 1e-9 in ln W; i ~ W^0.9 here, so 1e-8 relative is safe
@@ -88,7 +88,7 @@ def test_capacity_bad_input():
     with pytest.raises(BlastscaleInputError, match="standoff"):
         critical_charge(BLOCK, -2.0, blast_model="masi2021")
     with pytest.raises(BlastscaleInputError, match="pulse"):
-        critical_charge(BLOCK, 2.0, pulse="square", blast_model="masi2021")
+        critical_charge(BLOCK, 2.0, pulse_shape="square", blast_model="masi2021")
     with pytest.raises(BlastscaleInputError, match="uplift"):
         pi_diagram(BLOCK, peak_pressures=[1.0])
     # a slender 5 cm rod 1 m away overturns at every Z of the fits' range (0.2-40 m/kg^(1/3))

@@ -15,11 +15,11 @@ from blastscale.study import Study
 BASE = Scenario.default().with_values({"engine": "planar", "critical_charge": False, "blast.model": "masi2021"})
 
 
-def compare_rocking(charge, scale, gamma=1.0, gravity_ratio=1.0, *, pulse="friedlander", duration=5.0,
+def compare_rocking(charge, scale, gamma=1.0, gravity_ratio=1.0, *, pulse_shape="friedlander", duration=5.0,
                     samples=2001):
     """The Study's planar comparison of the paper's block (prototype vs up-scaled specimen)."""
     sc = BASE.with_values({"charge_kg": charge, "length": scale, "density_ratio": gamma,
-                           "gravity_ratio": gravity_ratio, "pulse": pulse, "duration_s": duration,
+                           "gravity_ratio": gravity_ratio, "pulse": pulse_shape, "duration_s": duration,
                            "samples": samples})
     return Study(sc).run().planar
 SCALES = [1 / 10, 1 / 20, 1 / 200]
@@ -34,7 +34,7 @@ def test_impulsive_load_upscaled_model_equals_prototype(scale, gamma, charge):
     works in dimensionless time, so only the round-off of the design's impulse (solved by the
     general law to ~1e-13) and of the coefficients remains: 1e-10 rad is the acceptance level
     (observed < 1e-13)."""
-    s = compare_rocking(charge, scale, gamma, pulse="impulsive", duration=8.0)
+    s = compare_rocking(charge, scale, gamma, pulse_shape="impulsive", duration=8.0)
     assert s.max_abs_rotation_diff <= 1e-10
     assert s.outcomes_agree
     assert s.first_peak_ratio == pytest.approx(1.0, abs=1e-10)
@@ -47,7 +47,7 @@ def test_finite_pulse_paper_50kg_rocking_similarity(scale, gamma, shape):
     """W = 50 kg (rocks, ~15 impacts in 8 s): the up-scaled model stays within 5e-4 rad of the
     prototype over the whole run (observed 1.2e-4..3.1e-4; the paper's Figs. 7-9 show
     coinciding curves), both survive, and the first peaks agree to 0.1 %."""
-    s = compare_rocking(50.0, scale, gamma, pulse=shape, duration=8.0)
+    s = compare_rocking(50.0, scale, gamma, pulse_shape=shape, duration=8.0)
     assert s.max_abs_rotation_diff <= 5e-4
     assert s.outcomes_agree and not s.prototype.collapsed
     assert s.first_peak_ratio == pytest.approx(1.0, abs=1e-3)
@@ -72,7 +72,7 @@ def test_finite_pulse_paper_100kg_both_overturn_rocking_phase_and_fall(scale, ga
     not a failure of similarity): the ~1e-4 energy difference shifts the tipping time by
     0.3-0.7 ms and the fall turns that into (fall speed) x (shift), which the last assertion
     checks (1 % for sampling the speed)."""
-    s = compare_rocking(100.0, scale, gamma, pulse=shape, duration=4.0)
+    s = compare_rocking(100.0, scale, gamma, pulse_shape=shape, duration=4.0)
     assert s.prototype.collapsed and s.model.collapsed and s.outcomes_agree
     assert s.theta_prototype[-1] == s.theta_model[-1] == pytest.approx(math.pi / 2, abs=1e-15)
     p = s.prototype.system.frequency_parameter
@@ -113,7 +113,7 @@ def test_to_dict_has_the_cli_keys():
 
 def test_similarity_bad_input():
     with pytest.raises(BlastscaleInputError, match="pulse"):
-        compare_rocking(50.0, 0.1, pulse="square")
+        compare_rocking(50.0, 0.1, pulse_shape="square")
     with pytest.raises(BlastscaleInputError, match="scale.length"):
         compare_rocking(50.0, -0.1)
     with pytest.raises(BlastscaleInputError, match="samples"):
@@ -123,7 +123,7 @@ def test_similarity_bad_input():
 def test_centrifuge_gravity_ratio_impulsive_exact():
     """With a gravity ratio (centrifuge model, varsigma = 20) the factors change
     (time sqrt(lambda/varsigma)) and the impulsive similarity stays exact (1e-10 rad)."""
-    s = compare_rocking(50.0, 1 / 20, 1.0, 20.0, pulse="impulsive", duration=5.0)
+    s = compare_rocking(50.0, 1 / 20, 1.0, 20.0, pulse_shape="impulsive", duration=5.0)
     assert s.design.factors.time == pytest.approx(math.sqrt(1 / 20 / 20), rel=1e-14)
     assert s.max_abs_rotation_diff <= 1e-10 and s.outcomes_agree
 
@@ -137,7 +137,7 @@ def test_contract_reproduces_the_direct_comparison(charge):
     the interpolation moves the angle by (slope) x 1e-16 s: 1e-13 rad is the acceptance level.
     The contract's first peak from the samples (every 4 ms) agrees with the solver's exact peak
     event to (omega dt)^2 / 8 ~ 1e-5 relative; 1e-4 is asserted."""
-    s = compare_rocking(charge, 1 / 20, pulse="friedlander", duration=4.0)
+    s = compare_rocking(charge, 1 / 20, pulse_shape="friedlander", duration=4.0)
     f = s.design.factors
     direct_th = s.model.theta_eval / f.angle
     direct_om = s.model.theta_dot_eval / f.angular_velocity

@@ -35,14 +35,14 @@ def run_block(block, pulse, duration, **kw):
     return simulate_structure(block, MethodA(block, pulse), duration, **kw)
 
 
-def compare_block(block, charge, standoff, scale, *, density_ratio=1.0, law="general", pulse="friedlander",
+def compare_block(block, charge, standoff, scale, *, density_ratio=1.0, law="general", pulse_shape="friedlander",
                   contact=None, duration=5.0, record_every=1):
     """The prototype block and its model experiment (masi2021 fits, Method A) through the
     structure comparison, read through the block's planar view: (design, comparison, prototype
     summary, up-scaled model summary, similarity figures)."""
     design = design_model(charge, standoff, scale, density_ratio=density_ratio, law=law, blast_model="masi2021",
                           geometry=block)
-    c = compare_structure3d(block, design, pulse=pulse, contact=contact, duration=duration, record_every=record_every)
+    c = compare_structure3d(block, design, pulse_shape=pulse_shape, contact=contact, duration=duration, record_every=record_every)
     sim = block_similarity(block_dataset(c.prototype), upscale_dataset(block_dataset(c.model), design.factors))
     return design, c, block_summary(c.prototype), upscale_summary(block_summary(c.model), design.factors), sim
 
@@ -96,7 +96,7 @@ def test_hopkinson_cranz_model_with_imposed_density_ratio_is_similar():
 
 
 def test_similarity_is_exact_in_the_impulsive_limit():
-    *_, sim = compare_block(PAPER_BLOCK, 50.0, 2.0, 1 / 200, pulse="impulsive", contact=ContactSettings(friction=2.0),
+    *_, sim = compare_block(PAPER_BLOCK, 50.0, 2.0, 1 / 200, pulse_shape="impulsive", contact=ContactSettings(friction=2.0),
                             duration=1.0, record_every=5)
     # the general law matches the impulse exactly, so with a Dirac load the model is exactly
     # similar: round-off only (measured 4e-15 rad); 1e-9 rad leaves room for solver round-off

@@ -47,7 +47,7 @@ def test_first_swing_equals_full_simulation(height, alpha_deg, r_over_h, load, s
                                       restitution=restitution)
     R = r_over_h * height
     try:
-        wc = critical_charge(system, R, pulse=shape, blast_model="kingery-bulmash").charge_kg
+        wc = critical_charge(system, R, pulse_shape=shape, blast_model="kingery-bulmash").charge_kg
     except BlastscaleInputError as exc:  # no critical charge within the fits' range of Z for this draw
         assume("no critical" not in str(exc))
         raise
@@ -55,7 +55,7 @@ def test_first_swing_equals_full_simulation(height, alpha_deg, r_over_h, load, s
     assume(abs(load) > 1e-6)  # off the threshold itself, where round-off decides
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        fs = first_swing(system, W, R, pulse=shape, blast_model="kingery-bulmash")
+        fs = first_swing(system, W, R, pulse_shape=shape, blast_model="kingery-bulmash")
         pulse = blast_parameters(W, R, "kingery-bulmash").pulse(shape)
     full = simulate(system, pulse, pulse.duration + 200.0 / system.frequency_parameter)
     assert bool(fs.collapsed[0]) == full.collapsed

@@ -188,7 +188,7 @@ def ensemble_compare(
     n: int = 8,
     perturbation: float = 1e-6,
     load: str = "A",
-    pulse: str = "friedlander",
+    pulse_shape: str = "friedlander",
     incidence: str | None = None,
     contact=None,
     duration: float = 8.0,
@@ -203,7 +203,7 @@ def ensemble_compare(
 
     Parameters
     ----------
-    structure, design, load, pulse, incidence, contact, duration, record_every, extrapolate
+    structure, design, load, pulse_shape, incidence, contact, duration, record_every, extrapolate
         As :func:`~.structure3d.compare_structure3d` (duration [s] prototype time). ``design``
         None: the prototype's ensemble alone (a prototype-only study), from ``blast``.
     n : int
@@ -240,7 +240,7 @@ def ensemble_compare(
     collapsed: dict = {s: [] for s in systems}
     times: dict = {s: [] for s in systems}
     t = points = None
-    kw = dict(blast=blast, gravity=gravity, load=load, pulse=pulse, incidence=incidence, contact=contact,
+    kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,
               duration=duration, record_every=record_every, extrapolate=extrapolate)
     for k, fac in enumerate(factors):
         runs = {s: run_system(structure, design, s, load_factor=fac, **kw).response for s in systems}
@@ -269,5 +269,5 @@ def ensemble_compare(
         time=t, points=points, prototype=stats["prototype"], model=stats.get("model"),
         factors=factors, prototype_members=np.stack(q["prototype"]),
         model_members=np.stack(q["model"]) if design is not None else None,
-        settings={"perturbation": eps, "n": int(n), "load_method": load, "pulse": pulse, "duration_s": float(duration)},
+        settings={"perturbation": eps, "n": int(n), "load_method": load, "pulse_shape": pulse_shape, "duration_s": float(duration)},
     )

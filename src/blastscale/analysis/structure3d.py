@@ -85,7 +85,7 @@ class Comparison3D:
         :func:`~.compare.compare_responses` of ``point_displacement``, ``point_velocity``,
         ``com_displacement``, ``rotation_y`` (x components, rotation about y).
     settings : dict
-        Load method, pulse, incidence, duration [s], record interval.
+        Load method, pulse shape, incidence, duration [s], record interval.
     arrival_spreads : dict
         ``arrival_spread_prototype_s``, ``arrival_spread_model_upscaled_s`` [s], from the two runs'
         loads (:func:`blastscale.sim3d.load_methods.arrival_spread_similarity`).
@@ -215,7 +215,7 @@ def compare_structure3d(
     design,
     *,
     load: str = "A",
-    pulse: str = "friedlander",
+    pulse_shape: str = "friedlander",
     incidence: str | None = None,
     contact=None,
     duration: float = 8.0,
@@ -235,7 +235,7 @@ def compare_structure3d(
     load : str
         Load method, a key of :data:`blastscale.sim3d.load_methods.LOAD_METHODS` (``"A"``: the paper's
         Method A, uniform and simultaneous reflected pulse on the front faces).
-    pulse : {"friedlander", "triangular", "impulsive"}
+    pulse_shape : {"friedlander", "triangular", "impulsive"}
         Pulse shape.
     incidence : str, optional
         Incidence model passed to ``make_load`` (default: its own default).
@@ -259,7 +259,7 @@ def compare_structure3d(
         raise BlastscaleInputError(
             f"design = {type(design).__name__} is not a model design: give blastscale.similitude.design_model(...)"
         )
-    kw = dict(load=load, pulse=pulse, incidence=incidence, contact=contact, duration=dur, record_every=record_every,
+    kw = dict(load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact, duration=dur, record_every=record_every,
               extrapolate=extrapolate)
     from ..sim3d.load_methods import arrival_spread_similarity
 
@@ -282,7 +282,7 @@ def compare_structure3d(
     return Comparison3D(
         design=design, structure=structure, specimen_structure=specimen_structure, prototype=proto, model=mod,
         prototype_dataset=pds, upscaled_dataset=up, comparison=cmp,
-        settings={"load_method": load, "pulse": pulse, "incidence": incidence or "default", "duration_s": dur,
+        settings={"load_method": load, "pulse_shape": pulse_shape, "incidence": incidence or "default", "duration_s": dur,
                   "record_every": int(record_every), "load_end_s": load_end, "extrapolate": bool(extrapolate)},
         arrival_spreads=arrival_spread_similarity(p_run.load, m_run.load, design.factors),
     )
@@ -309,7 +309,7 @@ class Prototype3D:
     prototype_dataset : xarray.Dataset
         Its response (with the outcome ``collapsed`` as an attribute).
     settings : dict
-        Load method, pulse, incidence, duration [s], record interval, load end [s], arrival spread [s].
+        Load method, pulse shape, incidence, duration [s], record interval, load end [s], arrival spread [s].
     """
 
     structure: object
@@ -334,7 +334,7 @@ def prototype_structure3d(
     *,
     gravity: float = STANDARD_GRAVITY,
     load: str = "A",
-    pulse: str = "friedlander",
+    pulse_shape: str = "friedlander",
     incidence: str | None = None,
     contact=None,
     duration: float = 8.0,
@@ -351,7 +351,7 @@ def prototype_structure3d(
         Its blast parameters (:func:`blastscale.blast.blast_parameters` of its charge and stand-off).
     gravity : float
         Gravity [m/s^2].
-    load, pulse, incidence, contact, duration, record_every, extrapolate
+    load, pulse_shape, incidence, contact, duration, record_every, extrapolate
         As :func:`compare_structure3d` (``contact`` None: the engine's defaults for the structure).
 
     Returns
@@ -361,13 +361,13 @@ def prototype_structure3d(
     from ..sim3d.face_loads import arrival_spread
 
     dur = float(check_positive("duration", duration, "s"))
-    run = run_system(structure, None, "prototype", blast=blast, gravity=gravity, load=load, pulse=pulse,
+    run = run_system(structure, None, "prototype", blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape,
                      incidence=incidence, contact=contact, duration=dur, record_every=record_every,
                      extrapolate=extrapolate)
     resp = run.response
     return Prototype3D(
         structure=structure, prototype=resp, prototype_dataset=_with_outcome(resp.dataset, resp.summary()),
-        settings={"load_method": load, "pulse": pulse, "incidence": incidence or "default", "duration_s": dur,
+        settings={"load_method": load, "pulse_shape": pulse_shape, "incidence": incidence or "default", "duration_s": dur,
                   "record_every": int(record_every), "load_end_s": run.load_duration_s,
                   "extrapolate": bool(extrapolate), "arrival_spread_prototype_s": arrival_spread(run.load)},
     )

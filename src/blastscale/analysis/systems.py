@@ -53,7 +53,7 @@ class SystemRun(NamedTuple):
 
 
 def run_system(structure, design, system: str = "prototype", *, blast=None, gravity: float = STANDARD_GRAVITY,
-               load: str = "A", pulse: str = "friedlander", incidence: str | None = None, contact=None,
+               load: str = "A", pulse_shape: str = "friedlander", incidence: str | None = None, contact=None,
                duration: float = 8.0, record_every: int = 4, load_factor: float = 1.0,
                extrapolate: bool = False) -> SystemRun:
     """Simulate the prototype, or the model at its own size (module docstring).
@@ -71,7 +71,7 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
         and ``design.specimen``).
     gravity : float
         The prototype's gravity [m/s^2] when there is no design (with one: ``design.gravity``).
-    load, pulse, incidence, contact, record_every
+    load, pulse_shape, incidence, contact, record_every
         See :func:`~.structure3d.compare_structure3d`.
     duration : float
         Prototype simulated time [s] (the model runs ``duration * lambda_t``).
@@ -105,7 +105,7 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
         dur, g = duration * f.time, design.gravity * f.gravity
         cont = None if contact is None else contact.scaled(f)
     inc = {} if incidence is None else {"incidence": incidence}
-    ld = make_load(load, struct, bp, pulse=pulse, extrapolate=bool(extrapolate), **inc)
+    ld = make_load(load, struct, bp, pulse_shape=pulse_shape, extrapolate=bool(extrapolate), **inc)
     run_load = ld if load_factor == 1.0 else PerturbedLoad(ld, load_factor)
     resp = simulate_structure(struct, run_load, dur, contact=cont, gravity=g, record_every=record_every)
     return SystemRun(struct, resp, float(ld.end_time - ld.first_arrival), ld)

@@ -44,7 +44,7 @@ __all__ = [
 #: Pulse shapes built from blast parameters (peak, duration, impulse): the modified Friedlander
 #: pulse (paper Eq. 1, decay fitted to the impulse, Eq. 2), the triangle of equal peak and
 #: impulse (Eq. 3) and the impulsive limit (a Dirac of the same impulse). The one vocabulary of
-#: ``pulse=`` arguments across the package (``tabulated`` pulses are built from a table instead).
+#: ``pulse_shape=`` arguments across the package (``tabulated`` pulses are built from a table instead).
 PULSE_SHAPES = ("friedlander", "triangular", "impulsive")
 
 

@@ -42,7 +42,7 @@ def block3d_output(result, contact, incidence: Optional[str] = None) -> dict:
     scale = None if d is None else d.scale
     out: dict = {"inputs": {
         "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "density_kg_m3": block.density,
-        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "pulse": sc.blast.pulse,
+        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "pulse_shape": sc.blast.pulse,
         "model": sc.blast.model, "duration_s": sc.simulation.duration_s, "load": sc.blast.load, "incidence": incidence,
         "scale": scale, "density_ratio": None if d is None else d.density_ratio,
         "gravity_ratio": None if d is None else d.gravity_ratio, "gravity_m_s2": sc.simulation.gravity_m_s2,
@@ -67,7 +67,7 @@ def block3d_cmd(
     charge: float = opt.CHARGE,
     standoff: float = opt.STANDOFF,
     duration: Optional[float] = opt.DURATION_3D,
-    pulse: Optional[str] = opt.PULSE_3D,
+    pulse_shape: Optional[str] = opt.PULSE_3D,
     load: Optional[str] = opt.LOAD,
     incidence: Optional[str] = opt.INCIDENCE,
     restitution: Optional[float] = typer.Option(
@@ -109,7 +109,7 @@ def block3d_cmd(
     sc = scenario_from_flags(
         structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
                    "density_kg_m3": density, "friction": friction},
-        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse, "load": load,
+        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse_shape, "load": load,
                "incidence": incidence},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
                                           "gravity_ratio": gravity_ratio},

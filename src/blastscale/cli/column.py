@@ -45,7 +45,7 @@ def column_output(result, contact, incidence: Optional[str] = None, timestep: Op
     sc, d = result.scenario, result.design
     out: dict = {"inputs": {
         "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "model": sc.blast.model,
-        "pulse": sc.blast.pulse, "load": sc.blast.load, "incidence": incidence, "friction": sc.structure.friction,
+        "pulse_shape": sc.blast.pulse, "load": sc.blast.load, "incidence": incidence, "friction": sc.structure.friction,
         "duration_s": sc.simulation.duration_s, "timestep_s": timestep, "jacobian": contact.jacobian,
         "scale": None if d is None else d.scale, "density_ratio": None if d is None else d.density_ratio,
     }, "structure": result.structure.describe()}
@@ -79,7 +79,7 @@ def column_cmd(
     charge: float = opt.CHARGE,
     standoff: float = opt.STANDOFF,
     model: Optional[str] = opt.MODEL_3D,
-    pulse: Optional[str] = opt.PULSE_3D,
+    pulse_shape: Optional[str] = opt.PULSE_3D,
     load: Optional[str] = opt.LOAD,
     incidence: Optional[str] = opt.INCIDENCE,
     scale: Optional[float] = opt.SCALE,
@@ -116,7 +116,7 @@ def column_cmd(
         structure={"kind": "column", "section": section, "drums": drums, "height_m": height,
                    "base_width_m": base_width, "top_width_m": top_width, "sides": sides, "density_kg_m3": density,
                    "friction": friction},
-        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse, "load": load,
+        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse_shape, "load": load,
                "incidence": incidence},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio},
         simulation={"engine": "3d", "duration_s": duration, "timestep_s": timestep, "record_every": record_every,

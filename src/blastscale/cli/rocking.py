@@ -56,7 +56,7 @@ def rock_cmd(
     charge: float = opt.CHARGE,
     standoff: float = opt.STANDOFF,
     duration: float = opt.DURATION,
-    pulse: str = opt.PULSE,
+    pulse_shape: str = opt.PULSE,
     restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP),
     scale: Optional[float] = opt.SCALE,
     density_ratio: float = opt.DENSITY_RATIO,
@@ -81,7 +81,7 @@ def rock_cmd(
     sc = scenario_from_flags(
         structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
                    "density_kg_m3": density},
-        blast={"charge_kg": charge, "standoff_m": standoff, "model": blast_model, "pulse": pulse},
+        blast={"charge_kg": charge, "standoff_m": standoff, "model": blast_model, "pulse": pulse_shape},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
                                           "gravity_ratio": gravity_ratio},
         simulation={"engine": "planar", "duration_s": duration, "samples": samples, "gravity_m_s2": gravity,
@@ -89,7 +89,7 @@ def rock_cmd(
     )
     out: dict = {
         "inputs": _inputs(
-            block, charge_kg=charge, standoff_m=standoff, duration_s=duration, pulse=pulse, blast_model=blast_model,
+            block, charge_kg=charge, standoff_m=standoff, duration_s=duration, pulse_shape=pulse_shape, blast_model=blast_model,
             restitution=restitution, gravity_m_s2=gravity, scale=scale,
             density_ratio=density_ratio if scale is not None else None,
             gravity_ratio=gravity_ratio if scale is not None else None,
@@ -123,7 +123,7 @@ def rock_cmd(
         return
     console.print(table(
         f"Prototype: {block.height:g} x {block.width:.4g} m block (alpha = {math.degrees(block.alpha):.4g} deg), "
-        f"{charge:g} kg TNT at {standoff:g} m ({blast_model}, {pulse})", _summary_rows(out["prototype"])))
+        f"{charge:g} kg TNT at {standoff:g} m ({blast_model}, {pulse_shape})", _summary_rows(out["prototype"])))
     if sim is not None:
         me = out["model_experiment"]
         console.print(table(
@@ -152,7 +152,7 @@ def critical_cmd(
     density: float = opt.DENSITY,
     standoff: Optional[float] = typer.Option(None, "--standoff", help="Stand-off R \\[m]: find the critical charge."),
     charge: Optional[float] = typer.Option(None, "--charge", help="Charge W \\[kg TNT]: find the critical stand-off instead."),
-    pulse: str = opt.PULSE,
+    pulse_shape: str = opt.PULSE,
     restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP + " (does not affect the first excursion)"),
     extrapolate: bool = opt_extrapolate(),
     scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also give the model's charge for the critical scenario."),
@@ -178,10 +178,10 @@ def critical_cmd(
     system = RockingSystem.from_block(block, gravity, restitution)
     with one_line_warnings(), console_err.status("searching the critical scenario ...", spinner="dots"):
         if standoff is not None:
-            res = critical_charge(system, standoff, pulse=pulse, blast_model=blast_model, extrapolate=extrapolate)
+            res = critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
         else:
-            res = critical_standoff(system, charge, pulse=pulse, blast_model=blast_model, extrapolate=extrapolate)
-    out = {"inputs": _inputs(block, pulse=pulse, blast_model=blast_model, gravity_m_s2=gravity)}
+            res = critical_standoff(system, charge, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
+    out = {"inputs": _inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
     out.update(res.to_dict())
     bp = blast_parameters(res.charge_kg, res.standoff_m, blast_model, extrapolate=extrapolate)
     out["critical_blast"] = {
@@ -207,7 +207,7 @@ def critical_cmd(
         with console_err.status("computing the P-I diagram ...", spinner="dots"):
             # the curve for the pulse shape searched (impulsive: the triangular curve, whose
             # high-pressure end is the impulsive limit)
-            if pulse == "friedlander":
+            if pulse_shape == "friedlander":
                 pi = pi_diagram(system, n=30, shape="friedlander", decay=bp.pulse("friedlander").decay)
             else:
                 pi = pi_diagram(system, n=30)
@@ -239,7 +239,7 @@ def critical_cmd(
     ]
     if scale is not None:
         rows.append((f"model charge (lambda = {scale:g})", f"{out['model_experiment']['critical_charge_kg']:.6g}", "kg"))
-    console.print(table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse})", rows))
+    console.print(table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", rows))
     if plot:
         console.print(f"plot written to {plot}")
 
@@ -254,7 +254,7 @@ def capacity_cmd(
     standoffs: str = typer.Option("1:20:40:log", "--standoffs",
                                   help="Stand-offs R \\[m]: \"a,b,c\" or \"start:stop:n\" (\":log\" for geometric spacing)."),
     charge: Optional[float] = typer.Option(None, "--charge", help="Charge W \\[kg TNT]: also give its safe (critical) stand-off."),
-    pulse: str = opt.PULSE,
+    pulse_shape: str = opt.PULSE,
     restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP),
     scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also the model's curve, up-scaled."),
     density_ratio: float = opt.DENSITY_RATIO,
@@ -282,7 +282,7 @@ def capacity_cmd(
     if charge is not None and not charge > 0:
         raise BlastscaleInputError(f"charge = {charge:g} kg is out of range: must be > 0 kg")
     system = RockingSystem.from_block(block, gravity, restitution)
-    kw = dict(pulse=pulse, blast_model=blast_model, extrapolate=extrapolate)
+    kw = dict(pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
     with one_line_warnings(), console_err.status(f"capacity at {R.size} stand-offs ...", spinner="dots"):
         curve = capacity_curve(system, R, **kw)
         mcap = None
@@ -293,7 +293,7 @@ def capacity_cmd(
             safe = critical_standoff(system, charge, **kw).standoff_m
     from .. import __version__
 
-    out = {"inputs": _inputs(block, pulse=pulse, blast_model=blast_model, gravity_m_s2=gravity, restitution=restitution,
+    out = {"inputs": _inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity, restitution=restitution,
                              extrapolate=extrapolate),
            "blastscale_version": __version__,
            "method": "first-swing energy criterion after the pulse (docs/capacity.md)"}
@@ -314,7 +314,7 @@ def capacity_cmd(
         return
     from rich.table import Table
 
-    t = Table(title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse})", title_justify="left")
+    t = Table(title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", title_justify="left")
     t.add_column("stand-off R \\[m]", justify="right")
     t.add_column("critical charge W_c \\[kg]", justify="right")
     if mcap is not None:

@@ -53,6 +53,7 @@ def jsonable(obj: Any) -> Any:
 #: new one; everything else (sweep stores, the Python API) knows the new names only.
 LEGACY_KEYS: dict = {
     (None, "blast_model"): "model",
+    (None, "pulse_shape"): "pulse",
     (None, "first_peak_ratio_error"): "peak_ratio_error",
     ("planar", "collapsed"): "overturned",
     ("planar", "collapse_time_s"): "overturn_time_s",

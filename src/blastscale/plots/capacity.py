@@ -42,7 +42,7 @@ def plot_capacity(curve, model=None, *, charge=None, safe_standoff=None, ax=None
         ax.plot([safe_standoff], [charge], "s", color="C3", label=f"{charge:g} kg: safe beyond {safe_standoff:.4g} m")
     ax.set_xlabel("stand-off R [m]")
     ax.set_ylabel("critical charge W_c [kg TNT]")
-    ax.set_title(f"Overturning capacity ({curve.blast_model}, {curve.pulse})", fontsize=10)
+    ax.set_title(f"Overturning capacity ({curve.blast_model}, {curve.pulse_shape})", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     return ax

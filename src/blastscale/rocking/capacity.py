@@ -45,7 +45,7 @@ class CapacityCurve:
     critical_charge_kg: np.ndarray
     evaluations: np.ndarray
     seconds: float
-    pulse: str
+    pulse_shape: str
     blast_model: str
 
     @property
@@ -72,7 +72,7 @@ class CapacityCurve:
             "standoff_m": self.standoff_m.tolist(),
             "critical_charge_kg": _finite_or_none(self.critical_charge_kg),
             "seconds_per_case": self.seconds_per_case,
-            "pulse": self.pulse,
+            "pulse_shape": self.pulse_shape,
             "blast_model": self.blast_model,
         }
 
@@ -81,7 +81,7 @@ def capacity_curve(
     body,
     standoffs,
     *,
-    pulse: str = "friedlander",
+    pulse_shape: str = "friedlander",
     blast_model=DEFAULT_BLAST_MODEL,
     gravity: float | None = None,
     restitution: float | None = None,
@@ -100,10 +100,10 @@ def capacity_curve(
         raise BlastscaleInputError(f"standoffs must be a non-empty 1-D list of stand-offs [m], got shape {R.shape}")
     system = as_rocking_system(body, gravity, restitution)
     t0 = time.perf_counter()
-    W, _, _, nev, _ = _critical_arrays(system, "charge", R, pulse, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel)
+    W, _, _, nev, _ = _critical_arrays(system, "charge", R, pulse_shape, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel)
     dt = time.perf_counter() - t0
     _check_extrapolated(blast_model, R / np.cbrt(W), extrapolate)
-    return CapacityCurve(R, W, nev, dt, pulse, _model_name(blast_model))
+    return CapacityCurve(R, W, nev, dt, pulse_shape, _model_name(blast_model))
 
 
 @dataclass(frozen=True)
@@ -144,7 +144,7 @@ def model_capacity_curve(
     density_ratio: float = 1.0,
     gravity_ratio: float = 1.0,
     *,
-    pulse: str = "friedlander",
+    pulse_shape: str = "friedlander",
     blast_model=DEFAULT_BLAST_MODEL,
     gravity: float | None = None,
     restitution: float | None = None,
@@ -181,7 +181,7 @@ def model_capacity_curve(
         gravity=proto.gravity * sig,
         restitution=proto.coefficient_of_restitution,
     )
-    curve = capacity_curve(m_sys, lam * R, pulse=pulse, blast_model=blast_model, solver=solver, xtol_rel=xtol_rel, extrapolate=extrapolate)
+    curve = capacity_curve(m_sys, lam * R, pulse_shape=pulse_shape, blast_model=blast_model, solver=solver, xtol_rel=xtol_rel, extrapolate=extrapolate)
     ok = np.isfinite(curve.critical_charge_kg)
     up = np.full(R.size, np.nan)
     if np.any(ok):

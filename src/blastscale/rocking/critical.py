@@ -108,11 +108,11 @@ def charge_for_impulse(impulse, standoff, blast_model=DEFAULT_BLAST_MODEL, *, ex
     return W.reshape(np.shape(np.broadcast_arrays(impulse, standoff)[0]))
 
 
-def _critical_arrays(system, searched, fixed, pulse, blast_model, extrapolate, solver, xtol_rel, guess=None):
+def _critical_arrays(system, searched, fixed, pulse_shape, blast_model, extrapolate, solver, xtol_rel, guess=None):
     """Vectorised critical charge (``searched="charge"``, ``fixed`` stand-offs [m]) or stand-off
     (``"standoff"``, ``fixed`` charges [kg]). Returns (x_critical, bracket_lo, bracket_hi,
     evaluations, status) arrays; x is the survive side of the final bracket."""
-    check_pulse_shape(pulse)
+    check_pulse_shape(pulse_shape)
     check_range("xtol_rel", xtol_rel, 1e-14, 0.1)
     by_charge = searched == "charge"
     fixed = np.atleast_1d(np.asarray(fixed, dtype=float))
@@ -133,7 +133,7 @@ def _critical_arrays(system, searched, fixed, pulse, blast_model, extrapolate, s
         def evaluate(idx, u):
             x = np.exp(u if by_charge else -u)
             W, R = (x, fixed[idx]) if by_charge else (fixed[idx], x)
-            return first_swing(system, W, R, pulse=pulse, blast_model=blast_model, extrapolate=extrapolate, solver=solver).margin
+            return first_swing(system, W, R, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate, solver=solver).margin
 
         lo, hi, nev, status = vector_root(evaluate, u0, ulo, uhi, xtol_rel)
     # the search visits many points: pass on one warning of each other kind (extrapolation is
@@ -173,7 +173,7 @@ class CriticalResult:
     charge_kg: float
     standoff_m: float
     searched: str
-    pulse: str
+    pulse_shape: str
     blast_model: str
     relative_tolerance: float
     evaluations: int
@@ -187,7 +187,7 @@ class CriticalResult:
             ),
             "charge_kg": self.charge_kg,
             "standoff_m": self.standoff_m,
-            "pulse": self.pulse,
+            "pulse_shape": self.pulse_shape,
             "blast_model": self.blast_model,
             "relative_tolerance": self.relative_tolerance,
             "evaluations": self.evaluations,
@@ -198,7 +198,7 @@ def critical_charge(
     body,
     standoff: float,
     *,
-    pulse: str = "friedlander",
+    pulse_shape: str = "friedlander",
     blast_model=DEFAULT_BLAST_MODEL,
     gravity: float | None = None,
     restitution: float | None = None,
@@ -220,7 +220,7 @@ def critical_charge(
         The body (a block is converted with ``gravity`` [m/s^2] and ``restitution`` [-]).
     standoff : float
         Stand-off R [m], > 0.
-    pulse : {"friedlander", "triangular", "impulsive"}
+    pulse_shape : {"friedlander", "triangular", "impulsive"}
         Reflected pulse shape (paper Eqs. 1, 3, impulsive limit).
     blast_model : str
         Blast model, ``"kingery-bulmash"`` (Swisdak 1994) or ``"masi2021"`` (paper App. A);
@@ -258,14 +258,14 @@ def critical_charge(
     R = float(check_positive("standoff", standoff, "m"))
     if guess is not None:
         check_positive("guess", guess, "kg")
-    return _critical(body, "charge", R, pulse, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
+    return _critical(body, "charge", R, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
 
 
 def critical_standoff(
     body,
     charge: float,
     *,
-    pulse: str = "friedlander",
+    pulse_shape: str = "friedlander",
     blast_model=DEFAULT_BLAST_MODEL,
     gravity: float | None = None,
     restitution: float | None = None,
@@ -282,14 +282,14 @@ def critical_standoff(
     W = float(check_positive("charge", charge, "kg"))
     if guess is not None:
         check_positive("guess", guess, "m")
-    return _critical(body, "standoff", W, pulse, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
+    return _critical(body, "standoff", W, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
 
 
-def _critical(body, searched, fixed, pulse, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate):
+def _critical(body, searched, fixed, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate):
     system = as_rocking_system(body, gravity, restitution)
     by_charge = searched == "charge"
     x, blo, bhi, nev, status = _critical_arrays(
-        system, searched, fixed, pulse, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel, guess
+        system, searched, fixed, pulse_shape, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel, guess
     )
     if status[0] != 0:
         zlo, zhi = _z_range(blast_model, extrapolate)
@@ -303,10 +303,10 @@ def _critical(body, searched, fixed, pulse, blast_model, gravity, restitution, s
         )
     W, R = (float(x[0]), fixed) if by_charge else (fixed, float(x[0]))
     _check_extrapolated(blast_model, [R / np.cbrt(W)], extrapolate)
-    return CriticalResult(W, R, searched, pulse, _model_name(blast_model), xtol_rel, int(nev[0]), (float(blo[0]), float(bhi[0])))
+    return CriticalResult(W, R, searched, pulse_shape, _model_name(blast_model), xtol_rel, int(nev[0]), (float(blo[0]), float(bhi[0])))
 
 
-def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse: str = "friedlander",
+def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse_shape: str = "friedlander",
                                  blast_model=DEFAULT_BLAST_MODEL, rel: float = 1e-8, solver: RockingSolver | None = None,
                                  gravity: float | None = None, restitution: float | None = None) -> float:
     """The slow reference: critical charge [kg] by bisection in ln W on full simulations (to rest:
@@ -317,7 +317,7 @@ def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse: 
     solver = solver or DEFAULT_SOLVER
 
     def over(W):
-        p = blast_parameters(W, standoff, blast_model).pulse(pulse)
+        p = blast_parameters(W, standoff, blast_model).pulse(pulse_shape)
         return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).collapsed
 
     lo, hi = guess / 1.5, guess * 1.5

@@ -259,7 +259,7 @@ def _system_arrays(systems, n: int):
     return tuple(np.broadcast_to(vals[:, j], (n,)) for j in range(4))
 
 
-def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse: str = "friedlander", *,
+def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse_shape: str = "friedlander", *,
                       solver: RockingSolver | None = None) -> FirstSwing:
     """:class:`FirstSwing` of n bodies given as arrays under n reflected blast pulses (vectorised:
     the pulse phases in one compiled kernel call, the first free swings in numpy).
@@ -272,30 +272,30 @@ def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse: s
     blast : BlastParameters
         Reflected pressure [Pa], positive duration [s], Friedlander decay [-] and reflected
         impulse [Pa*s] of the n cases (:func:`~blastscale.blast.blast_parameters` on arrays).
-    pulse : {"friedlander", "triangular", "impulsive"}
+    pulse_shape : {"friedlander", "triangular", "impulsive"}
         Pulse shape (paper Eqs. 1, 3, impulsive limit).
     solver : RockingSolver, optional
         Solver of the pulse phase (default rtol 1e-10, atol 1e-12).
     """
-    check_pulse_shape(pulse)
+    check_pulse_shape(pulse_shape)
     n = np.size(blast.reflected_impulse)
     a, e, p, q = (np.broadcast_to(np.asarray(x, dtype=float), (n,)) for x in (alpha, restitution, frequency, load_ratio))
     par = np.zeros((n, 3))
     w0 = np.zeros(n)
-    if pulse == "friedlander":
+    if pulse_shape == "friedlander":
         par[:, 0] = q * blast.reflected_pressure
         par[:, 1] = p * blast.positive_duration
         par[:, 2] = blast.friedlander_decay
-    elif pulse == "triangular":
+    elif pulse_shape == "triangular":
         par[:, 0] = q * blast.reflected_pressure
         par[:, 1] = p * (2.0 * blast.reflected_impulse / blast.reflected_pressure)
     else:  # impulsive: theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
         w0[:] = q * p * blast.reflected_impulse * np.cos(a)
-    kind = np.full(n, PULSE_CODES[pulse], dtype=np.int64)
+    kind = np.full(n, PULSE_CODES[pulse_shape], dtype=np.int64)
     return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par)
 
 
-def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
+def first_swing(systems, charge, standoff, *, pulse_shape: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
                 extrapolate: bool = False, solver: RockingSolver | None = None) -> FirstSwing:
     """Outcome and largest rotation of each body at rest under the reflected pulse of
     ``charge`` [kg TNT] at ``standoff`` [m], at any time (first-swing energy criterion and peak;
@@ -307,7 +307,7 @@ def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", blast_
         One body for every case, or one per case.
     charge, standoff : array_like
         Charges W [kg] and stand-offs R [m], broadcast to n cases.
-    pulse, blast_model, extrapolate, solver
+    pulse_shape, blast_model, extrapolate, solver
         As in :func:`critical_charge`.
 
     Returns
@@ -315,16 +315,16 @@ def first_swing(systems, charge, standoff, *, pulse: str = "friedlander", blast_
     FirstSwing
         ``collapsed`` (n,), ``max_rotation`` (n,) [rad] (pi/2 where it overturns), ``margin``.
     """
-    check_pulse_shape(pulse)
+    check_pulse_shape(pulse_shape)
     W, R = np.broadcast_arrays(np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
                                np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float))
     W, R = W.ravel(), R.ravel()
     a, e, p, q = _system_arrays(systems, W.size)
     bp = blast_parameters(W, R, blast_model, extrapolate=extrapolate)
-    return first_swing_blast(a, e, p, q, bp, pulse, solver=solver)
+    return first_swing_blast(a, e, p, q, bp, pulse_shape, solver=solver)
 
 
-def overturns(systems, charge, standoff, *, pulse: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
+def overturns(systems, charge, standoff, *, pulse_shape: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
               extrapolate: bool = False, solver: RockingSolver | None = None) -> np.ndarray:
     """Whether each body overturns, at any time, under the reflected pulse of ``charge`` [kg TNT]
     at ``standoff`` [m] (first-swing energy criterion; arrays of n cases, vectorised; the
@@ -334,5 +334,5 @@ def overturns(systems, charge, standoff, *, pulse: str = "friedlander", blast_mo
     -------
     ndarray of bool, shape (n,)
     """
-    return first_swing(systems, charge, standoff, pulse=pulse, blast_model=blast_model, extrapolate=extrapolate,
+    return first_swing(systems, charge, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate,
                        solver=solver).collapsed

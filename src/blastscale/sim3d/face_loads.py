@@ -55,7 +55,7 @@ class FaceLoadStrategy:
         Charge centre, world frame [m].
     blast_model : str
         "kingery-bulmash" or "masi2021" (side-on values then from Kingery-Bulmash, warned).
-    pulse : str
+    pulse_shape : str
         "friedlander", "triangular" or "impulsive".
     incidence : str
         "ufc" or "closed-form".
@@ -75,14 +75,14 @@ class FaceLoadStrategy:
     """
 
     def __init__(self, structure, faces, *, charge_kg, charge_position, blast_model="kingery-bulmash",
-                 pulse="friedlander", incidence="ufc", extrapolate=False, method="B"):
+                 pulse_shape="friedlander", incidence="ufc", extrapolate=False, method="B"):
         if not hasattr(structure, "bodies"):
             raise BlastscaleInputError(f"structure = {structure!r} is not a structure (no .bodies)")
         if not faces:
             raise BlastscaleInputError("faces = () is out of range: at least one loaded face is needed")
         self.W = float(check_positive("charge", charge_kg, "kg"))
         self.charge_position = np.asarray(charge_position, dtype=float).reshape(3)
-        self.shape = check_pulse_shape(pulse)
+        self.shape = check_pulse_shape(pulse_shape)
         self.incidence = check_incidence(incidence)
         self.blast_model = get_blast_model(blast_model)
         self.incident_model = incident_source(self.blast_model)
@@ -202,25 +202,25 @@ def _charge_position(structure, standoff_m) -> np.ndarray:
     return np.array([float(structure.front_x) - R, 0.0, 0.0])
 
 
-def _face_load(structure, faces, blast, pulse, incidence, extrapolate, method) -> FaceLoadStrategy:
+def _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, method) -> FaceLoadStrategy:
     """The per-face load of a system's blast parameters: the charge, stand-off and blast model are
     ``blast``'s; each face's blast is evaluated at its own distance (that is the method)."""
     bp = check_blast(blast)
     return FaceLoadStrategy(structure, faces, charge_kg=bp.charge_kg,
                             charge_position=_charge_position(structure, bp.standoff_m), blast_model=bp.blast_model,
-                            pulse=pulse, incidence=incidence, extrapolate=extrapolate, method=method)
+                            pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate, method=method)
 
 
-def method_b(structure, blast, *, pulse="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
+def method_b(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
     """Method B: each body's front (``load_face``) with its own distance, arrival, duration and
     incidence, for the charge, stand-off and blast model of ``blast``
     (:class:`~blastscale.blast.BlastParameters`)."""
     faces = [(i, b.load_face) for i, b in enumerate(structure.bodies)]
-    return _face_load(structure, faces, blast, pulse, incidence, extrapolate, "B")
+    return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "B")
 
 
-def method_c(structure, blast, *, pulse="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
+def method_c(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
     """Method C: every exposed face (``in_contact`` False) of every body, each with its own blast,
     for the charge, stand-off and blast model of ``blast`` (:class:`~blastscale.blast.BlastParameters`)."""
     faces = [(i, f) for i, b in enumerate(structure.bodies) for f in b.faces if not f.in_contact]
-    return _face_load(structure, faces, blast, pulse, incidence, extrapolate, "C")
+    return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "C")

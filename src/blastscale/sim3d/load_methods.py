@@ -22,7 +22,7 @@ def register_load_method(name: str, factory) -> None:
     LOAD_METHODS[str(name)] = factory
 
 
-def make_load(method: str, structure, blast, *, pulse: str = "friedlander", incidence: str = "ufc",
+def make_load(method: str, structure, blast, *, pulse_shape: str = "friedlander", incidence: str = "ufc",
               extrapolate: bool = False) -> LoadStrategy:
     """The blast load of a system's charge on its structure.
 
@@ -39,7 +39,7 @@ def make_load(method: str, structure, blast, *, pulse: str = "friedlander", inci
         and stand-off R [m], or a design's ``prototype`` / ``model``): Method A uses them as they
         are (the reflected pulse at R, its arrival time); B and C take the charge, the stand-off
         and the blast model from them and evaluate the model at each face's own distance.
-    pulse : str
+    pulse_shape : str
         "friedlander", "triangular" or "impulsive".
     incidence : str
         Angle-of-incidence model for B and C ("ufc" or "closed-form").
@@ -60,7 +60,7 @@ def make_load(method: str, structure, blast, *, pulse: str = "friedlander", inci
     """
     if method not in LOAD_METHODS:
         raise BlastscaleInputError(f"load method = {method!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
-    return LOAD_METHODS[method](structure, blast, pulse=pulse, incidence=incidence, extrapolate=extrapolate)
+    return LOAD_METHODS[method](structure, blast, pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate)
 
 
 def arrival_spread_similarity(prototype_load, model_load, factors) -> dict:

@@ -150,12 +150,12 @@ def check_blast(blast):
     return blast
 
 
-def method_a(structure, blast, *, pulse="friedlander", incidence="ufc", extrapolate=False) -> MethodA:
+def method_a(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False) -> MethodA:
     """Method A from a system's blast parameters (:class:`~blastscale.blast.BlastParameters`): the
-    reflected pulse of shape ``pulse`` at the stand-off, arriving at ``blast.arrival_time``
+    reflected pulse of shape ``pulse_shape`` at the stand-off, arriving at ``blast.arrival_time``
     (normal incidence; ``incidence`` and ``extrapolate`` do not apply: nothing is evaluated here)."""
     bp = check_blast(blast)
-    return MethodA(structure, bp.pulse(pulse), arrival_time=float(bp.arrival_time))
+    return MethodA(structure, bp.pulse(pulse_shape), arrival_time=float(bp.arrival_time))
 
 
 class PerturbedLoad:

@@ -109,7 +109,7 @@ def _3d_supports(structure) -> Optional[str]:
 def _settings_3d(ctx: Context) -> dict:
     """The 3D settings of a study, shared by the 3D and the ensemble engines."""
     sc = ctx.scenario
-    return dict(load=sc.blast.load, pulse=sc.blast.pulse, incidence=sc.blast.incidence,
+    return dict(load=sc.blast.load, pulse_shape=sc.blast.pulse, incidence=sc.blast.incidence,
                 contact=contact_settings(sc, ctx.structure), duration=sc.simulation.duration_s,
                 record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
 
@@ -163,5 +163,5 @@ def critical_charge_of(sc: Scenario, structure):
 
     sim = sc.simulation
     system = RockingSystem.from_block(structure, sim.gravity_m_s2, sim.restitution)
-    return critical_charge(system, sc.blast.standoff_m, pulse=sc.blast.pulse, blast_model=sc.blast.model,
+    return critical_charge(system, sc.blast.standoff_m, pulse_shape=sc.blast.pulse, blast_model=sc.blast.model,
                            extrapolate=sc.blast.extrapolate)
