@@ -137,7 +137,7 @@ def test_one_pulse_shape_vocabulary_for_every_entry_point():
             check("tabulated")
         assert str(err.value) == msg
     assert [bp.pulse(s).kind for s in PULSE_SHAPES] == [fl.pulses(s).kind for s in PULSE_SHAPES] == list(PULSE_SHAPES)
-    assert BlastSpec.model_json_schema()["properties"]["pulse"]["enum"] == list(PULSE_SHAPES)
+    assert BlastSpec.model_json_schema()["properties"]["pulse_shape"]["enum"] == list(PULSE_SHAPES)
 
 
 def test_blast_package_exports_every_public_name():

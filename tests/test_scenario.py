@@ -50,6 +50,9 @@ MALFORMED = [
      "structure.friction"),
     ("bad enum pulse", GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\npulse = "square"'), "blast.pulse"),
     ("bad enum kind", GOOD.replace('kind = "block"', 'kind = "tower"'), "structure.kind"),
+    ("bad pulse shape", GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\npulse_shape = "square"'),
+     "blast.pulse_shape"),
+    ("bad blast_model", GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\nblast_model = "kb"'), "blast.blast_model"),
     ("bad blast model", GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\nmodel = "kb"'), "blast.model"),
     ("bad material", GOOD.replace("length = 0.005", 'length = 0.005\nmodel_material = "cheese"'),
      "scale.model_material"),
@@ -98,7 +101,7 @@ def test_missing_file_and_folder_are_one_line_errors(tmp_path):
 def test_default_is_the_paper_case_and_round_trips_through_toml(tmp_path):
     sc = Scenario.default()
     assert (sc.structure.height_m, sc.structure.alpha_deg, sc.structure.density_kg_m3) == (10.0, 15.0, 2000.0)
-    assert (sc.blast.charge_kg, sc.blast.standoff_m, sc.blast.model) == (50.0, 2.0, "masi2021")
+    assert (sc.blast.charge_kg, sc.blast.standoff_m, sc.blast.blast_model) == (50.0, 2.0, "masi2021")
     assert sc.scale.length == 1 / 200 and sc.structure.friction == 0.7 and sc.density_ratio == 1.0
     path = tmp_path / "s.toml"
     path.write_text(sc.to_toml())
@@ -109,7 +112,7 @@ def test_minimal_file_takes_the_paper_defaults(tmp_path):
     path = tmp_path / "s.toml"
     path.write_text(GOOD)
     sc = load_scenario(path)
-    assert sc.blast.pulse == "friedlander" and sc.blast.load == "A" and sc.scale.gravity_ratio == 1.0
+    assert sc.blast.pulse_shape == "friedlander" and sc.blast.load == "A" and sc.scale.gravity_ratio == 1.0
     assert sc.simulation.engine == "both" and sc.simulation.duration_s == 5.0
     assert sc.simulation.contact.time_constant_s is None  # left to the engine's structure-derived default
 
@@ -213,3 +216,58 @@ def test_contact_ranges_are_the_engines_own():
                 except BlastscaleInputError:
                     lib_ok = False
                 assert scen_ok == lib_ok == ok, (key, value, scen_ok, lib_ok)
+
+
+def test_deprecated_scenario_keys_are_read_and_the_new_ones_written(tmp_path):
+    """``[blast] model``, ``[blast] pulse`` and ``[scale] model_material`` (the names before the
+    glossary) are still read, in files, ``with_values`` (dotted and bare) and ``--set``; what
+    blastscale writes uses ``blast_model``, ``pulse_shape`` and ``specimen_material``."""
+    from blastscale.scenario.specs import LEGACY_SCENARIO_KEYS
+
+    assert LEGACY_SCENARIO_KEYS == {"blast.model": "blast.blast_model", "blast.pulse": "blast.pulse_shape",
+                                    "scale.model_material": "scale.specimen_material"}
+    old = GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\nmodel = "kingery-bulmash"\npulse = "triangular"')
+    old = old.replace("length = 0.005", 'length = 0.005\nmodel_material = "balsa"')
+    new = old.replace("model = ", "blast_model = ").replace("pulse = ", "pulse_shape = ").replace(
+        "model_material = ", "specimen_material = ")
+    (tmp_path / "old.toml").write_text(old)
+    (tmp_path / "new.toml").write_text(new)
+    a, b = load_scenario(tmp_path / "old.toml"), load_scenario(tmp_path / "new.toml")
+    assert a == b and a.blast.blast_model == "kingery-bulmash" and a.blast.pulse_shape == "triangular"
+    assert a.scale.specimen_material == "balsa"
+    text = a.to_toml()
+    assert "blast_model = " in text and "pulse_shape = " in text and "specimen_material = " in text
+    assert "\nmodel = " not in text and "\npulse = " not in text and "model_material" not in text
+    base = Scenario.default()
+    for key, new_key in (("blast.model", "blast.blast_model"), ("model", "blast.blast_model"),
+                         ("blast.pulse", "blast.pulse_shape"), ("pulse", "blast.pulse_shape"),
+                         ("scale.model_material", "scale.specimen_material"),
+                         ("model_material", "scale.specimen_material")):
+        assert base.resolve_key(key) == new_key
+    c = base.with_values({"blast.model": "kingery-bulmash", "pulse": "impulsive", "model_material": "balsa"})
+    assert (c.blast.blast_model, c.blast.pulse_shape, c.scale.specimen_material) == ("kingery-bulmash", "impulsive",
+                                                                                      "balsa")
+    assert c.scale.density_ratio is None  # the material replaced the density ratio (exclusive keys)
+
+
+def test_deprecated_cli_set_and_flags(capsys, tmp_path):
+    """``--set blast.model=...`` and ``--set pulse=...`` still work; ``--blast-model`` and
+    ``--pulse-shape`` are the new names of ``--model`` and ``--pulse``."""
+    import json
+
+    def js(*argv):
+        with pytest.raises(SystemExit) as e:
+            main(list(argv))
+        out = capsys.readouterr()
+        assert (e.value.code or 0) == 0, out.err
+        return json.loads(out.out)
+
+    a = js("run", "--set", "blast.model=kingery-bulmash", "--set", "pulse=impulsive", "--set", "engine=planar",
+           "--set", "duration_s=0.2", "--set", "critical_charge=false", "--json")
+    assert a["scenario"]["blast"]["blast_model"] == "kingery-bulmash" == a["scenario"]["blast"]["model"]
+    assert a["scenario"]["blast"]["pulse_shape"] == "impulsive" == a["scenario"]["blast"]["pulse"]
+    b = js("critical", "--height", "10", "--alpha-deg", "15", "--standoff", "2", "--blast-model", "masi2021", "--pulse-shape",
+           "triangular", "--json")
+    c = js("critical", "--height", "10", "--alpha-deg", "15", "--standoff", "2", "--model", "masi2021", "--pulse", "triangular", "--json")
+    assert b["critical_charge_kg"] == c["critical_charge_kg"] and b["blast_model"] == "masi2021" == b["model"]
+    assert b["pulse_shape"] == "triangular" == b["pulse"]

@@ -42,8 +42,8 @@ def block3d_output(result, contact, incidence: Optional[str] = None) -> dict:
     scale = None if d is None else d.scale
     out: dict = {"inputs": {
         "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "density_kg_m3": block.density,
-        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "pulse_shape": sc.blast.pulse,
-        "model": sc.blast.model, "duration_s": sc.simulation.duration_s, "load": sc.blast.load, "incidence": incidence,
+        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "pulse_shape": sc.blast.pulse_shape,
+        "blast_model": sc.blast.blast_model, "duration_s": sc.simulation.duration_s, "load": sc.blast.load, "incidence": incidence,
         "scale": scale, "density_ratio": None if d is None else d.density_ratio,
         "gravity_ratio": None if d is None else d.gravity_ratio, "gravity_m_s2": sc.simulation.gravity_m_s2,
     }, "contact": contact.to_dict()}
@@ -84,7 +84,7 @@ def block3d_cmd(
     density_ratio: float = opt.DENSITY_RATIO,
     gravity_ratio: float = opt.GRAVITY_RATIO,
     gravity: float = opt.GRAVITY,
-    model: Optional[str] = opt.MODEL_3D,
+    blast_model: Optional[str] = opt.MODEL_3D,
     record_every: Optional[int] = opt.RECORD_EVERY,
     plot: Optional[str] = typer.Option(None, "--plot", help="Write histories and pose snapshots to this image file."),
     as_json: bool = opt.JSON,
@@ -109,7 +109,7 @@ def block3d_cmd(
     sc = scenario_from_flags(
         structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
                    "density_kg_m3": density, "friction": friction},
-        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse_shape, "load": load,
+        blast={"charge_kg": charge, "standoff_m": standoff, "blast_model": blast_model, "pulse_shape": pulse_shape, "load": load,
                "incidence": incidence},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
                                           "gravity_ratio": gravity_ratio},
@@ -132,7 +132,7 @@ def block3d_cmd(
         return
     block, b = result.structure, sc.blast
     console.print(table(f"Prototype: {block.height:g} x {block.width:.4g} x {block.depth:g} m block, "
-                        f"{b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.model}, {b.pulse}, "
+                        f"{b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.blast_model}, {b.pulse_shape}, "
                         f"mu = {sc.structure.friction:g})", _rows(out["prototype"])))
     if scale is not None:
         console.print(table(f"Model lambda = {scale:g}, up-scaled to prototype units "

@@ -44,8 +44,8 @@ def column_output(result, contact, incidence: Optional[str] = None, timestep: Op
     ``model_experiment``; ``ensemble`` when run."""
     sc, d = result.scenario, result.design
     out: dict = {"inputs": {
-        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "model": sc.blast.model,
-        "pulse_shape": sc.blast.pulse, "load": sc.blast.load, "incidence": incidence, "friction": sc.structure.friction,
+        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "blast_model": sc.blast.blast_model,
+        "pulse_shape": sc.blast.pulse_shape, "load": sc.blast.load, "incidence": incidence, "friction": sc.structure.friction,
         "duration_s": sc.simulation.duration_s, "timestep_s": timestep, "jacobian": contact.jacobian,
         "scale": None if d is None else d.scale, "density_ratio": None if d is None else d.density_ratio,
     }, "structure": result.structure.describe()}
@@ -78,7 +78,7 @@ def column_cmd(
     friction: Optional[float] = opt.FRICTION_3D,
     charge: float = opt.CHARGE,
     standoff: float = opt.STANDOFF,
-    model: Optional[str] = opt.MODEL_3D,
+    blast_model: Optional[str] = opt.MODEL_3D,
     pulse_shape: Optional[str] = opt.PULSE_3D,
     load: Optional[str] = opt.LOAD,
     incidence: Optional[str] = opt.INCIDENCE,
@@ -116,7 +116,7 @@ def column_cmd(
         structure={"kind": "column", "section": section, "drums": drums, "height_m": height,
                    "base_width_m": base_width, "top_width_m": top_width, "sides": sides, "density_kg_m3": density,
                    "friction": friction},
-        blast={"charge_kg": charge, "standoff_m": standoff, "model": model, "pulse": pulse_shape, "load": load,
+        blast={"charge_kg": charge, "standoff_m": standoff, "blast_model": blast_model, "pulse_shape": pulse_shape, "load": load,
                "incidence": incidence},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio},
         simulation={"engine": "3d", "duration_s": duration, "timestep_s": timestep, "record_every": record_every,
@@ -138,7 +138,7 @@ def column_cmd(
         return
     col, b = result.structure, sc.blast
     title = (f"Prototype: {col.drums}-drum {col.section} column, {col.height:g} m, {col.base_width:g} -> "
-             f"{col.top_width:g} m; {b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.model}, {b.pulse}, load {b.load}, "
+             f"{col.top_width:g} m; {b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.blast_model}, {b.pulse_shape}, load {b.load}, "
              f"mu = {sc.structure.friction:g})")
     console.print(table(title, _rows(out["prototype"])))
     if scale is not None:

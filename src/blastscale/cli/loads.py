@@ -21,7 +21,7 @@ from .options import MODEL_HELP, block_from_options
 def blast_cmd(
     charge: float = typer.Option(..., "--charge", help="TNT-equivalent charge W \\[kg]."),
     standoff: float = typer.Option(..., "--standoff", help="Stand-off distance R \\[m]."),
-    blast_model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP),
+    blast_model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", "--blast-model", help=MODEL_HELP),
     extrapolate: bool = typer.Option(False, "--extrapolate", help="Evaluate fits outside their range (warns)."),
     incidence_deg: Optional[float] = typer.Option(
         None, "--incidence-deg", help="Angle of incidence of a face \\[deg], 0 (facing the charge) to 180: adds the "
@@ -113,7 +113,7 @@ def design_cmd(
     ),
     gravity_ratio: float = typer.Option(1.0, "--gravity-ratio", help="g_model/g_prototype \\[-]."),
     law: str = typer.Option("general", "--law", help="general (paper Eq. 8) or hopkinson-cranz."),
-    blast_model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP),
+    blast_model: str = typer.Option(DEFAULT_BLAST_MODEL, "--model", "--blast-model", help=MODEL_HELP),
     height: Optional[float] = typer.Option(None, "--height", help="Prototype block height 2h \\[m]."),
     width: Optional[float] = typer.Option(None, "--width", help="Prototype block width 2b \\[m]."),
     alpha_deg: Optional[float] = typer.Option(None, "--alpha-deg", help="Slenderness angle \\[deg] (with --height)."),

@@ -78,12 +78,12 @@ def _print_result(result) -> None:
                       f"[bold]{format_charge(m['charge_kg'])} TNT at {m['standoff_m']:.4g} m[/]")
     if s["planar"] is not None:
         pl = s["planar"]
-        console.print(_compare_table(f"Planar rocking ({sc.blast.pulse} pulse, {sc.simulation.duration_s:g} s)",
+        console.print(_compare_table(f"Planar rocking ({sc.blast.pulse_shape} pulse, {sc.simulation.duration_s:g} s)",
                                      pl["prototype"], pl["model"]))
         if pl["similarity"] is not None:
             console.print("similarity: " + ", ".join(f"{k} {fmt_value(v, '.3g')}" for k, v in pl["similarity"].items()))
     if s["critical"] is not None:
-        console.print(f"critical charge at {sc.blast.standoff_m:g} m (planar, {sc.blast.pulse}): "
+        console.print(f"critical charge at {sc.blast.standoff_m:g} m (planar, {sc.blast.pulse_shape}): "
                       f"[bold]{result.critical.charge_kg:.4g} kg[/] ({result.critical.evaluations} simulations)")
     if s["3d"] is not None:
         r3 = s["3d"]
@@ -109,7 +109,7 @@ def run_cmd(
     values: list[str] = typer.Option(
         [], "--set", metavar="KEY=VALUE", show_default=False,
         help="Override a scenario value, e.g. --set blast.charge_kg=60 --set friction=0.5 (repeatable)."),
-    model: Optional[str] = typer.Option(None, "--model", show_default=False,
+    blast_model: Optional[str] = typer.Option(None, "--model", "--blast-model", show_default=False,
                                         help="Blast model, kingery-bulmash or masi2021 (default: the scenario's)."),
     charge: Optional[float] = typer.Option(None, "--charge", show_default=False,
                                            help="Prototype charge W \\[kg] (default: the scenario's)."),
@@ -126,7 +126,7 @@ def run_cmd(
 
     sc = Scenario.default() if scenario is None else load_scenario(scenario)
     overrides = _parse_set(values)
-    for key, v in (("blast.model", model), ("blast.charge_kg", charge), ("structure.friction", friction),
+    for key, v in (("blast.blast_model", blast_model), ("blast.charge_kg", charge), ("structure.friction", friction),
                    ("simulation.duration_s", duration)):
         if v is not None:
             overrides[key] = v

@@ -81,12 +81,12 @@ DENSITY = typer.Option(2000.0, "--density", help="Density rho \\[kg/m^3].")
 CHARGE = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W \\[kg].")
 STANDOFF = typer.Option(..., "--standoff", help="Prototype stand-off R \\[m].")
 DURATION = typer.Option(5.0, "--duration", help="Simulated time after the shock arrival \\[s] (prototype).")
-PULSE = typer.Option("friedlander", "--pulse", help=PULSE_HELP)
+PULSE = typer.Option("friedlander", "--pulse", "--pulse-shape", help=PULSE_HELP)
 SCALE = typer.Option(None, "--scale", help="Geometric scale lambda \\[-] (0.005 or 1/200): also design, run and up-scale the model.")
 DENSITY_RATIO = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-].")
 GRAVITY_RATIO = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype \\[-] (centrifuge).")
 GRAVITY = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2].")
-MODEL = typer.Option(DEFAULT_BLAST_MODEL, "--model", help=MODEL_HELP)
+MODEL = typer.Option(DEFAULT_BLAST_MODEL, "--model", "--blast-model", help=MODEL_HELP)
 JSON = typer.Option(False, "--json", help="Print one JSON object instead of tables.")
 
 # the options of the 3D commands (block3d, column) whose defaults are the scenario's
@@ -105,8 +105,8 @@ LOAD = typer.Option(None, "--load", help="Load method: A (the paper's Method A: 
 INCIDENCE = typer.Option(None, "--incidence", help="Angle-of-incidence model of loads B and C (default "
                                                    f"{scenario_default('blast', 'incidence')}; see "
                                                    "blastscale.blast.incidence).")
-MODEL_3D = typer.Option(None, "--model", help=MODEL_HELP)
-PULSE_3D = typer.Option(None, "--pulse", help=f"{PULSE_HELP} Default {scenario_default('blast', 'pulse')}.")
+MODEL_3D = typer.Option(None, "--model", "--blast-model", help=MODEL_HELP)
+PULSE_3D = typer.Option(None, "--pulse", "--pulse-shape", help=f"{PULSE_HELP} Default {scenario_default('blast', 'pulse_shape')}.")
 DURATION_3D = typer.Option(None, "--duration", help="Simulated time after the shock arrival \\[s] (prototype; default "
                                                     f"{scenario_default('simulation', 'duration_s'):g} s, the "
                                                     "scenario's).")

@@ -81,7 +81,7 @@ def rock_cmd(
     sc = scenario_from_flags(
         structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
                    "density_kg_m3": density},
-        blast={"charge_kg": charge, "standoff_m": standoff, "model": blast_model, "pulse": pulse_shape},
+        blast={"charge_kg": charge, "standoff_m": standoff, "blast_model": blast_model, "pulse_shape": pulse_shape},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
                                           "gravity_ratio": gravity_ratio},
         simulation={"engine": "planar", "duration_s": duration, "samples": samples, "gravity_m_s2": gravity,

@@ -54,6 +54,7 @@ def jsonable(obj: Any) -> Any:
 LEGACY_KEYS: dict = {
     (None, "blast_model"): "model",
     (None, "pulse_shape"): "pulse",
+    (None, "specimen_material"): "model_material",
     (None, "first_peak_ratio_error"): "peak_ratio_error",
     ("planar", "collapsed"): "overturned",
     ("planar", "collapse_time_s"): "overturn_time_s",

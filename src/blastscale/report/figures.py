@@ -38,7 +38,7 @@ def _pulses(result):
         systems.append((d.specimen, "model", "us", 1e6, "MPa", 1e-6))
     fig, axes = plt.subplots(1, len(systems), figsize=(5.5 * len(systems), 3.6), layout="constrained", squeeze=False)
     for ax, (bp, who, tu, tf, pu, pf) in zip(axes[0], systems):
-        p = bp.pulse(sc.blast.pulse)
+        p = bp.pulse(sc.blast.pulse_shape)
         dur = p.duration if np.isfinite(p.duration) and p.duration > 0 else bp.positive_duration
         t = np.linspace(0.0, 1.2 * dur, 400)
         ax.plot(t * tf, np.asarray(p.pressure(t)) * pf, color="C0" if who == "prototype" else "C1")

@@ -158,7 +158,7 @@ def _loads(result) -> str:
                  b.reflected_pressure, "Pa"), ("reflected impulse", b.reflected_impulse, "Pa s"),
                 ("positive duration", b.positive_duration, "s"), ("arrival time", b.arrival_time, "s")]
         return (_table(("quantity", "prototype", "unit"), rows)
-                + f"<p>Blast model: <b>{_e(b.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse)}</b>, load "
+                + f"<p>Blast model: <b>{_e(b.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load "
                   f"method <b>{_e(result.scenario.blast.load)}</b>.</p>")
     p, m, f = d.prototype, d.specimen, d.factors
     rows = [
@@ -170,7 +170,7 @@ def _loads(result) -> str:
     ]
     note = ("<p>Only the impulse follows the scaling law exactly (delivered = required); the peak pressure and "
             "the duration do not, which is harmless while the load is impulsive (next section). Blast model: "
-            f"<b>{_e(p.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse)}</b>, load method "
+            f"<b>{_e(p.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load method "
             f"<b>{_e(result.scenario.blast.load)}</b>. {_e(d.root_note)}</p>")
     return _table(("quantity", "prototype", "model", "delivered ratio", "required ratio", "unit"), rows) + note
 

@@ -37,7 +37,7 @@ class Slip:
 
 
 def _masi(sc, d) -> bool:
-    return sc.blast.model == "masi2021"
+    return sc.blast.blast_model == "masi2021"
 
 
 def _near(x: float, y: float, rel: float = 1e-3) -> bool:
@@ -83,7 +83,7 @@ SLIPS: tuple[Slip, ...] = (
          "the law's gamma lambda^(3/2) = 0.035 % and lambda = 0.5 %",
          lambda sc, d: _scaled(sc, d) and _near(sc.scale.length, 1 / 200)),
     Slip(6, "Eq. (3), triangular pulse", "the triangle must end at 2 i_ro / P_ro, not t_o, to carry the impulse",
-         lambda sc, d: sc.blast.pulse == "triangular"),
+         lambda sc, d: sc.blast.pulse_shape == "triangular"),
     Slip(7, "Tables 1 and 2", "the linear and angular acceleration factors are swapped: linear acceleration "
          "scales as varsigma, angular acceleration as varsigma / lambda", _scaled),
     Slip(8, "Eq. for lambda_t", "lambda_t = sqrt(lambda / varsigma), not sqrt(varsigma lambda) (identical for "

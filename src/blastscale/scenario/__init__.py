@@ -19,13 +19,13 @@ paper's default. The paper's 10 m block at 1/200::
     [blast]
     charge_kg = 50.0        # TNT equivalent
     standoff_m = 2.0
-    model = "masi2021"      # blast model: "masi2021" | "kingery-bulmash"
+    blast_model = "masi2021"   # "masi2021" | "kingery-bulmash"
     load = "A"              # load method (3D): "A" | "B" | "C"
-    pulse = "friedlander"   # "friedlander" | "triangular" | "impulsive"
+    pulse_shape = "friedlander"   # "friedlander" | "triangular" | "impulsive"
 
     [scale]
     length = "1/200"        # lambda (a number or a fraction)
-    model_material = "marble"   # or density_ratio = 1.0 (gamma); default gamma = 1
+    specimen_material = "marble"   # or density_ratio = 1.0 (gamma); default gamma = 1
     gravity_ratio = 1.0
 
     [simulation]

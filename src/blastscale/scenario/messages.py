@@ -39,6 +39,8 @@ def _model_at(loc: tuple, root: type[BaseModel], kinds: dict) -> tuple[type[Base
             model = kinds[part]
             continue
         fields = getattr(model, "model_fields", {})
+        if part not in fields:  # a deprecated key (a field's validation alias): its field
+            part = next((n for n, f in fields.items() if part in getattr(f.validation_alias, "choices", ())), part)
         if part not in fields:
             return (model if i == len(loc) - 1 else None), None
         info = fields[part]

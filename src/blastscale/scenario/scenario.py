@@ -11,7 +11,7 @@ from .._validate import BlastscaleInputError
 from ..structures.materials import MATERIALS
 from .messages import one_line, submodels
 from .text import to_toml
-from .specs import _CONFIG, KINDS, BlastSpec, BlockSpec, ScaleSpec, SimulationSpec, Structure
+from .specs import _CONFIG, KINDS, LEGACY_SCENARIO_KEYS, BlastSpec, BlockSpec, ScaleSpec, SimulationSpec, Structure
 
 __all__ = ["Scenario"]
 
@@ -19,9 +19,20 @@ __all__ = ["Scenario"]
 _EXCLUSIVE = {
     "structure.alpha_deg": "structure.width_m",
     "structure.width_m": "structure.alpha_deg",
-    "scale.density_ratio": "scale.model_material",
-    "scale.model_material": "scale.density_ratio",
+    "scale.density_ratio": "scale.specimen_material",
+    "scale.specimen_material": "scale.density_ratio",
 }
+
+#: The deprecated bare keys (``model``, ``pulse``, ``model_material``) -> the new ones.
+_LEGACY_BARE = {old.split(".")[-1]: new.split(".")[-1] for old, new in LEGACY_SCENARIO_KEYS.items()}
+
+
+def current_key(key: str) -> str:
+    """``key`` with a deprecated scenario name replaced by its new one (:data:`LEGACY_SCENARIO_KEYS`:
+    ``"blast.model"`` -> ``"blast.blast_model"``, ``"pulse"`` -> ``"pulse_shape"``); others unchanged."""
+    if key in LEGACY_SCENARIO_KEYS:
+        return LEGACY_SCENARIO_KEYS[key]
+    return _LEGACY_BARE.get(key, key)
 
 
 class Scenario(BaseModel):
@@ -64,7 +75,7 @@ class Scenario(BaseModel):
             "title": "The paper's slender block: 50 kg TNT at 2 m, lambda = 1/200 (model 2)",
             "structure": {"kind": "block", "height_m": 10.0, "alpha_deg": 15.0, "depth_m": 1.0,
                           "density_kg_m3": 2000.0, "friction": 0.7},
-            "blast": {"charge_kg": 50.0, "standoff_m": 2.0, "model": "masi2021"},
+            "blast": {"charge_kg": 50.0, "standoff_m": 2.0, "blast_model": "masi2021"},
             "scale": {"length": 1.0 / 200.0, "density_ratio": 1.0},
         }, source="default scenario")
 
@@ -89,7 +100,9 @@ class Scenario(BaseModel):
 
     def resolve_key(self, key: str) -> str:
         """The full dotted path of ``key``: itself when it is one, else the unique path ending in
-        ``.key`` (``"friction"`` -> ``"structure.friction"``)."""
+        ``.key`` (``"friction"`` -> ``"structure.friction"``); a deprecated name gives its new path
+        (``"blast.model"``, ``"model"`` -> ``"blast.blast_model"``)."""
+        key = current_key(key)
         paths = self._paths()
         if key in paths:
             return key
@@ -118,7 +131,8 @@ class Scenario(BaseModel):
             Dotted path (``"blast.charge_kg"``) or unambiguous bare key (``"friction"``) ->
             new value, in the key's unit. Setting ``structure.alpha_deg`` clears
             ``structure.width_m`` (and vice versa), likewise ``scale.density_ratio`` and
-            ``scale.model_material``. A new ``structure.kind`` starts that kind's defaults
+            ``scale.specimen_material``. Deprecated names (``blast.model``, ``pulse``, ...) are
+            accepted. A new ``structure.kind`` starts that kind's defaults
             (plus the structure keys given in the same call).
 
         Returns
@@ -132,6 +146,7 @@ class Scenario(BaseModel):
         """
         data = self.model_dump(exclude_none=True)
         resolved: dict[str, Any] = {}
+        values = {current_key(k): v for k, v in values.items()}
         new_kind = values.get("structure.kind", values.get("kind"))
         if new_kind is not None and new_kind != self.structure.kind:
             data["structure"] = {"kind": new_kind}
@@ -163,14 +178,14 @@ class Scenario(BaseModel):
     # -- derived values ----------------------------------------------------------------
     @property
     def density_ratio(self) -> float | None:
-        """gamma [-]: from ``model_material`` (library density / prototype density), else
+        """gamma [-]: from ``specimen_material`` (library density / prototype density), else
         ``scale.density_ratio``, else 1; None for Hopkinson-Cranz without one (the law imposes it)
         and for a prototype-only scenario (no ``[scale]``)."""
         sc = self.scale
         if sc is None:
             return None
-        if sc.model_material is not None:
-            return MATERIALS[sc.model_material].density / self.structure.density_kg_m3
+        if sc.specimen_material is not None:
+            return MATERIALS[sc.specimen_material].density / self.structure.density_kg_m3
         if sc.density_ratio is not None:
             return sc.density_ratio
         return None if sc.law == "hopkinson-cranz" else 1.0

@@ -13,7 +13,7 @@ from fractions import Fraction
 from typing import Annotated, Any, Literal, Optional, Union
 
 import annotated_types as at
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import AliasChoices, BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from .._validate import BlastscaleInputError
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
@@ -27,7 +27,21 @@ from ..structures.materials import MATERIALS
 from .messages import show
 
 __all__ = ["parse_ratio", "BlockSpec", "ColumnSpec", "BlastSpec", "ScaleSpec", "SimulationSpec", "ContactSpec",
-           "Structure", "KINDS"]
+           "Structure", "KINDS", "LEGACY_SCENARIO_KEYS"]
+
+#: Deprecated scenario keys, still accepted when read (files, ``with_values``, ``--set``) and never
+#: written: old dotted path -> new dotted path (CHANGELOG.md, docs/glossary.md).
+LEGACY_SCENARIO_KEYS = {
+    "blast.model": "blast.blast_model",
+    "blast.pulse": "blast.pulse_shape",
+    "scale.model_material": "scale.specimen_material",
+}
+
+
+def _renamed(path: str) -> AliasChoices:
+    """The new key of ``path`` first, then its deprecated name (:data:`LEGACY_SCENARIO_KEYS`)."""
+    old = next(o for o, n in LEGACY_SCENARIO_KEYS.items() if n == path)
+    return AliasChoices(path.split(".")[-1], old.split(".")[-1])
 
 _CONFIG = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True, frozen=True, validate_default=True)
 
@@ -127,14 +141,16 @@ class BlastSpec(BaseModel):
     model_config = _CONFIG
     charge_kg: Pos = Field(description="TNT-equivalent charge W [kg]")
     standoff_m: Pos = Field(description="Stand-off R from the front face [m]")
-    model: str = Field(DEFAULT_BLAST_MODEL, description="Blast model (the empirical fit): kingery-bulmash (Swisdak "
-                       "1994, the library-wide default) or masi2021 (the paper's Appendix A fits)")
+    blast_model: str = Field(DEFAULT_BLAST_MODEL, validation_alias=_renamed("blast.blast_model"),
+                             description="Blast model (the empirical fit): kingery-bulmash (Swisdak 1994, the "
+                             "library-wide default) or masi2021 (the paper's Appendix A fits); deprecated key: model")
     load: str = Field("A", description="Load method of the 3D engine (paper Methods A, B, C)")
-    pulse: Literal[PULSE_SHAPES] = Field("friedlander", description="Pulse shape")
+    pulse_shape: Literal[PULSE_SHAPES] = Field("friedlander", validation_alias=_renamed("blast.pulse_shape"),
+                                               description="Pulse shape; deprecated key: pulse")
     incidence: str = Field("ufc", description="Angle-of-incidence model (Methods B, C)")
     extrapolate: bool = Field(False, description="Evaluate the blast fits outside their ranges (warns)")
 
-    @field_validator("model")
+    @field_validator("blast_model")
     @classmethod
     def _model(cls, v: str) -> str:
         return _check_name(v, tuple(BLAST_MODELS))
@@ -151,14 +167,16 @@ class BlastSpec(BaseModel):
 
 
 class ScaleSpec(BaseModel):
-    """The model's scales: lambda, the density ratio (or the model's material), varsigma."""
+    """The specimen's scales: lambda, the density ratio (or the specimen's material), varsigma."""
 
     model_config = _CONFIG
     length: Annotated[float, at.Gt(0), at.Le(1000)] = Field(
         description="Geometric scale lambda = l_model / l_prototype [-] (a number or a fraction \"1/200\")")
     density_ratio: Optional[float] = Field(None, gt=0, le=100,
                                            description="gamma = rho_model / rho_prototype [-] (default 1)")
-    model_material: Optional[str] = Field(None, description="Model material from the density library")
+    specimen_material: Optional[str] = Field(None, validation_alias=_renamed("scale.specimen_material"),
+                                             description="The specimen's material from the density library; "
+                                             "deprecated key: model_material")
     gravity_ratio: float = Field(1.0, gt=0, le=1000, description="varsigma = g_model / g_prototype [-]")
     law: Literal["general", "hopkinson-cranz"] = Field("general", description="Scaling law")
 
@@ -173,14 +191,14 @@ class ScaleSpec(BaseModel):
                                  "\"1/200\"") from exc
         return v
 
-    @field_validator("model_material")
+    @field_validator("specimen_material")
     @classmethod
     def _material(cls, v: Optional[str]) -> Optional[str]:
         return None if v is None else _check_name(v, tuple(MATERIALS))
 
     @model_validator(mode="after")
     def _one_density(self) -> "ScaleSpec":
-        return _at_most_one(self, "density_ratio", "model_material")
+        return _at_most_one(self, "density_ratio", "specimen_material")
 
 
 class ContactSpec(BaseModel):

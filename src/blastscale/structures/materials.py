@@ -2,7 +2,7 @@
 
 The general scaling law leaves the density ratio gamma = rho_model / rho_prototype free
 (paper Sec. "Different material modeling"); a scenario may name the model's material
-instead of giving gamma (``[scale] model_material = "balsa"``). Densities are *nominal*
+instead of giving gamma (``[scale] specimen_material = "balsa"``). Densities are *nominal*
 values [kg/m^3]: real stone varies by quarry, so each entry carries the range its source
 gives, and a test designer should weigh their own specimens.
 

@@ -41,7 +41,7 @@ def _run_planar(ctx: Context):
     from ..rocking import DEFAULT_SOLVER
 
     sc, sim, d = ctx.scenario, ctx.scenario.simulation, ctx.design
-    shape, dur = sc.blast.pulse, float(sim.duration_s)
+    shape, dur = sc.blast.pulse_shape, float(sim.duration_s)
     t = np.linspace(0.0, dur, int(sim.samples))
     sys_p = RockingSystem.from_block(ctx.structure, sim.gravity_m_s2, sim.restitution)
     res_p = DEFAULT_SOLVER.simulate(sys_p, ctx.blast.pulse(shape), dur, t_eval=t)
@@ -109,7 +109,7 @@ def _3d_supports(structure) -> Optional[str]:
 def _settings_3d(ctx: Context) -> dict:
     """The 3D settings of a study, shared by the 3D and the ensemble engines."""
     sc = ctx.scenario
-    return dict(load=sc.blast.load, pulse_shape=sc.blast.pulse, incidence=sc.blast.incidence,
+    return dict(load=sc.blast.load, pulse_shape=sc.blast.pulse_shape, incidence=sc.blast.incidence,
                 contact=contact_settings(sc, ctx.structure), duration=sc.simulation.duration_s,
                 record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
 
@@ -163,5 +163,5 @@ def critical_charge_of(sc: Scenario, structure):
 
     sim = sc.simulation
     system = RockingSystem.from_block(structure, sim.gravity_m_s2, sim.restitution)
-    return critical_charge(system, sc.blast.standoff_m, pulse_shape=sc.blast.pulse, blast_model=sc.blast.model,
+    return critical_charge(system, sc.blast.standoff_m, pulse_shape=sc.blast.pulse_shape, blast_model=sc.blast.blast_model,
                            extrapolate=sc.blast.extrapolate)

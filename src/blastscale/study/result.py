@@ -77,7 +77,7 @@ class StudyResult:
         if d is None:
             return {"prototype": {**_describe(self.structure), "charge_kg": sc.blast.charge_kg,
                                   "standoff_m": sc.blast.standoff_m}, "model": None}
-        mat = sc.scale.model_material or ("same as the prototype" if abs(d.density_ratio - 1.0) < 1e-12
+        mat = sc.scale.specimen_material or ("same as the prototype" if abs(d.density_ratio - 1.0) < 1e-12
                                           else "density ratio " + format(d.density_ratio, ".6g"))
         return {
             "prototype": {**_describe(self.structure), "charge_kg": d.prototype.charge_kg,

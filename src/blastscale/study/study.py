@@ -108,7 +108,7 @@ class Study:
         structure = self.structure() if structure is None else structure
         return design_model(
             sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, sc.density_ratio, sc.scale.gravity_ratio,
-            sc.scale.law, sc.blast.model, structure if is_block(structure) else None,
+            sc.scale.law, sc.blast.blast_model, structure if is_block(structure) else None,
             gravity=sc.simulation.gravity_m_s2, extrapolate=sc.blast.extrapolate,
         )
 
@@ -125,7 +125,7 @@ class Study:
                 from ..blast import blast_parameters
 
                 sc = self.scenario
-                blast = blast_parameters(sc.blast.charge_kg, sc.blast.standoff_m, sc.blast.model,
+                blast = blast_parameters(sc.blast.charge_kg, sc.blast.standoff_m, sc.blast.blast_model,
                                          extrapolate=sc.blast.extrapolate)
             else:
                 blast = d.prototype

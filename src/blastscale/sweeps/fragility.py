@@ -163,7 +163,7 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
         W, R = (vals[p].astype(float) if p in vals else np.full(b - a, float(v))
                 for p, v in zip(_LOAD_FIELDS, (bl.charge_kg, bl.standoff_m)))
         systems = [system_of(spec.scenario(k)) for k in range(a, b)] if per_case_body else one
-        out[a:b] = overturns(systems, W, R, pulse_shape=bl.pulse, blast_model=bl.model, extrapolate=bl.extrapolate)
+        out[a:b] = overturns(systems, W, R, pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, extrapolate=bl.extrapolate)
     return out.reshape(spec.shape)
 
 

@@ -66,7 +66,7 @@ def _outcome_group(sc, W, R, e) -> dict:
     bl, sim, scl = sc.blast, sc.simulation, sc.scale
     structure = from_spec(sc.structure)
     try:
-        d = design_model(W, R, scl.length, sc.density_ratio, scl.gravity_ratio, scl.law, bl.model, geometry=None,
+        d = design_model(W, R, scl.length, sc.density_ratio, scl.gravity_ratio, scl.law, bl.blast_model, geometry=None,
                          gravity=sim.gravity_m_s2, extrapolate=bl.extrapolate)
     except BlastscaleInputError:  # e.g. a density ratio the Hopkinson-Cranz law refuses: every case
         return out
@@ -77,9 +77,9 @@ def _outcome_group(sc, W, R, e) -> dict:
     model = RockingSystem.from_block(structure.scaled(d.factors), sim.gravity_m_s2 * d.gravity_ratio)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
     fp = first_swing_blast(proto.alpha, e, proto.frequency_parameter, proto.load_ratio_per_pascal,
-                           d.prototype.select(ok), bl.pulse)
+                           d.prototype.select(ok), bl.pulse_shape)
     fm = first_swing_blast(model.alpha, e, model.frequency_parameter, model.load_ratio_per_pascal,
-                           d.specimen.select(ok), bl.pulse)
+                           d.specimen.select(ok), bl.pulse_shape)
     out["planar.prototype.collapsed"][ok] = fp.collapsed
     out["planar.prototype.max_rotation_rad"][ok] = fp.max_rotation
     out["planar.model.collapsed"][ok] = fm.collapsed
