@@ -74,11 +74,11 @@ def _outcome_group(sc, W, R, e) -> dict:
     if not np.any(ok):
         return out
     proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
-    model = RockingSystem.from_block(structure.scaled(d.factors), sim.gravity_m_s2 * d.gravity_ratio)
+    specimen = RockingSystem.from_block(structure.scaled(d.factors), sim.gravity_m_s2 * d.gravity_ratio)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
     fp = first_swing_blast(proto.alpha, e, proto.frequency_parameter, proto.load_ratio_per_pascal,
                            d.prototype.select(ok), bl.pulse_shape)
-    fm = first_swing_blast(model.alpha, e, model.frequency_parameter, model.load_ratio_per_pascal,
+    fm = first_swing_blast(specimen.alpha, e, specimen.frequency_parameter, specimen.load_ratio_per_pascal,
                            d.specimen.select(ok), bl.pulse_shape)
     out["planar.prototype.collapsed"][ok] = fp.collapsed
     out["planar.prototype.max_rotation_rad"][ok] = fp.max_rotation
