@@ -4,7 +4,7 @@ VENV    := .venv
 BIN     := $(VENV)/bin
 STAMP   := $(VENV)/.installed
 
-.PHONY: install run test bench clean check-python
+.PHONY: install run test test-fast bench clean check-python
 
 install: $(STAMP)
 
@@ -28,6 +28,10 @@ run: install
 test: install
 	$(BIN)/lint-imports --no-cache
 	MPLBACKEND=Agg $(BIN)/python -m pytest -q
+
+# the unit tier only (tests/unit, under a minute): the quick check while editing one package
+test-fast: install
+	MPLBACKEND=Agg $(BIN)/python -m pytest -q tests/unit
 
 bench: install
 	$(BIN)/python benchmarks/bench_rocking.py --json

@@ -120,10 +120,12 @@ def run_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object instead of tables."),
 ) -> None:
     """Run a scenario: design the model, simulate prototype and model, compare, write a report."""
+    from .._hooks import pause_point
     from ..io.results import check_output_folder, output_folder
     from ..report import write_study
     from ..study import Study
 
+    pause_point("run:started")
     sc = Scenario.default() if scenario is None else load_scenario(scenario)
     overrides = _parse_set(values)
     for key, v in (("blast.blast_model", blast_model), ("blast.charge_kg", charge), ("structure.friction", friction),
@@ -144,9 +146,13 @@ def run_cmd(
             def on_study(stage: str, done: int, total: int) -> None:
                 state.update(done=done, total=total + writes)
                 tell(stage, done, total + writes)
+                if done == 1:
+                    pause_point("run:simulating")
 
             def on_write(stage: str) -> None:
                 tell(f"writing {stage}", state["done"], state["total"])
+                if state["done"] == state["total"] - writes:
+                    pause_point("run:writing")
                 state["done"] += 1
 
             if out is None:

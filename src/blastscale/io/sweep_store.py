@@ -18,6 +18,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from .._hooks import pause_point, pausing
 from .._validate import BlastscaleInputError
 from ..sweeps.runner import SweepRun, default_chunk, run_chunks
 from ..sweeps.dataset import STORE_VERSION, assemble, metadata
@@ -39,6 +40,8 @@ def _write_chunk(parts: Path, i: int, result: dict) -> None:
     with os.fdopen(fd, "wb") as fh:
         np.savez(fh, **arrays)
     os.replace(tmp, _chunk_path(parts, i))
+    if pausing("sweep:"):
+        pause_point(f"sweep:chunks={len(list(parts.glob('chunk-*.npz')))}")
 
 
 def _read_chunk(path: Path) -> dict:

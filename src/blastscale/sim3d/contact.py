@@ -137,7 +137,7 @@ class ContactSettings:
         Iterations of MuJoCo's post-hoc no-slip solver (0 = off; it does not affect the hop).
     jacobian : {"dense", "sparse", "auto"}
         Layout of the constraint Jacobian. "dense" (default) because MuJoCo 4.0.0 was reported to
-        have a sparse-factorisation bug (fixed in 4.0.1; DESIGN.md), which a 10-drum column
+        have a sparse-factorisation bug (fixed in 4.0.1; docs/design.md), which a 10-drum column
         (60 dofs) would hit under "auto". "sparse" is 2.5-3.4x faster on the 10-drum columns
         and, measured with 4.0.0 on the paper's square column (250 and 500 kg at 10 m, 8 s),
         gives the dense histories to 3e-10 of the peak (docs/sim3d.md); opt in after checking
@@ -297,7 +297,7 @@ def length_time_factors(length: float, time: float):
 
 # -- scale-consistent defaults --------------------------------------------------------------
 #: Reference length [m] and gravity [m/s^2] at which the default settings below were measured
-#: (the paper's 10 m block and 10 m column; DESIGN.md, "Physics engine" and "Multi-drum columns").
+#: (the paper's 10 m block and 10 m column; docs/design.md, "Physics engine" and "Multi-drum columns").
 REFERENCE_LENGTH = 10.0
 REFERENCE_GRAVITY = 9.81
 #: Full-scale defaults of a single body (block): contact 2 ms, friction reference 20 ms (removes

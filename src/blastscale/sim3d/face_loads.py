@@ -10,7 +10,7 @@ Method C: every exposed face of every body (front, sides, top, rear; the faces o
 drum one by one); faces in contact with a neighbour or the ground at rest (``Face.in_contact``)
 carry nothing; faces turned away from the charge get the side-on pulse at their own arrival time.
 
-Both follow the load interface of :mod:`.loads` (CONTRACTS.md section 2): one time origin, the
+Both follow the load interface of :mod:`.loads` (docs/contracts.md, section 2): one time origin, the
 detonation; outward normals, a pressure p on a face pushing with ``-p S (R n)`` at the face
 centre; each step's wrench carries the **exact** impulse of every face over [t0, t1]
 (:class:`~blastscale.blast.face_pulses.FacePulses`). Outside [first_arrival, end_time] a step

@@ -38,7 +38,7 @@ hard contact there (docs/sim3d.md).
 
 For several bodies (columns) the default is ``"force"``: the all-stick / all-slip argument
 behind "auto" holds for one box loaded through its centre of mass only, and the column
-settings of DESIGN.md (1 ms contact, no separate friction time constant) were measured with
+settings of docs/design.md (1 ms contact, no separate friction time constant) were measured with
 the blast as a force.
 """
 

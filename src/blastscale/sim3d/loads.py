@@ -5,7 +5,7 @@ per body and per time step, from the bodies' current poses. It carries the **exa
 the pressure over the step (see :mod:`.blast_force`): the step's force is the pressure's impulse
 over [t0, t1] divided by the step, so the momentum delivered does not depend on the step.
 
-Conventions (CONTRACTS.md, section 2): one time origin, the detonation (t = 0); outward face
+Conventions (docs/contracts.md, section 2): one time origin, the detonation (t = 0); outward face
 normals; a pressure p on a face of area A pushes with ``-p A (R n_outward)`` applied at the face
 centre, R the body's current rotation (body -> world).
 

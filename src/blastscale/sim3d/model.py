@@ -117,7 +117,7 @@ class BoxShape:
 class PrismShape:
     """A convex mesh: the right prism on a regular polygon (a "circular" drum), from
     :class:`~blastscale.structures.base.PrismGeometry`; never a cylinder primitive (MuJoCo's
-    cylinder contacts gained energy in our column tests, DESIGN.md)."""
+    cylinder contacts gained energy in our column tests, docs/design.md)."""
 
     geometry: PrismGeometry
     density: float
@@ -223,7 +223,7 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     Notes
     -----
     Multi-point convex collision (MuJoCo's ``multiccd``) is required for flat drum-on-drum
-    contacts: without it a 10-drum column drifts 41-119 mm at rest (DESIGN.md). It is on by
+    contacts: without it a 10-drum column drifts 41-119 mm at rest (docs/design.md). It is on by
     default in MuJoCo >= 3.17 (a disable flag); the MJCF says ``multiccd="enable"`` and the
     compiled model is checked. The Jacobian layout is ``contact.jacobian``, dense by default:
     MuJoCo 4.0.0's sparse factorisation has a bug (fixed in 4.0.1) that a 60-dof column reaches.

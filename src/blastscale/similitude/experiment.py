@@ -76,7 +76,7 @@ def impulsive_check(
     with ``duration`` t_o [s] (> 0), ``block`` (r = half-diagonal [m]) and ``gravity`` g [m/s^2].
     The load acts as an impulse when t_o p << 1; :func:`design_model` flags it below 0.4 (the
     impulsive regime omega t_d < 0.4 of Baker et al. 1983, ch. 4). References: Housner (1963)
-    for p; DESIGN.md on why this, not the paper's "pi_23 << 1", is the meaningful check.
+    for p; docs/design.md on why this, not the paper's "pi_23 << 1", is the meaningful check.
     """
     check_positive("positive duration", duration, "s")
     return float(duration) * block.frequency_parameter(gravity)

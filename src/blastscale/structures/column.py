@@ -7,7 +7,7 @@ pyramid for the square section, of a regular ``sides``-gon (default 32, vertices
 of the nominal diameter) for the circular one. Mass properties are exact for these solids
 (:func:`~.base.frustum_mass_properties`).
 
-Contact geometry for the engine (DESIGN.md, "Multi-drum columns on MuJoCo"): each drum is a
+Contact geometry for the engine (docs/design.md, "Multi-drum columns on MuJoCo"): each drum is a
 right prism of its *base* section (box / polygon prism) carrying the frustum's exact inertia;
 drum k+1's base then rests fully on drum k's (wider) top, which is the exact contact patch,
 while frustum meshes whose faces coincide at the joints are ill-conditioned.

@@ -11,7 +11,7 @@ import pytest
 from blastscale.io.results import LEGACY_KEYS, legacy_name, with_legacy_keys
 from blastscale.scenario.specs import LEGACY_SCENARIO_KEYS
 
-GLOSSARY = Path(__file__).resolve().parents[1] / "docs" / "glossary.md"
+GLOSSARY = Path(__file__).resolve().parents[2] / "docs" / "glossary.md"
 
 
 def _table(after: str) -> list[list[str]]:

@@ -19,7 +19,7 @@ import pytest
 
 from blastscale.cli import main
 
-GOLDEN = Path(__file__).parent / "data" / "cli_golden"
+GOLDEN = Path(__file__).resolve().parents[1] / "data" / "cli_golden"
 
 #: Keys whose value differs from the golden on purpose: {(case, dotted key prefix): reason}.
 CHANGED: dict = {
@@ -31,7 +31,7 @@ CHANGED: dict = {
         "(one state per millisecond of the 10 m reference: still 5 steps for this block)",
 }
 
-#: Chaotic runs: {(case, key prefix): reason}. A circular column is chaotic (DESIGN.md: 1e-10 on the load
+#: Chaotic runs: {(case, key prefix): reason}. A circular column is chaotic (docs/design.md: 1e-10 on the load
 #: moves its history by 19-57 % of its peak). Since the goldens, the design's lambda_Z moved by ~1e-15 (the
 #: general law is solved by vectorised bisection, one code path for one design and for the sweeps' arrays,
 #: instead of Brent): the specimen's trajectory then moves by ~4e-4 of its peak, the differences and the

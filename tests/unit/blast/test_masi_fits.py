@@ -1,4 +1,4 @@
-"""The paper's Appendix A fits: units, guards and documented defects (DESIGN.md)."""
+"""The paper's Appendix A fits: units, guards and documented defects (docs/design.md)."""
 
 import math
 
@@ -22,7 +22,7 @@ def test_units_are_converted_to_si():
 
 
 def test_duration_fit_guarded_above_6p5():
-    # DESIGN.md: the printed t_ow is trustworthy only for Z <= ~6.5 (diverges above ~12).
+    # docs/design.md: the printed t_ow is trustworthy only for Z <= ~6.5 (diverges above ~12).
     M.scaled_positive_duration(6.5)
     with pytest.raises(OutOfRangeError, match=r"scaled_positive_duration.*Z = 7.*\[0.2, 6.5\]"):
         M.scaled_positive_duration(7.0)
@@ -31,7 +31,7 @@ def test_duration_fit_guarded_above_6p5():
 
 
 def test_duration_constant_below_018_does_not_join_the_formula():
-    # DESIGN.md: the constant 0.251703 ms/kg^1/3 used below Z = 0.18 jumps 6.7 % from the formula at 0.18.
+    # docs/design.md: the constant 0.251703 ms/kg^1/3 used below Z = 0.18 jumps 6.7 % from the formula at 0.18.
     with pytest.warns(ExtrapolationWarning):
         below = M.scaled_positive_duration(0.18 * (1 - 1e-12), extrapolate=True)
         at = M.scaled_positive_duration(0.18, extrapolate=True)

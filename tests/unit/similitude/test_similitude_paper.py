@@ -16,7 +16,7 @@ from blastscale.similitude import (
     solve_scaled_distance_factor,
 )
 
-DATA = Path(__file__).parent / "data"
+DATA = Path(__file__).resolve().parents[2] / "data"
 
 
 def _table_rows():
@@ -93,7 +93,7 @@ def test_hopkinson_cranz_identities(lam):
 
 
 def test_general_law_quadratic_has_one_physical_root():
-    # DESIGN.md: for the paper's fit the law is a quadratic in ln(lambda_Z); the other root is ~1e12.
+    # docs/design.md: for the paper's fit the law is a quadratic in ln(lambda_Z); the other root is ~1e12.
     Z = 2.0 / 50.0 ** (1 / 3)
     target = math.sqrt(1 / 200)
     phys, other = masi2021_quadratic_roots(Z, target)
@@ -129,7 +129,7 @@ def test_impulsive_check_is_to_times_housner_p_for_prototype_and_model(sig):
     p_model = math.sqrt(3 * g * sig / (4 * r * lam))
     assert d.impulsive.prototype_ratio == pytest.approx(d.prototype.positive_duration * p_proto, rel=1e-12)
     assert d.impulsive.model_ratio == pytest.approx(d.specimen.positive_duration * p_model, rel=1e-12)
-    assert d.impulsive.prototype_ratio == pytest.approx(1.39e-3, rel=0.01)  # DESIGN.md: "about 1e-3"
+    assert d.impulsive.prototype_ratio == pytest.approx(1.39e-3, rel=0.01)  # docs/design.md: "about 1e-3"
     assert d.impulsive.impulsive  # both far below the 0.4 bound
     # The verdict needs BOTH systems impulsive: with the bound between the two ratios it must be False.
     between = math.sqrt(d.impulsive.prototype_ratio * d.impulsive.model_ratio)

@@ -10,7 +10,7 @@ from blastscale.cli import main
 from blastscale.report.reproduce import gallery_folder, items, skipped
 from blastscale.scenario import library_names, library_text
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 # a representative subset (the whole list with --quick takes about a minute: measured and reported in the
 # engineer's report); one of each kind: numbers, a scenario through Study, a gallery script

@@ -15,16 +15,16 @@ from blastscale.structures.block import RectangularBlock
 BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
 SYSTEM = RockingSystem.from_block(BLOCK)
 
-# DESIGN.md: 79.84-79.87 kg depending on the pulse shape (impulsive / triangular / Friedlander);
+# docs/design.md: 79.84-79.87 kg depending on the pulse shape (impulsive / triangular / Friedlander);
 # the paper prints 79.8 kg. Our values are 79.844, 79.864, 79.870 (see docs/rocking.md);
-# +-0.005 kg brackets the independent calculation quoted in DESIGN.md.
+# +-0.005 kg brackets the independent calculation quoted in docs/design.md.
 PAPER_CRITICAL = {"impulsive": 79.84, "triangular": 79.86, "friedlander": 79.87}
 
 
 @pytest.mark.parametrize("shape", ["impulsive", "triangular", "friedlander"])
 def test_paper_critical_charge_79_8_kg(shape):
     res = critical_charge(BLOCK, 2.0, pulse_shape=shape, blast_model="masi2021")
-    assert math.floor(res.charge_kg * 10) / 10 == 79.8  # the paper truncates (DESIGN.md)
+    assert math.floor(res.charge_kg * 10) / 10 == 79.8  # the paper truncates (docs/design.md)
     assert res.charge_kg == pytest.approx(PAPER_CRITICAL[shape], abs=0.0051)
     # the full simulation agrees on both sides of the threshold (1e-5 relative in charge
     # is ~1e4 times the search tolerance)

@@ -59,6 +59,10 @@ def test_method_a_delivers_reflected_impulse_times_projected_front_area(col):
 
 
 def test_exact_scaling_model_upscaled_equals_prototype():
+    """REGRESSION TEST OF THE REFERENCE-UNIT NORMALISATION, not a test of similarity: the engine
+    integrates a structure and its exactly scaled model as the same reference-unit MuJoCo model
+    (blastscale.sim3d.reference), so their up-scaled histories agree by construction; this test fails
+    when that normalisation breaks (a setting not scaled, a rounding that differs)."""
     # the exactly similar pulse (gamma = varsigma = 1): pressure x lambda, times x sqrt(lambda),
     # impulse x lambda^1.5; contact=None scales the contact with the structure's height
     # issue: 1e-4 of the peak over 8 s; measured 5e-11 over 8 s (docs/sim3d.md), 3e-15 over the
@@ -261,7 +265,7 @@ def test_milligram_specimen_runs_in_reference_units_and_user_points_are_recorded
 
 def test_sparse_jacobian_opt_in_gives_the_dense_history():
     # ContactSettings.jacobian = "sparse" is offered for speed (2.5-3.4x on the 10-drum columns);
-    # DESIGN.md reports a sparse-factorisation bug in MuJoCo 4.0.0, so it stays opt-in and must
+    # docs/design.md reports a sparse-factorisation bug in MuJoCo 4.0.0, so it stays opt-in and must
     # reproduce the dense path: on the square column (not chaotic) the two differ by round-off
     # (measured 2e-12 of the peak over 4 s, 3e-10 over 8 s); asserted 1e-9 over 0.5 s.
     from dataclasses import replace

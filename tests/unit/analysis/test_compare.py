@@ -18,7 +18,7 @@ COMP = ["x", "y", "z"]
 
 
 def synthetic_response(t, amplitude=1.0, collapsed=False, period=2.0):
-    """A response that follows the contract (CONTRACTS.md section 3): drum k moves as
+    """A response that follows the contract (docs/contracts.md, section 3): drum k moves as
     k * amplitude * sin(pi t / period) along x (first peak at t = period / 2, value k * amplitude)."""
     k = np.arange(1, len(BODIES) + 1)
     w = math.pi / period

@@ -40,7 +40,7 @@ def test_design_json_reproduces_paper_model_2(capsys):
     assert out["impulse_ratio"] == pytest.approx(0.005**1.5, rel=1e-9)
     assert {"length", "time", "mass", "inertia", "velocity", "angular_velocity", "charge"} <= out["factors"].keys()
     assert out["impulsive"]["impulsive"] is True
-    assert out["impulsive"]["prototype_to_p"] == pytest.approx(1.39e-3, rel=0.01)  # DESIGN.md: ~1e-3
+    assert out["impulsive"]["prototype_to_p"] == pytest.approx(1.39e-3, rel=0.01)  # docs/design.md: ~1e-3
 
 
 def test_design_hopkinson_cranz(capsys):

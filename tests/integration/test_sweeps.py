@@ -183,16 +183,20 @@ def test_kill_9_midway_then_rerun_gives_the_uninterrupted_result(tmp_path, clust
     toml.write_text(BASE.to_toml())
     # 24 cases, one per task; each searches its own critical charge (distinct stand-offs): slow enough to stop
     store, parts = tmp_path / "k.zarr", tmp_path / "k.zarr.parts"
+    # the sweep pauses after writing its second chunk (blastscale._hooks) and is killed there: always midway
+    marker = tmp_path / "paused"
+    env = {**os.environ, "BLASTSCALE_PAUSE_AT": "sweep:chunks=2", "BLASTSCALE_PAUSE_MARKER": str(marker)}
     p = subprocess.Popen([str(BIN / "blastscale"), "sweep", str(toml), "--vary", "standoff_m=1.5:4:12", "--vary",
                           "charge_kg=60,120", "--chunk", "1", "--out", str(store), "--scheduler", cluster],
-                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
     deadline = time.time() + 120
-    while time.time() < deadline and len(list(parts.glob("chunk-*.npz"))) < 2 and p.poll() is None:
-        time.sleep(0.005)
+    while time.time() < deadline and not marker.exists() and p.poll() is None:
+        time.sleep(0.01)
+    assert marker.exists(), "the sweep did not reach its second chunk"
     os.kill(p.pid, signal.SIGKILL)
     p.wait()
     done = len(list(parts.glob("chunk-*.npz")))
-    assert 2 <= done < 24 and not store.exists()  # killed midway: some chunks written, no store yet
+    assert done == 2 and not store.exists()  # killed midway: two chunks written, no store yet
     spec = SweepSpec.build(BASE, {"standoff_m": np.linspace(1.5, 4, 12), "charge_kg": [60.0, 120.0]})
     again = run_sweep(spec, store, scheduler=cluster)  # the same sweep (the same fingerprint), resumed
     assert again.chunks_skipped == done and again.chunks_run + done == 24  # nothing lost or repeated

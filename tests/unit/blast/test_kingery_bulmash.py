@@ -25,7 +25,7 @@ from blastscale.blast.kingery_bulmash import (
 )
 from blastscale.blast.masi_fits import Masi2021
 
-DATA = Path(__file__).parent / "data"
+DATA = Path(__file__).resolve().parents[2] / "data"
 KB = KingeryBulmash()
 MASI = Masi2021()
 
@@ -45,7 +45,7 @@ UFC_ROWS = _ufc_rows()
 # ------------------------------------------------------------------ (a) UFC 3-340-02 Fig. 2-15
 @pytest.mark.parametrize("quantity, z, ufc_value", UFC_ROWS)
 def test_ufc_3_340_02_fig_2_15_hemispherical_surface_burst(quantity, z, ufc_value):
-    # Tolerance 4 % (DESIGN.md: ~3.5 %): Swisdak's fits follow Kingery-Bulmash and Fig. 2-15 is drawn
+    # Tolerance 4 % (docs/design.md: ~3.5 %): Swisdak's fits follow Kingery-Bulmash and Fig. 2-15 is drawn
     # from Kingery-Bulmash, so the remainder is chart-reading error (1-2 % per coordinate on a
     # log-log chart). Measured over the 96 points: max 3.3 % (P_r at Z = 37.9, P_so at Z = 37.8).
     model = getattr(KB, quantity)(z)

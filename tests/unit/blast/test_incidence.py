@@ -23,7 +23,7 @@ from blastscale.blast.incidence import (
 )
 from blastscale.blast.kingery_bulmash import KingeryBulmash
 
-DATA = Path(__file__).parent / "data"
+DATA = Path(__file__).resolve().parents[2] / "data"
 KB = KingeryBulmash()
 
 
@@ -117,7 +117,7 @@ def test_closed_form_is_the_randers_pehrson_bannister_blend():
 
 
 def test_ufc_exceeds_closed_form_near_the_mach_peak():
-    # DESIGN.md: the closed form is 27-40 % low near 40-45 deg; at Z = 2.2 (P_so ~ 220 kPa), 41 deg:
+    # docs/design.md: the closed form is 27-40 % low near 40-45 deg; at Z = 2.2 (P_so ~ 220 kPa), 41 deg:
     Z = 2.2
     Pr, Ps = KB.reflected_pressure(Z), KB.incident_pressure(Z)
     c = math.cos(math.radians(41.0))

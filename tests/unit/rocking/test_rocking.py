@@ -1,7 +1,7 @@
 """Planar rocking dynamics: closed forms (Housner 1963), the paper's block, fast vs reference.
 
 The paper's block: 2h = 10 m, alpha = 15 deg, rho = 2000 kg/m^3, R = 2 m, model "masi2021"
-(paper Sec. "Equations of motion"; DESIGN.md "Facts established from the paper").
+(paper Sec. "Equations of motion"; docs/design.md "Facts established from the paper").
 """
 
 from __future__ import annotations
@@ -130,7 +130,7 @@ def test_paper_block_50kg_rocks_without_overturning():
         assert not res.collapsed
         assert res.n_impacts > 3
         assert 0.0 < res.max_rotation < ALPHA
-        # first impact about 1.38 s after arrival (DESIGN.md: the FE section's "1.3 ms")
+        # first impact about 1.38 s after arrival (docs/design.md: the FE section's "1.3 ms")
         assert res.first_impact_time == pytest.approx(1.38, abs=0.01)
 
 

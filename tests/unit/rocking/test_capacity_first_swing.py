@@ -86,7 +86,7 @@ def test_critical_charge_equals_bisection_on_full_simulations(height, alpha_deg,
 
 
 def test_paper_critical_charge_79_87_kg():
-    """Paper Sec. "Equations of motion": 79.8 kg at 2 m (masi2021, Friedlander); DESIGN.md and
+    """Paper Sec. "Equations of motion": 79.8 kg at 2 m (masi2021, Friedlander); docs/design.md and
     docs/rocking.md: 79.870 kg with the Friedlander pulse (+-0.005 kg brackets the independent
     calculation)."""
     assert critical_charge(BLOCK, 2.0, blast_model="masi2021").charge_kg == pytest.approx(79.87, abs=0.005)

@@ -54,7 +54,7 @@ def test_perturbed_load_scales_every_wrench_exactly():
 
 def test_short_square_ensemble_is_not_chaotic():
     """A 3-drum square column, 250 kg at 10 m, lambda = 1/100, 0.3 s, two members 1e-6 apart:
-    square columns are well-conditioned (DESIGN.md: 1e-10 on the load -> 1e-6 of the history),
+    square columns are well-conditioned (docs/design.md: 1e-10 on the load -> 1e-6 of the history),
     so the members' first peaks differ by ~1e-6 relative (asserted < 1e-4), nothing collapses,
     and the envelope of each system is as thin as that (noise floor < 1e-4 of the peak)."""
     from blastscale.similitude import design_model

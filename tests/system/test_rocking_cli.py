@@ -33,7 +33,7 @@ def test_rock_paper_50kg_rocks(capsys):
     out = run_json(capsys, "rock", *PAPER, "--charge", "50", "--duration", "4", "--json")
     assert SUMMARY_KEYS <= out["prototype"].keys()
     assert out["prototype"]["collapsed"] is False
-    assert out["prototype"]["first_impact_time_s"] == pytest.approx(1.38, abs=0.01)  # DESIGN.md
+    assert out["prototype"]["first_impact_time_s"] == pytest.approx(1.38, abs=0.01)  # docs/design.md
     assert "model" not in out and "similarity" not in out
 
 

@@ -147,7 +147,7 @@ def test_short_column_comparison_through_the_contract(short_comparison):
     """The paper's square column, 250 kg at 10 m, lambda = 1/100, first swing. The general law
     matches the impulse only (paper Eq. 8): the model's pulse, up-scaled, is shorter than the
     prototype's, so the ~13 ms during which friction and the joints act under load differ; the
-    up-scaled first peak at the top is 0.43 % above the prototype's (measured; DESIGN.md: within
+    up-scaled first peak at the top is 0.43 % above the prototype's (measured; docs/design.md: within
     0.4 %), lower drums more (P-1 +2.6 %: the base drum's motion is small and sliding-dominated).
     Asserted: top first peak within 1 %, every point's first peak within 5 %, every point's
     x displacement within 5 % of its peak over the swing, outcomes agree."""
