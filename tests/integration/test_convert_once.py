@@ -49,17 +49,19 @@ def test_one_default_study_designs_once_and_evaluates_each_systems_blast_once(mo
       loads and the arrival-spread similarity reuse them (before: 6 such calls, 2 of them for
       the 3D loads and 2 more for rebuilding both loads in the arrival-spread similarity).
     * ``make_load``: 2 calls (one per system), each given the design's own BlastParameters.
-    * The critical-charge search (``rocking.swing.first_swing``) evaluates the blast fits at the
-      *trial* charges of its bisection, all stand-off cases at once: one vectorised call per
-      bisection step, on arrays. These are not the study's systems (they are the search for a
-      different charge), so they are counted apart and asserted to be exactly that: array calls
-      from the search and nothing else.
+    * The critical-charge search evaluates the blast fits at the *trial* charges of its root
+      finder, all stand-off cases at once, through ``blast_parameters_unchecked`` (its inputs are
+      checked once, at the search's entry): one vectorised call per evaluation, on arrays. These are
+      not the study's systems (they are the search for a different charge), so they are counted
+      apart and asserted to be exactly that: array calls from the search and nothing else.
     """
     designs: list = []
     blasts: list = []
     loads: list = []
     _wrap_everywhere(monkeypatch, design_module.design_model, designs)
     _wrap_everywhere(monkeypatch, parameters.blast_parameters, blasts)
+    searched: list = []
+    _wrap_everywhere(monkeypatch, parameters.blast_parameters_unchecked, searched)
     real_make_load = load_methods.make_load
 
     def counting_make_load(method, structure, blast, **kw):
@@ -86,9 +88,10 @@ def test_one_default_study_designs_once_and_evaluates_each_systems_blast_once(mo
     # arrival-spread similarity reads those loads)
     assert len(loads) == 2 and loads[0] is d.prototype and loads[1] is d.specimen
 
-    search = [c for c in blasts if not c[1]]
-    assert search and all(caller == "blastscale.rocking.swing" for caller, *_ in search), search
-    assert len(search) == r.critical.evaluations  # one vectorised call per first-swing evaluation (6 here)
+    assert all(scalar for _, scalar, *_ in blasts), blasts  # blast_parameters: the two systems only
+    searched = [c for c in searched if c[0] != "blastscale.blast.parameters"]  # not blast_parameters' own
+    assert searched and all(caller == "blastscale.rocking.swing" and not scalar for caller, scalar, *_ in searched)
+    assert len(searched) == r.critical.evaluations  # one vectorised call per first-swing evaluation (6 here)
 
 
 @pytest.mark.parametrize("load", ["B", "C"])

@@ -187,7 +187,11 @@ def first_peak(time, values, fraction: float = FIRST_PEAK_FRACTION) -> tuple[flo
     (float, float)
         Time [s] and value [unit of ``values``]; (nan, 0.0) for an all-zero history.
     """
-    frac = float(check_range("fraction", fraction, 0.0, 1.0))
+    return _first_peak(time, values, float(check_range("fraction", fraction, 0.0, 1.0)))
+
+
+def _first_peak(time, values, frac: float) -> tuple[float, float]:
+    """:func:`first_peak` with a checked ``frac``: the comparisons check it once per call."""
     q = np.asarray(values, dtype=float)
     a = np.abs(q)
     peak = float(np.max(a)) if a.size else 0.0
@@ -270,6 +274,7 @@ def compare_responses(
         None when an outcome is not recorded), ``time_compared_s`` ([start, end] of the common
         times), ``n_times`` (samples compared).
     """
+    peak_fraction = float(check_range("peak_fraction", peak_fraction, 0.0, 1.0))
     proto, model = align(prototype_ds, upscaled_ds)
     if start is not None or end is not None:
         tt = proto["time"].values
@@ -306,8 +311,8 @@ def compare_responses(
         per: dict = {}
         for j, label in enumerate(labels):
             p, m = ap[:, j], am[:, j]
-            tp1, p1 = first_peak(t, p, peak_fraction)
-            tm1, m1 = first_peak(t, m, peak_fraction)
+            tp1, p1 = _first_peak(t, p, peak_fraction)
+            tm1, m1 = _first_peak(t, m, peak_fraction)
             peak_p = float(np.max(np.abs(p)))
             diff = float(np.max(np.abs(p - m)))
             per[label] = {

@@ -62,17 +62,18 @@ def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05
         ``collapse_probability``; ``collapse_time_mean``, ``collapse_time_spread`` [s] over the
         collapsed members (nan when none).
     """
-    from .compare import first_peak
+    from .compare import _first_peak
 
     q = np.asarray(members, dtype=float)
     if q.ndim != 3:
         raise BlastscaleInputError(f"members shape = {q.shape} is not (members, times, points)")
     frac = float(check_range("horizon_fraction", horizon_fraction, 0.0, 1.0))
+    peak_fraction = float(check_range("peak_fraction", peak_fraction, 0.0, 1.0))
     t = np.asarray(time, dtype=float)
     tc = np.full(q.shape[0], np.nan) if collapse_times is None else np.array(
         [np.nan if x is None else float(x) for x in collapse_times])
     upto = [t <= tc[k] if np.isfinite(tc[k]) else np.ones(t.size, dtype=bool) for k in range(q.shape[0])]
-    fp = np.array([[first_peak(t[upto[k]], q[k, upto[k], j], peak_fraction)[1] for j in range(q.shape[2])]
+    fp = np.array([[_first_peak(t[upto[k]], q[k, upto[k], j], peak_fraction)[1] for j in range(q.shape[2])]
                    for k in range(q.shape[0])])
     spread = q.max(axis=0) - q.min(axis=0)
     peak = np.max(np.abs(q), axis=(0, 1))

@@ -20,6 +20,7 @@ __all__ = [
     "BLAST_MODELS",
     "get_blast_model",
     "blast_parameters",
+    "blast_parameters_unchecked",
     "BlastParameters",
     "scaled_distance",
     "valid_scaled_distance_range",
@@ -221,6 +222,16 @@ def blast_parameters(
         raise BlastscaleInputError(
             f"charge and standoff have shapes {W.shape} and {R.shape}, which do not broadcast together"
         ) from None
+    return blast_parameters_unchecked(W, R, m, extrapolate=extrapolate)
+
+
+def blast_parameters_unchecked(W, R, blast_model: "str | BlastModel", *, extrapolate: bool = False) -> BlastParameters:
+    """:func:`blast_parameters` of inputs the caller has already checked: ``W`` [kg] and ``R`` [m]
+    finite, > 0 and of one shape (numpy arrays or floats). For the inner loops of the capacity
+    searches, which check their inputs once and evaluate the fits many times; anything else should
+    call :func:`blast_parameters`."""
+    m = get_blast_model(blast_model)
+    W, R = np.broadcast_arrays(np.asarray(W, dtype=float), np.asarray(R, dtype=float))
     scalar = W.ndim == 0
 
     def out(x):

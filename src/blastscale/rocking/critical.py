@@ -37,7 +37,7 @@ from ..blast.base import ExtrapolationWarning
 from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters, get_blast_model, valid_scaled_distance_range
 from ._roots import vector_root
-from .swing import first_swing
+from .swing import _first_swing
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
 
@@ -133,7 +133,8 @@ def _critical_arrays(system, searched, fixed, pulse_shape, blast_model, extrapol
         def evaluate(idx, u):
             x = np.exp(u if by_charge else -u)
             W, R = (x, fixed[idx]) if by_charge else (fixed[idx], x)
-            return first_swing(system, W, R, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate, solver=solver).margin
+            W, R = np.broadcast_arrays(W, R)  # checked once, by the search's caller
+            return _first_swing(system, W, R, pulse_shape, blast_model, extrapolate, solver).margin
 
         lo, hi, nev, status = vector_root(evaluate, u0, ulo, uhi, xtol_rel)
     # the search visits many points: pass on one warning of each other kind (extrapolation is

@@ -65,7 +65,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
 from ..blast.pulses import check_pulse_shape
-from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters
+from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters_unchecked
 from ..blast.pulses import Pulse
 from . import _kernel as K
 from .encoding import PULSE_CODES, encode_pulse
@@ -318,9 +318,14 @@ def first_swing(systems, charge, standoff, *, pulse_shape: str = "friedlander", 
     check_pulse_shape(pulse_shape)
     W, R = np.broadcast_arrays(np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
                                np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float))
-    W, R = W.ravel(), R.ravel()
+    return _first_swing(systems, W.ravel(), R.ravel(), pulse_shape, blast_model, extrapolate, solver)
+
+
+def _first_swing(systems, W, R, pulse_shape, blast_model, extrapolate, solver) -> FirstSwing:
+    """:func:`first_swing` of checked inputs (1-D arrays of positive charges [kg] and stand-offs [m]
+    of one length): the capacity searches check once and evaluate many times."""
     a, e, p, q = _system_arrays(systems, W.size)
-    bp = blast_parameters(W, R, blast_model, extrapolate=extrapolate)
+    bp = blast_parameters_unchecked(W, R, blast_model, extrapolate=extrapolate)
     return first_swing_blast(a, e, p, q, bp, pulse_shape, solver=solver)
 
 

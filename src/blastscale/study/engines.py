@@ -63,23 +63,24 @@ def contact_settings(scenario: Scenario, structure=None):
     from ..sim3d import ContactSettings
     from ..sim3d.contact import time_constant_for_step
 
-    sim = scenario.simulation
-    base = ContactSettings()
-    if structure is not None:  # scale-consistent defaults derived from the structure
-        from ..sim3d.contact import default_contact
+    from ..sim3d.contact import default_contact
 
-        base = default_contact(structure, friction=scenario.structure.friction, gravity=sim.gravity_m_s2)
+    sim = scenario.simulation
+    # scale-consistent defaults derived from the structure (the full-scale ones without it)
+    base = ContactSettings() if structure is None else default_contact(
+        structure, friction=scenario.structure.friction, gravity=sim.gravity_m_s2)
     given = {k: v for k, v in sim.contact.model_dump().items() if v is not None}
     names = {"time_constant_s": "time_constant", "friction_time_constant_s": "friction_time_constant",
              "impedance_width_m": "impedance_width"}
     kw = {names.get(k, k): v for k, v in given.items()}
-    kw["friction"] = scenario.structure.friction
+    if structure is None or base.friction != scenario.structure.friction:
+        kw["friction"] = scenario.structure.friction
     if sim.timestep_s is not None:
         kw["timestep"] = sim.timestep_s
         if "time_constant" not in kw:
             kw["time_constant"] = time_constant_for_step(base.time_constant, sim.timestep_s)
     try:
-        return replace(base, **kw)
+        return replace(base, **kw) if kw else base
     except BlastscaleInputError as exc:
         raise BlastscaleInputError(f"simulation.contact: {exc}") from None
 
