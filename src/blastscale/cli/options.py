@@ -14,7 +14,12 @@ import typer
 
 from .._validate import BlastscaleInputError
 from ..blast.parameters import DEFAULT_BLAST_MODEL
+from ..constants import STANDARD_GRAVITY
+from ..scenario import SimulationSpec
 from ..structures import RectangularBlock
+
+#: The scenario schema's simulation settings: the CLI's defaults are the scenario's (one default per setting).
+_SIMULATION = SimulationSpec.model_fields
 
 MODEL_HELP = "Blast model: kingery-bulmash (Swisdak 1994, default) or masi2021 (the paper's Appendix A fits)."
 
@@ -80,12 +85,12 @@ DEPTH = typer.Option(1.0, "--depth", help="Block depth 2w across the blast \\[m]
 DENSITY = typer.Option(2000.0, "--density", help="Density rho \\[kg/m^3].")
 CHARGE = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W \\[kg].")
 STANDOFF = typer.Option(..., "--standoff", help="Prototype stand-off R \\[m].")
-DURATION = typer.Option(5.0, "--duration", help="Simulated time after the shock arrival \\[s] (prototype).")
+DURATION = typer.Option(_SIMULATION["duration_s"].default, "--duration", help="Simulated time after the shock arrival \\[s] (prototype).")
 PULSE = typer.Option("friedlander", "--pulse", "--pulse-shape", help=PULSE_HELP)
 SCALE = typer.Option(None, "--scale", help="Geometric scale lambda \\[-] (0.005 or 1/200): also design, run and up-scale the model.")
 DENSITY_RATIO = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-].")
 GRAVITY_RATIO = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype \\[-] (centrifuge).")
-GRAVITY = typer.Option(9.81, "--gravity", help="Prototype gravity g \\[m/s^2].")
+GRAVITY = typer.Option(STANDARD_GRAVITY, "--gravity", help="Prototype gravity g \\[m/s^2].")
 MODEL = typer.Option(DEFAULT_BLAST_MODEL, "--model", "--blast-model", help=MODEL_HELP)
 JSON = typer.Option(False, "--json", help="Print one JSON object instead of tables.")
 

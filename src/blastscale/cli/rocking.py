@@ -63,7 +63,7 @@ def rock_cmd(
     gravity_ratio: float = opt.GRAVITY_RATIO,
     gravity: float = opt.GRAVITY,
     blast_model: str = opt.MODEL,
-    samples: int = typer.Option(2001, "--samples", help="Sampling times for the comparison and the plot \\[-]."),
+    samples: int = typer.Option(opt._SIMULATION["samples"].default, "--samples", help="Sampling times for the comparison and the plot \\[-]."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write theta(t), theta_dot(t) and the phase portrait to this image file."),
     as_json: bool = opt.JSON,
 ) -> None:

@@ -8,6 +8,7 @@ from typing import Any, Mapping, Optional
 from pydantic import BaseModel, Field, ValidationError
 
 from .._validate import BlastscaleInputError
+from ..constants import DEFAULT_FRICTION
 from ..structures.materials import MATERIALS
 from .messages import one_line, submodels
 from .text import to_toml
@@ -74,7 +75,7 @@ class Scenario(BaseModel):
         return cls.from_dict({
             "title": "The paper's slender block: 50 kg TNT at 2 m, lambda = 1/200 (model 2)",
             "structure": {"kind": "block", "height_m": 10.0, "alpha_deg": 15.0, "depth_m": 1.0,
-                          "density_kg_m3": 2000.0, "friction": 0.7},
+                          "density_kg_m3": 2000.0, "friction": DEFAULT_FRICTION},
             "blast": {"charge_kg": 50.0, "standoff_m": 2.0, "blast_model": "masi2021"},
             "scale": {"length": 1.0 / 200.0, "density_ratio": 1.0},
         }, source="default scenario")

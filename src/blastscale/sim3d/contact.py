@@ -33,6 +33,7 @@ import math
 from dataclasses import dataclass, replace
 from typing import NamedTuple
 
+from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from .._validate import BlastscaleInputError, check_positive, check_range
 
 __all__ = ["ContactSettings", "CONES", "SOLVERS", "SETTING_RANGES", "Range", "default_contact", "mjcf_number", "reference_contact",
@@ -153,7 +154,7 @@ class ContactSettings:
     block's natural frequencies, so the dimensionless equations of motion are identical.
     """
 
-    friction: float = 0.7
+    friction: float = DEFAULT_FRICTION
     time_constant: float = 2e-3
     damping_ratio: float = 1.0
     friction_time_constant: float | None = 20e-3
@@ -299,7 +300,7 @@ def length_time_factors(length: float, time: float):
 #: Reference length [m] and gravity [m/s^2] at which the default settings below were measured
 #: (the paper's 10 m block and 10 m column; docs/design.md, "Physics engine" and "Multi-drum columns").
 REFERENCE_LENGTH = 10.0
-REFERENCE_GRAVITY = 9.81
+REFERENCE_GRAVITY = STANDARD_GRAVITY
 #: Full-scale defaults of a single body (block): contact 2 ms, friction reference 20 ms (removes
 #: the sliding hop, docs/sim3d.md), dt 0.2 ms, solimp width 1 mm.
 BLOCK_REFERENCE = ContactSettings()
@@ -318,7 +319,7 @@ def structure_length(structure) -> float:
     return float(structure.describe()["height_m"])
 
 
-def reference_contact(structure, friction: float = 0.7) -> ContactSettings:
+def reference_contact(structure, friction: float = DEFAULT_FRICTION) -> ContactSettings:
     """The full-scale (10 m, 9.81 m/s^2) settings of ``structure`` with friction mu [-]:
     :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several."""
     return replace(BLOCK_REFERENCE if len(structure.bodies) == 1 else STACK_REFERENCE, friction=friction)
@@ -335,7 +336,7 @@ def time_constant_for_step(time_constant: float, timestep: float) -> float:
     return max(float(time_constant), MIN_STEPS_PER_TIME_CONSTANT * float(timestep))
 
 
-def default_contact(structure, friction: float = 0.7, gravity: float = REFERENCE_GRAVITY) -> ContactSettings:
+def default_contact(structure, friction: float = DEFAULT_FRICTION, gravity: float = REFERENCE_GRAVITY) -> ContactSettings:
     """Scale-consistent contact settings for ``structure`` (used when ``contact=None``).
 
     The reference settings (:data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for

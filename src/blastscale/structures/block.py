@@ -13,13 +13,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
+from ..constants import STANDARD_GRAVITY  # noqa: F401 (re-exported by blastscale.structures)
 from .._validate import check_positive_scalar, check_range
 from .base import BoxGeometry, Face, MonitoringPoint, RigidBody
 
 __all__ = ["RectangularBlock", "STANDARD_GRAVITY"]
 
-#: Standard gravity [m/s^2]; the paper's numbers are reproduced with 9.81.
-STANDARD_GRAVITY = 9.81
 
 
 @dataclass(frozen=True)
