@@ -23,7 +23,7 @@ GOLDEN = Path(__file__).resolve().parents[1] / "data" / "cli_golden"
 
 #: Keys whose value differs from the golden on purpose: {(case, dotted key prefix): reason}.
 CHANGED: dict = {
-    ("design_general", "root"): "the note names the root finder: bisection (vectorised, one code path for one "
+    ("design_general", "root"): "the note names the root finder: Illinois regula falsi (vectorised, one code path for one "
                                 "design and for the sweeps' arrays) instead of Brent; lambda_Z moves by ~1e-15",
     ("run_default", "design.root"): "as design_general",
     ("run_default", "scenario.simulation.record_every"):
@@ -33,7 +33,7 @@ CHANGED: dict = {
 
 #: Chaotic runs: {(case, key prefix): reason}. A circular column is chaotic (docs/design.md: 1e-10 on the load
 #: moves its history by 19-57 % of its peak). Since the goldens, the design's lambda_Z moved by ~1e-15 (the
-#: general law is solved by vectorised bisection, one code path for one design and for the sweeps' arrays,
+#: general law is solved by vectorised regula falsi (Illinois), one code path for one design and for the sweeps' arrays,
 #: instead of Brent): the specimen's trajectory then moves by ~4e-4 of its peak, the differences and the
 #: ensemble spreads (statistics of the chaos itself) by much more. These keys must still exist; their numbers
 #: are not compared. The prototype side does not depend on the design's root and is held to 1e-9.

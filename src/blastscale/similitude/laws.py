@@ -14,7 +14,7 @@ generalised to a gravity ratio varsigma), gives paper Eq. (8):
 In x = ln(lambda_Z) the residual g(x) = ln i_hat(Z e^x) - ln i_hat(Z) - x - ln(gamma sqrt(varsigma lambda))
 has slope d ln i_hat / d ln Z - 1 < 0 wherever the scaled impulse decreases with Z (true for
 both models over their ranges), so the root is unique on the fit's range; it is bracketed by that
-range and found by bisection to double precision, for one prototype Z or an array of them at once
+range and found to double precision (regula falsi, Illinois), for one prototype Z or an array of them at once
 (:func:`solve_scaled_distance_factors`: the Study's design and the sweeps' vectorised outcome mode
 solve the law with the same code). For the paper's fit (ln i_hat quadratic in ln Z) Eq. (8) is
 a quadratic in x with two roots: the physical one lies inside the fit's range and equals the
@@ -228,7 +228,7 @@ def solve_scaled_distance_factor(
     x = math.log(float(lz_arr))
     res = _residual(m, z, x, target)
     lz = float(lz_arr)
-    note = f"unique root of Eq. (8) on the {m.name} impulse range Z in [{zmin:g}, {zmax:g}] (bisection)"
+    note = f"unique root of Eq. (8) on the {m.name} impulse range Z in [{zmin:g}, {zmax:g}] (Illinois)"
     others: tuple[float, ...] = ()
     if isinstance(m, Masi2021):
         phys, other = masi2021_quadratic_roots(z, target)
@@ -240,21 +240,26 @@ def solve_scaled_distance_factor(
     return ScaledDistanceSolution(factor=lz, residual=res, note=note, other_roots=others)
 
 
-def _residual(m, z, x, target):
+def _residual(m, z, x, target, ln_i0=None):
     """g(x) = ln i_hat(Z e^x) - ln i_hat(Z) - x - ln(target), the general law (Eq. 8) in x = ln lambda_Z:
-    decreasing in x where the law is monotone (arrays broadcast; Z e^x clipped to the impulse fit)."""
+    decreasing in x where the law is monotone (arrays broadcast; Z e^x clipped to the impulse fit;
+    ``ln_i0`` = ln i_hat(Z) when known)."""
     zmin, zmax = m.valid_range("scaled_reflected_impulse")
     zz = np.clip(z * np.exp(x), zmin, zmax)  # guard round-off at the bracket ends
-    return np.log(m.scaled_reflected_impulse(zz)) - np.log(m.scaled_reflected_impulse(z)) - x - np.log(target)
+    if ln_i0 is None:
+        ln_i0 = np.log(m.scaled_reflected_impulse(z))
+    return np.log(m.scaled_reflected_impulse(zz)) - ln_i0 - x - np.log(target)
 
 
 def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, density_ratio: float = 1.0,
                                   gravity_ratio: float = 1.0, blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL):
     """lambda_Z of the general law (paper Eq. 8) for every prototype Z of an array, at once.
 
-    Bisection in x = ln lambda_Z on the impulse fit's range of the model Z, to the resolution of
-    double precision (the residual decreases in x where the law is monotone, so a root is bracketed
-    exactly when the residual changes sign between Z_min and Z_max).
+    A bracketed root in x = ln lambda_Z on the impulse fit's range of the model Z (the residual
+    decreases in x where the law is monotone, so a root is bracketed exactly when the residual
+    changes sign between Z_min and Z_max), found by the Illinois variant of regula falsi (Dowell &
+    Jarratt 1971, BIT 11, 168-174) with a bisection safeguard, to the resolution of double precision
+    (about ten evaluations of the fit).
 
     Parameters
     ----------
@@ -282,15 +287,33 @@ def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, densi
     zmin, zmax = m.valid_range("scaled_reflected_impulse")
     inside = (z >= zmin) & (z <= zmax)
     zs = np.where(inside, z, 1.0 if zmin <= 1.0 <= zmax else zmin)  # a placeholder where Z itself is out
-    lo, hi = np.log(zmin / zs), np.log(zmax / zs)
-    ok = inside & (_residual(m, zs, lo, target) >= 0.0) & (_residual(m, zs, hi, target) <= 0.0)
-    for _ in range(200):  # the x-range is < 7 wide: ~60 halvings reach double precision
-        mid = 0.5 * (lo + hi)
-        if not np.any((mid > lo) & (mid < hi)):
+    ln_i0 = np.log(m.scaled_reflected_impulse(zs))
+
+    def g(x):
+        return _residual(m, zs, x, target, ln_i0)
+
+    a, b = np.log(zmin / zs), np.log(zmax / zs)  # g(a) >= 0 >= g(b) where a root is bracketed
+    fa, fb = g(a), g(b)
+    ok = inside & (fa >= 0.0) & (fb <= 0.0)
+    side = np.zeros(z.shape, dtype=np.int8)  # the end kept last time (Illinois: halve the other's value)
+    for _ in range(200):
+        live = ok & (fa != 0.0) & (fb != 0.0) & (b - a > 4.0 * np.spacing(np.maximum(np.abs(a), np.abs(b))))
+        if not np.any(live):
             break
-        above = _residual(m, zs, mid, target) > 0.0  # too much impulse: the root lies further out
-        lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
-    lz = np.where(ok, np.exp(0.5 * (lo + hi)), np.nan)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            x = b - fb * (b - a) / (fb - fa)
+        mid = 0.5 * (a + b)
+        x = np.where(np.isfinite(x) & (x > a) & (x < b), x, mid)
+        fx = g(x)
+        right = live & (fx > 0.0)  # too much impulse: the root lies beyond x
+        left = live & (fx <= 0.0)
+        fb = np.where(right & (side == 1), 0.5 * fb, fb)
+        fa = np.where(left & (side == -1), 0.5 * fa, fa)
+        a, fa = np.where(right, x, a), np.where(right, fx, fa)
+        b, fb = np.where(left, x, b), np.where(left, fx, fb)
+        side = np.where(right, 1, np.where(left, -1, side)).astype(np.int8)
+    x = np.where(fa == 0.0, a, np.where(fb == 0.0, b, 0.5 * (a + b)))
+    lz = np.where(ok, np.exp(x), np.nan)
     return float(lz) if lz.ndim == 0 else lz
 
 

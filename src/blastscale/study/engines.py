@@ -4,6 +4,7 @@ whether it supports a structure and runs prototype and specimen from the study's
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, replace
 from typing import Any, Callable, Optional
 
@@ -159,10 +160,18 @@ ENSEMBLE = Engine("ensemble", "3D ensembles under perturbed loads: prototype and
 
 
 def critical_charge_of(sc: Scenario, structure):
-    """The prototype block's critical charge at the scenario's stand-off (planar, first-swing criterion)."""
+    """The prototype block's critical charge at the scenario's stand-off (planar, first-swing criterion).
+
+    A pure function of the block, gravity, restitution, stand-off, pulse shape and blast model: a sweep
+    over charges (or any other field) at one stand-off searches it once per process (memoised)."""
+    sim, bl = sc.simulation, sc.blast
+    return _critical_charge(structure, sim.gravity_m_s2, sim.restitution, bl.standoff_m, bl.pulse_shape,
+                            bl.blast_model, bl.extrapolate)
+
+
+@functools.lru_cache(maxsize=4096)
+def _critical_charge(structure, gravity, restitution, standoff, pulse_shape, blast_model, extrapolate):
     from ..rocking import RockingSystem, critical_charge
 
-    sim = sc.simulation
-    system = RockingSystem.from_block(structure, sim.gravity_m_s2, sim.restitution)
-    return critical_charge(system, sc.blast.standoff_m, pulse_shape=sc.blast.pulse_shape, blast_model=sc.blast.blast_model,
-                           extrapolate=sc.blast.extrapolate)
+    system = RockingSystem.from_block(structure, gravity, restitution)
+    return critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)

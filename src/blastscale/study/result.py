@@ -94,9 +94,13 @@ class StudyResult:
         is returned)."""
         import copy
 
+        return copy.deepcopy(self._cached_summary())
+
+    def _cached_summary(self) -> dict:
+        """The summary, computed on first use (read-only: callers outside get copies)."""
         if not self._summary:
             self._summary.update(self._compute_summary())
-        return copy.deepcopy(self._summary)
+        return self._summary
 
     def _compute_summary(self) -> dict:
         return {
@@ -114,7 +118,7 @@ class StudyResult:
     def scalars(self) -> dict:
         """Flat dict of the scalar results (dotted keys, stable for a given scenario layout):
         str -> float / int / bool; None (not applicable) -> NaN. Inputs and timings are left out."""
-        s = self.summary()
+        s = self._cached_summary()  # _flatten only reads it
         out: dict = {}
         for key in ("experiment", "design", "planar", "critical", "3d", "ensemble"):
             _flatten(s[key], key, out)
