@@ -152,6 +152,9 @@ def _experiment(result) -> str:
 
 def _loads(result) -> str:
     d = result.design
+    if result.blast is None:
+        return ("<p>No charge: the structure under gravity alone, the stability check a designer runs before any "
+                "blast (section 4 says whether it stands, settles or collapses).</p>")
     if d is None:
         b = result.blast
         rows = [("scaled distance Z", b.scaled_distance, "m/kg^(1/3)"), ("reflected peak pressure",
@@ -215,6 +218,12 @@ def _similarity(result, figures) -> str:
         r3 = s["3d"]
         out.append("<h3>3D rigid bodies (MuJoCo, Coulomb friction "
                    f"{result.scenario.structure.friction:g})</h3>")
+        stab = (r3.get("prototype") or {}).get("stability")
+        if stab is not None:
+            cls = "bad" if stab == "collapses" else "ok"
+            out.append(f'<p class="lead">Under gravity alone the structure <span class="{cls}">{_e(stab)}</span> '
+                       "(stands: no block moved more than 1e-4 of the structure's height; settles: more, but no block "
+                       "fell; collapses: a block fell, docs/assemblies.md).</p>")
         out.append(_compare_table(r3["prototype"], r3["model"]))
         if r3.get("similarity") is not None:
             out.append(_table(("similarity figure", "value", "unit"),

@@ -47,7 +47,8 @@ class Scenario(BaseModel):
     model_config = _CONFIG
     title: str = Field("", description="A one-line description")
     structure: Structure
-    blast: BlastSpec
+    blast: BlastSpec = Field(default_factory=BlastSpec, description="The charge; absent (or charge_kg = 0): "
+                             "the structure under gravity alone")
     scale: Optional[ScaleSpec] = Field(None, description="The specimen's scales; absent: the prototype alone "
                                        "(no design, no comparison)")
     simulation: SimulationSpec = Field(default_factory=SimulationSpec)
