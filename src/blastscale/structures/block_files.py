@@ -11,8 +11,9 @@ describes the block's own polyhedron: a block whose volume is less than its hull
 :data:`NONCONVEX_TOLERANCE` is refused (its hull would add mass); less than that, it is replaced by
 its hull with a warning. ``points`` are extra monitoring points, world position at rest.
 
-Meshes: one block per object (OBJ ``o``/``g``, a PLY/STL scene's geometries) or, within one mesh,
-per connected component, read by ``trimesh`` (the optional ``mesh`` extra; installed by
+Meshes: one block per object (OBJ ``o``/``g``, a scene's geometries) or, in a file of one mesh (STL,
+PLY), per connected component (blocks whose corners coincide are then glued together: give them as
+separate objects, or in our JSON), read by ``trimesh`` (the optional ``mesh`` extra; installed by
 ``make install``). The convexity rule is the same (the component's own volume against its hull's).
 
 COMPAS JSON: every COMPAS mesh found in the file (a dict with ``"vertex"``: {key: {"x", "y", "z"}} and
@@ -157,34 +158,49 @@ def _from_mesh(path: Path, source: str, density: float) -> tuple:
     except ImportError:  # pragma: no cover - the [mesh] extra is part of make install
         raise BlastscaleInputError(f"{source}: reading meshes needs trimesh: pip install 'blastscale[mesh]'") from None
     try:
-        loaded = trimesh.load(str(path), force=None, process=False)
+        loaded = trimesh.load_scene(str(path), split_object=True, group_material=False, process=False) \
+            if hasattr(trimesh, "load_scene") else trimesh.load(str(path), process=False)
     except Exception as exc:  # trimesh raises many kinds
         raise BlastscaleInputError(f"{source}: cannot be read as a mesh: {exc}") from None
     if isinstance(loaded, trimesh.Scene):
-        parts = [(str(n), g) for n, g in loaded.to_geometry().items()] if hasattr(loaded, "to_geometry") else \
-            [(str(n), g) for n, g in loaded.dump(concatenate=False)]
+        parts = [(str(n), g) for n, g in loaded.geometry.items() if hasattr(g, "faces")]
     else:
         parts = [("B", loaded)]
-    meshes = []
+    meshes = []  # (name, vertices, faces)
     for name, mesh in parts:
-        mesh = trimesh.Trimesh(mesh.vertices, mesh.faces, process=True)
-        comps = mesh.split(only_watertight=False)
-        for k, c in enumerate(comps if len(comps) else [mesh]):
-            meshes.append((name if len(comps) <= 1 else f"{name}-{k + 1}", c))
+        # STL stores each triangle's own corners: merge them; OBJ/PLY keep their indices (objects stay apart)
+        mesh = trimesh.Trimesh(mesh.vertices, mesh.faces, process=path.suffix.lower() == ".stl")
+        v, f = np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=int)
+        if len(parts) > 1 or len(f) == 0:
+            meshes.append((name, v, f))
+            continue
+        n, lab = _components(len(v), f)
+        for k in range(n):
+            fk = f[lab[f[:, 0]] == k]
+            used = np.unique(fk)
+            remap = np.full(len(v), -1)
+            remap[used] = np.arange(used.size)
+            meshes.append((name if n == 1 else f"{name}-{k + 1}", v[used], remap[fk]))
     if not meshes:
         raise BlastscaleInputError(f"{source}: the mesh has no faces")
     blocks = []
-    single = len(meshes) == 1
-    for k, (name, m) in enumerate(meshes):
-        name = name if not single or name != "B" else "B1"
+    for k, (name, v, f) in enumerate(meshes):
         if name == "B" or name.startswith("B-"):
             name = f"B{k + 1}"
-        v = np.asarray(m.vertices, dtype=float)
         if len(v) < 4:
             raise BlastscaleInputError(f"{source}: block {name!r} is empty ({len(v)} vertices)")
-        own = abs(float(m.volume)) if m.is_watertight else None
-        blocks.append(ConvexBlock(name, _convex_or_hull(source, name, v, own), density))
+        blocks.append(ConvexBlock(name, _convex_or_hull(source, name, v, _mesh_volume(v, f)), density))
     return tuple(blocks), []
+
+
+def _components(nv: int, faces: np.ndarray) -> tuple:
+    """Connected components of a triangle mesh's vertices (number, label per vertex)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    e = np.vstack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    g = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(nv, nv))
+    return connected_components(g, directed=False)
 
 
 def _points(raw, blocks, source: str) -> tuple:
