@@ -231,6 +231,9 @@ class BlastSpec(BaseModel):
 
     @model_validator(mode="after")
     def _standoff(self) -> "BlastSpec":
+        if "charge_kg" not in self.model_fields_set and self.model_fields_set:
+            raise ValueError("blast.charge_kg is missing: give the charge [kg] (0, or no [blast] table, for gravity "
+                             "alone)")
         if self.charge_kg > 0 and self.standoff_m is None:
             raise ValueError(f"charge_kg = {show(self.charge_kg)} needs standoff_m (the stand-off R [m]); "
                              "charge_kg = 0 is gravity alone")

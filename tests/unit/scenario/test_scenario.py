@@ -87,7 +87,7 @@ def test_range_errors_give_the_valid_range():
                                                    r"\(0, 90\) deg"):
         Scenario.default().with_values({"alpha_deg": 95.0})
     with pytest.raises(BlastscaleInputError, match=r"blast\.charge_kg = nan is not a finite number: valid range is "
-                                                   r"> 0 kg"):
+                                                   r">= 0 kg"):  # 0: gravity alone (issue 16)
         Scenario.default().with_values({"charge_kg": math.nan})
 
 
