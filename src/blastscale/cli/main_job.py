@@ -138,7 +138,11 @@ def run_cmd(
         check_output_folder(out, force)  # before any simulation
     study = Study(sc)
     with one_line_warnings():
-        study.check()  # blast-fit and scale ranges, engines, memory: one line before any work
+        design = study.check()[3]  # blast-fit and scale ranges, engines, memory: one line before any work
+        if sc.lab is not None:  # the [lab] table's charge (the initiator below it): one line before any work
+            from ..planning.card import check_lab
+
+            check_lab(design, sc.lab)
         writes = 3 if out is not None else 0  # histories, figures, report
         with stage_progress() as tell:
             state = {"done": 0, "total": 1}
