@@ -19,8 +19,8 @@ blastscale keeps Kinney-Graham's *decay* beyond the joint and anchors it to King
 
 so the curve is continuous (jump 0, :func:`far_field_joint` states the raw jump) and agrees with
 the DoD quantity-distance tables, which follow Kingery-Bulmash (K328: 0.0655 psi). Distances in
-this far field are less certain (Kinney-Graham unanchored would put the 200 Pa distance 1.9 times
-farther): they are marked as such.
+this far field are less certain (Kinney-Graham unanchored would put the 200 Pa distance of 1 kg at
+510 m instead of 248 m): they are marked as such.
 
 A distance to a threshold is the *largest* distance at which the overpressure is still at or
 above it (a bracketed root in ln Z, conservative where the fit's pieces do not join monotonically).

@@ -167,8 +167,9 @@ def test_card(result, lab=None) -> dict | None:
     reach, reach_p = max(r["reach_m"]), max(r["prototype_reach_m"])
     notes = list(ch.warnings)
     if env.far_field:
-        notes.append(f"the {', '.join(env.far_field)} distances lie beyond the Kingery-Bulmash range (Kinney-Graham "
-                     "far field, anchored at Z = 198.5 m/kg^(1/3)): less certain")
+        many = len(env.far_field) > 1
+        notes.append(f"the {', '.join(env.far_field)} distance{'s lie' if many else ' lies'} beyond the Kingery-Bulmash "
+                     "range (Kinney-Graham far field, anchored at Z = 198.5 m/kg^(1/3)): less certain")
     if ins.pressure_rise_time_s < _SHORT_RISE_S:
         notes.append(f"the gauges must rise in {ins.pressure_rise_time_s * 1e9:.3g} ns, faster than the ~1 us of "
                      "piezoelectric blast gauges: the peak will be under-read; the impulse is still measured")
