@@ -11,7 +11,7 @@ from html.parser import HTMLParser
 import pytest
 
 from blastscale.report import write_study
-from blastscale.report.test_card import shown
+from blastscale.report.card import shown
 from blastscale.scenario import Scenario
 from blastscale.study import Study
 

@@ -12,9 +12,9 @@
 Above the sweeps (the 3D ensembles run as one), below the report and the files.
 """
 
-from .card import test_card
+from .card import study_test_card
 from .odds import Odds, Tolerances, ensemble_odds_3d, planar_odds
 from .planner import Plan, PlanInfeasible, design_scenario, plan
 
-__all__ = ["plan", "Plan", "PlanInfeasible", "design_scenario", "test_card", "planar_odds", "ensemble_odds_3d",
+__all__ = ["plan", "Plan", "PlanInfeasible", "design_scenario", "study_test_card", "planar_odds", "ensemble_odds_3d",
            "Odds", "Tolerances"]

@@ -21,7 +21,7 @@ from .instruments import instrument_settings, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .shot import DEFAULT_LAB, Timing, lab_charge, rocking_timing, safety_envelope, threshold_meanings, timing_of
 
-__all__ = ["test_card", "check_lab"]
+__all__ = ["study_test_card", "check_lab"]
 
 _SHORT_RISE_S = 1e-6  # piezoelectric blast gauges rise in ~1 us
 
@@ -122,7 +122,7 @@ def spec_dims(spec) -> tuple:
     return float(spec.height), w, w
 
 
-def test_card(result, lab=None) -> dict | None:
+def study_test_card(result, lab=None) -> dict | None:
     """The test card of ``result`` (module docstring); None for a prototype-only study (no specimen).
 
     Parameters

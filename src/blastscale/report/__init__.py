@@ -69,11 +69,11 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
 def summary_dict(result, meta: Optional[dict] = None) -> dict:
     """The content of ``summary.json``: provenance (versions, git commit, timestamp), units, the
     study's nested summary (scenario included), its flat ``scalars`` and, with a ``[lab]`` table, the
-    ``test_card`` (:func:`blastscale.planning.test_card`), each renamed key with its
+    ``test_card`` (:func:`blastscale.planning.study_test_card`), each renamed key with its
     deprecated name beside it (:func:`blastscale.io.results.with_legacy_keys`)."""
     from ..io.results import provenance, with_legacy_keys
 
-    from .test_card import card_of
+    from .card import card_of
 
     card = card_of(result)
     extra = {} if card is None else {"test_card": card}

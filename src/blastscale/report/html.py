@@ -2,7 +2,7 @@
 
 One file, no external resources: the figures are embedded as base64 PNG. Sections (each a
 ``<section id=...>``): ``experiment`` (what to build and detonate), ``test_card`` (the printable
-card of a scenario with a ``[lab]`` table: :mod:`.test_card`), ``loads`` (blast loads of
+card of a scenario with a ``[lab]`` table: :mod:`.card`), ``loads`` (blast loads of
 both systems, delivered vs required ratios), ``impulsive`` (the a-posteriori check),
 ``similarity`` (figures and numbers per engine, the critical charge), ``warnings``, ``slips``
 (the paper's slips that apply), ``scenario`` (the inputs, as TOML) and ``provenance``.
@@ -17,8 +17,8 @@ from typing import Any, Iterable
 
 from ..units import split_unit as _split_unit
 from .slips import applicable_slips
-from .test_card import CSS as _CARD_CSS
-from .test_card import test_card_section
+from .card import CSS as _CARD_CSS
+from .card import card_section
 
 __all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
 
@@ -299,7 +299,7 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_h
         pulses = _img(png, f.title, f.caption, f.name)
     body = {
         "experiment": ("1. The experiment to build", _experiment(result)),
-        "test_card": ("Test card", test_card_section(result)),
+        "test_card": ("Test card", card_section(result)),
         "loads": ("2. Blast loads of the prototype" + ("" if result.design is None else " and the model"),
                   _loads(result) + pulses),
         "impulsive": ("3. Impulsive check", _impulsive(result)),

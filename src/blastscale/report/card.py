@@ -16,7 +16,7 @@ import math
 import weakref
 from typing import Any
 
-__all__ = ["card_of", "test_card_section", "UNITS", "shown"]
+__all__ = ["card_of", "card_section", "UNITS", "shown"]
 
 #: Display unit -> factor from the card's SI value (m, s, Pa, kg, Hz, rad, ratios).
 UNITS = {"mm": 1e3, "m": 1.0, "ms": 1e3, "us": 1e6, "ns": 1e9, "s": 1.0, "kPa": 1e-3, "Pa": 1.0, "MHz": 1e-6,
@@ -27,14 +27,14 @@ _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def card_of(result):
-    """The test card of a study (:func:`blastscale.planning.test_card`), computed once per result;
+    """The test card of a study (:func:`blastscale.planning.study_test_card`), computed once per result;
     None without a ``[lab]`` table or without a specimen."""
     if result.scenario.lab is None or result.design is None:
         return None
     if result not in _CACHE:
-        from ..planning import test_card
+        from ..planning import study_test_card
 
-        _CACHE[result] = test_card(result)
+        _CACHE[result] = study_test_card(result)
     return _CACHE[result]
 
 
@@ -176,7 +176,7 @@ def _site_svg(card: dict) -> str:
     return "".join(out)
 
 
-def test_card_section(result) -> str:
+def card_section(result) -> str:
     """The section's HTML (a hint to add a ``[lab]`` table when there is none)."""
     card = card_of(result)
     if card is None:
