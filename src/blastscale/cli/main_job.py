@@ -92,6 +92,16 @@ def _print_result(result) -> None:
         if r3.get("similarity") is not None:
             console.print("similarity: " + ", ".join(
                 f"{k} {fmt_value(v, '.3g')}" for k, v in r3["similarity"].items() if not isinstance(v, (dict, list))))
+    from ..report.card import card_of
+
+    card = card_of(result)
+    if card is not None:
+        p = card["p_outcome_agree"]
+        console.print(f"[bold]Test card:[/] {format_charge(card['explosive_mass_kg'])} of {card['explosive']} at "
+                      f"{card['standoff_m'] * 1e3:.4g} mm; safety radius ({card['safety_threshold']}) "
+                      f"{card['safety_radius_m']:.3g} m, debris zone {card['debris_radius_m'] * 1e3:.4g} mm; camera "
+                      f"{card['camera_fps']:g} frames/s, gauges sampled at {card['pressure_sampling_hz']:g} Hz"
+                      + ("" if p is None else f"; P(outcome agrees) {p:.3f}") + " (report.html: the printable card)")
     # result.warnings were printed as they came, one line each (one_line_warnings)
 
 

@@ -96,11 +96,10 @@ def design_scenario(scenario, candidate, lab_spec=None):
 
     scale = {"length": candidate.scale, "law": candidate.law,
              "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
-    if candidate.law == "general":
-        if candidate.material == SAME_MATERIAL:
-            scale["density_ratio"] = 1.0
-        else:
-            scale["specimen_material"] = candidate.material
+    if candidate.material != SAME_MATERIAL:  # Hopkinson-Cranz: the material's density is the one the law imposes
+        scale["specimen_material"] = candidate.material
+    elif candidate.law == "general":
+        scale["density_ratio"] = 1.0
     data = scenario.model_dump(exclude_none=True)
     data["scale"] = scale
     if lab_spec is not None:
