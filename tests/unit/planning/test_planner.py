@@ -45,7 +45,7 @@ def labs(draw):
         samples=20, seed=draw(st.integers(0, 10)))
 
 
-@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(lab=labs())
 def test_every_listed_design_satisfies_every_constraint(lab):
     try:
