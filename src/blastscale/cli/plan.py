@@ -54,8 +54,8 @@ def _print_plan(p, top: int) -> None:
 def plan_cmd(
     scenario: Optional[Path] = typer.Argument(
         None, metavar="SCENARIO.toml", show_default=False,
-        help="Scenario file with the prototype and a [lab] table (docs/planning.md). Default: the built-in "
-             "scenario and every [lab] default."),
+        help="Scenario file with the prototype and a \\[lab] table (docs/planning.md). Default: the built-in "
+             "scenario and every \\[lab] default."),
     as_json: bool = typer.Option(False, "--json", help="Print the plan as one JSON object instead of tables."),
     out: Optional[Path] = typer.Option(None, "--out", show_default=False,
                                        help="Also run the best design and write plan.json, summary.json (test card), "
