@@ -6,7 +6,6 @@ import dataclasses
 import json
 
 import numpy as np
-import pytest
 
 from blastscale.blast import blast_parameters
 from blastscale.scenario import load_scenario

@@ -96,6 +96,16 @@ def _print_result(result) -> None:
         if r3.get("similarity") is not None:
             console.print("similarity: " + ", ".join(
                 f"{k} {fmt_value(v, '.3g')}" for k, v in r3["similarity"].items() if not isinstance(v, (dict, list))))
+    from ..report.card import card_of
+
+    card = card_of(result)
+    if card is not None:
+        p = card["p_outcome_agree"]
+        console.print(f"[bold]Test card:[/] {format_charge(card['explosive_mass_kg'])} of {card['explosive']} at "
+                      f"{card['standoff_m'] * 1e3:.4g} mm; safety radius ({card['safety_threshold']}) "
+                      f"{card['safety_radius_m']:.3g} m, debris zone {card['debris_radius_m'] * 1e3:.4g} mm; camera "
+                      f"{card['camera_fps']:g} frames/s, gauges sampled at {card['pressure_sampling_hz']:g} Hz"
+                      + ("" if p is None else f"; P(outcome agrees) {p:.3f}") + " (report.html: the printable card)")
     # result.warnings were printed as they came, one line each (one_line_warnings)
 
 
@@ -142,7 +152,11 @@ def run_cmd(
         check_output_folder(out, force)  # before any simulation
     study = Study(sc)
     with one_line_warnings():
-        study.check()  # blast-fit and scale ranges, engines, memory: one line before any work
+        design = study.check()[3]  # blast-fit and scale ranges, engines, memory: one line before any work
+        if sc.lab is not None:  # the [lab] table's charge (the initiator below it): one line before any work
+            from ..planning.card import check_lab
+
+            check_lab(design, sc.lab)
         writes = 3 if out is not None else 0  # histories, figures, report
         with stage_progress() as tell:
             state = {"done": 0, "total": 1}

@@ -26,8 +26,8 @@ from ..structures.column import MAX_DRUMS, MAX_SIDES, MIN_SIDES
 from ..structures.materials import MATERIALS
 from .messages import show
 
-__all__ = ["parse_ratio", "BlockSpec", "ColumnSpec", "WallSpec", "ArchSpec", "PortalSpec", "AssemblySpec", "BlastSpec", "ScaleSpec", "SimulationSpec", "ContactSpec",
-           "Structure", "KINDS", "LEGACY_SCENARIO_KEYS"]
+__all__ = ["parse_ratio", "BlockSpec", "ColumnSpec", "WallSpec", "ArchSpec", "PortalSpec", "AssemblySpec",
+           "BlastSpec", "ScaleSpec", "SimulationSpec", "ContactSpec", "Structure", "KINDS", "LEGACY_SCENARIO_KEYS"]
 
 #: Deprecated scenario keys, still accepted when read (files, ``with_values``, ``--set``) and never
 #: written: old dotted path -> new dotted path (CHANGELOG.md, docs/glossary.md).

@@ -1,7 +1,6 @@
 """General blocks and assemblies (issue 16): exact mass properties against closed forms and an
 independent computation, interfaces found by geometry, generators, block-model files and their errors."""
 
-import itertools
 import json
 import math
 
