@@ -199,6 +199,7 @@ def ensemble_compare(
     extrapolate: bool = False,
     blast=None,
     gravity: float = STANDARD_GRAVITY,
+    threads: int | None = None,
 ) -> EnsembleComparison:
     """Ensembles of a structure and of its reduced-scale model under slightly perturbed loads.
 
@@ -220,6 +221,9 @@ def ensemble_compare(
         The prototype's blast parameters when ``design`` is None.
     gravity : float
         The prototype's gravity [m/s^2] when ``design`` is None.
+    threads : int, optional
+        Runs in flight at once (:mod:`blastscale.sim3d.threads`; default: the cores this process may
+        use, divided by the local Dask workers). The members' histories do not depend on it (bitwise).
 
     Returns
     -------
@@ -229,6 +233,7 @@ def ensemble_compare(
     from .compare import align, upscale_dataset
     from .systems import SYSTEMS, run_system
     from .upscale import upscale_summary
+    from ..sim3d.threads import map_threads
 
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
         raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 2")
@@ -243,8 +248,19 @@ def ensemble_compare(
     t = points = None
     kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,
               duration=duration, record_every=record_every, extrapolate=extrapolate)
-    for k, fac in enumerate(factors):
-        runs = {s: run_system(structure, design, s, load_factor=fac, **kw).response for s in systems}
+    tasks = [(k, s) for k in range(len(factors)) for s in systems]
+
+    def member(task):
+        k, s = task
+        return run_system(structure, design, s, load_factor=factors[k], **kw).response
+
+    def tick(done):
+        if progress is not None and done % len(systems) == 0:
+            progress(done // len(systems), len(factors))
+
+    responses = map_threads(member, tasks, threads, done=tick)
+    for k in range(len(factors)):
+        runs = {s: responses[k * len(systems) + i] for i, s in enumerate(systems)}
         ds = {"prototype": runs["prototype"].dataset}
         summ = {"prototype": runs["prototype"].summary()}
         if design is not None:
@@ -262,8 +278,6 @@ def ensemble_compare(
             q[s].append(ds[s]["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
             collapsed[s].append(bool(summ[s]["collapsed"]))
             times[s].append(summ[s].get("collapse_time_s"))
-        if progress is not None:
-            progress(k + 1, len(factors))
     stats = {s: ensemble_statistics(t, np.stack(q[s]), collapsed[s], horizon_fraction, collapse_times=times[s])
              for s in systems}
     return EnsembleComparison(

@@ -98,6 +98,7 @@ def column_cmd(
                                  "in [-1, 1], and report first-peak spreads, noise floor, horizon and collapse "
                                  "probabilities (circular columns are chaotic: compare them this way; "
                                  "docs/columns.md). 0 (default): off; else 2 to 64."),
+    threads: Optional[int] = opt.THREADS,
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the monitoring-point histories and pose snapshots to this image file."),
     as_json: bool = opt.JSON,
 ) -> None:
@@ -120,7 +121,7 @@ def column_cmd(
                "incidence": incidence},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio},
         simulation={"engine": "3d", "duration_s": duration, "timestep_s": timestep, "record_every": record_every,
-                    "ensemble_members": ensemble, "critical_charge": False, "contact": {"jacobian": jacobian}},
+                    "ensemble_members": ensemble, "threads": threads, "critical_charge": False, "contact": {"jacobian": jacobian}},
     )
     study = Study(sc)
     with one_line_warnings():

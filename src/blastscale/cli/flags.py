@@ -24,6 +24,7 @@ FLAG_NAMES = {
     "simulation.duration_s": "--duration", "simulation.samples": "--samples", "simulation.gravity_m_s2": "--gravity",
     "simulation.restitution": "--restitution", "simulation.timestep_s": "--timestep",
     "simulation.record_every": "--record-every", "simulation.ensemble_members": "--ensemble",
+    "simulation.threads": "--threads",
     "simulation.contact.jacobian": "--jacobian",
 }
 

@@ -135,7 +135,7 @@ def _run_ensemble(ctx: Context):
 
     sim = ctx.scenario.simulation
     return ensemble_compare(ctx.structure, ctx.design, n=sim.ensemble_members, perturbation=sim.ensemble_perturbation,
-                            blast=ctx.blast, gravity=sim.gravity_m_s2, **_settings_3d(ctx))
+                            blast=ctx.blast, gravity=sim.gravity_m_s2, threads=sim.threads, **_settings_3d(ctx))
 
 
 @dataclass(frozen=True)

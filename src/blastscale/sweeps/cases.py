@@ -13,6 +13,15 @@ from .spec import SweepSpec
 __all__ = ["VALID_KEY", "study_scalars", "evaluate_chunk"]
 
 
+def _scalars(scenario) -> dict:
+    from ..study import Study
+
+    try:
+        return {**Study(scenario).run().scalars(), VALID_KEY: True}
+    except BlastscaleInputError:
+        return {VALID_KEY: False}
+
+
 def study_scalars(scenario) -> dict:
     """The Study path: ``Study(scenario).run().scalars()`` plus ``sweep.valid`` (warnings
     silenced: a sweep reports results, not one warning per case). A case the Study refuses
@@ -20,14 +29,24 @@ def study_scalars(scenario) -> dict:
     its other values are NaN in the store."""
     import warnings
 
-    from ..study import Study
-
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        try:
-            return {**Study(scenario).run().scalars(), VALID_KEY: True}
-        except BlastscaleInputError:
-            return {VALID_KEY: False}
+        return _scalars(scenario)
+
+
+def _chunk_rows(spec: SweepSpec, start: int, stop: int) -> list:
+    """One Study per case; a chunk's 3D cases in parallel native threads (:mod:`blastscale.sim3d.threads`:
+    the scenario's ``simulation.threads``, default the process's share of the cores), planar ones in
+    order (they hold the GIL). Warnings are silenced once, here (``catch_warnings`` is process-wide)."""
+    import warnings
+
+    from ..sim3d.threads import map_threads
+
+    scenarios = [spec.scenario(k) for k in range(start, stop)]
+    threads = 1 if spec.planar_only else scenarios[0].simulation.threads if scenarios else 1
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return map_threads(_scalars, scenarios, threads)
 
 
 def evaluate_chunk(payload: dict, start: int, stop: int) -> dict:
@@ -37,7 +56,7 @@ def evaluate_chunk(payload: dict, start: int, stop: int) -> dict:
     spec = SweepSpec.from_payload(payload)
     if spec.outcomes:
         return {"start": start, "stop": stop, "values": planar_outcomes(spec, start, stop)}
-    rows = [study_scalars(spec.scenario(k)) for k in range(start, stop)]
+    rows = _chunk_rows(spec, start, stop)
     keys = sorted({k for r in rows for k in r})
     return {"start": start, "stop": stop,
             "values": {k: [r.get(k, math.nan) for r in rows] for k in keys}}

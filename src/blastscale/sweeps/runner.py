@@ -40,12 +40,16 @@ class SweepRun:
 
 def default_chunk(spec: SweepSpec, workers: int) -> int:
     """Cases per task: outcome mode ~n / (2 workers), at most 20000; planar ~n / (4 workers), at most
-    2000; else 1."""
+    2000; else (3D) the threads of one worker, cores // workers (:mod:`blastscale.sim3d.threads`: a
+    chunk's 3D cases run in parallel threads), at most ~n / workers."""
     if spec.outcomes:  # ~70 us per case: 20000 cases are ~1.5 s per task
         return int(max(1, min(20000, math.ceil(spec.n_cases / max(1, 2 * workers)))))
     if spec.planar_only:  # enough cases per task to amortise the task overhead, enough tasks to balance
         return int(max(1, min(2000, math.ceil(spec.n_cases / max(1, 4 * workers)))))
-    return 1
+    from ..sim3d.threads import available_cores
+
+    per_worker = max(1, available_cores() // max(1, workers))
+    return int(max(1, min(per_worker, math.ceil(spec.n_cases / max(1, workers)))))
 
 
 def run_chunks(payload: dict, todo, sink: Callable[[int, dict], None], *, scheduler: Optional[str] = None,
@@ -100,7 +104,12 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
         # freed block above 64 kB back to the system, and the numpy temporaries of a planar chunk
         # come back as fresh pages each time (measured: +55 % CPU per outcome-mode chunk); the
         # local workers keep glibc's own (dynamic) threshold
-        with warnings.catch_warnings(), dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+        from ..sim3d.threads import THREADS_ENV, available_cores
+
+        # each worker's 3D runs share the cores with the other workers: cores // workers threads each
+        env = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
+               f"distributed.nanny.pre-spawn-environ.{THREADS_ENV}": str(max(1, available_cores() // max(1, nw)))}
+        with warnings.catch_warnings(), dask.config.set(env):
             # the scheduler's HTTP (health) server takes another port when 8787 is busy: not our concern
             warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
             cluster = LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
