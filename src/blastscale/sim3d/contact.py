@@ -137,12 +137,11 @@ class ContactSettings:
     noslip_iterations : int
         Iterations of MuJoCo's post-hoc no-slip solver (0 = off; it does not affect the hop).
     jacobian : {"dense", "sparse", "auto"}
-        Layout of the constraint Jacobian. "dense" (default) because MuJoCo 4.0.0 was reported to
-        have a sparse-factorisation bug (fixed in 4.0.1; docs/design.md), which a 10-drum column
-        (60 dofs) would hit under "auto". "sparse" is 2.5-3.4x faster on the 10-drum columns
-        and, measured with 4.0.0 on the paper's square column (250 and 500 kg at 10 m, 8 s),
-        gives the dense histories to 3e-10 of the peak (docs/sim3d.md); opt in after checking
-        your case against "dense".
+        Layout of the constraint Jacobian. "dense" here; a structure's scale-consistent defaults
+        (:func:`default_contact`) choose it by size and MuJoCo version
+        (:func:`~.solver_choice.default_jacobian`: sparse for stacks once MuJoCo >= 4.0.1 fixes
+        4.0.0's sparse-factorisation bug, issue 3767). "sparse" is 2.8x faster on the square
+        10-drum column and gives the dense histories to 1.4e-12 of the peak (docs/performance.md).
 
     Notes
     -----
@@ -319,20 +318,15 @@ def structure_length(structure) -> float:
     return float(structure.describe()["height_m"])
 
 
-#: Structures with more bodies than this get the sparse constraint Jacobian: measured on stack-bonded walls
-#: (Newton, 0.25 ms, benchmarks/bench_assemblies.py) the dense one costs 12x more at 50 blocks and runs out
-#: of memory at 200; up to 10 bodies (the paper's columns) the dense one is kept, as measured before
-#: (docs/assemblies.md; tests/integration/test_assemblies_engine.py checks sparse == dense on a small wall).
-DENSE_JACOBIAN_MAX_BODIES = 10
-
-
 def reference_contact(structure, friction: float = DEFAULT_FRICTION) -> ContactSettings:
     """The full-scale (10 m, 9.81 m/s^2) settings of ``structure`` with friction mu [-]:
-    :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several, with the sparse
-    Jacobian above :data:`DENSE_JACOBIAN_MAX_BODIES` bodies."""
+    :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several, with the Jacobian of
+    :func:`~.solver_choice.default_jacobian` (by size and MuJoCo version)."""
+    from .solver_choice import default_jacobian
+
     n = len(structure.bodies)
     base = BLOCK_REFERENCE if n == 1 else STACK_REFERENCE
-    return replace(base, friction=friction, jacobian="dense" if n <= DENSE_JACOBIAN_MAX_BODIES else "sparse")
+    return replace(base, friction=friction, jacobian=default_jacobian(n))
 
 
 #: Contact time constants per time step kept when a user coarsens the step (MuJoCo needs >= 2).

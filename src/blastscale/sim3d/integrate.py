@@ -147,8 +147,7 @@ def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_m
     nsteps = max(1, int(math.ceil(T / dtp - 1e-9)))
     nb = len(scene.bodies)
     if settle:
-        for _ in range(int(math.ceil(SETTLE_TIME_CONSTANTS * c.time_constant / dt - 1e-9))):  # round-off safe
-            mujoco.mj_step(m, d)
+        mujoco.mj_step(m, d, int(math.ceil(SETTLE_TIME_CONSTANTS * c.time_constant / dt - 1e-9)))  # native loop
         d.qvel[:] = 0.0  # remove the (exp(-20)-small) residual transient exactly
     d.time = 0.0
     if initial_velocity is not None:
