@@ -15,6 +15,7 @@ while frustum meshes whose faces coincide at the joints are ill-conditioned.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 
@@ -177,6 +178,7 @@ class MultiDrumColumn:
         )
 
 
+@functools.lru_cache(maxsize=256)  # a frozen column's drums never change: built once (they cost ~1 ms)
 def _drums(col: MultiDrumColumn) -> tuple:
     z = col.joint_heights
     s = col.width_at(z)

@@ -1,0 +1,139 @@
+"""Cost against the work (issue 19), imported by ``bench_sim3d.py``: wall time per simulated second
+against the number of blocks (1, 10, 50, 200), against ensemble members (1, 8, 64; serial vs parallel
+threads) and against Dask workers (1, 2) on a 3D sweep, each with its ratio to the serial baseline
+measured in the same run. Run alone: ``python benchmarks/bench_scale.py [--json] [--quick]``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import sys
+import time
+
+import numpy as np
+
+from blastscale.analysis.ensemble import ensemble_compare
+from blastscale.blast import blast_parameters
+from blastscale.scenario import Scenario
+from blastscale.sim3d.contact import reference_contact
+from blastscale.sim3d.model import structure_scene
+from blastscale.sim3d.reference import to_reference
+from blastscale.sim3d.threads import available_cores
+from blastscale.structures import MultiDrumColumn, wall
+from blastscale.structures.block import RectangularBlock
+
+#: Structures of the cost-per-block figure: the paper's block, and stack-bonded 5 x 2.5 x 0.5 m walls.
+WALLS = {"10": (2, 5), "50": (5, 10), "200": (20, 10)}
+
+
+def _rest_cost(structure, seconds: float, jacobian: str | None = None) -> dict:
+    """Wall s per simulated s of ``structure`` at rest (the engine's default settings in reference
+    units, after 0.05 s of settling), and MuJoCo's share of it in the constraint solve and collision."""
+    import mujoco
+
+    ref = to_reference(structure, 10.0 / float(structure.describe()["height_m"]))
+    cs = reference_contact(ref)
+    if jacobian is not None:
+        cs = dataclasses.replace(cs, jacobian=jacobian)
+    m = structure_scene(ref, cs).mj_model
+    d = mujoco.MjData(m)
+    mujoco.mj_step(m, d, int(0.05 / m.opt.timestep))
+    for t in d.timer:
+        t.duration, t.number = 0.0, 0
+    t0 = time.perf_counter()
+    mujoco.mj_step(m, d, int(seconds / m.opt.timestep))
+    wall_s = (time.perf_counter() - t0) / seconds
+    tm = d.timer
+    step = tm[mujoco.mjtTimer.mjTIMER_STEP].duration or 1.0
+    return {"wall_s_per_simulated_s": wall_s, "jacobian": cs.jacobian, "contacts": int(d.ncon),
+            "constraint_share": tm[mujoco.mjtTimer.mjTIMER_CONSTRAINT].duration / step,
+            "collision_share": tm[mujoco.mjtTimer.mjTIMER_POS_COLLISION].duration / step}
+
+
+def blocks(quick: bool = False) -> dict:
+    """Cost against the number of blocks: 1 (the paper's block), 10, 50, 200 (walls), at rest, default
+    settings; the 10-drum square column beside them; ratios to the 10-block wall and to the column."""
+    secs = 0.1 if quick else 0.2
+    rows = {"1": _rest_cost(RectangularBlock.from_slenderness(10.0, math.radians(15.0)), secs)}
+    for n, (c, u) in WALLS.items():
+        rows[n] = _rest_cost(wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=c, units_per_course=u,
+                                  bond="stack"), secs)
+    column = _rest_cost(MultiDrumColumn("square"), secs)
+    w = {k: v["wall_s_per_simulated_s"] for k, v in rows.items()}
+    return {"wall_s_per_simulated_s": w, "detail": rows, "column_square_10_drums": column,
+            "ratio_200_over_10": w["200"] / w["10"],
+            "ratio_200_over_column": w["200"] / column["wall_s_per_simulated_s"]}
+
+
+def ensemble(quick: bool = False) -> dict:
+    """The circular column's prototype ensemble (200 kg at 10 m) with 1, 8 (and 64 unless quick) members:
+    serial (threads = 1) and on every core, the same members (bitwise), the speed-up."""
+    col = MultiDrumColumn("circular")
+    bp = blast_parameters(200.0, 10.0)
+    dur = 0.5 if quick else 1.0
+    ensemble_compare(col, None, n=2, blast=bp, duration=0.01, threads=1)  # imports outside the timing
+    out = {"threads": available_cores(), "duration_s": dur}
+    for n in ((8,) if quick else (8, 64)):
+        d = dur if n <= 8 else dur / 4
+        kw = dict(n=n, perturbation=1e-6, blast=bp, duration=d, record_every=4)
+        t0 = time.perf_counter()
+        s = ensemble_compare(col, None, threads=1, **kw)
+        ts = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        p = ensemble_compare(col, None, **kw)
+        tp = time.perf_counter() - t0
+        out[f"members_{n}"] = {"duration_s": d, "serial_wall_s": ts, "parallel_wall_s": tp, "speedup": ts / tp,
+                               "wall_s_per_member_simulated_s": tp / (n * d),
+                               "identical": bool(np.array_equal(s.prototype_members, p.prototype_members))}
+    t0 = time.perf_counter()
+    ensemble_compare(col, None, n=2, blast=bp, duration=dur, threads=1)
+    out["members_1"] = {"duration_s": dur, "wall_s_per_member_simulated_s": (time.perf_counter() - t0) / (2 * dur)}
+    return out
+
+
+def sweep3d(quick: bool = False) -> dict:
+    """A 3D sweep (the square column, prototype only, 4 charges, 0.5 s each; threads = 1 per case so
+    that the workers alone share the cores) on 1 and 2 local Dask workers (the cluster's start and stop
+    not counted), and in this process on every core (threads)."""
+    from blastscale.sweeps import SweepSpec
+    from blastscale.sweeps.cases import evaluate_chunk
+    from blastscale.sweeps.runner import run_chunks
+
+    base = Scenario.from_dict({"structure": {"kind": "column", "section": "square"},
+                               "blast": {"charge_kg": 250.0, "standoff_m": 10.0},
+                               "simulation": {"engine": "3d", "duration_s": 0.3 if quick else 0.6,
+                                              "critical_charge": False, "threads": 1}})
+    spec = SweepSpec.build(base, {"charge_kg": [150.0, 200.0, 250.0, 300.0, 350.0, 400.0]})
+    payload = spec.to_payload()
+    todo = [(i, i, i + 1) for i in range(spec.n_cases)]
+    out = {}
+    warm = SweepSpec.build(base.with_values({"duration_s": 0.01}), {"charge_kg": [250.0]}).to_payload()
+    for nw in (1, 2):
+        from dask.distributed import Client, LocalCluster
+
+        with LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
+                          dashboard_address=None) as cluster, Client(cluster) as client:
+            client.run(evaluate_chunk, warm, 0, 1)  # imports and first compile in every worker, not timed
+            got: dict = {}
+            _, secs = run_chunks(payload, todo, got.__setitem__, scheduler=cluster.scheduler_address)
+        out[f"workers_{nw}"] = {"wall_s": secs}
+    out["workers_2"]["speedup"] = out["workers_1"]["wall_s"] / out["workers_2"]["wall_s"]
+    spec_t = SweepSpec.build(base.with_values({"threads": available_cores()}), {"charge_kg": [150.0, 200.0, 250.0, 300.0, 350.0, 400.0]})
+    t0 = time.perf_counter()
+    run_chunks(spec_t.to_payload(), [(0, 0, spec.n_cases)], lambda i, r: None, workers=0)
+    secs = time.perf_counter() - t0
+    out["in_process_threads"] = {"threads": available_cores(), "wall_s": secs,
+                                 "speedup_vs_workers_1": out["workers_1"]["wall_s"] / secs}
+    return out
+
+
+def main() -> None:
+    quick = "--quick" in sys.argv
+    out = {"blocks": blocks(quick), "ensemble": ensemble(quick), "sweep3d": sweep3d(quick)}
+    print(json.dumps(out, indent=2))
+
+
+if __name__ == "__main__":
+    main()
