@@ -129,7 +129,45 @@ def sweep3d(quick: bool = False) -> dict:
     return out
 
 
+
+
+def plot(out: dict, path: str) -> None:
+    """The cost figure of docs/performance.md from a ``bench_sim3d.py --json`` output."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(1, 3, figsize=(12, 3.6))
+    b = out["blocks"]["wall_s_per_simulated_s"]
+    n = [int(k) for k in b]
+    ax[0].loglog(n, list(b.values()), "o-")
+    ax[0].axhline(out["blocks"]["column_square_10_drums"]["wall_s_per_simulated_s"], ls="--", c="gray",
+                  label="10-drum square column")
+    ax[0].set(xlabel="blocks", ylabel="wall s per simulated s", title="at rest, default settings")
+    ax[0].legend()
+    e = out["ensemble"]
+    ks = [k for k in e if k.startswith("members_") and "speedup" in e[k]]
+    ax[1].bar([k.split("_")[1] for k in ks], [e[k]["speedup"] for k in ks])
+    ax[1].axhline(e["threads"], ls="--", c="gray", label=f"{e['threads']} cores")
+    ax[1].set(xlabel="ensemble members (circular column)", ylabel="speed-up vs serial", title="parallel members")
+    ax[1].legend()
+    s = out["sweep3d"]
+    ax[2].bar(["1 worker", "2 workers", "in process,\nthreads"],
+              [1.0, s["workers_2"]["speedup"], s["in_process_threads"]["speedup_vs_workers_1"]])
+    ax[2].set(ylabel="speed-up vs 1 worker", title="3D sweep (square column)")
+    fig.suptitle(f"mujoco {out.get('mujoco', '?')}, load average {out.get('load_average', float('nan')):.2f}")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+
+
 def main() -> None:
+    """``--plot OUT.json PNG``: the figure from a saved run; else run and print JSON."""
+    if "--plot" in sys.argv:
+        i = sys.argv.index("--plot")
+        with open(sys.argv[i + 1]) as f:
+            plot(json.load(f), sys.argv[i + 2])
+        return
     quick = "--quick" in sys.argv
     out = {"blocks": blocks(quick), "ensemble": ensemble(quick), "sweep3d": sweep3d(quick)}
     print(json.dumps(out, indent=2))

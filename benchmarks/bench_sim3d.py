@@ -3,7 +3,12 @@ the full-length acceptance figures of issue 8 (docs/sim3d.md).
 
 Usage::
 
-    python benchmarks/bench_sim3d.py [--json] [--repeat N] [--hop-study] [--mode-study] [--acceptance]
+    python benchmarks/bench_sim3d.py [--json] [--quick] [--repeat N] [--hop-study] [--mode-study] [--acceptance]
+
+Cost against the work (issue 19, :mod:`bench_scale`): ``ensemble`` (8-member circular-column ensemble,
+serial vs every core: ``ensemble.members_8.speedup``), ``sweep3d`` (1 vs 2 Dask workers:
+``sweep3d.workers_2.speedup``) and ``blocks`` (``blocks.wall_s_per_simulated_s`` for 1, 10, 50, 200
+blocks). ``--quick``: one repeat, 2 s columns, shorter ensembles (the whole run in ~1 minute).
 
 Columns (``speed.column_square`` / ``speed.column_circular``): the paper's 10-drum columns under
 250 kg at 10 m (Method A), 4 s at prototype scale and their lambda = 1/100 models (``model``,
@@ -26,7 +31,9 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import platform
+import sys
 import time
 import warnings
 from dataclasses import replace
@@ -41,6 +48,9 @@ from blastscale.sim3d import BoxShape, ContactSettings, MethodA, make_load, simu
 from blastscale.sim3d.contact import default_contact
 from blastscale.structures import MultiDrumColumn
 from blastscale.structures.block import RectangularBlock
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_scale  # noqa: E402  (this folder's cost-against-the-work module)
 
 PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
 SQUAT_BLOCK = RectangularBlock(height=0.5, width=1.0, depth=1.0)
@@ -103,10 +113,12 @@ def column_speed(section: str, repeat: int = 1, duration: float = 4.0, lam: floa
                      "simulated_s_per_wall_s": T / best,
                      "prototype_equivalent_s_per_wall_s": (T / (1.0 if name == "prototype" else lt)) / best,
                      "steps_per_wall_s": T / dt / best}
-        if name == "prototype":
-            x_dense = _top_x(r)
-    # the opt-in sparse constraint Jacobian (ContactSettings.jacobian): speed and agreement with dense
+    # the sparse and the dense constraint Jacobian (the default's choice: sim3d/solver_choice.py)
     sparse = replace(default_contact(col), jacobian="sparse")
+    dense = replace(default_contact(col), jacobian="dense")
+    t0 = time.perf_counter()
+    x_dense = _top_x(simulate_structure(col, proto_load, duration, contact=dense, record_every=20))
+    out["prototype_dense_jacobian"] = {"simulated_s": duration, "simulated_s_per_wall_s": duration / (time.perf_counter() - t0)}
     best = math.inf
     for _ in range(repeat):
         t0 = time.perf_counter()
@@ -114,7 +126,7 @@ def column_speed(section: str, repeat: int = 1, duration: float = 4.0, lam: floa
         best = min(best, time.perf_counter() - t0)
     out["prototype_sparse_jacobian"] = {
         "simulated_s": duration, "wall_s": best, "simulated_s_per_wall_s": duration / best,
-        "speedup_vs_dense": out["prototype"]["wall_s"] / best,
+        "speedup_vs_dense": duration / out["prototype_dense_jacobian"]["simulated_s_per_wall_s"] / best,
         "max_abs_top_diff_vs_dense_rel_peak": float(np.max(np.abs(_top_x(r) - x_dense)) / np.max(np.abs(x_dense))),
     }
     return out
@@ -324,6 +336,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--json", action="store_true", help="print one JSON object")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--quick", action="store_true", help="one repeat, shorter runs (~1 minute in all)")
     ap.add_argument("--hop-study", action="store_true", help="also run the spurious-hop study")
     ap.add_argument("--mode-study", action="store_true", help="also compare blast modes (auto vs force)")
     ap.add_argument("--acceptance", action="store_true", help="also measure the full-length figures of issue 8")
@@ -332,9 +345,12 @@ def main() -> None:
     import mujoco
 
     out["mujoco"] = mujoco.__version__
-    out["speed"] = speed(a.repeat)
+    out["load_average"] = os.getloadavg()[0]
+    out["speed"] = speed(1 if a.quick else a.repeat)
     for section in ("square", "circular"):
-        out["speed"][f"column_{section}"] = column_speed(section, max(1, a.repeat // 3))
+        out["speed"][f"column_{section}"] = column_speed(section, max(1, a.repeat // 3), 2.0 if a.quick else 4.0)
+    out.update({k: f(a.quick) for k, f in (("ensemble", bench_scale.ensemble), ("sweep3d", bench_scale.sweep3d),
+                                           ("blocks", bench_scale.blocks))})
     if a.acceptance:
         out["acceptance"] = acceptance()
     if a.hop_study:
@@ -347,16 +363,18 @@ def main() -> None:
     for k, v in out["speed"].items():
         if k.startswith("column_"):
             for kind, w in v.items():
-                if "timestep_s" not in w:  # the sparse-Jacobian run: speed-up and agreement with dense
-                    print(f"{k} {kind}: {w['simulated_s_per_wall_s']:.2f} simulated s / wall s, "
-                          f"x{w['speedup_vs_dense']:.2f} vs dense, top history within "
-                          f"{w['max_abs_top_diff_vs_dense_rel_peak']:.1e} of the peak")
+                if "timestep_s" not in w:  # the sparse- and dense-Jacobian runs: speed-up, agreement
+                    extra = (f", x{w['speedup_vs_dense']:.2f} vs dense, top history within "
+                             f"{w['max_abs_top_diff_vs_dense_rel_peak']:.1e} of the peak") if "speedup_vs_dense" in w else ""
+                    print(f"{k} {kind}: {w['simulated_s_per_wall_s']:.2f} simulated s / wall s{extra}")
                     continue
                 print(f"{k} {kind:9s} dt = {w['timestep_s']:.3g} s: {w['simulated_s_per_wall_s']:8.2f} simulated s / wall s "
                       f"({w['prototype_equivalent_s_per_wall_s']:.2f} prototype s / wall s)")
             continue
         print(f"{k:12s} dt = {v['timestep_s']:.3g} s: {v['simulated_s_per_wall_s']:8.2f} simulated s / wall s "
               f"({v['prototype_equivalent_s_per_wall_s']:.2f} prototype s / wall s, {v['steps_per_wall_s']:.0f} steps/s)")
+    for k in ("ensemble", "sweep3d", "blocks"):
+        print(k, json.dumps(out[k]))
     for k, v in out.get("hop_study", {}).items():
         print(f"{k:60s} uplift {v['max_uplift_mm']:7.3f} mm  v_x peak {v['peak_velocity_x_m_s']:.4f} m/s  "
               f"rot {v['max_rotation_rad']:.1e} rad  sliding err {v['sliding_error_pct']:+.2f}%")

@@ -90,8 +90,9 @@ def column_cmd(
                                  "is x sqrt(lambda)); rejected past the engine's stability bound."),
     jacobian: Optional[str] = typer.Option(
         None, "--jacobian",
-        help="MuJoCo constraint Jacobian: dense (default) or sparse (2.8x faster on the square column, the same "
-             "history to round-off; opt-in because of a reported MuJoCo 4.0.0 bug, docs/sim3d.md)."),
+        help="MuJoCo constraint Jacobian: dense or sparse (2.8x faster on the square column, the same history to "
+             "round-off). Default: sparse from MuJoCo 4.0.1, dense on 4.0.0 (its sparse-factorisation bug, "
+             "docs/performance.md)."),
     record_every: Optional[int] = opt.RECORD_EVERY,
     ensemble: Optional[int] = typer.Option(
         None, "--ensemble", help="Also run N prototypes (and, with --scale, N models) with the load x (1 + 1e-6 u), u "
