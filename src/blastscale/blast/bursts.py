@@ -34,14 +34,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive, check_positive_scalar
-from .base import BlastModel
+from .parameters import BURSTS, DEFAULT_BURST, burst_of, check_burst, get_blast_model, model_for_burst
 
 __all__ = ["BURSTS", "DEFAULT_BURST", "check_burst", "model_for_burst", "burst_of", "equivalent_free_air_charge_ratio",
            "LabBurst", "lab_burst", "SURFACE_DELAY_FRACTION", "EQUIVALENCE_QUANTITIES"]
-
-#: Burst types, the first the default (the paper's).
-BURSTS = ("surface", "free-air")
-DEFAULT_BURST = "surface"
 
 #: A charge counts as a surface burst when the floor's reflection arrives within this fraction of
 #: the positive duration (our criterion, module docstring).
@@ -51,46 +47,6 @@ SURFACE_DELAY_FRACTION = 0.1
 #: impulses at the same distance).
 EQUIVALENCE_QUANTITIES = ("incident_pressure", "reflected_pressure", "scaled_incident_impulse",
                           "scaled_reflected_impulse")
-
-
-def check_burst(burst: str) -> str:
-    """``burst`` itself when it is one of :data:`BURSTS`; one line otherwise."""
-    if burst not in BURSTS:
-        raise BlastscaleInputError(f"burst = {burst!r} is not known: valid values are {', '.join(BURSTS)}")
-    return burst
-
-
-def burst_of(blast_model) -> str:
-    """The burst type of a blast model (name or :class:`BlastModel`): its ``burst`` attribute."""
-    from .parameters import get_blast_model
-
-    return getattr(get_blast_model(blast_model), "burst", DEFAULT_BURST)
-
-
-def model_for_burst(blast_model, burst: str = DEFAULT_BURST) -> BlastModel:
-    """The fit of ``blast_model``'s family for ``burst``.
-
-    ``"kingery-bulmash"`` gives the Swisdak (1994) surface fit or the Kingery-Bulmash (1984)
-    spherical free-air fit; ``"masi2021"`` (the paper's Appendix A) has only a surface form, and a
-    user's :class:`BlastModel` is taken as it is when its ``burst`` attribute matches.
-
-    Raises
-    ------
-    BlastscaleInputError
-        An unknown burst, or a model without a fit for it (one line naming both).
-    """
-    from .parameters import get_blast_model
-
-    check_burst(burst)
-    m = get_blast_model(blast_model)
-    if getattr(m, "burst", DEFAULT_BURST) == burst:
-        return m
-    family = getattr(m, "family", m.name)
-    if family == "kingery-bulmash":
-        return get_blast_model("kingery-bulmash-free-air" if burst == "free-air" else "kingery-bulmash")
-    raise BlastscaleInputError(
-        f"burst = {burst!r} is not available for blast model {m.name!r} (its fits are for a "
-        f"{getattr(m, 'burst', DEFAULT_BURST)} burst only): use blast model kingery-bulmash")
 
 
 def _solve_z(f_target, model, quantity, z_surface, scaled: bool) -> np.ndarray:
@@ -135,8 +91,6 @@ def equivalent_free_air_charge_ratio(scaled_distance, quantity: str = "incident_
     float or ndarray
         k [-] (NaN where the free-air fit's range holds no solution).
     """
-    from .parameters import get_blast_model
-
     if quantity not in EQUIVALENCE_QUANTITIES:
         raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are "
                                    f"{', '.join(EQUIVALENCE_QUANTITIES)}")
@@ -190,8 +144,6 @@ def lab_burst(charge: float, standoff: float, charge_height: float, face_height:
     image charge at ``-charge_height``; both arrival times and the direct positive duration are the
     free-air fit's. A charge on the floor (height 0) is a surface burst.
     """
-    from .parameters import get_blast_model
-
     W = check_positive_scalar("charge", charge, "kg")
     R = check_positive_scalar("standoff", standoff, "m")
     H = check_positive_scalar("face height", face_height, "m")

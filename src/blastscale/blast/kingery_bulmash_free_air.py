@@ -10,7 +10,7 @@ polynomials in ``U = K0 + K1 log10(Z)`` with Z in ft/lb^(1/3):
 Y in psi (pressures), psi ms/lb^(1/3) (scaled impulses) and ms/lb^(1/3) (scaled times). The
 coefficients are facts of Kingery & Bulmash (1984) as reprinted in the appendix of the CONWEP load
 model (Randers-Pehrson & Bannister 1997, ARL-TR-1310); two independent public transcriptions of
-them agree digit for digit (``tests/data/kb1984_free_air_sources.txt`` names them). This module
+them agree digit for digit (``docs/blast_physics.md`` names them). This module
 keeps them in one constant, :data:`KB1984_FREE_AIR`, and converts to SI with exact factors
 (1 ft = 0.3048 m, 1 lb = 0.45359237 kg, 1 psi = 6894.757293168 Pa).
 

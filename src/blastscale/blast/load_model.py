@@ -48,7 +48,8 @@ class LoadModel:
     clearing : bool
         Relief of the reflected pressure on a finite face (UFC 3-340-02 Sec. 2-15.3.2).
     face_width_m, face_height_m : float or None
-        The loaded face's width W and height above the ground H [m], needed with ``clearing``.
+        The loaded face's width W and height above the ground H [m], needed with ``clearing`` (None:
+        taken from the structure where a structure is loaded, :func:`blastscale.sim3d.loads.with_structure_face`).
     negative_phase : bool
         Add the negative phase (UFC Fig. 2-16, Granström's cubic).
     """
@@ -59,13 +60,20 @@ class LoadModel:
     negative_phase: bool = False
 
     def __post_init__(self):
-        if self.clearing:
-            if self.face_width_m is None or self.face_height_m is None:
-                raise BlastscaleInputError(
-                    f"clearing needs the loaded face's width and height (face width = {self.face_width_m}, face "
-                    f"height = {self.face_height_m}): give both in m (CLI --face-width, --face-height)")
+        if (self.face_width_m is None) != (self.face_height_m is None):
+            raise BlastscaleInputError(
+                f"face width = {self.face_width_m}, face height = {self.face_height_m}: give both (m) or neither "
+                "(CLI --face-width, --face-height)")
+        if self.face_width_m is not None:
             check_positive_scalar("face width", self.face_width_m, "m")
             check_positive_scalar("face height", self.face_height_m, "m")
+
+    def require_face(self) -> "LoadModel":
+        """``self`` when clearing has its face (or there is no clearing); one line otherwise."""
+        if self.clearing and self.face_width_m is None:
+            raise BlastscaleInputError("clearing needs the loaded face's width and height: give both in m "
+                                       "(CLI --face-width, --face-height)")
+        return self
 
     @property
     def is_paper(self) -> bool:
@@ -74,7 +82,7 @@ class LoadModel:
 
     def scaled(self, length_factor: float) -> "LoadModel":
         """The same load model on a face whose lengths are x ``length_factor`` (a specimen's)."""
-        if not self.clearing:
+        if self.face_width_m is None:
             return self
         lam = check_positive_scalar("scale", length_factor)
         return replace(self, face_width_m=self.face_width_m * lam, face_height_m=self.face_height_m * lam)
@@ -82,7 +90,7 @@ class LoadModel:
     def to_dict(self) -> dict:
         """The load model's record (its models' names, the face when clearing)."""
         d = {"clearing": self.clearing, "negative_phase": self.negative_phase}
-        if self.clearing:
+        if self.clearing and self.face_width_m is not None:
             d.update(clearing_model=CLEARING_MODEL, face_width_m=self.face_width_m, face_height_m=self.face_height_m)
         if self.negative_phase:
             d["negative_phase_model"] = NEGATIVE_PHASE_MODEL
@@ -179,12 +187,13 @@ def front_face_clearing(bp, load_model: LoadModel) -> "Clearing | None":
     Kingery-Bulmash's at the same Z)."""
     if load_model is None or not load_model.clearing:
         return None
+    load_model.require_face()
     P_so, i_s = bp.incident_pressure, bp.incident_impulse
     if P_so is None or i_s is None:
         from .parameters import get_blast_model
 
         kb = get_blast_model("kingery-bulmash")
-        w13 = float(np.cbrt(bp.charge_kg))
+        w13 = np.cbrt(bp.charge_kg)
         P_so = kb.incident_pressure(bp.scaled_distance, extrapolate=True)
         i_s = kb.scaled_incident_impulse(bp.scaled_distance, extrapolate=True) * w13
     return clearing(bp.reflected_pressure, bp.reflected_impulse, P_so, i_s, load_model.face_width_m,

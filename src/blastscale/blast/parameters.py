@@ -24,6 +24,11 @@ __all__ = [
     "BlastParameters",
     "scaled_distance",
     "valid_scaled_distance_range",
+    "BURSTS",
+    "DEFAULT_BURST",
+    "check_burst",
+    "burst_of",
+    "model_for_burst",
 ]
 
 
@@ -65,6 +70,47 @@ def get_blast_model(blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> Bl
     if blast_model not in _CACHE:
         _CACHE[blast_model] = {**BLAST_MODELS, **BURST_VARIANTS}[blast_model]()
     return _CACHE[blast_model]
+
+
+#: Burst types (:mod:`.bursts`), the first the default (the paper's).
+BURSTS = ("surface", "free-air")
+DEFAULT_BURST = "surface"
+
+
+def check_burst(burst: str) -> str:
+    """``burst`` itself when it is one of :data:`BURSTS`; one line otherwise."""
+    if burst not in BURSTS:
+        raise BlastscaleInputError(f"burst = {burst!r} is not known: valid values are {', '.join(BURSTS)}")
+    return burst
+
+
+def burst_of(blast_model) -> str:
+    """The burst type of a blast model (name or :class:`BlastModel`): its ``burst`` attribute."""
+    return getattr(get_blast_model(blast_model), "burst", DEFAULT_BURST)
+
+
+def model_for_burst(blast_model, burst: str = DEFAULT_BURST) -> BlastModel:
+    """The fit of ``blast_model``'s family for ``burst``.
+
+    ``"kingery-bulmash"`` gives the Swisdak (1994) surface fit or the Kingery-Bulmash (1984)
+    spherical free-air fit; ``"masi2021"`` (the paper's Appendix A) has only a surface form, and a
+    user's :class:`BlastModel` is taken as it is when its ``burst`` attribute matches.
+
+    Raises
+    ------
+    BlastscaleInputError
+        An unknown burst, or a model without a fit for it (one line naming both).
+    """
+    check_burst(burst)
+    m = get_blast_model(blast_model)
+    if getattr(m, "burst", DEFAULT_BURST) == burst:
+        return m
+    family = getattr(m, "family", m.name)
+    if family == "kingery-bulmash":
+        return get_blast_model("kingery-bulmash-free-air" if burst == "free-air" else "kingery-bulmash")
+    raise BlastscaleInputError(
+        f"burst = {burst!r} is not available for blast model {m.name!r} (its fits are for a "
+        f"{getattr(m, 'burst', DEFAULT_BURST)} burst only): use blast model kingery-bulmash")
 
 
 #: Quantities :func:`blast_parameters` evaluates (the last three only where the model provides them).
@@ -232,12 +278,7 @@ def blast_parameters(
         When Z is outside a fit's validity range (unless ``extrapolate=True``); each quantity has
         its own range (``get_blast_model(blast_model).valid_range(quantity)``).
     """
-    if burst is None:
-        m = get_blast_model(blast_model)
-    else:
-        from .bursts import model_for_burst
-
-        m = model_for_burst(blast_model, burst)
+    m = get_blast_model(blast_model) if burst is None else model_for_burst(blast_model, burst)
     W = check_positive("charge", charge, "kg")
     R = check_positive("standoff", standoff, "m")
     try:
