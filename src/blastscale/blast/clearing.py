@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive
+from .._validate import BlastscaleInputError
 from .air import dynamic_pressure, reflected_sound_speed
 
 __all__ = ["Clearing", "clearing", "FRONT_WALL_DRAG_COEFFICIENT", "bilinear_pressure", "bilinear_cumulative",
@@ -149,8 +149,8 @@ def clearing(peak, impulse, incident_pressure, incident_impulse, width, height, 
     """
     P, i = np.asarray(peak, dtype=float), np.asarray(impulse, dtype=float)
     Ps, i_s = np.asarray(incident_pressure, dtype=float), np.asarray(incident_impulse, dtype=float)
-    W = check_positive("face width", width, "m")
-    H = check_positive("face height", height, "m")
+    W = _size("face width", width)
+    H = _size("face height", height)
     half = 0.5 * W
     S, G = np.minimum(H, half), np.maximum(H, half)
     with np.errstate(invalid="ignore"):
@@ -170,6 +170,15 @@ def clearing(peak, impulse, incident_pressure, incident_impulse, width, height, 
     if all(np.ndim(x) == 0 for x in (P, i, Ps, i_s, W, H)):
         out = {k: (bool(v) if k == "cleared" else float(v)) for k, v in out.items()}
     return Clearing(**out)
+
+
+def _size(name: str, value) -> np.ndarray:
+    """A face dimension [m] as an array: > 0, ``inf`` allowed (an unbounded face); one line otherwise."""
+    a = np.asarray(value, dtype=float)
+    if np.any(np.isnan(a)) or np.any(a <= 0.0):
+        bad = float(a[np.isnan(a) | (a <= 0.0)].ravel()[0])
+        raise BlastscaleInputError(f"{name} = {bad:.6g} m is out of range: must be > 0 m (inf for an unbounded face)")
+    return a
 
 
 def bilinear_pressure(s, peak, t1, p1, t2):

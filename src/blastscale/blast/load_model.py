@@ -64,9 +64,9 @@ class LoadModel:
             raise BlastscaleInputError(
                 f"face width = {self.face_width_m}, face height = {self.face_height_m}: give both (m) or neither "
                 "(CLI --face-width, --face-height)")
-        if self.face_width_m is not None:
-            check_positive_scalar("face width", self.face_width_m, "m")
-            check_positive_scalar("face height", self.face_height_m, "m")
+        for name, v in (("face width", self.face_width_m), ("face height", self.face_height_m)):
+            if v is not None and not (float(v) > 0.0):  # > 0, inf allowed (an unbounded face)
+                raise BlastscaleInputError(f"{name} = {v!r} m is out of range: must be > 0 m")
 
     def require_face(self) -> "LoadModel":
         """``self`` when clearing has its face (or there is no clearing); one line otherwise."""

@@ -332,16 +332,20 @@ def _record(blast_model, load_model) -> dict:
 
 def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse_shape: str = "friedlander",
                                  blast_model=DEFAULT_BLAST_MODEL, rel: float = 1e-8, solver: RockingSolver | None = None,
-                                 gravity: float | None = None, restitution: float | None = None) -> float:
+                                 gravity: float | None = None, restitution: float | None = None,
+                                 load_model=None) -> float:
     """The slow reference: critical charge [kg] by bisection in ln W on full simulations (to rest:
     ``pulse + 200 / p`` of motion, every impact, no early stop), independent of the first-swing
     criterion. The bracket ``[guess / 1.5, 1.5 guess]`` [kg] must straddle the threshold (checked);
-    ``rel`` is the relative width at which it stops. For tests and benchmarks."""
+    ``rel`` is the relative width at which it stops; ``load_model`` as :func:`critical_charge` (the
+    pulse of :func:`~blastscale.blast.load_model.front_face_pulse`). For tests and benchmarks."""
+    from ..blast.load_model import front_face_pulse
+
     system = as_rocking_system(body, gravity, restitution)
     solver = solver or DEFAULT_SOLVER
 
     def over(W):
-        p = blast_parameters(W, standoff, blast_model).pulse(pulse_shape)
+        p = front_face_pulse(blast_parameters(W, standoff, blast_model), pulse_shape, load_model)
         return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).collapsed
 
     lo, hi = guess / 1.5, guess * 1.5
