@@ -126,10 +126,12 @@ def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=No
                 f"{c['model']['clearing_time_over_positive_duration']:.3g}: a {100 * r_i:.3g} % difference the "
                 "scaling law does not see")
         elif r_t > SIMILARITY_TOLERANCE:
+            fp, fm = c["prototype"]["cleared_over_uncleared_impulse"], c["model"]["cleared_over_uncleared_impulse"]
+            what = ("no clearing in either system (UFC keeps the uncleared pulse)" if fp == 1.0 and fm == 1.0 else
+                    f"the cleared / uncleared impulse still agrees ({fp:.3g} vs {fm:.3g})")
             notes.append(
                 f"clearing: t_c / t_o is {c['prototype']['clearing_time_over_positive_duration']:.3g} (prototype) vs "
-                f"{c['model']['clearing_time_over_positive_duration']:.3g} (model); the cleared impulses still scale "
-                f"within {100 * r_i:.2g} %")
+                f"{c['model']['clearing_time_over_positive_duration']:.3g} (model), the relief is not similar; {what}")
     if lm_p.negative_phase:
         n = {}
         for name, bp, lm in (("prototype", prototype, lm_p), ("model", specimen, lm_s)):
@@ -174,7 +176,7 @@ def clearing_corrected_charge(design, load_model, *, extrapolate: bool = False) 
         (the cost: what moves away from similarity to restore the impulse).
     """
     from ..blast.load_model import front_face_clearing
-    from ..blast.parameters import blast_parameters, get_blast_model
+    from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
 
     if load_model is None or not load_model.clearing:
         raise BlastscaleInputError("clearing corrected charge needs a load model with clearing (and its face)")
@@ -183,11 +185,11 @@ def clearing_corrected_charge(design, load_model, *, extrapolate: bool = False) 
     target = float(front_face_clearing(design.prototype, load_model).impulse) * float(design.factors.impulse)
     ms = get_blast_model(design.specimen.blast_model)
     R = float(design.specimen_standoff_m)
-    zlo, zhi = ms.valid_range("scaled_reflected_impulse")
-    lo, hi = 3.0 * math.log(R / zhi), 3.0 * math.log(R / zlo)
+    zlo, zhi = valid_scaled_distance_range(ms)
+    lo, hi = 3.0 * math.log(R / zhi * (1 + 1e-12)), 3.0 * math.log(R / zlo * (1 - 1e-12))
 
     def cleared(u):
-        bp = blast_parameters(math.exp(u), R, ms, extrapolate=True)
+        bp = blast_parameters(math.exp(u), R, ms, extrapolate=extrapolate)
         return float(front_face_clearing(bp, lm_s).impulse), bp
 
     if not (cleared(lo)[0] <= target <= cleared(hi)[0]):

@@ -192,6 +192,12 @@ class ModelDesign:
             out["impulsive"] = self.impulsive.to_dict()
         if self.effects is not None:
             out["blast_effects"] = self.effects
+            out["load_model"] = self.effects["load_model"]
+        else:
+            from ..blast.load_model import load_model_record
+
+            out["load_model"] = {"prototype": load_model_record(self.prototype.blast_model, self.prototype.burst),
+                                 "model": load_model_record(self.specimen.blast_model, self.specimen.burst)}
         if self.notes:
             out["notes"] = list(self.notes)
         return out
