@@ -26,7 +26,8 @@ UNITS = {
 }
 
 
-def write_study(result, folder, progress: Optional[Callable[[str], None]] = None) -> list[str]:
+def write_study(result, folder, progress: Optional[Callable[[str], None]] = None, plan_html: Optional[str] = None
+                ) -> list[str]:
     """Write every result file of a study into ``folder`` (which must exist).
 
     Parameters
@@ -35,6 +36,8 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     folder : path
     progress : callable, optional
         ``progress(stage)`` before each file group.
+    plan_html : str, optional
+        The plan's section (``blastscale plan --out``), placed before the test card.
 
     Returns
     -------
@@ -58,16 +61,21 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     write_atomic(folder / "scenario.toml", result.scenario.to_toml())
     files = ["summary.json", "histories.nc", "histories.csv", "scenario.toml"] + [f"{f.name}.png" for f, _ in figures]
     tell("report")
-    write_atomic(folder / "report.html", render_report(result, figures, meta, files))
+    write_atomic(folder / "report.html", render_report(result, figures, meta, files, plan_html=plan_html))
     write_json(folder / "summary.json", summary_dict(result, meta))
     return ["report.html"] + files
 
 
 def summary_dict(result, meta: Optional[dict] = None) -> dict:
     """The content of ``summary.json``: provenance (versions, git commit, timestamp), units, the
-    study's nested summary (scenario included) and its flat ``scalars``, each renamed key with its
+    study's nested summary (scenario included), its flat ``scalars`` and, with a ``[lab]`` table, the
+    ``test_card`` (:func:`blastscale.planning.study_test_card`), each renamed key with its
     deprecated name beside it (:func:`blastscale.io.results.with_legacy_keys`)."""
     from ..io.results import provenance, with_legacy_keys
 
+    from .card import card_of
+
+    card = card_of(result)
+    extra = {} if card is None else {"test_card": card}
     return with_legacy_keys({**(provenance() if meta is None else meta), "units": UNITS, **result.summary(),
-                             "scalars": result.scalars()})
+                             "scalars": result.scalars(), **extra})
