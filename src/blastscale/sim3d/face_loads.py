@@ -237,9 +237,9 @@ def _charge_position(structure, standoff_m, burst: str = "surface") -> np.ndarra
     R = float(check_positive("standoff", standoff_m, "m"))
     z = 0.0
     if burst == "free-air":  # on a stand at the front's mid-height (module docstring)
-        from ..similitude.effects import front_geometry
+        from ..similitude.effects import structure_top
 
-        z = 0.5 * front_geometry(structure)[1]
+        z = 0.5 * structure_top(structure)
     return np.array([float(structure.front_x) - R, 0.0, z])
 
 

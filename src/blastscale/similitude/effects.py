@@ -27,7 +27,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive_scalar
 
-__all__ = ["SIMILARITY_TOLERANCE", "front_geometry", "front_face", "blast_effects", "clearing_corrected_charge",
+__all__ = ["SIMILARITY_TOLERANCE", "CONTINUOUS_FRONT", "front_geometry", "structure_top", "front_face", "blast_effects", "clearing_corrected_charge",
            "BlastSimilarityWarning"]
 
 #: Relative difference between prototype and specimen above which a design notes a violation [-].
@@ -38,11 +38,26 @@ class BlastSimilarityWarning(UserWarning):
     """A blast effect the scaling law does not match differs between prototype and specimen."""
 
 
+#: Fraction of an assembly's front outline its blocks' fronts must fill for clearing to treat it as one face.
+CONTINUOUS_FRONT = 0.99
+
+
 def front_geometry(structure) -> tuple:
-    """The loaded front of a structure for clearing: each body's front width [m] (its ``load_face``
-    projected on the y-z plane over the body's height: a block's depth, a drum's side or diameter)
-    and the height of the structure's top above the ground [m] (the front is continuous from the
-    ground to the top: relief from the two vertical edges and the top, UFC 3-340-02 Sec. 2-15.3.2)."""
+    """The loaded front of a structure for clearing: each body's front width [m] and the height of
+    the structure's top above the ground [m] (the front is continuous from the ground to the top:
+    relief from the two vertical edges and the top, UFC 3-340-02 Sec. 2-15.3.2).
+
+    A block or a column: each body's ``load_face`` projected on the y-z plane over the body's height
+    (a block's depth, a drum's side or diameter). An assembly (wall, arch, portal, block file): its
+    front outline as one face for every body, the blocks' y extent by the top's height, provided the
+    fronts of its blocks (their exposed faces towards the charge, projected) fill at least
+    :data:`CONTINUOUS_FRONT` of it; a front with openings (an arch, a portal) has no UFC clearing
+    procedure here and is refused in one line.
+    """
+    from ..structures.assembly import Assembly
+
+    if isinstance(structure, Assembly):
+        return _assembly_front(structure)
     widths, top = [], 0.0
     for b in structure.bodies:
         sh = b.shape
@@ -51,6 +66,29 @@ def front_geometry(structure) -> tuple:
         widths.append(float(f.area) * abs(float(f.normal[0])) / h)
         top = max(top, float(b.com[2]) + float(getattr(sh, "centre_z", 0.0)) + float(sh.half_height))
     return np.array(widths), top
+
+
+def structure_top(structure) -> float:
+    """Height of a structure's top above the ground [m] (a free-air charge stands at half of it)."""
+    from ..structures.assembly import Assembly
+
+    if isinstance(structure, Assembly):
+        return float(max(b.points[:, 2].max() for b in structure.blocks))
+    return float(front_geometry(structure)[1])
+
+
+def _assembly_front(structure) -> tuple:
+    pts = np.vstack([b.points for b in structure.blocks])
+    width, top = float(np.ptp(pts[:, 1])), float(pts[:, 2].max())
+    filled = sum(float(f.area) * -float(f.normal[0]) for b in structure.bodies for f in b.faces
+                 if not f.in_contact and float(f.normal[0]) < 0.0)
+    frac = filled / (width * top)
+    if frac < CONTINUOUS_FRONT:
+        raise BlastscaleInputError(
+            f"blast.clearing = true on structure.kind = {structure.kind!r}: its blocks' fronts fill {100 * frac:.3g} % "
+            f"of its {width:.4g} m x {top:.4g} m front (openings); clearing needs a continuous front (valid: block, "
+            f"column, wall, or a block file whose front is full, >= {100 * CONTINUOUS_FRONT:g} %)")
+    return np.full(len(structure.bodies), width), top
 
 
 def front_face(structure) -> tuple:

@@ -107,18 +107,19 @@ class Study:
         """The model experiment (:func:`~blastscale.similitude.design_model`), once per study; None
         for a prototype-only scenario (no ``[scale]``)."""
         from ..similitude import design_model
-        from ..similitude.effects import front_face
+        from ..similitude.effects import front_face, structure_top
 
         sc = self.scenario
         if sc.scale is None or sc.blast.gravity_only:  # gravity alone: no charge to scale
             return None
         structure = self.structure() if structure is None else structure
         lm = load_model_of(sc, structure)
+        face = front_face(structure) if sc.blast.clearing else (None, structure_top(structure))  # top: the lab burst
         return design_model(
             sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, sc.density_ratio, sc.scale.gravity_ratio,
             sc.scale.law, sc.blast.blast_model, structure if is_block(structure) else None,
             gravity=sc.simulation.gravity_m_s2, extrapolate=sc.blast.extrapolate, burst=sc.blast.burst,
-            specimen_burst=sc.scale.specimen_burst, load_model=lm, face=front_face(structure),
+            specimen_burst=sc.scale.specimen_burst, load_model=lm, face=face,
             specimen_charge_height=sc.scale.specimen_charge_height_m,
         )
 
