@@ -15,6 +15,7 @@ from blastscale.blast.load_model import LoadModel
 from blastscale.cli import main
 from blastscale.planning import plan
 from blastscale.planning.card import study_test_card
+from blastscale.report.card import card_section
 from blastscale.scenario import Scenario
 from blastscale.sim3d import make_load
 from blastscale.similitude.effects import front_face, front_geometry, structure_top
@@ -87,6 +88,8 @@ def test_the_test_card_puts_a_free_air_lab_charge_on_its_stand():
     # a sphere of the explosive's mass (a surface charge is a hemisphere of the same mass)
     rho = get_explosive("tnt").density_kg_m3
     assert lay["charge_radius_m"] == pytest.approx((3.0 * m / (4.0 * math.pi * rho)) ** (1 / 3), rel=1e-12)
+    html = card_section(res)
+    assert "on a stand: free-air burst" in html and "sphere" in html and "on the floor: surface burst" not in html
     lb = res.design.effects["lab_burst"]
     assert lb["charge_height_m"] == 0.025
     if lb["kind"] != "free-air":
