@@ -10,7 +10,10 @@ burst), the fit of each, how they compare, and whether a charge at a given heigh
 A surface burst of W is often equated with a free-air burst of about 1.8 W (UFC 3-340-02 Sec. 2-13:
 a perfectly reflecting ground would double the charge, cratering and heating take some of it);
 :func:`equivalent_free_air_charge_ratio` measures the ratio over Z for each quantity instead of
-assuming it (``docs/blast_physics.md`` tabulates it).
+assuming it (``docs/blast_physics.md`` tabulates it): 1.79-1.82 for the impulses, 1.29-2.12 for the peak
+pressures. The safety envelope (:mod:`.safety`, ``SURFACE_BURST_FACTOR`` = 1.8) takes the lab charge
+as a surface burst, the conservative case for a charge near the floor (the far field of a charge on a
+low stand is a ground burst's too), whatever burst the design assumes for the specimen's face.
 
 A charge on a stand at height H_c above the floor is *neither* when the floor's reflection reaches
 the loaded face within the positive phase: the face then sees two shocks. :func:`lab_burst` compares

@@ -20,6 +20,7 @@ from blastscale.blast import blast_parameters, get_blast_model
 from blastscale.blast.air import shock_velocity
 from blastscale.blast.bursts import equivalent_free_air_charge_ratio, lab_burst, model_for_burst
 from blastscale.blast.kingery_bulmash_free_air import KB_UNITS, KingeryBulmashFreeAir, kb1984_evaluate
+from blastscale.blast.safety import SURFACE_BURST_FACTOR
 
 DATA = Path(__file__).resolve().parents[2] / "data"
 FREE = KingeryBulmashFreeAir()
@@ -109,6 +110,7 @@ def test_equivalent_charge_of_a_surface_burst_is_measured_not_assumed():
     z = np.geomspace(0.2, 38.0, 60)
     k = equivalent_free_air_charge_ratio(z, "scaled_reflected_impulse")
     assert np.all(np.abs(k - 1.8) < 0.02), k
+    assert SURFACE_BURST_FACTOR == 1.8  # the safety envelope's far field (blast.safety) uses the same factor
     k = equivalent_free_air_charge_ratio(z[z > 1.5], "scaled_incident_impulse")
     assert np.all(np.abs(k - 1.8) < 0.08), k
     for q in ("incident_pressure", "reflected_pressure"):
