@@ -94,3 +94,12 @@ def test_the_test_card_puts_a_free_air_lab_charge_on_its_stand():
     assert lb["charge_height_m"] == 0.025
     if lb["kind"] != "free-air":
         assert any("not the free-air burst" in n for n in card["warnings"])
+
+
+@pytest.mark.parametrize("key", ["clearing", "negative_phase"])
+def test_gravity_alone_refuses_a_load_model_in_one_line(key):
+    data = Scenario.default().model_dump(exclude_none=True)
+    data["blast"] = {"charge_kg": 0.0, key: True}
+    with pytest.raises(BlastscaleInputError) as e:
+        Scenario.from_dict(data)
+    assert "\n" not in str(e.value) and f"blast.{key} = true needs a charge" in str(e.value)

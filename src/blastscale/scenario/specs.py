@@ -250,6 +250,9 @@ class BlastSpec(BaseModel):
         if self.charge_kg > 0 and self.standoff_m is None:
             raise ValueError(f"charge_kg = {show(self.charge_kg)} needs standoff_m (the stand-off R [m]); "
                              "charge_kg = 0 is gravity alone")
+        if self.charge_kg == 0 and (self.clearing or self.negative_phase):
+            raise ValueError(f"blast.{'clearing' if self.clearing else 'negative_phase'} = true needs a charge: "
+                             "charge_kg = 0 is gravity alone (valid: false)")
         return self
 
     @property
