@@ -109,7 +109,6 @@ def _layout(spec, ch, ins, standoff: float, density, charge_height: float = 0.0,
     radius = (3.0 * m / ((2.0 if burst == "surface" else 4.0) * math.pi * rho)) ** (1.0 / 3.0)
     cam = 4.0 * (hs + ins.displacement_range_m)
     return {"charge": [0.0, 0.0, charge_height], "charge_height_m": charge_height, "charge_radius_m": radius,
-            "charge_burst": burst,
             "specimen_front_x_m": standoff, "specimen_centre": [standoff + 0.5 * ws, 0.0, 0.0],
             "reflected_gauge": [standoff, -(0.5 * ds + 0.2 * standoff), 0.5 * hs],
             "incident_gauge": [0.0, -standoff, 0.5 * hs],
