@@ -199,6 +199,7 @@ def ensemble_compare(
     extrapolate: bool = False,
     blast=None,
     gravity: float = STANDARD_GRAVITY,
+    load_model=None,
     threads: int | None = None,
 ) -> EnsembleComparison:
     """Ensembles of a structure and of its reduced-scale model under slightly perturbed loads.
@@ -221,6 +222,8 @@ def ensemble_compare(
         The prototype's blast parameters when ``design`` is None.
     gravity : float
         The prototype's gravity [m/s^2] when ``design`` is None.
+    load_model : LoadModel, optional
+        Clearing and the negative phase (as :func:`~.structure3d.compare_structure3d`).
     threads : int, optional
         Runs in flight at once (:mod:`blastscale.sim3d.threads`; default: the cores this process may
         use, divided by the local Dask workers). The members' histories do not depend on it (bitwise).
@@ -247,7 +250,7 @@ def ensemble_compare(
     times: dict = {s: [] for s in systems}
     t = points = None
     kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,
-              duration=duration, record_every=record_every, extrapolate=extrapolate)
+              duration=duration, record_every=record_every, extrapolate=extrapolate, load_model=load_model)
     tasks = [(k, s) for k in range(len(factors)) for s in systems]
 
     def member(task):
