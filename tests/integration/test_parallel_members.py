@@ -75,3 +75,15 @@ def test_3d_sweep_chunk_in_threads_equals_the_serial_loop():
         for key, v in want.items():
             g = got[key][k]
             assert (isinstance(v, float) and math.isnan(v) and math.isnan(g)) or g == v, key
+
+
+def test_prototype_and_model_in_parallel_are_bitwise_the_serial_runs():
+    from blastscale.analysis.structure3d import compare_structure3d
+    from blastscale.similitude import design_model
+    from blastscale.structures import MultiDrumColumn
+
+    col = MultiDrumColumn("circular")
+    d = design_model(200.0, 10.0, 0.01)
+    a, b = (compare_structure3d(col, d, duration=0.2, record_every=4, threads=n) for n in (1, 2))
+    for x, y in ((a.prototype_dataset, b.prototype_dataset), (a.upscaled_dataset, b.upscaled_dataset)):
+        assert np.array_equal(x["point_displacement"].values, y["point_displacement"].values)

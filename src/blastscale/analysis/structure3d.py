@@ -222,6 +222,7 @@ def compare_structure3d(
     record_every: int = 4,
     extrapolate: bool = False,
     load_model=None,
+    threads: int | None = None,
 ) -> Comparison3D:
     """Run a structure and its reduced-scale model in 3D and compare them in prototype units.
 
@@ -253,6 +254,9 @@ def compare_structure3d(
     load_model : LoadModel, optional
         Clearing and the negative phase (:class:`~blastscale.blast.load_model.LoadModel`; each
         system's faces its own); None: the paper's load.
+    threads : int, optional
+        Prototype and model run at once on up to this many threads (:mod:`blastscale.sim3d.threads`;
+        default: this process's share of the cores); the results do not depend on it (bitwise).
 
     Returns
     -------
@@ -266,8 +270,9 @@ def compare_structure3d(
     kw = dict(load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact, duration=dur, record_every=record_every,
               extrapolate=extrapolate, load_model=load_model)
     from ..sim3d.load_methods import arrival_spread_similarity
+    from ..sim3d.threads import map_threads
 
-    p_run, m_run = (run_system(structure, design, system, **kw) for system in SYSTEMS)
+    p_run, m_run = map_threads(lambda system: run_system(structure, design, system, **kw), SYSTEMS, threads)
     specimen_structure, proto, mod = m_run.structure, p_run.response, m_run.response
     # the later of the two loads' ends [s after the first arrival, prototype time]
     load_end = max(p_run.load_duration_s, m_run.load_duration_s / design.factors.time)

@@ -151,7 +151,7 @@ def _run_3d(ctx: Context):
     if ctx.design is None:
         return prototype_structure3d(ctx.structure, ctx.blast, gravity=ctx.scenario.simulation.gravity_m_s2,
                                      **_settings_3d(ctx))
-    return compare_structure3d(ctx.structure, ctx.design, **_settings_3d(ctx))
+    return compare_structure3d(ctx.structure, ctx.design, threads=ctx.scenario.simulation.threads, **_settings_3d(ctx))
 
 
 def _run_ensemble(ctx: Context):
