@@ -263,20 +263,21 @@ def test_milligram_specimen_runs_in_reference_units_and_user_points_are_recorded
     assert np.abs(resp.dataset["point_displacement"].values).max() < 1e-9 * 3e-3
 
 
-def test_sparse_jacobian_opt_in_gives_the_dense_history():
-    # ContactSettings.jacobian = "sparse" is offered for speed (2.5-3.4x on the 10-drum columns);
-    # docs/design.md reports a sparse-factorisation bug in MuJoCo 4.0.0, so it stays opt-in and must
-    # reproduce the dense path: on the square column (not chaotic) the two differ by round-off
-    # (measured 2e-12 of the peak over 4 s, 3e-10 over 8 s); asserted 1e-9 over 0.5 s.
+def test_sparse_jacobian_default_gives_the_dense_history():
+    # A stack's default Jacobian is sparse (2.5-3.4x on the 10-drum columns, issue #19); the dense
+    # path is the reference it must reproduce: on the square column (not chaotic) the two differ by
+    # round-off (measured 2e-12 of the peak over 4 s, 3e-10 over 8 s); asserted 1e-9 over 0.5 s.
     from dataclasses import replace
 
     from blastscale.sim3d.contact import default_contact
 
     col = MultiDrumColumn("square")
     load = make_load("A", col, blast_parameters(250.0, 10.0))
-    dense = simulate_structure(col, load, 0.5, record_every=10)
-    sparse = simulate_structure(col, load, 0.5, record_every=10,
-                                contact=replace(default_contact(col), jacobian="sparse"))
+    assert default_contact(col).jacobian == "sparse"
+    sparse = simulate_structure(col, load, 0.5, record_every=10)
+    dense = simulate_structure(col, load, 0.5, record_every=10,
+                               contact=replace(default_contact(col), jacobian="dense"))
+    assert dense.dataset.attrs["setting_jacobian"] == "dense"
     assert sparse.dataset.attrs["setting_jacobian"] == "sparse"
     xd = dense.dataset["point_displacement"].sel(component="x").values
     xs = sparse.dataset["point_displacement"].sel(component="x").values

@@ -67,5 +67,6 @@ def test_default_jacobian_is_gated_on_the_fixed_mujoco():
     assert sparse_factorisation_fixed("4.0.1") and sparse_factorisation_fixed("4.1.0") and sparse_factorisation_fixed("5.0")
     assert sparse_factorisation_fixed("4.0.1rc1")
     assert default_jacobian(1, "4.0.1") == "dense" == default_jacobian(1, "4.0.0")
-    assert default_jacobian(10, "4.0.0") == "dense" and default_jacobian(10, "4.0.1") == "sparse"
-    assert default_jacobian(DENSE_JACOBIAN_MAX_BODIES + 1, "4.0.0") == "sparse"
+    assert default_jacobian(10, "4.0.0") == "sparse" == default_jacobian(2, "4.0.1")  # probed (4.0.0), fixed (4.0.1)
+    assert default_jacobian(10, "3.3.7") == "dense" and default_jacobian(2, "3.3.7") == "dense"
+    assert default_jacobian(DENSE_JACOBIAN_MAX_BODIES + 1, "3.3.7") == "sparse"

@@ -91,8 +91,8 @@ def column_cmd(
     jacobian: Optional[str] = typer.Option(
         None, "--jacobian",
         help="MuJoCo constraint Jacobian: dense or sparse (2.8x faster on the square column, the same history to "
-             "round-off). Default: sparse from MuJoCo 4.0.1, dense on 4.0.0 (its sparse-factorisation bug, "
-             "docs/performance.md)."),
+             "round-off). Default: sparse (MuJoCo 4.0.0's sparse-factorisation bug is not reached by these "
+             "scenes, docs/performance.md)."),
     record_every: Optional[int] = opt.RECORD_EVERY,
     ensemble: Optional[int] = typer.Option(
         None, "--ensemble", help="Also run N prototypes (and, with --scale, N models) with the load x (1 + 1e-6 u), u "

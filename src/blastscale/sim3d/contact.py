@@ -139,8 +139,8 @@ class ContactSettings:
     jacobian : {"dense", "sparse", "auto"}
         Layout of the constraint Jacobian. "dense" here; a structure's scale-consistent defaults
         (:func:`default_contact`) choose it by size and MuJoCo version
-        (:func:`~.solver_choice.default_jacobian`: sparse for stacks once MuJoCo >= 4.0.1 fixes
-        4.0.0's sparse-factorisation bug, issue 3767). "sparse" is 2.8x faster on the square
+        (:func:`~.solver_choice.default_jacobian`: sparse for stacks; MuJoCo 4.0.0's
+        sparse-factorisation bug, issue 3767, is not reached by our scenes). "sparse" is 2.8x faster on the square
         10-drum column and gives the dense histories to 1.4e-12 of the peak (docs/performance.md).
 
     Notes

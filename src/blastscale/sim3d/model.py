@@ -256,8 +256,9 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     Multi-point convex collision (MuJoCo's ``multiccd``) is required for flat drum-on-drum
     contacts: without it a 10-drum column drifts 41-119 mm at rest (docs/design.md). It is on by
     default in MuJoCo >= 3.17 (a disable flag); the MJCF says ``multiccd="enable"`` and the
-    compiled model is checked. The Jacobian layout is ``contact.jacobian``, dense by default:
-    MuJoCo 4.0.0's sparse factorisation has a bug (fixed in 4.0.1) that a 60-dof column reaches.
+    compiled model is checked. The Jacobian layout is ``contact.jacobian``
+    (:func:`~.solver_choice.default_jacobian`: dense for one body, sparse for a stack; MuJoCo 4.0.0's
+    sparse-factorisation bug, fixed in 4.0.1, is not reached by our scenes, docs/performance.md).
     """
     import mujoco  # imported here: the rest of blastscale works without MuJoCo installed
 
