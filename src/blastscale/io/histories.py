@@ -1,8 +1,8 @@
 """Files of response histories: NetCDF (a ``Response3D.dataset``, a study's DataTree with one group
 per engine) and the tidy CSV of a study's histories (flat, for spreadsheets).
 
-Written as every result file of :mod:`.results` is: into a temporary sibling
-(``.<name>.partial``) renamed into place, so a reader never sees a half-written file and a failed
+Written as every result file of :mod:`.results` is: into a unique temporary sibling
+(``.<name>.partial-*``) renamed into place, so a reader never sees a half-written file and a failed
 write leaves nothing behind. The engines (:mod:`blastscale.sim3d`, :mod:`blastscale.rocking`)
 build datasets and write no files.
 """
@@ -36,15 +36,26 @@ def write_netcdf(dataset, path: "str | Path", engine: str = "h5netcdf") -> Path:
     Path
         ``path``.
     """
+    import tempfile
+
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.partial")  # the temporary sibling of results.write_atomic
+    fd, name = tempfile.mkstemp(prefix=f".{path.name}.partial-{os.getpid()}-", dir=path.parent)
+    os.close(fd)
+    tmp = Path(name)
     try:
         dataset.to_netcdf(tmp, engine=engine)
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, path)
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
     return path
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
 
 
 def histories_tidy(tree):

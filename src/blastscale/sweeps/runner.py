@@ -161,6 +161,9 @@ def run_in_memory(spec: SweepSpec, *, scheduler: Optional[str] = None, workers: 
     chunk = default_chunk(spec, max(1, workers)) if chunk is None else chunk
     if not isinstance(chunk, int) or isinstance(chunk, bool) or chunk < 1:
         raise BlastscaleInputError(f"chunk = {chunk!r} is out of range: must be a whole number >= 1")
+    from .budget import check_sweep_budget
+
+    check_sweep_budget(spec, None if scheduler else max(1, workers))
     n = spec.n_cases
     todo = [(i, s, min(n, s + chunk)) for i, s in enumerate(range(0, n, chunk))]
     done: dict = {}
