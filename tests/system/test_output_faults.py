@@ -221,3 +221,21 @@ def test_ctrl_c_on_a_two_worker_sweep_is_one_line_and_resumes(tmp_path, planar):
     for node in a.subtree:  # every value bit for bit (the chunking, an attribute, differs)
         assert node.ds.equals(b[node.path].ds), node.path
     assert sorted(x.name for x in tmp_path.iterdir()) == ["one.zarr", "planar.toml", "s.zarr"]
+
+
+def test_kill_9_between_the_two_renames_of_a_replacement_loses_nothing(capsys, tmp_path, planar):
+    """--force sets the old result aside, then renames the new one into place; a kill -9 between the two (the only
+    signal that lands there) leaves neither at `r`: the next command puts the old result back first."""
+    assert cli(capsys, "run", planar, "--out", tmp_path / "r")[0] == 0
+    old = (tmp_path / "r" / "summary.json").read_text()
+    marker = tmp_path.parent / f"{tmp_path.name}.m"
+    p = spawn(["run", planar, "--out", tmp_path / "r", "--force"], tmp_path, pause="output:between-renames",
+              marker=marker)
+    wait_for_marker(p, marker)
+    p.kill()
+    p.communicate()
+    assert not (tmp_path / "r").exists() and any(x.name.startswith(".r.old-") for x in tmp_path.iterdir())
+    code, _, err = cli(capsys, "run", planar, "--out", tmp_path / "r")
+    assert code == 2 and "exists: refused (give --force to replace it)" in err  # the old result is back
+    assert (tmp_path / "r" / "summary.json").read_text() == old
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["planar.toml", "r"]

@@ -15,7 +15,7 @@ import typer
 
 from .._validate import BlastscaleInputError
 from ._app import activity, app, console, count_progress, one_line_warnings, print_json, print_written, table
-from ._signals import set_interrupt_note
+from ._signals import ignore_interrupts, set_interrupt_note
 
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")
 SCHEDULER = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (e.g. tcp://127.0.0.1:8786).")
@@ -91,6 +91,7 @@ def sweep_cmd(
     _resume_note(out)
     with one_line_warnings(), bar:
         run = run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, force=force, progress=tick)
+    ignore_interrupts()  # the store is in place: only the printing remains
     print_written(out, f"{spec.n_cases} cases")
     res = {**run.to_dict(), "dims": list(spec.dims), "shape": list(spec.shape),
            "fields": {a.name: a.path for a in spec.axes} | {s.name: s.path for s in spec.sampled}}

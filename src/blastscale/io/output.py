@@ -38,6 +38,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
+from .._hooks import pause_point
 from .._validate import BlastscaleInputError
 
 __all__ = ["Kind", "Claim", "claim", "check_target", "write_file", "signals_held", "fault", "HELD_SIGNALS",
@@ -203,6 +204,7 @@ class Claim:
                                                    f"it ran and is not {self.kind.noun}: nothing replaced")
                     trash = dest.with_name(f".{dest.name}.old-{os.getpid()}")
                     os.rename(dest, trash)
+                    pause_point("output:between-renames")  # only kill -9 can stop it here (signals held)
                 os.rename(tmp, dest)
                 if trash is not None:
                     _remove(trash)

@@ -100,7 +100,11 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
         # freed block above 64 kB back to the system, and the numpy temporaries of a planar chunk
         # come back as fresh pages each time (measured: +55 % CPU per outcome-mode chunk); the
         # local workers keep glibc's own (dynamic) threshold
-        with warnings.catch_warnings(), dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+        # the workers log errors only: a task cancelled while the cluster stops after Ctrl-C is not news (the
+        # main process says what happened in one line); a failing chunk still raises here
+        quiet = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
+                 "distributed.nanny.pre-spawn-environ.DASK_LOGGING__DISTRIBUTED": "error"}
+        with warnings.catch_warnings(), dask.config.set(quiet):
             # the scheduler's HTTP (health) server takes another port when 8787 is busy: not our concern
             warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
             cluster = LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
