@@ -69,6 +69,9 @@ def test_one_default_study_designs_once_and_evaluates_each_systems_blast_once(mo
         return real_make_load(method, structure, blast, **kw)
 
     monkeypatch.setattr(load_methods, "make_load", counting_make_load)
+    from blastscale.study import engines
+
+    engines._critical_charge.cache_clear()  # the critical charge is memoised per process: search it here
     sc = Scenario.default().with_values({"duration_s": 0.3})
     assert sc.simulation.engine == "both" and sc.simulation.critical_charge and sc.scale is not None
     r = Study(sc).run()

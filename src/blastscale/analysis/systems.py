@@ -68,7 +68,7 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
         Which one.
     blast : BlastParameters, optional
         The prototype's blast parameters when there is no design (with a design: ``design.prototype``
-        and ``design.specimen``).
+        and ``design.specimen``); None without a design: gravity alone.
     gravity : float
         The prototype's gravity [m/s^2] when there is no design (with one: ``design.gravity``).
     load, pulse_shape, incidence, contact, record_every
@@ -92,10 +92,10 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
     if system not in SYSTEMS:
         raise BlastscaleInputError(f"system = {system!r} is not known: valid values are {', '.join(SYSTEMS)}")
     if design is None:
-        if system != "prototype" or blast is None:
+        if system != "prototype":
             raise BlastscaleInputError(
-                f"design = None with system = {system!r}{' and no blast' if blast is None else ''}: without a model "
-                "design only the prototype runs, from its blast parameters (blast=blast_parameters(W, R))")
+                f"design = None with system = {system!r}: without a model design only the prototype runs, from its "
+                "blast parameters (blast=blast_parameters(W, R)), or under gravity alone (blast=None)")
         struct, bp, dur, g, cont = structure, blast, duration, gravity, contact
     elif system == "prototype":
         struct, bp, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
@@ -104,6 +104,9 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
         struct, bp = structure.scaled(f), design.specimen
         dur, g = duration * f.time, design.gravity * f.gravity
         cont = None if contact is None else contact.scaled(f)
+    if bp is None:  # gravity alone (a stability check)
+        resp = simulate_structure(struct, None, dur, contact=cont, gravity=g, record_every=record_every)
+        return SystemRun(struct, resp, 0.0, None)
     inc = {} if incidence is None else {"incidence": incidence}
     ld = make_load(load, struct, bp, pulse_shape=pulse_shape, extrapolate=bool(extrapolate), **inc)
     run_load = ld if load_factor == 1.0 else PerturbedLoad(ld, load_factor)

@@ -2,8 +2,8 @@
 
 Each command lives in its own module and registers itself on :data:`app`:
 ``blast``/``design`` (:mod:`.loads`), ``rock``/``critical`` (:mod:`.rocking`),
-``block3d`` (:mod:`.block3d`), ``run`` (:mod:`.main_job`), ``reproduce`` (:mod:`.reproduce`), ``init``
-(:mod:`.init`). Units at this edge are those
+``block3d`` (:mod:`.block3d`), ``run`` (:mod:`.main_job`), ``reproduce`` (:mod:`.reproduce`), ``plan``
+(:mod:`.plan`), ``init`` (:mod:`.init`). Units at this edge are those
 named in each option's help text; everything is converted to SI before calling the library.
 
 Bad input raises :class:`~blastscale._validate.BlastscaleInputError` in the library; ``main``
@@ -24,6 +24,7 @@ from . import column as _column  # noqa: F401,E402
 from . import main_job as _main_job  # noqa: F401,E402
 from . import reproduce as _reproduce  # noqa: F401,E402
 from . import sweeps as _sweeps  # noqa: F401,E402
+from . import plan as _plan  # noqa: F401,E402
 from . import init as _init  # noqa: F401,E402
 
 __all__ = ["app", "main"]

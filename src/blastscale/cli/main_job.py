@@ -103,8 +103,22 @@ def _print_result(result) -> None:
         r3 = s["3d"]
         console.print(_compare_table(f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, "
                                      f"Method {sc.blast.load})", r3["prototype"], r3["model"]))
+        stab = (r3.get("prototype") or {}).get("stability")
+        if stab is not None:
+            console.print(styled("under gravity alone the structure ", (str(stab), "bold"),
+                                 " (stands: no block moved more than 1e-4 of its height; collapses: a block fell)"))
         if r3.get("similarity") is not None:
             console.print(_similarity_table(r3["similarity"]))
+    from ..report.card import card_of
+
+    card = card_of(result)
+    if card is not None:
+        p = card["p_outcome_agree"]
+        console.print(styled(("Test card:", "bold"), f" {format_charge(card['explosive_mass_kg'])} of {card['explosive']} at "
+                             f"{card['standoff_m'] * 1e3:.4g} mm; safety radius ({card['safety_threshold']}) "
+                             f"{card['safety_radius_m']:.3g} m, debris zone {card['debris_radius_m'] * 1e3:.4g} mm; camera "
+                             f"{card['camera_fps']:g} frames/s, gauges sampled at {card['pressure_sampling_hz']:g} Hz"
+                             + ("" if p is None else f"; P(outcome agrees) {p:.3f}") + " (report.html: the printable card)"))
     # result.warnings were printed as they came, one line each (one_line_warnings)
 
 
@@ -154,7 +168,11 @@ def run_cmd(
         check_output_folder(out, force)  # before any simulation
     study = Study(sc)
     with one_line_warnings():
-        study.check()  # blast-fit and scale ranges, engines, memory: one line before any work
+        design = study.check()[3]  # blast-fit and scale ranges, engines, memory: one line before any work
+        if sc.lab is not None:  # the [lab] table's charge (the initiator below it): one line before any work
+            from ..planning.card import check_lab
+
+            check_lab(design, sc.lab)
         writes = 3 if out is not None else 0  # histories, figures, report
         with stage_progress(quiet=as_json) as tell:
             state = {"done": 0, "total": 1}

@@ -26,7 +26,8 @@ UNITS = {
 }
 
 
-def write_study(result, folder, progress: Optional[Callable[[str], None]] = None, csv: bool = False) -> list[str]:
+def write_study(result, folder, progress: Optional[Callable[[str], None]] = None, csv: bool = False,
+                plan_html: Optional[str] = None) -> list[str]:
     """Write every result file of a study into ``folder`` (which must exist).
 
     Parameters
@@ -38,6 +39,8 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     csv : bool
         Also write ``histories.csv``, the histories flat (large: a column's is 135-169 MB and takes
         longer to write than the simulation; ``histories.nc`` holds the same).
+    plan_html : str, optional
+        The plan's section (``blastscale plan --out``), placed before the test card.
 
     Returns
     -------
@@ -63,20 +66,25 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     files = (["summary.json", "histories.nc"] + (["histories.csv"] if csv else []) + ["scenario.toml"]
              + [f"{f.name}.png" for f, _ in figures])
     tell("report")
-    write_atomic(folder / "report.html", render_report(result, figures, meta, files))
+    write_atomic(folder / "report.html", render_report(result, figures, meta, files, plan_html=plan_html))
     write_json(folder / "summary.json", summary_dict(result, meta))
     return ["report.html"] + files
 
 
 def summary_dict(result, meta: Optional[dict] = None) -> dict:
     """The content of ``summary.json``: provenance (versions, git commit, timestamp), units, the
-    study's nested summary (scenario included), its flat ``scalars`` and the report's ``verdict``
-    (:func:`blastscale.report.verdict.verdict`: similar, reasons, limits, the line), each renamed key with
-    its deprecated name beside it (:func:`blastscale.io.results.with_legacy_keys`)."""
+    study's nested summary (scenario included), its flat ``scalars``, the report's ``verdict``
+    (:func:`blastscale.report.verdict.verdict`: similar, reasons, limits, the line) and, with a ``[lab]``
+    table, the ``test_card`` (:func:`blastscale.planning.study_test_card`), each renamed key with its
+    deprecated name beside it (:func:`blastscale.io.results.with_legacy_keys`)."""
     from ..io.results import provenance, with_legacy_keys
     from .verdict import verdict
 
+    from .card import card_of
+
     s = result.summary()
     v = verdict(s, result.scenario.structure.kind, getattr(result.structure, "section", None) == "circular")
+    card = card_of(result)
+    extra = {} if card is None else {"test_card": card}
     return with_legacy_keys({**(provenance() if meta is None else meta), "units": UNITS, **s,
-                             "scalars": result.scalars(), "verdict": v})
+                             "scalars": result.scalars(), "verdict": v, **extra})

@@ -89,7 +89,7 @@ FIGURES: tuple[Figure, ...] = (
     Figure("blast_pulses", "Blast loads of the prototype and the model",
            "Reflected pressure on the front face at the stand-off, each system in its own units: the model's "
            "pulse is shorter and weaker; only its impulse follows the scaling law exactly.",
-           lambda r: True, _pulses),
+           lambda r: r.blast is not None, _pulses),
     Figure("planar_rocking", "Planar rocking: prototype and up-scaled model",
            "Rocking angle, angular velocity and phase portrait of the prototype (solid) and of the model "
            "up-scaled to prototype units (dashed).", lambda r: r.planar is not None, _planar),

@@ -1,7 +1,8 @@
 """A self-contained HTML report of a study, for someone who never ran the tool.
 
 One file, no external resources: the figures are embedded as base64 PNG. Sections (each a
-``<section id=...>``): ``experiment`` (what to build and detonate), ``loads`` (blast loads of
+``<section id=...>``): ``experiment`` (what to build and detonate), ``test_card`` (the printable
+card of a scenario with a ``[lab]`` table: :mod:`.card`), ``loads`` (blast loads of
 both systems, delivered vs required ratios), ``impulsive`` (the a-posteriori check),
 ``similarity`` (figures and numbers per engine, the critical charge), ``warnings``, ``slips``
 (the paper's slips that apply), ``scenario`` (the inputs, as TOML) and ``provenance``.
@@ -16,12 +17,14 @@ from typing import Any, Iterable
 
 from ..units import split_unit as _split_unit
 from .slips import applicable_slips
+from .card import CSS as _CARD_CSS
+from .card import card_section
 from .verdict import label, specimen_rows, verdict
 
 __all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
 
 #: Section ids of the report, in order.
-SECTIONS = ("experiment", "loads", "impulsive", "similarity", "warnings", "slips", "scenario", "provenance")
+SECTIONS = ("experiment", "test_card", "loads", "impulsive", "similarity", "warnings", "slips", "scenario", "provenance")
 
 _CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:1100px;margin:2em auto;
@@ -152,6 +155,9 @@ def _experiment(result) -> str:
 
 def _loads(result) -> str:
     d = result.design
+    if result.blast is None:
+        return ("<p>No charge: the structure under gravity alone, the stability check a designer runs before any "
+                "blast (section 4 says whether it stands, settles or collapses).</p>")
     if d is None:
         b = result.blast
         rows = [("scaled distance Z", b.scaled_distance, "m/kg^(1/3)"), ("reflected peak pressure",
@@ -222,6 +228,12 @@ def _similarity(result, figures) -> str:
         r3 = s["3d"]
         out.append("<h3>3D rigid bodies (MuJoCo, Coulomb friction "
                    f"{result.scenario.structure.friction:g})</h3>")
+        stab = (r3.get("prototype") or {}).get("stability")
+        if stab is not None:
+            cls = "bad" if stab == "collapses" else "ok"
+            out.append(f'<p class="lead">Under gravity alone the structure <span class="{cls}">{_e(stab)}</span> '
+                       "(stands: no block moved more than 1e-4 of the structure's height; settles: more, but no block "
+                       "fell; collapses: a block fell, docs/assemblies.md).</p>")
         out.append(_compare_table(r3["prototype"], r3["model"]))
         if r3.get("similarity") is not None:
             out.append(_table(("similarity figure", "value", "unit"),
@@ -282,7 +294,7 @@ def _verdict(result) -> str:
     return f'<p id="verdict" class="{cls}"><b>{_e(v["line"])}</b></p>'
 
 
-def render_report(result, figures, meta: dict, files: Iterable[str] = ()) -> str:
+def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_html: str | None = None) -> str:
     """The report as one HTML string.
 
     Parameters
@@ -295,6 +307,8 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = ()) -> str
         :func:`blastscale.io.results.provenance`.
     files : iterable of str
         Names of the other files of the result folder.
+    plan_html : str, optional
+        The plan of ``blastscale plan --out`` (a section ``plan`` before the test card).
 
     Returns
     -------
@@ -309,6 +323,7 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = ()) -> str
         pulses = _img(png, f.title, f.caption, f.name)
     body = {
         "experiment": ("1. The experiment to build", _experiment(result)),
+        "test_card": ("Test card", card_section(result)),
         "loads": ("2. Blast loads of the prototype" + ("" if result.design is None else " and the model"),
                   _loads(result) + pulses),
         "impulsive": ("3. Impulsive check", _impulsive(result)),
@@ -319,11 +334,15 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = ()) -> str
         "scenario": ("7. Scenario (inputs)", f"<pre>{_e(sc.to_toml())}</pre>"),
         "provenance": ("8. Provenance", _provenance(meta, files)),
     }
+    order = list(SECTIONS)
+    if plan_html is not None:
+        body["plan"] = ("The plan: designs the lab can fire, best first", plan_html)
+        order.insert(order.index("test_card"), "plan")
     sections = "".join(f'<section id="{sid}"><h2>{_e(h)}</h2>{content}</section>'
-                       for sid, (h, content) in ((k, body[k]) for k in SECTIONS))
+                       for sid, (h, content) in ((k, body[k]) for k in order))
     return ("<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
             f"<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>blastscale: {_e(title)}"
-            f"</title><style>{_CSS}</style></head><body><header><h1>blastscale report: {_e(title)}</h1>"
+            f"</title><style>{_CSS}{_CARD_CSS}</style></head><body><header><h1>blastscale report: {_e(title)}</h1>"
             f"{_verdict(result)}"
             "<p class=\"muted\">Reduced-scale blast experiment designed with the scaling laws of Masi, Stefanou "
             "&amp; Maffi-Berthier (general law), checked by simulating prototype and model. All values SI unless "

@@ -312,8 +312,9 @@ def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse_s
                                  gravity: float | None = None, restitution: float | None = None) -> float:
     """The slow reference: critical charge [kg] by bisection in ln W on full simulations (to rest:
     ``pulse + 200 / p`` of motion, every impact, no early stop), independent of the first-swing
-    criterion. The bracket ``[guess / 1.5, 1.5 guess]`` [kg] must straddle the threshold (checked);
-    ``rel`` is the relative width at which it stops. For tests and benchmarks."""
+    criterion. The bracket ``[guess / 1.5, 1.5 guess]`` [kg], kept inside the blast model's valid
+    range of Z, must straddle the threshold (checked); ``rel`` is the relative width at which it
+    stops. For tests and benchmarks."""
     system = as_rocking_system(body, gravity, restitution)
     solver = solver or DEFAULT_SOLVER
 
@@ -321,7 +322,9 @@ def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse_s
         p = blast_parameters(W, standoff, blast_model).pulse(pulse_shape)
         return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).collapsed
 
-    lo, hi = guess / 1.5, guess * 1.5
+    zlo, zhi = valid_scaled_distance_range(blast_model)
+    lo = max(guess / 1.5, (standoff / zhi) ** 3 * (1.0 + 1e-12))  # the charges whose Z lies in the fits
+    hi = min(guess * 1.5, (standoff / zlo) ** 3 * (1.0 - 1e-12))
     if over(lo) or not over(hi):
         raise BlastscaleInputError(f"guess = {guess:.6g} kg: [guess/1.5, 1.5 guess] does not straddle the critical charge")
     while math.log(hi / lo) > rel:

@@ -44,12 +44,16 @@ def load_scenario(path: "str | Path") -> Scenario:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
         hint = f" (or give a shipped scenario: {', '.join(shipped)})" if not p.exists() else ""
         raise BlastscaleInputError(f"scenario = {str(p)!r} cannot be read: {reason}{hint}") from None
-    return _from_text(text, p.name)
+    return _from_text(text, p.name, p.resolve().parent)
 
 
-def _from_text(text: str, source: str) -> Scenario:
+def _from_text(text: str, source: str, folder: "Path | None" = None) -> Scenario:
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise BlastscaleInputError(f"{source}: TOML syntax error: {exc}") from None
+    st = data.get("structure")
+    if folder is not None and isinstance(st, dict) and isinstance(st.get("file"), str) \
+            and not Path(st["file"]).is_absolute():  # a block-model file is relative to its scenario file
+        data["structure"] = {**st, "file": str(folder / st["file"])}
     return Scenario.from_dict(data, source=source)

@@ -38,6 +38,10 @@ def _model_at(loc: tuple, root: type[BaseModel], kinds: dict) -> tuple[type[Base
         if isinstance(part, str) and part in kinds and info is not None and model is _UNION:
             model = kinds[part]
             continue
+        if info is not None and typing.get_origin(info.annotation) is dict and i > 0 and loc[i - 1] != part \
+                and part not in getattr(model, "model_fields", {}) and isinstance(part, str) and model is not root:
+            info = None  # a key of a table of tables ([lab.explosives.NAME]): its model follows
+            continue
         fields = getattr(model, "model_fields", {})
         if part not in fields:  # a deprecated key (a field's validation alias): its field
             part = next((n for n, f in fields.items() if part in getattr(f.validation_alias, "choices", ())), part)

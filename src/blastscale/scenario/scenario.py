@@ -12,6 +12,7 @@ from ..constants import DEFAULT_FRICTION
 from ..structures.materials import MATERIALS
 from .messages import one_line, submodels
 from .text import to_toml
+from .lab import LabSpec
 from .specs import _CONFIG, KINDS, LEGACY_SCENARIO_KEYS, BlastSpec, BlockSpec, ScaleSpec, SimulationSpec, Structure
 
 __all__ = ["Scenario"]
@@ -47,10 +48,13 @@ class Scenario(BaseModel):
     model_config = _CONFIG
     title: str = Field("", description="A one-line description")
     structure: Structure
-    blast: BlastSpec
+    blast: BlastSpec = Field(default_factory=BlastSpec, description="The charge; absent (or charge_kg = 0): "
+                             "the structure under gravity alone")
     scale: Optional[ScaleSpec] = Field(None, description="The specimen's scales; absent: the prototype alone "
                                        "(no design, no comparison)")
     simulation: SimulationSpec = Field(default_factory=SimulationSpec)
+    lab: Optional[LabSpec] = Field(None, description="What the laboratory can fire, build and measure: a test card "
+                                   "in the report, and the constraints of `blastscale plan` (docs/planning.md)")
 
     # -- construction ----------------------------------------------------------------
     @classmethod
@@ -108,6 +112,8 @@ class Scenario(BaseModel):
         if key in paths:
             return key
         hits = [p for p in paths if p.endswith("." + key)]
+        if len(hits) > 1 and sum(not p.startswith("lab.") for p in hits) == 1:  # [lab] keys by full path only
+            hits = [p for p in hits if not p.startswith("lab.")]
         if len(hits) == 1:
             return hits[0]
         if not hits:

@@ -26,8 +26,8 @@ from ..structures.column import MAX_DRUMS, MAX_SIDES, MIN_SIDES
 from ..structures.materials import MATERIALS
 from .messages import show
 
-__all__ = ["parse_ratio", "BlockSpec", "ColumnSpec", "BlastSpec", "ScaleSpec", "SimulationSpec", "ContactSpec",
-           "Structure", "KINDS", "LEGACY_SCENARIO_KEYS"]
+__all__ = ["parse_ratio", "BlockSpec", "ColumnSpec", "WallSpec", "ArchSpec", "PortalSpec", "AssemblySpec",
+           "BlastSpec", "ScaleSpec", "SimulationSpec", "ContactSpec", "Structure", "KINDS", "LEGACY_SCENARIO_KEYS"]
 
 #: Deprecated scenario keys, still accepted when read (files, ``with_values``, ``--set``) and never
 #: written: old dotted path -> new dotted path (CHANGELOG.md, docs/glossary.md).
@@ -135,12 +135,76 @@ class ColumnSpec(BaseModel):
     friction: float = Field(DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-]", **_limits("friction"))
 
 
-class BlastSpec(BaseModel):
-    """The prototype's charge, where it stands and how its load is modelled."""
+_DENSITY = dict(gt=0, le=25000, description="Density [kg/m^3]")
+_FRICTION = dict(description="Coulomb friction coefficient mu [-] at every joint", **_limits("friction"))
+
+
+class WallSpec(BaseModel):
+    """A dry-stone wall facing the blast (plane y-z): courses of equal units, running or stack bond
+    (docs/assemblies.md)."""
 
     model_config = _CONFIG
-    charge_kg: Pos = Field(description="TNT-equivalent charge W [kg]")
-    standoff_m: Pos = Field(description="Stand-off R from the front face [m]")
+    kind: Literal["wall"] = Field(description="Structure kind")
+    length_m: float = Field(4.0, gt=0, le=1000, description="Wall length along y [m]")
+    height_m: float = Field(3.0, gt=0, le=1000, description="Wall height [m]")
+    thickness_m: float = Field(0.5, gt=0, le=1000, description="Wall thickness along x [m]")
+    courses: int = Field(10, ge=1, le=1000, description="Number of courses [-]")
+    units_per_course: int = Field(8, ge=1, le=1000, description="Full units per course [-]")
+    bond: Literal["running", "stack"] = Field("running", description="Bond: running (half units at the ends of "
+                                              "every second course) or stack")
+    density_kg_m3: float = Field(2000.0, **_DENSITY)
+    friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
+
+
+class ArchSpec(BaseModel):
+    """A circular arch of voussoirs facing the blast (plane y-z), optionally on piers (docs/assemblies.md)."""
+
+    model_config = _CONFIG
+    kind: Literal["arch"] = Field(description="Structure kind")
+    radius_m: float = Field(2.5, gt=0, le=1000, description="Radius of the centreline [m]")
+    thickness_m: float = Field(0.5, gt=0, le=1000, description="Radial thickness [m] (< 2 x radius)")
+    depth_m: float = Field(1.0, gt=0, le=1000, description="Depth along x [m]")
+    voussoirs: int = Field(15, ge=1, le=1000, description="Number of voussoirs [-]")
+    embrace_deg: float = Field(180.0, gt=0, lt=360, description="Angle spanned, symmetric about the crown [deg]")
+    pier_height_m: float = Field(0.0, ge=0, le=1000, description="Height of the springing above the ground [m]; "
+                                 "> 0 puts a pier under each springer (needed unless embrace_deg = 180)")
+    density_kg_m3: float = Field(2000.0, **_DENSITY)
+    friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
+
+
+class PortalSpec(BaseModel):
+    """A trilithon facing the blast: two square columns (monolithic or of drums) and a free lintel."""
+
+    model_config = _CONFIG
+    kind: Literal["portal"] = Field(description="Structure kind")
+    column_height_m: float = Field(4.0, gt=0, le=1000, description="Column height [m]")
+    column_width_m: float = Field(0.8, gt=0, le=1000, description="Column side (square), also the depth [m]")
+    span_m: float = Field(3.0, gt=0, le=1000, description="Clear span between the columns [m]")
+    lintel_height_m: float = Field(1.0, gt=0, le=1000, description="Lintel height [m]")
+    lintel_overhang_m: float = Field(0.3, ge=0, le=1000, description="Lintel beyond each column [m]")
+    drums: int = Field(1, ge=1, le=MAX_DRUMS, description="Drums per column (1: monolithic) [-]")
+    density_kg_m3: float = Field(2000.0, **_DENSITY)
+    friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
+
+
+class AssemblySpec(BaseModel):
+    """Blocks from a block-model file: our JSON, a mesh (OBJ, STL, PLY) or COMPAS JSON (docs/assemblies.md)."""
+
+    model_config = _CONFIG
+    kind: Literal["assembly"] = Field(description="Structure kind")
+    file: str = Field(description="Block-model file, relative to the scenario file")
+    density_kg_m3: float = Field(2000.0, description="Density of blocks without their own [kg/m^3]",
+                                 **{k: v for k, v in _DENSITY.items() if k != "description"})
+    friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
+
+
+class BlastSpec(BaseModel):
+    """The prototype's charge, where it stands and how its load is modelled; no charge (the table
+    left out, or ``charge_kg = 0``): gravity alone, a stability check."""
+
+    model_config = _CONFIG
+    charge_kg: float = Field(0.0, ge=0, description="TNT-equivalent charge W [kg]; 0: gravity alone")
+    standoff_m: Optional[Pos] = Field(None, description="Stand-off R from the front face [m] (needed with a charge)")
     blast_model: str = Field(DEFAULT_BLAST_MODEL, validation_alias=_renamed("blast.blast_model"),
                              description="Blast model (the empirical fit): kingery-bulmash (Swisdak 1994, the "
                              "library-wide default) or masi2021 (the paper's Appendix A fits); deprecated key: model")
@@ -164,6 +228,21 @@ class BlastSpec(BaseModel):
     @classmethod
     def _incidence(cls, v: str) -> str:
         return _check_name(v, INCIDENCE_MODELS)
+
+    @model_validator(mode="after")
+    def _standoff(self) -> "BlastSpec":
+        if "charge_kg" not in self.model_fields_set and self.model_fields_set:
+            raise ValueError("blast.charge_kg is missing: give the charge [kg] (0, or no [blast] table, for gravity "
+                             "alone)")
+        if self.charge_kg > 0 and self.standoff_m is None:
+            raise ValueError(f"charge_kg = {show(self.charge_kg)} needs standoff_m (the stand-off R [m]); "
+                             "charge_kg = 0 is gravity alone")
+        return self
+
+    @property
+    def gravity_only(self) -> bool:
+        """No charge: the structure under gravity alone."""
+        return self.charge_kg == 0.0
 
 
 class ScaleSpec(BaseModel):
@@ -256,5 +335,7 @@ class SimulationSpec(BaseModel):
         return v
 
 
-Structure = Annotated[Union[BlockSpec, ColumnSpec], Field(discriminator="kind")]
-KINDS = {"block": BlockSpec, "column": ColumnSpec}
+Structure = Annotated[Union[BlockSpec, ColumnSpec, WallSpec, ArchSpec, PortalSpec, AssemblySpec],
+                      Field(discriminator="kind")]
+KINDS = {"block": BlockSpec, "column": ColumnSpec, "wall": WallSpec, "arch": ArchSpec, "portal": PortalSpec,
+         "assembly": AssemblySpec}

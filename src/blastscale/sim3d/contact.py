@@ -319,10 +319,20 @@ def structure_length(structure) -> float:
     return float(structure.describe()["height_m"])
 
 
+#: Structures with more bodies than this get the sparse constraint Jacobian: measured on stack-bonded walls
+#: (Newton, 0.25 ms, benchmarks/bench_assemblies.py) the dense one costs 12x more at 50 blocks and runs out
+#: of memory at 200; up to 10 bodies (the paper's columns) the dense one is kept, as measured before
+#: (docs/assemblies.md; tests/integration/test_assemblies_engine.py checks sparse == dense on a small wall).
+DENSE_JACOBIAN_MAX_BODIES = 10
+
+
 def reference_contact(structure, friction: float = DEFAULT_FRICTION) -> ContactSettings:
     """The full-scale (10 m, 9.81 m/s^2) settings of ``structure`` with friction mu [-]:
-    :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several."""
-    return replace(BLOCK_REFERENCE if len(structure.bodies) == 1 else STACK_REFERENCE, friction=friction)
+    :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several, with the sparse
+    Jacobian above :data:`DENSE_JACOBIAN_MAX_BODIES` bodies."""
+    n = len(structure.bodies)
+    base = BLOCK_REFERENCE if n == 1 else STACK_REFERENCE
+    return replace(base, friction=friction, jacobian="dense" if n <= DENSE_JACOBIAN_MAX_BODIES else "sparse")
 
 
 #: Contact time constants per time step kept when a user coarsens the step (MuJoCo needs >= 2).

@@ -75,7 +75,7 @@ class FaceLoadStrategy:
     """
 
     def __init__(self, structure, faces, *, charge_kg, charge_position, blast_model="kingery-bulmash",
-                 pulse_shape="friedlander", incidence="ufc", extrapolate=False, method="B"):
+                 pulse_shape="friedlander", incidence="ufc", extrapolate=False, method="B", visible=None):
         if not hasattr(structure, "bodies"):
             raise BlastscaleInputError(f"structure = {structure!r} is not a structure (no .bodies)")
         if not faces:
@@ -93,6 +93,7 @@ class FaceLoadStrategy:
         self.body = np.array([b for b, _ in faces], dtype=int)
         self.centres, self.normals, self.areas = faces_array([f for _, f in faces])
         self.labels = tuple(f.label for _, f in faces)
+        self.visible = None if visible is None or np.all(np.asarray(visible) == 1.0) else np.asarray(visible, float)
         pos0 = np.array([b.com for b in structure.bodies], dtype=float)
         rot0 = np.broadcast_to(np.eye(3), (self.nbody, 3, 3))
         self.rest_loads = self.face_loads_at(pos0, rot0)
@@ -139,8 +140,13 @@ class FaceLoadStrategy:
     def face_loads_at(self, positions, rotations):
         """:class:`~blastscale.blast.faces.FaceLoads` of the loaded faces at the given poses."""
         x, n = self.world_faces(positions, rotations)
-        return face_loads_unchecked(self.blast_model, self.incident_model, self.incidence, self.W, self.charge_position,
-                                    x, n, self.areas, self.extrapolate)
+        fl = face_loads_unchecked(self.blast_model, self.incident_model, self.incidence, self.W, self.charge_position,
+                                  x, n, self.areas, self.extrapolate)
+        if self.visible is None:
+            return fl
+        v = self.visible  # the hidden fraction of a face sees the side-on pulse (.exposure)
+        return replace(fl, pressure=v * fl.pressure + (1.0 - v) * fl.incident_pressure,
+                       impulse=v * fl.impulse + (1.0 - v) * fl.incident_impulse)
 
     # --------------------------------------------------------------- interface
     def step_wrenches(self, t0, t1, positions, rotations) -> np.ndarray:
@@ -202,13 +208,14 @@ def _charge_position(structure, standoff_m) -> np.ndarray:
     return np.array([float(structure.front_x) - R, 0.0, 0.0])
 
 
-def _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, method) -> FaceLoadStrategy:
+def _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, method, visible=None) -> FaceLoadStrategy:
     """The per-face load of a system's blast parameters: the charge, stand-off and blast model are
     ``blast``'s; each face's blast is evaluated at its own distance (that is the method)."""
     bp = check_blast(blast)
     return FaceLoadStrategy(structure, faces, charge_kg=bp.charge_kg,
                             charge_position=_charge_position(structure, bp.standoff_m), blast_model=bp.blast_model,
-                            pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate, method=method)
+                            pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate, method=method,
+                            visible=visible)
 
 
 def method_b(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
@@ -220,7 +227,14 @@ def method_b(structure, blast, *, pulse_shape="friedlander", incidence="ufc", ex
 
 
 def method_c(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
-    """Method C: every exposed face (``in_contact`` False) of every body, each with its own blast,
-    for the charge, stand-off and blast model of ``blast`` (:class:`~blastscale.blast.BlastParameters`)."""
-    faces = [(i, f) for i, b in enumerate(structure.bodies) for f in b.faces if not f.in_contact]
-    return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "C")
+    """Method C: every exposed face (``in_contact`` False; a partly covered face on its exposed area) of
+    every body, each with its own blast, for the charge, stand-off and blast model of ``blast``
+    (:class:`~blastscale.blast.BlastParameters`). A face towards the charge but hidden from it behind
+    another body (:mod:`.exposure`, ray cast) is shadowed: it sees the side-on pulse, as a face turned
+    away does, not the reflected one (a partly hidden face: weighted by its visible fraction)."""
+    from .exposure import visible_fractions
+
+    faces = [(i, f) for i, b in enumerate(structure.bodies) for f in b.faces if not f.in_contact and f.area > 0.0]
+    bp = check_blast(blast)
+    seen = visible_fractions(structure, faces, _charge_position(structure, bp.standoff_m))
+    return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "C", seen)

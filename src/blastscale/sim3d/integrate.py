@@ -205,4 +205,4 @@ def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_m
     qvel[:, :, 3:6] *= b
     return {"time": idx * dtp, "qpos": qpos.reshape(nrec, -1), "qvel": qvel.reshape(nrec, -1), "ncon": ncon,
             "delivered": delivered, "kicks": kicks, "first_arrival": t_start,
-            "duration": T}
+            "duration": T, "gravity_only": load is None}

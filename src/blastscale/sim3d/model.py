@@ -27,12 +27,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
+from ..structures.assembly import ConvexGeometry
 from ..structures.base import BoxGeometry, PrismGeometry
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
 from .contact import ContactSettings, mjcf_number
 from .initial import tilt_bodies
 
-__all__ = ["BoxShape", "PrismShape", "FrontFace", "BodySpec", "Scene", "build_scene", "block_scene", "structure_scene",
+__all__ = ["BoxShape", "PrismShape", "MeshShape", "FrontFace", "BodySpec", "Scene", "build_scene", "block_scene", "structure_scene",
            "engine_shape", "contact_pairs"]
 
 
@@ -141,6 +142,33 @@ class PrismShape:
                 'contype="0" conaffinity="0"/>')
 
 
+@dataclass(frozen=True)
+class MeshShape:
+    """A convex mesh of a general block (:class:`~blastscale.structures.assembly.ConvexGeometry`:
+    its hull's vertices in the body frame); MuJoCo takes their convex hull, as the block is."""
+
+    geometry: ConvexGeometry
+    density: float
+
+    def base_points(self) -> np.ndarray:
+        """The lowest vertices at rest, body frame [m]."""
+        return self.geometry.base_points()
+
+    def mjcf_assets(self, name: str) -> str:
+        """The ``<mesh>`` asset (vertices in the body frame)."""
+        v = " ".join(mjcf_number(x) for x in self.geometry.array().ravel())
+        return f'<mesh name="{name}_mesh" vertex="{v}"/>'
+
+    def contact_geoms(self, name: str) -> list[str]:
+        """The one mesh geom."""
+        return [name]
+
+    def mjcf_geom(self, name: str) -> str:
+        """The mesh ``<geom>``; collisions from explicit pairs only."""
+        return (f'<geom name="{name}" type="mesh" mesh="{name}_mesh" density="{mjcf_number(self.density)}" '
+                'contype="0" conaffinity="0"/>')
+
+
 def engine_shape(geometry, density: float):
     """The engine shape of a structure body's contact geometry
     (:class:`~blastscale.structures.base.BoxGeometry` -> :class:`BoxShape`,
@@ -149,6 +177,8 @@ def engine_shape(geometry, density: float):
         return BoxShape(geometry.half_width, geometry.half_depth, geometry.half_height, density, geometry.centre_z)
     if isinstance(geometry, PrismGeometry):
         return PrismShape(geometry, density)
+    if isinstance(geometry, ConvexGeometry):
+        return MeshShape(geometry, density)
     if hasattr(geometry, "mjcf_geom") and hasattr(geometry, "contact_geoms"):
         return geometry  # already an engine shape (e.g. a custom contact base, benchmarks/bench_sim3d.py)
     raise BlastscaleInputError(f"shape = {geometry!r} is not known: valid kinds are BoxGeometry, PrismGeometry")
@@ -157,9 +187,9 @@ def engine_shape(geometry, density: float):
 @dataclass(frozen=True)
 class BodySpec:
     """One free rigid body: a shape, the world position of its centre of mass [m], its
-    orientation (unit quaternion w, x, y, z) and, optionally, explicit mass [kg] and principal
-    inertia (3,) [kg m^2] about the body axes (otherwise MuJoCo computes them from the shape's
-    density)."""
+    orientation (unit quaternion w, x, y, z) and, optionally, explicit mass [kg] and inertia about
+    the body axes [kg m^2]: principal (3,) or the full tensor (6,) ``(Ixx, Iyy, Izz, Ixy, Ixz, Iyz)``
+    of a general block (otherwise MuJoCo computes them from the shape's density)."""
 
     name: str
     shape: object
@@ -173,7 +203,8 @@ class BodySpec:
         if self.mass is None:
             return ""
         i = " ".join(mjcf_number(x) for x in self.inertia)
-        return f'<inertial pos="0 0 0" mass="{mjcf_number(self.mass)}" diaginertia="{i}"/>'
+        kind = "fullinertia" if len(self.inertia) == 6 else "diaginertia"
+        return f'<inertial pos="0 0 0" mass="{mjcf_number(self.mass)}" {kind}="{i}"/>'
 
 
 @dataclass(frozen=True, eq=False)
@@ -251,10 +282,12 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     attrs = contact.mjcf_pair_attributes()
     xml_pairs = [f'<pair geom1="{g1}" geom2="{g2}" {attrs}/>' for i, j in pairs for g1 in geoms(i) for g2 in geoms(j)]
     asset_block = f"<asset>{assets}</asset>" if assets else ""
+    # the solver's arena grows with the contacts: ~0.5 MB per body beyond the default (200 blocks: 64 + 100 MB)
+    size = f'<size memory="{64 + len(bodies) // 2}M"/>' if len(bodies) > 20 else ""
     xml = (
         '<mujoco model="blastscale">'
         '<compiler angle="radian" boundmass="0" boundinertia="0"/>'
-        f"{contact.mjcf_option(g)}{asset_block}"
+        f"{contact.mjcf_option(g)}{size}{asset_block}"
         f'<worldbody>{"".join(worldbody)}</worldbody><contact>{"".join(xml_pairs)}</contact></mujoco>'
     )
     mj_model = mujoco.MjModel.from_xml_string(xml)

@@ -13,7 +13,34 @@ import numpy as np
 from .results import VARIABLES, Response3D
 from .rotations import quaternion_to_matrix, tilt_angle
 
-__all__ = ["collapse_flags", "response_from_states"]
+__all__ = ["collapse_flags", "fallen_flags", "body_heights", "response_from_states"]
+
+#: The fall rule (:mod:`blastscale.structures.assembly`): a drop of the centre of mass by more than this
+#: fraction of the body's own height, or a turn by more than this angle [deg], means the body fell.
+FALL_DROP_FRACTION = 0.5
+FALL_TILT_DEG = 45.0
+
+
+def body_heights(structure) -> np.ndarray:
+    """Each body's own height at rest [m] (``structure.heights`` when it has one per body, else twice
+    the depth of its base below its centre of mass)."""
+    bodies = structure.bodies
+    h = getattr(structure, "heights", None)
+    if h is not None and len(h) == len(bodies):
+        return np.asarray(h, dtype=float)
+    return np.array([-2.0 * b.base_height for b in bodies])
+
+
+def fallen_flags(structure, pos, R) -> np.ndarray:
+    """Per recorded time and body: has the body fallen by then (the fall rule: its centre of mass
+    below its height at time 0 by more than ``FALL_DROP_FRACTION`` of its own height, or turned from its
+    orientation at time 0 by more than ``FALL_TILT_DEG``)? Cumulative over time, shape (n, nbody)."""
+    drop = pos[0, :, 2][None, :] - pos[:, :, 2]
+    rel = np.einsum("nbij,bkj->nbik", R, R[0])  # R(t) R(0)^T
+    cos = np.clip((np.trace(rel, axis1=2, axis2=3) - 1.0) / 2.0, -1.0, 1.0)
+    turned = np.arccos(cos) > np.radians(FALL_TILT_DEG)
+    now = (drop > FALL_DROP_FRACTION * body_heights(structure)[None, :]) | turned
+    return np.logical_or.accumulate(now, axis=0)
 
 
 def collapse_flags(structure, pos, R, tilt) -> np.ndarray:
@@ -119,7 +146,13 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
     rel = np.einsum("npij,pj->npi", R[:, pb], local)
     pw = pos[:, pb] + rel
     pvel = vel[:, pb] + np.cross(omega[:, pb], rel)
-    collapsed_t = collapse_flags(structure, pos, R, tilt)
+    fallen_t = fallen_flags(structure, pos, R)
+    if getattr(structure, "collapse_rule", None) == "fallen":  # assemblies: any block fell
+        collapsed_t = fallen_t.any(axis=1)
+    else:  # a block, a column: a body or a sub-stack past its toppling limit
+        collapsed_t = collapse_flags(structure, pos, R, tilt)
+    rel_end = np.einsum("bij,bkj->bik", R[-1], R[0])
+    residual_rot = np.arccos(np.clip((np.trace(rel_end, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0))
     hit = np.flatnonzero(collapsed_t)
     time = np.asarray(states["time"], dtype=float)
     data = {
@@ -133,6 +166,9 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
         "n_contacts": np.asarray(states["ncon"]),
         "uplift": uplift,
         "delivered_impulse": np.asarray(states["delivered"], dtype=float),
+        "fallen": fallen_t[-1].astype(np.int8),
+        "residual_displacement": np.linalg.norm(pos[-1] - pos[0], axis=1),
+        "residual_rotation": residual_rot,
     }
     dvars = {k: (VARIABLES[k][0], v, {"units": VARIABLES[k][1], "dimension": VARIABLES[k][2],
                                       "long_name": VARIABLES[k][3]}) for k, v in data.items()}
@@ -145,6 +181,8 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
         "collapsed": int(hit.size > 0),
         "collapse_time_s": float(time[hit[0]]) if hit.size else "none",
         "top_point": top_point,
+        "collapse_rule": getattr(structure, "collapse_rule", "toppling"),
+        "gravity_only": int(bool(states.get("gravity_only", False))),
         **_versions(),
     }
     attrs.update({f"setting_{k}": _attr(v) for k, v in settings.items()})

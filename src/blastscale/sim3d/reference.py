@@ -69,6 +69,8 @@ def to_reference(structure, a: float):
     round-off), so MuJoCo integrates the same model. The rounding moves the geometry by
     < 5e-13 relative."""
     ref = structure if a == 1.0 else structure.scaled(length_time_factors(a, 1.0))
+    if hasattr(ref, "rounded"):  # assemblies: coordinates quantised on the reference length
+        return ref.rounded(REFERENCE_LENGTH, REFERENCE_DIGITS)
     if not is_dataclass(ref):
         return ref
     changes = {}

@@ -10,12 +10,13 @@ of its supporting edge, uplift, overturning) is read from it by
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Response3D", "VARIABLES"]
+__all__ = ["Response3D", "VARIABLES", "STANDS_FRACTION"]
 
 #: The variables of :attr:`Response3D.dataset`: name -> (dims, units, physical dimension, description).
 VARIABLES = {
@@ -32,7 +33,15 @@ VARIABLES = {
     "n_contacts": (("time",), "1", "count", "active contact points"),
     "uplift": (("time", "body"), "m", "length", "height of the lowest base point above its rest height"),
     "delivered_impulse": (("body", "component"), "N s", "momentum", "impulse of the blast forces on each body"),
+    "fallen": (("body",), "1", "dimensionless", "1 when the body fell (docs/assemblies.md, the fall rule)"),
+    "residual_displacement": (("body",), "m", "length", "distance of the centre of mass from its position at "
+                              "time 0, at the end"),
+    "residual_rotation": (("body",), "rad", "angle", "angle of the body's rotation from time 0, at the end"),
 }
+
+#: Largest displacement of any body, as a fraction of the structure's height, for which a structure under
+#: gravity alone "stands" (1 mm at 10 m); more, with no body fallen, it "settles"; a body fell: "collapses".
+STANDS_FRACTION = 1e-4
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,6 +82,33 @@ class Response3D:
         """Name of the default monitoring point of the top body (P-N)."""
         return str(self.dataset.attrs["top_point"])
 
+    def bodies_summary(self) -> dict:
+        """Per body and for the structure: ``fallen_blocks``, ``fallen_mass_fraction``,
+        ``max_residual_displacement_m``, ``bodies`` {name: ``delivered_impulse_Ns`` [x, y, z],
+        ``max_displacement_m`` (largest distance of its centre of mass from time 0),
+        ``residual_displacement_m``, ``residual_rotation_rad``, ``fallen``}; under gravity alone also
+        ``stability``: "stands", "settles" or "collapses" (:data:`STANDS_FRACTION`)."""
+        ds = self.dataset
+        names = [str(b) for b in ds["body"].values]
+        fallen = ds["fallen"].values.astype(bool)
+        masses = np.array([b.mass for b in self.structure.bodies]) if self.structure is not None else np.ones(len(names))
+        disp = np.linalg.norm(ds["com_displacement"].values, axis=2).max(axis=0)
+        res = ds["residual_displacement"].values
+        out = {
+            "fallen_blocks": int(fallen.sum()),
+            "fallen_mass_fraction": float(masses[fallen].sum() / masses.sum()),
+            "max_residual_displacement_m": float(res.max()),
+            "bodies": {n: {"delivered_impulse_Ns": [float(x) for x in ds["delivered_impulse"].values[k]],
+                           "max_displacement_m": float(disp[k]), "residual_displacement_m": float(res[k]),
+                           "residual_rotation_rad": float(ds["residual_rotation"].values[k]),
+                           "fallen": bool(fallen[k])} for k, n in enumerate(names)},
+        }
+        if int(ds.attrs.get("gravity_only", 0)):
+            h = float(json.loads(ds.attrs["structure"]).get("height_m", 1.0))
+            out["stability"] = ("collapses" if bool(ds.attrs["collapsed"]) or fallen.any() else
+                                "stands" if disp.max() <= STANDS_FRACTION * h else "settles")
+        return out
+
     def summary(self) -> dict:
         """Scalar outcomes (strict JSON): ``collapsed``, ``collapse_time_s`` (None if not),
         ``max_top_displacement_m`` (largest horizontal displacement of the top point),
@@ -97,4 +133,5 @@ class Response3D:
             "points": {n: {"max_displacement_m": float(hd[:, k].max()),
                            "max_displacement_x_m": float(np.abs(pd[:, k, 0]).max()),
                            "max_velocity_m_s": float(hv[:, k].max())} for k, n in enumerate(names)},
+            **self.bodies_summary(),
         }

@@ -64,7 +64,9 @@ def _lengths(structure) -> dict:
     for k, v in structure.describe().items():
         if k.endswith("_m") and v is not None:
             vals = np.atleast_1d(np.asarray(v, dtype=float))
-            out[k[:-2].replace("_", " ")] = float(vals.min())
+            vals = vals[vals != 0.0]  # an optional length left at 0 (a pier, an overhang) is no length
+            if vals.size:
+                out[k[:-2].replace("_", " ")] = float(vals.min())
     return out
 
 

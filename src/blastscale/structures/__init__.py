@@ -1,14 +1,29 @@
-"""Structure geometry: monolithic blocks and multi-drum columns behind one interface
-(:mod:`.base`): rigid bodies with exact mass properties, faces in the body frame, interfaces and
-monitoring points."""
+"""Structure geometry behind one interface (:mod:`.base`): rigid bodies with exact mass properties,
+faces in the body frame, interfaces and monitoring points. Monolithic blocks and multi-drum columns
+(:mod:`.block`, :mod:`.column`), and assemblies of any convex blocks (:mod:`.assembly`, their
+interfaces found by geometry, :mod:`.interfaces`) generated as walls, arches and portals
+(:mod:`.generators`) or read from block-model files (:mod:`.block_files`)."""
 
 from .base import BoxGeometry, Face, MonitoringPoint, PrismGeometry, RigidBody, frustum_mass_properties
+from .assembly import Assembly, ConvexBlock, ConvexGeometry
 from .block import STANDARD_GRAVITY, RectangularBlock
+from .block_files import read_block_model
+from .generators import arch, portal, wall
+from .polyhedron import polyhedron_faces, polyhedron_mass_properties
 from .column import SECTIONS, MultiDrumColumn
 from .from_spec import STRUCTURE_BUILDERS, from_spec, is_block
 from .materials import MATERIALS, Material, material_density
 
 __all__ = [
+    "Assembly",
+    "ConvexBlock",
+    "ConvexGeometry",
+    "arch",
+    "portal",
+    "wall",
+    "read_block_model",
+    "polyhedron_faces",
+    "polyhedron_mass_properties",
     "BoxGeometry",
     "Face",
     "MonitoringPoint",

@@ -64,6 +64,11 @@ class Face:
         on the y-z plane is ``area * |normal_x|``).
     in_contact : bool
         True when the face touches the ground or a neighbouring body at rest.
+    vertices : tuple of tuple
+        The face polygon in the body frame [m] (general blocks, :mod:`.assembly`; empty otherwise).
+        A face of an assembly partly covered by an interface carries its **exposed** area and the
+        exposed part's centroid in ``area`` and ``centre`` (what Method C loads); ``vertices`` is the
+        whole face.
     """
 
     label: str
@@ -71,6 +76,7 @@ class Face:
     normal: tuple
     area: float
     in_contact: bool = False
+    vertices: tuple = ()
 
 
 @dataclass(frozen=True)

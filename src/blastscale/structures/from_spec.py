@@ -8,7 +8,9 @@ from typing import Any, Callable
 
 from .._validate import BlastscaleInputError
 from .block import RectangularBlock
+from .block_files import read_block_model
 from .column import MultiDrumColumn
+from .generators import arch, portal, wall
 
 __all__ = ["STRUCTURE_BUILDERS", "from_spec", "is_block"]
 
@@ -27,8 +29,29 @@ def _build_column(spec) -> MultiDrumColumn:
                            density=spec.density_kg_m3)
 
 
+def _build_wall(spec):
+    return wall(spec.length_m, spec.height_m, spec.thickness_m, spec.courses, spec.units_per_course, spec.bond,
+                spec.density_kg_m3)
+
+
+def _build_arch(spec):
+    return arch(spec.radius_m, spec.thickness_m, spec.depth_m, spec.voussoirs, spec.embrace_deg, spec.pier_height_m,
+                spec.density_kg_m3)
+
+
+def _build_portal(spec):
+    return portal(spec.column_height_m, spec.column_width_m, spec.span_m, spec.lintel_height_m,
+                  spec.lintel_overhang_m, spec.drums, spec.density_kg_m3)
+
+
+def _build_assembly(spec):
+    return read_block_model(spec.file, spec.density_kg_m3)
+
+
 #: structure kind -> builder(structure table of the scenario) -> structure object.
-STRUCTURE_BUILDERS: dict[str, Callable[[Any], Any]] = {"block": _build_block, "column": _build_column}
+STRUCTURE_BUILDERS: dict[str, Callable[[Any], Any]] = {
+    "block": _build_block, "column": _build_column, "wall": _build_wall, "arch": _build_arch,
+    "portal": _build_portal, "assembly": _build_assembly}
 
 
 def is_block(structure) -> bool:

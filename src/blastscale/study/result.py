@@ -12,9 +12,16 @@ from ..scenario import Scenario
 __all__ = ["StudyResult"]
 
 
+#: Summary keys left out of the flat scalars: per-block details, named by the blocks (names are not
+#: identifiers, and a sweep's stores need a fixed layout); summary.json keeps them.
+_NOT_SCALARS = ("bodies",)
+
+
 def _flatten(obj: Any, prefix: str, out: dict) -> None:
     if isinstance(obj, dict):
         for k, v in obj.items():
+            if k in _NOT_SCALARS:
+                continue
             _flatten(v, f"{prefix}.{k}" if prefix else str(k), out)
     elif isinstance(obj, (list, tuple)):
         for i, v in enumerate(obj):

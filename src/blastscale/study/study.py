@@ -77,8 +77,11 @@ class Study:
         asked = self.scenario.simulation.engine
         names = list(ENGINES) if asked == "both" else [asked]
         run, skipped = [], []
+        alone = self.scenario.blast.gravity_only
         for n in names:
             why = ENGINES[n].supports(structure)
+            if why is None and alone and n != "3d":
+                why = "gravity alone (no charge): the stability check runs on the 3D engine"
             if why is None:
                 run.append(ENGINES[n])
             elif asked == "both":
@@ -90,6 +93,9 @@ class Study:
             raise BlastscaleInputError(
                 f"structure.kind = {self.scenario.structure.kind!r} cannot be simulated here: {'; '.join(skipped)}")
         members = self.scenario.simulation.ensemble_members
+        if members >= 2 and alone:
+            raise BlastscaleInputError(f"simulation.ensemble_members = {members} needs a charge: under gravity alone "
+                                       "there is no load to perturb (valid: 0)")
         if members >= 2:
             if not any(e.name == "3d" for e in run):
                 raise BlastscaleInputError(f"simulation.ensemble_members = {members} needs the 3D engine: valid "
@@ -103,7 +109,7 @@ class Study:
         from ..similitude import design_model
 
         sc = self.scenario
-        if sc.scale is None:
+        if sc.scale is None or sc.blast.gravity_only:  # gravity alone: no charge to scale
             return None
         structure = self.structure() if structure is None else structure
         return design_model(
@@ -122,10 +128,12 @@ class Study:
             engines, skipped = self.engines(structure)
             check_study_budget(self.scenario, structure)
             d = self.design(structure)
-            if d is None:  # the prototype's blast alone (with a design: the design's, never recomputed)
+            sc = self.scenario
+            if sc.blast.gravity_only:  # no charge: the structure under gravity alone
+                blast = None
+            elif d is None:  # the prototype's blast alone (with a design: the design's, never recomputed)
                 from ..blast import blast_parameters
 
-                sc = self.scenario
                 blast = blast_parameters(sc.blast.charge_kg, sc.blast.standoff_m, sc.blast.blast_model,
                                          extrapolate=sc.blast.extrapolate)
             else:
@@ -176,7 +184,7 @@ class Study:
                                   planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
                                   ensemble=results.get("ensemble"))
             summary = partial._compute_summary()  # inside the capture: its warnings are the study's
-        notes = _study_warnings(d, results, skipped, summary)
+        notes = _study_warnings(d, results, skipped, summary, sc)
         lib = []
         for w in caught:
             msg = " ".join(str(w.message).split())
@@ -199,10 +207,12 @@ def _is_circular(cmp) -> bool:
     return getattr(getattr(cmp, "structure", None), "section", None) == "circular"
 
 
-def _study_warnings(design, results: dict, skipped: list, summary: dict) -> list:
+def _study_warnings(design, results: dict, skipped: list, summary: dict, scenario=None) -> list:
     """The study's own warnings, in words for the report (the 3D and ensemble figures read from
     the study's ``summary``, computed once)."""
     out = list(skipped)
+    if scenario is not None and scenario.blast.gravity_only and scenario.scale is not None:
+        out.append("gravity alone (no charge): no specimen is designed, the [scale] table is not used")
     imp = None if design is None else design.impulsive
     if imp is not None and not imp.impulsive:
         out.append(f"the load is not impulsive (t_o p = {imp.prototype_ratio:.3g} prototype, {imp.model_ratio:.3g} "

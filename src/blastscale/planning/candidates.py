@@ -1,0 +1,177 @@
+"""One candidate design of the planner, evaluated against every constraint of the lab.
+
+A candidate is a scaling law, a geometric scale lambda and a specimen material (gamma = its
+density over the prototype's; the Hopkinson-Cranz law imposes gamma = 1/sqrt(varsigma lambda), so a
+material fixes lambda = 1 / (varsigma gamma^2)). :func:`evaluate` designs it
+(:func:`~blastscale.similitude.design_model`), turns the TNT charge into the lab's explosive, sizes the
+safety envelope and the instruments, and lists every constraint it breaks, each with the value that
+would admit it (docs/planning.md, "Constraints").
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Optional
+
+from .._validate import BlastscaleInputError
+from .debris import planar_reach
+from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
+from .shot import lab_charge, safety_envelope
+
+__all__ = ["LAMBDA_DENOMINATORS", "Candidate", "Violation", "Evaluated", "candidates", "evaluate", "scale_label"]
+
+#: The geometric scales the planner tries: lambda = 1/n (the fractions a lab builds and reports).
+LAMBDA_DENOMINATORS = (1, 2, 4, 5, 8, 10, 15, 20, 25, 40, 50, 75, 100, 150, 200, 250, 400, 500, 1000)
+
+
+def scale_label(scale: float) -> str:
+    """``"1/20"`` for 0.05, ``"1/32.49"`` for any other scale."""
+    f = Fraction(scale).limit_denominator(100000)
+    if f.numerator == 1 and abs(float(f) - scale) <= 1e-9 * scale:
+        return f"1/{f.denominator}"
+    return f"1/{1.0 / scale:.4g}"
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A law, a scale lambda [-], a material (name) and its density ratio gamma [-]."""
+
+    law: str
+    scale: float
+    material: str
+    density_ratio: float
+
+    def describe(self) -> dict:
+        return {"law": self.law, "scale": self.scale, "scale_fraction": scale_label(self.scale),
+                "material": self.material, "density_ratio": self.density_ratio}
+
+
+@dataclass(frozen=True)
+class Violation:
+    """A broken constraint: the ``[lab]`` key (or ``"blast fits"``, ``"impulsive"``), the candidate's
+    ``value`` and the ``limit`` in the key's unit, and the sentence."""
+
+    key: str
+    value: Optional[float]
+    limit: Optional[float]
+    text: str
+
+
+@dataclass
+class Evaluated:
+    """A candidate with everything the cheap stage computed (SI); ``violations`` empty: feasible."""
+
+    candidate: Candidate
+    violations: list = field(default_factory=list)
+    design: object = None
+    specimen: object = None
+    charge: object = None
+    safety: object = None
+    instruments: object = None
+    rise_s: float = math.nan
+    response_s: float = math.nan
+
+
+def candidates(lab, prototype_density: float, prototype_height: float, gravity_ratio: float = 1.0) -> list:
+    """Every candidate: the general law at each scale of :data:`LAMBDA_DENOMINATORS` up to the
+    tallest specimen the lab builds (and 1), for each material; Hopkinson-Cranz at the one scale
+    each material allows (gamma >= 1)."""
+    from .shot import candidate_materials
+
+    mats = candidate_materials(lab, prototype_density)
+    out = [Candidate("general", 1.0 / n, name, g) for n in LAMBDA_DENOMINATORS for name, g in mats]
+    for name, g in mats:
+        if g >= 1.0:
+            out.append(Candidate("hopkinson-cranz", 1.0 / (gravity_ratio * g * g), name, g))
+    return out
+
+
+def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
+    out = []
+    if spec_h > lab.specimen_max_height_m:
+        out.append(Violation("specimen_max_height_m", spec_h, lab.specimen_max_height_m,
+                             f"specimen {spec_h:.4g} m high > specimen_max_height_m = {lab.specimen_max_height_m:g} m"))
+    if spec_m > lab.specimen_max_mass_kg:
+        out.append(Violation("specimen_max_mass_kg", spec_m, lab.specimen_max_mass_kg,
+                             f"specimen {spec_m:.4g} kg > specimen_max_mass_kg = {lab.specimen_max_mass_kg:g} kg"))
+    if ev.charge is None:
+        return out
+    m = ev.charge.explosive_mass_kg
+    if m < lab.charge_min_kg:
+        out.append(Violation("charge_min_kg", m, lab.charge_min_kg,
+                             f"{m:.4g} kg of {lab.explosive} < charge_min_kg = {lab.charge_min_kg:g} kg"))
+    if m > lab.charge_max_kg:
+        out.append(Violation("charge_max_kg", m, lab.charge_max_kg,
+                             f"{m:.4g} kg of {lab.explosive} > charge_max_kg = {lab.charge_max_kg:g} kg"))
+    if ev.safety.radius_m > lab.space_radius_m:
+        out.append(Violation("space_radius_m", ev.safety.radius_m, lab.space_radius_m,
+                             f"safety radius ({lab.safety_threshold}) {ev.safety.radius_m:.4g} m > space_radius_m = "
+                             f"{lab.space_radius_m:g} m"))
+    need = ev.instruments.camera_fps_required
+    if need > lab.camera_max_fps:
+        out.append(Violation("camera_max_fps", need, lab.camera_max_fps,
+                             f"camera needs {need:.4g} frames/s > camera_max_fps = {lab.camera_max_fps:g}"))
+    return out
+
+
+def evaluate(c: Candidate, *, scenario, lab, block, timing, incident_model) -> Evaluated:
+    """Design ``c`` for the prototype ``block`` of ``scenario`` and check it against ``lab``.
+
+    ``timing`` is the prototype's :class:`~.shot.Timing`: the specimen's times are its times x the
+    time factor sqrt(lambda / varsigma) (the law's similarity of the rocking); ``incident_model`` the
+    blast model of the side-on gauge (Kingery-Bulmash: the paper's fits have no incident pressure).
+    """
+    from ..similitude import design_model
+
+    sc, bl = scenario, scenario.blast
+    ev = Evaluated(c)
+    gam = None if c.law == "hopkinson-cranz" else c.density_ratio
+    sig = sc.scale.gravity_ratio if sc.scale is not None else 1.0
+    try:
+        d = design_model(bl.charge_kg, bl.standoff_m, c.scale, gam, sig, c.law, bl.blast_model, block,
+                         gravity=sc.simulation.gravity_m_s2)
+    except BlastscaleInputError as exc:
+        ev.violations.append(Violation("blast fits", None, None, " ".join(str(exc).split())))
+        return ev
+    spec = block.scaled(d.factors)
+    ev.design, ev.specimen = d, spec
+    if d.impulsive is not None and not d.impulsive.impulsive:
+        ev.violations.append(Violation("impulsive", d.impulsive.model_ratio, d.impulsive.threshold,
+                                       f"not impulsive: t_o p = {d.impulsive.model_ratio:.3g} > {d.impulsive.threshold:g}"))
+    try:
+        ev.charge = lab_charge(d.specimen_charge_kg, lab)
+    except BlastscaleInputError:
+        ev.violations.append(Violation("initiator_tnt_kg", lab.initiator_tnt_kg, d.specimen_charge_kg,
+                                       f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge "
+                                       f"{d.specimen_charge_kg:.4g} kg TNT"))
+        ev.violations += _violations(ev, lab, spec.height, spec.mass)
+        return ev
+    ev.safety = safety_envelope(ev.charge.tnt_equivalent_pressure_kg, lab.safety_threshold)
+    tf = float(d.factors.time)
+    ev.rise_s, ev.response_s = timing.rise_s * tf, timing.response_s * tf
+    m = d.specimen
+    z = float(m.scaled_distance)
+    inc = float(incident_model.incident_pressure(z)) if incident_model.valid_range("incident_pressure")[0] <= z \
+        <= incident_model.valid_range("incident_pressure")[1] else float("nan")
+    ev.instruments = instrument_settings(
+        reflected_pressure_Pa=m.reflected_pressure, incident_pressure_Pa=inc, positive_duration_s=m.positive_duration,
+        friedlander_decay=m.friedlander_decay, arrival_time_s=m.arrival_time, rise_time_s=ev.rise_s,
+        response_time_s=ev.response_s, top_displacement_m=top_corner_displacement(spec.width, spec.height, 0.0),
+        camera_max_fps=lab.camera_max_fps)
+    ev.violations += _violations(ev, lab, spec.height, spec.mass)
+    return ev
+
+
+def specimen_displacement(spec, rotation: Optional[float], collapsed: bool) -> tuple:
+    """(top-corner displacement [m], reach [m]) of a specimen block from its largest rotation."""
+    if collapsed or rotation is None:
+        return spec.width + spec.height, planar_reach(spec.width, spec.height, 0.0, True)
+    return top_corner_displacement(spec.width, spec.height, rotation), planar_reach(spec.width, spec.height,
+                                                                                     rotation, False)
+
+
+def frames_needed(rise_s: float) -> float:
+    """Camera rate [1/s] for :data:`~.instruments.FRAMES_PER_RISE` frames over the rise."""
+    return FRAMES_PER_RISE / rise_s

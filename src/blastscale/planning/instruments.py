@@ -1,0 +1,146 @@
+"""What the laboratory must buy and set to measure the specimen: pressure gauges, camera,
+displacement sensor, trigger (the rules of docs/planning.md, each stated here once).
+
+Every rule works on the specimen's own scales: the pulse (peak reflected and incident pressure,
+positive duration t_o, Friedlander decay d, arrival time t_A) and the rocking (time from the shock's
+arrival to the first peak of the rotation, or to the tipping point when it overturns; the whole
+response; the largest horizontal displacement of the top corner facing the charge).
+
+Rules
+-----
+* **Gauge range**: 1.5 x the peak the gauge will see (reflected pressure for a gauge flush in a rigid
+  wall beside the specimen, incident pressure for a side-on pencil gauge at the same stand-off):
+  headroom for the TNT-equivalence uncertainty (+-10-20 %, UFC 3-340-02 Table 2-1) and ringing.
+* **Gauge rise time**: ``t_r <= 0.1 t_o / (1 + d)``. The Friedlander pressure falls from its peak at
+  the rate ``P (1 + d) / t_o``, so a gauge that needs t_r to respond reads the peak low by about
+  ``(1 + d) t_r / t_o``: at most 10 %.
+* **Sampling rate**: ``f_s >= max(2 / t_r, 50 / t_o)``: two samples within the allowed rise time (the
+  peak is caught within one rise) and 50 over the positive phase (the impulse by the trapezoidal rule
+  within 0.5 % for d <= 10), rounded up to the 1-2-5 series.
+* **Camera frame rate**: ``20 / t_rise`` (20 frames between the shock and the first peak: the peak is
+  missed by at most ``1 - cos(pi / 40)`` = 0.3 % of its value on a sine-like rise), rounded up to the
+  1-2-5 series; the frames over the pulse, over the rise and over the whole response are reported.
+* **Record length**: the whole response (to rest, or to the collapse) plus 10 % and a pre-trigger of
+  the arrival time.
+* **Displacement range**: 1.5 x the largest horizontal displacement of the top corner facing the
+  charge, ``u = 2b (1 - cos theta) + 2h sin theta`` (the block rotates about its far edge), or
+  the whole block (2b + 2h) when it overturns.
+* **Trigger delay**: the arrival time t_A after the firing signal (the gauges and the camera are
+  triggered by the firing pulse and record t_A of pre-trigger).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+__all__ = ["InstrumentSettings", "instrument_settings", "round_up_125", "top_corner_displacement",
+           "GAUGE_HEADROOM", "RISE_PEAK_ERROR", "SAMPLES_PER_PULSE", "FRAMES_PER_RISE"]
+
+#: Factor of a gauge's or a sensor's range on the peak it will see [-].
+GAUGE_HEADROOM = 1.5
+#: Largest fraction by which a gauge's rise may under-read the peak [-].
+RISE_PEAK_ERROR = 0.1
+#: Samples over the positive phase (impulse by the trapezoidal rule) [-].
+SAMPLES_PER_PULSE = 50
+#: Camera frames between the shock's arrival and the first peak of the rotation [-].
+FRAMES_PER_RISE = 20
+
+
+def round_up_125(x: float) -> float:
+    """The smallest value of the 1-2-5 series (1, 2, 5, 10, 20, ...) at or above ``x`` > 0.
+
+    >>> round_up_125(3.2e5), round_up_125(1000.0), round_up_125(0.012)
+    (500000.0, 1000.0, 0.02)
+    """
+    e = math.floor(math.log10(x))
+    for m in (1.0, 2.0, 5.0, 10.0):
+        v = m * 10.0 ** e
+        if v >= x * (1 - 1e-12):
+            return float(f"{v:.12g}")
+    return float(f"{10.0 ** (e + 1):.12g}")  # pragma: no cover - unreachable
+
+
+def top_corner_displacement(width_m: float, height_m: float, rotation_rad: float) -> float:
+    """Horizontal displacement [m] of the top corner facing the charge of a block of ``width_m`` 2b
+    and ``height_m`` 2h rotated by ``rotation_rad`` about its far base edge:
+    ``u = 2b (1 - cos theta) + 2h sin theta``."""
+    th = float(rotation_rad)
+    return width_m * (1.0 - math.cos(th)) + height_m * math.sin(th)
+
+
+@dataclass(frozen=True)
+class InstrumentSettings:
+    """The specimen's instruments (SI; the rules of the module docstring)."""
+
+    reflected_gauge_range_Pa: float
+    incident_gauge_range_Pa: float
+    pressure_rise_time_s: float
+    pressure_sampling_hz: float
+    pressure_record_s: float
+    camera_fps_required: float
+    camera_fps: float
+    camera_record_s: float
+    camera_frames: int
+    frames_over_pulse: float
+    frames_over_rise: float
+    frames_over_response: float
+    displacement_range_m: float
+    trigger_delay_s: float
+    rise_time_s: float
+    response_time_s: float
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def instrument_settings(*, reflected_pressure_Pa: float, incident_pressure_Pa: float, positive_duration_s: float,
+                        friedlander_decay: float, arrival_time_s: float, rise_time_s: float, response_time_s: float,
+                        top_displacement_m: float, camera_max_fps: float = math.inf) -> InstrumentSettings:
+    """The instruments for a specimen's pulse and rocking (module docstring rules).
+
+    Parameters
+    ----------
+    reflected_pressure_Pa, incident_pressure_Pa : float
+        Peak reflected and incident overpressure at the specimen [Pa].
+    positive_duration_s : float
+        Positive-phase duration t_o [s].
+    friedlander_decay : float
+        Friedlander decay d [-] (paper Eq. 2).
+    arrival_time_s : float
+        Shock arrival time t_A [s].
+    rise_time_s : float
+        Time from the arrival to the first peak of the rotation (or to the tipping point) [s].
+    response_time_s : float
+        The whole response, from the arrival to rest or to the collapse [s].
+    top_displacement_m : float
+        Largest horizontal displacement of the top corner facing the charge [m].
+    camera_max_fps : float
+        The lab camera's fastest rate [1/s]: the setting is the 1-2-5 value at or above the required
+        rate, but not above this (a camera that cannot reach the required rate is the planner's
+        business: ``camera_fps_required`` says it).
+    """
+    to, d = float(positive_duration_s), float(friedlander_decay)
+    tr = RISE_PEAK_ERROR * to / (1.0 + max(d, 0.0))
+    fs = round_up_125(max(2.0 / tr, SAMPLES_PER_PULSE / to))
+    need = FRAMES_PER_RISE / float(rise_time_s)
+    fps = min(round_up_125(need), max(float(camera_max_fps), need))
+    record = 1.1 * float(response_time_s) + float(arrival_time_s)
+    return InstrumentSettings(
+        reflected_gauge_range_Pa=GAUGE_HEADROOM * float(reflected_pressure_Pa),
+        incident_gauge_range_Pa=GAUGE_HEADROOM * float(incident_pressure_Pa),
+        pressure_rise_time_s=tr,
+        pressure_sampling_hz=fs,
+        pressure_record_s=float(arrival_time_s) + 3.0 * to,
+        camera_fps_required=need,
+        camera_fps=fps,
+        camera_record_s=record,
+        camera_frames=int(math.ceil(fps * record)),
+        frames_over_pulse=fps * to,
+        frames_over_rise=fps * float(rise_time_s),
+        frames_over_response=fps * float(response_time_s),
+        displacement_range_m=GAUGE_HEADROOM * float(top_displacement_m),
+        trigger_delay_s=float(arrival_time_s),
+        rise_time_s=float(rise_time_s),
+        response_time_s=float(response_time_s),
+    )

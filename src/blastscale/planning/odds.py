@@ -1,0 +1,213 @@
+"""The odds of a test: the lab's tolerances propagated by Monte Carlo through the fast planar
+kernels (the first-swing criterion and peak of :mod:`blastscale.rocking.swing`, vectorised), or
+through small 3D ensembles (one Study per member, on Dask when asked).
+
+Tolerances are one standard deviation (``[lab]``): the explosive's mass relative, lognormal
+(``m eps``, ``ln eps ~ N(0, s_W)``; the initiator is not perturbed); the stand-off absolute, normal
+(``R + s_R z``, kept above 1 % of R); the specimen's density relative, normal (``rho (1 + s_rho z)``,
+kept above 1 %); the friction coefficient absolute, normal (3D only: the planar block rocks without
+sliding, friction plays no part in it). The draws come from numpy's ``default_rng(seed)`` in that
+order (charge, stand-off, density, friction), so a seed reproduces the odds exactly.
+
+What comes out (:class:`Odds`): the probability that the specimen's outcome (overturns or not, at
+any time) equals the prototype's, its binomial standard error, the spread of the specimen's first
+peak (the largest rotation of a block that survives), and the weighing precision: the relative
+standard deviation of the charge that keeps the first peak within ``target`` with 95 %
+probability, ``s_W = ln(1 + target) / (1.96 |d ln theta / d ln W|)`` (the sensitivity by central
+differences at +-1 % of the charge), and the one that keeps the outcome with 95 %
+(``s_W = |ln((W_c - W_init) / m)| / 1.645``, W_c the specimen's critical charge).
+
+Known answer (tests/unit/planning/test_odds.py): with the charge alone uncertain and no initiator the
+specimen overturns iff ``W eps > W_c``, so ``P(overturn) = Phi(ln(W / W_c) / s_W)`` exactly.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import asdict, dataclass
+from typing import Optional
+
+import numpy as np
+
+__all__ = ["Tolerances", "Odds", "planar_odds", "ensemble_odds_3d", "Z95", "Z90_ONE_SIDED"]
+
+Z95 = 1.959963984540054  # two-sided 95 % normal quantile
+Z90_ONE_SIDED = 1.6448536269514722  # one-sided 95 % normal quantile
+
+
+@dataclass(frozen=True)
+class Tolerances:
+    """One standard deviation of each lab quantity: ``charge`` relative (lognormal log-sd) [-],
+    ``standoff_m`` [m], ``density`` relative [-], ``friction`` [-]."""
+
+    charge: float = 0.0
+    standoff_m: float = 0.0
+    density: float = 0.0
+    friction: float = 0.0
+
+    @classmethod
+    def from_lab(cls, lab) -> "Tolerances":
+        return cls(lab.charge_tolerance, lab.standoff_tolerance_m, lab.density_tolerance, lab.friction_tolerance)
+
+
+@dataclass(frozen=True)
+class Odds:
+    """Monte Carlo odds of a specimen test (module docstring); angles [rad], probabilities [-]."""
+
+    engine: str
+    samples: int
+    seed: int
+    prototype_collapsed: bool
+    p_outcome_agree: float
+    p_outcome_agree_se: float
+    specimen_collapse_probability: float
+    first_peak_nominal_rad: Optional[float]
+    first_peak_spread: Optional[float]
+    first_peak_p05_rad: Optional[float]
+    first_peak_p95_rad: Optional[float]
+    first_peak_sensitivity: Optional[float]
+    specimen_critical_charge_kg: Optional[float]
+    charge_tolerance_for_peak: Optional[float]
+    charge_tolerance_for_outcome: Optional[float]
+    samples_outside_fits: int = 0  # draws whose scaled distance leaves the blast fits: left out of the odds
+
+    @property
+    def charge_tolerance_needed(self) -> Optional[float]:
+        """The tighter of the two weighing precisions (relative, one standard deviation) [-]."""
+        vals = [v for v in (self.charge_tolerance_for_peak, self.charge_tolerance_for_outcome) if v is not None]
+        return min(vals) if vals else None
+
+    def to_dict(self) -> dict:
+        return {**asdict(self), "charge_tolerance_needed": self.charge_tolerance_needed}
+
+
+def _draws(n: int, seed: int, tol: Tolerances):
+    rng = np.random.default_rng(seed)
+    z = rng.standard_normal((4, n))
+    return np.exp(tol.charge * z[0]), tol.standoff_m * z[1], tol.density * z[2], tol.friction * z[3]
+
+
+def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_collapsed: bool,
+                explosive_fraction: float = 1.0, gravity: float = 9.81, restitution: Optional[float] = None,
+                pulse_shape: str = "friedlander", blast_model="kingery-bulmash", tolerances: Tolerances = Tolerances(),
+                samples: int = 2000, seed: int = 0, target: float = 0.05, critical: bool = True) -> Odds:
+    """Odds of a block specimen by Monte Carlo through the planar first-swing kernel.
+
+    Parameters
+    ----------
+    specimen : RectangularBlock
+        The specimen block (its nominal density).
+    charge_kg, standoff_m : float
+        The specimen's nominal TNT charge (impulse basis, initiator included) [kg] and stand-off [m].
+    prototype_collapsed : bool
+        The prototype's outcome (overturns at any time).
+    explosive_fraction : float
+        Share of the TNT charge carried by the weighed explosive (1 - initiator fraction) [-]: only
+        that part is perturbed.
+    gravity, restitution, pulse_shape, blast_model
+        As the Study's (restitution None: Housner's).
+    tolerances : Tolerances
+    samples, seed : int
+    target : float
+        Largest relative error of the first peak for the weighing precision [-].
+    critical : bool
+        Search the specimen's critical charge (the weighing precision that keeps the outcome).
+    """
+    from ..blast.parameters import blast_parameters_unchecked
+    from ..rocking import critical_charge, first_swing, first_swing_blast
+    from ..rocking.system import RockingSystem
+
+    n = int(samples)
+    W0, R0 = float(charge_kg), float(standoff_m)
+    w_init = W0 * (1.0 - float(explosive_fraction))
+    m_tnt = W0 - w_init
+    eps, dR, drho, _ = _draws(n, seed, tolerances)
+    W = w_init + m_tnt * eps
+    R = np.maximum(R0 + dR, 0.01 * R0)
+    rho = np.maximum(1.0 + drho, 0.01)
+    base = RockingSystem.from_block(specimen, gravity, restitution)
+    kw = dict(pulse_shape=pulse_shape, blast_model=blast_model)
+    from ..blast import valid_scaled_distance_range
+
+    zlo, zhi = valid_scaled_distance_range(blast_model)
+    Z = R / np.cbrt(W)
+    inside = (Z >= zlo) & (Z <= zhi)  # draws the fits do not cover are left out (and counted)
+    outside = int(n - inside.sum())
+    extrapolate = not inside.any()
+    if extrapolate:
+        inside[:] = True  # every draw beyond the fits: evaluate them anyway (extrapolating), counted
+    W, R, rho = W[inside], R[inside], rho[inside]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        # a homogeneous block: the density changes only the load per unit pressure (q = S l / (m g r cos alpha))
+        bp = blast_parameters_unchecked(W, R, blast_model, extrapolate=extrapolate)
+        fs = first_swing_blast(base.alpha, base.coefficient_of_restitution, base.frequency_parameter,
+                               base.load_ratio_per_pascal / rho, bp, pulse_shape)
+        nominal = first_swing(base, np.array([W0 * 0.99, W0, W0 * 1.01]), R0, extrapolate=True, **kw)
+        wc = None
+        if critical:
+            try:
+                wc = float(critical_charge(base, R0, **kw).charge_kg)
+            except Exception:  # noqa: BLE001 - no threshold inside the fits' range: the outcome is not at risk
+                wc = None
+    agree = fs.collapsed == bool(prototype_collapsed)
+    p = float(np.mean(agree))
+    peak_nom = None if nominal.collapsed[1] else float(nominal.max_rotation[1])
+    sens = spread = p05 = p95 = tol_peak = None
+    surv = fs.max_rotation[~fs.collapsed]
+    if peak_nom is not None and not np.any(nominal.collapsed):
+        sens = float(np.log(nominal.max_rotation[2] / nominal.max_rotation[0]) / (2.0 * math.log(1.01)))
+        if surv.size >= 2:
+            spread = float(np.std(surv, ddof=1) / np.median(surv))
+            p05, p95 = (float(x) for x in np.quantile(surv, [0.05, 0.95]))
+        if sens != 0.0:
+            tol_peak = math.log(1.0 + target) / (Z95 * abs(sens))
+    tol_out = None
+    if wc is not None and wc > w_init and m_tnt > 0:
+        tol_out = abs(math.log((wc - w_init) / m_tnt)) / Z90_ONE_SIDED
+    k = int(W.size)
+    return Odds("planar", n, int(seed), bool(prototype_collapsed), p, math.sqrt(max(p * (1 - p), 0.0) / k),
+                float(np.mean(fs.collapsed)), peak_nom, spread, p05, p95, sens, wc, tol_peak, tol_out, outside)
+
+
+def ensemble_odds_3d(specimen_scenario, *, prototype_collapsed: bool, tolerances: Tolerances, members: int,
+                     seed: int = 0, workers: int = 0, scheduler: Optional[str] = None) -> dict:
+    """Odds of a specimen by a small 3D ensemble: ``members`` Studies (3D engine, MuJoCo) of the
+    specimen as a prototype-only scenario, its charge, stand-off, friction and density drawn as in
+    :func:`planar_odds` (the sweeps' samples, common seed), on ``workers`` local Dask processes or a
+    ``scheduler`` (0 and None: in this process).
+
+    Returns
+    -------
+    dict
+        ``members``, ``p_outcome_agree`` (3D collapse vs the prototype's outcome), its binomial
+        ``p_outcome_agree_se``, ``specimen_collapse_probability``, ``first_peak_spread`` (relative
+        standard deviation of the largest top displacement of the members that stand) [-].
+    """
+    from ..sweeps import SweepSpec
+    from ..sweeps.grids import Distribution
+    from ..sweeps.runner import run_chunks
+
+    sc = specimen_scenario.with_values({"simulation.engine": "3d", "simulation.critical_charge": False})
+    rel = {"blast.charge_kg": Distribution("lognormal", (1.0, max(tolerances.charge, 1e-12)))}
+    absolute = {"blast.standoff_m": Distribution("normal", (sc.blast.standoff_m, max(tolerances.standoff_m, 1e-12))),
+                "structure.friction": Distribution("normal", (sc.structure.friction, max(tolerances.friction, 1e-12)))}
+    rel["structure.density_kg_m3"] = Distribution("normal", (1.0, max(tolerances.density, 1e-12)))
+    spec = SweepSpec.build(sc, {}, absolute, relative=rel, samples=int(members), seed=int(seed))
+    n = spec.n_cases
+    done: dict = {}
+    run_chunks(spec.to_payload(), [(i, i, i + 1) for i in range(n)], done.__setitem__, scheduler=scheduler,
+               workers=workers)
+    col = np.array([float(done[i]["values"].get("3d.prototype.collapsed", [math.nan])[0]) for i in range(n)])
+    top = np.array([float(done[i]["values"].get("3d.prototype.max_top_displacement_m", [math.nan])[0])
+                    for i in range(n)])
+    ok = np.isfinite(col)
+    collapsed = col[ok] == 1.0
+    p = float(np.mean(collapsed == bool(prototype_collapsed))) if ok.any() else math.nan
+    stand = top[ok][~collapsed]
+    spread = float(np.std(stand, ddof=1) / np.median(stand)) if stand.size >= 2 else None
+    return {"members": int(ok.sum()), "p_outcome_agree": p,
+            "p_outcome_agree_se": math.sqrt(max(p * (1 - p), 0.0) / max(int(ok.sum()), 1)),
+            "specimen_collapse_probability": float(np.mean(collapsed)) if ok.any() else math.nan,
+            "first_peak_spread": spread}

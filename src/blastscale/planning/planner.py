@@ -1,0 +1,286 @@
+"""``plan``: from a prototype and a lab to the designs the lab can fire, best first.
+
+The planner searches the geometric scale lambda (the fractions of
+:data:`~.candidates.LAMBDA_DENOMINATORS`), the density ratio gamma through the lab's materials and
+the scaling law (general; Hopkinson-Cranz where a material's density allows it), designs each
+candidate, rejects those that break a constraint of the lab (each rejection with its reasons), and
+for the feasible ones propagates the lab's tolerances by Monte Carlo through the planar kernels
+(:mod:`.odds`). Ranking (docs/planning.md):
+
+1. trustworthiness: the probability that the specimen's outcome equals the prototype's, rounded to
+   0.01 (higher first); then the predicted first-peak error, the specimen's nominal first-peak
+   error against the prototype's combined in quadrature with its Monte Carlo spread (one standard
+   deviation, relative), rounded to two significant digits (lower first);
+2. safety: the safety radius (the lab's ``safety_threshold`` distance; smaller first).
+
+A lab no design fits raises :class:`PlanInfeasible`: one line naming the constraint that cannot be
+met and the value that would relax it.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+from .._validate import BlastscaleInputError
+from .candidates import Evaluated, candidates, evaluate, scale_label, specimen_displacement
+from .debris import planar_reach
+from .instruments import instrument_settings
+from .odds import Tolerances, ensemble_odds_3d, planar_odds
+from .shot import DEFAULT_LAB, safety_envelope, timing_of
+
+__all__ = ["plan", "Plan", "PlanInfeasible", "design_scenario", "QUICK_SAMPLES", "FULL_DESIGNS"]
+
+#: Draws per feasible design in the first pass of the odds; the leading :data:`FULL_DESIGNS` (after it)
+#: get the lab's ``samples`` and their weighing precision.
+QUICK_SAMPLES = 200
+FULL_DESIGNS = 10
+
+
+class PlanInfeasible(BlastscaleInputError):
+    """No candidate satisfies every constraint of the lab (the message says which and what would relax it)."""
+
+
+@dataclass(frozen=True)
+class Plan:
+    """The planner's answer: ``designs`` (dicts, best first), ``rejected`` (dicts with ``reasons``),
+    the ``prototype`` reference, the ``lab`` used and the best design's scenario (``best_scenario``)."""
+
+    designs: list
+    rejected: list
+    prototype: dict
+    lab: dict
+    best_scenario: object = None
+    notes: list = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        return {"designs": self.designs, "rejected": self.rejected, "prototype": self.prototype, "lab": self.lab,
+                "ranking": "p_outcome_agree (0.01), then predicted first-peak error (2 significant digits), then "
+                           "safety_radius_m", "notes": list(self.notes)}
+
+
+def _prototype(scenario):
+    """The prototype's block, nominal first swing, timing and safety envelope."""
+    from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing
+    from ..structures import from_spec, is_block
+
+    sc, bl, sim = scenario, scenario.blast, scenario.simulation
+    block = from_spec(sc.structure)
+    if not is_block(block):
+        raise BlastscaleInputError(f"structure.kind = {sc.structure.kind!r}: blastscale plan searches designs with "
+                                   "the planar kernels of a block; for a column run the scenario with a [lab] table "
+                                   "(its test card) at the scales you choose")
+    system = RockingSystem.from_block(block, sim.gravity_m_s2, sim.restitution)
+    from ..blast import blast_parameters
+
+    bp = blast_parameters(bl.charge_kg, bl.standoff_m, bl.blast_model, extrapolate=bl.extrapolate)
+    fs = first_swing(system, bl.charge_kg, bl.standoff_m, pulse_shape=bl.pulse_shape, blast_model=bl.blast_model,
+                     extrapolate=bl.extrapolate)
+    res = DEFAULT_SOLVER.simulate(system, bp.pulse(bl.pulse_shape), float(sim.duration_s))
+    collapsed, rot = bool(fs.collapsed[0]), float(fs.max_rotation[0])
+    reach = planar_reach(block.width, block.height, rot, collapsed)
+    env = safety_envelope(bl.charge_kg, DEFAULT_LAB.safety_threshold)
+    return block, system, timing_of(res), {
+        "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "mass_kg": block.mass,
+        "charge_kg": bl.charge_kg, "standoff_m": bl.standoff_m, "collapsed": collapsed,
+        "first_peak_rotation_rad": None if collapsed else rot, "reach_m": reach,
+        "safety_distances_m": env.distances_m}
+
+
+def design_scenario(scenario, candidate, lab_spec=None):
+    """The scenario of a planned design: the prototype's, with ``[scale]`` set to the candidate
+    (law, lambda, material or density ratio) and the lab table (``lab_spec``) kept."""
+    from ..scenario.lab import SAME_MATERIAL
+
+    scale = {"length": candidate.scale, "law": candidate.law,
+             "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
+    if candidate.material != SAME_MATERIAL:  # Hopkinson-Cranz: the material's density is the one the law imposes
+        scale["specimen_material"] = candidate.material
+    elif candidate.law == "general":
+        scale["density_ratio"] = 1.0
+    data = scenario.model_dump(exclude_none=True)
+    data["scale"] = scale
+    if lab_spec is not None:
+        data["lab"] = lab_spec.model_dump(exclude_none=True)
+    return type(scenario).from_dict(data, source="plan")
+
+
+def _rank_key(d: dict) -> tuple:
+    err = d["predicted_first_peak_error"]
+    err2 = float(f"{err:.2g}") if err is not None and math.isfinite(err) else math.inf
+    return (-round(d["p_outcome_agree"], 2), err2, d["safety_radius_m"])
+
+
+def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
+    c, d, spec, ch, env = ev.candidate, ev.design, ev.specimen, ev.charge, ev.safety
+    collapsed_s = odds.first_peak_nominal_rad is None
+    top, reach = specimen_displacement(spec, odds.first_peak_nominal_rad, collapsed_s)
+    ins = instrument_settings(**{**_ins_inputs(ev), "top_displacement_m": top, "camera_max_fps": lab.camera_max_fps})
+    th_p = proto["first_peak_rotation_rad"]
+    if proto["collapsed"] != collapsed_s:
+        err = 1.0
+    elif collapsed_s:
+        err = 0.0
+    else:
+        err = abs(odds.first_peak_nominal_rad / th_p - 1.0)
+    spread = odds.first_peak_spread or 0.0
+    tol = odds.charge_tolerance_needed
+    return {**c.describe(), "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
+            "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg, "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+            "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
+            "standoff_m": d.specimen_standoff_m, "specimen_height_m": spec.height, "specimen_width_m": spec.width,
+            "specimen_depth_m": spec.depth, "specimen_density_kg_m3": spec.density, "specimen_mass_kg": spec.mass,
+            "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
+            "far_field": list(env.far_field), "debris_radius_m": lab.debris_margin * reach, "specimen_reach_m": reach,
+            "camera_fps": ins.camera_fps, "camera_fps_required": ins.camera_fps_required,
+            "pressure_sampling_hz": ins.pressure_sampling_hz, "instruments": ins.to_dict(),
+            "p_outcome_agree": odds.p_outcome_agree, "p_outcome_agree_se": odds.p_outcome_agree_se,
+            "first_peak_spread": odds.first_peak_spread, "similarity_error": err,
+            "predicted_first_peak_error": math.hypot(err, spread), "charge_tolerance_needed": tol,
+            "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
+            "impulsive_ratio": None if d.impulsive is None else d.impulsive.model_ratio,
+            "odds": odds.to_dict(), "warnings": list(ch.warnings)}
+
+
+def _ins_inputs(ev: Evaluated) -> dict:
+    i = ev.instruments
+    m = ev.design.specimen
+    return {"reflected_pressure_Pa": m.reflected_pressure, "incident_pressure_Pa": i.incident_gauge_range_Pa / 1.5,
+            "positive_duration_s": m.positive_duration, "friedlander_decay": m.friedlander_decay,
+            "arrival_time_s": m.arrival_time, "rise_time_s": ev.rise_s, "response_time_s": ev.response_s}
+
+
+def _reasons(d: dict, best: Optional[dict]) -> list:
+    out = [f"outcome agrees with the prototype's in {100 * d['p_outcome_agree']:.1f} % of {d['odds']['samples']} "
+           f"draws of the lab's tolerances",
+           f"predicted first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
+           f"{100 * d['similarity_error']:.2g} %, tolerances "
+           f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %)",
+           f"safety radius ({d['safety_threshold']}) {d['safety_radius_m']:.3g} m"]
+    if best is not None and d is not best:
+        out.append("ranked after a design with " + (
+            "better odds" if round(best["p_outcome_agree"], 2) > round(d["p_outcome_agree"], 2) else
+            "a smaller predicted error" if _rank_key(best)[1] < _rank_key(d)[1] else "a smaller safety radius"))
+    return out
+
+
+def _infeasible(evs: list, lab) -> str:
+    """The one line of a lab that no candidate fits."""
+    alone: dict = {}
+    for ev in evs:
+        keys = {v.key for v in ev.violations}
+        if len(keys) == 1:
+            alone.setdefault(next(iter(keys)), []).append(ev)
+    if not alone:
+        ev = min(evs, key=lambda e: len(e.violations))
+        return (f"no design fits the lab: the closest ({ev.candidate.law}, lambda = {scale_label(ev.candidate.scale)}, "
+                f"{ev.candidate.material}) breaks {len(ev.violations)} constraints: "
+                + "; ".join(v.text for v in ev.violations))
+    key, group = max(alone.items(), key=lambda kv: len(kv[1]))
+    if key in ("blast fits", "impulsive"):
+        return f"no design fits the lab: {group[0].violations[0].text}"
+    lower = key in ("charge_min_kg",)
+    pick = (max if lower else min)(group, key=lambda e: e.violations[0].value)
+    v, c = pick.violations[0], pick.candidate
+    rel = "at most" if lower else "at least"
+    return (f"no design fits the lab: {key} = {v.limit:g} cannot be met ({len(group)} of {len(evs)} candidates "
+            f"fail on it alone); {key} {rel} {v.value:.4g} would admit {c.law}, lambda = {scale_label(c.scale)}, "
+            f"{c.material}")
+
+
+def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = None,
+         progress: Optional[Callable[[str, int, int], None]] = None) -> Plan:
+    """Plan the laboratory test of ``scenario``'s prototype (module docstring).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The prototype (a block), its charge and stand-off, blast model, pulse and simulation settings;
+        its ``[scale]`` is ignored (the planner chooses), its ``[lab]`` gives the constraints.
+    lab : LabSpec, optional
+        Overrides the scenario's ``[lab]`` (default: it, or every key's default).
+    workers, scheduler
+        Where the 3D ensemble of the best design runs (``lab.ensemble_3d`` > 0).
+    progress : callable, optional
+        ``progress(stage, done, total)``.
+
+    Returns
+    -------
+    Plan
+
+    Raises
+    ------
+    PlanInfeasible
+        No candidate meets every constraint.
+    """
+    from ..blast import get_blast_model
+
+    tell = progress or (lambda *a: None)
+    lab = lab or scenario.lab or DEFAULT_LAB
+    block, system, timing, proto = _prototype(scenario)
+    kb = get_blast_model("kingery-bulmash")
+    cands = candidates(lab, block.density, block.height,
+                       scenario.scale.gravity_ratio if scenario.scale is not None else 1.0)
+    evs = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for i, c in enumerate(cands):
+            tell("designing the candidates", i, len(cands))
+            evs.append(evaluate(c, scenario=scenario, lab=lab, block=block, timing=timing, incident_model=kb))
+    ok = [e for e in evs if not e.violations]
+    rejected = [{**e.candidate.describe(), "constraints": [v.key for v in e.violations],
+                 "reasons": [v.text for v in e.violations]} for e in evs if e.violations]
+    if not ok:
+        raise PlanInfeasible(_infeasible(evs, lab))
+    tol = Tolerances.from_lab(lab)
+    sim, bl = scenario.simulation, scenario.blast
+
+    def odds_of(e, n, critical):
+        return planar_odds(e.specimen, charge_kg=e.design.specimen_charge_kg, standoff_m=e.design.specimen_standoff_m,
+                           prototype_collapsed=proto["collapsed"], explosive_fraction=1.0 - e.charge.initiator_fraction,
+                           gravity=sim.gravity_m_s2 * e.design.gravity_ratio, restitution=sim.restitution,
+                           pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, tolerances=tol,
+                           samples=n, seed=lab.seed, target=lab.first_peak_target, critical=critical)
+
+    quick = min(lab.samples, QUICK_SAMPLES)
+    designs = []
+    for i, e in enumerate(ok):  # every feasible design with a few draws, then the leaders with all of them
+        tell("Monte Carlo odds of the feasible designs", i, len(ok) + FULL_DESIGNS)
+        designs.append((_design_dict(e, odds_of(e, quick, False), proto, lab, scenario), e))
+    designs.sort(key=lambda de: _rank_key(de[0]))
+    for i, (_, e) in enumerate(designs[:FULL_DESIGNS]):
+        tell("Monte Carlo odds of the leading designs", len(ok) + i, len(ok) + FULL_DESIGNS)
+        designs[i] = (_design_dict(e, odds_of(e, lab.samples, True), proto, lab, scenario), e)
+    designs = [d for d, _ in designs]
+    designs.sort(key=_rank_key)
+    for d in designs:
+        d["reasons"] = _reasons(d, designs[0])
+    best = next(e for e in ok if e.candidate.describe() == {k: designs[0][k] for k in e.candidate.describe()})
+    best_sc = design_scenario(scenario, best.candidate, lab)
+    notes = []
+    if lab.ensemble_3d:
+        tell("3D ensemble of the best design", 0, 1)
+        designs[0]["odds_3d"] = ensemble_odds_3d(
+            specimen_scenario(scenario, best), prototype_collapsed=proto["collapsed"], tolerances=tol,
+            members=lab.ensemble_3d, seed=lab.seed, workers=workers, scheduler=scheduler)
+        notes.append("odds_3d: the best design's 3D ensemble (friction and density tolerances included)")
+    return Plan(designs, rejected, proto, lab.model_dump(mode="json"), best_sc, notes)
+
+
+def specimen_scenario(scenario, ev: Evaluated):
+    """The specimen of a design as a prototype-only scenario (its block, its charge and stand-off, its
+    gravity, the prototype's duration x the time factor): the 3D ensembles run it."""
+    d, spec, sc = ev.design, ev.specimen, scenario
+    data = sc.model_dump(exclude_none=True)
+    data.pop("scale", None)
+    data.pop("lab", None)
+    data["structure"] = {"kind": "block", "height_m": spec.height, "width_m": spec.width, "depth_m": spec.depth,
+                         "density_kg_m3": spec.density, "friction": sc.structure.friction}
+    data["blast"] = {**data["blast"], "charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
+    data["simulation"] = {**data["simulation"], "duration_s": sc.simulation.duration_s * float(d.factors.time),
+                          "gravity_m_s2": sc.simulation.gravity_m_s2 * d.gravity_ratio}
+    data["simulation"].pop("timestep_s", None)
+    data["simulation"].pop("contact", None)
+    return type(sc).from_dict(data, source="plan")

@@ -1,0 +1,118 @@
+"""The shot of one design: the charge in the lab's explosive, the safety envelope, the timing of the
+rocking response, shared by the planner (:mod:`.planner`) and the test card (:mod:`.card`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from ..blast.explosives import Explosive, charge_equivalence
+from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
+
+__all__ = ["lab_explosives", "lab_charge", "SafetyEnvelope", "safety_envelope", "threshold_meanings",
+           "candidate_materials", "Timing", "rocking_timing", "timing_of", "DEFAULT_LAB"]
+
+
+def _default_lab():
+    from ..scenario.lab import LabSpec
+
+    return LabSpec()
+
+
+#: The defaults of every ``[lab]`` key (docs/planning.md), for a scenario without a ``[lab]`` table.
+DEFAULT_LAB = _default_lab()
+
+
+def lab_explosives(lab) -> dict:
+    """The user-defined explosives of a ``[lab]`` table (``[lab.explosives.NAME]``) as :class:`Explosive`."""
+    return {name: Explosive(name, e.pressure_factor, e.impulse_factor, e.density_kg_m3, e.source,
+                            "user-defined: as stated by its source") for name, e in lab.explosives.items()}
+
+
+def lab_charge(tnt_kg: float, lab):
+    """The specimen's charge in the lab's explosive (:func:`~blastscale.blast.explosives.charge_equivalence`)."""
+    return charge_equivalence(tnt_kg, lab.explosive, lab.initiator_tnt_kg, lab_explosives(lab))
+
+
+@dataclass(frozen=True)
+class SafetyEnvelope:
+    """Safety distances of one charge (pressure-equivalent TNT): ``distances_m`` {key: m} for every
+    threshold and K-factor, ``radius_m`` (the lab's ``safety_threshold``), ``threshold``, and the keys
+    whose distance lies in the far field (anchored Kinney-Graham, less certain)."""
+
+    tnt_kg: float
+    distances_m: dict
+    radius_m: float
+    threshold: str
+    far_field: tuple
+
+    def to_dict(self) -> dict:
+        return {"tnt_equivalent_pressure_kg": self.tnt_kg, "safety_distances_m": dict(self.distances_m),
+                "safety_radius_m": self.radius_m, "safety_threshold": self.threshold,
+                "far_field": list(self.far_field)}
+
+
+def safety_envelope(tnt_pressure_kg: float, threshold: str = "6.9 kPa") -> SafetyEnvelope:
+    """Safety distances of ``tnt_pressure_kg`` [kg TNT, pressure basis] (:mod:`blastscale.blast.safety`)."""
+    d = safety_distances(tnt_pressure_kg)
+    ff = tuple(t.key for t in SAFETY_THRESHOLDS if far_field(tnt_pressure_kg, d[t.key]))
+    return SafetyEnvelope(float(tnt_pressure_kg), d, d[threshold], threshold, ff)
+
+
+def threshold_meanings() -> list:
+    """Every safety key with its pressure (None for K-factors), meaning and source."""
+    out = [{"key": t.key, "pressure_Pa": t.pressure_Pa, "meaning": t.meaning, "source": t.source}
+           for t in SAFETY_THRESHOLDS]
+    out += [{"key": k, "pressure_Pa": None, "meaning": f"D = {v:g} W^(1/3) ft/lb^(1/3): {what}",
+             "source": "DoD 6055.09-M Vol. 3"} for k, (v, what) in QD_K_FACTORS.items()]
+    return out
+
+
+def candidate_materials(lab, prototype_density: float) -> list:
+    """(name, gamma) of the lab's candidate materials (``"same"``: the prototype's, gamma = 1)."""
+    from ..scenario.lab import SAME_MATERIAL
+    from ..structures.materials import MATERIALS
+
+    names = list(lab.materials) if lab.materials is not None else [SAME_MATERIAL] + list(MATERIALS)
+    return [(n, 1.0 if n == SAME_MATERIAL else MATERIALS[n].density / prototype_density) for n in names]
+
+
+@dataclass(frozen=True)
+class Timing:
+    """Times of a rocking response from the shock's arrival [s]: to the first peak of the rotation (or
+    to the tipping point when it overturns), and of the whole response (to rest or the collapse)."""
+
+    rise_s: float
+    response_s: float
+
+
+def rocking_timing(t, theta, alpha: float, collapsed: bool, collapse_time: Optional[float]) -> Timing:
+    """:class:`Timing` from a rotation history ``theta`` [rad] at times ``t`` [s] (from the arrival):
+    the rise ends at the first local maximum of |theta| (or, overturning, where |theta| passes
+    alpha); the response ends at the collapse, or the last time |theta| exceeds 1 % of its largest
+    value (the end of the history when it rocks to the end)."""
+    t, a = np.asarray(t, dtype=float), np.abs(np.asarray(theta, dtype=float))
+    if collapsed:
+        k = np.flatnonzero(a >= alpha)
+        tip = float(t[k[0]]) if k.size else float(t[-1])
+        return Timing(tip, float(collapse_time) if collapse_time is not None and math.isfinite(collapse_time)
+                      else float(t[-1]))
+    if a.max() <= 0.0:
+        return Timing(float(t[-1]), float(t[-1]))
+    k = np.flatnonzero((a[1:-1] >= a[:-2]) & (a[1:-1] > a[2:]) & (a[1:-1] > 0.0))
+    rise = float(t[k[0] + 1]) if k.size else float(t[int(np.argmax(a))])
+    moving = np.flatnonzero(a > 0.01 * a.max())
+    return Timing(rise, float(t[moving[-1]]))
+
+
+def timing_of(result) -> Timing:
+    """:class:`Timing` of a :class:`~blastscale.rocking.RockingResult` (its solver steps; the first
+    peak from its recorded peaks)."""
+    alpha = result.system.alpha if result.system is not None else 0.5 * math.pi
+    tm = rocking_timing(result.t, result.theta, alpha, result.collapsed, result.collapse_time)
+    if not result.collapsed and len(result.peak_times):
+        return Timing(float(result.peak_times[0]), tm.response_s)
+    return tm

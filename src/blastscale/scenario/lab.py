@@ -1,0 +1,93 @@
+"""The ``[lab]`` table of a scenario: what the laboratory can make, fire, build and measure, and how
+precisely (the test planner's constraints, docs/planning.md), and user-defined explosives."""
+
+from __future__ import annotations
+
+from typing import Optional
+
+from pydantic import BaseModel, Field, field_validator, model_validator
+
+from ..blast.explosives import EXPLOSIVES
+from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS
+from ..structures.materials import MATERIALS
+from .messages import show
+from .specs import _CONFIG, _check_name
+
+__all__ = ["ExplosiveSpec", "LabSpec", "SAME_MATERIAL"]
+
+
+#: The planner's name for "the prototype's own material" (gamma = 1) among ``[lab] materials``.
+SAME_MATERIAL = "same"
+
+
+class ExplosiveSpec(BaseModel):
+    """A user-defined explosive (``[lab.explosives.NAME]``): its TNT equivalence for peak pressure and
+    for impulse (as in UFC 3-340-02 Table 2-1), its density and where the numbers come from."""
+
+    model_config = _CONFIG
+    pressure_factor: float = Field(gt=0, le=10, description="TNT-equivalent mass per unit mass, peak pressure [-]")
+    impulse_factor: float = Field(gt=0, le=10, description="TNT-equivalent mass per unit mass, impulse [-]")
+    density_kg_m3: Optional[float] = Field(None, gt=0, le=25000, description="Density [kg/m^3]")
+    source: str = Field("user-defined", description="Where the factors come from")
+
+
+class LabSpec(BaseModel):
+    """What the laboratory can make, fire, build and measure, and how precisely (docs/planning.md).
+    Every key is optional; the defaults are a university blast laboratory's."""
+
+    model_config = _CONFIG
+    explosive: str = Field("tnt", description="The explosive of the specimen's charge (library or [lab.explosives])")
+    explosives: dict[str, ExplosiveSpec] = Field(default_factory=dict, description="User-defined explosives")
+    initiator_tnt_kg: float = Field(0.0, ge=0, le=1000, description="The initiator's TNT-equivalent mass [kg]")
+    charge_min_kg: float = Field(0.0, ge=0, le=10000, description="Smallest mass of the explosive the lab can "
+                                 "make and fire [kg]")
+    charge_max_kg: float = Field(1.0, gt=0, le=10000, description="Largest mass of the explosive the lab may fire [kg]")
+    specimen_max_height_m: float = Field(2.0, gt=0, le=1000, description="Tallest specimen the lab can build [m]")
+    specimen_max_mass_kg: float = Field(500.0, gt=0, le=1e7, description="Heaviest specimen the lab can handle [kg]")
+    materials: Optional[list[str]] = Field(None, description="Candidate specimen materials from the density library "
+                                           "(\"same\": the prototype's); default: all of them")
+    charge_tolerance: float = Field(0.02, ge=0, le=1, description="Charge mass, one standard deviation, relative "
+                                    "(lognormal) [-]")
+    standoff_tolerance_m: float = Field(0.001, ge=0, le=10, description="Stand-off, one standard deviation [m]")
+    friction_tolerance: float = Field(0.05, ge=0, le=1, description="Friction coefficient, one standard deviation [-]")
+    density_tolerance: float = Field(0.02, ge=0, le=1, description="Specimen density, one standard deviation, "
+                                     "relative [-]")
+    samples: int = Field(2000, ge=10, le=1_000_000, description="Monte Carlo samples per design [-]")
+    seed: int = Field(0, ge=0, le=2**63 - 1, description="Seed of the Monte Carlo draws [-]")
+    camera_max_fps: float = Field(100000.0, gt=0, le=1e9, description="Fastest frame rate of the lab's camera [1/s]")
+    space_radius_m: float = Field(20.0, gt=0, le=1e5, description="Radius of the cleared space around the "
+                                  "charge [m]")
+    safety_threshold: str = Field("6.9 kPa", description="The safety distance that must fit in the space: a "
+                                  "threshold key (34.5 kPa, 6.9 kPa, 1.03 kPa, 200 Pa) or K24, K40, K50")
+    first_peak_target: float = Field(0.05, gt=0, le=1, description="Largest relative error of the specimen's first "
+                                     "peak that the weighing must keep (95 %) [-]")
+    debris_margin: float = Field(2.0, ge=1, le=100, description="Factor on the largest simulated excursion of the "
+                                 "blocks for the debris zone [-]")
+    ensemble_3d: int = Field(0, ge=0, le=64, description="3D Monte Carlo members for the odds (0: planar only) [-]")
+
+    @field_validator("materials")
+    @classmethod
+    def _materials(cls, v: Optional[list[str]]) -> Optional[list[str]]:
+        if v is None:
+            return v
+        if not v:
+            raise ValueError("= [] is empty: give at least one material, or leave the key out for all of them")
+        for name in v:
+            _check_name(name, (SAME_MATERIAL,) + tuple(MATERIALS))
+        return v
+
+    @field_validator("safety_threshold")
+    @classmethod
+    def _threshold(cls, v: str) -> str:
+        return _check_name(v, tuple(t.key for t in SAFETY_THRESHOLDS) + tuple(QD_K_FACTORS))
+
+    @model_validator(mode="after")
+    def _consistent(self) -> "LabSpec":
+        known = tuple(EXPLOSIVES) + tuple(self.explosives)
+        if self.explosive not in known:
+            raise ValueError(f"explosive = {self.explosive!r} is not known: valid values are {', '.join(known)} "
+                             "(or define it in a [lab.explosives.NAME] table)")
+        if self.charge_min_kg > self.charge_max_kg:
+            raise ValueError(f"charge_min_kg = {show(self.charge_min_kg)} kg is above charge_max_kg = "
+                             f"{show(self.charge_max_kg)} kg: give a minimum at or below the maximum")
+        return self

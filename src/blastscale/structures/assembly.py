@@ -1,0 +1,297 @@
+"""Assemblies of general rigid blocks: any convex polyhedron, in any position at rest.
+
+A :class:`ConvexBlock` is the convex hull of its vertices (world frame at rest, metres, z up, the
+ground at z = 0) with its density; its mass properties are exact for the polyhedron
+(:func:`~.polyhedron.polyhedron_mass_properties`). An :class:`Assembly` of N blocks exposes the
+structure interface of :mod:`.base` (``bodies``, ``interfaces``, ``monitoring_points``,
+``front_x``, ``scaled``, ``describe``), with everything that depends on contact found by geometry
+(:mod:`.interfaces`): the interfaces (coplanar, opposed, overlapping faces, with their overlap
+polygons), the ``in_contact`` flag of each face, each face's **exposed** area and centroid (the face
+minus the interfaces on it: what Method C loads), and the checks of a block model.
+
+Engine geometry: a block that is an axis-aligned box becomes a box (its closed-form mass properties,
+equal to the polyhedron's to round-off), any other block a convex mesh of its vertices
+(:class:`ConvexGeometry`); a non-diagonal inertia tensor is passed whole (MuJoCo ``fullinertia``).
+
+Collapse of an assembly (``collapse_rule = "fallen"``, :mod:`blastscale.sim3d.record`): a block
+*fell* when at some recorded time its centre of mass lies below its rest height by more than
+:data:`FALL_DROP_FRACTION` of the block's own height, or it has turned by more than
+:data:`FALL_TILT_DEG` (it lies on another face); the assembly collapsed when any block fell.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .._validate import BlastscaleInputError, check_positive_scalar
+from .base import BoxGeometry, Face, MonitoringPoint, RigidBody
+from .interfaces import check_assembly, find_interfaces
+from .polyhedron import face_label, hull_of, polyhedron_faces, polyhedron_mass_properties
+
+__all__ = ["ConvexBlock", "ConvexGeometry", "Assembly", "FALL_DROP_FRACTION", "FALL_TILT_DEG"]
+
+#: A block fell when its centre of mass dropped by more than this fraction of its own height [-].
+FALL_DROP_FRACTION = 0.5
+#: ... or when it turned by more than this angle [deg] (it lies on another face).
+FALL_TILT_DEG = 45.0
+#: A face whose exposed area is below this fraction of its area is in contact [-].
+COVERED_FRACTION = 1e-6
+
+
+@dataclass(frozen=True)
+class ConvexBlock:
+    """A rigid block: the convex hull of ``vertices`` (world frame at rest [m]) of ``density`` [kg/m^3]."""
+
+    name: str
+    vertices: tuple
+    density: float
+
+    def __post_init__(self):
+        v = np.asarray(self.vertices, dtype=float)
+        object.__setattr__(self, "vertices", tuple(tuple(float(x) for x in p) for p in v.reshape(-1, 3)))
+        check_positive_scalar(f"density of block {self.name!r}", self.density, "kg/m^3")
+        hull_of(v, self.name)
+
+    @property
+    def points(self) -> np.ndarray:
+        """The vertices (n, 3) [m]."""
+        return np.asarray(self.vertices, dtype=float)
+
+
+@dataclass(frozen=True)
+class ConvexGeometry:
+    """Contact geometry: the convex hull of ``vertices`` (body frame: relative to the centre of mass) [m]."""
+
+    vertices: tuple
+
+    def array(self) -> np.ndarray:
+        """The vertices (n, 3) [m]."""
+        return np.asarray(self.vertices, dtype=float)
+
+    def base_points(self) -> np.ndarray:
+        """The lowest vertices at rest (within 1e-9 of the block's size), body frame [m]."""
+        v = self.array()
+        z = v[:, 2]
+        return v[z <= z.min() + 1e-9 * float(np.ptp(v, axis=0).max())]
+
+    @property
+    def support_radius(self) -> tuple:
+        """Half-extent of the base along x and y [m] (the lowest vertices' extent)."""
+        b = self.base_points()
+        return (0.5 * float(np.ptp(b[:, 0])), 0.5 * float(np.ptp(b[:, 1])))
+
+
+def _is_box(faces) -> bool:
+    return len(faces) == 6 and all(np.sort(np.abs(f.normal))[-1] > 1.0 - 1e-12 for f in faces)
+
+
+@dataclass(frozen=True)
+class _BlockGeometry:
+    """Derived geometry of one block (internal)."""
+
+    mass: float
+    com: np.ndarray
+    inertia: tuple
+    faces: list
+    shape: object
+    height: float
+
+
+def _geometry(block: ConvexBlock) -> _BlockGeometry:
+    v = block.points
+    faces = polyhedron_faces(v, block.name)
+    if _is_box(faces):
+        lo, hi = v.min(axis=0), v.max(axis=0)
+        a, d, c = hi - lo
+        m = block.density * a * d * c
+        com = 0.5 * (lo + hi)
+        inertia = tuple(float(x) for x in (m * (d * d + c * c) / 12.0, m * (a * a + c * c) / 12.0,
+                                           m * (a * a + d * d) / 12.0))
+        shape = BoxGeometry(0.5 * a, 0.5 * d, 0.5 * c)
+    else:
+        mp = polyhedron_mass_properties(v, block.density, block.name)
+        m, com, I = mp.mass, mp.centroid, mp.inertia
+        off = np.abs(I - np.diag(np.diag(I))).max()
+        inertia = (tuple(np.diag(I)) if off <= 1e-12 * np.trace(I)
+                   else (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]))
+        inertia = tuple(float(x) for x in inertia)
+        hull = hull_of(v, block.name)
+        shape = ConvexGeometry(tuple(tuple(float(x) for x in p) for p in v[hull.vertices] - com))
+    return _BlockGeometry(float(m), np.asarray(com, dtype=float), inertia, faces, shape, float(np.ptp(v[:, 2])))
+
+
+@dataclass(frozen=True)
+class Assembly:
+    """N convex blocks standing on a rigid ground (z = 0), free to rock, slide and fall.
+
+    Parameters
+    ----------
+    blocks : sequence of ConvexBlock
+        The blocks, at rest; names must be unique.
+    extra_points : sequence of MonitoringPoint
+        User monitoring points (body index, body-frame position [m]) after the default ones.
+    kind : str
+        What generated it ("assembly", "wall", "arch", "portal"), for ``describe()``.
+    parameters : tuple of (str, value)
+        The generator's parameters, SI keys, for ``describe()``.
+    check : bool
+        Check the block model (overlaps, floating blocks, millimetres; :func:`~.interfaces.check_assembly`).
+    """
+
+    blocks: tuple
+    extra_points: tuple = ()
+    kind: str = "assembly"
+    parameters: tuple = ()
+    check: bool = True
+
+    collapse_rule = "fallen"
+
+    def __post_init__(self):
+        blocks = tuple(self.blocks)
+        if not blocks:
+            raise BlastscaleInputError("blocks = () is out of range: an assembly needs at least one block")
+        object.__setattr__(self, "blocks", blocks)
+        names = [b.name for b in blocks]
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise BlastscaleInputError(f"block name {dup[0]!r} is used twice: block names must be unique")
+        for p in self.extra_points:
+            if not isinstance(p, MonitoringPoint) or not 0 <= p.body < len(blocks):
+                raise BlastscaleInputError(
+                    f"point = {p!r} is out of range: must be a MonitoringPoint on a block 0-{len(blocks) - 1}")
+        if self.check:
+            g = self._geometries
+            check_assembly(names, [b.points for b in blocks], [x.faces for x in g], self.interface_details,
+                           self.size)
+
+    # -- derived geometry (computed once) ------------------------------------------------
+    @functools.cached_property
+    def _geometries(self) -> list:
+        return [_geometry(b) for b in self.blocks]
+
+    @property
+    def size(self) -> float:
+        """Largest extent of the assembly [m]."""
+        v = np.vstack([b.points for b in self.blocks])
+        return float(np.ptp(v, axis=0).max())
+
+    @functools.cached_property
+    def interface_details(self) -> tuple:
+        """The :class:`~.interfaces.Interface` list (ground first), found by geometry."""
+        return tuple(find_interfaces([g.faces for g in self._geometries], self.size))
+
+    @property
+    def interfaces(self) -> tuple:
+        """Pairs (i, j) of blocks in contact at rest, ground = -1 (ground ones first)."""
+        return tuple(itf.pair for itf in self.interface_details)
+
+    @functools.cached_property
+    def bodies(self) -> tuple:
+        """One :class:`~.base.RigidBody` per block: exact mass properties, engine geometry, faces in
+        the body frame with their exposed area and centroid, the Method A face (the exposed face
+        turned most towards -x, by projected exposed area)."""
+        covered: dict = {}
+        for itf in self.interface_details:
+            for blk, fk in ((itf.first, itf.faces[0]), (itf.second, itf.faces[1])):
+                if blk >= 0:
+                    covered.setdefault((blk, fk), []).append((itf.area, np.asarray(itf.centroid)))
+        out = []
+        for i, (b, g) in enumerate(zip(self.blocks, self._geometries)):
+            faces = []
+            for k, f in enumerate(g.faces):
+                parts = covered.get((i, k), [])
+                a_cov = sum(a for a, _ in parts)
+                exposed = max(f.area - a_cov, 0.0)
+                touching = exposed <= COVERED_FRACTION * f.area
+                cent = f.centroid if not parts or touching else (
+                    f.area * f.centroid - sum(a * c for a, c in parts)) / exposed
+                faces.append(Face(face_label(f.normal), tuple(float(x) for x in cent - g.com),
+                                  tuple(float(x) for x in f.normal), float(f.area if not parts else exposed), touching,
+                                  tuple(tuple(float(x) for x in p - g.com) for p in f.vertices)))
+            load = _load_face(faces)
+            zb = float(np.min(b.points[:, 2]) - g.com[2])
+            sx, sy = g.shape.support_radius
+            out.append(RigidBody(b.name, g.mass, tuple(float(x) for x in g.com), g.inertia, g.shape, tuple(faces), load,
+                                 zb, math.atan2(min(sx, sy), max(-zb, 1e-300))))
+        return tuple(out)
+
+    @property
+    def heights(self) -> tuple:
+        """Each block's vertical extent at rest [m] (the fall rule's reference)."""
+        return tuple(g.height for g in self._geometries)
+
+    @property
+    def monitoring_points(self) -> tuple:
+        """One point per block, named after it, at its Method A face's centre (the exposed front), then
+        ``extra_points``."""
+        pts = tuple(MonitoringPoint(b.name, i, b.load_face.centre) for i, b in enumerate(self.bodies))
+        return pts + tuple(self.extra_points)
+
+    @property
+    def front_x(self) -> float:
+        """x of the front (the smallest x of any block) [m]: the charge stands at ``front_x - standoff``."""
+        return float(min(b.points[:, 0].min() for b in self.blocks))
+
+    @property
+    def mass(self) -> float:
+        """Total mass [kg]."""
+        return float(sum(g.mass for g in self._geometries))
+
+    @property
+    def volume(self) -> float:
+        """Total volume [m^3]."""
+        return float(sum(g.mass / b.density for b, g in zip(self.blocks, self._geometries)))
+
+    def describe(self) -> dict:
+        """Kind, size, blocks, mass and the generator's parameters (SI keys)."""
+        v = np.vstack([b.points for b in self.blocks])
+        dens = {b.density for b in self.blocks}
+        return {"kind": self.kind, **dict(self.parameters), "blocks": len(self.blocks),
+                "height_m": float(v[:, 2].max()), "length_m": float(np.ptp(v[:, 1])),
+                "thickness_m": float(np.ptp(v[:, 0])),
+                "density_kg_m3": float(next(iter(dens))) if len(dens) == 1 else float(self.mass / self.volume),
+                "mass_kg": self.mass, "interfaces": len(self.interface_details)}
+
+    # -- scaling ---------------------------------------------------------------------------
+    def scaled(self, factors) -> "Assembly":
+        """The geometrically similar assembly: coordinates x ``factors.length`` (lambda), densities x
+        ``factors.density`` (gamma)."""
+        L = check_positive_scalar("scale", factors.length)
+        g = check_positive_scalar("density ratio", factors.density)
+        return self._remade(lambda v: np.asarray(v, dtype=float) * L, g, L)
+
+    def rounded(self, length: float, digits: int = 12) -> "Assembly":
+        """A copy with coordinates quantised to ``length * 10**-digits`` and densities to ``digits``
+        significant digits (the engine's reference units: a structure and its exactly scaled model
+        then give bitwise the same blocks)."""
+        q = float(length) * 10.0 ** (-digits)
+        return self._remade(lambda v: np.round(np.asarray(v, dtype=float) / q) * q, 1.0, 1.0, digits)
+
+    def _remade(self, fv, density_factor, length_factor, digits=None) -> "Assembly":
+        def dens(d):
+            x = d * density_factor
+            return float(f"{x:.{digits}g}") if digits else x
+
+        blocks = tuple(replace(b, vertices=fv(b.points), density=dens(b.density)) for b in self.blocks)
+        pts = tuple(replace(p, position=tuple(float(x) for x in np.asarray(p.position) * length_factor))
+                    for p in self.extra_points)
+        params = tuple((k, v * length_factor if k.endswith("_m") and isinstance(v, float) else v)
+                       for k, v in self.parameters)
+        return Assembly(blocks, pts, self.kind, params, check=False)
+
+
+def _load_face(faces) -> Face:
+    """The exposed face turned most towards -x (largest projected exposed area); a zero-area front
+    face when the block shows no face to -x."""
+    best = None
+    for f in faces:
+        proj = -f.normal[0] * f.area
+        if not f.in_contact and proj > 1e-12 * f.area and (best is None or proj > best[0]):
+            best = (proj, f)
+    if best is not None:
+        return best[1]
+    return Face("front", (0.0, 0.0, 0.0), (-1.0, 0.0, 0.0), 0.0, True)

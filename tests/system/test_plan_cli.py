@@ -1,0 +1,92 @@
+"""``blastscale plan`` and ``run`` with a [lab] table from the command line: the JSON keys of the issue,
+the result folder, one-line errors (exit 2) for bad [lab] entries and for a lab no design fits."""
+
+import json
+
+import pytest
+
+from blastscale.cli import main
+
+PROTOTYPE = """
+[structure]
+kind = "block"
+height_m = 10.0
+alpha_deg = 15.0
+[blast]
+charge_kg = 50.0
+standoff_m = 2.0
+blast_model = "masi2021"
+[simulation]
+engine = "planar"
+duration_s = 3.0
+"""
+
+
+def cli(capsys, *argv):
+    with pytest.raises(SystemExit) as e:
+        main(list(argv))
+    cap = capsys.readouterr()
+    return (e.value.code or 0), cap.out, cap.err
+
+
+def _scenario(tmp_path, lab: str, scale: str = "") -> str:
+    p = tmp_path / "s.toml"
+    p.write_text(PROTOTYPE + scale + "\n[lab]\n" + lab)
+    return str(p)
+
+
+@pytest.mark.parametrize("lab,words", [
+    ("charge_tolerance = -0.01", "lab.charge_tolerance = -0.01 is out of range: valid range is [0, 1]"),
+    ("standoff_tolerance_m = -1.0", "lab.standoff_tolerance_m = -1 is out of range"),
+    ("charge_min_kg = 2.0\ncharge_max_kg = 1.0", "charge_min_kg = 2 kg is above charge_max_kg = 1 kg"),
+    ('explosive = "semtex"', "explosive = 'semtex' is not known: valid values are tnt, c-4"),
+    ('materials = ["marble", "unobtainium"]', "lab.materials = 'unobtainium' is not known"),
+    ("seed = 1.5", "lab.seed = 1.5 has the wrong type"),
+])
+@pytest.mark.parametrize("command", ["plan", "run"])
+def test_bad_lab_entries_are_one_line_exit_2(capsys, tmp_path, lab, words, command):
+    code, out, err = cli(capsys, command, _scenario(tmp_path, lab, '\n[scale]\nlength = "1/20"\n'))
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith("error:") and words in " ".join(err.split())
+
+
+def test_plan_json_has_the_issues_keys(capsys, tmp_path):
+    code, out, err = cli(capsys, "plan", _scenario(tmp_path, 'specimen_max_height_m = 0.5\nexplosive = "c-4"\n'
+                                                   "samples = 200\n"), "--json")
+    assert code == 0, err
+    p = json.loads(out)
+    assert p["designs"] and p["rejected"]
+    for d in p["designs"]:
+        for key in ("scale", "material", "density_ratio", "explosive_mass_kg", "tnt_equivalent_kg", "standoff_m",
+                    "specimen_mass_kg", "safety_distances_m", "camera_fps", "p_outcome_agree"):
+            assert key in d
+        assert d["explosive_mass_kg"] == pytest.approx(d["tnt_equivalent_kg"] / 1.19, rel=1e-12)  # C-4, impulse
+        assert set(d["safety_distances_m"]) == {"34.5 kPa", "6.9 kPa", "1.03 kPa", "200 Pa", "K24", "K40", "K50"}
+    assert all(r["reasons"] for r in p["rejected"])
+
+
+def test_infeasible_lab_is_one_line(capsys, tmp_path):
+    code, out, err = cli(capsys, "plan", _scenario(tmp_path, "space_radius_m = 0.01\nsamples = 20\n"))
+    assert code == 2 and err.count("\n") == 1
+    assert "space_radius_m = 0.01 cannot be met" in " ".join(err.split())
+
+
+def test_plan_out_writes_the_best_design_and_its_card(capsys, tmp_path):
+    out_dir = tmp_path / "plan"
+    code, out, err = cli(capsys, "plan", _scenario(tmp_path, "specimen_max_height_m = 0.5\nsamples = 200\n"),
+                         "--out", str(out_dir))
+    assert code == 0, err
+    plan = json.loads((out_dir / "plan.json").read_text())
+    summary = json.loads((out_dir / "summary.json").read_text())
+    best = plan["designs"][0]
+    card = summary["test_card"]
+    assert card["explosive_mass_kg"] == pytest.approx(best["explosive_mass_kg"], rel=1e-12)
+    assert card["safety_distances_m"] == pytest.approx(best["safety_distances_m"], rel=1e-12)
+    assert card["standoff_m"] == pytest.approx(best["standoff_m"], rel=1e-12)
+    html = (out_dir / "report.html").read_text()
+    assert '<section id="plan">' in html and '<section id="test_card">' in html
+    assert "[lab]" in (out_dir / "scenario.toml").read_text()
+    # the written scenario runs again to the same card
+    code, out, err = cli(capsys, "run", str(out_dir / "scenario.toml"), "--json")
+    assert code == 0, err
+    assert json.loads(out)["test_card"]["p_outcome_agree"] == card["p_outcome_agree"]

@@ -1,0 +1,88 @@
+"""The planner: every listed design satisfies every constraint of the lab (a property over random labs);
+an infeasible lab gets one line naming the constraint and what would relax it; the ranking."""
+
+import math
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from blastscale.planning import PlanInfeasible, plan
+from blastscale.planning.planner import _rank_key
+from blastscale.scenario import Scenario
+from blastscale.scenario.lab import LabSpec
+
+BASE = Scenario.default().with_values({"engine": "planar", "duration_s": 3.0})
+
+
+def _check_design(d: dict, lab: LabSpec) -> None:
+    assert d["specimen_height_m"] <= lab.specimen_max_height_m * (1 + 1e-12)
+    assert d["specimen_mass_kg"] <= lab.specimen_max_mass_kg * (1 + 1e-12)
+    assert lab.charge_min_kg * (1 - 1e-12) <= d["explosive_mass_kg"] <= lab.charge_max_kg * (1 + 1e-12)
+    assert d["safety_distances_m"][lab.safety_threshold] == d["safety_radius_m"] <= lab.space_radius_m
+    assert d["camera_fps_required"] <= lab.camera_max_fps and d["camera_fps"] <= max(lab.camera_max_fps,
+                                                                                       d["camera_fps_required"])
+    assert d["explosive"] == lab.explosive and d["initiator_tnt_kg"] == lab.initiator_tnt_kg < d["tnt_equivalent_kg"]
+    assert lab.materials is None or d["material"] in lab.materials
+    assert d["impulsive_ratio"] is None or d["impulsive_ratio"] < 0.4
+    assert 0.0 <= d["p_outcome_agree"] <= 1.0
+
+
+@st.composite
+def labs(draw):
+    lo, hi = sorted((draw(st.sampled_from([0.0, 1e-6, 1e-4, 1e-2])), draw(st.floats(1e-3, 10.0))))
+    return LabSpec(
+        explosive=draw(st.sampled_from(["tnt", "c-4", "pentolite", "anfo", "lead-azide"])),
+        initiator_tnt_kg=draw(st.sampled_from([0.0, 1e-6, 1e-4])),
+        charge_min_kg=lo, charge_max_kg=max(hi, 1e-3),
+        specimen_max_height_m=draw(st.floats(0.05, 6.0)),
+        specimen_max_mass_kg=draw(st.floats(0.01, 2000.0)),
+        materials=draw(st.lists(st.sampled_from(["same", "balsa", "marble", "steel", "lead", "brick"]), min_size=1,
+                                max_size=3, unique=True)),
+        camera_max_fps=draw(st.floats(20.0, 1e5)),
+        space_radius_m=draw(st.floats(0.2, 60.0)),
+        safety_threshold=draw(st.sampled_from(["34.5 kPa", "6.9 kPa", "1.03 kPa", "K40"])),
+        samples=20, seed=draw(st.integers(0, 10)))
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(lab=labs())
+def test_every_listed_design_satisfies_every_constraint(lab):
+    try:
+        p = plan(BASE, lab=lab)
+    except PlanInfeasible as exc:  # one line naming a constraint of the lab
+        msg = str(exc)
+        assert "\n" not in msg and msg.startswith("no design fits the lab")
+        return
+    assert p.designs
+    for d in p.designs:
+        _check_design(d, lab)
+    keys = [_rank_key(d) for d in p.designs]
+    assert keys == sorted(keys)
+    for r in p.rejected:
+        assert r["reasons"] and len(r["reasons"]) == len(r["constraints"])
+
+
+def test_infeasible_lab_says_which_constraint_and_what_relaxes_it():
+    with pytest.raises(PlanInfeasible) as exc:
+        plan(BASE, lab=LabSpec(space_radius_m=0.01, samples=20))
+    msg = str(exc.value)
+    assert "\n" not in msg and "space_radius_m = 0.01 cannot be met" in msg and "space_radius_m at least" in msg
+    with pytest.raises(PlanInfeasible, match="charge_min_kg = 60 cannot be met.*charge_min_kg at most 50 would admit"):
+        plan(BASE, lab=LabSpec(charge_min_kg=60.0, charge_max_kg=100.0, space_radius_m=1000.0, materials=["same"],
+                               specimen_max_height_m=100.0, specimen_max_mass_kg=1e7, samples=20))
+
+
+def test_paper_block_in_a_half_metre_lab():
+    """The paper's block (50 kg at 2 m, masi2021) and specimens up to 0.5 m: the largest scale the lab
+    builds, 1/20, in balsa (the lightest charge among the most trustworthy designs)."""
+    p = plan(BASE, lab=LabSpec(specimen_max_height_m=0.5))
+    best = p.designs[0]
+    assert (best["law"], best["scale_fraction"], best["material"]) == ("general", "1/20", "balsa")
+    assert best["p_outcome_agree"] == 1.0 and best["odds"]["samples"] == 2000
+    assert best["explosive_mass_kg"] == pytest.approx(3.171e-5, rel=1e-3) and best["standoff_m"] == pytest.approx(0.1)
+    for key in ("scale", "material", "density_ratio", "explosive_mass_kg", "tnt_equivalent_kg", "standoff_m",
+                "specimen_mass_kg", "safety_distances_m", "camera_fps", "p_outcome_agree"):
+        assert key in best
+    assert p.best_scenario.scale.length == 0.05 and p.best_scenario.scale.specimen_material == "balsa"
+    assert all(math.isfinite(v) for v in best["safety_distances_m"].values())
