@@ -40,7 +40,14 @@ STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
 def blastscale(args, cwd, env=None, **kw):
     return subprocess.Popen([str(BIN), *map(str, args)], cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, env={**os.environ, "MPLBACKEND": "Agg", **(env or {})}, **kw)
+                            text=True, env={**os.environ, "MPLBACKEND": "Agg", **(env or {})}, preexec_fn=_default_signals, **kw)
+
+
+def _default_signals() -> None:
+    """SIGINT and SIGHUP back to their defaults in the child (a background job or nohup starts with them
+    ignored, and blastscale keeps an ignored signal ignored)."""
+    for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        signal.signal(s, signal.SIG_DFL)
 
 
 def leftovers(folder: Path) -> list:

@@ -104,6 +104,7 @@ WRITERS = {
                                        "50", "--standoffs", "2", "--out", out],
     "reproduce": lambda out, sc: ["reproduce", "--only", "table-geometry", "--out", out],
     "init": lambda out, sc: ["init", f"{out}.toml"],
+    "plan": lambda out, sc: ["plan", sc, "--out", out],
     "plot": lambda out, sc: ["fragility", sc, "--charges", "40,80", "--lognormal", "charge_kg=0.2", "--samples", "10",
                              "--plot", f"{out}.png"],
 }
@@ -126,7 +127,7 @@ def test_output_faults_are_one_line_exit_2_nothing_left(capsys, tmp_path, planar
     assert listing(work) == ([] if fault != "parent is a file" else ["f"])
 
 
-@pytest.mark.parametrize("writer", ["run", "sweep", "similarity-map", "reproduce", "init", "plot"])
+@pytest.mark.parametrize("writer", ["run", "sweep", "similarity-map", "reproduce", "init", "plot", "plan"])
 def test_a_read_only_folder_is_one_line(capsys, tmp_path, planar, writer, monkeypatch):
     ro = tmp_path / "ro"
     ro.mkdir()
@@ -166,6 +167,42 @@ def test_a_full_disk_is_one_line_and_leaves_nothing(capsys, tmp_path, planar, wr
     code, _, err = cli(capsys, *WRITERS[writer](out, planar))
     assert code == 2 and one_line(err) and "no space left on the device" in err and str(out) in err, err
     assert listing(tmp_path) == ["planar.toml"]
+
+
+def test_a_full_disk_at_the_write_itself_names_the_output_not_a_temporary_file(capsys, tmp_path, planar, monkeypatch):
+    """ENOSPC from the operating system's write of a result file (summary.json, histories.nc: every file of a
+    result folder is serialised in memory and written as plain bytes, so HDF5 never meets the full disk): one
+    line naming --out as given, no partial folder."""
+    real = os.fdopen
+
+    class Full:
+        def __init__(self, fh):
+            self.fh = fh
+
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *a):
+            self.fh.close()
+
+        def write(self, data):
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(os, "fdopen", lambda fd, *a, **k: Full(real(fd, *a, **k)))
+    code, _, err = cli(capsys, "run", planar, "--out", tmp_path / "r")
+    assert code == 2 and err == f"error: out = {str(tmp_path / 'r')!r} cannot be written: no space left on the device\n"
+    assert listing(tmp_path) == ["planar.toml"]
+
+
+@pytest.mark.parametrize("command", ["sweep", "plan"])
+def test_force_never_replaces_a_user_folder(capsys, tmp_path, planar, command):
+    d = tmp_path / "d"
+    d.mkdir()
+    (d / "thesis.tex").write_text("x")
+    args = [command, planar, "--out", d, "--force"] + (SWEEP if command == "sweep" else [])
+    code, _, err = cli(capsys, *args)
+    assert code == 2 and one_line(err) and "even with --force" in err
+    assert listing(d) == ["thesis.tex"]
 
 
 # -- fault 5: signals -------------------------------------------------------------------------------------------

@@ -150,6 +150,20 @@ def test_a_failed_similarity_is_the_first_line(tmp_path):
                                 "collapses")
     assert "ensembles disagree on collapse: probability 0 (prototype) vs 1 (model)" in v["line"]
     assert "circular drums wobble chaotically" in v["line"] and "after a collapse" in v["line"]
+    assert v["line"] == data["verdict_line"]  # the line that run printed and wrote into summary.json
+    assert "first-peak ratio 1.063 (3D, P-10) is more than 5 % from 1" in v["line"]
+
+
+def test_gravity_alone_says_nothing_is_scaled():
+    """A scenario without a charge (a stability check, #16) has a [scale] table that is not used: the verdict says
+    so, with the structure's stability, not "the scenario has no [scale] table"."""
+    from blastscale.report.verdict import verdict
+
+    s = {"design": None, "scenario": {"blast": {"charge_kg": 0.0}, "scale": {"length": 0.1}}, "planar": None,
+         "3d": {"prototype": {"collapsed": False, "stability": "settles"}, "model": None, "similarity": None}}
+    v = verdict(s, "wall")
+    assert v["similar"] is None
+    assert v["line"] == "Verdict: gravity alone (no charge): nothing is scaled or compared; the structure settles (3D)."
 
 
 def test_a_prototype_only_study_says_so(tmp_path):

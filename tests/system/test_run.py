@@ -14,6 +14,8 @@ import xarray as xr
 
 from blastscale.cli import main
 
+from _spawn import default_signals
+
 # the console script (as a user runs it), else the same entry point under that name
 _SCRIPT = Path(sys.executable).with_name("blastscale")
 BLASTSCALE = [str(_SCRIPT)] if _SCRIPT.exists() else [
@@ -135,7 +137,8 @@ def test_ctrl_c_exits_130_one_line_no_partial_folder(tmp_path, moment):
     out_dir, marker = tmp_path / "r", tmp_path.parent / f"{tmp_path.name}.marker"
     env = {**os.environ, "BLASTSCALE_PAUSE_AT": f"run:{moment}", "BLASTSCALE_PAUSE_MARKER": str(marker)}
     proc = subprocess.Popen(BLASTSCALE + ["run", "--out", str(out_dir), "--duration", "0.2"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path, env=env)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path, env=env,
+                            preexec_fn=default_signals)
     assert _wait_for(marker.exists, 120), proc.communicate()[1]
     if moment != "started":  # the temporary folder exists: a partial result is on disk
         assert any(p.name.startswith(".r.partial-") for p in tmp_path.iterdir())

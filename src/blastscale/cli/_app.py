@@ -253,7 +253,8 @@ def print_written(path, what: str = "") -> None:
 @contextlib.contextmanager
 def one_line_warnings():
     """Print the library's warnings (e.g. extrapolation) as one ``warning:`` line each on stderr,
-    without Python's file/line prefix; each distinct message once."""
+    without Python's file/line prefix; each distinct message once. A ``ResourceWarning`` (a socket of
+    a Dask cluster torn down after a fault or a signal) says nothing about the user's job: not printed."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
@@ -261,6 +262,8 @@ def one_line_warnings():
         finally:
             seen = set()
             for w in caught:
+                if issubclass(w.category, ResourceWarning):
+                    continue
                 msg = " ".join(str(w.message).split())
                 if msg not in seen:
                     seen.add(msg)

@@ -82,7 +82,9 @@ def _print_result(result) -> None:
     console.rule(styled(("blastscale run", "bold"), f" — {sc.title or 'scenario'}"))
     console.print(styled((verdict_line(result), "bold")), soft_wrap=True)
     m = exp["model"]
-    if m is None:
+    if m is None and sc.blast.gravity_only:
+        console.print(styled(("Gravity alone", "bold"), " (no charge): no specimen, no comparison."))
+    elif m is None:
         console.print(styled(("Prototype only", "bold"), " (the scenario has no [scale] table): no specimen, no comparison."))
     else:
         print_design(result.design)

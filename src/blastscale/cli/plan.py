@@ -76,19 +76,20 @@ def plan_cmd(
     markers = ("plan.json", "summary.json")
     if out is not None:
         check_output_folder(out, force, markers)
-    with one_line_warnings():
-        with stage_progress(quiet=as_json) as tell:
+    written = None
+    with one_line_warnings(), stage_progress(quiet=as_json) as tell:
+        if out is None:
             p = plan(sc, workers=workers, scheduler=scheduler, progress=tell)
-            written = None
-            if out is not None:
-                from ..report.plan_files import write_plan
-                from ..study import Study
+        else:  # the folder claimed (checked, locked) before any work: a second writer is refused at once
+            from ..report.plan_files import write_plan
+            from ..study import Study
 
+            with output_folder(out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts,
+                               markers=markers) as tmp:
+                p = plan(sc, workers=workers, scheduler=scheduler, progress=tell)
                 tell("the best design's study", 0, 1)
                 result = Study(p.best_scenario).run()
-                with output_folder(out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts,
-                                   markers=markers) as tmp:
-                    written = write_plan(p, result, tmp)
+                written = write_plan(p, result, tmp)
     if as_json:
         print_json(p.to_dict())
     else:

@@ -10,7 +10,6 @@ build datasets and write no files.
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 from .results import write_atomic
@@ -36,26 +35,11 @@ def write_netcdf(dataset, path: "str | Path", engine: str = "h5netcdf") -> Path:
     Path
         ``path``.
     """
-    import tempfile
-
-    path = Path(path)
-    fd, name = tempfile.mkstemp(prefix=f".{path.name}.partial-{os.getpid()}-", dir=path.parent)
-    os.close(fd)
-    tmp = Path(name)
-    try:
-        dataset.to_netcdf(tmp, engine=engine)
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+    # serialised in memory first, then written as plain bytes: HDF5 writing straight to a full disk
+    # fails inside its finalisers (tracebacks it prints itself, then a crash), a plain write fails cleanly
+    data = dataset.to_netcdf(None, engine=engine)
+    write_atomic(path, bytes(data))
     return path
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 def histories_tidy(tree):

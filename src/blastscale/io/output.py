@@ -243,8 +243,12 @@ def _lock(target: Path, given: str, name: str = "out") -> int:
         except FileNotFoundError:
             same = False
         if same:  # else the previous holder removed the file between our open and our lock: again
-            os.ftruncate(fd, 0)
-            os.pwrite(fd, f"{os.getpid()} {_host()}\n".encode(), 0)
+            try:
+                os.ftruncate(fd, 0)
+                os.pwrite(fd, f"{os.getpid()} {_host()}\n".encode(), 0)
+            except OSError as exc:  # a full disk: the lock file (ours, held) goes, nothing is left
+                _unlock(target, fd)
+                raise fault(given, exc, name=name) from None
             return fd
         os.close(fd)
 
@@ -273,9 +277,10 @@ def claim(out, kind: Kind, force: bool = False, reuse: Optional[Callable[[Path],
             _unlock(target, fd)
 
 
-def write_file(path, data: "str | bytes", what: str = "out") -> Path:
+def write_file(path, data: "str | bytes", what: str = "out", raw: bool = False) -> Path:
     """Write a file atomically: a unique temporary sibling (removed on any failure) renamed into place;
-    an ``OSError`` becomes one line naming ``what = path``."""
+    an ``OSError`` becomes one line naming ``what = path`` (``raw``: the ``OSError`` itself, for a file
+    inside a claimed output, whose :func:`claim` names the output as the user gave it)."""
     path = Path(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
     tmp = None
@@ -289,6 +294,8 @@ def write_file(path, data: "str | bytes", what: str = "out") -> Path:
         os.replace(tmp, path)
         tmp = None
     except OSError as exc:
+        if raw:
+            raise
         raise fault(str(path), exc, name=what) from None
     finally:
         if tmp is not None:

@@ -119,10 +119,11 @@ def with_legacy_keys(obj: Any, engine: "str | None" = None) -> Any:
 
 def write_atomic(path: "str | Path", data: "str | bytes") -> None:
     """Write a file through a unique temporary sibling renamed into place (permissions from the umask,
-    like any file the user creates; nothing left on failure, an ``OSError`` as one line)."""
+    like any file the user creates; nothing left on failure). An ``OSError`` propagates: the output
+    it belongs to (:func:`blastscale.io.output.claim`) turns it into one line naming that output."""
     from .output import write_file
 
-    write_file(path, data)
+    write_file(path, data, raw=True)
 
 
 def write_json(path: "str | Path", obj: Any) -> None:

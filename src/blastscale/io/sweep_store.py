@@ -190,8 +190,9 @@ def run_sweep(
                                       scheduler=scheduler, workers=nw,
                                       tick=lambda k: progress(done_cases + k, n) if progress else None)
             _consolidate(spec, parts, len(bounds), c, metadata(spec, chunk))
-        except BaseException:  # interrupted or failed: finished chunks stay to resume from, else nothing
-            if not any(parts.glob("chunk-*.npz")):
+        except BaseException as exc:  # interrupted or failed: finished chunks stay to resume from, else nothing;
+            # a write fault (a full disk) of a sweep this run started leaves nothing either
+            if not any(parts.glob("chunk-*.npz")) or (created and isinstance(exc, OSError)):
                 with signals_held():
                     shutil.rmtree(parts, ignore_errors=True)
             raise

@@ -11,7 +11,8 @@ The verdict reads the study's summary only:
 * then where the comparison stops being meaningful: after a collapse only the outcome and the
   tipping time compare; circular drums wobble chaotically, so single trajectories compare up to the
   first peak and the rest through ensembles (their horizon);
-* a prototype-only study (no ``[scale]``) says so and gives the prototype's outcome.
+* a prototype-only study (no ``[scale]``) says so and gives the prototype's outcome; a study under
+  gravity alone (no charge) says that nothing is scaled and gives the structure's stability.
 """
 
 from __future__ import annotations
@@ -118,6 +119,12 @@ def verdict(summary: dict, structure_kind: str = "block", circular: bool = False
             p = (summary.get(eng) or {}).get("prototype")
             if p is not None and "collapsed" in p:
                 outs.append(f"the prototype {_state(p['collapsed'], structure_kind)} ({name})")
+        if not ((summary.get("scenario") or {}).get("blast") or {}).get("charge_kg"):  # gravity alone
+            stab = [f"the structure {p['stability']} ({name})" for eng, name in (("3d", "3D"),)
+                    if ((summary.get(eng) or {}).get("prototype") or {}).get("stability")]
+            line = ("Verdict: gravity alone (no charge): nothing is scaled or compared"
+                    + (f"; {', '.join(stab or outs)}" if stab or outs else "") + ".")
+            return {"similar": None, "reasons": [], "facts": stab or outs, "limits": [], "line": line}
         line = ("Verdict: prototype only: no specimen is designed and nothing is compared (the scenario has no "
                 "[scale] table)" + (f"; {', '.join(outs)}" if outs else "") + ".")
         return {"similar": None, "reasons": [], "facts": outs, "limits": [], "line": line}
