@@ -71,3 +71,45 @@ def test_the_readme_commands_run_as_written(tmp_path):
             assert proc.returncode == 2 and proc.stderr.strip() == error.strip(), f"{cmd}\n{proc.stderr}"
         ran.append(cmd)
     assert len(ran) >= 13, ran
+
+
+#: .toml arguments of the docs' commands that are neither shipped nor written by an earlier `init`: why.
+DOCS_FILES_DESCRIBED = {
+    "bad.toml": "docs/scenarios.md: an illustration of the error lines, one per kind of mistake",
+    "lab05.toml": "docs/planning.md: its content is given in the text above the command",
+    "wall.toml": "docs/assemblies.md: its content is the TOML block above the command",
+}
+
+
+def test_the_docs_commands_name_real_commands_and_files():
+    """Every `blastscale COMMAND` in the README's and docs' code blocks is a command of the CLI, and every
+    scenario file it reads is shipped, written by an earlier `blastscale init` of the same page, an upper-case
+    placeholder or described on the page (DOCS_FILES_DESCRIBED). Cheap: nothing is run."""
+    from blastscale.cli import app
+    from blastscale.scenario import library_names
+
+    import typer
+
+    commands = {c.name for c in typer.main.get_command(app).commands.values()}
+    shipped = set(library_names())
+    bad = []
+    for page in [README, *sorted((README.parent / "docs").glob("*.md"))]:
+        made = set()
+        for block in re.findall(r"```(?:console|bash|sh)?\n(.*?)```", page.read_text(encoding="utf-8"), flags=re.S):
+            for line in block.splitlines():
+                m = re.match(r"^\s*(?:\$ )?(?:\.venv/bin/)?blastscale (\S+)(.*)$", line)
+                if not m or m[1].startswith("-"):
+                    continue
+                sub, rest = m[1], m[2].split("#")[0].split()
+                if sub not in commands:
+                    bad.append(f"{page.name}: {line.strip()} (no command {sub!r})")
+                files = [a for a in rest if a.endswith(".toml") and not a.startswith("-")]
+                if sub == "init":
+                    made.update(files)
+                    continue
+                for f in files:
+                    if (f[:-5] in shipped or f in made or f.split("/")[-1].isupper() or f.startswith("DIR")
+                            or "SCENARIO" in f or f in DOCS_FILES_DESCRIBED):
+                        continue
+                    bad.append(f"{page.name}: {line.strip()} ({f} is not shipped nor written by an earlier init)")
+    assert not bad, "\n".join(bad)
