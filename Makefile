@@ -22,6 +22,7 @@ $(STAMP): pyproject.toml | check-python
 
 # --force: a second `make run` replaces the previous results/default (only a blastscale result folder)
 run: install
+	mkdir -p results
 	$(BIN)/blastscale run --out results/default --force
 
 # the architecture (import-linter contracts in pyproject.toml), then the whole suite

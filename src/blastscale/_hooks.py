@@ -4,8 +4,10 @@ A test that must interrupt a run at a given moment cannot rely on the clock (the
 first, or not have started). With ``BLASTSCALE_PAUSE_AT=<point>`` and ``BLASTSCALE_PAUSE_MARKER=<file>``
 in the environment, the run writes the marker file when it reaches that point and waits there (at
 most :data:`MAX_PAUSE` seconds) for the test's signal. Without those variables a pause point costs one
-dictionary lookup. Points: ``run:started``, ``run:simulating``, ``run:writing`` (``blastscale run``)
-and ``sweep:chunks=N`` (a sweep store after its N-th chunk file).
+dictionary lookup. Points: ``run:started``, ``run:simulating``, ``run:writing`` (``blastscale run``),
+``sweep:chunks=N`` (a sweep store after its N-th chunk file), ``sweep:consolidating`` (the store's
+partial folder made, before it is filled) and ``output:between-renames`` (an existing output set aside,
+the new one not yet renamed into place; the signals are held there: only kill -9 stops it).
 """
 
 from __future__ import annotations

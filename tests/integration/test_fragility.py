@@ -101,3 +101,40 @@ def test_prototype_only_fragility_through_the_cli_equals_the_scaled_scenarios(tm
         outs.append(json.loads(capsys.readouterr().out))
     assert outs[1]["collapsed"] == outs[0]["collapsed"] and outs[1]["median_charge_kg"] == outs[0]["median_charge_kg"]
     assert 0 < outs[1]["collapsed"][2] < 200
+
+
+def test_complete_separation_gives_open_bounds_not_a_crash():
+    """Issue #15, fault 3: every draw stands at 40 kg and overturns at 100 kg. The likelihood has no maximum
+    (beta -> 0, the median anywhere between): the fit says so, with the median bracketed by the two charges and
+    beta's bounds open, instead of an OverflowError."""
+    f = fit_lognormal_fragility([40.0, 100.0], [0, 100], 100)
+    assert f.beta is None and not f.bounded and f.median_ci_kg == (40.0, 100.0) and f.beta_ci == (0.0, math.inf)
+    assert f.median_charge_kg == pytest.approx(math.sqrt(4000.0)) and "between them" in f.note
+    assert list(f.probability([30.0, 90.0])) == [0.0, 1.0]
+    # one informative charge only: a fit, with the bounds the data cannot close reported open
+    g = fit_lognormal_fragility([40.0, 80.0], [0, 54], 100)
+    assert g.beta_ci == (0.0, math.inf) and "do not bound the median and the beta" in g.note and not g.bounded
+
+
+def test_fragility_cli_when_the_fit_cannot_be_bounded(capsys, tmp_path):
+    png = tmp_path / "f.png"
+    with pytest.raises(SystemExit) as e:
+        main(["fragility", "--charges", "40,100", "--lognormal", "charge_kg=0.01", "--samples", "100", "--plot",
+              str(png)])
+    assert e.value.code in (0, None)
+    cap = capsys.readouterr()
+    assert "lognormal fit: not bounded: every draw stands at W <= 40 kg and overturns at W >= 100 kg" in cap.out
+    assert png.stat().st_size > 10_000 and f"wrote {png} (" in cap.err
+    with pytest.raises(SystemExit) as e:
+        main(["fragility", "--charges", "40,100", "--lognormal", "charge_kg=0.01", "--samples", "100", "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert out["beta"] is None and out["beta_ci"] == [0.0, "inf"] and out["median_charge_ci_kg"] == [40.0, 100.0]
+    assert out["fit_bounded"] is False and "add charges between 40 and 100 kg" in out["fit_note"]
+
+
+def test_zero_dispersion_is_refused_in_one_line(capsys):
+    with pytest.raises(SystemExit) as e:
+        main(["fragility", "--charges", "40,80", "--lognormal", "charge_kg=0", "--samples", "100"])
+    err = capsys.readouterr().err
+    assert e.value.code == 2 and err.count("\n") == 1
+    assert "beta is out of range: must be > 0 (beta = 0 is no uncertainty" in err and "blastscale critical" in err

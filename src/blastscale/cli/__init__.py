@@ -3,7 +3,7 @@
 Each command lives in its own module and registers itself on :data:`app`:
 ``blast``/``design`` (:mod:`.loads`), ``rock``/``critical`` (:mod:`.rocking`),
 ``block3d`` (:mod:`.block3d`), ``run`` (:mod:`.main_job`), ``reproduce`` (:mod:`.reproduce`), ``plan``
-(:mod:`.plan`). Units at this edge are those
+(:mod:`.plan`), ``init`` (:mod:`.init`). Units at this edge are those
 named in each option's help text; everything is converted to SI before calling the library.
 
 Bad input raises :class:`~blastscale._validate.BlastscaleInputError` in the library; ``main``
@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import sys
 
-from ._app import app, console_err
+from ._app import app, print_error
 
 # command modules register themselves on `app` when imported
 from . import loads as _loads  # noqa: F401,E402
@@ -25,6 +25,7 @@ from . import main_job as _main_job  # noqa: F401,E402
 from . import reproduce as _reproduce  # noqa: F401,E402
 from . import sweeps as _sweeps  # noqa: F401,E402
 from . import plan as _plan  # noqa: F401,E402
+from . import init as _init  # noqa: F401,E402
 
 __all__ = ["app", "main"]
 
@@ -36,5 +37,5 @@ def main(argv: list[str] | None = None) -> None:
     try:
         app(args=argv, prog_name="blastscale")
     except BlastscaleInputError as exc:
-        console_err.print(f"[bold red]error:[/] {exc}", highlight=False, soft_wrap=True)
+        print_error(str(exc))
         sys.exit(2)

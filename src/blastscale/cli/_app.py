@@ -1,20 +1,19 @@
-"""The typer application object and small output helpers shared by the commands."""
+"""The typer application object and small output helpers shared by the commands.
+
+Console text is literal: the consoles read no markup and no emoji codes (``Console(markup=False,
+emoji=False)``), so a title, a path or a grid typed by the user is printed as typed ("[model 2]",
+"[/b]", ":100:"); styles are given as :class:`rich.text.Text` (:func:`styled`).
+"""
 
 from __future__ import annotations
 
 import os
-import signal
 import sys
 
+from . import _signals
 
-def _interrupted_while_starting(signum, frame):  # pragma: no cover - timing dependent
-    """Ctrl-C while the command line tool is still importing: one line, exit 130, nothing written."""
-    os.write(2, b"error: interrupted (Ctrl-C): no partial results left\n")
-    os._exit(130)
-
-
-if os.path.basename(sys.argv[0]) == "blastscale" and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
-    signal.signal(signal.SIGINT, _interrupted_while_starting)  # replaced by the command's own handler
+if os.path.basename(sys.argv[0]) == "blastscale":
+    _signals.at_import()  # a signal while importing: one line; a local Dask worker: Ctrl-C ignored
 
 import contextlib  # noqa: E402
 import json
@@ -23,23 +22,33 @@ import warnings
 import typer
 from rich.console import Console
 from rich.table import Table
+from rich.text import Text
 from typer.core import TyperGroup, TyperOption
 
 from .._validate import BlastscaleInputError
 from ..io.results import jsonable, with_legacy_keys
+from ._signals import Interrupted, ignore_interrupts, raise_if_interrupted  # noqa: F401 (re-exported)
 
-# Wide enough for the tables when output is piped (rich falls back to 80 columns otherwise).
-console = Console(width=None if Console().is_terminal else 160)
-console_err = Console(stderr=True, width=None if Console(stderr=True).is_terminal else 160)
+
+def _console(stderr: bool = False) -> Console:
+    # wide enough for the tables when output is piped (rich falls back to 80 columns otherwise)
+    probe = Console(stderr=stderr)
+    return Console(stderr=stderr, width=None if probe.is_terminal else 160, markup=False, emoji=False,
+                   highlight=False)
+
+
+console = _console()
+console_err = _console(stderr=True)
+
+
+def styled(*parts) -> Text:
+    """A line of literal text with styled pieces: ``styled(("error:", "bold red"), " ", user_text)``."""
+    return Text.assemble(*parts)
 
 
 def print_error(message: str) -> None:
-    """Print ``error: <message>`` as one line on stderr (newlines folded)."""
-    from rich.markup import escape
-
-    # escaped: "[structure]" or "[0.2, 20]" in a message are text, not rich markup
-    console_err.print(f"[bold red]error:[/] {escape(' '.join(str(message).split()))}", highlight=False,
-                      soft_wrap=True, markup=True)
+    """Print ``error: <message>`` as one line on stderr (newlines folded; the message literal)."""
+    console_err.print(styled(("error:", "bold red"), " ", " ".join(str(message).split())), soft_wrap=True)
 
 
 _display_type_rich = getattr(TyperOption, "display_type_rich", None)
@@ -57,44 +66,6 @@ if _display_type_rich is not None:  # older typer prints no types at all
     TyperOption.display_type_rich = _flag_display_type
 
 
-class Interrupted(BaseException):
-    """Ctrl-C (SIGINT) inside a command. Raised instead of KeyboardInterrupt so that click does
-    not turn it into its two-line "Aborted!"; a BaseException, so that no ``except Exception``
-    swallows it; clean-ups (``finally``, the output folder) still run."""
-
-
-_INTERRUPTED: list = []  # set by the handler: an import that turns Interrupted into ImportError is still Ctrl-C
-
-
-def _raise_interrupted(signum, frame):
-    _INTERRUPTED.append(signum)
-    f, depth = frame, 0
-    while f is not None and depth < 30:  # inside a finaliser Python would ignore the exception:
-        if f.f_code.co_name == "__del__":  # the flag is checked at the next stage instead
-            return
-        f, depth = f.f_back, depth + 1
-    raise Interrupted()
-
-
-def _unraisable(info) -> None:
-    """Ctrl-C that landed where Python cannot raise (a finaliser, a ctypes callback of the JIT):
-    not printed; the flag stays set and :func:`raise_if_interrupted` raises at the next stage."""
-    if isinstance(info.exc_value, Interrupted) or _INTERRUPTED:  # or a consequence of it (a half-made
-        return  # file object closed at exit): the one line printed says what happened
-    sys.__unraisablehook__(info)
-
-
-def raise_if_interrupted() -> None:
-    """Raise :class:`Interrupted` when Ctrl-C came at a moment that could not raise (a finaliser)."""
-    if _INTERRUPTED:
-        raise Interrupted()
-
-
-def ignore_interrupts() -> None:
-    """From here on Ctrl-C is ignored: the results are in place, only the printing remains."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
 class OneLineErrorGroup(TyperGroup):
     """The command group, with click's usage errors (bad number, missing or unknown option) printed as
     one ``error:`` line naming the option, exit status 2, instead of typer's multi-line box."""
@@ -102,18 +73,16 @@ class OneLineErrorGroup(TyperGroup):
     def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
         if not standalone_mode:
             return super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
-        previous = signal.getsignal(signal.SIGINT)
-        previous_hook = sys.unraisablehook
-        if previous is not signal.SIG_IGN:  # a background job keeps ignoring Ctrl-C
-            signal.signal(signal.SIGINT, _raise_interrupted)
-            sys.unraisablehook = _unraisable
+        saved = _signals.install()
         args = normalise_ratios(list(sys.argv[1:] if args is None else args))
         try:
             rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
         except BaseException as exc:
-            if isinstance(exc, Interrupted) or (_INTERRUPTED and not isinstance(exc, SystemExit)):
-                print_error("interrupted (Ctrl-C): no partial results left")
-                sys.exit(130)
+            signum = _signals.interrupted_signal()
+            if isinstance(exc, Interrupted) or (signum is not None and not isinstance(exc, SystemExit)):
+                _quiet_after_interrupt()
+                print_error(_signals.message(signum))
+                sys.exit(_signals.exit_status(signum))
             if isinstance(exc, BlastscaleInputError):
                 print_error(_adapt_hint(str(exc), self, args))
                 sys.exit(2)
@@ -129,10 +98,18 @@ class OneLineErrorGroup(TyperGroup):
                 sys.exit(1)
             raise
         finally:
-            signal.signal(signal.SIGINT, previous)
-            if not _INTERRUPTED:  # after Ctrl-C, keep quiet about finalisers that run at exit
-                sys.unraisablehook = previous_hook
+            _signals.restore(saved)
+            _signals.set_interrupt_note(None)
         sys.exit(rv if isinstance(rv, int) else 0)
+
+
+def _quiet_after_interrupt() -> None:
+    """After a signal the one line says it all: Dask's and asyncio's shutdown chatter is not shown."""
+    import logging
+
+    for name in ("distributed", "asyncio", "tornado"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+    warnings.filterwarnings("ignore")
 
 
 #: Options whose value is a dimensionless ratio: they also accept a fraction such as 1/200.
@@ -207,15 +184,20 @@ def _main(
     """Design safe reduced-scale blast experiments on masonry structures (Masi et al. scaling laws)."""
 
 
+def show_progress(quiet: bool = False) -> bool:
+    """Whether a command shows progress: on a terminal (stderr), and not with ``--json`` (``quiet``)."""
+    return not quiet and console_err.is_terminal
+
+
 @contextlib.contextmanager
-def stage_progress():
+def stage_progress(quiet: bool = False):
     """A rich progress bar on stderr for a staged job; yields ``tell(stage, done, total)``.
-    Transient: it disappears when the job ends."""
+    Transient (it disappears when the job ends); shown only on a terminal and not with ``--json``."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
-    with Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                  TimeElapsedColumn(), console=console_err, transient=True,
-                  disable=not console_err.is_terminal) as bar:
+    with Progress(SpinnerColumn(), TextColumn("{task.description}", markup=False), BarColumn(),
+                  MofNCompleteColumn(), TimeElapsedColumn(), console=console_err, transient=True,
+                  disable=not show_progress(quiet)) as bar:
         task = bar.add_task("starting", total=None)
 
         def tell(stage: str, done: int, total: int) -> None:
@@ -226,9 +208,53 @@ def stage_progress():
 
 
 @contextlib.contextmanager
+def activity(label: str, quiet: bool = False):
+    """A spinner with the elapsed time on stderr while one long step runs (a terminal only, not with
+    ``--json``)."""
+    with stage_progress(quiet) as tell:
+        tell(label, 0, None)
+        yield
+
+
+def count_progress(label: str, quiet: bool = False):
+    """A progress bar over cases (done / total, elapsed, remaining) and its ``tick(done, total)``."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    bar = Progress(TextColumn(label, markup=False), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                   TimeRemainingColumn(), console=console_err, transient=True, disable=not show_progress(quiet))
+    task = bar.add_task(label, total=None)
+
+    def tick(done: int, total: int) -> None:
+        raise_if_interrupted()
+        bar.update(task, completed=done, total=total)
+
+    return bar, tick
+
+
+def print_written(path, what: str = "") -> None:
+    """One line on stderr: what a command wrote and how big it is (``wrote DIR/ (7 files, 2.1 MB)``)."""
+    from pathlib import Path
+
+    from ..io.output import format_size, tree_size
+
+    p = Path(path)
+    try:
+        size = format_size(tree_size(p))
+    except OSError:
+        size = "?"
+    if p.is_dir():
+        n = sum(1 for f in p.rglob("*") if f.is_file())
+        detail = f"{n} files, {size}" + (f": {what}" if what else "")
+        console_err.print(f"wrote {path}{'' if str(path).endswith('/') else '/'} ({detail})", soft_wrap=True)
+    else:
+        console_err.print(f"wrote {path} ({size}{', ' + what if what else ''})", soft_wrap=True)
+
+
+@contextlib.contextmanager
 def one_line_warnings():
     """Print the library's warnings (e.g. extrapolation) as one ``warning:`` line each on stderr,
-    without Python's file/line prefix; each distinct message once."""
+    without Python's file/line prefix; each distinct message once. A ``ResourceWarning`` (a socket of
+    a Dask cluster torn down after a fault or a signal) says nothing about the user's job: not printed."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
@@ -236,12 +262,12 @@ def one_line_warnings():
         finally:
             seen = set()
             for w in caught:
+                if issubclass(w.category, ResourceWarning):
+                    continue
                 msg = " ".join(str(w.message).split())
                 if msg not in seen:
                     seen.add(msg)
-                    from rich.markup import escape
-
-                    console_err.print(f"[yellow]warning:[/] {escape(msg)}", highlight=False, soft_wrap=True)
+                    console_err.print(styled(("warning:", "yellow"), " ", msg), soft_wrap=True)
 
 
 def print_json(obj: dict, engine: "str | None" = None) -> None:
@@ -263,26 +289,34 @@ def fmt_value(x, spec: str = ".6g") -> str:
 
 
 def save_figure(build, path) -> None:
-    """Build a matplotlib figure with the non-interactive Agg backend and write it to ``path``.
+    """Build a matplotlib figure with the non-interactive Agg backend and write it to ``path``
+    atomically (:func:`blastscale.io.output.write_file`: nothing half-written, one line on a fault).
 
     ``build`` is a no-argument callable returning the figure (called after the backend is set).
     """
+    import io
+    from pathlib import Path
+
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from ..io.output import write_file
+
     fig = build()
+    buf = io.BytesIO()
     try:
-        fig.savefig(path, dpi=120)
-    except (OSError, ValueError) as exc:  # missing folder, no permission, unknown image format
-        raise BlastscaleInputError(f"plot = {str(path)!r} cannot be written: {exc}") from exc
+        fig.savefig(buf, dpi=120, format=Path(path).suffix.lstrip(".").lower() or "png")
+    except ValueError as exc:  # an image format matplotlib cannot write
+        raise BlastscaleInputError(f"plot = {str(path)!r} cannot be written: {exc}") from None
     finally:
         plt.close(fig)
+    write_file(Path(path).expanduser(), buf.getvalue(), what="plot")
 
 
 def table(title: str, rows: list[tuple[str, str, str]]) -> Table:
-    """A three-column (quantity, value, unit) rich table."""
+    """A three-column (quantity, value, unit) rich table (title and cells literal)."""
     t = Table(title=title, title_justify="left")
     t.add_column("quantity")
     t.add_column("value", justify="right")

@@ -12,7 +12,8 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, fmt_value, one_line_warnings, print_json, save_figure, table
+from ._app import app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, stage_progress, table
+from .flags import flags_named
 from . import options as opt
 from .options import block_from_options, check_plot_path
 
@@ -118,8 +119,10 @@ def block3d_cmd(
     )
     study = Study(sc)
     with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
-        contact = contact_settings(sc, study.check()[0])  # a step past the stability bound: before any run
-        result = study.run()
+        with flags_named():  # a step past the stability bound, too long or too large: before any run
+            contact = contact_settings(sc, study.check()[0])
+        with stage_progress(quiet=as_json) as tell:
+            result = study.run(progress=tell)
     out = block3d_output(result, contact, incidence)
     if plot:
         from ..plots.column import plot_column_comparison
@@ -144,4 +147,4 @@ def block3d_cmd(
             ("max |uplift difference|", f"{s['max_abs_uplift_diff_m']:.3g}", "m"),
         ]))
     if plot:
-        console.print(f"plot written to {plot}")
+        print_written(plot)

@@ -13,7 +13,8 @@ from typing import Optional
 import typer
 
 from . import options as opt
-from ._app import app, console, fmt_value, one_line_warnings, print_json, save_figure, table
+from ._app import app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, stage_progress, table
+from .flags import flags_named
 from .options import check_plot_path, scenario_default
 
 _SUMMARY_ROWS = (
@@ -126,8 +127,10 @@ def column_cmd(
     )
     study = Study(sc)
     with one_line_warnings():
-        contact = contact_settings(sc, study.check()[0])  # a step past the stability bound: before any run
-        result = study.run()
+        with flags_named():  # a step past the stability bound, too long or too large: before any run
+            contact = contact_settings(sc, study.check()[0])
+        with stage_progress(quiet=as_json) as tell:
+            result = study.run(progress=tell)
     out = column_output(result, contact, incidence, timestep)
     if plot:
         from ..plots.column import plot_column_comparison
@@ -160,7 +163,7 @@ def column_cmd(
     if "ensemble" in out:
         _print_ensemble(out["ensemble"], result.ensemble.points[-1], scale is not None)
     if plot:
-        console.print(f"plot written to {plot}")
+        print_written(plot)
 
 
 def _print_ensemble(e: dict, top_point: str, with_model: bool) -> None:

@@ -4,11 +4,12 @@ by the same schema, and an error names the flag the user typed."""
 
 from __future__ import annotations
 
+import contextlib
 from typing import Optional
 
 from ..scenario import Scenario
 
-__all__ = ["FLAG_NAMES", "scenario_from_flags"]
+__all__ = ["FLAG_NAMES", "scenario_from_flags", "flags_named"]
 
 #: Scenario field path -> the command-line flag that sets it (one-line errors name the flag).
 FLAG_NAMES = {
@@ -27,6 +28,23 @@ FLAG_NAMES = {
     "simulation.threads": "--threads",
     "simulation.contact.jacobian": "--jacobian",
 }
+
+
+@contextlib.contextmanager
+def flags_named():
+    """One-line errors of the study's own checks (the size and time guard, the engine's time step) name
+    the flag the user typed instead of the scenario key it sets (``--duration`` for ``simulation.duration_s``)."""
+    from .._validate import BlastscaleInputError
+
+    try:
+        yield
+    except BlastscaleInputError as exc:
+        text = str(exc)
+        for key in sorted(FLAG_NAMES, key=len, reverse=True):
+            text = text.replace(key, FLAG_NAMES[key])
+        if text == str(exc):
+            raise
+        raise BlastscaleInputError(text) from None
 
 
 def _given(table: Optional[dict]) -> dict:

@@ -15,7 +15,7 @@ from ..blast.incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS, check_inciden
 from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ..similitude import design_model
 from . import blast_flags as bf
-from ._app import app, console, fmt_value, one_line_warnings, print_json, table
+from ._app import app, console, fmt_value, one_line_warnings, print_json, styled, table
 from .options import MODEL_HELP, block_from_options
 
 @app.command("blast")
@@ -115,18 +115,16 @@ def print_design(d) -> None:
     t.add_row("arrival time", f"{p.arrival_time:.6g}", f"{m.arrival_time:.6g}",
               f"{m.arrival_time / p.arrival_time:.6g}", "", "s")
     console.print(t)
-    console.print(f"[dim]{d.root_note}[/]")
+    console.print(styled((d.root_note, "dim")))
     ft = table("Scaling factors: model / prototype, each a ratio of like quantities (dimensionless)", [
         (k, fmt_value(v), "-") for k, v in f.to_dict().items()
     ])
     console.print(ft)
     if d.impulsive is not None:
         i = d.impulsive
-        verdict = "[green]impulsive[/]" if i.impulsive else "[red]NOT impulsive: similarity is not guaranteed[/]"
-        console.print(
-            f"Impulsive check t_o*p: prototype {i.prototype_ratio:.3g}, model {i.model_ratio:.3g} "
-            f"(threshold {i.threshold:g}) -> {verdict}"
-        )
+        verdict = ("impulsive", "green") if i.impulsive else ("NOT impulsive: similarity is not guaranteed", "red")
+        console.print(styled(f"Impulsive check t_o*p: prototype {i.prototype_ratio:.3g}, model {i.model_ratio:.3g} "
+                             f"(threshold {i.threshold:g}) -> ", verdict))
     if d.effects is not None:
         print_effects(d.effects)
 

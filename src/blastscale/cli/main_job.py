@@ -4,9 +4,10 @@
 (:mod:`blastscale.scenario`), checks everything that can be checked before simulating
 (blast-fit ranges, engines, memory, the output folder), runs
 :class:`blastscale.study.Study` and writes, through a temporary sibling folder renamed into
-place at the end: ``summary.json``, ``histories.nc``, ``histories.csv``, the figures,
-``scenario.toml`` and a self-contained ``report.html``. Ctrl-C at any moment leaves no
-partial folder (exit status 130). Without a scenario the built-in default runs: the paper's
+place at the end: ``summary.json``, ``histories.nc`` (``histories.csv`` with ``--csv``), the
+figures, ``scenario.toml`` and a self-contained ``report.html`` (:mod:`blastscale.io.output`: a
+second writer of the same folder is refused, only a blastscale result is replaced). Ctrl-C, SIGTERM
+or SIGHUP at any moment leave no partial folder (exit status 130, 143, 129). Without a scenario the built-in default runs: the paper's
 10 m block, 50 kg TNT at 2 m, lambda = 1/200, masi2021, friction 0.7 (so that ``make run``
 reproduces the paper's model 2).
 """
@@ -20,8 +21,8 @@ import typer
 from rich.table import Table
 
 from ..scenario import Scenario, load_scenario
-from ._app import (app, console, console_err, fmt_value, ignore_interrupts, one_line_warnings, print_json,
-                   raise_if_interrupted, stage_progress)
+from ._app import (app, console, fmt_value, ignore_interrupts, one_line_warnings, print_json, print_written,
+                   raise_if_interrupted, stage_progress, styled, table)
 from .loads import print_design
 
 
@@ -47,6 +48,7 @@ def _parse_set(items: list[str]) -> dict:
 
 def _compare_table(title: str, prototype: dict, model: dict) -> Table:
     from ..report.html import split_unit
+    from ..report.verdict import label
 
     t = Table(title=title, title_justify="left")
     columns = ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)",
@@ -56,56 +58,69 @@ def _compare_table(title: str, prototype: dict, model: dict) -> Table:
     for k, v in prototype.items():
         if isinstance(v, (dict, list, str)):
             continue
-        label, unit = split_unit(k)
         values = (fmt_value(v),) if model is None else (fmt_value(v), fmt_value(model.get(k)))
-        t.add_row(label, *values, unit)
+        t.add_row(label(k), *values, split_unit(k)[1])
     return t
+
+
+def _similarity_table(sim: dict) -> Table:
+    """The similarity figures of one engine, in words (the per-point figures are in the report)."""
+    from ..report.html import split_unit
+    from ..report.verdict import label
+
+    return table("Similarity (prototype vs up-scaled model)",
+                 [(label(k), fmt_value(v, ".3g"), split_unit(k)[1]) for k, v in sim.items()
+                  if not isinstance(v, (dict, list))])
 
 
 def _print_result(result) -> None:
     sc, s = result.scenario, result.summary()
     exp = s["experiment"]
     from ..report.html import format_charge
+    from ..report.verdict import verdict_line
 
-    console.rule(f"[bold]blastscale run[/] — {sc.title or 'scenario'}")
+    console.rule(styled(("blastscale run", "bold"), f" — {sc.title or 'scenario'}"))
+    console.print(styled((verdict_line(result), "bold")), soft_wrap=True)
     m = exp["model"]
-    if m is None:
-        console.print("[bold]Prototype only[/] (the scenario has no \\[scale] table): no specimen, no comparison.")
+    if m is None and sc.blast.gravity_only:
+        console.print(styled(("Gravity alone", "bold"), " (no charge): no specimen, no comparison."))
+    elif m is None:
+        console.print(styled(("Prototype only", "bold"), " (the scenario has no [scale] table): no specimen, no comparison."))
     else:
         print_design(result.design)
-        console.print(f"[bold]Model experiment:[/] {m.get('height_m', float('nan')):.4g} m high {sc.structure.kind}, "
-                      f"{m.get('mass_kg', float('nan')):.4g} kg ({m['material']}), "
-                      f"[bold]{format_charge(m['charge_kg'])} TNT at {m['standoff_m']:.4g} m[/]")
+        console.print(styled(("Model experiment:", "bold"), f" {m.get('height_m', float('nan')):.4g} m high "
+                             f"{sc.structure.kind}, {m.get('mass_kg', float('nan')):.4g} kg ({m['material']}), ",
+                             (f"{format_charge(m['charge_kg'])} TNT at {m['standoff_m']:.4g} m", "bold")))
     if s["planar"] is not None:
         pl = s["planar"]
         console.print(_compare_table(f"Planar rocking ({sc.blast.pulse_shape} pulse, {sc.simulation.duration_s:g} s)",
                                      pl["prototype"], pl["model"]))
         if pl["similarity"] is not None:
-            console.print("similarity: " + ", ".join(f"{k} {fmt_value(v, '.3g')}" for k, v in pl["similarity"].items()))
+            console.print(_similarity_table(pl["similarity"]))
     if s["critical"] is not None:
-        console.print(f"critical charge at {sc.blast.standoff_m:g} m (planar, {sc.blast.pulse_shape}): "
-                      f"[bold]{result.critical.charge_kg:.4g} kg[/] ({result.critical.evaluations} simulations)")
+        console.print(styled(f"critical charge at {sc.blast.standoff_m:g} m (planar, {sc.blast.pulse_shape}): ",
+                             (f"{result.critical.charge_kg:.4g} kg", "bold"),
+                             f" ({result.critical.evaluations} simulations)"))
     if s["3d"] is not None:
         r3 = s["3d"]
         console.print(_compare_table(f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, "
                                      f"Method {sc.blast.load})", r3["prototype"], r3["model"]))
         stab = (r3.get("prototype") or {}).get("stability")
         if stab is not None:
-            console.print(f"under gravity alone the structure [bold]{stab}[/] (stands: no block moved more than 1e-4 of "
-                          "its height; collapses: a block fell)")
+            console.print(styled("under gravity alone the structure ", (str(stab), "bold"),
+                                 " (stands: no block moved more than 1e-4 of its height; collapses: a block fell)"))
         if r3.get("similarity") is not None:
-            console.print("similarity: " + ", ".join(
-                f"{k} {fmt_value(v, '.3g')}" for k, v in r3["similarity"].items() if not isinstance(v, (dict, list))))
+            console.print(_similarity_table(r3["similarity"]))
     from ..report.card import card_of
 
     card = card_of(result)
     if card is not None:
         p = card["p_outcome_agree"]
-        console.print(f"[bold]Test card:[/] {format_charge(card['explosive_mass_kg'])} of {card['explosive']} at "
-                      f"{card['standoff_m'] * 1e3:.4g} mm; safety radius ({card['safety_threshold']}) "
-                      f"{card['safety_radius_m']:.3g} m, debris zone {card['debris_radius_m'] * 1e3:.4g} mm; camera "
-                      f"{card['camera_fps']:g} frames/s, gauges sampled at {card['pressure_sampling_hz']:g} Hz"
-                      + ("" if p is None else f"; P(outcome agrees) {p:.3f}") + " (report.html: the printable card)")
+        console.print(styled(("Test card:", "bold"), f" {format_charge(card['explosive_mass_kg'])} of {card['explosive']} at "
+                             f"{card['standoff_m'] * 1e3:.4g} mm; safety radius ({card['safety_threshold']}) "
+                             f"{card['safety_radius_m']:.3g} m, debris zone {card['debris_radius_m'] * 1e3:.4g} mm; camera "
+                             f"{card['camera_fps']:g} frames/s, gauges sampled at {card['pressure_sampling_hz']:g} Hz"
+                             + ("" if p is None else f"; P(outcome agrees) {p:.3f}") + " (report.html: the printable card)"))
     # result.warnings were printed as they came, one line each (one_line_warnings)
 
 
@@ -117,9 +132,10 @@ def run_cmd(
              "50 kg TNT at 2 m, lambda 1/200, masi2021, friction 0.7."),
     out: Optional[Path] = typer.Option(
         None, "--out", show_default=False,
-        help="Result folder to create (summary.json, histories.nc/.csv, figures, report.html). Refused if it "
-             "exists, unless --force."),
-    force: bool = typer.Option(False, "--force", help="Replace an existing result folder."),
+        help="Result folder to create (summary.json, histories.nc, figures, report.html); its parent folder must "
+             "exist. Refused if it exists, unless --force."),
+    force: bool = typer.Option(False, "--force", help="Replace an existing blastscale result folder (never another "
+                                                      "folder)."),
     values: list[str] = typer.Option(
         [], "--set", metavar="KEY=VALUE", show_default=False,
         help="Override a scenario value, e.g. --set blast.charge_kg=60 --set friction=0.5 (repeatable)."),
@@ -131,6 +147,8 @@ def run_cmd(
                                              help="Coulomb friction mu \\[-] (default: the scenario's)."),
     duration: Optional[float] = typer.Option(None, "--duration", show_default=False,
                                              help="Simulated time \\[s] (default: the scenario's)."),
+    csv: bool = typer.Option(False, "--csv", help="Also write histories.csv (the histories flat, for spreadsheets; "
+                                                  "large: ~150 MB for a column)."),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object instead of tables."),
 ) -> None:
     """Run a scenario: design the model, simulate prototype and model, compare, write a report."""
@@ -158,7 +176,7 @@ def run_cmd(
 
             check_lab(design, sc.lab)
         writes = 3 if out is not None else 0  # histories, figures, report
-        with stage_progress() as tell:
+        with stage_progress(quiet=as_json) as tell:
             state = {"done": 0, "total": 1}
 
             def on_study(stage: str, done: int, total: int) -> None:
@@ -179,7 +197,7 @@ def run_cmd(
                 with output_folder(out, force, before_commit=raise_if_interrupted,
                                    after_commit=ignore_interrupts) as tmp:
                     result = study.run(progress=on_study)
-                    written = write_study(result, tmp, progress=on_write)
+                    write_study(result, tmp, progress=on_write, csv=csv)
     if as_json:
         from ..report import summary_dict
 
@@ -187,5 +205,6 @@ def run_cmd(
     else:
         _print_result(result)
     if out is not None:
-        console_err.print(f"wrote {out}/ ({', '.join(written)})", highlight=False, soft_wrap=True)
+        print_written(out, "report.html, summary.json, histories.nc" + (", histories.csv" if csv else "")
+                      + ", scenario.toml, figures")
 

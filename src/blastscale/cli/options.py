@@ -70,9 +70,9 @@ def check_plot_path(plot: Optional[str]) -> None:
             raise BlastscaleInputError(
                 f"plot = {plot!r} has no image extension: valid extensions are {', '.join(PLOT_SUFFIXES)} "
                 f"(e.g. {plot}.png)")
-        parent = p.resolve().parent
-        if not parent.is_dir():
-            raise BlastscaleInputError(f"plot = {plot!r}: the folder {str(parent)!r} does not exist")
+        from ..io.output import Kind, check_target
+
+        check_target(p, Kind("an image", lambda q: True, folder=False), name="plot")  # missing folder, a file
 
 
 PULSE_HELP = "Pulse shape: friedlander (paper Eq. 1), triangular (Eq. 3) or impulsive (Dirac of the same impulse)."

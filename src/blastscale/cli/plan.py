@@ -17,8 +17,8 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from ._app import app, console, console_err, ignore_interrupts, one_line_warnings, print_json, raise_if_interrupted, \
-    stage_progress
+from ._app import (app, console, ignore_interrupts, one_line_warnings, print_json, print_written, raise_if_interrupted,
+                   stage_progress, styled)
 
 
 def _print_plan(p, top: int) -> None:
@@ -37,8 +37,8 @@ def _print_plan(p, top: int) -> None:
                   f"{100 * d['predicted_first_peak_error']:.2g} %")
     console.print(t)
     b = p.designs[0]
-    console.print(f"[bold]Best design:[/] {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
-                  f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm")
+    console.print(styled(("Best design:", "bold"), f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
+                         f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"))
     for r in b["reasons"]:
         console.print(f"  - {r}")
     reasons: dict = {}
@@ -76,22 +76,23 @@ def plan_cmd(
     markers = ("plan.json", "summary.json")
     if out is not None:
         check_output_folder(out, force, markers)
-    with one_line_warnings():
-        with stage_progress() as tell:
+    written = None
+    with one_line_warnings(), stage_progress(quiet=as_json) as tell:
+        if out is None:
             p = plan(sc, workers=workers, scheduler=scheduler, progress=tell)
-            written = None
-            if out is not None:
-                from ..report.plan_files import write_plan
-                from ..study import Study
+        else:  # the folder claimed (checked, locked) before any work: a second writer is refused at once
+            from ..report.plan_files import write_plan
+            from ..study import Study
 
+            with output_folder(out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts,
+                               markers=markers) as tmp:
+                p = plan(sc, workers=workers, scheduler=scheduler, progress=tell)
                 tell("the best design's study", 0, 1)
                 result = Study(p.best_scenario).run()
-                with output_folder(out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts,
-                                   markers=markers) as tmp:
-                    written = write_plan(p, result, tmp)
+                written = write_plan(p, result, tmp)
     if as_json:
         print_json(p.to_dict())
     else:
         _print_plan(p, top)
     if written is not None:
-        console_err.print(f"wrote {out}/ ({', '.join(written)})", highlight=False, soft_wrap=True)
+        print_written(out, ", ".join(written))

@@ -1,8 +1,10 @@
 """``blastscale reproduce``: every table and figure of the paper that blastscale can make.
 
 Each item (:mod:`blastscale.report.reproduce`) is written into ``OUT/<item>/`` through a
-temporary folder; items already done (same mode, same scenario or script) are skipped on a
-second run (resumable after Ctrl-C).
+temporary folder (:mod:`blastscale.io.output`: ``OUT`` is locked against a second writer and must be
+new, empty or a reproduce folder); items already done (same mode, same scenario or script) are
+skipped on a second run (resumable after Ctrl-C, SIGTERM, SIGHUP). The expected time and size are
+stated before the first item starts.
 ``OUT/report.html`` puts the paper's numbers beside blastscale's and marks the paper's slips;
 ``OUT/summary.json`` holds every row.
 """
@@ -17,13 +19,14 @@ import typer
 from rich.table import Table
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, console_err, one_line_warnings, stage_progress
+from ._app import app, console, console_err, one_line_warnings, print_error, print_written, stage_progress
+from ._signals import set_interrupt_note
 
 
 @app.command("reproduce")
 def reproduce_cmd(
     out: Path = typer.Option(..., "--out", show_default=False,
-                             help="Folder for the items and report.html (created; reused to resume)."),
+                             help="Folder for the items and report.html (created in an existing folder; reused to resume)."),
     only: list[str] = typer.Option([], "--only", metavar="NAME", show_default=False,
                                    help="Only these items (repeatable; shell patterns such as 'scenario-*')."),
     quick: bool = typer.Option(False, "--quick", help="Shortened runs (0.2 s scenarios, quick gallery): a smoke "
@@ -33,63 +36,88 @@ def reproduce_cmd(
                                                                       "examples/ of a source checkout)."),
 ) -> None:
     """Reproduce the paper's tables and figures; the report puts the paper's numbers beside ours."""
+    from ..io.output import Kind, claim
     from ..io.results import output_folder, provenance, write_atomic, write_json
     from ..report.reproduce import MARKER, item_done, items, render_reproduce_report, run_item, skipped
+    from ..report.reproduce_cost import expected_cost, is_reproduce_folder
+    from ..study import format_duration
+    from ..io.output import format_size
 
     every = items(examples)
     left_out = skipped(examples)
     if list_items:
         for it in every:
-            console.print(f"{it.name:45s} {it.title}", highlight=False)
+            console.print(f"{it.name:45s} {it.title}")
         for why in left_out:
-            console_err.print(f"skipped: {why}", highlight=False)
+            console_err.print(f"skipped: {why}")
         return
     chosen = [it for it in every if not only or any(fnmatch.fnmatch(it.name, pat) for pat in only)]
     if not chosen:
         raise BlastscaleInputError(f"only = {' '.join(only)!r} matches no item: valid names are "
                                    f"{', '.join(it.name for it in every)}")
-    out = out.expanduser()
-    if out.exists() and not out.is_dir():
-        raise BlastscaleInputError(f"out = {str(out)!r} is a file, not a folder: give the path of a folder")
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise BlastscaleInputError(f"out = {str(out)!r} cannot be created: {exc.strerror or exc}") from None
-    status: dict[str, str] = {}
-    failures: list[str] = []
-    with one_line_warnings(), stage_progress() as tell:
-        for i, it in enumerate(chosen):
-            tell(f"{it.name}", i, len(chosen))
-            if item_done(it, out, quick):
-                status[it.name] = "skipped (done)"
-                continue
-            try:
-                info = run_item(it, out, quick, output_folder)
-                status[it.name] = f"done in {info['wall_time_s']:.1f} s"
-            except (BlastscaleInputError, RuntimeError, OSError) as exc:
-                status[it.name] = "FAILED"
-                failures.append(f"{it.name}: {' '.join(str(exc).split())}")
-        tell("report", len(chosen), len(chosen))
-    import json
+    kind = Kind("a blastscale reproduce folder (no item.json nor reproduce summary.json)", is_reproduce_folder)
+    with claim(out, kind, reuse=lambda p: not any(p.iterdir()) or is_reproduce_folder(p)) as c:
+        folder, created = c.path, not c.path.exists()
+        todo = [it for it in chosen if not item_done(it, folder, quick)]
+        secs, size = expected_cost(todo, quick)
+        console_err.print(f"reproduce: {len(todo)} of {len(chosen)} items to make"
+                          + (f", about {format_duration(secs)} and {format_size(size)} on this kind of machine"
+                             if todo else " (every one is done)")
+                          + ("" if quick or not todo else "; --quick makes every item in about "
+                             f"{format_duration(expected_cost(todo, True)[0])} (a smoke test)"), soft_wrap=True)
+        if created:
+            folder.mkdir()
+        set_interrupt_note(lambda: _kept(folder, every, created))
+        status: dict[str, str] = {}
+        failures: list[str] = []
+        try:
+            with one_line_warnings(), stage_progress() as tell:
+                for i, it in enumerate(chosen):
+                    tell(f"{it.name}", i, len(chosen))
+                    if it not in todo:
+                        status[it.name] = "skipped (done)"
+                        continue
+                    try:
+                        info = run_item(it, folder, quick, output_folder)
+                        status[it.name] = f"done in {info['wall_time_s']:.1f} s"
+                    except (BlastscaleInputError, RuntimeError, OSError) as exc:
+                        status[it.name] = "FAILED"
+                        failures.append(f"{it.name}: {' '.join(str(exc).split())}")
+                tell("report", len(chosen), len(chosen))
+        except BaseException:
+            if created and not any(folder.iterdir()):
+                folder.rmdir()  # interrupted before any item: nothing left behind
+            raise
+        import json
 
-    infos = []
-    for it in every:  # the report covers every item done so far, chosen now or before
-        marker = out / it.name / MARKER
-        if marker.is_file():
-            infos.append(json.loads(marker.read_text()))
-    meta = provenance()
-    write_atomic(out / "report.html", render_reproduce_report(out, infos, meta))
-    write_json(out / "summary.json", {**meta, "items": infos})
+        infos = []
+        for it in every:  # the report covers every item done so far, chosen now or before
+            marker = folder / it.name / MARKER
+            if marker.is_file():
+                infos.append(json.loads(marker.read_text()))
+        meta = provenance()
+        write_atomic(folder / "report.html", render_reproduce_report(folder, infos, meta))
+        write_json(folder / "summary.json", {**meta, "items": infos})
     t = Table(title=f"blastscale reproduce -> {out}", title_justify="left")
     t.add_column("item")
     t.add_column("status")
     for it in chosen:
         t.add_row(it.name, status[it.name])
     console.print(t)
-    console_err.print(f"wrote {out / 'report.html'} ({len(infos)} items)", highlight=False)
+    print_written(out, f"report.html, {len(infos)} items")
     for why in left_out:
-        console_err.print(f"skipped: {why}", highlight=False)
+        console_err.print(f"skipped: {why}")
     if failures:
         for f in failures:
-            console_err.print(f"[bold red]error:[/] {f}", highlight=False, soft_wrap=True)
+            print_error(f)
         raise typer.Exit(1)
+
+
+def _kept(folder: Path, every, created: bool) -> str:
+    """What an interrupted reproduce leaves: the items done (resumable), or nothing."""
+    from ..report.reproduce import MARKER
+
+    done = sum(1 for it in every if (folder / it.name / MARKER).is_file())
+    if not done:
+        return "no partial results left"
+    return f"{done} finished items kept in {folder} (the partial one removed): run the same command again to resume"

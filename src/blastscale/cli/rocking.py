@@ -12,8 +12,9 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, console_err, fmt_value, one_line_warnings, print_json, save_figure, table
+from ._app import activity, app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
 from . import blast_flags as bf
+from .flags import flags_named
 from . import options as opt
 from .options import block_from_options, check_plot_path
 
@@ -115,7 +116,7 @@ def rock_cmd(
             gravity_ratio=gravity_ratio if scale is not None else None,
         )
     }
-    with console_err.status("simulating the rocking response ...", spinner="dots"), one_line_warnings():
+    with flags_named(), activity("simulating the rocking response", quiet=as_json):
         result = Study(sc).run()
     planar = result.planar
     res = planar.prototype
@@ -161,7 +162,7 @@ def rock_cmd(
             ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
         ]))
     if plot:
-        console.print(f"plot written to {plot}")
+        print_written(plot)
 
 
 @app.command("critical")
@@ -204,7 +205,7 @@ def critical_cmd(
             "or --charge (kg, finds the critical stand-off)"
         )
     system = RockingSystem.from_block(block, gravity, restitution)
-    with one_line_warnings(), console_err.status("searching the critical scenario ...", spinner="dots"):
+    with one_line_warnings(), activity("searching the critical scenario", quiet=as_json):
         if standoff is not None:
             res = critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate,
                                   load_model=lm)
@@ -235,7 +236,7 @@ def critical_cmd(
         from ..plots.rocking import plot_pi_diagram
         from ..rocking import pi_diagram
 
-        with console_err.status("computing the P-I diagram ...", spinner="dots"):
+        with activity("computing the P-I diagram", quiet=as_json):
             # the curve for the pulse shape searched (impulsive: the triangular curve, whose
             # high-pressure end is the impulsive limit)
             if pulse_shape == "friedlander":
@@ -272,7 +273,7 @@ def critical_cmd(
         rows.append((f"model charge (lambda = {scale:g})", f"{out['model_experiment']['critical_charge_kg']:.6g}", "kg"))
     console.print(table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", rows))
     if plot:
-        console.print(f"plot written to {plot}")
+        print_written(plot)
 
 
 @app.command("capacity")
@@ -314,7 +315,11 @@ def capacity_cmd(
         raise BlastscaleInputError(f"charge = {charge:g} kg is out of range: must be > 0 kg")
     system = RockingSystem.from_block(block, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
-    with one_line_warnings(), console_err.status(f"capacity at {R.size} stand-offs ...", spinner="dots"):
+    from ..study import check_budget
+
+    per = 5e-4 * (2 if scale is not None else 1)  # ~0.4-0.5 ms per stand-off (README "Speed"), x2 with the model
+    check_budget("--standoffs", R.size, "stand-offs", R.size * 8.0 * 40, R.size * per)
+    with one_line_warnings(), activity(f"capacity at {R.size} stand-offs", quiet=as_json):
         curve = capacity_curve(system, R, **kw)
         mcap = None
         if scale is not None:
@@ -346,12 +351,12 @@ def capacity_cmd(
     from rich.table import Table
 
     t = Table(title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", title_justify="left")
-    t.add_column("stand-off R \\[m]", justify="right")
-    t.add_column("critical charge W_c \\[kg]", justify="right")
+    t.add_column("stand-off R [m]", justify="right")
+    t.add_column("critical charge W_c [kg]", justify="right")
     if mcap is not None:
-        t.add_column(f"model R \\[m] (lambda = {scale:g})", justify="right")
-        t.add_column("model W_c \\[kg]", justify="right")
-        t.add_column("up-scaled W_c \\[kg]", justify="right")
+        t.add_column(f"model R [m] (lambda = {scale:g})", justify="right")
+        t.add_column("model W_c [kg]", justify="right")
+        t.add_column("up-scaled W_c [kg]", justify="right")
     for k in range(R.size):
         row = [f"{R[k]:.6g}", fmt_value(out["critical_charge_kg"][k], ".6g")]
         if mcap is not None:
@@ -363,4 +368,4 @@ def capacity_cmd(
     if charge is not None:
         console.print(f"safe stand-off for {charge:g} kg: {safe:.6g} m (it overturns the block closer than that)")
     if plot:
-        console.print(f"plot written to {plot}")
+        print_written(plot)

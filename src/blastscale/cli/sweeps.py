@@ -14,7 +14,8 @@ from typing import List, Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, console_err, one_line_warnings, print_json, table
+from ._app import activity, app, console, count_progress, one_line_warnings, print_json, print_written, table
+from ._signals import ignore_interrupts, set_interrupt_note
 
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")
 SCHEDULER = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (e.g. tcp://127.0.0.1:8786).")
@@ -41,18 +42,16 @@ def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
     return out
 
 
-def _progress_bar(label: str):
-    """A rich progress bar on stderr and its ``(done, total)`` callback."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+def _resume_note(out) -> None:
+    """What an interrupted sweep says it kept: its finished chunks, from which the same command resumes."""
+    from ..io.sweep_store import unfinished_chunks
 
-    bar = Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(), TimeRemainingColumn(),
-                   console=console_err, transient=True)
-    task = bar.add_task(label, total=None)
+    def note() -> str:
+        n = unfinished_chunks(out)
+        return (f"{n} finished chunks kept in {out}.parts (the partial chunk removed): run the same command again "
+                "to resume" if n else "no partial results left")
 
-    def tick(done: int, total: int) -> None:
-        bar.update(task, completed=done, total=total)
-
-    return bar, tick
+    set_interrupt_note(note)
 
 
 @app.command("sweep")
@@ -62,11 +61,11 @@ def sweep_cmd(
     sample: Optional[List[str]] = typer.Option(None, "--sample", help="FIELD=dist:params, e.g. friction=uniform:0.5,0.8 (repeatable)."),
     samples: int = typer.Option(0, "--samples", help="Monte Carlo samples per grid point (with --sample)."),
     seed: int = SEED,
-    out: Path = typer.Option(..., "--out", help="Zarr store to write (a folder, e.g. sweep.zarr)."),
+    out: Path = typer.Option(..., "--out", help="Zarr store to write (a folder, e.g. sweep.zarr; its parent folder must exist)."),
     scheduler: Optional[str] = SCHEDULER,
     workers: Optional[int] = WORKERS,
     chunk: Optional[int] = CHUNK,
-    force: bool = typer.Option(False, "--force", help="Replace a store (or unfinished chunks) of another sweep."),
+    force: bool = typer.Option(False, "--force", help="Replace a store (or unfinished chunks) of another sweep (never anything else)."),
     outcomes: bool = typer.Option(False, "--outcomes", help="Outcome mode (planar blocks): overturned and largest rotation of prototype and model at any time, vectorised (docs/sweeps.md)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
@@ -88,9 +87,12 @@ def sweep_cmd(
     if samples and not dists:
         raise BlastscaleInputError(f"samples = {samples}: give the sampled fields with --sample FIELD=dist:params")
     spec = SweepSpec.build(base, grid, dists, samples=samples, seed=seed, outcomes=outcomes)
-    bar, tick = _progress_bar(f"sweep: {spec.n_cases} cases")
+    bar, tick = count_progress(f"sweep: {spec.n_cases} cases", quiet=as_json)
+    _resume_note(out)
     with one_line_warnings(), bar:
         run = run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, force=force, progress=tick)
+    ignore_interrupts()  # the store is in place: only the printing remains
+    print_written(out, f"{spec.n_cases} cases")
     res = {**run.to_dict(), "dims": list(spec.dims), "shape": list(spec.shape),
            "fields": {a.name: a.path for a in spec.axes} | {s.name: s.path for s in spec.sampled}}
     if as_json:
@@ -117,10 +119,7 @@ def _uniform_range(text: str, name: str) -> tuple:
 def _beta(text: str, name: str) -> float:
     from ..sweeps.grids import parse_number
 
-    b = parse_number(text, name, "beta")
-    if b < 0:
-        raise BlastscaleInputError(f"--lognormal {name} = {text!r}: beta = {b:g} is out of range: must be >= 0")
-    return b
+    return parse_number(text, f"--lognormal {name}", "beta")  # its range: blastscale.sweeps.fragility
 
 
 @app.command("fragility")
@@ -144,7 +143,7 @@ def fragility_cmd(
     check_plot_path(plot)
     base = _scenario(scenario)
     W = parse_grid(charges, "charges")
-    with console_err.status(f"fragility: {W.size} charges x {samples} draws ...", spinner="dots"):
+    with activity(f"fragility: {W.size} charges x {samples} draws", quiet=as_json):
         res = fragility(base, W, lognormal=_assignments(lognormal, "--lognormal", _beta),
                         uniform=_assignments(uniform, "--uniform", _uniform_range), samples=samples, seed=seed)
     out = res.to_dict()
@@ -161,19 +160,22 @@ def fragility_cmd(
     from rich.table import Table
 
     t = Table(title=f"Fragility ({samples} draws per charge, seed {seed})", title_justify="left")
-    for c in ("charge W \\[kg]", "collapsed", "P(overturn)", "binomial s.e."):
+    for c in ("charge W [kg]", "collapsed", "P(overturn)", "binomial s.e."):
         t.add_column(c, justify="right")
     for w, k, p, s in zip(out["charge_kg"], out["collapsed"], out["probability"], out["binomial_standard_error"]):
         t.add_row(f"{w:.6g}", str(k), f"{p:.4f}", f"{s:.4f}")
     console.print(t)
     if res.fit is None:
         console.print("no transition in the charge range: no lognormal fit (widen --charges)")
+    elif res.fit.beta is None:
+        console.print(f"lognormal fit: not bounded: {res.fit.note}")
     else:
         f = res.fit
         console.print(f"lognormal fit: median {f.median_charge_kg:.6g} kg (95 %: {f.median_ci_kg[0]:.6g} - "
-                      f"{f.median_ci_kg[1]:.6g}), beta {f.beta:.4g} (95 %: {f.beta_ci[0]:.4g} - {f.beta_ci[1]:.4g})")
+                      f"{f.median_ci_kg[1]:.6g}), beta {f.beta:.4g} (95 %: {f.beta_ci[0]:.4g} - {f.beta_ci[1]:.4g})"
+                      + (f"; {f.note}" if f.note else ""))
     if plot:
-        console.print(f"plot written to {plot}")
+        print_written(plot)
 
 
 @app.command("similarity-map")
@@ -185,7 +187,7 @@ def similarity_map_cmd(
     standoffs: str = typer.Option("2,4", "--standoffs", help="Prototype stand-offs R \\[m]."),
     engine: str = typer.Option("planar", "--engine", help="planar (rocking, ~2 ms per case) or 3d (MuJoCo, one Study per case: a coarse grid)."),
     tolerance: Optional[float] = typer.Option(None, "--tolerance", help="Error below which an agreeing model is trustworthy (default 5e-4 rad planar, 0.05 relative 3D)."),
-    out: Optional[Path] = typer.Option(None, "--out", help="Zarr store of the underlying sweep (resumable)."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Zarr store of the underlying sweep (resumable; its parent folder must exist)."),
     scheduler: Optional[str] = SCHEDULER,
     workers: Optional[int] = typer.Option(0, "--workers", help="Local worker processes (default 0: in this process)."),
     chunk: Optional[int] = CHUNK,
@@ -207,7 +209,9 @@ def similarity_map_cmd(
     base = _scenario(scenario)
     grids = [parse_grid(t, n) for t, n in ((scales, "scales"), (density_ratios, "density-ratios"),
                                           (charges, "charges"), (standoffs, "standoffs"))]
-    bar, tick = _progress_bar(f"similarity map ({engine})")
+    bar, tick = count_progress(f"similarity map ({engine})", quiet=as_json)
+    if out is not None:
+        _resume_note(out)
     with one_line_warnings(), bar:
         def run(spec):
             if out is None:
@@ -249,5 +253,7 @@ def similarity_map_cmd(
         (f"trustworthy (agree, error <= {res['tolerance']:g} {unit})", str(res["n_trustworthy"]), ""),
         ("largest error where valid", f"{float(np.nanmax(ds['error'].values)):.3g}", unit),
     ]))
+    if out is not None:
+        print_written(out, "the underlying sweep")
     if plot:
-        console.print(f"plot written to {plot}")
+        print_written(plot)

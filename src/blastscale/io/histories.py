@@ -1,8 +1,8 @@
 """Files of response histories: NetCDF (a ``Response3D.dataset``, a study's DataTree with one group
 per engine) and the tidy CSV of a study's histories (flat, for spreadsheets).
 
-Written as every result file of :mod:`.results` is: into a temporary sibling
-(``.<name>.partial``) renamed into place, so a reader never sees a half-written file and a failed
+Written as every result file of :mod:`.results` is: into a unique temporary sibling
+(``.<name>.partial-*``) renamed into place, so a reader never sees a half-written file and a failed
 write leaves nothing behind. The engines (:mod:`blastscale.sim3d`, :mod:`blastscale.rocking`)
 build datasets and write no files.
 """
@@ -10,7 +10,6 @@ build datasets and write no files.
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 from .results import write_atomic
@@ -36,14 +35,10 @@ def write_netcdf(dataset, path: "str | Path", engine: str = "h5netcdf") -> Path:
     Path
         ``path``.
     """
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.partial")  # the temporary sibling of results.write_atomic
-    try:
-        dataset.to_netcdf(tmp, engine=engine)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+    # serialised in memory first, then written as plain bytes: HDF5 writing straight to a full disk
+    # fails inside its finalisers (tracebacks it prints itself, then a crash), a plain write fails cleanly
+    data = dataset.to_netcdf(None, engine=engine)
+    write_atomic(path, bytes(data))
     return path
 
 

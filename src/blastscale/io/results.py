@@ -2,8 +2,9 @@
 output folder that appears complete or not at all.
 
 :func:`output_folder` writes into a temporary sibling folder and renames it into place at the
-end; an error or Ctrl-C (``KeyboardInterrupt``) removes the temporary folder, so a reader never
-sees a half-written result. The rename itself runs with SIGINT blocked.
+end, through the one output mechanism of :mod:`blastscale.io.output` (checks, a lock, stale partial
+work removed; an error, Ctrl-C, SIGTERM or SIGHUP removes the temporary folder), so a reader never
+sees a half-written result.
 """
 
 from __future__ import annotations
@@ -12,20 +13,15 @@ import contextlib
 import datetime as _dt
 import json
 import math
-import os
 import platform
-import shutil
-import signal
 import subprocess
-import tempfile
 from pathlib import Path
 from typing import Any, Iterator
 
 from .. import __version__
-from .._validate import BlastscaleInputError
 
 __all__ = ["jsonable", "write_json", "versions", "git_commit", "provenance", "output_folder",
-           "check_output_folder", "write_atomic", "LEGACY_KEYS", "legacy_name", "with_legacy_keys"]
+           "check_output_folder", "result_kind", "write_atomic", "LEGACY_KEYS", "legacy_name", "with_legacy_keys"]
 
 #: Marker file of a blastscale output folder (``--force`` replaces only such folders or empty ones).
 MARKER = "summary.json"
@@ -122,13 +118,12 @@ def with_legacy_keys(obj: Any, engine: "str | None" = None) -> Any:
 
 
 def write_atomic(path: "str | Path", data: "str | bytes") -> None:
-    """Write a file through a temporary sibling renamed into place (permissions from the umask,
-    like any file the user creates)."""
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.partial")
-    with open(tmp, "wb") as fh:
-        fh.write(data.encode("utf-8") if isinstance(data, str) else data)
-    os.replace(tmp, path)
+    """Write a file through a unique temporary sibling renamed into place (permissions from the umask,
+    like any file the user creates; nothing left on failure). An ``OSError`` propagates: the output
+    it belongs to (:func:`blastscale.io.output.claim`) turns it into one line naming that output."""
+    from .output import write_file
+
+    write_file(path, data, raw=True)
 
 
 def write_json(path: "str | Path", obj: Any) -> None:
@@ -170,82 +165,49 @@ def provenance() -> dict:
             "timestamp": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")}
 
 
+def _is_result_folder(folder: Path, markers: tuple = (MARKER,)) -> bool:
+    """Whether ``folder`` is a blastscale result: its marker file, and for ``summary.json`` one that
+    blastscale wrote (it names blastscale's version)."""
+    for m in markers:
+        f = folder / m
+        if not f.is_file():
+            continue
+        if m != MARKER:
+            return True
+        try:
+            return "blastscale" in (json.loads(f.read_text(encoding="utf-8")).get("versions") or {})
+        except (OSError, ValueError, AttributeError):
+            return False
+    return False
+
+
+def result_kind(markers: tuple = (MARKER,)):
+    """The :class:`~blastscale.io.output.Kind` of a blastscale result folder (``markers``: its marker files)."""
+    from .output import Kind
+
+    return Kind(f"a blastscale result folder (no blastscale {' or '.join(markers)})",
+                lambda p: _is_result_folder(p, markers))
+
+
 def check_output_folder(out: "str | Path", force: bool = False, markers: tuple = (MARKER,)) -> Path:
-    """Check, before any work, that ``out`` can become a result folder; returns it absolute.
+    """Check, before any work, that ``out`` can become a result folder; returns it absolute
+    (:func:`blastscale.io.output.check_target`: the parent must exist; an existing folder is replaced
+    only with ``force``, and only when empty or a blastscale result, never a user's folder)."""
+    from .output import check_target
 
-    Refused (one line): an existing file; an existing folder without ``force``; with ``force``
-    a folder that is neither empty nor a blastscale result (no ``summary.json``), or one that
-    holds the current directory.
-    """
-    p = Path(out).expanduser()
-    a = p.resolve()
-    if a.exists() and not a.is_dir():
-        raise BlastscaleInputError(f"out = {str(out)!r} is a file, not a folder: give the path of a new folder")
-    if a.is_dir():
-        if not force:
-            raise BlastscaleInputError(f"out = {str(out)!r} exists: refused (give --force to replace it)")
-        cwd = Path.cwd().resolve()
-        if a == cwd or a in cwd.parents:
-            raise BlastscaleInputError(f"out = {str(out)!r} holds the current folder: refused even with --force")
-        if any(a.iterdir()) and not any((a / m).is_file() for m in markers):
-            raise BlastscaleInputError(
-                f"out = {str(out)!r} is not a blastscale result folder (no {' or '.join(markers)}): --force "
-                "replaces only those or empty folders")
-    return a
-
-
-@contextlib.contextmanager
-def _sigint_blocked() -> Iterator[None]:
-    """SIGINT held back (delivered afterwards) while a few file-system calls must not be split."""
-    can = hasattr(signal, "pthread_sigmask")
-    if can:
-        old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-    try:
-        yield
-    finally:
-        if can:
-            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+    return check_target(out, result_kind(markers), force)
 
 
 @contextlib.contextmanager
 def output_folder(out: "str | Path", force: bool = False, before_commit=None, after_commit=None,
                   markers: tuple = (MARKER,)) -> Iterator[Path]:
-    """A temporary sibling folder of ``out`` to write into, renamed to ``out`` on success.
+    """A partial folder beside ``out`` to write into, renamed to ``out`` on success
+    (:mod:`blastscale.io.output`: checked, locked against a second writer, stale partial folders of
+    dead runs removed; on any exception, Ctrl-C included, the partial folder is removed and the
+    exception propagates, an ``OSError`` as one line). ``before_commit()`` (may raise to abandon the
+    folder) and ``after_commit()`` run with SIGINT, SIGTERM and SIGHUP held back, just before and just
+    after the rename."""
+    from .output import claim
 
-    On any exception (Ctrl-C included) the temporary folder is removed and the exception
-    propagates; an existing ``out`` is replaced only with ``force`` (:func:`check_output_folder`),
-    after the new folder is complete (``markers``: the files that make a folder replaceable). ``before_commit()`` (may raise to abandon the folder) and
-    ``after_commit()`` run with SIGINT held back, just before and just after the rename.
-    """
-    dest = check_output_folder(out, force, markers)
-    try:
-        dest.parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.partial-", dir=dest.parent))
-    except OSError as exc:
-        raise BlastscaleInputError(
-            f"out = {str(out)!r} cannot be created: {exc.strerror or exc} ({str(dest.parent)!r})") from None
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes it 0700; a result folder is an ordinary folder
-    try:
+    with claim(out, result_kind(markers), force) as c, c.staged(before_commit, after_commit) as tmp:
         yield tmp
-        with _sigint_blocked():
-            if before_commit is not None:
-                before_commit()
-            trash = None
-            if dest.exists():
-                trash = dest.with_name(f".{dest.name}.old-{os.getpid()}")
-                os.rename(dest, trash)
-            os.rename(tmp, dest)
-            if trash is not None:
-                shutil.rmtree(trash, ignore_errors=True)
-            if after_commit is not None:
-                after_commit()
-    except OSError as exc:  # disk full, permissions changed underneath: one line, nothing left
-        with _sigint_blocked():
-            shutil.rmtree(tmp, ignore_errors=True)
-        raise BlastscaleInputError(f"out = {str(out)!r} cannot be written: {exc.strerror or exc}") from None
-    except BaseException:
-        with _sigint_blocked():
-            shutil.rmtree(tmp, ignore_errors=True)
-        raise

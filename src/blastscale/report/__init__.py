@@ -1,6 +1,6 @@
 """The study's result folder and its self-contained HTML report.
 
-:func:`write_study` writes ``summary.json``, ``histories.nc``, ``histories.csv``, one PNG per
+:func:`write_study` writes ``summary.json``, ``histories.nc`` (``histories.csv`` on request), one PNG per
 figure, ``scenario.toml`` and ``report.html`` into a folder (the CLI gives it a temporary
 folder that :func:`blastscale.io.results.output_folder` renames into place).
 """
@@ -26,8 +26,8 @@ UNITS = {
 }
 
 
-def write_study(result, folder, progress: Optional[Callable[[str], None]] = None, plan_html: Optional[str] = None
-                ) -> list[str]:
+def write_study(result, folder, progress: Optional[Callable[[str], None]] = None, csv: bool = False,
+                plan_html: Optional[str] = None) -> list[str]:
     """Write every result file of a study into ``folder`` (which must exist).
 
     Parameters
@@ -36,6 +36,9 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     folder : path
     progress : callable, optional
         ``progress(stage)`` before each file group.
+    csv : bool
+        Also write ``histories.csv``, the histories flat (large: a column's is 135-169 MB and takes
+        longer to write than the simulation; ``histories.nc`` holds the same).
     plan_html : str, optional
         The plan's section (``blastscale plan --out``), placed before the test card.
 
@@ -50,16 +53,18 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     folder = Path(folder)
     tell = progress or (lambda stage: None)
     meta = provenance()
-    tell("histories (NetCDF, CSV)")
+    tell("histories (NetCDF" + (", CSV)" if csv else ")"))
     tree = result.to_datatree()
     write_netcdf(tree, folder / "histories.nc")
-    write_histories_csv(tree, folder / "histories.csv")
+    if csv:
+        write_histories_csv(tree, folder / "histories.csv")
     tell("figures")
     figures = render_figures(result)
     for f, png in figures:
         write_atomic(folder / f"{f.name}.png", png)
     write_atomic(folder / "scenario.toml", result.scenario.to_toml())
-    files = ["summary.json", "histories.nc", "histories.csv", "scenario.toml"] + [f"{f.name}.png" for f, _ in figures]
+    files = (["summary.json", "histories.nc"] + (["histories.csv"] if csv else []) + ["scenario.toml"]
+             + [f"{f.name}.png" for f, _ in figures])
     tell("report")
     write_atomic(folder / "report.html", render_report(result, figures, meta, files, plan_html=plan_html))
     write_json(folder / "summary.json", summary_dict(result, meta))
@@ -68,14 +73,18 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
 
 def summary_dict(result, meta: Optional[dict] = None) -> dict:
     """The content of ``summary.json``: provenance (versions, git commit, timestamp), units, the
-    study's nested summary (scenario included), its flat ``scalars`` and, with a ``[lab]`` table, the
-    ``test_card`` (:func:`blastscale.planning.study_test_card`), each renamed key with its
+    study's nested summary (scenario included), its flat ``scalars``, the report's ``verdict``
+    (:func:`blastscale.report.verdict.verdict`: similar, reasons, limits, the line) and, with a ``[lab]``
+    table, the ``test_card`` (:func:`blastscale.planning.study_test_card`), each renamed key with its
     deprecated name beside it (:func:`blastscale.io.results.with_legacy_keys`)."""
     from ..io.results import provenance, with_legacy_keys
+    from .verdict import verdict
 
     from .card import card_of
 
+    s = result.summary()
+    v = verdict(s, result.scenario.structure.kind, getattr(result.structure, "section", None) == "circular")
     card = card_of(result)
     extra = {} if card is None else {"test_card": card}
-    return with_legacy_keys({**(provenance() if meta is None else meta), "units": UNITS, **result.summary(),
-                             "scalars": result.scalars(), **extra})
+    return with_legacy_keys({**(provenance() if meta is None else meta), "units": UNITS, **s,
+                             "scalars": result.scalars(), "verdict": v, **extra})

@@ -19,6 +19,7 @@ from ..units import split_unit as _split_unit
 from .slips import applicable_slips
 from .card import CSS as _CARD_CSS
 from .card import card_section
+from .verdict import label, specimen_rows, verdict
 
 __all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
 
@@ -108,9 +109,8 @@ def _compare_table(prototype: dict, model: dict | None) -> str:
     for k, v in _flat(prototype):
         if isinstance(v, str):
             continue
-        label, unit = split_unit(k.split(".")[-1])
-        label = ".".join(k.split(".")[:-1] + [label])
-        rows.append((label, v, unit) if model is None else (label, v, mflat.get(k), unit))
+        words, unit = label(k), split_unit(k.split(".")[-1])[1]
+        rows.append((words, v, unit) if model is None else (words, v, mflat.get(k), unit))
     head = ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)",
                                                                     "unit")
     return _table(head, rows)
@@ -245,13 +245,20 @@ def _similarity(result, figures) -> str:
     out = []
     s = result.summary()
     figs = {f.name: (f, png) for f, png in figures}
+    if result.design is not None:
+        rows = specimen_rows(s, result.design.factors.to_dict())
+        if rows:
+            out.append("<h3>What to measure on the specimen</h3><p>The up-scaled model's response brought back to "
+                       "the specimen's own size (times the scaling factors): compare a measurement with these "
+                       "directly.</p>" + _table(("quantity", "prototype (SI)", "expected on the specimen", "unit"),
+                                               rows))
     if result.planar is not None:
         pl = s["planar"]
         out.append("<h3>Planar rocking (paper Eq. of motion, Housner impacts)</h3>")
         out.append(_compare_table(pl["prototype"], pl["model"]))
         if pl["similarity"] is not None:
             out.append(_table(("similarity figure", "value", "unit"),
-                              [(split_unit(k)[0], v, split_unit(k)[1]) for k, v in pl["similarity"].items()]))
+                              [(label(k), v, split_unit(k)[1]) for k, v in pl["similarity"].items()]))
         if "planar_rocking" in figs:
             f, png = figs["planar_rocking"]
             out.append(_img(png, f.title, f.caption, f.name))
@@ -268,7 +275,7 @@ def _similarity(result, figures) -> str:
         out.append(_compare_table(r3["prototype"], r3["model"]))
         if r3.get("similarity") is not None:
             out.append(_table(("similarity figure", "value", "unit"),
-                              [(split_unit(k.split(".")[-1])[0] if "." not in k else k, v, split_unit(k)[1])
+                              [(label(k), v, split_unit(k.split(".")[-1])[1])
                                for k, v in _flat(r3["similarity"]) if not isinstance(v, str)]))
         if "response_3d" in figs:
             f, png = figs["response_3d"]
@@ -278,7 +285,7 @@ def _similarity(result, figures) -> str:
         out.append(f"<h3>3D ensembles ({en['n_members']} members per system, loads perturbed by up to "
                    f"{en['perturbation']:g})</h3>")
         out.append(_table(("quantity", "value", "unit"),
-                          [(k, v, split_unit(k.split(".")[-1])[1]) for k, v in _flat(en)
+                          [(label(k), v, split_unit(k.split(".")[-1])[1]) for k, v in _flat(en)
                            if not isinstance(v, str) and k not in ("n_members", "perturbation")]))
         if "ensemble_envelopes" in figs:
             f, png = figs["ensemble_envelopes"]
@@ -315,6 +322,14 @@ def _provenance(meta: dict, files: Iterable[str]) -> str:
     return (_table(("item", "value"), rows, numeric_from=99)
             + f"<p class=\"muted\">Files next to this report: {_e(', '.join(files))}. Model results are "
               "up-scaled to prototype units; every history carries its unit in histories.nc.</p>")
+
+
+def _verdict(result) -> str:
+    """The page's first statement: ``Verdict: ...`` (:mod:`.verdict`), before the build instructions."""
+    v = verdict(result.summary(), result.scenario.structure.kind,
+                getattr(result.structure, "section", None) == "circular")
+    cls = {True: "lead", False: "warn", None: "muted"}[v["similar"]]
+    return f'<p id="verdict" class="{cls}"><b>{_e(v["line"])}</b></p>'
 
 
 def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_html: str | None = None) -> str:
@@ -366,6 +381,7 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_h
     return ("<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
             f"<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>blastscale: {_e(title)}"
             f"</title><style>{_CSS}{_CARD_CSS}</style></head><body><header><h1>blastscale report: {_e(title)}</h1>"
+            f"{_verdict(result)}"
             "<p class=\"muted\">Reduced-scale blast experiment designed with the scaling laws of Masi, Stefanou "
             "&amp; Maffi-Berthier (general law), checked by simulating prototype and model. All values SI unless "
             "stated; model results are up-scaled to prototype units.</p></header>"

@@ -3,13 +3,16 @@
 * :class:`Study` (:mod:`.study`) -- design once, run the engines that apply, compare once;
 * :data:`ENGINES`, :data:`ENSEMBLE` (:mod:`.engines`) -- planar rocking, 3D rigid bodies, ensembles;
 * :class:`StudyResult` (:mod:`.result`) -- summary, scalars, histories;
-* :func:`estimate_memory`, :func:`check_memory` (:mod:`.memory`).
+* :func:`estimate_memory`, :func:`estimate_seconds`, :func:`check_budget` (:mod:`.memory`): the one size and
+  time guard of every command that simulates.
 """
 
 from .engines import ENGINES, ENSEMBLE, Engine, contact_settings
-from .memory import MEMORY_FRACTION, check_memory, estimate_memory
+from .memory import (MEMORY_FRACTION, check_budget, check_memory, check_study_budget, estimate_memory,
+                     estimate_seconds, format_duration)
 from .result import StudyResult
 from .study import Progress, Study, StudyWarning
 
 __all__ = ["Study", "StudyResult", "StudyWarning", "Progress", "ENGINES", "ENSEMBLE", "Engine", "estimate_memory",
-           "MEMORY_FRACTION", "contact_settings", "check_memory"]
+           "MEMORY_FRACTION", "contact_settings", "check_memory", "check_budget", "check_study_budget", "estimate_seconds",
+           "format_duration"]

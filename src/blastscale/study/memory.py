@@ -1,14 +1,82 @@
-"""The memory a study's histories need, checked before any work (one line naming the duration)."""
+"""The one size and time guard of every command that simulates: the memory and the computing time a
+job needs, estimated and checked before any work (one line naming the key or flag, the need and the
+valid range).
+
+Rule (:func:`check_budget`): a job may plan at most :data:`MEMORY_FRACTION` of the available memory
+and at most :func:`max_seconds` of computing (24 h by default, ``BLASTSCALE_MAX_HOURS`` to change it).
+The estimates are deliberately rough (within a factor of about 2 on the 2-core development machine):
+their purpose is to refuse a run that would exhaust the memory or never end, not to predict its time.
+"""
 
 from __future__ import annotations
+
+import math
+import os
 
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 
-__all__ = ["MEMORY_FRACTION", "estimate_memory", "check_memory"]
+__all__ = ["MEMORY_FRACTION", "estimate_memory", "check_memory", "estimate_seconds", "check_budget",
+           "check_study_budget", "max_seconds", "format_duration", "STEP_SECONDS"]
 
-#: Fraction of the available memory a study may plan to use for its histories.
+#: Fraction of the available memory a job may plan to use.
 MEMORY_FRACTION = 0.5
+
+#: Wall time of one MuJoCo step of a one-body structure [s] (README "Speed": ~40 simulated s per wall s
+#: at dt = 0.2 ms for the 10 m block, i.e. ~5 us per step); a stack of n bodies costs ~n^1.5 times more
+#: (the paper's 10-drum square column: ~130-160 us per step, docs/sim3d.md).
+STEP_SECONDS = 5e-6
+
+
+def max_seconds() -> float:
+    """Longest computing time a job may plan [s]: ``BLASTSCALE_MAX_HOURS`` (hours, > 0), else 24 h."""
+    text = os.environ.get("BLASTSCALE_MAX_HOURS", "")
+    try:
+        hours = float(text)
+    except ValueError:
+        hours = 24.0
+    return hours * 3600.0 if math.isfinite(hours) and hours > 0 else 24 * 3600.0
+
+
+def format_duration(seconds: float) -> str:
+    """Seconds in words: ``40 s``, ``12 min``, ``3.2 h``, ``4.1 days``."""
+    if seconds < 90:
+        return f"{seconds:.2g} s" if seconds < 10 else f"{seconds:.0f} s"
+    if seconds < 5400:
+        return f"{seconds / 60:.0f} min"
+    if seconds < 3 * 86400:
+        return f"{seconds / 3600:.2g} h"
+    return f"{seconds / 86400:.3g} days"
+
+
+def _timestep(scenario: Scenario, structure) -> float:
+    """The prototype's 3D time step [s]: the scenario's, else the one derived from the structure."""
+    sim = scenario.simulation
+    if sim.timestep_s is not None:
+        return sim.timestep_s
+    if structure is not None:
+        try:
+            from .engines import contact_settings
+
+            return contact_settings(scenario, structure).timestep
+        except BlastscaleInputError:  # reported by the engine's own check
+            pass
+    return 2e-4
+
+
+def _derived_timestep(scenario: Scenario, structure) -> float:
+    """The time step the engine derives from the structure's size [s] (no time step given)."""
+    from ..sim3d.contact import default_contact
+
+    try:
+        return default_contact(structure, friction=scenario.structure.friction,
+                               gravity=scenario.simulation.gravity_m_s2).timestep
+    except BlastscaleInputError:
+        return 2e-4
+
+
+def _bodies(structure) -> int:
+    return len(getattr(structure, "bodies", ())) or 1
 
 
 def estimate_memory(scenario: Scenario, structure=None) -> int:
@@ -24,13 +92,30 @@ def estimate_memory(scenario: Scenario, structure=None) -> int:
     if sim.engine in ("planar", "both"):
         total += sim.samples * 8 * 40
     if sim.engine in ("3d", "both"):
-        nb = len(getattr(structure, "bodies", ())) or 1
-        dt = sim.timestep_s if sim.timestep_s is not None else 2e-4
-        steps = sim.duration_s / dt
+        nb = _bodies(structure)
+        steps = sim.duration_s / _timestep(scenario, structure)
         recs = steps / (sim.record_every or 4) + 1  # the default keeps one state per 4 or 5 steps
         runs = 1 + sim.ensemble_members  # an ensemble keeps every member's point histories too
         total += runs * 2 * (steps * 1 + recs * 8 * (13 * nb + 4 * 20 * (2 * nb)))
     return int(total)
+
+
+def estimate_seconds(scenario: Scenario, structure=None) -> float:
+    """A rough estimate of a study's computing time on one core [s] (module docstring): 3D, the steps of
+    every run (prototype and model, ensemble members) times :data:`STEP_SECONDS` x bodies^1.5; planar,
+    ~2 us per sample and system plus the critical-charge search (~0.1 s)."""
+    sim = scenario.simulation
+    systems = 1 if scenario.scale is None else 2
+    total = 0.0
+    if sim.engine in ("planar", "both"):
+        total += systems * sim.samples * 2e-6 + (0.1 if sim.critical_charge else 0.0)
+    if sim.engine in ("3d", "both"):
+        nb = _bodies(structure)
+        sides = getattr(structure, "sides", 4) if getattr(structure, "section", "") == "circular" else 4
+        steps = sim.duration_s / _timestep(scenario, structure)
+        runs = systems * (1 + sim.ensemble_members)
+        total += runs * steps * STEP_SECONDS * nb ** 1.5 * max(1.0, sides / 4) ** (1 / 3)
+    return total
 
 
 def _available_memory() -> int:
@@ -45,16 +130,62 @@ def _available_memory() -> int:
     return 4 * 2**30
 
 
+def check_budget(name: str, value: float, unit: str, need_bytes: float, seconds: float, grows: int = 1,
+                 hint: str = "") -> None:
+    """The shared rule: refuse a job needing more than :data:`MEMORY_FRACTION` of the available memory
+    or more than :func:`max_seconds` of computing, in one line.
+
+    Parameters
+    ----------
+    name : str
+        The key or flag that sets the job's size (``simulation.duration_s``, ``--samples``).
+    value : float
+        Its value; ``unit`` its unit ("" for counts).
+    need_bytes, seconds : float
+        The job's estimated memory [bytes] and computing time [s].
+    grows : {1, -1}
+        Whether the need grows with ``value`` (a duration, a count) or with its inverse (a time step):
+        the valid range given is then ``<=`` or ``>=`` the value that fits.
+    hint : str
+        Appended in parentheses (e.g. another way out).
+    """
+    mem_limit, time_limit = MEMORY_FRACTION * _available_memory(), max_seconds()
+    if need_bytes <= mem_limit and seconds <= time_limit:
+        return
+    room = min(mem_limit / need_bytes if need_bytes > 0 else math.inf, time_limit / seconds if seconds > 0 else math.inf)
+    fits = value * room if grows > 0 else value / room
+    if float(fits).is_integer() or unit == "":
+        fits = math.floor(fits) if grows > 0 else math.ceil(fits)
+    why = []
+    if need_bytes > mem_limit:
+        why.append(f"about {need_bytes / 2**30:.3g} GiB of memory, more than {mem_limit / 2**30:.3g} GiB "
+                   f"({MEMORY_FRACTION:g} of the available memory)")
+    if seconds > time_limit:
+        why.append(f"about {format_duration(seconds)} of computing, more than {format_duration(time_limit)} "
+                   "(BLASTSCALE_MAX_HOURS raises the limit)")
+    u = f" {unit}" if unit else ""
+    raise BlastscaleInputError(
+        f"{name} = {value:g}{u} is out of range: it would need {' and '.join(why)}; valid range is "
+        f"{'<=' if grows > 0 else '>='} {fits:.3g}{u} here" + (f" ({hint})" if hint else ""))
+
+
+def check_study_budget(scenario: Scenario, structure=None) -> None:
+    """Refuse, before any work, a study whose histories would not fit in memory or whose computing would
+    outlast :func:`max_seconds` (:func:`check_budget`), naming ``simulation.timestep_s`` when a time step
+    shorter than the derived one was given, else ``simulation.duration_s``."""
+    sim = scenario.simulation
+    need, secs = estimate_memory(scenario, structure), estimate_seconds(scenario, structure)
+    if sim.engine == "planar" and sim.samples * 8 * 40 > MEMORY_FRACTION * _available_memory():
+        check_budget("simulation.samples", sim.samples, "", need, secs)
+    given_step = sim.timestep_s is not None and sim.engine in ("3d", "both")
+    if given_step:
+        given_step = structure is None or sim.timestep_s < _derived_timestep(scenario, structure)
+    if given_step:
+        check_budget("simulation.timestep_s", sim.timestep_s, "s", need, secs, grows=-1)
+    check_budget("simulation.duration_s", sim.duration_s, "s", need, secs,
+                 hint="or raise simulation.record_every" if sim.engine in ("3d", "both") else "")
+
+
 def check_memory(scenario: Scenario, structure=None) -> None:
-    """Refuse, before any work, a study whose histories would not fit in memory (one line naming
-    ``simulation.duration_s``, the need and the longest duration that fits)."""
-    need = estimate_memory(scenario, structure)
-    limit = MEMORY_FRACTION * _available_memory()
-    if need > limit:
-        dur = scenario.simulation.duration_s
-        fits = dur * limit / need
-        raise BlastscaleInputError(
-            f"simulation.duration_s = {dur:g} s is out of range: its histories would need about "
-            f"{need / 2**30:.3g} GiB of memory, more than {limit / 2**30:.3g} GiB ({MEMORY_FRACTION:g} of the "
-            f"available memory); valid range is <= {fits:.3g} s here (or raise simulation.record_every)"
-        )
+    """:func:`check_study_budget` (the name from before the time estimate)."""
+    check_study_budget(scenario, structure)

@@ -36,7 +36,7 @@ from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..structures import from_spec, is_block
 from .engines import ENGINES, ENSEMBLE, Context, Engine, critical_charge_of, load_model_of
-from .memory import check_memory
+from .memory import check_study_budget
 from .result import StudyResult
 
 __all__ = ["Study", "StudyWarning", "Progress"]
@@ -125,12 +125,13 @@ class Study:
 
     def check(self):
         """Everything that can be checked before simulating: the structure, the engines, the
-        design (blast fits' ranges, scale range) and the memory. Returns (structure, engines,
+        design (blast fits' ranges, scale range), the memory and the computing time
+        (:func:`~blastscale.study.memory.check_study_budget`). Returns (structure, engines,
         skipped, design, prototype blast parameters)."""
         if self._checked is None:
             structure = self.structure()
             engines, skipped = self.engines(structure)
-            check_memory(self.scenario, structure)
+            check_study_budget(self.scenario, structure)
             d = self.design(structure)
             sc = self.scenario
             if sc.blast.gravity_only:  # no charge: the structure under gravity alone

@@ -45,21 +45,59 @@ _LOAD_FIELDS = ("blast.charge_kg", "blast.standoff_m")
 class LognormalFit:
     """Maximum-likelihood lognormal fragility (SI): ``median_charge_kg`` theta [kg], ``beta`` [-],
     95 % bounds ``median_ci_kg`` and ``beta_ci``, standard errors ``se_ln_median`` and
-    ``se_ln_beta`` [-], the maximised log-likelihood."""
+    ``se_ln_beta`` [-], the maximised log-likelihood.
+
+    A bound the data cannot close (a 95 % factor above :data:`OPEN_FACTOR`) is open: 0 and ``inf``
+    (``math.inf``; "inf" in JSON), with ``note`` saying why.
+    When the charges separate the outcomes completely (every draw stands up to one charge and
+    overturns from the next one on) the likelihood has no maximum: ``beta`` is None (no estimate,
+    bounds [0, inf)), the median lies between those two charges (its bounds) and its value is their
+    geometric mean; ``bounded`` is False."""
 
     median_charge_kg: float
-    beta: float
+    beta: "float | None"
     median_ci_kg: tuple
     beta_ci: tuple
     se_ln_median: float
     se_ln_beta: float
     log_likelihood: float
+    note: str = ""
+    bounded: bool = True
 
     def probability(self, charge):
-        """Fitted P(overturn | W) at charges W [kg]."""
+        """Fitted P(overturn | W) at charges W [kg] (a step at the median when ``beta`` is None)."""
         from scipy.stats import norm
 
-        return norm.cdf(np.log(np.asarray(charge, dtype=float) / self.median_charge_kg) / self.beta)
+        w = np.asarray(charge, dtype=float)
+        if not self.beta:
+            return (w > self.median_charge_kg).astype(float)
+        return norm.cdf(np.log(w / self.median_charge_kg) / self.beta)
+
+
+#: A 95 % bound further than this factor from its estimate is reported open (0, inf): the data do not
+#: bound the quantity within a decade either side (one informative charge, or none).
+OPEN_FACTOR = 10.0
+
+
+def _open_bounds(centre: float, se: float) -> tuple:
+    """95 % bounds ``centre x exp(-+1.96 se)``; open (0, inf) where ``se`` is not finite or the factor
+    exceeds :data:`OPEN_FACTOR` (this also avoids exp's overflow)."""
+    z95 = 1.959963984540054
+    if not math.isfinite(se) or z95 * se > math.log(OPEN_FACTOR):
+        return 0.0, math.inf
+    return centre * math.exp(-z95 * se), centre * math.exp(z95 * se)
+
+
+def _separated(W: np.ndarray, k: np.ndarray, n: np.ndarray) -> "tuple | None":
+    """(last all-standing charge, first all-overturning charge) when the counts separate completely."""
+    order = np.argsort(W)
+    ws, ks, ns = W[order], k[order], n[order]
+    if not np.all((ks == 0) | (ks == ns)):
+        return None
+    first = int(np.argmax(ks == ns))
+    if np.any(ks[first:] != ns[first:]) or first == 0:
+        return None
+    return float(ws[first - 1]), float(ws[first])
 
 
 def fit_lognormal_fragility(charges, collapsed, samples) -> LognormalFit:
@@ -94,6 +132,15 @@ def fit_lognormal_fragility(charges, collapsed, samples) -> LognormalFit:
         raise BlastscaleInputError(
             f"collapsed = {'none' if np.all(k == 0) else 'all'} of the samples at every charge in "
             f"[{W.min():.6g}, {W.max():.6g}] kg: widen --charges to cover the transition")
+    cut = _separated(W, k, n)
+    if cut is not None:
+        lo, hi = cut
+        return LognormalFit(
+            median_charge_kg=math.sqrt(lo * hi), beta=None, median_ci_kg=(lo, hi), beta_ci=(0.0, math.inf),
+            se_ln_median=math.nan, se_ln_beta=math.nan, log_likelihood=0.0, bounded=False,
+            note=(f"every draw stands at W <= {lo:.6g} kg and overturns at W >= {hi:.6g} kg: the median lies "
+                  f"between them and beta cannot be estimated (open bounds; add charges between {lo:.6g} and "
+                  f"{hi:.6g} kg)"))
     lw = np.log(W)
 
     def nll(x):
@@ -119,15 +166,19 @@ def fit_lognormal_fragility(charges, collapsed, samples) -> LognormalFit:
     except np.linalg.LinAlgError:
         se = np.array([math.nan, math.nan])
     theta, beta = math.exp(x[0]), math.exp(x[1])
-    z95 = 1.959963984540054
+    m_ci, b_ci = _open_bounds(theta, float(se[0])), _open_bounds(beta, float(se[1]))
+    opened = [name for name, ci in (("median", m_ci), ("beta", b_ci)) if math.isinf(ci[1])]
     return LognormalFit(
         median_charge_kg=theta,
         beta=beta,
-        median_ci_kg=(theta * math.exp(-z95 * se[0]), theta * math.exp(z95 * se[0])),
-        beta_ci=(beta * math.exp(-z95 * se[1]), beta * math.exp(z95 * se[1])),
+        median_ci_kg=m_ci,
+        beta_ci=b_ci,
         se_ln_median=float(se[0]),
         se_ln_beta=float(se[1]),
         log_likelihood=-float(res.fun),
+        note=(f"the data do not bound the {' and the '.join(opened)} (open 95 % bounds): add charges where "
+              "some but not all draws overturn") if opened else "",
+        bounded=not opened,
     )
 
 
@@ -206,6 +257,8 @@ class FragilityResult:
             "median_charge_ci_kg": None if f is None else list(f.median_ci_kg),
             "beta_ci": None if f is None else list(f.beta_ci),
             "log_likelihood": None if f is None else f.log_likelihood,
+            "fit_bounded": None if f is None else f.bounded,
+            "fit_note": None if f is None else (f.note or None),
             "fields": self.fields,
             "seed": self.seed,
             "seconds": self.seconds,
@@ -245,8 +298,11 @@ def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int =
     rel = {}
     for key, beta in (lognormal or {}).items():
         b = float(beta)
-        if not (math.isfinite(b) and b >= 0):
-            raise BlastscaleInputError(f"{key} beta = {beta!r} is out of range: must be >= 0")
+        if not (math.isfinite(b) and b > 0):
+            raise BlastscaleInputError(
+                f"--lognormal {key} = {beta!r}: beta is out of range: must be > 0 (beta = 0 is no uncertainty: "
+                "every draw equals the nominal value; leave the field out, or use `blastscale critical` for "
+                "the charge at which a certain block overturns)")
         rel[key] = Distribution("lognormal", (1.0, b))
     absolute = {}
     for key, (lo, hi) in (uniform or {}).items():
@@ -255,6 +311,12 @@ def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int =
         absolute[key] = Distribution("uniform", (float(lo), float(hi)))
     if not rel and not absolute:
         raise BlastscaleInputError("uncertain fields = none: give at least one --lognormal FIELD=beta or --uniform FIELD=lo:hi")
+    from ..study.memory import check_budget
+    from .budget import FIRST_SWING_SECONDS
+
+    draws = W.size * int(samples)
+    check_budget("samples", samples, "", draws * 8.0 * (len(rel) + len(absolute) + 6) * 3,
+                 draws * FIRST_SWING_SECONDS, hint=f"{W.size} charges x samples draws")
     spec = SweepSpec.build(scenario, {"charge_kg": W}, absolute, relative=rel, samples=samples, seed=seed)
     t0 = time.perf_counter()
     over = overturning_outcomes(spec)

@@ -21,7 +21,10 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 
-__all__ = ["parse_grid", "parse_number", "parse_assignment", "Distribution", "parse_distribution", "DISTRIBUTIONS"]
+#: Most values of one grid axis (a larger one would not fit in memory before any other check).
+MAX_GRID = 10_000_000
+
+__all__ = ["MAX_GRID", "parse_grid", "parse_number", "parse_assignment", "Distribution", "parse_distribution", "DISTRIBUTIONS"]
 
 
 def parse_number(text: str, name: str, what: str = "value") -> float:
@@ -74,8 +77,8 @@ def parse_grid(text: str, name: str = "grid", numeric: bool = True) -> np.ndarra
             n = int(parts[2])
         except ValueError:
             raise BlastscaleInputError(f"{name} = {text!r}: n = {parts[2]!r} is not a whole number >= 1") from None
-        if n < 1:
-            raise BlastscaleInputError(f"{name} = {text!r}: n = {n} is out of range: must be >= 1")
+        if not 1 <= n <= MAX_GRID:
+            raise BlastscaleInputError(f"{name} = {text!r}: n = {n} is out of range: valid range is [1, {MAX_GRID:.0e}]")
         if n > 1 and not b > a:
             raise BlastscaleInputError(f"{name} = {text!r} is an empty range: stop ({b:g}) must exceed start ({a:g})")
         log = len(parts) == 4 and parts[3] == "log"

@@ -106,8 +106,11 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
         # local workers keep glibc's own (dynamic) threshold
         from ..sim3d.threads import THREADS_ENV, available_cores
 
-        # each worker's 3D runs share the cores with the other workers: cores // workers threads each
+        # each worker's 3D runs share the cores with the other workers: cores // workers threads each;
+        # the workers log errors only: a task cancelled while the cluster stops after Ctrl-C is not news (the
+        # main process says what happened in one line); a failing chunk still raises here
         env = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
+               "distributed.nanny.pre-spawn-environ.DASK_LOGGING__DISTRIBUTED": "error",
                f"distributed.nanny.pre-spawn-environ.{THREADS_ENV}": str(max(1, available_cores() // max(1, nw)))}
         with warnings.catch_warnings(), dask.config.set(env):
             # the scheduler's HTTP (health) server takes another port when 8787 is busy: not our concern
@@ -170,6 +173,9 @@ def run_in_memory(spec: SweepSpec, *, scheduler: Optional[str] = None, workers: 
     chunk = default_chunk(spec, max(1, workers)) if chunk is None else chunk
     if not isinstance(chunk, int) or isinstance(chunk, bool) or chunk < 1:
         raise BlastscaleInputError(f"chunk = {chunk!r} is out of range: must be a whole number >= 1")
+    from .budget import check_sweep_budget
+
+    check_sweep_budget(spec, None if scheduler else max(1, workers))
     n = spec.n_cases
     todo = [(i, s, min(n, s + chunk)) for i, s in enumerate(range(0, n, chunk))]
     done: dict = {}

@@ -124,10 +124,14 @@ class SweepSpec:
         if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or seed < 0:
             raise BlastscaleInputError(f"seed = {seed!r} is out of range: must be a whole number >= 0")
         spec = cls(base, tuple(axes), tuple(samp), int(samples) if samp else 0, int(seed), bool(outcomes))
+        from .budget import VALUES_PER_CASE, check_cases_budget
+
+        # too many cases for the memory even in the outcome mode: refused before a value is drawn or checked
+        check_cases_budget(spec.n_cases, 0.0, VALUES_PER_CASE["outcomes"], None, hint="fewer --vary values or --samples")
         # every case must be a valid scenario: check each grid value, the extreme draws and the
         # corners now (one line, before any work is written)
         for a in spec.axes:
-            for v in a.values:
+            for v in _values_to_check(a.values):
                 base.with_values({a.path: v})
         for sm in spec.sampled:
             d = spec.draws()[sm.name]
@@ -238,6 +242,22 @@ class SweepSpec:
                 [a.path for a in self.axes] + [s.path for s in self.sampled])
         except BlastscaleInputError:
             return False
+
+
+def _values_to_check(values: tuple):
+    """The grid values to validate one by one: all of a short or non-numeric axis; of a long numeric axis
+    (> 1000 values) its two ends (the scenario's ranges are intervals) and, when they are whole numbers (a
+    count), any value that is not, so that checking 10^7 values does not take half an hour."""
+    if len(values) <= 1000 or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values[:1000]):
+        return values
+    arr = np.asarray(values)
+    if arr.dtype.kind not in "if":
+        return values
+    ends = [arr.min().item(), arr.max().item()]
+    if float(ends[0]).is_integer() and float(ends[1]).is_integer():
+        odd = arr[arr != np.round(arr)]
+        ends += odd[:1].tolist()
+    return tuple(ends)
 
 
 def planar_case(sc) -> bool:
