@@ -138,7 +138,18 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
     finally:
         client.close()
         if cluster is not None:
-            cluster.close()
+            # stopping our own cluster after a signal, the nannies log "Worker process still alive after
+            # 4.0 seconds, killing" in this process: our own teardown, not news (the command says what
+            # happened in one line)
+            import logging
+
+            nanny = logging.getLogger("distributed.nanny")
+            level = nanny.level
+            nanny.setLevel(logging.ERROR)
+            try:
+                cluster.close()
+            finally:
+                nanny.setLevel(level)
 
 
 def payload_hash(payload: dict) -> str:
