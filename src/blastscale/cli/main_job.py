@@ -91,8 +91,9 @@ def _print_result(result) -> None:
                                      f"Method {sc.blast.load})", r3["prototype"], r3["model"]))
         stab = (r3.get("prototype") or {}).get("stability")
         if stab is not None:
-            console.print(f"under gravity alone the structure [bold]{stab}[/] (stands: no block moved more than 1e-4 of "
-                          "its height; collapses: a block fell)")
+            from ..report.html import STABILITY_RULE
+
+            console.print(f"under gravity alone the structure [bold]{stab}[/] ({STABILITY_RULE})", highlight=False)
         if r3.get("similarity") is not None:
             console.print("similarity: " + ", ".join(
                 f"{k} {fmt_value(v, '.3g')}" for k, v in r3["similarity"].items() if not isinstance(v, (dict, list))))

@@ -20,7 +20,14 @@ from .slips import applicable_slips
 from .card import CSS as _CARD_CSS
 from .card import card_section
 
-__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
+__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value", "STABILITY_RULE"]
+
+#: The rule behind "stands / settles / collapses / moving" (blastscale.sim3d.results.stability_of).
+STABILITY_RULE = ("Collapses: a block fell (its centre of mass dropped by more than half its height, or it turned "
+                  "by more than 45 deg); stands: at rest at the end (every block slower than 1e-4 sqrt(g H) over "
+                  "the last tenth of the run) with no centre of mass displaced by more than 1e-3 of the height H; "
+                  "settles: at rest, displaced more, no block fallen; moving: neither at rest nor fallen by the "
+                  "end (run longer). docs/assemblies.md.")
 
 #: Section ids of the report, in order.
 SECTIONS = ("experiment", "test_card", "loads", "impulsive", "similarity", "warnings", "slips", "scenario", "provenance")
@@ -224,9 +231,10 @@ def _similarity(result, figures) -> str:
         stab = (r3.get("prototype") or {}).get("stability")
         if stab is not None:
             cls = "bad" if stab == "collapses" else "ok"
-            out.append(f'<p class="lead">Under gravity alone the structure <span class="{cls}">{_e(stab)}</span> '
-                       "(stands: no block moved more than 1e-4 of the structure's height; settles: more, but no block "
-                       "fell; collapses: a block fell, docs/assemblies.md).</p>")
+            out.append(f'<p class="lead">Under gravity alone the structure <span class="{cls}">{_e(stab)}</span>. '
+                       f"{_e(STABILITY_RULE)} Here: final speed {format_value(r3['prototype'].get('final_speed_rel_sqrt_gh'), '.2g')} "
+                       "sqrt(g H), largest residual displacement "
+                       f"{format_value(r3['prototype'].get('max_residual_displacement_rel_height'), '.2g')} H.</p>")
         out.append(_compare_table(r3["prototype"], r3["model"]))
         if r3.get("similarity") is not None:
             out.append(_table(("similarity figure", "value", "unit"),
