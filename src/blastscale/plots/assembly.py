@@ -200,8 +200,11 @@ def snapshot_figure(structure, prototype, model=None, instants=None, first_peak_
     H = float(np.ptp(v[:, 2])) or 1.0
     systems = [(prototype, "prototype")] + ([(model, "model (up-scaled)")] if model is not None else [])
     peak = max(float(np.abs(ds["com_displacement"].values).max()) for ds, _ in systems)
-    amp = 1.0 if peak >= 0.05 * H or peak == 0.0 else float(10 ** math.floor(math.log10(0.1 * H / peak)))
-    amp = max(amp, 1.0)
+    amp = 1.0
+    if 0.0 < peak < 0.1 * H:  # the largest 1-2-5 step that keeps the amplified motion under 0.2 H
+        target = 0.2 * H / peak
+        e = 10.0 ** math.floor(math.log10(target))
+        amp = max(m * e for m in (1.0, 2.0, 5.0) if m * e <= target)
     coms = [np.asarray(b.com) for b in structure.bodies]
     fig, axes = plt.subplots(1, len(inst), figsize=(2.6 * len(inst) + 1.0, 3.8), layout="constrained", sharey=True,
                              squeeze=False)

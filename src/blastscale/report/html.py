@@ -240,9 +240,10 @@ def _similarity(result, figures) -> str:
             out.append(_table(("similarity figure", "value", "unit"),
                               [(split_unit(k.split(".")[-1])[0] if "." not in k else k, v, split_unit(k)[1])
                                for k, v in _flat(r3["similarity"]) if not isinstance(v, str)]))
-        if "response_3d" in figs:
-            f, png = figs["response_3d"]
-            out.append(_img(png, f.title, f.caption, f.name))
+        for name in ("snapshots_3d", "response_3d"):
+            if name in figs:
+                f, png = figs[name]
+                out.append(_img(png, f.title, f.caption, f.name))
     if result.ensemble is not None:
         en = s["ensemble"]
         out.append(f"<h3>3D ensembles ({en['n_members']} members per system, loads perturbed by up to "
@@ -314,8 +315,9 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_h
     if "blast_pulses" in figs:
         f, png = figs["blast_pulses"]
         pulses = _img(png, f.title, f.caption, f.name)
+    drawing = "".join(_img(png, f.title, f.caption, f.name) for f, png in figures if f.name == "assembly")
     body = {
-        "experiment": ("1. The experiment to build", _experiment(result)),
+        "experiment": ("1. The experiment to build", _experiment(result) + drawing),
         "test_card": ("Test card", card_section(result)),
         "loads": ("2. Blast loads of the prototype" + ("" if result.design is None else " and the model"),
                   _loads(result) + pulses),
