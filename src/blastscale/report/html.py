@@ -236,6 +236,7 @@ def _similarity(result, figures) -> str:
                        "sqrt(g H), largest residual displacement "
                        f"{format_value(r3['prototype'].get('max_residual_displacement_rel_height'), '.2g')} H.</p>")
         out.append(_compare_table(r3["prototype"], r3["model"]))
+        out.append(_first_peaks(r3.get("similarity")))
         if r3.get("similarity") is not None:
             out.append(_table(("similarity figure", "value", "unit"),
                               [(split_unit(k.split(".")[-1])[0] if "." not in k else k, v, split_unit(k)[1])
@@ -263,6 +264,21 @@ def _similarity(result, figures) -> str:
     if not out:
         out.append("<p>No engine was run.</p>")
     return "".join(out)
+
+
+def _first_peaks(sim) -> str:
+    """One row per monitoring point: the first peaks of the x displacement (prototype, model up-scaled),
+    their ratio and the outcome agreement."""
+    if not sim or not sim.get("points"):
+        return ""
+    rows = [(name, p.get("first_peak_prototype_m"), p.get("first_peak_model_m"), p.get("first_peak_ratio"),
+             p.get("first_peak_time_s")) for name, p in sim["points"].items()]
+    agree = sim.get("outcomes_agree")
+    words = "-" if agree is None else ("yes" if agree else "<b>no</b>")
+    return (f"<p>First peaks of the x displacement at the monitoring points (model up-scaled to prototype units); "
+            f"outcomes agree: {words}.</p>"
+            + _table(("monitoring point", "prototype first peak [m]", "model first peak [m]", "first_peak_ratio [-]",
+                      "time of the prototype's peak [s]"), rows))
 
 
 def _warnings(result) -> str:
