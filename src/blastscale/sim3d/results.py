@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 __all__ = ["Response3D", "VARIABLES", "STANDS_FRACTION", "REST_SPEED_FRACTION", "REST_WINDOW_FRACTION",
-           "stability_of"]
+           "stability_of", "body_heights"]
 
 #: The variables of :attr:`Response3D.dataset`: name -> (dims, units, physical dimension, description).
 VARIABLES = {
@@ -52,6 +52,16 @@ STANDS_FRACTION = 1e-3
 REST_SPEED_FRACTION = 1e-4
 #: The closing fraction of the run over which "at rest" is judged.
 REST_WINDOW_FRACTION = 0.1
+
+
+def body_heights(structure) -> np.ndarray:
+    """Each body's own height at rest [m] (``structure.heights`` when it has one per body, else twice
+    the depth of its base below its centre of mass)."""
+    bodies = structure.bodies
+    h = getattr(structure, "heights", None)
+    if h is not None and len(h) == len(bodies):
+        return np.asarray(h, dtype=float)
+    return np.array([-2.0 * b.base_height for b in bodies])
 
 
 def stability_of(ds, heights, structure_height: float, gravity: float) -> tuple:
@@ -156,8 +166,6 @@ class Response3D:
                            "fallen": bool(fallen[k])} for k, n in enumerate(names)},
         }
         if int(ds.attrs.get("gravity_only", 0)):
-            from .record import body_heights
-
             h = float(json.loads(ds.attrs["structure"]).get("height_m", 1.0))
             g = float(ds.attrs.get("setting_gravity_m_s2", 9.80665))
             hk = body_heights(self.structure) if self.structure is not None else np.full(len(names), h)
