@@ -117,3 +117,17 @@ def test_show_bad_arguments_are_one_line(capsys, tmp_path, monkeypatch, args, wo
     code, out, err = cli(capsys, "show", *[("wall.toml" if a == "WALL" else a) for a in args])
     assert code == 2 and err.startswith("error:") and len(err.strip().splitlines()) == 1 and word in err, err
     assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+def test_gravity_alone_run_says_stands_by_the_stated_rule(capsys, tmp_path):
+    sc = tmp_path / "g.toml"
+    sc.write_text('[structure]\nkind = "wall"\ncourses = 3\nunits_per_course = 2\n[simulation]\nduration_s = 0.2\n')
+    code, out, err = cli(capsys, "run", sc, "--out", tmp_path / "res", "--json")
+    assert code == 0, err
+    p = json.loads(out)["3d"]["prototype"]
+    assert p["stability"] == "stands" and p["final_speed_rel_sqrt_gh"] < 1e-4
+    assert p["max_residual_displacement_rel_height"] <= 1e-3
+    html = (tmp_path / "res" / "report.html").read_text()
+    assert 'Under gravity alone the structure <span class="ok">stands</span>' in html
+    assert "1e-4 sqrt(g H)" in html and "1e-3 of the height H" in html
+    assert (tmp_path / "res" / "assembly.png").is_file() and (tmp_path / "res" / "snapshots_3d.png").is_file()

@@ -91,9 +91,12 @@ def _print_result(result) -> None:
                                      f"Method {sc.blast.load})", r3["prototype"], r3["model"]))
         stab = (r3.get("prototype") or {}).get("stability")
         if stab is not None:
-            from ..report.html import STABILITY_RULE
+            from rich.markup import escape
 
-            console.print(f"under gravity alone the structure [bold]{stab}[/] ({STABILITY_RULE})", highlight=False)
+            from ..report.html import STABILITY_RULE, stability_words
+
+            console.print(f"under gravity alone the structure [bold]{escape(stability_words(stab))}[/] "
+                          f"({escape(STABILITY_RULE)})", highlight=False)
         if r3.get("similarity") is not None:
             console.print("similarity: " + ", ".join(
                 f"{k} {fmt_value(v, '.3g')}" for k, v in r3["similarity"].items() if not isinstance(v, (dict, list))))

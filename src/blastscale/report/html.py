@@ -20,7 +20,8 @@ from .slips import applicable_slips
 from .card import CSS as _CARD_CSS
 from .card import card_section
 
-__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value", "STABILITY_RULE"]
+__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value", "STABILITY_RULE",
+           "stability_words"]
 
 #: The rule behind "stands / settles / collapses / moving" (blastscale.sim3d.results.stability_of).
 STABILITY_RULE = ("Collapses: a block fell (its centre of mass dropped by more than half its height, or it turned "
@@ -44,6 +45,11 @@ th{background:#f3f5f7;text-align:left}td.n{text-align:right;font-variant-numeric
 figure{margin:1em 0}figure img{max-width:100%;border:1px solid #d0d7de}figcaption{font-size:.9em;color:#57606a}
 pre{background:#f6f8fa;padding:.8em;overflow-x:auto;font-size:.85em}.muted{color:#57606a;font-size:.9em}
 """
+
+
+def stability_words(stability: str) -> str:
+    """The outcome under gravity alone as the end of a sentence ("the structure ...")."""
+    return "is still moving at the end (undecided: run longer)" if stability == "moving" else stability
 
 
 def split_unit(key: str) -> tuple[str, str]:
@@ -230,8 +236,9 @@ def _similarity(result, figures) -> str:
                    f"{result.scenario.structure.friction:g})</h3>")
         stab = (r3.get("prototype") or {}).get("stability")
         if stab is not None:
-            cls = "bad" if stab == "collapses" else "ok"
-            out.append(f'<p class="lead">Under gravity alone the structure <span class="{cls}">{_e(stab)}</span>. '
+            cls = "ok" if stab in ("stands", "settles") else "bad"
+            out.append(f'<p class="lead">Under gravity alone the structure <span class="{cls}">{_e(stability_words(stab))}'
+                       '</span>. '
                        f"{_e(STABILITY_RULE)} Here: final speed {format_value(r3['prototype'].get('final_speed_rel_sqrt_gh'), '.2g')} "
                        "sqrt(g H), largest residual displacement "
                        f"{format_value(r3['prototype'].get('max_residual_displacement_rel_height'), '.2g')} H.</p>")
