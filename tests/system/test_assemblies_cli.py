@@ -45,6 +45,10 @@ def test_show_json_of_a_block_model_file_and_a_shipped_scenario(capsys, tmp_path
     code, out, _ = cli(capsys, "show", "paper_column_square_250kg", "--json")
     d = json.loads(out)
     assert code == 0 and d["blocks"] == 10 and d["interfaces_between_blocks"] == 9 and d["monitoring_points"] == 10
+    code, out, _ = cli(capsys, "show", "paper_block_50kg_lambda20", "--json")
+    d = json.loads(out)  # the paper's 10 m block, alpha 15 deg, 1 m deep, 2000 kg/m^3
+    assert code == 0 and d["blocks"] == 1 and d["interfaces_on_ground"] == 1 and d["interfaces_between_blocks"] == 0
+    assert d["mass_kg"] == pytest.approx(2000.0 * 10.0 * 10.0 * 0.2679491924311227, rel=1e-9)
 
 
 BAD_SCENARIOS = [
