@@ -6,7 +6,8 @@ docs/paper_slips.md that explains a difference). Items are:
 
 * the paper's tables and numbers computed directly (geometry, blast loading, scaling factors,
   critical charge),
-* every paper scenario shipped with blastscale (package data, :mod:`blastscale.scenario.library`)
+* every paper scenario shipped with blastscale (package data, :mod:`blastscale.scenario.library`,
+  the names starting with ``paper_``)
   run through :class:`~blastscale.study.Study` (its own result folder and report),
 * every script of the ``examples/`` gallery (its figures). The gallery ships with the source tree,
   not with the installed package: it is found next to the package in a source checkout or given
@@ -271,7 +272,7 @@ def items(examples: Optional[Path] = None) -> list[Item]:
         Item("critical-charge", "Critical charge of the slender block at 2 m (case c)", "Sec. Equations of motion",
              _critical),
     ]
-    out += [_scenario_item(name) for name in library_names()]
+    out += [_scenario_item(name) for name in library_names() if name.startswith("paper_")]
     gallery = gallery_folder(examples)
     if gallery is not None:
         out += [_script_item(p) for p in sorted(gallery.glob("*.py")) if not p.name.startswith("_")]
