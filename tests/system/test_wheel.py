@@ -48,7 +48,7 @@ def test_reproduce_quick_from_a_wheel_in_a_fresh_environment(tmp_path):
                 timeout=900)
     summary = json.loads((out / "summary.json").read_text())
     done = {item["name"] for item in summary["items"]}
-    for name in library_names():
+    for name in (n for n in library_names() if n.startswith("paper_")):
         assert f"scenario-{name.replace('_', '-')}" in done, name
     assert (out / "report.html").is_file()
     assert "skipped: the examples/ gallery" in proc.stderr
