@@ -73,6 +73,7 @@ BASE = Scenario.default().with_values({"engine": "planar", "critical_charge": Fa
     {"length": [0.005, 0.2], "pulse": ["friedlander", "impulsive"]},
     {"law": ["hopkinson-cranz"], "density_ratio": [None], "model": ["kingery-bulmash"], "restitution": [0.5]},
     {"extrapolate": [True], "model": ["masi2021", "kingery-bulmash"], "standoff_m": [0.3, 2.0, 40.0]},
+    {"model": ["kingery-bulmash"], "negative_phase": [True], "clearing": [True], "specimen_burst": ["free-air"]},
 ])
 def test_outcome_mode_equals_the_study(extra):
     """Against the Study on a grid with cases the Study refuses (a scaled distance outside the masi2021 fits; with

@@ -199,6 +199,7 @@ def ensemble_compare(
     extrapolate: bool = False,
     blast=None,
     gravity: float = STANDARD_GRAVITY,
+    load_model=None,
 ) -> EnsembleComparison:
     """Ensembles of a structure and of its reduced-scale model under slightly perturbed loads.
 
@@ -220,6 +221,8 @@ def ensemble_compare(
         The prototype's blast parameters when ``design`` is None.
     gravity : float
         The prototype's gravity [m/s^2] when ``design`` is None.
+    load_model : LoadModel, optional
+        Clearing and the negative phase (as :func:`~.structure3d.compare_structure3d`).
 
     Returns
     -------
@@ -242,7 +245,7 @@ def ensemble_compare(
     times: dict = {s: [] for s in systems}
     t = points = None
     kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,
-              duration=duration, record_every=record_every, extrapolate=extrapolate)
+              duration=duration, record_every=record_every, extrapolate=extrapolate, load_model=load_model)
     for k, fac in enumerate(factors):
         runs = {s: run_system(structure, design, s, load_factor=fac, **kw).response for s in systems}
         ds = {"prototype": runs["prototype"].dataset}

@@ -221,6 +221,7 @@ def compare_structure3d(
     duration: float = 8.0,
     record_every: int = 4,
     extrapolate: bool = False,
+    load_model=None,
 ) -> Comparison3D:
     """Run a structure and its reduced-scale model in 3D and compare them in prototype units.
 
@@ -249,6 +250,9 @@ def compare_structure3d(
         Recording interval in steps (the same at both scales, so the grids correspond).
     extrapolate : bool
         Let the blast fits run outside their ranges (with a warning), for both loads.
+    load_model : LoadModel, optional
+        Clearing and the negative phase (:class:`~blastscale.blast.load_model.LoadModel`; each
+        system's faces its own); None: the paper's load.
 
     Returns
     -------
@@ -260,7 +264,7 @@ def compare_structure3d(
             f"design = {type(design).__name__} is not a model design: give blastscale.similitude.design_model(...)"
         )
     kw = dict(load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact, duration=dur, record_every=record_every,
-              extrapolate=extrapolate)
+              extrapolate=extrapolate, load_model=load_model)
     from ..sim3d.load_methods import arrival_spread_similarity
 
     p_run, m_run = (run_system(structure, design, system, **kw) for system in SYSTEMS)
@@ -283,9 +287,17 @@ def compare_structure3d(
         design=design, structure=structure, specimen_structure=specimen_structure, prototype=proto, model=mod,
         prototype_dataset=pds, upscaled_dataset=up, comparison=cmp,
         settings={"load_method": load, "pulse_shape": pulse_shape, "incidence": incidence or "default", "duration_s": dur,
-                  "record_every": int(record_every), "load_end_s": load_end, "extrapolate": bool(extrapolate)},
+                  "record_every": int(record_every), "load_end_s": load_end, "extrapolate": bool(extrapolate),
+                  **_load_model_setting(load_model)},
         arrival_spreads=arrival_spread_similarity(p_run.load, m_run.load, design.factors),
     )
+
+
+def _load_model_setting(load_model) -> dict:
+    """The settings' record of a load model other than the paper's (clearing, negative phase)."""
+    if load_model is None or load_model.is_paper:
+        return {}
+    return {"clearing": bool(load_model.clearing), "negative_phase": bool(load_model.negative_phase)}
 
 
 #: Variables compared by :func:`compare_structure3d` (x components; rotation about y).
@@ -340,6 +352,7 @@ def prototype_structure3d(
     duration: float = 8.0,
     record_every: int = 4,
     extrapolate: bool = False,
+    load_model=None,
 ) -> Prototype3D:
     """Run a prototype alone in 3D (no model design: a prototype-only study).
 
@@ -351,7 +364,7 @@ def prototype_structure3d(
         Its blast parameters (:func:`blastscale.blast.blast_parameters` of its charge and stand-off).
     gravity : float
         Gravity [m/s^2].
-    load, pulse_shape, incidence, contact, duration, record_every, extrapolate
+    load, pulse_shape, incidence, contact, duration, record_every, extrapolate, load_model
         As :func:`compare_structure3d` (``contact`` None: the engine's defaults for the structure).
 
     Returns
@@ -363,11 +376,12 @@ def prototype_structure3d(
     dur = float(check_positive("duration", duration, "s"))
     run = run_system(structure, None, "prototype", blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape,
                      incidence=incidence, contact=contact, duration=dur, record_every=record_every,
-                     extrapolate=extrapolate)
+                     extrapolate=extrapolate, load_model=load_model)
     resp = run.response
     return Prototype3D(
         structure=structure, prototype=resp, prototype_dataset=_with_outcome(resp.dataset, resp.summary()),
         settings={"load_method": load, "pulse_shape": pulse_shape, "incidence": incidence or "default", "duration_s": dur,
                   "record_every": int(record_every), "load_end_s": run.load_duration_s,
-                  "extrapolate": bool(extrapolate), "arrival_spread_prototype_s": arrival_spread(run.load)},
+                  "extrapolate": bool(extrapolate), "arrival_spread_prototype_s": arrival_spread(run.load),
+                  **_load_model_setting(load_model)},
     )

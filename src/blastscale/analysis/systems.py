@@ -55,7 +55,7 @@ class SystemRun(NamedTuple):
 def run_system(structure, design, system: str = "prototype", *, blast=None, gravity: float = STANDARD_GRAVITY,
                load: str = "A", pulse_shape: str = "friedlander", incidence: str | None = None, contact=None,
                duration: float = 8.0, record_every: int = 4, load_factor: float = 1.0,
-               extrapolate: bool = False) -> SystemRun:
+               extrapolate: bool = False, load_model=None) -> SystemRun:
     """Simulate the prototype, or the model at its own size (module docstring).
 
     Parameters
@@ -80,6 +80,8 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
     extrapolate : bool
         Let the blast fits run outside their ranges (with a warning), passed to ``make_load``
         (Methods B and C evaluate the fits at each face's distance).
+    load_model : LoadModel, optional
+        Clearing and the negative phase, passed to ``make_load`` (each system's faces are its own).
 
     Returns
     -------
@@ -108,7 +110,7 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
         resp = simulate_structure(struct, None, dur, contact=cont, gravity=g, record_every=record_every)
         return SystemRun(struct, resp, 0.0, None)
     inc = {} if incidence is None else {"incidence": incidence}
-    ld = make_load(load, struct, bp, pulse_shape=pulse_shape, extrapolate=bool(extrapolate), **inc)
+    ld = make_load(load, struct, bp, pulse_shape=pulse_shape, extrapolate=bool(extrapolate), load_model=load_model, **inc)
     run_load = ld if load_factor == 1.0 else PerturbedLoad(ld, load_factor)
     resp = simulate_structure(struct, run_load, dur, contact=cont, gravity=g, record_every=record_every)
     return SystemRun(struct, resp, float(ld.end_time - ld.first_arrival), ld)

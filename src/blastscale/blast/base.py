@@ -63,6 +63,8 @@ class BlastModel(abc.ABC):
 
     name: ClassVar[str]
     ranges: ClassVar[dict[str, tuple[float, float]]]
+    #: Burst type the fits describe (:mod:`.bursts`): "surface" (hemispherical) or "free-air" (spherical).
+    burst: ClassVar[str] = "surface"
 
     # ----------------------------------------------------------------- helpers
     def provides(self, quantity: str) -> bool:

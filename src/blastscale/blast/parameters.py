@@ -24,6 +24,11 @@ __all__ = [
     "BlastParameters",
     "scaled_distance",
     "valid_scaled_distance_range",
+    "BURSTS",
+    "DEFAULT_BURST",
+    "check_burst",
+    "burst_of",
+    "model_for_burst",
 ]
 
 
@@ -39,9 +44,18 @@ def _masi2021() -> BlastModel:
     return Masi2021()
 
 
+def _kingery_bulmash_free_air() -> BlastModel:
+    from .kingery_bulmash_free_air import KingeryBulmashFreeAir
+
+    return KingeryBulmashFreeAir()
+
+
 #: Names accepted by ``blast_model=`` everywhere; the first is the default.
 BLAST_MODELS = {"kingery-bulmash": _kingery_bulmash, "masi2021": _masi2021}
 DEFAULT_BLAST_MODEL = "kingery-bulmash"
+#: Fits chosen by a burst type rather than by name (:func:`blastscale.blast.bursts.model_for_burst`);
+#: their names are resolved too, so that a result's ``blast_model`` names the fit it came from.
+BURST_VARIANTS = {"kingery-bulmash-free-air": _kingery_bulmash_free_air}
 _CACHE: dict[str, BlastModel] = {}
 
 
@@ -50,12 +64,53 @@ def get_blast_model(blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> Bl
     or ``blast_model`` itself when it already is a :class:`BlastModel` (user-supplied fits)."""
     if isinstance(blast_model, BlastModel):
         return blast_model
-    if blast_model not in BLAST_MODELS:
+    if blast_model not in BLAST_MODELS and blast_model not in BURST_VARIANTS:
         raise BlastscaleInputError(
             f"blast model = {blast_model!r} is not known: valid values are {', '.join(BLAST_MODELS)}")
     if blast_model not in _CACHE:
-        _CACHE[blast_model] = BLAST_MODELS[blast_model]()
+        _CACHE[blast_model] = {**BLAST_MODELS, **BURST_VARIANTS}[blast_model]()
     return _CACHE[blast_model]
+
+
+#: Burst types (:mod:`.bursts`), the first the default (the paper's).
+BURSTS = ("surface", "free-air")
+DEFAULT_BURST = "surface"
+
+
+def check_burst(burst: str) -> str:
+    """``burst`` itself when it is one of :data:`BURSTS`; one line otherwise."""
+    if burst not in BURSTS:
+        raise BlastscaleInputError(f"burst = {burst!r} is not known: valid values are {', '.join(BURSTS)}")
+    return burst
+
+
+def burst_of(blast_model) -> str:
+    """The burst type of a blast model (name or :class:`BlastModel`): its ``burst`` attribute."""
+    return getattr(get_blast_model(blast_model), "burst", DEFAULT_BURST)
+
+
+def model_for_burst(blast_model, burst: str = DEFAULT_BURST) -> BlastModel:
+    """The fit of ``blast_model``'s family for ``burst``.
+
+    ``"kingery-bulmash"`` gives the Swisdak (1994) surface fit or the Kingery-Bulmash (1984)
+    spherical free-air fit; ``"masi2021"`` (the paper's Appendix A) has only a surface form, and a
+    user's :class:`BlastModel` is taken as it is when its ``burst`` attribute matches.
+
+    Raises
+    ------
+    BlastscaleInputError
+        An unknown burst, or a model without a fit for it (one line naming both).
+    """
+    check_burst(burst)
+    m = get_blast_model(blast_model)
+    if getattr(m, "burst", DEFAULT_BURST) == burst:
+        return m
+    family = getattr(m, "family", m.name)
+    if family == "kingery-bulmash":
+        return get_blast_model("kingery-bulmash-free-air" if burst == "free-air" else "kingery-bulmash")
+    raise BlastscaleInputError(
+        f"burst = {burst!r} is not available for blast model {m.name!r} (its fits are for a "
+        f"{getattr(m, 'burst', DEFAULT_BURST)} burst only): use blast model kingery-bulmash")
 
 
 #: Quantities :func:`blast_parameters` evaluates (the last three only where the model provides them).
@@ -87,7 +142,7 @@ def scaled_distance(charge, standoff):
 
 @dataclass(frozen=True)
 class BlastParameters:
-    """Blast parameters at one point (hemispherical surface burst), all SI.
+    """Blast parameters at one point (of a surface or a free-air burst), all SI.
 
     Every numeric field is a float for one charge and stand-off, or an array of their broadcast
     shape when :func:`blast_parameters` was given arrays.
@@ -114,6 +169,8 @@ class BlastParameters:
         Shock-front velocity [m/s]; None where the model has no fit.
     friedlander_decay : float
         Decay coefficient d fitted so that the Friedlander pulse carries i_ro (Eq. 2).
+    burst : str
+        ``"surface"`` (hemispherical surface burst, the paper's) or ``"free-air"`` (spherical).
     """
 
     blast_model: str
@@ -128,6 +185,7 @@ class BlastParameters:
     incident_impulse: float | None
     shock_front_velocity: float | None
     friedlander_decay: float
+    burst: str = "surface"
 
     def pulse(self, shape: str = "friedlander") -> Pulse:
         """The reflected pulse on a face normal to the blast: ``"friedlander"`` (Eq. 1),
@@ -169,6 +227,7 @@ class BlastParameters:
             "incident_impulse_Pa_s": d["incident_impulse"],
             "shock_front_velocity_m_s": d["shock_front_velocity"],
             "friedlander_decay": d["friedlander_decay"],
+            "burst": d["burst"],
         }
 
 
@@ -178,8 +237,10 @@ def blast_parameters(
     blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
     *,
     extrapolate: bool = False,
+    burst: str | None = None,
 ) -> BlastParameters:
-    """Blast parameters of a hemispherical surface burst of ``charge`` [kg TNT] at ``standoff`` [m].
+    """Blast parameters of a burst of ``charge`` [kg TNT] at ``standoff`` [m] (a hemispherical surface
+    burst unless ``burst="free-air"``).
 
     Evaluates the chosen empirical model at :math:`Z = R/W^{1/3}` and scales time and impulse
     by :math:`W^{1/3}` (Hopkinson-Cranz cube-root scaling, Baker et al. 1983):
@@ -199,6 +260,10 @@ def blast_parameters(
         ``"kingery-bulmash"`` (Swisdak 1994, default) or ``"masi2021"`` (paper Appendix A).
     extrapolate : bool
         Evaluate the fits outside their validity ranges (with an ``ExtrapolationWarning``).
+    burst : {"surface", "free-air"}, optional
+        Burst type (:mod:`.bursts`): the fit of ``blast_model``'s family for it (kingery-bulmash:
+        Swisdak's surface fit or Kingery-Bulmash's spherical free-air fit, UFC 3-340-02 Fig. 2-7).
+        None: ``blast_model`` as it is (a surface burst for the named models).
 
     Returns
     -------
@@ -213,7 +278,7 @@ def blast_parameters(
         When Z is outside a fit's validity range (unless ``extrapolate=True``); each quantity has
         its own range (``get_blast_model(blast_model).valid_range(quantity)``).
     """
-    m = get_blast_model(blast_model)
+    m = get_blast_model(blast_model) if burst is None else model_for_burst(blast_model, burst)
     W = check_positive("charge", charge, "kg")
     R = check_positive("standoff", standoff, "m")
     try:
@@ -260,4 +325,5 @@ def blast_parameters_unchecked(W, R, blast_model: "str | BlastModel", *, extrapo
         incident_impulse=opt("scaled_incident_impulse", w13),
         shock_front_velocity=opt("shock_front_velocity"),
         friedlander_decay=out(friedlander_decay(P, to, i)),
+        burst=getattr(m, "burst", "surface"),
     )

@@ -8,12 +8,13 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from .._validate import check_range
+from .._validate import BlastscaleInputError, check_range
 from ..blast import blast_parameters
 from ..blast.faces import face_loads
 from ..blast.incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS, check_incidence
 from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ..similitude import design_model
+from . import blast_flags as bf
 from ._app import app, console, fmt_value, one_line_warnings, print_json, table
 from .options import MODEL_HELP, block_from_options
 
@@ -28,16 +29,29 @@ def blast_cmd(
         "face's peak pressure and impulse."),
     incidence: str = typer.Option(DEFAULT_INCIDENCE, "--incidence",
                                   help=f"Angle-of-incidence model: {' or '.join(INCIDENCE_MODELS)}."),
+    burst: str = bf.BURST,
+    clearing: bool = bf.CLEARING,
+    face_width: Optional[float] = bf.FACE_WIDTH,
+    face_height: Optional[float] = bf.FACE_HEIGHT,
+    negative_phase: bool = bf.NEGATIVE_PHASE,
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
-    """Blast parameters of a hemispherical surface burst of W kg TNT at R m (SI output)."""
+    """Blast parameters of a burst of W kg TNT at R m (hemispherical surface burst unless --burst
+    free-air; with --clearing and --negative-phase the front face's cleared pulse and suction; SI)."""
+    from ..blast.load_model import front_face_clearing, front_face_negative, load_model_record
+
     check_incidence(incidence)
+    bf.check_burst_flag(burst)
+    lm = bf.load_model_from_flags(clearing, face_width, face_height, negative_phase)
     with one_line_warnings():
-        b = blast_parameters(charge, standoff, blast_model, extrapolate=extrapolate)
-        face = None if incidence_deg is None else oblique_face(charge, standoff, incidence_deg, blast_model, incidence,
-                                                               extrapolate)
+        b = blast_parameters(charge, standoff, blast_model, extrapolate=extrapolate, burst=burst)
+        face = None if incidence_deg is None else oblique_face(charge, standoff, incidence_deg, b.blast_model,
+                                                               incidence, extrapolate)
+        cl = front_face_clearing(b, lm)
+        neg = front_face_negative(b, lm, extrapolate=extrapolate)
+    effects = {**(cl.to_dict() if cl is not None else {}), **(neg.to_dict() if neg is not None else {})}
     if as_json:
-        print_json({**b.to_dict(), **(face or {})})
+        print_json({**b.to_dict(), **(face or {}), **effects, "load_model": load_model_record(b.blast_model, b.burst, lm)})
         return
     rows = [
         ("scaled distance Z", f"{b.scaled_distance:.6g}", "m/kg^(1/3)"),
@@ -55,7 +69,19 @@ def blast_cmd(
             (f"face at {incidence_deg:g} deg ({incidence}): peak pressure", f"{face['face_pressure_Pa']:.6g}", "Pa"),
             (f"face at {incidence_deg:g} deg ({incidence}): impulse", f"{face['face_impulse_Pa_s']:.6g}", "Pa s"),
         ]
-    console.print(table(f"Blast: {charge:g} kg TNT at {standoff:g} m ({b.blast_model})", rows))
+    if cl is not None:
+        rows += [
+            (f"clearing time t_c ({lm.face_width_m:g} x {lm.face_height_m:g} m face)", f"{cl.clearing_time:.6g}", "s"),
+            ("t_c / t_o", f"{cl.clearing_time / b.positive_duration:.6g}", "-"),
+            ("cleared impulse (UFC: the smaller of cleared and uncleared)", f"{cl.impulse:.6g}", "Pa s"),
+        ]
+    if neg is not None:
+        rows += [
+            ("negative phase: peak suction P_r-", f"{neg.pressure:.6g}", "Pa"),
+            ("negative phase: impulse i_r-", f"{neg.impulse:.6g}", "Pa s"),
+            ("negative phase: duration t_o-", f"{neg.duration:.6g}", "s"),
+        ]
+    console.print(table(f"Blast: {charge:g} kg TNT at {standoff:g} m ({b.blast_model}, {b.burst} burst)", rows))
 
 
 def oblique_face(charge: float, standoff: float, angle_deg: float, blast_model: str, incidence: str,
@@ -101,6 +127,38 @@ def print_design(d) -> None:
             f"Impulsive check t_o*p: prototype {i.prototype_ratio:.3g}, model {i.model_ratio:.3g} "
             f"(threshold {i.threshold:g}) -> {verdict}"
         )
+    if d.effects is not None:
+        print_effects(d.effects)
+
+
+def print_effects(e: dict) -> None:
+    """The design's blast effects, prototype against model (clearing, negative phase, lab burst)."""
+    rows = []
+    lm = e["load_model"]
+    rows.append(("burst", lm["prototype"]["burst"], lm["model"]["burst"], ""))
+    if "clearing" in e:
+        c = e["clearing"]
+        for label, key, unit in (("clearing time t_c", "clearing_time_s", "s"),
+                                 ("t_c / t_o", "clearing_time_over_positive_duration", "-"),
+                                 ("uncleared impulse", "uncleared_impulse_Pa_s", "Pa s"),
+                                 ("cleared impulse", "cleared_impulse_Pa_s", "Pa s"),
+                                 ("cleared / uncleared", "cleared_over_uncleared_impulse", "-")):
+            rows.append((label, fmt_value(c["prototype"][key]), fmt_value(c["model"][key]), unit))
+    if "negative_phase" in e:
+        n = e["negative_phase"]
+        for label, key, unit in (("negative impulse i_r-", "negative_impulse_Pa_s", "Pa s"),
+                                 ("negative / positive impulse", "negative_over_positive_impulse", "-")):
+            rows.append((label, fmt_value(n["prototype"][key]), fmt_value(n["model"][key]), unit))
+    t = Table(title="Blast effects the scaling law does not match (prototype vs model)", title_justify="left")
+    for c in ("quantity", "prototype", "model", "unit"):
+        t.add_column(c, justify="left" if c in ("quantity", "unit") else "right")
+    for r in rows:
+        t.add_row(*r)
+    console.print(t)
+    if "lab_burst" in e:
+        lb = e["lab_burst"]
+        console.print(f"lab charge at {lb['charge_height_m']:.4g} m: {lb['kind']} burst (floor reflection "
+                      f"{lb['delay_over_positive_duration']:.3g} positive durations after the shock)")
 
 
 @app.command("design")
@@ -120,15 +178,31 @@ def design_cmd(
     depth: float = typer.Option(1.0, "--depth", help="Prototype block depth 2w \\[m] (cancels)."),
     density: float = typer.Option(2000.0, "--density", help="Prototype density \\[kg/m^3]."),
     extrapolate: bool = typer.Option(False, "--extrapolate", help="Evaluate fits outside their range (warns)."),
+    burst: str = bf.BURST,
+    specimen_burst: Optional[str] = bf.SPECIMEN_BURST,
+    specimen_charge_height: Optional[float] = bf.SPECIMEN_CHARGE_HEIGHT,
+    clearing: bool = bf.CLEARING,
+    face_width: Optional[float] = bf.FACE_WIDTH,
+    face_height: Optional[float] = bf.FACE_HEIGHT,
+    negative_phase: bool = bf.NEGATIVE_PHASE,
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
 ) -> None:
-    """Design the reduced-scale model: model charge and stand-off, every factor, impulsive check."""
+    """Design the reduced-scale model: model charge and stand-off, every factor, impulsive check
+    (and, with --clearing, --negative-phase or another --specimen-burst, what they do to each system)."""
     block = block_from_options(height, width, alpha_deg, depth, density)
+    bf.check_burst_flag(burst)
+    bf.check_burst_flag(specimen_burst, "--specimen-burst")
+    lm = bf.load_model_from_flags(clearing, face_width, face_height, negative_phase, block)
     if density_ratio is None and law == "general":
         density_ratio = 1.0
+    face = None if lm is None or not lm.clearing else (lm.face_width_m, lm.face_height_m)
+    if specimen_charge_height is not None and face is None and block is None:
+        raise BlastscaleInputError("--specimen-charge-height needs the prototype's face: give the block (--height ...) "
+                                   "or --clearing with --face-width and --face-height")
     with one_line_warnings():
         d = design_model(charge, standoff, scale, density_ratio, gravity_ratio, law, blast_model, block,
-                         extrapolate=extrapolate)
+                         extrapolate=extrapolate, burst=burst, specimen_burst=specimen_burst, load_model=lm,
+                         face=face, specimen_charge_height=specimen_charge_height)
     if as_json:
         print_json(d.to_dict())
     else:

@@ -13,6 +13,7 @@ import typer
 
 from .._validate import BlastscaleInputError
 from ._app import app, console, console_err, fmt_value, one_line_warnings, print_json, save_figure, table
+from . import blast_flags as bf
 from . import options as opt
 from .options import block_from_options, check_plot_path
 
@@ -32,6 +33,20 @@ def _summary_rows(s: dict) -> list[tuple[str, str, str]]:
         ("first impact time", fmt_value(s["first_impact_time_s"]), "s"),
         ("impacts", str(s["n_impacts"]), ""),
     ]
+
+
+def _load_model_record(result) -> dict:
+    """Which load model produced a Study's planar result (prototype and, with a design, model)."""
+    from ..blast.load_model import load_model_record
+    from ..study.engines import load_model_of
+
+    sc, d = result.scenario, result.design
+    lm = load_model_of(sc, result.structure)
+    proto = load_model_record(result.blast.blast_model, result.blast.burst, lm)
+    if d is None:
+        return {"prototype": proto}
+    return {"prototype": proto, "model": load_model_record(d.specimen.blast_model, d.specimen.burst,
+                                                           lm.scaled(d.factors.length))}
 
 
 def _inputs(block, **kw) -> dict:
@@ -63,6 +78,9 @@ def rock_cmd(
     gravity_ratio: float = opt.GRAVITY_RATIO,
     gravity: float = opt.GRAVITY,
     blast_model: str = opt.MODEL,
+    burst: str = bf.BURST,
+    clearing: bool = bf.CLEARING,
+    negative_phase: bool = bf.NEGATIVE_PHASE,
     samples: int = typer.Option(opt._SIMULATION["samples"].default, "--samples", help="Sampling times for the comparison and the plot \\[-]."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write theta(t), theta_dot(t) and the phase portrait to this image file."),
     as_json: bool = opt.JSON,
@@ -78,10 +96,12 @@ def rock_cmd(
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
+    bf.check_burst_flag(burst)
     sc = scenario_from_flags(
         structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
                    "density_kg_m3": density},
-        blast={"charge_kg": charge, "standoff_m": standoff, "blast_model": blast_model, "pulse_shape": pulse_shape},
+        blast={"charge_kg": charge, "standoff_m": standoff, "blast_model": blast_model, "pulse_shape": pulse_shape,
+               "burst": burst, "clearing": clearing, "negative_phase": negative_phase},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
                                           "gravity_ratio": gravity_ratio},
         simulation={"engine": "planar", "duration_s": duration, "samples": samples, "gravity_m_s2": gravity,
@@ -95,7 +115,7 @@ def rock_cmd(
             gravity_ratio=gravity_ratio if scale is not None else None,
         )
     }
-    with console_err.status("simulating the rocking response ...", spinner="dots"):
+    with console_err.status("simulating the rocking response ...", spinner="dots"), one_line_warnings():
         result = Study(sc).run()
     planar = result.planar
     res = planar.prototype
@@ -113,6 +133,7 @@ def rock_cmd(
             "angular_velocity_factor": d.factors.angular_velocity,
         }
     out["prototype"]["restitution"] = res.restitution
+    out["load_model"] = _load_model_record(result)
     if plot:
         from ..plots.rocking import rocking_figure
 
@@ -159,6 +180,9 @@ def critical_cmd(
     density_ratio: float = opt.DENSITY_RATIO,
     gravity: float = opt.GRAVITY,
     blast_model: str = opt.MODEL,
+    burst: str = bf.BURST,
+    clearing: bool = bf.CLEARING,
+    negative_phase: bool = bf.NEGATIVE_PHASE,
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the P-I overturning diagram (with the critical point) to this image file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
@@ -166,10 +190,14 @@ def critical_cmd(
     critical stand-off: the first-swing energy criterion after the pulse (docs/capacity.md),
     searched from the structure's own scale (any size, lab specimens included)."""
     from ..blast import blast_parameters
+    from ..blast.bursts import model_for_burst
     from ..rocking import RockingSystem, critical_charge, critical_standoff
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
+    bf.check_burst_flag(burst)
+    lm = bf.load_model_from_flags(clearing, None, None, negative_phase, block)
+    fit = model_for_burst(blast_model, burst).name
     if (standoff is None) == (charge is None):
         raise BlastscaleInputError(
             f"standoff = {standoff}, charge = {charge}: give exactly one of --standoff (m, finds the critical charge) "
@@ -178,12 +206,15 @@ def critical_cmd(
     system = RockingSystem.from_block(block, gravity, restitution)
     with one_line_warnings(), console_err.status("searching the critical scenario ...", spinner="dots"):
         if standoff is not None:
-            res = critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
+            res = critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate,
+                                  load_model=lm)
         else:
-            res = critical_standoff(system, charge, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
+            res = critical_standoff(system, charge, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate,
+                                    load_model=lm)
     out = {"inputs": _inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
     out.update(res.to_dict())
-    bp = blast_parameters(res.charge_kg, res.standoff_m, blast_model, extrapolate=extrapolate)
+    out["blast_model"] = blast_model  # the family asked for; the fit used is in load_model
+    bp = blast_parameters(res.charge_kg, res.standoff_m, fit, extrapolate=extrapolate)
     out["critical_blast"] = {
         "scaled_distance_m_per_kg13": bp.scaled_distance,
         "reflected_pressure_Pa": bp.reflected_pressure,
@@ -197,7 +228,7 @@ def critical_cmd(
 
         with one_line_warnings():
             d = design_model(res.charge_kg, res.standoff_m, scale, density_ratio, blast_model=blast_model, geometry=block,
-                             gravity=gravity, extrapolate=extrapolate)
+                             gravity=gravity, extrapolate=extrapolate, burst=burst, load_model=lm)
         out["model_experiment"] = {"scale": scale, "density_ratio": density_ratio,
                                    "critical_charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
     if plot:

@@ -89,7 +89,7 @@ def _odds(result, spec, ch, lab, collapsed_p):
         return planar_odds(spec, charge_kg=d.specimen_charge_kg, standoff_m=d.specimen_standoff_m,
                            prototype_collapsed=collapsed_p, explosive_fraction=1.0 - ch.initiator_fraction,
                            gravity=sim.gravity_m_s2 * d.gravity_ratio, restitution=sim.restitution,
-                           pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, tolerances=Tolerances.from_lab(lab),
+                           pulse_shape=bl.pulse_shape, blast_model=d.specimen.blast_model, tolerances=Tolerances.from_lab(lab),
                            samples=lab.samples, seed=lab.seed, target=lab.first_peak_target)
 
 
@@ -99,19 +99,41 @@ def _prototype_collapsed(result) -> bool:
     return bool(result.summary()["3d"]["prototype"]["collapsed"])
 
 
-def _layout(spec, ch, ins, standoff: float, density) -> dict:
-    """Positions [m] in the lab frame: the charge at the origin on the floor, the blast along +x."""
+def _layout(spec, ch, ins, standoff: float, density, charge_height: float = 0.0, burst: str = "surface") -> dict:
+    """Positions [m] in the lab frame: the charge above the origin (on the floor for a surface burst, at
+    ``charge_height`` on a stand for a free-air one), the blast along +x."""
     hs, ws, ds = spec_dims(spec)
     m = ch.explosive_mass_kg
     rho = density or 1600.0
-    radius = (3.0 * m / (2.0 * math.pi * rho)) ** (1.0 / 3.0)  # hemispherical charge, as the blast fits
+    # the charge's shape is the blast fits': a hemisphere on the floor, a sphere in free air
+    radius = (3.0 * m / ((2.0 if burst == "surface" else 4.0) * math.pi * rho)) ** (1.0 / 3.0)
     cam = 4.0 * (hs + ins.displacement_range_m)
-    return {"charge": [0.0, 0.0, 0.0], "charge_height_m": 0.0, "charge_radius_m": radius,
+    return {"charge": [0.0, 0.0, charge_height], "charge_height_m": charge_height, "charge_radius_m": radius,
             "specimen_front_x_m": standoff, "specimen_centre": [standoff + 0.5 * ws, 0.0, 0.0],
             "reflected_gauge": [standoff, -(0.5 * ds + 0.2 * standoff), 0.5 * hs],
             "incident_gauge": [0.0, -standoff, 0.5 * hs],
             "camera": [standoff + 0.5 * ws, cam, 0.5 * hs], "camera_distance_m": cam,
             "displacement_sensor": [standoff + ws + 0.5 * hs + ins.displacement_range_m, 0.0, hs]}
+
+
+def _lab_shot(result) -> tuple:
+    """(charge height [m], burst, notes) of the specimen's shot: the design's specimen burst (a surface
+    burst: the charge on the floor) and ``scale.specimen_charge_height_m`` where given."""
+    d, sc = result.design, result.scenario
+    burst = getattr(d.specimen, "burst", "surface")
+    h = sc.scale.specimen_charge_height_m if sc.scale is not None else None
+    notes = []
+    if burst != "surface" and h is None:
+        notes.append(f"the specimen's charge is a {burst} burst on a stand of unstated height: give "
+                     "scale.specimen_charge_height_m to check that the floor's reflection arrives after the positive phase")
+    lb = (d.effects or {}).get("lab_burst")
+    if lb is not None and lb["kind"] != burst:
+        notes.append(f"the charge at {lb['charge_height_m']:.4g} m is {lb['kind']}, not the {burst} burst the design "
+                     f"assumed (floor reflection after {lb['delay_over_positive_duration']:.2g} of the positive duration)")
+    if sc.blast.clearing or sc.blast.negative_phase:
+        notes.append("the odds run the planar first swing on the uncleared positive pulse (clearing and the negative "
+                     "phase are in the simulations, not in the odds)")
+    return (0.0 if h is None else float(h)) if burst == "surface" or h is not None else None, burst, notes
 
 
 def spec_dims(spec) -> tuple:
@@ -145,7 +167,7 @@ def study_test_card(result, lab=None) -> dict | None:
     env_p = safety_envelope(d.prototype.charge_kg, lab.safety_threshold)
     r = _response(result, spec)
     m = d.specimen
-    kb = get_blast_model("kingery-bulmash")
+    kb = get_blast_model("kingery-bulmash-free-air" if getattr(m, "burst", "surface") == "free-air" else "kingery-bulmash")
     z = float(m.scaled_distance)
     lo, hi = kb.valid_range("incident_pressure")
     inc = float(kb.incident_pressure(z)) if lo <= z <= hi else math.nan
@@ -165,7 +187,8 @@ def study_test_card(result, lab=None) -> dict | None:
         odds3 = ensemble_odds_3d(specimen_scenario(sc, ev), prototype_collapsed=collapsed_p,
                                  tolerances=Tolerances.from_lab(lab), members=lab.ensemble_3d, seed=lab.seed)
     reach, reach_p = max(r["reach_m"]), max(r["prototype_reach_m"])
-    notes = list(ch.warnings)
+    hc, burst, shot_notes = _lab_shot(result)
+    notes = list(ch.warnings) + shot_notes
     if env.far_field:
         many = len(env.far_field) > 1
         notes.append(f"the {', '.join(env.far_field)} distance{'s lie' if many else ' lies'} beyond the Kingery-Bulmash "
@@ -186,7 +209,7 @@ def study_test_card(result, lab=None) -> dict | None:
         "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
         "pressure_factor": ch.explosive.pressure_factor, "impulse_factor": ch.explosive.impulse_factor,
         "equivalence_source": ch.explosive.source, "equivalence_uncertainty": ch.explosive.uncertainty,
-        "standoff_m": d.specimen_standoff_m, "charge_height_m": 0.0,
+        "standoff_m": d.specimen_standoff_m, "charge_height_m": hc, "burst": burst,
         "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
         "far_field": list(env.far_field), "thresholds": threshold_meanings(),
         "debris_radius_m": lab.debris_margin * reach, "debris_margin": lab.debris_margin, "specimen_reach_m": reach,
@@ -204,7 +227,7 @@ def study_test_card(result, lab=None) -> dict | None:
                       "top_displacement_m": r["top_m"], "arrival_time_s": m.arrival_time,
                       "reflected_pressure_Pa": m.reflected_pressure, "incident_pressure_Pa": inc,
                       "reflected_impulse_Pa_s": m.reflected_impulse, "positive_duration_s": m.positive_duration},
-        "layout": _layout(spec, ch, ins, d.specimen_standoff_m, ch.explosive.density_kg_m3),
+        "layout": _layout(spec, ch, ins, d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst),
         "prototype": {"collapsed": collapsed_p, "charge_kg": d.prototype.charge_kg, "reach_m": reach_p,
                       "debris_radius_m": lab.debris_margin * reach_p, "safety_distances_m": env_p.distances_m},
         "odds": None if odds is None else odds.to_dict(), "odds_3d": odds3,

@@ -67,6 +67,7 @@ def _prototype(scenario):
     from ..structures import from_spec, is_block
 
     sc, bl, sim = scenario, scenario.blast, scenario.simulation
+    _paper_load_only(sc)
     block = from_spec(sc.structure)
     if not is_block(block):
         raise BlastscaleInputError(f"structure.kind = {sc.structure.kind!r}: blastscale plan searches designs with "
@@ -87,6 +88,22 @@ def _prototype(scenario):
         "charge_kg": bl.charge_kg, "standoff_m": bl.standoff_m, "collapsed": collapsed,
         "first_peak_rotation_rad": None if collapsed else rot, "reach_m": reach,
         "safety_distances_m": env.distances_m}
+
+
+def _paper_load_only(sc) -> None:
+    """The planner's odds run the planar kernel on the paper's load (a surface burst, unbounded faces,
+    positive phase): a scenario asking for more is refused in one line, not planned as if it had not."""
+    bl, scale = sc.blast, sc.scale
+    asked = [f"blast.burst = {bl.burst!r}" if bl.burst != "surface" else None,
+             "blast.clearing = true" if bl.clearing else None, "blast.negative_phase = true" if bl.negative_phase else None,
+             f"scale.specimen_burst = {scale.specimen_burst!r}" if scale is not None and scale.specimen_burst not in
+             (None, "surface") else None,
+             "scale.specimen_charge_height_m" if scale is not None and scale.specimen_charge_height_m else None]
+    asked = [a for a in asked if a]
+    if asked:
+        raise BlastscaleInputError(f"{asked[0]}: blastscale plan searches designs on the paper's load (a charge on the "
+                                   "floor, unbounded faces, positive phase; valid: the defaults); run the scenario "
+                                   "with its [lab] table for the test card of this load model")
 
 
 def design_scenario(scenario, candidate, lab_spec=None):

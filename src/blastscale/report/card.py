@@ -131,7 +131,10 @@ def _elevation_svg(card: dict) -> str:
     fx, fz = P(R, 0)
     out = [f'<svg class="draw" viewBox="0 0 {W:.0f} {H:.0f}" width="{W:.0f}" height="{H:.0f}">{_DEFS}',
            f'<line x1="10" y1="{z0:.1f}" x2="{W - 10:.1f}" y2="{z0:.1f}" class="floor"/>',
-           f'<path d="M{x0 - 6:.1f},{z0:.1f} A6,6 0 0 1 {x0 + 6:.1f},{z0:.1f}z" class="charge"/>',
+           (f'<path d="M{x0 - 6:.1f},{z0:.1f} A6,6 0 0 1 {x0 + 6:.1f},{z0:.1f}z" class="charge"/>'
+            if not card.get("charge_height_m") else  # a free-air charge on its stand
+            f'<line x1="{x0:.1f}" y1="{z0:.1f}" x2="{x0:.1f}" y2="{P(0, card["charge_height_m"])[1]:.1f}" class="floor"/>'
+            f'<circle cx="{x0:.1f}" cy="{P(0, card["charge_height_m"])[1]:.1f}" r="6" class="charge"/>'),
            f'<rect x="{fx:.1f}" y="{z0 - h * k:.1f}" width="{w * k:.1f}" height="{h * k:.1f}" class="spec"/>']
     th = 0.5 * math.pi if p["collapsed"] else (p["first_peak_rotation_rad"] or 0.0)
     pivot = (R + w, 0.0)
@@ -197,8 +200,11 @@ def card_section(result) -> str:
                   ("TNT equivalent, pressure (safety)", _n(c, "tnt_equivalent_pressure_kg", charge_unit)),
                   ("initiator (TNT equivalent)", _n(c, "initiator_tnt_kg", charge_unit)),
                   ("stand-off to the front face", _n(c, "standoff_m", "mm")),
-                  ("charge height (on the floor: surface burst)", _n(c, "charge_height_m", "mm")),
-                  ("charge radius (hemisphere)", _n(c, "layout/charge_radius_m", "mm")),
+                  *([("charge height (on the floor: surface burst)", _n(c, "charge_height_m", "mm")),
+                     ("charge radius (hemisphere)", _n(c, "layout/charge_radius_m", "mm"))]
+                    if c.get("burst", "surface") == "surface" else
+                    [("charge height (on a stand: free-air burst)", _n(c, "charge_height_m", "mm")),
+                     ("charge radius (sphere)", _n(c, "layout/charge_radius_m", "mm"))]),
                   ("weighing precision (1 sd) to keep the first peak", _n(c, "weighing_precision_kg", charge_unit))])
     safety = _rows([(f"{t['key']}: {t['meaning']}", _n(c, f"safety_distances_m/{t['key']}", "m"))
                     for t in c["thresholds"]]

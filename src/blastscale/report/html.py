@@ -178,7 +178,7 @@ def _loads(result) -> str:
                 ("positive duration", b.positive_duration, "s"), ("arrival time", b.arrival_time, "s")]
         return (_table(("quantity", "prototype", "unit"), rows)
                 + f"<p>Blast model: <b>{_e(b.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load "
-                  f"method <b>{_e(result.scenario.blast.load)}</b>.</p>")
+                  f"method <b>{_e(result.scenario.blast.load)}</b>.</p>" + _load_model(result))
     p, m, f = d.prototype, d.specimen, d.factors
     rows = [
         ("scaled distance Z", p.scaled_distance, m.scaled_distance, d.scaled_distance_factor, None, "m/kg^(1/3)"),
@@ -191,7 +191,45 @@ def _loads(result) -> str:
             "the duration do not, which is harmless while the load is impulsive (next section). Blast model: "
             f"<b>{_e(p.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load method "
             f"<b>{_e(result.scenario.blast.load)}</b>. {_e(d.root_note)}</p>")
-    return _table(("quantity", "prototype", "model", "delivered ratio", "required ratio", "unit"), rows) + note
+    return (_table(("quantity", "prototype", "model", "delivered ratio", "required ratio", "unit"), rows) + note
+            + _load_model(result))
+
+
+def _load_model(result) -> str:
+    """Which load model was used (burst, clearing, negative phase: the paper's unless asked for) and,
+    with a design, what clearing and the negative phase do to each system (docs/blast_physics.md)."""
+    bl, d = result.scenario.blast, result.design
+    sb = d.specimen.burst if d is not None else None
+    used = [f"{bl.burst} burst" + (f" (specimen: {sb} burst)" if sb and sb != bl.burst else ""),
+            "clearing of the finite faces (UFC 3-340-02 Sec. 2-15.3.2)" if bl.clearing else "no clearing (unbounded faces)",
+            "negative phase (UFC 3-340-02 Fig. 2-16, Granström's cubic)" if bl.negative_phase else "positive phase only"]
+    paper = bl.burst == "surface" and not bl.clearing and not bl.negative_phase and (sb in (None, "surface"))
+    note = " (the paper's assumptions)" if paper else ""
+    out = f"<p>Load model: {_e('; '.join(used) + note)}.</p>"
+    e = None if d is None else d.effects
+    if not e:
+        return out
+    rows = []
+    for key, label, unit in (("clearing_time_s", "clearing time t_c", "s"),
+                             ("clearing_time_over_positive_duration", "t_c / t_o", "-"),
+                             ("uncleared_impulse_Pa_s", "uncleared impulse", "Pa s"),
+                             ("cleared_impulse_Pa_s", "cleared impulse", "Pa s"),
+                             ("cleared_over_uncleared_impulse", "cleared / uncleared impulse", "-")):
+        if "clearing" in e:
+            rows.append((label, e["clearing"]["prototype"][key], e["clearing"]["model"][key], unit))
+    for key, label, unit in (("negative_impulse_Pa_s", "negative impulse", "Pa s"),
+                             ("negative_over_positive_impulse", "negative / positive impulse", "-")):
+        if "negative_phase" in e:
+            rows.append((label, e["negative_phase"]["prototype"][key], e["negative_phase"]["model"][key], unit))
+    if rows:
+        out += ("<p>What the scaling law does not match (a difference above 5 % is listed under Warnings):</p>"
+                + _table(("quantity", "prototype", "model", "unit"), rows))
+    if "lab_burst" in e:
+        lb = e["lab_burst"]
+        out += (f"<p>Lab charge {lb['charge_height_m'] * 100:.3g} cm above the floor: <b>{_e(lb['kind'])}</b> burst "
+                f"(the floor's reflection arrives {lb['delay_over_positive_duration']:.2g} positive durations after "
+                "the shock).</p>")
+    return out
 
 
 def _impulsive(result) -> str:

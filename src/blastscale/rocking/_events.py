@@ -71,16 +71,17 @@ def initial_mode(th, w, w_rest):
 
 
 @njit(cache=True)
-def starts_overturned(th, w, s, alpha, tau_pend):
+def starts_overturned(th, w, s, alpha, tau_pend, tau_pull):
     """Whether an initial state beyond ``alpha`` [rad], moving outward, is already past the tipping
     point (toward the blast, s < 0, only without a pulse, ``tau_pend`` [-] <= 0: a pulse may still
-    push it back over the top)."""
-    return abs(th) >= alpha and s * w >= 0.0 and s != 0.0 and (s > 0.0 or tau_pend <= 0.0)
+    push it back over the top; away from it, s > 0, only without a negative phase to come,
+    ``tau_pull`` [-] <= 0: suction may still pull it back)."""
+    return abs(th) >= alpha and s * w >= 0.0 and s != 0.0 and ((s > 0.0 and tau_pull <= 0.0) or tau_pend <= 0.0)
 
 
 # ----------------------------------------------------------------------------- events of a step
 @njit(cache=True)
-def locate_events(tau, th, w, thn, wn, s, alpha, tau_pend, overturned, h, Q):
+def locate_events(tau, th, w, thn, wn, s, alpha, tau_pend, tau_pull, overturned, h, Q):
     """Events of one accepted step from ``(tau, th, w)`` to ``(thn, wn)`` of size ``h`` [-]
     (dense coefficients Q), as fractions of the step.
 
@@ -105,8 +106,9 @@ def locate_events(tau, th, w, thn, wn, s, alpha, tau_pend, overturned, h, Q):
     xo = np.inf
     # tipping point: |theta| crosses alpha outward. Toward the blast (s < 0) only in a step that
     # starts once the pulse is over (steps never cross the pulse end): while the load acts it
-    # pushes the body back and a crossing of -alpha decides nothing.
-    if not overturned and s * thn >= alpha and (s > 0.0 or tau >= tau_pend):
+    # pushes the body back and a crossing of -alpha decides nothing; away from it (s > 0) likewise
+    # while a negative phase (ending at tau_pull, 0 without one) may still pull it back.
+    if not overturned and s * thn >= alpha and ((s > 0.0 and tau >= tau_pull) or tau >= tau_pend):
         xo = tipping_fraction(th, w, s, alpha, h, Q)
     return x_pk, x_ev, ev, xo
 

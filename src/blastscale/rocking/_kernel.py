@@ -76,7 +76,7 @@ from ._events import (
     starts_overturned,
     write_summary,
 )
-from ._load import lift_time, next_breakpoint, pulse_end
+from ._load import lift_time, next_breakpoint, pull_end, pulse_end, tail_lift_time
 
 # the summary layout is read as _kernel.S_* by the solver, the capacity modules and analysis.sweeps
 __all__ = [
@@ -167,6 +167,7 @@ def solve_case(
     Q = np.empty((2, 4))
     thr_lift = math.tan(alpha)
     tau_pend = pulse_end(kind, par, tab_t)
+    tau_pull = pull_end(par)  # 0 without a negative phase
 
     tau = 0.0
     th = th0
@@ -186,7 +187,7 @@ def solve_case(
     early = False
     if record:
         hist, nh = record_row(hist, nh, tau, th, w)
-    if starts_overturned(th, w, s, alpha, tau_pend):
+    if starts_overturned(th, w, s, alpha, tau_pend, tau_pull):
         overturned = True
         summ[S_OVERTURN_TAU] = 0.0
         summ[S_W_AT_ALPHA] = abs(w)
@@ -197,11 +198,15 @@ def solve_case(
     while tau < tau_end and not stop:
         if resting:  # until the load lifts the body off (tan(alpha) load ratio)
             tl = lift_time(tau, thr_lift, kind, par, tab_t, tab_f)
+            s_lift = 1.0
+            tn = tail_lift_time(tau, thr_lift, par)  # suction lifting it toward the blast (inf without)
+            if tn < tl:
+                tl, s_lift = tn, -1.0
             ie = sample_rest(tau_eval, ie, min(tl, tau_end), th_eval, w_eval)
             if tl >= tau_end:
                 tau = tau_end
                 break
-            tau, th, w, s = tl, 0.0, 0.0, 1.0
+            tau, th, w, s = tl, 0.0, 0.0, s_lift
             resting = False
             need_f1 = True
             h = 0.0
@@ -244,7 +249,7 @@ def solve_case(
 
         # ---------------------------------------------------------------- events
         dense_coeffs(K, hstep, Q)
-        x_pk, x_ev, ev, xo = locate_events(tau, th, w, thn, wn, s, alpha, tau_pend, overturned, hstep, Q)
+        x_pk, x_ev, ev, xo = locate_events(tau, th, w, thn, wn, s, alpha, tau_pend, tau_pull, overturned, hstep, Q)
         if xo <= x_ev:  # passed the tipping point before any other event: overturns
             overturned = True
             summ[S_OVERTURN_TAU] = tau + xo * hstep
@@ -339,7 +344,7 @@ def solve_batch(
     max_steps,
     record,
 ):
-    """Loop :func:`solve_case` over n cases (arrays of length n; ``par`` (n, 3);
+    """Loop :func:`solve_case` over n cases (arrays of length n; ``par`` (n, PAR_SIZE);
     tabulated pulses concatenated in ``tab_t``/``tab_f`` with case i at
     ``tab_off[i]:tab_off[i+1]``; ``tau_eval`` (n, m)). Returns summaries (n, N_SUMMARY),
     theta (n, m) and w (n, m)."""

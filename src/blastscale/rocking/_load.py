@@ -16,6 +16,12 @@ Pulse codes (the single table; :data:`blastscale.rocking.encoding.PULSE_CODES` n
 * :data:`TABULATED` 3: the table ``tab_t`` [-] (dimensionless times, increasing), ``tab_f``
   [-] (load ratios), linear in between, zero outside.
 
+Every code may carry a negative phase (suction) after it, in ``par[3:6] = (f_-, tau_-s, tau_-)``:
+``f = -f_- (27/4) x (1 - x)^2``, ``x = (tau - tau_-s) / tau_-`` in [0, 1] (Granström's cubic,
+:mod:`blastscale.blast.negative_phase`); ``tau_- = 0`` means none, and then every function here
+returns exactly what it returned before the negative phase existed. ``par`` has :data:`PAR_SIZE`
+entries.
+
 Not a public module: use :class:`blastscale.rocking.RockingSolver`.
 """
 
@@ -30,11 +36,34 @@ NO_PULSE = 0
 FRIEDLANDER = 1
 TRIANGULAR = 2
 TABULATED = 3
+#: Entries of an encoded pulse's ``par``: (f0, tau_o, d) of the positive pulse, then the negative
+#: phase's (f_-, tau_-s, tau_-).
+PAR_SIZE = 6
+
+
+@njit(cache=True)
+def tail_ratio(tau, par):
+    """Load ratio [-] of the negative phase at ``tau`` [-] (0 outside it, and without one)."""
+    if par[5] <= 0.0:
+        return 0.0
+    x = (tau - par[4]) / par[5]
+    if x < 0.0 or x > 1.0:
+        return 0.0
+    return -par[3] * 6.75 * x * (1.0 - x) * (1.0 - x)
 
 
 @njit(cache=True)
 def load_ratio(tau, kind, par, tab_t, tab_f):
-    """Load-to-weight ratio f(tau) [-] of an encoded pulse (module docstring, paper Eqs. 1, 3).
+    """Load-to-weight ratio f(tau) [-] of an encoded pulse, negative phase included."""
+    f = base_ratio(tau, kind, par, tab_t, tab_f)
+    if par[5] > 0.0:
+        f += tail_ratio(tau, par)
+    return f
+
+
+@njit(cache=True)
+def base_ratio(tau, kind, par, tab_t, tab_f):
+    """Load-to-weight ratio f(tau) [-] of an encoded pulse's positive part (module docstring, paper Eqs. 1, 3).
 
     Parameters
     ----------
@@ -77,7 +106,25 @@ def load_ratio(tau, kind, par, tab_t, tab_f):
 
 @njit(cache=True)
 def pulse_end(kind, par, tab_t):
-    """Dimensionless end time of the pulse [-] (0 without pressure)."""
+    """Dimensionless end time of the pulse [-] (0 without pressure), negative phase included."""
+    end = base_end(kind, par, tab_t)
+    if par[5] > 0.0:
+        end = max(end, par[4] + par[5])
+    return end
+
+
+@njit(cache=True)
+def pull_end(par):
+    """End of the negative phase [-] (0 without one): before it, a body tipped away from the blast
+    may still be pulled back (:mod:`._events`)."""
+    if par[5] > 0.0:
+        return par[4] + par[5]
+    return 0.0
+
+
+@njit(cache=True)
+def base_end(kind, par, tab_t):
+    """Dimensionless end time of the positive part [-] (0 without pressure)."""
     if kind == FRIEDLANDER or kind == TRIANGULAR:
         return par[1]
     if kind == TABULATED:
@@ -90,6 +137,18 @@ def next_breakpoint(tau, kind, par, tab_t):
     """First breakpoint of the load strictly after ``tau`` [-] (pulse end, table point); inf when none.
 
     The integrator never steps across one: the load is not smooth there."""
+    bp = base_breakpoint(tau, kind, par, tab_t)
+    if par[5] > 0.0:
+        if tau < par[4] and par[4] < bp:
+            bp = par[4]
+        elif tau < par[4] + par[5] and par[4] + par[5] < bp:
+            bp = par[4] + par[5]
+    return bp
+
+
+@njit(cache=True)
+def base_breakpoint(tau, kind, par, tab_t):
+    """First breakpoint of the positive part strictly after ``tau`` [-]; inf when none."""
     if kind == FRIEDLANDER or kind == TRIANGULAR:
         if tau < par[1]:
             return par[1]
@@ -103,17 +162,48 @@ def next_breakpoint(tau, kind, par, tab_t):
 
 
 @njit(cache=True)
+def tail_lift_time(tau, thr, par):
+    """First time >= ``tau`` [-] at which the negative phase's suction exceeds ``thr`` (``f < -thr``:
+    a body at rest lifts off toward the blast); inf if never (and without a negative phase)."""
+    if par[5] <= 0.0 or par[3] <= thr:
+        return np.inf
+    c = thr / par[3]  # the cubic g(x) = 6.75 x (1 - x)^2 rises to 1 at x = 1/3, then falls
+    x = (tau - par[4]) / par[5]
+    lo, hi = 0.0, 1.0 / 3.0  # rising root: g(lo) <= c < g(hi)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if 6.75 * mid * (1.0 - mid) * (1.0 - mid) > c:
+            hi = mid
+        else:
+            lo = mid
+    x1 = hi
+    lo, hi = 1.0 / 3.0, 1.0  # falling root: g(lo) > c >= g(hi)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if 6.75 * mid * (1.0 - mid) * (1.0 - mid) > c:
+            lo = mid
+        else:
+            hi = mid
+    x2 = lo
+    if x >= x2:
+        return np.inf
+    if x >= x1:
+        return tau
+    return par[4] + x1 * par[5]
+
+
+@njit(cache=True)
 def lift_time(tau, thr, kind, par, tab_t, tab_f):
     """First time >= ``tau`` [-] at which ``f > thr`` (a body at rest lifts off); inf if never.
 
     ``thr = tan(alpha)`` [-] is the uplift ratio (``P S h = m g b`` for a rectangular block,
     paper Eq. eom at theta = 0)."""
     if kind == FRIEDLANDER or kind == TRIANGULAR:  # monotone decreasing pulses
-        if tau <= par[1] and load_ratio(tau, kind, par, tab_t, tab_f) > thr:
+        if tau <= par[1] and base_ratio(tau, kind, par, tab_t, tab_f) > thr:
             return tau
         return np.inf
     if kind == TABULATED:
-        if load_ratio(tau, kind, par, tab_t, tab_f) > thr:
+        if base_ratio(tau, kind, par, tab_t, tab_f) > thr:
             return tau
         n = tab_t.size
         j = np.searchsorted(tab_t, tau, side="right") - 1
@@ -121,7 +211,7 @@ def lift_time(tau, thr, kind, par, tab_t, tab_f):
             j = 0
         while j < n - 1:
             t0 = max(tau, tab_t[j])
-            f0 = load_ratio(t0, kind, par, tab_t, tab_f)
+            f0 = base_ratio(t0, kind, par, tab_t, tab_f)
             f1 = tab_f[j + 1]
             if f1 > thr and f1 > f0:
                 if f0 > thr:

@@ -88,11 +88,12 @@ def capacity_curve(
     solver: RockingSolver | None = None,
     xtol_rel: float = 1e-9,
     extrapolate: bool = False,
+    load_model=None,
 ) -> CapacityCurve:
     """Critical charge W_c(R) [kg] at every stand-off R [m] of ``standoffs``, vectorised.
 
     Same method and parameters as :func:`critical_charge` (first-swing energy criterion, the
-    cases searched together); ``standoffs`` a non-empty 1-D array of stand-offs [m] > 0. A
+    cases searched together; ``load_model`` adds clearing and the negative phase); ``standoffs`` a non-empty 1-D array of stand-offs [m] > 0. A
     stand-off whose outcome does not change within the blast model's range of Z gives NaN.
     """
     R = np.atleast_1d(check_positive("standoffs", standoffs, "m")).astype(float)
@@ -100,7 +101,8 @@ def capacity_curve(
         raise BlastscaleInputError(f"standoffs must be a non-empty 1-D list of stand-offs [m], got shape {R.shape}")
     system = as_rocking_system(body, gravity, restitution)
     t0 = time.perf_counter()
-    W, _, _, nev, _ = _critical_arrays(system, "charge", R, pulse_shape, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel)
+    W, _, _, nev, _ = _critical_arrays(system, "charge", R, pulse_shape, blast_model, extrapolate, solver or DEFAULT_SOLVER,
+                                       xtol_rel, load_model=load_model)
     dt = time.perf_counter() - t0
     _check_extrapolated(blast_model, R / np.cbrt(W), extrapolate)
     return CapacityCurve(R, W, nev, dt, pulse_shape, _model_name(blast_model))
@@ -151,6 +153,7 @@ def model_capacity_curve(
     solver: RockingSolver | None = None,
     xtol_rel: float = 1e-9,
     extrapolate: bool = False,
+    load_model=None,
 ) -> ModelCapacity:
     """Capacity curve of the reduced-scale model of ``body`` and its up-scaling to the prototype.
 
@@ -181,7 +184,8 @@ def model_capacity_curve(
         gravity=proto.gravity * sig,
         restitution=proto.coefficient_of_restitution,
     )
-    curve = capacity_curve(m_sys, lam * R, pulse_shape=pulse_shape, blast_model=blast_model, solver=solver, xtol_rel=xtol_rel, extrapolate=extrapolate)
+    curve = capacity_curve(m_sys, lam * R, pulse_shape=pulse_shape, blast_model=blast_model, solver=solver, xtol_rel=xtol_rel,
+                           extrapolate=extrapolate, load_model=None if load_model is None else load_model.scaled(lam))
     ok = np.isfinite(curve.critical_charge_kg)
     up = np.full(R.size, np.nan)
     if np.any(ok):

@@ -108,7 +108,8 @@ def charge_for_impulse(impulse, standoff, blast_model=DEFAULT_BLAST_MODEL, *, ex
     return W.reshape(np.shape(np.broadcast_arrays(impulse, standoff)[0]))
 
 
-def _critical_arrays(system, searched, fixed, pulse_shape, blast_model, extrapolate, solver, xtol_rel, guess=None):
+def _critical_arrays(system, searched, fixed, pulse_shape, blast_model, extrapolate, solver, xtol_rel, guess=None,
+                     load_model=None):
     """Vectorised critical charge (``searched="charge"``, ``fixed`` stand-offs [m]) or stand-off
     (``"standoff"``, ``fixed`` charges [kg]). Returns (x_critical, bracket_lo, bracket_hi,
     evaluations, status) arrays; x is the survive side of the final bracket."""
@@ -134,7 +135,7 @@ def _critical_arrays(system, searched, fixed, pulse_shape, blast_model, extrapol
             x = np.exp(u if by_charge else -u)
             W, R = (x, fixed[idx]) if by_charge else (fixed[idx], x)
             W, R = np.broadcast_arrays(W, R)  # checked once, by the search's caller
-            return _first_swing(system, W, R, pulse_shape, blast_model, extrapolate, solver).margin
+            return _first_swing(system, W, R, pulse_shape, blast_model, extrapolate, solver, load_model).margin
 
         lo, hi, nev, status = vector_root(evaluate, u0, ulo, uhi, xtol_rel)
     # the search visits many points: pass on one warning of each other kind (extrapolation is
@@ -168,7 +169,8 @@ class CriticalResult:
     ``charge_kg`` [kg] and ``standoff_m`` [m] define the critical scenario (the one searched
     for and the one held fixed); ``pulse`` the pulse shape; ``blast_model`` the blast fit; ``relative_tolerance`` the
     relative accuracy of the searched quantity; ``evaluations`` the number of pulse-phase
-    integrations (first-swing criterion); ``bracket`` the final bracket of the searched quantity.
+    integrations (first-swing criterion); ``bracket`` the final bracket of the searched quantity;
+    ``load_model`` the record of the load that produced it (burst, clearing, negative phase).
     """
 
     charge_kg: float
@@ -179,6 +181,7 @@ class CriticalResult:
     relative_tolerance: float
     evaluations: int
     bracket: tuple[float, float]
+    load_model: dict | None = None
 
     def to_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (``critical_charge_kg`` or ``critical_standoff_m``)."""
@@ -192,6 +195,7 @@ class CriticalResult:
             "blast_model": self.blast_model,
             "relative_tolerance": self.relative_tolerance,
             "evaluations": self.evaluations,
+            "load_model": self.load_model,
         }
 
 
@@ -207,6 +211,7 @@ def critical_charge(
     guess: float | None = None,
     xtol_rel: float = 1e-9,
     extrapolate: bool = False,
+    load_model=None,
 ) -> CriticalResult:
     """Largest TNT charge [kg] at ``standoff`` [m] that the body survives without overturning.
 
@@ -235,6 +240,10 @@ def critical_charge(
         Relative tolerance on the charge [-], in [1e-14, 0.1].
     extrapolate : bool
         Allow the blast fits outside their ranges.
+    load_model : LoadModel, optional
+        Clearing of the loaded face and the negative phase (:mod:`blastscale.blast.load_model`);
+        None: the paper's load. A free-air burst is a blast model: ``blast_model=model_for_burst(...)``
+        or its name ``"kingery-bulmash-free-air"``.
 
     Returns
     -------
@@ -259,7 +268,8 @@ def critical_charge(
     R = float(check_positive("standoff", standoff, "m"))
     if guess is not None:
         check_positive("guess", guess, "kg")
-    return _critical(body, "charge", R, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
+    return _critical(body, "charge", R, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate,
+                     load_model)
 
 
 def critical_standoff(
@@ -274,6 +284,7 @@ def critical_standoff(
     guess: float | None = None,
     xtol_rel: float = 1e-9,
     extrapolate: bool = False,
+    load_model=None,
 ) -> CriticalResult:
     """Smallest stand-off [m] at which the body survives ``charge`` [kg TNT] without
     overturning (same method and parameters as :func:`critical_charge`, with ``charge`` W
@@ -283,14 +294,17 @@ def critical_standoff(
     W = float(check_positive("charge", charge, "kg"))
     if guess is not None:
         check_positive("guess", guess, "m")
-    return _critical(body, "standoff", W, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate)
+    return _critical(body, "standoff", W, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate,
+                     load_model)
 
 
-def _critical(body, searched, fixed, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate):
+def _critical(body, searched, fixed, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate,
+              load_model=None):
     system = as_rocking_system(body, gravity, restitution)
     by_charge = searched == "charge"
     x, blo, bhi, nev, status = _critical_arrays(
-        system, searched, fixed, pulse_shape, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel, guess
+        system, searched, fixed, pulse_shape, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel, guess,
+        load_model
     )
     if status[0] != 0:
         zlo, zhi = _z_range(blast_model, extrapolate)
@@ -304,22 +318,35 @@ def _critical(body, searched, fixed, pulse_shape, blast_model, gravity, restitut
         )
     W, R = (float(x[0]), fixed) if by_charge else (fixed, float(x[0]))
     _check_extrapolated(blast_model, [R / np.cbrt(W)], extrapolate)
-    return CriticalResult(W, R, searched, pulse_shape, _model_name(blast_model), xtol_rel, int(nev[0]), (float(blo[0]), float(bhi[0])))
+    return CriticalResult(W, R, searched, pulse_shape, _model_name(blast_model), xtol_rel, int(nev[0]),
+                          (float(blo[0]), float(bhi[0])), _record(blast_model, load_model))
+
+
+def _record(blast_model, load_model) -> dict:
+    """The load-model record of a capacity result (:func:`blastscale.blast.load_model.load_model_record`)."""
+    from ..blast.bursts import burst_of
+    from ..blast.load_model import load_model_record
+
+    return load_model_record(_model_name(blast_model), burst_of(blast_model), load_model)
 
 
 def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse_shape: str = "friedlander",
                                  blast_model=DEFAULT_BLAST_MODEL, rel: float = 1e-8, solver: RockingSolver | None = None,
-                                 gravity: float | None = None, restitution: float | None = None) -> float:
+                                 gravity: float | None = None, restitution: float | None = None,
+                                 load_model=None) -> float:
     """The slow reference: critical charge [kg] by bisection in ln W on full simulations (to rest:
     ``pulse + 200 / p`` of motion, every impact, no early stop), independent of the first-swing
     criterion. The bracket ``[guess / 1.5, 1.5 guess]`` [kg], kept inside the blast model's valid
     range of Z, must straddle the threshold (checked); ``rel`` is the relative width at which it
-    stops. For tests and benchmarks."""
+    stops; ``load_model`` as :func:`critical_charge` (the pulse of
+    :func:`~blastscale.blast.load_model.front_face_pulse`). For tests and benchmarks."""
+    from ..blast.load_model import front_face_pulse
+
     system = as_rocking_system(body, gravity, restitution)
     solver = solver or DEFAULT_SOLVER
 
     def over(W):
-        p = blast_parameters(W, standoff, blast_model).pulse(pulse_shape)
+        p = front_face_pulse(blast_parameters(W, standoff, blast_model), pulse_shape, load_model)
         return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).collapsed
 
     zlo, zhi = valid_scaled_distance_range(blast_model)

@@ -20,7 +20,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_positive, check_range
 from ..blast.friedlander import friedlander_impulse_ratio
 from ._roots import vector_root
-from .encoding import PULSE_CODES
+from .encoding import PAR_SIZE, PULSE_CODES
 from .swing import _pulse_phase
 from .solver import DEFAULT_SOLVER, RockingSolver, check_count
 from .system import as_rocking_system
@@ -116,7 +116,7 @@ def pi_diagram(
 
     def evaluate(idx, u):
         m = idx.size
-        par = np.empty((m, 3))
+        par = np.zeros((m, PAR_SIZE))
         par[:, 0] = q * P[idx]
         par[:, 1] = pf * np.exp(u) * dur_per_impulse[idx]
         par[:, 2] = d

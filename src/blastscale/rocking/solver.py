@@ -36,7 +36,7 @@ from .._validate import BlastscaleInputError, check_finite, check_positive, chec
 from ..blast.pulses import Pulse
 from ..structures.block import RectangularBlock
 from . import _kernel as K
-from .encoding import encode_pulse
+from .encoding import PAR_SIZE, encode_pulse
 from .results import RockingBatchResult, RockingResult, _none_if_nan
 from .system import RockingSystem, as_rocking_system
 
@@ -145,7 +145,7 @@ class RockingSolver:
         om0 = float(check_finite("initial angular velocity", theta_dot0, "rad/s"))
         p = system.frequency_parameter
         tev = self._check_t_eval(t_eval, dur)
-        kind, par, tt, tf, dw = (0, np.zeros(3), np.zeros(0), np.zeros(0), 0.0) if pulse is None else encode_pulse(pulse, system, th0)
+        kind, par, tt, tf, dw = (0, np.zeros(PAR_SIZE), np.zeros(0), np.zeros(0), 0.0) if pulse is None else encode_pulse(pulse, system, th0)
         mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
         e = system.coefficient_of_restitution
         summ, the, we, hist, imp, pk = K.solve_case(
@@ -237,7 +237,7 @@ class RockingSolver:
         pvec = np.empty(n)
         w0 = np.empty(n)
         kinds = np.empty(n, dtype=np.int64)
-        par = np.zeros((n, 3))
+        par = np.zeros((n, PAR_SIZE))
         tabs_t, tabs_f = [], []
         off = np.zeros(n + 1, dtype=np.int64)
         for i, (sysi, pul) in enumerate(zip(systems, plist)):
@@ -245,7 +245,7 @@ class RockingSolver:
             alpha[i] = sysi.alpha
             e[i] = sysi.coefficient_of_restitution
             if pul is None:
-                k, pr, tt, tf, dw = 0, np.zeros(3), np.zeros(0), np.zeros(0), 0.0
+                k, pr, tt, tf, dw = 0, np.zeros(PAR_SIZE), np.zeros(0), np.zeros(0), 0.0
             else:
                 k, pr, tt, tf, dw = encode_pulse(pul, sysi, th0[i])
             kinds[i] = k

@@ -68,7 +68,7 @@ from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters_unchecked
 from ..blast.pulses import Pulse
 from . import _kernel as K
-from .encoding import PULSE_CODES, encode_pulse
+from .encoding import encode_blast_batch, encode_pulse, kernel_pulse_end
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import RockingSystem, as_rocking_system
 
@@ -200,9 +200,7 @@ def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab
     tab_t = np.zeros(0) if tab_t is None else tab_t
     tab_f = np.zeros(0) if tab_f is None else tab_f
     off = np.zeros(n + 1, dtype=np.int64) if off is None else off
-    tau_end = np.where(kind == 1, par[:, 1], np.where(kind == 2, par[:, 1], 0.0))
-    if np.any(kind == 3):
-        tau_end = np.where(kind == 3, tab_t[np.maximum(off[1:] - 1, 0)], tau_end)
+    tau_end = kernel_pulse_end(kind, par, tab_t, off)
     summ, _, _ = K.solve_batch(
         np.ascontiguousarray(alpha, dtype=float), np.ascontiguousarray(e, dtype=float), np.zeros(n),
         np.ascontiguousarray(w0, dtype=float), np.ascontiguousarray(tau_end), kind.astype(np.int64),
@@ -260,7 +258,7 @@ def _system_arrays(systems, n: int):
 
 
 def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse_shape: str = "friedlander", *,
-                      solver: RockingSolver | None = None) -> FirstSwing:
+                      solver: RockingSolver | None = None, load_model=None, extrapolate: bool = False) -> FirstSwing:
     """:class:`FirstSwing` of n bodies given as arrays under n reflected blast pulses (vectorised:
     the pulse phases in one compiled kernel call, the first free swings in numpy).
 
@@ -276,27 +274,22 @@ def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse_sh
         Pulse shape (paper Eqs. 1, 3, impulsive limit).
     solver : RockingSolver, optional
         Solver of the pulse phase (default rtol 1e-10, atol 1e-12).
+    load_model : LoadModel, optional
+        Clearing of the front face and the negative phase (:mod:`blastscale.blast.load_model`); the
+        pulse phase then lasts until the negative phase ends. None: the paper's load.
+    extrapolate : bool
+        Let the negative-phase calibration run outside its range (with a warning).
     """
     check_pulse_shape(pulse_shape)
     n = np.size(blast.reflected_impulse)
     a, e, p, q = (np.broadcast_to(np.asarray(x, dtype=float), (n,)) for x in (alpha, restitution, frequency, load_ratio))
-    par = np.zeros((n, 3))
-    w0 = np.zeros(n)
-    if pulse_shape == "friedlander":
-        par[:, 0] = q * blast.reflected_pressure
-        par[:, 1] = p * blast.positive_duration
-        par[:, 2] = blast.friedlander_decay
-    elif pulse_shape == "triangular":
-        par[:, 0] = q * blast.reflected_pressure
-        par[:, 1] = p * (2.0 * blast.reflected_impulse / blast.reflected_pressure)
-    else:  # impulsive: theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
-        w0[:] = q * p * blast.reflected_impulse * np.cos(a)
-    kind = np.full(n, PULSE_CODES[pulse_shape], dtype=np.int64)
-    return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par)
+    kind, par, tab_t, tab_f, off, w0 = encode_blast_batch(a, p, q, blast, pulse_shape, load_model,
+                                                          extrapolate=extrapolate)
+    return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par, tab_t, tab_f, off)
 
 
 def first_swing(systems, charge, standoff, *, pulse_shape: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
-                extrapolate: bool = False, solver: RockingSolver | None = None) -> FirstSwing:
+                extrapolate: bool = False, solver: RockingSolver | None = None, load_model=None) -> FirstSwing:
     """Outcome and largest rotation of each body at rest under the reflected pulse of
     ``charge`` [kg TNT] at ``standoff`` [m], at any time (first-swing energy criterion and peak;
     arrays of n cases, vectorised).
@@ -307,7 +300,7 @@ def first_swing(systems, charge, standoff, *, pulse_shape: str = "friedlander", 
         One body for every case, or one per case.
     charge, standoff : array_like
         Charges W [kg] and stand-offs R [m], broadcast to n cases.
-    pulse_shape, blast_model, extrapolate, solver
+    pulse_shape, blast_model, extrapolate, solver, load_model
         As in :func:`critical_charge`.
 
     Returns
@@ -318,19 +311,19 @@ def first_swing(systems, charge, standoff, *, pulse_shape: str = "friedlander", 
     check_pulse_shape(pulse_shape)
     W, R = np.broadcast_arrays(np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
                                np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float))
-    return _first_swing(systems, W.ravel(), R.ravel(), pulse_shape, blast_model, extrapolate, solver)
+    return _first_swing(systems, W.ravel(), R.ravel(), pulse_shape, blast_model, extrapolate, solver, load_model)
 
 
-def _first_swing(systems, W, R, pulse_shape, blast_model, extrapolate, solver) -> FirstSwing:
+def _first_swing(systems, W, R, pulse_shape, blast_model, extrapolate, solver, load_model=None) -> FirstSwing:
     """:func:`first_swing` of checked inputs (1-D arrays of positive charges [kg] and stand-offs [m]
     of one length): the capacity searches check once and evaluate many times."""
     a, e, p, q = _system_arrays(systems, W.size)
     bp = blast_parameters_unchecked(W, R, blast_model, extrapolate=extrapolate)
-    return first_swing_blast(a, e, p, q, bp, pulse_shape, solver=solver)
+    return first_swing_blast(a, e, p, q, bp, pulse_shape, solver=solver, load_model=load_model, extrapolate=extrapolate)
 
 
 def overturns(systems, charge, standoff, *, pulse_shape: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
-              extrapolate: bool = False, solver: RockingSolver | None = None) -> np.ndarray:
+              extrapolate: bool = False, solver: RockingSolver | None = None, load_model=None) -> np.ndarray:
     """Whether each body overturns, at any time, under the reflected pulse of ``charge`` [kg TNT]
     at ``standoff`` [m] (first-swing energy criterion; arrays of n cases, vectorised; the
     ``collapsed`` of :func:`first_swing`).
@@ -340,4 +333,4 @@ def overturns(systems, charge, standoff, *, pulse_shape: str = "friedlander", bl
     ndarray of bool, shape (n,)
     """
     return first_swing(systems, charge, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate,
-                       solver=solver).collapsed
+                       solver=solver, load_model=load_model).collapsed

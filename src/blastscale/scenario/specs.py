@@ -18,7 +18,7 @@ from pydantic import AliasChoices, BaseModel, ConfigDict, Field, field_validator
 from .._validate import BlastscaleInputError
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from ..blast.incidence import INCIDENCE_MODELS
-from ..blast.parameters import BLAST_MODELS, DEFAULT_BLAST_MODEL
+from ..blast.parameters import BLAST_MODELS, BURSTS, DEFAULT_BLAST_MODEL, DEFAULT_BURST
 from ..blast.pulses import PULSE_SHAPES
 from ..sim3d.contact import CONES, JACOBIANS, SETTING_RANGES, SOLVERS
 from ..sim3d.load_methods import LOAD_METHODS
@@ -213,11 +213,24 @@ class BlastSpec(BaseModel):
                                                description="Pulse shape; deprecated key: pulse")
     incidence: str = Field("ufc", description="Angle-of-incidence model (Methods B, C)")
     extrapolate: bool = Field(False, description="Evaluate the blast fits outside their ranges (warns)")
+    burst: Literal[BURSTS] = Field(DEFAULT_BURST, description="The prototype's burst: surface (hemispherical, "
+                                   "the paper's) or free-air (spherical, Kingery-Bulmash 1984, UFC 3-340-02 Fig. 2-7)")
+    clearing: bool = Field(False, description="Clear the reflected pressure on the loaded faces' finite size "
+                           "(UFC 3-340-02 Sec. 2-15.3.2; the faces are the structure's own)")
+    negative_phase: bool = Field(False, description="Add the negative phase (UFC 3-340-02 Fig. 2-16, Granström's "
+                                 "cubic) after the positive one")
 
     @field_validator("blast_model")
     @classmethod
     def _model(cls, v: str) -> str:
         return _check_name(v, tuple(BLAST_MODELS))
+
+    @model_validator(mode="after")
+    def _burst_fits(self) -> "BlastSpec":
+        if self.burst == "free-air" and self.blast_model == "masi2021":
+            raise ValueError("burst = 'free-air' with blast_model = 'masi2021': the paper's fits are surface-burst "
+                             "fits only; use blast_model = 'kingery-bulmash' for a free-air burst")
+        return self
 
     @field_validator("load")
     @classmethod
@@ -237,6 +250,9 @@ class BlastSpec(BaseModel):
         if self.charge_kg > 0 and self.standoff_m is None:
             raise ValueError(f"charge_kg = {show(self.charge_kg)} needs standoff_m (the stand-off R [m]); "
                              "charge_kg = 0 is gravity alone")
+        if self.charge_kg == 0 and (self.clearing or self.negative_phase):
+            raise ValueError(f"blast.{'clearing' if self.clearing else 'negative_phase'} = true needs a charge: "
+                             "charge_kg = 0 is gravity alone (valid: false)")
         return self
 
     @property
@@ -258,6 +274,12 @@ class ScaleSpec(BaseModel):
                                              "deprecated key: model_material")
     gravity_ratio: float = Field(1.0, gt=0, le=1000, description="varsigma = g_model / g_prototype [-]")
     law: Literal["general", "hopkinson-cranz"] = Field("general", description="Scaling law")
+    specimen_burst: Optional[Literal[BURSTS]] = Field(
+        None, description="The specimen's burst when it differs from the prototype's (a lab charge on a stand: "
+        "free-air); default blast.burst")
+    specimen_charge_height_m: Optional[float] = Field(
+        None, ge=0, le=1000, description="Height of the lab charge's centre above the floor [m]: the design warns when "
+        "the floor's reflection makes it neither a surface nor a free-air burst at the specimen")
 
     @field_validator("length", mode="before")
     @classmethod

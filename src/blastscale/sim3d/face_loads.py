@@ -17,7 +17,10 @@ centre; each step's wrench carries the **exact** impulse of every face over [t0,
 costs nothing; inside, the faces' pulses are rebuilt from the current pose in one vectorised
 call (the Friedlander decays refined by Newton from the previous step's).
 
-The charge stands on the ground at ``(front_x - standoff, 0, 0)`` (a hemispherical surface burst).
+The charge stands on the ground at ``(front_x - standoff, 0, 0)`` for a surface burst; a free-air
+burst's charge is placed at the height of the front's mid-height (``(front_x - standoff, 0, H/2)``,
+H the structure's top), as on a stand. A load model (:class:`~blastscale.blast.load_model.LoadModel`)
+adds clearing and the negative phase on every face (:mod:`blastscale.blast.face_effects`).
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ from dataclasses import replace
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
+from ..blast.face_effects import with_effects
 from ..blast.faces import face_loads_unchecked, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
@@ -63,6 +67,9 @@ class FaceLoadStrategy:
         Use the blast fits outside their Z ranges (with a warning).
     method : str
         Label ("B", "C" or a user name) for metadata.
+    load_model : LoadModel, optional
+        Clearing (each face's width: its body's front width; height: the structure's top,
+        :func:`blastscale.similitude.effects.front_geometry`) and the negative phase; None: the paper's.
 
     Attributes
     ----------
@@ -75,7 +82,8 @@ class FaceLoadStrategy:
     """
 
     def __init__(self, structure, faces, *, charge_kg, charge_position, blast_model="kingery-bulmash",
-                 pulse_shape="friedlander", incidence="ufc", extrapolate=False, method="B", visible=None):
+                 pulse_shape="friedlander", incidence="ufc", extrapolate=False, method="B", load_model=None,
+                 visible=None):
         if not hasattr(structure, "bodies"):
             raise BlastscaleInputError(f"structure = {structure!r} is not a structure (no .bodies)")
         if not faces:
@@ -93,11 +101,23 @@ class FaceLoadStrategy:
         self.body = np.array([b for b, _ in faces], dtype=int)
         self.centres, self.normals, self.areas = faces_array([f for _, f in faces])
         self.labels = tuple(f.label for _, f in faces)
+        self.load_model = None if load_model is None or load_model.is_paper else load_model
+        self._effects = {}
+        if self.load_model is not None:
+            from ..similitude.effects import front_geometry
+
+            self._effects["negative"] = self.load_model.negative_phase
+            self._effects["burst"] = getattr(self.blast_model, "burst", "surface")
+            if self.load_model.clearing:
+                widths, top = front_geometry(structure)
+                self._effects["widths"], self._effects["height"] = widths[self.body], top
         self.visible = None if visible is None or np.all(np.asarray(visible) == 1.0) else np.asarray(visible, float)
         pos0 = np.array([b.com for b in structure.bodies], dtype=float)
         rot0 = np.broadcast_to(np.eye(3), (self.nbody, 3, 3))
         self.rest_loads = self.face_loads_at(pos0, rot0)
         rest = self.rest_loads.pulses(self.shape)
+        rest = self._with_effects(rest, self.rest_loads)
+        self._rest = rest
         self._decay = rest.decay
         self.first_arrival = float(self.rest_loads.arrival_time.min())
         self.end_time = rest.end_time + END_MARGIN * float(self.rest_loads.positive_duration.max())
@@ -130,6 +150,10 @@ class FaceLoadStrategy:
         out.method = f"{self.method} (corrected)"
         return out
 
+    def _with_effects(self, pulses, loads):
+        """The load model's clearing and negative phase on ``pulses`` (unchanged without one)."""
+        return with_effects(pulses, loads, **self._effects) if self._effects else pulses
+
     # ------------------------------------------------------------------ geometry
     def world_faces(self, positions, rotations):
         """World face centres (nface, 3) [m] and outward normals (nface, 3) at the given poses."""
@@ -157,6 +181,7 @@ class FaceLoadStrategy:
         fl = self.face_loads_at(positions, rotations)
         fp = fl.pulses(self.shape, decay_guess=self._decay)
         self._decay = fp.decay
+        fp = self._with_effects(fp, fl)
         if np.any(self.arrival_shift):
             fp = replace(fp, arrival_time=fp.arrival_time + self.arrival_shift)
         di = fp.impulse_between(t0, t1) * self.weights
@@ -171,8 +196,12 @@ class FaceLoadStrategy:
         return out
 
     def face_impulses(self) -> np.ndarray:
-        """Impulse vector of each loaded face at rest, -i S n, shape (nface, 3) [N s]."""
+        """Impulse vector of each loaded face at rest, -i S n, shape (nface, 3) [N s] (with a load
+        model: the net impulse of the cleared pulse and the negative phase)."""
         fl = self.rest_loads
+        if self._effects:
+            i = self._rest.cumulative_impulse(self._rest.end_time + 1.0)
+            return -(self.weights * i * fl.area)[:, None] * fl.normal
         return -(self.weights * fl.impulse * fl.area)[:, None] * fl.normal
 
     def delivered_impulse(self) -> np.ndarray:
@@ -195,7 +224,8 @@ class FaceLoadStrategy:
                 "loaded_faces": int(self.body.size), "first_arrival_s": self.first_arrival,
                 "arrival_spread_s": self.arrival_spread, "end_time_s": self.end_time,
                 "max_face_pressure_Pa": float(fl.pressure.max()),
-                "max_angle_of_incidence_deg": float(np.degrees(fl.angle_of_incidence.max()))}
+                "max_angle_of_incidence_deg": float(np.degrees(fl.angle_of_incidence.max())),
+                **({} if self.load_model is None else {"load_model": self.load_model.to_dict()})}
 
 
 def arrival_spread(load) -> float:
@@ -203,38 +233,47 @@ def arrival_spread(load) -> float:
     return float(getattr(load, "arrival_spread", 0.0))
 
 
-def _charge_position(structure, standoff_m) -> np.ndarray:
+def _charge_position(structure, standoff_m, burst: str = "surface") -> np.ndarray:
     R = float(check_positive("standoff", standoff_m, "m"))
-    return np.array([float(structure.front_x) - R, 0.0, 0.0])
+    z = 0.0
+    if burst == "free-air":  # on a stand at the front's mid-height (module docstring)
+        from ..similitude.effects import structure_top
+
+        z = 0.5 * structure_top(structure)
+    return np.array([float(structure.front_x) - R, 0.0, z])
 
 
-def _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, method, visible=None) -> FaceLoadStrategy:
+def _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, method, load_model=None,
+               visible=None) -> FaceLoadStrategy:
     """The per-face load of a system's blast parameters: the charge, stand-off and blast model are
     ``blast``'s; each face's blast is evaluated at its own distance (that is the method)."""
     bp = check_blast(blast)
     return FaceLoadStrategy(structure, faces, charge_kg=bp.charge_kg,
-                            charge_position=_charge_position(structure, bp.standoff_m), blast_model=bp.blast_model,
-                            pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate, method=method,
-                            visible=visible)
+                            charge_position=_charge_position(structure, bp.standoff_m, getattr(bp, "burst", "surface")),
+                            blast_model=bp.blast_model, pulse_shape=pulse_shape, incidence=incidence,
+                            extrapolate=extrapolate, method=method, load_model=load_model, visible=visible)
 
 
-def method_b(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
+def method_b(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False,
+             load_model=None) -> FaceLoadStrategy:
     """Method B: each body's front (``load_face``) with its own distance, arrival, duration and
     incidence, for the charge, stand-off and blast model of ``blast``
-    (:class:`~blastscale.blast.BlastParameters`)."""
+    (:class:`~blastscale.blast.BlastParameters`); ``load_model`` adds clearing and the negative phase."""
     faces = [(i, b.load_face) for i, b in enumerate(structure.bodies)]
-    return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "B")
+    return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "B", load_model)
 
 
-def method_c(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False) -> FaceLoadStrategy:
+def method_c(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False,
+             load_model=None) -> FaceLoadStrategy:
     """Method C: every exposed face (``in_contact`` False; a partly covered face on its exposed area) of
     every body, each with its own blast, for the charge, stand-off and blast model of ``blast``
-    (:class:`~blastscale.blast.BlastParameters`). A face towards the charge but hidden from it behind
-    another body (:mod:`.exposure`, ray cast) is shadowed: it sees the side-on pulse, as a face turned
-    away does, not the reflected one (a partly hidden face: weighted by its visible fraction)."""
+    (:class:`~blastscale.blast.BlastParameters`); ``load_model`` adds clearing and the negative phase.
+    A face towards the charge but hidden from it behind another body (:mod:`.exposure`, ray cast) is
+    shadowed: it sees the side-on pulse, as a face turned away does, not the reflected one (a partly
+    hidden face: weighted by its visible fraction)."""
     from .exposure import visible_fractions
 
     faces = [(i, f) for i, b in enumerate(structure.bodies) for f in b.faces if not f.in_contact and f.area > 0.0]
     bp = check_blast(blast)
-    seen = visible_fractions(structure, faces, _charge_position(structure, bp.standoff_m))
-    return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "C", seen)
+    seen = visible_fractions(structure, faces, _charge_position(structure, bp.standoff_m, getattr(bp, "burst", "surface")))
+    return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "C", load_model, seen)

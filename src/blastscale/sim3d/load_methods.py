@@ -12,7 +12,8 @@ __all__ = ["LOAD_METHODS", "make_load", "register_load_method", "arrival_spread_
 
 
 #: Load methods by name: factory(structure, blast, *, pulse, incidence, extrapolate) -> LoadStrategy,
-#: ``blast`` the system's :class:`~blastscale.blast.BlastParameters`.
+#: ``blast`` the system's :class:`~blastscale.blast.BlastParameters` (and ``load_model=`` when a
+#: load model other than the paper's is asked for: A, B and C take it).
 LOAD_METHODS: dict = {"A": method_a, "B": method_b, "C": method_c}
 
 
@@ -23,7 +24,7 @@ def register_load_method(name: str, factory) -> None:
 
 
 def make_load(method: str, structure, blast, *, pulse_shape: str = "friedlander", incidence: str = "ufc",
-              extrapolate: bool = False) -> LoadStrategy:
+              extrapolate: bool = False, load_model=None) -> LoadStrategy:
     """The blast load of a system's charge on its structure.
 
     Parameters
@@ -45,6 +46,10 @@ def make_load(method: str, structure, blast, *, pulse_shape: str = "friedlander"
         Angle-of-incidence model for B and C ("ufc" or "closed-form").
     extrapolate : bool
         B and C: evaluate the blast fits outside their ranges (with a warning).
+    load_model : LoadModel, optional
+        Clearing and the negative phase (:class:`~blastscale.blast.load_model.LoadModel`; the
+        clearing face is the structure's own front); None or the paper's: the paper's load, and a
+        registered method is called exactly as before.
 
     Returns
     -------
@@ -60,7 +65,9 @@ def make_load(method: str, structure, blast, *, pulse_shape: str = "friedlander"
     """
     if method not in LOAD_METHODS:
         raise BlastscaleInputError(f"load method = {method!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
-    return LOAD_METHODS[method](structure, blast, pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate)
+    kw = {} if load_model is None or load_model.is_paper else {"load_model": load_model}
+    return LOAD_METHODS[method](structure, blast, pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate,
+                                **kw)
 
 
 def arrival_spread_similarity(prototype_load, model_load, factors) -> dict:

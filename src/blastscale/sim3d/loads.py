@@ -29,7 +29,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_finite, check_positive
 from .blast_force import mean_pressures
 
-__all__ = ["LoadStrategy", "MethodA", "PerturbedLoad", "check_blast", "faces_array", "method_a"]
+__all__ = ["LoadStrategy", "MethodA", "PerturbedLoad", "check_blast", "faces_array", "method_a", "with_structure_face"]
 
 
 @runtime_checkable
@@ -75,6 +75,9 @@ class MethodA:
         Shock arrival time since detonation [s], >= 0 (the same for every face).
     bodies : sequence of int, optional
         Indices of the loaded bodies; default all.
+    load_model : dict, optional
+        The record of the load model that built ``pulse`` (:func:`blastscale.blast.load_model.load_model_record`),
+        kept for :meth:`describe`.
 
     Notes
     -----
@@ -84,7 +87,7 @@ class MethodA:
 
     method = "A"
 
-    def __init__(self, structure, pulse, arrival_time: float = 0.0, bodies=None):
+    def __init__(self, structure, pulse, arrival_time: float = 0.0, bodies=None, load_model=None):
         if not hasattr(pulse, "cumulative_impulse"):
             raise BlastscaleInputError(f"pulse = {pulse!r} is not a pulse: expected a blastscale.blast.pulses.Pulse")
         if not hasattr(structure, "bodies"):
@@ -102,6 +105,7 @@ class MethodA:
         self.first_arrival = ta
         self.end_time = ta + float(pulse.duration)
         self.loaded = idx
+        self.load_model = load_model
         self.nbody = nb
         self.centres, self.normals, self.areas = faces_array([structure.bodies[i].load_face for i in idx])
 
@@ -131,9 +135,12 @@ class MethodA:
 
     def describe(self) -> dict:
         """Load metadata (SI keys)."""
-        return {"load_method": "A", "pulse": type(self.pulse).__name__, "reflected_pressure_Pa": float(self.pulse.peak),
-                "reflected_impulse_Pa_s": float(self.pulse.impulse), "positive_duration_s": float(self.pulse.duration),
-                "arrival_time_s": self.arrival_time}
+        d = {"load_method": "A", "pulse": type(self.pulse).__name__, "reflected_pressure_Pa": float(self.pulse.peak),
+             "reflected_impulse_Pa_s": float(self.pulse.impulse), "positive_duration_s": float(self.pulse.duration),
+             "arrival_time_s": self.arrival_time}
+        if self.load_model is not None:
+            d["load_model"] = self.load_model
+        return d
 
 
 def check_blast(blast):
@@ -150,12 +157,35 @@ def check_blast(blast):
     return blast
 
 
-def method_a(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False) -> MethodA:
+def method_a(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False,
+             load_model=None) -> MethodA:
     """Method A from a system's blast parameters (:class:`~blastscale.blast.BlastParameters`): the
     reflected pulse of shape ``pulse_shape`` at the stand-off, arriving at ``blast.arrival_time``
-    (normal incidence; ``incidence`` and ``extrapolate`` do not apply: nothing is evaluated here)."""
+    (normal incidence; ``incidence`` does not apply). With a ``load_model``
+    (:class:`~blastscale.blast.load_model.LoadModel`) the pulse is cleared on the structure's front
+    (:func:`~blastscale.similitude.effects.front_face`: the lowest body's front width, the top's
+    height) and followed by the negative phase (``extrapolate`` lets its calibration run outside its range)."""
     bp = check_blast(blast)
-    return MethodA(structure, bp.pulse(pulse_shape), arrival_time=float(bp.arrival_time))
+    if load_model is None or load_model.is_paper:
+        return MethodA(structure, bp.pulse(pulse_shape), arrival_time=float(bp.arrival_time))
+    from ..blast.load_model import front_face_pulse, load_model_record
+
+    lm = with_structure_face(load_model, structure)
+    return MethodA(structure, front_face_pulse(bp, pulse_shape, lm, extrapolate=extrapolate),
+                   arrival_time=float(bp.arrival_time), load_model=load_model_record(bp.blast_model, bp.burst, lm))
+
+
+def with_structure_face(load_model, structure):
+    """``load_model`` with the structure's front as its clearing face when it has none
+    (:func:`~blastscale.similitude.effects.front_face`)."""
+    from dataclasses import replace
+
+    if not load_model.clearing or load_model.face_width_m is not None:
+        return load_model
+    from ..similitude.effects import front_face
+
+    w, h = front_face(structure)
+    return replace(load_model, face_width_m=w, face_height_m=h)
 
 
 class PerturbedLoad:

@@ -15,11 +15,11 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_positive_scalar
 from ..blast.base import BlastModel
+from ..blast.bursts import DEFAULT_BURST, model_for_burst
 from ..blast.parameters import (
     DEFAULT_BLAST_MODEL,
     BlastParameters,
     blast_parameters,
-    get_blast_model,
     valid_scaled_distance_range,
 )
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
@@ -48,6 +48,11 @@ def design_model(
     gravity: float = STANDARD_GRAVITY,
     impulsive_threshold: float = DEFAULT_IMPULSIVE_THRESHOLD,
     extrapolate: bool = False,
+    burst: str = DEFAULT_BURST,
+    specimen_burst: str | None = None,
+    load_model=None,
+    face=None,
+    specimen_charge_height: float | None = None,
 ) -> ModelDesign:
     """Design the reduced-scale model of a blast scenario.
 
@@ -78,6 +83,22 @@ def design_model(
         Bound on t_o p for the impulsive check (default 0.4).
     extrapolate : bool
         Allow the blast fits outside their ranges (warns).
+    burst : {"surface", "free-air"}
+        The prototype's burst type (:mod:`blastscale.blast.bursts`; the paper's: surface).
+    specimen_burst : {"surface", "free-air"}, optional
+        The specimen's (default the prototype's): a lab charge on a stand is a free-air burst. The
+        law then matches the specimen's free-air reflected impulse to the prototype's
+        (``i_hat_s(Z lambda_Z) / (lambda_Z i_hat_p(Z)) = gamma sqrt(varsigma lambda)``; Hopkinson-Cranz:
+        ``= 1``, so that lambda_Z is no longer 1).
+    load_model : LoadModel, optional
+        Clearing (on the prototype's face; the specimen's is lambda times it) and the negative phase:
+        reported for both systems in ``effects`` (:func:`~.effects.blast_effects`), warned where they
+        differ by more than 5 %. The law itself matches the reflected impulse (paper Eq. 8).
+    face : (float, float), optional
+        The prototype's loaded face (width, height) [m] (from ``geometry`` when not given).
+    specimen_charge_height : float, optional
+        Height of the lab charge's centre above the floor [m]: warned when it is neither a surface
+        nor a free-air burst at the specimen's face.
 
     Returns
     -------
@@ -116,7 +137,7 @@ def design_model(
     """
     if np.ndim(charge) or np.ndim(standoff):
         return _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, blast_model, geometry,
-                              gravity, impulsive_threshold, extrapolate)
+                              gravity, impulsive_threshold, extrapolate, burst, specimen_burst)
     W = check_positive_scalar("charge", charge, "kg")
     R = check_positive_scalar("standoff", standoff, "m")
     lam = check_positive_scalar("scale", scale)
@@ -125,7 +146,8 @@ def design_model(
     check_positive_scalar("impulsive threshold", impulsive_threshold)
     if law not in LAWS:
         raise BlastscaleInputError(f"law = {law!r} is not known: valid values are {', '.join(LAWS)}")
-    bm = get_blast_model(blast_model)
+    bm = model_for_burst(blast_model, burst)
+    ms = bm if specimen_burst is None else model_for_burst(blast_model, specimen_burst)
     proto = blast_parameters(W, R, bm, extrapolate=extrapolate)
     if law == "hopkinson-cranz":
         gam_hc = hopkinson_cranz_density_ratio(lam, sig)
@@ -136,24 +158,27 @@ def design_model(
                 f"imposes gamma = 1/sqrt(gravity_ratio * scale) = {gam_hc:.6g} (use law='general' for another gamma)"
             )
         gam, lz, res_note = gam_hc, 1.0, "Hopkinson-Cranz: lambda_Z = 1 (same scaled distance and pressure)"
+        if ms is not bm:  # another burst type: the scaled distance whose impulse factor is lambda
+            sol = solve_scaled_distance_factor(proto.scaled_distance, lam, gam, sig, bm, ms)
+            lz, res_note = sol.factor, "Hopkinson-Cranz with another specimen burst: " + sol.note
     else:
         if density_ratio is None:
             raise BlastscaleInputError("density ratio = None is out of range: the general law needs gamma > 0")
         gam = check_positive_scalar("density ratio", density_ratio)
         if not extrapolate:  # the model's Z must lie where every fit holds, not only the impulse fit
-            zr = valid_scaled_distance_range(bm)
-            lo, hi = admissible_scales(proto.scaled_distance, gam, sig, bm, zr)
+            zr = valid_scaled_distance_range(ms)
+            lo, hi = admissible_scales(proto.scaled_distance, gam, sig, bm, zr, specimen_blast_model=ms)
             if not lo <= lam <= hi:
                 raise OutOfRangeError(
                     f"scale = {lam:.6g} is out of range for the general law: valid range of scale is "
                     f"[{lo:.6g}, {hi:.6g}] (it keeps the model's Z inside [{zr[0]:g}, {zr[1]:g}] m/kg^(1/3), where "
-                    f"every {bm.name} fit holds, for density ratio = {gam:.6g}, gravity ratio = {sig:.6g} and "
+                    f"every {ms.name} fit holds, for density ratio = {gam:.6g}, gravity ratio = {sig:.6g} and "
                     f"prototype Z = {proto.scaled_distance:.6g} m/kg^(1/3))"
                 )
-        sol = solve_scaled_distance_factor(proto.scaled_distance, lam, gam, sig, bm)
+        sol = solve_scaled_distance_factor(proto.scaled_distance, lam, gam, sig, bm, None if ms is bm else ms)
         lz, res_note = sol.factor, sol.note
     f = scaling_factors(lam, gam, sig, lz)
-    model_params = blast_parameters(W * f.charge, R * lam, bm, extrapolate=extrapolate)
+    model_params = blast_parameters(W * f.charge, R * lam, ms, extrapolate=extrapolate)
     imp = None
     mblock = None
     if geometry is not None:
@@ -163,6 +188,18 @@ def design_model(
             model_ratio=impulsive_check(model_params.positive_duration, mblock, gravity * sig),
             threshold=float(impulsive_threshold),
         )
+    effects, notes = None, ()
+    if face is None and geometry is not None:
+        face = (geometry.depth, geometry.height)
+    if ms is not bm or (load_model is not None and not load_model.is_paper) or specimen_charge_height is not None:
+        import warnings
+
+        from .effects import BlastSimilarityWarning, blast_effects
+
+        effects, notes = blast_effects(proto, model_params, load_model, scale=lam, face=face,
+                                       specimen_charge_height=specimen_charge_height, extrapolate=extrapolate)
+        for note in notes:
+            warnings.warn(note, BlastSimilarityWarning, stacklevel=2)
     return ModelDesign(
         law=law,
         scale=lam,
@@ -177,11 +214,13 @@ def design_model(
         prototype_block=geometry,
         specimen_block=mblock,
         gravity=float(gravity),
+        effects=effects,
+        notes=notes,
     )
 
 
 def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, blast_model, geometry, gravity,
-                   impulsive_threshold, extrapolate) -> ModelDesign:
+                   impulsive_threshold, extrapolate, burst=DEFAULT_BURST, specimen_burst=None) -> ModelDesign:
     """:func:`design_model` for arrays of charges and stand-offs (its docstring): the law solved for
     every case at once (:func:`~.laws.solve_scaled_distance_factors`), the invalid cases NaN."""
     import warnings
@@ -200,9 +239,11 @@ def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, b
     check_positive_scalar("gravity", gravity, "m/s^2")
     if law not in LAWS:
         raise BlastscaleInputError(f"law = {law!r} is not known: valid values are {', '.join(LAWS)}")
-    bm = get_blast_model(blast_model)
+    bm = model_for_burst(blast_model, burst)
+    ms = bm if specimen_burst is None else model_for_burst(blast_model, specimen_burst)
     # where the design holds: every fit used, or (extrapolate) the impulse fit the law is solved on
     zr = bm.valid_range("scaled_reflected_impulse") if extrapolate else valid_scaled_distance_range(bm)
+    zs = ms.valid_range("scaled_reflected_impulse") if extrapolate else valid_scaled_distance_range(ms)
     Z = R / np.cbrt(W)
     if law == "hopkinson-cranz":
         gam = hopkinson_cranz_density_ratio(lam, sig)
@@ -213,20 +254,23 @@ def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, b
                 f"1/sqrt(gravity_ratio * scale) = {gam:.6g} (use law='general' for another gamma)")
         lz = np.ones_like(Z)
         note = "Hopkinson-Cranz: lambda_Z = 1 (same scaled distance and pressure)"
+        if ms is not bm:
+            lz = np.asarray(solve_scaled_distance_factors(Z, lam, gam, sig, bm, ms), dtype=float)
+            note = "Hopkinson-Cranz with another specimen burst: roots of Eq. (8) with impulse factor lambda"
     else:
         if density_ratio is None:
             raise BlastscaleInputError("density ratio = None is out of range: the general law needs gamma > 0")
         gam = check_positive_scalar("density ratio", density_ratio)
-        lz = np.asarray(solve_scaled_distance_factors(Z, lam, gam, sig, bm), dtype=float)
-        note = f"roots of Eq. (8) on the {bm.name} impulse range (bisection, every case at once)"
-    ok = (Z >= zr[0]) & (Z <= zr[1]) & np.isfinite(lz) & (Z * lz >= zr[0]) & (Z * lz <= zr[1])
+        lz = np.asarray(solve_scaled_distance_factors(Z, lam, gam, sig, bm, None if ms is bm else ms), dtype=float)
+        note = f"roots of Eq. (8) on the {ms.name} impulse range (bisection, every case at once)"
+    ok = (Z >= zr[0]) & (Z <= zr[1]) & np.isfinite(lz) & (Z * lz >= zs[0]) & (Z * lz <= zs[1])
     f = scaling_factors(lam, gam, sig)
     f = replace(f, scaled_distance=np.where(ok, lz, np.nan), charge=np.where(ok, (lam / lz) ** 3, np.nan))
     with warnings.catch_warnings():
         if extrapolate:
             warnings.simplefilter("ignore", ExtrapolationWarning)
         proto = _scatter(blast_parameters(W[ok], R[ok], bm, extrapolate=extrapolate), ok)
-        mod = _scatter(blast_parameters(W[ok] * f.charge[ok], R[ok] * lam, bm, extrapolate=extrapolate), ok)
+        mod = _scatter(blast_parameters(W[ok] * f.charge[ok], R[ok] * lam, ms, extrapolate=extrapolate), ok)
     imp = mblock = None
     if geometry is not None:  # t_o p (impulsive_check) over arrays, NaN where invalid
         mblock = geometry.scaled(f)

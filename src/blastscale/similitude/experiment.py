@@ -111,6 +111,11 @@ class ModelDesign:
         True for a design of one charge and stand-off (an invalid one raises); for arrays, the
         cases that could be designed (their scaled distances inside the blast fits); the numbers of
         the others are NaN.
+    effects : dict or None
+        Clearing, negative phase and burst types of both systems (:func:`~.effects.blast_effects`),
+        when any was asked for.
+    notes : tuple of str
+        Differences between the systems above 5 % that the scaling law does not see (warned).
     """
 
     law: str
@@ -127,6 +132,8 @@ class ModelDesign:
     specimen_block: RectangularBlock | None = None
     gravity: float = STANDARD_GRAVITY
     valid: "bool | np.ndarray" = True
+    effects: dict | None = None
+    notes: tuple = ()
 
     # convenient views -------------------------------------------------------
     @property
@@ -183,4 +190,14 @@ class ModelDesign:
         }
         if self.impulsive is not None:
             out["impulsive"] = self.impulsive.to_dict()
+        if self.effects is not None:
+            out["blast_effects"] = self.effects
+            out["load_model"] = self.effects["load_model"]
+        else:
+            from ..blast.load_model import load_model_record
+
+            out["load_model"] = {"prototype": load_model_record(self.prototype.blast_model, self.prototype.burst),
+                                 "model": load_model_record(self.specimen.blast_model, self.specimen.burst)}
+        if self.notes:
+            out["notes"] = list(self.notes)
         return out

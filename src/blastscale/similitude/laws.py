@@ -124,6 +124,7 @@ def admissible_scales(
     gravity_ratio: float = 1.0,
     blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
     z_range: tuple[float, float] | None = None,
+    specimen_blast_model: "str | BlastModel | None" = None,
 ) -> tuple[float, float]:
     """Range of the scale lambda for which the general law puts the model's Z inside ``z_range``.
 
@@ -144,6 +145,8 @@ def admissible_scales(
         Blast model giving the scaled reflected impulse i_hat.
     z_range : (float, float), optional
         Allowed model Z [m/kg^(1/3)]; default the impulse fit's range. It is intersected with it.
+    specimen_blast_model : str or BlastModel, optional
+        The specimen's fit when it differs from the prototype's (another burst type); default the same.
 
     Returns
     -------
@@ -153,16 +156,17 @@ def admissible_scales(
     Reference: paper Eq. (8).
     """
     m = get_blast_model(blast_model)
+    ms = m if specimen_blast_model is None else get_blast_model(specimen_blast_model)
     z = check_positive_scalar("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)")
     gam = check_positive_scalar("density ratio", density_ratio)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
-    lo, hi = m.valid_range("scaled_reflected_impulse")
+    lo, hi = ms.valid_range("scaled_reflected_impulse")
     if z_range is not None:
         lo, hi = max(lo, float(z_range[0])), min(hi, float(z_range[1]))
     i0 = m.scaled_reflected_impulse(z)
 
     def lam_at(zm: float) -> float:
-        return ((z / zm) * m.scaled_reflected_impulse(zm) / i0 / gam) ** 2 / sig
+        return ((z / zm) * ms.scaled_reflected_impulse(zm) / i0 / gam) ** 2 / sig
 
     return lam_at(hi), lam_at(lo)
 
@@ -173,6 +177,7 @@ def solve_scaled_distance_factor(
     density_ratio: float = 1.0,
     gravity_ratio: float = 1.0,
     blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    specimen_blast_model: "str | BlastModel | None" = None,
 ) -> ScaledDistanceSolution:
     """Solve the general scaling law (paper Eq. 8) for the scaled-distance factor lambda_Z.
 
@@ -188,6 +193,9 @@ def solve_scaled_distance_factor(
         varsigma [-].
     blast_model : str or BlastModel
         Blast model providing the scaled reflected impulse i_hat(Z).
+    specimen_blast_model : str or BlastModel, optional
+        The specimen's fit when it differs (another burst type: Eq. 8 then reads
+        ``i_hat_s(Z lambda_Z) / (lambda_Z i_hat_p(Z)) = gamma sqrt(varsigma lambda)``); default the same.
 
     Returns
     -------
@@ -208,29 +216,32 @@ def solve_scaled_distance_factor(
     Reference: paper Eq. (8) (Sec. "Scaling laws").
     """
     m = get_blast_model(blast_model)
+    ms = m if specimen_blast_model is None else get_blast_model(specimen_blast_model)
     z = check_positive_scalar("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)")
     lam = check_positive_scalar("scale", scale)
     gam = check_positive_scalar("density ratio", density_ratio)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
     target = gam * math.sqrt(sig * lam)
-    zmin, zmax = m.valid_range("scaled_reflected_impulse")
-    lz_arr = solve_scaled_distance_factors(z, lam, gam, sig, m)
+    zmin, zmax = ms.valid_range("scaled_reflected_impulse")
+    lz_arr = solve_scaled_distance_factors(z, lam, gam, sig, m, ms)
     if not np.isfinite(lz_arr):
         # the residual decreases in lambda_Z: positive at Z_max means that even Z_max gives too much
         # impulse (scale too small for this gamma), negative at Z_min that even Z_min gives too little.
-        lam_lo, lam_hi = admissible_scales(z, gam, sig, m)
-        side = "Z_max" if _residual(m, z, math.log(zmax / z), target) > 0.0 else "Z_min"
+        lam_lo, lam_hi = admissible_scales(z, gam, sig, m, specimen_blast_model=ms)
+        side = "Z_max" if _residual(m, z, math.log(zmax / z), target, ms=ms) > 0.0 else "Z_min"
         raise OutOfRangeError(
             f"scale = {lam:.6g} is out of range for the general law: with density ratio = {gam:.6g}, gravity ratio "
             f"= {sig:.6g} and prototype Z = {z:.6g} m/kg^(1/3), the model Z would lie beyond {side} of the "
             f"{m.name} impulse fit [{zmin:g}, {zmax:g}] m/kg^(1/3); valid range of scale is [{lam_lo:.6g}, {lam_hi:.6g}]"
         )
     x = math.log(float(lz_arr))
-    res = _residual(m, z, x, target)
+    res = _residual(m, z, x, target, ms=ms)
     lz = float(lz_arr)
-    note = f"unique root of Eq. (8) on the {m.name} impulse range Z in [{zmin:g}, {zmax:g}] (Illinois)"
+    note = f"unique root of Eq. (8) on the {ms.name} impulse range Z in [{zmin:g}, {zmax:g}] (Illinois)"
+    if ms is not m:
+        note += f"; prototype {m.name}, specimen {ms.name}"
     others: tuple[float, ...] = ()
-    if isinstance(m, Masi2021):
+    if isinstance(m, Masi2021) and ms is m:
         phys, other = masi2021_quadratic_roots(z, target)
         others = (other,)
         note += (
@@ -240,19 +251,21 @@ def solve_scaled_distance_factor(
     return ScaledDistanceSolution(factor=lz, residual=res, note=note, other_roots=others)
 
 
-def _residual(m, z, x, target, ln_i0=None):
-    """g(x) = ln i_hat(Z e^x) - ln i_hat(Z) - x - ln(target), the general law (Eq. 8) in x = ln lambda_Z:
-    decreasing in x where the law is monotone (arrays broadcast; Z e^x clipped to the impulse fit;
-    ``ln_i0`` = ln i_hat(Z) when known)."""
-    zmin, zmax = m.valid_range("scaled_reflected_impulse")
+def _residual(m, z, x, target, ln_i0=None, ms=None):
+    """g(x) = ln i_hat_s(Z e^x) - ln i_hat(Z) - x - ln(target), the general law (Eq. 8) in x = ln lambda_Z:
+    decreasing in x where the law is monotone (arrays broadcast; Z e^x clipped to the specimen's
+    impulse fit ``ms``, default ``m``; ``ln_i0`` = ln i_hat(Z) of the prototype's fit ``m`` when known)."""
+    ms = m if ms is None else ms
+    zmin, zmax = ms.valid_range("scaled_reflected_impulse")
     zz = np.clip(z * np.exp(x), zmin, zmax)  # guard round-off at the bracket ends
     if ln_i0 is None:
         ln_i0 = np.log(m.scaled_reflected_impulse(z))
-    return np.log(m.scaled_reflected_impulse(zz)) - ln_i0 - x - np.log(target)
+    return np.log(ms.scaled_reflected_impulse(zz)) - ln_i0 - x - np.log(target)
 
 
 def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, density_ratio: float = 1.0,
-                                  gravity_ratio: float = 1.0, blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL):
+                                  gravity_ratio: float = 1.0, blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+                                  specimen_blast_model: "str | BlastModel | None" = None):
     """lambda_Z of the general law (paper Eq. 8) for every prototype Z of an array, at once.
 
     A bracketed root in x = ln lambda_Z on the impulse fit's range of the model Z (the residual
@@ -269,6 +282,8 @@ def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, densi
         lambda, gamma, varsigma [-], > 0.
     blast_model : str or BlastModel
         Blast model providing the scaled reflected impulse i_hat(Z).
+    specimen_blast_model : str or BlastModel, optional
+        The specimen's fit when it differs (another burst type); default the same.
 
     Returns
     -------
@@ -279,18 +294,20 @@ def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, densi
     Reference: paper Eq. (8) (Sec. "Scaling laws").
     """
     m = get_blast_model(blast_model)
+    ms = m if specimen_blast_model is None else get_blast_model(specimen_blast_model)
     z = np.asarray(check_positive("prototype scaled distance", prototype_scaled_distance, "m/kg^(1/3)"), dtype=float)
     lam = check_positive_scalar("scale", scale)
     gam = check_positive_scalar("density ratio", density_ratio)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
     target = gam * math.sqrt(sig * lam)
-    zmin, zmax = m.valid_range("scaled_reflected_impulse")
-    inside = (z >= zmin) & (z <= zmax)
-    zs = np.where(inside, z, 1.0 if zmin <= 1.0 <= zmax else zmin)  # a placeholder where Z itself is out
+    pmin, pmax = m.valid_range("scaled_reflected_impulse")
+    zmin, zmax = ms.valid_range("scaled_reflected_impulse")
+    inside = (z >= pmin) & (z <= pmax)
+    zs = np.where(inside, z, 1.0 if pmin <= 1.0 <= pmax else pmin)  # a placeholder where Z itself is out
     ln_i0 = np.log(m.scaled_reflected_impulse(zs))
 
     def g(x):
-        return _residual(m, zs, x, target, ln_i0)
+        return _residual(m, zs, x, target, ln_i0, ms)
 
     a, b = np.log(zmin / zs), np.log(zmax / zs)  # g(a) >= 0 >= g(b) where a root is bracketed
     fa, fb = g(a), g(b)

@@ -13,7 +13,7 @@ from ..scenario import Scenario
 from ..structures import is_block
 
 __all__ = ["Engine", "ENGINES", "ENSEMBLE", "Context", "contact_settings", "critical_charge_of", "record_every",
-           "REFERENCE_RECORD_INTERVAL"]
+           "REFERENCE_RECORD_INTERVAL", "load_model_of"]
 
 
 @dataclass(frozen=True)
@@ -27,6 +27,24 @@ class Context:
     blast: Any
 
 
+def load_model_of(scenario: Scenario, structure):
+    """The prototype's load model of a scenario (:class:`~blastscale.blast.load_model.LoadModel`):
+    ``blast.clearing`` on the structure's front (:func:`~blastscale.similitude.effects.front_face`)
+    and ``blast.negative_phase``; the paper's load when neither is asked for."""
+    from ..blast.load_model import PAPER_LOAD, LoadModel
+
+    bl = scenario.blast
+    if not (bl.clearing or bl.negative_phase):
+        return PAPER_LOAD
+    face = (None, None)
+    if bl.clearing:
+        from ..similitude.effects import front_face
+
+        face = front_face(structure)
+    return LoadModel(clearing=bl.clearing, face_width_m=face[0], face_height_m=face[1],
+                     negative_phase=bl.negative_phase)
+
+
 def _planar_supports(structure) -> Optional[str]:
     return None if is_block(structure) else "planar rocking applies to a single rectangular block"
 
@@ -38,20 +56,23 @@ def _run_planar(ctx: Context):
     import numpy as np
 
     from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
+    from ..blast.load_model import front_face_pulse
     from ..rocking import RockingSystem
     from ..rocking import DEFAULT_SOLVER
 
     sc, sim, d = ctx.scenario, ctx.scenario.simulation, ctx.design
     shape, dur = sc.blast.pulse_shape, float(sim.duration_s)
+    lm, ex = load_model_of(sc, ctx.structure), sc.blast.extrapolate
     t = np.linspace(0.0, dur, int(sim.samples))
     sys_p = RockingSystem.from_block(ctx.structure, sim.gravity_m_s2, sim.restitution)
-    res_p = DEFAULT_SOLVER.simulate(sys_p, ctx.blast.pulse(shape), dur, t_eval=t)
+    res_p = DEFAULT_SOLVER.simulate(sys_p, front_face_pulse(ctx.blast, shape, lm, extrapolate=ex), dur, t_eval=t)
     if d is None:
         return PrototypeRocking(res_p)
     f = d.factors
     sys_m = RockingSystem.from_block(d.specimen_block, sim.gravity_m_s2 * d.gravity_ratio, sim.restitution)
     dur_m = dur * f.time
-    res_m = DEFAULT_SOLVER.simulate(sys_m, d.specimen.pulse(shape), dur_m, t_eval=np.minimum(t * f.time, dur_m))
+    res_m = DEFAULT_SOLVER.simulate(sys_m, front_face_pulse(d.specimen, shape, lm.scaled(f.length), extrapolate=ex),
+                                    dur_m, t_eval=np.minimum(t * f.time, dur_m))
     return compare_rocking(res_p, res_m, d, sys_p.frequency_parameter)
 
 
@@ -111,9 +132,14 @@ def _3d_supports(structure) -> Optional[str]:
 def _settings_3d(ctx: Context) -> dict:
     """The 3D settings of a study, shared by the 3D and the ensemble engines."""
     sc = ctx.scenario
-    return dict(load=sc.blast.load, pulse_shape=sc.blast.pulse_shape, incidence=sc.blast.incidence,
-                contact=contact_settings(sc, ctx.structure), duration=sc.simulation.duration_s,
-                record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
+    out = dict(load=sc.blast.load, pulse_shape=sc.blast.pulse_shape, incidence=sc.blast.incidence,
+               contact=contact_settings(sc, ctx.structure), duration=sc.simulation.duration_s,
+               record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
+    if sc.blast.clearing or sc.blast.negative_phase:  # each system's faces are its own (the structure's)
+        from ..blast.load_model import LoadModel
+
+        out["load_model"] = LoadModel(clearing=sc.blast.clearing, negative_phase=sc.blast.negative_phase)
+    return out
 
 
 def _run_3d(ctx: Context):
@@ -165,13 +191,18 @@ def critical_charge_of(sc: Scenario, structure):
     A pure function of the block, gravity, restitution, stand-off, pulse shape and blast model: a sweep
     over charges (or any other field) at one stand-off searches it once per process (memoised)."""
     sim, bl = sc.simulation, sc.blast
+    lm = load_model_of(sc, structure)
+    from ..blast.bursts import model_for_burst
+
+    blast_model = model_for_burst(bl.blast_model, bl.burst).name
     return _critical_charge(structure, sim.gravity_m_s2, sim.restitution, bl.standoff_m, bl.pulse_shape,
-                            bl.blast_model, bl.extrapolate)
+                            blast_model, bl.extrapolate, None if lm.is_paper else lm)
 
 
 @functools.lru_cache(maxsize=4096)
-def _critical_charge(structure, gravity, restitution, standoff, pulse_shape, blast_model, extrapolate):
+def _critical_charge(structure, gravity, restitution, standoff, pulse_shape, blast_model, extrapolate, load_model=None):
     from ..rocking import RockingSystem, critical_charge
 
     system = RockingSystem.from_block(structure, gravity, restitution)
-    return critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
+    return critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate,
+                           load_model=load_model)

@@ -35,7 +35,7 @@ from typing import Callable, Optional
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..structures import from_spec, is_block
-from .engines import ENGINES, ENSEMBLE, Context, Engine, critical_charge_of
+from .engines import ENGINES, ENSEMBLE, Context, Engine, critical_charge_of, load_model_of
 from .memory import check_memory
 from .result import StudyResult
 
@@ -107,15 +107,20 @@ class Study:
         """The model experiment (:func:`~blastscale.similitude.design_model`), once per study; None
         for a prototype-only scenario (no ``[scale]``)."""
         from ..similitude import design_model
+        from ..similitude.effects import front_face, structure_top
 
         sc = self.scenario
         if sc.scale is None or sc.blast.gravity_only:  # gravity alone: no charge to scale
             return None
         structure = self.structure() if structure is None else structure
+        lm = load_model_of(sc, structure)
+        face = front_face(structure) if sc.blast.clearing else (None, structure_top(structure))  # top: the lab burst
         return design_model(
             sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, sc.density_ratio, sc.scale.gravity_ratio,
             sc.scale.law, sc.blast.blast_model, structure if is_block(structure) else None,
-            gravity=sc.simulation.gravity_m_s2, extrapolate=sc.blast.extrapolate,
+            gravity=sc.simulation.gravity_m_s2, extrapolate=sc.blast.extrapolate, burst=sc.blast.burst,
+            specimen_burst=sc.scale.specimen_burst, load_model=lm, face=face,
+            specimen_charge_height=sc.scale.specimen_charge_height_m,
         )
 
     def check(self):
@@ -134,7 +139,7 @@ class Study:
                 from ..blast import blast_parameters
 
                 blast = blast_parameters(sc.blast.charge_kg, sc.blast.standoff_m, sc.blast.blast_model,
-                                         extrapolate=sc.blast.extrapolate)
+                                         extrapolate=sc.blast.extrapolate, burst=sc.blast.burst)
             else:
                 blast = d.prototype
             self._checked = (structure, engines, skipped, d, blast)

@@ -67,9 +67,13 @@ def _outcome_group(sc, W, R, e) -> dict:
     structure = from_spec(sc.structure)
     try:
         d = design_model(W, R, scl.length, sc.density_ratio, scl.gravity_ratio, scl.law, bl.blast_model, geometry=None,
-                         gravity=sim.gravity_m_s2, extrapolate=bl.extrapolate)
+                         gravity=sim.gravity_m_s2, extrapolate=bl.extrapolate, burst=bl.burst,
+                         specimen_burst=scl.specimen_burst)
     except BlastscaleInputError:  # e.g. a density ratio the Hopkinson-Cranz law refuses: every case
         return out
+    from ..study.engines import load_model_of
+
+    lm = load_model_of(sc, structure)  # clearing on the block's front, the negative phase (the Study's)
     ok = d.valid
     if not np.any(ok):
         return out
@@ -77,9 +81,10 @@ def _outcome_group(sc, W, R, e) -> dict:
     specimen = RockingSystem.from_block(structure.scaled(d.factors), sim.gravity_m_s2 * d.gravity_ratio)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
     fp = first_swing_blast(proto.alpha, e, proto.frequency_parameter, proto.load_ratio_per_pascal,
-                           d.prototype.select(ok), bl.pulse_shape)
+                           d.prototype.select(ok), bl.pulse_shape, load_model=lm, extrapolate=bl.extrapolate)
     fm = first_swing_blast(specimen.alpha, e, specimen.frequency_parameter, specimen.load_ratio_per_pascal,
-                           d.specimen.select(ok), bl.pulse_shape)
+                           d.specimen.select(ok), bl.pulse_shape, load_model=lm.scaled(d.scale),
+                           extrapolate=bl.extrapolate)
     out["planar.prototype.collapsed"][ok] = fp.collapsed
     out["planar.prototype.max_rotation_rad"][ok] = fp.max_rotation
     out["planar.model.collapsed"][ok] = fm.collapsed

@@ -1,0 +1,87 @@
+"""CLI: the burst type, clearing and the negative phase in `blast`, `design`, `critical`, `rock` and
+`run` (scenario keys): their JSON keys, the load-model record, one-line errors with exit status 2."""
+
+import json
+
+import pytest
+
+from blastscale.cli import main
+
+EFFECT_KEYS = {"clearing_time_s", "cleared_impulse_Pa_s", "negative_pressure_Pa", "negative_duration_s",
+               "negative_impulse_Pa_s", "load_model", "burst"}
+
+
+def run_json(capsys, *argv):
+    with pytest.raises(SystemExit) as e:
+        main(list(argv))
+    assert e.value.code in (0, None)
+    return json.loads(capsys.readouterr().out)
+
+
+def run_error(capsys, *argv) -> str:
+    with pytest.raises(SystemExit) as e:
+        main(list(argv))
+    assert e.value.code == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error:") and "\n" not in err and "Traceback" not in err
+    return err
+
+
+def test_blast_json_has_the_effects_beside_todays_keys(capsys):
+    out = run_json(capsys, "blast", "--charge", "1000", "--standoff", "70", "--clearing", "--face-width", "10",
+                   "--face-height", "4", "--negative-phase", "--json")
+    assert EFFECT_KEYS <= out.keys() and "reflected_impulse_Pa_s" in out
+    assert out["cleared_impulse_Pa_s"] < out["reflected_impulse_Pa_s"]
+    assert out["negative_impulse_Pa_s"] == pytest.approx(9 / 16 * out["negative_pressure_Pa"] * out["negative_duration_s"])
+    lm = out["load_model"]
+    assert lm["clearing"] and lm["negative_phase"] and lm["face_width_m"] == 10.0 and lm["burst"] == "surface"
+    plain = run_json(capsys, "blast", "--charge", "1000", "--standoff", "70", "--json")
+    assert plain["reflected_impulse_Pa_s"] == out["reflected_impulse_Pa_s"]
+    assert "clearing_time_s" not in plain and plain["load_model"]["clearing"] is False
+
+
+def test_blast_free_air(capsys):
+    out = run_json(capsys, "blast", "--charge", "50", "--standoff", "5", "--burst", "free-air", "--json")
+    surf = run_json(capsys, "blast", "--charge", "50", "--standoff", "5", "--json")
+    assert out["blast_model"] == "kingery-bulmash-free-air" and out["burst"] == "free-air"
+    assert out["incident_pressure_Pa"] < surf["incident_pressure_Pa"]
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--face-width", "1", "--face-height", "2"], "apply only with --clearing"),
+    (["--clearing"], "clearing needs the loaded face"),
+    (["--clearing", "--face-width", "1"], "needs both"),
+    (["--burst", "free-air", "--model", "masi2021"], "not available for blast model 'masi2021'"),
+    (["--burst", "air"], "--burst = 'air' is not known"),
+    (["--clearing", "--face-width", "-1", "--face-height", "2"], "face width"),
+])
+def test_bad_combinations_are_one_line(capsys, argv, words):
+    assert words in run_error(capsys, "blast", "--charge", "50", "--standoff", "2", *argv)
+
+
+def test_critical_with_the_negative_phase(capsys):
+    out = run_json(capsys, "critical", "--height", "10", "--alpha-deg", "15", "--standoff", "2", "--negative-phase",
+                   "--json")
+    assert out["critical_charge_kg"] == pytest.approx(108.367, abs=0.005)
+    assert out["load_model"]["negative_phase"] is True
+
+
+def test_rock_and_design_carry_the_load_model(capsys):
+    out = run_json(capsys, "rock", "--height", "10", "--alpha-deg", "15", "--charge", "50", "--standoff", "2",
+                   "--scale", "0.01", "--negative-phase", "--clearing", "--duration", "0.5", "--json")
+    assert out["load_model"]["model"]["face_width_m"] == pytest.approx(0.01)
+    d = run_json(capsys, "design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--height", "10",
+                 "--alpha-deg", "15", "--negative-phase", "--specimen-burst", "free-air", "--json")
+    e = d["blast_effects"]
+    assert e["load_model"]["model"]["burst"] == "free-air" and "negative_phase" in e and d["notes"]
+    assert "--specimen-charge-height needs" in run_error(capsys, "design", "--charge", "50", "--standoff", "2", "--scale",
+                                                 "0.01", "--specimen-charge-height", "0.01")
+
+
+def test_run_takes_the_scenario_keys(capsys, tmp_path):
+    out = run_json(capsys, "run", "--out", str(tmp_path / "r"), "--set", "simulation.engine=planar", "--set",
+                   "simulation.duration_s=0.3", "--set", "blast.negative_phase=true", "--set",
+                   "simulation.critical_charge=false", "--json")
+    s = json.loads((tmp_path / "r" / "summary.json").read_text())
+    assert s["scenario"]["blast"]["negative_phase"] is True
+    assert s["design"]["blast_effects"]["negative_phase"]["model"]["negative_impulse_Pa_s"] > 0
