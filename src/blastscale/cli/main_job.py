@@ -93,7 +93,7 @@ def _print_result(result) -> None:
         if stab is not None:
             from rich.markup import escape
 
-            from ..report.html import STABILITY_RULE, stability_words
+            from ..report.outcomes import STABILITY_RULE, stability_words
 
             console.print(f"under gravity alone the structure [bold]{escape(stability_words(stab))}[/] "
                           f"({escape(STABILITY_RULE)})", highlight=False)

@@ -19,37 +19,9 @@ from ..units import split_unit as _split_unit
 from .slips import applicable_slips
 from .card import CSS as _CARD_CSS
 from .card import card_section
+from .outcomes import first_peak_rows, stability_lead
 
-__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value", "STABILITY_RULE",
-           "stability_words"]
-
-#: The rule behind "stands / settles / collapses / moving" (blastscale.sim3d.results.stability_of).
-STABILITY_RULE = ("Collapses: a block fell (its centre of mass dropped by more than half its height, or it turned "
-                  "by more than 45 deg); stands: at rest at the end (every block slower than 1e-4 sqrt(g H) over "
-                  "the last tenth of the run) with no centre of mass displaced by more than 1e-3 of the height H; "
-                  "settles: at rest, displaced more, no block fallen; moving: neither at rest nor fallen by the "
-                  "end (run longer). docs/assemblies.md.")
-
-#: Section ids of the report, in order.
-SECTIONS = ("experiment", "test_card", "loads", "impulsive", "similarity", "warnings", "slips", "scenario", "provenance")
-
-_CSS = """
-body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:1100px;margin:2em auto;
-padding:0 1em;color:#1d2329;line-height:1.45}
-h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #d0d7de;padding-bottom:.2em;margin-top:1.8em}
-table{border-collapse:collapse;margin:.6em 0 1em}th,td{border:1px solid #d0d7de;padding:.25em .6em}
-th{background:#f3f5f7;text-align:left}td.n{text-align:right;font-variant-numeric:tabular-nums}
-.lead{font-size:1.1em;background:#eef6ee;border-left:4px solid #3a8f3a;padding:.6em 1em}
-.warn{background:#fff5e0;border-left:4px solid #d08a00;padding:.4em 1em}
-.ok{color:#2b7a2b;font-weight:600}.bad{color:#b02a2a;font-weight:600}
-figure{margin:1em 0}figure img{max-width:100%;border:1px solid #d0d7de}figcaption{font-size:.9em;color:#57606a}
-pre{background:#f6f8fa;padding:.8em;overflow-x:auto;font-size:.85em}.muted{color:#57606a;font-size:.9em}
-"""
-
-
-def stability_words(stability: str) -> str:
-    """The outcome under gravity alone as the end of a sentence ("the structure ...")."""
-    return "is still moving at the end (undecided: run longer)" if stability == "moving" else stability
+__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
 
 
 def split_unit(key: str) -> tuple[str, str]:
@@ -272,16 +244,11 @@ def _similarity(result, figures) -> str:
         r3 = s["3d"]
         out.append("<h3>3D rigid bodies (MuJoCo, Coulomb friction "
                    f"{result.scenario.structure.friction:g})</h3>")
-        stab = (r3.get("prototype") or {}).get("stability")
-        if stab is not None:
-            cls = "ok" if stab in ("stands", "settles") else "bad"
-            out.append(f'<p class="lead">Under gravity alone the structure <span class="{cls}">{_e(stability_words(stab))}'
-                       '</span>. '
-                       f"{_e(STABILITY_RULE)} Here: final speed {format_value(r3['prototype'].get('final_speed_rel_sqrt_gh'), '.2g')} "
-                       "sqrt(g H), largest residual displacement "
-                       f"{format_value(r3['prototype'].get('max_residual_displacement_rel_height'), '.2g')} H.</p>")
+        out.append(stability_lead(r3.get("prototype")))
         out.append(_compare_table(r3["prototype"], r3["model"]))
-        out.append(_first_peaks(r3.get("similarity")))
+        peaks = first_peak_rows(r3.get("similarity"))
+        if peaks is not None:
+            out.append(peaks[0] + _table(peaks[1], peaks[2]))
         if r3.get("similarity") is not None:
             out.append(_table(("similarity figure", "value", "unit"),
                               [(split_unit(k.split(".")[-1])[0] if "." not in k else k, v, split_unit(k)[1])
@@ -309,21 +276,6 @@ def _similarity(result, figures) -> str:
     if not out:
         out.append("<p>No engine was run.</p>")
     return "".join(out)
-
-
-def _first_peaks(sim) -> str:
-    """One row per monitoring point: the first peaks of the x displacement (prototype, model up-scaled),
-    their ratio and the outcome agreement."""
-    if not sim or not sim.get("points"):
-        return ""
-    rows = [(name, p.get("first_peak_prototype_m"), p.get("first_peak_model_m"), p.get("first_peak_ratio"),
-             p.get("first_peak_time_s")) for name, p in sim["points"].items()]
-    agree = sim.get("outcomes_agree")
-    words = "-" if agree is None else ("yes" if agree else "<b>no</b>")
-    return (f"<p>First peaks of the x displacement at the monitoring points (model up-scaled to prototype units); "
-            f"outcomes agree: {words}.</p>"
-            + _table(("monitoring point", "prototype first peak [m]", "model first peak [m]", "first_peak_ratio [-]",
-                      "time of the prototype's peak [s]"), rows))
 
 
 def _warnings(result) -> str:
