@@ -23,6 +23,22 @@ from .outcomes import first_peak_rows, stability_lead
 
 __all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
 
+#: Section ids of the report, in order.
+SECTIONS = ("experiment", "test_card", "loads", "impulsive", "similarity", "warnings", "slips", "scenario", "provenance")
+
+_CSS = """
+body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:1100px;margin:2em auto;
+padding:0 1em;color:#1d2329;line-height:1.45}
+h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #d0d7de;padding-bottom:.2em;margin-top:1.8em}
+table{border-collapse:collapse;margin:.6em 0 1em}th,td{border:1px solid #d0d7de;padding:.25em .6em}
+th{background:#f3f5f7;text-align:left}td.n{text-align:right;font-variant-numeric:tabular-nums}
+.lead{font-size:1.1em;background:#eef6ee;border-left:4px solid #3a8f3a;padding:.6em 1em}
+.warn{background:#fff5e0;border-left:4px solid #d08a00;padding:.4em 1em}
+.ok{color:#2b7a2b;font-weight:600}.bad{color:#b02a2a;font-weight:600}
+figure{margin:1em 0}figure img{max-width:100%;border:1px solid #d0d7de}figcaption{font-size:.9em;color:#57606a}
+pre{background:#f6f8fa;padding:.8em;overflow-x:auto;font-size:.85em}.muted{color:#57606a;font-size:.9em}
+"""
+
 
 def split_unit(key: str) -> tuple[str, str]:
     """``"max_rotation_rad"`` -> (``"max rotation"``, ``"rad"``): label and unit from a key's suffix
