@@ -21,7 +21,7 @@ def test_version(capsys):
     assert code == 0 and out.strip() == f"blastscale {__version__}"
 
 
-@pytest.mark.parametrize("command", ["run", "rock", "critical", "block3d", "design", "blast", "reproduce"])
+@pytest.mark.parametrize("command", ["run", "rock", "critical", "block3d", "design", "blast", "reproduce", "show"])
 def test_flags_are_shown_without_a_value_type(capsys, command):
     code, out, _ = cli(capsys, command, "--help")
     assert code == 0

@@ -3,7 +3,7 @@
 Each command lives in its own module and registers itself on :data:`app`:
 ``blast``/``design`` (:mod:`.loads`), ``rock``/``critical`` (:mod:`.rocking`),
 ``block3d`` (:mod:`.block3d`), ``run`` (:mod:`.main_job`), ``reproduce`` (:mod:`.reproduce`), ``plan``
-(:mod:`.plan`), ``init`` (:mod:`.init`). Units at this edge are those
+(:mod:`.plan`), ``init`` (:mod:`.init`), ``show`` (:mod:`.show`). Units at this edge are those
 named in each option's help text; everything is converted to SI before calling the library.
 
 Bad input raises :class:`~blastscale._validate.BlastscaleInputError` in the library; ``main``
@@ -26,6 +26,7 @@ from . import reproduce as _reproduce  # noqa: F401,E402
 from . import sweeps as _sweeps  # noqa: F401,E402
 from . import plan as _plan  # noqa: F401,E402
 from . import init as _init  # noqa: F401,E402
+from . import show as _show  # noqa: F401,E402
 
 __all__ = ["app", "main"]
 

@@ -107,8 +107,10 @@ def _print_result(result) -> None:
                                      f"Method {sc.blast.load})", r3["prototype"], r3["model"]))
         stab = (r3.get("prototype") or {}).get("stability")
         if stab is not None:
-            console.print(styled("under gravity alone the structure ", (str(stab), "bold"),
-                                 " (stands: no block moved more than 1e-4 of its height; collapses: a block fell)"))
+            from ..report.outcomes import STABILITY_RULE, stability_words
+
+            console.print(styled("under gravity alone the structure ", (stability_words(stab), "bold"),
+                                 f" ({STABILITY_RULE})"))
         if r3.get("similarity") is not None:
             console.print(_similarity_table(r3["similarity"]))
     from ..report.card import card_of

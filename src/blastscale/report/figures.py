@@ -84,6 +84,30 @@ def _ensemble(result):
     return fig
 
 
+def _is_assembly(result) -> bool:
+    from ..structures import Assembly
+
+    return isinstance(result.structure, Assembly)
+
+
+def _assembly(result):
+    from ..plots.assembly import assembly_figure
+
+    sc = result.scenario
+    standoff = None if result.blast is None else sc.blast.standoff_m
+    return assembly_figure(result.structure, standoff_m=standoff)
+
+
+def _snapshots(result):
+    from ..plots.assembly import snapshot_figure
+
+    cmp = result.response3d
+    sim = (result.summary()["3d"] or {}).get("similarity") or {}
+    top = sim.get("top_point")
+    t_peak = ((sim.get("points") or {}).get(top) or {}).get("first_peak_time_s") if top else None
+    return snapshot_figure(result.structure, cmp.prototype_dataset, cmp.upscaled_dataset, first_peak_time_s=t_peak)
+
+
 #: The report's figures, in order.
 FIGURES: tuple[Figure, ...] = (
     Figure("blast_pulses", "Blast loads of the prototype and the model",
@@ -93,6 +117,15 @@ FIGURES: tuple[Figure, ...] = (
     Figure("planar_rocking", "Planar rocking: prototype and up-scaled model",
            "Rocking angle, angular velocity and phase portrait of the prototype (solid) and of the model "
            "up-scaled to prototype units (dashed).", lambda r: r.planar is not None, _planar),
+    Figure("assembly", "The structure: elevation and plan",
+           "The assembly as built, seen from the charge (elevation) and from above (plan); interfaces found by "
+           "geometry shaded (blue between blocks, green on the ground; a joint seen edge on is a thick line), "
+           "monitoring points in red.", _is_assembly, _assembly),
+    Figure("snapshots_3d", "Snapshots of the response: prototype and up-scaled model",
+           "Side sections (x-z, the blast from -x) at a few instants (the start, the top point's first peak, the "
+           "end): each block turned by its rotation about y and moved by its centre of mass; prototype filled, "
+           "model up-scaled to prototype units dashed; small motions amplified by the stated factor.",
+           lambda r: _is_assembly(r) and r.response3d is not None, _snapshots),
     Figure("response_3d", "3D rigid-body response (MuJoCo): prototype and up-scaled model",
            "Histories of the prototype (solid) and of the model up-scaled to prototype units (dashed).",
            lambda r: r.response3d is not None, _three_d),

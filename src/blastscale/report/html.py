@@ -20,6 +20,7 @@ from .slips import applicable_slips
 from .card import CSS as _CARD_CSS
 from .card import card_section
 from .verdict import label, specimen_rows, verdict
+from .outcomes import first_peak_rows, stability_lead
 
 __all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
 
@@ -266,20 +267,19 @@ def _similarity(result, figures) -> str:
         r3 = s["3d"]
         out.append("<h3>3D rigid bodies (MuJoCo, Coulomb friction "
                    f"{result.scenario.structure.friction:g})</h3>")
-        stab = (r3.get("prototype") or {}).get("stability")
-        if stab is not None:
-            cls = "bad" if stab == "collapses" else "ok"
-            out.append(f'<p class="lead">Under gravity alone the structure <span class="{cls}">{_e(stab)}</span> '
-                       "(stands: no block moved more than 1e-4 of the structure's height; settles: more, but no block "
-                       "fell; collapses: a block fell, docs/assemblies.md).</p>")
+        out.append(stability_lead(r3.get("prototype")))
         out.append(_compare_table(r3["prototype"], r3["model"]))
+        peaks = first_peak_rows(r3.get("similarity"))
+        if peaks is not None:
+            out.append(peaks[0] + _table(peaks[1], peaks[2]))
         if r3.get("similarity") is not None:
             out.append(_table(("similarity figure", "value", "unit"),
                               [(label(k), v, split_unit(k.split(".")[-1])[1])
                                for k, v in _flat(r3["similarity"]) if not isinstance(v, str)]))
-        if "response_3d" in figs:
-            f, png = figs["response_3d"]
-            out.append(_img(png, f.title, f.caption, f.name))
+        for name in ("snapshots_3d", "response_3d"):
+            if name in figs:
+                f, png = figs[name]
+                out.append(_img(png, f.title, f.caption, f.name))
     if result.ensemble is not None:
         en = s["ensemble"]
         out.append(f"<h3>3D ensembles ({en['n_members']} members per system, loads perturbed by up to "
@@ -359,8 +359,9 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_h
     if "blast_pulses" in figs:
         f, png = figs["blast_pulses"]
         pulses = _img(png, f.title, f.caption, f.name)
+    drawing = "".join(_img(png, f.title, f.caption, f.name) for f, png in figures if f.name == "assembly")
     body = {
-        "experiment": ("1. The experiment to build", _experiment(result)),
+        "experiment": ("1. The experiment to build", _experiment(result) + drawing),
         "test_card": ("Test card", card_section(result)),
         "loads": ("2. Blast loads of the prototype" + ("" if result.design is None else " and the model"),
                   _loads(result) + pulses),

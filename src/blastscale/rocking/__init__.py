@@ -28,6 +28,7 @@ from .swing import (
     overturn_margin,
     overturns,
 )
+from .frame import frame_frequency_parameter, free_rocking_peak, overturning_angular_velocity
 from .pressure_impulse import PIDiagram, pi_diagram
 from .reference import simulate_reference
 from .results import RockingBatchResult, RockingResult
@@ -65,4 +66,7 @@ __all__ = [
     "overturn_margin",
     "overturns",
     "pi_diagram",
+    "frame_frequency_parameter",
+    "free_rocking_peak",
+    "overturning_angular_velocity",
 ]

@@ -7,7 +7,8 @@ about the y axis through the supporting base edge of the lowest body
 (:func:`tilt_bodies`, used when the scene is built), and every body given the rigid velocity of
 a rotation omega_0 about that edge plus a common translation (:func:`rigid_rocking_velocity`,
 applied after settling). For one block both reduce to the planar initial conditions of
-:mod:`blastscale.rocking`.
+:mod:`blastscale.rocking`. Any other motion (a mechanism: the columns of a rocking frame, each about
+its own edge, and the lintel translating) is given body by body (:func:`body_velocities`).
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 
-__all__ = ["rigid_rocking_velocity", "support_edge", "tilt_bodies"]
+__all__ = ["body_velocities", "rigid_rocking_velocity", "support_edge", "tilt_bodies"]
 
 
 def support_edge(shape, side: float) -> np.ndarray:
@@ -121,5 +122,41 @@ def rigid_rocking_velocity(scene, rotation: float, angular_velocity: float, velo
         for k in range(len(scene.bodies)):
             d.qvel[6 * k:6 * k + 3] = np.cross(w, d.xpos[k + 1] - pivot) + v0 * (a / b)
             d.qvel[6 * k + 3:6 * k + 6] = d.xmat[k + 1].reshape(3, 3).T @ w  # body frame
+
+    return initial
+
+
+def body_velocities(velocities, nbody: int, factors=(1.0, 1.0)):
+    """The initial velocity of each body given whole, as a function ``initial(mj_model, data)``
+    adding to MuJoCo's ``qvel`` after settling (None when ``velocities`` is None).
+
+    Parameters
+    ----------
+    velocities : array (nbody, 6)
+        Per body: velocity of its centre of mass [m/s] and angular velocity [rad/s], world frame,
+        physical units.
+    nbody : int
+        Number of bodies.
+    factors : (float, float)
+        Length and time factors (a, b) to the reference units.
+
+    Returns
+    -------
+    callable or None
+    """
+    if velocities is None:
+        return None
+    v = np.asarray(velocities, dtype=float)
+    if v.shape != (nbody, 6) or not np.all(np.isfinite(v)):
+        raise BlastscaleInputError(f"initial body velocities must be finite, shape ({nbody}, 6), got {v.shape}")
+    a, b = factors
+
+    def initial(m, d):
+        import mujoco
+
+        mujoco.mj_forward(m, d)
+        for k in range(nbody):
+            d.qvel[6 * k:6 * k + 3] += v[k, 0:3] * (a / b)
+            d.qvel[6 * k + 3:6 * k + 6] += d.xmat[k + 1].reshape(3, 3).T @ (v[k, 3:6] / b)  # body frame
 
     return initial

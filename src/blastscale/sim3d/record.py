@@ -10,7 +10,7 @@ import json
 
 import numpy as np
 
-from .results import VARIABLES, Response3D
+from .results import VARIABLES, Response3D, body_heights
 from .rotations import quaternion_to_matrix, tilt_angle
 
 __all__ = ["collapse_flags", "fallen_flags", "body_heights", "response_from_states"]
@@ -19,16 +19,6 @@ __all__ = ["collapse_flags", "fallen_flags", "body_heights", "response_from_stat
 #: fraction of the body's own height, or a turn by more than this angle [deg], means the body fell.
 FALL_DROP_FRACTION = 0.5
 FALL_TILT_DEG = 45.0
-
-
-def body_heights(structure) -> np.ndarray:
-    """Each body's own height at rest [m] (``structure.heights`` when it has one per body, else twice
-    the depth of its base below its centre of mass)."""
-    bodies = structure.bodies
-    h = getattr(structure, "heights", None)
-    if h is not None and len(h) == len(bodies):
-        return np.asarray(h, dtype=float)
-    return np.array([-2.0 * b.base_height for b in bodies])
 
 
 def fallen_flags(structure, pos, R) -> np.ndarray:

@@ -16,7 +16,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Response3D", "VARIABLES", "STANDS_FRACTION"]
+__all__ = ["Response3D", "VARIABLES", "STANDS_FRACTION", "REST_SPEED_FRACTION", "REST_WINDOW_FRACTION",
+           "stability_of", "body_heights"]
 
 #: The variables of :attr:`Response3D.dataset`: name -> (dims, units, physical dimension, description).
 VARIABLES = {
@@ -39,9 +40,69 @@ VARIABLES = {
     "residual_rotation": (("body",), "rad", "angle", "angle of the body's rotation from time 0, at the end"),
 }
 
-#: Largest displacement of any body, as a fraction of the structure's height, for which a structure under
-#: gravity alone "stands" (1 mm at 10 m); more, with no body fallen, it "settles"; a body fell: "collapses".
-STANDS_FRACTION = 1e-4
+#: Stability under gravity alone (:func:`stability_of`): a structure at rest whose largest residual
+#: displacement of a centre of mass is at most this fraction of its height "stands" (5 mm at 5 m);
+#: more, at rest and no block fallen: "settles". Chosen above the soft contacts' compliance (the
+#: semicircular arches of docs/assemblies.md, t/R 0.12-0.14, drift 0.6-0.8 mm in 5 s: 1.5e-4 H).
+STANDS_FRACTION = 1e-3
+#: At rest: the largest speed of any block (centre-of-mass speed plus angular speed x half its
+#: height) over the last :data:`REST_WINDOW_FRACTION` of the run below this fraction of
+#: sqrt(g H) (0.7 mm/s at 5 m). The engine's soft contacts creep at ~2e-5 sqrt(g H) on the standing
+#: arches; a collapsing arch already moves at ~1e-2 sqrt(g H) 0.2 s into its fall.
+REST_SPEED_FRACTION = 1e-4
+#: The closing fraction of the run over which "at rest" is judged.
+REST_WINDOW_FRACTION = 0.1
+
+
+def body_heights(structure) -> np.ndarray:
+    """Each body's own height at rest [m] (``structure.heights`` when it has one per body, else twice
+    the depth of its base below its centre of mass)."""
+    bodies = structure.bodies
+    h = getattr(structure, "heights", None)
+    if h is not None and len(h) == len(bodies):
+        return np.asarray(h, dtype=float)
+    return np.array([-2.0 * b.base_height for b in bodies])
+
+
+def stability_of(ds, heights, structure_height: float, gravity: float) -> tuple:
+    """The outcome of a run under gravity alone, with the two figures it rests on.
+
+    Rule (docs/assemblies.md): **collapses** when a block fell (the fall rule); otherwise **stands**
+    when it is at rest at the end (largest block speed over the last :data:`REST_WINDOW_FRACTION` of
+    the run, v_k = |v_com| + |omega| h_k / 2, below :data:`REST_SPEED_FRACTION` sqrt(g H)) and
+    every residual displacement is at most :data:`STANDS_FRACTION` H; **settles** when at rest with
+    a larger residual displacement; **moving** when neither at rest nor fallen by the end (undecided:
+    run longer).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :attr:`Response3D.dataset`.
+    heights : array (nbody,)
+        Each block's own height [m].
+    structure_height : float
+        H [m].
+    gravity : float
+        g [m/s^2].
+
+    Returns
+    -------
+    (str, float, float)
+        The outcome, the final speed over sqrt(g H) [-], the largest residual displacement over H [-].
+    """
+    h = max(float(structure_height), 1e-300)
+    fallen = ds["fallen"].values.astype(bool)
+    speed = (np.linalg.norm(ds["com_velocity"].values, axis=2)
+             + np.linalg.norm(ds["angular_velocity"].values, axis=2) * 0.5 * np.asarray(heights)[None, :])
+    n = speed.shape[0]
+    tail = speed[min(int((1.0 - REST_WINDOW_FRACTION) * n), n - 1):]
+    v_rel = float(tail.max() / np.sqrt(gravity * h))
+    d_rel = float(ds["residual_displacement"].values.max() / h)
+    if bool(ds.attrs["collapsed"]) or fallen.any():
+        return "collapses", v_rel, d_rel
+    if v_rel > REST_SPEED_FRACTION:
+        return "moving", v_rel, d_rel
+    return ("stands" if d_rel <= STANDS_FRACTION else "settles"), v_rel, d_rel
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,7 +148,8 @@ class Response3D:
         ``max_residual_displacement_m``, ``bodies`` {name: ``delivered_impulse_Ns`` [x, y, z],
         ``max_displacement_m`` (largest distance of its centre of mass from time 0),
         ``residual_displacement_m``, ``residual_rotation_rad``, ``fallen``}; under gravity alone also
-        ``stability``: "stands", "settles" or "collapses" (:data:`STANDS_FRACTION`)."""
+        ``stability``: "stands", "settles", "collapses" or "moving" (:func:`stability_of`), with
+        ``final_speed_rel_sqrt_gh`` and ``max_residual_displacement_rel_height`` [-], its two figures."""
         ds = self.dataset
         names = [str(b) for b in ds["body"].values]
         fallen = ds["fallen"].values.astype(bool)
@@ -105,8 +167,10 @@ class Response3D:
         }
         if int(ds.attrs.get("gravity_only", 0)):
             h = float(json.loads(ds.attrs["structure"]).get("height_m", 1.0))
-            out["stability"] = ("collapses" if bool(ds.attrs["collapsed"]) or fallen.any() else
-                                "stands" if disp.max() <= STANDS_FRACTION * h else "settles")
+            g = float(ds.attrs.get("setting_gravity_m_s2", 9.80665))
+            hk = body_heights(self.structure) if self.structure is not None else np.full(len(names), h)
+            out["stability"], out["final_speed_rel_sqrt_gh"], out["max_residual_displacement_rel_height"] = \
+                stability_of(ds, hk, h, g)
         return out
 
     def summary(self) -> dict:

@@ -35,7 +35,7 @@ from .contact import (
     default_contact,
     structure_length,
 )
-from .initial import rigid_rocking_velocity
+from .initial import body_velocities, rigid_rocking_velocity
 from .integrate import BLAST_MODES, integrate
 from .model import BoxShape, Scene, structure_scene
 from .record import response_from_states
@@ -137,6 +137,7 @@ def simulate_structure(
     initial_rotation: float = 0.0,
     initial_angular_velocity: float = 0.0,
     initial_velocity=(0.0, 0.0, 0.0),
+    initial_body_velocities=None,
 ) -> Response3D:
     """Simulate any structure of rigid bodies on a rigid ground under a blast load.
 
@@ -175,6 +176,9 @@ def simulate_structure(
         and theta_0 = 0), every body moving rigidly (:func:`~.initial.rigid_rocking_velocity`).
     initial_velocity : tuple of float
         Extra initial velocity of every centre of mass [m/s], (3,).
+    initial_body_velocities : array (nbody, 6), optional
+        Added per body: centre-of-mass velocity [m/s] and angular velocity [rad/s], world frame
+        (:func:`~.initial.body_velocities`; a mechanism such as the rocking frame's).
 
     Returns
     -------
@@ -203,8 +207,22 @@ def simulate_structure(
                             rotation=th0)
     _warn_near_pivot_threshold(scene, contact.friction, load, mode)
     st = integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle and th0 == 0.0,
-                   factors=(a, b), initial_velocity=rigid_rocking_velocity(scene, th0, om0, v0, (a, b)))
+                   factors=(a, b), initial_velocity=_both(rigid_rocking_velocity(scene, th0, om0, v0, (a, b)),
+                                                          body_velocities(initial_body_velocities, len(scene.bodies),
+                                                                          (a, b))))
     return response_from_states(structure, st, _settings(contact, g, T, mode, st, load, explicit))
+
+
+def _both(first, second):
+    """Apply two initial-velocity functions in turn (either may be None)."""
+    if first is None or second is None:
+        return first or second
+
+    def initial(m, d):
+        first(m, d)
+        second(m, d)
+
+    return initial
 
 
 def _settings(c: ContactSettings, g, T, mode, st, load, explicit) -> dict:

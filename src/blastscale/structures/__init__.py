@@ -5,7 +5,7 @@ interfaces found by geometry, :mod:`.interfaces`) generated as walls, arches and
 (:mod:`.generators`) or read from block-model files (:mod:`.block_files`)."""
 
 from .base import BoxGeometry, Face, MonitoringPoint, PrismGeometry, RigidBody, frustum_mass_properties
-from .assembly import Assembly, ConvexBlock, ConvexGeometry
+from .assembly import Assembly, ConvexBlock, ConvexGeometry, as_assembly
 from .block import STANDARD_GRAVITY, RectangularBlock
 from .block_files import read_block_model
 from .generators import arch, portal, wall
@@ -16,6 +16,7 @@ from .materials import MATERIALS, Material, material_density
 
 __all__ = [
     "Assembly",
+    "as_assembly",
     "ConvexBlock",
     "ConvexGeometry",
     "arch",

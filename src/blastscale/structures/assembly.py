@@ -32,7 +32,7 @@ from .base import BoxGeometry, Face, MonitoringPoint, RigidBody
 from .interfaces import check_assembly, find_interfaces
 from .polyhedron import face_label, hull_of, polyhedron_faces, polyhedron_mass_properties
 
-__all__ = ["ConvexBlock", "ConvexGeometry", "Assembly", "FALL_DROP_FRACTION", "FALL_TILT_DEG"]
+__all__ = ["ConvexBlock", "ConvexGeometry", "Assembly", "as_assembly", "FALL_DROP_FRACTION", "FALL_TILT_DEG"]
 
 #: A block fell when its centre of mass dropped by more than this fraction of its own height [-].
 FALL_DROP_FRACTION = 0.5
@@ -295,3 +295,27 @@ def _load_face(faces) -> Face:
     if best is not None:
         return best[1]
     return Face("front", (0.0, 0.0, 0.0), (-1.0, 0.0, 0.0), 0.0, True)
+
+
+def as_assembly(structure) -> "Assembly":
+    """``structure`` as an :class:`Assembly` (itself when it is one): each body's engine geometry
+    (box, prism, convex hull) placed at its centre of mass at rest, of the structure's density, for
+    drawing and describing a block or a column as blocks (a tapered column's drums are drawn as their
+    contact boxes or prisms, not as frustums)."""
+    if isinstance(structure, Assembly):
+        return structure
+    from .base import PrismGeometry
+
+    dens = float(structure.describe().get("density_kg_m3", 2000.0))
+    blocks = []
+    for b in structure.bodies:
+        sh = b.shape
+        if isinstance(sh, ConvexGeometry):
+            v = sh.array()
+        elif isinstance(sh, PrismGeometry):
+            v = sh.vertices()
+        else:
+            hx, hy, hz, zc = sh.half_width, sh.half_depth, sh.half_height, sh.centre_z
+            v = np.array([(x, y, zc + z) for x in (-hx, hx) for y in (-hy, hy) for z in (-hz, hz)], dtype=float)
+        blocks.append(ConvexBlock(b.name, v + np.asarray(b.com), dens))
+    return Assembly(tuple(blocks), kind=str(structure.describe().get("kind", "structure")), check=False)
