@@ -115,21 +115,24 @@ class BoxShape:
 
 
 @dataclass(frozen=True)
-class PrismShape:
-    """A convex mesh: the right prism on a regular polygon (a "circular" drum), from
-    :class:`~blastscale.structures.base.PrismGeometry`; never a cylinder primitive (MuJoCo's
-    cylinder contacts gained energy in our column tests, docs/design.md)."""
+class MeshShape:
+    """A convex mesh of a general block (:class:`~blastscale.structures.assembly.ConvexGeometry`:
+    its hull's vertices in the body frame); MuJoCo takes their convex hull, as the block is."""
 
-    geometry: PrismGeometry
+    geometry: ConvexGeometry
     density: float
 
+    def vertex_array(self) -> np.ndarray:
+        """The mesh's vertices in the body frame (n, 3) [m]."""
+        return self.geometry.array()
+
     def base_points(self) -> np.ndarray:
-        """The base polygon's vertices in the body frame (sides, 3) [m]."""
+        """The lowest vertices at rest, body frame [m]."""
         return self.geometry.base_points()
 
     def mjcf_assets(self, name: str) -> str:
         """The ``<mesh>`` asset (vertices in the body frame; MuJoCo takes their convex hull)."""
-        v = " ".join(mjcf_number(x) for x in self.geometry.vertices().ravel())
+        v = " ".join(mjcf_number(x) for x in self.vertex_array().ravel())
         return f'<mesh name="{name}_mesh" vertex="{v}"/>'
 
     def contact_geoms(self, name: str) -> list[str]:
@@ -143,30 +146,16 @@ class PrismShape:
 
 
 @dataclass(frozen=True)
-class MeshShape:
-    """A convex mesh of a general block (:class:`~blastscale.structures.assembly.ConvexGeometry`:
-    its hull's vertices in the body frame); MuJoCo takes their convex hull, as the block is."""
+class PrismShape(MeshShape):
+    """A convex mesh: the right prism on a regular polygon (a "circular" drum), from
+    :class:`~blastscale.structures.base.PrismGeometry`; never a cylinder primitive (MuJoCo's
+    cylinder contacts gained energy in our column tests, docs/design.md)."""
 
-    geometry: ConvexGeometry
-    density: float
+    geometry: PrismGeometry
 
-    def base_points(self) -> np.ndarray:
-        """The lowest vertices at rest, body frame [m]."""
-        return self.geometry.base_points()
-
-    def mjcf_assets(self, name: str) -> str:
-        """The ``<mesh>`` asset (vertices in the body frame)."""
-        v = " ".join(mjcf_number(x) for x in self.geometry.array().ravel())
-        return f'<mesh name="{name}_mesh" vertex="{v}"/>'
-
-    def contact_geoms(self, name: str) -> list[str]:
-        """The one mesh geom."""
-        return [name]
-
-    def mjcf_geom(self, name: str) -> str:
-        """The mesh ``<geom>``; collisions from explicit pairs only."""
-        return (f'<geom name="{name}" type="mesh" mesh="{name}_mesh" density="{mjcf_number(self.density)}" '
-                'contype="0" conaffinity="0"/>')
+    def vertex_array(self) -> np.ndarray:
+        """The prism's vertices in the body frame (2 x sides, 3) [m]."""
+        return self.geometry.vertices()
 
 
 def engine_shape(geometry, density: float):
