@@ -252,16 +252,30 @@ class ContactSettings:
             f'jacobian="{self.jacobian}"><flag multiccd="enable"/></option>'
         )
 
-    def mjcf_pair_attributes(self) -> str:
-        """Attributes of an explicit ``<pair>``: condim 3, friction, solref, solreffriction, solimp."""
-        mu = float(self.friction)
-        attrs = (
-            f'condim="3" friction="{mjcf_number(mu)} {mjcf_number(mu)} 0 0 0" solref="{mjcf_number(self.time_constant)} {mjcf_number(self.damping_ratio)}" '
-            f'solimp="{mjcf_number(self.impedance_min)} {mjcf_number(self.impedance_max)} {mjcf_number(self.impedance_width)} 0.5 2" margin="0" gap="0"'
-        )
+    def _mjcf_common(self, margin: float) -> str:
+        return (f'condim="3" solref="{mjcf_number(self.time_constant)} {mjcf_number(self.damping_ratio)}" '
+                f'solimp="{mjcf_number(self.impedance_min)} {mjcf_number(self.impedance_max)} '
+                f'{mjcf_number(self.impedance_width)} 0.5 2" margin="{mjcf_number(margin)}" gap="0"')
+
+    def mjcf_pair_attributes(self, margin: float = 0.0) -> str:
+        """Attributes of an explicit ``<pair>``: condim 3, friction, solref, solreffriction, solimp,
+        ``margin`` [m] (0: engages at contact; negative: once the surfaces overlap by -margin)."""
+        mu = mjcf_number(float(self.friction))
+        attrs = f'{self._mjcf_common(margin)} friction="{mu} {mu} 0 0 0"'
         if self.friction_time_constant is not None:
             attrs += f' solreffriction="{mjcf_number(self.friction_time_constant)} 1"'
         return attrs
+
+    def mjcf_geom_attributes(self, margin: float = 0.0) -> str:
+        """The same settings on a ``<geom>`` colliding through MuJoCo's broad phase (equal on every geom,
+        so MuJoCo's mixing of two geoms' settings returns them unchanged): sliding friction in both
+        tangent directions, no solreffriction (a geom has none, :attr:`geom_expressible`)."""
+        return f'{self._mjcf_common(margin)} friction="{mjcf_number(float(self.friction))} 0 0"'
+
+    @property
+    def geom_expressible(self) -> bool:
+        """Whether a ``<geom>`` can carry these settings (MuJoCo geoms have no ``solreffriction``)."""
+        return self.friction_time_constant is None
 
     def to_dict(self) -> dict:
         """Plain dict with unit-suffixed keys."""

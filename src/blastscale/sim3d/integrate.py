@@ -85,18 +85,19 @@ def _any_contact_slides(m, d, c: ContactSettings) -> bool:
     return False
 
 
-def _kick(m, d, wrench_impulses: np.ndarray) -> None:
+def _kick(m, d, wrench_impulses: np.ndarray, body_ids) -> None:
     """Add to qvel the velocity change of world-frame impulses (nbody, 6) (linear [N*s],
-    angular [N*m*s]) applied at each body's centre of mass: dv = M^-1 sum_b J_b^T I_b."""
+    angular [N*m*s]) applied at the centre of mass of bodies ``body_ids`` (MuJoCo ids):
+    dv = M^-1 sum_b J_b^T I_b."""
     import mujoco
 
     jacp = np.zeros((3, m.nv))
     jacr = np.zeros((3, m.nv))
     gen = np.zeros(m.nv)
-    for k, w in enumerate(wrench_impulses):
+    for k, w in zip(body_ids, wrench_impulses):
         if not np.any(w):
             continue
-        mujoco.mj_jacBodyCom(m, d, jacp, jacr, k + 1)
+        mujoco.mj_jacBodyCom(m, d, jacp, jacr, int(k))
         gen += jacp.T @ w[0:3] + jacr.T @ w[3:6]
     dq = np.zeros((1, m.nv))
     mujoco.mj_solveM(m, d, dq, gen.reshape(1, -1))
@@ -146,6 +147,7 @@ def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_m
     T = float(duration)
     nsteps = max(1, int(math.ceil(T / dtp - 1e-9)))
     nb = len(scene.bodies)
+    ids = scene.body_ids  # MuJoCo's id of each body, in the structure's order
     if settle:
         mujoco.mj_step(m, d, int(math.ceil(SETTLE_TIME_CONSTANTS * c.time_constant / dt - 1e-9)))  # native loop
         d.qvel[:] = 0.0  # remove the (exp(-20)-small) residual transient exactly
@@ -183,13 +185,13 @@ def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_m
             j += 1
             n = nxt
             continue
-        W = load.step_wrenches(t0, t0 + dtp, d.xipos[1:] / a, d.xmat[1:].reshape(nb, 3, 3))
+        W = load.step_wrenches(t0, t0 + dtp, d.xipos[ids] / a, d.xmat[ids].reshape(nb, 3, 3))
         delivered += W[:, 0:3] * dtp
-        xfrc[1:, 0:3] = W[:, 0:3] * fF
-        xfrc[1:, 3:6] = W[:, 3:6] * fM
+        xfrc[ids, 0:3] = W[:, 0:3] * fF
+        xfrc[ids, 3:6] = W[:, 3:6] * fM
         loading = True
         if blast_mode == "kick" or (blast_mode == "auto" and np.any(W) and _any_contact_slides(m, d, c)):
-            _kick(m, d, xfrc[1:] * dt)
+            _kick(m, d, xfrc[ids] * dt, ids)
             xfrc[1:] = 0.0
             kicks += 1
         mujoco.mj_step(m, d)
@@ -197,8 +199,8 @@ def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_m
         if rec_mask[n]:
             qpos[j], qvel[j], ncon[j] = d.qpos, d.qvel, d.ncon
             j += 1
-    qpos = qpos.reshape(nrec, nb, 7)
-    qvel = qvel.reshape(nrec, nb, 6)
+    qpos = qpos[:, scene.qpos_index()].reshape(nrec, nb, 7)  # the structure's body order
+    qvel = qvel[:, scene.qvel_index()].reshape(nrec, nb, 6)
     qpos[:, :, 0:3] /= a
     qvel[:, :, 0:3] *= b / a
     qvel[:, :, 3:6] *= b

@@ -14,10 +14,11 @@ pushes towards +x; the loaded front face is the body's -x face, its inward norma
 body's +x axis. Each body frame sits at the centre of mass with principal axes along the
 block's edges (x = width 2b, y = depth 2w, z = height 2h).
 
-Contacts are explicit ``<pair>`` elements between the plane and every body geom, so the
-contact parameters of :class:`~.contact.ContactSettings` apply exactly (no MuJoCo mixing of
-two geoms' ``solref``, which silently averages in the plane's default 20 ms), and the
-frictional directions can get their own ``solreffriction``.
+Interfaces (surfaces in contact at rest) are explicit ``<pair>`` elements with the parameters of
+:class:`~.contact.ContactSettings`; every other two surfaces collide through MuJoCo's broad phase
+with the same parameters on every geom (so MuJoCo's mixing of two geoms' settings returns them
+unchanged) and engage after a small overlap; the bodies are numbered for the solver
+(:mod:`.collision`).
 """
 
 from __future__ import annotations
@@ -30,11 +31,12 @@ from .._validate import BlastscaleInputError, check_positive
 from ..structures.assembly import ConvexGeometry
 from ..structures.base import BoxGeometry, PrismGeometry
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
+from .collision import BROAD_PHASE, body_order, engagement_depth
 from .contact import ContactSettings, mjcf_number
 from .initial import tilt_bodies
 
 __all__ = ["BoxShape", "PrismShape", "MeshShape", "FrontFace", "BodySpec", "Scene", "build_scene", "block_scene", "structure_scene",
-           "engine_shape", "contact_pairs"]
+           "engine_shape"]
 
 
 @dataclass(frozen=True)
@@ -107,10 +109,11 @@ class BoxShape:
         return [name]
 
     def mjcf_geom(self, name: str) -> str:
-        """The ``<geom>`` element. Collisions come from explicit pairs only (contype = conaffinity = 0)."""
+        """The ``<geom>`` element; its collision settings come from the scene's ``<default>``
+        (:func:`build_scene`)."""
         return (
             f'<geom name="{name}" type="box" size="{mjcf_number(self.half_width)} {mjcf_number(self.half_depth)} {mjcf_number(self.half_height)}" '
-            f'pos="0 0 {mjcf_number(self.centre_z)}" density="{mjcf_number(self.density)}" contype="0" conaffinity="0"/>'
+            f'pos="0 0 {mjcf_number(self.centre_z)}" density="{mjcf_number(self.density)}"/>'
         )
 
 
@@ -140,9 +143,8 @@ class MeshShape:
         return [name]
 
     def mjcf_geom(self, name: str) -> str:
-        """The mesh ``<geom>``; collisions from explicit pairs only."""
-        return (f'<geom name="{name}" type="mesh" mesh="{name}_mesh" density="{mjcf_number(self.density)}" '
-                'contype="0" conaffinity="0"/>')
+        """The mesh ``<geom>``; its collision settings come from the scene's ``<default>``."""
+        return f'<geom name="{name}" type="mesh" mesh="{name}_mesh" density="{mjcf_number(self.density)}"/>'
 
 
 @dataclass(frozen=True)
@@ -207,11 +209,15 @@ class Scene:
     mj_model : mujoco.MjModel
         The compiled MuJoCo model.
     bodies : tuple of BodySpec
-        The free bodies, in MuJoCo body order (body id = index + 1).
+        The free bodies, in the structure's order.
     contact : ContactSettings
         The settings the model was built with.
     gravity : float
         Gravitational acceleration [m/s^2].
+    body_ids : ndarray of int (nbody,)
+        MuJoCo's body id of each of ``bodies`` (:func:`~.collision.body_order`; 1, 2, ... unless the
+        bodies were renumbered for the solver). Per-body MuJoCo arrays are read as ``d.xpos[body_ids]``
+        and free-joint state as :meth:`qpos_index` / :meth:`qvel_index`.
     """
 
     xml: str
@@ -219,6 +225,21 @@ class Scene:
     bodies: tuple
     contact: ContactSettings
     gravity: float
+    body_ids: np.ndarray = field(default=None, repr=False)
+
+    def __post_init__(self):
+        if self.body_ids is None:
+            object.__setattr__(self, "body_ids", np.arange(1, len(self.bodies) + 1))
+
+    def qpos_index(self) -> np.ndarray:
+        """Indices into MuJoCo's ``qpos`` giving the bodies' (x, y, z, qw, qx, qy, qz) in the
+        structure's order, shape (7 nbody,)."""
+        return ((self.body_ids[:, None] - 1) * 7 + np.arange(7)).ravel()
+
+    def qvel_index(self) -> np.ndarray:
+        """Indices into MuJoCo's ``qvel`` giving the bodies' (v, omega_body) in the structure's
+        order, shape (6 nbody,)."""
+        return ((self.body_ids[:, None] - 1) * 6 + np.arange(6)).ravel()
 
 
 def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None) -> Scene:
@@ -233,8 +254,9 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     gravity : float
         Gravitational acceleration g [m/s^2], > 0, along -z.
     pairs : sequence of (int, int), optional
-        Bodies in contact, by index (-1 = ground): one explicit ``<pair>`` per geom pair with
-        the settings of ``contact``. Default: every body with the ground.
+        The interfaces: bodies in contact at rest, by index (-1 = ground), one explicit ``<pair>``
+        per geom pair with the settings of ``contact``; every other two surfaces collide as
+        :mod:`.collision` says. Default: every body with the ground.
 
     Returns
     -------
@@ -255,10 +277,13 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     bodies = tuple(bodies)
     if not bodies:
         raise BlastscaleInputError("bodies = () is out of range: at least one body is needed")
-    pairs = tuple((-1, i) for i in range(len(bodies))) if pairs is None else tuple(pairs)
-    assets = "".join(b.shape.mjcf_assets(f"{b.name}_geom") for b in bodies)
-    worldbody = ['<geom name="ground" type="plane" size="0 0 1" contype="0" conaffinity="0"/>']
-    for b in bodies:
+    n = len(bodies)
+    pairs = tuple((-1, i) for i in range(n)) if pairs is None else tuple(tuple(p) for p in pairs)
+    order = body_order(pairs, n)
+    depth = engagement_depth(contact.time_constant, g)
+    assets = "".join(bodies[k].shape.mjcf_assets(f"{bodies[k].name}_geom") for k in order)
+    worldbody = ['<geom name="ground" type="plane" size="0 0 1"/>']
+    for b in (bodies[k] for k in order):
         px, py, pz = (float(v) for v in b.position)
         qw, qx, qy, qz = (float(v) for v in b.quaternion)
         worldbody.append(
@@ -269,58 +294,47 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     def geoms(i):
         return ["ground"] if i < 0 else bodies[i].shape.contact_geoms(f"{bodies[i].name}_geom")
 
-    attrs = contact.mjcf_pair_attributes()
-    xml_pairs = [f'<pair geom1="{g1}" geom2="{g2}" {attrs}/>' for i, j in pairs for g1 in geoms(i) for g2 in geoms(j)]
+    def body(i):
+        return "world" if i < 0 else bodies[i].name
+
+    def xml_pairs(which, margin):
+        attrs = contact.mjcf_pair_attributes(margin)
+        return [f'<pair geom1="{g1}" geom2="{g2}" {attrs}/>' for i, j in which for g1 in geoms(i) for g2 in geoms(j)]
+
+    contacts = xml_pairs(pairs, 0.0)  # rule 1 of .collision: interfaces, engaging at contact
+    seen = {tuple(sorted(p)) for p in pairs}
+    if n == 1 and seen == {(-1, 0)}:
+        default = 'contype="0" conaffinity="0"'  # one body on the ground: nothing else can touch
+    elif contact.geom_expressible:  # rule 2: every other two surfaces through the broad phase
+        default = f'{BROAD_PHASE} {contact.mjcf_geom_attributes(-depth)}'
+        contacts += [f'<exclude body1="{body(i)}" body2="{body(j)}"/>' for i, j in sorted(seen)]
+    else:  # rule 2 with solreffriction: explicit pairs
+        default = 'contype="0" conaffinity="0"'
+        extra = [(i, j) for i in range(-1, n) for j in range(i + 1, n) if (i, j) not in seen]
+        contacts += xml_pairs(extra, -depth)
     asset_block = f"<asset>{assets}</asset>" if assets else ""
     # the solver's arena grows with the contacts: ~0.5 MB per body beyond the default (200 blocks: 64 + 100 MB)
-    size = f'<size memory="{64 + len(bodies) // 2}M"/>' if len(bodies) > 20 else ""
+    size = f'<size memory="{64 + n // 2}M"/>' if n > 20 else ""
     xml = (
         '<mujoco model="blastscale">'
         '<compiler angle="radian" boundmass="0" boundinertia="0"/>'
-        f"{contact.mjcf_option(g)}{size}{asset_block}"
-        f'<worldbody>{"".join(worldbody)}</worldbody><contact>{"".join(xml_pairs)}</contact></mujoco>'
+        f"{contact.mjcf_option(g)}{size}<default><geom {default}/></default>{asset_block}"
+        f'<worldbody>{"".join(worldbody)}</worldbody><contact>{"".join(contacts)}</contact></mujoco>'
     )
     mj_model = mujoco.MjModel.from_xml_string(xml)
     if mj_model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_MULTICCD:
         raise RuntimeError("MuJoCo multiccd is disabled: flat drum-on-drum contacts would get one point")
-    return Scene(xml=xml, mj_model=mj_model, bodies=bodies, contact=contact, gravity=g)
-
-
-def contact_pairs(interfaces, nbody: int) -> tuple:
-    """The contact pairs of a structure's scene: its ``interfaces`` (in contact at rest, ground
-    = -1) first, then every body with the ground and every two bodies with each other.
-
-    Without the extra pairs a collapsed column's upper drums fell through the ground and
-    through each other (the circular column under 400 kg ended with drums 18-28 m below it).
-    The extra pairs have the same settings (margin 0), so they make no contact while their
-    bodies are apart: the motion before they first touch is bitwise that of the interfaces
-    alone (measured on the 10-drum columns over 1 s of blast response), and the interfaces come
-    first so that their contacts keep their order in the solver. Their cost on the standing
-    10-drum columns is within the timing noise (< 6 %, docs/sim3d.md).
-
-    Parameters
-    ----------
-    interfaces : sequence of (int, int)
-        Pairs in contact at rest, by body index (-1 = ground).
-    nbody : int
-        Number of bodies.
-
-    Returns
-    -------
-    tuple of (int, int)
-    """
-    pairs = [tuple(p) for p in interfaces]
-    seen = {tuple(sorted(p)) for p in pairs}
-    extra = [(i, j) for i in range(-1, nbody) for j in range(i + 1, nbody)]
-    return tuple(pairs + [p for p in extra if p not in seen])
+    ids = np.empty(n, dtype=int)
+    ids[order] = np.arange(1, n + 1)
+    return Scene(xml=xml, mj_model=mj_model, bodies=bodies, contact=contact, gravity=g, body_ids=ids)
 
 
 def structure_scene(structure, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, *,
                     rotation: float = 0.0) -> Scene:
     """The MuJoCo model of any structure of :mod:`blastscale.structures` at rest: one free body
     per ``structure.bodies`` entry with its exact mass and inertia, its contact geometry
-    (:func:`engine_shape`), one contact pair per ``structure.interfaces`` entry and one
-    between every other two bodies and with the ground (:func:`contact_pairs`).
+    (:func:`engine_shape`), one contact pair per ``structure.interfaces`` entry; every other
+    two bodies, and every body and the ground, may touch as they move (:mod:`.collision`).
 
     Parameters
     ----------
@@ -342,7 +356,7 @@ def structure_scene(structure, contact: ContactSettings, gravity: float = STANDA
     density = float(structure.describe()["density_kg_m3"])
     specs = [BodySpec(b.name, engine_shape(b.shape, density), tuple(b.com), mass=b.mass, inertia=tuple(b.inertia))
              for b in structure.bodies]
-    return build_scene(tilt_bodies(specs, rotation), contact, gravity, contact_pairs(structure.interfaces, len(specs)))
+    return build_scene(tilt_bodies(specs, rotation), contact, gravity, structure.interfaces)
 
 
 def block_scene(
