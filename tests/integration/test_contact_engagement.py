@@ -57,3 +57,27 @@ def test_renumbered_bodies_come_back_in_the_structures_order(monkeypatch):
     peak = np.abs(b).max()
     assert peak > 0.1 and np.abs(a - b).max() <= 1e-2 * peak
     np.testing.assert_allclose(ren["com_displacement"].values[0], 0.0, atol=1e-4)  # the right body at the right place
+
+
+def test_with_solreffriction_every_other_pair_is_explicit_and_engages_after_the_same_depth():
+    """A MuJoCo geom has no solreffriction: with ``friction_time_constant`` set on several bodies the pairs
+    that are not interfaces are explicit pairs (every two bodies and every body with the ground), with the
+    margin -g tau^2 of the broad phase's geoms, and the broad phase is off."""
+    from dataclasses import replace
+
+    from blastscale.sim3d.collision import engagement_depth
+    from blastscale.sim3d.contact import default_contact
+    from blastscale.sim3d.model import structure_scene
+    from blastscale.structures import MultiDrumColumn
+
+    col = MultiDrumColumn("square")
+    n = len(col.bodies)
+    c = default_contact(col)
+    plain = structure_scene(col, c).mj_model
+    assert plain.npair == n and plain.nexclude == n  # the interfaces (ground-base and n - 1 joints)
+    assert plain.geom_contype.min() == 1 and plain.geom_margin.max() == pytest.approx(-engagement_depth(c.time_constant, 9.81))
+    m = structure_scene(col, replace(c, friction_time_constant=0.02)).mj_model
+    assert m.npair == n * (n + 1) // 2 and m.nexclude == 0 and m.geom_contype.max() == 0
+    margins = np.sort(m.pair_margin)
+    np.testing.assert_allclose(margins[: m.npair - n], -engagement_depth(c.time_constant, 9.81), rtol=1e-12)
+    assert np.all(margins[m.npair - n:] == 0.0) and np.all(m.pair_solreffriction[:, 0] == 0.02)
