@@ -25,7 +25,7 @@ from blastscale.structures import MultiDrumColumn, wall
 from blastscale.structures.block import RectangularBlock
 
 #: Structures of the cost-per-block figure: the paper's block, and 5 x 2.5 x 0.5 m walls (courses, units per
-#: course); stack-bonded with 10, 50, 200 blocks, running-bond ones (half units at the ends) with 11, 55, 210.
+#: course); stack-bonded with 10, 50, 200 blocks, running-bond ones (half units at the ends) with 11, 52, 210.
 WALLS = {"10": (2, 5), "50": (5, 10), "200": (20, 10)}
 
 #: Settling before "at rest" [s of the 10 m reference]: the 20-course wall's settling transient (its largest
@@ -74,7 +74,7 @@ def _blast_cost(structure, charge: float, standoff: float, seconds: float) -> fl
 
 def blocks(quick: bool = False) -> dict:
     """Cost against the number of blocks at rest, default settings: 1 (the paper's block), stack-bonded walls
-    of 10, 50, 200 blocks and running-bond walls of 11, 55, 210; the 10-drum square column beside them; ratios
+    of 10, 50, 200 blocks and running-bond walls of 11, 52, 210; the 10-drum square column beside them; ratios
     to the 10-block walls and to the column; and, unless quick, the column (250 kg at 10 m) and the 200-block
     stack-bonded wall (10 kg at 5 m) under a blast."""
     secs = 0.1 if quick else 0.2

@@ -8,7 +8,8 @@ Usage::
 Cost against the work (issue 19, :mod:`bench_scale`): ``ensemble`` (8-member circular-column ensemble,
 serial vs every core: ``ensemble.members_8.speedup``), ``sweep3d`` (1 vs 2 Dask workers:
 ``sweep3d.workers_2.speedup``) and ``blocks`` (``blocks.wall_s_per_simulated_s`` for 1 block, stack-bonded
-walls of 10, 50, 200 and running-bond walls of 11, 52, 210; ``blocks.ratio_200_over_column``). ``--quick``: one repeat, 2 s columns, shorter ensembles (the whole run in ~1 minute).
+walls of 10, 50, 200 and running-bond walls of 11, 52, 210; ``blocks.ratio_200_over_column``).
+``--quick``: one repeat, 2 s columns, shorter ensembles (the whole run in ~1 minute).
 
 Columns (``speed.column_square`` / ``speed.column_circular``): the paper's 10-drum columns under
 250 kg at 10 m (Method A), 4 s at prototype scale and their lambda = 1/100 models (``model``,

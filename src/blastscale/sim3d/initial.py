@@ -117,18 +117,17 @@ def rigid_rocking_velocity(scene, rotation: float, angular_velocity: float, velo
         import mujoco
 
         mujoco.mj_forward(m, d)
-        ids = scene.body_ids
+        ids, dofs = scene.body_ids, scene.qvel_index().reshape(-1, 6)
         pivot = d.xmat[ids[0]].reshape(3, 3) @ edge + d.xpos[ids[0]]
         w = np.array([0.0, om0 / b, 0.0])
-        for i in ids:
-            q = 6 * (int(i) - 1)
-            d.qvel[q:q + 3] = np.cross(w, d.xpos[i] - pivot) + v0 * (a / b)
-            d.qvel[q + 3:q + 6] = d.xmat[i].reshape(3, 3).T @ w  # body frame
+        for i, q in zip(ids, dofs):
+            d.qvel[q[0:3]] = np.cross(w, d.xpos[i] - pivot) + v0 * (a / b)
+            d.qvel[q[3:6]] = d.xmat[i].reshape(3, 3).T @ w  # body frame
 
     return initial
 
 
-def body_velocities(velocities, body_ids, factors=(1.0, 1.0)):
+def body_velocities(velocities, scene, factors=(1.0, 1.0)):
     """The initial velocity of each body given whole, as a function ``initial(mj_model, data)``
     adding to MuJoCo's ``qvel`` after settling (None when ``velocities`` is None).
 
@@ -137,8 +136,8 @@ def body_velocities(velocities, body_ids, factors=(1.0, 1.0)):
     velocities : array (nbody, 6)
         Per body: velocity of its centre of mass [m/s] and angular velocity [rad/s], world frame,
         physical units.
-    body_ids : array of int (nbody,)
-        MuJoCo's id of each body (:attr:`~.model.Scene.body_ids`).
+    scene : Scene
+        The scene (its bodies' MuJoCo ids, :attr:`~.model.Scene.body_ids`).
     factors : (float, float)
         Length and time factors (a, b) to the reference units.
 
@@ -148,7 +147,7 @@ def body_velocities(velocities, body_ids, factors=(1.0, 1.0)):
     """
     if velocities is None:
         return None
-    ids = np.asarray(body_ids, dtype=int)
+    ids, dofs = scene.body_ids, scene.qvel_index().reshape(-1, 6)
     nbody = ids.size
     v = np.asarray(velocities, dtype=float)
     if v.shape != (nbody, 6) or not np.all(np.isfinite(v)):
@@ -159,9 +158,8 @@ def body_velocities(velocities, body_ids, factors=(1.0, 1.0)):
         import mujoco
 
         mujoco.mj_forward(m, d)
-        for k, i in enumerate(ids):
-            q = 6 * (int(i) - 1)
-            d.qvel[q:q + 3] += v[k, 0:3] * (a / b)
-            d.qvel[q + 3:q + 6] += d.xmat[i].reshape(3, 3).T @ (v[k, 3:6] / b)  # body frame
+        for k, (i, q) in enumerate(zip(ids, dofs)):
+            d.qvel[q[0:3]] += v[k, 0:3] * (a / b)
+            d.qvel[q[3:6]] += d.xmat[i].reshape(3, 3).T @ (v[k, 3:6] / b)  # body frame
 
     return initial

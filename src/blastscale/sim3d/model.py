@@ -303,8 +303,8 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
 
     contacts = xml_pairs(pairs, 0.0)  # rule 1 of .collision: interfaces, engaging at contact
     seen = {tuple(sorted(p)) for p in pairs}
-    if n == 1 and seen == {(-1, 0)}:
-        default = 'contype="0" conaffinity="0"'  # one body on the ground: nothing else can touch
+    if len(seen) == n * (n + 1) // 2:
+        default = 'contype="0" conaffinity="0"'  # every two surfaces are an interface: nothing else can touch
     elif contact.geom_expressible:  # rule 2: every other two surfaces through the broad phase
         default = f'{BROAD_PHASE} {contact.mjcf_geom_attributes(-depth)}'
         contacts += [f'<exclude body1="{body(i)}" body2="{body(j)}"/>' for i, j in sorted(seen)]

@@ -208,7 +208,7 @@ def simulate_structure(
     _warn_near_pivot_threshold(scene, contact.friction, load, mode)
     st = integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle and th0 == 0.0,
                    factors=(a, b), initial_velocity=_both(rigid_rocking_velocity(scene, th0, om0, v0, (a, b)),
-                                                          body_velocities(initial_body_velocities, scene.body_ids,
+                                                          body_velocities(initial_body_velocities, scene,
                                                                           (a, b))))
     return response_from_states(structure, st, _settings(contact, g, T, mode, st, load, explicit))
 
