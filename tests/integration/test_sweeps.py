@@ -220,6 +220,9 @@ def test_kill_9_midway_then_rerun_gives_the_uninterrupted_result(tmp_path, clust
         (["--vary", "charge_kg=-5,10"], "charge_kg"),
         (["--vary", "charge_kg=10,-5,20"], "charge_kg"),  # inside the grid, not only at its corners
         (["--sample", "restitution=normal:0.8,0.3", "--samples", "50"], "restitution"),  # draws beyond 1
+        (["--set", "friction=-0.5"], "friction"),  # --set: validated by the scenario schema, as for `run`
+        (["--set", "friction"], "KEY=VALUE"),
+        (["--set", "no_such_key=1"], "no_such_key"),
     ],
 )
 def test_bad_grids_and_distributions_one_line_exit_2(tmp_path, capsys, argv, word):
@@ -229,6 +232,19 @@ def test_bad_grids_and_distributions_one_line_exit_2(tmp_path, capsys, argv, wor
     err = capsys.readouterr().err
     assert word in err and "Traceback" not in err and len(err.strip().splitlines()) <= 2
     assert not (tmp_path / "x.zarr").exists() and not (tmp_path / "x.zarr.parts").exists()
+
+
+def test_sweep_set_is_the_scenario_with_those_values(tmp_path, capsys):
+    """``sweep --set KEY=VALUE`` reads the values as ``run --set`` does: the store is the sweep of the
+    built-in scenario with those values (the same fingerprint, the plain loop of Studies), friction 0.6
+    instead of the default's 0.7."""
+    sets = ("engine=planar", "duration_s=1.5", "simulation.samples=301", "critical_charge=false", "friction=0.6")
+    out = run_cli(capsys, "sweep", *[a for s in sets for a in ("--set", s)], "--vary", "charge_kg=40,120",
+                  "--out", str(tmp_path / "s.zarr"), "--workers", "0", "--json")
+    assert out["n_cases"] == 2
+    spec = SweepSpec.build(BASE.with_values({"critical_charge": False, "friction": 0.6}), {"charge_kg": [40.0, 120.0]})
+    tree = assert_store_equals_loop(tmp_path / "s.zarr", spec)
+    assert tree.attrs["fingerprint"] == spec.fingerprint()
 
 
 def test_default_local_cluster_path_equals_in_process(tmp_path):
