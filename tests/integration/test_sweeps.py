@@ -26,6 +26,7 @@ from blastscale.io.sweep_store import open_sweep, run_sweep  # noqa: E402
 from blastscale.sweeps import SweepSpec, select, store_location, study_scalars  # noqa: E402
 from blastscale.cli import main  # noqa: E402
 from blastscale.scenario import Scenario  # noqa: E402
+from blastscale._validate import BlastscaleInputError  # noqa: E402
 
 BIN = Path(sys.executable).parent
 # short planar runs (the paper's block): 1.5 s, 301 samples; critical charge on (searched once per stand-off)
@@ -48,8 +49,8 @@ def test_a_case_the_study_refuses_is_marked_invalid_not_fatal():
 
 def store_contents(tree) -> dict:
     """Everything a store holds, root attributes aside (they carry the chunk size and the time):
-    (group, name) -> values, for data variables and coordinates ("var") and group attributes
-    (the constants, "attr")."""
+    (group, name) -> values, for data variables and coordinates ("var", the constants included) and
+    group attributes ("attr", none expected)."""
     out = {}
     for node in tree.subtree:
         for name, v in node.to_dataset(inherit=False).variables.items():
@@ -61,14 +62,8 @@ def store_contents(tree) -> dict:
 
 
 def stored_names(tree) -> set:
-    """(group, name) of every data variable and constant (``NAME_units`` aside) of a store."""
-    out = set()
-    for node in tree.subtree:
-        group = node.path.strip("/")
-        out |= {(group, n) for n in node.data_vars}
-        if group:
-            out |= {(group, n) for n in node.attrs if not n.endswith("_units")}
-    return out
+    """(group, name) of every data variable of a store (the constants included)."""
+    return {(node.path.strip("/"), n) for node in tree.subtree for n in node.data_vars}
 
 
 def assert_store_equals_loop(path, spec):
@@ -98,14 +93,29 @@ def test_sweep_equals_the_serial_loop_with_monte_carlo(tmp_path):
     r = tree["restitution"].values  # the draws: coordinate on `sample`, the same at every charge
     assert r.shape == (3,) and np.all((r >= 0.3) & (r <= 0.9))
     assert tree["charge_kg"].attrs["units"] == "kg"
-    # the layout: prototype and model on `system`, constants of the design once, as attributes
+    # the layout: prototype and model on `system`, constants of the design once, as 0-d variables with units
     assert tree["planar"]["max_rotation"].dims == ("charge_kg", "sample", "system")
     assert list(tree["planar"]["system"].values) == ["prototype", "model"]
     assert tree["planar"]["max_rotation"].attrs == {"units": "rad", "long_name": "max rotation (planar rocking)"}
-    assert tree["design"].attrs["scale"] == 0.005 and tree["design"].attrs["scale_units"] == "1"
+    assert "units" not in tree["planar"]["system"].attrs  # a label coordinate: no units
+    scale = tree["design"]["scale"]
+    assert scale.dims == () and scale.item() == 0.005 and scale.attrs["units"] == "1"
+    height = tree["experiment"]["height"]  # the prototype's 10 m and the 1/200 specimen's 5 cm
+    assert height.dims == ("system",) and height.attrs["units"] == "m"
+    np.testing.assert_allclose(height.sel(system=["prototype", "model"]).values, [10.0, 0.05], rtol=1e-12)
+    np.testing.assert_allclose(select(tree, "experiment.model.height_m").values, np.full((2, 3), 0.05), rtol=1e-12)
     assert "model_charge" in tree["design"].data_vars  # varies with the charge
     # a second run finds the finished store and does nothing
     assert run_sweep(spec, tmp_path / "s.zarr", workers=0).chunks_run == 0
+    # the same sweep in the previous layout (store_version 2: constants as group attributes) is not taken for
+    # this sweep's finished store: refused, replaced with force
+    for name in (".zattrs", ".zmetadata"):
+        f = tmp_path / "s.zarr" / name
+        f.write_text(f.read_text().replace('"store_version": 3', '"store_version": 2'))
+    with pytest.raises(BlastscaleInputError, match="--force"):
+        run_sweep(spec, tmp_path / "s.zarr", workers=0)
+    assert run_sweep(spec, tmp_path / "s.zarr", workers=0, chunk=4, force=True).chunks_run == 2
+    assert open_sweep(tmp_path / "s.zarr").attrs["store_version"] == 3
 
 
 def free_port() -> int:
@@ -220,6 +230,9 @@ def test_kill_9_midway_then_rerun_gives_the_uninterrupted_result(tmp_path, clust
         (["--vary", "charge_kg=-5,10"], "charge_kg"),
         (["--vary", "charge_kg=10,-5,20"], "charge_kg"),  # inside the grid, not only at its corners
         (["--sample", "restitution=normal:0.8,0.3", "--samples", "50"], "restitution"),  # draws beyond 1
+        (["--set", "friction=-0.5"], "friction"),  # --set: validated by the scenario schema, as for `run`
+        (["--set", "friction"], "KEY=VALUE"),
+        (["--set", "no_such_key=1"], "no_such_key"),
     ],
 )
 def test_bad_grids_and_distributions_one_line_exit_2(tmp_path, capsys, argv, word):
@@ -229,6 +242,19 @@ def test_bad_grids_and_distributions_one_line_exit_2(tmp_path, capsys, argv, wor
     err = capsys.readouterr().err
     assert word in err and "Traceback" not in err and len(err.strip().splitlines()) <= 2
     assert not (tmp_path / "x.zarr").exists() and not (tmp_path / "x.zarr.parts").exists()
+
+
+def test_sweep_set_is_the_scenario_with_those_values(tmp_path, capsys):
+    """``sweep --set KEY=VALUE`` reads the values as ``run --set`` does: the store is the sweep of the
+    built-in scenario with those values (the same fingerprint, the plain loop of Studies), friction 0.6
+    instead of the default's 0.7."""
+    sets = ("engine=planar", "duration_s=1.5", "simulation.samples=301", "critical_charge=false", "friction=0.6")
+    out = run_cli(capsys, "sweep", *[a for s in sets for a in ("--set", s)], "--vary", "charge_kg=40,120",
+                  "--out", str(tmp_path / "s.zarr"), "--workers", "0", "--json")
+    assert out["n_cases"] == 2
+    spec = SweepSpec.build(BASE.with_values({"critical_charge": False, "friction": 0.6}), {"charge_kg": [40.0, 120.0]})
+    tree = assert_store_equals_loop(tmp_path / "s.zarr", spec)
+    assert tree.attrs["fingerprint"] == spec.fingerprint()
 
 
 def test_default_local_cluster_path_equals_in_process(tmp_path):
@@ -358,8 +384,9 @@ def prototype_only(scenario):
 
 def assert_xarray_ready(path, keys) -> "xr.DataTree":
     """Opened with no warning (consolidated metadata); every variable and coordinate an identifier
-    with units and a long name; every constant an identifier with its units; each flat key's
-    units those of its suffix."""
+    with a long name; every number (variables, numeric coordinates) with units, label coordinates
+    (strings) without (CF conventions); no group attributes (constants are variables); each flat
+    key's units those of its suffix."""
     import warnings
 
     with warnings.catch_warnings():
@@ -368,15 +395,19 @@ def assert_xarray_ready(path, keys) -> "xr.DataTree":
         xr.open_zarr(path)  # the root alone, as a Dataset
     for node in tree.subtree:
         for name, v in node.to_dataset(inherit=False).variables.items():
-            assert name.isidentifier() and v.attrs.get("units") and v.attrs.get("long_name"), (node.path, name)
-        consts = [a for a in node.attrs if not a.endswith("_units")] if node.path != "/" else []
-        assert all(a.isidentifier() and f"{a}_units" in node.attrs for a in consts), node.path
+            assert name.isidentifier() and v.attrs.get("long_name"), (node.path, name)
+            if v.dtype.kind in "OUS":  # labels
+                assert name in v.dims and "units" not in v.attrs, (node.path, name)
+            else:
+                assert v.attrs.get("units"), (node.path, name)
+        if node.path != "/":
+            assert not node.attrs, (node.path, dict(node.attrs))
     for key in keys:
         loc = store_location(key)
         if loc is None:
             continue
         node = tree[loc.group] if loc.group else tree
-        got = node[loc.name].attrs["units"] if loc.name in node.data_vars else node.attrs[f"{loc.name}_units"]
+        got = node[loc.name].attrs["units"]
         assert got == oracle_unit(key), (key, got)
     return tree
 
@@ -402,11 +433,15 @@ def test_every_store_is_xarray_ready_with_the_right_units(tmp_path):
             assert sim["max_velocity"].attrs["units"] == "m/s" and sim["max_velocity"].dims[-1] == "point"
             assert list(sim["point"].values) == [f"P-{i}" for i in range(1, 11)]  # natural order
             assert sim["delivered_impulse"].attrs["units"] == "N s" and list(sim["component"].values) == ["x", "y", "z"]
-            assert len(tree["experiment"].attrs["drum_heights"]["model"]) == 10  # constant: stored once
+            drums = tree["experiment"]["drum_heights"]  # constant: stored once, on system and drum
+            assert drums.dims == ("system", "drum") and drums.attrs["units"] == "m" and drums.sizes["drum"] == 10
+            assert drums["drum"].attrs["units"] == "1" and list(drums["drum"].values) == list(range(10))
+            np.testing.assert_allclose(drums.sel(system="model").sum().item(),
+                                       tree["experiment"]["height"].sel(system="model").item(), rtol=1e-12)
             assert tree["design"]["reflected_impulse"].attrs["units"] == "Pa s"
         if label == "both":
             assert tree["ensemble"]["first_peak_ratio"].dims == ("standoff_m", "point")
-            assert tree["design"].attrs["shock_front_velocity_units"] == "m/s"
+            assert tree["design"]["shock_front_velocity"].attrs["units"] == "m/s"
             assert set(tree.children) == {"experiment", "design", "planar", "sim3d", "ensemble"}
 
 

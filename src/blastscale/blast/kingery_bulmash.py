@@ -38,9 +38,9 @@ A point exactly on a boundary belongs to the lower piece. The pieces do not join
 the largest relative jump across a boundary is 2.4 % (incident impulse at Z = 2.38), then
 1.2 % and 0.9 % (positive duration at Z = 1.02 and 2.8), 0.7 % (incident pressure at
 Z = 23.8, upwards), all others below 0.25 %; see ``docs/blast_models.md`` and
-``tests/test_kingery_bulmash.py::test_piece_boundaries_join_within_published_accuracy``.
+``tests/unit/blast/test_kingery_bulmash.py::test_piece_boundaries_join_within_published_accuracy``.
 
-Cross-checks (``tests/test_kingery_bulmash.py``, ``docs/blast_models.md``)
+Cross-checks (``tests/unit/blast/test_kingery_bulmash.py``, ``docs/blast_models.md``)
 ----------------------------------------------------------------------------
 * UFC 3-340-02 Fig. 2-15 (positive-phase parameters of a hemispherical TNT surface
   burst), 96 digitised points in ``tests/data/ufc_3_340_02_fig2_15.csv`` over

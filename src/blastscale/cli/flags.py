@@ -7,9 +7,16 @@ from __future__ import annotations
 import contextlib
 from typing import Optional
 
+import typer
+
 from ..scenario import Scenario
 
-__all__ = ["FLAG_NAMES", "scenario_from_flags", "flags_named"]
+__all__ = ["FLAG_NAMES", "SET_VALUES", "parse_set", "scenario_from_flags", "flags_named"]
+
+#: ``--set KEY=VALUE`` (repeatable), one option object for every command that reads a scenario (run, sweep).
+SET_VALUES = typer.Option(
+    [], "--set", metavar="KEY=VALUE", show_default=False,
+    help="Override a scenario value, e.g. --set blast.charge_kg=60 --set friction=0.5 (repeatable).")
 
 #: Scenario field path -> the command-line flag that sets it (one-line errors name the flag).
 FLAG_NAMES = {
@@ -28,6 +35,27 @@ FLAG_NAMES = {
     "simulation.threads": "--threads",
     "simulation.contact.jacobian": "--jacobian",
 }
+
+
+def parse_set(items: list[str]) -> dict:
+    """``KEY=VALUE`` pairs of ``--set`` -> {key: value}; the value read as TOML (numbers, true/false,
+    "text"), bare words as strings. Keys and values are validated by the scenario schema
+    (:meth:`~blastscale.scenario.Scenario.with_values`), which names the key, its value and its range."""
+    import tomllib
+
+    from .._validate import BlastscaleInputError
+
+    out = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep or not key.strip():
+            raise BlastscaleInputError(f"set = {item!r} is not KEY=VALUE (e.g. --set blast.charge_kg=60)")
+        try:
+            value = tomllib.loads(f"v = {text.strip()}")["v"]
+        except tomllib.TOMLDecodeError:
+            value = text.strip()
+        out[key.strip()] = value
+    return out
 
 
 @contextlib.contextmanager

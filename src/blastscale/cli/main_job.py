@@ -23,27 +23,8 @@ from rich.table import Table
 from ..scenario import Scenario, load_scenario
 from ._app import (app, console, fmt_value, ignore_interrupts, one_line_warnings, print_json, print_written,
                    raise_if_interrupted, stage_progress, styled, table)
+from .flags import SET_VALUES, parse_set
 from .loads import print_design
-
-
-def _parse_set(items: list[str]) -> dict:
-    """``KEY=VALUE`` pairs -> {key: value}; the value read as TOML (numbers, true/false, "text"),
-    bare words as strings."""
-    import tomllib
-
-    from .._validate import BlastscaleInputError
-
-    out = {}
-    for item in items:
-        key, sep, text = item.partition("=")
-        if not sep or not key.strip():
-            raise BlastscaleInputError(f"set = {item!r} is not KEY=VALUE (e.g. --set blast.charge_kg=60)")
-        try:
-            value = tomllib.loads(f"v = {text.strip()}")["v"]
-        except tomllib.TOMLDecodeError:
-            value = text.strip()
-        out[key.strip()] = value
-    return out
 
 
 def _compare_table(title: str, prototype: dict, model: dict) -> Table:
@@ -138,9 +119,7 @@ def run_cmd(
              "exist. Refused if it exists, unless --force."),
     force: bool = typer.Option(False, "--force", help="Replace an existing blastscale result folder (never another "
                                                       "folder)."),
-    values: list[str] = typer.Option(
-        [], "--set", metavar="KEY=VALUE", show_default=False,
-        help="Override a scenario value, e.g. --set blast.charge_kg=60 --set friction=0.5 (repeatable)."),
+    values: list[str] = SET_VALUES,
     blast_model: Optional[str] = typer.Option(None, "--model", "--blast-model", show_default=False,
                                         help="Blast model, kingery-bulmash or masi2021 (default: the scenario's)."),
     charge: Optional[float] = typer.Option(None, "--charge", show_default=False,
@@ -161,7 +140,7 @@ def run_cmd(
 
     pause_point("run:started")
     sc = Scenario.default() if scenario is None else load_scenario(scenario)
-    overrides = _parse_set(values)
+    overrides = parse_set(values)
     for key, v in (("blast.blast_model", blast_model), ("blast.charge_kg", charge), ("structure.friction", friction),
                    ("simulation.duration_s", duration)):
         if v is not None:

@@ -16,6 +16,7 @@ import typer
 from .._validate import BlastscaleInputError
 from ._app import activity, app, console, count_progress, one_line_warnings, print_json, print_written, table
 from ._signals import ignore_interrupts, set_interrupt_note
+from .flags import SET_VALUES, parse_set
 
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")
 SCHEDULER = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (e.g. tcp://127.0.0.1:8786).")
@@ -24,10 +25,13 @@ CHUNK = typer.Option(None, "--chunk", help="Cases per task (default: --outcomes 
 SEED = typer.Option(0, "--seed", help="Seed of the Monte Carlo draws (numpy default_rng).")
 
 
-def _scenario(path: Optional[Path]):
+def _scenario(path: Optional[Path], values: Optional[List[str]] = None):
+    """The scenario file (or the built-in default) with the ``--set KEY=VALUE`` overrides, as ``run`` reads it."""
     from ..scenario import Scenario, load_scenario
 
-    return Scenario.default() if path is None else load_scenario(path)
+    sc = Scenario.default() if path is None else load_scenario(path)
+    overrides = parse_set(values or [])
+    return sc.with_values(overrides) if overrides else sc
 
 
 def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
@@ -57,6 +61,7 @@ def _resume_note(out) -> None:
 @app.command("sweep")
 def sweep_cmd(
     scenario: Optional[Path] = SCENARIO_ARG,
+    values: List[str] = SET_VALUES,
     vary: Optional[List[str]] = typer.Option(None, "--vary", help="FIELD=start:stop:n[:log] or FIELD=a,b,c (repeatable; cartesian grid)."),
     sample: Optional[List[str]] = typer.Option(None, "--sample", help="FIELD=dist:params, e.g. friction=uniform:0.5,0.8 (repeatable)."),
     samples: int = typer.Option(0, "--samples", help="Monte Carlo samples per grid point (with --sample)."),
@@ -79,7 +84,7 @@ def sweep_cmd(
     from ..io.sweep_store import run_sweep
     from ..sweeps import SweepSpec
 
-    base = _scenario(scenario)
+    base = _scenario(scenario, values)
     grid = _assignments(vary, "--vary", lambda text, key: parse_grid(text, key, numeric=False))
     dists = _assignments(sample, "--sample", parse_distribution)
     if dists and samples < 1:
@@ -125,6 +130,7 @@ def _beta(text: str, name: str) -> float:
 @app.command("fragility")
 def fragility_cmd(
     scenario: Optional[Path] = SCENARIO_ARG,
+    values: List[str] = SET_VALUES,
     charges: str = typer.Option(..., "--charges", help="Charges W \\[kg TNT]: start:stop:n[:log] or a,b,c."),
     lognormal: Optional[List[str]] = typer.Option(None, "--lognormal", help="FIELD=beta: the field times a lognormal factor (median 1, log-sd beta) (repeatable)."),
     uniform: Optional[List[str]] = typer.Option(None, "--uniform", help="FIELD=lo:hi: uniform values in the field's unit (repeatable)."),
@@ -141,7 +147,7 @@ def fragility_cmd(
     from .options import check_plot_path
 
     check_plot_path(plot)
-    base = _scenario(scenario)
+    base = _scenario(scenario, values)
     W = parse_grid(charges, "charges")
     with activity(f"fragility: {W.size} charges x {samples} draws", quiet=as_json):
         res = fragility(base, W, lognormal=_assignments(lognormal, "--lognormal", _beta),
@@ -181,6 +187,7 @@ def fragility_cmd(
 @app.command("similarity-map")
 def similarity_map_cmd(
     scenario: Optional[Path] = SCENARIO_ARG,
+    values: List[str] = SET_VALUES,
     scales: str = typer.Option("0.005,0.01,0.05,0.1,0.5", "--scales", help="lambda values \\[-]: a,b,c or start:stop:n[:log]."),
     density_ratios: str = typer.Option("0.1,0.3,1,3", "--density-ratios", help="gamma values \\[-]."),
     charges: str = typer.Option("50,100", "--charges", help="Prototype charges W \\[kg TNT]."),
@@ -206,7 +213,7 @@ def similarity_map_cmd(
     from .options import check_plot_path
 
     check_plot_path(plot)
-    base = _scenario(scenario)
+    base = _scenario(scenario, values)
     grids = [parse_grid(t, n) for t, n in ((scales, "scales"), (density_ratios, "density-ratios"),
                                           (charges, "charges"), (standoffs, "standoffs"))]
     bar, tick = count_progress(f"similarity map ({engine})", quiet=as_json)

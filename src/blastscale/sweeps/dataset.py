@@ -4,7 +4,9 @@ grid (the varied fields, then ``sample``) and, where the key has them, ``system`
 list dimension (``component``, ...; :mod:`.layout` places every flat key); the case validity
 ``valid``, the grid values and the draws at the root, with the sweep's description, fingerprint and
 versions. Inputs that do not vary over the sweep (the ``experiment`` and ``design`` groups'
-constant variables) are stored once, as attributes of their group. Built from the chunks' results,
+constant variables) are stored once, as variables without the case dimensions (0-d, or on their
+``system``, ``point`` or list dimension), each with its ``units`` (CF conventions); label coordinates
+(strings: ``system``, ``point``, ``component``) carry no ``units``. Built from the chunks' results,
 in any order; nothing is written here (:mod:`blastscale.io.sweep_store` writes it)."""
 
 from __future__ import annotations
@@ -15,14 +17,15 @@ import time
 import numpy as np
 
 from ..units import unit_of
-from .layout import CONSTANT_GROUPS, VALID_NAME, coordinate_attrs, label_order, list_position, store_location
+from .layout import CONSTANT_GROUPS, VALID_NAME, coordinate_attrs, label_order, store_location
 from .outcomes import VALID_KEY
 from .spec import SweepSpec
 
 __all__ = ["assemble", "metadata", "STORE_VERSION"]
 
-#: Layout version of a sweep store (root attribute ``store_version``): 2, the DataTree of groups.
-STORE_VERSION = 2
+#: Layout version of a sweep store (root attribute ``store_version``): 3, the DataTree of groups with its
+#: constants as variables (2: the same with constants as group attributes ``NAME`` and ``NAME_units``).
+STORE_VERSION = 3
 
 
 def _flat_arrays(spec: SweepSpec, chunks) -> dict:
@@ -65,21 +68,6 @@ def _variables(flat: dict) -> dict:
     return found
 
 
-def _python(x):
-    return x.item() if hasattr(x, "item") else x
-
-
-def _attr_value(a: np.ndarray, dims: tuple, coords: dict):
-    """A constant's value as an attribute: a number, a dict by label (``system``, ``point``) or a
-    list (a list dimension)."""
-    if not dims:
-        return _python(a[()])
-    rest = dims[1:]
-    if dims[0] in ("system", "point"):
-        return {str(lab): _attr_value(a[i], rest, coords) for i, lab in enumerate(coords[dims[0]])}
-    return [_attr_value(a[i], rest, coords) for i in range(a.shape[0])]
-
-
 def _constant(data: np.ndarray, valid: np.ndarray) -> bool:
     """Whether every valid case has the same values (NaN equal to NaN)."""
     rows = data.reshape(valid.size, -1)[valid.ravel()]
@@ -89,14 +77,9 @@ def _constant(data: np.ndarray, valid: np.ndarray) -> bool:
     return bool(np.all(same))
 
 
-def _list_complete(dims: tuple, coords: dict) -> bool:
-    """Whether each list dimension's labels are its positions (a constant can then be a list)."""
-    return all(d in ("system", "point") or [list_position(d, lab) for lab in coords[d]] == list(range(len(coords[d])))
-               for d in dims)
-
-
 def _groups(spec: SweepSpec, flat: dict, valid: np.ndarray) -> dict:
-    """group path -> (data variables, coordinates, attributes)."""
+    """group path -> (data variables, coordinates); a constant of a constant group
+    (:data:`~.layout.CONSTANT_GROUPS`, the same values in every valid case) without the case dimensions."""
     shape, case_dims = spec.shape, spec.dims
     groups: dict = {}
     variables = _variables(flat)
@@ -107,7 +90,7 @@ def _groups(spec: SweepSpec, flat: dict, valid: np.ndarray) -> dict:
                 labels_of.setdefault((group, dim), set()).add(lab)
     for (group, name), var in sorted(variables.items()):
         loc = var["loc"]
-        g = groups.setdefault(group, ({}, {}, {}))
+        g = groups.setdefault(group, ({}, {}))
         coords = {d: label_order(d, labels_of[(group, d)]) for d in loc.dims}
         extra = tuple(len(coords[d]) for d in loc.dims)
         arrays = list(var["keys"].values())
@@ -117,14 +100,15 @@ def _groups(spec: SweepSpec, flat: dict, valid: np.ndarray) -> dict:
         data = np.full(shape + extra, np.nan) if dtype is float else np.empty(shape + extra, dtype=dtype)
         for labels, a in var["keys"].items():
             data[(Ellipsis, *(coords[d].index(lab) for d, lab in labels))] = a.reshape(shape) if shape else a[0]
-        if group.split("/")[0] in CONSTANT_GROUPS and _list_complete(loc.dims, coords) and _constant(data, valid):
-            first = data.reshape((valid.size,) + extra)[int(np.argmax(valid.ravel()))]
-            g[2][name] = _attr_value(first, loc.dims, coords)
-            g[2][f"{name}_units"] = loc.units
-            continue
         for d in loc.dims:
-            g[1][d] = (d, coords[d], coordinate_attrs(d, group))
-        g[0][name] = (case_dims + loc.dims, data, {"units": loc.units, "long_name": loc.long_name})
+            g[1][d] = (d, coords[d], coordinate_attrs(d, group, coords[d]))
+        attrs = {"units": loc.units, "long_name": loc.long_name}
+        # stored once, without the case dimensions (unless named like one: xarray refuses a 0-d variable
+        # named like a dimension of its dataset)
+        if group.split("/")[0] in CONSTANT_GROUPS and name not in case_dims and _constant(data, valid):
+            g[0][name] = (loc.dims, data.reshape((valid.size,) + extra)[int(np.argmax(valid.ravel()))], attrs)
+        else:
+            g[0][name] = (case_dims + loc.dims, data, attrs)
     return groups
 
 
@@ -166,8 +150,8 @@ def assemble(spec: SweepSpec, chunks, meta: dict):
     root = xr.Dataset({VALID_NAME: (spec.dims, valid, {"units": vloc.units, "long_name": vloc.long_name})},
                       coords=_case_coordinates(spec), attrs=meta)
     nodes = {"/": root}
-    for path, (data, coords, attrs) in _groups(spec, flat, valid).items():
-        nodes[f"/{path}"] = xr.Dataset(data, coords=coords, attrs=attrs)
+    for path, (data, coords) in _groups(spec, flat, valid).items():
+        nodes[f"/{path}"] = xr.Dataset(data, coords=coords)
     return xr.DataTree.from_dict(nodes)
 
 
@@ -196,6 +180,6 @@ def metadata(spec: SweepSpec, chunk: int) -> dict:
                    "Study(scenario).run().scalars() per case",
         "groups": "one per engine or section; system = prototype or model (the specimen: as built in experiment "
                   "and design, up-scaled to prototype units in the engines); constants of experiment and design "
-                  "are group attributes NAME (value) and NAME_units",
+                  "are variables without the case dimensions, with units",
         "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
     }

@@ -17,7 +17,7 @@ the observed information (the inverse Hessian of the negative log-likelihood in 
 
 Known answer: with the charge alone uncertain, lognormal of median W and log-deviation beta, the
 block overturns iff ``W eps > W_c`` (W_c the critical charge), so P(overturn | W) =
-``Phi(ln(W / W_c) / beta)`` exactly: theta = W_c (tests/test_fragility.py).
+``Phi(ln(W / W_c) / beta)`` exactly: theta = W_c (tests/integration/test_fragility.py).
 
 References: Shinozuka, M., Feng, M. Q., Lee, J., Naganuma, T. (2000). Statistical analysis of
 fragility curves. J. Eng. Mech. 126(12), 1224-1231. Baker, J. W. (2015). Efficient analytical

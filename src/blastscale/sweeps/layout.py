@@ -16,7 +16,7 @@ A key ``section[.system][.similarity][.points.P][.sub...].leaf_unit[.i]`` goes t
 
 Keys that only say a section did not run (``design``, ``planar.model``, ``experiment.model``:
 NaN placeholders of a prototype-only or a skipped engine) have no place: :func:`store_location`
-returns None. :func:`select` reads a key back from a store (a variable or a group attribute).
+returns None. :func:`select` reads a key back from a store (a variable, or a constant stored once).
 
 >>> store_location("3d.prototype.points.P-1.max_displacement_m")[:3]
 ('sim3d', 'max_displacement', (('system', 'prototype'), ('point', 'P-1')))
@@ -34,7 +34,7 @@ from typing import NamedTuple, Optional
 from ..units import SUFFIXES, unit_of
 
 __all__ = ["StoreLocation", "store_location", "select", "GROUPS", "SYSTEMS", "LIST_DIMENSIONS",
-           "CONSTANT_GROUPS", "VALID_NAME", "coordinate_attrs", "label_order", "list_position"]
+           "CONSTANT_GROUPS", "VALID_NAME", "coordinate_attrs", "label_order"]
 
 #: Section of a flat key -> its group in the store.
 GROUPS = {"experiment": "experiment", "design": "design", "planar": "planar", "critical": "critical",
@@ -51,7 +51,7 @@ LIST_DIMENSIONS = {
 }
 
 #: Groups (with their sub-groups) whose variables that do not vary over the sweep are stored once,
-#: as attributes of the group (``NAME`` and ``NAME_units``).
+#: as variables without the case dimensions (with their ``units``).
 CONSTANT_GROUPS = ("experiment", "design")
 
 #: The root variable of every case's validity (the flat key ``sweep.valid``).
@@ -167,20 +167,17 @@ def label_order(dim: str, labels) -> list:
     return sorted(labels, key=lambda s: [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", str(s))])
 
 
-def list_position(dim: str, label) -> int:
-    """Position of a label on a list dimension (``component`` z -> 2, ``drum`` 3 -> 3)."""
-    table = {d: names for d, names in LIST_DIMENSIONS.values()}
-    return int(label) if table.get(dim) is None else table[dim].index(label)
-
-
-def coordinate_attrs(dim: str, group: str) -> dict:
-    """``units`` and ``long_name`` of a store dimension's labels in a group."""
+def coordinate_attrs(dim: str, group: str, labels=()) -> dict:
+    """``long_name`` of a store dimension's labels in a group, and ``units`` ("1") where the labels are
+    numbers (``drum`` 0, 1, ...); labels that are strings (``system``, ``point``, ``component``) have
+    no units (CF conventions: ``units`` is for quantities)."""
     specimen = "the specimen as built (model scale)" if group.split("/")[0] in CONSTANT_GROUPS \
         else "the specimen up-scaled to prototype units"
     names = {"system": f"prototype, or {specimen}", "point": "monitoring point",
              "component": "Cartesian component", "bound": "start or end of the interval",
              "drum": "drum index"}
-    return {"units": "1", "long_name": names.get(dim, dim.replace("_", " "))}
+    attrs = {"long_name": names.get(dim, dim.replace("_", " "))}
+    return attrs if any(isinstance(lab, str) for lab in labels) else {"units": "1", **attrs}
 
 
 def select(tree, key: str):
@@ -197,7 +194,7 @@ def select(tree, key: str):
     Returns
     -------
     xarray.DataArray
-        Over the case dimensions; a group attribute (a value constant over the sweep) is
+        Over the case dimensions; a constant (a value stored once, without the case dimensions) is
         broadcast over them, NaN where the case is not valid.
 
     Raises
@@ -218,14 +215,12 @@ def select(tree, key: str):
     if node is None:
         raise KeyError(f"{key!r} is not in this sweep store")
     valid = tree[VALID_NAME]
-    if loc.name in node.data_vars:
-        da = node[loc.name]
-        return da.sel(dict(loc.labels)).drop_vars(list(loc.dims), errors="ignore").rename(key)
-    if loc.name not in node.attrs:
+    if loc.name not in node.data_vars:
         raise KeyError(f"{key!r} is not in this sweep store")
-    v = node.attrs[loc.name]
-    for dim, label in loc.labels:  # system, point: a dict by label; a list dimension: a list
-        v = v[str(label)] if isinstance(v, dict) else v[list_position(dim, label)]
-    da = xr.DataArray(np.full(valid.shape, v), dims=valid.dims, coords=valid.coords, name=key,
-                      attrs={"units": node.attrs.get(f"{loc.name}_units", loc.units)})
+    da = node[loc.name].sel(dict(loc.labels)).drop_vars(list(loc.dims), errors="ignore").rename(key)
+    if set(valid.dims) <= set(da.dims):
+        return da
+    # a constant, stored once: broadcast over the cases, NaN where a case is not valid
+    da = xr.DataArray(np.full(valid.shape, da.values), dims=valid.dims, coords=valid.coords, name=key,
+                      attrs=da.attrs)
     return da if bool(valid.all()) else da.where(valid)
