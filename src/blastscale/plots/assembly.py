@@ -216,6 +216,8 @@ def snapshot_figure(structure, prototype, model=None, instants=None, first_peak_
     fig, axes = plt.subplots(1, len(inst), figsize=(2.6 * len(inst) + 1.0, 3.8), layout="constrained", sharey=True,
                              squeeze=False)
     for ax, tk in zip(axes[0], inst):
+        for blk in getattr(structure, "supports", ()):  # fixed to the ground: they do not move
+            ax.add_patch(Polygon(_hull2d(blk.points[:, [0, 2]]), closed=True, zorder=0.5, **_SUPPORT))
         for ds, who in systems:
             k = int(np.argmin(np.abs(ds["time"].values - tk)))
             disp, rot = ds["com_displacement"].values[k], ds["rotation_y"].values[k]

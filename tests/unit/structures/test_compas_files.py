@@ -148,3 +148,20 @@ def test_bad_compas_models_are_one_line(tmp_path, change, word):
     with pytest.raises(BlastscaleInputError, match=word) as e:
         read_block_model(p, use_compas=False)
     assert "\n" not in str(e.value) and "bad.json" in str(e.value)
+
+
+@pytest.mark.parametrize("angle_deg, shift", [(0.0, (1.0, 0.0, 0.0)), (30.0, (0.0, 0.0, 0.0)),
+                                              (-135.0, (2.5, -1.25, 0.0))])
+def test_any_rigid_model_transformation_moves_every_block_with_it(tmp_path, angle_deg, shift):
+    """A model transformation (rotation about z, then a horizontal shift) composed onto the shipped
+    one moves every block's vertices by exactly that map (to round-off)."""
+    data = json.loads(DATA.read_text())
+    c, s = math.cos(math.radians(angle_deg)), math.sin(math.radians(angle_deg))
+    extra = np.array([[c, -s, 0, shift[0]], [s, c, 0, shift[1]], [0, 0, 1, shift[2]], [0, 0, 0, 1.0]])
+    m = np.asarray(data["data"]["transformation"]["data"]["matrix"], dtype=float)
+    data["data"]["transformation"]["data"]["matrix"] = (extra @ m).tolist()
+    p = tmp_path / "moved.json"
+    p.write_text(json.dumps(data))
+    base, moved = read_block_model(DATA, use_compas=False), read_block_model(p, use_compas=False)
+    for x, y in zip(base.blocks + base.supports, moved.blocks + moved.supports):
+        np.testing.assert_allclose(y.points, x.points @ extra[:3, :3].T + extra[:3, 3], atol=TOL)
