@@ -12,10 +12,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-pytest.importorskip("mujoco")
+from blastscale.sim3d import default_contact, simulate_structure, structure_scene
+from blastscale.structures import Assembly, read_block_model
 
-from blastscale.sim3d import default_contact, simulate_structure, structure_scene  # noqa: E402
-from blastscale.structures import Assembly, read_block_model  # noqa: E402
+pytest.importorskip("mujoco")
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "compas_dem_arch_rotated.json"
 #: 0.2 s is past the settling and long enough for an unsupported springer to drop ~0.2 m [s].

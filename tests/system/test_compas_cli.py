@@ -53,8 +53,10 @@ def test_show_to_compas_of_a_shipped_scenario(capsys, tmp_path):
     assert d["blocks"] == 10 and d["supports"] == 0 and d["height_m"] == pytest.approx(10.0, rel=1e-12)
 
 
-@pytest.mark.parametrize("target, word", [("back.txt", "valid suffix is .json"), ("no/such/dir/back.json", "--to-compas")])
+@pytest.mark.parametrize(
+    "target, word", [("back.txt", "valid suffix is .json"), ("no/such/dir/back.json", "--to-compas")]
+)
 def test_bad_to_compas_targets_are_one_line_exit_2_nothing_written(capsys, tmp_path, target, word):
-    code, out, err = cli(capsys, "show", DATA, "--to-compas", tmp_path / target)
+    code, _, err = cli(capsys, "show", DATA, "--to-compas", tmp_path / target)
     assert code == 2 and word in err and len(err.strip().splitlines()) == 1
     assert list(tmp_path.iterdir()) == []

@@ -39,7 +39,14 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from .polyhedron import polyhedron_faces
 
-__all__ = ["read_compas_model", "compas_model_data", "COMPAS_BLOCK_DTYPE", "COMPAS_MODEL_DTYPE"]
+__all__ = [
+    "COMPAS_BLOCK_DTYPE",
+    "COMPAS_MODEL_DTYPE",
+    "compas_model_data",
+    "is_compas_model",
+    "mesh_arrays",
+    "read_compas_model",
+]
 
 #: The ``dtype`` of a compas_dem block model and of its blocks (compas_dem 0.6).
 COMPAS_MODEL_DTYPE = "compas_dem.models/BlockModel"
@@ -55,10 +62,11 @@ def _matrix(t, source: str, what: str) -> np.ndarray:
     try:
         m = np.asarray(t["data"]["matrix"] if "data" in t else t["matrix"], dtype=float)
     except (KeyError, TypeError, ValueError):
-        raise BlastscaleInputError(f"{source}: {what}: transformation without a 4 x 4 \"matrix\"") from None
+        raise BlastscaleInputError(f'{source}: {what}: transformation without a 4 x 4 "matrix"') from None
     if m.shape != (4, 4) or not np.all(np.isfinite(m)):
-        raise BlastscaleInputError(f"{source}: {what}: transformation matrix of shape {m.shape}: give 4 x 4 "
-                                   "finite numbers")
+        raise BlastscaleInputError(
+            f"{source}: {what}: transformation matrix of shape {m.shape}: give 4 x 4 finite numbers"
+        )
     return m
 
 
@@ -77,8 +85,9 @@ def mesh_arrays(m: dict, source: str, name: str) -> tuple:
         index = {str(key): i for i, key in enumerate(keys)}
         faces = [[index[str(x)] for x in f] for f in m["face"].values()]
     except (KeyError, TypeError, ValueError, AttributeError):
-        raise BlastscaleInputError(f"{source}: block {name!r}: COMPAS mesh without x, y, z vertices or valid "
-                                   "faces") from None
+        raise BlastscaleInputError(
+            f"{source}: block {name!r}: COMPAS mesh without x, y, z vertices or valid faces"
+        ) from None
     return v, faces
 
 
@@ -119,7 +128,7 @@ def _plain(data: dict, source: str) -> list:
     model = data["data"]
     elements = model.get("elements")
     if not isinstance(elements, dict):
-        raise BlastscaleInputError(f"{source}: a COMPAS model without \"elements\"")
+        raise BlastscaleInputError(f'{source}: a COMPAS model without "elements"')
     m_model = _matrix(model.get("transformation"), source, "the model")
     order = _tree_order(model.get("tree"), elements)
     local = {}
@@ -135,7 +144,7 @@ def _plain(data: dict, source: str) -> list:
         geo = ed.get("geometry")
         mesh = geo.get("data", geo) if isinstance(geo, dict) else None
         if not isinstance(mesh, dict) or not isinstance(mesh.get("vertex"), dict):
-            raise BlastscaleInputError(f"{source}: element {name!r} has no mesh geometry (\"vertex\"/\"face\" data)")
+            raise BlastscaleInputError(f'{source}: element {name!r} has no mesh geometry ("vertex"/"face" data)')
         m, p = local[guid], parents[guid]
         while p is not None:  # M_parent @ ... @ M_element
             m, p = local[p] @ m, parents[p]
@@ -154,7 +163,7 @@ def _through_compas(path) -> list | None:
         return None
     try:
         model = json_load(str(path))
-    except Exception:  # COMPAS raises bare exceptions; the plain reader then names the problem
+    except Exception:  # noqa: BLE001 - COMPAS raises bare exceptions; the plain reader then names the problem
         return None
     if not isinstance(model, Model):
         return None
@@ -174,8 +183,9 @@ def _through_compas(path) -> list | None:
 
 def is_compas_model(data) -> bool:
     """Whether a JSON document is a COMPAS model (a ``dtype`` and ``data.elements``)."""
-    return isinstance(data, dict) and isinstance(data.get("data"), dict) and "elements" in data["data"] \
-        and "dtype" in data
+    return (
+        isinstance(data, dict) and isinstance(data.get("data"), dict) and "elements" in data["data"] and "dtype" in data
+    )
 
 
 def read_compas_model(path, data: dict, source: str, use_compas: bool | None = None) -> list:
@@ -198,8 +208,9 @@ def read_compas_model(path, data: dict, source: str, use_compas: bool | None = N
     if use_compas or use_compas is None:
         blocks = _through_compas(path)
         if blocks is None and use_compas:
-            raise BlastscaleInputError(f"{source}: reading through COMPAS needs compas_dem: pip install "
-                                       "'blastscale[compas]'")
+            raise BlastscaleInputError(
+                f"{source}: reading through COMPAS needs compas_dem: pip install 'blastscale[compas]'"
+            )
     if blocks is None:
         blocks = _plain(data, source)
     if not blocks:
@@ -216,12 +227,21 @@ def _mesh_data(points: np.ndarray, name: str) -> dict:
         for p in f.vertices:
             index.setdefault(tuple(float(x) for x in p), len(index))
     face = {str(k): [index[tuple(float(x) for x in p)] for p in f.vertices] for k, f in enumerate(faces)}
-    return {"dtype": _MESH_DTYPE, "data": {
-        "attributes": {}, "default_vertex_attributes": {"x": 0.0, "y": 0.0, "z": 0.0},
-        "default_edge_attributes": {}, "default_face_attributes": {},
-        "vertex": {str(i): {"x": p[0], "y": p[1], "z": p[2]} for p, i in index.items()},
-        "face": face, "facedata": {str(k): {} for k in face}, "edgedata": {},
-        "max_vertex": len(index) - 1, "max_face": len(face) - 1}}
+    return {
+        "dtype": _MESH_DTYPE,
+        "data": {
+            "attributes": {},
+            "default_vertex_attributes": {"x": 0.0, "y": 0.0, "z": 0.0},
+            "default_edge_attributes": {},
+            "default_face_attributes": {},
+            "vertex": {str(i): {"x": p[0], "y": p[1], "z": p[2]} for p, i in index.items()},
+            "face": face,
+            "facedata": {str(k): {} for k in face},
+            "edgedata": {},
+            "max_vertex": len(index) - 1,
+            "max_face": len(face) - 1,
+        },
+    }
 
 
 def compas_model_data(assembly) -> dict:
@@ -234,14 +254,38 @@ def compas_model_data(assembly) -> dict:
     everything = [(b, False) for b in assembly.blocks] + [(b, True) for b in getattr(assembly, "supports", ())]
     for k, (b, support) in enumerate(everything):
         guid = str(uuid.uuid5(_NAMESPACE, f"block/{k}/{b.name}"))
-        els[guid] = {"dtype": COMPAS_BLOCK_DTYPE, "guid": guid, "name": b.name, "data": {
-            "name": b.name, "is_support": support, "transformation": None, "features": [], "material": None,
-            "geometry": _mesh_data(b.points, b.name)}}
+        els[guid] = {
+            "dtype": COMPAS_BLOCK_DTYPE,
+            "guid": guid,
+            "name": b.name,
+            "data": {
+                "name": b.name,
+                "is_support": support,
+                "transformation": None,
+                "features": [],
+                "material": None,
+                "geometry": _mesh_data(b.points, b.name),
+            },
+        }
         children.append({"name": "ElementNode", "element": guid})
         nodes[str(k)] = {"element": guid}
-    graph = {"attributes": {}, "default_node_attributes": {"element": None, "x": 0.0, "y": 0.0, "z": 0.0},
-             "default_edge_attributes": {"contacts": None, "modifiers": None}, "node": nodes,
-             "edge": {k: {} for k in nodes}, "max_node": len(nodes) - 1}
-    return {"dtype": COMPAS_MODEL_DTYPE, "guid": str(uuid.uuid5(_NAMESPACE, "model")), "name": "BlockModel",
-            "data": {"transformation": None, "elements": els, "materials": {}, "graph": graph,
-                     "tree": {"attributes": {}, "root": {"name": "root", "children": children}}}}
+    graph = {
+        "attributes": {},
+        "default_node_attributes": {"element": None, "x": 0.0, "y": 0.0, "z": 0.0},
+        "default_edge_attributes": {"contacts": None, "modifiers": None},
+        "node": nodes,
+        "edge": {k: {} for k in nodes},
+        "max_node": len(nodes) - 1,
+    }
+    return {
+        "dtype": COMPAS_MODEL_DTYPE,
+        "guid": str(uuid.uuid5(_NAMESPACE, "model")),
+        "name": "BlockModel",
+        "data": {
+            "transformation": None,
+            "elements": els,
+            "materials": {},
+            "graph": graph,
+            "tree": {"attributes": {}, "root": {"name": "root", "children": children}},
+        },
+    }

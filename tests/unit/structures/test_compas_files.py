@@ -122,8 +122,9 @@ def test_an_assembly_written_to_compas_reads_back_the_same(tmp_path):
         from compas import json_load
 
         model = json_load(str(p))  # COMPAS's own reader accepts what we write
-        assert [(e.name, e.is_support) for e in model.elements()] == \
-            [(b.name, False) for b in a.blocks] + [(b.name, True) for b in a.supports]
+        assert [(e.name, e.is_support) for e in model.elements()] == [(b.name, False) for b in a.blocks] + [
+            (b.name, True) for b in a.supports
+        ]
         _same_blocks(a, read_block_model(p, use_compas=True))
 
 
@@ -135,11 +136,17 @@ def _has_compas() -> bool:
     return True
 
 
-@pytest.mark.parametrize("change, word", [
-    (lambda d: [e["data"].update(is_support=True) for e in d["data"]["elements"].values()], "every block is a support"),
-    (lambda d: d["data"].update(transformation={"data": {"matrix": [[1, 0, 0], [0, 1, 0]]}}), "4 x 4"),
-    (lambda d: [e["data"].update(is_support=False) for e in d["data"]["elements"].values()], "below the ground"),
-])
+@pytest.mark.parametrize(
+    "change, word",
+    [
+        (
+            lambda d: [e["data"].update(is_support=True) for e in d["data"]["elements"].values()],
+            "every block is a support",
+        ),
+        (lambda d: d["data"].update(transformation={"data": {"matrix": [[1, 0, 0], [0, 1, 0]]}}), "4 x 4"),
+        (lambda d: [e["data"].update(is_support=False) for e in d["data"]["elements"].values()], "below the ground"),
+    ],
+)
 def test_bad_compas_models_are_one_line(tmp_path, change, word):
     data = json.loads(DATA.read_text())
     change(data)
@@ -150,8 +157,9 @@ def test_bad_compas_models_are_one_line(tmp_path, change, word):
     assert "\n" not in str(e.value) and "bad.json" in str(e.value)
 
 
-@pytest.mark.parametrize("angle_deg, shift", [(0.0, (1.0, 0.0, 0.0)), (30.0, (0.0, 0.0, 0.0)),
-                                              (-135.0, (2.5, -1.25, 0.0))])
+@pytest.mark.parametrize(
+    "angle_deg, shift", [(0.0, (1.0, 0.0, 0.0)), (30.0, (0.0, 0.0, 0.0)), (-135.0, (2.5, -1.25, 0.0))]
+)
 def test_any_rigid_model_transformation_moves_every_block_with_it(tmp_path, angle_deg, shift):
     """A model transformation (rotation about z, then a horizontal shift) composed onto the shipped
     one moves every block's vertices by exactly that map (to round-off)."""
