@@ -18,7 +18,7 @@ separate objects, or in our JSON), read by ``trimesh`` (the optional ``mesh`` ex
 
 COMPAS JSON: a ``compas_dem`` block model as ``compas.json_dump`` writes it (:mod:`.compas_files`:
 the model's and elements' transformations honoured, ``is_support`` blocks fixed to the ground, names
-kept), through COMPAS when installed and without it otherwise; in any other JSON, every COMPAS mesh
+kept, a block's COMPAS material giving its density), through COMPAS when installed and without it otherwise; in any other JSON, every COMPAS mesh
 found (a dict with ``"vertex"``: {key: {"x", "y", "z"}} and ``"face"``: {key: [vertex keys]}, the data
 layout of ``compas.datastructures.Mesh``) is one block.
 
@@ -151,11 +151,12 @@ def _from_compas(data, source: str, density: float) -> tuple:
 def _from_compas_model(path, data: dict, source: str, density: float, use_compas) -> tuple:
     """(blocks, supports) of a compas_dem block model (:mod:`.compas_files`)."""
     blocks, supports = [], []
-    for name, v, faces, support in read_compas_model(path, data, source, use_compas):
+    for name, v, faces, support, own in read_compas_model(path, data, source, use_compas):
         if len(v) < 4:
             raise BlastscaleInputError(f"{source}: block {name!r} is empty ({len(v)} vertices)")
         v = _convex_or_hull(source, name, v, _mesh_volume(v, faces))
-        (supports if support else blocks).append(ConvexBlock(name, v, density))
+        d = density if own is None else _density(source, name, own)
+        (supports if support else blocks).append(ConvexBlock(name, v, d))
     if not blocks:
         raise BlastscaleInputError(f"{source}: every block is a support (is_support): nothing to simulate")
     return tuple(blocks), tuple(supports)

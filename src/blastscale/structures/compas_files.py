@@ -19,7 +19,9 @@ with ``T = {"data": {"matrix": 4 x 4 rows}}`` (a COMPAS ``Transformation``, ``Ro
 ``M_model @ ... @ M_parent @ M_element`` applied to the mesh's vertices, the product along the element
 tree (``compas_model.elements.Element.compute_modeltransformation``). COMPAS's model coordinates are
 ours: metres, z up, the ground at z = 0. Blocks flagged ``is_support`` become the assembly's supports
-(fixed to the ground, :class:`~.assembly.Assembly`). Names are kept; a name used by several elements
+(fixed to the ground, :class:`~.assembly.Assembly`). A block's COMPAS material gives its density
+(``{"data": {"density": kg/m^3}}``, compas_dem's ``GenericMaterial`` and ``Stone``); without one it has
+the scenario's. Names are kept; a name used by several elements
 (COMPAS names every element ``"Block"`` by default) gets ``-1``, ``-2``, ... in the tree's order.
 
 :func:`read_compas_model` reads through COMPAS's own data model (``compas.json_load``) when
@@ -52,6 +54,7 @@ __all__ = [
 COMPAS_MODEL_DTYPE = "compas_dem.models/BlockModel"
 COMPAS_BLOCK_DTYPE = "compas_dem.elements/Block"
 _MESH_DTYPE = "compas.datastructures/Mesh"
+_MATERIAL_DTYPE = "compas_dem.material/GenericMaterial"
 _NAMESPACE = uuid.UUID("6f1c1d3e-8a52-4d0e-9b1f-23c0b1a5c0de")  # deterministic guids of written files
 
 
@@ -123,8 +126,15 @@ def _tree_order(tree, elements: dict) -> list:
     return out + [(g, None) for g in elements if g not in seen]
 
 
+def _density(material):
+    """A COMPAS material's ``density`` [kg/m^3] (compas_dem's ``GenericMaterial``, ``Stone``), or None."""
+    d = material.get("data", material).get("density") if isinstance(material, dict) else None
+    return d if isinstance(d, (int, float)) and not isinstance(d, bool) else None
+
+
 def _plain(data: dict, source: str) -> list:
-    """(name, vertices in model coordinates, faces, is_support) of a block model's JSON, without COMPAS."""
+    """(name, vertices in model coordinates, faces, is_support, density or None) of a block model's
+    JSON, without COMPAS."""
     model = data["data"]
     elements = model.get("elements")
     if not isinstance(elements, dict):
@@ -149,23 +159,36 @@ def _plain(data: dict, source: str) -> list:
         while p is not None:  # M_parent @ ... @ M_element
             m, p = local[p] @ m, parents[p]
         v, faces = mesh_arrays(mesh, source, name)
-        out.append((name, _transformed(v, m_model @ m, source, name), faces, bool(ed.get("is_support", False))))
+        materials = model.get("materials") if isinstance(model.get("materials"), dict) else {}
+        density = _density(materials.get(ed.get("material"))) if isinstance(ed.get("material"), str) else None
+        out.append(
+            (name, _transformed(v, m_model @ m, source, name), faces, bool(ed.get("is_support", False)), density)
+        )
     return out
 
 
-def _through_compas(path) -> list | None:
+def _through_compas(path, source: str, strict: bool) -> list | None:
     """The same list as :func:`_plain`, read by COMPAS's own data model; None when compas_dem is not
-    installed or the file is not a COMPAS model."""
+    installed or COMPAS cannot read the file (``strict``: one line saying which)."""
     try:
+        import compas_dem  # noqa: F401 - its dtypes must be importable for json_load
         from compas import json_load
         from compas_model.models import Model
     except ImportError:
+        if strict:
+            raise BlastscaleInputError(
+                f"{source}: reading through COMPAS needs compas_dem: pip install 'blastscale[compas]'"
+            ) from None
         return None
     try:
         model = json_load(str(path))
-    except Exception:  # noqa: BLE001 - COMPAS raises bare exceptions; the plain reader then names the problem
+    except Exception as exc:  # noqa: BLE001 - COMPAS raises bare exceptions; the plain reader then names the problem
+        if strict:
+            raise BlastscaleInputError(f"{source}: COMPAS cannot read it: {type(exc).__name__}: {exc}") from None
         return None
     if not isinstance(model, Model):
+        if strict:
+            raise BlastscaleInputError(f"{source}: COMPAS reads a {type(model).__name__}, not a block model")
         return None
     out = []
     for node in model.tree.nodes:
@@ -177,7 +200,11 @@ def _through_compas(path) -> list | None:
         index = {k: i for i, k in enumerate(keys)}
         v = np.array([mesh.vertex_coordinates(k) for k in keys], dtype=float).reshape(-1, 3)
         faces = [[index[k] for k in mesh.face_vertices(f)] for f in mesh.faces()]
-        out.append((str(el.name), v, faces, bool(getattr(el, "is_support", False))))
+        try:
+            density = getattr(el.material, "density", None)
+        except KeyError:  # a material guid the model does not hold
+            density = None
+        out.append((str(el.name), v, faces, bool(getattr(el, "is_support", False)), density))
     return out
 
 
@@ -190,7 +217,7 @@ def is_compas_model(data) -> bool:
 
 def read_compas_model(path, data: dict, source: str, use_compas: bool | None = None) -> list:
     """The blocks of a COMPAS block model: (name, vertices (n, 3) in model coordinates [m], faces,
-    is_support), names made unique (module docstring).
+    is_support, density [kg/m^3] of its COMPAS material or None), names made unique (module docstring).
 
     Parameters
     ----------
@@ -201,16 +228,10 @@ def read_compas_model(path, data: dict, source: str, use_compas: bool | None = N
     source : str
         The file's name, for messages.
     use_compas : bool or None
-        True: through COMPAS (an error when compas_dem is missing); False: the plain reader; None:
-        COMPAS when installed.
+        True: through COMPAS (an error when compas_dem is missing or COMPAS cannot read the file);
+        False: the plain reader; None: COMPAS when installed and able, the plain reader otherwise.
     """
-    blocks = None
-    if use_compas or use_compas is None:
-        blocks = _through_compas(path)
-        if blocks is None and use_compas:
-            raise BlastscaleInputError(
-                f"{source}: reading through COMPAS needs compas_dem: pip install 'blastscale[compas]'"
-            )
+    blocks = None if use_compas is False else _through_compas(path, source, bool(use_compas))
     if blocks is None:
         blocks = _plain(data, source)
     if not blocks:
@@ -248,12 +269,18 @@ def compas_model_data(assembly) -> dict:
     """An :class:`~.assembly.Assembly` as a compas_dem block model's JSON data (module docstring):
     one ``Block`` per block and per support (``is_support``), named as ours, its mesh the block's
     convex hull in model coordinates [m], every transformation the identity (null); guids derived from
-    the names (the same assembly writes the same file). Densities are not written (COMPAS's blocks
-    carry none)."""
-    els, children, nodes = {}, [], {}
+    the names (the same assembly writes the same file); each density a compas_dem
+    ``GenericMaterial`` (one per distinct density [kg/m^3])."""
+    els, children, nodes, materials = {}, [], {}, {}
     everything = [(b, False) for b in assembly.blocks] + [(b, True) for b in getattr(assembly, "supports", ())]
     for k, (b, support) in enumerate(everything):
         guid = str(uuid.uuid5(_NAMESPACE, f"block/{k}/{b.name}"))
+        mat = str(uuid.uuid5(_NAMESPACE, f"material/{b.density!r}"))
+        materials[mat] = {
+            "dtype": _MATERIAL_DTYPE,
+            "guid": mat,
+            "data": {"name": f"{b.density:g} kg/m^3", "density": b.density},
+        }
         els[guid] = {
             "dtype": COMPAS_BLOCK_DTYPE,
             "guid": guid,
@@ -263,7 +290,7 @@ def compas_model_data(assembly) -> dict:
                 "is_support": support,
                 "transformation": None,
                 "features": [],
-                "material": None,
+                "material": mat,
                 "geometry": _mesh_data(b.points, b.name),
             },
         }
@@ -284,7 +311,7 @@ def compas_model_data(assembly) -> dict:
         "data": {
             "transformation": None,
             "elements": els,
-            "materials": {},
+            "materials": materials,
             "graph": graph,
             "tree": {"attributes": {}, "root": {"name": "root", "children": children}},
         },

@@ -62,6 +62,7 @@ def _same_blocks(a, b, tol=TOL):
     """Names, support flags and every block's hull vertices (as sets) agree to ``tol`` [m]."""
     assert [x.name for x in a.blocks] == [x.name for x in b.blocks]
     assert [x.name for x in a.supports] == [x.name for x in b.supports]
+    assert [x.density for x in a.blocks + a.supports] == [x.density for x in b.blocks + b.supports]
     for x, y in zip(a.blocks + a.supports, b.blocks + b.supports):
         px, py = np.unique(np.round(x.points, 9), axis=0), np.unique(np.round(y.points, 9), axis=0)
         assert px.shape == py.shape
@@ -173,3 +174,28 @@ def test_any_rigid_model_transformation_moves_every_block_with_it(tmp_path, angl
     base, moved = read_block_model(DATA, use_compas=False), read_block_model(p, use_compas=False)
     for x, y in zip(base.blocks + base.supports, moved.blocks + moved.supports):
         np.testing.assert_allclose(y.points, x.points @ extra[:3, :3].T + extra[:3, 3], atol=TOL)
+
+
+def test_a_compas_material_gives_the_block_its_density(tmp_path):
+    """compas_dem's materials (``GenericMaterial``, ``Stone``) carry a density [kg/m^3]; a block
+    without one takes the scenario's; the density survives the round trip through ``--to-compas``."""
+    data = json.loads(DATA.read_text())
+    data["data"]["materials"] = {
+        "5647853b-fb41-4e05-b174-461694fd36ee": {
+            "dtype": "compas_dem.material/Stone",
+            "guid": "5647853b-fb41-4e05-b174-461694fd36ee",
+            "data": {"name": "Stone", "density": 2650.0},
+        }
+    }
+    v2 = next(e for e in data["data"]["elements"].values() if e["data"]["name"] == "V2")
+    v2["data"]["material"] = "5647853b-fb41-4e05-b174-461694fd36ee"
+    p = tmp_path / "stone.json"
+    p.write_text(json.dumps(data))
+    a = read_block_model(p, 2000.0, use_compas=False)
+    assert {b.name: b.density for b in a.blocks} == {"V1": 2000.0, "V4": 2000.0, "V2": 2650.0, "V3": 2000.0}
+    back = tmp_path / "back.json"
+    back.write_text(json.dumps(compas_model_data(a)))
+    _same_blocks(a, read_block_model(back, 1000.0, use_compas=False))  # every density from the file
+    if _has_compas():
+        _same_blocks(a, read_block_model(p, 2000.0, use_compas=True))
+        _same_blocks(a, read_block_model(back, 1000.0, use_compas=True))
