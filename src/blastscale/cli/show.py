@@ -4,10 +4,12 @@
 shipped scenario's name, or a block-model file (our JSON, COMPAS JSON, a mesh:
 :func:`blastscale.structures.read_block_model`), builds the structure (its interfaces found by
 geometry) and prints one table: kind, blocks, mass, volume, size, interfaces (between blocks and on
-the ground), monitoring points. ``--plot`` writes the elevation and plan with the interfaces shaded
-(:func:`blastscale.plots.assembly.assembly_figure`) through the one output mechanism
-(:func:`blastscale.io.output.write_file`, via ``save_figure``). A bad file
-or parameter is one ``error:`` line, exit status 2, nothing written.
+the ground), monitoring points, the blocks' and supports' names. ``--plot`` writes the elevation
+and plan with the interfaces shaded (:func:`blastscale.plots.assembly.assembly_figure`),
+``--to-compas`` the structure as a compas_dem block model
+(:func:`blastscale.structures.compas_files.compas_model_data`), both through the one output mechanism
+(:func:`blastscale.io.output.write_file`). A bad file or parameter is one ``error:`` line, exit
+status 2, nothing written.
 """
 
 from __future__ import annotations
@@ -51,7 +53,9 @@ def load_structure(source: str, density_kg_m3: Optional[float] = None):
 
 def describe_structure(structure) -> dict:
     """The description ``show`` prints (SI keys): kind, blocks, mass, volume, height, length,
-    thickness, interfaces between blocks and on the ground, their area, monitoring points."""
+    thickness (supports included), interfaces between blocks and on the ground (a support is the
+    ground), their area, monitoring points, the blocks' names, the supports (fixed to the ground) and
+    their names."""
     from ..structures import as_assembly
 
     asm = as_assembly(structure)
@@ -68,6 +72,8 @@ def describe_structure(structure) -> dict:
         "interface_area_between_blocks_m2": float(sum(i.area for i in joints)),
         "contact_area_on_ground_m2": float(sum(i.area for i in ground)),
         "monitoring_points": len(pts), "monitoring_point_names": pts,
+        "block_names": [b.name for b in asm.blocks], "supports": len(asm.supports),
+        "support_names": [b.name for b in asm.supports],
     }
 
 
@@ -82,10 +88,17 @@ def show_cmd(
                                             help="Density \\[kg/m^3] of blocks without their own (default: the "
                                                  "scenario's, 2000 for a block-model file)."),
     as_json: bool = typer.Option(False, "--json", help="Print the description as one JSON object."),
+    to_compas: Optional[Path] = typer.Option(None, "--to-compas", show_default=False,
+                                             help="Write the structure as a COMPAS (compas_dem) block model (.json; "
+                                                  "docs/assemblies.md)."),
 ) -> None:
     """Describe and draw a structure (scenario or block-model file) without simulating it."""
+    from .._validate import BlastscaleInputError
+
     if plot is not None:
         check_plot_path(str(plot))  # before any work
+    if to_compas is not None and to_compas.suffix.lower() != ".json":
+        raise BlastscaleInputError(f"--to-compas = {str(to_compas)!r} has an unknown type: valid suffix is .json")
     with one_line_warnings():
         structure, sc, standoff = load_structure(source, density)
         desc = describe_structure(structure)
@@ -96,6 +109,15 @@ def show_cmd(
             title = None if sc is None or not sc.title else sc.title
             save_figure(lambda: assembly_figure(as_assembly(structure), title=title, standoff_m=standoff,
                                                 points=world_points(structure)), plot)
+        if to_compas is not None:
+            import json
+
+            from ..io.output import write_file
+            from ..structures import as_assembly
+            from ..structures.compas_files import compas_model_data
+
+            write_file(to_compas, json.dumps(compas_model_data(as_assembly(structure)), indent=1) + "\n",
+                       what="--to-compas")
     if as_json:
         print_json(desc)
     else:
@@ -112,5 +134,6 @@ def show_cmd(
                 ("  their area", fmt_value(desc["contact_area_on_ground_m2"], ".5g"), "m^2"),
                 ("monitoring points", shown, "")]
         console.print(table(f"Structure: {source}", rows))
-    if plot is not None:
-        print_written(plot)
+    for written in (plot, to_compas):
+        if written is not None:
+            print_written(written)

@@ -28,6 +28,7 @@ VIEWS = {
     "section": ((0, 2), ("x [m] (blast from -x)", "z [m]"), "side section (x-z)"),
 }
 _BLOCK = dict(facecolor="#d9cbb0", edgecolor="#5b4a35", lw=0.8)
+_SUPPORT = dict(facecolor="#e6e6e6", edgecolor="#555555", lw=0.8, hatch="///")  # supports, fixed to the ground
 _JOINT, _GROUND = "#1f77b4", "#2a9d3a"
 
 
@@ -87,6 +88,8 @@ def draw_view(structure, view: str = "elevation", ax=None, interfaces: bool = Tr
         order = order[::-1]
     elif view == "plan":  # highest drawn last
         order = np.argsort([b.points[:, 2].max() for b in structure.blocks])
+    for b in getattr(structure, "supports", ()):  # fixed to the ground: hatched, behind the blocks
+        ax.add_patch(Polygon(_hull2d(b.points[:, [i, j]]), closed=True, zorder=0.5, **_SUPPORT))
     for k in order:
         ax.add_patch(Polygon(_hull2d(structure.blocks[k].points[:, [i, j]]), closed=True, zorder=1, **_BLOCK))
     if interfaces:
@@ -107,7 +110,7 @@ def draw_view(structure, view: str = "elevation", ax=None, interfaces: bool = Tr
             if len(mp) <= label_points:
                 for (name, q) in mp:
                     ax.annotate(name, (q[i], q[j]), fontsize=6, xytext=(2, 2), textcoords="offset points", zorder=5)
-    v = np.vstack([b.points for b in structure.blocks])
+    v = np.vstack([b.points for b in structure.blocks + tuple(getattr(structure, "supports", ()))])
     pad = 0.05 * float(np.ptp(v, axis=0).max())
     ax.set_xlim(v[:, i].min() - pad, v[:, i].max() + pad)
     ax.set_ylim(min(v[:, j].min(), 0.0) - pad, v[:, j].max() + pad)
@@ -125,6 +128,7 @@ def assembly_figure(structure, title: str | None = None, standoff_m: float | Non
     plan marks the direction and distance of the charge; ``points`` as in :func:`draw_view`."""
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
 
     v = np.vstack([b.points for b in structure.blocks])
     ext = np.ptp(v, axis=0)
@@ -145,9 +149,12 @@ def assembly_figure(structure, title: str | None = None, standoff_m: float | Non
     handles = [Line2D([], [], color=_JOINT, lw=4, alpha=0.6, label="interface between blocks"),
                Line2D([], [], color=_GROUND, lw=4, alpha=0.6, label="interface on the ground"),
                Line2D([], [], marker="o", ls="", color="#c0392b", ms=4, label="monitoring point")]
+    if getattr(structure, "supports", ()):
+        handles.append(Patch(label="support (fixed)", **_SUPPORT))
     ax_e.legend(handles=handles, fontsize=7, loc="upper right")
     d = structure.describe()
-    fig.suptitle(title or f"{d.get('kind', 'assembly')}: {d['blocks']} blocks, {d['mass_kg']:.4g} kg, "
+    sup = f", {d['supports']} supports" if d.get("supports") else ""
+    fig.suptitle(title or f"{d.get('kind', 'assembly')}: {d['blocks']} blocks{sup}, {d['mass_kg']:.4g} kg, "
                  f"{d['interfaces']} interfaces", fontsize=10)
     return fig
 
@@ -209,6 +216,8 @@ def snapshot_figure(structure, prototype, model=None, instants=None, first_peak_
     fig, axes = plt.subplots(1, len(inst), figsize=(2.6 * len(inst) + 1.0, 3.8), layout="constrained", sharey=True,
                              squeeze=False)
     for ax, tk in zip(axes[0], inst):
+        for blk in getattr(structure, "supports", ()):  # fixed to the ground: they do not move
+            ax.add_patch(Polygon(_hull2d(blk.points[:, [0, 2]]), closed=True, zorder=0.5, **_SUPPORT))
         for ds, who in systems:
             k = int(np.argmin(np.abs(ds["time"].values - tk)))
             disp, rot = ds["com_displacement"].values[k], ds["rotation_y"].values[k]

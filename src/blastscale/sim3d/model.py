@@ -3,11 +3,8 @@
 The geometry comes from :mod:`blastscale.structures`. Each body is described by a
 :class:`BodySpec`: a shape that knows how to write its own MJCF ``<geom>`` (and assets), its
 mass, the points of its base (for uplift and sliding recorders) and its loaded front face
-(for the blast force). Boxes (:class:`BoxShape`, from
-:class:`~blastscale.structures.block.RectangularBlock`) are implemented; a convex-mesh shape
-for the drums of multi-drum columns only has to provide the same members
-(``mjcf_geom``, ``mjcf_assets``, ``contact_geoms``, ``base_points``, ``pivot_points``,
-``front_face``, ``mass``).
+(for the blast force): boxes (:class:`BoxShape`), prisms and convex meshes (:class:`MeshShape`)
+provide the same members. An assembly's supports are geoms of the world body (the ground).
 
 Conventions (world frame): z up, the ground plane is z = 0, the blast comes from -x and
 pushes towards +x; the loaded front face is the body's -x face, its inward normal the
@@ -242,7 +239,8 @@ class Scene:
         return ((self.body_ids[:, None] - 1) * 6 + np.arange(6)).ravel()
 
 
-def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None) -> Scene:
+def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None,
+                fixed=()) -> Scene:
     """Compile free rigid bodies on a rigid ground plane into a MuJoCo model.
 
     Parameters
@@ -257,6 +255,9 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
         The interfaces: bodies in contact at rest, by index (-1 = ground), one explicit ``<pair>``
         per geom pair with the settings of ``contact``; every other two surfaces collide as
         :mod:`.collision` says. Default: every body with the ground.
+    fixed : sequence of BodySpec
+        Supports welded to the ground (no joint: geoms of MuJoCo's world body, placed at ``position``,
+        unrotated); part of the ground (-1) in ``pairs`` and in the collision rules.
 
     Returns
     -------
@@ -281,8 +282,12 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     pairs = tuple((-1, i) for i in range(n)) if pairs is None else tuple(tuple(p) for p in pairs)
     order = body_order(pairs, n)
     depth = engagement_depth(contact.time_constant, g)
-    assets = "".join(bodies[k].shape.mjcf_assets(f"{bodies[k].name}_geom") for k in order)
-    worldbody = ['<geom name="ground" type="plane" size="0 0 1"/>']
+    fixed = tuple(fixed)
+    assets = "".join(b.shape.mjcf_assets(f"{b.name}_geom") for b in [bodies[k] for k in order] + list(fixed))
+    worldbody = ['<geom name="ground" type="plane" size="0 0 1"/>'] + [  # supports: geoms of the world body
+        f'<frame pos="{" ".join(mjcf_number(float(v)) for v in b.position)}">{b.shape.mjcf_geom(f"{b.name}_geom")}'
+        '</frame>' for b in fixed]
+    ground = ["ground"] + [g for b in fixed for g in b.shape.contact_geoms(f"{b.name}_geom")]
     for b in (bodies[k] for k in order):
         px, py, pz = (float(v) for v in b.position)
         qw, qx, qy, qz = (float(v) for v in b.quaternion)
@@ -292,7 +297,7 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
         )
 
     def geoms(i):
-        return ["ground"] if i < 0 else bodies[i].shape.contact_geoms(f"{bodies[i].name}_geom")
+        return ground if i < 0 else bodies[i].shape.contact_geoms(f"{bodies[i].name}_geom")
 
     def body(i):
         return "world" if i < 0 else bodies[i].name
@@ -334,7 +339,8 @@ def structure_scene(structure, contact: ContactSettings, gravity: float = STANDA
     """The MuJoCo model of any structure of :mod:`blastscale.structures` at rest: one free body
     per ``structure.bodies`` entry with its exact mass and inertia, its contact geometry
     (:func:`engine_shape`), one contact pair per ``structure.interfaces`` entry; every other
-    two bodies, and every body and the ground, may touch as they move (:mod:`.collision`).
+    two bodies, and every body and the ground, may touch as they move (:mod:`.collision`). An
+    assembly's supports (``structure.fixed_shapes``) are welded to the ground, part of it.
 
     Parameters
     ----------
@@ -356,7 +362,9 @@ def structure_scene(structure, contact: ContactSettings, gravity: float = STANDA
     density = float(structure.describe()["density_kg_m3"])
     specs = [BodySpec(b.name, engine_shape(b.shape, density), tuple(b.com), mass=b.mass, inertia=tuple(b.inertia))
              for b in structure.bodies]
-    return build_scene(tilt_bodies(specs, rotation), contact, gravity, structure.interfaces)
+    fixed = [BodySpec(name, engine_shape(shape, density), com) for name, shape, com in
+             getattr(structure, "fixed_shapes", ())]
+    return build_scene(tilt_bodies(specs, rotation), contact, gravity, structure.interfaces, fixed)
 
 
 def block_scene(

@@ -13,6 +13,12 @@ Engine geometry: a block that is an axis-aligned box becomes a box (its closed-f
 equal to the polyhedron's to round-off), any other block a convex mesh of its vertices
 (:class:`ConvexGeometry`); a non-diagonal inertia tensor is passed whole (MuJoCo ``fullinertia``).
 
+**Supports** (``Assembly(..., supports=...)``, COMPAS's ``is_support`` blocks): blocks fixed to the
+ground, not simulated. They take part in the checks (they may reach below the ground and carry the
+others: a block resting on a support is connected to the ground) and in the interfaces, where a
+support counts as the ground (index -1); they are not among ``bodies`` (and not in ``mass``); the
+engine welds the ones that rise above the ground to the world (:attr:`Assembly.fixed_shapes`).
+
 Collapse of an assembly (``collapse_rule = "fallen"``, :mod:`blastscale.sim3d.record`): a block
 *fell* when at some recorded time its centre of mass lies below its rest height by more than
 :data:`FALL_DROP_FRACTION` of the block's own height, or it has turned by more than
@@ -29,7 +35,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive_scalar
 from .base import BoxGeometry, Face, MonitoringPoint, RigidBody
-from .interfaces import check_assembly, find_interfaces
+from .interfaces import CONTACT_TOLERANCE, check_assembly, find_interfaces
 from .polyhedron import face_label, hull_of, polyhedron_faces, polyhedron_mass_properties
 
 __all__ = ["ConvexBlock", "ConvexGeometry", "Assembly", "as_assembly", "FALL_DROP_FRACTION", "FALL_TILT_DEG"]
@@ -140,6 +146,8 @@ class Assembly:
         The generator's parameters, SI keys, for ``describe()``.
     check : bool
         Check the block model (overlaps, floating blocks, millimetres; :func:`~.interfaces.check_assembly`).
+    supports : sequence of ConvexBlock
+        Blocks fixed to the ground (module docstring); their names are unique among all blocks.
     """
 
     blocks: tuple
@@ -147,6 +155,7 @@ class Assembly:
     kind: str = "assembly"
     parameters: tuple = ()
     check: bool = True
+    supports: tuple = ()
 
     collapse_rule = "fallen"
 
@@ -155,7 +164,8 @@ class Assembly:
         if not blocks:
             raise BlastscaleInputError("blocks = () is out of range: an assembly needs at least one block")
         object.__setattr__(self, "blocks", blocks)
-        names = [b.name for b in blocks]
+        object.__setattr__(self, "supports", tuple(self.supports))
+        names = [b.name for b in blocks + self.supports]
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
             raise BlastscaleInputError(f"block name {dup[0]!r} is used twice: block names must be unique")
@@ -164,30 +174,60 @@ class Assembly:
                 raise BlastscaleInputError(
                     f"point = {p!r} is out of range: must be a MonitoringPoint on a block 0-{len(blocks) - 1}")
         if self.check:
-            g = self._geometries
-            check_assembly(names, [b.points for b in blocks], [x.faces for x in g], self.interface_details,
-                           self.size)
+            everything = blocks + self.supports
+            faces = [x.faces for x in self._geometries + self._support_geometries]
+            check_assembly(names, [b.points for b in everything], faces, self._all_interfaces, self.size,
+                           fixed=len(self.supports))
 
     # -- derived geometry (computed once) ------------------------------------------------
     @functools.cached_property
     def _geometries(self) -> list:
         return [_geometry(b) for b in self.blocks]
 
+    @functools.cached_property
+    def _support_geometries(self) -> list:
+        return [_geometry(b) for b in self.supports]
+
     @property
     def size(self) -> float:
-        """Largest extent of the assembly [m]."""
-        v = np.vstack([b.points for b in self.blocks])
+        """Largest extent of the assembly, supports included [m]."""
+        v = np.vstack([b.points for b in self.blocks + self.supports])
         return float(np.ptp(v, axis=0).max())
 
     @functools.cached_property
+    def _all_interfaces(self) -> tuple:
+        """Interfaces among blocks and supports, supports numbered after the blocks."""
+        return tuple(find_interfaces([g.faces for g in self._geometries + self._support_geometries], self.size))
+
+    @functools.cached_property
     def interface_details(self) -> tuple:
-        """The :class:`~.interfaces.Interface` list (ground first), found by geometry."""
-        return tuple(find_interfaces([g.faces for g in self._geometries], self.size))
+        """The :class:`~.interfaces.Interface` list (ground first), found by geometry; an interface
+        with a support is one with the ground (-1, its normal into the block), unless it lies in the
+        ground plane (z = 0), where the plane's own interface is the same contact."""
+        n, tol = len(self.blocks), CONTACT_TOLERANCE * self.size
+        ground, joints = [], []
+        for itf in self._all_interfaces:
+            if itf.second < n:
+                (ground if itf.first < 0 else joints).append(itf)
+            elif 0 <= itf.first < n and not np.all(np.abs(np.asarray(itf.polygon)[:, 2]) <= tol):
+                # block - support: the support is the ground (in the ground plane: the plane's own interface)
+                ground.append(replace(itf, first=-1, second=itf.first, normal=tuple(-x for x in itf.normal),
+                                      faces=(-1, itf.faces[0])))
+        return tuple(sorted(ground, key=lambda i: i.second)) + tuple(joints)
 
     @property
     def interfaces(self) -> tuple:
-        """Pairs (i, j) of blocks in contact at rest, ground = -1 (ground ones first)."""
-        return tuple(itf.pair for itf in self.interface_details)
+        """Pairs (i, j) of blocks in contact at rest, ground (or a support) = -1 (ground ones first),
+        each pair once."""
+        return tuple(dict.fromkeys(itf.pair for itf in self.interface_details))
+
+    @property
+    def fixed_shapes(self) -> tuple:
+        """(name, contact geometry, centre [m]) of each support that rises above the ground (a
+        support wholly below it is the ground plane as far as contact goes), for the engine."""
+        tol = 1e-6 * self.size
+        return tuple((b.name, g.shape, tuple(float(x) for x in g.com))
+                     for b, g in zip(self.supports, self._support_geometries) if b.points[:, 2].max() > tol)
 
     @functools.cached_property
     def bodies(self) -> tuple:
@@ -247,14 +287,18 @@ class Assembly:
         return float(sum(g.mass / b.density for b, g in zip(self.blocks, self._geometries)))
 
     def describe(self) -> dict:
-        """Kind, size, blocks, mass and the generator's parameters (SI keys)."""
-        v = np.vstack([b.points for b in self.blocks])
+        """Kind, size (supports included), blocks, mass (supports excluded) and the generator's
+        parameters (SI keys); ``supports`` (their number) when there are any."""
+        v = np.vstack([b.points for b in self.blocks + self.supports])
         dens = {b.density for b in self.blocks}
-        return {"kind": self.kind, **dict(self.parameters), "blocks": len(self.blocks),
-                "height_m": float(v[:, 2].max()), "length_m": float(np.ptp(v[:, 1])),
-                "thickness_m": float(np.ptp(v[:, 0])),
-                "density_kg_m3": float(next(iter(dens))) if len(dens) == 1 else float(self.mass / self.volume),
-                "mass_kg": self.mass, "interfaces": len(self.interface_details)}
+        out = {"kind": self.kind, **dict(self.parameters), "blocks": len(self.blocks),
+               "height_m": float(v[:, 2].max()), "length_m": float(np.ptp(v[:, 1])),
+               "thickness_m": float(np.ptp(v[:, 0])),
+               "density_kg_m3": float(next(iter(dens))) if len(dens) == 1 else float(self.mass / self.volume),
+               "mass_kg": self.mass, "interfaces": len(self.interface_details)}
+        if self.supports:
+            out["supports"] = len(self.supports)
+        return out
 
     # -- scaling ---------------------------------------------------------------------------
     def scaled(self, factors) -> "Assembly":
@@ -277,11 +321,12 @@ class Assembly:
             return float(f"{x:.{digits}g}") if digits else x
 
         blocks = tuple(replace(b, vertices=fv(b.points), density=dens(b.density)) for b in self.blocks)
+        supports = tuple(replace(b, vertices=fv(b.points), density=dens(b.density)) for b in self.supports)
         pts = tuple(replace(p, position=tuple(float(x) for x in np.asarray(p.position) * length_factor))
                     for p in self.extra_points)
         params = tuple((k, v * length_factor if k.endswith("_m") and isinstance(v, float) else v)
                        for k, v in self.parameters)
-        return Assembly(blocks, pts, self.kind, params, check=False)
+        return Assembly(blocks, pts, self.kind, params, check=False, supports=supports)
 
 
 def _load_face(faces) -> Face:

@@ -16,9 +16,11 @@ PLY), per connected component (blocks whose corners coincide are then glued toge
 separate objects, or in our JSON), read by ``trimesh`` (the optional ``mesh`` extra; installed by
 ``make install``). The convexity rule is the same (the component's own volume against its hull's).
 
-COMPAS JSON: every COMPAS mesh found in the file (a dict with ``"vertex"``: {key: {"x", "y", "z"}} and
-``"face"``: {key: [vertex keys]}, the data layout of ``compas.datastructures.Mesh``, as in a
-``compas_dem`` block model) is one block, read without COMPAS installed.
+COMPAS JSON: a ``compas_dem`` block model as ``compas.json_dump`` writes it (:mod:`.compas_files`:
+the model's and elements' transformations honoured, ``is_support`` blocks fixed to the ground, names
+kept, a block's COMPAS material giving its density), through COMPAS when installed and without it otherwise; in any other JSON, every COMPAS mesh
+found (a dict with ``"vertex"``: {key: {"x", "y", "z"}} and ``"face"``: {key: [vertex keys]}, the data
+layout of ``compas.datastructures.Mesh``) is one block.
 
 Every problem is one line naming the file, the block and the problem (:class:`BlastscaleInputError`).
 """
@@ -34,6 +36,7 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from .assembly import Assembly, ConvexBlock
 from .base import MonitoringPoint
+from .compas_files import is_compas_model, mesh_arrays, read_compas_model
 from .polyhedron import hull_of
 
 __all__ = ["read_block_model", "NONCONVEX_TOLERANCE", "MESH_SUFFIXES"]
@@ -137,19 +140,26 @@ def _from_compas(data, source: str, density: float) -> tuple:
     for k, m in enumerate(meshes):
         name = str(m.get("attributes", {}).get("name", f"B{k + 1}")) if isinstance(m.get("attributes"), dict) \
             else f"B{k + 1}"
-        keys = list(m["vertex"])
-        try:
-            v = np.array([[float(m["vertex"][key][c]) for c in "xyz"] for key in keys])
-            index = {str(key): i for i, key in enumerate(keys)}
-            faces = [[index[str(x)] for x in f] for f in m["face"].values()]
-        except (KeyError, TypeError, ValueError):
-            raise BlastscaleInputError(f"{source}: block {name!r}: COMPAS mesh without x, y, z vertices or valid "
-                                       "faces") from None
+        v, faces = mesh_arrays(m, source, name)
         if len(v) < 4:
             raise BlastscaleInputError(f"{source}: block {name!r} is empty ({len(v)} vertices)")
         v = _convex_or_hull(source, name, v, _mesh_volume(v, faces))
         blocks.append(ConvexBlock(name if name not in [b.name for b in blocks] else f"B{k + 1}", v, density))
     return tuple(blocks), []
+
+
+def _from_compas_model(path, data: dict, source: str, density: float, use_compas) -> tuple:
+    """(blocks, supports) of a compas_dem block model (:mod:`.compas_files`)."""
+    blocks, supports = [], []
+    for name, v, faces, support, own in read_compas_model(path, data, source, use_compas):
+        if len(v) < 4:
+            raise BlastscaleInputError(f"{source}: block {name!r} is empty ({len(v)} vertices)")
+        v = _convex_or_hull(source, name, v, _mesh_volume(v, faces))
+        d = density if own is None else _density(source, name, own)
+        (supports if support else blocks).append(ConvexBlock(name, v, d))
+    if not blocks:
+        raise BlastscaleInputError(f"{source}: every block is a support (is_support): nothing to simulate")
+    return tuple(blocks), tuple(supports)
 
 
 def _from_mesh(path: Path, source: str, density: float) -> tuple:
@@ -216,7 +226,8 @@ def _points(raw, blocks, source: str) -> tuple:
     return out
 
 
-def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True) -> Assembly:
+def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True,
+                     use_compas: bool | None = None) -> Assembly:
     """Read a block-model file (module docstring) into an :class:`~.assembly.Assembly`.
 
     Parameters
@@ -227,6 +238,9 @@ def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True)
         Density of blocks without their own [kg/m^3].
     check : bool
         Check the model (overlaps, floating blocks, millimetres).
+    use_compas : bool or None
+        A COMPAS block model through COMPAS (True), the plain reader (False), or COMPAS when installed
+        (None; :func:`~.compas_files.read_compas_model`).
 
     Returns
     -------
@@ -236,6 +250,7 @@ def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True)
     source = p.name
     if not p.is_file():
         raise BlastscaleInputError(f"structure.file = {str(p)!r} cannot be read: no such file")
+    supports = ()
     if p.suffix.lower() == ".json":
         try:
             data = json.loads(p.read_text(encoding="utf-8"))
@@ -243,6 +258,8 @@ def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True)
             raise BlastscaleInputError(f"{source}: not valid JSON: {exc}") from None
         if isinstance(data, dict) and "blocks" in data:
             blocks, raw_points = _from_ours(data, source, density_kg_m3)
+        elif is_compas_model(data):
+            (blocks, supports), raw_points = _from_compas_model(p, data, source, density_kg_m3, use_compas), []
         else:
             blocks, raw_points = _from_compas(data, source, density_kg_m3)
     elif p.suffix.lower() in MESH_SUFFIXES:
@@ -251,12 +268,12 @@ def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True)
         raise BlastscaleInputError(f"structure.file = {p.name!r} has an unknown type: valid suffixes are .json, "
                                    f"{', '.join(MESH_SUFFIXES)}")
     try:
-        asm = Assembly(blocks, kind="assembly", parameters=(("file", p.name),), check=check)
+        asm = Assembly(blocks, kind="assembly", parameters=(("file", p.name),), check=check, supports=supports)
     except BlastscaleInputError as exc:
         raise BlastscaleInputError(f"{source}: {exc}") from None
     pts = _points(raw_points, blocks, source)
     if pts:
         coms = [b.com for b in asm.bodies]
         extra = tuple(MonitoringPoint(n, i, tuple(float(x) for x in pos - np.asarray(coms[i]))) for n, i, pos in pts)
-        asm = Assembly(blocks, extra, asm.kind, asm.parameters, check=False)
+        asm = Assembly(blocks, extra, asm.kind, asm.parameters, check=False, supports=supports)
     return asm

@@ -187,19 +187,22 @@ def penetration(va, fa, vb, fb) -> float:
     return min(depth, _axes_overlap(va, vb, cr)) if len(cr) else depth
 
 
-def check_assembly(names, vertices, faces, interfaces, size: float) -> None:
+def check_assembly(names, vertices, faces, interfaces, size: float, fixed: int = 0) -> None:
     """Raise :class:`BlastscaleInputError` (one line naming the block and the problem) for a bad
     block model: a block larger than :data:`MAX_BLOCK_SIZE_M` (millimetres?), below the ground,
-    overlapping another, or not connected to the ground through interfaces (floating)."""
-    for n, v in zip(names, vertices):
+    overlapping another, or not connected to the ground through interfaces (floating). The last
+    ``fixed`` blocks are supports, fixed to the ground: they may reach below it, and a block resting
+    on one is connected to the ground."""
+    nfree = len(names) - fixed
+    for k, (n, v) in enumerate(zip(names, vertices)):
         ext = float(np.ptp(v, axis=0).max())
         if ext > MAX_BLOCK_SIZE_M:
             raise BlastscaleInputError(
                 f"block {n!r} is {ext:.6g} m across: the units look like millimetres (give metres; valid block size "
                 f"<= {MAX_BLOCK_SIZE_M:g} m)")
-        if v[:, 2].min() < -CONTACT_TOLERANCE * size:
+        if k < nfree and v[:, 2].min() < -CONTACT_TOLERANCE * size:
             raise BlastscaleInputError(f"block {n!r} reaches z = {v[:, 2].min():.6g} m: below the ground (z = 0); "
-                                       "blocks must stand on or above it")
+                                       "blocks must stand on or above it (only supports may reach below)")
     lo = np.array([v.min(axis=0) for v in vertices])
     hi = np.array([v.max(axis=0) for v in vertices])
     for i in range(len(vertices)):
@@ -210,12 +213,12 @@ def check_assembly(names, vertices, faces, interfaces, size: float) -> None:
             if d > OVERLAP_TOLERANCE * small:
                 raise BlastscaleInputError(
                     f"blocks {names[i]!r} and {names[j]!r} overlap by {d:.4g} m: blocks may touch, not interpenetrate")
-    linked = {-1}
+    linked = {-1, *range(nfree, len(names))}
     adj: dict = {}
     for itf in interfaces:
         adj.setdefault(itf.first, []).append(itf.second)
         adj.setdefault(itf.second, []).append(itf.first)
-    todo = [-1]
+    todo = sorted(linked)
     while todo:
         k = todo.pop()
         for m in adj.get(k, ()):
