@@ -52,7 +52,7 @@ class ConvexBlock:
 
     def __post_init__(self):
         v = np.asarray(self.vertices, dtype=float)
-        object.__setattr__(self, "vertices", tuple(tuple(float(x) for x in p) for p in v.reshape(-1, 3)))
+        object.__setattr__(self, "vertices", as_vertex_tuple(v))
         check_positive_scalar(f"density of block {self.name!r}", self.density, "kg/m^3")
         hull_of(v, self.name)
 
@@ -122,7 +122,7 @@ def _geometry(block: ConvexBlock) -> _BlockGeometry:
                    else (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]))
         inertia = tuple(float(x) for x in inertia)
         hull = hull_of(v, block.name)
-        shape = ConvexGeometry(tuple(tuple(float(x) for x in p) for p in v[hull.vertices] - com))
+        shape = ConvexGeometry(as_vertex_tuple(v[hull.vertices] - com))
     return _BlockGeometry(float(m), float(vol), np.asarray(com, dtype=float), inertia, faces, shape,
                           float(np.ptp(v[:, 2])))
 
@@ -232,7 +232,7 @@ class Assembly:
                     f.area * f.centroid - sum(a * c for a, c in parts)) / exposed
                 faces.append(Face(face_label(f.normal), tuple(float(x) for x in cent - g.com),
                                   tuple(float(x) for x in f.normal), float(f.area if not parts else exposed), touching,
-                                  tuple(tuple(float(x) for x in p - g.com) for p in f.vertices)))
+                                  as_vertex_tuple(f.vertices - g.com)))
             load = _load_face(faces)
             zb = float(np.min(b.points[:, 2]) - g.com[2])
             sx, sy = g.shape.support_radius

@@ -212,17 +212,8 @@ class RigidBody:
 
 @dataclass(frozen=True)
 class RestMassProperties:
-    """Totals of a structure's bodies at rest.
-
-    Attributes
-    ----------
-    mass : float
-        [kg].
-    volume : float
-        [m^3].
-    centre_of_mass : tuple of float
-        World position at rest [m].
-    """
+    """Totals of a structure's bodies at rest: ``mass`` [kg], ``volume`` [m^3] and ``centre_of_mass``
+    (world position at rest, a tuple of 3 floats) [m]."""
 
     mass: float
     volume: float
