@@ -129,3 +129,22 @@ def test_the_paper_column_shows_its_frustums():
     assert d["mass_kg"] == pytest.approx(58256.1, rel=1e-12)
     assert 2700.0 * vols[0] == pytest.approx(7187.1471, rel=1e-12)
     assert as_assembly(MultiDrumColumn()).bodies[0].mass == pytest.approx(7187.1471, rel=1e-12)
+
+
+@pytest.mark.parametrize("charge", [(-3.0, 0.0, 12.0), (-1.5, 0.0, 0.3), (-1.0, 0.2, 2.0)])
+@pytest.mark.parametrize("section", ["square", "circular"])
+def test_method_c_sees_the_column_drawn(section, charge):
+    """Method C's line of sight (``sim3d.exposure``) is cast against the drums' solids, the frustums drawn
+    (the same fractions as past the column ``show`` draws, an assembly of the frustums). A linearly
+    tapered column's frustums make one convex solid, so every face turned towards the charge is in sight
+    (fraction 1, exactly); with the contact prisms, whose tops overhang the next drum by 18.5 mm per side,
+    2-24 of these faces were shadowed by a close charge."""
+    from blastscale.sim3d.exposure import visible_fractions
+    from blastscale.structures import MultiDrumColumn
+
+    col = MultiDrumColumn(section=section, drums=3, height=3.0, top_width=1.2) if charge[2] > 10 else \
+        MultiDrumColumn(section=section)
+    faces = [(i, f) for i, b in enumerate(col.bodies) for f in b.faces if not f.in_contact and f.area > 0.0]
+    seen = visible_fractions(col, faces, charge)
+    assert np.array_equal(seen, visible_fractions(as_assembly(col), faces, charge))
+    assert np.all(seen == 1.0)
