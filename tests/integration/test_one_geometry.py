@@ -4,11 +4,11 @@ For every kind (block, square and circular column, wall, arch, portal, block-mod
 sizes, the mass, volume and centre of mass that ``blastscale show --json`` prints equal those of the
 bodies MuJoCo integrates (``body_mass`` summed, ``xipos`` at rest, divided by the engine's reference
 factors), and the solid that ``show`` and the report draw (each block's vertices) has, by an independent
-integration (divergence theorem, ``polyhedron_mass_properties``), the mass and centre of mass of the
-body simulated.
+integration (divergence theorem, ``polyhedron_mass_properties``), the mass, centre of mass and principal
+moments of inertia of the body simulated.
 
 Tolerance 1e-9 relative (of the mass, of the volume, of the structure's height for the centre of mass,
-whose x and y are 0 for symmetric kinds): the engine integrates the structure in reference units with
+whose x and y are 0 for symmetric kinds, of a body's largest moment for its moments): the engine integrates the structure in reference units with
 its parameters rounded to 12 significant digits (< 5e-13 relative, ``sim3d.reference``), and the two
 mass integrations differ by round-off (~1e-15); the bug this guards against was 2.5 % (a drum's prism
 of its base section drawn and described instead of its frustum).
@@ -82,8 +82,8 @@ def _show_json(capsys, path):
 
 
 def _simulated(structure):
-    """(mass [kg], centre of mass [m], per-body masses [kg] and centres [m]) of the MuJoCo model the
-    engine integrates, back in the structure's units."""
+    """(mass [kg], centre of mass [m], per-body masses [kg], centres [m] and principal moments [kg m^2],
+    ascending) of the MuJoCo model the engine integrates, back in the structure's units."""
     import mujoco
 
     scene, (a, _) = reference_scene(structure, None, 9.81)
@@ -91,7 +91,8 @@ def _simulated(structure):
     mujoco.mj_forward(scene.mj_model, d)
     m = scene.mj_model.body_mass[scene.body_ids] / a**3
     c = d.xipos[scene.body_ids] / a
-    return float(m.sum()), m @ c / m.sum(), m, c
+    moments = np.sort(scene.mj_model.body_inertia[scene.body_ids], axis=1) / a**5
+    return float(m.sum()), m @ c / m.sum(), m, c, moments
 
 
 @pytest.mark.parametrize("table", [t for _, t in CASES], ids=[c for c, _ in CASES])
@@ -99,7 +100,7 @@ def test_show_prints_the_mass_volume_and_centre_of_mass_simulated(capsys, tmp_pa
     path = _scenario(tmp_path, table)
     shown = _show_json(capsys, path)
     structure = Study(load_scenario(path)).structure()
-    mass, com, masses, coms = _simulated(structure)
+    mass, com, masses, coms, moments = _simulated(structure)
     H = shown["height_m"]
     assert shown["mass_kg"] == pytest.approx(mass, rel=REL)
     assert shown["volume_m3"] == pytest.approx(mass / 2300.0, rel=REL)
@@ -107,10 +108,11 @@ def test_show_prints_the_mass_volume_and_centre_of_mass_simulated(capsys, tmp_pa
     # what is drawn: each block's solid, integrated independently, is the body simulated
     asm = as_assembly(structure)
     assert len(asm.blocks) == len(masses) == shown["blocks"]
-    for blk, m, c in zip(asm.blocks, masses, coms):
+    for blk, m, c, j in zip(asm.blocks, masses, coms, moments):
         mp = polyhedron_mass_properties(blk.points, 2300.0, blk.name)
         assert mp.mass == pytest.approx(m, rel=REL), blk.name
         assert np.allclose(mp.centroid, c, rtol=0.0, atol=REL * H), blk.name
+        assert np.allclose(np.linalg.eigvalsh(mp.inertia), j, rtol=0.0, atol=REL * j.max()), blk.name
 
 
 def test_the_paper_column_shows_its_frustums():
