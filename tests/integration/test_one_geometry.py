@@ -8,10 +8,11 @@ integration (divergence theorem, ``polyhedron_mass_properties``), the mass, cent
 moments of inertia of the body simulated.
 
 Tolerance 1e-9 relative (of the mass, of the volume, of the structure's height for the centre of mass,
-whose x and y are 0 for symmetric kinds, of a body's largest moment for its moments): the engine integrates the structure in reference units with
-its parameters rounded to 12 significant digits (< 5e-13 relative, ``sim3d.reference``), and the two
-mass integrations differ by round-off (~1e-15); the bug this guards against was 2.5 % (a drum's prism
-of its base section drawn and described instead of its frustum).
+whose x and y are 0 for symmetric kinds, of a body's largest moment for its moments): the engine
+integrates the structure in reference units with its parameters rounded to 12 significant digits
+(< 5e-13 relative, ``sim3d.reference``), and the two mass integrations differ by round-off (~1e-15);
+the bug this guards against was 2.5 % (a drum's prism of its base section drawn and described instead
+of its frustum).
 """
 
 from __future__ import annotations

@@ -65,8 +65,8 @@ def describe_structure(structure) -> dict:
     pts = [p.name for p in structure.monitoring_points]
     return {
         "kind": str(structure.describe().get("kind", d["kind"])), "blocks": len(asm.blocks), "mass_kg": rest.mass,
-        "volume_m3": rest.volume, "centre_of_mass_m": list(rest.centre_of_mass), "height_m": d["height_m"], "length_m": d["length_m"],
-        "thickness_m": d["thickness_m"], "density_kg_m3": d["density_kg_m3"],
+        "volume_m3": rest.volume, "centre_of_mass_m": list(rest.centre_of_mass), "height_m": d["height_m"],
+        "length_m": d["length_m"], "thickness_m": d["thickness_m"], "density_kg_m3": d["density_kg_m3"],
         "interfaces_between_blocks": len(joints), "interfaces_on_ground": len(ground),
         "interface_area_between_blocks_m2": float(sum(i.area for i in joints)),
         "contact_area_on_ground_m2": float(sum(i.area for i in ground)),
