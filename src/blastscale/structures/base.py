@@ -226,7 +226,7 @@ def rest_mass_properties(bodies) -> RestMassProperties:
     bodies = tuple(bodies)
     m = np.array([b.mass for b in bodies], dtype=float)
     c = np.array([b.com for b in bodies], dtype=float)
-    M = float(m.sum())
+    M = float(sum(b.mass for b in bodies))  # summed as every structure's ``mass`` and the run summary's
     return RestMassProperties(M, float(sum(b.volume for b in bodies)), tuple(float(x) for x in m @ c / M))
 
 
