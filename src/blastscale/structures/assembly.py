@@ -109,7 +109,7 @@ def _geometry(block: ConvexBlock) -> _BlockGeometry:
         lo, hi = v.min(axis=0), v.max(axis=0)
         a, d, c = hi - lo
         vol = a * d * c
-        m = block.density * vol
+        m = block.density * a * d * c  # in this order: the engine's masses of earlier releases, bitwise
         com = 0.5 * (lo + hi)
         inertia = tuple(float(x) for x in (m * (d * d + c * c) / 12.0, m * (a * a + c * c) / 12.0,
                                            m * (a * a + d * d) / 12.0))
