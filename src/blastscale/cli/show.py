@@ -52,22 +52,24 @@ def load_structure(source: str, density_kg_m3: Optional[float] = None):
 
 
 def describe_structure(structure) -> dict:
-    """The description ``show`` prints (SI keys): kind, blocks, mass, volume, height, length,
-    thickness (supports included), interfaces between blocks and on the ground (a support is the
-    ground), their area, monitoring points, the blocks' names, the supports (fixed to the ground) and
-    their names."""
-    from ..structures import as_assembly
+    """The description ``show`` prints (SI keys): kind, blocks, mass, volume, centre of mass at rest,
+    height, length, thickness (supports included), interfaces between blocks and on the ground (a support
+    is the ground), their area, monitoring points, the blocks' names, the supports (fixed to the ground)
+    and their names. Mass, volume and centre of mass are the sums over ``structure.bodies``, the bodies the
+    engine simulates; sizes and interfaces are those of their solids (:func:`~blastscale.structures.as_assembly`)."""
+    from ..structures import as_assembly, rest_mass_properties
 
     asm = as_assembly(structure)
+    rest = rest_mass_properties(structure.bodies)
     d = asm.describe()
     itfs = asm.interface_details
     ground = [i for i in itfs if i.first < 0]
     joints = [i for i in itfs if i.first >= 0]
     pts = [p.name for p in structure.monitoring_points]
     return {
-        "kind": str(structure.describe().get("kind", d["kind"])), "blocks": len(asm.blocks), "mass_kg": asm.mass,
-        "volume_m3": asm.volume, "height_m": d["height_m"], "length_m": d["length_m"],
-        "thickness_m": d["thickness_m"], "density_kg_m3": d["density_kg_m3"],
+        "kind": str(structure.describe().get("kind", d["kind"])), "blocks": len(asm.blocks), "mass_kg": rest.mass,
+        "volume_m3": rest.volume, "centre_of_mass_m": list(rest.centre_of_mass), "height_m": d["height_m"],
+        "length_m": d["length_m"], "thickness_m": d["thickness_m"], "density_kg_m3": d["density_kg_m3"],
         "interfaces_between_blocks": len(joints), "interfaces_on_ground": len(ground),
         "interface_area_between_blocks_m2": float(sum(i.area for i in joints)),
         "contact_area_on_ground_m2": float(sum(i.area for i in ground)),
@@ -126,6 +128,7 @@ def show_cmd(
         rows = [("kind", desc["kind"], ""), ("blocks", str(desc["blocks"]), ""),
                 ("mass", fmt_value(desc["mass_kg"], ".5g"), "kg"), ("volume", fmt_value(desc["volume_m3"], ".5g"), "m^3"),
                 ("density", fmt_value(desc["density_kg_m3"], ".5g"), "kg/m^3"),
+                ("centre of mass (x, y, z)", ", ".join(fmt_value(x, ".4g") for x in desc["centre_of_mass_m"]), "m"),
                 ("height x length x thickness", " x ".join(fmt_value(desc[k], ".4g") for k in
                                                           ("height_m", "length_m", "thickness_m")), "m"),
                 ("interfaces between blocks", str(desc["interfaces_between_blocks"]), ""),

@@ -7,11 +7,12 @@ original base centre, over the simulated response:
   away from the charge reaches ``b + 2h sin(theta_max)``; a block that overturns ends on its side,
   ``b + 2h``;
 * 3D rigid bodies: ``max_t |x_c(t) - x_0|_horizontal + rho_b + c_b sin(phi_b(t))`` over the bodies,
-  x_c a body's centre of mass, x_0 the structure's base centre, rho_b the body's horizontal
-  half-diagonal at rest (a box: sqrt(a^2 + d^2); a prism: its radius), c_b its half height and phi_b
-  its tilt: a bound on any of its points (a point's horizontal offset from the centre of mass grows
-  by at most c_b sin(phi) when the body tilts by phi); blocks that slide or fly off are followed as
-  far as the simulation goes.
+  x_c a body's centre of mass, x_0 the structure's base centre, rho_b the largest horizontal distance
+  of the body's solid (its vertices, ``RigidBody.vertices``) from its centre of mass at rest (a box:
+  sqrt(a^2 + d^2)), c_b their largest height above or depth below it (a box: c) and phi_b its tilt: a
+  bound on any of its points (a point's horizontal offset from the centre of mass grows by at most
+  |z| sin(phi) when the body tilts by phi); blocks that slide or fly off are followed as far as the
+  simulation goes.
 
 The debris zone is a circle around the specimen of radius ``margin x reach`` (``[lab]
 debris_margin``, default 2: blocks that fall bounce and slide on a real floor, which neither model
@@ -35,12 +36,11 @@ def planar_reach(width_m: float, height_m: float, max_rotation_rad: float, colla
 
 
 def body_extent(body) -> tuple:
-    """(horizontal half-diagonal, half height) [m] of a rigid body's shape at rest (a box: sqrt(a^2 +
-    d^2) and c; a prism: its circumscribed radius and half height)."""
-    shape = body.shape
-    if hasattr(shape, "half_width"):
-        return math.hypot(shape.half_width, shape.half_depth), shape.half_height
-    return shape.radius, shape.half_height
+    """(rho, c) [m] of a rigid body at rest (module docstring): the largest horizontal distance of its
+    solid's vertices from its centre of mass (a box: sqrt(a^2 + d^2); a drum: its base's circumradius
+    or half-diagonal) and their largest vertical distance from it (a box: its half height c)."""
+    v = np.asarray(body.vertices, dtype=float)
+    return float(np.hypot(v[:, 0], v[:, 1]).max()), float(np.abs(v[:, 2]).max())
 
 
 def reach_3d(dataset, structure) -> float:

@@ -87,18 +87,15 @@ def plot_point_histories(prototype, model=None, quantity: str = "point_displacem
 
 
 def _drum_sections(structure) -> list[tuple[float, float, float, float]]:
-    """(half_bottom, half_top, z_bottom, z_top) of each body in its frame [m]: the tapered
-    silhouette when the structure has ``width_at`` (a column), else the contact shape's box."""
+    """(half_bottom, half_top, z_bottom, z_top) of each body in its frame [m]: the x-extent of its solid
+    (``RigidBody.vertices``, a drum's frustum, a block's box) at its base and at its top, the silhouette
+    seen from the side."""
     out = []
     for b in structure.bodies:
-        shape = b.shape
-        zc = getattr(shape, "centre_z", 0.0)
-        hh = shape.half_height
-        z0, z1 = zc - hh, zc + hh
-        if hasattr(structure, "width_at"):
-            wb, wt = (0.5 * float(structure.width_at(b.com[2] + z)) for z in (z0, z1))
-        else:
-            wb = wt = getattr(shape, "half_width", None) or getattr(shape, "radius")
+        v = np.asarray(b.vertices, dtype=float)
+        z0, z1 = float(v[:, 2].min()), float(v[:, 2].max())
+        tol = 1e-9 * (z1 - z0)
+        wb, wt = (float(np.abs(v[np.abs(v[:, 2] - z) <= tol, 0]).max()) for z in (z0, z1))
         out.append((wb, wt, z0, z1))
     return out
 

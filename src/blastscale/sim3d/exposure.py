@@ -33,7 +33,8 @@ __all__ = ["body_hulls", "segment_blocked", "visible_fractions"]
 
 def body_hulls(structure) -> list:
     """Each body's convex hull at rest as half-spaces (A (k, 3), b (k,)) with A x + b <= 0 inside,
-    and the hull's size [m]. General blocks: their polyhedron; boxes and prisms: their engine geometry."""
+    the hull's size [m] and its bounding box: the hull of the body's solid (``RigidBody.vertices``: a
+    drum's frustum, not its contact prism; an assembly's blocks at their given coordinates)."""
     from scipy.spatial import ConvexHull
 
     out = []
@@ -42,18 +43,11 @@ def body_hulls(structure) -> list:
         if blocks is not None:
             v = blocks[k].points
         else:
-            shape = b.shape
-            v = shape.vertices() if hasattr(shape, "vertices") and callable(shape.vertices) else _box(shape)
-            v = np.asarray(v, dtype=float) + np.asarray(b.com, dtype=float)
+            v = np.asarray(b.vertices, dtype=float) + np.asarray(b.com, dtype=float)
         h = ConvexHull(v)
         out.append((h.equations[:, :3], h.equations[:, 3], float(np.ptp(v, axis=0).max()), v.min(axis=0),
                     v.max(axis=0)))
     return out
-
-
-def _box(shape) -> np.ndarray:
-    b, w, h, c = shape.half_width, shape.half_depth, shape.half_height, shape.centre_z
-    return np.array([[sx * b, sy * w, c + sz * h] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
 
 
 def segment_blocked(p, q, A, b, tol: float) -> bool:

@@ -33,8 +33,8 @@ from .contact import (
     structure_length,
 )
 
-__all__ = ["REFERENCE_DIGITS", "REFERENCE_GRAVITY", "REFERENCE_LENGTH", "reference_factors", "reference_settings",
-           "to_reference"]
+__all__ = ["REFERENCE_DIGITS", "REFERENCE_GRAVITY", "REFERENCE_LENGTH", "reference_factors", "reference_scene",
+           "reference_settings", "to_reference"]
 
 
 def reference_factors(structure, gravity: float) -> tuple:
@@ -90,3 +90,32 @@ def reference_settings(contact: ContactSettings | None, structure, a: float, b: 
     if contact is None:
         return reference_contact(structure)
     return contact if (a == 1.0 and b == 1.0) else contact.scaled(length_time_factors(a, b))
+
+
+def reference_scene(structure, contact: ContactSettings | None, gravity: float, rotation: float = 0.0) -> tuple:
+    """The MuJoCo model the engine integrates for ``structure`` and the factors (a, b) to it.
+
+    Parameters
+    ----------
+    structure : structure
+        Any structure of :mod:`blastscale.structures`, in its own units [m].
+    contact : ContactSettings or None
+        Explicit settings in the structure's units, or None for the reference defaults.
+    gravity : float
+        g [m/s^2].
+    rotation : float
+        Initial tilt [rad] (:func:`~.model.structure_scene`).
+
+    Returns
+    -------
+    (Scene, (a, b))
+        The scene of :func:`to_reference` of the structure under ``REFERENCE_GRAVITY``
+        (:func:`~.model.structure_scene`: each body's exact mass and inertia, masses in it x a^3 and
+        lengths x a), and the length and time factors of :func:`reference_factors`.
+    """
+    from .model import structure_scene
+
+    a, b = reference_factors(structure, gravity)
+    scene = structure_scene(to_reference(structure, a), reference_settings(contact, structure, a, b),
+                            REFERENCE_GRAVITY, rotation=rotation)
+    return scene, (a, b)

@@ -29,7 +29,6 @@ from .._validate import BlastscaleInputError, check_finite, check_positive, chec
 from ..structures.block import STANDARD_GRAVITY
 from .contact import (
     MAX_TIMESTEP_FRACTION,
-    REFERENCE_GRAVITY,
     SOFT_CONTACT_FACTOR,
     ContactSettings,
     default_contact,
@@ -37,9 +36,9 @@ from .contact import (
 )
 from .initial import body_velocities, rigid_rocking_velocity
 from .integrate import BLAST_MODES, integrate
-from .model import BoxShape, Scene, structure_scene
+from .model import BoxShape, Scene
 from .record import response_from_states
-from .reference import reference_factors, reference_settings, to_reference
+from .reference import reference_scene
 from .results import Response3D
 
 __all__ = [
@@ -201,10 +200,8 @@ def simulate_structure(
     if explicit:
         _warn_if_soft(contact, structure, load, g)
     mode = blast_mode or ("auto" if len(structure.bodies) == 1 else "force")
-    a, b = reference_factors(structure, g)  # the one place where absolute size is removed (.reference)
-    ref = to_reference(structure, a)
-    scene = structure_scene(ref, reference_settings(contact if explicit else None, structure, a, b), REFERENCE_GRAVITY,
-                            rotation=th0)
+    # the one place where absolute size is removed (.reference)
+    scene, (a, b) = reference_scene(structure, contact if explicit else None, g, rotation=th0)
     _warn_near_pivot_threshold(scene, contact.friction, load, mode)
     st = integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle and th0 == 0.0,
                    factors=(a, b), initial_velocity=_both(rigid_rocking_velocity(scene, th0, om0, v0, (a, b)),

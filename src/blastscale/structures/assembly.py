@@ -34,7 +34,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive_scalar
-from .base import BoxGeometry, Face, MonitoringPoint, RigidBody
+from .base import BoxGeometry, Face, MonitoringPoint, RigidBody, as_vertex_tuple
 from .interfaces import CONTACT_TOLERANCE, check_assembly, find_interfaces
 from .polyhedron import face_label, hull_of, polyhedron_faces, polyhedron_mass_properties
 
@@ -58,7 +58,7 @@ class ConvexBlock:
 
     def __post_init__(self):
         v = np.asarray(self.vertices, dtype=float)
-        object.__setattr__(self, "vertices", tuple(tuple(float(x) for x in p) for p in v.reshape(-1, 3)))
+        object.__setattr__(self, "vertices", as_vertex_tuple(v))
         check_positive_scalar(f"density of block {self.name!r}", self.density, "kg/m^3")
         hull_of(v, self.name)
 
@@ -100,6 +100,7 @@ class _BlockGeometry:
     """Derived geometry of one block (internal)."""
 
     mass: float
+    volume: float
     com: np.ndarray
     inertia: tuple
     faces: list
@@ -113,21 +114,31 @@ def _geometry(block: ConvexBlock) -> _BlockGeometry:
     if _is_box(faces):
         lo, hi = v.min(axis=0), v.max(axis=0)
         a, d, c = hi - lo
-        m = block.density * a * d * c
+        vol = a * d * c
+        m = block.density * a * d * c  # in this order: the engine's masses of earlier releases, bitwise
         com = 0.5 * (lo + hi)
         inertia = tuple(float(x) for x in (m * (d * d + c * c) / 12.0, m * (a * a + c * c) / 12.0,
                                            m * (a * a + d * d) / 12.0))
         shape = BoxGeometry(0.5 * a, 0.5 * d, 0.5 * c)
     else:
         mp = polyhedron_mass_properties(v, block.density, block.name)
-        m, com, I = mp.mass, mp.centroid, mp.inertia
+        m, vol, com, I = mp.mass, mp.volume, mp.centroid, mp.inertia
         off = np.abs(I - np.diag(np.diag(I))).max()
         inertia = (tuple(np.diag(I)) if off <= 1e-12 * np.trace(I)
                    else (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]))
         inertia = tuple(float(x) for x in inertia)
         hull = hull_of(v, block.name)
-        shape = ConvexGeometry(tuple(tuple(float(x) for x in p) for p in v[hull.vertices] - com))
-    return _BlockGeometry(float(m), np.asarray(com, dtype=float), inertia, faces, shape, float(np.ptp(v[:, 2])))
+        shape = ConvexGeometry(as_vertex_tuple(v[hull.vertices] - com))
+    return _BlockGeometry(float(m), float(vol), np.asarray(com, dtype=float), inertia, faces, shape,
+                          float(np.ptp(v[:, 2])))
+
+
+def _given_geometry(block: ConvexBlock, body: RigidBody) -> _BlockGeometry:
+    """The geometry of a block made from a structure's body (:func:`as_assembly`): the body's own mass,
+    volume, centre of mass, inertia and contact shape, the faces of its solid."""
+    v = block.points
+    return _BlockGeometry(body.mass, body.volume, np.asarray(body.com, dtype=float), tuple(body.inertia),
+                          polyhedron_faces(v, block.name), body.shape, float(np.ptp(v[:, 2])))
 
 
 @dataclass(frozen=True)
@@ -148,6 +159,10 @@ class Assembly:
         Check the block model (overlaps, floating blocks, millimetres; :func:`~.interfaces.check_assembly`).
     supports : sequence of ConvexBlock
         Blocks fixed to the ground (module docstring); their names are unique among all blocks.
+    source_bodies : tuple of RigidBody
+        When the blocks are another structure's bodies (:func:`as_assembly`: one per block, their solids'
+        vertices the blocks'): their mass, volume, centre of mass, inertia and contact shape are kept as
+        given, not integrated again; empty otherwise. ``scaled`` and ``rounded`` copies integrate again.
     """
 
     blocks: tuple
@@ -156,6 +171,7 @@ class Assembly:
     parameters: tuple = ()
     check: bool = True
     supports: tuple = ()
+    source_bodies: tuple = ()
 
     collapse_rule = "fallen"
 
@@ -173,6 +189,9 @@ class Assembly:
             if not isinstance(p, MonitoringPoint) or not 0 <= p.body < len(blocks):
                 raise BlastscaleInputError(
                     f"point = {p!r} is out of range: must be a MonitoringPoint on a block 0-{len(blocks) - 1}")
+        if self.source_bodies and len(self.source_bodies) != len(blocks):
+            raise BlastscaleInputError(f"source bodies = {len(self.source_bodies)} is out of range: must be one per "
+                                       f"block ({len(blocks)})")
         if self.check:
             everything = blocks + self.supports
             faces = [x.faces for x in self._geometries + self._support_geometries]
@@ -182,6 +201,8 @@ class Assembly:
     # -- derived geometry (computed once) ------------------------------------------------
     @functools.cached_property
     def _geometries(self) -> list:
+        if self.source_bodies:
+            return [_given_geometry(b, body) for b, body in zip(self.blocks, self.source_bodies)]
         return [_geometry(b) for b in self.blocks]
 
     @functools.cached_property
@@ -251,12 +272,13 @@ class Assembly:
                     f.area * f.centroid - sum(a * c for a, c in parts)) / exposed
                 faces.append(Face(face_label(f.normal), tuple(float(x) for x in cent - g.com),
                                   tuple(float(x) for x in f.normal), float(f.area if not parts else exposed), touching,
-                                  tuple(tuple(float(x) for x in p - g.com) for p in f.vertices)))
+                                  as_vertex_tuple(f.vertices - g.com)))
             load = _load_face(faces)
             zb = float(np.min(b.points[:, 2]) - g.com[2])
             sx, sy = g.shape.support_radius
             out.append(RigidBody(b.name, g.mass, tuple(float(x) for x in g.com), g.inertia, g.shape, tuple(faces), load,
-                                 zb, math.atan2(min(sx, sy), max(-zb, 1e-300))))
+                                 zb, math.atan2(min(sx, sy), max(-zb, 1e-300)), g.volume,
+                                 as_vertex_tuple(b.points - g.com)))
         return tuple(out)
 
     @property
@@ -284,7 +306,7 @@ class Assembly:
     @property
     def volume(self) -> float:
         """Total volume [m^3]."""
-        return float(sum(g.mass / b.density for b, g in zip(self.blocks, self._geometries)))
+        return float(sum(g.volume for g in self._geometries))
 
     def describe(self) -> dict:
         """Kind, size (supports included), blocks, mass (supports excluded) and the generator's
@@ -343,24 +365,14 @@ def _load_face(faces) -> Face:
 
 
 def as_assembly(structure) -> "Assembly":
-    """``structure`` as an :class:`Assembly` (itself when it is one): each body's engine geometry
-    (box, prism, convex hull) placed at its centre of mass at rest, of the structure's density, for
-    drawing and describing a block or a column as blocks (a tapered column's drums are drawn as their
-    contact boxes or prisms, not as frustums)."""
+    """``structure`` as an :class:`Assembly` (itself when it is one): one block per body, the convex hull
+    of the body's solid (:attr:`~.base.RigidBody.vertices`: a block's box, a drum's frustum) placed at its
+    centre of mass at rest, keeping the body's mass, volume, inertia and contact shape
+    (``source_bodies``): what is drawn and described is what the engine simulates."""
     if isinstance(structure, Assembly):
         return structure
-    from .base import PrismGeometry
-
-    dens = float(structure.describe().get("density_kg_m3", 2000.0))
-    blocks = []
-    for b in structure.bodies:
-        sh = b.shape
-        if isinstance(sh, ConvexGeometry):
-            v = sh.array()
-        elif isinstance(sh, PrismGeometry):
-            v = sh.vertices()
-        else:
-            hx, hy, hz, zc = sh.half_width, sh.half_depth, sh.half_height, sh.centre_z
-            v = np.array([(x, y, zc + z) for x in (-hx, hx) for y in (-hy, hy) for z in (-hz, hz)], dtype=float)
-        blocks.append(ConvexBlock(b.name, v + np.asarray(b.com), dens))
-    return Assembly(tuple(blocks), kind=str(structure.describe().get("kind", "structure")), check=False)
+    d = structure.describe()
+    bodies = tuple(structure.bodies)
+    blocks = tuple(ConvexBlock(b.name, np.asarray(b.vertices) + np.asarray(b.com),
+                               float(d.get("density_kg_m3") or b.mass / b.volume)) for b in bodies)
+    return Assembly(blocks, kind=str(d.get("kind", "structure")), check=False, source_bodies=bodies)

@@ -2,9 +2,12 @@
 
 Every structure (:class:`~.block.RectangularBlock`, :class:`~.column.MultiDrumColumn`) exposes
 
-* ``bodies``: :class:`RigidBody` from the base up, each with its exact mass properties, the
-  shape the engine builds its contact geometry from (:class:`BoxGeometry`,
-  :class:`PrismGeometry`) and its faces (:class:`Face`, body frame, outward unit normals);
+* ``bodies``: :class:`RigidBody` from the base up, each with its **solid** (``vertices``: the body is
+  their convex hull) and the solid's exact mass, volume, centre of mass and inertia, the shape the
+  engine builds its contact geometry from (:class:`BoxGeometry`, :class:`PrismGeometry`; not always
+  the solid: a tapered drum collides as the prism of its base section) and its faces (:class:`Face`,
+  body frame, outward unit normals). This is the one geometry of a structure: the engine, ``show``,
+  the drawings and the report read these bodies (:func:`rest_mass_properties` for the totals);
 * ``interfaces``: pairs ``(i, j)`` of bodies in contact at rest (ground = -1);
 * ``monitoring_points``: :class:`MonitoringPoint` (default: the front-face centre of each body);
 * ``front_x``: x of the lowest front face (the charge stands at ``front_x - standoff``);
@@ -41,7 +44,14 @@ __all__ = [
     "MonitoringPoint",
     "PrismGeometry",
     "RigidBody",
+    "RestMassProperties",
+    "as_vertex_tuple",
+    "box_vertices",
     "frustum_mass_properties",
+    "frustum_vertices",
+    "polygon_ring",
+    "rectangle_ring",
+    "rest_mass_properties",
     "polygon_section_constants",
     "tapered_face",
 ]
@@ -132,15 +142,12 @@ class PrismGeometry:
 
     def polygon(self) -> np.ndarray:
         """Polygon vertices (sides, 2) [m] in the body x-y plane, a flat facing -x."""
-        a = (np.arange(self.sides) + 0.5) * 2.0 * math.pi / self.sides + math.pi
-        return self.radius * np.column_stack([np.cos(a), np.sin(a)])
+        return polygon_ring(self.radius, self.sides)
 
     def vertices(self) -> np.ndarray:
         """Prism vertices (2 sides, 3) [m] in the body frame (base ring, then top ring)."""
         p = self.polygon()
-        lo = np.column_stack([p, np.full(self.sides, self.centre_z - self.half_height)])
-        hi = np.column_stack([p, np.full(self.sides, self.centre_z + self.half_height)])
-        return np.vstack([lo, hi])
+        return frustum_vertices(p, p, self.centre_z - self.half_height, self.centre_z + self.half_height)
 
     def base_points(self) -> np.ndarray:
         """The base ring's vertices in the body frame, shape (sides, 3) [m]."""
@@ -169,7 +176,8 @@ class RigidBody:
         Principal moments about body axes x, y, z through the centre of mass [kg m^2] (the axes
         are the world axes at rest).
     shape : BoxGeometry or PrismGeometry
-        Contact geometry for the engine (body frame).
+        Contact geometry for the engine (body frame): what MuJoCo collides, not always the solid (a
+        tapered drum collides as the box or polygon prism of its base section, docs/sim3d.md).
     faces : tuple of Face
         Faces in the body frame, outward normals.
     load_face : Face
@@ -181,6 +189,12 @@ class RigidBody:
     toppling_angle : float
         Tilt [rad] at which the body's centre of mass passes over its base edge
         (``atan(support half-width / z_c)``).
+    volume : float
+        Volume of the solid [m^3] (``mass`` = density x ``volume``).
+    vertices : tuple of tuple
+        The solid's vertices in the body frame [m]; the body is their convex hull (a box, a frustum,
+        a general block). ``mass``, ``volume``, ``com`` and ``inertia`` are this solid's, and it is
+        what ``show`` and the report draw.
     """
 
     name: str
@@ -192,6 +206,63 @@ class RigidBody:
     load_face: Face
     base_height: float
     toppling_angle: float
+    volume: float
+    vertices: tuple
+
+
+@dataclass(frozen=True)
+class RestMassProperties:
+    """Totals of a structure's bodies at rest: ``mass`` [kg], ``volume`` [m^3] and ``centre_of_mass``
+    (world position at rest, a tuple of 3 floats) [m]."""
+
+    mass: float
+    volume: float
+    centre_of_mass: tuple
+
+
+def rest_mass_properties(bodies) -> RestMassProperties:
+    """Total mass, volume and centre of mass at rest of ``bodies`` (:class:`RigidBody`): the sums of
+    the solids the engine simulates (the centre of mass is the mass-weighted mean of the bodies')."""
+    bodies = tuple(bodies)
+    m = np.array([b.mass for b in bodies], dtype=float)
+    c = np.array([b.com for b in bodies], dtype=float)
+    M = float(sum(b.mass for b in bodies))  # summed as every structure's ``mass`` and the run summary's
+    return RestMassProperties(M, float(sum(b.volume for b in bodies)), tuple(float(x) for x in m @ c / M))
+
+
+def polygon_ring(radius: float, sides: int) -> np.ndarray:
+    """The vertices (sides, 2) [m] of a regular polygon of circumradius ``radius`` [m] in the x-y plane,
+    turned by pi/sides so that a flat faces -x (the charge), counter-clockwise."""
+    a = (np.arange(sides) + 0.5) * 2.0 * math.pi / sides + math.pi
+    return radius * np.column_stack([np.cos(a), np.sin(a)])
+
+
+def frustum_vertices(base, top, z_base: float, z_top: float) -> np.ndarray:
+    """The vertices (2 k, 3) [m] of the solid between a base polygon (k, 2) at height ``z_base`` and a top
+    polygon (k, 2) at ``z_top`` [m] (base ring, then top ring): a prism when they are equal, a frustum
+    when the top is the base scaled about the axis."""
+    base, top = np.asarray(base, dtype=float), np.asarray(top, dtype=float)
+    return np.vstack([np.column_stack([base, np.full(len(base), float(z_base))]),
+                      np.column_stack([top, np.full(len(top), float(z_top))])])
+
+
+def box_vertices(half_width: float, half_depth: float, half_height: float, centre_z: float = 0.0) -> np.ndarray:
+    """The eight corners (8, 3) [m] of a box of half-sizes (b, w, h) [m] along x, y, z centred ``centre_z``
+    [m] above the origin."""
+    ring = rectangle_ring(half_width, half_depth)
+    return frustum_vertices(ring, ring, centre_z - half_height, centre_z + half_height)
+
+
+def rectangle_ring(half_width: float, half_depth: float) -> np.ndarray:
+    """The corners (4, 2) [m] of a rectangle of half-sizes (b, w) along x, y, centred on the axis,
+    counter-clockwise."""
+    return np.array([[-half_width, -half_depth], [half_width, -half_depth], [half_width, half_depth],
+                     [-half_width, half_depth]], dtype=float)
+
+
+def as_vertex_tuple(points) -> tuple:
+    """Points (n, 3) [m] as a tuple of float triples (hashable, for :attr:`RigidBody.vertices`)."""
+    return tuple(tuple(float(x) for x in p) for p in np.asarray(points, dtype=float).reshape(-1, 3))
 
 
 @dataclass(frozen=True)

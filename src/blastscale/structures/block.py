@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 
 from ..constants import STANDARD_GRAVITY  # noqa: F401 (re-exported by blastscale.structures)
 from .._validate import check_positive_scalar, check_range
-from .base import BoxGeometry, Face, MonitoringPoint, RigidBody
+from .base import BoxGeometry, Face, MonitoringPoint, RigidBody, as_vertex_tuple, box_vertices
 
 __all__ = ["RectangularBlock", "STANDARD_GRAVITY"]
 
@@ -129,7 +129,7 @@ class RectangularBlock:
             Face("bottom", (0.0, 0.0, -h), (0.0, 0.0, -1.0), self.width * self.depth, True),
         )
         return (RigidBody("block", self.mass, (0.0, 0.0, h), self.inertia_centroid, BoxGeometry(b, w, h), faces,
-                          faces[0], -h, self.alpha),)
+                          faces[0], -h, self.alpha, self.volume, as_vertex_tuple(box_vertices(b, w, h))),)
 
     @property
     def interfaces(self) -> tuple:

@@ -7,10 +7,12 @@ pyramid for the square section, of a regular ``sides``-gon (default 32, vertices
 of the nominal diameter) for the circular one. Mass properties are exact for these solids
 (:func:`~.base.frustum_mass_properties`).
 
-Contact geometry for the engine (docs/design.md, "Multi-drum columns on MuJoCo"): each drum is a
-right prism of its *base* section (box / polygon prism) carrying the frustum's exact inertia;
-drum k+1's base then rests fully on drum k's (wider) top, which is the exact contact patch,
-while frustum meshes whose faces coincide at the joints are ill-conditioned.
+Each drum's solid (``RigidBody.vertices``: the frustum's two rings) is what its mass, volume, centre of
+mass and inertia are, and what ``show`` and the report draw and print. Contact geometry for the
+engine (docs/design.md, "Multi-drum columns on MuJoCo") is not the solid: each drum collides as the
+right prism of its *base* section (box / polygon prism, ``RigidBody.shape``) carrying the frustum's
+exact mass and inertia; drum k+1's base then rests fully on drum k's (wider) top, which is the exact
+contact patch, while frustum meshes whose faces coincide at the joints are ill-conditioned.
 """
 
 from __future__ import annotations
@@ -28,8 +30,12 @@ from .base import (
     MonitoringPoint,
     PrismGeometry,
     RigidBody,
+    as_vertex_tuple,
     frustum_mass_properties,
+    frustum_vertices,
+    polygon_ring,
     polygon_section_constants,
+    rectangle_ring,
     tapered_face,
 )
 
@@ -198,6 +204,7 @@ def _drums(col: MultiDrumColumn) -> tuple:
             )
             load = faces[0]
             shape = BoxGeometry(s0 / 2, s0 / 2, H / 2, H / 2 - zc)
+            solid = frustum_vertices(rectangle_ring(s0 / 2, s0 / 2), rectangle_ring(s1 / 2, s1 / 2), -zc, H - zc)
             top_area, base_area, support = s1 * s1, s0 * s0, s0 / 2
         else:
             a, k = polygon_section_constants(col.sides)
@@ -214,11 +221,12 @@ def _drums(col: MultiDrumColumn) -> tuple:
             # Method A: the projected silhouette, diameter x height (tapered)
             load = tapered_face("front", R0, R1, s0, s1, H, zc, math.pi)
             shape = PrismGeometry(R0, col.sides, H / 2, H / 2 - zc)
+            solid = frustum_vertices(polygon_ring(R0, col.sides), polygon_ring(R1, col.sides), -zc, H - zc)
             top_area, base_area, support = a * R1 * R1, a * R0 * R0, R0 * ci
         faces = faces + (
             Face("top", (0.0, 0.0, H - zc), (0.0, 0.0, 1.0), top_area, top_contact),
             Face("bottom", (0.0, 0.0, -zc), (0.0, 0.0, -1.0), base_area, True),
         )
         out.append(RigidBody(f"D-{i + 1}", mp.mass, (0.0, 0.0, float(z[i]) + zc), mp.inertia, shape, faces, load, -zc,
-                             math.atan2(support, zc)))
+                             math.atan2(support, zc), mp.volume, as_vertex_tuple(solid)))
     return tuple(out)

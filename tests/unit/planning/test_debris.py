@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from blastscale.planning.debris import planar_reach, reach_3d
-from blastscale.structures import RectangularBlock
+from blastscale.planning.debris import body_extent, planar_reach, reach_3d
+from blastscale.structures import MultiDrumColumn, RectangularBlock, arch
 
 
 def test_planar_reach():
@@ -39,3 +39,25 @@ def test_3d_reach_bounds_every_point():
         com = (np.array([0.0, 0.0, 2.0]) - piv) @ rot.T + piv
         exact = np.max(np.hypot(moved[:, 0], moved[:, 1]))
         assert exact <= reach_3d(ds(com[0], th), block) + 1e-12
+
+
+@pytest.mark.parametrize("structure", [MultiDrumColumn(drums=3, height=3.0, top_width=1.54),
+                                       MultiDrumColumn(section="circular", drums=2, height=2.0, sides=12),
+                                       arch(voussoirs=5)], ids=["square column", "circular column", "arch"])
+def test_body_extent_bounds_every_vertex_of_the_solid_tilted_any_way(structure):
+    """Any body (tapered drums: their centre of mass below mid-height; arch voussoirs: general convex
+    blocks, their centre of mass off the middle) turned by a tilt phi about any horizontal axis and any
+    spin: no vertex of its solid moves further than rho + c sin(phi) horizontally from its centre of mass."""
+    rng = np.random.default_rng(29)
+    for body in structure.bodies:
+        rho, c = body_extent(body)
+        v = np.asarray(body.vertices)
+        assert rho == pytest.approx(np.hypot(v[:, 0], v[:, 1]).max(), rel=1e-12) and c >= -v[:, 2].min()
+        for phi, axis, spin in zip(rng.uniform(0, math.pi / 2, 20), rng.uniform(0, 2 * math.pi, 20),
+                                   rng.uniform(0, 2 * math.pi, 20)):
+            k = np.array([math.cos(axis), math.sin(axis), 0.0])  # tilt axis, horizontal
+            K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+            tilt = np.eye(3) + math.sin(phi) * K + (1 - math.cos(phi)) * K @ K
+            z = np.array([[math.cos(spin), -math.sin(spin), 0], [math.sin(spin), math.cos(spin), 0], [0, 0, 1]])
+            moved = v @ (tilt @ z).T
+            assert np.hypot(moved[:, 0], moved[:, 1]).max() <= rho + c * math.sin(phi) + 1e-12

@@ -149,3 +149,26 @@ def test_column_rejects_bad_input_with_one_line_naming_it(kwargs, word):
     msg = str(e.value)
     assert word in msg and len(msg.splitlines()) == 1
     assert "range" in msg or "valid" in msg or "must" in msg or "finite" in msg
+
+
+@pytest.mark.parametrize("structure", [RectangularBlock(height=3.0, width=1.0, depth=0.5),
+                                       MultiDrumColumn(drums=3, height=3.0, top_width=1.4),
+                                       MultiDrumColumn(section="circular", drums=2, height=2.0, sides=8)],
+                         ids=["block", "square column", "circular column"])
+def test_each_body_is_its_solid(structure):
+    """Issue 29: a body's mass, volume, centre of mass and inertia are those of its solid (the convex hull of
+    ``vertices``, integrated independently by the divergence theorem, 1e-12), and ``as_assembly`` keeps
+    them (and the contact shape) exactly: a drum is its frustum, not the prism it collides as."""
+    from blastscale.structures import as_assembly, polyhedron_mass_properties, rest_mass_properties
+
+    rho = structure.density
+    asm = as_assembly(structure)
+    for b, a in zip(structure.bodies, asm.bodies):
+        mp = polyhedron_mass_properties(b.vertices, rho)
+        assert mp.volume == pytest.approx(b.volume, rel=1e-12) and mp.mass == pytest.approx(b.mass, rel=1e-12)
+        assert np.allclose(mp.centroid, 0.0, atol=1e-12 * structure.height)  # body frame: at the centre of mass
+        assert np.allclose(np.diag(mp.inertia), b.inertia, rtol=1e-12)
+        assert (a.mass, a.volume, a.com, a.inertia, a.shape) == (b.mass, b.volume, b.com, b.inertia, b.shape)
+    rest = rest_mass_properties(structure.bodies)
+    assert rest.mass == asm.mass == pytest.approx(rho * rest.volume, rel=1e-14) and rest.volume == asm.volume
+    assert rest.mass == pytest.approx(structure.mass, rel=1e-15)
