@@ -111,7 +111,8 @@ def plain_scipy_rocking(height, width, depth, density, p_r, t_o, decay, duration
         if k.any():
             th_s[k] = sol.sol(t_eval[k])[0]
         if math.isnan(first_peak) and t >= t_o and sol.y[1, 0] * sol.y[1, -1] < 0.0:
-            first_peak = float(sol.sol(brentq(lambda x: sol.sol(x)[1], sol.t[0], sol.t[-1], xtol=1e-14))[0])
+            dense = sol.sol
+            first_peak = float(dense(brentq(lambda x, dense=dense: dense(x)[1], sol.t[0], sol.t[-1], xtol=1e-14))[0])
         t, y = float(sol.t[-1]), [float(sol.y[0, -1]), float(sol.y[1, -1])]
         if sol.t_events[1].size:  # past the tipping point: overturned, stop there
             tipped = True
@@ -139,7 +140,7 @@ def bench_plain(n: int, repeat: int, duration: float = 5.0) -> dict:
     bp = blast_parameters(W, 2.0, blast_model="masi2021")
     P, to, d = bp.reflected_pressure, bp.positive_duration, bp.friedlander_decay
     pulses = [Friedlander(P[k], to[k], d[k]) for k in range(n)]
-    t = np.linspace(0.0, duration, int(round(duration / 0.01)) + 1)
+    t = np.linspace(0.0, duration, round(duration / 0.01) + 1)
     solver = RockingSolver(rtol=1e-10, atol=1e-12, threads=1)
     solver.simulate_batch(blk, pulses[:2], duration, t, stop_at_overturn=True)  # compile or load the cache
     load_before = os.getloadavg()

@@ -131,7 +131,7 @@ def bench_outcomes(n_cases: int, study_rate: float, kernel_rate: float) -> dict:
     """The sweep outcome mode over a charge (20-200 kg, geometric) x stand-off (1.5-6 m) grid of
     about ``n_cases`` cases (paper block, masi2021, lambda = 1/200: a design per case; the
     cases outside the fits are marked invalid), in this process and on 1 and 2 local workers."""
-    side = max(2, int(round(math.sqrt(n_cases))))
+    side = max(2, round(math.sqrt(n_cases)))
     spec = planar_spec({"charge_kg": np.geomspace(20, 200, side), "standoff_m": np.linspace(1.5, 6.0, side)},
                        outcomes=True)
     timed_sweep(planar_spec({"charge_kg": [40.0, 60.0]}, outcomes=True), workers=0)  # warm up

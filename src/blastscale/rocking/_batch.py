@@ -22,7 +22,7 @@ import numpy as np
 from .._threads import map_threads, resolve_threads
 from . import _kernel as K
 
-__all__ = ["solve_batch", "MIN_CASES_PER_THREAD", "GROUPS_PER_THREAD"]
+__all__ = ["GROUPS_PER_THREAD", "MIN_CASES_PER_THREAD", "solve_batch"]
 
 #: Fewest cases per thread worth a thread (below: one call in the calling thread).
 MIN_CASES_PER_THREAD = 16

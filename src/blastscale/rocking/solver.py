@@ -28,14 +28,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional, Sequence
+from typing import Sequence
 
 import numpy as np
 
+from .._threads import resolve_threads
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
 from ..blast.pulses import Pulse
 from ..structures.block import RectangularBlock
-from .._threads import resolve_threads
 from . import _kernel as K
 from ._batch import solve_batch
 from .encoding import PAR_SIZE, encode_pulse
@@ -100,7 +100,7 @@ class RockingSolver:
     atol: float = 1e-12
     rest_velocity: float = 1e-8
     max_steps: int = 20_000_000
-    threads: Optional[int] = None
+    threads: int | None = None
 
     def __post_init__(self):
         check_range("rtol", self.rtol, 1e-14, 1e-2)

@@ -15,6 +15,12 @@ shared with the planar batch kernels; this module re-exports it for the 3D calle
 
 from __future__ import annotations
 
-from .._threads import THREADS_ENV, available_cores, default_threads, map_threads, resolve_threads
+from .._threads import (
+    THREADS_ENV,
+    available_cores,
+    default_threads,
+    map_threads,
+    resolve_threads,
+)
 
-__all__ = ["THREADS_ENV", "available_cores", "default_threads", "resolve_threads", "map_threads"]
+__all__ = ["THREADS_ENV", "available_cores", "default_threads", "map_threads", "resolve_threads"]

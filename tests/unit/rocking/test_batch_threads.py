@@ -13,8 +13,7 @@ import pytest
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.blast import Tabulated, blast_parameters
-from blastscale.rocking import RockingSolver, RockingSystem, first_swing
-from blastscale.rocking import _batch
+from blastscale.rocking import RockingSolver, RockingSystem, _batch, first_swing
 from blastscale.structures.block import RectangularBlock
 
 BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))  # the paper's block
