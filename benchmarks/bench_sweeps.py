@@ -17,6 +17,12 @@
 3. **3D cases per minute**: ``run_sweep`` of the 3D engine (paper block, short duration).
 4. **1 vs 2 workers**: the same planar sweep on a ``LocalCluster`` of 1 and of 2 worker
    processes (wall time including the cluster start, and the speed-up).
+5. **Outcome mode on threads** (``outcome``): the outcome mode's evaluation of ``--outcome-thread-cases``
+   cases (charge x stand-off grid, ``planar_outcomes`` in this process, no store) with
+   ``simulation.threads`` 1 and 2: wall and CPU seconds (best of ``--repeat``), ``threads_2.speedup``
+   (1 thread / 2 threads, wall) and ``threads_2.bitwise_equal`` (every output array, NaN where
+   invalid). ``--outcome-threads-only`` runs this section alone (with the load average: the speed-up
+   needs two idle cores).
 
 Usage: ``python benchmarks/bench_sweeps.py --json`` prints one JSON object.
 """
@@ -125,7 +131,7 @@ def bench_outcomes(n_cases: int, study_rate: float, kernel_rate: float) -> dict:
     """The sweep outcome mode over a charge (20-200 kg, geometric) x stand-off (1.5-6 m) grid of
     about ``n_cases`` cases (paper block, masi2021, lambda = 1/200: a design per case; the
     cases outside the fits are marked invalid), in this process and on 1 and 2 local workers."""
-    side = max(2, int(round(math.sqrt(n_cases))))
+    side = max(2, round(math.sqrt(n_cases)))
     spec = planar_spec({"charge_kg": np.geomspace(20, 200, side), "standoff_m": np.linspace(1.5, 6.0, side)},
                        outcomes=True)
     timed_sweep(planar_spec({"charge_kg": [40.0, 60.0]}, outcomes=True), workers=0)  # warm up
@@ -141,6 +147,38 @@ def bench_outcomes(n_cases: int, study_rate: float, kernel_rate: float) -> dict:
         "target_cases_per_minute": 1e6,
     })
     return out
+
+
+def bench_outcome_threads(n_cases: int, repeat: int) -> dict:
+    """The outcome mode's evaluation (``planar_outcomes``: design, pulse phases on the compiled kernel,
+    first swings) of one chunk of about ``n_cases`` cases in this process, on 1 and 2 threads."""
+    from blastscale.sweeps.outcomes import planar_outcomes
+
+    side = max(2, int(round(math.sqrt(n_cases))))
+    grid = {"charge_kg": np.geomspace(20, 200, side), "standoff_m": np.linspace(1.5, 6.0, side)}
+    out, vals = {"cases": side * side, "load_average_before": os.getloadavg()}, {}
+    for k in (1, 2):
+        spec = outcome_spec(grid, k)
+        planar_outcomes(spec, 0, min(64, spec.n_cases))  # warm (compiled kernel, blast fits)
+        best, cpu = math.inf, math.inf
+        for _ in range(repeat):
+            c0, t0 = time.process_time(), time.perf_counter()
+            vals[k] = planar_outcomes(spec, 0, spec.n_cases)
+            best, cpu = min(best, time.perf_counter() - t0), min(cpu, time.process_time() - c0)
+        out[f"threads_{k}"] = {"wall_s": best, "cpu_s": cpu, "cases_per_minute": spec.n_cases / best * 60.0}
+    out["threads_2"]["speedup"] = out["threads_1"]["wall_s"] / out["threads_2"]["wall_s"]
+    out["threads_2"]["bitwise_equal"] = all(np.array_equal(vals[1][key], vals[2][key], equal_nan=True) for key in vals[1])
+    out["load_average_after"] = os.getloadavg()
+    return out
+
+
+def outcome_spec(grid: dict, threads: int):
+    """The outcome-mode spec of the paper's block over ``grid`` with ``simulation.threads = threads``."""
+    from blastscale.scenario import Scenario
+    from blastscale.sweeps import SweepSpec
+
+    base = Scenario.default().with_values({"engine": "planar", "critical_charge": False, "threads": threads})
+    return SweepSpec.build(base, grid, outcomes=True)
 
 
 def bench_kernel_only(n: int, duration: float = 5.0) -> dict:
@@ -194,8 +232,19 @@ def main(argv=None) -> int:
     ap.add_argument("--cases3d", type=int, default=4)
     ap.add_argument("--duration3d", type=float, default=1.0, help="3D simulated time per case [s]")
     ap.add_argument("--outcome-cases", type=int, default=1_000_000, help="cases of the outcome-mode sweep")
+    ap.add_argument("--outcome-thread-cases", type=int, default=40_000, help="cases of the outcome mode on 1 and 2 threads")
+    ap.add_argument("--repeat", type=int, default=3, help="repetitions of the thread comparison (best kept)")
+    ap.add_argument("--outcome-threads-only", action="store_true", help="run the outcome-mode thread comparison alone")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args(argv)
+    if a.outcome_threads_only:
+        out = {"outcome": bench_outcome_threads(a.outcome_thread_cases, a.repeat),
+               "machine": {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform()}}
+        o = out["outcome"]
+        print(json.dumps(out, indent=2) if a.json else
+              f"outcome mode, {o['cases']} cases: 2 threads x{o['threads_2']['speedup']:.3g} over 1, bitwise equal "
+              f"{o['threads_2']['bitwise_equal']} (load average {o['load_average_before']})")
+        return 0
     out = {
         "capacity": bench_capacity(a.standoffs, a.bisect),
         "planar": bench_planar(a.side),
@@ -204,6 +253,7 @@ def main(argv=None) -> int:
         "workers": bench_workers(a.side),
     }
     p = out["planar"]
+    out["outcome"] = bench_outcome_threads(a.outcome_thread_cases, a.repeat)
     out["outcomes"] = bench_outcomes(a.outcome_cases, p["full_study_scalars_design_per_case"]["cases_per_minute"],
                                      p["kernel_only_prototype_simulations"]["cases_per_minute"])
     out["machine"] = {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform(),

@@ -118,9 +118,11 @@ DURATION_3D = typer.Option(None, "--duration", help="Simulated time after the sh
 FRICTION_3D = typer.Option(None, "--friction", help="Coulomb friction coefficient mu \\[-] at every contact (default "
                                                     f"{scenario_default('block', 'friction'):g} = tan 35 deg, the "
                                                     "paper's).")
-THREADS = typer.Option(None, "--threads", min=1, help="3D runs in flight at once (ensemble members, the 3D cases of a "
-                                                     "sweep chunk; default: the cores this process may use, divided "
-                                                     "by the local Dask workers). Results do not depend on it.")
+THREADS = typer.Option(None, "--threads", min=1, help="Threads of one process: 3D runs in flight at once "
+                                                     "(ensemble members, the 3D cases of a sweep chunk), planar "
+                                                     "batches (outcome mode, fragility) split over them (default: "
+                                                     "the cores this process may use, divided by the local Dask "
+                                                     "workers). Results do not depend on it.")
 RECORD_EVERY = typer.Option(None, "--record-every", help="Keep one state every N steps (default: one state per "
                                                          "millisecond of the 10 m reference structure, 5 steps for a "
                                                          "block and 4 for a drum stack, at any size).")

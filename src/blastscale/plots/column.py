@@ -12,6 +12,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 from .sim3d import axes_or_new, drum_outline, finish_side_view, snapshot_times
+from .thinning import minmax_thin
 
 __all__ = [
     "POINT_QUANTITIES",
@@ -72,10 +73,10 @@ def plot_point_histories(prototype, model=None, quantity: str = "point_displacem
     colours = _colours(len(points), cmap)
     for j, p in enumerate(points):
         v = prototype[quantity].sel(point=p, component=component)
-        ax.plot(prototype["time"].values, k * v.values, "-", color=colours[j], lw=1.2, label=p)
-        if model is not None:
+        ax.plot(*minmax_thin(prototype["time"].values, k * v.values), "-", color=colours[j], lw=1.2, label=p)
+        if model is not None:  # (thinned to each pixel's extremes: plots.thinning)
             vm = model[quantity].sel(point=p, component=component)
-            ax.plot(model["time"].values, k * vm.values, "--", color=colours[j], lw=1.2)
+            ax.plot(*minmax_thin(model["time"].values, k * vm.values), "--", color=colours[j], lw=1.2)
     if model is not None:  # one legend entry per point, and the two line styles
         ax.plot([], [], "-", color="0.4", label="prototype")
         ax.plot([], [], "--", color="0.4", label="model (up-scaled)")

@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite
+from .thinning import minmax_thin
 
 __all__ = [
     "HISTORY_QUANTITIES",
@@ -105,7 +106,7 @@ def plot_history(results, quantity: str = "rotation_y", ax=None, labels=None, st
     ax = axes_or_new(ax)
     label, k = HISTORY_QUANTITIES[quantity]
     for j, (name, ds) in enumerate(_as_dict(results, labels).items()):
-        ax.plot(ds["time"].values, k * ds[quantity].values[:, 0], styles[j % len(styles)], label=name)
+        ax.plot(*minmax_thin(ds["time"].values, k * ds[quantity].values[:, 0]), styles[j % len(styles)], label=name)
     ax.set_xlabel("time after arrival [s]")
     ax.set_ylabel(label)
     ax.grid(True, alpha=0.3)

@@ -60,7 +60,7 @@ _P = np.array(
 )
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rhs(tau, th, w, s, alpha, kind, par, tab_t, tab_f):
     """Right-hand side ``(dtheta/dtau, dw/dtau)`` [-] of the rocking equation (module docstring)
     in the mode ``s`` (+-1) of a body of slenderness ``alpha`` [rad] under the encoded pulse."""

@@ -24,12 +24,15 @@ Pulse codes: 0 no pressure (impulsive loads enter as an initial velocity), 1 Fri
 [dimensionless time], ``tab_f`` [load ratio], linear in between); named in :mod:`._load`
 (``NO_PULSE`` ... ``TABULATED``) and :data:`blastscale.rocking.encoding.PULSE_CODES`.
 
-Modules: this one holds the driver (:func:`solve_case`, :func:`solve_batch`) and re-exports the
-summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load ``f(tau)``; :mod:`._dopri`
-the Dormand-Prince step, dense output, roots and step-size control; :mod:`._events` the
-impact, peak, tipping and lying-down events and the recording into the output buffers.
-numba's cache (``cache=True``) checks only the source file of the cached function itself: after
-editing ``_load``, ``_dopri`` or ``_events``, clear ``rocking/__pycache__`` (or touch this file)
+Modules: this one holds the driver (:func:`solve_case`, :func:`solve_into`; both release the
+GIL) and re-exports the summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load
+``f(tau)``; :mod:`._dopri` the Dormand-Prince step, dense output, roots and step-size control;
+:mod:`._events` the impact, peak, tipping and lying-down events and the recording into the output
+buffers; :mod:`._batch` splits a batch over threads. The right-hand side and the load
+(``rhs``, ``load_ratio``) are inlined into the step by numba (``inline="always"``: no array
+arguments passed per stage; 1.6x faster per step, bitwise the same results). numba's cache (``cache=True``) checks only
+the source file of the cached function itself: after editing ``_load``, ``_dopri`` or ``_events``,
+clear ``rocking/__pycache__`` (or touch this file)
 so that :func:`solve_case` is compiled again.
 
 Not a public module: use :class:`blastscale.rocking.RockingSolver`.
@@ -81,7 +84,7 @@ from ._load import lift_time, next_breakpoint, pull_end, pulse_end, tail_lift_ti
 # the summary layout is read as _kernel.S_* by the solver, the capacity modules and analysis.sweeps
 __all__ = [
     "solve_case",
-    "solve_batch",
+    "solve_into",
     "N_SUMMARY",
     "S_STATUS",
     "S_OVERTURNED",
@@ -100,7 +103,7 @@ __all__ = [
 ]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def solve_case(
     alpha,
     e,
@@ -323,8 +326,9 @@ def solve_case(
     return summ, th_eval, w_eval, hist[:nh].copy(), imp[:nimp].copy(), pk[:npk].copy()
 
 
-@njit(cache=True)
-def solve_batch(
+@njit(cache=True, nogil=True)
+def solve_into(
+    idx,
     alpha,
     e,
     th0,
@@ -343,17 +347,19 @@ def solve_batch(
     stop_at_overturn,
     max_steps,
     record,
+    summ,
+    th_out,
+    w_out,
 ):
-    """Loop :func:`solve_case` over n cases (arrays of length n; ``par`` (n, PAR_SIZE);
-    tabulated pulses concatenated in ``tab_t``/``tab_f`` with case i at
-    ``tab_off[i]:tab_off[i+1]``; ``tau_eval`` (n, m)). Returns summaries (n, N_SUMMARY),
-    theta (n, m) and w (n, m)."""
-    n = alpha.size
+    """Loop :func:`solve_case` over the cases ``idx`` (int64 indices into arrays of length n;
+    ``par`` (n, PAR_SIZE); tabulated pulses concatenated in ``tab_t``/``tab_f`` with case i at
+    ``tab_off[i]:tab_off[i+1]``; ``tau_eval`` (n, m)) and write row i of the summaries ``summ``
+    (n, N_SUMMARY), theta ``th_out`` (n, m) and w ``w_out`` (n, m). Releases the GIL: calls on
+    disjoint ``idx`` may run in parallel threads (:mod:`._batch`); each case is the same sequence
+    of operations whichever thread runs it."""
     m = tau_eval.shape[1]
-    summ = np.empty((n, N_SUMMARY))
-    th_out = np.empty((n, m))
-    w_out = np.empty((n, m))
-    for i in range(n):
+    for j in range(idx.size):
+        i = idx[j]
         tt = tab_t[tab_off[i] : tab_off[i + 1]].copy()
         tf = tab_f[tab_off[i] : tab_off[i + 1]].copy()
         te = tau_eval[i].copy()
@@ -367,4 +373,3 @@ def solve_batch(
         for k in range(m):
             th_out[i, k] = r[1][k]
             w_out[i, k] = r[2][k]
-    return summ, th_out, w_out

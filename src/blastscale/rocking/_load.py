@@ -41,7 +41,7 @@ TABULATED = 3
 PAR_SIZE = 6
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def tail_ratio(tau, par):
     """Load ratio [-] of the negative phase at ``tau`` [-] (0 outside it, and without one)."""
     if par[5] <= 0.0:
@@ -52,7 +52,7 @@ def tail_ratio(tau, par):
     return -par[3] * 6.75 * x * (1.0 - x) * (1.0 - x)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def load_ratio(tau, kind, par, tab_t, tab_f):
     """Load-to-weight ratio f(tau) [-] of an encoded pulse, negative phase included."""
     f = base_ratio(tau, kind, par, tab_t, tab_f)
@@ -61,7 +61,7 @@ def load_ratio(tau, kind, par, tab_t, tab_f):
     return f
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def base_ratio(tau, kind, par, tab_t, tab_f):
     """Load-to-weight ratio f(tau) [-] of an encoded pulse's positive part (module docstring, paper Eqs. 1, 3).
 

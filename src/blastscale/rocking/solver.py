@@ -32,10 +32,12 @@ from typing import Sequence
 
 import numpy as np
 
+from .._threads import resolve_threads
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
 from ..blast.pulses import Pulse
 from ..structures.block import RectangularBlock
 from . import _kernel as K
+from ._batch import solve_batch
 from .encoding import PAR_SIZE, encode_pulse
 from .results import RockingBatchResult, RockingResult, _none_if_nan
 from .system import RockingSystem, as_rocking_system
@@ -88,18 +90,25 @@ class RockingSolver:
         [-] (default 1e-8).
     max_steps : int
         Step budget per case (default 20 million); exceeding it raises an error.
+    threads : int, optional
+        Threads over which a batch's cases are split (:meth:`simulate_batch`, the pulse phases of
+        :mod:`.swing`), >= 1; the results are bitwise those of one thread. None: the cores this
+        process may use, or its share on a local Dask worker (:mod:`blastscale._threads`).
     """
 
     rtol: float = 1e-10
     atol: float = 1e-12
     rest_velocity: float = 1e-8
     max_steps: int = 20_000_000
+    threads: int | None = None
 
     def __post_init__(self):
         check_range("rtol", self.rtol, 1e-14, 1e-2)
         check_range("atol", self.atol, 1e-16, 1e-2)
         check_range("rest_velocity", self.rest_velocity, 0.0, 1e-2)
         check_count("max_steps", self.max_steps, 1)
+        if self.threads is not None:
+            resolve_threads(self.threads)
 
     # ------------------------------------------------------------------ one case
     def simulate(
@@ -257,12 +266,13 @@ class RockingSolver:
         tab_t = np.concatenate(tabs_t) if off[-1] else np.zeros(0)
         tab_f = np.concatenate(tabs_f) if off[-1] else np.zeros(0)
         mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
-        summ, th, w = K.solve_batch(
+        summ, th, w = solve_batch(
             alpha, e, th0, w0, dur * pvec, kinds, par, tab_t, tab_f, off,
             np.ascontiguousarray(tev[None, :] * pvec[:, None]),
             float(self.rtol), float(self.atol), float(self.rest_velocity), mi, bool(stop_at_overturn),
             int(self.max_steps), False,  # record=False passed from Python (a plain bool): a literal
             # False inside the kernel would compile a second specialisation of solve_case (~3 s)
+            self.threads,
         )
         bad = summ[:, K.S_STATUS] != 0
         if np.any(bad):

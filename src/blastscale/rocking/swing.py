@@ -26,7 +26,7 @@ swing:
   solver stops there; gravity and the non-negative pressure both push it on).
 
 The pulse phase alone is integrated, with the compiled rocking kernel
-(:func:`blastscale.rocking._kernel.solve_batch`, impacts included, vectorised over cases):
+(:func:`blastscale.rocking._batch.solve_batch`, impacts included, over cases and threads):
 a pulse lasts ``p t_o ~ 1e-3..1e-1`` in dimensionless time against ``~ 1..10`` for the first
 swing, so one evaluation costs a few tens of steps instead of a full simulation. The signed
 *first-swing margin* ``mu`` (``> 0``: overturns) is
@@ -68,6 +68,7 @@ from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters_unchecked
 from ..blast.pulses import Pulse
 from . import _kernel as K
+from ._batch import solve_batch
 from .encoding import encode_blast_batch, encode_pulse, kernel_pulse_end
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import RockingSystem, as_rocking_system
@@ -201,11 +202,12 @@ def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab
     tab_f = np.zeros(0) if tab_f is None else tab_f
     off = np.zeros(n + 1, dtype=np.int64) if off is None else off
     tau_end = kernel_pulse_end(kind, par, tab_t, off)
-    summ, _, _ = K.solve_batch(
+    summ, _, _ = solve_batch(
         np.ascontiguousarray(alpha, dtype=float), np.ascontiguousarray(e, dtype=float), np.zeros(n),
         np.ascontiguousarray(w0, dtype=float), np.ascontiguousarray(tau_end), kind.astype(np.int64),
         np.ascontiguousarray(par), tab_t, tab_f, off, np.empty((n, 0)),
         float(solver.rtol), float(solver.atol), float(solver.rest_velocity), -1, True, int(solver.max_steps), False,
+        solver.threads,
     )
     bad = summ[:, K.S_STATUS] != 0
     if np.any(bad):

@@ -347,8 +347,9 @@ class SimulationSpec(BaseModel):
                                   "perturbed loads, for chaotic structures (circular columns); 0: none [-]")
     ensemble_perturbation: float = Field(1e-6, gt=0, le=0.1, description="Largest relative load change of an "
                                          "ensemble member [-]")
-    threads: Optional[int] = Field(None, ge=1, le=4096, description="3D runs in flight at once (ensemble members, "
-                                   "the 3D cases of a sweep chunk) [-] (default: the cores this process may use, "
+    threads: Optional[int] = Field(None, ge=1, le=4096, description="Threads of one process: 3D runs in flight "
+                                   "at once (ensemble members, the 3D cases of a sweep chunk), planar batches (outcome "
+                                   "mode, fragility) split over them [-] (default: the cores this process may use, "
                                    "divided by the local Dask workers); results do not depend on it")
     contact: ContactSpec = Field(default_factory=ContactSpec, description="3D contact settings")
 

@@ -8,102 +8,19 @@ stepping of the others. Each run is the same sequence of floating-point operatio
 loop (no state is shared; MuJoCo's own thread pool is not used, so no reduction order changes): the
 members' histories are bitwise those of the serial run (tests/integration/test_parallel_members.py).
 
-One knob, ``threads``: the runs that one process may have in flight. Default
-(:func:`default_threads`): the cores this process may use (``os.sched_getaffinity``) divided by
-the local Dask workers sharing them (a local cluster gives each worker ``cores // workers`` through
-the environment variable :data:`THREADS_ENV`); a run started inside a parallel run gets 1 (no
-nested pools).
+The mechanism (one knob, ``threads``; its default the process's share of the cores, through
+:data:`THREADS_ENV` on local Dask workers; 1 inside a parallel run) lives in :mod:`blastscale._threads`,
+shared with the planar batch kernels; this module re-exports it for the 3D callers.
 """
 
 from __future__ import annotations
 
-import os
-import threading
-from concurrent.futures import ThreadPoolExecutor, as_completed
-from typing import Callable, Optional
+from .._threads import (
+    THREADS_ENV,
+    available_cores,
+    default_threads,
+    map_threads,
+    resolve_threads,
+)
 
-from .._validate import BlastscaleInputError
-
-__all__ = ["THREADS_ENV", "available_cores", "default_threads", "resolve_threads", "map_threads"]
-
-#: Environment variable holding a process's default number of threads (set for local Dask workers).
-THREADS_ENV = "BLASTSCALE_THREADS"
-
-_local = threading.local()
-
-
-def available_cores() -> int:
-    """CPU cores this process may run on (its affinity mask where the OS has one)."""
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # pragma: no cover - macOS, Windows
-        return max(1, os.cpu_count() or 1)
-
-
-def default_threads() -> int:
-    """Threads for independent runs: 1 inside a parallel run; else :data:`THREADS_ENV` when set (a
-    local Dask worker: cores // workers); else every available core."""
-    if getattr(_local, "inside", False):
-        return 1
-    env = os.environ.get(THREADS_ENV, "").strip()
-    if env:
-        try:
-            return max(1, int(env))
-        except ValueError:
-            pass
-    return available_cores()
-
-
-def resolve_threads(threads: Optional[int]) -> int:
-    """``threads`` checked (a whole number >= 1), or :func:`default_threads` when None."""
-    if threads is None:
-        return default_threads()
-    if isinstance(threads, bool) or not float(threads).is_integer() or threads < 1:
-        raise BlastscaleInputError(f"threads = {threads!r} is out of range: must be a whole number >= 1")
-    return int(threads)
-
-
-def _inside(fn):
-    def run(x):
-        _local.inside = True
-        try:
-            return fn(x)
-        finally:
-            _local.inside = False
-    return run
-
-
-def map_threads(fn: Callable, items, threads: Optional[int] = None, done: Optional[Callable[[int], None]] = None) -> list:
-    """``[fn(x) for x in items]``, on up to ``threads`` threads (default :func:`default_threads`).
-
-    Parameters
-    ----------
-    fn : callable
-        One independent run (it must not share mutable state with the others).
-    items : iterable
-        Its arguments.
-    threads : int, optional
-        Threads [-], >= 1; 1 runs in this thread, in order.
-    done : callable, optional
-        ``done(k)`` in the calling thread after each completed run (k runs done so far).
-
-    Returns
-    -------
-    list
-        The results in the order of ``items``; the first exception of a run is raised.
-    """
-    items = list(items)
-    n = min(resolve_threads(threads), len(items))
-    done = done or (lambda k: None)
-    if n <= 1:
-        out = []
-        for x in items:
-            out.append(fn(x))
-            done(len(out))
-        return out
-    with ThreadPoolExecutor(max_workers=n, thread_name_prefix="blastscale") as ex:
-        futs = [ex.submit(_inside(fn), x) for x in items]
-        for k, f in enumerate(as_completed(futs), start=1):
-            f.result()
-            done(k)
-        return [f.result() for f in futs]
+__all__ = ["THREADS_ENV", "available_cores", "default_threads", "map_threads", "resolve_threads"]

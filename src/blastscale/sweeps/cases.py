@@ -37,7 +37,9 @@ def study_scalars(scenario) -> dict:
 def _chunk_rows(spec: SweepSpec, start: int, stop: int) -> list:
     """One Study per case; a chunk's 3D cases in parallel native threads (:mod:`blastscale.sim3d.threads`:
     the scenario's ``simulation.threads``, default the process's share of the cores), planar ones in
-    order (they hold the GIL). Warnings are silenced once, here (``catch_warnings`` is process-wide)."""
+    order (a planar Study is mostly Python, which holds the GIL; the outcome mode splits its kernel calls
+    over the threads instead, :mod:`blastscale.rocking._batch`). Warnings are silenced once, here
+    (``catch_warnings`` is process-wide)."""
     import warnings
 
     from ..sim3d.threads import map_threads

@@ -189,7 +189,7 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     The scenario must be a block (planar rocking). Fields that change only the load (charge,
     stand-off) are vectorised over one body; any other field builds the body of each case.
     """
-    from ..rocking import overturns
+    from ..rocking import RockingSolver, overturns
     from ..rocking.system import RockingSystem
     from ..structures import from_spec
 
@@ -207,6 +207,7 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
         return RockingSystem.from_block(from_spec(sc.structure), sim.gravity_m_s2, sim.restitution)
 
     one = None if per_case_body else system_of(base)
+    solver = RockingSolver(threads=base.simulation.threads)  # the cases over this process's cores
     bl = base.blast
     for a in range(0, n, block_size):
         b = min(n, a + block_size)
@@ -214,7 +215,8 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
         W, R = (vals[p].astype(float) if p in vals else np.full(b - a, float(v))
                 for p, v in zip(_LOAD_FIELDS, (bl.charge_kg, bl.standoff_m)))
         systems = [system_of(spec.scenario(k)) for k in range(a, b)] if per_case_body else one
-        out[a:b] = overturns(systems, W, R, pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, extrapolate=bl.extrapolate)
+        out[a:b] = overturns(systems, W, R, pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, extrapolate=bl.extrapolate,
+                             solver=solver)
     return out.reshape(spec.shape)
 
 

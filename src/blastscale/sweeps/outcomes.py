@@ -55,7 +55,7 @@ def _outcome_group(sc, W, R, e) -> dict:
     design (:func:`~blastscale.similitude.design_model` over the arrays), then the first swing of
     prototype and specimen."""
     from .._validate import BlastscaleInputError
-    from ..rocking import first_swing_blast
+    from ..rocking import RockingSolver, first_swing_blast
     from ..rocking.system import RockingSystem, housner_restitution
     from ..similitude import design_model
     from ..structures import from_spec
@@ -80,11 +80,13 @@ def _outcome_group(sc, W, R, e) -> dict:
     proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
     specimen = RockingSystem.from_block(structure.scaled(d.factors), sim.gravity_m_s2 * d.gravity_ratio)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
+    solver = RockingSolver(threads=sim.threads)  # the cases over the worker's cores (bitwise the same)
     fp = first_swing_blast(proto.alpha, e, proto.frequency_parameter, proto.load_ratio_per_pascal,
-                           d.prototype.select(ok), bl.pulse_shape, load_model=lm, extrapolate=bl.extrapolate)
+                           d.prototype.select(ok), bl.pulse_shape, load_model=lm, extrapolate=bl.extrapolate,
+                           solver=solver)
     fm = first_swing_blast(specimen.alpha, e, specimen.frequency_parameter, specimen.load_ratio_per_pascal,
                            d.specimen.select(ok), bl.pulse_shape, load_model=lm.scaled(d.scale),
-                           extrapolate=bl.extrapolate)
+                           extrapolate=bl.extrapolate, solver=solver)
     out["planar.prototype.collapsed"][ok] = fp.collapsed
     out["planar.prototype.max_rotation_rad"][ok] = fp.max_rotation
     out["planar.model.collapsed"][ok] = fm.collapsed
