@@ -296,8 +296,7 @@ def specimen_scenario(scenario, ev: Evaluated):
     data["structure"] = {"kind": "block", "height_m": spec.height, "width_m": spec.width, "depth_m": spec.depth,
                          "density_kg_m3": spec.density, "friction": sc.structure.friction}
     data["blast"] = {**data["blast"], "charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
-    data["simulation"] = {**data["simulation"], "duration_s": sc.simulation.duration_s * float(d.factors.time),
-                          "gravity_m_s2": sc.simulation.gravity_m_s2 * d.gravity_ratio}
+    data["simulation"] = {**data["simulation"], "duration_s": d.specimen_duration, "gravity_m_s2": d.specimen_gravity}
     data["simulation"].pop("timestep_s", None)
     data["simulation"].pop("contact", None)
     return type(sc).from_dict(data, source="plan")

@@ -104,7 +104,7 @@ def _rel(a, b) -> float:
 
 
 def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=None, specimen_charge_height=None,
-                  extrapolate: bool = False) -> tuple:
+                  extrapolate: bool = False, specimen_load_model=None) -> tuple:
     """Clearing, negative phase and burst type of a designed experiment, for both systems.
 
     Parameters
@@ -123,6 +123,8 @@ def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=No
         neither burst at the specimen's face (:func:`blastscale.blast.bursts.lab_burst`).
     extrapolate : bool
         Let the negative-phase calibration run outside its range.
+    specimen_load_model : LoadModel, optional
+        The specimen's load model (the design's, already scaled); default ``load_model.scaled(scale)``.
 
     Returns
     -------
@@ -136,7 +138,7 @@ def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=No
 
     lam = check_positive_scalar("scale", scale)
     lm_p = load_model or PAPER_LOAD
-    lm_s = lm_p.scaled(lam)
+    lm_s = lm_p.scaled(lam) if specimen_load_model is None else specimen_load_model
     out: dict = {"load_model": {"prototype": load_model_record(prototype.blast_model, prototype.burst, lm_p),
                                 "model": load_model_record(specimen.blast_model, specimen.burst, lm_s)}}
     notes: list = []
