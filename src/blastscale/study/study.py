@@ -163,9 +163,9 @@ class Study:
         if self._checked is None:
             structure = self.structure()
             engines, skipped = self.engines(structure)
-            check_study_budget(self.scenario, structure)
             sc = self.scenario
             contact = contact_settings(sc, structure) if any(e.name != "planar" for e in engines) else None
+            check_study_budget(sc, structure, contact)
             d = self.design(structure, contact)
             if sc.blast.gravity_only:  # no charge: the structure under gravity alone
                 blast = None
