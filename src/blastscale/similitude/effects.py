@@ -200,13 +200,14 @@ def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=No
     return out, tuple(notes)
 
 
-def clearing_corrected_charge(design, load_model, *, extrapolate: bool = False) -> dict:
+def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = False) -> dict:
     """The specimen charge (at the design's stand-off lambda R) whose *cleared* impulse is the
     prototype's cleared impulse times the required impulse factor gamma sqrt(varsigma lambda^3).
 
     The general law matches the reflected impulse of an unbounded face; on finite faces the two
     systems clear differently (:func:`blast_effects`). Bisection in ln W over the specimen fit's
-    range of Z (the cleared impulse grows with the charge).
+    range of Z (the cleared impulse grows with the charge). ``load_model``: the prototype's, with
+    clearing and its face (default: the design's, whose specimen load model is then used as carried).
 
     Returns
     -------
@@ -218,10 +219,11 @@ def clearing_corrected_charge(design, load_model, *, extrapolate: bool = False) 
     from ..blast.load_model import front_face_clearing
     from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
 
+    load_model = design.load_model if load_model is None else load_model  # default: the design's
     if load_model is None or not load_model.clearing:
         raise BlastscaleInputError("clearing corrected charge needs a load model with clearing (and its face)")
     lam = float(design.scale)
-    lm_s = load_model.scaled(lam)
+    lm_s = design.specimen_load_model if load_model is design.load_model else load_model.scaled(lam)  # the design's
     target = float(front_face_clearing(design.prototype, load_model).impulse) * float(design.factors.impulse)
     ms = get_blast_model(design.specimen.blast_model)
     R = float(design.specimen_standoff_m)
