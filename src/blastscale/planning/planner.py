@@ -257,7 +257,7 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     def odds_of(e, n, critical):
         return planar_odds(e.specimen, charge_kg=e.design.specimen_charge_kg, standoff_m=e.design.specimen_standoff_m,
                            prototype_collapsed=proto["collapsed"], explosive_fraction=1.0 - e.charge.initiator_fraction,
-                           gravity=sim.gravity_m_s2 * e.design.gravity_ratio, restitution=sim.restitution,
+                           gravity=e.design.specimen_gravity, restitution=sim.restitution,
                            pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, tolerances=tol,
                            samples=n, seed=lab.seed, target=lab.first_peak_target, critical=critical)
 
