@@ -145,7 +145,8 @@ def _count_method(monkeypatch, cls, name, counter):
 def test_the_specimen_system_is_scaled_once_by_the_design(monkeypatch):
     """The paper's block with clearing and the negative phase, both engines (planar and 3D), 0.05 s:
 
-    * the specimen structure is built once per Study, by the design (``structure.scaled(factors)``);
+    * the prototype structure is built once per Study (``from_spec``, by the check) and the specimen
+      structure once, by the design (``structure.scaled(factors)``);
       the Study's result, the planar engine and the 3D engine read ``design.specimen_structure``;
     * ``LoadModel.scaled`` is called once (the specimen's load model, by the design): the planar
       engine, the blast effects and the 3D engine read ``design.specimen_load_model``;
@@ -164,8 +165,11 @@ def test_the_specimen_system_is_scaled_once_by_the_design(monkeypatch):
     from blastscale.sim3d.contact import ContactSettings
     from blastscale.structures import RectangularBlock
 
-    built, lms, contacts, derived = [], [], [], []
+    from blastscale.structures import from_spec
+
+    built, lms, contacts, derived, prototypes = [], [], [], [], []
     _count_function(monkeypatch, contact_module.default_contact, derived)
+    _count_function(monkeypatch, from_spec, prototypes)
     _count_method(monkeypatch, RectangularBlock, "scaled", built)
     _count_method(monkeypatch, LoadModel, "scaled", lms)
     _count_method(monkeypatch, ContactSettings, "scaled", contacts)
@@ -175,6 +179,7 @@ def test_the_specimen_system_is_scaled_once_by_the_design(monkeypatch):
     r = study.run()
     d = r.design
     assert r.planar is not None and r.response3d is not None
+    assert prototypes == ["blastscale.study.study"], prototypes  # the prototype built once, by the check
     specimens = [c for c in built if c[2] is d.factors]
     assert [c[0] for c in specimens] == ["blastscale.similitude.design"], built
     assert r.specimen_structure is d.specimen_structure is r.response3d.specimen_structure
