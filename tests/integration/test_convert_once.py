@@ -8,17 +8,27 @@ Counted at run time by wrapping the functions where they are looked up (every lo
 
 from __future__ import annotations
 
+import ast
 import sys
+import warnings
 from collections import Counter
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import blastscale.blast.parameters as parameters
+import blastscale.sim3d.contact as contact_module
 import blastscale.sim3d.load_methods as load_methods
 import blastscale.similitude.design as design_module
+from blastscale.analysis import compare, upscale
+from blastscale.blast.load_model import LoadModel
 from blastscale.scenario import Scenario
-from blastscale.study import Study
+from blastscale.sim3d.contact import ContactSettings
+from blastscale.similitude import factors
+from blastscale.similitude.effects import BlastSimilarityWarning
+from blastscale.structures import MultiDrumColumn, RectangularBlock, from_spec
+from blastscale.study import Study, StudyPlan
 
 
 def _wrap_everywhere(monkeypatch, original, counter):
@@ -121,7 +131,6 @@ def test_per_face_loads_take_charge_standoff_and_blast_model_from_the_design(loa
 def _count_function(monkeypatch, original, counter):
     """Replace ``original`` in every loaded blastscale module that holds it by a wrapper that appends
     its caller module to ``counter``."""
-
     def counting(*args, **kw):
         counter.append(sys._getframe(1).f_globals.get("__name__", "?"))
         return original(*args, **kw)
@@ -160,13 +169,6 @@ def test_the_specimen_system_is_scaled_once_by_the_design(monkeypatch):
     engine; and once more per sweep chunk), the contact scaled by each run of the specimen and derived
     again by each run.
     """
-    import blastscale.sim3d.contact as contact_module
-    from blastscale.blast.load_model import LoadModel
-    from blastscale.sim3d.contact import ContactSettings
-    from blastscale.structures import RectangularBlock
-
-    from blastscale.structures import from_spec
-
     built, lms, contacts, derived, prototypes = [], [], [], [], []
     _count_function(monkeypatch, contact_module.default_contact, derived)
     _count_function(monkeypatch, from_spec, prototypes)
@@ -202,9 +204,6 @@ def test_a_column_and_its_ensembles_build_one_specimen(monkeypatch):
     """Any kind: a 3-drum column on the 3D engine with 2-member ensembles (6 runs of the engine) builds
     its specimen column once and scales its contact by the design's factors once (before: once per run
     of the specimen, 3 here)."""
-    from blastscale.sim3d.contact import ContactSettings
-    from blastscale.structures import MultiDrumColumn
-
     built, contacts = [], []
     _count_method(monkeypatch, MultiDrumColumn, "scaled", built)
     _count_method(monkeypatch, ContactSettings, "scaled", contacts)
@@ -222,9 +221,6 @@ def test_a_column_and_its_ensembles_build_one_specimen(monkeypatch):
 
 def _definitions(name: str) -> list:
     """``module:line`` of every function defined as ``name`` and every module-level assignment to it in src/."""
-    import ast
-    from pathlib import Path
-
     src = Path(design_module.__file__).resolve().parents[1]
     out = []
     for path in sorted(src.rglob("*.py")):
@@ -242,9 +238,6 @@ def _definitions(name: str) -> list:
 def test_one_design_model_body_and_one_dimension_factor_in_src():
     """One ``design_model`` (no array twin, before: ``_design_arrays``), one ``dimension_factor`` and one
     ``DIMENSIONLESS`` (before: verbatim copies in analysis/compare.py and analysis/upscale.py)."""
-    from blastscale.analysis import compare, upscale
-    from blastscale.similitude import factors
-
     assert _definitions("design_model") == ["similitude/design.py:" + str(
         design_module.design_model.__code__.co_firstlineno)]
     assert _definitions("_design_arrays") == []
@@ -256,8 +249,6 @@ def test_one_design_model_body_and_one_dimension_factor_in_src():
 def _load_models():
     """Every load model a design reports (clearing, negative phase, both; a free-air specimen burst; a lab
     charge height that is neither burst), on the paper's 10 m block."""
-    from blastscale.blast.load_model import LoadModel
-
     face = {"face_width_m": 1.0, "face_height_m": 10.0}
     return {
         "paper": {},
@@ -290,11 +281,6 @@ def test_scalar_and_array_designs_give_the_same_effects_and_notes(name):
     the two cases (one body with the scalar design, before: the array path dropped ``load_model``,
     ``face`` and ``specimen_charge_height``, so the scalar design gave effects and 2 notes, the array
     design none) gives, case by case, the scalar design's effects, and every note of either case once."""
-    import warnings
-
-    from blastscale.similitude.effects import BlastSimilarityWarning
-    from blastscale.structures import RectangularBlock
-
     block = RectangularBlock(height=10.0, width=2.679491924311227, depth=1.0)
     kw = _load_models()[name]
     charges = (84.0, 50.0)
@@ -330,8 +316,6 @@ def _pick(record, i):
 
 def test_study_check_returns_a_named_plan():
     """``Study.check()`` is a named object (before: a 5-tuple read by index, ``study.check()[3]``)."""
-    from blastscale.study import StudyPlan
-
     sc = Scenario.default().with_values({"duration_s": 0.05, "engine": "planar", "critical_charge": False})
     plan = Study(sc).check()
     assert isinstance(plan, StudyPlan) and not isinstance(plan, tuple)

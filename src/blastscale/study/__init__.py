@@ -14,6 +14,6 @@ from .memory import (MEMORY_FRACTION, check_budget, check_memory, check_study_bu
 from .result import StudyResult
 from .study import Progress, Study, StudyPlan, StudyWarning
 
-__all__ = ["Study", "StudyPlan", "StudyResult", "StudyWarning", "Progress", "ENGINES", "ENSEMBLE", "Engine", "estimate_memory",
-           "MEMORY_FRACTION", "contact_settings", "check_memory", "check_budget", "check_study_budget", "estimate_seconds",
-           "format_duration"]
+__all__ = ["Study", "StudyPlan", "StudyResult", "StudyWarning", "Progress", "ENGINES", "ENSEMBLE", "Engine",
+           "estimate_memory", "MEMORY_FRACTION", "contact_settings", "check_memory", "check_budget", "check_study_budget",
+           "estimate_seconds", "format_duration"]

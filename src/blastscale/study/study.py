@@ -34,7 +34,7 @@ from typing import Any, Callable, Optional
 
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
-from ..structures import from_spec, is_block
+from ..structures import from_spec
 from .engines import ENGINES, ENSEMBLE, Context, Engine, contact_settings, critical_charge_of, load_model_of
 from .memory import check_study_budget
 from .result import StudyResult
