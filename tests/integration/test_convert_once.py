@@ -8,17 +8,27 @@ Counted at run time by wrapping the functions where they are looked up (every lo
 
 from __future__ import annotations
 
+import ast
 import sys
+import warnings
 from collections import Counter
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import blastscale.blast.parameters as parameters
+import blastscale.sim3d.contact as contact_module
 import blastscale.sim3d.load_methods as load_methods
 import blastscale.similitude.design as design_module
+from blastscale.analysis import compare, upscale
+from blastscale.blast.load_model import LoadModel
 from blastscale.scenario import Scenario
-from blastscale.study import Study
+from blastscale.sim3d.contact import ContactSettings
+from blastscale.similitude import factors
+from blastscale.similitude.effects import BlastSimilarityWarning
+from blastscale.structures import MultiDrumColumn, RectangularBlock, from_spec
+from blastscale.study import Study, StudyPlan
 
 
 def _wrap_everywhere(monkeypatch, original, counter):
@@ -113,3 +123,201 @@ def test_per_face_loads_take_charge_standoff_and_blast_model_from_the_design(loa
     assert r.response3d.settings["load_method"] == load
     # the spreads of the loads as run: three drums' faces, shock arriving over ~1 ms
     assert 1e-4 < s["arrival_spread_prototype_s"] < 1e-2 and 0 < s["arrival_spread_model_upscaled_s"] < 1e-2
+
+
+# -- one specimen, built once (issue #23) ----------------------------------------------------------------------
+
+
+def _count_function(monkeypatch, original, counter):
+    """Replace ``original`` in every loaded blastscale module that holds it by a wrapper that appends
+    its caller module to ``counter``."""
+    def counting(*args, **kw):
+        counter.append(sys._getframe(1).f_globals.get("__name__", "?"))
+        return original(*args, **kw)
+
+    for mod_name, mod in list(sys.modules.items()):
+        if mod_name.startswith("blastscale") and getattr(mod, original.__name__, None) is original:
+            monkeypatch.setattr(mod, original.__name__, counting)
+
+
+def _count_method(monkeypatch, cls, name, counter):
+    """Replace ``cls.name`` by a counting wrapper; ``counter`` receives (caller module, self, first argument)."""
+    original = getattr(cls, name)
+
+    def counting(self, *args, **kw):
+        counter.append((sys._getframe(1).f_globals.get("__name__", "?"), self, args[0] if args else None))
+        return original(self, *args, **kw)
+
+    monkeypatch.setattr(cls, name, counting)
+
+
+def test_the_specimen_system_is_scaled_once_by_the_design(monkeypatch):
+    """The paper's block with clearing and the negative phase, both engines (planar and 3D), 0.05 s:
+
+    * the prototype structure is built once per Study (``from_spec``, by the check) and the specimen
+      structure once, by the design (``structure.scaled(factors)``);
+      the Study's result, the planar engine and the 3D engine read ``design.specimen_structure``;
+    * ``LoadModel.scaled`` is called once (the specimen's load model, by the design): the planar
+      engine, the blast effects and the 3D engine read ``design.specimen_load_model``;
+    * ``ContactSettings.scaled`` by the design's factors once (the specimen's contact); the prototype's
+      contact settings resolved once (``default_contact``, by the check) and handed down: no run
+      derives them again (before: once more per run, for the soft-contact warning). The engine's own
+      normalisation into reference units (:mod:`blastscale.sim3d.reference`, another factor: 10 m
+      over the structure's height) is not the specimen's and is counted apart: at most once per run.
+
+    Before (issue #23): the specimen block 2x (design, Study), the load model 2x here (effects, planar
+    engine; and once more per sweep chunk), the contact scaled by each run of the specimen and derived
+    again by each run.
+    """
+    built, lms, contacts, derived, prototypes = [], [], [], [], []
+    _count_function(monkeypatch, contact_module.default_contact, derived)
+    _count_function(monkeypatch, from_spec, prototypes)
+    _count_method(monkeypatch, RectangularBlock, "scaled", built)
+    _count_method(monkeypatch, LoadModel, "scaled", lms)
+    _count_method(monkeypatch, ContactSettings, "scaled", contacts)
+    sc = Scenario.default().with_values({"duration_s": 0.05, "clearing": True, "negative_phase": True,
+                                         "critical_charge": False})
+    study = Study(sc)
+    r = study.run()
+    d = r.design
+    assert r.planar is not None and r.response3d is not None
+    assert prototypes == ["blastscale.study.study"], prototypes  # the prototype built once, by the check
+    specimens = [c for c in built if c[2] is d.factors]
+    assert [c[0] for c in specimens] == ["blastscale.similitude.design"], built
+    assert r.specimen_structure is d.specimen_structure is r.response3d.specimen_structure
+    assert r.planar.design.specimen_block is d.specimen_structure
+    assert [c[0] for c in lms] == ["blastscale.similitude.design"], lms
+    assert d.specimen_load_model.face_height_m == pytest.approx(d.scale * d.load_model.face_height_m, rel=1e-15)
+    by_design = [c for c in contacts if c[2] is d.factors]
+    assert [c[0] for c in by_design] == ["blastscale.similitude.design"], contacts
+    assert study.check().contact is d.contact and d.specimen_contact is not None
+    assert derived == ["blastscale.study.engines"], derived  # contact_settings, in the check
+    others = Counter(c[0] for c in contacts if c[2] is not d.factors)
+    # the one derivation scales the 10 m reference settings to the prototype once; the engine puts each run
+    # into reference units (the prototype, 10 m high, needs no scaling)
+    assert set(others) <= {"blastscale.sim3d.contact", "blastscale.sim3d.reference"}, contacts
+    assert others["blastscale.sim3d.contact"] == 1 and others["blastscale.sim3d.reference"] <= 2, contacts
+    assert d.specimen_duration == pytest.approx(0.05 * d.factors.time, rel=1e-15)
+
+
+def test_a_column_and_its_ensembles_build_one_specimen(monkeypatch):
+    """Any kind: a 3-drum column on the 3D engine with 2-member ensembles (6 runs of the engine) builds
+    its specimen column once and scales its contact by the design's factors once (before: once per run
+    of the specimen, 3 here)."""
+    built, contacts = [], []
+    _count_method(monkeypatch, MultiDrumColumn, "scaled", built)
+    _count_method(monkeypatch, ContactSettings, "scaled", contacts)
+    sc = Scenario.default().with_values({
+        "kind": "column", "drums": 3, "height_m": 3.0, "top_width_m": 1.54, "charge_kg": 250.0, "standoff_m": 10.0,
+        "scale.length": 0.01, "model": "kingery-bulmash", "engine": "3d", "duration_s": 0.03,
+        "ensemble_members": 2})
+    r = Study(sc).run()
+    d = r.design
+    assert r.ensemble is not None and isinstance(d.specimen_structure, MultiDrumColumn)
+    assert [c[0] for c in built if c[2] is d.factors] == ["blastscale.similitude.design"], built
+    assert [c[0] for c in contacts if c[2] is d.factors] == ["blastscale.similitude.design"], contacts
+    assert r.specimen_structure is d.specimen_structure is r.response3d.specimen_structure
+
+
+def _definitions(name: str) -> list:
+    """``module:line`` of every function defined as ``name`` and every module-level assignment to it in src/."""
+    src = Path(design_module.__file__).resolve().parents[1]
+    out = []
+    for path in sorted(src.rglob("*.py")):
+        tree = ast.parse(path.read_text())
+        for node in ast.walk(tree):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and node.name == name:
+                out.append(f"{path.relative_to(src)}:{node.lineno}")
+        for node in tree.body:
+            targets = node.targets if isinstance(node, ast.Assign) else [getattr(node, "target", None)]
+            if any(isinstance(t, ast.Name) and t.id == name for t in targets):
+                out.append(f"{path.relative_to(src)}:{node.lineno}")
+    return out
+
+
+def test_one_design_model_body_and_one_dimension_factor_in_src():
+    """One ``design_model`` (no array twin, before: ``_design_arrays``), one ``dimension_factor`` and one
+    ``DIMENSIONLESS`` (before: verbatim copies in analysis/compare.py and analysis/upscale.py)."""
+    assert _definitions("design_model") == ["similitude/design.py:" + str(
+        design_module.design_model.__code__.co_firstlineno)]
+    assert _definitions("_design_arrays") == []
+    assert [p.split(":")[0] for p in _definitions("dimension_factor")] == ["similitude/factors.py"]
+    assert [p.split(":")[0] for p in _definitions("DIMENSIONLESS")] == ["similitude/factors.py"]
+    assert compare.dimension_factor is upscale.dimension_factor is factors.dimension_factor
+
+
+def _load_models():
+    """Every load model a design reports (clearing, negative phase, both; a free-air specimen burst; a lab
+    charge height that is neither burst), on the paper's 10 m block."""
+    face = {"face_width_m": 1.0, "face_height_m": 10.0}
+    return {
+        "paper": {},
+        "clearing": {"load_model": LoadModel(clearing=True, **face)},
+        "negative phase": {"load_model": LoadModel(negative_phase=True)},
+        "clearing and negative phase": {"load_model": LoadModel(clearing=True, negative_phase=True, **face)},
+        "free-air specimen": {"specimen_burst": "free-air"},
+        "lab charge height": {"specimen_burst": "free-air", "specimen_charge_height": 0.01},
+        "all": {"load_model": LoadModel(clearing=True, negative_phase=True, **face), "specimen_burst": "free-air",
+                "specimen_charge_height": 0.01},
+    }
+
+
+def _same_record(a, b, where=""):
+    """Records equal: numbers to 1e-9 relative (the array design solves the law by bisection, the scalar
+    one by the closed-form root: they agree to ~1e-12), everything else exactly."""
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and list(a) == list(b), (where, a, b)
+        for k in a:
+            _same_record(a[k], b[k], f"{where}.{k}")
+    elif isinstance(a, (int, float)) and not isinstance(a, bool):
+        assert float(b) == pytest.approx(a, rel=1e-9, abs=1e-300), where
+    else:
+        assert a == b, (where, a, b)
+
+
+@pytest.mark.parametrize("name", list(_load_models()))
+def test_scalar_and_array_designs_give_the_same_effects_and_notes(name):
+    """The paper's block, 84 and 50 kg at 2 m, lambda = 1/100, for every load model: the array design of
+    the two cases (one body with the scalar design, before: the array path dropped ``load_model``,
+    ``face`` and ``specimen_charge_height``, so the scalar design gave effects and 2 notes, the array
+    design none) gives, case by case, the scalar design's effects, and every note of either case once."""
+    block = RectangularBlock(height=10.0, width=2.679491924311227, depth=1.0)
+    kw = _load_models()[name]
+    charges = (84.0, 50.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BlastSimilarityWarning)  # the notes, compared below
+        scalars = [design_module.design_model(w, 2.0, 1 / 100, geometry=block, **kw) for w in charges]
+        arrays = design_module.design_model(np.array(charges), 2.0, 1 / 100, geometry=block, **kw)
+    notes = []
+    for i, s in enumerate(scalars):
+        notes += [n for n in s.notes if n not in notes]
+        if s.effects is None:
+            assert arrays.effects is None and not kw
+            continue
+        picked = _pick(arrays.effects, i)
+        _same_record(s.effects, picked, name)
+    assert arrays.notes == tuple(notes)
+    assert bool(kw) == bool(arrays.effects)
+    if "load_model" in kw:  # the load models, carried and scaled once
+        assert arrays.load_model is kw["load_model"] and scalars[0].specimen_load_model == arrays.specimen_load_model
+    if name == "all":  # the burst, the lab charge's height, the clearing of at least one case
+        assert len(arrays.notes) >= 3 and np.all(np.isfinite(arrays.effects["clearing"]["model"]["clearing_time_s"]))
+
+
+def _pick(record, i):
+    """Case ``i`` of an array design's effects record (numbers as floats)."""
+    if isinstance(record, dict):
+        return {k: _pick(v, i) for k, v in record.items()}
+    if isinstance(record, np.ndarray):
+        v = record.flat[i]
+        return v.item() if hasattr(v, "item") else v
+    return record
+
+
+def test_study_check_returns_a_named_plan():
+    """``Study.check()`` is a named object (before: a 5-tuple read by index, ``study.check()[3]``)."""
+    sc = Scenario.default().with_values({"duration_s": 0.05, "engine": "planar", "critical_charge": False})
+    plan = Study(sc).check()
+    assert isinstance(plan, StudyPlan) and not isinstance(plan, tuple)
+    assert plan.design.prototype is plan.blast and plan.design.prototype_structure is plan.structure
+    assert [e.name for e in plan.engines] == ["planar"] and plan.skipped == () and plan.contact is None

@@ -33,19 +33,16 @@ import math
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_range
+from ..similitude.factors import DIMENSIONLESS, dimension_factor
 
 __all__ = [
-    "DIMENSIONLESS",
     "DEFAULT_COMPONENTS",
     "align",
     "compare_responses",
-    "dimension_factor",
     "first_peak",
     "upscale_dataset",
 ]
 
-#: Dimensions that no scaling factor changes.
-DIMENSIONLESS = ("dimensionless", "count")
 
 #: Component compared for variables that have a ``component`` dimension: the horizontal
 #: motion along the blast (x), and the rocking rotation about y for angular velocities.
@@ -55,21 +52,6 @@ DEFAULT_COMPONENTS = {"angular_velocity": "y"}
 #: history's largest |q| (contact jitter of micrometres before the main excursion is skipped).
 FIRST_PEAK_FRACTION = 0.1
 
-
-def dimension_factor(factors, dimension: str, name: str = "variable") -> float:
-    """The model / prototype factor [-] of a physical ``dimension``: 1 for dimensionless and
-    count, else the :class:`~blastscale.similitude.ScalingFactors` field of that name (``name``
-    labels the error)."""
-    if dimension in DIMENSIONLESS:
-        return 1.0
-    value = getattr(factors, dimension, None) if isinstance(dimension, str) else None
-    if value is None:
-        raise BlastscaleInputError(
-            f"dimension of {name!r} = {dimension!r} has no scaling factor: valid values are "
-            f"{', '.join(DIMENSIONLESS)} or a ScalingFactors field (length, velocity, angle, angular_velocity, "
-            "time, momentum, force, mass, ...)"
-        )
-    return float(value)
 
 
 def upscale_dataset(ds, factors):

@@ -2,9 +2,10 @@
 
 :func:`compare_structure3d` runs a structure and its model experiment through the same path:
 
-1. the model structure is ``structure.scaled(factors)``, its gravity ``varsigma g``, its
-   contact settings the engine's scale-consistent defaults (``contact=None``) or
-   ``contact.scaled(factors)``;
+1. the model system is the one the design carries (:mod:`.systems`): its structure
+   ``design.specimen_structure``, gravity ``varsigma g``, contact settings the engine's
+   scale-consistent defaults (``contact=None``) or ``design.specimen_contact`` (a design made
+   without them: ``structure.scaled(factors)``, ``contact.scaled(factors)``);
 2. each is loaded by :func:`blastscale.sim3d.load_methods.make_load` from its own blast
    parameters (``design.prototype``, ``design.specimen``: the design's, never recomputed) and
    simulated by :func:`blastscale.sim3d.simulate_structure` (the model for ``duration *
@@ -243,7 +244,7 @@ def compare_structure3d(
         Incidence model passed to ``make_load`` (default: its own default).
     contact : ContactSettings, optional
         Prototype contact settings; None uses the engine's scale-consistent defaults for each
-        structure, else the model uses ``contact.scaled(factors)``.
+        structure, else the model uses ``design.specimen_contact`` (``contact.scaled(factors)``).
     duration : float
         Prototype simulated time after the first arrival [s] (the model runs ``duration *
         lambda_t``).

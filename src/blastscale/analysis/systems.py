@@ -1,14 +1,19 @@
 """Run one side of a model experiment in 3D: the prototype, or the reduced-scale model at its own size.
 
 The one place where a designed experiment (:func:`blastscale.similitude.design_model`) becomes
-a structure, a load and a run of the 3D engine. The model system is
+a structure, a load and a run of the 3D engine. The model system is the one the design carries
+(scaled once, by :func:`~blastscale.similitude.design_model`):
 
-* the structure ``structure.scaled(factors)``;
+* the structure ``design.specimen_structure``;
 * its own load, built by :func:`blastscale.sim3d.load_methods.make_load` from ``design.specimen``
   (the design's blast parameters of the specimen: never recomputed);
-* gravity ``varsigma g``, contact ``contact.scaled(factors)`` (or the engine's
+* gravity ``design.specimen_gravity``, contact ``design.specimen_contact`` (or the engine's
   scale-consistent defaults for its size when ``contact`` is None);
-* run for ``duration * lambda_t``.
+* run for ``design.specimen_duration``.
+
+A design made without the structure, or with other contact settings or another duration than the
+ones given here, is completed by the same rules (``structure.scaled(factors)``, ``contact.scaled(factors)``,
+``duration * lambda_t``) for each run.
 
 The prototype system is the structure itself, loaded from ``design.prototype`` or, for a
 prototype-only study (no design), from the prototype's own blast parameters.
@@ -102,10 +107,7 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
     elif system == "prototype":
         struct, bp, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
     else:
-        f = design.factors
-        struct, bp = structure.scaled(f), design.specimen
-        dur, g = duration * f.time, design.gravity * f.gravity
-        cont = None if contact is None else contact.scaled(f)
+        struct, bp, dur, g, cont = _specimen_system(design, structure, contact, duration)
     if bp is None:  # gravity alone (a stability check)
         resp = simulate_structure(struct, None, dur, contact=cont, gravity=g, record_every=record_every)
         return SystemRun(struct, resp, 0.0, None)
@@ -114,3 +116,17 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
     run_load = ld if load_factor == 1.0 else PerturbedLoad(ld, load_factor)
     resp = simulate_structure(struct, run_load, dur, contact=cont, gravity=g, record_every=record_every)
     return SystemRun(struct, resp, float(ld.end_time - ld.first_arrival), ld)
+
+
+def _specimen_system(design, structure, contact, duration: float) -> tuple:
+    """(structure, blast parameters, duration [s], gravity [m/s^2], contact) of the specimen: the design's
+    when it carries them for this prototype, contact and duration (a Study's), else scaled here."""
+    f = design.factors
+    same = design.prototype_structure is structure
+    struct = design.specimen_structure if same else structure.scaled(f)
+    if contact is None:
+        cont = None
+    else:
+        cont = design.specimen_contact if design.contact is contact else contact.scaled(f)
+    dur = design.specimen_duration if design.duration == duration else duration * f.time
+    return struct, design.specimen, dur, design.specimen_gravity, cont

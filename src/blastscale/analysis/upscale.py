@@ -6,34 +6,16 @@ of its physical dimension (:class:`~blastscale.similitude.ScalingFactors`: lengt
 sqrt(lambda / varsigma), velocity sqrt(varsigma lambda), angle 1, momentum gamma sqrt(varsigma)
 lambda^(7/2), ...); a summary key names its dimension by its unit suffix (:mod:`blastscale.units`).
 Summaries are up-scaled by :func:`upscale_summary`, histories by
-:func:`~blastscale.analysis.compare.upscale_dataset`; both divide by :func:`dimension_factor`.
+:func:`~blastscale.analysis.compare.upscale_dataset`; both divide by
+:func:`~blastscale.similitude.factors.dimension_factor` (the one factor lookup, re-exported here).
 """
 
 from __future__ import annotations
 
-from .._validate import BlastscaleInputError
+from ..similitude.factors import DIMENSIONLESS, dimension_factor
 from ..units import dimension_of
 
 __all__ = ["DIMENSIONLESS", "dimension_factor", "upscale", "upscale_summary"]
-
-#: Dimensions that no scaling factor changes.
-DIMENSIONLESS = ("dimensionless", "count")
-
-
-def dimension_factor(factors, dimension: str, name: str = "variable") -> float:
-    """The specimen / prototype factor [-] of a physical ``dimension``: 1 for dimensionless and
-    count, else the :class:`~blastscale.similitude.ScalingFactors` field of that name (``name``
-    labels the error)."""
-    if dimension in DIMENSIONLESS:
-        return 1.0
-    value = getattr(factors, dimension, None) if isinstance(dimension, str) else None
-    if value is None:
-        raise BlastscaleInputError(
-            f"dimension of {name!r} = {dimension!r} has no scaling factor: valid values are "
-            f"{', '.join(DIMENSIONLESS)} or a ScalingFactors field (length, velocity, angle, angular_velocity, "
-            "time, momentum, force, mass, ...)"
-        )
-    return float(value)
 
 
 def upscale(value, factors, dimension: str, name: str = "value"):

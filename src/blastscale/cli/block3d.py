@@ -97,7 +97,7 @@ def block3d_cmd(
     experiment is designed by the general law, run at model scale with scaled contact settings,
     up-scaled and compared with the prototype.
     """
-    from ..study import Study, contact_settings
+    from ..study import Study
     from .flags import scenario_from_flags
 
     if restitution is not None:
@@ -120,7 +120,7 @@ def block3d_cmd(
     study = Study(sc)
     with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
         with flags_named():  # a step past the stability bound, too long or too large: before any run
-            contact = contact_settings(sc, study.check()[0])
+            contact = study.check().contact
         with stage_progress(quiet=as_json) as tell:
             result = study.run(progress=tell)
     out = block3d_output(result, contact, incidence)

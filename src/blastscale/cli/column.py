@@ -111,7 +111,7 @@ def column_cmd(
     own size with scale-consistent contact settings, up-scaled and compared with the prototype
     per monitoring point (P-1 at the base drum's front face ... P-N at the top drum's).
     """
-    from ..study import Study, contact_settings
+    from ..study import Study
     from .flags import scenario_from_flags
 
     check_plot_path(plot)
@@ -128,7 +128,7 @@ def column_cmd(
     study = Study(sc)
     with one_line_warnings():
         with flags_named():  # a step past the stability bound, too long or too large: before any run
-            contact = contact_settings(sc, study.check()[0])
+            contact = study.check().contact
         with stage_progress(quiet=as_json) as tell:
             result = study.run(progress=tell)
     out = column_output(result, contact, incidence, timestep)

@@ -151,7 +151,7 @@ def run_cmd(
         check_output_folder(out, force)  # before any simulation
     study = Study(sc)
     with one_line_warnings():
-        design = study.check()[3]  # blast-fit and scale ranges, engines, memory: one line before any work
+        design = study.check().design  # blast-fit and scale ranges, engines, memory: one line before any work
         if sc.lab is not None:  # the [lab] table's charge (the initiator below it): one line before any work
             from ..planning.card import check_lab
 

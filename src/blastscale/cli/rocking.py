@@ -42,12 +42,12 @@ def _load_model_record(result) -> dict:
     from ..study.engines import load_model_of
 
     sc, d = result.scenario, result.design
-    lm = load_model_of(sc, result.structure)
+    lm = load_model_of(sc, result.structure) if d is None else d.load_model  # the design's, with a design
     proto = load_model_record(result.blast.blast_model, result.blast.burst, lm)
     if d is None:
         return {"prototype": proto}
     return {"prototype": proto, "model": load_model_record(d.specimen.blast_model, d.specimen.burst,
-                                                           lm.scaled(d.factors.length))}
+                                                           d.specimen_load_model)}
 
 
 def _inputs(block, **kw) -> dict:

@@ -131,11 +131,11 @@ def evaluate(c: Candidate, *, scenario, lab, block, timing, incident_model) -> E
     sig = sc.scale.gravity_ratio if sc.scale is not None else 1.0
     try:
         d = design_model(bl.charge_kg, bl.standoff_m, c.scale, gam, sig, c.law, bl.blast_model, block,
-                         gravity=sc.simulation.gravity_m_s2)
+                         gravity=sc.simulation.gravity_m_s2, duration=sc.simulation.duration_s)
     except BlastscaleInputError as exc:
         ev.violations.append(Violation("blast fits", None, None, " ".join(str(exc).split())))
         return ev
-    spec = block.scaled(d.factors)
+    spec = d.specimen_structure  # the design's specimen block (scaled once, there)
     ev.design, ev.specimen = d, spec
     if d.impulsive is not None and not d.impulsive.impulsive:
         ev.violations.append(Violation("impulsive", d.impulsive.model_ratio, d.impulsive.threshold,

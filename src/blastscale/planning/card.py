@@ -88,7 +88,7 @@ def _odds(result, spec, ch, lab, collapsed_p):
         warnings.simplefilter("ignore")
         return planar_odds(spec, charge_kg=d.specimen_charge_kg, standoff_m=d.specimen_standoff_m,
                            prototype_collapsed=collapsed_p, explosive_fraction=1.0 - ch.initiator_fraction,
-                           gravity=sim.gravity_m_s2 * d.gravity_ratio, restitution=sim.restitution,
+                           gravity=d.specimen_gravity, restitution=sim.restitution,
                            pulse_shape=bl.pulse_shape, blast_model=d.specimen.blast_model, tolerances=Tolerances.from_lab(lab),
                            samples=lab.samples, seed=lab.seed, target=lab.first_peak_target)
 

@@ -257,7 +257,7 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     def odds_of(e, n, critical):
         return planar_odds(e.specimen, charge_kg=e.design.specimen_charge_kg, standoff_m=e.design.specimen_standoff_m,
                            prototype_collapsed=proto["collapsed"], explosive_fraction=1.0 - e.charge.initiator_fraction,
-                           gravity=sim.gravity_m_s2 * e.design.gravity_ratio, restitution=sim.restitution,
+                           gravity=e.design.specimen_gravity, restitution=sim.restitution,
                            pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, tolerances=tol,
                            samples=n, seed=lab.seed, target=lab.first_peak_target, critical=critical)
 
@@ -296,8 +296,7 @@ def specimen_scenario(scenario, ev: Evaluated):
     data["structure"] = {"kind": "block", "height_m": spec.height, "width_m": spec.width, "depth_m": spec.depth,
                          "density_kg_m3": spec.density, "friction": sc.structure.friction}
     data["blast"] = {**data["blast"], "charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
-    data["simulation"] = {**data["simulation"], "duration_s": sc.simulation.duration_s * float(d.factors.time),
-                          "gravity_m_s2": sc.simulation.gravity_m_s2 * d.gravity_ratio}
+    data["simulation"] = {**data["simulation"], "duration_s": d.specimen_duration, "gravity_m_s2": d.specimen_gravity}
     data["simulation"].pop("timestep_s", None)
     data["simulation"].pop("contact", None)
     return type(sc).from_dict(data, source="plan")

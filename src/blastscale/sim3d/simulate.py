@@ -102,6 +102,8 @@ def _warn_if_soft(contact: ContactSettings, structure, load, gravity: float) -> 
     if load is None:
         return
     pulse_t = float(load.end_time - load.first_arrival)
+    if contact.time_constant <= SOFT_CONTACT_FACTOR * pulse_t:  # below the bound whatever the default: not derived
+        return
     ref = default_contact(structure, contact.friction, gravity).time_constant
     bound = SOFT_CONTACT_FACTOR * max(pulse_t, ref)
     if contact.time_constant > bound:

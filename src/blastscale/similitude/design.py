@@ -10,11 +10,14 @@ the load is impulsive (:mod:`.experiment`).
 
 from __future__ import annotations
 
+import warnings
+from dataclasses import asdict, fields, replace
 
 import numpy as np
 
 from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_positive_scalar
-from ..blast.base import BlastModel
+from ..blast.base import BlastModel, ExtrapolationWarning
+from ..blast.load_model import PAPER_LOAD
 from ..blast.bursts import DEFAULT_BURST, model_for_burst
 from ..blast.parameters import (
     DEFAULT_BLAST_MODEL,
@@ -22,8 +25,10 @@ from ..blast.parameters import (
     blast_parameters,
     valid_scaled_distance_range,
 )
-from ..structures.block import STANDARD_GRAVITY, RectangularBlock
-from .experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign, impulsive_check
+from ..structures import is_block
+from ..structures.block import STANDARD_GRAVITY
+from .effects import BlastSimilarityWarning, blast_effects, structure_top
+from .experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign
 from .factors import scaling_factors
 from .laws import (
     LAWS,
@@ -43,7 +48,7 @@ def design_model(
     gravity_ratio: float = 1.0,
     law: str = "general",
     blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
-    geometry: RectangularBlock | None = None,
+    geometry=None,
     *,
     gravity: float = STANDARD_GRAVITY,
     impulsive_threshold: float = DEFAULT_IMPULSIVE_THRESHOLD,
@@ -53,6 +58,9 @@ def design_model(
     load_model=None,
     face=None,
     specimen_charge_height: float | None = None,
+    contact=None,
+    duration: float | None = None,
+    effects: bool = True,
 ) -> ModelDesign:
     """Design the reduced-scale model of a blast scenario.
 
@@ -75,8 +83,10 @@ def design_model(
         factor equals gamma sqrt(varsigma lambda^3)) or Hopkinson-Cranz (lambda_Z = 1).
     blast_model : str or BlastModel
         Blast model (``"kingery-bulmash"`` default, ``"masi2021"`` the paper's fits).
-    geometry : RectangularBlock, optional
-        Prototype structure; enables the impulsive check and fills the specimen block.
+    geometry : structure, optional
+        The prototype structure, of any kind (block, column, wall, arch, portal, assembly): the design
+        carries it and its specimen (``structure.scaled(factors)``, built here once); a rectangular
+        block also enables the impulsive check.
     gravity : float
         Prototype gravity g [m/s^2].
     impulsive_threshold : float
@@ -99,6 +109,15 @@ def design_model(
     specimen_charge_height : float, optional
         Height of the lab charge's centre above the floor [m]: warned when it is neither a surface
         nor a free-air burst at the specimen's face.
+    contact : ContactSettings, optional
+        The prototype's 3D contact settings (:mod:`blastscale.sim3d.contact`): the design carries them
+        and the specimen's, ``contact.scaled(factors)`` (times x lambda_t, lengths x lambda), scaled once.
+    duration : float, optional
+        The prototype's simulated time [s]: the design carries it and the specimen's, x lambda_t.
+    effects : bool
+        Evaluate the blast effects and their notes (default); False for a caller that needs the
+        systems only (a sweep's outcome mode: ~3 ms per case with clearing): ``effects`` is then None
+        and ``notes`` empty, the load models are carried all the same.
 
     Returns
     -------
@@ -122,9 +141,11 @@ def design_model(
     Tables 1-2.
 
     Arrays of charges and stand-offs (broadcast; the scales are single numbers) are designed at
-    once, with the same solution of the law: every numeric field of the design is then an array,
-    NaN where a case cannot be designed (a scaled distance outside the blast fits; ``valid`` says
-    which), and nothing is raised for such a case.
+    once, by the same body, with the same solution of the law: every numeric field of the design is
+    then an array, NaN where a case cannot be designed (a scaled distance outside the blast fits;
+    ``valid`` says which), and nothing is raised for such a case. The load model, the face and the
+    lab charge's height count for arrays as for one case: ``effects`` holds arrays over the cases
+    (NaN where invalid) and ``notes`` each note of any case once.
 
     Examples
     --------
@@ -135,11 +156,8 @@ def design_model(
     >>> round(d.specimen_charge_kg * 1e6, 3), round(d.specimen.scaled_distance, 2)
     (0.233, 1.62)
     """
-    if np.ndim(charge) or np.ndim(standoff):
-        return _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, blast_model, geometry,
-                              gravity, impulsive_threshold, extrapolate, burst, specimen_burst)
-    W = check_positive_scalar("charge", charge, "kg")
-    R = check_positive_scalar("standoff", standoff, "m")
+    scalar = np.ndim(charge) == 0 and np.ndim(standoff) == 0
+    W, R = _charges_and_standoffs(charge, standoff, scalar)
     lam = check_positive_scalar("scale", scale)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
     check_positive_scalar("gravity", gravity, "m/s^2")
@@ -148,119 +166,107 @@ def design_model(
         raise BlastscaleInputError(f"law = {law!r} is not known: valid values are {', '.join(LAWS)}")
     bm = model_for_burst(blast_model, burst)
     ms = bm if specimen_burst is None else model_for_burst(blast_model, specimen_burst)
-    proto = blast_parameters(W, R, bm, extrapolate=extrapolate)
-    if law == "hopkinson-cranz":
-        gam_hc = hopkinson_cranz_density_ratio(lam, sig)
-        given = None if density_ratio is None else check_positive_scalar("density ratio", density_ratio)
-        if given is not None and abs(given - gam_hc) > 1e-9 * gam_hc:
-            raise BlastscaleInputError(
-                f"density ratio = {given:.6g} is out of range for the Hopkinson-Cranz law: it "
-                f"imposes gamma = 1/sqrt(gravity_ratio * scale) = {gam_hc:.6g} (use law='general' for another gamma)"
-            )
-        gam, lz, res_note = gam_hc, 1.0, "Hopkinson-Cranz: lambda_Z = 1 (same scaled distance and pressure)"
-        if ms is not bm:  # another burst type: the scaled distance whose impulse factor is lambda
-            sol = solve_scaled_distance_factor(proto.scaled_distance, lam, gam, sig, bm, ms)
-            lz, res_note = sol.factor, "Hopkinson-Cranz with another specimen burst: " + sol.note
-    else:
-        if density_ratio is None:
-            raise BlastscaleInputError("density ratio = None is out of range: the general law needs gamma > 0")
-        gam = check_positive_scalar("density ratio", density_ratio)
-        if not extrapolate:  # the model's Z must lie where every fit holds, not only the impulse fit
-            zr = valid_scaled_distance_range(ms)
-            lo, hi = admissible_scales(proto.scaled_distance, gam, sig, bm, zr, specimen_blast_model=ms)
-            if not lo <= lam <= hi:
-                raise OutOfRangeError(
-                    f"scale = {lam:.6g} is out of range for the general law: valid range of scale is "
-                    f"[{lo:.6g}, {hi:.6g}] (it keeps the model's Z inside [{zr[0]:g}, {zr[1]:g}] m/kg^(1/3), where "
-                    f"every {ms.name} fit holds, for density ratio = {gam:.6g}, gravity ratio = {sig:.6g} and "
-                    f"prototype Z = {proto.scaled_distance:.6g} m/kg^(1/3))"
-                )
-        sol = solve_scaled_distance_factor(proto.scaled_distance, lam, gam, sig, bm, None if ms is bm else ms)
-        lz, res_note = sol.factor, sol.note
-    f = scaling_factors(lam, gam, sig, lz)
-    model_params = blast_parameters(W * f.charge, R * lam, ms, extrapolate=extrapolate)
+    gam = _density_ratio(law, density_ratio, lam, sig)
+    if scalar:  # one case: an invalid one raises, the law's closed-form root
+        proto = blast_parameters(W, R, bm, extrapolate=extrapolate)
+        lz, note = _solve_one(proto.scaled_distance, lam, gam, sig, law, bm, ms, extrapolate)
+        f = scaling_factors(lam, gam, sig, lz)
+        spec = blast_parameters(W * f.charge, R * lam, ms, extrapolate=extrapolate)
+        ok = True
+    else:  # every case at once, NaN where a case cannot be designed
+        f, note, ok, proto, spec = _design_cases(W, R, lam, gam, sig, law, bm, ms, extrapolate)
+    structure = geometry
+    specimen_structure = None if structure is None else structure.scaled(f)
     imp = None
-    mblock = None
-    if geometry is not None:
-        mblock = geometry.scaled(f)
-        imp = ImpulsiveCheck(
-            prototype_ratio=impulsive_check(proto.positive_duration, geometry, gravity),
-            model_ratio=impulsive_check(model_params.positive_duration, mblock, gravity * sig),
-            threshold=float(impulsive_threshold),
-        )
-    effects, notes = None, ()
-    if face is None and geometry is not None:
-        face = (geometry.depth, geometry.height)
-    if ms is not bm or (load_model is not None and not load_model.is_paper) or specimen_charge_height is not None:
-        import warnings
-
-        from .effects import BlastSimilarityWarning, blast_effects
-
-        effects, notes = blast_effects(proto, model_params, load_model, scale=lam, face=face,
-                                       specimen_charge_height=specimen_charge_height, extrapolate=extrapolate)
-        for note in notes:
-            warnings.warn(note, BlastSimilarityWarning, stacklevel=2)
+    if structure is not None and is_block(structure):  # t_o p (:func:`~.experiment.impulsive_check`)
+        rp = proto.positive_duration * structure.frequency_parameter(gravity)
+        rm = spec.positive_duration * specimen_structure.frequency_parameter(gravity * sig)
+        imp = ImpulsiveCheck(prototype_ratio=float(rp) if scalar else rp, model_ratio=float(rm) if scalar else rm,
+                             threshold=float(impulsive_threshold))
+    lm = PAPER_LOAD if load_model is None else load_model
+    lm_s = lm.scaled(lam)  # the specimen's load model: its face lambda times the prototype's (once, here)
+    if face is None and structure is not None:
+        face = (structure.depth, structure.height) if is_block(structure) else (None, structure_top(structure))
+    effects_, notes = None, ()
+    if effects and (ms is not bm or not lm.is_paper or specimen_charge_height is not None):
+        effects_, notes = _effects(proto, spec, ok, scalar, lm, lm_s, lam, face, specimen_charge_height, extrapolate)
+        for n in notes:
+            warnings.warn(n, BlastSimilarityWarning, stacklevel=2)
     return ModelDesign(
-        law=law,
-        scale=lam,
-        density_ratio=gam,
-        gravity_ratio=sig,
-        scaled_distance_factor=lz,
-        root_note=res_note,
-        prototype=proto,
-        specimen=model_params,
-        factors=f,
-        impulsive=imp,
-        prototype_block=geometry,
-        specimen_block=mblock,
-        gravity=float(gravity),
-        effects=effects,
-        notes=notes,
+        law=law, scale=lam, density_ratio=gam, gravity_ratio=sig, scaled_distance_factor=f.scaled_distance,
+        root_note=note, prototype=proto, specimen=spec, factors=f, impulsive=imp, prototype_structure=structure,
+        specimen_structure=specimen_structure, gravity=float(gravity), valid=ok, effects=effects_, notes=notes,
+        load_model=lm, specimen_load_model=lm_s, contact=contact,
+        specimen_contact=None if contact is None else contact.scaled(f),
+        duration=None if duration is None else float(duration),
+        specimen_duration=None if duration is None else float(duration) * f.time,
     )
 
 
-def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, blast_model, geometry, gravity,
-                   impulsive_threshold, extrapolate, burst=DEFAULT_BURST, specimen_burst=None) -> ModelDesign:
-    """:func:`design_model` for arrays of charges and stand-offs (its docstring): the law solved for
-    every case at once (:func:`~.laws.solve_scaled_distance_factors`), the invalid cases NaN."""
-    import warnings
-    from dataclasses import replace
-
-    from ..blast.base import ExtrapolationWarning
-
+def _charges_and_standoffs(charge, standoff, scalar: bool):
+    """W [kg] and R [m], checked: floats for one case, float arrays broadcast together for many."""
+    if scalar:
+        return check_positive_scalar("charge", charge, "kg"), check_positive_scalar("standoff", standoff, "m")
     try:
         W, R = np.broadcast_arrays(check_positive("charge", charge, "kg"), check_positive("standoff", standoff, "m"))
     except ValueError:
         raise BlastscaleInputError(f"charge and standoff have shapes {np.shape(charge)} and {np.shape(standoff)}, "
                                    "which do not broadcast together") from None
-    W, R = W.astype(float), R.astype(float)
-    lam = check_positive_scalar("scale", scale)
-    sig = check_positive_scalar("gravity ratio", gravity_ratio)
-    check_positive_scalar("gravity", gravity, "m/s^2")
-    if law not in LAWS:
-        raise BlastscaleInputError(f"law = {law!r} is not known: valid values are {', '.join(LAWS)}")
-    bm = model_for_burst(blast_model, burst)
-    ms = bm if specimen_burst is None else model_for_burst(blast_model, specimen_burst)
-    # where the design holds: every fit used, or (extrapolate) the impulse fit the law is solved on
-    zr = bm.valid_range("scaled_reflected_impulse") if extrapolate else valid_scaled_distance_range(bm)
-    zs = ms.valid_range("scaled_reflected_impulse") if extrapolate else valid_scaled_distance_range(ms)
-    Z = R / np.cbrt(W)
+    return W.astype(float), R.astype(float)
+
+
+def _density_ratio(law: str, density_ratio, lam: float, sig: float) -> float:
+    """gamma [-]: the given one (general law), or the one Hopkinson-Cranz imposes (1/sqrt(varsigma lambda))."""
     if law == "hopkinson-cranz":
         gam = hopkinson_cranz_density_ratio(lam, sig)
         given = None if density_ratio is None else check_positive_scalar("density ratio", density_ratio)
         if given is not None and abs(given - gam) > 1e-9 * gam:
             raise BlastscaleInputError(
-                f"density ratio = {given:.6g} is out of range for the Hopkinson-Cranz law: it imposes gamma = "
-                f"1/sqrt(gravity_ratio * scale) = {gam:.6g} (use law='general' for another gamma)")
+                f"density ratio = {given:.6g} is out of range for the Hopkinson-Cranz law: it "
+                f"imposes gamma = 1/sqrt(gravity_ratio * scale) = {gam:.6g} (use law='general' for another gamma)"
+            )
+        return gam
+    if density_ratio is None:
+        raise BlastscaleInputError("density ratio = None is out of range: the general law needs gamma > 0")
+    return check_positive_scalar("density ratio", density_ratio)
+
+
+def _solve_one(Z: float, lam, gam, sig, law, bm, ms, extrapolate) -> tuple:
+    """(lambda_Z, note) of one case: the closed-form root of the law (:func:`~.laws.solve_scaled_distance_factor`);
+    a scale that puts the specimen's Z outside the fits raises with the admissible range of the scale."""
+    if law == "hopkinson-cranz":
+        if ms is bm:
+            return 1.0, "Hopkinson-Cranz: lambda_Z = 1 (same scaled distance and pressure)"
+        sol = solve_scaled_distance_factor(Z, lam, gam, sig, bm, ms)  # the Z whose impulse factor is lambda
+        return sol.factor, "Hopkinson-Cranz with another specimen burst: " + sol.note
+    if not extrapolate:  # the model's Z must lie where every fit holds, not only the impulse fit
+        zr = valid_scaled_distance_range(ms)
+        lo, hi = admissible_scales(Z, gam, sig, bm, zr, specimen_blast_model=ms)
+        if not lo <= lam <= hi:
+            raise OutOfRangeError(
+                f"scale = {lam:.6g} is out of range for the general law: valid range of scale is "
+                f"[{lo:.6g}, {hi:.6g}] (it keeps the model's Z inside [{zr[0]:g}, {zr[1]:g}] m/kg^(1/3), where "
+                f"every {ms.name} fit holds, for density ratio = {gam:.6g}, gravity ratio = {sig:.6g} and "
+                f"prototype Z = {Z:.6g} m/kg^(1/3))"
+            )
+    sol = solve_scaled_distance_factor(Z, lam, gam, sig, bm, None if ms is bm else ms)
+    return sol.factor, sol.note
+
+
+def _design_cases(W, R, lam, gam, sig, law, bm, ms, extrapolate) -> tuple:
+    """(factors, note, valid, prototype, specimen) of arrays of cases: the law solved for every case at once
+    (:func:`~.laws.solve_scaled_distance_factors`), NaN where a case cannot be designed."""
+    # where the design holds: every fit used, or (extrapolate) the impulse fit the law is solved on
+    zr = bm.valid_range("scaled_reflected_impulse") if extrapolate else valid_scaled_distance_range(bm)
+    zs = ms.valid_range("scaled_reflected_impulse") if extrapolate else valid_scaled_distance_range(ms)
+    Z = R / np.cbrt(W)
+    if law == "hopkinson-cranz" and ms is bm:
         lz = np.ones_like(Z)
         note = "Hopkinson-Cranz: lambda_Z = 1 (same scaled distance and pressure)"
-        if ms is not bm:
-            lz = np.asarray(solve_scaled_distance_factors(Z, lam, gam, sig, bm, ms), dtype=float)
-            note = "Hopkinson-Cranz with another specimen burst: roots of Eq. (8) with impulse factor lambda"
+    elif law == "hopkinson-cranz":
+        lz = np.asarray(solve_scaled_distance_factors(Z, lam, gam, sig, bm, ms), dtype=float)
+        note = "Hopkinson-Cranz with another specimen burst: roots of Eq. (8) with impulse factor lambda"
     else:
-        if density_ratio is None:
-            raise BlastscaleInputError("density ratio = None is out of range: the general law needs gamma > 0")
-        gam = check_positive_scalar("density ratio", density_ratio)
         lz = np.asarray(solve_scaled_distance_factors(Z, lam, gam, sig, bm, None if ms is bm else ms), dtype=float)
         note = f"roots of Eq. (8) on the {ms.name} impulse range (bisection, every case at once)"
     ok = (Z >= zr[0]) & (Z <= zr[1]) & np.isfinite(lz) & (Z * lz >= zs[0]) & (Z * lz <= zs[1])
@@ -270,22 +276,51 @@ def _design_arrays(charge, standoff, scale, density_ratio, gravity_ratio, law, b
         if extrapolate:
             warnings.simplefilter("ignore", ExtrapolationWarning)
         proto = _scatter(blast_parameters(W[ok], R[ok], bm, extrapolate=extrapolate), ok)
-        mod = _scatter(blast_parameters(W[ok] * f.charge[ok], R[ok] * lam, ms, extrapolate=extrapolate), ok)
-    imp = mblock = None
-    if geometry is not None:  # t_o p (impulsive_check) over arrays, NaN where invalid
-        mblock = geometry.scaled(f)
-        imp = ImpulsiveCheck(prototype_ratio=proto.positive_duration * geometry.frequency_parameter(gravity),
-                             model_ratio=mod.positive_duration * mblock.frequency_parameter(gravity * sig),
-                             threshold=float(impulsive_threshold))
-    return ModelDesign(law=law, scale=lam, density_ratio=gam, gravity_ratio=sig, scaled_distance_factor=f.scaled_distance,
-                       root_note=note, prototype=proto, specimen=mod, factors=f, impulsive=imp, prototype_block=geometry,
-                       specimen_block=mblock, gravity=float(gravity), valid=ok)
+        spec = _scatter(blast_parameters(W[ok] * f.charge[ok], R[ok] * lam, ms, extrapolate=extrapolate), ok)
+    return f, note, ok, proto, spec
+
+
+def _effects(proto, spec, ok, scalar, lm, lm_s, lam, face, specimen_charge_height, extrapolate) -> tuple:
+    """(effects, notes) of :func:`~.effects.blast_effects`: of the one case, or of every valid case (the
+    numbers then arrays over the cases, NaN where invalid; each note once). None when no case is valid."""
+    kw = dict(specimen_load_model=lm_s, scale=lam, face=face, specimen_charge_height=specimen_charge_height,
+              extrapolate=extrapolate)
+    if scalar:
+        return blast_effects(proto, spec, lm, **kw)
+    records, notes = [], []
+    cases = np.flatnonzero(np.ravel(ok))
+    for i in cases:
+        rec, case_notes = blast_effects(_case(proto, i), _case(spec, i), lm, **kw)
+        records.append(rec)
+        notes += [n for n in case_notes if n not in notes]
+    return (_stack(records, cases, np.shape(ok)) if records else None), tuple(notes)
+
+
+def _case(bp: BlastParameters, i: int) -> BlastParameters:
+    """The blast parameters of case ``i`` (flat index) of arrays of them, as numbers."""
+    return BlastParameters(**{k: (v if isinstance(v, str) or v is None else float(np.ravel(v)[i]))
+                              for k, v in asdict(bp).items()})
+
+
+def _stack(records: list, cases: np.ndarray, shape: tuple):
+    """Records of the valid cases (same keys) as one record: numbers become arrays over every case (NaN
+    where invalid), values equal in every case are kept, other values become object arrays."""
+    first = records[0]
+    if isinstance(first, dict):
+        return {k: _stack([r.get(k) for r in records], cases, shape) for k in first}
+    if all(isinstance(v, (int, float, np.number)) and not isinstance(v, (bool, np.bool_)) for v in records):
+        out = np.full(shape, np.nan)
+        out.flat[cases] = records
+        return out
+    if all(v == first for v in records):
+        return first
+    out = np.full(shape, None, dtype=object)
+    out.flat[cases] = records
+    return out
 
 
 def _scatter(bp: BlastParameters, ok: np.ndarray) -> BlastParameters:
     """Blast parameters of the valid cases spread over every case (NaN elsewhere)."""
-    from dataclasses import fields
-
     out = {}
     for fld in fields(bp):
         v = getattr(bp, fld.name)

@@ -104,7 +104,7 @@ def _rel(a, b) -> float:
 
 
 def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=None, specimen_charge_height=None,
-                  extrapolate: bool = False) -> tuple:
+                  extrapolate: bool = False, specimen_load_model=None) -> tuple:
     """Clearing, negative phase and burst type of a designed experiment, for both systems.
 
     Parameters
@@ -123,6 +123,8 @@ def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=No
         neither burst at the specimen's face (:func:`blastscale.blast.bursts.lab_burst`).
     extrapolate : bool
         Let the negative-phase calibration run outside its range.
+    specimen_load_model : LoadModel, optional
+        The specimen's load model (the design's, already scaled); default ``load_model.scaled(scale)``.
 
     Returns
     -------
@@ -136,7 +138,7 @@ def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=No
 
     lam = check_positive_scalar("scale", scale)
     lm_p = load_model or PAPER_LOAD
-    lm_s = lm_p.scaled(lam)
+    lm_s = lm_p.scaled(lam) if specimen_load_model is None else specimen_load_model
     out: dict = {"load_model": {"prototype": load_model_record(prototype.blast_model, prototype.burst, lm_p),
                                 "model": load_model_record(specimen.blast_model, specimen.burst, lm_s)}}
     notes: list = []
@@ -198,13 +200,14 @@ def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=No
     return out, tuple(notes)
 
 
-def clearing_corrected_charge(design, load_model, *, extrapolate: bool = False) -> dict:
+def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = False) -> dict:
     """The specimen charge (at the design's stand-off lambda R) whose *cleared* impulse is the
     prototype's cleared impulse times the required impulse factor gamma sqrt(varsigma lambda^3).
 
     The general law matches the reflected impulse of an unbounded face; on finite faces the two
     systems clear differently (:func:`blast_effects`). Bisection in ln W over the specimen fit's
-    range of Z (the cleared impulse grows with the charge).
+    range of Z (the cleared impulse grows with the charge). ``load_model``: the prototype's, with
+    clearing and its face (default: the design's, whose specimen load model is then used as carried).
 
     Returns
     -------
@@ -216,10 +219,11 @@ def clearing_corrected_charge(design, load_model, *, extrapolate: bool = False) 
     from ..blast.load_model import front_face_clearing
     from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
 
+    load_model = design.load_model if load_model is None else load_model  # default: the design's
     if load_model is None or not load_model.clearing:
         raise BlastscaleInputError("clearing corrected charge needs a load model with clearing (and its face)")
     lam = float(design.scale)
-    lm_s = load_model.scaled(lam)
+    lm_s = design.specimen_load_model if load_model is design.load_model else load_model.scaled(lam)  # the design's
     target = float(front_face_clearing(design.prototype, load_model).impulse) * float(design.factors.impulse)
     ms = get_blast_model(design.specimen.blast_model)
     R = float(design.specimen_standoff_m)

@@ -18,12 +18,14 @@ force exceeds the weight by orders of magnitude); t_o p is the meaningful measur
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from .._validate import check_positive
 from ..blast.parameters import BlastParameters
 from ..constants import STANDARD_GRAVITY
+from ..structures import is_block
 from ..structures.block import RectangularBlock
 from .factors import ScalingFactors
 
@@ -102,11 +104,12 @@ class ModelDesign:
     factors : ScalingFactors
         Every factor (charge and scaled distance included).
     impulsive : ImpulsiveCheck or None
-        Present when the structure was given.
-    prototype_block, specimen_block : RectangularBlock or None
-        The structures, when given.
+        Present when the structure was given and is a rectangular block.
+    prototype_structure, specimen_structure : structure or None
+        The prototype structure (any kind), when given, and its specimen (``structure.scaled(factors)``:
+        lengths x lambda, density x gamma), built once by the design.
     gravity : float
-        Prototype gravity [m/s^2].
+        Prototype gravity [m/s^2] (the specimen's: :attr:`specimen_gravity`).
     valid : bool or ndarray
         True for a design of one charge and stand-off (an invalid one raises); for arrays, the
         cases that could be designed (their scaled distances inside the blast fits); the numbers of
@@ -116,6 +119,13 @@ class ModelDesign:
         when any was asked for.
     notes : tuple of str
         Differences between the systems above 5 % that the scaling law does not see (warned).
+    load_model, specimen_load_model : LoadModel
+        The prototype's load model (clearing on its face, the negative phase; the paper's load when none
+        was given) and the specimen's (its face x lambda: :meth:`LoadModel.scaled`, once).
+    contact, specimen_contact : ContactSettings or None
+        The prototype's 3D contact settings, when given, and the specimen's (``contact.scaled(factors)``).
+    duration, specimen_duration : float or None
+        The prototype's simulated time [s], when given, and the specimen's (x lambda_t).
     """
 
     law: str
@@ -128,14 +138,35 @@ class ModelDesign:
     specimen: BlastParameters
     factors: ScalingFactors
     impulsive: ImpulsiveCheck | None = None
-    prototype_block: RectangularBlock | None = None
-    specimen_block: RectangularBlock | None = None
+    prototype_structure: Any = None
+    specimen_structure: Any = None
     gravity: float = STANDARD_GRAVITY
     valid: "bool | np.ndarray" = True
     effects: dict | None = None
     notes: tuple = ()
+    load_model: Any = None
+    specimen_load_model: Any = None
+    contact: Any = None
+    specimen_contact: Any = None
+    duration: float | None = None
+    specimen_duration: float | None = None
 
     # convenient views -------------------------------------------------------
+    @property
+    def prototype_block(self) -> RectangularBlock | None:
+        """The prototype structure when it is a single rectangular block (planar rocking), else None."""
+        return self.prototype_structure if is_block(self.prototype_structure) else None
+
+    @property
+    def specimen_block(self) -> RectangularBlock | None:
+        """The specimen structure when it is a single rectangular block (planar rocking), else None."""
+        return self.specimen_structure if is_block(self.specimen_structure) else None
+
+    @property
+    def specimen_gravity(self) -> float:
+        """The specimen's gravity [m/s^2] (= varsigma g)."""
+        return self.gravity * self.gravity_ratio
+
     @property
     def specimen_charge_kg(self) -> float:
         """The specimen's TNT-equivalent charge [kg]."""

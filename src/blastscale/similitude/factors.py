@@ -25,9 +25,9 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from .._validate import check_finite, check_positive_scalar, check_range
+from .._validate import BlastscaleInputError, check_finite, check_positive_scalar, check_range
 
-__all__ = ["ScalingFactors", "scaling_factors", "pi_terms", "FACTOR_UNITS"]
+__all__ = ["ScalingFactors", "scaling_factors", "pi_terms", "FACTOR_UNITS", "DIMENSIONLESS", "dimension_factor"]
 
 #: What each factor scales (prototype unit), for tables and metadata.
 FACTOR_UNITS = {
@@ -232,3 +232,25 @@ def pi_terms(
         "pi_23": pressure * l**2 / (m * g),
         "pi_24": impulse / m * math.sqrt(l**3 / g),
     }
+
+
+#: Dimensions that no scaling factor changes.
+DIMENSIONLESS = ("dimensionless", "count")
+
+
+def dimension_factor(factors, dimension: str, name: str = "variable") -> float:
+    """The specimen / prototype factor [-] of a physical ``dimension``: 1 for dimensionless and
+    count, else the :class:`ScalingFactors` field of that name (``name`` labels the error).
+
+    The one factor lookup of up-scaling (summaries: :func:`blastscale.analysis.upscale.upscale_summary`;
+    histories: :func:`blastscale.analysis.compare.upscale_dataset`)."""
+    if dimension in DIMENSIONLESS:
+        return 1.0
+    value = getattr(factors, dimension, None) if isinstance(dimension, str) else None
+    if value is None:
+        raise BlastscaleInputError(
+            f"dimension of {name!r} = {dimension!r} has no scaling factor: valid values are "
+            f"{', '.join(DIMENSIONLESS)} or a ScalingFactors field (length, velocity, angle, angular_velocity, "
+            "time, momentum, force, mass, ...)"
+        )
+    return float(value)

@@ -19,12 +19,14 @@ __all__ = ["Engine", "ENGINES", "ENSEMBLE", "Context", "contact_settings", "crit
 @dataclass(frozen=True)
 class Context:
     """What every engine receives: the scenario, the built prototype, the one design (None for a
-    prototype-only scenario) and the prototype's blast parameters (the design's when there is one)."""
+    prototype-only scenario; it carries the specimen system), the prototype's blast parameters (the
+    design's when there is one) and the prototype's 3D contact settings (resolved once, by the check)."""
 
     scenario: Scenario
     structure: Any
     design: Any
     blast: Any
+    contact: Any = None
 
 
 def load_model_of(scenario: Scenario, structure):
@@ -62,17 +64,18 @@ def _run_planar(ctx: Context):
 
     sc, sim, d = ctx.scenario, ctx.scenario.simulation, ctx.design
     shape, dur = sc.blast.pulse_shape, float(sim.duration_s)
-    lm, ex = load_model_of(sc, ctx.structure), sc.blast.extrapolate
+    lm = load_model_of(sc, ctx.structure) if d is None else d.load_model
+    ex = sc.blast.extrapolate
     t = np.linspace(0.0, dur, int(sim.samples))
     sys_p = RockingSystem.from_block(ctx.structure, sim.gravity_m_s2, sim.restitution)
     res_p = DEFAULT_SOLVER.simulate(sys_p, front_face_pulse(ctx.blast, shape, lm, extrapolate=ex), dur, t_eval=t)
     if d is None:
         return PrototypeRocking(res_p)
-    f = d.factors
-    sys_m = RockingSystem.from_block(d.specimen_block, sim.gravity_m_s2 * d.gravity_ratio, sim.restitution)
-    dur_m = dur * f.time
-    res_m = DEFAULT_SOLVER.simulate(sys_m, front_face_pulse(d.specimen, shape, lm.scaled(f.length), extrapolate=ex),
-                                    dur_m, t_eval=np.minimum(t * f.time, dur_m))
+    # the specimen system as the design carries it: block, gravity, load model and duration, scaled once there
+    sys_m = RockingSystem.from_block(d.specimen_block, d.specimen_gravity, sim.restitution)
+    dur_m = d.specimen_duration
+    res_m = DEFAULT_SOLVER.simulate(sys_m, front_face_pulse(d.specimen, shape, d.specimen_load_model, extrapolate=ex),
+                                    dur_m, t_eval=np.minimum(t * d.factors.time, dur_m))
     return compare_rocking(res_p, res_m, d, sys_p.frequency_parameter)
 
 
@@ -132,8 +135,9 @@ def _3d_supports(structure) -> Optional[str]:
 def _settings_3d(ctx: Context) -> dict:
     """The 3D settings of a study, shared by the 3D and the ensemble engines."""
     sc = ctx.scenario
+    contact = contact_settings(sc, ctx.structure) if ctx.contact is None else ctx.contact
     out = dict(load=sc.blast.load, pulse_shape=sc.blast.pulse_shape, incidence=sc.blast.incidence,
-               contact=contact_settings(sc, ctx.structure), duration=sc.simulation.duration_s,
+               contact=contact, duration=sc.simulation.duration_s,
                record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
     if sc.blast.clearing or sc.blast.negative_phase:  # each system's faces are its own (the structure's)
         from ..blast.load_model import LoadModel

@@ -49,11 +49,14 @@ def format_duration(seconds: float) -> str:
     return f"{seconds / 86400:.3g} days"
 
 
-def _timestep(scenario: Scenario, structure) -> float:
-    """The prototype's 3D time step [s]: the scenario's, else the one derived from the structure."""
+def _timestep(scenario: Scenario, structure, contact=None) -> float:
+    """The prototype's 3D time step [s]: the scenario's, else that of ``contact`` (the study's resolved
+    contact settings) when given, else the one derived from the structure."""
     sim = scenario.simulation
     if sim.timestep_s is not None:
         return sim.timestep_s
+    if contact is not None:
+        return contact.timestep
     if structure is not None:
         try:
             from .engines import contact_settings
@@ -79,8 +82,9 @@ def _bodies(structure) -> int:
     return len(getattr(structure, "bodies", ())) or 1
 
 
-def estimate_memory(scenario: Scenario, structure=None) -> int:
-    """An upper estimate of the memory the histories of a study need [bytes].
+def estimate_memory(scenario: Scenario, structure=None, contact=None) -> int:
+    """An upper estimate of the memory the histories of a study need [bytes] (``contact``: the study's
+    resolved 3D contact settings, when known: their time step).
 
     3D: per system (prototype, model) one flag per time step plus, per recorded state, the
     engine's raw state (7 + 6 doubles per body), the recorded histories (about 20 doubles per
@@ -93,17 +97,18 @@ def estimate_memory(scenario: Scenario, structure=None) -> int:
         total += sim.samples * 8 * 40
     if sim.engine in ("3d", "both"):
         nb = _bodies(structure)
-        steps = sim.duration_s / _timestep(scenario, structure)
+        steps = sim.duration_s / _timestep(scenario, structure, contact)
         recs = steps / (sim.record_every or 4) + 1  # the default keeps one state per 4 or 5 steps
         runs = 1 + sim.ensemble_members  # an ensemble keeps every member's point histories too
         total += runs * 2 * (steps * 1 + recs * 8 * (13 * nb + 4 * 20 * (2 * nb)))
     return int(total)
 
 
-def estimate_seconds(scenario: Scenario, structure=None) -> float:
+def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
     """A rough estimate of a study's computing time on one core [s] (module docstring): 3D, the steps of
     every run (prototype and model, ensemble members) times :data:`STEP_SECONDS` x bodies^1.5; planar,
-    ~2 us per sample and system plus the critical-charge search (~0.1 s)."""
+    ~2 us per sample and system plus the critical-charge search (~0.1 s); ``contact`` as in
+    :func:`estimate_memory`."""
     sim = scenario.simulation
     systems = 1 if scenario.scale is None else 2
     total = 0.0
@@ -112,7 +117,7 @@ def estimate_seconds(scenario: Scenario, structure=None) -> float:
     if sim.engine in ("3d", "both"):
         nb = _bodies(structure)
         sides = getattr(structure, "sides", 4) if getattr(structure, "section", "") == "circular" else 4
-        steps = sim.duration_s / _timestep(scenario, structure)
+        steps = sim.duration_s / _timestep(scenario, structure, contact)
         runs = systems * (1 + sim.ensemble_members)
         total += runs * steps * STEP_SECONDS * nb ** 1.5 * max(1.0, sides / 4) ** (1 / 3)
     return total
@@ -169,12 +174,13 @@ def check_budget(name: str, value: float, unit: str, need_bytes: float, seconds:
         f"{'<=' if grows > 0 else '>='} {fits:.3g}{u} here" + (f" ({hint})" if hint else ""))
 
 
-def check_study_budget(scenario: Scenario, structure=None) -> None:
+def check_study_budget(scenario: Scenario, structure=None, contact=None) -> None:
     """Refuse, before any work, a study whose histories would not fit in memory or whose computing would
     outlast :func:`max_seconds` (:func:`check_budget`), naming ``simulation.timestep_s`` when a time step
-    shorter than the derived one was given, else ``simulation.duration_s``."""
+    shorter than the derived one was given, else ``simulation.duration_s``. ``contact``: the study's
+    resolved 3D contact settings, when known (not derived again)."""
     sim = scenario.simulation
-    need, secs = estimate_memory(scenario, structure), estimate_seconds(scenario, structure)
+    need, secs = estimate_memory(scenario, structure, contact), estimate_seconds(scenario, structure, contact)
     if sim.engine == "planar" and sim.samples * 8 * 40 > MEMORY_FRACTION * _available_memory():
         check_budget("simulation.samples", sim.samples, "", need, secs)
     given_step = sim.timestep_s is not None and sim.engine in ("3d", "both")

@@ -29,17 +29,17 @@ from __future__ import annotations
 
 import time
 import warnings
-from dataclasses import replace
-from typing import Callable, Optional
+from dataclasses import dataclass, replace
+from typing import Any, Callable, Optional
 
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
-from ..structures import from_spec, is_block
-from .engines import ENGINES, ENSEMBLE, Context, Engine, critical_charge_of, load_model_of
+from ..structures import from_spec
+from .engines import ENGINES, ENSEMBLE, Context, Engine, contact_settings, critical_charge_of, load_model_of
 from .memory import check_study_budget
 from .result import StudyResult
 
-__all__ = ["Study", "StudyWarning", "Progress"]
+__all__ = ["Study", "StudyPlan", "StudyWarning", "Progress"]
 
 
 class StudyWarning(UserWarning):
@@ -49,6 +49,35 @@ class StudyWarning(UserWarning):
 
 #: Progress callback: ``progress(stage, done, total)`` with a short stage description.
 Progress = Callable[[str, int, int], None]
+
+
+@dataclass(frozen=True)
+class StudyPlan:
+    """What a study checked before simulating (:meth:`Study.check`), every piece built once.
+
+    Attributes
+    ----------
+    structure : structure
+        The prototype structure (:data:`blastscale.structures.STRUCTURE_BUILDERS`).
+    engines : tuple of Engine
+        The engines to run (:data:`~.engines.ENGINES`, plus :data:`~.engines.ENSEMBLE`).
+    skipped : tuple of str
+        Why an engine of ``engine = "both"`` is not run.
+    design : ModelDesign or None
+        The one design (None for a prototype-only scenario or gravity alone): the specimen structure,
+        load model, contact, gravity and duration of both systems.
+    blast : BlastParameters or None
+        The prototype's blast parameters (``design.prototype`` with a design; None under gravity alone).
+    contact : ContactSettings or None
+        The prototype's 3D contact settings (:func:`~.engines.contact_settings`), when a 3D engine runs.
+    """
+
+    structure: Any
+    engines: tuple
+    skipped: tuple
+    design: Any
+    blast: Any
+    contact: Any = None
 
 
 class Study:
@@ -64,7 +93,7 @@ class Study:
         if not isinstance(scenario, Scenario):
             raise BlastscaleInputError(f"scenario must be a Scenario, got {type(scenario).__name__}")
         self.scenario = scenario
-        self._checked = None  # (structure, engines, skipped, design) once checked: the design runs once
+        self._checked = None  # the StudyPlan once checked: the structure is built and the design runs once
 
     def structure(self):
         """The prototype structure, built by the registry entry of its kind
@@ -103,9 +132,11 @@ class Study:
             run.append(ENSEMBLE)
         return run, skipped
 
-    def design(self, structure=None):
+    def design(self, structure=None, contact=None):
         """The model experiment (:func:`~blastscale.similitude.design_model`), once per study; None
-        for a prototype-only scenario (no ``[scale]``)."""
+        for a prototype-only scenario (no ``[scale]``). It carries the specimen system: the specimen
+        structure (any kind), its load model, its contact (when ``contact``, the prototype's 3D
+        settings, is given), gravity and duration, each scaled once."""
         from ..similitude import design_model
         from ..similitude.effects import front_face, structure_top
 
@@ -117,23 +148,25 @@ class Study:
         face = front_face(structure) if sc.blast.clearing else (None, structure_top(structure))  # top: the lab burst
         return design_model(
             sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, sc.density_ratio, sc.scale.gravity_ratio,
-            sc.scale.law, sc.blast.blast_model, structure if is_block(structure) else None,
+            sc.scale.law, sc.blast.blast_model, structure,
             gravity=sc.simulation.gravity_m_s2, extrapolate=sc.blast.extrapolate, burst=sc.blast.burst,
             specimen_burst=sc.scale.specimen_burst, load_model=lm, face=face,
-            specimen_charge_height=sc.scale.specimen_charge_height_m,
+            specimen_charge_height=sc.scale.specimen_charge_height_m, contact=contact,
+            duration=sc.simulation.duration_s,
         )
 
-    def check(self):
+    def check(self) -> StudyPlan:
         """Everything that can be checked before simulating: the structure, the engines, the
         design (blast fits' ranges, scale range), the memory and the computing time
-        (:func:`~blastscale.study.memory.check_study_budget`). Returns (structure, engines,
-        skipped, design, prototype blast parameters)."""
+        (:func:`~blastscale.study.memory.check_study_budget`), the 3D contact settings. Returns the
+        :class:`StudyPlan` (built once per study)."""
         if self._checked is None:
             structure = self.structure()
             engines, skipped = self.engines(structure)
-            check_study_budget(self.scenario, structure)
-            d = self.design(structure)
             sc = self.scenario
+            contact = contact_settings(sc, structure) if any(e.name != "planar" for e in engines) else None
+            check_study_budget(sc, structure, contact)
+            d = self.design(structure, contact)
             if sc.blast.gravity_only:  # no charge: the structure under gravity alone
                 blast = None
             elif d is None:  # the prototype's blast alone (with a design: the design's, never recomputed)
@@ -143,7 +176,8 @@ class Study:
                                          extrapolate=sc.blast.extrapolate, burst=sc.blast.burst)
             else:
                 blast = d.prototype
-            self._checked = (structure, engines, skipped, d, blast)
+            self._checked = StudyPlan(structure=structure, engines=tuple(engines), skipped=tuple(skipped), design=d,
+                                      blast=blast, contact=contact)
         return self._checked
 
     def run(self, progress: Optional[Progress] = None) -> StudyResult:
@@ -163,13 +197,14 @@ class Study:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             t0 = time.perf_counter()
-            structure, engines, skipped, d, blast = self.check()
+            plan = self.check()
+            structure, engines, skipped, d, blast = plan.structure, plan.engines, plan.skipped, plan.design, plan.blast
             want_critical = sc.simulation.critical_charge and any(e.name == "planar" for e in engines)
             total = 1 + len(engines) + int(want_critical)
             step = 1
             timings["design"] = time.perf_counter() - t0
             results: dict = {}
-            ctx = Context(sc, structure, d, blast)
+            ctx = Context(sc, structure, d, blast, plan.contact)
             for eng in engines:
                 _tell(progress, eng.label, step, total)
                 t0 = time.perf_counter()
@@ -184,7 +219,7 @@ class Study:
                 timings["critical"] = time.perf_counter() - t0
                 step += 1
             _tell(progress, "done", total, total)
-            specimen = None if d is None else structure.scaled(d.factors)
+            specimen = None if d is None else d.specimen_structure
             partial = StudyResult(scenario=sc, structure=structure, specimen_structure=specimen, design=d, blast=blast,
                                   planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
                                   ensemble=results.get("ensemble"))

@@ -59,33 +59,32 @@ def _outcome_group(sc, W, R, e) -> dict:
     from ..rocking.system import RockingSystem, housner_restitution
     from ..similitude import design_model
     from ..structures import from_spec
+    from ..study.engines import load_model_of
 
     n = W.size
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
     out[VALID_KEY] = np.zeros(n, dtype=bool)
     bl, sim, scl = sc.blast, sc.simulation, sc.scale
     structure = from_spec(sc.structure)
-    try:
-        d = design_model(W, R, scl.length, sc.density_ratio, scl.gravity_ratio, scl.law, bl.blast_model, geometry=None,
+    lm = load_model_of(sc, structure)  # clearing on the block's front, the negative phase (the Study's)
+    try:  # the specimen system (block, gravity, load model) from the design, as in the Study
+        d = design_model(W, R, scl.length, sc.density_ratio, scl.gravity_ratio, scl.law, bl.blast_model, structure,
                          gravity=sim.gravity_m_s2, extrapolate=bl.extrapolate, burst=bl.burst,
-                         specimen_burst=scl.specimen_burst)
+                         specimen_burst=scl.specimen_burst, load_model=lm, effects=False)
     except BlastscaleInputError:  # e.g. a density ratio the Hopkinson-Cranz law refuses: every case
         return out
-    from ..study.engines import load_model_of
-
-    lm = load_model_of(sc, structure)  # clearing on the block's front, the negative phase (the Study's)
     ok = d.valid
     if not np.any(ok):
         return out
     proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
-    specimen = RockingSystem.from_block(structure.scaled(d.factors), sim.gravity_m_s2 * d.gravity_ratio)
+    specimen = RockingSystem.from_block(d.specimen_block, d.specimen_gravity)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
     solver = RockingSolver(threads=sim.threads)  # the cases over the worker's cores (bitwise the same)
     fp = first_swing_blast(proto.alpha, e, proto.frequency_parameter, proto.load_ratio_per_pascal,
                            d.prototype.select(ok), bl.pulse_shape, load_model=lm, extrapolate=bl.extrapolate,
                            solver=solver)
     fm = first_swing_blast(specimen.alpha, e, specimen.frequency_parameter, specimen.load_ratio_per_pascal,
-                           d.specimen.select(ok), bl.pulse_shape, load_model=lm.scaled(d.scale),
+                           d.specimen.select(ok), bl.pulse_shape, load_model=d.specimen_load_model,
                            extrapolate=bl.extrapolate, solver=solver)
     out["planar.prototype.collapsed"][ok] = fp.collapsed
     out["planar.prototype.max_rotation_rad"][ok] = fp.max_rotation
