@@ -28,9 +28,9 @@ Modules: this one holds the driver (:func:`solve_case`, :func:`solve_batch`) and
 summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load ``f(tau)``; :mod:`._dopri`
 the Dormand-Prince step, dense output, roots and step-size control; :mod:`._events` the
 impact, peak, tipping and lying-down events and the recording into the output buffers.
-numba's cache (``cache=True``) checks only the source file of the cached function itself: after
-editing ``_load``, ``_dopri`` or ``_events``, clear ``rocking/__pycache__`` (or touch this file)
-so that :func:`solve_case` is compiled again.
+Every ``@njit(cache=True)`` here goes through :mod:`blastscale._jit`: its cache is keyed on this
+file and every module it imports (``_load``, ``_dopri``, ``_events``), so an edited helper is never
+run from stale machine code.
 
 Not a public module: use :class:`blastscale.rocking.RockingSolver`.
 """
@@ -40,7 +40,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from .._jit import njit
 
 from ._dopri import dense, dense_coeffs, dopri_step, error_norm, next_step, rejected_step, restart_step, rhs
 from ._events import (
