@@ -158,15 +158,21 @@ class SourceKeyedLocator(_CacheLocator):
         return str(self._lineno)
 
     @classmethod
+    def _places(cls, real: Path):
+        """(base folder, folder of numba's own old files) in the order tried: ``NUMBA_CACHE_DIR`` when
+        set, beside the source, numba's user-wide cache folder."""
+        if config.CACHE_DIR:
+            yield Path(config.CACHE_DIR) / cls.get_suitable_cache_subpath(str(real)), None
+        yield real.parent / "__pycache__", real.parent / "__pycache__"
+        user = Path(AppDirs(appname="numba", appauthor=False).user_cache_dir)
+        yield user / cls.get_suitable_cache_subpath(str(real)), None
+
+    @classmethod
     def from_function(cls, py_func, py_file):
         real = Path(os.path.realpath(py_file))
         if not real.is_file() or _ROOT not in real.parents:
             return None  # not blastscale's: numba's next locator
-        subpath = cls.get_suitable_cache_subpath(py_file)
-        bases = [(Path(config.CACHE_DIR) / subpath, None)] if config.CACHE_DIR else []
-        bases += [(real.parent / "__pycache__", real.parent / "__pycache__"),
-                  (Path(AppDirs(appname="numba", appauthor=False).user_cache_dir) / subpath, None)]
-        for base, legacy in bases:
+        for base, legacy in cls._places(real):
             self = cls(py_func, py_file, base, legacy)
             try:
                 self.ensure_cache_path()
