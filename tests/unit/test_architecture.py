@@ -15,8 +15,9 @@ import pytest
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "blastscale"
 
-#: The modules private to blastscale as a whole and shared by every subpackage (validation, test pause points).
-SHARED_PRIVATE = {"blastscale._validate", "blastscale._hooks", "blastscale._jit"}
+#: The modules private to blastscale as a whole and shared by every subpackage (validation, test pause points,
+#: the compiled kernels' cache keys, the code's fingerprint).
+SHARED_PRIVATE = {"blastscale._validate", "blastscale._hooks", "blastscale._jit", "blastscale._code"}
 
 
 def _module_name(path: Path) -> str:
