@@ -45,7 +45,7 @@ from numba.misc.appdirs import AppDirs
 
 from . import __version__
 
-__all__ = ["njit", "SourceKeyedLocator", "source_key", "kernel_sources", "KEEP"]
+__all__ = ["KEEP", "SourceKeyedLocator", "kernel_sources", "njit", "source_key"]
 
 #: Key folders kept per module (the most recently used); older ones are removed when a new one is made.
 KEEP = 4
@@ -58,7 +58,7 @@ def _module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-def _module_file(name: str) -> "Path | None":
+def _module_file(name: str) -> Path | None:
     """The source file of the blastscale module ``name`` (None: not a blastscale module)."""
     parts = name.split(".")
     if parts[0] != _ROOT.name:
@@ -104,7 +104,7 @@ def kernel_sources(py_file) -> tuple:
     return tuple(sorted(seen))
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def source_key(py_file: str) -> str:
     """SHA-256 (hex) of the blastscale and numba versions and of the bytes of
     :func:`kernel_sources` ``(py_file)`` with their paths inside the package (memoised per process)."""
@@ -115,7 +115,7 @@ def source_key(py_file: str) -> str:
     return h.hexdigest()
 
 
-def _prune(folder: Path, stem: str, legacy: "Path | None") -> None:
+def _prune(folder: Path, stem: str, legacy: Path | None) -> None:
     """Remove ``stem``'s key folders beyond the :data:`KEEP` most recently used, and numba's own cache
     files of ``stem`` in ``legacy`` (``__pycache__``: written before this locator existed)."""
     try:
@@ -134,7 +134,7 @@ class SourceKeyedLocator(_CacheLocator):
     """numba cache locator of blastscale's kernels: a folder and an index stamp per
     :func:`source_key` (module docstring)."""
 
-    def __init__(self, py_func, py_file, base: Path, legacy: "Path | None"):
+    def __init__(self, py_func, py_file, base: Path, legacy: Path | None):
         self._lineno = py_func.__code__.co_firstlineno
         self._key = source_key(os.path.realpath(py_file))
         self._stem = Path(py_file).stem

@@ -8,11 +8,11 @@ import pytest
 
 pytest.importorskip("zarr")
 
-import blastscale._code as code  # noqa: E402
-from blastscale._validate import BlastscaleInputError  # noqa: E402
-from blastscale.io.sweep_store import run_sweep  # noqa: E402
-from blastscale.scenario import Scenario  # noqa: E402
-from blastscale.sweeps import SweepSpec  # noqa: E402
+import blastscale._code as code
+from blastscale._validate import BlastscaleInputError
+from blastscale.io.sweep_store import run_sweep
+from blastscale.scenario import Scenario
+from blastscale.sweeps import SweepSpec
 
 # short planar runs of the paper's block (0.5 s, 51 samples), two charges, one case per chunk
 BASE = Scenario.default().with_values({"engine": "planar", "duration_s": 0.5, "samples": 51})

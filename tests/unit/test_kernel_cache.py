@@ -5,6 +5,7 @@ of the package, run, restore, run) is tests/integration/test_kernel_cache.py."""
 from __future__ import annotations
 
 import ast
+import importlib.util
 import os
 import re
 import shutil
@@ -99,9 +100,10 @@ def test_the_locator_is_first_and_keeps_to_blastscale(tmp_path):
     assert CacheImpl._locator_classes[0] is _jit.SourceKeyedLocator
     other = tmp_path / "theirs.py"
     other.write_text("def f():\n    return 1\n")
-    ns: dict = {}
-    exec(compile(other.read_text(), str(other), "exec"), ns)
-    assert _jit.SourceKeyedLocator.from_function(ns["f"], str(other)) is None  # numba's own locators take it
+    spec = importlib.util.spec_from_file_location("theirs", other)
+    theirs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(theirs)
+    assert _jit.SourceKeyedLocator.from_function(theirs.f, str(other)) is None  # numba's own locators take it
 
 
 @pytest.mark.skipif(bool(os.environ.get("NUMBA_CACHE_LOCATOR_CLASSES")), reason="the user chose numba's locators")
