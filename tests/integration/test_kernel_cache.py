@@ -91,4 +91,4 @@ def test_a_changed_helper_is_compiled_again_and_the_original_comes_back_from_its
     assert restored["cache_path"] == first["cache_path"]
     assert restored["hits"] >= 1 and restored["misses"] == 0  # from the first run's cache, not compiled
     assert index[0].stat().st_mtime_ns == stamp  # its index was read, not rewritten
-    assert len(list(Path(first["cache_path"]).parent.glob("_kernel-*"))) == 2  # both keys kept
+    assert Path(doubled["cache_path"]).is_dir()  # both keys kept: an undone edit is found again
