@@ -16,8 +16,8 @@ import pytest
 SRC = Path(__file__).resolve().parents[2] / "src" / "blastscale"
 
 #: The modules private to blastscale as a whole and shared by every subpackage (validation, test pause points,
-#: the thread share).
-SHARED_PRIVATE = {"blastscale._validate", "blastscale._hooks", "blastscale._threads"}
+#: the thread share, the compiled kernels' cache keys, the code's fingerprint).
+SHARED_PRIVATE = {"blastscale._validate", "blastscale._hooks", "blastscale._threads", "blastscale._jit", "blastscale._code"}
 
 
 def _module_name(path: Path) -> str:

@@ -156,8 +156,8 @@ def run_sweep(
             if man.get("fingerprint") != fp:
                 if man and not force:
                     raise BlastscaleInputError(
-                        f"out = {given!r}: the unfinished chunks in {str(parts_given)!r} belong to another sweep "
-                        "(pass --force to discard them)")
+                        f"out = {given!r}: the unfinished chunks in {str(parts_given)!r} belong to another sweep, "
+                        "or to this one computed by other blastscale code (pass --force to discard them)")
                 shutil.rmtree(parts)
             else:
                 chunk = int(man["chunk"])  # resume with the chunking the chunks were written with

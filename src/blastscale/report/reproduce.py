@@ -83,17 +83,22 @@ class Item:
     source: "Optional[Path | str]" = None  # a script, or a shipped scenario's name: a change makes it run again
 
     def fingerprint(self) -> str:
-        """SHA-256 of the item's source (a script's bytes, a shipped scenario's text; "" for the numbers
-        computed in this module)."""
+        """SHA-256 of the fingerprint of blastscale's code (:func:`blastscale._code.code_fingerprint`) and
+        of the item's source (a script's bytes, a shipped scenario's text; nothing more for the numbers
+        computed in this module): an item done by other code, or from another source, runs again."""
         import hashlib
 
-        if self.source is None:
-            return ""
-        if isinstance(self.source, Path):
-            return hashlib.sha256(self.source.read_bytes()).hexdigest()
-        from ..scenario import library_text
+        from .._code import code_fingerprint
 
-        return hashlib.sha256(library_text(self.source).encode("utf-8")).hexdigest()
+        if self.source is None:
+            source = b""
+        elif isinstance(self.source, Path):
+            source = self.source.read_bytes()
+        else:
+            from ..scenario import library_text
+
+            source = library_text(self.source).encode("utf-8")
+        return hashlib.sha256(code_fingerprint().encode() + b"\0" + source).hexdigest()
 
 
 # -- numbers computed directly ---------------------------------------------------------------

@@ -30,10 +30,10 @@ GIL) and re-exports the summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` th
 :mod:`._events` the impact, peak, tipping and lying-down events and the recording into the output
 buffers; :mod:`._batch` splits a batch over threads. The right-hand side and the load
 (``rhs``, ``load_ratio``) are inlined into the step by numba (``inline="always"``: no array
-arguments passed per stage; 1.6x faster per step, bitwise the same results). numba's cache (``cache=True``) checks only
-the source file of the cached function itself: after editing ``_load``, ``_dopri`` or ``_events``,
-clear ``rocking/__pycache__`` (or touch this file)
-so that :func:`solve_case` is compiled again.
+arguments passed per stage; 1.6x faster per step, bitwise the same results).
+Every ``@njit(cache=True)`` here goes through :mod:`blastscale._jit`: its cache is keyed on this
+file and every module it imports (``_load``, ``_dopri``, ``_events``), so an edited helper is never
+run from stale machine code.
 
 Not a public module: use :class:`blastscale.rocking.RockingSolver`.
 """
@@ -43,7 +43,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from .._jit import njit
 
 from ._dopri import dense, dense_coeffs, dopri_step, error_norm, next_step, rejected_step, restart_step, rhs
 from ._events import (

@@ -162,6 +162,7 @@ def metadata(spec: SweepSpec, chunk: int) -> dict:
     import numba
 
     from .. import __version__
+    from .._code import code_fingerprint
 
     return {
         "title": "blastscale sweep",
@@ -172,6 +173,7 @@ def metadata(spec: SweepSpec, chunk: int) -> dict:
         "chunk_size": int(chunk),
         "n_cases": spec.n_cases,
         "blastscale_version": __version__,
+        "blastscale_code": code_fingerprint(),
         "numpy_version": np.__version__,
         "numba_version": numba.__version__,
         "python_version": platform.python_version(),

@@ -212,10 +212,14 @@ class SweepSpec:
         }
 
     def fingerprint(self) -> str:
-        """sha256 of :meth:`describe` and the blastscale version: a resumed sweep must match it."""
+        """sha256 of :meth:`describe`, the blastscale version and the fingerprint of its code
+        (:func:`blastscale._code.code_fingerprint`): a resumed sweep must match it, so that no chunk
+        computed by other code is reused (issue #30)."""
         from .. import __version__
+        from .._code import code_fingerprint
 
-        text = json.dumps({"spec": self.describe(), "version": __version__}, sort_keys=True, default=str)
+        text = json.dumps({"spec": self.describe(), "version": __version__, "code": code_fingerprint()},
+                          sort_keys=True, default=str)
         return hashlib.sha256(text.encode()).hexdigest()
 
     def to_payload(self) -> dict:
