@@ -1,6 +1,6 @@
 """The compiled kernels' caches are keyed on every source they are compiled from (issue #30,
 :mod:`blastscale._jit`). These checks compile nothing; the end-to-end check (edit a helper of a copy
-of the package, run, restore, run) is tests/integration/test_kernel_cache.py."""
+of the package, run, restore, run) is tests/integration/test_stale_kernel_cache.py."""
 
 from __future__ import annotations
 
