@@ -4,7 +4,8 @@ faces in the body frame, interfaces and monitoring points. Monolithic blocks and
 interfaces found by geometry, :mod:`.interfaces`) generated as walls, arches and portals
 (:mod:`.generators`) or read from block-model files (:mod:`.block_files`)."""
 
-from .base import BoxGeometry, Face, MonitoringPoint, PrismGeometry, RigidBody, frustum_mass_properties
+from .base import (BoxGeometry, Face, MonitoringPoint, PrismGeometry, RigidBody, frustum_mass_properties,
+                   top_monitoring_point)
 from .assembly import Assembly, ConvexBlock, ConvexGeometry, as_assembly
 from .block import STANDARD_GRAVITY, RectangularBlock
 from .block_files import read_block_model
@@ -35,6 +36,7 @@ __all__ = [
     "SECTIONS",
     "STANDARD_GRAVITY",
     "frustum_mass_properties",
+    "top_monitoring_point",
     "STRUCTURE_BUILDERS",
     "from_spec",
     "is_block",
