@@ -15,8 +15,9 @@ import pytest
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "blastscale"
 
-#: The modules private to blastscale as a whole and shared by every subpackage (validation, test pause points).
-SHARED_PRIVATE = {"blastscale._validate", "blastscale._hooks"}
+#: The modules private to blastscale as a whole and shared by every subpackage (validation, test pause points,
+#: optional extras).
+SHARED_PRIVATE = {"blastscale._validate", "blastscale._hooks", "blastscale._extras"}
 
 
 def _module_name(path: Path) -> str:
