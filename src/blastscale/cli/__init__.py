@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import sys
 
+from .._extras import extra_of, missing_extra_message
 from ._app import app, print_error
 
 # command modules register themselves on `app` when imported
@@ -41,7 +42,6 @@ def _command(argv: list[str] | None) -> str:
 
 def main(argv: list[str] | None = None) -> None:
     """Entry point of the ``blastscale`` console script."""
-    from .._extras import extra_of, missing_extra_message
     from .._validate import BlastscaleInputError
 
     try:
