@@ -16,8 +16,9 @@ import pytest
 SRC = Path(__file__).resolve().parents[2] / "src" / "blastscale"
 
 #: The modules private to blastscale as a whole and shared by every subpackage (validation, test pause points,
-#: the thread share, the compiled kernels' cache keys, the code's fingerprint).
-SHARED_PRIVATE = {"blastscale._validate", "blastscale._hooks", "blastscale._threads", "blastscale._jit", "blastscale._code"}
+#: the thread share, the compiled kernels' cache keys, the code's fingerprint, optional extras).
+SHARED_PRIVATE = {"blastscale._validate", "blastscale._hooks", "blastscale._threads", "blastscale._jit", "blastscale._code",
+                  "blastscale._extras"}
 
 
 def _module_name(path: Path) -> str:

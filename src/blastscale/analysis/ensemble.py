@@ -119,6 +119,8 @@ class EnsembleComparison:
         without a model).
     settings : dict
         Inputs (perturbation, n, load method, duration).
+    top_point : str
+        The point reported as the top: the highest at rest (the recorder's), else the last.
     """
 
     time: np.ndarray
@@ -129,6 +131,11 @@ class EnsembleComparison:
     prototype_members: np.ndarray
     model_members: np.ndarray
     settings: dict = field(default_factory=dict)
+    top_point: str = ""
+
+    def __post_init__(self):
+        if not self.top_point:
+            object.__setattr__(self, "top_point", str(self.points[-1]))
 
     def summary(self) -> dict:
         """Per point: first-peak mean and spread of each system [m], their ratio, the model's
@@ -248,7 +255,7 @@ def ensemble_compare(
     q: dict = {s: [] for s in systems}
     collapsed: dict = {s: [] for s in systems}
     times: dict = {s: [] for s in systems}
-    t = points = None
+    t = points = top = None
     kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,
               duration=duration, record_every=record_every, extrapolate=extrapolate, load_model=load_model)
     tasks = [(k, s) for k in range(len(factors)) for s in systems]
@@ -272,6 +279,7 @@ def ensemble_compare(
         if t is None:
             t = ds["prototype"]["time"].values
             points = tuple(str(p) for p in ds["prototype"]["point"].values)
+            top = str(ds["prototype"].attrs.get("top_point", points[-1]))
         elif ds["prototype"].sizes["time"] != t.size:  # a member ended early: compare on the shortest common span
             m = min(t.size, ds["prototype"].sizes["time"])
             t = t[:m]
@@ -288,4 +296,5 @@ def ensemble_compare(
         factors=factors, prototype_members=np.stack(q["prototype"]),
         model_members=np.stack(q["model"]) if design is not None else None,
         settings={"perturbation": eps, "n": int(n), "load_method": load, "pulse_shape": pulse_shape, "duration_s": float(duration)},
+        top_point=top,
     )

@@ -62,8 +62,9 @@ def _with_outcome(ds, summary: dict):
 
 
 def _top_point(ds) -> str:
-    """The monitoring point compared as "the top": the last one (P-N on the top drum)."""
-    return str(ds["point"].values[-1])
+    """The monitoring point compared as "the top": the recorder's (the highest at rest,
+    :func:`~blastscale.structures.base.top_monitoring_point`); the last one in a dataset without it."""
+    return str(ds.attrs.get("top_point", ds["point"].values[-1]))
 
 
 @dataclass(frozen=True, eq=False)
@@ -105,7 +106,7 @@ class Comparison3D:
 
     @property
     def top_point(self) -> str:
-        """Name of the monitoring point reported as the top (the last one)."""
+        """Name of the monitoring point reported as the top (the highest at rest: an arch's crown)."""
         return _top_point(self.prototype_dataset)
 
     def similarity(self) -> dict:

@@ -7,13 +7,16 @@ Each command lives in its own module and registers itself on :data:`app`:
 named in each option's help text; everything is converted to SI before calling the library.
 
 Bad input raises :class:`~blastscale._validate.BlastscaleInputError` in the library; ``main``
-prints its one-line message and exits with status 2, without a traceback.
+prints its one-line message and exits with status 2, without a traceback. So does a command that needs
+an optional extra that is not installed (:mod:`blastscale._extras`): one line naming the extra and its
+install command.
 """
 
 from __future__ import annotations
 
 import sys
 
+from .._extras import extra_of, missing_extra_message
 from ._app import app, print_error
 
 # command modules register themselves on `app` when imported
@@ -31,6 +34,12 @@ from . import show as _show  # noqa: F401,E402
 __all__ = ["app", "main"]
 
 
+def _command(argv: list[str] | None) -> str:
+    """``blastscale COMMAND`` as the user typed it (the first word that is not an option)."""
+    words = [str(a) for a in (sys.argv[1:] if argv is None else argv)]
+    return " ".join(["blastscale"] + next(([w] for w in words if not w.startswith("-")), []))
+
+
 def main(argv: list[str] | None = None) -> None:
     """Entry point of the ``blastscale`` console script."""
     from .._validate import BlastscaleInputError
@@ -39,4 +48,10 @@ def main(argv: list[str] | None = None) -> None:
         app(args=argv, prog_name="blastscale")
     except BlastscaleInputError as exc:
         print_error(str(exc))
+        sys.exit(2)
+    except ImportError as exc:  # an optional extra's module, imported by us or by a library (xarray's zarr)
+        extra = extra_of(exc)
+        if extra is None:
+            raise
+        print_error(missing_extra_message(_command(argv), extra, exc.name))
         sys.exit(2)

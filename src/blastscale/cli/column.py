@@ -161,7 +161,7 @@ def column_cmd(
                          f"{fmt_value(p['max_abs_displacement_diff_rel_peak'], '.3g')}", "-"))
         console.print(table("Similarity (prototype vs up-scaled model, x displacement)", rows))
     if "ensemble" in out:
-        _print_ensemble(out["ensemble"], result.ensemble.points[-1], scale is not None)
+        _print_ensemble(out["ensemble"], result.ensemble.top_point, scale is not None)
     if plot:
         print_written(plot)
 

@@ -7,9 +7,10 @@ Every writer goes through :func:`claim` (and, for what appears at once, :meth:`C
    refused without ``force``, and with ``force`` replaced only when it is empty or of the writer's
    own :class:`Kind` (a result folder's marker file, a sweep store's fingerprint): a user's folder is
    never deleted.
-2. **Locked**: an exclusive ``flock`` on ``.NAME.lock`` beside the target (it holds the writer's pid
-   and host); a second writer of the same target gets one line (:class:`~blastscale._validate.
-   BlastscaleInputError`, exit 2). The lock file is removed, while held, when the writer ends.
+2. **Locked**: an exclusive lock (``filelock``: ``flock`` on POSIX, ``msvcrt.locking`` on Windows) on
+   ``.NAME.lock`` beside the target (it holds the writer's pid and host); a second writer of the same
+   target gets one line (:class:`~blastscale._validate.BlastscaleInputError`, exit 2). The lock file is
+   removed, while held, when the writer ends.
 3. **Stale work cleaned**: holding the lock, every partial folder of this target (``.NAME.partial-*``)
    belongs to a writer that is gone (killed with ``kill -9``, a power cut) and is removed; so are the
    partial folders of other targets in the same folder whose writer (pid in the name) is dead on this
@@ -27,7 +28,6 @@ from __future__ import annotations
 
 import contextlib
 import errno
-import fcntl
 import os
 import re
 import shutil
@@ -37,6 +37,8 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterator, Optional
+
+from filelock import FileLock, Timeout
 
 from .._hooks import pause_point
 from .._validate import BlastscaleInputError
@@ -220,43 +222,70 @@ class Claim:
             raise
 
 
-def _lock(target: Path, given: str, name: str = "out") -> int:
-    """Take the exclusive lock of ``target`` (an fd), or raise one line naming the writer holding it."""
+#: Tries to take a lock whose file vanished under us (its holder finished and removed it) before saying "busy".
+_LOCK_TRIES = 5
+
+
+def _holder(path: Path) -> Optional[list]:
+    """The words of a lock file (its holder's pid and host); None when it is not there to read (gone, or
+    unreadable: Windows locks the file's first byte against every other handle)."""
+    try:
+        return path.read_bytes()[:200].decode("utf-8", "replace").split()
+    except OSError:
+        return None
+
+
+def _size(path: Path) -> int:
+    try:
+        return path.stat().st_size
+    except OSError:
+        return -1
+
+
+def _lock(target: Path, given: str, name: str = "out") -> FileLock:
+    """Take the exclusive lock of ``target`` (``.NAME.lock`` beside it, through ``filelock``: ``flock`` on
+    POSIX, ``msvcrt.locking`` on Windows), or raise one line naming the writer holding it."""
     path = target.with_name(f".{target.name}.lock")
-    while True:
+    for _ in range(_LOCK_TRIES):
+        # filelock (>= 3.32) opens the file before locking it and, once locked, drops a file that its holder
+        # removed meanwhile (st_nlink 0) as contention: a lock taken is the one the path names
+        lock = FileLock(str(path), timeout=0, thread_local=False)
         try:
-            fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
-        except OSError as exc:
-            raise fault(given, exc, name=name) from None
-        try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError as exc:
-            holder = os.pread(fd, 200, 0).decode("utf-8", "replace").split()
-            os.close(fd)
-            if exc.errno not in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
-                raise fault(given, exc, name=name) from None
+            lock.acquire()
+        except Timeout:
+            holder = _holder(path)
+            if holder is None:  # gone: its holder just finished; or it cannot be created (the cause said)
+                try:
+                    os.close(os.open(path, os.O_RDWR | os.O_CREAT, 0o644))
+                except OSError as exc:
+                    raise fault(given, exc, name=name) from None
+                continue
             who = f" (pid {holder[0]} on {holder[1]})" if len(holder) >= 2 else ""
             raise BlastscaleInputError(f"{name} = {given!r} is being written by another blastscale process{who}: "
                                        "wait for it to finish or choose another --out") from None
-        try:
-            same = os.fstat(fd).st_ino == os.stat(path).st_ino
-        except FileNotFoundError:
-            same = False
-        if same:  # else the previous holder removed the file between our open and our lock: again
+        except OSError as exc:
+            raise fault(given, exc, name=name) from None
+        # the holder for a second writer's message, in the file filelock left empty (Windows: not readable by
+        # others; a soft lock, where the system has no file locks, writes its own)
+        if os.name != "nt" and _size(path) == 0:
             try:
-                os.ftruncate(fd, 0)
-                os.pwrite(fd, f"{os.getpid()} {_host()}\n".encode(), 0)
+                fd = os.open(path, os.O_WRONLY)
+                try:
+                    os.write(fd, f"{os.getpid()} {_host()}\n".encode())
+                finally:
+                    os.close(fd)
             except OSError as exc:  # a full disk: the lock file (ours, held) goes, nothing is left
-                _unlock(target, fd)
+                _unlock(target, lock)
                 raise fault(given, exc, name=name) from None
-            return fd
-        os.close(fd)
+        return lock
+    raise BlastscaleInputError(f"{name} = {given!r} is being written by another blastscale process: "
+                               "wait for it to finish or choose another --out")
 
 
-def _unlock(target: Path, fd: int) -> None:
+def _unlock(target: Path, lock: FileLock) -> None:
     with contextlib.suppress(OSError):
         os.unlink(target.with_name(f".{target.name}.lock"))  # while held: a waiting writer sees a new file
-    os.close(fd)
+    lock.release()
 
 
 @contextlib.contextmanager
@@ -265,7 +294,7 @@ def claim(out, kind: Kind, force: bool = False, reuse: Optional[Callable[[Path],
     """Check ``out`` (:func:`check_target`), lock it, clean dead writers' partial work; yields a
     :class:`Claim`. Any ``OSError`` inside becomes one line naming ``name = 'out'``."""
     target = check_target(out, kind, force, reuse, name)
-    fd = _lock(target, str(out), name)
+    lock = _lock(target, str(out), name)
     try:
         clean_stale(target)
         check_target(out, kind, force, reuse, name)  # again, under the lock: a writer may have finished meanwhile
@@ -274,7 +303,7 @@ def claim(out, kind: Kind, force: bool = False, reuse: Optional[Callable[[Path],
         raise fault(str(out), exc, name=name) from None
     finally:
         with signals_held():
-            _unlock(target, fd)
+            _unlock(target, lock)
 
 
 def write_file(path, data: "str | bytes", what: str = "out", raw: bool = False) -> Path:

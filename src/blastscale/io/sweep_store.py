@@ -19,6 +19,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from .._extras import require
 from .._hooks import pause_point, pausing
 from .._validate import BlastscaleInputError
 from ..sweeps.budget import check_sweep_budget
@@ -138,6 +139,9 @@ def run_sweep(
     given = str(store)
     fp = spec.fingerprint()
     nw = (os.cpu_count() or 1) if workers is None else int(workers)
+    require("zarr", "sweeps", "a sweep store")  # before any work: nothing written without it
+    if scheduler is not None or nw > 0:
+        require("dask.distributed", "sweeps", "a sweep on Dask workers")
     if nw < 0:
         raise BlastscaleInputError(f"workers = {workers} is out of range: must be >= 0 (0: in this process)")
     if chunk is not None and (not isinstance(chunk, (int, np.integer)) or isinstance(chunk, bool) or chunk < 1):
@@ -214,9 +218,8 @@ def _store_fingerprint(store: Path, any_layout: bool = False) -> Optional[str]:
     (one flat dataset) is not this sweep's finished store unless ``any_layout``."""
     if not (Path(store) / ".zattrs").is_file() and not (Path(store) / "zarr.json").is_file():
         return None
+    zarr = require("zarr", "sweeps", "a sweep store")
     try:
-        import zarr
-
         attrs = zarr.open_group(str(store), mode="r").attrs
         if any_layout or attrs.get("store_version") == STORE_VERSION:
             return attrs.get("fingerprint")
@@ -241,5 +244,6 @@ def open_sweep(store):
     """
     import xarray as xr
 
+    require("zarr", "sweeps", "reading a sweep store")
     return xr.open_datatree(Path(store), engine="zarr", consolidated=True).load()
 

@@ -153,7 +153,8 @@ def plot_column_comparison(structure, prototype, model=None, points=None, fig=No
     plot_point_histories(prototype, model, "point_displacement", points, ax=axs[0])
     plot_point_histories(prototype, model, "point_velocity", points, ax=axs[1])
     # snapshots at rest, at the top point's two largest excursions, and at the end
-    top = prototype["point_displacement"].isel(point=-1).sel(component="x").values
+    top_point = prototype.attrs.get("top_point", str(prototype["point"].values[-1]))
+    top = prototype["point_displacement"].sel(point=top_point, component="x").values
     t = prototype["time"].values
     times = sorted({float(t[0]), float(t[int(np.argmax(top))]), float(t[int(np.argmin(top))]), float(t[-1])})
     plot_column_snapshots(structure, prototype, times=times, ax=axs[2])
@@ -168,7 +169,7 @@ def plot_ensemble_envelope(ensemble, point=None, ax=None):
     ----------
     ensemble : blastscale.analysis.ensemble.EnsembleComparison
     point : str, optional
-        Monitoring point (default the last, the top).
+        Monitoring point (default the top: the highest at rest).
     ax : matplotlib Axes, optional
 
     Returns
@@ -176,7 +177,7 @@ def plot_ensemble_envelope(ensemble, point=None, ax=None):
     matplotlib Axes
     """
     names = list(ensemble.points)
-    point = names[-1] if point is None else str(point)
+    point = ensemble.top_point if point is None else str(point)
     if point not in names:
         raise BlastscaleInputError(f"point = {point!r} is not recorded: valid values are {', '.join(names)}")
     j = names.index(point)

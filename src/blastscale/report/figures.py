@@ -79,7 +79,7 @@ def _ensemble(result):
 
     ens = result.ensemble
     fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
-    for ax, point in zip(axes, (ens.points[0], ens.points[-1])):
+    for ax, point in zip(axes, (ens.points[0], ens.top_point)):
         plot_ensemble_envelope(ens, point=point, ax=ax)
     return fig
 

@@ -230,7 +230,7 @@ def _scenario_item(name: str) -> Item:
                     rows.append(Row(f"3D: {k.replace('_', ' ')}", "prototype and model coincide", sim[k], ""))
         if result.ensemble is not None:
             en = s["ensemble"]
-            top = result.ensemble.points[-1]
+            top = result.ensemble.top_point
             rows += [
                 Row(f"ensembles ({en['n_members']} members): collapse probability, prototype", "",
                     en["collapse_probability_prototype"], ""),

@@ -10,6 +10,7 @@ import json
 
 import numpy as np
 
+from ..structures.base import top_monitoring_point
 from .results import VARIABLES, Response3D, body_heights
 from .rotations import quaternion_to_matrix, tilt_angle
 
@@ -162,8 +163,7 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
     }
     dvars = {k: (VARIABLES[k][0], v, {"units": VARIABLES[k][1], "dimension": VARIABLES[k][2],
                                       "long_name": VARIABLES[k][3]}) for k, v in data.items()}
-    top_body = nb - 1
-    top_point = next((p.name for p in points if p.body == top_body), points[-1].name)
+    top_point = top_monitoring_point(structure).name  # the highest at rest: an arch's crown, a portal's lintel
     attrs = {
         "source": "blastscale.sim3d (MuJoCo)",
         "structure": json.dumps(structure.describe()),

@@ -5,7 +5,7 @@ interfaces found by geometry, :mod:`.interfaces`) generated as walls, arches and
 (:mod:`.generators`) or read from block-model files (:mod:`.block_files`)."""
 
 from .base import (BoxGeometry, Face, MonitoringPoint, PrismGeometry, RestMassProperties, RigidBody,
-                   frustum_mass_properties, rest_mass_properties)
+                   frustum_mass_properties, rest_mass_properties, top_monitoring_point)
 from .assembly import Assembly, ConvexBlock, ConvexGeometry, as_assembly
 from .block import STANDARD_GRAVITY, RectangularBlock
 from .block_files import read_block_model
@@ -38,6 +38,7 @@ __all__ = [
     "SECTIONS",
     "STANDARD_GRAVITY",
     "frustum_mass_properties",
+    "top_monitoring_point",
     "STRUCTURE_BUILDERS",
     "from_spec",
     "is_block",

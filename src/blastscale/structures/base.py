@@ -54,6 +54,7 @@ __all__ = [
     "rest_mass_properties",
     "polygon_section_constants",
     "tapered_face",
+    "top_monitoring_point",
 ]
 
 
@@ -263,6 +264,30 @@ def rectangle_ring(half_width: float, half_depth: float) -> np.ndarray:
 def as_vertex_tuple(points) -> tuple:
     """Points (n, 3) [m] as a tuple of float triples (hashable, for :attr:`RigidBody.vertices`)."""
     return tuple(tuple(float(x) for x in p) for p in np.asarray(points, dtype=float).reshape(-1, 3))
+
+
+def top_monitoring_point(structure) -> MonitoringPoint:
+    """The structure's "top": its highest monitoring point at rest, for every kind (the crown of an arch,
+    the lintel of a portal, the top drum of a column, the top course of a wall).
+
+    Heights are those at rest in the world frame, ``z = bodies[p.body].com[2] + p.position[2]`` [m].
+    Points level to 1e-9 of the highest (a course of equal blocks, the two crown voussoirs of an even
+    arch) go to the last of them, so that a structure and its scaled copy name the same point.
+
+    Parameters
+    ----------
+    structure : structure
+        Anything with ``bodies`` (:class:`RigidBody`) and ``monitoring_points`` (:class:`MonitoringPoint`).
+
+    Returns
+    -------
+    MonitoringPoint
+    """
+    points = tuple(structure.monitoring_points)
+    bodies = structure.bodies
+    z = np.array([bodies[p.body].com[2] + p.position[2] for p in points], dtype=float)
+    level = z >= z.max() - 1e-9 * max(float(np.abs(z).max()), np.finfo(float).tiny)
+    return points[int(np.flatnonzero(level)[-1])]
 
 
 @dataclass(frozen=True)

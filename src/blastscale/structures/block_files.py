@@ -33,6 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._extras import require
 from .._validate import BlastscaleInputError
 from .assembly import Assembly, ConvexBlock
 from .base import MonitoringPoint
@@ -163,10 +164,7 @@ def _from_compas_model(path, data: dict, source: str, density: float, use_compas
 
 
 def _from_mesh(path: Path, source: str, density: float) -> tuple:
-    try:
-        import trimesh
-    except ImportError:  # pragma: no cover - the [mesh] extra is part of make install
-        raise BlastscaleInputError(f"{source}: reading meshes needs trimesh: pip install 'blastscale[mesh]'") from None
+    trimesh = require("trimesh", "mesh", f"reading {source} (a mesh)")
     try:
         loaded = trimesh.load_scene(str(path), split_object=True, group_material=False, process=False) \
             if hasattr(trimesh, "load_scene") else trimesh.load(str(path), process=False)

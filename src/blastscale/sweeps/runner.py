@@ -12,6 +12,7 @@ import time
 from dataclasses import dataclass
 from typing import Callable, Optional
 
+from .._extras import require
 from .._validate import BlastscaleInputError
 from .cases import evaluate_chunk
 from .spec import SweepSpec
@@ -92,7 +93,8 @@ def run_chunks(payload: dict, todo, sink: Callable[[int, dict], None], *, schedu
 def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
     """Submit the chunks, write each as it completes; returns the number of workers used and the
     seconds from the first submission to the last chunk written (cluster start and stop excluded)."""
-    from dask.distributed import Client, LocalCluster, as_completed
+    distributed = require("dask.distributed", "sweeps", "a sweep on Dask workers")
+    Client, LocalCluster, as_completed = distributed.Client, distributed.LocalCluster, distributed.as_completed
 
     cluster = None
     if scheduler is None:
