@@ -21,11 +21,13 @@ import blastscale.blast.parameters as parameters
 import blastscale.sim3d.contact as contact_module
 import blastscale.sim3d.load_methods as load_methods
 import blastscale.similitude.design as design_module
-from blastscale.analysis import compare, upscale
+import blastscale.similitude.specimen as specimen_module
+from blastscale.analysis import compare, systems, upscale
 from blastscale.blast.load_model import LoadModel
+from blastscale.rocking import RockingSystem, model_capacity_curve
 from blastscale.scenario import Scenario
 from blastscale.sim3d.contact import ContactSettings
-from blastscale.similitude import factors
+from blastscale.similitude import design_model, factors
 from blastscale.similitude.effects import BlastSimilarityWarning
 from blastscale.structures import MultiDrumColumn, RectangularBlock, from_spec
 from blastscale.study import Study, StudyPlan
@@ -127,6 +129,10 @@ def test_per_face_loads_take_charge_standoff_and_blast_model_from_the_design(loa
 
 # -- one specimen, built once (issue #23) ----------------------------------------------------------------------
 
+#: The one module whose function scales a specimen (``similitude.specimen.specimen_system``), for the design,
+#: a capacity curve and a 3D run given a design without its structure.
+SPECIMEN = "blastscale.similitude.specimen"
+
 
 def _count_function(monkeypatch, original, counter):
     """Replace ``original`` in every loaded blastscale module that holds it by a wrapper that appends
@@ -169,7 +175,8 @@ def test_the_specimen_system_is_scaled_once_by_the_design(monkeypatch):
     engine; and once more per sweep chunk), the contact scaled by each run of the specimen and derived
     again by each run.
     """
-    built, lms, contacts, derived, prototypes = [], [], [], [], []
+    built, lms, contacts, derived, prototypes, scalings = [], [], [], [], [], []
+    _count_function(monkeypatch, specimen_module.specimen_system, scalings)
     _count_function(monkeypatch, contact_module.default_contact, derived)
     _count_function(monkeypatch, from_spec, prototypes)
     _count_method(monkeypatch, RectangularBlock, "scaled", built)
@@ -182,14 +189,15 @@ def test_the_specimen_system_is_scaled_once_by_the_design(monkeypatch):
     d = r.design
     assert r.planar is not None and r.response3d is not None
     assert prototypes == ["blastscale.study.study"], prototypes  # the prototype built once, by the check
+    assert scalings == ["blastscale.similitude.design"], scalings  # the one specimen system, by the design
     specimens = [c for c in built if c[2] is d.factors]
-    assert [c[0] for c in specimens] == ["blastscale.similitude.design"], built
+    assert [c[0] for c in specimens] == [SPECIMEN], built
     assert r.specimen_structure is d.specimen_structure is r.response3d.specimen_structure
     assert r.planar.design.specimen_block is d.specimen_structure
-    assert [c[0] for c in lms] == ["blastscale.similitude.design"], lms
+    assert [c[0] for c in lms] == [SPECIMEN], lms
     assert d.specimen_load_model.face_height_m == pytest.approx(d.scale * d.load_model.face_height_m, rel=1e-15)
     by_design = [c for c in contacts if c[2] is d.factors]
-    assert [c[0] for c in by_design] == ["blastscale.similitude.design"], contacts
+    assert [c[0] for c in by_design] == [SPECIMEN], contacts
     assert study.check().contact is d.contact and d.specimen_contact is not None
     assert derived == ["blastscale.study.engines"], derived  # contact_settings, in the check
     others = Counter(c[0] for c in contacts if c[2] is not d.factors)
@@ -214,9 +222,58 @@ def test_a_column_and_its_ensembles_build_one_specimen(monkeypatch):
     r = Study(sc).run()
     d = r.design
     assert r.ensemble is not None and isinstance(d.specimen_structure, MultiDrumColumn)
-    assert [c[0] for c in built if c[2] is d.factors] == ["blastscale.similitude.design"], built
-    assert [c[0] for c in contacts if c[2] is d.factors] == ["blastscale.similitude.design"], contacts
+    assert [c[0] for c in built if c[2] is d.factors] == [SPECIMEN], built
+    assert [c[0] for c in contacts if c[2] is d.factors] == [SPECIMEN], contacts
     assert r.specimen_structure is d.specimen_structure is r.response3d.specimen_structure
+
+
+def test_a_capacity_curve_scales_its_specimen_once(monkeypatch):
+    """A capacity curve (stand-offs without a charge: no design) of the paper's 10 m block at lambda = 1/100,
+    gamma = 0.5, varsigma = 2, with clearing on a 1 m x 10 m face: its specimen system comes from the one
+    function that scales a specimen, called once; it scales the rocking system once (by lambda, gamma,
+    varsigma) and the load model once (by lambda), and nothing else is scaled (before: the capacity built its
+    specimen from lambda, gamma, varsigma itself and called ``LoadModel.scaled`` itself)."""
+    scalings, rocking, blocks, lms = [], [], [], []
+    _count_function(monkeypatch, specimen_module.specimen_system, scalings)
+    _count_method(monkeypatch, RockingSystem, "scaled", rocking)
+    _count_method(monkeypatch, RectangularBlock, "scaled", blocks)
+    _count_method(monkeypatch, LoadModel, "scaled", lms)
+    block = RectangularBlock(height=10.0, width=2.679491924311227, depth=1.0)
+    lm = LoadModel(clearing=True, face_width_m=1.0, face_height_m=10.0)
+    mcap = model_capacity_curve(block, [2.0, 3.0], 0.01, 0.5, 2.0, load_model=lm)
+    assert np.all(np.isfinite(mcap.upscaled_charge_kg))
+    assert scalings == ["blastscale.rocking.capacity"], scalings
+    assert [c[0] for c in rocking] == [SPECIMEN], rocking
+    f = rocking[0][2]
+    assert (f.length, f.density, f.gravity) == (0.01, 0.5, 2.0)
+    assert [(c[0], c[1], c[2]) for c in lms] == [(SPECIMEN, lm, 0.01)], lms
+    assert blocks == [], blocks
+
+
+def test_a_3d_run_of_a_design_without_its_specimen_scales_through_the_one_function(monkeypatch):
+    """``run_system`` given a design made without the structure, contact and duration it runs (a user's
+    ``compare_structure3d(column, design_model(W, R, lam))``) completes the specimen by the function the
+    design uses (column x lambda, contact by the factors, duration x lambda_t), not a second path; a design
+    that carries them is read as it is: nothing is scaled again."""
+    col = MultiDrumColumn(drums=2, height=2.0, top_width=1.6)
+    contact = ContactSettings()
+    bare = design_model(250.0, 10.0, 1 / 100)
+    full = design_model(250.0, 10.0, 1 / 100, geometry=col, contact=contact, duration=0.5)
+    scalings, built, contacts = [], [], []
+    _count_function(monkeypatch, specimen_module.specimen_system, scalings)
+    _count_method(monkeypatch, MultiDrumColumn, "scaled", built)
+    _count_method(monkeypatch, ContactSettings, "scaled", contacts)
+    struct, bp, dur, g, cont = systems._specimen_system(full, col, contact, 0.5)
+    assert (struct, cont, dur) == (full.specimen_structure, full.specimen_contact, full.specimen_duration)
+    assert struct is full.specimen_structure and cont is full.specimen_contact and bp is full.specimen
+    assert built == [] and contacts == [], (built, contacts)
+    struct, bp, dur, g, cont = systems._specimen_system(bare, col, contact, 0.5)
+    assert scalings[-1] == "blastscale.analysis.systems", scalings
+    assert [c[0] for c in built] == [SPECIMEN] and built[0][2] is bare.factors, built
+    assert [c[0] for c in contacts] == [SPECIMEN] and contacts[0][2] is bare.factors, contacts
+    assert struct.height == pytest.approx(0.02, rel=1e-15) and dur == pytest.approx(0.5 * 0.1, rel=1e-15)
+    assert cont.timestep == pytest.approx(contact.timestep * 0.1, rel=1e-15) and bp is bare.specimen
+    assert g == pytest.approx(bare.specimen_gravity, rel=1e-15)
 
 
 def _definitions(name: str) -> list:

@@ -5,7 +5,7 @@
 1. the model system is the one the design carries (:mod:`.systems`): its structure
    ``design.specimen_structure``, gravity ``varsigma g``, contact settings the engine's
    scale-consistent defaults (``contact=None``) or ``design.specimen_contact`` (a design made
-   without them: ``structure.scaled(factors)``, ``contact.scaled(factors)``);
+   without them: completed by :func:`blastscale.similitude.specimen.specimen_system`, as the design does);
 2. each is loaded by :func:`blastscale.sim3d.load_methods.make_load` from its own blast
    parameters (``design.prototype``, ``design.specimen``: the design's, never recomputed) and
    simulated by :func:`blastscale.sim3d.simulate_structure` (the model for ``duration *

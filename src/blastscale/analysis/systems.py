@@ -12,8 +12,9 @@ a structure, a load and a run of the 3D engine. The model system is the one the 
 * run for ``design.specimen_duration``.
 
 A design made without the structure, or with other contact settings or another duration than the
-ones given here, is completed by the same rules (``structure.scaled(factors)``, ``contact.scaled(factors)``,
-``duration * lambda_t``) for each run.
+ones given here, is completed for each run by the function the design itself uses,
+:func:`~blastscale.similitude.specimen.specimen_system` (``structure.scaled(factors)``,
+``contact.scaled(factors)``, ``duration * lambda_t``): there is no second scaling path.
 
 The prototype system is the structure itself, loaded from ``design.prototype`` or, for a
 prototype-only study (no design), from the prototype's own blast parameters.
@@ -120,13 +121,19 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
 
 def _specimen_system(design, structure, contact, duration: float) -> tuple:
     """(structure, blast parameters, duration [s], gravity [m/s^2], contact) of the specimen: the design's
-    when it carries them for this prototype, contact and duration (a Study's), else scaled here."""
-    f = design.factors
-    same = design.prototype_structure is structure
-    struct = design.specimen_structure if same else structure.scaled(f)
-    if contact is None:
-        cont = None
-    else:
-        cont = design.specimen_contact if design.contact is contact else contact.scaled(f)
-    dur = design.specimen_duration if design.duration == duration else duration * f.time
+    (a Study's design carries this prototype, contact and duration); the parts it does not carry (a design made
+    without them, or with others) by :func:`~blastscale.similitude.specimen.specimen_system`, the one function
+    that scales a specimen, as the design itself does."""
+    from ..similitude.specimen import specimen_system
+
+    same_structure = design.prototype_structure is structure
+    same_contact = contact is None or design.contact is contact
+    same_duration = design.duration == duration
+    other = None
+    if not (same_structure and same_contact and same_duration):  # what the design does not carry, scaled once
+        other = specimen_system(design.factors, structure=None if same_structure else structure,
+                                contact=None if same_contact else contact, duration=None if same_duration else duration)
+    struct = design.specimen_structure if same_structure else other.structure
+    cont = None if contact is None else (design.specimen_contact if same_contact else other.contact)
+    dur = design.specimen_duration if same_duration else other.duration
     return struct, design.specimen, dur, design.specimen_gravity, cont

@@ -158,37 +158,29 @@ def model_capacity_curve(
     """Capacity curve of the reduced-scale model of ``body`` and its up-scaling to the prototype.
 
     The model is the prototype with lengths x ``scale`` (lambda), density x ``density_ratio``
-    (gamma) and gravity x ``gravity_ratio`` (varsigma), same restitution; its critical charges
+    (gamma) and gravity x ``gravity_ratio`` (varsigma), same restitution, and the load model's face
+    x lambda: the specimen system of :func:`blastscale.similitude.specimen.specimen_system` (the one place
+    a specimen is scaled, as for a design: :meth:`RockingSystem.scaled`, :meth:`LoadModel.scaled`); its critical charges
     are searched at the stand-offs ``scale * standoffs`` [m] (as :func:`capacity_curve`) and each
     is up-scaled to the prototype charge that delivers, at the prototype stand-off, the model's
     reflected impulse divided by ``gamma sqrt(varsigma lambda^3)`` (paper Eq. 8, Table 1).
     In the impulsive limit the up-scaled curve equals the prototype's exactly; finite pulses
     depart from it by the effect of the pulse duration, which the law does not match.
     """
-    from dataclasses import replace
-
     from ..similitude import scaling_factors
+    from ..similitude.specimen import specimen_system
 
     lam = float(check_positive("scale", scale))
     gam = float(check_positive("density ratio", density_ratio))
     sig = float(check_positive("gravity ratio", gravity_ratio))
     R = np.atleast_1d(check_positive("standoffs", standoffs, "m")).astype(float)
-    proto = as_rocking_system(body, gravity, restitution)
-    m_sys = replace(
-        proto,
-        mass=proto.mass * gam * lam**3,
-        inertia_pivot=proto.inertia_pivot * gam * lam**5,
-        radius=proto.radius * lam,
-        loaded_area=proto.loaded_area * lam**2,
-        lever_arm=proto.lever_arm * lam,
-        gravity=proto.gravity * sig,
-        restitution=proto.coefficient_of_restitution,
-    )
-    curve = capacity_curve(m_sys, lam * R, pulse_shape=pulse_shape, blast_model=blast_model, solver=solver, xtol_rel=xtol_rel,
-                           extrapolate=extrapolate, load_model=None if load_model is None else load_model.scaled(lam))
+    f = scaling_factors(lam, gam, sig)  # no charge, no lambda_Z: the specimen system needs lambda, gamma, varsigma
+    spec = specimen_system(f, as_rocking_system(body, gravity, restitution), load_model)  # scaled once, there
+    curve = capacity_curve(spec.structure, lam * R, pulse_shape=pulse_shape, blast_model=blast_model, solver=solver,
+                           xtol_rel=xtol_rel, extrapolate=extrapolate, load_model=spec.load_model)
     ok = np.isfinite(curve.critical_charge_kg)
     up = np.full(R.size, np.nan)
     if np.any(ok):
         im = blast_parameters(curve.critical_charge_kg[ok], lam * R[ok], blast_model, extrapolate=extrapolate).reflected_impulse
-        up[ok] = charge_for_impulse(im / scaling_factors(lam, gam, sig).impulse, R[ok], blast_model, extrapolate=extrapolate)
+        up[ok] = charge_for_impulse(im / f.impulse, R[ok], blast_model, extrapolate=extrapolate)
     return ModelCapacity(curve, up, lam, gam, sig)

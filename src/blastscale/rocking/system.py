@@ -132,6 +132,21 @@ class RockingSystem:
             restitution=restitution,
         )
 
+    def scaled(self, factors) -> RockingSystem:
+        """The similar system of the reduced-scale model (the specimen): mass x gamma lambda^3, J_o x gamma
+        lambda^5, r and l x lambda, S x lambda^2, gravity x varsigma; alpha and the restitution unchanged
+        (``factors``: a :class:`~blastscale.similitude.ScalingFactors`; ``length`` lambda, ``density`` gamma,
+        ``gravity`` varsigma [-]). Paper Tables 1-2. Called by
+        :func:`blastscale.similitude.specimen.specimen_system`, the one place a specimen is scaled."""
+        from dataclasses import replace
+
+        lam = float(check_positive("scale", factors.length))
+        gam = float(check_positive("density ratio", factors.density))
+        sig = float(check_positive("gravity ratio", factors.gravity))
+        return replace(self, mass=self.mass * gam * lam**3, inertia_pivot=self.inertia_pivot * gam * lam**5,
+                       radius=self.radius * lam, loaded_area=self.loaded_area * lam**2, lever_arm=self.lever_arm * lam,
+                       gravity=self.gravity * sig)
+
     # derived quantities ----------------------------------------------------
     @property
     def frequency_parameter(self) -> float:

@@ -37,6 +37,7 @@ from .laws import (
     solve_scaled_distance_factor,
     solve_scaled_distance_factors,
 )
+from .specimen import specimen_system
 
 __all__ = ["design_model"]
 
@@ -85,7 +86,8 @@ def design_model(
         Blast model (``"kingery-bulmash"`` default, ``"masi2021"`` the paper's fits).
     geometry : structure, optional
         The prototype structure, of any kind (block, column, wall, arch, portal, assembly): the design
-        carries it and its specimen (``structure.scaled(factors)``, built here once); a rectangular
+        carries it and its specimen (``structure.scaled(factors)``, built here once, by
+        :func:`~.specimen.specimen_system` as every part of the specimen system); a rectangular
         block also enables the impulsive check.
     gravity : float
         Prototype gravity g [m/s^2].
@@ -176,15 +178,16 @@ def design_model(
     else:  # every case at once, NaN where a case cannot be designed
         f, note, ok, proto, spec = _design_cases(W, R, lam, gam, sig, law, bm, ms, extrapolate)
     structure = geometry
-    specimen_structure = None if structure is None else structure.scaled(f)
+    lm = PAPER_LOAD if load_model is None else load_model
+    spec_sys = specimen_system(f, structure, lm, contact, duration, gravity)  # the specimen system, once, here
+    specimen_structure = spec_sys.structure
     imp = None
     if structure is not None and is_block(structure):  # t_o p (:func:`~.experiment.impulsive_check`)
         rp = proto.positive_duration * structure.frequency_parameter(gravity)
-        rm = spec.positive_duration * specimen_structure.frequency_parameter(gravity * sig)
+        rm = spec.positive_duration * specimen_structure.frequency_parameter(spec_sys.gravity)
         imp = ImpulsiveCheck(prototype_ratio=float(rp) if scalar else rp, model_ratio=float(rm) if scalar else rm,
                              threshold=float(impulsive_threshold))
-    lm = PAPER_LOAD if load_model is None else load_model
-    lm_s = lm.scaled(lam)  # the specimen's load model: its face lambda times the prototype's (once, here)
+    lm_s = spec_sys.load_model  # the specimen's load model: its face lambda times the prototype's
     if face is None and structure is not None:
         face = (structure.depth, structure.height) if is_block(structure) else (None, structure_top(structure))
     effects_, notes = None, ()
@@ -196,10 +199,8 @@ def design_model(
         law=law, scale=lam, density_ratio=gam, gravity_ratio=sig, scaled_distance_factor=f.scaled_distance,
         root_note=note, prototype=proto, specimen=spec, factors=f, impulsive=imp, prototype_structure=structure,
         specimen_structure=specimen_structure, gravity=float(gravity), valid=ok, effects=effects_, notes=notes,
-        load_model=lm, specimen_load_model=lm_s, contact=contact,
-        specimen_contact=None if contact is None else contact.scaled(f),
-        duration=None if duration is None else float(duration),
-        specimen_duration=None if duration is None else float(duration) * f.time,
+        load_model=lm, specimen_load_model=lm_s, contact=contact, specimen_contact=spec_sys.contact,
+        duration=None if duration is None else float(duration), specimen_duration=spec_sys.duration,
     )
 
 

@@ -103,8 +103,8 @@ def _rel(a, b) -> float:
     return abs(a / b - 1.0) if b else math.inf
 
 
-def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=None, specimen_charge_height=None,
-                  extrapolate: bool = False, specimen_load_model=None) -> tuple:
+def blast_effects(prototype, specimen, load_model=None, *, specimen_load_model, scale: float, face=None,
+                  specimen_charge_height=None, extrapolate: bool = False) -> tuple:
     """Clearing, negative phase and burst type of a designed experiment, for both systems.
 
     Parameters
@@ -123,8 +123,9 @@ def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=No
         neither burst at the specimen's face (:func:`blastscale.blast.bursts.lab_burst`).
     extrapolate : bool
         Let the negative-phase calibration run outside its range.
-    specimen_load_model : LoadModel, optional
-        The specimen's load model (the design's, already scaled); default ``load_model.scaled(scale)``.
+    specimen_load_model : LoadModel
+        The specimen's load model: the design's (``ModelDesign.specimen_load_model``, scaled once by
+        :func:`~.specimen.specimen_system`); this function scales nothing.
 
     Returns
     -------
@@ -138,7 +139,7 @@ def blast_effects(prototype, specimen, load_model=None, *, scale: float, face=No
 
     lam = check_positive_scalar("scale", scale)
     lm_p = load_model or PAPER_LOAD
-    lm_s = lm_p.scaled(lam) if specimen_load_model is None else specimen_load_model
+    lm_s = PAPER_LOAD if specimen_load_model is None else specimen_load_model  # the design's
     out: dict = {"load_model": {"prototype": load_model_record(prototype.blast_model, prototype.burst, lm_p),
                                 "model": load_model_record(specimen.blast_model, specimen.burst, lm_s)}}
     notes: list = []
@@ -207,7 +208,8 @@ def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = Fa
     The general law matches the reflected impulse of an unbounded face; on finite faces the two
     systems clear differently (:func:`blast_effects`). Bisection in ln W over the specimen fit's
     range of Z (the cleared impulse grows with the charge). ``load_model``: the prototype's, with
-    clearing and its face (default: the design's, whose specimen load model is then used as carried).
+    clearing and its face: the design's (``ModelDesign.load_model``; default), whose specimen load model
+    is used as the design carries it (another one raises: design with ``design_model(..., load_model=...)``).
 
     Returns
     -------
@@ -219,11 +221,13 @@ def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = Fa
     from ..blast.load_model import front_face_clearing
     from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
 
-    load_model = design.load_model if load_model is None else load_model  # default: the design's
+    if load_model is not None and load_model != design.load_model:
+        raise BlastscaleInputError(
+            f"load model = {load_model!r} is not the design's ({design.load_model!r}): the specimen's load model "
+            "comes from the design; design with design_model(..., load_model=...)")
+    load_model, lm_s = design.load_model, design.specimen_load_model  # the design's, scaled once by it
     if load_model is None or not load_model.clearing:
         raise BlastscaleInputError("clearing corrected charge needs a load model with clearing (and its face)")
-    lam = float(design.scale)
-    lm_s = design.specimen_load_model if load_model is design.load_model else load_model.scaled(lam)  # the design's
     target = float(front_face_clearing(design.prototype, load_model).impulse) * float(design.factors.impulse)
     ms = get_blast_model(design.specimen.blast_model)
     R = float(design.specimen_standoff_m)

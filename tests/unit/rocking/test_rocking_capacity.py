@@ -103,3 +103,21 @@ def test_capacity_bad_input():
         overturn_margin(BLOCK, None)
     with pytest.raises(BlastscaleInputError, match="xtol_rel"):
         critical_charge(BLOCK, 2.0, blast_model="masi2021", xtol_rel=0.0)
+
+
+def test_scaled_rocking_system_is_the_scaled_blocks_system():
+    """``RockingSystem.scaled`` (the specimen of a capacity curve) against an independent route: scale the
+    block's geometry and density (``RectangularBlock.scaled``) and rebuild its system from its mass
+    properties (m = rho V, J_o = 4/3 m r^2, S = 2h x depth, l = h) with gravity varsigma g. lambda = 1/50,
+    gamma = 0.4, varsigma = 3; every field agrees to round-off (1e-14), alpha and e are unchanged."""
+    from blastscale.similitude import scaling_factors
+
+    f = scaling_factors(1 / 50, 0.4, 3.0)
+    got = SYSTEM.scaled(f)
+    want = RockingSystem.from_block(BLOCK.scaled(f), 9.81 * 3.0)
+    for name in ("mass", "inertia_pivot", "radius", "alpha", "loaded_area", "lever_arm", "gravity"):
+        assert getattr(got, name) == pytest.approx(getattr(want, name), rel=1e-14), name
+    assert got.coefficient_of_restitution == SYSTEM.coefficient_of_restitution
+    # the specimen's frequency parameter p x sqrt(varsigma / lambda), its critical impulse x the impulse factor
+    assert got.frequency_parameter == pytest.approx(SYSTEM.frequency_parameter * f.angular_velocity, rel=1e-14)
+    assert got.critical_impulse == pytest.approx(SYSTEM.critical_impulse * f.impulse, rel=1e-14)

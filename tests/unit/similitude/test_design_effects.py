@@ -83,6 +83,22 @@ def test_clearing_corrected_charge_restores_the_cleared_impulse():
     assert fix["charge_ratio"] == pytest.approx(fix["charge_kg"] / d.specimen_charge_kg)
 
 
+def test_clearing_corrected_charge_reads_the_specimen_load_model_from_the_design():
+    """The specimen's load model is the design's (scaled once, by it): another prototype load model (a
+    2 m wide face instead of the design's 1.3 m) is refused with one line naming it, rather than scaled
+    here a second time."""
+    from blastscale._validate import BlastscaleInputError
+
+    lm = LoadModel(clearing=True, face_width_m=1.3, face_height_m=10.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BlastSimilarityWarning)
+        d = design_model(250.0, 10.0, 1 / 100, load_model=lm, face=(1.3, 10.0))
+    assert clearing_corrected_charge(d) == clearing_corrected_charge(d, LoadModel(clearing=True, face_width_m=1.3,
+                                                                                  face_height_m=10.0))
+    with pytest.raises(BlastscaleInputError, match="load model = .* is not the design's"):
+        clearing_corrected_charge(d, LoadModel(clearing=True, face_width_m=2.0, face_height_m=10.0))
+
+
 def test_front_geometry_of_block_and_column():
     assert front_face(BLOCK) == pytest.approx((BLOCK.depth, BLOCK.height))
     w, top = front_geometry(MultiDrumColumn(section="square"))
