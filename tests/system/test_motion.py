@@ -75,3 +75,58 @@ def test_the_stored_poses_and_geometry_replay_the_monitoring_points(results, nam
         assert np.nanmax(v[..., 2]) == pytest.approx(height, abs=1e-3 * height)
         faces = d["body_faces"].values
         assert faces.max() < d.sizes["vertex"] and (faces >= -1).all()
+
+
+@pytest.mark.parametrize("name,fps,view", [("wall", 50, "iso"), ("arch", 25, "front"), ("column", 20, "side")])
+def test_show_animate_writes_a_gif_of_fps_times_the_simulated_duration(results, capsys, tmp_path, name, fps, view):
+    """Acceptance of issue 26: the GIF has --fps x the simulated duration (prototype time, 0.2 s here) frames,
+    each shown 1/fps s (GIF keeps delays in hundredths of a second: these fps are exact); written through the one output mechanism (no partial file left beside it)."""
+    from PIL import Image
+
+    gif = tmp_path / f"{name}.gif"
+    code, out, err = cli(capsys, "show", results[name], "--animate", gif, "--fps", fps, "--view", view)
+    assert code == 0, err
+    with Image.open(gif) as im:
+        assert im.format == "GIF"
+        assert im.n_frames == round(fps * DURATION_S)
+        assert im.info["duration"] == round(1000 / fps)
+        im.seek(0)
+        first = np.asarray(im.convert("RGB"), dtype=int)
+        im.seek(im.n_frames - 1)
+        last = np.asarray(im.convert("RGB"), dtype=int)
+    assert (np.abs(first - last).sum(axis=2) > 0).sum() > 50  # it moves (the time in the title at least)
+    assert sorted(p.name for p in tmp_path.iterdir()) == [gif.name]
+    assert "wrote" in err and "frames" in err
+
+
+def test_show_animate_speed_divides_the_frames(results, capsys, tmp_path):
+    """--speed 2 plays twice as fast: half the frames at the same fps."""
+    from PIL import Image
+
+    gif = tmp_path / "fast.gif"
+    code, out, _ = cli(capsys, "show", results["wall"], "--animate", gif, "--fps", 40, "--speed", 2, "--json")
+    assert code == 0 and json.loads(out)["frames"] == round(40 * DURATION_S / 2)
+    with Image.open(gif) as im:
+        assert im.n_frames == round(40 * DURATION_S / 2)
+
+
+@pytest.mark.parametrize("argv,word", [
+    (["--animate", "{tmp}/a.avi"], "animate"),
+    (["--animate", "{tmp}/missing/a.gif"], "animate"),
+    (["--animate", "{tmp}"], "animate"),
+    (["--animate", "{tmp}/a.gif", "--view", "back"], "view"),
+    (["--animate", "{tmp}/a.gif", "--fps", "0"], "fps"),
+    (["--animate", "{tmp}/a.gif", "--speed", "-1"], "speed"),
+])
+def test_show_animate_bad_path_or_option_is_one_line_exit_2(results, capsys, tmp_path, argv, word):
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
+    code, out, err = cli(capsys, "show", results["wall"], *argv)
+    assert code == 2 and out == ""
+    lines = [x for x in err.splitlines() if x.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error:") and word in lines[0], err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_show_animate_of_a_folder_without_motion_is_one_line(capsys, tmp_path):
+    code, out, err = cli(capsys, "show", tmp_path, "--animate", tmp_path / "a.gif")
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "histories.nc" in err

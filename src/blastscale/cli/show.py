@@ -8,6 +8,9 @@ the ground), monitoring points. ``--plot`` writes the elevation and plan with th
 (:func:`blastscale.plots.assembly.assembly_figure`) through the one output mechanism
 (:func:`blastscale.io.output.write_file`, via ``save_figure``). A bad file
 or parameter is one ``error:`` line, exit status 2, nothing written.
+
+``blastscale show RESULT_DIR --animate FILE.gif|FILE.mp4|FILE.html [--view] [--fps] [--speed]``: the
+result folder's stored motion (:mod:`.animate`).
 """
 
 from __future__ import annotations
@@ -82,8 +85,20 @@ def show_cmd(
                                             help="Density \\[kg/m^3] of blocks without their own (default: the "
                                                  "scenario's, 2000 for a block-model file)."),
     as_json: bool = typer.Option(False, "--json", help="Print the description as one JSON object."),
+    animate: Optional[str] = typer.Option(None, "--animate", metavar="FILE.gif|FILE.mp4|FILE.html",
+                                          show_default=False,
+                                          help="With a result folder (blastscale run --out) as the argument: its "
+                                               "3D motion, prototype and up-scaled model side by side."),
+    view: str = typer.Option("iso", "--view", help="--animate's camera: front, side, top or iso."),
+    fps: float = typer.Option(20.0, "--fps", help="--animate's frames per second of playback, in [1, 120]."),
+    speed: float = typer.Option(1.0, "--speed", help="--animate's playback speed x real (prototype) time."),
 ) -> None:
-    """Describe and draw a structure (scenario or block-model file) without simulating it."""
+    """Describe and draw a structure (scenario or block-model file) without simulating it; animate a result
+    folder's motion (--animate)."""
+    if animate is not None:
+        from .animate import show_animation
+
+        return show_animation(source, animate, view, fps, speed, as_json)
     if plot is not None:
         check_plot_path(str(plot))  # before any work
     with one_line_warnings():
