@@ -130,3 +130,77 @@ def test_show_animate_bad_path_or_option_is_one_line_exit_2(results, capsys, tmp
 def test_show_animate_of_a_folder_without_motion_is_one_line(capsys, tmp_path):
     code, out, err = cli(capsys, "show", tmp_path, "--animate", tmp_path / "a.gif")
     assert code == 2 and len(err.strip().splitlines()) == 1 and "histories.nc" in err
+
+
+# -- the report's interactive view in headless Chromium -------------------------------------------------------
+CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                  "--hide-scrollbars", "--enable-logging=stderr", "--v=0", "--virtual-time-budget=8000"]
+#: Chromium's own diagnostics of software WebGL and canvas read-backs, printed as console lines: not the page's.
+BROWSER_NOTES = ("[.WebGL-", "Canvas2D:", "[]Automatic fallback")
+GROUND_RGB = (216, 210, 196)  # blastscale.report.motion.GROUND, unlit
+
+
+def _chromium():
+    import shutil
+
+    return next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None)
+
+
+def _open(page, tmp_path, tag, size=(1200, 700)):
+    """Load ``page`` (a URL) in headless Chromium: (screenshot RGB array, page console lines, page requests).
+    Page requests: the net log's URL requests whose initiator is the page (a file page's origin is "null";
+    the browser's own have none)."""
+    import os
+    import subprocess
+
+    from PIL import Image
+
+    shot, net = tmp_path / f"{tag}.png", tmp_path / f"{tag}.json"
+    cmd = [_chromium(), *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / 'profile'}", f"--screenshot={shot}",
+           f"--window-size={size[0]},{size[1]}", f"--log-net-log={net}", page]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=180, env={**os.environ, "HOME": str(tmp_path)})
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    console = [line.split("] ", 1)[1] for line in proc.stderr.splitlines() if ":CONSOLE" in line and "] " in line]
+    console = [c for c in console if not c.strip('"').startswith(BROWSER_NOTES)]
+    log = json.loads(net.read_text())
+    start = log["constants"]["logEventTypes"]["URL_REQUEST_START_JOB"]
+    requests = [e["params"]["url"] for e in log["events"] if e["type"] == start and "url" in e.get("params", {})
+                and e["params"].get("initiator") not in (None, "not an origin")]
+    with Image.open(shot) as im:
+        return np.asarray(im.convert("RGB"), dtype=int), console, requests
+
+
+@pytest.mark.skipif(_chromium() is None, reason="Chromium not found (Debian: apt-get install -y chromium)")
+def test_report_view_loads_offline_without_errors_and_moves_the_blocks_not_the_ground(results, tmp_path):
+    """Acceptance of issue 26, in headless Chromium: the report (with its 3D view, plotly inline) loads with no
+    console message of the page and no network request; screenshots at the first and the last slider time
+    differ where blocks are (in either shot), not in the ground. The detector is checked on a page that
+    requests two files and prints an error."""
+    import re
+
+    bad = tmp_path / "bad.html"
+    bad.write_text('<script>console.error("boom")</script><img src="http://example.invalid/a.png">')
+    _, console, requests = _open(bad.as_uri(), tmp_path, "bad", (200, 100))
+    assert any("boom" in c for c in console) and requests == ["http://example.invalid/a.png"]
+
+    report = results["wall"] / "report.html"
+    frames = int(re.search(r"(\d+) frames of the \d+ recorded states", report.read_text()).group(1))
+    first, console, requests = _open(report.as_uri() + "#frame=0", tmp_path, "first")
+    assert console == [] and requests == []
+    last, console, requests = _open(report.as_uri() + f"#frame={frames - 1}", tmp_path, "last")
+    assert console == [] and requests == []
+
+    scene = (slice(90, 480), slice(0, 1000))  # the two 3D scenes (below the title, above the slider)
+    a, b = first[scene], last[scene]
+    ground_a = (np.abs(a - GROUND_RGB).max(axis=2) <= 3)
+    ground_b = (np.abs(b - GROUND_RGB).max(axis=2) <= 3)
+    grey = a.max(axis=2) - a.min(axis=2) < 40, b.max(axis=2) - b.min(axis=2) < 40  # white, ground, grid, text
+    block_a, block_b = ~grey[0] & ~ground_a, ~grey[1] & ~ground_b  # the viridis blocks (and the static charge)
+    diff = np.abs(a - b).max(axis=2) > 8
+    assert ground_a.sum() > 20_000  # the ground is drawn (two scenes of ~13 000 pixels each)
+    assert diff.sum() > 2_000  # the blocks moved (0.7 m at the top of a 4 m wall: thousands of pixels)
+    # every difference lies where a block is in one of the shots, but for anti-aliased edges (measured 3 %)
+    assert (diff & ~(block_a | block_b)).sum() < 0.1 * diff.sum()
+    # the ground is the same ground: where it shows in one shot it shows in the other unless a block covers it
+    assert ((ground_a & ~ground_b & ~block_b).sum() + (ground_b & ~ground_a & ~block_a).sum()) < 0.02 * ground_a.sum()

@@ -94,9 +94,11 @@ def write_animation(source: str, out: str, view: str = "iso", fps: float = 20.0,
     indices, _ = motion.frame_indices(fps, speed)
     kind = target.suffix.lower()
     if kind == ".html":
-        from ..report.motion import motion_html
+        from ..report.motion import motion_html, view_frames
 
-        data = motion_html(motion, indices, charge=charge, title=info["title"], fps=fps)
+        indices, _ = view_frames(motion, fps, speed)
+
+        data = motion_html(motion, indices, charge=charge, title=info["title"], view=view, fps=fps)
     else:
         from ..plots.motion import render_frames
 
