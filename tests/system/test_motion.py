@@ -204,3 +204,44 @@ def test_report_view_loads_offline_without_errors_and_moves_the_blocks_not_the_g
     assert (diff & ~(block_a | block_b)).sum() < 0.1 * diff.sum()
     # the ground is the same ground: where it shows in one shot it shows in the other unless a block covers it
     assert ((ground_a & ~ground_b & ~block_b).sum() + (ground_b & ~ground_a & ~block_a).sum()) < 0.02 * ground_a.sum()
+
+
+def test_an_ensemble_keeps_and_replays_its_median_and_worst_members(capsys, tmp_path):
+    """Issue 26 for ensembles: histories.nc keeps the motion of the member closest to the median and of the
+    worst (largest |x| displacement of any point, prototype); replaying each member's stored poses gives its
+    stored x displacements within 1e-6 of the height, prototype and up-scaled model; the report shows both."""
+    import re
+
+    import xarray as xr
+
+    from blastscale.analysis.ensemble import motion_cases
+    from blastscale.sim3d.replay import points_of
+
+    sc = tmp_path / "ens.toml"
+    sc.write_text(SCENARIOS["column"] + '[scale]\nlength = "1/20"\n[simulation]\nengine = "3d"\nduration_s = 0.2\n'
+                  "ensemble_members = 3\nensemble_perturbation = 0.1\n")
+    code, _, err = cli(capsys, "run", sc, "--out", tmp_path / "res", "--json")
+    assert code == 0, err
+    ens = xr.open_datatree(tmp_path / "res" / "histories.nc")["ensemble"].ds
+    assert list(ens["case"].values) == ["median", "worst"]
+    cases = motion_cases(ens["point_displacement_x"].sel(system="prototype").values)
+    assert [int(m) for m in ens["case_member"].values] == [cases["median"], cases["worst"]]
+    height = json.loads((tmp_path / "res" / "summary.json").read_text())["experiment"]["prototype"]["height_m"]
+    for case, member in cases.items():
+        for system in ("prototype", "model"):
+            d = ens.sel(case=case, system=system)
+            x = points_of(d)[..., 0]
+            want = ens["point_displacement_x"].sel(system=system, member=member).values
+            assert np.abs((x - x[0]) - want).max() < 1e-6 * height
+    page = (tmp_path / "res" / "report.html").read_text()
+    assert 'id="fig-motion3d-median"' in page and 'id="fig-motion3d-worst"' in page
+    assert len(re.findall(r"plotly\.js v\d", page)) == 1  # plotly's JavaScript embedded once for the three views
+
+
+def test_motion_cases_are_the_median_and_the_largest_peak():
+    from blastscale.analysis.ensemble import motion_cases
+
+    members = np.zeros((5, 3, 2))
+    for k, peak in enumerate([0.3, -0.9, 0.1, 0.5, 0.2]):  # |peak|: 0.3 0.9 0.1 0.5 0.2 -> median 0.3
+        members[k, 1, 1] = peak
+    assert motion_cases(members) == {"median": 0, "worst": 1}

@@ -138,11 +138,9 @@ def motion_html(motion, indices, charge=None, title: str = "", view: str = "iso"
 
 
 def motion_section(result) -> str:
-    """The report's interactive 3D view of a study with a 3D run ("" without one): prototype and up-scaled
-    model side by side, with a caption stating the frames kept (decimation) and how to use it."""
-    from html import escape
-
-    from ..io.motion import charge_position
+    """The report's interactive 3D views of a study with a 3D run ("" without one): prototype and up-scaled
+    model side by side; with an ensemble, its median and its worst member too. Each caption states the frames
+    kept (decimation) and how to use the view; plotly's JavaScript is embedded once."""
     from ..sim3d.replay import motion_of
 
     if result.response3d is None:
@@ -150,15 +148,32 @@ def motion_section(result) -> str:
     ds = result.to_datatree()["sim3d"].to_dataset()
     if "body_position" not in ds:
         return ""
-    motion = motion_of(ds)
     sc = result.scenario
     standoff = None if sc.blast.gravity_only else (result.design.prototype.standoff_m if result.design is not None
                                                    else sc.blast.standoff_m)
+    out = ["<h3>The motion in 3D</h3>", _view(motion_of(ds), standoff, "motion3d", True, "The response in 3D")]
+    ens = getattr(result.ensemble, "motion", None) if result.ensemble is not None else None
+    if ens is not None:
+        for case in ens["case"].values:
+            one = ens.sel(case=case)
+            what = {"median": "the member closest to the ensemble's median", "worst": "the ensemble's worst member"}
+            out.append(_view(motion_of(one), standoff, f"motion3d-{case}", False,
+                             f"Ensemble: {what.get(str(case), str(case))} (member {int(one['case_member'])}, largest "
+                             "displacement of any point)"))
+    return "".join(out)
+
+
+def _view(motion, standoff, div_id: str, include_plotlyjs: bool, lead: str) -> str:
+    from html import escape
+
+    from ..io.motion import charge_position
+
     charge = None if standoff is None else charge_position(motion, standoff)
     indices, asked = view_frames(motion, REPORT_FPS)
     step_ms = 1e3 * motion.duration / max(len(indices) - 1, 1)
-    div = motion_div(motion, indices, charge, title="", view="iso", fps=REPORT_FPS)
-    return (f'<h3>The motion in 3D</h3><figure id="fig-motion3d">{div}<figcaption><b>The response in 3D, '
+    div = motion_div(motion, indices, charge, title="", view="iso", fps=REPORT_FPS, include_plotlyjs=include_plotlyjs,
+                     div_id=div_id)
+    return (f'<figure id="fig-{div_id}">{div}<figcaption><b>{escape(lead)}, '
             f'{escape(" and ".join(motion.labels))} side by side in prototype units on one time axis.</b> '
             f'Play, pause or drag the time slider; drag a view to turn it. Blocks coloured by their largest '
             f'displacement; the charge (red) on the ground {standoff if standoff is not None else 0:.3g} m in '
