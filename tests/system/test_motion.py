@@ -245,3 +245,23 @@ def test_motion_cases_are_the_median_and_the_largest_peak():
     for k, peak in enumerate([0.3, -0.9, 0.1, 0.5, 0.2]):  # |peak|: 0.3 0.9 0.1 0.5 0.2 -> median 0.3
         members[k, 1, 1] = peak
     assert motion_cases(members) == {"median": 0, "worst": 1}
+
+
+def test_show_animate_html_is_the_report_view_alone_and_self_contained(results, capsys, tmp_path):
+    import re
+
+    page = tmp_path / "arch.html"
+    code, out, err = cli(capsys, "show", results["arch"], "--animate", page, "--fps", 20, "--json")
+    assert code == 0, err
+    info = json.loads(out)
+    text = page.read_text()
+    assert info["frames"] == round(20 * DURATION_S) and len(re.findall(r"plotly\.js v\d", text)) == 1
+    assert not re.search(r"""<(script|link|img)[^>]+(src|href)=["']?(https?:)?//""", text)  # nothing fetched
+    assert text.count('"name":"') >= info["frames"]  # one named frame per state shown
+
+
+@pytest.mark.skipif(__import__("shutil").which("ffmpeg") is not None, reason="ffmpeg is installed here")
+def test_show_animate_mp4_without_an_encoder_is_one_line(results, capsys, tmp_path):
+    code, out, err = cli(capsys, "show", results["wall"], "--animate", tmp_path / "a.mp4")
+    assert code == 2 and "ffmpeg" in err and len(err.strip().splitlines()) == 1
+    assert list(tmp_path.iterdir()) == []

@@ -111,21 +111,34 @@ def motion_figure(motion, indices, charge=None, title: str = "", view: str = "is
     return fig
 
 
-#: On load, a page whose address ends in ``#frame=N`` shows the view first (at the top of the page) at frame N:
-#: screenshots at chosen times (docs, tests/system/test_motion.py).
-_GOTO = """<script>(function(){var m=/frame=(\\d+)/.exec(location.hash);if(!m)return;
-var d=document.getElementById("{id}");function go(){document.body.prepend(d.closest("figure")||d);window.scrollTo(0,0);Plotly.animate(d,[m[1]],{mode:"immediate",
-frame:{duration:0,redraw:true},transition:{duration:0}});}
-if(d&&d.data){go();}else{window.addEventListener("load",go);}})();</script>"""
+#: Draws a view when it comes near the window (a long report opens without waiting for WebGL: the view of the
+#: default report costs 2.5-5 s of software rendering on a loaded 2-core machine) and, on a page whose address
+#: ends in ``#frame=N``, puts the first view at the top of the page at frame N (screenshots: docs, tests).
+_DRAW = """<script>(function(){var d=document.getElementById("{id}"),drawn=null;
+function draw(){if(drawn)return drawn;var f=JSON.parse(document.getElementById("{id}-data").textContent);
+drawn=Plotly.newPlot(d,f.data,f.layout,{displaylogo:false,responsive:true}).then(function(){
+return Plotly.addFrames(d,f.frames);});return drawn;}
+var m={first}?/frame=(\\d+)/.exec(location.hash):null;
+if(m){document.body.prepend(d.closest("figure")||d);window.scrollTo(0,0);draw().then(function(){
+return Plotly.animate(d,[m[1]],{mode:"immediate",frame:{duration:0,redraw:true},transition:{duration:0}});});return;}
+if(!("IntersectionObserver" in window)){draw();return;}
+new IntersectionObserver(function(es,o){if(es.some(function(e){return e.isIntersecting;})){o.disconnect();draw();}},
+{rootMargin:"300px"}).observe(d);})();</script>"""
 
 
 def motion_div(motion, indices, charge=None, title: str = "", view: str = "iso", fps: float = 20.0,
-               include_plotlyjs: bool = True, div_id: str = "motion3d") -> str:
-    """The view as an HTML ``<div>`` (plotly's JavaScript embedded when ``include_plotlyjs``)."""
+               include_plotlyjs: bool = True, div_id: str = "motion3d", first: bool = True) -> str:
+    """The view as an HTML ``<div>``, drawn when it comes near the window (plotly's JavaScript embedded before
+    it when ``include_plotlyjs``; ``first``: the view a ``#frame=N`` address shows)."""
+    import plotly.io as pio
+    from plotly.offline import get_plotlyjs
+
     fig = motion_figure(motion, indices, charge, title, view, fps)
-    html = fig.to_html(full_html=False, include_plotlyjs=include_plotlyjs, div_id=div_id, auto_play=False,
-                       config=dict(displaylogo=False, responsive=True))
-    return html + _GOTO.replace("{id}", div_id)
+    data = pio.to_json(fig, validate=False).replace("</", "<\\/")  # inert inside <script>
+    lib = f'<script type="text/javascript">{get_plotlyjs()}</script>' if include_plotlyjs else ""
+    return (f'{lib}<div id="{div_id}" style="height:{fig.layout.height}px;width:100%"></div>'
+            f'<script type="application/json" id="{div_id}-data">{data}</script>'
+            + _DRAW.replace("{id}", div_id).replace("{first}", "true" if first else "false"))
 
 
 def motion_html(motion, indices, charge=None, title: str = "", view: str = "iso", fps: float = 20.0) -> str:
@@ -172,7 +185,7 @@ def _view(motion, standoff, div_id: str, include_plotlyjs: bool, lead: str) -> s
     indices, asked = view_frames(motion, REPORT_FPS)
     step_ms = 1e3 * motion.duration / max(len(indices) - 1, 1)
     div = motion_div(motion, indices, charge, title="", view="iso", fps=REPORT_FPS, include_plotlyjs=include_plotlyjs,
-                     div_id=div_id)
+                     div_id=div_id, first=include_plotlyjs)
     return (f'<figure id="fig-{div_id}">{div}<figcaption><b>{escape(lead)}, '
             f'{escape(" and ".join(motion.labels))} side by side in prototype units on one time axis.</b> '
             f'Play, pause or drag the time slider; drag a view to turn it. Blocks coloured by their largest '
