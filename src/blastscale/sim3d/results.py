@@ -39,7 +39,7 @@ VARIABLES = {
     "residual_displacement": (("body",), "m", "length", "distance of the centre of mass from its position at "
                               "time 0, at the end"),
     "residual_rotation": (("body",), "rad", "angle", "angle of the body's rotation from time 0, at the end"),
-    # the motion, for replay and drawing (docs/sim3d.md "Replaying a result"): poses at every recorded time
+    # the motion, for replay and drawing (docs/motion.md): poses at every recorded time
     "body_position": (("time", "body", "component"), "m", "length",
                       "world position of the body frame's origin (the centre of mass)"),
     "body_quaternion": (("time", "body", "quaternion"), "1", "dimensionless",
