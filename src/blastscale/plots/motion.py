@@ -110,10 +110,10 @@ def render_frames(motion, indices, view: str = "iso", charge=None, dpi: int = 80
     import matplotlib.pyplot as plt
 
     fig, update = motion_figure(motion, view, charge)
+    fig.set_dpi(dpi)
     try:
         for i in indices:
             update(int(i))
-            fig.set_dpi(dpi)
             fig.canvas.draw()
             yield np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
     finally:

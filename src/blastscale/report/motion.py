@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["FRAME_BYTES", "MAX_VIEW_FRAMES", "REPORT_FPS", "view_frames", "motion_figure", "motion_div",
+__all__ = ["FRAME_BYTES", "MAX_VIEW_FRAMES", "REPORT_FPS", "view_frames", "view_figure", "motion_div",
            "motion_html", "motion_section", "CAMERAS"]
 
 #: The most bytes of frame data in one view (vertex coordinates, float32 in base64: 16/3 bytes each).
@@ -46,7 +46,7 @@ def _mesh(motion):
     return tri, ok, body
 
 
-def motion_figure(motion, indices, charge=None, title: str = "", view: str = "iso", fps: float = 20.0):
+def view_figure(motion, indices, charge=None, title: str = "", view: str = "iso", fps: float = 20.0):
     """The plotly figure: one 3D scene per system, one frame per recorded state in ``indices``, a slider and
     play / pause buttons (``fps`` frames per second of playback)."""
     import plotly.graph_objects as go
@@ -133,7 +133,7 @@ def motion_div(motion, indices, charge=None, title: str = "", view: str = "iso",
     import plotly.io as pio
     from plotly.offline import get_plotlyjs
 
-    fig = motion_figure(motion, indices, charge, title, view, fps)
+    fig = view_figure(motion, indices, charge, title, view, fps)
     data = pio.to_json(fig, validate=False).replace("</", "<\\/")  # inert inside <script>
     lib = f'<script type="text/javascript">{get_plotlyjs()}</script>' if include_plotlyjs else ""
     return (f'{lib}<div id="{div_id}" style="height:{fig.layout.height}px;width:100%"></div>'
