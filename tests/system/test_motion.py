@@ -260,8 +260,26 @@ def test_show_animate_html_is_the_report_view_alone_and_self_contained(results, 
     assert text.count('"name":"') >= info["frames"]  # one named frame per state shown
 
 
-@pytest.mark.skipif(__import__("shutil").which("ffmpeg") is not None, reason="ffmpeg is installed here")
-def test_show_animate_mp4_without_an_encoder_is_one_line(results, capsys, tmp_path):
+def test_show_animate_mp4_without_an_encoder_is_one_line(results, capsys, tmp_path, monkeypatch):
+    import blastscale.cli.animate as animate
+
+    monkeypatch.setattr(animate.shutil, "which", lambda name: None)  # as on a machine without ffmpeg
     code, out, err = cli(capsys, "show", results["wall"], "--animate", tmp_path / "a.mp4")
     assert code == 2 and "ffmpeg" in err and len(err.strip().splitlines()) == 1
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.skipif(__import__("shutil").which("ffmpeg") is None, reason="no ffmpeg here (Debian: apt-get install ffmpeg)")
+def test_show_animate_mp4_has_fps_times_duration_frames(results, capsys, tmp_path):
+    """With ffmpeg: an H.264 MP4 of round(fps x duration) frames at fps (ffprobe counts them)."""
+    import subprocess
+
+    mp4 = tmp_path / "wall.mp4"
+    code, out, err = cli(capsys, "show", results["wall"], "--animate", mp4, "--fps", 30)
+    assert code == 0, err
+    probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                            "stream=nb_read_frames,r_frame_rate,codec_name", "-of", "json", str(mp4)],
+                           capture_output=True, text=True, check=True)
+    stream = json.loads(probe.stdout)["streams"][0]
+    assert stream["codec_name"] == "h264" and stream["r_frame_rate"] == "30/1"
+    assert int(stream["nb_read_frames"]) == round(30 * DURATION_S)
