@@ -171,6 +171,7 @@ def _open(page, tmp_path, tag, size=(1200, 700)):
         return np.asarray(im.convert("RGB"), dtype=int), console, requests
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(_chromium() is None, reason="Chromium not found (Debian: apt-get install -y chromium)")
 def test_report_view_loads_offline_without_errors_and_moves_the_blocks_not_the_ground(results, tmp_path):
     """Acceptance of issue 26, in headless Chromium: the report (with its 3D view, plotly inline) loads with no
