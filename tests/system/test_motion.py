@@ -117,6 +117,7 @@ def test_show_animate_speed_divides_the_frames(results, capsys, tmp_path):
     (["--animate", "{tmp}/a.gif", "--view", "back"], "view"),
     (["--animate", "{tmp}/a.gif", "--fps", "0"], "fps"),
     (["--animate", "{tmp}/a.gif", "--speed", "-1"], "speed"),
+    (["--animate", "{tmp}/a.gif", "--fps", "120", "--speed", "0.01"], "at most 1000"),  # 2400 frames
 ])
 def test_show_animate_bad_path_or_option_is_one_line_exit_2(results, capsys, tmp_path, argv, word):
     argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
