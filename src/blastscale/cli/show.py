@@ -78,7 +78,7 @@ def describe_structure(structure) -> dict:
 def show_cmd(
     source: str = typer.Argument(..., metavar="FILE_OR_SCENARIO", show_default=False,
                                  help="A scenario (.toml, or a shipped scenario's name) or a block-model file (.json, "
-                                      ".obj, .stl, .ply, ...; docs/assemblies.md)."),
+                                      ".obj, .stl, .ply, ...; docs/assemblies.md); with --animate, a result folder."),
     plot: Optional[Path] = typer.Option(None, "--plot", show_default=False,
                                         help="Write the elevation and plan, interfaces shaded (.png, .svg or .pdf)."),
     density: Optional[float] = typer.Option(None, "--density", show_default=False,
