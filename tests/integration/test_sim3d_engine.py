@@ -157,7 +157,9 @@ def test_response_dataset_units_dimensions_netcdf_and_summary(tmp_path):
     r = simulate_structure(CIRCULAR, make_load("A", CIRCULAR, blast_parameters(200.0, 10.0)), 0.02,
                            record_every=10)
     ds = r.dataset
-    assert dict(ds.sizes) == {"time": ds.sizes["time"], "body": 10, "point": 10, "component": 3}
+    # the stored motion's dims (issue 26): a 32-gon drum has 64 vertices and 2 x 30 + 64 = 124 hull triangles
+    assert dict(ds.sizes) == {"time": ds.sizes["time"], "body": 10, "point": 10, "component": 3, "quaternion": 4,
+                              "vertex": 64, "face": 124, "corner": 3}
     for name, (dims, units, dim, _) in VARIABLES.items():
         assert ds[name].dims == dims and ds[name].attrs["units"] == units and ds[name].attrs["dimension"] == dim
     assert ds["time"].attrs["units"] == "s" and "version_mujoco" in ds.attrs

@@ -23,6 +23,7 @@ class _Structure(HTMLParser):
     def __init__(self):
         super().__init__()
         self.sections, self.images, self.external, self.text, self.tables = [], [], [], [], 0
+        self.scripts, self._in_script = 0, False
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
@@ -36,11 +37,19 @@ class _Structure(HTMLParser):
             v = a.get(key)
             if v and not v.startswith(("data:", "#")):
                 self.external.append(v)
-        if tag in ("link", "script"):
+        if tag == "link":
             self.external.append(tag)
+        if tag == "script":  # inline only (a src is caught above): the 3D view's plotly, embedded
+            self.scripts += 1
+            self._in_script = True
+
+    def handle_endtag(self, tag):
+        if tag == "script":
+            self._in_script = False
 
     def handle_data(self, data):
-        self.text.append(data)
+        if not self._in_script:
+            self.text.append(data)
 
 
 @pytest.fixture(scope="module")

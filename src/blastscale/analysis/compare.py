@@ -34,6 +34,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_range
 from ..similitude.factors import DIMENSIONLESS, dimension_factor
+from ..sim3d.results import MOTION_VARIABLES
 
 __all__ = [
     "DEFAULT_COMPONENTS",
@@ -227,7 +228,7 @@ def compare_responses(
         interpolated onto the prototype's times where they overlap (:func:`align`).
     variables : sequence of str, optional
         Data variables to compare (default: every variable with a ``time`` dimension whose
-        dimension is not ``count``).
+        dimension is not ``count``, but the stored motion: :data:`blastscale.sim3d.results.MOTION_VARIABLES`).
     components : str or dict, optional
         Component compared for variables with a ``component`` dimension: one label for all,
         or variable -> label (default :data:`DEFAULT_COMPONENTS`, else ``"x"``).
@@ -274,6 +275,7 @@ def compare_responses(
         variables = [
             n for n, v in proto.data_vars.items()
             if "time" in v.dims and v.attrs.get("dimension") != "count" and n in model.data_vars
+            and n not in MOTION_VARIABLES
         ]
     out_vars: dict = {}
     for name in variables:

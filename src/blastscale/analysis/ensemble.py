@@ -121,6 +121,11 @@ class EnsembleComparison:
         Inputs (perturbation, n, load method, duration).
     top_point : str
         The point reported as the top: the highest at rest (the recorder's), else the last.
+    motion : xarray.Dataset or None
+        The stored motion (:data:`blastscale.sim3d.results.MOTION_VARIABLES`, each system's, the model's
+        up-scaled) of two members along ``case``: ``median`` (the member whose largest |x displacement| of any
+        point is closest to the members' median of it, prototype) and ``worst`` (the largest); coordinate
+        ``case_member`` gives which (:func:`motion_cases`).
     """
 
     time: np.ndarray
@@ -136,6 +141,7 @@ class EnsembleComparison:
     def __post_init__(self):
         if not self.top_point:
             object.__setattr__(self, "top_point", str(self.points[-1]))
+    motion: object = None
 
     def summary(self) -> dict:
         """Per point: first-peak mean and spread of each system [m], their ratio, the model's
@@ -243,6 +249,7 @@ def ensemble_compare(
     from .compare import align, upscale_dataset
     from .systems import SYSTEMS, run_system
     from .upscale import upscale_summary
+    from ..sim3d.results import MOTION_VARIABLES
     from ..sim3d.threads import map_threads
 
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
@@ -255,6 +262,7 @@ def ensemble_compare(
     q: dict = {s: [] for s in systems}
     collapsed: dict = {s: [] for s in systems}
     times: dict = {s: [] for s in systems}
+    poses: dict = {s: [] for s in systems}
     t = points = top = None
     kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,
               duration=duration, record_every=record_every, extrapolate=extrapolate, load_model=load_model)
@@ -287,6 +295,7 @@ def ensemble_compare(
             ds = {s: d.isel(time=slice(0, m)) for s, d in ds.items()}
         for s in systems:
             q[s].append(ds[s]["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
+            poses[s].append(ds[s][[v for v in MOTION_VARIABLES if v in ds[s]]])
             collapsed[s].append(bool(summ[s]["collapsed"]))
             times[s].append(summ[s].get("collapse_time_s"))
     stats = {s: ensemble_statistics(t, np.stack(q[s]), collapsed[s], horizon_fraction, collapse_times=times[s])
@@ -297,4 +306,30 @@ def ensemble_compare(
         model_members=np.stack(q["model"]) if design is not None else None,
         settings={"perturbation": eps, "n": int(n), "load_method": load, "pulse_shape": pulse_shape, "duration_s": float(duration)},
         top_point=top,
+        motion=_cases_motion(poses, np.stack(q["prototype"]), t.size),
     )
+
+
+def motion_cases(members) -> dict:
+    """The members an ensemble's motion keeps: ``median`` (largest |x displacement| of any point closest to the
+    members' median of it) and ``worst`` (the largest), by index, of ``members`` (k, n, p) [m]."""
+    peak = np.abs(np.asarray(members, dtype=float)).max(axis=(1, 2))
+    return {"median": int(np.argmin(np.abs(peak - np.median(peak)))), "worst": int(np.argmax(peak))}
+
+
+def _cases_motion(poses: dict, members, nt: int):
+    """The stored motion of :func:`motion_cases`' members, systems stacked, along ``case`` (None when the runs
+    kept none)."""
+    import xarray as xr
+
+    if not all(poses.values()) or "body_position" not in poses["prototype"][0]:
+        return None
+    cases = motion_cases(members)
+    per_case = []
+    for k in cases.values():
+        parts = [poses[s][k].isel(time=slice(0, nt)) for s in poses]
+        per_case.append(xr.concat(parts, dim=xr.DataArray(list(poses), dims="system"), coords="minimal",
+                                  compat="override", combine_attrs="override"))
+    out = xr.concat(per_case, dim=xr.DataArray(list(cases), dims="case"), coords="minimal", compat="override",
+                    combine_attrs="override")
+    return out.assign_coords(case_member=("case", list(cases.values()), {"units": "1", "long_name": "ensemble member"}))

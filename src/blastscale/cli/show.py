@@ -10,6 +10,9 @@ and plan with the interfaces shaded (:func:`blastscale.plots.assembly.assembly_f
 (:func:`blastscale.structures.compas_files.compas_model_data`), both through the one output mechanism
 (:func:`blastscale.io.output.write_file`). A bad file or parameter is one ``error:`` line, exit
 status 2, nothing written.
+
+``blastscale show RESULT_DIR --animate FILE.gif|FILE.mp4|FILE.html [--view] [--fps] [--speed]``: the
+result folder's stored motion (:mod:`.animate`).
 """
 
 from __future__ import annotations
@@ -83,7 +86,7 @@ def describe_structure(structure) -> dict:
 def show_cmd(
     source: str = typer.Argument(..., metavar="FILE_OR_SCENARIO", show_default=False,
                                  help="A scenario (.toml, or a shipped scenario's name) or a block-model file (.json, "
-                                      ".obj, .stl, .ply, ...; docs/assemblies.md)."),
+                                      ".obj, .stl, .ply, ...; docs/assemblies.md); with --animate, a result folder."),
     plot: Optional[Path] = typer.Option(None, "--plot", show_default=False,
                                         help="Write the elevation and plan, interfaces shaded (.png, .svg or .pdf)."),
     density: Optional[float] = typer.Option(None, "--density", show_default=False,
@@ -93,8 +96,20 @@ def show_cmd(
     to_compas: Optional[Path] = typer.Option(None, "--to-compas", show_default=False,
                                              help="Write the structure as a COMPAS (compas_dem) block model (.json; "
                                                   "docs/assemblies.md)."),
+    animate: Optional[str] = typer.Option(None, "--animate", metavar="FILE.gif|FILE.mp4|FILE.html",
+                                          show_default=False,
+                                          help="With a result folder (blastscale run --out) as the argument: its "
+                                               "3D motion, prototype and up-scaled model side by side."),
+    view: str = typer.Option("iso", "--view", help="--animate's camera: front, side, top or iso."),
+    fps: float = typer.Option(20.0, "--fps", help="--animate's frames per second of playback, in [1, 120]."),
+    speed: float = typer.Option(1.0, "--speed", help="--animate's playback speed x real (prototype) time."),
 ) -> None:
-    """Describe and draw a structure (scenario or block-model file) without simulating it."""
+    """Describe and draw a structure (scenario or block-model file) without simulating it; animate a result
+    folder's motion (--animate)."""
+    if animate is not None:
+        from .animate import show_animation
+
+        return show_animation(source, animate, view, fps, speed, as_json)
     from .._validate import BlastscaleInputError
 
     if plot is not None:

@@ -48,6 +48,8 @@ def histories_tidy(tree):
     Columns: ``engine`` (the group: planar, sim3d, ensemble), ``system`` (prototype / model
     up-scaled), ``variable``, ``time_s``, ``element`` (body or monitoring point, "" when none),
     ``component`` ("" when none), ``member`` (ensemble member, "" when none), ``value`` and ``units``.
+    The stored motion (poses, surfaces: :data:`blastscale.sim3d.results.MOTION_VARIABLES`) is left out:
+    it is for replaying and drawing, and stays in the NetCDF file.
 
     Parameters
     ----------
@@ -60,10 +62,14 @@ def histories_tidy(tree):
     """
     import pandas as pd
 
+    from ..sim3d.results import MOTION_VARIABLES
+
     frames = []
     for node in tree.subtree:
         engine = node.name if node.parent is not None else ""
         for var, da in node.ds.data_vars.items():
+            if var in MOTION_VARIABLES:
+                continue
             df = da.to_dataframe(name="value").reset_index()
             ren = {d: {"time": "time_s", "component": "component", "member": "member"}.get(d, "element")
                    for d in da.dims if d != "system"}

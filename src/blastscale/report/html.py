@@ -1,6 +1,7 @@
 """A self-contained HTML report of a study, for someone who never ran the tool.
 
-One file, no external resources: the figures are embedded as base64 PNG. Sections (each a
+One file, no external resources: the figures are embedded as base64 PNG, the interactive 3D view of the motion
+(:mod:`.motion`) with plotly's JavaScript inline. Sections (each a
 ``<section id=...>``): ``experiment`` (what to build and detonate), ``test_card`` (the printable
 card of a scenario with a ``[lab]`` table: :mod:`.card`), ``loads`` (blast loads of
 both systems, delivered vs required ratios), ``impulsive`` (the a-posteriori check),
@@ -21,6 +22,7 @@ from .card import CSS as _CARD_CSS
 from .card import card_section
 from .verdict import label, specimen_rows, verdict
 from .outcomes import first_peak_rows, stability_lead
+from .motion import motion_section
 
 __all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
 
@@ -367,7 +369,7 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_h
                   _loads(result) + pulses),
         "impulsive": ("3. Impulsive check", _impulsive(result)),
         "similarity": ("4. Response of the prototype" if result.design is None else
-                       "4. Similarity: prototype vs up-scaled model", _similarity(result, figures)),
+                       "4. Similarity: prototype vs up-scaled model", _similarity(result, figures) + motion_section(result)),
         "warnings": ("5. Warnings", _warnings(result)),
         "slips": ("6. The paper's slips that apply", _slips(result)),
         "scenario": ("7. Scenario (inputs)", f"<pre>{_e(sc.to_toml())}</pre>"),

@@ -11,6 +11,7 @@ import json
 import numpy as np
 
 from ..structures.base import top_monitoring_point
+from .body_mesh import structure_meshes
 from .results import VARIABLES, Response3D, body_heights
 from .rotations import quaternion_to_matrix, tilt_angle
 
@@ -146,6 +147,7 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
     residual_rot = np.arccos(np.clip((np.trace(rel_end, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0))
     hit = np.flatnonzero(collapsed_t)
     time = np.asarray(states["time"], dtype=float)
+    vertices, faces = structure_meshes(structure)
     data = {
         "com_displacement": pos - pos[0],
         "com_velocity": vel,
@@ -160,6 +162,12 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
         "fallen": fallen_t[-1].astype(np.int8),
         "residual_displacement": np.linalg.norm(pos[-1] - pos[0], axis=1),
         "residual_rotation": residual_rot,
+        "body_position": pos,
+        "body_quaternion": qpos[:, :, 3:7],
+        "body_faces": faces,
+        "body_vertices": vertices,
+        "point_body": pb.astype(np.int32),
+        "point_local_position": local,
     }
     dvars = {k: (VARIABLES[k][0], v, {"units": VARIABLES[k][1], "dimension": VARIABLES[k][2],
                                       "long_name": VARIABLES[k][3]}) for k, v in data.items()}
@@ -181,5 +189,6 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
         "body": ("body", [b.name for b in bodies]),
         "point": ("point", [p.name for p in points]),
         "component": ("component", ["x", "y", "z"]),
+        "quaternion": ("quaternion", ["w", "x", "y", "z"]),
     }
     return Response3D(xr.Dataset(dvars, coords=coords, attrs=attrs), structure)

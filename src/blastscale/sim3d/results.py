@@ -1,6 +1,7 @@
 """The result of a 3D run: :class:`Response3D`, an ``xarray.Dataset`` of the recorded response.
 
-Dimensions ``time``, ``body``, ``point``, ``component``; units and physical ``dimension`` in every
+Dimensions ``time``, ``body``, ``point``, ``component`` (and ``quaternion``, ``vertex``, ``face``,
+``corner`` for the stored motion, :data:`MOTION_VARIABLES`); units and physical ``dimension`` in every
 variable's attributes (:data:`VARIABLES`). Built from the recorded states by
 :func:`~.record.response_from_states`. A single block's planar view (rotation about y, sliding
 of its supporting edge, uplift, overturning) is read from it by
@@ -16,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Response3D", "VARIABLES", "STANDS_FRACTION", "REST_SPEED_FRACTION", "REST_WINDOW_FRACTION",
+__all__ = ["Response3D", "VARIABLES", "MOTION_VARIABLES", "STANDS_FRACTION", "REST_SPEED_FRACTION", "REST_WINDOW_FRACTION",
            "stability_of", "body_heights"]
 
 #: The variables of :attr:`Response3D.dataset`: name -> (dims, units, physical dimension, description).
@@ -38,7 +39,23 @@ VARIABLES = {
     "residual_displacement": (("body",), "m", "length", "distance of the centre of mass from its position at "
                               "time 0, at the end"),
     "residual_rotation": (("body",), "rad", "angle", "angle of the body's rotation from time 0, at the end"),
+    # the motion, for replay and drawing (docs/motion.md): poses at every recorded time
+    "body_position": (("time", "body", "component"), "m", "length",
+                      "world position of the body frame's origin (the centre of mass)"),
+    "body_quaternion": (("time", "body", "quaternion"), "1", "dimensionless",
+                        "orientation of the body frame, unit quaternion (w, x, y, z), body to world"),
+    "body_vertices": (("body", "vertex", "component"), "m", "length",
+                      "vertices of the body's surface in its frame (NaN past its own count)"),
+    "body_faces": (("body", "face", "corner"), "1", "count",
+                   "outward triangles of the body's surface, indices into body_vertices (-1 past its own count)"),
+    "point_body": (("point",), "1", "count", "index of the body carrying the monitoring point"),
+    "point_local_position": (("point", "component"), "m", "length", "monitoring point in its body's frame"),
 }
+
+#: The variables that store the motion itself (poses, surfaces, where the points sit on their bodies):
+#: a result folder replays and draws from them (:mod:`blastscale.sim3d.replay`); not histories to tabulate.
+MOTION_VARIABLES = ("body_position", "body_quaternion", "body_vertices", "body_faces", "point_body",
+                    "point_local_position")
 
 #: Stability under gravity alone (:func:`stability_of`): a structure at rest whose largest residual
 #: displacement of a centre of mass is at most this fraction of its height "stands" (5 mm at 5 m);

@@ -88,7 +88,7 @@ def estimate_memory(scenario: Scenario, structure=None, contact=None) -> int:
 
     3D: per system (prototype, model) one flag per time step plus, per recorded state, the
     engine's raw state (7 + 6 doubles per body), the recorded histories (about 20 doubles per
-    body and per monitoring point) kept about four times (result, up-scaled copy, dataset,
+    body and per monitoring point, and the motion's 7 per body: position and quaternion) kept about four times (result, up-scaled copy, dataset,
     alignment). Planar: the sampled histories (a few doubles per sample) and the solver's output.
     """
     sim = scenario.simulation
@@ -100,7 +100,7 @@ def estimate_memory(scenario: Scenario, structure=None, contact=None) -> int:
         steps = sim.duration_s / _timestep(scenario, structure, contact)
         recs = steps / (sim.record_every or 4) + 1  # the default keeps one state per 4 or 5 steps
         runs = 1 + sim.ensemble_members  # an ensemble keeps every member's point histories too
-        total += runs * 2 * (steps * 1 + recs * 8 * (13 * nb + 4 * 20 * (2 * nb)))
+        total += runs * 2 * (steps * 1 + recs * 8 * (13 * nb + 4 * 20 * (2 * nb) + 4 * 7 * nb))
     return int(total)
 
 

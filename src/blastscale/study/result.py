@@ -176,13 +176,13 @@ def _describe(structure) -> dict:
 
 def _ensemble_dataset(ens):
     """The ensemble members' x displacements, prototype and (with a design) up-scaled model
-    (system, member, time, point)."""
+    (system, member, time, point); and the motion of the median and the worst member (case, system, ...)."""
     import numpy as np
     import xarray as xr
 
     members = [ens.prototype_members] + ([] if ens.model_members is None else [ens.model_members])
     data = np.stack(members)
-    return xr.Dataset(
+    out = xr.Dataset(
         {"point_displacement_x": (("system", "member", "time", "point"), data,
                                   {"units": "m", "long_name": "x displacement of the monitoring point"})},
         coords={"system": ("system", ["prototype", "model"][:len(members)], {"units": "1"}),
@@ -192,6 +192,16 @@ def _ensemble_dataset(ens):
                 "time": ("time", ens.time, {"units": "s", "long_name": "time since detonation (prototype)"}),
                 "point": ("point", list(ens.points), {"units": "1"})},
     )
+    motion = getattr(ens, "motion", None)
+    if motion is not None:  # the median and the worst members' motion (EnsembleComparison.motion)
+        motion = motion.assign_coords(time=out["time"])
+        for name in motion.data_vars:
+            motion[name].attrs = {k: v for k, v in motion[name].attrs.items() if k in ("units", "long_name")}
+            motion[name].attrs.setdefault("units", "1")
+        out = xr.merge([out, motion], compat="override", combine_attrs="override")
+        for label in ("case", "quaternion", "body", "component"):
+            out[label].attrs.setdefault("units", "1")
+    return out
 
 
 def _system_stack(proto, up=None):
