@@ -334,7 +334,8 @@ def charge_equivalence(tnt_kg: float, explosive: "str | Explosive" = "tnt", init
     if w0 >= W:
         raise BlastscaleInputError(
             f"initiator_tnt_kg = {w0:.4g} kg is out of range: the initiator alone delivers at least the whole "
-            f"charge ({W:.4g} kg TNT); use a smaller initiator (exploding bridgewire, laser) or a larger scale")
+            f"charge ({W:.4g} kg TNT); use a smaller initiator (initiator_tnt_kg; initiator = \"none\" for a laser) or a "
+            "larger scale")
     m = (W - w0) / ex.impulse_factor
     frac = w0 / W
     notes = []
