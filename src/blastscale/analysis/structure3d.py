@@ -293,7 +293,6 @@ def compare_structure3d(
         design=design, structure=structure, specimen_structure=specimen_structure, prototype=proto, model=mod,
         prototype_dataset=pds, upscaled_dataset=up, comparison=cmp,
         settings={"load_method": load, "pulse_shape": pulse_shape, "incidence": incidence or "default", "duration_s": dur,
-                  **({"duration_asked_s": asked} if dur != asked else {}),
                   "record_every": int(record_every), "load_end_s": load_end, "extrapolate": bool(extrapolate),
                   **_load_model_setting(load_model)},
         arrival_spreads=arrival_spread_similarity(p_run.load, m_run.load, design.factors),
