@@ -115,3 +115,13 @@ def test_run_at_a_chosen_scale_warns_of_an_unfireable_shot_and_completes(capsys,
         assert any(w in x for x in card["warnings"])
     assert card["explosive_min_charge_kg"] == pytest.approx(7.238e-4, rel=1e-3)
     assert card["initiator_max_fraction"] == 0.5
+
+
+def test_a_redefined_library_explosive_warns_once_in_one_line(capsys, tmp_path):
+    lab = 'explosive = "C4"\nsamples = 20\nspecimen_max_height_m = 0.5\n[lab.explosives.C4]\npressure_factor = 1.3\n' \
+          'impulse_factor = 1.2\n'
+    code, out, err = cli(capsys, "plan", _scenario(tmp_path, lab), "--json")
+    assert code == 0, err
+    lines = [x for x in err.splitlines() if "redefines" in x]
+    assert len(lines) == 1 and lines[0].startswith("warning: lab.explosives.C4 redefines the library's explosive 'c-4'")
+    assert all(d["explosive"] == "C4" for d in json.loads(out)["designs"])

@@ -78,7 +78,8 @@ def plan_cmd(
     from ..planning import plan
     from ..scenario import Scenario, load_scenario
 
-    sc = Scenario.default() if scenario is None else load_scenario(scenario)
+    with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
+        sc = Scenario.default() if scenario is None else load_scenario(scenario)
     markers = ("plan.json", "summary.json")
     if out is not None:
         check_output_folder(out, force, markers)

@@ -121,7 +121,9 @@ def design_scenario(scenario, candidate, lab_spec=None):
     data["scale"] = scale
     if lab_spec is not None:
         data["lab"] = lab_spec.model_dump(exclude_none=True)
-    return type(scenario).from_dict(data, source="plan")
+    with warnings.catch_warnings():  # validated once already: its warnings were said
+        warnings.simplefilter("ignore")
+        return type(scenario).from_dict(data, source="plan")
 
 
 def _rank_key(d: dict) -> tuple:
