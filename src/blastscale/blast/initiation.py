@@ -27,9 +27,9 @@ References
        California Press (failure diameters of pressed, cast and plastic-bonded explosives).
 .. [2] Cooper, P. W. (1996). *Explosives Engineering*. Wiley-VCH, ch. 17 ("Detonation: critical
        diameter and failure").
-.. [3] Andreev, K. K. & Belyaev, A. F. (1960). *Theory of Explosives* (critical diameters of pressed
-       PETN 0.7-0.9 mm at 1.0 g/cm^3, RDX 2.5-4.4 mm, tetryl 5-7 mm, as tabulated in the
-       Russian-language reference literature).
+.. [3] The Russian-language table of critical diameters of detonation (ru.wikipedia.org, article
+       "Критический диаметр детонации"): pressed PETN 0.7-0.86 mm at 1.0 g/cm^3, RDX 2.5-4.4 mm,
+       tetryl 5-7 mm; its primary source was not checked here.
 .. [4] Teledyne RISI, *RP-80 EBW detonator* data sheet: initiating pellet 80 mg PETN, output pellet
        123 mg RDX, aluminium cup.
 """
@@ -53,8 +53,9 @@ class CriticalDiameter:
 
 
 _LASL = "Gibbs & Popolato 1980 (LASL Explosive Property Data); Cooper 1996 ch. 17"
+_RU = "the Russian-language table of critical diameters, ru.wikipedia 'critical diameter of detonation'"
 _NITRAMINE = CriticalDiameter(4.4e-3, "pressed or plastic-bonded RDX/HMX", "upper end of pressed RDX's 2.5-4.4 mm "
-                              "(Andreev & Belyaev 1960); " + _LASL)
+                              "(" + _RU + "); " + _LASL)
 _CAST_TNT = CriticalDiameter(15e-3, "cast TNT-based", "cast TNT fails below ~15 mm unconfined (" + _LASL + "); "
                              "aluminised and TNT-based castings taken as cast TNT")
 
@@ -62,7 +63,7 @@ _CAST_TNT = CriticalDiameter(15e-3, "cast TNT-based", "cast TNT fails below ~15 
 CRITICAL_DIAMETERS_M: dict[str, CriticalDiameter] = {
     "tnt": CriticalDiameter(6e-3, "pressed, fine-grained", "pressed fine TNT 3-6 mm, cast 15 mm and more (" + _LASL
                             + "); upper end of the pressed range"),
-    "petn": CriticalDiameter(1e-3, "pressed", "pressed PETN 0.7-0.9 mm at 1.0 g/cm^3 (Andreev & Belyaev 1960), "
+    "petn": CriticalDiameter(1e-3, "pressed", "pressed PETN 0.7-0.86 mm at 1.0 g/cm^3 (" + _RU + "), "
                              "about 1 mm at higher density (" + _LASL + ")"),
     "rdx": _NITRAMINE,
     "hmx": _NITRAMINE,
@@ -74,8 +75,8 @@ CRITICAL_DIAMETERS_M: dict[str, CriticalDiameter] = {
     "composition-b": CriticalDiameter(4.3e-3, "cast Comp B-3", "4.28 mm, unconfined (" + _LASL + ")"),
     "cyclotol-70-30": CriticalDiameter(4.3e-3, "cast", "taken as cast Comp B's 4.3 mm (" + _LASL + ")"),
     "octol-75-25": CriticalDiameter(4.3e-3, "cast", "taken as cast Comp B's 4.3 mm (" + _LASL + ")"),
-    "pentolite": CriticalDiameter(7e-3, "cast 50/50", "taken as tetryl's upper end, 5-7 mm (Andreev & Belyaev 1960)"),
-    "tetryl": CriticalDiameter(7e-3, "pressed", "5-7 mm (Andreev & Belyaev 1960); upper end"),
+    "pentolite": CriticalDiameter(7e-3, "cast 50/50", "taken as tetryl's upper end, 5-7 mm (" + _RU + ")"),
+    "tetryl": CriticalDiameter(7e-3, "pressed", "5-7 mm (" + _RU + "); upper end"),
     "tetrytol": _CAST_TNT,
     "hbx-1": _CAST_TNT, "hbx-3": _CAST_TNT, "h-6": _CAST_TNT, "minol-ii": _CAST_TNT, "tritonal": _CAST_TNT,
     "tnetb": _CAST_TNT,
