@@ -319,7 +319,8 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
             specimen_scenario(scenario, best), prototype_collapsed=proto["collapsed"], tolerances=tol,
             members=lab.ensemble_3d, seed=lab.seed, workers=workers, scheduler=scheduler)
         notes.append("odds_3d: the best design's 3D ensemble (friction and density tolerances included)")
-    return Plan(designs, rejected, proto, lab.model_dump(mode="json"), best_sc, notes)
+    return Plan(designs, rejected, proto, {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
+                best_sc, notes)
 
 
 def specimen_scenario(scenario, ev: Evaluated):

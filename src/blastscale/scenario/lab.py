@@ -6,7 +6,7 @@ from __future__ import annotations
 import warnings
 from typing import Any, Optional
 
-from pydantic import BaseModel, Field, field_validator, model_validator
+from pydantic import BaseModel, Field, PrivateAttr, field_validator, model_serializer, model_validator
 
 from ..blast.explosives import EXPLOSIVES, canonical_name, initiator_tnt_kg
 from ..blast.initiation import DEFAULT_INITIATOR, INITIATORS
@@ -44,8 +44,8 @@ class LabSpec(BaseModel):
     explosives: dict[str, ExplosiveSpec] = Field(default_factory=dict, description="User-defined explosives")
     initiator: str = Field(DEFAULT_INITIATOR, description="The initiator (detonator) by name: rp-80 (Teledyne RISI "
                            "EBW, 80 mg PETN + 123 mg RDX) or none")
-    initiator_tnt_kg: float = Field(None, ge=0, le=1000, description="The initiator's TNT-equivalent mass [kg] "
-                                    "(default: the named initiator's, impulse basis)")
+    initiator_tnt_kg: Optional[float] = Field(None, ge=0, le=1000, description="The initiator's TNT-equivalent mass "
+                                              "[kg] (default: the named initiator's, impulse basis)")
     initiator_max_fraction: float = Field(0.5, gt=0, le=1, description="Largest share of the charge's TNT-equivalent "
                                           "impulse the initiator may carry; designs above it are rejected [-]")
     charge_min_kg: float = Field(0.0, ge=0, le=10000, description="Smallest mass of the explosive the lab can "
@@ -97,9 +97,25 @@ class LabSpec(BaseModel):
             if ini not in INITIATORS:
                 raise ValueError(f"initiator = {ini!r} is not known: valid values are {', '.join(INITIATORS)} (or "
                                  "give initiator_tnt_kg)")
-            if data.get("initiator_tnt_kg") is None:
-                data["initiator_tnt_kg"] = initiator_tnt_kg(ini)
         return data
+
+    #: True when ``initiator_tnt_kg`` is the named initiator's (not written back: a new ``initiator`` in
+    #: ``with_values`` or ``--set`` brings its own).
+    _derived_tnt: bool = PrivateAttr(False)
+
+    @model_validator(mode="after")
+    def _initiator_tnt(self) -> "LabSpec":
+        if self.initiator_tnt_kg is None:  # frozen: set once, here
+            object.__setattr__(self, "initiator_tnt_kg", initiator_tnt_kg(self.initiator))
+            self._derived_tnt = True
+        return self
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler):
+        d = handler(self)
+        if self._derived_tnt and isinstance(d, dict):
+            d.pop("initiator_tnt_kg", None)
+        return d
 
     @field_validator("materials")
     @classmethod

@@ -83,3 +83,14 @@ def test_a_redefined_library_explosive_warns_in_one_line():
 def test_no_initiator_and_a_stated_one():
     assert _with_lab({"initiator": "none"}).lab.initiator_tnt_kg == 0.0
     assert _with_lab({"initiator_tnt_kg": 1e-3}).lab.initiator_tnt_kg == 1e-3
+
+
+def test_a_new_initiator_brings_its_own_tnt_equivalent():
+    """The named initiator's TNT equivalent is derived, not written back: --set lab.initiator=none gives 0, a
+    stated initiator_tnt_kg stays stated, and the TOML of a default [lab] names the initiator only."""
+    sc = _with_lab({})
+    assert sc.with_values({"lab.initiator": "none"}).lab.initiator_tnt_kg == 0.0
+    assert sc.with_values({"lab.initiator_tnt_kg": 1e-3}).lab.initiator_tnt_kg == 1e-3
+    stated = _with_lab({"initiator_tnt_kg": 0.0})
+    assert stated.with_values({"lab.samples": 50}).lab.initiator_tnt_kg == 0.0
+    assert "initiator_tnt_kg" not in sc.to_toml() and 'initiator = "rp-80"' in sc.to_toml()
