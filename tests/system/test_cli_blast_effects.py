@@ -119,3 +119,16 @@ def test_critical_reports_the_suction_model_uncertainty(capsys):
     u = out["negative_phase_uncertainty"]
     assert u["ufc-fig2-16-cubic"]["over_positive_phase_only"] == pytest.approx(1.289, abs=1e-3)
     assert u["friedlander-continued"]["over_positive_phase_only"] == pytest.approx(1.030, abs=1e-3)
+
+
+def test_rock_and_design_take_the_negative_phase_model(capsys):
+    out = run_json(capsys, "rock", "--height", "10", "--alpha-deg", "15", "--charge", "50", "--standoff", "2",
+                   "--negative-phase", "--negative-phase-model", "friedlander-continued", "--json")
+    assert out["load_model"]["prototype"]["negative_phase_model"] == "friedlander-continued"
+    d = run_json(capsys, "design", "--charge", "50", "--standoff", "2", "--scale", "0.05", "--height", "10",
+                 "--alpha-deg", "15", "--negative-phase", "--negative-phase-model", "friedlander-continued", "--json")
+    assert d["load_model"]["model"]["negative_phase_model"] == "friedlander-continued"
+    assert d["blast_effects"]["negative_phase"]["prototype"]["negative_phase_model"] == "friedlander-continued"
+    assert "applies only with --negative-phase" in run_error(
+        capsys, "rock", "--height", "10", "--alpha-deg", "15", "--charge", "50", "--standoff", "2",
+        "--negative-phase-model", "friedlander-continued")

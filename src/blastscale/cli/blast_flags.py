@@ -12,7 +12,7 @@ from .._validate import BlastscaleInputError
 from ..blast.parameters import BURSTS, DEFAULT_BURST
 
 __all__ = ["BURST", "SPECIMEN_BURST", "SPECIMEN_CHARGE_HEIGHT", "CLEARING", "FACE_WIDTH", "FACE_HEIGHT",
-           "NEGATIVE_PHASE", "NEGATIVE_PHASE_MODEL", "load_model_from_flags", "check_burst_flag"]
+           "NEGATIVE_PHASE", "NEGATIVE_PHASE_MODEL", "negative_phase_model_key", "load_model_from_flags", "check_burst_flag"]
 
 BURST = typer.Option(DEFAULT_BURST, "--burst", help=f"Burst type: {' or '.join(BURSTS)} (a charge on the ground, the "
                      "paper's; or away from every surface: Kingery-Bulmash spherical fits, UFC 3-340-02 Fig. 2-7).")
@@ -34,6 +34,16 @@ NEGATIVE_PHASE_MODEL = typer.Option(None, "--negative-phase-model", help="The ne
                                     "both bounded by the positive impulse.")
 
 
+def negative_phase_model_key(negative_phase: bool, model: Optional[str]) -> dict:
+    """``{"negative_phase_model": model}`` for a scenario's ``[blast]`` (empty when not given); one line
+    when given without ``--negative-phase``."""
+    if model is None:
+        return {}
+    if not negative_phase:
+        raise BlastscaleInputError(f"--negative-phase-model = {model!r} applies only with --negative-phase")
+    return {"negative_phase_model": model}
+
+
 def check_burst_flag(burst: Optional[str], name: str = "--burst") -> Optional[str]:
     """``burst`` when it is None or one of the burst types; one line naming the flag otherwise."""
     if burst is not None and burst not in BURSTS:
@@ -50,9 +60,7 @@ def load_model_from_flags(clearing: bool, face_width: Optional[float], face_heig
     errors."""
     from ..blast.load_model import LoadModel
 
-    if negative_phase_model is not None and not negative_phase:
-        raise BlastscaleInputError(f"--negative-phase-model = {negative_phase_model!r} applies only with "
-                                   "--negative-phase")
+    negative_phase_model_key(negative_phase, negative_phase_model)
     given = face_width is not None or face_height is not None
     if given and not clearing:
         raise BlastscaleInputError(f"face width = {face_width}, face height = {face_height}: --face-width and "

@@ -191,6 +191,7 @@ def design_cmd(
     face_width: Optional[float] = bf.FACE_WIDTH,
     face_height: Optional[float] = bf.FACE_HEIGHT,
     negative_phase: bool = bf.NEGATIVE_PHASE,
+    negative_phase_model: Optional[str] = bf.NEGATIVE_PHASE_MODEL,
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
 ) -> None:
     """Design the reduced-scale model: model charge and stand-off, every factor, impulsive check
@@ -198,7 +199,7 @@ def design_cmd(
     block = block_from_options(height, width, alpha_deg, depth, density)
     bf.check_burst_flag(burst)
     bf.check_burst_flag(specimen_burst, "--specimen-burst")
-    lm = bf.load_model_from_flags(clearing, face_width, face_height, negative_phase, block)
+    lm = bf.load_model_from_flags(clearing, face_width, face_height, negative_phase, block, negative_phase_model)
     if density_ratio is None and law == "general":
         density_ratio = 1.0
     face = None if lm is None or not lm.clearing else (lm.face_width_m, lm.face_height_m)
