@@ -85,3 +85,50 @@ def test_run_takes_the_scenario_keys(capsys, tmp_path):
     s = json.loads((tmp_path / "r" / "summary.json").read_text())
     assert s["scenario"]["blast"]["negative_phase"] is True
     assert s["design"]["blast_effects"]["negative_phase"]["model"]["negative_impulse_Pa_s"] > 0
+
+
+@pytest.mark.parametrize("standoff", ["15", "30"])
+def test_blast_negative_phase_net_impulse_is_not_negative_far_out(capsys, standoff):
+    """Issue #24: at Z = 15 the chart's suction impulse is 1.15 x the positive one; bounded, the net is 0."""
+    for model in ("ufc-fig2-16-cubic", "friedlander-continued"):
+        out = run_json(capsys, "blast", "--charge", "1", "--standoff", standoff, "--negative-phase",
+                       "--negative-phase-model", model, "--json")
+        assert out["net_reflected_impulse_Pa_s"] >= 0.0 and out["negative_impulse_bounded"] is True
+        assert out["load_model"]["negative_phase_model"] == model
+
+
+def test_blast_negative_phase_beyond_the_chart_refuses_or_is_bounded(capsys):
+    """Z = 39: refused in one line naming the valid range; with --extrapolate, bounded (net 0)."""
+    err = run_error(capsys, "blast", "--charge", "1", "--standoff", "39", "--negative-phase")
+    assert "[0.07, 37.6] m/kg^(1/3)" in err
+    out = run_json(capsys, "blast", "--charge", "1", "--standoff", "39", "--negative-phase", "--extrapolate", "--json")
+    assert out["net_reflected_impulse_Pa_s"] >= 0.0
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--negative-phase-model", "friedlander-continued"], "applies only with --negative-phase"),
+    (["--negative-phase", "--negative-phase-model", "cosine"], "negative phase model = 'cosine' is not known"),
+])
+def test_bad_negative_phase_model_is_one_line(capsys, argv, words):
+    assert words in run_error(capsys, "blast", "--charge", "50", "--standoff", "2", *argv)
+
+
+def test_critical_reports_the_suction_model_uncertainty(capsys):
+    out = run_json(capsys, "critical", "--height", "10", "--alpha-deg", "15", "--standoff", "2", "--negative-phase",
+                   "--model", "kingery-bulmash", "--json")
+    u = out["negative_phase_uncertainty"]
+    assert u["ufc-fig2-16-cubic"]["over_positive_phase_only"] == pytest.approx(1.289, abs=1e-3)
+    assert u["friedlander-continued"]["over_positive_phase_only"] == pytest.approx(1.030, abs=1e-3)
+
+
+def test_rock_and_design_take_the_negative_phase_model(capsys):
+    out = run_json(capsys, "rock", "--height", "10", "--alpha-deg", "15", "--charge", "50", "--standoff", "2",
+                   "--negative-phase", "--negative-phase-model", "friedlander-continued", "--json")
+    assert out["load_model"]["prototype"]["negative_phase_model"] == "friedlander-continued"
+    d = run_json(capsys, "design", "--charge", "50", "--standoff", "2", "--scale", "0.05", "--height", "10",
+                 "--alpha-deg", "15", "--negative-phase", "--negative-phase-model", "friedlander-continued", "--json")
+    assert d["load_model"]["model"]["negative_phase_model"] == "friedlander-continued"
+    assert d["blast_effects"]["negative_phase"]["prototype"]["negative_phase_model"] == "friedlander-continued"
+    assert "applies only with --negative-phase" in run_error(
+        capsys, "rock", "--height", "10", "--alpha-deg", "15", "--charge", "50", "--standoff", "2",
+        "--negative-phase-model", "friedlander-continued")

@@ -30,6 +30,7 @@ from .._validate import BlastscaleInputError, check_positive
 from ..constants import STANDARD_GRAVITY
 from ..structures import is_block
 from .compare import align, compare_responses, upscale_dataset
+from .gravity_alone import extended_keys, until_decided
 from .systems import SYSTEMS, run_system
 from .upscale import upscale_summary
 
@@ -344,7 +345,8 @@ class Prototype3D:
         """``prototype`` (the structure's keys and, for a single block, its planar keys);
         ``model`` and ``similarity`` None."""
         blk = _block_keys(self.structure, self.prototype)
-        return {"prototype": _merged(self.prototype.summary(), blk["prototype"]), "model": None, "similarity": None}
+        p = {**_merged(self.prototype.summary(), blk["prototype"]), **extended_keys(self.settings)}
+        return {"prototype": p, "model": None, "similarity": None}
 
 
 def prototype_structure3d(
@@ -380,14 +382,16 @@ def prototype_structure3d(
     """
     from ..sim3d.face_loads import arrival_spread
 
-    dur = float(check_positive("duration", duration, "s"))
-    run = run_system(structure, None, "prototype", blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape,
-                     incidence=incidence, contact=contact, duration=dur, record_every=record_every,
-                     extrapolate=extrapolate, load_model=load_model)
+    asked = float(check_positive("duration", duration, "s"))
+    kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,
+              record_every=record_every, extrapolate=extrapolate, load_model=load_model)
+    # gravity alone: run until the stability rule decides (docs/assemblies.md, analysis.gravity_alone)
+    run, dur = until_decided(lambda T: run_system(structure, None, "prototype", duration=T, **kw), asked, blast is None)
     resp = run.response
     return Prototype3D(
         structure=structure, prototype=resp, prototype_dataset=_with_outcome(resp.dataset, resp.summary()),
         settings={"load_method": load, "pulse_shape": pulse_shape, "incidence": incidence or "default", "duration_s": dur,
+                  **({"duration_asked_s": asked} if dur != asked else {}),
                   "record_every": int(record_every), "load_end_s": run.load_duration_s,
                   "extrapolate": bool(extrapolate), "arrival_spread_prototype_s": arrival_spread(run.load),
                   **_load_model_setting(load_model)},

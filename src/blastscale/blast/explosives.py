@@ -26,18 +26,31 @@ References
        heat of explosion 367 cal/g (1536 kJ/kg), density 4.8 g/cm^3.
 .. [3] Cooper, P. W. (1996). *Explosives Engineering*, Wiley-VCH, ch. 23 (TNT equivalence by heat of
        detonation and by air-blast tests; the two disagree by tens of percent for primary explosives).
+.. [4] UNODA (2021). IATG 01.80 *Formulae for ammunition management*, table of TNT equivalence for
+       pressure and for impulse (which reproduces UFC 3-340-02 Table 2-1's factors and adds PETN's
+       impulse factor, RDX and HMX): PETN 1.27 / 1.11, RDX 1.14 / 1.09, HMX 1.02 / 1.03 (pressure /
+       impulse), as given by two transcriptions of it (issue #24); the original was not at hand here.
+.. [5] Bogosian, D., Yokota, M. & Rigby, S. E. (2016). TNT equivalence of C-4 and PE4: a review of
+       traditional sources and recent data. 24th Military Aspects of Blast and Shock (MABS 24).
+
+Names are matched without regard to case, spaces, hyphens or underscores, with the usual aliases
+(:data:`ALIASES`: "C4", "Composition C-4", "Comp B", ...). Each library entry carries its smallest
+reliable charge (:mod:`.initiation`).
 """
 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from typing import Mapping, Optional
 
 from .._validate import BlastscaleInputError
+from .initiation import CRITICAL_DIAMETERS_M, INITIATORS, min_reliable_charge
 
-__all__ = ["Explosive", "ChargeEquivalence", "EXPLOSIVES", "UFC_3_340_02_TABLE_2_1", "TNT_ENERGY_J_KG",
-           "INITIATOR_WARNING_FRACTION", "get_explosive", "charge_equivalence"]
+__all__ = ["Explosive", "ChargeEquivalence", "EXPLOSIVES", "UFC_3_340_02_TABLE_2_1", "IATG_01_80", "TNT_ENERGY_J_KG",
+           "INITIATOR_WARNING_FRACTION", "ALIASES", "canonical_name", "get_explosive", "charge_equivalence",
+           "initiator_tnt_kg"]
 
 #: Above this fraction of the charge's TNT equivalent (impulse basis) the initiator gets a warning.
 INITIATOR_WARNING_FRACTION = 0.10
@@ -73,6 +86,26 @@ UFC_3_340_02_TABLE_2_1: dict[str, tuple[float, Optional[float], float]] = {
     "anfo": (0.82, 0.82, 850.0),
 }
 
+#: IATG 01.80's entries beyond UFC 3-340-02 Table 2-1 (reference [4]): name -> (pressure factor,
+#: impulse factor, density [kg/m^3]); densities: PETN the UFC table's, RDX and HMX their pressed
+#: densities (Meyer, Koehler & Homburg 2007: 1.80 and 1.90 g/cm^3 crystal, pressed slightly lower).
+IATG_01_80: dict[str, tuple[float, float, float]] = {
+    "petn": (1.27, 1.11, 1770.0),
+    "rdx": (1.14, 1.09, 1800.0),
+    "hmx": (1.02, 1.03, 1900.0),
+}
+
+#: What users call the library's explosives: the squashed name (lower case, letters and digits only)
+#: -> the library's name. Every library name is also matched squashed ("C4" -> "c-4").
+ALIASES = {
+    "compositionc4": "c-4", "compc4": "c-4", "m112": "c-4",
+    "compb": "composition-b", "compositionb3": "composition-b", "compb3": "composition-b",
+    "compa3": "composition-a-3", "cyclotol": "cyclotol-70-30", "octol": "octol-75-25", "minol": "minol-ii",
+    "hexogen": "rdx", "cyclonite": "rdx", "t4": "rdx", "octogen": "hmx", "pentrite": "petn",
+    "trinitrotoluene": "tnt", "semtexh": "semtex", "semtex1a": "semtex", "pe4plastic": "pe4",
+    "leadazide": "lead-azide",
+}
+
 
 @dataclass(frozen=True)
 class Explosive:
@@ -91,6 +124,10 @@ class Explosive:
         Where the numbers come from.
     uncertainty : str
         How well they are known, in words.
+    min_charge_kg : float
+        Smallest charge that detonates reliably [kg] (:mod:`.initiation`); 0 when not stated.
+    min_charge_source : str
+        Where it comes from.
     """
 
     name: str
@@ -99,6 +136,8 @@ class Explosive:
     density_kg_m3: Optional[float]
     source: str
     uncertainty: str
+    min_charge_kg: float = 0.0
+    min_charge_source: str = "not stated"
 
     def __post_init__(self):
         for attr in ("pressure_factor", "impulse_factor"):
@@ -124,8 +163,21 @@ class Explosive:
         return float(tnt_kg) / self.factor(basis)
 
 
+def _with_min_charge(ex: Explosive) -> Explosive:
+    cd = CRITICAL_DIAMETERS_M[ex.name]
+    m = min_reliable_charge(cd.diameter_m, ex.density_kg_m3)
+    return Explosive(ex.name, ex.pressure_factor, ex.impulse_factor, ex.density_kg_m3, ex.source, ex.uncertainty, m,
+                     f"hemisphere of radius the critical diameter {1e3 * cd.diameter_m:.3g} mm ({cd.form}; "
+                     f"{cd.source}) at {ex.density_kg_m3:g} kg/m^3")
+
+
 def _ufc(name: str) -> Explosive:
     p, i, rho = UFC_3_340_02_TABLE_2_1[name]
+    if name in IATG_01_80:
+        p, i, rho = IATG_01_80[name]
+        return Explosive(name, p, i, rho, "UFC 3-340-02 (2008) Table 2-1 (pressure); IATG 01.80 (impulse, which "
+                         "the UFC table does not give)", "IATG's impulse factor as transcribed, not checked against "
+                         "the original here; +-10 % outside the table's pressure range (Cooper 1996, ch. 23)")
     if i is None:
         return Explosive(name, p, p, rho, "UFC 3-340-02 (2008) Table 2-1 (pressure factor; the table gives no "
                          "impulse factor: the pressure factor is used for impulse too)",
@@ -134,15 +186,58 @@ def _ufc(name: str) -> Explosive:
                      "the table's factors hold over its pressure range; +-10 % outside it (Cooper 1996, ch. 23)")
 
 
-#: The library: name -> Explosive. UFC 3-340-02 Table 2-1 for the secondary explosives; lead azide
-#: (the usual primary explosive of sub-gram charges and detonators) by its heat of explosion.
+def _iatg(name: str) -> Explosive:
+    p, i, rho = IATG_01_80[name]
+    return Explosive(name, p, i, rho, "IATG 01.80 (2021), TNT equivalence for pressure and impulse",
+                     "as transcribed, not checked against the original here; +-10 % (Cooper 1996, ch. 23)")
+
+
+def _as_c4(name: str, what: str) -> Explosive:
+    p, i, rho = UFC_3_340_02_TABLE_2_1["c-4"]
+    return Explosive(name, p, i, rho, f"{what}: C-4's factors of UFC 3-340-02 (2008) Table 2-1 (no table of its own "
+                     "gives both factors; C-4 and PE4 reviewed together by Bogosian, Yokota & Rigby 2016)",
+                     "assumed by composition; measured equivalences of RDX plastic explosives scatter by +-15 % "
+                     "(Bogosian et al. 2016)")
+
+
+#: The library: name -> Explosive. UFC 3-340-02 Table 2-1 for the secondary explosives (PETN's
+#: impulse factor, RDX and HMX from IATG 01.80; PE4 and Semtex as C-4); lead azide (the usual
+#: primary explosive of sub-gram charges and detonators) by its heat of explosion.
 EXPLOSIVES: dict[str, Explosive] = {n: _ufc(n) for n in UFC_3_340_02_TABLE_2_1}
+EXPLOSIVES["rdx"], EXPLOSIVES["hmx"] = _iatg("rdx"), _iatg("hmx")
+EXPLOSIVES["pe4"] = _as_c4("pe4", "PE4 (UK plastic explosive, 88 % RDX)")
+EXPLOSIVES["semtex"] = _as_c4("semtex", "Semtex H (Czech plastic explosive, RDX and PETN)")
 EXPLOSIVES["lead-azide"] = Explosive(
     "lead-azide", 1.536e6 / TNT_ENERGY_J_KG, 1.536e6 / TNT_ENERGY_J_KG, 4800.0,
     "heat of explosion 1536 kJ/kg (Meyer, Koehler & Homburg 2007) over the TNT-equivalent energy 4.184 MJ/kg "
     "(UFC 3-340-02 Eq. 2-1, ratio of heats)",
     "air-blast equivalence of primary explosives is not tabulated; ratio of heats 0.33-0.37 with TNT's measured "
     "4.2-4.6 MJ/kg: assume +-30 %")
+EXPLOSIVES = {n: _with_min_charge(e) for n, e in EXPLOSIVES.items()}
+
+
+def _squash(name: str) -> str:
+    return re.sub(r"[^a-z0-9]", "", str(name).lower())
+
+
+def canonical_name(name: str, custom: Optional[Mapping[str, object]] = None) -> Optional[str]:
+    """The library's (or ``custom``'s) name of the explosive a user calls ``name`` (case, spaces,
+    hyphens and underscores ignored; :data:`ALIASES`), or None when none matches. An exact
+    ``custom`` name wins over the library's."""
+    if custom and name in custom:
+        return name
+    key = _squash(name)
+    for table in (custom or {}), EXPLOSIVES:
+        for n in table:
+            if _squash(n) == key:
+                return n
+    return ALIASES.get(key)
+
+
+def initiator_tnt_kg(name: str) -> float:
+    """TNT-equivalent mass [kg] (impulse basis) of the initiator ``name`` of
+    :data:`~.initiation.INITIATORS`: the sum of its contents' masses times their impulse factors."""
+    return float(sum(m * EXPLOSIVES[ex].impulse_factor for ex, m in INITIATORS[name].contents))
 
 
 def get_explosive(name: str, custom: Optional[Mapping[str, Explosive]] = None) -> Explosive:
@@ -150,7 +245,7 @@ def get_explosive(name: str, custom: Optional[Mapping[str, Explosive]] = None) -
     ``[lab.explosives.NAME]`` tables) first, then the library :data:`EXPLOSIVES`."""
     table = {**EXPLOSIVES, **dict(custom or {})}
     try:
-        return table[name]
+        return table[canonical_name(name, custom) if isinstance(name, str) else name]
     except (KeyError, TypeError):
         raise BlastscaleInputError(f"explosive = {name!r} is not known: valid values are {', '.join(table)} "
                                    "(or define it in a [lab.explosives.NAME] table)") from None
@@ -190,7 +285,8 @@ class ChargeEquivalence:
                 "tnt_equivalent_impulse_kg": self.tnt_equivalent_impulse_kg,
                 "tnt_equivalent_pressure_kg": self.tnt_equivalent_pressure_kg,
                 "pressure_factor": self.explosive.pressure_factor, "impulse_factor": self.explosive.impulse_factor,
-                "initiator_fraction": self.initiator_fraction, "equivalence_source": self.explosive.source,
+                "initiator_fraction": self.initiator_fraction, "explosive_min_charge_kg": self.explosive.min_charge_kg,
+                "min_charge_source": self.explosive.min_charge_source, "equivalence_source": self.explosive.source,
                 "equivalence_uncertainty": self.explosive.uncertainty, "warnings": list(self.warnings)}
 
 
@@ -238,7 +334,8 @@ def charge_equivalence(tnt_kg: float, explosive: "str | Explosive" = "tnt", init
     if w0 >= W:
         raise BlastscaleInputError(
             f"initiator_tnt_kg = {w0:.4g} kg is out of range: the initiator alone delivers at least the whole "
-            f"charge ({W:.4g} kg TNT); use a smaller initiator (exploding bridgewire, laser) or a larger scale")
+            f"charge ({W:.4g} kg TNT); use a smaller initiator (initiator_tnt_kg; initiator = \"none\" for a laser) or a "
+            "larger scale")
     m = (W - w0) / ex.impulse_factor
     frac = w0 / W
     notes = []

@@ -9,7 +9,8 @@
 * **Negative phase** (:mod:`.negative_phase`) on every loaded face, at its own Z, after its own
   positive phase: the reflected values blended toward half of them (the acoustic side-on limit)
   with the weight of the face's positive impulse between side-on and reflected,
-  ``w = (i - i_s) / (i_r - i_s)`` (:func:`.negative_phase.oblique_negative`).
+  ``w = (i - i_s) / (i_r - i_s)`` (:func:`.negative_phase.oblique_negative`), then bounded by the face's own
+  positive impulse (the net impulse is never negative, :func:`.negative_phase.bounded_by_positive`).
 """
 
 from __future__ import annotations
@@ -19,12 +20,13 @@ from dataclasses import replace
 import numpy as np
 
 from .clearing import clearing
-from .negative_phase import negative_phase_unchecked, oblique_negative
+from .negative_phase import NEGATIVE_PHASE_MODEL, bounded_by_positive, face_negative_phase, oblique_negative
 
 __all__ = ["with_effects"]
 
 
-def with_effects(pulses, loads, *, widths=None, height=None, negative: bool = False, burst: str = "surface"):
+def with_effects(pulses, loads, *, widths=None, height=None, negative: bool = False, burst: str = "surface",
+                 negative_model: str = NEGATIVE_PHASE_MODEL):
     """``pulses`` (:class:`~.face_pulses.FacePulses` of ``loads``, a :class:`~.faces.FaceLoads`) with
     clearing (when ``widths`` (nface,) [m] and ``height`` [m] are given) and the negative phase.
 
@@ -46,11 +48,13 @@ def with_effects(pulses, loads, *, widths=None, height=None, negative: bool = Fa
                   clear_t2=np.where(cl, t2, 1.0), impulse=np.where(cl, c.cleared_impulse, pulses.impulse))
     if negative:
         z = fl.scaled_distance.ravel()
-        neg = negative_phase_unchecked(z, np.full(z.shape, float(fl.charge_kg)), burst)
         ir, i_s = fl.reflected_impulse.ravel(), fl.incident_impulse.ravel()
+        neg = face_negative_phase(z, np.full(z.shape, float(fl.charge_kg)), burst,
+                                  reflected_pressure=fl.reflected_pressure.ravel(), reflected_impulse=ir,
+                                  positive_duration=fl.positive_duration.ravel(), model=negative_model)
         with np.errstate(invalid="ignore", divide="ignore"):
             w = np.where(ir > i_s, (fl.impulse.ravel() - i_s) / (ir - i_s), 1.0)
-        neg = oblique_negative(neg, w)
+        neg = bounded_by_positive(oblique_negative(neg, w), kw.get("impulse", np.asarray(pulses.impulse).ravel()))
         start = fl.positive_duration.ravel() if pulses.kind == "impulsive" else pulses.duration
         if "cleared" in kw:
             start = np.where(kw["cleared"], kw["clear_t2"], start)

@@ -31,6 +31,8 @@ from .negative_phase import (
     NegativePhase,
     cubic_cumulative,
     cubic_pressure,
+    NEGATIVE_PHASE_MODELS,
+    face_negative_phase,
     negative_phase,
 )
 from .pulses import Impulsive, Pulse
@@ -51,13 +53,17 @@ class LoadModel:
         The loaded face's width W and height above the ground H [m], needed with ``clearing`` (None:
         taken from the structure where a structure is loaded, :func:`blastscale.sim3d.loads.with_structure_face`).
     negative_phase : bool
-        Add the negative phase (UFC Fig. 2-16, Granström's cubic).
+        Add the negative phase (UFC Fig. 2-16, Granström's cubic), bounded by the positive impulse.
+    negative_phase_model : str
+        Which (:data:`~.negative_phase.NEGATIVE_PHASE_MODELS`): the chart-calibrated cubic (default) or
+        the Friedlander pulse continued past its zero crossing.
     """
 
     clearing: bool = False
     face_width_m: float | None = None
     face_height_m: float | None = None
     negative_phase: bool = False
+    negative_phase_model: str = NEGATIVE_PHASE_MODEL
 
     def __post_init__(self):
         if (self.face_width_m is None) != (self.face_height_m is None):
@@ -67,6 +73,9 @@ class LoadModel:
         for name, v in (("face width", self.face_width_m), ("face height", self.face_height_m)):
             if v is not None and not (float(v) > 0.0):  # > 0, inf allowed (an unbounded face)
                 raise BlastscaleInputError(f"{name} = {v!r} m is out of range: must be > 0 m")
+        if self.negative_phase_model not in NEGATIVE_PHASE_MODELS:
+            raise BlastscaleInputError(f"negative phase model = {self.negative_phase_model!r} is not known: valid "
+                                       f"values are {', '.join(NEGATIVE_PHASE_MODELS)}")
 
     def require_face(self) -> "LoadModel":
         """``self`` when clearing has its face (or there is no clearing); one line otherwise."""
@@ -93,7 +102,7 @@ class LoadModel:
         if self.clearing and self.face_width_m is not None:
             d.update(clearing_model=CLEARING_MODEL, face_width_m=self.face_width_m, face_height_m=self.face_height_m)
         if self.negative_phase:
-            d["negative_phase_model"] = NEGATIVE_PHASE_MODEL
+            d["negative_phase_model"] = self.negative_phase_model
         return d
 
 
@@ -200,11 +209,21 @@ def front_face_clearing(bp, load_model: LoadModel) -> "Clearing | None":
                     load_model.face_height_m)
 
 
-def front_face_negative(bp, load_model: LoadModel, *, extrapolate: bool = False) -> "NegativePhase | None":
-    """Negative phase of the normally reflected load of ``bp``, or None without it."""
+def front_face_negative(bp, load_model: LoadModel, *, extrapolate: bool = False,
+                        positive_impulse=None) -> "NegativePhase | None":
+    """Negative phase of the normally reflected load of ``bp`` under the load model's negative-phase
+    model, bounded by the face's positive impulse [Pa s] (``positive_impulse``, default the reflected
+    impulse of ``bp``; the cleared one where clearing acts), or None without it. The chart's Z range
+    is checked for the chart's model (:func:`~.negative_phase.negative_phase`)."""
     if load_model is None or not load_model.negative_phase:
         return None
-    return negative_phase(bp.scaled_distance, bp.charge_kg, getattr(bp, "burst", "surface"), extrapolate=extrapolate)
+    burst = getattr(bp, "burst", "surface")
+    if load_model.negative_phase_model == NEGATIVE_PHASE_MODEL:
+        negative_phase(bp.scaled_distance, bp.charge_kg, burst, extrapolate=extrapolate)
+    return face_negative_phase(bp.scaled_distance, bp.charge_kg, burst, reflected_pressure=bp.reflected_pressure,
+                               reflected_impulse=bp.reflected_impulse if positive_impulse is None else positive_impulse,
+                               positive_duration=bp.positive_duration, friedlander_decay=bp.friedlander_decay,
+                               model=load_model.negative_phase_model)
 
 
 def front_face_pulse(bp, shape: str = "friedlander", load_model: "LoadModel | None" = None, *,
@@ -222,7 +241,7 @@ def front_face_pulse(bp, shape: str = "friedlander", load_model: "LoadModel | No
     c = front_face_clearing(bp, load_model)
     if c is not None and c.cleared:
         base = Impulsive(float(c.cleared_impulse)) if shape == "impulsive" else c.pulse()
-    neg = front_face_negative(bp, load_model, extrapolate=extrapolate)
+    neg = front_face_negative(bp, load_model, extrapolate=extrapolate, positive_impulse=base.impulse)
     if neg is None:
         return base
     start = float(bp.positive_duration) if shape == "impulsive" else None

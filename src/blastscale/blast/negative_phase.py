@@ -31,6 +31,25 @@ the reflected values, and faces in between are blended with the weights of their
 
 Validity: Z in [0.07, 37.6] m/kg^(1/3) (the range of the chart's calibration in the same source).
 
+**Bounded by the positive impulse.** Beyond Z ~ 8 m/kg^(1/3) (surface burst) the calibrated suction
+impulse exceeds the positive reflected impulse of Kingery-Bulmash (1.15 x at Z = 15, 1.39 x at Z = 39
+extrapolated): the face would be pulled toward the charge. No far-field blast wave does that: in the
+acoustic limit the wave's net impulse tends to zero from above (Baker 1973, ch. 2; the chart itself
+is drawn from sparse data beyond Z ~ 10, Rigby et al. 2014). blastscale therefore **bounds** the
+suction impulse by the positive reflected impulse of the same face, ``i_r- <= i_r``: where the
+bound acts the peak suction is scaled down with the impulse and the duration kept (the chart's own
+duration, Rigby's calibration of Fig. 2-16, stays near 14 ms/kg^(1/3) there). Outside the
+calibration's Z range it still refuses unless asked to extrapolate. :func:`face_negative_phase`
+applies the bound; ``bounded`` says where it acted.
+
+**Second model: the Friedlander pulse continued.** ``"friedlander-continued"`` takes the suction of
+the positive phase's own modified Friedlander ``p = P (1 - x) e^(-d x)``, ``x = t / t_o``, continued
+past its zero crossing (x > 1) to infinity: its peak suction ``P e^(-(d+1)) / d`` (at x = 1 + 1/d) and
+impulse ``P t_o e^(-d) / d^2`` (exact integrals), carried by the cubic shape above (duration
+``16 e t_o / (9 d)``), and bounded alike (for d < 1 the continued pulse's suction would exceed its
+positive impulse, ``(d + e^(-d) - 1) / d^2``). Two models that bracket the suction: the
+chart-calibrated one is the larger near the charge (model uncertainty, docs/blast_physics.md).
+
 References
 ----------
 .. [1] UFC 3-340-02 (2008). *Structures to Resist the Effects of Accidental Explosions*, Fig. 2-16.
@@ -39,6 +58,8 @@ References
 .. [3] Rigby, S. E., Tyas, A., Bennett, T., Clarke, S. D. & Fay, S. D. (2014). The negative phase of
        the blast load. Int. J. Protective Structures 5(1), 1-19.
 .. [4] Reis, A. W. Q. R. et al., DYNAblast (MATLAB), Class_Blast.m (Rigby's calibrations).
+.. [5] Baker, W. E. (1973). *Explosions in Air*. University of Texas Press, ch. 2 (the acoustic
+       limit of a blast wave: its net impulse tends to zero).
 """
 
 from __future__ import annotations
@@ -63,10 +84,18 @@ __all__ = [
     "cubic_cumulative",
     "oblique_negative",
     "NEGATIVE_PHASE_MODEL",
+    "NEGATIVE_PHASE_MODELS",
+    "face_negative_phase",
+    "friedlander_continued",
+    "bounded_by_positive",
 ]
 
 #: Name of the negative-phase model (recorded with every result that uses it).
 NEGATIVE_PHASE_MODEL = "ufc-fig2-16-cubic"
+
+#: The negative-phase models (module docstring): the chart-calibrated cubic (default) and the
+#: Friedlander pulse continued past its zero crossing.
+NEGATIVE_PHASE_MODELS = (NEGATIVE_PHASE_MODEL, "friedlander-continued")
 
 #: Z range [m/kg^(1/3)] of the negative-phase calibration.
 NEGATIVE_PHASE_RANGE = (0.07, 37.6)
@@ -128,21 +157,26 @@ class NegativePhase:
     duration : float or ndarray
         Duration t_o- = 16 i_r- / (9 P_r-) [s] of the cubic (Granström 1956).
     model : str
-        :data:`NEGATIVE_PHASE_MODEL`.
+        One of :data:`NEGATIVE_PHASE_MODELS`.
+    bounded : bool or ndarray
+        Where the suction impulse was capped at the positive reflected impulse (module docstring).
     """
 
     pressure: object
     impulse: object
     duration: object
     model: str = NEGATIVE_PHASE_MODEL
+    bounded: object = False
 
     def to_dict(self) -> dict:
         """The CLI's keys: ``negative_pressure_Pa``, ``negative_impulse_Pa_s``, ``negative_duration_s``."""
         def v(x):
             return x.tolist() if isinstance(x, np.ndarray) else float(x)
 
+        b = self.bounded.tolist() if isinstance(self.bounded, np.ndarray) else bool(self.bounded)
         return {"negative_phase_model": self.model, "negative_pressure_Pa": v(self.pressure),
-                "negative_impulse_Pa_s": v(self.impulse), "negative_duration_s": v(self.duration)}
+                "negative_impulse_Pa_s": v(self.impulse), "negative_duration_s": v(self.duration),
+                "negative_impulse_bounded": b}
 
 
 def negative_phase_unchecked(scaled_distance, charge, burst: str = "surface") -> NegativePhase:
@@ -201,6 +235,55 @@ def negative_phase(scaled_distance, charge, burst: str = "surface", *, extrapola
     return negative_phase_unchecked(z if z.ndim else float(z), W if W.ndim else float(W), burst)
 
 
+def friedlander_continued(peak, duration, decay) -> NegativePhase:
+    """Suction of the modified Friedlander pulse (peak P [Pa], positive duration t_o [s], decay d [-])
+    continued past its zero crossing: peak ``P e^(-(d+1)) / d`` [Pa], impulse ``P t_o e^(-d) / d^2``
+    [Pa s], and the duration ``16 i / (9 P-)`` [s] of the cubic that carries them (module docstring).
+    Unbounded; d is taken >= 1e-6 (a non-decaying pulse's suction never ends)."""
+    P, to = np.asarray(peak, dtype=float), np.asarray(duration, dtype=float)
+    d = np.maximum(np.asarray(decay, dtype=float), 1e-6)
+    pn = P * np.exp(-(d + 1.0)) / d
+    i = P * to * np.exp(-d) / d**2
+    out = NegativePhase(pn, i, i / (CUBIC_IMPULSE_FACTOR * pn), "friedlander-continued")
+    return out if np.ndim(pn) else NegativePhase(float(pn), float(i), float(out.duration), out.model)
+
+
+def bounded_by_positive(neg: NegativePhase, positive_impulse) -> NegativePhase:
+    """``neg`` with its impulse capped at ``positive_impulse`` [Pa s] (the net impulse >= 0, the
+    acoustic limit; module docstring): peak scaled with the impulse, duration kept."""
+    i = np.asarray(neg.impulse, dtype=float)
+    cap = np.asarray(positive_impulse, dtype=float)
+    over = i > cap
+    f = np.where(over, cap / np.where(i > 0, i, 1.0), 1.0)
+    if not np.ndim(f):
+        return NegativePhase(float(neg.pressure * f), float(i * f), neg.duration, neg.model, bool(over))
+    return NegativePhase(np.asarray(neg.pressure) * f, i * f, neg.duration, neg.model, over)
+
+
+def face_negative_phase(scaled_distance, charge, burst: str = "surface", *, reflected_pressure, reflected_impulse,
+                        positive_duration, friedlander_decay=None, model: str = NEGATIVE_PHASE_MODEL) -> NegativePhase:
+    """The negative phase of a face's normally reflected load under ``model`` (one of
+    :data:`NEGATIVE_PHASE_MODELS`), bounded by the face's positive impulse (module docstring).
+
+    ``scaled_distance`` Z [m/kg^(1/3)] and ``charge`` W [kg] (checked by the caller; the chart's
+    range by :func:`negative_phase`); the positive phase's peak [Pa], impulse [Pa s], duration [s]
+    and Friedlander decay [-] (computed from the three when None)."""
+    if model == NEGATIVE_PHASE_MODEL:
+        neg = negative_phase_unchecked(scaled_distance, charge, burst)
+    elif model == "friedlander-continued":
+        if friedlander_decay is None:
+            from .friedlander import friedlander_decay as decay_of
+
+            friedlander_decay = decay_of(reflected_pressure, positive_duration, reflected_impulse)
+        neg = friedlander_continued(reflected_pressure, positive_duration, friedlander_decay)
+    else:
+        from .._validate import BlastscaleInputError
+
+        raise BlastscaleInputError(f"negative phase model = {model!r} is not known: valid values are "
+                                   f"{', '.join(NEGATIVE_PHASE_MODELS)}")
+    return bounded_by_positive(neg, reflected_impulse)
+
+
 def cubic_pressure(x, peak):
     """Negative-phase pressure [Pa] at the fraction ``x = t'/t_o-`` of its duration (0 outside [0, 1])."""
     x = np.asarray(x, dtype=float)
@@ -223,4 +306,4 @@ def oblique_negative(neg: NegativePhase, weight) -> NegativePhase:
     docstring); the duration is unchanged."""
     w = np.clip(np.asarray(weight, dtype=float), 0.0, 1.0)
     f = 0.5 + 0.5 * w
-    return NegativePhase(neg.pressure * f, neg.impulse * f, neg.duration, neg.model)
+    return NegativePhase(neg.pressure * f, neg.impulse * f, neg.duration, neg.model, neg.bounded)

@@ -12,7 +12,7 @@ from .._validate import BlastscaleInputError
 from ..blast.parameters import BURSTS, DEFAULT_BURST
 
 __all__ = ["BURST", "SPECIMEN_BURST", "SPECIMEN_CHARGE_HEIGHT", "CLEARING", "FACE_WIDTH", "FACE_HEIGHT",
-           "NEGATIVE_PHASE", "load_model_from_flags", "check_burst_flag"]
+           "NEGATIVE_PHASE", "NEGATIVE_PHASE_MODEL", "negative_phase_model_key", "load_model_from_flags", "check_burst_flag"]
 
 BURST = typer.Option(DEFAULT_BURST, "--burst", help=f"Burst type: {' or '.join(BURSTS)} (a charge on the ground, the "
                      "paper's; or away from every surface: Kingery-Bulmash spherical fits, UFC 3-340-02 Fig. 2-7).")
@@ -28,6 +28,22 @@ NEGATIVE_PHASE = typer.Option(False, "--negative-phase", help="Add the negative 
                               "3-340-02 Fig. 2-16, Granström's cubic).")
 
 
+NEGATIVE_PHASE_MODEL = typer.Option(None, "--negative-phase-model", help="The negative phase's model (with "
+                                    "--negative-phase): ufc-fig2-16-cubic (default, the chart's suction) or "
+                                    "friedlander-continued (the positive pulse continued past its zero crossing); "
+                                    "both bounded by the positive impulse.")
+
+
+def negative_phase_model_key(negative_phase: bool, model: Optional[str]) -> dict:
+    """``{"negative_phase_model": model}`` for a scenario's ``[blast]`` (empty when not given); one line
+    when given without ``--negative-phase``."""
+    if model is None:
+        return {}
+    if not negative_phase:
+        raise BlastscaleInputError(f"--negative-phase-model = {model!r} applies only with --negative-phase")
+    return {"negative_phase_model": model}
+
+
 def check_burst_flag(burst: Optional[str], name: str = "--burst") -> Optional[str]:
     """``burst`` when it is None or one of the burst types; one line naming the flag otherwise."""
     if burst is not None and burst not in BURSTS:
@@ -36,7 +52,7 @@ def check_burst_flag(burst: Optional[str], name: str = "--burst") -> Optional[st
 
 
 def load_model_from_flags(clearing: bool, face_width: Optional[float], face_height: Optional[float],
-                          negative_phase: bool, block=None):
+                          negative_phase: bool, block=None, negative_phase_model: Optional[str] = None):
     """The :class:`~blastscale.blast.load_model.LoadModel` of the flags (None for the paper's load).
 
     The clearing face is ``--face-width`` x ``--face-height`` or, without them, the block's front
@@ -44,6 +60,7 @@ def load_model_from_flags(clearing: bool, face_width: Optional[float], face_heig
     errors."""
     from ..blast.load_model import LoadModel
 
+    negative_phase_model_key(negative_phase, negative_phase_model)
     given = face_width is not None or face_height is not None
     if given and not clearing:
         raise BlastscaleInputError(f"face width = {face_width}, face height = {face_height}: --face-width and "
@@ -58,4 +75,5 @@ def load_model_from_flags(clearing: bool, face_width: Optional[float], face_heig
     if not (clearing or negative_phase):
         return None
     return LoadModel(clearing=clearing, face_width_m=face_width, face_height_m=face_height,
-                     negative_phase=negative_phase)
+                     negative_phase=negative_phase,
+                     **({} if negative_phase_model is None else {"negative_phase_model": negative_phase_model}))

@@ -34,6 +34,7 @@ def blast_cmd(
     face_width: Optional[float] = bf.FACE_WIDTH,
     face_height: Optional[float] = bf.FACE_HEIGHT,
     negative_phase: bool = bf.NEGATIVE_PHASE,
+    negative_phase_model: Optional[str] = bf.NEGATIVE_PHASE_MODEL,
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Blast parameters of a burst of W kg TNT at R m (hemispherical surface burst unless --burst
@@ -42,14 +43,18 @@ def blast_cmd(
 
     check_incidence(incidence)
     bf.check_burst_flag(burst)
-    lm = bf.load_model_from_flags(clearing, face_width, face_height, negative_phase)
+    lm = bf.load_model_from_flags(clearing, face_width, face_height, negative_phase,
+                                  negative_phase_model=negative_phase_model)
     with one_line_warnings():
         b = blast_parameters(charge, standoff, blast_model, extrapolate=extrapolate, burst=burst)
         face = None if incidence_deg is None else oblique_face(charge, standoff, incidence_deg, b.blast_model,
                                                                incidence, extrapolate)
         cl = front_face_clearing(b, lm)
-        neg = front_face_negative(b, lm, extrapolate=extrapolate)
+        i_pos = cl.impulse if cl is not None else b.reflected_impulse
+        neg = front_face_negative(b, lm, extrapolate=extrapolate, positive_impulse=i_pos)
     effects = {**(cl.to_dict() if cl is not None else {}), **(neg.to_dict() if neg is not None else {})}
+    if neg is not None:  # positive minus suction: >= 0 (the suction is bounded by the positive impulse)
+        effects["net_reflected_impulse_Pa_s"] = float(i_pos - neg.impulse)
     if as_json:
         print_json({**b.to_dict(), **(face or {}), **effects, "load_model": load_model_record(b.blast_model, b.burst, lm)})
         return
@@ -80,7 +85,10 @@ def blast_cmd(
             ("negative phase: peak suction P_r-", f"{neg.pressure:.6g}", "Pa"),
             ("negative phase: impulse i_r-", f"{neg.impulse:.6g}", "Pa s"),
             ("negative phase: duration t_o-", f"{neg.duration:.6g}", "s"),
+            ("net reflected impulse (positive - suction)", f"{effects['net_reflected_impulse_Pa_s']:.6g}", "Pa s"),
         ]
+        if neg.bounded:
+            rows.append((f"suction impulse bounded by the positive one ({neg.model})", "yes", ""))
     console.print(table(f"Blast: {charge:g} kg TNT at {standoff:g} m ({b.blast_model}, {b.burst} burst)", rows))
 
 
@@ -183,6 +191,7 @@ def design_cmd(
     face_width: Optional[float] = bf.FACE_WIDTH,
     face_height: Optional[float] = bf.FACE_HEIGHT,
     negative_phase: bool = bf.NEGATIVE_PHASE,
+    negative_phase_model: Optional[str] = bf.NEGATIVE_PHASE_MODEL,
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of tables."),
 ) -> None:
     """Design the reduced-scale model: model charge and stand-off, every factor, impulsive check
@@ -190,7 +199,7 @@ def design_cmd(
     block = block_from_options(height, width, alpha_deg, depth, density)
     bf.check_burst_flag(burst)
     bf.check_burst_flag(specimen_burst, "--specimen-burst")
-    lm = bf.load_model_from_flags(clearing, face_width, face_height, negative_phase, block)
+    lm = bf.load_model_from_flags(clearing, face_width, face_height, negative_phase, block, negative_phase_model)
     if density_ratio is None and law == "general":
         density_ratio = 1.0
     face = None if lm is None or not lm.clearing else (lm.face_width_m, lm.face_height_m)

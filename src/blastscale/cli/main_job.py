@@ -139,7 +139,8 @@ def run_cmd(
     from ..study import Study
 
     pause_point("run:started")
-    sc = Scenario.default() if scenario is None else load_scenario(scenario)
+    with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
+        sc = Scenario.default() if scenario is None else load_scenario(scenario)
     overrides = parse_set(values)
     for key, v in (("blast.blast_model", blast_model), ("blast.charge_kg", charge), ("structure.friction", friction),
                    ("simulation.duration_s", duration)):

@@ -41,6 +41,12 @@ def _print_plan(p, top: int) -> None:
                          f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"))
     for r in b["reasons"]:
         console.print(f"  - {r}")
+    console.print(f"  - fireable: above {b['explosive']}'s minimum reliable charge "
+                  f"{format_charge(b['explosive_min_charge_kg'])}; initiator {format_charge(b['initiator_tnt_kg'])} TNT, "
+                  f"{100 * b['initiator_fraction']:.3g} % of the charge's impulse (at most "
+                  f"{100 * p.lab['initiator_max_fraction']:g} %)")
+    for w in b.get("warnings", []):
+        console.print(f"  - warning: {w}")
     reasons: dict = {}
     for r in p.rejected:
         for key in r["constraints"]:
@@ -72,7 +78,8 @@ def plan_cmd(
     from ..planning import plan
     from ..scenario import Scenario, load_scenario
 
-    sc = Scenario.default() if scenario is None else load_scenario(scenario)
+    with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
+        sc = Scenario.default() if scenario is None else load_scenario(scenario)
     markers = ("plan.json", "summary.json")
     if out is not None:
         check_output_folder(out, force, markers)

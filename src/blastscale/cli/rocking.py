@@ -82,6 +82,7 @@ def rock_cmd(
     burst: str = bf.BURST,
     clearing: bool = bf.CLEARING,
     negative_phase: bool = bf.NEGATIVE_PHASE,
+    negative_phase_model: Optional[str] = bf.NEGATIVE_PHASE_MODEL,
     samples: int = typer.Option(opt._SIMULATION["samples"].default, "--samples", help="Sampling times for the comparison and the plot \\[-]."),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write theta(t), theta_dot(t) and the phase portrait to this image file."),
     as_json: bool = opt.JSON,
@@ -102,7 +103,8 @@ def rock_cmd(
         structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
                    "density_kg_m3": density},
         blast={"charge_kg": charge, "standoff_m": standoff, "blast_model": blast_model, "pulse_shape": pulse_shape,
-               "burst": burst, "clearing": clearing, "negative_phase": negative_phase},
+               "burst": burst, "clearing": clearing, "negative_phase": negative_phase,
+               **bf.negative_phase_model_key(negative_phase, negative_phase_model)},
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
                                           "gravity_ratio": gravity_ratio},
         simulation={"engine": "planar", "duration_s": duration, "samples": samples, "gravity_m_s2": gravity,
@@ -184,6 +186,7 @@ def critical_cmd(
     burst: str = bf.BURST,
     clearing: bool = bf.CLEARING,
     negative_phase: bool = bf.NEGATIVE_PHASE,
+    negative_phase_model: Optional[str] = bf.NEGATIVE_PHASE_MODEL,
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the P-I overturning diagram (with the critical point) to this image file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
@@ -197,7 +200,7 @@ def critical_cmd(
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
     bf.check_burst_flag(burst)
-    lm = bf.load_model_from_flags(clearing, None, None, negative_phase, block)
+    lm = bf.load_model_from_flags(clearing, None, None, negative_phase, block, negative_phase_model)
     fit = model_for_burst(blast_model, burst).name
     if (standoff is None) == (charge is None):
         raise BlastscaleInputError(
@@ -222,6 +225,12 @@ def critical_cmd(
         "reflected_impulse_Pa_s": bp.reflected_impulse,
         "positive_duration_s": bp.positive_duration,
     }
+    if lm is not None and lm.negative_phase and standoff is not None:
+        from ..rocking.critical import negative_phase_uncertainty
+
+        with one_line_warnings(), activity("the critical charge under each negative-phase model", quiet=as_json):
+            out["negative_phase_uncertainty"] = negative_phase_uncertainty(
+                system, standoff, lm, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate)
     out["impulsive_critical_impulse_Pa_s"] = system.critical_impulse
     out["uplift_pressure_Pa"] = system.uplift_pressure
     if scale is not None:
@@ -271,6 +280,10 @@ def critical_cmd(
     ]
     if scale is not None:
         rows.append((f"model charge (lambda = {scale:g})", f"{out['model_experiment']['critical_charge_kg']:.6g}", "kg"))
+    for m, v in out.get("negative_phase_uncertainty", {}).items():
+        if isinstance(v, dict):  # the model uncertainty of the suction
+            rows.append((f"critical charge, negative phase {m}", f"{v['critical_charge_kg']:.6g} "
+                         f"(x{v['over_positive_phase_only']:.3g})", "kg"))
     console.print(table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", rows))
     if plot:
         print_written(plot)

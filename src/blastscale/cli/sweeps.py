@@ -29,7 +29,8 @@ def _scenario(path: Optional[Path], values: Optional[List[str]] = None):
     """The scenario file (or the built-in default) with the ``--set KEY=VALUE`` overrides, as ``run`` reads it."""
     from ..scenario import Scenario, load_scenario
 
-    sc = Scenario.default() if path is None else load_scenario(path)
+    with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
+        sc = Scenario.default() if path is None else load_scenario(path)
     overrides = parse_set(values or [])
     return sc.with_values(overrides) if overrides else sc
 

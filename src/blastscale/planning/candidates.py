@@ -18,7 +18,8 @@ from typing import Optional
 from .._validate import BlastscaleInputError
 from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
-from .shot import lab_charge, safety_envelope
+from ..blast.explosives import get_explosive
+from .shot import fireability, lab_charge, lab_explosives, safety_envelope
 
 __all__ = ["LAMBDA_DENOMINATORS", "Candidate", "Violation", "Evaluated", "candidates", "evaluate", "scale_label"]
 
@@ -98,6 +99,7 @@ def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
                              f"specimen {spec_m:.4g} kg > specimen_max_mass_kg = {lab.specimen_max_mass_kg:g} kg"))
     if ev.charge is None:
         return out
+    out += [Violation(*f) for f in fireability(ev.charge, lab)]
     m = ev.charge.explosive_mass_kg
     if m < lab.charge_min_kg:
         out.append(Violation("charge_min_kg", m, lab.charge_min_kg,
@@ -143,10 +145,22 @@ def evaluate(c: Candidate, *, scenario, lab, block, timing, incident_model) -> E
     try:
         ev.charge = lab_charge(d.specimen_charge_kg, lab)
     except BlastscaleInputError:
-        ev.violations.append(Violation("initiator_tnt_kg", lab.initiator_tnt_kg, d.specimen_charge_kg,
+        ev.violations.append(Violation("initiator_max_fraction", lab.initiator_tnt_kg / d.specimen_charge_kg,
+                                       lab.initiator_max_fraction,
                                        f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge "
                                        f"{d.specimen_charge_kg:.4g} kg TNT"))
         ev.violations += _violations(ev, lab, spec.height, spec.mass)
+        ex = get_explosive(lab.explosive, lab_explosives(lab))  # no explosive left to weigh: below every minimum
+        ev.violations.append(Violation("explosive_min_charge_kg", 0.0, ex.min_charge_kg, f"no {ex.name} left "
+                                       f"beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)"))
+        if lab.charge_min_kg > 0:
+            ev.violations.append(Violation("charge_min_kg", 0.0, lab.charge_min_kg, f"no {ex.name} left beside the "
+                                           f"initiator < charge_min_kg = {lab.charge_min_kg:g} kg"))
+        r = safety_envelope(lab.initiator_tnt_kg, lab.safety_threshold).radius_m  # the initiator alone
+        if r > lab.space_radius_m:
+            ev.violations.append(Violation("space_radius_m", r, lab.space_radius_m, f"safety radius of the initiator "
+                                           f"alone ({lab.safety_threshold}) {r:.4g} m > space_radius_m = "
+                                           f"{lab.space_radius_m:g} m"))
         return ev
     ev.safety = safety_envelope(ev.charge.tnt_equivalent_pressure_kg, lab.safety_threshold)
     tf = float(d.factors.time)

@@ -19,7 +19,8 @@ import numpy as np
 from .debris import planar_reach, reach_3d
 from .instruments import instrument_settings, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
-from .shot import DEFAULT_LAB, Timing, lab_charge, rocking_timing, safety_envelope, threshold_meanings, timing_of
+from .shot import (DEFAULT_LAB, Timing, card_charge, fireability, rocking_timing, safety_envelope, threshold_meanings,
+                   timing_of)
 
 __all__ = ["study_test_card", "check_lab"]
 
@@ -27,9 +28,14 @@ _SHORT_RISE_S = 1e-6  # piezoelectric blast gauges rise in ~1 us
 
 
 def check_lab(design, lab) -> None:
-    """Refuse, before anything runs, a lab whose initiator carries the whole specimen charge (one line)."""
+    """Warn, before anything runs, of a specimen charge the lab cannot rely on (one ``warnings.warn``
+    line each: below the explosive's minimum reliable charge, an initiator above
+    ``initiator_max_fraction`` or carrying the whole charge); the run still completes."""
     if design is not None and lab is not None:
-        lab_charge(design.specimen_charge_kg, lab)
+        ch = card_charge(design.specimen_charge_kg, lab)
+        alone = list(ch.warnings) if ch.explosive_mass_kg == 0.0 else []  # the initiator fired alone
+        for text in alone + [f[3] for f in fireability(ch, lab)]:
+            warnings.warn(f"test card: {text}", UserWarning, stacklevel=2)
 
 
 def _timing_3d(result, factor: float, collapsed: bool):
@@ -87,7 +93,7 @@ def _odds(result, spec, ch, lab, collapsed_p):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return planar_odds(spec, charge_kg=d.specimen_charge_kg, standoff_m=d.specimen_standoff_m,
-                           prototype_collapsed=collapsed_p, explosive_fraction=1.0 - ch.initiator_fraction,
+                           prototype_collapsed=collapsed_p, explosive_fraction=max(0.0, 1.0 - ch.initiator_fraction),
                            gravity=d.specimen_gravity, restitution=sim.restitution,
                            pulse_shape=bl.pulse_shape, blast_model=d.specimen.blast_model, tolerances=Tolerances.from_lab(lab),
                            samples=lab.samples, seed=lab.seed, target=lab.first_peak_target)
@@ -162,7 +168,7 @@ def study_test_card(result, lab=None) -> dict | None:
     lab = lab or sc.lab or DEFAULT_LAB
     spec = result.specimen_structure
     hs, ws, ds = spec_dims(spec)
-    ch = lab_charge(d.specimen_charge_kg, lab)
+    ch = card_charge(d.specimen_charge_kg, lab)
     env = safety_envelope(ch.tnt_equivalent_pressure_kg, lab.safety_threshold)
     env_p = safety_envelope(d.prototype.charge_kg, lab.safety_threshold)
     r = _response(result, spec)
@@ -188,7 +194,7 @@ def study_test_card(result, lab=None) -> dict | None:
                                  tolerances=Tolerances.from_lab(lab), members=lab.ensemble_3d, seed=lab.seed)
     reach, reach_p = max(r["reach_m"]), max(r["prototype_reach_m"])
     hc, burst, shot_notes = _lab_shot(result)
-    notes = list(ch.warnings) + shot_notes
+    notes = list(ch.warnings) + [f[3] for f in fireability(ch, lab)] + shot_notes
     if env.far_field:
         many = len(env.far_field) > 1
         notes.append(f"the {', '.join(env.far_field)} distance{'s lie' if many else ' lies'} beyond the Kingery-Bulmash "
@@ -204,7 +210,9 @@ def study_test_card(result, lab=None) -> dict | None:
                                          f"density ratio {d.density_ratio:.4g}")
     return {
         "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
-        "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
+        "explosive_min_charge_kg": ch.explosive.min_charge_kg, "min_charge_source": ch.explosive.min_charge_source,
+        "initiator": lab.initiator, "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
+        "initiator_max_fraction": lab.initiator_max_fraction,
         "tnt_equivalent_impulse_kg": ch.tnt_equivalent_impulse_kg,
         "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
         "pressure_factor": ch.explosive.pressure_factor, "impulse_factor": ch.explosive.impulse_factor,

@@ -121,7 +121,9 @@ def design_scenario(scenario, candidate, lab_spec=None):
     data["scale"] = scale
     if lab_spec is not None:
         data["lab"] = lab_spec.model_dump(exclude_none=True)
-    return type(scenario).from_dict(data, source="plan")
+    with warnings.catch_warnings():  # validated once already: its warnings were said
+        warnings.simplefilter("ignore")
+        return type(scenario).from_dict(data, source="plan")
 
 
 def _rank_key(d: dict) -> tuple:
@@ -146,6 +148,7 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
     tol = odds.charge_tolerance_needed
     return {**c.describe(), "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
             "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg, "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+            "explosive_min_charge_kg": ch.explosive.min_charge_kg, "min_charge_source": ch.explosive.min_charge_source,
             "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
             "standoff_m": d.specimen_standoff_m, "specimen_height_m": spec.height, "specimen_width_m": spec.width,
             "specimen_depth_m": spec.depth, "specimen_density_kg_m3": spec.density, "specimen_mass_kg": spec.mass,
@@ -198,6 +201,8 @@ def _infeasible(evs: list, lab) -> str:
     key, group = max(alone.items(), key=lambda kv: len(kv[1]))
     if key in ("blast fits", "impulsive"):
         return f"no design fits the lab: {group[0].violations[0].text}"
+    if key in _RELAXERS:
+        return _RELAXERS[key](group, len(evs), lab)
     lower = key in ("charge_min_kg",)
     pick = (max if lower else min)(group, key=lambda e: e.violations[0].value)
     v, c = pick.violations[0], pick.candidate
@@ -205,6 +210,37 @@ def _infeasible(evs: list, lab) -> str:
     return (f"no design fits the lab: {key} = {v.limit:g} cannot be met ({len(group)} of {len(evs)} candidates "
             f"fail on it alone); {key} {rel} {v.value:.4g} would admit {c.law}, lambda = {scale_label(c.scale)}, "
             f"{c.material}")
+
+
+def _below_min_charge(group: list, n: int, lab) -> str:
+    """Every charge the other limits allow is below the explosive's minimum reliable charge."""
+    from ..blast.explosives import EXPLOSIVES, get_explosive
+    from .shot import lab_explosives
+
+    pick = max(group, key=lambda e: e.violations[0].value / e.violations[0].limit)
+    v, c, ex = pick.violations[0], pick.candidate, get_explosive(lab.explosive, lab_explosives(lab))
+    small = min(EXPLOSIVES.values(), key=lambda e: e.min_charge_kg if e.name != "lead-azide" else math.inf)
+    return (f"no design fits the lab: the charge is below {ex.name}'s minimum reliable charge {v.limit:.4g} kg "
+            f"({len(group)} of {n} candidates fail on it alone; the largest, {v.value:.4g} kg, at {c.law}, "
+            f"lambda = {scale_label(c.scale)}, {c.material}); a larger specimen (specimen_max_height_m, "
+            f"specimen_max_mass_kg) or an explosive with a smaller minimum charge ({small.name}: "
+            f"{small.min_charge_kg:.3g} kg) would relax it")
+
+
+def _initiator_too_large(group: list, n: int, lab) -> str:
+    """The initiator carries more than ``initiator_max_fraction`` of every charge the other limits allow."""
+    pick = min(group, key=lambda e: e.violations[0].value)
+    v, c = pick.violations[0], pick.candidate
+    w = lab.initiator_tnt_kg / v.value  # the candidate's TNT charge [kg]
+    more = f", or initiator_max_fraction at least {v.value:.3g}" if v.value <= 1.0 else ""
+    return (f"no design fits the lab: initiator_max_fraction = {v.limit:g} cannot be met with initiator_tnt_kg = "
+            f"{lab.initiator_tnt_kg:.4g} kg ({len(group)} of {n} candidates fail on it alone); an initiator of at most "
+            f"{v.limit * w:.3g} kg TNT (initiator_tnt_kg, or initiator = \"none\" for a laser) would admit "
+            f"{c.law}, lambda = {scale_label(c.scale)}, {c.material}{more}")
+
+
+#: One-line answers for the constraints whose relaxation is not the lab key's own value.
+_RELAXERS = {"explosive_min_charge_kg": _below_min_charge, "initiator_max_fraction": _initiator_too_large}
 
 
 def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = None,
@@ -283,7 +319,8 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
             specimen_scenario(scenario, best), prototype_collapsed=proto["collapsed"], tolerances=tol,
             members=lab.ensemble_3d, seed=lab.seed, workers=workers, scheduler=scheduler)
         notes.append("odds_3d: the best design's 3D ensemble (friction and density tolerances included)")
-    return Plan(designs, rejected, proto, lab.model_dump(mode="json"), best_sc, notes)
+    return Plan(designs, rejected, proto, {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
+                best_sc, notes)
 
 
 def specimen_scenario(scenario, ev: Evaluated):

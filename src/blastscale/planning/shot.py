@@ -12,7 +12,7 @@ import numpy as np
 from ..blast.explosives import Explosive, charge_equivalence
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
 
-__all__ = ["lab_explosives", "lab_charge", "SafetyEnvelope", "safety_envelope", "threshold_meanings",
+__all__ = ["lab_explosives", "lab_charge", "card_charge", "fireability", "SafetyEnvelope", "safety_envelope", "threshold_meanings",
            "candidate_materials", "Timing", "rocking_timing", "timing_of", "DEFAULT_LAB"]
 
 
@@ -29,12 +29,54 @@ DEFAULT_LAB = _default_lab()
 def lab_explosives(lab) -> dict:
     """The user-defined explosives of a ``[lab]`` table (``[lab.explosives.NAME]``) as :class:`Explosive`."""
     return {name: Explosive(name, e.pressure_factor, e.impulse_factor, e.density_kg_m3, e.source,
-                            "user-defined: as stated by its source") for name, e in lab.explosives.items()}
+                            "user-defined: as stated by its source", e.min_charge_kg,
+                            f"[lab.explosives.{name}] min_charge_kg" if e.min_charge_kg else "not stated")
+            for name, e in lab.explosives.items()}
 
 
 def lab_charge(tnt_kg: float, lab):
     """The specimen's charge in the lab's explosive (:func:`~blastscale.blast.explosives.charge_equivalence`)."""
     return charge_equivalence(tnt_kg, lab.explosive, lab.initiator_tnt_kg, lab_explosives(lab))
+
+
+def card_charge(tnt_kg: float, lab):
+    """:func:`lab_charge` for a scale the user chose: an initiator that alone delivers the whole TNT
+    charge [kg] is not refused but fired alone (no explosive to weigh, its own TNT equivalent on both
+    bases, its fraction above 1), for :func:`fireability` to warn about."""
+    from .._validate import BlastscaleInputError
+    from ..blast.explosives import ChargeEquivalence, get_explosive
+
+    try:
+        return lab_charge(tnt_kg, lab)
+    except BlastscaleInputError:
+        w0 = float(lab.initiator_tnt_kg)
+        if not (w0 >= float(tnt_kg) > 0):
+            raise
+    ex = get_explosive(lab.explosive, lab_explosives(lab))
+    return ChargeEquivalence(ex, 0.0, w0, w0, w0, w0 / float(tnt_kg),
+                             (f"the initiator alone ({w0:.4g} kg TNT) delivers more than the design's whole charge "
+                              f"({float(tnt_kg):.4g} kg TNT): no {ex.name} to weigh, and the shot is "
+                              f"{w0 / float(tnt_kg):.3g} x the design's; use a smaller initiator (initiator_tnt_kg; "
+                              "initiator = \"none\" for a laser) or a larger scale",))
+
+
+def fireability(ch, lab) -> list:
+    """What makes the charge ``ch`` (a :class:`~blastscale.blast.explosives.ChargeEquivalence`) a shot
+    the lab cannot rely on: ``(key, value, limit, sentence)`` for an explosive mass below the
+    explosive's minimum reliable charge [kg] (:mod:`blastscale.blast.initiation`) and for an
+    initiator whose share of the TNT-equivalent impulse exceeds ``lab.initiator_max_fraction`` [-].
+    The planner rejects such designs; the test card of a scale the user chose warns."""
+    out = []
+    ex, m = ch.explosive, ch.explosive_mass_kg
+    if m < ex.min_charge_kg:
+        out.append(("explosive_min_charge_kg", m, ex.min_charge_kg,
+                    f"{m:.4g} kg of {ex.name} is below its minimum reliable charge {ex.min_charge_kg:.4g} kg "
+                    f"({ex.min_charge_source}): it may not detonate"))
+    if ch.initiator_fraction > lab.initiator_max_fraction:
+        out.append(("initiator_max_fraction", ch.initiator_fraction, lab.initiator_max_fraction,
+                    f"the initiator ({ch.initiator_tnt_kg:.4g} kg TNT) is {100 * ch.initiator_fraction:.3g} % of the "
+                    f"charge's TNT-equivalent impulse > initiator_max_fraction = {lab.initiator_max_fraction:g}"))
+    return out
 
 
 @dataclass(frozen=True)

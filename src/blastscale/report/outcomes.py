@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import html
 
+from ..analysis.gravity_alone import STABILITY_EXTENSION_CAP
+
 __all__ = ["STABILITY_RULE", "stability_words", "stability_lead", "first_peak_rows"]
 
 #: The rule behind "stands / settles / collapses / moving" (blastscale.sim3d.results.stability_of).
@@ -12,12 +14,15 @@ STABILITY_RULE = ("Collapses: a block fell (its centre of mass dropped by more t
                   "by more than 45 deg); stands: at rest at the end (every block slower than 1e-4 sqrt(g H) over "
                   "the last tenth of the run) with no centre of mass displaced by more than 1e-3 of the height H; "
                   "settles: at rest, displaced more, no block fallen; moving: neither at rest nor fallen by the "
-                  "end (run longer). docs/assemblies.md.")
+                  "end of a run extended until the rule decides, its duration doubled up to "
+                  f"{STABILITY_EXTENSION_CAP:g} x the one asked for (undecided). docs/assemblies.md.")
 
 
 def stability_words(stability: str) -> str:
     """The outcome under gravity alone as the end of a sentence ("the structure ...")."""
-    return "is still moving at the end (undecided: run longer)" if stability == "moving" else stability
+    return (f"is still moving at the end of a run extended to {STABILITY_EXTENSION_CAP:g} x its duration (undecided: "
+            "run longer)"
+            if stability == "moving" else stability)
 
 
 def _g(x) -> str:

@@ -45,6 +45,7 @@ __all__ = [
     "critical_charge",
     "critical_standoff",
     "critical_charge_by_bisection",
+    "negative_phase_uncertainty",
     "CriticalResult",
     "charge_for_impulse",
 ]
@@ -358,3 +359,21 @@ def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse_s
         mid = math.sqrt(lo * hi)
         lo, hi = (lo, mid) if over(mid) else (mid, hi)
     return math.sqrt(lo * hi)
+
+
+def negative_phase_uncertainty(system, standoff: float, load_model, **kw) -> dict:
+    """The critical charge [kg] at ``standoff`` [m] under each negative-phase model
+    (:data:`~blastscale.blast.negative_phase.NEGATIVE_PHASE_MODELS`) and without the negative phase:
+    the spread between the models is the model uncertainty of the suction (docs/blast_physics.md;
+    the paper's block at 2 m, Kingery-Bulmash: x1.29 with the chart's cubic, x1.03 with the
+    continued Friedlander). ``load_model`` keeps its clearing; ``kw`` go to :func:`critical_charge`."""
+    from dataclasses import replace
+
+    from ..blast.negative_phase import NEGATIVE_PHASE_MODELS
+
+    base = critical_charge(system, standoff, load_model=replace(load_model, negative_phase=False), **kw).charge_kg
+    out = {"positive_phase_only_kg": float(base)}
+    for m in NEGATIVE_PHASE_MODELS:
+        c = critical_charge(system, standoff, load_model=replace(load_model, negative_phase_model=m), **kw).charge_kg
+        out[m] = {"critical_charge_kg": float(c), "over_positive_phase_only": float(c / base)}
+    return out

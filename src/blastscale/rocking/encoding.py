@@ -160,10 +160,9 @@ def encode_blast_batch(alpha, frequency, load_ratio, blast, pulse_shape: str, lo
     if pulse_shape == "impulsive":  # theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
         w0[:] = q * p * i_pos * np.cos(a)
     if load_model is not None and load_model.negative_phase:
-        from ..blast.negative_phase import negative_phase
+        from ..blast.load_model import front_face_negative
 
-        neg = negative_phase(blast.scaled_distance, blast.charge_kg, getattr(blast, "burst", "surface"),
-                             extrapolate=extrapolate)
+        neg = front_face_negative(blast, load_model, extrapolate=extrapolate, positive_impulse=i_pos)
         start = kernel_pulse_end(kind, par, tab_t, off)
         if pulse_shape == "impulsive":
             start = p * blast.positive_duration

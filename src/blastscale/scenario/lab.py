@@ -3,11 +3,13 @@ precisely (the test planner's constraints, docs/planning.md), and user-defined e
 
 from __future__ import annotations
 
-from typing import Optional
+import warnings
+from typing import Any, Optional
 
-from pydantic import BaseModel, Field, field_validator, model_validator
+from pydantic import BaseModel, Field, PrivateAttr, field_validator, model_serializer, model_validator
 
-from ..blast.explosives import EXPLOSIVES
+from ..blast.explosives import EXPLOSIVES, canonical_name, initiator_tnt_kg
+from ..blast.initiation import DEFAULT_INITIATOR, INITIATORS
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS
 from ..structures.materials import MATERIALS
 from .messages import show
@@ -29,6 +31,8 @@ class ExplosiveSpec(BaseModel):
     impulse_factor: float = Field(gt=0, le=10, description="TNT-equivalent mass per unit mass, impulse [-]")
     density_kg_m3: Optional[float] = Field(None, gt=0, le=25000, description="Density [kg/m^3]")
     source: str = Field("user-defined", description="Where the factors come from")
+    min_charge_kg: float = Field(0.0, ge=0, le=10000, description="Smallest charge that detonates reliably [kg] "
+                                 "(0: not stated)")
 
 
 class LabSpec(BaseModel):
@@ -38,7 +42,12 @@ class LabSpec(BaseModel):
     model_config = _CONFIG
     explosive: str = Field("tnt", description="The explosive of the specimen's charge (library or [lab.explosives])")
     explosives: dict[str, ExplosiveSpec] = Field(default_factory=dict, description="User-defined explosives")
-    initiator_tnt_kg: float = Field(0.0, ge=0, le=1000, description="The initiator's TNT-equivalent mass [kg]")
+    initiator: str = Field(DEFAULT_INITIATOR, description="The initiator (detonator) by name: rp-80 (Teledyne RISI "
+                           "EBW, 80 mg PETN + 123 mg RDX) or none")
+    initiator_tnt_kg: Optional[float] = Field(None, ge=0, le=1000, description="The initiator's TNT-equivalent mass "
+                                              "[kg] (default: the named initiator's, impulse basis)")
+    initiator_max_fraction: float = Field(0.5, gt=0, le=1, description="Largest share of the charge's TNT-equivalent "
+                                          "impulse the initiator may carry; designs above it are rejected [-]")
     charge_min_kg: float = Field(0.0, ge=0, le=10000, description="Smallest mass of the explosive the lab can "
                                  "make and fire [kg]")
     charge_max_kg: float = Field(1.0, gt=0, le=10000, description="Largest mass of the explosive the lab may fire [kg]")
@@ -64,6 +73,49 @@ class LabSpec(BaseModel):
     debris_margin: float = Field(2.0, ge=1, le=100, description="Factor on the largest simulated excursion of the "
                                  "blocks for the debris zone [-]")
     ensemble_3d: int = Field(0, ge=0, le=64, description="3D Monte Carlo members for the odds (0: planar only) [-]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _names(cls, data: Any) -> Any:
+        """The explosive by the name users give it ("C4", "Comp B"); the initiator's TNT equivalent
+        from its name unless stated; a user table that redefines a library explosive warns."""
+        if not isinstance(data, dict):
+            return data
+        data = dict(data)
+        mine = data.get("explosives") or {}
+        for name in mine if isinstance(mine, dict) else ():
+            lib = canonical_name(name)
+            if lib is not None:
+                warnings.warn(f"lab.explosives.{name} redefines the library's explosive {lib!r} "
+                              f"({EXPLOSIVES[lib].source}): the [lab] table's factors are used", UserWarning,
+                              stacklevel=2)
+        ex = data.get("explosive")
+        if isinstance(ex, str):
+            data["explosive"] = canonical_name(ex, mine if isinstance(mine, dict) else None) or ex
+        ini = data.get("initiator", DEFAULT_INITIATOR)
+        if isinstance(ini, str):
+            if ini not in INITIATORS:
+                raise ValueError(f"initiator = {ini!r} is not known: valid values are {', '.join(INITIATORS)} (or "
+                                 "give initiator_tnt_kg)")
+        return data
+
+    #: True when ``initiator_tnt_kg`` is the named initiator's (not written back: a new ``initiator`` in
+    #: ``with_values`` or ``--set`` brings its own).
+    _derived_tnt: bool = PrivateAttr(False)
+
+    @model_validator(mode="after")
+    def _initiator_tnt(self) -> "LabSpec":
+        if self.initiator_tnt_kg is None:  # frozen: set once, here
+            object.__setattr__(self, "initiator_tnt_kg", initiator_tnt_kg(self.initiator))
+            self._derived_tnt = True
+        return self
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler):
+        d = handler(self)
+        if self._derived_tnt and isinstance(d, dict):
+            d.pop("initiator_tnt_kg", None)
+        return d
 
     @field_validator("materials")
     @classmethod

@@ -18,6 +18,7 @@ from pydantic import AliasChoices, BaseModel, ConfigDict, Field, field_validator
 from .._validate import BlastscaleInputError
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from ..blast.incidence import INCIDENCE_MODELS
+from ..blast.negative_phase import NEGATIVE_PHASE_MODEL, NEGATIVE_PHASE_MODELS
 from ..blast.parameters import BLAST_MODELS, BURSTS, DEFAULT_BLAST_MODEL, DEFAULT_BURST
 from ..blast.pulses import PULSE_SHAPES
 from ..sim3d.contact import CONES, JACOBIANS, SETTING_RANGES, SOLVERS
@@ -218,7 +219,10 @@ class BlastSpec(BaseModel):
     clearing: bool = Field(False, description="Clear the reflected pressure on the loaded faces' finite size "
                            "(UFC 3-340-02 Sec. 2-15.3.2; the faces are the structure's own)")
     negative_phase: bool = Field(False, description="Add the negative phase (UFC 3-340-02 Fig. 2-16, Granström's "
-                                 "cubic) after the positive one")
+                                 "cubic) after the positive one, bounded by the positive impulse")
+    negative_phase_model: str = Field(NEGATIVE_PHASE_MODEL, description="The negative phase's model: "
+                                      "ufc-fig2-16-cubic (the chart's suction) or friedlander-continued (the positive "
+                                      "pulse continued past its zero crossing)")
 
     @field_validator("blast_model")
     @classmethod
@@ -231,6 +235,11 @@ class BlastSpec(BaseModel):
             raise ValueError("burst = 'free-air' with blast_model = 'masi2021': the paper's fits are surface-burst "
                              "fits only; use blast_model = 'kingery-bulmash' for a free-air burst")
         return self
+
+    @field_validator("negative_phase_model")
+    @classmethod
+    def _negative_model(cls, v: str) -> str:
+        return _check_name(v, NEGATIVE_PHASE_MODELS)
 
     @field_validator("load")
     @classmethod

@@ -107,6 +107,7 @@ class FaceLoadStrategy:
             from ..similitude.effects import front_geometry
 
             self._effects["negative"] = self.load_model.negative_phase
+            self._effects["negative_model"] = self.load_model.negative_phase_model
             self._effects["burst"] = getattr(self.blast_model, "burst", "surface")
             if self.load_model.clearing:
                 widths, top = front_geometry(structure)

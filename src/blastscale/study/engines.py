@@ -44,7 +44,7 @@ def load_model_of(scenario: Scenario, structure):
 
         face = front_face(structure)
     return LoadModel(clearing=bl.clearing, face_width_m=face[0], face_height_m=face[1],
-                     negative_phase=bl.negative_phase)
+                     negative_phase=bl.negative_phase, negative_phase_model=bl.negative_phase_model)
 
 
 def _planar_supports(structure) -> Optional[str]:
@@ -142,7 +142,8 @@ def _settings_3d(ctx: Context) -> dict:
     if sc.blast.clearing or sc.blast.negative_phase:  # each system's faces are its own (the structure's)
         from ..blast.load_model import LoadModel
 
-        out["load_model"] = LoadModel(clearing=sc.blast.clearing, negative_phase=sc.blast.negative_phase)
+        out["load_model"] = LoadModel(clearing=sc.blast.clearing, negative_phase=sc.blast.negative_phase,
+                                      negative_phase_model=sc.blast.negative_phase_model)
     return out
 
 

@@ -6,8 +6,10 @@ import math
 import pytest
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.blast.explosives import (EXPLOSIVES, INITIATOR_WARNING_FRACTION, UFC_3_340_02_TABLE_2_1, Explosive,
-                                         charge_equivalence, get_explosive)
+from blastscale.blast.explosives import (EXPLOSIVES, IATG_01_80, INITIATOR_WARNING_FRACTION, UFC_3_340_02_TABLE_2_1,
+                                         Explosive, canonical_name, charge_equivalence, get_explosive,
+                                         initiator_tnt_kg)
+from blastscale.blast.initiation import INITIATORS
 
 #: UFC 3-340-02 (2008) Table 2-1 "Equivalent load factors", the rows blastscale uses most, as printed:
 #: (pressure factor, impulse factor).
@@ -31,11 +33,48 @@ def test_c4_mass_uses_the_impulse_factor_and_safety_the_pressure_factor():
     assert c.tnt_equivalent_pressure_kg == pytest.approx(1e-3 * 1.37 / 1.19, rel=1e-15)
 
 
-def test_petn_has_no_impulse_factor_in_the_table_and_says_so():
+def test_petn_impulse_factor_is_iatgs_not_its_pressure_factor():
+    """UFC Table 2-1 gives PETN's pressure factor only (1.27); IATG 01.80 adds 1.11 for impulse: a PETN
+    charge weighed with 1.27 for both would be 12.6 % light on impulse."""
     ex = EXPLOSIVES["petn"]
     assert UFC_3_340_02_TABLE_2_1["petn"][1] is None
-    assert ex.impulse_factor == ex.pressure_factor == 1.27
-    assert "no impulse factor" in ex.source and "%" in ex.uncertainty
+    assert (ex.pressure_factor, ex.impulse_factor) == (1.27, 1.11) == IATG_01_80["petn"][:2]
+    assert "IATG 01.80" in ex.source and "%" in ex.uncertainty
+    c = charge_equivalence(1e-3, "PETN")
+    assert c.explosive_mass_kg == pytest.approx(1e-3 / 1.11, rel=1e-15)
+    assert c.tnt_equivalent_pressure_kg == pytest.approx(1e-3 * 1.27 / 1.11, rel=1e-15)
+
+
+@pytest.mark.parametrize("name,factors", [("rdx", (1.14, 1.09)), ("hmx", (1.02, 1.03))])
+def test_rdx_and_hmx_are_iatgs(name, factors):
+    ex = get_explosive(name.upper())
+    assert (ex.pressure_factor, ex.impulse_factor) == factors and "IATG 01.80" in ex.source
+
+
+@pytest.mark.parametrize("name,canonical", [("C-4", "c-4"), ("c4", "c-4"), ("Composition C-4", "c-4"),
+                                            ("Comp B", "composition-b"), ("PETN", "petn"), ("Semtex", "semtex"),
+                                            ("pe-4", "pe4"), ("composition_b", "composition-b")])
+def test_names_as_users_write_them(name, canonical):
+    assert canonical_name(name) == canonical and get_explosive(name) is EXPLOSIVES[canonical]
+
+
+def test_every_entry_has_a_source_and_a_minimum_charge():
+    for name, ex in EXPLOSIVES.items():
+        assert ex.source and ex.uncertainty and ex.min_charge_source and ex.min_charge_kg > 0, name
+
+
+def test_minimum_charge_is_the_hemisphere_of_radius_the_critical_diameter():
+    """Closed form 2 pi rho d_c^3 / 3: pressed TNT, d_c = 6 mm at 1600 kg/m^3 -> 0.7238 g; PETN 1 mm at
+    1770 kg/m^3 -> 3.707 mg. The 31.71 mg TNT design of issue #24 (a 2.1 mm hemisphere) is below it."""
+    assert EXPLOSIVES["tnt"].min_charge_kg == pytest.approx(2 * math.pi / 3 * 1600 * 0.006**3, rel=1e-12)
+    assert EXPLOSIVES["tnt"].min_charge_kg == pytest.approx(7.238e-4, rel=1e-3)
+    assert EXPLOSIVES["petn"].min_charge_kg == pytest.approx(3.707e-6, rel=1e-3)
+    assert 3.171e-5 < EXPLOSIVES["tnt"].min_charge_kg
+
+
+def test_default_initiator_is_an_ebw_detonator():
+    assert initiator_tnt_kg("rp-80") == pytest.approx(80e-6 * 1.11 + 123e-6 * 1.09, rel=1e-12)
+    assert initiator_tnt_kg("none") == 0.0 and "RP-80" in INITIATORS["rp-80"].source
 
 
 def test_lead_azide_by_its_heat_of_explosion():
@@ -56,7 +95,7 @@ def test_initiator_is_its_own_contribution_and_warns_above_ten_percent():
 def test_user_defined_and_unknown_explosives():
     mine = Explosive("mine", 1.2, 1.1, None, "test", "none")
     assert charge_equivalence(1.0, "mine", custom={"mine": mine}).explosive_mass_kg == pytest.approx(1 / 1.1)
-    with pytest.raises(BlastscaleInputError, match="explosive = 'semtex' is not known"):
-        get_explosive("semtex")
+    with pytest.raises(BlastscaleInputError, match="explosive = 'dynamite' is not known"):
+        get_explosive("dynamite")
     with pytest.raises(BlastscaleInputError, match="pressure_factor"):
         Explosive("bad", math.nan, 1.0, None, "", "")

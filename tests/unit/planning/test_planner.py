@@ -23,6 +23,8 @@ def _check_design(d: dict, lab: LabSpec) -> None:
     assert d["camera_fps_required"] <= lab.camera_max_fps and d["camera_fps"] <= max(lab.camera_max_fps,
                                                                                        d["camera_fps_required"])
     assert d["explosive"] == lab.explosive and d["initiator_tnt_kg"] == lab.initiator_tnt_kg < d["tnt_equivalent_kg"]
+    assert d["explosive_mass_kg"] >= d["explosive_min_charge_kg"] > 0  # only fireable shots
+    assert d["initiator_fraction"] <= lab.initiator_max_fraction
     assert lab.materials is None or d["material"] in lab.materials
     assert d["impulsive_ratio"] is None or d["impulsive_ratio"] < 0.4
     assert 0.0 <= d["p_outcome_agree"] <= 1.0
@@ -33,7 +35,8 @@ def labs(draw):
     lo, hi = sorted((draw(st.sampled_from([0.0, 1e-6, 1e-4, 1e-2])), draw(st.floats(1e-3, 10.0))))
     return LabSpec(
         explosive=draw(st.sampled_from(["tnt", "c-4", "pentolite", "anfo", "lead-azide"])),
-        initiator_tnt_kg=draw(st.sampled_from([0.0, 1e-6, 1e-4])),
+        initiator_tnt_kg=draw(st.sampled_from([0.0, 1e-6, 1e-4, 2.2287e-4])),
+        initiator_max_fraction=draw(st.sampled_from([0.05, 0.5, 1.0])),
         charge_min_kg=lo, charge_max_kg=max(hi, 1e-3),
         specimen_max_height_m=draw(st.floats(0.05, 6.0)),
         specimen_max_mass_kg=draw(st.floats(0.01, 2000.0)),
@@ -63,6 +66,21 @@ def test_every_listed_design_satisfies_every_constraint(lab):
         assert r["reasons"] and len(r["reasons"]) == len(r["constraints"])
 
 
+@pytest.mark.parametrize("lab,words", [
+    (dict(initiator="none"), "no design fits the lab: the charge is below tnt's minimum reliable charge 0.0007238 kg "
+     "(89 of 258 candidates fail on it alone; the largest, 2.54e-05 kg, at general, lambda = 1/100, lead); a larger "
+     "specimen (specimen_max_height_m, specimen_max_mass_kg) or an explosive with a smaller minimum charge (petn"),
+    (dict(explosive="PETN"), "no design fits the lab: specimen_max_height_m = 0.1 cannot be met"),
+])
+def test_an_unfireable_lab_names_the_binding_constraint(lab, words):
+    """A 0.1 m lab: every TNT charge is below TNT's minimum (no initiator); in PETN the RP-80 dwarfs the
+    charges the lab can build for: a taller specimen relaxes it."""
+    with pytest.raises(PlanInfeasible) as exc:
+        plan(BASE, lab=LabSpec(specimen_max_height_m=0.1, samples=20, **lab))
+    msg = str(exc.value)
+    assert "\n" not in msg and msg.startswith(words)
+
+
 def test_infeasible_lab_says_which_constraint_and_what_relaxes_it():
     with pytest.raises(PlanInfeasible) as exc:
         plan(BASE, lab=LabSpec(space_radius_m=0.01, samples=20))
@@ -74,15 +92,38 @@ def test_infeasible_lab_says_which_constraint_and_what_relaxes_it():
 
 
 def test_paper_block_in_a_half_metre_lab():
-    """The paper's block (50 kg at 2 m, masi2021) and specimens up to 0.5 m: the largest scale the lab
-    builds, 1/20, in balsa (the lightest charge among the most trustworthy designs)."""
+    """The paper's block (50 kg at 2 m, masi2021) and specimens up to 0.5 m, the default [lab] (TNT, an
+    RP-80 EBW detonator of 0.223 g TNT): the best design is a shot that can be fired, its TNT at least the
+    minimum reliable charge (0.724 g, a pressed-TNT hemisphere of radius 6 mm) and its initiator at most
+    half the charge. Issue #24: before, 31.71 mg of TNT in balsa at 1/20, no initiator."""
     p = plan(BASE, lab=LabSpec(specimen_max_height_m=0.5))
     best = p.designs[0]
-    assert (best["law"], best["scale_fraction"], best["material"]) == ("general", "1/20", "balsa")
+    assert best["explosive_mass_kg"] >= best["explosive_min_charge_kg"] == pytest.approx(7.238e-4, rel=1e-3)
+    assert best["initiator_fraction"] <= 0.5 and best["initiator_tnt_kg"] == pytest.approx(2.2287e-4, rel=1e-12)
+    assert (best["law"], best["scale_fraction"], best["material"]) == ("general", "1/20", "same")
     assert best["p_outcome_agree"] == 1.0 and best["odds"]["samples"] == 2000
-    assert best["explosive_mass_kg"] == pytest.approx(3.171e-5, rel=1e-3) and best["standoff_m"] == pytest.approx(0.1)
+    assert best["explosive_mass_kg"] == pytest.approx(7.816e-4, rel=1e-3) and best["standoff_m"] == pytest.approx(0.1)
+    assert best["initiator_fraction"] == pytest.approx(0.2219, rel=1e-3)
+    rejected = {c for r in p.rejected for c in r["constraints"]}
+    assert {"explosive_min_charge_kg", "initiator_max_fraction"} <= rejected  # the balsa design: below the minimum
     for key in ("scale", "material", "density_ratio", "explosive_mass_kg", "tnt_equivalent_kg", "standoff_m",
-                "specimen_mass_kg", "safety_distances_m", "camera_fps", "p_outcome_agree"):
+                "specimen_mass_kg", "safety_distances_m", "camera_fps", "p_outcome_agree", "explosive_min_charge_kg",
+                "initiator_tnt_kg", "initiator_fraction"):
         assert key in best
-    assert p.best_scenario.scale.length == 0.05 and p.best_scenario.scale.specimen_material == "balsa"
+    assert p.best_scenario.scale.length == 0.05 and p.best_scenario.scale.specimen_material is None
     assert all(math.isfinite(v) for v in best["safety_distances_m"].values())
+
+
+def test_initiator_line_says_what_would_admit_a_design():
+    """The initiator's one line: the largest initiator [kg TNT] that the closest candidate admits,
+    initiator_max_fraction x its TNT charge."""
+    from blastscale.planning.candidates import Candidate, Evaluated, Violation
+    from blastscale.planning.planner import _infeasible
+
+    lab = LabSpec(initiator_max_fraction=0.2, samples=20)
+    ev = Evaluated(Candidate("general", 0.05, "same", 1.0),
+                   [Violation("initiator_max_fraction", 0.25, 0.2, "the initiator is 25 %")])
+    msg = _infeasible([ev], lab)
+    w = lab.initiator_tnt_kg / 0.25
+    assert msg.startswith("no design fits the lab: initiator_max_fraction = 0.2 cannot be met with initiator_tnt_kg")
+    assert f"at most {0.2 * w:.3g} kg TNT" in msg and "initiator_max_fraction at least 0.25" in msg and "\n" not in msg

@@ -69,3 +69,17 @@ def test_the_negative_phase_is_stabilising_for_the_papers_block():
     bp = blast_parameters(84.09 * 1.01, 2.0)
     assert DEFAULT_SOLVER.simulate(SYSTEM, bp.pulse(), 30.0).collapsed
     assert not DEFAULT_SOLVER.simulate(SYSTEM, front_face_pulse(bp, "friedlander", NEG), 30.0).collapsed
+
+
+def test_the_suction_model_uncertainty_of_the_papers_block():
+    """Issue #24: the critical charge of the paper's block at 2 m under each negative-phase model, over the
+    positive phase only: x1.29 with the chart's cubic, x1.03 with the continued Friedlander
+    (Kingery-Bulmash; checked here to 0.001: 1.2888 and 1.0304); masi2021: x1.282 and x1.053."""
+    from blastscale.rocking.critical import negative_phase_uncertainty
+
+    for model, (cubic, cont) in (("kingery-bulmash", (1.2888, 1.0304)), ("masi2021", (1.2819, 1.0533))):
+        u = negative_phase_uncertainty(SYSTEM, 2.0, NEG, blast_model=model)
+        assert u["ufc-fig2-16-cubic"]["over_positive_phase_only"] == pytest.approx(cubic, abs=1e-3)
+        assert u["friedlander-continued"]["over_positive_phase_only"] == pytest.approx(cont, abs=1e-3)
+        assert u["ufc-fig2-16-cubic"]["critical_charge_kg"] == pytest.approx(
+            critical_charge(SYSTEM, 2.0, blast_model=model, load_model=NEG).charge_kg, rel=1e-12)
