@@ -1,0 +1,12 @@
+"""After the shot: the lab's records (gauge traces, marker tracks) -> the load as fired and the response.
+
+Low levels (:mod:`.records`, :mod:`.gauges`, :mod:`.effective`) work on files and plain arrays in SI; the
+re-simulation under the load as fired goes through the :class:`~blastscale.study.Study` (docs/fired.md).
+"""
+
+from .effective import GAUGE_KINDS, effective_charge, predicted_at, tnt_equivalence
+from .gauges import GaugeFit, fit_gauge
+from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks
+
+__all__ = ["GAUGE_KINDS", "effective_charge", "predicted_at", "tnt_equivalence", "GaugeFit", "fit_gauge",
+           "GaugeRecord", "TrackRecord", "read_gauges", "read_tracks"]
