@@ -7,6 +7,20 @@ re-simulation under the load as fired goes through the :class:`~blastscale.study
 from .effective import GAUGE_KINDS, effective_charge, predicted_at, tnt_equivalence
 from .gauges import GaugeFit, fit_gauge
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks
+from .shot import OUTCOMES, AsFired, as_fired
 
-__all__ = ["GAUGE_KINDS", "effective_charge", "predicted_at", "tnt_equivalence", "GaugeFit", "fit_gauge",
-           "GaugeRecord", "TrackRecord", "read_gauges", "read_tracks"]
+__all__ = [
+    "GAUGE_KINDS",
+    "OUTCOMES",
+    "AsFired",
+    "GaugeFit",
+    "GaugeRecord",
+    "TrackRecord",
+    "as_fired",
+    "effective_charge",
+    "fit_gauge",
+    "predicted_at",
+    "read_gauges",
+    "read_tracks",
+    "tnt_equivalence",
+]

@@ -14,8 +14,11 @@ The steps (docs/fired.md), on plain arrays in SI:
    confidence intervals from the Jacobian: ``cov = s^2 (J^T J)^-1``, ``s^2`` the residual variance
    (independent residuals assumed: gauge ringing makes them correlated and the intervals optimistic;
    Rigby et al. 2014, "Friedlander fits to near-field records", discuss the bias of fitting near the front).
-4. **Impulse**: the trapezoidal integral of the baselined samples from the arrival to the fitted end of
-   the positive phase (the fit gives the end, the samples the area).
+4. **Impulse**: the trapezoidal integral of the baselined samples from the arrival while the fitted pulse
+   stands above the noise sigma, plus the fitted pulse's own impulse from there to its end (the samples
+   give the area where they carry it; the fit the tail, where integrating noise and the baseline's error
+   over an ill-determined end would only add error: near the charge, d ~ 10-30 and t_o is poorly
+   determined while d/t_o is not).
 5. **Negative phase** (when the record holds it): the least pressure and the integral of the samples
    after the positive phase up to the smoothed trace's return to zero or the record's end.
 """
@@ -23,12 +26,12 @@ The steps (docs/fired.md), on plain arrays in SI:
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
 
 import numpy as np
 from scipy.optimize import least_squares
 
 from ..blast.friedlander import friedlander_impulse_ratio
+from ..blast.pulses import Friedlander
 from .records import record_fault
 
 __all__ = ["ARRIVAL_NOISE_MULTIPLE", "ARRIVAL_PEAK_FRACTION", "MIN_PRETRIGGER", "MIN_PULSE_SAMPLES", "GaugeFit",
@@ -89,8 +92,8 @@ class GaugeFit:
     ci95: dict
     impulse_Pa_s: float
     fit_impulse_Pa_s: float
-    negative_pressure_Pa: Optional[float]
-    negative_impulse_Pa_s: Optional[float]
+    negative_pressure_Pa: float | None
+    negative_impulse_Pa_s: float | None
     samples_positive: int
 
     def pressure(self, t):
@@ -199,7 +202,12 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
     except np.linalg.LinAlgError:
         half = np.full(3, np.nan)
     t_end = ta + Tf
-    imp = _impulse(t, p, ta, min(t_end, float(t[-1])))
+    # the samples while the fitted pulse stands above the noise, the fit's own tail after (step 4)
+    fine = np.linspace(0.0, Tf, 2001)
+    low = np.flatnonzero(friedlander_trace(fine, Pf, Tf, df) < noise)
+    tc = float(fine[low[0]]) if low.size else Tf
+    tail = Friedlander(Pf, Tf, df)
+    imp = _impulse(t, p, ta, min(ta + tc, float(t[-1]))) + tail.impulse - float(tail.cumulative_impulse(tc))
     n_pos = int(np.count_nonzero((t >= ta) & (t <= t_end)))
     neg_p = neg_i = None
     tail = np.flatnonzero(t > t_end)

@@ -15,16 +15,24 @@ from __future__ import annotations
 
 import csv
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Mapping, Optional
 
 import numpy as np
 
 from .._validate import BlastscaleInputError
 
-__all__ = ["TIME_UNITS", "PRESSURE_UNITS", "LENGTH_UNITS", "GaugeRecord", "TrackRecord", "read_gauges",
-           "read_tracks", "record_fault"]
+__all__ = [
+    "LENGTH_UNITS",
+    "PRESSURE_UNITS",
+    "TIME_UNITS",
+    "GaugeRecord",
+    "TrackRecord",
+    "read_gauges",
+    "read_tracks",
+    "record_fault",
+]
 
 #: Time column -> factor to seconds.
 TIME_UNITS = {"time_s": 1.0, "time_ms": 1e-3, "time_us": 1e-6}
@@ -134,7 +142,7 @@ def _known(path, col: str, name: str, names, table: str) -> None:
                            f"scenario (known: {', '.join(names) or 'none'})")
 
 
-def read_gauges(path, names: Optional[Mapping] = None) -> GaugeRecord:
+def read_gauges(path, names: Mapping | None = None) -> GaugeRecord:
     """Read a gauge file (format: module docstring) into Pa and s.
 
     Parameters
@@ -161,7 +169,7 @@ def read_gauges(path, names: Optional[Mapping] = None) -> GaugeRecord:
     return GaugeRecord(str(path), data[:, 0], pressure, cols)
 
 
-def read_tracks(path, names: Optional[Mapping] = None, px_per_mm: Optional[Mapping[str, float]] = None) -> TrackRecord:
+def read_tracks(path, names: Mapping | None = None, px_per_mm: Mapping[str, float] | None = None) -> TrackRecord:
     """Read a track file (format: module docstring) into m and s.
 
     Parameters

@@ -1,56 +1,33 @@
 """Gauge processing against synthetic records with known answers (issue #25 acceptance).
 
-The generator below shares no code with the fitter: it writes the Friedlander form itself (Baker et al.
-1983; paper Eq. 1), solves the decay for the Kingery-Bulmash impulse with its own root finder on the closed
-form ``i = P t_o (e^-d + d - 1) / d^2`` (paper Eq. 2), and adds what real records hold: 2 % white noise
-(of the peak), a baseline offset, gauge ringing at a few hundred kHz decaying after the front, a pre-trigger.
-The known answers are the Kingery-Bulmash (Swisdak 1994) values of the known charge at the gauge.
+The generator (tests/_fired_synthetic.py) shares no code with the fitter: it writes the Friedlander form and
+solves its decay itself, with 2 % white noise (of the peak), a 5 % baseline offset, 10 % ringing at 300 kHz
+decaying after the front and a 0.2 ms pre-trigger. The known answers are the Kingery-Bulmash (Swisdak 1994)
+values of the known charge at the gauge.
 
 Tolerances (the issue's): impulse 3 %, peak 10 %, arrival 2 %, effective charge 5 %, over 24 seeds. The
-impulse's own noise is ~0.3 % (2 % noise integrated over ~700 samples) and the arrival is quantised to half
-a sample (0.25 us of ~1 ms); the peak has 10 % because the ringing sits on the front, where the fit is
-least constrained (Rigby et al. 2014). The effective charge from the impulse is cube-ish in the impulse
-at fixed R (i ~ W^(2/3) near Z = 6), so 3 % on the impulse would allow ~4.5 %.
+impulse's own noise is ~0.3 % (2 % noise integrated over ~1000 samples) and the arrival is quantised to half
+a sample (0.25 us of 1.5 ms); the peak has 10 % because the ringing sits on the front, where the fit is
+least constrained (Rigby et al. 2014). The effective charge from the impulse goes as ~1.5 x the impulse's
+error at fixed R (i ~ W^(2/3) near Z = 6).
 """
 
 from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
-from scipy.optimize import brentq
+from _fired_synthetic import synthetic_trace as _trace
 
-from blastscale.blast import blast_parameters
 from blastscale.fired import effective_charge, fit_gauge
 
 CHARGE_KG = 0.002   # 2 g TNT, a lab charge
 DISTANCE_M = 0.8    # reflected gauge flush in the plate facing it
-RATE_HZ = 2.0e6     # 2 MHz sampling
 SEEDS = range(24)
 
 
-def _decay_for(ratio: float) -> float:
-    """d with (e^-d + d - 1)/d^2 = ratio (generator's own root)."""
-    return brentq(lambda d: (math.exp(-d) + d - 1.0) / d ** 2 - ratio, 1e-6, 60.0)
-
-
-def synthetic_trace(seed: int, charge=CHARGE_KG, distance=DISTANCE_M, *, noise=0.02, offset=0.05,
-                    ringing=0.10, ring_hz=300e3, pre_s=2e-4, side_on=False):
-    bp = blast_parameters(charge, distance)
-    P = bp.incident_pressure if side_on else bp.reflected_pressure
-    i = bp.incident_impulse if side_on else bp.reflected_impulse
-    ta, to = bp.arrival_time, bp.positive_duration
-    d = _decay_for(i / (P * to))
-    rng = np.random.default_rng(seed)
-    t = np.arange(-pre_s, ta + 3.0 * to, 1.0 / RATE_HZ)
-    tau = t - ta
-    x = np.clip(tau, 0.0, None) / to
-    p = np.where(tau >= 0, P * (1 - x) * np.exp(-d * x), 0.0)   # with Friedlander's own negative phase
-    ring = np.where(tau >= 0, ringing * P * np.sin(2 * np.pi * ring_hz * tau) * np.exp(-np.clip(tau, 0, None) / 10e-6),
-                    0.0)
-    signal = p + ring + offset * P + noise * P * rng.standard_normal(t.size)
-    return t, signal, dict(peak=P, impulse=i, arrival=ta, duration=to, decay=d)
+def synthetic_trace(seed, charge=CHARGE_KG, **kw):
+    return _trace(seed, charge, DISTANCE_M, **kw)
 
 
 @pytest.mark.parametrize("seed", SEEDS)
@@ -71,7 +48,7 @@ def test_fit_recovers_a_known_charge(seed):
 
 def test_effective_charge_from_pressure_and_a_stronger_charge():
     """A charge 15 % above the nominal one is seen as such by both bases (peak: within 10 % -> W ~ 15 %)."""
-    t, y, truth = synthetic_trace(3, charge=1.15 * CHARGE_KG)
+    t, y, _truth = synthetic_trace(3, charge=1.15 * CHARGE_KG)
     g = fit_gauge(t, y, "g1")
     assert effective_charge(g.impulse_Pa_s, DISTANCE_M) == pytest.approx(1.15 * CHARGE_KG, rel=0.05)
     assert effective_charge(g.peak_pressure_Pa, DISTANCE_M, basis="pressure") == pytest.approx(1.15 * CHARGE_KG,
