@@ -18,7 +18,7 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..study import Study
-from .tracks import block_marker_displacement
+from .tracks import block_marker_displacement, first_peak
 
 __all__ = ["SpecimenRun", "marker_history", "simulate_specimen", "specimen_scenario"]
 
@@ -109,15 +109,19 @@ def simulate_specimen(scenario: Scenario, design, charge_kg: float, standoff_m: 
 
 
 def marker_history(run: SpecimenRun, point_m) -> dict:
-    """A marker's simulated history and first peak (planar block): ``t`` [s after firing], ``ux``, ``uz`` [m],
-    ``first_peak_m``, ``first_peak_time_s``, ``max_displacement_m``; the first peak is the marker's
-    displacement at the solver's first peak angle (an event of the solver, not a sample)."""
+    """A marker's simulated history and first peak: ``t`` [s after firing], ``ux``, ``uz`` [m],
+    ``first_peak_m``, ``first_peak_time_s``, ``max_displacement_m``.
+
+    Planar (a block): the marker's displacement at the solver's first peak angle (an event of the solver, not
+    a sample). 3D (any kind): the marker rides on the body whose rest centre of mass is nearest to it, moved
+    with that body's centre-of-mass displacement and turned by its rocking angle about +y (the blast's plane;
+    ``rotation_y``, positive top towards +x); the first peak by :func:`~.tracks.first_peak` on the recorded
+    history (unsmoothed)."""
     r = run.rocking
-    if r is None:
-        raise BlastscaleInputError("marker histories of a 3D re-simulation are not available yet: set "
-                                   "simulation.engine = 'planar' for a block")
-    b = run.result.structure.b
     x0, z0 = float(point_m[0]), float(point_m[2])
+    if r is None:
+        return _marker_history_3d(run, np.asarray(point_m, dtype=float))
+    b = run.result.structure.b
     t = r.t_eval if r.t_eval is not None else r.t
     th = r.theta_eval if r.theta_eval is not None else r.theta
     ux, uz = block_marker_displacement(th, x0, z0, b)
@@ -127,3 +131,23 @@ def marker_history(run: SpecimenRun, point_m) -> dict:
         fpt = float(r.peak_times[0]) + run.arrival_time_s
     return {"t": np.asarray(t) + run.arrival_time_s, "ux": ux, "uz": uz, "first_peak_m": fp,
             "first_peak_time_s": fpt, "max_displacement_m": float(np.max(np.abs(ux)))}
+
+
+def _marker_history_3d(run: SpecimenRun, point: np.ndarray) -> dict:
+    resp = run.result.response3d
+    if resp is None:
+        raise BlastscaleInputError("the re-simulation ran no engine with marker histories (planar or 3d)")
+    ds = resp.prototype.dataset
+    bodies = run.result.structure.bodies
+    k = int(np.argmin([np.linalg.norm(np.asarray(b.com) - point) for b in bodies]))
+    rel = point - np.asarray(bodies[k].com)
+    d = np.asarray(ds["com_displacement"].values)[:, k, :]
+    th = np.asarray(ds["rotation_y"].values)[:, k]
+    c, s = np.cos(th) - 1.0, np.sin(th)
+    ux = d[:, 0] + rel[0] * c + rel[2] * s
+    uz = d[:, 2] - rel[0] * s + rel[2] * c
+    t = np.asarray(ds["time"].values) + run.arrival_time_s
+    largest = float(np.max(np.abs(ux)))
+    pk = first_peak(t, ux, noise=1e-3 * largest, smooth=False)
+    return {"t": t, "ux": ux, "uz": uz, "first_peak_m": pk.first_peak_m, "first_peak_time_s": pk.first_peak_time_s,
+            "max_displacement_m": largest}

@@ -137,8 +137,8 @@ def _ratio(a, b) -> float | None:
 def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: TrackRecord | None = None,
              engine: str | None = None) -> AsFired:
     """The shot as fired (module docstring): ``scenario`` with its ``[fired]`` table (records read from its
-    paths unless given as ``gauges`` / ``tracks``); ``engine``: the re-simulation's engine (default: the
-    scenario's; "planar" for a block's marker histories).
+    paths unless given as ``gauges`` / ``tracks``); ``engine``: the re-simulation's engine (default "planar"
+    for a block, "3d" for every other kind).
 
     Raises
     ------
@@ -151,6 +151,8 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
     if scenario.scale is None or scenario.blast.gravity_only:
         raise BlastscaleInputError("fired needs a designed specimen: the scenario has no [scale] table or no charge")
     d = Study(scenario).check().design
+    if engine is None:  # blocks rock in the plane (fast, the solver's peak events); every other kind in 3D
+        engine = "planar" if is_block(d.specimen_structure) else "3d"
     standoff = float(fs.standoff_m if fs.standoff_m is not None else d.specimen.standoff_m)
     grec = gauges if gauges is not None else (read_gauges(fs.gauges, names=fs.gauge) if fs.gauges else None)
     trec = tracks if tracks is not None else (
@@ -249,7 +251,8 @@ def verdict(s: dict) -> str:
         if v["refit_vs_measured"] is not None:
             parts.append(f"the re-simulation under that load agrees within {100 * abs(v['refit_vs_measured']):.2g} %")
         p = s["prototype_markers"].get(name)
-        word = "collapse" if s["outcome_measured"] == "collapsed" else "stand"
+        seen = s["outcome_measured"] or s["outcome_refit"]  # kinds other than blocks: the refit's outcome
+        word = "collapse" if seen == "collapsed" else "stand"
         if p is not None:
             parts.append(f"the monument would {word}, {name} first peak {p['first_peak_m']:.3g} m "
                          f"({p['first_peak_p05_m']:.3g}-{p['first_peak_p95_m']:.3g}) at {p['first_peak_time_s']:.3g} s")

@@ -77,18 +77,18 @@ def track_noise(u) -> float:
     return float(np.median(np.abs(d2 - np.median(d2))) / 0.6744897501960817 / math.sqrt(6.0))
 
 
-def first_peak(t, u, *, noise: float | None = None) -> TrackPeak:
+def first_peak(t, u, *, noise: float | None = None, smooth: bool = True) -> TrackPeak:
     """First peak of the displacement ``u`` [m] at times ``t`` [s] (steps 2 and 3 of the module docstring).
 
-    ``noise`` [m]: the noise standard deviation (default :func:`track_noise`; 0 for a clean simulated history,
-    whose peak is then found without smoothing)."""
+    ``noise`` [m]: the noise standard deviation (default :func:`track_noise`); ``smooth=False`` for a clean
+    simulated history (no filter; ``noise`` then only sets the smallest peak)."""
     t = np.asarray(t, dtype=float)
     u = np.asarray(u, dtype=float)
     if t.size < 5:
         raise BlastscaleInputError(f"a track of {t.size} frames: at least 5 are needed for a first peak")
     sigma = track_noise(u) if noise is None else float(noise)
     w = min(SMOOTH_FRAMES, (t.size // 10) | 1)
-    us = savgol_filter(u, w, 2) if sigma > 0 and w >= 5 else u
+    us = savgol_filter(u, w, 2) if smooth and sigma > 0 and w >= 5 else u
     big = max(PEAK_NOISE_MULTIPLE * sigma, 1e-12)
     du = np.diff(us)
     turn = np.flatnonzero((np.sign(du[:-1]) != np.sign(du[1:])) & (np.sign(du[:-1]) != 0)) + 1
