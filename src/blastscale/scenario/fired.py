@@ -8,46 +8,40 @@ relative to the scenario file.
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Annotated, Literal
 
-from pydantic import BaseModel, Field, field_validator
+from pydantic import AfterValidator, BaseModel, Field
 
 from .specs import _CONFIG
 
 __all__ = ["FiredSpec", "GaugeSpec", "MarkerSpec"]
 
 
-def _point(v: list, name: str) -> list:
+def _point(v: list) -> list:
     if len(v) != 3 or not all(math.isfinite(float(x)) for x in v):
         raise ValueError(f"= {v!r} is not a point: give [x, y, z] in m")
     return [float(x) for x in v]
+
+
+#: A point [x, y, z] [m] in the record axes.
+Point = Annotated[list[float], AfterValidator(_point)]
 
 
 class GaugeSpec(BaseModel):
     """One pressure gauge: where it is and what it sees."""
 
     model_config = _CONFIG
-    position_m: list[float] = Field(description="Gauge position [x, y, z] [m] in the record axes")
+    position_m: Point = Field(description="Gauge position [x, y, z] [m] in the record axes")
     kind: Literal["reflected", "side-on"] = Field(
         "reflected", description="reflected: flush in a rigid plate facing the charge; side-on: incident pressure")
-
-    @field_validator("position_m")
-    @classmethod
-    def _pos(cls, v: list) -> list:
-        return _point(v, "position_m")
 
 
 class MarkerSpec(BaseModel):
     """One video marker on the specimen."""
 
     model_config = _CONFIG
-    point_m: list[float] = Field(description="The marker's position [x, y, z] [m] on the specimen at rest")
+    point_m: Point = Field(description="The marker's position [x, y, z] [m] on the specimen at rest")
     px_per_mm: float | None = Field(None, gt=0, le=1e6, description="Image scale for _px track columns [px/mm]")
-
-    @field_validator("point_m")
-    @classmethod
-    def _pos(cls, v: list) -> list:
-        return _point(v, "point_m")
 
 
 class FiredSpec(BaseModel):

@@ -45,14 +45,6 @@ BAD_GAUGES = [
 ]
 
 
-@pytest.mark.parametrize("text,message", BAD_GAUGES)
-def test_bad_gauge_records_are_one_line(tmp_path, text, message):
-    with pytest.raises(BlastscaleInputError) as e:
-        read_gauges(_write(tmp_path, text), names={"a"})
-    assert str(e.value).startswith(message)
-    assert "\n" not in str(e.value)
-
-
 BAD_TRACKS = [
     ("time_s,top_y_mm\n0,1\n", "rec.csv: column 'top_y_mm', row 1: a track column is NAME_x_UNIT"),
     ("time_s,top_x_px\n0,1\n", "rec.csv: column 'top_x_px', row 1: a _px column needs px_per_mm"),
@@ -62,11 +54,13 @@ BAD_TRACKS = [
 ]
 
 
-@pytest.mark.parametrize("text,message", BAD_TRACKS)
-def test_bad_track_records_are_one_line(tmp_path, text, message):
+@pytest.mark.parametrize("read,names,text,message", [(read_gauges, {"a"}, *b) for b in BAD_GAUGES]
+                         + [(read_tracks, {"top"}, *b) for b in BAD_TRACKS])
+def test_bad_records_are_one_line(tmp_path, read, names, text, message):
     with pytest.raises(BlastscaleInputError) as e:
-        read_tracks(_write(tmp_path, text), names={"top"})
+        read(_write(tmp_path, text), names=names)
     assert str(e.value).startswith(message)
+    assert "\n" not in str(e.value)
 
 
 def test_too_few_samples_over_the_pulse_names_the_rows():
