@@ -51,6 +51,11 @@ def _print(s: dict) -> None:
     for name, p in s["prototype_markers"].items():
         rows.append((f"monument {name}: first peak (5-95 %)", (f"{fmt_value(p['first_peak_m'], '.4g')} ("
                      f"{fmt_value(p['first_peak_p05_m'], '.3g')}-{fmt_value(p['first_peak_p95_m'], '.3g')})"), "m"))
+    c = s.get("calibration")
+    if c is not None:
+        rows += [("calibrated restitution (95 %)", f"{c['restitution']:.4g} +- {c['restitution_ci95']:.2g}", "-"),
+                 ("prototype with it: max rotation, outcome", f"{fmt_value(c['prototype_max_rotation_rad'])}, "
+                  f"{c['prototype_outcome']}", "rad")]
     console.print(table("The shot as fired", rows))
 
 
@@ -77,6 +82,9 @@ def fired_cmd(
                                             "report.html into this new folder."),
     as_json: bool = typer.Option(False, "--json", help="Print the as_fired summary as one JSON object."),
     force: bool = typer.Option(False, "--force", help="Replace an existing result folder."),
+    calibrate: str = typer.Option("", "--calibrate", show_default=False,
+                                  help="Contact parameters to fit to the measured rocking, comma-separated: "
+                                       "restitution (a block)."),
 ) -> None:
     """After the shot: the load the specimen got, measured vs predicted vs re-simulated, and what the monument
     would do."""
@@ -91,7 +99,8 @@ def fired_cmd(
     written = None
     with one_line_warnings(), stage_progress(quiet=as_json) as tell:
         tell("records, gauge fits, prediction and refit", 0, 1)
-        result = as_fired(sc)  # every record checked before the folder is claimed: a bad one writes nothing
+        # every record checked before the folder is claimed: a bad one writes nothing
+        result = as_fired(sc, calibrate=calibrate.split(","))
         if out is not None:
             from ..report.fired import write_fired
 

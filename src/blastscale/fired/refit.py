@@ -20,8 +20,10 @@ from ..scenario import Scenario
 from ..study import Study
 from .tracks import block_marker_displacement, first_peak
 
-__all__ = ["SpecimenRun", "marker_history", "simulate_specimen", "specimen_scenario"]
+__all__ = ["OUTCOMES", "SpecimenRun", "marker_history", "simulate_specimen", "specimen_scenario"]
 
+#: The outcome words (the engines' ``collapsed`` flag in words).
+OUTCOMES = {False: "stands", True: "collapsed"}
 #: Contact keys that are times (x lambda_t) and lengths (x lambda) when the specimen is written out.
 _CONTACT_TIMES = ("time_constant_s", "friction_time_constant_s")
 _CONTACT_LENGTHS = ("impedance_width_m",)

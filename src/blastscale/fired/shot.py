@@ -27,16 +27,15 @@ from ..blast.explosives import get_explosive
 from ..scenario import Scenario
 from ..structures.from_spec import is_block
 from ..study import Study
+from .calibrate import calibrate_restitution, check_calibrate
 from .effective import effective_charge, predicted_at, tnt_equivalence
 from .gauges import fit_gauge
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks, record_fault
-from .refit import SpecimenRun, marker_history, simulate_specimen
+from .refit import OUTCOMES, SpecimenRun, marker_history, simulate_specimen
 from .tracks import block_rotation, first_peak
 
 __all__ = ["OUTCOMES", "AsFired", "as_fired"]
 
-#: The outcome words (the engines' ``collapsed`` flag in words).
-OUTCOMES = {False: "stands", True: "collapsed"}
 _Q95 = 1.6448536269514722  # one-sided 95 % normal quantile: the 5-95 % band
 
 
@@ -135,10 +134,11 @@ def _ratio(a, b) -> float | None:
 
 
 def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: TrackRecord | None = None,
-             engine: str | None = None) -> AsFired:
+             engine: str | None = None, calibrate=()) -> AsFired:
     """The shot as fired (module docstring): ``scenario`` with its ``[fired]`` table (records read from its
     paths unless given as ``gauges`` / ``tracks``); ``engine``: the re-simulation's engine (default "planar"
-    for a block, "3d" for every other kind).
+    for a block, "3d" for every other kind); ``calibrate``: parameters to calibrate against the tracks
+    (:mod:`.calibrate`: ``"restitution"``), in the summary's ``calibration``.
 
     Raises
     ------
@@ -150,6 +150,7 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
         raise BlastscaleInputError("scenario has no [fired] table: give the records (docs/fired.md)")
     if scenario.scale is None or scenario.blast.gravity_only:
         raise BlastscaleInputError("fired needs a designed specimen: the scenario has no [scale] table or no charge")
+    calibrate = check_calibrate(calibrate)
     d = Study(scenario).check().design
     if engine is None:  # blocks rock in the plane (fast, the solver's peak events); every other kind in 3D
         engine = "planar" if is_block(d.specimen_structure) else "3d"
@@ -218,6 +219,10 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
         "outcome_measured": None if not outs else ("collapsed" if "collapsed" in outs else "stands"),
         "outcome_predicted": OUTCOMES[predicted.collapsed], "outcome_refit": OUTCOMES[refit.collapsed],
     }
+    summary["calibration"] = None
+    if "restitution" in calibrate:
+        meas = {n: (fs.marker[n].point_m, m["measured"]["t"], m["measured"]["ux"]) for n, m in markers.items()}
+        summary["calibration"] = calibrate_restitution(scenario, d, meas, w_refit, standoff)
     summary["verdict"] = verdict(summary)
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
 

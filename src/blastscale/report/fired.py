@@ -74,7 +74,15 @@ def fired_section(result, figures) -> str:
             + ("<h3>Markers (specimen)</h3>" + _table(("marker",) + mkeys, markers) if markers else "")
             + ("<h3>What the monument would do (measured, up-scaled; 5-95 %)</h3>" + _table(("marker",) + pkeys, proto)
                if proto else "")
+            + _calibration(s.get("calibration"))
             + "".join(_img(png, title, caption, name) for name, title, caption, png in figures))
+
+
+def _calibration(c) -> str:
+    if c is None:
+        return ""
+    rows = [(k, format_value(v)) for k, v in c.items()]
+    return "<h3>Calibration (the measured rocking)</h3>" + _table(("quantity", "value"), rows)
 
 
 def write_fired(result, scenario, folder) -> list[str]:
