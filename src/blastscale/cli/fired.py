@@ -54,8 +54,8 @@ def _print(s: dict) -> None:
     c = s.get("calibration")
     if c is not None:
         rows += [("calibrated restitution (95 %)", f"{c['restitution']:.4g} +- {c['restitution_ci95']:.2g}", "-"),
-                 ("prototype with it: max rotation, outcome", f"{fmt_value(c['prototype_max_rotation_rad'])}, "
-                  f"{c['prototype_outcome']}", "rad")]
+                 ("prototype with it: max rotation, outcome", (f"{fmt_value(c['prototype_max_rotation_rad'])}, "
+                  f"{c['prototype_outcome']}"), "rad")]
     console.print(table("The shot as fired", rows))
 
 
