@@ -86,3 +86,24 @@ def test_bad_records_are_one_line_exit_2_nothing_written(capsys, tmp_path, name,
     lines = [ln for ln in err.strip().splitlines() if ln]
     assert len(lines) == 1 and message in lines[0], err
     assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["gauges.csv", "shot.toml", "tracks.csv"]
+
+
+def test_interrupted_write_leaves_nothing(monkeypatch, tmp_path):
+    """A fault after the first file is written (here: the second write raises) removes the partial folder:
+    neither the result folder nor a partial one is left (io.results.output_folder)."""
+    import blastscale.io.results as results
+
+    real, calls = results.write_atomic, []
+
+    def failing(path, data):
+        calls.append(path)
+        if len(calls) == 2:
+            raise RuntimeError("disk gone")
+        real(path, data)
+
+    monkeypatch.setattr(results, "write_atomic", failing)
+    sc = _copy(tmp_path)
+    with pytest.raises(RuntimeError, match="disk gone"):
+        main(["fired", str(sc), "--out", str(tmp_path / "res")])
+    assert len(calls) == 2
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["gauges.csv", "shot.toml", "tracks.csv"]
