@@ -91,7 +91,7 @@ def test_bad_records_are_one_line_exit_2_nothing_written(capsys, tmp_path, name,
 def test_interrupted_write_leaves_nothing(monkeypatch, tmp_path):
     """A fault after the first file is written (here: the second write raises) removes the partial folder:
     neither the result folder nor a partial one is left (io.results.output_folder)."""
-    import blastscale.io.results as results
+    from blastscale.io import results
 
     real, calls = results.write_atomic, []
 
