@@ -3,8 +3,8 @@
 Each command lives in its own module and registers itself on :data:`app`:
 ``blast``/``design`` (:mod:`.loads`), ``rock``/``critical`` (:mod:`.rocking`),
 ``block3d`` (:mod:`.block3d`), ``run`` (:mod:`.main_job`), ``reproduce`` (:mod:`.reproduce`), ``plan``
-(:mod:`.plan`), ``init`` (:mod:`.init`), ``show`` (:mod:`.show`). Units at this edge are those
-named in each option's help text; everything is converted to SI before calling the library.
+(:mod:`.plan`), ``init`` (:mod:`.init`), ``show`` (:mod:`.show`), ``fired`` (:mod:`.fired`). Units at this
+edge are those named in each option's help text; everything is converted to SI before calling the library.
 
 Bad input raises :class:`~blastscale._validate.BlastscaleInputError` in the library; ``main``
 prints its one-line message and exits with status 2, without a traceback. So does a command that needs
@@ -19,7 +19,7 @@ import sys
 from .._extras import extra_of, missing_extra_message
 from ._app import app, print_error
 
-# command modules register themselves on `app` when imported
+# command modules register themselves on `app` when imported (in this order: `blastscale --help` lists them so)
 from . import loads as _loads  # noqa: F401,E402
 from . import rocking as _rocking  # noqa: F401,E402
 from . import block3d as _block3d  # noqa: F401,E402
@@ -30,6 +30,7 @@ from . import sweeps as _sweeps  # noqa: F401,E402
 from . import plan as _plan  # noqa: F401,E402
 from . import init as _init  # noqa: F401,E402
 from . import show as _show  # noqa: F401,E402
+from . import fired as _fired  # noqa: F401,E402
 
 __all__ = ["app", "main"]
 

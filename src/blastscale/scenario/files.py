@@ -56,4 +56,8 @@ def _from_text(text: str, source: str, folder: "Path | None" = None) -> Scenario
     if folder is not None and isinstance(st, dict) and isinstance(st.get("file"), str) \
             and not Path(st["file"]).is_absolute():  # a block-model file is relative to its scenario file
         data["structure"] = {**st, "file": str(folder / st["file"])}
+    fired = data.get("fired")
+    if folder is not None and isinstance(fired, dict):  # the records are relative to their scenario file
+        data["fired"] = {**fired, **{k: str(folder / fired[k]) for k in ("gauges", "tracks")
+                                     if isinstance(fired.get(k), str) and not Path(fired[k]).is_absolute()}}
     return Scenario.from_dict(data, source=source)

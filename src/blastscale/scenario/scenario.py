@@ -12,6 +12,7 @@ from ..constants import DEFAULT_FRICTION
 from ..structures.materials import MATERIALS
 from .messages import one_line, submodels
 from .text import to_toml
+from .fired import FiredSpec
 from .lab import LabSpec
 from .specs import _CONFIG, KINDS, LEGACY_SCENARIO_KEYS, BlastSpec, BlockSpec, ScaleSpec, SimulationSpec, Structure
 
@@ -55,6 +56,8 @@ class Scenario(BaseModel):
     simulation: SimulationSpec = Field(default_factory=SimulationSpec)
     lab: Optional[LabSpec] = Field(None, description="What the laboratory can fire, build and measure: a test card "
                                    "in the report, and the constraints of `blastscale plan` (docs/planning.md)")
+    fired: Optional[FiredSpec] = Field(None, description="What the lab recorded after the shot: gauge traces, "
+                                       "marker tracks, the charge as weighed, the stand-off as measured (docs/fired.md)")
 
     # -- construction ----------------------------------------------------------------
     @classmethod
@@ -112,8 +115,9 @@ class Scenario(BaseModel):
         if key in paths:
             return key
         hits = [p for p in paths if p.endswith("." + key)]
-        if len(hits) > 1 and sum(not p.startswith("lab.") for p in hits) == 1:  # [lab] keys by full path only
-            hits = [p for p in hits if not p.startswith("lab.")]
+        full_only = ("lab.", "fired.")  # [lab] and [fired] keys by full path only
+        if len(hits) > 1 and sum(not p.startswith(full_only) for p in hits) == 1:
+            hits = [p for p in hits if not p.startswith(full_only)]
         if len(hits) == 1:
             return hits[0]
         if not hits:

@@ -1,0 +1,115 @@
+"""``blastscale fired``: the shot as fired, from the lab's records to what the monument would do.
+
+``blastscale fired SCENARIO.toml [--out DIR] [--json]`` reads the scenario's ``[fired]`` table (gauge traces,
+marker tracks, the charge as weighed, the stand-off as measured; docs/fired.md), fits the gauges, finds the
+effective charge, re-simulates the specimen under the designed load and under the load as fired (through the
+Study), up-scales the measured response and prints the verdict line. ``--out DIR`` writes ``summary.json``
+(key ``as_fired``), ``scenario.toml``, the figures and ``report.html`` into a new folder, all at once (a run
+interrupted or refused leaves nothing). A bad record: one line naming the file, the column and the row, exit
+status 2, nothing written.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from ._app import (
+    app,
+    console,
+    fmt_value,
+    ignore_interrupts,
+    one_line_warnings,
+    print_json,
+    print_written,
+    raise_if_interrupted,
+    stage_progress,
+    styled,
+    table,
+)
+
+
+def _print(s: dict) -> None:
+    console.print(styled(("As fired", "bold"), ": " + s["verdict"].removeprefix("As fired: ")))
+    rows = [("effective charge (impulse)", fmt_value(s["effective_charge_tnt_kg"]), "kg TNT"),
+            ("effective charge (peak)", fmt_value(s["effective_charge_from_pressure_tnt_kg"]), "kg TNT"),
+            ("designed charge", fmt_value(s["designed_charge_tnt_kg"]), "kg TNT"),
+            ("TNT equivalence (impulse)", fmt_value(s["tnt_equivalence_impulse"], ".3g"), "-"),
+            ("stand-off (as measured)", fmt_value(s["standoff_m"]), "m")]
+    for name, g in s["gauges"].items():
+        rows += [(f"gauge {name}: peak / predicted", (f"{fmt_value(g['peak_pressure_Pa'])} / "
+                  f"{fmt_value(g['predicted_peak_pressure_Pa'])}"), "Pa"),
+                 (f"gauge {name}: impulse / predicted", (f"{fmt_value(g['impulse_Pa_s'])} / "
+                  f"{fmt_value(g['predicted_impulse_Pa_s'])}"), "Pa s")]
+    for name, m in s["markers"].items():
+        rows += [(f"marker {name}: first peak measured / predicted / refit",
+                  (f"{fmt_value(m['first_peak_m'])} / {fmt_value(m['predicted_first_peak_m'])} / "
+                  f"{fmt_value(m['refit_first_peak_m'])}"), "m"),
+                 (f"marker {name}: outcome measured / refit", f"{m['outcome_measured'] or '-'} / {m['outcome_refit']}",
+                  "")]
+    for name, p in s["prototype_markers"].items():
+        rows.append((f"monument {name}: first peak (5-95 %)", (f"{fmt_value(p['first_peak_m'], '.4g')} ("
+                     f"{fmt_value(p['first_peak_p05_m'], '.3g')}-{fmt_value(p['first_peak_p95_m'], '.3g')})"), "m"))
+    c = s.get("calibration")
+    if c is not None:
+        rows += [("calibrated restitution (95 %)", f"{c['restitution']:.4g} +- {c['restitution_ci95']:.2g}", "-"),
+                 ("prototype with it: max rotation, outcome", (f"{fmt_value(c['prototype_max_rotation_rad'])}, "
+                  f"{c['prototype_outcome']}"), "rad")]
+    console.print(table("The shot as fired", rows))
+
+
+#: Shipped examples: name -> file in blastscale/fired/examples (docs/fired.md).
+EXAMPLES = {"example_shot": "shot.toml"}
+
+
+def _shipped(path: Path) -> Path:
+    """``path`` itself, or the shipped example it names when no such file exists."""
+    if not path.exists() and str(path) in EXAMPLES:
+        from importlib.resources import files
+
+        return Path(str(files("blastscale.fired") / "examples" / EXAMPLES[str(path)]))
+    return path
+
+
+@app.command("fired")
+def fired_cmd(
+    scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", show_default=False,
+                                    help="Scenario file with a \\[fired] table (docs/fired.md), or example_shot "
+                                         "(the shipped example)."),
+    out: Path | None = typer.Option(None, "--out", show_default=False,
+                                       help="Write summary.json (as_fired), scenario.toml, the figures and "
+                                            "report.html into this new folder."),
+    as_json: bool = typer.Option(False, "--json", help="Print the as_fired summary as one JSON object."),
+    force: bool = typer.Option(False, "--force", help="Replace an existing result folder."),
+    calibrate: str = typer.Option("", "--calibrate", show_default=False,
+                                  help="Contact parameters to fit to the measured rocking, comma-separated: "
+                                       "restitution (a block)."),
+) -> None:
+    """After the shot: the load the specimen got, measured vs predicted vs re-simulated, and what the monument
+    would do."""
+    from ..fired import as_fired
+    from ..io.results import check_output_folder, output_folder
+    from ..scenario import load_scenario
+
+    sc = load_scenario(_shipped(scenario))
+    markers = ("summary.json",)
+    if out is not None:
+        check_output_folder(out, force, markers)
+    written = None
+    with one_line_warnings(), stage_progress(quiet=as_json) as tell:
+        tell("records, gauge fits, prediction and refit", 0, 1)
+        # every record checked before the folder is claimed: a bad one writes nothing
+        result = as_fired(sc, calibrate=calibrate.split(","))
+        if out is not None:
+            from ..report.fired import write_fired
+
+            with output_folder(out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts,
+                               markers=markers) as tmp:
+                written = write_fired(result, sc, tmp)
+    if as_json:
+        print_json({"as_fired": result.summary})
+    else:
+        _print(result.summary)
+    if written is not None:
+        print_written(out, ", ".join(written))

@@ -1,0 +1,43 @@
+"""Plots of the shot as fired: gauge traces over their fits and the predicted pulse, marker histories over the
+prediction and the re-simulation (docs/fired.md). Every function takes ``ax=`` and returns it; the inputs are
+plain arrays (SI: s, Pa, m); matplotlib is imported only when a plot is drawn."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .rocking import _ax
+
+__all__ = ["plot_gauge", "plot_marker"]
+
+
+def plot_gauge(t, p, fitted, predicted=None, *, name: str = "gauge", ax=None):
+    """A gauge's baselined trace ``p`` [Pa] at ``t`` [s], its fit ``fitted`` [Pa] (same times) and the
+    predicted pulse ``predicted`` [Pa] (same times; None: not drawn), in kPa and ms."""
+    ax = _ax(ax)
+    t = np.asarray(t) * 1e3
+    ax.plot(t, np.asarray(p) / 1e3, color="0.6", lw=0.6, label=f"{name} (record)")
+    ax.plot(t, np.asarray(fitted) / 1e3, color="C0", lw=1.4, label="Friedlander fit")
+    if predicted is not None:
+        ax.plot(t, np.asarray(predicted) / 1e3, color="C3", lw=1.0, ls="--", label="predicted (designed charge)")
+    ax.set_xlabel("time after firing [ms]")
+    ax.set_ylabel("overpressure [kPa]")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def plot_marker(measured, predicted, refit, *, name: str = "marker", length_factor: float = 1.0,
+                time_factor: float = 1.0, units: str = "specimen", ax=None):
+    """A marker's horizontal displacement: ``measured``, ``predicted`` and ``refit``, each ``(t [s], ux [m])``;
+    divided by ``length_factor`` and ``time_factor`` (1: the specimen's units; the design's factors: the
+    prototype's), shown in mm (specimen) or m (prototype) and s."""
+    ax = _ax(ax)
+    k = 1e3 if units == "specimen" else 1.0
+    for (t, u), style, label in ((measured, {"color": "0.3", "lw": 0.8}, "measured"),
+                                 (predicted, {"color": "C3", "ls": "--", "lw": 1.2}, "predicted (designed load)"),
+                                 (refit, {"color": "C0", "lw": 1.4}, "re-simulated (as fired)")):
+        ax.plot(np.asarray(t) / time_factor, k * np.asarray(u) / length_factor, label=label, **style)
+    ax.set_xlabel(f"time after firing [s] ({units})")
+    ax.set_ylabel(f"{name}: horizontal displacement [{'mm' if units == 'specimen' else 'm'}] ({units})")
+    ax.legend(fontsize="small")
+    return ax

@@ -1,0 +1,224 @@
+"""The shot as fired, end to end through the Study (issue #25 acceptance, planar block).
+
+The lab's records are made in the test: a block specimen (the paper's 10 m block at 1/20: 0.5 m, 1.0 g TNT
+at 0.1 m, the paper's fits) fired with a charge 15 % above the designed one. The gauge trace is the
+synthetic generator's (tests/_fired_synthetic.py); the track is a planar rocking simulation run here with
+the solver directly (not through blastscale.fired), turned into marker positions by the generator's own
+kinematics, with 0.05 mm noise at 2000 frames per second.
+
+Tolerances (the issue's): the measured first peak within 2 % of the track's own (the simulation's first
+peak event; the noise is 0.05 mm on a ~45 mm peak and the parabola over ~60 frames averages it), the
+re-simulation within 5 % of the measurement (the effective charge is within ~1 % of 1.15 x: the first peak
+goes as ~W^1.9 here), the designed prediction visibly below (at least 10 % below: 15 % less charge gives
+~24 % less first peak).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from _fired_synthetic import synthetic_trace, synthetic_track
+
+from blastscale.blast import blast_parameters
+from blastscale.fired.shot import as_fired
+from blastscale.rocking import DEFAULT_SOLVER, RockingSystem
+from blastscale.scenario import load_scenario
+from blastscale.study import Study
+
+pytestmark = pytest.mark.slow
+
+FACTOR = 1.15
+FPS = 2000.0
+
+SCENARIO = """
+title = "fired: the paper's block at 1/20"
+[structure]
+kind = "block"
+height_m = 10.0
+alpha_deg = 15.0
+depth_m = 1.0
+density_kg_m3 = 2000.0
+[blast]
+charge_kg = 50.0
+standoff_m = 2.0
+blast_model = "masi2021"
+[scale]
+length = "1/20"
+[simulation]
+engine = "planar"
+duration_s = 2.0
+critical_charge = false
+[lab]
+explosive = "c-4"
+[fired]
+gauges = "gauges.csv"
+tracks = "tracks.csv"
+charge_kg = {charge}
+standoff_m = 0.1
+[fired.gauge.g1]
+position_m = [{gx}, 0.0, 0.05]
+kind = "reflected"
+[fired.marker.top]
+point_m = [0.0, 0.0, 0.5]
+"""
+
+
+def write_shot(folder, factor=FACTOR, seed=0, restitution=None):
+    """The scenario, its gauge and track files in ``folder``; returns (path, truth)."""
+    base = load_scenario_text(SCENARIO.format(charge=1e-3, gx=-0.05))
+    d = Study(base).check().design
+    block = d.specimen_block
+    W = factor * d.specimen_charge_kg
+    R = d.specimen.standoff_m
+    charge_at = np.array([block.front_x - R, 0.0, 0.0])
+    gauge = np.array([block.front_x, 0.0, 0.05])
+    t, p, _ = synthetic_trace(seed, W, float(np.linalg.norm(gauge - charge_at)), blast_model="masi2021", rate_hz=4e6,
+                              pre_s=1e-3)
+    np.savetxt(folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",", header="time_us,g1_kPa",
+               comments="")
+    bp = blast_parameters(W, R, "masi2021")
+    system = RockingSystem.from_block(block, d.specimen_gravity, restitution)
+    frames = np.arange(-0.01, d.specimen_duration, 1.0 / FPS)
+    after = np.clip(frames - bp.arrival_time, 0.0, None)
+    res = DEFAULT_SOLVER.simulate(system, bp.pulse("friedlander"), d.specimen_duration, t_eval=after)
+    x, z = synthetic_track(seed, frames, res.theta_eval, 0.0, 0.5, block.b)
+    np.savetxt(folder / "tracks.csv", np.column_stack([frames * 1e3, x * 1e3, z * 1e3]), delimiter=",",
+               header="time_ms,top_x_mm,top_z_mm", comments="")
+    th0 = float(res.peak_angles[0])
+    true_peak = block.b * (1 - np.cos(th0)) + 0.5 * np.sin(th0)  # the top centre, about the rear toe
+    sc_path = folder / "shot.toml"
+    sc_path.write_text(SCENARIO.format(charge=W / 1.19, gx=block.front_x))  # C-4 for the impulse (UFC Table 2-1)
+    return sc_path, {"first_peak_m": true_peak, "first_peak_time_s": float(res.peak_times[0]) + bp.arrival_time,
+                         "charge_tnt_kg": W, "designed_tnt_kg": d.specimen_charge_kg}
+
+
+def load_scenario_text(text):
+    import tomllib
+
+    from blastscale.scenario import Scenario
+
+    return Scenario.from_dict(tomllib.loads(text), source="test")
+
+
+def test_block_fired_15_percent_above_the_design(tmp_path):
+    path, truth = write_shot(tmp_path)
+    r = as_fired(load_scenario(path))
+    s = r.summary
+    m = s["markers"]["top"]
+    assert m["first_peak_m"] == pytest.approx(truth["first_peak_m"], rel=0.02)
+    assert m["first_peak_time_s"] == pytest.approx(truth["first_peak_time_s"], rel=0.02)
+    assert s["effective_charge_tnt_kg"] == pytest.approx(truth["charge_tnt_kg"], rel=0.05)
+    assert s["charge_ratio_impulse"] == pytest.approx(FACTOR, rel=0.05)
+    assert m["refit_first_peak_m"] == pytest.approx(m["first_peak_m"], rel=0.05)
+    assert m["predicted_first_peak_m"] < 0.90 * m["first_peak_m"]
+    assert m["outcome_measured"] == m["outcome_refit"] == "stands"
+    # the implied TNT equivalence of the C-4 as weighed: 1.19 (UFC 3-340-02 Table 2-1, impulse)
+    assert s["tnt_equivalence_impulse"] == pytest.approx(1.19, rel=0.05)
+    # the monument: the measured first peak up-scaled (lambda = 1/20, time sqrt(1/20)), inside its band
+    p = s["prototype_markers"]["top"]
+    assert p["first_peak_m"] == pytest.approx(20.0 * m["first_peak_m"], rel=1e-12)
+    assert p["first_peak_time_s"] == pytest.approx(m["first_peak_time_s"] * np.sqrt(20.0), rel=1e-12)
+    assert p["first_peak_p05_m"] < p["first_peak_m"] < p["first_peak_p95_m"]
+    assert s["verdict"].startswith("As fired: 1.1")
+
+
+def test_refit_at_the_designed_load_is_the_studys_specimen(tmp_path):
+    """The prediction path (the specimen written as a scenario) gives the Study's own specimen run."""
+    sc = load_scenario_text(SCENARIO.format(charge=1e-3, gx=-0.05))
+    from blastscale.fired.refit import simulate_specimen
+
+    st = Study(sc).run()
+    d = st.design
+    run = simulate_specimen(sc, d, d.specimen_charge_kg, d.specimen.standoff_m)
+    assert run.rocking.peak_angles[0] == pytest.approx(st.planar.model.peak_angles[0], rel=1e-9)
+    assert run.rocking.peak_times[0] == pytest.approx(st.planar.model.peak_times[0], rel=1e-9)
+
+
+COLUMN = """
+title = "fired: a three-drum square column at 1/10, 3D"
+[structure]
+kind = "column"
+section = "square"
+drums = 3
+height_m = 3.0
+base_width_m = 0.6
+top_width_m = 0.5
+density_kg_m3 = 2700.0
+[blast]
+charge_kg = 20.0
+standoff_m = 5.0
+[scale]
+length = "1/10"
+[simulation]
+engine = "3d"
+duration_s = 2.0
+critical_charge = false
+[fired]
+gauges = "gauges.csv"
+tracks = "tracks.csv"
+[fired.gauge.g1]
+position_m = [{gx}, 0.0, 0.05]
+[fired.marker.top]
+point_m = [0.0, 0.0, 0.3]
+"""
+
+
+def test_column_in_3d_end_to_end(tmp_path):
+    """A 3D case end to end: a three-drum column specimen (0.3 m, 4.2 g TNT at 0.5 m by design) fired 15 % over
+    its design. The track is the specimen's own 3D run under that charge (the refit's path: this checks the
+    pipeline and the effective charge, not the engine), resampled at 2000 frames per second with 0.05 mm noise;
+    the gauge trace is the synthetic generator's. Tolerances as for the block; the top's first peak goes as
+    ~W^1.9 here (24.1 mm at the design, 31.8 mm at 1.15 x)."""
+    from blastscale.fired.refit import marker_history, simulate_specimen
+
+    base = load_scenario_text(COLUMN.format(gx=-0.03))
+    d = Study(base).check().design
+    W = FACTOR * d.specimen_charge_kg
+    R = d.specimen.standoff_m
+    front = d.specimen_structure.front_x
+    dist = float(np.hypot(R, 0.05))
+    t, p, _ = synthetic_trace(1, W, dist, rate_hz=4e6, pre_s=1e-3)
+    np.savetxt(tmp_path / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",",
+               header="time_us,g1_kPa", comments="")
+    truth = marker_history(simulate_specimen(base, d, W, R, "3d"), (0.0, 0.0, 0.3))
+    frames = np.arange(-0.01, truth["t"][-1], 1.0 / FPS)
+    rng = np.random.default_rng(1)
+    x = np.interp(frames, truth["t"], truth["ux"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
+    z = 0.3 + np.interp(frames, truth["t"], truth["uz"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
+    np.savetxt(tmp_path / "tracks.csv", np.column_stack([frames * 1e3, x * 1e3, z * 1e3]), delimiter=",",
+               header="time_ms,top_x_mm,top_z_mm", comments="")
+    path = tmp_path / "shot.toml"
+    path.write_text(COLUMN.format(gx=front))
+    s = as_fired(load_scenario(path)).summary
+    m = s["markers"]["top"]
+    assert s["charge_ratio_impulse"] == pytest.approx(FACTOR, rel=0.05)
+    assert m["first_peak_m"] == pytest.approx(truth["first_peak_m"], rel=0.02)
+    assert m["refit_first_peak_m"] == pytest.approx(m["first_peak_m"], rel=0.05)
+    assert m["predicted_first_peak_m"] < 0.90 * m["first_peak_m"]
+    assert m["outcome_refit"] == m["outcome_predicted"] == "stands" and m["outcome_measured"] is None
+    assert s["prototype_markers"]["top"]["first_peak_m"] == pytest.approx(10.0 * m["first_peak_m"], rel=1e-12)
+
+
+def test_calibrated_restitution_is_the_tracks(tmp_path):
+    """Item 7: a track rocked with e = 0.80 (Housner's for alpha = 15 deg: 0.90) is calibrated back (the charge
+    a nuisance parameter): within 0.005 (measured 0.0003 over seeds 0-2: the ~0.08 s after the first impact
+    carry it, 0.05 mm noise), and the misfit at the optimum is the noise (0.05 mm)."""
+    path, _ = write_shot(tmp_path, restitution=0.80)
+    s = as_fired(load_scenario(path), calibrate=["restitution"]).summary
+    c = s["calibration"]
+    assert c["restitution"] == pytest.approx(0.80, abs=0.005)
+    assert 0 < c["restitution_ci95"] < 0.005
+    assert c["misfit_rms_m"] == pytest.approx(5e-5, rel=0.2)
+    assert c["charge_factor"] * s["refit_charge_tnt_kg"] == pytest.approx(FACTOR * s["designed_charge_tnt_kg"], rel=0.01)
+    assert c["prototype_outcome"] == "stands" and c["prototype_max_rotation_rad"] > 0
+
+
+def test_calibrate_refuses_what_it_cannot_do():
+    from blastscale._validate import BlastscaleInputError
+    from blastscale.fired.calibrate import check_calibrate
+
+    assert check_calibrate(["restitution", ""]) == ("restitution",)
+    with pytest.raises(BlastscaleInputError, match="calibrate = 'stiffness' is not known"):
+        check_calibrate(["stiffness"])
+    with pytest.raises(BlastscaleInputError, match="calibrate = 'friction' is not available yet"):
+        check_calibrate(["friction"])
