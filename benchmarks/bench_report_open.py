@@ -7,6 +7,10 @@ Two figures per run, each from a fresh browser profile, in Chromium with softwar
   once), the time until the view is drawn and its frames added (plotly's plot holds its frames), polled every
   20 ms through the DevTools protocol.
 
+With ``psutil`` installed, also the CPU seconds Chromium's processes spent from the navigation to each of these
+moments (``load_cpu_s``, ``view_cpu_s``): what the opening costs whatever else the machine is doing (its wall time
+on an idle machine is about that CPU time spread over the cores Chromium can use).
+
 Usage: ``python benchmarks/bench_report_open.py results/default/report.html [--repeat 3]``; prints JSON with the
 file's size [MB], each run's times [s] and the load average. Needs Chromium and the ``websockets`` package.
 """
@@ -46,7 +50,24 @@ LOADED = (
 )
 
 
-async def _measure(ws_url: str, url: str, wait_view: bool, timeout: float = 60.0) -> float:
+def _cpu_seconds(pid: int) -> float:
+    """User + system CPU seconds of process ``pid`` and its living descendants (NaN without psutil)."""
+    try:
+        import psutil
+    except ImportError:
+        return float("nan")
+    root = psutil.Process(pid)
+    total = 0.0
+    for p in [root, *root.children(recursive=True)]:
+        try:
+            t = p.cpu_times()
+            total += t.user + t.system
+        except psutil.Error:
+            pass
+    return total
+
+
+async def _measure(ws_url: str, url: str, wait_view: bool, cpu, timeout: float = 60.0) -> tuple:
     import websockets
 
     async with websockets.connect(ws_url, max_size=None) as ws:
@@ -65,22 +86,24 @@ async def _measure(ws_url: str, url: str, wait_view: bool, timeout: float = 60.0
             return r.get("result", {}).get("value")
 
         await call("Page.enable")
+        cpu0 = cpu()
         await call("Page.navigate", url=url)
         t_end = time.monotonic() + timeout
         while time.monotonic() < t_end:
             if wait_view:
                 if await value(DRAWN):
-                    return float(await value("performance.now()")) / 1000.0
+                    return float(await value("performance.now()")) / 1000.0, cpu() - cpu0
             else:
                 ms = await value(LOADED)
                 if ms:
-                    return float(ms) / 1000.0
+                    return float(ms) / 1000.0, cpu() - cpu0
             await asyncio.sleep(0.02)
         raise TimeoutError(url)
 
 
-def open_time(report: Path, wait_view: bool, port: int = 9333) -> float:
-    """One measurement in a fresh Chromium: the load event [s], or with ``wait_view`` the view drawn [s]."""
+def open_time(report: Path, wait_view: bool, port: int = 9333) -> tuple:
+    """One measurement in a fresh Chromium: the load event [s], or with ``wait_view`` the view drawn [s], and
+    Chromium's CPU seconds until then [s]."""
     chromium = next(shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n))
     with tempfile.TemporaryDirectory() as profile:
         proc = subprocess.Popen(
@@ -98,7 +121,7 @@ def open_time(report: Path, wait_view: bool, port: int = 9333) -> float:
                 except (OSError, StopIteration, ValueError):
                     time.sleep(0.05)
             url = report.resolve().as_uri() + ("#frame=0" if wait_view else "")
-            return asyncio.run(_measure(page["webSocketDebuggerUrl"], url, wait_view))
+            return asyncio.run(_measure(page["webSocketDebuggerUrl"], url, wait_view, lambda: _cpu_seconds(proc.pid)))
         finally:
             proc.terminate()
             proc.wait(timeout=30)
@@ -109,16 +132,12 @@ def main(argv=None) -> dict:
     ap.add_argument("report", type=Path)
     ap.add_argument("--repeat", type=int, default=3)
     a = ap.parse_args(argv)
-    out = {
-        "report": str(a.report),
-        "size_MB": a.report.stat().st_size / 1e6,
-        "load_s": [],
-        "view_s": [],
-        "load_average_before": os.getloadavg()[0],
-    }
+    out = {"report": str(a.report), "size_MB": a.report.stat().st_size / 1e6, "load_average_before": os.getloadavg()[0]}
     for _ in range(a.repeat):
-        out["load_s"].append(round(open_time(a.report, False), 3))
-        out["view_s"].append(round(open_time(a.report, True), 3))
+        for key, wait_view in (("load", False), ("view", True)):
+            wall, cpu = open_time(a.report, wait_view)
+            out.setdefault(f"{key}_s", []).append(round(wall, 3))
+            out.setdefault(f"{key}_cpu_s", []).append(round(cpu, 3))
     out["load_average_after"] = os.getloadavg()[0]
     print(json.dumps(out, indent=1))
     return out
