@@ -30,7 +30,7 @@ def reproduce(capsys, out, *extra):
 def test_items_cover_every_scenario_and_gallery_script():
     names = {it.name for it in items()}
     paper = [n for n in library_names() if n.startswith("paper_")]
-    assert len(paper) == 10 and {"planar_block", "portal_lambda20"} <= set(library_names())  # package data
+    assert len(paper) == 10 and {"planar_block", "portal_lambda20", "arch_lambda20"} <= set(library_names())  # package data
     for name in paper:
         assert f"scenario-{name.replace('_', '-')}" in names
     assert gallery_folder() == EXAMPLES and skipped() == []  # a source checkout finds its gallery

@@ -45,7 +45,7 @@ VARIABLES = {
     "body_quaternion": (("time", "body", "quaternion"), "1", "dimensionless",
                         "orientation of the body frame, unit quaternion (w, x, y, z), body to world"),
     "body_vertices": (("body", "vertex", "component"), "m", "length",
-                      "vertices of the body's surface in its frame (NaN past its own count)"),
+                      "vertices of the body's solid in its frame (NaN past its own count)"),
     "body_faces": (("body", "face", "corner"), "1", "count",
                    "outward triangles of the body's surface, indices into body_vertices (-1 past its own count)"),
     "point_body": (("point",), "1", "count", "index of the body carrying the monitoring point"),
