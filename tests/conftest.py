@@ -31,3 +31,21 @@ def pytest_collection_modifyitems(config, items):
         for tier in _TIERS:
             if tier in parts:
                 item.add_marker(getattr(pytest.mark, tier))
+
+
+# -- patching a function where it is used ---------------------------------------------------------------
+@pytest.fixture
+def patch_everywhere(monkeypatch):
+    """``patch(module, name, new)``: ``monkeypatch.setattr(module, name, new)``, and the same in every loaded
+    blastscale module that holds the original under that name (``from .x import name`` at a module's top binds
+    it when that module is imported, so patching ``x`` alone would not reach it). Undone after the test."""
+    import sys
+
+    def patch(module, name, new):
+        original = getattr(module, name)
+        monkeypatch.setattr(module, name, new)
+        for mod_name, mod in list(sys.modules.items()):
+            if mod_name.startswith("blastscale") and mod is not module and getattr(mod, name, None) is original:
+                monkeypatch.setattr(mod, name, new)
+
+    return patch

@@ -47,7 +47,7 @@ def test_planar_results_equal_the_direct_comparison_with_every_choice_passed_thr
     assert r.response3d is None and r.critical is None
 
 
-def test_the_design_runs_once(monkeypatch):
+def test_the_design_runs_once(patch_everywhere):
     import blastscale.similitude as sim
 
     calls = []
@@ -57,7 +57,7 @@ def test_the_design_runs_once(monkeypatch):
         calls.append(1)
         return real(*a, **k)
 
-    monkeypatch.setattr(sim, "design_model", counting)
+    patch_everywhere(sim, "design_model", counting)
     Study(Scenario.default().with_values({"duration_s": 0.1})).run()
     assert len(calls) == 1
 

@@ -231,7 +231,7 @@ def test_column_plots_reject_unknown_names(short_comparison):
         plot_column_snapshots(c.structure, c.prototype_dataset, n=0)
 
 
-def test_run_system_passes_extrapolate_to_the_load(monkeypatch):
+def test_run_system_passes_extrapolate_to_the_load(patch_everywhere):
     """compare_structure3d / run_system hand ``extrapolate`` to make_load (E10's scenarios
     with blast.extrapolate = true); the load built is then used as is."""
     import blastscale.sim3d.load_methods as loads
@@ -246,7 +246,7 @@ def test_run_system_passes_extrapolate_to_the_load(monkeypatch):
         seen.append(kw.get("extrapolate"))
         return real(*args, **kw)
 
-    monkeypatch.setattr(loads, "make_load", spy)
+    patch_everywhere(loads, "make_load", spy)
     col = MultiDrumColumn(drums=2, height=2.0, top_width=1.6)
     for flag in (False, True):
         _, r, load_s, _ = run_system(col, design_model(250.0, 10.0, 1 / 100), "model", duration=0.01,

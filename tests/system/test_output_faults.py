@@ -151,7 +151,7 @@ def test_a_read_only_folder_is_one_line(capsys, tmp_path, planar, writer, monkey
 
 
 @pytest.mark.parametrize("writer", ["run", "sweep"])
-def test_a_full_disk_is_one_line_and_leaves_nothing(capsys, tmp_path, planar, writer, monkeypatch):
+def test_a_full_disk_is_one_line_and_leaves_nothing(capsys, tmp_path, planar, writer, monkeypatch, patch_everywhere):
     """ENOSPC in the middle of writing (the histories of a run; a chunk of a sweep): one line, no partial folder,
     no temporary file."""
     import blastscale.io.histories as hist
@@ -160,7 +160,7 @@ def test_a_full_disk_is_one_line_and_leaves_nothing(capsys, tmp_path, planar, wr
     def full(*a, **k):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
     if writer == "run":
-        monkeypatch.setattr(hist, "write_netcdf", lambda tree, path, **k: (Path(path).write_bytes(b"x" * 10), full()))
+        patch_everywhere(hist, "write_netcdf", lambda tree, path, **k: (Path(path).write_bytes(b"x" * 10), full()))
     else:
         monkeypatch.setattr(np, "savez", lambda fh, **k: (fh.write(b"x" * 10), full()))
     out = tmp_path / "out"
