@@ -3,7 +3,8 @@
 The design carries the specimen system (structure, density, gravity, duration, contact, each scaled once);
 :func:`specimen_scenario` writes it as a prototype-only scenario (no ``[scale]``: the specimen *is* the
 system simulated) under a charge and stand-off of the caller's, and :func:`simulate_specimen` runs it
-through :class:`~blastscale.study.Study`, the one door. The designed load (the design's specimen charge and
+through :class:`~blastscale.study.Study`, the one door, with the design's specimen structure itself (every
+kind, a block-model file's ``assembly`` included: nothing is rebuilt from the table). The designed load (the design's specimen charge and
 stand-off) gives the prediction (``predicted_*``); the effective charge at the measured stand-off gives the
 refit (``refit_*``). Both follow the same path, so that they differ only by the load.
 """
@@ -11,6 +12,7 @@ refit (``refit_*``). Both follow the same path, so that they differ only by the 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -35,13 +37,13 @@ def specimen_scenario(scenario: Scenario, design, charge_kg: float, standoff_m: 
 
     Every length of the structure table (keys ``*_m``) x lambda, its density x gamma; gravity x varsigma;
     duration, time step and contact times x lambda_t, contact widths x lambda; the specimen's burst. An
-    ``assembly`` (a block-model file) cannot be rewritten this way (one line)."""
+    ``assembly`` keeps its file (an absolute path, prototype units): the table then names the prototype's
+    geometry, and the structure simulated is the design's specimen (:func:`simulate_specimen`)."""
     f = design.factors
     data = scenario.to_dict()
     st = dict(data["structure"])
     if st.get("kind") == "assembly":
-        raise BlastscaleInputError("structure.kind = 'assembly': the re-simulation of a block-model file is not "
-                                   "available yet (valid: block, column, wall, arch, portal)")
+        st["file"] = str(Path(st["file"]).resolve())
     for k, v in list(st.items()):
         if k.endswith("_m") and isinstance(v, (int, float)) and not isinstance(v, bool):
             st[k] = float(v) * f.length
@@ -106,7 +108,8 @@ class SpecimenRun:
 def simulate_specimen(scenario: Scenario, design, charge_kg: float, standoff_m: float,
                       engine: str | None = None) -> SpecimenRun:
     """The specimen under ``charge_kg`` [kg TNT] at ``standoff_m`` [m], through the Study."""
-    r = Study(specimen_scenario(scenario, design, charge_kg, standoff_m, engine)).run()
+    sc = specimen_scenario(scenario, design, charge_kg, standoff_m, engine)
+    r = Study(sc, structure=design.specimen_structure).run()
     return SpecimenRun(float(charge_kg), float(standoff_m), float(r.blast.arrival_time), r)
 
 
