@@ -195,7 +195,7 @@ def test_column_in_3d_end_to_end(tmp_path):
     assert m["first_peak_m"] == pytest.approx(truth["first_peak_m"], rel=0.02)
     assert m["refit_first_peak_m"] == pytest.approx(m["first_peak_m"], rel=0.05)
     assert m["predicted_first_peak_m"] < 0.90 * m["first_peak_m"]
-    assert m["outcome_refit"] == m["outcome_predicted"] == "stands" and m["outcome_measured"] is None
+    assert m["outcome_refit"] == m["outcome_predicted"] == m["outcome_measured"] == "stands"  # by its top drum
     assert s["prototype_markers"]["top"]["first_peak_m"] == pytest.approx(10.0 * m["first_peak_m"], rel=1e-12)
 
 

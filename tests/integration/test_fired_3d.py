@@ -55,7 +55,12 @@ tracks = "tracks.csv"
 position_m = [{gx}, 0.0, 0.05]
 [fired.marker.top]
 point_m = [0.0, 0.0, 0.3]
+[fired.marker.face]
+point_m = [-0.03, 0.0, 0.2]
 """
+
+#: The markers' rest points [m] (both on the upper block: its turn is seen).
+MARKERS = {"top": (0.0, 0.0, 0.3), "face": (-0.03, 0.0, 0.2)}
 
 
 def write_assembly_shot(folder, duration=1.0, factor=FACTOR):
@@ -70,15 +75,19 @@ def write_assembly_shot(folder, duration=1.0, factor=FACTOR):
     t, p, _ = synthetic_trace(1, W, float(np.hypot(R, 0.05)), rate_hz=4e6, pre_s=1e-3)
     np.savetxt(folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",",
                header="time_us,g1_kPa", comments="")
-    truth = marker_history(simulate_specimen(base, d, W, R, "3d"), (0.0, 0.0, 0.3))
-    frames = np.arange(-0.01, truth["t"][-1], 1.0 / FPS)
+    run = simulate_specimen(base, d, W, R, "3d")
+    truth = {n: marker_history(run, p) for n, p in MARKERS.items()}
+    frames = np.arange(-0.01, truth["top"]["t"][-1], 1.0 / FPS)
     rng = np.random.default_rng(1)
-    x = np.interp(frames, truth["t"], truth["ux"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    z = 0.3 + np.interp(frames, truth["t"], truth["uz"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    np.savetxt(folder / "tracks.csv", np.column_stack([frames * 1e3, x * 1e3, z * 1e3]), delimiter=",",
-               header="time_ms,top_x_mm,top_z_mm", comments="")
+    cols, head = [frames * 1e3], ["time_ms"]
+    for n, p in MARKERS.items():
+        for k, c in ((0, "x"), (2, "z")):
+            u = np.interp(frames, truth[n]["t"], truth[n]["u" + c], left=0.0)
+            cols.append(1e3 * (p[k] + u + 5e-5 * rng.standard_normal(frames.size)))
+            head.append(f"{n}_{c}_mm")
+    np.savetxt(folder / "tracks.csv", np.column_stack(cols), delimiter=",", header=",".join(head), comments="")
     path.write_text(ASSEMBLY.format(gx=d.specimen_structure.front_x, duration=duration))
-    return path, truth
+    return path, {**truth["top"], "collapsed": run.collapsed}
 
 
 def test_assembly_file_end_to_end(tmp_path):
@@ -100,3 +109,17 @@ def test_assembly_file_end_to_end(tmp_path):
     assert m["refit_first_peak_m"] == pytest.approx(m["first_peak_m"], rel=0.05)
     assert m["predicted_first_peak_m"] < 0.90 * m["first_peak_m"]
     assert s["prototype_markers"]["top"]["first_peak_m"] == pytest.approx(10.0 * m["first_peak_m"], rel=1e-12)
+    assert not truth["collapsed"] and s["outcome_measured"] == m["outcome_measured"] == "stands"
+
+
+def test_assembly_that_collapses_is_judged_collapsed_from_its_markers(tmp_path):
+    """Eight times the designed charge knocks the stack down (the engine's fall rule: both blocks fell): the
+    two markers on the upper block see it turn past 45 deg (by 91 deg) and its centre of mass drop by 0.195 m
+    (more than half its 0.15 m height), so the measured outcome is "collapsed" by the same rule, as is the
+    refit's; the designed load's prediction stands."""
+    path, truth = write_assembly_shot(tmp_path, factor=8.0)
+    s = as_fired(load_scenario(path)).summary
+    assert truth["collapsed"]
+    assert s["outcome_measured"] == s["markers"]["face"]["outcome_measured"] == "collapsed"
+    assert s["outcome_refit"] == "collapsed" and s["outcome_predicted"] == "stands"
+    assert "the monument would collapse" in s["verdict"]

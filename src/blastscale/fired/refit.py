@@ -20,6 +20,7 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..study import Study
+from .outcome import pose_marker_history
 from .tracks import block_marker_displacement, first_peak
 
 __all__ = ["OUTCOMES", "SpecimenRun", "marker_history", "simulate_specimen", "specimen_scenario"]
@@ -118,10 +119,10 @@ def marker_history(run: SpecimenRun, point_m) -> dict:
     ``first_peak_m``, ``first_peak_time_s``, ``max_displacement_m``.
 
     Planar (a block): the marker's displacement at the solver's first peak angle (an event of the solver, not
-    a sample). 3D (any kind): the marker rides on the body whose rest centre of mass is nearest to it, moved
-    with that body's centre-of-mass displacement and turned by its rocking angle about +y (the blast's plane;
-    ``rotation_y``, positive top towards +x); the first peak by :func:`~.tracks.first_peak` on the recorded
-    history (unsmoothed)."""
+    a sample). 3D (any kind): the marker's point fixed on the body whose rest centre of mass is nearest to it,
+    moved by that body's recorded pose (position and orientation: translation, rocking and the turn out of the
+    blast's plane; :func:`~.outcome.pose_marker_history`); the first peak by :func:`~.tracks.first_peak` on the
+    recorded history (unsmoothed)."""
     r = run.rocking
     x0, z0 = float(point_m[0]), float(point_m[2])
     if r is None:
@@ -143,14 +144,7 @@ def _marker_history_3d(run: SpecimenRun, point: np.ndarray) -> dict:
     if resp is None:
         raise BlastscaleInputError("the re-simulation ran no engine with marker histories (planar or 3d)")
     ds = resp.prototype.dataset
-    bodies = run.result.structure.bodies
-    k = int(np.argmin([np.linalg.norm(np.asarray(b.com) - point) for b in bodies]))
-    rel = point - np.asarray(bodies[k].com)
-    d = np.asarray(ds["com_displacement"].values)[:, k, :]
-    th = np.asarray(ds["rotation_y"].values)[:, k]
-    c, s = np.cos(th) - 1.0, np.sin(th)
-    ux = d[:, 0] + rel[0] * c + rel[2] * s
-    uz = d[:, 2] - rel[0] * s + rel[2] * c
+    ux, uz = pose_marker_history(ds, run.result.structure, point)
     t = np.asarray(ds["time"].values) + run.arrival_time_s
     largest = float(np.max(np.abs(ux)))
     pk = first_peak(t, ux, noise=1e-3 * largest, smooth=False)
