@@ -220,5 +220,4 @@ def test_calibrate_refuses_what_it_cannot_do():
     assert check_calibrate(["restitution", ""]) == ("restitution",)
     with pytest.raises(BlastscaleInputError, match="calibrate = 'stiffness' is not known"):
         check_calibrate(["stiffness"])
-    with pytest.raises(BlastscaleInputError, match="calibrate = 'friction' is not available yet"):
-        check_calibrate(["friction"])
+    assert check_calibrate(["friction"]) == ("friction",)

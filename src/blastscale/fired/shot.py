@@ -27,7 +27,12 @@ from ..blast.explosives import get_explosive
 from ..scenario import Scenario
 from ..structures.from_spec import is_block
 from ..study import Study
-from .calibrate import calibrate_restitution, check_calibrate
+from .calibrate import (
+    calibrate_friction,
+    calibrate_restitution,
+    check_applies,
+    check_calibrate,
+)
 from .effective import effective_charge, predicted_at, tnt_equivalence
 from .gauges import fit_gauge
 from .outcome import body_verdicts, marker_body
@@ -149,7 +154,8 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
     """The shot as fired (module docstring): ``scenario`` with its ``[fired]`` table (records read from its
     paths unless given as ``gauges`` / ``tracks``); ``engine``: the re-simulation's engine (default "planar"
     for a block, "3d" for every other kind); ``calibrate``: parameters to calibrate against the tracks
-    (:mod:`.calibrate`: ``"restitution"``), in the summary's ``calibration``.
+    (:mod:`.calibrate`: ``"restitution"`` for a block, ``"friction"`` for every other kind), in the summary's
+    ``calibration``.
 
     Raises
     ------
@@ -163,6 +169,7 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
         raise BlastscaleInputError("fired needs a designed specimen: the scenario has no [scale] table or no charge")
     calibrate = check_calibrate(calibrate)
     d = Study(scenario).check().design
+    check_applies(calibrate, d, scenario.structure.kind)
     if engine is None:  # blocks rock in the plane (fast, the solver's peak events); every other kind in 3D
         engine = "planar" if is_block(d.specimen_structure) else "3d"
     standoff = float(fs.standoff_m if fs.standoff_m is not None else d.specimen.standoff_m)
@@ -231,9 +238,11 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
         "outcome_predicted": OUTCOMES[predicted.collapsed], "outcome_refit": OUTCOMES[refit.collapsed],
     }
     summary["calibration"] = None
+    meas = {n: (fs.marker[n].point_m, m["measured"]["t"], m["measured"]["ux"]) for n, m in markers.items()}
     if "restitution" in calibrate:
-        meas = {n: (fs.marker[n].point_m, m["measured"]["t"], m["measured"]["ux"]) for n, m in markers.items()}
         summary["calibration"] = calibrate_restitution(scenario, d, meas, w_refit, standoff)
+    if "friction" in calibrate:
+        summary["calibration"] = calibrate_friction(scenario, d, meas, w_refit, standoff)
     summary["verdict"] = verdict(summary)
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
 
