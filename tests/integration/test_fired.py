@@ -87,7 +87,8 @@ def write_shot(folder, factor=FACTOR, seed=0, restitution=None):
     th0 = float(res.peak_angles[0])
     true_peak = block.b * (1 - np.cos(th0)) + 0.5 * np.sin(th0)  # the top centre, about the rear toe
     sc_path = folder / "shot.toml"
-    sc_path.write_text(SCENARIO.format(charge=W / 1.19, gx=block.front_x))  # C-4 for the impulse (UFC Table 2-1)
+    init = base.lab.initiator_tnt_kg  # the lab's initiator (RP-80 by default: 0.22 g TNT) is part of W
+    sc_path.write_text(SCENARIO.format(charge=(W - init) / 1.19, gx=block.front_x))  # C-4, impulse (UFC Table 2-1)
     return sc_path, {"first_peak_m": true_peak, "first_peak_time_s": float(res.peak_times[0]) + bp.arrival_time,
                          "charge_tnt_kg": W, "designed_tnt_kg": d.specimen_charge_kg}
 
