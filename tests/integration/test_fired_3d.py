@@ -148,7 +148,7 @@ point_m = [-0.03, 0.0, 0.025]
 """
 
 
-def test_calibrated_friction_is_the_tracks(tmp_path):
+def test_calibrated_friction_is_the_tracks(tmp_path, capsys):
     """``--calibrate friction``: a 0.6 x 1.0 x 0.5 m prototype slab (b/h = 0.6 > mu: it slides, 39 mm at 1/10 with
     mu = 0.4, 22 mm with 0.7) tracked with mu = 0.4 and 0.05 mm noise is calibrated back from the scenario's
     0.7: within 0.01 (the sliding distance goes as ~1/mu, 0.05 mm of noise on ~600 frames), its 95 % interval
@@ -183,6 +183,12 @@ def test_calibrated_friction_is_the_tracks(tmp_path):
     assert c["prototype_outcome"] == "stands"
     assert c["prototype_first_peak_m"]["front"] == pytest.approx(10.0 * s["markers"]["front"]["max_displacement_m"],
                                                                  rel=0.03)
+    from blastscale.cli.fired import _print
+    from blastscale.report.fired import _calibration
+
+    _print(s)  # the table's friction rows
+    assert "calibrated friction (95 %)" in capsys.readouterr().out
+    assert "prototype_first_peak_m (front)" in _calibration(c)
     block = Study(Scenario.default()).check().design
     with pytest.raises(BlastscaleInputError, match="calibrate = 'friction' does not apply to a block"):
         calibrate_friction(None, block, {"m": None}, 1.0, 1.0)
