@@ -1,4 +1,4 @@
-"""Calibration when asked: the contact parameters that best match the measured rocking (issue #25 item 7).
+"""Calibration when asked: the contact parameters that best match the measured response (issue #25 item 7).
 
 ``restitution`` (planar blocks): the coefficient e of the planar rocking model (Housner 1963: the angular
 velocity x e at each impact) that, with a factor on the charge as fired (a nuisance parameter: the effective
@@ -58,7 +58,8 @@ FRICTION_STEP = 0.01
 
 
 def check_calibrate(names) -> tuple:
-    """The parameters to calibrate, checked: one line for an unknown name or one not available yet."""
+    """The parameters to calibrate, checked: one line for an unknown name (whether one applies to the
+    structure: :func:`check_applies`)."""
     out = tuple(n.strip() for n in names if n.strip())
     for n in out:
         if n not in CALIBRATIONS:
