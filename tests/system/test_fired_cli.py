@@ -107,3 +107,13 @@ def test_interrupted_write_leaves_nothing(monkeypatch, tmp_path):
         main(["fired", str(sc), "--out", str(tmp_path / "res")])
     assert len(calls) == 2
     assert sorted(p.name for p in tmp_path.iterdir()) == ["gauges.csv", "shot.toml", "tracks.csv"]
+
+
+def test_calibrate_friction_on_a_block_is_one_line_exit_2_nothing_written(capsys, tmp_path):
+    """The example shot is a block: friction does not enter its planar model; refused before any simulation."""
+    sc = _copy(tmp_path)
+    out = tmp_path / "res"
+    code, _stdout, err = cli(capsys, "fired", str(sc), "--calibrate", "friction", "--out", str(out))
+    lines = [ln for ln in err.strip().splitlines() if ln]
+    assert code == 2 and len(lines) == 1 and "calibrate = 'friction' does not apply to a block" in lines[0], err
+    assert not out.exists()

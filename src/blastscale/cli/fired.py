@@ -52,10 +52,13 @@ def _print(s: dict) -> None:
         rows.append((f"monument {name}: first peak (5-95 %)", (f"{fmt_value(p['first_peak_m'], '.4g')} ("
                      f"{fmt_value(p['first_peak_p05_m'], '.3g')}-{fmt_value(p['first_peak_p95_m'], '.3g')})"), "m"))
     c = s.get("calibration")
-    if c is not None:
+    if c is not None and "restitution" in c:
         rows += [("calibrated restitution (95 %)", f"{c['restitution']:.4g} +- {c['restitution_ci95']:.2g}", "-"),
                  ("prototype with it: max rotation, outcome", (f"{fmt_value(c['prototype_max_rotation_rad'])}, "
                   f"{c['prototype_outcome']}"), "rad")]
+    if c is not None and "friction" in c:
+        rows += [("calibrated friction (95 %)", f"{c['friction']:.4g} +- {c['friction_ci95']:.2g}", "-"),
+                 ("prototype with it: outcome", c["prototype_outcome"], "")]
     console.print(table("The shot as fired", rows))
 
 
@@ -83,8 +86,8 @@ def fired_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print the as_fired summary as one JSON object."),
     force: bool = typer.Option(False, "--force", help="Replace an existing result folder."),
     calibrate: str = typer.Option("", "--calibrate", show_default=False,
-                                  help="Contact parameters to fit to the measured rocking, comma-separated: "
-                                       "restitution (a block)."),
+                                  help="Contact parameters to fit to the measured response, comma-separated: "
+                                       "restitution (a block), friction (every other kind, 3D)."),
 ) -> None:
     """After the shot: the load the specimen got, measured vs predicted vs re-simulated, and what the monument
     would do."""

@@ -3,7 +3,8 @@
 The design carries the specimen system (structure, density, gravity, duration, contact, each scaled once);
 :func:`specimen_scenario` writes it as a prototype-only scenario (no ``[scale]``: the specimen *is* the
 system simulated) under a charge and stand-off of the caller's, and :func:`simulate_specimen` runs it
-through :class:`~blastscale.study.Study`, the one door. The designed load (the design's specimen charge and
+through :class:`~blastscale.study.Study`, the one door, with the design's specimen structure itself (every
+kind, a block-model file's ``assembly`` included: nothing is rebuilt from the table). The designed load (the design's specimen charge and
 stand-off) gives the prediction (``predicted_*``); the effective charge at the measured stand-off gives the
 refit (``refit_*``). Both follow the same path, so that they differ only by the load.
 """
@@ -11,6 +12,7 @@ refit (``refit_*``). Both follow the same path, so that they differ only by the 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -18,6 +20,7 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..study import Study
+from .outcome import pose_marker_history
 from .tracks import block_marker_displacement, first_peak
 
 __all__ = ["OUTCOMES", "SpecimenRun", "marker_history", "simulate_specimen", "specimen_scenario"]
@@ -35,13 +38,13 @@ def specimen_scenario(scenario: Scenario, design, charge_kg: float, standoff_m: 
 
     Every length of the structure table (keys ``*_m``) x lambda, its density x gamma; gravity x varsigma;
     duration, time step and contact times x lambda_t, contact widths x lambda; the specimen's burst. An
-    ``assembly`` (a block-model file) cannot be rewritten this way (one line)."""
+    ``assembly`` keeps its file (an absolute path, prototype units): the table then names the prototype's
+    geometry, and the structure simulated is the design's specimen (:func:`simulate_specimen`)."""
     f = design.factors
     data = scenario.to_dict()
     st = dict(data["structure"])
     if st.get("kind") == "assembly":
-        raise BlastscaleInputError("structure.kind = 'assembly': the re-simulation of a block-model file is not "
-                                   "available yet (valid: block, column, wall, arch, portal)")
+        st["file"] = str(Path(st["file"]).resolve())
     for k, v in list(st.items()):
         if k.endswith("_m") and isinstance(v, (int, float)) and not isinstance(v, bool):
             st[k] = float(v) * f.length
@@ -106,7 +109,8 @@ class SpecimenRun:
 def simulate_specimen(scenario: Scenario, design, charge_kg: float, standoff_m: float,
                       engine: str | None = None) -> SpecimenRun:
     """The specimen under ``charge_kg`` [kg TNT] at ``standoff_m`` [m], through the Study."""
-    r = Study(specimen_scenario(scenario, design, charge_kg, standoff_m, engine)).run()
+    sc = specimen_scenario(scenario, design, charge_kg, standoff_m, engine)
+    r = Study(sc, structure=design.specimen_structure).run()
     return SpecimenRun(float(charge_kg), float(standoff_m), float(r.blast.arrival_time), r)
 
 
@@ -115,10 +119,10 @@ def marker_history(run: SpecimenRun, point_m) -> dict:
     ``first_peak_m``, ``first_peak_time_s``, ``max_displacement_m``.
 
     Planar (a block): the marker's displacement at the solver's first peak angle (an event of the solver, not
-    a sample). 3D (any kind): the marker rides on the body whose rest centre of mass is nearest to it, moved
-    with that body's centre-of-mass displacement and turned by its rocking angle about +y (the blast's plane;
-    ``rotation_y``, positive top towards +x); the first peak by :func:`~.tracks.first_peak` on the recorded
-    history (unsmoothed)."""
+    a sample). 3D (any kind): the marker's point fixed on the body whose rest centre of mass is nearest to it,
+    moved by that body's recorded pose (position and orientation: translation, rocking and the turn out of the
+    blast's plane; :func:`~.outcome.pose_marker_history`); the first peak by :func:`~.tracks.first_peak` on the
+    recorded history (unsmoothed)."""
     r = run.rocking
     x0, z0 = float(point_m[0]), float(point_m[2])
     if r is None:
@@ -140,14 +144,7 @@ def _marker_history_3d(run: SpecimenRun, point: np.ndarray) -> dict:
     if resp is None:
         raise BlastscaleInputError("the re-simulation ran no engine with marker histories (planar or 3d)")
     ds = resp.prototype.dataset
-    bodies = run.result.structure.bodies
-    k = int(np.argmin([np.linalg.norm(np.asarray(b.com) - point) for b in bodies]))
-    rel = point - np.asarray(bodies[k].com)
-    d = np.asarray(ds["com_displacement"].values)[:, k, :]
-    th = np.asarray(ds["rotation_y"].values)[:, k]
-    c, s = np.cos(th) - 1.0, np.sin(th)
-    ux = d[:, 0] + rel[0] * c + rel[2] * s
-    uz = d[:, 2] - rel[0] * s + rel[2] * c
+    ux, uz = pose_marker_history(ds, run.result.structure, point)
     t = np.asarray(ds["time"].values) + run.arrival_time_s
     largest = float(np.max(np.abs(ux)))
     pk = first_peak(t, ux, noise=1e-3 * largest, smooth=False)

@@ -27,9 +27,15 @@ from ..blast.explosives import get_explosive
 from ..scenario import Scenario
 from ..structures.from_spec import is_block
 from ..study import Study
-from .calibrate import calibrate_restitution, check_calibrate
+from .calibrate import (
+    calibrate_friction,
+    calibrate_restitution,
+    check_applies,
+    check_calibrate,
+)
 from .effective import effective_charge, predicted_at, tnt_equivalence
 from .gauges import fit_gauge
+from .outcome import body_verdicts, marker_body
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks, record_fault
 from .refit import OUTCOMES, SpecimenRun, marker_history, simulate_specimen
 from .tracks import block_rotation, first_peak
@@ -115,18 +121,28 @@ def _load_sigma(sc: Scenario, gauges: dict) -> float:
     return math.hypot(tol, 0.10)
 
 
-def _measured_marker(sc, d, name: str, rec: TrackRecord) -> dict:
-    spec = sc.fired.marker[name]
-    pos = rec.position_m[name]
-    ux = pos["x"] - spec.point_m[0]
-    uz = pos["z"] - spec.point_m[2] if "z" in pos else None
-    pk = first_peak(rec.time_s, ux)
+def _measured_markers(sc, d, rec: TrackRecord) -> dict:
+    """Each marker's measured displacement, first peak and outcome: a block's by the planar tipping rule from
+    the marker alone; every other kind's by the 3D rule for its kind on the body that carries the marker
+    (:func:`~.outcome.body_verdicts`: two markers on one body give its turn)."""
     structure = d.specimen_structure
-    outcome = None
-    if is_block(structure):
-        th = block_rotation(ux, uz, spec.point_m[0], spec.point_m[2], structure.b)
-        outcome = OUTCOMES[bool(np.max(np.abs(th)) >= structure.alpha)]
-    return {"t": rec.time_s, "ux": ux, "uz": uz, "peak": pk, "outcome": outcome}
+    out = {}
+    for name, pos in rec.position_m.items():
+        spec = sc.fired.marker[name]
+        ux = pos["x"] - spec.point_m[0]
+        uz = pos["z"] - spec.point_m[2] if "z" in pos else None
+        outcome = None
+        if is_block(structure):
+            th = block_rotation(ux, uz, spec.point_m[0], spec.point_m[2], structure.b)
+            outcome = OUTCOMES[bool(np.max(np.abs(th)) >= structure.alpha)]
+        out[name] = {"t": rec.time_s, "ux": ux, "uz": uz, "peak": first_peak(rec.time_s, ux), "outcome": outcome}
+    if not is_block(structure):
+        verdicts = body_verdicts(structure, {n: (sc.fired.marker[n].point_m, m["ux"], m["uz"]) for n, m in out.items()})
+        for n, m in out.items():
+            v = verdicts.get(marker_body(structure, sc.fired.marker[n].point_m))
+            if v is not None and m["uz"] is not None:
+                m["outcome"] = OUTCOMES[v["fell"]]
+    return out
 
 
 def _ratio(a, b) -> float | None:
@@ -138,7 +154,8 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
     """The shot as fired (module docstring): ``scenario`` with its ``[fired]`` table (records read from its
     paths unless given as ``gauges`` / ``tracks``); ``engine``: the re-simulation's engine (default "planar"
     for a block, "3d" for every other kind); ``calibrate``: parameters to calibrate against the tracks
-    (:mod:`.calibrate`: ``"restitution"``), in the summary's ``calibration``.
+    (:mod:`.calibrate`: ``"restitution"`` for a block, ``"friction"`` for every other kind), in the summary's
+    ``calibration``.
 
     Raises
     ------
@@ -152,6 +169,7 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
         raise BlastscaleInputError("fired needs a designed specimen: the scenario has no [scale] table or no charge")
     calibrate = check_calibrate(calibrate)
     d = Study(scenario).check().design
+    check_applies(calibrate, d, scenario.structure.kind)
     if engine is None:  # blocks rock in the plane (fast, the solver's peak events); every other kind in 3D
         engine = "planar" if is_block(d.specimen_structure) else "3d"
     standoff = float(fs.standoff_m if fs.standoff_m is not None else d.specimen.standoff_m)
@@ -174,8 +192,8 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
     sig_w = _load_sigma(scenario, gsum)
     sens = None
     markers, msum, proto = {}, {}, {}
-    for name in (trec.position_m if trec is not None else {}):
-        meas = _measured_marker(scenario, d, name, trec)
+    measured = _measured_markers(scenario, d, trec) if trec is not None else {}
+    for name, meas in measured.items():
         pred = marker_history(predicted, fs.marker[name].point_m)
         fit = marker_history(refit, fs.marker[name].point_m)
         pk = meas["peak"]
@@ -220,9 +238,11 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
         "outcome_predicted": OUTCOMES[predicted.collapsed], "outcome_refit": OUTCOMES[refit.collapsed],
     }
     summary["calibration"] = None
+    meas = {n: (fs.marker[n].point_m, m["measured"]["t"], m["measured"]["ux"]) for n, m in markers.items()}
     if "restitution" in calibrate:
-        meas = {n: (fs.marker[n].point_m, m["measured"]["t"], m["measured"]["ux"]) for n, m in markers.items()}
         summary["calibration"] = calibrate_restitution(scenario, d, meas, w_refit, standoff)
+    if "friction" in calibrate:
+        summary["calibration"] = calibrate_friction(scenario, d, meas, w_refit, standoff)
     summary["verdict"] = verdict(summary)
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
 
@@ -256,7 +276,7 @@ def verdict(s: dict) -> str:
         if v["refit_vs_measured"] is not None:
             parts.append(f"the re-simulation under that load agrees within {100 * abs(v['refit_vs_measured']):.2g} %")
         p = s["prototype_markers"].get(name)
-        seen = s["outcome_measured"] or s["outcome_refit"]  # kinds other than blocks: the refit's outcome
+        seen = s["outcome_measured"] or s["outcome_refit"]  # no marker judged (no z column): the refit's outcome
         word = "collapse" if seen == "collapsed" else "stand"
         if p is not None:
             parts.append(f"the monument would {word}, {name} first peak {p['first_peak_m']:.3g} m "

@@ -81,8 +81,10 @@ def fired_section(result, figures) -> str:
 def _calibration(c) -> str:
     if c is None:
         return ""
-    rows = [(k, format_value(v)) for k, v in c.items()]
-    return "<h3>Calibration (the measured rocking)</h3>" + _table(("quantity", "value"), rows)
+    rows = []
+    for k, v in c.items():  # a value per marker (friction's prototype first peaks): one row each
+        rows += [(f"{k} ({n})", format_value(x)) for n, x in v.items()] if isinstance(v, dict) else [(k, format_value(v))]
+    return "<h3>Calibration (the measured response)</h3>" + _table(("quantity", "value"), rows)
 
 
 def write_fired(result, scenario, folder) -> list[str]:

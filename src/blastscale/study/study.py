@@ -87,18 +87,22 @@ class Study:
     ----------
     scenario : Scenario
         The experiment (see :mod:`blastscale.scenario`).
+    structure : structure, optional
+        The structure already built (e.g. a design's specimen, re-simulated after the shot); by default the
+        scenario's ``[structure]`` table builds it. The caller keeps the table in step with it.
     """
 
-    def __init__(self, scenario: Scenario):
+    def __init__(self, scenario: Scenario, *, structure=None):
         if not isinstance(scenario, Scenario):
             raise BlastscaleInputError(f"scenario must be a Scenario, got {type(scenario).__name__}")
         self.scenario = scenario
+        self._structure = structure
         self._checked = None  # the StudyPlan once checked: the structure is built and the design runs once
 
     def structure(self):
-        """The prototype structure, built by the registry entry of its kind
+        """The prototype structure: the one given, or built by the registry entry of its kind
         (:data:`blastscale.structures.STRUCTURE_BUILDERS`)."""
-        return from_spec(self.scenario.structure)
+        return from_spec(self.scenario.structure) if self._structure is None else self._structure
 
     def engines(self, structure) -> tuple[list[Engine], list[str]]:
         """The engines to run and the reasons for those skipped (``engine = "both"``); a single
