@@ -285,7 +285,12 @@ from hypothesis import strategies as st  # noqa: E402
 def test_random_blocks_fast_matches_reference_and_energy_decays(height, alpha_deg, impulse_ratio, duration_ratio):
     """Random blocks and triangular pulses scaled to their own critical impulse (0.2-1.5 x) and
     period (t_d p = 1e-4..0.3): both paths agree on the outcome and within 1e-7 rad (as above),
-    and the energy lost at every impact is the fraction 1 - e^2 (Housner)."""
+    and the energy lost at every impact is the fraction 1 - e^2 (Housner).
+
+    Impulses within 2 % of the critical one are left out: there the block creeps up to its unstable
+    equilibrium, where any difference (the two paths' 1e-10 tolerances) grows like exp(p t), so no fixed
+    bound holds (1.0 x critical, t_d p = 1e-4: the paths differ by 1.3e-7 rad after the first impact)."""
+    assume(abs(impulse_ratio - 1.0) > 0.02)
     blk = RectangularBlock.from_slenderness(height, math.radians(alpha_deg))
     sysm = RockingSystem.from_block(blk)
     p = sysm.frequency_parameter
