@@ -37,6 +37,8 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 from .compare import compare_responses
+from .compare import upscale_dataset
+from .upscale import upscale_summary
 
 __all__ = ["BLOCK_VARIABLES", "COMPARED", "BLOCK_SUMMARY_KEYS", "BLOCK_SIMILARITY_KEYS", "block_dataset",
            "block_similarity", "block_summary", "block_view"]
@@ -204,8 +206,6 @@ def block_view(prototype, block=None, model=None, specimen_block=None, factors=N
         (:func:`~.upscale.upscale_summary`); ``similarity``: :func:`block_similarity` of the
         prototype and the up-scaled specimen (both None without ``model``).
     """
-    from .compare import upscale_dataset
-    from .upscale import upscale_summary
 
     out = {"prototype": block_summary(prototype, block), "model": None, "similarity": None}
     if model is not None:

@@ -27,6 +27,12 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_range
 from ..constants import STANDARD_GRAVITY
+from .compare import _first_peak
+from .compare import align, upscale_dataset
+from .systems import SYSTEMS, run_system
+from .upscale import upscale_summary
+from ..sim3d.results import MOTION_VARIABLES
+from ..sim3d.threads import map_threads
 
 __all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics"]
 
@@ -62,7 +68,6 @@ def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05
         ``collapse_probability``; ``collapse_time_mean``, ``collapse_time_spread`` [s] over the
         collapsed members (nan when none).
     """
-    from .compare import _first_peak
 
     q = np.asarray(members, dtype=float)
     if q.ndim != 3:
@@ -246,11 +251,6 @@ def ensemble_compare(
     EnsembleComparison
         Without a design, ``model`` and ``model_members`` are None.
     """
-    from .compare import align, upscale_dataset
-    from .systems import SYSTEMS, run_system
-    from .upscale import upscale_summary
-    from ..sim3d.results import MOTION_VARIABLES
-    from ..sim3d.threads import map_threads
 
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
         raise BlastscaleInputError(f"n = {n!r} is out of range: must be a whole number >= 2")

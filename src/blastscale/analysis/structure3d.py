@@ -33,6 +33,10 @@ from .compare import align, compare_responses, upscale_dataset
 from .gravity_alone import extended_keys, until_decided
 from .systems import SYSTEMS, run_system
 from .upscale import upscale_summary
+from .block3d_similarity import block_view
+from ..sim3d.load_methods import arrival_spread_similarity
+from ..sim3d.threads import map_threads
+from ..sim3d.face_loads import arrival_spread
 
 __all__ = ["Comparison3D", "Prototype3D", "compare_structure3d", "prototype_structure3d"]
 
@@ -47,7 +51,6 @@ def _block_keys(structure, prototype, model=None, specimen_structure=None, facto
     empty dicts for any other structure."""
     if not is_block(structure):
         return {"prototype": {}, "model": {}, "similarity": {}}
-    from .block3d_similarity import block_view
 
     v = block_view(prototype, structure, model, specimen_structure, factors)
     return {k: v[k] or {} for k in ("prototype", "model", "similarity")}
@@ -272,8 +275,6 @@ def compare_structure3d(
         )
     kw = dict(load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact, duration=dur, record_every=record_every,
               extrapolate=extrapolate, load_model=load_model)
-    from ..sim3d.load_methods import arrival_spread_similarity
-    from ..sim3d.threads import map_threads
 
     p_run, m_run = map_threads(lambda system: run_system(structure, design, system, **kw), SYSTEMS, threads)
     specimen_structure, proto, mod = m_run.structure, p_run.response, m_run.response
@@ -380,7 +381,6 @@ def prototype_structure3d(
     -------
     Prototype3D
     """
-    from ..sim3d.face_loads import arrival_spread
 
     asked = float(check_positive("duration", duration, "s"))
     kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,

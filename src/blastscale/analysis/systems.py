@@ -30,6 +30,10 @@ from typing import NamedTuple
 
 from .._validate import BlastscaleInputError
 from ..constants import STANDARD_GRAVITY
+from ..sim3d.load_methods import make_load
+from ..sim3d.loads import PerturbedLoad
+from ..sim3d.simulate import simulate_structure
+from ..similitude.specimen import specimen_system
 
 __all__ = ["SYSTEMS", "SystemRun", "run_system"]
 
@@ -93,9 +97,6 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
     -------
     SystemRun
     """
-    from ..sim3d.load_methods import make_load
-    from ..sim3d.loads import PerturbedLoad
-    from ..sim3d.simulate import simulate_structure
 
     if system not in SYSTEMS:
         raise BlastscaleInputError(f"system = {system!r} is not known: valid values are {', '.join(SYSTEMS)}")
@@ -124,7 +125,6 @@ def _specimen_system(design, structure, contact, duration: float) -> tuple:
     (a Study's design carries this prototype, contact and duration); the parts it does not carry (a design made
     without them, or with others) by :func:`~blastscale.similitude.specimen.specimen_system`, the one function
     that scales a specimen, as the design itself does."""
-    from ..similitude.specimen import specimen_system
 
     same_structure = design.prototype_structure is structure
     same_contact = contact is None or design.contact is contact

@@ -42,6 +42,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 from .air import dynamic_pressure, reflected_sound_speed
+from .pulses import Tabulated
 
 __all__ = ["Clearing", "clearing", "FRONT_WALL_DRAG_COEFFICIENT", "bilinear_pressure", "bilinear_cumulative",
            "CLEARING_MODEL"]
@@ -108,7 +109,6 @@ class Clearing:
 
     def pulse(self):
         """The cleared pulse of one face as a :class:`~blastscale.blast.pulses.Tabulated` (3 knots)."""
-        from .pulses import Tabulated
 
         if np.ndim(self.clearing_time):
             raise BlastscaleInputError("clearing of arrays: a pulse needs one face (index the arrays first)")

@@ -15,6 +15,9 @@ from .._validate import BlastscaleInputError, check_positive
 from .base import BlastModel
 from .friedlander import friedlander_decay
 from .pulses import Friedlander, Impulsive, Pulse, Triangular, check_pulse_shape
+from .kingery_bulmash import KingeryBulmash
+from .masi_fits import Masi2021
+from .kingery_bulmash_free_air import KingeryBulmashFreeAir
 
 __all__ = [
     "BLAST_MODELS",
@@ -33,19 +36,16 @@ __all__ = [
 
 
 def _kingery_bulmash() -> BlastModel:
-    from .kingery_bulmash import KingeryBulmash
 
     return KingeryBulmash()
 
 
 def _masi2021() -> BlastModel:
-    from .masi_fits import Masi2021
 
     return Masi2021()
 
 
 def _kingery_bulmash_free_air() -> BlastModel:
-    from .kingery_bulmash_free_air import KingeryBulmashFreeAir
 
     return KingeryBulmashFreeAir()
 

@@ -31,6 +31,7 @@ from . import plan as _plan  # noqa: F401,E402
 from . import init as _init  # noqa: F401,E402
 from . import show as _show  # noqa: F401,E402
 from . import fired as _fired  # noqa: F401,E402
+from .._validate import BlastscaleInputError
 
 __all__ = ["app", "main"]
 
@@ -43,7 +44,6 @@ def _command(argv: list[str] | None) -> str:
 
 def main(argv: list[str] | None = None) -> None:
     """Entry point of the ``blastscale`` console script."""
-    from .._validate import BlastscaleInputError
 
     try:
         app(args=argv, prog_name="blastscale")

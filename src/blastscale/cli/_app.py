@@ -11,6 +11,14 @@ import os
 import sys
 
 from . import _signals
+import logging
+from fractions import Fraction
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+from rich.progress import TimeRemainingColumn
+from pathlib import Path
+from ..io.output import format_size, tree_size
+import io
+from ..io.output import write_file
 
 if os.path.basename(sys.argv[0]) == "blastscale":
     _signals.at_import()  # a signal while importing: one line; a local Dask worker: Ctrl-C ignored
@@ -105,7 +113,6 @@ class OneLineErrorGroup(TyperGroup):
 
 def _quiet_after_interrupt() -> None:
     """After a signal the one line says it all: Dask's and asyncio's shutdown chatter is not shown."""
-    import logging
 
     for name in ("distributed", "asyncio", "tornado"):
         logging.getLogger(name).setLevel(logging.CRITICAL)
@@ -120,7 +127,6 @@ def normalise_ratios(args: list[str]) -> list[str]:
     """The command line with fraction values of :data:`RATIO_OPTIONS` (``--scale 1/200``,
     ``--scale=1/200``) turned into decimals, for every command at once; anything that is not a
     fraction is left for the option's own check."""
-    from fractions import Fraction
 
     def conv(text: str) -> str:
         if "/" not in text:
@@ -193,7 +199,6 @@ def show_progress(quiet: bool = False) -> bool:
 def stage_progress(quiet: bool = False):
     """A rich progress bar on stderr for a staged job; yields ``tell(stage, done, total)``.
     Transient (it disappears when the job ends); shown only on a terminal and not with ``--json``."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
     with Progress(SpinnerColumn(), TextColumn("{task.description}", markup=False), BarColumn(),
                   MofNCompleteColumn(), TimeElapsedColumn(), console=console_err, transient=True,
@@ -218,7 +223,6 @@ def activity(label: str, quiet: bool = False):
 
 def count_progress(label: str, quiet: bool = False):
     """A progress bar over cases (done / total, elapsed, remaining) and its ``tick(done, total)``."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
     bar = Progress(TextColumn(label, markup=False), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                    TimeRemainingColumn(), console=console_err, transient=True, disable=not show_progress(quiet))
@@ -233,9 +237,7 @@ def count_progress(label: str, quiet: bool = False):
 
 def print_written(path, what: str = "") -> None:
     """One line on stderr: what a command wrote and how big it is (``wrote DIR/ (7 files, 2.1 MB)``)."""
-    from pathlib import Path
 
-    from ..io.output import format_size, tree_size
 
     p = Path(path)
     try:
@@ -294,15 +296,12 @@ def save_figure(build, path) -> None:
 
     ``build`` is a no-argument callable returning the figure (called after the backend is set).
     """
-    import io
-    from pathlib import Path
 
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..io.output import write_file
 
     fig = build()
     buf = io.BytesIO()

@@ -14,6 +14,7 @@ import multiprocessing
 import signal
 import sys
 from typing import Callable, Optional
+import os
 
 __all__ = ["Interrupted", "SIGNALS", "install", "restore", "raise_if_interrupted", "ignore_interrupts",
            "interrupted_signal", "exit_status", "message", "set_interrupt_note", "in_worker_process"]
@@ -121,7 +122,6 @@ def message(signum: Optional[int]) -> str:
 
 def _interrupted_while_starting(signum, frame):  # pragma: no cover - timing dependent
     """A signal while the command line tool is still importing: one line, nothing written."""
-    import os
 
     os.write(2, f"error: {_WORDS.get(signum, 'interrupted')}: no partial results left\n".encode())
     os._exit(exit_status(signum))

@@ -19,6 +19,15 @@ from pathlib import Path
 import numpy as np
 
 from .._validate import BlastscaleInputError
+import math
+from ..io.output import Kind, check_target
+from ..plots.motion import VIEWS
+import subprocess
+import tempfile
+from ..io.motion import charge_position, read_motion
+from ..io.output import write_file
+from ..sim3d.replay import frame_count
+from ._app import one_line_warnings, print_json, print_written
 
 __all__ = ["ANIMATION_SUFFIXES", "MAX_FRAMES", "check_animation", "write_animation"]
 
@@ -30,10 +39,7 @@ FPS_RANGE = (1.0, 120.0)
 
 def check_animation(out: str, view: str, fps: float, speed: float) -> Path:
     """Check the animation's options before any work; returns the target path. One line per fault."""
-    import math
 
-    from ..io.output import Kind, check_target
-    from ..plots.motion import VIEWS
 
     p = Path(out).expanduser()
     if p.suffix.lower() not in ANIMATION_SUFFIXES:
@@ -64,8 +70,6 @@ def _gif(frames, fps: float) -> bytes:
 
 def _mp4(frames, fps: float) -> bytes:
     """H.264 through ffmpeg, the frames streamed to its input (never all in memory)."""
-    import subprocess
-    import tempfile
 
     with tempfile.TemporaryDirectory(prefix="blastscale-animate-") as tmp:
         out, proc = Path(tmp) / "a.mp4", None
@@ -96,9 +100,6 @@ def _mp4(frames, fps: float) -> bytes:
 def write_animation(source: str, out: str, view: str = "iso", fps: float = 20.0, speed: float = 1.0) -> dict:
     """Animate the result folder ``source`` into ``out`` (.gif, .mp4 or .html); returns ``frames``,
     ``duration_s`` (simulated, prototype time), ``fps``, ``speed``, ``view``."""
-    from ..io.motion import charge_position, read_motion
-    from ..io.output import write_file
-    from ..sim3d.replay import frame_count
 
     target = check_animation(out, view, fps, speed)
     motion, info = read_motion(source)
@@ -127,7 +128,6 @@ def write_animation(source: str, out: str, view: str = "iso", fps: float = 20.0,
 def show_animation(source: str, out: str, view: str, fps: float, speed: float, as_json: bool = False) -> None:
     """``show RESULT_DIR --animate FILE``: write the animation, then one line (or the JSON of
     :func:`write_animation`)."""
-    from ._app import one_line_warnings, print_json, print_written
 
     with one_line_warnings():
         info = write_animation(source, out, view, fps, speed)

@@ -10,6 +10,7 @@ import typer
 
 from .._validate import BlastscaleInputError
 from ..blast.parameters import BURSTS, DEFAULT_BURST
+from ..blast.load_model import LoadModel
 
 __all__ = ["BURST", "SPECIMEN_BURST", "SPECIMEN_CHARGE_HEIGHT", "CLEARING", "FACE_WIDTH", "FACE_HEIGHT",
            "NEGATIVE_PHASE", "NEGATIVE_PHASE_MODEL", "negative_phase_model_key", "load_model_from_flags", "check_burst_flag"]
@@ -58,7 +59,6 @@ def load_model_from_flags(clearing: bool, face_width: Optional[float], face_heig
     The clearing face is ``--face-width`` x ``--face-height`` or, without them, the block's front
     (depth x height). Face dimensions without ``--clearing``, or clearing without a face, are one-line
     errors."""
-    from ..blast.load_model import LoadModel
 
     negative_phase_model_key(negative_phase, negative_phase_model)
     given = face_width is not None or face_height is not None

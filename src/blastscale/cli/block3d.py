@@ -16,6 +16,9 @@ from ._app import app, console, fmt_value, one_line_warnings, print_json, print_
 from .flags import flags_named
 from . import options as opt
 from .options import block_from_options, check_plot_path
+from ..analysis.block3d_similarity import BLOCK_SIMILARITY_KEYS, BLOCK_SUMMARY_KEYS
+from ..study import Study
+from .flags import scenario_from_flags
 
 _SUMMARY_ROWS = (
     ("collapsed", "collapsed", "", ".6g"),
@@ -37,7 +40,6 @@ def block3d_output(result, contact, incidence: Optional[str] = None) -> dict:
     scenario; ``incidence`` as given, None for the default), ``contact`` (the prototype's contact
     settings), ``prototype`` and, with a design, ``model`` (up-scaled), ``similarity`` and
     ``model_experiment``: the block's planar keys of the study's ``3d`` summary."""
-    from ..analysis.block3d_similarity import BLOCK_SIMILARITY_KEYS, BLOCK_SUMMARY_KEYS
 
     sc, block, d = result.scenario, result.structure, result.design
     scale = None if d is None else d.scale
@@ -97,8 +99,6 @@ def block3d_cmd(
     experiment is designed by the general law, run at model scale with scaled contact settings,
     up-scaled and compared with the prototype.
     """
-    from ..study import Study
-    from .flags import scenario_from_flags
 
     if restitution is not None:
         raise BlastscaleInputError(

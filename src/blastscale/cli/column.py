@@ -16,6 +16,8 @@ from . import options as opt
 from ._app import app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, stage_progress, table
 from .flags import flags_named
 from .options import check_plot_path, scenario_default
+from ..study import Study
+from .flags import scenario_from_flags
 
 _SUMMARY_ROWS = (
     ("collapsed", "collapsed", "", ".6g"),
@@ -111,8 +113,6 @@ def column_cmd(
     own size with scale-consistent contact settings, up-scaled and compared with the prototype
     per monitoring point (P-1 at the base drum's front face ... P-N at the top drum's).
     """
-    from ..study import Study
-    from .flags import scenario_from_flags
 
     check_plot_path(plot)
     sc = scenario_from_flags(

@@ -28,6 +28,8 @@ from ._app import (
     styled,
     table,
 )
+from ..io.results import check_output_folder, output_folder
+from ..scenario import load_scenario
 
 
 def _print(s: dict) -> None:
@@ -92,8 +94,6 @@ def fired_cmd(
     """After the shot: the load the specimen got, measured vs predicted vs re-simulated, and what the monument
     would do."""
     from ..fired import as_fired
-    from ..io.results import check_output_folder, output_folder
-    from ..scenario import load_scenario
 
     sc = load_scenario(_shipped(scenario))
     markers = ("summary.json",)

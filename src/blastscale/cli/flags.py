@@ -10,6 +10,8 @@ from typing import Optional
 import typer
 
 from ..scenario import Scenario
+import tomllib
+from .._validate import BlastscaleInputError
 
 __all__ = ["FLAG_NAMES", "SET_VALUES", "parse_set", "scenario_from_flags", "flags_named"]
 
@@ -41,9 +43,7 @@ def parse_set(items: list[str]) -> dict:
     """``KEY=VALUE`` pairs of ``--set`` -> {key: value}; the value read as TOML (numbers, true/false,
     "text"), bare words as strings. Keys and values are validated by the scenario schema
     (:meth:`~blastscale.scenario.Scenario.with_values`), which names the key, its value and its range."""
-    import tomllib
 
-    from .._validate import BlastscaleInputError
 
     out = {}
     for item in items:
@@ -62,7 +62,6 @@ def parse_set(items: list[str]) -> dict:
 def flags_named():
     """One-line errors of the study's own checks (the size and time guard, the engine's time step) name
     the flag the user typed instead of the scenario key it sets (``--duration`` for ``simulation.duration_s``)."""
-    from .._validate import BlastscaleInputError
 
     try:
         yield

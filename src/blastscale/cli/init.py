@@ -15,6 +15,8 @@ import typer
 
 from .._validate import BlastscaleInputError
 from ._app import app, console, print_written
+from ..io.output import Kind, claim, write_file
+from ..scenario import library_names, library_text, load_scenario, template_text
 
 
 def _is_toml(path: Path) -> bool:
@@ -35,8 +37,6 @@ def init_cmd(
     force: bool = typer.Option(False, "--force", help="Replace an existing TOML file."),
 ) -> None:
     """Write a commented scenario template (or a copy of a shipped scenario) to start from."""
-    from ..io.output import Kind, claim, write_file
-    from ..scenario import library_names, library_text, load_scenario, template_text
 
     if file.suffix != ".toml":
         raise BlastscaleInputError(f"file = {str(file)!r} has no .toml extension: give e.g. {str(file)}.toml")

@@ -17,6 +17,7 @@ from ..similitude import design_model
 from . import blast_flags as bf
 from ._app import app, console, fmt_value, one_line_warnings, print_json, styled, table
 from .options import MODEL_HELP, block_from_options
+from ..blast.load_model import front_face_clearing, front_face_negative, load_model_record
 
 @app.command("blast")
 def blast_cmd(
@@ -39,7 +40,6 @@ def blast_cmd(
 ) -> None:
     """Blast parameters of a burst of W kg TNT at R m (hemispherical surface burst unless --burst
     free-air; with --clearing and --negative-phase the front face's cleared pulse and suction; SI)."""
-    from ..blast.load_model import front_face_clearing, front_face_negative, load_model_record
 
     check_incidence(incidence)
     bf.check_burst_flag(burst)

@@ -25,11 +25,18 @@ from ._app import (app, console, fmt_value, ignore_interrupts, one_line_warnings
                    raise_if_interrupted, stage_progress, styled, table)
 from .flags import SET_VALUES, parse_set
 from .loads import print_design
+from ..report.html import split_unit
+from ..report.verdict import label
+from ..report.html import format_charge
+from ..report.verdict import verdict_line
+from ..report.card import card_of
+from .._hooks import pause_point
+from ..io.results import check_output_folder, output_folder
+from ..report import write_study
+from ..study import Study
 
 
 def _compare_table(title: str, prototype: dict, model: dict) -> Table:
-    from ..report.html import split_unit
-    from ..report.verdict import label
 
     t = Table(title=title, title_justify="left")
     columns = ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)",
@@ -46,8 +53,6 @@ def _compare_table(title: str, prototype: dict, model: dict) -> Table:
 
 def _similarity_table(sim: dict) -> Table:
     """The similarity figures of one engine, in words (the per-point figures are in the report)."""
-    from ..report.html import split_unit
-    from ..report.verdict import label
 
     return table("Similarity (prototype vs up-scaled model)",
                  [(label(k), fmt_value(v, ".3g"), split_unit(k)[1]) for k, v in sim.items()
@@ -57,8 +62,6 @@ def _similarity_table(sim: dict) -> Table:
 def _print_result(result) -> None:
     sc, s = result.scenario, result.summary()
     exp = s["experiment"]
-    from ..report.html import format_charge
-    from ..report.verdict import verdict_line
 
     console.rule(styled(("blastscale run", "bold"), f" — {sc.title or 'scenario'}"))
     console.print(styled((verdict_line(result), "bold")), soft_wrap=True)
@@ -94,7 +97,6 @@ def _print_result(result) -> None:
                                  f" ({STABILITY_RULE})"))
         if r3.get("similarity") is not None:
             console.print(_similarity_table(r3["similarity"]))
-    from ..report.card import card_of
 
     card = card_of(result)
     if card is not None:
@@ -133,10 +135,6 @@ def run_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object instead of tables."),
 ) -> None:
     """Run a scenario: design the model, simulate prototype and model, compare, write a report."""
-    from .._hooks import pause_point
-    from ..io.results import check_output_folder, output_folder
-    from ..report import write_study
-    from ..study import Study
 
     pause_point("run:started")
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive

@@ -19,10 +19,13 @@ from rich.table import Table
 
 from ._app import (app, console, ignore_interrupts, one_line_warnings, print_json, print_written, raise_if_interrupted,
                    stage_progress, styled)
+from ..report.html import format_charge
+from ..io.results import check_output_folder, output_folder
+from ..planning import plan
+from ..scenario import Scenario, load_scenario
 
 
 def _print_plan(p, top: int) -> None:
-    from ..report.html import format_charge
 
     t = Table(title=f"Feasible designs, best first ({len(p.designs)}; {len(p.rejected)} rejected)",
               title_justify="left")
@@ -74,9 +77,6 @@ def plan_cmd(
 ) -> None:
     """Plan a lab test: the designs the lab can fire safely, with the charge, the safety zone, the instruments
     and the odds."""
-    from ..io.results import check_output_folder, output_folder
-    from ..planning import plan
-    from ..scenario import Scenario, load_scenario
 
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
         sc = Scenario.default() if scenario is None else load_scenario(scenario)

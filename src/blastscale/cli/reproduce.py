@@ -21,6 +21,12 @@ from rich.table import Table
 from .._validate import BlastscaleInputError
 from ._app import app, console, console_err, one_line_warnings, print_error, print_written, stage_progress
 from ._signals import set_interrupt_note
+from ..io.output import Kind, claim
+from ..io.results import output_folder, provenance, write_atomic, write_json
+from ..report.reproduce import MARKER, item_done, items, render_reproduce_report, run_item, skipped
+from ..report.reproduce_cost import expected_cost, is_reproduce_folder
+from ..study import format_duration
+from ..io.output import format_size
 
 
 @app.command("reproduce")
@@ -36,12 +42,6 @@ def reproduce_cmd(
                                                                       "examples/ of a source checkout)."),
 ) -> None:
     """Reproduce the paper's tables and figures; the report puts the paper's numbers beside ours."""
-    from ..io.output import Kind, claim
-    from ..io.results import output_folder, provenance, write_atomic, write_json
-    from ..report.reproduce import MARKER, item_done, items, render_reproduce_report, run_item, skipped
-    from ..report.reproduce_cost import expected_cost, is_reproduce_folder
-    from ..study import format_duration
-    from ..io.output import format_size
 
     every = items(examples)
     left_out = skipped(examples)
@@ -115,7 +115,6 @@ def reproduce_cmd(
 
 def _kept(folder: Path, every, created: bool) -> str:
     """What an interrupted reproduce leaves: the items done (resumable), or nothing."""
-    from ..report.reproduce import MARKER
 
     done = sum(1 for it in every if (folder / it.name / MARKER).is_file())
     if not done:

@@ -17,6 +17,17 @@ from . import blast_flags as bf
 from .flags import flags_named
 from . import options as opt
 from .options import block_from_options, check_plot_path
+from ..blast.load_model import load_model_record
+from ..study.engines import load_model_of
+from ..study import Study
+from .flags import scenario_from_flags
+from ..blast import blast_parameters
+from ..blast.bursts import model_for_burst
+import numpy as np
+from ..sweeps.grids import parse_grid
+from ..study import check_budget
+from .. import __version__
+from rich.table import Table
 
 def opt_extrapolate():
     """The ``--extrapolate`` option of the capacity commands."""
@@ -38,8 +49,6 @@ def _summary_rows(s: dict) -> list[tuple[str, str, str]]:
 
 def _load_model_record(result) -> dict:
     """Which load model produced a Study's planar result (prototype and, with a design, model)."""
-    from ..blast.load_model import load_model_record
-    from ..study.engines import load_model_of
 
     sc, d = result.scenario, result.design
     lm = load_model_of(sc, result.structure) if d is None else d.load_model  # the design's, with a design
@@ -93,8 +102,6 @@ def rock_cmd(
     Eq. eom). With --scale the model experiment is designed with the paper's general law,
     simulated, up-scaled to prototype units and compared with the prototype.
     """
-    from ..study import Study
-    from .flags import scenario_from_flags
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
@@ -193,8 +200,6 @@ def critical_cmd(
     """Critical charge at a stand-off (largest charge without overturning), or with --charge the
     critical stand-off: the first-swing energy criterion after the pulse (docs/capacity.md),
     searched from the structure's own scale (any size, lab specimens included)."""
-    from ..blast import blast_parameters
-    from ..blast.bursts import model_for_burst
     from ..rocking import RockingSystem, critical_charge, critical_standoff
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
@@ -313,9 +318,7 @@ def capacity_cmd(
     """Capacity curve: the critical charge W_c(R) at every stand-off and, with --charge, the safe
     stand-off of that charge; with --scale also the reduced-scale model's curve, up-scaled to
     prototype charges (paper Eq. 8). First-swing energy criterion, all stand-offs at once."""
-    import numpy as np
 
-    from ..sweeps.grids import parse_grid
     from ..rocking import RockingSystem
     from ..rocking import capacity_curve, critical_standoff, model_capacity_curve
 
@@ -328,7 +331,6 @@ def capacity_cmd(
         raise BlastscaleInputError(f"charge = {charge:g} kg is out of range: must be > 0 kg")
     system = RockingSystem.from_block(block, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
-    from ..study import check_budget
 
     per = 5e-4 * (2 if scale is not None else 1)  # ~0.4-0.5 ms per stand-off (README "Speed"), x2 with the model
     check_budget("--standoffs", R.size, "stand-offs", R.size * 8.0 * 40, R.size * per)
@@ -340,7 +342,6 @@ def capacity_cmd(
         safe = None
         if charge is not None:
             safe = critical_standoff(system, charge, **kw).standoff_m
-    from .. import __version__
 
     out = {"inputs": _inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity, restitution=restitution,
                              extrapolate=extrapolate),
@@ -361,7 +362,6 @@ def capacity_cmd(
     if as_json:
         print_json(out, engine="planar")
         return
-    from rich.table import Table
 
     t = Table(title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", title_justify="left")
     t.add_column("stand-off R [m]", justify="right")

@@ -24,6 +24,11 @@ import typer
 
 from ._app import app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
 from .options import check_plot_path
+from .._validate import BlastscaleInputError
+from ..scenario import load_scenario
+from ..structures import from_spec, read_block_model
+from ..structures.block_files import MESH_SUFFIXES
+from ..structures import as_assembly, rest_mass_properties
 
 __all__ = ["describe_structure", "load_structure"]
 
@@ -33,10 +38,6 @@ _SCENARIO_SUFFIXES = (".toml",)
 def load_structure(source: str, density_kg_m3: Optional[float] = None):
     """(structure, scenario or None, standoff [m] or None) of a scenario file or name, or of a
     block-model file."""
-    from .._validate import BlastscaleInputError
-    from ..scenario import load_scenario
-    from ..structures import from_spec, read_block_model
-    from ..structures.block_files import MESH_SUFFIXES
 
     p = Path(source)
     suffix = p.suffix.lower()
@@ -60,7 +61,6 @@ def describe_structure(structure) -> dict:
     is the ground), their area, monitoring points, the blocks' names, the supports (fixed to the ground)
     and their names. Mass, volume and centre of mass are the sums over ``structure.bodies``, the bodies the
     engine simulates; sizes and interfaces are those of their solids (:func:`~blastscale.structures.as_assembly`)."""
-    from ..structures import as_assembly, rest_mass_properties
 
     asm = as_assembly(structure)
     rest = rest_mass_properties(structure.bodies)
@@ -110,7 +110,6 @@ def show_cmd(
         from .animate import show_animation
 
         return show_animation(source, animate, view, fps, speed, as_json)
-    from .._validate import BlastscaleInputError
 
     if plot is not None:
         check_plot_path(str(plot))  # before any work

@@ -13,6 +13,7 @@ import math
 from pathlib import Path
 
 from .results import write_atomic
+from ..sim3d.results import MOTION_VARIABLES
 
 __all__ = ["write_netcdf", "histories_tidy", "write_histories_csv"]
 
@@ -62,7 +63,6 @@ def histories_tidy(tree):
     """
     import pandas as pd
 
-    from ..sim3d.results import MOTION_VARIABLES
 
     frames = []
     for node in tree.subtree:

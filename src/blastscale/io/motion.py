@@ -7,6 +7,8 @@ import json
 from pathlib import Path
 
 from .._validate import BlastscaleInputError
+import numpy as np
+from ..sim3d.replay import motion_of
 
 __all__ = ["read_motion", "charge_position"]
 
@@ -14,7 +16,6 @@ __all__ = ["read_motion", "charge_position"]
 def charge_position(motion, standoff_m: float):
     """The charge's position (3,) [m] for drawing: on the ground, ``standoff_m`` in front (-x) of the
     structure's front at time 0, centred across it (the blast comes from -x, docs/sim3d.md)."""
-    import numpy as np
 
     v = motion.world(0, [0])[0].reshape(-1, 3)
     lo, hi = np.nanmin(v, axis=0), np.nanmax(v, axis=0)
@@ -32,7 +33,6 @@ def read_motion(folder, name: str = "RESULT_DIR"):
     """
     import xarray as xr
 
-    from ..sim3d.replay import motion_of
 
     p = Path(folder)
     nc = p / "histories.nc"

@@ -19,6 +19,11 @@ from pathlib import Path
 from typing import Any, Iterator
 
 from .. import __version__
+from .output import write_file
+import importlib.metadata as md
+from .output import Kind
+from .output import check_target
+from .output import claim
 
 __all__ = ["jsonable", "write_json", "versions", "git_commit", "provenance", "output_folder",
            "check_output_folder", "result_kind", "write_atomic", "LEGACY_KEYS", "legacy_name", "with_legacy_keys"]
@@ -121,7 +126,6 @@ def write_atomic(path: "str | Path", data: "str | bytes") -> None:
     """Write a file through a unique temporary sibling renamed into place (permissions from the umask,
     like any file the user creates; nothing left on failure). An ``OSError`` propagates: the output
     it belongs to (:func:`blastscale.io.output.claim`) turns it into one line naming that output."""
-    from .output import write_file
 
     write_file(path, data, raw=True)
 
@@ -133,7 +137,6 @@ def write_json(path: "str | Path", obj: Any) -> None:
 
 def versions() -> dict:
     """Versions of blastscale, Python and the numerical libraries that shape the results."""
-    import importlib.metadata as md
 
     out = {"blastscale": __version__, "python": platform.python_version()}
     for pkg in ("numpy", "scipy", "numba", "mujoco", "xarray", "pydantic"):
@@ -183,7 +186,6 @@ def _is_result_folder(folder: Path, markers: tuple = (MARKER,)) -> bool:
 
 def result_kind(markers: tuple = (MARKER,)):
     """The :class:`~blastscale.io.output.Kind` of a blastscale result folder (``markers``: its marker files)."""
-    from .output import Kind
 
     return Kind(f"a blastscale result folder (no blastscale {' or '.join(markers)})",
                 lambda p: _is_result_folder(p, markers))
@@ -193,7 +195,6 @@ def check_output_folder(out: "str | Path", force: bool = False, markers: tuple =
     """Check, before any work, that ``out`` can become a result folder; returns it absolute
     (:func:`blastscale.io.output.check_target`: the parent must exist; an existing folder is replaced
     only with ``force``, and only when empty or a blastscale result, never a user's folder)."""
-    from .output import check_target
 
     return check_target(out, result_kind(markers), force)
 
@@ -207,7 +208,6 @@ def output_folder(out: "str | Path", force: bool = False, before_commit=None, af
     exception propagates, an ``OSError`` as one line). ``before_commit()`` (may raise to abandon the
     folder) and ``after_commit()`` run with SIGINT, SIGTERM and SIGHUP held back, just before and just
     after the rename."""
-    from .output import claim
 
     with claim(out, result_kind(markers), force) as c, c.staged(before_commit, after_commit) as tmp:
         yield tmp

@@ -20,6 +20,8 @@ from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
 from ..blast.explosives import get_explosive
 from .shot import fireability, lab_charge, lab_explosives, safety_envelope
+from .shot import candidate_materials
+from ..similitude import design_model
 
 __all__ = ["LAMBDA_DENOMINATORS", "Candidate", "Violation", "Evaluated", "candidates", "evaluate", "scale_label"]
 
@@ -79,7 +81,6 @@ def candidates(lab, prototype_density: float, prototype_height: float, gravity_r
     """Every candidate: the general law at each scale of :data:`LAMBDA_DENOMINATORS` up to the
     tallest specimen the lab builds (and 1), for each material; Hopkinson-Cranz at the one scale
     each material allows (gamma >= 1)."""
-    from .shot import candidate_materials
 
     mats = candidate_materials(lab, prototype_density)
     out = [Candidate("general", 1.0 / n, name, g) for n in LAMBDA_DENOMINATORS for name, g in mats]
@@ -125,7 +126,6 @@ def evaluate(c: Candidate, *, scenario, lab, block, timing, incident_model) -> E
     time factor sqrt(lambda / varsigma) (the law's similarity of the rocking); ``incident_model`` the
     blast model of the side-on gauge (Kingery-Bulmash: the paper's fits have no incident pressure).
     """
-    from ..similitude import design_model
 
     sc, bl = scenario, scenario.blast
     ev = Evaluated(c)

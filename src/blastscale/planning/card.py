@@ -21,6 +21,8 @@ from .instruments import instrument_settings, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .shot import (DEFAULT_LAB, Timing, card_charge, fireability, rocking_timing, safety_envelope, threshold_meanings,
                    timing_of)
+from ..structures import is_block
+from ..blast import get_blast_model
 
 __all__ = ["study_test_card", "check_lab"]
 
@@ -84,7 +86,6 @@ def _response(result, spec) -> dict:
 
 
 def _odds(result, spec, ch, lab, collapsed_p):
-    from ..structures import is_block
 
     sc, d = result.scenario, result.design
     if not is_block(result.structure):
@@ -159,7 +160,6 @@ def study_test_card(result, lab=None) -> dict | None:
     lab : LabSpec, optional
         Default: the scenario's ``[lab]``, or every key's default.
     """
-    from ..blast import get_blast_model
 
     d = result.design
     if d is None:

@@ -29,6 +29,11 @@ from dataclasses import asdict, dataclass
 from typing import Optional
 
 import numpy as np
+from ..blast.parameters import blast_parameters_unchecked
+from ..blast import valid_scaled_distance_range
+from ..sweeps import SweepSpec
+from ..sweeps.grids import Distribution
+from ..sweeps.runner import run_chunks
 
 __all__ = ["Tolerances", "Odds", "planar_odds", "ensemble_odds_3d", "Z95", "Z90_ONE_SIDED"]
 
@@ -114,7 +119,6 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
     critical : bool
         Search the specimen's critical charge (the weighing precision that keeps the outcome).
     """
-    from ..blast.parameters import blast_parameters_unchecked
     from ..rocking import critical_charge, first_swing, first_swing_blast
     from ..rocking.system import RockingSystem
 
@@ -128,7 +132,6 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
     rho = np.maximum(1.0 + drho, 0.01)
     base = RockingSystem.from_block(specimen, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model)
-    from ..blast import valid_scaled_distance_range
 
     zlo, zhi = valid_scaled_distance_range(blast_model)
     Z = R / np.cbrt(W)
@@ -185,9 +188,6 @@ def ensemble_odds_3d(specimen_scenario, *, prototype_collapsed: bool, tolerances
         ``p_outcome_agree_se``, ``specimen_collapse_probability``, ``first_peak_spread`` (relative
         standard deviation of the largest top displacement of the members that stand) [-].
     """
-    from ..sweeps import SweepSpec
-    from ..sweeps.grids import Distribution
-    from ..sweeps.runner import run_chunks
 
     sc = specimen_scenario.with_values({"simulation.engine": "3d", "simulation.critical_charge": False})
     rel = {"blast.charge_kg": Distribution("lognormal", (1.0, max(tolerances.charge, 1e-12)))}

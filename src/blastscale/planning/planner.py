@@ -30,6 +30,12 @@ from .debris import planar_reach
 from .instruments import instrument_settings
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .shot import DEFAULT_LAB, safety_envelope, timing_of
+from ..structures import from_spec, is_block
+from ..blast import blast_parameters
+from ..scenario.lab import SAME_MATERIAL
+from ..blast.explosives import EXPLOSIVES, get_explosive
+from .shot import lab_explosives
+from ..blast import get_blast_model
 
 __all__ = ["plan", "Plan", "PlanInfeasible", "design_scenario", "QUICK_SAMPLES", "FULL_DESIGNS"]
 
@@ -64,7 +70,6 @@ class Plan:
 def _prototype(scenario):
     """The prototype's block, nominal first swing, timing and safety envelope."""
     from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing
-    from ..structures import from_spec, is_block
 
     sc, bl, sim = scenario, scenario.blast, scenario.simulation
     _paper_load_only(sc)
@@ -74,7 +79,6 @@ def _prototype(scenario):
                                    "the planar kernels of a block; for a column run the scenario with a [lab] table "
                                    "(its test card) at the scales you choose")
     system = RockingSystem.from_block(block, sim.gravity_m_s2, sim.restitution)
-    from ..blast import blast_parameters
 
     bp = blast_parameters(bl.charge_kg, bl.standoff_m, bl.blast_model, extrapolate=bl.extrapolate)
     fs = first_swing(system, bl.charge_kg, bl.standoff_m, pulse_shape=bl.pulse_shape, blast_model=bl.blast_model,
@@ -109,7 +113,6 @@ def _paper_load_only(sc) -> None:
 def design_scenario(scenario, candidate, lab_spec=None):
     """The scenario of a planned design: the prototype's, with ``[scale]`` set to the candidate
     (law, lambda, material or density ratio) and the lab table (``lab_spec``) kept."""
-    from ..scenario.lab import SAME_MATERIAL
 
     scale = {"length": candidate.scale, "law": candidate.law,
              "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
@@ -214,8 +217,6 @@ def _infeasible(evs: list, lab) -> str:
 
 def _below_min_charge(group: list, n: int, lab) -> str:
     """Every charge the other limits allow is below the explosive's minimum reliable charge."""
-    from ..blast.explosives import EXPLOSIVES, get_explosive
-    from .shot import lab_explosives
 
     pick = max(group, key=lambda e: e.violations[0].value / e.violations[0].limit)
     v, c, ex = pick.violations[0], pick.candidate, get_explosive(lab.explosive, lab_explosives(lab))
@@ -268,7 +269,6 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     PlanInfeasible
         No candidate meets every constraint.
     """
-    from ..blast import get_blast_model
 
     tell = progress or (lambda *a: None)
     lab = lab or scenario.lab or DEFAULT_LAB

@@ -11,13 +11,17 @@ import numpy as np
 
 from ..blast.explosives import Explosive, charge_equivalence
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
+from ..scenario.lab import LabSpec
+from .._validate import BlastscaleInputError
+from ..blast.explosives import ChargeEquivalence, get_explosive
+from ..scenario.lab import SAME_MATERIAL
+from ..structures.materials import MATERIALS
 
 __all__ = ["lab_explosives", "lab_charge", "card_charge", "fireability", "SafetyEnvelope", "safety_envelope", "threshold_meanings",
            "candidate_materials", "Timing", "rocking_timing", "timing_of", "DEFAULT_LAB"]
 
 
 def _default_lab():
-    from ..scenario.lab import LabSpec
 
     return LabSpec()
 
@@ -43,8 +47,6 @@ def card_charge(tnt_kg: float, lab):
     """:func:`lab_charge` for a scale the user chose: an initiator that alone delivers the whole TNT
     charge [kg] is not refused but fired alone (no explosive to weigh, its own TNT equivalent on both
     bases, its fraction above 1), for :func:`fireability` to warn about."""
-    from .._validate import BlastscaleInputError
-    from ..blast.explosives import ChargeEquivalence, get_explosive
 
     try:
         return lab_charge(tnt_kg, lab)
@@ -115,8 +117,6 @@ def threshold_meanings() -> list:
 
 def candidate_materials(lab, prototype_density: float) -> list:
     """(name, gamma) of the lab's candidate materials (``"same"``: the prototype's, gamma = 1)."""
-    from ..scenario.lab import SAME_MATERIAL
-    from ..structures.materials import MATERIALS
 
     names = list(lab.materials) if lab.materials is not None else [SAME_MATERIAL] + list(MATERIALS)
     return [(n, 1.0 if n == SAME_MATERIAL else MATERIALS[n].density / prototype_density) for n in names]

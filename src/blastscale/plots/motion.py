@@ -8,6 +8,7 @@ ffmpeg where installed); the interactive HTML view is :mod:`blastscale.report.mo
 from __future__ import annotations
 
 import numpy as np
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 __all__ = ["VIEWS", "COLORMAP", "motion_figure", "render_frames"]
 
@@ -52,7 +53,6 @@ def motion_figure(motion, view: str = "iso", charge=None, width_in: float = 5.0)
     ``index`` (its time in the title). ``charge``: its position (3,) [m] or None."""
     import matplotlib.pyplot as plt
     from matplotlib import cm, colors
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     elev, azim = VIEWS[view]
     eye = _eye(elev, azim)

@@ -13,6 +13,11 @@ from typing import Callable, Optional
 from .figures import FIGURES, render_figures
 from .html import SECTIONS, format_charge, render_report
 from .slips import SLIPS, applicable_slips
+from ..io.histories import write_histories_csv, write_netcdf
+from ..io.results import provenance, write_atomic, write_json
+from ..io.results import with_legacy_keys
+from .verdict import verdict
+from .card import card_of
 
 __all__ = ["FIGURES", "SECTIONS", "SLIPS", "applicable_slips", "format_charge", "render_figures", "render_report",
            "summary_dict", "write_study", "UNITS"]
@@ -47,8 +52,6 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     list of str
         The file names written.
     """
-    from ..io.histories import write_histories_csv, write_netcdf
-    from ..io.results import provenance, write_atomic, write_json
 
     folder = Path(folder)
     tell = progress or (lambda stage: None)
@@ -77,10 +80,7 @@ def summary_dict(result, meta: Optional[dict] = None) -> dict:
     (:func:`blastscale.report.verdict.verdict`: similar, reasons, limits, the line) and, with a ``[lab]``
     table, the ``test_card`` (:func:`blastscale.planning.study_test_card`), each renamed key with its
     deprecated name beside it (:func:`blastscale.io.results.with_legacy_keys`)."""
-    from ..io.results import provenance, with_legacy_keys
-    from .verdict import verdict
 
-    from .card import card_of
 
     s = result.summary()
     v = verdict(s, result.scenario.structure.kind, getattr(result.structure, "section", None) == "circular")

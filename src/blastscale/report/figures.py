@@ -11,6 +11,13 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
+from .html import format_charge
+from ..plots.rocking import rocking_figure
+from ..plots.column import plot_point_histories
+from ..plots.column import plot_ensemble_envelope
+from ..structures import Assembly
+from ..plots.assembly import assembly_figure
+from ..plots.assembly import snapshot_figure
 
 __all__ = ["Figure", "FIGURES", "render_figures", "png_bytes"]
 
@@ -30,7 +37,6 @@ class Figure:
 def _pulses(result):
     import matplotlib.pyplot as plt
 
-    from .html import format_charge
 
     d, sc = result.design, result.scenario
     systems = [(result.blast, "prototype", "ms", 1e3, "MPa", 1e-6)]
@@ -51,7 +57,6 @@ def _pulses(result):
 
 
 def _planar(result):
-    from ..plots.rocking import rocking_figure
 
     return rocking_figure(result.planar.prototype, similarity=None if result.design is None else result.planar)
 
@@ -64,7 +69,6 @@ def _three_d(result):
         from ..plots.column import plot_column_comparison
 
         return plot_column_comparison(cmp.structure, cmp.prototype_dataset, cmp.upscaled_dataset)
-    from ..plots.column import plot_point_histories
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
     plot_point_histories(cmp.prototype_dataset, cmp.upscaled_dataset, "point_displacement", ax=axes[0])
@@ -75,7 +79,6 @@ def _three_d(result):
 def _ensemble(result):
     import matplotlib.pyplot as plt
 
-    from ..plots.column import plot_ensemble_envelope
 
     ens = result.ensemble
     fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
@@ -85,13 +88,11 @@ def _ensemble(result):
 
 
 def _is_assembly(result) -> bool:
-    from ..structures import Assembly
 
     return isinstance(result.structure, Assembly)
 
 
 def _assembly(result):
-    from ..plots.assembly import assembly_figure
 
     sc = result.scenario
     standoff = None if result.blast is None else sc.blast.standoff_m
@@ -99,7 +100,6 @@ def _assembly(result):
 
 
 def _snapshots(result):
-    from ..plots.assembly import snapshot_figure
 
     cmp = result.response3d
     sim = (result.summary()["3d"] or {}).get("similarity") or {}

@@ -8,6 +8,10 @@ from pathlib import Path
 import numpy as np
 
 from .html import _CSS, _e, _img, _table, format_value
+from ..blast.pulses import Friedlander
+from ..plots.fired import plot_gauge, plot_marker
+from .figures import png_bytes
+from ..io.results import jsonable, provenance, write_atomic, write_json
 
 __all__ = ["fired_figures", "fired_section", "write_fired"]
 
@@ -17,9 +21,6 @@ def fired_figures(result) -> list[tuple[str, str, str, bytes]]:
     marker histories over the prediction and the re-simulation, in the specimen's and the prototype's units."""
     import matplotlib.pyplot as plt
 
-    from ..blast.pulses import Friedlander
-    from ..plots.fired import plot_gauge, plot_marker
-    from .figures import png_bytes
 
     out = []
     s = result.summary
@@ -90,7 +91,6 @@ def _calibration(c) -> str:
 def write_fired(result, scenario, folder) -> list[str]:
     """Write ``summary.json`` (``as_fired`` and the provenance), ``scenario.toml``, the figures (PNG) and
     ``report.html`` into ``folder`` (which must exist). Returns the file names."""
-    from ..io.results import jsonable, provenance, write_atomic, write_json
 
     folder = Path(folder)
     meta = provenance()

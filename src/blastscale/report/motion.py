@@ -11,6 +11,9 @@ plotly's own JavaScript (~4.7 MB).
 from __future__ import annotations
 
 import numpy as np
+from html import escape
+from ..sim3d.replay import motion_of
+from ..io.motion import charge_position
 
 __all__ = ["FRAME_BYTES", "MAX_VIEW_FRAMES", "REPORT_FPS", "view_frames", "view_figure", "motion_div",
            "motion_html", "motion_section", "CAMERAS"]
@@ -143,7 +146,6 @@ def motion_div(motion, indices, charge=None, title: str = "", view: str = "iso",
 
 def motion_html(motion, indices, charge=None, title: str = "", view: str = "iso", fps: float = 20.0) -> str:
     """A self-contained HTML page of the view (``show --animate FILE.html``)."""
-    from html import escape
 
     body = motion_div(motion, indices, charge, title, view, fps)
     return (f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>{escape(title or "blastscale motion")}'
@@ -154,7 +156,6 @@ def motion_section(result) -> str:
     """The report's interactive 3D views of a study with a 3D run ("" without one): prototype and up-scaled
     model side by side; with an ensemble, its median and its worst member too. Each caption states the frames
     kept (decimation) and how to use the view; plotly's JavaScript is embedded once."""
-    from ..sim3d.replay import motion_of
 
     if result.response3d is None:
         return ""
@@ -177,9 +178,7 @@ def motion_section(result) -> str:
 
 
 def _view(motion, standoff, div_id: str, include_plotlyjs: bool, lead: str) -> str:
-    from html import escape
 
-    from ..io.motion import charge_position
 
     charge = None if standoff is None else charge_position(motion, standoff)
     indices, asked = view_frames(motion, REPORT_FPS)

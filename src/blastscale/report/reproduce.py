@@ -29,6 +29,23 @@ import sys
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Callable, Optional
+import hashlib
+from .._code import code_fingerprint
+from ..similitude import design_model
+from ..structures import RectangularBlock
+from ..blast.load_model import LoadModel
+from ..scenario import load_scenario
+from ..study import Study
+from . import write_study
+import tomllib
+from ..scenario import library_text
+from ..scenario import library_names
+import time
+from ..io.results import write_json
+from .html import format_value
+import html as _html
+from .html import _CSS
+from .slips import SLIPS
 
 __all__ = ["Row", "Item", "items", "skipped", "gallery_folder", "run_item", "item_done", "render_reproduce_report",
            "MARKER"]
@@ -86,9 +103,7 @@ class Item:
         """SHA-256 of the fingerprint of blastscale's code (:func:`blastscale._code.code_fingerprint`) and
         of the item's source (a script's bytes, a shipped scenario's text; nothing more for the numbers
         computed in this module): an item done by other code, or from another source, runs again."""
-        import hashlib
 
-        from .._code import code_fingerprint
 
         if self.source is None:
             source = b""
@@ -111,8 +126,6 @@ _PAPER_TABLE = {  # paper Table "Blast loading characteristics": (Z_p, W_m1 "mg"
 
 
 def _geometry(folder: Path, quick: bool) -> list:
-    from ..similitude import design_model
-    from ..structures import RectangularBlock
 
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
     rows = [Row("prototype width 2b", "2.68 m", block.width, "m")]
@@ -126,7 +139,6 @@ def _geometry(folder: Path, quick: bool) -> list:
 
 
 def _blast_loading(folder: Path, quick: bool) -> list:
-    from ..similitude import design_model
 
     rows = []
     for case, W in _CHARGES.items():
@@ -146,7 +158,6 @@ def _blast_loading(folder: Path, quick: bool) -> list:
 
 
 def _scaling_factors(folder: Path, quick: bool) -> list:
-    from ..similitude import design_model
 
     d = design_model(50.0, 2.0, 1 / 200, 1.0, blast_model="masi2021")
     d05 = design_model(50.0, 2.0, 1 / 200, 0.05, blast_model="masi2021")
@@ -161,10 +172,8 @@ def _scaling_factors(folder: Path, quick: bool) -> list:
 
 def _critical(folder: Path, quick: bool) -> list:
     from ..rocking import RockingSystem, critical_charge
-    from ..structures import RectangularBlock
 
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
-    from ..blast.load_model import LoadModel
 
     system = RockingSystem.from_block(block)
     c = critical_charge(system, 2.0, blast_model="masi2021")
@@ -201,9 +210,6 @@ def _dig(d: dict, path: str):
 
 def _scenario_item(name: str) -> Item:
     def compute(folder: Path, quick: bool) -> list:
-        from ..scenario import load_scenario
-        from ..study import Study
-        from . import write_study
 
         sc = load_scenario(name)
         if quick:
@@ -240,9 +246,7 @@ def _scenario_item(name: str) -> Item:
             ]
         return rows
 
-    import tomllib
 
-    from ..scenario import library_text
 
     title = tomllib.loads(library_text(name)).get("title") or name
     return Item(f"scenario-{name.replace('_', '-')}", f"Scenario: {title}", f"blastscale:{name}",
@@ -272,7 +276,6 @@ def _script_item(path: Path) -> Item:
 def items(examples: Optional[Path] = None) -> list[Item]:
     """Every reproducible item, in the paper's order (numbers first, the shipped scenarios, then the
     gallery of :func:`gallery_folder` when there is one)."""
-    from ..scenario import library_names
 
     out = [
         Item("table-geometry", "Table \"Geometry parameters\" (prototype and models 1, 2)", "Sec. Equations of motion",
@@ -313,9 +316,7 @@ def item_done(item: Item, out: Path, quick: bool) -> bool:
 def run_item(item: Item, out: Path, quick: bool, output_folder) -> dict:
     """Compute ``item`` into ``out/<name>`` through ``output_folder`` (atomic, replaces an item
     made in the other mode); returns the marker's content."""
-    import time
 
-    from ..io.results import write_json
 
     dest = out / item.name
     with output_folder(dest, force=dest.exists(), markers=(MARKER,)) as tmp:
@@ -333,7 +334,6 @@ def _slip_link(slip) -> str:
 
 
 def _cell(v) -> str:
-    from .html import format_value
 
     if isinstance(v, float):
         return format_value(v, ".4g")
@@ -342,10 +342,7 @@ def _cell(v) -> str:
 
 def render_reproduce_report(out: Path, infos: list[dict], meta: dict) -> str:
     """One self-contained page: per item, the paper's values beside blastscale's, the slips, the figures."""
-    import html as _html
 
-    from .html import _CSS
-    from .slips import SLIPS
 
     e = lambda x: _html.escape(str(x), quote=True)  # noqa: E731
     slip_text = {s.number: f"#{s.number} {s.where}: {s.text}" for s in SLIPS}

@@ -11,6 +11,9 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from ..scenario import load_scenario
+from ..study import Study, estimate_seconds
+from .reproduce import MARKER
 
 __all__ = ["MEASURED", "expected_cost", "is_reproduce_folder"]
 
@@ -24,8 +27,6 @@ _WRITE_SECONDS, _SCENARIO_BYTES, _OTHER = 3.0, 2e6, (2.0, 2e5)
 def _estimate(item, quick: bool) -> tuple:
     if item.kind != "scenario" or not isinstance(item.source, str):
         return _OTHER
-    from ..scenario import load_scenario
-    from ..study import Study, estimate_seconds
 
     sc = load_scenario(item.source)
     if quick:
@@ -45,7 +46,6 @@ def expected_cost(items, quick: bool) -> tuple:
 
 def is_reproduce_folder(folder: Path) -> bool:
     """Whether ``folder`` is a reproduce folder: a ``summary.json`` listing items, or an item's marker."""
-    from .reproduce import MARKER
 
     folder = Path(folder)
     try:

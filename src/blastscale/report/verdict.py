@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from typing import Any, Optional
+from ..units import split_unit
 
 __all__ = ["PEAK_TOLERANCE", "verdict", "verdict_line", "label", "LABELS", "specimen_rows"]
 
@@ -89,7 +90,6 @@ LABELS = {
 
 def label(key: str) -> str:
     """A dotted result key in words: ``points.P-1.first_peak_prototype_m`` -> ``P-1: first peak, prototype``."""
-    from ..units import split_unit
 
     parts = key.split(".")
     last = parts[-1]

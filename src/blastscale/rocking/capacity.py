@@ -23,6 +23,8 @@ from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters
 from .critical import _check_extrapolated, _critical_arrays, _model_name, charge_for_impulse
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
+from ..similitude import scaling_factors
+from ..similitude.specimen import specimen_system
 
 __all__ = ["capacity_curve", "CapacityCurve", "model_capacity_curve", "ModelCapacity"]
 
@@ -167,8 +169,6 @@ def model_capacity_curve(
     In the impulsive limit the up-scaled curve equals the prototype's exactly; finite pulses
     depart from it by the effect of the pulse duration, which the law does not match.
     """
-    from ..similitude import scaling_factors
-    from ..similitude.specimen import specimen_system
 
     lam = float(check_positive("scale", scale))
     gam = float(check_positive("density ratio", density_ratio))

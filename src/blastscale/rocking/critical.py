@@ -40,6 +40,11 @@ from ._roots import vector_root
 from .swing import _first_swing
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
+from ..blast.bursts import burst_of
+from ..blast.load_model import load_model_record
+from ..blast.load_model import front_face_pulse
+from dataclasses import replace
+from ..blast.negative_phase import NEGATIVE_PHASE_MODELS
 
 __all__ = [
     "critical_charge",
@@ -325,8 +330,6 @@ def _critical(body, searched, fixed, pulse_shape, blast_model, gravity, restitut
 
 def _record(blast_model, load_model) -> dict:
     """The load-model record of a capacity result (:func:`blastscale.blast.load_model.load_model_record`)."""
-    from ..blast.bursts import burst_of
-    from ..blast.load_model import load_model_record
 
     return load_model_record(_model_name(blast_model), burst_of(blast_model), load_model)
 
@@ -341,7 +344,6 @@ def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse_s
     range of Z, must straddle the threshold (checked); ``rel`` is the relative width at which it
     stops; ``load_model`` as :func:`critical_charge` (the pulse of
     :func:`~blastscale.blast.load_model.front_face_pulse`). For tests and benchmarks."""
-    from ..blast.load_model import front_face_pulse
 
     system = as_rocking_system(body, gravity, restitution)
     solver = solver or DEFAULT_SOLVER
@@ -367,9 +369,7 @@ def negative_phase_uncertainty(system, standoff: float, load_model, **kw) -> dic
     the spread between the models is the model uncertainty of the suction (docs/blast_physics.md;
     the paper's block at 2 m, Kingery-Bulmash: x1.29 with the chart's cubic, x1.03 with the
     continued Friedlander). ``load_model`` keeps its clearing; ``kw`` go to :func:`critical_charge`."""
-    from dataclasses import replace
 
-    from ..blast.negative_phase import NEGATIVE_PHASE_MODELS
 
     base = critical_charge(system, standoff, load_model=replace(load_model, negative_phase=False), **kw).charge_kg
     out = {"positive_phase_only_kg": float(base)}

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 
 from .._validate import BlastscaleInputError, check_positive, check_range
 from ..structures.block import STANDARD_GRAVITY, RectangularBlock
+from dataclasses import replace
 
 __all__ = ["RockingSystem", "housner_restitution", "as_rocking_system"]
 
@@ -138,7 +139,6 @@ class RockingSystem:
         (``factors``: a :class:`~blastscale.similitude.ScalingFactors`; ``length`` lambda, ``density`` gamma,
         ``gravity`` varsigma [-]). Paper Tables 1-2. Called by
         :func:`blastscale.similitude.specimen.specimen_system`, the one place a specimen is scaled."""
-        from dataclasses import replace
 
         lam = float(check_positive("scale", factors.length))
         gam = float(check_positive("density ratio", factors.density))

@@ -35,6 +35,8 @@ from typing import NamedTuple
 
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from .._validate import BlastscaleInputError, check_positive, check_range
+from ..similitude import scaling_factors
+from .solver_choice import default_jacobian
 
 __all__ = ["ContactSettings", "CONES", "SOLVERS", "SETTING_RANGES", "Range", "default_contact", "mjcf_number", "reference_contact",
            "time_constant_for_step"]
@@ -302,7 +304,6 @@ def length_time_factors(length: float, time: float):
     """The scaling factors of a length factor and a time factor given exactly (the gravity ratio
     they imply is length / time^2): for :meth:`ContactSettings.scaled` and structures' ``scaled``
     where a change of units, not a scaling law, fixes the two."""
-    from ..similitude import scaling_factors
 
     lam = float(check_positive("scale", length))
     lt = float(check_positive("time factor", time))
@@ -336,7 +337,6 @@ def reference_contact(structure, friction: float = DEFAULT_FRICTION) -> ContactS
     """The full-scale (10 m, 9.81 m/s^2) settings of ``structure`` with friction mu [-]:
     :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several, with the Jacobian of
     :func:`~.solver_choice.default_jacobian` (by size and MuJoCo version)."""
-    from .solver_choice import default_jacobian
 
     n = len(structure.bodies)
     base = BLOCK_REFERENCE if n == 1 else STACK_REFERENCE

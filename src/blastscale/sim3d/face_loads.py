@@ -36,6 +36,8 @@ from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
 from ..blast.pulses import check_pulse_shape
 from .loads import check_blast, faces_array
+import copy
+from .exposure import visible_fractions
 
 __all__ = ["FaceLoadStrategy", "arrival_spread", "method_b", "method_c"]
 
@@ -140,7 +142,6 @@ class FaceLoadStrategy:
         -------
         FaceLoadStrategy
         """
-        import copy
 
         out = copy.copy(self)
         ta = self.rest_loads.arrival_time
@@ -272,7 +273,6 @@ def method_c(structure, blast, *, pulse_shape="friedlander", incidence="ufc", ex
     A face towards the charge but hidden from it behind another body (:mod:`.exposure`, ray cast) is
     shadowed: it sees the side-on pulse, as a face turned away does, not the reflected one (a partly
     hidden face: weighted by its visible fraction)."""
-    from .exposure import visible_fractions
 
     faces = [(i, f) for i, b in enumerate(structure.bodies) for f in b.faces if not f.in_contact and f.area > 0.0]
     bp = check_blast(blast)

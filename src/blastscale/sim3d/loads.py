@@ -28,6 +28,9 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive
 from .blast_force import mean_pressures
+from ..blast.load_model import front_face_pulse, load_model_record
+from dataclasses import replace
+from ..similitude.effects import front_face
 
 __all__ = ["LoadStrategy", "MethodA", "PerturbedLoad", "check_blast", "faces_array", "method_a", "with_structure_face"]
 
@@ -168,7 +171,6 @@ def method_a(structure, blast, *, pulse_shape="friedlander", incidence="ufc", ex
     bp = check_blast(blast)
     if load_model is None or load_model.is_paper:
         return MethodA(structure, bp.pulse(pulse_shape), arrival_time=float(bp.arrival_time))
-    from ..blast.load_model import front_face_pulse, load_model_record
 
     lm = with_structure_face(load_model, structure)
     return MethodA(structure, front_face_pulse(bp, pulse_shape, lm, extrapolate=extrapolate),
@@ -178,11 +180,9 @@ def method_a(structure, blast, *, pulse_shape="friedlander", incidence="ufc", ex
 def with_structure_face(load_model, structure):
     """``load_model`` with the structure's front as its clearing face when it has none
     (:func:`~blastscale.similitude.effects.front_face`)."""
-    from dataclasses import replace
 
     if not load_model.clearing or load_model.face_width_m is not None:
         return load_model
-    from ..similitude.effects import front_face
 
     w, h = front_face(structure)
     return replace(load_model, face_width_m=w, face_height_m=h)

@@ -14,6 +14,7 @@ from ..structures.base import top_monitoring_point
 from .body_mesh import structure_meshes
 from .results import VARIABLES, Response3D, body_heights
 from .rotations import quaternion_to_matrix, tilt_angle
+from importlib.metadata import PackageNotFoundError, version
 
 __all__ = ["collapse_flags", "fallen_flags", "body_heights", "response_from_states"]
 
@@ -76,7 +77,6 @@ def collapse_flags(structure, pos, R, tilt) -> np.ndarray:
 
 
 def _versions() -> dict:
-    from importlib.metadata import PackageNotFoundError, version
 
     out = {}
     for pkg in ("blastscale", "mujoco", "numpy", "xarray"):

@@ -32,6 +32,7 @@ from .contact import (
     reference_contact,
     structure_length,
 )
+from .model import structure_scene
 
 __all__ = ["REFERENCE_DIGITS", "REFERENCE_GRAVITY", "REFERENCE_LENGTH", "reference_factors", "reference_scene",
            "reference_settings", "to_reference"]
@@ -113,7 +114,6 @@ def reference_scene(structure, contact: ContactSettings | None, gravity: float, 
         (:func:`~.model.structure_scene`: each body's exact mass and inertia, masses in it x a^3 and
         lengths x a), and the length and time factors of :func:`reference_factors`.
     """
-    from .model import structure_scene
 
     a, b = reference_factors(structure, gravity)
     scene = structure_scene(to_reference(structure, a), reference_settings(contact, structure, a, b),

@@ -26,6 +26,10 @@ import math
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive_scalar
+from ..structures.assembly import Assembly
+from ..blast.bursts import lab_burst
+from ..blast.load_model import PAPER_LOAD, front_face_clearing, front_face_negative, load_model_record
+from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
 
 __all__ = ["SIMILARITY_TOLERANCE", "CONTINUOUS_FRONT", "front_geometry", "structure_top", "front_face", "blast_effects", "clearing_corrected_charge",
            "BlastSimilarityWarning"]
@@ -54,7 +58,6 @@ def front_geometry(structure) -> tuple:
     :data:`CONTINUOUS_FRONT` of it; a front with openings (an arch, a portal) has no UFC clearing
     procedure here and is refused in one line.
     """
-    from ..structures.assembly import Assembly
 
     if isinstance(structure, Assembly):
         return _assembly_front(structure)
@@ -70,7 +73,6 @@ def front_geometry(structure) -> tuple:
 
 def structure_top(structure) -> float:
     """Height of a structure's top above the ground [m] (a free-air charge stands at half of it)."""
-    from ..structures.assembly import Assembly
 
     if isinstance(structure, Assembly):
         return float(max(b.points[:, 2].max() for b in structure.blocks))
@@ -134,8 +136,6 @@ def blast_effects(prototype, specimen, load_model=None, *, specimen_load_model, 
         one-line warning of a difference above :data:`SIMILARITY_TOLERANCE` or a lab burst that is
         neither surface nor free-air).
     """
-    from ..blast.bursts import lab_burst
-    from ..blast.load_model import PAPER_LOAD, front_face_clearing, front_face_negative, load_model_record
 
     lam = check_positive_scalar("scale", scale)
     lm_p = load_model or PAPER_LOAD
@@ -218,8 +218,6 @@ def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = Fa
         specimen's scaled distance, peak pressure and positive duration against the design's
         (the cost: what moves away from similarity to restore the impulse).
     """
-    from ..blast.load_model import front_face_clearing
-    from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
 
     if load_model is not None and load_model != design.load_model:
         raise BlastscaleInputError(

@@ -11,6 +11,16 @@ from typing import Any, Callable, Optional
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..structures import is_block
+from ..blast.load_model import PAPER_LOAD, LoadModel
+import numpy as np
+from ..blast.load_model import front_face_pulse
+from ..sim3d import ContactSettings
+from ..sim3d.contact import time_constant_for_step
+from ..sim3d.contact import default_contact
+from ..sim3d.contact import reference_contact
+from ..analysis.structure3d import compare_structure3d, prototype_structure3d
+from ..analysis.ensemble import ensemble_compare
+from ..blast.bursts import model_for_burst
 
 __all__ = ["Engine", "ENGINES", "ENSEMBLE", "Context", "contact_settings", "critical_charge_of", "record_every",
            "REFERENCE_RECORD_INTERVAL", "load_model_of"]
@@ -33,7 +43,6 @@ def load_model_of(scenario: Scenario, structure):
     """The prototype's load model of a scenario (:class:`~blastscale.blast.load_model.LoadModel`):
     ``blast.clearing`` on the structure's front (:func:`~blastscale.similitude.effects.front_face`)
     and ``blast.negative_phase``; the paper's load when neither is asked for."""
-    from ..blast.load_model import PAPER_LOAD, LoadModel
 
     bl = scenario.blast
     if not (bl.clearing or bl.negative_phase):
@@ -55,10 +64,8 @@ def _run_planar(ctx: Context):
     """Planar rocking of the prototype block and, with a design, of its specimen (its block, pulse
     and gravity from the design: the blast parameters are the design's, never recomputed), sampled
     at corresponding times and compared (:func:`~blastscale.analysis.rocking_similarity.compare_rocking`)."""
-    import numpy as np
 
     from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
-    from ..blast.load_model import front_face_pulse
     from ..rocking import RockingSystem
     from ..rocking import DEFAULT_SOLVER
 
@@ -85,10 +92,7 @@ def contact_settings(scenario: Scenario, structure=None):
 
     When the time step is given without a contact time constant, the time constant is kept
     at >= 4 steps (MuJoCo needs >= 2)."""
-    from ..sim3d import ContactSettings
-    from ..sim3d.contact import time_constant_for_step
 
-    from ..sim3d.contact import default_contact
 
     sim = scenario.simulation
     # scale-consistent defaults derived from the structure (the full-scale ones without it)
@@ -120,7 +124,6 @@ def record_every(scenario: Scenario, structure) -> int:
     """The 3D recording interval in steps: ``simulation.record_every`` when given, else one state per
     :data:`REFERENCE_RECORD_INTERVAL` of the structure's reference time step (the same number of
     steps for the prototype and the specimen, so their grids correspond)."""
-    from ..sim3d.contact import reference_contact
 
     given = scenario.simulation.record_every
     if given is not None:
@@ -151,7 +154,6 @@ def _run_3d(ctx: Context):
     """Prototype and specimen in 3D from the design's blast parameters, compared
     (:func:`~blastscale.analysis.structure3d.compare_structure3d`); without a design the prototype
     alone from ``ctx.blast`` (:func:`~blastscale.analysis.structure3d.prototype_structure3d`)."""
-    from ..analysis.structure3d import compare_structure3d, prototype_structure3d
 
     if ctx.design is None:
         return prototype_structure3d(ctx.structure, ctx.blast, gravity=ctx.scenario.simulation.gravity_m_s2,
@@ -162,7 +164,6 @@ def _run_3d(ctx: Context):
 def _run_ensemble(ctx: Context):
     """Ensembles under perturbed loads (:func:`~blastscale.analysis.ensemble.ensemble_compare`):
     prototype and specimen, or the prototype alone without a design."""
-    from ..analysis.ensemble import ensemble_compare
 
     sim = ctx.scenario.simulation
     return ensemble_compare(ctx.structure, ctx.design, n=sim.ensemble_members, perturbation=sim.ensemble_perturbation,
@@ -197,7 +198,6 @@ def critical_charge_of(sc: Scenario, structure):
     over charges (or any other field) at one stand-off searches it once per process (memoised)."""
     sim, bl = sc.simulation, sc.blast
     lm = load_model_of(sc, structure)
-    from ..blast.bursts import model_for_burst
 
     blast_model = model_for_burst(bl.blast_model, bl.burst).name
     return _critical_charge(structure, sim.gravity_m_s2, sim.restitution, bl.standoff_m, bl.pulse_shape,

@@ -15,6 +15,7 @@ import os
 
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
+from ..sim3d.contact import default_contact
 
 __all__ = ["MEMORY_FRACTION", "estimate_memory", "check_memory", "estimate_seconds", "check_budget",
            "check_study_budget", "max_seconds", "format_duration", "STEP_SECONDS"]
@@ -69,7 +70,6 @@ def _timestep(scenario: Scenario, structure, contact=None) -> float:
 
 def _derived_timestep(scenario: Scenario, structure) -> float:
     """The time step the engine derives from the structure's size [s] (no time step given)."""
-    from ..sim3d.contact import default_contact
 
     try:
         return default_contact(structure, friction=scenario.structure.friction,

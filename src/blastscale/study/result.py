@@ -8,6 +8,9 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..scenario import Scenario
+import copy
+from ..analysis.compare import upscale_dataset
+import numpy as np
 
 __all__ = ["StudyResult"]
 
@@ -99,7 +102,6 @@ class StudyResult:
         ``design``, ``planar``, ``critical``, ``3d``, ``ensemble`` (None where not run),
         ``warnings``, ``timings_s``. The scenario is under ``scenario``. Computed once (a copy
         is returned)."""
-        import copy
 
         return copy.deepcopy(self._cached_summary())
 
@@ -141,7 +143,6 @@ class StudyResult:
         The root carries the title, the scenario (TOML) and the CF conventions."""
         import xarray as xr
 
-        from ..analysis.compare import upscale_dataset
         from ..analysis.rocking_similarity import rocking_dataset
 
         groups = {}
@@ -177,7 +178,6 @@ def _describe(structure) -> dict:
 def _ensemble_dataset(ens):
     """The ensemble members' x displacements, prototype and (with a design) up-scaled model
     (system, member, time, point); and the motion of the median and the worst member (case, system, ...)."""
-    import numpy as np
     import xarray as xr
 
     members = [ens.prototype_members] + ([] if ens.model_members is None else [ens.model_members])
@@ -207,7 +207,6 @@ def _ensemble_dataset(ens):
 def _system_stack(proto, up=None):
     """Prototype and (when given) the up-scaled specimen on the prototype's times, stacked along
     ``system``; every variable with ``units`` and ``long_name``, labels dimensionless."""
-    import numpy as np
     import xarray as xr
 
     names = list(proto.data_vars)

@@ -38,6 +38,8 @@ from ..structures import from_spec
 from .engines import ENGINES, ENSEMBLE, Context, Engine, contact_settings, critical_charge_of, load_model_of
 from .memory import check_study_budget
 from .result import StudyResult
+from ..similitude import design_model
+from ..similitude.effects import front_face, structure_top
 
 __all__ = ["Study", "StudyPlan", "StudyWarning", "Progress"]
 
@@ -141,8 +143,6 @@ class Study:
         for a prototype-only scenario (no ``[scale]``). It carries the specimen system: the specimen
         structure (any kind), its load model, its contact (when ``contact``, the prototype's 3D
         settings, is given), gravity and duration, each scaled once."""
-        from ..similitude import design_model
-        from ..similitude.effects import front_face, structure_top
 
         sc = self.scenario
         if sc.scale is None or sc.blast.gravity_only:  # gravity alone: no charge to scale

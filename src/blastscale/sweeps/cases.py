@@ -9,12 +9,14 @@ import math
 from .._validate import BlastscaleInputError
 from .outcomes import VALID_KEY, planar_outcomes
 from .spec import SweepSpec
+from ..study import Study
+import warnings
+from ..sim3d.threads import map_threads
 
 __all__ = ["VALID_KEY", "study_scalars", "evaluate_chunk"]
 
 
 def _scalars(scenario) -> dict:
-    from ..study import Study
 
     try:
         return {**Study(scenario).run().scalars(), VALID_KEY: True}
@@ -27,7 +29,6 @@ def study_scalars(scenario) -> dict:
     silenced: a sweep reports results, not one warning per case). A case the Study refuses
     (e.g. a model scaled distance outside the blast fits) gives ``{"sweep.valid": False}``:
     its other values are NaN in the store."""
-    import warnings
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -40,9 +41,7 @@ def _chunk_rows(spec: SweepSpec, start: int, stop: int) -> list:
     order (a planar Study is mostly Python, which holds the GIL; the outcome mode splits its kernel calls
     over the threads instead, :mod:`blastscale.rocking._batch`). Warnings are silenced once, here
     (``catch_warnings`` is process-wide)."""
-    import warnings
 
-    from ..sim3d.threads import map_threads
 
     scenarios = [spec.scenario(k) for k in range(start, stop)]
     threads = 1 if spec.planar_only else scenarios[0].simulation.threads if scenarios else 1

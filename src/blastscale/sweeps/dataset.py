@@ -20,6 +20,9 @@ from ..units import unit_of
 from .layout import CONSTANT_GROUPS, VALID_NAME, coordinate_attrs, label_order, store_location
 from .outcomes import VALID_KEY
 from .spec import SweepSpec
+import platform
+from .. import __version__
+from .._code import code_fingerprint
 
 __all__ = ["assemble", "metadata", "STORE_VERSION"]
 
@@ -157,12 +160,9 @@ def assemble(spec: SweepSpec, chunks, meta: dict):
 
 def metadata(spec: SweepSpec, chunk: int) -> dict:
     """Root attributes of a sweep's store: its description (JSON), fingerprint, chunking, versions."""
-    import platform
 
     import numba
 
-    from .. import __version__
-    from .._code import code_fingerprint
 
     return {
         "title": "blastscale sweep",

@@ -34,6 +34,11 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 from .grids import Distribution
+from ..structures import from_spec
+from .. import __version__
+from .spec import SweepSpec
+from ..study.memory import check_budget
+from .budget import FIRST_SWING_SECONDS
 
 __all__ = ["fragility", "FragilityResult", "fit_lognormal_fragility", "LognormalFit", "overturning_outcomes"]
 
@@ -191,7 +196,6 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     """
     from ..rocking import RockingSolver, overturns
     from ..rocking.system import RockingSystem
-    from ..structures import from_spec
 
     base = spec.base
     if base.structure.kind != "block":
@@ -243,7 +247,6 @@ class FragilityResult:
 
     def to_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (JSON-ready)."""
-        from .. import __version__
 
         f = self.fit
         return {
@@ -292,7 +295,6 @@ def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int =
     -------
     FragilityResult
     """
-    from .spec import SweepSpec
 
     W = np.atleast_1d(np.asarray(charges, dtype=float))
     if W.ndim != 1 or W.size == 0 or not np.all(np.isfinite(W) & (W > 0)):
@@ -313,8 +315,6 @@ def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int =
         absolute[key] = Distribution("uniform", (float(lo), float(hi)))
     if not rel and not absolute:
         raise BlastscaleInputError("uncertain fields = none: give at least one --lognormal FIELD=beta or --uniform FIELD=lo:hi")
-    from ..study.memory import check_budget
-    from .budget import FIRST_SWING_SECONDS
 
     draws = W.size * int(samples)
     check_budget("samples", samples, "", draws * 8.0 * (len(rel) + len(absolute) + 6) * 3,

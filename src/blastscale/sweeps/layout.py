@@ -32,6 +32,7 @@ import re
 from typing import NamedTuple, Optional
 
 from ..units import SUFFIXES, unit_of
+import numpy as np
 
 __all__ = ["StoreLocation", "store_location", "select", "GROUPS", "SYSTEMS", "LIST_DIMENSIONS",
            "CONSTANT_GROUPS", "VALID_NAME", "coordinate_attrs", "label_order"]
@@ -202,7 +203,6 @@ def select(tree, key: str):
     KeyError
         A key the store does not hold.
     """
-    import numpy as np
     import xarray as xr
 
     loc = store_location(key)

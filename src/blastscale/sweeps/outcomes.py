@@ -8,6 +8,11 @@ from __future__ import annotations
 import numpy as np
 
 from .spec import SweepSpec, _plain
+from .._validate import BlastscaleInputError
+from ..similitude import design_model
+from ..structures import from_spec
+from ..study.engines import load_model_of
+import warnings
 
 __all__ = ["OUTCOME_KEYS", "VALID_KEY", "planar_outcomes"]
 
@@ -54,12 +59,8 @@ def _outcome_group(sc, W, R, e) -> dict:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
     design (:func:`~blastscale.similitude.design_model` over the arrays), then the first swing of
     prototype and specimen."""
-    from .._validate import BlastscaleInputError
     from ..rocking import RockingSolver, first_swing_blast
     from ..rocking.system import RockingSystem, housner_restitution
-    from ..similitude import design_model
-    from ..structures import from_spec
-    from ..study.engines import load_model_of
 
     n = W.size
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
@@ -119,7 +120,6 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
         :data:`OUTCOME_KEYS` -> array over the cases (booleans as floats with NaN where some case
         of the chunk is invalid).
     """
-    import warnings
 
     vals = spec.value_arrays(start, stop)
     n = int(stop) - int(start)

@@ -16,6 +16,9 @@ from .._extras import require
 from .._validate import BlastscaleInputError
 from .cases import evaluate_chunk
 from .spec import SweepSpec
+from ..sim3d.threads import available_cores
+from .dataset import assemble, metadata
+from .budget import check_sweep_budget
 
 __all__ = ["SweepRun", "default_chunk", "run_chunks", "run_in_memory", "payload_hash"]
 
@@ -47,7 +50,6 @@ def default_chunk(spec: SweepSpec, workers: int) -> int:
         return int(max(1, min(20000, math.ceil(spec.n_cases / max(1, 2 * workers)))))
     if spec.planar_only:  # enough cases per task to amortise the task overhead, enough tasks to balance
         return int(max(1, min(2000, math.ceil(spec.n_cases / max(1, 4 * workers)))))
-    from ..sim3d.threads import available_cores
 
     per_worker = max(1, available_cores() // max(1, workers))
     return int(max(1, min(per_worker, math.ceil(spec.n_cases / max(1, workers)))))
@@ -179,14 +181,12 @@ def run_in_memory(spec: SweepSpec, *, scheduler: Optional[str] = None, workers: 
     -------
     xarray.DataTree
     """
-    from .dataset import assemble, metadata
 
     if workers < 0:
         raise BlastscaleInputError(f"workers = {workers} is out of range: must be >= 0 (0: in this process)")
     chunk = default_chunk(spec, max(1, workers)) if chunk is None else chunk
     if not isinstance(chunk, int) or isinstance(chunk, bool) or chunk < 1:
         raise BlastscaleInputError(f"chunk = {chunk!r} is out of range: must be a whole number >= 1")
-    from .budget import check_sweep_budget
 
     check_sweep_budget(spec, None if scheduler else max(1, workers))
     n = spec.n_cases

@@ -30,6 +30,10 @@ from typing import Optional
 import numpy as np
 
 from .._validate import BlastscaleInputError
+from .._validate import check_positive
+from .layout import VALID_NAME, select
+from .runner import run_in_memory
+from .spec import SweepSpec
 
 __all__ = ["similarity_map", "MAP_FIELDS", "DEFAULT_TOLERANCE", "ENGINE_VARIABLES"]
 
@@ -111,10 +115,6 @@ def similarity_map(
     """
     import xarray as xr
 
-    from .._validate import check_positive
-    from .layout import VALID_NAME, select
-    from .runner import run_in_memory
-    from .spec import SweepSpec
 
     if engine not in ENGINE_VARIABLES:
         raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINE_VARIABLES)}")

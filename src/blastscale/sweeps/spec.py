@@ -17,6 +17,10 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 from .grids import Distribution
+from .budget import VALUES_PER_CASE, check_cases_budget
+from .. import __version__
+from .._code import code_fingerprint
+from ..scenario import Scenario
 
 __all__ = ["SweepAxis", "SweepSample", "SweepSpec", "planar_case"]
 
@@ -124,7 +128,6 @@ class SweepSpec:
         if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or seed < 0:
             raise BlastscaleInputError(f"seed = {seed!r} is out of range: must be a whole number >= 0")
         spec = cls(base, tuple(axes), tuple(samp), int(samples) if samp else 0, int(seed), bool(outcomes))
-        from .budget import VALUES_PER_CASE, check_cases_budget
 
         # too many cases for the memory even in the outcome mode: refused before a value is drawn or checked
         check_cases_budget(spec.n_cases, 0.0, VALUES_PER_CASE["outcomes"], None, hint="fewer --vary values or --samples")
@@ -215,8 +218,6 @@ class SweepSpec:
         """sha256 of :meth:`describe`, the blastscale version and the fingerprint of its code
         (:func:`blastscale._code.code_fingerprint`): a resumed sweep must match it, so that no chunk
         computed by other code is reused (issue #30)."""
-        from .. import __version__
-        from .._code import code_fingerprint
 
         text = json.dumps({"spec": self.describe(), "version": __version__, "code": code_fingerprint()},
                           sort_keys=True, default=str)
@@ -228,7 +229,6 @@ class SweepSpec:
 
     @classmethod
     def from_payload(cls, payload: dict) -> "SweepSpec":
-        from ..scenario import Scenario
 
         base = Scenario.from_dict(payload["base"], source="sweep payload")
         axes = tuple(SweepAxis(a["name"], a["path"], tuple(a["values"])) for a in payload["axes"])
