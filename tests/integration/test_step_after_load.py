@@ -65,3 +65,23 @@ def test_a_column_after_the_load_runs_on_the_longer_step_at_the_same_recorded_ti
     np.testing.assert_array_equal(runs["same"].summary()["delivered_impulse_Ns"],
                                   runs["double"].summary()["delivered_impulse_Ns"])
     assert ds["double"].attrs["setting_step_after_load"] == "double"
+
+
+def test_the_column_command_takes_the_old_step_and_names_a_bad_value(capsys):
+    """``column --step-after-load same`` echoes it in ``inputs`` (the default "double" too); a bad value: exit 2, one
+    line naming the flag."""
+    import json
+
+    from blastscale.cli import main
+
+    base = "column --drums 2 --height 2 --top-width 1.6 --charge 250 --standoff 10 --duration 0.02 --json".split()
+    for flag, want in (([], "double"), (["--step-after-load", "same"], "same")):
+        with pytest.raises(SystemExit) as e:
+            main(base + flag)
+        assert (e.value.code or 0) == 0
+        assert json.loads(capsys.readouterr().out)["inputs"]["step_after_load"] == want
+    with pytest.raises(SystemExit) as e:
+        main(base + ["--step-after-load", "half"])
+    assert e.value.code == 2
+    err = capsys.readouterr().err
+    assert "--step-after-load" in err and "half" in err
