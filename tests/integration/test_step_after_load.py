@@ -74,7 +74,8 @@ def test_the_column_command_takes_the_old_step_and_names_a_bad_value(capsys):
 
     from blastscale.cli import main
 
-    base = "column --drums 2 --height 2 --top-width 1.6 --charge 250 --standoff 10 --duration 0.02 --json".split()
+    base = ["column", "--drums", "2", "--height", "2", "--top-width", "1.6", "--charge", "250", "--standoff", "10",
+            "--duration", "0.02", "--json"]
     for flag, want in (([], "double"), (["--step-after-load", "same"], "same")):
         with pytest.raises(SystemExit) as e:
             main(base + flag)

@@ -202,7 +202,7 @@ def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_m
             # free motion: advance to the next recorded state in one call (MuJoCo loops mj_step
             # in C: bitwise the same states, without a Python round trip per step)
             nxt = int(idx[j])
-            nsub = int(math.ceil((nxt - n) / longer - 1e-9))  # after a load: longer equal steps to the next state
+            nsub = math.ceil((nxt - n) / longer - 1e-9)  # after a load: longer equal steps to the next state
             m.opt.timestep = dt if nsub == nxt - n else dt * (nxt - n) / nsub
             mujoco.mj_step(m, d, nsub)
             qpos[j], qvel[j], ncon[j] = d.qpos, d.qvel, d.ncon
