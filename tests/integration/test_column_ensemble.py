@@ -56,7 +56,9 @@ def test_short_square_ensemble_is_not_chaotic():
     """A 3-drum square column, 250 kg at 10 m, lambda = 1/100, 0.3 s, two members 1e-6 apart:
     square columns are well-conditioned (docs/design.md: 1e-10 on the load -> 1e-6 of the history),
     so the members' first peaks differ by ~1e-6 relative (asserted < 1e-4), nothing collapses,
-    and the envelope of each system is as thin as that (noise floor < 1e-4 of the peak)."""
+    and the envelope of each system is thin: noise floor < 1e-4 of the peak for the prototype (measured 7.6e-6), < 2e-3
+    for the model (measured 7.6e-4 since issue #28 doubled the step after the load, putting the 1 ms contact at
+    MuJoCo's 2 steps; 1.5e-5 with step_after_load = "same"): still 2-3 orders below a circular column's chaos."""
     from blastscale.similitude import design_model
     from blastscale.structures import MultiDrumColumn
 
@@ -67,7 +69,7 @@ def test_short_square_ensemble_is_not_chaotic():
     assert s["n_members"] == 2 and s["collapse_probability_prototype"] == 0.0 == s["collapse_probability_model"]
     top = s["points"]["P-3"]
     assert top["first_peak_prototype_spread_m"] <= 1e-4 * top["first_peak_prototype_mean_m"]
-    assert top["noise_floor_rel_peak"] <= 1e-4 and top["model_noise_floor_rel_peak"] <= 1e-4
+    assert top["noise_floor_rel_peak"] <= 1e-4 and top["model_noise_floor_rel_peak"] <= 2e-3
     assert math.isnan(top["horizon_prototype_s"])
     assert e.prototype_members.shape == e.model_members.shape == (2, e.time.size, 3)
 

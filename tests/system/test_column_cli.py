@@ -261,8 +261,9 @@ def test_collapsing_column_is_compared_up_to_the_earlier_collapse():
     shift, and a tumbling stack's impacts are not what the scaling laws describe): compared_to_collapse_s is
     that time, the per-point figures up to it are present, and the x displacement grows
     monotonically to it, so the "first peak" is the value there. Measured: collapse times
-    0.1621 / 0.1632 s, top first-peak ratio 1.0018, difference up to collapse 0.7 % of the peak;
-    asserted: 0.005 s, 1 % and 2 %."""
+    0.1621 / 0.1632 s, top first-peak ratio 1.0018, difference up to collapse 0.7 % of the peak; since the step
+    after the load doubled (issue #28) 0.1577 / 0.1643 s, 1.0049, 0.66 % (the switch to the longer step falls at a
+    different moment of each system's fall, and a fall amplifies it); asserted: 0.01 s, 1 % and 2 %."""
     from blastscale.analysis.structure3d import compare_structure3d
     from blastscale.similitude import design_model
     from blastscale.structures import MultiDrumColumn
@@ -274,7 +275,7 @@ def test_collapsing_column_is_compared_up_to_the_earlier_collapse():
     assert ps["collapsed"] and s["outcomes_agree"] is True
     assert s["compared_to_collapse_s"] == pytest.approx(min(ps["collapse_time_s"], ps["collapse_time_s"]
                                                             + s["collapse_time_diff_s"]), rel=1e-12)
-    assert abs(s["collapse_time_diff_s"]) <= 5e-3
+    assert abs(s["collapse_time_diff_s"]) <= 1e-2
     top = s["points"]["P-3"]
     assert top["first_peak_time_s"] == pytest.approx(s["compared_to_collapse_s"], abs=2e-3)
     assert top["first_peak_ratio"] == pytest.approx(1.0, abs=1e-2)

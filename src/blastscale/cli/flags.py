@@ -35,7 +35,7 @@ FLAG_NAMES = {
     "simulation.restitution": "--restitution", "simulation.timestep_s": "--timestep",
     "simulation.record_every": "--record-every", "simulation.ensemble_members": "--ensemble",
     "simulation.threads": "--threads",
-    "simulation.contact.jacobian": "--jacobian",
+    "simulation.contact.jacobian": "--jacobian", "simulation.step_after_load": "--step-after-load",
 }
 
 

@@ -38,7 +38,7 @@ from .._validate import BlastscaleInputError, check_positive, check_range
 from ..similitude import scaling_factors
 from .solver_choice import default_jacobian
 
-__all__ = ["ContactSettings", "CONES", "SOLVERS", "SETTING_RANGES", "Range", "default_contact", "mjcf_number", "reference_contact",
+__all__ = ["ContactSettings", "CONES", "SOLVERS", "SETTING_RANGES", "STEPS_AFTER_LOAD", "Range", "default_contact", "mjcf_number", "reference_contact",
            "time_constant_for_step"]
 
 #: Friction-cone types accepted by MuJoCo.
@@ -47,6 +47,8 @@ CONES = ("elliptic", "pyramidal")
 SOLVERS = ("Newton", "CG", "PGS")
 #: Constraint-Jacobian layouts accepted by MuJoCo (``<option jacobian=...>``).
 JACOBIANS = ("dense", "sparse", "auto")
+#: The time step once every pulse has passed (:func:`~.integrate.step_factor_after_load`).
+STEPS_AFTER_LOAD = ("double", "same")
 
 
 def mjcf_number(x) -> str:
@@ -144,6 +146,10 @@ class ContactSettings:
         (:func:`~.solver_choice.default_jacobian`: sparse for stacks; MuJoCo 4.0.0's
         sparse-factorisation bug, issue 3767, is not reached by our scenes). "sparse" is 2.8x faster on the square
         10-drum column and gives the dense histories to 1.4e-12 of the peak (docs/performance.md).
+    step_after_load : {"double", "same"}
+        The step once every pulse has passed: "double" (default) up to 2 ``timestep``, at most half of every contact
+        time constant, a whole number of steps between recorded states (:func:`~.integrate.step_factor_after_load`,
+        docs/performance.md); "same": ``timestep`` throughout (before issue #28).
 
     Notes
     -----
@@ -170,6 +176,7 @@ class ContactSettings:
     tolerance: float = 1e-10
     noslip_iterations: int = 0
     jacobian: str = "dense"
+    step_after_load: str = "double"
 
     def __post_init__(self):
         for name in SETTING_RANGES:
@@ -196,6 +203,9 @@ class ContactSettings:
         if self.jacobian not in JACOBIANS:
             raise BlastscaleInputError(
                 f"jacobian = {self.jacobian!r} is not known: valid values are {', '.join(JACOBIANS)}")
+        if self.step_after_load not in STEPS_AFTER_LOAD:
+            raise BlastscaleInputError(f"step_after_load = {self.step_after_load!r} is not known: valid values are "
+                                       f"{', '.join(STEPS_AFTER_LOAD)}")
 
     # -- derived MuJoCo quantities ----------------------------------------------------
     @property
@@ -297,6 +307,7 @@ class ContactSettings:
             "tolerance": self.tolerance,
             "noslip_iterations": self.noslip_iterations,
             "jacobian": self.jacobian,
+            "step_after_load": self.step_after_load,
         }
 
 

@@ -104,6 +104,8 @@ def contact_settings(scenario: Scenario, structure=None):
     kw = {names.get(k, k): v for k, v in given.items()}
     if structure is None or base.friction != scenario.structure.friction:
         kw["friction"] = scenario.structure.friction
+    if sim.step_after_load != base.step_after_load:
+        kw["step_after_load"] = sim.step_after_load
     if sim.timestep_s is not None:
         kw["timestep"] = sim.timestep_s
         if "time_constant" not in kw:
