@@ -41,12 +41,19 @@ def test_batch_on_three_threads_is_bitwise_one_thread():
 
 
 def test_batch_runs_on_several_threads(monkeypatch):
-    """The split really uses threads: the kernel is entered from more than one thread."""
+    """The split really uses threads: the kernel is entered from more than one thread. Each thread's first
+    call waits (up to 60 s) until a second thread has entered too, so a busy machine on which one thread
+    would otherwise take every group before the other starts cannot make the check pass or fail by chance."""
     seen = set()
     real = _batch.K.solve_into
+    both = threading.Barrier(2, timeout=60.0)
 
     def spy(*args):
-        seen.add(threading.get_ident())
+        me = threading.get_ident()
+        if me not in seen:
+            seen.add(me)
+            if len(seen) <= 2:
+                both.wait()
         return real(*args)
 
     bodies, pulses = _mix(2 * _batch.MIN_CASES_PER_THREAD)
