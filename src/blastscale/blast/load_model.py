@@ -36,6 +36,7 @@ from .negative_phase import (
     negative_phase,
 )
 from .pulses import Impulsive, Pulse
+from .parameters import get_blast_model
 
 __all__ = ["LoadModel", "PAPER_LOAD", "PhasedPulse", "front_face_pulse", "front_face_clearing", "front_face_negative",
            "load_model_record"]
@@ -199,7 +200,6 @@ def front_face_clearing(bp, load_model: LoadModel) -> "Clearing | None":
     load_model.require_face()
     P_so, i_s = bp.incident_pressure, bp.incident_impulse
     if P_so is None or i_s is None:
-        from .parameters import get_blast_model
 
         kb = get_blast_model("kingery-bulmash")
         w13 = np.cbrt(bp.charge_kg)

@@ -71,6 +71,9 @@ import numpy as np
 
 from .._validate import OutOfRangeError, check_positive
 from .base import ExtrapolationWarning
+from .._validate import BlastscaleInputError
+from .friedlander import friedlander_decay as decay_of
+from .bursts import check_burst
 
 __all__ = [
     "NegativePhase",
@@ -217,7 +220,6 @@ def negative_phase(scaled_distance, charge, burst: str = "surface", *, extrapola
         Z outside [0.07, 37.6] m/kg^(1/3) without ``extrapolate``.
     """
     if burst not in RIGBY_NEGATIVE_PHASE:
-        from .bursts import check_burst
 
         check_burst(burst)
     z = check_positive("scaled distance Z", scaled_distance, "m/kg^(1/3)")
@@ -272,12 +274,10 @@ def face_negative_phase(scaled_distance, charge, burst: str = "surface", *, refl
         neg = negative_phase_unchecked(scaled_distance, charge, burst)
     elif model == "friedlander-continued":
         if friedlander_decay is None:
-            from .friedlander import friedlander_decay as decay_of
 
             friedlander_decay = decay_of(reflected_pressure, positive_duration, reflected_impulse)
         neg = friedlander_continued(reflected_pressure, positive_duration, friedlander_decay)
     else:
-        from .._validate import BlastscaleInputError
 
         raise BlastscaleInputError(f"negative phase model = {model!r} is not known: valid values are "
                                    f"{', '.join(NEGATIVE_PHASE_MODELS)}")

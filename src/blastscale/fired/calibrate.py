@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, minimize_scalar
 
 from .._validate import BlastscaleInputError
 from ..rocking.system import housner_restitution
@@ -155,8 +155,6 @@ def calibrate_friction(scenario, design, tracks: dict, charge_kg: float, standof
         ``evaluations`` (3D runs of the specimen), ``prototype_first_peak_m`` (marker name -> the prototype's
         first peak at the marker's up-scaled point [m], None when it has none), ``prototype_outcome``.
     """
-    from scipy.optimize import minimize_scalar
-
     check_applies(("friction",), design, "block")
     if not tracks:
         raise BlastscaleInputError("calibrate needs marker tracks: [fired] tracks is not given")

@@ -23,6 +23,8 @@ from .shot import (DEFAULT_LAB, Timing, card_charge, fireability, rocking_timing
                    timing_of)
 from ..structures import is_block
 from ..blast import get_blast_model
+from .candidates import Evaluated
+from .planner import specimen_scenario
 
 __all__ = ["study_test_card", "check_lab"]
 
@@ -186,8 +188,6 @@ def study_test_card(result, lab=None) -> dict | None:
     odds = _odds(result, spec, ch, lab, collapsed_p)
     odds3 = None
     if lab.ensemble_3d and hasattr(spec, "width"):
-        from .planner import specimen_scenario
-        from .candidates import Evaluated
 
         ev = Evaluated(None, design=d, specimen=spec)
         odds3 = ensemble_odds_3d(specimen_scenario(sc, ev), prototype_collapsed=collapsed_p,

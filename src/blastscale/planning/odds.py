@@ -119,8 +119,8 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
     critical : bool
         Search the specimen's critical charge (the weighing precision that keeps the outcome).
     """
-    from ..rocking import critical_charge, first_swing, first_swing_blast
-    from ..rocking.system import RockingSystem
+    from ..rocking import critical_charge, first_swing, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking.system import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     n = int(samples)
     W0, R0 = float(charge_kg), float(standoff_m)

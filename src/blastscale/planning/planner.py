@@ -69,7 +69,7 @@ class Plan:
 
 def _prototype(scenario):
     """The prototype's block, nominal first swing, timing and safety envelope."""
-    from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing
+    from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     sc, bl, sim = scenario, scenario.blast, scenario.simulation
     _paper_load_only(sc)

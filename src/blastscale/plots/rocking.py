@@ -10,6 +10,7 @@ imported only when a plot is drawn. Inputs are :class:`~blastscale.rocking.Rocki
 from __future__ import annotations
 
 import numpy as np
+from .._validate import BlastscaleInputError
 
 __all__ = [
     "plot_angle",
@@ -120,7 +121,6 @@ def plot_similarity(sim, quantity: str = "theta", ax=None):
         ax.set_xlabel("rocking angle theta [rad]")
         ax.set_ylabel("angular velocity theta_dot [rad/s]")
     else:
-        from .._validate import BlastscaleInputError
 
         raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are theta, theta_dot, phase")
     title = f"max |delta theta| = {sim.max_abs_rotation_diff:.2e} rad"

@@ -15,6 +15,7 @@ import html
 import math
 import weakref
 from typing import Any
+from ..planning import study_test_card
 
 __all__ = ["card_of", "card_section", "UNITS", "shown"]
 
@@ -32,7 +33,6 @@ def card_of(result):
     if result.scenario.lab is None or result.design is None:
         return None
     if result not in _CACHE:
-        from ..planning import study_test_card
 
         _CACHE[result] = study_test_card(result)
     return _CACHE[result]

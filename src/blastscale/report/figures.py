@@ -18,6 +18,7 @@ from ..plots.column import plot_ensemble_envelope
 from ..structures import Assembly
 from ..plots.assembly import assembly_figure
 from ..plots.assembly import snapshot_figure
+from ..plots.column import plot_column_comparison
 
 __all__ = ["Figure", "FIGURES", "render_figures", "png_bytes"]
 
@@ -66,7 +67,6 @@ def _three_d(result):
     import matplotlib.pyplot as plt
 
     if result.scenario.structure.kind == "column":
-        from ..plots.column import plot_column_comparison
 
         return plot_column_comparison(cmp.structure, cmp.prototype_dataset, cmp.upscaled_dataset)
 

@@ -200,17 +200,17 @@ def _load_model(result) -> str:
     if not e:
         return out
     rows = []
-    for key, label, unit in (("clearing_time_s", "clearing time t_c", "s"),
+    for key, name, unit in (("clearing_time_s", "clearing time t_c", "s"),
                              ("clearing_time_over_positive_duration", "t_c / t_o", "-"),
                              ("uncleared_impulse_Pa_s", "uncleared impulse", "Pa s"),
                              ("cleared_impulse_Pa_s", "cleared impulse", "Pa s"),
                              ("cleared_over_uncleared_impulse", "cleared / uncleared impulse", "-")):
         if "clearing" in e:
-            rows.append((label, e["clearing"]["prototype"][key], e["clearing"]["model"][key], unit))
-    for key, label, unit in (("negative_impulse_Pa_s", "negative impulse", "Pa s"),
+            rows.append((name, e["clearing"]["prototype"][key], e["clearing"]["model"][key], unit))
+    for key, name, unit in (("negative_impulse_Pa_s", "negative impulse", "Pa s"),
                              ("negative_over_positive_impulse", "negative / positive impulse", "-")):
         if "negative_phase" in e:
-            rows.append((label, e["negative_phase"]["prototype"][key], e["negative_phase"]["model"][key], unit))
+            rows.append((name, e["negative_phase"]["prototype"][key], e["negative_phase"]["model"][key], unit))
     if rows:
         out += ("<p>What the scaling law does not match (a difference above 5 % is listed under Warnings):</p>"
                 + _table(("quantity", "prototype", "model", "unit"), rows))

@@ -110,7 +110,6 @@ class Item:
         elif isinstance(self.source, Path):
             source = self.source.read_bytes()
         else:
-            from ..scenario import library_text
 
             source = library_text(self.source).encode("utf-8")
         return hashlib.sha256(code_fingerprint().encode() + b"\0" + source).hexdigest()
@@ -171,7 +170,7 @@ def _scaling_factors(folder: Path, quick: bool) -> list:
 
 
 def _critical(folder: Path, quick: bool) -> list:
-    from ..rocking import RockingSystem, critical_charge
+    from ..rocking import RockingSystem, critical_charge  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
 

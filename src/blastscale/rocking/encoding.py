@@ -22,6 +22,8 @@ from ..blast.load_model import PhasedPulse
 from ..blast.pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular
 from ._load import FRIEDLANDER, NO_PULSE, PAR_SIZE, TABULATED, TRIANGULAR
 from .system import RockingSystem
+from ..blast.load_model import front_face_negative
+from ..blast.load_model import front_face_clearing
 
 __all__ = ["PULSE_CODES", "PAR_SIZE", "encode_pulse", "kernel_pulse_end"]
 
@@ -139,7 +141,6 @@ def encode_blast_batch(alpha, frequency, load_ratio, blast, pulse_shape: str, lo
     tab_t = tab_f = np.zeros(0)
     i_pos = i
     if load_model is not None and load_model.clearing:
-        from ..blast.load_model import front_face_clearing
 
         c = front_face_clearing(blast, load_model)
         cl = np.atleast_1d(c.cleared)
@@ -160,7 +161,6 @@ def encode_blast_batch(alpha, frequency, load_ratio, blast, pulse_shape: str, lo
     if pulse_shape == "impulsive":  # theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
         w0[:] = q * p * i_pos * np.cos(a)
     if load_model is not None and load_model.negative_phase:
-        from ..blast.load_model import front_face_negative
 
         neg = front_face_negative(blast, load_model, extrapolate=extrapolate, positive_impulse=i_pos)
         start = kernel_pulse_end(kind, par, tab_t, off)

@@ -195,7 +195,6 @@ def as_rocking_system(
     [m/s^2] (default 9.81) and ``restitution``; a system is returned as is unless
     ``gravity`` / ``restitution`` are given, which then replace its own)."""
     if isinstance(body, RockingSystem):
-        from dataclasses import replace
 
         changes = {}
         if gravity is not None:

@@ -38,6 +38,8 @@ from ..blast.pulses import check_pulse_shape
 from .loads import check_blast, faces_array
 import copy
 from .exposure import visible_fractions
+from ..similitude.effects import structure_top
+from ..similitude.effects import front_geometry
 
 __all__ = ["FaceLoadStrategy", "arrival_spread", "method_b", "method_c"]
 
@@ -106,7 +108,6 @@ class FaceLoadStrategy:
         self.load_model = None if load_model is None or load_model.is_paper else load_model
         self._effects = {}
         if self.load_model is not None:
-            from ..similitude.effects import front_geometry
 
             self._effects["negative"] = self.load_model.negative_phase
             self._effects["negative_model"] = self.load_model.negative_phase_model
@@ -239,7 +240,6 @@ def _charge_position(structure, standoff_m, burst: str = "surface") -> np.ndarra
     R = float(check_positive("standoff", standoff_m, "m"))
     z = 0.0
     if burst == "free-air":  # on a stand at the front's mid-height (module docstring)
-        from ..similitude.effects import structure_top
 
         z = 0.5 * structure_top(structure)
     return np.array([float(structure.front_x) - R, 0.0, z])

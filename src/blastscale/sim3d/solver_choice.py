@@ -21,6 +21,8 @@ possible in a user's environment) stacks up to :data:`DENSE_JACOBIAN_MAX_BODIES`
 from __future__ import annotations
 
 import functools
+from importlib.metadata import version as _version
+from importlib.metadata import PackageNotFoundError
 
 __all__ = ["DENSE_JACOBIAN_MAX_BODIES", "SPARSE_FIXED_MUJOCO", "default_jacobian", "sparse_factorisation_fixed"]
 
@@ -64,8 +66,6 @@ def default_jacobian(nbody: int, version: str | None = None) -> str:
 
 def _released_at_least(version: str | None, release: tuple) -> bool:
     if version is None:
-        from importlib.metadata import PackageNotFoundError
-        from importlib.metadata import version as _version
 
         try:
             version = _version("mujoco")

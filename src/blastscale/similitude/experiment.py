@@ -28,6 +28,7 @@ from ..constants import STANDARD_GRAVITY
 from ..structures import is_block
 from ..structures.block import RectangularBlock
 from .factors import ScalingFactors
+from ..blast.load_model import load_model_record
 
 __all__ = ["ImpulsiveCheck", "ModelDesign", "impulsive_check", "DEFAULT_IMPULSIVE_THRESHOLD"]
 
@@ -225,7 +226,6 @@ class ModelDesign:
             out["blast_effects"] = self.effects
             out["load_model"] = self.effects["load_model"]
         else:
-            from ..blast.load_model import load_model_record
 
             out["load_model"] = {"prototype": load_model_record(self.prototype.blast_model, self.prototype.burst),
                                  "model": load_model_record(self.specimen.blast_model, self.specimen.burst)}

@@ -173,7 +173,7 @@ def _through_compas(path, source: str, strict: bool) -> list | None:
     try:
         import compas_dem  # noqa: F401 - its dtypes must be importable for json_load
         from compas import json_load
-        from compas_model.models import Model
+        from compas_model.models import Model  # noqa: PLC0415 -- optional extra: ImportError handled here
     except ImportError:
         if strict:
             raise BlastscaleInputError(

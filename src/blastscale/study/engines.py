@@ -21,6 +21,7 @@ from ..sim3d.contact import reference_contact
 from ..analysis.structure3d import compare_structure3d, prototype_structure3d
 from ..analysis.ensemble import ensemble_compare
 from ..blast.bursts import model_for_burst
+from ..similitude.effects import front_face
 
 __all__ = ["Engine", "ENGINES", "ENSEMBLE", "Context", "contact_settings", "critical_charge_of", "record_every",
            "REFERENCE_RECORD_INTERVAL", "load_model_of"]
@@ -49,7 +50,6 @@ def load_model_of(scenario: Scenario, structure):
         return PAPER_LOAD
     face = (None, None)
     if bl.clearing:
-        from ..similitude.effects import front_face
 
         face = front_face(structure)
     return LoadModel(clearing=bl.clearing, face_width_m=face[0], face_height_m=face[1],
@@ -65,9 +65,9 @@ def _run_planar(ctx: Context):
     and gravity from the design: the blast parameters are the design's, never recomputed), sampled
     at corresponding times and compared (:func:`~blastscale.analysis.rocking_similarity.compare_rocking`)."""
 
-    from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
-    from ..rocking import RockingSystem
-    from ..rocking import DEFAULT_SOLVER
+    from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking import DEFAULT_SOLVER  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     sc, sim, d = ctx.scenario, ctx.scenario.simulation, ctx.design
     shape, dur = sc.blast.pulse_shape, float(sim.duration_s)
@@ -145,7 +145,7 @@ def _settings_3d(ctx: Context) -> dict:
                contact=contact, duration=sc.simulation.duration_s,
                record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
     if sc.blast.clearing or sc.blast.negative_phase:  # each system's faces are its own (the structure's)
-        from ..blast.load_model import LoadModel
+        from ..blast.load_model import LoadModel  # noqa: PLC0415 -- name clash at module level
 
         out["load_model"] = LoadModel(clearing=sc.blast.clearing, negative_phase=sc.blast.negative_phase,
                                       negative_phase_model=sc.blast.negative_phase_model)
@@ -208,7 +208,7 @@ def critical_charge_of(sc: Scenario, structure):
 
 @functools.lru_cache(maxsize=4096)
 def _critical_charge(structure, gravity, restitution, standoff, pulse_shape, blast_model, extrapolate, load_model=None):
-    from ..rocking import RockingSystem, critical_charge
+    from ..rocking import RockingSystem, critical_charge  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     system = RockingSystem.from_block(structure, gravity, restitution)
     return critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate,

@@ -16,6 +16,7 @@ import os
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..sim3d.contact import default_contact
+from .engines import contact_settings
 
 __all__ = ["MEMORY_FRACTION", "estimate_memory", "check_memory", "estimate_seconds", "check_budget",
            "check_study_budget", "max_seconds", "format_duration", "STEP_SECONDS"]
@@ -60,7 +61,6 @@ def _timestep(scenario: Scenario, structure, contact=None) -> float:
         return contact.timestep
     if structure is not None:
         try:
-            from .engines import contact_settings
 
             return contact_settings(scenario, structure).timestep
         except BlastscaleInputError:  # reported by the engine's own check

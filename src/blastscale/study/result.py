@@ -143,7 +143,7 @@ class StudyResult:
         The root carries the title, the scenario (TOML) and the CF conventions."""
         import xarray as xr
 
-        from ..analysis.rocking_similarity import rocking_dataset
+        from ..analysis.rocking_similarity import rocking_dataset  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
         groups = {}
         if self.planar is not None:

@@ -40,6 +40,7 @@ from .memory import check_study_budget
 from .result import StudyResult
 from ..similitude import design_model
 from ..similitude.effects import front_face, structure_top
+from ..blast import blast_parameters
 
 __all__ = ["Study", "StudyPlan", "StudyWarning", "Progress"]
 
@@ -174,7 +175,6 @@ class Study:
             if sc.blast.gravity_only:  # no charge: the structure under gravity alone
                 blast = None
             elif d is None:  # the prototype's blast alone (with a design: the design's, never recomputed)
-                from ..blast import blast_parameters
 
                 blast = blast_parameters(sc.blast.charge_kg, sc.blast.standoff_m, sc.blast.blast_model,
                                          extrapolate=sc.blast.extrapolate, burst=sc.blast.burst)

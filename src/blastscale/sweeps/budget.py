@@ -15,6 +15,7 @@ from typing import Optional
 
 from .._validate import BlastscaleInputError
 from ..study.memory import check_budget, estimate_seconds
+from ..study import Study
 
 __all__ = ["check_sweep_budget", "check_cases_budget", "FIRST_SWING_SECONDS", "PLANAR_STUDY_SECONDS",
            "VALUES_PER_CASE"]
@@ -44,7 +45,6 @@ def check_sweep_budget(spec, workers: Optional[int]) -> None:
     elif spec.planar_only:
         per, values = PLANAR_STUDY_SECONDS, VALUES_PER_CASE["planar"]
     else:
-        from ..study import Study
 
         try:
             structure = Study(spec.base).structure()

@@ -194,8 +194,8 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     The scenario must be a block (planar rocking). Fields that change only the load (charge,
     stand-off) are vectorised over one body; any other field builds the body of each case.
     """
-    from ..rocking import RockingSolver, overturns
-    from ..rocking.system import RockingSystem
+    from ..rocking import RockingSolver, overturns  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking.system import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     base = spec.base
     if base.structure.kind != "block":

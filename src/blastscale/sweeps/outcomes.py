@@ -59,8 +59,8 @@ def _outcome_group(sc, W, R, e) -> dict:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
     design (:func:`~blastscale.similitude.design_model` over the arrays), then the first swing of
     prototype and specimen."""
-    from ..rocking import RockingSolver, first_swing_blast
-    from ..rocking.system import RockingSystem, housner_restitution
+    from ..rocking import RockingSolver, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking.system import RockingSystem, housner_restitution  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     n = W.size
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}

@@ -19,6 +19,8 @@ from .spec import SweepSpec
 from ..sim3d.threads import available_cores
 from .dataset import assemble, metadata
 from .budget import check_sweep_budget
+import logging
+import warnings
 
 __all__ = ["SweepRun", "default_chunk", "run_chunks", "run_in_memory", "payload_hash"]
 
@@ -100,7 +102,6 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
 
     cluster = None
     if scheduler is None:
-        import warnings
 
         import dask
 
@@ -108,7 +109,7 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
         # freed block above 64 kB back to the system, and the numpy temporaries of a planar chunk
         # come back as fresh pages each time (measured: +55 % CPU per outcome-mode chunk); the
         # local workers keep glibc's own (dynamic) threshold
-        from ..sim3d.threads import THREADS_ENV, available_cores
+        from ..sim3d.threads import THREADS_ENV, available_cores  # noqa: PLC0415 -- name clash at module level
 
         # each worker's 3D runs share the cores with the other workers: cores // workers threads each;
         # the workers log errors only: a task cancelled while the cluster stops after Ctrl-C is not news (the
@@ -145,7 +146,6 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
             # stopping our own cluster after a signal, the nannies log "Worker process still alive after
             # 4.0 seconds, killing" in this process: our own teardown, not news (the command says what
             # happened in one line)
-            import logging
 
             nanny = logging.getLogger("distributed.nanny")
             level = nanny.level
