@@ -240,7 +240,8 @@ class RockingSolver:
         plist = plist * n if len(plist) == 1 else plist
         th0 = np.broadcast_to(th0, (n,)).astype(float)
         om0 = np.broadcast_to(om0, (n,)).astype(float)
-        systems = [as_rocking_system(b, gravity) for b in blist]
+        memo = {}  # each distinct body converted (and checked) once: a broadcast body is one object n times
+        systems = [memo[id(b)] if id(b) in memo else memo.setdefault(id(b), as_rocking_system(b, gravity)) for b in blist]
         alpha = np.empty(n)
         e = np.empty(n)
         pvec = np.empty(n)
