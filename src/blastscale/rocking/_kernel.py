@@ -24,16 +24,23 @@ Pulse codes: 0 no pressure (impulsive loads enter as an initial velocity), 1 Fri
 [dimensionless time], ``tab_f`` [load ratio], linear in between); named in :mod:`._load`
 (``NO_PULSE`` ... ``TABULATED``) and :data:`blastscale.rocking.encoding.PULSE_CODES`.
 
+Once the pulse is over (negative phase included) and no step-by-step history is recorded
+(``record`` False: batches, :meth:`~blastscale.rocking.RockingSolver.simulate_batch`), the free
+rocking is followed event by event in closed form (:mod:`._free`: peaks, impacts and the tipping
+point from the energy integral and elliptic integrals, samples from Taylor series); states it does
+not cover (above the top but for the stop at the tipping point, beyond the top) are handed back to
+the steps.
+
 Modules: this one holds the driver (:func:`solve_case`, :func:`solve_into`; both release the
 GIL) and re-exports the summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load
 ``f(tau)``; :mod:`._dopri` the Dormand-Prince step, dense output, roots and step-size control;
 :mod:`._events` the impact, peak, tipping and lying-down events and the recording into the output
-buffers; :mod:`._batch` splits a batch over threads. The right-hand side and the load
-(``rhs``, ``load_ratio``) are inlined into the step by numba (``inline="always"``: no array
-arguments passed per stage; 1.6x faster per step, bitwise the same results).
+buffers; :mod:`._free` the free rocking in closed form; :mod:`._batch` splits a batch over threads.
+The right-hand side and the load (``rhs``, ``load_ratio``) are inlined into the step by numba
+(``inline="always"``: no array arguments passed per stage; 1.6x faster per step, bitwise the same).
 Every ``@njit(cache=True)`` here goes through :mod:`blastscale._jit`: its cache is keyed on this
-file and every module it imports (``_load``, ``_dopri``, ``_events``), so an edited helper is never
-run from stale machine code.
+file and every module it imports (``_load``, ``_dopri``, ``_events``, ``_free``), so an edited
+helper is never run from stale machine code.
 
 Not a public module: use :class:`blastscale.rocking.RockingSolver`.
 """
@@ -79,6 +86,7 @@ from ._events import (
     starts_overturned,
     write_summary,
 )
+from ._free import N_MAX, free_rocking
 from ._load import lift_time, next_breakpoint, pull_end, pulse_end, tail_lift_time
 
 # the summary layout is read as _kernel.S_* by the solver, the capacity modules and analysis.sweeps
@@ -172,6 +180,10 @@ def solve_case(
     tau_pend = pulse_end(kind, par, tab_t)
     tau_pull = pull_end(par)  # 0 without a negative phase
 
+    free = not record  # closed-form free rocking (_free) where no step-by-step history is asked for
+    TA = np.empty(N_MAX + 2)
+    TS = np.empty(N_MAX + 2)
+    TC = np.empty(N_MAX + 2)
     tau = 0.0
     th = th0
     w, s = initial_mode(th0, w0, w_rest)
@@ -215,6 +227,18 @@ def solve_case(
             h = 0.0
             if record:
                 hist, nh = record_row(hist, nh, tau, 0.0, 0.0)
+            continue
+
+        if free and tau >= tau_pend and not overturned:  # the pulse is over: event-driven free rocking
+            tau, th, w, s, resting, early, back, tipped, ie, imp, nimp, pk, npk, max_abs, nev = free_rocking(
+                tau, th, w, s, alpha, e, w_rest, tau_end, max_impacts, stop_at_overturn, tau_eval, ie, th_eval,
+                w_eval, imp, nimp, pk, npk, summ, max_abs, TA, TS, TC)
+            nsteps += nev  # one per half cycle
+            free = not back
+            stop = early
+            overturned = tipped
+            need_f1 = True
+            h = 0.0
             continue
 
         # ---------------------------------------------------------------- one step
