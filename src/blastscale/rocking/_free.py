@@ -25,7 +25,7 @@ impact (``theta = 0``, Housner's restitution on ``w``).
 Samples between the events (and the state at the end time) come from Taylor series of the same
 equation, ``phi'' = sin(phi)``, about the last exact state (the start of the half cycle, its peak):
 the coefficients of ``sin`` and ``cos`` by the usual recurrences (``S' = C phi'``, ``C' = -S phi'``;
-Moore 1966, Interval Analysis, ch. 11), up to the order where two consecutive terms fall below 1e-18
+Moore 1966, Interval Analysis, ch. 11), up to the order where two consecutive terms fall below 1e-17
 over :data:`H_MAX`; every sample within that reach is read off one expansion (Horner), and the anchor
 hops by :data:`H_MAX` beyond it (the series converges within ``K(k') >= pi/2`` of the real axis, the
 poles of ``dn``).
@@ -37,6 +37,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .._jit import njit
 
 from ._events import S_OVERTURN_TAU, S_W_AT_ALPHA, record_impact, record_peak
@@ -44,8 +46,13 @@ from ._events import S_OVERTURN_TAU, S_W_AT_ALPHA, record_impact, record_peak
 #: Reach of one Taylor expansion [-] (a fifth of the smallest radius of convergence, pi/2: terms
 #: shrink about 5x per order); the samples within it are read off one expansion.
 H_MAX = 0.15
-#: Highest Taylor order; the sums stop earlier, once two consecutive terms are below 1e-18.
+#: Highest Taylor order; the sums stop earlier, once two consecutive terms are below 1e-17.
 N_MAX = 48
+
+# reciprocals of the recurrences (a division costs ~10 multiplications): 1/k and 1/((k + 1)(k + 2))
+_INV = np.array([0.0] + [1.0 / k for k in range(1, N_MAX)])
+_INV2 = np.array([1.0 / ((k + 1) * (k + 2)) for k in range(N_MAX)])
+_INV_H = 1.0 / H_MAX
 
 _RF_ERRTOL = 0.0025  # Carlson's duplication stops here: relative error < ERRTOL^6 / 4 ~ 6e-17
 
@@ -79,7 +86,7 @@ def taylor_coeffs(alpha, q, v, A, S, C):
     """Scaled Taylor coefficients ``A[j] = phi^(j)(0) H^j / j!`` (``H`` = :data:`H_MAX`) of the free
     rocking from the state ``(q [rad], v [-])``, ``phi = alpha - q``, ``phi'' = sin(phi)`` (module
     docstring); ``S``, ``C`` those of ``sin(phi)``, ``cos(phi)``. Work arrays of :data:`N_MAX`
-    entries. Returns the order n: the sums stop once two consecutive terms are below 1e-18."""
+    entries. Returns the order n: the sums stop once two consecutive terms are below 1e-17."""
     A[0] = alpha - q
     A[1] = -v * H_MAX
     S[0] = math.sin(A[0])
@@ -87,8 +94,8 @@ def taylor_coeffs(alpha, q, v, A, S, C):
     hh = H_MAX * H_MAX
     k = 0
     while k < N_MAX - 2:
-        A[k + 2] = hh * S[k] / ((k + 1) * (k + 2))
-        if abs(A[k + 2]) < 1e-18 and abs(A[k + 1]) < 1e-18:
+        A[k + 2] = hh * S[k] * _INV2[k]
+        if abs(A[k + 2]) < 1e-17 and abs(A[k + 1]) < 1e-17:
             return k + 2
         n = k + 1  # coefficients of sin(phi) and cos(phi) of order n from those of phi up to n
         sa = 0.0
@@ -96,8 +103,8 @@ def taylor_coeffs(alpha, q, v, A, S, C):
         for j in range(1, n + 1):
             sa += j * A[j] * C[n - j]
             ca += j * A[j] * S[n - j]
-        S[n] = sa / n
-        C[n] = -ca / n
+        S[n] = sa * _INV[n]
+        C[n] = -ca * _INV[n]
         k += 1
     return N_MAX - 1
 
@@ -112,7 +119,7 @@ def taylor_eval(alpha, A, n, x):
         ph = ph * x + A[j]
         dph = dph * x + j * A[j]
     ph = ph * x + A[0]
-    return alpha - ph, -dph / H_MAX
+    return alpha - ph, -dph * _INV_H
 
 
 @njit(cache=True, inline="always")
@@ -128,7 +135,7 @@ def march(alpha, ta, qa, va, n, t, A, S, C):
         qa, va = taylor_eval(alpha, A, n, 1.0)
         ta += H_MAX
         n = taylor_coeffs(alpha, qa, va, A, S, C)
-    q, v = taylor_eval(alpha, A, n, (t - ta) / H_MAX)
+    q, v = taylor_eval(alpha, A, n, (t - ta) * _INV_H)
     return q, v, ta, qa, va, n
 
 
