@@ -43,8 +43,8 @@ from .._jit import njit
 
 from ._events import S_OVERTURN_TAU, S_W_AT_ALPHA, record_impact, record_peak
 
-#: Reach of one Taylor expansion [-] (a fifth of the smallest radius of convergence, pi/2: terms
-#: shrink about 5x per order); the samples within it are read off one expansion.
+#: Reach of one Taylor expansion [-] (a tenth of the smallest radius of convergence, pi/2: terms
+#: shrink about 10x per order); the samples within it are read off one expansion.
 H_MAX = 0.15
 #: Highest Taylor order; the sums stop earlier, once two consecutive terms are below 1e-17.
 N_MAX = 48
