@@ -82,19 +82,24 @@ def carlson_rf(x, y, z):
 
 
 @njit(cache=True)
-def taylor_coeffs(alpha, q, v, A, S, C):
-    """Scaled Taylor coefficients ``A[j] = phi^(j)(0) H^j / j!`` (``H`` = :data:`H_MAX`) of the free
-    rocking from the state ``(q [rad], v [-])``, ``phi = alpha - q``, ``phi'' = sin(phi)`` (module
-    docstring); ``S``, ``C`` those of ``sin(phi)``, ``cos(phi)``. Work arrays of :data:`N_MAX`
-    entries. Returns the order n: the sums stop once two consecutive terms are below 1e-17."""
+def taylor_coeffs(alpha, q, v, h, sf, F, nf, A, S, C):
+    """Scaled Taylor coefficients ``A[j] = phi^(j)(0) h^j / j!`` of the rocking from the state
+    ``(q [rad], v [-])`` over ``h`` [-], ``phi = alpha - q``, ``phi'' = sin(phi) - sf f cos(phi)``
+    (module docstring; ``sf`` the mode s, ``f`` the load ratio with scaled coefficients ``F[:nf]``,
+    ``nf = 0`` for the free motion); ``S``, ``C`` those of ``sin(phi)``, ``cos(phi)``. Work arrays of
+    :data:`N_MAX` entries. Returns the order n: the sums stop once two consecutive terms are below
+    1e-17 (:data:`N_MAX` - 1: not converged)."""
     A[0] = alpha - q
-    A[1] = -v * H_MAX
+    A[1] = -v * h
     S[0] = math.sin(A[0])
     C[0] = math.cos(A[0])
-    hh = H_MAX * H_MAX
+    hh = h * h
     k = 0
     while k < N_MAX - 2:
-        A[k + 2] = hh * S[k] * _INV2[k]
+        load = 0.0
+        for j in range(min(k + 1, nf)):  # the coefficient k of f cos(phi)
+            load += F[j] * C[k - j]
+        A[k + 2] = hh * (S[k] - sf * load) * _INV2[k]
         if abs(A[k + 2]) < 1e-17 and abs(A[k + 1]) < 1e-17:
             return k + 2
         n = k + 1  # coefficients of sin(phi) and cos(phi) of order n from those of phi up to n
@@ -110,16 +115,16 @@ def taylor_coeffs(alpha, q, v, A, S, C):
 
 
 @njit(cache=True, inline="always")
-def taylor_eval(alpha, A, n, x):
-    """State ``(q [rad], v [-])`` at the fraction ``x`` (in [0, 1]) of :data:`H_MAX` from the
-    expansion ``A[:n + 1]`` of :func:`taylor_coeffs` (Horner)."""
+def taylor_eval(alpha, A, n, x, inv_h):
+    """State ``(q [rad], v [-])`` at the fraction ``x`` (in [0, 1]) of the step ``h = 1 / inv_h`` [-]
+    from the expansion ``A[:n + 1]`` of :func:`taylor_coeffs` (Horner)."""
     ph = A[n]
     dph = n * A[n]
     for j in range(n - 1, 0, -1):
         ph = ph * x + A[j]
         dph = dph * x + j * A[j]
     ph = ph * x + A[0]
-    return alpha - ph, -dph * _INV_H
+    return alpha - ph, -dph * inv_h
 
 
 @njit(cache=True, inline="always")
@@ -130,12 +135,12 @@ def march(alpha, ta, qa, va, n, t, A, S, C):
 
     Returns ``(q, v, ta, qa, va, n)``: the state and the anchor and expansion to use next."""
     if n < 0:
-        n = taylor_coeffs(alpha, qa, va, A, S, C)
+        n = taylor_coeffs(alpha, qa, va, H_MAX, 0.0, A, 0, A, S, C)
     while t - ta > H_MAX:
-        qa, va = taylor_eval(alpha, A, n, 1.0)
+        qa, va = taylor_eval(alpha, A, n, 1.0, _INV_H)
         ta += H_MAX
-        n = taylor_coeffs(alpha, qa, va, A, S, C)
-    q, v = taylor_eval(alpha, A, n, (t - ta) * _INV_H)
+        n = taylor_coeffs(alpha, qa, va, H_MAX, 0.0, A, 0, A, S, C)
+    q, v = taylor_eval(alpha, A, n, (t - ta) * _INV_H, _INV_H)
     return q, v, ta, qa, va, n
 
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -47,6 +48,7 @@ def test_batch_runs_on_several_threads(monkeypatch):
 
     def spy(*args):
         seen.add(threading.get_ident())
+        time.sleep(0.02)  # a group now takes microseconds: one thread could take them all before the other starts
         return real(*args)
 
     bodies, pulses = _mix(2 * _batch.MIN_CASES_PER_THREAD)
