@@ -47,7 +47,7 @@ def test_every_compiled_function_goes_through_the_keyed_cache():
     bad = [str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if p.name != "_jit.py" and direct.search(p.read_text())]
     assert bad == []
     users = sorted(p.name for p in SRC.rglob("*.py") if "from .._jit import njit" in p.read_text())
-    assert users == ["_dopri.py", "_events.py", "_free.py", "_kernel.py", "_load.py", "_series.py"]
+    assert users == ["_batch.py", "_dopri.py", "_events.py", "_free.py", "_kernel.py", "_load.py", "_series.py"]
 
 
 def test_the_text_scan_finds_every_import_a_parse_finds():

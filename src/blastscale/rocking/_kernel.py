@@ -26,8 +26,8 @@ event can fall is crossed in one Taylor expansion (:mod:`._series`), and once th
 free rocking is followed event by event in closed form (:mod:`._free`); what they do not cover goes
 to the steps.
 
-Modules: this one holds the driver (:func:`solve_case`, :func:`solve_into`; both release the
-GIL) and re-exports the summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load
+Modules: this one holds the driver (:func:`solve_case`, releases the GIL; the loop of a batch over
+it, ``solve_into``, is in :mod:`._batch`) and re-exports the summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load
 ``f(tau)``; :mod:`._dopri` the Dormand-Prince step, dense output, roots and step-size control;
 :mod:`._events` the impact, peak, tipping and lying-down events and the recording into the output
 buffers; :mod:`._batch` splits a batch over threads. ``rhs`` and ``load_ratio`` are inlined into the
@@ -87,7 +87,6 @@ from ._load import lift_time, next_breakpoint, pull_end, pulse_end, tail_lift_ti
 # the summary layout is read as _kernel.S_* by the solver, the capacity modules and analysis.sweeps
 __all__ = [
     "solve_case",
-    "solve_into",
     "N_SUMMARY",
     "S_STATUS",
     "S_OVERTURNED",
@@ -352,51 +351,3 @@ def solve_case(
         hist, nh = record_row(hist, nh, tau, th, w)
     return summ, th_eval, w_eval, hist[:nh].copy(), imp[:nimp].copy(), pk[:npk].copy()
 
-
-@njit(cache=True, nogil=True)
-def solve_into(
-    idx,
-    alpha,
-    e,
-    th0,
-    w0,
-    tau_end,
-    kind,
-    par,
-    tab_t,
-    tab_f,
-    tab_off,
-    tau_eval,
-    rtol,
-    atol,
-    w_rest,
-    max_impacts,
-    stop_at_overturn,
-    max_steps,
-    record,
-    summ,
-    th_out,
-    w_out,
-):
-    """Loop :func:`solve_case` over the cases ``idx`` (int64 indices into arrays of length n;
-    ``par`` (n, PAR_SIZE); tabulated pulses concatenated in ``tab_t``/``tab_f`` with case i at
-    ``tab_off[i]:tab_off[i+1]``; ``tau_eval`` (n, m)) and write row i of the summaries ``summ``
-    (n, N_SUMMARY), theta ``th_out`` (n, m) and w ``w_out`` (n, m). Releases the GIL: calls on
-    disjoint ``idx`` may run in parallel threads (:mod:`._batch`); each case is the same sequence
-    of operations whichever thread runs it."""
-    m = tau_eval.shape[1]
-    for j in range(idx.size):
-        i = idx[j]
-        tt = tab_t[tab_off[i] : tab_off[i + 1]].copy()
-        tf = tab_f[tab_off[i] : tab_off[i + 1]].copy()
-        te = tau_eval[i].copy()
-        pr = par[i].copy()
-        r = solve_case(
-            alpha[i], e[i], th0[i], w0[i], tau_end[i], kind[i], pr, tt, tf, te,
-            rtol, atol, w_rest, max_impacts, stop_at_overturn, max_steps, record,
-        )
-        for k in range(N_SUMMARY):  # plain loops: row slice assignments are slow to compile
-            summ[i, k] = r[0][k]
-        for k in range(m):
-            th_out[i, k] = r[1][k]
-            w_out[i, k] = r[2][k]

@@ -44,7 +44,7 @@ def test_batch_on_three_threads_is_bitwise_one_thread():
 def test_batch_runs_on_several_threads(monkeypatch):
     """The split really uses threads: the kernel is entered from more than one thread."""
     seen = set()
-    real = _batch.K.solve_into
+    real = _batch.solve_into
 
     def spy(*args):
         seen.add(threading.get_ident())
@@ -52,7 +52,7 @@ def test_batch_runs_on_several_threads(monkeypatch):
         return real(*args)
 
     bodies, pulses = _mix(2 * _batch.MIN_CASES_PER_THREAD)
-    monkeypatch.setattr(_batch.K, "solve_into", spy)
+    monkeypatch.setattr(_batch, "solve_into", spy)
     RockingSolver(threads=2).simulate_batch(bodies, pulses, 0.2, np.linspace(0.0, 0.2, 3))
     assert len(seen) == 2
 
