@@ -47,7 +47,7 @@ def test_every_compiled_function_goes_through_the_keyed_cache():
     bad = [str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if p.name != "_jit.py" and direct.search(p.read_text())]
     assert bad == []
     users = sorted(p.name for p in SRC.rglob("*.py") if "from .._jit import njit" in p.read_text())
-    assert users == ["_dopri.py", "_events.py", "_kernel.py", "_load.py"]
+    assert users == ["_batch.py", "_dopri.py", "_events.py", "_free.py", "_kernel.py", "_load.py", "_series.py"]
 
 
 def test_the_text_scan_finds_every_import_a_parse_finds():
@@ -60,8 +60,8 @@ def test_the_text_scan_finds_every_import_a_parse_finds():
 
 def test_the_kernel_is_keyed_on_the_helpers_it_inlines():
     names = [f.relative_to(SRC).as_posix() for f in _jit.kernel_sources(K.__file__)]
-    assert names == ["__init__.py", "_jit.py", "rocking/_dopri.py", "rocking/_events.py", "rocking/_kernel.py",
-                     "rocking/_load.py"]
+    assert names == ["__init__.py", "_jit.py", "rocking/_dopri.py", "rocking/_events.py", "rocking/_free.py",
+                     "rocking/_kernel.py", "rocking/_load.py", "rocking/_series.py"]
     assert [f.name for f in _jit.kernel_sources(L.__file__)] == ["__init__.py", "_jit.py", "_load.py"]
 
 

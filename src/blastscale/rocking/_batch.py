@@ -1,6 +1,6 @@
 """A batch of planar rocking cases split over threads (the compiled kernel releases the GIL).
 
-:func:`solve_batch` hands the cases to :func:`._kernel.solve_into` in interleaved groups (case i in
+:func:`solve_batch` hands the cases to :func:`solve_into` (compiled, lock-free) in interleaved groups (case i in
 group ``i mod g``, ``g = GROUPS_PER_THREAD x threads``) taken by ``threads`` threads as each
 finishes its last (:func:`blastscale._threads.map_threads`): the cost of a case follows the charge
 order of a sweep (contiguous halves gave nothing where alternate cases on 2 threads gave 2.03x,
@@ -19,10 +19,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._jit import njit
 from .._threads import map_threads, resolve_threads
 from . import _kernel as K
+from ._kernel import N_SUMMARY, solve_case
 
-__all__ = ["GROUPS_PER_THREAD", "MIN_CASES_PER_THREAD", "solve_batch"]
+__all__ = ["GROUPS_PER_THREAD", "MIN_CASES_PER_THREAD", "solve_batch", "solve_into"]
 
 #: Fewest cases per thread worth a thread (below: one call in the calling thread).
 MIN_CASES_PER_THREAD = 16
@@ -51,8 +53,57 @@ def solve_batch(alpha, e, th0, w0, tau_end, kind, par, tab_t, tab_f, tab_off, ta
         [np.arange(k, n, GROUPS_PER_THREAD * nt, dtype=np.int64) for k in range(GROUPS_PER_THREAD * nt)]
 
     def run(idx):
-        K.solve_into(idx, alpha, e, th0, w0, tau_end, kind, par, tab_t, tab_f, tab_off, tau_eval, rtol, atol, w_rest,
+        solve_into(idx, alpha, e, th0, w0, tau_end, kind, par, tab_t, tab_f, tab_off, tau_eval, rtol, atol, w_rest,
                      max_impacts, stop_at_overturn, max_steps, record, summ, th_out, w_out)
 
     map_threads(run, groups, max(1, nt))
     return summ, th_out, w_out
+
+
+@njit(cache=True, nogil=True)
+def solve_into(
+    idx,
+    alpha,
+    e,
+    th0,
+    w0,
+    tau_end,
+    kind,
+    par,
+    tab_t,
+    tab_f,
+    tab_off,
+    tau_eval,
+    rtol,
+    atol,
+    w_rest,
+    max_impacts,
+    stop_at_overturn,
+    max_steps,
+    record,
+    summ,
+    th_out,
+    w_out,
+):
+    """Loop :func:`solve_case` over the cases ``idx`` (int64 indices into arrays of length n;
+    ``par`` (n, PAR_SIZE); tabulated pulses concatenated in ``tab_t``/``tab_f`` with case i at
+    ``tab_off[i]:tab_off[i+1]``; ``tau_eval`` (n, m)) and write row i of the summaries ``summ``
+    (n, N_SUMMARY), theta ``th_out`` (n, m) and w ``w_out`` (n, m). Releases the GIL: calls on
+    disjoint ``idx`` may run in parallel threads (:func:`solve_batch`); each case is the same sequence
+    of operations whichever thread runs it."""
+    m = tau_eval.shape[1]
+    for j in range(idx.size):
+        i = idx[j]
+        tt = tab_t[tab_off[i] : tab_off[i + 1]].copy()
+        tf = tab_f[tab_off[i] : tab_off[i + 1]].copy()
+        te = tau_eval[i].copy()
+        pr = par[i].copy()
+        r = solve_case(
+            alpha[i], e[i], th0[i], w0[i], tau_end[i], kind[i], pr, tt, tf, te,
+            rtol, atol, w_rest, max_impacts, stop_at_overturn, max_steps, record,
+        )
+        for k in range(N_SUMMARY):  # plain loops: row slice assignments are slow to compile
+            summ[i, k] = r[0][k]
+        for k in range(m):
+            th_out[i, k] = r[1][k]
+            w_out[i, k] = r[2][k]

@@ -19,21 +19,22 @@ Integrator: Dormand-Prince 5(4) (Dormand & Prince 1980) with Shampine's quartic 
 ``|theta| = alpha``, lying down ``|theta| = pi/2``) are located by Illinois regula falsi on the
 dense output; an impact is then reached by one exact Runge-Kutta step to the located time.
 
-Pulse codes: 0 no pressure (impulsive loads enter as an initial velocity), 1 Friedlander
-``par = (f0, tau_o, d)``, 2 triangular ``par = (f0, tau_d, 0)``, 3 tabulated (``tab_t``
-[dimensionless time], ``tab_f`` [load ratio], linear in between); named in :mod:`._load`
-(``NO_PULSE`` ... ``TABULATED``) and :data:`blastscale.rocking.encoding.PULSE_CODES`.
+Pulse codes (0 none, 1 Friedlander, 2 triangular, 3 tabulated): :mod:`._load`.
 
-Modules: this one holds the driver (:func:`solve_case`, :func:`solve_into`; both release the
-GIL) and re-exports the summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load
+Where no step-by-step history is recorded (``record`` False: batches), a piece of the pulse where no
+event can fall is crossed in one Taylor expansion (:mod:`._series`), and once the pulse is over the
+free rocking is followed event by event in closed form (:mod:`._free`); what they do not cover goes
+to the steps.
+
+Modules: this one holds the driver (:func:`solve_case`, releases the GIL; the loop of a batch over
+it, ``solve_into``, is in :mod:`._batch`) and re-exports the summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load
 ``f(tau)``; :mod:`._dopri` the Dormand-Prince step, dense output, roots and step-size control;
 :mod:`._events` the impact, peak, tipping and lying-down events and the recording into the output
-buffers; :mod:`._batch` splits a batch over threads. The right-hand side and the load
-(``rhs``, ``load_ratio``) are inlined into the step by numba (``inline="always"``: no array
-arguments passed per stage; 1.6x faster per step, bitwise the same results).
+buffers; :mod:`._batch` splits a batch over threads. ``rhs`` and ``load_ratio`` are inlined into the
+step by numba (``inline="always"``: 1.6x faster per step, bitwise the same).
 Every ``@njit(cache=True)`` here goes through :mod:`blastscale._jit`: its cache is keyed on this
-file and every module it imports (``_load``, ``_dopri``, ``_events``), so an edited helper is never
-run from stale machine code.
+file and every module it imports (``_load``, ``_dopri``, ``_events``, ``_free``, ``_series``), so an
+edited helper is never run from stale machine code.
 
 Not a public module: use :class:`blastscale.rocking.RockingSolver`.
 """
@@ -79,12 +80,13 @@ from ._events import (
     starts_overturned,
     write_summary,
 )
+from ._free import N_MAX, free_rocking
+from ._series import pulse_piece
 from ._load import lift_time, next_breakpoint, pull_end, pulse_end, tail_lift_time
 
 # the summary layout is read as _kernel.S_* by the solver, the capacity modules and analysis.sweeps
 __all__ = [
     "solve_case",
-    "solve_into",
     "N_SUMMARY",
     "S_STATUS",
     "S_OVERTURNED",
@@ -172,6 +174,9 @@ def solve_case(
     tau_pend = pulse_end(kind, par, tab_t)
     tau_pull = pull_end(par)  # 0 without a negative phase
 
+    free = not record  # closed-form free rocking (_free) where no step-by-step history is asked for
+    TW = np.empty((4, N_MAX + 2))  # work arrays of the Taylor series (_free, _series)
+    tbp_steps = -1.0  # the piece of the pulse left to the steps
     tau = 0.0
     th = th0
     w, s = initial_mode(th0, w0, w_rest)
@@ -217,6 +222,28 @@ def solve_case(
                 hist, nh = record_row(hist, nh, tau, 0.0, 0.0)
             continue
 
+        if free and tau >= tau_pend and not overturned:  # the pulse is over: event-driven free rocking
+            tau, th, w, s, resting, early, back, tipped, ie, imp, nimp, pk, npk, max_abs, nev = free_rocking(
+                tau, th, w, s, alpha, e, w_rest, tau_end, max_impacts, stop_at_overturn, tau_eval, ie, th_eval,
+                w_eval, imp, nimp, pk, npk, summ, max_abs, TW[0], TW[1], TW[2])
+            nsteps += nev  # one per half cycle
+            free = not back
+            stop = early
+            overturned = tipped
+            need_f1 = True
+            h = 0.0
+            continue
+
+        tbp = min(next_breakpoint(tau, kind, par, tab_t), tau_end)
+        if free and tbp != tbp_steps:  # this piece of the pulse in Taylor expansions (_series), where it may
+            tau_n, th, w, ie = pulse_piece(tau, th, w, s, alpha, kind, par, tab_t, tab_f, tbp, tau_eval, ie, th_eval,
+                                           w_eval, TW[0], TW[1], TW[2], TW[3])
+            nsteps += 1
+            if tau_n > tau:
+                tau, need_f1, h, max_abs = tau_n, True, 0.0, max(max_abs, abs(th))
+            if tau == tbp:
+                continue
+            tbp_steps = tbp  # the steps do the rest of it
         # ---------------------------------------------------------------- one step
         if nsteps >= max_steps:
             status = 1
@@ -224,7 +251,6 @@ def solve_case(
         if need_f1:
             f1a, f1b = rhs(tau, th, w, s, alpha, kind, par, tab_t, tab_f)
             need_f1 = False
-        tbp = min(next_breakpoint(tau, kind, par, tab_t), tau_end)
         if h <= 0.0:
             h = restart_step(tau, th, w, s, alpha, kind, par, tab_t, tab_f, rtol, atol, tbp, tau_pend)
         hit_bp = False
@@ -325,51 +351,3 @@ def solve_case(
         hist, nh = record_row(hist, nh, tau, th, w)
     return summ, th_eval, w_eval, hist[:nh].copy(), imp[:nimp].copy(), pk[:npk].copy()
 
-
-@njit(cache=True, nogil=True)
-def solve_into(
-    idx,
-    alpha,
-    e,
-    th0,
-    w0,
-    tau_end,
-    kind,
-    par,
-    tab_t,
-    tab_f,
-    tab_off,
-    tau_eval,
-    rtol,
-    atol,
-    w_rest,
-    max_impacts,
-    stop_at_overturn,
-    max_steps,
-    record,
-    summ,
-    th_out,
-    w_out,
-):
-    """Loop :func:`solve_case` over the cases ``idx`` (int64 indices into arrays of length n;
-    ``par`` (n, PAR_SIZE); tabulated pulses concatenated in ``tab_t``/``tab_f`` with case i at
-    ``tab_off[i]:tab_off[i+1]``; ``tau_eval`` (n, m)) and write row i of the summaries ``summ``
-    (n, N_SUMMARY), theta ``th_out`` (n, m) and w ``w_out`` (n, m). Releases the GIL: calls on
-    disjoint ``idx`` may run in parallel threads (:mod:`._batch`); each case is the same sequence
-    of operations whichever thread runs it."""
-    m = tau_eval.shape[1]
-    for j in range(idx.size):
-        i = idx[j]
-        tt = tab_t[tab_off[i] : tab_off[i + 1]].copy()
-        tf = tab_f[tab_off[i] : tab_off[i + 1]].copy()
-        te = tau_eval[i].copy()
-        pr = par[i].copy()
-        r = solve_case(
-            alpha[i], e[i], th0[i], w0[i], tau_end[i], kind[i], pr, tt, tf, te,
-            rtol, atol, w_rest, max_impacts, stop_at_overturn, max_steps, record,
-        )
-        for k in range(N_SUMMARY):  # plain loops: row slice assignments are slow to compile
-            summ[i, k] = r[0][k]
-        for k in range(m):
-            th_out[i, k] = r[1][k]
-            w_out[i, k] = r[2][k]

@@ -240,7 +240,12 @@ class RockingSolver:
         plist = plist * n if len(plist) == 1 else plist
         th0 = np.broadcast_to(th0, (n,)).astype(float)
         om0 = np.broadcast_to(om0, (n,)).astype(float)
-        systems = [as_rocking_system(b, gravity) for b in blist]
+        memo = {}  # each distinct body converted (and checked) once: a broadcast body is one object n times
+        for b in blist:
+            if id(b) not in memo:
+                sb = as_rocking_system(b, gravity)
+                memo[id(b)] = (sb, sb.frequency_parameter, sb.alpha, sb.coefficient_of_restitution)
+        consts = [memo[id(b)] for b in blist]
         alpha = np.empty(n)
         e = np.empty(n)
         pvec = np.empty(n)
@@ -249,10 +254,7 @@ class RockingSolver:
         par = np.zeros((n, PAR_SIZE))
         tabs_t, tabs_f = [], []
         off = np.zeros(n + 1, dtype=np.int64)
-        for i, (sysi, pul) in enumerate(zip(systems, plist)):
-            pvec[i] = sysi.frequency_parameter
-            alpha[i] = sysi.alpha
-            e[i] = sysi.coefficient_of_restitution
+        for i, ((sysi, pvec[i], alpha[i], e[i]), pul) in enumerate(zip(consts, plist)):
             if pul is None:
                 k, pr, tt, tf, dw = 0, np.zeros(PAR_SIZE), np.zeros(0), np.zeros(0), 0.0
             else:

@@ -28,7 +28,8 @@ swing:
 The pulse phase alone is integrated, with the compiled rocking kernel
 (:func:`blastscale.rocking._batch.solve_batch`, impacts included, over cases and threads):
 a pulse lasts ``p t_o ~ 1e-3..1e-1`` in dimensionless time against ``~ 1..10`` for the first
-swing, so one evaluation costs a few tens of steps instead of a full simulation. The signed
+swing, so one evaluation costs a Taylor expansion per piece of the pulse (:mod:`._series`; a few
+tens of steps where an event may fall in it) instead of a full simulation. The signed
 *first-swing margin* ``mu`` (``> 0``: overturns) is
 
 =========================================  =============================================

@@ -45,7 +45,7 @@ def test_batch_runs_on_several_threads(monkeypatch):
     call waits (up to 60 s) until a second thread has entered too, so a busy machine on which one thread
     would otherwise take every group before the other starts cannot make the check pass or fail by chance."""
     seen = set()
-    real = _batch.K.solve_into
+    real = _batch.solve_into
     both = threading.Barrier(2, timeout=60.0)
 
     def spy(*args):
@@ -57,7 +57,7 @@ def test_batch_runs_on_several_threads(monkeypatch):
         return real(*args)
 
     bodies, pulses = _mix(2 * _batch.MIN_CASES_PER_THREAD)
-    monkeypatch.setattr(_batch.K, "solve_into", spy)
+    monkeypatch.setattr(_batch, "solve_into", spy)
     RockingSolver(threads=2).simulate_batch(bodies, pulses, 0.2, np.linspace(0.0, 0.2, 3))
     assert len(seen) == 2
 
