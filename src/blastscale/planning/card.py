@@ -143,11 +143,29 @@ def _lab_shot(result) -> tuple:
 
 
 def spec_dims(spec) -> tuple:
-    """(height, width along the blast, depth) of a specimen [m] (a column: its base width)."""
+    """(height, width along the blast, depth) of a specimen [m]: a block's own; a column's height and
+    base width; any other structure's bounding box at rest (its extent along x, the blast's, and y)."""
     if hasattr(spec, "width"):
         return float(spec.height), float(spec.width), float(spec.depth)
-    w = float(getattr(spec, "base_width", getattr(spec, "height", 1.0) / 5))
-    return float(spec.height), w, w
+    if hasattr(spec, "base_width"):
+        w = float(spec.base_width)
+        return float(spec.height), w, w
+    v = np.vstack([np.asarray(b.vertices) + np.asarray(b.com) for b in spec.bodies])
+    return float(v[:, 2].max()), float(np.ptp(v[:, 0])), float(np.ptp(v[:, 1]))
+
+
+def specimen_unit(spec) -> dict:
+    """One unit of the specimen (a drum, a brick, a voussoir): the most frequent body by size (its
+    bounding box along x, y, z [m], rounded to 1e-9 of the structure's height), its mass [kg], and
+    how many bodies the specimen has."""
+    from collections import Counter
+
+    h = spec_dims(spec)[0]
+    sizes = [tuple(round(float(x) / h, 9) * h for x in np.ptp(np.asarray(b.vertices), axis=0)) for b in spec.bodies]
+    size = Counter(sizes).most_common(1)[0][0]
+    body = spec.bodies[sizes.index(size)]
+    return {"name": body.name, "size_m": [float(x) for x in size], "mass_kg": float(body.mass),
+            "bodies": len(spec.bodies)}
 
 
 def study_test_card(result, lab=None) -> dict | None:
@@ -185,13 +203,15 @@ def study_test_card(result, lab=None) -> dict | None:
     collapsed_p = _prototype_collapsed(result)
     odds = _odds(result, spec, ch, lab, collapsed_p)
     odds3 = None
-    if lab.ensemble_3d and hasattr(spec, "width"):
-        from .planner import specimen_scenario
-        from .candidates import Evaluated
+    if lab.ensemble_3d:
+        import tempfile
+        from pathlib import Path
 
-        ev = Evaluated(None, design=d, specimen=spec)
-        odds3 = ensemble_odds_3d(specimen_scenario(sc, ev), prototype_collapsed=collapsed_p,
-                                 tolerances=Tolerances.from_lab(lab), members=lab.ensemble_3d, seed=lab.seed)
+        from .plan3d import specimen_scenario
+
+        with tempfile.TemporaryDirectory(prefix="blastscale-card-") as tmp:
+            odds3 = ensemble_odds_3d(specimen_scenario(sc, d, Path(tmp)), prototype_collapsed=collapsed_p,
+                                     tolerances=Tolerances.from_lab(lab), members=lab.ensemble_3d, seed=lab.seed)
     reach, reach_p = max(r["reach_m"]), max(r["prototype_reach_m"])
     hc, burst, shot_notes = _lab_shot(result)
     notes = list(ch.warnings) + [f[3] for f in fireability(ch, lab)] + shot_notes
@@ -228,7 +248,7 @@ def study_test_card(result, lab=None) -> dict | None:
         "build": {"kind": sc.structure.kind, "height_m": hs, "width_m": ws, "depth_m": ds,
                   "mass_kg": float(sum(b.mass for b in spec.bodies)), "material": mat,
                   "density_kg_m3": float(getattr(spec, "density", sc.structure.density_kg_m3 * d.density_ratio)),
-                  "scale": d.scale, "density_ratio": d.density_ratio, "law": d.law},
+                  "scale": d.scale, "density_ratio": d.density_ratio, "law": d.law, "unit": specimen_unit(spec)},
         "instruments": ins.to_dict(),
         "predicted": {"collapsed": r["collapsed"], "first_peak_rotation_rad": r["rotation"],
                       "first_peak_time_s": r["timing"].rise_s, "response_time_s": r["timing"].response_s,
