@@ -27,24 +27,34 @@ def _print_plan(p, top: int) -> None:
     t = Table(title=f"Feasible designs, best first ({len(p.designs)}; {len(p.rejected)} rejected)",
               title_justify="left")
     for c in ("#", "law", "lambda", "material", "charge", "stand-off", "specimen", "safety radius", "camera",
-              "P(outcome agrees)", "first-peak error"):
+              "P(outcome agrees)", "first-peak error", "Pareto"):
         t.add_column(c, justify="left" if c in ("law", "material") else "right")
     for i, d in enumerate(p.designs[:top], 1):
+        stand = f" on a {d['charge_height_m'] * 100:.3g} cm stand" if d.get("charge_height_m") else ""
         t.add_row(str(i), d["law"], d["scale_fraction"], d["material"],
-                  f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}", f"{d['standoff_m'] * 100:.3g} cm",
+                  f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}{stand}", f"{d['standoff_m'] * 100:.3g} cm",
                   f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
-                  f"{d['safety_radius_m']:.3g} m", f"{d['camera_fps']:g}/s", f"{d['p_outcome_agree']:.3f}",
-                  f"{100 * d['predicted_first_peak_error']:.2g} %")
+                  f"{d['safety_radius_m']:.3g} m", f"{d['camera_fps']:g}/s",
+                  "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
+                  f"{100 * d['predicted_first_peak_error']:.2g} %", {True: "yes", False: "", None: "-"}[d["pareto"]])
     console.print(t)
     b = p.designs[0]
+    stand = (f", on a stand {b['charge_height_m'] * 100:.3g} cm high ({b['burst']} burst)" if b.get("charge_height_m")
+             else "")
     console.print(styled(("Best design:", "bold"), f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
-                         f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"))
+                         f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"
+                         f"{stand}"))
     for r in b["reasons"]:
         console.print(f"  - {r}")
     console.print(f"  - fireable: above {b['explosive']}'s minimum reliable charge "
                   f"{format_charge(b['explosive_min_charge_kg'])}; initiator {format_charge(b['initiator_tnt_kg'])} TNT, "
                   f"{100 * b['initiator_fraction']:.3g} % of the charge's impulse (at most "
                   f"{100 * p.lab['initiator_max_fraction']:g} %)")
+    o3 = b.get("odds_3d")
+    if o3:
+        console.print(f"  - 3D ensemble: {o3['members']} members, P(outcome agrees) {o3['p_outcome_agree']:.3f} "
+                      f"+- {o3['p_outcome_agree_se']:.2g}, largest top displacement 5-95 %: "
+                      f"{1e3 * o3['top_displacement_p05_m']:.3g}-{1e3 * o3['top_displacement_p95_m']:.3g} mm")
     for w in b.get("warnings", []):
         console.print(f"  - warning: {w}")
     reasons: dict = {}
