@@ -36,7 +36,7 @@ from .plan3d import candidate_design, specimen_scenario
 from .plan3d_designs import designs_3d
 from .shot import DEFAULT_LAB, safety_envelope, timing_of
 
-__all__ = ["plan", "Plan", "PlanInfeasible", "design_scenario", "QUICK_SAMPLES", "FULL_DESIGNS"]
+__all__ = ["plan", "screen", "Plan", "PlanInfeasible", "design_scenario", "QUICK_SAMPLES", "FULL_DESIGNS"]
 
 #: Draws per feasible design in the first pass of the odds; the leading :data:`FULL_DESIGNS` (after it)
 #: get the lab's ``samples`` and their weighing precision.
@@ -271,30 +271,9 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     PlanInfeasible
         No candidate meets every constraint.
     """
-    from ..blast import get_blast_model
-    from ..structures import from_spec, is_block
-
     tell = progress or (lambda *a: None)
     lab = lab or scenario.lab or DEFAULT_LAB
-    sc, bl = scenario, scenario.blast
-    structure = from_spec(sc.structure)
-    planar = is_block(structure) and not (bl.clearing or bl.negative_phase)
-    envelope = envelope_block(structure)
-    block, system, timing, proto = _prototype(scenario, envelope)
-    if not planar:
-        proto = {**proto, "kind": sc.structure.kind, "mass_kg": float(structure.mass), "collapsed": None,
-                 "first_peak_rotation_rad": None, "reach_m": None, "screening": "envelope block (planar first swing)"}
-    kb = get_blast_model("kingery-bulmash")
-    bursts = [sc.scale.specimen_burst] if sc.scale is not None and sc.scale.specimen_burst else lab.bursts
-    cands = candidates(lab, sc.structure.density_kg_m3, block.height,
-                       sc.scale.gravity_ratio if sc.scale is not None else 1.0, bursts)
-    design = candidate_design(scenario, structure, lab)
-    evs = []
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for i, c in enumerate(cands):
-            tell("designing the candidates", i, len(cands))
-            evs.append(evaluate(c, lab=lab, block=block, timing=timing, incident_model=kb, design=design))
+    planar, evs, proto = screen(scenario, lab, tell)
     ok = [e for e in evs if not e.violations]
     rejected = [{**e.candidate.describe(), "constraints": [v.key for v in e.violations],
                  "reasons": [v.text for v in e.violations],
@@ -319,6 +298,41 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     mark_pareto(designs)
     return Plan(designs, rejected, proto, {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
                 best_sc, notes)
+
+
+def screen(scenario, lab, tell=None) -> tuple:
+    """Every candidate of ``scenario``'s prototype designed and checked against ``lab``, no simulation
+    beyond the prototype's (or its envelope block's) planar first swing.
+
+    Returns
+    -------
+    (bool, list of Evaluated, dict)
+        Whether the planar path plans it (a block on the paper's load), every candidate evaluated
+        (``violations`` empty: feasible) and the prototype's record.
+    """
+    from ..blast import get_blast_model
+    from ..structures import from_spec, is_block
+
+    tell = tell or (lambda *a: None)
+    sc, bl = scenario, scenario.blast
+    structure = from_spec(sc.structure)
+    planar = is_block(structure) and not (bl.clearing or bl.negative_phase)
+    block, _, timing, proto = _prototype(scenario, envelope_block(structure))
+    if not planar:
+        proto = {**proto, "kind": sc.structure.kind, "mass_kg": float(structure.mass), "collapsed": None,
+                 "first_peak_rotation_rad": None, "reach_m": None, "screening": "envelope block (planar first swing)"}
+    kb = get_blast_model("kingery-bulmash")
+    bursts = [sc.scale.specimen_burst] if sc.scale is not None and sc.scale.specimen_burst else lab.bursts
+    cands = candidates(lab, sc.structure.density_kg_m3, block.height,
+                       sc.scale.gravity_ratio if sc.scale is not None else 1.0, bursts)
+    design = candidate_design(scenario, structure, lab)
+    evs = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for i, c in enumerate(cands):
+            tell("designing the candidates", i, len(cands))
+            evs.append(evaluate(c, lab=lab, block=block, timing=timing, incident_model=kb, design=design))
+    return planar, evs, proto
 
 
 def _planar_designs(scenario, ok: list, proto: dict, lab, tol, tell) -> tuple:
