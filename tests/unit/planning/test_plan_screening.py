@@ -25,7 +25,7 @@ WALL = {"structure": {"kind": "wall", "length_m": 4.0, "height_m": 2.5, "thickne
 ARCH = {"structure": {"kind": "arch", "radius_m": 2.5, "thickness_m": 0.5, "depth_m": 1.0, "voussoirs": 9,
                       "density_kg_m3": 2400.0},
         "blast": {"charge_kg": 20.0, "standoff_m": 6.0}, "simulation": {"engine": "3d", "duration_s": 0.5}}
-HEIGHT = {"column": 10.0, "wall": 2.5, "arch": 3.0}  # prototype heights [m] (the arch: R + t/2)
+HEIGHT = {"column": 10.0, "wall": 2.5}  # prototype heights [m]
 
 
 def _scenario(data, tmp_path=None):
