@@ -16,13 +16,14 @@ from fractions import Fraction
 from typing import Optional
 
 from .._validate import BlastscaleInputError
+from .build import spec_dims
 from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
 from ..blast.explosives import get_explosive
 from .shot import fireability, lab_charge, lab_explosives, safety_envelope
 
 __all__ = ["LAMBDA_DENOMINATORS", "Candidate", "Violation", "Evaluated", "candidates", "evaluate", "scale_label",
-           "envelope_block", "envelope_impulsive"]
+           "envelope_block", "envelope_impulsive", "shot_dict"]
 
 #: The geometric scales the planner tries: lambda = 1/n (the fractions a lab builds and reports).
 LAMBDA_DENOMINATORS = (1, 2, 4, 5, 8, 10, 15, 20, 25, 40, 50, 75, 100, 150, 200, 250, 400, 500, 1000)
@@ -135,7 +136,6 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
     sqrt(lambda / varsigma); ``incident_model`` the blast model of the side-on gauge (Kingery-Bulmash:
     the paper's fits have no incident pressure).
     """
-    from .card import spec_dims
 
     ev = Evaluated(c)
     try:
@@ -192,7 +192,6 @@ def envelope_block(structure):
     and across it, y; its mean density): the rigid rocking mode the screening's impulsive check and
     timing use for a structure without a planar path (docs/planning.md)."""
     from ..structures import RectangularBlock, is_block
-    from .card import spec_dims
 
     if is_block(structure):
         return structure
@@ -225,3 +224,33 @@ def specimen_displacement(spec, rotation: Optional[float], collapsed: bool) -> t
 def frames_needed(rise_s: float) -> float:
     """Camera rate [1/s] for :data:`~.instruments.FRAMES_PER_RISE` frames over the rise."""
     return FRAMES_PER_RISE / rise_s
+
+
+def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
+    """What every planned design says, whatever its odds: the candidate, the charge in the lab's explosive,
+    the stand-off and the charge's height, the specimen, the safety envelope, the debris zone (from the
+    specimen's ``reach_m``) and the instruments (for a top displacement ``top_m``) [SI]."""
+    c, d, spec, ch, env = ev.candidate, ev.design, ev.specimen, ev.charge, ev.safety
+    h, w, dp = spec_dims(spec)
+    ins = instrument_settings(**{**_ins_inputs(ev), "top_displacement_m": top_m, "camera_max_fps": lab.camera_max_fps})
+    return {**c.describe(), "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
+            "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg, "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+            "explosive_min_charge_kg": ch.explosive.min_charge_kg, "min_charge_source": ch.explosive.min_charge_source,
+            "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
+            "standoff_m": d.specimen_standoff_m, "charge_height_m": ev.charge_height_m, "specimen_height_m": h,
+            "specimen_width_m": w, "specimen_depth_m": dp,
+            "specimen_density_kg_m3": float(getattr(spec, "density", None) or spec.mass / spec.volume),
+            "specimen_mass_kg": float(spec.mass),
+            "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
+            "far_field": list(env.far_field), "debris_radius_m": lab.debris_margin * reach_m, "specimen_reach_m": reach_m,
+            "camera_fps": ins.camera_fps, "camera_fps_required": ins.camera_fps_required,
+            "pressure_sampling_hz": ins.pressure_sampling_hz, "instruments": ins.to_dict(),
+            "impulsive_ratio": ev.impulsive.model_ratio, "warnings": list(ch.warnings)}
+
+
+def _ins_inputs(ev: Evaluated) -> dict:
+    i = ev.instruments
+    m = ev.design.specimen
+    return {"reflected_pressure_Pa": m.reflected_pressure, "incident_pressure_Pa": i.incident_gauge_range_Pa / 1.5,
+            "positive_duration_s": m.positive_duration, "friedlander_decay": m.friedlander_decay,
+            "arrival_time_s": m.arrival_time, "rise_time_s": ev.rise_s, "response_time_s": ev.response_s}

@@ -16,6 +16,7 @@ import warnings
 
 import numpy as np
 
+from .build import spec_dims, specimen_unit
 from .debris import planar_reach, reach_3d
 from .instruments import instrument_settings, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
@@ -140,32 +141,6 @@ def _lab_shot(result) -> tuple:
         notes.append("the odds run the planar first swing on the uncleared positive pulse (clearing and the negative "
                      "phase are in the simulations, not in the odds)")
     return (0.0 if h is None else float(h)) if burst == "surface" or h is not None else None, burst, notes
-
-
-def spec_dims(spec) -> tuple:
-    """(height, width along the blast, depth) of a specimen [m]: a block's own; a column's height and
-    base width; any other structure's bounding box at rest (its extent along x, the blast's, and y)."""
-    if hasattr(spec, "width"):
-        return float(spec.height), float(spec.width), float(spec.depth)
-    if hasattr(spec, "base_width"):
-        w = float(spec.base_width)
-        return float(spec.height), w, w
-    v = np.vstack([np.asarray(b.vertices) + np.asarray(b.com) for b in spec.bodies])
-    return float(v[:, 2].max()), float(np.ptp(v[:, 0])), float(np.ptp(v[:, 1]))
-
-
-def specimen_unit(spec) -> dict:
-    """One unit of the specimen (a drum, a brick, a voussoir): the most frequent body by size (its
-    bounding box along x, y, z [m], rounded to 1e-9 of the structure's height), its mass [kg], and
-    how many bodies the specimen has."""
-    from collections import Counter
-
-    h = spec_dims(spec)[0]
-    sizes = [tuple(round(float(x) / h, 9) * h for x in np.ptp(np.asarray(b.vertices), axis=0)) for b in spec.bodies]
-    size = Counter(sizes).most_common(1)[0][0]
-    body = spec.bodies[sizes.index(size)]
-    return {"name": body.name, "size_m": [float(x) for x in size], "mass_kg": float(body.mass),
-            "bodies": len(spec.bodies)}
 
 
 def study_test_card(result, lab=None) -> dict | None:

@@ -37,7 +37,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 
-__all__ = ["ENSEMBLE_3D_DEFAULT", "STAND_HEIGHTS", "candidate_design", "stand_height", "arrival_spread",
+__all__ = ["ENSEMBLE_3D_DEFAULT", "STAND_HEIGHTS", "design_scenario", "candidate_design", "stand_height", "arrival_spread",
            "screening_error", "specimen_scenario", "similarity_3d", "run_3d"]
 
 #: 3D ensemble members per design for a structure without a planar path, unless ``lab.ensemble_3d`` says.
@@ -62,13 +62,37 @@ def stand_height(design) -> float:
                                f"height ({STAND_HEIGHTS[-1] * top:.3g} m) makes the charge a free-air burst at its face")
 
 
+def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[float] = None):
+    """The scenario of a planned design: the prototype's, with ``[scale]`` set to the candidate
+    (law, lambda, material or density ratio, the specimen's burst where it is not the prototype's,
+    the charge's height on its stand [m]) and the lab table (``lab_spec``) kept."""
+    from ..scenario.lab import SAME_MATERIAL
+
+    scale = {"length": candidate.scale, "law": candidate.law,
+             "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
+    if candidate.burst != scenario.blast.burst:
+        scale["specimen_burst"] = candidate.burst
+    if charge_height:
+        scale["specimen_charge_height_m"] = float(charge_height)
+    if candidate.material != SAME_MATERIAL:  # Hopkinson-Cranz: the material's density is the one the law imposes
+        scale["specimen_material"] = candidate.material
+    elif candidate.law == "general":
+        scale["density_ratio"] = 1.0
+    data = scenario.model_dump(exclude_none=True)
+    data["scale"] = scale
+    if lab_spec is not None:
+        data["lab"] = lab_spec.model_dump(exclude_none=True)
+    with warnings.catch_warnings():  # validated once already: its warnings were said
+        warnings.simplefilter("ignore")
+        return type(scenario).from_dict(data, source="plan")
+
+
 def candidate_design(scenario, structure, lab) -> Callable:
     """``design(candidate) -> (ModelDesign, charge height [m])``: the Study's design of the candidate's
     scenario (:func:`~.planner.design_scenario`; the load model, bursts, contact and duration as the
     Study's, one door), on ``structure`` built once. A free-air candidate stands on the scenario's
     ``scale.specimen_charge_height_m`` or, without one, on :func:`stand_height`'s."""
     from ..study import Study
-    from .planner import design_scenario
 
     given = scenario.scale.specimen_charge_height_m if scenario.scale is not None else None
 
@@ -88,7 +112,7 @@ def arrival_spread(params, structure, scale: float = 1.0) -> float:
     the specimen's): from the front's foot (the stand-off) to its top corner (height, half its width
     across the blast), with the blast model's arrival-time fit at ``params`` (charge, stand-off)."""
     from ..blast import get_blast_model
-    from .card import spec_dims
+    from .build import spec_dims
 
     h, _, dp = (scale * x for x in spec_dims(structure))
     m = get_blast_model(params.blast_model) if isinstance(params.blast_model, str) else params.blast_model
@@ -193,7 +217,6 @@ def run_3d(scenario, ev, lab, *, members: int, tolerances, workers: int = 0, sch
     from ..study import Study
     from .debris import reach_3d
     from .odds import ensemble_odds_3d
-    from .planner import design_scenario
 
     sc3 = design_scenario(scenario, ev.candidate, lab, ev.charge_height_m or None).with_values(
         {"simulation.engine": "3d", "simulation.critical_charge": False, "simulation.ensemble_members": 0})

@@ -8,6 +8,8 @@ from __future__ import annotations
 import math
 from typing import Optional
 
+from .build import spec_dims
+from .candidates import shot_dict
 from .debris import planar_reach
 from .instruments import top_corner_displacement
 from .plan3d import ENSEMBLE_3D_DEFAULT, run_3d, screening_error
@@ -45,9 +47,6 @@ def _reasons(d: dict, best: dict) -> list:
 def designs_3d(scenario, ok: list, proto: dict, lab, tol, tell, *, workers: int = 0,
                scheduler: Optional[str] = None) -> tuple:
     """(designs best first, the prototype's record with its 3D outcome, notes) of a plan on the 3D path."""
-    from .card import spec_dims
-    from .planner import shot_dict
-
     method = scenario.blast.load
     scr = {id(e): screening_error(e, method) for e in ok}
     ok = sorted(ok, key=lambda e: (float(f"{scr[id(e)]:.2g}"), e.safety.radius_m))

@@ -1,11 +1,14 @@
-"""``plan``: from a prototype and a lab to the designs the lab can fire, best first.
+"""``plan``: from a prototype of any kind and a lab to the designs the lab can fire, best first.
 
 The planner searches the geometric scale lambda (the fractions of
-:data:`~.candidates.LAMBDA_DENOMINATORS`), the density ratio gamma through the lab's materials and
-the scaling law (general; Hopkinson-Cranz where a material's density allows it), designs each
-candidate, rejects those that break a constraint of the lab (each rejection with its reasons), and
-for the feasible ones propagates the lab's tolerances by Monte Carlo through the planar kernels
-(:mod:`.odds`). Ranking (docs/planning.md):
+:data:`~.candidates.LAMBDA_DENOMINATORS`), the density ratio gamma through the lab's materials, the
+scaling law (general; Hopkinson-Cranz where a material's density allows it) and the specimen's burst
+(``lab.bursts``), designs each candidate (the Study's design of its scenario: the load model as the
+scenario's), rejects those that break a constraint of the lab (each rejection with its reasons,
+:func:`screen`), and for the feasible ones propagates the lab's tolerances by Monte Carlo: a block
+on the paper's load through the planar kernels (:mod:`.odds`), any other structure or load model
+through the 3D stage of its best screened designs (:mod:`.plan3d`, :mod:`.plan3d_designs`). The
+Pareto-optimal designs are marked (:mod:`.pareto`). Ranking (docs/planning.md):
 
 1. trustworthiness: the probability that the specimen's outcome equals the prototype's, rounded to
    0.01 (higher first); then the predicted first-peak error, the specimen's nominal first-peak
@@ -27,12 +30,11 @@ from pathlib import Path
 from typing import Callable, Optional
 
 from .._validate import BlastscaleInputError
-from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_label, specimen_displacement
+from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_label, shot_dict, specimen_displacement
 from .debris import planar_reach
-from .instruments import instrument_settings
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .pareto import mark_pareto
-from .plan3d import candidate_design, specimen_scenario
+from .plan3d import candidate_design, design_scenario, specimen_scenario
 from .plan3d_designs import designs_3d
 from .shot import DEFAULT_LAB, safety_envelope, timing_of
 
@@ -71,7 +73,7 @@ def _prototype(scenario, block):
     safety envelope."""
     from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing
 
-    sc, bl, sim = scenario, scenario.blast, scenario.simulation
+    bl, sim = scenario.blast, scenario.simulation
     system = RockingSystem.from_block(block, sim.gravity_m_s2, sim.restitution)
     from ..blast import blast_parameters
     from ..blast.bursts import model_for_burst
@@ -89,31 +91,6 @@ def _prototype(scenario, block):
         "charge_kg": bl.charge_kg, "standoff_m": bl.standoff_m, "collapsed": collapsed,
         "first_peak_rotation_rad": None if collapsed else rot, "reach_m": reach,
         "safety_distances_m": env.distances_m}
-
-
-def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[float] = None):
-    """The scenario of a planned design: the prototype's, with ``[scale]`` set to the candidate
-    (law, lambda, material or density ratio, the specimen's burst where it is not the prototype's,
-    the charge's height on its stand [m]) and the lab table (``lab_spec``) kept."""
-    from ..scenario.lab import SAME_MATERIAL
-
-    scale = {"length": candidate.scale, "law": candidate.law,
-             "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
-    if candidate.burst != scenario.blast.burst:
-        scale["specimen_burst"] = candidate.burst
-    if charge_height:
-        scale["specimen_charge_height_m"] = float(charge_height)
-    if candidate.material != SAME_MATERIAL:  # Hopkinson-Cranz: the material's density is the one the law imposes
-        scale["specimen_material"] = candidate.material
-    elif candidate.law == "general":
-        scale["density_ratio"] = 1.0
-    data = scenario.model_dump(exclude_none=True)
-    data["scale"] = scale
-    if lab_spec is not None:
-        data["lab"] = lab_spec.model_dump(exclude_none=True)
-    with warnings.catch_warnings():  # validated once already: its warnings were said
-        warnings.simplefilter("ignore")
-        return type(scenario).from_dict(data, source="plan")
 
 
 def _rank_key(d: dict) -> tuple:
@@ -141,38 +118,6 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
             "predicted_first_peak_error": math.hypot(err, spread), "charge_tolerance_needed": tol,
             "weighing_precision_kg": None if tol is None else tol * ev.charge.explosive_mass_kg,
             "odds": odds.to_dict()}
-
-
-def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
-    """What every planned design says, whatever its odds: the candidate, the charge in the lab's explosive,
-    the stand-off and the charge's height, the specimen, the safety envelope, the debris zone (from the
-    specimen's ``reach_m``) and the instruments (for a top displacement ``top_m``) [SI]."""
-    from .card import spec_dims
-
-    c, d, spec, ch, env = ev.candidate, ev.design, ev.specimen, ev.charge, ev.safety
-    h, w, dp = spec_dims(spec)
-    ins = instrument_settings(**{**_ins_inputs(ev), "top_displacement_m": top_m, "camera_max_fps": lab.camera_max_fps})
-    return {**c.describe(), "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
-            "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg, "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
-            "explosive_min_charge_kg": ch.explosive.min_charge_kg, "min_charge_source": ch.explosive.min_charge_source,
-            "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
-            "standoff_m": d.specimen_standoff_m, "charge_height_m": ev.charge_height_m, "specimen_height_m": h,
-            "specimen_width_m": w, "specimen_depth_m": dp,
-            "specimen_density_kg_m3": float(getattr(spec, "density", None) or spec.mass / spec.volume),
-            "specimen_mass_kg": float(spec.mass),
-            "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
-            "far_field": list(env.far_field), "debris_radius_m": lab.debris_margin * reach_m, "specimen_reach_m": reach_m,
-            "camera_fps": ins.camera_fps, "camera_fps_required": ins.camera_fps_required,
-            "pressure_sampling_hz": ins.pressure_sampling_hz, "instruments": ins.to_dict(),
-            "impulsive_ratio": ev.impulsive.model_ratio, "warnings": list(ch.warnings)}
-
-
-def _ins_inputs(ev: Evaluated) -> dict:
-    i = ev.instruments
-    m = ev.design.specimen
-    return {"reflected_pressure_Pa": m.reflected_pressure, "incident_pressure_Pa": i.incident_gauge_range_Pa / 1.5,
-            "positive_duration_s": m.positive_duration, "friedlander_decay": m.friedlander_decay,
-            "arrival_time_s": m.arrival_time, "rise_time_s": ev.rise_s, "response_time_s": ev.response_s}
 
 
 def _reasons(d: dict, best: Optional[dict]) -> list:
@@ -253,12 +198,14 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     Parameters
     ----------
     scenario : Scenario
-        The prototype (a block), its charge and stand-off, blast model, pulse and simulation settings;
-        its ``[scale]`` is ignored (the planner chooses), its ``[lab]`` gives the constraints.
+        The prototype (any structure kind), its charge and stand-off, blast and load model, pulse and
+        simulation settings; its ``[scale]`` is ignored (the planner chooses) but for
+        ``specimen_burst`` and ``specimen_charge_height_m``, its ``[lab]`` gives the constraints.
     lab : LabSpec, optional
         Overrides the scenario's ``[lab]`` (default: it, or every key's default).
     workers, scheduler
-        Where the 3D ensemble of the best design runs (``lab.ensemble_3d`` > 0).
+        Where the 3D ensembles run (local Dask workers, a scheduler's address; 0 and None: native
+        threads in this process).
     progress : callable, optional
         ``progress(stage, done, total)``.
 
