@@ -1,9 +1,11 @@
 """``blastscale plan``: the designs a lab can fire for a scenario's prototype, best first.
 
-``blastscale plan SCENARIO.toml [--json] [--out DIR]`` reads the prototype (a block) and the ``[lab]``
-table (every key optional, docs/planning.md), searches lambda, gamma (the lab's materials) and the law
-(:func:`blastscale.planning.plan`), and prints the feasible designs ranked by trustworthiness then
-safety, with the reasons of the rejected ones. ``--out DIR`` also runs the best design's Study and
+``blastscale plan SCENARIO.toml [--json] [--out DIR] [--workers N | --scheduler ADDR]`` reads the prototype
+(any structure kind) and the ``[lab]`` table (every key optional, docs/planning.md), searches lambda, gamma
+(the lab's materials), the law and the specimen's burst (:func:`blastscale.planning.plan`: a block on the
+planar kernels; any other structure screened, then its best designs in 3D with an ensemble each), and
+prints the feasible designs ranked by trustworthiness then safety, the Pareto-optimal ones marked, with the
+reasons of the rejected ones; ``--out`` also writes ``plan_candidates.png``. ``--out DIR`` also runs the best design's Study and
 writes ``plan.json``, ``summary.json`` (with its ``test_card``), ``scenario.toml`` (the best design:
 ``blastscale run`` reproduces its card) and ``report.html`` (the plan and the printable test card).
 A lab no design fits: one line naming the constraint and what would relax it, exit status 2.
@@ -78,7 +80,8 @@ def plan_cmd(
                                             "scenario.toml and report.html into this new folder."),
     force: bool = typer.Option(False, "--force", help="Replace an existing result folder."),
     top: int = typer.Option(10, "--top", min=1, help="Designs shown in the table."),
-    workers: int = typer.Option(0, "--workers", min=0, help="Local Dask workers of the 3D ensemble (lab.ensemble_3d)."),
+    workers: int = typer.Option(0, "--workers", min=0, help="Local Dask workers of the 3D ensembles (lab.ensemble_3d; "
+                                "0: native threads in this process)."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", show_default=False,
                                             help="Address of a running Dask scheduler for the 3D ensemble."),
 ) -> None:

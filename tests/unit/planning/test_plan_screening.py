@@ -95,9 +95,15 @@ def test_impulsive_check_for_every_kind_is_the_envelope_blocks():
                                                         * math.sqrt(3 * 9.81 / (4 * r)), rel=1e-3)
 
 
-@pytest.mark.parametrize("kind", ["column", "wall", "arch", "assembly"])
+PORTAL = {"structure": {"kind": "portal"}, "blast": {"charge_kg": 20.0, "standoff_m": 6.0},
+          "simulation": {"engine": "3d", "duration_s": 0.5}}
+CIRCULAR = {**COLUMN, "structure": {**COLUMN["structure"], "section": "circular"}}
+
+
+@pytest.mark.parametrize("kind", ["column", "circular", "wall", "arch", "portal", "assembly"])
 def test_a_lab_nothing_satisfies_names_the_binding_constraint(kind, tmp_path):
-    data = {"column": COLUMN, "wall": WALL, "arch": ARCH}.get(kind) or _stack(tmp_path)
+    data = {"column": COLUMN, "circular": CIRCULAR, "wall": WALL, "arch": ARCH, "portal": PORTAL}.get(kind) \
+        or _stack(tmp_path)
     with pytest.raises(PlanInfeasible) as exc:  # screening only: nothing simulated in 3D
         plan(_scenario(data), lab=LabSpec(space_radius_m=0.05, materials=["same"]))
     msg = str(exc.value)
