@@ -65,7 +65,9 @@ class Plan:
     def to_dict(self) -> dict:
         return {"designs": self.designs, "rejected": self.rejected, "prototype": self.prototype, "lab": self.lab,
                 "ranking": "p_outcome_agree (0.01), then predicted first-peak error (2 significant digits), then "
-                           "safety_radius_m", "notes": list(self.notes)}
+                           "safety_radius_m; designs screened only (no 3D run, p_outcome_agree null) after them, by "
+                           "screening_error; pareto: optimal over odds, predicted error, safety radius and charge",
+                "notes": list(self.notes)}
 
 
 def _prototype(scenario, block):
