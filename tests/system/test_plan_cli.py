@@ -163,7 +163,8 @@ def test_run_of_an_arch_with_a_lab_gives_its_card(capsys, tmp_path):
     b = json.loads((tmp_path / "o" / "summary.json").read_text())["test_card"]["build"]
     assert b["kind"] == "arch" and b["height_m"] == pytest.approx(0.275 * math.cos(math.pi / 18), rel=1e-9)
     assert b["width_m"] == pytest.approx(0.1, rel=1e-9) and b["unit"]["bodies"] == 9
-    assert b["unit"]["size_m"][0] == pytest.approx(0.1, rel=1e-6) and max(b["unit"]["size_m"][1:]) < 0.1
+    u = b["unit"]
+    assert u["size_x_m"] == pytest.approx(0.1, rel=1e-6) and max(u["size_y_m"], u["size_z_m"]) < 0.1
     assert b["unit"]["mass_kg"] == pytest.approx(b["mass_kg"] / 9, rel=1e-9)
 
 

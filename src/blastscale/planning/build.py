@@ -22,13 +22,13 @@ def spec_dims(spec) -> tuple:
 
 def specimen_unit(spec) -> dict:
     """One unit of the specimen (a drum, a brick, a voussoir): the most frequent body by size (its
-    bounding box along x, y, z [m], rounded to 1e-9 of the structure's height), its mass [kg], and
-    how many bodies the specimen has."""
+    bounding box along x, y, z, ``size_x_m``, ``size_y_m``, ``size_z_m`` [m], rounded to 1e-9 of the
+    structure's height), its ``mass_kg`` [kg], and how many ``bodies`` the specimen has."""
     from collections import Counter
 
     h = spec_dims(spec)[0]
     sizes = [tuple(round(float(x) / h, 9) * h for x in np.ptp(np.asarray(b.vertices), axis=0)) for b in spec.bodies]
     size = Counter(sizes).most_common(1)[0][0]
     body = spec.bodies[sizes.index(size)]
-    return {"name": body.name, "size_m": [float(x) for x in size], "mass_kg": float(body.mass),
+    return {"name": body.name, **{f"size_{a}_m": float(x) for a, x in zip("xyz", size)}, "mass_kg": float(body.mass),
             "bodies": len(spec.bodies)}
