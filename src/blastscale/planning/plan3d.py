@@ -19,9 +19,12 @@ The screening error of a design (lower first) is the larger of two closed-form e
   finite pulses the up-scaled model departs from the prototype by ~1e-4 rad, the same size as the
   prototype's own finite-pulse effect"), so a duration off by delta = t_o,s / (lambda_t t_o,p) - 1
   moves it by about |delta| (t_o p)_prototype;
-* for Methods B and C (faces loaded at their own arrival), the relative error of the up-scaled
-  arrival-time spread over the front, |dt_s / (lambda_t dt_p) - 1| (dt from the charge's foot to the
-  front's top corner, the blast model's arrival-time fit).
+* for Methods B and C (faces loaded at their own arrival), the arrival-time spread over the front
+  (dt from the front's foot to its top corner, the blast model's arrival-time fit) in the same
+  measure: the blast's times scale as the charge's cube root, the rocking's as lambda_t, so the
+  specimen's spread, up-scaled, is off by delta_a = dt_s / (lambda_t dt_p) - 1 (about sqrt(lambda) - 1
+  for Hopkinson-Cranz), and it moves the response by about |delta_a| dt_p p (p the envelope's
+  frequency parameter, as t_o p).
 """
 
 from __future__ import annotations
@@ -135,8 +138,9 @@ def screening_error(ev, load_method: str) -> float:
         proto = d.prototype_structure
         dt_p = arrival_spread(d.prototype, proto)
         dt_s = arrival_spread(d.specimen, proto, float(d.factors.length))
+        p = float(ev.impulsive.prototype_ratio) / float(d.prototype.positive_duration)  # rad/s
         if dt_p > 0:
-            err = max(err, abs(dt_s / (tf * dt_p) - 1.0))
+            err = max(err, abs(dt_s / (tf * dt_p) - 1.0) * dt_p * p)
     return err
 
 
