@@ -45,7 +45,7 @@ def main() -> None:
 
     def progress(stage, done, total):
         name = "screening" if stage.startswith("designing") else "3D stage" if stage.startswith("3D") else stage
-        stages[name] = time.perf_counter() - t0
+        stages.setdefault(name, time.perf_counter() - t0)  # when the stage began
 
     p = plan(sc, lab=lab, workers=a.workers, progress=progress)
     wall = time.perf_counter() - t0
