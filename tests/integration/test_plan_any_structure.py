@@ -76,3 +76,17 @@ def test_the_ensembles_specimen_is_the_designs(name, tmp_path):
     assert spec.mass == pytest.approx(d.specimen_structure.mass, rel=1e-12)
     got = np.array([b.com for b in spec.bodies])
     assert got == pytest.approx(np.array([b.com for b in d.specimen_structure.bodies]), rel=1e-12, abs=1e-15)
+
+
+@pytest.mark.slow
+def test_threads_and_dask_give_the_same_odds(tmp_path):
+    """The members on native threads in this process and on a local Dask worker: the same draws (the
+    sweeps' samples, one seed), the same runs, so the same odds to the last bit."""
+    box = lambda n, z0, z1: {"name": n, "vertices": [[x, y, z] for x in (0, 0.6) for y in (0, 1) for z in (z0, z1)]}
+    f = tmp_path / "stack.json"
+    f.write_text(json.dumps({"blocks": [box("A", 0.0, 1.2), box("B", 1.2, 2.4)]}))
+    sc = Scenario.from_dict({"structure": {"kind": "assembly", "file": str(f), "density_kg_m3": 2400.0},
+                             "blast": {"charge_kg": 5.0, "standoff_m": 4.0},
+                             "simulation": {"engine": "3d", "duration_s": 0.2}}, source="test")
+    lab = LabSpec(**TINY)
+    assert plan(sc, lab=lab).designs[0]["odds_3d"] == plan(sc, lab=lab, workers=1).designs[0]["odds_3d"]
