@@ -237,7 +237,11 @@ def run_3d(scenario, ev, lab, *, members: int, tolerances, workers: int = 0, sch
     odds = None
     if members:
         with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
-            odds = ensemble_odds_3d(specimen_scenario(scenario, ev.design, Path(tmp)),
-                                    prototype_collapsed=bool(s3["prototype"]["collapsed"]), tolerances=tolerances,
+            try:
+                ssc = specimen_scenario(scenario, ev.design, Path(tmp))
+            except BlastscaleInputError as exc:  # a block model with supports: the comparison alone
+                warnings.warn(f"plan: no 3D ensemble: {exc}", UserWarning, stacklevel=2)
+                return s3, sim, None
+            odds = ensemble_odds_3d(ssc, prototype_collapsed=bool(s3["prototype"]["collapsed"]), tolerances=tolerances,
                                     members=members, seed=lab.seed, workers=workers, scheduler=scheduler, tick=tick)
     return s3, sim, odds
