@@ -90,3 +90,16 @@ def test_threads_and_dask_give_the_same_odds(tmp_path):
                              "simulation": {"engine": "3d", "duration_s": 0.2}}, source="test")
     lab = LabSpec(**TINY)
     assert plan(sc, lab=lab).designs[0]["odds_3d"] == plan(sc, lab=lab, workers=1).designs[0]["odds_3d"]
+
+
+def test_a_block_model_with_supports_ranks_on_its_comparison_alone():
+    """A COMPAS arch on two is_support abutments: its specimen cannot be written as a block-model file, so
+    its best design has the 3D comparison and no ensemble (a one-line warning), not a failed plan."""
+    data = Path(__file__).resolve().parents[1] / "data" / "compas_dem_arch_rotated.json"
+    sc = Scenario.from_dict({"structure": {"kind": "assembly", "file": str(data)},
+                             "blast": {"charge_kg": 2.0, "standoff_m": 4.0},
+                             "simulation": {"engine": "3d", "duration_s": 0.2}}, source="test")
+    with pytest.warns(UserWarning, match="no 3D ensemble.*supports"):
+        p = plan(sc, lab=LabSpec(**TINY))
+    d = p.designs[0]
+    assert d["odds_3d"] is None and d["p_outcome_agree"] in (0.0, 1.0) and 0 <= d["similarity_error"] <= 1
