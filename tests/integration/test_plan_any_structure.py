@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from blastscale.planning import plan
+from blastscale.planning.build import specimen_mass
 from blastscale.planning.plan3d import specimen_scenario
 from blastscale.scenario import Scenario, load_scenario
 from blastscale.scenario.lab import LabSpec
@@ -74,6 +75,7 @@ def test_the_ensembles_specimen_is_the_designs(name, tmp_path):
     d = Study(sc).design()
     spec = from_spec(specimen_scenario(sc, d, tmp_path).structure)
     assert spec.mass == pytest.approx(d.specimen_structure.mass, rel=1e-12)
+    assert specimen_mass(d) == pytest.approx(d.specimen_structure.mass, rel=1e-12)  # lambda^3 gamma x the prototype's
     got = np.array([b.com for b in spec.bodies])
     assert got == pytest.approx(np.array([b.com for b in d.specimen_structure.bodies]), rel=1e-12, abs=1e-15)
 

@@ -171,7 +171,8 @@ def test_run_of_an_arch_with_a_lab_gives_its_card(capsys, tmp_path):
 def test_plan_of_a_wall_from_the_command_line(capsys, tmp_path):
     s = tmp_path / "wall.toml"
     s.write_text(ARCH.replace('kind = "arch"\nradius_m = 2.5\nthickness_m = 0.5\ndepth_m = 1.0\nvoussoirs = 9',
-                              'kind = "wall"\nlength_m = 4.0\nheight_m = 2.5\nthickness_m = 0.5')
+                              'kind = "wall"\nlength_m = 2.0\nheight_m = 1.0\nthickness_m = 0.5\ncourses = 2\n'
+                              'units_per_course = 2')
                  .replace('[scale]\nlength = "1/10"\n', "") + "ensemble_3d = 2\ntop_3d = 1\n")
     code, out, err = cli(capsys, "plan", str(s), "--json")
     assert code == 0, err

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["spec_dims", "specimen_unit"]
+__all__ = ["spec_dims", "specimen_unit", "specimen_mass", "specimen_density"]
 
 
 def spec_dims(spec) -> tuple:
@@ -16,7 +16,10 @@ def spec_dims(spec) -> tuple:
     if hasattr(spec, "base_width"):
         w = float(spec.base_width)
         return float(spec.height), w, w
-    v = np.vstack([np.asarray(b.vertices) + np.asarray(b.com) for b in spec.bodies])
+    if hasattr(spec, "blocks"):  # an assembly: its blocks' points (its bodies would find every interface)
+        v = np.vstack([b.points for b in spec.blocks])
+    else:
+        v = np.vstack([np.asarray(b.vertices) + np.asarray(b.com) for b in spec.bodies])
     return float(v[:, 2].max()), float(np.ptp(v[:, 0])), float(np.ptp(v[:, 1]))
 
 
@@ -32,3 +35,20 @@ def specimen_unit(spec) -> dict:
     body = spec.bodies[sizes.index(size)]
     return {"name": body.name, **{f"size_{a}_m": float(x) for a, x in zip("xyz", size)}, "mass_kg": float(body.mass),
             "bodies": len(spec.bodies)}
+
+
+def specimen_mass(design) -> float:
+    """The specimen's mass [kg]: a block's own; any other structure's lambda^3 gamma x its prototype's
+    (lengths x lambda, densities x gamma: exact, without integrating every block of the specimen again)."""
+    spec, proto = design.specimen_structure, design.prototype_structure
+    if hasattr(spec, "width") or proto is None:
+        return float(spec.mass)
+    return float(proto.mass) * float(design.factors.length) ** 3 * float(design.density_ratio)
+
+
+def specimen_density(design) -> float:
+    """The specimen's (mean) density [kg/m^3]: its material's, or gamma x the prototype's mean density."""
+    spec, proto = design.specimen_structure, design.prototype_structure
+    if getattr(spec, "density", None):
+        return float(spec.density)
+    return float(proto.mass) / float(proto.volume) * float(design.density_ratio)

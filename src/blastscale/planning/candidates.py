@@ -16,7 +16,7 @@ from fractions import Fraction
 from typing import Optional
 
 from .._validate import BlastscaleInputError
-from .build import spec_dims
+from .build import spec_dims, specimen_density, specimen_mass
 from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
 from ..blast.explosives import get_explosive
@@ -145,7 +145,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
         return ev
     spec = d.specimen_structure  # the design's specimen (scaled once, there)
     ev.design, ev.specimen = d, spec
-    spec_h, spec_m = spec_dims(spec)[0], float(spec.mass)
+    spec_h, spec_m = spec_dims(spec)[0], specimen_mass(d)
     ev.impulsive = d.impulsive if d.impulsive is not None else envelope_impulsive(block, d)
     if not ev.impulsive.impulsive:
         ev.violations.append(Violation("impulsive", ev.impulsive.model_ratio, ev.impulsive.threshold,
@@ -239,8 +239,7 @@ def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
             "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
             "standoff_m": d.specimen_standoff_m, "charge_height_m": ev.charge_height_m, "specimen_height_m": h,
             "specimen_width_m": w, "specimen_depth_m": dp,
-            "specimen_density_kg_m3": float(getattr(spec, "density", None) or spec.mass / spec.volume),
-            "specimen_mass_kg": float(spec.mass),
+            "specimen_density_kg_m3": specimen_density(d), "specimen_mass_kg": specimen_mass(d),
             "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
             "far_field": list(env.far_field), "debris_radius_m": lab.debris_margin * reach_m, "specimen_reach_m": reach_m,
             "camera_fps": ins.camera_fps, "camera_fps_required": ins.camera_fps_required,
