@@ -96,6 +96,9 @@ def test_plan_out_writes_the_best_design_and_its_card(capsys, tmp_path):
     assert card["standoff_m"] == pytest.approx(best["standoff_m"], rel=1e-12)
     html = (out_dir / "report.html").read_text()
     assert '<section id="plan">' in html and '<section id="test_card">' in html
+    assert 'id="fig-plan_candidates"' in html  # every candidate, scale against charge, the Pareto front
+    assert (out_dir / "plan_candidates.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert any(d["pareto"] for d in plan["designs"]) and all(d["pareto"] is not None for d in plan["designs"])
     assert "[lab]" in (out_dir / "scenario.toml").read_text()
     # the written scenario runs again to the same card
     code, out, err = cli(capsys, "run", str(out_dir / "scenario.toml"), "--json")
