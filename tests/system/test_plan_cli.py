@@ -160,10 +160,12 @@ def test_run_of_an_arch_with_a_lab_gives_its_card(capsys, tmp_path):
     bounding box (lambda x the prototype's: the crown voussoir's extrados corners at (R + t/2) cos(10 deg) =
     2.708 m high for 9 voussoirs over 180 deg; 1 m along the blast) and one voussoir."""
     s = tmp_path / "arch.toml"
-    s.write_text(ARCH)
+    s.write_text(ARCH + "ensemble_3d = 2\n")
     code, out, err = cli(capsys, "run", str(s), "--out", str(tmp_path / "o"))
     assert code == 0, err
-    b = json.loads((tmp_path / "o" / "summary.json").read_text())["test_card"]["build"]
+    card = json.loads((tmp_path / "o" / "summary.json").read_text())["test_card"]
+    assert card["odds_3d"]["members"] == 2  # the 3D ensemble of an arch's specimen (was: blocks only)
+    b = card["build"]
     assert b["kind"] == "arch" and b["height_m"] == pytest.approx(0.275 * math.cos(math.pi / 18), rel=1e-9)
     assert b["width_m"] == pytest.approx(0.1, rel=1e-9) and b["unit"]["bodies"] == 9
     u = b["unit"]
