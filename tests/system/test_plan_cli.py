@@ -2,6 +2,7 @@
 the result folder, one-line errors (exit 2) for bad [lab] entries and for a lab no design fits."""
 
 import json
+import math
 
 import pytest
 
@@ -44,6 +45,10 @@ def _scenario(tmp_path, lab: str, scale: str = "") -> str:
     ("initiator_max_fraction = 1.5", "lab.initiator_max_fraction = 1.5 is out of range: valid range is (0, 1]"),
     ('materials = ["marble", "unobtainium"]', "lab.materials = 'unobtainium' is not known"),
     ("seed = 1.5", "lab.seed = 1.5 has the wrong type"),
+    ('bursts = ["moon"]', "lab.bursts = 'moon' is not known: valid values are surface, free-air"),
+    ("bursts = []", "lab.bursts = [] is empty"),
+    ("top_3d = 0", "lab.top_3d = 0 is out of range"),
+    ("ensemble_3d = -1", "lab.ensemble_3d = -1 is out of range"),
 ])
 @pytest.mark.parametrize("command", ["plan", "run"])
 def test_bad_lab_entries_are_one_line_exit_2(capsys, tmp_path, lab, words, command):
@@ -91,6 +96,9 @@ def test_plan_out_writes_the_best_design_and_its_card(capsys, tmp_path):
     assert card["standoff_m"] == pytest.approx(best["standoff_m"], rel=1e-12)
     html = (out_dir / "report.html").read_text()
     assert '<section id="plan">' in html and '<section id="test_card">' in html
+    assert 'id="fig-plan_candidates"' in html  # every candidate, scale against charge, the Pareto front
+    assert (out_dir / "plan_candidates.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert any(d["pareto"] for d in plan["designs"]) and all(d["pareto"] is not None for d in plan["designs"])
     assert "[lab]" in (out_dir / "scenario.toml").read_text()
     # the written scenario runs again to the same card
     code, out, err = cli(capsys, "run", str(out_dir / "scenario.toml"), "--json")
@@ -125,3 +133,55 @@ def test_a_redefined_library_explosive_warns_once_in_one_line(capsys, tmp_path):
     lines = [x for x in err.splitlines() if "redefines" in x]
     assert len(lines) == 1 and lines[0].startswith("warning: lab.explosives.C4 redefines the library's explosive 'c-4'")
     assert all(d["explosive"] == "C4" for d in json.loads(out)["designs"])
+
+
+ARCH = """
+[structure]
+kind = "arch"
+radius_m = 2.5
+thickness_m = 0.5
+depth_m = 1.0
+voussoirs = 9
+[blast]
+charge_kg = 20.0
+standoff_m = 6.0
+[scale]
+length = "1/10"
+[simulation]
+engine = "3d"
+duration_s = 0.1
+[lab]
+materials = ["same"]
+"""
+
+
+def test_run_of_an_arch_with_a_lab_gives_its_card(capsys, tmp_path):
+    """Was: 'Assembly' object has no attribute 'height' after the whole simulation. The build gives the
+    bounding box (lambda x the prototype's: the crown voussoir's extrados corners at (R + t/2) cos(10 deg) =
+    2.708 m high for 9 voussoirs over 180 deg; 1 m along the blast) and one voussoir."""
+    s = tmp_path / "arch.toml"
+    s.write_text(ARCH + "ensemble_3d = 2\n")
+    code, out, err = cli(capsys, "run", str(s), "--out", str(tmp_path / "o"))
+    assert code == 0, err
+    card = json.loads((tmp_path / "o" / "summary.json").read_text())["test_card"]
+    assert card["odds_3d"]["members"] == 2  # the 3D ensemble of an arch's specimen (was: blocks only)
+    b = card["build"]
+    assert b["kind"] == "arch" and b["height_m"] == pytest.approx(0.275 * math.cos(math.pi / 18), rel=1e-9)
+    assert b["width_m"] == pytest.approx(0.1, rel=1e-9) and b["unit"]["bodies"] == 9
+    u = b["unit"]
+    assert u["size_x_m"] == pytest.approx(0.1, rel=1e-6) and max(u["size_y_m"], u["size_z_m"]) < 0.1
+    assert b["unit"]["mass_kg"] == pytest.approx(b["mass_kg"] / 9, rel=1e-9)
+
+
+def test_plan_of_a_wall_from_the_command_line(capsys, tmp_path):
+    s = tmp_path / "wall.toml"
+    s.write_text(ARCH.replace('kind = "arch"\nradius_m = 2.5\nthickness_m = 0.5\ndepth_m = 1.0\nvoussoirs = 9',
+                              'kind = "wall"\nlength_m = 2.0\nheight_m = 1.0\nthickness_m = 0.5\ncourses = 2\n'
+                              'units_per_course = 2')
+                 .replace('[scale]\nlength = "1/10"\n', "") + "ensemble_3d = 2\ntop_3d = 1\n")
+    code, out, err = cli(capsys, "plan", str(s), "--json")
+    assert code == 0, err
+    p = json.loads(out)
+    d = p["designs"][0]
+    assert d["odds_3d"]["members"] == 2 and d["burst"] == "surface" and d["charge_height_m"] == 0.0
+    assert d["pareto"] is True and p["prototype"]["kind"] == "wall"

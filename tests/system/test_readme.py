@@ -23,6 +23,9 @@ NOT_CHEAP = {
     "reproduce --out paper ": "the full paper, ~15 min (benchmarks; test_reproduce.py runs items of it)",
     "reproduce --quick": "every item shortened, ~1 min (tests/system/test_wheel.py runs it from a wheel)",
     "1000:log --vary standoff_m=1.5:6:1000": "a million cases, ~1 min (benchmarks/bench_sweeps.py)",
+    "plan paper_column_square_250kg": "3 x 33 3D runs of a column, minutes (benchmarks/bench_plan.py; "
+                                      "tests/integration/test_plan_any_structure.py runs it short)",
+    "plan wall_running_bond_lambda20": "3 x 33 3D runs of a wall, minutes (tests/system/test_plan_cli.py runs it short)",
     "--samples 2000": "26,000 draws with a body per draw, ~10 s (test_fragility.py runs it with fewer draws)",
 }
 

@@ -1,9 +1,11 @@
 """``blastscale plan``: the designs a lab can fire for a scenario's prototype, best first.
 
-``blastscale plan SCENARIO.toml [--json] [--out DIR]`` reads the prototype (a block) and the ``[lab]``
-table (every key optional, docs/planning.md), searches lambda, gamma (the lab's materials) and the law
-(:func:`blastscale.planning.plan`), and prints the feasible designs ranked by trustworthiness then
-safety, with the reasons of the rejected ones. ``--out DIR`` also runs the best design's Study and
+``blastscale plan SCENARIO.toml [--json] [--out DIR] [--workers N | --scheduler ADDR]`` reads the prototype
+(any structure kind) and the ``[lab]`` table (every key optional, docs/planning.md), searches lambda, gamma
+(the lab's materials), the law and the specimen's burst (:func:`blastscale.planning.plan`: a block on the
+planar kernels; any other structure screened, then its best designs in 3D with an ensemble each), and
+prints the feasible designs ranked by trustworthiness then safety, the Pareto-optimal ones marked, with the
+reasons of the rejected ones; ``--out`` also writes ``plan_candidates.png``. ``--out DIR`` also runs the best design's Study and
 writes ``plan.json``, ``summary.json`` (with its ``test_card``), ``scenario.toml`` (the best design:
 ``blastscale run`` reproduces its card) and ``report.html`` (the plan and the printable test card).
 A lab no design fits: one line naming the constraint and what would relax it, exit status 2.
@@ -30,24 +32,34 @@ def _print_plan(p, top: int) -> None:
     t = Table(title=f"Feasible designs, best first ({len(p.designs)}; {len(p.rejected)} rejected)",
               title_justify="left")
     for c in ("#", "law", "lambda", "material", "charge", "stand-off", "specimen", "safety radius", "camera",
-              "P(outcome agrees)", "first-peak error"):
+              "P(outcome agrees)", "first-peak error", "Pareto"):
         t.add_column(c, justify="left" if c in ("law", "material") else "right")
     for i, d in enumerate(p.designs[:top], 1):
+        stand = f" on a {d['charge_height_m'] * 100:.3g} cm stand" if d.get("charge_height_m") else ""
         t.add_row(str(i), d["law"], d["scale_fraction"], d["material"],
-                  f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}", f"{d['standoff_m'] * 100:.3g} cm",
+                  f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}{stand}", f"{d['standoff_m'] * 100:.3g} cm",
                   f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
-                  f"{d['safety_radius_m']:.3g} m", f"{d['camera_fps']:g}/s", f"{d['p_outcome_agree']:.3f}",
-                  f"{100 * d['predicted_first_peak_error']:.2g} %")
+                  f"{d['safety_radius_m']:.3g} m", f"{d['camera_fps']:g}/s",
+                  "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
+                  f"{100 * d['predicted_first_peak_error']:.2g} %", {True: "yes", False: "", None: "-"}[d["pareto"]])
     console.print(t)
     b = p.designs[0]
+    stand = (f", on a stand {b['charge_height_m'] * 100:.3g} cm high ({b['burst']} burst)" if b.get("charge_height_m")
+             else "")
     console.print(styled(("Best design:", "bold"), f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
-                         f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"))
+                         f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"
+                         f"{stand}"))
     for r in b["reasons"]:
         console.print(f"  - {r}")
     console.print(f"  - fireable: above {b['explosive']}'s minimum reliable charge "
                   f"{format_charge(b['explosive_min_charge_kg'])}; initiator {format_charge(b['initiator_tnt_kg'])} TNT, "
                   f"{100 * b['initiator_fraction']:.3g} % of the charge's impulse (at most "
                   f"{100 * p.lab['initiator_max_fraction']:g} %)")
+    o3 = b.get("odds_3d")
+    if o3:
+        console.print(f"  - 3D ensemble: {o3['members']} members, P(outcome agrees) {o3['p_outcome_agree']:.3f} "
+                      f"+- {o3['p_outcome_agree_se']:.2g}, largest top displacement 5-95 %: "
+                      f"{1e3 * o3['top_displacement_p05_m']:.3g}-{1e3 * o3['top_displacement_p95_m']:.3g} mm")
     for w in b.get("warnings", []):
         console.print(f"  - warning: {w}")
     reasons: dict = {}
@@ -71,7 +83,8 @@ def plan_cmd(
                                             "scenario.toml and report.html into this new folder."),
     force: bool = typer.Option(False, "--force", help="Replace an existing result folder."),
     top: int = typer.Option(10, "--top", min=1, help="Designs shown in the table."),
-    workers: int = typer.Option(0, "--workers", min=0, help="Local Dask workers of the 3D ensemble (lab.ensemble_3d)."),
+    workers: int = typer.Option(0, "--workers", min=0, help="Local Dask workers of the 3D ensembles (lab.ensemble_3d; "
+                                "0: native threads in this process)."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", show_default=False,
                                             help="Address of a running Dask scheduler for the 3D ensemble."),
 ) -> None:

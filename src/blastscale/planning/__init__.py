@@ -5,8 +5,10 @@
 * the instruments the lab must set (:mod:`.instruments`), the debris zone (:mod:`.debris`);
 * the odds: the lab's tolerances by Monte Carlo through the planar kernels or small 3D ensembles
   (:mod:`.odds`);
-* the planner: lambda, gamma (through the materials) and the law searched against the lab's
-  constraints, designs ranked by trustworthiness then safety (:mod:`.planner`, :mod:`.candidates`);
+* the planner: lambda, gamma (through the materials), the law and the specimen's burst searched
+  against the lab's constraints for any structure, designs ranked by trustworthiness then safety
+  (:mod:`.planner`, :mod:`.candidates`; the 3D stage of the structures without a planar path:
+  :mod:`.plan3d`, :mod:`.plan3d_designs`), the Pareto front (:mod:`.pareto`);
 * the test card of a study (:mod:`.card`).
 
 Above the sweeps (the 3D ensembles run as one), below the report and the files.

@@ -16,14 +16,14 @@ from fractions import Fraction
 from typing import Optional
 
 from .._validate import BlastscaleInputError
+from .build import spec_dims, specimen_density, specimen_mass
 from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
 from ..blast.explosives import get_explosive
 from .shot import fireability, lab_charge, lab_explosives, safety_envelope
-from .shot import candidate_materials
-from ..similitude import design_model
 
-__all__ = ["LAMBDA_DENOMINATORS", "Candidate", "Violation", "Evaluated", "candidates", "evaluate", "scale_label"]
+__all__ = ["LAMBDA_DENOMINATORS", "Candidate", "Violation", "Evaluated", "candidates", "evaluate", "scale_label",
+           "envelope_block", "envelope_impulsive", "shot_dict"]
 
 #: The geometric scales the planner tries: lambda = 1/n (the fractions a lab builds and reports).
 LAMBDA_DENOMINATORS = (1, 2, 4, 5, 8, 10, 15, 20, 25, 40, 50, 75, 100, 150, 200, 250, 400, 500, 1000)
@@ -45,10 +45,11 @@ class Candidate:
     scale: float
     material: str
     density_ratio: float
+    burst: str = "surface"
 
     def describe(self) -> dict:
         return {"law": self.law, "scale": self.scale, "scale_fraction": scale_label(self.scale),
-                "material": self.material, "density_ratio": self.density_ratio}
+                "material": self.material, "density_ratio": self.density_ratio, "burst": self.burst}
 
 
 @dataclass(frozen=True)
@@ -75,18 +76,23 @@ class Evaluated:
     instruments: object = None
     rise_s: float = math.nan
     response_s: float = math.nan
+    charge_height_m: float = 0.0  # the specimen charge's centre above the floor [m] (0: on it)
+    impulsive: object = None  # the design's t_o p check (a block's own; any other kind's envelope block's)
 
 
-def candidates(lab, prototype_density: float, prototype_height: float, gravity_ratio: float = 1.0) -> list:
+def candidates(lab, prototype_density: float, prototype_height: float, gravity_ratio: float = 1.0,
+               bursts=("surface",)) -> list:
     """Every candidate: the general law at each scale of :data:`LAMBDA_DENOMINATORS` up to the
     tallest specimen the lab builds (and 1), for each material; Hopkinson-Cranz at the one scale
-    each material allows (gamma >= 1)."""
+    each material allows (gamma >= 1); each for every specimen burst of ``bursts``."""
+    from .shot import candidate_materials
 
     mats = candidate_materials(lab, prototype_density)
-    out = [Candidate("general", 1.0 / n, name, g) for n in LAMBDA_DENOMINATORS for name, g in mats]
-    for name, g in mats:
-        if g >= 1.0:
-            out.append(Candidate("hopkinson-cranz", 1.0 / (gravity_ratio * g * g), name, g))
+    out = [Candidate("general", 1.0 / n, name, g, b) for b in bursts for n in LAMBDA_DENOMINATORS for name, g in mats]
+    for b in bursts:
+        for name, g in mats:
+            if g >= 1.0:
+                out.append(Candidate("hopkinson-cranz", 1.0 / (gravity_ratio * g * g), name, g, b))
     return out
 
 
@@ -119,29 +125,32 @@ def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
     return out
 
 
-def evaluate(c: Candidate, *, scenario, lab, block, timing, incident_model) -> Evaluated:
-    """Design ``c`` for the prototype ``block`` of ``scenario`` and check it against ``lab``.
+def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Evaluated:
+    """Design ``c`` and check it against ``lab``.
 
-    ``timing`` is the prototype's :class:`~.shot.Timing`: the specimen's times are its times x the
-    time factor sqrt(lambda / varsigma) (the law's similarity of the rocking); ``incident_model`` the
-    blast model of the side-on gauge (Kingery-Bulmash: the paper's fits have no incident pressure).
+    ``design(c)`` returns the candidate's :class:`~blastscale.similitude.ModelDesign` and the height of
+    its specimen charge [m] (the planner's: the Study's design of the candidate's scenario). ``block``
+    is the prototype's block, or for any other structure its envelope block (:func:`envelope_block`):
+    its t_o p is the impulsive check of every kind. ``timing`` is the prototype's (or the envelope
+    block's) :class:`~.shot.Timing`: the specimen's times are its times x the time factor
+    sqrt(lambda / varsigma); ``incident_model`` the blast model of the side-on gauge (Kingery-Bulmash:
+    the paper's fits have no incident pressure).
     """
 
-    sc, bl = scenario, scenario.blast
     ev = Evaluated(c)
-    gam = None if c.law == "hopkinson-cranz" else c.density_ratio
-    sig = sc.scale.gravity_ratio if sc.scale is not None else 1.0
     try:
-        d = design_model(bl.charge_kg, bl.standoff_m, c.scale, gam, sig, c.law, bl.blast_model, block,
-                         gravity=sc.simulation.gravity_m_s2, duration=sc.simulation.duration_s)
+        d, ev.charge_height_m = design(c)
     except BlastscaleInputError as exc:
         ev.violations.append(Violation("blast fits", None, None, " ".join(str(exc).split())))
         return ev
-    spec = d.specimen_structure  # the design's specimen block (scaled once, there)
+    spec = d.specimen_structure  # the design's specimen (scaled once, there)
     ev.design, ev.specimen = d, spec
-    if d.impulsive is not None and not d.impulsive.impulsive:
-        ev.violations.append(Violation("impulsive", d.impulsive.model_ratio, d.impulsive.threshold,
-                                       f"not impulsive: t_o p = {d.impulsive.model_ratio:.3g} > {d.impulsive.threshold:g}"))
+    spec_h, spec_m = spec_dims(spec)[0], specimen_mass(d)
+    ev.impulsive = d.impulsive if d.impulsive is not None else envelope_impulsive(block, d)
+    if not ev.impulsive.impulsive:
+        ev.violations.append(Violation("impulsive", ev.impulsive.model_ratio, ev.impulsive.threshold,
+                                       f"not impulsive: t_o p = {ev.impulsive.model_ratio:.3g} > "
+                                       f"{ev.impulsive.threshold:g}"))
     try:
         ev.charge = lab_charge(d.specimen_charge_kg, lab)
     except BlastscaleInputError:
@@ -149,7 +158,7 @@ def evaluate(c: Candidate, *, scenario, lab, block, timing, incident_model) -> E
                                        lab.initiator_max_fraction,
                                        f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge "
                                        f"{d.specimen_charge_kg:.4g} kg TNT"))
-        ev.violations += _violations(ev, lab, spec.height, spec.mass)
+        ev.violations += _violations(ev, lab, spec_h, spec_m)
         ex = get_explosive(lab.explosive, lab_explosives(lab))  # no explosive left to weigh: below every minimum
         ev.violations.append(Violation("explosive_min_charge_kg", 0.0, ex.min_charge_kg, f"no {ex.name} left "
                                        f"beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)"))
@@ -172,10 +181,36 @@ def evaluate(c: Candidate, *, scenario, lab, block, timing, incident_model) -> E
     ev.instruments = instrument_settings(
         reflected_pressure_Pa=m.reflected_pressure, incident_pressure_Pa=inc, positive_duration_s=m.positive_duration,
         friedlander_decay=m.friedlander_decay, arrival_time_s=m.arrival_time, rise_time_s=ev.rise_s,
-        response_time_s=ev.response_s, top_displacement_m=top_corner_displacement(spec.width, spec.height, 0.0),
+        response_time_s=ev.response_s, top_displacement_m=top_corner_displacement(*spec_dims(spec)[1::-1], 0.0),
         camera_max_fps=lab.camera_max_fps)
-    ev.violations += _violations(ev, lab, spec.height, spec.mass)
+    ev.violations += _violations(ev, lab, spec_h, spec_m)
     return ev
+
+
+def envelope_block(structure):
+    """The structure's envelope as one rectangular block (its height, its extent along the blast, x,
+    and across it, y; its mean density): the rigid rocking mode the screening's impulsive check and
+    timing use for a structure without a planar path (docs/planning.md)."""
+    from ..structures import RectangularBlock, is_block
+
+    if is_block(structure):
+        return structure
+    h, w, dp = spec_dims(structure)
+    return RectangularBlock(height=h, width=w, depth=dp, density=float(structure.mass) / (h * w * dp))
+
+
+def envelope_impulsive(envelope, d):
+    """The impulsive check t_o p (:func:`~blastscale.similitude.experiment.impulsive_check`) of a design
+    on the envelope block of its prototype and on that block scaled by lambda (the specimen's)."""
+    from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
+    from ..structures import RectangularBlock
+
+    lam = float(d.factors.length)
+    spec = RectangularBlock(height=envelope.height * lam, width=envelope.width * lam, depth=envelope.depth * lam,
+                            density=envelope.density)
+    return ImpulsiveCheck(prototype_ratio=float(d.prototype.positive_duration * envelope.frequency_parameter(d.gravity)),
+                          model_ratio=float(d.specimen.positive_duration * spec.frequency_parameter(d.specimen_gravity)),
+                          threshold=DEFAULT_IMPULSIVE_THRESHOLD)
 
 
 def specimen_displacement(spec, rotation: Optional[float], collapsed: bool) -> tuple:
@@ -189,3 +224,32 @@ def specimen_displacement(spec, rotation: Optional[float], collapsed: bool) -> t
 def frames_needed(rise_s: float) -> float:
     """Camera rate [1/s] for :data:`~.instruments.FRAMES_PER_RISE` frames over the rise."""
     return FRAMES_PER_RISE / rise_s
+
+
+def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
+    """What every planned design says, whatever its odds: the candidate, the charge in the lab's explosive,
+    the stand-off and the charge's height, the specimen, the safety envelope, the debris zone (from the
+    specimen's ``reach_m``) and the instruments (for a top displacement ``top_m``) [SI]."""
+    c, d, spec, ch, env = ev.candidate, ev.design, ev.specimen, ev.charge, ev.safety
+    h, w, dp = spec_dims(spec)
+    ins = instrument_settings(**{**_ins_inputs(ev), "top_displacement_m": top_m, "camera_max_fps": lab.camera_max_fps})
+    return {**c.describe(), "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
+            "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg, "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+            "explosive_min_charge_kg": ch.explosive.min_charge_kg, "min_charge_source": ch.explosive.min_charge_source,
+            "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
+            "standoff_m": d.specimen_standoff_m, "charge_height_m": ev.charge_height_m, "specimen_height_m": h,
+            "specimen_width_m": w, "specimen_depth_m": dp,
+            "specimen_density_kg_m3": specimen_density(d), "specimen_mass_kg": specimen_mass(d),
+            "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
+            "far_field": list(env.far_field), "debris_radius_m": lab.debris_margin * reach_m, "specimen_reach_m": reach_m,
+            "camera_fps": ins.camera_fps, "camera_fps_required": ins.camera_fps_required,
+            "pressure_sampling_hz": ins.pressure_sampling_hz, "instruments": ins.to_dict(),
+            "impulsive_ratio": ev.impulsive.model_ratio, "warnings": list(ch.warnings)}
+
+
+def _ins_inputs(ev: Evaluated) -> dict:
+    i = ev.instruments
+    m = ev.design.specimen
+    return {"reflected_pressure_Pa": m.reflected_pressure, "incident_pressure_Pa": i.incident_gauge_range_Pa / 1.5,
+            "positive_duration_s": m.positive_duration, "friedlander_decay": m.friedlander_decay,
+            "arrival_time_s": m.arrival_time, "rise_time_s": ev.rise_s, "response_time_s": ev.response_s}

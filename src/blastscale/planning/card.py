@@ -16,15 +16,12 @@ import warnings
 
 import numpy as np
 
+from .build import spec_dims, specimen_unit
 from .debris import planar_reach, reach_3d
 from .instruments import instrument_settings, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .shot import (DEFAULT_LAB, Timing, card_charge, fireability, rocking_timing, safety_envelope, threshold_meanings,
                    timing_of)
-from ..structures import is_block
-from ..blast import get_blast_model
-from .candidates import Evaluated
-from .planner import specimen_scenario
 
 __all__ = ["study_test_card", "check_lab"]
 
@@ -88,6 +85,7 @@ def _response(result, spec) -> dict:
 
 
 def _odds(result, spec, ch, lab, collapsed_p):
+    from ..structures import is_block
 
     sc, d = result.scenario, result.design
     if not is_block(result.structure):
@@ -145,14 +143,6 @@ def _lab_shot(result) -> tuple:
     return (0.0 if h is None else float(h)) if burst == "surface" or h is not None else None, burst, notes
 
 
-def spec_dims(spec) -> tuple:
-    """(height, width along the blast, depth) of a specimen [m] (a column: its base width)."""
-    if hasattr(spec, "width"):
-        return float(spec.height), float(spec.width), float(spec.depth)
-    w = float(getattr(spec, "base_width", getattr(spec, "height", 1.0) / 5))
-    return float(spec.height), w, w
-
-
 def study_test_card(result, lab=None) -> dict | None:
     """The test card of ``result`` (module docstring); None for a prototype-only study (no specimen).
 
@@ -162,6 +152,7 @@ def study_test_card(result, lab=None) -> dict | None:
     lab : LabSpec, optional
         Default: the scenario's ``[lab]``, or every key's default.
     """
+    from ..blast import get_blast_model
 
     d = result.design
     if d is None:
@@ -187,11 +178,15 @@ def study_test_card(result, lab=None) -> dict | None:
     collapsed_p = _prototype_collapsed(result)
     odds = _odds(result, spec, ch, lab, collapsed_p)
     odds3 = None
-    if lab.ensemble_3d and hasattr(spec, "width"):
+    if lab.ensemble_3d:
+        import tempfile
+        from pathlib import Path
 
-        ev = Evaluated(None, design=d, specimen=spec)
-        odds3 = ensemble_odds_3d(specimen_scenario(sc, ev), prototype_collapsed=collapsed_p,
-                                 tolerances=Tolerances.from_lab(lab), members=lab.ensemble_3d, seed=lab.seed)
+        from .plan3d import specimen_scenario
+
+        with tempfile.TemporaryDirectory(prefix="blastscale-card-") as tmp:
+            odds3 = ensemble_odds_3d(specimen_scenario(sc, d, Path(tmp)), prototype_collapsed=collapsed_p,
+                                     tolerances=Tolerances.from_lab(lab), members=lab.ensemble_3d, seed=lab.seed)
     reach, reach_p = max(r["reach_m"]), max(r["prototype_reach_m"])
     hc, burst, shot_notes = _lab_shot(result)
     notes = list(ch.warnings) + [f[3] for f in fireability(ch, lab)] + shot_notes
@@ -228,7 +223,7 @@ def study_test_card(result, lab=None) -> dict | None:
         "build": {"kind": sc.structure.kind, "height_m": hs, "width_m": ws, "depth_m": ds,
                   "mass_kg": float(sum(b.mass for b in spec.bodies)), "material": mat,
                   "density_kg_m3": float(getattr(spec, "density", sc.structure.density_kg_m3 * d.density_ratio)),
-                  "scale": d.scale, "density_ratio": d.density_ratio, "law": d.law},
+                  "scale": d.scale, "density_ratio": d.density_ratio, "law": d.law, "unit": specimen_unit(spec)},
         "instruments": ins.to_dict(),
         "predicted": {"collapsed": r["collapsed"], "first_peak_rotation_rad": r["rotation"],
                       "first_peak_time_s": r["timing"].rise_s, "response_time_s": r["timing"].response_s,

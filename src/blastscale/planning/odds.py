@@ -29,11 +29,6 @@ from dataclasses import asdict, dataclass
 from typing import Optional
 
 import numpy as np
-from ..blast.parameters import blast_parameters_unchecked
-from ..blast import valid_scaled_distance_range
-from ..sweeps import SweepSpec
-from ..sweeps.grids import Distribution
-from ..sweeps.runner import run_chunks
 
 __all__ = ["Tolerances", "Odds", "planar_odds", "ensemble_odds_3d", "Z95", "Z90_ONE_SIDED"]
 
@@ -119,8 +114,9 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
     critical : bool
         Search the specimen's critical charge (the weighing precision that keeps the outcome).
     """
-    from ..rocking import critical_charge, first_swing, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking.system import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..blast.parameters import blast_parameters_unchecked
+    from ..rocking import critical_charge, first_swing, first_swing_blast
+    from ..rocking.system import RockingSystem
 
     n = int(samples)
     W0, R0 = float(charge_kg), float(standoff_m)
@@ -132,6 +128,7 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
     rho = np.maximum(1.0 + drho, 0.01)
     base = RockingSystem.from_block(specimen, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model)
+    from ..blast import valid_scaled_distance_range
 
     zlo, zhi = valid_scaled_distance_range(blast_model)
     Z = R / np.cbrt(W)
@@ -175,19 +172,27 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
 
 
 def ensemble_odds_3d(specimen_scenario, *, prototype_collapsed: bool, tolerances: Tolerances, members: int,
-                     seed: int = 0, workers: int = 0, scheduler: Optional[str] = None) -> dict:
+                     seed: int = 0, workers: int = 0, scheduler: Optional[str] = None, tick=None) -> dict:
     """Odds of a specimen by a small 3D ensemble: ``members`` Studies (3D engine, MuJoCo) of the
     specimen as a prototype-only scenario, its charge, stand-off, friction and density drawn as in
     :func:`planar_odds` (the sweeps' samples, common seed), on ``workers`` local Dask processes or a
-    ``scheduler`` (0 and None: in this process).
+    ``scheduler`` (one member per task), or in this process on native threads (0 and None: chunks of
+    as many members as :func:`~blastscale.sim3d.threads.default_threads`). ``tick(done)`` after each
+    chunk (members done so far).
 
     Returns
     -------
     dict
         ``members``, ``p_outcome_agree`` (3D collapse vs the prototype's outcome), its binomial
         ``p_outcome_agree_se``, ``specimen_collapse_probability``, ``first_peak_spread`` (relative
-        standard deviation of the largest top displacement of the members that stand) [-].
+        standard deviation of the largest top displacement of the members that stand) [-], and the
+        5-95 % band of the largest top displacement of every member, ``top_displacement_p05_m`` and
+        ``top_displacement_p95_m`` [m, the specimen's].
     """
+    from ..sim3d.threads import default_threads
+    from ..sweeps import SweepSpec
+    from ..sweeps.grids import Distribution
+    from ..sweeps.runner import run_chunks
 
     sc = specimen_scenario.with_values({"simulation.engine": "3d", "simulation.critical_charge": False})
     rel = {"blast.charge_kg": Distribution("lognormal", (1.0, max(tolerances.charge, 1e-12)))}
@@ -196,18 +201,24 @@ def ensemble_odds_3d(specimen_scenario, *, prototype_collapsed: bool, tolerances
     rel["structure.density_kg_m3"] = Distribution("normal", (1.0, max(tolerances.density, 1e-12)))
     spec = SweepSpec.build(sc, {}, absolute, relative=rel, samples=int(members), seed=int(seed))
     n = spec.n_cases
+    k = 1 if (workers or scheduler is not None) else max(1, default_threads())
     done: dict = {}
-    run_chunks(spec.to_payload(), [(i, i, i + 1) for i in range(n)], done.__setitem__, scheduler=scheduler,
-               workers=workers)
-    col = np.array([float(done[i]["values"].get("3d.prototype.collapsed", [math.nan])[0]) for i in range(n)])
-    top = np.array([float(done[i]["values"].get("3d.prototype.max_top_displacement_m", [math.nan])[0])
-                    for i in range(n)])
+    run_chunks(spec.to_payload(), [(i, i, min(i + k, n)) for i in range(0, n, k)], done.__setitem__,
+               scheduler=scheduler, workers=workers, tick=tick)
+    vals = {key: [] for key in ("3d.prototype.collapsed", "3d.prototype.max_top_displacement_m")}
+    for i in sorted(done):
+        for key in vals:
+            vals[key] += list(done[i]["values"].get(key, [math.nan] * (done[i]["stop"] - done[i]["start"])))
+    col = np.array(vals["3d.prototype.collapsed"], dtype=float)
+    top = np.array(vals["3d.prototype.max_top_displacement_m"], dtype=float)
     ok = np.isfinite(col)
     collapsed = col[ok] == 1.0
     p = float(np.mean(collapsed == bool(prototype_collapsed))) if ok.any() else math.nan
     stand = top[ok][~collapsed]
     spread = float(np.std(stand, ddof=1) / np.median(stand)) if stand.size >= 2 else None
+    tops = top[ok & np.isfinite(top)]
+    p05, p95 = (float(x) for x in np.quantile(tops, [0.05, 0.95])) if tops.size else (None, None)
     return {"members": int(ok.sum()), "p_outcome_agree": p,
             "p_outcome_agree_se": math.sqrt(max(p * (1 - p), 0.0) / max(int(ok.sum()), 1)),
             "specimen_collapse_probability": float(np.mean(collapsed)) if ok.any() else math.nan,
-            "first_peak_spread": spread}
+            "first_peak_spread": spread, "top_displacement_p05_m": p05, "top_displacement_p95_m": p95}

@@ -1,11 +1,14 @@
-"""``plan``: from a prototype and a lab to the designs the lab can fire, best first.
+"""``plan``: from a prototype of any kind and a lab to the designs the lab can fire, best first.
 
 The planner searches the geometric scale lambda (the fractions of
-:data:`~.candidates.LAMBDA_DENOMINATORS`), the density ratio gamma through the lab's materials and
-the scaling law (general; Hopkinson-Cranz where a material's density allows it), designs each
-candidate, rejects those that break a constraint of the lab (each rejection with its reasons), and
-for the feasible ones propagates the lab's tolerances by Monte Carlo through the planar kernels
-(:mod:`.odds`). Ranking (docs/planning.md):
+:data:`~.candidates.LAMBDA_DENOMINATORS`), the density ratio gamma through the lab's materials, the
+scaling law (general; Hopkinson-Cranz where a material's density allows it) and the specimen's burst
+(``lab.bursts``), designs each candidate (the Study's design of its scenario: the load model as the
+scenario's), rejects those that break a constraint of the lab (each rejection with its reasons,
+:func:`screen`), and for the feasible ones propagates the lab's tolerances by Monte Carlo: a block
+on the paper's load through the planar kernels (:mod:`.odds`), any other structure or load model
+through the 3D stage of its best screened designs (:mod:`.plan3d`, :mod:`.plan3d_designs`). The
+Pareto-optimal designs are marked (:mod:`.pareto`). Ranking (docs/planning.md):
 
 1. trustworthiness: the probability that the specimen's outcome equals the prototype's, rounded to
    0.01 (higher first); then the predicted first-peak error, the specimen's nominal first-peak
@@ -20,24 +23,22 @@ met and the value that would relax it.
 from __future__ import annotations
 
 import math
+import tempfile
 import warnings
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Callable, Optional
 
 from .._validate import BlastscaleInputError
-from .candidates import Evaluated, candidates, evaluate, scale_label, specimen_displacement
+from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_label, shot_dict, specimen_displacement
 from .debris import planar_reach
-from .instruments import instrument_settings
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
+from .pareto import mark_pareto
+from .plan3d import candidate_design, design_scenario, specimen_scenario
+from .plan3d_designs import designs_3d
 from .shot import DEFAULT_LAB, safety_envelope, timing_of
-from ..structures import from_spec, is_block
-from ..blast import blast_parameters
-from ..scenario.lab import SAME_MATERIAL
-from ..blast.explosives import EXPLOSIVES, get_explosive
-from .shot import lab_explosives
-from ..blast import get_blast_model
 
-__all__ = ["plan", "Plan", "PlanInfeasible", "design_scenario", "QUICK_SAMPLES", "FULL_DESIGNS"]
+__all__ = ["plan", "screen", "Plan", "PlanInfeasible", "design_scenario", "QUICK_SAMPLES", "FULL_DESIGNS"]
 
 #: Draws per feasible design in the first pass of the odds; the leading :data:`FULL_DESIGNS` (after it)
 #: get the lab's ``samples`` and their weighing precision.
@@ -64,24 +65,24 @@ class Plan:
     def to_dict(self) -> dict:
         return {"designs": self.designs, "rejected": self.rejected, "prototype": self.prototype, "lab": self.lab,
                 "ranking": "p_outcome_agree (0.01), then predicted first-peak error (2 significant digits), then "
-                           "safety_radius_m", "notes": list(self.notes)}
+                           "safety_radius_m; designs screened only (no 3D run, p_outcome_agree null) after them, by "
+                           "screening_error; pareto: optimal over odds, predicted error, safety radius and charge",
+                "notes": list(self.notes)}
 
 
-def _prototype(scenario):
-    """The prototype's block, nominal first swing, timing and safety envelope."""
-    from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+def _prototype(scenario, block):
+    """The prototype's block (or any structure's envelope block), its nominal first swing, timing and
+    safety envelope."""
+    from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing
 
-    sc, bl, sim = scenario, scenario.blast, scenario.simulation
-    _paper_load_only(sc)
-    block = from_spec(sc.structure)
-    if not is_block(block):
-        raise BlastscaleInputError(f"structure.kind = {sc.structure.kind!r}: blastscale plan searches designs with "
-                                   "the planar kernels of a block; for a column run the scenario with a [lab] table "
-                                   "(its test card) at the scales you choose")
+    bl, sim = scenario.blast, scenario.simulation
     system = RockingSystem.from_block(block, sim.gravity_m_s2, sim.restitution)
+    from ..blast import blast_parameters
+    from ..blast.bursts import model_for_burst
 
-    bp = blast_parameters(bl.charge_kg, bl.standoff_m, bl.blast_model, extrapolate=bl.extrapolate)
-    fs = first_swing(system, bl.charge_kg, bl.standoff_m, pulse_shape=bl.pulse_shape, blast_model=bl.blast_model,
+    bm = model_for_burst(bl.blast_model, bl.burst)
+    bp = blast_parameters(bl.charge_kg, bl.standoff_m, bm, extrapolate=bl.extrapolate)
+    fs = first_swing(system, bl.charge_kg, bl.standoff_m, pulse_shape=bl.pulse_shape, blast_model=bm,
                      extrapolate=bl.extrapolate)
     res = DEFAULT_SOLVER.simulate(system, bp.pulse(bl.pulse_shape), float(sim.duration_s))
     collapsed, rot = bool(fs.collapsed[0]), float(fs.max_rotation[0])
@@ -94,41 +95,6 @@ def _prototype(scenario):
         "safety_distances_m": env.distances_m}
 
 
-def _paper_load_only(sc) -> None:
-    """The planner's odds run the planar kernel on the paper's load (a surface burst, unbounded faces,
-    positive phase): a scenario asking for more is refused in one line, not planned as if it had not."""
-    bl, scale = sc.blast, sc.scale
-    asked = [f"blast.burst = {bl.burst!r}" if bl.burst != "surface" else None,
-             "blast.clearing = true" if bl.clearing else None, "blast.negative_phase = true" if bl.negative_phase else None,
-             f"scale.specimen_burst = {scale.specimen_burst!r}" if scale is not None and scale.specimen_burst not in
-             (None, "surface") else None,
-             "scale.specimen_charge_height_m" if scale is not None and scale.specimen_charge_height_m else None]
-    asked = [a for a in asked if a]
-    if asked:
-        raise BlastscaleInputError(f"{asked[0]}: blastscale plan searches designs on the paper's load (a charge on the "
-                                   "floor, unbounded faces, positive phase; valid: the defaults); run the scenario "
-                                   "with its [lab] table for the test card of this load model")
-
-
-def design_scenario(scenario, candidate, lab_spec=None):
-    """The scenario of a planned design: the prototype's, with ``[scale]`` set to the candidate
-    (law, lambda, material or density ratio) and the lab table (``lab_spec``) kept."""
-
-    scale = {"length": candidate.scale, "law": candidate.law,
-             "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
-    if candidate.material != SAME_MATERIAL:  # Hopkinson-Cranz: the material's density is the one the law imposes
-        scale["specimen_material"] = candidate.material
-    elif candidate.law == "general":
-        scale["density_ratio"] = 1.0
-    data = scenario.model_dump(exclude_none=True)
-    data["scale"] = scale
-    if lab_spec is not None:
-        data["lab"] = lab_spec.model_dump(exclude_none=True)
-    with warnings.catch_warnings():  # validated once already: its warnings were said
-        warnings.simplefilter("ignore")
-        return type(scenario).from_dict(data, source="plan")
-
-
 def _rank_key(d: dict) -> tuple:
     err = d["predicted_first_peak_error"]
     err2 = float(f"{err:.2g}") if err is not None and math.isfinite(err) else math.inf
@@ -136,10 +102,9 @@ def _rank_key(d: dict) -> tuple:
 
 
 def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
-    c, d, spec, ch, env = ev.candidate, ev.design, ev.specimen, ev.charge, ev.safety
+    spec = ev.specimen
     collapsed_s = odds.first_peak_nominal_rad is None
     top, reach = specimen_displacement(spec, odds.first_peak_nominal_rad, collapsed_s)
-    ins = instrument_settings(**{**_ins_inputs(ev), "top_displacement_m": top, "camera_max_fps": lab.camera_max_fps})
     th_p = proto["first_peak_rotation_rad"]
     if proto["collapsed"] != collapsed_s:
         err = 1.0
@@ -149,30 +114,12 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
         err = abs(odds.first_peak_nominal_rad / th_p - 1.0)
     spread = odds.first_peak_spread or 0.0
     tol = odds.charge_tolerance_needed
-    return {**c.describe(), "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
-            "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg, "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
-            "explosive_min_charge_kg": ch.explosive.min_charge_kg, "min_charge_source": ch.explosive.min_charge_source,
-            "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
-            "standoff_m": d.specimen_standoff_m, "specimen_height_m": spec.height, "specimen_width_m": spec.width,
-            "specimen_depth_m": spec.depth, "specimen_density_kg_m3": spec.density, "specimen_mass_kg": spec.mass,
-            "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
-            "far_field": list(env.far_field), "debris_radius_m": lab.debris_margin * reach, "specimen_reach_m": reach,
-            "camera_fps": ins.camera_fps, "camera_fps_required": ins.camera_fps_required,
-            "pressure_sampling_hz": ins.pressure_sampling_hz, "instruments": ins.to_dict(),
+    return {**shot_dict(ev, lab, top, reach),
             "p_outcome_agree": odds.p_outcome_agree, "p_outcome_agree_se": odds.p_outcome_agree_se,
             "first_peak_spread": odds.first_peak_spread, "similarity_error": err,
             "predicted_first_peak_error": math.hypot(err, spread), "charge_tolerance_needed": tol,
-            "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
-            "impulsive_ratio": None if d.impulsive is None else d.impulsive.model_ratio,
-            "odds": odds.to_dict(), "warnings": list(ch.warnings)}
-
-
-def _ins_inputs(ev: Evaluated) -> dict:
-    i = ev.instruments
-    m = ev.design.specimen
-    return {"reflected_pressure_Pa": m.reflected_pressure, "incident_pressure_Pa": i.incident_gauge_range_Pa / 1.5,
-            "positive_duration_s": m.positive_duration, "friedlander_decay": m.friedlander_decay,
-            "arrival_time_s": m.arrival_time, "rise_time_s": ev.rise_s, "response_time_s": ev.response_s}
+            "weighing_precision_kg": None if tol is None else tol * ev.charge.explosive_mass_kg,
+            "odds": odds.to_dict()}
 
 
 def _reasons(d: dict, best: Optional[dict]) -> list:
@@ -217,6 +164,8 @@ def _infeasible(evs: list, lab) -> str:
 
 def _below_min_charge(group: list, n: int, lab) -> str:
     """Every charge the other limits allow is below the explosive's minimum reliable charge."""
+    from ..blast.explosives import EXPLOSIVES, get_explosive
+    from .shot import lab_explosives
 
     pick = max(group, key=lambda e: e.violations[0].value / e.violations[0].limit)
     v, c, ex = pick.violations[0], pick.candidate, get_explosive(lab.explosive, lab_explosives(lab))
@@ -251,12 +200,14 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     Parameters
     ----------
     scenario : Scenario
-        The prototype (a block), its charge and stand-off, blast model, pulse and simulation settings;
-        its ``[scale]`` is ignored (the planner chooses), its ``[lab]`` gives the constraints.
+        The prototype (any structure kind), its charge and stand-off, blast and load model, pulse and
+        simulation settings; its ``[scale]`` is ignored (the planner chooses) but for
+        ``specimen_burst`` and ``specimen_charge_height_m``, its ``[lab]`` gives the constraints.
     lab : LabSpec, optional
         Overrides the scenario's ``[lab]`` (default: it, or every key's default).
     workers, scheduler
-        Where the 3D ensemble of the best design runs (``lab.ensemble_3d`` > 0).
+        Where the 3D ensembles run (local Dask workers, a scheduler's address; 0 and None: native
+        threads in this process).
     progress : callable, optional
         ``progress(stage, done, total)``.
 
@@ -269,32 +220,79 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     PlanInfeasible
         No candidate meets every constraint.
     """
-
     tell = progress or (lambda *a: None)
     lab = lab or scenario.lab or DEFAULT_LAB
-    block, system, timing, proto = _prototype(scenario)
+    planar, evs, proto = screen(scenario, lab, tell)
+    ok = [e for e in evs if not e.violations]
+    rejected = [{**e.candidate.describe(), "constraints": [v.key for v in e.violations],
+                 "reasons": [v.text for v in e.violations],
+                 "tnt_equivalent_kg": None if e.design is None else float(e.design.specimen_charge_kg)}
+                for e in evs if e.violations]
+    if not ok:
+        raise PlanInfeasible(_infeasible(evs, lab))
+    tol = Tolerances.from_lab(lab)
+    if planar:
+        designs, notes = _planar_designs(scenario, ok, proto, lab, tol, tell)
+    else:
+        designs, proto, notes = designs_3d(scenario, ok, proto, lab, tol, tell, workers=workers, scheduler=scheduler)
+    best = next(e for e in ok if e.candidate.describe() == {k: designs[0][k] for k in e.candidate.describe()})
+    best_sc = design_scenario(scenario, best.candidate, lab, best.charge_height_m or None)
+    if planar and lab.ensemble_3d:
+        tell("3D ensemble of the best design", 0, 1)
+        with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
+            designs[0]["odds_3d"] = ensemble_odds_3d(
+                specimen_scenario(scenario, best.design, Path(tmp)), prototype_collapsed=proto["collapsed"],
+                tolerances=tol, members=lab.ensemble_3d, seed=lab.seed, workers=workers, scheduler=scheduler)
+        notes.append("odds_3d: the best design's 3D ensemble (friction and density tolerances included)")
+    mark_pareto(designs)
+    return Plan(designs, rejected, proto, {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
+                best_sc, notes)
+
+
+def screen(scenario, lab, tell=None) -> tuple:
+    """Every candidate of ``scenario``'s prototype designed and checked against ``lab``, no simulation
+    beyond the prototype's (or its envelope block's) planar first swing.
+
+    Returns
+    -------
+    (bool, list of Evaluated, dict)
+        Whether the planar path plans it (a block on the paper's load), every candidate evaluated
+        (``violations`` empty: feasible) and the prototype's record.
+    """
+    from ..blast import get_blast_model
+    from ..structures import from_spec, is_block
+
+    tell = tell or (lambda *a: None)
+    sc, bl = scenario, scenario.blast
+    structure = from_spec(sc.structure)
+    planar = is_block(structure) and not (bl.clearing or bl.negative_phase)
+    block, _, timing, proto = _prototype(scenario, envelope_block(structure))
+    if not planar:
+        proto = {**proto, "kind": sc.structure.kind, "mass_kg": float(structure.mass), "collapsed": None,
+                 "first_peak_rotation_rad": None, "reach_m": None, "screening": "envelope block (planar first swing)"}
     kb = get_blast_model("kingery-bulmash")
-    cands = candidates(lab, block.density, block.height,
-                       scenario.scale.gravity_ratio if scenario.scale is not None else 1.0)
+    bursts = [sc.scale.specimen_burst] if sc.scale is not None and sc.scale.specimen_burst else lab.bursts
+    cands = candidates(lab, sc.structure.density_kg_m3, block.height,
+                       sc.scale.gravity_ratio if sc.scale is not None else 1.0, bursts)
+    design = candidate_design(scenario, structure, lab)
     evs = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for i, c in enumerate(cands):
             tell("designing the candidates", i, len(cands))
-            evs.append(evaluate(c, scenario=scenario, lab=lab, block=block, timing=timing, incident_model=kb))
-    ok = [e for e in evs if not e.violations]
-    rejected = [{**e.candidate.describe(), "constraints": [v.key for v in e.violations],
-                 "reasons": [v.text for v in e.violations]} for e in evs if e.violations]
-    if not ok:
-        raise PlanInfeasible(_infeasible(evs, lab))
-    tol = Tolerances.from_lab(lab)
+            evs.append(evaluate(c, lab=lab, block=block, timing=timing, incident_model=kb, design=design))
+    return planar, evs, proto
+
+
+def _planar_designs(scenario, ok: list, proto: dict, lab, tol, tell) -> tuple:
+    """The feasible designs of a block on the paper's load, ranked by their planar Monte Carlo odds."""
     sim, bl = scenario.simulation, scenario.blast
 
     def odds_of(e, n, critical):
         return planar_odds(e.specimen, charge_kg=e.design.specimen_charge_kg, standoff_m=e.design.specimen_standoff_m,
                            prototype_collapsed=proto["collapsed"], explosive_fraction=1.0 - e.charge.initiator_fraction,
                            gravity=e.design.specimen_gravity, restitution=sim.restitution,
-                           pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, tolerances=tol,
+                           pulse_shape=bl.pulse_shape, blast_model=e.design.specimen.blast_model, tolerances=tol,
                            samples=n, seed=lab.seed, target=lab.first_peak_target, critical=critical)
 
     quick = min(lab.samples, QUICK_SAMPLES)
@@ -310,30 +308,4 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     designs.sort(key=_rank_key)
     for d in designs:
         d["reasons"] = _reasons(d, designs[0])
-    best = next(e for e in ok if e.candidate.describe() == {k: designs[0][k] for k in e.candidate.describe()})
-    best_sc = design_scenario(scenario, best.candidate, lab)
-    notes = []
-    if lab.ensemble_3d:
-        tell("3D ensemble of the best design", 0, 1)
-        designs[0]["odds_3d"] = ensemble_odds_3d(
-            specimen_scenario(scenario, best), prototype_collapsed=proto["collapsed"], tolerances=tol,
-            members=lab.ensemble_3d, seed=lab.seed, workers=workers, scheduler=scheduler)
-        notes.append("odds_3d: the best design's 3D ensemble (friction and density tolerances included)")
-    return Plan(designs, rejected, proto, {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
-                best_sc, notes)
-
-
-def specimen_scenario(scenario, ev: Evaluated):
-    """The specimen of a design as a prototype-only scenario (its block, its charge and stand-off, its
-    gravity, the prototype's duration x the time factor): the 3D ensembles run it."""
-    d, spec, sc = ev.design, ev.specimen, scenario
-    data = sc.model_dump(exclude_none=True)
-    data.pop("scale", None)
-    data.pop("lab", None)
-    data["structure"] = {"kind": "block", "height_m": spec.height, "width_m": spec.width, "depth_m": spec.depth,
-                         "density_kg_m3": spec.density, "friction": sc.structure.friction}
-    data["blast"] = {**data["blast"], "charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
-    data["simulation"] = {**data["simulation"], "duration_s": d.specimen_duration, "gravity_m_s2": d.specimen_gravity}
-    data["simulation"].pop("timestep_s", None)
-    data["simulation"].pop("contact", None)
-    return type(sc).from_dict(data, source="plan")
+    return designs, []

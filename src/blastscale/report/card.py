@@ -194,7 +194,10 @@ def card_section(result) -> str:
                    ("height x width x depth", f"{_n(c, 'build/height_m', 'mm')} x {_n(c, 'build/width_m', 'mm')} x "
                                               f"{_n(c, 'build/depth_m', 'mm')}"),
                    ("mass", _n(c, "build/mass_kg", "g")), ("density", _n(c, "build/density_kg_m3", "kg/m3")),
-                   ("scale lambda", _n(c, "build/scale", "")), ("density ratio gamma", _n(c, "build/density_ratio", ""))])
+                   ("scale lambda", _n(c, "build/scale", "")), ("density ratio gamma", _n(c, "build/density_ratio", "")),
+                   *([(f"one unit ({_e(b['unit']['name'])}, of {b['unit']['bodies']}), x x y x z",
+                       " x ".join(_n(c, f"build/unit/size_{a}_m", "mm") for a in "xyz")
+                       + f", {_n(c, 'build/unit/mass_kg', 'g')}")] if b.get("unit") else [])])
     shot = _rows([("explosive", _e(c["explosive"])), ("mass to weigh", _n(c, "explosive_mass_kg", charge_unit)),
                   ("TNT equivalent, impulse (the design)", _n(c, "tnt_equivalent_impulse_kg", charge_unit)),
                   ("TNT equivalent, pressure (safety)", _n(c, "tnt_equivalent_pressure_kg", charge_unit)),

@@ -5,9 +5,6 @@ from __future__ import annotations
 
 import html
 from pathlib import Path
-from .html import _table, format_charge
-from ..io.results import jsonable, write_json
-from . import write_study
 
 __all__ = ["write_plan", "plan_section"]
 
@@ -19,17 +16,19 @@ def _e(x) -> str:
 def plan_section(p, top: int = 15) -> str:
     """The plan as HTML: the feasible designs (best first, with the reasons of the best) and the
     rejected candidates with their reasons."""
+    from .html import _table, format_charge
 
     rows = [(str(i), d["law"], d["scale_fraction"], d["material"], f"{format_charge(d['explosive_mass_kg'])} "
              f"{d['explosive']}", f"{d['standoff_m'] * 1e3:.4g} mm", f"{d['specimen_height_m'] * 1e3:.4g} mm",
-             f"{d['safety_radius_m']:.3g} m", f"{d['p_outcome_agree']:.3f}", f"{100 * d['predicted_first_peak_error']:.2g} %")
+             f"{d['safety_radius_m']:.3g} m", "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
+             f"{100 * d['predicted_first_peak_error']:.2g} %", {True: "yes", False: "", None: "-"}[d.get("pareto")])
             for i, d in enumerate(p.designs[:top], 1)]
     best = p.designs[0]
     rej = [(r["law"], r["scale_fraction"], r["material"], "; ".join(r["reasons"])) for r in p.rejected]
     return (f"<p class=\"lead\">Best design: {_e(best['law'])} law, lambda = {_e(best['scale_fraction'])}, "
             f"{_e(best['material'])}. " + " ".join(_e(r) + "." for r in best["reasons"]) + "</p>"
             + _table(("#", "law", "lambda", "material", "charge", "stand-off", "specimen height", "safety radius",
-                      "P(outcome agrees)", "first-peak error"), rows, numeric_from=99)
+                      "P(outcome agrees)", "first-peak error", "Pareto"), rows, numeric_from=99)
             + f"<details><summary>{len(rej)} rejected candidates and why</summary>"
             + _table(("law", "lambda", "material", "reasons"), rej, numeric_from=99) + "</details>")
 
@@ -38,8 +37,34 @@ def write_plan(p, result, folder) -> list[str]:
     """Write ``plan.json``, the best design's study (:func:`~blastscale.report.write_study`: summary.json
     with its ``test_card``, histories, figures, scenario.toml) and ``report.html`` with the plan's section
     into ``folder`` (which must exist). Returns the file names."""
+    from ..io.results import jsonable, write_atomic, write_json
+    from . import write_study
+    from .html import _img
 
     folder = Path(folder)
-    files = write_study(result, folder, plan_html=plan_section(p))
+    png = plan_figure(p)
+    files = write_study(result, folder, plan_html=plan_section(p) + _img(
+        png, "The plan's candidates", "Scale against the specimen's charge; feasible designs coloured by the odds "
+        "that the outcome agrees (hollow: screened only), rejected ones grey by their first reason, the Pareto-optimal "
+        "designs ringed, the best starred", "plan_candidates"))
+    write_atomic(folder / "plan_candidates.png", png)
     write_json(folder / "plan.json", jsonable(p.to_dict()))
-    return ["plan.json"] + files
+    return ["plan.json", "plan_candidates.png"] + files
+
+
+def plan_figure(p) -> bytes:
+    """The plan's candidates (:func:`~blastscale.plots.plan.plot_plan`) as PNG bytes."""
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plots.plan import plot_plan
+
+    ax = plot_plan(p)
+    buf = io.BytesIO()
+    ax.figure.savefig(buf, format="png", dpi=110)
+    plt.close(ax.figure)
+    return buf.getvalue()

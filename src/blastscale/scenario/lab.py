@@ -8,6 +8,7 @@ from typing import Any, Optional
 
 from pydantic import BaseModel, Field, PrivateAttr, field_validator, model_serializer, model_validator
 
+from ..blast.bursts import BURSTS
 from ..blast.explosives import EXPLOSIVES, canonical_name, initiator_tnt_kg
 from ..blast.initiation import DEFAULT_INITIATOR, INITIATORS
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS
@@ -72,7 +73,13 @@ class LabSpec(BaseModel):
                                      "peak that the weighing must keep (95 %) [-]")
     debris_margin: float = Field(2.0, ge=1, le=100, description="Factor on the largest simulated excursion of the "
                                  "blocks for the debris zone [-]")
-    ensemble_3d: int = Field(0, ge=0, le=64, description="3D Monte Carlo members for the odds (0: planar only) [-]")
+    ensemble_3d: Optional[int] = Field(None, ge=0, le=256, description="3D Monte Carlo members for the odds of each "
+                                       "design run in 3D (0: none; default 0 for a block planned on the planar "
+                                       "kernels, 32 for every other kind) [-]")
+    top_3d: int = Field(3, ge=1, le=50, description="Designs of a structure without a planar path (or a load model "
+                        "the planar kernels lack) that get the 3D comparison and ensemble, best screened first [-]")
+    bursts: list[str] = Field(default_factory=lambda: ["surface"], description="Specimen charges the planner tries: "
+                              "surface (on the floor), free-air (on a stand at a height it chooses)")
 
     @model_validator(mode="before")
     @classmethod
@@ -127,6 +134,15 @@ class LabSpec(BaseModel):
         for name in v:
             _check_name(name, (SAME_MATERIAL,) + tuple(MATERIALS))
         return v
+
+    @field_validator("bursts")
+    @classmethod
+    def _bursts(cls, v: list[str]) -> list[str]:
+        if not v:
+            raise ValueError("= [] is empty: give surface, free-air or both")
+        for name in v:
+            _check_name(name, BURSTS)
+        return list(dict.fromkeys(v))
 
     @field_validator("safety_threshold")
     @classmethod

@@ -1,0 +1,247 @@
+"""The planner's designs for any structure: each candidate's design (its specimen burst, a charge on a
+stand at a height chosen here), the screening estimates that need no simulation, and the 3D stage
+of the best screened designs (docs/planning.md, "Any structure").
+
+A structure without a planar path (a column, a wall, an arch, a portal, a block-model file; or a
+block under a load model the planar kernels lack: clearing, the negative phase) is screened on its
+envelope block (:func:`~.candidates.envelope_block`: the impulsive check t_o p, the timing of the
+instruments) and on what the design gives in closed form: the lab's limits, the safety radius, the
+blast model's range, and the spread of the shock's arrival over the front at model scale. The best
+``lab.top_3d`` screened designs (smallest screening error, then safety radius) then get the
+prototype-vs-specimen 3D comparison (one Study of the design's scenario on the 3D engine) and a 3D
+Monte Carlo ensemble of the lab's tolerances (``lab.ensemble_3d`` members, default
+:data:`ENSEMBLE_3D_DEFAULT`; :func:`~.odds.ensemble_odds_3d`, on threads or Dask).
+
+The screening error of a design (lower first) is the larger of two closed-form estimates:
+
+* the finite-pulse departure: the general law matches the impulse, not the duration, and a
+  finite pulse moves the response by about (t_o p) of the impulsive answer (docs/design.md: "with
+  finite pulses the up-scaled model departs from the prototype by ~1e-4 rad, the same size as the
+  prototype's own finite-pulse effect"), so a duration off by delta = t_o,s / (lambda_t t_o,p) - 1
+  moves it by about |delta| (t_o p)_prototype;
+* for Methods B and C (faces loaded at their own arrival), the arrival-time spread over the front
+  (dt from the front's foot to its top corner, the blast model's arrival-time fit) in the same
+  measure: the blast's times scale as the charge's cube root, the rocking's as lambda_t, so the
+  specimen's spread, up-scaled, is off by delta_a = dt_s / (lambda_t dt_p) - 1 (about sqrt(lambda) - 1
+  for Hopkinson-Cranz), and it moves the response by about |delta_a| dt_p p (p the envelope's
+  frequency parameter, as t_o p).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import tempfile
+import warnings
+from pathlib import Path
+from typing import Callable, Optional
+
+import numpy as np
+
+from .._validate import BlastscaleInputError
+
+__all__ = ["ENSEMBLE_3D_DEFAULT", "STAND_HEIGHTS", "design_scenario", "candidate_design", "stand_height", "arrival_spread",
+           "screening_error", "specimen_scenario", "similarity_3d", "run_3d"]
+
+#: 3D ensemble members per design for a structure without a planar path, unless ``lab.ensemble_3d`` says.
+ENSEMBLE_3D_DEFAULT = 32
+#: Heights of the stand the planner tries for a free-air specimen charge, x the specimen's height; the
+#: lowest whose floor reflection reaches the face's mid-height after the positive phase is taken.
+STAND_HEIGHTS = (0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
+
+
+def stand_height(design) -> float:
+    """The lowest stand [m] of :data:`STAND_HEIGHTS` at which the specimen's charge is a free-air burst
+    at its face (:func:`~blastscale.blast.bursts.lab_burst`); one line when none is."""
+    from ..blast.bursts import lab_burst
+    from ..similitude.effects import structure_top
+
+    s = design.specimen
+    top = structure_top(design.specimen_structure)
+    for k in STAND_HEIGHTS:
+        if lab_burst(s.charge_kg, s.standoff_m, k * top, top, extrapolate=True).kind == "free-air":
+            return k * top
+    raise BlastscaleInputError(f"specimen_charge_height_m: no stand up to {STAND_HEIGHTS[-1]:g} x the specimen's "
+                               f"height ({STAND_HEIGHTS[-1] * top:.3g} m) makes the charge a free-air burst at its face")
+
+
+def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[float] = None):
+    """The scenario of a planned design: the prototype's, with ``[scale]`` set to the candidate
+    (law, lambda, material or density ratio, the specimen's burst where it is not the prototype's,
+    the charge's height on its stand [m]) and the lab table (``lab_spec``) kept."""
+    from ..scenario.lab import SAME_MATERIAL
+
+    scale = {"length": candidate.scale, "law": candidate.law,
+             "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
+    if candidate.burst != scenario.blast.burst:
+        scale["specimen_burst"] = candidate.burst
+    if charge_height:
+        scale["specimen_charge_height_m"] = float(charge_height)
+    if candidate.material != SAME_MATERIAL:  # Hopkinson-Cranz: the material's density is the one the law imposes
+        scale["specimen_material"] = candidate.material
+    elif candidate.law == "general":
+        scale["density_ratio"] = 1.0
+    data = scenario.model_dump(exclude_none=True)
+    data["scale"] = scale
+    if lab_spec is not None:
+        data["lab"] = lab_spec.model_dump(exclude_none=True)
+    with warnings.catch_warnings():  # validated once already: its warnings were said
+        warnings.simplefilter("ignore")
+        return type(scenario).from_dict(data, source="plan")
+
+
+def candidate_design(scenario, structure, lab) -> Callable:
+    """``design(candidate) -> (ModelDesign, charge height [m])``: the Study's design of the candidate's
+    scenario (:func:`~.planner.design_scenario`; the load model, bursts, contact and duration as the
+    Study's, one door), on ``structure`` built once. A free-air candidate stands on the scenario's
+    ``scale.specimen_charge_height_m`` or, without one, on :func:`stand_height`'s."""
+    from ..study import Study
+
+    given = scenario.scale.specimen_charge_height_m if scenario.scale is not None else None
+
+    def design(c):
+        h = given if c.burst != "surface" else None
+        d = Study(design_scenario(scenario, c, lab, h)).design(structure)
+        if c.burst != "surface" and h is None:
+            h = stand_height(d)
+            d = Study(design_scenario(scenario, c, lab, h)).design(structure)
+        return d, float(h or 0.0)
+
+    return design
+
+
+def arrival_spread(params, structure, scale: float = 1.0) -> float:
+    """Arrival-time spread [s] over the front of ``structure`` (prototype dimensions, x ``scale`` for
+    the specimen's): from the front's foot (the stand-off) to its top corner (height, half its width
+    across the blast), with the blast model's arrival-time fit at ``params`` (charge, stand-off)."""
+    from ..blast import get_blast_model
+    from .build import spec_dims
+
+    h, _, dp = (scale * x for x in spec_dims(structure))
+    m = get_blast_model(params.blast_model) if isinstance(params.blast_model, str) else params.blast_model
+    w13 = float(params.charge_kg) ** (1.0 / 3.0)
+    r0 = float(params.standoff_m)
+    z = np.array([r0, math.sqrt(r0 * r0 + h * h + 0.25 * dp * dp)]) / w13
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ta = np.asarray(m.scaled_arrival_time(z, extrapolate=True), dtype=float) * w13
+    return float(ta[1] - ta[0])
+
+
+def screening_error(ev, load_method: str) -> float:
+    """The screening error of an evaluated design [-] (module docstring)."""
+    d = ev.design
+    tf = float(d.factors.time)
+    delta = float(d.specimen.positive_duration) / (tf * float(d.prototype.positive_duration)) - 1.0
+    err = abs(delta) * float(ev.impulsive.prototype_ratio)
+    if load_method != "A":
+        proto = d.prototype_structure
+        dt_p = arrival_spread(d.prototype, proto)
+        dt_s = arrival_spread(d.specimen, proto, float(d.factors.length))
+        p = float(ev.impulsive.prototype_ratio) / float(d.prototype.positive_duration)  # rad/s
+        if dt_p > 0:
+            err = max(err, abs(dt_s / (tf * dt_p) - 1.0) * dt_p * p)
+    return err
+
+
+def _specimen_structure_spec(sc, d, folder: Path) -> dict:
+    """The ``[structure]`` table of the design's specimen: a block's and a generator's own keys (every
+    length ``*_m`` x lambda, the density x gamma: the generators are linear in their lengths); a
+    block-model file's specimen written as our JSON into ``folder``."""
+    spec = d.specimen_structure
+    st = sc.structure
+    if st.kind == "block":
+        return {"kind": "block", "height_m": spec.height, "width_m": spec.width, "depth_m": spec.depth,
+                "density_kg_m3": spec.density, "friction": st.friction}
+    lam, gam = float(d.factors.length), float(d.density_ratio)
+    if st.kind != "assembly":
+        data = st.model_dump(exclude_none=True)
+        out = {k: (v * lam if k.endswith("_m") and isinstance(v, float) else v) for k, v in data.items()}
+        out["density_kg_m3"] = st.density_kg_m3 * gam
+        return out
+    if spec.supports:
+        raise BlastscaleInputError(f"structure.file = {st.file!r}: a block model with supports has no 3D ensemble "
+                                   "here (the specimen file cannot carry them)")
+    dens = {b.density for b in spec.blocks}
+    blocks = [{"name": b.name, "vertices": np.asarray(b.points).tolist(),
+               **({} if len(dens) == 1 else {"density_kg_m3": b.density})} for b in spec.blocks]
+    path = folder / "specimen_blocks.json"
+    path.write_text(json.dumps({"blocks": blocks}), encoding="utf-8")
+    return {"kind": "assembly", "file": str(path), "friction": st.friction,
+            "density_kg_m3": float(next(iter(dens))) if len(dens) == 1 else st.density_kg_m3 * gam}
+
+
+def specimen_scenario(scenario, design, folder: Optional[Path] = None):
+    """The specimen of a design as a prototype-only scenario (its structure, charge, stand-off and
+    burst, its gravity, the prototype's duration x the time factor): the 3D ensembles run it.
+    ``folder``: where a block-model file's specimen is written (a temporary folder the caller keeps)."""
+    d, sc = design, scenario
+    data = sc.model_dump(exclude_none=True)
+    data.pop("scale", None)
+    data.pop("lab", None)
+    data["structure"] = _specimen_structure_spec(sc, d, Path(folder) if folder is not None else Path("."))
+    data["blast"] = {**data["blast"], "charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
+    burst = getattr(d.specimen, "burst", None)
+    if burst is not None:
+        data["blast"]["burst"] = burst
+    data["simulation"] = {**data["simulation"], "duration_s": d.specimen_duration, "gravity_m_s2": d.specimen_gravity}
+    data["simulation"].pop("timestep_s", None)
+    data["simulation"].pop("contact", None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return type(sc).from_dict(data, source="plan")
+
+
+def similarity_3d(summary3d: dict) -> float:
+    """The 3D similarity error of a design [-]: 1 when the specimen's outcome is not the prototype's,
+    else the relative error of the up-scaled first peak of the top's displacement (``|ratio - 1|``; the
+    largest difference over the peak where no first peak is found)."""
+    sim = summary3d["similarity"]
+    if not sim.get("outcomes_agree", True):
+        return 1.0
+    r = sim.get("top_first_peak_ratio")
+    if r is not None and math.isfinite(float(r)):
+        return abs(float(r) - 1.0)
+    v = sim.get("max_abs_top_displacement_diff_rel_peak")
+    return float(v) if v is not None else math.nan
+
+
+def run_3d(scenario, ev, lab, *, members: int, tolerances, workers: int = 0, scheduler: Optional[str] = None,
+           tick: Optional[Callable[[int], None]] = None) -> tuple:
+    """The 3D stage of one screened design: the prototype-vs-specimen comparison (a Study of the design's
+    scenario on the 3D engine) and the specimen's ensemble of the lab's tolerances.
+
+    Returns
+    -------
+    (dict, dict, dict or None)
+        The 3D summary of the comparison (``prototype``, ``model``, ``similarity``), the similarity
+        (``error``, ``specimen_top_m`` [m], ``specimen_reach_m`` [m], ``prototype_reach_m`` [m]) and
+        ``odds_3d`` (None with 0 members).
+    """
+    from ..study import Study
+    from .debris import reach_3d
+    from .odds import ensemble_odds_3d
+
+    sc3 = design_scenario(scenario, ev.candidate, lab, ev.charge_height_m or None).with_values(
+        {"simulation.engine": "3d", "simulation.critical_charge": False, "simulation.ensemble_members": 0})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = Study(sc3).run()
+    s3 = res.summary()["3d"]
+    cmp3 = res.response3d
+    lam = float(ev.design.factors.length)
+    up = getattr(cmp3, "upscaled_dataset", None)
+    sim = {"error": similarity_3d(s3), "specimen_top_m": lam * float(s3["model"]["max_top_displacement_m"]),
+           "specimen_reach_m": lam * reach_3d(up, res.structure) if up is not None else math.nan,
+           "prototype_reach_m": reach_3d(cmp3.prototype_dataset, res.structure)}
+    odds = None
+    if members:
+        with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
+            try:
+                ssc = specimen_scenario(scenario, ev.design, Path(tmp))
+            except BlastscaleInputError as exc:  # a block model with supports: the comparison alone
+                warnings.warn(f"plan: no 3D ensemble: {exc}", UserWarning, stacklevel=2)
+                return s3, sim, None
+            odds = ensemble_odds_3d(ssc, prototype_collapsed=bool(s3["prototype"]["collapsed"]), tolerances=tolerances,
+                                    members=members, seed=lab.seed, workers=workers, scheduler=scheduler, tick=tick)
+    return s3, sim, odds

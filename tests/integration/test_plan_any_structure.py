@@ -1,0 +1,107 @@
+"""The plan of every structure kind through its 3D stage (tiny ensembles, short durations): a column,
+the shipped running-bond wall, a block-model file and a block under clearing all plan, the top
+designs carry ``odds_3d``; the ensembles run the design's own specimen."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from blastscale.planning import plan
+from blastscale.planning.build import specimen_mass
+from blastscale.planning.plan3d import specimen_scenario
+from blastscale.scenario import Scenario, load_scenario
+from blastscale.scenario.lab import LabSpec
+from blastscale.structures import from_spec
+from blastscale.study import Study
+
+LIB = Path(__file__).resolve().parents[2] / "src" / "blastscale" / "scenario" / "library"
+TINY = dict(ensemble_3d=2, top_3d=1, materials=["same"])
+
+
+def _check(p, lab):
+    assert p.designs and p.prototype["collapsed"] is not None
+    top = p.designs[0]
+    o = top["odds_3d"]
+    assert o["members"] == lab.ensemble_3d and 0.0 <= o["p_outcome_agree"] <= 1.0 and o["p_outcome_agree_se"] >= 0
+    assert 0 < o["top_displacement_p05_m"] <= o["top_displacement_p95_m"]
+    assert top["p_outcome_agree"] == o["p_outcome_agree"] and top["pareto"] is True  # alone with odds: on the front
+    for d in p.designs:
+        assert d["explosive_mass_kg"] >= d["explosive_min_charge_kg"] and d["specimen_height_m"] <= \
+            lab.specimen_max_height_m and d["safety_radius_m"] <= lab.space_radius_m
+    assert [d["odds_3d"] is not None for d in p.designs] == [True] + [False] * (len(p.designs) - 1)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name,duration", [("paper_column_square_250kg", 0.3), ("wall_running_bond_lambda20", 0.3)])
+def test_shipped_structures_plan_with_3d_odds(name, duration):
+    sc = load_scenario(LIB / f"{name}.toml").with_values({"duration_s": duration})
+    lab = LabSpec(specimen_max_height_m=1.0, **TINY)
+    _check(plan(sc, lab=lab), lab)
+
+
+@pytest.mark.slow
+def test_block_model_file_plans(tmp_path):
+    box = lambda n, z0, z1: {"name": n, "vertices": [[x, y, z] for x in (0, 0.6) for y in (0, 1) for z in (z0, z1)]}
+    f = tmp_path / "stack.json"
+    f.write_text(json.dumps({"blocks": [box("A", 0.0, 1.2), box("B", 1.2, 2.4)]}))
+    sc = Scenario.from_dict({"structure": {"kind": "assembly", "file": str(f), "density_kg_m3": 2400.0},
+                             "blast": {"charge_kg": 5.0, "standoff_m": 4.0},
+                             "simulation": {"engine": "3d", "duration_s": 0.3}}, source="test")
+    lab = LabSpec(**TINY)
+    _check(plan(sc, lab=lab), lab)
+
+
+@pytest.mark.slow
+def test_a_block_under_clearing_with_a_stand_plans_in_3d():
+    """Clearing and a free-air specimen charge are planned (were refused): the 3D path, each design says
+    its burst and the stand's height."""
+    sc = Scenario.default().with_values({"duration_s": 0.3, "blast.clearing": True, "blast.blast_model":
+                                         "kingery-bulmash"})
+    lab = LabSpec(specimen_max_height_m=1.0, bursts=["surface", "free-air"], **TINY)
+    p = plan(sc, lab=lab)
+    _check(p, lab)
+    air = [d for d in p.designs if d["burst"] == "free-air"]
+    assert air and all(d["charge_height_m"] > 0 for d in air)
+    assert all(d["charge_height_m"] == 0 for d in p.designs if d["burst"] == "surface")
+
+
+@pytest.mark.parametrize("name", ["paper_column_square_250kg", "wall_running_bond_lambda20"])
+def test_the_ensembles_specimen_is_the_designs(name, tmp_path):
+    """The specimen scenario's structure (lengths x lambda, density x gamma) is the design's specimen: same
+    mass and height to round-off."""
+    sc = load_scenario(LIB / f"{name}.toml")
+    d = Study(sc).design()
+    spec = from_spec(specimen_scenario(sc, d, tmp_path).structure)
+    assert spec.mass == pytest.approx(d.specimen_structure.mass, rel=1e-12)
+    assert specimen_mass(d) == pytest.approx(d.specimen_structure.mass, rel=1e-12)  # lambda^3 gamma x the prototype's
+    got = np.array([b.com for b in spec.bodies])
+    assert got == pytest.approx(np.array([b.com for b in d.specimen_structure.bodies]), rel=1e-12, abs=1e-15)
+
+
+@pytest.mark.slow
+def test_threads_and_dask_give_the_same_odds(tmp_path):
+    """The members on native threads in this process and on a local Dask worker: the same draws (the
+    sweeps' samples, one seed), the same runs, so the same odds to the last bit."""
+    box = lambda n, z0, z1: {"name": n, "vertices": [[x, y, z] for x in (0, 0.6) for y in (0, 1) for z in (z0, z1)]}
+    f = tmp_path / "stack.json"
+    f.write_text(json.dumps({"blocks": [box("A", 0.0, 1.2), box("B", 1.2, 2.4)]}))
+    sc = Scenario.from_dict({"structure": {"kind": "assembly", "file": str(f), "density_kg_m3": 2400.0},
+                             "blast": {"charge_kg": 5.0, "standoff_m": 4.0},
+                             "simulation": {"engine": "3d", "duration_s": 0.2}}, source="test")
+    lab = LabSpec(**TINY)
+    assert plan(sc, lab=lab).designs[0]["odds_3d"] == plan(sc, lab=lab, workers=1).designs[0]["odds_3d"]
+
+
+def test_a_block_model_with_supports_ranks_on_its_comparison_alone():
+    """A COMPAS arch on two is_support abutments: its specimen cannot be written as a block-model file, so
+    its best design has the 3D comparison and no ensemble (a one-line warning), not a failed plan."""
+    data = Path(__file__).resolve().parents[1] / "data" / "compas_dem_arch_rotated.json"
+    sc = Scenario.from_dict({"structure": {"kind": "assembly", "file": str(data)},
+                             "blast": {"charge_kg": 2.0, "standoff_m": 4.0},
+                             "simulation": {"engine": "3d", "duration_s": 0.2}}, source="test")
+    with pytest.warns(UserWarning, match="no 3D ensemble.*supports"):
+        p = plan(sc, lab=LabSpec(**TINY))
+    d = p.designs[0]
+    assert d["odds_3d"] is None and d["p_outcome_agree"] in (0.0, 1.0) and 0 <= d["similarity_error"] <= 1
