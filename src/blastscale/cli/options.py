@@ -63,7 +63,10 @@ def check_plot_path(plot: Optional[str]) -> None:
     it is: the folder must exist, the path must not be a folder, and it must name an image file
     (matplotlib would otherwise write ``PLOT.png`` while the command reports ``PLOT``)."""
     if plot:
+        from ..io.output import check_name_lengths
+
         p = Path(plot).expanduser()
+        check_name_lengths(p, "plot")
         if p.is_dir():
             raise BlastscaleInputError(f"plot = {plot!r} is a folder: give an image file, e.g. {str(p / 'plot.png')!r}")
         if p.suffix.lower() not in PLOT_SUFFIXES:

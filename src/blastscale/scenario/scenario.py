@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping, Optional
 
-from pydantic import BaseModel, Field, ValidationError
+from pydantic import BaseModel, Field, ValidationError, field_validator
 
 from .._validate import BlastscaleInputError
 from ..constants import DEFAULT_FRICTION
@@ -46,7 +46,8 @@ class Scenario(BaseModel):
     """
 
     model_config = _CONFIG
-    title: str = Field("", description="A one-line description")
+    title: str = Field("", description="A one-line description (tabs and line breaks allowed; no other control "
+                       "characters: a NUL cannot be stored in the result files)")
     structure: Structure
     blast: BlastSpec = Field(default_factory=BlastSpec, description="The charge; absent (or charge_kg = 0): "
                              "the structure under gravity alone")
@@ -55,6 +56,15 @@ class Scenario(BaseModel):
     simulation: SimulationSpec = Field(default_factory=SimulationSpec)
     lab: Optional[LabSpec] = Field(None, description="What the laboratory can fire, build and measure: a test card "
                                    "in the report, and the constraints of `blastscale plan` (docs/planning.md)")
+
+    @field_validator("title")
+    @classmethod
+    def _printable(cls, value: str) -> str:
+        bad = next((i for i, ch in enumerate(value) if (ord(ch) < 32 and ch not in "\t\n\r") or ord(ch) == 127), None)
+        if bad is not None:
+            raise ValueError(f"= {value[:40]!r} holds the control character U+{ord(value[bad]):04X} at position "
+                             f"{bad + 1}: a title is text (tabs and line breaks allowed)")
+        return value
 
     # -- construction ----------------------------------------------------------------
     @classmethod
@@ -180,7 +190,7 @@ class Scenario(BaseModel):
                 for p in op:
                     onode = onode.get(p, {})
                 onode.pop(ol, None)
-        return type(self).from_dict(data, source="with_values")
+        return type(self).from_dict(data, source=None)
 
     # -- derived values ----------------------------------------------------------------
     @property

@@ -247,11 +247,12 @@ def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True,
     p = Path(path)
     source = p.name
     if not p.is_file():
-        raise BlastscaleInputError(f"structure.file = {str(p)!r} cannot be read: no such file")
+        why = "no such file" if not (p.exists() or p.is_symlink()) else "not a regular file (a folder or a device)"
+        raise BlastscaleInputError(f"structure.file = {str(p)!r} cannot be read: {why}")
     supports = ()
     if p.suffix.lower() == ".json":
         try:
-            data = json.loads(p.read_text(encoding="utf-8"))
+            data = json.loads(p.read_text(encoding="utf-8-sig"))
         except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
             raise BlastscaleInputError(f"{source}: not valid JSON: {exc}") from None
         if isinstance(data, dict) and "blocks" in data:
