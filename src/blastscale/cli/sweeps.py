@@ -16,7 +16,7 @@ import typer
 from .._validate import BlastscaleInputError
 from ._app import activity, app, console, count_progress, one_line_warnings, print_json, print_written, table
 from ._signals import ignore_interrupts, set_interrupt_note
-from .flags import SET_VALUES, parse_set
+from .flags import SET_VALUES, scenario_with
 
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")
 SCHEDULER = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (e.g. tcp://127.0.0.1:8786).")
@@ -31,8 +31,8 @@ def _scenario(path: Optional[Path], values: Optional[List[str]] = None):
 
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
         sc = Scenario.default() if path is None else load_scenario(path)
-    overrides = parse_set(values or [])
-    return sc.with_values(overrides) if overrides else sc
+    with one_line_warnings():  # a --set that replaces the key it excludes (width_m beside the file's alpha_deg)
+        return scenario_with(sc, values or [])
 
 
 def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
