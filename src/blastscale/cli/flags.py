@@ -5,7 +5,9 @@ by the same schema, and an error names the flag the user typed."""
 from __future__ import annotations
 
 import contextlib
+import math
 import re
+import sys
 from typing import Optional
 
 import typer
@@ -58,6 +60,9 @@ def parse_set(items: list[str]) -> dict:
             value = tomllib.loads(f"v = {text.strip()}")["v"]
         except tomllib.TOMLDecodeError:
             value = text.strip()
+        if isinstance(value, float) and math.isinf(value) and "inf" not in text:
+            raise BlastscaleInputError(f"set = {item!r}: {text.strip()} overflows a number (the largest is "
+                                       f"{sys.float_info.max:.4g}); give a finite value")
         if key.strip() in out:
             raise BlastscaleInputError(f"set = {items_of[key.strip()]!r} and {item!r} set {key.strip()} twice: "
                                        "give it once")

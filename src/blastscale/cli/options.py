@@ -38,19 +38,20 @@ def block_from_options(
     Accepts ``--height`` with ``--width``, or ``--height`` with ``--alpha-deg`` (width = height tan alpha).
     """
     if required and width is None and alpha_deg is None:
-        raise BlastscaleInputError("width = None is out of range: give --width (m) or --alpha-deg (deg, in (0, 90))")
+        raise BlastscaleInputError("--width and --alpha-deg are missing: give one of them (the block's width in m, "
+                                   "or its slenderness in deg, in (0, 90))")
     if height is None and width is None and alpha_deg is None:
         return None
+    if width is not None and alpha_deg is not None:
+        raise BlastscaleInputError(f"--width {width:g} and --alpha-deg {alpha_deg:g} are both given: give exactly "
+                                   "one of them (width = height tan alpha)")
+    if alpha_deg is not None and not (0.0 < alpha_deg < 90.0):
+        raise BlastscaleInputError(f"--alpha-deg = {alpha_deg:g} deg is out of range: valid range is (0, 90) deg")
     if height is None:
-        raise BlastscaleInputError("height = None is out of range: give --height (m) with --width or --alpha-deg")
-    if (width is None) == (alpha_deg is None):
-        raise BlastscaleInputError(
-            f"width = {width}, alpha-deg = {alpha_deg}: give exactly one of --width (m) or --alpha-deg (deg, in (0, 90))"
-        )
+        raise BlastscaleInputError(f"--height is missing: give the block's height (m) with "
+                                   f"{'--width' if width is not None else '--alpha-deg'}")
     if width is not None:
         return RectangularBlock(height=height, width=width, depth=depth, density=density)
-    if not (0.0 < alpha_deg < 90.0):
-        raise BlastscaleInputError(f"alpha-deg = {alpha_deg:g} deg is out of range: valid range is (0, 90) deg")
     return RectangularBlock.from_slenderness(height, math.radians(alpha_deg), depth=depth, density=density)
 
 

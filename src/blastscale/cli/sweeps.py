@@ -8,6 +8,8 @@ Units at this edge are those of the scenario keys (SI, named in each key); grids
 
 from __future__ import annotations
 
+import math
+
 from pathlib import Path
 from typing import List, Optional
 
@@ -108,7 +110,8 @@ def sweep_cmd(
         ("dimensions", " x ".join(f"{d} ({n})" for d, n in zip(spec.dims, spec.shape)) or "-", ""),
         ("chunks computed / already done", f"{run.chunks_run} / {run.chunks_skipped}", ""),
         ("computing time (cluster start/stop excluded)", f"{run.seconds:.3g}", "s"),
-        ("cases per minute", f"{run.cases_per_minute:.4g}", "1/min"),
+        ("cases per minute", f"{run.cases_per_minute:.4g}" if run.chunks_run and math.isfinite(run.cases_per_minute)
+         else "- (nothing computed: every chunk was done)", "1/min"),
         ("workers", str(run.workers), ""),
     ]))
 

@@ -48,6 +48,10 @@ NONCONVEX_TOLERANCE = 0.05
 MESH_SUFFIXES = (".obj", ".stl", ".ply", ".off", ".glb", ".gltf")
 
 
+#: The farthest a block's vertex may lie from the origin [m] (a scenario's structures are at most 1000 m).
+MAX_COORDINATE_M = 1.0e4
+
+
 def _mesh_volume(vertices: np.ndarray, faces) -> float:
     """Volume of a closed polygon mesh [m^3] (signed tetrahedra from the origin, faces fanned)."""
     v = np.asarray(vertices, dtype=float)
@@ -61,7 +65,13 @@ def _mesh_volume(vertices: np.ndarray, faces) -> float:
 
 
 def _convex_or_hull(source: str, name: str, vertices: np.ndarray, own_volume: float | None) -> np.ndarray:
-    """The block's vertices, after the convexity rule (module docstring)."""
+    """The block's vertices, after the convexity rule (module docstring); coordinates finite and within
+    :data:`MAX_COORDINATE_M` of the origin (1e308 m would overflow its volume to "zero")."""
+    v = np.asarray(vertices, dtype=float)
+    if not np.all(np.isfinite(v) & (np.abs(v) <= MAX_COORDINATE_M)):
+        bad = v[~(np.isfinite(v) & (np.abs(v) <= MAX_COORDINATE_M))][0]
+        raise BlastscaleInputError(f"{source}: block {name!r} has a vertex coordinate {bad:g} m: out of range, valid "
+                                   f"range is [-{MAX_COORDINATE_M:g}, {MAX_COORDINATE_M:g}] m")
     hull = hull_of(vertices, name)
     if own_volume is None:
         return vertices
