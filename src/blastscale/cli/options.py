@@ -37,7 +37,7 @@ def block_from_options(
 
     Accepts ``--height`` with ``--width``, or ``--height`` with ``--alpha-deg`` (width = height tan alpha).
     """
-    if required and width is None and alpha_deg is None:
+    if (required or height is not None) and width is None and alpha_deg is None:
         raise BlastscaleInputError("--width and --alpha-deg are missing: give one of them (the block's width in m, "
                                    "or its slenderness in deg, in (0, 90))")
     if height is None and width is None and alpha_deg is None:
