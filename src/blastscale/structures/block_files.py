@@ -265,6 +265,9 @@ def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True,
             data = json.loads(p.read_text(encoding="utf-8-sig"))
         except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
             raise BlastscaleInputError(f"{source}: not valid JSON: {exc}") from None
+        except RecursionError:
+            raise BlastscaleInputError(f"{source}: not a block model: arrays or objects nested too deep for the JSON "
+                                       "reader (a block model nests 4 deep)") from None
         if isinstance(data, dict) and "blocks" in data:
             blocks, raw_points = _from_ours(data, source, density_kg_m3)
         elif is_compas_model(data):
