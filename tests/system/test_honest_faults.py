@@ -156,6 +156,15 @@ def test_pathologically_nested_toml_is_one_line(capsys, tmp_path, value):
     assert sorted(x.name for x in tmp_path.iterdir()) == ["deep.toml"]
 
 
+def test_a_block_model_nested_too_deep_or_named_too_long_is_one_line(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "deep.json").write_text("[" * 100000 + "]" * 100000)
+    code, _, err = cli(capsys, "show", "deep.json")
+    assert code == 2 and one_line(err) and "deep.json: not a block model: arrays or objects nested too deep" in err
+    code, _, err = cli(capsys, "show", f"{LONG}.json")
+    assert code == 2 and one_line(err) and "cannot be read: File name too long" in err, err
+
+
 # -- deliverable 5: honest messages ------------------------------------------------------------------------------
 def test_a_utf8_byte_order_mark_is_accepted_in_toml_and_json(capsys, tmp_path, planar):
     f = tmp_path / "bom.toml"
