@@ -89,7 +89,7 @@ def scenario_with(sc: Scenario, values: list[str], flags: Optional[dict] = None)
     import warnings
 
     from .._validate import BlastscaleInputError
-    from ..scenario.scenario import _EXCLUSIVE
+    from ..scenario.scenario import EXCLUSIVE_KEYS
 
     given = parse_set(values)
     resolved: dict = {}
@@ -108,7 +108,7 @@ def scenario_with(sc: Scenario, values: list[str], flags: Optional[dict] = None)
                                        f"{show(resolved[path])} both set {path}: give one of them")
         resolved[path] = value
     for path in resolved:
-        other = _EXCLUSIVE.get(path)
+        other = EXCLUSIVE_KEYS.get(path)
         if other and other not in resolved:
             old = _current(sc, other)
             if old is not None:

@@ -18,7 +18,7 @@ from .specs import _CONFIG, KINDS, LEGACY_SCENARIO_KEYS, BlastSpec, BlockSpec, S
 __all__ = ["Scenario"]
 
 #: Keys of which at most one may be given: setting one through ``with_values`` clears the other.
-_EXCLUSIVE = {
+EXCLUSIVE_KEYS = {
     "structure.alpha_deg": "structure.width_m",
     "structure.width_m": "structure.alpha_deg",
     "scale.density_ratio": "scale.specimen_material",
@@ -183,7 +183,7 @@ class Scenario(BaseModel):
             if hasattr(value, "item") and callable(value.item):  # numpy scalars from sweeps
                 value = value.item()
             node[leaf] = value
-            other = _EXCLUSIVE.get(path)
+            other = EXCLUSIVE_KEYS.get(path)
             if other and other not in resolved:
                 *op, ol = other.split(".")
                 onode = data
