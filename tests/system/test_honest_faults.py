@@ -133,6 +133,14 @@ def test_a_control_character_in_the_title_is_refused_at_the_schema(capsys, tmp_p
     assert load_scenario(f).title.startswith("tab\tand\nline ")
 
 
+def test_a_control_character_in_a_block_name_is_refused_before_any_run(capsys, tmp_path):
+    f = tmp_path / "nul.json"
+    cube = [[x, y, z] for x in (0.0, 1.0) for y in (0.0, 1.0) for z in (0.0, 1.0)]
+    f.write_text(json.dumps({"blocks": [{"name": "a\u0000b", "vertices": cube}]}))
+    code, _, err = cli(capsys, "show", f)
+    assert code == 2 and one_line(err) and "nul.json: block name 'a\\x00b' holds a control character" in err, err
+
+
 @pytest.mark.slow
 def test_sighup_to_the_process_group_of_a_two_worker_sweep_is_the_line_and_nothing_else(tmp_path, planar):
     pytest.importorskip("distributed")

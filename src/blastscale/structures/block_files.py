@@ -67,6 +67,8 @@ def _mesh_volume(vertices: np.ndarray, faces) -> float:
 def _convex_or_hull(source: str, name: str, vertices: np.ndarray, own_volume: float | None) -> np.ndarray:
     """The block's vertices, after the convexity rule (module docstring); coordinates finite and within
     :data:`MAX_COORDINATE_M` of the origin (1e308 m would overflow its volume to "zero")."""
+    if any(ord(ch) < 32 or ord(ch) == 127 for ch in name):  # the name labels the result files: text only
+        raise BlastscaleInputError(f"{source}: block name {name!r} holds a control character: give a name of text")
     v = np.asarray(vertices, dtype=float)
     if not np.all(np.isfinite(v) & (np.abs(v) <= MAX_COORDINATE_M)):
         bad = v[~(np.isfinite(v) & (np.abs(v) <= MAX_COORDINATE_M))][0]
