@@ -17,7 +17,7 @@ from typing import Optional
 __all__ = ["EXTRAS", "MissingExtraError", "require", "extra_of", "install_command", "missing_extra_message"]
 
 #: Top-level module -> the extra that installs it.
-EXTRAS = {"zarr": "sweeps", "dask": "sweeps", "distributed": "sweeps", "trimesh": "mesh"}
+EXTRAS = {"zarr": "sweeps", "dask": "sweeps", "distributed": "sweeps", "trimesh": "mesh", "charset_normalizer": "mesh"}
 
 
 def install_command(extra: str) -> str:

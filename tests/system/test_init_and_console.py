@@ -25,7 +25,8 @@ def cli(capsys, *argv) -> tuple[int, str, str]:
 def test_init_writes_a_template_that_loads_and_refuses_to_overwrite(capsys, tmp_path, kind):
     f = tmp_path / "mine.toml"
     code, out, err = cli(capsys, "init", "--kind", kind, f)
-    assert code == 0 and f.read_text() == template_text(kind) and f"wrote {f} (" in err and " kB" in err
+    assert code == 0 and f.read_text() == template_text(kind, "mine_blocks.json") and f"wrote {f} (" in err, err
+    assert " kB" in err or " B" in err
     assert load_scenario(f).structure.kind == kind and f"blastscale run {f} --out" in out
     assert template_text(kind).count("#") > 15  # commented: every key says its unit or its choices
     f.write_text(f.read_text() + "# my note\n")
@@ -33,13 +34,14 @@ def test_init_writes_a_template_that_loads_and_refuses_to_overwrite(capsys, tmp_
     assert code == 2 and "exists: refused (give --force to replace it)" in err and "# my note" in f.read_text()
     code, _, _ = cli(capsys, "init", "--from", "planar_block", f, "--force")
     assert code == 0 and load_scenario(f) == load_scenario("planar_block")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["mine.toml"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["mine.toml"] + (["mine_blocks.json"] if kind == "assembly"
+                                                                           else [])
 
 
 def test_init_never_replaces_what_is_not_a_toml_file(capsys, tmp_path):
     (tmp_path / "notes.toml").write_text("not = [toml")
     code, _, err = cli(capsys, "init", tmp_path / "notes.toml", "--force")
-    assert code == 2 and "is not a TOML file: refused, even with --force" in err
+    assert code == 2 and "is not a scenario file blastscale wrote: refused, even with --force" in err
     (tmp_path / "d.toml").mkdir()
     code, _, err = cli(capsys, "init", tmp_path / "d.toml", "--force")
     assert code == 2 and "is a folder" in err

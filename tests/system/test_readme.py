@@ -20,7 +20,7 @@ NOT_CHEAP = {
     "make ": "set-up and the whole suite (this is the suite)",
     "paper_column_square_250kg --out": "a 3D column, ~1 min (tests/system/test_column_cli.py runs it short)",
     "column --section square --charge 250": "a 3D column, ~40 s (tests/system/test_column_cli.py runs it short)",
-    "reproduce --out paper ": "the full paper, ~15 min (benchmarks; test_reproduce.py runs items of it)",
+    "reproduce --out paper ": "the full paper, ~14 min (benchmarks; test_reproduce.py runs items of it)",
     "reproduce --quick": "every item shortened, ~1 min (tests/system/test_wheel.py runs it from a wheel)",
     "1000:log --vary standoff_m=1.5:6:1000": "a million cases, ~1 min (benchmarks/bench_sweeps.py)",
     "plan paper_column_square_250kg": "3 x 33 3D runs of a column, minutes (benchmarks/bench_plan.py; "

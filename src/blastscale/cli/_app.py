@@ -24,6 +24,8 @@ if os.path.basename(sys.argv[0]) == "blastscale":
     _signals.at_import()  # a signal while importing: one line; a local Dask worker: Ctrl-C ignored
 
 import contextlib  # noqa: E402
+import errno  # noqa: E402
+import io  # noqa: E402
 import json
 import warnings
 
@@ -84,8 +86,16 @@ class OneLineErrorGroup(TyperGroup):
         saved = _signals.install()
         args = normalise_ratios(list(sys.argv[1:] if args is None else args))
         try:
+            _check_stdout()
             rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+            if sys.stdout is not None:
+                sys.stdout.flush()  # a full device says so now, not in Python's exit
         except BaseException as exc:
+            if _stdout_fault(exc):
+                _stdout_to_null()
+                print_error(f"standard output cannot be written: {_why(exc)} (what was printed is incomplete; "
+                            "files written are whole)")
+                sys.exit(2)
             signum = _signals.interrupted_signal()
             if isinstance(exc, Interrupted) or (signum is not None and not isinstance(exc, SystemExit)):
                 _quiet_after_interrupt()
@@ -109,6 +119,54 @@ class OneLineErrorGroup(TyperGroup):
             _signals.restore(saved)
             _signals.set_interrupt_note(None)
         sys.exit(rv if isinstance(rv, int) else 0)
+
+
+def _check_stdout() -> None:
+    """Refuse to start with standard output closed (``>&-``): what a command prints would be lost."""
+    try:
+        closed = sys.stdout is None or not os.fstat(sys.stdout.fileno())
+    except (AttributeError, ValueError, io.UnsupportedOperation):  # a captured or replaced stream: fine
+        closed = False
+    except OSError:
+        closed = True
+    if closed:
+        raise BlastscaleInputError("standard output is closed: give it a file or /dev/null (> out.txt); "
+                                   "nothing was run")
+
+
+#: Where a write to standard output fails (click's echo, rich's console, our flush).
+_STDOUT_WRITERS = ("click/utils.py", "rich/console.py", "cli/_app.py")
+
+
+def _stdout_fault(exc: BaseException) -> bool:
+    """Whether ``exc`` is a failed write to standard output (a full device, a closed pipe)."""
+    if not isinstance(exc, OSError) or exc.errno not in (errno.ENOSPC, errno.EPIPE, errno.EIO, errno.EBADF,
+                                                         errno.EDQUOT):
+        return False
+    tb = exc.__traceback__
+    last = None
+    while tb is not None:
+        last = tb.tb_frame.f_code.co_filename.replace("\\", "/")
+        tb = tb.tb_next
+    return last is not None and last.endswith(_STDOUT_WRITERS)
+
+
+def _why(exc: OSError) -> str:
+    if exc.errno == errno.ENOSPC:
+        return "no space left on the device"
+    if exc.errno == errno.EPIPE:
+        return "its reader closed it"
+    return exc.strerror or str(exc)
+
+
+def _stdout_to_null() -> None:
+    """Point standard output at /dev/null so that Python's own flush at exit says nothing more."""
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, 1)
+        os.close(null)
+    except OSError:
+        pass
 
 
 def _quiet_after_interrupt() -> None:

@@ -52,6 +52,10 @@ def check_burst_flag(burst: Optional[str], name: str = "--burst") -> Optional[st
     return burst
 
 
+#: The largest loaded face a flag gives [m] (the largest structure a scenario holds).
+MAX_FACE_M = 1000.0
+
+
 def load_model_from_flags(clearing: bool, face_width: Optional[float], face_height: Optional[float],
                           negative_phase: bool, block=None, negative_phase_model: Optional[str] = None):
     """The :class:`~blastscale.blast.load_model.LoadModel` of the flags (None for the paper's load).
@@ -72,6 +76,10 @@ def load_model_from_flags(clearing: bool, face_width: Optional[float], face_heig
     if clearing and (face_width is None or face_height is None):
         raise BlastscaleInputError(f"face width = {face_width}, face height = {face_height}: --clearing needs both "
                                    "--face-width and --face-height (m)")
+    for flag, v in (("--face-width", face_width), ("--face-height", face_height)):
+        if v is not None and not (0.0 < v <= MAX_FACE_M):  # inf and 1e308 too: numpy would overflow on them
+            raise BlastscaleInputError(f"{flag} = {v:g} m is out of range: valid range is (0, {MAX_FACE_M:g}] m "
+                                       "(no clearing at all: leave out --clearing)")
     if not (clearing or negative_phase):
         return None
     return LoadModel(clearing=clearing, face_width_m=face_width, face_height_m=face_height,

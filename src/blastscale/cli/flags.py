@@ -5,6 +5,9 @@ by the same schema, and an error names the flag the user typed."""
 from __future__ import annotations
 
 import contextlib
+import math
+import re
+import sys
 from typing import Optional
 
 import typer
@@ -13,7 +16,7 @@ from ..scenario import Scenario
 import tomllib
 from .._validate import BlastscaleInputError
 
-__all__ = ["FLAG_NAMES", "SET_VALUES", "parse_set", "scenario_from_flags", "flags_named"]
+__all__ = ["FLAG_NAMES", "SET_VALUES", "parse_set", "scenario_with", "scenario_from_flags", "flags_named"]
 
 #: ``--set KEY=VALUE`` (repeatable), one option object for every command that reads a scenario (run, sweep).
 SET_VALUES = typer.Option(
@@ -45,17 +48,89 @@ def parse_set(items: list[str]) -> dict:
     (:meth:`~blastscale.scenario.Scenario.with_values`), which names the key, its value and its range."""
 
 
-    out = {}
+    out, items_of = {}, {}
     for item in items:
         key, sep, text = item.partition("=")
         if not sep or not key.strip():
             raise BlastscaleInputError(f"set = {item!r} is not KEY=VALUE (e.g. --set blast.charge_kg=60)")
+        if _NON_DECIMAL.match(text.strip()):
+            raise BlastscaleInputError(f"set = {item!r}: {text.strip()!r} is not a decimal number (TOML reads it "
+                                       f"as {tomllib.loads(f'v = {text.strip()}')['v']}): give the number in decimal")
         try:
             value = tomllib.loads(f"v = {text.strip()}")["v"]
         except tomllib.TOMLDecodeError:
             value = text.strip()
-        out[key.strip()] = value
+        if isinstance(value, float) and math.isinf(value) and "inf" not in text:
+            raise BlastscaleInputError(f"set = {item!r}: {text.strip()} overflows a number (the largest is "
+                                       f"{sys.float_info.max:.4g}); give a finite value")
+        if key.strip() in out:
+            raise BlastscaleInputError(f"set = {items_of[key.strip()]!r} and {item!r} set {key.strip()} twice: "
+                                       "give it once")
+        out[key.strip()], items_of[key.strip()] = value, item
     return out
+
+
+#: A hexadecimal, octal or binary TOML integer (``0x10`` reads 16): refused in ``--set``, where it is a slip.
+_NON_DECIMAL = re.compile(r"^[+-]?0[xXoObB][0-9A-Fa-f_]+$")
+
+
+def show(value) -> str:
+    """A value as the user would type it (TOML-like: no Python repr)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return value if isinstance(value, str) else format(value, "g") if isinstance(value, float) else str(value)
+
+
+def scenario_with(sc: Scenario, values: list[str], flags: Optional[dict] = None) -> Scenario:
+    """``sc`` with the ``--set KEY=VALUE`` overrides and the command's own flags (scenario path -> value, None:
+    not given). A key set twice (``--set charge_kg=20 --set blast.charge_kg=30``, or a flag and a ``--set``) is
+    refused in one line naming both values; a key that replaces the scenario's value of the key it excludes
+    (``width_m`` beside the file's ``alpha_deg``) says so in one warning line."""
+    import warnings
+
+    from .._validate import BlastscaleInputError
+    from ..scenario.scenario import EXCLUSIVE_KEYS
+
+    given = parse_set(values)
+    resolved: dict = {}
+    said: dict = {}
+    for key, value in given.items():
+        path = _path(sc, key)
+        if path in resolved:
+            raise BlastscaleInputError(f"set = '{said[path]}={show(resolved[path])}' and '{key}={show(value)}' both "
+                                       f"set {path}: give it once")
+        resolved[path], said[path] = value, key
+    for path, value in (flags or {}).items():
+        if value is None:
+            continue
+        if path in resolved:
+            raise BlastscaleInputError(f"{FLAG_NAMES.get(path, path)} {show(value)} and --set {said[path]}="
+                                       f"{show(resolved[path])} both set {path}: give one of them")
+        resolved[path] = value
+    for path in resolved:
+        other = EXCLUSIVE_KEYS.get(path)
+        if other and other not in resolved:
+            old = _current(sc, other)
+            if old is not None:
+                warnings.warn(f"{path} = {show(resolved[path])} replaces the scenario's {other} = {show(old)} "
+                              "(they exclude each other: the value on the command line is kept)", stacklevel=2)
+    return sc.with_values(resolved) if resolved else sc
+
+
+def _path(sc: Scenario, key: str) -> str:
+    try:
+        return sc.resolve_key(key)
+    except Exception:  # an unknown key or a new kind's: with_values says what is wrong with it
+        return key
+
+
+def _current(sc: Scenario, path: str):
+    node = sc
+    for part in path.split("."):
+        node = getattr(node, part, None)
+        if node is None:
+            return None
+    return node
 
 
 @contextlib.contextmanager

@@ -23,7 +23,7 @@ from rich.table import Table
 from ..scenario import Scenario, load_scenario
 from ._app import (app, console, fmt_value, ignore_interrupts, one_line_warnings, print_json, print_written,
                    raise_if_interrupted, stage_progress, styled, table)
-from .flags import SET_VALUES, parse_set
+from .flags import SET_VALUES, scenario_with
 from .loads import print_design
 from ..report.html import split_unit
 from ..report.verdict import label
@@ -139,13 +139,9 @@ def run_cmd(
     pause_point("run:started")
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
         sc = Scenario.default() if scenario is None else load_scenario(scenario)
-    overrides = parse_set(values)
-    for key, v in (("blast.blast_model", blast_model), ("blast.charge_kg", charge), ("structure.friction", friction),
-                   ("simulation.duration_s", duration)):
-        if v is not None:
-            overrides[key] = v
-    if overrides:
-        sc = sc.with_values(overrides)
+    with one_line_warnings():  # a --set that replaces the key it excludes (width_m beside the file's alpha_deg)
+        sc = scenario_with(sc, values, {"blast.blast_model": blast_model, "blast.charge_kg": charge,
+                                        "structure.friction": friction, "simulation.duration_s": duration})
     if out is not None:
         check_output_folder(out, force)  # before any simulation
     study = Study(sc)

@@ -37,20 +37,21 @@ def block_from_options(
 
     Accepts ``--height`` with ``--width``, or ``--height`` with ``--alpha-deg`` (width = height tan alpha).
     """
-    if required and width is None and alpha_deg is None:
-        raise BlastscaleInputError("width = None is out of range: give --width (m) or --alpha-deg (deg, in (0, 90))")
+    if (required or height is not None) and width is None and alpha_deg is None:
+        raise BlastscaleInputError("--width and --alpha-deg are missing: give one of them (the block's width in m, "
+                                   "or its slenderness in deg, in (0, 90))")
     if height is None and width is None and alpha_deg is None:
         return None
+    if width is not None and alpha_deg is not None:
+        raise BlastscaleInputError(f"--width {width:g} and --alpha-deg {alpha_deg:g} are both given: give exactly "
+                                   "one of them (width = height tan alpha)")
+    if alpha_deg is not None and not (0.0 < alpha_deg < 90.0):
+        raise BlastscaleInputError(f"--alpha-deg = {alpha_deg:g} deg is out of range: valid range is (0, 90) deg")
     if height is None:
-        raise BlastscaleInputError("height = None is out of range: give --height (m) with --width or --alpha-deg")
-    if (width is None) == (alpha_deg is None):
-        raise BlastscaleInputError(
-            f"width = {width}, alpha-deg = {alpha_deg}: give exactly one of --width (m) or --alpha-deg (deg, in (0, 90))"
-        )
+        raise BlastscaleInputError(f"--height is missing: give the block's height (m) with "
+                                   f"{'--width' if width is not None else '--alpha-deg'}")
     if width is not None:
         return RectangularBlock(height=height, width=width, depth=depth, density=density)
-    if not (0.0 < alpha_deg < 90.0):
-        raise BlastscaleInputError(f"alpha-deg = {alpha_deg:g} deg is out of range: valid range is (0, 90) deg")
     return RectangularBlock.from_slenderness(height, math.radians(alpha_deg), depth=depth, density=density)
 
 
@@ -63,7 +64,10 @@ def check_plot_path(plot: Optional[str]) -> None:
     it is: the folder must exist, the path must not be a folder, and it must name an image file
     (matplotlib would otherwise write ``PLOT.png`` while the command reports ``PLOT``)."""
     if plot:
+        from ..io.output import check_name_lengths
+
         p = Path(plot).expanduser()
+        check_name_lengths(p, "plot")
         if p.is_dir():
             raise BlastscaleInputError(f"plot = {plot!r} is a folder: give an image file, e.g. {str(p / 'plot.png')!r}")
         if p.suffix.lower() not in PLOT_SUFFIXES:

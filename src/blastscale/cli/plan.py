@@ -13,6 +13,8 @@ A lab no design fits: one line naming the constraint and what would relax it, ex
 
 from __future__ import annotations
 
+import warnings
+
 from pathlib import Path
 from typing import Optional
 
@@ -93,6 +95,15 @@ def plan_cmd(
 
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
         sc = Scenario.default() if scenario is None else load_scenario(scenario)
+    from ..scenario.lab import LabSpec
+
+    members = (sc.lab or LabSpec()).ensemble_3d
+    unused = [f"{flag} {v}" for flag, v, given in (("--scheduler", scheduler, scheduler is not None),
+                                                    ("--workers", workers, workers > 0)) if given]
+    if unused and not members:
+        with one_line_warnings():
+            warnings.warn(f"{' and '.join(unused)} not used: the plan runs on Dask only for its 3D ensemble, and "
+                          f"lab.ensemble_3d = {members} (give it a number of members to use them)", stacklevel=1)
     markers = ("plan.json", "summary.json")
     if out is not None:
         check_output_folder(out, force, markers)

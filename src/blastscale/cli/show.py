@@ -42,8 +42,13 @@ def load_structure(source: str, density_kg_m3: Optional[float] = None):
     p = Path(source)
     suffix = p.suffix.lower()
     if suffix == ".json" or suffix in MESH_SUFFIXES:
-        if not p.is_file():
-            raise BlastscaleInputError(f"FILE_OR_SCENARIO = {source!r} cannot be read: no such file")
+        try:
+            there, regular = p.exists() or p.is_symlink(), p.is_file()
+        except OSError as exc:  # a name too long
+            raise BlastscaleInputError(f"FILE_OR_SCENARIO = {source!r} cannot be read: {exc.strerror}") from None
+        if not regular:
+            why = "not a regular file (a folder or a device)" if there else "no such file"
+            raise BlastscaleInputError(f"FILE_OR_SCENARIO = {source!r} cannot be read: {why}")
         return read_block_model(p, 2000.0 if density_kg_m3 is None else density_kg_m3), None, None
     if p.exists() and suffix not in _SCENARIO_SUFFIXES:
         raise BlastscaleInputError(f"FILE_OR_SCENARIO = {source!r} is not a known kind of file: valid suffixes are "

@@ -8,6 +8,8 @@ Units at this edge are those of the scenario keys (SI, named in each key); grids
 
 from __future__ import annotations
 
+import math
+
 from pathlib import Path
 from typing import List, Optional
 
@@ -16,22 +18,7 @@ import typer
 from .._validate import BlastscaleInputError
 from ._app import activity, app, console, count_progress, one_line_warnings, print_json, print_written, table
 from ._signals import ignore_interrupts, set_interrupt_note
-from .flags import SET_VALUES, parse_set
-from ..scenario import Scenario, load_scenario
-from ..sweeps.grids import parse_assignment
-from ..io.sweep_store import unfinished_chunks
-from ..sweeps.grids import parse_distribution, parse_grid
-from ..io.sweep_store import run_sweep
-from ..sweeps import SweepSpec
-from ..sweeps.grids import parse_number
-from ..sweeps.fragility import fragility
-from .options import check_plot_path
-from rich.table import Table
-import numpy as np
-from ..io.results import legacy_name
-from ..io.sweep_store import open_sweep
-from ..sweeps.runner import run_in_memory
-from ..sweeps.similarity_map import similarity_map
+from .flags import SET_VALUES, scenario_with
 
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")
 SCHEDULER = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (e.g. tcp://127.0.0.1:8786).")
@@ -42,14 +29,16 @@ SEED = typer.Option(0, "--seed", help="Seed of the Monte Carlo draws (numpy defa
 
 def _scenario(path: Optional[Path], values: Optional[List[str]] = None):
     """The scenario file (or the built-in default) with the ``--set KEY=VALUE`` overrides, as ``run`` reads it."""
+    from ..scenario import Scenario, load_scenario
 
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
         sc = Scenario.default() if path is None else load_scenario(path)
-    overrides = parse_set(values or [])
-    return sc.with_values(overrides) if overrides else sc
+    with one_line_warnings():  # a --set that replaces the key it excludes (width_m beside the file's alpha_deg)
+        return scenario_with(sc, values or [])
 
 
 def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
+    from ..sweeps.grids import parse_assignment
 
     out = {}
     for text in items or []:
@@ -62,6 +51,7 @@ def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
 
 def _resume_note(out) -> None:
     """What an interrupted sweep says it kept: its finished chunks, from which the same command resumes."""
+    from ..io.sweep_store import unfinished_chunks
 
     def note() -> str:
         n = unfinished_chunks(out)
@@ -93,6 +83,9 @@ def sweep_cmd(
     the chunks already done. A scenario without \\[scale]: the prototype alone. With --outcomes
     (planar blocks, a \\[scale]): only the first-swing outcomes and largest rotations, about a
     million cases per minute."""
+    from ..sweeps.grids import parse_distribution, parse_grid
+    from ..io.sweep_store import run_sweep
+    from ..sweeps import SweepSpec
 
     base = _scenario(scenario, values)
     grid = _assignments(vary, "--vary", lambda text, key: parse_grid(text, key, numeric=False))
@@ -117,13 +110,15 @@ def sweep_cmd(
         ("dimensions", " x ".join(f"{d} ({n})" for d, n in zip(spec.dims, spec.shape)) or "-", ""),
         ("chunks computed / already done", f"{run.chunks_run} / {run.chunks_skipped}", ""),
         ("computing time (cluster start/stop excluded)", f"{run.seconds:.3g}", "s"),
-        ("cases per minute", f"{run.cases_per_minute:.4g}", "1/min"),
+        ("cases per minute", f"{run.cases_per_minute:.4g}" if run.chunks_run and math.isfinite(run.cases_per_minute)
+         else "- (nothing computed: every chunk was done)", "1/min"),
         ("workers", str(run.workers), ""),
     ]))
 
 
 def _uniform_range(text: str, name: str) -> tuple:
     lo, sep, hi = text.partition(":")
+    from ..sweeps.grids import parse_number
 
     if not sep:
         raise BlastscaleInputError(f"--uniform {name} = {text!r} is not lo:hi")
@@ -131,6 +126,7 @@ def _uniform_range(text: str, name: str) -> tuple:
 
 
 def _beta(text: str, name: str) -> float:
+    from ..sweeps.grids import parse_number
 
     return parse_number(text, f"--lognormal {name}", "beta")  # its range: blastscale.sweeps.fragility
 
@@ -150,6 +146,9 @@ def fragility_cmd(
     """Probability that the prototype block overturns against the charge, under uncertain fields,
     with a maximum-likelihood lognormal fit (median charge, beta, 95 % bounds). Each draw is
     decided by the first-swing energy criterion (docs/capacity.md), vectorised."""
+    from ..sweeps.fragility import fragility
+    from ..sweeps.grids import parse_grid
+    from .options import check_plot_path
 
     check_plot_path(plot)
     base = _scenario(scenario, values)
@@ -168,6 +167,7 @@ def fragility_cmd(
     if as_json:
         print_json(out, engine="planar")
         return
+    from rich.table import Table
 
     t = Table(title=f"Fragility ({samples} draws per charge, seed {seed})", title_justify="left")
     for c in ("charge W [kg]", "collapsed", "P(overturn)", "binomial s.e."):
@@ -207,7 +207,14 @@ def similarity_map_cmd(
 ) -> None:
     """Where in (lambda, gamma, charge, stand-off) the up-scaled model is trustworthy: its error
     against the prototype (planar rocking or 3D) and whether the outcomes agree (docs/sweeps.md)."""
+    import numpy as np
 
+    from ..io.results import legacy_name
+    from ..io.sweep_store import open_sweep, run_sweep
+    from ..sweeps.grids import parse_grid
+    from ..sweeps.runner import run_in_memory
+    from ..sweeps.similarity_map import similarity_map
+    from .options import check_plot_path
 
     check_plot_path(plot)
     base = _scenario(scenario, values)

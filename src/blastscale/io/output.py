@@ -85,6 +85,37 @@ def signals_held() -> Iterator[None]:
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
+#: Characters kept free in a file name for blastscale's temporary siblings (``.NAME.partial-PID-HOST-XXXXXXXX``,
+#: ``.NAME.lock``, ``.NAME.old-PID``; the host name is cut at 40 characters).
+NAME_ROOM = 80
+
+
+def check_name_lengths(path: Path, name: str = "out") -> None:
+    """Refuse, in one line, a path with a folder or file name longer than the file system allows (its
+    ``NAME_MAX``, 255 bytes on most); the last name must leave :data:`NAME_ROOM` bytes for the temporary
+    siblings of an atomic write."""
+    up = next((q for q in [path.absolute(), *path.absolute().parents] if _exists(q)), Path("/"))
+    try:
+        most = os.pathconf(up, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        most = 255
+    for i, part in enumerate(reversed(path.parts)):
+        limit = most - NAME_ROOM if i == 0 else most
+        n = len(os.fsencode(part))
+        if n > limit:
+            which = "its file or folder name" if i == 0 else f"the folder name {part[:20]!r}..."
+            raise BlastscaleInputError(f"{name} = {str(path)[:60]!r}... is too long: {which} has {n} bytes, the "
+                                       f"most is {limit} (the file system allows {most}"
+                                       f"{f', blastscale keeps {NAME_ROOM} for its temporary files' if i == 0 else ''})")
+
+
+def _exists(p: Path) -> bool:
+    try:
+        return p.exists()
+    except OSError:
+        return False
+
+
 def check_target(out, kind: Kind, force: bool = False, reuse: Optional[Callable[[Path], bool]] = None,
                  name: str = "out") -> Path:
     """Check, before any work, that ``out`` can be written as ``kind``; returns it absolute.
@@ -94,6 +125,7 @@ def check_target(out, kind: Kind, force: bool = False, reuse: Optional[Callable[
     """
     given = str(out)
     p = Path(out).expanduser()
+    check_name_lengths(p, name)
     parent = p.absolute().parent
     a = parent.resolve() / p.name if p.name not in ("", ".", "..") else p.resolve()
     up = next((q for q in [parent, *parent.parents] if q.exists() or q.is_symlink()), None)
@@ -311,6 +343,7 @@ def write_file(path, data: "str | bytes", what: str = "out", raw: bool = False) 
     an ``OSError`` becomes one line naming ``what = path`` (``raw``: the ``OSError`` itself, for a file
     inside a claimed output, whose :func:`claim` names the output as the user gave it)."""
     path = Path(path)
+    check_name_lengths(path, what)
     payload = data.encode("utf-8") if isinstance(data, str) else data
     tmp = None
     try:

@@ -53,6 +53,20 @@ def _timing_3d(result, factor: float, collapsed: bool):
     return Timing(tm.rise_s * factor, tm.response_s * factor)
 
 
+def specimen_timing(result) -> "Timing | None":
+    """The specimen's :class:`Timing` (from the shock's arrival at it [s]): the time to its first peak (or to the
+    tipping point) and its whole response, from the planar model when there is one, else from the up-scaled 3D
+    history of the top point; None without a specimen or a load."""
+    d = result.design
+    if d is None or result.blast is None:
+        return None
+    if result.planar is not None:
+        return timing_of(result.planar.model)
+    if result.response3d is not None and getattr(result.response3d, "upscaled_dataset", None) is not None:
+        return _timing_3d(result, float(d.factors.time), bool(result.summary()["3d"]["model"]["collapsed"]))
+    return None
+
+
 def _response(result, spec) -> dict:
     """Collapsed, first peak, timing, top displacement and reach of the specimen and reach of the prototype."""
     d = result.design

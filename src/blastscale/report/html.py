@@ -21,7 +21,7 @@ from .slips import applicable_slips
 from .card import CSS as _CARD_CSS
 from .card import card_section
 from .verdict import label, specimen_rows, verdict
-from .outcomes import first_peak_rows, stability_lead
+from .outcomes import ARRIVAL_NOTE, first_peak_rows, stability_lead, timing_rows
 from .motion import motion_section
 
 __all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
@@ -50,6 +50,10 @@ def split_unit(key: str) -> tuple[str, str]:
     return label, ("of the peak" if key.endswith("_rel_peak") else unit)
 
 
+#: A float below this (SI units) is round-off (a 3D difference of 3.3e-18 m): shown as 0.
+ROUND_OFF = 1e-12
+
+
 def format_value(x: Any, spec: str = ".4g") -> str:
     """A table cell: '-' for None/NaN, yes/no for booleans, numbers with ``spec``."""
     if x is None:
@@ -59,7 +63,7 @@ def format_value(x: Any, spec: str = ".4g") -> str:
     if isinstance(x, (int, float)):
         if isinstance(x, float) and math.isnan(x):
             return "-"
-        return format(x, spec)
+        return format(0.0 if isinstance(x, float) and abs(x) < ROUND_OFF else x, spec)
     if isinstance(x, (list, tuple)):
         return "[" + ", ".join(format_value(v, spec) for v in x) + "]"
     return str(x)
@@ -180,7 +184,7 @@ def _loads(result) -> str:
     note = ("<p>Only the impulse follows the scaling law exactly (delivered = required); the peak pressure and "
             "the duration do not, which is harmless while the load is impulsive (next section). Blast model: "
             f"<b>{_e(p.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load method "
-            f"<b>{_e(result.scenario.blast.load)}</b>. {_e(d.root_note)}</p>")
+            f"<b>{_e(result.scenario.blast.load)}</b>. {_e(d.root_note)} {_e(ARRIVAL_NOTE)}</p>")
     return (_table(("quantity", "prototype", "model", "delivered ratio", "required ratio", "unit"), rows) + note
             + _load_model(result))
 
@@ -249,7 +253,7 @@ def _similarity(result, figures) -> str:
     s = result.summary()
     figs = {f.name: (f, png) for f, png in figures}
     if result.design is not None:
-        rows = specimen_rows(s, result.design.factors.to_dict())
+        rows = specimen_rows(s, result.design.factors.to_dict()) + timing_rows(result)
         if rows:
             out.append("<h3>What to measure on the specimen</h3><p>The up-scaled model's response brought back to "
                        "the specimen's own size (times the scaling factors): compare a measurement with these "
@@ -276,8 +280,8 @@ def _similarity(result, figures) -> str:
             out.append(peaks[0] + _table(peaks[1], peaks[2]))
         if r3.get("similarity") is not None:
             out.append(_table(("similarity figure", "value", "unit"),
-                              [(label(k), v, split_unit(k.split(".")[-1])[1])
-                               for k, v in _flat(r3["similarity"]) if not isinstance(v, str)]))
+                              [(label(k), v, split_unit(k.split(".")[-1])[1]) for k, v in _flat(r3["similarity"])
+                               if not isinstance(v, str) and not (peaks is not None and k.startswith("points."))]))
         for name in ("snapshots_3d", "response_3d"):
             if name in figs:
                 f, png = figs[name]

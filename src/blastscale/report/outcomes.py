@@ -7,7 +7,7 @@ import html
 
 from ..analysis.gravity_alone import STABILITY_EXTENSION_CAP
 
-__all__ = ["STABILITY_RULE", "stability_words", "stability_lead", "first_peak_rows"]
+__all__ = ["STABILITY_RULE", "stability_words", "stability_lead", "first_peak_rows", "timing_rows", "ARRIVAL_NOTE"]
 
 #: The rule behind "stands / settles / collapses / moving" (blastscale.sim3d.results.stability_of).
 STABILITY_RULE = ("Collapses: a block fell (its centre of mass dropped by more than half its height, or it turned "
@@ -55,3 +55,30 @@ def first_peak_rows(sim):
     header = ("monitoring point", "prototype first peak [m]", "model first peak [m]", "first_peak_ratio [-]",
               "time of the prototype's peak [s]")
     return intro, header, rows
+
+
+#: Why the arrival time's ratio is not a scaling factor (the report's blast table).
+ARRIVAL_NOTE = ("The arrival time is not expected to scale with the time factor: the shock crosses the stand-off "
+                "at a speed set by the air and the charge, not by the scaling law; the response is timed from the "
+                "arrival, so only the time after it must scale.")
+
+#: The camera records from the detonation to the arrival plus this many times the specimen's whole response.
+RECORD_MARGIN = 1.1
+
+
+def timing_rows(result) -> list:
+    """Rows (quantity, prototype [s], expected on the specimen [ms], "ms") for "What to measure": the specimen's
+    time from the shock's arrival to its first peak (what the camera must resolve) and the record window
+    (detonation to the arrival plus :data:`RECORD_MARGIN` x the whole response: the test card's camera record),
+    with or without a ``[lab]`` table. The prototype's value is the specimen's divided by the time factor."""
+    from ..planning.card import specimen_timing
+
+    tm = specimen_timing(result)
+    if tm is None:
+        return []
+    d = result.design
+    ft, arrival = float(d.factors.time), float(d.specimen.arrival_time)
+    window = arrival + RECORD_MARGIN * tm.response_s
+    return [("time to the first peak, from the arrival (specimen)", tm.rise_s / ft, tm.rise_s / 1e-3, "ms"),
+            (f"record window: detonation to the arrival plus {RECORD_MARGIN:g} x the response", None,
+             window / 1e-3, "ms")]

@@ -41,9 +41,9 @@ See ``docs/scenarios.md`` for every key.
 """
 
 from .files import load_scenario, to_toml
-from .library import TEMPLATE_KINDS, library_names, library_text, template_text
+from .library import EXAMPLE_BLOCKS, TEMPLATE_KINDS, library_names, library_text, template_text
 from .scenario import Scenario
 from .specs import BlastSpec, BlockSpec, ColumnSpec, ContactSpec, ScaleSpec, SimulationSpec, parse_ratio
 
-__all__ = ["Scenario", "load_scenario", "library_names", "library_text", "template_text", "TEMPLATE_KINDS", "parse_ratio", "to_toml", "BlockSpec", "ColumnSpec", "BlastSpec",
+__all__ = ["Scenario", "load_scenario", "library_names", "library_text", "template_text", "TEMPLATE_KINDS", "EXAMPLE_BLOCKS", "parse_ratio", "to_toml", "BlockSpec", "ColumnSpec", "BlastSpec",
            "ScaleSpec", "SimulationSpec", "ContactSpec"]

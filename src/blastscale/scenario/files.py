@@ -36,22 +36,58 @@ def load_scenario(path: "str | Path") -> Scenario:
     p = Path(path)
     shipped = library_names()
     stem = p.name[:-5] if p.name.endswith(".toml") else p.name
-    if not p.exists() and str(path) in (stem, p.name) and stem in shipped:
+    if not _exists(p) and str(path) in (stem, p.name) and stem in shipped:
         return _from_text(library_text(stem), library_source(stem))
     try:
-        text = p.read_bytes().decode("utf-8")
+        if p.is_dir() or p.is_char_device() or p.is_block_device():
+            raise BlastscaleInputError(f"scenario = {str(p)!r} cannot be read: not a file (a folder or a device); "
+                                       "give a .toml scenario file")
+        with open(p, "rb") as f:
+            raw = f.read(MAX_SCENARIO_BYTES + 1)
+        if len(raw) > MAX_SCENARIO_BYTES:
+            raise BlastscaleInputError(f"scenario = {str(p)!r} is larger than {MAX_SCENARIO_BYTES // 10**6} MB: "
+                                       "not a scenario file")
+        text = raw.decode("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        hint = f" (or give a shipped scenario: {', '.join(shipped)})" if not p.exists() else ""
+        if isinstance(exc, UnicodeDecodeError):
+            reason = f"not UTF-8 text (byte {exc.start}: {exc.object[exc.start:exc.start + 1]!r})"
+        hint = f" (or give a shipped scenario: {', '.join(shipped)})" if not _exists(p) else ""
         raise BlastscaleInputError(f"scenario = {str(p)!r} cannot be read: {reason}{hint}") from None
     return _from_text(text, p.name, p.resolve().parent)
 
 
+#: The largest scenario file read (a scenario is a few kB; a device or a mistaken file is not read whole).
+MAX_SCENARIO_BYTES = 10 * 10**6
+
+def _exists(p: Path) -> bool:
+    try:
+        return p.exists()
+    except OSError:  # a name too long: not there (reading it says why)
+        return False
+
+
+def _nesting(text: str) -> int:
+    """The deepest run of opening brackets and braces outside strings and comments, roughly (a bound)."""
+    depth = most = 0
+    for ch in text:
+        if ch in "[{":
+            depth += 1
+            most = max(most, depth)
+        elif ch in "]}":
+            depth = max(depth - 1, 0)
+    return most
+
+
 def _from_text(text: str, source: str, folder: "Path | None" = None) -> Scenario:
+    text = text.removeprefix("\ufeff")  # a UTF-8 byte-order mark (Windows Notepad) is no part of the TOML
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise BlastscaleInputError(f"{source}: TOML syntax error: {exc}") from None
+    except RecursionError:
+        raise BlastscaleInputError(f"{source}: arrays or tables nested {_nesting(text)} deep: too deep for the "
+                                   "TOML reader (a scenario nests 3 deep)") from None
     st = data.get("structure")
     if folder is not None and isinstance(st, dict) and isinstance(st.get("file"), str) \
             and not Path(st["file"]).is_absolute():  # a block-model file is relative to its scenario file

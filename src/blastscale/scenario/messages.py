@@ -111,7 +111,7 @@ def one_line(exc: ValidationError, root: type[BaseModel], kinds: dict, names: di
     if kind == "union_tag_invalid":
         return f"{path}.kind = {show(ctx.get('tag'))} is not known: valid values are {', '.join(kinds)}"
     if kind == "union_tag_not_found":
-        return f"{path}.kind is missing: give kind = \"block\" or \"column\" in [{path}]"
+        return f"{path}.kind is missing: give kind = one of {', '.join(repr(k) for k in kinds)} in [{path}]"
     if kind == "literal_error":
         expected = str(ctx.get("expected", "")).replace("'", "").replace(" or ", ", ")
         return f"{path} = {vtxt} is not known: valid values are {expected}"

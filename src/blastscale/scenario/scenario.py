@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping, Optional
 
-from pydantic import BaseModel, Field, ValidationError
+from pydantic import BaseModel, Field, ValidationError, field_validator
 
 from .._validate import BlastscaleInputError
 from ..constants import DEFAULT_FRICTION
@@ -19,7 +19,7 @@ from .specs import _CONFIG, KINDS, LEGACY_SCENARIO_KEYS, BlastSpec, BlockSpec, S
 __all__ = ["Scenario"]
 
 #: Keys of which at most one may be given: setting one through ``with_values`` clears the other.
-_EXCLUSIVE = {
+EXCLUSIVE_KEYS = {
     "structure.alpha_deg": "structure.width_m",
     "structure.width_m": "structure.alpha_deg",
     "scale.density_ratio": "scale.specimen_material",
@@ -47,7 +47,8 @@ class Scenario(BaseModel):
     """
 
     model_config = _CONFIG
-    title: str = Field("", description="A one-line description")
+    title: str = Field("", description="A one-line description (tabs and line breaks allowed; no other control "
+                       "characters: a NUL cannot be stored in the result files)")
     structure: Structure
     blast: BlastSpec = Field(default_factory=BlastSpec, description="The charge; absent (or charge_kg = 0): "
                              "the structure under gravity alone")
@@ -58,6 +59,15 @@ class Scenario(BaseModel):
                                    "in the report, and the constraints of `blastscale plan` (docs/planning.md)")
     fired: Optional[FiredSpec] = Field(None, description="What the lab recorded after the shot: gauge traces, "
                                        "marker tracks, the charge as weighed, the stand-off as measured (docs/fired.md)")
+
+    @field_validator("title")
+    @classmethod
+    def _printable(cls, value: str) -> str:
+        bad = next((i for i, ch in enumerate(value) if (ord(ch) < 32 and ch not in "\t\n\r") or ord(ch) == 127), None)
+        if bad is not None:
+            raise ValueError(f"= {value[:40]!r} holds the control character U+{ord(value[bad]):04X} at position "
+                             f"{bad + 1}: a title is text (tabs and line breaks allowed)")
+        return value
 
     # -- construction ----------------------------------------------------------------
     @classmethod
@@ -177,14 +187,14 @@ class Scenario(BaseModel):
             if hasattr(value, "item") and callable(value.item):  # numpy scalars from sweeps
                 value = value.item()
             node[leaf] = value
-            other = _EXCLUSIVE.get(path)
+            other = EXCLUSIVE_KEYS.get(path)
             if other and other not in resolved:
                 *op, ol = other.split(".")
                 onode = data
                 for p in op:
                     onode = onode.get(p, {})
                 onode.pop(ol, None)
-        return type(self).from_dict(data, source="with_values")
+        return type(self).from_dict(data, source=None)
 
     # -- derived values ----------------------------------------------------------------
     @property

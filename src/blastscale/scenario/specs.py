@@ -165,7 +165,8 @@ class ArchSpec(BaseModel):
     radius_m: float = Field(2.5, gt=0, le=1000, description="Radius of the centreline [m]")
     thickness_m: float = Field(0.5, gt=0, le=1000, description="Radial thickness [m] (< 2 x radius)")
     depth_m: float = Field(1.0, gt=0, le=1000, description="Depth along x [m]")
-    voussoirs: int = Field(15, ge=1, le=1000, description="Number of voussoirs [-]")
+    voussoirs: int = Field(15, ge=2, le=1000, description="Number of voussoirs [-] (one voussoir is a block: "
+                           "kind = 'block')")
     embrace_deg: float = Field(180.0, gt=0, lt=360, description="Angle spanned, symmetric about the crown [deg]")
     pier_height_m: float = Field(0.0, ge=0, le=1000, description="Height of the springing above the ground [m]; "
                                  "> 0 puts a pier under each springer (needed unless embrace_deg = 180)")

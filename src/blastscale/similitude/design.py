@@ -161,6 +161,9 @@ def design_model(
     scalar = np.ndim(charge) == 0 and np.ndim(standoff) == 0
     W, R = _charges_and_standoffs(charge, standoff, scalar)
     lam = check_positive_scalar("scale", scale)
+    if lam > 1.0:  # allowed (the laws hold both ways), but rarely meant: said once
+        warnings.warn(f"scale = {lam:g} > 1: the specimen is {lam:g} times larger than the prototype (the laws hold "
+                      f"both ways; for a reduced model give 1/{lam:g})", BlastSimilarityWarning, stacklevel=2)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
     check_positive_scalar("gravity", gravity, "m/s^2")
     check_positive_scalar("impulsive threshold", impulsive_threshold)

@@ -48,6 +48,10 @@ NONCONVEX_TOLERANCE = 0.05
 MESH_SUFFIXES = (".obj", ".stl", ".ply", ".off", ".glb", ".gltf")
 
 
+#: The farthest a block's vertex may lie from the origin [m] (a scenario's structures are at most 1000 m).
+MAX_COORDINATE_M = 1.0e4
+
+
 def _mesh_volume(vertices: np.ndarray, faces) -> float:
     """Volume of a closed polygon mesh [m^3] (signed tetrahedra from the origin, faces fanned)."""
     v = np.asarray(vertices, dtype=float)
@@ -61,7 +65,15 @@ def _mesh_volume(vertices: np.ndarray, faces) -> float:
 
 
 def _convex_or_hull(source: str, name: str, vertices: np.ndarray, own_volume: float | None) -> np.ndarray:
-    """The block's vertices, after the convexity rule (module docstring)."""
+    """The block's vertices, after the convexity rule (module docstring); coordinates finite and within
+    :data:`MAX_COORDINATE_M` of the origin (1e308 m would overflow its volume to "zero")."""
+    if any(ord(ch) < 32 or ord(ch) == 127 for ch in name):  # the name labels the result files: text only
+        raise BlastscaleInputError(f"{source}: block name {name!r} holds a control character: give a name of text")
+    v = np.asarray(vertices, dtype=float)
+    if not np.all(np.isfinite(v) & (np.abs(v) <= MAX_COORDINATE_M)):
+        bad = v[~(np.isfinite(v) & (np.abs(v) <= MAX_COORDINATE_M))][0]
+        raise BlastscaleInputError(f"{source}: block {name!r} has a vertex coordinate {bad:g} m: out of range, valid "
+                                   f"range is [-{MAX_COORDINATE_M:g}, {MAX_COORDINATE_M:g}] m")
     hull = hull_of(vertices, name)
     if own_volume is None:
         return vertices
@@ -247,13 +259,17 @@ def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True,
     p = Path(path)
     source = p.name
     if not p.is_file():
-        raise BlastscaleInputError(f"structure.file = {str(p)!r} cannot be read: no such file")
+        why = "no such file" if not (p.exists() or p.is_symlink()) else "not a regular file (a folder or a device)"
+        raise BlastscaleInputError(f"structure.file = {str(p)!r} cannot be read: {why}")
     supports = ()
     if p.suffix.lower() == ".json":
         try:
-            data = json.loads(p.read_text(encoding="utf-8"))
+            data = json.loads(p.read_text(encoding="utf-8-sig"))
         except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
             raise BlastscaleInputError(f"{source}: not valid JSON: {exc}") from None
+        except RecursionError:
+            raise BlastscaleInputError(f"{source}: not a block model: arrays or objects nested too deep for the JSON "
+                                       "reader (a block model nests 4 deep)") from None
         if isinstance(data, dict) and "blocks" in data:
             blocks, raw_points = _from_ours(data, source, density_kg_m3)
         elif is_compas_model(data):

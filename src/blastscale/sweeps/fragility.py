@@ -298,7 +298,10 @@ def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int =
 
     W = np.atleast_1d(np.asarray(charges, dtype=float))
     if W.ndim != 1 or W.size == 0 or not np.all(np.isfinite(W) & (W > 0)):
-        raise BlastscaleInputError(f"charges = {charges!r} is out of range: a non-empty list of charges > 0 kg")
+        bad = next((f"{w:g} kg" for w in W.ravel() if not (np.isfinite(w) and w > 0)), "empty")
+        shown = ", ".join(f"{w:g}" for w in W.ravel()[:6]) + (", ..." if W.size > 6 else "")
+        raise BlastscaleInputError(f"charges = [{shown}] is out of range ({bad}): give a non-empty list of charges "
+                                   "> 0 kg")
     rel = {}
     for key, beta in (lognormal or {}).items():
         b = float(beta)

@@ -94,6 +94,24 @@ def run_chunks(payload: dict, todo, sink: Callable[[int, dict], None], *, schedu
     return _run_dask(payload, todo, sink, scheduler, workers, tick)
 
 
+def _tracker_survives_hangup() -> None:
+    """Start multiprocessing's resource tracker (shared by the local workers) with SIGHUP ignored, as it ignores
+    SIGINT and SIGTERM itself: a hang-up of the process group then stops the workers and the sweep (one line)
+    without killing the tracker, whose replacement would print a KeyError traceback for every semaphore it was
+    never told about (Python 3.11-3.13)."""
+    import signal
+    import threading
+    from multiprocessing import resource_tracker
+
+    if not hasattr(signal, "SIGHUP") or threading.current_thread() is not threading.main_thread():
+        return  # Windows; or a library caller's thread, where signals cannot be set
+    old = signal.signal(signal.SIGHUP, signal.SIG_IGN)  # an ignored signal stays ignored across exec
+    try:
+        resource_tracker.ensure_running()
+    finally:
+        signal.signal(signal.SIGHUP, old)
+
+
 def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
     """Submit the chunks, write each as it completes; returns the number of workers used and the
     seconds from the first submission to the last chunk written (cluster start and stop excluded)."""
@@ -120,6 +138,7 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
         with warnings.catch_warnings(), dask.config.set(env):
             # the scheduler's HTTP (health) server takes another port when 8787 is busy: not our concern
             warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
+            _tracker_survives_hangup()
             cluster = LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
                                    dashboard_address=None)
         client = Client(cluster)

@@ -127,7 +127,7 @@ def test_with_values_dotted_and_bare_keys_validate_and_do_not_mutate():
     assert sc.with_values({"charge_kg": np.float64(70.0)}).blast.charge_kg == 70.0  # sweeps pass numpy scalars
     with pytest.raises(BlastscaleInputError, match=r"key = 'frictoin' is not a scenario field"):
         sc.with_values({"frictoin": 0.5})
-    with pytest.raises(BlastscaleInputError, match=r"with_values: structure\.friction = -1 is out of range"):
+    with pytest.raises(BlastscaleInputError, match=r"^structure\.friction = -1 is out of range"):
         sc.with_values({"friction": -1.0})
 
 
