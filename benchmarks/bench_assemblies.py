@@ -11,7 +11,6 @@ import sys
 import time
 
 import mujoco
-import numpy as np
 
 from blastscale.sim3d.contact import reference_contact
 from blastscale.sim3d.model import structure_scene

@@ -84,6 +84,7 @@ def test_run_takes_the_scenario_keys(capsys, tmp_path):
                    "simulation.critical_charge=false", "--json")
     s = json.loads((tmp_path / "r" / "summary.json").read_text())
     assert s["scenario"]["blast"]["negative_phase"] is True
+    assert out["scenario"]["blast"]["negative_phase"] is True  # --json prints the summary that was written
     assert s["design"]["blast_effects"]["negative_phase"]["model"]["negative_impulse_Pa_s"] > 0
 
 

@@ -142,7 +142,7 @@ def test_the_report_opens_with_its_verdict_labels_in_words_and_the_specimen_in_m
     s = json.loads((report_dir / "summary.json").read_text())
     mm = s["3d"]["model"]["max_top_displacement_m"] * 0.005 * 1e3
     row = page[page.index("What to measure on the specimen"):]
-    assert f"<td>largest top displacement (3D)</td>" in row and f"{mm:.4g}" in row and "<td>mm</td>" in row
+    assert "<td>largest top displacement (3D)</td>" in row and f"{mm:.4g}" in row and "<td>mm</td>" in row
     assert s["verdict"]["similar"] is True and s["verdict"]["line"].startswith("Verdict: similar")
 
 

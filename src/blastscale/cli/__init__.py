@@ -17,6 +17,7 @@ from __future__ import annotations
 import sys
 
 from .._extras import extra_of, missing_extra_message
+from .._validate import BlastscaleInputError
 from ._app import app, print_error
 
 # command modules register themselves on `app` when imported (in this order: `blastscale --help` lists them so)
@@ -31,7 +32,6 @@ from . import plan as _plan  # noqa: F401,E402
 from . import init as _init  # noqa: F401,E402
 from . import show as _show  # noqa: F401,E402
 from . import fired as _fired  # noqa: F401,E402
-from .._validate import BlastscaleInputError
 
 __all__ = ["app", "main"]
 

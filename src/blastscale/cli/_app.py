@@ -11,14 +11,6 @@ import os
 import sys
 
 from . import _signals
-import logging
-from fractions import Fraction
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
-from rich.progress import TimeRemainingColumn
-from pathlib import Path
-from ..io.output import format_size, tree_size
-import io
-from ..io.output import write_file
 
 if os.path.basename(sys.argv[0]) == "blastscale":
     _signals.at_import()  # a signal while importing: one line; a local Dask worker: Ctrl-C ignored
@@ -26,17 +18,23 @@ if os.path.basename(sys.argv[0]) == "blastscale":
 import contextlib  # noqa: E402
 import errno  # noqa: E402
 import io  # noqa: E402
-import json
-import warnings
+import json  # noqa: E402
+import logging  # noqa: E402
+import warnings  # noqa: E402
+from fractions import Fraction  # noqa: E402
+from pathlib import Path  # noqa: E402
 
-import typer
-from rich.console import Console
-from rich.table import Table
-from rich.text import Text
-from typer.core import TyperGroup, TyperOption
+import typer  # noqa: E402
+from rich.console import Console  # noqa: E402
+from rich.progress import (BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn,  # noqa: E402
+                           TimeElapsedColumn, TimeRemainingColumn)
+from rich.table import Table  # noqa: E402
+from rich.text import Text  # noqa: E402
+from typer.core import TyperGroup, TyperOption  # noqa: E402
 
-from .._validate import BlastscaleInputError
-from ..io.results import jsonable, with_legacy_keys
+from .._validate import BlastscaleInputError  # noqa: E402
+from ..io.output import format_size, tree_size, write_file  # noqa: E402
+from ..io.results import jsonable, with_legacy_keys  # noqa: E402
 from ._signals import Interrupted, ignore_interrupts, raise_if_interrupted  # noqa: F401 (re-exported)
 
 

@@ -15,6 +15,8 @@ import typer
 from ..scenario import Scenario
 import tomllib
 from .._validate import BlastscaleInputError
+import warnings
+from ..scenario.scenario import EXCLUSIVE_KEYS
 
 __all__ = ["FLAG_NAMES", "SET_VALUES", "parse_set", "scenario_with", "scenario_from_flags", "flags_named"]
 
@@ -86,10 +88,7 @@ def scenario_with(sc: Scenario, values: list[str], flags: Optional[dict] = None)
     not given). A key set twice (``--set charge_kg=20 --set blast.charge_kg=30``, or a flag and a ``--set``) is
     refused in one line naming both values; a key that replaces the scenario's value of the key it excludes
     (``width_m`` beside the file's ``alpha_deg``) says so in one warning line."""
-    import warnings
 
-    from .._validate import BlastscaleInputError
-    from ..scenario.scenario import EXCLUSIVE_KEYS
 
     given = parse_set(values)
     resolved: dict = {}

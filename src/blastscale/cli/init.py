@@ -17,6 +17,10 @@ import typer
 
 from .._validate import BlastscaleInputError
 from ._app import app, console, console_err, print_written
+from ..scenario import load_scenario
+from ..scenario import library_names, library_text
+from ..io.output import Kind, check_target, claim, write_file
+from ..scenario import EXAMPLE_BLOCKS, template_text
 
 #: The first words of every template ``init`` writes.
 HEADER = "# A blastscale scenario"
@@ -24,7 +28,6 @@ HEADER = "# A blastscale scenario"
 
 def _is_ours(path: Path) -> bool:
     """Whether ``path`` is a file blastscale wrote: a template's header, or a scenario blastscale reads."""
-    from ..scenario import load_scenario
 
     try:
         with open(path, "rb") as f:
@@ -37,7 +40,6 @@ def _is_ours(path: Path) -> bool:
 
 
 def _source(source: str, kind: Optional[str]) -> tuple[str, str]:
-    from ..scenario import library_names, library_text, load_scenario
 
     stem = source[:-5] if source.endswith(".toml") else source
     if stem not in library_names():
@@ -63,8 +65,6 @@ def init_cmd(
                                                       "another file)."),
 ) -> None:
     """Write a commented scenario template (or a copy of a shipped scenario) to start from."""
-    from ..io.output import Kind, check_target, claim, write_file
-    from ..scenario import EXAMPLE_BLOCKS, load_scenario, template_text
 
     if file.suffix != ".toml":
         raise BlastscaleInputError(f"file = {str(file)!r} has no .toml extension: give e.g. {str(file)}.toml")

@@ -27,6 +27,7 @@ from ..report.html import format_charge
 from ..io.results import check_output_folder, output_folder
 from ..planning import plan
 from ..scenario import Scenario, load_scenario
+from ..scenario.lab import LabSpec
 
 
 def _print_plan(p, top: int) -> None:
@@ -95,7 +96,6 @@ def plan_cmd(
 
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
         sc = Scenario.default() if scenario is None else load_scenario(scenario)
-    from ..scenario.lab import LabSpec
 
     members = (sc.lab or LabSpec()).ensemble_3d
     unused = [f"{flag} {v}" for flag, v, given in (("--scheduler", scheduler, scheduler is not None),

@@ -19,6 +19,21 @@ from .._validate import BlastscaleInputError
 from ._app import activity, app, console, count_progress, one_line_warnings, print_json, print_written, table
 from ._signals import ignore_interrupts, set_interrupt_note
 from .flags import SET_VALUES, scenario_with
+from ..scenario import Scenario, load_scenario
+from ..sweeps.grids import parse_assignment
+from ..io.sweep_store import unfinished_chunks
+from ..sweeps.grids import parse_distribution, parse_grid
+from ..io.sweep_store import run_sweep
+from ..sweeps import SweepSpec
+from ..sweeps.grids import parse_number
+from ..sweeps.fragility import fragility
+from .options import check_plot_path
+from rich.table import Table
+import numpy as np
+from ..io.results import legacy_name
+from ..io.sweep_store import open_sweep
+from ..sweeps.runner import run_in_memory
+from ..sweeps.similarity_map import similarity_map
 
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")
 SCHEDULER = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (e.g. tcp://127.0.0.1:8786).")
@@ -29,7 +44,6 @@ SEED = typer.Option(0, "--seed", help="Seed of the Monte Carlo draws (numpy defa
 
 def _scenario(path: Optional[Path], values: Optional[List[str]] = None):
     """The scenario file (or the built-in default) with the ``--set KEY=VALUE`` overrides, as ``run`` reads it."""
-    from ..scenario import Scenario, load_scenario
 
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
         sc = Scenario.default() if path is None else load_scenario(path)
@@ -38,7 +52,6 @@ def _scenario(path: Optional[Path], values: Optional[List[str]] = None):
 
 
 def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
-    from ..sweeps.grids import parse_assignment
 
     out = {}
     for text in items or []:
@@ -51,7 +64,6 @@ def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
 
 def _resume_note(out) -> None:
     """What an interrupted sweep says it kept: its finished chunks, from which the same command resumes."""
-    from ..io.sweep_store import unfinished_chunks
 
     def note() -> str:
         n = unfinished_chunks(out)
@@ -83,9 +95,6 @@ def sweep_cmd(
     the chunks already done. A scenario without \\[scale]: the prototype alone. With --outcomes
     (planar blocks, a \\[scale]): only the first-swing outcomes and largest rotations, about a
     million cases per minute."""
-    from ..sweeps.grids import parse_distribution, parse_grid
-    from ..io.sweep_store import run_sweep
-    from ..sweeps import SweepSpec
 
     base = _scenario(scenario, values)
     grid = _assignments(vary, "--vary", lambda text, key: parse_grid(text, key, numeric=False))
@@ -118,7 +127,6 @@ def sweep_cmd(
 
 def _uniform_range(text: str, name: str) -> tuple:
     lo, sep, hi = text.partition(":")
-    from ..sweeps.grids import parse_number
 
     if not sep:
         raise BlastscaleInputError(f"--uniform {name} = {text!r} is not lo:hi")
@@ -126,7 +134,6 @@ def _uniform_range(text: str, name: str) -> tuple:
 
 
 def _beta(text: str, name: str) -> float:
-    from ..sweeps.grids import parse_number
 
     return parse_number(text, f"--lognormal {name}", "beta")  # its range: blastscale.sweeps.fragility
 
@@ -146,9 +153,6 @@ def fragility_cmd(
     """Probability that the prototype block overturns against the charge, under uncertain fields,
     with a maximum-likelihood lognormal fit (median charge, beta, 95 % bounds). Each draw is
     decided by the first-swing energy criterion (docs/capacity.md), vectorised."""
-    from ..sweeps.fragility import fragility
-    from ..sweeps.grids import parse_grid
-    from .options import check_plot_path
 
     check_plot_path(plot)
     base = _scenario(scenario, values)
@@ -167,7 +171,6 @@ def fragility_cmd(
     if as_json:
         print_json(out, engine="planar")
         return
-    from rich.table import Table
 
     t = Table(title=f"Fragility ({samples} draws per charge, seed {seed})", title_justify="left")
     for c in ("charge W [kg]", "collapsed", "P(overturn)", "binomial s.e."):
@@ -207,14 +210,7 @@ def similarity_map_cmd(
 ) -> None:
     """Where in (lambda, gamma, charge, stand-off) the up-scaled model is trustworthy: its error
     against the prototype (planar rocking or 3D) and whether the outcomes agree (docs/sweeps.md)."""
-    import numpy as np
 
-    from ..io.results import legacy_name
-    from ..io.sweep_store import open_sweep, run_sweep
-    from ..sweeps.grids import parse_grid
-    from ..sweeps.runner import run_in_memory
-    from ..sweeps.similarity_map import similarity_map
-    from .options import check_plot_path
 
     check_plot_path(plot)
     base = _scenario(scenario, values)

@@ -4,6 +4,7 @@ voussoir), for the planner and the test card [m, kg]."""
 from __future__ import annotations
 
 import numpy as np
+from collections import Counter
 
 __all__ = ["spec_dims", "specimen_unit", "specimen_mass", "specimen_density"]
 
@@ -27,7 +28,6 @@ def specimen_unit(spec) -> dict:
     """One unit of the specimen (a drum, a brick, a voussoir): the most frequent body by size (its
     bounding box along x, y, z, ``size_x_m``, ``size_y_m``, ``size_z_m`` [m], rounded to 1e-9 of the
     structure's height), its ``mass_kg`` [kg], and how many ``bodies`` the specimen has."""
-    from collections import Counter
 
     h = spec_dims(spec)[0]
     sizes = [tuple(round(float(x) / h, 9) * h for x in np.ptp(np.asarray(b.vertices), axis=0)) for b in spec.bodies]

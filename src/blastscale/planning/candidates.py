@@ -21,6 +21,9 @@ from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
 from ..blast.explosives import get_explosive
 from .shot import fireability, lab_charge, lab_explosives, safety_envelope
+from .shot import candidate_materials
+from ..structures import RectangularBlock, is_block
+from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
 
 __all__ = ["LAMBDA_DENOMINATORS", "Candidate", "Violation", "Evaluated", "candidates", "evaluate", "scale_label",
            "envelope_block", "envelope_impulsive", "shot_dict"]
@@ -85,7 +88,6 @@ def candidates(lab, prototype_density: float, prototype_height: float, gravity_r
     """Every candidate: the general law at each scale of :data:`LAMBDA_DENOMINATORS` up to the
     tallest specimen the lab builds (and 1), for each material; Hopkinson-Cranz at the one scale
     each material allows (gamma >= 1); each for every specimen burst of ``bursts``."""
-    from .shot import candidate_materials
 
     mats = candidate_materials(lab, prototype_density)
     out = [Candidate("general", 1.0 / n, name, g, b) for b in bursts for n in LAMBDA_DENOMINATORS for name, g in mats]
@@ -191,7 +193,6 @@ def envelope_block(structure):
     """The structure's envelope as one rectangular block (its height, its extent along the blast, x,
     and across it, y; its mean density): the rigid rocking mode the screening's impulsive check and
     timing use for a structure without a planar path (docs/planning.md)."""
-    from ..structures import RectangularBlock, is_block
 
     if is_block(structure):
         return structure
@@ -202,8 +203,6 @@ def envelope_block(structure):
 def envelope_impulsive(envelope, d):
     """The impulsive check t_o p (:func:`~blastscale.similitude.experiment.impulsive_check`) of a design
     on the envelope block of its prototype and on that block scaled by lambda (the specimen's)."""
-    from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
-    from ..structures import RectangularBlock
 
     lam = float(d.factors.length)
     spec = RectangularBlock(height=envelope.height * lam, width=envelope.width * lam, depth=envelope.depth * lam,

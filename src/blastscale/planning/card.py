@@ -22,6 +22,11 @@ from .instruments import instrument_settings, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .shot import (DEFAULT_LAB, Timing, card_charge, fireability, rocking_timing, safety_envelope, threshold_meanings,
                    timing_of)
+from ..structures import is_block
+from ..blast import get_blast_model
+from .plan3d import specimen_scenario
+from pathlib import Path
+import tempfile
 
 __all__ = ["study_test_card", "check_lab"]
 
@@ -99,7 +104,6 @@ def _response(result, spec) -> dict:
 
 
 def _odds(result, spec, ch, lab, collapsed_p):
-    from ..structures import is_block
 
     sc, d = result.scenario, result.design
     if not is_block(result.structure):
@@ -166,7 +170,6 @@ def study_test_card(result, lab=None) -> dict | None:
     lab : LabSpec, optional
         Default: the scenario's ``[lab]``, or every key's default.
     """
-    from ..blast import get_blast_model
 
     d = result.design
     if d is None:
@@ -193,10 +196,7 @@ def study_test_card(result, lab=None) -> dict | None:
     odds = _odds(result, spec, ch, lab, collapsed_p)
     odds3 = None
     if lab.ensemble_3d:
-        import tempfile
-        from pathlib import Path
 
-        from .plan3d import specimen_scenario
 
         with tempfile.TemporaryDirectory(prefix="blastscale-card-") as tmp:
             odds3 = ensemble_odds_3d(specimen_scenario(sc, d, Path(tmp)), prototype_collapsed=collapsed_p,

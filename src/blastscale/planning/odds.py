@@ -29,6 +29,12 @@ from dataclasses import asdict, dataclass
 from typing import Optional
 
 import numpy as np
+from ..blast.parameters import blast_parameters_unchecked
+from ..blast import valid_scaled_distance_range
+from ..sim3d.threads import default_threads
+from ..sweeps import SweepSpec
+from ..sweeps.grids import Distribution
+from ..sweeps.runner import run_chunks
 
 __all__ = ["Tolerances", "Odds", "planar_odds", "ensemble_odds_3d", "Z95", "Z90_ONE_SIDED"]
 
@@ -114,9 +120,8 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
     critical : bool
         Search the specimen's critical charge (the weighing precision that keeps the outcome).
     """
-    from ..blast.parameters import blast_parameters_unchecked
-    from ..rocking import critical_charge, first_swing, first_swing_blast
-    from ..rocking.system import RockingSystem
+    from ..rocking import critical_charge, first_swing, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking.system import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     n = int(samples)
     W0, R0 = float(charge_kg), float(standoff_m)
@@ -128,7 +133,6 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
     rho = np.maximum(1.0 + drho, 0.01)
     base = RockingSystem.from_block(specimen, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model)
-    from ..blast import valid_scaled_distance_range
 
     zlo, zhi = valid_scaled_distance_range(blast_model)
     Z = R / np.cbrt(W)
@@ -189,10 +193,6 @@ def ensemble_odds_3d(specimen_scenario, *, prototype_collapsed: bool, tolerances
         5-95 % band of the largest top displacement of every member, ``top_displacement_p05_m`` and
         ``top_displacement_p95_m`` [m, the specimen's].
     """
-    from ..sim3d.threads import default_threads
-    from ..sweeps import SweepSpec
-    from ..sweeps.grids import Distribution
-    from ..sweeps.runner import run_chunks
 
     sc = specimen_scenario.with_values({"simulation.engine": "3d", "simulation.critical_charge": False})
     rel = {"blast.charge_kg": Distribution("lognormal", (1.0, max(tolerances.charge, 1e-12)))}

@@ -39,6 +39,14 @@ from typing import Callable, Optional
 import numpy as np
 
 from .._validate import BlastscaleInputError
+from ..blast.bursts import lab_burst
+from ..similitude.effects import structure_top
+from ..scenario.lab import SAME_MATERIAL
+from ..study import Study
+from ..blast import get_blast_model
+from .build import spec_dims
+from .debris import reach_3d
+from .odds import ensemble_odds_3d
 
 __all__ = ["ENSEMBLE_3D_DEFAULT", "STAND_HEIGHTS", "design_scenario", "candidate_design", "stand_height", "arrival_spread",
            "screening_error", "specimen_scenario", "similarity_3d", "run_3d"]
@@ -53,8 +61,6 @@ STAND_HEIGHTS = (0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
 def stand_height(design) -> float:
     """The lowest stand [m] of :data:`STAND_HEIGHTS` at which the specimen's charge is a free-air burst
     at its face (:func:`~blastscale.blast.bursts.lab_burst`); one line when none is."""
-    from ..blast.bursts import lab_burst
-    from ..similitude.effects import structure_top
 
     s = design.specimen
     top = structure_top(design.specimen_structure)
@@ -69,7 +75,6 @@ def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[
     """The scenario of a planned design: the prototype's, with ``[scale]`` set to the candidate
     (law, lambda, material or density ratio, the specimen's burst where it is not the prototype's,
     the charge's height on its stand [m]) and the lab table (``lab_spec``) kept."""
-    from ..scenario.lab import SAME_MATERIAL
 
     scale = {"length": candidate.scale, "law": candidate.law,
              "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
@@ -95,7 +100,6 @@ def candidate_design(scenario, structure, lab) -> Callable:
     scenario (:func:`~.planner.design_scenario`; the load model, bursts, contact and duration as the
     Study's, one door), on ``structure`` built once. A free-air candidate stands on the scenario's
     ``scale.specimen_charge_height_m`` or, without one, on :func:`stand_height`'s."""
-    from ..study import Study
 
     given = scenario.scale.specimen_charge_height_m if scenario.scale is not None else None
 
@@ -114,8 +118,6 @@ def arrival_spread(params, structure, scale: float = 1.0) -> float:
     """Arrival-time spread [s] over the front of ``structure`` (prototype dimensions, x ``scale`` for
     the specimen's): from the front's foot (the stand-off) to its top corner (height, half its width
     across the blast), with the blast model's arrival-time fit at ``params`` (charge, stand-off)."""
-    from ..blast import get_blast_model
-    from .build import spec_dims
 
     h, _, dp = (scale * x for x in spec_dims(structure))
     m = get_blast_model(params.blast_model) if isinstance(params.blast_model, str) else params.blast_model
@@ -218,9 +220,6 @@ def run_3d(scenario, ev, lab, *, members: int, tolerances, workers: int = 0, sch
         (``error``, ``specimen_top_m`` [m], ``specimen_reach_m`` [m], ``prototype_reach_m`` [m]) and
         ``odds_3d`` (None with 0 members).
     """
-    from ..study import Study
-    from .debris import reach_3d
-    from .odds import ensemble_odds_3d
 
     sc3 = design_scenario(scenario, ev.candidate, lab, ev.charge_height_m or None).with_values(
         {"simulation.engine": "3d", "simulation.critical_charge": False, "simulation.ensemble_members": 0})

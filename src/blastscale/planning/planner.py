@@ -37,6 +37,12 @@ from .pareto import mark_pareto
 from .plan3d import candidate_design, design_scenario, specimen_scenario
 from .plan3d_designs import designs_3d
 from .shot import DEFAULT_LAB, safety_envelope, timing_of
+from ..blast import blast_parameters
+from ..blast.bursts import model_for_burst
+from ..blast.explosives import EXPLOSIVES, get_explosive
+from .shot import lab_explosives
+from ..blast import get_blast_model
+from ..structures import from_spec, is_block
 
 __all__ = ["plan", "screen", "Plan", "PlanInfeasible", "design_scenario", "QUICK_SAMPLES", "FULL_DESIGNS"]
 
@@ -73,12 +79,10 @@ class Plan:
 def _prototype(scenario, block):
     """The prototype's block (or any structure's envelope block), its nominal first swing, timing and
     safety envelope."""
-    from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing
+    from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     bl, sim = scenario.blast, scenario.simulation
     system = RockingSystem.from_block(block, sim.gravity_m_s2, sim.restitution)
-    from ..blast import blast_parameters
-    from ..blast.bursts import model_for_burst
 
     bm = model_for_burst(bl.blast_model, bl.burst)
     bp = blast_parameters(bl.charge_kg, bl.standoff_m, bm, extrapolate=bl.extrapolate)
@@ -164,8 +168,6 @@ def _infeasible(evs: list, lab) -> str:
 
 def _below_min_charge(group: list, n: int, lab) -> str:
     """Every charge the other limits allow is below the explosive's minimum reliable charge."""
-    from ..blast.explosives import EXPLOSIVES, get_explosive
-    from .shot import lab_explosives
 
     pick = max(group, key=lambda e: e.violations[0].value / e.violations[0].limit)
     v, c, ex = pick.violations[0], pick.candidate, get_explosive(lab.explosive, lab_explosives(lab))
@@ -259,8 +261,6 @@ def screen(scenario, lab, tell=None) -> tuple:
         Whether the planar path plans it (a block on the paper's load), every candidate evaluated
         (``violations`` empty: feasible) and the prototype's record.
     """
-    from ..blast import get_blast_model
-    from ..structures import from_spec, is_block
 
     tell = tell or (lambda *a: None)
     sc, bl = scenario, scenario.blast

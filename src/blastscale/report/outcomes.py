@@ -6,6 +6,7 @@ from __future__ import annotations
 import html
 
 from ..analysis.gravity_alone import STABILITY_EXTENSION_CAP
+from ..planning.card import specimen_timing
 
 __all__ = ["STABILITY_RULE", "stability_words", "stability_lead", "first_peak_rows", "timing_rows", "ARRIVAL_NOTE"]
 
@@ -71,7 +72,6 @@ def timing_rows(result) -> list:
     time from the shock's arrival to its first peak (what the camera must resolve) and the record window
     (detonation to the arrival plus :data:`RECORD_MARGIN` x the whole response: the test card's camera record),
     with or without a ``[lab]`` table. The prototype's value is the specimen's divided by the time factor."""
-    from ..planning.card import specimen_timing
 
     tm = specimen_timing(result)
     if tm is None:

@@ -5,6 +5,12 @@ from __future__ import annotations
 
 import html
 from pathlib import Path
+from .html import _table, format_charge
+from ..io.results import jsonable, write_atomic, write_json
+from . import write_study
+from .html import _img
+import io
+from ..plots.plan import plot_plan
 
 __all__ = ["write_plan", "plan_section"]
 
@@ -16,7 +22,6 @@ def _e(x) -> str:
 def plan_section(p, top: int = 15) -> str:
     """The plan as HTML: the feasible designs (best first, with the reasons of the best) and the
     rejected candidates with their reasons."""
-    from .html import _table, format_charge
 
     rows = [(str(i), d["law"], d["scale_fraction"], d["material"], f"{format_charge(d['explosive_mass_kg'])} "
              f"{d['explosive']}", f"{d['standoff_m'] * 1e3:.4g} mm", f"{d['specimen_height_m'] * 1e3:.4g} mm",
@@ -37,9 +42,6 @@ def write_plan(p, result, folder) -> list[str]:
     """Write ``plan.json``, the best design's study (:func:`~blastscale.report.write_study`: summary.json
     with its ``test_card``, histories, figures, scenario.toml) and ``report.html`` with the plan's section
     into ``folder`` (which must exist). Returns the file names."""
-    from ..io.results import jsonable, write_atomic, write_json
-    from . import write_study
-    from .html import _img
 
     folder = Path(folder)
     png = plan_figure(p)
@@ -54,14 +56,12 @@ def write_plan(p, result, folder) -> list[str]:
 
 def plan_figure(p) -> bytes:
     """The plan's candidates (:func:`~blastscale.plots.plan.plot_plan`) as PNG bytes."""
-    import io
 
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..plots.plan import plot_plan
 
     ax = plot_plan(p)
     buf = io.BytesIO()

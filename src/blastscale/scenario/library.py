@@ -5,6 +5,7 @@ cases (``paper_*``) and a planar block for quick studies (``planar_block``), by 
 from __future__ import annotations
 
 from importlib import resources
+from .._validate import BlastscaleInputError
 
 __all__ = ["library_names", "library_text", "library_source", "TEMPLATE_KINDS", "template_text", "EXAMPLE_BLOCKS"]
 
@@ -40,7 +41,6 @@ def template_text(kind: str, blocks: str = "blocks.json") -> str:
     """The commented scenario template of a structure kind (package data ``scenario/templates/KIND.toml``:
     every key a new user sets, with its unit and range); ``blocks``: the block-model file an ``assembly``
     template names."""
-    from .._validate import BlastscaleInputError
 
     if kind not in TEMPLATE_KINDS:
         raise BlastscaleInputError(f"kind = {kind!r} is not a template: valid kinds are {', '.join(TEMPLATE_KINDS)}")

@@ -21,6 +21,9 @@ from .dataset import assemble, metadata
 from .budget import check_sweep_budget
 import logging
 import warnings
+import signal
+import threading
+from multiprocessing import resource_tracker
 
 __all__ = ["SweepRun", "default_chunk", "run_chunks", "run_in_memory", "payload_hash"]
 
@@ -99,9 +102,6 @@ def _tracker_survives_hangup() -> None:
     SIGINT and SIGTERM itself: a hang-up of the process group then stops the workers and the sweep (one line)
     without killing the tracker, whose replacement would print a KeyError traceback for every semaphore it was
     never told about (Python 3.11-3.13)."""
-    import signal
-    import threading
-    from multiprocessing import resource_tracker
 
     if not hasattr(signal, "SIGHUP") or threading.current_thread() is not threading.main_thread():
         return  # Windows; or a library caller's thread, where signals cannot be set
