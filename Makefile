@@ -25,8 +25,10 @@ run: install
 	mkdir -p results
 	$(BIN)/blastscale run --out results/default --force
 
-# the architecture (import-linter contracts in pyproject.toml), then the whole suite
+# lint and format (ruff, pyproject.toml), the architecture (import-linter contracts), then the whole suite
 test: install
+	$(BIN)/ruff check src tests benchmarks examples
+	$(BIN)/ruff format --check src tests benchmarks examples
 	$(BIN)/lint-imports --no-cache
 	MPLBACKEND=Agg $(BIN)/python -m pytest -q
 

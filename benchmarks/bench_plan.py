@@ -50,18 +50,45 @@ def main() -> None:
     p = plan(sc, lab=lab, workers=a.workers, progress=progress)
     wall = time.perf_counter() - t0
     b = p.designs[0]
-    out = {"benchmark": "plan of the paper's square 10-drum column", "top_3d": a.top, "ensemble_3d": a.members,
-           "duration_s": sc.simulation.duration_s, "workers": a.workers, "wall_s": wall,
-           "screening_done_s": stages.get("3D stage"), "designs": len(p.designs), "rejected": len(p.rejected),
-           "best": {k: b[k] for k in ("law", "scale_fraction", "material", "burst", "explosive", "explosive_mass_kg",
-                                      "standoff_m", "p_outcome_agree", "predicted_first_peak_error", "similarity_error",
-                                      "safety_radius_m", "pareto", "odds_3d")},
-           "cpu_count": os.cpu_count(), "python": platform.python_version(), "target_s": 900.0}
+    out = {
+        "benchmark": "plan of the paper's square 10-drum column",
+        "top_3d": a.top,
+        "ensemble_3d": a.members,
+        "duration_s": sc.simulation.duration_s,
+        "workers": a.workers,
+        "wall_s": wall,
+        "screening_done_s": stages.get("3D stage"),
+        "designs": len(p.designs),
+        "rejected": len(p.rejected),
+        "best": {
+            k: b[k]
+            for k in (
+                "law",
+                "scale_fraction",
+                "material",
+                "burst",
+                "explosive",
+                "explosive_mass_kg",
+                "standoff_m",
+                "p_outcome_agree",
+                "predicted_first_peak_error",
+                "similarity_error",
+                "safety_radius_m",
+                "pareto",
+                "odds_3d",
+            )
+        },
+        "cpu_count": os.cpu_count(),
+        "python": platform.python_version(),
+        "target_s": 900.0,
+    }
     if a.json:
         print(json.dumps(out, indent=1))
     else:
-        print(f"plan of the column: {wall:.1f} s (target 900 s); best {b['scale_fraction']} {b['material']}, "
-              f"P(outcome agrees) {b['p_outcome_agree']}")
+        print(
+            f"plan of the column: {wall:.1f} s (target 900 s); best {b['scale_fraction']} {b['material']}, "
+            f"P(outcome agrees) {b['p_outcome_agree']}"
+        )
 
 
 if __name__ == "__main__":

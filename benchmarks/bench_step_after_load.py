@@ -32,8 +32,12 @@ CASES = {
     "square column, 250 kg at 10 m": (MultiDrumColumn("square"), 250.0, 10.0, 4.0),
     "square column, 650 kg at 10 m": (MultiDrumColumn("square"), 650.0, 10.0, 4.0),
     "circular column, 200 kg at 10 m": (MultiDrumColumn("circular"), 200.0, 10.0, 4.0),
-    "wall 10 blocks, 60 kg at 5 m": (wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=2, units_per_course=5,
-                                          bond="stack"), 60.0, 5.0, 2.0),
+    "wall 10 blocks, 60 kg at 5 m": (
+        wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=2, units_per_course=5, bond="stack"),
+        60.0,
+        5.0,
+        2.0,
+    ),
 }
 
 
@@ -78,11 +82,15 @@ def study(factors=(1.0, 2.0, 4.0)) -> dict:
             x = _top_x(ds)
             fp = float(_first_peak(ds["time"].values, x, 0.1)[1])
             rest = run(st, W * 1e-3, R, T, f, "kingery-bulmash")[0].dataset  # Z beyond masi2021's fits
-            row = {"first_peak_m": fp, "collapsed": bool(ds.attrs["collapsed"]),
-                   "max_rotation_rad": float(ds["tilt"].max()),
-                   "drift_at_rest_mm": 1e3 * float(np.abs(rest["point_displacement"].sel(point=rest.attrs["top_point"])
-                                                          .values).max()),
-                   "delivered_impulse_Ns": float(np.linalg.norm(r.summary()["delivered_impulse_Ns"])), "cpu_s": cpu}
+            row = {
+                "first_peak_m": fp,
+                "collapsed": bool(ds.attrs["collapsed"]),
+                "max_rotation_rad": float(ds["tilt"].max()),
+                "drift_at_rest_mm": 1e3
+                * float(np.abs(rest["point_displacement"].sel(point=rest.attrs["top_point"]).values).max()),
+                "delivered_impulse_Ns": float(np.linalg.norm(r.summary()["delivered_impulse_Ns"])),
+                "cpu_s": cpu,
+            }
             base = base or row
             row["first_peak_change"] = fp / base["first_peak_m"] - 1.0 if base["first_peak_m"] else 0.0
             row["outcome_unchanged"] = row["collapsed"] == base["collapsed"]
@@ -101,6 +109,8 @@ if __name__ == "__main__":
         print(f"load average {res.pop('load_average'):.2f}")
         for name, rows in res.items():
             for f, r in rows.items():
-                print(f"{name:32s} {f:3s} first peak {r['first_peak_m']:.6g} m ({r['first_peak_change']:+.2%}) "
-                      f"collapsed {r['collapsed']!s:5s} drift at rest {r['drift_at_rest_mm']:.4f} mm  impulse "
-                      f"{r['delivered_impulse_Ns']:.6g} N s  cpu {r['cpu_s']:.2f} s  x{r['speedup']:.2f}")
+                print(
+                    f"{name:32s} {f:3s} first peak {r['first_peak_m']:.6g} m ({r['first_peak_change']:+.2%}) "
+                    f"collapsed {r['collapsed']!s:5s} drift at rest {r['drift_at_rest_mm']:.4f} mm  impulse "
+                    f"{r['delivered_impulse_Ns']:.6g} N s  cpu {r['cpu_s']:.2f} s  x{r['speedup']:.2f}"
+                )

@@ -54,15 +54,20 @@ def run(structure, load, duration: float, changes: dict, disable: int, enable: i
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # an explicit contact is checked against the blast: same settings
             t0 = _cpu()
-            r = simulate_structure(structure, load, duration, contact=replace(default_contact(structure), **changes),
-                                   record_every=20)
+            r = simulate_structure(
+                structure, load, duration, contact=replace(default_contact(structure), **changes), record_every=20
+            )
             cpu = _cpu() - t0
     finally:
         simulate_module.integrate = engine
     s, ds = r.summary(), r.dataset
     top = ds["point_displacement"].sel(point=ds.attrs["top_point"], component="x").values
-    return {"cpu_s": cpu, "collapsed": bool(s["collapsed"]), "fallen_blocks": s.get("fallen_blocks"),
-            "top_max_x_m": float(np.max(top))}
+    return {
+        "cpu_s": cpu,
+        "collapsed": bool(s["collapsed"]),
+        "fallen_blocks": s.get("fallen_blocks"),
+        "top_max_x_m": float(np.max(top)),
+    }
 
 
 def study(duration: float = 0.25) -> dict:
@@ -76,7 +81,9 @@ def study(duration: float = 0.25) -> dict:
         out[name]["speedup"] = base["cpu_s"] / out[name]["cpu_s"]
         out[name]["top_max_x_change"] = out[name]["top_max_x_m"] / base["top_max_x_m"] - 1.0
         out[name]["outcome_unchanged"] = (out[name]["collapsed"], out[name]["fallen_blocks"]) == (
-            base["collapsed"], base["fallen_blocks"])
+            base["collapsed"],
+            base["fallen_blocks"],
+        )
     return out
 
 
@@ -89,5 +96,7 @@ if __name__ == "__main__":
         print(f"load average {res['load_average']:.2f}, {dur:g} s")
         for name in VARIANTS:
             r = res[name]
-            print(f"{name:16s} cpu {r['cpu_s']:6.2f} s  x{r['speedup']:.2f}  top {r['top_max_x_m']:.5f} m "
-                  f"({r['top_max_x_change']:+.2%})  collapsed {r['collapsed']}  fallen {r['fallen_blocks']}")
+            print(
+                f"{name:16s} cpu {r['cpu_s']:6.2f} s  x{r['speedup']:.2f}  top {r['top_max_x_m']:.5f} m "
+                f"({r['top_max_x_change']:+.2%})  collapsed {r['collapsed']}  fallen {r['fallen_blocks']}"
+            )

@@ -21,11 +21,23 @@ from blastscale.blast import blast_parameters
 
 def _decay_for(ratio: float) -> float:
     """d with (e^-d + d - 1)/d^2 = ratio (the generator's own root)."""
-    return brentq(lambda d: (math.exp(-d) + d - 1.0) / d ** 2 - ratio, 1e-6, 60.0)
+    return brentq(lambda d: (math.exp(-d) + d - 1.0) / d**2 - ratio, 1e-6, 60.0)
 
 
-def synthetic_trace(seed: int, charge, distance, *, rate_hz=2.0e6, noise=0.02, offset=0.05, ringing=0.10,
-                    ring_hz=300e3, pre_s=2e-4, side_on=False, blast_model="kingery-bulmash"):
+def synthetic_trace(
+    seed: int,
+    charge,
+    distance,
+    *,
+    rate_hz=2.0e6,
+    noise=0.02,
+    offset=0.05,
+    ringing=0.10,
+    ring_hz=300e3,
+    pre_s=2e-4,
+    side_on=False,
+    blast_model="kingery-bulmash",
+):
     """(t [s], p [Pa], truth) of a gauge at ``distance`` [m] from ``charge`` [kg TNT]."""
     bp = blast_parameters(charge, distance, blast_model)
     P = bp.incident_pressure if side_on else bp.reflected_pressure
@@ -36,9 +48,10 @@ def synthetic_trace(seed: int, charge, distance, *, rate_hz=2.0e6, noise=0.02, o
     t = np.arange(-pre_s, ta + 3.0 * to, 1.0 / rate_hz)
     tau = t - ta
     x = np.clip(tau, 0.0, None) / to
-    p = np.where(tau >= 0, P * (1 - x) * np.exp(-d * x), 0.0)   # with Friedlander's own negative phase
-    ring = np.where(tau >= 0, ringing * P * np.sin(2 * np.pi * ring_hz * tau) * np.exp(-np.clip(tau, 0, None) / 10e-6),
-                    0.0)
+    p = np.where(tau >= 0, P * (1 - x) * np.exp(-d * x), 0.0)  # with Friedlander's own negative phase
+    ring = np.where(
+        tau >= 0, ringing * P * np.sin(2 * np.pi * ring_hz * tau) * np.exp(-np.clip(tau, 0, None) / 10e-6), 0.0
+    )
     signal = p + ring + offset * P + noise * P * rng.standard_normal(t.size)
     return t, signal, {"peak": P, "impulse": i, "arrival": ta, "duration": to, "decay": d}
 

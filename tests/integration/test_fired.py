@@ -72,25 +72,36 @@ def write_shot(folder, factor=FACTOR, seed=0, restitution=None):
     R = d.specimen.standoff_m
     charge_at = np.array([block.front_x - R, 0.0, 0.0])
     gauge = np.array([block.front_x, 0.0, 0.05])
-    t, p, _ = synthetic_trace(seed, W, float(np.linalg.norm(gauge - charge_at)), blast_model="masi2021", rate_hz=4e6,
-                              pre_s=1e-3)
-    np.savetxt(folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",", header="time_us,g1_kPa",
-               comments="")
+    t, p, _ = synthetic_trace(
+        seed, W, float(np.linalg.norm(gauge - charge_at)), blast_model="masi2021", rate_hz=4e6, pre_s=1e-3
+    )
+    np.savetxt(
+        folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",", header="time_us,g1_kPa", comments=""
+    )
     bp = blast_parameters(W, R, "masi2021")
     system = RockingSystem.from_block(block, d.specimen_gravity, restitution)
     frames = np.arange(-0.01, d.specimen_duration, 1.0 / FPS)
     after = np.clip(frames - bp.arrival_time, 0.0, None)
     res = DEFAULT_SOLVER.simulate(system, bp.pulse("friedlander"), d.specimen_duration, t_eval=after)
     x, z = synthetic_track(seed, frames, res.theta_eval, 0.0, 0.5, block.b)
-    np.savetxt(folder / "tracks.csv", np.column_stack([frames * 1e3, x * 1e3, z * 1e3]), delimiter=",",
-               header="time_ms,top_x_mm,top_z_mm", comments="")
+    np.savetxt(
+        folder / "tracks.csv",
+        np.column_stack([frames * 1e3, x * 1e3, z * 1e3]),
+        delimiter=",",
+        header="time_ms,top_x_mm,top_z_mm",
+        comments="",
+    )
     th0 = float(res.peak_angles[0])
     true_peak = block.b * (1 - np.cos(th0)) + 0.5 * np.sin(th0)  # the top centre, about the rear toe
     sc_path = folder / "shot.toml"
     init = base.lab.initiator_tnt_kg  # the lab's initiator (RP-80 by default: 0.22 g TNT) is part of W
     sc_path.write_text(SCENARIO.format(charge=(W - init) / 1.19, gx=block.front_x))  # C-4, impulse (UFC Table 2-1)
-    return sc_path, {"first_peak_m": true_peak, "first_peak_time_s": float(res.peak_times[0]) + bp.arrival_time,
-                         "charge_tnt_kg": W, "designed_tnt_kg": d.specimen_charge_kg}
+    return sc_path, {
+        "first_peak_m": true_peak,
+        "first_peak_time_s": float(res.peak_times[0]) + bp.arrival_time,
+        "charge_tnt_kg": W,
+        "designed_tnt_kg": d.specimen_charge_kg,
+    }
 
 
 def load_scenario_text(text):
@@ -179,15 +190,25 @@ def test_column_in_3d_end_to_end(tmp_path):
     front = d.specimen_structure.front_x
     dist = float(np.hypot(R, 0.05))
     t, p, _ = synthetic_trace(1, W, dist, rate_hz=4e6, pre_s=1e-3)
-    np.savetxt(tmp_path / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",",
-               header="time_us,g1_kPa", comments="")
+    np.savetxt(
+        tmp_path / "gauges.csv",
+        np.column_stack([t * 1e6, p / 1e3]),
+        delimiter=",",
+        header="time_us,g1_kPa",
+        comments="",
+    )
     truth = marker_history(simulate_specimen(base, d, W, R, "3d"), (0.0, 0.0, 0.3))
     frames = np.arange(-0.01, truth["t"][-1], 1.0 / FPS)
     rng = np.random.default_rng(1)
     x = np.interp(frames, truth["t"], truth["ux"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
     z = 0.3 + np.interp(frames, truth["t"], truth["uz"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    np.savetxt(tmp_path / "tracks.csv", np.column_stack([frames * 1e3, x * 1e3, z * 1e3]), delimiter=",",
-               header="time_ms,top_x_mm,top_z_mm", comments="")
+    np.savetxt(
+        tmp_path / "tracks.csv",
+        np.column_stack([frames * 1e3, x * 1e3, z * 1e3]),
+        delimiter=",",
+        header="time_ms,top_x_mm,top_z_mm",
+        comments="",
+    )
     path = tmp_path / "shot.toml"
     path.write_text(COLUMN.format(gx=front))
     s = as_fired(load_scenario(path)).summary
@@ -210,7 +231,9 @@ def test_calibrated_restitution_is_the_tracks(tmp_path):
     assert c["restitution"] == pytest.approx(0.80, abs=0.005)
     assert 0 < c["restitution_ci95"] < 0.005
     assert c["misfit_rms_m"] == pytest.approx(5e-5, rel=0.2)
-    assert c["charge_factor"] * s["refit_charge_tnt_kg"] == pytest.approx(FACTOR * s["designed_charge_tnt_kg"], rel=0.01)
+    assert c["charge_factor"] * s["refit_charge_tnt_kg"] == pytest.approx(
+        FACTOR * s["designed_charge_tnt_kg"], rel=0.01
+    )
     assert c["prototype_outcome"] == "stands" and c["prototype_max_rotation_rad"] > 0
 
 

@@ -30,8 +30,12 @@ def box(x0, x1, y0, y1, z0, z1) -> list:
 
 
 #: Two stacked 0.6 x 0.6 x 1.5 m prototype blocks (3 m tall, centred on the origin): a block-model file.
-TWO_BLOCKS = {"blocks": [{"name": "base", "vertices": box(-0.3, 0.3, -0.3, 0.3, 0.0, 1.5)},
-                         {"name": "top", "vertices": box(-0.3, 0.3, -0.3, 0.3, 1.5, 3.0)}]}
+TWO_BLOCKS = {
+    "blocks": [
+        {"name": "base", "vertices": box(-0.3, 0.3, -0.3, 0.3, 0.0, 1.5)},
+        {"name": "top", "vertices": box(-0.3, 0.3, -0.3, 0.3, 1.5, 3.0)},
+    ]
+}
 
 ASSEMBLY = """
 title = "fired: two stacked blocks from a block-model file at 1/10, 3D"
@@ -73,8 +77,9 @@ def write_assembly_shot(folder, duration=1.0, factor=FACTOR):
     W = factor * d.specimen_charge_kg
     R = d.specimen.standoff_m
     t, p, _ = synthetic_trace(1, W, float(np.hypot(R, 0.05)), rate_hz=4e6, pre_s=1e-3)
-    np.savetxt(folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",",
-               header="time_us,g1_kPa", comments="")
+    np.savetxt(
+        folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",", header="time_us,g1_kPa", comments=""
+    )
     run = simulate_specimen(base, d, W, R, "3d")
     truth = {n: marker_history(run, p) for n, p in MARKERS.items()}
     frames = np.arange(-0.01, truth["top"]["t"][-1], 1.0 / FPS)
@@ -159,19 +164,26 @@ def test_calibrated_friction_is_the_tracks(tmp_path, capsys):
     from blastscale._validate import BlastscaleInputError
     from blastscale.fired.calibrate import calibrate_friction
 
-    (tmp_path / "slab.json").write_text(json.dumps({"blocks": [{"name": "slab",
-                                                                "vertices": box(-0.3, 0.3, -0.5, 0.5, 0.0, 0.5)}]}))
+    (tmp_path / "slab.json").write_text(
+        json.dumps({"blocks": [{"name": "slab", "vertices": box(-0.3, 0.3, -0.5, 0.5, 0.0, 0.5)}]})
+    )
     path = tmp_path / "shot.toml"
     path.write_text(SLAB.format(friction=0.4))
     true = load_scenario(path)
     d = Study(true).check().design
-    h = marker_history(simulate_specimen(true, d, d.specimen_charge_kg, d.specimen.standoff_m, "3d"),
-                       (-0.03, 0.0, 0.025))
+    h = marker_history(
+        simulate_specimen(true, d, d.specimen_charge_kg, d.specimen.standoff_m, "3d"), (-0.03, 0.0, 0.025)
+    )
     frames = np.arange(-0.01, h["t"][-1], 1.0 / FPS)
     rng = np.random.default_rng(2)
     x = -0.03 + np.interp(frames, h["t"], h["ux"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    np.savetxt(tmp_path / "tracks.csv", np.column_stack([frames * 1e3, x * 1e3]), delimiter=",",
-               header="time_ms,front_x_mm", comments="")
+    np.savetxt(
+        tmp_path / "tracks.csv",
+        np.column_stack([frames * 1e3, x * 1e3]),
+        delimiter=",",
+        header="time_ms,front_x_mm",
+        comments="",
+    )
     path.write_text(SLAB.format(friction=0.7))
     s = as_fired(load_scenario(path), calibrate=["friction"]).summary
     c = s["calibration"]
@@ -181,8 +193,9 @@ def test_calibrated_friction_is_the_tracks(tmp_path, capsys):
     assert c["misfit_rms_m"] == pytest.approx(5e-5, rel=0.2)
     assert c["evaluations"] <= 18
     assert c["prototype_outcome"] == "stands"
-    assert c["prototype_first_peak_m"]["front"] == pytest.approx(10.0 * s["markers"]["front"]["max_displacement_m"],
-                                                                 rel=0.03)
+    assert c["prototype_first_peak_m"]["front"] == pytest.approx(
+        10.0 * s["markers"]["front"]["max_displacement_m"], rel=0.03
+    )
     from blastscale.cli.fired import _print
     from blastscale.report.fired import _calibration
 

@@ -28,8 +28,11 @@ def _check(p, lab):
     assert 0 < o["top_displacement_p05_m"] <= o["top_displacement_p95_m"]
     assert top["p_outcome_agree"] == o["p_outcome_agree"] and top["pareto"] is True  # alone with odds: on the front
     for d in p.designs:
-        assert d["explosive_mass_kg"] >= d["explosive_min_charge_kg"] and d["specimen_height_m"] <= \
-            lab.specimen_max_height_m and d["safety_radius_m"] <= lab.space_radius_m
+        assert (
+            d["explosive_mass_kg"] >= d["explosive_min_charge_kg"]
+            and d["specimen_height_m"] <= lab.specimen_max_height_m
+            and d["safety_radius_m"] <= lab.space_radius_m
+        )
     assert [d["odds_3d"] is not None for d in p.designs] == [True] + [False] * (len(p.designs) - 1)
 
 
@@ -46,9 +49,14 @@ def test_block_model_file_plans(tmp_path):
     box = lambda n, z0, z1: {"name": n, "vertices": [[x, y, z] for x in (0, 0.6) for y in (0, 1) for z in (z0, z1)]}
     f = tmp_path / "stack.json"
     f.write_text(json.dumps({"blocks": [box("A", 0.0, 1.2), box("B", 1.2, 2.4)]}))
-    sc = Scenario.from_dict({"structure": {"kind": "assembly", "file": str(f), "density_kg_m3": 2400.0},
-                             "blast": {"charge_kg": 5.0, "standoff_m": 4.0},
-                             "simulation": {"engine": "3d", "duration_s": 0.3}}, source="test")
+    sc = Scenario.from_dict(
+        {
+            "structure": {"kind": "assembly", "file": str(f), "density_kg_m3": 2400.0},
+            "blast": {"charge_kg": 5.0, "standoff_m": 4.0},
+            "simulation": {"engine": "3d", "duration_s": 0.3},
+        },
+        source="test",
+    )
     lab = LabSpec(**TINY)
     _check(plan(sc, lab=lab), lab)
 
@@ -57,8 +65,9 @@ def test_block_model_file_plans(tmp_path):
 def test_a_block_under_clearing_with_a_stand_plans_in_3d():
     """Clearing and a free-air specimen charge are planned (were refused): the 3D path, each design says
     its burst and the stand's height."""
-    sc = Scenario.default().with_values({"duration_s": 0.3, "blast.clearing": True, "blast.blast_model":
-                                         "kingery-bulmash"})
+    sc = Scenario.default().with_values(
+        {"duration_s": 0.3, "blast.clearing": True, "blast.blast_model": "kingery-bulmash"}
+    )
     lab = LabSpec(specimen_max_height_m=1.0, bursts=["surface", "free-air"], **TINY)
     p = plan(sc, lab=lab)
     _check(p, lab)
@@ -87,9 +96,14 @@ def test_threads_and_dask_give_the_same_odds(tmp_path):
     box = lambda n, z0, z1: {"name": n, "vertices": [[x, y, z] for x in (0, 0.6) for y in (0, 1) for z in (z0, z1)]}
     f = tmp_path / "stack.json"
     f.write_text(json.dumps({"blocks": [box("A", 0.0, 1.2), box("B", 1.2, 2.4)]}))
-    sc = Scenario.from_dict({"structure": {"kind": "assembly", "file": str(f), "density_kg_m3": 2400.0},
-                             "blast": {"charge_kg": 5.0, "standoff_m": 4.0},
-                             "simulation": {"engine": "3d", "duration_s": 0.2}}, source="test")
+    sc = Scenario.from_dict(
+        {
+            "structure": {"kind": "assembly", "file": str(f), "density_kg_m3": 2400.0},
+            "blast": {"charge_kg": 5.0, "standoff_m": 4.0},
+            "simulation": {"engine": "3d", "duration_s": 0.2},
+        },
+        source="test",
+    )
     lab = LabSpec(**TINY)
     assert plan(sc, lab=lab).designs[0]["odds_3d"] == plan(sc, lab=lab, workers=1).designs[0]["odds_3d"]
 
@@ -98,9 +112,14 @@ def test_a_block_model_with_supports_ranks_on_its_comparison_alone():
     """A COMPAS arch on two is_support abutments: its specimen cannot be written as a block-model file, so
     its best design has the 3D comparison and no ensemble (a one-line warning), not a failed plan."""
     data = Path(__file__).resolve().parents[1] / "data" / "compas_dem_arch_rotated.json"
-    sc = Scenario.from_dict({"structure": {"kind": "assembly", "file": str(data)},
-                             "blast": {"charge_kg": 2.0, "standoff_m": 4.0},
-                             "simulation": {"engine": "3d", "duration_s": 0.2}}, source="test")
+    sc = Scenario.from_dict(
+        {
+            "structure": {"kind": "assembly", "file": str(data)},
+            "blast": {"charge_kg": 2.0, "standoff_m": 4.0},
+            "simulation": {"engine": "3d", "duration_s": 0.2},
+        },
+        source="test",
+    )
     with pytest.warns(UserWarning, match="no 3D ensemble.*supports"):
         p = plan(sc, lab=LabSpec(**TINY))
     d = p.designs[0]

@@ -50,8 +50,10 @@ def test_a_column_after_the_load_runs_on_the_longer_step_at_the_same_recorded_ti
     col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54)
     load = make_load("A", col, blast_parameters(250.0, 10.0))
     c = default_contact(col)
-    runs = {m: simulate_structure(col, load, 0.6, contact=replace(c, step_after_load=m), record_every=4)
-            for m in ("same", "double")}
+    runs = {
+        m: simulate_structure(col, load, 0.6, contact=replace(c, step_after_load=m), record_every=4)
+        for m in ("same", "double")
+    }
     ds = {m: r.dataset for m, r in runs.items()}
     t = ds["same"]["time"].values
     assert np.array_equal(t, ds["double"]["time"].values)
@@ -62,8 +64,9 @@ def test_a_column_after_the_load_runs_on_the_longer_step_at_the_same_recorded_ti
     assert peaks["double"] == pytest.approx(peaks["same"], rel=1e-2)
     diff = np.max(np.abs(x["double"] - x["same"])) / np.max(np.abs(x["same"]))
     assert 1e-6 < diff < 5e-2  # it did change (the longer step was taken)
-    np.testing.assert_array_equal(runs["same"].summary()["delivered_impulse_Ns"],
-                                  runs["double"].summary()["delivered_impulse_Ns"])
+    np.testing.assert_array_equal(
+        runs["same"].summary()["delivered_impulse_Ns"], runs["double"].summary()["delivered_impulse_Ns"]
+    )
     assert ds["double"].attrs["setting_step_after_load"] == "double"
 
 
@@ -74,8 +77,22 @@ def test_the_column_command_takes_the_old_step_and_names_a_bad_value(capsys):
 
     from blastscale.cli import main
 
-    base = ["column", "--drums", "2", "--height", "2", "--top-width", "1.6", "--charge", "250", "--standoff", "10",
-            "--duration", "0.02", "--json"]
+    base = [
+        "column",
+        "--drums",
+        "2",
+        "--height",
+        "2",
+        "--top-width",
+        "1.6",
+        "--charge",
+        "250",
+        "--standoff",
+        "10",
+        "--duration",
+        "0.02",
+        "--json",
+    ]
     for flag, want in (([], "double"), (["--step-after-load", "same"], "same")):
         with pytest.raises(SystemExit) as e:
             main(base + flag)

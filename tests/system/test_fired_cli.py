@@ -32,12 +32,25 @@ def test_example_json_has_the_issues_keys(capsys):
     code, out, err = cli(capsys, "fired", "example_shot", "--json")
     assert code in (0, None), err
     s = json.loads(out)["as_fired"]
-    for k in ("effective_charge_tnt_kg", "effective_charge_from_pressure_tnt_kg", "gauges", "markers",
-              "prototype_markers", "verdict"):
+    for k in (
+        "effective_charge_tnt_kg",
+        "effective_charge_from_pressure_tnt_kg",
+        "gauges",
+        "markers",
+        "prototype_markers",
+        "verdict",
+    ):
         assert k in s
     g = s["gauges"]["g1"]
-    for k in ("peak_pressure_Pa", "impulse_Pa_s", "arrival_time_s", "positive_duration_s", "decay",
-              "predicted_peak_pressure_Pa", "predicted_impulse_Pa_s"):
+    for k in (
+        "peak_pressure_Pa",
+        "impulse_Pa_s",
+        "arrival_time_s",
+        "positive_duration_s",
+        "decay",
+        "predicted_peak_pressure_Pa",
+        "predicted_impulse_Pa_s",
+    ):
         assert isinstance(g[k], float)
     m = s["markers"]["top"]
     for k in ("first_peak_m", "first_peak_time_s", "predicted_first_peak_m", "refit_first_peak_m"):
@@ -54,8 +67,9 @@ def test_out_writes_the_folder(capsys, tmp_path):
     code, _, err = cli(capsys, "fired", str(_copy(tmp_path)), "--out", str(out))
     assert code in (0, None), err
     names = sorted(p.name for p in out.iterdir())
-    assert names == sorted(["summary.json", "scenario.toml", "report.html", "fired_gauge_g1.png",
-                            "fired_marker_top.png"])
+    assert names == sorted(
+        ["summary.json", "scenario.toml", "report.html", "fired_gauge_g1.png", "fired_marker_top.png"]
+    )
     s = json.loads((out / "summary.json").read_text())
     assert "blastscale" in s["versions"] and s["as_fired"]["verdict"].startswith("As fired: ")
     assert "As fired" in (out / "report.html").read_text()
@@ -65,13 +79,22 @@ BAD = [
     ("gauges.csv", lambda t: "", "gauges.csv: no column, row 1: the file is empty"),
     ("gauges.csv", lambda t: t.replace("g1_kPa", "g1_atm", 1), "gauges.csv: column 'g1_atm', row 1: unknown unit"),
     ("gauges.csv", lambda t: t.replace("g1_kPa", "g9_kPa", 1), "gauges.csv: column 'g9_kPa', row 1: gauge 'g9' has no"),
-    ("gauges.csv", lambda t: t.replace("\n-499.5,303.701", "\n-499.5,nan", 1),
-     "gauges.csv: column 'g1_kPa', row 3: value 'nan'"),
-    ("gauges.csv", lambda t: t.replace("\n-499.5,", "\n-500,", 1), ("gauges.csv: column 'time_us', row 3: time -500 is "
-     "not above the previous -500")),
+    (
+        "gauges.csv",
+        lambda t: t.replace("\n-499.5,303.701", "\n-499.5,nan", 1),
+        "gauges.csv: column 'g1_kPa', row 3: value 'nan'",
+    ),
+    (
+        "gauges.csv",
+        lambda t: t.replace("\n-499.5,", "\n-500,", 1),
+        ("gauges.csv: column 'time_us', row 3: time -500 is not above the previous -500"),
+    ),
     ("tracks.csv", lambda t: t.replace("top_z_mm", "top_z_in", 1), "tracks.csv: column 'top_z_in', row 1: unknown"),
-    ("tracks.csv", lambda t: t.replace("top_x_mm", "side_x_mm", 1), ("tracks.csv: column 'side_x_mm', row 1: marker "
-     "'side' has no")),
+    (
+        "tracks.csv",
+        lambda t: t.replace("top_x_mm", "side_x_mm", 1),
+        ("tracks.csv: column 'side_x_mm', row 1: marker 'side' has no"),
+    ),
 ]
 
 

@@ -88,10 +88,28 @@ def test_every_template_runs(capsys, tmp_path, kind):
 # -- deliverable 2: faults --------------------------------------------------------------------------------------
 def test_names_too_long_are_one_line_before_any_work(capsys, tmp_path, planar, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    for argv, name in [(["run", planar, "--out", LONG], "out"), (["run", planar, "--out", f"{LONG}/r"], "out"),
-                       (["rock", "--charge", "50", "--standoff", "2", "--alpha-deg", "15", "--height", "10",
-                         "--plot", f"{LONG}.png"], "plot"),
-                       (["init", f"{LONG}.toml"], "file"), (["run", f"{LONG}.toml"], "scenario")]:
+    for argv, name in [
+        (["run", planar, "--out", LONG], "out"),
+        (["run", planar, "--out", f"{LONG}/r"], "out"),
+        (
+            [
+                "rock",
+                "--charge",
+                "50",
+                "--standoff",
+                "2",
+                "--alpha-deg",
+                "15",
+                "--height",
+                "10",
+                "--plot",
+                f"{LONG}.png",
+            ],
+            "plot",
+        ),
+        (["init", f"{LONG}.toml"], "file"),
+        (["run", f"{LONG}.toml"], "scenario"),
+    ]:
         code, _, err = cli(capsys, *argv)
         assert code == 2 and one_line(err) and err.startswith(f"error: {name} = 'aaa"), (argv, err)
         assert "too long" in err or "File name too long" in err, err
@@ -111,13 +129,22 @@ def test_standard_output_full_or_closed_is_one_line_exit_2(tmp_path, planar):
     with open("/dev/full", "w") as full:
         for json_flag in ([], ["--json"]):
             p = subprocess.run(argv + json_flag, stdout=full, stderr=subprocess.PIPE, text=True, env=env)
-            assert p.returncode == 2 and p.stderr == ("error: standard output cannot be written: no space left on "
-                                                      "the device (what was printed is incomplete; files written "
-                                                      "are whole)\n"), p.stderr
-    p = subprocess.run(BLASTSCALE + ["run", planar, "--out", tmp_path / "r"], stdout=subprocess.PIPE,
-                       stderr=subprocess.PIPE, text=True, env=env, preexec_fn=lambda: os.close(1))
-    assert p.returncode == 2 and p.stderr == ("error: standard output is closed: give it a file or /dev/null "
-                                              "(> out.txt); nothing was run\n"), p.stderr
+            assert p.returncode == 2 and p.stderr == (
+                "error: standard output cannot be written: no space left on "
+                "the device (what was printed is incomplete; files written "
+                "are whole)\n"
+            ), p.stderr
+    p = subprocess.run(
+        BLASTSCALE + ["run", planar, "--out", tmp_path / "r"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+        preexec_fn=lambda: os.close(1),
+    )
+    assert p.returncode == 2 and p.stderr == (
+        "error: standard output is closed: give it a file or /dev/null (> out.txt); nothing was run\n"
+    ), p.stderr
     assert sorted(x.name for x in tmp_path.iterdir()) == ["planar.toml"]
 
 
@@ -126,8 +153,12 @@ def test_a_control_character_in_the_title_is_refused_at_the_schema(capsys, tmp_p
     f = tmp_path / "t.toml"
     f.write_text(planar.read_text().replace('title = "', f'title = "ab{char}', 1))
     rc, _, err = cli(capsys, "run", f, "--out", tmp_path / "r")
-    assert rc == 2 and one_line(err) and "t.toml: title = 'ab" in err and f"the control character {code} at " \
-        "position 3" in err
+    assert (
+        rc == 2
+        and one_line(err)
+        and "t.toml: title = 'ab" in err
+        and f"the control character {code} at position 3" in err
+    )
     assert not (tmp_path / "r").exists()
     f.write_text(planar.read_text().replace('title = "', 'title = "tab\\tand\\nline ', 1))  # still allowed
     assert load_scenario(f).title.startswith("tab\tand\nline ")
@@ -145,14 +176,27 @@ def test_a_control_character_in_a_block_name_is_refused_before_any_run(capsys, t
 def test_sighup_to_the_process_group_of_a_two_worker_sweep_is_the_line_and_nothing_else(tmp_path, planar):
     pytest.importorskip("distributed")
     marker = tmp_path.parent / f"{tmp_path.name}.m"
-    args = ["sweep", planar, "--vary", "standoff_m=1.5:4:6", "--chunk", "1", "--workers", "2", "--out",
-            tmp_path / "s.zarr"]
+    args = [
+        "sweep",
+        planar,
+        "--vary",
+        "standoff_m=1.5:4:6",
+        "--chunk",
+        "1",
+        "--workers",
+        "2",
+        "--out",
+        tmp_path / "s.zarr",
+    ]
     p = spawn(args, tmp_path, pause="sweep:chunks=2", marker=marker, group=True)
     wait_for_marker(p, marker)
     os.killpg(p.pid, signal.SIGHUP)
     _, err = p.communicate(timeout=120)
-    assert p.returncode == 129 and err.startswith("error: hung up (SIGHUP): 2 finished chunks kept") \
-        and err.count("\n") == 1, err  # no resource-tracker KeyError tracebacks, no 'relaunching' warning
+    assert (
+        p.returncode == 129
+        and err.startswith("error: hung up (SIGHUP): 2 finished chunks kept")
+        and err.count("\n") == 1
+    ), err  # no resource-tracker KeyError tracebacks, no 'relaunching' warning
 
 
 @pytest.mark.parametrize("value", ["[" * 5000 + "]" * 5000, "{x=" * 2000 + "1" + "}" * 2000])
@@ -188,9 +232,22 @@ def test_a_utf8_byte_order_mark_is_accepted_in_toml_and_json(capsys, tmp_path, p
 
 def test_a_device_is_not_a_missing_file(capsys, tmp_path, planar):
     code, _, err = cli(capsys, "run", "/dev/zero")
-    assert code == 2 and one_line(err) and "scenario = '/dev/zero' cannot be read: not a file (a folder or a device)" in err
-    code, _, err = cli(capsys, "run", planar, "--set", "structure.kind=assembly", "--set", "structure.file=/dev/zero",
-                       "--out", tmp_path / "r")
+    assert (
+        code == 2
+        and one_line(err)
+        and "scenario = '/dev/zero' cannot be read: not a file (a folder or a device)" in err
+    )
+    code, _, err = cli(
+        capsys,
+        "run",
+        planar,
+        "--set",
+        "structure.kind=assembly",
+        "--set",
+        "structure.file=/dev/zero",
+        "--out",
+        tmp_path / "r",
+    )
     assert code == 2 and one_line(err) and "no such file" not in err, err
     assert sorted(x.name for x in tmp_path.iterdir()) == ["planar.toml"]
 
@@ -215,4 +272,6 @@ def test_an_arch_of_one_voussoir_names_the_field(capsys, tmp_path):
     assert cli(capsys, "init", "--kind", "arch", f)[0] == 0
     f.write_text(f.read_text().replace("voussoirs = 15 ", "voussoirs = 1  "))
     code, _, err = cli(capsys, "run", f, "--out", tmp_path / "r")
-    assert code == 2 and one_line(err) and "structure.voussoirs = 1 is out of range: valid range is [2, 1000]" in err, err
+    assert code == 2 and one_line(err) and "structure.voussoirs = 1 is out of range: valid range is [2, 1000]" in err, (
+        err
+    )

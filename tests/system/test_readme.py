@@ -24,7 +24,7 @@ NOT_CHEAP = {
     "reproduce --quick": "every item shortened, ~1 min (tests/system/test_wheel.py runs it from a wheel)",
     "1000:log --vary standoff_m=1.5:6:1000": "a million cases, ~1 min (benchmarks/bench_sweeps.py)",
     "plan paper_column_square_250kg": "3 x 33 3D runs of a column, minutes (benchmarks/bench_plan.py; "
-                                      "tests/integration/test_plan_any_structure.py runs it short)",
+    "tests/integration/test_plan_any_structure.py runs it short)",
     "plan wall_running_bond_lambda20": "3 x 33 3D runs of a wall, minutes (tests/system/test_plan_cli.py runs it short)",
     "--samples 2000": "26,000 draws with a body per draw, ~10 s (test_fragility.py runs it with fewer draws)",
 }
@@ -111,8 +111,14 @@ def test_the_docs_commands_name_real_commands_and_files():
                     made.update(files)
                     continue
                 for f in files:
-                    if (f[:-5] in shipped or f in made or f.split("/")[-1].isupper() or f.startswith("DIR")
-                            or "SCENARIO" in f or f in DOCS_FILES_DESCRIBED):
+                    if (
+                        f[:-5] in shipped
+                        or f in made
+                        or f.split("/")[-1].isupper()
+                        or f.startswith("DIR")
+                        or "SCENARIO" in f
+                        or f in DOCS_FILES_DESCRIBED
+                    ):
                         continue
                     bad.append(f"{page.name}: {line.strip()} ({f} is not shipped nor written by an earlier init)")
     assert not bad, "\n".join(bad)

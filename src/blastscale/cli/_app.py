@@ -26,8 +26,15 @@ from pathlib import Path  # noqa: E402
 
 import typer  # noqa: E402
 from rich.console import Console  # noqa: E402
-from rich.progress import (BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn,  # noqa: E402
-                           TimeElapsedColumn, TimeRemainingColumn)
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    SpinnerColumn,
+    TextColumn,  # noqa: E402
+    TimeElapsedColumn,
+    TimeRemainingColumn,
+)
 from rich.table import Table  # noqa: E402
 from rich.text import Text  # noqa: E402
 from typer.core import TyperGroup, TyperOption  # noqa: E402
@@ -41,8 +48,7 @@ from ._signals import Interrupted, ignore_interrupts, raise_if_interrupted  # no
 def _console(stderr: bool = False) -> Console:
     # wide enough for the tables when output is piped (rich falls back to 80 columns otherwise)
     probe = Console(stderr=stderr)
-    return Console(stderr=stderr, width=None if probe.is_terminal else 160, markup=False, emoji=False,
-                   highlight=False)
+    return Console(stderr=stderr, width=None if probe.is_terminal else 160, markup=False, emoji=False, highlight=False)
 
 
 console = _console()
@@ -91,8 +97,10 @@ class OneLineErrorGroup(TyperGroup):
         except BaseException as exc:
             if _stdout_fault(exc):
                 _stdout_to_null()
-                print_error(f"standard output cannot be written: {_why(exc)} (what was printed is incomplete; "
-                            "files written are whole)")
+                print_error(
+                    f"standard output cannot be written: {_why(exc)} (what was printed is incomplete; "
+                    "files written are whole)"
+                )
                 sys.exit(2)
             signum = _signals.interrupted_signal()
             if isinstance(exc, Interrupted) or (signum is not None and not isinstance(exc, SystemExit)):
@@ -128,8 +136,9 @@ def _check_stdout() -> None:
     except OSError:
         closed = True
     if closed:
-        raise BlastscaleInputError("standard output is closed: give it a file or /dev/null (> out.txt); "
-                                   "nothing was run")
+        raise BlastscaleInputError(
+            "standard output is closed: give it a file or /dev/null (> out.txt); nothing was run"
+        )
 
 
 #: Where a write to standard output fails (click's echo, rich's console, our flush).
@@ -138,8 +147,13 @@ _STDOUT_WRITERS = ("click/utils.py", "rich/console.py", "cli/_app.py")
 
 def _stdout_fault(exc: BaseException) -> bool:
     """Whether ``exc`` is a failed write to standard output (a full device, a closed pipe)."""
-    if not isinstance(exc, OSError) or exc.errno not in (errno.ENOSPC, errno.EPIPE, errno.EIO, errno.EBADF,
-                                                         errno.EDQUOT):
+    if not isinstance(exc, OSError) or exc.errno not in (
+        errno.ENOSPC,
+        errno.EPIPE,
+        errno.EIO,
+        errno.EBADF,
+        errno.EDQUOT,
+    ):
         return False
     tb = exc.__traceback__
     last = None
@@ -216,8 +230,10 @@ def _adapt_hint(message: str, group, args) -> str:
         return message
     if name == "run":
         return message.replace(hint, "in a scenario: blast.extrapolate = true or --set blast.extrapolate=true, ")
-    return message.replace("(opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)",
-                           f"(`{name}` has no --extrapolate: choose values inside the range)").replace(hint, "")
+    return message.replace(
+        "(opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)",
+        f"(`{name}` has no --extrapolate: choose values inside the range)",
+    ).replace(hint, "")
 
 
 def _version(value: bool) -> None:
@@ -240,8 +256,9 @@ app = typer.Typer(
 
 @app.callback()
 def _main(
-    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
-                                 help="Print the version and exit."),
+    version: bool = typer.Option(
+        False, "--version", callback=_version, is_eager=True, help="Print the version and exit."
+    ),
 ) -> None:
     """Design safe reduced-scale blast experiments on masonry structures (Masi et al. scaling laws)."""
 
@@ -256,9 +273,16 @@ def stage_progress(quiet: bool = False):
     """A rich progress bar on stderr for a staged job; yields ``tell(stage, done, total)``.
     Transient (it disappears when the job ends); shown only on a terminal and not with ``--json``."""
 
-    with Progress(SpinnerColumn(), TextColumn("{task.description}", markup=False), BarColumn(),
-                  MofNCompleteColumn(), TimeElapsedColumn(), console=console_err, transient=True,
-                  disable=not show_progress(quiet)) as bar:
+    with Progress(
+        SpinnerColumn(),
+        TextColumn("{task.description}", markup=False),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        console=console_err,
+        transient=True,
+        disable=not show_progress(quiet),
+    ) as bar:
         task = bar.add_task("starting", total=None)
 
         def tell(stage: str, done: int, total: int) -> None:
@@ -280,8 +304,16 @@ def activity(label: str, quiet: bool = False):
 def count_progress(label: str, quiet: bool = False):
     """A progress bar over cases (done / total, elapsed, remaining) and its ``tick(done, total)``."""
 
-    bar = Progress(TextColumn(label, markup=False), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                   TimeRemainingColumn(), console=console_err, transient=True, disable=not show_progress(quiet))
+    bar = Progress(
+        TextColumn(label, markup=False),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        console=console_err,
+        transient=True,
+        disable=not show_progress(quiet),
+    )
     task = bar.add_task(label, total=None)
 
     def tick(done: int, total: int) -> None:
@@ -293,7 +325,6 @@ def count_progress(label: str, quiet: bool = False):
 
 def print_written(path, what: str = "") -> None:
     """One line on stderr: what a command wrote and how big it is (``wrote DIR/ (7 files, 2.1 MB)``)."""
-
 
     p = Path(path)
     try:
@@ -357,7 +388,6 @@ def save_figure(build, path) -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
 
     fig = build()
     buf = io.BytesIO()

@@ -34,33 +34,64 @@ from ..scenario import load_scenario
 
 def _print(s: dict) -> None:
     console.print(styled(("As fired", "bold"), ": " + s["verdict"].removeprefix("As fired: ")))
-    rows = [("effective charge (impulse)", fmt_value(s["effective_charge_tnt_kg"]), "kg TNT"),
-            ("effective charge (peak)", fmt_value(s["effective_charge_from_pressure_tnt_kg"]), "kg TNT"),
-            ("designed charge", fmt_value(s["designed_charge_tnt_kg"]), "kg TNT"),
-            ("TNT equivalence (impulse)", fmt_value(s["tnt_equivalence_impulse"], ".3g"), "-"),
-            ("stand-off (as measured)", fmt_value(s["standoff_m"]), "m")]
+    rows = [
+        ("effective charge (impulse)", fmt_value(s["effective_charge_tnt_kg"]), "kg TNT"),
+        ("effective charge (peak)", fmt_value(s["effective_charge_from_pressure_tnt_kg"]), "kg TNT"),
+        ("designed charge", fmt_value(s["designed_charge_tnt_kg"]), "kg TNT"),
+        ("TNT equivalence (impulse)", fmt_value(s["tnt_equivalence_impulse"], ".3g"), "-"),
+        ("stand-off (as measured)", fmt_value(s["standoff_m"]), "m"),
+    ]
     for name, g in s["gauges"].items():
-        rows += [(f"gauge {name}: peak / predicted", (f"{fmt_value(g['peak_pressure_Pa'])} / "
-                  f"{fmt_value(g['predicted_peak_pressure_Pa'])}"), "Pa"),
-                 (f"gauge {name}: impulse / predicted", (f"{fmt_value(g['impulse_Pa_s'])} / "
-                  f"{fmt_value(g['predicted_impulse_Pa_s'])}"), "Pa s")]
+        rows += [
+            (
+                f"gauge {name}: peak / predicted",
+                (f"{fmt_value(g['peak_pressure_Pa'])} / {fmt_value(g['predicted_peak_pressure_Pa'])}"),
+                "Pa",
+            ),
+            (
+                f"gauge {name}: impulse / predicted",
+                (f"{fmt_value(g['impulse_Pa_s'])} / {fmt_value(g['predicted_impulse_Pa_s'])}"),
+                "Pa s",
+            ),
+        ]
     for name, m in s["markers"].items():
-        rows += [(f"marker {name}: first peak measured / predicted / refit",
-                  (f"{fmt_value(m['first_peak_m'])} / {fmt_value(m['predicted_first_peak_m'])} / "
-                  f"{fmt_value(m['refit_first_peak_m'])}"), "m"),
-                 (f"marker {name}: outcome measured / refit", f"{m['outcome_measured'] or '-'} / {m['outcome_refit']}",
-                  "")]
+        rows += [
+            (
+                f"marker {name}: first peak measured / predicted / refit",
+                (
+                    f"{fmt_value(m['first_peak_m'])} / {fmt_value(m['predicted_first_peak_m'])} / "
+                    f"{fmt_value(m['refit_first_peak_m'])}"
+                ),
+                "m",
+            ),
+            (f"marker {name}: outcome measured / refit", f"{m['outcome_measured'] or '-'} / {m['outcome_refit']}", ""),
+        ]
     for name, p in s["prototype_markers"].items():
-        rows.append((f"monument {name}: first peak (5-95 %)", (f"{fmt_value(p['first_peak_m'], '.4g')} ("
-                     f"{fmt_value(p['first_peak_p05_m'], '.3g')}-{fmt_value(p['first_peak_p95_m'], '.3g')})"), "m"))
+        rows.append(
+            (
+                f"monument {name}: first peak (5-95 %)",
+                (
+                    f"{fmt_value(p['first_peak_m'], '.4g')} ("
+                    f"{fmt_value(p['first_peak_p05_m'], '.3g')}-{fmt_value(p['first_peak_p95_m'], '.3g')})"
+                ),
+                "m",
+            )
+        )
     c = s.get("calibration")
     if c is not None and "restitution" in c:
-        rows += [("calibrated restitution (95 %)", f"{c['restitution']:.4g} +- {c['restitution_ci95']:.2g}", "-"),
-                 ("prototype with it: max rotation, outcome", (f"{fmt_value(c['prototype_max_rotation_rad'])}, "
-                  f"{c['prototype_outcome']}"), "rad")]
+        rows += [
+            ("calibrated restitution (95 %)", f"{c['restitution']:.4g} +- {c['restitution_ci95']:.2g}", "-"),
+            (
+                "prototype with it: max rotation, outcome",
+                (f"{fmt_value(c['prototype_max_rotation_rad'])}, {c['prototype_outcome']}"),
+                "rad",
+            ),
+        ]
     if c is not None and "friction" in c:
-        rows += [("calibrated friction (95 %)", f"{c['friction']:.4g} +- {c['friction_ci95']:.2g}", "-"),
-                 ("prototype with it: outcome", c["prototype_outcome"], "")]
+        rows += [
+            ("calibrated friction (95 %)", f"{c['friction']:.4g} +- {c['friction_ci95']:.2g}", "-"),
+            ("prototype with it: outcome", c["prototype_outcome"], ""),
+        ]
     console.print(table("The shot as fired", rows))
 
 
@@ -79,17 +110,27 @@ def _shipped(path: Path) -> Path:
 
 @app.command("fired")
 def fired_cmd(
-    scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", show_default=False,
-                                    help="Scenario file with a \\[fired] table (docs/fired.md), or example_shot "
-                                         "(the shipped example)."),
-    out: Path | None = typer.Option(None, "--out", show_default=False,
-                                       help="Write summary.json (as_fired), scenario.toml, the figures and "
-                                            "report.html into this new folder."),
+    scenario: Path = typer.Argument(
+        ...,
+        metavar="SCENARIO.toml",
+        show_default=False,
+        help="Scenario file with a \\[fired] table (docs/fired.md), or example_shot (the shipped example).",
+    ),
+    out: Path | None = typer.Option(
+        None,
+        "--out",
+        show_default=False,
+        help="Write summary.json (as_fired), scenario.toml, the figures and report.html into this new folder.",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print the as_fired summary as one JSON object."),
     force: bool = typer.Option(False, "--force", help="Replace an existing result folder."),
-    calibrate: str = typer.Option("", "--calibrate", show_default=False,
-                                  help="Contact parameters to fit to the measured response, comma-separated: "
-                                       "restitution (a block), friction (every other kind, 3D)."),
+    calibrate: str = typer.Option(
+        "",
+        "--calibrate",
+        show_default=False,
+        help="Contact parameters to fit to the measured response, comma-separated: "
+        "restitution (a block), friction (every other kind, 3D).",
+    ),
 ) -> None:
     """After the shot: the load the specimen got, measured vs predicted vs re-simulated, and what the monument
     would do."""
@@ -107,8 +148,9 @@ def fired_cmd(
         if out is not None:
             from ..report.fired import write_fired
 
-            with output_folder(out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts,
-                               markers=markers) as tmp:
+            with output_folder(
+                out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts, markers=markers
+            ) as tmp:
                 written = write_fired(result, sc, tmp)
     if as_json:
         print_json({"as_fired": result.summary})

@@ -22,25 +22,47 @@ __all__ = ["FLAG_NAMES", "SET_VALUES", "parse_set", "scenario_with", "scenario_f
 
 #: ``--set KEY=VALUE`` (repeatable), one option object for every command that reads a scenario (run, sweep).
 SET_VALUES = typer.Option(
-    [], "--set", metavar="KEY=VALUE", show_default=False,
-    help="Override a scenario value, e.g. --set blast.charge_kg=60 --set friction=0.5 (repeatable).")
+    [],
+    "--set",
+    metavar="KEY=VALUE",
+    show_default=False,
+    help="Override a scenario value, e.g. --set blast.charge_kg=60 --set friction=0.5 (repeatable).",
+)
 
 #: Scenario field path -> the command-line flag that sets it (one-line errors name the flag).
 FLAG_NAMES = {
-    "structure.height_m": "--height", "structure.width_m": "--width", "structure.alpha_deg": "--alpha-deg",
-    "structure.depth_m": "--depth", "structure.density_kg_m3": "--density", "structure.friction": "--friction",
-    "structure.section": "--section", "structure.drums": "--drums", "structure.base_width_m": "--base-width",
-    "structure.top_width_m": "--top-width", "structure.sides": "--sides",
-    "blast.charge_kg": "--charge", "blast.standoff_m": "--standoff", "blast.blast_model": "--model",
-    "blast.pulse_shape": "--pulse", "blast.load": "--load", "blast.incidence": "--incidence",
+    "structure.height_m": "--height",
+    "structure.width_m": "--width",
+    "structure.alpha_deg": "--alpha-deg",
+    "structure.depth_m": "--depth",
+    "structure.density_kg_m3": "--density",
+    "structure.friction": "--friction",
+    "structure.section": "--section",
+    "structure.drums": "--drums",
+    "structure.base_width_m": "--base-width",
+    "structure.top_width_m": "--top-width",
+    "structure.sides": "--sides",
+    "blast.charge_kg": "--charge",
+    "blast.standoff_m": "--standoff",
+    "blast.blast_model": "--model",
+    "blast.pulse_shape": "--pulse",
+    "blast.load": "--load",
+    "blast.incidence": "--incidence",
     "blast.extrapolate": "--extrapolate",
-    "scale.length": "--scale", "scale.density_ratio": "--density-ratio", "scale.gravity_ratio": "--gravity-ratio",
+    "scale.length": "--scale",
+    "scale.density_ratio": "--density-ratio",
+    "scale.gravity_ratio": "--gravity-ratio",
     "scale.law": "--law",
-    "simulation.duration_s": "--duration", "simulation.samples": "--samples", "simulation.gravity_m_s2": "--gravity",
-    "simulation.restitution": "--restitution", "simulation.timestep_s": "--timestep",
-    "simulation.record_every": "--record-every", "simulation.ensemble_members": "--ensemble",
+    "simulation.duration_s": "--duration",
+    "simulation.samples": "--samples",
+    "simulation.gravity_m_s2": "--gravity",
+    "simulation.restitution": "--restitution",
+    "simulation.timestep_s": "--timestep",
+    "simulation.record_every": "--record-every",
+    "simulation.ensemble_members": "--ensemble",
     "simulation.threads": "--threads",
-    "simulation.contact.jacobian": "--jacobian", "simulation.step_after_load": "--step-after-load",
+    "simulation.contact.jacobian": "--jacobian",
+    "simulation.step_after_load": "--step-after-load",
 }
 
 
@@ -49,25 +71,29 @@ def parse_set(items: list[str]) -> dict:
     "text"), bare words as strings. Keys and values are validated by the scenario schema
     (:meth:`~blastscale.scenario.Scenario.with_values`), which names the key, its value and its range."""
 
-
     out, items_of = {}, {}
     for item in items:
         key, sep, text = item.partition("=")
         if not sep or not key.strip():
             raise BlastscaleInputError(f"set = {item!r} is not KEY=VALUE (e.g. --set blast.charge_kg=60)")
         if _NON_DECIMAL.match(text.strip()):
-            raise BlastscaleInputError(f"set = {item!r}: {text.strip()!r} is not a decimal number (TOML reads it "
-                                       f"as {tomllib.loads(f'v = {text.strip()}')['v']}): give the number in decimal")
+            raise BlastscaleInputError(
+                f"set = {item!r}: {text.strip()!r} is not a decimal number (TOML reads it "
+                f"as {tomllib.loads(f'v = {text.strip()}')['v']}): give the number in decimal"
+            )
         try:
             value = tomllib.loads(f"v = {text.strip()}")["v"]
         except tomllib.TOMLDecodeError:
             value = text.strip()
         if isinstance(value, float) and math.isinf(value) and "inf" not in text:
-            raise BlastscaleInputError(f"set = {item!r}: {text.strip()} overflows a number (the largest is "
-                                       f"{sys.float_info.max:.4g}); give a finite value")
+            raise BlastscaleInputError(
+                f"set = {item!r}: {text.strip()} overflows a number (the largest is "
+                f"{sys.float_info.max:.4g}); give a finite value"
+            )
         if key.strip() in out:
-            raise BlastscaleInputError(f"set = {items_of[key.strip()]!r} and {item!r} set {key.strip()} twice: "
-                                       "give it once")
+            raise BlastscaleInputError(
+                f"set = {items_of[key.strip()]!r} and {item!r} set {key.strip()} twice: give it once"
+            )
         out[key.strip()], items_of[key.strip()] = value, item
     return out
 
@@ -89,30 +115,35 @@ def scenario_with(sc: Scenario, values: list[str], flags: Optional[dict] = None)
     refused in one line naming both values; a key that replaces the scenario's value of the key it excludes
     (``width_m`` beside the file's ``alpha_deg``) says so in one warning line."""
 
-
     given = parse_set(values)
     resolved: dict = {}
     said: dict = {}
     for key, value in given.items():
         path = _path(sc, key)
         if path in resolved:
-            raise BlastscaleInputError(f"set = '{said[path]}={show(resolved[path])}' and '{key}={show(value)}' both "
-                                       f"set {path}: give it once")
+            raise BlastscaleInputError(
+                f"set = '{said[path]}={show(resolved[path])}' and '{key}={show(value)}' both set {path}: give it once"
+            )
         resolved[path], said[path] = value, key
     for path, value in (flags or {}).items():
         if value is None:
             continue
         if path in resolved:
-            raise BlastscaleInputError(f"{FLAG_NAMES.get(path, path)} {show(value)} and --set {said[path]}="
-                                       f"{show(resolved[path])} both set {path}: give one of them")
+            raise BlastscaleInputError(
+                f"{FLAG_NAMES.get(path, path)} {show(value)} and --set {said[path]}="
+                f"{show(resolved[path])} both set {path}: give one of them"
+            )
         resolved[path] = value
     for path in resolved:
         other = EXCLUSIVE_KEYS.get(path)
         if other and other not in resolved:
             old = _current(sc, other)
             if old is not None:
-                warnings.warn(f"{path} = {show(resolved[path])} replaces the scenario's {other} = {show(old)} "
-                              "(they exclude each other: the value on the command line is kept)", stacklevel=2)
+                warnings.warn(
+                    f"{path} = {show(resolved[path])} replaces the scenario's {other} = {show(old)} "
+                    "(they exclude each other: the value on the command line is kept)",
+                    stacklevel=2,
+                )
     return sc.with_values(resolved) if resolved else sc
 
 
@@ -153,8 +184,9 @@ def _given(table: Optional[dict]) -> dict:
     return {k: v for k, v in (table or {}).items() if v is not None}
 
 
-def scenario_from_flags(structure: dict, blast: dict, scale: Optional[dict] = None,
-                        simulation: Optional[dict] = None, title: str = "") -> Scenario:
+def scenario_from_flags(
+    structure: dict, blast: dict, scale: Optional[dict] = None, simulation: Optional[dict] = None, title: str = ""
+) -> Scenario:
     """The scenario of a command's flags (each table: scenario key -> value, None for a flag not
     given). ``scale`` None: a prototype-only scenario. Raises one line naming the flag."""
     data = {"title": title, "structure": _given(structure), "blast": _given(blast)}

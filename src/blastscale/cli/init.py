@@ -43,26 +43,39 @@ def _source(source: str, kind: Optional[str]) -> tuple[str, str]:
 
     stem = source[:-5] if source.endswith(".toml") else source
     if stem not in library_names():
-        raise BlastscaleInputError(f"from = {source!r} is not a shipped scenario: valid names are "
-                                   f"{', '.join(library_names())}")
+        raise BlastscaleInputError(
+            f"from = {source!r} is not a shipped scenario: valid names are {', '.join(library_names())}"
+        )
     own = load_scenario(stem).structure.kind
     if kind is not None and kind != own:
-        raise BlastscaleInputError(f"kind = {kind!r} and from = {source!r} disagree: {stem} is a {own} scenario "
-                                   f"(give --kind {own}, or --kind {kind} without --from for its template)")
+        raise BlastscaleInputError(
+            f"kind = {kind!r} and from = {source!r} disagree: {stem} is a {own} scenario "
+            f"(give --kind {own}, or --kind {kind} without --from for its template)"
+        )
     return library_text(stem), f"a copy of the shipped scenario {stem}"
 
 
 @app.command("init")
 def init_cmd(
     file: Path = typer.Argument(..., metavar="FILE.toml", show_default=False, help="The scenario file to write."),
-    kind: Optional[str] = typer.Option(None, "--kind", show_default=False,
-                                       help="Structure of the template: block (the default), column, wall, arch, "
-                                            "portal or assembly (with an example block-model file)."),
-    source: Optional[str] = typer.Option(None, "--from", metavar="NAME", show_default=False,
-                                         help="Copy a shipped scenario instead (e.g. planar_block, "
-                                              "paper_column_square_250kg; see blastscale reproduce --list)."),
-    force: bool = typer.Option(False, "--force", help="Replace a scenario file that blastscale wrote (never "
-                                                      "another file)."),
+    kind: Optional[str] = typer.Option(
+        None,
+        "--kind",
+        show_default=False,
+        help="Structure of the template: block (the default), column, wall, arch, "
+        "portal or assembly (with an example block-model file).",
+    ),
+    source: Optional[str] = typer.Option(
+        None,
+        "--from",
+        metavar="NAME",
+        show_default=False,
+        help="Copy a shipped scenario instead (e.g. planar_block, "
+        "paper_column_square_250kg; see blastscale reproduce --list).",
+    ),
+    force: bool = typer.Option(
+        False, "--force", help="Replace a scenario file that blastscale wrote (never another file)."
+    ),
 ) -> None:
     """Write a commented scenario template (or a copy of a shipped scenario) to start from."""
 
@@ -81,15 +94,17 @@ def init_cmd(
     if file.exists() and not force:
         raise BlastscaleInputError(f"file = {str(file)!r} exists: refused (give --force to replace it)")
     if file.exists() and not (file.is_file() and _is_ours(file)):
-        raise BlastscaleInputError(f"file = {str(file)!r} exists and is not a scenario file blastscale wrote: "
-                                   "refused, even with --force")
+        raise BlastscaleInputError(
+            f"file = {str(file)!r} exists and is not a scenario file blastscale wrote: refused, even with --force"
+        )
     keep = blocks is not None and (blocks.exists() or blocks.is_symlink())
     if blocks is not None and not keep:
         check_target(blocks, Kind("a block-model file", lambda p: False, folder=False), name="file")
     with claim(file, target, force, name="file") as c:
         if c.path.exists() and not (c.path.is_file() and _is_ours(c.path)):
-            raise BlastscaleInputError(f"file = {str(file)!r} exists and is not a scenario file blastscale wrote: "
-                                       "refused, even with --force")
+            raise BlastscaleInputError(
+                f"file = {str(file)!r} exists and is not a scenario file blastscale wrote: refused, even with --force"
+            )
         if blocks is not None and not keep:
             write_file(blocks, json.dumps(EXAMPLE_BLOCKS, indent=1) + "\n", what="file")
         try:
@@ -101,8 +116,9 @@ def init_cmd(
     load_scenario(file)  # the template is a valid scenario as written
     if blocks is not None:
         if keep:
-            console_err.print(f"kept {blocks}: the scenario's block-model file (init never replaces it)",
-                              soft_wrap=True)
+            console_err.print(
+                f"kept {blocks}: the scenario's block-model file (init never replaces it)", soft_wrap=True
+            )
         else:
             print_written(blocks, "an example block model: two blocks (docs/assemblies.md has the formats)")
     print_written(file, what)

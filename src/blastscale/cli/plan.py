@@ -21,8 +21,17 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from ._app import (app, console, ignore_interrupts, one_line_warnings, print_json, print_written, raise_if_interrupted,
-                   stage_progress, styled)
+from ._app import (
+    app,
+    console,
+    ignore_interrupts,
+    one_line_warnings,
+    print_json,
+    print_written,
+    raise_if_interrupted,
+    stage_progress,
+    styled,
+)
 from ..report.html import format_charge
 from ..io.results import check_output_folder, output_folder
 from ..planning import plan
@@ -32,37 +41,70 @@ from ..scenario.lab import LabSpec
 
 def _print_plan(p, top: int) -> None:
 
-    t = Table(title=f"Feasible designs, best first ({len(p.designs)}; {len(p.rejected)} rejected)",
-              title_justify="left")
-    for c in ("#", "law", "lambda", "material", "charge", "stand-off", "specimen", "safety radius", "camera",
-              "P(outcome agrees)", "first-peak error", "Pareto"):
+    t = Table(
+        title=f"Feasible designs, best first ({len(p.designs)}; {len(p.rejected)} rejected)", title_justify="left"
+    )
+    for c in (
+        "#",
+        "law",
+        "lambda",
+        "material",
+        "charge",
+        "stand-off",
+        "specimen",
+        "safety radius",
+        "camera",
+        "P(outcome agrees)",
+        "first-peak error",
+        "Pareto",
+    ):
         t.add_column(c, justify="left" if c in ("law", "material") else "right")
     for i, d in enumerate(p.designs[:top], 1):
         stand = f" on a {d['charge_height_m'] * 100:.3g} cm stand" if d.get("charge_height_m") else ""
-        t.add_row(str(i), d["law"], d["scale_fraction"], d["material"],
-                  f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}{stand}", f"{d['standoff_m'] * 100:.3g} cm",
-                  f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
-                  f"{d['safety_radius_m']:.3g} m", f"{d['camera_fps']:g}/s",
-                  "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
-                  f"{100 * d['predicted_first_peak_error']:.2g} %", {True: "yes", False: "", None: "-"}[d["pareto"]])
+        t.add_row(
+            str(i),
+            d["law"],
+            d["scale_fraction"],
+            d["material"],
+            f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}{stand}",
+            f"{d['standoff_m'] * 100:.3g} cm",
+            f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
+            f"{d['safety_radius_m']:.3g} m",
+            f"{d['camera_fps']:g}/s",
+            "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
+            f"{100 * d['predicted_first_peak_error']:.2g} %",
+            {True: "yes", False: "", None: "-"}[d["pareto"]],
+        )
     console.print(t)
     b = p.designs[0]
-    stand = (f", on a stand {b['charge_height_m'] * 100:.3g} cm high ({b['burst']} burst)" if b.get("charge_height_m")
-             else "")
-    console.print(styled(("Best design:", "bold"), f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
-                         f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"
-                         f"{stand}"))
+    stand = (
+        f", on a stand {b['charge_height_m'] * 100:.3g} cm high ({b['burst']} burst)"
+        if b.get("charge_height_m")
+        else ""
+    )
+    console.print(
+        styled(
+            ("Best design:", "bold"),
+            f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
+            f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"
+            f"{stand}",
+        )
+    )
     for r in b["reasons"]:
         console.print(f"  - {r}")
-    console.print(f"  - fireable: above {b['explosive']}'s minimum reliable charge "
-                  f"{format_charge(b['explosive_min_charge_kg'])}; initiator {format_charge(b['initiator_tnt_kg'])} TNT, "
-                  f"{100 * b['initiator_fraction']:.3g} % of the charge's impulse (at most "
-                  f"{100 * p.lab['initiator_max_fraction']:g} %)")
+    console.print(
+        f"  - fireable: above {b['explosive']}'s minimum reliable charge "
+        f"{format_charge(b['explosive_min_charge_kg'])}; initiator {format_charge(b['initiator_tnt_kg'])} TNT, "
+        f"{100 * b['initiator_fraction']:.3g} % of the charge's impulse (at most "
+        f"{100 * p.lab['initiator_max_fraction']:g} %)"
+    )
     o3 = b.get("odds_3d")
     if o3:
-        console.print(f"  - 3D ensemble: {o3['members']} members, P(outcome agrees) {o3['p_outcome_agree']:.3f} "
-                      f"+- {o3['p_outcome_agree_se']:.2g}, largest top displacement 5-95 %: "
-                      f"{1e3 * o3['top_displacement_p05_m']:.3g}-{1e3 * o3['top_displacement_p95_m']:.3g} mm")
+        console.print(
+            f"  - 3D ensemble: {o3['members']} members, P(outcome agrees) {o3['p_outcome_agree']:.3f} "
+            f"+- {o3['p_outcome_agree_se']:.2g}, largest top displacement 5-95 %: "
+            f"{1e3 * o3['top_displacement_p05_m']:.3g}-{1e3 * o3['top_displacement_p95_m']:.3g} mm"
+        )
     for w in b.get("warnings", []):
         console.print(f"  - warning: {w}")
     reasons: dict = {}
@@ -70,26 +112,40 @@ def _print_plan(p, top: int) -> None:
         for key in r["constraints"]:
             reasons[key] = reasons.get(key, 0) + 1
     if reasons:
-        console.print("rejected candidates, by the constraint they break: " + ", ".join(
-            f"{k} {n}" for k, n in sorted(reasons.items(), key=lambda kv: -kv[1])))
+        console.print(
+            "rejected candidates, by the constraint they break: "
+            + ", ".join(f"{k} {n}" for k, n in sorted(reasons.items(), key=lambda kv: -kv[1]))
+        )
 
 
 @app.command("plan")
 def plan_cmd(
     scenario: Optional[Path] = typer.Argument(
-        None, metavar="SCENARIO.toml", show_default=False,
+        None,
+        metavar="SCENARIO.toml",
+        show_default=False,
         help="Scenario file with the prototype and a \\[lab] table (docs/planning.md). Default: the built-in "
-             "scenario and every \\[lab] default."),
+        "scenario and every \\[lab] default.",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print the plan as one JSON object instead of tables."),
-    out: Optional[Path] = typer.Option(None, "--out", show_default=False,
-                                       help="Also run the best design and write plan.json, summary.json (test card), "
-                                            "scenario.toml and report.html into this new folder."),
+    out: Optional[Path] = typer.Option(
+        None,
+        "--out",
+        show_default=False,
+        help="Also run the best design and write plan.json, summary.json (test card), "
+        "scenario.toml and report.html into this new folder.",
+    ),
     force: bool = typer.Option(False, "--force", help="Replace an existing result folder."),
     top: int = typer.Option(10, "--top", min=1, help="Designs shown in the table."),
-    workers: int = typer.Option(0, "--workers", min=0, help="Local Dask workers of the 3D ensembles (lab.ensemble_3d; "
-                                "0: native threads in this process)."),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", show_default=False,
-                                            help="Address of a running Dask scheduler for the 3D ensemble."),
+    workers: int = typer.Option(
+        0,
+        "--workers",
+        min=0,
+        help="Local Dask workers of the 3D ensembles (lab.ensemble_3d; 0: native threads in this process).",
+    ),
+    scheduler: Optional[str] = typer.Option(
+        None, "--scheduler", show_default=False, help="Address of a running Dask scheduler for the 3D ensemble."
+    ),
 ) -> None:
     """Plan a lab test: the designs the lab can fire safely, with the charge, the safety zone, the instruments
     and the odds."""
@@ -98,12 +154,18 @@ def plan_cmd(
         sc = Scenario.default() if scenario is None else load_scenario(scenario)
 
     members = (sc.lab or LabSpec()).ensemble_3d
-    unused = [f"{flag} {v}" for flag, v, given in (("--scheduler", scheduler, scheduler is not None),
-                                                    ("--workers", workers, workers > 0)) if given]
+    unused = [
+        f"{flag} {v}"
+        for flag, v, given in (("--scheduler", scheduler, scheduler is not None), ("--workers", workers, workers > 0))
+        if given
+    ]
     if unused and not members:
         with one_line_warnings():
-            warnings.warn(f"{' and '.join(unused)} not used: the plan runs on Dask only for its 3D ensemble, and "
-                          f"lab.ensemble_3d = {members} (give it a number of members to use them)", stacklevel=1)
+            warnings.warn(
+                f"{' and '.join(unused)} not used: the plan runs on Dask only for its 3D ensemble, and "
+                f"lab.ensemble_3d = {members} (give it a number of members to use them)",
+                stacklevel=1,
+            )
     markers = ("plan.json", "summary.json")
     if out is not None:
         check_output_folder(out, force, markers)
@@ -115,8 +177,9 @@ def plan_cmd(
             from ..report.plan_files import write_plan
             from ..study import Study
 
-            with output_folder(out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts,
-                               markers=markers) as tmp:
+            with output_folder(
+                out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts, markers=markers
+            ) as tmp:
                 p = plan(sc, workers=workers, scheduler=scheduler, progress=tell)
                 tell("the best design's study", 0, 1)
                 result = Study(p.best_scenario).run()

@@ -73,11 +73,14 @@ def check_applies(names, design, kind: str) -> None:
     sliding)."""
     block = design.specimen_block is not None
     if "restitution" in names and not block:
-        raise BlastscaleInputError(f"calibrate = 'restitution' needs a block (planar rocking): structure.kind = "
-                                   f"{kind!r}")
+        raise BlastscaleInputError(
+            f"calibrate = 'restitution' needs a block (planar rocking): structure.kind = {kind!r}"
+        )
     if "friction" in names and block:
-        raise BlastscaleInputError("calibrate = 'friction' does not apply to a block: the planar rocking model has "
-                                   "no sliding, friction does not enter it (valid for a block: restitution)")
+        raise BlastscaleInputError(
+            "calibrate = 'friction' does not apply to a block: the planar rocking model has "
+            "no sliding, friction does not enter it (valid for a block: restitution)"
+        )
 
 
 def _residuals(run, tracks: dict) -> np.ndarray:
@@ -91,8 +94,9 @@ def _residuals(run, tracks: dict) -> np.ndarray:
     return np.concatenate(res)
 
 
-def calibrate_restitution(scenario, design, tracks: dict, charge_kg: float, standoff_m: float,
-                          bounds=(0.3, 1.0)) -> dict:
+def calibrate_restitution(
+    scenario, design, tracks: dict, charge_kg: float, standoff_m: float, bounds=(0.3, 1.0)
+) -> dict:
     """The restitution [-] that best matches the measured rocking (module docstring).
 
     Parameters
@@ -126,7 +130,7 @@ def calibrate_restitution(scenario, design, tracks: dict, charge_kg: float, stan
     x0 = [1.0, float(np.clip(e0, *bounds))]
     opt = least_squares(residuals, x0, bounds=([0.5, bounds[0]], [2.0, bounds[1]]), diff_step=1e-4, x_scale=[0.1, 0.1])
     n = opt.fun.size
-    s2 = float(np.sum(opt.fun ** 2)) / max(n - 2, 1)
+    s2 = float(np.sum(opt.fun**2)) / max(n - 2, 1)
     try:
         cov = np.linalg.inv(opt.jac.T @ opt.jac) * s2
         sig = np.sqrt(np.clip(np.diag(cov), 0.0, None))
@@ -134,15 +138,22 @@ def calibrate_restitution(scenario, design, tracks: dict, charge_kg: float, stan
         sig = np.full(2, math.inf)
     e = float(opt.x[1])
     proto = Study(scenario.with_values({"simulation.restitution": e, "engine": "planar"})).run().planar.prototype
-    return {"restitution": e, "restitution_ci95": _Z95 * float(sig[1]), "charge_factor": float(opt.x[0]),
-            "charge_factor_ci95": _Z95 * float(sig[0]), "misfit_rms_m": math.sqrt(float(np.mean(opt.fun ** 2))),
-            "samples": n,
-            "prototype_first_peak_rad": float(proto.peak_angles[0]) if proto.peak_angles.size else None,
-            "prototype_max_rotation_rad": float(proto.max_rotation), "prototype_outcome": OUTCOMES[bool(proto.collapsed)]}
+    return {
+        "restitution": e,
+        "restitution_ci95": _Z95 * float(sig[1]),
+        "charge_factor": float(opt.x[0]),
+        "charge_factor_ci95": _Z95 * float(sig[0]),
+        "misfit_rms_m": math.sqrt(float(np.mean(opt.fun**2))),
+        "samples": n,
+        "prototype_first_peak_rad": float(proto.peak_angles[0]) if proto.peak_angles.size else None,
+        "prototype_max_rotation_rad": float(proto.max_rotation),
+        "prototype_outcome": OUTCOMES[bool(proto.collapsed)],
+    }
 
 
-def calibrate_friction(scenario, design, tracks: dict, charge_kg: float, standoff_m: float,
-                       bounds=FRICTION_BOUNDS) -> dict:
+def calibrate_friction(
+    scenario, design, tracks: dict, charge_kg: float, standoff_m: float, bounds=FRICTION_BOUNDS
+) -> dict:
     """The friction coefficient [-] that best matches the measured response (module docstring).
 
     Parameters as :func:`calibrate_restitution` (``scenario`` of any kind but a block).
@@ -167,8 +178,12 @@ def calibrate_friction(scenario, design, tracks: dict, charge_kg: float, standof
         return runs[mu]
 
     lo, hi = float(bounds[0]), float(bounds[1])
-    opt = minimize_scalar(lambda mu: float(np.sum(residuals(mu) ** 2)), bounds=(lo, hi), method="bounded",
-                          options={"xatol": FRICTION_XATOL, "maxiter": FRICTION_EVALUATIONS})
+    opt = minimize_scalar(
+        lambda mu: float(np.sum(residuals(mu) ** 2)),
+        bounds=(lo, hi),
+        method="bounded",
+        options={"xatol": FRICTION_XATOL, "maxiter": FRICTION_EVALUATIONS},
+    )
     mu = float(opt.x)
     r = residuals(mu)
     h = min(FRICTION_STEP, mu - lo, hi - mu) or FRICTION_STEP
@@ -176,9 +191,9 @@ def calibrate_friction(scenario, design, tracks: dict, charge_kg: float, standof
     jtj = float(jac @ jac)
     if jtj > 0:  # one Gauss-Newton step below the search's tolerance, kept if it lowers the sum of squares
         step = float(np.clip(mu - float(jac @ r) / jtj, max(mu - h, lo), min(mu + h, hi)))
-        if float(np.sum(residuals(step) ** 2)) < float(np.sum(r ** 2)):
+        if float(np.sum(residuals(step) ** 2)) < float(np.sum(r**2)):
             mu, r = step, residuals(step)
-    s2 = float(np.sum(r ** 2)) / max(r.size - 1, 1)
+    s2 = float(np.sum(r**2)) / max(r.size - 1, 1)
     ok = jtj > 0 and s2 / jtj < (hi - lo) ** 2
     ci = _Z95 * math.sqrt(s2 / jtj) if ok else math.inf
     proto, st = _prototype_3d(scenario.with_values({"structure.friction": mu}))
@@ -188,10 +203,17 @@ def calibrate_friction(scenario, design, tracks: dict, charge_kg: float, standof
         t = np.asarray(proto.dataset["time"].values)
         largest = float(np.max(np.abs(ux)))
         peaks[name] = first_peak(t, ux, noise=1e-3 * largest, smooth=False).first_peak_m if largest > 0 else None
-    return {"friction": mu, "friction_ci95": ci, "identifiable": bool(ok),
-            "at_bound": bool(min(mu - lo, hi - mu) <= 2 * FRICTION_XATOL),
-            "misfit_rms_m": math.sqrt(float(np.mean(r ** 2))), "samples": int(r.size), "evaluations": len(runs),
-            "prototype_first_peak_m": peaks, "prototype_outcome": OUTCOMES[bool(proto.dataset.attrs["collapsed"])]}
+    return {
+        "friction": mu,
+        "friction_ci95": ci,
+        "identifiable": bool(ok),
+        "at_bound": bool(min(mu - lo, hi - mu) <= 2 * FRICTION_XATOL),
+        "misfit_rms_m": math.sqrt(float(np.mean(r**2))),
+        "samples": int(r.size),
+        "evaluations": len(runs),
+        "prototype_first_peak_m": peaks,
+        "prototype_outcome": OUTCOMES[bool(proto.dataset.attrs["collapsed"])],
+    }
 
 
 def _prototype_3d(scenario):

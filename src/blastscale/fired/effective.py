@@ -22,8 +22,10 @@ from ..blast.parameters import blast_parameters, model_for_burst
 __all__ = ["GAUGE_KINDS", "effective_charge", "predicted_at", "tnt_equivalence"]
 
 #: Gauge kind -> (pressure fit, scaled impulse fit) of the blast model.
-GAUGE_KINDS = {"reflected": ("reflected_pressure", "scaled_reflected_impulse"),
-               "side-on": ("incident_pressure", "scaled_incident_impulse")}
+GAUGE_KINDS = {
+    "reflected": ("reflected_pressure", "scaled_reflected_impulse"),
+    "side-on": ("incident_pressure", "scaled_incident_impulse"),
+}
 
 
 def _quantity(kind: str, basis: str) -> str:
@@ -34,8 +36,14 @@ def _quantity(kind: str, basis: str) -> str:
     return GAUGE_KINDS[kind][basis == "impulse"]
 
 
-def effective_charge(measured: float, distance_m: float, kind: str = "reflected", basis: str = "impulse",
-                     blast_model="kingery-bulmash", burst: str = "surface") -> float:
+def effective_charge(
+    measured: float,
+    distance_m: float,
+    kind: str = "reflected",
+    basis: str = "impulse",
+    blast_model="kingery-bulmash",
+    burst: str = "surface",
+) -> float:
     """TNT charge W [kg] whose ``basis`` ("impulse" [Pa s] or "pressure" [Pa]) at ``distance_m`` [m] equals
     ``measured`` under ``blast_model`` (a ``kind`` "reflected" or "side-on" gauge; the ``burst`` of the lab
     charge).
@@ -58,8 +66,10 @@ def effective_charge(measured: float, distance_m: float, kind: str = "reflected"
     R = check_positive_scalar("gauge distance", distance_m, "m")
     m = model_for_burst(blast_model, burst)
     if not m.provides(q):
-        raise BlastscaleInputError(f"gauge kind = {kind!r}: blast model {m.name!r} has no {q} fit (use a "
-                                   "reflected gauge or blast model kingery-bulmash)")
+        raise BlastscaleInputError(
+            f"gauge kind = {kind!r}: blast model {m.name!r} has no {q} fit (use a "
+            "reflected gauge or blast model kingery-bulmash)"
+        )
     lo, hi = m.valid_range(q)
 
     def value(lnz: float) -> float:
@@ -77,13 +87,15 @@ def effective_charge(measured: float, distance_m: float, kind: str = "reflected"
         raise BlastscaleInputError(
             f"measured {basis} = {v:.4g} {unit} at {R:.4g} m is outside what {m.name} gives over its range Z = "
             f"[{lo:g}, {hi:g}] m/kg^(1/3) ({value(b):.4g} to {value(a):.4g} {unit}): check the gauge, its kind "
-            "and its position")
+            "and its position"
+        )
     z = min(max(math.exp(brentq(g, a, b, xtol=1e-12, rtol=1e-12)), lo), hi)
     return float((R / z) ** 3)
 
 
-def predicted_at(charge_kg: float, distance_m: float, kind: str = "reflected", blast_model="kingery-bulmash",
-                 burst: str = "surface") -> tuple[float, float, float]:
+def predicted_at(
+    charge_kg: float, distance_m: float, kind: str = "reflected", blast_model="kingery-bulmash", burst: str = "surface"
+) -> tuple[float, float, float]:
     """(peak [Pa], impulse [Pa s], arrival [s]) of ``charge_kg`` of TNT at ``distance_m`` for a ``kind`` gauge."""
     _quantity(kind, "impulse")
     bp = blast_parameters(charge_kg, distance_m, blast_model, burst=burst)

@@ -34,8 +34,15 @@ from ..blast.friedlander import friedlander_impulse_ratio
 from ..blast.pulses import Friedlander
 from .records import record_fault
 
-__all__ = ["ARRIVAL_NOISE_MULTIPLE", "ARRIVAL_PEAK_FRACTION", "MIN_PRETRIGGER", "MIN_PULSE_SAMPLES", "GaugeFit",
-           "fit_gauge", "friedlander_trace"]
+__all__ = [
+    "ARRIVAL_NOISE_MULTIPLE",
+    "ARRIVAL_PEAK_FRACTION",
+    "MIN_PRETRIGGER",
+    "MIN_PULSE_SAMPLES",
+    "GaugeFit",
+    "fit_gauge",
+    "friedlander_trace",
+]
 
 #: Arrival threshold: the trace must exceed this many pre-trigger standard deviations ...
 ARRIVAL_NOISE_MULTIPLE = 10.0
@@ -103,14 +110,22 @@ class GaugeFit:
         return np.where(tau <= self.positive_duration_s, p, 0.0)
 
     def to_dict(self) -> dict:
-        return {"peak_pressure_Pa": self.peak_pressure_Pa, "impulse_Pa_s": self.impulse_Pa_s,
-                "arrival_time_s": self.arrival_time_s, "positive_duration_s": self.positive_duration_s,
-                "decay": self.decay, "fit_impulse_Pa_s": self.fit_impulse_Pa_s, "baseline_Pa": self.baseline_Pa,
-                "noise_Pa": self.noise_Pa, "negative_pressure_Pa": self.negative_pressure_Pa,
-                "negative_impulse_Pa_s": self.negative_impulse_Pa_s,
-                "ci95_peak_pressure_Pa": self.ci95["peak_pressure_Pa"],
-                "ci95_positive_duration_s": self.ci95["positive_duration_s"], "ci95_decay": self.ci95["decay"],
-                "samples_positive": self.samples_positive}
+        return {
+            "peak_pressure_Pa": self.peak_pressure_Pa,
+            "impulse_Pa_s": self.impulse_Pa_s,
+            "arrival_time_s": self.arrival_time_s,
+            "positive_duration_s": self.positive_duration_s,
+            "decay": self.decay,
+            "fit_impulse_Pa_s": self.fit_impulse_Pa_s,
+            "baseline_Pa": self.baseline_Pa,
+            "noise_Pa": self.noise_Pa,
+            "negative_pressure_Pa": self.negative_pressure_Pa,
+            "negative_impulse_Pa_s": self.negative_impulse_Pa_s,
+            "ci95_peak_pressure_Pa": self.ci95["peak_pressure_Pa"],
+            "ci95_positive_duration_s": self.ci95["positive_duration_s"],
+            "ci95_decay": self.ci95["decay"],
+            "samples_positive": self.samples_positive,
+        }
 
 
 def _smooth(y: np.ndarray, k: int) -> np.ndarray:
@@ -156,8 +171,12 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
     column = column or name
     pre = t < 0
     if pre.sum() < MIN_PRETRIGGER:
-        raise record_fault(source, column, 2, f"{int(pre.sum())} pre-trigger samples (t < 0): at least "
-                           f"{MIN_PRETRIGGER} are needed for the baseline")
+        raise record_fault(
+            source,
+            column,
+            2,
+            f"{int(pre.sum())} pre-trigger samples (t < 0): at least {MIN_PRETRIGGER} are needed for the baseline",
+        )
     base = float(raw[pre].mean())
     noise = float(raw[pre].std(ddof=1))
     p = raw - base
@@ -165,33 +184,41 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
     thr = max(ARRIVAL_NOISE_MULTIPLE * noise, ARRIVAL_PEAK_FRACTION * float(p[post].max()))
     above = post[p[post] > thr]
     if above.size == 0 or float(p[post].max()) <= 0:
-        raise record_fault(source, column, int(post[0]) + 2, "no shock: the trace never rises above "
-                           f"{ARRIVAL_NOISE_MULTIPLE:g} x the pre-trigger noise")
+        raise record_fault(
+            source,
+            column,
+            int(post[0]) + 2,
+            f"no shock: the trace never rises above {ARRIVAL_NOISE_MULTIPLE:g} x the pre-trigger noise",
+        )
     ia = int(above[0])
     ta = 0.5 * (t[ia] + t[ia - 1])
     # end of the positive phase: the first zero crossing of the trace smoothed over 1/50 of the samples after
     # arrival (at least 5), searched after the largest sample
-    dt = float(np.median(np.diff(t[ia:ia + 50]))) if t.size > ia + 2 else 0.0
+    dt = float(np.median(np.diff(t[ia : ia + 50]))) if t.size > ia + 2 else 0.0
     k = max(5, (t.size - ia) // 50)
     sm = _smooth(p, k)
-    after = np.arange(ia + int(np.argmax(p[ia:ia + max(k, 3)])), t.size)
+    after = np.arange(ia + int(np.argmax(p[ia : ia + max(k, 3)])), t.size)
     neg = after[sm[after] < 0]
     end_i = int(neg[0]) if neg.size else t.size - 1
     window = np.arange(ia, end_i + 1)
     if window.size < MIN_PULSE_SAMPLES:
-        raise record_fault(source, column, f"{ia + 2}-{end_i + 2}", f"{window.size} samples over the pulse: at "
-                           f"least {MIN_PULSE_SAMPLES} are needed (sample faster or record longer)")
+        raise record_fault(
+            source,
+            column,
+            f"{ia + 2}-{end_i + 2}",
+            f"{window.size} samples over the pulse: at "
+            f"least {MIN_PULSE_SAMPLES} are needed (sample faster or record longer)",
+        )
     tau = t[window] - ta
     y = p[window]
-    P0 = float(np.max(_smooth(y, 3)[:max(3, window.size // 20)]))
+    P0 = float(np.max(_smooth(y, 3)[: max(3, window.size // 20)]))
     T0 = max(float(tau[-1]), dt)
     x0 = np.array([1.0, 1.0, 1.0])
 
     def resid(q):
         return (friedlander_trace(tau, q[0] * P0, q[1] * T0, q[2]) - y) / P0
 
-    sol = least_squares(resid, x0, bounds=([1e-3, 0.2, -0.99], [100.0, 5.0, 50.0]), method="trf",
-                        x_scale="jac")
+    sol = least_squares(resid, x0, bounds=([1e-3, 0.2, -0.99], [100.0, 5.0, 50.0]), method="trf", x_scale="jac")
     Pf, Tf, df = sol.x[0] * P0, sol.x[1] * T0, float(sol.x[2])
     J = sol.jac * np.array([1.0 / P0, 1.0 / T0, 1.0]) * P0  # d residual[Pa] / d (P, t_o, d)
     dof = max(window.size - 3, 1)
@@ -216,9 +243,18 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
         stop = float(t[back[0]]) if back.size and back[0] > tail[0] + k else float(t[-1])
         neg_p = float(sm[tail].min())
         neg_i = _impulse(t, p, t_end, stop)
-    return GaugeFit(name=name, baseline_Pa=base, noise_Pa=noise, arrival_time_s=float(ta), peak_pressure_Pa=float(Pf),
-                    positive_duration_s=float(Tf), decay=df,
-                    ci95={"peak_pressure_Pa": float(half[0]), "positive_duration_s": float(half[1]),
-                          "decay": float(half[2])},
-                    impulse_Pa_s=imp, fit_impulse_Pa_s=float(Pf * Tf * friedlander_impulse_ratio(df)), negative_pressure_Pa=neg_p,
-                    negative_impulse_Pa_s=neg_i, samples_positive=n_pos)
+    return GaugeFit(
+        name=name,
+        baseline_Pa=base,
+        noise_Pa=noise,
+        arrival_time_s=float(ta),
+        peak_pressure_Pa=float(Pf),
+        positive_duration_s=float(Tf),
+        decay=df,
+        ci95={"peak_pressure_Pa": float(half[0]), "positive_duration_s": float(half[1]), "decay": float(half[2])},
+        impulse_Pa_s=imp,
+        fit_impulse_Pa_s=float(Pf * Tf * friedlander_impulse_ratio(df)),
+        negative_pressure_Pa=neg_p,
+        negative_impulse_Pa_s=neg_i,
+        samples_positive=n_pos,
+    )

@@ -89,8 +89,11 @@ def body_verdicts(structure, markers: dict) -> dict:
         fell = bool(np.max(drop) > FALL_DROP_FRACTION * heights[k])
         if turn is not None:
             fell |= bool(np.max(np.abs(turn)) > limit)
-        out[k] = {"drop_m": float(np.max(drop)), "turn_rad": None if turn is None else float(np.max(np.abs(turn))),
-                  "fell": fell}
+        out[k] = {
+            "drop_m": float(np.max(drop)),
+            "turn_rad": None if turn is None else float(np.max(np.abs(turn))),
+            "fell": fell,
+        }
     return out
 
 

@@ -108,8 +108,12 @@ def _numbers(path, header: list[str], rows: list[list[str]]) -> np.ndarray:
     out = np.empty((len(rows), len(header)))
     for i, r in enumerate(rows):
         if len(r) != len(header):
-            raise record_fault(path, header[min(len(r), len(header) - 1)], i + 2,
-                               f"{len(r)} values, the header has {len(header)} columns")
+            raise record_fault(
+                path,
+                header[min(len(r), len(header) - 1)],
+                i + 2,
+                f"{len(r)} values, the header has {len(header)} columns",
+            )
         for j, cell in enumerate(r):
             try:
                 v = float(cell)
@@ -122,8 +126,12 @@ def _numbers(path, header: list[str], rows: list[list[str]]) -> np.ndarray:
     bad = np.flatnonzero(np.diff(t) <= 0)
     if bad.size:
         k = int(bad[0]) + 1
-        raise record_fault(path, header[0], k + 2, f"time {rows[k][0].strip()} is not above the previous "
-                           f"{rows[k - 1][0].strip()}: times must increase")
+        raise record_fault(
+            path,
+            header[0],
+            k + 2,
+            f"time {rows[k][0].strip()} is not above the previous {rows[k - 1][0].strip()}: times must increase",
+        )
     out[:, 0] = t
     return out
 
@@ -131,15 +139,25 @@ def _numbers(path, header: list[str], rows: list[list[str]]) -> np.ndarray:
 def _suffix(path, col: str, j: int, units: Mapping, what: str) -> tuple[str, str]:
     name, sep, unit = col.rpartition("_")
     if not sep or not name or unit not in units:
-        raise record_fault(path, col, 1, f"unknown unit suffix {('_' + unit) if sep else col!r} for a {what} "
-                           f"column: valid suffixes are {', '.join('_' + u for u in units)}")
+        raise record_fault(
+            path,
+            col,
+            1,
+            f"unknown unit suffix {('_' + unit) if sep else col!r} for a {what} "
+            f"column: valid suffixes are {', '.join('_' + u for u in units)}",
+        )
     return name, unit
 
 
 def _known(path, col: str, name: str, names, table: str) -> None:
     if names is not None and name not in names:
-        raise record_fault(path, col, 1, f"{table.split('.')[-1]} {name!r} has no [{table}.{name}] table in the "
-                           f"scenario (known: {', '.join(names) or 'none'})")
+        raise record_fault(
+            path,
+            col,
+            1,
+            f"{table.split('.')[-1]} {name!r} has no [{table}.{name}] table in the "
+            f"scenario (known: {', '.join(names) or 'none'})",
+        )
 
 
 def read_gauges(path, names: Mapping | None = None) -> GaugeRecord:
@@ -197,8 +215,9 @@ def read_tracks(path, names: Mapping | None = None, px_per_mm: Mapping[str, floa
         if unit == "px":
             scale = (px_per_mm or {}).get(name)
             if scale is None or not (math.isfinite(scale) and scale > 0):
-                raise record_fault(path, col, 1, f"a _px column needs px_per_mm > 0 in [fired.marker.{name}] "
-                                   f"(got {scale!r})")
+                raise record_fault(
+                    path, col, 1, f"a _px column needs px_per_mm > 0 in [fired.marker.{name}] (got {scale!r})"
+                )
             factor = 1e-3 / scale
         else:
             factor = LENGTH_UNITS[unit]
@@ -209,6 +228,10 @@ def read_tracks(path, names: Mapping | None = None, px_per_mm: Mapping[str, floa
         pos.setdefault(name, {})[axis] = data[:, j] * factor
     for j, (name, _, _) in enumerate(parsed, start=1):
         if "x" not in pos[name]:
-            raise record_fault(path, header[j], 1, f"marker {name!r} has no x column (NAME_x_mm): the horizontal "
-                               "position is what is compared")
+            raise record_fault(
+                path,
+                header[j],
+                1,
+                f"marker {name!r} has no x column (NAME_x_mm): the horizontal position is what is compared",
+            )
     return TrackRecord(str(path), data[:, 0], pos)

@@ -32,8 +32,9 @@ _CONTACT_TIMES = ("time_constant_s", "friction_time_constant_s")
 _CONTACT_LENGTHS = ("impedance_width_m",)
 
 
-def specimen_scenario(scenario: Scenario, design, charge_kg: float, standoff_m: float,
-                      engine: str | None = None) -> Scenario:
+def specimen_scenario(
+    scenario: Scenario, design, charge_kg: float, standoff_m: float, engine: str | None = None
+) -> Scenario:
     """The design's specimen as a prototype-only scenario under ``charge_kg`` [kg TNT] at ``standoff_m`` [m].
 
     Every length of the structure table (keys ``*_m``) x lambda, its density x gamma; gravity x varsigma;
@@ -66,8 +67,11 @@ def specimen_scenario(scenario: Scenario, design, charge_kg: float, standoff_m: 
             contact[k] = float(contact[k]) * f.length
     sim["contact"] = contact
     blast = dict(data["blast"])
-    blast.update(charge_kg=float(charge_kg), standoff_m=float(standoff_m),
-                 burst=scenario.scale.specimen_burst or scenario.blast.burst)
+    blast.update(
+        charge_kg=float(charge_kg),
+        standoff_m=float(standoff_m),
+        burst=scenario.scale.specimen_burst or scenario.blast.burst,
+    )
     out = {"title": f"specimen of: {scenario.title}", "structure": st, "blast": blast, "simulation": sim}
     return Scenario.from_dict(out, source="specimen")
 
@@ -106,8 +110,9 @@ class SpecimenRun:
         return bool(s.get("collapsed", False))
 
 
-def simulate_specimen(scenario: Scenario, design, charge_kg: float, standoff_m: float,
-                      engine: str | None = None) -> SpecimenRun:
+def simulate_specimen(
+    scenario: Scenario, design, charge_kg: float, standoff_m: float, engine: str | None = None
+) -> SpecimenRun:
     """The specimen under ``charge_kg`` [kg TNT] at ``standoff_m`` [m], through the Study."""
     sc = specimen_scenario(scenario, design, charge_kg, standoff_m, engine)
     r = Study(sc, structure=design.specimen_structure).run()
@@ -135,8 +140,14 @@ def marker_history(run: SpecimenRun, point_m) -> dict:
     if r.peak_angles.size:
         fp = float(block_marker_displacement(r.peak_angles[0], x0, z0, b)[0])
         fpt = float(r.peak_times[0]) + run.arrival_time_s
-    return {"t": np.asarray(t) + run.arrival_time_s, "ux": ux, "uz": uz, "first_peak_m": fp,
-            "first_peak_time_s": fpt, "max_displacement_m": float(np.max(np.abs(ux)))}
+    return {
+        "t": np.asarray(t) + run.arrival_time_s,
+        "ux": ux,
+        "uz": uz,
+        "first_peak_m": fp,
+        "first_peak_time_s": fpt,
+        "max_displacement_m": float(np.max(np.abs(ux))),
+    }
 
 
 def _marker_history_3d(run: SpecimenRun, point: np.ndarray) -> dict:
@@ -148,5 +159,11 @@ def _marker_history_3d(run: SpecimenRun, point: np.ndarray) -> dict:
     t = np.asarray(ds["time"].values) + run.arrival_time_s
     largest = float(np.max(np.abs(ux)))
     pk = first_peak(t, ux, noise=1e-3 * largest, smooth=False)
-    return {"t": t, "ux": ux, "uz": uz, "first_peak_m": pk.first_peak_m, "first_peak_time_s": pk.first_peak_time_s,
-            "max_displacement_m": largest}
+    return {
+        "t": t,
+        "ux": ux,
+        "uz": uz,
+        "first_peak_m": pk.first_peak_m,
+        "first_peak_time_s": pk.first_peak_time_s,
+        "max_displacement_m": largest,
+    }

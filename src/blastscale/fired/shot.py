@@ -82,8 +82,9 @@ def _gauges(sc: Scenario, d, record: GaugeRecord, standoff: float) -> tuple[dict
     fs = sc.fired
     for name in fs.gauge:
         if name not in record.pressure_Pa:
-            raise record_fault(record.path, "", 1, f"gauge {name!r} of [fired.gauge.{name}] has no column "
-                               f"(NAME_kPa, ...)")
+            raise record_fault(
+                record.path, "", 1, f"gauge {name!r} of [fired.gauge.{name}] has no column (NAME_kPa, ...)"
+            )
     front = d.specimen_structure.front_x
     zc = sc.scale.specimen_charge_height_m or 0.0
     charge_at = np.array([front - standoff, 0.0, zc])
@@ -99,14 +100,25 @@ def _gauges(sc: Scenario, d, record: GaugeRecord, standoff: float) -> tuple[dict
         # sigma of ln W: the impulse's integrated noise and the stand-off tolerance, through the inversion
         dt = float(np.median(np.diff(record.time_s)))
         s_i = fit.noise_Pa * dt * math.sqrt(max(fit.samples_positive, 1)) / fit.impulse_Pa_s
-        k_i = math.log(effective_charge(fit.impulse_Pa_s * 1.01, R, g.kind, "impulse", model, burst) / wi) / math.log(1.01)
-        k_r = math.log(effective_charge(fit.impulse_Pa_s, R * 1.01, g.kind, "impulse", model, burst) / wi) / math.log(1.01)
+        k_i = math.log(effective_charge(fit.impulse_Pa_s * 1.01, R, g.kind, "impulse", model, burst) / wi) / math.log(
+            1.01
+        )
+        k_r = math.log(effective_charge(fit.impulse_Pa_s, R * 1.01, g.kind, "impulse", model, burst) / wi) / math.log(
+            1.01
+        )
         tol = (sc.lab.standoff_tolerance_m if sc.lab is not None else 0.0) / R
         fits[name] = (fit, record.time_s, p - fit.baseline_Pa)
-        out[name] = {**fit.to_dict(), "kind": g.kind, "distance_m": R, "predicted_peak_pressure_Pa": pp,
-                     "predicted_impulse_Pa_s": pi, "predicted_arrival_time_s": pa,
-                     "effective_charge_tnt_kg": wi, "effective_charge_from_pressure_tnt_kg": wp,
-                     "sigma_ln_charge": math.hypot(k_i * s_i, k_r * tol)}
+        out[name] = {
+            **fit.to_dict(),
+            "kind": g.kind,
+            "distance_m": R,
+            "predicted_peak_pressure_Pa": pp,
+            "predicted_impulse_Pa_s": pi,
+            "predicted_arrival_time_s": pa,
+            "effective_charge_tnt_kg": wi,
+            "effective_charge_from_pressure_tnt_kg": wp,
+            "sigma_ln_charge": math.hypot(k_i * s_i, k_r * tol),
+        }
     return fits, out
 
 
@@ -149,8 +161,14 @@ def _ratio(a, b) -> float | None:
     return None if a is None or b is None or b == 0 else float(a / b)
 
 
-def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: TrackRecord | None = None,
-             engine: str | None = None, calibrate=()) -> AsFired:
+def as_fired(
+    scenario: Scenario,
+    *,
+    gauges: GaugeRecord | None = None,
+    tracks: TrackRecord | None = None,
+    engine: str | None = None,
+    calibrate=(),
+) -> AsFired:
     """The shot as fired (module docstring): ``scenario`` with its ``[fired]`` table (records read from its
     paths unless given as ``gauges`` / ``tracks``); ``engine``: the re-simulation's engine (default "planar"
     for a block, "3d" for every other kind); ``calibrate``: parameters to calibrate against the tracks
@@ -174,9 +192,15 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
         engine = "planar" if is_block(d.specimen_structure) else "3d"
     standoff = float(fs.standoff_m if fs.standoff_m is not None else d.specimen.standoff_m)
     grec = gauges if gauges is not None else (read_gauges(fs.gauges, names=fs.gauge) if fs.gauges else None)
-    trec = tracks if tracks is not None else (
-        read_tracks(fs.tracks, names=fs.marker, px_per_mm={n: m.px_per_mm for n, m in fs.marker.items()})
-        if fs.tracks else None)
+    trec = (
+        tracks
+        if tracks is not None
+        else (
+            read_tracks(fs.tracks, names=fs.marker, px_per_mm={n: m.px_per_mm for n, m in fs.marker.items()})
+            if fs.tracks
+            else None
+        )
+    )
     fits, gsum = _gauges(scenario, d, grec, standoff) if grec is not None else ({}, {})
     lab = scenario.lab
     w_design = float(d.specimen_charge_kg)
@@ -198,15 +222,22 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
         fit = marker_history(refit, fs.marker[name].point_m)
         pk = meas["peak"]
         markers[name] = {"measured": meas, "predicted": pred, "refit": fit}
-        msum[name] = {"first_peak_m": pk.first_peak_m, "first_peak_time_s": pk.first_peak_time_s,
-                      "max_displacement_m": pk.max_displacement_m, "noise_m": pk.noise_m,
-                      "predicted_first_peak_m": pred["first_peak_m"],
-                      "predicted_first_peak_time_s": pred["first_peak_time_s"],
-                      "refit_first_peak_m": fit["first_peak_m"], "refit_first_peak_time_s": fit["first_peak_time_s"],
-                      "refit_vs_measured": None if pk.first_peak_m is None or fit["first_peak_m"] is None else
-                      fit["first_peak_m"] / pk.first_peak_m - 1.0,
-                      "outcome_measured": meas["outcome"], "outcome_predicted": OUTCOMES[predicted.collapsed],
-                      "outcome_refit": OUTCOMES[refit.collapsed]}
+        msum[name] = {
+            "first_peak_m": pk.first_peak_m,
+            "first_peak_time_s": pk.first_peak_time_s,
+            "max_displacement_m": pk.max_displacement_m,
+            "noise_m": pk.noise_m,
+            "predicted_first_peak_m": pred["first_peak_m"],
+            "predicted_first_peak_time_s": pred["first_peak_time_s"],
+            "refit_first_peak_m": fit["first_peak_m"],
+            "refit_first_peak_time_s": fit["first_peak_time_s"],
+            "refit_vs_measured": None
+            if pk.first_peak_m is None or fit["first_peak_m"] is None
+            else fit["first_peak_m"] / pk.first_peak_m - 1.0,
+            "outcome_measured": meas["outcome"],
+            "outcome_predicted": OUTCOMES[predicted.collapsed],
+            "outcome_refit": OUTCOMES[refit.collapsed],
+        }
         if pk.first_peak_m is None:
             continue
         if sens is None:
@@ -217,25 +248,41 @@ def as_fired(scenario: Scenario, *, gauges: GaugeRecord | None = None, tracks: T
         f = d.factors
         up_p, up_t = upscale(pk.first_peak_m, f, "length"), upscale(pk.first_peak_time_s, f, "time")
         lo, hi = sorted((up_p * math.exp(-_Q95 * sig_p), up_p * math.exp(_Q95 * sig_p)))
-        proto[name] = {"first_peak_m": up_p, "first_peak_time_s": up_t, "first_peak_p05_m": lo, "first_peak_p95_m": hi,
-                       "first_peak_time_p05_s": up_t * math.exp(-_Q95 * sig_t),
-                       "first_peak_time_p95_s": up_t * math.exp(_Q95 * sig_t)}
+        proto[name] = {
+            "first_peak_m": up_p,
+            "first_peak_time_s": up_t,
+            "first_peak_p05_m": lo,
+            "first_peak_p95_m": hi,
+            "first_peak_time_p05_s": up_t * math.exp(-_Q95 * sig_t),
+            "first_peak_time_p95_s": up_t * math.exp(_Q95 * sig_t),
+        }
     outs = [m["outcome_measured"] for m in msum.values() if m["outcome_measured"] is not None]
     summary = {
-        "designed_charge_tnt_kg": w_design, "designed_standoff_m": float(d.specimen.standoff_m),
-        "standoff_m": standoff, "charge_kg": fs.charge_kg, "explosive": lab.explosive if lab else None,
-        "effective_charge_tnt_kg": w_i, "effective_charge_from_pressure_tnt_kg": w_p,
-        "charge_ratio_impulse": _ratio(w_i, w_design), "charge_ratio_pressure": _ratio(w_p, d.specimen_charge_kg),
-        "tnt_equivalence_impulse": None if w_i is None or fs.charge_kg is None or not gsum else
-        float(tnt_equivalence(w_i, fs.charge_kg, lab.initiator_tnt_kg if lab else 0.0)),
-        "tnt_equivalence_pressure": None if w_p is None or fs.charge_kg is None else
-        float(tnt_equivalence(w_p, fs.charge_kg, lab.initiator_tnt_kg if lab else 0.0)),
+        "designed_charge_tnt_kg": w_design,
+        "designed_standoff_m": float(d.specimen.standoff_m),
+        "standoff_m": standoff,
+        "charge_kg": fs.charge_kg,
+        "explosive": lab.explosive if lab else None,
+        "effective_charge_tnt_kg": w_i,
+        "effective_charge_from_pressure_tnt_kg": w_p,
+        "charge_ratio_impulse": _ratio(w_i, w_design),
+        "charge_ratio_pressure": _ratio(w_p, d.specimen_charge_kg),
+        "tnt_equivalence_impulse": None
+        if w_i is None or fs.charge_kg is None or not gsum
+        else float(tnt_equivalence(w_i, fs.charge_kg, lab.initiator_tnt_kg if lab else 0.0)),
+        "tnt_equivalence_pressure": None
+        if w_p is None or fs.charge_kg is None
+        else float(tnt_equivalence(w_p, fs.charge_kg, lab.initiator_tnt_kg if lab else 0.0)),
         "explosive_impulse_factor": _explosive_factor(lab, "impulse"),
         "explosive_pressure_factor": _explosive_factor(lab, "pressure"),
-        "refit_charge_tnt_kg": w_refit, "sigma_ln_charge": sig_w,
-        "gauges": gsum, "markers": msum, "prototype_markers": proto,
+        "refit_charge_tnt_kg": w_refit,
+        "sigma_ln_charge": sig_w,
+        "gauges": gsum,
+        "markers": msum,
+        "prototype_markers": proto,
         "outcome_measured": None if not outs else ("collapsed" if "collapsed" in outs else "stands"),
-        "outcome_predicted": OUTCOMES[predicted.collapsed], "outcome_refit": OUTCOMES[refit.collapsed],
+        "outcome_predicted": OUTCOMES[predicted.collapsed],
+        "outcome_refit": OUTCOMES[refit.collapsed],
     }
     summary["calibration"] = None
     meas = {n: (fs.marker[n].point_m, m["measured"]["t"], m["measured"]["ux"]) for n, m in markers.items()}
@@ -252,13 +299,17 @@ def _sensitivity(sc, d, predicted: SpecimenRun, refit: SpecimenRun, standoff: fl
     a, b = marker_history(predicted, point), marker_history(refit, point)
     ratio = refit.charge_kg / predicted.charge_kg
     if abs(math.log(ratio)) < 0.02 or predicted.standoff_m != refit.standoff_m:  # a third run at 1.1 W
-        other = simulate_specimen(sc, d, 1.1 * refit.charge_kg, standoff, "planar" if refit.rocking is not None else None)
+        other = simulate_specimen(
+            sc, d, 1.1 * refit.charge_kg, standoff, "planar" if refit.rocking is not None else None
+        )
         a, b, ratio = b, marker_history(other, point), 1.1
     if not (a["first_peak_m"] and b["first_peak_m"]):
         return 0.0, 0.0
     lr = math.log(ratio)
-    return (math.log(abs(b["first_peak_m"] / a["first_peak_m"])) / lr,
-            math.log((b["first_peak_time_s"]) / (a["first_peak_time_s"])) / lr)
+    return (
+        math.log(abs(b["first_peak_m"] / a["first_peak_m"])) / lr,
+        math.log((b["first_peak_time_s"]) / (a["first_peak_time_s"])) / lr,
+    )
 
 
 def verdict(s: dict) -> str:
@@ -271,14 +322,17 @@ def verdict(s: dict) -> str:
     m = next(iter(s["markers"].items()), None)
     if m is not None and m[1]["first_peak_m"] is not None:
         name, v = m
-        parts.append(f"the specimen rocked to {1e3 * v['first_peak_m']:.3g} mm at {v['first_peak_time_s']:.3g} s "
-                     f"({name})")
+        parts.append(
+            f"the specimen rocked to {1e3 * v['first_peak_m']:.3g} mm at {v['first_peak_time_s']:.3g} s ({name})"
+        )
         if v["refit_vs_measured"] is not None:
             parts.append(f"the re-simulation under that load agrees within {100 * abs(v['refit_vs_measured']):.2g} %")
         p = s["prototype_markers"].get(name)
         seen = s["outcome_measured"] or s["outcome_refit"]  # no marker judged (no z column): the refit's outcome
         word = "collapse" if seen == "collapsed" else "stand"
         if p is not None:
-            parts.append(f"the monument would {word}, {name} first peak {p['first_peak_m']:.3g} m "
-                         f"({p['first_peak_p05_m']:.3g}-{p['first_peak_p95_m']:.3g}) at {p['first_peak_time_s']:.3g} s")
+            parts.append(
+                f"the monument would {word}, {name} first peak {p['first_peak_m']:.3g} m "
+                f"({p['first_peak_p05_m']:.3g}-{p['first_peak_p95_m']:.3g}) at {p['first_peak_time_s']:.3g} s"
+            )
     return "; ".join(parts)

@@ -106,8 +106,8 @@ def first_peak(t, u, *, noise: float | None = None, smooth: bool = True) -> Trac
     while hi < t.size - 1 and near[hi + 1]:
         hi += 1
     if hi - lo >= 4:
-        tc = t[lo:hi + 1] - t[k]
-        c2, c1, c0 = np.polyfit(tc, u[lo:hi + 1], 2)
+        tc = t[lo : hi + 1] - t[k]
+        c2, c1, c0 = np.polyfit(tc, u[lo : hi + 1], 2)
         if c2 != 0 and np.sign(c2) == -np.sign(peak):
             tv = -c1 / (2 * c2)
             if tc[0] <= tv <= tc[-1]:

@@ -63,7 +63,6 @@ def histories_tidy(tree):
     """
     import pandas as pd
 
-
     frames = []
     for node in tree.subtree:
         engine = node.name if node.parent is not None else ""
@@ -71,8 +70,11 @@ def histories_tidy(tree):
             if var in MOTION_VARIABLES:
                 continue
             df = da.to_dataframe(name="value").reset_index()
-            ren = {d: {"time": "time_s", "component": "component", "member": "member"}.get(d, "element")
-                   for d in da.dims if d != "system"}
+            ren = {
+                d: {"time": "time_s", "component": "component", "member": "member"}.get(d, "element")
+                for d in da.dims
+                if d != "system"
+            }
             df = df.rename(columns=ren)
             for col, empty in (("element", ""), ("component", ""), ("member", ""), ("time_s", math.nan)):
                 if col not in df:  # e.g. totals have no time, single runs no member

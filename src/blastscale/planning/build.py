@@ -33,8 +33,12 @@ def specimen_unit(spec) -> dict:
     sizes = [tuple(round(float(x) / h, 9) * h for x in np.ptp(np.asarray(b.vertices), axis=0)) for b in spec.bodies]
     size = Counter(sizes).most_common(1)[0][0]
     body = spec.bodies[sizes.index(size)]
-    return {"name": body.name, **{f"size_{a}_m": float(x) for a, x in zip("xyz", size)}, "mass_kg": float(body.mass),
-            "bodies": len(spec.bodies)}
+    return {
+        "name": body.name,
+        **{f"size_{a}_m": float(x) for a, x in zip("xyz", size)},
+        "mass_kg": float(body.mass),
+        "bodies": len(spec.bodies),
+    }
 
 
 def specimen_mass(design) -> float:

@@ -25,8 +25,18 @@ from .shot import candidate_materials
 from ..structures import RectangularBlock, is_block
 from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
 
-__all__ = ["LAMBDA_DENOMINATORS", "Candidate", "Violation", "Evaluated", "candidates", "evaluate", "scale_label",
-           "envelope_block", "envelope_impulsive", "shot_dict"]
+__all__ = [
+    "LAMBDA_DENOMINATORS",
+    "Candidate",
+    "Violation",
+    "Evaluated",
+    "candidates",
+    "evaluate",
+    "scale_label",
+    "envelope_block",
+    "envelope_impulsive",
+    "shot_dict",
+]
 
 #: The geometric scales the planner tries: lambda = 1/n (the fractions a lab builds and reports).
 LAMBDA_DENOMINATORS = (1, 2, 4, 5, 8, 10, 15, 20, 25, 40, 50, 75, 100, 150, 200, 250, 400, 500, 1000)
@@ -51,8 +61,14 @@ class Candidate:
     burst: str = "surface"
 
     def describe(self) -> dict:
-        return {"law": self.law, "scale": self.scale, "scale_fraction": scale_label(self.scale),
-                "material": self.material, "density_ratio": self.density_ratio, "burst": self.burst}
+        return {
+            "law": self.law,
+            "scale": self.scale,
+            "scale_fraction": scale_label(self.scale),
+            "material": self.material,
+            "density_ratio": self.density_ratio,
+            "burst": self.burst,
+        }
 
 
 @dataclass(frozen=True)
@@ -83,8 +99,9 @@ class Evaluated:
     impulsive: object = None  # the design's t_o p check (a block's own; any other kind's envelope block's)
 
 
-def candidates(lab, prototype_density: float, prototype_height: float, gravity_ratio: float = 1.0,
-               bursts=("surface",)) -> list:
+def candidates(
+    lab, prototype_density: float, prototype_height: float, gravity_ratio: float = 1.0, bursts=("surface",)
+) -> list:
     """Every candidate: the general law at each scale of :data:`LAMBDA_DENOMINATORS` up to the
     tallest specimen the lab builds (and 1), for each material; Hopkinson-Cranz at the one scale
     each material allows (gamma >= 1); each for every specimen burst of ``bursts``."""
@@ -101,29 +118,65 @@ def candidates(lab, prototype_density: float, prototype_height: float, gravity_r
 def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
     out = []
     if spec_h > lab.specimen_max_height_m:
-        out.append(Violation("specimen_max_height_m", spec_h, lab.specimen_max_height_m,
-                             f"specimen {spec_h:.4g} m high > specimen_max_height_m = {lab.specimen_max_height_m:g} m"))
+        out.append(
+            Violation(
+                "specimen_max_height_m",
+                spec_h,
+                lab.specimen_max_height_m,
+                f"specimen {spec_h:.4g} m high > specimen_max_height_m = {lab.specimen_max_height_m:g} m",
+            )
+        )
     if spec_m > lab.specimen_max_mass_kg:
-        out.append(Violation("specimen_max_mass_kg", spec_m, lab.specimen_max_mass_kg,
-                             f"specimen {spec_m:.4g} kg > specimen_max_mass_kg = {lab.specimen_max_mass_kg:g} kg"))
+        out.append(
+            Violation(
+                "specimen_max_mass_kg",
+                spec_m,
+                lab.specimen_max_mass_kg,
+                f"specimen {spec_m:.4g} kg > specimen_max_mass_kg = {lab.specimen_max_mass_kg:g} kg",
+            )
+        )
     if ev.charge is None:
         return out
     out += [Violation(*f) for f in fireability(ev.charge, lab)]
     m = ev.charge.explosive_mass_kg
     if m < lab.charge_min_kg:
-        out.append(Violation("charge_min_kg", m, lab.charge_min_kg,
-                             f"{m:.4g} kg of {lab.explosive} < charge_min_kg = {lab.charge_min_kg:g} kg"))
+        out.append(
+            Violation(
+                "charge_min_kg",
+                m,
+                lab.charge_min_kg,
+                f"{m:.4g} kg of {lab.explosive} < charge_min_kg = {lab.charge_min_kg:g} kg",
+            )
+        )
     if m > lab.charge_max_kg:
-        out.append(Violation("charge_max_kg", m, lab.charge_max_kg,
-                             f"{m:.4g} kg of {lab.explosive} > charge_max_kg = {lab.charge_max_kg:g} kg"))
+        out.append(
+            Violation(
+                "charge_max_kg",
+                m,
+                lab.charge_max_kg,
+                f"{m:.4g} kg of {lab.explosive} > charge_max_kg = {lab.charge_max_kg:g} kg",
+            )
+        )
     if ev.safety.radius_m > lab.space_radius_m:
-        out.append(Violation("space_radius_m", ev.safety.radius_m, lab.space_radius_m,
-                             f"safety radius ({lab.safety_threshold}) {ev.safety.radius_m:.4g} m > space_radius_m = "
-                             f"{lab.space_radius_m:g} m"))
+        out.append(
+            Violation(
+                "space_radius_m",
+                ev.safety.radius_m,
+                lab.space_radius_m,
+                f"safety radius ({lab.safety_threshold}) {ev.safety.radius_m:.4g} m > space_radius_m = "
+                f"{lab.space_radius_m:g} m",
+            )
+        )
     need = ev.instruments.camera_fps_required
     if need > lab.camera_max_fps:
-        out.append(Violation("camera_max_fps", need, lab.camera_max_fps,
-                             f"camera needs {need:.4g} frames/s > camera_max_fps = {lab.camera_max_fps:g}"))
+        out.append(
+            Violation(
+                "camera_max_fps",
+                need,
+                lab.camera_max_fps,
+                f"camera needs {need:.4g} frames/s > camera_max_fps = {lab.camera_max_fps:g}",
+            )
+        )
     return out
 
 
@@ -150,41 +203,78 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
     spec_h, spec_m = spec_dims(spec)[0], specimen_mass(d)
     ev.impulsive = d.impulsive if d.impulsive is not None else envelope_impulsive(block, d)
     if not ev.impulsive.impulsive:
-        ev.violations.append(Violation("impulsive", ev.impulsive.model_ratio, ev.impulsive.threshold,
-                                       f"not impulsive: t_o p = {ev.impulsive.model_ratio:.3g} > "
-                                       f"{ev.impulsive.threshold:g}"))
+        ev.violations.append(
+            Violation(
+                "impulsive",
+                ev.impulsive.model_ratio,
+                ev.impulsive.threshold,
+                f"not impulsive: t_o p = {ev.impulsive.model_ratio:.3g} > {ev.impulsive.threshold:g}",
+            )
+        )
     try:
         ev.charge = lab_charge(d.specimen_charge_kg, lab)
     except BlastscaleInputError:
-        ev.violations.append(Violation("initiator_max_fraction", lab.initiator_tnt_kg / d.specimen_charge_kg,
-                                       lab.initiator_max_fraction,
-                                       f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge "
-                                       f"{d.specimen_charge_kg:.4g} kg TNT"))
+        ev.violations.append(
+            Violation(
+                "initiator_max_fraction",
+                lab.initiator_tnt_kg / d.specimen_charge_kg,
+                lab.initiator_max_fraction,
+                f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge {d.specimen_charge_kg:.4g} kg TNT",
+            )
+        )
         ev.violations += _violations(ev, lab, spec_h, spec_m)
         ex = get_explosive(lab.explosive, lab_explosives(lab))  # no explosive left to weigh: below every minimum
-        ev.violations.append(Violation("explosive_min_charge_kg", 0.0, ex.min_charge_kg, f"no {ex.name} left "
-                                       f"beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)"))
+        ev.violations.append(
+            Violation(
+                "explosive_min_charge_kg",
+                0.0,
+                ex.min_charge_kg,
+                f"no {ex.name} left beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)",
+            )
+        )
         if lab.charge_min_kg > 0:
-            ev.violations.append(Violation("charge_min_kg", 0.0, lab.charge_min_kg, f"no {ex.name} left beside the "
-                                           f"initiator < charge_min_kg = {lab.charge_min_kg:g} kg"))
+            ev.violations.append(
+                Violation(
+                    "charge_min_kg",
+                    0.0,
+                    lab.charge_min_kg,
+                    f"no {ex.name} left beside the initiator < charge_min_kg = {lab.charge_min_kg:g} kg",
+                )
+            )
         r = safety_envelope(lab.initiator_tnt_kg, lab.safety_threshold).radius_m  # the initiator alone
         if r > lab.space_radius_m:
-            ev.violations.append(Violation("space_radius_m", r, lab.space_radius_m, f"safety radius of the initiator "
-                                           f"alone ({lab.safety_threshold}) {r:.4g} m > space_radius_m = "
-                                           f"{lab.space_radius_m:g} m"))
+            ev.violations.append(
+                Violation(
+                    "space_radius_m",
+                    r,
+                    lab.space_radius_m,
+                    f"safety radius of the initiator "
+                    f"alone ({lab.safety_threshold}) {r:.4g} m > space_radius_m = "
+                    f"{lab.space_radius_m:g} m",
+                )
+            )
         return ev
     ev.safety = safety_envelope(ev.charge.tnt_equivalent_pressure_kg, lab.safety_threshold)
     tf = float(d.factors.time)
     ev.rise_s, ev.response_s = timing.rise_s * tf, timing.response_s * tf
     m = d.specimen
     z = float(m.scaled_distance)
-    inc = float(incident_model.incident_pressure(z)) if incident_model.valid_range("incident_pressure")[0] <= z \
-        <= incident_model.valid_range("incident_pressure")[1] else float("nan")
+    inc = (
+        float(incident_model.incident_pressure(z))
+        if incident_model.valid_range("incident_pressure")[0] <= z <= incident_model.valid_range("incident_pressure")[1]
+        else float("nan")
+    )
     ev.instruments = instrument_settings(
-        reflected_pressure_Pa=m.reflected_pressure, incident_pressure_Pa=inc, positive_duration_s=m.positive_duration,
-        friedlander_decay=m.friedlander_decay, arrival_time_s=m.arrival_time, rise_time_s=ev.rise_s,
-        response_time_s=ev.response_s, top_displacement_m=top_corner_displacement(*spec_dims(spec)[1::-1], 0.0),
-        camera_max_fps=lab.camera_max_fps)
+        reflected_pressure_Pa=m.reflected_pressure,
+        incident_pressure_Pa=inc,
+        positive_duration_s=m.positive_duration,
+        friedlander_decay=m.friedlander_decay,
+        arrival_time_s=m.arrival_time,
+        rise_time_s=ev.rise_s,
+        response_time_s=ev.response_s,
+        top_displacement_m=top_corner_displacement(*spec_dims(spec)[1::-1], 0.0),
+        camera_max_fps=lab.camera_max_fps,
+    )
     ev.violations += _violations(ev, lab, spec_h, spec_m)
     return ev
 
@@ -205,19 +295,23 @@ def envelope_impulsive(envelope, d):
     on the envelope block of its prototype and on that block scaled by lambda (the specimen's)."""
 
     lam = float(d.factors.length)
-    spec = RectangularBlock(height=envelope.height * lam, width=envelope.width * lam, depth=envelope.depth * lam,
-                            density=envelope.density)
-    return ImpulsiveCheck(prototype_ratio=float(d.prototype.positive_duration * envelope.frequency_parameter(d.gravity)),
-                          model_ratio=float(d.specimen.positive_duration * spec.frequency_parameter(d.specimen_gravity)),
-                          threshold=DEFAULT_IMPULSIVE_THRESHOLD)
+    spec = RectangularBlock(
+        height=envelope.height * lam, width=envelope.width * lam, depth=envelope.depth * lam, density=envelope.density
+    )
+    return ImpulsiveCheck(
+        prototype_ratio=float(d.prototype.positive_duration * envelope.frequency_parameter(d.gravity)),
+        model_ratio=float(d.specimen.positive_duration * spec.frequency_parameter(d.specimen_gravity)),
+        threshold=DEFAULT_IMPULSIVE_THRESHOLD,
+    )
 
 
 def specimen_displacement(spec, rotation: Optional[float], collapsed: bool) -> tuple:
     """(top-corner displacement [m], reach [m]) of a specimen block from its largest rotation."""
     if collapsed or rotation is None:
         return spec.width + spec.height, planar_reach(spec.width, spec.height, 0.0, True)
-    return top_corner_displacement(spec.width, spec.height, rotation), planar_reach(spec.width, spec.height,
-                                                                                     rotation, False)
+    return top_corner_displacement(spec.width, spec.height, rotation), planar_reach(
+        spec.width, spec.height, rotation, False
+    )
 
 
 def frames_needed(rise_s: float) -> float:
@@ -232,23 +326,47 @@ def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
     c, d, spec, ch, env = ev.candidate, ev.design, ev.specimen, ev.charge, ev.safety
     h, w, dp = spec_dims(spec)
     ins = instrument_settings(**{**_ins_inputs(ev), "top_displacement_m": top_m, "camera_max_fps": lab.camera_max_fps})
-    return {**c.describe(), "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
-            "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg, "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
-            "explosive_min_charge_kg": ch.explosive.min_charge_kg, "min_charge_source": ch.explosive.min_charge_source,
-            "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
-            "standoff_m": d.specimen_standoff_m, "charge_height_m": ev.charge_height_m, "specimen_height_m": h,
-            "specimen_width_m": w, "specimen_depth_m": dp,
-            "specimen_density_kg_m3": specimen_density(d), "specimen_mass_kg": specimen_mass(d),
-            "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
-            "far_field": list(env.far_field), "debris_radius_m": lab.debris_margin * reach_m, "specimen_reach_m": reach_m,
-            "camera_fps": ins.camera_fps, "camera_fps_required": ins.camera_fps_required,
-            "pressure_sampling_hz": ins.pressure_sampling_hz, "instruments": ins.to_dict(),
-            "impulsive_ratio": ev.impulsive.model_ratio, "warnings": list(ch.warnings)}
+    return {
+        **c.describe(),
+        "explosive": ch.explosive.name,
+        "explosive_mass_kg": ch.explosive_mass_kg,
+        "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg,
+        "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+        "explosive_min_charge_kg": ch.explosive.min_charge_kg,
+        "min_charge_source": ch.explosive.min_charge_source,
+        "initiator_tnt_kg": ch.initiator_tnt_kg,
+        "initiator_fraction": ch.initiator_fraction,
+        "standoff_m": d.specimen_standoff_m,
+        "charge_height_m": ev.charge_height_m,
+        "specimen_height_m": h,
+        "specimen_width_m": w,
+        "specimen_depth_m": dp,
+        "specimen_density_kg_m3": specimen_density(d),
+        "specimen_mass_kg": specimen_mass(d),
+        "safety_distances_m": env.distances_m,
+        "safety_radius_m": env.radius_m,
+        "safety_threshold": env.threshold,
+        "far_field": list(env.far_field),
+        "debris_radius_m": lab.debris_margin * reach_m,
+        "specimen_reach_m": reach_m,
+        "camera_fps": ins.camera_fps,
+        "camera_fps_required": ins.camera_fps_required,
+        "pressure_sampling_hz": ins.pressure_sampling_hz,
+        "instruments": ins.to_dict(),
+        "impulsive_ratio": ev.impulsive.model_ratio,
+        "warnings": list(ch.warnings),
+    }
 
 
 def _ins_inputs(ev: Evaluated) -> dict:
     i = ev.instruments
     m = ev.design.specimen
-    return {"reflected_pressure_Pa": m.reflected_pressure, "incident_pressure_Pa": i.incident_gauge_range_Pa / 1.5,
-            "positive_duration_s": m.positive_duration, "friedlander_decay": m.friedlander_decay,
-            "arrival_time_s": m.arrival_time, "rise_time_s": ev.rise_s, "response_time_s": ev.response_s}
+    return {
+        "reflected_pressure_Pa": m.reflected_pressure,
+        "incident_pressure_Pa": i.incident_gauge_range_Pa / 1.5,
+        "positive_duration_s": m.positive_duration,
+        "friedlander_decay": m.friedlander_decay,
+        "arrival_time_s": m.arrival_time,
+        "rise_time_s": ev.rise_s,
+        "response_time_s": ev.response_s,
+    }

@@ -16,8 +16,12 @@ import numpy as np
 __all__ = ["OBJECTIVES", "pareto_mask", "mark_pareto"]
 
 #: (key, sign): the sign turns each objective into one to minimise.
-OBJECTIVES = (("p_outcome_agree", -1.0), ("predicted_first_peak_error", 1.0), ("safety_radius_m", 1.0),
-              ("tnt_equivalent_kg", 1.0))
+OBJECTIVES = (
+    ("p_outcome_agree", -1.0),
+    ("predicted_first_peak_error", 1.0),
+    ("safety_radius_m", 1.0),
+    ("tnt_equivalent_kg", 1.0),
+)
 
 
 def pareto_mask(costs) -> np.ndarray:
@@ -31,7 +35,9 @@ def pareto_mask(costs) -> np.ndarray:
 
 def mark_pareto(designs: list) -> None:
     """Set ``pareto`` (True, False, or None without odds) on every design dict, in place."""
-    rows = [i for i, d in enumerate(designs) if all(d.get(k) is not None and math.isfinite(d[k]) for k, _ in OBJECTIVES)]
+    rows = [
+        i for i, d in enumerate(designs) if all(d.get(k) is not None and math.isfinite(d[k]) for k, _ in OBJECTIVES)
+    ]
     for d in designs:
         d["pareto"] = None
     if not rows:

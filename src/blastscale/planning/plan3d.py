@@ -48,8 +48,18 @@ from .build import spec_dims
 from .debris import reach_3d
 from .odds import ensemble_odds_3d
 
-__all__ = ["ENSEMBLE_3D_DEFAULT", "STAND_HEIGHTS", "design_scenario", "candidate_design", "stand_height", "arrival_spread",
-           "screening_error", "specimen_scenario", "similarity_3d", "run_3d"]
+__all__ = [
+    "ENSEMBLE_3D_DEFAULT",
+    "STAND_HEIGHTS",
+    "design_scenario",
+    "candidate_design",
+    "stand_height",
+    "arrival_spread",
+    "screening_error",
+    "specimen_scenario",
+    "similarity_3d",
+    "run_3d",
+]
 
 #: 3D ensemble members per design for a structure without a planar path, unless ``lab.ensemble_3d`` says.
 ENSEMBLE_3D_DEFAULT = 32
@@ -67,8 +77,10 @@ def stand_height(design) -> float:
     for k in STAND_HEIGHTS:
         if lab_burst(s.charge_kg, s.standoff_m, k * top, top, extrapolate=True).kind == "free-air":
             return k * top
-    raise BlastscaleInputError(f"specimen_charge_height_m: no stand up to {STAND_HEIGHTS[-1]:g} x the specimen's "
-                               f"height ({STAND_HEIGHTS[-1] * top:.3g} m) makes the charge a free-air burst at its face")
+    raise BlastscaleInputError(
+        f"specimen_charge_height_m: no stand up to {STAND_HEIGHTS[-1]:g} x the specimen's "
+        f"height ({STAND_HEIGHTS[-1] * top:.3g} m) makes the charge a free-air burst at its face"
+    )
 
 
 def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[float] = None):
@@ -76,8 +88,11 @@ def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[
     (law, lambda, material or density ratio, the specimen's burst where it is not the prototype's,
     the charge's height on its stand [m]) and the lab table (``lab_spec``) kept."""
 
-    scale = {"length": candidate.scale, "law": candidate.law,
-             "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
+    scale = {
+        "length": candidate.scale,
+        "law": candidate.law,
+        "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0,
+    }
     if candidate.burst != scenario.blast.burst:
         scale["specimen_burst"] = candidate.burst
     if charge_height:
@@ -153,8 +168,14 @@ def _specimen_structure_spec(sc, d, folder: Path) -> dict:
     spec = d.specimen_structure
     st = sc.structure
     if st.kind == "block":
-        return {"kind": "block", "height_m": spec.height, "width_m": spec.width, "depth_m": spec.depth,
-                "density_kg_m3": spec.density, "friction": st.friction}
+        return {
+            "kind": "block",
+            "height_m": spec.height,
+            "width_m": spec.width,
+            "depth_m": spec.depth,
+            "density_kg_m3": spec.density,
+            "friction": st.friction,
+        }
     lam, gam = float(d.factors.length), float(d.density_ratio)
     if st.kind != "assembly":
         data = st.model_dump(exclude_none=True)
@@ -162,15 +183,27 @@ def _specimen_structure_spec(sc, d, folder: Path) -> dict:
         out["density_kg_m3"] = st.density_kg_m3 * gam
         return out
     if spec.supports:
-        raise BlastscaleInputError(f"structure.file = {st.file!r}: a block model with supports has no 3D ensemble "
-                                   "here (the specimen file cannot carry them)")
+        raise BlastscaleInputError(
+            f"structure.file = {st.file!r}: a block model with supports has no 3D ensemble "
+            "here (the specimen file cannot carry them)"
+        )
     dens = {b.density for b in spec.blocks}
-    blocks = [{"name": b.name, "vertices": np.asarray(b.points).tolist(),
-               **({} if len(dens) == 1 else {"density_kg_m3": b.density})} for b in spec.blocks]
+    blocks = [
+        {
+            "name": b.name,
+            "vertices": np.asarray(b.points).tolist(),
+            **({} if len(dens) == 1 else {"density_kg_m3": b.density}),
+        }
+        for b in spec.blocks
+    ]
     path = folder / "specimen_blocks.json"
     path.write_text(json.dumps({"blocks": blocks}), encoding="utf-8")
-    return {"kind": "assembly", "file": str(path), "friction": st.friction,
-            "density_kg_m3": float(next(iter(dens))) if len(dens) == 1 else st.density_kg_m3 * gam}
+    return {
+        "kind": "assembly",
+        "file": str(path),
+        "friction": st.friction,
+        "density_kg_m3": float(next(iter(dens))) if len(dens) == 1 else st.density_kg_m3 * gam,
+    }
 
 
 def specimen_scenario(scenario, design, folder: Optional[Path] = None):
@@ -208,8 +241,17 @@ def similarity_3d(summary3d: dict) -> float:
     return float(v) if v is not None else math.nan
 
 
-def run_3d(scenario, ev, lab, *, members: int, tolerances, workers: int = 0, scheduler: Optional[str] = None,
-           tick: Optional[Callable[[int], None]] = None) -> tuple:
+def run_3d(
+    scenario,
+    ev,
+    lab,
+    *,
+    members: int,
+    tolerances,
+    workers: int = 0,
+    scheduler: Optional[str] = None,
+    tick: Optional[Callable[[int], None]] = None,
+) -> tuple:
     """The 3D stage of one screened design: the prototype-vs-specimen comparison (a Study of the design's
     scenario on the 3D engine) and the specimen's ensemble of the lab's tolerances.
 
@@ -222,7 +264,8 @@ def run_3d(scenario, ev, lab, *, members: int, tolerances, workers: int = 0, sch
     """
 
     sc3 = design_scenario(scenario, ev.candidate, lab, ev.charge_height_m or None).with_values(
-        {"simulation.engine": "3d", "simulation.critical_charge": False, "simulation.ensemble_members": 0})
+        {"simulation.engine": "3d", "simulation.critical_charge": False, "simulation.ensemble_members": 0}
+    )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = Study(sc3).run()
@@ -230,9 +273,12 @@ def run_3d(scenario, ev, lab, *, members: int, tolerances, workers: int = 0, sch
     cmp3 = res.response3d
     lam = float(ev.design.factors.length)
     up = getattr(cmp3, "upscaled_dataset", None)
-    sim = {"error": similarity_3d(s3), "specimen_top_m": lam * float(s3["model"]["max_top_displacement_m"]),
-           "specimen_reach_m": lam * reach_3d(up, res.structure) if up is not None else math.nan,
-           "prototype_reach_m": reach_3d(cmp3.prototype_dataset, res.structure)}
+    sim = {
+        "error": similarity_3d(s3),
+        "specimen_top_m": lam * float(s3["model"]["max_top_displacement_m"]),
+        "specimen_reach_m": lam * reach_3d(up, res.structure) if up is not None else math.nan,
+        "prototype_reach_m": reach_3d(cmp3.prototype_dataset, res.structure),
+    }
     odds = None
     if members:
         with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
@@ -241,6 +287,14 @@ def run_3d(scenario, ev, lab, *, members: int, tolerances, workers: int = 0, sch
             except BlastscaleInputError as exc:  # a block model with supports: the comparison alone
                 warnings.warn(f"plan: no 3D ensemble: {exc}", UserWarning, stacklevel=2)
                 return s3, sim, None
-            odds = ensemble_odds_3d(ssc, prototype_collapsed=bool(s3["prototype"]["collapsed"]), tolerances=tolerances,
-                                    members=members, seed=lab.seed, workers=workers, scheduler=scheduler, tick=tick)
+            odds = ensemble_odds_3d(
+                ssc,
+                prototype_collapsed=bool(s3["prototype"]["collapsed"]),
+                tolerances=tolerances,
+                members=members,
+                seed=lab.seed,
+                workers=workers,
+                scheduler=scheduler,
+                tick=tick,
+            )
     return s3, sim, odds

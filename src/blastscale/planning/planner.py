@@ -69,11 +69,16 @@ class Plan:
     notes: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
-        return {"designs": self.designs, "rejected": self.rejected, "prototype": self.prototype, "lab": self.lab,
-                "ranking": "p_outcome_agree (0.01), then predicted first-peak error (2 significant digits), then "
-                           "safety_radius_m; designs screened only (no 3D run, p_outcome_agree null) after them, by "
-                           "screening_error; pareto: optimal over odds, predicted error, safety radius and charge",
-                "notes": list(self.notes)}
+        return {
+            "designs": self.designs,
+            "rejected": self.rejected,
+            "prototype": self.prototype,
+            "lab": self.lab,
+            "ranking": "p_outcome_agree (0.01), then predicted first-peak error (2 significant digits), then "
+            "safety_radius_m; designs screened only (no 3D run, p_outcome_agree null) after them, by "
+            "screening_error; pareto: optimal over odds, predicted error, safety radius and charge",
+            "notes": list(self.notes),
+        }
 
 
 def _prototype(scenario, block):
@@ -86,17 +91,30 @@ def _prototype(scenario, block):
 
     bm = model_for_burst(bl.blast_model, bl.burst)
     bp = blast_parameters(bl.charge_kg, bl.standoff_m, bm, extrapolate=bl.extrapolate)
-    fs = first_swing(system, bl.charge_kg, bl.standoff_m, pulse_shape=bl.pulse_shape, blast_model=bm,
-                     extrapolate=bl.extrapolate)
+    fs = first_swing(
+        system, bl.charge_kg, bl.standoff_m, pulse_shape=bl.pulse_shape, blast_model=bm, extrapolate=bl.extrapolate
+    )
     res = DEFAULT_SOLVER.simulate(system, bp.pulse(bl.pulse_shape), float(sim.duration_s))
     collapsed, rot = bool(fs.collapsed[0]), float(fs.max_rotation[0])
     reach = planar_reach(block.width, block.height, rot, collapsed)
     env = safety_envelope(bl.charge_kg, DEFAULT_LAB.safety_threshold)
-    return block, system, timing_of(res), {
-        "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "mass_kg": block.mass,
-        "charge_kg": bl.charge_kg, "standoff_m": bl.standoff_m, "collapsed": collapsed,
-        "first_peak_rotation_rad": None if collapsed else rot, "reach_m": reach,
-        "safety_distances_m": env.distances_m}
+    return (
+        block,
+        system,
+        timing_of(res),
+        {
+            "height_m": block.height,
+            "width_m": block.width,
+            "depth_m": block.depth,
+            "mass_kg": block.mass,
+            "charge_kg": bl.charge_kg,
+            "standoff_m": bl.standoff_m,
+            "collapsed": collapsed,
+            "first_peak_rotation_rad": None if collapsed else rot,
+            "reach_m": reach,
+            "safety_distances_m": env.distances_m,
+        },
+    )
 
 
 def _rank_key(d: dict) -> tuple:
@@ -118,25 +136,39 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
         err = abs(odds.first_peak_nominal_rad / th_p - 1.0)
     spread = odds.first_peak_spread or 0.0
     tol = odds.charge_tolerance_needed
-    return {**shot_dict(ev, lab, top, reach),
-            "p_outcome_agree": odds.p_outcome_agree, "p_outcome_agree_se": odds.p_outcome_agree_se,
-            "first_peak_spread": odds.first_peak_spread, "similarity_error": err,
-            "predicted_first_peak_error": math.hypot(err, spread), "charge_tolerance_needed": tol,
-            "weighing_precision_kg": None if tol is None else tol * ev.charge.explosive_mass_kg,
-            "odds": odds.to_dict()}
+    return {
+        **shot_dict(ev, lab, top, reach),
+        "p_outcome_agree": odds.p_outcome_agree,
+        "p_outcome_agree_se": odds.p_outcome_agree_se,
+        "first_peak_spread": odds.first_peak_spread,
+        "similarity_error": err,
+        "predicted_first_peak_error": math.hypot(err, spread),
+        "charge_tolerance_needed": tol,
+        "weighing_precision_kg": None if tol is None else tol * ev.charge.explosive_mass_kg,
+        "odds": odds.to_dict(),
+    }
 
 
 def _reasons(d: dict, best: Optional[dict]) -> list:
-    out = [f"outcome agrees with the prototype's in {100 * d['p_outcome_agree']:.1f} % of {d['odds']['samples']} "
-           f"draws of the lab's tolerances",
-           f"predicted first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
-           f"{100 * d['similarity_error']:.2g} %, tolerances "
-           f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %)",
-           f"safety radius ({d['safety_threshold']}) {d['safety_radius_m']:.3g} m"]
+    out = [
+        f"outcome agrees with the prototype's in {100 * d['p_outcome_agree']:.1f} % of {d['odds']['samples']} "
+        f"draws of the lab's tolerances",
+        f"predicted first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
+        f"{100 * d['similarity_error']:.2g} %, tolerances "
+        f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %)",
+        f"safety radius ({d['safety_threshold']}) {d['safety_radius_m']:.3g} m",
+    ]
     if best is not None and d is not best:
-        out.append("ranked after a design with " + (
-            "better odds" if round(best["p_outcome_agree"], 2) > round(d["p_outcome_agree"], 2) else
-            "a smaller predicted error" if _rank_key(best)[1] < _rank_key(d)[1] else "a smaller safety radius"))
+        out.append(
+            "ranked after a design with "
+            + (
+                "better odds"
+                if round(best["p_outcome_agree"], 2) > round(d["p_outcome_agree"], 2)
+                else "a smaller predicted error"
+                if _rank_key(best)[1] < _rank_key(d)[1]
+                else "a smaller safety radius"
+            )
+        )
     return out
 
 
@@ -149,9 +181,11 @@ def _infeasible(evs: list, lab) -> str:
             alone.setdefault(next(iter(keys)), []).append(ev)
     if not alone:
         ev = min(evs, key=lambda e: len(e.violations))
-        return (f"no design fits the lab: the closest ({ev.candidate.law}, lambda = {scale_label(ev.candidate.scale)}, "
-                f"{ev.candidate.material}) breaks {len(ev.violations)} constraints: "
-                + "; ".join(v.text for v in ev.violations))
+        return (
+            f"no design fits the lab: the closest ({ev.candidate.law}, lambda = {scale_label(ev.candidate.scale)}, "
+            f"{ev.candidate.material}) breaks {len(ev.violations)} constraints: "
+            + "; ".join(v.text for v in ev.violations)
+        )
     key, group = max(alone.items(), key=lambda kv: len(kv[1]))
     if key in ("blast fits", "impulsive"):
         return f"no design fits the lab: {group[0].violations[0].text}"
@@ -161,9 +195,11 @@ def _infeasible(evs: list, lab) -> str:
     pick = (max if lower else min)(group, key=lambda e: e.violations[0].value)
     v, c = pick.violations[0], pick.candidate
     rel = "at most" if lower else "at least"
-    return (f"no design fits the lab: {key} = {v.limit:g} cannot be met ({len(group)} of {len(evs)} candidates "
-            f"fail on it alone); {key} {rel} {v.value:.4g} would admit {c.law}, lambda = {scale_label(c.scale)}, "
-            f"{c.material}")
+    return (
+        f"no design fits the lab: {key} = {v.limit:g} cannot be met ({len(group)} of {len(evs)} candidates "
+        f"fail on it alone); {key} {rel} {v.value:.4g} would admit {c.law}, lambda = {scale_label(c.scale)}, "
+        f"{c.material}"
+    )
 
 
 def _below_min_charge(group: list, n: int, lab) -> str:
@@ -172,11 +208,13 @@ def _below_min_charge(group: list, n: int, lab) -> str:
     pick = max(group, key=lambda e: e.violations[0].value / e.violations[0].limit)
     v, c, ex = pick.violations[0], pick.candidate, get_explosive(lab.explosive, lab_explosives(lab))
     small = min(EXPLOSIVES.values(), key=lambda e: e.min_charge_kg if e.name != "lead-azide" else math.inf)
-    return (f"no design fits the lab: the charge is below {ex.name}'s minimum reliable charge {v.limit:.4g} kg "
-            f"({len(group)} of {n} candidates fail on it alone; the largest, {v.value:.4g} kg, at {c.law}, "
-            f"lambda = {scale_label(c.scale)}, {c.material}); a larger specimen (specimen_max_height_m, "
-            f"specimen_max_mass_kg) or an explosive with a smaller minimum charge ({small.name}: "
-            f"{small.min_charge_kg:.3g} kg) would relax it")
+    return (
+        f"no design fits the lab: the charge is below {ex.name}'s minimum reliable charge {v.limit:.4g} kg "
+        f"({len(group)} of {n} candidates fail on it alone; the largest, {v.value:.4g} kg, at {c.law}, "
+        f"lambda = {scale_label(c.scale)}, {c.material}); a larger specimen (specimen_max_height_m, "
+        f"specimen_max_mass_kg) or an explosive with a smaller minimum charge ({small.name}: "
+        f"{small.min_charge_kg:.3g} kg) would relax it"
+    )
 
 
 def _initiator_too_large(group: list, n: int, lab) -> str:
@@ -185,18 +223,26 @@ def _initiator_too_large(group: list, n: int, lab) -> str:
     v, c = pick.violations[0], pick.candidate
     w = lab.initiator_tnt_kg / v.value  # the candidate's TNT charge [kg]
     more = f", or initiator_max_fraction at least {v.value:.3g}" if v.value <= 1.0 else ""
-    return (f"no design fits the lab: initiator_max_fraction = {v.limit:g} cannot be met with initiator_tnt_kg = "
-            f"{lab.initiator_tnt_kg:.4g} kg ({len(group)} of {n} candidates fail on it alone); an initiator of at most "
-            f"{v.limit * w:.3g} kg TNT (initiator_tnt_kg, or initiator = \"none\" for a laser) would admit "
-            f"{c.law}, lambda = {scale_label(c.scale)}, {c.material}{more}")
+    return (
+        f"no design fits the lab: initiator_max_fraction = {v.limit:g} cannot be met with initiator_tnt_kg = "
+        f"{lab.initiator_tnt_kg:.4g} kg ({len(group)} of {n} candidates fail on it alone); an initiator of at most "
+        f'{v.limit * w:.3g} kg TNT (initiator_tnt_kg, or initiator = "none" for a laser) would admit '
+        f"{c.law}, lambda = {scale_label(c.scale)}, {c.material}{more}"
+    )
 
 
 #: One-line answers for the constraints whose relaxation is not the lab key's own value.
 _RELAXERS = {"explosive_min_charge_kg": _below_min_charge, "initiator_max_fraction": _initiator_too_large}
 
 
-def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = None,
-         progress: Optional[Callable[[str, int, int], None]] = None) -> Plan:
+def plan(
+    scenario,
+    *,
+    lab=None,
+    workers: int = 0,
+    scheduler: Optional[str] = None,
+    progress: Optional[Callable[[str, int, int], None]] = None,
+) -> Plan:
     """Plan the laboratory test of ``scenario``'s prototype (module docstring).
 
     Parameters
@@ -226,10 +272,16 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     lab = lab or scenario.lab or DEFAULT_LAB
     planar, evs, proto = screen(scenario, lab, tell)
     ok = [e for e in evs if not e.violations]
-    rejected = [{**e.candidate.describe(), "constraints": [v.key for v in e.violations],
-                 "reasons": [v.text for v in e.violations],
-                 "tnt_equivalent_kg": None if e.design is None else float(e.design.specimen_charge_kg)}
-                for e in evs if e.violations]
+    rejected = [
+        {
+            **e.candidate.describe(),
+            "constraints": [v.key for v in e.violations],
+            "reasons": [v.text for v in e.violations],
+            "tnt_equivalent_kg": None if e.design is None else float(e.design.specimen_charge_kg),
+        }
+        for e in evs
+        if e.violations
+    ]
     if not ok:
         raise PlanInfeasible(_infeasible(evs, lab))
     tol = Tolerances.from_lab(lab)
@@ -243,12 +295,24 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
         tell("3D ensemble of the best design", 0, 1)
         with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
             designs[0]["odds_3d"] = ensemble_odds_3d(
-                specimen_scenario(scenario, best.design, Path(tmp)), prototype_collapsed=proto["collapsed"],
-                tolerances=tol, members=lab.ensemble_3d, seed=lab.seed, workers=workers, scheduler=scheduler)
+                specimen_scenario(scenario, best.design, Path(tmp)),
+                prototype_collapsed=proto["collapsed"],
+                tolerances=tol,
+                members=lab.ensemble_3d,
+                seed=lab.seed,
+                workers=workers,
+                scheduler=scheduler,
+            )
         notes.append("odds_3d: the best design's 3D ensemble (friction and density tolerances included)")
     mark_pareto(designs)
-    return Plan(designs, rejected, proto, {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
-                best_sc, notes)
+    return Plan(
+        designs,
+        rejected,
+        proto,
+        {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
+        best_sc,
+        notes,
+    )
 
 
 def screen(scenario, lab, tell=None) -> tuple:
@@ -268,12 +332,20 @@ def screen(scenario, lab, tell=None) -> tuple:
     planar = is_block(structure) and not (bl.clearing or bl.negative_phase)
     block, _, timing, proto = _prototype(scenario, envelope_block(structure))
     if not planar:
-        proto = {**proto, "kind": sc.structure.kind, "mass_kg": float(structure.mass), "collapsed": None,
-                 "first_peak_rotation_rad": None, "reach_m": None, "screening": "envelope block (planar first swing)"}
+        proto = {
+            **proto,
+            "kind": sc.structure.kind,
+            "mass_kg": float(structure.mass),
+            "collapsed": None,
+            "first_peak_rotation_rad": None,
+            "reach_m": None,
+            "screening": "envelope block (planar first swing)",
+        }
     kb = get_blast_model("kingery-bulmash")
     bursts = [sc.scale.specimen_burst] if sc.scale is not None and sc.scale.specimen_burst else lab.bursts
-    cands = candidates(lab, sc.structure.density_kg_m3, block.height,
-                       sc.scale.gravity_ratio if sc.scale is not None else 1.0, bursts)
+    cands = candidates(
+        lab, sc.structure.density_kg_m3, block.height, sc.scale.gravity_ratio if sc.scale is not None else 1.0, bursts
+    )
     design = candidate_design(scenario, structure, lab)
     evs = []
     with warnings.catch_warnings():
@@ -289,11 +361,22 @@ def _planar_designs(scenario, ok: list, proto: dict, lab, tol, tell) -> tuple:
     sim, bl = scenario.simulation, scenario.blast
 
     def odds_of(e, n, critical):
-        return planar_odds(e.specimen, charge_kg=e.design.specimen_charge_kg, standoff_m=e.design.specimen_standoff_m,
-                           prototype_collapsed=proto["collapsed"], explosive_fraction=1.0 - e.charge.initiator_fraction,
-                           gravity=e.design.specimen_gravity, restitution=sim.restitution,
-                           pulse_shape=bl.pulse_shape, blast_model=e.design.specimen.blast_model, tolerances=tol,
-                           samples=n, seed=lab.seed, target=lab.first_peak_target, critical=critical)
+        return planar_odds(
+            e.specimen,
+            charge_kg=e.design.specimen_charge_kg,
+            standoff_m=e.design.specimen_standoff_m,
+            prototype_collapsed=proto["collapsed"],
+            explosive_fraction=1.0 - e.charge.initiator_fraction,
+            gravity=e.design.specimen_gravity,
+            restitution=sim.restitution,
+            pulse_shape=bl.pulse_shape,
+            blast_model=e.design.specimen.blast_model,
+            tolerances=tol,
+            samples=n,
+            seed=lab.seed,
+            target=lab.first_peak_target,
+            critical=critical,
+        )
 
     quick = min(lab.samples, QUICK_SAMPLES)
     designs = []

@@ -26,16 +26,27 @@ def plot_gauge(t, p, fitted, predicted=None, *, name: str = "gauge", ax=None):
     return ax
 
 
-def plot_marker(measured, predicted, refit, *, name: str = "marker", length_factor: float = 1.0,
-                time_factor: float = 1.0, units: str = "specimen", ax=None):
+def plot_marker(
+    measured,
+    predicted,
+    refit,
+    *,
+    name: str = "marker",
+    length_factor: float = 1.0,
+    time_factor: float = 1.0,
+    units: str = "specimen",
+    ax=None,
+):
     """A marker's horizontal displacement: ``measured``, ``predicted`` and ``refit``, each ``(t [s], ux [m])``;
     divided by ``length_factor`` and ``time_factor`` (1: the specimen's units; the design's factors: the
     prototype's), shown in mm (specimen) or m (prototype) and s."""
     ax = _ax(ax)
     k = 1e3 if units == "specimen" else 1.0
-    for (t, u), style, label in ((measured, {"color": "0.3", "lw": 0.8}, "measured"),
-                                 (predicted, {"color": "C3", "ls": "--", "lw": 1.2}, "predicted (designed load)"),
-                                 (refit, {"color": "C0", "lw": 1.4}, "re-simulated (as fired)")):
+    for (t, u), style, label in (
+        (measured, {"color": "0.3", "lw": 0.8}, "measured"),
+        (predicted, {"color": "C3", "ls": "--", "lw": 1.2}, "predicted (designed load)"),
+        (refit, {"color": "C0", "lw": 1.4}, "re-simulated (as fired)"),
+    ):
         ax.plot(np.asarray(t) / time_factor, k * np.asarray(u) / length_factor, label=label, **style)
     ax.set_xlabel(f"time after firing [s] ({units})")
     ax.set_ylabel(f"{name}: horizontal displacement [{'mm' if units == 'specimen' else 'm'}] ({units})")

@@ -24,22 +24,47 @@ def plot_plan(p, ax=None):
             reasons.setdefault(r["constraints"][0], []).append((r["scale"], r["tnt_equivalent_kg"]))
     for k, (key, pts) in enumerate(sorted(reasons.items(), key=lambda kv: -len(kv[1]))):
         x, y = zip(*pts)
-        ax.scatter(x, y, marker=_MARKERS[k % len(_MARKERS)], color="0.6", s=22, lw=0.8,
-                   label=f"rejected: {key} ({len(pts)})")
+        ax.scatter(
+            x, y, marker=_MARKERS[k % len(_MARKERS)], color="0.6", s=22, lw=0.8, label=f"rejected: {key} ({len(pts)})"
+        )
     odds = [d for d in p.designs if d["p_outcome_agree"] is not None]
     screened = [d for d in p.designs if d["p_outcome_agree"] is None]
     if screened:
-        ax.scatter([d["scale"] for d in screened], [d["tnt_equivalent_kg"] for d in screened], facecolors="none",
-                   edgecolors="C0", s=30, label=f"feasible, screened only ({len(screened)})")
+        ax.scatter(
+            [d["scale"] for d in screened],
+            [d["tnt_equivalent_kg"] for d in screened],
+            facecolors="none",
+            edgecolors="C0",
+            s=30,
+            label=f"feasible, screened only ({len(screened)})",
+        )
     if odds:
-        sc = ax.scatter([d["scale"] for d in odds], [d["tnt_equivalent_kg"] for d in odds],
-                        c=[d["p_outcome_agree"] for d in odds], cmap="viridis", vmin=0.0, vmax=1.0, s=36,
-                        edgecolors="k", linewidths=0.4, zorder=3, label=f"feasible, with odds ({len(odds)})")
+        sc = ax.scatter(
+            [d["scale"] for d in odds],
+            [d["tnt_equivalent_kg"] for d in odds],
+            c=[d["p_outcome_agree"] for d in odds],
+            cmap="viridis",
+            vmin=0.0,
+            vmax=1.0,
+            s=36,
+            edgecolors="k",
+            linewidths=0.4,
+            zorder=3,
+            label=f"feasible, with odds ({len(odds)})",
+        )
         ax.figure.colorbar(sc, ax=ax, label="P(outcome agrees)")
     front = [d for d in p.designs if d.get("pareto")]
     if front:
-        ax.scatter([d["scale"] for d in front], [d["tnt_equivalent_kg"] for d in front], facecolors="none",
-                   edgecolors="C3", s=110, lw=1.4, zorder=4, label=f"Pareto-optimal ({len(front)})")
+        ax.scatter(
+            [d["scale"] for d in front],
+            [d["tnt_equivalent_kg"] for d in front],
+            facecolors="none",
+            edgecolors="C3",
+            s=110,
+            lw=1.4,
+            zorder=4,
+            label=f"Pareto-optimal ({len(front)})",
+        )
     b = p.designs[0]
     ax.scatter([b["scale"]], [b["tnt_equivalent_kg"]], marker="*", color="C3", s=140, zorder=5, label="best design")
     ax.set_xscale("log")

@@ -21,20 +21,31 @@ def fired_figures(result) -> list[tuple[str, str, str, bytes]]:
     marker histories over the prediction and the re-simulation, in the specimen's and the prototype's units."""
     import matplotlib.pyplot as plt
 
-
     out = []
     s = result.summary
     for name, (fit, t, p) in result.gauges.items():
         g = s["gauges"][name]
-        pred = Friedlander.from_impulse(g["predicted_peak_pressure_Pa"], result.design.specimen.positive_duration,
-                                        g["predicted_impulse_Pa_s"])
+        pred = Friedlander.from_impulse(
+            g["predicted_peak_pressure_Pa"], result.design.specimen.positive_duration, g["predicted_impulse_Pa_s"]
+        )
         fig, ax = plt.subplots(figsize=(7, 3.6))
-        plot_gauge(t, p, fit.pressure(t), pred.pressure(np.asarray(t) - g["predicted_arrival_time_s"]), name=name, ax=ax)
+        plot_gauge(
+            t, p, fit.pressure(t), pred.pressure(np.asarray(t) - g["predicted_arrival_time_s"]), name=name, ax=ax
+        )
         lo = fit.arrival_time_s - 0.5 * fit.positive_duration_s
         ax.set_xlim(1e3 * lo, 1e3 * (fit.arrival_time_s + 2.5 * fit.positive_duration_s))
         fig.tight_layout()
-        out.append((f"fired_gauge_{name}", f"Gauge {name}", ("The record (baselined), its Friedlander fit and the "
-                    "pulse predicted for the designed charge at the gauge."), png_bytes(fig)))
+        out.append(
+            (
+                f"fired_gauge_{name}",
+                f"Gauge {name}",
+                (
+                    "The record (baselined), its Friedlander fit and the "
+                    "pulse predicted for the designed charge at the gauge."
+                ),
+                png_bytes(fig),
+            )
+        )
     f = result.design.factors
     for name, h in result.markers.items():
         m, pr, rf = h["measured"], h["predicted"], h["refit"]
@@ -43,40 +54,82 @@ def fired_figures(result) -> list[tuple[str, str, str, bytes]]:
         plot_marker(*args, name=name, ax=axes[0])
         plot_marker(*args, name=name, length_factor=f.length, time_factor=f.time, units="prototype", ax=axes[1])
         fig.tight_layout()
-        out.append((f"fired_marker_{name}", f"Marker {name}", ("Measured, predicted for the designed load and "
-                    "re-simulated under the load as fired; left the specimen, right up-scaled to the prototype."),
-                    png_bytes(fig)))
+        out.append(
+            (
+                f"fired_marker_{name}",
+                f"Marker {name}",
+                (
+                    "Measured, predicted for the designed load and "
+                    "re-simulated under the load as fired; left the specimen, right up-scaled to the prototype."
+                ),
+                png_bytes(fig),
+            )
+        )
     return out
 
 
 def fired_section(result, figures) -> str:
     """The "As fired" section as HTML: the verdict, the load, the gauges, the markers, the monument, the figures."""
     s = result.summary
-    load = [("effective charge, by impulse", format_value(s["effective_charge_tnt_kg"]), "kg TNT"),
-            ("effective charge, by peak", format_value(s["effective_charge_from_pressure_tnt_kg"]), "kg TNT"),
-            ("designed charge", format_value(s["designed_charge_tnt_kg"]), "kg TNT"),
-            ("charge as weighed", format_value(s["charge_kg"]), f"kg {s['explosive'] or ''}"),
-            ("TNT equivalence implied (impulse / peak)", (f"{format_value(s['tnt_equivalence_impulse'])} / "
-             f"{format_value(s['tnt_equivalence_pressure'])}"), "-"),
-            ("stand-off as measured / designed", (f"{format_value(s['standoff_m'])} / "
-             f"{format_value(s['designed_standoff_m'])}"), "m")]
-    gkeys = ("peak_pressure_Pa", "predicted_peak_pressure_Pa", "impulse_Pa_s", "predicted_impulse_Pa_s",
-             "arrival_time_s", "positive_duration_s", "decay", "effective_charge_tnt_kg")
+    load = [
+        ("effective charge, by impulse", format_value(s["effective_charge_tnt_kg"]), "kg TNT"),
+        ("effective charge, by peak", format_value(s["effective_charge_from_pressure_tnt_kg"]), "kg TNT"),
+        ("designed charge", format_value(s["designed_charge_tnt_kg"]), "kg TNT"),
+        ("charge as weighed", format_value(s["charge_kg"]), f"kg {s['explosive'] or ''}"),
+        (
+            "TNT equivalence implied (impulse / peak)",
+            (f"{format_value(s['tnt_equivalence_impulse'])} / {format_value(s['tnt_equivalence_pressure'])}"),
+            "-",
+        ),
+        (
+            "stand-off as measured / designed",
+            (f"{format_value(s['standoff_m'])} / {format_value(s['designed_standoff_m'])}"),
+            "m",
+        ),
+    ]
+    gkeys = (
+        "peak_pressure_Pa",
+        "predicted_peak_pressure_Pa",
+        "impulse_Pa_s",
+        "predicted_impulse_Pa_s",
+        "arrival_time_s",
+        "positive_duration_s",
+        "decay",
+        "effective_charge_tnt_kg",
+    )
     gauges = [(n, *(format_value(g[k]) for k in gkeys)) for n, g in s["gauges"].items()]
-    mkeys = ("first_peak_m", "predicted_first_peak_m", "refit_first_peak_m", "first_peak_time_s",
-             "max_displacement_m", "outcome_measured", "outcome_refit")
+    mkeys = (
+        "first_peak_m",
+        "predicted_first_peak_m",
+        "refit_first_peak_m",
+        "first_peak_time_s",
+        "max_displacement_m",
+        "outcome_measured",
+        "outcome_refit",
+    )
     markers = [(n, *(format_value(m[k]) for k in mkeys)) for n, m in s["markers"].items()]
-    pkeys = ("first_peak_m", "first_peak_p05_m", "first_peak_p95_m", "first_peak_time_s", "first_peak_time_p05_s",
-             "first_peak_time_p95_s")
+    pkeys = (
+        "first_peak_m",
+        "first_peak_p05_m",
+        "first_peak_p95_m",
+        "first_peak_time_s",
+        "first_peak_time_p05_s",
+        "first_peak_time_p95_s",
+    )
     proto = [(n, *(format_value(p[k]) for k in pkeys)) for n, p in s["prototype_markers"].items()]
-    return (f"<p class=\"lead\"><b>{_e(s['verdict'])}</b></p>"
-            + _table(("quantity", "value", "unit"), load)
-            + ("<h3>Gauges (specimen)</h3>" + _table(("gauge",) + gkeys, gauges) if gauges else "")
-            + ("<h3>Markers (specimen)</h3>" + _table(("marker",) + mkeys, markers) if markers else "")
-            + ("<h3>What the monument would do (measured, up-scaled; 5-95 %)</h3>" + _table(("marker",) + pkeys, proto)
-               if proto else "")
-            + _calibration(s.get("calibration"))
-            + "".join(_img(png, title, caption, name) for name, title, caption, png in figures))
+    return (
+        f'<p class="lead"><b>{_e(s["verdict"])}</b></p>'
+        + _table(("quantity", "value", "unit"), load)
+        + ("<h3>Gauges (specimen)</h3>" + _table(("gauge",) + gkeys, gauges) if gauges else "")
+        + ("<h3>Markers (specimen)</h3>" + _table(("marker",) + mkeys, markers) if markers else "")
+        + (
+            "<h3>What the monument would do (measured, up-scaled; 5-95 %)</h3>" + _table(("marker",) + pkeys, proto)
+            if proto
+            else ""
+        )
+        + _calibration(s.get("calibration"))
+        + "".join(_img(png, title, caption, name) for name, title, caption, png in figures)
+    )
 
 
 def _calibration(c) -> str:
@@ -84,7 +137,9 @@ def _calibration(c) -> str:
         return ""
     rows = []
     for k, v in c.items():  # a value per marker (friction's prototype first peaks): one row each
-        rows += [(f"{k} ({n})", format_value(x)) for n, x in v.items()] if isinstance(v, dict) else [(k, format_value(v))]
+        rows += (
+            [(f"{k} ({n})", format_value(x)) for n, x in v.items()] if isinstance(v, dict) else [(k, format_value(v))]
+        )
     return "<h3>Calibration (the measured response)</h3>" + _table(("quantity", "value"), rows)
 
 
@@ -99,11 +154,13 @@ def write_fired(result, scenario, folder) -> list[str]:
         write_atomic(folder / f"{name}.png", png)
     write_atomic(folder / "scenario.toml", scenario.to_toml())
     title = scenario.title or "blast experiment"
-    page = ("<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>blastscale: as fired: "
-            f"{_e(title)}</title><style>{_CSS}</style></head><body><header><h1>blastscale: as fired: {_e(title)}</h1>"
-            f"</header><main><section id=\"as_fired\"><h2>As fired</h2>{fired_section(result, figures)}</section>"
-            f"<section id=\"scenario\"><h2>Scenario (inputs)</h2><pre>{_e(scenario.to_toml())}</pre></section>"
-            "</main></body></html>\n")
+    page = (
+        '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>blastscale: as fired: '
+        f"{_e(title)}</title><style>{_CSS}</style></head><body><header><h1>blastscale: as fired: {_e(title)}</h1>"
+        f'</header><main><section id="as_fired"><h2>As fired</h2>{fired_section(result, figures)}</section>'
+        f'<section id="scenario"><h2>Scenario (inputs)</h2><pre>{_e(scenario.to_toml())}</pre></section>'
+        "</main></body></html>\n"
+    )
     write_atomic(folder / "report.html", page)
     write_json(folder / "summary.json", jsonable({"as_fired": result.summary, **meta}))
     return ["summary.json", "scenario.toml", "report.html"] + [f"{n}.png" for n, _, _, _ in figures]

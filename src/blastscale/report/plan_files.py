@@ -23,19 +23,50 @@ def plan_section(p, top: int = 15) -> str:
     """The plan as HTML: the feasible designs (best first, with the reasons of the best) and the
     rejected candidates with their reasons."""
 
-    rows = [(str(i), d["law"], d["scale_fraction"], d["material"], f"{format_charge(d['explosive_mass_kg'])} "
-             f"{d['explosive']}", f"{d['standoff_m'] * 1e3:.4g} mm", f"{d['specimen_height_m'] * 1e3:.4g} mm",
-             f"{d['safety_radius_m']:.3g} m", "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
-             f"{100 * d['predicted_first_peak_error']:.2g} %", {True: "yes", False: "", None: "-"}[d.get("pareto")])
-            for i, d in enumerate(p.designs[:top], 1)]
+    rows = [
+        (
+            str(i),
+            d["law"],
+            d["scale_fraction"],
+            d["material"],
+            f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}",
+            f"{d['standoff_m'] * 1e3:.4g} mm",
+            f"{d['specimen_height_m'] * 1e3:.4g} mm",
+            f"{d['safety_radius_m']:.3g} m",
+            "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
+            f"{100 * d['predicted_first_peak_error']:.2g} %",
+            {True: "yes", False: "", None: "-"}[d.get("pareto")],
+        )
+        for i, d in enumerate(p.designs[:top], 1)
+    ]
     best = p.designs[0]
     rej = [(r["law"], r["scale_fraction"], r["material"], "; ".join(r["reasons"])) for r in p.rejected]
-    return (f"<p class=\"lead\">Best design: {_e(best['law'])} law, lambda = {_e(best['scale_fraction'])}, "
-            f"{_e(best['material'])}. " + " ".join(_e(r) + "." for r in best["reasons"]) + "</p>"
-            + _table(("#", "law", "lambda", "material", "charge", "stand-off", "specimen height", "safety radius",
-                      "P(outcome agrees)", "first-peak error", "Pareto"), rows, numeric_from=99)
-            + f"<details><summary>{len(rej)} rejected candidates and why</summary>"
-            + _table(("law", "lambda", "material", "reasons"), rej, numeric_from=99) + "</details>")
+    return (
+        f'<p class="lead">Best design: {_e(best["law"])} law, lambda = {_e(best["scale_fraction"])}, '
+        f"{_e(best['material'])}. "
+        + " ".join(_e(r) + "." for r in best["reasons"])
+        + "</p>"
+        + _table(
+            (
+                "#",
+                "law",
+                "lambda",
+                "material",
+                "charge",
+                "stand-off",
+                "specimen height",
+                "safety radius",
+                "P(outcome agrees)",
+                "first-peak error",
+                "Pareto",
+            ),
+            rows,
+            numeric_from=99,
+        )
+        + f"<details><summary>{len(rej)} rejected candidates and why</summary>"
+        + _table(("law", "lambda", "material", "reasons"), rej, numeric_from=99)
+        + "</details>"
+    )
 
 
 def write_plan(p, result, folder) -> list[str]:
@@ -45,10 +76,19 @@ def write_plan(p, result, folder) -> list[str]:
 
     folder = Path(folder)
     png = plan_figure(p)
-    files = write_study(result, folder, plan_html=plan_section(p) + _img(
-        png, "The plan's candidates", "Scale against the specimen's charge; feasible designs coloured by the odds "
-        "that the outcome agrees (hollow: screened only), rejected ones grey by their first reason, the Pareto-optimal "
-        "designs ringed, the best starred", "plan_candidates"))
+    files = write_study(
+        result,
+        folder,
+        plan_html=plan_section(p)
+        + _img(
+            png,
+            "The plan's candidates",
+            "Scale against the specimen's charge; feasible designs coloured by the odds "
+            "that the outcome agrees (hollow: screened only), rejected ones grey by their first reason, the Pareto-optimal "
+            "designs ringed, the best starred",
+            "plan_candidates",
+        ),
+    )
     write_atomic(folder / "plan_candidates.png", png)
     write_json(folder / "plan.json", jsonable(p.to_dict()))
     return ["plan.json", "plan_candidates.png"] + files
@@ -61,7 +101,6 @@ def plan_figure(p) -> bytes:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
 
     ax = plot_plan(p)
     buf = io.BytesIO()

@@ -32,8 +32,27 @@ MIN_CASES_PER_THREAD = 16
 GROUPS_PER_THREAD = 4
 
 
-def solve_batch(alpha, e, th0, w0, tau_end, kind, par, tab_t, tab_f, tab_off, tau_eval, rtol, atol, w_rest,
-                max_impacts, stop_at_overturn, max_steps, record, threads=None):
+def solve_batch(
+    alpha,
+    e,
+    th0,
+    w0,
+    tau_end,
+    kind,
+    par,
+    tab_t,
+    tab_f,
+    tab_off,
+    tau_eval,
+    rtol,
+    atol,
+    w_rest,
+    max_impacts,
+    stop_at_overturn,
+    max_steps,
+    record,
+    threads=None,
+):
     """Solve n encoded cases (arrays of length n, ``par`` (n, PAR_SIZE), tabulated pulses at
     ``tab_off[i]:tab_off[i+1]`` of ``tab_t``/``tab_f``, ``tau_eval`` (n, m); the arguments of
     :func:`._kernel.solve_case` otherwise) on up to ``threads`` threads.
@@ -49,12 +68,37 @@ def solve_batch(alpha, e, th0, w0, tau_end, kind, par, tab_t, tab_f, tab_off, ta
     th_out = np.empty((n, m))
     w_out = np.empty((n, m))
     nt = min(resolve_threads(threads), n // MIN_CASES_PER_THREAD)
-    groups = [np.arange(n, dtype=np.int64)] if nt <= 1 else \
-        [np.arange(k, n, GROUPS_PER_THREAD * nt, dtype=np.int64) for k in range(GROUPS_PER_THREAD * nt)]
+    groups = (
+        [np.arange(n, dtype=np.int64)]
+        if nt <= 1
+        else [np.arange(k, n, GROUPS_PER_THREAD * nt, dtype=np.int64) for k in range(GROUPS_PER_THREAD * nt)]
+    )
 
     def run(idx):
-        solve_into(idx, alpha, e, th0, w0, tau_end, kind, par, tab_t, tab_f, tab_off, tau_eval, rtol, atol, w_rest,
-                     max_impacts, stop_at_overturn, max_steps, record, summ, th_out, w_out)
+        solve_into(
+            idx,
+            alpha,
+            e,
+            th0,
+            w0,
+            tau_end,
+            kind,
+            par,
+            tab_t,
+            tab_f,
+            tab_off,
+            tau_eval,
+            rtol,
+            atol,
+            w_rest,
+            max_impacts,
+            stop_at_overturn,
+            max_steps,
+            record,
+            summ,
+            th_out,
+            w_out,
+        )
 
     map_threads(run, groups, max(1, nt))
     return summ, th_out, w_out
@@ -99,8 +143,23 @@ def solve_into(
         te = tau_eval[i].copy()
         pr = par[i].copy()
         r = solve_case(
-            alpha[i], e[i], th0[i], w0[i], tau_end[i], kind[i], pr, tt, tf, te,
-            rtol, atol, w_rest, max_impacts, stop_at_overturn, max_steps, record,
+            alpha[i],
+            e[i],
+            th0[i],
+            w0[i],
+            tau_end[i],
+            kind[i],
+            pr,
+            tt,
+            tf,
+            te,
+            rtol,
+            atol,
+            w_rest,
+            max_impacts,
+            stop_at_overturn,
+            max_steps,
+            record,
         )
         for k in range(N_SUMMARY):  # plain loops: row slice assignments are slow to compile
             summ[i, k] = r[0][k]

@@ -159,8 +159,31 @@ def fill_samples(alpha, tau, q, v, s, t_stop, tau_eval, ie, th_eval, w_eval, A, 
 
 
 @njit(cache=True)
-def free_rocking(tau, th, w, s, alpha, e, w_rest, tau_end, max_impacts, stop_at_overturn, tau_eval, ie, th_eval,
-                 w_eval, imp, nimp, pk, npk, summ, max_abs, A, S, C):
+def free_rocking(
+    tau,
+    th,
+    w,
+    s,
+    alpha,
+    e,
+    w_rest,
+    tau_end,
+    max_impacts,
+    stop_at_overturn,
+    tau_eval,
+    ie,
+    th_eval,
+    w_eval,
+    imp,
+    nimp,
+    pk,
+    npk,
+    summ,
+    max_abs,
+    A,
+    S,
+    C,
+):
     """Follow the free rocking from ``(tau, th [rad], w [-])`` in the mode ``s`` event by event
     (module docstring) until the end time ``tau_end`` [-], rest (rebound below ``w_rest`` [-]),
     ``max_impacts`` impacts, the tipping point with ``stop_at_overturn`` (moving outward with an
@@ -194,13 +217,43 @@ def free_rocking(tau, th, w, s, alpha, e, w_rest, tau_end, max_impacts, stop_at_
             t_tip = tau + sp * carlson_rf(-mp * (1.0 - sp * sp), sp * sp - mp, -mp)
             if t_tip > tau_end:  # still on its way to the top at the end time
                 ie, qs, vs = fill_samples(alpha, tau, q, v, s, tau_end, tau_eval, ie, th_eval, w_eval, A, S, C)
-                return tau_end, s * qs, s * vs, s, False, False, False, False, ie, imp, nimp, pk, npk, \
-                    max(max_abs, abs(qs)), n_events
+                return (
+                    tau_end,
+                    s * qs,
+                    s * vs,
+                    s,
+                    False,
+                    False,
+                    False,
+                    False,
+                    ie,
+                    imp,
+                    nimp,
+                    pk,
+                    npk,
+                    max(max_abs, abs(qs)),
+                    n_events,
+                )
             ie, qs, vs = fill_samples(alpha, tau, q, v, s, t_tip, tau_eval, ie, th_eval, w_eval, A, S, C)
             summ[S_OVERTURN_TAU] = t_tip
             summ[S_W_AT_ALPHA] = 2.0 * math.sqrt(-mp)
-            return t_tip, s * alpha, s * 2.0 * math.sqrt(-mp), s, False, True, False, True, ie, imp, nimp, pk, npk, \
-                max(max_abs, alpha), n_events + 1
+            return (
+                t_tip,
+                s * alpha,
+                s * 2.0 * math.sqrt(-mp),
+                s,
+                False,
+                True,
+                False,
+                True,
+                ie,
+                imp,
+                nimp,
+                pk,
+                npk,
+                max(max_abs, alpha),
+                n_events + 1,
+            )
         k2 = 1.0 - mp
         kk = math.sqrt(k2)
         kc = carlson_rf(0.0, mp, 1.0)

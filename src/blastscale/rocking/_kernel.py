@@ -224,8 +224,30 @@ def solve_case(
 
         if free and tau >= tau_pend and not overturned:  # the pulse is over: event-driven free rocking
             tau, th, w, s, resting, early, back, tipped, ie, imp, nimp, pk, npk, max_abs, nev = free_rocking(
-                tau, th, w, s, alpha, e, w_rest, tau_end, max_impacts, stop_at_overturn, tau_eval, ie, th_eval,
-                w_eval, imp, nimp, pk, npk, summ, max_abs, TW[0], TW[1], TW[2])
+                tau,
+                th,
+                w,
+                s,
+                alpha,
+                e,
+                w_rest,
+                tau_end,
+                max_impacts,
+                stop_at_overturn,
+                tau_eval,
+                ie,
+                th_eval,
+                w_eval,
+                imp,
+                nimp,
+                pk,
+                npk,
+                summ,
+                max_abs,
+                TW[0],
+                TW[1],
+                TW[2],
+            )
             nsteps += nev  # one per half cycle
             free = not back
             stop = early
@@ -236,8 +258,26 @@ def solve_case(
 
         tbp = min(next_breakpoint(tau, kind, par, tab_t), tau_end)
         if free and tbp != tbp_steps:  # this piece of the pulse in Taylor expansions (_series), where it may
-            tau_n, th, w, ie = pulse_piece(tau, th, w, s, alpha, kind, par, tab_t, tab_f, tbp, tau_eval, ie, th_eval,
-                                           w_eval, TW[0], TW[1], TW[2], TW[3])
+            tau_n, th, w, ie = pulse_piece(
+                tau,
+                th,
+                w,
+                s,
+                alpha,
+                kind,
+                par,
+                tab_t,
+                tab_f,
+                tbp,
+                tau_eval,
+                ie,
+                th_eval,
+                w_eval,
+                TW[0],
+                TW[1],
+                TW[2],
+                TW[3],
+            )
             nsteps += 1
             if tau_n > tau:
                 tau, need_f1, h, max_abs = tau_n, True, 0.0, max(max_abs, abs(th))
@@ -313,8 +353,9 @@ def solve_case(
 
         # an event ends the step at x_ev
         if ev == EV_IMPACT:
-            te, w_before, w_after, w, s, resting = impact(tau, th, w, f1a, f1b, x_ev, hstep, taun, wn, s, e, w_rest,
-                                                          alpha, kind, par, tab_t, tab_f, K)
+            te, w_before, w_after, w, s, resting = impact(
+                tau, th, w, f1a, f1b, x_ev, hstep, taun, wn, s, e, w_rest, alpha, kind, par, tab_t, tab_f, K
+            )
             imp, nimp = record_impact(imp, nimp, summ, te, w_before, w_after)
             if record:
                 hist, nh = record_row(hist, nh, te, 0.0, w_before)
@@ -350,4 +391,3 @@ def solve_case(
     if record and nh > 0 and hist[nh - 1, 0] < tau:
         hist, nh = record_row(hist, nh, tau, th, w)
     return summ, th_eval, w_eval, hist[:nh].copy(), imp[:nimp].copy(), pk[:npk].copy()
-

@@ -103,8 +103,9 @@ def encode_pulse(pulse: Pulse, system: RockingSystem, theta0: float = 0.0):
     )
 
 
-def encode_blast_batch(alpha, frequency, load_ratio, blast, pulse_shape: str, load_model=None, *,
-                       extrapolate: bool = False):
+def encode_blast_batch(
+    alpha, frequency, load_ratio, blast, pulse_shape: str, load_model=None, *, extrapolate: bool = False
+):
     """Kernel form of n front-face blast pulses at once (vectorised :func:`encode_pulse` of
     :func:`~blastscale.blast.load_model.front_face_pulse`): the reflected pulse of shape
     ``pulse_shape`` of every case of ``blast`` (arrays), cleared and followed by the negative phase
@@ -141,7 +142,6 @@ def encode_blast_batch(alpha, frequency, load_ratio, blast, pulse_shape: str, lo
     tab_t = tab_f = np.zeros(0)
     i_pos = i
     if load_model is not None and load_model.clearing:
-
         c = front_face_clearing(blast, load_model)
         cl = np.atleast_1d(c.cleared)
         i_pos = np.where(cl, c.cleared_impulse, i)
@@ -161,7 +161,6 @@ def encode_blast_batch(alpha, frequency, load_ratio, blast, pulse_shape: str, lo
     if pulse_shape == "impulsive":  # theta_dot_0 / p = i S l cos(alpha) / (J_o p cos(alpha)) (encode_pulse)
         w0[:] = q * p * i_pos * np.cos(a)
     if load_model is not None and load_model.negative_phase:
-
         neg = front_face_negative(blast, load_model, extrapolate=extrapolate, positive_impulse=i_pos)
         start = kernel_pulse_end(kind, par, tab_t, off)
         if pulse_shape == "impulsive":

@@ -143,9 +143,15 @@ class RockingSystem:
         lam = float(check_positive("scale", factors.length))
         gam = float(check_positive("density ratio", factors.density))
         sig = float(check_positive("gravity ratio", factors.gravity))
-        return replace(self, mass=self.mass * gam * lam**3, inertia_pivot=self.inertia_pivot * gam * lam**5,
-                       radius=self.radius * lam, loaded_area=self.loaded_area * lam**2, lever_arm=self.lever_arm * lam,
-                       gravity=self.gravity * sig)
+        return replace(
+            self,
+            mass=self.mass * gam * lam**3,
+            inertia_pivot=self.inertia_pivot * gam * lam**5,
+            radius=self.radius * lam,
+            loaded_area=self.loaded_area * lam**2,
+            lever_arm=self.lever_arm * lam,
+            gravity=self.gravity * sig,
+        )
 
     # derived quantities ----------------------------------------------------
     @property
@@ -195,7 +201,6 @@ def as_rocking_system(
     [m/s^2] (default 9.81) and ``restitution``; a system is returned as is unless
     ``gravity`` / ``restitution`` are given, which then replace its own)."""
     if isinstance(body, RockingSystem):
-
         changes = {}
         if gravity is not None:
             changes["gravity"] = gravity

@@ -40,18 +40,20 @@ def load_scenario(path: "str | Path") -> Scenario:
         return _from_text(library_text(stem), library_source(stem))
     try:
         if p.is_dir() or p.is_char_device() or p.is_block_device():
-            raise BlastscaleInputError(f"scenario = {str(p)!r} cannot be read: not a file (a folder or a device); "
-                                       "give a .toml scenario file")
+            raise BlastscaleInputError(
+                f"scenario = {str(p)!r} cannot be read: not a file (a folder or a device); give a .toml scenario file"
+            )
         with open(p, "rb") as f:
             raw = f.read(MAX_SCENARIO_BYTES + 1)
         if len(raw) > MAX_SCENARIO_BYTES:
-            raise BlastscaleInputError(f"scenario = {str(p)!r} is larger than {MAX_SCENARIO_BYTES // 10**6} MB: "
-                                       "not a scenario file")
+            raise BlastscaleInputError(
+                f"scenario = {str(p)!r} is larger than {MAX_SCENARIO_BYTES // 10**6} MB: not a scenario file"
+            )
         text = raw.decode("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
         if isinstance(exc, UnicodeDecodeError):
-            reason = f"not UTF-8 text (byte {exc.start}: {exc.object[exc.start:exc.start + 1]!r})"
+            reason = f"not UTF-8 text (byte {exc.start}: {exc.object[exc.start : exc.start + 1]!r})"
         hint = f" (or give a shipped scenario: {', '.join(shipped)})" if not _exists(p) else ""
         raise BlastscaleInputError(f"scenario = {str(p)!r} cannot be read: {reason}{hint}") from None
     return _from_text(text, p.name, p.resolve().parent)
@@ -59,6 +61,7 @@ def load_scenario(path: "str | Path") -> Scenario:
 
 #: The largest scenario file read (a scenario is a few kB; a device or a mistaken file is not read whole).
 MAX_SCENARIO_BYTES = 10 * 10**6
+
 
 def _exists(p: Path) -> bool:
     try:
@@ -86,14 +89,26 @@ def _from_text(text: str, source: str, folder: "Path | None" = None) -> Scenario
     except tomllib.TOMLDecodeError as exc:
         raise BlastscaleInputError(f"{source}: TOML syntax error: {exc}") from None
     except RecursionError:
-        raise BlastscaleInputError(f"{source}: arrays or tables nested {_nesting(text)} deep: too deep for the "
-                                   "TOML reader (a scenario nests 3 deep)") from None
+        raise BlastscaleInputError(
+            f"{source}: arrays or tables nested {_nesting(text)} deep: too deep for the "
+            "TOML reader (a scenario nests 3 deep)"
+        ) from None
     st = data.get("structure")
-    if folder is not None and isinstance(st, dict) and isinstance(st.get("file"), str) \
-            and not Path(st["file"]).is_absolute():  # a block-model file is relative to its scenario file
+    if (
+        folder is not None
+        and isinstance(st, dict)
+        and isinstance(st.get("file"), str)
+        and not Path(st["file"]).is_absolute()
+    ):  # a block-model file is relative to its scenario file
         data["structure"] = {**st, "file": str(folder / st["file"])}
     fired = data.get("fired")
     if folder is not None and isinstance(fired, dict):  # the records are relative to their scenario file
-        data["fired"] = {**fired, **{k: str(folder / fired[k]) for k in ("gauges", "tracks")
-                                     if isinstance(fired.get(k), str) and not Path(fired[k]).is_absolute()}}
+        data["fired"] = {
+            **fired,
+            **{
+                k: str(folder / fired[k])
+                for k in ("gauges", "tracks")
+                if isinstance(fired.get(k), str) and not Path(fired[k]).is_absolute()
+            },
+        }
     return Scenario.from_dict(data, source=source)

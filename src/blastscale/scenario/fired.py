@@ -33,7 +33,8 @@ class GaugeSpec(BaseModel):
     model_config = _CONFIG
     position_m: Point = Field(description="Gauge position [x, y, z] [m] in the record axes")
     kind: Literal["reflected", "side-on"] = Field(
-        "reflected", description="reflected: flush in a rigid plate facing the charge; side-on: incident pressure")
+        "reflected", description="reflected: flush in a rigid plate facing the charge; side-on: incident pressure"
+    )
 
 
 class MarkerSpec(BaseModel):
@@ -50,8 +51,9 @@ class FiredSpec(BaseModel):
     model_config = _CONFIG
     gauges: str | None = Field(None, description="Gauge traces, CSV (relative to the scenario file)")
     tracks: str | None = Field(None, description="Marker tracks, CSV (relative to the scenario file)")
-    charge_kg: float | None = Field(None, gt=0, le=10000,
-                                       description="The charge as weighed [kg of the [lab] explosive]")
+    charge_kg: float | None = Field(
+        None, gt=0, le=10000, description="The charge as weighed [kg of the [lab] explosive]"
+    )
     standoff_m: float | None = Field(None, gt=0, le=1000, description="The stand-off as measured [m]")
     gauge: dict[str, GaugeSpec] = Field(default_factory=dict, description="[fired.gauge.NAME] tables")
     marker: dict[str, MarkerSpec] = Field(default_factory=dict, description="[fired.marker.NAME] tables")

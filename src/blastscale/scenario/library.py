@@ -32,9 +32,12 @@ def library_text(name: str) -> str:
 
 #: The example block model that ``init --kind assembly`` writes beside its scenario (our JSON, metres, z up):
 #: a 1 m cube under a 1 m cube, a pier of two blocks.
-EXAMPLE_BLOCKS = {"blocks": [
-    {"name": f"B{i + 1}", "vertices": [[x, y, z + i] for x in (0.0, 1.0) for y in (-0.5, 0.5) for z in (0.0, 1.0)]}
-    for i in range(2)]}
+EXAMPLE_BLOCKS = {
+    "blocks": [
+        {"name": f"B{i + 1}", "vertices": [[x, y, z + i] for x in (0.0, 1.0) for y in (-0.5, 0.5) for z in (0.0, 1.0)]}
+        for i in range(2)
+    ]
+}
 
 
 def template_text(kind: str, blocks: str = "blocks.json") -> str:

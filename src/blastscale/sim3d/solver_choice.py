@@ -66,7 +66,6 @@ def default_jacobian(nbody: int, version: str | None = None) -> str:
 
 def _released_at_least(version: str | None, release: tuple) -> bool:
     if version is None:
-
         try:
             version = _version("mujoco")
         except PackageNotFoundError:  # pragma: no cover - the engine needs MuJoCo anyway

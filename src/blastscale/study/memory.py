@@ -18,8 +18,17 @@ from ..scenario import Scenario
 from ..sim3d.contact import default_contact
 from .engines import contact_settings
 
-__all__ = ["MEMORY_FRACTION", "estimate_memory", "check_memory", "estimate_seconds", "check_budget",
-           "check_study_budget", "max_seconds", "format_duration", "STEP_SECONDS"]
+__all__ = [
+    "MEMORY_FRACTION",
+    "estimate_memory",
+    "check_memory",
+    "estimate_seconds",
+    "check_budget",
+    "check_study_budget",
+    "max_seconds",
+    "format_duration",
+    "STEP_SECONDS",
+]
 
 #: Fraction of the available memory a job may plan to use.
 MEMORY_FRACTION = 0.5
@@ -61,7 +70,6 @@ def _timestep(scenario: Scenario, structure, contact=None) -> float:
         return contact.timestep
     if structure is not None:
         try:
-
             return contact_settings(scenario, structure).timestep
         except BlastscaleInputError:  # reported by the engine's own check
             pass
@@ -72,8 +80,9 @@ def _derived_timestep(scenario: Scenario, structure) -> float:
     """The time step the engine derives from the structure's size [s] (no time step given)."""
 
     try:
-        return default_contact(structure, friction=scenario.structure.friction,
-                               gravity=scenario.simulation.gravity_m_s2).timestep
+        return default_contact(
+            structure, friction=scenario.structure.friction, gravity=scenario.simulation.gravity_m_s2
+        ).timestep
     except BlastscaleInputError:
         return 2e-4
 
@@ -119,7 +128,7 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
         sides = getattr(structure, "sides", 4) if getattr(structure, "section", "") == "circular" else 4
         steps = sim.duration_s / _timestep(scenario, structure, contact)
         runs = systems * (1 + sim.ensemble_members)
-        total += runs * steps * STEP_SECONDS * nb ** 1.5 * max(1.0, sides / 4) ** (1 / 3)
+        total += runs * steps * STEP_SECONDS * nb**1.5 * max(1.0, sides / 4) ** (1 / 3)
     return total
 
 
@@ -135,8 +144,9 @@ def _available_memory() -> int:
     return 4 * 2**30
 
 
-def check_budget(name: str, value: float, unit: str, need_bytes: float, seconds: float, grows: int = 1,
-                 hint: str = "") -> None:
+def check_budget(
+    name: str, value: float, unit: str, need_bytes: float, seconds: float, grows: int = 1, hint: str = ""
+) -> None:
     """The shared rule: refuse a job needing more than :data:`MEMORY_FRACTION` of the available memory
     or more than :func:`max_seconds` of computing, in one line.
 
@@ -157,21 +167,28 @@ def check_budget(name: str, value: float, unit: str, need_bytes: float, seconds:
     mem_limit, time_limit = MEMORY_FRACTION * _available_memory(), max_seconds()
     if need_bytes <= mem_limit and seconds <= time_limit:
         return
-    room = min(mem_limit / need_bytes if need_bytes > 0 else math.inf, time_limit / seconds if seconds > 0 else math.inf)
+    room = min(
+        mem_limit / need_bytes if need_bytes > 0 else math.inf, time_limit / seconds if seconds > 0 else math.inf
+    )
     fits = value * room if grows > 0 else value / room
     if float(fits).is_integer() or unit == "":
         fits = math.floor(fits) if grows > 0 else math.ceil(fits)
     why = []
     if need_bytes > mem_limit:
-        why.append(f"about {need_bytes / 2**30:.3g} GiB of memory, more than {mem_limit / 2**30:.3g} GiB "
-                   f"({MEMORY_FRACTION:g} of the available memory)")
+        why.append(
+            f"about {need_bytes / 2**30:.3g} GiB of memory, more than {mem_limit / 2**30:.3g} GiB "
+            f"({MEMORY_FRACTION:g} of the available memory)"
+        )
     if seconds > time_limit:
-        why.append(f"about {format_duration(seconds)} of computing, more than {format_duration(time_limit)} "
-                   "(BLASTSCALE_MAX_HOURS raises the limit)")
+        why.append(
+            f"about {format_duration(seconds)} of computing, more than {format_duration(time_limit)} "
+            "(BLASTSCALE_MAX_HOURS raises the limit)"
+        )
     u = f" {unit}" if unit else ""
     raise BlastscaleInputError(
         f"{name} = {value:g}{u} is out of range: it would need {' and '.join(why)}; valid range is "
-        f"{'<=' if grows > 0 else '>='} {fits:.3g}{u} here" + (f" ({hint})" if hint else ""))
+        f"{'<=' if grows > 0 else '>='} {fits:.3g}{u} here" + (f" ({hint})" if hint else "")
+    )
 
 
 def check_study_budget(scenario: Scenario, structure=None, contact=None) -> None:
@@ -188,8 +205,14 @@ def check_study_budget(scenario: Scenario, structure=None, contact=None) -> None
         given_step = structure is None or sim.timestep_s < _derived_timestep(scenario, structure)
     if given_step:
         check_budget("simulation.timestep_s", sim.timestep_s, "s", need, secs, grows=-1)
-    check_budget("simulation.duration_s", sim.duration_s, "s", need, secs,
-                 hint="or raise simulation.record_every" if sim.engine in ("3d", "both") else "")
+    check_budget(
+        "simulation.duration_s",
+        sim.duration_s,
+        "s",
+        need,
+        secs,
+        hint="or raise simulation.record_every" if sim.engine in ("3d", "both") else "",
+    )
 
 
 def check_memory(scenario: Scenario, structure=None) -> None:

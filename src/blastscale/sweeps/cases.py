@@ -42,7 +42,6 @@ def _chunk_rows(spec: SweepSpec, start: int, stop: int) -> list:
     over the threads instead, :mod:`blastscale.rocking._batch`). Warnings are silenced once, here
     (``catch_warnings`` is process-wide)."""
 
-
     scenarios = [spec.scenario(k) for k in range(start, stop)]
     threads = 1 if spec.planar_only else scenarios[0].simulation.threads if scenarios else 1
     with warnings.catch_warnings():
@@ -59,5 +58,4 @@ def evaluate_chunk(payload: dict, start: int, stop: int) -> dict:
         return {"start": start, "stop": stop, "values": planar_outcomes(spec, start, stop)}
     rows = _chunk_rows(spec, start, stop)
     keys = sorted({k for r in rows for k in r})
-    return {"start": start, "stop": stop,
-            "values": {k: [r.get(k, math.nan) for r in rows] for k in keys}}
+    return {"start": start, "stop": stop, "values": {k: [r.get(k, math.nan) for r in rows] for k in keys}}

@@ -115,7 +115,6 @@ def similarity_map(
     """
     import xarray as xr
 
-
     if engine not in ENGINE_VARIABLES:
         raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINE_VARIABLES)}")
     tolerance = DEFAULT_TOLERANCE[engine] if tolerance is None else float(check_positive("tolerance", tolerance))
@@ -137,8 +136,16 @@ def similarity_map(
     out["first_peak_ratio_error"] = np.abs(out["first_peak_ratio"] - 1.0).assign_attrs(units="-")
     unit = out["error"].attrs["units"]
     out["trustworthy"] = (valid & agree & (out["error"] <= tolerance)).assign_attrs(
-        units="-", definition=f"valid, outcomes agree, error <= {tolerance:g} {unit}")
-    out.attrs.update({"engine": engine, "tolerance": float(tolerance), "error_units": unit,
-                      "error_definition": ENGINE_VARIABLES[engine]["error"][0],
-                      "title": f"blastscale similarity map ({engine})", "sweep": src.attrs.get("sweep", "")})
+        units="-", definition=f"valid, outcomes agree, error <= {tolerance:g} {unit}"
+    )
+    out.attrs.update(
+        {
+            "engine": engine,
+            "tolerance": float(tolerance),
+            "error_units": unit,
+            "error_definition": ENGINE_VARIABLES[engine]["error"][0],
+            "title": f"blastscale similarity map ({engine})",
+            "sweep": src.attrs.get("sweep", ""),
+        }
+    )
     return out

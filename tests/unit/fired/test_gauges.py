@@ -21,8 +21,8 @@ from _fired_synthetic import synthetic_trace as _trace
 
 from blastscale.fired import effective_charge, fit_gauge
 
-CHARGE_KG = 0.002   # 2 g TNT, a lab charge
-DISTANCE_M = 0.8    # reflected gauge flush in the plate facing it
+CHARGE_KG = 0.002  # 2 g TNT, a lab charge
+DISTANCE_M = 0.8  # reflected gauge flush in the plate facing it
 SEEDS = range(24)
 
 
@@ -51,8 +51,9 @@ def test_effective_charge_from_pressure_and_a_stronger_charge():
     t, y, _truth = synthetic_trace(3, charge=1.15 * CHARGE_KG)
     g = fit_gauge(t, y, "g1")
     assert effective_charge(g.impulse_Pa_s, DISTANCE_M) == pytest.approx(1.15 * CHARGE_KG, rel=0.05)
-    assert effective_charge(g.peak_pressure_Pa, DISTANCE_M, basis="pressure") == pytest.approx(1.15 * CHARGE_KG,
-                                                                                               rel=0.20)
+    assert effective_charge(g.peak_pressure_Pa, DISTANCE_M, basis="pressure") == pytest.approx(
+        1.15 * CHARGE_KG, rel=0.20
+    )
 
 
 def test_side_on_gauge_reads_the_incident_fits():

@@ -37,8 +37,12 @@ def poses(d, axis, angle) -> xr.Dataset:
     ax = np.asarray(axis, float) / np.linalg.norm(axis)
     q = np.array([[1.0, 0, 0, 0], [math.cos(angle / 2), *(math.sin(angle / 2) * ax)]])
     pos = np.array([[0.0, 0.0, H], np.add([0.0, 0.0, H], d)])
-    return xr.Dataset({"body_position": (("time", "body", "c"), pos[:, None, :]),
-                       "body_quaternion": (("time", "body", "q"), q[:, None, :])})
+    return xr.Dataset(
+        {
+            "body_position": (("time", "body", "c"), pos[:, None, :]),
+            "body_quaternion": (("time", "body", "q"), q[:, None, :]),
+        }
+    )
 
 
 def test_a_marker_follows_the_sideways_turn():
@@ -72,8 +76,10 @@ def com_drop(theta):
     return H - B * math.sin(theta) - H * math.cos(theta)
 
 
-@pytest.mark.parametrize(("rule", "deg", "fell"), [("fallen", 40, False), ("fallen", 50, True),
-                                                  ("toppling", 20, False), ("toppling", 23, True)])
+@pytest.mark.parametrize(
+    ("rule", "deg", "fell"),
+    [("fallen", 40, False), ("fallen", 50, True), ("toppling", 20, False), ("toppling", 23, True)],
+)
 def test_two_markers_give_the_turn_and_the_drop(rule, deg, fell):
     """Two markers on one block: its turn (the rule's limit: 45 deg for "fallen", atan(b/h) = 21.8 deg for
     "toppling") and its centre of mass's drop, exactly."""

@@ -20,7 +20,7 @@ def test_units_are_converted(tmp_path):
     r = read_gauges(p, names={"a", "b", "c", "d", "e"})
     np.testing.assert_allclose(r.time_s, [-1e-4, 0.0])
     assert r.pressure_Pa["a"][1] == 2000.0
-    assert r.pressure_Pa["b"][0] == pytest.approx(6894.757293168361, rel=1e-15)   # NIST SP 811
+    assert r.pressure_Pa["b"][0] == pytest.approx(6894.757293168361, rel=1e-15)  # NIST SP 811
     assert r.pressure_Pa["c"][0] == 1e5 and r.pressure_Pa["d"][0] == 1e6 and r.pressure_Pa["e"][0] == 1.0
 
 
@@ -54,8 +54,10 @@ BAD_TRACKS = [
 ]
 
 
-@pytest.mark.parametrize("read,names,text,message", [(read_gauges, {"a"}, *b) for b in BAD_GAUGES]
-                         + [(read_tracks, {"top"}, *b) for b in BAD_TRACKS])
+@pytest.mark.parametrize(
+    "read,names,text,message",
+    [(read_gauges, {"a"}, *b) for b in BAD_GAUGES] + [(read_tracks, {"top"}, *b) for b in BAD_TRACKS],
+)
 def test_bad_records_are_one_line(tmp_path, read, names, text, message):
     with pytest.raises(BlastscaleInputError) as e:
         read(_write(tmp_path, text), names=names)
@@ -68,8 +70,11 @@ def test_too_few_samples_over_the_pulse_names_the_rows():
     t = np.arange(-1e-3, 3e-3, 1 / 20e3)
     p = np.where(t > 1e-3, 6e4 * (1 - (t - 1e-3) / 5e-4) * np.exp(-(t - 1e-3) / 5e-4), 0.0)
     p = p + np.random.default_rng(0).normal(0, 100, t.size)
-    with pytest.raises(BlastscaleInputError, match=r"g\.csv: column 'g1_kPa', row \d+-\d+: \d+ samples over the "
-                                                   r"pulse: at least 20"):
+    with pytest.raises(
+        BlastscaleInputError,
+        match=r"g\.csv: column 'g1_kPa', row \d+-\d+: \d+ samples over the "
+        r"pulse: at least 20",
+    ):
         fit_gauge(t, p, "g1", source="g.csv", column="g1_kPa")
 
 

@@ -11,9 +11,14 @@ from blastscale.planning.pareto import mark_pareto, pareto_mask
 def _brute(c):
     """Row i is dominated if some row j is <= in every column and < in one (the definition, loops)."""
     n = len(c)
-    return [not any(all(c[j][k] <= c[i][k] for k in range(len(c[i]))) and any(c[j][k] < c[i][k]
-                                                                            for k in range(len(c[i])))
-                    for j in range(n) if j != i) for i in range(n)]
+    return [
+        not any(
+            all(c[j][k] <= c[i][k] for k in range(len(c[i]))) and any(c[j][k] < c[i][k] for k in range(len(c[i])))
+            for j in range(n)
+            if j != i
+        )
+        for i in range(n)
+    ]
 
 
 @pytest.mark.parametrize("seed", range(5))
@@ -25,11 +30,13 @@ def test_mask_is_the_definition(seed):
 
 def test_hand_made_front():
     # (p_outcome_agree, error, safety radius, charge): A best odds, B smallest charge, C dominated by A, D equals A
-    d = [dict(p_outcome_agree=1.0, predicted_first_peak_error=0.01, safety_radius_m=2.0, tnt_equivalent_kg=1e-3),
-         dict(p_outcome_agree=0.9, predicted_first_peak_error=0.02, safety_radius_m=1.0, tnt_equivalent_kg=1e-4),
-         dict(p_outcome_agree=0.95, predicted_first_peak_error=0.01, safety_radius_m=2.0, tnt_equivalent_kg=1e-3),
-         dict(p_outcome_agree=1.0, predicted_first_peak_error=0.01, safety_radius_m=2.0, tnt_equivalent_kg=1e-3),
-         dict(p_outcome_agree=None, predicted_first_peak_error=0.0, safety_radius_m=0.1, tnt_equivalent_kg=1e-6)]
+    d = [
+        dict(p_outcome_agree=1.0, predicted_first_peak_error=0.01, safety_radius_m=2.0, tnt_equivalent_kg=1e-3),
+        dict(p_outcome_agree=0.9, predicted_first_peak_error=0.02, safety_radius_m=1.0, tnt_equivalent_kg=1e-4),
+        dict(p_outcome_agree=0.95, predicted_first_peak_error=0.01, safety_radius_m=2.0, tnt_equivalent_kg=1e-3),
+        dict(p_outcome_agree=1.0, predicted_first_peak_error=0.01, safety_radius_m=2.0, tnt_equivalent_kg=1e-3),
+        dict(p_outcome_agree=None, predicted_first_peak_error=0.0, safety_radius_m=0.1, tnt_equivalent_kg=1e-6),
+    ]
     mark_pareto(d)
     assert [x["pareto"] for x in d] == [True, True, False, True, None]  # no odds: not compared
 

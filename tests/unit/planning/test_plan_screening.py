@@ -15,16 +15,46 @@ from blastscale.scenario import Scenario
 from blastscale.scenario.lab import LabSpec
 from blastscale.similitude.effects import structure_top
 
-COLUMN = {"structure": {"kind": "column", "section": "square", "drums": 10, "height_m": 10.0, "base_width_m": 1.65,
-                        "top_width_m": 1.28, "density_kg_m3": 2700.0, "friction": 0.7},
-          "blast": {"charge_kg": 250.0, "standoff_m": 10.0, "blast_model": "masi2021"},
-          "simulation": {"engine": "3d", "duration_s": 0.5}}
-WALL = {"structure": {"kind": "wall", "length_m": 4.0, "height_m": 2.5, "thickness_m": 0.5, "courses": 5,
-                      "units_per_course": 4, "bond": "running", "density_kg_m3": 2400.0},
-        "blast": {"charge_kg": 10.0, "standoff_m": 5.0}, "simulation": {"engine": "3d", "duration_s": 0.5}}
-ARCH = {"structure": {"kind": "arch", "radius_m": 2.5, "thickness_m": 0.5, "depth_m": 1.0, "voussoirs": 9,
-                      "density_kg_m3": 2400.0},
-        "blast": {"charge_kg": 20.0, "standoff_m": 6.0}, "simulation": {"engine": "3d", "duration_s": 0.5}}
+COLUMN = {
+    "structure": {
+        "kind": "column",
+        "section": "square",
+        "drums": 10,
+        "height_m": 10.0,
+        "base_width_m": 1.65,
+        "top_width_m": 1.28,
+        "density_kg_m3": 2700.0,
+        "friction": 0.7,
+    },
+    "blast": {"charge_kg": 250.0, "standoff_m": 10.0, "blast_model": "masi2021"},
+    "simulation": {"engine": "3d", "duration_s": 0.5},
+}
+WALL = {
+    "structure": {
+        "kind": "wall",
+        "length_m": 4.0,
+        "height_m": 2.5,
+        "thickness_m": 0.5,
+        "courses": 5,
+        "units_per_course": 4,
+        "bond": "running",
+        "density_kg_m3": 2400.0,
+    },
+    "blast": {"charge_kg": 10.0, "standoff_m": 5.0},
+    "simulation": {"engine": "3d", "duration_s": 0.5},
+}
+ARCH = {
+    "structure": {
+        "kind": "arch",
+        "radius_m": 2.5,
+        "thickness_m": 0.5,
+        "depth_m": 1.0,
+        "voussoirs": 9,
+        "density_kg_m3": 2400.0,
+    },
+    "blast": {"charge_kg": 20.0, "standoff_m": 6.0},
+    "simulation": {"engine": "3d", "duration_s": 0.5},
+}
 HEIGHT = {"column": 10.0, "wall": 2.5}  # prototype heights [m]
 
 
@@ -37,21 +67,31 @@ def _stack(tmp_path):
     box = lambda n, z0, z1: {"name": n, "vertices": [[x, y, z] for x in (0, 0.6) for y in (0, 1) for z in (z0, z1)]}
     f = tmp_path / "stack.json"
     f.write_text(json.dumps({"blocks": [box("A", 0.0, 1.2), box("B", 1.2, 2.4)]}))
-    return {"structure": {"kind": "assembly", "file": str(f), "density_kg_m3": 2400.0},
-            "blast": {"charge_kg": 5.0, "standoff_m": 4.0}, "simulation": {"engine": "3d", "duration_s": 0.5}}
+    return {
+        "structure": {"kind": "assembly", "file": str(f), "density_kg_m3": 2400.0},
+        "blast": {"charge_kg": 5.0, "standoff_m": 4.0},
+        "simulation": {"engine": "3d", "duration_s": 0.5},
+    }
 
 
 @st.composite
 def labs(draw):
     lo, hi = sorted((draw(st.sampled_from([0.0, 1e-4, 1e-2])), draw(st.floats(1e-3, 10.0))))
     return LabSpec(
-        explosive=draw(st.sampled_from(["tnt", "c-4", "petn"])), initiator=draw(st.sampled_from(["rp-80", "none"])),
-        initiator_max_fraction=draw(st.sampled_from([0.05, 0.5, 1.0])), charge_min_kg=lo, charge_max_kg=max(hi, 1e-3),
-        specimen_max_height_m=draw(st.floats(0.05, 6.0)), specimen_max_mass_kg=draw(st.floats(0.01, 5000.0)),
-        materials=draw(st.lists(st.sampled_from(["same", "balsa", "marble", "steel"]), min_size=1, max_size=2,
-                                unique=True)),
-        camera_max_fps=draw(st.floats(20.0, 1e5)), space_radius_m=draw(st.floats(0.2, 60.0)),
-        bursts=draw(st.sampled_from([["surface"], ["surface", "free-air"]])))
+        explosive=draw(st.sampled_from(["tnt", "c-4", "petn"])),
+        initiator=draw(st.sampled_from(["rp-80", "none"])),
+        initiator_max_fraction=draw(st.sampled_from([0.05, 0.5, 1.0])),
+        charge_min_kg=lo,
+        charge_max_kg=max(hi, 1e-3),
+        specimen_max_height_m=draw(st.floats(0.05, 6.0)),
+        specimen_max_mass_kg=draw(st.floats(0.01, 5000.0)),
+        materials=draw(
+            st.lists(st.sampled_from(["same", "balsa", "marble", "steel"]), min_size=1, max_size=2, unique=True)
+        ),
+        camera_max_fps=draw(st.floats(20.0, 1e5)),
+        space_radius_m=draw(st.floats(0.2, 60.0)),
+        bursts=draw(st.sampled_from([["surface"], ["surface", "free-air"]])),
+    )
 
 
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -65,9 +105,11 @@ def test_every_screened_design_is_within_every_limit(lab, kind):
     for e in ok:
         c, d, ch = e.candidate, e.design, e.charge
         assert c.scale * HEIGHT[kind] <= lab.specimen_max_height_m * (1 + 1e-12)
-        assert c.scale ** 3 * d.density_ratio * proto["mass_kg"] <= lab.specimen_max_mass_kg * (1 + 1e-9)
+        assert c.scale**3 * d.density_ratio * proto["mass_kg"] <= lab.specimen_max_mass_kg * (1 + 1e-9)
         assert lab.charge_min_kg * (1 - 1e-12) <= ch.explosive_mass_kg <= lab.charge_max_kg * (1 + 1e-12)
-        assert ch.explosive_mass_kg >= ch.explosive.min_charge_kg and ch.initiator_fraction <= lab.initiator_max_fraction
+        assert (
+            ch.explosive_mass_kg >= ch.explosive.min_charge_kg and ch.initiator_fraction <= lab.initiator_max_fraction
+        )
         assert e.safety.radius_m <= lab.space_radius_m and e.instruments.camera_fps_required <= lab.camera_max_fps
         assert max(e.impulsive.prototype_ratio, e.impulsive.model_ratio) < 0.4
         assert c.burst in lab.bursts
@@ -91,19 +133,24 @@ def test_impulsive_check_for_every_kind_is_the_envelope_blocks():
     _, evs, _ = screen(sc, LabSpec(materials=["same"]))
     e = next(e for e in evs if e.design is not None and e.candidate.scale == 1.0)
     r = 0.5 * math.hypot(10.0, 1.65)
-    assert e.impulsive.prototype_ratio == pytest.approx(e.design.prototype.positive_duration
-                                                        * math.sqrt(3 * 9.81 / (4 * r)), rel=1e-3)
+    assert e.impulsive.prototype_ratio == pytest.approx(
+        e.design.prototype.positive_duration * math.sqrt(3 * 9.81 / (4 * r)), rel=1e-3
+    )
 
 
-PORTAL = {"structure": {"kind": "portal"}, "blast": {"charge_kg": 20.0, "standoff_m": 6.0},
-          "simulation": {"engine": "3d", "duration_s": 0.5}}
+PORTAL = {
+    "structure": {"kind": "portal"},
+    "blast": {"charge_kg": 20.0, "standoff_m": 6.0},
+    "simulation": {"engine": "3d", "duration_s": 0.5},
+}
 CIRCULAR = {**COLUMN, "structure": {**COLUMN["structure"], "section": "circular"}}
 
 
 @pytest.mark.parametrize("kind", ["column", "circular", "wall", "arch", "portal", "assembly"])
 def test_a_lab_nothing_satisfies_names_the_binding_constraint(kind, tmp_path):
-    data = {"column": COLUMN, "circular": CIRCULAR, "wall": WALL, "arch": ARCH, "portal": PORTAL}.get(kind) \
-        or _stack(tmp_path)
+    data = {"column": COLUMN, "circular": CIRCULAR, "wall": WALL, "arch": ARCH, "portal": PORTAL}.get(kind) or _stack(
+        tmp_path
+    )
     with pytest.raises(PlanInfeasible) as exc:  # screening only: nothing simulated in 3D
         plan(_scenario(data), lab=LabSpec(space_radius_m=0.05, materials=["same"]))
     msg = str(exc.value)

@@ -24,7 +24,9 @@ SYSTEM = RockingSystem.from_block(BLOCK)
 ONE = RockingSolver(threads=1)
 
 
-@pytest.mark.parametrize("xyz", [(0.0, 0.3, 1.0), (0.0, 1e-12, 1.0), (0.2, 1.7, 1.0), (3e-5, 4e-5, 2e-5), (1.0, 1.0, 1.0)])
+@pytest.mark.parametrize(
+    "xyz", [(0.0, 0.3, 1.0), (0.0, 1e-12, 1.0), (0.2, 1.7, 1.0), (3e-5, 4e-5, 2e-5), (1.0, 1.0, 1.0)]
+)
 def test_carlson_rf_equals_scipy(xyz):
     """R_F by duplication against scipy's elliprf (Carlson's algorithm in C, independently coded):
     4e-16 relative, a few ulps (the series' truncation is below 1e-16)."""
@@ -79,7 +81,9 @@ def test_overturning_threshold_to_round_off(stop):
     w0 = np.array([wc * (1 + 1e-9), wc * (1 - 1e-9)])
     res = ONE.simulate_batch(SYSTEM, None, 40.0 / p, np.array([0.0]), theta_dot0=w0, stop_at_overturn=stop)
     assert res.collapsed.tolist() == [True, False]
-    assert res.angular_velocity_at_tipping[0] == pytest.approx(wc * math.sqrt((1 + 1e-9) ** 2 - 1), rel=1e-5 if stop else 1e-3)
+    assert res.angular_velocity_at_tipping[0] == pytest.approx(
+        wc * math.sqrt((1 + 1e-9) ** 2 - 1), rel=1e-5 if stop else 1e-3
+    )
     # the time to the top against the stepping kernel, 1e-3 above the threshold
     fast = ONE.simulate_batch(SYSTEM, None, 40.0 / p, np.array([0.0]), theta_dot0=wc * 1.001, stop_at_overturn=stop)
     one = simulate(SYSTEM, None, 40.0 / p, theta_dot0=wc * 1.001, stop_at_overturn=stop)
@@ -91,10 +95,12 @@ def _cases():
     neg = LoadModel(negative_phase=True)
     bodies, pulses = [], []
     for k in range(12):
-        blk = RectangularBlock.from_slenderness(rng.uniform(1.0, 20.0), math.radians(rng.uniform(8.0, 30.0)),
-                                                density=rng.uniform(1500.0, 2700.0))
-        bp = blast_parameters(float(np.exp(rng.uniform(math.log(5.0), math.log(500.0)))), rng.uniform(2.0, 8.0),
-                              blast_model="masi2021")
+        blk = RectangularBlock.from_slenderness(
+            rng.uniform(1.0, 20.0), math.radians(rng.uniform(8.0, 30.0)), density=rng.uniform(1500.0, 2700.0)
+        )
+        bp = blast_parameters(
+            float(np.exp(rng.uniform(math.log(5.0), math.log(500.0)))), rng.uniform(2.0, 8.0), blast_model="masi2021"
+        )
         shape = ("friedlander", "triangular", "impulsive", "tabulated")[k % 4]
         if shape == "tabulated":
             f = bp.pulse("friedlander")
@@ -146,8 +152,9 @@ def _tight_pulse_phase(block, pulse, t):
     return sol.y[0], sol.y[1]
 
 
-@pytest.mark.parametrize("charge, shape", [(20.0, "friedlander"), (120.0, "friedlander"), (60.0, "triangular"),
-                                           (60.0, "tabulated")])
+@pytest.mark.parametrize(
+    "charge, shape", [(20.0, "friedlander"), (120.0, "friedlander"), (60.0, "triangular"), (60.0, "tabulated")]
+)
 def test_pulse_phase_in_taylor_series(charge, shape):
     """The pulse phase of a batch (rocking._series: one Taylor expansion per piece, cut where the Friedlander
     decay d r exceeds 2; masi2021 at 2 m: d ~ 8) against scipy's DOP853 at rtol 1e-13: theta within 1e-13 rad
