@@ -342,8 +342,7 @@ def tree_size(path) -> int:
 
 
 def format_size(n: float) -> str:
-    """Bytes in words: ``1.3 MB`` (decimal units, like ``ls -lh --si``)."""
-    for unit in ("B", "kB", "MB", "GB", "TB"):
-        if abs(n) < 1000 or unit == "TB":
-            return f"{n:.0f} {unit}" if unit == "B" else f"{n:.3g} {unit}"
-        n /= 1000.0
+    """Bytes in words: ``1.3 MB`` (:func:`blastscale.study.memory.format_size`, the run's estimate's words)."""
+    from ..study.memory import format_size as words
+
+    return words(n)

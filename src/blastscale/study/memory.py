@@ -6,18 +6,25 @@ Rule (:func:`check_budget`): a job may plan at most :data:`MEMORY_FRACTION` of t
 and at most :func:`max_seconds` of computing (24 h by default, ``BLASTSCALE_MAX_HOURS`` to change it).
 The estimates are deliberately rough (within a factor of about 2 on the 2-core development machine):
 their purpose is to refuse a run that would exhaust the memory or never end, not to predict its time.
+
+Every run says its size before it starts (:func:`estimate_run`, :class:`RunSize`: one line, "about 40 s and
+12 MB: 210 bodies, 1719 contacts, ..."), from the cost model of docs/performance.md ("The size of a run, said
+first"), checked against measured runs by ``benchmarks/bench_estimate.py``.
 """
 
 from __future__ import annotations
 
 import math
 import os
+from dataclasses import dataclass
 
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 
 __all__ = ["MEMORY_FRACTION", "estimate_memory", "check_memory", "estimate_seconds", "check_budget",
-           "check_study_budget", "max_seconds", "format_duration", "STEP_SECONDS"]
+           "check_study_budget", "max_seconds", "format_duration", "format_size", "STEP_SECONDS", "RunSize",
+           "estimate_run", "contacts_of", "STEP_BASE_SECONDS", "CONTACT_STEP_SECONDS", "STATE_BYTES_PER_BODY",
+           "STATE_BYTES_PER_POINT", "REPORT_BYTES", "REPORT_BYTES_PER_BODY", "WRITE_SECONDS", "WRITE_SECONDS_PER_BYTE"]
 
 #: Fraction of the available memory a job may plan to use.
 MEMORY_FRACTION = 0.5
@@ -26,6 +33,25 @@ MEMORY_FRACTION = 0.5
 #: at dt = 0.2 ms for the 10 m block, i.e. ~5 us per step); a stack of n bodies costs ~n^1.5 times more
 #: (the paper's 10-drum square column: ~130-160 us per step, docs/sim3d.md).
 STEP_SECONDS = 5e-6
+
+
+#: Cost model of a 3D step (docs/performance.md, "The size of a run, said first"; fitted to
+#: ``benchmarks/bench_estimate.py``): a fixed part per step and run [s] ...
+STEP_BASE_SECONDS = 4e-6
+#: ... plus this per body and per contact (interface between bodies or with the ground) [s]: MuJoCo's
+#: constraint solve and collision grow with the contacts (3-8 contact points per interface), the recording
+#: and the loads with the bodies.
+CONTACT_STEP_SECONDS = 1.5e-6
+#: Bytes of histories per recorded state, run and body (19 doubles: displacement, velocity, angular velocity,
+#: tilt, rotation, uplift, position, quaternion) and per monitoring point (6 doubles).
+STATE_BYTES_PER_BODY, STATE_BYTES_PER_POINT = 19 * 8, 6 * 8
+#: The report, figures and summary of a result folder [bytes]: plotly's JavaScript (~4.7 MB) and the 3D view's
+#: frames (at most 3 MB, :data:`blastscale.report.motion.FRAME_BYTES`) besides the figures ...
+REPORT_BYTES = 6.5e6
+#: ... plus this per body (the summary's and the report's rows of each body) [bytes].
+REPORT_BYTES_PER_BODY = 4e3
+#: Writing a result folder: a fixed time (figures, report) [s] and a rate [s per byte of histories].
+WRITE_SECONDS, WRITE_SECONDS_PER_BYTE = 4.0, 2e-8
 
 
 def max_seconds() -> float:
@@ -119,8 +145,100 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
         sides = getattr(structure, "sides", 4) if getattr(structure, "section", "") == "circular" else 4
         steps = sim.duration_s / _timestep(scenario, structure, contact)
         runs = systems * (1 + sim.ensemble_members)
-        total += runs * steps * STEP_SECONDS * nb ** 1.5 * max(1.0, sides / 4) ** (1 / 3)
+        per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * (nb + contacts_of(structure))
+        total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3)
     return total
+
+
+def contacts_of(structure) -> int:
+    """The contacts of a structure at rest: its interfaces between bodies and with the ground, found by
+    geometry (:func:`~blastscale.structures.as_assembly`); 1 without a structure."""
+    if structure is None:
+        return 1
+    from ..structures import as_assembly
+
+    try:
+        return max(1, len(as_assembly(structure).interface_details))
+    except (BlastscaleInputError, AttributeError, ValueError):
+        return _bodies(structure)
+
+
+def format_size(n: float) -> str:
+    """Bytes in words: ``1.3 MB`` (decimal units, like ``ls -lh --si``)."""
+    for unit in ("B", "kB", "MB", "GB", "TB"):
+        if abs(n) < 1000 or unit == "TB":
+            return f"{n:.0f} {unit}" if unit == "B" else f"{n:.3g} {unit}"
+        n /= 1000.0
+
+
+@dataclass(frozen=True)
+class RunSize:
+    """What a run will cost, said before it starts (:func:`estimate_run`).
+
+    Attributes
+    ----------
+    seconds : float
+        Computing and writing time on one core [s].
+    result_bytes : float
+        Size of the result folder [bytes] (0 when nothing is written).
+    memory_bytes : float
+        Memory of the histories [bytes] (:func:`estimate_memory`).
+    bodies, contacts : int
+        Bodies simulated and contacts at rest (:func:`contacts_of`; 0 for a planar run).
+    duration_s : float
+        Simulated time of the prototype [s].
+    samples : int
+        Recorded states (3D) or samples (planar) per run.
+    runs : int
+        Simulations (prototype and specimen, ensemble members).
+    """
+
+    seconds: float
+    result_bytes: float
+    memory_bytes: float
+    bodies: int
+    contacts: int
+    duration_s: float
+    samples: int
+    runs: int
+
+    def line(self) -> str:
+        """One line: ``about 40 s and 12 MB: 210 bodies, 1719 contacts, 0.5 s simulated, ...``."""
+        size = f" and {format_size(self.result_bytes)}" if self.result_bytes else ""
+        what = f"{self.bodies} bod{'y' if self.bodies == 1 else 'ies'}"
+        if self.contacts:
+            what += f", {self.contacts} contact{'' if self.contacts == 1 else 's'}"
+        return (f"about {format_duration(self.seconds)}{size}: {what}, {self.duration_s:g} s simulated, "
+                f"{self.samples} samples x {self.runs} run{'' if self.runs == 1 else 's'}")
+
+
+def estimate_run(scenario: Scenario, structure=None, contact=None, writes: bool = True) -> RunSize:
+    """The size of a study's run, before it starts: the computing time (:func:`estimate_seconds`) plus, when
+    ``writes``, the time to write its result folder and that folder's size (histories: per recorded state, run
+    and body :data:`STATE_BYTES_PER_BODY`, per monitoring point :data:`STATE_BYTES_PER_POINT`; the report
+    :data:`REPORT_BYTES` plus :data:`REPORT_BYTES_PER_BODY` per body). Cost model and its check against
+    measured runs: docs/performance.md."""
+    sim = scenario.simulation
+    systems = 1 if scenario.scale is None else 2
+    seconds = estimate_seconds(scenario, structure, contact)
+    nb, nc, samples, runs, hist = _bodies(structure), 0, int(sim.samples), systems, 0.0
+    if sim.engine in ("planar", "both"):
+        hist += systems * sim.samples * 8 * 12
+    if sim.engine in ("3d", "both"):
+        from .engines import record_every
+
+        nc = contacts_of(structure)
+        every = record_every(scenario, structure) if structure is not None else (sim.record_every or 4)
+        samples = int(sim.duration_s / _timestep(scenario, structure, contact) / every) + 1
+        runs = systems * (1 + sim.ensemble_members)
+        points = len(getattr(structure, "monitoring_points", ())) or nb
+        hist += runs * samples * (STATE_BYTES_PER_BODY * nb + STATE_BYTES_PER_POINT * points)
+    size = 0.0
+    if writes:
+        size = hist + REPORT_BYTES + REPORT_BYTES_PER_BODY * nb
+        seconds += WRITE_SECONDS + WRITE_SECONDS_PER_BYTE * hist
+    return RunSize(seconds=seconds, result_bytes=size, memory_bytes=estimate_memory(scenario, structure, contact),
+                   bodies=nb, contacts=nc, duration_s=float(sim.duration_s), samples=samples, runs=runs)
 
 
 def _available_memory() -> int:
