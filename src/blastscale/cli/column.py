@@ -13,7 +13,7 @@ from typing import Optional
 import typer
 
 from . import options as opt
-from ._app import app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, stage_progress, table
+from ._app import announce_run, app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, stage_progress, table
 from .flags import flags_named
 from .options import check_plot_path, scenario_default
 
@@ -129,7 +129,8 @@ def column_cmd(
     with one_line_warnings():
         with flags_named():  # a step past the stability bound, too long or too large: before any run
             contact = study.check().contact
-        with stage_progress(quiet=as_json) as tell:
+        expected = announce_run(study, quiet=as_json)  # its size, before it starts
+        with stage_progress(quiet=as_json, expected_s=expected) as tell:
             result = study.run(progress=tell)
     out = column_output(result, contact, incidence, timestep)
     if plot:

@@ -306,8 +306,13 @@ def check_study_budget(scenario: Scenario, structure=None, contact=None) -> None
         given_step = structure is None or sim.timestep_s < _derived_timestep(scenario, structure)
     if given_step:
         check_budget("simulation.timestep_s", sim.timestep_s, "s", need, secs, grows=-1)
-    check_budget("simulation.duration_s", sim.duration_s, "s", need, secs,
-                 hint="or raise simulation.record_every" if sim.engine in ("3d", "both") else "")
+    hint = "or raise simulation.record_every" if sim.engine in ("3d", "both") else ""
+    nb = _bodies(structure)
+    if hint and nb > 1:  # the cost grows about linearly with the bodies (and their contacts): the largest that fits
+        room = min(MEMORY_FRACTION * _available_memory() / max(need, 1.0), max_seconds() / max(secs, 1e-12))
+        if room < 1.0:
+            hint += f"; or a structure of <= {max(1, math.floor(nb * room))} bodies at this duration"
+    check_budget("simulation.duration_s", sim.duration_s, "s", need, secs, hint=hint)
 
 
 def check_memory(scenario: Scenario, structure=None) -> None:
