@@ -65,18 +65,24 @@ def test_a_file_over_the_block_limit_is_refused_in_one_line(tmp_path):
 
 
 def test_the_study_guard_names_the_largest_structure_that_fits(tmp_path):
-    # a day of computing lowered to 1e-4 h (0.36 s): 12 blocks for 1 s do not fit; one line naming the duration
-    # that fits and the structure that fits at this duration, exit 2, nothing written
+    # the day of computing lowered to a third of this run's estimate: 12 blocks for 1 s do not fit; one line
+    # naming the duration that fits (about 1/3 s) and the structure that fits at 1 s (about 12 / 3 = 4 bodies:
+    # the cost grows about linearly with bodies and contacts), exit 2, nothing written
+    from blastscale.scenario import load_scenario
+    from blastscale.study import Study, estimate_seconds
+
     _wall_file(tmp_path / "w.json", 2, 6)
     sc = _scenario(tmp_path, "w.json", 1.0)
-    env = {**os.environ, "MPLBACKEND": "Agg", "BLASTSCALE_MAX_HOURS": "1e-4"}
+    s = load_scenario(sc)
+    hours = estimate_seconds(s, Study(s).structure()) / 3 / 3600
+    env = {**os.environ, "MPLBACKEND": "Agg", "BLASTSCALE_MAX_HOURS": repr(hours)}
     p = subprocess.run(BLASTSCALE + ["run", str(sc), "--out", str(tmp_path / "r")], capture_output=True, text=True,
                        cwd=tmp_path, env=env, timeout=120)
     assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1, p.stderr
     m = re.search(r"simulation.duration_s = 1 s is out of range: .* valid range is <= ([\d.e-]+) s here .*"
                   r"or a structure of <= (\d+) bodies at this duration", p.stderr)
     assert m, p.stderr
-    assert float(m.group(1)) < 1.0 and 1 <= int(m.group(2)) < 12
+    assert 0.3 <= float(m.group(1)) <= 0.34 and int(m.group(2)) == 4
     assert sorted(x.name for x in tmp_path.iterdir()) == ["w.json", "wall.toml"]
 
 

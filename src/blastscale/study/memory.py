@@ -310,8 +310,8 @@ def check_study_budget(scenario: Scenario, structure=None, contact=None) -> None
     nb = _bodies(structure)
     if hint and nb > 1:  # the cost grows about linearly with the bodies (and their contacts): the largest that fits
         room = min(MEMORY_FRACTION * _available_memory() / max(need, 1.0), max_seconds() / max(secs, 1e-12))
-        if room < 1.0:
-            hint += f"; or a structure of <= {max(1, math.floor(nb * room))} bodies at this duration"
+        if room < 1.0 and math.floor(nb * room) >= 2:
+            hint += f"; or a structure of <= {math.floor(nb * room)} bodies at this duration"
     check_budget("simulation.duration_s", sim.duration_s, "s", need, secs, hint=hint)
 
 
