@@ -24,24 +24,28 @@ from ..scenario import Scenario
 __all__ = ["MEMORY_FRACTION", "estimate_memory", "check_memory", "estimate_seconds", "check_budget",
            "check_study_budget", "max_seconds", "format_duration", "format_size", "STEP_SECONDS", "RunSize",
            "estimate_run", "contacts_of", "STEP_BASE_SECONDS", "CONTACT_STEP_SECONDS", "STATE_BYTES_PER_BODY",
-           "STATE_BYTES_PER_POINT", "REPORT_BYTES", "REPORT_BYTES_PER_BODY", "WRITE_SECONDS", "WRITE_SECONDS_PER_BYTE"]
+           "STATE_BYTES_PER_POINT", "REPORT_BYTES", "REPORT_BYTES_PER_BODY", "WRITE_SECONDS", "WRITE_SECONDS_PER_BYTE",
+           "BODY_SECONDS", "BODY_EXPONENT", "STARTUP_SECONDS"]
 
 #: Fraction of the available memory a job may plan to use.
 MEMORY_FRACTION = 0.5
 
-#: Wall time of one MuJoCo step of a one-body structure [s] (README "Speed": ~40 simulated s per wall s
-#: at dt = 0.2 ms for the 10 m block, i.e. ~5 us per step); a stack of n bodies costs ~n^1.5 times more
-#: (the paper's 10-drum square column: ~130-160 us per step, docs/sim3d.md).
+#: The old per-step constant (a one-body step [s]; a stack of n bodies was taken as n^1.5 times more): kept for
+#: callers; the estimate now uses the cost model below.
 STEP_SECONDS = 5e-6
 
-
-#: Cost model of a 3D step (docs/performance.md, "The size of a run, said first"; fitted to
-#: ``benchmarks/bench_estimate.py``): a fixed part per step and run [s] ...
+#: Cost model of a 3D run on one core (docs/performance.md, "The size of a run, said first"; fitted to
+#: ``benchmarks/bench_estimate.py``, 1-3000 bodies): a fixed part per step and run [s] ...
 STEP_BASE_SECONDS = 4e-6
-#: ... plus this per body and per contact (interface between bodies or with the ground) [s]: MuJoCo's
-#: constraint solve and collision grow with the contacts (3-8 contact points per interface), the recording
-#: and the loads with the bodies.
-CONTACT_STEP_SECONDS = 1.5e-6
+#: ... plus this per step, run and body or contact (an interface between bodies or with the ground) [s]: MuJoCo's
+#: constraint solve and collision grow with the contacts (3-8 contact points per interface), the recording and
+#: the loads with the bodies; measured 2.5-3.5 us under a blast ...
+CONTACT_STEP_SECONDS = 3e-6
+#: ... plus, once per run of a structure of n bodies, BODY_SECONDS n^BODY_EXPONENT [s]: the engine's model
+#: built, the histories compared and drawn per body (measured: 13 s for 210 bodies, 290 s for 3000).
+BODY_SECONDS, BODY_EXPONENT = 0.025, 1.17
+#: Start-up of a command that simulates (Python, MuJoCo, xarray, the design) [s].
+STARTUP_SECONDS = 2.0
 #: Bytes of histories per recorded state, run and body (19 doubles: displacement, velocity, angular velocity,
 #: tilt, rotation, uplift, position, quaternion) and per monitoring point (6 doubles).
 STATE_BYTES_PER_BODY, STATE_BYTES_PER_POINT = 19 * 8, 6 * 8
@@ -49,9 +53,9 @@ STATE_BYTES_PER_BODY, STATE_BYTES_PER_POINT = 19 * 8, 6 * 8
 #: frames (at most 3 MB, :data:`blastscale.report.motion.FRAME_BYTES`) besides the figures ...
 REPORT_BYTES = 6.5e6
 #: ... plus this per body (the summary's and the report's rows of each body) [bytes].
-REPORT_BYTES_PER_BODY = 4e3
+REPORT_BYTES_PER_BODY = 7e3
 #: Writing a result folder: a fixed time (figures, report) [s] and a rate [s per byte of histories].
-WRITE_SECONDS, WRITE_SECONDS_PER_BYTE = 4.0, 2e-8
+WRITE_SECONDS, WRITE_SECONDS_PER_BYTE = 1.3, 2e-8
 
 
 def max_seconds() -> float:
@@ -131,10 +135,11 @@ def estimate_memory(scenario: Scenario, structure=None, contact=None) -> int:
 
 
 def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
-    """A rough estimate of a study's computing time on one core [s] (module docstring): 3D, the steps of
-    every run (prototype and model, ensemble members) times :data:`STEP_SECONDS` x bodies^1.5; planar,
-    ~2 us per sample and system plus the critical-charge search (~0.1 s); ``contact`` as in
-    :func:`estimate_memory`."""
+    """A rough estimate of a study's computing time on one core [s] (module docstring; docs/performance.md): 3D,
+    the steps of every run (prototype and model, ensemble members; the settling before the load included) times
+    :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x (bodies + contacts), plus :data:`BODY_SECONDS` x
+    bodies^:data:`BODY_EXPONENT`; planar, ~2 us per sample and system plus the critical-charge search (~0.1 s);
+    ``contact`` as in :func:`estimate_memory`."""
     sim = scenario.simulation
     systems = 1 if scenario.scale is None else 2
     total = 0.0
@@ -143,11 +148,27 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
     if sim.engine in ("3d", "both"):
         nb = _bodies(structure)
         sides = getattr(structure, "sides", 4) if getattr(structure, "section", "") == "circular" else 4
-        steps = sim.duration_s / _timestep(scenario, structure, contact)
+        dt = _timestep(scenario, structure, contact)
+        steps = sim.duration_s / dt + _settle_steps(scenario, structure, contact, dt)
         runs = systems * (1 + sim.ensemble_members)
         per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * (nb + contacts_of(structure))
-        total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3)
+        total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3) + BODY_SECONDS * nb ** BODY_EXPONENT
     return total
+
+
+def _settle_steps(scenario: Scenario, structure, contact, dt: float) -> float:
+    """Steps of the settling before the load (:data:`blastscale.sim3d.integrate.SETTLE_TIME_CONSTANTS` contact
+    time constants)."""
+    from ..sim3d.integrate import SETTLE_TIME_CONSTANTS
+
+    if contact is None:
+        try:
+            from .engines import contact_settings
+
+            contact = contact_settings(scenario, structure)
+        except BlastscaleInputError:
+            return 0.0
+    return SETTLE_TIME_CONSTANTS * contact.time_constant / dt
 
 
 def contacts_of(structure) -> int:
@@ -213,14 +234,15 @@ class RunSize:
 
 
 def estimate_run(scenario: Scenario, structure=None, contact=None, writes: bool = True) -> RunSize:
-    """The size of a study's run, before it starts: the computing time (:func:`estimate_seconds`) plus, when
+    """The size of a study's run, before it starts: the start-up and the computing time (:func:`estimate_seconds`)
+    plus, when
     ``writes``, the time to write its result folder and that folder's size (histories: per recorded state, run
     and body :data:`STATE_BYTES_PER_BODY`, per monitoring point :data:`STATE_BYTES_PER_POINT`; the report
     :data:`REPORT_BYTES` plus :data:`REPORT_BYTES_PER_BODY` per body). Cost model and its check against
     measured runs: docs/performance.md."""
     sim = scenario.simulation
     systems = 1 if scenario.scale is None else 2
-    seconds = estimate_seconds(scenario, structure, contact)
+    seconds = STARTUP_SECONDS + estimate_seconds(scenario, structure, contact)
     nb, nc, samples, runs, hist = _bodies(structure), 0, int(sim.samples), systems, 0.0
     if sim.engine in ("planar", "both"):
         hist += systems * sim.samples * 8 * 12
