@@ -58,7 +58,7 @@ def test_a_file_over_the_block_limit_is_refused_in_one_line(tmp_path):
     env = {**os.environ, "MPLBACKEND": "Agg", "BLASTSCALE_MAX_BLOCKS": "5"}
     for args in (["run", sc, "--out", tmp_path / "r"], ["show", tmp_path / "w.json"]):
         p = subprocess.run(BLASTSCALE + [str(a) for a in args], capture_output=True, text=True, cwd=tmp_path,
-                           env=env, timeout=120)
+                           env=env, timeout=120, check=False)
         assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1, p.stderr
         assert p.stderr.startswith("error: w.json: 6 blocks is out of range") and "valid range is <= 5 blocks" in p.stderr
         assert sorted(x.name for x in tmp_path.iterdir()) == ["w.json", "wall.toml"]
@@ -77,7 +77,7 @@ def test_the_study_guard_names_the_largest_structure_that_fits(tmp_path):
     hours = estimate_seconds(s, Study(s).structure()) / 3 / 3600
     env = {**os.environ, "MPLBACKEND": "Agg", "BLASTSCALE_MAX_HOURS": repr(hours)}
     p = subprocess.run(BLASTSCALE + ["run", str(sc), "--out", str(tmp_path / "r")], capture_output=True, text=True,
-                       cwd=tmp_path, env=env, timeout=120)
+                       cwd=tmp_path, env=env, timeout=120, check=False)
     assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1, p.stderr
     m = re.search(r"simulation.duration_s = 1 s is out of range: .* valid range is <= ([\d.e-]+) s here .*"
                   r"or a structure of <= (\d+) bodies at this duration", p.stderr)
@@ -92,7 +92,7 @@ def test_progress_lines_when_stderr_is_a_file(tmp_path):
     env = {**os.environ, "MPLBACKEND": "Agg", "BLASTSCALE_PROGRESS_SECONDS": "0.2"}
     with log.open("w") as fh:
         p = subprocess.run(BLASTSCALE + ["run", "--set", "simulation.engine=3d", "--set", "simulation.duration_s=1"],
-                           stdout=subprocess.DEVNULL, stderr=fh, cwd=tmp_path, env=env, timeout=300)
+                           stdout=subprocess.DEVNULL, stderr=fh, cwd=tmp_path, env=env, timeout=300, check=False)
     text = log.read_text()
     assert p.returncode == 0, text
     lines = [ln for ln in text.splitlines() if ln.startswith("progress: ")]

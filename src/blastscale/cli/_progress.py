@@ -74,7 +74,7 @@ def plain_lines(state: dict, plain: bool, console):
         where = f" ({state['done']} of {total})" if total else ""
         left = f" of about {format_duration(of)}" if of else ""
         console.print(f"progress: {state.get('stage', 'starting')}{where}, {format_duration(took)} elapsed{left}",
-                          soft_wrap=True)
+                      soft_wrap=True)
 
     def loop() -> None:
         while not stop.wait(every):
