@@ -48,8 +48,13 @@ def emit(obj: dict) -> None:
 def bursts() -> None:
     """W_free / W_surface giving the same quantity at the same distance, over Z (measured, not 1.8)."""
     z = np.array([0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0, 7.0, 10.0, 20.0, 38.0])
-    emit({"section": "bursts", "Z": z.tolist(),
-          **{q: np.round(equivalent_free_air_charge_ratio(z, q), 3).tolist() for q in EQUIVALENCE_QUANTITIES}})
+    emit(
+        {
+            "section": "bursts",
+            "Z": z.tolist(),
+            **{q: np.round(equivalent_free_air_charge_ratio(z, q), 3).tolist() for q in EQUIVALENCE_QUANTITIES},
+        }
+    )
 
 
 def clearing() -> None:
@@ -64,14 +69,27 @@ def clearing() -> None:
                 bp = blast_parameters(Wl, z * Wl ** (1 / 3))
                 c = front_face_clearing(bp, LoadModel(True, w * lam, h * lam))
                 u = float(shock_velocity(bp.incident_pressure))
-                rows.append({"Z": z, "t_c_over_t_o": c.clearing_time / bp.positive_duration,
-                             "cleared_fraction": c.impulse / c.uncleared_impulse,
-                             "t_c_ufc_over_3S_over_U": c.clearing_time / (3.0 * c.clearing_distance / u)})
+                rows.append(
+                    {
+                        "Z": z,
+                        "t_c_over_t_o": c.clearing_time / bp.positive_duration,
+                        "cleared_fraction": c.impulse / c.uncleared_impulse,
+                        "t_c_ufc_over_3S_over_U": c.clearing_time / (3.0 * c.clearing_distance / u),
+                    }
+                )
             emit({"section": "clearing", "face": name, "scale": lam, "rows": rows})
     bp = blast_parameters(1000.0, 70.0)
     c = front_face_clearing(bp, LoadModel(True, 10.0, 4.0))
-    emit({"section": "clearing_stated_case", "charge_kg": 1000.0, "standoff_m": 70.0, "face": [10.0, 4.0],
-          **c.to_dict(), "t_c_glasstone_s": 3 * 4.0 / float(shock_velocity(bp.incident_pressure))})
+    emit(
+        {
+            "section": "clearing_stated_case",
+            "charge_kg": 1000.0,
+            "standoff_m": 70.0,
+            "face": [10.0, 4.0],
+            **c.to_dict(),
+            "t_c_glasstone_s": 3 * 4.0 / float(shock_velocity(bp.incident_pressure)),
+        }
+    )
 
 
 def stability() -> None:
@@ -81,15 +99,30 @@ def stability() -> None:
     for model in ("kingery-bulmash", "masi2021"):
         a = critical_charge(sysm, 2.0, blast_model=model).charge_kg
         b = critical_charge(sysm, 2.0, blast_model=model, load_model=NEG).charge_kg
-        emit({"section": "stability", "blast_model": model, "standoff_m": 2.0, "critical_charge_kg": a,
-              "critical_charge_negative_phase_kg": b, "ratio": b / a})
+        emit(
+            {
+                "section": "stability",
+                "blast_model": model,
+                "standoff_m": 2.0,
+                "critical_charge_kg": a,
+                "critical_charge_negative_phase_kg": b,
+                "ratio": b / a,
+            }
+        )
     R = np.array([1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 10.0])
     t0 = time.perf_counter()
     c0 = capacity_curve(sysm, R).critical_charge_kg
     c1 = capacity_curve(sysm, R, load_model=NEG).critical_charge_kg
-    emit({"section": "capacity", "standoff_m": R.tolist(), "critical_charge_kg": c0.tolist(),
-          "critical_charge_negative_phase_kg": c1.tolist(), "ratio": (c1 / c0).tolist(),
-          "seconds": time.perf_counter() - t0})
+    emit(
+        {
+            "section": "capacity",
+            "standoff_m": R.tolist(),
+            "critical_charge_kg": c0.tolist(),
+            "critical_charge_negative_phase_kg": c1.tolist(),
+            "ratio": (c1 / c0).tolist(),
+            "seconds": time.perf_counter() - t0,
+        }
+    )
 
 
 VARIANTS = {
@@ -120,36 +153,65 @@ def block(charges=(50.0, 100.0), duration: float = 5.0, variants=tuple(VARIANTS)
     for W in charges:
         for lam in SCALES:
             for name, vals in ((n, VARIANTS[n]) for n in variants):
-                base = {"structure": {"kind": "block", "height_m": 10.0, "alpha_deg": 15.0, "density_kg_m3": 2000.0},
-                        "blast": {"charge_kg": W, "standoff_m": 2.0, "blast_model": "kingery-bulmash"},
-                        "scale": {"length": lam},
-                        "simulation": {"engine": "planar", "duration_s": duration, "critical_charge": False}}
+                base = {
+                    "structure": {"kind": "block", "height_m": 10.0, "alpha_deg": 15.0, "density_kg_m3": 2000.0},
+                    "blast": {"charge_kg": W, "standoff_m": 2.0, "blast_model": "kingery-bulmash"},
+                    "scale": {"length": lam},
+                    "simulation": {"engine": "planar", "duration_s": duration, "critical_charge": False},
+                }
                 s, dt = _study(base, vals)
                 sim = s["planar"]["similarity"]
-                emit({"section": "block", "charge_kg": W, "scale": lam, "variant": name,
-                      "first_peak_ratio": sim["first_peak_ratio"], "prototype_collapsed": s["planar"]["prototype"]["collapsed"],
-                      "model_collapsed": s["planar"]["model"]["collapsed"], "outcomes_agree": sim["outcomes_agree"],
-                      "notes": s["design"].get("notes", []), "seconds": dt})
+                emit(
+                    {
+                        "section": "block",
+                        "charge_kg": W,
+                        "scale": lam,
+                        "variant": name,
+                        "first_peak_ratio": sim["first_peak_ratio"],
+                        "prototype_collapsed": s["planar"]["prototype"]["collapsed"],
+                        "model_collapsed": s["planar"]["model"]["collapsed"],
+                        "outcomes_agree": sim["outcomes_agree"],
+                        "notes": s["design"].get("notes", []),
+                        "seconds": dt,
+                    }
+                )
 
 
-def column(charge: float = 250.0, standoff: float = 10.0, duration: float = 3.0, methods=("A", "B"),
-           variants=tuple(VARIANTS)) -> None:
+def column(
+    charge: float = 250.0, standoff: float = 10.0, duration: float = 3.0, methods=("A", "B"), variants=tuple(VARIANTS)
+) -> None:
     """The paper's square column, 3D (top first-peak ratio, outcomes) for each variant and scale."""
     for method in methods:
         for lam in SCALES:
             for name, vals in ((n, VARIANTS[n]) for n in variants):
-                base = {"structure": {"kind": "column", "section": "square"},
-                        "blast": {"charge_kg": charge, "standoff_m": standoff, "blast_model": "kingery-bulmash",
-                                  "load": method},
-                        "scale": {"length": lam},
-                        "simulation": {"engine": "3d", "duration_s": duration, "critical_charge": False}}
+                base = {
+                    "structure": {"kind": "column", "section": "square"},
+                    "blast": {
+                        "charge_kg": charge,
+                        "standoff_m": standoff,
+                        "blast_model": "kingery-bulmash",
+                        "load": method,
+                    },
+                    "scale": {"length": lam},
+                    "simulation": {"engine": "3d", "duration_s": duration, "critical_charge": False},
+                }
                 s, dt = _study(base, vals)
                 sim = s["3d"]["similarity"]
-                emit({"section": "column", "charge_kg": charge, "standoff_m": standoff, "method": method, "scale": lam,
-                      "variant": name, "top_first_peak_ratio": sim["top_first_peak_ratio"],
-                      "prototype_collapsed": s["3d"]["prototype"]["collapsed"],
-                      "model_collapsed": s["3d"]["model"]["collapsed"], "notes": s["design"].get("notes", []),
-                      "seconds": dt})
+                emit(
+                    {
+                        "section": "column",
+                        "charge_kg": charge,
+                        "standoff_m": standoff,
+                        "method": method,
+                        "scale": lam,
+                        "variant": name,
+                        "top_first_peak_ratio": sim["top_first_peak_ratio"],
+                        "prototype_collapsed": s["3d"]["prototype"]["collapsed"],
+                        "model_collapsed": s["3d"]["model"]["collapsed"],
+                        "notes": s["design"].get("notes", []),
+                        "seconds": dt,
+                    }
+                )
 
 
 def correction() -> None:
@@ -169,9 +231,17 @@ def correction() -> None:
                     fix = clearing_corrected_charge(d, lm)
                 except Exception as exc:  # noqa: BLE001 - reported
                     fix = {"error": str(exc)}
-            emit({"section": "correction", "prototype_charge_kg": W, "standoff_m": R, "scale": lam,
-                  "cleared_fraction_prototype": c["prototype"]["cleared_over_uncleared_impulse"],
-                  "cleared_fraction_model": c["model"]["cleared_over_uncleared_impulse"], **fix})
+            emit(
+                {
+                    "section": "correction",
+                    "prototype_charge_kg": W,
+                    "standoff_m": R,
+                    "scale": lam,
+                    "cleared_fraction_prototype": c["prototype"]["cleared_over_uncleared_impulse"],
+                    "cleared_fraction_model": c["model"]["cleared_over_uncleared_impulse"],
+                    **fix,
+                }
+            )
 
 
 def correction_run(charge: float = 1000.0, standoff: float = 40.0, duration: float = 3.0) -> None:
@@ -194,9 +264,17 @@ def correction_run(charge: float = 1000.0, standoff: float = 40.0, duration: flo
             for tag, des in (("as designed", d), ("corrected", dc)):
                 cmp = compare_structure3d(col, des, load="A", duration=duration, load_model=LoadModel(clearing=True))
                 out[tag] = cmp.similarity()["top_first_peak_ratio"]
-        emit({"section": "correction_run", "charge_kg": charge, "standoff_m": standoff, "scale": lam,
-              "charge_ratio": fix["charge_ratio"], "first_peak_ratio_as_designed": out["as designed"],
-              "first_peak_ratio_corrected": out["corrected"]})
+        emit(
+            {
+                "section": "correction_run",
+                "charge_kg": charge,
+                "standoff_m": standoff,
+                "scale": lam,
+                "charge_ratio": fix["charge_ratio"],
+                "first_peak_ratio_as_designed": out["as designed"],
+                "first_peak_ratio_corrected": out["corrected"],
+            }
+        )
 
 
 def main() -> None:

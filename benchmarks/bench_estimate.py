@@ -24,9 +24,14 @@ from blastscale.study.memory import estimate_run
 def block_file(path: Path, courses: int, units: int, unit_m=(0.5, 0.25, 0.15)) -> Path:
     """A stack-bonded wall of ``courses`` x ``units`` boxes (thickness along x, length along y) as our JSON."""
     tx, ly, hz = unit_m
-    blocks = [{"name": f"B{c * units + u + 1}",
-               "vertices": [[x, u * ly + y, c * hz + z] for x in (0.0, tx) for y in (0.0, ly) for z in (0.0, hz)]}
-              for c in range(courses) for u in range(units)]
+    blocks = [
+        {
+            "name": f"B{c * units + u + 1}",
+            "vertices": [[x, u * ly + y, c * hz + z] for x in (0.0, tx) for y in (0.0, ly) for z in (0.0, hz)],
+        }
+        for c in range(courses)
+        for u in range(units)
+    ]
     path.write_text(json.dumps({"blocks": blocks}))
     return path
 
@@ -36,21 +41,43 @@ def cases(folder: Path, quick: bool) -> list:
     wall = load_scenario("wall_running_bond_lambda20")
     out = [
         ("paper block", Scenario.default().with_values({**base, "simulation.duration_s": 1.0})),
-        ("10-drum square column", load_scenario("paper_column_square_250kg").with_values(
-            {**base, "simulation.duration_s": 0.5})),
+        (
+            "10-drum square column",
+            load_scenario("paper_column_square_250kg").with_values({**base, "simulation.duration_s": 0.5}),
+        ),
         ("running-bond wall 22", wall.with_values({"simulation.duration_s": 0.3})),
-        ("running-bond wall 55", wall.with_values({"structure.courses": 10, "structure.units_per_course": 5,
-                                                   "structure.height_m": 3.0, "simulation.duration_s": 0.1})),
-        ("running-bond wall 210", wall.with_values({"structure.courses": 20, "structure.units_per_course": 10,
-                                                    "structure.length_m": 8.0, "structure.height_m": 4.0,
-                                                    "simulation.duration_s": 0.05})),
+        (
+            "running-bond wall 55",
+            wall.with_values(
+                {
+                    "structure.courses": 10,
+                    "structure.units_per_course": 5,
+                    "structure.height_m": 3.0,
+                    "simulation.duration_s": 0.1,
+                }
+            ),
+        ),
+        (
+            "running-bond wall 210",
+            wall.with_values(
+                {
+                    "structure.courses": 20,
+                    "structure.units_per_course": 10,
+                    "structure.length_m": 8.0,
+                    "structure.height_m": 4.0,
+                    "simulation.duration_s": 0.05,
+                }
+            ),
+        ),
     ]
     if not quick:
         f = block_file(folder / "wall_3000.json", 50, 60)
         toml = folder / "wall_3000.toml"
-        toml.write_text(f'title = "3000-block file"\n[structure]\nkind = "assembly"\nfile = "{f.name}"\n'
-                        '[blast]\ncharge_kg = 100.0\nstandoff_m = 10.0\n[scale]\nlength = 0.05\n'
-                        '[simulation]\nengine = "3d"\nduration_s = 0.01\n')
+        toml.write_text(
+            f'title = "3000-block file"\n[structure]\nkind = "assembly"\nfile = "{f.name}"\n'
+            "[blast]\ncharge_kg = 100.0\nstandoff_m = 10.0\n[scale]\nlength = 0.05\n"
+            '[simulation]\nengine = "3d"\nduration_s = 0.01\n'
+        )
         out.append(("stack-bonded wall file 3000", load_scenario(toml)))
     return out
 
@@ -78,10 +105,22 @@ def measure(name: str, sc, folder: Path) -> dict:
         raise SystemExit(f"{name}: {proc.stderr}")
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     size = tree_size(out)
-    row = {"structure": name, "bodies": est.bodies, "contacts": est.contacts, "duration_s": est.duration_s,
-           "samples": est.samples, "estimate_line": est.line(), "estimated_s": est.seconds, "measured_s": seconds,
-           "measured_cpu_s": cpu, "time_ratio": est.seconds / cpu, "wall_ratio": est.seconds / seconds,
-           "estimated_bytes": est.result_bytes, "measured_bytes": size, "size_ratio": est.result_bytes / size}
+    row = {
+        "structure": name,
+        "bodies": est.bodies,
+        "contacts": est.contacts,
+        "duration_s": est.duration_s,
+        "samples": est.samples,
+        "estimate_line": est.line(),
+        "estimated_s": est.seconds,
+        "measured_s": seconds,
+        "measured_cpu_s": cpu,
+        "time_ratio": est.seconds / cpu,
+        "wall_ratio": est.seconds / seconds,
+        "estimated_bytes": est.result_bytes,
+        "measured_bytes": size,
+        "size_ratio": est.result_bytes / size,
+    }
     print(json.dumps(row), file=sys.stderr, flush=True)
     return row
 
@@ -96,9 +135,11 @@ def main():
         print(json.dumps(rows, indent=2))
         return
     for r in rows:
-        print(f"{r['structure']:30s} {r['bodies']:5d} bodies {r['contacts']:6d} contacts  time {r['estimated_s']:8.1f} "
-              f"est / {r['measured_cpu_s']:8.1f} s CPU ({r['time_ratio']:.2f}), {r['measured_s']:8.1f} s wall  size "
-              f"{format_size(r['estimated_bytes'])} est / {format_size(r['measured_bytes'])} ({r['size_ratio']:.2f})")
+        print(
+            f"{r['structure']:30s} {r['bodies']:5d} bodies {r['contacts']:6d} contacts  time {r['estimated_s']:8.1f} "
+            f"est / {r['measured_cpu_s']:8.1f} s CPU ({r['time_ratio']:.2f}), {r['measured_s']:8.1f} s wall  size "
+            f"{format_size(r['estimated_bytes'])} est / {format_size(r['measured_bytes'])} ({r['size_ratio']:.2f})"
+        )
 
 
 if __name__ == "__main__":

@@ -84,8 +84,14 @@ def load_only(structure, load, duration: float, dt: float = 2.5e-4) -> float:
 
 #: The paper's cases (section, charge [kg], method) at lambda = 1/100 and 10 m.
 PAPER_CASES = (
-    ("square", 250.0, "B"), ("square", 500.0, "B"), ("circular", 200.0, "B"), ("circular", 400.0, "B"),
-    ("square", 250.0, "C"), ("square", 500.0, "C"), ("square", 750.0, "C"), ("square", 1000.0, "C"),
+    ("square", 250.0, "B"),
+    ("square", 500.0, "B"),
+    ("circular", 200.0, "B"),
+    ("circular", 400.0, "B"),
+    ("square", 250.0, "C"),
+    ("square", 500.0, "C"),
+    ("square", 750.0, "C"),
+    ("square", 1000.0, "C"),
 )
 
 
@@ -106,8 +112,13 @@ def paper_case(section: str, charge: float, method: str, incidence: str, duratio
     sim = s["similarity"]  # with the arrival spreads of the two runs' loads
     top = sim["top_point"]
     return {
-        "section": section, "charge_kg": charge, "method": method, "incidence": incidence, "duration_s": duration,
-        "prototype_collapsed": s["prototype"]["collapsed"], "model_collapsed": s["model"]["collapsed"],
+        "section": section,
+        "charge_kg": charge,
+        "method": method,
+        "incidence": incidence,
+        "duration_s": duration,
+        "prototype_collapsed": s["prototype"]["collapsed"],
+        "model_collapsed": s["model"]["collapsed"],
         "prototype_max_top_m": s["prototype"]["max_top_displacement_m"],
         "model_max_top_m": s["model"]["max_top_displacement_m"],
         "top_first_peak_prototype_m": sim["points"][top]["first_peak_prototype_m"],
@@ -141,19 +152,27 @@ def correction(section: str, charge: float, duration: float = 8.0, incidence: st
     out["impulse_weights"] = weights.tolist()
     # load-time corrections (FaceLoadStrategy.corrected): re-timed = the prototype's arrival spread in
     # model time (a delay per face); re-weighted = the prototype's distribution of impulse over the faces
-    variants = (("as_designed", lm), ("retimed", lm.corrected(stretch)), ("reweighted", lm.corrected(1.0, weights)),
-                ("retimed_reweighted", lm.corrected(stretch, weights)))
+    variants = (
+        ("as_designed", lm),
+        ("retimed", lm.corrected(stretch)),
+        ("reweighted", lm.corrected(1.0, weights)),
+        ("retimed_reweighted", lm.corrected(stretch, weights)),
+    )
     for name, load in variants:
         mod = simulate_structure(mcol, load, duration * f.time)
         cmp = compare_responses(proto.dataset, upscale_dataset(mod.dataset, f), variables=("point_displacement",))
         top = str(proto.dataset["point"].values[-1])
         v = cmp["variables"]["point_displacement"][top]
-        out[name] = {"top_first_peak_prototype_m": v["first_peak_prototype"],
-                     "top_first_peak_model_m": v["first_peak_model"], "top_first_peak_ratio": v["first_peak_ratio"],
-                     "max_abs_top_diff_rel_peak": v["max_abs_diff_rel_peak"],
-                     "prototype_collapsed": proto.summary()["collapsed"], "model_collapsed": mod.summary()["collapsed"],
-                     "model_impulse_x_upscaled_Ns": float(mod.summary()["delivered_impulse_Ns"][0] / f.momentum),
-                     "prototype_impulse_x_Ns": float(proto.summary()["delivered_impulse_Ns"][0])}
+        out[name] = {
+            "top_first_peak_prototype_m": v["first_peak_prototype"],
+            "top_first_peak_model_m": v["first_peak_model"],
+            "top_first_peak_ratio": v["first_peak_ratio"],
+            "max_abs_top_diff_rel_peak": v["max_abs_diff_rel_peak"],
+            "prototype_collapsed": proto.summary()["collapsed"],
+            "model_collapsed": mod.summary()["collapsed"],
+            "model_impulse_x_upscaled_Ns": float(mod.summary()["delivered_impulse_Ns"][0] / f.momentum),
+            "prototype_impulse_x_Ns": float(proto.summary()["delivered_impulse_Ns"][0]),
+        }
     return out
 
 
@@ -166,12 +185,25 @@ def ensembles(n: int = 4, duration: float = 8.0, incidence: str = "ufc") -> list
     for charge in (200.0, 400.0):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            e = ensemble_compare(MultiDrumColumn(section="circular"), design_model(charge, STANDOFF, SCALE), n=n,
-                                 load="B", incidence=incidence, duration=duration)
+            e = ensemble_compare(
+                MultiDrumColumn(section="circular"),
+                design_model(charge, STANDOFF, SCALE),
+                n=n,
+                load="B",
+                incidence=incidence,
+                duration=duration,
+            )
         s = e.summary()
         top = list(s["points"])[-1]
-        out.append({"charge_kg": charge, "n": n, "collapse_probability_prototype": s["collapse_probability_prototype"],
-                    "collapse_probability_model": s["collapse_probability_model"], "top": s["points"][top]})
+        out.append(
+            {
+                "charge_kg": charge,
+                "n": n,
+                "collapse_probability_prototype": s["collapse_probability_prototype"],
+                "collapse_probability_model": s["collapse_probability_model"],
+                "top": s["points"][top],
+            }
+        )
     return out
 
 

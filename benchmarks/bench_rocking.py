@@ -51,7 +51,9 @@ def make_cases(n: int, seed: int):
         blk = RectangularBlock.from_slenderness(
             rng.uniform(1.0, 20.0), math.radians(rng.uniform(8.0, 30.0)), density=rng.uniform(1500.0, 2700.0)
         )
-        bp = blast_parameters(math.exp(rng.uniform(math.log(5.0), math.log(500.0))), rng.uniform(2.0, 8.0), blast_model="masi2021")
+        bp = blast_parameters(
+            math.exp(rng.uniform(math.log(5.0), math.log(500.0))), rng.uniform(2.0, 8.0), blast_model="masi2021"
+        )
         shape = shapes[k % 4]
         if shape == "tabulated":  # the Friedlander pulse sampled at 16 points
             f = bp.pulse("friedlander")
@@ -93,6 +95,7 @@ def plain_scipy_rocking(height, width, depth, density, p_r, t_o, decay, duration
     t, y, s = 0.0, [0.0, 0.0], 1.0
     first_peak, tipped = math.nan, False
     while t < duration:
+
         def rhs(tt, yy, s=s):
             a = s * alpha - yy[0]
             return [yy[1], (-m * g * r * math.sin(a) + S * load(tt) * r * math.cos(a)) / J]
@@ -105,8 +108,16 @@ def plain_scipy_rocking(height, width, depth, density, p_r, t_o, decay, duration
 
         impact.terminal, impact.direction = True, -s
         tip.terminal, tip.direction = True, s
-        sol = solve_ivp(rhs, (t, t_o if t < t_o else duration), y, method="DOP853", rtol=rtol, atol=atol,
-                        events=[impact, tip], dense_output=True)
+        sol = solve_ivp(
+            rhs,
+            (t, t_o if t < t_o else duration),
+            y,
+            method="DOP853",
+            rtol=rtol,
+            atol=atol,
+            events=[impact, tip],
+            dense_output=True,
+        )
         k = (t_eval >= t) & (t_eval <= sol.t[-1])
         if k.any():
             th_s[k] = sol.sol(t_eval[k])[0]
@@ -150,22 +161,36 @@ def bench_plain(n: int, repeat: int, duration: float = 5.0) -> dict:
         res = solver.simulate_batch(blk, pulses, duration, t, stop_at_overturn=True)
         fast, cpu = min(fast, time.perf_counter() - t0), min(cpu, time.process_time() - c0)
     c0, t0 = time.process_time(), time.perf_counter()
-    plain = [plain_scipy_rocking(blk.height, blk.width, blk.depth, blk.density, P[k], to[k], d[k], duration, t,
-                                 1e-10, 1e-12) for k in range(n)]
+    plain = [
+        plain_scipy_rocking(blk.height, blk.width, blk.depth, blk.density, P[k], to[k], d[k], duration, t, 1e-10, 1e-12)
+        for k in range(n)
+    ]
     plain_s, plain_cpu = time.perf_counter() - t0, time.process_time() - c0
     th = np.array([x[0] for x in plain])
     fp = np.array([x[1] for x in plain])
     tipped = np.array([x[2] for x in plain])
     rock = ~tipped & ~res.collapsed
     return {
-        "cases": n, "duration_s": duration, "samples_per_case": t.size, "charges_kg": [float(W[0]), float(W[-1])],
-        "standoff_m": 2.0, "threads": 1, "tolerances": {"rtol": 1e-10, "atol": 1e-12},
-        "blastscale_s": fast, "blastscale_cpu_s": cpu, "plain_scipy_s": plain_s, "plain_scipy_cpu_s": plain_cpu,
-        "speedup_vs_plain_scipy": plain_s / fast, "speedup_vs_plain_scipy_cpu": plain_cpu / cpu,
+        "cases": n,
+        "duration_s": duration,
+        "samples_per_case": t.size,
+        "charges_kg": [float(W[0]), float(W[-1])],
+        "standoff_m": 2.0,
+        "threads": 1,
+        "tolerances": {"rtol": 1e-10, "atol": 1e-12},
+        "blastscale_s": fast,
+        "blastscale_cpu_s": cpu,
+        "plain_scipy_s": plain_s,
+        "plain_scipy_cpu_s": plain_cpu,
+        "speedup_vs_plain_scipy": plain_s / fast,
+        "speedup_vs_plain_scipy_cpu": plain_cpu / cpu,
         "max_abs_diff_rad": float(np.max(np.abs(th - res.theta)[np.isfinite(res.theta)])),  # (NaN after a stop)
         "first_peak_max_abs_diff_rad": float(np.max(np.abs(fp[rock] - res.first_peak_angle[rock]))),
-        "outcomes_agree": int((tipped == res.collapsed).sum()), "overturned_cases": int(tipped.sum()),
-        "steps_total": int(res.n_steps.sum()), "load_average_before": load_before, "load_average_after": os.getloadavg(),
+        "outcomes_agree": int((tipped == res.collapsed).sum()),
+        "overturned_cases": int(tipped.sum()),
+        "steps_total": int(res.n_steps.sum()),
+        "load_average_before": load_before,
+        "load_average_after": os.getloadavg(),
     }
 
 
@@ -182,7 +207,11 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.plain_only:
         out = {"plain_scipy": bench_plain(args.charges, args.repeat)}
-        print(json.dumps(out, indent=2) if args.json else "\n".join(f"{k:>32}: {v}" for k, v in out["plain_scipy"].items()))
+        print(
+            json.dumps(out, indent=2)
+            if args.json
+            else "\n".join(f"{k:>32}: {v}" for k, v in out["plain_scipy"].items())
+        )
         return 0
 
     from blastscale.rocking import RockingSolver, critical_charge, simulate_reference

@@ -52,10 +52,15 @@ def _rest_cost(structure, seconds: float, jacobian: str | None = None, settle: f
     wall_s = (time.perf_counter() - t0) / seconds
     tm = d.timer
     step = tm[mujoco.mjtTimer.mjTIMER_STEP].duration or 1.0
-    return {"wall_s_per_simulated_s": wall_s, "jacobian": cs.jacobian, "contacts": int(d.ncon), "bodies": m.nbody - 1,
-            "largest_speed_m_s": float(np.abs(d.qvel).max()),
-            "constraint_share": tm[mujoco.mjtTimer.mjTIMER_CONSTRAINT].duration / step,
-            "collision_share": tm[mujoco.mjtTimer.mjTIMER_POS_COLLISION].duration / step}
+    return {
+        "wall_s_per_simulated_s": wall_s,
+        "jacobian": cs.jacobian,
+        "contacts": int(d.ncon),
+        "bodies": m.nbody - 1,
+        "largest_speed_m_s": float(np.abs(d.qvel).max()),
+        "constraint_share": tm[mujoco.mjtTimer.mjTIMER_CONSTRAINT].duration / step,
+        "collision_share": tm[mujoco.mjtTimer.mjTIMER_POS_COLLISION].duration / step,
+    }
 
 
 def _blast_cost(structure, charge: float, standoff: float, seconds: float) -> float:
@@ -81,20 +86,30 @@ def blocks(quick: bool = False) -> dict:
     rows = {"1": _rest_cost(RectangularBlock.from_slenderness(10.0, math.radians(15.0)), secs)}
     for bond in ("stack", "running"):
         for n, (c, u) in WALLS.items():
-            r = _rest_cost(wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=c, units_per_course=u,
-                                bond=bond), secs)
+            r = _rest_cost(
+                wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=c, units_per_course=u, bond=bond), secs
+            )
             rows[n if bond == "stack" else f"{r['bodies']}_running"] = r
     column = _rest_cost(MultiDrumColumn("square"), secs)
     w = {k: v["wall_s_per_simulated_s"] for k, v in rows.items()}
     col = column["wall_s_per_simulated_s"]
-    out = {"wall_s_per_simulated_s": w, "detail": rows, "column_square_10_drums": column,
-           "ratio_200_over_10": w["200"] / w["10"], "ratio_200_over_column": w["200"] / col,
-           "ratio_210_running_over_11_running": w["210_running"] / w["11_running"],
-           "ratio_210_running_over_column": w["210_running"] / col}
+    out = {
+        "wall_s_per_simulated_s": w,
+        "detail": rows,
+        "column_square_10_drums": column,
+        "ratio_200_over_10": w["200"] / w["10"],
+        "ratio_200_over_column": w["200"] / col,
+        "ratio_210_running_over_11_running": w["210_running"] / w["11_running"],
+        "ratio_210_running_over_column": w["210_running"] / col,
+    }
     if not quick:
         colb = _blast_cost(MultiDrumColumn("square"), 250.0, 10.0, 1.0)
-        big = _blast_cost(wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=20, units_per_course=10,
-                               bond="stack"), 10.0, 5.0, 0.25)
+        big = _blast_cost(
+            wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=20, units_per_course=10, bond="stack"),
+            10.0,
+            5.0,
+            0.25,
+        )
         out["under_blast"] = {"column_square_10_drums": colb, "200": big, "ratio_200_over_column": big / colb}
     return out
 
@@ -107,7 +122,7 @@ def ensemble(quick: bool = False) -> dict:
     dur = 0.5 if quick else 1.0
     ensemble_compare(col, None, n=2, blast=bp, duration=0.01, threads=1)  # imports outside the timing
     out = {"threads": available_cores(), "duration_s": dur}
-    for n in ((8,) if quick else (8, 64)):
+    for n in (8,) if quick else (8, 64):
         d = dur if n <= 8 else dur / 4
         kw = dict(n=n, perturbation=1e-6, blast=bp, duration=d, record_every=4)
         t0 = time.perf_counter()
@@ -116,9 +131,14 @@ def ensemble(quick: bool = False) -> dict:
         t0 = time.perf_counter()
         p = ensemble_compare(col, None, **kw)
         tp = time.perf_counter() - t0
-        out[f"members_{n}"] = {"duration_s": d, "serial_wall_s": ts, "parallel_wall_s": tp, "speedup": ts / tp,
-                               "wall_s_per_member_simulated_s": tp / (n * d),
-                               "identical": bool(np.array_equal(s.prototype_members, p.prototype_members))}
+        out[f"members_{n}"] = {
+            "duration_s": d,
+            "serial_wall_s": ts,
+            "parallel_wall_s": tp,
+            "speedup": ts / tp,
+            "wall_s_per_member_simulated_s": tp / (n * d),
+            "identical": bool(np.array_equal(s.prototype_members, p.prototype_members)),
+        }
     t0 = time.perf_counter()
     ensemble_compare(col, None, n=2, blast=bp, duration=dur, threads=1)
     out["members_1"] = {"duration_s": dur, "wall_s_per_member_simulated_s": (time.perf_counter() - t0) / (2 * dur)}
@@ -133,10 +153,13 @@ def sweep3d(quick: bool = False) -> dict:
     from blastscale.sweeps.cases import evaluate_chunk
     from blastscale.sweeps.runner import run_chunks
 
-    base = Scenario.from_dict({"structure": {"kind": "column", "section": "square"},
-                               "blast": {"charge_kg": 250.0, "standoff_m": 10.0},
-                               "simulation": {"engine": "3d", "duration_s": 0.3 if quick else 0.6,
-                                              "critical_charge": False, "threads": 1}})
+    base = Scenario.from_dict(
+        {
+            "structure": {"kind": "column", "section": "square"},
+            "blast": {"charge_kg": 250.0, "standoff_m": 10.0},
+            "simulation": {"engine": "3d", "duration_s": 0.3 if quick else 0.6, "critical_charge": False, "threads": 1},
+        }
+    )
     spec = SweepSpec.build(base, {"charge_kg": [150.0, 200.0, 250.0, 300.0, 350.0, 400.0]})
     payload = spec.to_payload()
     todo = [(i, i, i + 1) for i in range(spec.n_cases)]
@@ -145,22 +168,29 @@ def sweep3d(quick: bool = False) -> dict:
     for nw in (1, 2):
         from dask.distributed import Client, LocalCluster
 
-        with LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
-                          dashboard_address=None) as cluster, Client(cluster) as client:
+        with (
+            LocalCluster(
+                n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+            ) as cluster,
+            Client(cluster) as client,
+        ):
             client.run(evaluate_chunk, warm, 0, 1)  # imports and first compile in every worker, not timed
             got: dict = {}
             _, secs = run_chunks(payload, todo, got.__setitem__, scheduler=cluster.scheduler_address)
         out[f"workers_{nw}"] = {"wall_s": secs}
     out["workers_2"]["speedup"] = out["workers_1"]["wall_s"] / out["workers_2"]["wall_s"]
-    spec_t = SweepSpec.build(base.with_values({"threads": available_cores()}), {"charge_kg": [150.0, 200.0, 250.0, 300.0, 350.0, 400.0]})
+    spec_t = SweepSpec.build(
+        base.with_values({"threads": available_cores()}), {"charge_kg": [150.0, 200.0, 250.0, 300.0, 350.0, 400.0]}
+    )
     t0 = time.perf_counter()
     run_chunks(spec_t.to_payload(), [(0, 0, spec.n_cases)], lambda i, r: None, workers=0)
     secs = time.perf_counter() - t0
-    out["in_process_threads"] = {"threads": available_cores(), "wall_s": secs,
-                                 "speedup_vs_workers_1": out["workers_1"]["wall_s"] / secs}
+    out["in_process_threads"] = {
+        "threads": available_cores(),
+        "wall_s": secs,
+        "speedup_vs_workers_1": out["workers_1"]["wall_s"] / secs,
+    }
     return out
-
-
 
 
 def plot(out: dict, path: str) -> None:
@@ -172,10 +202,17 @@ def plot(out: dict, path: str) -> None:
 
     fig, ax = plt.subplots(1, 3, figsize=(12, 3.6))
     b = out["blocks"]["wall_s_per_simulated_s"]
-    for bond, keys in (("stack bond", [k for k in b if k.isdigit()]), ("running bond", [k for k in b if "running" in k])):
+    for bond, keys in (
+        ("stack bond", [k for k in b if k.isdigit()]),
+        ("running bond", [k for k in b if "running" in k]),
+    ):
         ax[0].loglog([int(k.split("_")[0]) for k in keys], [b[k] for k in keys], "o-", label=bond)
-    ax[0].axhline(out["blocks"]["column_square_10_drums"]["wall_s_per_simulated_s"], ls="--", c="gray",
-                  label="10-drum square column")
+    ax[0].axhline(
+        out["blocks"]["column_square_10_drums"]["wall_s_per_simulated_s"],
+        ls="--",
+        c="gray",
+        label="10-drum square column",
+    )
     ax[0].set(xlabel="blocks", ylabel="wall s per simulated s", title="at rest, default settings")
     ax[0].legend()
     e = out["ensemble"]
@@ -185,8 +222,10 @@ def plot(out: dict, path: str) -> None:
     ax[1].set(xlabel="ensemble members (circular column)", ylabel="speed-up vs serial", title="parallel members")
     ax[1].legend()
     s = out["sweep3d"]
-    ax[2].bar(["1 worker", "2 workers", "in process,\nthreads"],
-              [1.0, s["workers_2"]["speedup"], s["in_process_threads"]["speedup_vs_workers_1"]])
+    ax[2].bar(
+        ["1 worker", "2 workers", "in process,\nthreads"],
+        [1.0, s["workers_2"]["speedup"], s["in_process_threads"]["speedup_vs_workers_1"]],
+    )
     ax[2].set(ylabel="speed-up vs 1 worker", title="3D sweep (square column)")
     fig.suptitle(f"mujoco {out.get('mujoco', '?')}, load average {out.get('load_average', float('nan')):.2f}")
     fig.tight_layout()

@@ -28,8 +28,12 @@ CASES = {
     "square column, 250 kg at 10 m": (MultiDrumColumn("square"), 250.0, 10.0, 4.0),
     "square column, 650 kg at 10 m": (MultiDrumColumn("square"), 650.0, 10.0, 4.0),
     "circular column, 200 kg at 10 m": (MultiDrumColumn("circular"), 200.0, 10.0, 4.0),
-    "wall 10 blocks, 60 kg at 5 m": (wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=2, units_per_course=5,
-                                          bond="stack"), 60.0, 5.0, 2.0),
+    "wall 10 blocks, 60 kg at 5 m": (
+        wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=2, units_per_course=5, bond="stack"),
+        60.0,
+        5.0,
+        2.0,
+    ),
 }
 
 
@@ -79,8 +83,14 @@ def run(structure, charge, standoff, T, factor, every_s=1e-3):
     qpos[:, :, 0:3] /= a
     qvel[:, :, 0:3] *= b / a
     qvel[:, :, 3:6] *= b
-    st = {"time": np.array(rec["time"]), "qpos": qpos.reshape(n, -1), "qvel": qvel.reshape(n, -1),
-          "ncon": np.array(rec["ncon"]), "delivered": np.zeros((nb, 3)), "first_arrival": load.first_arrival}
+    st = {
+        "time": np.array(rec["time"]),
+        "qpos": qpos.reshape(n, -1),
+        "qvel": qvel.reshape(n, -1),
+        "ncon": np.array(rec["ncon"]),
+        "delivered": np.zeros((nb, 3)),
+        "first_arrival": load.first_arrival,
+    }
     return response_from_states(structure, st, {}), wall_s
 
 
@@ -98,8 +108,12 @@ def study(factors=(1.0, 1.5, 2.0)) -> dict:
             top = ds.attrs["top_point"]
             x = ds["point_displacement"].sel(point=top, component="x").values
             fp = _first_peak(ds["time"].values, x, 0.1)[1]
-            row = {"first_peak_m": float(fp), "collapsed": int(ds.attrs["collapsed"]),
-                   "max_rotation_rad": float(ds["tilt"].max()), "wall_s": w}
+            row = {
+                "first_peak_m": float(fp),
+                "collapsed": int(ds.attrs["collapsed"]),
+                "max_rotation_rad": float(ds["tilt"].max()),
+                "wall_s": w,
+            }
             if base is None:
                 base = row
             row["first_peak_change"] = row["first_peak_m"] / base["first_peak_m"] - 1.0 if base["first_peak_m"] else 0.0
@@ -117,5 +131,7 @@ if __name__ == "__main__":
     else:
         for name, rows in res.items():
             for f, r in rows.items():
-                print(f"{name:34s} step {f:5s} first peak {r['first_peak_m']:.6g} m ({r['first_peak_change']:+.2%}) "
-                      f"collapsed {r['collapsed']} max tilt {r['max_rotation_rad']:.4f} rad  x{r['speedup']:.2f}")
+                print(
+                    f"{name:34s} step {f:5s} first peak {r['first_peak_m']:.6g} m ({r['first_peak_change']:+.2%}) "
+                    f"collapsed {r['collapsed']} max tilt {r['max_rotation_rad']:.4f} rad  x{r['speedup']:.2f}"
+                )

@@ -59,8 +59,10 @@ def bench_capacity(n: int, n_bisect: int) -> dict:
     single = critical_charge(system, 2.0, blast_model="masi2021")
     idx = np.linspace(0, n - 1, n_bisect).astype(int)
     t0 = time.perf_counter()
-    wb = [critical_charge_by_bisection(system, R[i], curve.critical_charge_kg[i], blast_model="masi2021", rel=1e-7)
-          for i in idx]
+    wb = [
+        critical_charge_by_bisection(system, R[i], curve.critical_charge_kg[i], blast_model="masi2021", rel=1e-7)
+        for i in idx
+    ]
     t_bis = (time.perf_counter() - t0) / len(idx)
     rel = np.abs(curve.critical_charge_kg[idx] / np.array(wb) - 1.0)
     return {
@@ -93,8 +95,13 @@ def timed_sweep(spec, **kw) -> dict:
         t0 = time.perf_counter()
         run = run_sweep(spec, Path(tmp) / "b.zarr", **kw)
         wall = time.perf_counter() - t0
-    return {"cases": spec.n_cases, "wall_s": wall, "compute_s": run.seconds,
-            "cases_per_minute": spec.n_cases / wall * 60.0, "workers": run.workers}
+    return {
+        "cases": spec.n_cases,
+        "wall_s": wall,
+        "compute_s": run.seconds,
+        "cases_per_minute": spec.n_cases / wall * 60.0,
+        "workers": run.workers,
+    }
 
 
 def bench_planar(n_side: int) -> dict:
@@ -106,12 +113,18 @@ def bench_planar(n_side: int) -> dict:
     from blastscale.scenario import Scenario
 
     timed_sweep(planar_spec({"charge_kg": [40.0, 60.0]}), workers=0)  # warm up
-    designs = timed_sweep(planar_spec({"charge_kg": np.linspace(30, 150, n_side),
-                                       "standoff_m": np.linspace(1.5, 4.0, n_side)}), workers=0)
+    designs = timed_sweep(
+        planar_spec({"charge_kg": np.linspace(30, 150, n_side), "standoff_m": np.linspace(1.5, 4.0, n_side)}), workers=0
+    )
     shared = timed_sweep(planar_spec({"restitution": np.linspace(0.3, 0.95, n_side * n_side)}), workers=0)
     base = Scenario.default().with_values({"engine": "planar"})
-    spec = SweepSpec.build(base, {"charge_kg": np.geomspace(40, 160, 20)},
-                           relative={"charge_kg": Distribution("lognormal", (1.0, 0.2))}, samples=20000, seed=1)
+    spec = SweepSpec.build(
+        base,
+        {"charge_kg": np.geomspace(40, 160, 20)},
+        relative={"charge_kg": Distribution("lognormal", (1.0, 0.2))},
+        samples=20000,
+        seed=1,
+    )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         t0 = time.perf_counter()
@@ -132,20 +145,23 @@ def bench_outcomes(n_cases: int, study_rate: float, kernel_rate: float) -> dict:
     about ``n_cases`` cases (paper block, masi2021, lambda = 1/200: a design per case; the
     cases outside the fits are marked invalid), in this process and on 1 and 2 local workers."""
     side = max(2, round(math.sqrt(n_cases)))
-    spec = planar_spec({"charge_kg": np.geomspace(20, 200, side), "standoff_m": np.linspace(1.5, 6.0, side)},
-                       outcomes=True)
+    spec = planar_spec(
+        {"charge_kg": np.geomspace(20, 200, side), "standoff_m": np.linspace(1.5, 6.0, side)}, outcomes=True
+    )
     timed_sweep(planar_spec({"charge_kg": [40.0, 60.0]}, outcomes=True), workers=0)  # warm up
     out = {"cases": spec.n_cases, "in_process": timed_sweep(spec, workers=0)}
     for w in (1, 2):
         out[f"workers_{w}"] = timed_sweep(spec, workers=w)
     best = max(out[k]["cases_per_minute"] for k in ("in_process", "workers_1", "workers_2"))
-    out.update({
-        "best_cases_per_minute": best,
-        "speedup_2_vs_1_workers_wall": out["workers_1"]["wall_s"] / out["workers_2"]["wall_s"],
-        "ratio_to_kernel_only": best / kernel_rate,
-        "ratio_to_study_equivalent_path": best / study_rate,
-        "target_cases_per_minute": 1e6,
-    })
+    out.update(
+        {
+            "best_cases_per_minute": best,
+            "speedup_2_vs_1_workers_wall": out["workers_1"]["wall_s"] / out["workers_2"]["wall_s"],
+            "ratio_to_kernel_only": best / kernel_rate,
+            "ratio_to_study_equivalent_path": best / study_rate,
+            "target_cases_per_minute": 1e6,
+        }
+    )
     return out
 
 
@@ -167,7 +183,9 @@ def bench_outcome_threads(n_cases: int, repeat: int) -> dict:
             best, cpu = min(best, time.perf_counter() - t0), min(cpu, time.process_time() - c0)
         out[f"threads_{k}"] = {"wall_s": best, "cpu_s": cpu, "cases_per_minute": spec.n_cases / best * 60.0}
     out["threads_2"]["speedup"] = out["threads_1"]["wall_s"] / out["threads_2"]["wall_s"]
-    out["threads_2"]["bitwise_equal"] = all(np.array_equal(vals[1][key], vals[2][key], equal_nan=True) for key in vals[1])
+    out["threads_2"]["bitwise_equal"] = all(
+        np.array_equal(vals[1][key], vals[2][key], equal_nan=True) for key in vals[1]
+    )
     out["load_average_after"] = os.getloadavg()
     return out
 
@@ -200,8 +218,14 @@ def bench_kernel_only(n: int, duration: float = 5.0) -> dict:
     t0 = time.perf_counter()
     res = solver.simulate_batch(system, pulses, duration, t)
     dt = time.perf_counter() - t0
-    return {"cases": n, "duration_s": duration, "wall_s": dt, "cases_per_minute": n / dt * 60.0,
-            "collapsed": int(res.collapsed.sum()), "processes": 1}
+    return {
+        "cases": n,
+        "duration_s": duration,
+        "wall_s": dt,
+        "cases_per_minute": n / dt * 60.0,
+        "collapsed": int(res.collapsed.sum()),
+        "processes": 1,
+    }
 
 
 def bench_3d(n: int, duration: float) -> dict:
@@ -220,8 +244,13 @@ def bench_workers(n_side: int) -> dict:
     spec = planar_spec({"charge_kg": np.linspace(30, 150, n_side), "standoff_m": np.linspace(1.5, 4.0, n_side)})
     one = timed_sweep(spec, workers=1)
     two = timed_sweep(spec, workers=2)
-    return {"cases": spec.n_cases, "one_worker": one, "two_workers": two,
-            "speedup_wall": one["wall_s"] / two["wall_s"], "speedup_compute": one["compute_s"] / two["compute_s"]}
+    return {
+        "cases": spec.n_cases,
+        "one_worker": one,
+        "two_workers": two,
+        "speedup_wall": one["wall_s"] / two["wall_s"],
+        "speedup_compute": one["compute_s"] / two["compute_s"],
+    }
 
 
 def main(argv=None) -> int:
@@ -232,18 +261,25 @@ def main(argv=None) -> int:
     ap.add_argument("--cases3d", type=int, default=4)
     ap.add_argument("--duration3d", type=float, default=1.0, help="3D simulated time per case [s]")
     ap.add_argument("--outcome-cases", type=int, default=1_000_000, help="cases of the outcome-mode sweep")
-    ap.add_argument("--outcome-thread-cases", type=int, default=40_000, help="cases of the outcome mode on 1 and 2 threads")
+    ap.add_argument(
+        "--outcome-thread-cases", type=int, default=40_000, help="cases of the outcome mode on 1 and 2 threads"
+    )
     ap.add_argument("--repeat", type=int, default=3, help="repetitions of the thread comparison (best kept)")
     ap.add_argument("--outcome-threads-only", action="store_true", help="run the outcome-mode thread comparison alone")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args(argv)
     if a.outcome_threads_only:
-        out = {"outcome": bench_outcome_threads(a.outcome_thread_cases, a.repeat),
-               "machine": {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform()}}
+        out = {
+            "outcome": bench_outcome_threads(a.outcome_thread_cases, a.repeat),
+            "machine": {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform()},
+        }
         o = out["outcome"]
-        print(json.dumps(out, indent=2) if a.json else
-              f"outcome mode, {o['cases']} cases: 2 threads x{o['threads_2']['speedup']:.3g} over 1, bitwise equal "
-              f"{o['threads_2']['bitwise_equal']} (load average {o['load_average_before']})")
+        print(
+            json.dumps(out, indent=2)
+            if a.json
+            else f"outcome mode, {o['cases']} cases: 2 threads x{o['threads_2']['speedup']:.3g} over 1, bitwise equal "
+            f"{o['threads_2']['bitwise_equal']} (load average {o['load_average_before']})"
+        )
         return 0
     out = {
         "capacity": bench_capacity(a.standoffs, a.bisect),
@@ -254,24 +290,39 @@ def main(argv=None) -> int:
     }
     p = out["planar"]
     out["outcome"] = bench_outcome_threads(a.outcome_thread_cases, a.repeat)
-    out["outcomes"] = bench_outcomes(a.outcome_cases, p["full_study_scalars_design_per_case"]["cases_per_minute"],
-                                     p["kernel_only_prototype_simulations"]["cases_per_minute"])
-    out["machine"] = {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform(),
-                      "load_average_end": os.getloadavg()}
+    out["outcomes"] = bench_outcomes(
+        a.outcome_cases,
+        p["full_study_scalars_design_per_case"]["cases_per_minute"],
+        p["kernel_only_prototype_simulations"]["cases_per_minute"],
+    )
+    out["machine"] = {
+        "cpus": os.cpu_count(),
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+        "load_average_end": os.getloadavg(),
+    }
     if a.json:
         print(json.dumps(out, indent=2))
     else:
         c, p = out["capacity"], out["planar"]
-        print(f"critical charge: {c['critical_charge_ms_per_case_curve']:.3g} ms/case (curve), "
-              f"{c['critical_charge_ms_single_call']:.3g} ms (one call); bisection on full simulations "
-              f"{c['bisection_full_simulations_ms_per_case']:.3g} ms/case; max rel. diff {c['max_relative_difference_vs_bisection']:.2g}")
-        print(f"planar: {p['full_study_scalars_design_per_case']['cases_per_minute']:.4g} cases/min (design per case), "
-              f"{p['full_study_scalars_one_design']['cases_per_minute']:.4g} (one design), outcome only "
-              f"{p['outcome_only_first_swing']['cases_per_minute']:.4g}")
-        print(f"3D: {out['3d']['cases_per_minute']:.4g} cases/min; 1 vs 2 workers: x{out['workers']['speedup_wall']:.3g}")
+        print(
+            f"critical charge: {c['critical_charge_ms_per_case_curve']:.3g} ms/case (curve), "
+            f"{c['critical_charge_ms_single_call']:.3g} ms (one call); bisection on full simulations "
+            f"{c['bisection_full_simulations_ms_per_case']:.3g} ms/case; max rel. diff {c['max_relative_difference_vs_bisection']:.2g}"
+        )
+        print(
+            f"planar: {p['full_study_scalars_design_per_case']['cases_per_minute']:.4g} cases/min (design per case), "
+            f"{p['full_study_scalars_one_design']['cases_per_minute']:.4g} (one design), outcome only "
+            f"{p['outcome_only_first_swing']['cases_per_minute']:.4g}"
+        )
+        print(
+            f"3D: {out['3d']['cases_per_minute']:.4g} cases/min; 1 vs 2 workers: x{out['workers']['speedup_wall']:.3g}"
+        )
         o = out["outcomes"]
-        print(f"outcome mode, {o['cases']} cases: {o['in_process']['cases_per_minute']:.4g} cases/min in process, "
-              f"{o['workers_1']['cases_per_minute']:.4g} (1 worker), {o['workers_2']['cases_per_minute']:.4g} (2 workers)")
+        print(
+            f"outcome mode, {o['cases']} cases: {o['in_process']['cases_per_minute']:.4g} cases/min in process, "
+            f"{o['workers_1']['cases_per_minute']:.4g} (1 worker), {o['workers_2']['cases_per_minute']:.4g} (2 workers)"
+        )
     return 0
 
 

@@ -39,8 +39,16 @@ STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
 
 def blastscale(args, cwd, env=None, **kw):
-    return subprocess.Popen([str(BIN), *map(str, args)], cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, env={**os.environ, "MPLBACKEND": "Agg", **(env or {})}, preexec_fn=_default_signals, **kw)
+    return subprocess.Popen(
+        [str(BIN), *map(str, args)],
+        cwd=cwd,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "MPLBACKEND": "Agg", **(env or {})},
+        preexec_fn=_default_signals,
+        **kw,
+    )
 
 
 def _default_signals() -> None:
@@ -76,8 +84,9 @@ def sweep_equal(a: Path, b: Path) -> bool:
 
     try:
         ta, tb = open_sweep(a), open_sweep(b)
-        return ([n.path for n in ta.subtree] == [n.path for n in tb.subtree]
-                and all(n.ds.equals(tb[n.path].ds) for n in ta.subtree))
+        return [n.path for n in ta.subtree] == [n.path for n in tb.subtree] and all(
+            n.ds.equals(tb[n.path].ds) for n in ta.subtree
+        )
     except Exception:  # noqa: BLE001
         return False
 
@@ -85,12 +94,18 @@ def sweep_equal(a: Path, b: Path) -> bool:
 def trial(rng: random.Random, work: Path, scenario: Path, reference: Path, kind: str) -> dict:
     out = work / ("r" if kind == "run" else "s.zarr")
     workers = rng.choice([0, 2]) if kind == "sweep" else 0
-    args = (["run", scenario, "--out", out, "--force"] if kind == "run"
-            else ["sweep", scenario, *SWEEP_ARGS, "--workers", workers, "--out", out])
+    args = (
+        ["run", scenario, "--out", out, "--force"]
+        if kind == "run"
+        else ["sweep", scenario, *SWEEP_ARGS, "--workers", workers, "--out", out]
+    )
     had = out.exists()
     sig = rng.choice([signal.SIGINT, signal.SIGTERM, signal.SIGKILL])
-    points = (["run:started", "run:simulating", "run:writing"] + (["output:between-renames"] if had else [])
-              if kind == "run" else [f"sweep:chunks={k}" for k in range(1, N_CHUNKS + 1)] + ["sweep:consolidating"])
+    points = (
+        ["run:started", "run:simulating", "run:writing"] + (["output:between-renames"] if had else [])
+        if kind == "run"
+        else [f"sweep:chunks={k}" for k in range(1, N_CHUNKS + 1)] + ["sweep:consolidating"]
+    )
     how = rng.choice(["pause", "delay"])
     env, marker = {}, work.parent / f"{work.name}.marker"
     marker.unlink(missing_ok=True)
@@ -120,9 +135,17 @@ def trial(rng: random.Random, work: Path, scenario: Path, reference: Path, kind:
     _, err = p.communicate(timeout=300)
     # a signal that lands after the result is in place ("wrote ..." printed) stops only the interpreter's exit
     finished = finished or ("\nwrote " in "\n" + err and sig in STATUS)
-    rec = {"kind": kind, "workers": workers, "signal": signal.Signals(sig).name, "how": how, "point": point,
-           "reached": reached, "completed_before_kill": finished and p.returncode == 0, "exit": p.returncode,
-           "had_previous": had}
+    rec = {
+        "kind": kind,
+        "workers": workers,
+        "signal": signal.Signals(sig).name,
+        "how": how,
+        "point": point,
+        "reached": reached,
+        "completed_before_kill": finished and p.returncode == 0,
+        "exit": p.returncode,
+        "had_previous": had,
+    }
     problems = []
     if not finished:
         if sig in STATUS:
@@ -179,11 +202,14 @@ def main() -> None:
         rec = trial(rng, work, scenario, reference, "run" if i % 2 == 0 else "sweep")
         records.append(rec)
         if not a.json:
-            print(f"{i + 1:3d} {rec['kind']:5s} w{rec['workers']} {rec['signal']:7s} {rec['how']:5s} "
-                  f"{str(rec['point']):24s} exit {rec['exit']:4d} {'OK' if not rec['problems'] else rec['problems']}",
-                  flush=True)
+            print(
+                f"{i + 1:3d} {rec['kind']:5s} w{rec['workers']} {rec['signal']:7s} {rec['how']:5s} "
+                f"{str(rec['point']):24s} exit {rec['exit']:4d} {'OK' if not rec['problems'] else rec['problems']}",
+                flush=True,
+            )
     summary = {
-        "trials": len(records), "seconds": time.monotonic() - t0,
+        "trials": len(records),
+        "seconds": time.monotonic() - t0,
         "by_signal": dict(Counter(r["signal"] for r in records)),
         "by_kind": dict(Counter(r["kind"] for r in records)),
         "by_moment": dict(Counter(r["point"] or "random delay" for r in records)),

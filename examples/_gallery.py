@@ -23,10 +23,16 @@ DEFAULT_OUT = Path("results") / "examples"
 def parse_args(doc: str, quick_help: str | None = None, flags: dict[str, str] | None = None) -> argparse.Namespace:
     """``out`` (folder, created), ``quick`` when ``quick_help`` is given, and one boolean
     option per entry of ``flags`` (name -> help, e.g. ``{"alpha35": "..."}`` gives ``--alpha35``)."""
-    p = argparse.ArgumentParser(description=doc.strip().splitlines()[0],
-                                formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("out", nargs="?", type=Path, default=DEFAULT_OUT,
-                   help=f"output folder for the PNG files (default ./{DEFAULT_OUT})")
+    p = argparse.ArgumentParser(
+        description=doc.strip().splitlines()[0], formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    p.add_argument(
+        "out",
+        nargs="?",
+        type=Path,
+        default=DEFAULT_OUT,
+        help=f"output folder for the PNG files (default ./{DEFAULT_OUT})",
+    )
     if quick_help:
         p.add_argument("--quick", action="store_true", help=quick_help)
     for name, text in (flags or {}).items():

@@ -58,15 +58,29 @@ PAPER = {"kind": "column"}
 SHORT = {"kind": "column", "drums": 3, "height_m": 3.0, "base_width_m": 1.65, "top_width_m": 1.54, "sides": 16}
 
 
-def scenario(column: dict, section: str, charge: float, duration: float, record_every: int, scale=SCALE,
-             ensemble_members: int = 0) -> Scenario:
+def scenario(
+    column: dict,
+    section: str,
+    charge: float,
+    duration: float,
+    record_every: int,
+    scale=SCALE,
+    ensemble_members: int = 0,
+) -> Scenario:
     """The case as a scenario: the column, ``charge`` [kg] at 10 m (Kingery-Bulmash, Friedlander,
     Method A), the 1/100 specimen (gamma = 1; ``scale`` None: the prototype alone), the 3D engine."""
-    data = {"title": f"{section} column, {charge:g} kg at {STANDOFF:g} m",
-            "structure": {**column, "section": section},
-            "blast": {"charge_kg": charge, "standoff_m": STANDOFF, "model": MODEL},
-            "simulation": {"engine": "3d", "duration_s": duration, "record_every": record_every,
-                           "ensemble_members": ensemble_members, "critical_charge": False}}
+    data = {
+        "title": f"{section} column, {charge:g} kg at {STANDOFF:g} m",
+        "structure": {**column, "section": section},
+        "blast": {"charge_kg": charge, "standoff_m": STANDOFF, "model": MODEL},
+        "simulation": {
+            "engine": "3d",
+            "duration_s": duration,
+            "record_every": record_every,
+            "ensemble_members": ensemble_members,
+            "critical_charge": False,
+        },
+    }
     if scale is not None:
         data["scale"] = {"length": scale, "density_ratio": GAMMA}
     return Scenario.from_dict(data)
@@ -79,22 +93,39 @@ def specimen_scenario(column: dict, section: str, charge: float, duration: float
     sc = scenario(column, section, charge, duration, record_every)
     study = Study(sc)
     d, col = study.design(), study.structure().scaled(study.design().factors)
-    spec = {"kind": "column", "section": section, "drums": col.drums, "height_m": col.height,
-            "base_width_m": col.base_width, "top_width_m": col.top_width, "sides": col.sides,
-            "density_kg_m3": col.density}
-    return Scenario.from_dict({
-        "title": f"{sc.title}: the 1/100 specimen alone",
-        "structure": {k: v for k, v in spec.items() if v is not None},
-        "blast": {"charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m, "model": MODEL},
-        "simulation": {"engine": "3d", "duration_s": duration * d.factors.time, "record_every": record_every,
-                       "critical_charge": False}})
+    spec = {
+        "kind": "column",
+        "section": section,
+        "drums": col.drums,
+        "height_m": col.height,
+        "base_width_m": col.base_width,
+        "top_width_m": col.top_width,
+        "sides": col.sides,
+        "density_kg_m3": col.density,
+    }
+    return Scenario.from_dict(
+        {
+            "title": f"{sc.title}: the 1/100 specimen alone",
+            "structure": {k: v for k, v in spec.items() if v is not None},
+            "blast": {"charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m, "model": MODEL},
+            "simulation": {
+                "engine": "3d",
+                "duration_s": duration * d.factors.time,
+                "record_every": record_every,
+                "critical_charge": False,
+            },
+        }
+    )
 
 
 def collapses(column, section, charge, duration, record_every, system):
     """Outcome of the prototype ("prototype") or of the specimen ("model") at a prototype charge:
     one prototype-only study of that system alone."""
-    sc = (scenario(column, section, charge, duration, record_every, scale=None) if system == "prototype"
-          else specimen_scenario(column, section, charge, duration, record_every))
+    sc = (
+        scenario(column, section, charge, duration, record_every, scale=None)
+        if system == "prototype"
+        else specimen_scenario(column, section, charge, duration, record_every)
+    )
     return bool(Study(sc).run().summary()["3d"]["prototype"]["collapsed"])
 
 
@@ -123,8 +154,18 @@ def main() -> None:
         column, duration, n_members, cases = PAPER, 8.0, 8, CASES
         ens_cases = (("square", 250.0), ("circular", 200.0), ("circular", 400.0))
     record_every = 8
-    results: dict = {"settings": {"scale": SCALE, "density_ratio": GAMMA, "standoff_m": STANDOFF, "blast_model": MODEL,
-                                  "pulse": "friedlander", "load": "A", "duration_s": duration}, "cases": {}}
+    results: dict = {
+        "settings": {
+            "scale": SCALE,
+            "density_ratio": GAMMA,
+            "standoff_m": STANDOFF,
+            "blast_model": MODEL,
+            "pulse": "friedlander",
+            "load": "A",
+            "duration_s": duration,
+        },
+        "cases": {},
+    }
     ensembles = {}
     for section, W in cases:
         members = n_members if (section, W) in ens_cases else 0  # the ensembles run in the same study
@@ -135,19 +176,25 @@ def main() -> None:
         if r.ensemble is not None:
             ensembles[(section, W)] = r
         sim = s["similarity"]
-        print(f"{section} {W:g} kg: prototype collapsed {s['prototype']['collapsed']}, model collapsed "
-              f"{s['model']['collapsed']}, top first peak ratio {sim['top_first_peak_ratio']:.4f}, "
-              f"max |top diff| {sim['max_abs_top_displacement_diff_m']:.4g} m "
-              f"({100 * sim['max_abs_top_displacement_diff_rel_peak']:.2f} % of the peak)")
+        print(
+            f"{section} {W:g} kg: prototype collapsed {s['prototype']['collapsed']}, model collapsed "
+            f"{s['model']['collapsed']}, top first peak ratio {sim['top_first_peak_ratio']:.4f}, "
+            f"max |top diff| {sim['max_abs_top_displacement_diff_m']:.4g} m "
+            f"({100 * sim['max_abs_top_displacement_diff_rel_peak']:.2f} % of the peak)"
+        )
         for name, p in sim["points"].items():
-            print(f"  {name}: first peak {p['first_peak_prototype_m']:.4g} m (model {p['first_peak_model_m']:.4g} m, "
-                  f"ratio {p['first_peak_ratio']:.4f}), max |diff| {100 * p['max_abs_displacement_diff_rel_peak']:.2f} % "
-                  "of the peak")
+            print(
+                f"  {name}: first peak {p['first_peak_prototype_m']:.4g} m (model {p['first_peak_model_m']:.4g} m, "
+                f"ratio {p['first_peak_ratio']:.4f}), max |diff| {100 * p['max_abs_displacement_diff_rel_peak']:.2f} % "
+                "of the peak"
+            )
         pts = [p for p in SHOWN_POINTS if p in sim["points"]] or None
         cmp = r.response3d
         fig = plot_column_comparison(r.structure, cmp.prototype_dataset, cmp.upscaled_dataset, points=pts)
-        fig.suptitle(f"{section} column, {W:g} kg at {STANDOFF:g} m, Method A: prototype (solid) vs "
-                     f"lambda = 1/100 model up-scaled (dashed)")
+        fig.suptitle(
+            f"{section} column, {W:g} kg at {STANDOFF:g} m, Method A: prototype (solid) vs "
+            f"lambda = 1/100 model up-scaled (dashed)"
+        )
         save(fig, args.out, f"figure_column_{key}.png")
 
     if not args.quick:
@@ -164,12 +211,14 @@ def main() -> None:
         es = r.summary()["ensemble"]
         results["ensembles"][key] = es
         top = es["points"][ens.points[-1]]
-        print(f"ensemble {section} {W:g} kg ({n_members} runs, 1e-6): top first peak prototype "
-              f"{top['first_peak_prototype_mean_m']:.4g} +- {top['first_peak_prototype_spread_m']:.2g} m, model "
-              f"{top['first_peak_model_mean_m']:.4g} +- {top['first_peak_model_spread_m']:.2g} m; noise floor "
-              f"{100 * top['noise_floor_rel_peak']:.1f} % of the peak, horizon {top['horizon_prototype_s']:.3g} s; "
-              f"collapse probability prototype {es['collapse_probability_prototype']:.2f}, model "
-              f"{es['collapse_probability_model']:.2f}")
+        print(
+            f"ensemble {section} {W:g} kg ({n_members} runs, 1e-6): top first peak prototype "
+            f"{top['first_peak_prototype_mean_m']:.4g} +- {top['first_peak_prototype_spread_m']:.2g} m, model "
+            f"{top['first_peak_model_mean_m']:.4g} +- {top['first_peak_model_spread_m']:.2g} m; noise floor "
+            f"{100 * top['noise_floor_rel_peak']:.1f} % of the peak, horizon {top['horizon_prototype_s']:.3g} s; "
+            f"collapse probability prototype {es['collapse_probability_prototype']:.2f}, model "
+            f"{es['collapse_probability_model']:.2f}"
+        )
         fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
         plot_ensemble_envelope(ens, ax=ax)
         ax.set_title(f"{section} column, {W:g} kg at {STANDOFF:g} m: ensembles of {n_members} (load x (1 +- 1e-6))")

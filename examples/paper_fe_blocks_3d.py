@@ -60,29 +60,37 @@ def run_block(block: dict, charge, standoff, duration, planar: bool = False):
     ``planar``). Returns a dict with the ``study`` result, the ``prototype`` and up-scaled ``model``
     histories of the block's planar view (block datasets, prototype units), their ``summaries``
     and the ``similarity`` figures (the block3d keys of the study's 3D summary)."""
-    sc = Scenario.from_dict({
-        "title": f"FE section block, {charge:g} kg at {standoff:g} m, lambda = 1/200",
-        "structure": {**block, "friction": MU},
-        "blast": {"charge_kg": charge, "standoff_m": standoff, "model": MODEL},
-        "scale": {"length": SCALE, "density_ratio": 1.0},
-        "simulation": {"engine": "both" if planar else "3d", "duration_s": duration, "critical_charge": False},
-    })
+    sc = Scenario.from_dict(
+        {
+            "title": f"FE section block, {charge:g} kg at {standoff:g} m, lambda = 1/200",
+            "structure": {**block, "friction": MU},
+            "blast": {"charge_kg": charge, "standoff_m": standoff, "model": MODEL},
+            "scale": {"length": SCALE, "density_ratio": 1.0},
+            "simulation": {"engine": "both" if planar else "3d", "duration_s": duration, "critical_charge": False},
+        }
+    )
     r = Study(sc).run()
     s3, c = r.summary()["3d"], r.response3d
-    return {"study": r, "design": r.design, "block": r.structure,
-            "prototype": block_dataset(c.prototype, r.structure),
-            "model": upscale_dataset(block_dataset(c.model, r.specimen_structure), r.design.factors),
-            "summaries": tuple({k: s3[side][k] for k in BLOCK_SUMMARY_KEYS} for side in ("prototype", "model")),
-            "similarity": {k: s3["similarity"][k] for k in BLOCK_SIMILARITY_KEYS}}
+    return {
+        "study": r,
+        "design": r.design,
+        "block": r.structure,
+        "prototype": block_dataset(c.prototype, r.structure),
+        "model": upscale_dataset(block_dataset(c.model, r.specimen_structure), r.design.factors),
+        "summaries": tuple({k: s3[side][k] for k in BLOCK_SUMMARY_KEYS} for side in ("prototype", "model")),
+        "similarity": {k: s3["similarity"][k] for k in BLOCK_SIMILARITY_KEYS},
+    }
 
 
 def report(name: str, run: dict) -> None:
     """Print prototype outcome and prototype-vs-model differences."""
     (p, m), d = run["summaries"], run["similarity"]
-    print(f"{name}: prototype max rotation {p['max_rotation_rad']:.4f} rad, max sliding {p['max_sliding_m']:.4f} m, "
-          f"overturned {p['collapsed']} | up-scaled model: max rotation {m['max_rotation_rad']:.4f} rad, "
-          f"max sliding {m['max_sliding_m']:.4f} m | max |d rotation| "
-          f"{d['max_abs_rotation_diff_rad']:.2e} rad, max |d sliding| {d['max_abs_sliding_diff_m']:.2e} m")
+    print(
+        f"{name}: prototype max rotation {p['max_rotation_rad']:.4f} rad, max sliding {p['max_sliding_m']:.4f} m, "
+        f"overturned {p['collapsed']} | up-scaled model: max rotation {m['max_rotation_rad']:.4f} rad, "
+        f"max sliding {m['max_sliding_m']:.4f} m | max |d rotation| "
+        f"{d['max_abs_rotation_diff_rad']:.2e} rad, max |d sliding| {d['max_abs_sliding_diff_m']:.2e} m"
+    )
 
 
 def slender_figure(runs: dict):
@@ -92,8 +100,13 @@ def slender_figure(runs: dict):
         three_d = {"3D prototype": run["prototype"], "3D model 1/200, up-scaled": run["model"]}
         for j, q in enumerate(("rotation_y", "angular_velocity_y")):
             ax = plot_history(three_d, q, ax=axes[j, k])
-            ax.plot(planar.t, planar.theta if q == "rotation_y" else planar.theta_dot, ":", color="k",
-                    label="planar Eq. (eom), fixed pivot")
+            ax.plot(
+                planar.t,
+                planar.theta if q == "rotation_y" else planar.theta_dot,
+                ":",
+                color="k",
+                label="planar Eq. (eom), fixed pivot",
+            )
             ax.legend(fontsize="small")
         ax = axes[2, k]
         for lab, r, ls in (("3D prototype", run["prototype"], "-"), ("3D model, up-scaled", run["model"], "--")):
@@ -120,9 +133,14 @@ def non_slender_figure(run: dict, reading: str):
 
 
 def main() -> None:
-    args = parse_args(__doc__, quick_help="shorter runs (1.5 s slender, 0.6 s non-slender prototype time)",
-                      flags={"alpha35": "run the non-slender block as angled (alpha = 35 deg, 2b = 7.0 m) "
-                                        "instead of as dimensioned (2b = 3.5 m)"})
+    args = parse_args(
+        __doc__,
+        quick_help="shorter runs (1.5 s slender, 0.6 s non-slender prototype time)",
+        flags={
+            "alpha35": "run the non-slender block as angled (alpha = 35 deg, 2b = 7.0 m) "
+            "instead of as dimensioned (2b = 3.5 m)"
+        },
+    )
     t_slender, t_non = (1.5, 0.6) if args.quick else (3.0, 2.0)
 
     runs = {}
@@ -137,12 +155,16 @@ def main() -> None:
     reading = list(NON_SLENDER)[1 if args.alpha35 else 0]
     run = run_block(NON_SLENDER[reading], 2500.0, 3.0, t_non)
     block = run["block"]
-    print(f"non-slender block {reading}: 2b = {block.width:.2f} m, alpha = {math.degrees(block.alpha):.1f} deg "
-          f"(the paper states both 2b = 3.5 m and alpha = 35 deg, which contradict each other)")
+    print(
+        f"non-slender block {reading}: 2b = {block.width:.2f} m, alpha = {math.degrees(block.alpha):.1f} deg "
+        f"(the paper states both 2b = 3.5 m and alpha = 35 deg, which contradict each other)"
+    )
     i, S, m = run["design"].prototype.reflected_impulse, block.front_area, block.mass
-    print(f"  model charge {run['design'].specimen_charge_kg * 1e6:.4f} mg (paper 14.26 mg); momentum balance "
-          f"v0 = i S / m = {i * S / m:.2f} m/s, prototype peak velocity "
-          f"{float(run['prototype']['velocity_x'].max()):.2f} m/s")
+    print(
+        f"  model charge {run['design'].specimen_charge_kg * 1e6:.4f} mg (paper 14.26 mg); momentum balance "
+        f"v0 = i S / m = {i * S / m:.2f} m/s, prototype peak velocity "
+        f"{float(run['prototype']['velocity_x'].max()):.2f} m/s"
+    )
     report(f"non-slender, 2500 kg at 3 m ({t_non:g} s)", run)
     save(non_slender_figure(run, reading), args.out, "figure_fe_non_slender_block.png")
     done(args)

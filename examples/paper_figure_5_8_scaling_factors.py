@@ -49,26 +49,34 @@ def main() -> None:
     save(fig, args.out, "figure_5_scaling_factors_vs_lambda.png")
     for lam_k in (1 / 20, 1 / 200):
         p = scaling_curves(W, R, lam_k, 1.0, blast_model=MODEL)
-        print(f"lambda = 1/{1 / lam_k:.0f}, gamma = 1: lambda_Z = {float(p.scaled_distance_factor):.4f}, "
-              f"pressure {100 * float(p.pressure_ratio):.3f} %, impulse {100 * float(p.impulse_ratio):.4f} %, "
-              f"duration {100 * float(p.duration_ratio):.3f} % | Hopkinson-Cranz: pressure 100 %, "
-              f"impulse {100 * float(p.hc_impulse_ratio):.3f} %")
+        print(
+            f"lambda = 1/{1 / lam_k:.0f}, gamma = 1: lambda_Z = {float(p.scaled_distance_factor):.4f}, "
+            f"pressure {100 * float(p.pressure_ratio):.3f} %, impulse {100 * float(p.impulse_ratio):.4f} %, "
+            f"duration {100 * float(p.duration_ratio):.3f} % | Hopkinson-Cranz: pressure 100 %, "
+            f"impulse {100 * float(p.hc_impulse_ratio):.3f} %"
+        )
 
     # Figure 8: vs gamma, lambda = 1/20 and 1/200
     gam = np.logspace(-2, 0, 121)
     runs = [scaling_curves(W, R, lam_k, gam, blast_model=MODEL) for lam_k in (1 / 20, 1 / 200)]
     fig = scaling_factors_figure(runs, x="density_ratio", labels=["lambda = 1/20", "lambda = 1/200"])
-    fig.suptitle(f"Fig. 8: scaling factors vs gamma, prototype {W:g} kg at {R:g} m ({MODEL}); "
-                 "curves end where the model Z leaves the fits")
+    fig.suptitle(
+        f"Fig. 8: scaling factors vs gamma, prototype {W:g} kg at {R:g} m ({MODEL}); "
+        "curves end where the model Z leaves the fits"
+    )
     save(fig, args.out, "figure_8_scaling_factors_vs_gamma.png")
     for c in runs:
         lam_k = float(c.scale[0])
         g_min = float(c.density_ratio[c.valid].min())
-        print(f"lambda = 1/{1 / lam_k:.0f}: general law solvable inside the fits for gamma >= {g_min:.3g} "
-              f"(model Z <= {c.z_range[1]:g} m/kg^(1/3)); {int((~c.valid).sum())} of {c.valid.size} points NaN")
+        print(
+            f"lambda = 1/{1 / lam_k:.0f}: general law solvable inside the fits for gamma >= {g_min:.3g} "
+            f"(model Z <= {c.z_range[1]:g} m/kg^(1/3)); {int((~c.valid).sum())} of {c.valid.size} points NaN"
+        )
     p = scaling_curves(W, R, 1 / 200, [1.0, 0.07, 0.05], blast_model=MODEL)
-    print("lambda = 1/200: pressure ratio " + ", ".join(
-        f"gamma = {g:g}: {100 * x:.3f} %" for g, x in zip(p.density_ratio, p.pressure_ratio)))
+    print(
+        "lambda = 1/200: pressure ratio "
+        + ", ".join(f"gamma = {g:g}: {100 * x:.3f} %" for g, x in zip(p.density_ratio, p.pressure_ratio))
+    )
     done(args)
 
 

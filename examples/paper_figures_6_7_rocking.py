@@ -78,34 +78,52 @@ def main() -> None:
     crit = critical_charge(RockingSystem.from_block(BLOCK), STANDOFF, blast_model=MODEL)
     print(f"critical charge (Friedlander pulse): {crit.charge_kg:.2f} kg (paper: 79.8 kg)")
 
-    for gamma, fig_name, label in ((1.0, "figure_9_upscaled_gamma_1.png", "same material"),
-                                   (0.07, "figure_10_upscaled_gamma_0p07.png", "balsa model")):
-        base = Scenario.from_dict({
-            "title": f"paper block, lambda = 1/200, gamma = {gamma:g}",
-            "structure": {"kind": "block", "height_m": BLOCK.height, "alpha_deg": 15.0, "density_kg_m3": 2000.0},
-            "blast": {"charge_kg": CHARGES[0], "standoff_m": STANDOFF, "model": MODEL},
-            "scale": {"length": SCALE, "density_ratio": gamma},
-            "simulation": {"engine": "planar", "duration_s": duration, "samples": n, "critical_charge": False},
-        })
+    for gamma, fig_name, label in (
+        (1.0, "figure_9_upscaled_gamma_1.png", "same material"),
+        (0.07, "figure_10_upscaled_gamma_0p07.png", "balsa model"),
+    ):
+        base = Scenario.from_dict(
+            {
+                "title": f"paper block, lambda = 1/200, gamma = {gamma:g}",
+                "structure": {"kind": "block", "height_m": BLOCK.height, "alpha_deg": 15.0, "density_kg_m3": 2000.0},
+                "blast": {"charge_kg": CHARGES[0], "standoff_m": STANDOFF, "model": MODEL},
+                "scale": {"length": SCALE, "density_ratio": gamma},
+                "simulation": {"engine": "planar", "duration_s": duration, "samples": n, "critical_charge": False},
+            }
+        )
         sims = {W: Study(base.with_values({"charge_kg": W})).run().planar for W in CHARGES}
         for W, s in sims.items():
             d = s.design
-            print(f"gamma = {gamma:g}, W_p = {W:5.1f} kg: model {d.specimen_charge_kg * 1e6:.4g} mg at "
-                  f"{d.specimen_standoff_m * 100:g} cm | prototype max |theta| {s.prototype.max_rotation:.4f} rad, "
-                  f"{'overturns' if s.prototype.collapsed else 'rocks'} | outcomes agree: {s.outcomes_agree} | "
-                  f"max |dtheta| {s.max_abs_rotation_diff:.2e} rad (to tipping {s.max_abs_rotation_diff_to_tipping:.2e}), "
-                  f"first-peak ratio {s.first_peak_ratio:.4f}")
+            print(
+                f"gamma = {gamma:g}, W_p = {W:5.1f} kg: model {d.specimen_charge_kg * 1e6:.4g} mg at "
+                f"{d.specimen_standoff_m * 100:g} cm | prototype max |theta| {s.prototype.max_rotation:.4f} rad, "
+                f"{'overturns' if s.prototype.collapsed else 'rocks'} | outcomes agree: {s.outcomes_agree} | "
+                f"max |dtheta| {s.max_abs_rotation_diff:.2e} rad (to tipping {s.max_abs_rotation_diff_to_tipping:.2e}), "
+                f"first-peak ratio {s.first_peak_ratio:.4f}"
+            )
         if gamma == 1.0:
             fi = sims[50.0].prototype.first_impact_time
             print(f"50 kg prototype: first impact at {fi:.3f} s (paper FE section: '1.3 ms', i.e. ~1.38 s)")
-            save(response_figure({W: s.prototype for W, s in sims.items()},
-                                 "Fig. 6: prototype response (10 m block, R = 2 m)"),
-                 args.out, "figure_6_prototype_response.png")
-            save(response_figure({W: s.model for W, s in sims.items()},
-                                 "Fig. 7: model response, lambda = 1/200, gamma = 1 (model units: 5 cm block, R = 1 cm)"),
-                 args.out, "figure_7_model_response.png")
-        save(overlay_figure(sims, f"Prototype vs up-scaled model, lambda = 1/200, gamma = {gamma:g} ({label})"),
-             args.out, fig_name)
+            save(
+                response_figure(
+                    {W: s.prototype for W, s in sims.items()}, "Fig. 6: prototype response (10 m block, R = 2 m)"
+                ),
+                args.out,
+                "figure_6_prototype_response.png",
+            )
+            save(
+                response_figure(
+                    {W: s.model for W, s in sims.items()},
+                    "Fig. 7: model response, lambda = 1/200, gamma = 1 (model units: 5 cm block, R = 1 cm)",
+                ),
+                args.out,
+                "figure_7_model_response.png",
+            )
+        save(
+            overlay_figure(sims, f"Prototype vs up-scaled model, lambda = 1/200, gamma = {gamma:g} ({label})"),
+            args.out,
+            fig_name,
+        )
     done(args)
 
 

@@ -50,8 +50,15 @@ def rows(model: str) -> list[list]:
 
 def main() -> None:
     args = parse_args(__doc__)
-    header = ["blast model", "W_p [kg]", "Z_p [m/kg^1/3]", "W_m1 [g] (1/20)", "Z_m1 [m/kg^1/3]",
-              "W_m2 [mg] (1/200)", "Z_m2 [m/kg^1/3]"]
+    header = [
+        "blast model",
+        "W_p [kg]",
+        "Z_p [m/kg^1/3]",
+        "W_m1 [g] (1/20)",
+        "Z_m1 [m/kg^1/3]",
+        "W_m2 [mg] (1/200)",
+        "Z_m2 [m/kg^1/3]",
+    ]
     table = [r for m in MODELS for r in rows(m)]
     print("Blast loading characteristics (R = 2 m, gamma = 1, general law)")
     print("paper prints model 1 in mg and model 2 in ug: the correct units are g and mg")
@@ -59,8 +66,10 @@ def main() -> None:
     for r in table:
         print(f"{r[0]:>15} | {r[1]:6.1f} | {r[2]:.4f} | {r[3]:7.4f} g | {r[4]:.4f} | {r[5]:7.4f} mg | {r[6]:.4f}")
     ns = design_model(2500.0, 3.0, 1 / 200, 1.0, blast_model="masi2021")
-    print(f"non-slender block, 2500 kg at 3 m, lambda = 1/200 (masi2021): model charge "
-          f"{ns.specimen_charge_kg * 1e6:.4f} mg (paper 14.26 mg, truncated), Z_m = {ns.specimen.scaled_distance:.4f}")
+    print(
+        f"non-slender block, 2500 kg at 3 m, lambda = 1/200 (masi2021): model charge "
+        f"{ns.specimen_charge_kg * 1e6:.4f} mg (paper 14.26 mg, truncated), Z_m = {ns.specimen.scaled_distance:.4f}"
+    )
 
     with open(args.out / "table_blast_loading.csv", "w", newline="") as fh:
         w = csv.writer(fh)
@@ -70,16 +79,29 @@ def main() -> None:
 
     fig, ax = plt.subplots(figsize=(11, 3.2), layout="constrained")
     ax.axis("off")
-    cells = [[r[0], f"{r[1]:g}", f"{r[2]:.3f}", f"{r[3]:.4g}", f"{r[4]:.3f}", f"{r[5]:.4g}", f"{r[6]:.3f}"]
-             for r in table]
-    cells.append(["masi2021", "2500 (R = 3 m)", f"{ns.prototype.scaled_distance:.3f}", "-", "-",
-                  f"{ns.specimen_charge_kg * 1e6:.4g}", f"{ns.specimen.scaled_distance:.3f}"])
+    cells = [
+        [r[0], f"{r[1]:g}", f"{r[2]:.3f}", f"{r[3]:.4g}", f"{r[4]:.3f}", f"{r[5]:.4g}", f"{r[6]:.3f}"] for r in table
+    ]
+    cells.append(
+        [
+            "masi2021",
+            "2500 (R = 3 m)",
+            f"{ns.prototype.scaled_distance:.3f}",
+            "-",
+            "-",
+            f"{ns.specimen_charge_kg * 1e6:.4g}",
+            f"{ns.specimen.scaled_distance:.3f}",
+        ]
+    )
     t = ax.table(cellText=cells, colLabels=header, loc="center", cellLoc="center")
     t.auto_set_font_size(False)
     t.set_fontsize(9)
     t.scale(1.0, 1.4)
-    ax.set_title("Blast loading characteristics, prototype R = 2 m, gamma = 1 (model charges in g and mg: "
-                 "the paper's mg and ug are a 1000x slip)", fontsize=10)
+    ax.set_title(
+        "Blast loading characteristics, prototype R = 2 m, gamma = 1 (model charges in g and mg: "
+        "the paper's mg and ug are a 1000x slip)",
+        fontsize=10,
+    )
     save(fig, args.out, "table_blast_loading.png")
     done(args)
 

@@ -57,16 +57,26 @@ def main() -> None:
     ax.lines[-1].set_linestyle("-.")
     W = np.logspace(1, math.log10(500.0), 60)
     bp = blast_parameters(W, STANDOFF, MODEL)
-    ax.plot(bp.reflected_impulse, bp.reflected_pressure, color="C3", lw=1, label=f"blast at R = {STANDOFF:g} m, 10-500 kg")
+    ax.plot(
+        bp.reflected_impulse, bp.reflected_pressure, color="C3", lw=1, label=f"blast at R = {STANDOFF:g} m, 10-500 kg"
+    )
     for Wk, offset in ((50.0, (6, -12)), (79.8, (-48, 6)), (100.0, (6, -12))):  # label offsets [points]
         b = blast_parameters(Wk, STANDOFF, MODEL)
         ax.plot(b.reflected_impulse, b.reflected_pressure, "o", color="C3", ms=4)
-        ax.annotate(f"{Wk:g} kg", (b.reflected_impulse, b.reflected_pressure), textcoords="offset points",
-                    xytext=offset, fontsize=8, color="C3")
+        ax.annotate(
+            f"{Wk:g} kg",
+            (b.reflected_impulse, b.reflected_pressure),
+            textcoords="offset points",
+            xytext=offset,
+            fontsize=8,
+            color="C3",
+        )
     ax.set_xlim(0.5 * pi.impulse_asymptote, None)
     ax.legend(fontsize="small", loc="center right")
-    ax.set_title("P-I overturning diagram, 10 m block (alpha = 15 deg, 2000 kg/m^3)\n"
-                 "impulsive pulse = vertical asymptote; curves to the right overturn")
+    ax.set_title(
+        "P-I overturning diagram, 10 m block (alpha = 15 deg, 2000 kg/m^3)\n"
+        "impulsive pulse = vertical asymptote; curves to the right overturn"
+    )
     save(fig, args.out, "pi_diagram.png")
     done(args)
 

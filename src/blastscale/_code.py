@@ -24,8 +24,14 @@ def code_files(root: Path = _ROOT) -> list:
     """Every file of the package under ``root`` that its code is made of: sources and package data
     (scenarios, coefficient tables, templates), not Python's or numba's caches (``__pycache__``) nor
     hidden files; sorted."""
-    return sorted(p for p in root.rglob("*") if p.is_file() and "__pycache__" not in p.relative_to(root).parts
-                  and not any(s.startswith(".") for s in p.relative_to(root).parts) and p.suffix not in (".pyc", ".pyo"))
+    return sorted(
+        p
+        for p in root.rglob("*")
+        if p.is_file()
+        and "__pycache__" not in p.relative_to(root).parts
+        and not any(s.startswith(".") for s in p.relative_to(root).parts)
+        and p.suffix not in (".pyc", ".pyo")
+    )
 
 
 @functools.cache

@@ -72,8 +72,9 @@ def _module_file(name: str) -> Path | None:
 
 #: An import statement, anywhere (module level, in a function, in a docstring: a match too many only
 #: adds a file to the key): ``from <dots><module> import <names>`` or ``import <modules>``.
-_IMPORT = re.compile(r"^[ \t]*(?:from[ \t]+(\.*)([\w.]*)[ \t]+import[ \t]+(\([^)]*\)|[^\n#]*)|import[ \t]+([^\n#]*))",
-                     re.MULTILINE)
+_IMPORT = re.compile(
+    r"^[ \t]*(?:from[ \t]+(\.*)([\w.]*)[ \t]+import[ \t]+(\([^)]*\)|[^\n#]*)|import[ \t]+([^\n#]*))", re.MULTILINE
+)
 
 
 def _imported(path: Path) -> set:

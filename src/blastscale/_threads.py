@@ -70,10 +70,13 @@ def _inside(fn):
             return fn(x)
         finally:
             _local.inside = False
+
     return run
 
 
-def map_threads(fn: Callable, items, threads: Optional[int] = None, done: Optional[Callable[[int], None]] = None) -> list:
+def map_threads(
+    fn: Callable, items, threads: Optional[int] = None, done: Optional[Callable[[int], None]] = None
+) -> list:
     """``[fn(x) for x in items]``, on up to ``threads`` threads (default :func:`default_threads`).
 
     Parameters

@@ -14,12 +14,14 @@ from blastscale.study import Study
 
 @pytest.fixture(scope="module")
 def arch_result():
-    sc = Scenario.from_dict({
-        "structure": {"kind": "arch"},  # semicircular, R 2.5 m, t 0.5 m, 15 voussoirs
-        "blast": {"charge_kg": 5.0, "standoff_m": 5.0, "blast_model": "kingery-bulmash"},
-        "scale": {"length": 0.1},
-        "simulation": {"engine": "3d", "duration_s": 0.1, "critical_charge": False},
-    })
+    sc = Scenario.from_dict(
+        {
+            "structure": {"kind": "arch"},  # semicircular, R 2.5 m, t 0.5 m, 15 voussoirs
+            "blast": {"charge_kg": 5.0, "standoff_m": 5.0, "blast_model": "kingery-bulmash"},
+            "scale": {"length": 0.1},
+            "simulation": {"engine": "3d", "duration_s": 0.1, "critical_charge": False},
+        }
+    )
     return Study(sc).run()
 
 

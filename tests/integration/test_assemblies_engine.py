@@ -40,9 +40,16 @@ def test_a_block_from_a_json_file_runs_as_kind_block(tmp_path):
 def test_ten_stacked_boxes_from_a_file_run_as_a_prismatic_column(tmp_path):
     col = MultiDrumColumn("square", drums=10, base_width=1.5, top_width=1.5)
     p = tmp_path / "stack.json"
-    p.write_text(json.dumps({"blocks": [{"name": f"D-{k + 1}", "vertices": box_vertices(-0.75, 0.75, -0.75, 0.75, k,
-                                                                                       k + 1).tolist()}
-                                        for k in range(10)]}))
+    p.write_text(
+        json.dumps(
+            {
+                "blocks": [
+                    {"name": f"D-{k + 1}", "vertices": box_vertices(-0.75, 0.75, -0.75, 0.75, k, k + 1).tolist()}
+                    for k in range(10)
+                ]
+            }
+        )
+    )
     asm = read_block_model(p, 2700.0)
     bp = blast_parameters(250.0, 10.0)
     r1 = simulate_structure(col, make_load("A", col, bp), 0.4, record_every=20)
@@ -103,8 +110,12 @@ def test_a_stable_arch_is_not_left_moving():
     from blastscale.scenario import Scenario
     from blastscale.study import Study
 
-    sc = Scenario.from_dict({"structure": {"kind": "arch", "radius_m": 5.0, "thickness_m": 0.8, "voussoirs": 20,
-                                           "friction": 0.8}, "simulation": {"engine": "3d", "duration_s": 2.0}})
+    sc = Scenario.from_dict(
+        {
+            "structure": {"kind": "arch", "radius_m": 5.0, "thickness_m": 0.8, "voussoirs": 20, "friction": 0.8},
+            "simulation": {"engine": "3d", "duration_s": 2.0},
+        }
+    )
     s = Study(sc).run().summary()["3d"]["prototype"]
     assert s["stability"] == "stands" and s["final_speed_rel_sqrt_gh"] < 1e-4
     assert (s["duration_asked_s"], s["duration_simulated_s"]) == (2.0, 4.0)

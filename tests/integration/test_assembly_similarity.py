@@ -11,15 +11,19 @@ from blastscale.report import write_study
 from blastscale.scenario import load_scenario
 from blastscale.study import Study
 
+
 def _run(name, duration):
     sc = load_scenario(name).with_values({"simulation.duration_s": duration})
     return Study(sc).run()
 
 
-@pytest.mark.parametrize("name, duration, top, peak_m", [
-    ("wall_running_bond_lambda20", 0.45, "C5U4", 0.109),  # first peak 0.109 m at 0.33 s
-    ("portal_lambda20", 0.4, "lintel", 0.0550),  # 0.055 m at 0.29 s
-])
+@pytest.mark.parametrize(
+    "name, duration, top, peak_m",
+    [
+        ("wall_running_bond_lambda20", 0.45, "C5U4", 0.109),  # first peak 0.109 m at 0.33 s
+        ("portal_lambda20", 0.4, "lintel", 0.0550),  # 0.055 m at 0.29 s
+    ],
+)
 def test_wall_and_portal_model_reproduces_the_prototype(name, duration, top, peak_m, tmp_path):
     r = _run(name, duration)
     s = r.summary()["3d"]

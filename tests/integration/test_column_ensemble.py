@@ -61,8 +61,7 @@ def test_short_square_ensemble_is_not_chaotic():
     from blastscale.structures import MultiDrumColumn
 
     col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54)
-    e = ensemble_compare(col, design_model(250.0, 10.0, 1 / 100), n=2, perturbation=1e-6, duration=0.3,
-                         record_every=8)
+    e = ensemble_compare(col, design_model(250.0, 10.0, 1 / 100), n=2, perturbation=1e-6, duration=0.3, record_every=8)
     s = e.summary()
     assert s["n_members"] == 2 and s["collapse_probability_prototype"] == 0.0 == s["collapse_probability_model"]
     top = s["points"]["P-3"]

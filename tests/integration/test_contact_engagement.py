@@ -33,8 +33,9 @@ def test_a_stack_bonded_wall_settles_as_with_its_interfaces_alone(monkeypatch):
     assert spin < 1e-4
     alone, spin_alone = _spin(STACK_200, monkeypatch, BROAD_PHASE='contype="0" conaffinity="0"')
     np.testing.assert_array_equal(ds["com_displacement"].values, alone["com_displacement"].values)
-    _, spin_at_contact = _spin(STACK_200, monkeypatch, BROAD_PHASE='contype="1" conaffinity="1"',
-                               engagement_depth=lambda tau, g: 0.0)
+    _, spin_at_contact = _spin(
+        STACK_200, monkeypatch, BROAD_PHASE='contype="1" conaffinity="1"', engagement_depth=lambda tau, g: 0.0
+    )
     assert spin_at_contact > 10 * max(spin, 1e-5)
 
 
@@ -75,9 +76,11 @@ def test_with_solreffriction_every_other_pair_is_explicit_and_engages_after_the_
     c = default_contact(col)
     plain = structure_scene(col, c).mj_model
     assert plain.npair == n and plain.nexclude == n  # the interfaces (ground-base and n - 1 joints)
-    assert plain.geom_contype.min() == 1 and plain.geom_margin.max() == pytest.approx(-engagement_depth(c.time_constant, 9.81))
+    assert plain.geom_contype.min() == 1 and plain.geom_margin.max() == pytest.approx(
+        -engagement_depth(c.time_constant, 9.81)
+    )
     m = structure_scene(col, replace(c, friction_time_constant=0.02)).mj_model
     assert m.npair == n * (n + 1) // 2 and m.nexclude == 0 and m.geom_contype.max() == 0
     margins = np.sort(m.pair_margin)
     np.testing.assert_allclose(margins[: m.npair - n], -engagement_depth(c.time_constant, 9.81), rtol=1e-12)
-    assert np.all(margins[m.npair - n:] == 0.0) and np.all(m.pair_solreffriction[:, 0] == 0.02)
+    assert np.all(margins[m.npair - n :] == 0.0) and np.all(m.pair_solreffriction[:, 0] == 0.02)

@@ -93,8 +93,10 @@ def test_one_default_study_designs_once_and_evaluates_each_systems_blast_once(mo
     assert len(designs) == 1, designs
 
     d = r.design
-    systems = {(d.prototype.charge_kg, d.prototype.standoff_m): "prototype",
-               (d.specimen.charge_kg, d.specimen.standoff_m): "model"}
+    systems = {
+        (d.prototype.charge_kg, d.prototype.standoff_m): "prototype",
+        (d.specimen.charge_kg, d.specimen.standoff_m): "model",
+    }
     per_system = Counter(systems.get((w, R), f"other {w} kg at {R} m") for _, scalar, w, R in blasts if scalar)
     assert per_system == {"prototype": 1, "model": 1}, (per_system, blasts)
     assert all(n <= 2 for n in per_system.values())  # the issue's acceptance bound
@@ -116,9 +118,21 @@ def test_per_face_loads_take_charge_standoff_and_blast_model_from_the_design(loa
     engine and its similarity block call ``blast_parameters`` no more than the design did."""
     blasts: list = []
     _wrap_everywhere(monkeypatch, parameters.blast_parameters, blasts)
-    sc = Scenario.default().with_values({
-        "kind": "column", "drums": 3, "height_m": 3.0, "top_width_m": 1.54, "charge_kg": 250.0, "standoff_m": 10.0,
-        "scale.length": 0.01, "model": "kingery-bulmash", "engine": "3d", "load": load, "duration_s": 0.05})
+    sc = Scenario.default().with_values(
+        {
+            "kind": "column",
+            "drums": 3,
+            "height_m": 3.0,
+            "top_width_m": 1.54,
+            "charge_kg": 250.0,
+            "standoff_m": 10.0,
+            "scale.length": 0.01,
+            "model": "kingery-bulmash",
+            "engine": "3d",
+            "load": load,
+            "duration_s": 0.05,
+        }
+    )
     r = Study(sc).run()
     s = r.summary()["3d"]["similarity"]
     assert len(blasts) == 2, blasts  # the design's prototype and model
@@ -137,6 +151,7 @@ SPECIMEN = "blastscale.similitude.specimen"
 def _count_function(monkeypatch, original, counter):
     """Replace ``original`` in every loaded blastscale module that holds it by a wrapper that appends
     its caller module to ``counter``."""
+
     def counting(*args, **kw):
         counter.append(sys._getframe(1).f_globals.get("__name__", "?"))
         return original(*args, **kw)
@@ -182,8 +197,9 @@ def test_the_specimen_system_is_scaled_once_by_the_design(monkeypatch):
     _count_method(monkeypatch, RectangularBlock, "scaled", built)
     _count_method(monkeypatch, LoadModel, "scaled", lms)
     _count_method(monkeypatch, ContactSettings, "scaled", contacts)
-    sc = Scenario.default().with_values({"duration_s": 0.05, "clearing": True, "negative_phase": True,
-                                         "critical_charge": False})
+    sc = Scenario.default().with_values(
+        {"duration_s": 0.05, "clearing": True, "negative_phase": True, "critical_charge": False}
+    )
     study = Study(sc)
     r = study.run()
     d = r.design
@@ -215,10 +231,21 @@ def test_a_column_and_its_ensembles_build_one_specimen(monkeypatch):
     built, contacts = [], []
     _count_method(monkeypatch, MultiDrumColumn, "scaled", built)
     _count_method(monkeypatch, ContactSettings, "scaled", contacts)
-    sc = Scenario.default().with_values({
-        "kind": "column", "drums": 3, "height_m": 3.0, "top_width_m": 1.54, "charge_kg": 250.0, "standoff_m": 10.0,
-        "scale.length": 0.01, "model": "kingery-bulmash", "engine": "3d", "duration_s": 0.03,
-        "ensemble_members": 2})
+    sc = Scenario.default().with_values(
+        {
+            "kind": "column",
+            "drums": 3,
+            "height_m": 3.0,
+            "top_width_m": 1.54,
+            "charge_kg": 250.0,
+            "standoff_m": 10.0,
+            "scale.length": 0.01,
+            "model": "kingery-bulmash",
+            "engine": "3d",
+            "duration_s": 0.03,
+            "ensemble_members": 2,
+        }
+    )
     r = Study(sc).run()
     d = r.design
     assert r.ensemble is not None and isinstance(d.specimen_structure, MultiDrumColumn)
@@ -295,8 +322,9 @@ def _definitions(name: str) -> list:
 def test_one_design_model_body_and_one_dimension_factor_in_src():
     """One ``design_model`` (no array twin, before: ``_design_arrays``), one ``dimension_factor`` and one
     ``DIMENSIONLESS`` (before: verbatim copies in analysis/compare.py and analysis/upscale.py)."""
-    assert _definitions("design_model") == ["similitude/design.py:" + str(
-        design_module.design_model.__code__.co_firstlineno)]
+    assert _definitions("design_model") == [
+        "similitude/design.py:" + str(design_module.design_model.__code__.co_firstlineno)
+    ]
     assert _definitions("_design_arrays") == []
     assert [p.split(":")[0] for p in _definitions("dimension_factor")] == ["similitude/factors.py"]
     assert [p.split(":")[0] for p in _definitions("DIMENSIONLESS")] == ["similitude/factors.py"]
@@ -314,8 +342,11 @@ def _load_models():
         "clearing and negative phase": {"load_model": LoadModel(clearing=True, negative_phase=True, **face)},
         "free-air specimen": {"specimen_burst": "free-air"},
         "lab charge height": {"specimen_burst": "free-air", "specimen_charge_height": 0.01},
-        "all": {"load_model": LoadModel(clearing=True, negative_phase=True, **face), "specimen_burst": "free-air",
-                "specimen_charge_height": 0.01},
+        "all": {
+            "load_model": LoadModel(clearing=True, negative_phase=True, **face),
+            "specimen_burst": "free-air",
+            "specimen_charge_height": 0.01,
+        },
     }
 
 

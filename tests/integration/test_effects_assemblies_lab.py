@@ -55,8 +55,10 @@ def test_arch_scenario_designs_without_clearing_and_refuses_it_with_exit_2(tmp_p
     sc = Scenario.from_dict({**data, "simulation": {"engine": "3d"}})
     assert Study(sc).design() is not None  # the lab-burst check reads the top, not a clearing face
     f = tmp_path / "arch.toml"
-    f.write_text('[structure]\nkind = "arch"\n[blast]\ncharge_kg = 5.0\nstandoff_m = 5.0\nclearing = true\n'
-                 '[scale]\nlength = 0.1\n[simulation]\nengine = "3d"\nduration_s = 0.05\n')
+    f.write_text(
+        '[structure]\nkind = "arch"\n[blast]\ncharge_kg = 5.0\nstandoff_m = 5.0\nclearing = true\n'
+        '[scale]\nlength = 0.1\n[simulation]\nengine = "3d"\nduration_s = 0.05\n'
+    )
     with pytest.raises(SystemExit) as e:
         main(["run", str(f), "--out", str(tmp_path / "out")])
     assert e.value.code == 2
@@ -65,8 +67,14 @@ def test_arch_scenario_designs_without_clearing_and_refuses_it_with_exit_2(tmp_p
     assert not (tmp_path / "out").exists()
 
 
-@pytest.mark.parametrize("values", [{"blast.negative_phase": True}, {"blast.clearing": True},
-                                    {"blast.burst": "free-air", "blast.blast_model": "kingery-bulmash"}])
+@pytest.mark.parametrize(
+    "values",
+    [
+        {"blast.negative_phase": True},
+        {"blast.clearing": True},
+        {"blast.burst": "free-air", "blast.blast_model": "kingery-bulmash"},
+    ],
+)
 def test_the_planner_refuses_a_load_model_it_does_not_search(values):
     sc = Scenario.default().with_values({"engine": "planar", **values})
     with pytest.raises(BlastscaleInputError) as e:
@@ -75,9 +83,19 @@ def test_the_planner_refuses_a_load_model_it_does_not_search(values):
 
 
 def test_the_test_card_puts_a_free_air_lab_charge_on_its_stand():
-    data = Scenario.default().with_values({"duration_s": 1.0, "engine": "planar", "blast.blast_model": "kingery-bulmash",
-                                          "scale.specimen_burst": "free-air",
-                                          "scale.specimen_charge_height_m": 0.025}).model_dump(exclude_none=True)
+    data = (
+        Scenario.default()
+        .with_values(
+            {
+                "duration_s": 1.0,
+                "engine": "planar",
+                "blast.blast_model": "kingery-bulmash",
+                "scale.specimen_burst": "free-air",
+                "scale.specimen_charge_height_m": 0.025,
+            }
+        )
+        .model_dump(exclude_none=True)
+    )
     data["lab"] = {"explosive": "tnt", "samples": 20, "seed": 1}
     res = Study(Scenario.from_dict(data)).run()
     card = study_test_card(res)

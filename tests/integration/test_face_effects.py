@@ -46,8 +46,9 @@ def test_an_unbounded_face_leaves_method_b_unchanged():
     far = make_load("B", COL, BP, load_model=LoadModel(clearing=True, face_width_m=math.inf, face_height_m=math.inf))
     pos, rot = _rest(COL)
     for t0 in np.linspace(paper.first_arrival, paper.end_time, 7):
-        np.testing.assert_array_equal(far.step_wrenches(t0, t0 + 1e-4, pos, rot),
-                                      paper.step_wrenches(t0, t0 + 1e-4, pos, rot))
+        np.testing.assert_array_equal(
+            far.step_wrenches(t0, t0 + 1e-4, pos, rot), paper.step_wrenches(t0, t0 + 1e-4, pos, rot)
+        )
 
 
 def test_clearing_on_the_columns_front_faces_only():

@@ -58,8 +58,9 @@ def test_momentum_bookkeeping_step_wrenches_carry_every_face_impulse(method, str
     np.add.at(mom, load.body, np.cross(load.centres, fi))
     np.testing.assert_allclose(got[:, 3:], mom, rtol=1e-9, atol=1e-9 * np.abs(mom).max())
     # the step size does not matter
-    np.testing.assert_allclose(_integrate(load, structure, dt=1.7e-3)[:, :3], per_body, rtol=1e-9,
-                               atol=1e-9 * np.abs(per_body).max())
+    np.testing.assert_allclose(
+        _integrate(load, structure, dt=1.7e-3)[:, :3], per_body, rtol=1e-9, atol=1e-9 * np.abs(per_body).max()
+    )
 
 
 @pytest.mark.parametrize("method", ["B", "C"])
@@ -72,8 +73,10 @@ def test_no_net_sideways_impulse_on_a_symmetric_column(method, structure):
 @pytest.mark.parametrize("incidence", INCIDENCE_MODELS)
 @pytest.mark.parametrize("structure", [SQUARE, CIRCULAR], ids=["square", "circular"])
 def test_rear_faces_reduce_the_push_c_below_b_below_a(incidence, structure):
-    push = {m: make_load(m, structure, blast_parameters(250.0, 10.0),
-                         incidence=incidence).delivered_impulse()[:, 0].sum() for m in "ABC"}
+    push = {
+        m: make_load(m, structure, blast_parameters(250.0, 10.0), incidence=incidence).delivered_impulse()[:, 0].sum()
+        for m in "ABC"
+    }
     assert push["C"] < push["B"] < push["A"]
 
 
@@ -153,8 +156,11 @@ def test_arrival_spread_and_its_similarity_block():
 
 def _spreads(structure, design, method):
     """The arrival spreads of a design's two loads (prototype, specimen at its size)."""
-    return arrival_spread_similarity(make_load(method, structure, design.prototype),
-                                     make_load(method, structure.scaled(design.factors), design.specimen), design.factors)
+    return arrival_spread_similarity(
+        make_load(method, structure, design.prototype),
+        make_load(method, structure.scaled(design.factors), design.specimen),
+        design.factors,
+    )
 
 
 def test_arrival_spread_scaling_hopkinson_cranz_and_general_law():
@@ -165,7 +171,8 @@ def test_arrival_spread_scaling_hopkinson_cranz_and_general_law():
     hc = design_model(250.0, 10.0, lam, None, law="hopkinson-cranz")
     s = _spreads(SQUARE, hc, "B")
     assert s["arrival_spread_model_upscaled_s"] * hc.factors.time / lam == pytest.approx(
-        s["arrival_spread_prototype_s"], rel=1e-9)
+        s["arrival_spread_prototype_s"], rel=1e-9
+    )
     # general law (gamma = 1): the model is farther out in Z, its shock slower, its spread
     # sqrt(lambda) U(Z_p) / U(Z_m) of the prototype's: 0.17 at lambda = 1/100 (U ratio ~1.7)
     g = _spreads(SQUARE, design_model(250.0, 10.0, 0.01), "B")
@@ -189,8 +196,12 @@ def test_load_time_correction_moves_arrivals_and_scales_impulses():
     load = make_load("B", SQUARE, blast_parameters(250.0, 10.0))
     w = np.linspace(0.5, 1.5, 10)
     c = load.corrected(2.0, w)
-    np.testing.assert_allclose(_integrate(c, SQUARE)[:, :3], load.face_impulses() * w[:, None], rtol=1e-9,
-                               atol=1e-9 * np.abs(load.face_impulses()).max())
+    np.testing.assert_allclose(
+        _integrate(c, SQUARE)[:, :3],
+        load.face_impulses() * w[:, None],
+        rtol=1e-9,
+        atol=1e-9 * np.abs(load.face_impulses()).max(),
+    )
     assert c.end_time == pytest.approx(load.end_time + arrival_spread(load), rel=1e-12)
     pos, rot = _rest(SQUARE)
     ta = load.rest_loads.arrival_time

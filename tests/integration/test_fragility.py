@@ -56,9 +56,26 @@ def test_fit_recovers_exact_expected_counts():
 def test_fragility_cli_json_plot_and_other_fields(tmp_path, capsys):
     png = tmp_path / "f.png"
     with pytest.raises(SystemExit) as e:
-        main(["fragility", "--charges", "50:130:5:log", "--lognormal", "charge_kg=0.1", "--uniform",
-              "restitution=0.5:0.9", "--uniform", "alpha_deg=14:16", "--samples", "60", "--seed", "3",
-              "--plot", str(png), "--json"])
+        main(
+            [
+                "fragility",
+                "--charges",
+                "50:130:5:log",
+                "--lognormal",
+                "charge_kg=0.1",
+                "--uniform",
+                "restitution=0.5:0.9",
+                "--uniform",
+                "alpha_deg=14:16",
+                "--samples",
+                "60",
+                "--seed",
+                "3",
+                "--plot",
+                str(png),
+                "--json",
+            ]
+        )
     assert e.value.code in (0, None)
     out = json.loads(capsys.readouterr().out)
     assert len(out["probability"]) == 5 and out["samples"] == 60
@@ -68,14 +85,17 @@ def test_fragility_cli_json_plot_and_other_fields(tmp_path, capsys):
     assert png.stat().st_size > 10_000
 
 
-@pytest.mark.parametrize("argv, word", [
-    (["--charges", "50:130:5", "--lognormal", "charge_kg=-0.2"], "beta"),
-    (["--charges", "50:130:5"], "uncertain fields"),
-    (["--charges", "130:50:5", "--lognormal", "charge_kg=0.2"], "empty range"),
-    (["--charges", "50:130:0", "--lognormal", "charge_kg=0.2"], "n = 0"),
-    (["--charges", "50:130:5", "--uniform", "restitution=0.9:0.5"], "empty range"),
-    (["--charges", "50:130:5", "--uniform", "nonsense=0.1:0.5"], "nonsense"),
-])
+@pytest.mark.parametrize(
+    "argv, word",
+    [
+        (["--charges", "50:130:5", "--lognormal", "charge_kg=-0.2"], "beta"),
+        (["--charges", "50:130:5"], "uncertain fields"),
+        (["--charges", "130:50:5", "--lognormal", "charge_kg=0.2"], "empty range"),
+        (["--charges", "50:130:0", "--lognormal", "charge_kg=0.2"], "n = 0"),
+        (["--charges", "50:130:5", "--uniform", "restitution=0.9:0.5"], "empty range"),
+        (["--charges", "50:130:5", "--uniform", "nonsense=0.1:0.5"], "nonsense"),
+    ],
+)
 def test_fragility_bad_input_one_line_exit_2(capsys, argv, word):
     with pytest.raises(SystemExit) as e:
         main(["fragility", *argv, "--samples", "10"])
@@ -95,8 +115,23 @@ def test_prototype_only_fragility_through_the_cli_equals_the_scaled_scenarios(tm
         toml = tmp_path / f"{name}.toml"
         toml.write_text(sc.to_toml())
         with pytest.raises(SystemExit) as e:
-            main(["fragility", str(toml), "--charges", "50:130:5:log", "--lognormal", "charge_kg=0.2", "--uniform",
-                  "restitution=0.5:0.9", "--samples", "200", "--seed", "5", "--json"])
+            main(
+                [
+                    "fragility",
+                    str(toml),
+                    "--charges",
+                    "50:130:5:log",
+                    "--lognormal",
+                    "charge_kg=0.2",
+                    "--uniform",
+                    "restitution=0.5:0.9",
+                    "--samples",
+                    "200",
+                    "--seed",
+                    "5",
+                    "--json",
+                ]
+            )
         assert e.value.code in (0, None)
         outs.append(json.loads(capsys.readouterr().out))
     assert outs[1]["collapsed"] == outs[0]["collapsed"] and outs[1]["median_charge_kg"] == outs[0]["median_charge_kg"]
@@ -119,8 +154,19 @@ def test_complete_separation_gives_open_bounds_not_a_crash():
 def test_fragility_cli_when_the_fit_cannot_be_bounded(capsys, tmp_path):
     png = tmp_path / "f.png"
     with pytest.raises(SystemExit) as e:
-        main(["fragility", "--charges", "40,100", "--lognormal", "charge_kg=0.01", "--samples", "100", "--plot",
-              str(png)])
+        main(
+            [
+                "fragility",
+                "--charges",
+                "40,100",
+                "--lognormal",
+                "charge_kg=0.01",
+                "--samples",
+                "100",
+                "--plot",
+                str(png),
+            ]
+        )
     assert e.value.code in (0, None)
     cap = capsys.readouterr()
     assert "lognormal fit: not bounded: every draw stands at W <= 40 kg and overturns at W >= 100 kg" in cap.out

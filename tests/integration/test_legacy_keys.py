@@ -19,7 +19,7 @@ def _table(after: str) -> list[list[str]]:
     lines = GLOSSARY.read_text().splitlines()
     start = next(i for i, line in enumerate(lines) if line.startswith(after))
     rows, seen = [], False
-    for line in lines[start + 1:]:
+    for line in lines[start + 1 :]:
         if line.startswith("|"):
             seen = True
             cells = [c.strip().strip("`") for c in line.strip("|").split("|")]
@@ -44,14 +44,23 @@ def test_legacy_scenario_keys_are_exactly_those_of_the_glossary():
 def test_old_keys_are_added_beside_the_new_with_the_same_value_by_engine():
     summary = {
         "design": {"blast_model": "masi2021", "model": {"blast_model": "masi2021", "charge_kg": 1e-6}},
-        "planar": {"prototype": {"collapsed": False, "max_rotation_rad": 0.06},
-                   "similarity": {"first_peak_ratio": 1.001, "collapse_time_diff_s": None}},
-        "3d": {"prototype": {"collapsed": True, "max_rotation_rad": 0.05,
-                             "points": {"P-1": {"first_peak_ratio": 1.0}}}},
-        "scenario": {"blast": {"blast_model": "kingery-bulmash", "pulse_shape": "friedlander"},
-                     "scale": {"specimen_material": None}},
-        "scalars": {"planar.model.max_rotation_rad": 0.061, "3d.model.max_rotation_rad": 0.051,
-                    "planar.similarity.first_peak_ratio": 1.001, "3d.similarity.points.P-1.first_peak_ratio": 1.0},
+        "planar": {
+            "prototype": {"collapsed": False, "max_rotation_rad": 0.06},
+            "similarity": {"first_peak_ratio": 1.001, "collapse_time_diff_s": None},
+        },
+        "3d": {
+            "prototype": {"collapsed": True, "max_rotation_rad": 0.05, "points": {"P-1": {"first_peak_ratio": 1.0}}}
+        },
+        "scenario": {
+            "blast": {"blast_model": "kingery-bulmash", "pulse_shape": "friedlander"},
+            "scale": {"specimen_material": None},
+        },
+        "scalars": {
+            "planar.model.max_rotation_rad": 0.061,
+            "3d.model.max_rotation_rad": 0.051,
+            "planar.similarity.first_peak_ratio": 1.001,
+            "3d.similarity.points.P-1.first_peak_ratio": 1.0,
+        },
         "runs": [{"collapsed": True}],
     }
     out = with_legacy_keys(summary)
@@ -73,8 +82,10 @@ def test_old_keys_are_added_beside_the_new_with_the_same_value_by_engine():
     assert list(out["planar"]["prototype"]) == ["collapsed", "overturned", "max_rotation_rad", "max_angle_rad"]
     assert with_legacy_keys(out) == out  # idempotent
     assert "overturned" not in summary["planar"]["prototype"]  # the input is not modified
-    assert legacy_name("planar.similarity.max_abs_rotation_diff_to_tipping_rad") == \
-        "planar.similarity.max_abs_angle_diff_to_tipping_rad"
+    assert (
+        legacy_name("planar.similarity.max_abs_rotation_diff_to_tipping_rad")
+        == "planar.similarity.max_abs_angle_diff_to_tipping_rad"
+    )
     assert legacy_name("charge_kg") == "charge_kg"
 
 
@@ -88,8 +99,9 @@ def test_a_sweep_store_holds_the_new_names_only(tmp_path):
 
     base = Scenario.default().with_values({"duration_s": 0.2, "critical_charge": False})
     names: set[str] = set()
-    for i, (sc, outcomes) in enumerate(((base.with_values({"engine": "both"}), False),
-                                        (base.with_values({"engine": "planar"}), True))):
+    for i, (sc, outcomes) in enumerate(
+        ((base.with_values({"engine": "both"}), False), (base.with_values({"engine": "planar"}), True))
+    ):
         spec = SweepSpec.build(sc, {"charge_kg": [40.0, 120.0]}, outcomes=outcomes)
         run_sweep(spec, tmp_path / f"s{i}.zarr", workers=0)
         tree = open_sweep(tmp_path / f"s{i}.zarr")

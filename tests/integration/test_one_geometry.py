@@ -50,16 +50,26 @@ CASES = [
     ("block_10m", 'kind = "block"\nheight_m = 10.0\nalpha_deg = 15.0\ndepth_m = 1.0'),
     ("block_0.3m", 'kind = "block"\nheight_m = 0.3\nwidth_m = 0.07\ndepth_m = 0.11'),
     ("column_square_10m", 'kind = "column"\nsection = "square"'),
-    ("column_square_0.1m", 'kind = "column"\nsection = "square"\ndrums = 3\nheight_m = 0.1\nbase_width_m = 0.0165\n'
-                           'top_width_m = 0.0128'),
+    (
+        "column_square_0.1m",
+        'kind = "column"\nsection = "square"\ndrums = 3\nheight_m = 0.1\nbase_width_m = 0.0165\ntop_width_m = 0.0128',
+    ),
     ("column_circular_10m", 'kind = "column"\nsection = "circular"'),
-    ("column_circular_0.5m", 'kind = "column"\nsection = "circular"\ndrums = 4\nheight_m = 0.5\nbase_width_m = 0.1\n'
-                             'top_width_m = 0.06\nsides = 12'),
+    (
+        "column_circular_0.5m",
+        'kind = "column"\nsection = "circular"\ndrums = 4\nheight_m = 0.5\nbase_width_m = 0.1\n'
+        "top_width_m = 0.06\nsides = 12",
+    ),
     ("wall_running", 'kind = "wall"\ncourses = 4\nunits_per_course = 3'),
-    ("wall_stack_0.2m", 'kind = "wall"\nlength_m = 0.3\nheight_m = 0.2\nthickness_m = 0.04\ncourses = 3\n'
-                        'units_per_course = 2\nbond = "stack"'),
-    ("arch", 'kind = "arch"\nradius_m = 2.0\nthickness_m = 0.4\nvoussoirs = 7\nembrace_deg = 120.0\n'
-             'pier_height_m = 1.0'),
+    (
+        "wall_stack_0.2m",
+        'kind = "wall"\nlength_m = 0.3\nheight_m = 0.2\nthickness_m = 0.04\ncourses = 3\n'
+        'units_per_course = 2\nbond = "stack"',
+    ),
+    (
+        "arch",
+        'kind = "arch"\nradius_m = 2.0\nthickness_m = 0.4\nvoussoirs = 7\nembrace_deg = 120.0\npier_height_m = 1.0',
+    ),
     ("portal_drums", 'kind = "portal"\ndrums = 2'),
     ("assembly_1m", 'kind = "assembly"\nfile = "FILE1"'),
     ("assembly_0.05m", 'kind = "assembly"\nfile = "FILE0.05"'),
@@ -145,8 +155,11 @@ def test_method_c_sees_the_column_drawn(section, charge):
     from blastscale.sim3d.exposure import visible_fractions
     from blastscale.structures import MultiDrumColumn
 
-    col = MultiDrumColumn(section=section, drums=3, height=3.0, top_width=1.2) if charge[2] > 10 else \
-        MultiDrumColumn(section=section)
+    col = (
+        MultiDrumColumn(section=section, drums=3, height=3.0, top_width=1.2)
+        if charge[2] > 10
+        else MultiDrumColumn(section=section)
+    )
     faces = [(i, f) for i, b in enumerate(col.bodies) for f in b.faces if not f.in_contact and f.area > 0.0]
     seen = visible_fractions(col, faces, charge)
     assert np.array_equal(seen, visible_fractions(as_assembly(col), faces, charge))

@@ -66,8 +66,7 @@ def test_3d_sweep_chunk_in_threads_equals_the_serial_loop():
     from blastscale.sweeps import SweepSpec, study_scalars
     from blastscale.sweeps.cases import evaluate_chunk
 
-    base = Scenario.default().with_values({"engine": "3d", "duration_s": 0.15, "critical_charge": False,
-                                           "threads": 2})
+    base = Scenario.default().with_values({"engine": "3d", "duration_s": 0.15, "critical_charge": False, "threads": 2})
     spec = SweepSpec.build(base, {"charge_kg": [40.0, 60.0, 80.0]})
     got = evaluate_chunk(spec.to_payload(), 0, 3)["values"]
     for k in range(3):

@@ -21,8 +21,13 @@ COLUMN = {"kind": "column", "section": "circular", "sides": 16, "drums": 3, "hei
 
 
 def _prototype_only(structure: dict, simulation: dict, **blast) -> Scenario:
-    return Scenario.from_dict({"structure": structure, "blast": {"charge_kg": 200.0, "standoff_m": 10.0, **blast},
-                               "simulation": {"engine": "3d", "critical_charge": False, **simulation}})
+    return Scenario.from_dict(
+        {
+            "structure": structure,
+            "blast": {"charge_kg": 200.0, "standoff_m": 10.0, **blast},
+            "simulation": {"engine": "3d", "critical_charge": False, **simulation},
+        }
+    )
 
 
 def test_a_column_without_scale_runs_3d_and_its_ensemble_on_the_prototype_alone(tmp_path):
@@ -34,7 +39,9 @@ def test_a_column_without_scale_runs_3d_and_its_ensemble_on_the_prototype_alone(
     assert {"collapsed", "max_top_displacement_m", "points"} <= set(s["3d"]["prototype"])
     e = s["ensemble"]
     assert e["n_members"] == 2 and e["collapse_probability_model"] is None
-    assert e["points"]["P-3"]["first_peak_prototype_mean_m"] > 0 and e["points"]["P-3"]["first_peak_model_mean_m"] is None
+    assert (
+        e["points"]["P-3"]["first_peak_prototype_mean_m"] > 0 and e["points"]["P-3"]["first_peak_model_mean_m"] is None
+    )
     assert r.response3d.upscaled_dataset is None and r.ensemble.model_members is None
     # the histories: one system, the prototype, in each group; written and read back
     tree = r.to_datatree()
@@ -44,14 +51,18 @@ def test_a_column_without_scale_runs_3d_and_its_ensemble_on_the_prototype_alone(
     path = tmp_path / "h.nc"
     write_netcdf(tree, path)
     with xr.open_datatree(path) as back:
-        np.testing.assert_array_equal(back["sim3d"]["point_displacement"].values,
-                                      tree["sim3d"]["point_displacement"].values)
+        np.testing.assert_array_equal(
+            back["sim3d"]["point_displacement"].values, tree["sim3d"]["point_displacement"].values
+        )
     # the study's own warnings: chaos is addressed by the ensemble, nothing compares a model
     assert not any("model" in w for w in r.warnings), r.warnings
 
 
-@pytest.mark.parametrize("structure, load", [(COLUMN, "A"), ({"kind": "block", "height_m": 10.0, "width_m": 2.0}, "C")],
-                         ids=["column-A", "block-C"])
+@pytest.mark.parametrize(
+    "structure, load",
+    [(COLUMN, "A"), ({"kind": "block", "height_m": 10.0, "width_m": 2.0}, "C")],
+    ids=["column-A", "block-C"],
+)
 def test_the_prototype_alone_is_the_prototype_side_of_the_scaled_study(structure, load):
     """Bit for bit: the prototype's run does not depend on the specimen (measured: identical)."""
     sc = _prototype_only(structure, {"duration_s": 0.15}, load=load)

@@ -18,6 +18,7 @@ from blastscale.sim3d.contact import default_contact
 from blastscale.structures import portal
 
 from blastscale.constants import STANDARD_GRAVITY as G
+
 HC, W = 4.0, 0.8  # columns 4 m x 0.8 m: alpha = atan(0.2) = 11.3 deg, R = 2.04 m
 
 
@@ -44,12 +45,20 @@ def _mechanism_velocities(P, omega):
 
 def _time_back_upright(p, alpha, omega):
     """theta_ddot = -p^2 sin(alpha - theta) from (0, omega) until theta = 0 again [s]."""
+
     def upright(t, y):
         return y[0] if t > 1e-6 else 1.0
 
     upright.terminal, upright.direction = True, -1
-    sol = solve_ivp(lambda t, y: [y[1], -p * p * math.sin(alpha - y[0])], (0.0, 30.0), [0.0, omega],
-                    events=upright, rtol=1e-10, atol=1e-12, max_step=0.01)
+    sol = solve_ivp(
+        lambda t, y: [y[1], -p * p * math.sin(alpha - y[0])],
+        (0.0, 30.0),
+        [0.0, omega],
+        events=upright,
+        rtol=1e-10,
+        atol=1e-12,
+        max_step=0.01,
+    )
     return float(sol.t_events[0][0])
 
 
@@ -65,8 +74,14 @@ def test_rocking_frame_rocks_as_one_column_with_p_hat():
     assert gamma == pytest.approx(4.16 / 5.12, rel=1e-12)  # 0.8125
     p, ph = math.sqrt(3 * G / (4 * R)), frame_frequency_parameter(R, gamma)
     om = 0.8 * overturning_angular_velocity(alpha, ph)
-    r = simulate_structure(P, None, 2.0, contact=default_contact(P, friction=0.9), record_every=4,
-                           initial_body_velocities=_mechanism_velocities(P, om))
+    r = simulate_structure(
+        P,
+        None,
+        2.0,
+        contact=default_contact(P, friction=0.9),
+        record_every=4,
+        initial_body_velocities=_mechanism_velocities(P, om),
+    )
     t, tilt = r.dataset["time"].values, r.dataset["tilt"].values
     k = int(np.argmax(tilt[:, 0]))
     back = t[np.flatnonzero((np.arange(t.size) > k) & (tilt[:, 0] < 2e-4))[0]]
@@ -85,6 +100,12 @@ def test_rocking_frame_overturns_above_p_hat_threshold_a_single_column_would_sur
     p, ph = math.sqrt(3 * G / (4 * R)), frame_frequency_parameter(R, gamma)
     om = 1.05 * overturning_angular_velocity(alpha, ph)
     assert om < 0.95 * overturning_angular_velocity(alpha, p)  # the single column's threshold is 14 % higher
-    r = simulate_structure(P, None, 3.0, contact=default_contact(P, friction=0.9), record_every=8,
-                           initial_body_velocities=_mechanism_velocities(P, om))
+    r = simulate_structure(
+        P,
+        None,
+        3.0,
+        contact=default_contact(P, friction=0.9),
+        record_every=8,
+        initial_body_velocities=_mechanism_velocities(P, om),
+    )
     assert r.summary()["collapsed"]

@@ -31,8 +31,16 @@ BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
 
 def _planar(charge, duration, samples):
     """The Study's planar comparison of the paper's block at lambda = 1/20 (masi2021)."""
-    sc = Scenario.default().with_values({"engine": "planar", "critical_charge": False, "charge_kg": charge,
-                                         "length": 1 / 20, "duration_s": duration, "samples": samples})
+    sc = Scenario.default().with_values(
+        {
+            "engine": "planar",
+            "critical_charge": False,
+            "charge_kg": charge,
+            "length": 1 / 20,
+            "duration_s": duration,
+            "samples": samples,
+        }
+    )
     return Study(sc).run().planar
 
 

@@ -15,13 +15,24 @@ from blastscale.study import Study
 BASE = Scenario.default().with_values({"engine": "planar", "critical_charge": False, "blast.model": "masi2021"})
 
 
-def compare_rocking(charge, scale, gamma=1.0, gravity_ratio=1.0, *, pulse_shape="friedlander", duration=5.0,
-                    samples=2001):
+def compare_rocking(
+    charge, scale, gamma=1.0, gravity_ratio=1.0, *, pulse_shape="friedlander", duration=5.0, samples=2001
+):
     """The Study's planar comparison of the paper's block (prototype vs up-scaled specimen)."""
-    sc = BASE.with_values({"charge_kg": charge, "length": scale, "density_ratio": gamma,
-                           "gravity_ratio": gravity_ratio, "pulse": pulse_shape, "duration_s": duration,
-                           "samples": samples})
+    sc = BASE.with_values(
+        {
+            "charge_kg": charge,
+            "length": scale,
+            "density_ratio": gamma,
+            "gravity_ratio": gravity_ratio,
+            "pulse": pulse_shape,
+            "duration_s": duration,
+            "samples": samples,
+        }
+    )
     return Study(sc).run().planar
+
+
 SCALES = [1 / 10, 1 / 20, 1 / 200]
 DENSITY_RATIOS = [0.07, 1.0]  # balsa (paper: 140 kg/m^3) and the same material
 
@@ -141,9 +152,12 @@ def test_contract_reproduces_the_direct_comparison(charge):
     f = s.design.factors
     direct_th = s.model.theta_eval / f.angle
     direct_om = s.model.theta_dot_eval / f.angular_velocity
-    assert s.max_abs_rotation_diff == pytest.approx(float(np.max(np.abs(direct_th - s.prototype.theta_eval))), abs=1e-13)
+    assert s.max_abs_rotation_diff == pytest.approx(
+        float(np.max(np.abs(direct_th - s.prototype.theta_eval))), abs=1e-13
+    )
     assert s.max_abs_angular_velocity_diff == pytest.approx(
-        float(np.max(np.abs(direct_om - s.prototype.theta_dot_eval))), abs=1e-12)
+        float(np.max(np.abs(direct_om - s.prototype.theta_dot_eval))), abs=1e-12
+    )
     assert np.max(np.abs(s.theta_model - direct_th)) <= 1e-13
     c = s.comparison
     assert c["outcomes_agree"] == s.outcomes_agree and c["outcome_prototype"] == s.prototype.collapsed

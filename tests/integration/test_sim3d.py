@@ -55,10 +55,12 @@ def planar(response):
     ``rotation_y``, ``sliding``, ``uplift``, ``angular_velocity_y``, ``velocity_x``, ``com_x``,
     ``com_z``), its ``summary`` (block_summary) and the run ``settings`` (dataset attributes)."""
     ds = block_dataset(response)
-    return SimpleNamespace(time=ds["time"].values, **{k: ds[k].values[:, 0] for k in ds.data_vars},
-                           summary=block_summary(response),
-                           settings={k[len("setting_"):]: v for k, v in response.dataset.attrs.items()
-                                     if k.startswith("setting_")})
+    return SimpleNamespace(
+        time=ds["time"].values,
+        **{k: ds[k].values[:, 0] for k in ds.data_vars},
+        summary=block_summary(response),
+        settings={k[len("setting_") :]: v for k, v in response.dataset.attrs.items() if k.startswith("setting_")},
+    )
 
 
 # -- settings and load ------------------------------------------------------------------
@@ -77,9 +79,18 @@ def test_contact_settings_scale_times_by_sqrt_lambda_and_width_by_lambda():
 
 @pytest.mark.parametrize(
     "kwargs",
-    [dict(friction=-0.1), dict(time_constant=1e-4, timestep=1e-4), dict(cone="round"), dict(solver="X"),
-     dict(impedance_max=1.0), dict(friction_time_constant=0.0), dict(friction=float("nan")),
-     dict(timestep=float("inf")), dict(iterations=2.5), dict(friction=np.array([0.5, 0.6]))],
+    [
+        dict(friction=-0.1),
+        dict(time_constant=1e-4, timestep=1e-4),
+        dict(cone="round"),
+        dict(solver="X"),
+        dict(impedance_max=1.0),
+        dict(friction_time_constant=0.0),
+        dict(friction=float("nan")),
+        dict(timestep=float("inf")),
+        dict(iterations=2.5),
+        dict(friction=np.array([0.5, 0.6])),
+    ],
 )
 def test_contact_settings_reject_bad_input(kwargs):
     with pytest.raises(BlastscaleInputError) as e:
@@ -102,8 +113,19 @@ def test_contact_settings_reject_bad_input(kwargs):
         (lambda: step_forces(Impulsive(1.0), 1.0, [0.0]), "step times"),
         (lambda: upscale_dataset(block_dataset(run_block(PAPER_BLOCK, None, 1e-3)), scaling_factors(0.0)), "scale"),
     ],
-    ids=["load", "pulse", "block", "record_every", "duration", "rotation", "velocity", "mode", "times-order",
-         "times-size", "upscale"],
+    ids=[
+        "load",
+        "pulse",
+        "block",
+        "record_every",
+        "duration",
+        "rotation",
+        "velocity",
+        "mode",
+        "times-order",
+        "times-size",
+        "upscale",
+    ],
 )
 def test_simulation_rejects_bad_input_with_one_line_naming_it(call, word):
     with pytest.raises(BlastscaleInputError) as e:
@@ -164,9 +186,15 @@ def test_spurious_hop_of_a_sliding_block_below_2_mm():
     assert fixed["max_uplift_m"] <= 2e-3
     # the hop is a solver artefact, reproduced by MuJoCo's defaults: blast as a force while the
     # contact slides (4.4 mm measured) -- shows this test can fail
-    raw = block_summary(run_block(SQUAT_BLOCK, pulse, 0.5,
-                                  contact=ContactSettings(friction=0.7, friction_time_constant=None),
-                                  blast_mode="force"))
+    raw = block_summary(
+        run_block(
+            SQUAT_BLOCK,
+            pulse,
+            0.5,
+            contact=ContactSettings(friction=0.7, friction_time_constant=None),
+            blast_mode="force",
+        )
+    )
     assert raw["max_uplift_m"] > 3e-3
 
 
@@ -299,8 +327,16 @@ def test_overturning_threshold_within_3_percent(factor, overturns):
     # stop 0.1 s after the planar solution passes alpha: the 3D block must have passed it too
     # (|theta| > alpha is the criterion, not a fall far beyond it)
     T = 4.0 if ref.collapse_time is None else ref.collapse_time + 0.1
-    r = block_summary(run_block(PAPER_BLOCK, None, T, contact=ContactSettings(friction=2.0),
-                                initial_angular_velocity=factor * crit, record_every=20))
+    r = block_summary(
+        run_block(
+            PAPER_BLOCK,
+            None,
+            T,
+            contact=ContactSettings(friction=2.0),
+            initial_angular_velocity=factor * crit,
+            record_every=20,
+        )
+    )
     assert r["collapsed"] is overturns
     if overturns:
         # 1% (the time to creep over the unstable top is sensitive): measured +0.07%
@@ -344,7 +380,15 @@ def test_summary_is_strict_json_with_overturn_time_none_like_rocking():
     json.dumps(still, allow_nan=False)  # strict JSON: no NaN anywhere
     # a fall: the first recorded time with |theta| > alpha
     crit = PAPER_BLOCK.frequency_parameter(G) * math.sqrt(2 * (1 - math.cos(PAPER_BLOCK.alpha)))
-    fall = planar(run_block(PAPER_BLOCK, None, 2.0, contact=ContactSettings(friction=2.0),
-                            initial_angular_velocity=1.2 * crit, record_every=10))
+    fall = planar(
+        run_block(
+            PAPER_BLOCK,
+            None,
+            2.0,
+            contact=ContactSettings(friction=2.0),
+            initial_angular_velocity=1.2 * crit,
+            record_every=10,
+        )
+    )
     k = int(np.argmax(np.abs(fall.rotation_y) > PAPER_BLOCK.alpha))
     assert k > 0 and fall.summary["collapse_time_s"] == fall.time[k]

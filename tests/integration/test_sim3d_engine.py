@@ -73,8 +73,9 @@ def test_exact_scaling_model_upscaled_equals_prototype():
     pulse = blast_parameters(250.0, 10.0).pulse("friedlander")
     proto = simulate_structure(SQUARE, MethodA(SQUARE, pulse, 0.0069), T, record_every=20)
     f = scaling_factors(lam)
-    model = simulate_structure(SQUARE.scaled(f), MethodA(SQUARE.scaled(f), pulse.scaled(f), 0.0069 * lt),
-                               T * lt, record_every=20)
+    model = simulate_structure(
+        SQUARE.scaled(f), MethodA(SQUARE.scaled(f), pulse.scaled(f), 0.0069 * lt), T * lt, record_every=20
+    )
     p, m = _top_x(proto), _top_x(model, lam)
     assert np.allclose(model.time / lt, proto.time, rtol=1e-12)
     assert np.max(np.abs(m - p)) <= 1e-12 * np.max(np.abs(p))
@@ -90,10 +91,18 @@ def test_block_specimen_at_its_own_size_reproduces_the_prototype():
     spec_blk = proto_blk.scaled(scaling_factors(1 / 200))
     proto_pulse = blast_parameters(50.0, 2.0, blast_model="masi2021").pulse()
     spec_pulse = blast_parameters(2.3318e-7, 0.01, blast_model="masi2021").pulse()
-    proto = block_summary(simulate_structure(proto_blk, MethodA(proto_blk, proto_pulse), 3.0,
-                                             contact=default_contact(proto_blk, friction=0.7), record_every=10))
-    spec = block_summary(simulate_structure(spec_blk, MethodA(spec_blk, spec_pulse), 0.2121,
-                                            record_every=10))  # contact=None: scale-consistent defaults
+    proto = block_summary(
+        simulate_structure(
+            proto_blk,
+            MethodA(proto_blk, proto_pulse),
+            3.0,
+            contact=default_contact(proto_blk, friction=0.7),
+            record_every=10,
+        )
+    )
+    spec = block_summary(
+        simulate_structure(spec_blk, MethodA(spec_blk, spec_pulse), 0.2121, record_every=10)
+    )  # contact=None: scale-consistent defaults
     # 2% (issue); measured 0.003% on the angle, 0.5% on the sliding (the general law matches
     # the impulse, not the pulse shape)
     assert spec["max_rotation_rad"] == pytest.approx(proto["max_rotation_rad"], rel=0.02)
@@ -111,8 +120,7 @@ def test_column_specimen_at_its_own_size_reproduces_the_prototype():
     d = design_model(250.0, 10.0, lam)  # general law, gamma = 1
     proto = simulate_structure(SQUARE, make_load("A", SQUARE, blast_parameters(250.0, 10.0)), T, record_every=20)
     spec_col = SQUARE.scaled(scaling_factors(lam))
-    spec = simulate_structure(spec_col, make_load("A", spec_col, d.specimen), T * math.sqrt(lam),
-                              record_every=20)
+    spec = simulate_structure(spec_col, make_load("A", spec_col, d.specimen), T * math.sqrt(lam), record_every=20)
     p, m = _top_x(proto), _top_x(spec, lam)
     # 2% (issue) on the first peak (measured 0.4%) and on the largest tilt (measured 0.2%)
     assert np.max(m) == pytest.approx(np.max(p), rel=0.02)
@@ -122,8 +130,9 @@ def test_column_specimen_at_its_own_size_reproduces_the_prototype():
 def test_halving_the_time_step_moves_the_first_peak_by_less_than_1_percent():
     load = make_load("A", SQUARE, blast_parameters(250.0, 10.0))
     c = default_contact(SQUARE)
-    half = ContactSettings(friction=c.friction, time_constant=c.time_constant, friction_time_constant=None,
-                           timestep=c.timestep / 2)
+    half = ContactSettings(
+        friction=c.friction, time_constant=c.time_constant, friction_time_constant=None, timestep=c.timestep / 2
+    )
     peaks = [np.max(_top_x(simulate_structure(SQUARE, load, 0.7, contact=cs, record_every=8))) for cs in (c, half)]
     assert peaks[1] == pytest.approx(peaks[0], rel=0.01)  # issue: 1%; measured in docs/sim3d.md
 
@@ -154,12 +163,19 @@ def test_response_dataset_units_dimensions_netcdf_and_summary(tmp_path):
 
     from blastscale.io.histories import write_netcdf
 
-    r = simulate_structure(CIRCULAR, make_load("A", CIRCULAR, blast_parameters(200.0, 10.0)), 0.02,
-                           record_every=10)
+    r = simulate_structure(CIRCULAR, make_load("A", CIRCULAR, blast_parameters(200.0, 10.0)), 0.02, record_every=10)
     ds = r.dataset
     # the stored motion's dims (issue 26): a 32-gon drum has 64 vertices and 2 x 30 + 64 = 124 hull triangles
-    assert dict(ds.sizes) == {"time": ds.sizes["time"], "body": 10, "point": 10, "component": 3, "quaternion": 4,
-                              "vertex": 64, "face": 124, "corner": 3}
+    assert dict(ds.sizes) == {
+        "time": ds.sizes["time"],
+        "body": 10,
+        "point": 10,
+        "component": 3,
+        "quaternion": 4,
+        "vertex": 64,
+        "face": 124,
+        "corner": 3,
+    }
     for name, (dims, units, dim, _) in VARIABLES.items():
         assert ds[name].dims == dims and ds[name].attrs["units"] == units and ds[name].attrs["dimension"] == dim
     assert ds["time"].attrs["units"] == "s" and "version_mujoco" in ds.attrs
@@ -177,8 +193,7 @@ def test_collapse_is_flagged_when_the_column_falls():
     # an initial shove far beyond any rocking capacity: the stack passes over its base edge
     bp = blast_parameters(250.0, 10.0)
     shove = Friedlander(30.0 * bp.reflected_pressure, bp.positive_duration, bp.friedlander_decay)  # 30x the pressure
-    r = simulate_structure(SQUARE, MethodA(SQUARE, shove), 2.5,
-                           record_every=50)
+    r = simulate_structure(SQUARE, MethodA(SQUARE, shove), 2.5, record_every=50)
     s = r.summary()
     assert s["collapsed"] and 0.0 < s["collapse_time_s"] <= 2.5
 
@@ -231,10 +246,16 @@ def test_surfaces_apart_at_rest_leave_the_motion_before_they_touch_bitwise_uncha
 @pytest.mark.parametrize(
     "make, word",
     [
-        (lambda: simulate_structure(SQUARE, None, 0.01, contact=ContactSettings(timestep=0.1, time_constant=0.4)),
-         "timestep"),
-        (lambda: simulate_structure(RectangularBlock(10.0, 2.0), None, 0.01,
-                                    contact=ContactSettings(timestep=1.0, time_constant=4.0)), "timestep"),
+        (
+            lambda: simulate_structure(SQUARE, None, 0.01, contact=ContactSettings(timestep=0.1, time_constant=0.4)),
+            "timestep",
+        ),
+        (
+            lambda: simulate_structure(
+                RectangularBlock(10.0, 2.0), None, 0.01, contact=ContactSettings(timestep=1.0, time_constant=4.0)
+            ),
+            "timestep",
+        ),
         (lambda: simulate_structure(RectangularBlock(10.0, 2.68).scaled(scaling_factors(1e-4)), None, 0.01), "mass"),
         (lambda: simulate_structure(RectangularBlock(1e-6, 2.68e-7), None, 0.01), "height"),
         (lambda: simulate_structure(RectangularBlock(10.0, 2.68, 1e-9), None, 0.01), "depth"),
@@ -243,8 +264,17 @@ def test_surfaces_apart_at_rest_leave_the_motion_before_they_touch_bitwise_uncha
         (lambda: make_load("D", SQUARE, blast_parameters(1.0, 1.0)), "load method"),
         (lambda: MethodA(SQUARE, None), "pulse"),
     ],
-    ids=["timestep-column", "timestep-block", "tiny-mass", "tiny-height", "tiny-depth", "load", "duration",
-         "method", "pulse"],
+    ids=[
+        "timestep-column",
+        "timestep-block",
+        "tiny-mass",
+        "tiny-height",
+        "tiny-depth",
+        "load",
+        "duration",
+        "method",
+        "pulse",
+    ],
 )
 def test_engine_rejects_bad_input_with_one_line_naming_it(make, word):
     with warnings.catch_warnings():
@@ -261,8 +291,9 @@ def test_milligram_specimen_runs_in_reference_units_and_user_points_are_recorded
     r = block_dataset(simulate_structure(tiny, None, 0.05))
     assert tiny.mass < 1e-4 and np.max(np.abs(r["rotation_y"].values)) < 1e-9
     assert np.max(np.abs(r["sliding"].values)) < 1e-11
-    col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54,
-                          extra_points=(MonitoringPoint("cap", 2, (0.0, 0.0, 0.5)),)).scaled(scaling_factors(1e-3))
+    col = MultiDrumColumn(
+        drums=3, height=3.0, top_width=1.54, extra_points=(MonitoringPoint("cap", 2, (0.0, 0.0, 0.5)),)
+    ).scaled(scaling_factors(1e-3))
     resp = simulate_structure(col, None, 0.02, record_every=10)
     assert list(resp.dataset["point"].values) == ["P-1", "P-2", "P-3", "cap"]
     assert np.abs(resp.dataset["point_displacement"].values).max() < 1e-9 * 3e-3
@@ -280,14 +311,15 @@ def test_sparse_jacobian_default_gives_the_dense_history():
     load = make_load("A", col, blast_parameters(250.0, 10.0))
     assert default_contact(col).jacobian == "sparse"
     sparse = simulate_structure(col, load, 0.5, record_every=10)
-    dense = simulate_structure(col, load, 0.5, record_every=10,
-                               contact=replace(default_contact(col), jacobian="dense"))
+    dense = simulate_structure(col, load, 0.5, record_every=10, contact=replace(default_contact(col), jacobian="dense"))
     assert dense.dataset.attrs["setting_jacobian"] == "dense"
     assert sparse.dataset.attrs["setting_jacobian"] == "sparse"
     xd = dense.dataset["point_displacement"].sel(component="x").values
     xs = sparse.dataset["point_displacement"].sel(component="x").values
     assert np.max(np.abs(xs - xd)) <= 1e-9 * np.max(np.abs(xd))
-    with pytest.raises(BlastscaleInputError, match=r"jacobian = 'csr' is not known: valid values are dense, sparse, auto"):
+    with pytest.raises(
+        BlastscaleInputError, match=r"jacobian = 'csr' is not known: valid values are dense, sparse, auto"
+    ):
         replace(default_contact(col), jacobian="csr")
 
 
@@ -305,8 +337,12 @@ def test_initial_tilt_and_rocking_velocity_are_rigid_about_the_base_edge():
     tilted = structure_scene(col, default_contact(col), rotation=th0).bodies
     p0 = np.array([b.position for b in up])
     p1 = np.array([b.position for b in tilted])
-    assert np.allclose(np.linalg.norm(p0[:, None] - p0[None], axis=2), np.linalg.norm(p1[:, None] - p1[None], axis=2),
-                       rtol=0, atol=1e-12)
+    assert np.allclose(
+        np.linalg.norm(p0[:, None] - p0[None], axis=2),
+        np.linalg.norm(p1[:, None] - p1[None], axis=2),
+        rtol=0,
+        atol=1e-12,
+    )
     edge = np.array([0.5 * col.base_width, 0.0, 0.0])  # the +x base edge of the lowest drum, on the ground
     assert np.allclose(np.linalg.norm(p0 - edge, axis=1), np.linalg.norm(p1 - edge, axis=1), rtol=0, atol=1e-12)
     assert np.allclose(tilt_angle(quaternion_to_matrix([b.quaternion for b in tilted])), th0, rtol=0, atol=1e-15)

@@ -38,8 +38,23 @@ def test_similarity_map_cli(tmp_path, capsys):
     toml = tmp_path / "s.toml"
     toml.write_text(BASE.to_toml())
     with pytest.raises(SystemExit) as e:
-        main(["similarity-map", str(toml), "--scales", "0.01,0.1", "--density-ratios", "0.5,1", "--charges", "50",
-              "--standoffs", "2,3", "--plot", str(png), "--json"])
+        main(
+            [
+                "similarity-map",
+                str(toml),
+                "--scales",
+                "0.01,0.1",
+                "--density-ratios",
+                "0.5,1",
+                "--charges",
+                "50",
+                "--standoffs",
+                "2,3",
+                "--plot",
+                str(png),
+                "--json",
+            ]
+        )
     assert e.value.code in (0, None)
     out = json.loads(capsys.readouterr().out)
     assert out["n_cases"] == 8 and out["n_valid"] == 8 and out["n_outcomes_agree"] == 8
@@ -63,13 +78,30 @@ def test_map_through_a_store_and_of_a_prototype_only_scenario(tmp_path, capsys):
     data = BASE.to_dict()
     data.pop("scale")
     outs = []
-    for sc, extra in ((BASE, []), (BASE, ["--out", str(tmp_path / "m.zarr")]),
-                      (Scenario.from_dict(data, source="test: no [scale]"), [])):
+    for sc, extra in (
+        (BASE, []),
+        (BASE, ["--out", str(tmp_path / "m.zarr")]),
+        (Scenario.from_dict(data, source="test: no [scale]"), []),
+    ):
         toml = tmp_path / "s.toml"
         toml.write_text(sc.to_toml())
         with pytest.raises(SystemExit) as e:
-            main(["similarity-map", str(toml), "--scales", "0.01,0.1", "--density-ratios", "1", "--charges", "50",
-                  "--standoffs", "2", "--json", *extra])
+            main(
+                [
+                    "similarity-map",
+                    str(toml),
+                    "--scales",
+                    "0.01,0.1",
+                    "--density-ratios",
+                    "1",
+                    "--charges",
+                    "50",
+                    "--standoffs",
+                    "2",
+                    "--json",
+                    *extra,
+                ]
+            )
         assert e.value.code in (0, None)
         outs.append(json.loads(capsys.readouterr().out))
     assert outs[0] == outs[1] == outs[2] and outs[0]["n_valid"] == 2

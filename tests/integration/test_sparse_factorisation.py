@@ -29,8 +29,15 @@ def _states_both_ways(structure, charge, standoff, duration):
     c = reference_settings(None, structure, a, b)
     dense = structure_scene(ref, replace(c, jacobian="dense"))
     sparse = structure_scene(ref, replace(c, jacobian="sparse"))
-    st = integrate(dense, make_load("A", structure, blast_parameters(charge, standoff)), duration, record_every=2,
-                   blast_mode="force", settle=True, factors=(a, b))
+    st = integrate(
+        dense,
+        make_load("A", structure, blast_parameters(charge, standoff)),
+        duration,
+        record_every=2,
+        blast_mode="force",
+        settle=True,
+        factors=(a, b),
+    )
     n, nb = len(st["time"]), len(structure.bodies)
     qpos, qvel = st["qpos"].reshape(n, nb, 7).copy(), st["qvel"].reshape(n, nb, 6).copy()
     qpos[:, :, 0:3] *= a  # back to the engine's reference units (integrate returns physical ones)
@@ -48,12 +55,26 @@ def _states_both_ways(structure, charge, standoff, duration):
     return worst, np.array(it_d), np.array(it_s)
 
 
-@pytest.mark.parametrize("structure, charge, standoff, duration", [
-    (MultiDrumColumn("square"), 250.0, 10.0, 0.4),
-    (MultiDrumColumn("circular"), 400.0, 10.0, 0.4),
-    (wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=2, units_per_course=5, bond="running"), 60.0, 5.0, 0.2),
-    (wall(length_m=2.0, height_m=2.0, thickness_m=0.5, courses=5, units_per_course=4, bond="stack"), 20.0, 5.0, 0.1),
-], ids=["square_column", "circular_column", "wall_10", "stack_wall_20_renumbered"])
+@pytest.mark.parametrize(
+    "structure, charge, standoff, duration",
+    [
+        (MultiDrumColumn("square"), 250.0, 10.0, 0.4),
+        (MultiDrumColumn("circular"), 400.0, 10.0, 0.4),
+        (
+            wall(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=2, units_per_course=5, bond="running"),
+            60.0,
+            5.0,
+            0.2,
+        ),
+        (
+            wall(length_m=2.0, height_m=2.0, thickness_m=0.5, courses=5, units_per_course=4, bond="stack"),
+            20.0,
+            5.0,
+            0.1,
+        ),
+    ],
+    ids=["square_column", "circular_column", "wall_10", "stack_wall_20_renumbered"],
+)
 def test_our_scenes_do_not_reach_the_sparse_factorisation_bug(structure, charge, standoff, duration):
     """Measured with MuJoCo 4.0.0: the same Newton iterations at every state (1.2-3.9 on average) and
     accelerations equal to 2e-14 of their largest (also on the collapsing 650 kg square and 400 kg circular
@@ -65,7 +86,11 @@ def test_our_scenes_do_not_reach_the_sparse_factorisation_bug(structure, charge,
 
 def test_default_jacobian_is_gated_on_the_fixed_mujoco():
     assert not sparse_factorisation_fixed("4.0.0") and not sparse_factorisation_fixed("3.14.0")
-    assert sparse_factorisation_fixed("4.0.1") and sparse_factorisation_fixed("4.1.0") and sparse_factorisation_fixed("5.0")
+    assert (
+        sparse_factorisation_fixed("4.0.1")
+        and sparse_factorisation_fixed("4.1.0")
+        and sparse_factorisation_fixed("5.0")
+    )
     assert sparse_factorisation_fixed("4.0.1rc1")
     assert default_jacobian(1, "4.0.1") == "dense" == default_jacobian(1, "4.0.0")
     assert default_jacobian(10, "4.0.0") == "sparse" == default_jacobian(2, "4.0.1")  # probed (4.0.0), fixed (4.0.1)

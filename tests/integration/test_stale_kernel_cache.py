@@ -52,16 +52,16 @@ print(json.dumps({"max_rotation": res.max_rotation.hex(), "collapsed": res.colla
 def _run(root: Path) -> dict:
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR", "NUMBA_CACHE_LOCATOR_CLASSES")}
     env.update(PYTHONPATH=str(root), PYTHONDONTWRITEBYTECODE="1")  # no .pyc of the edited file in play
-    out = subprocess.run([sys.executable, "-c", CASE], env=env, capture_output=True, text=True, timeout=600,
-                         check=True)
+    out = subprocess.run([sys.executable, "-c", CASE], env=env, capture_output=True, text=True, timeout=600, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def test_a_changed_helper_is_compiled_again_and_the_original_comes_back_from_its_cache(tmp_path):
     # this tree's own result (compiled or from this tree's cache): its key folders warm the copy
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
-    here = simulate(RockingSystem.from_block(block),
-                    blast_parameters(50.0, 2.0, blast_model="masi2021").pulse("friedlander"), 5.0)
+    here = simulate(
+        RockingSystem.from_block(block), blast_parameters(50.0, 2.0, blast_model="masi2021").pulse("friedlander"), 5.0
+    )
     pkg = tmp_path / "blastscale"
     shutil.copytree(SRC, pkg, ignore=shutil.ignore_patterns("__pycache__"))
     warm = SRC / "rocking" / "__pycache__" / "numba"

@@ -25,11 +25,20 @@ SHORT = {"duration_s": 0.15, "critical_charge": False}
 
 def test_planar_results_equal_the_direct_comparison_with_every_choice_passed_through():
     # non-default choices everywhere: if one were dropped, the numbers would differ from the direct call
-    sc = Scenario.default().with_values({
-        "blast.model": "kingery-bulmash", "pulse": "triangular", "restitution": 0.8, "gravity_m_s2": 9.5,
-        "density_ratio": 0.5, "gravity_ratio": 2.0, "duration_s": 1.5, "samples": 301, "engine": "planar",
-        "critical_charge": False,
-    })
+    sc = Scenario.default().with_values(
+        {
+            "blast.model": "kingery-bulmash",
+            "pulse": "triangular",
+            "restitution": 0.8,
+            "gravity_m_s2": 9.5,
+            "density_ratio": 0.5,
+            "gravity_ratio": 2.0,
+            "duration_s": 1.5,
+            "samples": 301,
+            "engine": "planar",
+            "critical_charge": False,
+        }
+    )
     r = Study(sc).run()
     # the same experiment composed by hand from the library's parts, every choice written out
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), depth=1.0, density=2000.0)
@@ -37,8 +46,12 @@ def test_planar_results_equal_the_direct_comparison_with_every_choice_passed_thr
     t = np.linspace(0.0, 1.5, 301)
     sys_p = RockingSystem.from_block(block, 9.5, 0.8)
     res_p = simulate(sys_p, d.prototype.pulse("triangular"), 1.5, t_eval=t)
-    res_m = simulate(RockingSystem.from_block(d.specimen_block, 9.5 * 2.0, 0.8), d.specimen.pulse("triangular"),
-                     1.5 * d.factors.time, t_eval=np.minimum(t * d.factors.time, 1.5 * d.factors.time))
+    res_m = simulate(
+        RockingSystem.from_block(d.specimen_block, 9.5 * 2.0, 0.8),
+        d.specimen.pulse("triangular"),
+        1.5 * d.factors.time,
+        t_eval=np.minimum(t * d.factors.time, 1.5 * d.factors.time),
+    )
     direct = compare_rocking(res_p, res_m, d, sys_p.frequency_parameter)
     # same inputs, same deterministic solver: equal to round-off
     np.testing.assert_allclose(r.planar.theta_model, direct.theta_model, rtol=0, atol=1e-15)
@@ -104,8 +117,11 @@ def test_model_experiment_is_the_scaled_prototype():
 
 def test_scalars_keep_their_keys_when_an_outcome_changes():
     rocks = Study(Scenario.default().with_values({"duration_s": 2.0, "engine": "planar"})).run().scalars()
-    falls = Study(Scenario.default().with_values({"duration_s": 2.0, "engine": "planar",
-                                                  "charge_kg": 100.0})).run().scalars()
+    falls = (
+        Study(Scenario.default().with_values({"duration_s": 2.0, "engine": "planar", "charge_kg": 100.0}))
+        .run()
+        .scalars()
+    )
     assert rocks.keys() == falls.keys()
     assert math.isnan(rocks["planar.prototype.collapse_time_s"]) and falls["planar.prototype.collapse_time_s"] > 0
     assert rocks["critical.critical_charge_kg"] == pytest.approx(79.87, abs=0.01)  # paper: 79.8 kg
@@ -142,13 +158,17 @@ def test_both_engines_on_a_column_runs_3d_and_says_why_planar_is_skipped():
     with pytest.warns(StudyWarning, match="planar engine skipped"):  # said to the caller as well
         r = Study(sc).run()
     assert r.planar is None and r.response3d is not None
-    assert any(w.startswith("planar engine skipped: planar rocking applies to a single rectangular block")
-               for w in r.warnings)
+    assert any(
+        w.startswith("planar engine skipped: planar rocking applies to a single rectangular block") for w in r.warnings
+    )
 
 
 def test_ensemble_settings_are_checked_before_running():
-    with pytest.raises(BlastscaleInputError, match=r"simulation\.ensemble_members = 1 is out of range: valid values "
-                                                   r"are 0 \(no ensemble\) or 2 to 64"):
+    with pytest.raises(
+        BlastscaleInputError,
+        match=r"simulation\.ensemble_members = 1 is out of range: valid values "
+        r"are 0 \(no ensemble\) or 2 to 64",
+    ):
         Scenario.default().with_values({"ensemble_members": 1})
     sc = Scenario.default().with_values({"ensemble_members": 2, "engine": "planar"})
     with pytest.raises(BlastscaleInputError, match=r"simulation\.ensemble_members = 2 needs the 3D engine"):

@@ -43,8 +43,9 @@ def test_first_swing_equals_full_simulation(height, alpha_deg, r_over_h, load, s
     """A block at rest under a blast (charge W_c e^load, around its critical charge): overturned
     identical and the largest |theta| of the whole motion within 1e-8 rad of the full simulation
     to rest (every impact)."""
-    system = RockingSystem.from_block(RectangularBlock.from_slenderness(height, math.radians(alpha_deg)),
-                                      restitution=restitution)
+    system = RockingSystem.from_block(
+        RectangularBlock.from_slenderness(height, math.radians(alpha_deg)), restitution=restitution
+    )
     R = r_over_h * height
     try:
         wc = critical_charge(system, R, pulse_shape=shape, blast_model="kingery-bulmash").charge_kg
@@ -65,23 +66,28 @@ def test_first_swing_equals_full_simulation(height, alpha_deg, r_over_h, load, s
         assert abs(fs.max_rotation[0] - full.max_rotation) < ANGLE_TOL
 
 
-BASE = Scenario.default().with_values({"engine": "planar", "critical_charge": False, "duration_s": 20.0,
-                                       "samples": 101})
+BASE = Scenario.default().with_values(
+    {"engine": "planar", "critical_charge": False, "duration_s": 20.0, "samples": 101}
+)
 
 
-@pytest.mark.parametrize("extra", [
-    {"length": [0.005, 0.2], "pulse": ["friedlander", "impulsive"]},
-    {"law": ["hopkinson-cranz"], "density_ratio": [None], "model": ["kingery-bulmash"], "restitution": [0.5]},
-    {"extrapolate": [True], "model": ["masi2021", "kingery-bulmash"], "standoff_m": [0.3, 2.0, 40.0]},
-    {"model": ["kingery-bulmash"], "negative_phase": [True], "clearing": [True], "specimen_burst": ["free-air"]},
-])
+@pytest.mark.parametrize(
+    "extra",
+    [
+        {"length": [0.005, 0.2], "pulse": ["friedlander", "impulsive"]},
+        {"law": ["hopkinson-cranz"], "density_ratio": [None], "model": ["kingery-bulmash"], "restitution": [0.5]},
+        {"extrapolate": [True], "model": ["masi2021", "kingery-bulmash"], "standoff_m": [0.3, 2.0, 40.0]},
+        {"model": ["kingery-bulmash"], "negative_phase": [True], "clearing": [True], "specimen_burst": ["free-air"]},
+    ],
+)
 def test_outcome_mode_equals_the_study(extra):
     """Against the Study on a grid with cases the Study refuses (a scaled distance outside the masi2021 fits; with
     extrapolate, outside the impulse fit the general law is solved on): validity, outcomes, model
     charge; the largest angle where neither overturns (20 s of motion: every first swing is over
     by then)."""
-    spec = SweepSpec.build(BASE, {"charge_kg": [20.0, 60.0, 200.0], "standoff_m": [1.0, 2.0, 9.0], **extra},
-                           outcomes=True)
+    spec = SweepSpec.build(
+        BASE, {"charge_kg": [20.0, 60.0, 200.0], "standoff_m": [1.0, 2.0, 9.0], **extra}, outcomes=True
+    )
     got = planar_outcomes(spec, 0, spec.n_cases)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -114,9 +120,14 @@ def test_outcome_sweep_is_independent_of_chunking_and_refuses_other_engines(tmp_
     once); engine 'both' is refused."""
     from blastscale.sweeps.grids import Distribution
 
-    spec = SweepSpec.build(BASE, {"charge_kg": np.geomspace(30, 150, 7), "height_m": [8.0, 10.0]},
-                           {"restitution": Distribution("uniform", (0.3, 0.95)), "friction": Distribution("uniform", (0.5, 0.8))},
-                           samples=5, seed=2, outcomes=True)
+    spec = SweepSpec.build(
+        BASE,
+        {"charge_kg": np.geomspace(30, 150, 7), "height_m": [8.0, 10.0]},
+        {"restitution": Distribution("uniform", (0.3, 0.95)), "friction": Distribution("uniform", (0.5, 0.8))},
+        samples=5,
+        seed=2,
+        outcomes=True,
+    )
     stores = []
     for chunk in (7, 70):
         run_sweep(spec, tmp_path / f"c{chunk}.zarr", workers=0, chunk=chunk)

@@ -85,8 +85,9 @@ def assert_store_equals_loop(path, spec):
 
 
 def test_sweep_equals_the_serial_loop_with_monte_carlo(tmp_path):
-    spec = SweepSpec.build(BASE, {"charge_kg": [40.0, 90.0]}, {"restitution": parse_distribution("uniform:0.3,0.9")},
-                           samples=3, seed=7)
+    spec = SweepSpec.build(
+        BASE, {"charge_kg": [40.0, 90.0]}, {"restitution": parse_distribution("uniform:0.3,0.9")}, samples=3, seed=7
+    )
     run = run_sweep(spec, tmp_path / "s.zarr", workers=0, chunk=4)
     assert run.chunks_run == 2 and spec.dims == ("charge_kg", "sample")
     tree = assert_store_equals_loop(tmp_path / "s.zarr", spec)
@@ -132,12 +133,34 @@ def cluster():
     port = free_port()
     addr = f"tcp://127.0.0.1:{port}"
     env = {**os.environ, "DASK_DISTRIBUTED__WORKER__DAEMON": "False"}
-    procs = [subprocess.Popen([str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                               "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)]
+    procs = [
+        subprocess.Popen(
+            [str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            env=env,
+        )
+    ]
     try:
-        procs.append(subprocess.Popen([str(BIN / "dask"), "worker", addr, "--nthreads", "1", "--nworkers", "1",
-                                       "--no-dashboard", "--host", "127.0.0.1"],
-                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env))
+        procs.append(
+            subprocess.Popen(
+                [
+                    str(BIN / "dask"),
+                    "worker",
+                    addr,
+                    "--nthreads",
+                    "1",
+                    "--nworkers",
+                    "1",
+                    "--no-dashboard",
+                    "--host",
+                    "127.0.0.1",
+                ],
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+                env=env,
+            )
+        )
         deadline = time.time() + 60
         while True:
             try:
@@ -178,12 +201,36 @@ def assert_same_stores(a, b):
 def test_sweep_on_a_separate_dask_cluster_equals_the_local_result(tmp_path, capsys, cluster):
     toml = tmp_path / "planar.toml"
     toml.write_text(BASE.to_toml())
-    remote = run_cli(capsys, "sweep", str(toml), "--vary", "charge_kg=40:120:3", "--vary", "standoff_m=2,3",
-                     "--sample", "restitution=triangular:0.3,0.8,0.9", "--samples", "2", "--seed", "3", "--chunk", "2",
-                     "--out", str(tmp_path / "remote.zarr"), "--scheduler", cluster, "--json")
+    remote = run_cli(
+        capsys,
+        "sweep",
+        str(toml),
+        "--vary",
+        "charge_kg=40:120:3",
+        "--vary",
+        "standoff_m=2,3",
+        "--sample",
+        "restitution=triangular:0.3,0.8,0.9",
+        "--samples",
+        "2",
+        "--seed",
+        "3",
+        "--chunk",
+        "2",
+        "--out",
+        str(tmp_path / "remote.zarr"),
+        "--scheduler",
+        cluster,
+        "--json",
+    )
     assert remote["n_cases"] == 12 and remote["workers"] == 1 and remote["chunks_run"] == 6
-    spec = SweepSpec.build(BASE, {"charge_kg": [40.0, 80.0, 120.0], "standoff_m": [2.0, 3.0]},
-                           {"restitution": parse_distribution("triangular:0.3,0.8,0.9")}, samples=2, seed=3)
+    spec = SweepSpec.build(
+        BASE,
+        {"charge_kg": [40.0, 80.0, 120.0], "standoff_m": [2.0, 3.0]},
+        {"restitution": parse_distribution("triangular:0.3,0.8,0.9")},
+        samples=2,
+        seed=3,
+    )
     run_sweep(spec, tmp_path / "local.zarr", workers=0, chunk=5)  # another chunking, in this process
     assert_same_stores(tmp_path / "remote.zarr", tmp_path / "local.zarr")
 
@@ -196,9 +243,26 @@ def test_kill_9_midway_then_rerun_gives_the_uninterrupted_result(tmp_path, clust
     # the sweep pauses after writing its second chunk (blastscale._hooks) and is killed there: always midway
     marker = tmp_path / "paused"
     env = {**os.environ, "BLASTSCALE_PAUSE_AT": "sweep:chunks=2", "BLASTSCALE_PAUSE_MARKER": str(marker)}
-    p = subprocess.Popen([str(BIN / "blastscale"), "sweep", str(toml), "--vary", "standoff_m=1.5:4:12", "--vary",
-                          "charge_kg=60,120", "--chunk", "1", "--out", str(store), "--scheduler", cluster],
-                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    p = subprocess.Popen(
+        [
+            str(BIN / "blastscale"),
+            "sweep",
+            str(toml),
+            "--vary",
+            "standoff_m=1.5:4:12",
+            "--vary",
+            "charge_kg=60,120",
+            "--chunk",
+            "1",
+            "--out",
+            str(store),
+            "--scheduler",
+            cluster,
+        ],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        env=env,
+    )
     deadline = time.time() + 120
     while time.time() < deadline and not marker.exists() and p.poll() is None:
         time.sleep(0.01)
@@ -249,8 +313,18 @@ def test_sweep_set_is_the_scenario_with_those_values(tmp_path, capsys):
     built-in scenario with those values (the same fingerprint, the plain loop of Studies), friction 0.6
     instead of the default's 0.7."""
     sets = ("engine=planar", "duration_s=1.5", "simulation.samples=301", "critical_charge=false", "friction=0.6")
-    out = run_cli(capsys, "sweep", *[a for s in sets for a in ("--set", s)], "--vary", "charge_kg=40,120",
-                  "--out", str(tmp_path / "s.zarr"), "--workers", "0", "--json")
+    out = run_cli(
+        capsys,
+        "sweep",
+        *[a for s in sets for a in ("--set", s)],
+        "--vary",
+        "charge_kg=40,120",
+        "--out",
+        str(tmp_path / "s.zarr"),
+        "--workers",
+        "0",
+        "--json",
+    )
     assert out["n_cases"] == 2
     spec = SweepSpec.build(BASE.with_values({"critical_charge": False, "friction": 0.6}), {"charge_kg": [40.0, 120.0]})
     tree = assert_store_equals_loop(tmp_path / "s.zarr", spec)
@@ -277,9 +351,12 @@ def test_grid_and_distribution_strings():
     rng = np.random.default_rng(0)
     # sample moments against the closed forms: 1e5 draws, 5 standard errors of the mean
     n = 100_000
-    for text, mean, sd in (("normal:2,0.5", 2.0, 0.5), ("uniform:1,3", 2.0, 2 / math.sqrt(12)),
-                           ("triangular:0,1,4", 5 / 3, math.sqrt((0 + 1 + 16 - 0 - 0 - 4) / 18)),
-                           ("lognormal:2,0.3", 2 * math.exp(0.045), 2 * math.exp(0.045) * math.sqrt(math.expm1(0.09)))):
+    for text, mean, sd in (
+        ("normal:2,0.5", 2.0, 0.5),
+        ("uniform:1,3", 2.0, 2 / math.sqrt(12)),
+        ("triangular:0,1,4", 5 / 3, math.sqrt((0 + 1 + 16 - 0 - 0 - 4) / 18)),
+        ("lognormal:2,0.3", 2 * math.exp(0.045), 2 * math.exp(0.045) * math.sqrt(math.expm1(0.09))),
+    ):
         x = parse_distribution(text).sample(rng, n)
         assert abs(x.mean() - mean) < 5 * sd / math.sqrt(n), text
     x = parse_distribution("loguniform:1,100").sample(rng, n)
@@ -297,9 +374,16 @@ def test_one_friedlander_decay_is_the_array_bisection_bit_for_bit():
     from blastscale.blast.friedlander import MAX_IMPULSE_RATIO, friedlander_decay
 
     rng = np.random.default_rng(7)
-    k = np.concatenate([rng.uniform(1e-6, 0.999999 * MAX_IMPULSE_RATIO, 400), 10 ** rng.uniform(-12, -0.3, 200),
-                        0.5 + rng.normal(0.0, 1e-4, 200), 0.5 - 10 ** rng.uniform(-16, -1, 200), [0.5],
-                        MAX_IMPULSE_RATIO - 10 ** rng.uniform(-14, -2, 100)])
+    k = np.concatenate(
+        [
+            rng.uniform(1e-6, 0.999999 * MAX_IMPULSE_RATIO, 400),
+            10 ** rng.uniform(-12, -0.3, 200),
+            0.5 + rng.normal(0.0, 1e-4, 200),
+            0.5 - 10 ** rng.uniform(-16, -1, 200),
+            [0.5],
+            MAX_IMPULSE_RATIO - 10 ** rng.uniform(-14, -2, 100),
+        ]
+    )
     P, t = rng.uniform(1e3, 1e7, k.size), rng.uniform(1e-5, 1e-1, k.size)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -310,29 +394,55 @@ def test_one_friedlander_decay_is_the_array_bisection_bit_for_bit():
 
 # -- the store's layout -------------------------------------------------------------------------
 
-@pytest.mark.parametrize("key, group, name, labels, units", [
-    ("sweep.valid", "", "valid", (), "1"),
-    ("planar.prototype.max_rotation_rad", "planar", "max_rotation", (("system", "prototype"),), "rad"),
-    ("planar.similarity.first_peak_ratio", "planar", "first_peak_ratio", (), "1"),
-    ("planar.similarity.max_abs_angular_velocity_diff_rad_s", "planar", "max_abs_angular_velocity_diff", (), "rad/s"),
-    ("3d.model.points.P-10.max_velocity_m_s", "sim3d", "max_velocity", (("system", "model"), ("point", "P-10")), "m/s"),
-    ("3d.prototype.delivered_impulse_Ns.1", "sim3d", "delivered_impulse", (("system", "prototype"), ("component", "y")),
-     "N s"),
-    ("3d.similarity.points.P-2.max_abs_displacement_diff_rel_peak", "sim3d", "max_abs_displacement_diff_rel_peak",
-     (("point", "P-2"),), "1"),  # _rel_peak is part of the meaning, not a unit: kept
-    ("3d.similarity.max_abs_top_displacement_diff_m", "sim3d", "max_abs_top_displacement_diff", (), "m"),
-    ("3d.similarity.time_compared_s.1", "sim3d", "time_compared", (("bound", "end"),), "s"),
-    ("experiment.model.drum_heights_m.3", "experiment", "drum_heights", (("system", "model"), ("drum", 3)), "m"),
-    ("experiment.density_ratio", "experiment", "density_ratio", (), "1"),
-    ("design.prototype.reflected_impulse_Pa_s", "design", "reflected_impulse", (("system", "prototype"),), "Pa s"),
-    ("design.model.shock_front_velocity_m_s", "design", "shock_front_velocity", (("system", "model"),), "m/s"),
-    ("design.model.scaled_distance_m_per_kg13", "design", "scaled_distance", (("system", "model"),), "m/kg^(1/3)"),
-    ("design.model_charge_kg", "design", "model_charge", (), "kg"),
-    ("design.factors.scaled_distance", "design/factors", "scaled_distance", (), "1"),
-    ("design.impulsive.model_to_p", "design/impulsive", "model_to_p", (), "1"),
-    ("critical.critical_charge_kg", "critical", "critical_charge", (), "kg"),
-    ("ensemble.points.P-1.horizon_model_s", "ensemble", "horizon_model", (("point", "P-1"),), "s"),
-])
+
+@pytest.mark.parametrize(
+    "key, group, name, labels, units",
+    [
+        ("sweep.valid", "", "valid", (), "1"),
+        ("planar.prototype.max_rotation_rad", "planar", "max_rotation", (("system", "prototype"),), "rad"),
+        ("planar.similarity.first_peak_ratio", "planar", "first_peak_ratio", (), "1"),
+        (
+            "planar.similarity.max_abs_angular_velocity_diff_rad_s",
+            "planar",
+            "max_abs_angular_velocity_diff",
+            (),
+            "rad/s",
+        ),
+        (
+            "3d.model.points.P-10.max_velocity_m_s",
+            "sim3d",
+            "max_velocity",
+            (("system", "model"), ("point", "P-10")),
+            "m/s",
+        ),
+        (
+            "3d.prototype.delivered_impulse_Ns.1",
+            "sim3d",
+            "delivered_impulse",
+            (("system", "prototype"), ("component", "y")),
+            "N s",
+        ),
+        (
+            "3d.similarity.points.P-2.max_abs_displacement_diff_rel_peak",
+            "sim3d",
+            "max_abs_displacement_diff_rel_peak",
+            (("point", "P-2"),),
+            "1",
+        ),  # _rel_peak is part of the meaning, not a unit: kept
+        ("3d.similarity.max_abs_top_displacement_diff_m", "sim3d", "max_abs_top_displacement_diff", (), "m"),
+        ("3d.similarity.time_compared_s.1", "sim3d", "time_compared", (("bound", "end"),), "s"),
+        ("experiment.model.drum_heights_m.3", "experiment", "drum_heights", (("system", "model"), ("drum", 3)), "m"),
+        ("experiment.density_ratio", "experiment", "density_ratio", (), "1"),
+        ("design.prototype.reflected_impulse_Pa_s", "design", "reflected_impulse", (("system", "prototype"),), "Pa s"),
+        ("design.model.shock_front_velocity_m_s", "design", "shock_front_velocity", (("system", "model"),), "m/s"),
+        ("design.model.scaled_distance_m_per_kg13", "design", "scaled_distance", (("system", "model"),), "m/kg^(1/3)"),
+        ("design.model_charge_kg", "design", "model_charge", (), "kg"),
+        ("design.factors.scaled_distance", "design/factors", "scaled_distance", (), "1"),
+        ("design.impulsive.model_to_p", "design/impulsive", "model_to_p", (), "1"),
+        ("critical.critical_charge_kg", "critical", "critical_charge", (), "kg"),
+        ("ensemble.points.P-1.horizon_model_s", "ensemble", "horizon_model", (("point", "P-1"),), "s"),
+    ],
+)
 def test_store_location_of_each_kind_of_key(key, group, name, labels, units):
     loc = store_location(key)
     assert (loc.group, loc.name, loc.labels, loc.units) == (group, name, labels, units)
@@ -353,9 +463,11 @@ def test_store_locations_are_one_to_one_over_every_study_key():
     from blastscale.sweeps import OUTCOME_KEYS
 
     keys = set(OUTCOME_KEYS)
-    for sc in (load_scenario("paper_column_square_250kg").with_values({"duration_s": 0.2, "critical_charge": False}),
-               Scenario.default().with_values({"engine": "both", "duration_s": 0.3, "samples": 101, "ensemble_members": 2}),
-               prototype_only(BASE)):
+    for sc in (
+        load_scenario("paper_column_square_250kg").with_values({"duration_s": 0.2, "critical_charge": False}),
+        Scenario.default().with_values({"engine": "both", "duration_s": 0.3, "samples": 101, "ensemble_members": 2}),
+        prototype_only(BASE),
+    ):
         keys |= set(study_scalars(sc))
     places = {}
     for k in keys:
@@ -366,9 +478,21 @@ def test_store_locations_are_one_to_one_over_every_study_key():
 
 
 #: Units by key suffix, written out here as the oracle (independent of blastscale.units).
-UNIT_ORACLE = (("_rel_peak", "1"), ("_m_per_kg13", "m/kg^(1/3)"), ("_kg_m3", "kg/m^3"), ("_rad_s", "rad/s"),
-               ("_m_s", "m/s"), ("_Pa_s", "Pa s"), ("_N_s", "N s"), ("_Ns", "N s"), ("_Pa", "Pa"),
-               ("_rad", "rad"), ("_kg", "kg"), ("_m", "m"), ("_s", "s"))
+UNIT_ORACLE = (
+    ("_rel_peak", "1"),
+    ("_m_per_kg13", "m/kg^(1/3)"),
+    ("_kg_m3", "kg/m^3"),
+    ("_rad_s", "rad/s"),
+    ("_m_s", "m/s"),
+    ("_Pa_s", "Pa s"),
+    ("_N_s", "N s"),
+    ("_Ns", "N s"),
+    ("_Pa", "Pa"),
+    ("_rad", "rad"),
+    ("_kg", "kg"),
+    ("_m", "m"),
+    ("_s", "s"),
+)
 
 
 def oracle_unit(key: str) -> str:
@@ -420,11 +544,14 @@ def test_every_store_is_xarray_ready_with_the_right_units(tmp_path):
     from blastscale.sweeps import OUTCOME_KEYS
 
     column = load_scenario("paper_column_square_250kg").with_values({"duration_s": 0.2, "critical_charge": False})
-    both = Scenario.default().with_values({"engine": "both", "duration_s": 0.3, "samples": 101, "ensemble_members": 2,
-                                           "critical_charge": False})
-    for label, spec in (("column", SweepSpec.build(column, {"charge_kg": [200.0, 250.0]})),
-                        ("both", SweepSpec.build(both, {"standoff_m": [2.0, 3.0]})),
-                        ("outcomes", SweepSpec.build(BASE, {"charge_kg": [40.0, 90.0]}, outcomes=True))):
+    both = Scenario.default().with_values(
+        {"engine": "both", "duration_s": 0.3, "samples": 101, "ensemble_members": 2, "critical_charge": False}
+    )
+    for label, spec in (
+        ("column", SweepSpec.build(column, {"charge_kg": [200.0, 250.0]})),
+        ("both", SweepSpec.build(both, {"standoff_m": [2.0, 3.0]})),
+        ("outcomes", SweepSpec.build(BASE, {"charge_kg": [40.0, 90.0]}, outcomes=True)),
+    ):
         run_sweep(spec, tmp_path / f"{label}.zarr", workers=0)
         keys = OUTCOME_KEYS if spec.outcomes else study_scalars(spec.scenario(0))
         tree = assert_xarray_ready(tmp_path / f"{label}.zarr", keys)
@@ -436,8 +563,11 @@ def test_every_store_is_xarray_ready_with_the_right_units(tmp_path):
             drums = tree["experiment"]["drum_heights"]  # constant: stored once, on system and drum
             assert drums.dims == ("system", "drum") and drums.attrs["units"] == "m" and drums.sizes["drum"] == 10
             assert drums["drum"].attrs["units"] == "1" and list(drums["drum"].values) == list(range(10))
-            np.testing.assert_allclose(drums.sel(system="model").sum().item(),
-                                       tree["experiment"]["height"].sel(system="model").item(), rtol=1e-12)
+            np.testing.assert_allclose(
+                drums.sel(system="model").sum().item(),
+                tree["experiment"]["height"].sel(system="model").item(),
+                rtol=1e-12,
+            )
             assert tree["design"]["reflected_impulse"].attrs["units"] == "Pa s"
         if label == "both":
             assert tree["ensemble"]["first_peak_ratio"].dims == ("standoff_m", "point")
@@ -450,8 +580,18 @@ def test_prototype_only_sweep_through_the_cli_holds_the_prototype_alone(tmp_path
     group and no model on `system`, and equals the plain loop of Studies."""
     toml = tmp_path / "prototype.toml"
     toml.write_text(prototype_only(BASE).to_toml())
-    out = run_cli(capsys, "sweep", str(toml), "--vary", "charge_kg=40,120", "--out", str(tmp_path / "p.zarr"),
-                  "--workers", "0", "--json")
+    out = run_cli(
+        capsys,
+        "sweep",
+        str(toml),
+        "--vary",
+        "charge_kg=40,120",
+        "--out",
+        str(tmp_path / "p.zarr"),
+        "--workers",
+        "0",
+        "--json",
+    )
     assert out["n_cases"] == 2 and out["chunks_run"] >= 1
     spec = SweepSpec.build(prototype_only(BASE), {"charge_kg": [40.0, 120.0]})
     tree = assert_store_equals_loop(tmp_path / "p.zarr", spec)

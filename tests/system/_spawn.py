@@ -11,8 +11,11 @@ import time
 from pathlib import Path
 
 _SCRIPT = Path(sys.executable).with_name("blastscale")
-BLASTSCALE = [str(_SCRIPT)] if _SCRIPT.exists() else [
-    sys.executable, "-c", "import sys; sys.argv[0] = 'blastscale'; from blastscale.cli import main; main()"]
+BLASTSCALE = (
+    [str(_SCRIPT)]
+    if _SCRIPT.exists()
+    else [sys.executable, "-c", "import sys; sys.argv[0] = 'blastscale'; from blastscale.cli import main; main()"]
+)
 
 
 def default_signals() -> None:
@@ -28,9 +31,16 @@ def spawn(args, cwd, pause: str | None = None, marker: Path | None = None, group
     env = {**os.environ, "MPLBACKEND": "Agg"}
     if pause:
         env.update(BLASTSCALE_PAUSE_AT=pause, BLASTSCALE_PAUSE_MARKER=str(marker))
-    return subprocess.Popen(BLASTSCALE + [str(a) for a in args], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, cwd=cwd, env=env, start_new_session=group,
-                            preexec_fn=default_signals)
+    return subprocess.Popen(
+        BLASTSCALE + [str(a) for a in args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=cwd,
+        env=env,
+        start_new_session=group,
+        preexec_fn=default_signals,
+    )
 
 
 def wait_for_marker(proc, marker: Path, limit: float = 120.0) -> None:
@@ -47,5 +57,6 @@ def wait_for_marker(proc, marker: Path, limit: float = 120.0) -> None:
 
 def run(args, cwd, timeout: float = 300) -> subprocess.CompletedProcess:
     env = {**os.environ, "MPLBACKEND": "Agg"}
-    return subprocess.run(BLASTSCALE + [str(a) for a in args], capture_output=True, text=True, cwd=cwd, env=env,
-                          timeout=timeout)
+    return subprocess.run(
+        BLASTSCALE + [str(a) for a in args], capture_output=True, text=True, cwd=cwd, env=env, timeout=timeout
+    )

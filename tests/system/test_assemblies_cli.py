@@ -106,13 +106,16 @@ def test_bad_block_model_files_are_one_line_exit_2_nothing_written(capsys, tmp_p
         assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.json", "bad.toml"]
 
 
-@pytest.mark.parametrize("args, word", [
-    (("nosuch.json",), "no such file"),
-    (("nosuch_scenario",), "cannot be read"),
-    (("WALL", "--plot", "out.gif"), "valid extensions are .png"),
-    (("WALL", "--plot", "nofolder/out.png"), "does not exist"),
-    (("notes.txt",), "not a known kind of file"),
-])
+@pytest.mark.parametrize(
+    "args, word",
+    [
+        (("nosuch.json",), "no such file"),
+        (("nosuch_scenario",), "cannot be read"),
+        (("WALL", "--plot", "out.gif"), "valid extensions are .png"),
+        (("WALL", "--plot", "nofolder/out.png"), "does not exist"),
+        (("notes.txt",), "not a known kind of file"),
+    ],
+)
 def test_show_bad_arguments_are_one_line(capsys, tmp_path, monkeypatch, args, word):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "wall.toml").write_text(WALL)

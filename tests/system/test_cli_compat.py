@@ -23,15 +23,23 @@ GOLDEN = Path(__file__).resolve().parents[1] / "data" / "cli_golden"
 
 #: Keys whose value differs from the golden on purpose: {(case, dotted key prefix): reason}.
 CHANGED: dict = {
-    ("design_general", "root"): "the note names the root finder: Illinois regula falsi (vectorised, one code path for one "
-                                "design and for the sweeps' arrays) instead of Brent; lambda_Z moves by ~1e-15",
+    (
+        "design_general",
+        "root",
+    ): "the note names the root finder: Illinois regula falsi (vectorised, one code path for one "
+    "design and for the sweeps' arrays) instead of Brent; lambda_Z moves by ~1e-15",
     ("run_default", "design.root"): "as design_general",
-    ("run_default", "scenario.simulation.record_every"):
-        "the echoed scenario gives null: the recording interval is derived from the structure when not given "
-        "(one state per millisecond of the 10 m reference: still 5 steps for this block)",
-    **{(case, "inputs.jacobian"): "a stack's constraint Jacobian is sparse by default (issue #19: 2.8x faster on the "
-       "square column, histories within 1.4e-12 of the dense run's peak; MuJoCo 4.0.0's sparse-factorisation bug "
-       "not reached, tests/integration/test_sparse_factorisation.py)" for case in ("column_sq", "column_circ_ens")},
+    (
+        "run_default",
+        "scenario.simulation.record_every",
+    ): "the echoed scenario gives null: the recording interval is derived from the structure when not given "
+    "(one state per millisecond of the 10 m reference: still 5 steps for this block)",
+    **{
+        (case, "inputs.jacobian"): "a stack's constraint Jacobian is sparse by default (issue #19: 2.8x faster on the "
+        "square column, histories within 1.4e-12 of the dense run's peak; MuJoCo 4.0.0's sparse-factorisation bug "
+        "not reached, tests/integration/test_sparse_factorisation.py)"
+        for case in ("column_sq", "column_circ_ens")
+    },
 }
 
 #: Chaotic runs: {(case, key prefix): reason}. A circular column is chaotic (docs/design.md: 1e-10 on the load
@@ -45,8 +53,20 @@ CHANGED: dict = {
 CHAOTIC = {("column_circ_ens", k): "chaotic trajectory" for k in ("model", "similarity", "ensemble", "prototype")}
 
 #: Keys that record the run rather than its result.
-VOLATILE = ("versions", "git_commit", "timestamp", "timings_s", "files", "out", "folder", "wrote", "seconds",
-            "seconds_per_case", "cases_per_minute", "blastscale_version")
+VOLATILE = (
+    "versions",
+    "git_commit",
+    "timestamp",
+    "timings_s",
+    "files",
+    "out",
+    "folder",
+    "wrote",
+    "seconds",
+    "seconds_per_case",
+    "cases_per_minute",
+    "blastscale_version",
+)
 
 REL = 1e-9
 FLOOR = 1e-12
@@ -80,8 +100,11 @@ def _get(obj, path: tuple):
 
 
 def _scale(golden) -> float:
-    nums = [abs(v) for _, v in _leaves(golden) if isinstance(v, (int, float)) and not isinstance(v, bool)
-            and math.isfinite(v)]
+    nums = [
+        abs(v)
+        for _, v in _leaves(golden)
+        if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+    ]
     return max(nums, default=1.0)
 
 

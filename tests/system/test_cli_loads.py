@@ -9,12 +9,26 @@ import pytest
 from blastscale.cli import main
 
 BLAST_KEYS = {
-    "scaled_distance_m_per_kg13", "reflected_pressure_Pa", "reflected_impulse_Pa_s", "arrival_time_s",
-    "positive_duration_s", "incident_pressure_Pa", "incident_impulse_Pa_s", "friedlander_decay",
+    "scaled_distance_m_per_kg13",
+    "reflected_pressure_Pa",
+    "reflected_impulse_Pa_s",
+    "arrival_time_s",
+    "positive_duration_s",
+    "incident_pressure_Pa",
+    "incident_impulse_Pa_s",
+    "friedlander_decay",
 }
 DESIGN_KEYS = {
-    "prototype_scaled_distance", "model_scaled_distance", "scaled_distance_factor", "model_charge_kg",
-    "model_standoff_m", "pressure_ratio", "impulse_ratio", "duration_ratio", "density_ratio", "factors",
+    "prototype_scaled_distance",
+    "model_scaled_distance",
+    "scaled_distance_factor",
+    "model_charge_kg",
+    "model_standoff_m",
+    "pressure_ratio",
+    "impulse_ratio",
+    "duration_ratio",
+    "density_ratio",
+    "factors",
 }
 
 
@@ -33,8 +47,23 @@ def test_blast_json_keys(capsys, model):
 
 
 def test_design_json_reproduces_paper_model_2(capsys):
-    out = run_json(capsys, "design", "--charge", "50", "--standoff", "2", "--scale", "0.005", "--model", "masi2021",
-                   "--height", "10", "--alpha-deg", "15", "--json")
+    out = run_json(
+        capsys,
+        "design",
+        "--charge",
+        "50",
+        "--standoff",
+        "2",
+        "--scale",
+        "0.005",
+        "--model",
+        "masi2021",
+        "--height",
+        "10",
+        "--alpha-deg",
+        "15",
+        "--json",
+    )
     assert DESIGN_KEYS <= out.keys()
     assert out["model_charge_kg"] * 1e6 == pytest.approx(0.233, rel=1e-2)  # paper Table: 0.233 (mg, corrected)
     assert out["impulse_ratio"] == pytest.approx(0.005**1.5, rel=1e-9)
@@ -44,8 +73,9 @@ def test_design_json_reproduces_paper_model_2(capsys):
 
 
 def test_design_hopkinson_cranz(capsys):
-    out = run_json(capsys, "design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--law",
-                   "hopkinson-cranz", "--json")
+    out = run_json(
+        capsys, "design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--law", "hopkinson-cranz", "--json"
+    )
     assert out["scaled_distance_factor"] == 1.0
     assert out["density_ratio"] == pytest.approx(10.0, rel=1e-12)
 
@@ -60,38 +90,70 @@ BAD_INPUT = [
     (["blast", "--charge", "5", "--standoff", "nan"], ["standoff", "nan", "finite"]),
     (["design", "--charge", "-50", "--standoff", "2", "--scale", "0.01"], ["charge", "-50", "> 0"]),
     (["design", "--charge", "50", "--standoff", "0", "--scale", "0.01"], ["standoff", "0", "> 0"]),
-    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "nan"],
-     ["density ratio", "nan", "finite"]),
+    (
+        ["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "nan"],
+        ["density ratio", "nan", "finite"],
+    ),
     (["blast", "--charge", "5", "--standoff", "2", "--model", "foo"], ["blast model", "foo", "kingery-bulmash"]),
     (["blast", "--charge", "1", "--standoff", "100", "--model", "masi2021"], ["Z = 100", "[0.2, 20]"]),
     (["blast", "--charge", "1e-30", "--standoff", "2", "--extrapolate"], ["reflected_pressure", "Z = 2e+10"]),
     (["design", "--charge", "50", "--standoff", "2", "--scale", "0"], ["scale", "0", "> 0"]),
     (["design", "--charge", "50", "--standoff", "2", "--scale", "nan"], ["scale", "nan"]),
-    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "-1"],
-     ["density ratio", "-1"]),
-    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "0"],
-     ["density ratio", "0", "> 0"]),
-    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--gravity-ratio", "0"],
-     ["gravity ratio", "0", "> 0"]),
-    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--law", "hopkinson-cranz",
-      "--density-ratio", "1"], ["density ratio", "1", "10"]),
-    (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--height", "10", "--alpha-deg", "95"],
-     ["alpha-deg", "95", "(0, 90)"]),
+    (
+        ["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "-1"],
+        ["density ratio", "-1"],
+    ),
+    (
+        ["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--density-ratio", "0"],
+        ["density ratio", "0", "> 0"],
+    ),
+    (
+        ["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--gravity-ratio", "0"],
+        ["gravity ratio", "0", "> 0"],
+    ),
+    (
+        [
+            "design",
+            "--charge",
+            "50",
+            "--standoff",
+            "2",
+            "--scale",
+            "0.01",
+            "--law",
+            "hopkinson-cranz",
+            "--density-ratio",
+            "1",
+        ],
+        ["density ratio", "1", "10"],
+    ),
+    (
+        ["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--height", "10", "--alpha-deg", "95"],
+        ["alpha-deg", "95", "(0, 90)"],
+    ),
     (["design", "--charge", "50", "--standoff", "2", "--scale", "0.01", "--height", "10"], ["--width", "--alpha-deg"]),
     # the general law's model Z beyond the impulse fit: names the scale and the admissible range
     (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-9"], ["scale = 1e-09", "valid range of scale"]),
     # masi2021: the law is solvable but its model Z = 11.7 is outside the duration fit's guarded range: the
     # scale range keeps the model inside [0.2, 6.5] (lambda = 1.10e-5 puts it at 6.5, test_design_properties)
-    (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-6", "--model", "masi2021"],
-     ["scale = 1e-06", "valid range of scale is [1.10124e-05, 177.874]", "[0.2, 6.5]"]),
+    (
+        ["design", "--charge", "50", "--standoff", "2", "--scale", "1e-6", "--model", "masi2021"],
+        ["scale = 1e-06", "valid range of scale is [1.10124e-05, 177.874]", "[0.2, 6.5]"],
+    ),
     # --extrapolate lets the model Z leave the duration fit (with warnings), never the impulse fit of the law
-    (["design", "--charge", "50", "--standoff", "2", "--scale", "1e-9", "--model", "masi2021", "--extrapolate"],
-     ["scale = 1e-09", "impulse fit [0.2, 20]"]),
-    (["blast", "--charge", "5", "--standoff", "2", "--incidence-deg", "190"],
-     ["incidence angle = 190 deg", "[0, 180]"]),
+    (
+        ["design", "--charge", "50", "--standoff", "2", "--scale", "1e-9", "--model", "masi2021", "--extrapolate"],
+        ["scale = 1e-09", "impulse fit [0.2, 20]"],
+    ),
+    (
+        ["blast", "--charge", "5", "--standoff", "2", "--incidence-deg", "190"],
+        ["incidence angle = 190 deg", "[0, 180]"],
+    ),
     (["blast", "--charge", "5", "--standoff", "2", "--incidence-deg", "-1"], ["incidence angle = -1 deg"]),
-    (["blast", "--charge", "5", "--standoff", "2", "--incidence-deg", "30", "--incidence", "cosine"],
-     ["incidence model = 'cosine'", "ufc, closed-form"]),
+    (
+        ["blast", "--charge", "5", "--standoff", "2", "--incidence-deg", "30", "--incidence", "cosine"],
+        ["incidence model = 'cosine'", "ufc, closed-form"],
+    ),
     # click's own usage errors, also one line, exit 2
     (["blast", "--charge", "abc", "--standoff", "2"], ["--charge", "blastscale blast --help"]),
     (["blast", "--charge", "5"], ["Missing option", "--standoff"]),
@@ -118,17 +180,41 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, words):
 def test_blast_face_at_an_angle_of_incidence(capsys, incidence):
     # limits of both models (blast.incidence): 0 deg -> the normally reflected values, 90 and 135 deg -> side-on
     ref = run_json(capsys, "blast", "--charge", "250", "--standoff", "10", "--json")
-    for deg, p, i in ((0, "reflected_pressure_Pa", "reflected_impulse_Pa_s"),
-                      (90, "incident_pressure_Pa", "incident_impulse_Pa_s"),
-                      (135, "incident_pressure_Pa", "incident_impulse_Pa_s")):
-        out = run_json(capsys, "blast", "--charge", "250", "--standoff", "10", "--incidence-deg", str(deg),
-                       "--incidence", incidence, "--json")
+    for deg, p, i in (
+        (0, "reflected_pressure_Pa", "reflected_impulse_Pa_s"),
+        (90, "incident_pressure_Pa", "incident_impulse_Pa_s"),
+        (135, "incident_pressure_Pa", "incident_impulse_Pa_s"),
+    ):
+        out = run_json(
+            capsys,
+            "blast",
+            "--charge",
+            "250",
+            "--standoff",
+            "10",
+            "--incidence-deg",
+            str(deg),
+            "--incidence",
+            incidence,
+            "--json",
+        )
         assert out["face_pressure_Pa"] == pytest.approx(ref[p], rel=1e-12)
         assert out["face_impulse_Pa_s"] == pytest.approx(ref[i], rel=1e-12)
         assert out["incidence_model"] == incidence and out["angle_of_incidence_deg"] == deg
     # between: below normal reflection, above side-on; the table prints the two rows
-    out = run_json(capsys, "blast", "--charge", "250", "--standoff", "10", "--incidence-deg", "60",
-                   "--incidence", incidence, "--json")
+    out = run_json(
+        capsys,
+        "blast",
+        "--charge",
+        "250",
+        "--standoff",
+        "10",
+        "--incidence-deg",
+        "60",
+        "--incidence",
+        incidence,
+        "--json",
+    )
     assert ref["incident_pressure_Pa"] < out["face_pressure_Pa"] < ref["reflected_pressure_Pa"]
     with pytest.raises(SystemExit):
         main(["blast", "--charge", "250", "--standoff", "10", "--incidence-deg", "60", "--incidence", incidence])
@@ -137,8 +223,12 @@ def test_blast_face_at_an_angle_of_incidence(capsys, incidence):
 
 def test_console_script_exits_2_without_traceback():
     # The real entry point in a subprocess (one case: the others run in process above).
-    r = subprocess.run([sys.executable, "-c", "from blastscale.cli import main; main()", "blast", "--charge", "-5",
-                        "--standoff", "2"], capture_output=True, text=True, timeout=120)
+    r = subprocess.run(
+        [sys.executable, "-c", "from blastscale.cli import main; main()", "blast", "--charge", "-5", "--standoff", "2"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert r.returncode == 2, r.stderr
     assert "Traceback" not in r.stderr
     assert r.stderr.strip().splitlines() == ["error: charge = -5 kg is out of range: must be > 0 kg"]

@@ -39,12 +39,25 @@ def test_run_help_names_one_default_per_option(capsys):
 
 @pytest.mark.parametrize("value", ["1/200", "0.005"])
 def test_scale_accepts_fractions(capsys, value):
-    code, out, err = cli(capsys, "design", "--charge", "50", "--standoff", "2", "--scale", value,
-                         "--model", "masi2021", "--json")
+    code, out, err = cli(
+        capsys, "design", "--charge", "50", "--standoff", "2", "--scale", value, "--model", "masi2021", "--json"
+    )
     assert code == 0, err
     assert json.loads(out)["scale"] == 0.005
-    code, out, err = cli(capsys, "design", "--charge", "50", "--standoff", "2", f"--scale={value}",
-                         "--density-ratio", "7/100", "--model", "masi2021", "--json")
+    code, out, err = cli(
+        capsys,
+        "design",
+        "--charge",
+        "50",
+        "--standoff",
+        "2",
+        f"--scale={value}",
+        "--density-ratio",
+        "7/100",
+        "--model",
+        "masi2021",
+        "--json",
+    )
     assert code == 0 and json.loads(out)["density_ratio"] == pytest.approx(0.07, rel=1e-12)
 
 
@@ -55,8 +68,10 @@ def test_bad_fraction_is_still_a_one_line_error(capsys):
 
 @pytest.mark.parametrize("command", ["rock", "block3d"])  # `run`: tests/test_run.py
 def test_no_command_suggests_a_flag_it_lacks(capsys, command):
-    args = {"rock": ["--charge", "1", "--standoff", "100", "--alpha-deg", "15"],
-            "block3d": ["--charge", "1", "--standoff", "100", "--alpha-deg", "15"]}[command]
+    args = {
+        "rock": ["--charge", "1", "--standoff", "100", "--alpha-deg", "15"],
+        "block3d": ["--charge", "1", "--standoff", "100", "--alpha-deg", "15"],
+    }[command]
     code, _, err = cli(capsys, command, *args, "--model", "masi2021")
     assert code == 2 and err.count("\n") == 1, err
     has_flag = "--extrapolate" in cli(capsys, command, "--help")[1]
@@ -74,7 +89,7 @@ def test_blast_still_suggests_its_own_extrapolate(capsys):
 def test_scaling_factor_table_gives_no_units_to_ratios(capsys):
     code, out, _ = cli(capsys, "design", "--charge", "50", "--standoff", "2", "--scale", "0.005")
     assert code == 0
-    table = out[out.index("Scaling factors"):]
+    table = out[out.index("Scaling factors") :]
     lines = [ln for ln in table.splitlines() if ln.startswith("│")]
     assert len(lines) >= 15 and all(ln.rstrip("│ ").endswith("-") for ln in lines), lines[:3]
 

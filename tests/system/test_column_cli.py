@@ -38,8 +38,9 @@ def short_comparison():
 
 def test_column_json_prototype_model_similarity(capsys, tmp_path):
     png = tmp_path / "col.png"
-    code, out = run(capsys, "column", *SHORT, "--charge", "250", "--standoff", "10", "--scale", "0.01",
-                    "--plot", str(png), "--json")
+    code, out = run(
+        capsys, "column", *SHORT, "--charge", "250", "--standoff", "10", "--scale", "0.01", "--plot", str(png), "--json"
+    )
     assert code in (0, None), out.err
     d = json.loads(out.out)
     assert SUMMARY_KEYS <= d["prototype"].keys() and SUMMARY_KEYS <= d["model"].keys()
@@ -59,8 +60,20 @@ def test_column_json_prototype_model_similarity(capsys, tmp_path):
 
 
 def test_column_without_scale_is_the_prototype_only(capsys):
-    code, out = run(capsys, "column", *SHORT, "--section", "circular", "--sides", "16", "--charge", "200",
-                    "--standoff", "10", "--json")
+    code, out = run(
+        capsys,
+        "column",
+        *SHORT,
+        "--section",
+        "circular",
+        "--sides",
+        "16",
+        "--charge",
+        "200",
+        "--standoff",
+        "10",
+        "--json",
+    )
     assert code in (0, None), out.err
     d = json.loads(out.out)
     assert SUMMARY_KEYS <= d["prototype"].keys() and "model" not in d and "similarity" not in d
@@ -68,21 +81,53 @@ def test_column_without_scale_is_the_prototype_only(capsys):
 
 
 def test_column_ensemble_option(capsys):
-    code, out = run(capsys, "column", *SHORT, "--section", "circular", "--sides", "16", "--charge", "200",
-                    "--standoff", "10", "--scale", "0.01", "--ensemble", "2", "--json")
+    code, out = run(
+        capsys,
+        "column",
+        *SHORT,
+        "--section",
+        "circular",
+        "--sides",
+        "16",
+        "--charge",
+        "200",
+        "--standoff",
+        "10",
+        "--scale",
+        "0.01",
+        "--ensemble",
+        "2",
+        "--json",
+    )
     assert code in (0, None), out.err
     e = json.loads(out.out)["ensemble"]
     assert e["n_members"] == 2 and e["perturbation"] == 1e-6
-    assert {"first_peak_prototype_mean_m", "first_peak_model_spread_m", "noise_floor_rel_peak",
-            "horizon_prototype_s"} <= e["points"]["P-3"].keys()
+    assert {
+        "first_peak_prototype_mean_m",
+        "first_peak_model_spread_m",
+        "noise_floor_rel_peak",
+        "horizon_prototype_s",
+    } <= e["points"]["P-3"].keys()
     assert 0.0 <= e["collapse_probability_prototype"] <= 1.0
 
 
 def test_column_ensemble_of_the_prototype_alone(capsys):
     """Without --scale the ensemble is the prototype's (a prototype-only scenario through the
     Study): its figures, the model's None, no model or similarity block; the table says so."""
-    argv = ("column", *SHORT, "--section", "circular", "--sides", "16", "--charge", "200", "--standoff", "10",
-            "--ensemble", "2")
+    argv = (
+        "column",
+        *SHORT,
+        "--section",
+        "circular",
+        "--sides",
+        "16",
+        "--charge",
+        "200",
+        "--standoff",
+        "10",
+        "--ensemble",
+        "2",
+    )
     code, out = run(capsys, *argv, "--json")
     assert code in (0, None), out.err
     d = json.loads(out.out)
@@ -133,8 +178,23 @@ def test_column_bad_input_exits_2_with_one_line(capsys, argv, words):
 
 
 def test_block3d_gains_delivered_impulse_and_load_options(capsys):
-    code, out = run(capsys, "block3d", "--width", "2", "--charge", "10", "--standoff", "5", "--model", "masi2021",
-                    "--duration", "0.05", "--load", "A", "--json")
+    code, out = run(
+        capsys,
+        "block3d",
+        "--width",
+        "2",
+        "--charge",
+        "10",
+        "--standoff",
+        "5",
+        "--model",
+        "masi2021",
+        "--duration",
+        "0.05",
+        "--load",
+        "A",
+        "--json",
+    )
     assert code in (0, None), out.err
     d = json.loads(out.out)
     imp = d["prototype"]["delivered_impulse_Ns"]
@@ -185,9 +245,14 @@ def test_upscale_summary_by_unit_suffix():
     from blastscale.similitude import scaling_factors
 
     f = scaling_factors(1 / 100)
-    s = {"collapsed": True, "max_top_displacement_m": 0.01, "delivered_impulse_Ns": [2.0, 0.0, 0.0],
-         "points": {"P-1": {"max_displacement_m": 0.001, "max_velocity_m_s": 0.1, "n_impacts": 3}},
-         "max_rotation_rad": 0.1, "collapse_time_s": 0.2}
+    s = {
+        "collapsed": True,
+        "max_top_displacement_m": 0.01,
+        "delivered_impulse_Ns": [2.0, 0.0, 0.0],
+        "points": {"P-1": {"max_displacement_m": 0.001, "max_velocity_m_s": 0.1, "n_impacts": 3}},
+        "max_rotation_rad": 0.1,
+        "collapse_time_s": 0.2,
+    }
     u = upscale_summary(s, f)
     assert u["collapsed"] is True and u["max_rotation_rad"] == 0.1
     assert u["max_top_displacement_m"] == pytest.approx(1.0, rel=1e-12)
@@ -249,8 +314,9 @@ def test_run_system_passes_extrapolate_to_the_load(monkeypatch):
     monkeypatch.setattr(loads, "make_load", spy)
     col = MultiDrumColumn(drums=2, height=2.0, top_width=1.6)
     for flag in (False, True):
-        _, r, load_s, _ = run_system(col, design_model(250.0, 10.0, 1 / 100), "model", duration=0.01,
-                                     record_every=8, extrapolate=flag)
+        _, r, load_s, _ = run_system(
+            col, design_model(250.0, 10.0, 1 / 100), "model", duration=0.01, record_every=8, extrapolate=flag
+        )
         assert r.summary()["collapsed"] is False and 0 < load_s < 0.01
     assert seen == [False, True]
 
@@ -272,8 +338,9 @@ def test_collapsing_column_is_compared_up_to_the_earlier_collapse():
     s = c.similarity()
     ps = c.prototype.summary()
     assert ps["collapsed"] and s["outcomes_agree"] is True
-    assert s["compared_to_collapse_s"] == pytest.approx(min(ps["collapse_time_s"], ps["collapse_time_s"]
-                                                            + s["collapse_time_diff_s"]), rel=1e-12)
+    assert s["compared_to_collapse_s"] == pytest.approx(
+        min(ps["collapse_time_s"], ps["collapse_time_s"] + s["collapse_time_diff_s"]), rel=1e-12
+    )
     assert abs(s["collapse_time_diff_s"]) <= 5e-3
     top = s["points"]["P-3"]
     assert top["first_peak_time_s"] == pytest.approx(s["compared_to_collapse_s"], abs=2e-3)

@@ -23,26 +23,36 @@ CASES = {
     ),
     "paper_figures_6_7_rocking.py": (
         ["--quick"],
-        ["figure_6_prototype_response.png", "figure_7_model_response.png",
-         "figure_9_upscaled_gamma_1.png", "figure_10_upscaled_gamma_0p07.png"],
+        [
+            "figure_6_prototype_response.png",
+            "figure_7_model_response.png",
+            "figure_9_upscaled_gamma_1.png",
+            "figure_10_upscaled_gamma_0p07.png",
+        ],
         ["critical charge (Friedlander pulse): 79.87 kg", "outcomes agree: True"],
     ),
     "paper_fe_blocks_3d.py": (
-        ["--quick"], ["figure_fe_slender_blocks.png", "figure_fe_non_slender_block.png"], ["2b = 3.50 m", "alpha = 19.3 deg"]
+        ["--quick"],
+        ["figure_fe_slender_blocks.png", "figure_fe_non_slender_block.png"],
+        ["2b = 3.50 m", "alpha = 19.3 deg"],
     ),
     "pi_diagram.py": (["--quick"], ["pi_diagram.png"], ["79.870 kg", "79.864 kg", "79.844 kg"]),
     "paper_columns_method_a.py": (  # --quick: a 3-drum column for 0.5 s (full length: docs/columns.md)
         ["--quick"],
-        ["figure_column_square_250kg.png", "figure_column_circular_200kg.png",
-         "figure_column_ensemble_circular_200kg.png"],
+        [
+            "figure_column_square_250kg.png",
+            "figure_column_circular_200kg.png",
+            "figure_column_ensemble_circular_200kg.png",
+        ],
         ["square 250 kg: prototype collapsed False", "ensemble circular 200 kg (2 runs, 1e-6)"],
     ),
 }
 
 
 def _run(script: str, args: list[str], cwd: Path) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, str(EXAMPLES / script), *args], cwd=cwd, capture_output=True,
-                          text=True, timeout=120)
+    return subprocess.run(
+        [sys.executable, str(EXAMPLES / script), *args], cwd=cwd, capture_output=True, text=True, timeout=120
+    )
 
 
 @pytest.mark.parametrize("script", sorted(CASES))

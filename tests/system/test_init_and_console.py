@@ -51,8 +51,21 @@ def test_init_never_replaces_what_is_not_a_toml_file(capsys, tmp_path):
 def test_the_planar_block_is_planar_and_its_outcome_sweep_runs(capsys, tmp_path):
     sc = load_scenario("planar_block")
     assert sc.simulation.engine == "planar" and sc.structure.kind == "block" and sc.scale is not None
-    code, out, err = cli(capsys, "sweep", "planar_block.toml", "--vary", "charge_kg=20:200:30:log", "--vary",
-                         "standoff_m=1.5:6:30", "--outcomes", "--workers", "0", "--out", tmp_path / "o.zarr", "--json")
+    code, out, err = cli(
+        capsys,
+        "sweep",
+        "planar_block.toml",
+        "--vary",
+        "charge_kg=20:200:30:log",
+        "--vary",
+        "standoff_m=1.5:6:30",
+        "--outcomes",
+        "--workers",
+        "0",
+        "--out",
+        tmp_path / "o.zarr",
+        "--json",
+    )
     assert code == 0 and json.loads(out)["n_cases"] == 900, err
 
 
@@ -60,19 +73,26 @@ def test_the_planar_block_is_planar_and_its_outcome_sweep_runs(capsys, tmp_path)
 def test_a_title_with_markup_and_emoji_codes_is_printed_as_written(capsys, tmp_path):
     title = "block [model 2] :100: [/b] [bold]x"
     f = tmp_path / "t.toml"
-    f.write_text(load_scenario("planar_block").with_values({"duration_s": 0.5, "critical_charge": False})
-                 .to_toml().replace('title = "', f'title = "{title} ', 1))
+    f.write_text(
+        load_scenario("planar_block")
+        .with_values({"duration_s": 0.5, "critical_charge": False})
+        .to_toml()
+        .replace('title = "', f'title = "{title} ', 1)
+    )
     code, out, err = cli(capsys, "run", f, "--out", tmp_path / "r")
     assert code == 0, err
     assert title in out and "💯" not in out and "Traceback" not in err
     assert title in (tmp_path / "r" / "report.html").read_text()  # the page escapes it as HTML
 
 
-@pytest.mark.parametrize("argv, literal", [
-    (["capacity", "--alpha-deg", "15", "--standoffs", "1:100:0"], "'1:100:0'"),
-    (["sweep", "--vary", "charge_kg=[/b]:2:3", "--out", "x.zarr"], "[/b]"),
-    (["run", "no[/b]such:100:.toml"], "no[/b]such:100:.toml"),
-])
+@pytest.mark.parametrize(
+    "argv, literal",
+    [
+        (["capacity", "--alpha-deg", "15", "--standoffs", "1:100:0"], "'1:100:0'"),
+        (["sweep", "--vary", "charge_kg=[/b]:2:3", "--out", "x.zarr"], "[/b]"),
+        (["run", "no[/b]such:100:.toml"], "no[/b]such:100:.toml"),
+    ],
+)
 def test_user_text_in_error_messages_is_literal(capsys, tmp_path, monkeypatch, argv, literal):
     monkeypatch.chdir(tmp_path)
     code, _, err = cli(capsys, *argv)
@@ -81,18 +101,44 @@ def test_user_text_in_error_messages_is_literal(capsys, tmp_path, monkeypatch, a
 
 
 # -- the size and time guard -----------------------------------------------------------------------------------
-@pytest.mark.parametrize("argv, words", [
-    (["block3d", "--alpha-deg", "15", "--charge", "50", "--standoff", "2", "--timestep", "1e-9"],
-     "--timestep = 1e-09 s is out of range: it would need about"),
-    (["block3d", "--alpha-deg", "15", "--charge", "50", "--standoff", "2", "--duration", "1e5"],
-     "--duration = 100000 s is out of range"),
-    (["column", "--charge", "250", "--standoff", "10", "--duration", "1e4"], "--duration = 10000 s is out of range"),
-    (["sweep", "planar_block", "--vary", "charge_kg=10:200:100000", "--vary", "standoff_m=2:5:100000", "--out",
-      "big.zarr"], "cases = 1e+10 is out of range"),
-    (["sweep", "planar_block", "--vary", "charge_kg=10:200:100000000", "--out", "big.zarr"], "valid range is [1, 1e+07]"),
-    (["fragility", "--charges", "40:160:13", "--lognormal", "charge_kg=0.2", "--samples", "1000000000"],
-     "samples = 1e+09 is out of range"),
-])
+@pytest.mark.parametrize(
+    "argv, words",
+    [
+        (
+            ["block3d", "--alpha-deg", "15", "--charge", "50", "--standoff", "2", "--timestep", "1e-9"],
+            "--timestep = 1e-09 s is out of range: it would need about",
+        ),
+        (
+            ["block3d", "--alpha-deg", "15", "--charge", "50", "--standoff", "2", "--duration", "1e5"],
+            "--duration = 100000 s is out of range",
+        ),
+        (
+            ["column", "--charge", "250", "--standoff", "10", "--duration", "1e4"],
+            "--duration = 10000 s is out of range",
+        ),
+        (
+            [
+                "sweep",
+                "planar_block",
+                "--vary",
+                "charge_kg=10:200:100000",
+                "--vary",
+                "standoff_m=2:5:100000",
+                "--out",
+                "big.zarr",
+            ],
+            "cases = 1e+10 is out of range",
+        ),
+        (
+            ["sweep", "planar_block", "--vary", "charge_kg=10:200:100000000", "--out", "big.zarr"],
+            "valid range is [1, 1e+07]",
+        ),
+        (
+            ["fragility", "--charges", "40:160:13", "--lognormal", "charge_kg=0.2", "--samples", "1000000000"],
+            "samples = 1e+09 is out of range",
+        ),
+    ],
+)
 def test_every_command_that_simulates_is_guarded(capsys, tmp_path, monkeypatch, argv, words):
     monkeypatch.chdir(tmp_path)
     code, _, err = cli(capsys, *argv)
@@ -104,8 +150,17 @@ def test_a_long_job_is_refused_by_its_time_estimate(capsys, tmp_path, monkeypatc
     """The time limit (BLASTSCALE_MAX_HOURS): a sweep of 100 3D column Studies fits in memory but not in 1 h."""
     monkeypatch.chdir(tmp_path)
     monkeypatch.setenv("BLASTSCALE_MAX_HOURS", "0.01")
-    code, _, err = cli(capsys, "sweep", "paper_column_square_250kg", "--vary", "charge_kg=100:300:100", "--workers",
-                       "1", "--out", "c.zarr")
+    code, _, err = cli(
+        capsys,
+        "sweep",
+        "paper_column_square_250kg",
+        "--vary",
+        "charge_kg=100:300:100",
+        "--workers",
+        "1",
+        "--out",
+        "c.zarr",
+    )
     assert code == 2 and "of computing, more than 36 s (BLASTSCALE_MAX_HOURS raises the limit)" in err, err
 
 
@@ -121,8 +176,9 @@ def test_progress_shows_on_a_terminal_and_not_with_json(monkeypatch):
 
 # -- reproduce says what it will cost before it starts ---------------------------------------------------------
 def test_reproduce_states_its_time_and_size_first(capsys, tmp_path):
-    code, _, err = cli(capsys, "reproduce", "--only", "table-geometry", "--only", "scaling-factors", "--out",
-                       tmp_path / "p")
+    code, _, err = cli(
+        capsys, "reproduce", "--only", "table-geometry", "--only", "scaling-factors", "--out", tmp_path / "p"
+    )
     assert code == 0
     first = err.splitlines()[0]
     assert first.startswith("reproduce: 2 of 2 items to make, about ") and " kB" in first or " MB" in first

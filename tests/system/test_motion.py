@@ -15,11 +15,10 @@ pytestmark = pytest.mark.system
 
 SCENARIOS = {
     "wall": '[structure]\nkind = "wall"\ncourses = 3\nunits_per_course = 2\n'
-            '[blast]\ncharge_kg = 20.0\nstandoff_m = 3.0\n',
-    "arch": '[structure]\nkind = "arch"\nvoussoirs = 7\n'
-            '[blast]\ncharge_kg = 20.0\nstandoff_m = 4.0\n',
+    "[blast]\ncharge_kg = 20.0\nstandoff_m = 3.0\n",
+    "arch": '[structure]\nkind = "arch"\nvoussoirs = 7\n[blast]\ncharge_kg = 20.0\nstandoff_m = 4.0\n',
     "column": '[structure]\nkind = "column"\ndrums = 4\nsection = "square"\n'
-              '[blast]\ncharge_kg = 100.0\nstandoff_m = 5.0\n',
+    "[blast]\ncharge_kg = 100.0\nstandoff_m = 5.0\n",
 }
 DURATION_S = 0.2
 
@@ -110,15 +109,18 @@ def test_show_animate_speed_divides_the_frames(results, capsys, tmp_path):
         assert im.n_frames == round(40 * DURATION_S / 2)
 
 
-@pytest.mark.parametrize("argv,word", [
-    (["--animate", "{tmp}/a.avi"], "animate"),
-    (["--animate", "{tmp}/missing/a.gif"], "animate"),
-    (["--animate", "{tmp}"], "animate"),
-    (["--animate", "{tmp}/a.gif", "--view", "back"], "view"),
-    (["--animate", "{tmp}/a.gif", "--fps", "0"], "fps"),
-    (["--animate", "{tmp}/a.gif", "--speed", "-1"], "speed"),
-    (["--animate", "{tmp}/a.gif", "--fps", "120", "--speed", "0.01"], "at most 1000"),  # 2400 frames
-])
+@pytest.mark.parametrize(
+    "argv,word",
+    [
+        (["--animate", "{tmp}/a.avi"], "animate"),
+        (["--animate", "{tmp}/missing/a.gif"], "animate"),
+        (["--animate", "{tmp}"], "animate"),
+        (["--animate", "{tmp}/a.gif", "--view", "back"], "view"),
+        (["--animate", "{tmp}/a.gif", "--fps", "0"], "fps"),
+        (["--animate", "{tmp}/a.gif", "--speed", "-1"], "speed"),
+        (["--animate", "{tmp}/a.gif", "--fps", "120", "--speed", "0.01"], "at most 1000"),  # 2400 frames
+    ],
+)
 def test_show_animate_bad_path_or_option_is_one_line_exit_2(results, capsys, tmp_path, argv, word):
     argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
     code, out, err = cli(capsys, "show", results["wall"], *argv)
@@ -134,9 +136,20 @@ def test_show_animate_of_a_folder_without_motion_is_one_line(capsys, tmp_path):
 
 
 # -- the report's interactive view in headless Chromium -------------------------------------------------------
-CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader", "--no-first-run",
-                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                  "--hide-scrollbars", "--enable-logging=stderr", "--v=0", "--virtual-time-budget=8000"]
+CHROMIUM_FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--enable-unsafe-swiftshader",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--hide-scrollbars",
+    "--enable-logging=stderr",
+    "--v=0",
+    "--virtual-time-budget=8000",
+]
 #: Chromium's own diagnostics of software WebGL and canvas read-backs, printed as console lines: not the page's.
 BROWSER_NOTES = ("[.WebGL-", "Canvas2D:", "[]Automatic fallback")
 GROUND_RGB = (216, 210, 196)  # blastscale.report.motion.GROUND, unlit
@@ -158,16 +171,28 @@ def _open(page, tmp_path, tag, size=(1200, 700)):
     from PIL import Image
 
     shot, net = tmp_path / f"{tag}.png", tmp_path / f"{tag}.json"
-    cmd = [_chromium(), *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / 'profile'}", f"--screenshot={shot}",
-           f"--window-size={size[0]},{size[1]}", f"--log-net-log={net}", page]
+    cmd = [
+        _chromium(),
+        *CHROMIUM_FLAGS,
+        f"--user-data-dir={tmp_path / 'profile'}",
+        f"--screenshot={shot}",
+        f"--window-size={size[0]},{size[1]}",
+        f"--log-net-log={net}",
+        page,
+    ]
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=180, env={**os.environ, "HOME": str(tmp_path)})
     assert proc.returncode == 0, proc.stderr[-2000:]
     console = [line.split("] ", 1)[1] for line in proc.stderr.splitlines() if ":CONSOLE" in line and "] " in line]
     console = [c for c in console if not c.strip('"').startswith(BROWSER_NOTES)]
     log = json.loads(net.read_text())
     start = log["constants"]["logEventTypes"]["URL_REQUEST_START_JOB"]
-    requests = [e["params"]["url"] for e in log["events"] if e["type"] == start and "url" in e.get("params", {})
-                and e["params"].get("initiator") not in (None, "not an origin")]
+    requests = [
+        e["params"]["url"]
+        for e in log["events"]
+        if e["type"] == start
+        and "url" in e.get("params", {})
+        and e["params"].get("initiator") not in (None, "not an origin")
+    ]
     with Image.open(shot) as im:
         return np.asarray(im.convert("RGB"), dtype=int), console, requests
 
@@ -195,8 +220,8 @@ def test_report_view_loads_offline_without_errors_and_moves_the_blocks_not_the_g
 
     scene = (slice(90, 480), slice(0, 1000))  # the two 3D scenes (below the title, above the slider)
     a, b = first[scene], last[scene]
-    ground_a = (np.abs(a - GROUND_RGB).max(axis=2) <= 3)
-    ground_b = (np.abs(b - GROUND_RGB).max(axis=2) <= 3)
+    ground_a = np.abs(a - GROUND_RGB).max(axis=2) <= 3
+    ground_b = np.abs(b - GROUND_RGB).max(axis=2) <= 3
     grey = a.max(axis=2) - a.min(axis=2) < 40, b.max(axis=2) - b.min(axis=2) < 40  # white, ground, grid, text
     block_a, block_b = ~grey[0] & ~ground_a, ~grey[1] & ~ground_b  # the viridis blocks (and the static charge)
     diff = np.abs(a - b).max(axis=2) > 8
@@ -220,8 +245,10 @@ def test_an_ensemble_keeps_and_replays_its_median_and_worst_members(capsys, tmp_
     from blastscale.sim3d.replay import points_of
 
     sc = tmp_path / "ens.toml"
-    sc.write_text(SCENARIOS["column"] + '[scale]\nlength = "1/20"\n[simulation]\nengine = "3d"\nduration_s = 0.2\n'
-                  "ensemble_members = 3\nensemble_perturbation = 0.1\n")
+    sc.write_text(
+        SCENARIOS["column"] + '[scale]\nlength = "1/20"\n[simulation]\nengine = "3d"\nduration_s = 0.2\n'
+        "ensemble_members = 3\nensemble_perturbation = 0.1\n"
+    )
     code, _, err = cli(capsys, "run", sc, "--out", tmp_path / "res", "--json")
     assert code == 0, err
     ens = xr.open_datatree(tmp_path / "res" / "histories.nc")["ensemble"].ds
@@ -271,7 +298,9 @@ def test_show_animate_mp4_without_an_encoder_is_one_line(results, capsys, tmp_pa
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.skipif(__import__("shutil").which("ffmpeg") is None, reason="no ffmpeg here (Debian: apt-get install ffmpeg)")
+@pytest.mark.skipif(
+    __import__("shutil").which("ffmpeg") is None, reason="no ffmpeg here (Debian: apt-get install ffmpeg)"
+)
 def test_show_animate_mp4_has_fps_times_duration_frames(results, capsys, tmp_path):
     """With ffmpeg: an H.264 MP4 of round(fps x duration) frames at fps (ffprobe counts them)."""
     import subprocess
@@ -279,9 +308,24 @@ def test_show_animate_mp4_has_fps_times_duration_frames(results, capsys, tmp_pat
     mp4 = tmp_path / "wall.mp4"
     code, out, err = cli(capsys, "show", results["wall"], "--animate", mp4, "--fps", 30)
     assert code == 0, err
-    probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
-                            "stream=nb_read_frames,r_frame_rate,codec_name", "-of", "json", str(mp4)],
-                           capture_output=True, text=True, check=True)
+    probe = subprocess.run(
+        [
+            "ffprobe",
+            "-v",
+            "error",
+            "-count_frames",
+            "-select_streams",
+            "v:0",
+            "-show_entries",
+            "stream=nb_read_frames,r_frame_rate,codec_name",
+            "-of",
+            "json",
+            str(mp4),
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     stream = json.loads(probe.stdout)["streams"][0]
     assert stream["codec_name"] == "h264" and stream["r_frame_rate"] == "30/1"
     assert int(stream["nb_read_frames"]) == round(30 * DURATION_S)

@@ -79,7 +79,7 @@ def test_force_replaces_a_sweep_store_of_another_sweep(capsys, tmp_path, planar)
 @pytest.mark.parametrize("command", ["run", "sweep"])
 def test_a_second_writer_gets_one_line_and_the_first_finishes(capsys, tmp_path, planar, command):
     out, marker = tmp_path / ("r" if command == "run" else "s.zarr"), tmp_path.parent / f"{tmp_path.name}.m"
-    args = ([command, planar, "--out", out] + (SWEEP if command == "sweep" else []))
+    args = [command, planar, "--out", out] + (SWEEP if command == "sweep" else [])
     first = spawn(args, tmp_path, pause="run:simulating" if command == "run" else "sweep:chunks=1", marker=marker)
     wait_for_marker(first, marker)
     code, _, err = cli(capsys, *args, *(["--force"] if command == "run" else []))
@@ -100,13 +100,35 @@ def test_a_second_writer_gets_one_line_and_the_first_finishes(capsys, tmp_path, 
 WRITERS = {
     "run": lambda out, sc: ["run", sc, "--out", out],
     "sweep": lambda out, sc: ["sweep", sc, *SWEEP, "--out", out],
-    "similarity-map": lambda out, sc: ["similarity-map", sc, "--scales", "0.01", "--density-ratios", "1", "--charges",
-                                       "50", "--standoffs", "2", "--out", out],
+    "similarity-map": lambda out, sc: [
+        "similarity-map",
+        sc,
+        "--scales",
+        "0.01",
+        "--density-ratios",
+        "1",
+        "--charges",
+        "50",
+        "--standoffs",
+        "2",
+        "--out",
+        out,
+    ],
     "reproduce": lambda out, sc: ["reproduce", "--only", "table-geometry", "--out", out],
     "init": lambda out, sc: ["init", f"{out}.toml"],
     "plan": lambda out, sc: ["plan", sc, "--out", out],
-    "plot": lambda out, sc: ["fragility", sc, "--charges", "40,80", "--lognormal", "charge_kg=0.2", "--samples", "10",
-                             "--plot", f"{out}.png"],
+    "plot": lambda out, sc: [
+        "fragility",
+        sc,
+        "--charges",
+        "40,80",
+        "--lognormal",
+        "charge_kg=0.2",
+        "--samples",
+        "10",
+        "--plot",
+        f"{out}.png",
+    ],
 }
 
 
@@ -132,12 +154,15 @@ def test_a_read_only_folder_is_one_line(capsys, tmp_path, planar, writer, monkey
     ro = tmp_path / "ro"
     ro.mkdir()
     if ROOT:  # chmod does not stop root: every file or folder created in ro/ fails as on a read-only mount
+
         def guard(real):
             def call(path, *a, **k):
                 if str(path).startswith(str(ro)):
                     raise OSError(errno.EROFS, os.strerror(errno.EROFS), str(path))
                 return real(path, *a, **k)
+
             return call
+
         monkeypatch.setattr(os, "open", guard(os.open))
         monkeypatch.setattr(os, "mkdir", guard(os.mkdir))
     else:
@@ -159,6 +184,7 @@ def test_a_full_disk_is_one_line_and_leaves_nothing(capsys, tmp_path, planar, wr
 
     def full(*a, **k):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
     if writer == "run":
         monkeypatch.setattr(hist, "write_netcdf", lambda tree, path, **k: (Path(path).write_bytes(b"x" * 10), full()))
     else:
@@ -206,8 +232,9 @@ def test_force_never_replaces_a_user_folder(capsys, tmp_path, planar, command):
 
 
 # -- fault 5: signals -------------------------------------------------------------------------------------------
-@pytest.mark.parametrize("sig, status, words", [(signal.SIGTERM, 143, "terminated (SIGTERM)"),
-                                                (signal.SIGHUP, 129, "hung up (SIGHUP)")])
+@pytest.mark.parametrize(
+    "sig, status, words", [(signal.SIGTERM, 143, "terminated (SIGTERM)"), (signal.SIGHUP, 129, "hung up (SIGHUP)")]
+)
 def test_sigterm_and_sighup_while_writing_leave_nothing(tmp_path, planar, sig, status, words):
     marker = tmp_path.parent / f"{tmp_path.name}.m"
     p = spawn(["run", planar, "--out", tmp_path / "r"], tmp_path, pause="run:writing", marker=marker)
@@ -241,8 +268,18 @@ def test_ctrl_c_on_a_two_worker_sweep_is_one_line_and_resumes(tmp_path, planar):
     from blastscale.io.sweep_store import open_sweep
 
     marker = tmp_path.parent / f"{tmp_path.name}.m"
-    args = ["sweep", planar, "--vary", "standoff_m=1.5:4:6", "--chunk", "1", "--workers", "2", "--out",
-            tmp_path / "s.zarr"]
+    args = [
+        "sweep",
+        planar,
+        "--vary",
+        "standoff_m=1.5:4:6",
+        "--chunk",
+        "1",
+        "--workers",
+        "2",
+        "--out",
+        tmp_path / "s.zarr",
+    ]
     p = spawn(args, tmp_path, pause="sweep:chunks=2", marker=marker, group=True)
     wait_for_marker(p, marker)
     os.killpg(p.pid, signal.SIGINT)
@@ -251,8 +288,13 @@ def test_ctrl_c_on_a_two_worker_sweep_is_one_line_and_resumes(tmp_path, planar):
     assert err.count("\n") == 1 and err.startswith("error: interrupted (Ctrl-C): ") and "chunks kept" in err, err
     r = run(args, tmp_path)
     assert r.returncode == 0, r.stderr
-    assert run(["sweep", planar, "--vary", "standoff_m=1.5:4:6", "--workers", "0", "--out", tmp_path / "one.zarr"],
-               tmp_path).returncode == 0
+    assert (
+        run(
+            ["sweep", planar, "--vary", "standoff_m=1.5:4:6", "--workers", "0", "--out", tmp_path / "one.zarr"],
+            tmp_path,
+        ).returncode
+        == 0
+    )
     a, b = open_sweep(tmp_path / "s.zarr"), open_sweep(tmp_path / "one.zarr")
     assert [n.path for n in a.subtree] == [n.path for n in b.subtree]
     for node in a.subtree:  # every value bit for bit (the chunking, an attribute, differs)
@@ -266,8 +308,9 @@ def test_kill_9_between_the_two_renames_of_a_replacement_loses_nothing(capsys, t
     assert cli(capsys, "run", planar, "--out", tmp_path / "r")[0] == 0
     old = (tmp_path / "r" / "summary.json").read_text()
     marker = tmp_path.parent / f"{tmp_path.name}.m"
-    p = spawn(["run", planar, "--out", tmp_path / "r", "--force"], tmp_path, pause="output:between-renames",
-              marker=marker)
+    p = spawn(
+        ["run", planar, "--out", tmp_path / "r", "--force"], tmp_path, pause="output:between-renames", marker=marker
+    )
     wait_for_marker(p, marker)
     p.kill()
     p.communicate()

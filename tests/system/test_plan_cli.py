@@ -35,16 +35,19 @@ def _scenario(tmp_path, lab: str, scale: str = "") -> str:
     return str(p)
 
 
-@pytest.mark.parametrize("lab,words", [
-    ("charge_tolerance = -0.01", "lab.charge_tolerance = -0.01 is out of range: valid range is [0, 1]"),
-    ("standoff_tolerance_m = -1.0", "lab.standoff_tolerance_m = -1 is out of range"),
-    ("charge_min_kg = 2.0\ncharge_max_kg = 1.0", "charge_min_kg = 2 kg is above charge_max_kg = 1 kg"),
-    ('explosive = "dynamite"', "explosive = 'dynamite' is not known: valid values are tnt, c-4"),
-    ('initiator = "no8"', "initiator = 'no8' is not known: valid values are rp-80, none"),
-    ("initiator_max_fraction = 1.5", "lab.initiator_max_fraction = 1.5 is out of range: valid range is (0, 1]"),
-    ('materials = ["marble", "unobtainium"]', "lab.materials = 'unobtainium' is not known"),
-    ("seed = 1.5", "lab.seed = 1.5 has the wrong type"),
-])
+@pytest.mark.parametrize(
+    "lab,words",
+    [
+        ("charge_tolerance = -0.01", "lab.charge_tolerance = -0.01 is out of range: valid range is [0, 1]"),
+        ("standoff_tolerance_m = -1.0", "lab.standoff_tolerance_m = -1 is out of range"),
+        ("charge_min_kg = 2.0\ncharge_max_kg = 1.0", "charge_min_kg = 2 kg is above charge_max_kg = 1 kg"),
+        ('explosive = "dynamite"', "explosive = 'dynamite' is not known: valid values are tnt, c-4"),
+        ('initiator = "no8"', "initiator = 'no8' is not known: valid values are rp-80, none"),
+        ("initiator_max_fraction = 1.5", "lab.initiator_max_fraction = 1.5 is out of range: valid range is (0, 1]"),
+        ('materials = ["marble", "unobtainium"]', "lab.materials = 'unobtainium' is not known"),
+        ("seed = 1.5", "lab.seed = 1.5 has the wrong type"),
+    ],
+)
 @pytest.mark.parametrize("command", ["plan", "run"])
 def test_bad_lab_entries_are_one_line_exit_2(capsys, tmp_path, lab, words, command):
     code, out, err = cli(capsys, command, _scenario(tmp_path, lab, '\n[scale]\nlength = "1/20"\n'))
@@ -53,19 +56,33 @@ def test_bad_lab_entries_are_one_line_exit_2(capsys, tmp_path, lab, words, comma
 
 
 def test_plan_json_has_the_issues_keys(capsys, tmp_path):
-    code, out, err = cli(capsys, "plan", _scenario(tmp_path, 'specimen_max_height_m = 0.5\nexplosive = "c-4"\n'
-                                                   "samples = 200\n"), "--json")
+    code, out, err = cli(
+        capsys, "plan", _scenario(tmp_path, 'specimen_max_height_m = 0.5\nexplosive = "c-4"\nsamples = 200\n'), "--json"
+    )
     assert code == 0, err
     p = json.loads(out)
     assert p["designs"] and p["rejected"]
     for d in p["designs"]:
-        for key in ("scale", "material", "density_ratio", "explosive_mass_kg", "tnt_equivalent_kg", "standoff_m",
-                    "specimen_mass_kg", "safety_distances_m", "camera_fps", "p_outcome_agree",
-                    "explosive_min_charge_kg", "initiator_tnt_kg", "initiator_fraction"):
+        for key in (
+            "scale",
+            "material",
+            "density_ratio",
+            "explosive_mass_kg",
+            "tnt_equivalent_kg",
+            "standoff_m",
+            "specimen_mass_kg",
+            "safety_distances_m",
+            "camera_fps",
+            "p_outcome_agree",
+            "explosive_min_charge_kg",
+            "initiator_tnt_kg",
+            "initiator_fraction",
+        ):
             assert key in d
         # C-4 for the impulse, beside the default RP-80 EBW detonator's TNT equivalent
-        assert d["explosive_mass_kg"] == pytest.approx((d["tnt_equivalent_kg"] - d["initiator_tnt_kg"]) / 1.19,
-                                                       rel=1e-12)
+        assert d["explosive_mass_kg"] == pytest.approx(
+            (d["tnt_equivalent_kg"] - d["initiator_tnt_kg"]) / 1.19, rel=1e-12
+        )
         assert d["explosive_mass_kg"] >= d["explosive_min_charge_kg"] and d["initiator_fraction"] <= 0.5
         assert set(d["safety_distances_m"]) == {"34.5 kPa", "6.9 kPa", "1.03 kPa", "200 Pa", "K24", "K40", "K50"}
     assert all(r["reasons"] for r in p["rejected"])
@@ -79,8 +96,9 @@ def test_infeasible_lab_is_one_line(capsys, tmp_path):
 
 def test_plan_out_writes_the_best_design_and_its_card(capsys, tmp_path):
     out_dir = tmp_path / "plan"
-    code, out, err = cli(capsys, "plan", _scenario(tmp_path, "specimen_max_height_m = 0.5\nsamples = 200\n"),
-                         "--out", str(out_dir))
+    code, out, err = cli(
+        capsys, "plan", _scenario(tmp_path, "specimen_max_height_m = 0.5\nsamples = 200\n"), "--out", str(out_dir)
+    )
     assert code == 0, err
     plan = json.loads((out_dir / "plan.json").read_text())
     summary = json.loads((out_dir / "summary.json").read_text())
@@ -98,13 +116,22 @@ def test_plan_out_writes_the_best_design_and_its_card(capsys, tmp_path):
     assert json.loads(out)["test_card"]["p_outcome_agree"] == card["p_outcome_agree"]
 
 
-@pytest.mark.parametrize("scale,lab,words", [
-    # 1/40: 0.10 g TNT in all, of which the RP-80 is 0.223 g: the initiator alone is more than the charge
-    ('"1/40"', "samples = 20\n", ["the initiator alone (0.0002229 kg TNT) delivers more than the design's whole "
-                                  "charge", "initiator_max_fraction = 0.5"]),
-    # 1/40 without an initiator: 0.10 g of TNT, below its 0.724 g minimum reliable charge
-    ('"1/40"', 'initiator = "none"\nsamples = 20\n', ["below its minimum reliable charge 0.0007238 kg"]),
-])
+@pytest.mark.parametrize(
+    "scale,lab,words",
+    [
+        # 1/40: 0.10 g TNT in all, of which the RP-80 is 0.223 g: the initiator alone is more than the charge
+        (
+            '"1/40"',
+            "samples = 20\n",
+            [
+                "the initiator alone (0.0002229 kg TNT) delivers more than the design's whole charge",
+                "initiator_max_fraction = 0.5",
+            ],
+        ),
+        # 1/40 without an initiator: 0.10 g of TNT, below its 0.724 g minimum reliable charge
+        ('"1/40"', 'initiator = "none"\nsamples = 20\n', ["below its minimum reliable charge 0.0007238 kg"]),
+    ],
+)
 def test_run_at_a_chosen_scale_warns_of_an_unfireable_shot_and_completes(capsys, tmp_path, scale, lab, words):
     code, out, err = cli(capsys, "run", _scenario(tmp_path, lab, f"\n[scale]\nlength = {scale}\n"), "--json")
     assert code == 0, err
@@ -118,8 +145,10 @@ def test_run_at_a_chosen_scale_warns_of_an_unfireable_shot_and_completes(capsys,
 
 
 def test_a_redefined_library_explosive_warns_once_in_one_line(capsys, tmp_path):
-    lab = 'explosive = "C4"\nsamples = 20\nspecimen_max_height_m = 0.5\n[lab.explosives.C4]\npressure_factor = 1.3\n' \
-          'impulse_factor = 1.2\n'
+    lab = (
+        'explosive = "C4"\nsamples = 20\nspecimen_max_height_m = 0.5\n[lab.explosives.C4]\npressure_factor = 1.3\n'
+        "impulse_factor = 1.2\n"
+    )
     code, out, err = cli(capsys, "plan", _scenario(tmp_path, lab), "--json")
     assert code == 0, err
     lines = [x for x in err.splitlines() if "redefines" in x]

@@ -108,8 +108,14 @@ def test_the_docs_commands_name_real_commands_and_files():
                     made.update(files)
                     continue
                 for f in files:
-                    if (f[:-5] in shipped or f in made or f.split("/")[-1].isupper() or f.startswith("DIR")
-                            or "SCENARIO" in f or f in DOCS_FILES_DESCRIBED):
+                    if (
+                        f[:-5] in shipped
+                        or f in made
+                        or f.split("/")[-1].isupper()
+                        or f.startswith("DIR")
+                        or "SCENARIO" in f
+                        or f in DOCS_FILES_DESCRIBED
+                    ):
                         continue
                     bad.append(f"{page.name}: {line.strip()} ({f} is not shipped nor written by an earlier init)")
     assert not bad, "\n".join(bad)

@@ -13,8 +13,16 @@ from blastscale.report import SECTIONS, applicable_slips, format_charge, write_s
 from blastscale.study import Study
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
-CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
-                  "--disable-component-update", "--disable-sync", "--hide-scrollbars"]
+CHROMIUM_FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--hide-scrollbars",
+]
 
 
 class _Structure(HTMLParser):
@@ -101,12 +109,19 @@ def _chromium() -> str | None:
     return None
 
 
-@pytest.mark.skipif(_chromium() is None, reason="Chromium not found (Debian: apt-get install -y chromium; "
-                                                "CI's .ci/run installs it)")
+@pytest.mark.skipif(
+    _chromium() is None, reason="Chromium not found (Debian: apt-get install -y chromium; CI's .ci/run installs it)"
+)
 def test_report_renders_in_headless_chromium(report_dir, tmp_path):
     shot = tmp_path / "shot.png"
-    cmd = [_chromium(), *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / 'profile'}", f"--screenshot={shot}",
-           "--window-size=1200,2400", (report_dir / "report.html").resolve().as_uri()]
+    cmd = [
+        _chromium(),
+        *CHROMIUM_FLAGS,
+        f"--user-data-dir={tmp_path / 'profile'}",
+        f"--screenshot={shot}",
+        "--window-size=1200,2400",
+        (report_dir / "report.html").resolve().as_uri(),
+    ]
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=120, env={**os.environ, "HOME": str(tmp_path)})
     assert proc.returncode == 0, proc.stderr[-2000:]
     data = shot.read_bytes()
@@ -130,8 +145,11 @@ def test_the_report_opens_with_its_verdict_labels_in_words_and_the_specimen_in_m
 
     page = (report_dir / "report.html").read_text()
     text = _text(page)
-    assert text.index("Verdict: similar: prototype and up-scaled model both stand (planar, 3D)") < text.index(
-        "1. The experiment to build") < text.index("Build a block")
+    assert (
+        text.index("Verdict: similar: prototype and up-scaled model both stand (planar, 3D)")
+        < text.index("1. The experiment to build")
+        < text.index("Build a block")
+    )
     assert "first-peak ratios" in text and "within 5 % of 1" in text
     cells = re.findall(r"<td>([^<]*)</td>", page)
     assert not [c for c in cells if re.fullmatch(r"[a-z_]+(\.[A-Za-z0-9_-]+)+", c)]  # no dotted keys
@@ -139,7 +157,7 @@ def test_the_report_opens_with_its_verdict_labels_in_words_and_the_specimen_in_m
     # the 3D top displacement of the 1/200 block: the up-scaled model's value x lambda, in mm
     s = json.loads((report_dir / "summary.json").read_text())
     mm = s["3d"]["model"]["max_top_displacement_m"] * 0.005 * 1e3
-    row = page[page.index("What to measure on the specimen"):]
+    row = page[page.index("What to measure on the specimen") :]
     assert f"<td>largest top displacement (3D)</td>" in row and f"{mm:.4g}" in row and "<td>mm</td>" in row
     assert s["verdict"]["similar"] is True and s["verdict"]["line"].startswith("Verdict: similar")
 
@@ -155,8 +173,9 @@ def test_a_failed_similarity_is_the_first_line(tmp_path):
     data = json.loads((Path(__file__).parents[1] / "data" / "circular_400kg_summary.json").read_text())
     v = verdict(data["summary"], "column", circular=True)
     assert v["similar"] is False
-    assert v["line"].startswith("Verdict: NOT similar: the outcomes disagree (3D): the prototype stands, the model "
-                                "collapses")
+    assert v["line"].startswith(
+        "Verdict: NOT similar: the outcomes disagree (3D): the prototype stands, the model collapses"
+    )
     assert "ensembles disagree on collapse: probability 0 (prototype) vs 1 (model)" in v["line"]
     assert "circular drums wobble chaotically" in v["line"] and "after a collapse" in v["line"]
     assert v["line"] == data["verdict_line"]  # the line that run printed and wrote into summary.json
@@ -168,8 +187,12 @@ def test_gravity_alone_says_nothing_is_scaled():
     so, with the structure's stability, not "the scenario has no [scale] table"."""
     from blastscale.report.verdict import verdict
 
-    s = {"design": None, "scenario": {"blast": {"charge_kg": 0.0}, "scale": {"length": 0.1}}, "planar": None,
-         "3d": {"prototype": {"collapsed": False, "stability": "settles"}, "model": None, "similarity": None}}
+    s = {
+        "design": None,
+        "scenario": {"blast": {"charge_kg": 0.0}, "scale": {"length": 0.1}},
+        "planar": None,
+        "3d": {"prototype": {"collapsed": False, "stability": "settles"}, "model": None, "similarity": None},
+    }
     v = verdict(s, "wall")
     assert v["similar"] is None
     assert v["line"] == "Verdict: gravity alone (no charge): nothing is scaled or compared; the structure settles (3D)."
@@ -182,5 +205,7 @@ def test_a_prototype_only_study_says_so(tmp_path):
     data = sc.to_dict()
     data.pop("scale")
     r = Study(Scenario.from_dict(data, source="test")).run()
-    assert verdict_line(r) == ("Verdict: prototype only: no specimen is designed and nothing is compared (the scenario "
-                               "has no [scale] table); the prototype stands (planar rocking).")
+    assert verdict_line(r) == (
+        "Verdict: prototype only: no specimen is designed and nothing is compared (the scenario "
+        "has no [scale] table); the prototype stands (planar rocking)."
+    )

@@ -66,8 +66,13 @@ def test_reproduce_writes_items_then_skips_them(capsys, tmp_path):
     code, stdout, err = reproduce(capsys, out)
     assert code == 0, err
     done = sorted(p.name for p in out.iterdir() if p.is_dir())
-    assert done == ["example-paper-table-blast-loading", "scaling-factors", "scenario-paper-block-50kg-lambda200",
-                    "table-blast-loading", "table-geometry"]
+    assert done == [
+        "example-paper-table-blast-loading",
+        "scaling-factors",
+        "scenario-paper-block-50kg-lambda200",
+        "table-blast-loading",
+        "table-geometry",
+    ]
     assert (out / "example-paper-table-blast-loading" / "table_blast_loading.png").stat().st_size > 0
     assert (out / "scenario-paper-block-50kg-lambda200" / "report.html").exists()
     markers = {d: (out / d / "item.json").stat().st_mtime_ns for d in done}
@@ -115,7 +120,8 @@ def test_a_changed_scenario_runs_again(capsys, tmp_path, monkeypatch):
             main(args)
     assert capsys.readouterr().out.count("skipped (done)") == 1
     (scen / "paper_block_50kg_lambda20.toml").write_text(
-        (scen / "paper_block_50kg_lambda20.toml").read_text().replace("charge_kg = 50.0", "charge_kg = 40.0"))
+        (scen / "paper_block_50kg_lambda20.toml").read_text().replace("charge_kg = 50.0", "charge_kg = 40.0")
+    )
     with pytest.raises(SystemExit):
         main(args)
     assert "skipped (done)" not in capsys.readouterr().out

@@ -45,15 +45,34 @@ def test_rock_paper_100kg_with_model_overturns(capsys):
     assert out["model"]["collapse_time_s"] == pytest.approx(out["prototype"]["collapse_time_s"], abs=2e-3)
     assert out["similarity"]["max_abs_rotation_diff_to_tipping_rad"] <= 5e-4
     assert out["similarity"]["collapse_time_diff_s"] == pytest.approx(
-        out["model"]["collapse_time_s"] - out["prototype"]["collapse_time_s"], abs=1e-12)
-    assert out["model_experiment"]["charge_kg"] * 1e6 == pytest.approx(0.492, rel=1e-2)  # paper Table 4: 0.492 (mg, corrected)
+        out["model"]["collapse_time_s"] - out["prototype"]["collapse_time_s"], abs=1e-12
+    )
+    assert out["model_experiment"]["charge_kg"] * 1e6 == pytest.approx(
+        0.492, rel=1e-2
+    )  # paper Table 4: 0.492 (mg, corrected)
 
 
 def test_rock_impulsive_model_is_exact_and_depth_cancels(capsys):
-    a = run_json(capsys, "rock", *PAPER, "--charge", "50", "--pulse", "impulsive", "--scale", "0.1",
-                 "--density-ratio", "0.07", "--duration", "3", "--json")
+    a = run_json(
+        capsys,
+        "rock",
+        *PAPER,
+        "--charge",
+        "50",
+        "--pulse",
+        "impulsive",
+        "--scale",
+        "0.1",
+        "--density-ratio",
+        "0.07",
+        "--duration",
+        "3",
+        "--json",
+    )
     assert a["similarity"]["max_abs_rotation_diff_rad"] <= 1e-10
-    b = run_json(capsys, "rock", *PAPER, "--charge", "50", "--pulse", "impulsive", "--depth", "4", "--duration", "3", "--json")
+    b = run_json(
+        capsys, "rock", *PAPER, "--charge", "50", "--pulse", "impulsive", "--depth", "4", "--duration", "3", "--json"
+    )
     assert b["prototype"]["max_rotation_rad"] == pytest.approx(a["prototype"]["max_rotation_rad"], rel=1e-12)
 
 
@@ -65,8 +84,19 @@ def test_rock_restitution_option(capsys):
 def test_critical_paper_79_8_kg(capsys):
     out = run_json(capsys, "critical", *PAPER, "--json")
     assert math.floor(out["critical_charge_kg"] * 10) / 10 == 79.8  # paper: 79.8 kg (truncated)
-    out = run_json(capsys, "critical", "--height", "10", "--alpha-deg", "15", "--charge", f"{out['critical_charge_kg']}",
-                   "--model", "masi2021", "--json")
+    out = run_json(
+        capsys,
+        "critical",
+        "--height",
+        "10",
+        "--alpha-deg",
+        "15",
+        "--charge",
+        f"{out['critical_charge_kg']}",
+        "--model",
+        "masi2021",
+        "--json",
+    )
     assert out["critical_standoff_m"] == pytest.approx(2.0, rel=1e-7)
 
 
@@ -79,7 +109,9 @@ def test_critical_default_model_kingery_bulmash(capsys):
 def test_plots_are_written(tmp_path, capsys):
     pytest.importorskip("matplotlib")
     f1 = tmp_path / "rock.png"
-    run_json(capsys, "rock", *PAPER, "--charge", "50", "--duration", "2", "--scale", "0.05", "--plot", str(f1), "--json")
+    run_json(
+        capsys, "rock", *PAPER, "--charge", "50", "--duration", "2", "--scale", "0.05", "--plot", str(f1), "--json"
+    )
     f2 = tmp_path / "pi.png"
     run_json(capsys, "critical", *PAPER, "--plot", str(f2), "--json")
     assert f1.stat().st_size > 10_000 and f2.stat().st_size > 10_000
@@ -123,8 +155,25 @@ def test_help_shows_the_units(capsys, command):
 # ---------------------------------------------------------------- capacity (issue 11)
 def test_capacity_json_paper_block_and_model(capsys, tmp_path):
     f = tmp_path / "cap.png"
-    out = run_json(capsys, "capacity", "--height", "10", "--alpha-deg", "15", "--standoffs", "1.5,2,3",
-                   "--model", "masi2021", "--scale", "0.005", "--charge", "100", "--plot", str(f), "--json")
+    out = run_json(
+        capsys,
+        "capacity",
+        "--height",
+        "10",
+        "--alpha-deg",
+        "15",
+        "--standoffs",
+        "1.5,2,3",
+        "--model",
+        "masi2021",
+        "--scale",
+        "0.005",
+        "--charge",
+        "100",
+        "--plot",
+        str(f),
+        "--json",
+    )
     assert out["standoff_m"] == [1.5, 2.0, 3.0]
     # the paper's 79.8 kg at 2 m (79.870 with the Friedlander pulse, docs/rocking.md)
     assert out["critical_charge_kg"][1] == pytest.approx(79.870, abs=0.005)
@@ -138,7 +187,9 @@ def test_capacity_json_paper_block_and_model(capsys, tmp_path):
 
 
 def test_capacity_range_grid_and_lab_specimen(capsys):
-    out = run_json(capsys, "capacity", "--height", "0.05", "--alpha-deg", "15", "--standoffs", "0.01:0.1:4:log", "--json")
+    out = run_json(
+        capsys, "capacity", "--height", "0.05", "--alpha-deg", "15", "--standoffs", "0.01:0.1:4:log", "--json"
+    )
     assert len(out["critical_charge_kg"]) == 4 and all(w > 0 for w in out["critical_charge_kg"])
     assert out["standoff_m"][0] == pytest.approx(0.01) and out["standoff_m"][-1] == pytest.approx(0.1)
     out = run_json(capsys, "critical", "--height", "0.05", "--alpha-deg", "15", "--standoff", "0.01", "--json")

@@ -18,8 +18,11 @@ from _spawn import default_signals
 
 # the console script (as a user runs it), else the same entry point under that name
 _SCRIPT = Path(sys.executable).with_name("blastscale")
-BLASTSCALE = [str(_SCRIPT)] if _SCRIPT.exists() else [
-    sys.executable, "-c", "import sys; sys.argv[0] = 'blastscale'; from blastscale.cli import main; main()"]
+BLASTSCALE = (
+    [str(_SCRIPT)]
+    if _SCRIPT.exists()
+    else [sys.executable, "-c", "import sys; sys.argv[0] = 'blastscale'; from blastscale.cli import main; main()"]
+)
 
 
 def run_cli(capsys, *argv) -> tuple[int, str, str]:
@@ -47,8 +50,15 @@ def test_run_default_scenario_json(capsys, tmp_path):
     saved = json.loads((out_dir / "summary.json").read_text())
     assert saved["critical"] == s["critical"] and saved["scalars"] == s["scalars"]
     names = {p.name for p in out_dir.iterdir()}
-    assert {"summary.json", "histories.nc", "report.html", "scenario.toml", "blast_pulses.png",
-            "planar_rocking.png", "response_3d.png"} <= names
+    assert {
+        "summary.json",
+        "histories.nc",
+        "report.html",
+        "scenario.toml",
+        "blast_pulses.png",
+        "planar_rocking.png",
+        "response_3d.png",
+    } <= names
     assert "histories.csv" not in names  # only on request (run --csv): a column's is ~150 MB
     # an ordinary file and folder (the old summary.json was 0600 via tempfile)
     assert stat.S_IMODE((out_dir / "summary.json").stat().st_mode) & 0o044 == 0o044
@@ -58,8 +68,9 @@ def test_run_default_scenario_json(capsys, tmp_path):
 
 def test_histories_files_have_units_and_match(capsys, tmp_path):
     out_dir = tmp_path / "r"
-    code, _, err = run_cli(capsys, "run", "--out", str(out_dir), "--duration", "0.3", "--set", "critical_charge=false",
-                           "--csv")
+    code, _, err = run_cli(
+        capsys, "run", "--out", str(out_dir), "--duration", "0.3", "--set", "critical_charge=false", "--csv"
+    )
     assert code == 0, err
     tree = xr.open_datatree(out_dir / "histories.nc")
     assert set(tree.children) == {"planar", "sim3d"}
@@ -70,8 +81,17 @@ def test_histories_files_have_units_and_match(capsys, tmp_path):
     import pandas as pd
 
     csv = pd.read_csv(out_dir / "histories.csv")
-    assert list(csv.columns) == ["engine", "system", "variable", "time_s", "element", "component", "member", "value",
-                                 "units"]
+    assert list(csv.columns) == [
+        "engine",
+        "system",
+        "variable",
+        "time_s",
+        "element",
+        "component",
+        "member",
+        "value",
+        "units",
+    ]
     rows = csv[(csv.engine == "planar") & (csv.system == "prototype") & (csv.variable == "rotation_y")]
     assert rows["value"].to_numpy() == pytest.approx(theta, rel=1e-9)  # CSV holds 10 significant digits
     assert set(rows["units"]) == {"rad"}
@@ -79,8 +99,17 @@ def test_histories_files_have_units_and_match(capsys, tmp_path):
 
 def test_existing_folder_refused_then_replaced_with_force(capsys, tmp_path):
     out_dir = tmp_path / "r"
-    args = ["run", "--out", str(out_dir), "--duration", "0.1", "--set", "engine=planar", "--set",
-            "critical_charge=false"]
+    args = [
+        "run",
+        "--out",
+        str(out_dir),
+        "--duration",
+        "0.1",
+        "--set",
+        "engine=planar",
+        "--set",
+        "critical_charge=false",
+    ]
     assert run_cli(capsys, *args)[0] == 0
     first = (out_dir / "summary.json").read_text()
     code, _, err = run_cli(capsys, *args)
@@ -136,9 +165,15 @@ def test_ctrl_c_exits_130_one_line_no_partial_folder(tmp_path, moment):
     there, so the interruption always happens where the test says (no race with the clock)."""
     out_dir, marker = tmp_path / "r", tmp_path.parent / f"{tmp_path.name}.marker"
     env = {**os.environ, "BLASTSCALE_PAUSE_AT": f"run:{moment}", "BLASTSCALE_PAUSE_MARKER": str(marker)}
-    proc = subprocess.Popen(BLASTSCALE + ["run", "--out", str(out_dir), "--duration", "0.2"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path, env=env,
-                            preexec_fn=default_signals)
+    proc = subprocess.Popen(
+        BLASTSCALE + ["run", "--out", str(out_dir), "--duration", "0.2"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=tmp_path,
+        env=env,
+        preexec_fn=default_signals,
+    )
     assert _wait_for(marker.exists, 120), proc.communicate()[1]
     if moment != "started":  # the temporary folder exists: a partial result is on disk
         assert any(p.name.startswith(".r.partial-") for p in tmp_path.iterdir())
@@ -167,8 +202,10 @@ def test_a_scenario_without_scale_runs_the_prototype_alone(capsys, tmp_path):
     says so (design, model and similarity null), the histories hold the prototype only, and the
     report says it is a prototype-only study."""
     path = tmp_path / "proto.toml"
-    path.write_text('title = "prototype only"\n[structure]\nkind = "block"\n[blast]\ncharge_kg = 50.0\n'
-                    'standoff_m = 2.0\n[simulation]\nengine = "planar"\nduration_s = 1.0\n')
+    path.write_text(
+        'title = "prototype only"\n[structure]\nkind = "block"\n[blast]\ncharge_kg = 50.0\n'
+        'standoff_m = 2.0\n[simulation]\nengine = "planar"\nduration_s = 1.0\n'
+    )
     out_dir = tmp_path / "out"
     code, out, err = run_cli(capsys, "run", str(path), "--out", str(out_dir), "--json")
     assert code == 0, err

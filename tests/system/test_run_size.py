@@ -17,16 +17,21 @@ from _spawn import BLASTSCALE, run, spawn, wait_for_marker
 
 def _wall_file(path: Path, courses: int, units: int) -> Path:
     """A stack-bonded wall of 0.5 x 0.25 x 0.15 m boxes as our block-model JSON."""
-    blocks = [{"vertices": [[x, u * 0.25 + y, c * 0.15 + z] for x in (0.0, 0.5) for y in (0.0, 0.25)
-                            for z in (0.0, 0.15)]} for c in range(courses) for u in range(units)]
+    blocks = [
+        {"vertices": [[x, u * 0.25 + y, c * 0.15 + z] for x in (0.0, 0.5) for y in (0.0, 0.25) for z in (0.0, 0.15)]}
+        for c in range(courses)
+        for u in range(units)
+    ]
     path.write_text(json.dumps({"blocks": blocks}))
     return path
 
 
 def _scenario(folder: Path, blocks: str, duration: float) -> Path:
     p = folder / "wall.toml"
-    p.write_text(f'[structure]\nkind = "assembly"\nfile = "{blocks}"\n[blast]\ncharge_kg = 10.0\nstandoff_m = 5.0\n'
-                 f'[scale]\nlength = 0.05\n[simulation]\nengine = "3d"\nduration_s = {duration}\n')
+    p.write_text(
+        f'[structure]\nkind = "assembly"\nfile = "{blocks}"\n[blast]\ncharge_kg = 10.0\nstandoff_m = 5.0\n'
+        f'[scale]\nlength = 0.05\n[simulation]\nengine = "3d"\nduration_s = {duration}\n'
+    )
     return p
 
 
@@ -41,8 +46,11 @@ def test_the_estimate_is_said_before_the_run_starts(tmp_path):
     _, err = p.communicate(timeout=60)
     lines = err.splitlines()
     assert p.returncode == 143 and lines[-1].startswith("error: terminated"), err
-    m = re.fullmatch(r"this run: about (.+) and ([\d.]+) (MB|GB): 22 bodies, (\d+) contacts, 20 s simulated, "
-                     r"(\d+) samples x 2 runs", lines[0])
+    m = re.fullmatch(
+        r"this run: about (.+) and ([\d.]+) (MB|GB): 22 bodies, (\d+) contacts, 20 s simulated, "
+        r"(\d+) samples x 2 runs",
+        lines[0],
+    )
     assert m, err
     # 11 on the ground, 2 x 10 head joints, 11 bed joints: 42 interfaces (a count, not a fit)
     assert int(m.group(4)) == 42
@@ -57,10 +65,19 @@ def test_a_file_over_the_block_limit_is_refused_in_one_line(tmp_path):
     sc = _scenario(tmp_path, "w.json", 0.1)
     env = {**os.environ, "MPLBACKEND": "Agg", "BLASTSCALE_MAX_BLOCKS": "5"}
     for args in (["run", sc, "--out", tmp_path / "r"], ["show", tmp_path / "w.json"]):
-        p = subprocess.run(BLASTSCALE + [str(a) for a in args], capture_output=True, text=True, cwd=tmp_path,
-                           env=env, timeout=120, check=False)
+        p = subprocess.run(
+            BLASTSCALE + [str(a) for a in args],
+            capture_output=True,
+            text=True,
+            cwd=tmp_path,
+            env=env,
+            timeout=120,
+            check=False,
+        )
         assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1, p.stderr
-        assert p.stderr.startswith("error: w.json: 6 blocks is out of range") and "valid range is <= 5 blocks" in p.stderr
+        assert (
+            p.stderr.startswith("error: w.json: 6 blocks is out of range") and "valid range is <= 5 blocks" in p.stderr
+        )
         assert sorted(x.name for x in tmp_path.iterdir()) == ["w.json", "wall.toml"]
 
 
@@ -76,11 +93,21 @@ def test_the_study_guard_names_the_largest_structure_that_fits(tmp_path):
     s = load_scenario(sc)
     hours = estimate_seconds(s, Study(s).structure()) / 3 / 3600
     env = {**os.environ, "MPLBACKEND": "Agg", "BLASTSCALE_MAX_HOURS": repr(hours)}
-    p = subprocess.run(BLASTSCALE + ["run", str(sc), "--out", str(tmp_path / "r")], capture_output=True, text=True,
-                       cwd=tmp_path, env=env, timeout=120, check=False)
+    p = subprocess.run(
+        BLASTSCALE + ["run", str(sc), "--out", str(tmp_path / "r")],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        env=env,
+        timeout=120,
+        check=False,
+    )
     assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1, p.stderr
-    m = re.search(r"simulation.duration_s = 1 s is out of range: .* valid range is <= ([\d.e-]+) s here .*"
-                  r"or a structure of <= (\d+) bodies at this duration", p.stderr)
+    m = re.search(
+        r"simulation.duration_s = 1 s is out of range: .* valid range is <= ([\d.e-]+) s here .*"
+        r"or a structure of <= (\d+) bodies at this duration",
+        p.stderr,
+    )
     assert m, p.stderr
     assert 0.3 <= float(m.group(1)) <= 0.34 and int(m.group(2)) == 4
     assert sorted(x.name for x in tmp_path.iterdir()) == ["w.json", "wall.toml"]
@@ -91,8 +118,15 @@ def test_progress_lines_when_stderr_is_a_file(tmp_path):
     log = tmp_path / "log.txt"
     env = {**os.environ, "MPLBACKEND": "Agg", "BLASTSCALE_PROGRESS_SECONDS": "0.2"}
     with log.open("w") as fh:
-        p = subprocess.run(BLASTSCALE + ["run", "--set", "simulation.engine=3d", "--set", "simulation.duration_s=1"],
-                           stdout=subprocess.DEVNULL, stderr=fh, cwd=tmp_path, env=env, timeout=300, check=False)
+        p = subprocess.run(
+            BLASTSCALE + ["run", "--set", "simulation.engine=3d", "--set", "simulation.duration_s=1"],
+            stdout=subprocess.DEVNULL,
+            stderr=fh,
+            cwd=tmp_path,
+            env=env,
+            timeout=300,
+            check=False,
+        )
     text = log.read_text()
     assert p.returncode == 0, text
     lines = [ln for ln in text.splitlines() if ln.startswith("progress: ")]

@@ -22,9 +22,29 @@ def run(capsys, *argv):
 
 def test_block3d_json_prototype_model_and_similarity(capsys, tmp_path):
     png = tmp_path / "b3d.png"
-    code, out = run(capsys, "block3d", "--height", "10", "--alpha-deg", "15", "--charge", "50", "--standoff", "2",
-                    "--model", "masi2021", "--friction", "2.0", "--duration", "0.8", "--scale", "0.005",
-                    "--plot", str(png), "--json")
+    code, out = run(
+        capsys,
+        "block3d",
+        "--height",
+        "10",
+        "--alpha-deg",
+        "15",
+        "--charge",
+        "50",
+        "--standoff",
+        "2",
+        "--model",
+        "masi2021",
+        "--friction",
+        "2.0",
+        "--duration",
+        "0.8",
+        "--scale",
+        "0.005",
+        "--plot",
+        str(png),
+        "--json",
+    )
     assert code in (0, None)
     d = json.loads(out.out)
     assert OUTCOME_KEYS <= d["prototype"].keys() and OUTCOME_KEYS <= d["model"].keys()
@@ -37,8 +57,27 @@ def test_block3d_json_prototype_model_and_similarity(capsys, tmp_path):
 
 
 #: the paper's 1/200 block specimen typed in at its own size (issue 8): 2.5 cm x 5 cm x 5 mm, 2.33e-7 kg at 1 cm
-SPECIMEN = ["--height", "0.05", "--alpha-deg", "15", "--depth", "0.005", "--density", "2000", "--model", "masi2021",
-            "--friction", "0.7", "--charge", "2.3318e-7", "--standoff", "0.01", "--duration", "0.2121", "--json"]
+SPECIMEN = [
+    "--height",
+    "0.05",
+    "--alpha-deg",
+    "15",
+    "--depth",
+    "0.005",
+    "--density",
+    "2000",
+    "--model",
+    "masi2021",
+    "--friction",
+    "0.7",
+    "--charge",
+    "2.3318e-7",
+    "--standoff",
+    "0.01",
+    "--duration",
+    "0.2121",
+    "--json",
+]
 
 
 def test_block3d_specimen_at_its_own_size_gives_the_prototype_angle(capsys):
@@ -61,18 +100,66 @@ def test_block3d_specimen_at_its_own_size_gives_the_prototype_angle(capsys):
 
 def test_block3d_explicit_timestep_overrides_the_derived_step(capsys):
     # --timestep replaces the derived step; the derived 2 ms contact time constant is raised to 4 steps
-    code, out = run(capsys, "block3d", "--height", "10", "--width", "2", "--charge", "10", "--standoff", "5",
-                    "--model", "masi2021", "--duration", "0.02", "--timestep", "1e-3", "--json")
+    code, out = run(
+        capsys,
+        "block3d",
+        "--height",
+        "10",
+        "--width",
+        "2",
+        "--charge",
+        "10",
+        "--standoff",
+        "5",
+        "--model",
+        "masi2021",
+        "--duration",
+        "0.02",
+        "--timestep",
+        "1e-3",
+        "--json",
+    )
     assert code in (0, None), out.err
     c = json.loads(out.out)["contact"]
     assert c["timestep_s"] == 1e-3 and c["time_constant_s"] == pytest.approx(4e-3, rel=1e-12)
-    code, out = run(capsys, "block3d", "--height", "10", "--width", "2", "--charge", "10", "--standoff", "5",
-                    "--model", "masi2021", "--duration", "0.02", "--timestep", "5e-5", "--json")
+    code, out = run(
+        capsys,
+        "block3d",
+        "--height",
+        "10",
+        "--width",
+        "2",
+        "--charge",
+        "10",
+        "--standoff",
+        "5",
+        "--model",
+        "masi2021",
+        "--duration",
+        "0.02",
+        "--timestep",
+        "5e-5",
+        "--json",
+    )
     c = json.loads(out.out)["contact"]
     assert c["timestep_s"] == 5e-5 and c["time_constant_s"] == pytest.approx(2e-3, rel=1e-12)
     # the stability bound stays: 0.01 sqrt(L / g) = 0.0101 s for 10 m
-    code, out = run(capsys, "block3d", "--height", "10", "--width", "2", "--charge", "10", "--standoff", "5",
-                    "--duration", "0.1", "--timestep", "0.02")
+    code, out = run(
+        capsys,
+        "block3d",
+        "--height",
+        "10",
+        "--width",
+        "2",
+        "--charge",
+        "10",
+        "--standoff",
+        "5",
+        "--duration",
+        "0.1",
+        "--timestep",
+        "0.02",
+    )
     assert code == 2 and "timestep" in out.err and len(out.err.strip().splitlines()) == 1
 
 
@@ -81,8 +168,27 @@ def test_block3d_readme_comparison_at_one_two_hundredth(capsys):
     up-scaled: measured max |rotation difference| 6.96e-05 rad, max |sliding difference| 0.216 mm,
     the prototype's peak 0.0611462 rad; asserted 1e-4 rad and 0.3 mm (the finite pulse's
     departure from exact similarity, docs/sim3d.md) and the peak to 1e-6."""
-    code, out = run(capsys, "block3d", "--height", "10", "--alpha-deg", "15", "--charge", "50", "--standoff", "2",
-                    "--model", "masi2021", "--scale", "0.005", "--friction", "0.7", "--duration", "3", "--json")
+    code, out = run(
+        capsys,
+        "block3d",
+        "--height",
+        "10",
+        "--alpha-deg",
+        "15",
+        "--charge",
+        "50",
+        "--standoff",
+        "2",
+        "--model",
+        "masi2021",
+        "--scale",
+        "0.005",
+        "--friction",
+        "0.7",
+        "--duration",
+        "3",
+        "--json",
+    )
     assert code in (0, None), out.err
     d = json.loads(out.out)
     assert d["prototype"]["max_rotation_rad"] == pytest.approx(0.0611462, rel=1e-6)
@@ -90,9 +196,23 @@ def test_block3d_readme_comparison_at_one_two_hundredth(capsys):
     assert s["max_abs_rotation_diff_rad"] <= 1e-4 and s["max_abs_sliding_diff_m"] <= 3e-4
     assert s["outcomes_agree"] is True and s["first_peak_rotation_ratio"] == pytest.approx(1.0, abs=1e-3)
 
+
 def test_block3d_without_scale_has_no_model_block(capsys):
-    code, out = run(capsys, "block3d", "--width", "2", "--charge", "10", "--standoff", "5", "--model", "masi2021",
-                    "--duration", "0.2", "--json")
+    code, out = run(
+        capsys,
+        "block3d",
+        "--width",
+        "2",
+        "--charge",
+        "10",
+        "--standoff",
+        "5",
+        "--model",
+        "masi2021",
+        "--duration",
+        "0.2",
+        "--json",
+    )
     assert code in (0, None)
     d = json.loads(out.out)
     assert OUTCOME_KEYS <= d["prototype"].keys() and "model" not in d and "similarity" not in d
@@ -114,8 +234,9 @@ def test_block3d_without_scale_has_no_model_block(capsys):
     ],
 )
 def test_block3d_bad_input_exits_2_with_one_line(capsys, argv, word):
-    code, out = run(capsys, "block3d", "--charge", "50", "--standoff", "2", "--model", "masi2021",
-                    "--duration", "0.1", *argv)
+    code, out = run(
+        capsys, "block3d", "--charge", "50", "--standoff", "2", "--model", "masi2021", "--duration", "0.1", *argv
+    )
     assert code == 2
     msg = out.err.strip()
     assert word in msg and "Traceback" not in msg and len(msg.splitlines()) == 1
@@ -136,7 +257,13 @@ def test_plots_take_ax_and_return_it():
     import matplotlib.pyplot as plt
 
     from blastscale.analysis.block3d_similarity import block_dataset
-    from blastscale.plots.sim3d import plot_angular_velocity, plot_comparison, plot_rotation, plot_sliding, plot_snapshots
+    from blastscale.plots.sim3d import (
+        plot_angular_velocity,
+        plot_comparison,
+        plot_rotation,
+        plot_sliding,
+        plot_snapshots,
+    )
     from blastscale.sim3d import ContactSettings, simulate_structure
     from blastscale.structures.block import RectangularBlock
 
@@ -169,8 +296,25 @@ def test_plots_reject_unknown_quantity_and_bad_snapshot_count():
 
 def test_block3d_warns_in_one_line_near_the_pivoting_threshold(capsys):
     # the paper's block: mu* = 1.60; "auto" is up to 3% low on the rocking there (docs/sim3d.md)
-    code, out = run(capsys, "block3d", "--height", "10", "--alpha-deg", "15", "--charge", "50", "--standoff", "2",
-                    "--model", "masi2021", "--friction", "1.6", "--duration", "0.01", "--json")
+    code, out = run(
+        capsys,
+        "block3d",
+        "--height",
+        "10",
+        "--alpha-deg",
+        "15",
+        "--charge",
+        "50",
+        "--standoff",
+        "2",
+        "--model",
+        "masi2021",
+        "--friction",
+        "1.6",
+        "--duration",
+        "0.01",
+        "--json",
+    )
     assert code in (0, None)
     lines = [ln for ln in out.err.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("warning:") and "pivoting threshold" in lines[0]
@@ -197,8 +341,11 @@ def test_block_comparison_through_the_contract_reproduces_the_direct_differences
     s = block_similarity(p, upscale_dataset(m, f))
     tp, tu = p["time"].values, m["time"].values / f.time
     mask = tp <= tu[-1] * (1 + 1e-12)
-    for key, name in (("max_abs_rotation_diff_rad", "rotation_y"), ("max_abs_sliding_diff_m", "sliding"),
-                      ("max_abs_uplift_diff_m", "uplift")):
+    for key, name in (
+        ("max_abs_rotation_diff_rad", "rotation_y"),
+        ("max_abs_sliding_diff_m", "sliding"),
+        ("max_abs_uplift_diff_m", "uplift"),
+    ):
         a = p[name].values[:, 0]
         u = m[name].values[:, 0] / (f.angle if name == "rotation_y" else f.length)
         direct = float(np.max(np.abs(a[mask] - np.interp(tp[mask], tu, u))))
@@ -226,31 +373,57 @@ def test_block_keys_from_the_structure_path_equal_the_body_frame_recorders():
 
         @property
         def monitoring_points(self):
-            return super().monitoring_points + (MonitoringPoint("rear-edge", 0, (self.b, 0.0, -self.h)),
-                                                 MonitoringPoint("front-edge", 0, (-self.b, 0.0, -self.h)))
+            return super().monitoring_points + (
+                MonitoringPoint("rear-edge", 0, (self.b, 0.0, -self.h)),
+                MonitoringPoint("front-edge", 0, (-self.b, 0.0, -self.h)),
+            )
 
     b = EdgeBlock.from_slenderness(10.0, math.radians(15.0))
-    resp = simulate_structure(b, MethodA(b, blast_parameters(50.0, 2.0, "masi2021").pulse("friedlander")), 0.7,
-                              record_every=5)
+    resp = simulate_structure(
+        b, MethodA(b, blast_parameters(50.0, 2.0, "masi2021").pulse("friedlander")), 0.7, record_every=5
+    )
     s, ds = block_summary(resp), block_dataset(resp)
     th = ds["rotation_y"].values[:, 0]
-    edge = np.where(th >= 0.0, resp.dataset["point_displacement"].sel(point="rear-edge", component="x").values,
-                    resp.dataset["point_displacement"].sel(point="front-edge", component="x").values)
+    edge = np.where(
+        th >= 0.0,
+        resp.dataset["point_displacement"].sel(point="rear-edge", component="x").values,
+        resp.dataset["point_displacement"].sel(point="front-edge", component="x").values,
+    )
     sliding = ds["sliding"].values[:, 0]
     assert np.max(np.abs(sliding - edge)) <= 1e-12 * s["max_sliding_m"]
     assert s["max_sliding_m"] == pytest.approx(float(np.max(np.abs(edge))), rel=1e-12)
     assert s["final_sliding_m"] == pytest.approx(float(edge[-1]), rel=1e-9, abs=1e-12 * s["max_sliding_m"])
     assert s["max_rotation_rad"] == float(np.max(np.abs(resp.dataset["rotation_y"].values)))
     assert s["peak_angular_velocity_rad_s"] == float(
-        np.max(np.abs(resp.dataset["angular_velocity"].sel(component="y").values)))
+        np.max(np.abs(resp.dataset["angular_velocity"].sel(component="y").values))
+    )
     assert s["peak_velocity_x_m_s"] == float(np.max(np.abs(resp.dataset["com_velocity"].sel(component="x").values)))
     assert s["delivered_impulse_Ns"] == resp.summary()["delivered_impulse_Ns"] and s["collapsed"] is False
 
 
 def test_block3d_per_face_load_keeps_the_keys(capsys, tmp_path):
     png = tmp_path / "b.png"
-    code, out = run(capsys, "block3d", "--width", "2", "--charge", "10", "--standoff", "5", "--duration", "0.2",
-                    "--load", "B", "--incidence", "closed-form", "--scale", "0.01", "--plot", str(png), "--json")
+    code, out = run(
+        capsys,
+        "block3d",
+        "--width",
+        "2",
+        "--charge",
+        "10",
+        "--standoff",
+        "5",
+        "--duration",
+        "0.2",
+        "--load",
+        "B",
+        "--incidence",
+        "closed-form",
+        "--scale",
+        "0.01",
+        "--plot",
+        str(png),
+        "--json",
+    )
     assert code in (0, None), out.err
     d = json.loads(out.out)
     assert OUTCOME_KEYS <= d["prototype"].keys() and OUTCOME_KEYS <= d["model"].keys()

@@ -15,11 +15,28 @@ from blastscale.report.card import shown
 from blastscale.scenario import Scenario
 from blastscale.study import Study
 
-KEYS = ("explosive", "explosive_mass_kg", "tnt_equivalent_impulse_kg", "tnt_equivalent_pressure_kg",
-        "safety_distances_m", "debris_radius_m", "camera_fps", "pressure_sampling_hz", "p_outcome_agree",
-        "first_peak_spread")
-FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
-         "--disable-component-update", "--disable-sync", "--hide-scrollbars"]
+KEYS = (
+    "explosive",
+    "explosive_mass_kg",
+    "tnt_equivalent_impulse_kg",
+    "tnt_equivalent_pressure_kg",
+    "safety_distances_m",
+    "debris_radius_m",
+    "camera_fps",
+    "pressure_sampling_hz",
+    "p_outcome_agree",
+    "first_peak_spread",
+)
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--hide-scrollbars",
+]
 
 
 @pytest.fixture(scope="module")
@@ -100,8 +117,13 @@ def _chromium():
 def test_card_renders_in_chromium_and_every_number_matches_summary(card_dir, tmp_path):
     env = {**os.environ, "HOME": str(tmp_path)}
     uri = (card_dir / "report.html").resolve().as_uri()
-    dom = subprocess.run([_chromium(), *FLAGS, f"--user-data-dir={tmp_path / 'p'}", "--dump-dom", uri],
-                         capture_output=True, text=True, timeout=120, env=env)
+    dom = subprocess.run(
+        [_chromium(), *FLAGS, f"--user-data-dir={tmp_path / 'p'}", "--dump-dom", uri],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+    )
     assert dom.returncode == 0, dom.stderr[-2000:]
     p = _Numbers()
     p.feed(dom.stdout)
@@ -112,6 +134,18 @@ def test_card_renders_in_chromium_and_every_number_matches_summary(card_dir, tmp
     # digits in the value cells outside the tagged numbers: only units and names
     assert set(p.loose) <= {" kg/m3", card["explosive"]}, p.loose
     shot = tmp_path / "shot.png"
-    r = subprocess.run([_chromium(), *FLAGS, f"--user-data-dir={tmp_path / 'q'}", f"--screenshot={shot}",
-                        "--window-size=1200,2400", uri], capture_output=True, text=True, timeout=120, env=env)
+    r = subprocess.run(
+        [
+            _chromium(),
+            *FLAGS,
+            f"--user-data-dir={tmp_path / 'q'}",
+            f"--screenshot={shot}",
+            "--window-size=1200,2400",
+            uri,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+    )
     assert r.returncode == 0 and shot.stat().st_size > 100_000

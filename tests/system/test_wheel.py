@@ -63,10 +63,10 @@ def test_a_plain_install_runs_the_main_job(plain_install):
     summary = json.loads((out / "summary.json").read_text())
     assert summary["planar"] is not None and summary["3d"] is not None  # both engines ran
     # a command that needs an extra: one line naming it and its install command, nothing written
-    proc = _run([str(blastscale), "sweep", "--vary", "standoff_m=2,3", "--out", "s.zarr"], expect=2, cwd=work,
-                env=env)
-    assert proc.stderr == ("error: blastscale sweep needs the 'sweeps' extra (zarr is not installed): "
-                           "pip install 'blastscale[sweeps]'\n")
+    proc = _run([str(blastscale), "sweep", "--vary", "standoff_m=2,3", "--out", "s.zarr"], expect=2, cwd=work, env=env)
+    assert proc.stderr == (
+        "error: blastscale sweep needs the 'sweeps' extra (zarr is not installed): pip install 'blastscale[sweeps]'\n"
+    )
     assert not (work / "s.zarr").exists()
 
 

@@ -27,14 +27,31 @@ def test_a_hostile_title_round_trips_through_the_result_folder(capsys, tmp_path)
     assert load_scenario(src).title == HOSTILE  # the file the user gives
     out = tmp_path / "r"
     with pytest.raises(SystemExit) as e:
-        main(["run", str(src), "--out", str(out), "--duration", "0.1", "--set", "engine=planar",
-              "--set", "critical_charge=false"])
+        main(
+            [
+                "run",
+                str(src),
+                "--out",
+                str(out),
+                "--duration",
+                "0.1",
+                "--set",
+                "engine=planar",
+                "--set",
+                "critical_charge=false",
+            ]
+        )
     assert (e.value.code or 0) == 0, capsys.readouterr().err
     written = (out / "scenario.toml").read_text(encoding="utf-8")
     assert tomllib.loads(written)["title"] == HOSTILE
     back = load_scenario(out / "scenario.toml")
-    ran = given.model_copy(update={"simulation": given.simulation.model_copy(
-        update={"engine": "planar", "duration_s": 0.1, "critical_charge": False})})
+    ran = given.model_copy(
+        update={
+            "simulation": given.simulation.model_copy(
+                update={"engine": "planar", "duration_s": 0.1, "critical_charge": False}
+            )
+        }
+    )
     assert back == ran  # every field, not only the title
     tree = xr.open_datatree(out / "histories.nc", engine="h5netcdf")
     try:

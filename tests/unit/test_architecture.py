@@ -17,8 +17,14 @@ SRC = Path(__file__).resolve().parents[2] / "src" / "blastscale"
 
 #: The modules private to blastscale as a whole and shared by every subpackage (validation, test pause points,
 #: the thread share, the compiled kernels' cache keys, the code's fingerprint, optional extras).
-SHARED_PRIVATE = {"blastscale._validate", "blastscale._hooks", "blastscale._threads", "blastscale._jit", "blastscale._code",
-                  "blastscale._extras"}
+SHARED_PRIVATE = {
+    "blastscale._validate",
+    "blastscale._hooks",
+    "blastscale._threads",
+    "blastscale._jit",
+    "blastscale._code",
+    "blastscale._extras",
+}
 
 
 def _module_name(path: Path) -> str:
@@ -92,8 +98,12 @@ def test_every_document_the_code_cites_exists():
 
     root = SRC.parents[1]
     cited = set()
-    for path in list(SRC.rglob("*.py")) + list((root / "tests").rglob("*.py")) + list((root / "docs").glob("*.md")) \
-            + [root / "README.md"]:
+    for path in (
+        list(SRC.rglob("*.py"))
+        + list((root / "tests").rglob("*.py"))
+        + list((root / "docs").glob("*.md"))
+        + [root / "README.md"]
+    ):
         for name in re.findall(r"docs/([A-Za-z0-9_\-]+\.(?:md|png))", path.read_text()):
             cited.add(name)
     missing = sorted(n for n in cited if not (root / "docs" / n).exists())

@@ -63,9 +63,13 @@ def test_every_cited_test_path_and_test_name_exists():
 def test_a_stale_path_and_a_stale_test_name_are_caught():
     """The check itself: a moved file, a renamed test and a good citation, on this very file."""
     here = Path(__file__).relative_to(ROOT).as_posix()
-    text = (f"see tests/test_kingery_bulmash.py and\n`{here}::test_no_such_test`, and "
-            f"{here}::test_a_stale_path_and_a_stale_test_name_are_caught.")
+    text = (
+        f"see tests/test_kingery_bulmash.py and\n`{here}::test_no_such_test`, and "
+        f"{here}::test_a_stale_path_and_a_stale_test_name_are_caught."
+    )
     got = stale_citations({"doc.md": text})
-    assert got == [("doc.md", 1, "tests/test_kingery_bulmash.py", "no such file"),
-                   ("doc.md", 2, f"{here}::test_no_such_test", "no test test_no_such_test in the file")]
+    assert got == [
+        ("doc.md", 1, "tests/test_kingery_bulmash.py", "no such file"),
+        ("doc.md", 2, f"{here}::test_no_such_test", "no test test_no_such_test in the file"),
+    ]
     assert newest_changelog_section("# C\n\n## New\nx tests/a.py\n## Old\ny tests/b.py\n") == "New\nx tests/a.py\n"

@@ -43,7 +43,9 @@ def _ast_imports(path: Path) -> set:
 
 def test_every_compiled_function_goes_through_the_keyed_cache():
     """No module takes numba's ``njit``/``jit`` directly: its cache would be keyed on its own file only."""
-    direct = re.compile(r"from numba import[^\n]*\b(n?jit|vectorize|guvectorize|cfunc)\b|numba\.(n?jit|vectorize|cfunc)\b")
+    direct = re.compile(
+        r"from numba import[^\n]*\b(n?jit|vectorize|guvectorize|cfunc)\b|numba\.(n?jit|vectorize|cfunc)\b"
+    )
     bad = [str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if p.name != "_jit.py" and direct.search(p.read_text())]
     assert bad == []
     users = sorted(p.name for p in SRC.rglob("*.py") if "from .._jit import njit" in p.read_text())
@@ -60,8 +62,14 @@ def test_the_text_scan_finds_every_import_a_parse_finds():
 
 def test_the_kernel_is_keyed_on_the_helpers_it_inlines():
     names = [f.relative_to(SRC).as_posix() for f in _jit.kernel_sources(K.__file__)]
-    assert names == ["__init__.py", "_jit.py", "rocking/_dopri.py", "rocking/_events.py", "rocking/_kernel.py",
-                     "rocking/_load.py"]
+    assert names == [
+        "__init__.py",
+        "_jit.py",
+        "rocking/_dopri.py",
+        "rocking/_events.py",
+        "rocking/_kernel.py",
+        "rocking/_load.py",
+    ]
     assert [f.name for f in _jit.kernel_sources(L.__file__)] == ["__init__.py", "_jit.py", "_load.py"]
 
 

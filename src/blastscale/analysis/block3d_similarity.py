@@ -38,8 +38,16 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from .compare import compare_responses
 
-__all__ = ["BLOCK_VARIABLES", "COMPARED", "BLOCK_SUMMARY_KEYS", "BLOCK_SIMILARITY_KEYS", "block_dataset",
-           "block_similarity", "block_summary", "block_view"]
+__all__ = [
+    "BLOCK_VARIABLES",
+    "COMPARED",
+    "BLOCK_SUMMARY_KEYS",
+    "BLOCK_SIMILARITY_KEYS",
+    "block_dataset",
+    "block_similarity",
+    "block_summary",
+    "block_view",
+]
 
 #: The variables of :func:`block_dataset`: name -> (units, physical dimension, description).
 BLOCK_VARIABLES = {
@@ -56,12 +64,26 @@ BLOCK_VARIABLES = {
 COMPARED = ("rotation_y", "sliding", "uplift")
 
 #: The keys of :func:`block_summary` (the ``block3d`` outcome keys), in order.
-BLOCK_SUMMARY_KEYS = ("collapsed", "collapse_time_s", "max_rotation_rad", "max_sliding_m", "final_sliding_m",
-                      "max_uplift_m", "peak_angular_velocity_rad_s", "peak_velocity_x_m_s", "delivered_impulse_Ns")
+BLOCK_SUMMARY_KEYS = (
+    "collapsed",
+    "collapse_time_s",
+    "max_rotation_rad",
+    "max_sliding_m",
+    "final_sliding_m",
+    "max_uplift_m",
+    "peak_angular_velocity_rad_s",
+    "peak_velocity_x_m_s",
+    "delivered_impulse_Ns",
+)
 
 #: The keys of :func:`block_similarity` (the ``block3d`` similarity keys), in order.
-BLOCK_SIMILARITY_KEYS = ("max_abs_rotation_diff_rad", "max_abs_sliding_diff_m", "max_abs_uplift_diff_m",
-                         "first_peak_rotation_ratio", "outcomes_agree")
+BLOCK_SIMILARITY_KEYS = (
+    "max_abs_rotation_diff_rad",
+    "max_abs_sliding_diff_m",
+    "max_abs_uplift_diff_m",
+    "first_peak_rotation_ratio",
+    "outcomes_agree",
+)
 
 
 def _block_of(result, block):
@@ -85,14 +107,19 @@ def _planar_histories(result, block) -> dict:
     side = np.where(th >= 0.0, 1.0, -1.0)
     summ = result.summary()
     rest = block.bodies[0].com
-    return {"time": ds["time"].values, "rotation_y": th,
-            "sliding": dx + side * block.b * (np.cos(th) - 1.0) - block.h * np.sin(th),
-            "uplift": ds["uplift"].values[:, 0],
-            "angular_velocity_y": ds["angular_velocity"].sel(component="y").values[:, 0],
-            "velocity_x": ds["com_velocity"].sel(component="x").values[:, 0],
-            "com_x": rest[0] + dx, "com_z": rest[2] + dz,
-            "collapsed": bool(summ["collapsed"]), "collapse_time_s": summ.get("collapse_time_s"),
-            "delivered_impulse_Ns": summ.get("delivered_impulse_Ns")}
+    return {
+        "time": ds["time"].values,
+        "rotation_y": th,
+        "sliding": dx + side * block.b * (np.cos(th) - 1.0) - block.h * np.sin(th),
+        "uplift": ds["uplift"].values[:, 0],
+        "angular_velocity_y": ds["angular_velocity"].sel(component="y").values[:, 0],
+        "velocity_x": ds["com_velocity"].sel(component="x").values[:, 0],
+        "com_x": rest[0] + dx,
+        "com_z": rest[2] + dz,
+        "collapsed": bool(summ["collapsed"]),
+        "collapse_time_s": summ.get("collapse_time_s"),
+        "delivered_impulse_Ns": summ.get("delivered_impulse_Ns"),
+    }
 
 
 def block_dataset(result, block=None):
@@ -117,12 +144,19 @@ def block_dataset(result, block=None):
 
     block = _block_of(result, block)
     h = _planar_histories(result, block)
-    data = {name: (("time", "body"), np.asarray(h[name], dtype=float)[:, None],
-                   {"units": u, "dimension": dim, "long_name": text})
-            for name, (u, dim, text) in BLOCK_VARIABLES.items()}
-    return xr.Dataset(data, coords={"time": ("time", np.asarray(h["time"], dtype=float), {"units": "s"}),
-                                    "body": ["block"]},
-                      attrs={"collapsed": int(h["collapsed"]), "source": "blastscale.sim3d (MuJoCo), block"})
+    data = {
+        name: (
+            ("time", "body"),
+            np.asarray(h[name], dtype=float)[:, None],
+            {"units": u, "dimension": dim, "long_name": text},
+        )
+        for name, (u, dim, text) in BLOCK_VARIABLES.items()
+    }
+    return xr.Dataset(
+        data,
+        coords={"time": ("time", np.asarray(h["time"], dtype=float), {"units": "s"}), "body": ["block"]},
+        attrs={"collapsed": int(h["collapsed"]), "source": "blastscale.sim3d (MuJoCo), block"},
+    )
 
 
 def block_summary(result, block=None) -> dict:
@@ -212,6 +246,7 @@ def block_view(prototype, block=None, model=None, specimen_block=None, factors=N
         if factors is None:
             raise BlastscaleInputError("factors = None: the specimen's run needs the design's factors to be up-scaled")
         out["model"] = upscale_summary(block_summary(model, specimen_block), factors)
-        out["similarity"] = block_similarity(block_dataset(prototype, block),
-                                             upscale_dataset(block_dataset(model, specimen_block), factors))
+        out["similarity"] = block_similarity(
+            block_dataset(prototype, block), upscale_dataset(block_dataset(model, specimen_block), factors)
+        )
     return out

@@ -54,7 +54,6 @@ DEFAULT_COMPONENTS = {"angular_velocity": "y"}
 FIRST_PEAK_FRACTION = 0.1
 
 
-
 def upscale_dataset(ds, factors):
     """A model response in prototype units, every variable divided by its scaling factor.
 
@@ -197,7 +196,9 @@ def _component(var, name: str, components):
     comp = components.get(name, DEFAULT_COMPONENTS.get(name, "x")) if isinstance(components, dict) else components
     labels = [str(c) for c in var["component"].values]
     if comp not in labels:
-        raise BlastscaleInputError(f"component of {name!r} = {comp!r} is not recorded: valid values are {', '.join(labels)}")
+        raise BlastscaleInputError(
+            f"component of {name!r} = {comp!r} is not recorded: valid values are {', '.join(labels)}"
+        )
     return var.sel(component=comp), comp
 
 
@@ -267,14 +268,18 @@ def compare_responses(
         if inside.size == 0:
             raise BlastscaleInputError(
                 f"time window = [{lo:.6g}, {hi:.6g}] s is out of range: the common times are "
-                f"[{tt[0]:.6g}, {tt[-1]:.6g}] s")
+                f"[{tt[0]:.6g}, {tt[-1]:.6g}] s"
+            )
         proto, model = proto.isel(time=inside), model.isel(time=inside)
     t = proto["time"].values
     components = {} if components is None else components
     if variables is None:
         variables = [
-            n for n, v in proto.data_vars.items()
-            if "time" in v.dims and v.attrs.get("dimension") != "count" and n in model.data_vars
+            n
+            for n, v in proto.data_vars.items()
+            if "time" in v.dims
+            and v.attrs.get("dimension") != "count"
+            and n in model.data_vars
             and n not in MOTION_VARIABLES
         ]
     out_vars: dict = {}
@@ -288,7 +293,9 @@ def compare_responses(
         vm, _ = _component(model[name], name, components)
         others = [d for d in vp.dims if d != "time"]
         if len(others) > 1:
-            raise BlastscaleInputError(f"variable = {name!r} has dims {vp.dims}: at most one besides time and component")
+            raise BlastscaleInputError(
+                f"variable = {name!r} has dims {vp.dims}: at most one besides time and component"
+            )
         labels = [str(x) for x in vp[others[0]].values] if others else [name]
         ap = np.asarray(vp.transpose("time", *others).values, dtype=float).reshape(t.size, -1)
         am = np.asarray(vm.transpose("time", *others).values, dtype=float).reshape(t.size, -1)

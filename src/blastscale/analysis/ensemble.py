@@ -31,8 +31,9 @@ from ..constants import STANDARD_GRAVITY
 __all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics"]
 
 
-def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05, peak_fraction: float = 0.1,
-                        collapse_times=None) -> dict:
+def ensemble_statistics(
+    time, members, collapsed, horizon_fraction: float = 0.05, peak_fraction: float = 0.1, collapse_times=None
+) -> dict:
     """Statistics of an ensemble of histories of one quantity at several points.
 
     Parameters
@@ -70,11 +71,18 @@ def ensemble_statistics(time, members, collapsed, horizon_fraction: float = 0.05
     frac = float(check_range("horizon_fraction", horizon_fraction, 0.0, 1.0))
     peak_fraction = float(check_range("peak_fraction", peak_fraction, 0.0, 1.0))
     t = np.asarray(time, dtype=float)
-    tc = np.full(q.shape[0], np.nan) if collapse_times is None else np.array(
-        [np.nan if x is None else float(x) for x in collapse_times])
+    tc = (
+        np.full(q.shape[0], np.nan)
+        if collapse_times is None
+        else np.array([np.nan if x is None else float(x) for x in collapse_times])
+    )
     upto = [t <= tc[k] if np.isfinite(tc[k]) else np.ones(t.size, dtype=bool) for k in range(q.shape[0])]
-    fp = np.array([[_first_peak(t[upto[k]], q[k, upto[k], j], peak_fraction)[1] for j in range(q.shape[2])]
-                   for k in range(q.shape[0])])
+    fp = np.array(
+        [
+            [_first_peak(t[upto[k]], q[k, upto[k], j], peak_fraction)[1] for j in range(q.shape[2])]
+            for k in range(q.shape[0])
+        ]
+    )
     spread = q.max(axis=0) - q.min(axis=0)
     peak = np.max(np.abs(q), axis=(0, 1))
     safe = np.where(peak > 0, peak, np.inf)
@@ -141,6 +149,7 @@ class EnsembleComparison:
     def __post_init__(self):
         if not self.top_point:
             object.__setattr__(self, "top_point", str(self.points[-1]))
+
     motion: object = None
 
     def summary(self) -> dict:
@@ -172,16 +181,21 @@ class EnsembleComparison:
             # difference of the envelopes relative to the prototype's peak: how far the model's band
             # lies outside the prototype's band (0 when inside)
             outside = np.maximum(np.maximum(mhi - hi, 0.0), np.maximum(lo - mlo, 0.0))
-            pts[name].update({
-                "first_peak_model_mean_m": float(m["first_peak_mean"][j]),
-                "first_peak_model_spread_m": float(m["first_peak_spread"][j]),
-                "first_peak_ratio": float(m["first_peak_mean"][j] / p["first_peak_mean"][j])
-                if p["first_peak_mean"][j] != 0 else math.nan,
-                "peak_model_m": float(m["peak"][j]),
-                "model_noise_floor_rel_peak": float(m["max_spread_rel_peak"][j]),
-                "envelope_mismatch_rel_peak": float(np.max(outside) / p["peak"][j]) if p["peak"][j] > 0 else math.nan,
-                "horizon_model_s": float(m["horizon_s"][j]),
-            })
+            pts[name].update(
+                {
+                    "first_peak_model_mean_m": float(m["first_peak_mean"][j]),
+                    "first_peak_model_spread_m": float(m["first_peak_spread"][j]),
+                    "first_peak_ratio": float(m["first_peak_mean"][j] / p["first_peak_mean"][j])
+                    if p["first_peak_mean"][j] != 0
+                    else math.nan,
+                    "peak_model_m": float(m["peak"][j]),
+                    "model_noise_floor_rel_peak": float(m["max_spread_rel_peak"][j]),
+                    "envelope_mismatch_rel_peak": float(np.max(outside) / p["peak"][j])
+                    if p["peak"][j] > 0
+                    else math.nan,
+                    "horizon_model_s": float(m["horizon_s"][j]),
+                }
+            )
         return {
             "n_members": len(self.factors),
             "perturbation": self.settings.get("perturbation"),
@@ -264,8 +278,18 @@ def ensemble_compare(
     times: dict = {s: [] for s in systems}
     poses: dict = {s: [] for s in systems}
     t = points = top = None
-    kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,
-              duration=duration, record_every=record_every, extrapolate=extrapolate, load_model=load_model)
+    kw = dict(
+        blast=blast,
+        gravity=gravity,
+        load=load,
+        pulse_shape=pulse_shape,
+        incidence=incidence,
+        contact=contact,
+        duration=duration,
+        record_every=record_every,
+        extrapolate=extrapolate,
+        load_model=load_model,
+    )
     tasks = [(k, s) for k in range(len(factors)) for s in systems]
 
     def member(task):
@@ -282,7 +306,9 @@ def ensemble_compare(
         ds = {"prototype": runs["prototype"].dataset}
         summ = {"prototype": runs["prototype"].summary()}
         if design is not None:
-            ds["prototype"], ds["model"] = align(ds["prototype"], upscale_dataset(runs["model"].dataset, design.factors))
+            ds["prototype"], ds["model"] = align(
+                ds["prototype"], upscale_dataset(runs["model"].dataset, design.factors)
+            )
             summ["model"] = upscale_summary(runs["model"].summary(), design.factors)
         if t is None:
             t = ds["prototype"]["time"].values
@@ -298,13 +324,25 @@ def ensemble_compare(
             poses[s].append(ds[s][[v for v in MOTION_VARIABLES if v in ds[s]]])
             collapsed[s].append(bool(summ[s]["collapsed"]))
             times[s].append(summ[s].get("collapse_time_s"))
-    stats = {s: ensemble_statistics(t, np.stack(q[s]), collapsed[s], horizon_fraction, collapse_times=times[s])
-             for s in systems}
+    stats = {
+        s: ensemble_statistics(t, np.stack(q[s]), collapsed[s], horizon_fraction, collapse_times=times[s])
+        for s in systems
+    }
     return EnsembleComparison(
-        time=t, points=points, prototype=stats["prototype"], model=stats.get("model"),
-        factors=factors, prototype_members=np.stack(q["prototype"]),
+        time=t,
+        points=points,
+        prototype=stats["prototype"],
+        model=stats.get("model"),
+        factors=factors,
+        prototype_members=np.stack(q["prototype"]),
         model_members=np.stack(q["model"]) if design is not None else None,
-        settings={"perturbation": eps, "n": int(n), "load_method": load, "pulse_shape": pulse_shape, "duration_s": float(duration)},
+        settings={
+            "perturbation": eps,
+            "n": int(n),
+            "load_method": load,
+            "pulse_shape": pulse_shape,
+            "duration_s": float(duration),
+        },
         top_point=top,
         motion=_cases_motion(poses, np.stack(q["prototype"]), t.size),
     )
@@ -328,8 +366,20 @@ def _cases_motion(poses: dict, members, nt: int):
     per_case = []
     for k in cases.values():
         parts = [poses[s][k].isel(time=slice(0, nt)) for s in poses]
-        per_case.append(xr.concat(parts, dim=xr.DataArray(list(poses), dims="system"), coords="minimal",
-                                  compat="override", combine_attrs="override"))
-    out = xr.concat(per_case, dim=xr.DataArray(list(cases), dims="case"), coords="minimal", compat="override",
-                    combine_attrs="override")
+        per_case.append(
+            xr.concat(
+                parts,
+                dim=xr.DataArray(list(poses), dims="system"),
+                coords="minimal",
+                compat="override",
+                combine_attrs="override",
+            )
+        )
+    out = xr.concat(
+        per_case,
+        dim=xr.DataArray(list(cases), dims="case"),
+        coords="minimal",
+        compat="override",
+        combine_attrs="override",
+    )
     return out.assign_coords(case_member=("case", list(cases.values()), {"units": "1", "long_name": "ensemble member"}))

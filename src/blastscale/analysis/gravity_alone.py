@@ -21,8 +21,9 @@ __all__ = ["STABILITY_EXTENSION_CAP", "until_decided", "extended_keys"]
 STABILITY_EXTENSION_CAP = 4.0
 
 
-def until_decided(run: Callable[[float], object], duration: float, decide: bool = True,
-                  cap: float = STABILITY_EXTENSION_CAP) -> tuple:
+def until_decided(
+    run: Callable[[float], object], duration: float, decide: bool = True, cap: float = STABILITY_EXTENSION_CAP
+) -> tuple:
     """``run(duration)`` [s], repeated (when ``decide``: under gravity alone) with the duration doubled
     while its response's stability is "moving" and the doubled duration stays within ``cap`` x
     ``duration``.
@@ -43,7 +44,11 @@ def until_decided(run: Callable[[float], object], duration: float, decide: bool 
     """
     T = float(duration)
     r = run(T)
-    while decide and r.response.summary().get("stability") == "moving" and 2.0 * T <= cap * float(duration) * (1.0 + 1e-12):
+    while (
+        decide
+        and r.response.summary().get("stability") == "moving"
+        and 2.0 * T <= cap * float(duration) * (1.0 + 1e-12)
+    ):
         T *= 2.0
         r = run(T)
     return r, T
@@ -54,5 +59,8 @@ def extended_keys(settings: dict) -> dict:
     (nothing when the run was not extended)."""
     if "duration_asked_s" not in settings:
         return {}
-    return {"duration_simulated_s": float(settings["duration_s"]), "duration_asked_s": float(settings["duration_asked_s"]),
-            "stability_extension_cap": STABILITY_EXTENSION_CAP}
+    return {
+        "duration_simulated_s": float(settings["duration_s"]),
+        "duration_asked_s": float(settings["duration_asked_s"]),
+        "stability_extension_cap": STABILITY_EXTENSION_CAP,
+    }

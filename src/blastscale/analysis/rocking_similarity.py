@@ -103,8 +103,11 @@ def rocking_dataset(result: RockingResult):
     return xr.Dataset(
         {
             "rotation_y": (("time", "body"), result.theta_eval[:, None], {"units": "rad", "dimension": "angle"}),
-            "angular_velocity": (("time", "body", "component"), result.theta_dot_eval[:, None, None],
-                                 {"units": "rad/s", "dimension": "angular_velocity"}),
+            "angular_velocity": (
+                ("time", "body", "component"),
+                result.theta_dot_eval[:, None, None],
+                {"units": "rad/s", "dimension": "angular_velocity"},
+            ),
         },
         coords={"time": ("time", result.t_eval, {"units": "s"}), "body": ["block"], "component": ["y"]},
         attrs={"collapsed": int(result.collapsed), "source": "blastscale.rocking"},
@@ -200,8 +203,9 @@ class RockingSimilarity:
         }
 
 
-def compare_rocking(prototype: RockingResult, model: RockingResult, design: ModelDesign,
-                    frequency_parameter: float) -> RockingSimilarity:
+def compare_rocking(
+    prototype: RockingResult, model: RockingResult, design: ModelDesign, frequency_parameter: float
+) -> RockingSimilarity:
     """Compare a prototype's rocking history with its specimen's, up-scaled (the planar engine's
     one comparison; the Study simulates both, :mod:`blastscale.study.engines`).
 
@@ -237,8 +241,13 @@ def compare_rocking(prototype: RockingResult, model: RockingResult, design: Mode
         dt_tip = model.collapse_time / f.time - prototype.collapse_time
         dw_tip = model.angular_velocity_at_tipping / f.angular_velocity - prototype.angular_velocity_at_tipping
         fall = _fall_phase_diff(
-            t, prototype.theta_eval, prototype.theta_dot_eval, th_m, om_m,
-            max(prototype.collapse_time, model.collapse_time / f.time), frequency_parameter,
+            t,
+            prototype.theta_eval,
+            prototype.theta_dot_eval,
+            th_m,
+            om_m,
+            max(prototype.collapse_time, model.collapse_time / f.time),
+            frequency_parameter,
         )
     if prototype.collapsed and model.collapsed:
         ratio = 1.0

@@ -152,12 +152,16 @@ class Comparison3D:
         coll = self.comparison.get("to_collapse")
         if coll is not None:  # first peaks and differences up to the earlier collapse
             for name, d in coll["variables"]["point_displacement"].items():
-                points[name].update({
-                    "first_peak_prototype_m": d["first_peak_prototype"], "first_peak_model_m": d["first_peak_model"],
-                    "first_peak_time_s": d["first_peak_time_prototype_s"], "first_peak_ratio": d["first_peak_ratio"],
-                    "max_abs_displacement_diff_to_collapse_m": d["max_abs_diff"],
-                    "max_abs_displacement_diff_to_collapse_rel_peak": d["max_abs_diff_rel_peak"],
-                })
+                points[name].update(
+                    {
+                        "first_peak_prototype_m": d["first_peak_prototype"],
+                        "first_peak_model_m": d["first_peak_model"],
+                        "first_peak_time_s": d["first_peak_time_prototype_s"],
+                        "first_peak_ratio": d["first_peak_ratio"],
+                        "max_abs_displacement_diff_to_collapse_m": d["max_abs_diff"],
+                        "max_abs_displacement_diff_to_collapse_rel_peak": d["max_abs_diff_rel_peak"],
+                    }
+                )
         return {
             "top_point": top,
             "collapse_time_diff_s": None if tcp is None or tcm is None else tcm - tcp,
@@ -207,8 +211,13 @@ class Comparison3D:
         attrs = {k: v for k, v in s.items() if isinstance(v, (int, float, str)) and not isinstance(v, bool)}
         attrs["outcomes_agree"] = "none" if s["outcomes_agree"] is None else int(s["outcomes_agree"])
         attrs.update({f"factor_{k}": v for k, v in self.design.factors.to_dict().items() if v is not None})
-        attrs.update({k: int(v) if isinstance(v, bool) else v for k, v in self.settings.items()
-                      if isinstance(v, (int, float, str))})  # NetCDF has no booleans
+        attrs.update(
+            {
+                k: int(v) if isinstance(v, bool) else v
+                for k, v in self.settings.items()
+                if isinstance(v, (int, float, str))
+            }
+        )  # NetCDF has no booleans
         ds.attrs.update(attrs)
         return ds
 
@@ -270,8 +279,16 @@ def compare_structure3d(
         raise BlastscaleInputError(
             f"design = {type(design).__name__} is not a model design: give blastscale.similitude.design_model(...)"
         )
-    kw = dict(load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact, duration=dur, record_every=record_every,
-              extrapolate=extrapolate, load_model=load_model)
+    kw = dict(
+        load=load,
+        pulse_shape=pulse_shape,
+        incidence=incidence,
+        contact=contact,
+        duration=dur,
+        record_every=record_every,
+        extrapolate=extrapolate,
+        load_model=load_model,
+    )
     from ..sim3d.load_methods import arrival_spread_similarity
     from ..sim3d.threads import map_threads
 
@@ -286,17 +303,33 @@ def compare_structure3d(
     if load_end < pds["time"].values[-1]:  # velocities after the load (see compare_responses' start)
         cmp["after_load"] = compare_responses(pds, up, variables=("point_velocity",), start=load_end)
         cmp["after_load"]["start_s"] = load_end
-    tc = [x for x in (ps.get("collapse_time_s"), upscale_summary(ms, design.factors).get("collapse_time_s"))
-          if x is not None]
+    tc = [
+        x
+        for x in (ps.get("collapse_time_s"), upscale_summary(ms, design.factors).get("collapse_time_s"))
+        if x is not None
+    ]
     if tc:  # up to the earlier collapse: the fall amplifies any time shift
         cmp["to_collapse"] = compare_responses(pds, up, variables=("point_displacement",), end=min(tc))
         cmp["to_collapse"]["end_s"] = min(tc)
     return Comparison3D(
-        design=design, structure=structure, specimen_structure=specimen_structure, prototype=proto, model=mod,
-        prototype_dataset=pds, upscaled_dataset=up, comparison=cmp,
-        settings={"load_method": load, "pulse_shape": pulse_shape, "incidence": incidence or "default", "duration_s": dur,
-                  "record_every": int(record_every), "load_end_s": load_end, "extrapolate": bool(extrapolate),
-                  **_load_model_setting(load_model)},
+        design=design,
+        structure=structure,
+        specimen_structure=specimen_structure,
+        prototype=proto,
+        model=mod,
+        prototype_dataset=pds,
+        upscaled_dataset=up,
+        comparison=cmp,
+        settings={
+            "load_method": load,
+            "pulse_shape": pulse_shape,
+            "incidence": incidence or "default",
+            "duration_s": dur,
+            "record_every": int(record_every),
+            "load_end_s": load_end,
+            "extrapolate": bool(extrapolate),
+            **_load_model_setting(load_model),
+        },
         arrival_spreads=arrival_spread_similarity(p_run.load, m_run.load, design.factors),
     )
 
@@ -383,16 +416,34 @@ def prototype_structure3d(
     from ..sim3d.face_loads import arrival_spread
 
     asked = float(check_positive("duration", duration, "s"))
-    kw = dict(blast=blast, gravity=gravity, load=load, pulse_shape=pulse_shape, incidence=incidence, contact=contact,
-              record_every=record_every, extrapolate=extrapolate, load_model=load_model)
+    kw = dict(
+        blast=blast,
+        gravity=gravity,
+        load=load,
+        pulse_shape=pulse_shape,
+        incidence=incidence,
+        contact=contact,
+        record_every=record_every,
+        extrapolate=extrapolate,
+        load_model=load_model,
+    )
     # gravity alone: run until the stability rule decides (docs/assemblies.md, analysis.gravity_alone)
     run, dur = until_decided(lambda T: run_system(structure, None, "prototype", duration=T, **kw), asked, blast is None)
     resp = run.response
     return Prototype3D(
-        structure=structure, prototype=resp, prototype_dataset=_with_outcome(resp.dataset, resp.summary()),
-        settings={"load_method": load, "pulse_shape": pulse_shape, "incidence": incidence or "default", "duration_s": dur,
-                  **({"duration_asked_s": asked} if dur != asked else {}),
-                  "record_every": int(record_every), "load_end_s": run.load_duration_s,
-                  "extrapolate": bool(extrapolate), "arrival_spread_prototype_s": arrival_spread(run.load),
-                  **_load_model_setting(load_model)},
+        structure=structure,
+        prototype=resp,
+        prototype_dataset=_with_outcome(resp.dataset, resp.summary()),
+        settings={
+            "load_method": load,
+            "pulse_shape": pulse_shape,
+            "incidence": incidence or "default",
+            "duration_s": dur,
+            **({"duration_asked_s": asked} if dur != asked else {}),
+            "record_every": int(record_every),
+            "load_end_s": run.load_duration_s,
+            "extrapolate": bool(extrapolate),
+            "arrival_spread_prototype_s": arrival_spread(run.load),
+            **_load_model_setting(load_model),
+        },
     )

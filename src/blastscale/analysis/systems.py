@@ -58,10 +58,23 @@ class SystemRun(NamedTuple):
     load: object = None
 
 
-def run_system(structure, design, system: str = "prototype", *, blast=None, gravity: float = STANDARD_GRAVITY,
-               load: str = "A", pulse_shape: str = "friedlander", incidence: str | None = None, contact=None,
-               duration: float = 8.0, record_every: int = 4, load_factor: float = 1.0,
-               extrapolate: bool = False, load_model=None) -> SystemRun:
+def run_system(
+    structure,
+    design,
+    system: str = "prototype",
+    *,
+    blast=None,
+    gravity: float = STANDARD_GRAVITY,
+    load: str = "A",
+    pulse_shape: str = "friedlander",
+    incidence: str | None = None,
+    contact=None,
+    duration: float = 8.0,
+    record_every: int = 4,
+    load_factor: float = 1.0,
+    extrapolate: bool = False,
+    load_model=None,
+) -> SystemRun:
     """Simulate the prototype, or the model at its own size (module docstring).
 
     Parameters
@@ -103,7 +116,8 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
         if system != "prototype":
             raise BlastscaleInputError(
                 f"design = None with system = {system!r}: without a model design only the prototype runs, from its "
-                "blast parameters (blast=blast_parameters(W, R)), or under gravity alone (blast=None)")
+                "blast parameters (blast=blast_parameters(W, R)), or under gravity alone (blast=None)"
+            )
         struct, bp, dur, g, cont = structure, blast, duration, gravity, contact
     elif system == "prototype":
         struct, bp, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
@@ -113,7 +127,9 @@ def run_system(structure, design, system: str = "prototype", *, blast=None, grav
         resp = simulate_structure(struct, None, dur, contact=cont, gravity=g, record_every=record_every)
         return SystemRun(struct, resp, 0.0, None)
     inc = {} if incidence is None else {"incidence": incidence}
-    ld = make_load(load, struct, bp, pulse_shape=pulse_shape, extrapolate=bool(extrapolate), load_model=load_model, **inc)
+    ld = make_load(
+        load, struct, bp, pulse_shape=pulse_shape, extrapolate=bool(extrapolate), load_model=load_model, **inc
+    )
     run_load = ld if load_factor == 1.0 else PerturbedLoad(ld, load_factor)
     resp = simulate_structure(struct, run_load, dur, contact=cont, gravity=g, record_every=record_every)
     return SystemRun(struct, resp, float(ld.end_time - ld.first_arrival), ld)
@@ -131,8 +147,12 @@ def _specimen_system(design, structure, contact, duration: float) -> tuple:
     same_duration = design.duration == duration
     other = None
     if not (same_structure and same_contact and same_duration):  # what the design does not carry, scaled once
-        other = specimen_system(design.factors, structure=None if same_structure else structure,
-                                contact=None if same_contact else contact, duration=None if same_duration else duration)
+        other = specimen_system(
+            design.factors,
+            structure=None if same_structure else structure,
+            contact=None if same_contact else contact,
+            duration=None if same_duration else duration,
+        )
     struct = design.specimen_structure if same_structure else other.structure
     cont = None if contact is None else (design.specimen_contact if same_contact else other.contact)
     dur = design.specimen_duration if same_duration else other.duration

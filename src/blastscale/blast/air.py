@@ -68,7 +68,9 @@ def shock_velocity(incident_pressure):
     """
     P = np.asarray(incident_pressure, dtype=float)
     g = GAMMA_AIR
-    return _ret(SEA_LEVEL_SOUND_SPEED * np.sqrt(1.0 + (g + 1.0) / (2.0 * g) * P / SEA_LEVEL_PRESSURE), incident_pressure)
+    return _ret(
+        SEA_LEVEL_SOUND_SPEED * np.sqrt(1.0 + (g + 1.0) / (2.0 * g) * P / SEA_LEVEL_PRESSURE), incident_pressure
+    )
 
 
 def dynamic_pressure(incident_pressure):

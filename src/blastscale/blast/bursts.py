@@ -39,8 +39,18 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_positive, check_positive_scalar
 from .parameters import BURSTS, DEFAULT_BURST, burst_of, check_burst, get_blast_model, model_for_burst
 
-__all__ = ["BURSTS", "DEFAULT_BURST", "check_burst", "model_for_burst", "burst_of", "equivalent_free_air_charge_ratio",
-           "LabBurst", "lab_burst", "SURFACE_DELAY_FRACTION", "EQUIVALENCE_QUANTITIES"]
+__all__ = [
+    "BURSTS",
+    "DEFAULT_BURST",
+    "check_burst",
+    "model_for_burst",
+    "burst_of",
+    "equivalent_free_air_charge_ratio",
+    "LabBurst",
+    "lab_burst",
+    "SURFACE_DELAY_FRACTION",
+    "EQUIVALENCE_QUANTITIES",
+]
 
 #: A charge counts as a surface burst when the floor's reflection arrives within this fraction of
 #: the positive duration (our criterion, module docstring).
@@ -48,8 +58,12 @@ SURFACE_DELAY_FRACTION = 0.1
 
 #: Quantities compared by :func:`equivalent_free_air_charge_ratio` (scaled impulses are compared as
 #: impulses at the same distance).
-EQUIVALENCE_QUANTITIES = ("incident_pressure", "reflected_pressure", "scaled_incident_impulse",
-                          "scaled_reflected_impulse")
+EQUIVALENCE_QUANTITIES = (
+    "incident_pressure",
+    "reflected_pressure",
+    "scaled_incident_impulse",
+    "scaled_reflected_impulse",
+)
 
 
 def _solve_z(f_target, model, quantity, z_surface, scaled: bool) -> np.ndarray:
@@ -95,8 +109,9 @@ def equivalent_free_air_charge_ratio(scaled_distance, quantity: str = "incident_
         k [-] (NaN where the free-air fit's range holds no solution).
     """
     if quantity not in EQUIVALENCE_QUANTITIES:
-        raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are "
-                                   f"{', '.join(EQUIVALENCE_QUANTITIES)}")
+        raise BlastscaleInputError(
+            f"quantity = {quantity!r} is not known: valid values are {', '.join(EQUIVALENCE_QUANTITIES)}"
+        )
     z = np.atleast_1d(check_positive("scaled distance Z", scaled_distance, "m/kg^(1/3)")).astype(float)
     surf, free = get_blast_model("kingery-bulmash"), get_blast_model("kingery-bulmash-free-air")
     target = getattr(surf, quantity)(z)
@@ -133,13 +148,19 @@ class LabBurst:
         return self.reflection_delay_s / self.positive_duration_s
 
     def to_dict(self) -> dict:
-        return {"kind": self.kind, "charge_height_m": self.charge_height_m, "target_height_m": self.target_height_m,
-                "reflection_delay_s": self.reflection_delay_s, "positive_duration_s": self.positive_duration_s,
-                "delay_over_positive_duration": self.delay_ratio}
+        return {
+            "kind": self.kind,
+            "charge_height_m": self.charge_height_m,
+            "target_height_m": self.target_height_m,
+            "reflection_delay_s": self.reflection_delay_s,
+            "positive_duration_s": self.positive_duration_s,
+            "delay_over_positive_duration": self.delay_ratio,
+        }
 
 
-def lab_burst(charge: float, standoff: float, charge_height: float, face_height: float, *,
-              extrapolate: bool = False) -> LabBurst:
+def lab_burst(
+    charge: float, standoff: float, charge_height: float, face_height: float, *, extrapolate: bool = False
+) -> LabBurst:
     """Classify a charge ``charge`` [kg] at ``charge_height`` [m] above the floor, ``standoff`` [m]
     (horizontal) from a face ``face_height`` [m] tall standing on the floor (module docstring).
 

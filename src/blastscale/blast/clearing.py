@@ -43,8 +43,14 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from .air import dynamic_pressure, reflected_sound_speed
 
-__all__ = ["Clearing", "clearing", "FRONT_WALL_DRAG_COEFFICIENT", "bilinear_pressure", "bilinear_cumulative",
-           "CLEARING_MODEL"]
+__all__ = [
+    "Clearing",
+    "clearing",
+    "FRONT_WALL_DRAG_COEFFICIENT",
+    "bilinear_pressure",
+    "bilinear_cumulative",
+    "CLEARING_MODEL",
+]
 
 #: Drag coefficient of a front wall in the stagnation pressure (UFC 3-340-02 Sec. 2-15.3.2).
 FRONT_WALL_DRAG_COEFFICIENT = 1.0
@@ -119,17 +125,30 @@ class Clearing:
 
     def to_dict(self) -> dict:
         """The CLI's keys (``clearing_time_s``, ``cleared_impulse_Pa_s`` ...)."""
-        return {"clearing_model": CLEARING_MODEL, "clearing_distance_m": _v(self.clearing_distance),
-                "reflected_sound_speed_m_s": _v(self.sound_speed), "clearing_time_s": _v(self.clearing_time),
-                "stagnation_pressure_Pa": _v(self.stagnation_pressure),
-                "stagnation_duration_s": _v(self.stagnation_duration),
-                "cleared_impulse_Pa_s": _v(self.impulse), "uncleared_impulse_Pa_s": _v(self.uncleared_impulse),
-                "clearing_construction_impulse_Pa_s": _v(self.cleared_impulse),
-                "cleared": self.cleared.tolist() if isinstance(self.cleared, np.ndarray) else bool(self.cleared)}
+        return {
+            "clearing_model": CLEARING_MODEL,
+            "clearing_distance_m": _v(self.clearing_distance),
+            "reflected_sound_speed_m_s": _v(self.sound_speed),
+            "clearing_time_s": _v(self.clearing_time),
+            "stagnation_pressure_Pa": _v(self.stagnation_pressure),
+            "stagnation_duration_s": _v(self.stagnation_duration),
+            "cleared_impulse_Pa_s": _v(self.impulse),
+            "uncleared_impulse_Pa_s": _v(self.uncleared_impulse),
+            "clearing_construction_impulse_Pa_s": _v(self.cleared_impulse),
+            "cleared": self.cleared.tolist() if isinstance(self.cleared, np.ndarray) else bool(self.cleared),
+        }
 
 
-def clearing(peak, impulse, incident_pressure, incident_impulse, width, height, *,
-             drag_coefficient: float = FRONT_WALL_DRAG_COEFFICIENT) -> Clearing:
+def clearing(
+    peak,
+    impulse,
+    incident_pressure,
+    incident_impulse,
+    width,
+    height,
+    *,
+    drag_coefficient: float = FRONT_WALL_DRAG_COEFFICIENT,
+) -> Clearing:
     """UFC 3-340-02 clearing of front faces (module docstring), vectorised.
 
     Parameters
@@ -164,9 +183,19 @@ def clearing(peak, impulse, incident_pressure, incident_impulse, width, height, 
         ptc = np.where(late, 0.0, stag * (1.0 - np.minimum(tc, tof) / tof))
         ic = np.where(late, 0.5 * P * tc, 0.5 * (P + ptc) * tc + 0.5 * ptc * (tof - np.where(late, tof, tc)))
     cleared = ic < i
-    out = dict(clearing_distance=S, other_distance=G, sound_speed=Cr, clearing_time=tc, stagnation_pressure=stag,
-               stagnation_duration=tof, pressure_at_clearing=ptc, peak=P, uncleared_impulse=i, cleared_impulse=ic,
-               cleared=cleared)
+    out = dict(
+        clearing_distance=S,
+        other_distance=G,
+        sound_speed=Cr,
+        clearing_time=tc,
+        stagnation_pressure=stag,
+        stagnation_duration=tof,
+        pressure_at_clearing=ptc,
+        peak=P,
+        uncleared_impulse=i,
+        cleared_impulse=ic,
+        cleared=cleared,
+    )
     if all(np.ndim(x) == 0 for x in (P, i, Ps, i_s, W, H)):
         out = {k: (bool(v) if k == "cleared" else float(v)) for k, v in out.items()}
     return Clearing(**out)

@@ -48,9 +48,20 @@ from typing import Mapping, Optional
 from .._validate import BlastscaleInputError
 from .initiation import CRITICAL_DIAMETERS_M, INITIATORS, min_reliable_charge
 
-__all__ = ["Explosive", "ChargeEquivalence", "EXPLOSIVES", "UFC_3_340_02_TABLE_2_1", "IATG_01_80", "TNT_ENERGY_J_KG",
-           "INITIATOR_WARNING_FRACTION", "ALIASES", "canonical_name", "get_explosive", "charge_equivalence",
-           "initiator_tnt_kg"]
+__all__ = [
+    "Explosive",
+    "ChargeEquivalence",
+    "EXPLOSIVES",
+    "UFC_3_340_02_TABLE_2_1",
+    "IATG_01_80",
+    "TNT_ENERGY_J_KG",
+    "INITIATOR_WARNING_FRACTION",
+    "ALIASES",
+    "canonical_name",
+    "get_explosive",
+    "charge_equivalence",
+    "initiator_tnt_kg",
+]
 
 #: Above this fraction of the charge's TNT equivalent (impulse basis) the initiator gets a warning.
 INITIATOR_WARNING_FRACTION = 0.10
@@ -98,11 +109,25 @@ IATG_01_80: dict[str, tuple[float, float, float]] = {
 #: What users call the library's explosives: the squashed name (lower case, letters and digits only)
 #: -> the library's name. Every library name is also matched squashed ("C4" -> "c-4").
 ALIASES = {
-    "compositionc4": "c-4", "compc4": "c-4", "m112": "c-4",
-    "compb": "composition-b", "compositionb3": "composition-b", "compb3": "composition-b",
-    "compa3": "composition-a-3", "cyclotol": "cyclotol-70-30", "octol": "octol-75-25", "minol": "minol-ii",
-    "hexogen": "rdx", "cyclonite": "rdx", "t4": "rdx", "octogen": "hmx", "pentrite": "petn",
-    "trinitrotoluene": "tnt", "semtexh": "semtex", "semtex1a": "semtex", "pe4plastic": "pe4",
+    "compositionc4": "c-4",
+    "compc4": "c-4",
+    "m112": "c-4",
+    "compb": "composition-b",
+    "compositionb3": "composition-b",
+    "compb3": "composition-b",
+    "compa3": "composition-a-3",
+    "cyclotol": "cyclotol-70-30",
+    "octol": "octol-75-25",
+    "minol": "minol-ii",
+    "hexogen": "rdx",
+    "cyclonite": "rdx",
+    "t4": "rdx",
+    "octogen": "hmx",
+    "pentrite": "petn",
+    "trinitrotoluene": "tnt",
+    "semtexh": "semtex",
+    "semtex1a": "semtex",
+    "pe4plastic": "pe4",
     "leadazide": "lead-azide",
 }
 
@@ -143,8 +168,9 @@ class Explosive:
         for attr in ("pressure_factor", "impulse_factor"):
             v = getattr(self, attr)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and 0.0 < v <= 10.0):
-                raise BlastscaleInputError(f"explosive {self.name!r}: {attr} = {v!r} is out of range: valid "
-                                           "range is (0, 10]")
+                raise BlastscaleInputError(
+                    f"explosive {self.name!r}: {attr} = {v!r} is out of range: valid range is (0, 10]"
+                )
 
     def factor(self, basis: str) -> float:
         """The TNT equivalence factor [-] for ``basis`` ("pressure" or "impulse")."""
@@ -166,38 +192,76 @@ class Explosive:
 def _with_min_charge(ex: Explosive) -> Explosive:
     cd = CRITICAL_DIAMETERS_M[ex.name]
     m = min_reliable_charge(cd.diameter_m, ex.density_kg_m3)
-    return Explosive(ex.name, ex.pressure_factor, ex.impulse_factor, ex.density_kg_m3, ex.source, ex.uncertainty, m,
-                     f"hemisphere of radius the critical diameter {1e3 * cd.diameter_m:.3g} mm ({cd.form}; "
-                     f"{cd.source}) at {ex.density_kg_m3:g} kg/m^3")
+    return Explosive(
+        ex.name,
+        ex.pressure_factor,
+        ex.impulse_factor,
+        ex.density_kg_m3,
+        ex.source,
+        ex.uncertainty,
+        m,
+        f"hemisphere of radius the critical diameter {1e3 * cd.diameter_m:.3g} mm ({cd.form}; "
+        f"{cd.source}) at {ex.density_kg_m3:g} kg/m^3",
+    )
 
 
 def _ufc(name: str) -> Explosive:
     p, i, rho = UFC_3_340_02_TABLE_2_1[name]
     if name in IATG_01_80:
         p, i, rho = IATG_01_80[name]
-        return Explosive(name, p, i, rho, "UFC 3-340-02 (2008) Table 2-1 (pressure); IATG 01.80 (impulse, which "
-                         "the UFC table does not give)", "IATG's impulse factor as transcribed, not checked against "
-                         "the original here; +-10 % outside the table's pressure range (Cooper 1996, ch. 23)")
+        return Explosive(
+            name,
+            p,
+            i,
+            rho,
+            "UFC 3-340-02 (2008) Table 2-1 (pressure); IATG 01.80 (impulse, which the UFC table does not give)",
+            "IATG's impulse factor as transcribed, not checked against "
+            "the original here; +-10 % outside the table's pressure range (Cooper 1996, ch. 23)",
+        )
     if i is None:
-        return Explosive(name, p, p, rho, "UFC 3-340-02 (2008) Table 2-1 (pressure factor; the table gives no "
-                         "impulse factor: the pressure factor is used for impulse too)",
-                         "impulse equivalence not tabulated: assume +-20 % on the impulse (Cooper 1996)")
-    return Explosive(name, p, i, rho, "UFC 3-340-02 (2008) Table 2-1",
-                     "the table's factors hold over its pressure range; +-10 % outside it (Cooper 1996, ch. 23)")
+        return Explosive(
+            name,
+            p,
+            p,
+            rho,
+            "UFC 3-340-02 (2008) Table 2-1 (pressure factor; the table gives no "
+            "impulse factor: the pressure factor is used for impulse too)",
+            "impulse equivalence not tabulated: assume +-20 % on the impulse (Cooper 1996)",
+        )
+    return Explosive(
+        name,
+        p,
+        i,
+        rho,
+        "UFC 3-340-02 (2008) Table 2-1",
+        "the table's factors hold over its pressure range; +-10 % outside it (Cooper 1996, ch. 23)",
+    )
 
 
 def _iatg(name: str) -> Explosive:
     p, i, rho = IATG_01_80[name]
-    return Explosive(name, p, i, rho, "IATG 01.80 (2021), TNT equivalence for pressure and impulse",
-                     "as transcribed, not checked against the original here; +-10 % (Cooper 1996, ch. 23)")
+    return Explosive(
+        name,
+        p,
+        i,
+        rho,
+        "IATG 01.80 (2021), TNT equivalence for pressure and impulse",
+        "as transcribed, not checked against the original here; +-10 % (Cooper 1996, ch. 23)",
+    )
 
 
 def _as_c4(name: str, what: str) -> Explosive:
     p, i, rho = UFC_3_340_02_TABLE_2_1["c-4"]
-    return Explosive(name, p, i, rho, f"{what}: C-4's factors of UFC 3-340-02 (2008) Table 2-1 (no table of its own "
-                     "gives both factors; C-4 and PE4 reviewed together by Bogosian, Yokota & Rigby 2016)",
-                     "assumed by composition; measured equivalences of RDX plastic explosives scatter by +-15 % "
-                     "(Bogosian et al. 2016)")
+    return Explosive(
+        name,
+        p,
+        i,
+        rho,
+        f"{what}: C-4's factors of UFC 3-340-02 (2008) Table 2-1 (no table of its own "
+        "gives both factors; C-4 and PE4 reviewed together by Bogosian, Yokota & Rigby 2016)",
+        "assumed by composition; measured equivalences of RDX plastic explosives scatter by +-15 % "
+        "(Bogosian et al. 2016)",
+    )
 
 
 #: The library: name -> Explosive. UFC 3-340-02 Table 2-1 for the secondary explosives (PETN's
@@ -208,11 +272,15 @@ EXPLOSIVES["rdx"], EXPLOSIVES["hmx"] = _iatg("rdx"), _iatg("hmx")
 EXPLOSIVES["pe4"] = _as_c4("pe4", "PE4 (UK plastic explosive, 88 % RDX)")
 EXPLOSIVES["semtex"] = _as_c4("semtex", "Semtex H (Czech plastic explosive, RDX and PETN)")
 EXPLOSIVES["lead-azide"] = Explosive(
-    "lead-azide", 1.536e6 / TNT_ENERGY_J_KG, 1.536e6 / TNT_ENERGY_J_KG, 4800.0,
+    "lead-azide",
+    1.536e6 / TNT_ENERGY_J_KG,
+    1.536e6 / TNT_ENERGY_J_KG,
+    4800.0,
     "heat of explosion 1536 kJ/kg (Meyer, Koehler & Homburg 2007) over the TNT-equivalent energy 4.184 MJ/kg "
     "(UFC 3-340-02 Eq. 2-1, ratio of heats)",
     "air-blast equivalence of primary explosives is not tabulated; ratio of heats 0.33-0.37 with TNT's measured "
-    "4.2-4.6 MJ/kg: assume +-30 %")
+    "4.2-4.6 MJ/kg: assume +-30 %",
+)
 EXPLOSIVES = {n: _with_min_charge(e) for n, e in EXPLOSIVES.items()}
 
 
@@ -247,8 +315,10 @@ def get_explosive(name: str, custom: Optional[Mapping[str, Explosive]] = None) -
     try:
         return table[canonical_name(name, custom) if isinstance(name, str) else name]
     except (KeyError, TypeError):
-        raise BlastscaleInputError(f"explosive = {name!r} is not known: valid values are {', '.join(table)} "
-                                   "(or define it in a [lab.explosives.NAME] table)") from None
+        raise BlastscaleInputError(
+            f"explosive = {name!r} is not known: valid values are {', '.join(table)} "
+            "(or define it in a [lab.explosives.NAME] table)"
+        ) from None
 
 
 @dataclass(frozen=True)
@@ -280,18 +350,29 @@ class ChargeEquivalence:
     warnings: tuple = ()
 
     def to_dict(self) -> dict:
-        return {"explosive": self.explosive.name, "explosive_mass_kg": self.explosive_mass_kg,
-                "initiator_tnt_kg": self.initiator_tnt_kg,
-                "tnt_equivalent_impulse_kg": self.tnt_equivalent_impulse_kg,
-                "tnt_equivalent_pressure_kg": self.tnt_equivalent_pressure_kg,
-                "pressure_factor": self.explosive.pressure_factor, "impulse_factor": self.explosive.impulse_factor,
-                "initiator_fraction": self.initiator_fraction, "explosive_min_charge_kg": self.explosive.min_charge_kg,
-                "min_charge_source": self.explosive.min_charge_source, "equivalence_source": self.explosive.source,
-                "equivalence_uncertainty": self.explosive.uncertainty, "warnings": list(self.warnings)}
+        return {
+            "explosive": self.explosive.name,
+            "explosive_mass_kg": self.explosive_mass_kg,
+            "initiator_tnt_kg": self.initiator_tnt_kg,
+            "tnt_equivalent_impulse_kg": self.tnt_equivalent_impulse_kg,
+            "tnt_equivalent_pressure_kg": self.tnt_equivalent_pressure_kg,
+            "pressure_factor": self.explosive.pressure_factor,
+            "impulse_factor": self.explosive.impulse_factor,
+            "initiator_fraction": self.initiator_fraction,
+            "explosive_min_charge_kg": self.explosive.min_charge_kg,
+            "min_charge_source": self.explosive.min_charge_source,
+            "equivalence_source": self.explosive.source,
+            "equivalence_uncertainty": self.explosive.uncertainty,
+            "warnings": list(self.warnings),
+        }
 
 
-def charge_equivalence(tnt_kg: float, explosive: "str | Explosive" = "tnt", initiator_tnt_kg: float = 0.0,
-                       custom: Optional[Mapping[str, Explosive]] = None) -> ChargeEquivalence:
+def charge_equivalence(
+    tnt_kg: float,
+    explosive: "str | Explosive" = "tnt",
+    initiator_tnt_kg: float = 0.0,
+    custom: Optional[Mapping[str, Explosive]] = None,
+) -> ChargeEquivalence:
     """The mass of ``explosive`` that, with the initiator, delivers the impulse of ``tnt_kg`` of TNT.
 
     .. math:: m = \\frac{W - W_{init}}{f_I}, \\qquad W_P = m f_P + W_{init}
@@ -334,12 +415,15 @@ def charge_equivalence(tnt_kg: float, explosive: "str | Explosive" = "tnt", init
     if w0 >= W:
         raise BlastscaleInputError(
             f"initiator_tnt_kg = {w0:.4g} kg is out of range: the initiator alone delivers at least the whole "
-            f"charge ({W:.4g} kg TNT); use a smaller initiator (initiator_tnt_kg; initiator = \"none\" for a laser) or a "
-            "larger scale")
+            f'charge ({W:.4g} kg TNT); use a smaller initiator (initiator_tnt_kg; initiator = "none" for a laser) or a '
+            "larger scale"
+        )
     m = (W - w0) / ex.impulse_factor
     frac = w0 / W
     notes = []
     if frac > INITIATOR_WARNING_FRACTION:
-        notes.append(f"the initiator is {100 * frac:.3g} % of the charge (TNT equivalent, above "
-                     f"{100 * INITIATOR_WARNING_FRACTION:g} %): its own blast and its uncertainty shape the load")
+        notes.append(
+            f"the initiator is {100 * frac:.3g} % of the charge (TNT equivalent, above "
+            f"{100 * INITIATOR_WARNING_FRACTION:g} %): its own blast and its uncertainty shape the load"
+        )
     return ChargeEquivalence(ex, m, w0, W, m * ex.pressure_factor + w0, frac, tuple(notes))

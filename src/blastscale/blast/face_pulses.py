@@ -104,8 +104,11 @@ class FacePulses:
             shape = (1.0 - xc) * (np.exp(-self.decay * xc) if self.kind == "friedlander" else 1.0)
             p = np.where(inside, self.peak * shape, 0.0)
             if self.cleared is not None:
-                p = np.where(self.cleared, bilinear_pressure(t - self.arrival_time, self.peak, self.clear_t1,
-                                                             self.clear_p1, self.clear_t2), p)
+                p = np.where(
+                    self.cleared,
+                    bilinear_pressure(t - self.arrival_time, self.peak, self.clear_t1, self.clear_p1, self.clear_t2),
+                    p,
+                )
         if self.neg_peak is not None:
             p = p + cubic_pressure((t - self.arrival_time - self.neg_start) / self.neg_duration, self.neg_peak)
         return p
@@ -122,8 +125,9 @@ class FacePulses:
             else:
                 out = self.peak * self.duration * (x - 0.5 * x**2)
             if self.cleared is not None:
-                out = np.where(self.cleared, bilinear_cumulative(s, self.peak, self.clear_t1, self.clear_p1,
-                                                                 self.clear_t2), out)
+                out = np.where(
+                    self.cleared, bilinear_cumulative(s, self.peak, self.clear_t1, self.clear_p1, self.clear_t2), out
+                )
         if self.neg_peak is not None:
             out = out + cubic_cumulative((s - self.neg_start) / self.neg_duration, self.neg_peak, self.neg_duration)
         return out

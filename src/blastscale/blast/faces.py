@@ -292,12 +292,14 @@ def face_loads(
         )
     m = get_blast_model(blast_model)
     mi = incident_source(m) if incident_model is None else incident_model
-    return face_loads_unchecked(m, mi, incidence, W, xc, x, np.array(n, dtype=float), np.array(S, dtype=float),
-                                extrapolate)
+    return face_loads_unchecked(
+        m, mi, incidence, W, xc, x, np.array(n, dtype=float), np.array(S, dtype=float), extrapolate
+    )
 
 
-def face_loads_unchecked(blast_model, incident_model, incidence, charge, charge_position, centres, normals, areas,
-                         extrapolate) -> FaceLoads:
+def face_loads_unchecked(
+    blast_model, incident_model, incidence, charge, charge_position, centres, normals, areas, extrapolate
+) -> FaceLoads:
     """:func:`face_loads` without its input checks, for callers that re-evaluate the same faces
     at new positions many times (the faces of moving bodies, :mod:`blastscale.sim3d.face_loads`).
 

@@ -230,8 +230,9 @@ def ufc_impulse_fraction(angle, incident_pressure):
     return out if np.ndim(out) else float(out)
 
 
-def oblique_values(model: str, cos_incidence, reflected_pressure, incident_pressure, reflected_impulse,
-                   incident_impulse):
+def oblique_values(
+    model: str, cos_incidence, reflected_pressure, incident_pressure, reflected_impulse, incident_impulse
+):
     """Peak pressure [Pa] and impulse [Pa*s] on faces at the given incidence, for model ``model``.
 
     Parameters

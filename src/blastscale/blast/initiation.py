@@ -39,8 +39,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["CRITICAL_DIAMETERS_M", "CriticalDiameter", "min_reliable_charge", "Initiator", "INITIATORS",
-           "DEFAULT_INITIATOR"]
+__all__ = [
+    "CRITICAL_DIAMETERS_M",
+    "CriticalDiameter",
+    "min_reliable_charge",
+    "Initiator",
+    "INITIATORS",
+    "DEFAULT_INITIATOR",
+]
 
 
 @dataclass(frozen=True)
@@ -54,23 +60,34 @@ class CriticalDiameter:
 
 _LASL = "Gibbs & Popolato 1980 (LASL Explosive Property Data); Cooper 1996 ch. 17"
 _RU = "the Russian-language table of critical diameters, ru.wikipedia 'critical diameter of detonation'"
-_NITRAMINE = CriticalDiameter(4.4e-3, "pressed or plastic-bonded RDX/HMX", "upper end of pressed RDX's 2.5-4.4 mm "
-                              "(" + _RU + "); " + _LASL)
-_CAST_TNT = CriticalDiameter(15e-3, "cast TNT-based", "cast TNT fails below ~15 mm unconfined (" + _LASL + "); "
-                             "aluminised and TNT-based castings taken as cast TNT")
+_NITRAMINE = CriticalDiameter(
+    4.4e-3, "pressed or plastic-bonded RDX/HMX", "upper end of pressed RDX's 2.5-4.4 mm (" + _RU + "); " + _LASL
+)
+_CAST_TNT = CriticalDiameter(
+    15e-3,
+    "cast TNT-based",
+    "cast TNT fails below ~15 mm unconfined (" + _LASL + "); aluminised and TNT-based castings taken as cast TNT",
+)
 
 #: Critical diameter of each library explosive in the form a lab fires it [m] (module docstring).
 CRITICAL_DIAMETERS_M: dict[str, CriticalDiameter] = {
-    "tnt": CriticalDiameter(6e-3, "pressed, fine-grained", "pressed fine TNT 3-6 mm, cast 15 mm and more (" + _LASL
-                            + "); upper end of the pressed range"),
-    "petn": CriticalDiameter(1e-3, "pressed", "pressed PETN 0.7-0.86 mm at 1.0 g/cm^3 (" + _RU + "), "
-                             "about 1 mm at higher density (" + _LASL + ")"),
+    "tnt": CriticalDiameter(
+        6e-3,
+        "pressed, fine-grained",
+        "pressed fine TNT 3-6 mm, cast 15 mm and more (" + _LASL + "); upper end of the pressed range",
+    ),
+    "petn": CriticalDiameter(
+        1e-3,
+        "pressed",
+        "pressed PETN 0.7-0.86 mm at 1.0 g/cm^3 (" + _RU + "), about 1 mm at higher density (" + _LASL + ")",
+    ),
     "rdx": _NITRAMINE,
     "hmx": _NITRAMINE,
     "c-4": CriticalDiameter(4.4e-3, "plastic (91 % RDX)", "taken as pressed RDX's upper end, 4.4 mm (" + _LASL + ")"),
     "pe4": CriticalDiameter(4.4e-3, "plastic (88 % RDX)", "taken as pressed RDX's upper end, 4.4 mm (" + _LASL + ")"),
-    "semtex": CriticalDiameter(4.4e-3, "plastic (RDX and PETN)", "taken as pressed RDX's upper end, 4.4 mm (" + _LASL
-                               + ")"),
+    "semtex": CriticalDiameter(
+        4.4e-3, "plastic (RDX and PETN)", "taken as pressed RDX's upper end, 4.4 mm (" + _LASL + ")"
+    ),
     "composition-a-3": _NITRAMINE,
     "composition-b": CriticalDiameter(4.3e-3, "cast Comp B-3", "4.28 mm, unconfined (" + _LASL + ")"),
     "cyclotol-70-30": CriticalDiameter(4.3e-3, "cast", "taken as cast Comp B's 4.3 mm (" + _LASL + ")"),
@@ -78,12 +95,20 @@ CRITICAL_DIAMETERS_M: dict[str, CriticalDiameter] = {
     "pentolite": CriticalDiameter(7e-3, "cast 50/50", "taken as tetryl's upper end, 5-7 mm (" + _RU + ")"),
     "tetryl": CriticalDiameter(7e-3, "pressed", "5-7 mm (" + _RU + "); upper end"),
     "tetrytol": _CAST_TNT,
-    "hbx-1": _CAST_TNT, "hbx-3": _CAST_TNT, "h-6": _CAST_TNT, "minol-ii": _CAST_TNT, "tritonal": _CAST_TNT,
+    "hbx-1": _CAST_TNT,
+    "hbx-3": _CAST_TNT,
+    "h-6": _CAST_TNT,
+    "minol-ii": _CAST_TNT,
+    "tritonal": _CAST_TNT,
     "tnetb": _CAST_TNT,
-    "anfo": CriticalDiameter(0.1, "prilled, unconfined", "prilled ANFO fails below 75-100 mm unconfined (Cooper 1996 "
-                             "ch. 17); upper end"),
-    "lead-azide": CriticalDiameter(0.05e-3, "pressed (primary explosive)", "primary explosives detonate in layers "
-                                   "of hundredths of a mm (Cooper 1996 ch. 17); taken as 0.05 mm"),
+    "anfo": CriticalDiameter(
+        0.1, "prilled, unconfined", "prilled ANFO fails below 75-100 mm unconfined (Cooper 1996 ch. 17); upper end"
+    ),
+    "lead-azide": CriticalDiameter(
+        0.05e-3,
+        "pressed (primary explosive)",
+        "primary explosives detonate in layers of hundredths of a mm (Cooper 1996 ch. 17); taken as 0.05 mm",
+    ),
 }
 
 
@@ -104,9 +129,12 @@ class Initiator:
 
 #: Real initiators by name (their explosive contents from the makers' data sheets).
 INITIATORS: dict[str, Initiator] = {
-    "rp-80": Initiator("rp-80", (("petn", 80e-6), ("rdx", 123e-6)),
-                       "Teledyne RISI RP-80 exploding-bridgewire detonator data sheet: 80 mg PETN initiating pellet, "
-                       "123 mg RDX output pellet"),
+    "rp-80": Initiator(
+        "rp-80",
+        (("petn", 80e-6), ("rdx", 123e-6)),
+        "Teledyne RISI RP-80 exploding-bridgewire detonator data sheet: 80 mg PETN initiating pellet, "
+        "123 mg RDX output pellet",
+    ),
     "none": Initiator("none", (), "no initiator (a laser or the charge's own bridgewire): state it"),
 }
 

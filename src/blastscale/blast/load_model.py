@@ -37,8 +37,15 @@ from .negative_phase import (
 )
 from .pulses import Impulsive, Pulse
 
-__all__ = ["LoadModel", "PAPER_LOAD", "PhasedPulse", "front_face_pulse", "front_face_clearing", "front_face_negative",
-           "load_model_record"]
+__all__ = [
+    "LoadModel",
+    "PAPER_LOAD",
+    "PhasedPulse",
+    "front_face_pulse",
+    "front_face_clearing",
+    "front_face_negative",
+    "load_model_record",
+]
 
 
 @dataclass(frozen=True)
@@ -69,19 +76,23 @@ class LoadModel:
         if (self.face_width_m is None) != (self.face_height_m is None):
             raise BlastscaleInputError(
                 f"face width = {self.face_width_m}, face height = {self.face_height_m}: give both (m) or neither "
-                "(CLI --face-width, --face-height)")
+                "(CLI --face-width, --face-height)"
+            )
         for name, v in (("face width", self.face_width_m), ("face height", self.face_height_m)):
             if v is not None and not (float(v) > 0.0):  # > 0, inf allowed (an unbounded face)
                 raise BlastscaleInputError(f"{name} = {v!r} m is out of range: must be > 0 m")
         if self.negative_phase_model not in NEGATIVE_PHASE_MODELS:
-            raise BlastscaleInputError(f"negative phase model = {self.negative_phase_model!r} is not known: valid "
-                                       f"values are {', '.join(NEGATIVE_PHASE_MODELS)}")
+            raise BlastscaleInputError(
+                f"negative phase model = {self.negative_phase_model!r} is not known: valid "
+                f"values are {', '.join(NEGATIVE_PHASE_MODELS)}"
+            )
 
     def require_face(self) -> "LoadModel":
         """``self`` when clearing has its face (or there is no clearing); one line otherwise."""
         if self.clearing and self.face_width_m is None:
-            raise BlastscaleInputError("clearing needs the loaded face's width and height: give both in m "
-                                       "(CLI --face-width, --face-height)")
+            raise BlastscaleInputError(
+                "clearing needs the loaded face's width and height: give both in m (CLI --face-width, --face-height)"
+            )
         return self
 
     @property
@@ -171,23 +182,31 @@ class PhasedPulse(Pulse):
 
     def pressure(self, t):
         tt = np.asarray(t, dtype=float)
-        p = self.positive.pressure(tt) + cubic_pressure((tt - self.negative_start) / self.negative_duration,
-                                                        self.negative_peak)
+        p = self.positive.pressure(tt) + cubic_pressure(
+            (tt - self.negative_start) / self.negative_duration, self.negative_peak
+        )
         return p if np.ndim(t) else float(p)
 
     def cumulative_impulse(self, t):
         tt = np.asarray(t, dtype=float)
-        c = self.positive.cumulative_impulse(tt) + cubic_cumulative((tt - self.negative_start) / self.negative_duration,
-                                                                    self.negative_peak, self.negative_duration)
+        c = self.positive.cumulative_impulse(tt) + cubic_cumulative(
+            (tt - self.negative_start) / self.negative_duration, self.negative_peak, self.negative_duration
+        )
         return c if np.ndim(t) else float(c)
 
     def _rescaled(self, pressure_factor: float, time_factor: float) -> "PhasedPulse":
-        return PhasedPulse(self.positive._rescaled(pressure_factor, time_factor), self.negative_peak * pressure_factor,
-                           self.negative_duration * time_factor, self.negative_start * time_factor)
+        return PhasedPulse(
+            self.positive._rescaled(pressure_factor, time_factor),
+            self.negative_peak * pressure_factor,
+            self.negative_duration * time_factor,
+            self.negative_start * time_factor,
+        )
 
     def __repr__(self) -> str:
-        return (f"PhasedPulse({self.positive!r}, negative_peak={self.negative_peak:.6g} Pa, "
-                f"negative_duration={self.negative_duration:.6g} s)")
+        return (
+            f"PhasedPulse({self.positive!r}, negative_peak={self.negative_peak:.6g} Pa, "
+            f"negative_duration={self.negative_duration:.6g} s)"
+        )
 
 
 def front_face_clearing(bp, load_model: LoadModel) -> "Clearing | None":
@@ -205,12 +224,14 @@ def front_face_clearing(bp, load_model: LoadModel) -> "Clearing | None":
         w13 = np.cbrt(bp.charge_kg)
         P_so = kb.incident_pressure(bp.scaled_distance, extrapolate=True)
         i_s = kb.scaled_incident_impulse(bp.scaled_distance, extrapolate=True) * w13
-    return clearing(bp.reflected_pressure, bp.reflected_impulse, P_so, i_s, load_model.face_width_m,
-                    load_model.face_height_m)
+    return clearing(
+        bp.reflected_pressure, bp.reflected_impulse, P_so, i_s, load_model.face_width_m, load_model.face_height_m
+    )
 
 
-def front_face_negative(bp, load_model: LoadModel, *, extrapolate: bool = False,
-                        positive_impulse=None) -> "NegativePhase | None":
+def front_face_negative(
+    bp, load_model: LoadModel, *, extrapolate: bool = False, positive_impulse=None
+) -> "NegativePhase | None":
     """Negative phase of the normally reflected load of ``bp`` under the load model's negative-phase
     model, bounded by the face's positive impulse [Pa s] (``positive_impulse``, default the reflected
     impulse of ``bp``; the cleared one where clearing acts), or None without it. The chart's Z range
@@ -220,14 +241,21 @@ def front_face_negative(bp, load_model: LoadModel, *, extrapolate: bool = False,
     burst = getattr(bp, "burst", "surface")
     if load_model.negative_phase_model == NEGATIVE_PHASE_MODEL:
         negative_phase(bp.scaled_distance, bp.charge_kg, burst, extrapolate=extrapolate)
-    return face_negative_phase(bp.scaled_distance, bp.charge_kg, burst, reflected_pressure=bp.reflected_pressure,
-                               reflected_impulse=bp.reflected_impulse if positive_impulse is None else positive_impulse,
-                               positive_duration=bp.positive_duration, friedlander_decay=bp.friedlander_decay,
-                               model=load_model.negative_phase_model)
+    return face_negative_phase(
+        bp.scaled_distance,
+        bp.charge_kg,
+        burst,
+        reflected_pressure=bp.reflected_pressure,
+        reflected_impulse=bp.reflected_impulse if positive_impulse is None else positive_impulse,
+        positive_duration=bp.positive_duration,
+        friedlander_decay=bp.friedlander_decay,
+        model=load_model.negative_phase_model,
+    )
 
 
-def front_face_pulse(bp, shape: str = "friedlander", load_model: "LoadModel | None" = None, *,
-                     extrapolate: bool = False) -> Pulse:
+def front_face_pulse(
+    bp, shape: str = "friedlander", load_model: "LoadModel | None" = None, *, extrapolate: bool = False
+) -> Pulse:
     """The pulse on a front face normal to the blast of ``bp`` (one charge and stand-off).
 
     Without a load model (or the paper's) this is ``bp.pulse(shape)`` itself. With clearing the

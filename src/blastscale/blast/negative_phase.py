@@ -108,16 +108,31 @@ CUBIC_IMPULSE_FACTOR = 9.0 / 16.0
 #: boundary belongs to the lower piece.
 RIGBY_NEGATIVE_PHASE = {
     "surface": {
-        "pressure": ((0.669, (0.0, 0.0, 0.0, 100e-3)), (1.27, (-32.91e-3, 2.0, 13e-3, 106e-3)),
-                     (2.78, (93e-3, -1.215, 0.0, 0.0)), (np.inf, (72.99e-3, -0.978, 0.0, 0.0))),
-        "impulse": ((0.58, (-724.37e-3, 2.0, 445.34e-3, 553e-3)), (1.19, (11.356e-3, 2.0, -314.76e-3, 752e-3)),
-                    (5.25, (461.8e-3, -0.88, 0.0, 0.0)), (np.inf, (433.6e-3, -0.842, 0.0, 0.0))),
+        "pressure": (
+            (0.669, (0.0, 0.0, 0.0, 100e-3)),
+            (1.27, (-32.91e-3, 2.0, 13e-3, 106e-3)),
+            (2.78, (93e-3, -1.215, 0.0, 0.0)),
+            (np.inf, (72.99e-3, -0.978, 0.0, 0.0)),
+        ),
+        "impulse": (
+            (0.58, (-724.37e-3, 2.0, 445.34e-3, 553e-3)),
+            (1.19, (11.356e-3, 2.0, -314.76e-3, 752e-3)),
+            (5.25, (461.8e-3, -0.88, 0.0, 0.0)),
+            (np.inf, (433.6e-3, -0.842, 0.0, 0.0)),
+        ),
     },
     "free-air": {
-        "pressure": ((0.7, (0.0, 0.0, 0.0, 100e-3)), (1.469, (-29.078e-3, 2.0, 0.0352e-3, 114e-3)),
-                     (2.754, (84.132e-3, -1.286, 0.0, 0.0)), (np.inf, (59.559e-3, -0.945, 0.0, 0.0))),
-        "impulse": ((0.304, (0.0, 0.0, 0.0, 496e-3)), (1.44, (36.919e-3, 2.0, -298.72e-3, 583e-3)),
-                    (np.inf, (316.36e-3, -0.879, 0.0, 0.0))),
+        "pressure": (
+            (0.7, (0.0, 0.0, 0.0, 100e-3)),
+            (1.469, (-29.078e-3, 2.0, 0.0352e-3, 114e-3)),
+            (2.754, (84.132e-3, -1.286, 0.0, 0.0)),
+            (np.inf, (59.559e-3, -0.945, 0.0, 0.0)),
+        ),
+        "impulse": (
+            (0.304, (0.0, 0.0, 0.0, 496e-3)),
+            (1.44, (36.919e-3, 2.0, -298.72e-3, 583e-3)),
+            (np.inf, (316.36e-3, -0.879, 0.0, 0.0)),
+        ),
     },
 }
 
@@ -125,8 +140,11 @@ RIGBY_NEGATIVE_PHASE = {
 #: (used only to check the cubic's implied duration).
 RIGBY_NEGATIVE_DURATION = {
     "surface": ((0.267, (0.0, 0.0, 0.0, 10.57)), (2.9, (-0.474, 2.0, 2.745, 9.87)), (np.inf, (0.0, 0.0, 0.0, 13.9))),
-    "free-air": ((0.537, (0.382, 2.0, 2.952, 7.917)), (2.83, (-0.309, 2.0, 1.6443, 8.818)),
-                 (np.inf, (0.0, 0.0, 0.0, 11.0))),
+    "free-air": (
+        (0.537, (0.382, 2.0, 2.952, 7.917)),
+        (2.83, (-0.309, 2.0, 1.6443, 8.818)),
+        (np.inf, (0.0, 0.0, 0.0, 11.0)),
+    ),
 }
 
 
@@ -170,13 +188,18 @@ class NegativePhase:
 
     def to_dict(self) -> dict:
         """The CLI's keys: ``negative_pressure_Pa``, ``negative_impulse_Pa_s``, ``negative_duration_s``."""
+
         def v(x):
             return x.tolist() if isinstance(x, np.ndarray) else float(x)
 
         b = self.bounded.tolist() if isinstance(self.bounded, np.ndarray) else bool(self.bounded)
-        return {"negative_phase_model": self.model, "negative_pressure_Pa": v(self.pressure),
-                "negative_impulse_Pa_s": v(self.impulse), "negative_duration_s": v(self.duration),
-                "negative_impulse_bounded": b}
+        return {
+            "negative_phase_model": self.model,
+            "negative_pressure_Pa": v(self.pressure),
+            "negative_impulse_Pa_s": v(self.impulse),
+            "negative_duration_s": v(self.duration),
+            "negative_impulse_bounded": b,
+        }
 
 
 def negative_phase_unchecked(scaled_distance, charge, burst: str = "surface") -> NegativePhase:
@@ -226,8 +249,10 @@ def negative_phase(scaled_distance, charge, burst: str = "surface", *, extrapola
     out = (z < lo) | (z > hi)
     if np.any(out):
         zb = float(z[out].ravel()[0])
-        msg = (f"negative phase: scaled distance Z = {zb:.6g} m/kg^(1/3) is outside the range of UFC 3-340-02 "
-               f"Fig. 2-16's calibration [{lo:g}, {hi:g}] m/kg^(1/3)")
+        msg = (
+            f"negative phase: scaled distance Z = {zb:.6g} m/kg^(1/3) is outside the range of UFC 3-340-02 "
+            f"Fig. 2-16's calibration [{lo:g}, {hi:g}] m/kg^(1/3)"
+        )
         if not extrapolate:
             raise OutOfRangeError(msg + " (opt in with extrapolate=True, CLI --extrapolate)")
         warnings.warn(msg + "; extrapolating", ExtrapolationWarning, stacklevel=2)
@@ -260,8 +285,17 @@ def bounded_by_positive(neg: NegativePhase, positive_impulse) -> NegativePhase:
     return NegativePhase(np.asarray(neg.pressure) * f, i * f, neg.duration, neg.model, over)
 
 
-def face_negative_phase(scaled_distance, charge, burst: str = "surface", *, reflected_pressure, reflected_impulse,
-                        positive_duration, friedlander_decay=None, model: str = NEGATIVE_PHASE_MODEL) -> NegativePhase:
+def face_negative_phase(
+    scaled_distance,
+    charge,
+    burst: str = "surface",
+    *,
+    reflected_pressure,
+    reflected_impulse,
+    positive_duration,
+    friedlander_decay=None,
+    model: str = NEGATIVE_PHASE_MODEL,
+) -> NegativePhase:
     """The negative phase of a face's normally reflected load under ``model`` (one of
     :data:`NEGATIVE_PHASE_MODELS`), bounded by the face's positive impulse (module docstring).
 
@@ -279,8 +313,9 @@ def face_negative_phase(scaled_distance, charge, burst: str = "surface", *, refl
     else:
         from .._validate import BlastscaleInputError
 
-        raise BlastscaleInputError(f"negative phase model = {model!r} is not known: valid values are "
-                                   f"{', '.join(NEGATIVE_PHASE_MODELS)}")
+        raise BlastscaleInputError(
+            f"negative phase model = {model!r} is not known: valid values are {', '.join(NEGATIVE_PHASE_MODELS)}"
+        )
     return bounded_by_positive(neg, reflected_impulse)
 
 

@@ -66,7 +66,8 @@ def get_blast_model(blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> Bl
         return blast_model
     if blast_model not in BLAST_MODELS and blast_model not in BURST_VARIANTS:
         raise BlastscaleInputError(
-            f"blast model = {blast_model!r} is not known: valid values are {', '.join(BLAST_MODELS)}")
+            f"blast model = {blast_model!r} is not known: valid values are {', '.join(BLAST_MODELS)}"
+        )
     if blast_model not in _CACHE:
         _CACHE[blast_model] = {**BLAST_MODELS, **BURST_VARIANTS}[blast_model]()
     return _CACHE[blast_model]
@@ -110,12 +111,20 @@ def model_for_burst(blast_model, burst: str = DEFAULT_BURST) -> BlastModel:
         return get_blast_model("kingery-bulmash-free-air" if burst == "free-air" else "kingery-bulmash")
     raise BlastscaleInputError(
         f"burst = {burst!r} is not available for blast model {m.name!r} (its fits are for a "
-        f"{getattr(m, 'burst', DEFAULT_BURST)} burst only): use blast model kingery-bulmash")
+        f"{getattr(m, 'burst', DEFAULT_BURST)} burst only): use blast model kingery-bulmash"
+    )
 
 
 #: Quantities :func:`blast_parameters` evaluates (the last three only where the model provides them).
-_USED = ("reflected_pressure", "scaled_reflected_impulse", "scaled_arrival_time", "scaled_positive_duration",
-         "incident_pressure", "scaled_incident_impulse", "shock_front_velocity")
+_USED = (
+    "reflected_pressure",
+    "scaled_reflected_impulse",
+    "scaled_arrival_time",
+    "scaled_positive_duration",
+    "incident_pressure",
+    "scaled_incident_impulse",
+    "shock_front_velocity",
+)
 
 
 def valid_scaled_distance_range(blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> tuple[float, float]:
@@ -207,8 +216,9 @@ class BlastParameters:
         indices into the arrays)."""
         if np.ndim(self.charge_kg) == 0:
             raise BlastscaleInputError("select needs blast parameters of arrays (these are of one point)")
-        return BlastParameters(**{k: (v if isinstance(v, str) or v is None else np.asarray(v)[index])
-                                  for k, v in asdict(self).items()})
+        return BlastParameters(
+            **{k: (v if isinstance(v, str) or v is None else np.asarray(v)[index]) for k, v in asdict(self).items()}
+        )
 
     def to_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (as written by the CLI's ``--json``, which adds the

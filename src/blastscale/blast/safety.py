@@ -55,12 +55,23 @@ import numpy as np
 from .._validate import BlastscaleInputError, OutOfRangeError
 from .kingery_bulmash import KingeryBulmash
 
-__all__ = ["PSI", "FT_LB13", "SURFACE_BURST_FACTOR", "Threshold", "SAFETY_THRESHOLDS", "QD_K_FACTORS",
-           "kinney_graham_overpressure", "surface_burst_overpressure", "far_field_joint", "overpressure_distance",
-           "quantity_distance", "safety_distances"]
+__all__ = [
+    "PSI",
+    "FT_LB13",
+    "SURFACE_BURST_FACTOR",
+    "Threshold",
+    "SAFETY_THRESHOLDS",
+    "QD_K_FACTORS",
+    "kinney_graham_overpressure",
+    "surface_burst_overpressure",
+    "far_field_joint",
+    "overpressure_distance",
+    "quantity_distance",
+    "safety_distances",
+]
 
 #: One pound-force per square inch [Pa] (0.45359237 kg x 9.80665 m/s^2 / (0.0254 m)^2, exact).
-PSI = 0.45359237 * 9.80665 / 0.0254 ** 2
+PSI = 0.45359237 * 9.80665 / 0.0254**2
 
 #: One ft/lb^(1/3) in m/kg^(1/3) (0.3048 m / (0.45359237 kg)^(1/3), exact): K-factors to SI.
 FT_LB13 = 0.3048 / 0.45359237 ** (1.0 / 3.0)
@@ -87,14 +98,27 @@ class Threshold:
 
 #: The default thresholds of the safety envelope, highest first.
 SAFETY_THRESHOLDS: tuple[Threshold, ...] = (
-    Threshold("34.5 kPa", 5.0 * PSI, "threshold of eardrum rupture (5 psi)",
-              "White (1968) via Baker et al. (1983) ch. 9"),
-    Threshold("6.9 kPa", 1.0 * PSI, "1 psi: injuries from flying glass, light structures damaged",
-              "Glasstone & Dolan (1977) ch. 5; Baker et al. (1983) ch. 9"),
-    Threshold("1.03 kPa", 0.15 * PSI, "typical pressure for window glass breakage (0.15 psi)",
-              "Clancey (1972) via Baker et al. (1983) ch. 7"),
-    Threshold("200 Pa", 200.0, "impulse-noise limit for hearing: 140 dB peak (20 uPa x 10^(140/20))",
-              "Directive 2003/10/EC Art. 3; OSHA 29 CFR 1910.95(b)(1)"),
+    Threshold(
+        "34.5 kPa", 5.0 * PSI, "threshold of eardrum rupture (5 psi)", "White (1968) via Baker et al. (1983) ch. 9"
+    ),
+    Threshold(
+        "6.9 kPa",
+        1.0 * PSI,
+        "1 psi: injuries from flying glass, light structures damaged",
+        "Glasstone & Dolan (1977) ch. 5; Baker et al. (1983) ch. 9",
+    ),
+    Threshold(
+        "1.03 kPa",
+        0.15 * PSI,
+        "typical pressure for window glass breakage (0.15 psi)",
+        "Clancey (1972) via Baker et al. (1983) ch. 7",
+    ),
+    Threshold(
+        "200 Pa",
+        200.0,
+        "impulse-noise limit for hearing: 140 dB peak (20 uPa x 10^(140/20))",
+        "Directive 2003/10/EC Art. 3; OSHA 29 CFR 1910.95(b)(1)",
+    ),
 )
 
 #: DoD 6055.09-M quantity-distance factors [ft/lb^(1/3)] and what they protect (HD 1.1).
@@ -119,8 +143,12 @@ def kinney_graham_overpressure(Z):
         P_so [Pa] (module docstring equation, p0 = 101.325 kPa).
     """
     z = np.asarray(Z, dtype=float)
-    p = _P0 * 808.0 * (1.0 + (z / 4.5) ** 2) / np.sqrt(
-        (1.0 + (z / 0.048) ** 2) * (1.0 + (z / 0.32) ** 2) * (1.0 + (z / 1.35) ** 2))
+    p = (
+        _P0
+        * 808.0
+        * (1.0 + (z / 4.5) ** 2)
+        / np.sqrt((1.0 + (z / 0.048) ** 2) * (1.0 + (z / 0.32) ** 2) * (1.0 + (z / 1.35) ** 2))
+    )
     return p if p.ndim else float(p)
 
 
@@ -134,8 +162,13 @@ def far_field_joint() -> dict:
     their ratio ``raw_jump`` (Kinney-Graham / Kingery-Bulmash) and the ``jump`` of the curve used (0)."""
     pkb = float(_KB.incident_pressure(_Z_J))
     pkg = float(_kg_surface(_Z_J))
-    return {"scaled_distance_m_per_kg13": _Z_J, "kingery_bulmash_Pa": pkb, "kinney_graham_Pa": pkg,
-            "raw_jump": pkg / pkb, "jump": 0.0}
+    return {
+        "scaled_distance_m_per_kg13": _Z_J,
+        "kingery_bulmash_Pa": pkb,
+        "kinney_graham_Pa": pkg,
+        "raw_jump": pkg / pkb,
+        "jump": 0.0,
+    }
 
 
 def surface_burst_overpressure(Z):
@@ -145,8 +178,10 @@ def surface_burst_overpressure(Z):
     z = np.asarray(Z, dtype=float)
     if np.any(~np.isfinite(z)) or np.any(z < _Z_LO):
         bad = float(z[~(np.isfinite(z) & (z >= _Z_LO))].ravel()[0])
-        raise OutOfRangeError(f"scaled distance Z = {bad:.6g} m/kg^(1/3) is out of range for the overpressure: "
-                              f"valid range is >= {_Z_LO:g} m/kg^(1/3)")
+        raise OutOfRangeError(
+            f"scaled distance Z = {bad:.6g} m/kg^(1/3) is out of range for the overpressure: "
+            f"valid range is >= {_Z_LO:g} m/kg^(1/3)"
+        )
     near = z <= _Z_J
     out = np.empty_like(z)
     if np.any(near):
@@ -187,14 +222,18 @@ def _scaled_distance_to(thr: float) -> float:
 
     top = float(surface_burst_overpressure(_Z_LO))
     if thr > top:
-        raise BlastscaleInputError(f"threshold = {thr:.6g} Pa is out of range: valid range is <= {top:.6g} Pa "
-                                   f"(the overpressure at Z = {_Z_LO:g} m/kg^(1/3))")
+        raise BlastscaleInputError(
+            f"threshold = {thr:.6g} Pa is out of range: valid range is <= {top:.6g} Pa "
+            f"(the overpressure at Z = {_Z_LO:g} m/kg^(1/3))"
+        )
     u = np.linspace(math.log(_Z_LO), math.log(_Z_MAX), 4000)
     p = surface_burst_overpressure(np.exp(u))
     k = int(np.flatnonzero(p >= thr)[-1])
     if k == u.size - 1:
-        raise BlastscaleInputError(f"threshold = {thr:.6g} Pa is out of range: the overpressure stays above it "
-                                   f"beyond Z = {_Z_MAX:g} m/kg^(1/3)")
+        raise BlastscaleInputError(
+            f"threshold = {thr:.6g} Pa is out of range: the overpressure stays above it "
+            f"beyond Z = {_Z_MAX:g} m/kg^(1/3)"
+        )
     f = lambda x: math.log(float(surface_burst_overpressure(math.exp(x)))) - math.log(thr)  # noqa: E731
     root = brentq(f, u[k], u[k + 1], xtol=1e-12, rtol=4 * np.finfo(float).eps) if p[k] > thr else u[k]
     return math.exp(root)

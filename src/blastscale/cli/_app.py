@@ -34,8 +34,7 @@ from ._signals import Interrupted, ignore_interrupts, raise_if_interrupted  # no
 def _console(stderr: bool = False) -> Console:
     # wide enough for the tables when output is piped (rich falls back to 80 columns otherwise)
     probe = Console(stderr=stderr)
-    return Console(stderr=stderr, width=None if probe.is_terminal else 160, markup=False, emoji=False,
-                   highlight=False)
+    return Console(stderr=stderr, width=None if probe.is_terminal else 160, markup=False, emoji=False, highlight=False)
 
 
 console = _console()
@@ -155,8 +154,10 @@ def _adapt_hint(message: str, group, args) -> str:
         return message
     if name == "run":
         return message.replace(hint, "in a scenario: blast.extrapolate = true or --set blast.extrapolate=true, ")
-    return message.replace("(opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)",
-                           f"(`{name}` has no --extrapolate: choose values inside the range)").replace(hint, "")
+    return message.replace(
+        "(opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)",
+        f"(`{name}` has no --extrapolate: choose values inside the range)",
+    ).replace(hint, "")
 
 
 def _version(value: bool) -> None:
@@ -179,8 +180,9 @@ app = typer.Typer(
 
 @app.callback()
 def _main(
-    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
-                                 help="Print the version and exit."),
+    version: bool = typer.Option(
+        False, "--version", callback=_version, is_eager=True, help="Print the version and exit."
+    ),
 ) -> None:
     """Design safe reduced-scale blast experiments on masonry structures (Masi et al. scaling laws)."""
 
@@ -206,9 +208,19 @@ def stage_progress(quiet: bool = False, expected_s: float | None = None):
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
     state = {"stage": "starting", "done": 0, "total": None, "expected_s": expected_s}
-    with Progress(SpinnerColumn(), TextColumn("{task.description}", markup=False), BarColumn(),
-                  MofNCompleteColumn(), TimeElapsedColumn(), console=console_err, transient=True,
-                  disable=not show_progress(quiet)) as bar, plain_lines(state, plain_progress(console_err, quiet), console_err):
+    with (
+        Progress(
+            SpinnerColumn(),
+            TextColumn("{task.description}", markup=False),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TimeElapsedColumn(),
+            console=console_err,
+            transient=True,
+            disable=not show_progress(quiet),
+        ) as bar,
+        plain_lines(state, plain_progress(console_err, quiet), console_err),
+    ):
         task = bar.add_task("starting", total=None)
 
         def tell(stage: str, done: int, total: int) -> None:
@@ -230,14 +242,34 @@ def activity(label: str, quiet: bool = False):
 
 def count_progress(label: str, quiet: bool = False):
     """A progress bar over cases (done / total, elapsed, remaining) and its ``tick(done, total)``."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
-    bar = Progress(TextColumn(label, markup=False), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                   TimeRemainingColumn(), console=console_err, transient=True, disable=not show_progress(quiet))
+    bar = Progress(
+        TextColumn(label, markup=False),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        console=console_err,
+        transient=True,
+        disable=not show_progress(quiet),
+    )
     task = bar.add_task(label, total=None)
     import time
 
-    plain, every, t0, last = plain_progress(console_err, quiet), progress_seconds(), time.monotonic(), [time.monotonic()]
+    plain, every, t0, last = (
+        plain_progress(console_err, quiet),
+        progress_seconds(),
+        time.monotonic(),
+        [time.monotonic()],
+    )
 
     def tick(done: int, total: int) -> None:
         raise_if_interrupted()
@@ -247,8 +279,9 @@ def count_progress(label: str, quiet: bool = False):
             from ..study.memory import format_duration
 
             last[0] = now
-            console_err.print(f"progress: {label}: {done} of {total} done, {format_duration(now - t0)} elapsed",
-                              soft_wrap=True)
+            console_err.print(
+                f"progress: {label}: {done} of {total} done, {format_duration(now - t0)} elapsed", soft_wrap=True
+            )
 
     return bar, tick
 

@@ -11,8 +11,15 @@ from __future__ import annotations
 import contextlib
 import os
 
-__all__ = ["PROGRESS_SECONDS", "ANNOUNCE_SECONDS", "ANNOUNCE_BYTES", "progress_seconds", "plain_progress",
-           "announce_run", "plain_lines"]
+__all__ = [
+    "PROGRESS_SECONDS",
+    "ANNOUNCE_SECONDS",
+    "ANNOUNCE_BYTES",
+    "progress_seconds",
+    "plain_progress",
+    "announce_run",
+    "plain_lines",
+]
 
 #: Seconds between plain progress lines when standard error is not a terminal (``BLASTSCALE_PROGRESS_SECONDS``).
 PROGRESS_SECONDS = 30.0
@@ -73,8 +80,9 @@ def plain_lines(state: dict, plain: bool, console):
         total = state.get("total")
         where = f" ({state['done']} of {total})" if total else ""
         left = f" of about {format_duration(of)}" if of else ""
-        console.print(f"progress: {state.get('stage', 'starting')}{where}, {format_duration(took)} elapsed{left}",
-                      soft_wrap=True)
+        console.print(
+            f"progress: {state.get('stage', 'starting')}{where}, {format_duration(took)} elapsed{left}", soft_wrap=True
+        )
 
     def loop() -> None:
         while not stop.wait(every):

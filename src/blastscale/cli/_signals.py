@@ -15,14 +15,28 @@ import signal
 import sys
 from typing import Callable, Optional
 
-__all__ = ["Interrupted", "SIGNALS", "install", "restore", "raise_if_interrupted", "ignore_interrupts",
-           "interrupted_signal", "exit_status", "message", "set_interrupt_note", "in_worker_process"]
+__all__ = [
+    "Interrupted",
+    "SIGNALS",
+    "install",
+    "restore",
+    "raise_if_interrupted",
+    "ignore_interrupts",
+    "interrupted_signal",
+    "exit_status",
+    "message",
+    "set_interrupt_note",
+    "in_worker_process",
+]
 
 #: The signals a command turns into :class:`Interrupted`.
 SIGNALS = tuple(getattr(signal, s) for s in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, s))
 
-_WORDS = {getattr(signal, "SIGINT", 2): "interrupted (Ctrl-C)", getattr(signal, "SIGTERM", 15): "terminated (SIGTERM)",
-          getattr(signal, "SIGHUP", 1): "hung up (SIGHUP)"}
+_WORDS = {
+    getattr(signal, "SIGINT", 2): "interrupted (Ctrl-C)",
+    getattr(signal, "SIGTERM", 15): "terminated (SIGTERM)",
+    getattr(signal, "SIGHUP", 1): "hung up (SIGHUP)",
+}
 
 
 class Interrupted(BaseException):

@@ -37,18 +37,21 @@ def check_animation(out: str, view: str, fps: float, speed: float) -> Path:
 
     p = Path(out).expanduser()
     if p.suffix.lower() not in ANIMATION_SUFFIXES:
-        raise BlastscaleInputError(f"animate = {out!r} has no animation extension: valid extensions are "
-                                   f"{', '.join(ANIMATION_SUFFIXES)}")
+        raise BlastscaleInputError(
+            f"animate = {out!r} has no animation extension: valid extensions are {', '.join(ANIMATION_SUFFIXES)}"
+        )
     if view not in VIEWS:
         raise BlastscaleInputError(f"view = {view!r} is not known: valid views are {', '.join(VIEWS)}")
     if not (math.isfinite(fps) and FPS_RANGE[0] <= fps <= FPS_RANGE[1]):
-        raise BlastscaleInputError(f"fps = {fps!r} is out of range: valid range is [{FPS_RANGE[0]:g}, "
-                                   f"{FPS_RANGE[1]:g}] frames per second")
+        raise BlastscaleInputError(
+            f"fps = {fps!r} is out of range: valid range is [{FPS_RANGE[0]:g}, {FPS_RANGE[1]:g}] frames per second"
+        )
     if not (math.isfinite(speed) and 0.0 < speed <= 1e6):
         raise BlastscaleInputError(f"speed = {speed!r} is out of range: valid range is (0, 1e6] x real time")
     if p.suffix.lower() == ".mp4" and shutil.which("ffmpeg") is None:
-        raise BlastscaleInputError(f"animate = {out!r}: no MP4 encoder is installed (ffmpeg not found): write "
-                                   ".gif or .html, or install ffmpeg")
+        raise BlastscaleInputError(
+            f"animate = {out!r}: no MP4 encoder is installed (ffmpeg not found): write .gif or .html, or install ffmpeg"
+        )
     return check_target(p, Kind("an animation", lambda q: True, folder=False), name="animate")
 
 
@@ -57,8 +60,16 @@ def _gif(frames, fps: float) -> bytes:
 
     images = [Image.fromarray(f).quantize(colors=128, method=Image.Quantize.MEDIANCUT) for f in frames]
     buf = io.BytesIO()
-    images[0].save(buf, format="GIF", save_all=True, append_images=images[1:], duration=round(1000.0 / fps),
-                   loop=0, optimize=False, disposal=1)
+    images[0].save(
+        buf,
+        format="GIF",
+        save_all=True,
+        append_images=images[1:],
+        duration=round(1000.0 / fps),
+        loop=0,
+        optimize=False,
+        disposal=1,
+    )
     return buf.getvalue()
 
 
@@ -74,9 +85,32 @@ def _mp4(frames, fps: float) -> bytes:
                 if proc is None:
                     h, w = f.shape[:2]
                     proc = subprocess.Popen(
-                        ["ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgb24", "-s", f"{w}x{h}",
-                         "-r", f"{fps:g}", "-i", "-", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt", "yuv420p",
-                         "-vcodec", "libx264", str(out)], stdin=subprocess.PIPE, stderr=subprocess.PIPE)
+                        [
+                            "ffmpeg",
+                            "-loglevel",
+                            "error",
+                            "-y",
+                            "-f",
+                            "rawvideo",
+                            "-pix_fmt",
+                            "rgb24",
+                            "-s",
+                            f"{w}x{h}",
+                            "-r",
+                            f"{fps:g}",
+                            "-i",
+                            "-",
+                            "-vf",
+                            "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                            "-pix_fmt",
+                            "yuv420p",
+                            "-vcodec",
+                            "libx264",
+                            str(out),
+                        ],
+                        stdin=subprocess.PIPE,
+                        stderr=subprocess.PIPE,
+                    )
                 proc.stdin.write(np.ascontiguousarray(f, dtype=np.uint8).tobytes())
             proc.stdin.close()
             err = proc.stderr.read().decode(errors="replace").strip()
@@ -104,8 +138,10 @@ def write_animation(source: str, out: str, view: str = "iso", fps: float = 20.0,
     motion, info = read_motion(source)
     n = frame_count(motion.duration, fps, speed)
     if n > MAX_FRAMES:
-        raise BlastscaleInputError(f"fps = {fps:g} with speed = {speed:g} over {motion.duration:.3g} s gives {n} "
-                                   f"frames: at most {MAX_FRAMES} (lower --fps or raise --speed)")
+        raise BlastscaleInputError(
+            f"fps = {fps:g} with speed = {speed:g} over {motion.duration:.3g} s gives {n} "
+            f"frames: at most {MAX_FRAMES} (lower --fps or raise --speed)"
+        )
     charge = None if info["standoff_m"] is None else charge_position(motion, info["standoff_m"])
     indices, _ = motion.frame_indices(fps, speed)
     kind = target.suffix.lower()
@@ -133,4 +169,6 @@ def show_animation(source: str, out: str, view: str, fps: float, speed: float, a
         info = write_animation(source, out, view, fps, speed)
     if as_json:
         print_json(info)
-    print_written(out, f"{info['frames']} frames, {info['duration_s']:.3g} s at {info['fps']:g} fps x {info['speed']:g}")
+    print_written(
+        out, f"{info['frames']} frames, {info['duration_s']:.3g} s at {info['fps']:g} fps x {info['speed']:g}"
+    )

@@ -12,7 +12,18 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import announce_run, app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, stage_progress, table
+from ._app import (
+    announce_run,
+    app,
+    console,
+    fmt_value,
+    one_line_warnings,
+    print_json,
+    print_written,
+    save_figure,
+    stage_progress,
+    table,
+)
 from .flags import flags_named
 from . import options as opt
 from .options import block_from_options, check_plot_path
@@ -41,20 +52,36 @@ def block3d_output(result, contact, incidence: Optional[str] = None) -> dict:
 
     sc, block, d = result.scenario, result.structure, result.design
     scale = None if d is None else d.scale
-    out: dict = {"inputs": {
-        "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "density_kg_m3": block.density,
-        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "pulse_shape": sc.blast.pulse_shape,
-        "blast_model": sc.blast.blast_model, "duration_s": sc.simulation.duration_s, "load": sc.blast.load, "incidence": incidence,
-        "scale": scale, "density_ratio": None if d is None else d.density_ratio,
-        "gravity_ratio": None if d is None else d.gravity_ratio, "gravity_m_s2": sc.simulation.gravity_m_s2,
-    }, "contact": contact.to_dict()}
+    out: dict = {
+        "inputs": {
+            "height_m": block.height,
+            "width_m": block.width,
+            "depth_m": block.depth,
+            "density_kg_m3": block.density,
+            "charge_kg": sc.blast.charge_kg,
+            "standoff_m": sc.blast.standoff_m,
+            "pulse_shape": sc.blast.pulse_shape,
+            "blast_model": sc.blast.blast_model,
+            "duration_s": sc.simulation.duration_s,
+            "load": sc.blast.load,
+            "incidence": incidence,
+            "scale": scale,
+            "density_ratio": None if d is None else d.density_ratio,
+            "gravity_ratio": None if d is None else d.gravity_ratio,
+            "gravity_m_s2": sc.simulation.gravity_m_s2,
+        },
+        "contact": contact.to_dict(),
+    }
     s3 = result.summary()["3d"]
     out["prototype"] = {k: s3["prototype"][k] for k in BLOCK_SUMMARY_KEYS}
     if d is not None:
         out["model"] = {k: s3["model"][k] for k in BLOCK_SUMMARY_KEYS}
         out["similarity"] = {k: s3["similarity"][k] for k in BLOCK_SIMILARITY_KEYS}
-        out["model_experiment"] = {"charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m,
-                                   "height_m": block.height * scale}
+        out["model_experiment"] = {
+            "charge_kg": d.specimen_charge_kg,
+            "standoff_m": d.specimen_standoff_m,
+            "height_m": block.height * scale,
+        }
     return out
 
 
@@ -72,15 +99,19 @@ def block3d_cmd(
     load: Optional[str] = opt.LOAD,
     incidence: Optional[str] = opt.INCIDENCE,
     restitution: Optional[float] = typer.Option(
-        None, "--restitution",
+        None,
+        "--restitution",
         help="Not applicable in 3D: restitution emerges from the inelastic contact (Housner's value is "
-             "reproduced within 0.1%). Accepted for compatibility with `rock`; a value is rejected.",
+        "reproduced within 0.1%). Accepted for compatibility with `rock`; a value is rejected.",
     ),
     friction: Optional[float] = opt.FRICTION_3D,
     timestep: Optional[float] = typer.Option(
-        None, "--timestep", help="Prototype time step \\[s] (default: derived from the block's size, 0.2 ms for a 10 m "
-                                 "block; the model's is x sqrt(lambda)); the contact time constant is raised to 4 "
-                                 "steps if needed; rejected past the engine's stability bound."),
+        None,
+        "--timestep",
+        help="Prototype time step \\[s] (default: derived from the block's size, 0.2 ms for a 10 m "
+        "block; the model's is x sqrt(lambda)); the contact time constant is raised to 4 "
+        "steps if needed; rejected past the engine's stability bound.",
+    ),
     scale: Optional[float] = opt.SCALE,
     density_ratio: float = opt.DENSITY_RATIO,
     gravity_ratio: float = opt.GRAVITY_RATIO,
@@ -108,14 +139,34 @@ def block3d_cmd(
     block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
     sc = scenario_from_flags(
-        structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
-                   "density_kg_m3": density, "friction": friction},
-        blast={"charge_kg": charge, "standoff_m": standoff, "blast_model": blast_model, "pulse_shape": pulse_shape, "load": load,
-               "incidence": incidence},
-        scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
-                                          "gravity_ratio": gravity_ratio},
-        simulation={"engine": "3d", "duration_s": duration, "gravity_m_s2": gravity, "timestep_s": timestep,
-                    "record_every": record_every, "critical_charge": False},
+        structure={
+            "kind": "block",
+            "height_m": height,
+            "width_m": width,
+            "alpha_deg": alpha_deg,
+            "depth_m": depth,
+            "density_kg_m3": density,
+            "friction": friction,
+        },
+        blast={
+            "charge_kg": charge,
+            "standoff_m": standoff,
+            "blast_model": blast_model,
+            "pulse_shape": pulse_shape,
+            "load": load,
+            "incidence": incidence,
+        },
+        scale=None
+        if scale is None
+        else {"length": scale, "density_ratio": density_ratio, "gravity_ratio": gravity_ratio},
+        simulation={
+            "engine": "3d",
+            "duration_s": duration,
+            "gravity_m_s2": gravity,
+            "timestep_s": timestep,
+            "record_every": record_every,
+            "critical_charge": False,
+        },
     )
     study = Study(sc)
     with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
@@ -135,17 +186,32 @@ def block3d_cmd(
         print_json(out, engine="3d")
         return
     block, b = result.structure, sc.blast
-    console.print(table(f"Prototype: {block.height:g} x {block.width:.4g} x {block.depth:g} m block, "
-                        f"{b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.blast_model}, {b.pulse_shape}, "
-                        f"mu = {sc.structure.friction:g})", _rows(out["prototype"])))
+    console.print(
+        table(
+            f"Prototype: {block.height:g} x {block.width:.4g} x {block.depth:g} m block, "
+            f"{b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.blast_model}, {b.pulse_shape}, "
+            f"mu = {sc.structure.friction:g})",
+            _rows(out["prototype"]),
+        )
+    )
     if scale is not None:
-        console.print(table(f"Model lambda = {scale:g}, up-scaled to prototype units "
-                            f"(model charge {out['model_experiment']['charge_kg']:.4g} kg)", _rows(out["model"])))
+        console.print(
+            table(
+                f"Model lambda = {scale:g}, up-scaled to prototype units "
+                f"(model charge {out['model_experiment']['charge_kg']:.4g} kg)",
+                _rows(out["model"]),
+            )
+        )
         s = out["similarity"]
-        console.print(table("Similarity (prototype vs up-scaled model)", [
-            ("max |rotation difference|", f"{s['max_abs_rotation_diff_rad']:.3g}", "rad"),
-            ("max |sliding difference|", f"{s['max_abs_sliding_diff_m']:.3g}", "m"),
-            ("max |uplift difference|", f"{s['max_abs_uplift_diff_m']:.3g}", "m"),
-        ]))
+        console.print(
+            table(
+                "Similarity (prototype vs up-scaled model)",
+                [
+                    ("max |rotation difference|", f"{s['max_abs_rotation_diff_rad']:.3g}", "rad"),
+                    ("max |sliding difference|", f"{s['max_abs_sliding_diff_m']:.3g}", "m"),
+                    ("max |uplift difference|", f"{s['max_abs_uplift_diff_m']:.3g}", "m"),
+                ],
+            )
+        )
     if plot:
         print_written(plot)

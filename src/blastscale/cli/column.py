@@ -13,7 +13,18 @@ from typing import Optional
 import typer
 
 from . import options as opt
-from ._app import announce_run, app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, stage_progress, table
+from ._app import (
+    announce_run,
+    app,
+    console,
+    fmt_value,
+    one_line_warnings,
+    print_json,
+    print_written,
+    save_figure,
+    stage_progress,
+    table,
+)
 from .flags import flags_named
 from .options import check_plot_path, scenario_default
 
@@ -44,17 +55,31 @@ def column_output(result, contact, incidence: Optional[str] = None, timestep: Op
     ``prototype`` and, with a design, ``model`` (up-scaled), ``similarity`` and
     ``model_experiment``; ``ensemble`` when run."""
     sc, d = result.scenario, result.design
-    out: dict = {"inputs": {
-        "charge_kg": sc.blast.charge_kg, "standoff_m": sc.blast.standoff_m, "blast_model": sc.blast.blast_model,
-        "pulse_shape": sc.blast.pulse_shape, "load": sc.blast.load, "incidence": incidence, "friction": sc.structure.friction,
-        "duration_s": sc.simulation.duration_s, "timestep_s": timestep, "jacobian": contact.jacobian,
-        "scale": None if d is None else d.scale, "density_ratio": None if d is None else d.density_ratio,
-    }, "structure": result.structure.describe()}
+    out: dict = {
+        "inputs": {
+            "charge_kg": sc.blast.charge_kg,
+            "standoff_m": sc.blast.standoff_m,
+            "blast_model": sc.blast.blast_model,
+            "pulse_shape": sc.blast.pulse_shape,
+            "load": sc.blast.load,
+            "incidence": incidence,
+            "friction": sc.structure.friction,
+            "duration_s": sc.simulation.duration_s,
+            "timestep_s": timestep,
+            "jacobian": contact.jacobian,
+            "scale": None if d is None else d.scale,
+            "density_ratio": None if d is None else d.density_ratio,
+        },
+        "structure": result.structure.describe(),
+    }
     s = result.summary()
     out.update({k: v for k, v in s["3d"].items() if v is not None})
     if d is not None:
-        out["model_experiment"] = {"charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m,
-                                   "structure": result.specimen_structure.describe()}
+        out["model_experiment"] = {
+            "charge_kg": d.specimen_charge_kg,
+            "standoff_m": d.specimen_standoff_m,
+            "structure": result.specimen_structure.describe(),
+        }
     if s["ensemble"] is not None:
         out["ensemble"] = s["ensemble"]
     return out
@@ -62,20 +87,36 @@ def column_output(result, contact, incidence: Optional[str] = None, timestep: Op
 
 @app.command("column")
 def column_cmd(
-    section: Optional[str] = typer.Option(None, "--section", help="Cross-section: square or circular (a regular "
-                                          "polygon, --sides)" + _column_default("section") + "."),
-    drums: Optional[int] = typer.Option(None, "--drums", help="Number of drums N \\[-]" + _column_default("drums") + "."),
-    height: Optional[float] = typer.Option(None, "--height", help="Total height of the column \\[m] (drums of equal "
-                                           "height)" + _column_default("height_m", " m") + "."),
-    base_width: Optional[float] = typer.Option(None, "--base-width", help="Side (square) or diameter (circular) at the "
-                                               "base \\[m]" + _column_default("base_width_m", " m") + "."),
-    top_width: Optional[float] = typer.Option(None, "--top-width", help="Side or diameter at the top \\[m] (linear "
-                                              "taper; at most the base width)" + _column_default("top_width_m", " m")
-                                              + "."),
-    sides: Optional[int] = typer.Option(None, "--sides", help="Polygon sides of a circular drum \\[-]"
-                                        + _column_default("sides") + "."),
-    density: Optional[float] = typer.Option(None, "--density", help="Density rho \\[kg/m^3]"
-                                            + _column_default("density_kg_m3", " kg/m^3, marble") + "."),
+    section: Optional[str] = typer.Option(
+        None,
+        "--section",
+        help="Cross-section: square or circular (a regular polygon, --sides)" + _column_default("section") + ".",
+    ),
+    drums: Optional[int] = typer.Option(
+        None, "--drums", help="Number of drums N \\[-]" + _column_default("drums") + "."
+    ),
+    height: Optional[float] = typer.Option(
+        None,
+        "--height",
+        help="Total height of the column \\[m] (drums of equal height)" + _column_default("height_m", " m") + ".",
+    ),
+    base_width: Optional[float] = typer.Option(
+        None,
+        "--base-width",
+        help="Side (square) or diameter (circular) at the base \\[m]" + _column_default("base_width_m", " m") + ".",
+    ),
+    top_width: Optional[float] = typer.Option(
+        None,
+        "--top-width",
+        help="Side or diameter at the top \\[m] (linear "
+        "taper; at most the base width)" + _column_default("top_width_m", " m") + ".",
+    ),
+    sides: Optional[int] = typer.Option(
+        None, "--sides", help="Polygon sides of a circular drum \\[-]" + _column_default("sides") + "."
+    ),
+    density: Optional[float] = typer.Option(
+        None, "--density", help="Density rho \\[kg/m^3]" + _column_default("density_kg_m3", " kg/m^3, marble") + "."
+    ),
     friction: Optional[float] = opt.FRICTION_3D,
     charge: float = opt.CHARGE,
     standoff: float = opt.STANDOFF,
@@ -87,21 +128,31 @@ def column_cmd(
     density_ratio: float = opt.DENSITY_RATIO,
     duration: Optional[float] = opt.DURATION_3D,
     timestep: Optional[float] = typer.Option(
-        None, "--timestep", help="Prototype time step \\[s] (default: derived from the structure's size; the model's "
-                                 "is x sqrt(lambda)); rejected past the engine's stability bound."),
+        None,
+        "--timestep",
+        help="Prototype time step \\[s] (default: derived from the structure's size; the model's "
+        "is x sqrt(lambda)); rejected past the engine's stability bound.",
+    ),
     jacobian: Optional[str] = typer.Option(
-        None, "--jacobian",
+        None,
+        "--jacobian",
         help="MuJoCo constraint Jacobian: dense or sparse (2.8x faster on the square column, the same history to "
-             "round-off). Default: sparse (MuJoCo 4.0.0's sparse-factorisation bug is not reached by these "
-             "scenes, docs/performance.md)."),
+        "round-off). Default: sparse (MuJoCo 4.0.0's sparse-factorisation bug is not reached by these "
+        "scenes, docs/performance.md).",
+    ),
     record_every: Optional[int] = opt.RECORD_EVERY,
     ensemble: Optional[int] = typer.Option(
-        None, "--ensemble", help="Also run N prototypes (and, with --scale, N models) with the load x (1 + 1e-6 u), u "
-                                 "in [-1, 1], and report first-peak spreads, noise floor, horizon and collapse "
-                                 "probabilities (circular columns are chaotic: compare them this way; "
-                                 "docs/columns.md). 0 (default): off; else 2 to 64."),
+        None,
+        "--ensemble",
+        help="Also run N prototypes (and, with --scale, N models) with the load x (1 + 1e-6 u), u "
+        "in [-1, 1], and report first-peak spreads, noise floor, horizon and collapse "
+        "probabilities (circular columns are chaotic: compare them this way; "
+        "docs/columns.md). 0 (default): off; else 2 to 64.",
+    ),
     threads: Optional[int] = opt.THREADS,
-    plot: Optional[str] = typer.Option(None, "--plot", help="Write the monitoring-point histories and pose snapshots to this image file."),
+    plot: Optional[str] = typer.Option(
+        None, "--plot", help="Write the monitoring-point histories and pose snapshots to this image file."
+    ),
     as_json: bool = opt.JSON,
 ) -> None:
     """Rocking, wobbling, sliding and collapse of a multi-drum column under a blast (MuJoCo).
@@ -116,14 +167,36 @@ def column_cmd(
 
     check_plot_path(plot)
     sc = scenario_from_flags(
-        structure={"kind": "column", "section": section, "drums": drums, "height_m": height,
-                   "base_width_m": base_width, "top_width_m": top_width, "sides": sides, "density_kg_m3": density,
-                   "friction": friction},
-        blast={"charge_kg": charge, "standoff_m": standoff, "blast_model": blast_model, "pulse_shape": pulse_shape, "load": load,
-               "incidence": incidence},
+        structure={
+            "kind": "column",
+            "section": section,
+            "drums": drums,
+            "height_m": height,
+            "base_width_m": base_width,
+            "top_width_m": top_width,
+            "sides": sides,
+            "density_kg_m3": density,
+            "friction": friction,
+        },
+        blast={
+            "charge_kg": charge,
+            "standoff_m": standoff,
+            "blast_model": blast_model,
+            "pulse_shape": pulse_shape,
+            "load": load,
+            "incidence": incidence,
+        },
         scale=None if scale is None else {"length": scale, "density_ratio": density_ratio},
-        simulation={"engine": "3d", "duration_s": duration, "timestep_s": timestep, "record_every": record_every,
-                    "ensemble_members": ensemble, "threads": threads, "critical_charge": False, "contact": {"jacobian": jacobian}},
+        simulation={
+            "engine": "3d",
+            "duration_s": duration,
+            "timestep_s": timestep,
+            "record_every": record_every,
+            "ensemble_members": ensemble,
+            "threads": threads,
+            "critical_charge": False,
+            "contact": {"jacobian": jacobian},
+        },
     )
     study = Study(sc)
     with one_line_warnings():
@@ -143,13 +216,20 @@ def column_cmd(
         print_json(out, engine="3d")
         return
     col, b = result.structure, sc.blast
-    title = (f"Prototype: {col.drums}-drum {col.section} column, {col.height:g} m, {col.base_width:g} -> "
-             f"{col.top_width:g} m; {b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.blast_model}, {b.pulse_shape}, load {b.load}, "
-             f"mu = {sc.structure.friction:g})")
+    title = (
+        f"Prototype: {col.drums}-drum {col.section} column, {col.height:g} m, {col.base_width:g} -> "
+        f"{col.top_width:g} m; {b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.blast_model}, {b.pulse_shape}, load {b.load}, "
+        f"mu = {sc.structure.friction:g})"
+    )
     console.print(table(title, _rows(out["prototype"])))
     if scale is not None:
-        console.print(table(f"Model lambda = {scale:g}, up-scaled to prototype units (model charge "
-                            f"{out['model_experiment']['charge_kg']:.4g} kg)", _rows(out["model"])))
+        console.print(
+            table(
+                f"Model lambda = {scale:g}, up-scaled to prototype units (model charge "
+                f"{out['model_experiment']['charge_kg']:.4g} kg)",
+                _rows(out["model"]),
+            )
+        )
         s = out["similarity"]
         rows = [
             ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
@@ -157,9 +237,14 @@ def column_cmd(
             ("max |top displacement difference|", fmt_value(s["max_abs_top_displacement_diff_m"], ".3g"), "m"),
         ]
         for name, p in s["points"].items():
-            rows.append((f"{name}: first-peak ratio / max |diff| rel. peak",
-                         f"{fmt_value(p['first_peak_ratio'], '.4f')} / "
-                         f"{fmt_value(p['max_abs_displacement_diff_rel_peak'], '.3g')}", "-"))
+            rows.append(
+                (
+                    f"{name}: first-peak ratio / max |diff| rel. peak",
+                    f"{fmt_value(p['first_peak_ratio'], '.4f')} / "
+                    f"{fmt_value(p['max_abs_displacement_diff_rel_peak'], '.3g')}",
+                    "-",
+                )
+            )
         console.print(table("Similarity (prototype vs up-scaled model, x displacement)", rows))
     if "ensemble" in out:
         _print_ensemble(out["ensemble"], result.ensemble.top_point, scale is not None)
@@ -170,18 +255,35 @@ def column_cmd(
 def _print_ensemble(e: dict, top_point: str, with_model: bool) -> None:
     top = e["points"][top_point]
     horizon = top["horizon_prototype_s"]
-    rows = [("first peak, prototype mean / spread", f"{top['first_peak_prototype_mean_m']:.4g} / "
-                                                    f"{top['first_peak_prototype_spread_m']:.2g}", "m")]
+    rows = [
+        (
+            "first peak, prototype mean / spread",
+            f"{top['first_peak_prototype_mean_m']:.4g} / {top['first_peak_prototype_spread_m']:.2g}",
+            "m",
+        )
+    ]
     if with_model:
-        rows.append(("first peak, model mean / spread", f"{top['first_peak_model_mean_m']:.4g} / "
-                                                        f"{top['first_peak_model_spread_m']:.2g}", "m"))
+        rows.append(
+            (
+                "first peak, model mean / spread",
+                f"{top['first_peak_model_mean_m']:.4g} / {top['first_peak_model_spread_m']:.2g}",
+                "m",
+            )
+        )
     rows += [
         ("noise floor (prototype spread / peak)", fmt_value(top["noise_floor_rel_peak"], ".3g"), "-"),
-        ("horizon (spread > 5 % of the peak; - never)", fmt_value(horizon if math.isfinite(horizon) else None, ".3g"),
-         "s"),
-        ("collapse probability, prototype / model" if with_model else "collapse probability, prototype",
-         f"{e['collapse_probability_prototype']:.2f}"
-         + (f" / {e['collapse_probability_model']:.2f}" if with_model else ""), "-"),
+        (
+            "horizon (spread > 5 % of the peak; - never)",
+            fmt_value(horizon if math.isfinite(horizon) else None, ".3g"),
+            "s",
+        ),
+        (
+            "collapse probability, prototype / model" if with_model else "collapse probability, prototype",
+            f"{e['collapse_probability_prototype']:.2f}"
+            + (f" / {e['collapse_probability_model']:.2f}" if with_model else ""),
+            "-",
+        ),
     ]
-    console.print(table(f"Ensembles of {e['n_members']} (load x (1 +- {e['perturbation']:g})), top point "
-                        f"({top_point})", rows))
+    console.print(
+        table(f"Ensembles of {e['n_members']} (load x (1 +- {e['perturbation']:g})), top point ({top_point})", rows)
+    )

@@ -15,23 +15,44 @@ __all__ = ["FLAG_NAMES", "SET_VALUES", "parse_set", "scenario_from_flags", "flag
 
 #: ``--set KEY=VALUE`` (repeatable), one option object for every command that reads a scenario (run, sweep).
 SET_VALUES = typer.Option(
-    [], "--set", metavar="KEY=VALUE", show_default=False,
-    help="Override a scenario value, e.g. --set blast.charge_kg=60 --set friction=0.5 (repeatable).")
+    [],
+    "--set",
+    metavar="KEY=VALUE",
+    show_default=False,
+    help="Override a scenario value, e.g. --set blast.charge_kg=60 --set friction=0.5 (repeatable).",
+)
 
 #: Scenario field path -> the command-line flag that sets it (one-line errors name the flag).
 FLAG_NAMES = {
-    "structure.height_m": "--height", "structure.width_m": "--width", "structure.alpha_deg": "--alpha-deg",
-    "structure.depth_m": "--depth", "structure.density_kg_m3": "--density", "structure.friction": "--friction",
-    "structure.section": "--section", "structure.drums": "--drums", "structure.base_width_m": "--base-width",
-    "structure.top_width_m": "--top-width", "structure.sides": "--sides",
-    "blast.charge_kg": "--charge", "blast.standoff_m": "--standoff", "blast.blast_model": "--model",
-    "blast.pulse_shape": "--pulse", "blast.load": "--load", "blast.incidence": "--incidence",
+    "structure.height_m": "--height",
+    "structure.width_m": "--width",
+    "structure.alpha_deg": "--alpha-deg",
+    "structure.depth_m": "--depth",
+    "structure.density_kg_m3": "--density",
+    "structure.friction": "--friction",
+    "structure.section": "--section",
+    "structure.drums": "--drums",
+    "structure.base_width_m": "--base-width",
+    "structure.top_width_m": "--top-width",
+    "structure.sides": "--sides",
+    "blast.charge_kg": "--charge",
+    "blast.standoff_m": "--standoff",
+    "blast.blast_model": "--model",
+    "blast.pulse_shape": "--pulse",
+    "blast.load": "--load",
+    "blast.incidence": "--incidence",
     "blast.extrapolate": "--extrapolate",
-    "scale.length": "--scale", "scale.density_ratio": "--density-ratio", "scale.gravity_ratio": "--gravity-ratio",
+    "scale.length": "--scale",
+    "scale.density_ratio": "--density-ratio",
+    "scale.gravity_ratio": "--gravity-ratio",
     "scale.law": "--law",
-    "simulation.duration_s": "--duration", "simulation.samples": "--samples", "simulation.gravity_m_s2": "--gravity",
-    "simulation.restitution": "--restitution", "simulation.timestep_s": "--timestep",
-    "simulation.record_every": "--record-every", "simulation.ensemble_members": "--ensemble",
+    "simulation.duration_s": "--duration",
+    "simulation.samples": "--samples",
+    "simulation.gravity_m_s2": "--gravity",
+    "simulation.restitution": "--restitution",
+    "simulation.timestep_s": "--timestep",
+    "simulation.record_every": "--record-every",
+    "simulation.ensemble_members": "--ensemble",
     "simulation.threads": "--threads",
     "simulation.contact.jacobian": "--jacobian",
 }
@@ -80,8 +101,9 @@ def _given(table: Optional[dict]) -> dict:
     return {k: v for k, v in (table or {}).items() if v is not None}
 
 
-def scenario_from_flags(structure: dict, blast: dict, scale: Optional[dict] = None,
-                        simulation: Optional[dict] = None, title: str = "") -> Scenario:
+def scenario_from_flags(
+    structure: dict, blast: dict, scale: Optional[dict] = None, simulation: Optional[dict] = None, title: str = ""
+) -> Scenario:
     """The scenario of a command's flags (each table: scenario key -> value, None for a flag not
     given). ``scale`` None: a prototype-only scenario. Raises one line naming the flag."""
     data = {"title": title, "structure": _given(structure), "blast": _given(blast)}

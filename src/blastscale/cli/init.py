@@ -29,9 +29,14 @@ def _is_toml(path: Path) -> bool:
 def init_cmd(
     file: Path = typer.Argument(..., metavar="FILE.toml", show_default=False, help="The scenario file to write."),
     kind: str = typer.Option("block", "--kind", help="Structure of the template: block or column."),
-    source: Optional[str] = typer.Option(None, "--from", metavar="NAME", show_default=False,
-                                         help="Copy a shipped scenario instead (e.g. planar_block, "
-                                              "paper_column_square_250kg; see blastscale reproduce --list)."),
+    source: Optional[str] = typer.Option(
+        None,
+        "--from",
+        metavar="NAME",
+        show_default=False,
+        help="Copy a shipped scenario instead (e.g. planar_block, "
+        "paper_column_square_250kg; see blastscale reproduce --list).",
+    ),
     force: bool = typer.Option(False, "--force", help="Replace an existing TOML file."),
 ) -> None:
     """Write a commented scenario template (or a copy of a shipped scenario) to start from."""
@@ -43,8 +48,9 @@ def init_cmd(
     if source is not None:
         stem = source[:-5] if source.endswith(".toml") else source
         if stem not in library_names():
-            raise BlastscaleInputError(f"from = {source!r} is not a shipped scenario: valid names are "
-                                       f"{', '.join(library_names())}")
+            raise BlastscaleInputError(
+                f"from = {source!r} is not a shipped scenario: valid names are {', '.join(library_names())}"
+            )
         text, what = library_text(stem), f"a copy of the shipped scenario {stem}"
     else:
         text, what = template_text(kind), f"a commented {kind} scenario template"
@@ -52,8 +58,9 @@ def init_cmd(
         raise BlastscaleInputError(f"file = {str(file)!r} exists: refused (give --force to replace it)")
     with claim(file, Kind("a TOML file", _is_toml, folder=False), force, name="file") as c:
         if c.path.exists() and not (c.path.is_file() and _is_toml(c.path)):
-            raise BlastscaleInputError(f"file = {str(file)!r} exists and is not a TOML file: refused, even with "
-                                       "--force")
+            raise BlastscaleInputError(
+                f"file = {str(file)!r} exists and is not a TOML file: refused, even with --force"
+            )
         write_file(c.path, text, what="file")
     load_scenario(file)  # the template is a valid scenario as written
     print_written(file, what)

@@ -21,8 +21,20 @@ import typer
 from rich.table import Table
 
 from ..scenario import Scenario, load_scenario
-from ._app import (announce_run, app, console, fmt_value, ignore_interrupts, one_line_warnings, print_json,
-                   print_written, raise_if_interrupted, stage_progress, styled, table)
+from ._app import (
+    announce_run,
+    app,
+    console,
+    fmt_value,
+    ignore_interrupts,
+    one_line_warnings,
+    print_json,
+    print_written,
+    raise_if_interrupted,
+    stage_progress,
+    styled,
+    table,
+)
 from .flags import SET_VALUES, parse_set
 from .loads import print_design
 
@@ -32,8 +44,9 @@ def _compare_table(title: str, prototype: dict, model: dict) -> Table:
     from ..report.verdict import label
 
     t = Table(title=title, title_justify="left")
-    columns = ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)",
-                                                                        "unit")
+    columns = (
+        ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)", "unit")
+    )
     for c in columns:
         t.add_column(c, justify="left" if c in ("quantity", "unit") else "right")
     for k, v in prototype.items():
@@ -49,9 +62,10 @@ def _similarity_table(sim: dict) -> Table:
     from ..report.html import split_unit
     from ..report.verdict import label
 
-    return table("Similarity (prototype vs up-scaled model)",
-                 [(label(k), fmt_value(v, ".3g"), split_unit(k)[1]) for k, v in sim.items()
-                  if not isinstance(v, (dict, list))])
+    return table(
+        "Similarity (prototype vs up-scaled model)",
+        [(label(k), fmt_value(v, ".3g"), split_unit(k)[1]) for k, v in sim.items() if not isinstance(v, (dict, list))],
+    )
 
 
 def _print_result(result) -> None:
@@ -66,32 +80,54 @@ def _print_result(result) -> None:
     if m is None and sc.blast.gravity_only:
         console.print(styled(("Gravity alone", "bold"), " (no charge): no specimen, no comparison."))
     elif m is None:
-        console.print(styled(("Prototype only", "bold"), " (the scenario has no [scale] table): no specimen, no comparison."))
+        console.print(
+            styled(("Prototype only", "bold"), " (the scenario has no [scale] table): no specimen, no comparison.")
+        )
     else:
         print_design(result.design)
-        console.print(styled(("Model experiment:", "bold"), f" {m.get('height_m', float('nan')):.4g} m high "
-                             f"{sc.structure.kind}, {m.get('mass_kg', float('nan')):.4g} kg ({m['material']}), ",
-                             (f"{format_charge(m['charge_kg'])} TNT at {m['standoff_m']:.4g} m", "bold")))
+        console.print(
+            styled(
+                ("Model experiment:", "bold"),
+                f" {m.get('height_m', float('nan')):.4g} m high "
+                f"{sc.structure.kind}, {m.get('mass_kg', float('nan')):.4g} kg ({m['material']}), ",
+                (f"{format_charge(m['charge_kg'])} TNT at {m['standoff_m']:.4g} m", "bold"),
+            )
+        )
     if s["planar"] is not None:
         pl = s["planar"]
-        console.print(_compare_table(f"Planar rocking ({sc.blast.pulse_shape} pulse, {sc.simulation.duration_s:g} s)",
-                                     pl["prototype"], pl["model"]))
+        console.print(
+            _compare_table(
+                f"Planar rocking ({sc.blast.pulse_shape} pulse, {sc.simulation.duration_s:g} s)",
+                pl["prototype"],
+                pl["model"],
+            )
+        )
         if pl["similarity"] is not None:
             console.print(_similarity_table(pl["similarity"]))
     if s["critical"] is not None:
-        console.print(styled(f"critical charge at {sc.blast.standoff_m:g} m (planar, {sc.blast.pulse_shape}): ",
-                             (f"{result.critical.charge_kg:.4g} kg", "bold"),
-                             f" ({result.critical.evaluations} simulations)"))
+        console.print(
+            styled(
+                f"critical charge at {sc.blast.standoff_m:g} m (planar, {sc.blast.pulse_shape}): ",
+                (f"{result.critical.charge_kg:.4g} kg", "bold"),
+                f" ({result.critical.evaluations} simulations)",
+            )
+        )
     if s["3d"] is not None:
         r3 = s["3d"]
-        console.print(_compare_table(f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, "
-                                     f"Method {sc.blast.load})", r3["prototype"], r3["model"]))
+        console.print(
+            _compare_table(
+                f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, Method {sc.blast.load})",
+                r3["prototype"],
+                r3["model"],
+            )
+        )
         stab = (r3.get("prototype") or {}).get("stability")
         if stab is not None:
             from ..report.outcomes import STABILITY_RULE, stability_words
 
-            console.print(styled("under gravity alone the structure ", (stability_words(stab), "bold"),
-                                 f" ({STABILITY_RULE})"))
+            console.print(
+                styled("under gravity alone the structure ", (stability_words(stab), "bold"), f" ({STABILITY_RULE})")
+            )
         if r3.get("similarity") is not None:
             console.print(_similarity_table(r3["similarity"]))
     from ..report.card import card_of
@@ -99,37 +135,61 @@ def _print_result(result) -> None:
     card = card_of(result)
     if card is not None:
         p = card["p_outcome_agree"]
-        console.print(styled(("Test card:", "bold"), f" {format_charge(card['explosive_mass_kg'])} of {card['explosive']} at "
-                             f"{card['standoff_m'] * 1e3:.4g} mm; safety radius ({card['safety_threshold']}) "
-                             f"{card['safety_radius_m']:.3g} m, debris zone {card['debris_radius_m'] * 1e3:.4g} mm; camera "
-                             f"{card['camera_fps']:g} frames/s, gauges sampled at {card['pressure_sampling_hz']:g} Hz"
-                             + ("" if p is None else f"; P(outcome agrees) {p:.3f}") + " (report.html: the printable card)"))
+        console.print(
+            styled(
+                ("Test card:", "bold"),
+                f" {format_charge(card['explosive_mass_kg'])} of {card['explosive']} at "
+                f"{card['standoff_m'] * 1e3:.4g} mm; safety radius ({card['safety_threshold']}) "
+                f"{card['safety_radius_m']:.3g} m, debris zone {card['debris_radius_m'] * 1e3:.4g} mm; camera "
+                f"{card['camera_fps']:g} frames/s, gauges sampled at {card['pressure_sampling_hz']:g} Hz"
+                + ("" if p is None else f"; P(outcome agrees) {p:.3f}")
+                + " (report.html: the printable card)",
+            )
+        )
     # result.warnings were printed as they came, one line each (one_line_warnings)
 
 
 @app.command("run")
 def run_cmd(
     scenario: Optional[Path] = typer.Argument(
-        None, metavar="SCENARIO.toml", show_default=False,
+        None,
+        metavar="SCENARIO.toml",
+        show_default=False,
         help="Scenario file (TOML; docs/scenarios.md). Default: the built-in scenario, the paper's 10 m block, "
-             "50 kg TNT at 2 m, lambda 1/200, masi2021, friction 0.7."),
+        "50 kg TNT at 2 m, lambda 1/200, masi2021, friction 0.7.",
+    ),
     out: Optional[Path] = typer.Option(
-        None, "--out", show_default=False,
+        None,
+        "--out",
+        show_default=False,
         help="Result folder to create (summary.json, histories.nc, figures, report.html); its parent folder must "
-             "exist. Refused if it exists, unless --force."),
-    force: bool = typer.Option(False, "--force", help="Replace an existing blastscale result folder (never another "
-                                                      "folder)."),
+        "exist. Refused if it exists, unless --force.",
+    ),
+    force: bool = typer.Option(
+        False, "--force", help="Replace an existing blastscale result folder (never another folder)."
+    ),
     values: list[str] = SET_VALUES,
-    blast_model: Optional[str] = typer.Option(None, "--model", "--blast-model", show_default=False,
-                                        help="Blast model, kingery-bulmash or masi2021 (default: the scenario's)."),
-    charge: Optional[float] = typer.Option(None, "--charge", show_default=False,
-                                           help="Prototype charge W \\[kg] (default: the scenario's)."),
-    friction: Optional[float] = typer.Option(None, "--friction", show_default=False,
-                                             help="Coulomb friction mu \\[-] (default: the scenario's)."),
-    duration: Optional[float] = typer.Option(None, "--duration", show_default=False,
-                                             help="Simulated time \\[s] (default: the scenario's)."),
-    csv: bool = typer.Option(False, "--csv", help="Also write histories.csv (the histories flat, for spreadsheets; "
-                                                  "large: ~150 MB for a column)."),
+    blast_model: Optional[str] = typer.Option(
+        None,
+        "--model",
+        "--blast-model",
+        show_default=False,
+        help="Blast model, kingery-bulmash or masi2021 (default: the scenario's).",
+    ),
+    charge: Optional[float] = typer.Option(
+        None, "--charge", show_default=False, help="Prototype charge W \\[kg] (default: the scenario's)."
+    ),
+    friction: Optional[float] = typer.Option(
+        None, "--friction", show_default=False, help="Coulomb friction mu \\[-] (default: the scenario's)."
+    ),
+    duration: Optional[float] = typer.Option(
+        None, "--duration", show_default=False, help="Simulated time \\[s] (default: the scenario's)."
+    ),
+    csv: bool = typer.Option(
+        False,
+        "--csv",
+        help="Also write histories.csv (the histories flat, for spreadsheets; large: ~150 MB for a column).",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object instead of tables."),
 ) -> None:
     """Run a scenario: design the model, simulate prototype and model, compare, write a report."""
@@ -142,8 +202,12 @@ def run_cmd(
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
         sc = Scenario.default() if scenario is None else load_scenario(scenario)
     overrides = parse_set(values)
-    for key, v in (("blast.blast_model", blast_model), ("blast.charge_kg", charge), ("structure.friction", friction),
-                   ("simulation.duration_s", duration)):
+    for key, v in (
+        ("blast.blast_model", blast_model),
+        ("blast.charge_kg", charge),
+        ("structure.friction", friction),
+        ("simulation.duration_s", duration),
+    ):
         if v is not None:
             overrides[key] = v
     if overrides:
@@ -177,8 +241,9 @@ def run_cmd(
             if out is None:
                 result = study.run(progress=on_study)
             else:
-                with output_folder(out, force, before_commit=raise_if_interrupted,
-                                   after_commit=ignore_interrupts) as tmp:
+                with output_folder(
+                    out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts
+                ) as tmp:
                     result = study.run(progress=on_study)
                     write_study(result, tmp, progress=on_write, csv=csv)
     if as_json:
@@ -188,6 +253,7 @@ def run_cmd(
     else:
         _print_result(result)
     if out is not None:
-        print_written(out, "report.html, summary.json, histories.nc" + (", histories.csv" if csv else "")
-                      + ", scenario.toml, figures")
-
+        print_written(
+            out,
+            "report.html, summary.json, histories.nc" + (", histories.csv" if csv else "") + ", scenario.toml, figures",
+        )

@@ -69,7 +69,8 @@ def check_plot_path(plot: Optional[str]) -> None:
         if p.suffix.lower() not in PLOT_SUFFIXES:
             raise BlastscaleInputError(
                 f"plot = {plot!r} has no image extension: valid extensions are {', '.join(PLOT_SUFFIXES)} "
-                f"(e.g. {plot}.png)")
+                f"(e.g. {plot}.png)"
+            )
         from ..io.output import Kind, check_target
 
         check_target(p, Kind("an image", lambda q: True, folder=False), name="plot")  # missing folder, a file
@@ -81,18 +82,25 @@ PULSE_HELP = "Pulse shape: friedlander (paper Eq. 1), triangular (Eq. 3) or impu
 HEIGHT = typer.Option(10.0, "--height", help="Block height 2h \\[m].")
 WIDTH = typer.Option(None, "--width", help="Block width 2b along the blast \\[m].")
 ALPHA_DEG = typer.Option(None, "--alpha-deg", help="Slenderness angle \\[deg], in (0, 90) (instead of --width).")
-DEPTH = typer.Option(1.0, "--depth", help="Block depth 2w across the blast \\[m] (it cancels out of the planar response).")
+DEPTH = typer.Option(
+    1.0, "--depth", help="Block depth 2w across the blast \\[m] (it cancels out of the planar response)."
+)
 DENSITY = typer.Option(2000.0, "--density", help="Density rho \\[kg/m^3].")
 CHARGE = typer.Option(..., "--charge", help="Prototype TNT-equivalent charge W \\[kg].")
 STANDOFF = typer.Option(..., "--standoff", help="Prototype stand-off R \\[m].")
-DURATION = typer.Option(_SIMULATION["duration_s"].default, "--duration", help="Simulated time after the shock arrival \\[s] (prototype).")
+DURATION = typer.Option(
+    _SIMULATION["duration_s"].default, "--duration", help="Simulated time after the shock arrival \\[s] (prototype)."
+)
 PULSE = typer.Option("friedlander", "--pulse", "--pulse-shape", help=PULSE_HELP)
-SCALE = typer.Option(None, "--scale", help="Geometric scale lambda \\[-] (0.005 or 1/200): also design, run and up-scale the model.")
+SCALE = typer.Option(
+    None, "--scale", help="Geometric scale lambda \\[-] (0.005 or 1/200): also design, run and up-scale the model."
+)
 DENSITY_RATIO = typer.Option(1.0, "--density-ratio", help="gamma = rho_model / rho_prototype \\[-].")
 GRAVITY_RATIO = typer.Option(1.0, "--gravity-ratio", help="varsigma = g_model / g_prototype \\[-] (centrifuge).")
 GRAVITY = typer.Option(STANDARD_GRAVITY, "--gravity", help="Prototype gravity g \\[m/s^2].")
 MODEL = typer.Option(DEFAULT_BLAST_MODEL, "--model", "--blast-model", help=MODEL_HELP)
 JSON = typer.Option(False, "--json", help="Print one JSON object instead of tables.")
+
 
 # the options of the 3D commands (block3d, column) whose defaults are the scenario's
 # (blastscale.scenario): None when not given, so that the scenario's default applies
@@ -104,25 +112,52 @@ def scenario_default(table: str, key: str):
     return model.model_fields[key].default
 
 
-LOAD = typer.Option(None, "--load", help="Load method: A (the paper's Method A: uniform, simultaneous reflected pulse on "
-                                         "the front faces); B, C: per-face distance, arrival and incidence "
-                                         f"(docs/face_loads.md). Default {scenario_default('blast', 'load')}.")
-INCIDENCE = typer.Option(None, "--incidence", help="Angle-of-incidence model of loads B and C (default "
-                                                   f"{scenario_default('blast', 'incidence')}; see "
-                                                   "blastscale.blast.incidence).")
+LOAD = typer.Option(
+    None,
+    "--load",
+    help="Load method: A (the paper's Method A: uniform, simultaneous reflected pulse on "
+    "the front faces); B, C: per-face distance, arrival and incidence "
+    f"(docs/face_loads.md). Default {scenario_default('blast', 'load')}.",
+)
+INCIDENCE = typer.Option(
+    None,
+    "--incidence",
+    help="Angle-of-incidence model of loads B and C (default "
+    f"{scenario_default('blast', 'incidence')}; see "
+    "blastscale.blast.incidence).",
+)
 MODEL_3D = typer.Option(None, "--model", "--blast-model", help=MODEL_HELP)
-PULSE_3D = typer.Option(None, "--pulse", "--pulse-shape", help=f"{PULSE_HELP} Default {scenario_default('blast', 'pulse_shape')}.")
-DURATION_3D = typer.Option(None, "--duration", help="Simulated time after the shock arrival \\[s] (prototype; default "
-                                                    f"{scenario_default('simulation', 'duration_s'):g} s, the "
-                                                    "scenario's).")
-FRICTION_3D = typer.Option(None, "--friction", help="Coulomb friction coefficient mu \\[-] at every contact (default "
-                                                    f"{scenario_default('block', 'friction'):g} = tan 35 deg, the "
-                                                    "paper's).")
-THREADS = typer.Option(None, "--threads", min=1, help="Threads of one process: 3D runs in flight at once "
-                                                     "(ensemble members, the 3D cases of a sweep chunk), planar "
-                                                     "batches (outcome mode, fragility) split over them (default: "
-                                                     "the cores this process may use, divided by the local Dask "
-                                                     "workers). Results do not depend on it.")
-RECORD_EVERY = typer.Option(None, "--record-every", help="Keep one state every N steps (default: one state per "
-                                                         "millisecond of the 10 m reference structure, 5 steps for a "
-                                                         "block and 4 for a drum stack, at any size).")
+PULSE_3D = typer.Option(
+    None, "--pulse", "--pulse-shape", help=f"{PULSE_HELP} Default {scenario_default('blast', 'pulse_shape')}."
+)
+DURATION_3D = typer.Option(
+    None,
+    "--duration",
+    help="Simulated time after the shock arrival \\[s] (prototype; default "
+    f"{scenario_default('simulation', 'duration_s'):g} s, the "
+    "scenario's).",
+)
+FRICTION_3D = typer.Option(
+    None,
+    "--friction",
+    help="Coulomb friction coefficient mu \\[-] at every contact (default "
+    f"{scenario_default('block', 'friction'):g} = tan 35 deg, the "
+    "paper's).",
+)
+THREADS = typer.Option(
+    None,
+    "--threads",
+    min=1,
+    help="Threads of one process: 3D runs in flight at once "
+    "(ensemble members, the 3D cases of a sweep chunk), planar "
+    "batches (outcome mode, fragility) split over them (default: "
+    "the cores this process may use, divided by the local Dask "
+    "workers). Results do not depend on it.",
+)
+RECORD_EVERY = typer.Option(
+    None,
+    "--record-every",
+    help="Keep one state every N steps (default: one state per "
+    "millisecond of the 10 m reference structure, 5 steps for a "
+    "block and 4 for a drum stack, at any size).",
+)

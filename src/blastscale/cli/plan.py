@@ -17,34 +17,70 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from ._app import (app, console, ignore_interrupts, one_line_warnings, print_json, print_written, raise_if_interrupted,
-                   stage_progress, styled)
+from ._app import (
+    app,
+    console,
+    ignore_interrupts,
+    one_line_warnings,
+    print_json,
+    print_written,
+    raise_if_interrupted,
+    stage_progress,
+    styled,
+)
 
 
 def _print_plan(p, top: int) -> None:
     from ..report.html import format_charge
 
-    t = Table(title=f"Feasible designs, best first ({len(p.designs)}; {len(p.rejected)} rejected)",
-              title_justify="left")
-    for c in ("#", "law", "lambda", "material", "charge", "stand-off", "specimen", "safety radius", "camera",
-              "P(outcome agrees)", "first-peak error"):
+    t = Table(
+        title=f"Feasible designs, best first ({len(p.designs)}; {len(p.rejected)} rejected)", title_justify="left"
+    )
+    for c in (
+        "#",
+        "law",
+        "lambda",
+        "material",
+        "charge",
+        "stand-off",
+        "specimen",
+        "safety radius",
+        "camera",
+        "P(outcome agrees)",
+        "first-peak error",
+    ):
         t.add_column(c, justify="left" if c in ("law", "material") else "right")
     for i, d in enumerate(p.designs[:top], 1):
-        t.add_row(str(i), d["law"], d["scale_fraction"], d["material"],
-                  f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}", f"{d['standoff_m'] * 100:.3g} cm",
-                  f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
-                  f"{d['safety_radius_m']:.3g} m", f"{d['camera_fps']:g}/s", f"{d['p_outcome_agree']:.3f}",
-                  f"{100 * d['predicted_first_peak_error']:.2g} %")
+        t.add_row(
+            str(i),
+            d["law"],
+            d["scale_fraction"],
+            d["material"],
+            f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}",
+            f"{d['standoff_m'] * 100:.3g} cm",
+            f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
+            f"{d['safety_radius_m']:.3g} m",
+            f"{d['camera_fps']:g}/s",
+            f"{d['p_outcome_agree']:.3f}",
+            f"{100 * d['predicted_first_peak_error']:.2g} %",
+        )
     console.print(t)
     b = p.designs[0]
-    console.print(styled(("Best design:", "bold"), f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
-                         f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"))
+    console.print(
+        styled(
+            ("Best design:", "bold"),
+            f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
+            f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm",
+        )
+    )
     for r in b["reasons"]:
         console.print(f"  - {r}")
-    console.print(f"  - fireable: above {b['explosive']}'s minimum reliable charge "
-                  f"{format_charge(b['explosive_min_charge_kg'])}; initiator {format_charge(b['initiator_tnt_kg'])} TNT, "
-                  f"{100 * b['initiator_fraction']:.3g} % of the charge's impulse (at most "
-                  f"{100 * p.lab['initiator_max_fraction']:g} %)")
+    console.print(
+        f"  - fireable: above {b['explosive']}'s minimum reliable charge "
+        f"{format_charge(b['explosive_min_charge_kg'])}; initiator {format_charge(b['initiator_tnt_kg'])} TNT, "
+        f"{100 * b['initiator_fraction']:.3g} % of the charge's impulse (at most "
+        f"{100 * p.lab['initiator_max_fraction']:g} %)"
+    )
     for w in b.get("warnings", []):
         console.print(f"  - warning: {w}")
     reasons: dict = {}
@@ -52,25 +88,35 @@ def _print_plan(p, top: int) -> None:
         for key in r["constraints"]:
             reasons[key] = reasons.get(key, 0) + 1
     if reasons:
-        console.print("rejected candidates, by the constraint they break: " + ", ".join(
-            f"{k} {n}" for k, n in sorted(reasons.items(), key=lambda kv: -kv[1])))
+        console.print(
+            "rejected candidates, by the constraint they break: "
+            + ", ".join(f"{k} {n}" for k, n in sorted(reasons.items(), key=lambda kv: -kv[1]))
+        )
 
 
 @app.command("plan")
 def plan_cmd(
     scenario: Optional[Path] = typer.Argument(
-        None, metavar="SCENARIO.toml", show_default=False,
+        None,
+        metavar="SCENARIO.toml",
+        show_default=False,
         help="Scenario file with the prototype and a \\[lab] table (docs/planning.md). Default: the built-in "
-             "scenario and every \\[lab] default."),
+        "scenario and every \\[lab] default.",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print the plan as one JSON object instead of tables."),
-    out: Optional[Path] = typer.Option(None, "--out", show_default=False,
-                                       help="Also run the best design and write plan.json, summary.json (test card), "
-                                            "scenario.toml and report.html into this new folder."),
+    out: Optional[Path] = typer.Option(
+        None,
+        "--out",
+        show_default=False,
+        help="Also run the best design and write plan.json, summary.json (test card), "
+        "scenario.toml and report.html into this new folder.",
+    ),
     force: bool = typer.Option(False, "--force", help="Replace an existing result folder."),
     top: int = typer.Option(10, "--top", min=1, help="Designs shown in the table."),
     workers: int = typer.Option(0, "--workers", min=0, help="Local Dask workers of the 3D ensemble (lab.ensemble_3d)."),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", show_default=False,
-                                            help="Address of a running Dask scheduler for the 3D ensemble."),
+    scheduler: Optional[str] = typer.Option(
+        None, "--scheduler", show_default=False, help="Address of a running Dask scheduler for the 3D ensemble."
+    ),
 ) -> None:
     """Plan a lab test: the designs the lab can fire safely, with the charge, the safety zone, the instruments
     and the odds."""
@@ -91,8 +137,9 @@ def plan_cmd(
             from ..report.plan_files import write_plan
             from ..study import Study
 
-            with output_folder(out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts,
-                               markers=markers) as tmp:
+            with output_folder(
+                out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts, markers=markers
+            ) as tmp:
                 p = plan(sc, workers=workers, scheduler=scheduler, progress=tell)
                 tell("the best design's study", 0, 1)
                 result = Study(p.best_scenario).run()

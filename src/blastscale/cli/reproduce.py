@@ -25,15 +25,28 @@ from ._signals import set_interrupt_note
 
 @app.command("reproduce")
 def reproduce_cmd(
-    out: Path = typer.Option(..., "--out", show_default=False,
-                             help="Folder for the items and report.html (created in an existing folder; reused to resume)."),
-    only: list[str] = typer.Option([], "--only", metavar="NAME", show_default=False,
-                                   help="Only these items (repeatable; shell patterns such as 'scenario-*')."),
-    quick: bool = typer.Option(False, "--quick", help="Shortened runs (0.2 s scenarios, quick gallery): a smoke "
-                                                      "test of every item, not the paper's numbers."),
+    out: Path = typer.Option(
+        ...,
+        "--out",
+        show_default=False,
+        help="Folder for the items and report.html (created in an existing folder; reused to resume).",
+    ),
+    only: list[str] = typer.Option(
+        [],
+        "--only",
+        metavar="NAME",
+        show_default=False,
+        help="Only these items (repeatable; shell patterns such as 'scenario-*').",
+    ),
+    quick: bool = typer.Option(
+        False,
+        "--quick",
+        help="Shortened runs (0.2 s scenarios, quick gallery): a smoke test of every item, not the paper's numbers.",
+    ),
     list_items: bool = typer.Option(False, "--list", help="List the items and exit."),
-    examples: Optional[Path] = typer.Option(None, "--examples", help="Folder of the gallery scripts (default: "
-                                                                      "examples/ of a source checkout)."),
+    examples: Optional[Path] = typer.Option(
+        None, "--examples", help="Folder of the gallery scripts (default: examples/ of a source checkout)."
+    ),
 ) -> None:
     """Reproduce the paper's tables and figures; the report puts the paper's numbers beside ours."""
     from ..io.output import Kind, claim
@@ -53,18 +66,29 @@ def reproduce_cmd(
         return
     chosen = [it for it in every if not only or any(fnmatch.fnmatch(it.name, pat) for pat in only)]
     if not chosen:
-        raise BlastscaleInputError(f"only = {' '.join(only)!r} matches no item: valid names are "
-                                   f"{', '.join(it.name for it in every)}")
+        raise BlastscaleInputError(
+            f"only = {' '.join(only)!r} matches no item: valid names are {', '.join(it.name for it in every)}"
+        )
     kind = Kind("a blastscale reproduce folder (no item.json nor reproduce summary.json)", is_reproduce_folder)
     with claim(out, kind, reuse=lambda p: not any(p.iterdir()) or is_reproduce_folder(p)) as c:
         folder, created = c.path, not c.path.exists()
         todo = [it for it in chosen if not item_done(it, folder, quick)]
         secs, size = expected_cost(todo, quick)
-        console_err.print(f"reproduce: {len(todo)} of {len(chosen)} items to make"
-                          + (f", about {format_duration(secs)} and {format_size(size)} on this kind of machine"
-                             if todo else " (every one is done)")
-                          + ("" if quick or not todo else "; --quick makes every item in about "
-                             f"{format_duration(expected_cost(todo, True)[0])} (a smoke test)"), soft_wrap=True)
+        console_err.print(
+            f"reproduce: {len(todo)} of {len(chosen)} items to make"
+            + (
+                f", about {format_duration(secs)} and {format_size(size)} on this kind of machine"
+                if todo
+                else " (every one is done)"
+            )
+            + (
+                ""
+                if quick or not todo
+                else "; --quick makes every item in about "
+                f"{format_duration(expected_cost(todo, True)[0])} (a smoke test)"
+            ),
+            soft_wrap=True,
+        )
         if created:
             folder.mkdir()
         set_interrupt_note(lambda: _kept(folder, every, created))

@@ -18,9 +18,12 @@ from .flags import flags_named
 from . import options as opt
 from .options import block_from_options, check_plot_path
 
+
 def opt_extrapolate():
     """The ``--extrapolate`` option of the capacity commands."""
-    return typer.Option(False, "--extrapolate", help="Search beyond the blast fits' valid range of Z (5x each way; warns).")
+    return typer.Option(
+        False, "--extrapolate", help="Search beyond the blast fits' valid range of Z (5x each way; warns)."
+    )
 
 
 RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts \\[-], in \\[0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
@@ -46,8 +49,10 @@ def _load_model_record(result) -> dict:
     proto = load_model_record(result.blast.blast_model, result.blast.burst, lm)
     if d is None:
         return {"prototype": proto}
-    return {"prototype": proto, "model": load_model_record(d.specimen.blast_model, d.specimen.burst,
-                                                           d.specimen_load_model)}
+    return {
+        "prototype": proto,
+        "model": load_model_record(d.specimen.blast_model, d.specimen.burst, d.specimen_load_model),
+    }
 
 
 def _inputs(block, **kw) -> dict:
@@ -83,8 +88,12 @@ def rock_cmd(
     clearing: bool = bf.CLEARING,
     negative_phase: bool = bf.NEGATIVE_PHASE,
     negative_phase_model: Optional[str] = bf.NEGATIVE_PHASE_MODEL,
-    samples: int = typer.Option(opt._SIMULATION["samples"].default, "--samples", help="Sampling times for the comparison and the plot \\[-]."),
-    plot: Optional[str] = typer.Option(None, "--plot", help="Write theta(t), theta_dot(t) and the phase portrait to this image file."),
+    samples: int = typer.Option(
+        opt._SIMULATION["samples"].default, "--samples", help="Sampling times for the comparison and the plot \\[-]."
+    ),
+    plot: Optional[str] = typer.Option(
+        None, "--plot", help="Write theta(t), theta_dot(t) and the phase portrait to this image file."
+    ),
     as_json: bool = opt.JSON,
 ) -> None:
     """Rocking response of a rigid block to a blast: overturning, its time, the first impact.
@@ -100,20 +109,47 @@ def rock_cmd(
     check_plot_path(plot)
     bf.check_burst_flag(burst)
     sc = scenario_from_flags(
-        structure={"kind": "block", "height_m": height, "width_m": width, "alpha_deg": alpha_deg, "depth_m": depth,
-                   "density_kg_m3": density},
-        blast={"charge_kg": charge, "standoff_m": standoff, "blast_model": blast_model, "pulse_shape": pulse_shape,
-               "burst": burst, "clearing": clearing, "negative_phase": negative_phase,
-               **bf.negative_phase_model_key(negative_phase, negative_phase_model)},
-        scale=None if scale is None else {"length": scale, "density_ratio": density_ratio,
-                                          "gravity_ratio": gravity_ratio},
-        simulation={"engine": "planar", "duration_s": duration, "samples": samples, "gravity_m_s2": gravity,
-                    "restitution": restitution, "critical_charge": False},
+        structure={
+            "kind": "block",
+            "height_m": height,
+            "width_m": width,
+            "alpha_deg": alpha_deg,
+            "depth_m": depth,
+            "density_kg_m3": density,
+        },
+        blast={
+            "charge_kg": charge,
+            "standoff_m": standoff,
+            "blast_model": blast_model,
+            "pulse_shape": pulse_shape,
+            "burst": burst,
+            "clearing": clearing,
+            "negative_phase": negative_phase,
+            **bf.negative_phase_model_key(negative_phase, negative_phase_model),
+        },
+        scale=None
+        if scale is None
+        else {"length": scale, "density_ratio": density_ratio, "gravity_ratio": gravity_ratio},
+        simulation={
+            "engine": "planar",
+            "duration_s": duration,
+            "samples": samples,
+            "gravity_m_s2": gravity,
+            "restitution": restitution,
+            "critical_charge": False,
+        },
     )
     out: dict = {
         "inputs": _inputs(
-            block, charge_kg=charge, standoff_m=standoff, duration_s=duration, pulse_shape=pulse_shape, blast_model=blast_model,
-            restitution=restitution, gravity_m_s2=gravity, scale=scale,
+            block,
+            charge_kg=charge,
+            standoff_m=standoff,
+            duration_s=duration,
+            pulse_shape=pulse_shape,
+            blast_model=blast_model,
+            restitution=restitution,
+            gravity_m_s2=gravity,
+            scale=scale,
             density_ratio=density_ratio if scale is not None else None,
             gravity_ratio=gravity_ratio if scale is not None else None,
         )
@@ -145,24 +181,41 @@ def rock_cmd(
     if as_json:
         print_json(out, engine="planar")
         return
-    console.print(table(
-        f"Prototype: {block.height:g} x {block.width:.4g} m block (alpha = {math.degrees(block.alpha):.4g} deg), "
-        f"{charge:g} kg TNT at {standoff:g} m ({blast_model}, {pulse_shape})", _summary_rows(out["prototype"])))
+    console.print(
+        table(
+            f"Prototype: {block.height:g} x {block.width:.4g} m block (alpha = {math.degrees(block.alpha):.4g} deg), "
+            f"{charge:g} kg TNT at {standoff:g} m ({blast_model}, {pulse_shape})",
+            _summary_rows(out["prototype"]),
+        )
+    )
     if sim is not None:
         me = out["model_experiment"]
-        console.print(table(
-            f"Model lambda = {scale:g}, gamma = {density_ratio:g}: {me['charge_kg']:.4g} kg at {me['standoff_m']:.4g} m, "
-            "up-scaled to prototype units", _summary_rows(out["model"])))
+        console.print(
+            table(
+                f"Model lambda = {scale:g}, gamma = {density_ratio:g}: {me['charge_kg']:.4g} kg at {me['standoff_m']:.4g} m, "
+                "up-scaled to prototype units",
+                _summary_rows(out["model"]),
+            )
+        )
         s = out["similarity"]
-        console.print(table("Similarity (prototype vs up-scaled model)", [
-            ("max |rotation difference|", f"{s['max_abs_rotation_diff_rad']:.3g}", "rad"),
-            ("  up to the tipping point", f"{s['max_abs_rotation_diff_to_tipping_rad']:.3g}", "rad"),
-            ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
-            ("overturn time difference (model - prototype)", fmt_value(s["collapse_time_diff_s"], ".3g"), "s"),
-            ("fall, |theta_dot difference| / p at equal angle", fmt_value(s["max_fall_phase_diff_rad"], ".3g"), "rad"),
-            ("first-peak ratio model/prototype", f"{s['first_peak_ratio']:.6g}", "-"),
-            ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
-        ]))
+        console.print(
+            table(
+                "Similarity (prototype vs up-scaled model)",
+                [
+                    ("max |rotation difference|", f"{s['max_abs_rotation_diff_rad']:.3g}", "rad"),
+                    ("  up to the tipping point", f"{s['max_abs_rotation_diff_to_tipping_rad']:.3g}", "rad"),
+                    ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
+                    ("overturn time difference (model - prototype)", fmt_value(s["collapse_time_diff_s"], ".3g"), "s"),
+                    (
+                        "fall, |theta_dot difference| / p at equal angle",
+                        fmt_value(s["max_fall_phase_diff_rad"], ".3g"),
+                        "rad",
+                    ),
+                    ("first-peak ratio model/prototype", f"{s['first_peak_ratio']:.6g}", "-"),
+                    ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
+                ],
+            )
+        )
     if plot:
         print_written(plot)
 
@@ -175,11 +228,17 @@ def critical_cmd(
     depth: float = opt.DEPTH,
     density: float = opt.DENSITY,
     standoff: Optional[float] = typer.Option(None, "--standoff", help="Stand-off R \\[m]: find the critical charge."),
-    charge: Optional[float] = typer.Option(None, "--charge", help="Charge W \\[kg TNT]: find the critical stand-off instead."),
+    charge: Optional[float] = typer.Option(
+        None, "--charge", help="Charge W \\[kg TNT]: find the critical stand-off instead."
+    ),
     pulse_shape: str = opt.PULSE,
-    restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP + " (does not affect the first excursion)"),
+    restitution: Optional[float] = typer.Option(
+        None, "--restitution", help=RESTITUTION_HELP + " (does not affect the first excursion)"
+    ),
     extrapolate: bool = opt_extrapolate(),
-    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also give the model's charge for the critical scenario."),
+    scale: Optional[float] = typer.Option(
+        None, "--scale", help="Geometric scale lambda \\[-]: also give the model's charge for the critical scenario."
+    ),
     density_ratio: float = opt.DENSITY_RATIO,
     gravity: float = opt.GRAVITY,
     blast_model: str = opt.MODEL,
@@ -187,7 +246,9 @@ def critical_cmd(
     clearing: bool = bf.CLEARING,
     negative_phase: bool = bf.NEGATIVE_PHASE,
     negative_phase_model: Optional[str] = bf.NEGATIVE_PHASE_MODEL,
-    plot: Optional[str] = typer.Option(None, "--plot", help="Write the P-I overturning diagram (with the critical point) to this image file."),
+    plot: Optional[str] = typer.Option(
+        None, "--plot", help="Write the P-I overturning diagram (with the critical point) to this image file."
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Critical charge at a stand-off (largest charge without overturning), or with --charge the
@@ -210,11 +271,13 @@ def critical_cmd(
     system = RockingSystem.from_block(block, gravity, restitution)
     with one_line_warnings(), activity("searching the critical scenario", quiet=as_json):
         if standoff is not None:
-            res = critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate,
-                                  load_model=lm)
+            res = critical_charge(
+                system, standoff, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate, load_model=lm
+            )
         else:
-            res = critical_standoff(system, charge, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate,
-                                    load_model=lm)
+            res = critical_standoff(
+                system, charge, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate, load_model=lm
+            )
     out = {"inputs": _inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
     out.update(res.to_dict())
     out["blast_model"] = blast_model  # the family asked for; the fit used is in load_model
@@ -230,17 +293,32 @@ def critical_cmd(
 
         with one_line_warnings(), activity("the critical charge under each negative-phase model", quiet=as_json):
             out["negative_phase_uncertainty"] = negative_phase_uncertainty(
-                system, standoff, lm, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate)
+                system, standoff, lm, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate
+            )
     out["impulsive_critical_impulse_Pa_s"] = system.critical_impulse
     out["uplift_pressure_Pa"] = system.uplift_pressure
     if scale is not None:
         from ..similitude import design_model
 
         with one_line_warnings():
-            d = design_model(res.charge_kg, res.standoff_m, scale, density_ratio, blast_model=blast_model, geometry=block,
-                             gravity=gravity, extrapolate=extrapolate, burst=burst, load_model=lm)
-        out["model_experiment"] = {"scale": scale, "density_ratio": density_ratio,
-                                   "critical_charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
+            d = design_model(
+                res.charge_kg,
+                res.standoff_m,
+                scale,
+                density_ratio,
+                blast_model=blast_model,
+                geometry=block,
+                gravity=gravity,
+                extrapolate=extrapolate,
+                burst=burst,
+                load_model=lm,
+            )
+        out["model_experiment"] = {
+            "scale": scale,
+            "density_ratio": density_ratio,
+            "critical_charge_kg": d.specimen_charge_kg,
+            "standoff_m": d.specimen_standoff_m,
+        }
     if plot:
         from ..plots.rocking import plot_pi_diagram
         from ..rocking import pi_diagram
@@ -258,8 +336,13 @@ def critical_cmd(
 
             fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
             plot_pi_diagram(pi, ax=ax)
-            ax.plot([bp.reflected_impulse], [bp.reflected_pressure], "o", color="C3",
-                    label=f"critical: {res.charge_kg:.4g} kg at {res.standoff_m:.4g} m")
+            ax.plot(
+                [bp.reflected_impulse],
+                [bp.reflected_pressure],
+                "o",
+                color="C3",
+                label=f"critical: {res.charge_kg:.4g} kg at {res.standoff_m:.4g} m",
+            )
             ax.legend(fontsize=8)
             return fig
 
@@ -279,12 +362,21 @@ def critical_cmd(
         ("simulations", str(res.evaluations), ""),
     ]
     if scale is not None:
-        rows.append((f"model charge (lambda = {scale:g})", f"{out['model_experiment']['critical_charge_kg']:.6g}", "kg"))
+        rows.append(
+            (f"model charge (lambda = {scale:g})", f"{out['model_experiment']['critical_charge_kg']:.6g}", "kg")
+        )
     for m, v in out.get("negative_phase_uncertainty", {}).items():
         if isinstance(v, dict):  # the model uncertainty of the suction
-            rows.append((f"critical charge, negative phase {m}", f"{v['critical_charge_kg']:.6g} "
-                         f"(x{v['over_positive_phase_only']:.3g})", "kg"))
-    console.print(table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", rows))
+            rows.append(
+                (
+                    f"critical charge, negative phase {m}",
+                    f"{v['critical_charge_kg']:.6g} (x{v['over_positive_phase_only']:.3g})",
+                    "kg",
+                )
+            )
+    console.print(
+        table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", rows)
+    )
     if plot:
         print_written(plot)
 
@@ -296,12 +388,19 @@ def capacity_cmd(
     alpha_deg: Optional[float] = opt.ALPHA_DEG,
     depth: float = opt.DEPTH,
     density: float = opt.DENSITY,
-    standoffs: str = typer.Option("1:20:40:log", "--standoffs",
-                                  help="Stand-offs R \\[m]: \"a,b,c\" or \"start:stop:n\" (\":log\" for geometric spacing)."),
-    charge: Optional[float] = typer.Option(None, "--charge", help="Charge W \\[kg TNT]: also give its safe (critical) stand-off."),
+    standoffs: str = typer.Option(
+        "1:20:40:log",
+        "--standoffs",
+        help='Stand-offs R \\[m]: "a,b,c" or "start:stop:n" (":log" for geometric spacing).',
+    ),
+    charge: Optional[float] = typer.Option(
+        None, "--charge", help="Charge W \\[kg TNT]: also give its safe (critical) stand-off."
+    ),
     pulse_shape: str = opt.PULSE,
     restitution: Optional[float] = typer.Option(None, "--restitution", help=RESTITUTION_HELP),
-    scale: Optional[float] = typer.Option(None, "--scale", help="Geometric scale lambda \\[-]: also the model's curve, up-scaled."),
+    scale: Optional[float] = typer.Option(
+        None, "--scale", help="Geometric scale lambda \\[-]: also the model's curve, up-scaled."
+    ),
     density_ratio: float = opt.DENSITY_RATIO,
     gravity_ratio: float = opt.GRAVITY_RATIO,
     gravity: float = opt.GRAVITY,
@@ -342,15 +441,25 @@ def capacity_cmd(
             safe = critical_standoff(system, charge, **kw).standoff_m
     from .. import __version__
 
-    out = {"inputs": _inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity, restitution=restitution,
-                             extrapolate=extrapolate),
-           "blastscale_version": __version__,
-           "method": "first-swing energy criterion after the pulse (docs/capacity.md)"}
+    out = {
+        "inputs": _inputs(
+            block,
+            pulse_shape=pulse_shape,
+            blast_model=blast_model,
+            gravity_m_s2=gravity,
+            restitution=restitution,
+            extrapolate=extrapolate,
+        ),
+        "blastscale_version": __version__,
+        "method": "first-swing energy criterion after the pulse (docs/capacity.md)",
+    }
     out.update(curve.to_dict())
     if mcap is not None:
         out["model"] = mcap.to_dict()
         ratio = mcap.upscaled_charge_kg / curve.critical_charge_kg
-        out["model"]["max_abs_relative_difference"] = float(np.nanmax(np.abs(ratio - 1.0))) if np.any(np.isfinite(ratio)) else None
+        out["model"]["max_abs_relative_difference"] = (
+            float(np.nanmax(np.abs(ratio - 1.0))) if np.any(np.isfinite(ratio)) else None
+        )
     if charge is not None:
         out["safe_standoff"] = {"charge_kg": charge, "standoff_m": safe}
     if plot:
@@ -363,7 +472,10 @@ def capacity_cmd(
         return
     from rich.table import Table
 
-    t = Table(title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", title_justify="left")
+    t = Table(
+        title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})",
+        title_justify="left",
+    )
     t.add_column("stand-off R [m]", justify="right")
     t.add_column("critical charge W_c [kg]", justify="right")
     if mcap is not None:
@@ -373,8 +485,11 @@ def capacity_cmd(
     for k in range(R.size):
         row = [f"{R[k]:.6g}", fmt_value(out["critical_charge_kg"][k], ".6g")]
         if mcap is not None:
-            row += [f"{mcap.curve.standoff_m[k]:.6g}", fmt_value(out["model"]["critical_charge_kg"][k], ".6g"),
-                    fmt_value(out["model"]["upscaled_critical_charge_kg"][k], ".6g")]
+            row += [
+                f"{mcap.curve.standoff_m[k]:.6g}",
+                fmt_value(out["model"]["critical_charge_kg"][k], ".6g"),
+                fmt_value(out["model"]["upscaled_critical_charge_kg"][k], ".6g"),
+            ]
         t.add_row(*row)
     console.print(t)
     console.print(f"{curve.seconds_per_case * 1e3:.3g} ms per stand-off")

@@ -45,8 +45,10 @@ def load_structure(source: str, density_kg_m3: Optional[float] = None):
             raise BlastscaleInputError(f"FILE_OR_SCENARIO = {source!r} cannot be read: no such file")
         return read_block_model(p, 2000.0 if density_kg_m3 is None else density_kg_m3), None, None
     if p.exists() and suffix not in _SCENARIO_SUFFIXES:
-        raise BlastscaleInputError(f"FILE_OR_SCENARIO = {source!r} is not a known kind of file: valid suffixes are "
-                                   f".toml (scenario), .json, {', '.join(MESH_SUFFIXES)} (block models)")
+        raise BlastscaleInputError(
+            f"FILE_OR_SCENARIO = {source!r} is not a known kind of file: valid suffixes are "
+            f".toml (scenario), .json, {', '.join(MESH_SUFFIXES)} (block models)"
+        )
     sc = load_scenario(source)
     if density_kg_m3 is not None:
         sc = sc.with_values({"structure.density_kg_m3": density_kg_m3})
@@ -70,36 +72,60 @@ def describe_structure(structure) -> dict:
     joints = [i for i in itfs if i.first >= 0]
     pts = [p.name for p in structure.monitoring_points]
     return {
-        "kind": str(structure.describe().get("kind", d["kind"])), "blocks": len(asm.blocks), "mass_kg": rest.mass,
-        "volume_m3": rest.volume, "centre_of_mass_m": list(rest.centre_of_mass), "height_m": d["height_m"],
-        "length_m": d["length_m"], "thickness_m": d["thickness_m"], "density_kg_m3": d["density_kg_m3"],
-        "interfaces_between_blocks": len(joints), "interfaces_on_ground": len(ground),
+        "kind": str(structure.describe().get("kind", d["kind"])),
+        "blocks": len(asm.blocks),
+        "mass_kg": rest.mass,
+        "volume_m3": rest.volume,
+        "centre_of_mass_m": list(rest.centre_of_mass),
+        "height_m": d["height_m"],
+        "length_m": d["length_m"],
+        "thickness_m": d["thickness_m"],
+        "density_kg_m3": d["density_kg_m3"],
+        "interfaces_between_blocks": len(joints),
+        "interfaces_on_ground": len(ground),
         "interface_area_between_blocks_m2": float(sum(i.area for i in joints)),
         "contact_area_on_ground_m2": float(sum(i.area for i in ground)),
-        "monitoring_points": len(pts), "monitoring_point_names": pts,
-        "block_names": [b.name for b in asm.blocks], "supports": len(asm.supports),
+        "monitoring_points": len(pts),
+        "monitoring_point_names": pts,
+        "block_names": [b.name for b in asm.blocks],
+        "supports": len(asm.supports),
         "support_names": [b.name for b in asm.supports],
     }
 
 
 @app.command("show")
 def show_cmd(
-    source: str = typer.Argument(..., metavar="FILE_OR_SCENARIO", show_default=False,
-                                 help="A scenario (.toml, or a shipped scenario's name) or a block-model file (.json, "
-                                      ".obj, .stl, .ply, ...; docs/assemblies.md); with --animate, a result folder."),
-    plot: Optional[Path] = typer.Option(None, "--plot", show_default=False,
-                                        help="Write the elevation and plan, interfaces shaded (.png, .svg or .pdf)."),
-    density: Optional[float] = typer.Option(None, "--density", show_default=False,
-                                            help="Density \\[kg/m^3] of blocks without their own (default: the "
-                                                 "scenario's, 2000 for a block-model file)."),
+    source: str = typer.Argument(
+        ...,
+        metavar="FILE_OR_SCENARIO",
+        show_default=False,
+        help="A scenario (.toml, or a shipped scenario's name) or a block-model file (.json, "
+        ".obj, .stl, .ply, ...; docs/assemblies.md); with --animate, a result folder.",
+    ),
+    plot: Optional[Path] = typer.Option(
+        None, "--plot", show_default=False, help="Write the elevation and plan, interfaces shaded (.png, .svg or .pdf)."
+    ),
+    density: Optional[float] = typer.Option(
+        None,
+        "--density",
+        show_default=False,
+        help="Density \\[kg/m^3] of blocks without their own (default: the scenario's, 2000 for a block-model file).",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print the description as one JSON object."),
-    to_compas: Optional[Path] = typer.Option(None, "--to-compas", show_default=False,
-                                             help="Write the structure as a COMPAS (compas_dem) block model (.json; "
-                                                  "docs/assemblies.md)."),
-    animate: Optional[str] = typer.Option(None, "--animate", metavar="FILE.gif|FILE.mp4|FILE.html",
-                                          show_default=False,
-                                          help="With a result folder (blastscale run --out) as the argument: its "
-                                               "3D motion, prototype and up-scaled model side by side."),
+    to_compas: Optional[Path] = typer.Option(
+        None,
+        "--to-compas",
+        show_default=False,
+        help="Write the structure as a COMPAS (compas_dem) block model (.json; docs/assemblies.md).",
+    ),
+    animate: Optional[str] = typer.Option(
+        None,
+        "--animate",
+        metavar="FILE.gif|FILE.mp4|FILE.html",
+        show_default=False,
+        help="With a result folder (blastscale run --out) as the argument: its "
+        "3D motion, prototype and up-scaled model side by side.",
+    ),
     view: str = typer.Option("iso", "--view", help="--animate's camera: front, side, top or iso."),
     fps: float = typer.Option(20.0, "--fps", help="--animate's frames per second of playback, in [1, 120]."),
     speed: float = typer.Option(1.0, "--speed", help="--animate's playback speed x real (prototype) time."),
@@ -124,8 +150,12 @@ def show_cmd(
             from ..structures import as_assembly
 
             title = None if sc is None or not sc.title else sc.title
-            save_figure(lambda: assembly_figure(as_assembly(structure), title=title, standoff_m=standoff,
-                                                points=world_points(structure)), plot)
+            save_figure(
+                lambda: assembly_figure(
+                    as_assembly(structure), title=title, standoff_m=standoff, points=world_points(structure)
+                ),
+                plot,
+            )
         if to_compas is not None:
             import json
 
@@ -133,24 +163,32 @@ def show_cmd(
             from ..structures import as_assembly
             from ..structures.compas_files import compas_model_data
 
-            write_file(to_compas, json.dumps(compas_model_data(as_assembly(structure)), indent=1) + "\n",
-                       what="--to-compas")
+            write_file(
+                to_compas, json.dumps(compas_model_data(as_assembly(structure)), indent=1) + "\n", what="--to-compas"
+            )
     if as_json:
         print_json(desc)
     else:
         names = desc["monitoring_point_names"]
         shown = ", ".join(names[:6]) + (f", ... ({len(names)})" if len(names) > 6 else "")
-        rows = [("kind", desc["kind"], ""), ("blocks", str(desc["blocks"]), ""),
-                ("mass", fmt_value(desc["mass_kg"], ".5g"), "kg"), ("volume", fmt_value(desc["volume_m3"], ".5g"), "m^3"),
-                ("density", fmt_value(desc["density_kg_m3"], ".5g"), "kg/m^3"),
-                ("centre of mass (x, y, z)", ", ".join(fmt_value(x, ".4g") for x in desc["centre_of_mass_m"]), "m"),
-                ("height x length x thickness", " x ".join(fmt_value(desc[k], ".4g") for k in
-                                                          ("height_m", "length_m", "thickness_m")), "m"),
-                ("interfaces between blocks", str(desc["interfaces_between_blocks"]), ""),
-                ("  their area", fmt_value(desc["interface_area_between_blocks_m2"], ".5g"), "m^2"),
-                ("interfaces on the ground", str(desc["interfaces_on_ground"]), ""),
-                ("  their area", fmt_value(desc["contact_area_on_ground_m2"], ".5g"), "m^2"),
-                ("monitoring points", shown, "")]
+        rows = [
+            ("kind", desc["kind"], ""),
+            ("blocks", str(desc["blocks"]), ""),
+            ("mass", fmt_value(desc["mass_kg"], ".5g"), "kg"),
+            ("volume", fmt_value(desc["volume_m3"], ".5g"), "m^3"),
+            ("density", fmt_value(desc["density_kg_m3"], ".5g"), "kg/m^3"),
+            ("centre of mass (x, y, z)", ", ".join(fmt_value(x, ".4g") for x in desc["centre_of_mass_m"]), "m"),
+            (
+                "height x length x thickness",
+                " x ".join(fmt_value(desc[k], ".4g") for k in ("height_m", "length_m", "thickness_m")),
+                "m",
+            ),
+            ("interfaces between blocks", str(desc["interfaces_between_blocks"]), ""),
+            ("  their area", fmt_value(desc["interface_area_between_blocks_m2"], ".5g"), "m^2"),
+            ("interfaces on the ground", str(desc["interfaces_on_ground"]), ""),
+            ("  their area", fmt_value(desc["contact_area_on_ground_m2"], ".5g"), "m^2"),
+            ("monitoring points", shown, ""),
+        ]
         console.print(table(f"Structure: {source}", rows))
     for written in (plot, to_compas):
         if written is not None:

@@ -21,7 +21,11 @@ from .flags import SET_VALUES, parse_set
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")
 SCHEDULER = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (e.g. tcp://127.0.0.1:8786).")
 WORKERS = typer.Option(None, "--workers", help="Local worker processes (default: one per CPU; 0: in this process).")
-CHUNK = typer.Option(None, "--chunk", help="Cases per task (default: --outcomes ~cases / (2 workers), at most 20000; planar ~cases / (4 workers), at most 2000; else 1).")
+CHUNK = typer.Option(
+    None,
+    "--chunk",
+    help="Cases per task (default: --outcomes ~cases / (2 workers), at most 20000; planar ~cases / (4 workers), at most 2000; else 1).",
+)
 SEED = typer.Option(0, "--seed", help="Seed of the Monte Carlo draws (numpy default_rng).")
 
 
@@ -53,8 +57,11 @@ def _resume_note(out) -> None:
 
     def note() -> str:
         n = unfinished_chunks(out)
-        return (f"{n} finished chunks kept in {out}.parts (the partial chunk removed): run the same command again "
-                "to resume" if n else "no partial results left")
+        return (
+            f"{n} finished chunks kept in {out}.parts (the partial chunk removed): run the same command again to resume"
+            if n
+            else "no partial results left"
+        )
 
     set_interrupt_note(note)
 
@@ -63,16 +70,28 @@ def _resume_note(out) -> None:
 def sweep_cmd(
     scenario: Optional[Path] = SCENARIO_ARG,
     values: List[str] = SET_VALUES,
-    vary: Optional[List[str]] = typer.Option(None, "--vary", help="FIELD=start:stop:n[:log] or FIELD=a,b,c (repeatable; cartesian grid)."),
-    sample: Optional[List[str]] = typer.Option(None, "--sample", help="FIELD=dist:params, e.g. friction=uniform:0.5,0.8 (repeatable)."),
+    vary: Optional[List[str]] = typer.Option(
+        None, "--vary", help="FIELD=start:stop:n[:log] or FIELD=a,b,c (repeatable; cartesian grid)."
+    ),
+    sample: Optional[List[str]] = typer.Option(
+        None, "--sample", help="FIELD=dist:params, e.g. friction=uniform:0.5,0.8 (repeatable)."
+    ),
     samples: int = typer.Option(0, "--samples", help="Monte Carlo samples per grid point (with --sample)."),
     seed: int = SEED,
-    out: Path = typer.Option(..., "--out", help="Zarr store to write (a folder, e.g. sweep.zarr; its parent folder must exist)."),
+    out: Path = typer.Option(
+        ..., "--out", help="Zarr store to write (a folder, e.g. sweep.zarr; its parent folder must exist)."
+    ),
     scheduler: Optional[str] = SCHEDULER,
     workers: Optional[int] = WORKERS,
     chunk: Optional[int] = CHUNK,
-    force: bool = typer.Option(False, "--force", help="Replace a store (or unfinished chunks) of another sweep (never anything else)."),
-    outcomes: bool = typer.Option(False, "--outcomes", help="Outcome mode (planar blocks): overturned and largest rotation of prototype and model at any time, vectorised (docs/sweeps.md)."),
+    force: bool = typer.Option(
+        False, "--force", help="Replace a store (or unfinished chunks) of another sweep (never anything else)."
+    ),
+    outcomes: bool = typer.Option(
+        False,
+        "--outcomes",
+        help="Outcome mode (planar blocks): overturned and largest rotation of prototype and model at any time, vectorised (docs/sweeps.md).",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Run the Study for every case of a grid (and Monte Carlo samples) of scenario fields and
@@ -99,18 +118,27 @@ def sweep_cmd(
         run = run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, force=force, progress=tick)
     ignore_interrupts()  # the store is in place: only the printing remains
     print_written(out, f"{spec.n_cases} cases")
-    res = {**run.to_dict(), "dims": list(spec.dims), "shape": list(spec.shape),
-           "fields": {a.name: a.path for a in spec.axes} | {s.name: s.path for s in spec.sampled}}
+    res = {
+        **run.to_dict(),
+        "dims": list(spec.dims),
+        "shape": list(spec.shape),
+        "fields": {a.name: a.path for a in spec.axes} | {s.name: s.path for s in spec.sampled},
+    }
     if as_json:
         print_json(res)
         return
-    console.print(table(f"Sweep of {spec.n_cases} cases into {out}", [
-        ("dimensions", " x ".join(f"{d} ({n})" for d, n in zip(spec.dims, spec.shape)) or "-", ""),
-        ("chunks computed / already done", f"{run.chunks_run} / {run.chunks_skipped}", ""),
-        ("computing time (cluster start/stop excluded)", f"{run.seconds:.3g}", "s"),
-        ("cases per minute", f"{run.cases_per_minute:.4g}", "1/min"),
-        ("workers", str(run.workers), ""),
-    ]))
+    console.print(
+        table(
+            f"Sweep of {spec.n_cases} cases into {out}",
+            [
+                ("dimensions", " x ".join(f"{d} ({n})" for d, n in zip(spec.dims, spec.shape)) or "-", ""),
+                ("chunks computed / already done", f"{run.chunks_run} / {run.chunks_skipped}", ""),
+                ("computing time (cluster start/stop excluded)", f"{run.seconds:.3g}", "s"),
+                ("cases per minute", f"{run.cases_per_minute:.4g}", "1/min"),
+                ("workers", str(run.workers), ""),
+            ],
+        )
+    )
 
 
 def _uniform_range(text: str, name: str) -> tuple:
@@ -133,8 +161,12 @@ def fragility_cmd(
     scenario: Optional[Path] = SCENARIO_ARG,
     values: List[str] = SET_VALUES,
     charges: str = typer.Option(..., "--charges", help="Charges W \\[kg TNT]: start:stop:n[:log] or a,b,c."),
-    lognormal: Optional[List[str]] = typer.Option(None, "--lognormal", help="FIELD=beta: the field times a lognormal factor (median 1, log-sd beta) (repeatable)."),
-    uniform: Optional[List[str]] = typer.Option(None, "--uniform", help="FIELD=lo:hi: uniform values in the field's unit (repeatable)."),
+    lognormal: Optional[List[str]] = typer.Option(
+        None, "--lognormal", help="FIELD=beta: the field times a lognormal factor (median 1, log-sd beta) (repeatable)."
+    ),
+    uniform: Optional[List[str]] = typer.Option(
+        None, "--uniform", help="FIELD=lo:hi: uniform values in the field's unit (repeatable)."
+    ),
     samples: int = typer.Option(1000, "--samples", help="Monte Carlo draws per charge."),
     seed: int = SEED,
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the fragility curve to this image file."),
@@ -151,8 +183,14 @@ def fragility_cmd(
     base = _scenario(scenario, values)
     W = parse_grid(charges, "charges")
     with activity(f"fragility: {W.size} charges x {samples} draws", quiet=as_json):
-        res = fragility(base, W, lognormal=_assignments(lognormal, "--lognormal", _beta),
-                        uniform=_assignments(uniform, "--uniform", _uniform_range), samples=samples, seed=seed)
+        res = fragility(
+            base,
+            W,
+            lognormal=_assignments(lognormal, "--lognormal", _beta),
+            uniform=_assignments(uniform, "--uniform", _uniform_range),
+            samples=samples,
+            seed=seed,
+        )
     out = res.to_dict()
     out["scenario"] = base.title or "default"
     if plot:
@@ -178,9 +216,11 @@ def fragility_cmd(
         console.print(f"lognormal fit: not bounded: {res.fit.note}")
     else:
         f = res.fit
-        console.print(f"lognormal fit: median {f.median_charge_kg:.6g} kg (95 %: {f.median_ci_kg[0]:.6g} - "
-                      f"{f.median_ci_kg[1]:.6g}), beta {f.beta:.4g} (95 %: {f.beta_ci[0]:.4g} - {f.beta_ci[1]:.4g})"
-                      + (f"; {f.note}" if f.note else ""))
+        console.print(
+            f"lognormal fit: median {f.median_charge_kg:.6g} kg (95 %: {f.median_ci_kg[0]:.6g} - "
+            f"{f.median_ci_kg[1]:.6g}), beta {f.beta:.4g} (95 %: {f.beta_ci[0]:.4g} - {f.beta_ci[1]:.4g})"
+            + (f"; {f.note}" if f.note else "")
+        )
     if plot:
         print_written(plot)
 
@@ -189,13 +229,23 @@ def fragility_cmd(
 def similarity_map_cmd(
     scenario: Optional[Path] = SCENARIO_ARG,
     values: List[str] = SET_VALUES,
-    scales: str = typer.Option("0.005,0.01,0.05,0.1,0.5", "--scales", help="lambda values \\[-]: a,b,c or start:stop:n[:log]."),
+    scales: str = typer.Option(
+        "0.005,0.01,0.05,0.1,0.5", "--scales", help="lambda values \\[-]: a,b,c or start:stop:n[:log]."
+    ),
     density_ratios: str = typer.Option("0.1,0.3,1,3", "--density-ratios", help="gamma values \\[-]."),
     charges: str = typer.Option("50,100", "--charges", help="Prototype charges W \\[kg TNT]."),
     standoffs: str = typer.Option("2,4", "--standoffs", help="Prototype stand-offs R \\[m]."),
-    engine: str = typer.Option("planar", "--engine", help="planar (rocking, ~2 ms per case) or 3d (MuJoCo, one Study per case: a coarse grid)."),
-    tolerance: Optional[float] = typer.Option(None, "--tolerance", help="Error below which an agreeing model is trustworthy (default 5e-4 rad planar, 0.05 relative 3D)."),
-    out: Optional[Path] = typer.Option(None, "--out", help="Zarr store of the underlying sweep (resumable; its parent folder must exist)."),
+    engine: str = typer.Option(
+        "planar", "--engine", help="planar (rocking, ~2 ms per case) or 3d (MuJoCo, one Study per case: a coarse grid)."
+    ),
+    tolerance: Optional[float] = typer.Option(
+        None,
+        "--tolerance",
+        help="Error below which an agreeing model is trustworthy (default 5e-4 rad planar, 0.05 relative 3D).",
+    ),
+    out: Optional[Path] = typer.Option(
+        None, "--out", help="Zarr store of the underlying sweep (resumable; its parent folder must exist)."
+    ),
     scheduler: Optional[str] = SCHEDULER,
     workers: Optional[int] = typer.Option(0, "--workers", help="Local worker processes (default 0: in this process)."),
     chunk: Optional[int] = CHUNK,
@@ -215,12 +265,20 @@ def similarity_map_cmd(
 
     check_plot_path(plot)
     base = _scenario(scenario, values)
-    grids = [parse_grid(t, n) for t, n in ((scales, "scales"), (density_ratios, "density-ratios"),
-                                          (charges, "charges"), (standoffs, "standoffs"))]
+    grids = [
+        parse_grid(t, n)
+        for t, n in (
+            (scales, "scales"),
+            (density_ratios, "density-ratios"),
+            (charges, "charges"),
+            (standoffs, "standoffs"),
+        )
+    ]
     bar, tick = count_progress(f"similarity map ({engine})", quiet=as_json)
     if out is not None:
         _resume_note(out)
     with one_line_warnings(), bar:
+
         def run(spec):
             if out is None:
                 return run_in_memory(spec, scheduler=scheduler, workers=workers or 0, chunk=chunk, progress=tick)
@@ -240,8 +298,15 @@ def similarity_map_cmd(
         "n_outcomes_agree": int((ds["outcomes_agree"].where(ds["valid"].astype(bool), False).astype(bool)).sum()),
         "n_trustworthy": int(ds["trustworthy"].sum()),
     }
-    for name in ("error", "first_peak_ratio_error", "outcomes_agree", "trustworthy", "valid", "model_to_p",
-                 "model_charge_kg"):
+    for name in (
+        "error",
+        "first_peak_ratio_error",
+        "outcomes_agree",
+        "trustworthy",
+        "valid",
+        "model_to_p",
+        "model_charge_kg",
+    ):
         v = ds[name].values
         res[name] = np.where(np.isfinite(v.astype(float)), v, np.nan).tolist() if v.dtype.kind == "f" else v.tolist()
     if plot:
@@ -254,13 +319,18 @@ def similarity_map_cmd(
         print_json(res, engine=engine)
         return
     unit = res["error_units"]
-    console.print(table(f"Similarity map ({engine}, up-scaled model vs prototype)", [
-        ("cases", str(res["n_cases"]), ""),
-        ("valid designs (model Z inside the blast fits)", str(res["n_valid"]), ""),
-        ("outcomes agree", str(res["n_outcomes_agree"]), ""),
-        (f"trustworthy (agree, error <= {res['tolerance']:g} {unit})", str(res["n_trustworthy"]), ""),
-        ("largest error where valid", f"{float(np.nanmax(ds['error'].values)):.3g}", unit),
-    ]))
+    console.print(
+        table(
+            f"Similarity map ({engine}, up-scaled model vs prototype)",
+            [
+                ("cases", str(res["n_cases"]), ""),
+                ("valid designs (model Z inside the blast fits)", str(res["n_valid"]), ""),
+                ("outcomes agree", str(res["n_outcomes_agree"]), ""),
+                (f"trustworthy (agree, error <= {res['tolerance']:g} {unit})", str(res["n_trustworthy"]), ""),
+                ("largest error where valid", f"{float(np.nanmax(ds['error'].values)):.3g}", unit),
+            ],
+        )
+    )
     if out is not None:
         print_written(out, "the underlying sweep")
     if plot:

@@ -71,8 +71,11 @@ def histories_tidy(tree):
             if var in MOTION_VARIABLES:
                 continue
             df = da.to_dataframe(name="value").reset_index()
-            ren = {d: {"time": "time_s", "component": "component", "member": "member"}.get(d, "element")
-                   for d in da.dims if d != "system"}
+            ren = {
+                d: {"time": "time_s", "component": "component", "member": "member"}.get(d, "element")
+                for d in da.dims
+                if d != "system"
+            }
             df = df.rename(columns=ren)
             for col, empty in (("element", ""), ("component", ""), ("member", ""), ("time_s", math.nan)):
                 if col not in df:  # e.g. totals have no time, single runs no member

@@ -37,8 +37,9 @@ def read_motion(folder, name: str = "RESULT_DIR"):
     p = Path(folder)
     nc = p / "histories.nc"
     if not p.is_dir():
-        raise BlastscaleInputError(f"{name} = {str(folder)!r} is not a folder: give a result folder "
-                                   "(blastscale run --out)")
+        raise BlastscaleInputError(
+            f"{name} = {str(folder)!r} is not a folder: give a result folder (blastscale run --out)"
+        )
     if not nc.is_file():
         raise BlastscaleInputError(f"{name} = {str(folder)!r} is not a blastscale result folder: no histories.nc")
     try:
@@ -47,12 +48,15 @@ def read_motion(folder, name: str = "RESULT_DIR"):
         raise BlastscaleInputError(f"{name} = {str(folder)!r}: histories.nc cannot be read ({exc})") from None
     with tree:
         if "sim3d" not in tree.children:
-            raise BlastscaleInputError(f"{name} = {str(folder)!r} holds no 3D run: nothing moves in 3D (run with "
-                                       "simulation.engine = \"3d\" or \"both\")")
+            raise BlastscaleInputError(
+                f"{name} = {str(folder)!r} holds no 3D run: nothing moves in 3D (run with "
+                'simulation.engine = "3d" or "both")'
+            )
         ds = tree["sim3d"].to_dataset().load()
     if "body_position" not in ds:
-        raise BlastscaleInputError(f"{name} = {str(folder)!r} was written before results kept the motion: "
-                                   "run it again with this version")
+        raise BlastscaleInputError(
+            f"{name} = {str(folder)!r} was written before results kept the motion: run it again with this version"
+        )
     info = {"title": str(tree.attrs.get("title", "")), "standoff_m": None, "charge_kg": None}
     try:
         proto = json.loads((p / "summary.json").read_text())["experiment"]["prototype"]

@@ -43,8 +43,18 @@ from filelock import FileLock, Timeout
 from .._hooks import pause_point
 from .._validate import BlastscaleInputError
 
-__all__ = ["Kind", "Claim", "claim", "check_target", "write_file", "signals_held", "fault", "HELD_SIGNALS",
-           "tree_size", "format_size"]
+__all__ = [
+    "Kind",
+    "Claim",
+    "claim",
+    "check_target",
+    "write_file",
+    "signals_held",
+    "fault",
+    "HELD_SIGNALS",
+    "tree_size",
+    "format_size",
+]
 
 #: Signals held back while a rename must not be split (delivered right after).
 HELD_SIGNALS = tuple(getattr(signal, s) for s in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, s))
@@ -85,8 +95,9 @@ def signals_held() -> Iterator[None]:
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
-def check_target(out, kind: Kind, force: bool = False, reuse: Optional[Callable[[Path], bool]] = None,
-                 name: str = "out") -> Path:
+def check_target(
+    out, kind: Kind, force: bool = False, reuse: Optional[Callable[[Path], bool]] = None, name: str = "out"
+) -> Path:
     """Check, before any work, that ``out`` can be written as ``kind``; returns it absolute.
 
     ``reuse(path)``: an existing target it accepts is kept and written into (a reproduce folder, a
@@ -121,8 +132,10 @@ def check_target(out, kind: Kind, force: bool = False, reuse: Optional[Callable[
         if reuse is not None and reuse(a):
             return a
         if not own:
-            raise BlastscaleInputError(f"{name} = {given!r} exists and is not {kind.noun}: refused"
-                                       f"{', even with --force' if force else ''} (choose another --out)")
+            raise BlastscaleInputError(
+                f"{name} = {given!r} exists and is not {kind.noun}: refused"
+                f"{', even with --force' if force else ''} (choose another --out)"
+            )
         if not force:
             raise BlastscaleInputError(f"{name} = {given!r} exists: refused (give --force to replace it)")
     return a
@@ -202,8 +215,10 @@ class Claim:
                 trash = None
                 if dest.exists() or dest.is_symlink():
                     if dest.is_dir() and any(dest.iterdir()) and not self.kind.is_own(dest):
-                        raise BlastscaleInputError(f"{self.name} = {self.given!r} was filled by something else while "
-                                                   f"it ran and is not {self.kind.noun}: nothing replaced")
+                        raise BlastscaleInputError(
+                            f"{self.name} = {self.given!r} was filled by something else while "
+                            f"it ran and is not {self.kind.noun}: nothing replaced"
+                        )
                     trash = dest.with_name(f".{dest.name}.old-{os.getpid()}")
                     os.rename(dest, trash)
                     pause_point("output:between-renames")  # only kill -9 can stop it here (signals held)
@@ -261,8 +276,10 @@ def _lock(target: Path, given: str, name: str = "out") -> FileLock:
                     raise fault(given, exc, name=name) from None
                 continue
             who = f" (pid {holder[0]} on {holder[1]})" if len(holder) >= 2 else ""
-            raise BlastscaleInputError(f"{name} = {given!r} is being written by another blastscale process{who}: "
-                                       "wait for it to finish or choose another --out") from None
+            raise BlastscaleInputError(
+                f"{name} = {given!r} is being written by another blastscale process{who}: "
+                "wait for it to finish or choose another --out"
+            ) from None
         except OSError as exc:
             raise fault(given, exc, name=name) from None
         # the holder for a second writer's message, in the file filelock left empty (Windows: not readable by
@@ -278,8 +295,10 @@ def _lock(target: Path, given: str, name: str = "out") -> FileLock:
                 _unlock(target, lock)
                 raise fault(given, exc, name=name) from None
         return lock
-    raise BlastscaleInputError(f"{name} = {given!r} is being written by another blastscale process: "
-                               "wait for it to finish or choose another --out")
+    raise BlastscaleInputError(
+        f"{name} = {given!r} is being written by another blastscale process: "
+        "wait for it to finish or choose another --out"
+    )
 
 
 def _unlock(target: Path, lock: FileLock) -> None:
@@ -289,8 +308,9 @@ def _unlock(target: Path, lock: FileLock) -> None:
 
 
 @contextlib.contextmanager
-def claim(out, kind: Kind, force: bool = False, reuse: Optional[Callable[[Path], bool]] = None,
-          name: str = "out") -> Iterator[Claim]:
+def claim(
+    out, kind: Kind, force: bool = False, reuse: Optional[Callable[[Path], bool]] = None, name: str = "out"
+) -> Iterator[Claim]:
     """Check ``out`` (:func:`check_target`), lock it, clean dead writers' partial work; yields a
     :class:`Claim`. Any ``OSError`` inside becomes one line naming ``name = 'out'``."""
     target = check_target(out, kind, force, reuse, name)

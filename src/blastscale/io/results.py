@@ -20,8 +20,20 @@ from typing import Any, Iterator
 
 from .. import __version__
 
-__all__ = ["jsonable", "write_json", "versions", "git_commit", "provenance", "output_folder",
-           "check_output_folder", "result_kind", "write_atomic", "LEGACY_KEYS", "legacy_name", "with_legacy_keys"]
+__all__ = [
+    "jsonable",
+    "write_json",
+    "versions",
+    "git_commit",
+    "provenance",
+    "output_folder",
+    "check_output_folder",
+    "result_kind",
+    "write_atomic",
+    "LEGACY_KEYS",
+    "legacy_name",
+    "with_legacy_keys",
+]
 
 #: Marker file of a blastscale output folder (``--force`` replaces only such folders or empty ones).
 MARKER = "summary.json"
@@ -152,8 +164,13 @@ def git_commit() -> str | None:
         head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=here, capture_output=True, text=True, timeout=5)
         if head.returncode != 0:
             return None
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=here,
-                               capture_output=True, text=True, timeout=5)
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no"],
+            cwd=here,
+            capture_output=True,
+            text=True,
+            timeout=5,
+        )
         return head.stdout.strip() + ("+dirty" if dirty.stdout.strip() else "")
     except (OSError, subprocess.SubprocessError):
         return None
@@ -161,8 +178,11 @@ def git_commit() -> str | None:
 
 def provenance() -> dict:
     """``versions``, ``git_commit`` and an ISO ``timestamp`` (UTC)."""
-    return {"versions": versions(), "git_commit": git_commit(),
-            "timestamp": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")}
+    return {
+        "versions": versions(),
+        "git_commit": git_commit(),
+        "timestamp": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+    }
 
 
 def _is_result_folder(folder: Path, markers: tuple = (MARKER,)) -> bool:
@@ -185,8 +205,9 @@ def result_kind(markers: tuple = (MARKER,)):
     """The :class:`~blastscale.io.output.Kind` of a blastscale result folder (``markers``: its marker files)."""
     from .output import Kind
 
-    return Kind(f"a blastscale result folder (no blastscale {' or '.join(markers)})",
-                lambda p: _is_result_folder(p, markers))
+    return Kind(
+        f"a blastscale result folder (no blastscale {' or '.join(markers)})", lambda p: _is_result_folder(p, markers)
+    )
 
 
 def check_output_folder(out: "str | Path", force: bool = False, markers: tuple = (MARKER,)) -> Path:
@@ -199,8 +220,9 @@ def check_output_folder(out: "str | Path", force: bool = False, markers: tuple =
 
 
 @contextlib.contextmanager
-def output_folder(out: "str | Path", force: bool = False, before_commit=None, after_commit=None,
-                  markers: tuple = (MARKER,)) -> Iterator[Path]:
+def output_folder(
+    out: "str | Path", force: bool = False, before_commit=None, after_commit=None, markers: tuple = (MARKER,)
+) -> Iterator[Path]:
     """A partial folder beside ``out`` to write into, renamed to ``out`` on success
     (:mod:`blastscale.io.output`: checked, locked against a second writer, stale partial folders of
     dead runs removed; on any exception, Ctrl-C included, the partial folder is removed and the

@@ -56,8 +56,11 @@ def _write_chunk(parts: Path, i: int, result: dict) -> None:
 
 def _read_chunk(path: Path) -> dict:
     with np.load(path, allow_pickle=False) as z:
-        return {"start": int(z["__start"]), "stop": int(z["__stop"]),
-                "values": {k[2:]: z[k] for k in z.files if k.startswith("v:")}}
+        return {
+            "start": int(z["__start"]),
+            "stop": int(z["__stop"]),
+            "values": {k[2:]: z[k] for k in z.files if k.startswith("v:")},
+        }
 
 
 def _consolidate(spec: SweepSpec, parts: Path, n_chunks: int, claim, meta: dict) -> None:
@@ -73,8 +76,9 @@ def _consolidate(spec: SweepSpec, parts: Path, n_chunks: int, claim, meta: dict)
 
 #: What a sweep writes (:mod:`blastscale.io.output`): an existing folder is its own kind when it is a
 #: blastscale sweep store (its fingerprint attribute), whatever the sweep.
-SWEEP_STORE = Kind("a blastscale sweep store (no sweep fingerprint)", lambda p: _store_fingerprint(p, any_layout=True)
-                   is not None)
+SWEEP_STORE = Kind(
+    "a blastscale sweep store (no sweep fingerprint)", lambda p: _store_fingerprint(p, any_layout=True) is not None
+)
 
 
 def _parts_state(parts: Path, given: str) -> "dict | None":
@@ -83,8 +87,10 @@ def _parts_state(parts: Path, given: str) -> "dict | None":
     if not (parts.exists() or parts.is_symlink()):
         return None
     if not parts.is_dir():
-        raise BlastscaleInputError(f"out = {given!r}: {str(parts)!r} is a file, not a sweep's unfinished "
-                                   "chunks: refused (move it or choose another --out)")
+        raise BlastscaleInputError(
+            f"out = {given!r}: {str(parts)!r} is a file, not a sweep's unfinished "
+            "chunks: refused (move it or choose another --out)"
+        )
     try:
         man = json.loads((parts / "sweep.json").read_text())
         if isinstance(man, dict) and "fingerprint" in man:
@@ -92,8 +98,10 @@ def _parts_state(parts: Path, given: str) -> "dict | None":
     except (OSError, ValueError):
         pass
     if any(f for f in parts.iterdir() if not (f.name.startswith(".chunk-") or f.name.startswith("chunk-"))):
-        raise BlastscaleInputError(f"out = {given!r}: {str(parts)!r} holds something else than a sweep's "
-                                   "unfinished chunks: refused, even with --force (move it or choose another --out)")
+        raise BlastscaleInputError(
+            f"out = {given!r}: {str(parts)!r} holds something else than a sweep's "
+            "unfinished chunks: refused, even with --force (move it or choose another --out)"
+        )
     return {}
 
 
@@ -147,7 +155,7 @@ def run_sweep(
     if chunk is not None and (not isinstance(chunk, (int, np.integer)) or isinstance(chunk, bool) or chunk < 1):
         raise BlastscaleInputError(f"chunk = {chunk!r} is out of range: must be a whole number >= 1")
     check_sweep_budget(spec, None if scheduler else nw)
-    same = (lambda p: _store_fingerprint(p) == fp)
+    same = lambda p: _store_fingerprint(p) == fp
     parts_given = Path(store).expanduser()
     parts_given = parts_given.with_name(parts_given.name + ".parts")
     with claim(store, SWEEP_STORE, force, reuse=same) as c:
@@ -161,7 +169,8 @@ def run_sweep(
                 if man and not force:
                     raise BlastscaleInputError(
                         f"out = {given!r}: the unfinished chunks in {str(parts_given)!r} belong to another sweep, "
-                        "or to this one computed by other blastscale code (pass --force to discard them)")
+                        "or to this one computed by other blastscale code (pass --force to discard them)"
+                    )
                 shutil.rmtree(parts)
             else:
                 chunk = int(man["chunk"])  # resume with the chunking the chunks were written with
@@ -173,8 +182,9 @@ def run_sweep(
         parts.mkdir(exist_ok=True)
         try:
             if created:
-                write_file(parts / "sweep.json", json.dumps({"fingerprint": fp, "chunk": int(chunk),
-                                                             "n_cases": spec.n_cases}))
+                write_file(
+                    parts / "sweep.json", json.dumps({"fingerprint": fp, "chunk": int(chunk), "n_cases": spec.n_cases})
+                )
             n = spec.n_cases
             bounds = [(i, s, min(n, s + chunk)) for i, s in enumerate(range(0, n, chunk))]
             todo = [b for b in bounds if not _chunk_path(parts, b[0]).exists()]
@@ -190,9 +200,14 @@ def run_sweep(
         used, dt = nw, time.perf_counter() - t0
         try:
             if todo:
-                used, dt = run_chunks(payload, todo, lambda i, result: _write_chunk(parts, i, result),
-                                      scheduler=scheduler, workers=nw,
-                                      tick=lambda k: progress(done_cases + k, n) if progress else None)
+                used, dt = run_chunks(
+                    payload,
+                    todo,
+                    lambda i, result: _write_chunk(parts, i, result),
+                    scheduler=scheduler,
+                    workers=nw,
+                    tick=lambda k: progress(done_cases + k, n) if progress else None,
+                )
             _consolidate(spec, parts, len(bounds), c, metadata(spec, chunk))
         except BaseException as exc:  # interrupted or failed: finished chunks stay to resume from, else nothing;
             # a write fault (a full disk) of a sweep this run started leaves nothing either
@@ -202,8 +217,9 @@ def run_sweep(
             raise
         shutil.rmtree(parts, ignore_errors=True)
     ran = sum(b - a for _, a, b in todo)
-    return SweepRun(given, n, len(todo), len(bounds) - len(todo), dt, used,
-                    ran / dt * 60.0 if dt > 0 and ran else math.nan)
+    return SweepRun(
+        given, n, len(todo), len(bounds) - len(todo), dt, used, ran / dt * 60.0 if dt > 0 and ran else math.nan
+    )
 
 
 def unfinished_chunks(store) -> int:
@@ -246,4 +262,3 @@ def open_sweep(store):
 
     require("zarr", "sweeps", "reading a sweep store")
     return xr.open_datatree(Path(store), engine="zarr", consolidated=True).load()
-

@@ -16,5 +16,14 @@ from .card import study_test_card
 from .odds import Odds, Tolerances, ensemble_odds_3d, planar_odds
 from .planner import Plan, PlanInfeasible, design_scenario, plan
 
-__all__ = ["plan", "Plan", "PlanInfeasible", "design_scenario", "study_test_card", "planar_odds", "ensemble_odds_3d",
-           "Odds", "Tolerances"]
+__all__ = [
+    "plan",
+    "Plan",
+    "PlanInfeasible",
+    "design_scenario",
+    "study_test_card",
+    "planar_odds",
+    "ensemble_odds_3d",
+    "Odds",
+    "Tolerances",
+]

@@ -45,8 +45,13 @@ class Candidate:
     density_ratio: float
 
     def describe(self) -> dict:
-        return {"law": self.law, "scale": self.scale, "scale_fraction": scale_label(self.scale),
-                "material": self.material, "density_ratio": self.density_ratio}
+        return {
+            "law": self.law,
+            "scale": self.scale,
+            "scale_fraction": scale_label(self.scale),
+            "material": self.material,
+            "density_ratio": self.density_ratio,
+        }
 
 
 @dataclass(frozen=True)
@@ -92,29 +97,65 @@ def candidates(lab, prototype_density: float, prototype_height: float, gravity_r
 def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
     out = []
     if spec_h > lab.specimen_max_height_m:
-        out.append(Violation("specimen_max_height_m", spec_h, lab.specimen_max_height_m,
-                             f"specimen {spec_h:.4g} m high > specimen_max_height_m = {lab.specimen_max_height_m:g} m"))
+        out.append(
+            Violation(
+                "specimen_max_height_m",
+                spec_h,
+                lab.specimen_max_height_m,
+                f"specimen {spec_h:.4g} m high > specimen_max_height_m = {lab.specimen_max_height_m:g} m",
+            )
+        )
     if spec_m > lab.specimen_max_mass_kg:
-        out.append(Violation("specimen_max_mass_kg", spec_m, lab.specimen_max_mass_kg,
-                             f"specimen {spec_m:.4g} kg > specimen_max_mass_kg = {lab.specimen_max_mass_kg:g} kg"))
+        out.append(
+            Violation(
+                "specimen_max_mass_kg",
+                spec_m,
+                lab.specimen_max_mass_kg,
+                f"specimen {spec_m:.4g} kg > specimen_max_mass_kg = {lab.specimen_max_mass_kg:g} kg",
+            )
+        )
     if ev.charge is None:
         return out
     out += [Violation(*f) for f in fireability(ev.charge, lab)]
     m = ev.charge.explosive_mass_kg
     if m < lab.charge_min_kg:
-        out.append(Violation("charge_min_kg", m, lab.charge_min_kg,
-                             f"{m:.4g} kg of {lab.explosive} < charge_min_kg = {lab.charge_min_kg:g} kg"))
+        out.append(
+            Violation(
+                "charge_min_kg",
+                m,
+                lab.charge_min_kg,
+                f"{m:.4g} kg of {lab.explosive} < charge_min_kg = {lab.charge_min_kg:g} kg",
+            )
+        )
     if m > lab.charge_max_kg:
-        out.append(Violation("charge_max_kg", m, lab.charge_max_kg,
-                             f"{m:.4g} kg of {lab.explosive} > charge_max_kg = {lab.charge_max_kg:g} kg"))
+        out.append(
+            Violation(
+                "charge_max_kg",
+                m,
+                lab.charge_max_kg,
+                f"{m:.4g} kg of {lab.explosive} > charge_max_kg = {lab.charge_max_kg:g} kg",
+            )
+        )
     if ev.safety.radius_m > lab.space_radius_m:
-        out.append(Violation("space_radius_m", ev.safety.radius_m, lab.space_radius_m,
-                             f"safety radius ({lab.safety_threshold}) {ev.safety.radius_m:.4g} m > space_radius_m = "
-                             f"{lab.space_radius_m:g} m"))
+        out.append(
+            Violation(
+                "space_radius_m",
+                ev.safety.radius_m,
+                lab.space_radius_m,
+                f"safety radius ({lab.safety_threshold}) {ev.safety.radius_m:.4g} m > space_radius_m = "
+                f"{lab.space_radius_m:g} m",
+            )
+        )
     need = ev.instruments.camera_fps_required
     if need > lab.camera_max_fps:
-        out.append(Violation("camera_max_fps", need, lab.camera_max_fps,
-                             f"camera needs {need:.4g} frames/s > camera_max_fps = {lab.camera_max_fps:g}"))
+        out.append(
+            Violation(
+                "camera_max_fps",
+                need,
+                lab.camera_max_fps,
+                f"camera needs {need:.4g} frames/s > camera_max_fps = {lab.camera_max_fps:g}",
+            )
+        )
     return out
 
 
@@ -132,48 +173,96 @@ def evaluate(c: Candidate, *, scenario, lab, block, timing, incident_model) -> E
     gam = None if c.law == "hopkinson-cranz" else c.density_ratio
     sig = sc.scale.gravity_ratio if sc.scale is not None else 1.0
     try:
-        d = design_model(bl.charge_kg, bl.standoff_m, c.scale, gam, sig, c.law, bl.blast_model, block,
-                         gravity=sc.simulation.gravity_m_s2, duration=sc.simulation.duration_s)
+        d = design_model(
+            bl.charge_kg,
+            bl.standoff_m,
+            c.scale,
+            gam,
+            sig,
+            c.law,
+            bl.blast_model,
+            block,
+            gravity=sc.simulation.gravity_m_s2,
+            duration=sc.simulation.duration_s,
+        )
     except BlastscaleInputError as exc:
         ev.violations.append(Violation("blast fits", None, None, " ".join(str(exc).split())))
         return ev
     spec = d.specimen_structure  # the design's specimen block (scaled once, there)
     ev.design, ev.specimen = d, spec
     if d.impulsive is not None and not d.impulsive.impulsive:
-        ev.violations.append(Violation("impulsive", d.impulsive.model_ratio, d.impulsive.threshold,
-                                       f"not impulsive: t_o p = {d.impulsive.model_ratio:.3g} > {d.impulsive.threshold:g}"))
+        ev.violations.append(
+            Violation(
+                "impulsive",
+                d.impulsive.model_ratio,
+                d.impulsive.threshold,
+                f"not impulsive: t_o p = {d.impulsive.model_ratio:.3g} > {d.impulsive.threshold:g}",
+            )
+        )
     try:
         ev.charge = lab_charge(d.specimen_charge_kg, lab)
     except BlastscaleInputError:
-        ev.violations.append(Violation("initiator_max_fraction", lab.initiator_tnt_kg / d.specimen_charge_kg,
-                                       lab.initiator_max_fraction,
-                                       f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge "
-                                       f"{d.specimen_charge_kg:.4g} kg TNT"))
+        ev.violations.append(
+            Violation(
+                "initiator_max_fraction",
+                lab.initiator_tnt_kg / d.specimen_charge_kg,
+                lab.initiator_max_fraction,
+                f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge {d.specimen_charge_kg:.4g} kg TNT",
+            )
+        )
         ev.violations += _violations(ev, lab, spec.height, spec.mass)
         ex = get_explosive(lab.explosive, lab_explosives(lab))  # no explosive left to weigh: below every minimum
-        ev.violations.append(Violation("explosive_min_charge_kg", 0.0, ex.min_charge_kg, f"no {ex.name} left "
-                                       f"beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)"))
+        ev.violations.append(
+            Violation(
+                "explosive_min_charge_kg",
+                0.0,
+                ex.min_charge_kg,
+                f"no {ex.name} left beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)",
+            )
+        )
         if lab.charge_min_kg > 0:
-            ev.violations.append(Violation("charge_min_kg", 0.0, lab.charge_min_kg, f"no {ex.name} left beside the "
-                                           f"initiator < charge_min_kg = {lab.charge_min_kg:g} kg"))
+            ev.violations.append(
+                Violation(
+                    "charge_min_kg",
+                    0.0,
+                    lab.charge_min_kg,
+                    f"no {ex.name} left beside the initiator < charge_min_kg = {lab.charge_min_kg:g} kg",
+                )
+            )
         r = safety_envelope(lab.initiator_tnt_kg, lab.safety_threshold).radius_m  # the initiator alone
         if r > lab.space_radius_m:
-            ev.violations.append(Violation("space_radius_m", r, lab.space_radius_m, f"safety radius of the initiator "
-                                           f"alone ({lab.safety_threshold}) {r:.4g} m > space_radius_m = "
-                                           f"{lab.space_radius_m:g} m"))
+            ev.violations.append(
+                Violation(
+                    "space_radius_m",
+                    r,
+                    lab.space_radius_m,
+                    f"safety radius of the initiator "
+                    f"alone ({lab.safety_threshold}) {r:.4g} m > space_radius_m = "
+                    f"{lab.space_radius_m:g} m",
+                )
+            )
         return ev
     ev.safety = safety_envelope(ev.charge.tnt_equivalent_pressure_kg, lab.safety_threshold)
     tf = float(d.factors.time)
     ev.rise_s, ev.response_s = timing.rise_s * tf, timing.response_s * tf
     m = d.specimen
     z = float(m.scaled_distance)
-    inc = float(incident_model.incident_pressure(z)) if incident_model.valid_range("incident_pressure")[0] <= z \
-        <= incident_model.valid_range("incident_pressure")[1] else float("nan")
+    inc = (
+        float(incident_model.incident_pressure(z))
+        if incident_model.valid_range("incident_pressure")[0] <= z <= incident_model.valid_range("incident_pressure")[1]
+        else float("nan")
+    )
     ev.instruments = instrument_settings(
-        reflected_pressure_Pa=m.reflected_pressure, incident_pressure_Pa=inc, positive_duration_s=m.positive_duration,
-        friedlander_decay=m.friedlander_decay, arrival_time_s=m.arrival_time, rise_time_s=ev.rise_s,
-        response_time_s=ev.response_s, top_displacement_m=top_corner_displacement(spec.width, spec.height, 0.0),
-        camera_max_fps=lab.camera_max_fps)
+        reflected_pressure_Pa=m.reflected_pressure,
+        incident_pressure_Pa=inc,
+        positive_duration_s=m.positive_duration,
+        friedlander_decay=m.friedlander_decay,
+        arrival_time_s=m.arrival_time,
+        rise_time_s=ev.rise_s,
+        response_time_s=ev.response_s,
+        top_displacement_m=top_corner_displacement(spec.width, spec.height, 0.0),
+        camera_max_fps=lab.camera_max_fps,
+    )
     ev.violations += _violations(ev, lab, spec.height, spec.mass)
     return ev
 
@@ -182,8 +271,9 @@ def specimen_displacement(spec, rotation: Optional[float], collapsed: bool) -> t
     """(top-corner displacement [m], reach [m]) of a specimen block from its largest rotation."""
     if collapsed or rotation is None:
         return spec.width + spec.height, planar_reach(spec.width, spec.height, 0.0, True)
-    return top_corner_displacement(spec.width, spec.height, rotation), planar_reach(spec.width, spec.height,
-                                                                                     rotation, False)
+    return top_corner_displacement(spec.width, spec.height, rotation), planar_reach(
+        spec.width, spec.height, rotation, False
+    )
 
 
 def frames_needed(rise_s: float) -> float:

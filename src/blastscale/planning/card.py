@@ -19,8 +19,16 @@ import numpy as np
 from .debris import planar_reach, reach_3d
 from .instruments import instrument_settings, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
-from .shot import (DEFAULT_LAB, Timing, card_charge, fireability, rocking_timing, safety_envelope, threshold_meanings,
-                   timing_of)
+from .shot import (
+    DEFAULT_LAB,
+    Timing,
+    card_charge,
+    fireability,
+    rocking_timing,
+    safety_envelope,
+    threshold_meanings,
+    timing_of,
+)
 
 __all__ = ["study_test_card", "check_lab"]
 
@@ -59,13 +67,23 @@ def _response(result, spec) -> dict:
     out = {"reach_m": [], "prototype_reach_m": []}
     if result.planar is not None:
         m, p = result.planar.model, result.planar.prototype
-        out.update(collapsed=bool(m.collapsed), rotation=None if m.collapsed else float(m.max_rotation),
-                   timing=timing_of(m), collapse_time=m.collapse_time)
-        out["top_m"] = (spec.width + spec.height) if m.collapsed else \
-            top_corner_displacement(spec.width, spec.height, m.max_rotation)
+        out.update(
+            collapsed=bool(m.collapsed),
+            rotation=None if m.collapsed else float(m.max_rotation),
+            timing=timing_of(m),
+            collapse_time=m.collapse_time,
+        )
+        out["top_m"] = (
+            (spec.width + spec.height)
+            if m.collapsed
+            else top_corner_displacement(spec.width, spec.height, m.max_rotation)
+        )
         out["reach_m"].append(planar_reach(spec.width, spec.height, m.max_rotation, m.collapsed))
-        out["prototype_reach_m"].append(planar_reach(result.structure.width, result.structure.height, p.max_rotation,
-                                                     p.collapsed) if hasattr(result.structure, "width") else 0.0)
+        out["prototype_reach_m"].append(
+            planar_reach(result.structure.width, result.structure.height, p.max_rotation, p.collapsed)
+            if hasattr(result.structure, "width")
+            else 0.0
+        )
     if result.response3d is not None:
         s3 = result.summary()["3d"]
         cmp3 = result.response3d
@@ -75,10 +93,14 @@ def _response(result, spec) -> dict:
             out["reach_m"].append(lam * reach_3d(up, result.structure))
         if "timing" not in out:
             col = bool(s3["model"]["collapsed"])
-            out.update(collapsed=col, rotation=None if col else float(s3["model"]["max_rotation_rad"]),
-                       timing=_timing_3d(result, float(d.factors.time), col),
-                       collapse_time=None if s3["model"]["collapse_time_s"] is None else
-                       float(s3["model"]["collapse_time_s"]) * float(d.factors.time))
+            out.update(
+                collapsed=col,
+                rotation=None if col else float(s3["model"]["max_rotation_rad"]),
+                timing=_timing_3d(result, float(d.factors.time), col),
+                collapse_time=None
+                if s3["model"]["collapse_time_s"] is None
+                else float(s3["model"]["collapse_time_s"]) * float(d.factors.time),
+            )
             out["top_m"] = lam * float(s3["model"]["max_top_displacement_m"])
     return out
 
@@ -92,11 +114,21 @@ def _odds(result, spec, ch, lab, collapsed_p):
     sim, bl = sc.simulation, sc.blast
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return planar_odds(spec, charge_kg=d.specimen_charge_kg, standoff_m=d.specimen_standoff_m,
-                           prototype_collapsed=collapsed_p, explosive_fraction=max(0.0, 1.0 - ch.initiator_fraction),
-                           gravity=d.specimen_gravity, restitution=sim.restitution,
-                           pulse_shape=bl.pulse_shape, blast_model=d.specimen.blast_model, tolerances=Tolerances.from_lab(lab),
-                           samples=lab.samples, seed=lab.seed, target=lab.first_peak_target)
+        return planar_odds(
+            spec,
+            charge_kg=d.specimen_charge_kg,
+            standoff_m=d.specimen_standoff_m,
+            prototype_collapsed=collapsed_p,
+            explosive_fraction=max(0.0, 1.0 - ch.initiator_fraction),
+            gravity=d.specimen_gravity,
+            restitution=sim.restitution,
+            pulse_shape=bl.pulse_shape,
+            blast_model=d.specimen.blast_model,
+            tolerances=Tolerances.from_lab(lab),
+            samples=lab.samples,
+            seed=lab.seed,
+            target=lab.first_peak_target,
+        )
 
 
 def _prototype_collapsed(result) -> bool:
@@ -114,12 +146,18 @@ def _layout(spec, ch, ins, standoff: float, density, charge_height: float = 0.0,
     # the charge's shape is the blast fits': a hemisphere on the floor, a sphere in free air
     radius = (3.0 * m / ((2.0 if burst == "surface" else 4.0) * math.pi * rho)) ** (1.0 / 3.0)
     cam = 4.0 * (hs + ins.displacement_range_m)
-    return {"charge": [0.0, 0.0, charge_height], "charge_height_m": charge_height, "charge_radius_m": radius,
-            "specimen_front_x_m": standoff, "specimen_centre": [standoff + 0.5 * ws, 0.0, 0.0],
-            "reflected_gauge": [standoff, -(0.5 * ds + 0.2 * standoff), 0.5 * hs],
-            "incident_gauge": [0.0, -standoff, 0.5 * hs],
-            "camera": [standoff + 0.5 * ws, cam, 0.5 * hs], "camera_distance_m": cam,
-            "displacement_sensor": [standoff + ws + 0.5 * hs + ins.displacement_range_m, 0.0, hs]}
+    return {
+        "charge": [0.0, 0.0, charge_height],
+        "charge_height_m": charge_height,
+        "charge_radius_m": radius,
+        "specimen_front_x_m": standoff,
+        "specimen_centre": [standoff + 0.5 * ws, 0.0, 0.0],
+        "reflected_gauge": [standoff, -(0.5 * ds + 0.2 * standoff), 0.5 * hs],
+        "incident_gauge": [0.0, -standoff, 0.5 * hs],
+        "camera": [standoff + 0.5 * ws, cam, 0.5 * hs],
+        "camera_distance_m": cam,
+        "displacement_sensor": [standoff + ws + 0.5 * hs + ins.displacement_range_m, 0.0, hs],
+    }
 
 
 def _lab_shot(result) -> tuple:
@@ -130,15 +168,21 @@ def _lab_shot(result) -> tuple:
     h = sc.scale.specimen_charge_height_m if sc.scale is not None else None
     notes = []
     if burst != "surface" and h is None:
-        notes.append(f"the specimen's charge is a {burst} burst on a stand of unstated height: give "
-                     "scale.specimen_charge_height_m to check that the floor's reflection arrives after the positive phase")
+        notes.append(
+            f"the specimen's charge is a {burst} burst on a stand of unstated height: give "
+            "scale.specimen_charge_height_m to check that the floor's reflection arrives after the positive phase"
+        )
     lb = (d.effects or {}).get("lab_burst")
     if lb is not None and lb["kind"] != burst:
-        notes.append(f"the charge at {lb['charge_height_m']:.4g} m is {lb['kind']}, not the {burst} burst the design "
-                     f"assumed (floor reflection after {lb['delay_over_positive_duration']:.2g} of the positive duration)")
+        notes.append(
+            f"the charge at {lb['charge_height_m']:.4g} m is {lb['kind']}, not the {burst} burst the design "
+            f"assumed (floor reflection after {lb['delay_over_positive_duration']:.2g} of the positive duration)"
+        )
     if sc.blast.clearing or sc.blast.negative_phase:
-        notes.append("the odds run the planar first swing on the uncleared positive pulse (clearing and the negative "
-                     "phase are in the simulations, not in the odds)")
+        notes.append(
+            "the odds run the planar first swing on the uncleared positive pulse (clearing and the negative "
+            "phase are in the simulations, not in the odds)"
+        )
     return (0.0 if h is None else float(h)) if burst == "surface" or h is not None else None, burst, notes
 
 
@@ -173,15 +217,23 @@ def study_test_card(result, lab=None) -> dict | None:
     env_p = safety_envelope(d.prototype.charge_kg, lab.safety_threshold)
     r = _response(result, spec)
     m = d.specimen
-    kb = get_blast_model("kingery-bulmash-free-air" if getattr(m, "burst", "surface") == "free-air" else "kingery-bulmash")
+    kb = get_blast_model(
+        "kingery-bulmash-free-air" if getattr(m, "burst", "surface") == "free-air" else "kingery-bulmash"
+    )
     z = float(m.scaled_distance)
     lo, hi = kb.valid_range("incident_pressure")
     inc = float(kb.incident_pressure(z)) if lo <= z <= hi else math.nan
-    ins = instrument_settings(reflected_pressure_Pa=m.reflected_pressure, incident_pressure_Pa=inc,
-                              positive_duration_s=m.positive_duration, friedlander_decay=m.friedlander_decay,
-                              arrival_time_s=m.arrival_time, rise_time_s=r["timing"].rise_s,
-                              response_time_s=r["timing"].response_s, top_displacement_m=r["top_m"],
-                              camera_max_fps=lab.camera_max_fps)
+    ins = instrument_settings(
+        reflected_pressure_Pa=m.reflected_pressure,
+        incident_pressure_Pa=inc,
+        positive_duration_s=m.positive_duration,
+        friedlander_decay=m.friedlander_decay,
+        arrival_time_s=m.arrival_time,
+        rise_time_s=r["timing"].rise_s,
+        response_time_s=r["timing"].response_s,
+        top_displacement_m=r["top_m"],
+        camera_max_fps=lab.camera_max_fps,
+    )
     collapsed_p = _prototype_collapsed(result)
     odds = _odds(result, spec, ch, lab, collapsed_p)
     odds3 = None
@@ -190,57 +242,109 @@ def study_test_card(result, lab=None) -> dict | None:
         from .candidates import Evaluated
 
         ev = Evaluated(None, design=d, specimen=spec)
-        odds3 = ensemble_odds_3d(specimen_scenario(sc, ev), prototype_collapsed=collapsed_p,
-                                 tolerances=Tolerances.from_lab(lab), members=lab.ensemble_3d, seed=lab.seed)
+        odds3 = ensemble_odds_3d(
+            specimen_scenario(sc, ev),
+            prototype_collapsed=collapsed_p,
+            tolerances=Tolerances.from_lab(lab),
+            members=lab.ensemble_3d,
+            seed=lab.seed,
+        )
     reach, reach_p = max(r["reach_m"]), max(r["prototype_reach_m"])
     hc, burst, shot_notes = _lab_shot(result)
     notes = list(ch.warnings) + [f[3] for f in fireability(ch, lab)] + shot_notes
     if env.far_field:
         many = len(env.far_field) > 1
-        notes.append(f"the {', '.join(env.far_field)} distance{'s lie' if many else ' lies'} beyond the Kingery-Bulmash "
-                     "range (Kinney-Graham far field, anchored at Z = 198.5 m/kg^(1/3)): less certain")
+        notes.append(
+            f"the {', '.join(env.far_field)} distance{'s lie' if many else ' lies'} beyond the Kingery-Bulmash "
+            "range (Kinney-Graham far field, anchored at Z = 198.5 m/kg^(1/3)): less certain"
+        )
     if ins.pressure_rise_time_s < _SHORT_RISE_S:
-        notes.append(f"the gauges must rise in {ins.pressure_rise_time_s * 1e9:.3g} ns, faster than the ~1 us of "
-                     "piezoelectric blast gauges: the peak will be under-read; the impulse is still measured")
+        notes.append(
+            f"the gauges must rise in {ins.pressure_rise_time_s * 1e9:.3g} ns, faster than the ~1 us of "
+            "piezoelectric blast gauges: the peak will be under-read; the impulse is still measured"
+        )
     if ins.camera_fps_required > lab.camera_max_fps:
-        notes.append(f"the camera needs {ins.camera_fps_required:.4g} frames/s, above camera_max_fps = "
-                     f"{lab.camera_max_fps:g}")
+        notes.append(
+            f"the camera needs {ins.camera_fps_required:.4g} frames/s, above camera_max_fps = {lab.camera_max_fps:g}"
+        )
     tol = None if odds is None else odds.charge_tolerance_needed
-    mat = sc.scale.specimen_material or ("same as the prototype" if abs(d.density_ratio - 1.0) < 1e-12 else
-                                         f"density ratio {d.density_ratio:.4g}")
+    mat = sc.scale.specimen_material or (
+        "same as the prototype" if abs(d.density_ratio - 1.0) < 1e-12 else f"density ratio {d.density_ratio:.4g}"
+    )
     return {
-        "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
-        "explosive_min_charge_kg": ch.explosive.min_charge_kg, "min_charge_source": ch.explosive.min_charge_source,
-        "initiator": lab.initiator, "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
+        "explosive": ch.explosive.name,
+        "explosive_mass_kg": ch.explosive_mass_kg,
+        "explosive_min_charge_kg": ch.explosive.min_charge_kg,
+        "min_charge_source": ch.explosive.min_charge_source,
+        "initiator": lab.initiator,
+        "initiator_tnt_kg": ch.initiator_tnt_kg,
+        "initiator_fraction": ch.initiator_fraction,
         "initiator_max_fraction": lab.initiator_max_fraction,
         "tnt_equivalent_impulse_kg": ch.tnt_equivalent_impulse_kg,
         "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
-        "pressure_factor": ch.explosive.pressure_factor, "impulse_factor": ch.explosive.impulse_factor,
-        "equivalence_source": ch.explosive.source, "equivalence_uncertainty": ch.explosive.uncertainty,
-        "standoff_m": d.specimen_standoff_m, "charge_height_m": hc, "burst": burst,
-        "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
-        "far_field": list(env.far_field), "thresholds": threshold_meanings(),
-        "debris_radius_m": lab.debris_margin * reach, "debris_margin": lab.debris_margin, "specimen_reach_m": reach,
-        "camera_fps": ins.camera_fps, "pressure_sampling_hz": ins.pressure_sampling_hz,
+        "pressure_factor": ch.explosive.pressure_factor,
+        "impulse_factor": ch.explosive.impulse_factor,
+        "equivalence_source": ch.explosive.source,
+        "equivalence_uncertainty": ch.explosive.uncertainty,
+        "standoff_m": d.specimen_standoff_m,
+        "charge_height_m": hc,
+        "burst": burst,
+        "safety_distances_m": env.distances_m,
+        "safety_radius_m": env.radius_m,
+        "safety_threshold": env.threshold,
+        "far_field": list(env.far_field),
+        "thresholds": threshold_meanings(),
+        "debris_radius_m": lab.debris_margin * reach,
+        "debris_margin": lab.debris_margin,
+        "specimen_reach_m": reach,
+        "camera_fps": ins.camera_fps,
+        "pressure_sampling_hz": ins.pressure_sampling_hz,
         "p_outcome_agree": None if odds is None else odds.p_outcome_agree,
         "first_peak_spread": None if odds is None else odds.first_peak_spread,
-        "charge_tolerance_needed": tol, "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
-        "build": {"kind": sc.structure.kind, "height_m": hs, "width_m": ws, "depth_m": ds,
-                  "mass_kg": float(sum(b.mass for b in spec.bodies)), "material": mat,
-                  "density_kg_m3": float(getattr(spec, "density", sc.structure.density_kg_m3 * d.density_ratio)),
-                  "scale": d.scale, "density_ratio": d.density_ratio, "law": d.law},
+        "charge_tolerance_needed": tol,
+        "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
+        "build": {
+            "kind": sc.structure.kind,
+            "height_m": hs,
+            "width_m": ws,
+            "depth_m": ds,
+            "mass_kg": float(sum(b.mass for b in spec.bodies)),
+            "material": mat,
+            "density_kg_m3": float(getattr(spec, "density", sc.structure.density_kg_m3 * d.density_ratio)),
+            "scale": d.scale,
+            "density_ratio": d.density_ratio,
+            "law": d.law,
+        },
         "instruments": ins.to_dict(),
-        "predicted": {"collapsed": r["collapsed"], "first_peak_rotation_rad": r["rotation"],
-                      "first_peak_time_s": r["timing"].rise_s, "response_time_s": r["timing"].response_s,
-                      "top_displacement_m": r["top_m"], "arrival_time_s": m.arrival_time,
-                      "reflected_pressure_Pa": m.reflected_pressure, "incident_pressure_Pa": inc,
-                      "reflected_impulse_Pa_s": m.reflected_impulse, "positive_duration_s": m.positive_duration},
+        "predicted": {
+            "collapsed": r["collapsed"],
+            "first_peak_rotation_rad": r["rotation"],
+            "first_peak_time_s": r["timing"].rise_s,
+            "response_time_s": r["timing"].response_s,
+            "top_displacement_m": r["top_m"],
+            "arrival_time_s": m.arrival_time,
+            "reflected_pressure_Pa": m.reflected_pressure,
+            "incident_pressure_Pa": inc,
+            "reflected_impulse_Pa_s": m.reflected_impulse,
+            "positive_duration_s": m.positive_duration,
+        },
         "layout": _layout(spec, ch, ins, d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst),
-        "prototype": {"collapsed": collapsed_p, "charge_kg": d.prototype.charge_kg, "reach_m": reach_p,
-                      "debris_radius_m": lab.debris_margin * reach_p, "safety_distances_m": env_p.distances_m},
-        "odds": None if odds is None else odds.to_dict(), "odds_3d": odds3,
-        "tolerances": {"charge": lab.charge_tolerance, "standoff_m": lab.standoff_tolerance_m,
-                       "friction": lab.friction_tolerance, "density": lab.density_tolerance,
-                       "samples": lab.samples, "seed": lab.seed},
+        "prototype": {
+            "collapsed": collapsed_p,
+            "charge_kg": d.prototype.charge_kg,
+            "reach_m": reach_p,
+            "debris_radius_m": lab.debris_margin * reach_p,
+            "safety_distances_m": env_p.distances_m,
+        },
+        "odds": None if odds is None else odds.to_dict(),
+        "odds_3d": odds3,
+        "tolerances": {
+            "charge": lab.charge_tolerance,
+            "standoff_m": lab.standoff_tolerance_m,
+            "friction": lab.friction_tolerance,
+            "density": lab.density_tolerance,
+            "samples": lab.samples,
+            "seed": lab.seed,
+        },
         "warnings": notes,
     }

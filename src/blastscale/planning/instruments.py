@@ -34,8 +34,16 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-__all__ = ["InstrumentSettings", "instrument_settings", "round_up_125", "top_corner_displacement",
-           "GAUGE_HEADROOM", "RISE_PEAK_ERROR", "SAMPLES_PER_PULSE", "FRAMES_PER_RISE"]
+__all__ = [
+    "InstrumentSettings",
+    "instrument_settings",
+    "round_up_125",
+    "top_corner_displacement",
+    "GAUGE_HEADROOM",
+    "RISE_PEAK_ERROR",
+    "SAMPLES_PER_PULSE",
+    "FRAMES_PER_RISE",
+]
 
 #: Factor of a gauge's or a sensor's range on the peak it will see [-].
 GAUGE_HEADROOM = 1.5
@@ -55,7 +63,7 @@ def round_up_125(x: float) -> float:
     """
     e = math.floor(math.log10(x))
     for m in (1.0, 2.0, 5.0, 10.0):
-        v = m * 10.0 ** e
+        v = m * 10.0**e
         if v >= x * (1 - 1e-12):
             return float(f"{v:.12g}")
     return float(f"{10.0 ** (e + 1):.12g}")  # pragma: no cover - unreachable
@@ -94,9 +102,18 @@ class InstrumentSettings:
         return asdict(self)
 
 
-def instrument_settings(*, reflected_pressure_Pa: float, incident_pressure_Pa: float, positive_duration_s: float,
-                        friedlander_decay: float, arrival_time_s: float, rise_time_s: float, response_time_s: float,
-                        top_displacement_m: float, camera_max_fps: float = math.inf) -> InstrumentSettings:
+def instrument_settings(
+    *,
+    reflected_pressure_Pa: float,
+    incident_pressure_Pa: float,
+    positive_duration_s: float,
+    friedlander_decay: float,
+    arrival_time_s: float,
+    rise_time_s: float,
+    response_time_s: float,
+    top_displacement_m: float,
+    camera_max_fps: float = math.inf,
+) -> InstrumentSettings:
     """The instruments for a specimen's pulse and rocking (module docstring rules).
 
     Parameters

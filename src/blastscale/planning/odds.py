@@ -88,10 +88,23 @@ def _draws(n: int, seed: int, tol: Tolerances):
     return np.exp(tol.charge * z[0]), tol.standoff_m * z[1], tol.density * z[2], tol.friction * z[3]
 
 
-def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_collapsed: bool,
-                explosive_fraction: float = 1.0, gravity: float = 9.81, restitution: Optional[float] = None,
-                pulse_shape: str = "friedlander", blast_model="kingery-bulmash", tolerances: Tolerances = Tolerances(),
-                samples: int = 2000, seed: int = 0, target: float = 0.05, critical: bool = True) -> Odds:
+def planar_odds(
+    specimen,
+    *,
+    charge_kg: float,
+    standoff_m: float,
+    prototype_collapsed: bool,
+    explosive_fraction: float = 1.0,
+    gravity: float = 9.81,
+    restitution: Optional[float] = None,
+    pulse_shape: str = "friedlander",
+    blast_model="kingery-bulmash",
+    tolerances: Tolerances = Tolerances(),
+    samples: int = 2000,
+    seed: int = 0,
+    target: float = 0.05,
+    critical: bool = True,
+) -> Odds:
     """Odds of a block specimen by Monte Carlo through the planar first-swing kernel.
 
     Parameters
@@ -142,8 +155,14 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
         warnings.simplefilter("ignore")
         # a homogeneous block: the density changes only the load per unit pressure (q = S l / (m g r cos alpha))
         bp = blast_parameters_unchecked(W, R, blast_model, extrapolate=extrapolate)
-        fs = first_swing_blast(base.alpha, base.coefficient_of_restitution, base.frequency_parameter,
-                               base.load_ratio_per_pascal / rho, bp, pulse_shape)
+        fs = first_swing_blast(
+            base.alpha,
+            base.coefficient_of_restitution,
+            base.frequency_parameter,
+            base.load_ratio_per_pascal / rho,
+            bp,
+            pulse_shape,
+        )
         nominal = first_swing(base, np.array([W0 * 0.99, W0, W0 * 1.01]), R0, extrapolate=True, **kw)
         wc = None
         if critical:
@@ -167,12 +186,36 @@ def planar_odds(specimen, *, charge_kg: float, standoff_m: float, prototype_coll
     if wc is not None and wc > w_init and m_tnt > 0:
         tol_out = abs(math.log((wc - w_init) / m_tnt)) / Z90_ONE_SIDED
     k = int(W.size)
-    return Odds("planar", n, int(seed), bool(prototype_collapsed), p, math.sqrt(max(p * (1 - p), 0.0) / k),
-                float(np.mean(fs.collapsed)), peak_nom, spread, p05, p95, sens, wc, tol_peak, tol_out, outside)
+    return Odds(
+        "planar",
+        n,
+        int(seed),
+        bool(prototype_collapsed),
+        p,
+        math.sqrt(max(p * (1 - p), 0.0) / k),
+        float(np.mean(fs.collapsed)),
+        peak_nom,
+        spread,
+        p05,
+        p95,
+        sens,
+        wc,
+        tol_peak,
+        tol_out,
+        outside,
+    )
 
 
-def ensemble_odds_3d(specimen_scenario, *, prototype_collapsed: bool, tolerances: Tolerances, members: int,
-                     seed: int = 0, workers: int = 0, scheduler: Optional[str] = None) -> dict:
+def ensemble_odds_3d(
+    specimen_scenario,
+    *,
+    prototype_collapsed: bool,
+    tolerances: Tolerances,
+    members: int,
+    seed: int = 0,
+    workers: int = 0,
+    scheduler: Optional[str] = None,
+) -> dict:
     """Odds of a specimen by a small 3D ensemble: ``members`` Studies (3D engine, MuJoCo) of the
     specimen as a prototype-only scenario, its charge, stand-off, friction and density drawn as in
     :func:`planar_odds` (the sweeps' samples, common seed), on ``workers`` local Dask processes or a
@@ -191,23 +234,30 @@ def ensemble_odds_3d(specimen_scenario, *, prototype_collapsed: bool, tolerances
 
     sc = specimen_scenario.with_values({"simulation.engine": "3d", "simulation.critical_charge": False})
     rel = {"blast.charge_kg": Distribution("lognormal", (1.0, max(tolerances.charge, 1e-12)))}
-    absolute = {"blast.standoff_m": Distribution("normal", (sc.blast.standoff_m, max(tolerances.standoff_m, 1e-12))),
-                "structure.friction": Distribution("normal", (sc.structure.friction, max(tolerances.friction, 1e-12)))}
+    absolute = {
+        "blast.standoff_m": Distribution("normal", (sc.blast.standoff_m, max(tolerances.standoff_m, 1e-12))),
+        "structure.friction": Distribution("normal", (sc.structure.friction, max(tolerances.friction, 1e-12))),
+    }
     rel["structure.density_kg_m3"] = Distribution("normal", (1.0, max(tolerances.density, 1e-12)))
     spec = SweepSpec.build(sc, {}, absolute, relative=rel, samples=int(members), seed=int(seed))
     n = spec.n_cases
     done: dict = {}
-    run_chunks(spec.to_payload(), [(i, i, i + 1) for i in range(n)], done.__setitem__, scheduler=scheduler,
-               workers=workers)
+    run_chunks(
+        spec.to_payload(), [(i, i, i + 1) for i in range(n)], done.__setitem__, scheduler=scheduler, workers=workers
+    )
     col = np.array([float(done[i]["values"].get("3d.prototype.collapsed", [math.nan])[0]) for i in range(n)])
-    top = np.array([float(done[i]["values"].get("3d.prototype.max_top_displacement_m", [math.nan])[0])
-                    for i in range(n)])
+    top = np.array(
+        [float(done[i]["values"].get("3d.prototype.max_top_displacement_m", [math.nan])[0]) for i in range(n)]
+    )
     ok = np.isfinite(col)
     collapsed = col[ok] == 1.0
     p = float(np.mean(collapsed == bool(prototype_collapsed))) if ok.any() else math.nan
     stand = top[ok][~collapsed]
     spread = float(np.std(stand, ddof=1) / np.median(stand)) if stand.size >= 2 else None
-    return {"members": int(ok.sum()), "p_outcome_agree": p,
-            "p_outcome_agree_se": math.sqrt(max(p * (1 - p), 0.0) / max(int(ok.sum()), 1)),
-            "specimen_collapse_probability": float(np.mean(collapsed)) if ok.any() else math.nan,
-            "first_peak_spread": spread}
+    return {
+        "members": int(ok.sum()),
+        "p_outcome_agree": p,
+        "p_outcome_agree_se": math.sqrt(max(p * (1 - p), 0.0) / max(int(ok.sum()), 1)),
+        "specimen_collapse_probability": float(np.mean(collapsed)) if ok.any() else math.nan,
+        "first_peak_spread": spread,
+    }

@@ -56,9 +56,15 @@ class Plan:
     notes: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
-        return {"designs": self.designs, "rejected": self.rejected, "prototype": self.prototype, "lab": self.lab,
-                "ranking": "p_outcome_agree (0.01), then predicted first-peak error (2 significant digits), then "
-                           "safety_radius_m", "notes": list(self.notes)}
+        return {
+            "designs": self.designs,
+            "rejected": self.rejected,
+            "prototype": self.prototype,
+            "lab": self.lab,
+            "ranking": "p_outcome_agree (0.01), then predicted first-peak error (2 significant digits), then "
+            "safety_radius_m",
+            "notes": list(self.notes),
+        }
 
 
 def _prototype(scenario):
@@ -70,40 +76,66 @@ def _prototype(scenario):
     _paper_load_only(sc)
     block = from_spec(sc.structure)
     if not is_block(block):
-        raise BlastscaleInputError(f"structure.kind = {sc.structure.kind!r}: blastscale plan searches designs with "
-                                   "the planar kernels of a block; for a column run the scenario with a [lab] table "
-                                   "(its test card) at the scales you choose")
+        raise BlastscaleInputError(
+            f"structure.kind = {sc.structure.kind!r}: blastscale plan searches designs with "
+            "the planar kernels of a block; for a column run the scenario with a [lab] table "
+            "(its test card) at the scales you choose"
+        )
     system = RockingSystem.from_block(block, sim.gravity_m_s2, sim.restitution)
     from ..blast import blast_parameters
 
     bp = blast_parameters(bl.charge_kg, bl.standoff_m, bl.blast_model, extrapolate=bl.extrapolate)
-    fs = first_swing(system, bl.charge_kg, bl.standoff_m, pulse_shape=bl.pulse_shape, blast_model=bl.blast_model,
-                     extrapolate=bl.extrapolate)
+    fs = first_swing(
+        system,
+        bl.charge_kg,
+        bl.standoff_m,
+        pulse_shape=bl.pulse_shape,
+        blast_model=bl.blast_model,
+        extrapolate=bl.extrapolate,
+    )
     res = DEFAULT_SOLVER.simulate(system, bp.pulse(bl.pulse_shape), float(sim.duration_s))
     collapsed, rot = bool(fs.collapsed[0]), float(fs.max_rotation[0])
     reach = planar_reach(block.width, block.height, rot, collapsed)
     env = safety_envelope(bl.charge_kg, DEFAULT_LAB.safety_threshold)
-    return block, system, timing_of(res), {
-        "height_m": block.height, "width_m": block.width, "depth_m": block.depth, "mass_kg": block.mass,
-        "charge_kg": bl.charge_kg, "standoff_m": bl.standoff_m, "collapsed": collapsed,
-        "first_peak_rotation_rad": None if collapsed else rot, "reach_m": reach,
-        "safety_distances_m": env.distances_m}
+    return (
+        block,
+        system,
+        timing_of(res),
+        {
+            "height_m": block.height,
+            "width_m": block.width,
+            "depth_m": block.depth,
+            "mass_kg": block.mass,
+            "charge_kg": bl.charge_kg,
+            "standoff_m": bl.standoff_m,
+            "collapsed": collapsed,
+            "first_peak_rotation_rad": None if collapsed else rot,
+            "reach_m": reach,
+            "safety_distances_m": env.distances_m,
+        },
+    )
 
 
 def _paper_load_only(sc) -> None:
     """The planner's odds run the planar kernel on the paper's load (a surface burst, unbounded faces,
     positive phase): a scenario asking for more is refused in one line, not planned as if it had not."""
     bl, scale = sc.blast, sc.scale
-    asked = [f"blast.burst = {bl.burst!r}" if bl.burst != "surface" else None,
-             "blast.clearing = true" if bl.clearing else None, "blast.negative_phase = true" if bl.negative_phase else None,
-             f"scale.specimen_burst = {scale.specimen_burst!r}" if scale is not None and scale.specimen_burst not in
-             (None, "surface") else None,
-             "scale.specimen_charge_height_m" if scale is not None and scale.specimen_charge_height_m else None]
+    asked = [
+        f"blast.burst = {bl.burst!r}" if bl.burst != "surface" else None,
+        "blast.clearing = true" if bl.clearing else None,
+        "blast.negative_phase = true" if bl.negative_phase else None,
+        f"scale.specimen_burst = {scale.specimen_burst!r}"
+        if scale is not None and scale.specimen_burst not in (None, "surface")
+        else None,
+        "scale.specimen_charge_height_m" if scale is not None and scale.specimen_charge_height_m else None,
+    ]
     asked = [a for a in asked if a]
     if asked:
-        raise BlastscaleInputError(f"{asked[0]}: blastscale plan searches designs on the paper's load (a charge on the "
-                                   "floor, unbounded faces, positive phase; valid: the defaults); run the scenario "
-                                   "with its [lab] table for the test card of this load model")
+        raise BlastscaleInputError(
+            f"{asked[0]}: blastscale plan searches designs on the paper's load (a charge on the "
+            "floor, unbounded faces, positive phase; valid: the defaults); run the scenario "
+            "with its [lab] table for the test card of this load model"
+        )
 
 
 def design_scenario(scenario, candidate, lab_spec=None):
@@ -111,8 +143,11 @@ def design_scenario(scenario, candidate, lab_spec=None):
     (law, lambda, material or density ratio) and the lab table (``lab_spec``) kept."""
     from ..scenario.lab import SAME_MATERIAL
 
-    scale = {"length": candidate.scale, "law": candidate.law,
-             "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0}
+    scale = {
+        "length": candidate.scale,
+        "law": candidate.law,
+        "gravity_ratio": scenario.scale.gravity_ratio if scenario.scale is not None else 1.0,
+    }
     if candidate.material != SAME_MATERIAL:  # Hopkinson-Cranz: the material's density is the one the law imposes
         scale["specimen_material"] = candidate.material
     elif candidate.law == "general":
@@ -146,43 +181,79 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
         err = abs(odds.first_peak_nominal_rad / th_p - 1.0)
     spread = odds.first_peak_spread or 0.0
     tol = odds.charge_tolerance_needed
-    return {**c.describe(), "explosive": ch.explosive.name, "explosive_mass_kg": ch.explosive_mass_kg,
-            "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg, "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
-            "explosive_min_charge_kg": ch.explosive.min_charge_kg, "min_charge_source": ch.explosive.min_charge_source,
-            "initiator_tnt_kg": ch.initiator_tnt_kg, "initiator_fraction": ch.initiator_fraction,
-            "standoff_m": d.specimen_standoff_m, "specimen_height_m": spec.height, "specimen_width_m": spec.width,
-            "specimen_depth_m": spec.depth, "specimen_density_kg_m3": spec.density, "specimen_mass_kg": spec.mass,
-            "safety_distances_m": env.distances_m, "safety_radius_m": env.radius_m, "safety_threshold": env.threshold,
-            "far_field": list(env.far_field), "debris_radius_m": lab.debris_margin * reach, "specimen_reach_m": reach,
-            "camera_fps": ins.camera_fps, "camera_fps_required": ins.camera_fps_required,
-            "pressure_sampling_hz": ins.pressure_sampling_hz, "instruments": ins.to_dict(),
-            "p_outcome_agree": odds.p_outcome_agree, "p_outcome_agree_se": odds.p_outcome_agree_se,
-            "first_peak_spread": odds.first_peak_spread, "similarity_error": err,
-            "predicted_first_peak_error": math.hypot(err, spread), "charge_tolerance_needed": tol,
-            "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
-            "impulsive_ratio": None if d.impulsive is None else d.impulsive.model_ratio,
-            "odds": odds.to_dict(), "warnings": list(ch.warnings)}
+    return {
+        **c.describe(),
+        "explosive": ch.explosive.name,
+        "explosive_mass_kg": ch.explosive_mass_kg,
+        "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg,
+        "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+        "explosive_min_charge_kg": ch.explosive.min_charge_kg,
+        "min_charge_source": ch.explosive.min_charge_source,
+        "initiator_tnt_kg": ch.initiator_tnt_kg,
+        "initiator_fraction": ch.initiator_fraction,
+        "standoff_m": d.specimen_standoff_m,
+        "specimen_height_m": spec.height,
+        "specimen_width_m": spec.width,
+        "specimen_depth_m": spec.depth,
+        "specimen_density_kg_m3": spec.density,
+        "specimen_mass_kg": spec.mass,
+        "safety_distances_m": env.distances_m,
+        "safety_radius_m": env.radius_m,
+        "safety_threshold": env.threshold,
+        "far_field": list(env.far_field),
+        "debris_radius_m": lab.debris_margin * reach,
+        "specimen_reach_m": reach,
+        "camera_fps": ins.camera_fps,
+        "camera_fps_required": ins.camera_fps_required,
+        "pressure_sampling_hz": ins.pressure_sampling_hz,
+        "instruments": ins.to_dict(),
+        "p_outcome_agree": odds.p_outcome_agree,
+        "p_outcome_agree_se": odds.p_outcome_agree_se,
+        "first_peak_spread": odds.first_peak_spread,
+        "similarity_error": err,
+        "predicted_first_peak_error": math.hypot(err, spread),
+        "charge_tolerance_needed": tol,
+        "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
+        "impulsive_ratio": None if d.impulsive is None else d.impulsive.model_ratio,
+        "odds": odds.to_dict(),
+        "warnings": list(ch.warnings),
+    }
 
 
 def _ins_inputs(ev: Evaluated) -> dict:
     i = ev.instruments
     m = ev.design.specimen
-    return {"reflected_pressure_Pa": m.reflected_pressure, "incident_pressure_Pa": i.incident_gauge_range_Pa / 1.5,
-            "positive_duration_s": m.positive_duration, "friedlander_decay": m.friedlander_decay,
-            "arrival_time_s": m.arrival_time, "rise_time_s": ev.rise_s, "response_time_s": ev.response_s}
+    return {
+        "reflected_pressure_Pa": m.reflected_pressure,
+        "incident_pressure_Pa": i.incident_gauge_range_Pa / 1.5,
+        "positive_duration_s": m.positive_duration,
+        "friedlander_decay": m.friedlander_decay,
+        "arrival_time_s": m.arrival_time,
+        "rise_time_s": ev.rise_s,
+        "response_time_s": ev.response_s,
+    }
 
 
 def _reasons(d: dict, best: Optional[dict]) -> list:
-    out = [f"outcome agrees with the prototype's in {100 * d['p_outcome_agree']:.1f} % of {d['odds']['samples']} "
-           f"draws of the lab's tolerances",
-           f"predicted first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
-           f"{100 * d['similarity_error']:.2g} %, tolerances "
-           f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %)",
-           f"safety radius ({d['safety_threshold']}) {d['safety_radius_m']:.3g} m"]
+    out = [
+        f"outcome agrees with the prototype's in {100 * d['p_outcome_agree']:.1f} % of {d['odds']['samples']} "
+        f"draws of the lab's tolerances",
+        f"predicted first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
+        f"{100 * d['similarity_error']:.2g} %, tolerances "
+        f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %)",
+        f"safety radius ({d['safety_threshold']}) {d['safety_radius_m']:.3g} m",
+    ]
     if best is not None and d is not best:
-        out.append("ranked after a design with " + (
-            "better odds" if round(best["p_outcome_agree"], 2) > round(d["p_outcome_agree"], 2) else
-            "a smaller predicted error" if _rank_key(best)[1] < _rank_key(d)[1] else "a smaller safety radius"))
+        out.append(
+            "ranked after a design with "
+            + (
+                "better odds"
+                if round(best["p_outcome_agree"], 2) > round(d["p_outcome_agree"], 2)
+                else "a smaller predicted error"
+                if _rank_key(best)[1] < _rank_key(d)[1]
+                else "a smaller safety radius"
+            )
+        )
     return out
 
 
@@ -195,9 +266,11 @@ def _infeasible(evs: list, lab) -> str:
             alone.setdefault(next(iter(keys)), []).append(ev)
     if not alone:
         ev = min(evs, key=lambda e: len(e.violations))
-        return (f"no design fits the lab: the closest ({ev.candidate.law}, lambda = {scale_label(ev.candidate.scale)}, "
-                f"{ev.candidate.material}) breaks {len(ev.violations)} constraints: "
-                + "; ".join(v.text for v in ev.violations))
+        return (
+            f"no design fits the lab: the closest ({ev.candidate.law}, lambda = {scale_label(ev.candidate.scale)}, "
+            f"{ev.candidate.material}) breaks {len(ev.violations)} constraints: "
+            + "; ".join(v.text for v in ev.violations)
+        )
     key, group = max(alone.items(), key=lambda kv: len(kv[1]))
     if key in ("blast fits", "impulsive"):
         return f"no design fits the lab: {group[0].violations[0].text}"
@@ -207,9 +280,11 @@ def _infeasible(evs: list, lab) -> str:
     pick = (max if lower else min)(group, key=lambda e: e.violations[0].value)
     v, c = pick.violations[0], pick.candidate
     rel = "at most" if lower else "at least"
-    return (f"no design fits the lab: {key} = {v.limit:g} cannot be met ({len(group)} of {len(evs)} candidates "
-            f"fail on it alone); {key} {rel} {v.value:.4g} would admit {c.law}, lambda = {scale_label(c.scale)}, "
-            f"{c.material}")
+    return (
+        f"no design fits the lab: {key} = {v.limit:g} cannot be met ({len(group)} of {len(evs)} candidates "
+        f"fail on it alone); {key} {rel} {v.value:.4g} would admit {c.law}, lambda = {scale_label(c.scale)}, "
+        f"{c.material}"
+    )
 
 
 def _below_min_charge(group: list, n: int, lab) -> str:
@@ -220,11 +295,13 @@ def _below_min_charge(group: list, n: int, lab) -> str:
     pick = max(group, key=lambda e: e.violations[0].value / e.violations[0].limit)
     v, c, ex = pick.violations[0], pick.candidate, get_explosive(lab.explosive, lab_explosives(lab))
     small = min(EXPLOSIVES.values(), key=lambda e: e.min_charge_kg if e.name != "lead-azide" else math.inf)
-    return (f"no design fits the lab: the charge is below {ex.name}'s minimum reliable charge {v.limit:.4g} kg "
-            f"({len(group)} of {n} candidates fail on it alone; the largest, {v.value:.4g} kg, at {c.law}, "
-            f"lambda = {scale_label(c.scale)}, {c.material}); a larger specimen (specimen_max_height_m, "
-            f"specimen_max_mass_kg) or an explosive with a smaller minimum charge ({small.name}: "
-            f"{small.min_charge_kg:.3g} kg) would relax it")
+    return (
+        f"no design fits the lab: the charge is below {ex.name}'s minimum reliable charge {v.limit:.4g} kg "
+        f"({len(group)} of {n} candidates fail on it alone; the largest, {v.value:.4g} kg, at {c.law}, "
+        f"lambda = {scale_label(c.scale)}, {c.material}); a larger specimen (specimen_max_height_m, "
+        f"specimen_max_mass_kg) or an explosive with a smaller minimum charge ({small.name}: "
+        f"{small.min_charge_kg:.3g} kg) would relax it"
+    )
 
 
 def _initiator_too_large(group: list, n: int, lab) -> str:
@@ -233,18 +310,26 @@ def _initiator_too_large(group: list, n: int, lab) -> str:
     v, c = pick.violations[0], pick.candidate
     w = lab.initiator_tnt_kg / v.value  # the candidate's TNT charge [kg]
     more = f", or initiator_max_fraction at least {v.value:.3g}" if v.value <= 1.0 else ""
-    return (f"no design fits the lab: initiator_max_fraction = {v.limit:g} cannot be met with initiator_tnt_kg = "
-            f"{lab.initiator_tnt_kg:.4g} kg ({len(group)} of {n} candidates fail on it alone); an initiator of at most "
-            f"{v.limit * w:.3g} kg TNT (initiator_tnt_kg, or initiator = \"none\" for a laser) would admit "
-            f"{c.law}, lambda = {scale_label(c.scale)}, {c.material}{more}")
+    return (
+        f"no design fits the lab: initiator_max_fraction = {v.limit:g} cannot be met with initiator_tnt_kg = "
+        f"{lab.initiator_tnt_kg:.4g} kg ({len(group)} of {n} candidates fail on it alone); an initiator of at most "
+        f'{v.limit * w:.3g} kg TNT (initiator_tnt_kg, or initiator = "none" for a laser) would admit '
+        f"{c.law}, lambda = {scale_label(c.scale)}, {c.material}{more}"
+    )
 
 
 #: One-line answers for the constraints whose relaxation is not the lab key's own value.
 _RELAXERS = {"explosive_min_charge_kg": _below_min_charge, "initiator_max_fraction": _initiator_too_large}
 
 
-def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = None,
-         progress: Optional[Callable[[str, int, int], None]] = None) -> Plan:
+def plan(
+    scenario,
+    *,
+    lab=None,
+    workers: int = 0,
+    scheduler: Optional[str] = None,
+    progress: Optional[Callable[[str, int, int], None]] = None,
+) -> Plan:
     """Plan the laboratory test of ``scenario``'s prototype (module docstring).
 
     Parameters
@@ -274,8 +359,9 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     lab = lab or scenario.lab or DEFAULT_LAB
     block, system, timing, proto = _prototype(scenario)
     kb = get_blast_model("kingery-bulmash")
-    cands = candidates(lab, block.density, block.height,
-                       scenario.scale.gravity_ratio if scenario.scale is not None else 1.0)
+    cands = candidates(
+        lab, block.density, block.height, scenario.scale.gravity_ratio if scenario.scale is not None else 1.0
+    )
     evs = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -283,19 +369,37 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
             tell("designing the candidates", i, len(cands))
             evs.append(evaluate(c, scenario=scenario, lab=lab, block=block, timing=timing, incident_model=kb))
     ok = [e for e in evs if not e.violations]
-    rejected = [{**e.candidate.describe(), "constraints": [v.key for v in e.violations],
-                 "reasons": [v.text for v in e.violations]} for e in evs if e.violations]
+    rejected = [
+        {
+            **e.candidate.describe(),
+            "constraints": [v.key for v in e.violations],
+            "reasons": [v.text for v in e.violations],
+        }
+        for e in evs
+        if e.violations
+    ]
     if not ok:
         raise PlanInfeasible(_infeasible(evs, lab))
     tol = Tolerances.from_lab(lab)
     sim, bl = scenario.simulation, scenario.blast
 
     def odds_of(e, n, critical):
-        return planar_odds(e.specimen, charge_kg=e.design.specimen_charge_kg, standoff_m=e.design.specimen_standoff_m,
-                           prototype_collapsed=proto["collapsed"], explosive_fraction=1.0 - e.charge.initiator_fraction,
-                           gravity=e.design.specimen_gravity, restitution=sim.restitution,
-                           pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, tolerances=tol,
-                           samples=n, seed=lab.seed, target=lab.first_peak_target, critical=critical)
+        return planar_odds(
+            e.specimen,
+            charge_kg=e.design.specimen_charge_kg,
+            standoff_m=e.design.specimen_standoff_m,
+            prototype_collapsed=proto["collapsed"],
+            explosive_fraction=1.0 - e.charge.initiator_fraction,
+            gravity=e.design.specimen_gravity,
+            restitution=sim.restitution,
+            pulse_shape=bl.pulse_shape,
+            blast_model=bl.blast_model,
+            tolerances=tol,
+            samples=n,
+            seed=lab.seed,
+            target=lab.first_peak_target,
+            critical=critical,
+        )
 
     quick = min(lab.samples, QUICK_SAMPLES)
     designs = []
@@ -316,11 +420,23 @@ def plan(scenario, *, lab=None, workers: int = 0, scheduler: Optional[str] = Non
     if lab.ensemble_3d:
         tell("3D ensemble of the best design", 0, 1)
         designs[0]["odds_3d"] = ensemble_odds_3d(
-            specimen_scenario(scenario, best), prototype_collapsed=proto["collapsed"], tolerances=tol,
-            members=lab.ensemble_3d, seed=lab.seed, workers=workers, scheduler=scheduler)
+            specimen_scenario(scenario, best),
+            prototype_collapsed=proto["collapsed"],
+            tolerances=tol,
+            members=lab.ensemble_3d,
+            seed=lab.seed,
+            workers=workers,
+            scheduler=scheduler,
+        )
         notes.append("odds_3d: the best design's 3D ensemble (friction and density tolerances included)")
-    return Plan(designs, rejected, proto, {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
-                best_sc, notes)
+    return Plan(
+        designs,
+        rejected,
+        proto,
+        {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
+        best_sc,
+        notes,
+    )
 
 
 def specimen_scenario(scenario, ev: Evaluated):
@@ -330,8 +446,14 @@ def specimen_scenario(scenario, ev: Evaluated):
     data = sc.model_dump(exclude_none=True)
     data.pop("scale", None)
     data.pop("lab", None)
-    data["structure"] = {"kind": "block", "height_m": spec.height, "width_m": spec.width, "depth_m": spec.depth,
-                         "density_kg_m3": spec.density, "friction": sc.structure.friction}
+    data["structure"] = {
+        "kind": "block",
+        "height_m": spec.height,
+        "width_m": spec.width,
+        "depth_m": spec.depth,
+        "density_kg_m3": spec.density,
+        "friction": sc.structure.friction,
+    }
     data["blast"] = {**data["blast"], "charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
     data["simulation"] = {**data["simulation"], "duration_s": d.specimen_duration, "gravity_m_s2": d.specimen_gravity}
     data["simulation"].pop("timestep_s", None)

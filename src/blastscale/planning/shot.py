@@ -12,8 +12,20 @@ import numpy as np
 from ..blast.explosives import Explosive, charge_equivalence
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
 
-__all__ = ["lab_explosives", "lab_charge", "card_charge", "fireability", "SafetyEnvelope", "safety_envelope", "threshold_meanings",
-           "candidate_materials", "Timing", "rocking_timing", "timing_of", "DEFAULT_LAB"]
+__all__ = [
+    "lab_explosives",
+    "lab_charge",
+    "card_charge",
+    "fireability",
+    "SafetyEnvelope",
+    "safety_envelope",
+    "threshold_meanings",
+    "candidate_materials",
+    "Timing",
+    "rocking_timing",
+    "timing_of",
+    "DEFAULT_LAB",
+]
 
 
 def _default_lab():
@@ -28,10 +40,19 @@ DEFAULT_LAB = _default_lab()
 
 def lab_explosives(lab) -> dict:
     """The user-defined explosives of a ``[lab]`` table (``[lab.explosives.NAME]``) as :class:`Explosive`."""
-    return {name: Explosive(name, e.pressure_factor, e.impulse_factor, e.density_kg_m3, e.source,
-                            "user-defined: as stated by its source", e.min_charge_kg,
-                            f"[lab.explosives.{name}] min_charge_kg" if e.min_charge_kg else "not stated")
-            for name, e in lab.explosives.items()}
+    return {
+        name: Explosive(
+            name,
+            e.pressure_factor,
+            e.impulse_factor,
+            e.density_kg_m3,
+            e.source,
+            "user-defined: as stated by its source",
+            e.min_charge_kg,
+            f"[lab.explosives.{name}] min_charge_kg" if e.min_charge_kg else "not stated",
+        )
+        for name, e in lab.explosives.items()
+    }
 
 
 def lab_charge(tnt_kg: float, lab):
@@ -53,11 +74,20 @@ def card_charge(tnt_kg: float, lab):
         if not (w0 >= float(tnt_kg) > 0):
             raise
     ex = get_explosive(lab.explosive, lab_explosives(lab))
-    return ChargeEquivalence(ex, 0.0, w0, w0, w0, w0 / float(tnt_kg),
-                             (f"the initiator alone ({w0:.4g} kg TNT) delivers more than the design's whole charge "
-                              f"({float(tnt_kg):.4g} kg TNT): no {ex.name} to weigh, and the shot is "
-                              f"{w0 / float(tnt_kg):.3g} x the design's; use a smaller initiator (initiator_tnt_kg; "
-                              "initiator = \"none\" for a laser) or a larger scale",))
+    return ChargeEquivalence(
+        ex,
+        0.0,
+        w0,
+        w0,
+        w0,
+        w0 / float(tnt_kg),
+        (
+            f"the initiator alone ({w0:.4g} kg TNT) delivers more than the design's whole charge "
+            f"({float(tnt_kg):.4g} kg TNT): no {ex.name} to weigh, and the shot is "
+            f"{w0 / float(tnt_kg):.3g} x the design's; use a smaller initiator (initiator_tnt_kg; "
+            'initiator = "none" for a laser) or a larger scale',
+        ),
+    )
 
 
 def fireability(ch, lab) -> list:
@@ -69,13 +99,25 @@ def fireability(ch, lab) -> list:
     out = []
     ex, m = ch.explosive, ch.explosive_mass_kg
     if m < ex.min_charge_kg:
-        out.append(("explosive_min_charge_kg", m, ex.min_charge_kg,
-                    f"{m:.4g} kg of {ex.name} is below its minimum reliable charge {ex.min_charge_kg:.4g} kg "
-                    f"({ex.min_charge_source}): it may not detonate"))
+        out.append(
+            (
+                "explosive_min_charge_kg",
+                m,
+                ex.min_charge_kg,
+                f"{m:.4g} kg of {ex.name} is below its minimum reliable charge {ex.min_charge_kg:.4g} kg "
+                f"({ex.min_charge_source}): it may not detonate",
+            )
+        )
     if ch.initiator_fraction > lab.initiator_max_fraction:
-        out.append(("initiator_max_fraction", ch.initiator_fraction, lab.initiator_max_fraction,
-                    f"the initiator ({ch.initiator_tnt_kg:.4g} kg TNT) is {100 * ch.initiator_fraction:.3g} % of the "
-                    f"charge's TNT-equivalent impulse > initiator_max_fraction = {lab.initiator_max_fraction:g}"))
+        out.append(
+            (
+                "initiator_max_fraction",
+                ch.initiator_fraction,
+                lab.initiator_max_fraction,
+                f"the initiator ({ch.initiator_tnt_kg:.4g} kg TNT) is {100 * ch.initiator_fraction:.3g} % of the "
+                f"charge's TNT-equivalent impulse > initiator_max_fraction = {lab.initiator_max_fraction:g}",
+            )
+        )
     return out
 
 
@@ -92,9 +134,13 @@ class SafetyEnvelope:
     far_field: tuple
 
     def to_dict(self) -> dict:
-        return {"tnt_equivalent_pressure_kg": self.tnt_kg, "safety_distances_m": dict(self.distances_m),
-                "safety_radius_m": self.radius_m, "safety_threshold": self.threshold,
-                "far_field": list(self.far_field)}
+        return {
+            "tnt_equivalent_pressure_kg": self.tnt_kg,
+            "safety_distances_m": dict(self.distances_m),
+            "safety_radius_m": self.radius_m,
+            "safety_threshold": self.threshold,
+            "far_field": list(self.far_field),
+        }
 
 
 def safety_envelope(tnt_pressure_kg: float, threshold: str = "6.9 kPa") -> SafetyEnvelope:
@@ -106,10 +152,19 @@ def safety_envelope(tnt_pressure_kg: float, threshold: str = "6.9 kPa") -> Safet
 
 def threshold_meanings() -> list:
     """Every safety key with its pressure (None for K-factors), meaning and source."""
-    out = [{"key": t.key, "pressure_Pa": t.pressure_Pa, "meaning": t.meaning, "source": t.source}
-           for t in SAFETY_THRESHOLDS]
-    out += [{"key": k, "pressure_Pa": None, "meaning": f"D = {v:g} W^(1/3) ft/lb^(1/3): {what}",
-             "source": "DoD 6055.09-M Vol. 3"} for k, (v, what) in QD_K_FACTORS.items()]
+    out = [
+        {"key": t.key, "pressure_Pa": t.pressure_Pa, "meaning": t.meaning, "source": t.source}
+        for t in SAFETY_THRESHOLDS
+    ]
+    out += [
+        {
+            "key": k,
+            "pressure_Pa": None,
+            "meaning": f"D = {v:g} W^(1/3) ft/lb^(1/3): {what}",
+            "source": "DoD 6055.09-M Vol. 3",
+        }
+        for k, (v, what) in QD_K_FACTORS.items()
+    ]
     return out
 
 
@@ -140,8 +195,9 @@ def rocking_timing(t, theta, alpha: float, collapsed: bool, collapse_time: Optio
     if collapsed:
         k = np.flatnonzero(a >= alpha)
         tip = float(t[k[0]]) if k.size else float(t[-1])
-        return Timing(tip, float(collapse_time) if collapse_time is not None and math.isfinite(collapse_time)
-                      else float(t[-1]))
+        return Timing(
+            tip, float(collapse_time) if collapse_time is not None and math.isfinite(collapse_time) else float(t[-1])
+        )
     if a.max() <= 0.0:
         return Timing(float(t[-1]), float(t[-1]))
     k = np.flatnonzero((a[1:-1] >= a[:-2]) & (a[1:-1] > a[2:]) & (a[1:-1] > 0.0))

@@ -57,12 +57,14 @@ def _area2d(poly: np.ndarray) -> float:
 
 def world_points(structure) -> list:
     """(name, world position at rest [m]) of each monitoring point of any structure."""
-    return [(p.name, np.asarray(structure.bodies[p.body].com) + np.asarray(p.position))
-            for p in structure.monitoring_points]
+    return [
+        (p.name, np.asarray(structure.bodies[p.body].com) + np.asarray(p.position)) for p in structure.monitoring_points
+    ]
 
 
-def draw_view(structure, view: str = "elevation", ax=None, interfaces: bool = True, points=True,
-              label_points: int = 30):
+def draw_view(
+    structure, view: str = "elevation", ax=None, interfaces: bool = True, points=True, label_points: int = 30
+):
     """Draw one view of an assembly on ``ax`` (created when None); returns ``ax``.
 
     Parameters
@@ -98,8 +100,17 @@ def draw_view(structure, view: str = "elevation", ax=None, interfaces: bool = Tr
             colour = _GROUND if itf.first < 0 else _JOINT
             outline = _hull2d(poly)
             if _area2d(outline) > 1e-6 * max(itf.area, 1e-300) and len(outline) >= 3:
-                ax.add_patch(Polygon(outline, closed=True, facecolor=colour, alpha=0.35 if view != "plan" else 0.12,
-                                     edgecolor=colour, lw=0.6, zorder=2))
+                ax.add_patch(
+                    Polygon(
+                        outline,
+                        closed=True,
+                        facecolor=colour,
+                        alpha=0.35 if view != "plan" else 0.12,
+                        edgecolor=colour,
+                        lw=0.6,
+                        zorder=2,
+                    )
+                )
             else:
                 ax.plot(outline[:, 0], outline[:, 1], color=colour, lw=2.0, solid_capstyle="butt", zorder=3)
     if points is not False:
@@ -108,7 +119,7 @@ def draw_view(structure, view: str = "elevation", ax=None, interfaces: bool = Tr
             xy = np.array([q for _, q in mp])
             ax.plot(xy[:, i], xy[:, j], "o", ms=3, color="#c0392b", zorder=4)
             if len(mp) <= label_points:
-                for (name, q) in mp:
+                for name, q in mp:
                     ax.annotate(name, (q[i], q[j]), fontsize=6, xytext=(2, 2), textcoords="offset points", zorder=5)
     v = np.vstack([b.points for b in structure.blocks + tuple(getattr(structure, "supports", ()))])
     pad = 0.05 * float(np.ptp(v, axis=0).max())
@@ -134,8 +145,13 @@ def assembly_figure(structure, title: str | None = None, standoff_m: float | Non
     ext = np.ptp(v, axis=0)
     ratio = (ext[2] + ext[0] + 0.2 * ext.max()) / max(ext[1], 1e-9)
     width = 7.5
-    fig, (ax_e, ax_p) = plt.subplots(2, 1, figsize=(width, min(max(width * ratio * 0.9, 4.5), 11.0)),
-                                     layout="constrained", height_ratios=[max(ext[2], 1e-9), max(ext[0], 0.25 * ext[2])])
+    fig, (ax_e, ax_p) = plt.subplots(
+        2,
+        1,
+        figsize=(width, min(max(width * ratio * 0.9, 4.5), 11.0)),
+        layout="constrained",
+        height_ratios=[max(ext[2], 1e-9), max(ext[0], 0.25 * ext[2])],
+    )
     draw_view(structure, "elevation", ax=ax_e, points=points)
     draw_view(structure, "plan", ax=ax_p, points=points, label_points=0)
     if standoff_m is not None:
@@ -143,19 +159,32 @@ def assembly_figure(structure, title: str | None = None, standoff_m: float | Non
         lo, hi = ax_p.get_ylim()
         lo2 = lo - 0.5 * (hi - lo)
         ax_p.set_ylim(lo2, hi)
-        ax_p.annotate(f"charge {standoff_m:.3g} m in front (-x)", xy=(0.0, x0), xytext=(0.0, lo2),
-                      ha="center", va="bottom", fontsize=7, color="#c0392b",
-                      arrowprops=dict(arrowstyle="->", color="#c0392b"))
-    handles = [Line2D([], [], color=_JOINT, lw=4, alpha=0.6, label="interface between blocks"),
-               Line2D([], [], color=_GROUND, lw=4, alpha=0.6, label="interface on the ground"),
-               Line2D([], [], marker="o", ls="", color="#c0392b", ms=4, label="monitoring point")]
+        ax_p.annotate(
+            f"charge {standoff_m:.3g} m in front (-x)",
+            xy=(0.0, x0),
+            xytext=(0.0, lo2),
+            ha="center",
+            va="bottom",
+            fontsize=7,
+            color="#c0392b",
+            arrowprops=dict(arrowstyle="->", color="#c0392b"),
+        )
+    handles = [
+        Line2D([], [], color=_JOINT, lw=4, alpha=0.6, label="interface between blocks"),
+        Line2D([], [], color=_GROUND, lw=4, alpha=0.6, label="interface on the ground"),
+        Line2D([], [], marker="o", ls="", color="#c0392b", ms=4, label="monitoring point"),
+    ]
     if getattr(structure, "supports", ()):
         handles.append(Patch(label="support (fixed)", **_SUPPORT))
     ax_e.legend(handles=handles, fontsize=7, loc="upper right")
     d = structure.describe()
     sup = f", {d['supports']} supports" if d.get("supports") else ""
-    fig.suptitle(title or f"{d.get('kind', 'assembly')}: {d['blocks']} blocks{sup}, {d['mass_kg']:.4g} kg, "
-                 f"{d['interfaces']} interfaces", fontsize=10)
+    fig.suptitle(
+        title
+        or f"{d.get('kind', 'assembly')}: {d['blocks']} blocks{sup}, {d['mass_kg']:.4g} kg, "
+        f"{d['interfaces']} interfaces",
+        fontsize=10,
+    )
     return fig
 
 
@@ -181,8 +210,9 @@ def _posed(block_pts: np.ndarray, com0: np.ndarray, disp: np.ndarray, theta: flo
     return _hull2d(np.column_stack([x, z]))
 
 
-def snapshot_figure(structure, prototype, model=None, instants=None, first_peak_time_s: float | None = None,
-                    n: int = 4):
+def snapshot_figure(
+    structure, prototype, model=None, instants=None, first_peak_time_s: float | None = None, n: int = 4
+):
     """Side sections (x-z) of an assembly at a few instants: the prototype (filled) and, when given,
     the up-scaled model (dashed outline) at the same prototype time.
 
@@ -213,8 +243,9 @@ def snapshot_figure(structure, prototype, model=None, instants=None, first_peak_
         e = 10.0 ** math.floor(math.log10(target))
         amp = max(m * e for m in (1.0, 2.0, 5.0) if m * e <= target)
     coms = [np.asarray(b.com) for b in structure.bodies]
-    fig, axes = plt.subplots(1, len(inst), figsize=(2.6 * len(inst) + 1.0, 3.8), layout="constrained", sharey=True,
-                             squeeze=False)
+    fig, axes = plt.subplots(
+        1, len(inst), figsize=(2.6 * len(inst) + 1.0, 3.8), layout="constrained", sharey=True, squeeze=False
+    )
     for ax, tk in zip(axes[0], inst):
         for blk in getattr(structure, "supports", ()):  # fixed to the ground: they do not move
             ax.add_patch(Polygon(_hull2d(blk.points[:, [0, 2]]), closed=True, zorder=0.5, **_SUPPORT))
@@ -226,8 +257,9 @@ def snapshot_figure(structure, prototype, model=None, instants=None, first_peak_
                 if who == "prototype":
                     ax.add_patch(Polygon(outline, closed=True, zorder=1, alpha=0.8, **_BLOCK))
                 else:
-                    ax.add_patch(Polygon(outline, closed=True, fill=False, edgecolor="#c0392b", ls="--", lw=0.9,
-                                         zorder=2))
+                    ax.add_patch(
+                        Polygon(outline, closed=True, fill=False, edgecolor="#c0392b", ls="--", lw=0.9, zorder=2)
+                    )
         ax.axhline(0.0, color="k", lw=1.0)
         ax.autoscale_view()
         ax.set_aspect("equal", adjustable="datalim")

@@ -36,8 +36,15 @@ def plot_capacity(curve, model=None, *, charge=None, safe_standoff=None, ax=None
         ax.fill_between(R[ok], W[ok], np.nanmax(W) * 10, color="C3", alpha=0.08, label="overturns")
         ax.set_ylim(np.nanmin(W) / 2, np.nanmax(W) * 2)
     if model is not None:
-        ax.loglog(R, model.upscaled_charge_kg, "o", ms=4, mfc="none", color="C1",
-                  label=f"model lambda = {model.scale:g}, gamma = {model.density_ratio:g} (up-scaled)")
+        ax.loglog(
+            R,
+            model.upscaled_charge_kg,
+            "o",
+            ms=4,
+            mfc="none",
+            color="C1",
+            label=f"model lambda = {model.scale:g}, gamma = {model.density_ratio:g} (up-scaled)",
+        )
     if charge is not None and safe_standoff is not None and np.isfinite(safe_standoff):
         ax.plot([safe_standoff], [charge], "s", color="C3", label=f"{charge:g} kg: safe beyond {safe_standoff:.4g} m")
     ax.set_xlabel("stand-off R [m]")

@@ -36,8 +36,15 @@ def _colours(n: int, cmap: str):
     return matplotlib.colormaps[cmap](np.linspace(0.0, 0.9, max(n, 2)))
 
 
-def plot_point_histories(prototype, model=None, quantity: str = "point_displacement", points=None, ax=None,
-                         component: str = "x", cmap: str = "viridis"):
+def plot_point_histories(
+    prototype,
+    model=None,
+    quantity: str = "point_displacement",
+    points=None,
+    ax=None,
+    component: str = "x",
+    cmap: str = "viridis",
+):
     """Histories of the monitoring points, prototype solid and up-scaled model dashed, one
     colour per point (paper, Sec. 6 figures (a) displacement and (b) velocity).
 
@@ -62,7 +69,9 @@ def plot_point_histories(prototype, model=None, quantity: str = "point_displacem
     matplotlib Axes
     """
     if quantity not in POINT_QUANTITIES:
-        raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are {', '.join(POINT_QUANTITIES)}")
+        raise BlastscaleInputError(
+            f"quantity = {quantity!r} is not known: valid values are {', '.join(POINT_QUANTITIES)}"
+        )
     names = [str(p) for p in prototype["point"].values]
     points = names if points is None else [str(p) for p in points]
     unknown = [p for p in points if p not in names]
@@ -125,7 +134,8 @@ def plot_column_snapshots(structure, dataset, times=None, ax=None, n: int = 4, c
     """
     if dataset.sizes.get("body", 0) != len(structure.bodies):
         raise BlastscaleInputError(
-            f"dataset bodies = {dataset.sizes.get('body', 0)} do not match the structure's {len(structure.bodies)}")
+            f"dataset bodies = {dataset.sizes.get('body', 0)} do not match the structure's {len(structure.bodies)}"
+        )
     t = dataset["time"].values
     times, idx = snapshot_times(t, times, n)
     ax = axes_or_new(ax)
@@ -183,14 +193,29 @@ def plot_ensemble_envelope(ensemble, point=None, ax=None):
     j = names.index(point)
     ax = axes_or_new(ax)
     t = ensemble.time
-    for stats, members, colour, name in ((ensemble.prototype, ensemble.prototype_members, "C0", "prototype"),
-                                         (ensemble.model, ensemble.model_members, "C3", "model (up-scaled)")):
+    for stats, members, colour, name in (
+        (ensemble.prototype, ensemble.prototype_members, "C0", "prototype"),
+        (ensemble.model, ensemble.model_members, "C3", "model (up-scaled)"),
+    ):
         if stats is None:  # a prototype-only ensemble
             continue
-        ax.fill_between(t, stats["envelope_min"][:, j], stats["envelope_max"][:, j], color=colour, alpha=0.25,
-                        lw=0, label=f"{name}: envelope of {len(members)} runs")
-        ax.plot(t, members[:, :, j].mean(axis=0), color=colour, lw=1.0, ls="-" if name == "prototype" else "--",
-                label=f"{name}: mean")
+        ax.fill_between(
+            t,
+            stats["envelope_min"][:, j],
+            stats["envelope_max"][:, j],
+            color=colour,
+            alpha=0.25,
+            lw=0,
+            label=f"{name}: envelope of {len(members)} runs",
+        )
+        ax.plot(
+            t,
+            members[:, :, j].mean(axis=0),
+            color=colour,
+            lw=1.0,
+            ls="-" if name == "prototype" else "--",
+            label=f"{name}: mean",
+        )
     ax.set_xlabel("time after arrival [s] (prototype)")
     ax.set_ylabel(f"horizontal displacement of {point} [m]")
     ax.grid(True, alpha=0.3)

@@ -19,16 +19,35 @@ def plot_fragility(result, ax=None, label: str = "Monte Carlo"):
 
         _, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
     W, p, n = result.charge_kg, result.probability, result.samples
-    ax.errorbar(W, p, yerr=1.96 * result.standard_error, fmt="o", ms=4, capsize=2, color="C0", label=f"{label} ({n} draws per charge)")
+    ax.errorbar(
+        W,
+        p,
+        yerr=1.96 * result.standard_error,
+        fmt="o",
+        ms=4,
+        capsize=2,
+        color="C0",
+        label=f"{label} ({n} draws per charge)",
+    )
     f = result.fit
     if f is not None and f.beta is None:  # complete separation: only the bracket of the median is known
-        ax.axvspan(f.median_ci_kg[0], f.median_ci_kg[1], color="C3", alpha=0.12,
-                   label=f"median between {f.median_ci_kg[0]:.4g} and {f.median_ci_kg[1]:.4g} kg (beta not bounded)")
+        ax.axvspan(
+            f.median_ci_kg[0],
+            f.median_ci_kg[1],
+            color="C3",
+            alpha=0.12,
+            label=f"median between {f.median_ci_kg[0]:.4g} and {f.median_ci_kg[1]:.4g} kg (beta not bounded)",
+        )
     elif f is not None:
         x = np.geomspace(W.min() / 1.2, W.max() * 1.2, 300)
-        ax.plot(x, f.probability(x), "-", color="C3",
-                label=f"lognormal fit: median {f.median_charge_kg:.4g} kg "
-                      f"[{f.median_ci_kg[0]:.4g}, {f.median_ci_kg[1]:.4g}], beta {f.beta:.3g}")
+        ax.plot(
+            x,
+            f.probability(x),
+            "-",
+            color="C3",
+            label=f"lognormal fit: median {f.median_charge_kg:.4g} kg "
+            f"[{f.median_ci_kg[0]:.4g}, {f.median_ci_kg[1]:.4g}], beta {f.beta:.3g}",
+        )
         ax.axvline(f.median_charge_kg, color="C3", lw=0.8, ls=":")
     ax.set_xscale("log")
     ax.set_ylim(-0.02, 1.02)

@@ -92,8 +92,9 @@ def motion_figure(motion, view: str = "iso", charge=None, width_in: float = 5.0)
         ax.set_ylabel("y [m]")
         ax.set_zlabel("z [m]")
         ax.set_title(label, fontsize=10)
-    fig.colorbar(cm.ScalarMappable(norm=norm, cmap=cmap), ax=fig.axes, shrink=0.6,
-                 label="largest displacement of the block [m]")
+    fig.colorbar(
+        cm.ScalarMappable(norm=norm, cmap=cmap), ax=fig.axes, shrink=0.6, label="largest displacement of the block [m]"
+    )
 
     def update(index: int) -> None:
         for s, (coll, base) in enumerate(colls):

@@ -126,8 +126,10 @@ def plot_similarity(sim, quantity: str = "theta", ax=None):
     title = f"max |delta theta| = {sim.max_abs_rotation_diff:.2e} rad"
     if sim.collapse_time_diff is not None:  # both overturn: the figures that measure similarity
         fall = "-" if sim.max_fall_phase_diff is None else f"{sim.max_fall_phase_diff:.2e}"
-        title = (f"to tipping {sim.max_abs_rotation_diff_to_tipping:.2e} rad, fall (equal angle) {fall}\n"
-                 f"whole run {sim.max_abs_rotation_diff:.2e} rad (tipping shift {sim.collapse_time_diff * 1e3:+.2f} ms)")
+        title = (
+            f"to tipping {sim.max_abs_rotation_diff_to_tipping:.2e} rad, fall (equal angle) {fall}\n"
+            f"whole run {sim.max_abs_rotation_diff:.2e} rad (tipping shift {sim.collapse_time_diff * 1e3:+.2f} ms)"
+        )
     ax.set_title(title, fontsize=9)
     ax.legend()
     return ax

@@ -102,7 +102,9 @@ def plot_history(results, quantity: str = "rotation_y", ax=None, labels=None, st
     matplotlib Axes
     """
     if quantity not in HISTORY_QUANTITIES:
-        raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are {', '.join(HISTORY_QUANTITIES)}")
+        raise BlastscaleInputError(
+            f"quantity = {quantity!r} is not known: valid values are {', '.join(HISTORY_QUANTITIES)}"
+        )
     ax = axes_or_new(ax)
     label, k = HISTORY_QUANTITIES[quantity]
     for j, (name, ds) in enumerate(_as_dict(results, labels).items()):
@@ -134,15 +136,23 @@ def plot_angular_velocity(results, ax=None, labels=None):
     return plot_history(results, "angular_velocity_y", ax, labels)
 
 
-def drum_outline(com_x: float, com_z: float, theta: float, half_bottom: float, half_top: float,
-                 z_bottom: float, z_top: float) -> np.ndarray:
+def drum_outline(
+    com_x: float, com_z: float, theta: float, half_bottom: float, half_top: float, z_bottom: float, z_top: float
+) -> np.ndarray:
     """Closed outline (5, 2) of a drum's x-z section [m]: the trapezoid of half-widths
     ``half_bottom`` at ``z_bottom`` and ``half_top`` at ``z_top`` (body frame, relative to the
     centre of mass), rotated by theta about y (top towards +x when theta > 0) and placed at the
     centre of mass (com_x, com_z)."""
     c, s = math.cos(theta), math.sin(theta)  # rotation about +y: x' = x c + z s, z' = -x s + z c
-    local = np.array([[-half_bottom, z_bottom], [half_bottom, z_bottom], [half_top, z_top],
-                      [-half_top, z_top], [-half_bottom, z_bottom]])
+    local = np.array(
+        [
+            [-half_bottom, z_bottom],
+            [half_bottom, z_bottom],
+            [half_top, z_top],
+            [-half_top, z_top],
+            [-half_bottom, z_bottom],
+        ]
+    )
     return np.column_stack([com_x + local[:, 0] * c + local[:, 1] * s, com_z - local[:, 0] * s + local[:, 1] * c])
 
 

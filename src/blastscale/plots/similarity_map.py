@@ -37,8 +37,9 @@ def plot_similarity_map(ds, fig=None):
             e = err[:, :, i, j].T  # (gamma, lambda)
             valid = ds["valid"].values[:, :, i, j].T.astype(bool)
             ax.set_facecolor("0.85")
-            im = ax.pcolormesh(lam, gam, np.where(valid & (e > 0), e, np.nan), norm=norm, cmap="viridis",
-                               shading="nearest")
+            im = ax.pcolormesh(
+                lam, gam, np.where(valid & (e > 0), e, np.nan), norm=norm, cmap="viridis", shading="nearest"
+            )
             bad = valid & ~ds["outcomes_agree"].values[:, :, i, j].T.astype(bool)
             gg, ll = np.meshgrid(gam, lam, indexing="ij")
             ax.plot(ll[bad], gg[bad], "x", color="C3", ms=7, mew=1.5)
@@ -54,6 +55,9 @@ def plot_similarity_map(ds, fig=None):
     if im is not None and norm is not None:
         what = "angle error to tipping [rad]" if unit == "rad" else "top displacement error / peak [-]"
         fig.colorbar(im, ax=axes, label=what, shrink=0.8)
-    fig.suptitle(f"Similarity map ({ds.attrs.get('engine', 'planar')}): x outcome differs, grey no design, "
-                 f"white line {tol:g} {unit}", fontsize=10)
+    fig.suptitle(
+        f"Similarity map ({ds.attrs.get('engine', 'planar')}): x outcome differs, grey no design, "
+        f"white line {tol:g} {unit}",
+        fontsize=10,
+    )
     return fig

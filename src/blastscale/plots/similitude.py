@@ -27,8 +27,12 @@ __all__ = [
 #: quantity -> (general-law field, Hopkinson-Cranz field, y label, log y axis)
 FACTOR_PLOTS = {
     "pressure": ("pressure_ratio", "hc_pressure_ratio", "overpressure factor P_ro,m / P_ro,p [-]", True),
-    "scaled_distance": ("scaled_distance_factor", "hc_scaled_distance_factor",
-                        "scaled-distance factor lambda_Z = Z_m / Z_p [-]", False),
+    "scaled_distance": (
+        "scaled_distance_factor",
+        "hc_scaled_distance_factor",
+        "scaled-distance factor lambda_Z = Z_m / Z_p [-]",
+        False,
+    ),
     "impulse": ("impulse_ratio", "hc_impulse_ratio", "impulse factor i_ro,m / i_ro,p [-]", True),
     "duration": ("duration_ratio", "hc_duration_ratio", "duration factor t_o,m / t_o,p [-]", True),
 }
@@ -73,9 +77,16 @@ def _readable_log_y(ax) -> None:
         ax.yaxis.set_minor_formatter(NullFormatter())
 
 
-def plot_scaling_factor(curves, quantity: str = "pressure", ax=None, x: str | None = None,
-                        label: str | None = None, hopkinson_cranz: bool = True, color=None,
-                        legend: bool = True):
+def plot_scaling_factor(
+    curves,
+    quantity: str = "pressure",
+    ax=None,
+    x: str | None = None,
+    label: str | None = None,
+    hopkinson_cranz: bool = True,
+    color=None,
+    legend: bool = True,
+):
     """One scaling factor vs lambda or gamma: general law solid, Hopkinson-Cranz dashed.
 
     Parameters
@@ -147,8 +158,9 @@ def plot_duration_ratio(curves, ax=None, **kwargs):
     return plot_scaling_factor(curves, "duration", ax, **kwargs)
 
 
-def scaling_factors_figure(curves, x: str | None = None, labels=None,
-                           quantities=("pressure", "scaled_distance", "impulse")):
+def scaling_factors_figure(
+    curves, x: str | None = None, labels=None, quantities=("pressure", "scaled_distance", "impulse")
+):
     """Paper Fig. 5 / Fig. 8 layout: one panel per factor, (a) overpressure, (b) scaled
     distance, (c) impulse, for one or several sweeps (e.g. the two lambdas of Fig. 8).
 

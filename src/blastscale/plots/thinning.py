@@ -51,10 +51,13 @@ def minmax_thin(t, y, bins: int = DRAW_BINS):
     head = y[:full].reshape(nb - 1, m)
     start = np.arange(nb - 1) * m
     tail = y[full:]
-    keep = np.concatenate((
-        [0, n - 1],
-        start + np.argmin(head, axis=1), start + np.argmax(head, axis=1),
-        [full + int(np.argmin(tail)), full + int(np.argmax(tail))],
-    ))
+    keep = np.concatenate(
+        (
+            [0, n - 1],
+            start + np.argmin(head, axis=1),
+            start + np.argmax(head, axis=1),
+            [full + int(np.argmin(tail)), full + int(np.argmax(tail))],
+        )
+    )
     keep = np.unique(keep)
     return t[keep], y[keep]

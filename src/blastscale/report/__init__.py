@@ -14,20 +14,31 @@ from .figures import FIGURES, render_figures
 from .html import SECTIONS, format_charge, render_report
 from .slips import SLIPS, applicable_slips
 
-__all__ = ["FIGURES", "SECTIONS", "SLIPS", "applicable_slips", "format_charge", "render_figures", "render_report",
-           "summary_dict", "write_study", "UNITS"]
+__all__ = [
+    "FIGURES",
+    "SECTIONS",
+    "SLIPS",
+    "applicable_slips",
+    "format_charge",
+    "render_figures",
+    "render_report",
+    "summary_dict",
+    "write_study",
+    "UNITS",
+]
 
 #: Units of the summary (keys carry their unit; this says it once for readers of summary.json).
 UNITS = {
     "convention": "every key ends with its unit: _m, _kg, _s, _rad, _rad_s, _m_s, _Pa, _Pa_s, _Ns, _kg_m3; "
-                  "ratios and counts are dimensionless",
+    "ratios and counts are dimensionless",
     "model results": "up-scaled to prototype units (prototype = model / scaling factor)",
     "design.factors": "model / prototype [-]",
 }
 
 
-def write_study(result, folder, progress: Optional[Callable[[str], None]] = None, csv: bool = False,
-                plan_html: Optional[str] = None) -> list[str]:
+def write_study(
+    result, folder, progress: Optional[Callable[[str], None]] = None, csv: bool = False, plan_html: Optional[str] = None
+) -> list[str]:
     """Write every result file of a study into ``folder`` (which must exist).
 
     Parameters
@@ -63,8 +74,12 @@ def write_study(result, folder, progress: Optional[Callable[[str], None]] = None
     for f, png in figures:
         write_atomic(folder / f"{f.name}.png", png)
     write_atomic(folder / "scenario.toml", result.scenario.to_toml())
-    files = (["summary.json", "histories.nc"] + (["histories.csv"] if csv else []) + ["scenario.toml"]
-             + [f"{f.name}.png" for f, _ in figures])
+    files = (
+        ["summary.json", "histories.nc"]
+        + (["histories.csv"] if csv else [])
+        + ["scenario.toml"]
+        + [f"{f.name}.png" for f, _ in figures]
+    )
     tell("report")
     write_atomic(folder / "report.html", render_report(result, figures, meta, files, plan_html=plan_html))
     write_json(folder / "summary.json", summary_dict(result, meta))
@@ -86,5 +101,13 @@ def summary_dict(result, meta: Optional[dict] = None) -> dict:
     v = verdict(s, result.scenario.structure.kind, getattr(result.structure, "section", None) == "circular")
     card = card_of(result)
     extra = {} if card is None else {"test_card": card}
-    return with_legacy_keys({**(provenance() if meta is None else meta), "units": UNITS, **s,
-                             "scalars": result.scalars(), "verdict": v, **extra})
+    return with_legacy_keys(
+        {
+            **(provenance() if meta is None else meta),
+            "units": UNITS,
+            **s,
+            "scalars": result.scalars(),
+            "verdict": v,
+            **extra,
+        }
+    )

@@ -19,9 +19,30 @@ from typing import Any
 __all__ = ["card_of", "card_section", "UNITS", "shown"]
 
 #: Display unit -> factor from the card's SI value (m, s, Pa, kg, Hz, rad, ratios).
-UNITS = {"mm": 1e3, "m": 1.0, "ms": 1e3, "us": 1e6, "ns": 1e9, "s": 1.0, "kPa": 1e-3, "Pa": 1.0, "MHz": 1e-6,
-         "kHz": 1e-3, "Hz": 1.0, "fps": 1.0, "g": 1e3, "mg": 1e6, "kg": 1.0, "rad": 1.0, "deg": 180.0 / math.pi,
-         "%": 100.0, "": 1.0, "frames": 1.0, "Pa s": 1.0, "kg/m3": 1.0}
+UNITS = {
+    "mm": 1e3,
+    "m": 1.0,
+    "ms": 1e3,
+    "us": 1e6,
+    "ns": 1e9,
+    "s": 1.0,
+    "kPa": 1e-3,
+    "Pa": 1.0,
+    "MHz": 1e-6,
+    "kHz": 1e-3,
+    "Hz": 1.0,
+    "fps": 1.0,
+    "g": 1e3,
+    "mg": 1e6,
+    "kg": 1.0,
+    "rad": 1.0,
+    "deg": 180.0 / math.pi,
+    "%": 100.0,
+    "": 1.0,
+    "frames": 1.0,
+    "Pa s": 1.0,
+    "kg/m3": 1.0,
+}
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
@@ -64,9 +85,11 @@ def _n(card: dict, key: str, unit: str) -> str:
 
 def _t(x: float, y: float, card: dict, key: str, unit: str, anchor: str = "middle", prefix: str = "") -> str:
     v = _get(card, key)
-    return (f'<text x="{x:.1f}" y="{y:.1f}" text-anchor="{anchor}" class="num" data-key="{_e(key)}" '
-            f'data-unit="{_e(unit)}" data-prefix="{_e(prefix)}">{_e(prefix)}{shown(v, unit)}</text>'
-            f'<text x="{x:.1f}" y="{y + 11:.1f}" text-anchor="{anchor}" class="u">{_e(unit)}</text>')
+    return (
+        f'<text x="{x:.1f}" y="{y:.1f}" text-anchor="{anchor}" class="num" data-key="{_e(key)}" '
+        f'data-unit="{_e(unit)}" data-prefix="{_e(prefix)}">{_e(prefix)}{shown(v, unit)}</text>'
+        f'<text x="{x:.1f}" y="{y + 11:.1f}" text-anchor="{anchor}" class="u">{_e(unit)}</text>'
+    )
 
 
 def _rows(rows) -> str:
@@ -74,12 +97,16 @@ def _rows(rows) -> str:
 
 
 def _dim(x1, y1, x2, y2, label: str) -> str:
-    return (f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" class="dim" marker-start="url(#a)" '
-            f'marker-end="url(#a)"/>{label}')
+    return (
+        f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" class="dim" marker-start="url(#a)" '
+        f'marker-end="url(#a)"/>{label}'
+    )
 
 
-_DEFS = ('<defs><marker id="a" viewBox="0 0 10 10" refX="5" refY="5" markerWidth="6" markerHeight="6" '
-         'orient="auto-start-reverse"><path d="M0,0L10,5L0,10z"/></marker></defs>')
+_DEFS = (
+    '<defs><marker id="a" viewBox="0 0 10 10" refX="5" refY="5" markerWidth="6" markerHeight="6" '
+    'orient="auto-start-reverse"><path d="M0,0L10,5L0,10z"/></marker></defs>'
+)
 
 
 def _plan_svg(card: dict) -> str:
@@ -98,21 +125,28 @@ def _plan_svg(card: dict) -> str:
     cx, cy = P(0, 0)
     sx, sy = P(R, d / 2)
     rg, ig = P(*L["reflected_gauge"][:2]), P(*L["incident_gauge"][:2])
-    out = [f'<svg class="draw" viewBox="0 0 {W:.0f} {H:.0f}" width="{W:.0f}" height="{H:.0f}">{_DEFS}',
-           f'<circle cx="{cx:.1f}" cy="{cy:.1f}" r="{max(3.0, L["charge_radius_m"] * k):.1f}" class="charge"/>',
-           f'<text x="{cx:.1f}" y="{cy - 10:.1f}" text-anchor="middle">charge</text>',
-           f'<rect x="{sx:.1f}" y="{sy:.1f}" width="{w * k:.1f}" height="{d * k:.1f}" class="spec"/>',
-           f'<circle cx="{rg[0]:.1f}" cy="{rg[1]:.1f}" r="4" class="gauge"/><text x="{rg[0] + 7:.1f}" '
-           f'y="{rg[1] + 4:.1f}">reflected gauge</text>',
-           f'<circle cx="{ig[0]:.1f}" cy="{ig[1]:.1f}" r="4" class="gauge"/><text x="{ig[0] + 7:.1f}" '
-           f'y="{ig[1] + 4:.1f}">side-on gauge</text>',
-           f'<text x="{sx + w * k / 2:.1f}" y="{20:.1f}" text-anchor="middle">camera (side view) at</text>',
-           _t(sx + w * k / 2 + 105, 20, card, "layout/camera_distance_m", "mm", "start"),
-           _dim(cx, H - 30, sx, H - 30, _t((cx + sx) / 2, H - 36, card, "standoff_m", "mm")),
-           _dim(sx + w * k + 14, sy, sx + w * k + 14, sy + d * k, _t(sx + w * k + 20, y0, card, "build/depth_m", "mm",
-                                                                      "start")),
-           _dim(sx, sy - 8, sx + w * k, sy - 8, _t(sx + w * k / 2, sy - 14, card, "build/width_m", "mm")),
-           "</svg>"]
+    out = [
+        f'<svg class="draw" viewBox="0 0 {W:.0f} {H:.0f}" width="{W:.0f}" height="{H:.0f}">{_DEFS}',
+        f'<circle cx="{cx:.1f}" cy="{cy:.1f}" r="{max(3.0, L["charge_radius_m"] * k):.1f}" class="charge"/>',
+        f'<text x="{cx:.1f}" y="{cy - 10:.1f}" text-anchor="middle">charge</text>',
+        f'<rect x="{sx:.1f}" y="{sy:.1f}" width="{w * k:.1f}" height="{d * k:.1f}" class="spec"/>',
+        f'<circle cx="{rg[0]:.1f}" cy="{rg[1]:.1f}" r="4" class="gauge"/><text x="{rg[0] + 7:.1f}" '
+        f'y="{rg[1] + 4:.1f}">reflected gauge</text>',
+        f'<circle cx="{ig[0]:.1f}" cy="{ig[1]:.1f}" r="4" class="gauge"/><text x="{ig[0] + 7:.1f}" '
+        f'y="{ig[1] + 4:.1f}">side-on gauge</text>',
+        f'<text x="{sx + w * k / 2:.1f}" y="{20:.1f}" text-anchor="middle">camera (side view) at</text>',
+        _t(sx + w * k / 2 + 105, 20, card, "layout/camera_distance_m", "mm", "start"),
+        _dim(cx, H - 30, sx, H - 30, _t((cx + sx) / 2, H - 36, card, "standoff_m", "mm")),
+        _dim(
+            sx + w * k + 14,
+            sy,
+            sx + w * k + 14,
+            sy + d * k,
+            _t(sx + w * k + 20, y0, card, "build/depth_m", "mm", "start"),
+        ),
+        _dim(sx, sy - 8, sx + w * k, sy - 8, _t(sx + w * k / 2, sy - 14, card, "build/width_m", "mm")),
+        "</svg>",
+    ]
     return "".join(out)
 
 
@@ -129,28 +163,42 @@ def _elevation_svg(card: dict) -> str:
         return x0 + x * k, z0 - z * k
 
     fx, fz = P(R, 0)
-    out = [f'<svg class="draw" viewBox="0 0 {W:.0f} {H:.0f}" width="{W:.0f}" height="{H:.0f}">{_DEFS}',
-           f'<line x1="10" y1="{z0:.1f}" x2="{W - 10:.1f}" y2="{z0:.1f}" class="floor"/>',
-           (f'<path d="M{x0 - 6:.1f},{z0:.1f} A6,6 0 0 1 {x0 + 6:.1f},{z0:.1f}z" class="charge"/>'
-            if not card.get("charge_height_m") else  # a free-air charge on its stand
-            f'<line x1="{x0:.1f}" y1="{z0:.1f}" x2="{x0:.1f}" y2="{P(0, card["charge_height_m"])[1]:.1f}" class="floor"/>'
-            f'<circle cx="{x0:.1f}" cy="{P(0, card["charge_height_m"])[1]:.1f}" r="6" class="charge"/>'),
-           f'<rect x="{fx:.1f}" y="{z0 - h * k:.1f}" width="{w * k:.1f}" height="{h * k:.1f}" class="spec"/>']
+    out = [
+        f'<svg class="draw" viewBox="0 0 {W:.0f} {H:.0f}" width="{W:.0f}" height="{H:.0f}">{_DEFS}',
+        f'<line x1="10" y1="{z0:.1f}" x2="{W - 10:.1f}" y2="{z0:.1f}" class="floor"/>',
+        (
+            f'<path d="M{x0 - 6:.1f},{z0:.1f} A6,6 0 0 1 {x0 + 6:.1f},{z0:.1f}z" class="charge"/>'
+            if not card.get("charge_height_m")
+            # a free-air charge on its stand
+            else f'<line x1="{x0:.1f}" y1="{z0:.1f}" x2="{x0:.1f}" y2="{P(0, card["charge_height_m"])[1]:.1f}" class="floor"/>'
+            f'<circle cx="{x0:.1f}" cy="{P(0, card["charge_height_m"])[1]:.1f}" r="6" class="charge"/>'
+        ),
+        f'<rect x="{fx:.1f}" y="{z0 - h * k:.1f}" width="{w * k:.1f}" height="{h * k:.1f}" class="spec"/>',
+    ]
     th = 0.5 * math.pi if p["collapsed"] else (p["first_peak_rotation_rad"] or 0.0)
     pivot = (R + w, 0.0)
     pts = []
-    for (x, z) in ((R, 0.0), (R + w, 0.0), (R + w, h), (R, h)):
+    for x, z in ((R, 0.0), (R + w, 0.0), (R + w, h), (R, h)):
         dx, dz = x - pivot[0], z - pivot[1]
-        pts.append(P(pivot[0] + dx * math.cos(th) + dz * math.sin(th), pivot[1] - dx * math.sin(th) + dz * math.cos(th)))
+        pts.append(
+            P(pivot[0] + dx * math.cos(th) + dz * math.sin(th), pivot[1] - dx * math.sin(th) + dz * math.cos(th))
+        )
     out.append('<polygon points="' + " ".join(f"{a:.1f},{c:.1f}" for a, c in pts) + '" class="peak"/>')
     gz = P(0, card["layout"]["reflected_gauge"][2])[1]
-    out += [f'<circle cx="{fx - 6:.1f}" cy="{gz:.1f}" r="4" class="gauge"/>',
-            _dim(x0, z0 + 18, fx, z0 + 18, _t((x0 + fx) / 2, z0 + 12 - 14, card, "standoff_m", "mm")),
-            _dim(fx + w * k + 60, z0, fx + w * k + 60, z0 - h * k,
-                 _t(fx + w * k + 66, z0 - h * k / 2, card, "build/height_m", "mm", "start")),
-            f'<text x="{fx + w * k + 8:.1f}" y="{z0 - h * k - 8:.1f}">first peak (dashed):</text>',
-            _t(fx + w * k + 8, z0 - h * k + 6, card, "predicted/top_displacement_m", "mm", "start", "top moves "),
-            "</svg>"]
+    out += [
+        f'<circle cx="{fx - 6:.1f}" cy="{gz:.1f}" r="4" class="gauge"/>',
+        _dim(x0, z0 + 18, fx, z0 + 18, _t((x0 + fx) / 2, z0 + 12 - 14, card, "standoff_m", "mm")),
+        _dim(
+            fx + w * k + 60,
+            z0,
+            fx + w * k + 60,
+            z0 - h * k,
+            _t(fx + w * k + 66, z0 - h * k / 2, card, "build/height_m", "mm", "start"),
+        ),
+        f'<text x="{fx + w * k + 8:.1f}" y="{z0 - h * k - 8:.1f}">first peak (dashed):</text>',
+        _t(fx + w * k + 8, z0 - h * k + 6, card, "predicted/top_displacement_m", "mm", "start", "top moves "),
+        "</svg>",
+    ]
     return "".join(out)
 
 
@@ -166,16 +214,22 @@ def _site_svg(card: dict) -> str:
     def rad(x):
         return 40.0 + (c - 60.0) * ((math.log(x) - lo) / (hi - lo) if hi > lo else 1.0)
 
-    out = [f'<svg class="draw" viewBox="0 0 {W:.0f} {H:.0f}" width="{W:.0f}" height="{H:.0f}">',
-           '<text x="8" y="14">radii on a logarithmic scale; the numbers are the distances</text>']
+    out = [
+        f'<svg class="draw" viewBox="0 0 {W:.0f} {H:.0f}" width="{W:.0f}" height="{H:.0f}">',
+        '<text x="8" y="14">radii on a logarithmic scale; the numbers are the distances</text>',
+    ]
     for i, (key, x) in enumerate(zip(keys, dist)):
         r = rad(x)
         a = math.radians(35.0 + 30.0 * i)
         out.append(f'<circle cx="{c}" cy="{c}" r="{r:.1f}" class="ring"/>')
         out.append(f'<text x="{c + r * math.cos(a) + 3:.1f}" y="{c - r * math.sin(a) - 3:.1f}">{_e(key)}:</text>')
-        out.append(_t(c + r * math.cos(a) + 3, c - r * math.sin(a) + 9, card, f"safety_distances_m/{key}", "m", "start"))
-    out.append(f'<circle cx="{c}" cy="{c}" r="3" class="charge"/><text x="{c}" y="{c + 16}" text-anchor="middle">'
-               "charge</text></svg>")
+        out.append(
+            _t(c + r * math.cos(a) + 3, c - r * math.sin(a) + 9, card, f"safety_distances_m/{key}", "m", "start")
+        )
+    out.append(
+        f'<circle cx="{c}" cy="{c}" r="3" class="charge"/><text x="{c}" y="{c + 16}" text-anchor="middle">'
+        "charge</text></svg>"
+    )
     return "".join(out)
 
 
@@ -183,64 +237,103 @@ def card_section(result) -> str:
     """The section's HTML (a hint to add a ``[lab]`` table when there is none)."""
     card = card_of(result)
     if card is None:
-        why = "no specimen (the scenario has no [scale] table)" if result.design is None else \
-            "the scenario has no [lab] table"
-        return (f"<p>No test card: {_e(why)}. Add a <code>[lab]</code> table (docs/planning.md) for the charge in a "
-                "real explosive, the safety envelope, the instruments and the odds, or let <code>blastscale plan"
-                "</code> choose the design.</p>")
+        why = (
+            "no specimen (the scenario has no [scale] table)"
+            if result.design is None
+            else "the scenario has no [lab] table"
+        )
+        return (
+            f"<p>No test card: {_e(why)}. Add a <code>[lab]</code> table (docs/planning.md) for the charge in a "
+            "real explosive, the safety envelope, the instruments and the odds, or let <code>blastscale plan"
+            "</code> choose the design.</p>"
+        )
     c, b, i, p = card, card["build"], "instruments/", "predicted/"
     charge_unit = "mg" if c["explosive_mass_kg"] < 1e-3 else "g" if c["explosive_mass_kg"] < 1 else "kg"
-    build = _rows([("specimen", f"{_e(b['kind'])}, {_e(b['material'])}"),
-                   ("height x width x depth", f"{_n(c, 'build/height_m', 'mm')} x {_n(c, 'build/width_m', 'mm')} x "
-                                              f"{_n(c, 'build/depth_m', 'mm')}"),
-                   ("mass", _n(c, "build/mass_kg", "g")), ("density", _n(c, "build/density_kg_m3", "kg/m3")),
-                   ("scale lambda", _n(c, "build/scale", "")), ("density ratio gamma", _n(c, "build/density_ratio", ""))])
-    shot = _rows([("explosive", _e(c["explosive"])), ("mass to weigh", _n(c, "explosive_mass_kg", charge_unit)),
-                  ("TNT equivalent, impulse (the design)", _n(c, "tnt_equivalent_impulse_kg", charge_unit)),
-                  ("TNT equivalent, pressure (safety)", _n(c, "tnt_equivalent_pressure_kg", charge_unit)),
-                  ("initiator (TNT equivalent)", _n(c, "initiator_tnt_kg", charge_unit)),
-                  ("stand-off to the front face", _n(c, "standoff_m", "mm")),
-                  *([("charge height (on the floor: surface burst)", _n(c, "charge_height_m", "mm")),
-                     ("charge radius (hemisphere)", _n(c, "layout/charge_radius_m", "mm"))]
-                    if c.get("burst", "surface") == "surface" else
-                    [("charge height (on a stand: free-air burst)", _n(c, "charge_height_m", "mm")),
-                     ("charge radius (sphere)", _n(c, "layout/charge_radius_m", "mm"))]),
-                  ("weighing precision (1 sd) to keep the first peak", _n(c, "weighing_precision_kg", charge_unit))])
-    safety = _rows([(f"{t['key']}: {t['meaning']}", _n(c, f"safety_distances_m/{t['key']}", "m"))
-                    for t in c["thresholds"]]
-                   + [(f"debris zone around the specimen (x {c['debris_margin']:g} the reach)",
-                       _n(c, "debris_radius_m", "mm")),
-                      ("prototype event: 6.9 kPa", _n(c, "prototype/safety_distances_m/6.9 kPa", "m")),
-                      ("prototype event: debris zone", _n(c, "prototype/debris_radius_m", "m"))])
-    inst = _rows([("reflected gauge range", _n(c, i + "reflected_gauge_range_Pa", "kPa")),
-                  ("side-on gauge range", _n(c, i + "incident_gauge_range_Pa", "kPa")),
-                  ("gauge rise time at most", _n(c, i + "pressure_rise_time_s", "us")),
-                  ("sampling rate", _n(c, "pressure_sampling_hz", "MHz")),
-                  ("pressure record", _n(c, i + "pressure_record_s", "ms")),
-                  ("camera frame rate", _n(c, "camera_fps", "fps") + " frames/s"),
-                  ("camera record", _n(c, i + "camera_record_s", "ms")),
-                  ("frames over the pulse / the rise / the response",
-                   f"{_n(c, i + 'frames_over_pulse', '')} / {_n(c, i + 'frames_over_rise', '')} / "
-                   f"{_n(c, i + 'frames_over_response', '')}"),
-                  ("displacement range", _n(c, i + "displacement_range_m", "mm")),
-                  ("trigger delay (arrival)", _n(c, i + "trigger_delay_s", "us"))])
+    build = _rows(
+        [
+            ("specimen", f"{_e(b['kind'])}, {_e(b['material'])}"),
+            (
+                "height x width x depth",
+                f"{_n(c, 'build/height_m', 'mm')} x {_n(c, 'build/width_m', 'mm')} x {_n(c, 'build/depth_m', 'mm')}",
+            ),
+            ("mass", _n(c, "build/mass_kg", "g")),
+            ("density", _n(c, "build/density_kg_m3", "kg/m3")),
+            ("scale lambda", _n(c, "build/scale", "")),
+            ("density ratio gamma", _n(c, "build/density_ratio", "")),
+        ]
+    )
+    shot = _rows(
+        [
+            ("explosive", _e(c["explosive"])),
+            ("mass to weigh", _n(c, "explosive_mass_kg", charge_unit)),
+            ("TNT equivalent, impulse (the design)", _n(c, "tnt_equivalent_impulse_kg", charge_unit)),
+            ("TNT equivalent, pressure (safety)", _n(c, "tnt_equivalent_pressure_kg", charge_unit)),
+            ("initiator (TNT equivalent)", _n(c, "initiator_tnt_kg", charge_unit)),
+            ("stand-off to the front face", _n(c, "standoff_m", "mm")),
+            *(
+                [
+                    ("charge height (on the floor: surface burst)", _n(c, "charge_height_m", "mm")),
+                    ("charge radius (hemisphere)", _n(c, "layout/charge_radius_m", "mm")),
+                ]
+                if c.get("burst", "surface") == "surface"
+                else [
+                    ("charge height (on a stand: free-air burst)", _n(c, "charge_height_m", "mm")),
+                    ("charge radius (sphere)", _n(c, "layout/charge_radius_m", "mm")),
+                ]
+            ),
+            ("weighing precision (1 sd) to keep the first peak", _n(c, "weighing_precision_kg", charge_unit)),
+        ]
+    )
+    safety = _rows(
+        [(f"{t['key']}: {t['meaning']}", _n(c, f"safety_distances_m/{t['key']}", "m")) for t in c["thresholds"]]
+        + [
+            (f"debris zone around the specimen (x {c['debris_margin']:g} the reach)", _n(c, "debris_radius_m", "mm")),
+            ("prototype event: 6.9 kPa", _n(c, "prototype/safety_distances_m/6.9 kPa", "m")),
+            ("prototype event: debris zone", _n(c, "prototype/debris_radius_m", "m")),
+        ]
+    )
+    inst = _rows(
+        [
+            ("reflected gauge range", _n(c, i + "reflected_gauge_range_Pa", "kPa")),
+            ("side-on gauge range", _n(c, i + "incident_gauge_range_Pa", "kPa")),
+            ("gauge rise time at most", _n(c, i + "pressure_rise_time_s", "us")),
+            ("sampling rate", _n(c, "pressure_sampling_hz", "MHz")),
+            ("pressure record", _n(c, i + "pressure_record_s", "ms")),
+            ("camera frame rate", _n(c, "camera_fps", "fps") + " frames/s"),
+            ("camera record", _n(c, i + "camera_record_s", "ms")),
+            (
+                "frames over the pulse / the rise / the response",
+                f"{_n(c, i + 'frames_over_pulse', '')} / {_n(c, i + 'frames_over_rise', '')} / "
+                f"{_n(c, i + 'frames_over_response', '')}",
+            ),
+            ("displacement range", _n(c, i + "displacement_range_m", "mm")),
+            ("trigger delay (arrival)", _n(c, i + "trigger_delay_s", "us")),
+        ]
+    )
     outcome = "overturns" if p_get(c, "collapsed") else "rocks and stands"
-    pred = _rows([("outcome", outcome), ("first peak rotation", _n(c, p + "first_peak_rotation_rad", "deg")),
-                  ("time of the first peak (from the arrival)", _n(c, p + "first_peak_time_s", "ms")),
-                  ("top corner displacement", _n(c, p + "top_displacement_m", "mm")),
-                  ("whole response", _n(c, p + "response_time_s", "ms")),
-                  ("arrival time", _n(c, p + "arrival_time_s", "us")),
-                  ("reflected peak pressure", _n(c, p + "reflected_pressure_Pa", "kPa")),
-                  ("reflected impulse", _n(c, p + "reflected_impulse_Pa_s", "Pa s")),
-                  ("positive duration", _n(c, p + "positive_duration_s", "us")),
-                  ("outcome agrees with the prototype (Monte Carlo)", _n(c, "p_outcome_agree", "%")),
-                  ("first-peak spread (1 sd, relative)", _n(c, "first_peak_spread", "%"))])
+    pred = _rows(
+        [
+            ("outcome", outcome),
+            ("first peak rotation", _n(c, p + "first_peak_rotation_rad", "deg")),
+            ("time of the first peak (from the arrival)", _n(c, p + "first_peak_time_s", "ms")),
+            ("top corner displacement", _n(c, p + "top_displacement_m", "mm")),
+            ("whole response", _n(c, p + "response_time_s", "ms")),
+            ("arrival time", _n(c, p + "arrival_time_s", "us")),
+            ("reflected peak pressure", _n(c, p + "reflected_pressure_Pa", "kPa")),
+            ("reflected impulse", _n(c, p + "reflected_impulse_Pa_s", "Pa s")),
+            ("positive duration", _n(c, p + "positive_duration_s", "us")),
+            ("outcome agrees with the prototype (Monte Carlo)", _n(c, "p_outcome_agree", "%")),
+            ("first-peak spread (1 sd, relative)", _n(c, "first_peak_spread", "%")),
+        ]
+    )
     warn = "".join(f'<li class="warn">{_e(w)}</li>' for w in c["warnings"])
-    return (f'<div class="card"><div class="cols"><div><h3>Build</h3>{build}</div><div><h3>Shot</h3>{shot}</div></div>'
-            f'<h3>Layout: plan and elevation (to scale)</h3>{_plan_svg(c)}{_elevation_svg(c)}'
-            f'<h3>Safety circles (around the charge) and the debris zone</h3><div class="cols">{_site_svg(c)}'
-            f'{safety}</div><div class="cols"><div><h3>Instruments</h3>{inst}</div><div><h3>Predicted response '
-            f'(specimen units)</h3>{pred}</div></div>' + (f"<ul>{warn}</ul>" if warn else "") + "</div>")
+    return (
+        f'<div class="card"><div class="cols"><div><h3>Build</h3>{build}</div><div><h3>Shot</h3>{shot}</div></div>'
+        f"<h3>Layout: plan and elevation (to scale)</h3>{_plan_svg(c)}{_elevation_svg(c)}"
+        f'<h3>Safety circles (around the charge) and the debris zone</h3><div class="cols">{_site_svg(c)}'
+        f'{safety}</div><div class="cols"><div><h3>Instruments</h3>{inst}</div><div><h3>Predicted response '
+        f"(specimen units)</h3>{pred}</div></div>" + (f"<ul>{warn}</ul>" if warn else "") + "</div>"
+    )
 
 
 def p_get(card: dict, key: str):

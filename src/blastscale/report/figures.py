@@ -44,8 +44,11 @@ def _pulses(result):
         ax.plot(t * tf, np.asarray(p.pressure(t)) * pf, color="C0" if who == "prototype" else "C1")
         ax.set_xlabel(f"time after arrival [{tu}]")
         ax.set_ylabel(f"reflected overpressure [{pu}]")
-        ax.set_title(f"{who}: {format_charge(bp.charge_kg)} TNT at {bp.standoff_m:.4g} m (Z = "
-                     f"{bp.scaled_distance:.3g} m/kg$^{{1/3}}$)", fontsize=9)
+        ax.set_title(
+            f"{who}: {format_charge(bp.charge_kg)} TNT at {bp.standoff_m:.4g} m (Z = "
+            f"{bp.scaled_distance:.3g} m/kg$^{{1/3}}$)",
+            fontsize=9,
+        )
         ax.grid(alpha=0.3)
     return fig
 
@@ -110,29 +113,56 @@ def _snapshots(result):
 
 #: The report's figures, in order.
 FIGURES: tuple[Figure, ...] = (
-    Figure("blast_pulses", "Blast loads of the prototype and the model",
-           "Reflected pressure on the front face at the stand-off, each system in its own units: the model's "
-           "pulse is shorter and weaker; only its impulse follows the scaling law exactly.",
-           lambda r: r.blast is not None, _pulses),
-    Figure("planar_rocking", "Planar rocking: prototype and up-scaled model",
-           "Rocking angle, angular velocity and phase portrait of the prototype (solid) and of the model "
-           "up-scaled to prototype units (dashed).", lambda r: r.planar is not None, _planar),
-    Figure("assembly", "The structure: elevation and plan",
-           "The assembly as built, seen from the charge (elevation) and from above (plan); interfaces found by "
-           "geometry shaded (blue between blocks, green on the ground; a joint seen edge on is a thick line), "
-           "monitoring points in red.", _is_assembly, _assembly),
-    Figure("snapshots_3d", "Snapshots of the response: prototype and up-scaled model",
-           "Side sections (x-z, the blast from -x) at a few instants (the start, the top point's first peak, the "
-           "end): each block turned by its rotation about y and moved by its centre of mass; prototype filled, "
-           "model up-scaled to prototype units dashed; small motions amplified by the stated factor.",
-           lambda r: _is_assembly(r) and r.response3d is not None, _snapshots),
-    Figure("response_3d", "3D rigid-body response (MuJoCo): prototype and up-scaled model",
-           "Histories of the prototype (solid) and of the model up-scaled to prototype units (dashed).",
-           lambda r: r.response3d is not None, _three_d),
-    Figure("ensemble_envelopes", "3D ensembles: envelopes of the prototype and of the up-scaled model",
-           "Minimum-maximum envelopes and means of the x displacement over the members (loads perturbed by a "
-           "relative 1e-6 or as set), lowest and highest monitoring points. For a chaotic structure the "
-           "envelopes, not single histories, measure similarity.", lambda r: r.ensemble is not None, _ensemble),
+    Figure(
+        "blast_pulses",
+        "Blast loads of the prototype and the model",
+        "Reflected pressure on the front face at the stand-off, each system in its own units: the model's "
+        "pulse is shorter and weaker; only its impulse follows the scaling law exactly.",
+        lambda r: r.blast is not None,
+        _pulses,
+    ),
+    Figure(
+        "planar_rocking",
+        "Planar rocking: prototype and up-scaled model",
+        "Rocking angle, angular velocity and phase portrait of the prototype (solid) and of the model "
+        "up-scaled to prototype units (dashed).",
+        lambda r: r.planar is not None,
+        _planar,
+    ),
+    Figure(
+        "assembly",
+        "The structure: elevation and plan",
+        "The assembly as built, seen from the charge (elevation) and from above (plan); interfaces found by "
+        "geometry shaded (blue between blocks, green on the ground; a joint seen edge on is a thick line), "
+        "monitoring points in red.",
+        _is_assembly,
+        _assembly,
+    ),
+    Figure(
+        "snapshots_3d",
+        "Snapshots of the response: prototype and up-scaled model",
+        "Side sections (x-z, the blast from -x) at a few instants (the start, the top point's first peak, the "
+        "end): each block turned by its rotation about y and moved by its centre of mass; prototype filled, "
+        "model up-scaled to prototype units dashed; small motions amplified by the stated factor.",
+        lambda r: _is_assembly(r) and r.response3d is not None,
+        _snapshots,
+    ),
+    Figure(
+        "response_3d",
+        "3D rigid-body response (MuJoCo): prototype and up-scaled model",
+        "Histories of the prototype (solid) and of the model up-scaled to prototype units (dashed).",
+        lambda r: r.response3d is not None,
+        _three_d,
+    ),
+    Figure(
+        "ensemble_envelopes",
+        "3D ensembles: envelopes of the prototype and of the up-scaled model",
+        "Minimum-maximum envelopes and means of the x displacement over the members (loads perturbed by a "
+        "relative 1e-6 or as set), lowest and highest monitoring points. For a chaotic structure the "
+        "envelopes, not single histories, measure similarity.",
+        lambda r: r.ensemble is not None,
+        _ensemble,
+    ),
 )
 
 

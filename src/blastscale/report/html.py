@@ -27,7 +27,17 @@ from .motion import motion_section
 __all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
 
 #: Section ids of the report, in order.
-SECTIONS = ("experiment", "test_card", "loads", "impulsive", "similarity", "warnings", "slips", "scenario", "provenance")
+SECTIONS = (
+    "experiment",
+    "test_card",
+    "loads",
+    "impulsive",
+    "similarity",
+    "warnings",
+    "slips",
+    "scenario",
+    "provenance",
+)
 
 _CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:1100px;margin:2em auto;
@@ -114,8 +124,9 @@ def _compare_table(prototype: dict, model: dict | None) -> str:
             continue
         words, unit = label(k), split_unit(k.split(".")[-1])[1]
         rows.append((words, v, unit) if model is None else (words, v, mflat.get(k), unit))
-    head = ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)",
-                                                                    "unit")
+    head = (
+        ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)", "unit")
+    )
     return _table(head, rows)
 
 
@@ -125,10 +136,12 @@ def _experiment(result) -> str:
     kind = result.scenario.structure.kind
     if m is None:
         rows = [(*split_unit(k), v) for k, v in p.items() if not isinstance(v, str)]
-        return ('<p class="lead">Prototype only: this scenario has no <code>[scale]</code> table, so no specimen '
-                "is designed and nothing is compared. The sections below give the prototype's blast load and "
-                "response (add a <code>[scale]</code> table to design a reduced-scale test).</p>"
-                + _table(("quantity", "unit", "prototype"), [(q, v, u) for q, u, v in rows]))
+        return (
+            '<p class="lead">Prototype only: this scenario has no <code>[scale]</code> table, so no specimen '
+            "is designed and nothing is compared. The sections below give the prototype's blast load and "
+            "response (add a <code>[scale]</code> table to design a reduced-scale test).</p>"
+            + _table(("quantity", "unit", "prototype"), [(q, v, u) for q, u, v in rows])
+        )
     dims = ("height_m", "width_m", "depth_m")
     if kind == "block":
         size = " x ".join(f"{m[k] * 100:.4g}" for k in dims if k in m) + " cm (height x width x depth)"
@@ -137,10 +150,12 @@ def _experiment(result) -> str:
     of = "of " if kind == "block" else ""
     mat = m.get("material", "")
     mat_words = "the prototype's material" if mat == "same as the prototype" else mat
-    lead = (f"Build a {_e(kind)} {of}{_e(size)}, {format_value(m.get('mass_kg', float('nan')) * 1e3)} g, "
-            f"in {_e(mat_words)} (density {format_value(m.get('density_kg_m3'))} kg/m^3), and detonate "
-            f"<b>{_e(format_charge(m['charge_kg']))} of TNT</b> (equivalent) at <b>{m['standoff_m'] * 100:.4g} cm</b> "
-            "from its front face.")
+    lead = (
+        f"Build a {_e(kind)} {of}{_e(size)}, {format_value(m.get('mass_kg', float('nan')) * 1e3)} g, "
+        f"in {_e(mat_words)} (density {format_value(m.get('density_kg_m3'))} kg/m^3), and detonate "
+        f"<b>{_e(format_charge(m['charge_kg']))} of TNT</b> (equivalent) at <b>{m['standoff_m'] * 100:.4g} cm</b> "
+        "from its front face."
+    )
     keys = [k for k in p if k in m and not isinstance(p[k], str)]
     rows = []
     for k in keys:
@@ -150,25 +165,34 @@ def _experiment(result) -> str:
     rows.append(("material", "-", str(mat), ""))
     if "alpha_rad" in p:
         rows.append(("slenderness alpha", math.degrees(p["alpha_rad"]), math.degrees(m["alpha_rad"]), "deg"))
-    scales = (f"Geometric scale lambda = {exp['scale']:.6g} (1/{1 / exp['scale']:.4g}), density ratio gamma = "
-              f"{exp['density_ratio']:.4g}, gravity ratio = {exp['gravity_ratio']:.4g}, law: {_e(exp['law'])}.")
-    return (f'<p class="lead">{lead}</p><p>{scales}</p>'
-            + _table(("quantity", "prototype", "model", "unit"), rows))
+    scales = (
+        f"Geometric scale lambda = {exp['scale']:.6g} (1/{1 / exp['scale']:.4g}), density ratio gamma = "
+        f"{exp['density_ratio']:.4g}, gravity ratio = {exp['gravity_ratio']:.4g}, law: {_e(exp['law'])}."
+    )
+    return f'<p class="lead">{lead}</p><p>{scales}</p>' + _table(("quantity", "prototype", "model", "unit"), rows)
 
 
 def _loads(result) -> str:
     d = result.design
     if result.blast is None:
-        return ("<p>No charge: the structure under gravity alone, the stability check a designer runs before any "
-                "blast (section 4 says whether it stands, settles or collapses).</p>")
+        return (
+            "<p>No charge: the structure under gravity alone, the stability check a designer runs before any "
+            "blast (section 4 says whether it stands, settles or collapses).</p>"
+        )
     if d is None:
         b = result.blast
-        rows = [("scaled distance Z", b.scaled_distance, "m/kg^(1/3)"), ("reflected peak pressure",
-                 b.reflected_pressure, "Pa"), ("reflected impulse", b.reflected_impulse, "Pa s"),
-                ("positive duration", b.positive_duration, "s"), ("arrival time", b.arrival_time, "s")]
-        return (_table(("quantity", "prototype", "unit"), rows)
-                + f"<p>Blast model: <b>{_e(b.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load "
-                  f"method <b>{_e(result.scenario.blast.load)}</b>.</p>" + _load_model(result))
+        rows = [
+            ("scaled distance Z", b.scaled_distance, "m/kg^(1/3)"),
+            ("reflected peak pressure", b.reflected_pressure, "Pa"),
+            ("reflected impulse", b.reflected_impulse, "Pa s"),
+            ("positive duration", b.positive_duration, "s"),
+            ("arrival time", b.arrival_time, "s"),
+        ]
+        return (
+            _table(("quantity", "prototype", "unit"), rows)
+            + f"<p>Blast model: <b>{_e(b.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load "
+            f"method <b>{_e(result.scenario.blast.load)}</b>.</p>" + _load_model(result)
+        )
     p, m, f = d.prototype, d.specimen, d.factors
     rows = [
         ("scaled distance Z", p.scaled_distance, m.scaled_distance, d.scaled_distance_factor, None, "m/kg^(1/3)"),
@@ -177,12 +201,17 @@ def _loads(result) -> str:
         ("positive duration", p.positive_duration, m.positive_duration, d.duration_ratio, f.time, "s"),
         ("arrival time", p.arrival_time, m.arrival_time, m.arrival_time / p.arrival_time, None, "s"),
     ]
-    note = ("<p>Only the impulse follows the scaling law exactly (delivered = required); the peak pressure and "
-            "the duration do not, which is harmless while the load is impulsive (next section). Blast model: "
-            f"<b>{_e(p.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load method "
-            f"<b>{_e(result.scenario.blast.load)}</b>. {_e(d.root_note)}</p>")
-    return (_table(("quantity", "prototype", "model", "delivered ratio", "required ratio", "unit"), rows) + note
-            + _load_model(result))
+    note = (
+        "<p>Only the impulse follows the scaling law exactly (delivered = required); the peak pressure and "
+        "the duration do not, which is harmless while the load is impulsive (next section). Blast model: "
+        f"<b>{_e(p.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load method "
+        f"<b>{_e(result.scenario.blast.load)}</b>. {_e(d.root_note)}</p>"
+    )
+    return (
+        _table(("quantity", "prototype", "model", "delivered ratio", "required ratio", "unit"), rows)
+        + note
+        + _load_model(result)
+    )
 
 
 def _load_model(result) -> str:
@@ -190,9 +219,11 @@ def _load_model(result) -> str:
     with a design, what clearing and the negative phase do to each system (docs/blast_physics.md)."""
     bl, d = result.scenario.blast, result.design
     sb = d.specimen.burst if d is not None else None
-    used = [f"{bl.burst} burst" + (f" (specimen: {sb} burst)" if sb and sb != bl.burst else ""),
-            "clearing of the finite faces (UFC 3-340-02 Sec. 2-15.3.2)" if bl.clearing else "no clearing (unbounded faces)",
-            "negative phase (UFC 3-340-02 Fig. 2-16, Granström's cubic)" if bl.negative_phase else "positive phase only"]
+    used = [
+        f"{bl.burst} burst" + (f" (specimen: {sb} burst)" if sb and sb != bl.burst else ""),
+        "clearing of the finite faces (UFC 3-340-02 Sec. 2-15.3.2)" if bl.clearing else "no clearing (unbounded faces)",
+        "negative phase (UFC 3-340-02 Fig. 2-16, Granström's cubic)" if bl.negative_phase else "positive phase only",
+    ]
     paper = bl.burst == "surface" and not bl.clearing and not bl.negative_phase and (sb in (None, "surface"))
     note = " (the paper's assumptions)" if paper else ""
     out = f"<p>Load model: {_e('; '.join(used) + note)}.</p>"
@@ -200,25 +231,32 @@ def _load_model(result) -> str:
     if not e:
         return out
     rows = []
-    for key, label, unit in (("clearing_time_s", "clearing time t_c", "s"),
-                             ("clearing_time_over_positive_duration", "t_c / t_o", "-"),
-                             ("uncleared_impulse_Pa_s", "uncleared impulse", "Pa s"),
-                             ("cleared_impulse_Pa_s", "cleared impulse", "Pa s"),
-                             ("cleared_over_uncleared_impulse", "cleared / uncleared impulse", "-")):
+    for key, label, unit in (
+        ("clearing_time_s", "clearing time t_c", "s"),
+        ("clearing_time_over_positive_duration", "t_c / t_o", "-"),
+        ("uncleared_impulse_Pa_s", "uncleared impulse", "Pa s"),
+        ("cleared_impulse_Pa_s", "cleared impulse", "Pa s"),
+        ("cleared_over_uncleared_impulse", "cleared / uncleared impulse", "-"),
+    ):
         if "clearing" in e:
             rows.append((label, e["clearing"]["prototype"][key], e["clearing"]["model"][key], unit))
-    for key, label, unit in (("negative_impulse_Pa_s", "negative impulse", "Pa s"),
-                             ("negative_over_positive_impulse", "negative / positive impulse", "-")):
+    for key, label, unit in (
+        ("negative_impulse_Pa_s", "negative impulse", "Pa s"),
+        ("negative_over_positive_impulse", "negative / positive impulse", "-"),
+    ):
         if "negative_phase" in e:
             rows.append((label, e["negative_phase"]["prototype"][key], e["negative_phase"]["model"][key], unit))
     if rows:
-        out += ("<p>What the scaling law does not match (a difference above 5 % is listed under Warnings):</p>"
-                + _table(("quantity", "prototype", "model", "unit"), rows))
+        out += "<p>What the scaling law does not match (a difference above 5 % is listed under Warnings):</p>" + _table(
+            ("quantity", "prototype", "model", "unit"), rows
+        )
     if "lab_burst" in e:
         lb = e["lab_burst"]
-        out += (f"<p>Lab charge {lb['charge_height_m'] * 100:.3g} cm above the floor: <b>{_e(lb['kind'])}</b> burst "
-                f"(the floor's reflection arrives {lb['delay_over_positive_duration']:.2g} positive durations after "
-                "the shock).</p>")
+        out += (
+            f"<p>Lab charge {lb['charge_height_m'] * 100:.3g} cm above the floor: <b>{_e(lb['kind'])}</b> burst "
+            f"(the floor's reflection arrives {lb['delay_over_positive_duration']:.2g} positive durations after "
+            "the shock).</p>"
+        )
     return out
 
 
@@ -227,21 +265,30 @@ def _impulsive(result) -> str:
         return "<p>No specimen: the impulsive check of the scaling law does not apply.</p>"
     imp = result.design.impulsive
     if imp is None:
-        return ("<p>The impulsive check t<sub>o</sub> p needs a rocking frequency p; it is computed for a single "
-                "block. For this structure, compare the blast duration with the response time in the figures.</p>")
+        return (
+            "<p>The impulsive check t<sub>o</sub> p needs a rocking frequency p; it is computed for a single "
+            "block. For this structure, compare the blast duration with the response time in the figures.</p>"
+        )
     ok = imp.impulsive
-    verdict = ('<span class="ok">impulsive: the general law applies</span>' if ok else
-               '<span class="bad">NOT impulsive: similarity is not guaranteed</span>')
-    return (f"<p>The general law matches the impulse only. It holds while the pulse is short compared with the "
-            f"structure's own time: t<sub>o</sub> p &lt; {imp.threshold:g} with p = sqrt(3 g / 4 r) "
-            f"(Housner). Prototype: t<sub>o</sub> p = {imp.prototype_ratio:.3g}; model: {imp.model_ratio:.3g} "
-            f"&rarr; {verdict}.</p>")
+    verdict = (
+        '<span class="ok">impulsive: the general law applies</span>'
+        if ok
+        else '<span class="bad">NOT impulsive: similarity is not guaranteed</span>'
+    )
+    return (
+        f"<p>The general law matches the impulse only. It holds while the pulse is short compared with the "
+        f"structure's own time: t<sub>o</sub> p &lt; {imp.threshold:g} with p = sqrt(3 g / 4 r) "
+        f"(Housner). Prototype: t<sub>o</sub> p = {imp.prototype_ratio:.3g}; model: {imp.model_ratio:.3g} "
+        f"&rarr; {verdict}.</p>"
+    )
 
 
 def _img(png: bytes, title: str, caption: str, name: str) -> str:
     data = base64.b64encode(png).decode("ascii")
-    return (f'<figure id="fig-{_e(name)}"><img alt="{_e(title)}" src="data:image/png;base64,{data}">'
-            f"<figcaption><b>{_e(title)}.</b> {_e(caption)}</figcaption></figure>")
+    return (
+        f'<figure id="fig-{_e(name)}"><img alt="{_e(title)}" src="data:image/png;base64,{data}">'
+        f"<figcaption><b>{_e(title)}.</b> {_e(caption)}</figcaption></figure>"
+    )
 
 
 def _similarity(result, figures) -> str:
@@ -251,53 +298,75 @@ def _similarity(result, figures) -> str:
     if result.design is not None:
         rows = specimen_rows(s, result.design.factors.to_dict())
         if rows:
-            out.append("<h3>What to measure on the specimen</h3><p>The up-scaled model's response brought back to "
-                       "the specimen's own size (times the scaling factors): compare a measurement with these "
-                       "directly.</p>" + _table(("quantity", "prototype (SI)", "expected on the specimen", "unit"),
-                                               rows))
+            out.append(
+                "<h3>What to measure on the specimen</h3><p>The up-scaled model's response brought back to "
+                "the specimen's own size (times the scaling factors): compare a measurement with these "
+                "directly.</p>" + _table(("quantity", "prototype (SI)", "expected on the specimen", "unit"), rows)
+            )
     if result.planar is not None:
         pl = s["planar"]
         out.append("<h3>Planar rocking (paper Eq. of motion, Housner impacts)</h3>")
         out.append(_compare_table(pl["prototype"], pl["model"]))
         if pl["similarity"] is not None:
-            out.append(_table(("similarity figure", "value", "unit"),
-                              [(label(k), v, split_unit(k)[1]) for k, v in pl["similarity"].items()]))
+            out.append(
+                _table(
+                    ("similarity figure", "value", "unit"),
+                    [(label(k), v, split_unit(k)[1]) for k, v in pl["similarity"].items()],
+                )
+            )
         if "planar_rocking" in figs:
             f, png = figs["planar_rocking"]
             out.append(_img(png, f.title, f.caption, f.name))
     if result.response3d is not None:
         r3 = s["3d"]
-        out.append("<h3>3D rigid bodies (MuJoCo, Coulomb friction "
-                   f"{result.scenario.structure.friction:g})</h3>")
+        out.append(f"<h3>3D rigid bodies (MuJoCo, Coulomb friction {result.scenario.structure.friction:g})</h3>")
         out.append(stability_lead(r3.get("prototype")))
         out.append(_compare_table(r3["prototype"], r3["model"]))
         peaks = first_peak_rows(r3.get("similarity"))
         if peaks is not None:
             out.append(peaks[0] + _table(peaks[1], peaks[2]))
         if r3.get("similarity") is not None:
-            out.append(_table(("similarity figure", "value", "unit"),
-                              [(label(k), v, split_unit(k.split(".")[-1])[1])
-                               for k, v in _flat(r3["similarity"]) if not isinstance(v, str)]))
+            out.append(
+                _table(
+                    ("similarity figure", "value", "unit"),
+                    [
+                        (label(k), v, split_unit(k.split(".")[-1])[1])
+                        for k, v in _flat(r3["similarity"])
+                        if not isinstance(v, str)
+                    ],
+                )
+            )
         for name in ("snapshots_3d", "response_3d"):
             if name in figs:
                 f, png = figs[name]
                 out.append(_img(png, f.title, f.caption, f.name))
     if result.ensemble is not None:
         en = s["ensemble"]
-        out.append(f"<h3>3D ensembles ({en['n_members']} members per system, loads perturbed by up to "
-                   f"{en['perturbation']:g})</h3>")
-        out.append(_table(("quantity", "value", "unit"),
-                          [(label(k), v, split_unit(k.split(".")[-1])[1]) for k, v in _flat(en)
-                           if not isinstance(v, str) and k not in ("n_members", "perturbation")]))
+        out.append(
+            f"<h3>3D ensembles ({en['n_members']} members per system, loads perturbed by up to "
+            f"{en['perturbation']:g})</h3>"
+        )
+        out.append(
+            _table(
+                ("quantity", "value", "unit"),
+                [
+                    (label(k), v, split_unit(k.split(".")[-1])[1])
+                    for k, v in _flat(en)
+                    if not isinstance(v, str) and k not in ("n_members", "perturbation")
+                ],
+            )
+        )
         if "ensemble_envelopes" in figs:
             f, png = figs["ensemble_envelopes"]
             out.append(_img(png, f.title, f.caption, f.name))
     if result.critical is not None:
         c = result.critical
-        out.append(f"<h3>Capacity</h3><p>Critical charge of the prototype at {c.standoff_m:g} m (planar, the largest "
-                   f"charge it survives without overturning): <b>{c.charge_kg:.4g} kg</b> "
-                   f"({c.evaluations} simulations). The scenario's charge is "
-                   f"{result.scenario.blast.charge_kg / c.charge_kg:.3g} of it.</p>")
+        out.append(
+            f"<h3>Capacity</h3><p>Critical charge of the prototype at {c.standoff_m:g} m (planar, the largest "
+            f"charge it survives without overturning): <b>{c.charge_kg:.4g} kg</b> "
+            f"({c.evaluations} simulations). The scenario's charge is "
+            f"{result.scenario.blast.charge_kg / c.charge_kg:.3g} of it.</p>"
+        )
     if not out:
         out.append("<p>No engine was run.</p>")
     return "".join(out)
@@ -311,25 +380,32 @@ def _warnings(result) -> str:
 
 def _slips(result) -> str:
     rows = [(f"#{s.number}", s.where, s.text) for s in applicable_slips(result.scenario, result.design)]
-    return ("<p>Where the printed paper is wrong or ambiguous blastscale implements the physics; these items "
-            "concern this scenario (details and the tests that hold each: docs/paper_slips.md).</p>"
-            + _table(("#", "where", "what blastscale does"), rows, numeric_from=99))
+    return (
+        "<p>Where the printed paper is wrong or ambiguous blastscale implements the physics; these items "
+        "concern this scenario (details and the tests that hold each: docs/paper_slips.md).</p>"
+        + _table(("#", "where", "what blastscale does"), rows, numeric_from=99)
+    )
 
 
 def _provenance(meta: dict, files: Iterable[str]) -> str:
     v = meta.get("versions", {})
     rows = [(k, str(val)) for k, val in v.items()]
-    rows += [("git commit", str(meta.get("git_commit") or "not a git checkout")),
-             ("written (UTC)", str(meta.get("timestamp", "")))]
-    return (_table(("item", "value"), rows, numeric_from=99)
-            + f"<p class=\"muted\">Files next to this report: {_e(', '.join(files))}. Model results are "
-              "up-scaled to prototype units; every history carries its unit in histories.nc.</p>")
+    rows += [
+        ("git commit", str(meta.get("git_commit") or "not a git checkout")),
+        ("written (UTC)", str(meta.get("timestamp", ""))),
+    ]
+    return (
+        _table(("item", "value"), rows, numeric_from=99)
+        + f'<p class="muted">Files next to this report: {_e(", ".join(files))}. Model results are '
+        "up-scaled to prototype units; every history carries its unit in histories.nc.</p>"
+    )
 
 
 def _verdict(result) -> str:
     """The page's first statement: ``Verdict: ...`` (:mod:`.verdict`), before the build instructions."""
-    v = verdict(result.summary(), result.scenario.structure.kind,
-                getattr(result.structure, "section", None) == "circular")
+    v = verdict(
+        result.summary(), result.scenario.structure.kind, getattr(result.structure, "section", None) == "circular"
+    )
     cls = {True: "lead", False: "warn", None: "muted"}[v["similar"]]
     return f'<p id="verdict" class="{cls}"><b>{_e(v["line"])}</b></p>'
 
@@ -365,11 +441,15 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_h
     body = {
         "experiment": ("1. The experiment to build", _experiment(result) + drawing),
         "test_card": ("Test card", card_section(result)),
-        "loads": ("2. Blast loads of the prototype" + ("" if result.design is None else " and the model"),
-                  _loads(result) + pulses),
+        "loads": (
+            "2. Blast loads of the prototype" + ("" if result.design is None else " and the model"),
+            _loads(result) + pulses,
+        ),
         "impulsive": ("3. Impulsive check", _impulsive(result)),
-        "similarity": ("4. Response of the prototype" if result.design is None else
-                       "4. Similarity: prototype vs up-scaled model", _similarity(result, figures) + motion_section(result)),
+        "similarity": (
+            "4. Response of the prototype" if result.design is None else "4. Similarity: prototype vs up-scaled model",
+            _similarity(result, figures) + motion_section(result),
+        ),
         "warnings": ("5. Warnings", _warnings(result)),
         "slips": ("6. The paper's slips that apply", _slips(result)),
         "scenario": ("7. Scenario (inputs)", f"<pre>{_e(sc.to_toml())}</pre>"),
@@ -379,13 +459,17 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_h
     if plan_html is not None:
         body["plan"] = ("The plan: designs the lab can fire, best first", plan_html)
         order.insert(order.index("test_card"), "plan")
-    sections = "".join(f'<section id="{sid}"><h2>{_e(h)}</h2>{content}</section>'
-                       for sid, (h, content) in ((k, body[k]) for k in order))
-    return ("<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>blastscale: {_e(title)}"
-            f"</title><style>{_CSS}{_CARD_CSS}</style></head><body><header><h1>blastscale report: {_e(title)}</h1>"
-            f"{_verdict(result)}"
-            "<p class=\"muted\">Reduced-scale blast experiment designed with the scaling laws of Masi, Stefanou "
-            "&amp; Maffi-Berthier (general law), checked by simulating prototype and model. All values SI unless "
-            "stated; model results are up-scaled to prototype units.</p></header>"
-            f"<main>{sections}</main></body></html>\n")
+    sections = "".join(
+        f'<section id="{sid}"><h2>{_e(h)}</h2>{content}</section>'
+        for sid, (h, content) in ((k, body[k]) for k in order)
+    )
+    return (
+        '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">'
+        f'<meta name="viewport" content="width=device-width, initial-scale=1"><title>blastscale: {_e(title)}'
+        f"</title><style>{_CSS}{_CARD_CSS}</style></head><body><header><h1>blastscale report: {_e(title)}</h1>"
+        f"{_verdict(result)}"
+        '<p class="muted">Reduced-scale blast experiment designed with the scaling laws of Masi, Stefanou '
+        "&amp; Maffi-Berthier (general law), checked by simulating prototype and model. All values SI unless "
+        "stated; model results are up-scaled to prototype units.</p></header>"
+        f"<main>{sections}</main></body></html>\n"
+    )

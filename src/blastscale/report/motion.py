@@ -12,8 +12,17 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["FRAME_BYTES", "MAX_VIEW_FRAMES", "REPORT_FPS", "view_frames", "view_figure", "motion_div",
-           "motion_html", "motion_section", "CAMERAS"]
+__all__ = [
+    "FRAME_BYTES",
+    "MAX_VIEW_FRAMES",
+    "REPORT_FPS",
+    "view_frames",
+    "view_figure",
+    "motion_div",
+    "motion_html",
+    "motion_section",
+    "CAMERAS",
+]
 
 #: The most bytes of frame data in one view (vertex coordinates, float32 in base64: 16/3 bytes each).
 FRAME_BYTES = 3_000_000
@@ -62,8 +71,13 @@ def view_figure(motion, indices, charge=None, title: str = "", view: str = "iso"
     m = 0.6 * float(max(hi - lo))
     c = 0.5 * (lo + hi)
     gx, gy = [c[0] - m, c[0] + m, c[0] + m, c[0] - m], [c[1] - m, c[1] - m, c[1] + m, c[1] + m]
-    fig = make_subplots(rows=1, cols=nsys, specs=[[{"type": "scene"}] * nsys], subplot_titles=list(motion.labels),
-                        horizontal_spacing=0.02)
+    fig = make_subplots(
+        rows=1,
+        cols=nsys,
+        specs=[[{"type": "scene"}] * nsys],
+        subplot_titles=list(motion.labels),
+        horizontal_spacing=0.02,
+    )
 
     def blocks(s, index):
         v = motion.world(s, [index])[0][ok].astype(np.float32)
@@ -71,43 +85,121 @@ def view_figure(motion, indices, charge=None, title: str = "", view: str = "iso"
 
     block_traces = []
     for s in range(nsys):
-        fig.add_trace(go.Mesh3d(**{k: np.array(gx if k == "x" else gy if k == "y" else [0.0] * 4, np.float32)
-                                   for k in "xyz"}, i=[0, 0], j=[1, 2], k=[2, 3], color=GROUND, flatshading=True,
-                                lighting=dict(ambient=1.0, diffuse=0.0, specular=0.0), hoverinfo="skip",
-                                name="ground", showlegend=False), row=1, col=s + 1)
+        fig.add_trace(
+            go.Mesh3d(
+                **{k: np.array(gx if k == "x" else gy if k == "y" else [0.0] * 4, np.float32) for k in "xyz"},
+                i=[0, 0],
+                j=[1, 2],
+                k=[2, 3],
+                color=GROUND,
+                flatshading=True,
+                lighting=dict(ambient=1.0, diffuse=0.0, specular=0.0),
+                hoverinfo="skip",
+                name="ground",
+                showlegend=False,
+            ),
+            row=1,
+            col=s + 1,
+        )
         block_traces.append(len(fig.data))
-        fig.add_trace(go.Mesh3d(**blocks(s, int(indices[0])), i=tri[:, 0], j=tri[:, 1], k=tri[:, 2],
-                                intensity=disp[s][body].astype(np.float32), intensitymode="vertex",
-                                colorscale="Viridis", cmin=0.0, cmax=cmax, flatshading=True, showscale=s == 0,
-                                colorbar=dict(title=dict(text="largest<br>displacement [m]"), len=0.6),
-                                lighting=dict(ambient=0.55, diffuse=0.7, specular=0.05),
-                                name=motion.labels[s], hoverinfo="name"), row=1, col=s + 1)
+        fig.add_trace(
+            go.Mesh3d(
+                **blocks(s, int(indices[0])),
+                i=tri[:, 0],
+                j=tri[:, 1],
+                k=tri[:, 2],
+                intensity=disp[s][body].astype(np.float32),
+                intensitymode="vertex",
+                colorscale="Viridis",
+                cmin=0.0,
+                cmax=cmax,
+                flatshading=True,
+                showscale=s == 0,
+                colorbar=dict(title=dict(text="largest<br>displacement [m]"), len=0.6),
+                lighting=dict(ambient=0.55, diffuse=0.7, specular=0.05),
+                name=motion.labels[s],
+                hoverinfo="name",
+            ),
+            row=1,
+            col=s + 1,
+        )
         if charge is not None:
-            fig.add_trace(go.Scatter3d(x=[charge[0]], y=[charge[1]], z=[charge[2]], mode="markers+text",
-                                       marker=dict(size=6, color="#c0392b", symbol="diamond"), text=["charge"],
-                                       textposition="top center", name="charge", showlegend=False),
-                          row=1, col=s + 1)
-    frames = [go.Frame(name=str(n), data=[go.Mesh3d(**blocks(s, int(i))) for s in range(nsys)],
-                       traces=block_traces, layout=dict(title_text=f"{title}  t = {motion.time[i]:.3f} s"))
-              for n, i in enumerate(indices)]
+            fig.add_trace(
+                go.Scatter3d(
+                    x=[charge[0]],
+                    y=[charge[1]],
+                    z=[charge[2]],
+                    mode="markers+text",
+                    marker=dict(size=6, color="#c0392b", symbol="diamond"),
+                    text=["charge"],
+                    textposition="top center",
+                    name="charge",
+                    showlegend=False,
+                ),
+                row=1,
+                col=s + 1,
+            )
+    frames = [
+        go.Frame(
+            name=str(n),
+            data=[go.Mesh3d(**blocks(s, int(i))) for s in range(nsys)],
+            traces=block_traces,
+            layout=dict(title_text=f"{title}  t = {motion.time[i]:.3f} s"),
+        )
+        for n, i in enumerate(indices)
+    ]
     fig.frames = frames
     play = dict(frame=dict(duration=1000.0 / fps, redraw=True), fromcurrent=True, transition=dict(duration=0))
     pause = dict(frame=dict(duration=0, redraw=False), mode="immediate", transition=dict(duration=0))
-    steps = [dict(method="animate", label=f"{motion.time[i]:.3f}",
-                  args=[[str(n)], dict(mode="immediate", frame=dict(duration=0, redraw=True), transition=dict(duration=0))])
-             for n, i in enumerate(indices)]
+    steps = [
+        dict(
+            method="animate",
+            label=f"{motion.time[i]:.3f}",
+            args=[[str(n)], dict(mode="immediate", frame=dict(duration=0, redraw=True), transition=dict(duration=0))],
+        )
+        for n, i in enumerate(indices)
+    ]
     eye = dict(zip("xyz", CAMERAS[view]))
-    scene = dict(aspectmode="cube", camera=dict(eye=eye), xaxis=dict(range=[c[0] - m, c[0] + m], title="x [m]"),
-                 yaxis=dict(range=[c[1] - m, c[1] + m], title="y [m]"),
-                 zaxis=dict(range=[min(lo[2], 0.0), min(lo[2], 0.0) + 2 * m], title="z [m]"))
+    scene = dict(
+        aspectmode="cube",
+        camera=dict(eye=eye),
+        xaxis=dict(range=[c[0] - m, c[0] + m], title="x [m]"),
+        yaxis=dict(range=[c[1] - m, c[1] + m], title="y [m]"),
+        zaxis=dict(range=[min(lo[2], 0.0), min(lo[2], 0.0) + 2 * m], title="z [m]"),
+    )
     fig.update_layout(
-        title_text=f"{title}  t = {motion.time[indices[0]]:.3f} s", height=560, margin=dict(l=10, r=10, t=60, b=10),
-        template="plotly_white", **{f"scene{'' if s == 0 else s + 1}": scene for s in range(nsys)},
-        updatemenus=[dict(type="buttons", direction="left", x=0.0, y=0.0, xanchor="left", yanchor="top",
-                          pad=dict(t=40), buttons=[dict(label="play", method="animate", args=[None, play]),
-                                                   dict(label="pause", method="animate", args=[[None], pause])])],
-        sliders=[dict(active=0, x=0.12, y=0.0, len=0.86, pad=dict(t=30), steps=steps,
-                      currentvalue=dict(prefix="time [s, prototype]: "))])
+        title_text=f"{title}  t = {motion.time[indices[0]]:.3f} s",
+        height=560,
+        margin=dict(l=10, r=10, t=60, b=10),
+        template="plotly_white",
+        **{f"scene{'' if s == 0 else s + 1}": scene for s in range(nsys)},
+        updatemenus=[
+            dict(
+                type="buttons",
+                direction="left",
+                x=0.0,
+                y=0.0,
+                xanchor="left",
+                yanchor="top",
+                pad=dict(t=40),
+                buttons=[
+                    dict(label="play", method="animate", args=[None, play]),
+                    dict(label="pause", method="animate", args=[[None], pause]),
+                ],
+            )
+        ],
+        sliders=[
+            dict(
+                active=0,
+                x=0.12,
+                y=0.0,
+                len=0.86,
+                pad=dict(t=30),
+                steps=steps,
+                currentvalue=dict(prefix="time [s, prototype]: "),
+            )
+        ],
+    )
     return fig
 
 
@@ -126,8 +218,17 @@ new IntersectionObserver(function(es,o){if(es.some(function(e){return e.isInters
 {rootMargin:"300px"}).observe(d);})();</script>"""
 
 
-def motion_div(motion, indices, charge=None, title: str = "", view: str = "iso", fps: float = 20.0,
-               include_plotlyjs: bool = True, div_id: str = "motion3d", first: bool = True) -> str:
+def motion_div(
+    motion,
+    indices,
+    charge=None,
+    title: str = "",
+    view: str = "iso",
+    fps: float = 20.0,
+    include_plotlyjs: bool = True,
+    div_id: str = "motion3d",
+    first: bool = True,
+) -> str:
     """The view as an HTML ``<div>``, drawn when it comes near the window (plotly's JavaScript embedded before
     it when ``include_plotlyjs``; ``first``: the view a ``#frame=N`` address shows)."""
     import plotly.io as pio
@@ -136,9 +237,11 @@ def motion_div(motion, indices, charge=None, title: str = "", view: str = "iso",
     fig = view_figure(motion, indices, charge, title, view, fps)
     data = pio.to_json(fig, validate=False).replace("</", "<\\/")  # inert inside <script>
     lib = f'<script type="text/javascript">{get_plotlyjs()}</script>' if include_plotlyjs else ""
-    return (f'{lib}<div id="{div_id}" style="height:{fig.layout.height}px;width:100%"></div>'
-            f'<script type="application/json" id="{div_id}-data">{data}</script>'
-            + _DRAW.replace("{id}", div_id).replace("{first}", "true" if first else "false"))
+    return (
+        f'{lib}<div id="{div_id}" style="height:{fig.layout.height}px;width:100%"></div>'
+        f'<script type="application/json" id="{div_id}-data">{data}</script>'
+        + _DRAW.replace("{id}", div_id).replace("{first}", "true" if first else "false")
+    )
 
 
 def motion_html(motion, indices, charge=None, title: str = "", view: str = "iso", fps: float = 20.0) -> str:
@@ -146,8 +249,10 @@ def motion_html(motion, indices, charge=None, title: str = "", view: str = "iso"
     from html import escape
 
     body = motion_div(motion, indices, charge, title, view, fps)
-    return (f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>{escape(title or "blastscale motion")}'
-            f'</title></head><body style="margin:0;font-family:sans-serif">{body}</body></html>')
+    return (
+        f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>{escape(title or "blastscale motion")}'
+        f'</title></head><body style="margin:0;font-family:sans-serif">{body}</body></html>'
+    )
 
 
 def motion_section(result) -> str:
@@ -162,17 +267,27 @@ def motion_section(result) -> str:
     if "body_position" not in ds:
         return ""
     sc = result.scenario
-    standoff = None if sc.blast.gravity_only else (result.design.prototype.standoff_m if result.design is not None
-                                                   else sc.blast.standoff_m)
+    standoff = (
+        None
+        if sc.blast.gravity_only
+        else (result.design.prototype.standoff_m if result.design is not None else sc.blast.standoff_m)
+    )
     out = ["<h3>The motion in 3D</h3>", _view(motion_of(ds), standoff, "motion3d", True, "The response in 3D")]
     ens = getattr(result.ensemble, "motion", None) if result.ensemble is not None else None
     if ens is not None:
         for case in ens["case"].values:
             one = ens.sel(case=case)
             what = {"median": "the member closest to the ensemble's median", "worst": "the ensemble's worst member"}
-            out.append(_view(motion_of(one), standoff, f"motion3d-{case}", False,
-                             f"Ensemble: {what.get(str(case), str(case))} (member {int(one['case_member'])}, largest "
-                             "displacement of any point)"))
+            out.append(
+                _view(
+                    motion_of(one),
+                    standoff,
+                    f"motion3d-{case}",
+                    False,
+                    f"Ensemble: {what.get(str(case), str(case))} (member {int(one['case_member'])}, largest "
+                    "displacement of any point)",
+                )
+            )
     return "".join(out)
 
 
@@ -184,13 +299,24 @@ def _view(motion, standoff, div_id: str, include_plotlyjs: bool, lead: str) -> s
     charge = None if standoff is None else charge_position(motion, standoff)
     indices, asked = view_frames(motion, REPORT_FPS)
     step_ms = 1e3 * motion.duration / max(len(indices) - 1, 1)
-    div = motion_div(motion, indices, charge, title="", view="iso", fps=REPORT_FPS, include_plotlyjs=include_plotlyjs,
-                     div_id=div_id, first=include_plotlyjs)
-    return (f'<figure id="fig-{div_id}">{div}<figcaption><b>{escape(lead)}, '
-            f'{escape(" and ".join(motion.labels))} side by side in prototype units on one time axis.</b> '
-            f'Play, pause or drag the time slider; drag a view to turn it. Blocks coloured by their largest '
-            f'displacement; the charge (red) on the ground {standoff if standoff is not None else 0:.3g} m in '
-            f'front. {len(indices)} frames of the {len(motion.time)} recorded states, one every {step_ms:.3g} ms of '
-            f'prototype time ({asked} asked at {REPORT_FPS:g} per second of playback; at most {MAX_VIEW_FRAMES} '
-            f'and {FRAME_BYTES / 1e6:g} MB of frame data). The same view from the result folder: '
-            f'<code>blastscale show RESULT_DIR --animate FILE.html</code> (or .gif, .mp4).</figcaption></figure>')
+    div = motion_div(
+        motion,
+        indices,
+        charge,
+        title="",
+        view="iso",
+        fps=REPORT_FPS,
+        include_plotlyjs=include_plotlyjs,
+        div_id=div_id,
+        first=include_plotlyjs,
+    )
+    return (
+        f'<figure id="fig-{div_id}">{div}<figcaption><b>{escape(lead)}, '
+        f"{escape(' and '.join(motion.labels))} side by side in prototype units on one time axis.</b> "
+        f"Play, pause or drag the time slider; drag a view to turn it. Blocks coloured by their largest "
+        f"displacement; the charge (red) on the ground {standoff if standoff is not None else 0:.3g} m in "
+        f"front. {len(indices)} frames of the {len(motion.time)} recorded states, one every {step_ms:.3g} ms of "
+        f"prototype time ({asked} asked at {REPORT_FPS:g} per second of playback; at most {MAX_VIEW_FRAMES} "
+        f"and {FRAME_BYTES / 1e6:g} MB of frame data). The same view from the result folder: "
+        f"<code>blastscale show RESULT_DIR --animate FILE.html</code> (or .gif, .mp4).</figcaption></figure>"
+    )

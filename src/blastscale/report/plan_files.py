@@ -18,18 +18,48 @@ def plan_section(p, top: int = 15) -> str:
     rejected candidates with their reasons."""
     from .html import _table, format_charge
 
-    rows = [(str(i), d["law"], d["scale_fraction"], d["material"], f"{format_charge(d['explosive_mass_kg'])} "
-             f"{d['explosive']}", f"{d['standoff_m'] * 1e3:.4g} mm", f"{d['specimen_height_m'] * 1e3:.4g} mm",
-             f"{d['safety_radius_m']:.3g} m", f"{d['p_outcome_agree']:.3f}", f"{100 * d['predicted_first_peak_error']:.2g} %")
-            for i, d in enumerate(p.designs[:top], 1)]
+    rows = [
+        (
+            str(i),
+            d["law"],
+            d["scale_fraction"],
+            d["material"],
+            f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}",
+            f"{d['standoff_m'] * 1e3:.4g} mm",
+            f"{d['specimen_height_m'] * 1e3:.4g} mm",
+            f"{d['safety_radius_m']:.3g} m",
+            f"{d['p_outcome_agree']:.3f}",
+            f"{100 * d['predicted_first_peak_error']:.2g} %",
+        )
+        for i, d in enumerate(p.designs[:top], 1)
+    ]
     best = p.designs[0]
     rej = [(r["law"], r["scale_fraction"], r["material"], "; ".join(r["reasons"])) for r in p.rejected]
-    return (f"<p class=\"lead\">Best design: {_e(best['law'])} law, lambda = {_e(best['scale_fraction'])}, "
-            f"{_e(best['material'])}. " + " ".join(_e(r) + "." for r in best["reasons"]) + "</p>"
-            + _table(("#", "law", "lambda", "material", "charge", "stand-off", "specimen height", "safety radius",
-                      "P(outcome agrees)", "first-peak error"), rows, numeric_from=99)
-            + f"<details><summary>{len(rej)} rejected candidates and why</summary>"
-            + _table(("law", "lambda", "material", "reasons"), rej, numeric_from=99) + "</details>")
+    return (
+        f'<p class="lead">Best design: {_e(best["law"])} law, lambda = {_e(best["scale_fraction"])}, '
+        f"{_e(best['material'])}. "
+        + " ".join(_e(r) + "." for r in best["reasons"])
+        + "</p>"
+        + _table(
+            (
+                "#",
+                "law",
+                "lambda",
+                "material",
+                "charge",
+                "stand-off",
+                "specimen height",
+                "safety radius",
+                "P(outcome agrees)",
+                "first-peak error",
+            ),
+            rows,
+            numeric_from=99,
+        )
+        + f"<details><summary>{len(rej)} rejected candidates and why</summary>"
+        + _table(("law", "lambda", "material", "reasons"), rej, numeric_from=99)
+        + "</details>"
+    )
 
 
 def write_plan(p, result, folder) -> list[str]:

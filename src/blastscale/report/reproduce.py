@@ -30,8 +30,17 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Callable, Optional
 
-__all__ = ["Row", "Item", "items", "skipped", "gallery_folder", "run_item", "item_done", "render_reproduce_report",
-           "MARKER"]
+__all__ = [
+    "Row",
+    "Item",
+    "items",
+    "skipped",
+    "gallery_folder",
+    "run_item",
+    "item_done",
+    "render_reproduce_report",
+    "MARKER",
+]
 
 #: Marker written last into an item's folder: the item is complete.
 MARKER = "item.json"
@@ -119,9 +128,11 @@ def _geometry(folder: Path, quick: bool) -> list:
     for lam, tag, paper in ((1 / 20, "model 1", ("50", "13.40", "10")), (1 / 200, "model 2", ("5", "1.34", "1"))):
         d = design_model(50.0, 2.0, lam, 1.0, blast_model="masi2021", geometry=block)
         mb = d.specimen_block
-        rows += [Row(f"{tag} height", f"{paper[0]} cm", mb.height * 100, "cm"),
-                 Row(f"{tag} width", f"{paper[1]} cm", mb.width * 100, "cm"),
-                 Row(f"{tag} stand-off", f"{paper[2]} cm", d.specimen_standoff_m * 100, "cm")]
+        rows += [
+            Row(f"{tag} height", f"{paper[0]} cm", mb.height * 100, "cm"),
+            Row(f"{tag} width", f"{paper[1]} cm", mb.width * 100, "cm"),
+            Row(f"{tag} stand-off", f"{paper[2]} cm", d.specimen_standoff_m * 100, "cm"),
+        ]
     return rows
 
 
@@ -169,24 +180,34 @@ def _critical(folder: Path, quick: bool) -> list:
     system = RockingSystem.from_block(block)
     c = critical_charge(system, 2.0, blast_model="masi2021")
     neg = critical_charge(system, 2.0, blast_model="masi2021", load_model=LoadModel(negative_phase=True))
-    return [Row("critical charge at 2 m (case c)", "79.8 kg", c.charge_kg, "kg"),
-            Row("the same with the negative phase (the paper neglects it; docs/blast_physics.md)",
-                "larger (\"stabilizing\")", neg.charge_kg, "kg")]
+    return [
+        Row("critical charge at 2 m (case c)", "79.8 kg", c.charge_kg, "kg"),
+        Row(
+            "the same with the negative phase (the paper neglects it; docs/blast_physics.md)",
+            'larger ("stabilizing")',
+            neg.charge_kg,
+            "kg",
+        ),
+    ]
 
 
 # -- scenarios --------------------------------------------------------------------------------
 _SCENARIO_PAPER = {  # scenario file stem -> rows of (quantity, paper as printed, summary path, unit, slip)
     "paper_block_50kg_lambda20": [("model charge", "1.0 mg", "design.model_charge_kg", "g", 4)],
-    "paper_block_50kg_lambda200": [("model charge", "0.233 ug", "design.model_charge_kg", "mg", 4),
-                                   ("prototype first impact (planar)", "1.3 ms",
-                                    "planar.prototype.first_impact_time_s", "s", 10)],
+    "paper_block_50kg_lambda200": [
+        ("model charge", "0.233 ug", "design.model_charge_kg", "mg", 4),
+        ("prototype first impact (planar)", "1.3 ms", "planar.prototype.first_impact_time_s", "s", 10),
+    ],
     "paper_block_100kg_lambda20": [("model charge", "2.06 mg", "design.model_charge_kg", "g", 4)],
-    "paper_block_100kg_lambda200": [("model charge", "0.492 ug", "design.model_charge_kg", "mg", 4),
-                                    ("prototype overturns (planar)", "yes", "planar.prototype.collapsed", "", None)],
+    "paper_block_100kg_lambda200": [
+        ("model charge", "0.492 ug", "design.model_charge_kg", "mg", 4),
+        ("prototype overturns (planar)", "yes", "planar.prototype.collapsed", "", None),
+    ],
     "paper_block_50kg_lambda200_balsa": [("density ratio gamma", "0.07", "experiment.density_ratio", "-", None)],
-    "paper_block_non_slender_2500kg": [("model charge", "14.26 mg", "design.model_charge_kg", "mg", None),
-                                       ("sliding of the front face", "approximately 1 m",
-                                        "3d.prototype.points.P-1.max_displacement_m", "m", 12)],
+    "paper_block_non_slender_2500kg": [
+        ("model charge", "14.26 mg", "design.model_charge_kg", "mg", None),
+        ("sliding of the front face", "approximately 1 m", "3d.prototype.points.P-1.max_displacement_m", "m", 12),
+    ],
 }
 _UNIT_FACTOR = {"g": 1e3, "mg": 1e6}
 
@@ -219,10 +240,22 @@ def _scenario_item(name: str) -> Item:
             rows.append(Row(q, paper, v, unit, slip))
         if result.planar is not None:
             sim = s["planar"]["similarity"]
-            rows.append(Row("planar: outcomes agree (prototype vs up-scaled model)", "yes (curves coincide)",
-                            sim["outcomes_agree"], ""))
-            rows.append(Row("planar: max |angle difference| up to tipping", "negligible",
-                            sim["max_abs_rotation_diff_to_tipping_rad"], "rad"))
+            rows.append(
+                Row(
+                    "planar: outcomes agree (prototype vs up-scaled model)",
+                    "yes (curves coincide)",
+                    sim["outcomes_agree"],
+                    "",
+                )
+            )
+            rows.append(
+                Row(
+                    "planar: max |angle difference| up to tipping",
+                    "negligible",
+                    sim["max_abs_rotation_diff_to_tipping_rad"],
+                    "rad",
+                )
+            )
         if result.response3d is not None:
             sim = s["3d"]["similarity"]
             for k in ("outcomes_agree", "top_first_peak_ratio", "max_abs_top_displacement_diff_rel_peak"):
@@ -232,11 +265,19 @@ def _scenario_item(name: str) -> Item:
             en = s["ensemble"]
             top = result.ensemble.top_point
             rows += [
-                Row(f"ensembles ({en['n_members']} members): collapse probability, prototype", "",
-                    en["collapse_probability_prototype"], ""),
+                Row(
+                    f"ensembles ({en['n_members']} members): collapse probability, prototype",
+                    "",
+                    en["collapse_probability_prototype"],
+                    "",
+                ),
                 Row("ensembles: collapse probability, model (up-scaled)", "", en["collapse_probability_model"], ""),
-                Row(f"ensembles: first-peak ratio at {top} (model / prototype means)", "prototype and model coincide",
-                    en["points"][top]["first_peak_ratio"], ""),
+                Row(
+                    f"ensembles: first-peak ratio at {top} (model / prototype means)",
+                    "prototype and model coincide",
+                    en["points"][top]["first_peak_ratio"],
+                    "",
+                ),
             ]
         return rows
 
@@ -245,15 +286,22 @@ def _scenario_item(name: str) -> Item:
     from ..scenario import library_text
 
     title = tomllib.loads(library_text(name)).get("title") or name
-    return Item(f"scenario-{name.replace('_', '-')}", f"Scenario: {title}", f"blastscale:{name}",
-                compute, kind="scenario", source=name)
+    return Item(
+        f"scenario-{name.replace('_', '-')}",
+        f"Scenario: {title}",
+        f"blastscale:{name}",
+        compute,
+        kind="scenario",
+        source=name,
+    )
 
 
 # -- gallery scripts ---------------------------------------------------------------------------
 def _script_item(path: Path) -> Item:
     def compute(folder: Path, quick: bool) -> list:
-        cmd = [sys.executable, str(path), str(folder)] + (["--quick"] if quick and "--quick" in path.read_text()
-                                                             else [])
+        cmd = [sys.executable, str(path), str(folder)] + (
+            ["--quick"] if quick and "--quick" in path.read_text() else []
+        )
         env = {**os.environ, "MPLBACKEND": "Agg"}
         proc = subprocess.run(cmd, capture_output=True, text=True, cwd=path.parent, env=env)
         (folder / "stdout.txt").write_text(proc.stdout)
@@ -265,8 +313,9 @@ def _script_item(path: Path) -> Item:
 
     text = path.read_text()
     doc = text.split('"""')[1].strip().splitlines()[0] if '"""' in text else path.stem
-    return Item(f"example-{path.stem.replace('_', '-')}", doc, f"examples/{path.name}", compute, kind="figures",
-                source=path)
+    return Item(
+        f"example-{path.stem.replace('_', '-')}", doc, f"examples/{path.name}", compute, kind="figures", source=path
+    )
 
 
 def items(examples: Optional[Path] = None) -> list[Item]:
@@ -275,13 +324,22 @@ def items(examples: Optional[Path] = None) -> list[Item]:
     from ..scenario import library_names
 
     out = [
-        Item("table-geometry", "Table \"Geometry parameters\" (prototype and models 1, 2)", "Sec. Equations of motion",
-             _geometry),
-        Item("table-blast-loading", "Table \"Blast loading characteristics\"", "Sec. Equations of motion",
-             _blast_loading),
+        Item(
+            "table-geometry",
+            'Table "Geometry parameters" (prototype and models 1, 2)',
+            "Sec. Equations of motion",
+            _geometry,
+        ),
+        Item(
+            "table-blast-loading", 'Table "Blast loading characteristics"', "Sec. Equations of motion", _blast_loading
+        ),
         Item("scaling-factors", "Figures 5 and 8, the numbers quoted in the text", "Secs. 5.1, 5.2", _scaling_factors),
-        Item("critical-charge", "Critical charge of the slender block at 2 m (case c)", "Sec. Equations of motion",
-             _critical),
+        Item(
+            "critical-charge",
+            "Critical charge of the slender block at 2 m (case c)",
+            "Sec. Equations of motion",
+            _critical,
+        ),
     ]
     out += [_scenario_item(name) for name in library_names() if name.startswith("paper_")]
     gallery = gallery_folder(examples)
@@ -321,9 +379,16 @@ def run_item(item: Item, out: Path, quick: bool, output_folder) -> dict:
     with output_folder(dest, force=dest.exists(), markers=(MARKER,)) as tmp:
         t0 = time.perf_counter()
         rows = item.compute(Path(tmp), quick)
-        info = {"name": item.name, "title": item.title, "paper_ref": item.paper_ref, "kind": item.kind,
-                "quick": bool(quick), "fingerprint": item.fingerprint(), "wall_time_s": time.perf_counter() - t0,
-                "rows": [asdict(r) for r in rows]}
+        info = {
+            "name": item.name,
+            "title": item.title,
+            "paper_ref": item.paper_ref,
+            "kind": item.kind,
+            "quick": bool(quick),
+            "fingerprint": item.fingerprint(),
+            "wall_time_s": time.perf_counter() - t0,
+            "rows": [asdict(r) for r in rows],
+        }
         write_json(Path(tmp) / MARKER, info)
     return info
 
@@ -358,33 +423,50 @@ def render_reproduce_report(out: Path, infos: list[dict], meta: dict) -> str:
             slip = r.get("slip")
             if slip:
                 used.add(slip)
-            body.append(f"<tr><td>{e(r['quantity'])}</td><td>{e(r['paper'] or '-')}</td>"
-                        f"<td class=\"n\">{e(_cell(r['ours']))}</td><td>{e(r['unit'])}</td>"
-                        f"<td>{_slip_link(slip)}</td></tr>")
-        table = ("<table><thead><tr><th>quantity</th><th>paper (as printed)</th><th>blastscale</th><th>unit</th>"
-                 f"<th>slip</th></tr></thead><tbody>{''.join(body)}</tbody></table>") if body else ""
+            body.append(
+                f"<tr><td>{e(r['quantity'])}</td><td>{e(r['paper'] or '-')}</td>"
+                f'<td class="n">{e(_cell(r["ours"]))}</td><td>{e(r["unit"])}</td>'
+                f"<td>{_slip_link(slip)}</td></tr>"
+            )
+        table = (
+            (
+                "<table><thead><tr><th>quantity</th><th>paper (as printed)</th><th>blastscale</th><th>unit</th>"
+                f"<th>slip</th></tr></thead><tbody>{''.join(body)}</tbody></table>"
+            )
+            if body
+            else ""
+        )
         folder = out / info["name"]
         figs = []
         if info.get("kind") == "figures":
             for png in sorted(folder.glob("*.png")):
                 data = base64.b64encode(png.read_bytes()).decode("ascii")
-                figs.append(f"<figure><img alt=\"{e(png.name)}\" src=\"data:image/png;base64,{data}\">"
-                            f"<figcaption>{e(png.name)}</figcaption></figure>")
-        link = (f"<p><a href=\"{e(info['name'])}/report.html\">the full report of this scenario</a></p>"
-                if (folder / "report.html").exists() else "")
+                figs.append(
+                    f'<figure><img alt="{e(png.name)}" src="data:image/png;base64,{data}">'
+                    f"<figcaption>{e(png.name)}</figcaption></figure>"
+                )
+        link = (
+            f'<p><a href="{e(info["name"])}/report.html">the full report of this scenario</a></p>'
+            if (folder / "report.html").exists()
+            else ""
+        )
         mode = " (quick run: shortened durations)" if info.get("quick") else ""
-        toc.append(f"<li><a href=\"#{e(info['name'])}\">{e(info['title'])}</a></li>")
-        parts.append(f"<section id=\"{e(info['name'])}\"><h2>{e(info['title'])}</h2><p class=\"muted\">"
-                     f"{e(info.get('paper_ref', ''))}; {info.get('wall_time_s', 0):.1f} s{e(mode)}</p>"
-                     f"{table}{link}{''.join(figs)}</section>")
-    slips = "".join(f"<li id=\"slip-{n}\">{e(slip_text[n])}</li>" for n in sorted(used))
+        toc.append(f'<li><a href="#{e(info["name"])}">{e(info["title"])}</a></li>')
+        parts.append(
+            f'<section id="{e(info["name"])}"><h2>{e(info["title"])}</h2><p class="muted">'
+            f"{e(info.get('paper_ref', ''))}; {info.get('wall_time_s', 0):.1f} s{e(mode)}</p>"
+            f"{table}{link}{''.join(figs)}</section>"
+        )
+    slips = "".join(f'<li id="slip-{n}">{e(slip_text[n])}</li>' for n in sorted(used))
     v = meta.get("versions", {})
-    return ("<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>blastscale reproduce</title>"
-            f"<style>{_CSS}</style></head><body><header><h1>The paper, reproduced by blastscale</h1>"
-            "<p class=\"muted\">Masi, Stefanou &amp; Maffi-Berthier, <i>Scaling laws for the rigid-body response of "
-            "masonry structures under blast loads</i>. Each item puts the paper's printed value beside "
-            "blastscale's; a slip number marks a known error of the printed paper (docs/paper_slips.md). "
-            f"blastscale {e(v.get('blastscale', ''))}, git {e(meta.get('git_commit') or '-')}, "
-            f"{e(meta.get('timestamp', ''))}.</p></header><nav><ol>{''.join(toc)}</ol></nav>"
-            f"<main>{''.join(parts)}<section id=\"slips\"><h2>Slips marked above</h2><ul>{slips}</ul></section>"
-            "</main></body></html>\n")
+    return (
+        '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>blastscale reproduce</title>'
+        f"<style>{_CSS}</style></head><body><header><h1>The paper, reproduced by blastscale</h1>"
+        '<p class="muted">Masi, Stefanou &amp; Maffi-Berthier, <i>Scaling laws for the rigid-body response of '
+        "masonry structures under blast loads</i>. Each item puts the paper's printed value beside "
+        "blastscale's; a slip number marks a known error of the printed paper (docs/paper_slips.md). "
+        f"blastscale {e(v.get('blastscale', ''))}, git {e(meta.get('git_commit') or '-')}, "
+        f"{e(meta.get('timestamp', ''))}.</p></header><nav><ol>{''.join(toc)}</ol></nav>"
+        f'<main>{"".join(parts)}<section id="slips"><h2>Slips marked above</h2><ul>{slips}</ul></section>'
+        "</main></body></html>\n"
+    )

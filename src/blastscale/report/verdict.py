@@ -120,13 +120,21 @@ def verdict(summary: dict, structure_kind: str = "block", circular: bool = False
             if p is not None and "collapsed" in p:
                 outs.append(f"the prototype {_state(p['collapsed'], structure_kind)} ({name})")
         if not ((summary.get("scenario") or {}).get("blast") or {}).get("charge_kg"):  # gravity alone
-            stab = [f"the structure {p['stability']} ({name})" for eng, name in (("3d", "3D"),)
-                    if ((summary.get(eng) or {}).get("prototype") or {}).get("stability")]
-            line = ("Verdict: gravity alone (no charge): nothing is scaled or compared"
-                    + (f"; {', '.join(stab or outs)}" if stab or outs else "") + ".")
+            stab = [
+                f"the structure {p['stability']} ({name})"
+                for eng, name in (("3d", "3D"),)
+                if ((summary.get(eng) or {}).get("prototype") or {}).get("stability")
+            ]
+            line = (
+                "Verdict: gravity alone (no charge): nothing is scaled or compared"
+                + (f"; {', '.join(stab or outs)}" if stab or outs else "")
+                + "."
+            )
             return {"similar": None, "reasons": [], "facts": stab or outs, "limits": [], "line": line}
-        line = ("Verdict: prototype only: no specimen is designed and nothing is compared (the scenario has no "
-                "[scale] table)" + (f"; {', '.join(outs)}" if outs else "") + ".")
+        line = (
+            "Verdict: prototype only: no specimen is designed and nothing is compared (the scenario has no "
+            "[scale] table)" + (f"; {', '.join(outs)}" if outs else "") + "."
+        )
         return {"similar": None, "reasons": [], "facts": outs, "limits": [], "line": line}
     for eng, name in (("planar", "planar"), ("3d", "3D")):
         sec = summary.get(eng)
@@ -134,8 +142,10 @@ def verdict(summary: dict, structure_kind: str = "block", circular: bool = False
             continue
         sim, p, m = sec["similarity"], sec.get("prototype") or {}, sec.get("model") or {}
         if sim.get("outcomes_agree") is False:
-            reasons.append(f"the outcomes disagree ({name}): the prototype {_state(p.get('collapsed'), structure_kind)}, "
-                           f"the model {_state(m.get('collapsed'), structure_kind)}")
+            reasons.append(
+                f"the outcomes disagree ({name}): the prototype {_state(p.get('collapsed'), structure_kind)}, "
+                f"the model {_state(m.get('collapsed'), structure_kind)}"
+            )
         elif "collapsed" in p:
             facts.append((_state(p["collapsed"], structure_kind), name))
         ratio = sim.get("first_peak_ratio", sim.get("top_first_peak_ratio"))
@@ -157,11 +167,15 @@ def verdict(summary: dict, structure_kind: str = "block", circular: bool = False
         horizons = [pt.get("horizon_prototype_s") for pt in (ens.get("points") or {}).values()]
         horizons = [h for h in horizons if isinstance(h, (int, float)) and math.isfinite(h)]
         if horizons:
-            limits.append(f"the ensembles spread beyond 5 % of the peak after {min(horizons):.3g} s: later, only "
-                          "envelopes and collapse probabilities are meaningful")
+            limits.append(
+                f"the ensembles spread beyond 5 % of the peak after {min(horizons):.3g} s: later, only "
+                "envelopes and collapse probabilities are meaningful"
+            )
     if circular:
-        limits.append("circular drums wobble chaotically: single trajectories compare up to the first peak"
-                      + ("" if ens else "; set simulation.ensemble_members >= 2 to compare the rest by ensembles"))
+        limits.append(
+            "circular drums wobble chaotically: single trajectories compare up to the first peak"
+            + ("" if ens else "; set simulation.ensemble_members >= 2 to compare the rest by ensembles")
+        )
     imp = (summary.get("design") or {}).get("impulsive")
     if isinstance(imp, dict) and imp.get("impulsive") is False:
         reasons.append("the load is not impulsive, so the general law does not guarantee similarity")
@@ -169,12 +183,17 @@ def verdict(summary: dict, structure_kind: str = "block", circular: bool = False
     plural = {"stands": "stand", "overturns": "overturn", "collapses": "collapse"}
     said = []
     for state in dict.fromkeys(st for st, _ in facts):
-        said.append(f"prototype and up-scaled model both {plural[state]} ("
-                    + ", ".join(n for st, n in facts if st == state) + ")")
+        said.append(
+            f"prototype and up-scaled model both {plural[state]} ("
+            + ", ".join(n for st, n in facts if st == state)
+            + ")"
+        )
     peaks = [r for r in ratios if not r.startswith("ensemble")]
     if peaks:
-        said.append(f"first-peak ratio{'s' if len(peaks) > 1 else ''} {' and '.join(peaks)}, within "
-                    f"{PEAK_TOLERANCE * 100:g} % of 1")
+        said.append(
+            f"first-peak ratio{'s' if len(peaks) > 1 else ''} {' and '.join(peaks)}, within "
+            f"{PEAK_TOLERANCE * 100:g} % of 1"
+        )
     said += [r for r in ratios if r.startswith("ensemble")]
     if reasons:
         line = "Verdict: NOT similar: " + "; ".join(reasons)
@@ -190,8 +209,7 @@ def verdict(summary: dict, structure_kind: str = "block", circular: bool = False
 def verdict_line(result) -> str:
     """The ``Verdict: ...`` line of a :class:`~blastscale.study.StudyResult`."""
     s = result.summary()
-    return verdict(s, result.scenario.structure.kind,
-                   getattr(result.structure, "section", None) == "circular")["line"]
+    return verdict(s, result.scenario.structure.kind, getattr(result.structure, "section", None) == "circular")["line"]
 
 
 #: Quantities of the specimen to measure: (section, key, words, dimension), dimension one of the
@@ -227,6 +245,12 @@ def specimen_rows(summary: dict, factors: dict) -> list:
         rows.append((f"{words} ({'planar' if eng == 'planar' else '3D'})", p.get(key), v * factors[dim] / size, unit))
     for name, pt in (((summary.get("3d") or {}).get("similarity") or {}).get("points") or {}).items():
         if isinstance(pt.get("first_peak_model_m"), (int, float)):
-            rows.append((f"{name}: first peak (3D)", pt.get("first_peak_prototype_m"),
-                         pt["first_peak_model_m"] * factors["displacement"] / 1e-3, "mm"))
+            rows.append(
+                (
+                    f"{name}: first peak (3D)",
+                    pt.get("first_peak_prototype_m"),
+                    pt["first_peak_model_m"] * factors["displacement"] / 1e-3,
+                    "mm",
+                )
+            )
     return rows

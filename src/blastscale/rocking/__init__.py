@@ -17,7 +17,13 @@
 """
 
 from .capacity import CapacityCurve, ModelCapacity, capacity_curve, model_capacity_curve
-from .critical import CriticalResult, charge_for_impulse, critical_charge, critical_charge_by_bisection, critical_standoff
+from .critical import (
+    CriticalResult,
+    charge_for_impulse,
+    critical_charge,
+    critical_charge_by_bisection,
+    critical_standoff,
+)
 from .encoding import PULSE_CODES, encode_pulse
 from .swing import (
     FirstSwing,

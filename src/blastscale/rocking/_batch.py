@@ -30,8 +30,27 @@ MIN_CASES_PER_THREAD = 16
 GROUPS_PER_THREAD = 4
 
 
-def solve_batch(alpha, e, th0, w0, tau_end, kind, par, tab_t, tab_f, tab_off, tau_eval, rtol, atol, w_rest,
-                max_impacts, stop_at_overturn, max_steps, record, threads=None):
+def solve_batch(
+    alpha,
+    e,
+    th0,
+    w0,
+    tau_end,
+    kind,
+    par,
+    tab_t,
+    tab_f,
+    tab_off,
+    tau_eval,
+    rtol,
+    atol,
+    w_rest,
+    max_impacts,
+    stop_at_overturn,
+    max_steps,
+    record,
+    threads=None,
+):
     """Solve n encoded cases (arrays of length n, ``par`` (n, PAR_SIZE), tabulated pulses at
     ``tab_off[i]:tab_off[i+1]`` of ``tab_t``/``tab_f``, ``tau_eval`` (n, m); the arguments of
     :func:`._kernel.solve_case` otherwise) on up to ``threads`` threads.
@@ -47,12 +66,37 @@ def solve_batch(alpha, e, th0, w0, tau_end, kind, par, tab_t, tab_f, tab_off, ta
     th_out = np.empty((n, m))
     w_out = np.empty((n, m))
     nt = min(resolve_threads(threads), n // MIN_CASES_PER_THREAD)
-    groups = [np.arange(n, dtype=np.int64)] if nt <= 1 else \
-        [np.arange(k, n, GROUPS_PER_THREAD * nt, dtype=np.int64) for k in range(GROUPS_PER_THREAD * nt)]
+    groups = (
+        [np.arange(n, dtype=np.int64)]
+        if nt <= 1
+        else [np.arange(k, n, GROUPS_PER_THREAD * nt, dtype=np.int64) for k in range(GROUPS_PER_THREAD * nt)]
+    )
 
     def run(idx):
-        K.solve_into(idx, alpha, e, th0, w0, tau_end, kind, par, tab_t, tab_f, tab_off, tau_eval, rtol, atol, w_rest,
-                     max_impacts, stop_at_overturn, max_steps, record, summ, th_out, w_out)
+        K.solve_into(
+            idx,
+            alpha,
+            e,
+            th0,
+            w0,
+            tau_end,
+            kind,
+            par,
+            tab_t,
+            tab_f,
+            tab_off,
+            tau_eval,
+            rtol,
+            atol,
+            w_rest,
+            max_impacts,
+            stop_at_overturn,
+            max_steps,
+            record,
+            summ,
+            th_out,
+            w_out,
+        )
 
     map_threads(run, groups, max(1, nt))
     return summ, th_out, w_out

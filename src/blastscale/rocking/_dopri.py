@@ -85,7 +85,12 @@ def dopri_step(tau, th, w, f1a, f1b, h, s, alpha, kind, par, tab_t, tab_f, K):
         tau + _C3 * h,
         th + h * (_A31 * K[0, 0] + _A32 * K[1, 0]),
         w + h * (_A31 * K[0, 1] + _A32 * K[1, 1]),
-        s, alpha, kind, par, tab_t, tab_f,
+        s,
+        alpha,
+        kind,
+        par,
+        tab_t,
+        tab_f,
     )
     K[2, 0] = a
     K[2, 1] = b
@@ -93,7 +98,12 @@ def dopri_step(tau, th, w, f1a, f1b, h, s, alpha, kind, par, tab_t, tab_f, K):
         tau + _C4 * h,
         th + h * (_A41 * K[0, 0] + _A42 * K[1, 0] + _A43 * K[2, 0]),
         w + h * (_A41 * K[0, 1] + _A42 * K[1, 1] + _A43 * K[2, 1]),
-        s, alpha, kind, par, tab_t, tab_f,
+        s,
+        alpha,
+        kind,
+        par,
+        tab_t,
+        tab_f,
     )
     K[3, 0] = a
     K[3, 1] = b
@@ -101,7 +111,12 @@ def dopri_step(tau, th, w, f1a, f1b, h, s, alpha, kind, par, tab_t, tab_f, K):
         tau + _C5 * h,
         th + h * (_A51 * K[0, 0] + _A52 * K[1, 0] + _A53 * K[2, 0] + _A54 * K[3, 0]),
         w + h * (_A51 * K[0, 1] + _A52 * K[1, 1] + _A53 * K[2, 1] + _A54 * K[3, 1]),
-        s, alpha, kind, par, tab_t, tab_f,
+        s,
+        alpha,
+        kind,
+        par,
+        tab_t,
+        tab_f,
     )
     K[4, 0] = a
     K[4, 1] = b
@@ -109,7 +124,12 @@ def dopri_step(tau, th, w, f1a, f1b, h, s, alpha, kind, par, tab_t, tab_f, K):
         tau + h,
         th + h * (_A61 * K[0, 0] + _A62 * K[1, 0] + _A63 * K[2, 0] + _A64 * K[3, 0] + _A65 * K[4, 0]),
         w + h * (_A61 * K[0, 1] + _A62 * K[1, 1] + _A63 * K[2, 1] + _A64 * K[3, 1] + _A65 * K[4, 1]),
-        s, alpha, kind, par, tab_t, tab_f,
+        s,
+        alpha,
+        kind,
+        par,
+        tab_t,
+        tab_f,
     )
     K[5, 0] = a
     K[5, 1] = b

@@ -287,8 +287,9 @@ def solve_case(
 
         # an event ends the step at x_ev
         if ev == EV_IMPACT:
-            te, w_before, w_after, w, s, resting = impact(tau, th, w, f1a, f1b, x_ev, hstep, taun, wn, s, e, w_rest,
-                                                          alpha, kind, par, tab_t, tab_f, K)
+            te, w_before, w_after, w, s, resting = impact(
+                tau, th, w, f1a, f1b, x_ev, hstep, taun, wn, s, e, w_rest, alpha, kind, par, tab_t, tab_f, K
+            )
             imp, nimp = record_impact(imp, nimp, summ, te, w_before, w_after)
             if record:
                 hist, nh = record_row(hist, nh, te, 0.0, w_before)
@@ -365,8 +366,23 @@ def solve_into(
         te = tau_eval[i].copy()
         pr = par[i].copy()
         r = solve_case(
-            alpha[i], e[i], th0[i], w0[i], tau_end[i], kind[i], pr, tt, tf, te,
-            rtol, atol, w_rest, max_impacts, stop_at_overturn, max_steps, record,
+            alpha[i],
+            e[i],
+            th0[i],
+            w0[i],
+            tau_end[i],
+            kind[i],
+            pr,
+            tt,
+            tf,
+            te,
+            rtol,
+            atol,
+            w_rest,
+            max_impacts,
+            stop_at_overturn,
+            max_steps,
+            record,
         )
         for k in range(N_SUMMARY):  # plain loops: row slice assignments are slow to compile
             summ[i, k] = r[0][k]

@@ -101,8 +101,17 @@ def capacity_curve(
         raise BlastscaleInputError(f"standoffs must be a non-empty 1-D list of stand-offs [m], got shape {R.shape}")
     system = as_rocking_system(body, gravity, restitution)
     t0 = time.perf_counter()
-    W, _, _, nev, _ = _critical_arrays(system, "charge", R, pulse_shape, blast_model, extrapolate, solver or DEFAULT_SOLVER,
-                                       xtol_rel, load_model=load_model)
+    W, _, _, nev, _ = _critical_arrays(
+        system,
+        "charge",
+        R,
+        pulse_shape,
+        blast_model,
+        extrapolate,
+        solver or DEFAULT_SOLVER,
+        xtol_rel,
+        load_model=load_model,
+    )
     dt = time.perf_counter() - t0
     _check_extrapolated(blast_model, R / np.cbrt(W), extrapolate)
     return CapacityCurve(R, W, nev, dt, pulse_shape, _model_name(blast_model))
@@ -176,11 +185,21 @@ def model_capacity_curve(
     R = np.atleast_1d(check_positive("standoffs", standoffs, "m")).astype(float)
     f = scaling_factors(lam, gam, sig)  # no charge, no lambda_Z: the specimen system needs lambda, gamma, varsigma
     spec = specimen_system(f, as_rocking_system(body, gravity, restitution), load_model)  # scaled once, there
-    curve = capacity_curve(spec.structure, lam * R, pulse_shape=pulse_shape, blast_model=blast_model, solver=solver,
-                           xtol_rel=xtol_rel, extrapolate=extrapolate, load_model=spec.load_model)
+    curve = capacity_curve(
+        spec.structure,
+        lam * R,
+        pulse_shape=pulse_shape,
+        blast_model=blast_model,
+        solver=solver,
+        xtol_rel=xtol_rel,
+        extrapolate=extrapolate,
+        load_model=spec.load_model,
+    )
     ok = np.isfinite(curve.critical_charge_kg)
     up = np.full(R.size, np.nan)
     if np.any(ok):
-        im = blast_parameters(curve.critical_charge_kg[ok], lam * R[ok], blast_model, extrapolate=extrapolate).reflected_impulse
+        im = blast_parameters(
+            curve.critical_charge_kg[ok], lam * R[ok], blast_model, extrapolate=extrapolate
+        ).reflected_impulse
         up[ok] = charge_for_impulse(im / f.impulse, R[ok], blast_model, extrapolate=extrapolate)
     return ModelCapacity(curve, up, lam, gam, sig)

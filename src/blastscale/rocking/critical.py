@@ -109,8 +109,9 @@ def charge_for_impulse(impulse, standoff, blast_model=DEFAULT_BLAST_MODEL, *, ex
     return W.reshape(np.shape(np.broadcast_arrays(impulse, standoff)[0]))
 
 
-def _critical_arrays(system, searched, fixed, pulse_shape, blast_model, extrapolate, solver, xtol_rel, guess=None,
-                     load_model=None):
+def _critical_arrays(
+    system, searched, fixed, pulse_shape, blast_model, extrapolate, solver, xtol_rel, guess=None, load_model=None
+):
     """Vectorised critical charge (``searched="charge"``, ``fixed`` stand-offs [m]) or stand-off
     (``"standoff"``, ``fixed`` charges [kg]). Returns (x_critical, bracket_lo, bracket_hi,
     evaluations, status) arrays; x is the survive side of the final bracket."""
@@ -126,8 +127,15 @@ def _critical_arrays(system, searched, fixed, pulse_shape, blast_model, extrapol
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         if guess is None:
-            u0 = _invert_impulse(system.critical_impulse, blast_model, by_charge, fixed, ulo if by_charge else -uhi,
-                                 uhi if by_charge else -ulo, extrapolate)
+            u0 = _invert_impulse(
+                system.critical_impulse,
+                blast_model,
+                by_charge,
+                fixed,
+                ulo if by_charge else -uhi,
+                uhi if by_charge else -ulo,
+                extrapolate,
+            )
             u0 = u0 if by_charge else -u0
         else:
             u0 = np.full(fixed.size, math.log(guess) if by_charge else -math.log(guess))
@@ -159,7 +167,9 @@ def _check_extrapolated(blast_model, values_z, extrapolate):
         if np.any((z < zlo) | (z > zhi)):
             warnings.warn(
                 f"critical scenarios at Z outside the {_model_name(blast_model)} fits' range [{zlo:g}, {zhi:g}] m/kg^(1/3): "
-                "extrapolated", ExtrapolationWarning, stacklevel=3,
+                "extrapolated",
+                ExtrapolationWarning,
+                stacklevel=3,
             )
 
 
@@ -269,8 +279,20 @@ def critical_charge(
     R = float(check_positive("standoff", standoff, "m"))
     if guess is not None:
         check_positive("guess", guess, "kg")
-    return _critical(body, "charge", R, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate,
-                     load_model)
+    return _critical(
+        body,
+        "charge",
+        R,
+        pulse_shape,
+        blast_model,
+        gravity,
+        restitution,
+        solver,
+        guess,
+        xtol_rel,
+        extrapolate,
+        load_model,
+    )
 
 
 def critical_standoff(
@@ -295,17 +317,49 @@ def critical_standoff(
     W = float(check_positive("charge", charge, "kg"))
     if guess is not None:
         check_positive("guess", guess, "m")
-    return _critical(body, "standoff", W, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate,
-                     load_model)
+    return _critical(
+        body,
+        "standoff",
+        W,
+        pulse_shape,
+        blast_model,
+        gravity,
+        restitution,
+        solver,
+        guess,
+        xtol_rel,
+        extrapolate,
+        load_model,
+    )
 
 
-def _critical(body, searched, fixed, pulse_shape, blast_model, gravity, restitution, solver, guess, xtol_rel, extrapolate,
-              load_model=None):
+def _critical(
+    body,
+    searched,
+    fixed,
+    pulse_shape,
+    blast_model,
+    gravity,
+    restitution,
+    solver,
+    guess,
+    xtol_rel,
+    extrapolate,
+    load_model=None,
+):
     system = as_rocking_system(body, gravity, restitution)
     by_charge = searched == "charge"
     x, blo, bhi, nev, status = _critical_arrays(
-        system, searched, fixed, pulse_shape, blast_model, extrapolate, solver or DEFAULT_SOLVER, xtol_rel, guess,
-        load_model
+        system,
+        searched,
+        fixed,
+        pulse_shape,
+        blast_model,
+        extrapolate,
+        solver or DEFAULT_SOLVER,
+        xtol_rel,
+        guess,
+        load_model,
     )
     if status[0] != 0:
         zlo, zhi = _z_range(blast_model, extrapolate)
@@ -319,8 +373,17 @@ def _critical(body, searched, fixed, pulse_shape, blast_model, gravity, restitut
         )
     W, R = (float(x[0]), fixed) if by_charge else (fixed, float(x[0]))
     _check_extrapolated(blast_model, [R / np.cbrt(W)], extrapolate)
-    return CriticalResult(W, R, searched, pulse_shape, _model_name(blast_model), xtol_rel, int(nev[0]),
-                          (float(blo[0]), float(bhi[0])), _record(blast_model, load_model))
+    return CriticalResult(
+        W,
+        R,
+        searched,
+        pulse_shape,
+        _model_name(blast_model),
+        xtol_rel,
+        int(nev[0]),
+        (float(blo[0]), float(bhi[0])),
+        _record(blast_model, load_model),
+    )
 
 
 def _record(blast_model, load_model) -> dict:
@@ -331,10 +394,19 @@ def _record(blast_model, load_model) -> dict:
     return load_model_record(_model_name(blast_model), burst_of(blast_model), load_model)
 
 
-def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse_shape: str = "friedlander",
-                                 blast_model=DEFAULT_BLAST_MODEL, rel: float = 1e-8, solver: RockingSolver | None = None,
-                                 gravity: float | None = None, restitution: float | None = None,
-                                 load_model=None) -> float:
+def critical_charge_by_bisection(
+    body,
+    standoff: float,
+    guess: float,
+    *,
+    pulse_shape: str = "friedlander",
+    blast_model=DEFAULT_BLAST_MODEL,
+    rel: float = 1e-8,
+    solver: RockingSolver | None = None,
+    gravity: float | None = None,
+    restitution: float | None = None,
+    load_model=None,
+) -> float:
     """The slow reference: critical charge [kg] by bisection in ln W on full simulations (to rest:
     ``pulse + 200 / p`` of motion, every impact, no early stop), independent of the first-swing
     criterion. The bracket ``[guess / 1.5, 1.5 guess]`` [kg], kept inside the blast model's valid
@@ -354,7 +426,9 @@ def critical_charge_by_bisection(body, standoff: float, guess: float, *, pulse_s
     lo = max(guess / 1.5, (standoff / zhi) ** 3 * (1.0 + 1e-12))  # the charges whose Z lies in the fits
     hi = min(guess * 1.5, (standoff / zlo) ** 3 * (1.0 - 1e-12))
     if over(lo) or not over(hi):
-        raise BlastscaleInputError(f"guess = {guess:.6g} kg: [guess/1.5, 1.5 guess] does not straddle the critical charge")
+        raise BlastscaleInputError(
+            f"guess = {guess:.6g} kg: [guess/1.5, 1.5 guess] does not straddle the critical charge"
+        )
     while math.log(hi / lo) > rel:
         mid = math.sqrt(lo * hi)
         lo, hi = (lo, mid) if over(mid) else (mid, hi)

@@ -101,8 +101,9 @@ def encode_pulse(pulse: Pulse, system: RockingSystem, theta0: float = 0.0):
     )
 
 
-def encode_blast_batch(alpha, frequency, load_ratio, blast, pulse_shape: str, load_model=None, *,
-                       extrapolate: bool = False):
+def encode_blast_batch(
+    alpha, frequency, load_ratio, blast, pulse_shape: str, load_model=None, *, extrapolate: bool = False
+):
     """Kernel form of n front-face blast pulses at once (vectorised :func:`encode_pulse` of
     :func:`~blastscale.blast.load_model.front_face_pulse`): the reflected pulse of shape
     ``pulse_shape`` of every case of ``blast`` (arrays), cleared and followed by the negative phase

@@ -100,7 +100,9 @@ def pi_diagram(
     else:
         P = np.atleast_1d(check_positive("peak pressure", peak_pressures, "Pa")).astype(float)
         if P.ndim != 1 or P.size == 0:
-            raise BlastscaleInputError(f"peak_pressures must be a non-empty 1-D list of pressures [Pa], got shape {P.shape}")
+            raise BlastscaleInputError(
+                f"peak_pressures must be a non-empty 1-D list of pressures [Pa], got shape {P.shape}"
+            )
         if np.any(P <= p_up):
             raise BlastscaleInputError(
                 f"peak pressure = {float(P[P <= p_up][0]):.6g} Pa is out of range: must exceed the uplift "
@@ -111,7 +113,9 @@ def pi_diagram(
     elif shape == "friedlander":
         kind, dur_per_impulse, d = PULSE_CODES[shape], 1.0 / (P * float(friedlander_impulse_ratio(decay))), float(decay)
     else:
-        raise BlastscaleInputError(f"P-I pulse shape = {shape!r} is not known: valid values are triangular, friedlander")
+        raise BlastscaleInputError(
+            f"P-I pulse shape = {shape!r} is not known: valid values are triangular, friedlander"
+        )
     pf, q = system.frequency_parameter, system.load_ratio_per_pascal
 
     def evaluate(idx, u):
@@ -121,8 +125,12 @@ def pi_diagram(
         par[:, 1] = pf * np.exp(u) * dur_per_impulse[idx]
         par[:, 2] = d
         return _pulse_phase(
-            solver, np.full(m, system.alpha), np.full(m, system.coefficient_of_restitution), np.zeros(m),
-            np.full(m, kind, dtype=np.int64), par,
+            solver,
+            np.full(m, system.alpha),
+            np.full(m, system.coefficient_of_restitution),
+            np.zeros(m),
+            np.full(m, kind, dtype=np.int64),
+            par,
         ).margin
 
     u0 = np.full(P.size, math.log(i_imp))

@@ -150,18 +150,37 @@ class RockingSolver:
         """
         system = as_rocking_system(body, gravity, restitution)
         dur = float(check_positive("duration", duration, "s"))
-        th0 = float(check_range("initial angle theta0", theta0, -math.pi / 2, math.pi / 2, "rad", lo_open=True, hi_open=True))
+        th0 = float(
+            check_range("initial angle theta0", theta0, -math.pi / 2, math.pi / 2, "rad", lo_open=True, hi_open=True)
+        )
         om0 = float(check_finite("initial angular velocity", theta_dot0, "rad/s"))
         p = system.frequency_parameter
         tev = self._check_t_eval(t_eval, dur)
-        kind, par, tt, tf, dw = (0, np.zeros(PAR_SIZE), np.zeros(0), np.zeros(0), 0.0) if pulse is None else encode_pulse(pulse, system, th0)
+        kind, par, tt, tf, dw = (
+            (0, np.zeros(PAR_SIZE), np.zeros(0), np.zeros(0), 0.0)
+            if pulse is None
+            else encode_pulse(pulse, system, th0)
+        )
         mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
         e = system.coefficient_of_restitution
         summ, the, we, hist, imp, pk = K.solve_case(
-            system.alpha, e, th0, om0 / p + dw, dur * p, kind, par, tt, tf,
+            system.alpha,
+            e,
+            th0,
+            om0 / p + dw,
+            dur * p,
+            kind,
+            par,
+            tt,
+            tf,
             (tev if tev is not None else np.zeros(0)) * p,
-            float(self.rtol), float(self.atol), float(self.rest_velocity), mi, bool(stop_at_overturn),
-            int(self.max_steps), True,
+            float(self.rtol),
+            float(self.atol),
+            float(self.rest_velocity),
+            mi,
+            bool(stop_at_overturn),
+            int(self.max_steps),
+            True,
         )
         self._check_status(summ[K.S_STATUS])
         return RockingResult(
@@ -223,7 +242,9 @@ class RockingSolver:
             raise BlastscaleInputError("t_eval is required for a batch (the common sampling times)")
         blist = list(bodies) if isinstance(bodies, (list, tuple)) else [bodies]
         plist = list(pulses) if isinstance(pulses, (list, tuple)) else [pulses]
-        th0 = np.atleast_1d(check_range("initial angle theta0", theta0, -math.pi / 2, math.pi / 2, "rad", lo_open=True, hi_open=True))
+        th0 = np.atleast_1d(
+            check_range("initial angle theta0", theta0, -math.pi / 2, math.pi / 2, "rad", lo_open=True, hi_open=True)
+        )
         om0 = np.atleast_1d(check_finite("initial angular velocity", theta_dot0, "rad/s"))
         if th0.ndim != 1 or om0.ndim != 1:
             raise BlastscaleInputError(
@@ -267,10 +288,24 @@ class RockingSolver:
         tab_f = np.concatenate(tabs_f) if off[-1] else np.zeros(0)
         mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
         summ, th, w = solve_batch(
-            alpha, e, th0, w0, dur * pvec, kinds, par, tab_t, tab_f, off,
+            alpha,
+            e,
+            th0,
+            w0,
+            dur * pvec,
+            kinds,
+            par,
+            tab_t,
+            tab_f,
+            off,
             np.ascontiguousarray(tev[None, :] * pvec[:, None]),
-            float(self.rtol), float(self.atol), float(self.rest_velocity), mi, bool(stop_at_overturn),
-            int(self.max_steps), False,  # record=False passed from Python (a plain bool): a literal
+            float(self.rtol),
+            float(self.atol),
+            float(self.rest_velocity),
+            mi,
+            bool(stop_at_overturn),
+            int(self.max_steps),
+            False,  # record=False passed from Python (a plain bool): a literal
             # False inside the kernel would compile a second specialisation of solve_case (~3 s)
             self.threads,
         )

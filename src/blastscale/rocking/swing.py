@@ -203,10 +203,24 @@ def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab
     off = np.zeros(n + 1, dtype=np.int64) if off is None else off
     tau_end = kernel_pulse_end(kind, par, tab_t, off)
     summ, _, _ = solve_batch(
-        np.ascontiguousarray(alpha, dtype=float), np.ascontiguousarray(e, dtype=float), np.zeros(n),
-        np.ascontiguousarray(w0, dtype=float), np.ascontiguousarray(tau_end), kind.astype(np.int64),
-        np.ascontiguousarray(par), tab_t, tab_f, off, np.empty((n, 0)),
-        float(solver.rtol), float(solver.atol), float(solver.rest_velocity), -1, True, int(solver.max_steps), False,
+        np.ascontiguousarray(alpha, dtype=float),
+        np.ascontiguousarray(e, dtype=float),
+        np.zeros(n),
+        np.ascontiguousarray(w0, dtype=float),
+        np.ascontiguousarray(tau_end),
+        kind.astype(np.int64),
+        np.ascontiguousarray(par),
+        tab_t,
+        tab_f,
+        off,
+        np.empty((n, 0)),
+        float(solver.rtol),
+        float(solver.atol),
+        float(solver.rest_velocity),
+        -1,
+        True,
+        int(solver.max_steps),
+        False,
         solver.threads,
     )
     bad = summ[:, K.S_STATUS] != 0
@@ -219,7 +233,9 @@ def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab
     return FirstSwing(over, np.where(over, 0.5 * math.pi, peak), mu)
 
 
-def overturn_margin(body, pulse: Pulse, *, solver: RockingSolver | None = None, gravity=None, restitution=None) -> float:
+def overturn_margin(
+    body, pulse: Pulse, *, solver: RockingSolver | None = None, gravity=None, restitution=None
+) -> float:
     """First-swing overturning margin mu [-] of ``body`` at rest under ``pulse`` (module docstring).
 
     Parameters
@@ -242,8 +258,15 @@ def overturn_margin(body, pulse: Pulse, *, solver: RockingSolver | None = None, 
     kind, par, tt, tf, dw = encode_pulse(pulse, system)
     off = np.array([0, tt.size], dtype=np.int64)
     fs = _pulse_phase(
-        solver or DEFAULT_SOLVER, np.array([system.alpha]), np.array([system.coefficient_of_restitution]),
-        np.array([dw]), np.array([kind]), par[None, :], tt, tf, off,
+        solver or DEFAULT_SOLVER,
+        np.array([system.alpha]),
+        np.array([system.coefficient_of_restitution]),
+        np.array([dw]),
+        np.array([kind]),
+        par[None, :],
+        tt,
+        tf,
+        off,
     )
     return float(fs.margin[0])
 
@@ -252,15 +275,26 @@ def _system_arrays(systems, n: int):
     """(alpha, e, p, q) arrays of length n from one RockingSystem (broadcast) or a sequence of n."""
     if isinstance(systems, RockingSystem):
         systems = [systems]
-    vals = np.array([(s.alpha, s.coefficient_of_restitution, s.frequency_parameter, s.load_ratio_per_pascal)
-                     for s in systems])
+    vals = np.array(
+        [(s.alpha, s.coefficient_of_restitution, s.frequency_parameter, s.load_ratio_per_pascal) for s in systems]
+    )
     if len(systems) not in (1, n):
         raise BlastscaleInputError(f"systems: {len(systems)} bodies for {n} cases (give 1 or {n})")
     return tuple(np.broadcast_to(vals[:, j], (n,)) for j in range(4))
 
 
-def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse_shape: str = "friedlander", *,
-                      solver: RockingSolver | None = None, load_model=None, extrapolate: bool = False) -> FirstSwing:
+def first_swing_blast(
+    alpha,
+    restitution,
+    frequency,
+    load_ratio,
+    blast,
+    pulse_shape: str = "friedlander",
+    *,
+    solver: RockingSolver | None = None,
+    load_model=None,
+    extrapolate: bool = False,
+) -> FirstSwing:
     """:class:`FirstSwing` of n bodies given as arrays under n reflected blast pulses (vectorised:
     the pulse phases in one compiled kernel call, the first free swings in numpy).
 
@@ -284,14 +318,26 @@ def first_swing_blast(alpha, restitution, frequency, load_ratio, blast, pulse_sh
     """
     check_pulse_shape(pulse_shape)
     n = np.size(blast.reflected_impulse)
-    a, e, p, q = (np.broadcast_to(np.asarray(x, dtype=float), (n,)) for x in (alpha, restitution, frequency, load_ratio))
-    kind, par, tab_t, tab_f, off, w0 = encode_blast_batch(a, p, q, blast, pulse_shape, load_model,
-                                                          extrapolate=extrapolate)
+    a, e, p, q = (
+        np.broadcast_to(np.asarray(x, dtype=float), (n,)) for x in (alpha, restitution, frequency, load_ratio)
+    )
+    kind, par, tab_t, tab_f, off, w0 = encode_blast_batch(
+        a, p, q, blast, pulse_shape, load_model, extrapolate=extrapolate
+    )
     return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par, tab_t, tab_f, off)
 
 
-def first_swing(systems, charge, standoff, *, pulse_shape: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
-                extrapolate: bool = False, solver: RockingSolver | None = None, load_model=None) -> FirstSwing:
+def first_swing(
+    systems,
+    charge,
+    standoff,
+    *,
+    pulse_shape: str = "friedlander",
+    blast_model=DEFAULT_BLAST_MODEL,
+    extrapolate: bool = False,
+    solver: RockingSolver | None = None,
+    load_model=None,
+) -> FirstSwing:
     """Outcome and largest rotation of each body at rest under the reflected pulse of
     ``charge`` [kg TNT] at ``standoff`` [m], at any time (first-swing energy criterion and peak;
     arrays of n cases, vectorised).
@@ -311,8 +357,10 @@ def first_swing(systems, charge, standoff, *, pulse_shape: str = "friedlander", 
         ``collapsed`` (n,), ``max_rotation`` (n,) [rad] (pi/2 where it overturns), ``margin``.
     """
     check_pulse_shape(pulse_shape)
-    W, R = np.broadcast_arrays(np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
-                               np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float))
+    W, R = np.broadcast_arrays(
+        np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
+        np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float),
+    )
     return _first_swing(systems, W.ravel(), R.ravel(), pulse_shape, blast_model, extrapolate, solver, load_model)
 
 
@@ -324,8 +372,17 @@ def _first_swing(systems, W, R, pulse_shape, blast_model, extrapolate, solver, l
     return first_swing_blast(a, e, p, q, bp, pulse_shape, solver=solver, load_model=load_model, extrapolate=extrapolate)
 
 
-def overturns(systems, charge, standoff, *, pulse_shape: str = "friedlander", blast_model=DEFAULT_BLAST_MODEL,
-              extrapolate: bool = False, solver: RockingSolver | None = None, load_model=None) -> np.ndarray:
+def overturns(
+    systems,
+    charge,
+    standoff,
+    *,
+    pulse_shape: str = "friedlander",
+    blast_model=DEFAULT_BLAST_MODEL,
+    extrapolate: bool = False,
+    solver: RockingSolver | None = None,
+    load_model=None,
+) -> np.ndarray:
     """Whether each body overturns, at any time, under the reflected pulse of ``charge`` [kg TNT]
     at ``standoff`` [m] (first-swing energy criterion; arrays of n cases, vectorised; the
     ``collapsed`` of :func:`first_swing`).
@@ -334,5 +391,13 @@ def overturns(systems, charge, standoff, *, pulse_shape: str = "friedlander", bl
     -------
     ndarray of bool, shape (n,)
     """
-    return first_swing(systems, charge, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate,
-                       solver=solver, load_model=load_model).collapsed
+    return first_swing(
+        systems,
+        charge,
+        standoff,
+        pulse_shape=pulse_shape,
+        blast_model=blast_model,
+        extrapolate=extrapolate,
+        solver=solver,
+        load_model=load_model,
+    ).collapsed

@@ -143,9 +143,15 @@ class RockingSystem:
         lam = float(check_positive("scale", factors.length))
         gam = float(check_positive("density ratio", factors.density))
         sig = float(check_positive("gravity ratio", factors.gravity))
-        return replace(self, mass=self.mass * gam * lam**3, inertia_pivot=self.inertia_pivot * gam * lam**5,
-                       radius=self.radius * lam, loaded_area=self.loaded_area * lam**2, lever_arm=self.lever_arm * lam,
-                       gravity=self.gravity * sig)
+        return replace(
+            self,
+            mass=self.mass * gam * lam**3,
+            inertia_pivot=self.inertia_pivot * gam * lam**5,
+            radius=self.radius * lam,
+            loaded_area=self.loaded_area * lam**2,
+            lever_arm=self.lever_arm * lam,
+            gravity=self.gravity * sig,
+        )
 
     # derived quantities ----------------------------------------------------
     @property

@@ -45,5 +45,19 @@ from .library import TEMPLATE_KINDS, library_names, library_text, template_text
 from .scenario import Scenario
 from .specs import BlastSpec, BlockSpec, ColumnSpec, ContactSpec, ScaleSpec, SimulationSpec, parse_ratio
 
-__all__ = ["Scenario", "load_scenario", "library_names", "library_text", "template_text", "TEMPLATE_KINDS", "parse_ratio", "to_toml", "BlockSpec", "ColumnSpec", "BlastSpec",
-           "ScaleSpec", "SimulationSpec", "ContactSpec"]
+__all__ = [
+    "Scenario",
+    "load_scenario",
+    "library_names",
+    "library_text",
+    "template_text",
+    "TEMPLATE_KINDS",
+    "parse_ratio",
+    "to_toml",
+    "BlockSpec",
+    "ColumnSpec",
+    "BlastSpec",
+    "ScaleSpec",
+    "SimulationSpec",
+    "ContactSpec",
+]

@@ -53,7 +53,11 @@ def _from_text(text: str, source: str, folder: "Path | None" = None) -> Scenario
     except tomllib.TOMLDecodeError as exc:
         raise BlastscaleInputError(f"{source}: TOML syntax error: {exc}") from None
     st = data.get("structure")
-    if folder is not None and isinstance(st, dict) and isinstance(st.get("file"), str) \
-            and not Path(st["file"]).is_absolute():  # a block-model file is relative to its scenario file
+    if (
+        folder is not None
+        and isinstance(st, dict)
+        and isinstance(st.get("file"), str)
+        and not Path(st["file"]).is_absolute()
+    ):  # a block-model file is relative to its scenario file
         data["structure"] = {**st, "file": str(folder / st["file"])}
     return Scenario.from_dict(data, source=source)

@@ -31,8 +31,9 @@ class ExplosiveSpec(BaseModel):
     impulse_factor: float = Field(gt=0, le=10, description="TNT-equivalent mass per unit mass, impulse [-]")
     density_kg_m3: Optional[float] = Field(None, gt=0, le=25000, description="Density [kg/m^3]")
     source: str = Field("user-defined", description="Where the factors come from")
-    min_charge_kg: float = Field(0.0, ge=0, le=10000, description="Smallest charge that detonates reliably [kg] "
-                                 "(0: not stated)")
+    min_charge_kg: float = Field(
+        0.0, ge=0, le=10000, description="Smallest charge that detonates reliably [kg] (0: not stated)"
+    )
 
 
 class LabSpec(BaseModel):
@@ -42,36 +43,60 @@ class LabSpec(BaseModel):
     model_config = _CONFIG
     explosive: str = Field("tnt", description="The explosive of the specimen's charge (library or [lab.explosives])")
     explosives: dict[str, ExplosiveSpec] = Field(default_factory=dict, description="User-defined explosives")
-    initiator: str = Field(DEFAULT_INITIATOR, description="The initiator (detonator) by name: rp-80 (Teledyne RISI "
-                           "EBW, 80 mg PETN + 123 mg RDX) or none")
-    initiator_tnt_kg: Optional[float] = Field(None, ge=0, le=1000, description="The initiator's TNT-equivalent mass "
-                                              "[kg] (default: the named initiator's, impulse basis)")
-    initiator_max_fraction: float = Field(0.5, gt=0, le=1, description="Largest share of the charge's TNT-equivalent "
-                                          "impulse the initiator may carry; designs above it are rejected [-]")
-    charge_min_kg: float = Field(0.0, ge=0, le=10000, description="Smallest mass of the explosive the lab can "
-                                 "make and fire [kg]")
+    initiator: str = Field(
+        DEFAULT_INITIATOR,
+        description="The initiator (detonator) by name: rp-80 (Teledyne RISI EBW, 80 mg PETN + 123 mg RDX) or none",
+    )
+    initiator_tnt_kg: Optional[float] = Field(
+        None,
+        ge=0,
+        le=1000,
+        description="The initiator's TNT-equivalent mass [kg] (default: the named initiator's, impulse basis)",
+    )
+    initiator_max_fraction: float = Field(
+        0.5,
+        gt=0,
+        le=1,
+        description="Largest share of the charge's TNT-equivalent "
+        "impulse the initiator may carry; designs above it are rejected [-]",
+    )
+    charge_min_kg: float = Field(
+        0.0, ge=0, le=10000, description="Smallest mass of the explosive the lab can make and fire [kg]"
+    )
     charge_max_kg: float = Field(1.0, gt=0, le=10000, description="Largest mass of the explosive the lab may fire [kg]")
     specimen_max_height_m: float = Field(2.0, gt=0, le=1000, description="Tallest specimen the lab can build [m]")
     specimen_max_mass_kg: float = Field(500.0, gt=0, le=1e7, description="Heaviest specimen the lab can handle [kg]")
-    materials: Optional[list[str]] = Field(None, description="Candidate specimen materials from the density library "
-                                           "(\"same\": the prototype's); default: all of them")
-    charge_tolerance: float = Field(0.02, ge=0, le=1, description="Charge mass, one standard deviation, relative "
-                                    "(lognormal) [-]")
+    materials: Optional[list[str]] = Field(
+        None,
+        description="Candidate specimen materials from the density library "
+        '("same": the prototype\'s); default: all of them',
+    )
+    charge_tolerance: float = Field(
+        0.02, ge=0, le=1, description="Charge mass, one standard deviation, relative (lognormal) [-]"
+    )
     standoff_tolerance_m: float = Field(0.001, ge=0, le=10, description="Stand-off, one standard deviation [m]")
     friction_tolerance: float = Field(0.05, ge=0, le=1, description="Friction coefficient, one standard deviation [-]")
-    density_tolerance: float = Field(0.02, ge=0, le=1, description="Specimen density, one standard deviation, "
-                                     "relative [-]")
+    density_tolerance: float = Field(
+        0.02, ge=0, le=1, description="Specimen density, one standard deviation, relative [-]"
+    )
     samples: int = Field(2000, ge=10, le=1_000_000, description="Monte Carlo samples per design [-]")
     seed: int = Field(0, ge=0, le=2**63 - 1, description="Seed of the Monte Carlo draws [-]")
     camera_max_fps: float = Field(100000.0, gt=0, le=1e9, description="Fastest frame rate of the lab's camera [1/s]")
-    space_radius_m: float = Field(20.0, gt=0, le=1e5, description="Radius of the cleared space around the "
-                                  "charge [m]")
-    safety_threshold: str = Field("6.9 kPa", description="The safety distance that must fit in the space: a "
-                                  "threshold key (34.5 kPa, 6.9 kPa, 1.03 kPa, 200 Pa) or K24, K40, K50")
-    first_peak_target: float = Field(0.05, gt=0, le=1, description="Largest relative error of the specimen's first "
-                                     "peak that the weighing must keep (95 %) [-]")
-    debris_margin: float = Field(2.0, ge=1, le=100, description="Factor on the largest simulated excursion of the "
-                                 "blocks for the debris zone [-]")
+    space_radius_m: float = Field(20.0, gt=0, le=1e5, description="Radius of the cleared space around the charge [m]")
+    safety_threshold: str = Field(
+        "6.9 kPa",
+        description="The safety distance that must fit in the space: a "
+        "threshold key (34.5 kPa, 6.9 kPa, 1.03 kPa, 200 Pa) or K24, K40, K50",
+    )
+    first_peak_target: float = Field(
+        0.05,
+        gt=0,
+        le=1,
+        description="Largest relative error of the specimen's first peak that the weighing must keep (95 %) [-]",
+    )
+    debris_margin: float = Field(
+        2.0, ge=1, le=100, description="Factor on the largest simulated excursion of the blocks for the debris zone [-]"
+    )
     ensemble_3d: int = Field(0, ge=0, le=64, description="3D Monte Carlo members for the odds (0: planar only) [-]")
 
     @model_validator(mode="before")
@@ -86,17 +111,22 @@ class LabSpec(BaseModel):
         for name in mine if isinstance(mine, dict) else ():
             lib = canonical_name(name)
             if lib is not None:
-                warnings.warn(f"lab.explosives.{name} redefines the library's explosive {lib!r} "
-                              f"({EXPLOSIVES[lib].source}): the [lab] table's factors are used", UserWarning,
-                              stacklevel=2)
+                warnings.warn(
+                    f"lab.explosives.{name} redefines the library's explosive {lib!r} "
+                    f"({EXPLOSIVES[lib].source}): the [lab] table's factors are used",
+                    UserWarning,
+                    stacklevel=2,
+                )
         ex = data.get("explosive")
         if isinstance(ex, str):
             data["explosive"] = canonical_name(ex, mine if isinstance(mine, dict) else None) or ex
         ini = data.get("initiator", DEFAULT_INITIATOR)
         if isinstance(ini, str):
             if ini not in INITIATORS:
-                raise ValueError(f"initiator = {ini!r} is not known: valid values are {', '.join(INITIATORS)} (or "
-                                 "give initiator_tnt_kg)")
+                raise ValueError(
+                    f"initiator = {ini!r} is not known: valid values are {', '.join(INITIATORS)} (or "
+                    "give initiator_tnt_kg)"
+                )
         return data
 
     #: True when ``initiator_tnt_kg`` is the named initiator's (not written back: a new ``initiator`` in
@@ -137,9 +167,13 @@ class LabSpec(BaseModel):
     def _consistent(self) -> "LabSpec":
         known = tuple(EXPLOSIVES) + tuple(self.explosives)
         if self.explosive not in known:
-            raise ValueError(f"explosive = {self.explosive!r} is not known: valid values are {', '.join(known)} "
-                             "(or define it in a [lab.explosives.NAME] table)")
+            raise ValueError(
+                f"explosive = {self.explosive!r} is not known: valid values are {', '.join(known)} "
+                "(or define it in a [lab.explosives.NAME] table)"
+            )
         if self.charge_min_kg > self.charge_max_kg:
-            raise ValueError(f"charge_min_kg = {show(self.charge_min_kg)} kg is above charge_max_kg = "
-                             f"{show(self.charge_max_kg)} kg: give a minimum at or below the maximum")
+            raise ValueError(
+                f"charge_min_kg = {show(self.charge_min_kg)} kg is above charge_max_kg = "
+                f"{show(self.charge_max_kg)} kg: give a minimum at or below the maximum"
+            )
         return self

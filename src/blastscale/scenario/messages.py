@@ -24,8 +24,14 @@ def submodels(annotation: Any) -> list[type[BaseModel]]:
     return out
 
 
-_TYPE_WORDS = {"float": "a number", "int": "a whole number", "bool": "true or false", "str": "a string",
-               "model": "a table", "dict": "a table"}
+_TYPE_WORDS = {
+    "float": "a number",
+    "int": "a whole number",
+    "bool": "true or false",
+    "str": "a string",
+    "model": "a table",
+    "dict": "a table",
+}
 
 
 def _model_at(loc: tuple, root: type[BaseModel], kinds: dict) -> tuple[type[BaseModel] | None, Any]:
@@ -38,8 +44,15 @@ def _model_at(loc: tuple, root: type[BaseModel], kinds: dict) -> tuple[type[Base
         if isinstance(part, str) and part in kinds and info is not None and model is _UNION:
             model = kinds[part]
             continue
-        if info is not None and typing.get_origin(info.annotation) is dict and i > 0 and loc[i - 1] != part \
-                and part not in getattr(model, "model_fields", {}) and isinstance(part, str) and model is not root:
+        if (
+            info is not None
+            and typing.get_origin(info.annotation) is dict
+            and i > 0
+            and loc[i - 1] != part
+            and part not in getattr(model, "model_fields", {})
+            and isinstance(part, str)
+            and model is not root
+        ):
             info = None  # a key of a table of tables ([lab.explosives.NAME]): its model follows
             continue
         fields = getattr(model, "model_fields", {})
@@ -111,7 +124,7 @@ def one_line(exc: ValidationError, root: type[BaseModel], kinds: dict, names: di
     if kind == "union_tag_invalid":
         return f"{path}.kind = {show(ctx.get('tag'))} is not known: valid values are {', '.join(kinds)}"
     if kind == "union_tag_not_found":
-        return f"{path}.kind is missing: give kind = \"block\" or \"column\" in [{path}]"
+        return f'{path}.kind is missing: give kind = "block" or "column" in [{path}]'
     if kind == "literal_error":
         expected = str(ctx.get("expected", "")).replace("'", "").replace(" or ", ", ")
         return f"{path} = {vtxt} is not known: valid values are {expected}"

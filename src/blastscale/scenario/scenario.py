@@ -48,18 +48,25 @@ class Scenario(BaseModel):
     model_config = _CONFIG
     title: str = Field("", description="A one-line description")
     structure: Structure
-    blast: BlastSpec = Field(default_factory=BlastSpec, description="The charge; absent (or charge_kg = 0): "
-                             "the structure under gravity alone")
-    scale: Optional[ScaleSpec] = Field(None, description="The specimen's scales; absent: the prototype alone "
-                                       "(no design, no comparison)")
+    blast: BlastSpec = Field(
+        default_factory=BlastSpec,
+        description="The charge; absent (or charge_kg = 0): the structure under gravity alone",
+    )
+    scale: Optional[ScaleSpec] = Field(
+        None, description="The specimen's scales; absent: the prototype alone (no design, no comparison)"
+    )
     simulation: SimulationSpec = Field(default_factory=SimulationSpec)
-    lab: Optional[LabSpec] = Field(None, description="What the laboratory can fire, build and measure: a test card "
-                                   "in the report, and the constraints of `blastscale plan` (docs/planning.md)")
+    lab: Optional[LabSpec] = Field(
+        None,
+        description="What the laboratory can fire, build and measure: a test card "
+        "in the report, and the constraints of `blastscale plan` (docs/planning.md)",
+    )
 
     # -- construction ----------------------------------------------------------------
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: Optional[str] = "scenario",
-                  names: Optional[Mapping[str, str]] = None) -> "Scenario":
+    def from_dict(
+        cls, data: Mapping[str, Any], source: Optional[str] = "scenario", names: Optional[Mapping[str, str]] = None
+    ) -> "Scenario":
         """Validate a nested dict (as read from TOML); errors become one
         :class:`BlastscaleInputError` line prefixed with ``source`` (none when None), naming each
         field by its dotted path or by ``names[path]`` (e.g. the command-line flag that set it)."""
@@ -76,13 +83,22 @@ class Scenario(BaseModel):
         """The built-in default: the paper's slender 10 m block (alpha = 15 deg, 2000 kg/m^3),
         50 kg TNT at 2 m, lambda = 1/200, same material, the paper's blast fits (masi2021),
         friction 0.7 (tan 35 deg), 5 s, planar and 3D."""
-        return cls.from_dict({
-            "title": "The paper's slender block: 50 kg TNT at 2 m, lambda = 1/200 (model 2)",
-            "structure": {"kind": "block", "height_m": 10.0, "alpha_deg": 15.0, "depth_m": 1.0,
-                          "density_kg_m3": 2000.0, "friction": DEFAULT_FRICTION},
-            "blast": {"charge_kg": 50.0, "standoff_m": 2.0, "blast_model": "masi2021"},
-            "scale": {"length": 1.0 / 200.0, "density_ratio": 1.0},
-        }, source="default scenario")
+        return cls.from_dict(
+            {
+                "title": "The paper's slender block: 50 kg TNT at 2 m, lambda = 1/200 (model 2)",
+                "structure": {
+                    "kind": "block",
+                    "height_m": 10.0,
+                    "alpha_deg": 15.0,
+                    "depth_m": 1.0,
+                    "density_kg_m3": 2000.0,
+                    "friction": DEFAULT_FRICTION,
+                },
+                "blast": {"charge_kg": 50.0, "standoff_m": 2.0, "blast_model": "masi2021"},
+                "scale": {"length": 1.0 / 200.0, "density_ratio": 1.0},
+            },
+            source="default scenario",
+        )
 
     # -- variants ----------------------------------------------------------------------
     @classmethod
@@ -118,8 +134,8 @@ class Scenario(BaseModel):
             return hits[0]
         if not hits:
             raise BlastscaleInputError(
-                f"key = {key!r} is not a scenario field of a {self.structure.kind}: valid keys are "
-                f"{', '.join(paths)}")
+                f"key = {key!r} is not a scenario field of a {self.structure.kind}: valid keys are {', '.join(paths)}"
+            )
         raise BlastscaleInputError(f"key = {key!r} is ambiguous: it may be {', '.join(hits)} (give the full path)")
 
     def _paths(self) -> list[str]:
@@ -161,9 +177,13 @@ class Scenario(BaseModel):
         for key, value in values.items():
             if key in ("kind", "structure.kind"):
                 continue
-            path = f"structure.{key.split('.')[-1]}" if new_kind is not None and new_kind != self.structure.kind \
-                and (key.startswith("structure.") or key in KINDS.get(str(new_kind), BlockSpec).model_fields) \
+            path = (
+                f"structure.{key.split('.')[-1]}"
+                if new_kind is not None
+                and new_kind != self.structure.kind
+                and (key.startswith("structure.") or key in KINDS.get(str(new_kind), BlockSpec).model_fields)
                 else self.resolve_key(key)
+            )
             resolved[path] = value
         for path, value in resolved.items():
             node = data

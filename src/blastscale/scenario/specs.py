@@ -27,8 +27,22 @@ from ..structures.column import MAX_DRUMS, MAX_SIDES, MIN_SIDES
 from ..structures.materials import MATERIALS
 from .messages import show
 
-__all__ = ["parse_ratio", "BlockSpec", "ColumnSpec", "WallSpec", "ArchSpec", "PortalSpec", "AssemblySpec",
-           "BlastSpec", "ScaleSpec", "SimulationSpec", "ContactSpec", "Structure", "KINDS", "LEGACY_SCENARIO_KEYS"]
+__all__ = [
+    "parse_ratio",
+    "BlockSpec",
+    "ColumnSpec",
+    "WallSpec",
+    "ArchSpec",
+    "PortalSpec",
+    "AssemblySpec",
+    "BlastSpec",
+    "ScaleSpec",
+    "SimulationSpec",
+    "ContactSpec",
+    "Structure",
+    "KINDS",
+    "LEGACY_SCENARIO_KEYS",
+]
 
 #: Deprecated scenario keys, still accepted when read (files, ``with_values``, ``--set``) and never
 #: written: old dotted path -> new dotted path (CHANGELOG.md, docs/glossary.md).
@@ -44,7 +58,9 @@ def _renamed(path: str) -> AliasChoices:
     old = next(o for o, n in LEGACY_SCENARIO_KEYS.items() if n == path)
     return AliasChoices(path.split(".")[-1], old.split(".")[-1])
 
+
 _CONFIG = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True, frozen=True, validate_default=True)
+
 
 def parse_ratio(value: Any, name: str = "scale") -> float:
     """A dimensionless ratio from a number or a fraction string (``"1/200"``, ``"0.005"``) [-].
@@ -107,7 +123,9 @@ class BlockSpec(BaseModel):
     width_m: Optional[float] = Field(None, gt=0, le=1000, description="Width 2b along the blast [m]")
     depth_m: float = Field(1.0, gt=0, le=1000, description="Depth 2w across the blast [m]")
     density_kg_m3: float = Field(2000.0, gt=0, le=25000, description="Density [kg/m^3]")
-    friction: float = Field(DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-] (3D)", **_limits("friction"))
+    friction: float = Field(
+        DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-] (3D)", **_limits("friction")
+    )
 
     @model_validator(mode="before")
     @classmethod
@@ -151,8 +169,9 @@ class WallSpec(BaseModel):
     thickness_m: float = Field(0.5, gt=0, le=1000, description="Wall thickness along x [m]")
     courses: int = Field(10, ge=1, le=1000, description="Number of courses [-]")
     units_per_course: int = Field(8, ge=1, le=1000, description="Full units per course [-]")
-    bond: Literal["running", "stack"] = Field("running", description="Bond: running (half units at the ends of "
-                                              "every second course) or stack")
+    bond: Literal["running", "stack"] = Field(
+        "running", description="Bond: running (half units at the ends of every second course) or stack"
+    )
     density_kg_m3: float = Field(2000.0, **_DENSITY)
     friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
 
@@ -167,8 +186,13 @@ class ArchSpec(BaseModel):
     depth_m: float = Field(1.0, gt=0, le=1000, description="Depth along x [m]")
     voussoirs: int = Field(15, ge=1, le=1000, description="Number of voussoirs [-]")
     embrace_deg: float = Field(180.0, gt=0, lt=360, description="Angle spanned, symmetric about the crown [deg]")
-    pier_height_m: float = Field(0.0, ge=0, le=1000, description="Height of the springing above the ground [m]; "
-                                 "> 0 puts a pier under each springer (needed unless embrace_deg = 180)")
+    pier_height_m: float = Field(
+        0.0,
+        ge=0,
+        le=1000,
+        description="Height of the springing above the ground [m]; "
+        "> 0 puts a pier under each springer (needed unless embrace_deg = 180)",
+    )
     density_kg_m3: float = Field(2000.0, **_DENSITY)
     friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
 
@@ -194,8 +218,11 @@ class AssemblySpec(BaseModel):
     model_config = _CONFIG
     kind: Literal["assembly"] = Field(description="Structure kind")
     file: str = Field(description="Block-model file, relative to the scenario file")
-    density_kg_m3: float = Field(2000.0, description="Density of blocks without their own [kg/m^3]",
-                                 **{k: v for k, v in _DENSITY.items() if k != "description"})
+    density_kg_m3: float = Field(
+        2000.0,
+        description="Density of blocks without their own [kg/m^3]",
+        **{k: v for k, v in _DENSITY.items() if k != "description"},
+    )
     friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
 
 
@@ -206,23 +233,39 @@ class BlastSpec(BaseModel):
     model_config = _CONFIG
     charge_kg: float = Field(0.0, ge=0, description="TNT-equivalent charge W [kg]; 0: gravity alone")
     standoff_m: Optional[Pos] = Field(None, description="Stand-off R from the front face [m] (needed with a charge)")
-    blast_model: str = Field(DEFAULT_BLAST_MODEL, validation_alias=_renamed("blast.blast_model"),
-                             description="Blast model (the empirical fit): kingery-bulmash (Swisdak 1994, the "
-                             "library-wide default) or masi2021 (the paper's Appendix A fits); deprecated key: model")
+    blast_model: str = Field(
+        DEFAULT_BLAST_MODEL,
+        validation_alias=_renamed("blast.blast_model"),
+        description="Blast model (the empirical fit): kingery-bulmash (Swisdak 1994, the "
+        "library-wide default) or masi2021 (the paper's Appendix A fits); deprecated key: model",
+    )
     load: str = Field("A", description="Load method of the 3D engine (paper Methods A, B, C)")
-    pulse_shape: Literal[PULSE_SHAPES] = Field("friedlander", validation_alias=_renamed("blast.pulse_shape"),
-                                               description="Pulse shape; deprecated key: pulse")
+    pulse_shape: Literal[PULSE_SHAPES] = Field(
+        "friedlander", validation_alias=_renamed("blast.pulse_shape"), description="Pulse shape; deprecated key: pulse"
+    )
     incidence: str = Field("ufc", description="Angle-of-incidence model (Methods B, C)")
     extrapolate: bool = Field(False, description="Evaluate the blast fits outside their ranges (warns)")
-    burst: Literal[BURSTS] = Field(DEFAULT_BURST, description="The prototype's burst: surface (hemispherical, "
-                                   "the paper's) or free-air (spherical, Kingery-Bulmash 1984, UFC 3-340-02 Fig. 2-7)")
-    clearing: bool = Field(False, description="Clear the reflected pressure on the loaded faces' finite size "
-                           "(UFC 3-340-02 Sec. 2-15.3.2; the faces are the structure's own)")
-    negative_phase: bool = Field(False, description="Add the negative phase (UFC 3-340-02 Fig. 2-16, Granström's "
-                                 "cubic) after the positive one, bounded by the positive impulse")
-    negative_phase_model: str = Field(NEGATIVE_PHASE_MODEL, description="The negative phase's model: "
-                                      "ufc-fig2-16-cubic (the chart's suction) or friedlander-continued (the positive "
-                                      "pulse continued past its zero crossing)")
+    burst: Literal[BURSTS] = Field(
+        DEFAULT_BURST,
+        description="The prototype's burst: surface (hemispherical, "
+        "the paper's) or free-air (spherical, Kingery-Bulmash 1984, UFC 3-340-02 Fig. 2-7)",
+    )
+    clearing: bool = Field(
+        False,
+        description="Clear the reflected pressure on the loaded faces' finite size "
+        "(UFC 3-340-02 Sec. 2-15.3.2; the faces are the structure's own)",
+    )
+    negative_phase: bool = Field(
+        False,
+        description="Add the negative phase (UFC 3-340-02 Fig. 2-16, Granström's "
+        "cubic) after the positive one, bounded by the positive impulse",
+    )
+    negative_phase_model: str = Field(
+        NEGATIVE_PHASE_MODEL,
+        description="The negative phase's model: "
+        "ufc-fig2-16-cubic (the chart's suction) or friedlander-continued (the positive "
+        "pulse continued past its zero crossing)",
+    )
 
     @field_validator("blast_model")
     @classmethod
@@ -232,8 +275,10 @@ class BlastSpec(BaseModel):
     @model_validator(mode="after")
     def _burst_fits(self) -> "BlastSpec":
         if self.burst == "free-air" and self.blast_model == "masi2021":
-            raise ValueError("burst = 'free-air' with blast_model = 'masi2021': the paper's fits are surface-burst "
-                             "fits only; use blast_model = 'kingery-bulmash' for a free-air burst")
+            raise ValueError(
+                "burst = 'free-air' with blast_model = 'masi2021': the paper's fits are surface-burst "
+                "fits only; use blast_model = 'kingery-bulmash' for a free-air burst"
+            )
         return self
 
     @field_validator("negative_phase_model")
@@ -254,14 +299,19 @@ class BlastSpec(BaseModel):
     @model_validator(mode="after")
     def _standoff(self) -> "BlastSpec":
         if "charge_kg" not in self.model_fields_set and self.model_fields_set:
-            raise ValueError("blast.charge_kg is missing: give the charge [kg] (0, or no [blast] table, for gravity "
-                             "alone)")
+            raise ValueError(
+                "blast.charge_kg is missing: give the charge [kg] (0, or no [blast] table, for gravity alone)"
+            )
         if self.charge_kg > 0 and self.standoff_m is None:
-            raise ValueError(f"charge_kg = {show(self.charge_kg)} needs standoff_m (the stand-off R [m]); "
-                             "charge_kg = 0 is gravity alone")
+            raise ValueError(
+                f"charge_kg = {show(self.charge_kg)} needs standoff_m (the stand-off R [m]); "
+                "charge_kg = 0 is gravity alone"
+            )
         if self.charge_kg == 0 and (self.clearing or self.negative_phase):
-            raise ValueError(f"blast.{'clearing' if self.clearing else 'negative_phase'} = true needs a charge: "
-                             "charge_kg = 0 is gravity alone (valid: false)")
+            raise ValueError(
+                f"blast.{'clearing' if self.clearing else 'negative_phase'} = true needs a charge: "
+                "charge_kg = 0 is gravity alone (valid: false)"
+            )
         return self
 
     @property
@@ -275,20 +325,30 @@ class ScaleSpec(BaseModel):
 
     model_config = _CONFIG
     length: Annotated[float, at.Gt(0), at.Le(1000)] = Field(
-        description="Geometric scale lambda = l_model / l_prototype [-] (a number or a fraction \"1/200\")")
-    density_ratio: Optional[float] = Field(None, gt=0, le=100,
-                                           description="gamma = rho_model / rho_prototype [-] (default 1)")
-    specimen_material: Optional[str] = Field(None, validation_alias=_renamed("scale.specimen_material"),
-                                             description="The specimen's material from the density library; "
-                                             "deprecated key: model_material")
+        description='Geometric scale lambda = l_model / l_prototype [-] (a number or a fraction "1/200")'
+    )
+    density_ratio: Optional[float] = Field(
+        None, gt=0, le=100, description="gamma = rho_model / rho_prototype [-] (default 1)"
+    )
+    specimen_material: Optional[str] = Field(
+        None,
+        validation_alias=_renamed("scale.specimen_material"),
+        description="The specimen's material from the density library; deprecated key: model_material",
+    )
     gravity_ratio: float = Field(1.0, gt=0, le=1000, description="varsigma = g_model / g_prototype [-]")
     law: Literal["general", "hopkinson-cranz"] = Field("general", description="Scaling law")
     specimen_burst: Optional[Literal[BURSTS]] = Field(
-        None, description="The specimen's burst when it differs from the prototype's (a lab charge on a stand: "
-        "free-air); default blast.burst")
+        None,
+        description="The specimen's burst when it differs from the prototype's (a lab charge on a stand: "
+        "free-air); default blast.burst",
+    )
     specimen_charge_height_m: Optional[float] = Field(
-        None, ge=0, le=1000, description="Height of the lab charge's centre above the floor [m]: the design warns when "
-        "the floor's reflection makes it neither a surface nor a free-air burst at the specimen")
+        None,
+        ge=0,
+        le=1000,
+        description="Height of the lab charge's centre above the floor [m]: the design warns when "
+        "the floor's reflection makes it neither a surface nor a free-air burst at the specimen",
+    )
 
     @field_validator("length", mode="before")
     @classmethod
@@ -297,8 +357,9 @@ class ScaleSpec(BaseModel):
             try:
                 return parse_ratio(v, "length")
             except BlastscaleInputError as exc:
-                raise ValueError(f"= {v!r} is not a ratio: give a number such as 0.005 or a fraction such as "
-                                 "\"1/200\"") from exc
+                raise ValueError(
+                    f'= {v!r} is not a ratio: give a number such as 0.005 or a fraction such as "1/200"'
+                ) from exc
         return v
 
     @field_validator("specimen_material")
@@ -318,11 +379,14 @@ class ContactSpec(BaseModel):
 
     model_config = _CONFIG
     time_constant_s: Optional[float] = Field(
-        None, description="Normal contact time constant [s]", **_limits("time_constant"))
+        None, description="Normal contact time constant [s]", **_limits("time_constant")
+    )
     damping_ratio: Optional[float] = Field(
-        None, description="Normal contact damping ratio [-]", **_limits("damping_ratio"))
+        None, description="Normal contact damping ratio [-]", **_limits("damping_ratio")
+    )
     friction_time_constant_s: Optional[float] = Field(
-        None, description="Friction reference time constant [s]", **_limits("friction_time_constant"))
+        None, description="Friction reference time constant [s]", **_limits("friction_time_constant")
+    )
     impedance_min: Optional[float] = Field(None, description="solimp dmin [-]", **_limits("impedance_min"))
     impedance_max: Optional[float] = Field(None, description="solimp dmax [-]", **_limits("impedance_max"))
     impedance_width_m: Optional[float] = Field(None, description="solimp width [m]", **_limits("impedance_width"))
@@ -333,7 +397,8 @@ class ContactSpec(BaseModel):
     tolerance: Optional[float] = Field(None, description="Solver tolerance [-]", **_limits("tolerance"))
     noslip_iterations: Optional[int] = Field(None, description="No-slip iterations [-]", **_limits("noslip_iterations"))
     jacobian: Optional[Literal[JACOBIANS]] = Field(
-        None, description="Constraint Jacobian layout (dense by default; sparse is 2.5-3.4x faster on columns)")
+        None, description="Constraint Jacobian layout (dense by default; sparse is 2.5-3.4x faster on columns)"
+    )
 
 
 class SimulationSpec(BaseModel):
@@ -342,24 +407,40 @@ class SimulationSpec(BaseModel):
     model_config = _CONFIG
     engine: Literal["planar", "3d", "both"] = Field("both", description="Planar rocking, 3D rigid bodies or both")
     duration_s: float = Field(5.0, gt=0, le=1e5, description="Prototype time simulated after the shock arrival [s]")
-    timestep_s: Optional[float] = Field(None, description="Prototype 3D time step [s] (default from the structure)",
-                                        **_limits("timestep"))
-    record_every: Optional[int] = Field(None, ge=1, le=100000, description="Keep one 3D state every N steps [-] "
-                                        "(default: one per millisecond of the 10 m reference structure, 5 for a "
-                                        "block and 4 for a column at any size)")
+    timestep_s: Optional[float] = Field(
+        None, description="Prototype 3D time step [s] (default from the structure)", **_limits("timestep")
+    )
+    record_every: Optional[int] = Field(
+        None,
+        ge=1,
+        le=100000,
+        description="Keep one 3D state every N steps [-] "
+        "(default: one per millisecond of the 10 m reference structure, 5 for a "
+        "block and 4 for a column at any size)",
+    )
     samples: int = Field(2001, ge=2, le=10_000_000, description="Planar sampling times over the duration [-]")
     gravity_m_s2: float = Field(STANDARD_GRAVITY, gt=0, le=1000, description="Prototype gravity g [m/s^2]")
-    restitution: Optional[float] = Field(None, ge=0, le=1,
-                                         description="Planar restitution e [-] (default Housner's)")
+    restitution: Optional[float] = Field(None, ge=0, le=1, description="Planar restitution e [-] (default Housner's)")
     critical_charge: bool = Field(True, description="Also search the prototype's critical charge (planar)")
-    ensemble_members: int = Field(0, ge=0, le=64, description="Members per system of a 3D ensemble under slightly "
-                                  "perturbed loads, for chaotic structures (circular columns); 0: none [-]")
-    ensemble_perturbation: float = Field(1e-6, gt=0, le=0.1, description="Largest relative load change of an "
-                                         "ensemble member [-]")
-    threads: Optional[int] = Field(None, ge=1, le=4096, description="Threads of one process: 3D runs in flight "
-                                   "at once (ensemble members, the 3D cases of a sweep chunk), planar batches (outcome "
-                                   "mode, fragility) split over them [-] (default: the cores this process may use, "
-                                   "divided by the local Dask workers); results do not depend on it")
+    ensemble_members: int = Field(
+        0,
+        ge=0,
+        le=64,
+        description="Members per system of a 3D ensemble under slightly "
+        "perturbed loads, for chaotic structures (circular columns); 0: none [-]",
+    )
+    ensemble_perturbation: float = Field(
+        1e-6, gt=0, le=0.1, description="Largest relative load change of an ensemble member [-]"
+    )
+    threads: Optional[int] = Field(
+        None,
+        ge=1,
+        le=4096,
+        description="Threads of one process: 3D runs in flight "
+        "at once (ensemble members, the 3D cases of a sweep chunk), planar batches (outcome "
+        "mode, fragility) split over them [-] (default: the cores this process may use, "
+        "divided by the local Dask workers); results do not depend on it",
+    )
     contact: ContactSpec = Field(default_factory=ContactSpec, description="3D contact settings")
 
     @field_validator("ensemble_members")
@@ -370,7 +451,14 @@ class SimulationSpec(BaseModel):
         return v
 
 
-Structure = Annotated[Union[BlockSpec, ColumnSpec, WallSpec, ArchSpec, PortalSpec, AssemblySpec],
-                      Field(discriminator="kind")]
-KINDS = {"block": BlockSpec, "column": ColumnSpec, "wall": WallSpec, "arch": ArchSpec, "portal": PortalSpec,
-         "assembly": AssemblySpec}
+Structure = Annotated[
+    Union[BlockSpec, ColumnSpec, WallSpec, ArchSpec, PortalSpec, AssemblySpec], Field(discriminator="kind")
+]
+KINDS = {
+    "block": BlockSpec,
+    "column": ColumnSpec,
+    "wall": WallSpec,
+    "arch": ArchSpec,
+    "portal": PortalSpec,
+    "assembly": AssemblySpec,
+}

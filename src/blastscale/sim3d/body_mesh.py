@@ -50,6 +50,6 @@ def structure_meshes(structure) -> tuple[np.ndarray, np.ndarray]:
     V = np.full((nb, nv, 3), np.nan)
     F = np.full((nb, nf, 3), -1, dtype=np.int32)
     for k, (v, t) in enumerate(zip(verts, tris)):
-        V[k, :len(v)] = v
-        F[k, :len(t)] = t
+        V[k, : len(v)] = v
+        F[k, : len(t)] = t
     return V, F

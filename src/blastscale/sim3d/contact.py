@@ -36,8 +36,17 @@ from typing import NamedTuple
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from .._validate import BlastscaleInputError, check_positive, check_range
 
-__all__ = ["ContactSettings", "CONES", "SOLVERS", "SETTING_RANGES", "Range", "default_contact", "mjcf_number", "reference_contact",
-           "time_constant_for_step"]
+__all__ = [
+    "ContactSettings",
+    "CONES",
+    "SOLVERS",
+    "SETTING_RANGES",
+    "Range",
+    "default_contact",
+    "mjcf_number",
+    "reference_contact",
+    "time_constant_for_step",
+]
 
 #: Friction-cone types accepted by MuJoCo.
 CONES = ("elliptic", "pyramidal")
@@ -193,7 +202,8 @@ class ContactSettings:
             raise BlastscaleInputError(f"solver = {self.solver!r} is not known: valid values are {', '.join(SOLVERS)}")
         if self.jacobian not in JACOBIANS:
             raise BlastscaleInputError(
-                f"jacobian = {self.jacobian!r} is not known: valid values are {', '.join(JACOBIANS)}")
+                f"jacobian = {self.jacobian!r} is not known: valid values are {', '.join(JACOBIANS)}"
+            )
 
     # -- derived MuJoCo quantities ----------------------------------------------------
     @property
@@ -253,9 +263,11 @@ class ContactSettings:
         )
 
     def _mjcf_common(self, margin: float) -> str:
-        return (f'condim="3" solref="{mjcf_number(self.time_constant)} {mjcf_number(self.damping_ratio)}" '
-                f'solimp="{mjcf_number(self.impedance_min)} {mjcf_number(self.impedance_max)} '
-                f'{mjcf_number(self.impedance_width)} 0.5 2" margin="{mjcf_number(margin)}" gap="0"')
+        return (
+            f'condim="3" solref="{mjcf_number(self.time_constant)} {mjcf_number(self.damping_ratio)}" '
+            f'solimp="{mjcf_number(self.impedance_min)} {mjcf_number(self.impedance_max)} '
+            f'{mjcf_number(self.impedance_width)} 0.5 2" margin="{mjcf_number(margin)}" gap="0"'
+        )
 
     def mjcf_pair_attributes(self, margin: float = 0.0) -> str:
         """Attributes of an explicit ``<pair>``: condim 3, friction, solref, solreffriction, solimp,
@@ -354,7 +366,9 @@ def time_constant_for_step(time_constant: float, timestep: float) -> float:
     return max(float(time_constant), MIN_STEPS_PER_TIME_CONSTANT * float(timestep))
 
 
-def default_contact(structure, friction: float = DEFAULT_FRICTION, gravity: float = REFERENCE_GRAVITY) -> ContactSettings:
+def default_contact(
+    structure, friction: float = DEFAULT_FRICTION, gravity: float = REFERENCE_GRAVITY
+) -> ContactSettings:
     """Scale-consistent contact settings for ``structure`` (used when ``contact=None``).
 
     The reference settings (:data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for
@@ -384,4 +398,6 @@ def default_contact(structure, friction: float = DEFAULT_FRICTION, gravity: floa
     L = float(check_positive("structure height", structure_length(structure), "m"))
     g = float(check_positive("gravity", gravity, "m/s^2"))
     lam = L / REFERENCE_LENGTH
-    return reference_contact(structure, friction).scaled(length_time_factors(lam, math.sqrt(lam * REFERENCE_GRAVITY / g)))
+    return reference_contact(structure, friction).scaled(
+        length_time_factors(lam, math.sqrt(lam * REFERENCE_GRAVITY / g))
+    )

@@ -45,8 +45,9 @@ def body_hulls(structure) -> list:
         else:
             v = np.asarray(b.vertices, dtype=float) + np.asarray(b.com, dtype=float)
         h = ConvexHull(v)
-        out.append((h.equations[:, :3], h.equations[:, 3], float(np.ptp(v, axis=0).max()), v.min(axis=0),
-                    v.max(axis=0)))
+        out.append(
+            (h.equations[:, :3], h.equations[:, 3], float(np.ptp(v, axis=0).max()), v.min(axis=0), v.max(axis=0))
+        )
     return out
 
 
@@ -98,8 +99,7 @@ def visible_fractions(structure, faces, charge_position) -> np.ndarray:
         seen = 0
         for p in pts:
             near = np.flatnonzero(np.all(lo <= np.maximum(c, p), axis=1) & np.all(hi >= np.minimum(c, p), axis=1))
-            blocked = any(j != i and segment_blocked(c, p, hulls[j][0], hulls[j][1], 1e-6 * hulls[j][2])
-                          for j in near)
+            blocked = any(j != i and segment_blocked(c, p, hulls[j][0], hulls[j][1], 1e-6 * hulls[j][2]) for j in near)
             seen += not blocked
         out[k] = seen / len(pts)
     return out

@@ -81,9 +81,21 @@ class FaceLoadStrategy:
         The faces' blast parameters at the rest pose.
     """
 
-    def __init__(self, structure, faces, *, charge_kg, charge_position, blast_model="kingery-bulmash",
-                 pulse_shape="friedlander", incidence="ufc", extrapolate=False, method="B", load_model=None,
-                 visible=None):
+    def __init__(
+        self,
+        structure,
+        faces,
+        *,
+        charge_kg,
+        charge_position,
+        blast_model="kingery-bulmash",
+        pulse_shape="friedlander",
+        incidence="ufc",
+        extrapolate=False,
+        method="B",
+        load_model=None,
+        visible=None,
+    ):
         if not hasattr(structure, "bodies"):
             raise BlastscaleInputError(f"structure = {structure!r} is not a structure (no .bodies)")
         if not faces:
@@ -145,8 +157,11 @@ class FaceLoadStrategy:
         out = copy.copy(self)
         ta = self.rest_loads.arrival_time
         out.arrival_shift = (ta - ta.min()) * (float(check_positive("stretch", stretch)) - 1.0)
-        out.weights = np.ones(self.body.size) if weights is None else np.broadcast_to(
-            check_positive("face weights", weights), (self.body.size,)).astype(float)
+        out.weights = (
+            np.ones(self.body.size)
+            if weights is None
+            else np.broadcast_to(check_positive("face weights", weights), (self.body.size,)).astype(float)
+        )
         out.end_time = self.end_time + float(out.arrival_shift.max())
         out.method = f"{self.method} (corrected)"
         return out
@@ -165,13 +180,25 @@ class FaceLoadStrategy:
     def face_loads_at(self, positions, rotations):
         """:class:`~blastscale.blast.faces.FaceLoads` of the loaded faces at the given poses."""
         x, n = self.world_faces(positions, rotations)
-        fl = face_loads_unchecked(self.blast_model, self.incident_model, self.incidence, self.W, self.charge_position,
-                                  x, n, self.areas, self.extrapolate)
+        fl = face_loads_unchecked(
+            self.blast_model,
+            self.incident_model,
+            self.incidence,
+            self.W,
+            self.charge_position,
+            x,
+            n,
+            self.areas,
+            self.extrapolate,
+        )
         if self.visible is None:
             return fl
         v = self.visible  # the hidden fraction of a face sees the side-on pulse (.exposure)
-        return replace(fl, pressure=v * fl.pressure + (1.0 - v) * fl.incident_pressure,
-                       impulse=v * fl.impulse + (1.0 - v) * fl.incident_impulse)
+        return replace(
+            fl,
+            pressure=v * fl.pressure + (1.0 - v) * fl.incident_pressure,
+            impulse=v * fl.impulse + (1.0 - v) * fl.incident_impulse,
+        )
 
     # --------------------------------------------------------------- interface
     def step_wrenches(self, t0, t1, positions, rotations) -> np.ndarray:
@@ -219,14 +246,22 @@ class FaceLoadStrategy:
     def describe(self) -> dict:
         """Load metadata (SI keys)."""
         fl = self.rest_loads
-        return {"load_method": self.method, "pulse": self.shape, "incidence": self.incidence,
-                "blast_model": self.blast_model.name, "incident_values_from": self.incident_model.name,
-                "charge_kg": self.W, "charge_position_m": self.charge_position.tolist(),
-                "loaded_faces": int(self.body.size), "first_arrival_s": self.first_arrival,
-                "arrival_spread_s": self.arrival_spread, "end_time_s": self.end_time,
-                "max_face_pressure_Pa": float(fl.pressure.max()),
-                "max_angle_of_incidence_deg": float(np.degrees(fl.angle_of_incidence.max())),
-                **({} if self.load_model is None else {"load_model": self.load_model.to_dict()})}
+        return {
+            "load_method": self.method,
+            "pulse": self.shape,
+            "incidence": self.incidence,
+            "blast_model": self.blast_model.name,
+            "incident_values_from": self.incident_model.name,
+            "charge_kg": self.W,
+            "charge_position_m": self.charge_position.tolist(),
+            "loaded_faces": int(self.body.size),
+            "first_arrival_s": self.first_arrival,
+            "arrival_spread_s": self.arrival_spread,
+            "end_time_s": self.end_time,
+            "max_face_pressure_Pa": float(fl.pressure.max()),
+            "max_angle_of_incidence_deg": float(np.degrees(fl.angle_of_incidence.max())),
+            **({} if self.load_model is None else {"load_model": self.load_model.to_dict()}),
+        }
 
 
 def arrival_spread(load) -> float:
@@ -244,19 +279,30 @@ def _charge_position(structure, standoff_m, burst: str = "surface") -> np.ndarra
     return np.array([float(structure.front_x) - R, 0.0, z])
 
 
-def _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, method, load_model=None,
-               visible=None) -> FaceLoadStrategy:
+def _face_load(
+    structure, faces, blast, pulse_shape, incidence, extrapolate, method, load_model=None, visible=None
+) -> FaceLoadStrategy:
     """The per-face load of a system's blast parameters: the charge, stand-off and blast model are
     ``blast``'s; each face's blast is evaluated at its own distance (that is the method)."""
     bp = check_blast(blast)
-    return FaceLoadStrategy(structure, faces, charge_kg=bp.charge_kg,
-                            charge_position=_charge_position(structure, bp.standoff_m, getattr(bp, "burst", "surface")),
-                            blast_model=bp.blast_model, pulse_shape=pulse_shape, incidence=incidence,
-                            extrapolate=extrapolate, method=method, load_model=load_model, visible=visible)
+    return FaceLoadStrategy(
+        structure,
+        faces,
+        charge_kg=bp.charge_kg,
+        charge_position=_charge_position(structure, bp.standoff_m, getattr(bp, "burst", "surface")),
+        blast_model=bp.blast_model,
+        pulse_shape=pulse_shape,
+        incidence=incidence,
+        extrapolate=extrapolate,
+        method=method,
+        load_model=load_model,
+        visible=visible,
+    )
 
 
-def method_b(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False,
-             load_model=None) -> FaceLoadStrategy:
+def method_b(
+    structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False, load_model=None
+) -> FaceLoadStrategy:
     """Method B: each body's front (``load_face``) with its own distance, arrival, duration and
     incidence, for the charge, stand-off and blast model of ``blast``
     (:class:`~blastscale.blast.BlastParameters`); ``load_model`` adds clearing and the negative phase."""
@@ -264,8 +310,9 @@ def method_b(structure, blast, *, pulse_shape="friedlander", incidence="ufc", ex
     return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "B", load_model)
 
 
-def method_c(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False,
-             load_model=None) -> FaceLoadStrategy:
+def method_c(
+    structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False, load_model=None
+) -> FaceLoadStrategy:
     """Method C: every exposed face (``in_contact`` False; a partly covered face on its exposed area) of
     every body, each with its own blast, for the charge, stand-off and blast model of ``blast``
     (:class:`~blastscale.blast.BlastParameters`); ``load_model`` adds clearing and the negative phase.
@@ -276,5 +323,7 @@ def method_c(structure, blast, *, pulse_shape="friedlander", incidence="ufc", ex
 
     faces = [(i, f) for i, b in enumerate(structure.bodies) for f in b.faces if not f.in_contact and f.area > 0.0]
     bp = check_blast(blast)
-    seen = visible_fractions(structure, faces, _charge_position(structure, bp.standoff_m, getattr(bp, "burst", "surface")))
+    seen = visible_fractions(
+        structure, faces, _charge_position(structure, bp.standoff_m, getattr(bp, "burst", "surface"))
+    )
     return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "C", load_model, seen)

@@ -104,8 +104,17 @@ def _kick(m, d, wrench_impulses: np.ndarray, body_ids) -> None:
     d.qvel[:] += dq[0]
 
 
-def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_mode: str, settle: bool,
-              factors=(1.0, 1.0), initial_velocity=None) -> dict:
+def integrate(
+    scene: Scene,
+    load,
+    duration: float,
+    *,
+    record_every: int,
+    blast_mode: str,
+    settle: bool,
+    factors=(1.0, 1.0),
+    initial_velocity=None,
+) -> dict:
     """The one integration loop (module docstring): settle, start at the load's first arrival,
     apply each step's wrenches (force or kick, :data:`BLAST_MODES`), step, record.
 
@@ -204,6 +213,14 @@ def integrate(scene: Scene, load, duration: float, *, record_every: int, blast_m
     qpos[:, :, 0:3] /= a
     qvel[:, :, 0:3] *= b / a
     qvel[:, :, 3:6] *= b
-    return {"time": idx * dtp, "qpos": qpos.reshape(nrec, -1), "qvel": qvel.reshape(nrec, -1), "ncon": ncon,
-            "delivered": delivered, "kicks": kicks, "first_arrival": t_start,
-            "duration": T, "gravity_only": load is None}
+    return {
+        "time": idx * dtp,
+        "qpos": qpos.reshape(nrec, -1),
+        "qvel": qvel.reshape(nrec, -1),
+        "ncon": ncon,
+        "delivered": delivered,
+        "kicks": kicks,
+        "first_arrival": t_start,
+        "duration": T,
+        "gravity_only": load is None,
+    }

@@ -23,8 +23,16 @@ def register_load_method(name: str, factory) -> None:
     LOAD_METHODS[str(name)] = factory
 
 
-def make_load(method: str, structure, blast, *, pulse_shape: str = "friedlander", incidence: str = "ufc",
-              extrapolate: bool = False, load_model=None) -> LoadStrategy:
+def make_load(
+    method: str,
+    structure,
+    blast,
+    *,
+    pulse_shape: str = "friedlander",
+    incidence: str = "ufc",
+    extrapolate: bool = False,
+    load_model=None,
+) -> LoadStrategy:
     """The blast load of a system's charge on its structure.
 
     Parameters
@@ -66,8 +74,9 @@ def make_load(method: str, structure, blast, *, pulse_shape: str = "friedlander"
     if method not in LOAD_METHODS:
         raise BlastscaleInputError(f"load method = {method!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
     kw = {} if load_model is None or load_model.is_paper else {"load_model": load_model}
-    return LOAD_METHODS[method](structure, blast, pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate,
-                                **kw)
+    return LOAD_METHODS[method](
+        structure, blast, pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate, **kw
+    )
 
 
 def arrival_spread_similarity(prototype_load, model_load, factors) -> dict:
@@ -89,5 +98,7 @@ def arrival_spread_similarity(prototype_load, model_load, factors) -> dict:
         in prototype seconds [s]). Under exact similarity the two are equal; see
         ``docs/face_loads.md`` for why the general law's model does not keep them equal.
     """
-    return {"arrival_spread_prototype_s": arrival_spread(prototype_load),
-            "arrival_spread_model_upscaled_s": arrival_spread(model_load) / factors.time}
+    return {
+        "arrival_spread_prototype_s": arrival_spread(prototype_load),
+        "arrival_spread_model_upscaled_s": arrival_spread(model_load) / factors.time,
+    }

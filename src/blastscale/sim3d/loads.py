@@ -135,9 +135,14 @@ class MethodA:
 
     def describe(self) -> dict:
         """Load metadata (SI keys)."""
-        d = {"load_method": "A", "pulse": type(self.pulse).__name__, "reflected_pressure_Pa": float(self.pulse.peak),
-             "reflected_impulse_Pa_s": float(self.pulse.impulse), "positive_duration_s": float(self.pulse.duration),
-             "arrival_time_s": self.arrival_time}
+        d = {
+            "load_method": "A",
+            "pulse": type(self.pulse).__name__,
+            "reflected_pressure_Pa": float(self.pulse.peak),
+            "reflected_impulse_Pa_s": float(self.pulse.impulse),
+            "positive_duration_s": float(self.pulse.duration),
+            "arrival_time_s": self.arrival_time,
+        }
         if self.load_model is not None:
             d["load_model"] = self.load_model
         return d
@@ -150,15 +155,18 @@ def check_blast(blast):
     if not hasattr(blast, "pulse") or not hasattr(blast, "charge_kg") or not hasattr(blast, "arrival_time"):
         raise BlastscaleInputError(
             f"blast = {type(blast).__name__} is not blast parameters: give blastscale.blast.blast_parameters(W, R) "
-            "or a design's prototype / model")
+            "or a design's prototype / model"
+        )
     if np.ndim(blast.charge_kg) != 0:
         raise BlastscaleInputError(
-            f"blast parameters of shape {np.shape(blast.charge_kg)}: a load needs one charge and one stand-off")
+            f"blast parameters of shape {np.shape(blast.charge_kg)}: a load needs one charge and one stand-off"
+        )
     return blast
 
 
-def method_a(structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False,
-             load_model=None) -> MethodA:
+def method_a(
+    structure, blast, *, pulse_shape="friedlander", incidence="ufc", extrapolate=False, load_model=None
+) -> MethodA:
     """Method A from a system's blast parameters (:class:`~blastscale.blast.BlastParameters`): the
     reflected pulse of shape ``pulse_shape`` at the stand-off, arriving at ``blast.arrival_time``
     (normal incidence; ``incidence`` does not apply). With a ``load_model``
@@ -171,8 +179,12 @@ def method_a(structure, blast, *, pulse_shape="friedlander", incidence="ufc", ex
     from ..blast.load_model import front_face_pulse, load_model_record
 
     lm = with_structure_face(load_model, structure)
-    return MethodA(structure, front_face_pulse(bp, pulse_shape, lm, extrapolate=extrapolate),
-                   arrival_time=float(bp.arrival_time), load_model=load_model_record(bp.blast_model, bp.burst, lm))
+    return MethodA(
+        structure,
+        front_face_pulse(bp, pulse_shape, lm, extrapolate=extrapolate),
+        arrival_time=float(bp.arrival_time),
+        load_model=load_model_record(bp.blast_model, bp.burst, lm),
+    )
 
 
 def with_structure_face(load_model, structure):

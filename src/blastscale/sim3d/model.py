@@ -32,8 +32,18 @@ from .collision import BROAD_PHASE, body_order, engagement_depth
 from .contact import ContactSettings, mjcf_number
 from .initial import tilt_bodies
 
-__all__ = ["BoxShape", "PrismShape", "MeshShape", "FrontFace", "BodySpec", "Scene", "build_scene", "block_scene", "structure_scene",
-           "engine_shape"]
+__all__ = [
+    "BoxShape",
+    "PrismShape",
+    "MeshShape",
+    "FrontFace",
+    "BodySpec",
+    "Scene",
+    "build_scene",
+    "block_scene",
+    "structure_scene",
+    "engine_shape",
+]
 
 
 @dataclass(frozen=True)
@@ -94,7 +104,9 @@ class BoxShape:
 
     def front_face(self) -> FrontFace:
         """The -x face, loaded towards +x: area 2h x 2w."""
-        return FrontFace((-self.half_width, 0.0, self.centre_z), (1.0, 0.0, 0.0), 4.0 * self.half_height * self.half_depth)
+        return FrontFace(
+            (-self.half_width, 0.0, self.centre_z), (1.0, 0.0, 0.0), 4.0 * self.half_height * self.half_depth
+        )
 
     def mjcf_assets(self, name: str) -> str:
         """No assets for a primitive box."""
@@ -239,8 +251,7 @@ class Scene:
         return ((self.body_ids[:, None] - 1) * 6 + np.arange(6)).ravel()
 
 
-def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None,
-                fixed=()) -> Scene:
+def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None, fixed=()) -> Scene:
     """Compile free rigid bodies on a rigid ground plane into a MuJoCo model.
 
     Parameters
@@ -286,7 +297,9 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     assets = "".join(b.shape.mjcf_assets(f"{b.name}_geom") for b in [bodies[k] for k in order] + list(fixed))
     worldbody = ['<geom name="ground" type="plane" size="0 0 1"/>'] + [  # supports: geoms of the world body
         f'<frame pos="{" ".join(mjcf_number(float(v)) for v in b.position)}">{b.shape.mjcf_geom(f"{b.name}_geom")}'
-        '</frame>' for b in fixed]
+        "</frame>"
+        for b in fixed
+    ]
     ground = ["ground"] + [g for b in fixed for g in b.shape.contact_geoms(f"{b.name}_geom")]
     for b in (bodies[k] for k in order):
         px, py, pz = (float(v) for v in b.position)
@@ -311,7 +324,7 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     if len(seen) == n * (n + 1) // 2:
         default = 'contype="0" conaffinity="0"'  # every two surfaces are an interface: nothing else can touch
     elif contact.geom_expressible:  # rule 2: every other two surfaces through the broad phase
-        default = f'{BROAD_PHASE} {contact.mjcf_geom_attributes(-depth)}'
+        default = f"{BROAD_PHASE} {contact.mjcf_geom_attributes(-depth)}"
         contacts += [f'<exclude body1="{body(i)}" body2="{body(j)}"/>' for i, j in sorted(seen)]
     else:  # rule 2 with solreffriction: explicit pairs
         default = 'contype="0" conaffinity="0"'
@@ -324,7 +337,7 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
         '<mujoco model="blastscale">'
         '<compiler angle="radian" boundmass="0" boundinertia="0"/>'
         f"{contact.mjcf_option(g)}{size}<default><geom {default}/></default>{asset_block}"
-        f'<worldbody>{"".join(worldbody)}</worldbody><contact>{"".join(contacts)}</contact></mujoco>'
+        f"<worldbody>{''.join(worldbody)}</worldbody><contact>{''.join(contacts)}</contact></mujoco>"
     )
     mj_model = mujoco.MjModel.from_xml_string(xml)
     if mj_model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_MULTICCD:
@@ -334,8 +347,9 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     return Scene(xml=xml, mj_model=mj_model, bodies=bodies, contact=contact, gravity=g, body_ids=ids)
 
 
-def structure_scene(structure, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, *,
-                    rotation: float = 0.0) -> Scene:
+def structure_scene(
+    structure, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, *, rotation: float = 0.0
+) -> Scene:
     """The MuJoCo model of any structure of :mod:`blastscale.structures` at rest: one free body
     per ``structure.bodies`` entry with its exact mass and inertia, its contact geometry
     (:func:`engine_shape`), one contact pair per ``structure.interfaces`` entry; every other
@@ -360,10 +374,13 @@ def structure_scene(structure, contact: ContactSettings, gravity: float = STANDA
     Scene
     """
     density = float(structure.describe()["density_kg_m3"])
-    specs = [BodySpec(b.name, engine_shape(b.shape, density), tuple(b.com), mass=b.mass, inertia=tuple(b.inertia))
-             for b in structure.bodies]
-    fixed = [BodySpec(name, engine_shape(shape, density), com) for name, shape, com in
-             getattr(structure, "fixed_shapes", ())]
+    specs = [
+        BodySpec(b.name, engine_shape(b.shape, density), tuple(b.com), mass=b.mass, inertia=tuple(b.inertia))
+        for b in structure.bodies
+    ]
+    fixed = [
+        BodySpec(name, engine_shape(shape, density), com) for name, shape, com in getattr(structure, "fixed_shapes", ())
+    ]
     return build_scene(tilt_bodies(specs, rotation), contact, gravity, structure.interfaces, fixed)
 
 

@@ -169,8 +169,10 @@ def response_from_states(structure, states: dict, settings: dict) -> Response3D:
         "point_body": pb.astype(np.int32),
         "point_local_position": local,
     }
-    dvars = {k: (VARIABLES[k][0], v, {"units": VARIABLES[k][1], "dimension": VARIABLES[k][2],
-                                      "long_name": VARIABLES[k][3]}) for k, v in data.items()}
+    dvars = {
+        k: (VARIABLES[k][0], v, {"units": VARIABLES[k][1], "dimension": VARIABLES[k][2], "long_name": VARIABLES[k][3]})
+        for k, v in data.items()
+    }
     top_point = top_monitoring_point(structure).name  # the highest at rest: an arch's crown, a portal's lintel
     attrs = {
         "source": "blastscale.sim3d (MuJoCo)",

@@ -33,8 +33,15 @@ from .contact import (
     structure_length,
 )
 
-__all__ = ["REFERENCE_DIGITS", "REFERENCE_GRAVITY", "REFERENCE_LENGTH", "reference_factors", "reference_scene",
-           "reference_settings", "to_reference"]
+__all__ = [
+    "REFERENCE_DIGITS",
+    "REFERENCE_GRAVITY",
+    "REFERENCE_LENGTH",
+    "reference_factors",
+    "reference_scene",
+    "reference_settings",
+    "to_reference",
+]
 
 
 def reference_factors(structure, gravity: float) -> tuple:
@@ -116,6 +123,7 @@ def reference_scene(structure, contact: ContactSettings | None, gravity: float, 
     from .model import structure_scene
 
     a, b = reference_factors(structure, gravity)
-    scene = structure_scene(to_reference(structure, a), reference_settings(contact, structure, a, b),
-                            REFERENCE_GRAVITY, rotation=rotation)
+    scene = structure_scene(
+        to_reference(structure, a), reference_settings(contact, structure, a, b), REFERENCE_GRAVITY, rotation=rotation
+    )
     return scene, (a, b)

@@ -14,8 +14,16 @@ import numpy as np
 
 from .rotations import quaternion_to_matrix
 
-__all__ = ["rotations", "point_positions", "world_vertices", "points_of", "Motion", "motion_of", "frame_count",
-           "SYSTEM_LABELS"]
+__all__ = [
+    "rotations",
+    "point_positions",
+    "world_vertices",
+    "points_of",
+    "Motion",
+    "motion_of",
+    "frame_count",
+    "SYSTEM_LABELS",
+]
 
 
 def rotations(quaternion) -> np.ndarray:
@@ -55,8 +63,12 @@ def world_vertices(position, quaternion, vertices) -> np.ndarray:
 def points_of(ds) -> np.ndarray:
     """:func:`point_positions` of a dataset holding the stored motion (one system: a
     :attr:`~.results.Response3D.dataset`, or one ``system`` of a study's ``sim3d`` group)."""
-    return point_positions(ds["body_position"].values, ds["body_quaternion"].values, ds["point_body"].values,
-                           ds["point_local_position"].values)
+    return point_positions(
+        ds["body_position"].values,
+        ds["body_quaternion"].values,
+        ds["point_body"].values,
+        ds["point_local_position"].values,
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -143,7 +155,12 @@ def motion_of(ds) -> Motion:
     def stacked(name):
         return ds[name].values if "system" in ds[name].dims else ds[name].values[None]
 
-    return Motion(time=np.asarray(ds["time"].values, dtype=float), labels=tuple(SYSTEM_LABELS.get(s, s) for s in systems),
-                  position=stacked("body_position"), quaternion=stacked("body_quaternion"),
-                  vertices=one["body_vertices"].values, faces=one["body_faces"].values.astype(int),
-                  bodies=tuple(str(b) for b in ds["body"].values))
+    return Motion(
+        time=np.asarray(ds["time"].values, dtype=float),
+        labels=tuple(SYSTEM_LABELS.get(s, s) for s in systems),
+        position=stacked("body_position"),
+        quaternion=stacked("body_quaternion"),
+        vertices=one["body_vertices"].values,
+        faces=one["body_faces"].values.astype(int),
+        bodies=tuple(str(b) for b in ds["body"].values),
+    )

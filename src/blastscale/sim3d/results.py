@@ -17,45 +17,91 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Response3D", "VARIABLES", "MOTION_VARIABLES", "STANDS_FRACTION", "REST_SPEED_FRACTION", "REST_WINDOW_FRACTION",
-           "stability_of", "body_heights"]
+__all__ = [
+    "Response3D",
+    "VARIABLES",
+    "MOTION_VARIABLES",
+    "STANDS_FRACTION",
+    "REST_SPEED_FRACTION",
+    "REST_WINDOW_FRACTION",
+    "stability_of",
+    "body_heights",
+]
 
 #: The variables of :attr:`Response3D.dataset`: name -> (dims, units, physical dimension, description).
 VARIABLES = {
-    "com_displacement": (("time", "body", "component"), "m", "length",
-                         "displacement of the centre of mass from its position at time 0"),
+    "com_displacement": (
+        ("time", "body", "component"),
+        "m",
+        "length",
+        "displacement of the centre of mass from its position at time 0",
+    ),
     "com_velocity": (("time", "body", "component"), "m/s", "velocity", "velocity of the centre of mass"),
     "angular_velocity": (("time", "body", "component"), "rad/s", "angular_velocity", "angular velocity, world frame"),
     "tilt": (("time", "body"), "rad", "angle", "angle of the body z axis from the vertical"),
-    "rotation_y": (("time", "body"), "rad", "angle",
-                   "signed rocking angle about +y, atan2(R_xz, R_zz), positive top towards +x"),
-    "point_displacement": (("time", "point", "component"), "m", "length",
-                           "displacement of the monitoring point from its position at time 0"),
+    "rotation_y": (
+        ("time", "body"),
+        "rad",
+        "angle",
+        "signed rocking angle about +y, atan2(R_xz, R_zz), positive top towards +x",
+    ),
+    "point_displacement": (
+        ("time", "point", "component"),
+        "m",
+        "length",
+        "displacement of the monitoring point from its position at time 0",
+    ),
     "point_velocity": (("time", "point", "component"), "m/s", "velocity", "velocity of the monitoring point"),
     "n_contacts": (("time",), "1", "count", "active contact points"),
     "uplift": (("time", "body"), "m", "length", "height of the lowest base point above its rest height"),
     "delivered_impulse": (("body", "component"), "N s", "momentum", "impulse of the blast forces on each body"),
     "fallen": (("body",), "1", "dimensionless", "1 when the body fell (docs/assemblies.md, the fall rule)"),
-    "residual_displacement": (("body",), "m", "length", "distance of the centre of mass from its position at "
-                              "time 0, at the end"),
+    "residual_displacement": (
+        ("body",),
+        "m",
+        "length",
+        "distance of the centre of mass from its position at time 0, at the end",
+    ),
     "residual_rotation": (("body",), "rad", "angle", "angle of the body's rotation from time 0, at the end"),
     # the motion, for replay and drawing (docs/motion.md): poses at every recorded time
-    "body_position": (("time", "body", "component"), "m", "length",
-                      "world position of the body frame's origin (the centre of mass)"),
-    "body_quaternion": (("time", "body", "quaternion"), "1", "dimensionless",
-                        "orientation of the body frame, unit quaternion (w, x, y, z), body to world"),
-    "body_vertices": (("body", "vertex", "component"), "m", "length",
-                      "vertices of the body's surface in its frame (NaN past its own count)"),
-    "body_faces": (("body", "face", "corner"), "1", "count",
-                   "outward triangles of the body's surface, indices into body_vertices (-1 past its own count)"),
+    "body_position": (
+        ("time", "body", "component"),
+        "m",
+        "length",
+        "world position of the body frame's origin (the centre of mass)",
+    ),
+    "body_quaternion": (
+        ("time", "body", "quaternion"),
+        "1",
+        "dimensionless",
+        "orientation of the body frame, unit quaternion (w, x, y, z), body to world",
+    ),
+    "body_vertices": (
+        ("body", "vertex", "component"),
+        "m",
+        "length",
+        "vertices of the body's surface in its frame (NaN past its own count)",
+    ),
+    "body_faces": (
+        ("body", "face", "corner"),
+        "1",
+        "count",
+        "outward triangles of the body's surface, indices into body_vertices (-1 past its own count)",
+    ),
     "point_body": (("point",), "1", "count", "index of the body carrying the monitoring point"),
     "point_local_position": (("point", "component"), "m", "length", "monitoring point in its body's frame"),
 }
 
 #: The variables that store the motion itself (poses, surfaces, where the points sit on their bodies):
 #: a result folder replays and draws from them (:mod:`blastscale.sim3d.replay`); not histories to tabulate.
-MOTION_VARIABLES = ("body_position", "body_quaternion", "body_vertices", "body_faces", "point_body",
-                    "point_local_position")
+MOTION_VARIABLES = (
+    "body_position",
+    "body_quaternion",
+    "body_vertices",
+    "body_faces",
+    "point_body",
+    "point_local_position",
+)
 
 #: Stability under gravity alone (:func:`stability_of`): a structure at rest whose largest residual
 #: displacement of a centre of mass is at most this fraction of its height "stands" (5 mm at 5 m);
@@ -109,10 +155,12 @@ def stability_of(ds, heights, structure_height: float, gravity: float) -> tuple:
     """
     h = max(float(structure_height), 1e-300)
     fallen = ds["fallen"].values.astype(bool)
-    speed = (np.linalg.norm(ds["com_velocity"].values, axis=2)
-             + np.linalg.norm(ds["angular_velocity"].values, axis=2) * 0.5 * np.asarray(heights)[None, :])
+    speed = (
+        np.linalg.norm(ds["com_velocity"].values, axis=2)
+        + np.linalg.norm(ds["angular_velocity"].values, axis=2) * 0.5 * np.asarray(heights)[None, :]
+    )
     n = speed.shape[0]
-    tail = speed[min(int((1.0 - REST_WINDOW_FRACTION) * n), n - 1):]
+    tail = speed[min(int((1.0 - REST_WINDOW_FRACTION) * n), n - 1) :]
     v_rel = float(tail.max() / np.sqrt(gravity * h))
     d_rel = float(ds["residual_displacement"].values.max() / h)
     if bool(ds.attrs["collapsed"]) or fallen.any():
@@ -170,24 +218,33 @@ class Response3D:
         ds = self.dataset
         names = [str(b) for b in ds["body"].values]
         fallen = ds["fallen"].values.astype(bool)
-        masses = np.array([b.mass for b in self.structure.bodies]) if self.structure is not None else np.ones(len(names))
+        masses = (
+            np.array([b.mass for b in self.structure.bodies]) if self.structure is not None else np.ones(len(names))
+        )
         disp = np.linalg.norm(ds["com_displacement"].values, axis=2).max(axis=0)
         res = ds["residual_displacement"].values
         out = {
             "fallen_blocks": int(fallen.sum()),
             "fallen_mass_fraction": float(masses[fallen].sum() / masses.sum()),
             "max_residual_displacement_m": float(res.max()),
-            "bodies": {n: {"delivered_impulse_Ns": [float(x) for x in ds["delivered_impulse"].values[k]],
-                           "max_displacement_m": float(disp[k]), "residual_displacement_m": float(res[k]),
-                           "residual_rotation_rad": float(ds["residual_rotation"].values[k]),
-                           "fallen": bool(fallen[k])} for k, n in enumerate(names)},
+            "bodies": {
+                n: {
+                    "delivered_impulse_Ns": [float(x) for x in ds["delivered_impulse"].values[k]],
+                    "max_displacement_m": float(disp[k]),
+                    "residual_displacement_m": float(res[k]),
+                    "residual_rotation_rad": float(ds["residual_rotation"].values[k]),
+                    "fallen": bool(fallen[k]),
+                }
+                for k, n in enumerate(names)
+            },
         }
         if int(ds.attrs.get("gravity_only", 0)):
             h = float(json.loads(ds.attrs["structure"]).get("height_m", 1.0))
             g = float(ds.attrs.get("setting_gravity_m_s2", 9.80665))
             hk = body_heights(self.structure) if self.structure is not None else np.full(len(names), h)
-            out["stability"], out["final_speed_rel_sqrt_gh"], out["max_residual_displacement_rel_height"] = \
+            out["stability"], out["final_speed_rel_sqrt_gh"], out["max_residual_displacement_rel_height"] = (
                 stability_of(ds, hk, h, g)
+            )
         return out
 
     def summary(self) -> dict:
@@ -211,8 +268,13 @@ class Response3D:
             "max_rotation_rad": float(ds["tilt"].values.max()),
             "delivered_impulse_Ns": [float(x) for x in ds["delivered_impulse"].values.sum(axis=0)],
             "first_arrival_time_s": float(ds.attrs["first_arrival_time_s"]),
-            "points": {n: {"max_displacement_m": float(hd[:, k].max()),
-                           "max_displacement_x_m": float(np.abs(pd[:, k, 0]).max()),
-                           "max_velocity_m_s": float(hv[:, k].max())} for k, n in enumerate(names)},
+            "points": {
+                n: {
+                    "max_displacement_m": float(hd[:, k].max()),
+                    "max_displacement_x_m": float(np.abs(pd[:, k, 0]).max()),
+                    "max_velocity_m_s": float(hv[:, k].max()),
+                }
+                for k, n in enumerate(names)
+            },
             **self.bodies_summary(),
         }

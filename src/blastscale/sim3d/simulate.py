@@ -94,7 +94,8 @@ def check_simulable(structure, contact: ContactSettings, gravity: float) -> None
     if contact.timestep > dt_max * (1 + 1e-12):
         raise BlastscaleInputError(
             f"timestep = {contact.timestep:.6g} s is out of range: valid range is (0, {dt_max:.6g}] s "
-            f"({MAX_TIMESTEP_FRACTION:g} x sqrt(L/g), L = {L:.6g} m)")
+            f"({MAX_TIMESTEP_FRACTION:g} x sqrt(L/g), L = {L:.6g} m)"
+        )
 
 
 def _warn_if_soft(contact: ContactSettings, structure, load, gravity: float) -> None:
@@ -111,7 +112,10 @@ def _warn_if_soft(contact: ContactSettings, structure, load, gravity: float) -> 
             f"contact time constant = {contact.time_constant:.3g} s is soft relative to the blast "
             f"(load duration {pulse_t:.3g} s, scale-consistent default {ref:.3g} s): the response will depend on it; "
             "use contact=None (scale-consistent defaults) or a time constant <= "
-            f"{bound:.3g} s", RuntimeWarning, stacklevel=3)
+            f"{bound:.3g} s",
+            RuntimeWarning,
+            stacklevel=3,
+        )
 
 
 def _check_common(duration, gravity, record_every, blast_mode):
@@ -121,7 +125,9 @@ def _check_common(duration, gravity, record_every, blast_mode):
     if not float(record_every).is_integer():
         raise BlastscaleInputError(f"record_every = {record_every!r} is out of range: must be a whole number >= 1")
     if blast_mode is not None and blast_mode not in BLAST_MODES:
-        raise BlastscaleInputError(f"blast_mode = {blast_mode!r} is not known: valid values are {', '.join(BLAST_MODES)}")
+        raise BlastscaleInputError(
+            f"blast_mode = {blast_mode!r} is not known: valid values are {', '.join(BLAST_MODES)}"
+        )
     return T, g
 
 
@@ -205,10 +211,18 @@ def simulate_structure(
     # the one place where absolute size is removed (.reference)
     scene, (a, b) = reference_scene(structure, contact if explicit else None, g, rotation=th0)
     _warn_near_pivot_threshold(scene, contact.friction, load, mode)
-    st = integrate(scene, load, T, record_every=record_every, blast_mode=mode, settle=settle and th0 == 0.0,
-                   factors=(a, b), initial_velocity=_both(rigid_rocking_velocity(scene, th0, om0, v0, (a, b)),
-                                                          body_velocities(initial_body_velocities, scene,
-                                                                          (a, b))))
+    st = integrate(
+        scene,
+        load,
+        T,
+        record_every=record_every,
+        blast_mode=mode,
+        settle=settle and th0 == 0.0,
+        factors=(a, b),
+        initial_velocity=_both(
+            rigid_rocking_velocity(scene, th0, om0, v0, (a, b)), body_velocities(initial_body_velocities, scene, (a, b))
+        ),
+    )
     return response_from_states(structure, st, _settings(contact, g, T, mode, st, load, explicit))
 
 
@@ -225,8 +239,14 @@ def _both(first, second):
 
 
 def _settings(c: ContactSettings, g, T, mode, st, load, explicit) -> dict:
-    out = {**c.to_dict(), "contact_source": "explicit" if explicit else "scale-consistent default",
-           "gravity_m_s2": g, "duration_s": T, "blast_mode": mode, "kick_steps": st["kicks"]}
+    out = {
+        **c.to_dict(),
+        "contact_source": "explicit" if explicit else "scale-consistent default",
+        "gravity_m_s2": g,
+        "duration_s": T,
+        "blast_mode": mode,
+        "kick_steps": st["kicks"],
+    }
     if load is not None and hasattr(load, "describe"):
         out.update(load.describe())
     return out

@@ -41,6 +41,7 @@ from .specimen import specimen_system
 
 __all__ = ["design_model"]
 
+
 def design_model(
     charge: float,
     standoff: float,
@@ -185,8 +186,11 @@ def design_model(
     if structure is not None and is_block(structure):  # t_o p (:func:`~.experiment.impulsive_check`)
         rp = proto.positive_duration * structure.frequency_parameter(gravity)
         rm = spec.positive_duration * specimen_structure.frequency_parameter(spec_sys.gravity)
-        imp = ImpulsiveCheck(prototype_ratio=float(rp) if scalar else rp, model_ratio=float(rm) if scalar else rm,
-                             threshold=float(impulsive_threshold))
+        imp = ImpulsiveCheck(
+            prototype_ratio=float(rp) if scalar else rp,
+            model_ratio=float(rm) if scalar else rm,
+            threshold=float(impulsive_threshold),
+        )
     lm_s = spec_sys.load_model  # the specimen's load model: its face lambda times the prototype's
     if face is None and structure is not None:
         face = (structure.depth, structure.height) if is_block(structure) else (None, structure_top(structure))
@@ -196,11 +200,28 @@ def design_model(
         for n in notes:
             warnings.warn(n, BlastSimilarityWarning, stacklevel=2)
     return ModelDesign(
-        law=law, scale=lam, density_ratio=gam, gravity_ratio=sig, scaled_distance_factor=f.scaled_distance,
-        root_note=note, prototype=proto, specimen=spec, factors=f, impulsive=imp, prototype_structure=structure,
-        specimen_structure=specimen_structure, gravity=float(gravity), valid=ok, effects=effects_, notes=notes,
-        load_model=lm, specimen_load_model=lm_s, contact=contact, specimen_contact=spec_sys.contact,
-        duration=None if duration is None else float(duration), specimen_duration=spec_sys.duration,
+        law=law,
+        scale=lam,
+        density_ratio=gam,
+        gravity_ratio=sig,
+        scaled_distance_factor=f.scaled_distance,
+        root_note=note,
+        prototype=proto,
+        specimen=spec,
+        factors=f,
+        impulsive=imp,
+        prototype_structure=structure,
+        specimen_structure=specimen_structure,
+        gravity=float(gravity),
+        valid=ok,
+        effects=effects_,
+        notes=notes,
+        load_model=lm,
+        specimen_load_model=lm_s,
+        contact=contact,
+        specimen_contact=spec_sys.contact,
+        duration=None if duration is None else float(duration),
+        specimen_duration=spec_sys.duration,
     )
 
 
@@ -211,8 +232,10 @@ def _charges_and_standoffs(charge, standoff, scalar: bool):
     try:
         W, R = np.broadcast_arrays(check_positive("charge", charge, "kg"), check_positive("standoff", standoff, "m"))
     except ValueError:
-        raise BlastscaleInputError(f"charge and standoff have shapes {np.shape(charge)} and {np.shape(standoff)}, "
-                                   "which do not broadcast together") from None
+        raise BlastscaleInputError(
+            f"charge and standoff have shapes {np.shape(charge)} and {np.shape(standoff)}, "
+            "which do not broadcast together"
+        ) from None
     return W.astype(float), R.astype(float)
 
 
@@ -284,8 +307,13 @@ def _design_cases(W, R, lam, gam, sig, law, bm, ms, extrapolate) -> tuple:
 def _effects(proto, spec, ok, scalar, lm, lm_s, lam, face, specimen_charge_height, extrapolate) -> tuple:
     """(effects, notes) of :func:`~.effects.blast_effects`: of the one case, or of every valid case (the
     numbers then arrays over the cases, NaN where invalid; each note once). None when no case is valid."""
-    kw = dict(specimen_load_model=lm_s, scale=lam, face=face, specimen_charge_height=specimen_charge_height,
-              extrapolate=extrapolate)
+    kw = dict(
+        specimen_load_model=lm_s,
+        scale=lam,
+        face=face,
+        specimen_charge_height=specimen_charge_height,
+        extrapolate=extrapolate,
+    )
     if scalar:
         return blast_effects(proto, spec, lm, **kw)
     records, notes = [], []
@@ -299,8 +327,9 @@ def _effects(proto, spec, ok, scalar, lm, lm_s, lam, face, specimen_charge_heigh
 
 def _case(bp: BlastParameters, i: int) -> BlastParameters:
     """The blast parameters of case ``i`` (flat index) of arrays of them, as numbers."""
-    return BlastParameters(**{k: (v if isinstance(v, str) or v is None else float(np.ravel(v)[i]))
-                              for k, v in asdict(bp).items()})
+    return BlastParameters(
+        **{k: (v if isinstance(v, str) or v is None else float(np.ravel(v)[i])) for k, v in asdict(bp).items()}
+    )
 
 
 def _stack(records: list, cases: np.ndarray, shape: tuple):

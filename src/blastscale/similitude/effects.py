@@ -27,8 +27,16 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive_scalar
 
-__all__ = ["SIMILARITY_TOLERANCE", "CONTINUOUS_FRONT", "front_geometry", "structure_top", "front_face", "blast_effects", "clearing_corrected_charge",
-           "BlastSimilarityWarning"]
+__all__ = [
+    "SIMILARITY_TOLERANCE",
+    "CONTINUOUS_FRONT",
+    "front_geometry",
+    "structure_top",
+    "front_face",
+    "blast_effects",
+    "clearing_corrected_charge",
+    "BlastSimilarityWarning",
+]
 
 #: Relative difference between prototype and specimen above which a design notes a violation [-].
 SIMILARITY_TOLERANCE = 0.05
@@ -80,14 +88,19 @@ def structure_top(structure) -> float:
 def _assembly_front(structure) -> tuple:
     pts = np.vstack([b.points for b in structure.blocks])
     width, top = float(np.ptp(pts[:, 1])), float(pts[:, 2].max())
-    filled = sum(float(f.area) * -float(f.normal[0]) for b in structure.bodies for f in b.faces
-                 if not f.in_contact and float(f.normal[0]) < 0.0)
+    filled = sum(
+        float(f.area) * -float(f.normal[0])
+        for b in structure.bodies
+        for f in b.faces
+        if not f.in_contact and float(f.normal[0]) < 0.0
+    )
     frac = filled / (width * top)
     if frac < CONTINUOUS_FRONT:
         raise BlastscaleInputError(
             f"blast.clearing = true on structure.kind = {structure.kind!r}: its blocks' fronts fill {100 * frac:.3g} % "
             f"of its {width:.4g} m x {top:.4g} m front (openings); clearing needs a continuous front (valid: block, "
-            f"column, wall, or a block file whose front is full, >= {100 * CONTINUOUS_FRONT:g} %)")
+            f"column, wall, or a block file whose front is full, >= {100 * CONTINUOUS_FRONT:g} %)"
+        )
     return np.full(len(structure.bodies), width), top
 
 
@@ -103,8 +116,17 @@ def _rel(a, b) -> float:
     return abs(a / b - 1.0) if b else math.inf
 
 
-def blast_effects(prototype, specimen, load_model=None, *, specimen_load_model, scale: float, face=None,
-                  specimen_charge_height=None, extrapolate: bool = False) -> tuple:
+def blast_effects(
+    prototype,
+    specimen,
+    load_model=None,
+    *,
+    specimen_load_model,
+    scale: float,
+    face=None,
+    specimen_charge_height=None,
+    extrapolate: bool = False,
+) -> tuple:
     """Clearing, negative phase and burst type of a designed experiment, for both systems.
 
     Parameters
@@ -140,21 +162,32 @@ def blast_effects(prototype, specimen, load_model=None, *, specimen_load_model, 
     lam = check_positive_scalar("scale", scale)
     lm_p = load_model or PAPER_LOAD
     lm_s = PAPER_LOAD if specimen_load_model is None else specimen_load_model  # the design's
-    out: dict = {"load_model": {"prototype": load_model_record(prototype.blast_model, prototype.burst, lm_p),
-                                "model": load_model_record(specimen.blast_model, specimen.burst, lm_s)}}
+    out: dict = {
+        "load_model": {
+            "prototype": load_model_record(prototype.blast_model, prototype.burst, lm_p),
+            "model": load_model_record(specimen.blast_model, specimen.burst, lm_s),
+        }
+    }
     notes: list = []
     if prototype.burst != specimen.burst:
-        notes.append(f"burst: the prototype's is a {prototype.burst} burst, the model's a {specimen.burst} burst "
-                     f"(the general law matches their reflected impulses, {prototype.blast_model} against "
-                     f"{specimen.blast_model})")
+        notes.append(
+            f"burst: the prototype's is a {prototype.burst} burst, the model's a {specimen.burst} burst "
+            f"(the general law matches their reflected impulses, {prototype.blast_model} against "
+            f"{specimen.blast_model})"
+        )
     if lm_p.clearing:
         c = {}
         for name, bp, lm in (("prototype", prototype, lm_p), ("model", specimen, lm_s)):
             cl = front_face_clearing(bp, lm)
-            c[name] = {**cl.to_dict(), "positive_duration_s": float(bp.positive_duration),
-                       "clearing_time_over_positive_duration": float(cl.clearing_time / bp.positive_duration),
-                       "cleared_over_uncleared_impulse": float(cl.impulse / cl.uncleared_impulse)}
-        r_t = _rel(c["model"]["clearing_time_over_positive_duration"], c["prototype"]["clearing_time_over_positive_duration"])
+            c[name] = {
+                **cl.to_dict(),
+                "positive_duration_s": float(bp.positive_duration),
+                "clearing_time_over_positive_duration": float(cl.clearing_time / bp.positive_duration),
+                "cleared_over_uncleared_impulse": float(cl.impulse / cl.uncleared_impulse),
+            }
+        r_t = _rel(
+            c["model"]["clearing_time_over_positive_duration"], c["prototype"]["clearing_time_over_positive_duration"]
+        )
         r_i = _rel(c["model"]["cleared_over_uncleared_impulse"], c["prototype"]["cleared_over_uncleared_impulse"])
         c["relative_difference_clearing_time_over_duration"] = r_t
         c["relative_difference_cleared_fraction"] = r_i
@@ -165,14 +198,19 @@ def blast_effects(prototype, specimen, load_model=None, *, specimen_load_model, 
                 f"(prototype) vs {c['model']['cleared_over_uncleared_impulse']:.3g} (model), t_c / t_o "
                 f"{c['prototype']['clearing_time_over_positive_duration']:.3g} vs "
                 f"{c['model']['clearing_time_over_positive_duration']:.3g}: a {100 * r_i:.3g} % difference the "
-                "scaling law does not see")
+                "scaling law does not see"
+            )
         elif r_t > SIMILARITY_TOLERANCE:
             fp, fm = c["prototype"]["cleared_over_uncleared_impulse"], c["model"]["cleared_over_uncleared_impulse"]
-            what = ("no clearing in either system (UFC keeps the uncleared pulse)" if fp == 1.0 and fm == 1.0 else
-                    f"the cleared / uncleared impulse still agrees ({fp:.3g} vs {fm:.3g})")
+            what = (
+                "no clearing in either system (UFC keeps the uncleared pulse)"
+                if fp == 1.0 and fm == 1.0
+                else f"the cleared / uncleared impulse still agrees ({fp:.3g} vs {fm:.3g})"
+            )
             notes.append(
                 f"clearing: t_c / t_o is {c['prototype']['clearing_time_over_positive_duration']:.3g} (prototype) vs "
-                f"{c['model']['clearing_time_over_positive_duration']:.3g} (model), the relief is not similar; {what}")
+                f"{c['model']['clearing_time_over_positive_duration']:.3g} (model), the relief is not similar; {what}"
+            )
     if lm_p.negative_phase:
         n = {}
         for name, bp, lm in (("prototype", prototype, lm_p), ("model", specimen, lm_s)):
@@ -185,19 +223,22 @@ def blast_effects(prototype, specimen, load_model=None, *, specimen_load_model, 
             notes.append(
                 f"negative phase: its impulse is {n['prototype']['negative_over_positive_impulse']:.3g} of the positive "
                 f"one in the prototype, {n['model']['negative_over_positive_impulse']:.3g} in the model (a "
-                f"{100 * r_n:.3g} % difference the scaling law does not see)")
+                f"{100 * r_n:.3g} % difference the scaling law does not see)"
+            )
     if specimen_charge_height is not None:
         height = lm_s.face_height_m if lm_s.clearing else (None if face is None else lam * float(face[1]))
         if height is None:
             raise BlastscaleInputError(
-                "specimen charge height needs the specimen's face height: give the structure (or clearing's face)")
+                "specimen charge height needs the specimen's face height: give the structure (or clearing's face)"
+            )
         lb = lab_burst(specimen.charge_kg, specimen.standoff_m, specimen_charge_height, height, extrapolate=True)
         out["lab_burst"] = lb.to_dict()
         if lb.kind != specimen.burst:
             notes.append(
                 f"lab charge at {specimen_charge_height:.4g} m is {'neither a surface nor a free-air burst' if lb.kind == 'neither' else 'a ' + lb.kind + ' burst'}: "
                 f"the floor's reflection reaches the face {lb.reflection_delay_s:.3g} s after the shock, "
-                f"{lb.delay_ratio:.2g} of the positive duration (the design assumed a {specimen.burst} burst)")
+                f"{lb.delay_ratio:.2g} of the positive duration (the design assumed a {specimen.burst} burst)"
+            )
     return out, tuple(notes)
 
 
@@ -224,7 +265,8 @@ def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = Fa
     if load_model is not None and load_model != design.load_model:
         raise BlastscaleInputError(
             f"load model = {load_model!r} is not the design's ({design.load_model!r}): the specimen's load model "
-            "comes from the design; design with design_model(..., load_model=...)")
+            "comes from the design; design with design_model(..., load_model=...)"
+        )
     load_model, lm_s = design.load_model, design.specimen_load_model  # the design's, scaled once by it
     if load_model is None or not load_model.clearing:
         raise BlastscaleInputError("clearing corrected charge needs a load model with clearing (and its face)")
@@ -239,8 +281,10 @@ def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = Fa
         return float(front_face_clearing(bp, lm_s).impulse), bp
 
     if not (cleared(lo)[0] <= target <= cleared(hi)[0]):
-        raise BlastscaleInputError("clearing corrected charge: no specimen charge within the fits' range of Z "
-                                   "delivers the required cleared impulse")
+        raise BlastscaleInputError(
+            "clearing corrected charge: no specimen charge within the fits' range of Z "
+            "delivers the required cleared impulse"
+        )
     for _ in range(80):
         mid = 0.5 * (lo + hi)
         if cleared(mid)[0] > target:
@@ -250,9 +294,14 @@ def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = Fa
     W = math.exp(0.5 * (lo + hi))
     bp = cleared(0.5 * (lo + hi))[1]
     d = design.specimen
-    return {"charge_kg": W, "design_charge_kg": float(d.charge_kg), "charge_ratio": W / float(d.charge_kg),
-            "scaled_distance": float(bp.scaled_distance), "design_scaled_distance": float(d.scaled_distance),
-            "reflected_pressure_ratio": float(bp.reflected_pressure / d.reflected_pressure),
-            "positive_duration_ratio": float(bp.positive_duration / d.positive_duration),
-            "uncleared_impulse_ratio": float(bp.reflected_impulse / d.reflected_impulse),
-            "target_cleared_impulse_Pa_s": target}
+    return {
+        "charge_kg": W,
+        "design_charge_kg": float(d.charge_kg),
+        "charge_ratio": W / float(d.charge_kg),
+        "scaled_distance": float(bp.scaled_distance),
+        "design_scaled_distance": float(d.scaled_distance),
+        "reflected_pressure_ratio": float(bp.reflected_pressure / d.reflected_pressure),
+        "positive_duration_ratio": float(bp.positive_duration / d.positive_duration),
+        "uncleared_impulse_ratio": float(bp.reflected_impulse / d.reflected_impulse),
+        "target_cleared_impulse_Pa_s": target,
+    }

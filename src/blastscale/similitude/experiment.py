@@ -68,9 +68,7 @@ class ImpulsiveCheck:
         }
 
 
-def impulsive_check(
-    duration: float, block: RectangularBlock, gravity: float = STANDARD_GRAVITY
-) -> float:
+def impulsive_check(duration: float, block: RectangularBlock, gravity: float = STANDARD_GRAVITY) -> float:
     """The impulsiveness measure of a pulse on a rocking block [-].
 
     .. math:: t_o\\,p, \\qquad p = \\sqrt{3 g / (4 r)}
@@ -227,8 +225,10 @@ class ModelDesign:
         else:
             from ..blast.load_model import load_model_record
 
-            out["load_model"] = {"prototype": load_model_record(self.prototype.blast_model, self.prototype.burst),
-                                 "model": load_model_record(self.specimen.blast_model, self.specimen.burst)}
+            out["load_model"] = {
+                "prototype": load_model_record(self.prototype.blast_model, self.prototype.burst),
+                "model": load_model_record(self.specimen.blast_model, self.specimen.burst),
+            }
         if self.notes:
             out["notes"] = list(self.notes)
         return out

@@ -140,7 +140,11 @@ def scaling_factors(
     lam = check_positive_scalar("scale", scale)
     gam = check_positive_scalar("density ratio", density_ratio)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
-    lz = None if scaled_distance_factor is None else check_positive_scalar("scaled distance factor", scaled_distance_factor)
+    lz = (
+        None
+        if scaled_distance_factor is None
+        else check_positive_scalar("scaled distance factor", scaled_distance_factor)
+    )
     return ScalingFactors(
         length=lam,
         density=gam,
@@ -215,9 +219,15 @@ def pi_terms(
     check_positive_scalar("inertia", inertia, "kg m^2")
     for name, value, unit in (("pressure", pressure, "Pa"), ("impulse", impulse, "Pa s"), ("friction", friction, "")):
         check_range(name, value, 0.0, unit=unit)
-    for name, value in (("time", time), ("displacement", displacement), ("velocity", velocity),
-                        ("acceleration", acceleration), ("angle", angle), ("angular velocity", angular_velocity),
-                        ("angular acceleration", angular_acceleration)):
+    for name, value in (
+        ("time", time),
+        ("displacement", displacement),
+        ("velocity", velocity),
+        ("acceleration", acceleration),
+        ("angle", angle),
+        ("angular velocity", angular_velocity),
+        ("angular acceleration", angular_acceleration),
+    ):
         check_finite(name, value)
     return {
         "pi_02": displacement / l,

@@ -263,9 +263,14 @@ def _residual(m, z, x, target, ln_i0=None, ms=None):
     return np.log(ms.scaled_reflected_impulse(zz)) - ln_i0 - x - np.log(target)
 
 
-def solve_scaled_distance_factors(prototype_scaled_distance, scale: float, density_ratio: float = 1.0,
-                                  gravity_ratio: float = 1.0, blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
-                                  specimen_blast_model: "str | BlastModel | None" = None):
+def solve_scaled_distance_factors(
+    prototype_scaled_distance,
+    scale: float,
+    density_ratio: float = 1.0,
+    gravity_ratio: float = 1.0,
+    blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL,
+    specimen_blast_model: "str | BlastModel | None" = None,
+):
     """lambda_Z of the general law (paper Eq. 8) for every prototype Z of an array, at once.
 
     A bracketed root in x = ln lambda_Z on the impulse fit's range of the model Z (the residual

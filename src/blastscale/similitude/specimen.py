@@ -53,8 +53,14 @@ class SpecimenSystem(NamedTuple):
     gravity: float | None = None
 
 
-def specimen_system(factors: ScalingFactors, structure=None, load_model=None, contact=None,
-                    duration: float | None = None, gravity: float | None = None) -> SpecimenSystem:
+def specimen_system(
+    factors: ScalingFactors,
+    structure=None,
+    load_model=None,
+    contact=None,
+    duration: float | None = None,
+    gravity: float | None = None,
+) -> SpecimenSystem:
     """The specimen system of a prototype's parts, each scaled once by ``factors`` (module docstring).
 
     Parameters

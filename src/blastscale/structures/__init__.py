@@ -4,8 +4,17 @@ faces in the body frame, interfaces and monitoring points. Monolithic blocks and
 interfaces found by geometry, :mod:`.interfaces`) generated as walls, arches and portals
 (:mod:`.generators`) or read from block-model files (:mod:`.block_files`)."""
 
-from .base import (BoxGeometry, Face, MonitoringPoint, PrismGeometry, RestMassProperties, RigidBody,
-                   frustum_mass_properties, rest_mass_properties, top_monitoring_point)
+from .base import (
+    BoxGeometry,
+    Face,
+    MonitoringPoint,
+    PrismGeometry,
+    RestMassProperties,
+    RigidBody,
+    frustum_mass_properties,
+    rest_mass_properties,
+    top_monitoring_point,
+)
 from .assembly import Assembly, ConvexBlock, ConvexGeometry, as_assembly
 from .block import STANDARD_GRAVITY, RectangularBlock
 from .block_files import read_block_model

@@ -117,28 +117,38 @@ def _geometry(block: ConvexBlock) -> _BlockGeometry:
         vol = a * d * c
         m = block.density * a * d * c  # in this order: the engine's masses of earlier releases, bitwise
         com = 0.5 * (lo + hi)
-        inertia = tuple(float(x) for x in (m * (d * d + c * c) / 12.0, m * (a * a + c * c) / 12.0,
-                                           m * (a * a + d * d) / 12.0))
+        inertia = tuple(
+            float(x) for x in (m * (d * d + c * c) / 12.0, m * (a * a + c * c) / 12.0, m * (a * a + d * d) / 12.0)
+        )
         shape = BoxGeometry(0.5 * a, 0.5 * d, 0.5 * c)
     else:
         mp = polyhedron_mass_properties(v, block.density, block.name)
         m, vol, com, I = mp.mass, mp.volume, mp.centroid, mp.inertia
         off = np.abs(I - np.diag(np.diag(I))).max()
-        inertia = (tuple(np.diag(I)) if off <= 1e-12 * np.trace(I)
-                   else (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]))
+        inertia = (
+            tuple(np.diag(I)) if off <= 1e-12 * np.trace(I) else (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2])
+        )
         inertia = tuple(float(x) for x in inertia)
         hull = hull_of(v, block.name)
         shape = ConvexGeometry(as_vertex_tuple(v[hull.vertices] - com))
-    return _BlockGeometry(float(m), float(vol), np.asarray(com, dtype=float), inertia, faces, shape,
-                          float(np.ptp(v[:, 2])))
+    return _BlockGeometry(
+        float(m), float(vol), np.asarray(com, dtype=float), inertia, faces, shape, float(np.ptp(v[:, 2]))
+    )
 
 
 def _given_geometry(block: ConvexBlock, body: RigidBody) -> _BlockGeometry:
     """The geometry of a block made from a structure's body (:func:`as_assembly`): the body's own mass,
     volume, centre of mass, inertia and contact shape, the faces of its solid."""
     v = block.points
-    return _BlockGeometry(body.mass, body.volume, np.asarray(body.com, dtype=float), tuple(body.inertia),
-                          polyhedron_faces(v, block.name), body.shape, float(np.ptp(v[:, 2])))
+    return _BlockGeometry(
+        body.mass,
+        body.volume,
+        np.asarray(body.com, dtype=float),
+        tuple(body.inertia),
+        polyhedron_faces(v, block.name),
+        body.shape,
+        float(np.ptp(v[:, 2])),
+    )
 
 
 @dataclass(frozen=True)
@@ -189,15 +199,18 @@ class Assembly:
         for p in self.extra_points:
             if not isinstance(p, MonitoringPoint) or not 0 <= p.body < len(blocks):
                 raise BlastscaleInputError(
-                    f"point = {p!r} is out of range: must be a MonitoringPoint on a block 0-{len(blocks) - 1}")
+                    f"point = {p!r} is out of range: must be a MonitoringPoint on a block 0-{len(blocks) - 1}"
+                )
         if self.source_bodies and len(self.source_bodies) != len(blocks):
-            raise BlastscaleInputError(f"source bodies = {len(self.source_bodies)} is out of range: must be one per "
-                                       f"block ({len(blocks)})")
+            raise BlastscaleInputError(
+                f"source bodies = {len(self.source_bodies)} is out of range: must be one per block ({len(blocks)})"
+            )
         if self.check:
             everything = blocks + self.supports
             faces = [x.faces for x in self._geometries + self._support_geometries]
-            check_assembly(names, [b.points for b in everything], faces, self._all_interfaces, self.size,
-                           fixed=len(self.supports))
+            check_assembly(
+                names, [b.points for b in everything], faces, self._all_interfaces, self.size, fixed=len(self.supports)
+            )
 
     # -- derived geometry (computed once) ------------------------------------------------
     @functools.cached_property
@@ -233,8 +246,11 @@ class Assembly:
                 (ground if itf.first < 0 else joints).append(itf)
             elif 0 <= itf.first < n and not np.all(np.abs(np.asarray(itf.polygon)[:, 2]) <= tol):
                 # block - support: the support is the ground (in the ground plane: the plane's own interface)
-                ground.append(replace(itf, first=-1, second=itf.first, normal=tuple(-x for x in itf.normal),
-                                      faces=(-1, itf.faces[0])))
+                ground.append(
+                    replace(
+                        itf, first=-1, second=itf.first, normal=tuple(-x for x in itf.normal), faces=(-1, itf.faces[0])
+                    )
+                )
         return tuple(sorted(ground, key=lambda i: i.second)) + tuple(joints)
 
     @property
@@ -248,8 +264,11 @@ class Assembly:
         """(name, contact geometry, centre [m]) of each support that rises above the ground (a
         support wholly below it is the ground plane as far as contact goes), for the engine."""
         tol = 1e-6 * self.size
-        return tuple((b.name, g.shape, tuple(float(x) for x in g.com))
-                     for b, g in zip(self.supports, self._support_geometries) if b.points[:, 2].max() > tol)
+        return tuple(
+            (b.name, g.shape, tuple(float(x) for x in g.com))
+            for b, g in zip(self.supports, self._support_geometries)
+            if b.points[:, 2].max() > tol
+        )
 
     @functools.cached_property
     def bodies(self) -> tuple:
@@ -269,17 +288,39 @@ class Assembly:
                 a_cov = sum(a for a, _ in parts)
                 exposed = max(f.area - a_cov, 0.0)
                 touching = exposed <= COVERED_FRACTION * f.area
-                cent = f.centroid if not parts or touching else (
-                    f.area * f.centroid - sum(a * c for a, c in parts)) / exposed
-                faces.append(Face(face_label(f.normal), tuple(float(x) for x in cent - g.com),
-                                  tuple(float(x) for x in f.normal), float(f.area if not parts else exposed), touching,
-                                  as_vertex_tuple(f.vertices - g.com)))
+                cent = (
+                    f.centroid
+                    if not parts or touching
+                    else (f.area * f.centroid - sum(a * c for a, c in parts)) / exposed
+                )
+                faces.append(
+                    Face(
+                        face_label(f.normal),
+                        tuple(float(x) for x in cent - g.com),
+                        tuple(float(x) for x in f.normal),
+                        float(f.area if not parts else exposed),
+                        touching,
+                        as_vertex_tuple(f.vertices - g.com),
+                    )
+                )
             load = _load_face(faces)
             zb = float(np.min(b.points[:, 2]) - g.com[2])
             sx, sy = g.shape.support_radius
-            out.append(RigidBody(b.name, g.mass, tuple(float(x) for x in g.com), g.inertia, g.shape, tuple(faces), load,
-                                 zb, math.atan2(min(sx, sy), max(-zb, 1e-300)), g.volume,
-                                 as_vertex_tuple(b.points - g.com)))
+            out.append(
+                RigidBody(
+                    b.name,
+                    g.mass,
+                    tuple(float(x) for x in g.com),
+                    g.inertia,
+                    g.shape,
+                    tuple(faces),
+                    load,
+                    zb,
+                    math.atan2(min(sx, sy), max(-zb, 1e-300)),
+                    g.volume,
+                    as_vertex_tuple(b.points - g.com),
+                )
+            )
         return tuple(out)
 
     @property
@@ -314,11 +355,17 @@ class Assembly:
         parameters (SI keys); ``supports`` (their number) when there are any."""
         v = np.vstack([b.points for b in self.blocks + self.supports])
         dens = {b.density for b in self.blocks}
-        out = {"kind": self.kind, **dict(self.parameters), "blocks": len(self.blocks),
-               "height_m": float(v[:, 2].max()), "length_m": float(np.ptp(v[:, 1])),
-               "thickness_m": float(np.ptp(v[:, 0])),
-               "density_kg_m3": float(next(iter(dens))) if len(dens) == 1 else float(self.mass / self.volume),
-               "mass_kg": self.mass, "interfaces": len(self.interface_details)}
+        out = {
+            "kind": self.kind,
+            **dict(self.parameters),
+            "blocks": len(self.blocks),
+            "height_m": float(v[:, 2].max()),
+            "length_m": float(np.ptp(v[:, 1])),
+            "thickness_m": float(np.ptp(v[:, 0])),
+            "density_kg_m3": float(next(iter(dens))) if len(dens) == 1 else float(self.mass / self.volume),
+            "mass_kg": self.mass,
+            "interfaces": len(self.interface_details),
+        }
         if self.supports:
             out["supports"] = len(self.supports)
         return out
@@ -345,10 +392,13 @@ class Assembly:
 
         blocks = tuple(replace(b, vertices=fv(b.points), density=dens(b.density)) for b in self.blocks)
         supports = tuple(replace(b, vertices=fv(b.points), density=dens(b.density)) for b in self.supports)
-        pts = tuple(replace(p, position=tuple(float(x) for x in np.asarray(p.position) * length_factor))
-                    for p in self.extra_points)
-        params = tuple((k, v * length_factor if k.endswith("_m") and isinstance(v, float) else v)
-                       for k, v in self.parameters)
+        pts = tuple(
+            replace(p, position=tuple(float(x) for x in np.asarray(p.position) * length_factor))
+            for p in self.extra_points
+        )
+        params = tuple(
+            (k, v * length_factor if k.endswith("_m") and isinstance(v, float) else v) for k, v in self.parameters
+        )
         return Assembly(blocks, pts, self.kind, params, check=False, supports=supports)
 
 
@@ -374,6 +424,10 @@ def as_assembly(structure) -> "Assembly":
         return structure
     d = structure.describe()
     bodies = tuple(structure.bodies)
-    blocks = tuple(ConvexBlock(b.name, np.asarray(b.vertices) + np.asarray(b.com),
-                               float(d.get("density_kg_m3") or b.mass / b.volume)) for b in bodies)
+    blocks = tuple(
+        ConvexBlock(
+            b.name, np.asarray(b.vertices) + np.asarray(b.com), float(d.get("density_kg_m3") or b.mass / b.volume)
+        )
+        for b in bodies
+    )
     return Assembly(blocks, kind=str(d.get("kind", "structure")), check=False, source_bodies=bodies)

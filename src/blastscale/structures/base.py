@@ -243,8 +243,12 @@ def frustum_vertices(base, top, z_base: float, z_top: float) -> np.ndarray:
     polygon (k, 2) at ``z_top`` [m] (base ring, then top ring): a prism when they are equal, a frustum
     when the top is the base scaled about the axis."""
     base, top = np.asarray(base, dtype=float), np.asarray(top, dtype=float)
-    return np.vstack([np.column_stack([base, np.full(len(base), float(z_base))]),
-                      np.column_stack([top, np.full(len(top), float(z_top))])])
+    return np.vstack(
+        [
+            np.column_stack([base, np.full(len(base), float(z_base))]),
+            np.column_stack([top, np.full(len(top), float(z_top))]),
+        ]
+    )
 
 
 def box_vertices(half_width: float, half_depth: float, half_height: float, centre_z: float = 0.0) -> np.ndarray:
@@ -257,8 +261,10 @@ def box_vertices(half_width: float, half_depth: float, half_height: float, centr
 def rectangle_ring(half_width: float, half_depth: float) -> np.ndarray:
     """The corners (4, 2) [m] of a rectangle of half-sizes (b, w) along x, y, centred on the axis,
     counter-clockwise."""
-    return np.array([[-half_width, -half_depth], [half_width, -half_depth], [half_width, half_depth],
-                     [-half_width, half_depth]], dtype=float)
+    return np.array(
+        [[-half_width, -half_depth], [half_width, -half_depth], [half_width, half_depth], [-half_width, half_depth]],
+        dtype=float,
+    )
 
 
 def as_vertex_tuple(points) -> tuple:
@@ -320,8 +326,9 @@ def polygon_section_constants(sides: int) -> tuple:
     return 0.5 * n * s2, n * s2 * (2.0 + math.cos(2.0 * math.pi / n)) / 24.0
 
 
-def frustum_mass_properties(s0: float, s1: float, height: float, density: float, a: float = 1.0,
-                            k: float = 1.0 / 12.0) -> FrustumMassProperties:
+def frustum_mass_properties(
+    s0: float, s1: float, height: float, density: float, a: float = 1.0, k: float = 1.0 / 12.0
+) -> FrustumMassProperties:
     """Exact mass properties of a frustum whose section size tapers linearly from s0 to s1.
 
     Parameters
@@ -353,8 +360,17 @@ def frustum_mass_properties(s0: float, s1: float, height: float, density: float,
     return FrustumMassProperties(density * vol, vol, zc, (ixx, ixx, izz))
 
 
-def tapered_face(label: str, d0: float, d1: float, w0: float, w1: float, height: float, z_com: float,
-                 angle: float, in_contact: bool = False) -> Face:
+def tapered_face(
+    label: str,
+    d0: float,
+    d1: float,
+    w0: float,
+    w1: float,
+    height: float,
+    z_com: float,
+    angle: float,
+    in_contact: bool = False,
+) -> Face:
     """A side face of a linearly tapered prism, as a trapezoid in the body frame.
 
     The face lies at the horizontal distance d(z) = d0 + (d1 - d0) z / H from the body axis,

@@ -20,7 +20,6 @@ from .base import BoxGeometry, Face, MonitoringPoint, RigidBody, as_vertex_tuple
 __all__ = ["RectangularBlock", "STANDARD_GRAVITY"]
 
 
-
 @dataclass(frozen=True)
 class RectangularBlock:
     """A homogeneous rectangular block, all sizes full lengths in SI.
@@ -128,8 +127,21 @@ class RectangularBlock:
             Face("top", (0.0, 0.0, h), (0.0, 0.0, 1.0), self.width * self.depth),
             Face("bottom", (0.0, 0.0, -h), (0.0, 0.0, -1.0), self.width * self.depth, True),
         )
-        return (RigidBody("block", self.mass, (0.0, 0.0, h), self.inertia_centroid, BoxGeometry(b, w, h), faces,
-                          faces[0], -h, self.alpha, self.volume, as_vertex_tuple(box_vertices(b, w, h))),)
+        return (
+            RigidBody(
+                "block",
+                self.mass,
+                (0.0, 0.0, h),
+                self.inertia_centroid,
+                BoxGeometry(b, w, h),
+                faces,
+                faces[0],
+                -h,
+                self.alpha,
+                self.volume,
+                as_vertex_tuple(box_vertices(b, w, h)),
+            ),
+        )
 
     @property
     def interfaces(self) -> tuple:
@@ -148,8 +160,15 @@ class RectangularBlock:
 
     def describe(self) -> dict:
         """Geometry and material, SI keys."""
-        return {"kind": "rectangular block", "height_m": self.height, "width_m": self.width, "depth_m": self.depth,
-                "density_kg_m3": self.density, "mass_kg": self.mass, "alpha_rad": self.alpha}
+        return {
+            "kind": "rectangular block",
+            "height_m": self.height,
+            "width_m": self.width,
+            "depth_m": self.depth,
+            "density_kg_m3": self.density,
+            "mass_kg": self.mass,
+            "alpha_rad": self.alpha,
+        }
 
     def scaled(self, factors) -> "RectangularBlock":
         """The geometrically similar block: lengths x ``factors.length`` (lambda), density x

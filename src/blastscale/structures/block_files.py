@@ -47,8 +47,14 @@ from .base import MonitoringPoint
 from .compas_files import is_compas_model, mesh_arrays, read_compas_model
 from .polyhedron import hull_of
 
-__all__ = ["read_block_model", "NONCONVEX_TOLERANCE", "MESH_SUFFIXES", "MAX_BLOCKS", "READ_SECONDS_PER_BLOCK",
-           "max_blocks"]
+__all__ = [
+    "read_block_model",
+    "NONCONVEX_TOLERANCE",
+    "MESH_SUFFIXES",
+    "MAX_BLOCKS",
+    "READ_SECONDS_PER_BLOCK",
+    "max_blocks",
+]
 
 #: A block whose own volume is below its hull's by more than this fraction is refused as non-convex [-].
 NONCONVEX_TOLERANCE = 0.05
@@ -78,7 +84,8 @@ def _check_count(source: str, n: int) -> None:
         raise BlastscaleInputError(
             f"{source}: {n} blocks is out of range: reading them would take about "
             f"{n * READ_SECONDS_PER_BLOCK / 60:.2g} min before any simulation; valid range is <= {limit} blocks "
-            "(BLASTSCALE_MAX_BLOCKS raises the limit)")
+            "(BLASTSCALE_MAX_BLOCKS raises the limit)"
+        )
 
 
 def _mesh_volume(vertices: np.ndarray, faces) -> float:
@@ -104,27 +111,34 @@ def _convex_or_hull(source: str, name: str, vertices: np.ndarray, own_volume: fl
     if excess > NONCONVEX_TOLERANCE:
         raise BlastscaleInputError(
             f"{source}: block {name!r} is not convex (its hull is {100 * excess:.3g} % larger than the block): split it "
-            f"into convex blocks (valid: within {100 * NONCONVEX_TOLERANCE:g} %, replaced by the hull)")
+            f"into convex blocks (valid: within {100 * NONCONVEX_TOLERANCE:g} %, replaced by the hull)"
+        )
     if excess > 1e-6:
-        warnings.warn(f"{source}: block {name!r} is slightly non-convex (hull {100 * excess:.2g} % larger): "
-                      "replaced by its convex hull", UserWarning, stacklevel=3)
+        warnings.warn(
+            f"{source}: block {name!r} is slightly non-convex (hull {100 * excess:.2g} % larger): "
+            "replaced by its convex hull",
+            UserWarning,
+            stacklevel=3,
+        )
     return vertices
 
 
 def _from_ours(data: dict, source: str, density: float) -> tuple:
     blocks_in = data.get("blocks")
     if not isinstance(blocks_in, list) or not blocks_in:
-        raise BlastscaleInputError(f"{source}: no blocks: give \"blocks\": [{{\"vertices\": [[x, y, z], ...]}}, ...]")
+        raise BlastscaleInputError(f'{source}: no blocks: give "blocks": [{{"vertices": [[x, y, z], ...]}}, ...]')
     _check_count(source, len(blocks_in))
     blocks = []
     for k, b in enumerate(blocks_in):
         name = str(b.get("name", f"B{k + 1}")) if isinstance(b, dict) else f"B{k + 1}"
         if not isinstance(b, dict) or "vertices" not in b:
-            raise BlastscaleInputError(f"{source}: block {name!r} has no \"vertices\"")
+            raise BlastscaleInputError(f'{source}: block {name!r} has no "vertices"')
         extra = set(b) - {"name", "vertices", "density_kg_m3", "faces"}
         if extra:
-            raise BlastscaleInputError(f"{source}: block {name!r} has unknown key {sorted(extra)[0]!r}: valid keys "
-                                       "are name, vertices, density_kg_m3, faces")
+            raise BlastscaleInputError(
+                f"{source}: block {name!r} has unknown key {sorted(extra)[0]!r}: valid keys "
+                "are name, vertices, density_kg_m3, faces"
+            )
         try:
             v = np.asarray(b["vertices"], dtype=float)
         except (TypeError, ValueError):
@@ -132,8 +146,9 @@ def _from_ours(data: dict, source: str, density: float) -> tuple:
         if v.ndim != 2 or v.shape[1] != 3:
             raise BlastscaleInputError(f"{source}: block {name!r}: vertices of shape {v.shape}: give [[x, y, z], ...]")
         if len(v) < 4:
-            raise BlastscaleInputError(f"{source}: block {name!r} is empty ({len(v)} vertices): a solid needs at "
-                                       "least 4")
+            raise BlastscaleInputError(
+                f"{source}: block {name!r} is empty ({len(v)} vertices): a solid needs at least 4"
+            )
         try:
             own = None if "faces" not in b else _mesh_volume(v, b["faces"])
         except (IndexError, TypeError, ValueError):
@@ -146,8 +161,9 @@ def _from_ours(data: dict, source: str, density: float) -> tuple:
 
 def _density(source, name, d) -> float:
     if isinstance(d, bool) or not isinstance(d, (int, float)) or not (0 < d <= 25000):
-        raise BlastscaleInputError(f"{source}: block {name!r}: density_kg_m3 = {d!r} is out of range: valid range is "
-                                   "(0, 25000] kg/m^3")
+        raise BlastscaleInputError(
+            f"{source}: block {name!r}: density_kg_m3 = {d!r} is out of range: valid range is (0, 25000] kg/m^3"
+        )
     return float(d)
 
 
@@ -169,13 +185,17 @@ def _compas_meshes(obj, out: list) -> list:
 def _from_compas(data, source: str, density: float) -> tuple:
     meshes = _compas_meshes(data, [])
     if not meshes:
-        raise BlastscaleInputError(f"{source}: no blocks: neither \"blocks\" (blastscale JSON) nor COMPAS meshes "
-                                   "(\"vertex\"/\"face\" data) found")
+        raise BlastscaleInputError(
+            f'{source}: no blocks: neither "blocks" (blastscale JSON) nor COMPAS meshes ("vertex"/"face" data) found'
+        )
     _check_count(source, len(meshes))
     blocks = []
     for k, m in enumerate(meshes):
-        name = str(m.get("attributes", {}).get("name", f"B{k + 1}")) if isinstance(m.get("attributes"), dict) \
+        name = (
+            str(m.get("attributes", {}).get("name", f"B{k + 1}"))
+            if isinstance(m.get("attributes"), dict)
             else f"B{k + 1}"
+        )
         v, faces = mesh_arrays(m, source, name)
         if len(v) < 4:
             raise BlastscaleInputError(f"{source}: block {name!r} is empty ({len(v)} vertices)")
@@ -203,8 +223,11 @@ def _from_compas_model(path, data: dict, source: str, density: float, use_compas
 def _from_mesh(path: Path, source: str, density: float) -> tuple:
     trimesh = require("trimesh", "mesh", f"reading {source} (a mesh)")
     try:
-        loaded = trimesh.load_scene(str(path), split_object=True, group_material=False, process=False) \
-            if hasattr(trimesh, "load_scene") else trimesh.load(str(path), process=False)
+        loaded = (
+            trimesh.load_scene(str(path), split_object=True, group_material=False, process=False)
+            if hasattr(trimesh, "load_scene")
+            else trimesh.load(str(path), process=False)
+        )
     except Exception as exc:  # trimesh raises many kinds
         raise BlastscaleInputError(f"{source}: cannot be read as a mesh: {exc}") from None
     if isinstance(loaded, trimesh.Scene):
@@ -254,16 +277,18 @@ def _points(raw, blocks, source: str) -> tuple:
     names = [b.name for b in blocks]
     for k, p in enumerate(raw or []):
         if not isinstance(p, dict) or "block" not in p or "position" not in p:
-            raise BlastscaleInputError(f"{source}: point {k + 1} needs \"block\" and \"position\" [x, y, z]")
+            raise BlastscaleInputError(f'{source}: point {k + 1} needs "block" and "position" [x, y, z]')
         if p["block"] not in names:
-            raise BlastscaleInputError(f"{source}: point {p.get('name', k + 1)!r} is on block {p['block']!r}, which "
-                                       "does not exist")
+            raise BlastscaleInputError(
+                f"{source}: point {p.get('name', k + 1)!r} is on block {p['block']!r}, which does not exist"
+            )
         out.append((str(p.get("name", f"U-{k + 1}")), names.index(p["block"]), np.asarray(p["position"], dtype=float)))
     return out
 
 
-def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True,
-                     use_compas: bool | None = None) -> Assembly:
+def read_block_model(
+    path, density_kg_m3: float = 2000.0, *, check: bool = True, use_compas: bool | None = None
+) -> Assembly:
     """Read a block-model file (module docstring) into an :class:`~.assembly.Assembly`.
 
     Parameters
@@ -301,8 +326,9 @@ def read_block_model(path, density_kg_m3: float = 2000.0, *, check: bool = True,
     elif p.suffix.lower() in MESH_SUFFIXES:
         blocks, raw_points = _from_mesh(p, source, density_kg_m3)
     else:
-        raise BlastscaleInputError(f"structure.file = {p.name!r} has an unknown type: valid suffixes are .json, "
-                                   f"{', '.join(MESH_SUFFIXES)}")
+        raise BlastscaleInputError(
+            f"structure.file = {p.name!r} has an unknown type: valid suffixes are .json, {', '.join(MESH_SUFFIXES)}"
+        )
     try:
         asm = Assembly(blocks, kind="assembly", parameters=(("file", p.name),), check=check, supports=supports)
     except BlastscaleInputError as exc:

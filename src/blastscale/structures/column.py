@@ -92,10 +92,15 @@ class MultiDrumColumn:
 
     def __post_init__(self):
         if self.section not in SECTIONS:
-            raise BlastscaleInputError(f"section = {self.section!r} is not known: valid values are {', '.join(SECTIONS)}")
+            raise BlastscaleInputError(
+                f"section = {self.section!r} is not known: valid values are {', '.join(SECTIONS)}"
+            )
         for name, v, lo, hi in (("drums", self.drums, 1, MAX_DRUMS), ("sides", self.sides, MIN_SIDES, MAX_SIDES)):
-            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or not (
-                    math.isfinite(v) and float(v).is_integer() and lo <= v <= hi):
+            if (
+                isinstance(v, bool)
+                or not isinstance(v, (int, float, np.integer, np.floating))
+                or not (math.isfinite(v) and float(v).is_integer() and lo <= v <= hi)
+            ):
                 raise BlastscaleInputError(f"{name} = {v!r} is out of range: valid range is whole numbers {lo}-{hi}")
         object.__setattr__(self, "drums", int(self.drums))
         object.__setattr__(self, "sides", int(self.sides))
@@ -108,16 +113,17 @@ class MultiDrumColumn:
         if self.drum_heights is not None:
             hs = tuple(float(x) for x in np.atleast_1d(check_positive("drum heights", self.drum_heights, "m")))
             if len(hs) != self.drums:
-                raise BlastscaleInputError(
-                    f"drum heights has {len(hs)} values: must have one per drum ({self.drums})")
+                raise BlastscaleInputError(f"drum heights has {len(hs)} values: must have one per drum ({self.drums})")
             if abs(sum(hs) - self.height) > 1e-9 * self.height:
                 raise BlastscaleInputError(
-                    f"drum heights sum = {sum(hs):.9g} m is out of range: must equal height = {self.height:.9g} m")
+                    f"drum heights sum = {sum(hs):.9g} m is out of range: must equal height = {self.height:.9g} m"
+                )
             object.__setattr__(self, "drum_heights", hs)
         for p in self.extra_points:
             if not isinstance(p, MonitoringPoint) or not 0 <= p.body < self.drums:
                 raise BlastscaleInputError(
-                    f"extra point = {p!r} is out of range: must be a MonitoringPoint on a body 0-{self.drums - 1}")
+                    f"extra point = {p!r} is out of range: must be a MonitoringPoint on a body 0-{self.drums - 1}"
+                )
 
     # geometry ------------------------------------------------------------------------
     @property
@@ -159,17 +165,27 @@ class MultiDrumColumn:
 
     @property
     def monitoring_points(self) -> tuple:
-        """"P-1".."P-N" at each drum's front-face centre, then ``extra_points``."""
-        pts = tuple(MonitoringPoint(f"P-{i + 1}", i, next(f.centre for f in b.faces if f.label == "front"))
-                    for i, b in enumerate(self.bodies))
+        """ "P-1".."P-N" at each drum's front-face centre, then ``extra_points``."""
+        pts = tuple(
+            MonitoringPoint(f"P-{i + 1}", i, next(f.centre for f in b.faces if f.label == "front"))
+            for i, b in enumerate(self.bodies)
+        )
         return pts + tuple(self.extra_points)
 
     def describe(self) -> dict:
         """Geometry and material, SI keys."""
-        return {"kind": "multi-drum column", "section": self.section, "drums": self.drums, "height_m": self.height,
-                "base_width_m": self.base_width, "top_width_m": self.top_width,
-                "sides": self.sides if self.section == "circular" else None, "density_kg_m3": self.density,
-                "drum_heights_m": list(self.heights), "mass_kg": self.mass}
+        return {
+            "kind": "multi-drum column",
+            "section": self.section,
+            "drums": self.drums,
+            "height_m": self.height,
+            "base_width_m": self.base_width,
+            "top_width_m": self.top_width,
+            "sides": self.sides if self.section == "circular" else None,
+            "density_kg_m3": self.density,
+            "drum_heights_m": list(self.heights),
+            "mass_kg": self.mass,
+        }
 
     def scaled(self, factors) -> "MultiDrumColumn":
         """The geometrically similar column: lengths x ``factors.length`` (lambda), density x
@@ -177,7 +193,10 @@ class MultiDrumColumn:
         L = check_positive_scalar("scale", factors.length)
         g = check_positive_scalar("density ratio", factors.density)
         return replace(
-            self, height=self.height * L, base_width=self.base_width * L, top_width=self.top_width * L,
+            self,
+            height=self.height * L,
+            base_width=self.base_width * L,
+            top_width=self.top_width * L,
             density=self.density * g,
             drum_heights=None if self.drum_heights is None else tuple(h * L for h in self.drum_heights),
             extra_points=tuple(replace(p, position=tuple(x * L for x in p.position)) for p in self.extra_points),
@@ -227,6 +246,19 @@ def _drums(col: MultiDrumColumn) -> tuple:
             Face("top", (0.0, 0.0, H - zc), (0.0, 0.0, 1.0), top_area, top_contact),
             Face("bottom", (0.0, 0.0, -zc), (0.0, 0.0, -1.0), base_area, True),
         )
-        out.append(RigidBody(f"D-{i + 1}", mp.mass, (0.0, 0.0, float(z[i]) + zc), mp.inertia, shape, faces, load, -zc,
-                             math.atan2(support, zc), mp.volume, as_vertex_tuple(solid)))
+        out.append(
+            RigidBody(
+                f"D-{i + 1}",
+                mp.mass,
+                (0.0, 0.0, float(z[i]) + zc),
+                mp.inertia,
+                shape,
+                faces,
+                load,
+                -zc,
+                math.atan2(support, zc),
+                mp.volume,
+                as_vertex_tuple(solid),
+            )
+        )
     return tuple(out)

@@ -17,31 +17,60 @@ __all__ = ["STRUCTURE_BUILDERS", "from_spec", "is_block"]
 
 def _build_block(spec) -> RectangularBlock:
     if spec.width_m is not None:
-        return RectangularBlock(height=spec.height_m, width=spec.width_m, depth=spec.depth_m,
-                                density=spec.density_kg_m3)
-    return RectangularBlock.from_slenderness(spec.height_m, math.radians(spec.alpha_deg), depth=spec.depth_m,
-                                             density=spec.density_kg_m3)
+        return RectangularBlock(
+            height=spec.height_m, width=spec.width_m, depth=spec.depth_m, density=spec.density_kg_m3
+        )
+    return RectangularBlock.from_slenderness(
+        spec.height_m, math.radians(spec.alpha_deg), depth=spec.depth_m, density=spec.density_kg_m3
+    )
 
 
 def _build_column(spec) -> MultiDrumColumn:
-    return MultiDrumColumn(section=spec.section, drums=spec.drums, height=spec.height_m,
-                           base_width=spec.base_width_m, top_width=spec.top_width_m, sides=spec.sides,
-                           density=spec.density_kg_m3)
+    return MultiDrumColumn(
+        section=spec.section,
+        drums=spec.drums,
+        height=spec.height_m,
+        base_width=spec.base_width_m,
+        top_width=spec.top_width_m,
+        sides=spec.sides,
+        density=spec.density_kg_m3,
+    )
 
 
 def _build_wall(spec):
-    return wall(spec.length_m, spec.height_m, spec.thickness_m, spec.courses, spec.units_per_course, spec.bond,
-                spec.density_kg_m3)
+    return wall(
+        spec.length_m,
+        spec.height_m,
+        spec.thickness_m,
+        spec.courses,
+        spec.units_per_course,
+        spec.bond,
+        spec.density_kg_m3,
+    )
 
 
 def _build_arch(spec):
-    return arch(spec.radius_m, spec.thickness_m, spec.depth_m, spec.voussoirs, spec.embrace_deg, spec.pier_height_m,
-                spec.density_kg_m3)
+    return arch(
+        spec.radius_m,
+        spec.thickness_m,
+        spec.depth_m,
+        spec.voussoirs,
+        spec.embrace_deg,
+        spec.pier_height_m,
+        spec.density_kg_m3,
+    )
 
 
 def _build_portal(spec):
-    return portal(spec.column_height_m, spec.column_width_m, spec.span_m, spec.lintel_height_m,
-                  spec.lintel_overhang_m, spec.drums, spec.density_kg_m3)
+    return portal(
+        spec.column_height_m,
+        spec.column_width_m,
+        spec.span_m,
+        spec.lintel_height_m,
+        spec.lintel_overhang_m,
+        spec.drums,
+        spec.density_kg_m3,
+    )
 
 
 def _build_assembly(spec):
@@ -50,8 +79,13 @@ def _build_assembly(spec):
 
 #: structure kind -> builder(structure table of the scenario) -> structure object.
 STRUCTURE_BUILDERS: dict[str, Callable[[Any], Any]] = {
-    "block": _build_block, "column": _build_column, "wall": _build_wall, "arch": _build_arch,
-    "portal": _build_portal, "assembly": _build_assembly}
+    "block": _build_block,
+    "column": _build_column,
+    "wall": _build_wall,
+    "arch": _build_arch,
+    "portal": _build_portal,
+    "assembly": _build_assembly,
+}
 
 
 def is_block(structure) -> bool:
@@ -64,5 +98,6 @@ def from_spec(spec) -> Any:
     kind = spec.kind
     if kind not in STRUCTURE_BUILDERS:
         raise BlastscaleInputError(
-            f"structure.kind = {kind!r} is not known: valid values are {', '.join(STRUCTURE_BUILDERS)}")
+            f"structure.kind = {kind!r} is not known: valid values are {', '.join(STRUCTURE_BUILDERS)}"
+        )
     return STRUCTURE_BUILDERS[kind](spec)

@@ -40,14 +40,24 @@ def box_vertices(x0, x1, y0, y1, z0, z1) -> np.ndarray:
 
 
 def _whole(name: str, value, lo: int, hi: int = MAX_BLOCKS) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) or not (
-            math.isfinite(value) and float(value).is_integer() and lo <= value <= hi):
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, (int, float, np.integer, np.floating))
+        or not (math.isfinite(value) and float(value).is_integer() and lo <= value <= hi)
+    ):
         raise BlastscaleInputError(f"{name} = {value!r} is out of range: valid range is whole numbers {lo}-{hi}")
     return int(value)
 
 
-def wall(length_m: float = 4.0, height_m: float = 3.0, thickness_m: float = 0.5, courses: int = 10,
-         units_per_course: int = 8, bond: str = "running", density_kg_m3: float = 2000.0) -> Assembly:
+def wall(
+    length_m: float = 4.0,
+    height_m: float = 3.0,
+    thickness_m: float = 0.5,
+    courses: int = 10,
+    units_per_course: int = 8,
+    bond: str = "running",
+    density_kg_m3: float = 2000.0,
+) -> Assembly:
     """A dry-stone wall facing the blast (plane y-z, thickness along x).
 
     Parameters
@@ -77,8 +87,9 @@ def wall(length_m: float = 4.0, height_m: float = 3.0, thickness_m: float = 0.5,
     if bond not in BONDS:
         raise BlastscaleInputError(f"wall bond = {bond!r} is not known: valid values are {', '.join(BONDS)}")
     if nc * (nu + 1) > MAX_BLOCKS:
-        raise BlastscaleInputError(f"wall courses x units_per_course = {nc} x {nu} is out of range: at most "
-                                   f"{MAX_BLOCKS} blocks")
+        raise BlastscaleInputError(
+            f"wall courses x units_per_course = {nc} x {nu} is out of range: at most {MAX_BLOCKS} blocks"
+        )
     u, h = L / nu, H / nc
     blocks = []
     for c in range(nc):
@@ -87,16 +98,33 @@ def wall(length_m: float = 4.0, height_m: float = 3.0, thickness_m: float = 0.5,
             joints = np.concatenate([[0.0], (np.arange(nu) + 0.5) * u, [L]])
         joints[-1] = L
         for k, (y0, y1) in enumerate(zip(joints[:-1], joints[1:])):
-            blocks.append(ConvexBlock(f"C{c + 1}U{k + 1}", box_vertices(-t / 2, t / 2, y0 - L / 2, y1 - L / 2, c * h,
-                                                                        (c + 1) * h if c < nc - 1 else H),
-                                      density_kg_m3))
-    params = (("length_m", L), ("wall_height_m", H), ("wall_thickness_m", t), ("courses", nc),
-              ("units_per_course", nu), ("bond", bond))
+            blocks.append(
+                ConvexBlock(
+                    f"C{c + 1}U{k + 1}",
+                    box_vertices(-t / 2, t / 2, y0 - L / 2, y1 - L / 2, c * h, (c + 1) * h if c < nc - 1 else H),
+                    density_kg_m3,
+                )
+            )
+    params = (
+        ("length_m", L),
+        ("wall_height_m", H),
+        ("wall_thickness_m", t),
+        ("courses", nc),
+        ("units_per_course", nu),
+        ("bond", bond),
+    )
     return Assembly(tuple(blocks), kind="wall", parameters=params, check=False)
 
 
-def arch(radius_m: float = 2.5, thickness_m: float = 0.5, depth_m: float = 1.0, voussoirs: int = 15,
-         embrace_deg: float = 180.0, pier_height_m: float = 0.0, density_kg_m3: float = 2000.0) -> Assembly:
+def arch(
+    radius_m: float = 2.5,
+    thickness_m: float = 0.5,
+    depth_m: float = 1.0,
+    voussoirs: int = 15,
+    embrace_deg: float = 180.0,
+    pier_height_m: float = 0.0,
+    density_kg_m3: float = 2000.0,
+) -> Assembly:
     """A circular arch of voussoirs facing the blast (plane y-z, depth along x).
 
     Parameters
@@ -130,8 +158,10 @@ def arch(radius_m: float = 2.5, thickness_m: float = 0.5, depth_m: float = 1.0, 
     beta = float(check_range("arch embrace_deg", embrace_deg, 0.0, 360.0, "deg", lo_open=True, hi_open=True))
     hp = float(check_range("arch pier_height_m", pier_height_m, 0.0, math.inf, "m"))
     if hp == 0.0 and abs(beta - 180.0) > 1e-9:
-        raise BlastscaleInputError(f"arch embrace_deg = {beta:g} needs pier_height_m > 0: its springing joints are "
-                                   "inclined (only a semicircular arch, 180 deg, springs from the ground)")
+        raise BlastscaleInputError(
+            f"arch embrace_deg = {beta:g} needs pier_height_m > 0: its springing joints are "
+            "inclined (only a semicircular arch, 180 deg, springs from the ground)"
+        )
     ri, ro = R - t / 2, R + t / 2
     th0 = math.radians(90.0 - beta / 2.0)  # springers at th0 and pi - th0, angles from +y towards +z
     zc = hp - min(ri * math.sin(th0), ro * math.sin(th0))  # the lowest springing point at z = pier height
@@ -155,14 +185,26 @@ def arch(radius_m: float = 2.5, thickness_m: float = 0.5, depth_m: float = 1.0, 
         for name, phi in (("pier-L", phis[0]), ("pier-R", phis[-1])):
             (yi, zi), (yo, zo) = ring(phi, ri), ring(phi, ro)
             blocks.append(ConvexBlock(name, prism([(yi, 0.0), (yo, 0.0), (yo, zo), (yi, zi)]), density_kg_m3))
-    params = (("radius_m", R), ("arch_thickness_m", t), ("depth_m", d), ("voussoirs", n), ("embrace_deg", beta),
-              ("pier_height_m", hp))
+    params = (
+        ("radius_m", R),
+        ("arch_thickness_m", t),
+        ("depth_m", d),
+        ("voussoirs", n),
+        ("embrace_deg", beta),
+        ("pier_height_m", hp),
+    )
     return Assembly(tuple(blocks), kind="arch", parameters=params, check=False)
 
 
-def portal(column_height_m: float = 4.0, column_width_m: float = 0.8, span_m: float = 3.0,
-           lintel_height_m: float = 1.0, lintel_overhang_m: float = 0.3, drums: int = 1,
-           density_kg_m3: float = 2000.0) -> Assembly:
+def portal(
+    column_height_m: float = 4.0,
+    column_width_m: float = 0.8,
+    span_m: float = 3.0,
+    lintel_height_m: float = 1.0,
+    lintel_overhang_m: float = 0.3,
+    drums: int = 1,
+    density_kg_m3: float = 2000.0,
+) -> Assembly:
     """A trilithon facing the blast: two square columns and a free lintel on top (plane y-z).
 
     Parameters
@@ -196,10 +238,17 @@ def portal(column_height_m: float = 4.0, column_width_m: float = 0.8, span_m: fl
         for k in range(nd):
             name = f"col-{side}" if nd == 1 else f"col-{side}-{k + 1}"
             z1 = Hc if k == nd - 1 else (k + 1) * Hc / nd
-            blocks.append(ConvexBlock(name, box_vertices(-w / 2, w / 2, yc - w / 2, yc + w / 2, k * Hc / nd, z1),
-                                      density_kg_m3))
+            blocks.append(
+                ConvexBlock(name, box_vertices(-w / 2, w / 2, yc - w / 2, yc + w / 2, k * Hc / nd, z1), density_kg_m3)
+            )
     half = s / 2 + w + o
     blocks.append(ConvexBlock("lintel", box_vertices(-w / 2, w / 2, -half, half, Hc, Hc + hl), density_kg_m3))
-    params = (("column_height_m", Hc), ("column_width_m", w), ("span_m", s), ("lintel_height_m", hl),
-              ("lintel_overhang_m", o), ("drums", nd))
+    params = (
+        ("column_height_m", Hc),
+        ("column_width_m", w),
+        ("span_m", s),
+        ("lintel_height_m", hl),
+        ("lintel_overhang_m", o),
+        ("drums", nd),
+    )
     return Assembly(tuple(blocks), kind="portal", parameters=params, check=False)

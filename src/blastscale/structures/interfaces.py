@@ -29,8 +29,16 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from .polyhedron import plane_basis, polygon_area_centroid
 
-__all__ = ["Interface", "find_interfaces", "clip_convex", "check_assembly", "near_pairs", "CONTACT_TOLERANCE",
-           "OVERLAP_TOLERANCE", "MAX_BLOCK_SIZE_M"]
+__all__ = [
+    "Interface",
+    "find_interfaces",
+    "clip_convex",
+    "check_assembly",
+    "near_pairs",
+    "CONTACT_TOLERANCE",
+    "OVERLAP_TOLERANCE",
+    "MAX_BLOCK_SIZE_M",
+]
 
 #: Distance [fraction of the assembly's size] within which two faces are coplanar and in contact.
 CONTACT_TOLERANCE = 1e-6
@@ -115,7 +123,7 @@ def near_pairs(lo: np.ndarray, hi: np.ndarray, strict: bool = False) -> list:
     for p in range(n):
         if ends[p] <= p + 1:
             continue
-        i, cand = order[p], order[p + 1:ends[p]]
+        i, cand = order[p], order[p + 1 : ends[p]]
         if strict:
             ok = np.all(lo[cand] < hi[i], axis=1) & np.all(hi[cand] > lo[i], axis=1)
         else:
@@ -163,8 +171,11 @@ def find_interfaces(faces: list, size: float) -> list:
     for i, fs in enumerate(faces):
         for k, f in enumerate(fs):
             if f.normal @ down > 1.0 - 1e-9 and np.all(np.abs(f.vertices[:, 2]) <= tol) and f.area > amin:
-                out.append(Interface(-1, i, (0.0, 0.0, 1.0), tuple(map(tuple, f.vertices)), float(f.area),
-                                     tuple(f.centroid), (-1, k)))
+                out.append(
+                    Interface(
+                        -1, i, (0.0, 0.0, 1.0), tuple(map(tuple, f.vertices)), float(f.area), tuple(f.centroid), (-1, k)
+                    )
+                )
     lo = np.array([np.min([f.vertices.min(axis=0) for f in fs], axis=0) for fs in faces]) - tol
     hi = np.array([np.max([f.vertices.max(axis=0) for f in fs], axis=0) for fs in faces]) + tol
     for i, j in near_pairs(lo, hi):
@@ -181,8 +192,11 @@ def find_interfaces(faces: list, size: float) -> list:
         if best is not None:
             poly, area, ka, kb, n = best
             cent = polygon_area_centroid(poly)[1]
-            out.append(Interface(i, int(j), tuple(float(x) for x in n), tuple(map(tuple, poly)), float(area),
-                                 tuple(cent), (ka, kb)))
+            out.append(
+                Interface(
+                    i, int(j), tuple(float(x) for x in n), tuple(map(tuple, poly)), float(area), tuple(cent), (ka, kb)
+                )
+            )
     return out
 
 
@@ -225,10 +239,13 @@ def check_assembly(names, vertices, faces, interfaces, size: float, fixed: int =
         if ext > MAX_BLOCK_SIZE_M:
             raise BlastscaleInputError(
                 f"block {n!r} is {ext:.6g} m across: the units look like millimetres (give metres; valid block size "
-                f"<= {MAX_BLOCK_SIZE_M:g} m)")
+                f"<= {MAX_BLOCK_SIZE_M:g} m)"
+            )
         if k < nfree and v[:, 2].min() < -CONTACT_TOLERANCE * size:
-            raise BlastscaleInputError(f"block {n!r} reaches z = {v[:, 2].min():.6g} m: below the ground (z = 0); "
-                                       "blocks must stand on or above it (only supports may reach below)")
+            raise BlastscaleInputError(
+                f"block {n!r} reaches z = {v[:, 2].min():.6g} m: below the ground (z = 0); "
+                "blocks must stand on or above it (only supports may reach below)"
+            )
     lo = np.array([v.min(axis=0) for v in vertices])
     hi = np.array([v.max(axis=0) for v in vertices])
     for i, j in near_pairs(lo, hi, strict=True):
@@ -236,7 +253,8 @@ def check_assembly(names, vertices, faces, interfaces, size: float, fixed: int =
         small = min(np.ptp(vertices[i], axis=0).min(), np.ptp(vertices[j], axis=0).min())
         if d > OVERLAP_TOLERANCE * small:
             raise BlastscaleInputError(
-                f"blocks {names[i]!r} and {names[j]!r} overlap by {d:.4g} m: blocks may touch, not interpenetrate")
+                f"blocks {names[i]!r} and {names[j]!r} overlap by {d:.4g} m: blocks may touch, not interpenetrate"
+            )
     linked = {-1, *range(nfree, len(names))}
     adj: dict = {}
     for itf in interfaces:
@@ -254,4 +272,5 @@ def check_assembly(names, vertices, faces, interfaces, size: float, fixed: int =
             z = float(vertices[i][:, 2].min())
             raise BlastscaleInputError(
                 f"block {n!r} floats in the air (lowest point at z = {z:.6g} m): it touches neither the ground nor a "
-                "block connected to it along a face")
+                "block connected to it along a face"
+            )

@@ -28,8 +28,16 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 
-__all__ = ["PolyhedronMassProperties", "PolygonFace", "hull_of", "polyhedron_mass_properties", "polyhedron_faces",
-           "polygon_area_centroid", "face_label", "COPLANAR_TOLERANCE"]
+__all__ = [
+    "PolyhedronMassProperties",
+    "PolygonFace",
+    "hull_of",
+    "polyhedron_mass_properties",
+    "polyhedron_faces",
+    "polygon_area_centroid",
+    "face_label",
+    "COPLANAR_TOLERANCE",
+]
 
 #: Relative tolerance (of the block's size) under which two hull facets are one plane face.
 COPLANAR_TOLERANCE = 1e-9
@@ -86,15 +94,18 @@ def hull_of(vertices, name: str = "block"):
 
     v = np.asarray(vertices, dtype=float)
     if v.ndim != 2 or v.shape[1] != 3 or v.shape[0] < 4:
-        raise BlastscaleInputError(f"block {name!r}: vertices of shape {v.shape} are not a solid: give at least 4 "
-                                   "points [x, y, z] that span a volume")
+        raise BlastscaleInputError(
+            f"block {name!r}: vertices of shape {v.shape} are not a solid: give at least 4 "
+            "points [x, y, z] that span a volume"
+        )
     if not np.all(np.isfinite(v)):
         raise BlastscaleInputError(f"block {name!r}: vertices contain non-finite values")
     try:
         hull = ConvexHull(v)
     except QhullError:
-        raise BlastscaleInputError(f"block {name!r} has zero volume: its {len(v)} vertices are coplanar or "
-                                   "collinear") from None
+        raise BlastscaleInputError(
+            f"block {name!r} has zero volume: its {len(v)} vertices are coplanar or collinear"
+        ) from None
     size = float(np.ptp(v, axis=0).max())
     if hull.volume <= 1e-12 * size**3:
         raise BlastscaleInputError(f"block {name!r} has zero volume ({hull.volume:.3g} m^3)")
@@ -213,8 +224,10 @@ def polyhedron_faces(vertices, name: str = "block") -> list:
     reps = np.empty((0, 4))
     for k in range(len(eq)):
         if len(reps):
-            hit = np.flatnonzero((np.abs(reps[:, :3] - eq[k, :3]).max(axis=1) < 1e-9)
-                                 & (np.abs(reps[:, 3] - eq[k, 3]) < COPLANAR_TOLERANCE * size))
+            hit = np.flatnonzero(
+                (np.abs(reps[:, :3] - eq[k, :3]).max(axis=1) < 1e-9)
+                & (np.abs(reps[:, 3] - eq[k, 3]) < COPLANAR_TOLERANCE * size)
+            )
             if hit.size:
                 groups[hit[0]].append(k)
                 continue
@@ -231,7 +244,7 @@ def polyhedron_faces(vertices, name: str = "block") -> list:
 
 
 def face_label(normal) -> str:
-    """"front" (mostly -x, towards the charge), "rear" (+x), "top" (+z), "bottom" (-z) or "side" (+-y),
+    """ "front" (mostly -x, towards the charge), "rear" (+x), "top" (+z), "bottom" (-z) or "side" (+-y),
     after the largest component of the outward normal."""
     n = np.asarray(normal, dtype=float)
     k = int(np.argmax(np.abs(n)))
@@ -245,4 +258,3 @@ def face_label(normal) -> str:
 def principal_moments(inertia: np.ndarray) -> tuple:
     """Eigenvalues of an inertia tensor [kg m^2], ascending."""
     return tuple(float(x) for x in np.linalg.eigvalsh(inertia))
-

@@ -9,11 +9,33 @@
 """
 
 from .engines import ENGINES, ENSEMBLE, Engine, contact_settings
-from .memory import (MEMORY_FRACTION, check_budget, check_memory, check_study_budget, estimate_memory,
-                     estimate_seconds, format_duration)
+from .memory import (
+    MEMORY_FRACTION,
+    check_budget,
+    check_memory,
+    check_study_budget,
+    estimate_memory,
+    estimate_seconds,
+    format_duration,
+)
 from .result import StudyResult
 from .study import Progress, Study, StudyPlan, StudyWarning
 
-__all__ = ["Study", "StudyPlan", "StudyResult", "StudyWarning", "Progress", "ENGINES", "ENSEMBLE", "Engine",
-           "estimate_memory", "MEMORY_FRACTION", "contact_settings", "check_memory", "check_budget", "check_study_budget",
-           "estimate_seconds", "format_duration"]
+__all__ = [
+    "Study",
+    "StudyPlan",
+    "StudyResult",
+    "StudyWarning",
+    "Progress",
+    "ENGINES",
+    "ENSEMBLE",
+    "Engine",
+    "estimate_memory",
+    "MEMORY_FRACTION",
+    "contact_settings",
+    "check_memory",
+    "check_budget",
+    "check_study_budget",
+    "estimate_seconds",
+    "format_duration",
+]

@@ -12,8 +12,17 @@ from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..structures import is_block
 
-__all__ = ["Engine", "ENGINES", "ENSEMBLE", "Context", "contact_settings", "critical_charge_of", "record_every",
-           "REFERENCE_RECORD_INTERVAL", "load_model_of"]
+__all__ = [
+    "Engine",
+    "ENGINES",
+    "ENSEMBLE",
+    "Context",
+    "contact_settings",
+    "critical_charge_of",
+    "record_every",
+    "REFERENCE_RECORD_INTERVAL",
+    "load_model_of",
+]
 
 
 @dataclass(frozen=True)
@@ -43,8 +52,13 @@ def load_model_of(scenario: Scenario, structure):
         from ..similitude.effects import front_face
 
         face = front_face(structure)
-    return LoadModel(clearing=bl.clearing, face_width_m=face[0], face_height_m=face[1],
-                     negative_phase=bl.negative_phase, negative_phase_model=bl.negative_phase_model)
+    return LoadModel(
+        clearing=bl.clearing,
+        face_width_m=face[0],
+        face_height_m=face[1],
+        negative_phase=bl.negative_phase,
+        negative_phase_model=bl.negative_phase_model,
+    )
 
 
 def _planar_supports(structure) -> Optional[str]:
@@ -74,8 +88,12 @@ def _run_planar(ctx: Context):
     # the specimen system as the design carries it: block, gravity, load model and duration, scaled once there
     sys_m = RockingSystem.from_block(d.specimen_block, d.specimen_gravity, sim.restitution)
     dur_m = d.specimen_duration
-    res_m = DEFAULT_SOLVER.simulate(sys_m, front_face_pulse(d.specimen, shape, d.specimen_load_model, extrapolate=ex),
-                                    dur_m, t_eval=np.minimum(t * d.factors.time, dur_m))
+    res_m = DEFAULT_SOLVER.simulate(
+        sys_m,
+        front_face_pulse(d.specimen, shape, d.specimen_load_model, extrapolate=ex),
+        dur_m,
+        t_eval=np.minimum(t * d.factors.time, dur_m),
+    )
     return compare_rocking(res_p, res_m, d, sys_p.frequency_parameter)
 
 
@@ -92,11 +110,17 @@ def contact_settings(scenario: Scenario, structure=None):
 
     sim = scenario.simulation
     # scale-consistent defaults derived from the structure (the full-scale ones without it)
-    base = ContactSettings() if structure is None else default_contact(
-        structure, friction=scenario.structure.friction, gravity=sim.gravity_m_s2)
+    base = (
+        ContactSettings()
+        if structure is None
+        else default_contact(structure, friction=scenario.structure.friction, gravity=sim.gravity_m_s2)
+    )
     given = {k: v for k, v in sim.contact.model_dump().items() if v is not None}
-    names = {"time_constant_s": "time_constant", "friction_time_constant_s": "friction_time_constant",
-             "impedance_width_m": "impedance_width"}
+    names = {
+        "time_constant_s": "time_constant",
+        "friction_time_constant_s": "friction_time_constant",
+        "impedance_width_m": "impedance_width",
+    }
     kw = {names.get(k, k): v for k, v in given.items()}
     if structure is None or base.friction != scenario.structure.friction:
         kw["friction"] = scenario.structure.friction
@@ -136,14 +160,23 @@ def _settings_3d(ctx: Context) -> dict:
     """The 3D settings of a study, shared by the 3D and the ensemble engines."""
     sc = ctx.scenario
     contact = contact_settings(sc, ctx.structure) if ctx.contact is None else ctx.contact
-    out = dict(load=sc.blast.load, pulse_shape=sc.blast.pulse_shape, incidence=sc.blast.incidence,
-               contact=contact, duration=sc.simulation.duration_s,
-               record_every=record_every(sc, ctx.structure), extrapolate=sc.blast.extrapolate)
+    out = dict(
+        load=sc.blast.load,
+        pulse_shape=sc.blast.pulse_shape,
+        incidence=sc.blast.incidence,
+        contact=contact,
+        duration=sc.simulation.duration_s,
+        record_every=record_every(sc, ctx.structure),
+        extrapolate=sc.blast.extrapolate,
+    )
     if sc.blast.clearing or sc.blast.negative_phase:  # each system's faces are its own (the structure's)
         from ..blast.load_model import LoadModel
 
-        out["load_model"] = LoadModel(clearing=sc.blast.clearing, negative_phase=sc.blast.negative_phase,
-                                      negative_phase_model=sc.blast.negative_phase_model)
+        out["load_model"] = LoadModel(
+            clearing=sc.blast.clearing,
+            negative_phase=sc.blast.negative_phase,
+            negative_phase_model=sc.blast.negative_phase_model,
+        )
     return out
 
 
@@ -154,8 +187,9 @@ def _run_3d(ctx: Context):
     from ..analysis.structure3d import compare_structure3d, prototype_structure3d
 
     if ctx.design is None:
-        return prototype_structure3d(ctx.structure, ctx.blast, gravity=ctx.scenario.simulation.gravity_m_s2,
-                                     **_settings_3d(ctx))
+        return prototype_structure3d(
+            ctx.structure, ctx.blast, gravity=ctx.scenario.simulation.gravity_m_s2, **_settings_3d(ctx)
+        )
     return compare_structure3d(ctx.structure, ctx.design, threads=ctx.scenario.simulation.threads, **_settings_3d(ctx))
 
 
@@ -165,8 +199,16 @@ def _run_ensemble(ctx: Context):
     from ..analysis.ensemble import ensemble_compare
 
     sim = ctx.scenario.simulation
-    return ensemble_compare(ctx.structure, ctx.design, n=sim.ensemble_members, perturbation=sim.ensemble_perturbation,
-                            blast=ctx.blast, gravity=sim.gravity_m_s2, threads=sim.threads, **_settings_3d(ctx))
+    return ensemble_compare(
+        ctx.structure,
+        ctx.design,
+        n=sim.ensemble_members,
+        perturbation=sim.ensemble_perturbation,
+        blast=ctx.blast,
+        gravity=sim.gravity_m_s2,
+        threads=sim.threads,
+        **_settings_3d(ctx),
+    )
 
 
 @dataclass(frozen=True)
@@ -200,8 +242,16 @@ def critical_charge_of(sc: Scenario, structure):
     from ..blast.bursts import model_for_burst
 
     blast_model = model_for_burst(bl.blast_model, bl.burst).name
-    return _critical_charge(structure, sim.gravity_m_s2, sim.restitution, bl.standoff_m, bl.pulse_shape,
-                            blast_model, bl.extrapolate, None if lm.is_paper else lm)
+    return _critical_charge(
+        structure,
+        sim.gravity_m_s2,
+        sim.restitution,
+        bl.standoff_m,
+        bl.pulse_shape,
+        blast_model,
+        bl.extrapolate,
+        None if lm.is_paper else lm,
+    )
 
 
 @functools.lru_cache(maxsize=4096)
@@ -209,5 +259,11 @@ def _critical_charge(structure, gravity, restitution, standoff, pulse_shape, bla
     from ..rocking import RockingSystem, critical_charge
 
     system = RockingSystem.from_block(structure, gravity, restitution)
-    return critical_charge(system, standoff, pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate,
-                           load_model=load_model)
+    return critical_charge(
+        system,
+        standoff,
+        pulse_shape=pulse_shape,
+        blast_model=blast_model,
+        extrapolate=extrapolate,
+        load_model=load_model,
+    )

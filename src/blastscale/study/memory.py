@@ -21,11 +21,32 @@ from dataclasses import dataclass
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 
-__all__ = ["MEMORY_FRACTION", "estimate_memory", "check_memory", "estimate_seconds", "check_budget",
-           "check_study_budget", "max_seconds", "format_duration", "format_size", "STEP_SECONDS", "RunSize",
-           "estimate_run", "contacts_of", "STEP_BASE_SECONDS", "CONTACT_STEP_SECONDS", "STATE_BYTES_PER_BODY",
-           "STATE_BYTES_PER_POINT", "REPORT_BYTES", "REPORT_BYTES_PER_BODY", "WRITE_SECONDS", "WRITE_SECONDS_PER_BYTE",
-           "BODY_SECONDS", "BODY_EXPONENT", "STARTUP_SECONDS"]
+__all__ = [
+    "MEMORY_FRACTION",
+    "estimate_memory",
+    "check_memory",
+    "estimate_seconds",
+    "check_budget",
+    "check_study_budget",
+    "max_seconds",
+    "format_duration",
+    "format_size",
+    "STEP_SECONDS",
+    "RunSize",
+    "estimate_run",
+    "contacts_of",
+    "STEP_BASE_SECONDS",
+    "CONTACT_STEP_SECONDS",
+    "STATE_BYTES_PER_BODY",
+    "STATE_BYTES_PER_POINT",
+    "REPORT_BYTES",
+    "REPORT_BYTES_PER_BODY",
+    "WRITE_SECONDS",
+    "WRITE_SECONDS_PER_BYTE",
+    "BODY_SECONDS",
+    "BODY_EXPONENT",
+    "STARTUP_SECONDS",
+]
 
 #: Fraction of the available memory a job may plan to use.
 MEMORY_FRACTION = 0.5
@@ -102,8 +123,9 @@ def _derived_timestep(scenario: Scenario, structure) -> float:
     from ..sim3d.contact import default_contact
 
     try:
-        return default_contact(structure, friction=scenario.structure.friction,
-                               gravity=scenario.simulation.gravity_m_s2).timestep
+        return default_contact(
+            structure, friction=scenario.structure.friction, gravity=scenario.simulation.gravity_m_s2
+        ).timestep
     except BlastscaleInputError:
         return 2e-4
 
@@ -152,7 +174,7 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
         steps = sim.duration_s / dt + _settle_steps(scenario, structure, contact, dt)
         runs = systems * (1 + sim.ensemble_members)
         per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * (nb + contacts_of(structure))
-        total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3) + BODY_SECONDS * nb ** BODY_EXPONENT
+        total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3) + BODY_SECONDS * nb**BODY_EXPONENT
     return total
 
 
@@ -229,8 +251,10 @@ class RunSize:
         what = f"{self.bodies} bod{'y' if self.bodies == 1 else 'ies'}"
         if self.contacts:
             what += f", {self.contacts} contact{'' if self.contacts == 1 else 's'}"
-        return (f"about {format_duration(self.seconds)}{size}: {what}, {self.duration_s:g} s simulated, "
-                f"{self.samples} samples x {self.runs} run{'' if self.runs == 1 else 's'}")
+        return (
+            f"about {format_duration(self.seconds)}{size}: {what}, {self.duration_s:g} s simulated, "
+            f"{self.samples} samples x {self.runs} run{'' if self.runs == 1 else 's'}"
+        )
 
 
 def estimate_run(scenario: Scenario, structure=None, contact=None, writes: bool = True) -> RunSize:
@@ -259,8 +283,16 @@ def estimate_run(scenario: Scenario, structure=None, contact=None, writes: bool 
     if writes:
         size = hist + REPORT_BYTES + REPORT_BYTES_PER_BODY * nb
         seconds += WRITE_SECONDS + WRITE_SECONDS_PER_BYTE * hist
-    return RunSize(seconds=seconds, result_bytes=size, memory_bytes=estimate_memory(scenario, structure, contact),
-                   bodies=nb, contacts=nc, duration_s=float(sim.duration_s), samples=samples, runs=runs)
+    return RunSize(
+        seconds=seconds,
+        result_bytes=size,
+        memory_bytes=estimate_memory(scenario, structure, contact),
+        bodies=nb,
+        contacts=nc,
+        duration_s=float(sim.duration_s),
+        samples=samples,
+        runs=runs,
+    )
 
 
 def _available_memory() -> int:
@@ -275,8 +307,9 @@ def _available_memory() -> int:
     return 4 * 2**30
 
 
-def check_budget(name: str, value: float, unit: str, need_bytes: float, seconds: float, grows: int = 1,
-                 hint: str = "") -> None:
+def check_budget(
+    name: str, value: float, unit: str, need_bytes: float, seconds: float, grows: int = 1, hint: str = ""
+) -> None:
     """The shared rule: refuse a job needing more than :data:`MEMORY_FRACTION` of the available memory
     or more than :func:`max_seconds` of computing, in one line.
 
@@ -297,21 +330,28 @@ def check_budget(name: str, value: float, unit: str, need_bytes: float, seconds:
     mem_limit, time_limit = MEMORY_FRACTION * _available_memory(), max_seconds()
     if need_bytes <= mem_limit and seconds <= time_limit:
         return
-    room = min(mem_limit / need_bytes if need_bytes > 0 else math.inf, time_limit / seconds if seconds > 0 else math.inf)
+    room = min(
+        mem_limit / need_bytes if need_bytes > 0 else math.inf, time_limit / seconds if seconds > 0 else math.inf
+    )
     fits = value * room if grows > 0 else value / room
     if float(fits).is_integer() or unit == "":
         fits = math.floor(fits) if grows > 0 else math.ceil(fits)
     why = []
     if need_bytes > mem_limit:
-        why.append(f"about {need_bytes / 2**30:.3g} GiB of memory, more than {mem_limit / 2**30:.3g} GiB "
-                   f"({MEMORY_FRACTION:g} of the available memory)")
+        why.append(
+            f"about {need_bytes / 2**30:.3g} GiB of memory, more than {mem_limit / 2**30:.3g} GiB "
+            f"({MEMORY_FRACTION:g} of the available memory)"
+        )
     if seconds > time_limit:
-        why.append(f"about {format_duration(seconds)} of computing, more than {format_duration(time_limit)} "
-                   "(BLASTSCALE_MAX_HOURS raises the limit)")
+        why.append(
+            f"about {format_duration(seconds)} of computing, more than {format_duration(time_limit)} "
+            "(BLASTSCALE_MAX_HOURS raises the limit)"
+        )
     u = f" {unit}" if unit else ""
     raise BlastscaleInputError(
         f"{name} = {value:g}{u} is out of range: it would need {' and '.join(why)}; valid range is "
-        f"{'<=' if grows > 0 else '>='} {fits:.3g}{u} here" + (f" ({hint})" if hint else ""))
+        f"{'<=' if grows > 0 else '>='} {fits:.3g}{u} here" + (f" ({hint})" if hint else "")
+    )
 
 
 def check_study_budget(scenario: Scenario, structure=None, contact=None) -> None:

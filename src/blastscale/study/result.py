@@ -82,16 +82,35 @@ class StudyResult:
         mass, material, density, charge and stand-off, and the prototype's for reference."""
         sc, d = self.scenario, self.design
         if d is None:
-            return {"prototype": {**_describe(self.structure), "charge_kg": sc.blast.charge_kg,
-                                  "standoff_m": sc.blast.standoff_m}, "model": None}
-        mat = sc.scale.specimen_material or ("same as the prototype" if abs(d.density_ratio - 1.0) < 1e-12
-                                          else "density ratio " + format(d.density_ratio, ".6g"))
+            return {
+                "prototype": {
+                    **_describe(self.structure),
+                    "charge_kg": sc.blast.charge_kg,
+                    "standoff_m": sc.blast.standoff_m,
+                },
+                "model": None,
+            }
+        mat = sc.scale.specimen_material or (
+            "same as the prototype"
+            if abs(d.density_ratio - 1.0) < 1e-12
+            else "density ratio " + format(d.density_ratio, ".6g")
+        )
         return {
-            "prototype": {**_describe(self.structure), "charge_kg": d.prototype.charge_kg,
-                          "standoff_m": d.prototype.standoff_m},
-            "model": {**_describe(self.specimen_structure), "material": mat, "charge_kg": d.specimen_charge_kg,
-                      "standoff_m": d.specimen_standoff_m},
-            "scale": d.scale, "density_ratio": d.density_ratio, "gravity_ratio": d.gravity_ratio, "law": d.law,
+            "prototype": {
+                **_describe(self.structure),
+                "charge_kg": d.prototype.charge_kg,
+                "standoff_m": d.prototype.standoff_m,
+            },
+            "model": {
+                **_describe(self.specimen_structure),
+                "material": mat,
+                "charge_kg": d.specimen_charge_kg,
+                "standoff_m": d.specimen_standoff_m,
+            },
+            "scale": d.scale,
+            "density_ratio": d.density_ratio,
+            "gravity_ratio": d.gravity_ratio,
+            "law": d.law,
         }
 
     def summary(self) -> dict:
@@ -146,24 +165,33 @@ class StudyResult:
 
         groups = {}
         if self.planar is not None:
-            up = None if self.planar.model is None else upscale_dataset(rocking_dataset(self.planar.model),
-                                                                          self.design.factors)
+            up = (
+                None
+                if self.planar.model is None
+                else upscale_dataset(rocking_dataset(self.planar.model), self.design.factors)
+            )
             groups["planar"] = _system_stack(rocking_dataset(self.planar.prototype), up)
         if self.response3d is not None:
-            groups["sim3d"] = _system_stack(self.response3d.prototype_dataset,
-                                            getattr(self.response3d, "upscaled_dataset", None))
+            groups["sim3d"] = _system_stack(
+                self.response3d.prototype_dataset, getattr(self.response3d, "upscaled_dataset", None)
+            )
         if self.ensemble is not None:
             groups["ensemble"] = _ensemble_dataset(self.ensemble)
-        root = xr.Dataset(attrs={
-            "title": self.scenario.title or "blastscale study",
-            "Conventions": "CF-1.10",
-            "source": "blastscale.study.Study",
-            "scenario_toml": self.scenario.to_toml(),
-            "model_results": ("system = model: the specimen up-scaled to prototype units (x_prototype = "
-                              "x_specimen / factor) on the prototype's times") if self.design is not None
-            else "prototype only (no [scale]: no specimen, no comparison)",
-            "engines": ", ".join(groups) or "none",
-        })
+        root = xr.Dataset(
+            attrs={
+                "title": self.scenario.title or "blastscale study",
+                "Conventions": "CF-1.10",
+                "source": "blastscale.study.Study",
+                "scenario_toml": self.scenario.to_toml(),
+                "model_results": (
+                    "system = model: the specimen up-scaled to prototype units (x_prototype = "
+                    "x_specimen / factor) on the prototype's times"
+                )
+                if self.design is not None
+                else "prototype only (no [scale]: no specimen, no comparison)",
+                "engines": ", ".join(groups) or "none",
+            }
+        )
         return xr.DataTree.from_dict({"/": root, **{f"/{k}": v for k, v in groups.items()}})
 
 
@@ -183,14 +211,24 @@ def _ensemble_dataset(ens):
     members = [ens.prototype_members] + ([] if ens.model_members is None else [ens.model_members])
     data = np.stack(members)
     out = xr.Dataset(
-        {"point_displacement_x": (("system", "member", "time", "point"), data,
-                                  {"units": "m", "long_name": "x displacement of the monitoring point"})},
-        coords={"system": ("system", ["prototype", "model"][:len(members)], {"units": "1"}),
-                "member": ("member", np.arange(data.shape[1]), {"units": "1"}),
-                "load_factor": ("member", np.asarray(ens.factors),
-                                {"units": "1", "long_name": "factor on the member's blast load"}),
-                "time": ("time", ens.time, {"units": "s", "long_name": "time since detonation (prototype)"}),
-                "point": ("point", list(ens.points), {"units": "1"})},
+        {
+            "point_displacement_x": (
+                ("system", "member", "time", "point"),
+                data,
+                {"units": "m", "long_name": "x displacement of the monitoring point"},
+            )
+        },
+        coords={
+            "system": ("system", ["prototype", "model"][: len(members)], {"units": "1"}),
+            "member": ("member", np.arange(data.shape[1]), {"units": "1"}),
+            "load_factor": (
+                "member",
+                np.asarray(ens.factors),
+                {"units": "1", "long_name": "factor on the member's blast load"},
+            ),
+            "time": ("time", ens.time, {"units": "s", "long_name": "time since detonation (prototype)"}),
+            "point": ("point", list(ens.points), {"units": "1"}),
+        },
     )
     motion = getattr(ens, "motion", None)
     if motion is not None:  # the median and the worst members' motion (EnsembleComparison.motion)
@@ -218,13 +256,22 @@ def _system_stack(proto, up=None):
         keep = t <= float(up["time"].values[-1]) * (1 + 1e-12)
         proto = proto.isel(time=np.flatnonzero(keep))
         up = up[[v for v in up.data_vars if v in names]]
-        same = up.sizes["time"] == proto.sizes["time"] and np.allclose(up["time"].values, proto["time"].values,
-                                                                       rtol=1e-9, atol=0)
-        up_on = up.assign_coords(time=proto["time"]) if same else \
-            up.interp(time=proto["time"].values, kwargs={"fill_value": "extrapolate"})
+        same = up.sizes["time"] == proto.sizes["time"] and np.allclose(
+            up["time"].values, proto["time"].values, rtol=1e-9, atol=0
+        )
+        up_on = (
+            up.assign_coords(time=proto["time"])
+            if same
+            else up.interp(time=proto["time"].values, kwargs={"fill_value": "extrapolate"})
+        )
         parts, labels = [proto[names], up_on[names]], ["prototype", "model"]
-    both = xr.concat(parts, dim=xr.DataArray(labels, dims="system", name="system"), coords="minimal",
-                     compat="override", combine_attrs="override")
+    both = xr.concat(
+        parts,
+        dim=xr.DataArray(labels, dims="system", name="system"),
+        coords="minimal",
+        compat="override",
+        combine_attrs="override",
+    )
     for name in both.data_vars:
         attrs = {k: v for k, v in proto[name].attrs.items() if k in ("units", "long_name", "dimension")}
         attrs.setdefault("units", "1")

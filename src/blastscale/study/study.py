@@ -117,18 +117,24 @@ class Study:
                 skipped.append(f"{n} engine skipped: {why}")
             else:
                 raise BlastscaleInputError(
-                    f"simulation.engine = {asked!r} is not available for a {self.scenario.structure.kind}: {why}")
+                    f"simulation.engine = {asked!r} is not available for a {self.scenario.structure.kind}: {why}"
+                )
         if not run:
             raise BlastscaleInputError(
-                f"structure.kind = {self.scenario.structure.kind!r} cannot be simulated here: {'; '.join(skipped)}")
+                f"structure.kind = {self.scenario.structure.kind!r} cannot be simulated here: {'; '.join(skipped)}"
+            )
         members = self.scenario.simulation.ensemble_members
         if members >= 2 and alone:
-            raise BlastscaleInputError(f"simulation.ensemble_members = {members} needs a charge: under gravity alone "
-                                       "there is no load to perturb (valid: 0)")
+            raise BlastscaleInputError(
+                f"simulation.ensemble_members = {members} needs a charge: under gravity alone "
+                "there is no load to perturb (valid: 0)"
+            )
         if members >= 2:
             if not any(e.name == "3d" for e in run):
-                raise BlastscaleInputError(f"simulation.ensemble_members = {members} needs the 3D engine: valid "
-                                           "simulation.engine values are \"3d\" or \"both\" (or 0 members)")
+                raise BlastscaleInputError(
+                    f"simulation.ensemble_members = {members} needs the 3D engine: valid "
+                    'simulation.engine values are "3d" or "both" (or 0 members)'
+                )
             run.append(ENSEMBLE)
         return run, skipped
 
@@ -147,11 +153,22 @@ class Study:
         lm = load_model_of(sc, structure)
         face = front_face(structure) if sc.blast.clearing else (None, structure_top(structure))  # top: the lab burst
         return design_model(
-            sc.blast.charge_kg, sc.blast.standoff_m, sc.scale.length, sc.density_ratio, sc.scale.gravity_ratio,
-            sc.scale.law, sc.blast.blast_model, structure,
-            gravity=sc.simulation.gravity_m_s2, extrapolate=sc.blast.extrapolate, burst=sc.blast.burst,
-            specimen_burst=sc.scale.specimen_burst, load_model=lm, face=face,
-            specimen_charge_height=sc.scale.specimen_charge_height_m, contact=contact,
+            sc.blast.charge_kg,
+            sc.blast.standoff_m,
+            sc.scale.length,
+            sc.density_ratio,
+            sc.scale.gravity_ratio,
+            sc.scale.law,
+            sc.blast.blast_model,
+            structure,
+            gravity=sc.simulation.gravity_m_s2,
+            extrapolate=sc.blast.extrapolate,
+            burst=sc.blast.burst,
+            specimen_burst=sc.scale.specimen_burst,
+            load_model=lm,
+            face=face,
+            specimen_charge_height=sc.scale.specimen_charge_height_m,
+            contact=contact,
             duration=sc.simulation.duration_s,
         )
 
@@ -172,12 +189,23 @@ class Study:
             elif d is None:  # the prototype's blast alone (with a design: the design's, never recomputed)
                 from ..blast import blast_parameters
 
-                blast = blast_parameters(sc.blast.charge_kg, sc.blast.standoff_m, sc.blast.blast_model,
-                                         extrapolate=sc.blast.extrapolate, burst=sc.blast.burst)
+                blast = blast_parameters(
+                    sc.blast.charge_kg,
+                    sc.blast.standoff_m,
+                    sc.blast.blast_model,
+                    extrapolate=sc.blast.extrapolate,
+                    burst=sc.blast.burst,
+                )
             else:
                 blast = d.prototype
-            self._checked = StudyPlan(structure=structure, engines=tuple(engines), skipped=tuple(skipped), design=d,
-                                      blast=blast, contact=contact)
+            self._checked = StudyPlan(
+                structure=structure,
+                engines=tuple(engines),
+                skipped=tuple(skipped),
+                design=d,
+                blast=blast,
+                contact=contact,
+            )
         return self._checked
 
     def run(self, progress: Optional[Progress] = None) -> StudyResult:
@@ -220,9 +248,17 @@ class Study:
                 step += 1
             _tell(progress, "done", total, total)
             specimen = None if d is None else d.specimen_structure
-            partial = StudyResult(scenario=sc, structure=structure, specimen_structure=specimen, design=d, blast=blast,
-                                  planar=results.get("planar"), critical=crit, response3d=results.get("3d"),
-                                  ensemble=results.get("ensemble"))
+            partial = StudyResult(
+                scenario=sc,
+                structure=structure,
+                specimen_structure=specimen,
+                design=d,
+                blast=blast,
+                planar=results.get("planar"),
+                critical=crit,
+                response3d=results.get("3d"),
+                ensemble=results.get("ensemble"),
+            )
             summary = partial._compute_summary()  # inside the capture: its warnings are the study's
         notes = _study_warnings(d, results, skipped, summary, sc)
         lib = []
@@ -235,7 +271,6 @@ class Study:
             warnings.warn(note, StudyWarning, stacklevel=2)
         summary.update(warnings=list(lib + notes), timings_s=dict(timings))
         return replace(partial, warnings=tuple(lib + notes), timings=timings, _summary=summary)
-
 
 
 def _tell(progress: Optional[Progress], stage: str, done: int, total: int) -> None:
@@ -255,20 +290,26 @@ def _study_warnings(design, results: dict, skipped: list, summary: dict, scenari
         out.append("gravity alone (no charge): no specimen is designed, the [scale] table is not used")
     imp = None if design is None else design.impulsive
     if imp is not None and not imp.impulsive:
-        out.append(f"the load is not impulsive (t_o p = {imp.prototype_ratio:.3g} prototype, {imp.model_ratio:.3g} "
-                   f"model, threshold {imp.threshold:g}): the general law's similarity is not guaranteed")
+        out.append(
+            f"the load is not impulsive (t_o p = {imp.prototype_ratio:.3g} prototype, {imp.model_ratio:.3g} "
+            f"model, threshold {imp.threshold:g}): the general law's similarity is not guaranteed"
+        )
     planar = results.get("planar")
     if planar is not None and planar.outcomes_agree is False:
         out.append("planar rocking: prototype and model outcomes disagree (one overturns, the other does not)")
     ens = results.get("ensemble")
     if ens is None and results.get("3d") is not None and _is_circular(results["3d"]):
-        out.append("circular drums wobble chaotically: one trajectory after the first impact means little; compare "
-                   "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities")
+        out.append(
+            "circular drums wobble chaotically: one trajectory after the first impact means little; compare "
+            "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities"
+        )
     if ens is not None and summary["ensemble"]["collapse_probability_model"] is not None:
         e = summary["ensemble"]
         if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
-            out.append(f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
-                       f"{e['collapse_probability_model']:.2g} (model)")
+            out.append(
+                f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
+                f"{e['collapse_probability_model']:.2g} (model)"
+            )
     s = summary["3d"]
     if s is not None:
         p, m = s.get("prototype") or {}, s.get("model") or {}

@@ -9,6 +9,22 @@ from .outcomes import OUTCOME_KEYS, planar_outcomes
 from .runner import SweepRun, default_chunk, run_chunks
 from .spec import SweepAxis, SweepSample, SweepSpec
 
-__all__ = ["VALID_KEY", "OUTCOME_KEYS", "SweepAxis", "SweepSample", "SweepSpec", "SweepRun",
-           "Distribution", "parse_distribution", "parse_grid", "evaluate_chunk", "planar_outcomes",
-           "study_scalars", "default_chunk", "run_chunks", "StoreLocation", "store_location", "select"]
+__all__ = [
+    "VALID_KEY",
+    "OUTCOME_KEYS",
+    "SweepAxis",
+    "SweepSample",
+    "SweepSpec",
+    "SweepRun",
+    "Distribution",
+    "parse_distribution",
+    "parse_grid",
+    "evaluate_chunk",
+    "planar_outcomes",
+    "study_scalars",
+    "default_chunk",
+    "run_chunks",
+    "StoreLocation",
+    "store_location",
+    "select",
+]

@@ -16,8 +16,7 @@ from typing import Optional
 from .._validate import BlastscaleInputError
 from ..study.memory import check_budget, estimate_seconds
 
-__all__ = ["check_sweep_budget", "check_cases_budget", "FIRST_SWING_SECONDS", "PLANAR_STUDY_SECONDS",
-           "VALUES_PER_CASE"]
+__all__ = ["check_sweep_budget", "check_cases_budget", "FIRST_SWING_SECONDS", "PLANAR_STUDY_SECONDS", "VALUES_PER_CASE"]
 
 #: Wall time of one case decided by the first-swing criterion (outcome mode, fragility draws) [s].
 FIRST_SWING_SECONDS = 7e-5
@@ -27,8 +26,14 @@ PLANAR_STUDY_SECONDS = 3e-3
 VALUES_PER_CASE = {"outcomes": 8, "planar": 80, "3d": 400}
 
 
-def check_cases_budget(n_cases: int, seconds_per_case: float, values_per_case: int, workers: Optional[int],
-                       name: str = "cases", hint: str = "") -> None:
+def check_cases_budget(
+    n_cases: int,
+    seconds_per_case: float,
+    values_per_case: int,
+    workers: Optional[int],
+    name: str = "cases",
+    hint: str = "",
+) -> None:
     """Refuse ``n_cases`` whose computing (on ``workers`` processes; None: a scheduler's unknown number,
     no time limit) or whose values in memory exceed the shared rule (one line naming ``name``)."""
     need = float(n_cases) * values_per_case * 8 * 4
@@ -51,5 +56,4 @@ def check_sweep_budget(spec, workers: Optional[int]) -> None:
         except BlastscaleInputError:
             structure = None
         per, values = estimate_seconds(spec.base, structure) + 0.05, VALUES_PER_CASE["3d"]
-    check_cases_budget(spec.n_cases, per, values, workers, name="cases",
-                       hint="fewer --vary values or --samples")
+    check_cases_budget(spec.n_cases, per, values, workers, name="cases", hint="fewer --vary values or --samples")

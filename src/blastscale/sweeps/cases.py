@@ -60,5 +60,4 @@ def evaluate_chunk(payload: dict, start: int, stop: int) -> dict:
         return {"start": start, "stop": stop, "values": planar_outcomes(spec, start, stop)}
     rows = _chunk_rows(spec, start, stop)
     keys = sorted({k for r in rows for k in r})
-    return {"start": start, "stop": stop,
-            "values": {k: [r.get(k, math.nan) for r in rows] for k in keys}}
+    return {"start": start, "stop": stop, "values": {k: [r.get(k, math.nan) for r in rows] for k in keys}}

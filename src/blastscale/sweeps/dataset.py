@@ -47,7 +47,7 @@ def _flat_arrays(spec: SweepSpec, chunks) -> dict:
             continue  # not a number (never produced by scalars())
         for c, v in zip(chunks, vals):
             if v is not None:
-                arr[c["start"]:c["stop"]] = v
+                arr[c["start"] : c["stop"]] = v
         out[k] = arr
     return out
 
@@ -114,16 +114,28 @@ def _groups(spec: SweepSpec, flat: dict, valid: np.ndarray) -> dict:
 
 def _case_coordinates(spec: SweepSpec) -> dict:
     """The grid values (on their dimensions) and the draws (on ``sample``), with units and long names."""
-    coords = {a.name: (a.name, np.asarray(a.values), {"units": unit_of(a.path), "path": a.path,
-                                                      "long_name": f"{a.path} (grid)"}) for a in spec.axes}
+    coords = {
+        a.name: (
+            a.name,
+            np.asarray(a.values),
+            {"units": unit_of(a.path), "path": a.path, "long_name": f"{a.path} (grid)"},
+        )
+        for a in spec.axes
+    }
     if spec.sampled:
         coords["sample"] = ("sample", np.arange(spec.samples), {"units": "1", "long_name": "Monte Carlo sample"})
         for s in spec.sampled:
-            coords[s.name] = ("sample", spec.draws()[s.name],
-                              {"units": "1" if s.relative else unit_of(s.path), "path": s.path,
-                               "distribution": f"{s.distribution.kind}:{','.join(map(str, s.distribution.params))}",
-                               "relative": int(s.relative),
-                               "long_name": f"{'factor on ' if s.relative else ''}{s.path} (draws)"})
+            coords[s.name] = (
+                "sample",
+                spec.draws()[s.name],
+                {
+                    "units": "1" if s.relative else unit_of(s.path),
+                    "path": s.path,
+                    "distribution": f"{s.distribution.kind}:{','.join(map(str, s.distribution.params))}",
+                    "relative": int(s.relative),
+                    "long_name": f"{'factor on ' if s.relative else ''}{s.path} (draws)",
+                },
+            )
     return coords
 
 
@@ -147,8 +159,11 @@ def assemble(spec: SweepSpec, chunks, meta: dict):
     flat = _flat_arrays(spec, chunks)
     valid = np.asarray(flat.get(VALID_KEY, np.ones(spec.n_cases)), dtype=bool).reshape(spec.shape)
     vloc = store_location(VALID_KEY)
-    root = xr.Dataset({VALID_NAME: (spec.dims, valid, {"units": vloc.units, "long_name": vloc.long_name})},
-                      coords=_case_coordinates(spec), attrs=meta)
+    root = xr.Dataset(
+        {VALID_NAME: (spec.dims, valid, {"units": vloc.units, "long_name": vloc.long_name})},
+        coords=_case_coordinates(spec),
+        attrs=meta,
+    )
     nodes = {"/": root}
     for path, (data, coords) in _groups(spec, flat, valid).items():
         nodes[f"/{path}"] = xr.Dataset(data, coords=coords)
@@ -177,11 +192,14 @@ def metadata(spec: SweepSpec, chunk: int) -> dict:
         "numpy_version": np.__version__,
         "numba_version": numba.__version__,
         "python_version": platform.python_version(),
-        "scalars": ("outcome mode: first-swing outcomes and largest rotations of the prototype and the model "
-                    "(blastscale.sweeps.outcomes.planar_outcomes)") if spec.outcomes else
-                   "Study(scenario).run().scalars() per case",
+        "scalars": (
+            "outcome mode: first-swing outcomes and largest rotations of the prototype and the model "
+            "(blastscale.sweeps.outcomes.planar_outcomes)"
+        )
+        if spec.outcomes
+        else "Study(scenario).run().scalars() per case",
         "groups": "one per engine or section; system = prototype or model (the specimen: as built in experiment "
-                  "and design, up-scaled to prototype units in the engines); constants of experiment and design "
-                  "are variables without the case dimensions, with units",
+        "and design, up-scaled to prototype units in the engines); constants of experiment and design "
+        "are variables without the case dimensions, with units",
         "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
     }

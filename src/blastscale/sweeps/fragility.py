@@ -131,16 +131,26 @@ def fit_lognormal_fragility(charges, collapsed, samples) -> LognormalFit:
     if np.all(k == 0) or np.all(k == n):
         raise BlastscaleInputError(
             f"collapsed = {'none' if np.all(k == 0) else 'all'} of the samples at every charge in "
-            f"[{W.min():.6g}, {W.max():.6g}] kg: widen --charges to cover the transition")
+            f"[{W.min():.6g}, {W.max():.6g}] kg: widen --charges to cover the transition"
+        )
     cut = _separated(W, k, n)
     if cut is not None:
         lo, hi = cut
         return LognormalFit(
-            median_charge_kg=math.sqrt(lo * hi), beta=None, median_ci_kg=(lo, hi), beta_ci=(0.0, math.inf),
-            se_ln_median=math.nan, se_ln_beta=math.nan, log_likelihood=0.0, bounded=False,
-            note=(f"every draw stands at W <= {lo:.6g} kg and overturns at W >= {hi:.6g} kg: the median lies "
-                  f"between them and beta cannot be estimated (open bounds; add charges between {lo:.6g} and "
-                  f"{hi:.6g} kg)"))
+            median_charge_kg=math.sqrt(lo * hi),
+            beta=None,
+            median_ci_kg=(lo, hi),
+            beta_ci=(0.0, math.inf),
+            se_ln_median=math.nan,
+            se_ln_beta=math.nan,
+            log_likelihood=0.0,
+            bounded=False,
+            note=(
+                f"every draw stands at W <= {lo:.6g} kg and overturns at W >= {hi:.6g} kg: the median lies "
+                f"between them and beta cannot be estimated (open bounds; add charges between {lo:.6g} and "
+                f"{hi:.6g} kg)"
+            ),
+        )
     lw = np.log(W)
 
     def nll(x):
@@ -150,8 +160,12 @@ def fit_lognormal_fragility(charges, collapsed, samples) -> LognormalFit:
     p = k / n
     mid = float(np.interp(0.5, p, lw)) if np.all(np.diff(p) >= 0) else float(np.mean(lw))
     spread = max(0.05, 0.25 * float(lw.max() - lw.min()))
-    res = minimize(nll, np.array([mid, math.log(spread)]), method="Nelder-Mead",
-                   options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
+    res = minimize(
+        nll,
+        np.array([mid, math.log(spread)]),
+        method="Nelder-Mead",
+        options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000},
+    )
     x = res.x
     # observed information: central-difference Hessian of the negative log-likelihood
     h = 1e-4
@@ -176,8 +190,12 @@ def fit_lognormal_fragility(charges, collapsed, samples) -> LognormalFit:
         se_ln_median=float(se[0]),
         se_ln_beta=float(se[1]),
         log_likelihood=-float(res.fun),
-        note=(f"the data do not bound the {' and the '.join(opened)} (open 95 % bounds): add charges where "
-              "some but not all draws overturn") if opened else "",
+        note=(
+            f"the data do not bound the {' and the '.join(opened)} (open 95 % bounds): add charges where "
+            "some but not all draws overturn"
+        )
+        if opened
+        else "",
         bounded=not opened,
     )
 
@@ -196,7 +214,8 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     base = spec.base
     if base.structure.kind != "block":
         raise BlastscaleInputError(
-            f"structure.kind = {base.structure.kind!r}: fragility by the first-swing criterion needs a block")
+            f"structure.kind = {base.structure.kind!r}: fragility by the first-swing criterion needs a block"
+        )
     paths = {a.path for a in spec.axes} | {s.path for s in spec.sampled}
     per_case_body = bool(paths - set(_LOAD_FIELDS))
     n = spec.n_cases
@@ -212,11 +231,20 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     for a in range(0, n, block_size):
         b = min(n, a + block_size)
         vals = spec.value_arrays(a, b)  # the whole block at once, not case by case
-        W, R = (vals[p].astype(float) if p in vals else np.full(b - a, float(v))
-                for p, v in zip(_LOAD_FIELDS, (bl.charge_kg, bl.standoff_m)))
+        W, R = (
+            vals[p].astype(float) if p in vals else np.full(b - a, float(v))
+            for p, v in zip(_LOAD_FIELDS, (bl.charge_kg, bl.standoff_m))
+        )
         systems = [system_of(spec.scenario(k)) for k in range(a, b)] if per_case_body else one
-        out[a:b] = overturns(systems, W, R, pulse_shape=bl.pulse_shape, blast_model=bl.blast_model, extrapolate=bl.extrapolate,
-                             solver=solver)
+        out[a:b] = overturns(
+            systems,
+            W,
+            R,
+            pulse_shape=bl.pulse_shape,
+            blast_model=bl.blast_model,
+            extrapolate=bl.extrapolate,
+            solver=solver,
+        )
     return out.reshape(spec.shape)
 
 
@@ -269,7 +297,9 @@ class FragilityResult:
         }
 
 
-def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int = 1000, seed: int = 0) -> FragilityResult:
+def fragility(
+    scenario, charges, *, lognormal=None, uniform=None, samples: int = 1000, seed: int = 0
+) -> FragilityResult:
     """Probability of overturning against the charge, with a lognormal fit (module docstring).
 
     Parameters
@@ -304,7 +334,8 @@ def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int =
             raise BlastscaleInputError(
                 f"--lognormal {key} = {beta!r}: beta is out of range: must be > 0 (beta = 0 is no uncertainty: "
                 "every draw equals the nominal value; leave the field out, or use `blastscale critical` for "
-                "the charge at which a certain block overturns)")
+                "the charge at which a certain block overturns)"
+            )
         rel[key] = Distribution("lognormal", (1.0, b))
     absolute = {}
     for key, (lo, hi) in (uniform or {}).items():
@@ -312,13 +343,21 @@ def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int =
             raise BlastscaleInputError(f"{key} = uniform {lo:g}:{hi:g} is an empty range: hi must exceed lo")
         absolute[key] = Distribution("uniform", (float(lo), float(hi)))
     if not rel and not absolute:
-        raise BlastscaleInputError("uncertain fields = none: give at least one --lognormal FIELD=beta or --uniform FIELD=lo:hi")
+        raise BlastscaleInputError(
+            "uncertain fields = none: give at least one --lognormal FIELD=beta or --uniform FIELD=lo:hi"
+        )
     from ..study.memory import check_budget
     from .budget import FIRST_SWING_SECONDS
 
     draws = W.size * int(samples)
-    check_budget("samples", samples, "", draws * 8.0 * (len(rel) + len(absolute) + 6) * 3,
-                 draws * FIRST_SWING_SECONDS, hint=f"{W.size} charges x samples draws")
+    check_budget(
+        "samples",
+        samples,
+        "",
+        draws * 8.0 * (len(rel) + len(absolute) + 6) * 3,
+        draws * FIRST_SWING_SECONDS,
+        hint=f"{W.size} charges x samples draws",
+    )
     spec = SweepSpec.build(scenario, {"charge_kg": W}, absolute, relative=rel, samples=samples, seed=seed)
     t0 = time.perf_counter()
     over = overturning_outcomes(spec)
@@ -329,6 +368,13 @@ def fragility(scenario, charges, *, lognormal=None, uniform=None, samples: int =
         fit = fit_lognormal_fragility(W, k, samples)
     except BlastscaleInputError:
         fit = None
-    fields = {s.name: {"path": s.path, "distribution": s.distribution.kind, "params": list(s.distribution.params),
-                       "relative": s.relative} for s in spec.sampled}
+    fields = {
+        s.name: {
+            "path": s.path,
+            "distribution": s.distribution.kind,
+            "params": list(s.distribution.params),
+            "relative": s.relative,
+        }
+        for s in spec.sampled
+    }
     return FragilityResult(W, k, int(samples), p, fit, fields, int(seed), dt)

@@ -24,7 +24,15 @@ from .._validate import BlastscaleInputError
 #: Most values of one grid axis (a larger one would not fit in memory before any other check).
 MAX_GRID = 10_000_000
 
-__all__ = ["MAX_GRID", "parse_grid", "parse_number", "parse_assignment", "Distribution", "parse_distribution", "DISTRIBUTIONS"]
+__all__ = [
+    "MAX_GRID",
+    "parse_grid",
+    "parse_number",
+    "parse_assignment",
+    "Distribution",
+    "parse_distribution",
+    "DISTRIBUTIONS",
+]
 
 
 def parse_number(text: str, name: str, what: str = "value") -> float:
@@ -78,7 +86,9 @@ def parse_grid(text: str, name: str = "grid", numeric: bool = True) -> np.ndarra
         except ValueError:
             raise BlastscaleInputError(f"{name} = {text!r}: n = {parts[2]!r} is not a whole number >= 1") from None
         if not 1 <= n <= MAX_GRID:
-            raise BlastscaleInputError(f"{name} = {text!r}: n = {n} is out of range: valid range is [1, {MAX_GRID:.0e}]")
+            raise BlastscaleInputError(
+                f"{name} = {text!r}: n = {n} is out of range: valid range is [1, {MAX_GRID:.0e}]"
+            )
         if n > 1 and not b > a:
             raise BlastscaleInputError(f"{name} = {text!r} is an empty range: stop ({b:g}) must exceed start ({a:g})")
         log = len(parts) == 4 and parts[3] == "log"
@@ -144,7 +154,9 @@ class Distribution:
             return p[0] * (p[1] / p[0]) ** u
         lo, mode, hi = p  # triangular, by inversion of its CDF
         c = (mode - lo) / (hi - lo)
-        return np.where(u < c, lo + np.sqrt(u * (hi - lo) * (mode - lo)), hi - np.sqrt((1 - u) * (hi - lo) * (hi - mode)))
+        return np.where(
+            u < c, lo + np.sqrt(u * (hi - lo) * (mode - lo)), hi - np.sqrt((1 - u) * (hi - lo) * (hi - mode))
+        )
 
 
 def parse_distribution(text: str, name: str = "distribution") -> Distribution:
@@ -177,5 +189,7 @@ def parse_distribution(text: str, name: str = "distribution") -> Distribution:
     if kind == "loguniform" and p[0] <= 0:
         raise BlastscaleInputError(f"{name} = {text!r}: lo = {p[0]:g} is out of range: a log distribution needs lo > 0")
     if kind == "triangular" and not p[0] <= p[1] <= p[2]:
-        raise BlastscaleInputError(f"{name} = {text!r}: mode = {p[1]:g} is out of range: must lie in [{p[0]:g}, {p[2]:g}]")
+        raise BlastscaleInputError(
+            f"{name} = {text!r}: mode = {p[1]:g} is out of range: must lie in [{p[0]:g}, {p[2]:g}]"
+        )
     return Distribution(kind, p)

@@ -33,12 +33,28 @@ from typing import NamedTuple, Optional
 
 from ..units import SUFFIXES, unit_of
 
-__all__ = ["StoreLocation", "store_location", "select", "GROUPS", "SYSTEMS", "LIST_DIMENSIONS",
-           "CONSTANT_GROUPS", "VALID_NAME", "coordinate_attrs", "label_order"]
+__all__ = [
+    "StoreLocation",
+    "store_location",
+    "select",
+    "GROUPS",
+    "SYSTEMS",
+    "LIST_DIMENSIONS",
+    "CONSTANT_GROUPS",
+    "VALID_NAME",
+    "coordinate_attrs",
+    "label_order",
+]
 
 #: Section of a flat key -> its group in the store.
-GROUPS = {"experiment": "experiment", "design": "design", "planar": "planar", "critical": "critical",
-          "3d": "sim3d", "ensemble": "ensemble"}
+GROUPS = {
+    "experiment": "experiment",
+    "design": "design",
+    "planar": "planar",
+    "critical": "critical",
+    "3d": "sim3d",
+    "ensemble": "ensemble",
+}
 
 #: Labels of the ``system`` dimension, in store order.
 SYSTEMS = ("prototype", "model")
@@ -58,9 +74,16 @@ CONSTANT_GROUPS = ("experiment", "design")
 VALID_NAME = "valid"
 _VALID_KEY = "sweep.valid"
 
-_CONTEXT = {"experiment": "experiment", "design": "model design", "planar": "planar rocking",
-            "critical": "critical charge of the prototype, planar", "sim3d": "3D engine", "ensemble": "3D ensemble",
-            "design/factors": "scaling factor, specimen / prototype", "design/impulsive": "impulsive check"}
+_CONTEXT = {
+    "experiment": "experiment",
+    "design": "model design",
+    "planar": "planar rocking",
+    "critical": "critical charge of the prototype, planar",
+    "sim3d": "3D engine",
+    "ensemble": "3D ensemble",
+    "design/factors": "scaling factor, specimen / prototype",
+    "design/impulsive": "impulsive check",
+}
 
 
 class StoreLocation(NamedTuple):
@@ -109,13 +132,19 @@ def store_location(key: str) -> Optional[StoreLocation]:
         stripped (a key the store cannot name: the layout must learn it).
     """
     if key == _VALID_KEY:
-        return StoreLocation("", VALID_NAME, (), "1",
-                             "the Study ran the case (False: refused, e.g. a model scaled distance outside the "
-                             "blast fits; its other values are NaN)")
+        return StoreLocation(
+            "",
+            VALID_NAME,
+            (),
+            "1",
+            "the Study ran the case (False: refused, e.g. a model scaled distance outside the "
+            "blast fits; its other values are NaN)",
+        )
     section, *rest = key.split(".")
     if section not in GROUPS:
-        raise ValueError(f"key = {key!r}: section {section!r} has no group in a sweep store "
-                         f"(known: {', '.join(GROUPS)})")
+        raise ValueError(
+            f"key = {key!r}: section {section!r} has no group in a sweep store (known: {', '.join(GROUPS)})"
+        )
     index = int(rest.pop()) if rest and rest[-1].isdigit() else None
     if not rest or rest[-1] in SYSTEMS + ("similarity", "points"):
         return None  # "design", "planar.model", "3d.similarity": the placeholder of a part not run
@@ -171,11 +200,18 @@ def coordinate_attrs(dim: str, group: str, labels=()) -> dict:
     """``long_name`` of a store dimension's labels in a group, and ``units`` ("1") where the labels are
     numbers (``drum`` 0, 1, ...); labels that are strings (``system``, ``point``, ``component``) have
     no units (CF conventions: ``units`` is for quantities)."""
-    specimen = "the specimen as built (model scale)" if group.split("/")[0] in CONSTANT_GROUPS \
+    specimen = (
+        "the specimen as built (model scale)"
+        if group.split("/")[0] in CONSTANT_GROUPS
         else "the specimen up-scaled to prototype units"
-    names = {"system": f"prototype, or {specimen}", "point": "monitoring point",
-             "component": "Cartesian component", "bound": "start or end of the interval",
-             "drum": "drum index"}
+    )
+    names = {
+        "system": f"prototype, or {specimen}",
+        "point": "monitoring point",
+        "component": "Cartesian component",
+        "bound": "start or end of the interval",
+        "drum": "drum index",
+    }
     attrs = {"long_name": names.get(dim, dim.replace("_", " "))}
     return attrs if any(isinstance(lab, str) for lab in labels) else {"units": "1", **attrs}
 
@@ -221,6 +257,5 @@ def select(tree, key: str):
     if set(valid.dims) <= set(da.dims):
         return da
     # a constant, stored once: broadcast over the cases, NaN where a case is not valid
-    da = xr.DataArray(np.full(valid.shape, da.values), dims=valid.dims, coords=valid.coords, name=key,
-                      attrs=da.attrs)
+    da = xr.DataArray(np.full(valid.shape, da.values), dims=valid.dims, coords=valid.coords, name=key, attrs=da.attrs)
     return da if bool(valid.all()) else da.where(valid)

@@ -16,9 +16,15 @@ VALID_KEY = "sweep.valid"
 
 #: Keys of the outcome mode (:func:`planar_outcomes`), the Study's names where they mean the same.
 OUTCOME_KEYS = (
-    "planar.prototype.collapsed", "planar.prototype.max_rotation_rad", "planar.model.collapsed",
-    "planar.model.max_rotation_rad", "planar.similarity.max_rotation_ratio", "planar.similarity.outcomes_agree",
-    "design.model_charge_kg", "design.model_standoff_m", VALID_KEY,
+    "planar.prototype.collapsed",
+    "planar.prototype.max_rotation_rad",
+    "planar.model.collapsed",
+    "planar.model.max_rotation_rad",
+    "planar.similarity.max_rotation_ratio",
+    "planar.similarity.outcomes_agree",
+    "design.model_charge_kg",
+    "design.model_standoff_m",
+    VALID_KEY,
 )
 #: Fields the outcome mode vectorises over; the others that matter group the cases (one body, scale,
 #: law, blast model and pulse per group); the rest (friction, duration, samples, 3D settings, ...)
@@ -27,8 +33,9 @@ _LOAD_PATHS = ("blast.charge_kg", "blast.standoff_m", "simulation.restitution")
 
 
 def _outcome_field(path: str) -> bool:
-    return (path.startswith(("structure.", "blast.", "scale.")) or path == "simulation.gravity_m_s2") \
-        and path not in _LOAD_PATHS + ("structure.friction", "blast.load", "blast.incidence")
+    return (
+        path.startswith(("structure.", "blast.", "scale.")) or path == "simulation.gravity_m_s2"
+    ) and path not in _LOAD_PATHS + ("structure.friction", "blast.load", "blast.incidence")
 
 
 def _groups(vals: dict, paths: list, n: int) -> list:
@@ -68,9 +75,22 @@ def _outcome_group(sc, W, R, e) -> dict:
     structure = from_spec(sc.structure)
     lm = load_model_of(sc, structure)  # clearing on the block's front, the negative phase (the Study's)
     try:  # the specimen system (block, gravity, load model) from the design, as in the Study
-        d = design_model(W, R, scl.length, sc.density_ratio, scl.gravity_ratio, scl.law, bl.blast_model, structure,
-                         gravity=sim.gravity_m_s2, extrapolate=bl.extrapolate, burst=bl.burst,
-                         specimen_burst=scl.specimen_burst, load_model=lm, effects=False)
+        d = design_model(
+            W,
+            R,
+            scl.length,
+            sc.density_ratio,
+            scl.gravity_ratio,
+            scl.law,
+            bl.blast_model,
+            structure,
+            gravity=sim.gravity_m_s2,
+            extrapolate=bl.extrapolate,
+            burst=bl.burst,
+            specimen_burst=scl.specimen_burst,
+            load_model=lm,
+            effects=False,
+        )
     except BlastscaleInputError:  # e.g. a density ratio the Hopkinson-Cranz law refuses: every case
         return out
     ok = d.valid
@@ -80,12 +100,28 @@ def _outcome_group(sc, W, R, e) -> dict:
     specimen = RockingSystem.from_block(d.specimen_block, d.specimen_gravity)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
     solver = RockingSolver(threads=sim.threads)  # the cases over the worker's cores (bitwise the same)
-    fp = first_swing_blast(proto.alpha, e, proto.frequency_parameter, proto.load_ratio_per_pascal,
-                           d.prototype.select(ok), bl.pulse_shape, load_model=lm, extrapolate=bl.extrapolate,
-                           solver=solver)
-    fm = first_swing_blast(specimen.alpha, e, specimen.frequency_parameter, specimen.load_ratio_per_pascal,
-                           d.specimen.select(ok), bl.pulse_shape, load_model=d.specimen_load_model,
-                           extrapolate=bl.extrapolate, solver=solver)
+    fp = first_swing_blast(
+        proto.alpha,
+        e,
+        proto.frequency_parameter,
+        proto.load_ratio_per_pascal,
+        d.prototype.select(ok),
+        bl.pulse_shape,
+        load_model=lm,
+        extrapolate=bl.extrapolate,
+        solver=solver,
+    )
+    fm = first_swing_blast(
+        specimen.alpha,
+        e,
+        specimen.frequency_parameter,
+        specimen.load_ratio_per_pascal,
+        d.specimen.select(ok),
+        bl.pulse_shape,
+        load_model=d.specimen_load_model,
+        extrapolate=bl.extrapolate,
+        solver=solver,
+    )
     out["planar.prototype.collapsed"][ok] = fp.collapsed
     out["planar.prototype.max_rotation_rad"][ok] = fp.max_rotation
     out["planar.model.collapsed"][ok] = fm.collapsed
@@ -124,8 +160,10 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
     vals = spec.value_arrays(start, stop)
     n = int(stop) - int(start)
     base = spec.base
-    col = {p: (vals[p].astype(float) if p in vals else np.full(n, np.nan if v is None else float(v)))
-           for p, v in zip(_LOAD_PATHS, (base.blast.charge_kg, base.blast.standoff_m, base.simulation.restitution))}
+    col = {
+        p: (vals[p].astype(float) if p in vals else np.full(n, np.nan if v is None else float(v)))
+        for p, v in zip(_LOAD_PATHS, (base.blast.charge_kg, base.blast.standoff_m, base.simulation.restitution))
+    }
     others = [p for p in vals if _outcome_field(p)]
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
     with warnings.catch_warnings():

@@ -53,8 +53,15 @@ def default_chunk(spec: SweepSpec, workers: int) -> int:
     return int(max(1, min(per_worker, math.ceil(spec.n_cases / max(1, workers)))))
 
 
-def run_chunks(payload: dict, todo, sink: Callable[[int, dict], None], *, scheduler: Optional[str] = None,
-               workers: int = 0, tick: Optional[Callable[[int], None]] = None) -> tuple:
+def run_chunks(
+    payload: dict,
+    todo,
+    sink: Callable[[int, dict], None],
+    *,
+    scheduler: Optional[str] = None,
+    workers: int = 0,
+    tick: Optional[Callable[[int], None]] = None,
+) -> tuple:
     """Evaluate the chunks ``todo`` (``(index, start, stop)`` each) of a sweep and hand each result
     to ``sink(index, result)`` as it completes.
 
@@ -111,14 +118,17 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
         # each worker's 3D runs share the cores with the other workers: cores // workers threads each;
         # the workers log errors only: a task cancelled while the cluster stops after Ctrl-C is not news (the
         # main process says what happened in one line); a failing chunk still raises here
-        env = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
-               "distributed.nanny.pre-spawn-environ.DASK_LOGGING__DISTRIBUTED": "error",
-               f"distributed.nanny.pre-spawn-environ.{THREADS_ENV}": str(max(1, available_cores() // max(1, nw)))}
+        env = {
+            "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
+            "distributed.nanny.pre-spawn-environ.DASK_LOGGING__DISTRIBUTED": "error",
+            f"distributed.nanny.pre-spawn-environ.{THREADS_ENV}": str(max(1, available_cores() // max(1, nw))),
+        }
         with warnings.catch_warnings(), dask.config.set(env):
             # the scheduler's HTTP (health) server takes another port when 8787 is busy: not our concern
             warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
-            cluster = LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                   dashboard_address=None)
+            cluster = LocalCluster(
+                n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+            )
         client = Client(cluster)
     else:
         try:
@@ -128,8 +138,12 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
     try:
         used = len(client.scheduler_info().get("workers", {})) or nw
         t0 = time.perf_counter()
-        futs = {client.submit(evaluate_chunk, payload, a, b, key=f"blastscale-chunk-{i}-{payload_hash(payload)}",
-                              pure=False): (i, a, b) for i, a, b in todo}
+        futs = {
+            client.submit(
+                evaluate_chunk, payload, a, b, key=f"blastscale-chunk-{i}-{payload_hash(payload)}", pure=False
+            ): (i, a, b)
+            for i, a, b in todo
+        }
         k = 0
         for fut in as_completed(futs):
             i, a, b = futs[fut]
@@ -159,8 +173,14 @@ def payload_hash(payload: dict) -> str:
     return hashlib.sha1(json.dumps(payload, sort_keys=True, default=str).encode()).hexdigest()[:12]
 
 
-def run_in_memory(spec: SweepSpec, *, scheduler: Optional[str] = None, workers: int = 0,
-                  chunk: Optional[int] = None, progress: Optional[Callable[[int, int], None]] = None):
+def run_in_memory(
+    spec: SweepSpec,
+    *,
+    scheduler: Optional[str] = None,
+    workers: int = 0,
+    chunk: Optional[int] = None,
+    progress: Optional[Callable[[int, int], None]] = None,
+):
     """Run every case of a sweep and return its tree (:func:`.dataset.assemble`: the layout of a
     sweep store), keeping the chunks in memory (nothing written, nothing resumable: for small
     sweeps and maps).
@@ -192,7 +212,12 @@ def run_in_memory(spec: SweepSpec, *, scheduler: Optional[str] = None, workers: 
     n = spec.n_cases
     todo = [(i, s, min(n, s + chunk)) for i, s in enumerate(range(0, n, chunk))]
     done: dict = {}
-    run_chunks(spec.to_payload(), todo, done.__setitem__, scheduler=scheduler, workers=workers,
-               tick=(lambda k: progress(k, n)) if progress else None)
+    run_chunks(
+        spec.to_payload(),
+        todo,
+        done.__setitem__,
+        scheduler=scheduler,
+        workers=workers,
+        tick=(lambda k: progress(k, n)) if progress else None,
+    )
     return assemble(spec, (done[i] for i, _, _ in todo), metadata(spec, chunk))
-

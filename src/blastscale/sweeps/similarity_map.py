@@ -137,8 +137,16 @@ def similarity_map(
     out["first_peak_ratio_error"] = np.abs(out["first_peak_ratio"] - 1.0).assign_attrs(units="-")
     unit = out["error"].attrs["units"]
     out["trustworthy"] = (valid & agree & (out["error"] <= tolerance)).assign_attrs(
-        units="-", definition=f"valid, outcomes agree, error <= {tolerance:g} {unit}")
-    out.attrs.update({"engine": engine, "tolerance": float(tolerance), "error_units": unit,
-                      "error_definition": ENGINE_VARIABLES[engine]["error"][0],
-                      "title": f"blastscale similarity map ({engine})", "sweep": src.attrs.get("sweep", "")})
+        units="-", definition=f"valid, outcomes agree, error <= {tolerance:g} {unit}"
+    )
+    out.attrs.update(
+        {
+            "engine": engine,
+            "tolerance": float(tolerance),
+            "error_units": unit,
+            "error_definition": ENGINE_VARIABLES[engine]["error"][0],
+            "title": f"blastscale similarity map ({engine})",
+            "sweep": src.attrs.get("sweep", ""),
+        }
+    )
     return out

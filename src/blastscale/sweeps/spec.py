@@ -65,8 +65,17 @@ class SweepSpec:
     _draws: dict = field(default_factory=dict, compare=False, repr=False)
 
     @classmethod
-    def build(cls, base, vary: Optional[dict] = None, sample: Optional[dict] = None, *, samples: int = 0,
-              seed: int = 0, relative: Optional[dict] = None, outcomes: bool = False) -> "SweepSpec":
+    def build(
+        cls,
+        base,
+        vary: Optional[dict] = None,
+        sample: Optional[dict] = None,
+        *,
+        samples: int = 0,
+        seed: int = 0,
+        relative: Optional[dict] = None,
+        outcomes: bool = False,
+    ) -> "SweepSpec":
         """A validated spec.
 
         Parameters
@@ -99,8 +108,12 @@ class SweepSpec:
             paths[key] = base.resolve_key(key)
         grid_paths = [paths[k] for k in vary]
         abs_paths = [paths[k] for k in sample]
-        if len(set(grid_paths)) != len(grid_paths) or len(set(abs_paths)) != len(abs_paths) \
-                or set(grid_paths) & set(abs_paths) or len(set(paths[k] for k in relative)) != len(relative):
+        if (
+            len(set(grid_paths)) != len(grid_paths)
+            or len(set(abs_paths)) != len(abs_paths)
+            or set(grid_paths) & set(abs_paths)
+            or len(set(paths[k] for k in relative)) != len(relative)
+        ):
             raise BlastscaleInputError(f"fields = {', '.join(paths)}: a field may be varied or sampled only once")
         rel_paths = [paths[k] for k in relative]
         if set(rel_paths) & set(abs_paths):
@@ -127,7 +140,9 @@ class SweepSpec:
         from .budget import VALUES_PER_CASE, check_cases_budget
 
         # too many cases for the memory even in the outcome mode: refused before a value is drawn or checked
-        check_cases_budget(spec.n_cases, 0.0, VALUES_PER_CASE["outcomes"], None, hint="fewer --vary values or --samples")
+        check_cases_budget(
+            spec.n_cases, 0.0, VALUES_PER_CASE["outcomes"], None, hint="fewer --vary values or --samples"
+        )
         # every case must be a valid scenario: check each grid value, the extreme draws and the
         # corners now (one line, before any work is written)
         for a in spec.axes:
@@ -142,12 +157,14 @@ class SweepSpec:
         if spec.outcomes and base.scale is None:
             raise BlastscaleInputError(
                 "scale = none (a prototype-only scenario): the outcome mode compares the prototype with its "
-                "specimen; add a [scale] section, or drop --outcomes to run the Study per case (prototype only)")
+                "specimen; add a [scale] section, or drop --outcomes to run the Study per case (prototype only)"
+            )
         if spec.outcomes and not spec.planar_only:
             raise BlastscaleInputError(
                 f"simulation.engine = {base.simulation.engine!r}, structure.kind = {base.structure.kind!r}: the "
-                "outcome mode takes planar block cases only (set engine = \"planar\", or drop --outcomes to run "
-                "the Study per case)")
+                'outcome mode takes planar block cases only (set engine = "planar", or drop --outcomes to run '
+                "the Study per case)"
+            )
         return spec
 
     # -- geometry of the case set ---------------------------------------------------------------
@@ -204,8 +221,16 @@ class SweepSpec:
         return {
             "base": self.base.to_dict(),
             "axes": [{"name": a.name, "path": a.path, "values": list(a.values)} for a in self.axes],
-            "sampled": [{"name": s.name, "path": s.path, "distribution": s.distribution.kind,
-                         "params": list(s.distribution.params), "relative": s.relative} for s in self.sampled],
+            "sampled": [
+                {
+                    "name": s.name,
+                    "path": s.path,
+                    "distribution": s.distribution.kind,
+                    "params": list(s.distribution.params),
+                    "relative": s.relative,
+                }
+                for s in self.sampled
+            ],
             "samples": self.samples,
             "seed": self.seed,
             **({"outcomes": True} if self.outcomes else {}),  # absent otherwise: older fingerprints hold
@@ -218,8 +243,9 @@ class SweepSpec:
         from .. import __version__
         from .._code import code_fingerprint
 
-        text = json.dumps({"spec": self.describe(), "version": __version__, "code": code_fingerprint()},
-                          sort_keys=True, default=str)
+        text = json.dumps(
+            {"spec": self.describe(), "version": __version__, "code": code_fingerprint()}, sort_keys=True, default=str
+        )
         return hashlib.sha256(text.encode()).hexdigest()
 
     def to_payload(self) -> dict:
@@ -232,8 +258,10 @@ class SweepSpec:
 
         base = Scenario.from_dict(payload["base"], source="sweep payload")
         axes = tuple(SweepAxis(a["name"], a["path"], tuple(a["values"])) for a in payload["axes"])
-        samp = tuple(SweepSample(s["name"], s["path"], Distribution(s["distribution"], tuple(s["params"])), s["relative"])
-                     for s in payload["sampled"])
+        samp = tuple(
+            SweepSample(s["name"], s["path"], Distribution(s["distribution"], tuple(s["params"])), s["relative"])
+            for s in payload["sampled"]
+        )
         return cls(base, axes, samp, payload["samples"], payload["seed"], bool(payload.get("outcomes", False)))
 
     @property
@@ -242,8 +270,9 @@ class SweepSpec:
         no varied or sampled field that changes that)."""
         try:
             return all(planar_case(self.scenario(k)) for k in {0, self.n_cases - 1}) and not any(
-                p.endswith(".engine") or p.endswith(".kind") for p in
-                [a.path for a in self.axes] + [s.path for s in self.sampled])
+                p.endswith(".engine") or p.endswith(".kind")
+                for p in [a.path for a in self.axes] + [s.path for s in self.sampled]
+            )
         except BlastscaleInputError:
             return False
 

@@ -29,12 +29,20 @@ def synthetic_response(t, amplitude=1.0, collapsed=False, period=2.0):
     data = {
         "com_displacement": (("time", "body", "component"), vec(x), {"units": "m", "dimension": "length"}),
         "com_velocity": (("time", "body", "component"), vec(v), {"units": "m/s", "dimension": "velocity"}),
-        "angular_velocity": (("time", "body", "component"), vec(v)[..., ::-1], {"units": "rad/s", "dimension": "angular_velocity"}),
+        "angular_velocity": (
+            ("time", "body", "component"),
+            vec(v)[..., ::-1],
+            {"units": "rad/s", "dimension": "angular_velocity"},
+        ),
         "tilt": (("time", "body"), 0.01 * x, {"units": "rad", "dimension": "angle"}),
         "point_displacement": (("time", "point", "component"), vec(x), {"units": "m", "dimension": "length"}),
         "point_velocity": (("time", "point", "component"), vec(v), {"units": "m/s", "dimension": "velocity"}),
         "n_contacts": (("time",), np.full(n, 8), {"units": "1", "dimension": "count"}),
-        "delivered_impulse": (("body", "component"), np.ones((3, 3)) * [1.0, 0.0, 0.0], {"units": "N s", "dimension": "momentum"}),
+        "delivered_impulse": (
+            ("body", "component"),
+            np.ones((3, 3)) * [1.0, 0.0, 0.0],
+            {"units": "N s", "dimension": "momentum"},
+        ),
     }
     return xr.Dataset(
         data,

@@ -17,8 +17,10 @@ class _Run:
         return {"stability": self._s}
 
 
-@pytest.mark.parametrize("settles_at, final, calls", [(1.0, 2.0, [2.0]), (3.0, 4.0, [2.0, 4.0]),
-                                                       (8.0, 8.0, [2.0, 4.0, 8.0]), (1e9, 8.0, [2.0, 4.0, 8.0])])
+@pytest.mark.parametrize(
+    "settles_at, final, calls",
+    [(1.0, 2.0, [2.0]), (3.0, 4.0, [2.0, 4.0]), (8.0, 8.0, [2.0, 4.0, 8.0]), (1e9, 8.0, [2.0, 4.0, 8.0])],
+)
 def test_doubles_until_the_rule_decides_up_to_the_cap(settles_at, final, calls):
     seen = []
 
@@ -42,4 +44,7 @@ def test_with_a_load_nothing_is_extended():
 def test_the_summary_records_an_extension():
     assert extended_keys({"duration_s": 2.0}) == {}
     assert extended_keys({"duration_s": 4.0, "duration_asked_s": 2.0}) == {
-        "duration_simulated_s": 4.0, "duration_asked_s": 2.0, "stability_extension_cap": STABILITY_EXTENSION_CAP}
+        "duration_simulated_s": 4.0,
+        "duration_asked_s": 2.0,
+        "stability_extension_cap": STABILITY_EXTENSION_CAP,
+    }

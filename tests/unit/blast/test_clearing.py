@@ -49,7 +49,9 @@ def test_reflected_sound_speed_against_ufc_fig_2_192():
     assert reflected_sound_speed(0.0) == pytest.approx(340.3, rel=1e-12)
     # the same Rankine-Hugoniot state gives the textbook reflected pressure, 2 P_so in the acoustic limit
     assert reflected_overpressure(1.0) == pytest.approx(2.0, rel=1e-5)
-    assert reflected_overpressure(PSI * 100.0) / (PSI * 100.0) == pytest.approx(2 * (7 * 14.696 + 400) / (7 * 14.696 + 100), rel=1e-3)
+    assert reflected_overpressure(PSI * 100.0) / (PSI * 100.0) == pytest.approx(
+        2 * (7 * 14.696 + 400) / (7 * 14.696 + 100), rel=1e-3
+    )
 
 
 def test_stated_case_by_hand_from_ufc_chart_readings():

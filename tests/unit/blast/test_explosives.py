@@ -6,15 +6,30 @@ import math
 import pytest
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.blast.explosives import (EXPLOSIVES, IATG_01_80, INITIATOR_WARNING_FRACTION, UFC_3_340_02_TABLE_2_1,
-                                         Explosive, canonical_name, charge_equivalence, get_explosive,
-                                         initiator_tnt_kg)
+from blastscale.blast.explosives import (
+    EXPLOSIVES,
+    IATG_01_80,
+    INITIATOR_WARNING_FRACTION,
+    UFC_3_340_02_TABLE_2_1,
+    Explosive,
+    canonical_name,
+    charge_equivalence,
+    get_explosive,
+    initiator_tnt_kg,
+)
 from blastscale.blast.initiation import INITIATORS
 
 #: UFC 3-340-02 (2008) Table 2-1 "Equivalent load factors", the rows blastscale uses most, as printed:
 #: (pressure factor, impulse factor).
-TABLE_2_1 = {"c-4": (1.37, 1.19), "composition-b": (1.11, 0.98), "pentolite": (1.42, 1.00), "h-6": (1.38, 1.15),
-             "tritonal": (1.07, 0.96), "anfo": (0.82, 0.82), "tnt": (1.00, 1.00)}
+TABLE_2_1 = {
+    "c-4": (1.37, 1.19),
+    "composition-b": (1.11, 0.98),
+    "pentolite": (1.42, 1.00),
+    "h-6": (1.38, 1.15),
+    "tritonal": (1.07, 0.96),
+    "anfo": (0.82, 0.82),
+    "tnt": (1.00, 1.00),
+}
 
 
 @pytest.mark.parametrize("name", sorted(TABLE_2_1))
@@ -51,9 +66,19 @@ def test_rdx_and_hmx_are_iatgs(name, factors):
     assert (ex.pressure_factor, ex.impulse_factor) == factors and "IATG 01.80" in ex.source
 
 
-@pytest.mark.parametrize("name,canonical", [("C-4", "c-4"), ("c4", "c-4"), ("Composition C-4", "c-4"),
-                                            ("Comp B", "composition-b"), ("PETN", "petn"), ("Semtex", "semtex"),
-                                            ("pe-4", "pe4"), ("composition_b", "composition-b")])
+@pytest.mark.parametrize(
+    "name,canonical",
+    [
+        ("C-4", "c-4"),
+        ("c4", "c-4"),
+        ("Composition C-4", "c-4"),
+        ("Comp B", "composition-b"),
+        ("PETN", "petn"),
+        ("Semtex", "semtex"),
+        ("pe-4", "pe4"),
+        ("composition_b", "composition-b"),
+    ],
+)
 def test_names_as_users_write_them(name, canonical):
     assert canonical_name(name) == canonical and get_explosive(name) is EXPLOSIVES[canonical]
 

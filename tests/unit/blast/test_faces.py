@@ -169,8 +169,9 @@ def test_newton_refinement_from_a_nearby_geometry_equals_the_cold_solve():
 def test_masi2021_uses_its_reflected_values_and_kingery_bulmash_side_on_values():
     m = Masi2021()
     with pytest.warns(MixedModelWarning, match="Kingery-Bulmash side-on"):
-        f = face_loads(W, ORIGIN, [[4.0, 0.0, 0.0], [4.0, 0.0, 0.0]], [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-                       blast_model="masi2021")
+        f = face_loads(
+            W, ORIGIN, [[4.0, 0.0, 0.0], [4.0, 0.0, 0.0]], [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], blast_model="masi2021"
+        )
     assert f.pressure[0] == pytest.approx(m.reflected_pressure(2.0), rel=1e-12)  # the paper's P_r at 0 deg
     assert f.arrival_time[0] == pytest.approx(2.0 * m.scaled_arrival_time(2.0), rel=1e-12)
     assert f.pressure[1] == pytest.approx(KB.incident_pressure(2.0), rel=1e-12)  # side-on from KB at 90 deg

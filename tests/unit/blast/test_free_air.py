@@ -30,8 +30,15 @@ SURF = get_blast_model("kingery-bulmash")
 def _rows():
     with open(DATA / "ufc_3_340_02_fig2_7.csv", newline="") as fh:
         lines = [ln for ln in fh if not ln.startswith("#")]
-    return [pytest.param(r["quantity"], float(r["z_m_per_kg13"]), float(r["value_si"]),
-                         id=f"{r['quantity']}-Z{float(r['z_m_per_kg13']):.3g}") for r in csv.DictReader(lines)]
+    return [
+        pytest.param(
+            r["quantity"],
+            float(r["z_m_per_kg13"]),
+            float(r["value_si"]),
+            id=f"{r['quantity']}-Z{float(r['z_m_per_kg13']):.3g}",
+        )
+        for r in csv.DictReader(lines)
+    ]
 
 
 ROWS = _rows()
@@ -54,17 +61,71 @@ def test_fig_2_7_rows_cover_incident_pressure_and_impulse_over_the_range():
 #: Kingery & Bulmash (1984) hemispherical surface burst, imperial, as in ARL-TR-1310 (CONWEP):
 #: used here only to check the free-air module's polynomial form and unit factors against Swisdak.
 KB1984_SURFACE = {
-    "incident_pressure": ((math.inf, (-0.756579301809, 1.35034249993), (
-        1.9422502013, -1.6958988741, -0.154159376846, 0.514060730593, 0.0988534365274, -0.293912623038,
-        -0.0268112345019, 0.109097496421, 0.00162846756311, -0.0214631030242, 0.0001456723382, 0.00167847752266)),),
-    "reflected_pressure": ((math.inf, (-0.789312405513, 1.36637719229), (
-        2.56431321138, -2.21030870597, -0.218536586295, 0.895319589372, 0.24989009775, -0.569249436807,
-        -0.11791682383, 0.224131161411, 0.0245620259375, -0.0455116002694, -0.00190930738887, 0.00361471193389)),),
-    "scaled_reflected_impulse": ((math.inf, (-0.781951689212, 1.33422049854),
-                                  (1.75291677799, -0.949516092853, 0.112136118689, -0.0250659183287)),),
-    "scaled_arrival_time": ((math.inf, (-0.755684472698, 1.37784223635), (
-        -0.173607601251, 1.35706496258, 0.052492798645, -0.196563954086, -0.0601770052288, 0.0696360270891,
-        0.0215297490092, -0.0161658930785, -0.00232531970294, 0.00147752067524)),),
+    "incident_pressure": (
+        (
+            math.inf,
+            (-0.756579301809, 1.35034249993),
+            (
+                1.9422502013,
+                -1.6958988741,
+                -0.154159376846,
+                0.514060730593,
+                0.0988534365274,
+                -0.293912623038,
+                -0.0268112345019,
+                0.109097496421,
+                0.00162846756311,
+                -0.0214631030242,
+                0.0001456723382,
+                0.00167847752266,
+            ),
+        ),
+    ),
+    "reflected_pressure": (
+        (
+            math.inf,
+            (-0.789312405513, 1.36637719229),
+            (
+                2.56431321138,
+                -2.21030870597,
+                -0.218536586295,
+                0.895319589372,
+                0.24989009775,
+                -0.569249436807,
+                -0.11791682383,
+                0.224131161411,
+                0.0245620259375,
+                -0.0455116002694,
+                -0.00190930738887,
+                0.00361471193389,
+            ),
+        ),
+    ),
+    "scaled_reflected_impulse": (
+        (
+            math.inf,
+            (-0.781951689212, 1.33422049854),
+            (1.75291677799, -0.949516092853, 0.112136118689, -0.0250659183287),
+        ),
+    ),
+    "scaled_arrival_time": (
+        (
+            math.inf,
+            (-0.755684472698, 1.37784223635),
+            (
+                -0.173607601251,
+                1.35706496258,
+                0.052492798645,
+                -0.196563954086,
+                -0.0601770052288,
+                0.0696360270891,
+                0.0215297490092,
+                -0.0161658930785,
+                -0.00232531970294,
+                0.00147752067524,
+            ),
+        ),
+    ),
 }
 
 
@@ -121,7 +182,8 @@ def test_equivalent_charge_of_a_surface_burst_is_measured_not_assumed():
     W = 100.0
     R = 3.0 * W ** (1 / 3)
     assert blast_parameters(W * k, R, burst="free-air").incident_pressure == pytest.approx(
-        blast_parameters(W, R).incident_pressure, rel=1e-9)
+        blast_parameters(W, R).incident_pressure, rel=1e-9
+    )
 
 
 def test_lab_burst_classification():

@@ -127,8 +127,9 @@ def test_ufc_exceeds_closed_form_near_the_mach_peak():
 
 
 def test_unknown_incidence_model_is_one_line_error():
-    with pytest.raises(BlastscaleInputError,
-                       match="incidence model = 'cosine' is not known: valid values are ufc, closed-form"):
+    with pytest.raises(
+        BlastscaleInputError, match="incidence model = 'cosine' is not known: valid values are ufc, closed-form"
+    ):
         check_incidence("cosine")
     with pytest.raises(BlastscaleInputError, match="incidence model"):
         oblique_values("nope", 1.0, 2.0, 1.0, 2.0, 1.0)

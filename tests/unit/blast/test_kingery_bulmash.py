@@ -34,7 +34,12 @@ def _ufc_rows():
     with open(DATA / "ufc_3_340_02_fig2_15.csv", newline="") as fh:
         lines = [ln for ln in fh if not ln.startswith("#")]
     return [
-        pytest.param(r["quantity"], float(r["z_m_per_kg13"]), float(r["value_si"]), id=f"{r['quantity']}-Z{float(r['z_m_per_kg13']):.3g}")
+        pytest.param(
+            r["quantity"],
+            float(r["z_m_per_kg13"]),
+            float(r["value_si"]),
+            id=f"{r['quantity']}-Z{float(r['z_m_per_kg13']):.3g}",
+        )
         for r in csv.DictReader(lines)
     ]
 

@@ -22,15 +22,23 @@ from blastscale.blast.negative_phase import (
 
 # The cited source's formulas, written out as published (DYNAblast Class_Blast.m, "Rigby calibration"):
 # pmin = 1e6 (A Z^B + C Z + D) [Pa], im = W^(1/3) 1e3 (A Z^B + C Z + D) [Pa s].
-@pytest.mark.parametrize("z, burst, p_source, i_source", [
-    (0.46, "surface", 1e6 * 100e-3, 1e3 * (-724.37e-3 * 0.46**2 + 445.34e-3 * 0.46 + 553e-3)),
-    (1.0, "surface", 1e6 * (-32.91e-3 * 1.0 + 13e-3 * 1.0 + 106e-3), 1e3 * (11.356e-3 - 314.76e-3 + 752e-3)),
-    (2.0, "surface", 1e6 * 93e-3 * 2.0**-1.215, 1e3 * 461.8e-3 * 2.0**-0.88),
-    (10.0, "surface", 1e6 * 72.99e-3 * 10.0**-0.978, 1e3 * 433.6e-3 * 10.0**-0.842),
-    (0.25, "free-air", 1e6 * 100e-3, 1e3 * 496e-3),
-    (1.2, "free-air", 1e6 * (-29.078e-3 * 1.44 + 0.0352e-3 * 1.2 + 114e-3), 1e3 * (36.919e-3 * 1.44 - 298.72e-3 * 1.2 + 583e-3)),
-    (5.0, "free-air", 1e6 * 59.559e-3 * 5.0**-0.945, 1e3 * 316.36e-3 * 5.0**-0.879),
-])
+@pytest.mark.parametrize(
+    "z, burst, p_source, i_source",
+    [
+        (0.46, "surface", 1e6 * 100e-3, 1e3 * (-724.37e-3 * 0.46**2 + 445.34e-3 * 0.46 + 553e-3)),
+        (1.0, "surface", 1e6 * (-32.91e-3 * 1.0 + 13e-3 * 1.0 + 106e-3), 1e3 * (11.356e-3 - 314.76e-3 + 752e-3)),
+        (2.0, "surface", 1e6 * 93e-3 * 2.0**-1.215, 1e3 * 461.8e-3 * 2.0**-0.88),
+        (10.0, "surface", 1e6 * 72.99e-3 * 10.0**-0.978, 1e3 * 433.6e-3 * 10.0**-0.842),
+        (0.25, "free-air", 1e6 * 100e-3, 1e3 * 496e-3),
+        (
+            1.2,
+            "free-air",
+            1e6 * (-29.078e-3 * 1.44 + 0.0352e-3 * 1.2 + 114e-3),
+            1e3 * (36.919e-3 * 1.44 - 298.72e-3 * 1.2 + 583e-3),
+        ),
+        (5.0, "free-air", 1e6 * 59.559e-3 * 5.0**-0.945, 1e3 * 316.36e-3 * 5.0**-0.879),
+    ],
+)
 def test_calibration_is_the_cited_source(z, burst, p_source, i_source):
     W = 8.0  # W^(1/3) = 2
     n = negative_phase(z, W, burst)

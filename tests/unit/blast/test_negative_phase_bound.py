@@ -12,8 +12,13 @@ from scipy.optimize import minimize_scalar
 
 from blastscale.blast import blast_parameters, get_blast_model
 from blastscale.blast.load_model import LoadModel, front_face_negative, front_face_pulse
-from blastscale.blast.negative_phase import (RIGBY_NEGATIVE_PHASE, bounded_by_positive, friedlander_continued,
-                                             negative_phase, rigby_fit)
+from blastscale.blast.negative_phase import (
+    RIGBY_NEGATIVE_PHASE,
+    bounded_by_positive,
+    friedlander_continued,
+    negative_phase,
+    rigby_fit,
+)
 
 CUBIC = LoadModel(negative_phase=True)
 CONTINUED = LoadModel(negative_phase=True, negative_phase_model="friedlander-continued")
@@ -52,8 +57,11 @@ def test_near_the_charge_the_bound_does_not_act():
     for z in (0.46, 2.0, 5.0):
         bp = blast_parameters(1.0, z, "kingery-bulmash")
         neg, raw = front_face_negative(bp, CUBIC), negative_phase(z, 1.0)
-        assert not neg.bounded and (neg.pressure, neg.impulse, neg.duration) == (raw.pressure, raw.impulse,
-                                                                                  raw.duration)
+        assert not neg.bounded and (neg.pressure, neg.impulse, neg.duration) == (
+            raw.pressure,
+            raw.impulse,
+            raw.duration,
+        )
 
 
 def test_outside_the_charts_range_it_still_refuses_in_one_line():
@@ -70,8 +78,12 @@ def test_continued_friedlander_against_its_integrals(d):
     P, to = 2.0e5, 3e-3
     neg = friedlander_continued(P, to, d)
     i_num = -to * quad(lambda x: P * (1 - x) * math.exp(-d * x), 1.0, math.inf, epsabs=0, epsrel=1e-12)[0]
-    trough = minimize_scalar(lambda x: P * (1 - x) * math.exp(-d * x), bounds=(1.0, 1.0 + 10.0 / d),
-                             method="bounded", options={"xatol": 1e-12})
+    trough = minimize_scalar(
+        lambda x: P * (1 - x) * math.exp(-d * x),
+        bounds=(1.0, 1.0 + 10.0 / d),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
     assert neg.impulse == pytest.approx(i_num, rel=1e-9)
     assert neg.pressure == pytest.approx(-trough.fun, rel=1e-9) and trough.x == pytest.approx(1 + 1 / d, rel=1e-5)
     assert neg.duration == pytest.approx(16 * math.e * to / (9 * d), rel=1e-12)  # the cubic that carries them

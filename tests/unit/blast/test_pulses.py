@@ -63,7 +63,9 @@ def test_tabulated_integral_and_scaling():
     trap = float(np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(t)))
     assert pulse.impulse == pytest.approx(trap, rel=1e-14)
     assert quad(pulse.pressure, 0, 2e-3, points=t[1:-1])[0] == pytest.approx(trap, rel=1e-10)
-    f = scaling_factors(0.1, 0.001, 1000.0)  # pressure factor gamma varsigma lambda = 0.1, time sqrt(lambda/varsigma) = 0.01
+    f = scaling_factors(
+        0.1, 0.001, 1000.0
+    )  # pressure factor gamma varsigma lambda = 0.1, time sqrt(lambda/varsigma) = 0.01
     assert (f.pressure, f.time) == pytest.approx((0.1, 0.01), rel=1e-14)
     s = pulse.scaled(f)
     assert s.impulse == pytest.approx(pulse.impulse * 1e-3, rel=1e-12)
@@ -144,11 +146,30 @@ def test_blast_package_exports_every_public_name():
     # the names blastscale.blast exported before the pulses/faces split (#14), and the new ones
     import blastscale.blast as blast
 
-    before = {"BlastModel", "KingeryBulmash", "Masi2021", "FaceLoads", "FacePulses", "INCIDENCE_MODELS",
-              "DEFAULT_INCIDENCE", "face_loads", "oblique_combination", "ExtrapolationWarning", "BLAST_MODELS",
-              "BlastParameters", "blast_parameters", "get_blast_model", "scaled_distance",
-              "valid_scaled_distance_range", "Pulse", "Friedlander", "Triangular", "Impulsive", "Tabulated",
-              "friedlander_decay"}
+    before = {
+        "BlastModel",
+        "KingeryBulmash",
+        "Masi2021",
+        "FaceLoads",
+        "FacePulses",
+        "INCIDENCE_MODELS",
+        "DEFAULT_INCIDENCE",
+        "face_loads",
+        "oblique_combination",
+        "ExtrapolationWarning",
+        "BLAST_MODELS",
+        "BlastParameters",
+        "blast_parameters",
+        "get_blast_model",
+        "scaled_distance",
+        "valid_scaled_distance_range",
+        "Pulse",
+        "Friedlander",
+        "Triangular",
+        "Impulsive",
+        "Tabulated",
+        "friedlander_decay",
+    }
     assert before | {"PULSE_SHAPES", "check_pulse_shape", "face_loads_unchecked"} <= set(blast.__all__)
     for name in blast.__all__:
         assert getattr(blast, name) is not None, name

@@ -7,9 +7,17 @@ import numpy as np
 import pytest
 
 from blastscale.blast.kingery_bulmash import SWISDAK_1994_COEFFICIENTS
-from blastscale.blast.safety import (FT_LB13, PSI, SAFETY_THRESHOLDS, far_field_joint, kinney_graham_overpressure,
-                                     overpressure_distance, quantity_distance, safety_distances,
-                                     surface_burst_overpressure)
+from blastscale.blast.safety import (
+    FT_LB13,
+    PSI,
+    SAFETY_THRESHOLDS,
+    far_field_joint,
+    kinney_graham_overpressure,
+    overpressure_distance,
+    quantity_distance,
+    safety_distances,
+    surface_burst_overpressure,
+)
 
 
 def _kb_incident_kpa(z: float) -> float:

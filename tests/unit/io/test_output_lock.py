@@ -23,8 +23,11 @@ def test_a_second_claim_is_refused_naming_the_holder_and_the_lock_goes(tmp_path)
     with claim(target, KIND):
         assert sorted(p.name for p in tmp_path.iterdir()) == [".x.lock"]
         # a second lock on the same file, even from this process (another open file), is refused
-        with pytest.raises(BlastscaleInputError, match=rf"is being written by another blastscale process "
-                                                       rf"\(pid {os.getpid()} on "):
+        with pytest.raises(
+            BlastscaleInputError,
+            match=rf"is being written by another blastscale process "
+            rf"\(pid {os.getpid()} on ",
+        ):
             with claim(target, KIND):
                 pass
     assert list(tmp_path.iterdir()) == []
@@ -34,19 +37,21 @@ def test_a_second_claim_is_refused_naming_the_holder_and_the_lock_goes(tmp_path)
 
 
 def test_the_lock_works_without_fcntl(tmp_path):
-    code = (f"import sys; sys.modules['fcntl'] = None; sys.path.insert(0, {str(SRC)!r})\n"
-            "import warnings; warnings.simplefilter('ignore')\n"
-            "from pathlib import Path\n"
-            "from blastscale._validate import BlastscaleInputError\n"
-            "from blastscale.io.output import Kind, claim\n"
-            "k = Kind('a test output', lambda p: True)\n"
-            "with claim(Path('x'), k):\n"
-            "    try:\n"
-            "        with claim(Path('x'), k):\n"
-            "            print('not refused')\n"
-            "    except BlastscaleInputError as e:\n"
-            "        print('refused:', e)\n"
-            "import os; print('left:', sorted(os.listdir('.')))\n")
+    code = (
+        f"import sys; sys.modules['fcntl'] = None; sys.path.insert(0, {str(SRC)!r})\n"
+        "import warnings; warnings.simplefilter('ignore')\n"
+        "from pathlib import Path\n"
+        "from blastscale._validate import BlastscaleInputError\n"
+        "from blastscale.io.output import Kind, claim\n"
+        "k = Kind('a test output', lambda p: True)\n"
+        "with claim(Path('x'), k):\n"
+        "    try:\n"
+        "        with claim(Path('x'), k):\n"
+        "            print('not refused')\n"
+        "    except BlastscaleInputError as e:\n"
+        "        print('refused:', e)\n"
+        "import os; print('left:', sorted(os.listdir('.')))\n"
+    )
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert "refused: out = 'x' is being written by another blastscale process" in proc.stdout, proc.stdout

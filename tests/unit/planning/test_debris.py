@@ -23,8 +23,12 @@ def test_3d_reach_bounds_every_point():
     def ds(dx, tilt):
         com = np.zeros((t, 1, 3))
         com[-1, 0, 0] = dx
-        return xr.Dataset({"com_displacement": (("time", "body", "component"), com),
-                           "tilt": (("time", "body"), np.array([[0.0], [tilt / 2], [tilt]]))})
+        return xr.Dataset(
+            {
+                "com_displacement": (("time", "body", "component"), com),
+                "tilt": (("time", "body"), np.array([[0.0], [tilt / 2], [tilt]])),
+            }
+        )
 
     rest = math.hypot(0.5, 0.25)
     assert reach_3d(ds(0.0, 0.0), block) == pytest.approx(rest)
@@ -41,9 +45,15 @@ def test_3d_reach_bounds_every_point():
         assert exact <= reach_3d(ds(com[0], th), block) + 1e-12
 
 
-@pytest.mark.parametrize("structure", [MultiDrumColumn(drums=3, height=3.0, top_width=1.54),
-                                       MultiDrumColumn(section="circular", drums=2, height=2.0, sides=12),
-                                       arch(voussoirs=5)], ids=["square column", "circular column", "arch"])
+@pytest.mark.parametrize(
+    "structure",
+    [
+        MultiDrumColumn(drums=3, height=3.0, top_width=1.54),
+        MultiDrumColumn(section="circular", drums=2, height=2.0, sides=12),
+        arch(voussoirs=5),
+    ],
+    ids=["square column", "circular column", "arch"],
+)
 def test_body_extent_bounds_every_vertex_of_the_solid_tilted_any_way(structure):
     """Any body (tapered drums: their centre of mass below mid-height; arch voussoirs: general convex
     blocks, their centre of mass off the middle) turned by a tilt phi about any horizontal axis and any
@@ -53,8 +63,9 @@ def test_body_extent_bounds_every_vertex_of_the_solid_tilted_any_way(structure):
         rho, c = body_extent(body)
         v = np.asarray(body.vertices)
         assert rho == pytest.approx(np.hypot(v[:, 0], v[:, 1]).max(), rel=1e-12) and c >= -v[:, 2].min()
-        for phi, axis, spin in zip(rng.uniform(0, math.pi / 2, 20), rng.uniform(0, 2 * math.pi, 20),
-                                   rng.uniform(0, 2 * math.pi, 20)):
+        for phi, axis, spin in zip(
+            rng.uniform(0, math.pi / 2, 20), rng.uniform(0, 2 * math.pi, 20), rng.uniform(0, 2 * math.pi, 20)
+        ):
             k = np.array([math.cos(axis), math.sin(axis), 0.0])  # tilt axis, horizontal
             K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
             tilt = np.eye(3) + math.sin(phi) * K + (1 - math.cos(phi)) * K @ K

@@ -25,8 +25,16 @@ def test_charge_alone_matches_the_lognormal_closed_form(wc, ratio, beta):
     """W eps overturns iff W eps > W_c: P(overturn) = Phi(ln(W / W_c) / beta), within 4 binomial
     standard errors (4000 draws, seed 7)."""
     n = 4000
-    o = planar_odds(BLOCK, charge_kg=ratio * wc, standoff_m=R, prototype_collapsed=False, blast_model="masi2021",
-                    tolerances=Tolerances(charge=beta), samples=n, seed=7)
+    o = planar_odds(
+        BLOCK,
+        charge_kg=ratio * wc,
+        standoff_m=R,
+        prototype_collapsed=False,
+        blast_model="masi2021",
+        tolerances=Tolerances(charge=beta),
+        samples=n,
+        seed=7,
+    )
     p = norm.cdf(math.log(ratio) / beta)
     se = math.sqrt(p * (1 - p) / n)
     assert abs(o.specimen_collapse_probability - p) < 4 * se
@@ -39,8 +47,14 @@ def test_charge_alone_matches_the_lognormal_closed_form(wc, ratio, beta):
 
 
 def test_seed_reproduces_the_odds(wc):
-    kw = dict(charge_kg=0.99 * wc, standoff_m=R, prototype_collapsed=False, blast_model="masi2021",
-              tolerances=Tolerances(0.03, 0.001, 0.02, 0.05), samples=500)
+    kw = dict(
+        charge_kg=0.99 * wc,
+        standoff_m=R,
+        prototype_collapsed=False,
+        blast_model="masi2021",
+        tolerances=Tolerances(0.03, 0.001, 0.02, 0.05),
+        samples=500,
+    )
     a, b, c = (planar_odds(BLOCK, seed=s, **kw) for s in (3, 3, 4))
     assert a == b and a.p_outcome_agree != c.p_outcome_agree
 
@@ -49,8 +63,17 @@ def test_first_peak_spread_and_weighing_precision(wc):
     """Far from the threshold, with the charge alone: the first peak's relative spread is the sensitivity
     times beta (linearised, 10 %), and the precision for a 5 % target is ln(1.05) / (1.96 sensitivity)."""
     beta = 0.01
-    o = planar_odds(BLOCK, charge_kg=0.5 * wc, standoff_m=R, prototype_collapsed=False, blast_model="masi2021",
-                    tolerances=Tolerances(charge=beta), samples=2000, seed=1, target=0.05)
+    o = planar_odds(
+        BLOCK,
+        charge_kg=0.5 * wc,
+        standoff_m=R,
+        prototype_collapsed=False,
+        blast_model="masi2021",
+        tolerances=Tolerances(charge=beta),
+        samples=2000,
+        seed=1,
+        target=0.05,
+    )
     assert o.p_outcome_agree == 1.0
     assert o.first_peak_spread == pytest.approx(abs(o.first_peak_sensitivity) * beta, rel=0.1)
     assert o.charge_tolerance_for_peak == pytest.approx(math.log(1.05) / (1.959963984540054 * o.first_peak_sensitivity))

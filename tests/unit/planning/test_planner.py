@@ -20,8 +20,9 @@ def _check_design(d: dict, lab: LabSpec) -> None:
     assert d["specimen_mass_kg"] <= lab.specimen_max_mass_kg * (1 + 1e-12)
     assert lab.charge_min_kg * (1 - 1e-12) <= d["explosive_mass_kg"] <= lab.charge_max_kg * (1 + 1e-12)
     assert d["safety_distances_m"][lab.safety_threshold] == d["safety_radius_m"] <= lab.space_radius_m
-    assert d["camera_fps_required"] <= lab.camera_max_fps and d["camera_fps"] <= max(lab.camera_max_fps,
-                                                                                       d["camera_fps_required"])
+    assert d["camera_fps_required"] <= lab.camera_max_fps and d["camera_fps"] <= max(
+        lab.camera_max_fps, d["camera_fps_required"]
+    )
     assert d["explosive"] == lab.explosive and d["initiator_tnt_kg"] == lab.initiator_tnt_kg < d["tnt_equivalent_kg"]
     assert d["explosive_mass_kg"] >= d["explosive_min_charge_kg"] > 0  # only fireable shots
     assert d["initiator_fraction"] <= lab.initiator_max_fraction
@@ -37,15 +38,24 @@ def labs(draw):
         explosive=draw(st.sampled_from(["tnt", "c-4", "pentolite", "anfo", "lead-azide"])),
         initiator_tnt_kg=draw(st.sampled_from([0.0, 1e-6, 1e-4, 2.2287e-4])),
         initiator_max_fraction=draw(st.sampled_from([0.05, 0.5, 1.0])),
-        charge_min_kg=lo, charge_max_kg=max(hi, 1e-3),
+        charge_min_kg=lo,
+        charge_max_kg=max(hi, 1e-3),
         specimen_max_height_m=draw(st.floats(0.05, 6.0)),
         specimen_max_mass_kg=draw(st.floats(0.01, 2000.0)),
-        materials=draw(st.lists(st.sampled_from(["same", "balsa", "marble", "steel", "lead", "brick"]), min_size=1,
-                                max_size=3, unique=True)),
+        materials=draw(
+            st.lists(
+                st.sampled_from(["same", "balsa", "marble", "steel", "lead", "brick"]),
+                min_size=1,
+                max_size=3,
+                unique=True,
+            )
+        ),
         camera_max_fps=draw(st.floats(20.0, 1e5)),
         space_radius_m=draw(st.floats(0.2, 60.0)),
         safety_threshold=draw(st.sampled_from(["34.5 kPa", "6.9 kPa", "1.03 kPa", "K40"])),
-        samples=20, seed=draw(st.integers(0, 10)))
+        samples=20,
+        seed=draw(st.integers(0, 10)),
+    )
 
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -66,12 +76,18 @@ def test_every_listed_design_satisfies_every_constraint(lab):
         assert r["reasons"] and len(r["reasons"]) == len(r["constraints"])
 
 
-@pytest.mark.parametrize("lab,words", [
-    (dict(initiator="none"), "no design fits the lab: the charge is below tnt's minimum reliable charge 0.0007238 kg "
-     "(89 of 258 candidates fail on it alone; the largest, 2.54e-05 kg, at general, lambda = 1/100, lead); a larger "
-     "specimen (specimen_max_height_m, specimen_max_mass_kg) or an explosive with a smaller minimum charge (petn"),
-    (dict(explosive="PETN"), "no design fits the lab: specimen_max_height_m = 0.1 cannot be met"),
-])
+@pytest.mark.parametrize(
+    "lab,words",
+    [
+        (
+            dict(initiator="none"),
+            "no design fits the lab: the charge is below tnt's minimum reliable charge 0.0007238 kg "
+            "(89 of 258 candidates fail on it alone; the largest, 2.54e-05 kg, at general, lambda = 1/100, lead); a larger "
+            "specimen (specimen_max_height_m, specimen_max_mass_kg) or an explosive with a smaller minimum charge (petn",
+        ),
+        (dict(explosive="PETN"), "no design fits the lab: specimen_max_height_m = 0.1 cannot be met"),
+    ],
+)
 def test_an_unfireable_lab_names_the_binding_constraint(lab, words):
     """A 0.1 m lab: every TNT charge is below TNT's minimum (no initiator); in PETN the RP-80 dwarfs the
     charges the lab can build for: a taller specimen relaxes it."""
@@ -87,8 +103,18 @@ def test_infeasible_lab_says_which_constraint_and_what_relaxes_it():
     msg = str(exc.value)
     assert "\n" not in msg and "space_radius_m = 0.01 cannot be met" in msg and "space_radius_m at least" in msg
     with pytest.raises(PlanInfeasible, match="charge_min_kg = 60 cannot be met.*charge_min_kg at most 50 would admit"):
-        plan(BASE, lab=LabSpec(charge_min_kg=60.0, charge_max_kg=100.0, space_radius_m=1000.0, materials=["same"],
-                               specimen_max_height_m=100.0, specimen_max_mass_kg=1e7, samples=20))
+        plan(
+            BASE,
+            lab=LabSpec(
+                charge_min_kg=60.0,
+                charge_max_kg=100.0,
+                space_radius_m=1000.0,
+                materials=["same"],
+                specimen_max_height_m=100.0,
+                specimen_max_mass_kg=1e7,
+                samples=20,
+            ),
+        )
 
 
 def test_paper_block_in_a_half_metre_lab():
@@ -106,9 +132,21 @@ def test_paper_block_in_a_half_metre_lab():
     assert best["initiator_fraction"] == pytest.approx(0.2219, rel=1e-3)
     rejected = {c for r in p.rejected for c in r["constraints"]}
     assert {"explosive_min_charge_kg", "initiator_max_fraction"} <= rejected  # the balsa design: below the minimum
-    for key in ("scale", "material", "density_ratio", "explosive_mass_kg", "tnt_equivalent_kg", "standoff_m",
-                "specimen_mass_kg", "safety_distances_m", "camera_fps", "p_outcome_agree", "explosive_min_charge_kg",
-                "initiator_tnt_kg", "initiator_fraction"):
+    for key in (
+        "scale",
+        "material",
+        "density_ratio",
+        "explosive_mass_kg",
+        "tnt_equivalent_kg",
+        "standoff_m",
+        "specimen_mass_kg",
+        "safety_distances_m",
+        "camera_fps",
+        "p_outcome_agree",
+        "explosive_min_charge_kg",
+        "initiator_tnt_kg",
+        "initiator_fraction",
+    ):
         assert key in best
     assert p.best_scenario.scale.length == 0.05 and p.best_scenario.scale.specimen_material is None
     assert all(math.isfinite(v) for v in best["safety_distances_m"].values())
@@ -121,8 +159,10 @@ def test_initiator_line_says_what_would_admit_a_design():
     from blastscale.planning.planner import _infeasible
 
     lab = LabSpec(initiator_max_fraction=0.2, samples=20)
-    ev = Evaluated(Candidate("general", 0.05, "same", 1.0),
-                   [Violation("initiator_max_fraction", 0.25, 0.2, "the initiator is 25 %")])
+    ev = Evaluated(
+        Candidate("general", 0.05, "same", 1.0),
+        [Violation("initiator_max_fraction", 0.25, 0.2, "the initiator is 25 %")],
+    )
     msg = _infeasible([ev], lab)
     w = lab.initiator_tnt_kg / 0.25
     assert msg.startswith("no design fits the lab: initiator_max_fraction = 0.2 cannot be met with initiator_tnt_kg")

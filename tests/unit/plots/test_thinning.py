@@ -27,7 +27,7 @@ def test_every_bin_keeps_its_extremes_and_the_ends():
     assert all(kept[a] == b for a, b in zip(tk, yk)) and all(np.any(t == a) for a in tk)  # original samples
     m = -(-n // bins)
     for a in range(0, n, m):  # a plain loop over the bins: each bin's min and max are among the kept samples
-        seg_t, seg_y = t[a:a + m], y[a:a + m]
+        seg_t, seg_y = t[a : a + m], y[a : a + m]
         for j in (int(np.argmin(seg_y)), int(np.argmax(seg_y))):
             assert kept.get(seg_t[j]) == seg_y[j]
     assert yk.max() == y.max() and yk.min() == y.min()  # the spikes survive

@@ -35,8 +35,17 @@ def test_batch_on_three_threads_is_bitwise_one_thread():
     one = RockingSolver(threads=1).simulate_batch(bodies, pulses, 1.5, t)
     three = RockingSolver(threads=3).simulate_batch(bodies, pulses, 1.5, t)
     assert 0 < one.collapsed.sum() < n  # both outcomes are in the mix
-    for name in ("theta", "theta_dot", "collapsed", "max_rotation", "first_peak_angle", "n_steps", "n_impacts",
-                 "end_time", "collapse_time"):
+    for name in (
+        "theta",
+        "theta_dot",
+        "collapsed",
+        "max_rotation",
+        "first_peak_angle",
+        "n_steps",
+        "n_impacts",
+        "end_time",
+        "collapse_time",
+    ):
         np.testing.assert_array_equal(getattr(three, name), getattr(one, name), err_msg=name)
 
 

@@ -48,8 +48,15 @@ def test_free_motion_outcome_is_the_first_swing_criterion(alpha_deg, e, theta_fr
     alpha = math.radians(alpha_deg)
     th = theta_frac * alpha
     assume(abs(th) < 0.95 * math.pi / 2)
-    sysm = RockingSystem(mass=1.0, inertia_pivot=4.0 / 3.0, radius=1.0, alpha=alpha, loaded_area=1.0,
-                         lever_arm=math.cos(alpha), restitution=e)
+    sysm = RockingSystem(
+        mass=1.0,
+        inertia_pivot=4.0 / 3.0,
+        radius=1.0,
+        alpha=alpha,
+        loaded_area=1.0,
+        lever_arm=math.cos(alpha),
+        restitution=e,
+    )
     p = sysm.frequency_parameter
     mu = float(first_swing_margin(alpha, e, th, w, False))
     # the threshold itself is a measure-zero set where round-off decides; keep a 1e-9 margin
@@ -103,7 +110,9 @@ def test_capacity_curve_is_the_scalar_search_and_inverts():
     np.testing.assert_allclose(c.critical_charge_kg, one, rtol=3e-9)
     assert np.all(np.diff(c.critical_charge_kg) > 0)  # farther away, more charge
     # the safe stand-off of the curve's charge at 3 m is 3 m (exact search; log-log interpolation 1 %)
-    assert critical_standoff(BLOCK, c.critical_charge_kg[2], blast_model="masi2021").standoff_m == pytest.approx(3.0, rel=1e-7)
+    assert critical_standoff(BLOCK, c.critical_charge_kg[2], blast_model="masi2021").standoff_m == pytest.approx(
+        3.0, rel=1e-7
+    )
     assert c.safe_standoff(c.critical_charge_kg[2]) == pytest.approx(3.0, rel=1e-12)
 
 

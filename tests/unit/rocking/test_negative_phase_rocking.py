@@ -33,8 +33,9 @@ def test_kernel_follows_the_suction_like_an_independent_integrator():
         return [y[1], -math.sin(a - y[0]) + f * math.cos(a - y[0])]
 
     # the body lifts when the load ratio first exceeds tan(alpha), at arrival here
-    sol = solve_ivp(rhs, (0.0, end * p), [0.0, 0.0], method="Radau", rtol=1e-12, atol=1e-14,
-                    t_eval=[end * p], max_step=1e-4)
+    sol = solve_ivp(
+        rhs, (0.0, end * p), [0.0, 0.0], method="Radau", rtol=1e-12, atol=1e-14, t_eval=[end * p], max_step=1e-4
+    )
     assert res.theta[-1] > 0.0
     assert res.theta[-1] == pytest.approx(sol.y[0, -1], rel=1e-7, abs=1e-12)
     assert res.theta_dot[-1] == pytest.approx(sol.y[1, -1] * p, rel=1e-7, abs=1e-12)
@@ -82,4 +83,5 @@ def test_the_suction_model_uncertainty_of_the_papers_block():
         assert u["ufc-fig2-16-cubic"]["over_positive_phase_only"] == pytest.approx(cubic, abs=1e-3)
         assert u["friedlander-continued"]["over_positive_phase_only"] == pytest.approx(cont, abs=1e-3)
         assert u["ufc-fig2-16-cubic"]["critical_charge_kg"] == pytest.approx(
-            critical_charge(SYSTEM, 2.0, blast_model=model, load_model=NEG).charge_kg, rel=1e-12)
+            critical_charge(SYSTEM, 2.0, blast_model=model, load_model=NEG).charge_kg, rel=1e-12
+        )

@@ -86,7 +86,9 @@ def test_critical_initial_angular_velocity(block):
     # energy: cos(alpha - theta_max) = cos(alpha) + (1 - 1e-6)^2 (1 - cos alpha); 1e-12 absolute
     # on the cosine is ~100x the solver's error there
     a = block.alpha
-    assert math.cos(a - below.max_rotation) == pytest.approx(math.cos(a) + (1 - 1e-6) ** 2 * (1 - math.cos(a)), abs=1e-12)
+    assert math.cos(a - below.max_rotation) == pytest.approx(
+        math.cos(a) + (1 - 1e-6) ** 2 * (1 - math.cos(a)), abs=1e-12
+    )
     assert above.angular_velocity_at_tipping == pytest.approx(wc * math.sqrt(2e-6), rel=1e-2)
 
 
@@ -146,7 +148,9 @@ def test_paper_block_100kg_overturns():
 
 def test_depth_cancels():
     a = simulate(BLOCK, paper_pulse(60.0), 3.0, t_eval=np.linspace(0, 3, 31))
-    b = simulate(RectangularBlock(BLOCK.height, BLOCK.width, depth=7.3), paper_pulse(60.0), 3.0, t_eval=np.linspace(0, 3, 31))
+    b = simulate(
+        RectangularBlock(BLOCK.height, BLOCK.width, depth=7.3), paper_pulse(60.0), 3.0, t_eval=np.linspace(0, 3, 31)
+    )
     np.testing.assert_allclose(a.theta_eval, b.theta_eval, atol=1e-12)  # round-off in S/m only
 
 
@@ -188,8 +192,12 @@ def test_tabulated_pulse_with_late_liftoff_matches_reference():
 def test_batch_equals_single_cases():
     """The batched call runs the same compiled kernel: identical samples (bitwise)."""
     t = np.linspace(0.0, 3.0, 61)
-    pulses = [paper_pulse(50.0), paper_pulse(100.0, "triangular"), paper_pulse(20.0, "impulsive"),
-              Tabulated([0, 1e-3, 3e-3], [4e6, 2e6, 0.0])]
+    pulses = [
+        paper_pulse(50.0),
+        paper_pulse(100.0, "triangular"),
+        paper_pulse(20.0, "impulsive"),
+        Tabulated([0, 1e-3, 3e-3], [4e6, 2e6, 0.0]),
+    ]
     bodies = [BLOCK, BLOCK, RectangularBlock(5.0, 1.5), BLOCK]
     batch = RockingSolver().simulate_batch(bodies, pulses, 3.0, t)
     for k, (b, p) in enumerate(zip(bodies, pulses)):
@@ -256,7 +264,10 @@ def test_bad_block_and_pulse_inputs_give_clear_errors():
         (lambda: simulate(BLOCK, None, 1.0, max_impacts=-1), "max_impacts"),
         (lambda: RockingSolver().simulate_batch(BLOCK, None, 1.0, [0.0], max_impacts=-3), "max_impacts"),
         (lambda: RockingSolver().simulate_batch(BLOCK, None, 1.0, [0.0], theta0=[[0.1, 0.2]]), "theta0"),
-        (lambda: RockingSolver().simulate_batch(BLOCK, None, 1.0, [0.0], theta_dot0=[float("inf")]), "angular velocity"),
+        (
+            lambda: RockingSolver().simulate_batch(BLOCK, None, 1.0, [0.0], theta_dot0=[float("inf")]),
+            "angular velocity",
+        ),
         (lambda: simulate(BLOCK, "friedlander", 1.0), "pulse"),
         (lambda: simulate(BLOCK, None, float("inf")), "duration"),
         (lambda: simulate(BLOCK, None, 1.0, theta0=math.pi / 2), "theta0"),

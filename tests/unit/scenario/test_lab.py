@@ -21,26 +21,35 @@ def test_defaults_are_stated():
     # the RP-80 EBW detonator: 80 mg PETN x 1.11 + 123 mg RDX x 1.09 (impulse basis, IATG 01.80)
     assert (lab.initiator, lab.initiator_max_fraction) == ("rp-80", 0.5)
     assert lab.initiator_tnt_kg == pytest.approx(80e-6 * 1.11 + 123e-6 * 1.09, rel=1e-12)
-    assert (lab.charge_tolerance, lab.standoff_tolerance_m, lab.friction_tolerance, lab.density_tolerance) == \
-        (0.02, 0.001, 0.05, 0.02)
+    assert (lab.charge_tolerance, lab.standoff_tolerance_m, lab.friction_tolerance, lab.density_tolerance) == (
+        0.02,
+        0.001,
+        0.05,
+        0.02,
+    )
     assert Scenario.default().lab is None
 
 
-@pytest.mark.parametrize("lab,words", [
-    ({"friction_tolerance": -0.1}, "lab.friction_tolerance = -0.1 is out of range: valid range is [0, 1]"),
-    ({"density_tolerance": -1.0}, "lab.density_tolerance = -1 is out of range"),
-    ({"charge_min_kg": 0.5, "charge_max_kg": 0.1}, "charge_min_kg = 0.5 kg is above charge_max_kg = 0.1 kg"),
-    ({"explosive": "dynamite"}, "explosive = 'dynamite' is not known"),
-    ({"materials": ["granite", "cheese"]}, "lab.materials = 'cheese' is not known: valid values are same, marble"),
-    ({"materials": []}, "lab.materials = [] is empty"),
-    ({"explosives": {"x": {"pressure_factor": 0.0, "impulse_factor": 1.0}}},
-     "lab.explosives.x.pressure_factor = 0 is out of range: valid range is (0, 10]"),
-    ({"bogus": 1}, "lab.bogus = 1 is not a known key: valid keys of [lab] are explosive"),
-    ({"initiator": "no8"}, "initiator = 'no8' is not known: valid values are rp-80, none"),
-    ({"initiator_max_fraction": 0.0}, "lab.initiator_max_fraction = 0 is out of range: valid range is (0, 1]"),
-    ({"initiator_max_fraction": 1.5}, "lab.initiator_max_fraction = 1.5 is out of range"),
-    ({"initiator_tnt_kg": -1e-3}, "lab.initiator_tnt_kg = -0.001 is out of range"),
-])
+@pytest.mark.parametrize(
+    "lab,words",
+    [
+        ({"friction_tolerance": -0.1}, "lab.friction_tolerance = -0.1 is out of range: valid range is [0, 1]"),
+        ({"density_tolerance": -1.0}, "lab.density_tolerance = -1 is out of range"),
+        ({"charge_min_kg": 0.5, "charge_max_kg": 0.1}, "charge_min_kg = 0.5 kg is above charge_max_kg = 0.1 kg"),
+        ({"explosive": "dynamite"}, "explosive = 'dynamite' is not known"),
+        ({"materials": ["granite", "cheese"]}, "lab.materials = 'cheese' is not known: valid values are same, marble"),
+        ({"materials": []}, "lab.materials = [] is empty"),
+        (
+            {"explosives": {"x": {"pressure_factor": 0.0, "impulse_factor": 1.0}}},
+            "lab.explosives.x.pressure_factor = 0 is out of range: valid range is (0, 10]",
+        ),
+        ({"bogus": 1}, "lab.bogus = 1 is not a known key: valid keys of [lab] are explosive"),
+        ({"initiator": "no8"}, "initiator = 'no8' is not known: valid values are rp-80, none"),
+        ({"initiator_max_fraction": 0.0}, "lab.initiator_max_fraction = 0 is out of range: valid range is (0, 1]"),
+        ({"initiator_max_fraction": 1.5}, "lab.initiator_max_fraction = 1.5 is out of range"),
+        ({"initiator_tnt_kg": -1e-3}, "lab.initiator_tnt_kg = -0.001 is out of range"),
+    ],
+)
 def test_bad_entries_are_one_line(lab, words):
     with pytest.raises(BlastscaleInputError) as exc:
         _with_lab(lab)
@@ -49,8 +58,13 @@ def test_bad_entries_are_one_line(lab, words):
 
 
 def test_user_explosive_and_toml_round_trip(tmp_path):
-    sc = _with_lab({"explosive": "mine", "materials": ["balsa", "same"],
-                    "explosives": {"mine": {"pressure_factor": 1.25, "impulse_factor": 1.1, "source": "maker"}}})
+    sc = _with_lab(
+        {
+            "explosive": "mine",
+            "materials": ["balsa", "same"],
+            "explosives": {"mine": {"pressure_factor": 1.25, "impulse_factor": 1.1, "source": "maker"}},
+        }
+    )
     p = tmp_path / "s.toml"
     p.write_text(sc.to_toml())
     again = load_scenario(p)
@@ -65,9 +79,20 @@ def test_lab_keys_do_not_shadow_bare_keys():
     assert sc.resolve_key("seed") == "lab.seed"
 
 
-@pytest.mark.parametrize("name,canonical", [("C-4", "c-4"), ("c4", "c-4"), ("Composition C-4", "c-4"),
-                                            ("Comp B", "composition-b"), ("PETN", "petn"), ("RDX", "rdx"),
-                                            ("hmx", "hmx"), ("PE4", "pe4"), ("Semtex H", "semtex")])
+@pytest.mark.parametrize(
+    "name,canonical",
+    [
+        ("C-4", "c-4"),
+        ("c4", "c-4"),
+        ("Composition C-4", "c-4"),
+        ("Comp B", "composition-b"),
+        ("PETN", "petn"),
+        ("RDX", "rdx"),
+        ("hmx", "hmx"),
+        ("PE4", "pe4"),
+        ("Semtex H", "semtex"),
+    ],
+)
 def test_explosives_as_users_name_them(name, canonical):
     assert _with_lab({"explosive": name}).lab.explosive == canonical
 

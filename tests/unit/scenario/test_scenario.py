@@ -46,16 +46,25 @@ MALFORMED = [
     ("nan", GOOD.replace("charge_kg = 50.0", "charge_kg = nan"), "blast.charge_kg"),
     ("inf", GOOD.replace("length = 0.005", "length = inf"), "scale.length"),
     ("angle out of range", GOOD.replace("alpha_deg = 15.0", "alpha_deg = 95.0"), "structure.alpha_deg"),
-    ("friction out of range", GOOD.replace("alpha_deg = 15.0", "alpha_deg = 15.0\nfriction = -0.1"),
-     "structure.friction"),
+    (
+        "friction out of range",
+        GOOD.replace("alpha_deg = 15.0", "alpha_deg = 15.0\nfriction = -0.1"),
+        "structure.friction",
+    ),
     ("bad enum pulse", GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\npulse = "square"'), "blast.pulse"),
     ("bad enum kind", GOOD.replace('kind = "block"', 'kind = "tower"'), "structure.kind"),
-    ("bad pulse shape", GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\npulse_shape = "square"'),
-     "blast.pulse_shape"),
+    (
+        "bad pulse shape",
+        GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\npulse_shape = "square"'),
+        "blast.pulse_shape",
+    ),
     ("bad blast_model", GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\nblast_model = "kb"'), "blast.blast_model"),
     ("bad blast model", GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\nmodel = "kb"'), "blast.model"),
-    ("bad material", GOOD.replace("length = 0.005", 'length = 0.005\nmodel_material = "cheese"'),
-     "scale.model_material"),
+    (
+        "bad material",
+        GOOD.replace("length = 0.005", 'length = 0.005\nmodel_material = "cheese"'),
+        "scale.model_material",
+    ),
     ("bad fraction", GOOD.replace("length = 0.005", 'length = "1/0"'), "scale.length"),
     ("both width and angle", GOOD.replace("alpha_deg = 15.0", "alpha_deg = 15.0\nwidth_m = 2.0"), "width_m"),
     ("integer wanted", GOOD + "\n[simulation]\nrecord_every = 2.5\n", "simulation.record_every"),
@@ -83,11 +92,17 @@ def test_malformed_scenario_one_line_exit_2_nothing_written(tmp_path, capsys, na
 
 
 def test_range_errors_give_the_valid_range():
-    with pytest.raises(BlastscaleInputError, match=r"structure\.alpha_deg = 95 is out of range: valid range is "
-                                                   r"\(0, 90\) deg"):
+    with pytest.raises(
+        BlastscaleInputError,
+        match=r"structure\.alpha_deg = 95 is out of range: valid range is "
+        r"\(0, 90\) deg",
+    ):
         Scenario.default().with_values({"alpha_deg": 95.0})
-    with pytest.raises(BlastscaleInputError, match=r"blast\.charge_kg = nan is not a finite number: valid range is "
-                                                   r">= 0 kg"):  # 0: gravity alone (issue 16)
+    with pytest.raises(
+        BlastscaleInputError,
+        match=r"blast\.charge_kg = nan is not a finite number: valid range is "
+        r">= 0 kg",
+    ):  # 0: gravity alone (issue 16)
         Scenario.default().with_values({"charge_kg": math.nan})
 
 
@@ -150,8 +165,14 @@ def test_ambiguous_bare_key_is_refused(monkeypatch):
 
 def test_field_paths_cover_every_table_and_resolve():
     paths = Scenario.field_paths()
-    for p in ("structure.kind", "structure.drums", "blast.charge_kg", "scale.length", "simulation.duration_s",
-              "simulation.contact.time_constant_s"):
+    for p in (
+        "structure.kind",
+        "structure.drums",
+        "blast.charge_kg",
+        "scale.length",
+        "simulation.duration_s",
+        "simulation.contact.time_constant_s",
+    ):
         assert p in paths
     assert len(paths) == len(set(paths))
     sc = Scenario.default()
@@ -181,8 +202,9 @@ def test_material_library_is_cited_and_in_range():
 def test_example_scenarios_validate(path):
     sc = load_scenario(path)
     assert sc.title
-    assert load_scenario(path) == Scenario.from_dict(tomllib.loads(_to_toml(sc.model_dump(mode="json",
-                                                                                           exclude_none=True))))
+    assert load_scenario(path) == Scenario.from_dict(
+        tomllib.loads(_to_toml(sc.model_dump(mode="json", exclude_none=True)))
+    )
 
 
 def test_contact_ranges_are_the_engines_own():
@@ -190,16 +212,21 @@ def test_contact_ranges_are_the_engines_own():
     end is refused by the scenario and by ContactSettings alike, a value at a closed end accepted by both."""
     from blastscale.sim3d.contact import SETTING_RANGES, ContactSettings
 
-    keys = {"time_constant": "time_constant_s", "friction_time_constant": "friction_time_constant_s",
-            "impedance_width": "impedance_width_m"}
+    keys = {
+        "time_constant": "time_constant_s",
+        "friction_time_constant": "friction_time_constant_s",
+        "impedance_width": "impedance_width_m",
+    }
     base = Scenario.default()
     for name, r in SETTING_RANGES.items():
         if name in ("friction", "timestep", "impedance_max"):
             continue  # friction and timestep are keys of [structure] / [simulation]; dmax also needs dmin
         key = f"simulation.contact.{keys.get(name, name)}"
         integer = name in ("iterations", "noslip_iterations")
-        for end, is_open, outside in ((r.lo, r.lo_open, r.lo - (1 if integer else 1e-9)),
-                                      (r.hi, r.hi_open, r.hi + (1 if integer else 1e-9 * max(1.0, r.hi)))):
+        for end, is_open, outside in (
+            (r.lo, r.lo_open, r.lo - (1 if integer else 1e-9)),
+            (r.hi, r.hi_open, r.hi + (1 if integer else 1e-9 * max(1.0, r.hi))),
+        ):
             for value, ok in ((outside, False), (end, not is_open)):
                 value = int(value) if integer else float(value)
                 try:
@@ -224,12 +251,18 @@ def test_deprecated_scenario_keys_are_read_and_the_new_ones_written(tmp_path):
     blastscale writes uses ``blast_model``, ``pulse_shape`` and ``specimen_material``."""
     from blastscale.scenario.specs import LEGACY_SCENARIO_KEYS
 
-    assert LEGACY_SCENARIO_KEYS == {"blast.model": "blast.blast_model", "blast.pulse": "blast.pulse_shape",
-                                    "scale.model_material": "scale.specimen_material"}
+    assert LEGACY_SCENARIO_KEYS == {
+        "blast.model": "blast.blast_model",
+        "blast.pulse": "blast.pulse_shape",
+        "scale.model_material": "scale.specimen_material",
+    }
     old = GOOD.replace("standoff_m = 2.0", 'standoff_m = 2.0\nmodel = "kingery-bulmash"\npulse = "triangular"')
     old = old.replace("length = 0.005", 'length = 0.005\nmodel_material = "balsa"')
-    new = old.replace("model = ", "blast_model = ").replace("pulse = ", "pulse_shape = ").replace(
-        "model_material = ", "specimen_material = ")
+    new = (
+        old.replace("model = ", "blast_model = ")
+        .replace("pulse = ", "pulse_shape = ")
+        .replace("model_material = ", "specimen_material = ")
+    )
     (tmp_path / "old.toml").write_text(old)
     (tmp_path / "new.toml").write_text(new)
     a, b = load_scenario(tmp_path / "old.toml"), load_scenario(tmp_path / "new.toml")
@@ -239,14 +272,21 @@ def test_deprecated_scenario_keys_are_read_and_the_new_ones_written(tmp_path):
     assert "blast_model = " in text and "pulse_shape = " in text and "specimen_material = " in text
     assert "\nmodel = " not in text and "\npulse = " not in text and "model_material" not in text
     base = Scenario.default()
-    for key, new_key in (("blast.model", "blast.blast_model"), ("model", "blast.blast_model"),
-                         ("blast.pulse", "blast.pulse_shape"), ("pulse", "blast.pulse_shape"),
-                         ("scale.model_material", "scale.specimen_material"),
-                         ("model_material", "scale.specimen_material")):
+    for key, new_key in (
+        ("blast.model", "blast.blast_model"),
+        ("model", "blast.blast_model"),
+        ("blast.pulse", "blast.pulse_shape"),
+        ("pulse", "blast.pulse_shape"),
+        ("scale.model_material", "scale.specimen_material"),
+        ("model_material", "scale.specimen_material"),
+    ):
         assert base.resolve_key(key) == new_key
     c = base.with_values({"blast.model": "kingery-bulmash", "pulse": "impulsive", "model_material": "balsa"})
-    assert (c.blast.blast_model, c.blast.pulse_shape, c.scale.specimen_material) == ("kingery-bulmash", "impulsive",
-                                                                                      "balsa")
+    assert (c.blast.blast_model, c.blast.pulse_shape, c.scale.specimen_material) == (
+        "kingery-bulmash",
+        "impulsive",
+        "balsa",
+    )
     assert c.scale.density_ratio is None  # the material replaced the density ratio (exclusive keys)
 
 
@@ -262,12 +302,49 @@ def test_deprecated_cli_set_and_flags(capsys, tmp_path):
         assert (e.value.code or 0) == 0, out.err
         return json.loads(out.out)
 
-    a = js("run", "--set", "blast.model=kingery-bulmash", "--set", "pulse=impulsive", "--set", "engine=planar",
-           "--set", "duration_s=0.2", "--set", "critical_charge=false", "--json")
+    a = js(
+        "run",
+        "--set",
+        "blast.model=kingery-bulmash",
+        "--set",
+        "pulse=impulsive",
+        "--set",
+        "engine=planar",
+        "--set",
+        "duration_s=0.2",
+        "--set",
+        "critical_charge=false",
+        "--json",
+    )
     assert a["scenario"]["blast"]["blast_model"] == "kingery-bulmash" == a["scenario"]["blast"]["model"]
     assert a["scenario"]["blast"]["pulse_shape"] == "impulsive" == a["scenario"]["blast"]["pulse"]
-    b = js("critical", "--height", "10", "--alpha-deg", "15", "--standoff", "2", "--blast-model", "masi2021", "--pulse-shape",
-           "triangular", "--json")
-    c = js("critical", "--height", "10", "--alpha-deg", "15", "--standoff", "2", "--model", "masi2021", "--pulse", "triangular", "--json")
+    b = js(
+        "critical",
+        "--height",
+        "10",
+        "--alpha-deg",
+        "15",
+        "--standoff",
+        "2",
+        "--blast-model",
+        "masi2021",
+        "--pulse-shape",
+        "triangular",
+        "--json",
+    )
+    c = js(
+        "critical",
+        "--height",
+        "10",
+        "--alpha-deg",
+        "15",
+        "--standoff",
+        "2",
+        "--model",
+        "masi2021",
+        "--pulse",
+        "triangular",
+        "--json",
+    )
     assert b["critical_charge_kg"] == c["critical_charge_kg"] and b["blast_model"] == "masi2021" == b["model"]
     assert b["pulse_shape"] == "triangular" == b["pulse"]

@@ -33,9 +33,15 @@ def test_points_and_vertices_follow_a_quarter_turn_about_y():
 
 def test_frames_are_fps_times_duration_over_speed_from_first_to_last_state():
     t = np.linspace(0.0, 2.0, 2001)
-    m = Motion(time=t, labels=("prototype",), position=np.zeros((1, t.size, 1, 3)),
-               quaternion=np.tile([1.0, 0, 0, 0], (1, t.size, 1, 1)), vertices=np.zeros((1, 1, 3)),
-               faces=np.zeros((1, 1, 3), int), bodies=("B",))
+    m = Motion(
+        time=t,
+        labels=("prototype",),
+        position=np.zeros((1, t.size, 1, 3)),
+        quaternion=np.tile([1.0, 0, 0, 0], (1, t.size, 1, 1)),
+        vertices=np.zeros((1, 1, 3)),
+        faces=np.zeros((1, 1, 3), int),
+        bodies=("B",),
+    )
     assert frame_count(2.0, 20, 1.0) == 40 and frame_count(2.0, 20, 4.0) == 10 and frame_count(1e-3, 1, 1) == 2
     idx, times = m.frame_indices(20, 1.0)
     assert len(idx) == 40 and times[0] == 0.0 and times[-1] == 2.0

@@ -53,7 +53,8 @@ def test_effects_of_both_systems_and_their_notes():
     c = e["clearing"]
     for side in ("prototype", "model"):
         assert c[side]["clearing_time_over_positive_duration"] == pytest.approx(
-            c[side]["clearing_time_s"] / c[side]["positive_duration_s"], rel=1e-12)
+            c[side]["clearing_time_s"] / c[side]["positive_duration_s"], rel=1e-12
+        )
     # the specimen's face is lambda times the prototype's
     assert e["load_model"]["model"]["face_width_m"] == pytest.approx(0.01)
     n = e["negative_phase"]
@@ -93,8 +94,9 @@ def test_clearing_corrected_charge_reads_the_specimen_load_model_from_the_design
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BlastSimilarityWarning)
         d = design_model(250.0, 10.0, 1 / 100, load_model=lm, face=(1.3, 10.0))
-    assert clearing_corrected_charge(d) == clearing_corrected_charge(d, LoadModel(clearing=True, face_width_m=1.3,
-                                                                                  face_height_m=10.0))
+    assert clearing_corrected_charge(d) == clearing_corrected_charge(
+        d, LoadModel(clearing=True, face_width_m=1.3, face_height_m=10.0)
+    )
     with pytest.raises(BlastscaleInputError, match="load model = .* is not the design's"):
         clearing_corrected_charge(d, LoadModel(clearing=True, face_width_m=2.0, face_height_m=10.0))
 
@@ -102,6 +104,8 @@ def test_clearing_corrected_charge_reads_the_specimen_load_model_from_the_design
 def test_front_geometry_of_block_and_column():
     assert front_face(BLOCK) == pytest.approx((BLOCK.depth, BLOCK.height))
     w, top = front_geometry(MultiDrumColumn(section="square"))
-    assert top == pytest.approx(10.0) and w[0] == pytest.approx(1.65, rel=0.02) and w[-1] == pytest.approx(1.28, rel=0.03)
+    assert (
+        top == pytest.approx(10.0) and w[0] == pytest.approx(1.65, rel=0.02) and w[-1] == pytest.approx(1.28, rel=0.03)
+    )
     w, _ = front_geometry(MultiDrumColumn(section="circular"))
     assert w[0] == pytest.approx(1.65, rel=0.02)

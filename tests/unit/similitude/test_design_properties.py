@@ -8,7 +8,13 @@ from hypothesis import strategies as st
 
 from blastscale._validate import OutOfRangeError
 from blastscale.blast import get_blast_model, valid_scaled_distance_range
-from blastscale.similitude import admissible_scales, design_model, pi_terms, scaling_factors, solve_scaled_distance_factor
+from blastscale.similitude import (
+    admissible_scales,
+    design_model,
+    pi_terms,
+    scaling_factors,
+    solve_scaled_distance_factor,
+)
 
 models = st.sampled_from(["masi2021", "kingery-bulmash"])
 charges = st.floats(1.0, 5000.0)
@@ -33,7 +39,9 @@ def test_designed_impulse_ratio_equals_gamma_sqrt_varsigma_lambda_cubed(W, Z, la
     assert d.factors.impulse == pytest.approx(target, rel=1e-12)
     # consistency of the derived quantities with their definitions (round-off tolerance)
     assert d.specimen_standoff_m == pytest.approx(lam * R, rel=1e-12)
-    assert d.specimen.scaled_distance == pytest.approx(d.scaled_distance_factor * d.prototype.scaled_distance, rel=1e-12)
+    assert d.specimen.scaled_distance == pytest.approx(
+        d.scaled_distance_factor * d.prototype.scaled_distance, rel=1e-12
+    )
     assert d.specimen_charge_kg == pytest.approx(W * (lam / d.scaled_distance_factor) ** 3, rel=1e-12)
     assert d.factors.charge == pytest.approx(d.specimen_charge_kg / W, rel=1e-12)
 
@@ -46,10 +54,23 @@ def test_every_factor_consistent_with_its_definition(lam, gam, sig):
     f = scaling_factors(lam, gam, sig)
     L, T, M = lam, math.sqrt(lam / sig), gam * lam**3
     expected = {
-        "length": L, "displacement": L, "density": M / L**3, "gravity": L / T**2,
-        "velocity": L / T, "acceleration": L / T**2, "angle": 1.0, "angular_velocity": 1 / T,
-        "angular_acceleration": 1 / T**2, "time": T, "mass": M, "inertia": M * L**2, "force": M * L / T**2,
-        "pressure": M / (L * T**2), "impulse": M / (L * T), "momentum": M * L / T, "energy": M * L**2 / T**2,
+        "length": L,
+        "displacement": L,
+        "density": M / L**3,
+        "gravity": L / T**2,
+        "velocity": L / T,
+        "acceleration": L / T**2,
+        "angle": 1.0,
+        "angular_velocity": 1 / T,
+        "angular_acceleration": 1 / T**2,
+        "time": T,
+        "mass": M,
+        "inertia": M * L**2,
+        "force": M * L / T**2,
+        "pressure": M / (L * T**2),
+        "impulse": M / (L * T),
+        "momentum": M * L / T,
+        "energy": M * L**2 / T**2,
         "friction": 1.0,
     }
     got = f.to_dict()
@@ -58,20 +79,48 @@ def test_every_factor_consistent_with_its_definition(lam, gam, sig):
 
 
 @settings(max_examples=100, deadline=None)
-@given(lam=scales, gam=gammas, sig=gravities, l=st.floats(0.5, 20), m=st.floats(1e2, 1e6),
-       P=st.floats(1e3, 1e8), i=st.floats(1.0, 1e5), t=st.floats(0.0, 10.0), th=st.floats(-1, 1))
+@given(
+    lam=scales,
+    gam=gammas,
+    sig=gravities,
+    l=st.floats(0.5, 20),
+    m=st.floats(1e2, 1e6),
+    P=st.floats(1e3, 1e8),
+    i=st.floats(1.0, 1e5),
+    t=st.floats(0.0, 10.0),
+    th=st.floats(-1, 1),
+)
 def test_pi_terms_are_invariant_under_the_factors(lam, gam, sig, l, m, P, i, t, th):
     # Quantities scaled by their factors leave every pi-term unchanged (the definition of similarity).
     g = 9.81
     J = 0.4 * m * l**2
     f = scaling_factors(lam, gam, sig)
-    kw = dict(time=t, displacement=0.1 * l, velocity=2.0, acceleration=3.0, angle=th, angular_velocity=0.5,
-              angular_acceleration=4.0)
+    kw = dict(
+        time=t,
+        displacement=0.1 * l,
+        velocity=2.0,
+        acceleration=3.0,
+        angle=th,
+        angular_velocity=0.5,
+        angular_acceleration=4.0,
+    )
     p0 = pi_terms(l, g, m, J, P, i, 0.7, **kw)
-    p1 = pi_terms(l * f.length, g * f.gravity, m * f.mass, J * f.inertia, P * f.pressure, i * f.impulse, 0.7,
-                  time=t * f.time, displacement=0.1 * l * f.displacement, velocity=2.0 * f.velocity,
-                  acceleration=3.0 * f.acceleration, angle=th, angular_velocity=0.5 * f.angular_velocity,
-                  angular_acceleration=4.0 * f.angular_acceleration)
+    p1 = pi_terms(
+        l * f.length,
+        g * f.gravity,
+        m * f.mass,
+        J * f.inertia,
+        P * f.pressure,
+        i * f.impulse,
+        0.7,
+        time=t * f.time,
+        displacement=0.1 * l * f.displacement,
+        velocity=2.0 * f.velocity,
+        acceleration=3.0 * f.acceleration,
+        angle=th,
+        angular_velocity=0.5 * f.angular_velocity,
+        angular_acceleration=4.0 * f.angular_acceleration,
+    )
     for k in p0:
         assert p1[k] == pytest.approx(p0[k], rel=1e-10, abs=1e-14), k
 

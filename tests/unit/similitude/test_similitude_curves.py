@@ -132,8 +132,14 @@ def test_valid_mask_is_design_models_range():
             with pytest.raises(OutOfRangeError):
                 design_model(W, R, 1 / 200, g, blast_model="masi2021")
     bad = ~c.valid
-    for x in (c.scaled_distance_factor, c.model_scaled_distance, c.charge_ratio, c.pressure_ratio,
-              c.impulse_ratio, c.duration_ratio):
+    for x in (
+        c.scaled_distance_factor,
+        c.model_scaled_distance,
+        c.charge_ratio,
+        c.pressure_ratio,
+        c.impulse_ratio,
+        c.duration_ratio,
+    ):
         assert np.all(np.isnan(x[bad])) and np.all(np.isfinite(x[c.valid]))
     # Hopkinson-Cranz needs no root: defined everywhere
     assert np.all(np.isfinite(c.hc_pressure_ratio)) and np.all(np.isfinite(c.hc_impulse_ratio))
@@ -188,6 +194,7 @@ def test_fig5_values_at_lambda_1_over_200():
 
 
 # --- plots (blastscale.plots.similitude) -------------------------------------------------------
+
 
 def test_plots_general_law_solid_hopkinson_cranz_dashed_on_log_axes():
     import matplotlib

@@ -211,10 +211,12 @@ def test_a_design_of_arrays_equals_the_designs_of_its_elements(model, law):
             assert not d.valid[k] and np.isnan(d.specimen_charge_kg[k])
             continue
         assert d.valid[k]
-        for got, want in ((d.specimen_charge_kg[k], one.specimen_charge_kg), (d.factors.charge[k], one.factors.charge),
-                          (d.specimen.reflected_impulse[k], one.specimen.reflected_impulse),
-                          (d.specimen.friedlander_decay[k], one.specimen.friedlander_decay),
-                          (d.impulsive.model_ratio[k], one.impulsive.model_ratio)):
+        for got, want in (
+            (d.specimen_charge_kg[k], one.specimen_charge_kg),
+            (d.factors.charge[k], one.factors.charge),
+            (d.specimen.reflected_impulse[k], one.specimen.reflected_impulse),
+            (d.specimen.friedlander_decay[k], one.specimen.friedlander_decay),
+            (d.impulsive.model_ratio[k], one.impulsive.model_ratio),
+        ):
             assert got == pytest.approx(want, rel=1e-12)
     assert d.valid.sum() >= 3 and not d.valid.all()
-

@@ -8,8 +8,18 @@ import numpy as np
 import pytest
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.structures import (Assembly, ConvexBlock, MultiDrumColumn, RectangularBlock, arch, polyhedron_faces,
-                                   polyhedron_mass_properties, portal, read_block_model, wall)
+from blastscale.structures import (
+    Assembly,
+    ConvexBlock,
+    MultiDrumColumn,
+    RectangularBlock,
+    arch,
+    polyhedron_faces,
+    polyhedron_mass_properties,
+    portal,
+    read_block_model,
+    wall,
+)
 from blastscale.structures.base import frustum_mass_properties
 from blastscale.structures.generators import box_vertices
 
@@ -49,8 +59,12 @@ def test_box_mass_properties_are_the_closed_form():
 @pytest.mark.parametrize("s0, s1", [(1.65, 1.613), (2.0, 1.0)])
 def test_frustum_mass_properties_match_the_structures_closed_form(s0, s1):
     H = 1.3
-    v = np.vstack([[[x * s0 / 2, y * s0 / 2, 0.0] for x in (-1, 1) for y in (-1, 1)],
-                   [[x * s1 / 2, y * s1 / 2, H] for x in (-1, 1) for y in (-1, 1)]])
+    v = np.vstack(
+        [
+            [[x * s0 / 2, y * s0 / 2, 0.0] for x in (-1, 1) for y in (-1, 1)],
+            [[x * s1 / 2, y * s1 / 2, H] for x in (-1, 1) for y in (-1, 1)],
+        ]
+    )
     mp = polyhedron_mass_properties(v, 2700.0)
     ref = frustum_mass_properties(s0, s1, H, 2700.0)
     assert mp.volume == pytest.approx(ref.volume, rel=1e-12)
@@ -74,7 +88,8 @@ def test_random_convex_polyhedron_against_an_independent_computation_and_mujoco(
     vs = " ".join(repr(float(x)) for x in v.ravel())
     mj = mujoco.MjModel.from_xml_string(
         f'<mujoco><asset><mesh name="m" vertex="{vs}"/></asset><worldbody><body><freejoint/>'
-        '<geom type="mesh" mesh="m" density="2000"/></body></worldbody></mujoco>')
+        '<geom type="mesh" mesh="m" density="2000"/></body></worldbody></mujoco>'
+    )
     # 1e-7: MuJoCo integrates in floats (measured 1e-9)
     assert mj.body_mass[1] == pytest.approx(mp.mass, rel=1e-7)
     assert np.sort(mj.body_inertia[1]) == pytest.approx(np.linalg.eigvalsh(mp.inertia), rel=1e-7)
@@ -90,8 +105,9 @@ def test_faces_are_merged_coplanar_polygons_with_outward_normals():
 
 @pytest.mark.parametrize("bond", ["running", "stack"])
 def test_wall_mass_is_density_times_volume_and_running_courses_have_half_units(bond):
-    w = wall(length_m=3.0, height_m=2.0, thickness_m=0.4, courses=4, units_per_course=3, bond=bond,
-             density_kg_m3=2100.0)
+    w = wall(
+        length_m=3.0, height_m=2.0, thickness_m=0.4, courses=4, units_per_course=3, bond=bond, density_kg_m3=2100.0
+    )
     asm = Assembly(w.blocks)
     assert asm.mass == pytest.approx(2100.0 * 3.0 * 2.0 * 0.4, rel=1e-12)
     assert len(w.blocks) == (14 if bond == "running" else 12)
@@ -108,8 +124,12 @@ def test_wall_mass_is_density_times_volume_and_running_courses_have_half_units(b
 
 
 def test_interfaces_give_in_contact_flags_and_exposed_areas():
-    a = Assembly((ConvexBlock("A", box_vertices(0, 1, 0, 1, 0, 1), 2000.0),
-                  ConvexBlock("B", box_vertices(0, 1, 0.5, 1.5, 1, 2), 2000.0)))
+    a = Assembly(
+        (
+            ConvexBlock("A", box_vertices(0, 1, 0, 1, 0, 1), 2000.0),
+            ConvexBlock("B", box_vertices(0, 1, 0.5, 1.5, 1, 2), 2000.0),
+        )
+    )
     assert a.interfaces == ((-1, 0), (0, 1))
     assert a.interface_details[1].area == pytest.approx(0.5, rel=1e-12)
     top = next(f for f in a.bodies[0].faces if f.label == "top")
@@ -127,13 +147,15 @@ def test_rectangular_block_and_column_are_assemblies_with_the_same_numbers():
     assert b1.inertia == pytest.approx(b0.inertia, rel=1e-15)
     assert a.interfaces == blk.interfaces and a.front_x == blk.front_x
     col = MultiDrumColumn("square", drums=10, base_width=1.5, top_width=1.5)
-    stack = Assembly(tuple(ConvexBlock(f"D-{k + 1}", box_vertices(-0.75, 0.75, -0.75, 0.75, k, k + 1), 2700.0)
-                           for k in range(10)))
+    stack = Assembly(
+        tuple(ConvexBlock(f"D-{k + 1}", box_vertices(-0.75, 0.75, -0.75, 0.75, k, k + 1), 2700.0) for k in range(10))
+    )
     assert stack.interfaces == col.interfaces
     for p, q in zip(col.bodies, stack.bodies):
         assert q.mass == pytest.approx(p.mass, rel=1e-12) and q.inertia == pytest.approx(p.inertia, rel=1e-12)
-        assert [f.in_contact for f in q.faces if f.label in ("top", "bottom")] == \
-            [f.in_contact for f in p.faces if f.label in ("bottom", "top")][::-1]
+        assert [f.in_contact for f in q.faces if f.label in ("top", "bottom")] == [
+            f.in_contact for f in p.faces if f.label in ("bottom", "top")
+        ][::-1]
 
 
 def test_arch_and_portal_generators():
@@ -147,14 +169,17 @@ def test_arch_and_portal_generators():
     assert len(seg.blocks) == 9 and len(seg.interfaces) == 2 + 8
 
 
-@pytest.mark.parametrize("make, words", [
-    (lambda: wall(courses=0), "courses = 0"),
-    (lambda: wall(thickness_m=-0.1), "thickness_m = -0.1"),
-    (lambda: arch(thickness_m=0.0), "thickness_m = 0"),
-    (lambda: arch(embrace_deg=400.0), "embrace_deg = 400"),
-    (lambda: arch(embrace_deg=120.0), "needs pier_height_m"),
-    (lambda: portal(drums=0), "drums = 0"),
-])
+@pytest.mark.parametrize(
+    "make, words",
+    [
+        (lambda: wall(courses=0), "courses = 0"),
+        (lambda: wall(thickness_m=-0.1), "thickness_m = -0.1"),
+        (lambda: arch(thickness_m=0.0), "thickness_m = 0"),
+        (lambda: arch(embrace_deg=400.0), "embrace_deg = 400"),
+        (lambda: arch(embrace_deg=120.0), "needs pier_height_m"),
+        (lambda: portal(drums=0), "drums = 0"),
+    ],
+)
 def test_bad_generator_parameters_are_one_line(make, words):
     with pytest.raises(BlastscaleInputError) as e:
         make()
@@ -173,21 +198,30 @@ def _box(name, *b, **kw):
 
 def test_our_json_reads_blocks_points_and_densities(tmp_path):
     p = tmp_path / "m.json"
-    p.write_text(json.dumps({"blocks": [_box("A", 0, 1, 0, 1, 0, 1), _box("B", 0, 1, 0, 1, 1, 2, density_kg_m3=1000)],
-                             "points": [{"name": "top", "block": "B", "position": [0.5, 0.5, 2.0]}]}))
+    p.write_text(
+        json.dumps(
+            {
+                "blocks": [_box("A", 0, 1, 0, 1, 0, 1), _box("B", 0, 1, 0, 1, 1, 2, density_kg_m3=1000)],
+                "points": [{"name": "top", "block": "B", "position": [0.5, 0.5, 2.0]}],
+            }
+        )
+    )
     a = read_block_model(p, 2500.0)
     assert [b.mass for b in a.bodies] == pytest.approx([2500.0, 1000.0])
     assert a.monitoring_points[-1].name == "top" and a.monitoring_points[-1].position == pytest.approx((0, 0, 0.5))
 
 
-@pytest.mark.parametrize("blocks, words", [
-    ([_box("A", 0, 1, 0, 1, 0, 1), _box("B", 0.5, 1.5, 0, 1, 0, 1)], "'A' and 'B' overlap"),
-    ([_box("A", 0, 1, 0, 1, 0, 1), _box("F", 0, 1, 0, 1, 1.5, 2.5)], "'F' floats"),
-    ([_box("A", 0, 1000, 0, 500, 0, 300)], "millimetres"),
-    ([{"name": "E", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}], "'E' is empty"),
-    ([{"name": "P", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]}], "'P' has zero volume"),
-    ([_box("A", 0, 1, 0, 1, -0.5, 0.5)], "below the ground"),
-])
+@pytest.mark.parametrize(
+    "blocks, words",
+    [
+        ([_box("A", 0, 1, 0, 1, 0, 1), _box("B", 0.5, 1.5, 0, 1, 0, 1)], "'A' and 'B' overlap"),
+        ([_box("A", 0, 1, 0, 1, 0, 1), _box("F", 0, 1, 0, 1, 1.5, 2.5)], "'F' floats"),
+        ([_box("A", 0, 1000, 0, 500, 0, 300)], "millimetres"),
+        ([{"name": "E", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}], "'E' is empty"),
+        ([{"name": "P", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]}], "'P' has zero volume"),
+        ([_box("A", 0, 1, 0, 1, -0.5, 0.5)], "below the ground"),
+    ],
+)
 def test_bad_block_models_are_one_line_naming_the_block(tmp_path, blocks, words):
     with pytest.raises(BlastscaleInputError) as e:
         read_block_model(_write(tmp_path, blocks))
@@ -215,8 +249,17 @@ def test_non_convex_block_is_refused_and_a_slightly_non_convex_one_replaced_by_i
 
 def _dented_faces():
     # box corners 0..7 (itertools.product order x, y, z), dent vertex 8 in the top face (z = 1: 1, 3, 5, 7)
-    return [[0, 2, 6, 4], [0, 4, 5, 1], [0, 1, 3, 2], [4, 6, 7, 5], [2, 3, 7, 6],
-            [1, 5, 8], [5, 7, 8], [7, 3, 8], [3, 1, 8]]
+    return [
+        [0, 2, 6, 4],
+        [0, 4, 5, 1],
+        [0, 1, 3, 2],
+        [4, 6, 7, 5],
+        [2, 3, 7, 6],
+        [1, 5, 8],
+        [5, 7, 8],
+        [7, 3, 8],
+        [3, 1, 8],
+    ]
 
 
 def test_mesh_files_through_trimesh_one_block_per_component(tmp_path):
@@ -234,8 +277,9 @@ def test_mesh_files_through_trimesh_one_block_per_component(tmp_path):
     a = read_block_model(p, 2000.0)
     assert len(a.blocks) == 2  # two objects (trimesh may read them as one mesh of two components)
     assert len(a.interfaces) == 2 and a.mass == pytest.approx(4000.0)
-    apart = trimesh.util.concatenate([trimesh.creation.box(bounds=[[0, 0, 0], [1, 1, 1]]),
-                                      trimesh.creation.box(bounds=[[2, 0, 0], [3, 1, 1]])])
+    apart = trimesh.util.concatenate(
+        [trimesh.creation.box(bounds=[[0, 0, 0], [1, 1, 1]]), trimesh.creation.box(bounds=[[2, 0, 0], [3, 1, 1]])]
+    )
     q = tmp_path / "apart.stl"
     apart.export(q)
     assert len(read_block_model(q, 2000.0).blocks) == 2  # one mesh, two connected components
@@ -245,11 +289,14 @@ def test_compas_mesh_json_without_compas(tmp_path):
     corners = box_vertices(0, 1, 0, 2, 0, 0.5)
     faces = polyhedron_faces(corners)
     index = {tuple(np.round(c, 9)): k for k, c in enumerate(corners)}
-    mesh = {"vertex": {str(k): {"x": c[0], "y": c[1], "z": c[2]} for k, c in enumerate(corners)},
-            "face": {str(k): [index[tuple(np.round(p, 9))] for p in f.vertices] for k, f in enumerate(faces)}}
+    mesh = {
+        "vertex": {str(k): {"x": c[0], "y": c[1], "z": c[2]} for k, c in enumerate(corners)},
+        "face": {str(k): [index[tuple(np.round(p, 9))] for p in f.vertices] for k, f in enumerate(faces)},
+    }
     p = tmp_path / "compas.json"
-    p.write_text(json.dumps({"dtype": "compas_dem.models/BlockModel", "data": {"blocks": [{"dtype": "Block",
-                                                                                          "data": mesh}]}}))
+    p.write_text(
+        json.dumps({"dtype": "compas_dem.models/BlockModel", "data": {"blocks": [{"dtype": "Block", "data": mesh}]}})
+    )
     a = read_block_model(p, 2000.0)
     assert len(a.blocks) == 1 and a.mass == pytest.approx(2000.0)
 

@@ -55,8 +55,10 @@ def _mujoco_mesh_mass(vertices, rho):
     import mujoco
 
     v = " ".join(repr(float(x)) for x in np.asarray(vertices).ravel())
-    xml = (f'<mujoco><asset><mesh name="m" vertex="{v}"/></asset><worldbody><body><freejoint/>'
-           f'<geom type="mesh" mesh="m" density="{rho}"/></body></worldbody></mujoco>')
+    xml = (
+        f'<mujoco><asset><mesh name="m" vertex="{v}"/></asset><worldbody><body><freejoint/>'
+        f'<geom type="mesh" mesh="m" density="{rho}"/></body></worldbody></mujoco>'
+    )
     m = mujoco.MjModel.from_xml_string(xml)
     return m.body_mass[1], m.body_ipos[1], np.sort(m.body_inertia[1])
 
@@ -124,8 +126,9 @@ def test_block_has_the_same_interface():
 
 
 def test_scaled_column_mass_and_inertia_follow_lambda_cubed_and_fifth():
-    col = MultiDrumColumn("circular", drum_heights=(1.5,) + (8.5 / 9,) * 9,
-                          extra_points=(MonitoringPoint("top", 9, (0.0, 0.0, 0.5)),))
+    col = MultiDrumColumn(
+        "circular", drum_heights=(1.5,) + (8.5 / 9,) * 9, extra_points=(MonitoringPoint("top", 9, (0.0, 0.0, 0.5)),)
+    )
     lam, gam = 0.01, 0.5
     s = col.scaled(scaling_factors(lam, gam))
     for b, bs in zip(col.bodies, s.bodies):
@@ -137,11 +140,20 @@ def test_scaled_column_mass_and_inertia_follow_lambda_cubed_and_fifth():
 
 @pytest.mark.parametrize(
     "kwargs, word",
-    [(dict(drums=0), "drums"), (dict(drums=2.5), "drums"), (dict(base_width=float("nan")), "base width"),
-     (dict(base_width=-1.0), "base width"), (dict(top_width=2.0), "top width"), (dict(top_width=0.1), "top width"),
-     (dict(section="hexagonal"), "section"), (dict(section="circular", sides=4), "sides"),
-     (dict(drum_heights=(1.0,) * 9), "drum heights"), (dict(drum_heights=(1.1,) * 10), "drum heights"),
-     (dict(height=0.0), "height"), (dict(density=float("inf")), "density")],
+    [
+        (dict(drums=0), "drums"),
+        (dict(drums=2.5), "drums"),
+        (dict(base_width=float("nan")), "base width"),
+        (dict(base_width=-1.0), "base width"),
+        (dict(top_width=2.0), "top width"),
+        (dict(top_width=0.1), "top width"),
+        (dict(section="hexagonal"), "section"),
+        (dict(section="circular", sides=4), "sides"),
+        (dict(drum_heights=(1.0,) * 9), "drum heights"),
+        (dict(drum_heights=(1.1,) * 10), "drum heights"),
+        (dict(height=0.0), "height"),
+        (dict(density=float("inf")), "density"),
+    ],
 )
 def test_column_rejects_bad_input_with_one_line_naming_it(kwargs, word):
     with pytest.raises(BlastscaleInputError) as e:
@@ -151,10 +163,15 @@ def test_column_rejects_bad_input_with_one_line_naming_it(kwargs, word):
     assert "range" in msg or "valid" in msg or "must" in msg or "finite" in msg
 
 
-@pytest.mark.parametrize("structure", [RectangularBlock(height=3.0, width=1.0, depth=0.5),
-                                       MultiDrumColumn(drums=3, height=3.0, top_width=1.4),
-                                       MultiDrumColumn(section="circular", drums=2, height=2.0, sides=8)],
-                         ids=["block", "square column", "circular column"])
+@pytest.mark.parametrize(
+    "structure",
+    [
+        RectangularBlock(height=3.0, width=1.0, depth=0.5),
+        MultiDrumColumn(drums=3, height=3.0, top_width=1.4),
+        MultiDrumColumn(section="circular", drums=2, height=2.0, sides=8),
+    ],
+    ids=["block", "square column", "circular column"],
+)
 def test_each_body_is_its_solid(structure):
     """Issue 29: a body's mass, volume, centre of mass and inertia are those of its solid (the convex hull of
     ``vertices``, integrated independently by the divergence theorem, 1e-12), and ``as_assembly`` keeps

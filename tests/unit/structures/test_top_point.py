@@ -33,8 +33,9 @@ def test_the_top_of_a_semicircular_arch_is_its_crown_voussoirs_front_centre():
     assert last.name == "V15" and _z(a_, last) < 0.11 * _z(a_, top)
 
 
-@pytest.mark.parametrize("kw, crown", [({"voussoirs": 16}, "V9"), ({"voussoirs": 9, "embrace_deg": 120.0,
-                                                                       "pier_height_m": 1.0}, "V5")])
+@pytest.mark.parametrize(
+    "kw, crown", [({"voussoirs": 16}, "V9"), ({"voussoirs": 9, "embrace_deg": 120.0, "pier_height_m": 1.0}, "V5")]
+)
 def test_an_even_arch_names_the_last_crown_voussoir_and_piers_are_not_the_top(kw, crown):
     a_ = arch(**kw)
     for s in (a_, a_.scaled(scaling_factors(1 / 200))):  # the same point at any scale
@@ -54,5 +55,7 @@ def test_the_top_of_the_other_kinds():
     assert _z(w, top) == pytest.approx(2.0 - 0.25, rel=1e-12)  # the centre of the top course (0.5 m high)
     assert top_monitoring_point(RectangularBlock(10.0, 2.68)).name == "P-1"
     # a user's point above the top drum's front centre is the top
-    capped = MultiDrumColumn(drums=3, height=3.0, top_width=1.54, extra_points=(MonitoringPoint("cap", 2, (0.0, 0.0, 0.5)),))
+    capped = MultiDrumColumn(
+        drums=3, height=3.0, top_width=1.54, extra_points=(MonitoringPoint("cap", 2, (0.0, 0.0, 0.5)),)
+    )
     assert top_monitoring_point(capped).name == "cap"
