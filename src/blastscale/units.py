@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from typing import NamedTuple, Optional
 
-__all__ = ["Suffix", "SUFFIXES", "DIMENSIONLESS_UNIT", "unit_of", "dimension_of", "split_unit"]
+__all__ = ["Suffix", "SUFFIXES", "DIMENSIONLESS_UNIT", "unit_of", "dimension_of", "split_unit", "format_size"]
 
 
 class Suffix(NamedTuple):
@@ -84,3 +84,11 @@ def split_unit(key: str) -> tuple[str, str]:
     if s is None:
         return key.replace("_", " "), ""
     return key[: -len(s.suffix)].replace("_", " "), s.unit
+
+
+def format_size(n: float) -> str:
+    """Bytes in words: ``1.3 MB`` (decimal units, like ``ls -lh --si``)."""
+    for unit in ("B", "kB", "MB", "GB", "TB"):
+        if abs(n) < 1000 or unit == "TB":
+            return f"{n:.0f} {unit}" if unit == "B" else f"{n:.3g} {unit}"
+        n /= 1000.0

@@ -42,6 +42,7 @@ from typer.core import TyperGroup, TyperOption  # noqa: E402
 from .._validate import BlastscaleInputError  # noqa: E402
 from ..io.output import format_size, tree_size, write_file  # noqa: E402
 from ..io.results import jsonable, with_legacy_keys  # noqa: E402
+from ._progress import plain_lines, plain_progress, progress_seconds  # noqa: E402
 from ._signals import Interrupted, ignore_interrupts, raise_if_interrupted  # noqa: F401 (re-exported)
 
 
@@ -263,30 +264,44 @@ def _main(
     """Design safe reduced-scale blast experiments on masonry structures (Masi et al. scaling laws)."""
 
 
+def announce_run(study, writes: bool = False, quiet: bool = False) -> float | None:
+    """:func:`._progress.announce_run` on standard error: the run's size said before it starts."""
+    from ._progress import announce_run as announce
+
+    return announce(study, console_err, writes, quiet)
+
+
 def show_progress(quiet: bool = False) -> bool:
     """Whether a command shows progress: on a terminal (stderr), and not with ``--json`` (``quiet``)."""
     return not quiet and console_err.is_terminal
 
 
 @contextlib.contextmanager
-def stage_progress(quiet: bool = False):
+def stage_progress(quiet: bool = False, expected_s: float | None = None):
     """A rich progress bar on stderr for a staged job; yields ``tell(stage, done, total)``.
-    Transient (it disappears when the job ends); shown only on a terminal and not with ``--json``."""
+    Transient (it disappears when the job ends); shown only on a terminal and not with ``--json``. Off a
+    terminal (a batch job, CI), plain lines every :func:`progress_seconds` instead (the stage, the time elapsed
+    and ``expected_s``, the run's estimate [s], when given)."""
 
-    with Progress(
-        SpinnerColumn(),
-        TextColumn("{task.description}", markup=False),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console_err,
-        transient=True,
-        disable=not show_progress(quiet),
-    ) as bar:
+    state = {"stage": "starting", "done": 0, "total": None, "expected_s": expected_s}
+    with (
+        Progress(
+            SpinnerColumn(),
+            TextColumn("{task.description}", markup=False),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TimeElapsedColumn(),
+            console=console_err,
+            transient=True,
+            disable=not show_progress(quiet),
+        ) as bar,
+        plain_lines(state, plain_progress(console_err, quiet), console_err),
+    ):
         task = bar.add_task("starting", total=None)
 
         def tell(stage: str, done: int, total: int) -> None:
             raise_if_interrupted()
+            state.update(stage=stage, done=done, total=total)
             bar.update(task, description=stage, completed=done, total=total)
 
         yield tell
@@ -315,10 +330,26 @@ def count_progress(label: str, quiet: bool = False):
         disable=not show_progress(quiet),
     )
     task = bar.add_task(label, total=None)
+    import time
+
+    plain, every, t0, last = (
+        plain_progress(console_err, quiet),
+        progress_seconds(),
+        time.monotonic(),
+        [time.monotonic()],
+    )
 
     def tick(done: int, total: int) -> None:
         raise_if_interrupted()
         bar.update(task, completed=done, total=total)
+        now = time.monotonic()
+        if plain and now - last[0] >= every:  # off a terminal: a plain line at most every progress_seconds()
+            from ..study.memory import format_duration
+
+            last[0] = now
+            console_err.print(
+                f"progress: {label}: {done} of {total} done, {format_duration(now - t0)} elapsed", soft_wrap=True
+            )
 
     return bar, tick
 

@@ -13,6 +13,7 @@ import typer
 
 from .._validate import BlastscaleInputError
 from ._app import (
+    announce_run,
     app,
     console,
     fmt_value,
@@ -171,7 +172,8 @@ def block3d_cmd(
     with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
         with flags_named():  # a step past the stability bound, too long or too large: before any run
             contact = study.check().contact
-        with stage_progress(quiet=as_json) as tell:
+        expected = announce_run(study, quiet=as_json)  # its size, before it starts
+        with stage_progress(quiet=as_json, expected_s=expected) as tell:
             result = study.run(progress=tell)
     out = block3d_output(result, contact, incidence)
     if plot:

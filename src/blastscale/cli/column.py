@@ -14,6 +14,7 @@ import typer
 
 from . import options as opt
 from ._app import (
+    announce_run,
     app,
     console,
     fmt_value,
@@ -209,7 +210,8 @@ def column_cmd(
     with one_line_warnings():
         with flags_named():  # a step past the stability bound, too long or too large: before any run
             contact = study.check().contact
-        with stage_progress(quiet=as_json) as tell:
+        expected = announce_run(study, quiet=as_json)  # its size, before it starts
+        with stage_progress(quiet=as_json, expected_s=expected) as tell:
             result = study.run(progress=tell)
     out = column_output(result, contact, incidence, timestep)
     if plot:

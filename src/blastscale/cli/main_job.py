@@ -22,6 +22,7 @@ from rich.table import Table
 
 from ..scenario import Scenario, load_scenario
 from ._app import (
+    announce_run,
     app,
     console,
     fmt_value,
@@ -219,7 +220,8 @@ def run_cmd(
 
             check_lab(design, sc.lab)
         writes = 3 if out is not None else 0  # histories, figures, report
-        with stage_progress(quiet=as_json) as tell:
+        expected = announce_run(study, writes=out is not None, quiet=as_json)  # its size, before it starts
+        with stage_progress(quiet=as_json, expected_s=expected) as tell:
             state = {"done": 0, "total": 1}
 
             def on_study(stage: str, done: int, total: int) -> None:

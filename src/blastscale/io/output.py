@@ -42,6 +42,7 @@ from filelock import FileLock, Timeout
 
 from .._hooks import pause_point
 from .._validate import BlastscaleInputError
+from ..units import format_size  # noqa: F401 (re-exported: the words of every "wrote ..." line)
 
 __all__ = [
     "Kind",
@@ -394,11 +395,3 @@ def tree_size(path) -> int:
     if p.is_file():
         return p.stat().st_size
     return sum(f.stat().st_size for f in p.rglob("*") if f.is_file())
-
-
-def format_size(n: float) -> str:
-    """Bytes in words: ``1.3 MB`` (decimal units, like ``ls -lh --si``)."""
-    for unit in ("B", "kB", "MB", "GB", "TB"):
-        if abs(n) < 1000 or unit == "TB":
-            return f"{n:.0f} {unit}" if unit == "B" else f"{n:.3g} {unit}"
-        n /= 1000.0

@@ -192,7 +192,8 @@ class Assembly:
         object.__setattr__(self, "blocks", blocks)
         object.__setattr__(self, "supports", tuple(self.supports))
         names = [b.name for b in blocks + self.supports]
-        dup = sorted({n for n in names if names.count(n) > 1})
+        seen: set = set()
+        dup = sorted({n for n in names if n in seen or seen.add(n)})  # one pass (a file of 10^5 blocks)
         if dup:
             raise BlastscaleInputError(f"block name {dup[0]!r} is used twice: block names must be unique")
         for p in self.extra_points:

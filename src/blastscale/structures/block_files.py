@@ -23,11 +23,18 @@ found (a dict with ``"vertex"``: {key: {"x", "y", "z"}} and ``"face"``: {key: [v
 layout of ``compas.datastructures.Mesh``) is one block.
 
 Every problem is one line naming the file, the block and the problem (:class:`BlastscaleInputError`).
+
+Size: a file of more than :func:`max_blocks` blocks (:data:`MAX_BLOCKS`, ``BLASTSCALE_MAX_BLOCKS`` to change it)
+is refused as soon as its blocks are counted, before any geometry: reading a block model costs about
+:data:`READ_SECONDS_PER_BLOCK` per block (hulls, faces, interfaces; docs/performance.md), so the limit keeps
+``blastscale show`` of any file within about a minute.
 """
 
 from __future__ import annotations
 
 import json
+import math
+import os
 import warnings
 from pathlib import Path
 
@@ -40,16 +47,49 @@ from .base import MonitoringPoint
 from .compas_files import is_compas_model, mesh_arrays, read_compas_model
 from .polyhedron import hull_of
 
-__all__ = ["read_block_model", "NONCONVEX_TOLERANCE", "MESH_SUFFIXES"]
+__all__ = [
+    "read_block_model",
+    "NONCONVEX_TOLERANCE",
+    "MESH_SUFFIXES",
+    "MAX_BLOCKS",
+    "READ_SECONDS_PER_BLOCK",
+    "max_blocks",
+]
 
 #: A block whose own volume is below its hull's by more than this fraction is refused as non-convex [-].
 NONCONVEX_TOLERANCE = 0.05
+#: The most blocks of a block-model file (``BLASTSCALE_MAX_BLOCKS`` changes it) [-].
+MAX_BLOCKS = 10_000
+#: Time to read one block of a file: hull, faces, mass properties, interfaces, checks [s] (measured: 3000 blocks
+#: in 6.7 s, 20,000 in 42 s of CPU; docs/performance.md).
+READ_SECONDS_PER_BLOCK = 2.2e-3
 #: File suffixes read as meshes.
 MESH_SUFFIXES = (".obj", ".stl", ".ply", ".off", ".glb", ".gltf")
 
 
 #: The farthest a block's vertex may lie from the origin [m] (a scenario's structures are at most 1000 m).
 MAX_COORDINATE_M = 1.0e4
+
+
+def max_blocks() -> int:
+    """The most blocks a block-model file may hold: ``BLASTSCALE_MAX_BLOCKS`` (a whole number >= 1), else
+    :data:`MAX_BLOCKS`."""
+    try:
+        n = float(os.environ.get("BLASTSCALE_MAX_BLOCKS", ""))
+    except ValueError:
+        return MAX_BLOCKS
+    return int(n) if math.isfinite(n) and n >= 1 else MAX_BLOCKS
+
+
+def _check_count(source: str, n: int) -> None:
+    """Refuse a file of more than :func:`max_blocks` blocks (one line: the count, the limit, the time)."""
+    limit = max_blocks()
+    if n > limit:
+        raise BlastscaleInputError(
+            f"{source}: {n} blocks is out of range: reading them would take about "
+            f"{n * READ_SECONDS_PER_BLOCK / 60:.2g} min before any simulation; valid range is <= {limit} blocks "
+            "(BLASTSCALE_MAX_BLOCKS raises the limit)"
+        )
 
 
 def _mesh_volume(vertices: np.ndarray, faces) -> float:
@@ -101,6 +141,7 @@ def _from_ours(data: dict, source: str, density: float) -> tuple:
     blocks_in = data.get("blocks")
     if not isinstance(blocks_in, list) or not blocks_in:
         raise BlastscaleInputError(f'{source}: no blocks: give "blocks": [{{"vertices": [[x, y, z], ...]}}, ...]')
+    _check_count(source, len(blocks_in))
     blocks = []
     for k, b in enumerate(blocks_in):
         name = str(b.get("name", f"B{k + 1}")) if isinstance(b, dict) else f"B{k + 1}"
@@ -161,6 +202,7 @@ def _from_compas(data, source: str, density: float) -> tuple:
         raise BlastscaleInputError(
             f'{source}: no blocks: neither "blocks" (blastscale JSON) nor COMPAS meshes ("vertex"/"face" data) found'
         )
+    _check_count(source, len(meshes))
     blocks = []
     for k, m in enumerate(meshes):
         name = (
@@ -179,7 +221,9 @@ def _from_compas(data, source: str, density: float) -> tuple:
 def _from_compas_model(path, data: dict, source: str, density: float, use_compas) -> tuple:
     """(blocks, supports) of a compas_dem block model (:mod:`.compas_files`)."""
     blocks, supports = [], []
-    for name, v, faces, support, own in read_compas_model(path, data, source, use_compas):
+    items = read_compas_model(path, data, source, use_compas)
+    _check_count(source, len(items))
+    for name, v, faces, support, own in items:
         if len(v) < 4:
             raise BlastscaleInputError(f"{source}: block {name!r} is empty ({len(v)} vertices)")
         v = _convex_or_hull(source, name, v, _mesh_volume(v, faces))
@@ -221,6 +265,7 @@ def _from_mesh(path: Path, source: str, density: float) -> tuple:
             meshes.append((name if n == 1 else f"{name}-{k + 1}", v[used], remap[fk]))
     if not meshes:
         raise BlastscaleInputError(f"{source}: the mesh has no faces")
+    _check_count(source, len(meshes))
     blocks = []
     for k, (name, v, f) in enumerate(meshes):
         if name == "B" or name.startswith("B-"):

@@ -34,6 +34,7 @@ __all__ = [
     "find_interfaces",
     "clip_convex",
     "check_assembly",
+    "near_pairs",
     "CONTACT_TOLERANCE",
     "OVERLAP_TOLERANCE",
     "MAX_BLOCK_SIZE_M",
@@ -104,6 +105,35 @@ def clip_convex(subject: np.ndarray, clip: np.ndarray) -> np.ndarray:
     return out
 
 
+def near_pairs(lo: np.ndarray, hi: np.ndarray, strict: bool = False) -> list:
+    """Pairs (i, j), i < j, of boxes [lo, hi] (n, 3) [m] that overlap (``strict``) or touch, in (i, j) order.
+
+    Sort and sweep along the axis where the boxes' centres spread most: O(n log n + candidates) instead of
+    all n^2 pairs (a wall's or a file's blocks: a few neighbours each). The same pairs as the test of every
+    pair (it is applied to each candidate)."""
+    lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    n = len(lo)
+    if n < 2:
+        return []
+    ax = int(np.argmax(np.ptp(lo + hi, axis=0)))
+    order = np.argsort(lo[:, ax], kind="stable")
+    lo_s = lo[order, ax]
+    ends = np.searchsorted(lo_s, hi[order, ax], side="right")  # candidates: sorted after i, starting before i ends
+    out = []
+    for p in range(n):
+        if ends[p] <= p + 1:
+            continue
+        i, cand = order[p], order[p + 1 : ends[p]]
+        if strict:
+            ok = np.all(lo[cand] < hi[i], axis=1) & np.all(hi[cand] > lo[i], axis=1)
+        else:
+            ok = np.all(lo[cand] <= hi[i], axis=1) & np.all(hi[cand] >= lo[i], axis=1)
+        for j in cand[ok]:
+            out.append((int(i), int(j)) if i < j else (int(j), int(i)))
+    out.sort()
+    return out
+
+
 def _overlap(face_a, face_b) -> tuple:
     """Overlap polygon (k, 3) and area of two coplanar opposed faces (PolygonFace), in a's plane."""
     n = face_a.normal
@@ -148,34 +178,25 @@ def find_interfaces(faces: list, size: float) -> list:
                 )
     lo = np.array([np.min([f.vertices.min(axis=0) for f in fs], axis=0) for fs in faces]) - tol
     hi = np.array([np.max([f.vertices.max(axis=0) for f in fs], axis=0) for fs in faces]) + tol
-    nb = len(faces)
-    for i in range(nb):
-        near = np.flatnonzero(np.all(lo[i + 1 :] <= hi[i], axis=1) & np.all(hi[i + 1 :] >= lo[i], axis=1)) + i + 1
-        for j in near:
-            best = None
-            for ka, fa in enumerate(faces[i]):
-                for kb, fb in enumerate(faces[j]):
-                    if fa.normal @ fb.normal > -1.0 + 1e-9:
-                        continue
-                    if abs(fa.normal @ (fb.centroid - fa.centroid)) > tol:
-                        continue
-                    poly, area = _overlap(fa, fb)
-                    if poly is not None and area > amin and (best is None or area > best[1]):
-                        best = (poly, area, ka, kb, fa.normal)
-            if best is not None:
-                poly, area, ka, kb, n = best
-                cent = polygon_area_centroid(poly)[1]
-                out.append(
-                    Interface(
-                        i,
-                        int(j),
-                        tuple(float(x) for x in n),
-                        tuple(map(tuple, poly)),
-                        float(area),
-                        tuple(cent),
-                        (ka, kb),
-                    )
+    for i, j in near_pairs(lo, hi):
+        best = None
+        for ka, fa in enumerate(faces[i]):
+            for kb, fb in enumerate(faces[j]):
+                if fa.normal @ fb.normal > -1.0 + 1e-9:
+                    continue
+                if abs(fa.normal @ (fb.centroid - fa.centroid)) > tol:
+                    continue
+                poly, area = _overlap(fa, fb)
+                if poly is not None and area > amin and (best is None or area > best[1]):
+                    best = (poly, area, ka, kb, fa.normal)
+        if best is not None:
+            poly, area, ka, kb, n = best
+            cent = polygon_area_centroid(poly)[1]
+            out.append(
+                Interface(
+                    i, int(j), tuple(float(x) for x in n), tuple(map(tuple, poly)), float(area), tuple(cent), (ka, kb)
                 )
+            )
     return out
 
 
@@ -227,15 +248,13 @@ def check_assembly(names, vertices, faces, interfaces, size: float, fixed: int =
             )
     lo = np.array([v.min(axis=0) for v in vertices])
     hi = np.array([v.max(axis=0) for v in vertices])
-    for i in range(len(vertices)):
-        near = np.flatnonzero(np.all(lo[i + 1 :] < hi[i], axis=1) & np.all(hi[i + 1 :] > lo[i], axis=1)) + i + 1
-        for j in near:
-            d = penetration(vertices[i], faces[i], vertices[j], faces[j])
-            small = min(np.ptp(vertices[i], axis=0).min(), np.ptp(vertices[j], axis=0).min())
-            if d > OVERLAP_TOLERANCE * small:
-                raise BlastscaleInputError(
-                    f"blocks {names[i]!r} and {names[j]!r} overlap by {d:.4g} m: blocks may touch, not interpenetrate"
-                )
+    for i, j in near_pairs(lo, hi, strict=True):
+        d = penetration(vertices[i], faces[i], vertices[j], faces[j])
+        small = min(np.ptp(vertices[i], axis=0).min(), np.ptp(vertices[j], axis=0).min())
+        if d > OVERLAP_TOLERANCE * small:
+            raise BlastscaleInputError(
+                f"blocks {names[i]!r} and {names[j]!r} overlap by {d:.4g} m: blocks may touch, not interpenetrate"
+            )
     linked = {-1, *range(nfree, len(names))}
     adj: dict = {}
     for itf in interfaces:

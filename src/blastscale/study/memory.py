@@ -6,17 +6,26 @@ Rule (:func:`check_budget`): a job may plan at most :data:`MEMORY_FRACTION` of t
 and at most :func:`max_seconds` of computing (24 h by default, ``BLASTSCALE_MAX_HOURS`` to change it).
 The estimates are deliberately rough (within a factor of about 2 on the 2-core development machine):
 their purpose is to refuse a run that would exhaust the memory or never end, not to predict its time.
+
+Every run says its size before it starts (:func:`estimate_run`, :class:`RunSize`: one line, "about 40 s and
+12 MB: 210 bodies, 1719 contacts, ..."), from the cost model of docs/performance.md ("The size of a run, said
+first"), checked against measured runs by ``benchmarks/bench_estimate.py``.
 """
 
 from __future__ import annotations
 
 import math
 import os
+from dataclasses import dataclass
 
 from .._validate import BlastscaleInputError
+from ..units import format_size
 from ..scenario import Scenario
 from ..sim3d.contact import default_contact
 from .engines import contact_settings
+from ..sim3d.integrate import SETTLE_TIME_CONSTANTS
+from ..structures import as_assembly
+from .engines import record_every
 
 __all__ = [
     "MEMORY_FRACTION",
@@ -28,15 +37,51 @@ __all__ = [
     "max_seconds",
     "format_duration",
     "STEP_SECONDS",
+    "RunSize",
+    "estimate_run",
+    "contacts_of",
+    "STEP_BASE_SECONDS",
+    "CONTACT_STEP_SECONDS",
+    "STATE_BYTES_PER_BODY",
+    "STATE_BYTES_PER_POINT",
+    "REPORT_BYTES",
+    "REPORT_BYTES_PER_BODY",
+    "WRITE_SECONDS",
+    "WRITE_SECONDS_PER_BYTE",
+    "BODY_SECONDS",
+    "BODY_EXPONENT",
+    "STARTUP_SECONDS",
 ]
 
 #: Fraction of the available memory a job may plan to use.
 MEMORY_FRACTION = 0.5
 
-#: Wall time of one MuJoCo step of a one-body structure [s] (README "Speed": ~40 simulated s per wall s
-#: at dt = 0.2 ms for the 10 m block, i.e. ~5 us per step); a stack of n bodies costs ~n^1.5 times more
-#: (the paper's 10-drum square column: ~130-160 us per step, docs/sim3d.md).
+#: The old per-step constant (a one-body step [s]; a stack of n bodies was taken as n^1.5 times more): kept for
+#: callers; the estimate now uses the cost model below.
 STEP_SECONDS = 5e-6
+
+#: Cost model of a 3D run on one core (docs/performance.md, "The size of a run, said first"; fitted to
+#: ``benchmarks/bench_estimate.py``, 1-3000 bodies): a fixed part per step and run [s] ...
+STEP_BASE_SECONDS = 4e-6
+#: ... plus this per step, run and body or contact (an interface between bodies or with the ground) [s]: MuJoCo's
+#: constraint solve and collision grow with the contacts (3-8 contact points per interface), the recording and
+#: the loads with the bodies; measured 2.5-3.5 us under a blast ...
+CONTACT_STEP_SECONDS = 3e-6
+#: ... plus, once per run of a structure of n bodies, BODY_SECONDS n^BODY_EXPONENT [s]: the engine's model
+#: built, the histories compared and drawn per body (measured: 13 s for 210 bodies, 290 s for 3000).
+BODY_SECONDS, BODY_EXPONENT = 0.025, 1.17
+#: Start-up of a command that simulates (Python, MuJoCo, xarray, the design) [s].
+STARTUP_SECONDS = 2.0
+#: Bytes of histories per recorded state, run and body (19 doubles: displacement, velocity, angular velocity,
+#: tilt, rotation, uplift, position, quaternion) and per monitoring point (6 doubles).
+STATE_BYTES_PER_BODY, STATE_BYTES_PER_POINT = 19 * 8, 6 * 8
+#: The report, figures and summary of a result folder [bytes]: plotly's JavaScript (~4.7 MB) and the 3D view's
+#: frames (at most 3 MB, :data:`blastscale.report.motion.FRAME_BYTES`) besides the figures ...
+REPORT_BYTES = 6.5e6
+#: ... plus this per body (the summary's and the report's rows of each body) [bytes].
+REPORT_BYTES_PER_BODY = 7e3
+#: Writing a result folder: a fixed time (figures, report) [s] and a rate [s per byte of histories].
+WRITE_SECONDS, WRITE_SECONDS_PER_BYTE = 1.3, 2e-8
 
 
 def max_seconds() -> float:
@@ -114,10 +159,11 @@ def estimate_memory(scenario: Scenario, structure=None, contact=None) -> int:
 
 
 def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
-    """A rough estimate of a study's computing time on one core [s] (module docstring): 3D, the steps of
-    every run (prototype and model, ensemble members) times :data:`STEP_SECONDS` x bodies^1.5; planar,
-    ~2 us per sample and system plus the critical-charge search (~0.1 s); ``contact`` as in
-    :func:`estimate_memory`."""
+    """A rough estimate of a study's computing time on one core [s] (module docstring; docs/performance.md): 3D,
+    the steps of every run (prototype and model, ensemble members; the settling before the load included) times
+    :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x (bodies + contacts), plus :data:`BODY_SECONDS` x
+    bodies^:data:`BODY_EXPONENT`; planar, ~2 us per sample and system plus the critical-charge search (~0.1 s);
+    ``contact`` as in :func:`estimate_memory`."""
     sim = scenario.simulation
     systems = 1 if scenario.scale is None else 2
     total = 0.0
@@ -126,10 +172,115 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
     if sim.engine in ("3d", "both"):
         nb = _bodies(structure)
         sides = getattr(structure, "sides", 4) if getattr(structure, "section", "") == "circular" else 4
-        steps = sim.duration_s / _timestep(scenario, structure, contact)
+        dt = _timestep(scenario, structure, contact)
+        steps = sim.duration_s / dt + _settle_steps(scenario, structure, contact, dt)
         runs = systems * (1 + sim.ensemble_members)
-        total += runs * steps * STEP_SECONDS * nb**1.5 * max(1.0, sides / 4) ** (1 / 3)
+        per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * (nb + contacts_of(structure))
+        total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3) + BODY_SECONDS * nb**BODY_EXPONENT
     return total
+
+
+def _settle_steps(scenario: Scenario, structure, contact, dt: float) -> float:
+    """Steps of the settling before the load (:data:`blastscale.sim3d.integrate.SETTLE_TIME_CONSTANTS` contact
+    time constants)."""
+
+    if contact is None:
+        try:
+            contact = contact_settings(scenario, structure)
+        except BlastscaleInputError:
+            return 0.0
+    return SETTLE_TIME_CONSTANTS * contact.time_constant / dt
+
+
+def contacts_of(structure) -> int:
+    """The contacts of a structure at rest: its interfaces between bodies and with the ground, found by
+    geometry (:func:`~blastscale.structures.as_assembly`); 1 without a structure."""
+    if structure is None:
+        return 1
+
+    try:
+        return max(1, len(as_assembly(structure).interface_details))
+    except (BlastscaleInputError, AttributeError, ValueError):
+        return _bodies(structure)
+
+
+@dataclass(frozen=True)
+class RunSize:
+    """What a run will cost, said before it starts (:func:`estimate_run`).
+
+    Attributes
+    ----------
+    seconds : float
+        Computing and writing time on one core [s].
+    result_bytes : float
+        Size of the result folder [bytes] (0 when nothing is written).
+    memory_bytes : float
+        Memory of the histories [bytes] (:func:`estimate_memory`).
+    bodies, contacts : int
+        Bodies simulated and contacts at rest (:func:`contacts_of`; 0 for a planar run).
+    duration_s : float
+        Simulated time of the prototype [s].
+    samples : int
+        Recorded states (3D) or samples (planar) per run.
+    runs : int
+        Simulations (prototype and specimen, ensemble members).
+    """
+
+    seconds: float
+    result_bytes: float
+    memory_bytes: float
+    bodies: int
+    contacts: int
+    duration_s: float
+    samples: int
+    runs: int
+
+    def line(self) -> str:
+        """One line: ``about 40 s and 12 MB: 210 bodies, 1719 contacts, 0.5 s simulated, ...``."""
+        size = f" and {format_size(self.result_bytes)}" if self.result_bytes else ""
+        what = f"{self.bodies} bod{'y' if self.bodies == 1 else 'ies'}"
+        if self.contacts:
+            what += f", {self.contacts} contact{'' if self.contacts == 1 else 's'}"
+        return (
+            f"about {format_duration(self.seconds)}{size}: {what}, {self.duration_s:g} s simulated, "
+            f"{self.samples} samples x {self.runs} run{'' if self.runs == 1 else 's'}"
+        )
+
+
+def estimate_run(scenario: Scenario, structure=None, contact=None, writes: bool = True) -> RunSize:
+    """The size of a study's run, before it starts: the start-up and the computing time (:func:`estimate_seconds`)
+    plus, when
+    ``writes``, the time to write its result folder and that folder's size (histories: per recorded state, run
+    and body :data:`STATE_BYTES_PER_BODY`, per monitoring point :data:`STATE_BYTES_PER_POINT`; the report
+    :data:`REPORT_BYTES` plus :data:`REPORT_BYTES_PER_BODY` per body). Cost model and its check against
+    measured runs: docs/performance.md."""
+    sim = scenario.simulation
+    systems = 1 if scenario.scale is None else 2
+    seconds = STARTUP_SECONDS + estimate_seconds(scenario, structure, contact)
+    nb, nc, samples, runs, hist = _bodies(structure), 0, int(sim.samples), systems, 0.0
+    if sim.engine in ("planar", "both"):
+        hist += systems * sim.samples * 8 * 12
+    if sim.engine in ("3d", "both"):
+        nc = contacts_of(structure)
+        every = record_every(scenario, structure) if structure is not None else (sim.record_every or 4)
+        samples = int(sim.duration_s / _timestep(scenario, structure, contact) / every) + 1
+        runs = systems * (1 + sim.ensemble_members)
+        points = len(getattr(structure, "monitoring_points", ())) or nb
+        hist += runs * samples * (STATE_BYTES_PER_BODY * nb + STATE_BYTES_PER_POINT * points)
+    size = 0.0
+    if writes:
+        size = hist + REPORT_BYTES + REPORT_BYTES_PER_BODY * nb
+        seconds += WRITE_SECONDS + WRITE_SECONDS_PER_BYTE * hist
+    return RunSize(
+        seconds=seconds,
+        result_bytes=size,
+        memory_bytes=estimate_memory(scenario, structure, contact),
+        bodies=nb,
+        contacts=nc,
+        duration_s=float(sim.duration_s),
+        samples=samples,
+        runs=runs,
+    )
 
 
 def _available_memory() -> int:
@@ -205,14 +356,13 @@ def check_study_budget(scenario: Scenario, structure=None, contact=None) -> None
         given_step = structure is None or sim.timestep_s < _derived_timestep(scenario, structure)
     if given_step:
         check_budget("simulation.timestep_s", sim.timestep_s, "s", need, secs, grows=-1)
-    check_budget(
-        "simulation.duration_s",
-        sim.duration_s,
-        "s",
-        need,
-        secs,
-        hint="or raise simulation.record_every" if sim.engine in ("3d", "both") else "",
-    )
+    hint = "or raise simulation.record_every" if sim.engine in ("3d", "both") else ""
+    nb = _bodies(structure)
+    if hint and nb > 1:  # the cost grows about linearly with the bodies (and their contacts): the largest that fits
+        room = min(MEMORY_FRACTION * _available_memory() / max(need, 1.0), max_seconds() / max(secs, 1e-12))
+        if room < 1.0 and math.floor(nb * room) >= 2:
+            hint += f"; or a structure of <= {math.floor(nb * room)} bodies at this duration"
+    check_budget("simulation.duration_s", sim.duration_s, "s", need, secs, hint=hint)
 
 
 def check_memory(scenario: Scenario, structure=None) -> None:
