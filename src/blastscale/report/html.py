@@ -6,17 +6,17 @@ One file, no external resources: the figures are embedded as base64 PNG, the int
 card of a scenario with a ``[lab]`` table: :mod:`.card`), ``loads`` (blast loads of
 both systems, delivered vs required ratios), ``impulsive`` (the a-posteriori check),
 ``similarity`` (figures and numbers per engine, the critical charge), ``warnings``, ``slips``
-(the paper's slips that apply), ``scenario`` (the inputs, as TOML) and ``provenance``.
+(the paper's slips that apply), ``scenario`` (the inputs, as TOML) and ``provenance``. Cells, tables, embedded
+figures and the page style come from :mod:`.markup`.
 """
 
 from __future__ import annotations
 
-import base64
-import html
 import math
-from typing import Any, Iterable
+from typing import Iterable
 
-from ..units import split_unit as _split_unit
+from .markup import _CSS, _compare_table, _e, _flat, _img, _table, format_charge, format_value, split_unit
+from .markup import ROUND_OFF as ROUND_OFF  # re-exported: report.html.ROUND_OFF
 from .slips import applicable_slips
 from .card import CSS as _CARD_CSS
 from .card import card_section
@@ -38,100 +38,6 @@ SECTIONS = (
     "scenario",
     "provenance",
 )
-
-_CSS = """
-body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:1100px;margin:2em auto;
-padding:0 1em;color:#1d2329;line-height:1.45}
-h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #d0d7de;padding-bottom:.2em;margin-top:1.8em}
-table{border-collapse:collapse;margin:.6em 0 1em}th,td{border:1px solid #d0d7de;padding:.25em .6em}
-th{background:#f3f5f7;text-align:left}td.n{text-align:right;font-variant-numeric:tabular-nums}
-.lead{font-size:1.1em;background:#eef6ee;border-left:4px solid #3a8f3a;padding:.6em 1em}
-.warn{background:#fff5e0;border-left:4px solid #d08a00;padding:.4em 1em}
-.ok{color:#2b7a2b;font-weight:600}.bad{color:#b02a2a;font-weight:600}
-figure{margin:1em 0}figure img{max-width:100%;border:1px solid #d0d7de}figcaption{font-size:.9em;color:#57606a}
-pre{background:#f6f8fa;padding:.8em;overflow-x:auto;font-size:.85em}.muted{color:#57606a;font-size:.9em}
-"""
-
-
-def split_unit(key: str) -> tuple[str, str]:
-    """``"max_rotation_rad"`` -> (``"max rotation"``, ``"rad"``): label and unit from a key's suffix
-    (:func:`blastscale.units.split_unit`; a difference relative to the peak reads "of the peak")."""
-    label, unit = _split_unit(key)
-    return label, ("of the peak" if key.endswith("_rel_peak") else unit)
-
-
-#: A float below this (SI units) is round-off (a 3D difference of 3.3e-18 m): shown as 0.
-ROUND_OFF = 1e-12
-
-
-def format_value(x: Any, spec: str = ".4g") -> str:
-    """A table cell: '-' for None/NaN, yes/no for booleans, numbers with ``spec``."""
-    if x is None:
-        return "-"
-    if isinstance(x, bool):
-        return "yes" if x else "no"
-    if isinstance(x, (int, float)):
-        if isinstance(x, float) and math.isnan(x):
-            return "-"
-        return format(0.0 if isinstance(x, float) and abs(x) < ROUND_OFF else x, spec)
-    if isinstance(x, (list, tuple)):
-        return "[" + ", ".join(format_value(v, spec) for v in x) + "]"
-    return str(x)
-
-
-def format_charge(kg: float) -> str:
-    """A TNT mass in the unit a test designer weighs it in: kg, g, mg or ug (4 significant digits).
-
-    The largest unit in which the value is at least 0.1 (the paper's 0.233 mg, 14.27 mg, 1.004 g).
-
-    >>> format_charge(2.3318e-07), format_charge(1.0044e-3), format_charge(50.0)
-    ('0.2332 mg', '1.004 g', '50 kg')
-    """
-    for unit, f in (("kg", 1.0), ("g", 1e-3), ("mg", 1e-6)):
-        if kg >= 0.1 * f:
-            return f"{kg / f:.4g} {unit}"
-    return f"{kg / 1e-9:.4g} µg"
-
-
-def _e(x: Any) -> str:
-    return html.escape(str(x), quote=True)
-
-
-def _table(header: Iterable[str], rows: Iterable[Iterable[Any]], numeric_from: int = 1) -> str:
-    h = "".join(f"<th>{_e(c)}</th>" for c in header)
-    body = []
-    for r in rows:
-        cells = []
-        for i, c in enumerate(r):
-            cls = ' class="n"' if i >= numeric_from and not isinstance(c, str) else ""
-            cells.append(f"<td{cls}>{_e(format_value(c) if not isinstance(c, str) else c)}</td>")
-        body.append("<tr>" + "".join(cells) + "</tr>")
-    return f"<table><thead><tr>{h}</tr></thead><tbody>{''.join(body)}</tbody></table>"
-
-
-def _flat(d: dict, prefix: str = "") -> list[tuple[str, Any]]:
-    out = []
-    for k, v in d.items():
-        if isinstance(v, dict):
-            out.extend(_flat(v, f"{prefix}{k}."))
-        else:
-            out.append((f"{prefix}{k}", v))
-    return out
-
-
-def _compare_table(prototype: dict, model: dict | None) -> str:
-    """Prototype and up-scaled model side by side (the prototype alone when there is no model)."""
-    mflat = dict(_flat(model or {}))
-    rows = []
-    for k, v in _flat(prototype):
-        if isinstance(v, str):
-            continue
-        words, unit = label(k), split_unit(k.split(".")[-1])[1]
-        rows.append((words, v, unit) if model is None else (words, v, mflat.get(k), unit))
-    head = (
-        ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)", "unit")
-    )
-    return _table(head, rows)
 
 
 def _experiment(result) -> str:
@@ -284,14 +190,6 @@ def _impulsive(result) -> str:
         f"structure's own time: t<sub>o</sub> p &lt; {imp.threshold:g} with p = sqrt(3 g / 4 r) "
         f"(Housner). Prototype: t<sub>o</sub> p = {imp.prototype_ratio:.3g}; model: {imp.model_ratio:.3g} "
         f"&rarr; {verdict}.</p>"
-    )
-
-
-def _img(png: bytes, title: str, caption: str, name: str) -> str:
-    data = base64.b64encode(png).decode("ascii")
-    return (
-        f'<figure id="fig-{_e(name)}"><img alt="{_e(title)}" src="data:image/png;base64,{data}">'
-        f"<figcaption><b>{_e(title)}.</b> {_e(caption)}</figcaption></figure>"
     )
 
 
