@@ -12,7 +12,7 @@ from typing import Annotated, Literal
 
 from pydantic import AfterValidator, BaseModel, Field
 
-from .specs import _CONFIG
+from .fields import _CONFIG
 
 __all__ = ["FiredSpec", "GaugeSpec", "MarkerSpec"]
 

@@ -14,7 +14,7 @@ from ..blast.initiation import DEFAULT_INITIATOR, INITIATORS
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS
 from ..structures.materials import MATERIALS
 from .messages import show
-from .specs import _CONFIG, _check_name
+from .fields import _CONFIG, _check_name
 
 __all__ = ["ExplosiveSpec", "LabSpec", "SAME_MATERIAL"]
 

@@ -2,6 +2,7 @@
 
 Names of blast models, load methods and incidence models are checked against the library's own
 registries (imported directly: a model registered there is accepted here with no change). The
+structure table: :mod:`.structure_specs`; the conventions every table shares: :mod:`.fields`; the
 whole scenario, its variants and its defaults: :mod:`.scenario`; reading a file: :mod:`.files`;
 the one-line error messages: :mod:`.messages`.
 """
@@ -10,22 +11,23 @@ from __future__ import annotations
 
 import re
 from fractions import Fraction
-from typing import Annotated, Any, Literal, Optional, Union
+from typing import Annotated, Any, Literal, Optional
 
 import annotated_types as at
-from pydantic import AliasChoices, BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import AliasChoices, BaseModel, Field, field_validator, model_validator
 
 from .._validate import BlastscaleInputError
-from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
+from ..constants import STANDARD_GRAVITY
 from ..blast.incidence import INCIDENCE_MODELS
 from ..blast.negative_phase import NEGATIVE_PHASE_MODEL, NEGATIVE_PHASE_MODELS
 from ..blast.parameters import BLAST_MODELS, BURSTS, DEFAULT_BLAST_MODEL, DEFAULT_BURST
 from ..blast.pulses import PULSE_SHAPES
-from ..sim3d.contact import CONES, JACOBIANS, SETTING_RANGES, SOLVERS, STEPS_AFTER_LOAD
+from ..sim3d.contact import CONES, JACOBIANS, SOLVERS, STEPS_AFTER_LOAD
 from ..sim3d.load_methods import LOAD_METHODS
-from ..structures.column import MAX_DRUMS, MAX_SIDES, MIN_SIDES
 from ..structures.materials import MATERIALS
+from .fields import _CONFIG, _at_most_one, _check_name, _limits
 from .messages import show
+from .structure_specs import KINDS, ArchSpec, AssemblySpec, BlockSpec, ColumnSpec, PortalSpec, Structure, WallSpec
 
 __all__ = [
     "parse_ratio",
@@ -59,9 +61,6 @@ def _renamed(path: str) -> AliasChoices:
     return AliasChoices(path.split(".")[-1], old.split(".")[-1])
 
 
-_CONFIG = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True, frozen=True, validate_default=True)
-
-
 def parse_ratio(value: Any, name: str = "scale") -> float:
     """A dimensionless ratio from a number or a fraction string (``"1/200"``, ``"0.005"``) [-].
 
@@ -89,143 +88,7 @@ def parse_ratio(value: Any, name: str = "scale") -> float:
         ) from None
 
 
-def _check_name(value: str, names: tuple[str, ...]) -> str:
-    if value not in names:
-        raise ValueError(f"= {value!r} is not known: valid values are {', '.join(names)}")
-    return value
-
-
-def _at_most_one(model: BaseModel, a: str, b: str) -> BaseModel:
-    """Refuse two keys that say the same thing (width and slenderness; density ratio and material)."""
-    va, vb = getattr(model, a), getattr(model, b)
-    if va is not None and vb is not None:
-        raise ValueError(f"{a} = {show(va)} and {b} = {show(vb)}: give one of them, not both")
-    return model
-
-
 Pos = Annotated[float, at.Gt(0)]
-
-
-def _limits(setting: str) -> dict:
-    """pydantic bounds of a field that sets the 3D engine's ``setting``: the engine's own valid range
-    (:data:`blastscale.sim3d.contact.SETTING_RANGES`), one source for both."""
-    r = SETTING_RANGES[setting]
-    return {("gt" if r.lo_open else "ge"): r.lo, ("lt" if r.hi_open else "le"): r.hi}
-
-
-class BlockSpec(BaseModel):
-    """A monolithic rectangular block (paper Sec. "Equations of motion")."""
-
-    model_config = _CONFIG
-    kind: Literal["block"] = Field(description="Structure kind")
-    height_m: float = Field(10.0, gt=0, le=1000, description="Height 2h [m]")
-    alpha_deg: Optional[float] = Field(None, gt=0, lt=90, description="Slenderness angle atan(b/h) [deg]")
-    width_m: Optional[float] = Field(None, gt=0, le=1000, description="Width 2b along the blast [m]")
-    depth_m: float = Field(1.0, gt=0, le=1000, description="Depth 2w across the blast [m]")
-    density_kg_m3: float = Field(2000.0, gt=0, le=25000, description="Density [kg/m^3]")
-    friction: float = Field(
-        DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-] (3D)", **_limits("friction")
-    )
-
-    @model_validator(mode="before")
-    @classmethod
-    def _default_slenderness(cls, data: Any) -> Any:
-        if isinstance(data, dict) and data.get("alpha_deg") is None and data.get("width_m") is None:
-            data = {**data, "alpha_deg": 15.0}  # the paper's slender block
-        return data
-
-    @model_validator(mode="after")
-    def _one_width(self) -> "BlockSpec":
-        return _at_most_one(self, "alpha_deg", "width_m")
-
-
-class ColumnSpec(BaseModel):
-    """A multi-drum column (paper Sec. "Application to multi-drum masonry columns")."""
-
-    model_config = _CONFIG
-    kind: Literal["column"] = Field(description="Structure kind")
-    section: Literal["square", "circular"] = Field("square", description="Drum cross-section")
-    drums: int = Field(10, ge=1, le=MAX_DRUMS, description="Number of drums [-]")
-    height_m: float = Field(10.0, gt=0, le=1000, description="Total height [m]")
-    base_width_m: float = Field(1.65, gt=0, le=100, description="Side or diameter at the base [m]")
-    top_width_m: float = Field(1.28, gt=0, le=100, description="Side or diameter at the top [m]")
-    sides: int = Field(32, ge=MIN_SIDES, le=MAX_SIDES, description="Polygon sides of a circular drum [-]")
-    density_kg_m3: float = Field(2700.0, gt=0, le=25000, description="Density [kg/m^3] (marble)")
-    friction: float = Field(DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-]", **_limits("friction"))
-
-
-_DENSITY = dict(gt=0, le=25000, description="Density [kg/m^3]")
-_FRICTION = dict(description="Coulomb friction coefficient mu [-] at every joint", **_limits("friction"))
-
-
-class WallSpec(BaseModel):
-    """A dry-stone wall facing the blast (plane y-z): courses of equal units, running or stack bond
-    (docs/assemblies.md)."""
-
-    model_config = _CONFIG
-    kind: Literal["wall"] = Field(description="Structure kind")
-    length_m: float = Field(4.0, gt=0, le=1000, description="Wall length along y [m]")
-    height_m: float = Field(3.0, gt=0, le=1000, description="Wall height [m]")
-    thickness_m: float = Field(0.5, gt=0, le=1000, description="Wall thickness along x [m]")
-    courses: int = Field(10, ge=1, le=1000, description="Number of courses [-]")
-    units_per_course: int = Field(8, ge=1, le=1000, description="Full units per course [-]")
-    bond: Literal["running", "stack"] = Field(
-        "running", description="Bond: running (half units at the ends of every second course) or stack"
-    )
-    density_kg_m3: float = Field(2000.0, **_DENSITY)
-    friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
-
-
-class ArchSpec(BaseModel):
-    """A circular arch of voussoirs facing the blast (plane y-z), optionally on piers (docs/assemblies.md)."""
-
-    model_config = _CONFIG
-    kind: Literal["arch"] = Field(description="Structure kind")
-    radius_m: float = Field(2.5, gt=0, le=1000, description="Radius of the centreline [m]")
-    thickness_m: float = Field(0.5, gt=0, le=1000, description="Radial thickness [m] (< 2 x radius)")
-    depth_m: float = Field(1.0, gt=0, le=1000, description="Depth along x [m]")
-    voussoirs: int = Field(
-        15, ge=2, le=1000, description="Number of voussoirs [-] (one voussoir is a block: kind = 'block')"
-    )
-    embrace_deg: float = Field(180.0, gt=0, lt=360, description="Angle spanned, symmetric about the crown [deg]")
-    pier_height_m: float = Field(
-        0.0,
-        ge=0,
-        le=1000,
-        description="Height of the springing above the ground [m]; "
-        "> 0 puts a pier under each springer (needed unless embrace_deg = 180)",
-    )
-    density_kg_m3: float = Field(2000.0, **_DENSITY)
-    friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
-
-
-class PortalSpec(BaseModel):
-    """A trilithon facing the blast: two square columns (monolithic or of drums) and a free lintel."""
-
-    model_config = _CONFIG
-    kind: Literal["portal"] = Field(description="Structure kind")
-    column_height_m: float = Field(4.0, gt=0, le=1000, description="Column height [m]")
-    column_width_m: float = Field(0.8, gt=0, le=1000, description="Column side (square), also the depth [m]")
-    span_m: float = Field(3.0, gt=0, le=1000, description="Clear span between the columns [m]")
-    lintel_height_m: float = Field(1.0, gt=0, le=1000, description="Lintel height [m]")
-    lintel_overhang_m: float = Field(0.3, ge=0, le=1000, description="Lintel beyond each column [m]")
-    drums: int = Field(1, ge=1, le=MAX_DRUMS, description="Drums per column (1: monolithic) [-]")
-    density_kg_m3: float = Field(2000.0, **_DENSITY)
-    friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
-
-
-class AssemblySpec(BaseModel):
-    """Blocks from a block-model file: our JSON, a mesh (OBJ, STL, PLY) or COMPAS JSON (docs/assemblies.md)."""
-
-    model_config = _CONFIG
-    kind: Literal["assembly"] = Field(description="Structure kind")
-    file: str = Field(description="Block-model file, relative to the scenario file")
-    density_kg_m3: float = Field(
-        2000.0,
-        description="Density of blocks without their own [kg/m^3]",
-        **{k: v for k, v in _DENSITY.items() if k != "description"},
-    )
-    friction: float = Field(DEFAULT_FRICTION, **_FRICTION)
 
 
 class BlastSpec(BaseModel):
@@ -456,16 +319,3 @@ class SimulationSpec(BaseModel):
         if v == 1:
             raise ValueError("= 1 is out of range: valid values are 0 (no ensemble) or 2 to 64 members")
         return v
-
-
-Structure = Annotated[
-    Union[BlockSpec, ColumnSpec, WallSpec, ArchSpec, PortalSpec, AssemblySpec], Field(discriminator="kind")
-]
-KINDS = {
-    "block": BlockSpec,
-    "column": ColumnSpec,
-    "wall": WallSpec,
-    "arch": ArchSpec,
-    "portal": PortalSpec,
-    "assembly": AssemblySpec,
-}
