@@ -10,30 +10,20 @@
   :data:`PULSE_CODES`, the kernel form of a pulse (:mod:`.encoding`);
 * :func:`simulate_reference` — the slow scipy ``solve_ivp`` (DOP853) reference path;
 * capacity (first-swing energy criterion, docs/capacity.md): :func:`overturn_margin`,
-  :func:`first_swing`, :func:`overturns` (:mod:`.swing`); :func:`critical_charge`,
-  :func:`critical_standoff`, :func:`charge_for_impulse` (:mod:`.critical`);
+  :func:`first_swing`, :func:`overturns` (:mod:`.swing`); :func:`first_swing_margin`,
+  :func:`first_swing_peak` (the first free swing in closed form, :mod:`.free_swing`); :func:`critical_charge`,
+  :func:`critical_standoff` (:mod:`.critical`); :func:`charge_for_impulse` (:mod:`.blast_inverse`);
   :func:`capacity_curve`, :func:`model_capacity_curve` (:mod:`.capacity`);
   :func:`pi_diagram` (:mod:`.pressure_impulse`).
 """
 
 from .capacity import CapacityCurve, ModelCapacity, capacity_curve, model_capacity_curve
-from .critical import (
-    CriticalResult,
-    charge_for_impulse,
-    critical_charge,
-    critical_charge_by_bisection,
-    critical_standoff,
-)
+from .blast_inverse import charge_for_impulse
+from .critical import CriticalResult, critical_charge, critical_standoff
+from .critical_reference import critical_charge_by_bisection
 from .encoding import PULSE_CODES, encode_pulse
-from .swing import (
-    FirstSwing,
-    first_swing,
-    first_swing_blast,
-    first_swing_margin,
-    first_swing_peak,
-    overturn_margin,
-    overturns,
-)
+from .free_swing import first_swing_margin, first_swing_peak
+from .swing import FirstSwing, first_swing, first_swing_blast, overturn_margin, overturns
 from .frame import frame_frequency_parameter, free_rocking_peak, overturning_angular_velocity
 from .pressure_impulse import PIDiagram, pi_diagram
 from .reference import simulate_reference

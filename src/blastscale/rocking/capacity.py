@@ -20,7 +20,8 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters
-from .critical import _check_extrapolated, _critical_arrays, _model_name, charge_for_impulse
+from .blast_inverse import _check_extrapolated, _model_name, charge_for_impulse
+from .critical import _critical_arrays
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
 from ..similitude import scaling_factors

@@ -16,8 +16,10 @@ valid range of Z, then the Illinois variant of regula falsi with a bisection saf
 relative tolerance ``xtol_rel`` (default 1e-9). A case whose outcome does not change within the
 range gives NaN in the curves and a one-line error in the scalar functions.
 
-The root finder is :func:`blastscale.rocking._roots.vector_root`;
-:func:`critical_charge_by_bisection` is the slow independent reference (full simulations).
+The root finder is :func:`blastscale.rocking._roots.vector_root`, the blast model's inversion
+(starting point, range of Z, :func:`charge_for_impulse`) :mod:`blastscale.rocking.blast_inverse`;
+:func:`critical_charge_by_bisection` (:mod:`blastscale.rocking.critical_reference`) is the slow
+independent reference (full simulations).
 
 References: paper Sec. "Equations of motion" (W_pc = 79.8 kg for the 10 m block at 2 m);
 Masi et al. (2019), Int. J. Mech. Sci. 157 (critical impulse); Hopkinson-Cranz scaling (Baker
@@ -35,14 +37,15 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_positive, check_range
 from ..blast.base import ExtrapolationWarning
 from ..blast.pulses import check_pulse_shape
-from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters, get_blast_model, valid_scaled_distance_range
+from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ._roots import vector_root
+from .blast_inverse import _check_extrapolated, _invert_impulse, _model_name, _z_range, charge_for_impulse
+from .critical_reference import critical_charge_by_bisection
 from .swing import _first_swing
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
 from ..blast.bursts import burst_of
 from ..blast.load_model import load_model_record
-from ..blast.load_model import front_face_pulse
 from dataclasses import replace
 from ..blast.negative_phase import NEGATIVE_PHASE_MODELS
 
@@ -54,64 +57,6 @@ __all__ = [
     "CriticalResult",
     "charge_for_impulse",
 ]
-
-# widening of the blast model's valid Z range with extrapolate=True (factor each side)
-_EXTRAPOLATE_WIDENING = 5.0
-
-
-def _model_name(blast_model) -> str:
-    return blast_model if isinstance(blast_model, str) else getattr(blast_model, "name", str(blast_model))
-
-
-def _z_range(blast_model, extrapolate: bool) -> tuple[float, float]:
-    zlo, zhi = valid_scaled_distance_range(blast_model)
-    if extrapolate:
-        return zlo / _EXTRAPOLATE_WIDENING, zhi * _EXTRAPOLATE_WIDENING
-    return zlo * (1.0 + 1e-12), zhi * (1.0 - 1e-12)
-
-
-def _invert_impulse(target, blast_model, by_charge: bool, fixed, lo, hi, extrapolate: bool):
-    """ln of the charge [kg] (``by_charge``, ``fixed`` the stand-offs [m]) or of the stand-off [m]
-    (``fixed`` the charges [kg]) whose reflected impulse is ``target`` [Pa*s], by bisection on the
-    blast model alone between ``lo`` and ``hi`` (ln x; the result is clipped to them). The
-    reflected impulse grows with the charge and falls with the distance (Hopkinson-Cranz)."""
-    bm = get_blast_model(blast_model)
-    lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
-
-    def impulse(u):
-        W, R = (np.exp(u), fixed) if by_charge else (fixed, np.exp(u))
-        w13 = np.cbrt(W)
-        return bm.scaled_reflected_impulse(R / w13, extrapolate=extrapolate) * w13
-
-    for _ in range(45):  # the ln-range is < 40 wide: 45 halvings leave < 1e-12
-        mid = 0.5 * (lo + hi)
-        more = impulse(mid) > target  # too much impulse: less load
-        if by_charge:
-            hi, lo = np.where(more, mid, hi), np.where(more, lo, mid)
-        else:
-            lo, hi = np.where(more, mid, lo), np.where(more, hi, mid)
-    return 0.5 * (lo + hi)
-
-
-def charge_for_impulse(impulse, standoff, blast_model=DEFAULT_BLAST_MODEL, *, extrapolate: bool = False, z_range=None):
-    """TNT charge [kg] whose reflected impulse at ``standoff`` [m] is ``impulse`` [Pa*s] (arrays
-    broadcast), inverting the blast model over its valid range of Z (NaN where out of it), or over
-    ``z_range`` (Z_min, Z_max) [m/kg^(1/3)] when given.
-
-    Used to up-scale a model's critical charge to the prototype: under the paper's general law
-    only the impulse is matched (Eq. 8), so the prototype charge that corresponds to a model
-    charge is the one delivering the model's impulse divided by the impulse factor
-    ``gamma sqrt(varsigma lambda^3)``.
-    """
-    i, R = np.broadcast_arrays(check_positive("impulse", impulse, "Pa*s"), check_positive("standoff", standoff, "m"))
-    i, R = i.astype(float).ravel(), R.astype(float).ravel()
-    zlo, zhi = _z_range(blast_model, extrapolate) if z_range is None else (float(z_range[0]), float(z_range[1]))
-    ulo, uhi = 3.0 * np.log(R / zhi), 3.0 * np.log(R / zlo)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ExtrapolationWarning)
-        u = _invert_impulse(i, blast_model, True, R, ulo, uhi, extrapolate)
-    W = np.where((u - ulo > 1e-9) & (uhi - u > 1e-9), np.exp(u), np.nan)
-    return W.reshape(np.shape(np.broadcast_arrays(impulse, standoff)[0]))
 
 
 def _critical_arrays(
@@ -163,19 +108,6 @@ def _critical_arrays(
         lo, hi = -lo, -hi
     x = np.where(status == 0, np.exp(lo), np.nan)
     return x, np.exp(np.minimum(lo, hi)), np.exp(np.maximum(lo, hi)), nev, status
-
-
-def _check_extrapolated(blast_model, values_z, extrapolate):
-    if extrapolate:
-        zlo, zhi = valid_scaled_distance_range(blast_model)
-        z = np.asarray(values_z)[np.isfinite(values_z)]
-        if np.any((z < zlo) | (z > zhi)):
-            warnings.warn(
-                f"critical scenarios at Z outside the {_model_name(blast_model)} fits' range [{zlo:g}, {zhi:g}] m/kg^(1/3): "
-                "extrapolated",
-                ExtrapolationWarning,
-                stacklevel=3,
-            )
 
 
 @dataclass(frozen=True)
@@ -395,46 +327,6 @@ def _record(blast_model, load_model) -> dict:
     """The load-model record of a capacity result (:func:`blastscale.blast.load_model.load_model_record`)."""
 
     return load_model_record(_model_name(blast_model), burst_of(blast_model), load_model)
-
-
-def critical_charge_by_bisection(
-    body,
-    standoff: float,
-    guess: float,
-    *,
-    pulse_shape: str = "friedlander",
-    blast_model=DEFAULT_BLAST_MODEL,
-    rel: float = 1e-8,
-    solver: RockingSolver | None = None,
-    gravity: float | None = None,
-    restitution: float | None = None,
-    load_model=None,
-) -> float:
-    """The slow reference: critical charge [kg] by bisection in ln W on full simulations (to rest:
-    ``pulse + 200 / p`` of motion, every impact, no early stop), independent of the first-swing
-    criterion. The bracket ``[guess / 1.5, 1.5 guess]`` [kg], kept inside the blast model's valid
-    range of Z, must straddle the threshold (checked); ``rel`` is the relative width at which it
-    stops; ``load_model`` as :func:`critical_charge` (the pulse of
-    :func:`~blastscale.blast.load_model.front_face_pulse`). For tests and benchmarks."""
-
-    system = as_rocking_system(body, gravity, restitution)
-    solver = solver or DEFAULT_SOLVER
-
-    def over(W):
-        p = front_face_pulse(blast_parameters(W, standoff, blast_model), pulse_shape, load_model)
-        return solver.simulate(system, p, p.duration + 200.0 / system.frequency_parameter).collapsed
-
-    zlo, zhi = valid_scaled_distance_range(blast_model)
-    lo = max(guess / 1.5, (standoff / zhi) ** 3 * (1.0 + 1e-12))  # the charges whose Z lies in the fits
-    hi = min(guess * 1.5, (standoff / zlo) ** 3 * (1.0 - 1e-12))
-    if over(lo) or not over(hi):
-        raise BlastscaleInputError(
-            f"guess = {guess:.6g} kg: [guess/1.5, 1.5 guess] does not straddle the critical charge"
-        )
-    while math.log(hi / lo) > rel:
-        mid = math.sqrt(lo * hi)
-        lo, hi = (lo, mid) if over(mid) else (mid, hi)
-    return math.sqrt(lo * hi)
 
 
 def negative_phase_uncertainty(system, standoff: float, load_model, **kw) -> dict:
