@@ -1,7 +1,7 @@
 """Structure geometry behind one interface (:mod:`.base`): rigid bodies with exact mass properties,
 faces in the body frame, interfaces and monitoring points. Monolithic blocks and multi-drum columns
-(:mod:`.block`, :mod:`.column`), and assemblies of any convex blocks (:mod:`.assembly`, their
-interfaces found by geometry, :mod:`.interfaces`) generated as walls, arches and portals
+(:mod:`.block`, :mod:`.column`), and assemblies of any convex blocks (:mod:`.assembly`, the blocks
+:mod:`.convex_block`, their interfaces found by geometry, :mod:`.interfaces`) generated as walls, arches and portals
 (:mod:`.generators`) or read from block-model files (:mod:`.block_files`)."""
 
 from .base import (

@@ -1,7 +1,7 @@
 """Assemblies of general rigid blocks: any convex polyhedron, in any position at rest.
 
-A :class:`ConvexBlock` is the convex hull of its vertices (world frame at rest, metres, z up, the
-ground at z = 0) with its density; its mass properties are exact for the polyhedron
+A :class:`ConvexBlock` (:mod:`.convex_block`) is the convex hull of its vertices (world frame at rest,
+metres, z up, the ground at z = 0) with its density; its mass properties are exact for the polyhedron
 (:func:`~.polyhedron.polyhedron_mass_properties`). An :class:`Assembly` of N blocks exposes the
 structure interface of :mod:`.base` (``bodies``, ``interfaces``, ``monitoring_points``,
 ``front_x``, ``scaled``, ``describe``), with everything that depends on contact found by geometry
@@ -11,7 +11,7 @@ minus the interfaces on it: what Method C loads), and the checks of a block mode
 
 Engine geometry: a block that is an axis-aligned box becomes a box (its closed-form mass properties,
 equal to the polyhedron's to round-off), any other block a convex mesh of its vertices
-(:class:`ConvexGeometry`); a non-diagonal inertia tensor is passed whole (MuJoCo ``fullinertia``).
+(:class:`ConvexGeometry`, :mod:`.convex_block`); a non-diagonal inertia tensor is passed whole (MuJoCo ``fullinertia``).
 
 **Supports** (``Assembly(..., supports=...)``, COMPAS's ``is_support`` blocks): blocks fixed to the
 ground, not simulated. They take part in the checks (they may reach below the ground and carry the
@@ -34,9 +34,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive_scalar
-from .base import BoxGeometry, Face, MonitoringPoint, RigidBody, as_vertex_tuple
+from .base import Face, MonitoringPoint, RigidBody, as_vertex_tuple
+from .convex_block import ConvexBlock, ConvexGeometry, _geometry, _given_geometry
 from .interfaces import CONTACT_TOLERANCE, check_assembly, find_interfaces
-from .polyhedron import face_label, hull_of, polyhedron_faces, polyhedron_mass_properties
+from .polyhedron import face_label
 
 __all__ = ["ConvexBlock", "ConvexGeometry", "Assembly", "as_assembly", "FALL_DROP_FRACTION", "FALL_TILT_DEG"]
 
@@ -46,109 +47,6 @@ FALL_DROP_FRACTION = 0.5
 FALL_TILT_DEG = 45.0
 #: A face whose exposed area is below this fraction of its area is in contact [-].
 COVERED_FRACTION = 1e-6
-
-
-@dataclass(frozen=True)
-class ConvexBlock:
-    """A rigid block: the convex hull of ``vertices`` (world frame at rest [m]) of ``density`` [kg/m^3]."""
-
-    name: str
-    vertices: tuple
-    density: float
-
-    def __post_init__(self):
-        v = np.asarray(self.vertices, dtype=float)
-        object.__setattr__(self, "vertices", as_vertex_tuple(v))
-        check_positive_scalar(f"density of block {self.name!r}", self.density, "kg/m^3")
-        hull_of(v, self.name)
-
-    @property
-    def points(self) -> np.ndarray:
-        """The vertices (n, 3) [m]."""
-        return np.asarray(self.vertices, dtype=float)
-
-
-@dataclass(frozen=True)
-class ConvexGeometry:
-    """Contact geometry: the convex hull of ``vertices`` (body frame: relative to the centre of mass) [m]."""
-
-    vertices: tuple
-
-    def array(self) -> np.ndarray:
-        """The vertices (n, 3) [m]."""
-        return np.asarray(self.vertices, dtype=float)
-
-    def base_points(self) -> np.ndarray:
-        """The lowest vertices at rest (within 1e-9 of the block's size), body frame [m]."""
-        v = self.array()
-        z = v[:, 2]
-        return v[z <= z.min() + 1e-9 * float(np.ptp(v, axis=0).max())]
-
-    @property
-    def support_radius(self) -> tuple:
-        """Half-extent of the base along x and y [m] (the lowest vertices' extent)."""
-        b = self.base_points()
-        return (0.5 * float(np.ptp(b[:, 0])), 0.5 * float(np.ptp(b[:, 1])))
-
-
-def _is_box(faces) -> bool:
-    return len(faces) == 6 and all(np.sort(np.abs(f.normal))[-1] > 1.0 - 1e-12 for f in faces)
-
-
-@dataclass(frozen=True)
-class _BlockGeometry:
-    """Derived geometry of one block (internal)."""
-
-    mass: float
-    volume: float
-    com: np.ndarray
-    inertia: tuple
-    faces: list
-    shape: object
-    height: float
-
-
-def _geometry(block: ConvexBlock) -> _BlockGeometry:
-    v = block.points
-    faces = polyhedron_faces(v, block.name)
-    if _is_box(faces):
-        lo, hi = v.min(axis=0), v.max(axis=0)
-        a, d, c = hi - lo
-        vol = a * d * c
-        m = block.density * a * d * c  # in this order: the engine's masses of earlier releases, bitwise
-        com = 0.5 * (lo + hi)
-        inertia = tuple(
-            float(x) for x in (m * (d * d + c * c) / 12.0, m * (a * a + c * c) / 12.0, m * (a * a + d * d) / 12.0)
-        )
-        shape = BoxGeometry(0.5 * a, 0.5 * d, 0.5 * c)
-    else:
-        mp = polyhedron_mass_properties(v, block.density, block.name)
-        m, vol, com, I = mp.mass, mp.volume, mp.centroid, mp.inertia
-        off = np.abs(I - np.diag(np.diag(I))).max()
-        inertia = (
-            tuple(np.diag(I)) if off <= 1e-12 * np.trace(I) else (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2])
-        )
-        inertia = tuple(float(x) for x in inertia)
-        hull = hull_of(v, block.name)
-        shape = ConvexGeometry(as_vertex_tuple(v[hull.vertices] - com))
-    return _BlockGeometry(
-        float(m), float(vol), np.asarray(com, dtype=float), inertia, faces, shape, float(np.ptp(v[:, 2]))
-    )
-
-
-def _given_geometry(block: ConvexBlock, body: RigidBody) -> _BlockGeometry:
-    """The geometry of a block made from a structure's body (:func:`as_assembly`): the body's own mass,
-    volume, centre of mass, inertia and contact shape, the faces of its solid."""
-    v = block.points
-    return _BlockGeometry(
-        body.mass,
-        body.volume,
-        np.asarray(body.com, dtype=float),
-        tuple(body.inertia),
-        polyhedron_faces(v, block.name),
-        body.shape,
-        float(np.ptp(v[:, 2])),
-    )
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,156 @@
+"""The 3D run of a prototype alone (a study without ``[scale]``: no specimen, no comparison).
+
+:func:`prototype_structure3d` runs one structure under its own blast parameters through the same path
+as each side of :func:`~.structure3d.compare_structure3d` (:func:`~.systems.run_system`); under gravity
+alone it runs until the stability rule decides (:mod:`.gravity_alone`). :class:`Prototype3D` gives the
+same views as :class:`~.structure3d.Comparison3D` where they apply. The helpers below (a single block's
+planar keys, the outcome attribute, the load model's record) serve both results.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .._validate import check_positive
+from ..constants import STANDARD_GRAVITY
+from ..structures import is_block
+from .gravity_alone import extended_keys, until_decided
+from .systems import run_system
+from .block3d_similarity import block_view
+from ..sim3d.face_loads import arrival_spread
+
+__all__ = ["Prototype3D", "prototype_structure3d"]
+
+
+def _merged(base: dict, extra: dict) -> dict:
+    """``base`` with the keys of ``extra`` it does not have (added, never replacing one)."""
+    return {**base, **{k: v for k, v in extra.items() if k not in base}}
+
+
+def _block_keys(structure, prototype, model=None, specimen_structure=None, factors=None) -> dict:
+    """The block3d keys of a single block's runs (:func:`~.block3d_similarity.block_view`), or
+    empty dicts for any other structure."""
+    if not is_block(structure):
+        return {"prototype": {}, "model": {}, "similarity": {}}
+
+    v = block_view(prototype, structure, model, specimen_structure, factors)
+    return {k: v[k] or {} for k in ("prototype", "model", "similarity")}
+
+
+def _with_outcome(ds, summary: dict):
+    """The dataset with the run's outcome (``collapsed``) as an attribute, for the comparison."""
+    if "collapsed" in ds.attrs or "collapsed" not in summary:
+        return ds
+    out = ds.copy()
+    out.attrs["collapsed"] = int(bool(summary["collapsed"]))
+    return out
+
+
+def _load_model_setting(load_model) -> dict:
+    """The settings' record of a load model other than the paper's (clearing, negative phase)."""
+    if load_model is None or load_model.is_paper:
+        return {}
+    return {"clearing": bool(load_model.clearing), "negative_phase": bool(load_model.negative_phase)}
+
+
+@dataclass(frozen=True, eq=False)
+class Prototype3D:
+    """The 3D run of a prototype alone (a study without ``[scale]``: no specimen, no comparison).
+
+    The same views as :class:`~.structure3d.Comparison3D` where they apply: ``summary()`` gives the prototype's
+    outcome (with a single block's planar keys) and ``model`` / ``similarity`` None;
+    ``upscaled_dataset`` is None.
+
+    Attributes
+    ----------
+    structure : structure
+        The prototype.
+    prototype : Response3D
+        Its run [SI].
+    prototype_dataset : xarray.Dataset
+        Its response (with the outcome ``collapsed`` as an attribute).
+    settings : dict
+        Load method, pulse shape, incidence, duration [s], record interval, load end [s], arrival spread [s].
+    """
+
+    structure: object
+    prototype: object
+    prototype_dataset: object
+    settings: dict = field(default_factory=dict)
+    design: object = None
+    specimen_structure: object = None
+    model: object = None
+    upscaled_dataset: object = None
+
+    def summary(self) -> dict:
+        """``prototype`` (the structure's keys and, for a single block, its planar keys);
+        ``model`` and ``similarity`` None."""
+        blk = _block_keys(self.structure, self.prototype)
+        p = {**_merged(self.prototype.summary(), blk["prototype"]), **extended_keys(self.settings)}
+        return {"prototype": p, "model": None, "similarity": None}
+
+
+def prototype_structure3d(
+    structure,
+    blast,
+    *,
+    gravity: float = STANDARD_GRAVITY,
+    load: str = "A",
+    pulse_shape: str = "friedlander",
+    incidence: str | None = None,
+    contact=None,
+    duration: float = 8.0,
+    record_every: int = 4,
+    extrapolate: bool = False,
+    load_model=None,
+) -> Prototype3D:
+    """Run a prototype alone in 3D (no model design: a prototype-only study).
+
+    Parameters
+    ----------
+    structure : structure
+        The prototype.
+    blast : BlastParameters
+        Its blast parameters (:func:`blastscale.blast.blast_parameters` of its charge and stand-off).
+    gravity : float
+        Gravity [m/s^2].
+    load, pulse_shape, incidence, contact, duration, record_every, extrapolate, load_model
+        As :func:`~.structure3d.compare_structure3d` (``contact`` None: the engine's defaults for the structure).
+
+    Returns
+    -------
+    Prototype3D
+    """
+
+    asked = float(check_positive("duration", duration, "s"))
+    kw = dict(
+        blast=blast,
+        gravity=gravity,
+        load=load,
+        pulse_shape=pulse_shape,
+        incidence=incidence,
+        contact=contact,
+        record_every=record_every,
+        extrapolate=extrapolate,
+        load_model=load_model,
+    )
+    # gravity alone: run until the stability rule decides (docs/assemblies.md, analysis.gravity_alone)
+    run, dur = until_decided(lambda T: run_system(structure, None, "prototype", duration=T, **kw), asked, blast is None)
+    resp = run.response
+    return Prototype3D(
+        structure=structure,
+        prototype=resp,
+        prototype_dataset=_with_outcome(resp.dataset, resp.summary()),
+        settings={
+            "load_method": load,
+            "pulse_shape": pulse_shape,
+            "incidence": incidence or "default",
+            "duration_s": dur,
+            **({"duration_asked_s": asked} if dur != asked else {}),
+            "record_every": int(record_every),
+            "load_end_s": run.load_duration_s,
+            "extrapolate": bool(extrapolate),
+            "arrival_spread_prototype_s": arrival_spread(run.load),
+            **_load_model_setting(load_model),
+        },
+    )
