@@ -1,7 +1,7 @@
 """Command-line interface (typer), thin over the library.
 
 Each command lives in its own module and registers itself on :data:`app`:
-``blast``/``design`` (:mod:`.loads`), ``rock``/``critical`` (:mod:`.rocking`),
+``blast``/``design`` (:mod:`.loads`), ``rock`` (:mod:`.rocking`), ``critical``/``capacity`` (:mod:`.capacity`),
 ``block3d`` (:mod:`.block3d`), ``run`` (:mod:`.main_job`), ``reproduce`` (:mod:`.reproduce`), ``plan``
 (:mod:`.plan`), ``init`` (:mod:`.init`), ``show`` (:mod:`.show`), ``fired`` (:mod:`.fired`). Units at this
 edge are those named in each option's help text; everything is converted to SI before calling the library.
@@ -23,6 +23,7 @@ from ._app import app, print_error
 # command modules register themselves on `app` when imported (in this order: `blastscale --help` lists them so)
 from . import loads as _loads  # noqa: F401,E402
 from . import rocking as _rocking  # noqa: F401,E402
+from . import capacity as _capacity  # noqa: F401,E402
 from . import block3d as _block3d  # noqa: F401,E402
 from . import column as _column  # noqa: F401,E402
 from . import main_job as _main_job  # noqa: F401,E402
