@@ -5,7 +5,8 @@ spring-damper of time constant ``tau`` and damping ratio ``zeta`` (``solref``), 
 impedance ``d`` in (0, 1) that ramps from ``dmin`` to ``dmax`` over a penetration ``width``
 (``solimp``). :class:`ContactSettings` states these in SI (seconds, metres) and scales them
 with the geometric factor lambda so that a reduced-scale model run, up-scaled, reproduces the
-prototype run (time x sqrt(lambda / lambda_g), length x lambda).
+prototype run (time x sqrt(lambda / lambda_g), length x lambda). The valid value of every setting is in
+:mod:`.contact_ranges` (re-exported here).
 
 One setting is ours and not MuJoCo's default: ``friction_time_constant``. MuJoCo gives the
 frictional directions of a contact the same reference damping ``b = 2 / (dmax tau)`` as the
@@ -31,11 +32,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import NamedTuple
 
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from .._validate import BlastscaleInputError, check_positive, check_range
 from ..similitude import scaling_factors
+from .contact_ranges import CONES, JACOBIANS, SETTING_RANGES, SOLVERS, STEPS_AFTER_LOAD, Range, check_scalar
 from .solver_choice import default_jacobian
 
 __all__ = [
@@ -51,15 +52,6 @@ __all__ = [
     "time_constant_for_step",
 ]
 
-#: Friction-cone types accepted by MuJoCo.
-CONES = ("elliptic", "pyramidal")
-#: Constraint solvers accepted by MuJoCo.
-SOLVERS = ("Newton", "CG", "PGS")
-#: Constraint-Jacobian layouts accepted by MuJoCo (``<option jacobian=...>``).
-JACOBIANS = ("dense", "sparse", "auto")
-#: The time step once every pulse has passed (:func:`~.integrate.step_factor_after_load`).
-STEPS_AFTER_LOAD = ("double", "same")
-
 
 def mjcf_number(x) -> str:
     """A number for the MJCF text, rounded to 15 significant digits.
@@ -71,42 +63,6 @@ def mjcf_number(x) -> str:
     response that the dynamics amplify to 1e-3 of the peak over 8 s.
     """
     return format(float(x), ".15g")
-
-
-def _check_scalar(name: str, value) -> None:
-    """One number (or None), not an array: settings are per run."""
-    if value is not None and not isinstance(value, str) and getattr(value, "ndim", 0) != 0:
-        raise BlastscaleInputError(f"{name} must be a single number, got shape {value.shape}")
-
-
-class Range(NamedTuple):
-    """A valid range ``lo .. hi`` [unit], each end open or closed."""
-
-    lo: float
-    hi: float
-    lo_open: bool = False
-    hi_open: bool = False
-    unit: str = ""
-
-
-#: The valid range of every numeric setting of :class:`ContactSettings` (its own checks and the
-#: scenario's ``[simulation.contact]`` keys read them here). The upper bounds are generous physical
-#: limits (a 10 s contact time constant is already five thousand times MuJoCo's default); the
-#: friction coefficient bounds a scenario's too (mu = 10 is beyond any masonry interface).
-SETTING_RANGES: dict[str, Range] = {
-    "friction": Range(0.0, 10.0),
-    "time_constant": Range(0.0, 10.0, lo_open=True, unit="s"),
-    "damping_ratio": Range(0.0, 100.0, lo_open=True),
-    "friction_time_constant": Range(0.0, 10.0, lo_open=True, unit="s"),
-    "impedance_min": Range(0.0, 1.0, lo_open=True, hi_open=True),
-    "impedance_max": Range(0.0, 1.0, lo_open=True, hi_open=True),  # and >= impedance_min
-    "impedance_width": Range(0.0, 10.0, lo_open=True, unit="m"),
-    "timestep": Range(0.0, 0.1, lo_open=True, unit="s"),
-    "impratio": Range(0.0, 1e4, lo_open=True),
-    "iterations": Range(1, 10_000),
-    "tolerance": Range(0.0, 1.0, lo_open=True),
-    "noslip_iterations": Range(0, 10_000),
-}
 
 
 @dataclass(frozen=True)
@@ -190,7 +146,7 @@ class ContactSettings:
 
     def __post_init__(self):
         for name in SETTING_RANGES:
-            _check_scalar(name, getattr(self, name))
+            check_scalar(name, getattr(self, name))
         for name in ("iterations", "noslip_iterations"):
             v = getattr(self, name)
             if isinstance(v, (int, float)) and not float(v).is_integer():
