@@ -28,30 +28,30 @@ def _stop_after_one_chunk(done, n):
         raise Stop
 
 
-def _other_code(monkeypatch):
+def _other_code(patch_everywhere):
     """As after a ``git pull`` that changed a module (the version unchanged)."""
     before = SPEC.fingerprint()
-    monkeypatch.setattr(code, "code_fingerprint", lambda: "0" * 64)
+    patch_everywhere(code, "code_fingerprint", lambda: "0" * 64)
     assert SPEC.fingerprint() != before
 
 
-def test_a_finished_store_of_other_code_is_not_this_sweep(tmp_path, monkeypatch):
+def test_a_finished_store_of_other_code_is_not_this_sweep(tmp_path, patch_everywhere):
     store = tmp_path / "s.zarr"
     assert run_sweep(SPEC, store, workers=0, chunk=1).chunks_run == 2
     assert run_sweep(SPEC, store, workers=0).chunks_run == 0  # the same code: nothing to do
-    _other_code(monkeypatch)
+    _other_code(patch_everywhere)
     with pytest.raises(BlastscaleInputError, match="exists"):
         run_sweep(SPEC, store, workers=0)
     assert run_sweep(SPEC, store, workers=0, chunk=1, force=True).chunks_run == 2
 
 
-def test_unfinished_chunks_of_other_code_are_not_resumed(tmp_path, monkeypatch):
+def test_unfinished_chunks_of_other_code_are_not_resumed(tmp_path, patch_everywhere):
     store = tmp_path / "s.zarr"
     with pytest.raises(Stop):
         run_sweep(SPEC, store, workers=0, chunk=1, progress=_stop_after_one_chunk)
     parts = tmp_path / "s.zarr.parts"
     assert len(list(parts.glob("chunk-*.npz"))) == 1  # one chunk kept to resume from
-    _other_code(monkeypatch)
+    _other_code(patch_everywhere)
     with pytest.raises(BlastscaleInputError, match="computed by other blastscale code"):
         run_sweep(SPEC, store, workers=0, chunk=1)
     run = run_sweep(SPEC, store, workers=0, chunk=1, force=True)

@@ -111,7 +111,7 @@ def test_bad_records_are_one_line_exit_2_nothing_written(capsys, tmp_path, name,
     assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["gauges.csv", "shot.toml", "tracks.csv"]
 
 
-def test_interrupted_write_leaves_nothing(monkeypatch, tmp_path):
+def test_interrupted_write_leaves_nothing(patch_everywhere, tmp_path):
     """A fault after the first file is written (here: the second write raises) removes the partial folder:
     neither the result folder nor a partial one is left (io.results.output_folder)."""
     from blastscale.io import results
@@ -124,7 +124,7 @@ def test_interrupted_write_leaves_nothing(monkeypatch, tmp_path):
             raise RuntimeError("disk gone")
         real(path, data)
 
-    monkeypatch.setattr(results, "write_atomic", failing)
+    patch_everywhere(results, "write_atomic", failing)
     sc = _copy(tmp_path)
     with pytest.raises(RuntimeError, match="disk gone"):
         main(["fired", str(sc), "--out", str(tmp_path / "res")])
