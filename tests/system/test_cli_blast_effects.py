@@ -77,7 +77,7 @@ def test_blast_free_air(capsys):
         (["--clearing", "--face-width", "1"], "needs both"),
         (["--burst", "free-air", "--model", "masi2021"], "not available for blast model 'masi2021'"),
         (["--burst", "air"], "--burst = 'air' is not known"),
-        (["--clearing", "--face-width", "-1", "--face-height", "2"], "face width"),
+        (["--clearing", "--face-width", "-1", "--face-height", "2"], "--face-width = -1 m is out of range"),
     ],
 )
 def test_bad_combinations_are_one_line(capsys, argv, words):

@@ -35,6 +35,8 @@ from ._app import (
 from ..report.html import format_charge
 from ..io.results import check_output_folder, output_folder
 from ..planning import plan
+from ..planning.plan3d import ensemble_members
+from ..structures import from_spec
 from ..scenario import Scenario, load_scenario
 from ..scenario.lab import LabSpec
 
@@ -153,7 +155,7 @@ def plan_cmd(
     with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
         sc = Scenario.default() if scenario is None else load_scenario(scenario)
 
-    members = (sc.lab or LabSpec()).ensemble_3d
+    members = ensemble_members(sc, from_spec(sc.structure), sc.lab or LabSpec())
     unused = [
         f"{flag} {v}"
         for flag, v, given in (("--scheduler", scheduler, scheduler is not None), ("--workers", workers, workers > 0))

@@ -44,6 +44,7 @@ from ..similitude.effects import structure_top
 from ..scenario.lab import SAME_MATERIAL
 from ..study import Study
 from ..blast import get_blast_model
+from ..structures import is_block
 from .build import spec_dims
 from .debris import reach_3d
 from .odds import ensemble_odds_3d
@@ -58,6 +59,8 @@ __all__ = [
     "screening_error",
     "specimen_scenario",
     "similarity_3d",
+    "planar_path",
+    "ensemble_members",
     "run_3d",
 ]
 
@@ -65,6 +68,22 @@ __all__ = [
 ENSEMBLE_3D_DEFAULT = 32
 #: Heights of the stand the planner tries for a free-air specimen charge, x the specimen's height; the
 #: lowest whose floor reflection reaches the face's mid-height after the positive phase is taken.
+
+
+def planar_path(scenario, structure) -> bool:
+    """Whether the planner searches ``scenario`` on the planar kernels: a block (``structure``, built from it)
+    on the paper's load (no clearing, no negative phase); everything else is screened, then run in 3D."""
+    return is_block(structure) and not (scenario.blast.clearing or scenario.blast.negative_phase)
+
+
+def ensemble_members(scenario, structure, lab) -> int:
+    """The 3D ensemble members per design the plan runs: ``lab.ensemble_3d`` when given, else 0 on the planar
+    path and :data:`ENSEMBLE_3D_DEFAULT` off it."""
+    if lab.ensemble_3d is not None:
+        return int(lab.ensemble_3d)
+    return 0 if planar_path(scenario, structure) else ENSEMBLE_3D_DEFAULT
+
+
 STAND_HEIGHTS = (0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
 
 

@@ -34,7 +34,7 @@ from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_l
 from .debris import planar_reach
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .pareto import mark_pareto
-from .plan3d import candidate_design, design_scenario, specimen_scenario
+from .plan3d import candidate_design, design_scenario, planar_path, specimen_scenario
 from .plan3d_designs import designs_3d
 from .shot import DEFAULT_LAB, safety_envelope, timing_of
 from ..blast import blast_parameters
@@ -42,7 +42,7 @@ from ..blast.bursts import model_for_burst
 from ..blast.explosives import EXPLOSIVES, get_explosive
 from .shot import lab_explosives
 from ..blast import get_blast_model
-from ..structures import from_spec, is_block
+from ..structures import from_spec
 
 __all__ = ["plan", "screen", "Plan", "PlanInfeasible", "design_scenario", "QUICK_SAMPLES", "FULL_DESIGNS"]
 
@@ -327,9 +327,9 @@ def screen(scenario, lab, tell=None) -> tuple:
     """
 
     tell = tell or (lambda *a: None)
-    sc, bl = scenario, scenario.blast
+    sc = scenario
     structure = from_spec(sc.structure)
-    planar = is_block(structure) and not (bl.clearing or bl.negative_phase)
+    planar = planar_path(sc, structure)
     block, _, timing, proto = _prototype(scenario, envelope_block(structure))
     if not planar:
         proto = {

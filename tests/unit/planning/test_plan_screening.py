@@ -170,3 +170,20 @@ def test_arrival_spread_of_a_hopkinson_cranz_specimen_is_the_cube_root_scaled_on
     dt_s = arrival_spread(d.specimen, s, d.factors.length)
     assert 1e-4 < dt_p < 1e-2  # ms over a 2.5 m front at 5 m
     assert dt_s / (d.factors.time * dt_p) == pytest.approx(0.25, rel=1e-9)
+
+
+def test_the_ensemble_members_the_plan_runs():
+    """``lab.ensemble_3d`` unset: 0 for a block on the paper's load (the planar path), 32 for a column or a block
+    under clearing (the 3D path); set: as given. `plan --workers/--scheduler` warns only when this is 0."""
+    from blastscale.planning.plan3d import ENSEMBLE_3D_DEFAULT, ensemble_members
+    from blastscale.scenario import load_scenario
+    from blastscale.structures import from_spec
+
+    block = Scenario.default()
+    column = load_scenario("paper_column_square_250kg")
+    cleared = block.with_values({"blast.clearing": True})
+    assert ENSEMBLE_3D_DEFAULT == 32
+    for sc, auto in ((block, 0), (column, 32), (cleared, 32)):
+        structure = from_spec(sc.structure)
+        assert ensemble_members(sc, structure, LabSpec()) == auto
+        assert ensemble_members(sc, structure, LabSpec(ensemble_3d=5)) == 5
