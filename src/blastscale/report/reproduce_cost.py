@@ -24,8 +24,8 @@ MEASURED: dict = {}
 _WRITE_SECONDS, _SCENARIO_BYTES, _OTHER = 3.0, 2e6, (2.0, 2e5)
 
 #: Full runs of the gallery's scripts that take longer than :data:`_OTHER` [s], measured on the 2-core development
-#: machine (docs/report.md: the column script 9 min of the full reproduce's 14 min 7 s); the others take seconds.
-SCRIPT_SECONDS = {"example-paper-columns-method-a": 540.0}
+#: machine (docs/report.md: the column script 67 s of the full reproduce's 1 min 54 s); the others take seconds.
+SCRIPT_SECONDS = {"example-paper-columns-method-a": 67.2}
 
 
 def _estimate(item, quick: bool) -> tuple:

@@ -23,7 +23,7 @@ from ..units import format_size
 from ..scenario import Scenario
 from ..sim3d.contact import default_contact
 from .engines import contact_settings
-from ..sim3d.integrate import SETTLE_TIME_CONSTANTS
+from ..sim3d.integrate import SETTLE_TIME_CONSTANTS, step_factor_after_load
 from ..structures import as_assembly
 from .engines import record_every
 
@@ -160,7 +160,8 @@ def estimate_memory(scenario: Scenario, structure=None, contact=None) -> int:
 
 def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
     """A rough estimate of a study's computing time on one core [s] (module docstring; docs/performance.md): 3D,
-    the steps of every run (prototype and model, ensemble members; the settling before the load included) times
+    the steps of every run (prototype and model, ensemble members; the settling before the load included; the
+    longer steps after the load counted as such) times
     :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x (bodies + contacts), plus :data:`BODY_SECONDS` x
     bodies^:data:`BODY_EXPONENT`; planar, ~2 us per sample and system plus the critical-charge search (~0.1 s);
     ``contact`` as in :func:`estimate_memory`."""
@@ -173,11 +174,24 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
         nb = _bodies(structure)
         sides = getattr(structure, "sides", 4) if getattr(structure, "section", "") == "circular" else 4
         dt = _timestep(scenario, structure, contact)
-        steps = sim.duration_s / dt + _settle_steps(scenario, structure, contact, dt)
+        # the steps after the load are longer (issue #28, step_factor_after_load); the load's own ms are neglected
+        steps = sim.duration_s / (dt * _step_factor(scenario, structure, contact, nb)) + _settle_steps(
+            scenario, structure, contact, dt
+        )
         runs = systems * (1 + sim.ensemble_members)
         per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * (nb + contacts_of(structure))
         total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3) + BODY_SECONDS * nb**BODY_EXPONENT
     return total
+
+
+def _step_factor(scenario: Scenario, structure, contact, nb: int) -> float:
+    """The step after the load over the step (:func:`blastscale.sim3d.integrate.step_factor_after_load`)."""
+    if contact is None:
+        try:
+            contact = contact_settings(scenario, structure)
+        except BlastscaleInputError:
+            return 1.0
+    return step_factor_after_load(contact, nb)
 
 
 def _settle_steps(scenario: Scenario, structure, contact, dt: float) -> float:
