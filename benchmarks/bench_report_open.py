@@ -105,7 +105,8 @@ def open_time(report: Path, wait_view: bool, port: int = 9333) -> tuple:
     """One measurement in a fresh Chromium: the load event [s], or with ``wait_view`` the view drawn [s], and
     Chromium's CPU seconds until then [s]."""
     chromium = next(shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n))
-    with tempfile.TemporaryDirectory() as profile:
+    # ignore_cleanup_errors: Chromium's helper processes may still write the profile after the browser exits
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         proc = subprocess.Popen(
             [chromium, *FLAGS, f"--user-data-dir={profile}", f"--remote-debugging-port={port}", "about:blank"],
             stdout=subprocess.DEVNULL,
