@@ -82,7 +82,7 @@ def test_the_ensembles_specimen_is_the_designs(name, tmp_path):
     mass and height to round-off."""
     sc = load_scenario(LIB / f"{name}.toml")
     d = Study(sc).design()
-    spec = from_spec(specimen_scenario(sc, d, tmp_path).structure)
+    spec = from_spec(specimen_scenario(sc, d, folder=tmp_path).structure)
     assert spec.mass == pytest.approx(d.specimen_structure.mass, rel=1e-12)
     assert specimen_mass(d) == pytest.approx(d.specimen_structure.mass, rel=1e-12)  # lambda^3 gamma x the prototype's
     got = np.array([b.com for b in spec.bodies])

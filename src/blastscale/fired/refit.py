@@ -1,7 +1,7 @@
 """The specimen under a given load, through the Study: the prediction (designed load) and the refit (as fired).
 
 The design carries the specimen system (structure, density, gravity, duration, contact, each scaled once);
-:func:`specimen_scenario` writes it as a prototype-only scenario (no ``[scale]``: the specimen *is* the
+:func:`blastscale.study.specimen.specimen_scenario` writes it as a prototype-only scenario (no ``[scale]``: the specimen *is* the
 system simulated) under a charge and stand-off of the caller's, and :func:`simulate_specimen` runs it
 through :class:`~blastscale.study.Study`, the one door, with the design's specimen structure itself (every
 kind, a block-model file's ``assembly`` included: nothing is rebuilt from the table). The designed load (the design's specimen charge and
@@ -12,7 +12,6 @@ refit (``refit_*``). Both follow the same path, so that they differ only by the 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -20,6 +19,7 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..study import Study
+from ..study.specimen import specimen_scenario
 from .outcome import pose_marker_history
 from .tracks import block_marker_displacement, first_peak
 
@@ -27,53 +27,6 @@ __all__ = ["OUTCOMES", "SpecimenRun", "marker_history", "simulate_specimen", "sp
 
 #: The outcome words (the engines' ``collapsed`` flag in words).
 OUTCOMES = {False: "stands", True: "collapsed"}
-#: Contact keys that are times (x lambda_t) and lengths (x lambda) when the specimen is written out.
-_CONTACT_TIMES = ("time_constant_s", "friction_time_constant_s")
-_CONTACT_LENGTHS = ("impedance_width_m",)
-
-
-def specimen_scenario(
-    scenario: Scenario, design, charge_kg: float, standoff_m: float, engine: str | None = None
-) -> Scenario:
-    """The design's specimen as a prototype-only scenario under ``charge_kg`` [kg TNT] at ``standoff_m`` [m].
-
-    Every length of the structure table (keys ``*_m``) x lambda, its density x gamma; gravity x varsigma;
-    duration, time step and contact times x lambda_t, contact widths x lambda; the specimen's burst. An
-    ``assembly`` keeps its file (an absolute path, prototype units): the table then names the prototype's
-    geometry, and the structure simulated is the design's specimen (:func:`simulate_specimen`)."""
-    f = design.factors
-    data = scenario.to_dict()
-    st = dict(data["structure"])
-    if st.get("kind") == "assembly":
-        st["file"] = str(Path(st["file"]).resolve())
-    for k, v in list(st.items()):
-        if k.endswith("_m") and isinstance(v, (int, float)) and not isinstance(v, bool):
-            st[k] = float(v) * f.length
-    st["density_kg_m3"] = float(st["density_kg_m3"]) * f.density
-    sim = dict(data["simulation"])
-    sim["gravity_m_s2"] = float(design.specimen_gravity)
-    sim["duration_s"] = float(design.specimen_duration)
-    sim["critical_charge"] = False
-    if engine is not None:
-        sim["engine"] = engine
-    if sim.get("timestep_s") is not None:
-        sim["timestep_s"] = float(sim["timestep_s"]) * f.time
-    contact = dict(sim.get("contact") or {})
-    for k in _CONTACT_TIMES:
-        if contact.get(k) is not None:
-            contact[k] = float(contact[k]) * f.time
-    for k in _CONTACT_LENGTHS:
-        if contact.get(k) is not None:
-            contact[k] = float(contact[k]) * f.length
-    sim["contact"] = contact
-    blast = dict(data["blast"])
-    blast.update(
-        charge_kg=float(charge_kg),
-        standoff_m=float(standoff_m),
-        burst=scenario.scale.specimen_burst or scenario.blast.burst,
-    )
-    out = {"title": f"specimen of: {scenario.title}", "structure": st, "blast": blast, "simulation": sim}
-    return Scenario.from_dict(out, source="specimen")
 
 
 @dataclass(frozen=True)
@@ -114,7 +67,7 @@ def simulate_specimen(
     scenario: Scenario, design, charge_kg: float, standoff_m: float, engine: str | None = None
 ) -> SpecimenRun:
     """The specimen under ``charge_kg`` [kg TNT] at ``standoff_m`` [m], through the Study."""
-    sc = specimen_scenario(scenario, design, charge_kg, standoff_m, engine)
+    sc = specimen_scenario(scenario, design, charge_kg=charge_kg, standoff_m=standoff_m, engine=engine)
     r = Study(sc, structure=design.specimen_structure).run()
     return SpecimenRun(float(charge_kg), float(standoff_m), float(r.blast.arrival_time), r)
 

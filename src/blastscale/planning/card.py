@@ -250,7 +250,7 @@ def study_test_card(result, lab=None) -> dict | None:
     if lab.ensemble_3d:
         with tempfile.TemporaryDirectory(prefix="blastscale-card-") as tmp:
             odds3 = ensemble_odds_3d(
-                specimen_scenario(sc, d, Path(tmp)),
+                specimen_scenario(sc, d, folder=Path(tmp)),
                 prototype_collapsed=collapsed_p,
                 tolerances=Tolerances.from_lab(lab),
                 members=lab.ensemble_3d,

@@ -29,7 +29,6 @@ The screening error of a design (lower first) is the larger of two closed-form e
 
 from __future__ import annotations
 
-import json
 import math
 import tempfile
 import warnings
@@ -43,6 +42,7 @@ from ..blast.bursts import lab_burst
 from ..similitude.effects import structure_top
 from ..scenario.lab import SAME_MATERIAL
 from ..study import Study
+from ..study.specimen import specimen_scenario
 from ..blast import get_blast_model
 from ..structures import is_block
 from .build import spec_dims
@@ -180,72 +180,6 @@ def screening_error(ev, load_method: str) -> float:
     return err
 
 
-def _specimen_structure_spec(sc, d, folder: Path) -> dict:
-    """The ``[structure]`` table of the design's specimen: a block's and a generator's own keys (every
-    length ``*_m`` x lambda, the density x gamma: the generators are linear in their lengths); a
-    block-model file's specimen written as our JSON into ``folder``."""
-    spec = d.specimen_structure
-    st = sc.structure
-    if st.kind == "block":
-        return {
-            "kind": "block",
-            "height_m": spec.height,
-            "width_m": spec.width,
-            "depth_m": spec.depth,
-            "density_kg_m3": spec.density,
-            "friction": st.friction,
-        }
-    lam, gam = float(d.factors.length), float(d.density_ratio)
-    if st.kind != "assembly":
-        data = st.model_dump(exclude_none=True)
-        out = {k: (v * lam if k.endswith("_m") and isinstance(v, float) else v) for k, v in data.items()}
-        out["density_kg_m3"] = st.density_kg_m3 * gam
-        return out
-    if spec.supports:
-        raise BlastscaleInputError(
-            f"structure.file = {st.file!r}: a block model with supports has no 3D ensemble "
-            "here (the specimen file cannot carry them)"
-        )
-    dens = {b.density for b in spec.blocks}
-    blocks = [
-        {
-            "name": b.name,
-            "vertices": np.asarray(b.points).tolist(),
-            **({} if len(dens) == 1 else {"density_kg_m3": b.density}),
-        }
-        for b in spec.blocks
-    ]
-    path = folder / "specimen_blocks.json"
-    path.write_text(json.dumps({"blocks": blocks}), encoding="utf-8")
-    return {
-        "kind": "assembly",
-        "file": str(path),
-        "friction": st.friction,
-        "density_kg_m3": float(next(iter(dens))) if len(dens) == 1 else st.density_kg_m3 * gam,
-    }
-
-
-def specimen_scenario(scenario, design, folder: Optional[Path] = None):
-    """The specimen of a design as a prototype-only scenario (its structure, charge, stand-off and
-    burst, its gravity, the prototype's duration x the time factor): the 3D ensembles run it.
-    ``folder``: where a block-model file's specimen is written (a temporary folder the caller keeps)."""
-    d, sc = design, scenario
-    data = sc.model_dump(exclude_none=True)
-    data.pop("scale", None)
-    data.pop("lab", None)
-    data["structure"] = _specimen_structure_spec(sc, d, Path(folder) if folder is not None else Path("."))
-    data["blast"] = {**data["blast"], "charge_kg": d.specimen_charge_kg, "standoff_m": d.specimen_standoff_m}
-    burst = getattr(d.specimen, "burst", None)
-    if burst is not None:
-        data["blast"]["burst"] = burst
-    data["simulation"] = {**data["simulation"], "duration_s": d.specimen_duration, "gravity_m_s2": d.specimen_gravity}
-    data["simulation"].pop("timestep_s", None)
-    data["simulation"].pop("contact", None)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return type(sc).from_dict(data, source="plan")
-
-
 def similarity_3d(summary3d: dict) -> float:
     """The 3D similarity error of a design [-]: 1 when the specimen's outcome is not the prototype's,
     else the relative error of the up-scaled first peak of the top's displacement (``|ratio - 1|``; the
@@ -302,7 +236,7 @@ def run_3d(
     if members:
         with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
             try:
-                ssc = specimen_scenario(scenario, ev.design, Path(tmp))
+                ssc = specimen_scenario(scenario, ev.design, folder=Path(tmp))
             except BlastscaleInputError as exc:  # a block model with supports: the comparison alone
                 warnings.warn(f"plan: no 3D ensemble: {exc}", UserWarning, stacklevel=2)
                 return s3, sim, None

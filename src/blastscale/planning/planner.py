@@ -295,7 +295,7 @@ def plan(
         tell("3D ensemble of the best design", 0, 1)
         with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
             designs[0]["odds_3d"] = ensemble_odds_3d(
-                specimen_scenario(scenario, best.design, Path(tmp)),
+                specimen_scenario(scenario, best.design, folder=Path(tmp)),
                 prototype_collapsed=proto["collapsed"],
                 tolerances=tol,
                 members=lab.ensemble_3d,
