@@ -173,37 +173,28 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
     if sim.engine in ("3d", "both"):
         nb = _bodies(structure)
         sides = getattr(structure, "sides", 4) if getattr(structure, "section", "") == "circular" else 4
-        dt = _timestep(scenario, structure, contact)
+        resolved = contact if contact is not None else _contact_or_none(scenario, structure)
+        dt = _timestep(scenario, structure, contact if structure is None else resolved)
         # the steps after the load are longer (issue #28, step_factor_after_load); the load's own ms are neglected
-        steps = sim.duration_s / (dt * _step_factor(scenario, structure, contact, nb)) + _settle_steps(
-            scenario, structure, contact, dt
-        )
+        if resolved is None:
+            steps = sim.duration_s / dt
+        else:
+            factor = step_factor_after_load(resolved, nb)
+            steps = sim.duration_s / (dt * factor) + SETTLE_TIME_CONSTANTS * resolved.time_constant / dt
         runs = systems * (1 + sim.ensemble_members)
         per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * (nb + contacts_of(structure))
         total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3) + BODY_SECONDS * nb**BODY_EXPONENT
     return total
 
 
-def _step_factor(scenario: Scenario, structure, contact, nb: int) -> float:
-    """The step after the load over the step (:func:`blastscale.sim3d.integrate.step_factor_after_load`)."""
-    if contact is None:
-        try:
-            contact = contact_settings(scenario, structure)
-        except BlastscaleInputError:
-            return 1.0
-    return step_factor_after_load(contact, nb)
-
-
-def _settle_steps(scenario: Scenario, structure, contact, dt: float) -> float:
-    """Steps of the settling before the load (:data:`blastscale.sim3d.integrate.SETTLE_TIME_CONSTANTS` contact
-    time constants)."""
-
-    if contact is None:
-        try:
-            contact = contact_settings(scenario, structure)
-        except BlastscaleInputError:
-            return 0.0
-    return SETTLE_TIME_CONSTANTS * contact.time_constant / dt
+def _contact_or_none(scenario: Scenario, structure):
+    """The study's contact settings (:func:`~.engines.contact_settings`), or None where the engine's own check
+    will report why there are none; the settling before the load lasts
+    :data:`blastscale.sim3d.integrate.SETTLE_TIME_CONSTANTS` of their time constants."""
+    try:
+        return contact_settings(scenario, structure)
+    except BlastscaleInputError:
+        return None
 
 
 def contacts_of(structure) -> int:
