@@ -170,3 +170,23 @@ def test_cli_outcomes_refuses_a_prototype_only_scenario_in_one_line(tmp_path, ca
     err = capsys.readouterr().err.strip().splitlines()
     assert e.value.code == 2 and len(err) == 1 and "prototype-only" in err[0] and "outcome mode" in err[0]
     assert not (tmp_path / "x.zarr").exists() and not (tmp_path / "x.zarr.parts").exists()
+
+
+@pytest.mark.parametrize("threads", [2, 3])
+def test_outcome_mode_on_threads_is_bitwise_one_thread(threads):
+    """The cases of a group dealt out over threads (alternately; 3 threads leave shares of unequal
+    size) give every output bitwise as one thread does: valid and refused cases (stand-offs whose
+    scaled distance leaves the fits), overturned and surviving ones, sampled restitution, two
+    bodies (two groups)."""
+    grid = {"charge_kg": np.geomspace(5.0, 400.0, 29), "standoff_m": np.linspace(0.8, 12.0, 29), "height_m": [8.0, 10.0]}
+    got = {}
+    for k in (1, threads):
+        spec = SweepSpec.build(BASE.with_values({"threads": k}), grid, outcomes=True)
+        got[k] = planar_outcomes(spec, 0, spec.n_cases)
+    assert spec.n_cases // 2 >= threads * 256  # every group is split (MIN_CASES_PER_THREAD)
+    valid = got[1]["sweep.valid"]
+    assert valid.any() and not valid.all()
+    assert got[1]["planar.prototype.collapsed"][valid].any() and not got[1]["planar.prototype.collapsed"][valid].all()
+    for key in OUTCOME_KEYS:
+        assert got[1][key].dtype == got[threads][key].dtype
+        assert np.array_equal(got[1][key], got[threads][key], equal_nan=True), key

@@ -12,6 +12,7 @@ from .._validate import BlastscaleInputError
 from ..similitude import design_model
 from ..structures import from_spec
 from ..study.engines import load_model_of
+from .._threads import map_threads, resolve_threads
 import warnings
 
 __all__ = ["OUTCOME_KEYS", "VALID_KEY", "planar_outcomes"]
@@ -61,7 +62,7 @@ def _groups(vals: dict, paths: list, n: int) -> list:
     return [np.flatnonzero(inv == g) for g in range(int(inv.max()) + 1)]
 
 
-def _outcome_group(sc, W, R, e) -> dict:
+def _outcome_group(sc, W, R, e, threads=None) -> dict:
     """Outcome-mode arrays for n load cases ``W`` [kg], ``R`` [m], restitution ``e`` [-] (NaN:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
     design (:func:`~blastscale.similitude.design_model` over the arrays), then the first swing of
@@ -100,7 +101,7 @@ def _outcome_group(sc, W, R, e) -> dict:
     proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
     specimen = RockingSystem.from_block(d.specimen_block, d.specimen_gravity)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
-    solver = RockingSolver(threads=sim.threads)  # the cases over the worker's cores (bitwise the same)
+    solver = RockingSolver(threads=sim.threads if threads is None else threads)
     fp = first_swing_blast(
         proto.alpha,
         e,
@@ -132,6 +133,28 @@ def _outcome_group(sc, W, R, e) -> dict:
     out["design.model_charge_kg"][ok] = d.specimen.charge_kg[ok]
     out["design.model_standoff_m"][ok] = d.specimen.standoff_m[ok]
     out[VALID_KEY][ok] = True
+    return out
+
+
+#: Fewest cases a thread of the outcome mode takes (below, the threads cost more than they save).
+MIN_CASES_PER_THREAD = 256
+
+
+def _outcome_group_threaded(sc, W, R, e) -> dict:
+    """:func:`_outcome_group` with the cases dealt out over ``sc.simulation.threads`` threads,
+    alternately (the cost of a case follows the charge order): the design, the pulse phases and
+    the first swings of each share run on a thread of their own (numpy's array loops and the
+    compiled kernel release Python's lock). Every value is computed case by case, so the
+    results are bitwise those of one thread."""
+    k = min(resolve_threads(sc.simulation.threads), W.size // MIN_CASES_PER_THREAD)
+    if k <= 1:
+        return _outcome_group(sc, W, R, e)
+    parts = map_threads(lambda j: _outcome_group(sc, W[j::k], R[j::k], e[j::k], threads=1), range(k), k)
+    out = {}
+    for key in OUTCOME_KEYS:
+        out[key] = np.empty(W.size, dtype=parts[0][key].dtype)
+        for j, part in enumerate(parts):
+            out[key][j::k] = part[key]
     return out
 
 
@@ -170,7 +193,7 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
         warnings.simplefilter("ignore")
         for idx in _groups(vals, others, n):
             sc = base.with_values({p: _plain(vals[p][idx[0]]) for p in others}) if others else base
-            res = _outcome_group(sc, *(col[p][idx] for p in _LOAD_PATHS))
+            res = _outcome_group_threaded(sc, *(col[p][idx] for p in _LOAD_PATHS))
             for k in OUTCOME_KEYS:
                 out[k][idx] = res[k]
     valid = out[VALID_KEY] == 1.0
