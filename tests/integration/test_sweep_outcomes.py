@@ -178,7 +178,11 @@ def test_outcome_mode_on_threads_is_bitwise_one_thread(threads):
     size) give every output bitwise as one thread does: valid and refused cases (stand-offs whose
     scaled distance leaves the fits), overturned and surviving ones, sampled restitution, two
     bodies (two groups)."""
-    grid = {"charge_kg": np.geomspace(5.0, 400.0, 29), "standoff_m": np.linspace(0.8, 12.0, 29), "height_m": [8.0, 10.0]}
+    grid = {
+        "charge_kg": np.geomspace(5.0, 400.0, 29),
+        "standoff_m": np.linspace(0.8, 12.0, 29),
+        "height_m": [8.0, 10.0],
+    }
     got = {}
     for k in (1, threads):
         spec = SweepSpec.build(BASE.with_values({"threads": k}), grid, outcomes=True)

@@ -217,3 +217,31 @@ def test_a_scenario_without_scale_runs_the_prototype_alone(capsys, tmp_path):
     assert list(tree["planar"]["system"].values) == ["prototype"]
     html = (out_dir / "report.html").read_text()
     assert "Prototype only" in html and "<th>model (up-scaled)</th>" not in html
+
+
+def test_a_3d_run_never_loads_the_planar_kernels(tmp_path):
+    """A 3D-only run (a short column) writes its whole result folder without importing numba or the planar
+    rocking package (0.27 s of a column run's start-up, issue #28); a planar run does load them (the check
+    can fail)."""
+    code = (
+        "import sys\nfrom blastscale.cli import main\n"
+        "try:\n    main(sys.argv[1:])\nexcept SystemExit as e:\n    assert not e.code, e.code\n"
+        "print(sorted(m for m in ('numba', 'blastscale.rocking') if m in sys.modules))\n"
+    )
+    sc = tmp_path / "c.toml"
+    loaded = {}
+    for engine in ("3d", "planar"):
+        structure = '[structure]\nkind = "column"\ndrums = 3\n' if engine == "3d" else '[structure]\nkind = "block"\n'
+        sc.write_text(
+            f'{structure}[blast]\ncharge_kg = 100.0\nstandoff_m = 5.0\n[scale]\nlength = "1/20"\n[simulation]\nengine = "{engine}"\nduration_s = 0.1\n'
+        )
+        p = subprocess.run(
+            [sys.executable, "-c", code, "run", str(sc), "--out", str(tmp_path / engine)],
+            capture_output=True,
+            text=True,
+            timeout=300,
+        )
+        assert p.returncode == 0, p.stderr
+        assert (tmp_path / engine / "report.html").exists()
+        loaded[engine] = p.stdout.strip().splitlines()[-1]
+    assert loaded == {"3d": "[]", "planar": "['blastscale.rocking', 'numba']"}

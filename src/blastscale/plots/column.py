@@ -21,6 +21,7 @@ __all__ = [
     "plot_column_snapshots",
     "plot_ensemble_envelope",
     "plot_point_histories",
+    "shared_legend",
 ]
 
 #: dataset variable -> (axis label with units, factor to the unit shown)
@@ -44,6 +45,7 @@ def plot_point_histories(
     ax=None,
     component: str = "x",
     cmap: str = "viridis",
+    legend: bool = True,
 ):
     """Histories of the monitoring points, prototype solid and up-scaled model dashed, one
     colour per point (paper, Sec. 6 figures (a) displacement and (b) velocity).
@@ -63,6 +65,8 @@ def plot_point_histories(
         Component drawn (default x: along the blast, horizontal).
     cmap : str
         Colormap of the points.
+    legend : bool
+        Draw the legend in the axes (False: panels that share one, :func:`shared_legend`).
 
     Returns
     -------
@@ -92,8 +96,17 @@ def plot_point_histories(
     ax.set_xlabel("time after arrival [s] (prototype)")
     ax.set_ylabel(label.replace("horizontal", f"{component}") if component != "x" else label)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="x-small")
+    if legend:
+        ax.legend(fontsize="x-small")
     return ax
+
+
+def shared_legend(fig, ax) -> None:
+    """One legend for panels that draw the same entries (``ax``'s), below them, outside every axes (a
+    constrained-layout figure): no curve hidden, and no search of the panels' vertices for the emptiest
+    corner (matplotlib's ``loc="best"``: a third of a column report's figure)."""
+    handles, labels = ax.get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=min(len(labels), 12), fontsize="x-small")
 
 
 def _drum_sections(structure) -> list[tuple[float, float, float, float]]:
@@ -160,8 +173,9 @@ def plot_column_comparison(structure, prototype, model=None, points=None, fig=No
 
     fig = fig or plt.figure(figsize=(15, 5.5), layout="constrained")
     axs = fig.subplots(1, 3, gridspec_kw={"width_ratios": [2, 2, 1]})
-    plot_point_histories(prototype, model, "point_displacement", points, ax=axs[0])
-    plot_point_histories(prototype, model, "point_velocity", points, ax=axs[1])
+    plot_point_histories(prototype, model, "point_displacement", points, ax=axs[0], legend=False)
+    plot_point_histories(prototype, model, "point_velocity", points, ax=axs[1], legend=False)
+    shared_legend(fig, axs[0])
     # snapshots at rest, at the top point's two largest excursions, and at the end
     top_point = prototype.attrs.get("top_point", str(prototype["point"].values[-1]))
     top = prototype["point_displacement"].sel(point=top_point, component="x").values

@@ -84,7 +84,7 @@ def write_study(
         + [f"{f.name}.png" for f, _ in figures]
     )
     tell("report")
-    write_atomic(folder / "report.html", render_report(result, figures, meta, files, plan_html=plan_html))
+    write_atomic(folder / "report.html", render_report(result, figures, meta, files, plan_html=plan_html, tree=tree))
     write_json(folder / "summary.json", summary_dict(result, meta))
     return ["report.html"] + files
 

@@ -13,7 +13,7 @@ from typing import Callable
 import numpy as np
 from .html import format_charge
 from ..plots.rocking import rocking_figure
-from ..plots.column import plot_point_histories
+from ..plots.column import plot_point_histories, shared_legend
 from ..plots.column import plot_ensemble_envelope
 from ..structures import Assembly
 from ..plots.assembly import assembly_figure
@@ -72,8 +72,9 @@ def _three_d(result):
         return plot_column_comparison(cmp.structure, cmp.prototype_dataset, cmp.upscaled_dataset)
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
-    plot_point_histories(cmp.prototype_dataset, cmp.upscaled_dataset, "point_displacement", ax=axes[0])
-    plot_point_histories(cmp.prototype_dataset, cmp.upscaled_dataset, "point_velocity", ax=axes[1])
+    plot_point_histories(cmp.prototype_dataset, cmp.upscaled_dataset, "point_displacement", ax=axes[0], legend=False)
+    plot_point_histories(cmp.prototype_dataset, cmp.upscaled_dataset, "point_velocity", ax=axes[1], legend=False)
+    shared_legend(fig, axes[0])
     return fig
 
 

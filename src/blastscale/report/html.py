@@ -312,7 +312,9 @@ def _verdict(result) -> str:
     return f'<p id="verdict" class="{cls}"><b>{_e(v["line"])}</b></p>'
 
 
-def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_html: str | None = None) -> str:
+def render_report(
+    result, figures, meta: dict, files: Iterable[str] = (), plan_html: str | None = None, tree=None
+) -> str:
     """The report as one HTML string.
 
     Parameters
@@ -327,6 +329,8 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_h
         Names of the other files of the result folder.
     plan_html : str, optional
         The plan of ``blastscale plan --out`` (a section ``plan`` before the test card).
+    tree : xarray.DataTree, optional
+        ``result.to_datatree()`` when the caller has it (the 3D view reads its motion; made here otherwise).
 
     Returns
     -------
@@ -350,7 +354,7 @@ def render_report(result, figures, meta: dict, files: Iterable[str] = (), plan_h
         "impulsive": ("3. Impulsive check", _impulsive(result)),
         "similarity": (
             "4. Response of the prototype" if result.design is None else "4. Similarity: prototype vs up-scaled model",
-            _similarity(result, figures) + motion_section(result),
+            _similarity(result, figures) + motion_section(result, tree),
         ),
         "warnings": ("5. Warnings", _warnings(result)),
         "slips": ("6. The paper's slips that apply", _slips(result)),

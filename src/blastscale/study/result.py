@@ -162,10 +162,10 @@ class StudyResult:
         The root carries the title, the scenario (TOML) and the CF conventions."""
         import xarray as xr
 
-        from ..analysis.rocking_similarity import rocking_dataset  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-
         groups = {}
-        if self.planar is not None:
+        if self.planar is not None:  # a 3D run alone never loads the planar kernels (numba: 0.27 s)
+            from ..analysis.rocking_similarity import rocking_dataset  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+
             up = (
                 None
                 if self.planar.model is None
