@@ -245,3 +245,26 @@ def test_a_3d_run_never_loads_the_planar_kernels(tmp_path):
         assert (tmp_path / engine / "report.html").exists()
         loaded[engine] = p.stdout.strip().splitlines()[-1]
     assert loaded == {"3d": "[]", "planar": "['blastscale.rocking', 'numba']"}
+
+
+def test_a_command_runs_with_the_cli_collector_thresholds_then_restores_them(capsys, monkeypatch):
+    """``main`` sets GC_THRESHOLDS while a command runs (the collector's full passes were 0.35 s of a column run)
+    and puts back the caller's thresholds afterwards, also when the command fails."""
+    import gc
+
+    import blastscale.cli as cli
+
+    before = gc.get_threshold()
+    seen = []
+    for argv in (["design", "--charge", "50", "--standoff", "2", "--scale", "1/20"], ["design", "--charge", "-1"]):
+        gc.set_threshold(701, 11, 9)
+        try:
+            code, _, _ = run_cli(capsys, *argv)
+            seen.append((code, gc.get_threshold()))
+        finally:
+            gc.set_threshold(*before)
+    assert [c for c, _ in seen] == [0, 2] and all(t == (701, 11, 9) for _, t in seen)
+    during = []
+    monkeypatch.setattr(cli, "app", lambda args, prog_name: during.append(gc.get_threshold()))
+    cli.main(["design"])
+    assert during == [cli.GC_THRESHOLDS] and cli.GC_THRESHOLDS[0] > 700 and gc.get_threshold() == before

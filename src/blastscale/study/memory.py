@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 import os
+import weakref
 from dataclasses import dataclass
 
 from .._validate import BlastscaleInputError
@@ -197,16 +198,29 @@ def _contact_or_none(scenario: Scenario, structure):
         return None
 
 
+#: contacts_of's answers, by the id of a live structure (structures are immutable; an entry leaves with its
+#: structure): a run's check, estimate and announcement ask for the same structure (0.1 s each for a column).
+_CONTACTS: dict[int, int] = {}
+
+
 def contacts_of(structure) -> int:
     """The contacts of a structure at rest: its interfaces between bodies and with the ground, found by
-    geometry (:func:`~blastscale.structures.as_assembly`); 1 without a structure."""
+    geometry (:func:`~blastscale.structures.as_assembly`) once per structure; 1 without a structure."""
     if structure is None:
         return 1
-
+    key = id(structure)
+    if key in _CONTACTS:
+        return _CONTACTS[key]
     try:
-        return max(1, len(as_assembly(structure).interface_details))
+        n = max(1, len(as_assembly(structure).interface_details))
     except (BlastscaleInputError, AttributeError, ValueError):
-        return _bodies(structure)
+        n = _bodies(structure)
+    try:
+        weakref.finalize(structure, _CONTACTS.pop, key, None)
+    except TypeError:  # not weakly referenceable: asked again next time
+        return n
+    _CONTACTS[key] = n
+    return n
 
 
 @dataclass(frozen=True)
