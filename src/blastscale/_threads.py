@@ -1,6 +1,11 @@
 """Independent runs in parallel native threads: 3D runs (ensemble members, the 3D cases of a sweep
 chunk) and the slices of a planar batch (:mod:`blastscale.rocking.batch`).
 
+Vectorised evaluations over many cases (the first swings of a sweep's outcome mode, of fragility, of
+capacity searches) split their cases into interleaved shares, one per thread (:func:`map_interleaved`): numpy's
+array loops and the compiled kernels release the GIL, and the cost of a case follows its place in a grid
+(the charge order), so alternate cases balance the threads where contiguous halves would not.
+
 The runs must release Python's GIL to gain anything: MuJoCo does inside ``mj_step`` (measured: 4 runs
 of the 10-drum column on 2 threads take 1/1.94 of their serial time; :mod:`blastscale.sim3d.threads`),
 and so do the compiled planar kernels (``nogil=True``, :mod:`blastscale.rocking._kernel`). Each run is
@@ -22,9 +27,19 @@ import threading
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from typing import Callable, Optional
 
+import numpy as np
+
 from ._validate import BlastscaleInputError
 
-__all__ = ["THREADS_ENV", "available_cores", "default_threads", "resolve_threads", "map_threads"]
+__all__ = [
+    "THREADS_ENV",
+    "available_cores",
+    "default_threads",
+    "resolve_threads",
+    "map_threads",
+    "map_interleaved",
+    "interleave",
+]
 
 #: Environment variable holding a process's default number of threads (set for local Dask workers).
 THREADS_ENV = "BLASTSCALE_THREADS"
@@ -110,3 +125,27 @@ def map_threads(
             f.result()
             done(k)
         return [f.result() for f in futs]
+
+
+def map_interleaved(fn: Callable, n: int, threads: Optional[int], min_per_thread: int) -> list:
+    """``fn(share)`` for the interleaved shares ``share = slice(j, None, k)`` of ``n`` cases, on ``k`` threads:
+    ``k`` = ``threads`` (default :func:`default_threads`), at most ``n // min_per_thread``; with ``k = 1``
+    one call ``fn(slice(None))`` in this thread.
+
+    Returns
+    -------
+    list of (slice, result)
+        Each share and ``fn``'s result on it (reassemble arrays with :func:`interleave`).
+    """
+    k = max(1, min(resolve_threads(threads), int(n) // max(1, int(min_per_thread))))
+    shares = [slice(None)] if k == 1 else [slice(j, None, k) for j in range(k)]
+    return list(zip(shares, map_threads(fn, shares, k)))
+
+
+def interleave(parts: list, n: int) -> np.ndarray:
+    """The array of ``n`` cases from :func:`map_interleaved`'s ``(share, array)`` pairs (the dtype of the
+    first share's)."""
+    out = np.empty(int(n), dtype=np.asarray(parts[0][1]).dtype)
+    for share, values in parts:
+        out[share] = values
+    return out

@@ -60,10 +60,11 @@ References: paper Sec. "Equations of motion"; Housner (1963), Bull. Seismol. Soc
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
+from .._threads import interleave, map_interleaved
 from .._validate import BlastscaleInputError, check_positive
 from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters_unchecked
@@ -97,6 +98,9 @@ class FirstSwing:
     collapsed: np.ndarray
     max_rotation: np.ndarray
     margin: np.ndarray
+
+
+FIRST_SWING_FIELDS = tuple(f.name for f in fields(FirstSwing))
 
 
 def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab_f=None, off=None) -> FirstSwing:
@@ -273,12 +277,30 @@ def first_swing(
     return _first_swing(systems, W.ravel(), R.ravel(), pulse_shape, blast_model, extrapolate, solver, load_model)
 
 
+#: Fewest cases a thread of :func:`_first_swing` takes (below, the threads cost more than they save).
+MIN_CASES_PER_THREAD = 256
+
+
 def _first_swing(systems, W, R, pulse_shape, blast_model, extrapolate, solver, load_model=None) -> FirstSwing:
     """:func:`first_swing` of checked inputs (1-D arrays of positive charges [kg] and stand-offs [m]
-    of one length): the capacity searches check once and evaluate many times."""
+    of one length): the capacity searches check once and evaluate many times. The cases are dealt out
+    over the solver's threads, alternately (:func:`~blastscale._threads.map_interleaved`: the blast
+    parameters, pulse phases and first swings of each share on a thread of their own; bitwise one
+    thread)."""
+    solver = solver or DEFAULT_SOLVER
     a, e, p, q = _system_arrays(systems, W.size)
-    bp = blast_parameters_unchecked(W, R, blast_model, extrapolate=extrapolate)
-    return first_swing_blast(a, e, p, q, bp, pulse_shape, solver=solver, load_model=load_model, extrapolate=extrapolate)
+    one = replace(solver, threads=1)
+
+    def share(s):
+        bp = blast_parameters_unchecked(W[s], R[s], blast_model, extrapolate=extrapolate)
+        return first_swing_blast(
+            a[s], e[s], p[s], q[s], bp, pulse_shape, solver=one, load_model=load_model, extrapolate=extrapolate
+        )
+
+    parts = map_interleaved(share, W.size, solver.threads, MIN_CASES_PER_THREAD)
+    if len(parts) == 1:
+        return parts[0][1]
+    return FirstSwing(*(interleave([(s, getattr(fs, f)) for s, fs in parts], W.size) for f in FIRST_SWING_FIELDS))
 
 
 def overturns(

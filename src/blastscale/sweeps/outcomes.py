@@ -12,7 +12,7 @@ from .._validate import BlastscaleInputError
 from ..similitude import design_model
 from ..structures import from_spec
 from ..study.engines import load_model_of
-from .._threads import map_threads, resolve_threads
+from .._threads import interleave, map_interleaved
 import warnings
 
 __all__ = ["OUTCOME_KEYS", "VALID_KEY", "planar_outcomes"]
@@ -141,21 +141,14 @@ MIN_CASES_PER_THREAD = 256
 
 
 def _outcome_group_threaded(sc, W, R, e) -> dict:
-    """:func:`_outcome_group` with the cases dealt out over ``sc.simulation.threads`` threads,
-    alternately (the cost of a case follows the charge order): the design, the pulse phases and
-    the first swings of each share run on a thread of their own (numpy's array loops and the
-    compiled kernel release Python's lock). Every value is computed case by case, so the
-    results are bitwise those of one thread."""
-    k = min(resolve_threads(sc.simulation.threads), W.size // MIN_CASES_PER_THREAD)
-    if k <= 1:
-        return _outcome_group(sc, W, R, e)
-    parts = map_threads(lambda j: _outcome_group(sc, W[j::k], R[j::k], e[j::k], threads=1), range(k), k)
-    out = {}
-    for key in OUTCOME_KEYS:
-        out[key] = np.empty(W.size, dtype=parts[0][key].dtype)
-        for j, part in enumerate(parts):
-            out[key][j::k] = part[key]
-    return out
+    """:func:`_outcome_group` with the cases dealt out over ``sc.simulation.threads`` threads, alternately
+    (:func:`~blastscale._threads.map_interleaved`): the design, the pulse phases and the first swings of
+    each share run on a thread of their own. Every value is computed case by case, so the results are
+    bitwise those of one thread."""
+    parts = map_interleaved(
+        lambda s: _outcome_group(sc, W[s], R[s], e[s], threads=1), W.size, sc.simulation.threads, MIN_CASES_PER_THREAD
+    )
+    return {key: interleave([(s, part[key]) for s, part in parts], W.size) for key in OUTCOME_KEYS}
 
 
 def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:

@@ -71,11 +71,25 @@ def test_batch_runs_on_several_threads(monkeypatch):
     assert len(seen) == 2
 
 
-def test_first_swing_on_two_threads_is_bitwise_one_thread():
+@pytest.mark.parametrize("per_case_bodies", [False, True])
+def test_first_swing_on_three_threads_is_bitwise_one_thread(monkeypatch, per_case_bodies):
+    """The first swings of a batch dealt out over three threads in alternate shares of unequal size (blast
+    parameters, pulse phases and free swings per share): every field bitwise one thread's, one body for every
+    case or one per case; the shares are really three."""
+    from blastscale import _threads
+    from blastscale.rocking import swing
+
+    n = 3 * swing.MIN_CASES_PER_THREAD + 7
+    W = np.geomspace(40.0, 160.0, n)  # across the critical charge (~80 kg)
     system = RockingSystem.from_block(BLOCK)
-    W = np.geomspace(40.0, 160.0, 4 * _batch.MIN_CASES_PER_THREAD)  # across the critical charge (~80 kg)
-    a = first_swing(system, W, 2.0, blast_model="masi2021", solver=RockingSolver(threads=1))
-    b = first_swing(system, W, 2.0, blast_model="masi2021", solver=RockingSolver(threads=2))
+    systems = [system if k % 3 else RockingSystem.from_block(RectangularBlock(5.0, 1.5)) for k in range(n)]
+    bodies = systems if per_case_bodies else system
+    a = first_swing(bodies, W, 2.0, blast_model="masi2021", solver=RockingSolver(threads=1))
+    shares = []
+    real = _threads.map_threads
+    monkeypatch.setattr(_threads, "map_threads", lambda fn, items, k: shares.append(len(items)) or real(fn, items, k))
+    b = first_swing(bodies, W, 2.0, blast_model="masi2021", solver=RockingSolver(threads=3))
+    assert shares == [3]
     assert 0 < a.collapsed.sum() < W.size
     for name in ("collapsed", "max_rotation", "margin"):
         np.testing.assert_array_equal(getattr(b, name), getattr(a, name), err_msg=name)
