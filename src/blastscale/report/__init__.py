@@ -10,8 +10,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable, Optional
 
-from .figures import FIGURES, render_figures
+from .figures import FIGURES, render_figures, render_figures_apart
 from .html import SECTIONS, format_charge, render_report
+from .motion import motion_section
 from .slips import SLIPS, applicable_slips
 from ..io.histories import write_histories_csv, write_netcdf
 from ..io.results import provenance, write_atomic, write_json
@@ -68,12 +69,14 @@ def write_study(
     tell = progress or (lambda stage: None)
     meta = provenance()
     tell("histories (NetCDF" + (", CSV)" if csv else ")"))
-    tree = result.to_datatree()
-    write_netcdf(tree, folder / "histories.nc")
-    if csv:
-        write_histories_csv(tree, folder / "histories.csv")
-    tell("figures")
-    figures = render_figures(result)
+    with render_figures_apart(result) as drawing:  # drawn beside the histories and the 3D view (Linux)
+        tree = result.to_datatree()
+        write_netcdf(tree, folder / "histories.nc")
+        if csv:
+            write_histories_csv(tree, folder / "histories.csv")
+        motion = motion_section(result, tree)
+        tell("figures")
+        figures = drawing.result()
     for f, png in figures:
         write_atomic(folder / f"{f.name}.png", png)
     write_atomic(folder / "scenario.toml", result.scenario.to_toml())
@@ -84,7 +87,9 @@ def write_study(
         + [f"{f.name}.png" for f, _ in figures]
     )
     tell("report")
-    write_atomic(folder / "report.html", render_report(result, figures, meta, files, plan_html=plan_html, tree=tree))
+    write_atomic(
+        folder / "report.html", render_report(result, figures, meta, files, plan_html=plan_html, motion=motion)
+    )
     write_json(folder / "summary.json", summary_dict(result, meta))
     return ["report.html"] + files
 

@@ -313,7 +313,7 @@ def _verdict(result) -> str:
 
 
 def render_report(
-    result, figures, meta: dict, files: Iterable[str] = (), plan_html: str | None = None, tree=None
+    result, figures, meta: dict, files: Iterable[str] = (), plan_html: str | None = None, motion: str | None = None
 ) -> str:
     """The report as one HTML string.
 
@@ -329,8 +329,9 @@ def render_report(
         Names of the other files of the result folder.
     plan_html : str, optional
         The plan of ``blastscale plan --out`` (a section ``plan`` before the test card).
-    tree : xarray.DataTree, optional
-        ``result.to_datatree()`` when the caller has it (the 3D view reads its motion; made here otherwise).
+    motion : str, optional
+        The 3D views' section when the caller made it (:func:`~blastscale.report.motion.motion_section`);
+        made here otherwise.
 
     Returns
     -------
@@ -354,7 +355,7 @@ def render_report(
         "impulsive": ("3. Impulsive check", _impulsive(result)),
         "similarity": (
             "4. Response of the prototype" if result.design is None else "4. Similarity: prototype vs up-scaled model",
-            _similarity(result, figures) + motion_section(result, tree),
+            _similarity(result, figures) + (motion_section(result) if motion is None else motion),
         ),
         "warnings": ("5. Warnings", _warnings(result)),
         "slips": ("6. The paper's slips that apply", _slips(result)),
