@@ -12,7 +12,7 @@ loop; timers over the run after settling. ``ensemble``: the wall under loads x (
 (:func:`phased`), and of the bodies in the structure's own order instead of reverse Cuthill-McKee's. ``settled``: the wall's contacts and islands after settling, its length x (1 + 1e-6 u).
 
 Not a test: ``python benchmarks/bench_walls_newton.py profile|ensemble|variants|settled [--members 5]
-[--geometry] [--eps 1e-6] [--tolerances 1e-8,...] [--duration 0.25]`` (prints JSON).
+[--geometry] [--eps 1e-6] [--tolerances 1e-8,...] [--engaged 1e-5] [--duration 0.25]`` (prints JSON).
 """
 
 from __future__ import annotations
@@ -196,21 +196,55 @@ def _largest_block_displacement(r):
     return float(np.max(np.abs(x)))
 
 
+def head_joints_engaged(margin: float):
+    """A step function that, before the first step of each run, gives the head joints (interface pairs of two bodies
+    at one height) MuJoCo's ``margin`` = ``gap`` = ``margin`` [m, reference units]: their contacts are in the solver
+    whenever the faces are less than ``margin`` apart, with no force until they touch (an experiment, not the
+    engine's rule)."""
+    orig, seen = mujoco.mj_step, {}
+
+    def step(m, d, nstep=1):
+        if seen.get("d") is not d:
+            seen["d"] = d
+            z = m.body_pos[:, 2]
+            b1, b2 = m.geom_bodyid[m.pair_geom1], m.geom_bodyid[m.pair_geom2]
+            head = (b1 > 0) & (b2 > 0) & (np.abs(z[b1] - z[b2]) < 1e-9)
+            m.pair_margin[head] = margin
+            m.pair_gap[head] = margin
+        orig(m, d, nstep)
+
+    return step
+
+
 def ensemble(
-    structure, load, duration: float, members: int, changes: dict, eps: float = 1e-6, geometry: bool = False
+    structure,
+    load,
+    duration: float,
+    members: int,
+    changes: dict,
+    eps: float = 1e-6,
+    geometry: bool = False,
+    engaged: float = 0.0,
 ) -> dict:
     """Members under load x (1 + eps u), u evenly over [-1, 1], with the default settings + ``changes``; with
-    ``geometry`` the 200-block wall's length x (1 + eps u) instead (every block eps longer, the load the same)."""
+    ``geometry`` the 200-block wall's length x (1 + eps u) instead (every block eps longer, the load the same); with
+    ``engaged`` > 0 the head joints engaged within that distance (:func:`head_joints_engaged`)."""
     tops, peaks, outs, cpu = [], [], [], []
+    orig = mujoco.mj_step
     for u in np.linspace(-1.0, 1.0, members):
         s = _wall(1.0 + eps * u) if geometry else structure
         ld = load if geometry else PerturbedLoad(load, 1.0 + eps * u)
         contact = replace(default_contact(s), **changes) if changes else None
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            t0 = _cpu()
-            r = simulate_structure(s, ld, duration, contact=contact, record_every=20)
-            cpu.append(_cpu() - t0)
+        if engaged > 0.0:
+            mujoco.mj_step = head_joints_engaged(engaged)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                t0 = _cpu()
+                r = simulate_structure(s, ld, duration, contact=contact, record_every=20)
+                cpu.append(_cpu() - t0)
+        finally:
+            mujoco.mj_step = orig
         s = r.summary()
         tops.append(_top(r))
         peaks.append(_largest_block_displacement(r))
@@ -311,6 +345,11 @@ def main() -> None:
             e = ensemble(s, ld, dur or d, n, {"tolerance": t}, eps, geo)
             e["vs_default"] = _vs(ref, e)
             out[f"tolerance {t:g}"] = e
+        if "--engaged" in args:
+            margin = float(args[args.index("--engaged") + 1])
+            e = ensemble(s, ld, dur or d, n, {}, eps, geo, margin)
+            e["vs_default"] = _vs(ref, e)
+            out[f"head joints engaged within {margin:g} m"] = e
         for e in out.values():
             if isinstance(e, dict) and "top_histories" in e:
                 e.pop("top_histories")
