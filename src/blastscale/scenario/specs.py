@@ -260,6 +260,12 @@ class ContactSpec(BaseModel):
     solver: Optional[Literal[SOLVERS]] = Field(None, description="Constraint solver")
     iterations: Optional[int] = Field(None, description="Solver iterations [-]", **_limits("iterations"))
     tolerance: Optional[float] = Field(None, description="Solver tolerance [-]", **_limits("tolerance"))
+    settle_tolerance: Optional[float] = Field(
+        None,
+        description="Solver tolerance while settling before the first arrival [-] (default 1e-8 above 10 bodies, "
+        "else the tolerance; the tolerance itself gives the settling of before issue #28)",
+        **_limits("settle_tolerance"),
+    )
     noslip_iterations: Optional[int] = Field(None, description="No-slip iterations [-]", **_limits("noslip_iterations"))
     jacobian: Optional[Literal[JACOBIANS]] = Field(
         None, description="Constraint Jacobian layout (dense by default; sparse is 2.5-3.4x faster on columns)"

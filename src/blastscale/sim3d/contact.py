@@ -40,6 +40,8 @@ from .contact_ranges import CONES, JACOBIANS, SETTING_RANGES, SOLVERS, STEPS_AFT
 from .solver_choice import default_jacobian
 
 __all__ = [
+    "ASSEMBLY_SETTLE_TOLERANCE",
+    "LOOSE_SETTLE_ABOVE_BODIES",
     "ContactSettings",
     "CONES",
     "SOLVERS",
@@ -104,6 +106,11 @@ class ContactSettings:
         Maximum solver iterations per step.
     tolerance : float
         Solver tolerance [-] (relative cost improvement).
+    settle_tolerance : float or None
+        Solver tolerance [-] while the structure settles before the first arrival (None: ``tolerance``). A structure
+        of more than :data:`LOOSE_SETTLE_ABOVE_BODIES` bodies settles at :data:`ASSEMBLY_SETTLE_TOLERANCE` by default
+        (:func:`reference_contact`; docs/performance.md, "Walls under a blast"); ``tolerance`` gives the settling of
+        before.
     noslip_iterations : int
         Iterations of MuJoCo's post-hoc no-slip solver (0 = off; it does not affect the hop).
     jacobian : {"dense", "sparse", "auto"}
@@ -140,6 +147,7 @@ class ContactSettings:
     solver: str = "Newton"
     iterations: int = 100
     tolerance: float = 1e-10
+    settle_tolerance: float | None = None
     noslip_iterations: int = 0
     jacobian: str = "dense"
     step_after_load: str = "double"
@@ -153,7 +161,7 @@ class ContactSettings:
                 raise BlastscaleInputError(f"{name} = {v!r} is out of range: must be a whole number")
         for name, r in SETTING_RANGES.items():
             v = getattr(self, name)
-            if v is None and name == "friction_time_constant":  # None: MuJoCo's default (tau_f = tau)
+            if v is None and name in ("friction_time_constant", "settle_tolerance"):  # tau_f = tau; the tolerance
                 continue
             lo = self.impedance_min if name == "impedance_max" else r.lo  # dmin <= dmax
             check_range(name, v, lo, r.hi, r.unit, lo_open=r.lo_open, hi_open=r.hi_open)
@@ -276,6 +284,7 @@ class ContactSettings:
             "solver": self.solver,
             "iterations": self.iterations,
             "tolerance": self.tolerance,
+            "settle_tolerance": self.settle_tolerance,
             "noslip_iterations": self.noslip_iterations,
             "jacobian": self.jacobian,
             "step_after_load": self.step_after_load,
@@ -303,6 +312,12 @@ BLOCK_REFERENCE = ContactSettings()
 #: Full-scale defaults of a stack of bodies (column): contact 1 ms, no separate friction time
 #: constant (20 ms does not converge for columns), dt 0.25 ms, solimp width 1 mm.
 STACK_REFERENCE = ContactSettings(time_constant=1e-3, friction_time_constant=None, timestep=2.5e-4)
+#: Structures of more bodies than this settle at :data:`ASSEMBLY_SETTLE_TOLERANCE` (walls, arches: their settled state
+#: is a knife edge that the settling tolerance picks; the columns, 10 drums, and single blocks keep theirs).
+LOOSE_SETTLE_ABOVE_BODIES = 10
+#: Solver tolerance of an assembly's settling (MuJoCo's default): the 200-block wall's response over block lengths
+#: 1e-6 apart keeps its mean and narrows its spread 4x, at 1.8x less cost (docs/performance.md).
+ASSEMBLY_SETTLE_TOLERANCE = 1e-8
 #: Largest time step as a fraction of the structure's gravity time sqrt(L / g).
 MAX_TIMESTEP_FRACTION = 0.01
 #: An explicit contact time constant above this many times max(pulse duration, scale-consistent
@@ -318,11 +333,13 @@ def structure_length(structure) -> float:
 def reference_contact(structure, friction: float = DEFAULT_FRICTION) -> ContactSettings:
     """The full-scale (10 m, 9.81 m/s^2) settings of ``structure`` with friction mu [-]:
     :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several, with the Jacobian of
-    :func:`~.solver_choice.default_jacobian` (by size and MuJoCo version)."""
+    :func:`~.solver_choice.default_jacobian` (by size and MuJoCo version) and, above
+    :data:`LOOSE_SETTLE_ABOVE_BODIES` bodies, the settling tolerance :data:`ASSEMBLY_SETTLE_TOLERANCE`."""
 
     n = len(structure.bodies)
     base = BLOCK_REFERENCE if n == 1 else STACK_REFERENCE
-    return replace(base, friction=friction, jacobian=default_jacobian(n))
+    settle = ASSEMBLY_SETTLE_TOLERANCE if n > LOOSE_SETTLE_ABOVE_BODIES else None
+    return replace(base, friction=friction, jacobian=default_jacobian(n), settle_tolerance=settle)
 
 
 #: Contact time constants per time step kept when a user coarsens the step (MuJoCo needs >= 2).

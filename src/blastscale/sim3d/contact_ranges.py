@@ -57,5 +57,6 @@ SETTING_RANGES: dict[str, Range] = {
     "impratio": Range(0.0, 1e4, lo_open=True),
     "iterations": Range(1, 10_000),
     "tolerance": Range(0.0, 1.0, lo_open=True),
+    "settle_tolerance": Range(0.0, 1.0, lo_open=True),
     "noslip_iterations": Range(0, 10_000),
 }

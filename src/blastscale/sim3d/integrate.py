@@ -179,7 +179,11 @@ def integrate(
     nb = len(scene.bodies)
     ids = scene.body_ids  # MuJoCo's id of each body, in the structure's order
     if settle:
+        run_tolerance = m.opt.tolerance
+        if c.settle_tolerance is not None:  # an assembly's settling tolerance (ContactSettings.settle_tolerance)
+            m.opt.tolerance = c.settle_tolerance
         mujoco.mj_step(m, d, int(math.ceil(SETTLE_TIME_CONSTANTS * c.time_constant / dt - 1e-9)))  # native loop
+        m.opt.tolerance = run_tolerance
         d.qvel[:] = 0.0  # remove the (exp(-20)-small) residual transient exactly
     d.time = 0.0
     if initial_velocity is not None:
