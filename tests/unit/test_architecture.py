@@ -16,7 +16,7 @@ import pytest
 SRC = Path(__file__).resolve().parents[2] / "src" / "blastscale"
 
 #: The modules private to blastscale as a whole and shared by every subpackage (validation, test pause points,
-#: the thread share, the compiled kernels' cache keys, the code's fingerprint, optional extras).
+#: the thread share, the compiled kernels' cache keys, the code's fingerprint, optional extras, the forked child).
 SHARED_PRIVATE = {
     "blastscale._validate",
     "blastscale._hooks",
@@ -24,6 +24,7 @@ SHARED_PRIVATE = {
     "blastscale._jit",
     "blastscale._code",
     "blastscale._extras",
+    "blastscale._fork",
 }
 
 
