@@ -25,6 +25,7 @@ from ._app import (
     announce_run,
     app,
     console,
+    console_err,
     fmt_value,
     ignore_interrupts,
     one_line_warnings,
@@ -220,7 +221,7 @@ def run_cmd(
 
             check_lab(design, sc.lab)
         writes = 3 if out is not None else 0  # histories, figures, report
-        expected = announce_run(study, writes=out is not None, quiet=as_json)  # its size, before it starts
+        expected = announce_run(study, console_err, writes=out is not None, quiet=as_json)  # its size, before it starts
         with stage_progress(quiet=as_json, expected_s=expected) as tell:
             state = {"done": 0, "total": 1}
 
