@@ -38,7 +38,7 @@ from .gauges import fit_gauge
 from .outcome import body_verdicts, marker_body
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks, record_fault
 from .refit import OUTCOMES, SpecimenRun, marker_history, simulate_specimen
-from .tracks import block_rotation, first_peak
+from .tracks import block_rotation, track_first_peak
 
 __all__ = ["OUTCOMES", "AsFired", "as_fired"]
 
@@ -147,7 +147,7 @@ def _measured_markers(sc, d, rec: TrackRecord) -> dict:
         if is_block(structure):
             th = block_rotation(ux, uz, spec.point_m[0], spec.point_m[2], structure.b)
             outcome = OUTCOMES[bool(np.max(np.abs(th)) >= structure.alpha)]
-        out[name] = {"t": rec.time_s, "ux": ux, "uz": uz, "peak": first_peak(rec.time_s, ux), "outcome": outcome}
+        out[name] = {"t": rec.time_s, "ux": ux, "uz": uz, "peak": track_first_peak(rec.time_s, ux), "outcome": outcome}
     if not is_block(structure):
         verdicts = body_verdicts(structure, {n: (sc.fired.marker[n].point_m, m["ux"], m["uz"]) for n, m in out.items()})
         for n, m in out.items():
