@@ -290,7 +290,7 @@ def as_fired(
         summary["calibration"] = calibrate_restitution(scenario, d, meas, w_refit, standoff)
     if "friction" in calibrate:
         summary["calibration"] = calibrate_friction(scenario, d, meas, w_refit, standoff)
-    summary["verdict"] = verdict(summary)
+    summary["verdict"] = as_fired_verdict_line(summary)
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
 
 
@@ -312,8 +312,9 @@ def _sensitivity(sc, d, predicted: SpecimenRun, refit: SpecimenRun, standoff: fl
     )
 
 
-def verdict(s: dict) -> str:
-    """The one line at the top of the report (docs/fired.md)."""
+def as_fired_verdict_line(s: dict) -> str:
+    """The as-fired summary's verdict: the one line at the top of its report (docs/fired.md; a study's verdict
+    is :func:`blastscale.report.verdict.verdict`)."""
     parts = []
     if s["charge_ratio_impulse"] is not None:
         parts.append(f"As fired: {s['charge_ratio_impulse']:.3g} x the designed charge by impulse")
