@@ -38,7 +38,7 @@ from ._app import (
 )
 from .flags import SET_VALUES, scenario_with
 from .loads import print_design
-from ..report.html import split_unit
+from ..report.html import split_unit_for_tables
 from ..report.verdict import label
 from ..report.html import format_charge
 from ..report.verdict import verdict_line
@@ -61,7 +61,7 @@ def _compare_table(title: str, prototype: dict, model: dict) -> Table:
         if isinstance(v, (dict, list, str)):
             continue
         values = (fmt_value(v),) if model is None else (fmt_value(v), fmt_value(model.get(k)))
-        t.add_row(label(k), *values, split_unit(k)[1])
+        t.add_row(label(k), *values, split_unit_for_tables(k)[1])
     return t
 
 
@@ -70,7 +70,11 @@ def _similarity_table(sim: dict) -> Table:
 
     return table(
         "Similarity (prototype vs up-scaled model)",
-        [(label(k), fmt_value(v, ".3g"), split_unit(k)[1]) for k, v in sim.items() if not isinstance(v, (dict, list))],
+        [
+            (label(k), fmt_value(v, ".3g"), split_unit_for_tables(k)[1])
+            for k, v in sim.items()
+            if not isinstance(v, (dict, list))
+        ],
     )
 
 
