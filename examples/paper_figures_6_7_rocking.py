@@ -37,7 +37,7 @@ import math
 
 from _gallery import done, parse_args, plt, save
 
-from blastscale.plots.rocking import plot_angle, plot_angular_velocity, plot_similarity
+from blastscale.plots.rocking import plot_angle, plot_planar_angular_velocity, plot_similarity
 from blastscale.rocking import RockingSystem, critical_charge
 from blastscale.scenario import Scenario
 from blastscale.structures import RectangularBlock
@@ -53,7 +53,7 @@ def response_figure(results: dict, title: str):
     fig, axes = plt.subplots(2, len(results), figsize=(5 * len(results), 7), layout="constrained")
     for k, (W, res) in enumerate(results.items()):
         plot_angle(res, ax=axes[0, k])
-        plot_angular_velocity(res, ax=axes[1, k])
+        plot_planar_angular_velocity(res, ax=axes[1, k])
         axes[0, k].set_title(f"W_p = {W:g} kg: {'overturns' if res.collapsed else 'rocks'}")
     fig.suptitle(title)
     return fig

@@ -13,7 +13,7 @@ from blastscale.scenario import load_scenario
 from blastscale.sim3d import make_load, simulate_structure
 from blastscale.sim3d.contact import default_contact
 from blastscale.structures import MultiDrumColumn, RectangularBlock, arch, read_block_model, wall
-from blastscale.structures.generators import box_vertices
+from blastscale.structures.generators import box_vertices_from_bounds
 
 
 def _x_histories(r):
@@ -29,7 +29,9 @@ def test_a_block_from_a_json_file_runs_as_kind_block(tmp_path):
     blk = RectangularBlock(height=10.0, width=10.0 * np.tan(np.radians(15)), depth=1.0, density=2000.0)
     p = tmp_path / "block.json"
     b, w = blk.b, blk.w
-    p.write_text(json.dumps({"blocks": [{"name": "block", "vertices": box_vertices(-b, b, -w, w, 0, 10).tolist()}]}))
+    p.write_text(
+        json.dumps({"blocks": [{"name": "block", "vertices": box_vertices_from_bounds(-b, b, -w, w, 0, 10).tolist()}]})
+    )
     asm = read_block_model(p, 2000.0)
     bp = blast_parameters(50.0, 2.0, "masi2021")
     r1 = simulate_structure(blk, make_load("A", blk, bp), 0.6, record_every=20)
@@ -44,7 +46,10 @@ def test_ten_stacked_boxes_from_a_file_run_as_a_prismatic_column(tmp_path):
         json.dumps(
             {
                 "blocks": [
-                    {"name": f"D-{k + 1}", "vertices": box_vertices(-0.75, 0.75, -0.75, 0.75, k, k + 1).tolist()}
+                    {
+                        "name": f"D-{k + 1}",
+                        "vertices": box_vertices_from_bounds(-0.75, 0.75, -0.75, 0.75, k, k + 1).tolist(),
+                    }
                     for k in range(10)
                 ]
             }

@@ -17,7 +17,7 @@ from blastscale.study import Study  # noqa: E402
 from blastscale.blast import blast_parameters  # noqa: E402
 from blastscale.plots.rocking import (  # noqa: E402
     plot_angle,
-    plot_angular_velocity,
+    plot_planar_angular_velocity,
     plot_phase_portrait,
     plot_pi_diagram,
     plot_similarity,
@@ -52,7 +52,7 @@ def run():
 def test_history_plots_draw_the_history(run):
     fig, axes = plt.subplots(1, 3)
     assert plot_angle(run, ax=axes[0]) is axes[0]
-    assert plot_angular_velocity(run, ax=axes[1]) is axes[1]
+    assert plot_planar_angular_velocity(run, ax=axes[1]) is axes[1]
     assert plot_phase_portrait(run, ax=axes[2]) is axes[2]
     np.testing.assert_array_equal(axes[0].lines[0].get_ydata(), run.theta)
     np.testing.assert_array_equal(axes[1].lines[0].get_ydata(), run.theta_dot)

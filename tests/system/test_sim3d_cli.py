@@ -258,7 +258,7 @@ def test_plots_take_ax_and_return_it():
 
     from blastscale.analysis.block3d_similarity import block_dataset
     from blastscale.plots.sim3d import (
-        plot_angular_velocity,
+        plot_block_angular_velocity,
         plot_comparison,
         plot_rotation,
         plot_sliding,
@@ -270,7 +270,7 @@ def test_plots_take_ax_and_return_it():
     block = RectangularBlock(2.0, 1.0)
     r = block_dataset(simulate_structure(block, None, 0.05, contact=ContactSettings(), initial_angular_velocity=0.5))
     fig, axs = plt.subplots(1, 4)
-    for f, ax in zip((plot_rotation, plot_sliding, plot_angular_velocity), axs):
+    for f, ax in zip((plot_rotation, plot_sliding, plot_block_angular_velocity), axs):
         assert f([r, r], ax=ax) is ax
         assert len(ax.get_lines()) == 2
     assert plot_snapshots(block, r, times=[0.0, 0.05], ax=axs[3]) is axs[3]

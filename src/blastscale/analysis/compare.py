@@ -153,7 +153,8 @@ def first_peak(time, values, fraction: float = FIRST_PEAK_FRACTION) -> tuple[flo
 
     The first sample k that is a local maximum of |q| (|q_k| >= |q_(k-1)| and |q_k| > |q_(k+1)|,
     plateaus included) with |q_k| >= ``fraction`` max |q|; a history that grows to its end
-    (sliding, overturning) has its first peak at the largest |q|.
+    (sliding, overturning) has its first peak at the largest |q|. For a clean (simulated) history; a
+    measured, noisy marker track's is :func:`blastscale.fired.tracks.track_first_peak`.
 
     Parameters
     ----------

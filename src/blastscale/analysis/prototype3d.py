@@ -17,7 +17,7 @@ from ..structures import is_block
 from .gravity_alone import extended_keys, until_decided
 from .systems import run_system
 from .block3d_similarity import block_view
-from ..sim3d.face_loads import arrival_spread
+from ..sim3d.face_loads import load_arrival_spread
 
 __all__ = ["Prototype3D", "prototype_structure3d"]
 
@@ -150,7 +150,7 @@ def prototype_structure3d(
             "record_every": int(record_every),
             "load_end_s": run.load_duration_s,
             "extrapolate": bool(extrapolate),
-            "arrival_spread_prototype_s": arrival_spread(run.load),
+            "arrival_spread_prototype_s": load_arrival_spread(run.load),
             **_load_model_setting(load_model),
         },
     )

@@ -25,7 +25,6 @@ from typer.core import TyperGroup, TyperOption  # noqa: E402
 from .._validate import BlastscaleInputError  # noqa: E402
 from ._output import (  # noqa: E402,F401 (re-exported: the commands import these from here)
     activity,
-    announce_run,
     console,
     console_err,
     count_progress,
@@ -40,6 +39,7 @@ from ._output import (  # noqa: E402,F401 (re-exported: the commands import thes
     styled,
     table,
 )
+from ._progress import announce_run  # noqa: E402,F401 (re-exported: said on console_err by the commands)
 from ._signals import Interrupted, ignore_interrupts, raise_if_interrupted  # noqa: F401 (re-exported)
 
 

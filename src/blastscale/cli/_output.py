@@ -33,7 +33,6 @@ from .._validate import BlastscaleInputError
 from ..io.output import format_size, tree_size, write_file
 from ..io.results import jsonable, with_legacy_keys
 from ..study.memory import format_duration
-from ._progress import announce_run as _announce
 from ._progress import plain_lines, plain_progress, progress_seconds
 from ._signals import raise_if_interrupted
 
@@ -61,11 +60,6 @@ def print_error(message: str) -> None:
 def show_progress(quiet: bool = False) -> bool:
     """Whether a command shows progress: on a terminal (stderr), and not with ``--json`` (``quiet``)."""
     return not quiet and console_err.is_terminal
-
-
-def announce_run(study, writes: bool = False, quiet: bool = False) -> float | None:
-    """:func:`._progress.announce_run` on standard error: the run's size said before it starts."""
-    return _announce(study, console_err, writes, quiet)
 
 
 @contextlib.contextmanager

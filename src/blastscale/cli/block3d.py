@@ -16,6 +16,7 @@ from ._app import (
     announce_run,
     app,
     console,
+    console_err,
     fmt_value,
     one_line_warnings,
     print_json,
@@ -172,7 +173,7 @@ def block3d_cmd(
     with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
         with flags_named():  # a step past the stability bound, too long or too large: before any run
             contact = study.check().contact
-        expected = announce_run(study, quiet=as_json)  # its size, before it starts
+        expected = announce_run(study, console_err, quiet=as_json)  # its size, before it starts
         with stage_progress(quiet=as_json, expected_s=expected) as tell:
             result = study.run(progress=tell)
     out = block3d_output(result, contact, incidence)

@@ -17,6 +17,7 @@ from ._app import (
     announce_run,
     app,
     console,
+    console_err,
     fmt_value,
     one_line_warnings,
     print_json,
@@ -210,7 +211,7 @@ def column_cmd(
     with one_line_warnings():
         with flags_named():  # a step past the stability bound, too long or too large: before any run
             contact = study.check().contact
-        expected = announce_run(study, quiet=as_json)  # its size, before it starts
+        expected = announce_run(study, console_err, quiet=as_json)  # its size, before it starts
         with stage_progress(quiet=as_json, expected_s=expected) as tell:
             result = study.run(progress=tell)
     out = column_output(result, contact, incidence, timestep)

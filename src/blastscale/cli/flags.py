@@ -102,8 +102,9 @@ def parse_set(items: list[str]) -> dict:
 _NON_DECIMAL = re.compile(r"^[+-]?0[xXoObB][0-9A-Fa-f_]+$")
 
 
-def show(value) -> str:
-    """A value as the user would type it (TOML-like: no Python repr)."""
+def value_as_typed(value) -> str:
+    """A value as the user would type it (TOML-like: no Python repr; a validation message's quoted value is
+    :func:`blastscale.scenario.messages.value_in_message`)."""
     if isinstance(value, bool):
         return "true" if value else "false"
     return value if isinstance(value, str) else format(value, "g") if isinstance(value, float) else str(value)
@@ -122,7 +123,8 @@ def scenario_with(sc: Scenario, values: list[str], flags: Optional[dict] = None)
         path = _path(sc, key)
         if path in resolved:
             raise BlastscaleInputError(
-                f"set = '{said[path]}={show(resolved[path])}' and '{key}={show(value)}' both set {path}: give it once"
+                f"set = '{said[path]}={value_as_typed(resolved[path])}' and '{key}={value_as_typed(value)}' "
+                f"both set {path}: give it once"
             )
         resolved[path], said[path] = value, key
     for path, value in (flags or {}).items():
@@ -130,8 +132,8 @@ def scenario_with(sc: Scenario, values: list[str], flags: Optional[dict] = None)
             continue
         if path in resolved:
             raise BlastscaleInputError(
-                f"{FLAG_NAMES.get(path, path)} {show(value)} and --set {said[path]}="
-                f"{show(resolved[path])} both set {path}: give one of them"
+                f"{FLAG_NAMES.get(path, path)} {value_as_typed(value)} and --set {said[path]}="
+                f"{value_as_typed(resolved[path])} both set {path}: give one of them"
             )
         resolved[path] = value
     for path in resolved:
@@ -140,7 +142,8 @@ def scenario_with(sc: Scenario, values: list[str], flags: Optional[dict] = None)
             old = _current(sc, other)
             if old is not None:
                 warnings.warn(
-                    f"{path} = {show(resolved[path])} replaces the scenario's {other} = {show(old)} "
+                    f"{path} = {value_as_typed(resolved[path])} replaces the scenario's "
+                    f"{other} = {value_as_typed(old)} "
                     "(they exclude each other: the value on the command line is kept)",
                     stacklevel=2,
                 )

@@ -25,6 +25,7 @@ from ._app import (
     announce_run,
     app,
     console,
+    console_err,
     fmt_value,
     ignore_interrupts,
     one_line_warnings,
@@ -37,7 +38,7 @@ from ._app import (
 )
 from .flags import SET_VALUES, scenario_with
 from .loads import print_design
-from ..report.html import split_unit
+from ..report.html import split_unit_for_tables
 from ..report.verdict import label
 from ..report.html import format_charge
 from ..report.verdict import verdict_line
@@ -60,7 +61,7 @@ def _compare_table(title: str, prototype: dict, model: dict) -> Table:
         if isinstance(v, (dict, list, str)):
             continue
         values = (fmt_value(v),) if model is None else (fmt_value(v), fmt_value(model.get(k)))
-        t.add_row(label(k), *values, split_unit(k)[1])
+        t.add_row(label(k), *values, split_unit_for_tables(k)[1])
     return t
 
 
@@ -69,7 +70,11 @@ def _similarity_table(sim: dict) -> Table:
 
     return table(
         "Similarity (prototype vs up-scaled model)",
-        [(label(k), fmt_value(v, ".3g"), split_unit(k)[1]) for k, v in sim.items() if not isinstance(v, (dict, list))],
+        [
+            (label(k), fmt_value(v, ".3g"), split_unit_for_tables(k)[1])
+            for k, v in sim.items()
+            if not isinstance(v, (dict, list))
+        ],
     )
 
 
@@ -220,7 +225,7 @@ def run_cmd(
 
             check_lab(design, sc.lab)
         writes = 3 if out is not None else 0  # histories, figures, report
-        expected = announce_run(study, writes=out is not None, quiet=as_json)  # its size, before it starts
+        expected = announce_run(study, console_err, writes=out is not None, quiet=as_json)  # its size, before it starts
         with stage_progress(quiet=as_json, expected_s=expected) as tell:
             state = {"done": 0, "total": 1}
 

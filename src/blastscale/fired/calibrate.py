@@ -35,7 +35,7 @@ from ..scenario import Scenario
 from ..study import Study
 from .outcome import pose_marker_history
 from .refit import OUTCOMES, marker_history, simulate_specimen
-from .tracks import first_peak
+from .tracks import track_first_peak
 
 __all__ = [
     "CALIBRATIONS",
@@ -202,7 +202,7 @@ def calibrate_friction(
         ux, _ = pose_marker_history(proto.dataset, st, np.asarray(point, dtype=float) / design.factors.length)
         t = np.asarray(proto.dataset["time"].values)
         largest = float(np.max(np.abs(ux)))
-        peaks[name] = first_peak(t, ux, noise=1e-3 * largest, smooth=False).first_peak_m if largest > 0 else None
+        peaks[name] = track_first_peak(t, ux, noise=1e-3 * largest, smooth=False).first_peak_m if largest > 0 else None
     return {
         "friction": mu,
         "friction_ci95": ci,

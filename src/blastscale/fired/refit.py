@@ -21,7 +21,7 @@ from ..scenario import Scenario
 from ..study import Study
 from ..study.specimen import specimen_scenario
 from .outcome import pose_marker_history
-from .tracks import block_marker_displacement, first_peak
+from .tracks import block_marker_displacement, track_first_peak
 
 __all__ = ["OUTCOMES", "SpecimenRun", "marker_history", "simulate_specimen", "specimen_scenario"]
 
@@ -79,7 +79,7 @@ def marker_history(run: SpecimenRun, point_m) -> dict:
     Planar (a block): the marker's displacement at the solver's first peak angle (an event of the solver, not
     a sample). 3D (any kind): the marker's point fixed on the body whose rest centre of mass is nearest to it,
     moved by that body's recorded pose (position and orientation: translation, rocking and the turn out of the
-    blast's plane; :func:`~.outcome.pose_marker_history`); the first peak by :func:`~.tracks.first_peak` on the
+    blast's plane; :func:`~.outcome.pose_marker_history`); the first peak by :func:`~.tracks.track_first_peak` on the
     recorded history (unsmoothed)."""
     r = run.rocking
     x0, z0 = float(point_m[0]), float(point_m[2])
@@ -111,7 +111,7 @@ def _marker_history_3d(run: SpecimenRun, point: np.ndarray) -> dict:
     ux, uz = pose_marker_history(ds, run.result.structure, point)
     t = np.asarray(ds["time"].values) + run.arrival_time_s
     largest = float(np.max(np.abs(ux)))
-    pk = first_peak(t, ux, noise=1e-3 * largest, smooth=False)
+    pk = track_first_peak(t, ux, noise=1e-3 * largest, smooth=False)
     return {
         "t": t,
         "ux": ux,

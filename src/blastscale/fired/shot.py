@@ -38,7 +38,7 @@ from .gauges import fit_gauge
 from .outcome import body_verdicts, marker_body
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks, record_fault
 from .refit import OUTCOMES, SpecimenRun, marker_history, simulate_specimen
-from .tracks import block_rotation, first_peak
+from .tracks import block_rotation, track_first_peak
 
 __all__ = ["OUTCOMES", "AsFired", "as_fired"]
 
@@ -147,7 +147,7 @@ def _measured_markers(sc, d, rec: TrackRecord) -> dict:
         if is_block(structure):
             th = block_rotation(ux, uz, spec.point_m[0], spec.point_m[2], structure.b)
             outcome = OUTCOMES[bool(np.max(np.abs(th)) >= structure.alpha)]
-        out[name] = {"t": rec.time_s, "ux": ux, "uz": uz, "peak": first_peak(rec.time_s, ux), "outcome": outcome}
+        out[name] = {"t": rec.time_s, "ux": ux, "uz": uz, "peak": track_first_peak(rec.time_s, ux), "outcome": outcome}
     if not is_block(structure):
         verdicts = body_verdicts(structure, {n: (sc.fired.marker[n].point_m, m["ux"], m["uz"]) for n, m in out.items()})
         for n, m in out.items():
@@ -290,7 +290,7 @@ def as_fired(
         summary["calibration"] = calibrate_restitution(scenario, d, meas, w_refit, standoff)
     if "friction" in calibrate:
         summary["calibration"] = calibrate_friction(scenario, d, meas, w_refit, standoff)
-    summary["verdict"] = verdict(summary)
+    summary["verdict"] = as_fired_verdict_line(summary)
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
 
 
@@ -312,8 +312,9 @@ def _sensitivity(sc, d, predicted: SpecimenRun, refit: SpecimenRun, standoff: fl
     )
 
 
-def verdict(s: dict) -> str:
-    """The one line at the top of the report (docs/fired.md)."""
+def as_fired_verdict_line(s: dict) -> str:
+    """The as-fired summary's verdict: the one line at the top of its report (docs/fired.md; a study's verdict
+    is :func:`blastscale.report.verdict.verdict`)."""
     parts = []
     if s["charge_ratio_impulse"] is not None:
         parts.append(f"As fired: {s['charge_ratio_impulse']:.3g} x the designed charge by impulse")

@@ -35,7 +35,7 @@ __all__ = [
     "TrackPeak",
     "block_marker_displacement",
     "block_rotation",
-    "first_peak",
+    "track_first_peak",
     "track_noise",
 ]
 
@@ -77,8 +77,10 @@ def track_noise(u) -> float:
     return float(np.median(np.abs(d2 - np.median(d2))) / 0.6744897501960817 / math.sqrt(6.0))
 
 
-def first_peak(t, u, *, noise: float | None = None, smooth: bool = True) -> TrackPeak:
-    """First peak of the displacement ``u`` [m] at times ``t`` [s] (steps 2 and 3 of the module docstring).
+def track_first_peak(t, u, *, noise: float | None = None, smooth: bool = True) -> TrackPeak:
+    """First peak of a measured marker track's displacement ``u`` [m] at times ``t`` [s] (steps 2 and 3 of the
+    module docstring: above the noise, smoothed, refined by a parabola; a clean sampled history's first peak
+    is :func:`blastscale.analysis.compare.first_peak`).
 
     ``noise`` [m]: the noise standard deviation (default :func:`track_noise`); ``smooth=False`` for a clean
     simulated history (no filter; ``noise`` then only sets the smallest peak)."""

@@ -55,7 +55,7 @@ __all__ = [
     "design_scenario",
     "candidate_design",
     "stand_height",
-    "arrival_spread",
+    "front_arrival_spread",
     "screening_error",
     "specimen_scenario",
     "similarity_3d",
@@ -148,10 +148,11 @@ def candidate_design(scenario, structure, lab) -> Callable:
     return design
 
 
-def arrival_spread(params, structure, scale: float = 1.0) -> float:
+def front_arrival_spread(params, structure, scale: float = 1.0) -> float:
     """Arrival-time spread [s] over the front of ``structure`` (prototype dimensions, x ``scale`` for
     the specimen's): from the front's foot (the stand-off) to its top corner (height, half its width
-    across the blast), with the blast model's arrival-time fit at ``params`` (charge, stand-off)."""
+    across the blast), with the blast model's arrival-time fit at ``params`` (charge, stand-off): an estimate
+    before any load is built (a built load's own spread: :func:`blastscale.sim3d.face_loads.load_arrival_spread`)."""
 
     h, _, dp = (scale * x for x in spec_dims(structure))
     m = get_blast_model(params.blast_model) if isinstance(params.blast_model, str) else params.blast_model
@@ -172,8 +173,8 @@ def screening_error(ev, load_method: str) -> float:
     err = abs(delta) * float(ev.impulsive.prototype_ratio)
     if load_method != "A":
         proto = d.prototype_structure
-        dt_p = arrival_spread(d.prototype, proto)
-        dt_s = arrival_spread(d.specimen, proto, float(d.factors.length))
+        dt_p = front_arrival_spread(d.prototype, proto)
+        dt_s = front_arrival_spread(d.specimen, proto, float(d.factors.length))
         p = float(ev.impulsive.prototype_ratio) / float(d.prototype.positive_duration)  # rad/s
         if dt_p > 0:
             err = max(err, abs(dt_s / (tf * dt_p) - 1.0) * dt_p * p)

@@ -14,7 +14,7 @@ from .._validate import BlastscaleInputError
 
 __all__ = [
     "plot_angle",
-    "plot_angular_velocity",
+    "plot_planar_angular_velocity",
     "plot_phase_portrait",
     "plot_similarity",
     "plot_pi_diagram",
@@ -85,8 +85,9 @@ def plot_angle(results, ax=None, labels=None, alpha_line: bool = True):
     return ax
 
 
-def plot_angular_velocity(results, ax=None, labels=None):
-    """Angular velocity theta_dot(t) [rad/s] vs time [s] (jumps at impacts: restitution)."""
+def plot_planar_angular_velocity(results, ax=None, labels=None):
+    """Planar angular velocity theta_dot(t) [rad/s] vs time [s] of RockingResults (jumps at impacts:
+    restitution); a 3D block run's is :func:`blastscale.plots.sim3d.plot_block_angular_velocity`."""
     return _draw_runs(ax, results, labels, "t", "theta_dot")[0]
 
 
@@ -176,7 +177,7 @@ def rocking_figure(result, similarity=None):
     fig, axes = plt.subplots(1, 3, figsize=(14, 4), layout="constrained")
     if similarity is None:
         plot_angle(result, ax=axes[0])
-        plot_angular_velocity(result, ax=axes[1])
+        plot_planar_angular_velocity(result, ax=axes[1])
         plot_phase_portrait(result, ax=axes[2])
     else:
         for ax, q in zip(axes, ("theta", "theta_dot", "phase")):

@@ -25,7 +25,7 @@ __all__ = [
     "plot_rotation",
     "plot_sliding",
     "plot_velocity",
-    "plot_angular_velocity",
+    "plot_block_angular_velocity",
     "plot_snapshots",
     "plot_comparison",
     "snapshot_times",
@@ -131,8 +131,9 @@ def plot_velocity(results, ax=None, labels=None):
     return plot_history(results, "velocity_x", ax, labels)
 
 
-def plot_angular_velocity(results, ax=None, labels=None):
-    """Angular velocity [rad/s] vs time; see :func:`plot_history`."""
+def plot_block_angular_velocity(results, ax=None, labels=None):
+    """A 3D block run's angular velocity about y [rad/s] vs time; see :func:`plot_history` (a planar run's:
+    :func:`blastscale.plots.rocking.plot_planar_angular_velocity`)."""
     return plot_history(results, "angular_velocity_y", ax, labels)
 
 

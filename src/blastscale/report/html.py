@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from typing import Iterable
 
-from .markup import _CSS, _compare_table, _e, _flat, _img, _table, format_charge, format_value, split_unit
+from .markup import _CSS, _compare_table, _e, _flat, _img, _table, format_charge, format_value, split_unit_for_tables
 from .markup import ROUND_OFF as ROUND_OFF  # re-exported: report.html.ROUND_OFF
 from .slips import applicable_slips
 from .card import CSS as _CARD_CSS
@@ -24,7 +24,7 @@ from .verdict import label, specimen_rows, verdict
 from .outcomes import ARRIVAL_NOTE, first_peak_rows, stability_lead, timing_rows
 from .motion import motion_section
 
-__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit", "format_value"]
+__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit_for_tables", "format_value"]
 
 #: Section ids of the report, in order.
 SECTIONS = (
@@ -45,7 +45,7 @@ def _experiment(result) -> str:
     p, m = exp["prototype"], exp["model"]
     kind = result.scenario.structure.kind
     if m is None:
-        rows = [(*split_unit(k), v) for k, v in p.items() if not isinstance(v, str)]
+        rows = [(*split_unit_for_tables(k), v) for k, v in p.items() if not isinstance(v, str)]
         return (
             '<p class="lead">Prototype only: this scenario has no <code>[scale]</code> table, so no specimen '
             "is designed and nothing is compared. The sections below give the prototype's blast load and "
@@ -69,7 +69,7 @@ def _experiment(result) -> str:
     keys = [k for k in p if k in m and not isinstance(p[k], str)]
     rows = []
     for k in keys:
-        label, unit = split_unit(k)
+        label, unit = split_unit_for_tables(k)
         rows.append((label, p[k], m[k], unit))
     rows.append(("charge (TNT equivalent)", format_charge(p["charge_kg"]), format_charge(m["charge_kg"]), ""))
     rows.append(("material", "-", str(mat), ""))
@@ -213,7 +213,7 @@ def _similarity(result, figures) -> str:
             out.append(
                 _table(
                     ("similarity figure", "value", "unit"),
-                    [(label(k), v, split_unit(k)[1]) for k, v in pl["similarity"].items()],
+                    [(label(k), v, split_unit_for_tables(k)[1]) for k, v in pl["similarity"].items()],
                 )
             )
         if "planar_rocking" in figs:
@@ -232,7 +232,7 @@ def _similarity(result, figures) -> str:
                 _table(
                     ("similarity figure", "value", "unit"),
                     [
-                        (label(k), v, split_unit(k.split(".")[-1])[1])
+                        (label(k), v, split_unit_for_tables(k.split(".")[-1])[1])
                         for k, v in _flat(r3["similarity"])
                         if not isinstance(v, str) and not (peaks is not None and k.startswith("points."))
                     ],
@@ -252,7 +252,7 @@ def _similarity(result, figures) -> str:
             _table(
                 ("quantity", "value", "unit"),
                 [
-                    (label(k), v, split_unit(k.split(".")[-1])[1])
+                    (label(k), v, split_unit_for_tables(k.split(".")[-1])[1])
                     for k, v in _flat(en)
                     if not isinstance(v, str) and k not in ("n_members", "perturbation")
                 ],

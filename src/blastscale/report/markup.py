@@ -13,10 +13,10 @@ import html
 import math
 from typing import Any, Iterable
 
-from ..units import split_unit as _split_unit
+from ..units import split_unit
 from .verdict import label
 
-__all__ = ["split_unit", "format_value", "format_charge", "ROUND_OFF"]
+__all__ = ["split_unit_for_tables", "format_value", "format_charge", "ROUND_OFF"]
 
 _CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:1100px;margin:2em auto;
@@ -32,10 +32,11 @@ pre{background:#f6f8fa;padding:.8em;overflow-x:auto;font-size:.85em}.muted{color
 """
 
 
-def split_unit(key: str) -> tuple[str, str]:
-    """``"max_rotation_rad"`` -> (``"max rotation"``, ``"rad"``): label and unit from a key's suffix
-    (:func:`blastscale.units.split_unit`; a difference relative to the peak reads "of the peak")."""
-    label, unit = _split_unit(key)
+def split_unit_for_tables(key: str) -> tuple[str, str]:
+    """``"max_rotation_rad"`` -> (``"max rotation"``, ``"rad"``): label and unit from a key's suffix as a
+    table shows them: :func:`blastscale.units.split_unit`, except that a difference relative to the peak
+    (``_rel_peak``, unit ``"1"``) reads "of the peak"."""
+    label, unit = split_unit(key)
     return label, ("of the peak" if key.endswith("_rel_peak") else unit)
 
 
@@ -105,7 +106,7 @@ def _compare_table(prototype: dict, model: dict | None) -> str:
     for k, v in _flat(prototype):
         if isinstance(v, str):
             continue
-        words, unit = label(k), split_unit(k.split(".")[-1])[1]
+        words, unit = label(k), split_unit_for_tables(k.split(".")[-1])[1]
         rows.append((words, v, unit) if model is None else (words, v, mflat.get(k), unit))
     head = (
         ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)", "unit")

@@ -9,7 +9,7 @@ from __future__ import annotations
 from pydantic import BaseModel, ConfigDict
 
 from ..sim3d.contact import SETTING_RANGES
-from .messages import show
+from .messages import value_in_message
 
 
 _CONFIG = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True, frozen=True, validate_default=True)
@@ -25,7 +25,7 @@ def _at_most_one(model: BaseModel, a: str, b: str) -> BaseModel:
     """Refuse two keys that say the same thing (width and slenderness; density ratio and material)."""
     va, vb = getattr(model, a), getattr(model, b)
     if va is not None and vb is not None:
-        raise ValueError(f"{a} = {show(va)} and {b} = {show(vb)}: give one of them, not both")
+        raise ValueError(f"{a} = {value_in_message(va)} and {b} = {value_in_message(vb)}: give one of them, not both")
     return model
 
 

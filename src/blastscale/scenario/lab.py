@@ -13,7 +13,7 @@ from ..blast.explosives import EXPLOSIVES, canonical_name, initiator_tnt_kg
 from ..blast.initiation import DEFAULT_INITIATOR, INITIATORS
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS
 from ..structures.materials import MATERIALS
-from .messages import show
+from .messages import value_in_message
 from .fields import _CONFIG, _check_name
 
 __all__ = ["ExplosiveSpec", "LabSpec", "SAME_MATERIAL"]
@@ -202,7 +202,7 @@ class LabSpec(BaseModel):
             )
         if self.charge_min_kg > self.charge_max_kg:
             raise ValueError(
-                f"charge_min_kg = {show(self.charge_min_kg)} kg is above charge_max_kg = "
-                f"{show(self.charge_max_kg)} kg: give a minimum at or below the maximum"
+                f"charge_min_kg = {value_in_message(self.charge_min_kg)} kg is above charge_max_kg = "
+                f"{value_in_message(self.charge_max_kg)} kg: give a minimum at or below the maximum"
             )
         return self

@@ -11,7 +11,7 @@ from typing import Any
 import annotated_types as at
 from pydantic import BaseModel, ValidationError
 
-__all__ = ["one_line", "show", "submodels"]
+__all__ = ["one_line", "value_in_message", "submodels"]
 
 
 def submodels(annotation: Any) -> list[type[BaseModel]]:
@@ -113,7 +113,7 @@ def one_line(exc: ValidationError, root: type[BaseModel], kinds: dict, names: di
     model, info = _model_at(loc, root, kinds)
     rng = _constraint_text(info)
     rng_txt = f": valid range is {rng}" if rng else ""
-    vtxt = show(value)
+    vtxt = value_in_message(value)
     if kind == "missing":
         what = f" ({info.description})" if info is not None and info.description else ""
         return f"{path} is missing{what}: give it in [{'.'.join(str(p) for p in shown[:-1]) or 'top level'}]"
@@ -122,7 +122,7 @@ def one_line(exc: ValidationError, root: type[BaseModel], kinds: dict, names: di
         valid = ", ".join(model.model_fields) if model is not None and hasattr(model, "model_fields") else "?"
         return f"{path} = {vtxt} is not a known key: valid keys{' of [' + table + ']' if table else ''} are {valid}"
     if kind == "union_tag_invalid":
-        return f"{path}.kind = {show(ctx.get('tag'))} is not known: valid values are {', '.join(kinds)}"
+        return f"{path}.kind = {value_in_message(ctx.get('tag'))} is not known: valid values are {', '.join(kinds)}"
     if kind == "union_tag_not_found":
         return f"{path}.kind is missing: give kind = one of {', '.join(repr(k) for k in kinds)} in [{path}]"
     if kind == "literal_error":
@@ -143,7 +143,10 @@ def one_line(exc: ValidationError, root: type[BaseModel], kinds: dict, names: di
     return f"{path} = {vtxt}: {err['msg']}"
 
 
-def show(value: Any) -> str:
+def value_in_message(value: Any) -> str:
+    """A value as a validation message quotes it: a string in quotes (its repr), a float with ``g``
+    (``nan``), a table as "a table" (a value as the user typed it, unquoted:
+    :func:`blastscale.cli.flags.value_as_typed`)."""
     if isinstance(value, float):
         return "nan" if math.isnan(value) else f"{value:g}"
     if isinstance(value, dict):

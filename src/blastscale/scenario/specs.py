@@ -26,7 +26,7 @@ from ..sim3d.contact import CONES, JACOBIANS, SOLVERS, STEPS_AFTER_LOAD
 from ..sim3d.load_methods import LOAD_METHODS
 from ..structures.materials import MATERIALS
 from .fields import _CONFIG, _at_most_one, _check_name, _limits
-from .messages import show
+from .messages import value_in_message
 from .structure_specs import KINDS, ArchSpec, AssemblySpec, BlockSpec, ColumnSpec, PortalSpec, Structure, WallSpec
 
 __all__ = [
@@ -169,7 +169,7 @@ class BlastSpec(BaseModel):
             )
         if self.charge_kg > 0 and self.standoff_m is None:
             raise ValueError(
-                f"charge_kg = {show(self.charge_kg)} needs standoff_m (the stand-off R [m]); "
+                f"charge_kg = {value_in_message(self.charge_kg)} needs standoff_m (the stand-off R [m]); "
                 "charge_kg = 0 is gravity alone"
             )
         if self.charge_kg == 0 and (self.clearing or self.negative_phase):

@@ -41,7 +41,7 @@ from .exposure import visible_fractions
 from ..similitude.effects import structure_top
 from ..similitude.effects import front_geometry
 
-__all__ = ["FaceLoadStrategy", "arrival_spread", "method_b", "method_c"]
+__all__ = ["FaceLoadStrategy", "load_arrival_spread", "method_b", "method_c"]
 
 #: Margin added to the latest pulse end at rest, as a fraction of the longest positive duration:
 #: the faces move by millimetres while the blast acts, shifting arrivals by microseconds.
@@ -265,8 +265,10 @@ class FaceLoadStrategy:
         }
 
 
-def arrival_spread(load) -> float:
-    """First to last shock arrival over the faces a load strategy loads [s] (0 for Method A)."""
+def load_arrival_spread(load) -> float:
+    """First to last shock arrival over the faces a built load strategy loads [s] (0 for Method A, whose
+    load has no spread); the planner's estimate from blast parameters alone is
+    :func:`blastscale.planning.plan3d.front_arrival_spread`."""
     return float(getattr(load, "arrival_spread", 0.0))
 
 

@@ -5,7 +5,7 @@ model experiment."""
 from __future__ import annotations
 
 from .._validate import BlastscaleInputError
-from .face_loads import arrival_spread, method_b, method_c
+from .face_loads import load_arrival_spread, method_b, method_c
 from .loads import LoadStrategy, method_a
 
 __all__ = ["LOAD_METHODS", "make_load", "register_load_method", "arrival_spread_similarity"]
@@ -99,6 +99,6 @@ def arrival_spread_similarity(prototype_load, model_load, factors) -> dict:
         ``docs/face_loads.md`` for why the general law's model does not keep them equal.
     """
     return {
-        "arrival_spread_prototype_s": arrival_spread(prototype_load),
-        "arrival_spread_model_upscaled_s": arrival_spread(model_load) / factors.time,
+        "arrival_spread_prototype_s": load_arrival_spread(prototype_load),
+        "arrival_spread_model_upscaled_s": load_arrival_spread(model_load) / factors.time,
     }

@@ -38,7 +38,7 @@ __all__ = [
     "RigidBody",
     "RestMassProperties",
     "as_vertex_tuple",
-    "box_vertices",
+    "centred_box_vertices",
     "frustum_mass_properties",
     "frustum_vertices",
     "polygon_ring",
@@ -243,9 +243,9 @@ def frustum_vertices(base, top, z_base: float, z_top: float) -> np.ndarray:
     )
 
 
-def box_vertices(half_width: float, half_depth: float, half_height: float, centre_z: float = 0.0) -> np.ndarray:
+def centred_box_vertices(half_width: float, half_depth: float, half_height: float, centre_z: float = 0.0) -> np.ndarray:
     """The eight corners (8, 3) [m] of a box of half-sizes (b, w, h) [m] along x, y, z centred ``centre_z``
-    [m] above the origin."""
+    [m] above the origin (a box between bounds: :func:`blastscale.structures.generators.box_vertices_from_bounds`)."""
     ring = rectangle_ring(half_width, half_depth)
     return frustum_vertices(ring, ring, centre_z - half_height, centre_z + half_height)
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 
 from ..constants import STANDARD_GRAVITY  # noqa: F401 (re-exported by blastscale.structures)
 from .._validate import check_positive_scalar, check_range
-from .base import BoxGeometry, Face, MonitoringPoint, RigidBody, as_vertex_tuple, box_vertices
+from .base import BoxGeometry, Face, MonitoringPoint, RigidBody, as_vertex_tuple, centred_box_vertices
 
 __all__ = ["RectangularBlock", "STANDARD_GRAVITY"]
 
@@ -139,7 +139,7 @@ class RectangularBlock:
                 -h,
                 self.alpha,
                 self.volume,
-                as_vertex_tuple(box_vertices(b, w, h)),
+                as_vertex_tuple(centred_box_vertices(b, w, h)),
             ),
         )
 

@@ -26,7 +26,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_positive_scalar, check_range
 from .assembly import Assembly, ConvexBlock
 
-__all__ = ["wall", "arch", "portal", "box_vertices", "BONDS"]
+__all__ = ["wall", "arch", "portal", "box_vertices_from_bounds", "BONDS"]
 
 #: Bond patterns of :func:`wall`.
 BONDS = ("running", "stack")
@@ -34,8 +34,9 @@ BONDS = ("running", "stack")
 MAX_BLOCKS = 2000
 
 
-def box_vertices(x0, x1, y0, y1, z0, z1) -> np.ndarray:
-    """The 8 corners of an axis-aligned box [m]."""
+def box_vertices_from_bounds(x0, x1, y0, y1, z0, z1) -> np.ndarray:
+    """The 8 corners (8, 3) of the axis-aligned box between bounds ``x0..x1``, ``y0..y1``, ``z0..z1`` [m] (a box
+    of half-sizes centred on the axis: :func:`blastscale.structures.base.centred_box_vertices`)."""
     return np.array(list(itertools.product((x0, x1), (y0, y1), (z0, z1))), dtype=float)
 
 
@@ -101,7 +102,9 @@ def wall(
             blocks.append(
                 ConvexBlock(
                     f"C{c + 1}U{k + 1}",
-                    box_vertices(-t / 2, t / 2, y0 - L / 2, y1 - L / 2, c * h, (c + 1) * h if c < nc - 1 else H),
+                    box_vertices_from_bounds(
+                        -t / 2, t / 2, y0 - L / 2, y1 - L / 2, c * h, (c + 1) * h if c < nc - 1 else H
+                    ),
                     density_kg_m3,
                 )
             )
@@ -239,10 +242,16 @@ def portal(
             name = f"col-{side}" if nd == 1 else f"col-{side}-{k + 1}"
             z1 = Hc if k == nd - 1 else (k + 1) * Hc / nd
             blocks.append(
-                ConvexBlock(name, box_vertices(-w / 2, w / 2, yc - w / 2, yc + w / 2, k * Hc / nd, z1), density_kg_m3)
+                ConvexBlock(
+                    name,
+                    box_vertices_from_bounds(-w / 2, w / 2, yc - w / 2, yc + w / 2, k * Hc / nd, z1),
+                    density_kg_m3,
+                )
             )
     half = s / 2 + w + o
-    blocks.append(ConvexBlock("lintel", box_vertices(-w / 2, w / 2, -half, half, Hc, Hc + hl), density_kg_m3))
+    blocks.append(
+        ConvexBlock("lintel", box_vertices_from_bounds(-w / 2, w / 2, -half, half, Hc, Hc + hl), density_kg_m3)
+    )
     params = (
         ("column_height_m", Hc),
         ("column_width_m", w),

@@ -160,14 +160,14 @@ def test_a_lab_nothing_satisfies_names_the_binding_constraint(kind, tmp_path):
 def test_arrival_spread_of_a_hopkinson_cranz_specimen_is_the_cube_root_scaled_one():
     """Hopkinson-Cranz: every blast time scales as lambda (the charge's cube root), the rocking's as
     sqrt(lambda): the specimen's spread up-scaled by lambda_t is sqrt(lambda) x the prototype's, 1e-9."""
-    from blastscale.planning.plan3d import arrival_spread
+    from blastscale.planning.plan3d import front_arrival_spread
     from blastscale.similitude import design_model
     from blastscale.structures import from_spec
 
     s = from_spec(_scenario(WALL).structure)
     d = design_model(10.0, 5.0, 1 / 16, None, 1.0, "hopkinson-cranz", "kingery-bulmash", s)
-    dt_p = arrival_spread(d.prototype, s)
-    dt_s = arrival_spread(d.specimen, s, d.factors.length)
+    dt_p = front_arrival_spread(d.prototype, s)
+    dt_s = front_arrival_spread(d.specimen, s, d.factors.length)
     assert 1e-4 < dt_p < 1e-2  # ms over a 2.5 m front at 5 m
     assert dt_s / (d.factors.time * dt_p) == pytest.approx(0.25, rel=1e-9)
 

@@ -5,13 +5,13 @@ import pytest
 
 from blastscale.sim3d.body_mesh import hull_triangles
 from blastscale.sim3d.replay import Motion, frame_count, point_positions, world_vertices
-from blastscale.structures.base import box_vertices
+from blastscale.structures.base import centred_box_vertices
 
 
 def test_box_surface_encloses_its_volume_with_outward_triangles():
     """A 2 x 1 x 4 m box (centre 0.5 m above the centre of mass): 8 corners, 12 triangles whose signed
     volumes (divergence theorem, V = sum (a . (b x c)) / 6 over outward triangles) add up to 8 m^3 exactly."""
-    v = box_vertices(1.0, 0.5, 2.0, centre_z=0.5)
+    v = centred_box_vertices(1.0, 0.5, 2.0, centre_z=0.5)
     assert v.shape == (8, 3) and v[:, 2].min() == -1.5 and v[:, 2].max() == 2.5
     tri = hull_triangles(v)
     assert tri.shape == (12, 3)

@@ -21,7 +21,7 @@ from blastscale.structures import (
     wall,
 )
 from blastscale.structures.base import frustum_mass_properties
-from blastscale.structures.generators import box_vertices
+from blastscale.structures.generators import box_vertices_from_bounds
 
 
 def _tetra_mass_properties(vertices, rho):
@@ -46,7 +46,7 @@ def _tetra_mass_properties(vertices, rho):
 
 
 def test_box_mass_properties_are_the_closed_form():
-    v = box_vertices(-0.3, 1.7, 2.0, 2.5, 0.0, 4.0)
+    v = box_vertices_from_bounds(-0.3, 1.7, 2.0, 2.5, 0.0, 4.0)
     mp = polyhedron_mass_properties(v, 2400.0)
     a, d, c = 2.0, 0.5, 4.0
     m = 2400.0 * a * d * c
@@ -96,7 +96,7 @@ def test_random_convex_polyhedron_against_an_independent_computation_and_mujoco(
 
 
 def test_faces_are_merged_coplanar_polygons_with_outward_normals():
-    faces = polyhedron_faces(box_vertices(0, 2, 0, 3, 0, 4))
+    faces = polyhedron_faces(box_vertices_from_bounds(0, 2, 0, 3, 0, 4))
     assert len(faces) == 6
     assert sorted(round(f.area, 12) for f in faces) == [6.0, 6.0, 8.0, 8.0, 12.0, 12.0]
     for f in faces:  # outward: the centroid of the box lies behind every face
@@ -126,8 +126,8 @@ def test_wall_mass_is_density_times_volume_and_running_courses_have_half_units(b
 def test_interfaces_give_in_contact_flags_and_exposed_areas():
     a = Assembly(
         (
-            ConvexBlock("A", box_vertices(0, 1, 0, 1, 0, 1), 2000.0),
-            ConvexBlock("B", box_vertices(0, 1, 0.5, 1.5, 1, 2), 2000.0),
+            ConvexBlock("A", box_vertices_from_bounds(0, 1, 0, 1, 0, 1), 2000.0),
+            ConvexBlock("B", box_vertices_from_bounds(0, 1, 0.5, 1.5, 1, 2), 2000.0),
         )
     )
     assert a.interfaces == ((-1, 0), (0, 1))
@@ -141,14 +141,17 @@ def test_interfaces_give_in_contact_flags_and_exposed_areas():
 
 def test_rectangular_block_and_column_are_assemblies_with_the_same_numbers():
     blk = RectangularBlock(height=10.0, width=2.0, depth=1.0, density=2000.0)
-    a = Assembly((ConvexBlock("block", box_vertices(-1, 1, -0.5, 0.5, 0, 10), 2000.0),))
+    a = Assembly((ConvexBlock("block", box_vertices_from_bounds(-1, 1, -0.5, 0.5, 0, 10), 2000.0),))
     (b0,), (b1,) = blk.bodies, a.bodies
     assert b1.mass == pytest.approx(b0.mass, rel=1e-15) and b1.com == pytest.approx(b0.com, rel=1e-15)
     assert b1.inertia == pytest.approx(b0.inertia, rel=1e-15)
     assert a.interfaces == blk.interfaces and a.front_x == blk.front_x
     col = MultiDrumColumn("square", drums=10, base_width=1.5, top_width=1.5)
     stack = Assembly(
-        tuple(ConvexBlock(f"D-{k + 1}", box_vertices(-0.75, 0.75, -0.75, 0.75, k, k + 1), 2700.0) for k in range(10))
+        tuple(
+            ConvexBlock(f"D-{k + 1}", box_vertices_from_bounds(-0.75, 0.75, -0.75, 0.75, k, k + 1), 2700.0)
+            for k in range(10)
+        )
     )
     assert stack.interfaces == col.interfaces
     for p, q in zip(col.bodies, stack.bodies):
@@ -193,7 +196,7 @@ def _write(tmp_path, blocks, name="model.json"):
 
 
 def _box(name, *b, **kw):
-    return {"name": name, "vertices": box_vertices(*b).tolist(), **kw}
+    return {"name": name, "vertices": box_vertices_from_bounds(*b).tolist(), **kw}
 
 
 def test_our_json_reads_blocks_points_and_densities(tmp_path):
@@ -240,7 +243,7 @@ def test_non_convex_block_is_refused_and_a_slightly_non_convex_one_replaced_by_i
     v, faces = _l_shape()
     with pytest.raises(BlastscaleInputError, match="'L' is not convex"):
         read_block_model(_write(tmp_path, [{"name": "L", "vertices": v, "faces": faces}]))
-    dent = box_vertices(0, 1, 0, 1, 0, 1).tolist() + [[0.5, 0.5, 0.99]]  # a 1 % dent in the top
+    dent = box_vertices_from_bounds(0, 1, 0, 1, 0, 1).tolist() + [[0.5, 0.5, 0.99]]  # a 1 % dent in the top
     top = [[4, 5, 7, 6]]
     with pytest.warns(UserWarning, match="replaced by its convex hull"):
         a = read_block_model(_write(tmp_path, [{"name": "D", "vertices": dent, "faces": _dented_faces()}]))
@@ -269,7 +272,7 @@ def test_mesh_files_through_trimesh_one_block_per_component(tmp_path):
     lines = []
     for k, (name, z0) in enumerate((("lower", 0.0), ("upper", 1.0))):
         lines.append(f"o {name}")
-        lines += [f"v {x} {y} {z0 + z}" for x, y, z in box_vertices(0, 1, 0, 1, 0, 1)]
+        lines += [f"v {x} {y} {z0 + z}" for x, y, z in box_vertices_from_bounds(0, 1, 0, 1, 0, 1)]
         quads = [(1, 3, 7, 5), (2, 6, 8, 4), (1, 5, 6, 2), (3, 4, 8, 7), (1, 2, 4, 3), (5, 7, 8, 6)]
         lines += ["f " + " ".join(str(i + 8 * k) for i in q) for q in quads]
     p = tmp_path / "two.obj"
@@ -286,7 +289,7 @@ def test_mesh_files_through_trimesh_one_block_per_component(tmp_path):
 
 
 def test_compas_mesh_json_without_compas(tmp_path):
-    corners = box_vertices(0, 1, 0, 2, 0, 0.5)
+    corners = box_vertices_from_bounds(0, 1, 0, 2, 0, 0.5)
     faces = polyhedron_faces(corners)
     index = {tuple(np.round(c, 9)): k for k, c in enumerate(corners)}
     mesh = {
@@ -305,8 +308,8 @@ def test_method_c_shadows_the_block_behind_and_leaves_the_front_block_unchanged(
     from blastscale.blast import blast_parameters
     from blastscale.sim3d import make_load
 
-    front = ConvexBlock("front", box_vertices(0, 1, -0.5, 0.5, 0, 2), 2000.0)
-    back = ConvexBlock("back", box_vertices(2, 3, -0.5, 0.5, 0, 2), 2000.0)
+    front = ConvexBlock("front", box_vertices_from_bounds(0, 1, -0.5, 0.5, 0, 2), 2000.0)
+    back = ConvexBlock("back", box_vertices_from_bounds(2, 3, -0.5, 0.5, 0, 2), 2000.0)
     bp = blast_parameters(5.0, 3.0)
     alone = make_load("C", Assembly((front,)), bp).delivered_impulse()
     both = make_load("C", Assembly((front, back)), bp).delivered_impulse()
