@@ -13,6 +13,7 @@ or failing) is killed when the ``with`` block ends.
 
 from __future__ import annotations
 
+import logging
 import os
 import pickle
 import select
@@ -32,6 +33,15 @@ def fork_available() -> bool:
     """Whether work may go to a forked child: Linux (``fork`` is safe there with the libraries used here; macOS
     and Windows run it in the caller) and :data:`FORK_ENV` not ``0``."""
     return sys.platform.startswith("linux") and hasattr(os, "fork") and os.environ.get(FORK_ENV, "").strip() != "0"
+
+
+def _quiet_child() -> None:
+    """Nothing printed from the child (the parent owns the terminal): warnings and logging off, and standard
+    output and error fresh objects on the null device, so that no lock of the parent's streams (held by another
+    thread at the fork, e.g. a progress display's) is ever taken here."""
+    warnings.simplefilter("ignore")
+    logging.disable(logging.CRITICAL)
+    sys.stdout = sys.stderr = open(os.devnull, "w")  # noqa: SIM115 -- lives until os._exit
 
 
 class Forked:
@@ -70,7 +80,7 @@ class Forked:
             os.close(r)
             code = 0
             try:
-                warnings.simplefilter("ignore")  # nothing printed from here: the parent owns the terminal
+                _quiet_child()
                 payload = pickle.dumps((True, self._fn(*self._args)), protocol=pickle.HIGHEST_PROTOCOL)
             except BaseException as exc:  # noqa: BLE001 -- reported to the parent, which computes it itself
                 payload, code = pickle.dumps((False, f"{type(exc).__name__}: {exc}")), 1

@@ -84,3 +84,22 @@ def test_turned_off_it_runs_here(monkeypatch):
     with Forked(where, 5) as job:
         assert not job.forked
         assert job.result() == (5, PARENT)
+
+
+def noisy(x):
+    """Prints, warns and logs (in the child: all to nowhere)."""
+    import logging
+    import warnings
+
+    print("from the child")
+    warnings.warn("a warning from the child", UserWarning)
+    logging.getLogger("blastscale.test").error("a log record from the child")
+    sys.stderr.write("to stderr\n")
+    return x
+
+
+def test_the_child_prints_nothing(capfd):
+    with Forked(noisy, 7) as job:
+        assert job.result() == 7 and job.fell_back == ""
+    out, err = capfd.readouterr()
+    assert "child" not in out + err and "stderr" not in out + err
