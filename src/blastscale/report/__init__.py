@@ -10,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable, Optional
 
-from .figures import FIGURES, render_figures, render_figures_apart
+from .figures import FIGURES, FiguresApart, render_figures
 from .html import SECTIONS, format_charge, render_report
 from .motion import motion_section
 from .slips import SLIPS, applicable_slips
@@ -69,7 +69,7 @@ def write_study(
     tell = progress or (lambda stage: None)
     meta = provenance()
     tell("histories (NetCDF" + (", CSV)" if csv else ")"))
-    with render_figures_apart(result) as drawing:  # drawn beside the histories and the 3D view (Linux)
+    with FiguresApart(result) as drawing:  # drawn beside the histories and the 3D view (Linux)
         tree = result.to_datatree()
         write_netcdf(tree, folder / "histories.nc")
         if csv:

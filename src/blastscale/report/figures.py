@@ -21,7 +21,7 @@ from ..plots.assembly import assembly_figure
 from ..plots.assembly import snapshot_figure
 from ..plots.column import plot_column_comparison
 
-__all__ = ["Figure", "FIGURES", "render_figures", "render_figures_apart", "png_bytes"]
+__all__ = ["Figure", "FIGURES", "render_figures", "FiguresApart", "png_bytes"]
 
 
 @dataclass(frozen=True)
@@ -189,9 +189,10 @@ def _named_pngs(result) -> list[tuple[str, bytes]]:
     return [(f.name, png) for f, png in render_figures(result)]
 
 
-class render_figures_apart:  # noqa: N801 -- used as a function: ``with render_figures_apart(r) as job``
+class FiguresApart:
     """:func:`render_figures` in a forked child while the caller writes the rest (:class:`~blastscale._fork.Forked`:
-    Linux; elsewhere, or if the child fails, drawn in the caller). ``job.result()`` -> the same list."""
+    Linux; elsewhere, or if the child fails, drawn in the caller): ``with FiguresApart(result) as job``, then
+    ``job.result()`` -> the same list."""
 
     def __init__(self, result):
         self._job = Forked(_named_pngs, result)

@@ -62,7 +62,7 @@ def _groups(vals: dict, paths: list, n: int) -> list:
     return [np.flatnonzero(inv == g) for g in range(int(inv.max()) + 1)]
 
 
-def _outcome_group(sc, W, R, e, threads=None) -> dict:
+def _outcome_group(sc, W, R, e) -> dict:
     """Outcome-mode arrays for n load cases ``W`` [kg], ``R`` [m], restitution ``e`` [-] (NaN:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
     design (:func:`~blastscale.similitude.design_model` over the arrays), then the first swing of
@@ -101,7 +101,7 @@ def _outcome_group(sc, W, R, e, threads=None) -> dict:
     proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
     specimen = RockingSystem.from_block(d.specimen_block, d.specimen_gravity)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
-    solver = RockingSolver(threads=sim.threads if threads is None else threads)
+    solver = RockingSolver(threads=1)  # this share's cases on this thread (the shares: _outcome_group_threaded)
     fp = first_swing_blast(
         proto.alpha,
         e,
@@ -146,7 +146,7 @@ def _outcome_group_threaded(sc, W, R, e) -> dict:
     each share run on a thread of their own. Every value is computed case by case, so the results are
     bitwise those of one thread."""
     parts = map_interleaved(
-        lambda s: _outcome_group(sc, W[s], R[s], e[s], threads=1), W.size, sc.simulation.threads, MIN_CASES_PER_THREAD
+        lambda s: _outcome_group(sc, W[s], R[s], e[s]), W.size, sc.simulation.threads, MIN_CASES_PER_THREAD
     )
     return {key: interleave([(s, part[key]) for s, part in parts], W.size) for key in OUTCOME_KEYS}
 
