@@ -89,7 +89,7 @@ def planar_spec(vary: dict, outcomes: bool = False):
 
 
 def timed_sweep(spec, **kw) -> dict:
-    from blastscale.io.sweep_store import run_sweep
+    from blastscale.sweeps.run import run_sweep
 
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()

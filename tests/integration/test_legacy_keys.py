@@ -93,7 +93,8 @@ def test_a_sweep_store_holds_the_new_names_only(tmp_path):
     """Sweep stores are built from ``StudyResult.scalars()`` and the outcome mode: the new names,
     no deprecated one (planar and 3D engines, the outcome mode)."""
     pytest.importorskip("zarr")
-    from blastscale.io.sweep_store import open_sweep, run_sweep
+    from blastscale.io.sweep_store import open_sweep
+    from blastscale.sweeps.run import run_sweep
     from blastscale.scenario import Scenario
     from blastscale.sweeps import SweepSpec
 

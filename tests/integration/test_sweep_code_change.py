@@ -10,7 +10,7 @@ pytest.importorskip("zarr")
 
 import blastscale._code as code
 from blastscale._validate import BlastscaleInputError
-from blastscale.io.sweep_store import run_sweep
+from blastscale.sweeps.run import run_sweep
 from blastscale.scenario import Scenario
 from blastscale.sweeps import SweepSpec
 

@@ -20,7 +20,8 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.io.sweep_store import open_sweep, run_sweep
+from blastscale.io.sweep_store import open_sweep
+from blastscale.sweeps.run import run_sweep
 from blastscale.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, select, store_location, study_scalars
 from blastscale.blast import blast_parameters
 from blastscale.scenario import Scenario

@@ -22,7 +22,8 @@ pytest.importorskip("distributed")
 import xarray as xr  # noqa: E402
 
 from blastscale.sweeps.grids import parse_distribution  # noqa: E402
-from blastscale.io.sweep_store import open_sweep, run_sweep  # noqa: E402
+from blastscale.io.sweep_store import open_sweep  # noqa: E402
+from blastscale.sweeps.run import run_sweep  # noqa: E402
 from blastscale.sweeps import SweepSpec, select, store_location, study_scalars  # noqa: E402
 from blastscale.cli import main  # noqa: E402
 from blastscale.scenario import Scenario  # noqa: E402

@@ -109,3 +109,38 @@ def test_every_document_the_code_cites_exists():
             cited.add(name)
     missing = sorted(n for n in cited if not (root / "docs" / n).exists())
     assert cited and not missing, missing
+
+
+def _layers_config() -> tuple:
+    """(layer index of every module named in the layers contract, the contracts) from pyproject.toml."""
+    import tomllib
+
+    contracts = tomllib.loads((SRC.parents[1] / "pyproject.toml").read_text())["tool"]["importlinter"]["contracts"]
+    layers = next(c for c in contracts if c["type"] == "layers")
+    level = {m.strip(): i for i, layer in enumerate(layers["layers"]) for m in layer.split("|")}
+    return level, contracts
+
+
+def test_io_is_a_store_below_the_sweeps_and_the_study():
+    """Issue #34: the sweeps own the sweep and io is their store, below them: the layers contract puts io beside
+    scenario and analysis (under study, under sweeps; its name says so), a forbidden contract names the rule,
+    and no io module imports the sweeps or the Study."""
+    level, contracts = _layers_config()
+    order = ("blastscale.sweeps", "blastscale.study", "blastscale.io", "blastscale.rocking")
+    assert [level[m] for m in order] == sorted(level[m] for m in order) and len({level[m] for m in order}) == 4
+    assert level["blastscale.io"] == level["blastscale.scenario"] == level["blastscale.analysis"]
+    name = next(c for c in contracts if c["type"] == "layers")["name"]
+    assert "sweeps > study > scenario | analysis | io >" in name, name
+    assert any(
+        c["type"] == "forbidden"
+        and c["source_modules"] == ["blastscale.io"]
+        and {"blastscale.sweeps", "blastscale.study"} <= set(c["forbidden_modules"])
+        for c in contracts
+    )
+    up = [
+        f"{path.relative_to(SRC)}:{line}: {target}"
+        for path in (SRC / "io").rglob("*.py")
+        for line, target, _ in _imports(path)
+        if _top(target) in ("blastscale.sweeps", "blastscale.study")
+    ]
+    assert not up, up

@@ -23,7 +23,7 @@ from ..scenario import Scenario, load_scenario
 from ..sweeps.grids import parse_assignment
 from ..io.sweep_store import unfinished_chunks
 from ..sweeps.grids import parse_distribution, parse_grid
-from ..io.sweep_store import run_sweep
+from ..sweeps.run import run_sweep
 from ..sweeps import SweepSpec
 from ..sweeps.grids import parse_number
 from ..sweeps.fragility import fragility
@@ -32,7 +32,7 @@ from rich.table import Table
 import numpy as np
 from ..io.results import legacy_name
 from ..io.sweep_store import open_sweep
-from ..sweeps.runner import run_in_memory
+from ..sweeps.run import run_in_memory
 from ..sweeps.similarity_map import similarity_map
 
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")

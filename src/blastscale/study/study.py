@@ -42,7 +42,7 @@ from ..similitude import design_model
 from ..similitude.effects import front_face, structure_top
 from ..blast import blast_parameters
 
-__all__ = ["Study", "StudyPlan", "StudyWarning", "Progress"]
+__all__ = ["Study", "StudyPlan", "StudyWarning", "Progress", "design_of"]
 
 
 class StudyWarning(UserWarning):
@@ -154,28 +154,7 @@ class Study:
         sc = self.scenario
         if sc.scale is None or sc.blast.gravity_only:  # gravity alone: no charge to scale
             return None
-        structure = self.structure() if structure is None else structure
-        lm = load_model_of(sc, structure)
-        face = front_face(structure) if sc.blast.clearing else (None, structure_top(structure))  # top: the lab burst
-        return design_model(
-            sc.blast.charge_kg,
-            sc.blast.standoff_m,
-            sc.scale.length,
-            sc.density_ratio,
-            sc.scale.gravity_ratio,
-            sc.scale.law,
-            sc.blast.blast_model,
-            structure,
-            gravity=sc.simulation.gravity_m_s2,
-            extrapolate=sc.blast.extrapolate,
-            burst=sc.blast.burst,
-            specimen_burst=sc.scale.specimen_burst,
-            load_model=lm,
-            face=face,
-            specimen_charge_height=sc.scale.specimen_charge_height_m,
-            contact=contact,
-            duration=sc.simulation.duration_s,
-        )
+        return design_of(sc, self.structure() if structure is None else structure, contact=contact)
 
     def check(self) -> StudyPlan:
         """Everything that can be checked before simulating: the structure, the engines, the
@@ -320,3 +299,52 @@ def _study_warnings(design, results: dict, skipped: list, summary: dict, scenari
             if key in p and key in m and bool(p[key]) != bool(m[key]):
                 out.append(f"3D: prototype and model disagree on '{key}' ({p[key]} vs {m[key]})")
     return out
+
+
+def design_of(scenario: Scenario, structure, charge_kg=None, standoff_m=None, *, contact=None, effects: bool = True):
+    """The one mapping from a scenario to its model experiment (:func:`~blastscale.similitude.design_model`),
+    for :meth:`Study.design` and the sweeps' outcome mode: the scenario's scale, density and gravity
+    ratios, law, blast model, bursts, gravity, load model (:func:`~.engines.load_model_of`), loaded face
+    (the structure's front with clearing, else its top: the lab burst), lab charge height and duration.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A scenario with a ``[scale]`` section and a charge.
+    structure : structure
+        The prototype structure (:meth:`Study.structure`).
+    charge_kg, standoff_m : float or array, optional
+        Prototype charge W [kg] and stand-off R [m] (default: the scenario's). Arrays (broadcast together)
+        design every case at once, NaN where a case cannot be designed (``valid``).
+    contact : ContactSettings, optional
+        The prototype's 3D contact settings, scaled once by the design.
+    effects : bool
+        Evaluate the blast effects and their notes (default); False for the systems alone (the outcome mode).
+
+    Returns
+    -------
+    ModelDesign
+    """
+    sc = scenario
+    lm = load_model_of(sc, structure)
+    face = front_face(structure) if sc.blast.clearing else (None, structure_top(structure))  # top: the lab burst
+    return design_model(
+        sc.blast.charge_kg if charge_kg is None else charge_kg,
+        sc.blast.standoff_m if standoff_m is None else standoff_m,
+        sc.scale.length,
+        sc.density_ratio,
+        sc.scale.gravity_ratio,
+        sc.scale.law,
+        sc.blast.blast_model,
+        structure,
+        gravity=sc.simulation.gravity_m_s2,
+        extrapolate=sc.blast.extrapolate,
+        burst=sc.blast.burst,
+        specimen_burst=sc.scale.specimen_burst,
+        load_model=lm,
+        face=face,
+        specimen_charge_height=sc.scale.specimen_charge_height_m,
+        contact=contact,
+        duration=sc.simulation.duration_s,
+        effects=effects,
+    )

@@ -1,12 +1,15 @@
 """Many cases: parameter sweeps over scenario fields (grids and Monte Carlo samples) run in chunks,
 in this process or on Dask, resumable; the outcome mode (a million planar cases a minute);
-fragility curves; the similarity map. Above the Study: every case is a Study (docs/sweeps.md). Files are written by :mod:`blastscale.io`."""
+fragility curves; the similarity map. Above the Study: every case is a Study (docs/sweeps.md). The
+sweep is driven here (:mod:`.run`); files are written by :mod:`blastscale.io` (the chunk store
+:mod:`blastscale.io.sweep_store`, below the sweeps)."""
 
 from .cases import VALID_KEY, evaluate_chunk, study_scalars
 from .grids import Distribution, parse_distribution, parse_grid
 from .layout import StoreLocation, select, store_location
 from .outcomes import OUTCOME_KEYS, planar_outcomes
-from .runner import SweepRun, default_chunk, run_chunks
+from .runner import default_chunk, run_chunks
+from .run import SweepRun
 from .spec import SweepAxis, SweepSample, SweepSpec
 
 __all__ = [

@@ -7,7 +7,7 @@ versions. Inputs that do not vary over the sweep (the ``experiment`` and ``desig
 constant variables) are stored once, as variables without the case dimensions (0-d, or on their
 ``system``, ``point`` or list dimension), each with its ``units`` (CF conventions); label coordinates
 (strings: ``system``, ``point``, ``component``) carry no ``units``. Built from the chunks' results,
-in any order; nothing is written here (:mod:`blastscale.io.sweep_store` writes it)."""
+in any order; nothing is written here (:func:`.run.run_sweep` has :mod:`blastscale.io.sweep_store` write it)."""
 
 from __future__ import annotations
 

@@ -9,9 +9,8 @@ import numpy as np
 
 from .spec import SweepSpec, _plain
 from .._validate import BlastscaleInputError
-from ..similitude import design_model
-from ..structures import from_spec
-from ..study.engines import load_model_of
+from ..study import Study
+from ..study.study import design_of
 from .._threads import interleave, map_interleaved
 import warnings
 
@@ -65,34 +64,18 @@ def _groups(vals: dict, paths: list, n: int) -> list:
 def _outcome_group(sc, W, R, e) -> dict:
     """Outcome-mode arrays for n load cases ``W`` [kg], ``R`` [m], restitution ``e`` [-] (NaN:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
-    design (:func:`~blastscale.similitude.design_model` over the arrays), then the first swing of
-    prototype and specimen."""
+    design (:func:`~blastscale.study.study.design_of` over the arrays, without the blast effects),
+    then the first swing of prototype and specimen."""
     from ..rocking import RockingSolver, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
     from ..rocking.system import RockingSystem, housner_restitution  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     n = W.size
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
     out[VALID_KEY] = np.zeros(n, dtype=bool)
-    bl, sim, scl = sc.blast, sc.simulation, sc.scale
-    structure = from_spec(sc.structure)
-    lm = load_model_of(sc, structure)  # clearing on the block's front, the negative phase (the Study's)
-    try:  # the specimen system (block, gravity, load model) from the design, as in the Study
-        d = design_model(
-            W,
-            R,
-            scl.length,
-            sc.density_ratio,
-            scl.gravity_ratio,
-            scl.law,
-            bl.blast_model,
-            structure,
-            gravity=sim.gravity_m_s2,
-            extrapolate=bl.extrapolate,
-            burst=bl.burst,
-            specimen_burst=scl.specimen_burst,
-            load_model=lm,
-            effects=False,
-        )
+    bl, sim = sc.blast, sc.simulation
+    structure = Study(sc).structure()
+    try:  # the specimen system (block, gravity, load model) from the Study's own design, over the arrays
+        d = design_of(sc, structure, W, R, effects=False)
     except BlastscaleInputError:  # e.g. a density ratio the Hopkinson-Cranz law refuses: every case
         return out
     ok = d.valid
@@ -109,7 +92,7 @@ def _outcome_group(sc, W, R, e) -> dict:
         proto.load_ratio_per_pascal,
         d.prototype.select(ok),
         bl.pulse_shape,
-        load_model=lm,
+        load_model=d.load_model,  # clearing on the block's front, the negative phase (the Study's)
         extrapolate=bl.extrapolate,
         solver=solver,
     )
@@ -156,11 +139,12 @@ def planar_outcomes(spec: SweepSpec, start: int, stop: int) -> dict:
     sweep, vectorised over the cases (the design in numpy, the pulse phases in the compiled
     kernel, the first free swing in closed form; :func:`blastscale.rocking.swing`).
 
-    For the prototype and the model (designed by the Study's own ``design_model``, given the
-    arrays of charges and stand-offs): ``collapsed`` (at any time), ``max_rotation_rad`` (the largest
-    |theta| of the whole motion; pi/2 where it overturns), their ratio (model / prototype) and
-    outcome agreement, the model charge and stand-off, and ``sweep.valid`` (False where the Study
-    would refuse the design: a scaled distance outside the blast fits; NaN values there).
+    For the prototype and the model (designed by the Study's own mapping,
+    :func:`~blastscale.study.study.design_of`, given the arrays of charges and stand-offs):
+    ``collapsed`` (at any time), ``max_rotation_rad`` (the largest |theta| of the whole motion; pi/2
+    where it overturns), their ratio (model / prototype) and outcome agreement, the model charge and
+    stand-off, and ``sweep.valid`` (False where the Study would refuse the design: a scaled distance
+    outside the blast fits; NaN values there).
     Cases are grouped by the fields that matter other than charge, stand-off and restitution
     (structure, blast model and pulse, scale, gravity: one body, scale and law per group; friction,
     duration, samples and the 3D settings play no part); within a group everything is array

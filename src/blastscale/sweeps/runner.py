@@ -1,7 +1,7 @@
 """Running a sweep's chunks: in this process, on a local Dask cluster (single-threaded worker
 processes on 127.0.0.1) or on any running scheduler. The runner writes nothing: each finished
-chunk goes to a ``sink(index, result)`` (the resumable store of :mod:`blastscale.io.sweep_store`,
-or memory)."""
+chunk goes to a ``sink(index, result)`` (the chunk store of :mod:`blastscale.io.sweep_store`, or
+memory: :mod:`.run` drives the sweep)."""
 
 from __future__ import annotations
 
@@ -9,42 +9,20 @@ import hashlib
 import json
 import math
 import time
-from dataclasses import dataclass
 from typing import Callable, Optional
 
 from .._extras import require
 from .._validate import BlastscaleInputError
 from .cases import evaluate_chunk
 from .spec import SweepSpec
-from ..sim3d.threads import available_cores
-from .dataset import assemble, metadata
-from .budget import check_sweep_budget
+from ..sim3d.threads import THREADS_ENV, available_cores
 import logging
 import warnings
 import signal
 import threading
 from multiprocessing import resource_tracker
 
-__all__ = ["SweepRun", "default_chunk", "run_chunks", "run_in_memory", "payload_hash"]
-
-
-@dataclass(frozen=True)
-class SweepRun:
-    """What :func:`run_sweep` did: the store, the number of cases, chunks computed now and
-    skipped (already written), ``seconds`` [s] computing them (on Dask: from the first submission
-    to the last chunk written; the cluster's start and stop and the final consolidation are not
-    counted), workers, and the rate of that computing."""
-
-    store: str
-    n_cases: int
-    chunks_run: int
-    chunks_skipped: int
-    seconds: float
-    workers: int
-    cases_per_minute: float
-
-    def to_dict(self) -> dict:
-        return dict(self.__dict__)
+__all__ = ["default_chunk", "run_chunks", "payload_hash"]
 
 
 def default_chunk(spec: SweepSpec, workers: int) -> int:
@@ -132,9 +110,7 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
         # Dask's nannies set MALLOC_TRIM_THRESHOLD_=65536 in their workers: glibc then hands every
         # freed block above 64 kB back to the system, and the numpy temporaries of a planar chunk
         # come back as fresh pages each time (measured: +55 % CPU per outcome-mode chunk); the
-        # local workers keep glibc's own (dynamic) threshold
-        from ..sim3d.threads import THREADS_ENV, available_cores  # noqa: PLC0415 -- name clash at module level
-
+        # local workers keep glibc's own (dynamic) threshold;
         # each worker's 3D runs share the cores with the other workers: cores // workers threads each;
         # the workers log errors only: a task cancelled while the cluster stops after Ctrl-C is not news (the
         # main process says what happened in one line); a failing chunk still raises here
@@ -191,51 +167,3 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
 def payload_hash(payload: dict) -> str:
     """Short hash of a sweep payload (task keys unique per sweep)."""
     return hashlib.sha1(json.dumps(payload, sort_keys=True, default=str).encode()).hexdigest()[:12]
-
-
-def run_in_memory(
-    spec: SweepSpec,
-    *,
-    scheduler: Optional[str] = None,
-    workers: int = 0,
-    chunk: Optional[int] = None,
-    progress: Optional[Callable[[int, int], None]] = None,
-):
-    """Run every case of a sweep and return its tree (:func:`.dataset.assemble`: the layout of a
-    sweep store), keeping the chunks in memory (nothing written, nothing resumable: for small
-    sweeps and maps).
-
-    Parameters
-    ----------
-    spec : SweepSpec
-    scheduler, workers
-        As :func:`run_chunks` (default: in this process).
-    chunk : int, optional
-        Cases per task (default :func:`default_chunk`).
-    progress : callable, optional
-        ``progress(cases_done, n_cases)``.
-
-    Returns
-    -------
-    xarray.DataTree
-    """
-
-    if workers < 0:
-        raise BlastscaleInputError(f"workers = {workers} is out of range: must be >= 0 (0: in this process)")
-    chunk = default_chunk(spec, max(1, workers)) if chunk is None else chunk
-    if not isinstance(chunk, int) or isinstance(chunk, bool) or chunk < 1:
-        raise BlastscaleInputError(f"chunk = {chunk!r} is out of range: must be a whole number >= 1")
-
-    check_sweep_budget(spec, None if scheduler else max(1, workers))
-    n = spec.n_cases
-    todo = [(i, s, min(n, s + chunk)) for i, s in enumerate(range(0, n, chunk))]
-    done: dict = {}
-    run_chunks(
-        spec.to_payload(),
-        todo,
-        done.__setitem__,
-        scheduler=scheduler,
-        workers=workers,
-        tick=(lambda k: progress(k, n)) if progress else None,
-    )
-    return assemble(spec, (done[i] for i, _, _ in todo), metadata(spec, chunk))

@@ -32,7 +32,7 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from .._validate import check_positive
 from .layout import VALID_NAME, select
-from .runner import run_in_memory
+from .run import run_in_memory
 from .spec import SweepSpec
 
 __all__ = ["similarity_map", "MAP_FIELDS", "DEFAULT_TOLERANCE", "ENGINE_VARIABLES"]
@@ -103,8 +103,8 @@ def similarity_map(
         :data:`DEFAULT_TOLERANCE`: 5e-4 rad planar, 0.05 relative 3D).
     run : callable, optional
         ``run(spec) -> xarray.DataTree``: the sweep's store (e.g. the resumable store of
-        :func:`blastscale.io.sweep_store.run_sweep` read back by ``open_sweep``, on Dask); default
-        :func:`.runner.run_in_memory` in this process.
+        :func:`blastscale.sweeps.run.run_sweep` read back by ``open_sweep``, on Dask); default
+        :func:`.run.run_in_memory` in this process.
 
     Returns
     -------
