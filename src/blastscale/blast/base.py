@@ -36,7 +36,7 @@ import numpy as np
 
 from .._validate import OutOfRangeError, check_finite
 
-__all__ = ["BlastModel", "ExtrapolationWarning", "QUANTITIES"]
+__all__ = ["BlastModel", "ExtrapolationWarning", "QUANTITIES", "check_fit_range"]
 
 QUANTITIES = (
     "reflected_pressure",
@@ -51,6 +51,38 @@ QUANTITIES = (
 
 class ExtrapolationWarning(UserWarning):
     """An empirical fit was evaluated outside its validity range on explicit request."""
+
+
+def check_fit_range(z, valid_range, what: str, fit_range: str, extrapolate: bool, stacklevel: int = 2) -> None:
+    """Check scaled distances against the validity range of an empirical fit.
+
+    Parameters
+    ----------
+    z : ndarray
+        Scaled distances Z [m/kg^(1/3)].
+    valid_range : tuple of float
+        ``(Z_min, Z_max)`` [m/kg^(1/3)] of the fit.
+    what, fit_range : str
+        What is evaluated and whose range it is, as the message names them
+        (``"<what>: scaled distance Z = ... is outside <fit_range> [Z_min, Z_max] m/kg^(1/3)"``).
+    extrapolate : bool
+        Warn (:class:`ExtrapolationWarning`) instead of raising.
+    stacklevel : int
+        Of the warning, counted from the caller of this function (2: the caller's caller).
+
+    Raises
+    ------
+    OutOfRangeError
+        A Z outside ``[Z_min, Z_max]`` without ``extrapolate`` (the first one named).
+    """
+    lo, hi = valid_range
+    out = (z < lo) | (z > hi)
+    if np.any(out):
+        zb = float(z[out].ravel()[0])
+        msg = f"{what}: scaled distance Z = {zb:.6g} m/kg^(1/3) is outside {fit_range} [{lo:g}, {hi:g}] m/kg^(1/3)"
+        if not extrapolate:
+            raise OutOfRangeError(msg + " (opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)")
+        warnings.warn(msg + "; extrapolating", ExtrapolationWarning, stacklevel=stacklevel + 1)
 
 
 class BlastModel(abc.ABC):
@@ -87,20 +119,11 @@ class BlastModel(abc.ABC):
     def _evaluate(self, quantity: str, Z, extrapolate: bool):
         z = check_finite("scaled distance Z", Z, "m/kg^(1/3)")
         lo, hi = self.valid_range(quantity)
-        out = (z < lo) | (z > hi)
         if np.any(z <= 0.0):
             raise OutOfRangeError(
                 f"scaled distance Z = {float(z[z <= 0.0].ravel()[0]):.6g} m/kg^(1/3) is out of range: must be > 0"
             )
-        if np.any(out):
-            zb = float(z[out].ravel()[0])
-            msg = (
-                f"{quantity} ({self.name}): scaled distance Z = {zb:.6g} m/kg^(1/3) is outside "
-                f"the fit's valid range [{lo:g}, {hi:g}] m/kg^(1/3)"
-            )
-            if not extrapolate:
-                raise OutOfRangeError(msg + " (opt in with extrapolate=True, CLI --extrapolate, to evaluate it anyway)")
-            warnings.warn(msg + "; extrapolating", ExtrapolationWarning, stacklevel=3)
+        check_fit_range(z, (lo, hi), f"{quantity} ({self.name})", "the fit's valid range", extrapolate, stacklevel=3)
         with np.errstate(over="ignore", under="ignore"):
             res = self._raw(quantity, z)
         bad = ~(np.isfinite(res) & (res > 0.0))

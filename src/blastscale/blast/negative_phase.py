@@ -64,13 +64,12 @@ References
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import OutOfRangeError, check_positive
-from .base import ExtrapolationWarning
+from .._validate import check_positive
+from .base import check_fit_range
 from .._validate import BlastscaleInputError
 from .friedlander import friedlander_decay as decay_of
 from .bursts import check_burst
@@ -246,17 +245,9 @@ def negative_phase(scaled_distance, charge, burst: str = "surface", *, extrapola
         check_burst(burst)
     z = check_positive("scaled distance Z", scaled_distance, "m/kg^(1/3)")
     W = check_positive("charge", charge, "kg")
-    lo, hi = NEGATIVE_PHASE_RANGE
-    out = (z < lo) | (z > hi)
-    if np.any(out):
-        zb = float(z[out].ravel()[0])
-        msg = (
-            f"negative phase: scaled distance Z = {zb:.6g} m/kg^(1/3) is outside the range of UFC 3-340-02 "
-            f"Fig. 2-16's calibration [{lo:g}, {hi:g}] m/kg^(1/3)"
-        )
-        if not extrapolate:
-            raise OutOfRangeError(msg + " (opt in with extrapolate=True, CLI --extrapolate)")
-        warnings.warn(msg + "; extrapolating", ExtrapolationWarning, stacklevel=2)
+    check_fit_range(
+        z, NEGATIVE_PHASE_RANGE, "negative phase", "the range of UFC 3-340-02 Fig. 2-16's calibration", extrapolate
+    )
     z, W = np.broadcast_arrays(z, W)
     return negative_phase_unchecked(z if z.ndim else float(z), W if W.ndim else float(W), burst)
 

@@ -30,18 +30,18 @@ def plot_plan(p, ax=None):
     odds = [d for d in p.designs if d["p_outcome_agree"] is not None]
     screened = [d for d in p.designs if d["p_outcome_agree"] is None]
     if screened:
-        ax.scatter(
-            [d["scale"] for d in screened],
-            [d["tnt_equivalent_kg"] for d in screened],
+        _scatter_designs(
+            ax,
+            screened,
             facecolors="none",
             edgecolors="C0",
             s=30,
             label=f"feasible, screened only ({len(screened)})",
         )
     if odds:
-        sc = ax.scatter(
-            [d["scale"] for d in odds],
-            [d["tnt_equivalent_kg"] for d in odds],
+        sc = _scatter_designs(
+            ax,
+            odds,
             c=[d["p_outcome_agree"] for d in odds],
             cmap="viridis",
             vmin=0.0,
@@ -55,9 +55,9 @@ def plot_plan(p, ax=None):
         ax.figure.colorbar(sc, ax=ax, label="P(outcome agrees)")
     front = [d for d in p.designs if d.get("pareto")]
     if front:
-        ax.scatter(
-            [d["scale"] for d in front],
-            [d["tnt_equivalent_kg"] for d in front],
+        _scatter_designs(
+            ax,
+            front,
             facecolors="none",
             edgecolors="C3",
             s=110,
@@ -65,8 +65,7 @@ def plot_plan(p, ax=None):
             zorder=4,
             label=f"Pareto-optimal ({len(front)})",
         )
-    b = p.designs[0]
-    ax.scatter([b["scale"]], [b["tnt_equivalent_kg"]], marker="*", color="C3", s=140, zorder=5, label="best design")
+    _scatter_designs(ax, [p.designs[0]], marker="*", color="C3", s=140, zorder=5, label="best design")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("scale lambda [-]")
@@ -75,3 +74,9 @@ def plot_plan(p, ax=None):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="best")
     return ax
+
+
+def _scatter_designs(ax, designs, **style):
+    """Scatter ``designs`` (dicts of the plan) at their scale lambda [-] and specimen charge [kg TNT];
+    ``style``: :meth:`matplotlib.axes.Axes.scatter`'s keywords. Returns its collection."""
+    return ax.scatter([d["scale"] for d in designs], [d["tnt_equivalent_kg"] for d in designs], **style)

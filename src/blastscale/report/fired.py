@@ -97,7 +97,6 @@ def fired_section(result, figures) -> str:
         "decay",
         "effective_charge_tnt_kg",
     )
-    gauges = [(n, *(format_value(g[k]) for k in gkeys)) for n, g in s["gauges"].items()]
     mkeys = (
         "first_peak_m",
         "predicted_first_peak_m",
@@ -107,7 +106,6 @@ def fired_section(result, figures) -> str:
         "outcome_measured",
         "outcome_refit",
     )
-    markers = [(n, *(format_value(m[k]) for k in mkeys)) for n, m in s["markers"].items()]
     pkeys = (
         "first_peak_m",
         "first_peak_p05_m",
@@ -116,20 +114,24 @@ def fired_section(result, figures) -> str:
         "first_peak_time_p05_s",
         "first_peak_time_p95_s",
     )
-    proto = [(n, *(format_value(p[k]) for k in pkeys)) for n, p in s["prototype_markers"].items()]
     return (
         f'<p class="lead"><b>{_e(s["verdict"])}</b></p>'
         + _table(("quantity", "value", "unit"), load)
-        + ("<h3>Gauges (specimen)</h3>" + _table(("gauge",) + gkeys, gauges) if gauges else "")
-        + ("<h3>Markers (specimen)</h3>" + _table(("marker",) + mkeys, markers) if markers else "")
-        + (
-            "<h3>What the monument would do (measured, up-scaled; 5-95 %)</h3>" + _table(("marker",) + pkeys, proto)
-            if proto
-            else ""
+        + _named_rows("Gauges (specimen)", "gauge", gkeys, s["gauges"])
+        + _named_rows("Markers (specimen)", "marker", mkeys, s["markers"])
+        + _named_rows(
+            "What the monument would do (measured, up-scaled; 5-95 %)", "marker", pkeys, s["prototype_markers"]
         )
         + _calibration(s.get("calibration"))
         + "".join(_img(png, title, caption, name) for name, title, caption, png in figures)
     )
+
+
+def _named_rows(title: str, name: str, keys: tuple, entries: dict) -> str:
+    """A heading ``title`` and a table of one row per entry of ``entries`` (its name, then the values of
+    ``keys``, formatted); "" when there is none."""
+    rows = [(n, *(format_value(x[k]) for k in keys)) for n, x in entries.items()]
+    return f"<h3>{title}</h3>" + _table((name,) + keys, rows) if rows else ""
 
 
 def _calibration(c) -> str:

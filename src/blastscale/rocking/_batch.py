@@ -30,40 +30,26 @@ __all__ = ["GROUPS_PER_THREAD", "MIN_CASES_PER_THREAD", "solve_batch", "solve_in
 MIN_CASES_PER_THREAD = 16
 #: Interleaved groups per thread (taken on demand: balances cases of unequal cost).
 GROUPS_PER_THREAD = 4
+#: Position of ``tau_eval`` among the ``case`` arguments of :func:`solve_batch` (the arguments of
+#: :func:`solve_into` after ``idx``).
+_TAU_EVAL = 10
 
 
-def solve_batch(
-    alpha,
-    e,
-    th0,
-    w0,
-    tau_end,
-    kind,
-    par,
-    tab_t,
-    tab_f,
-    tab_off,
-    tau_eval,
-    rtol,
-    atol,
-    w_rest,
-    max_impacts,
-    stop_at_overturn,
-    max_steps,
-    record,
-    threads=None,
-):
-    """Solve n encoded cases (arrays of length n, ``par`` (n, PAR_SIZE), tabulated pulses at
-    ``tab_off[i]:tab_off[i+1]`` of ``tab_t``/``tab_f``, ``tau_eval`` (n, m); the arguments of
-    :func:`._kernel.solve_case` otherwise) on up to ``threads`` threads.
+def solve_batch(*case, threads=None):
+    """Solve n encoded cases on up to ``threads`` threads.
+
+    ``case``: the arguments of :func:`solve_into` between ``idx`` and the outputs, in its order
+    (``alpha`` ... ``tab_off``, ``tau_eval`` (n, m), ``rtol`` ... ``record``): arrays of length n,
+    ``par`` (n, PAR_SIZE), tabulated pulses at ``tab_off[i]:tab_off[i+1]`` of ``tab_t``/``tab_f``;
+    the settings of :func:`._kernel.solve_case`. They are handed over unchanged to every group.
 
     Returns
     -------
     tuple
         Summaries (n, N_SUMMARY), theta (n, m) [rad] and w = theta_dot / p (n, m) [-].
     """
-    n = int(np.size(alpha))
-    m = tau_eval.shape[1]
+    n = int(np.size(case[0]))  # alpha
+    m = case[_TAU_EVAL].shape[1]
     summ = np.empty((n, K.N_SUMMARY))
     th_out = np.empty((n, m))
     w_out = np.empty((n, m))
@@ -75,30 +61,7 @@ def solve_batch(
     )
 
     def run(idx):
-        solve_into(
-            idx,
-            alpha,
-            e,
-            th0,
-            w0,
-            tau_end,
-            kind,
-            par,
-            tab_t,
-            tab_f,
-            tab_off,
-            tau_eval,
-            rtol,
-            atol,
-            w_rest,
-            max_impacts,
-            stop_at_overturn,
-            max_steps,
-            record,
-            summ,
-            th_out,
-            w_out,
-        )
+        solve_into(idx, *case, summ, th_out, w_out)
 
     map_threads(run, groups, max(1, nt))
     return summ, th_out, w_out

@@ -184,7 +184,8 @@ def grow(buf, n):
 
 @njit(cache=True)
 def record_row(hist, nh, tau, th, w):
-    """Append the history row (tau [-], theta [rad], w [-]); returns ``(hist, nh + 1)``."""
+    """Append the row (tau [-], theta [rad], w [-]) to the history ``hist`` (or any 3-column
+    record: the impacts); returns ``(hist, nh + 1)``."""
     hist = grow(hist, nh)
     hist[nh, 0] = tau
     hist[nh, 1] = th
@@ -213,11 +214,7 @@ def record_impact(imp, nimp, summ, te, w_before, w_after):
     returns ``(imp, nimp + 1)``."""
     if nimp == 0:
         summ[S_FIRST_IMPACT_TAU] = te
-    imp = grow(imp, nimp)
-    imp[nimp, 0] = te
-    imp[nimp, 1] = w_before
-    imp[nimp, 2] = w_after
-    return imp, nimp + 1
+    return record_row(imp, nimp, te, w_before, w_after)
 
 
 @njit(cache=True)

@@ -162,6 +162,19 @@ def base_breakpoint(tau, kind, par, tab_t):
 
 
 @njit(cache=True)
+def _suction_root(lo, hi, c, rising):
+    """Bracket ``(lo, hi)`` [-] of the root of ``g(x) = 6.75 x (1 - x)^2 = c`` after 80 bisections of
+    ``[lo, hi]``, where ``g`` rises (``rising``: g(lo) <= c < g(hi)) or falls (g(lo) > c >= g(hi))."""
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if (6.75 * mid * (1.0 - mid) * (1.0 - mid) > c) == rising:
+            hi = mid
+        else:
+            lo = mid
+    return lo, hi
+
+
+@njit(cache=True)
 def tail_lift_time(tau, thr, par):
     """First time >= ``tau`` [-] at which the negative phase's suction exceeds ``thr`` (``f < -thr``:
     a body at rest lifts off toward the blast); inf if never (and without a negative phase)."""
@@ -169,22 +182,8 @@ def tail_lift_time(tau, thr, par):
         return np.inf
     c = thr / par[3]  # the cubic g(x) = 6.75 x (1 - x)^2 rises to 1 at x = 1/3, then falls
     x = (tau - par[4]) / par[5]
-    lo, hi = 0.0, 1.0 / 3.0  # rising root: g(lo) <= c < g(hi)
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if 6.75 * mid * (1.0 - mid) * (1.0 - mid) > c:
-            hi = mid
-        else:
-            lo = mid
-    x1 = hi
-    lo, hi = 1.0 / 3.0, 1.0  # falling root: g(lo) > c >= g(hi)
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if 6.75 * mid * (1.0 - mid) * (1.0 - mid) > c:
-            lo = mid
-        else:
-            hi = mid
-    x2 = lo
+    x1 = _suction_root(0.0, 1.0 / 3.0, c, True)[1]  # rising root: g(lo) <= c < g(hi)
+    x2 = _suction_root(1.0 / 3.0, 1.0, c, False)[0]  # falling root: g(lo) > c >= g(hi)
     if x >= x2:
         return np.inf
     if x >= x1:

@@ -161,7 +161,7 @@ class RockingSolver:
             if pulse is None
             else encode_pulse(pulse, system, th0)
         )
-        mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
+        settings = self._kernel_settings(max_impacts, stop_at_overturn, True)
         e = system.coefficient_of_restitution
         summ, the, we, hist, imp, pk = K.solve_case(
             system.alpha,
@@ -174,13 +174,7 @@ class RockingSolver:
             tt,
             tf,
             (tev if tev is not None else np.zeros(0)) * p,
-            float(self.rtol),
-            float(self.atol),
-            float(self.rest_velocity),
-            mi,
-            bool(stop_at_overturn),
-            int(self.max_steps),
-            True,
+            *settings,
         )
         self._check_status(summ[K.S_STATUS])
         return RockingResult(
@@ -288,7 +282,7 @@ class RockingSolver:
             w0[i] = om0[i] / pvec[i] + dw
         tab_t = np.concatenate(tabs_t) if off[-1] else np.zeros(0)
         tab_f = np.concatenate(tabs_f) if off[-1] else np.zeros(0)
-        mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
+        settings = self._kernel_settings(max_impacts, stop_at_overturn, False)
         summ, th, w = solve_batch(
             alpha,
             e,
@@ -301,15 +295,8 @@ class RockingSolver:
             tab_f,
             off,
             np.ascontiguousarray(tev[None, :] * pvec[:, None]),
-            float(self.rtol),
-            float(self.atol),
-            float(self.rest_velocity),
-            mi,
-            bool(stop_at_overturn),
-            int(self.max_steps),
-            False,  # record=False passed from Python (a plain bool): a literal
-            # False inside the kernel would compile a second specialisation of solve_case (~3 s)
-            self.threads,
+            *settings,
+            threads=self.threads,
         )
         bad = summ[:, K.S_STATUS] != 0
         if np.any(bad):
@@ -330,6 +317,25 @@ class RockingSolver:
         )
 
     # ------------------------------------------------------------------ helpers
+    def _kernel_settings(self, max_impacts, stop_at_overturn, record: bool) -> tuple:
+        """The trailing arguments of the compiled kernel (:func:`._kernel.solve_case`,
+        :func:`._batch.solve_batch`): ``(rtol, atol, rest_velocity, max_impacts (-1: never),
+        stop_at_overturn, max_steps, record)`` as plain Python numbers.
+
+        ``record`` is passed from Python (a plain bool): a literal inside the kernel would compile a
+        second specialisation of ``solve_case`` (~3 s). ``max_impacts`` None or a count >= 0.
+        """
+        mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
+        return (
+            float(self.rtol),
+            float(self.atol),
+            float(self.rest_velocity),
+            mi,
+            bool(stop_at_overturn),
+            int(self.max_steps),
+            bool(record),
+        )
+
     @staticmethod
     def _check_t_eval(t_eval, duration: float):
         if t_eval is None:

@@ -127,14 +127,8 @@ def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab
         tab_f,
         off,
         np.empty((n, 0)),
-        float(solver.rtol),
-        float(solver.atol),
-        float(solver.rest_velocity),
-        -1,
-        True,
-        int(solver.max_steps),
-        False,
-        solver.threads,
+        *solver._kernel_settings(None, True, False),
+        threads=solver.threads,
     )
     bad = summ[:, K.S_STATUS] != 0
     if np.any(bad):
