@@ -55,3 +55,16 @@ def test_the_layout_names_every_package_and_module_and_nothing_else():
     assert not missing and not gone, (
         f"docs/design.md's layout misses {missing} (in src/blastscale) and names {gone} (not in src/blastscale)"
     )
+
+
+def test_the_readme_package_table_names_every_package_and_nothing_else():
+    """The README's layout table (its rows' first cells: ``blastscale.NAME``) names every subpackage and
+    public top-level module of src/blastscale, and nothing that is not one."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = re.search(r"^## Layout\b.*?(?=^## )", text, flags=re.S | re.M)
+    assert section, "README.md has no '## Layout' section"
+    cells = re.findall(r"^\| (`blastscale\..*?) \|", section[0], flags=re.M)
+    named = {n for cell in cells for n in re.findall(r"`blastscale\.(\w+)`", cell)}
+    code = {n.rstrip("/").removesuffix(".py") for n in code_names() if not n.startswith("_")}
+    missing, gone = sorted(code - named), sorted(named - code)
+    assert not missing and not gone, f"README's layout table misses {missing} and names {gone}"
