@@ -273,7 +273,8 @@ def test_a_capacity_curve_scales_its_specimen_once(monkeypatch):
     assert [c[0] for c in rocking] == [SPECIMEN], rocking
     f = rocking[0][2]
     assert (f.length, f.density, f.gravity) == (0.01, 0.5, 2.0)
-    assert [(c[0], c[1], c[2]) for c in lms] == [(SPECIMEN, lm, 0.01)], lms
+    assert [(c[0], c[1]) for c in lms] == [(SPECIMEN, lm)], lms
+    assert lms[0][2].length == 0.01  # scaled(factors): the design's factors, lambda among them
     assert blocks == [], blocks
 
 

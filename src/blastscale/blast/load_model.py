@@ -101,11 +101,18 @@ class LoadModel:
         """True for the paper's load (no clearing, no negative phase)."""
         return not (self.clearing or self.negative_phase)
 
-    def scaled(self, length_factor: float) -> "LoadModel":
-        """The same load model on a face whose lengths are x ``length_factor`` (a specimen's)."""
+    def scaled(self, factors) -> "LoadModel":
+        """The same load model on a specimen's face: its width and height x ``factors.length`` (lambda).
+
+        Parameters
+        ----------
+        factors : ScalingFactors
+            The design's factors (:class:`blastscale.similitude.ScalingFactors`; the one ``scaled(factors)``
+            signature of structures, contact settings, pulses and load models, docs/contracts.md section 4).
+        """
         if self.face_width_m is None:
             return self
-        lam = check_positive_scalar("scale", length_factor)
+        lam = check_positive_scalar("scale", factors.length)
         return replace(self, face_width_m=self.face_width_m * lam, face_height_m=self.face_height_m * lam)
 
     def to_dict(self) -> dict:

@@ -6,7 +6,7 @@ simulated time become the specimen's (the reduced-scale physical model's).
 * the structure, of any kind (a block, column, wall, arch, portal, assembly, or a planar
   :class:`~blastscale.rocking.RockingSystem`): ``structure.scaled(factors)`` (lengths x lambda,
   density x gamma; a rocking system also carries its gravity, x varsigma);
-* the load model (clearing on the loaded face, the negative phase): ``load_model.scaled(lambda)`` (the
+* the load model (clearing on the loaded face, the negative phase): ``load_model.scaled(factors)`` (the
   specimen's face is lambda times the prototype's);
 * the 3D contact settings: ``contact.scaled(factors)`` (times x lambda_t, lengths x lambda);
 * the simulated time [s]: x lambda_t;
@@ -85,7 +85,7 @@ def specimen_system(
     """
     return SpecimenSystem(
         structure=None if structure is None else structure.scaled(factors),
-        load_model=None if load_model is None else load_model.scaled(factors.length),
+        load_model=None if load_model is None else load_model.scaled(factors),
         contact=None if contact is None else contact.scaled(factors),
         duration=None if duration is None else float(duration) * factors.time,
         gravity=None if gravity is None else float(gravity) * factors.gravity,

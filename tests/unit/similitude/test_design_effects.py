@@ -78,7 +78,7 @@ def test_clearing_corrected_charge_restores_the_cleared_impulse():
         d = design_model(250.0, 10.0, 1 / 100, load_model=lm, face=(1.3, 10.0))
     fix = clearing_corrected_charge(d, lm)
     bp = blast_parameters(fix["charge_kg"], d.specimen_standoff_m)
-    got = front_face_clearing(bp, lm.scaled(d.scale)).impulse
+    got = front_face_clearing(bp, lm.scaled(d.factors)).impulse
     want = front_face_clearing(d.prototype, lm).impulse * d.factors.impulse
     assert got == pytest.approx(want, rel=1e-9)
     assert fix["charge_ratio"] == pytest.approx(fix["charge_kg"] / d.specimen_charge_kg)
