@@ -24,7 +24,8 @@ import blastscale.similitude.design as design_module
 import blastscale.similitude.specimen as specimen_module
 from blastscale.analysis import compare, systems, upscale
 from blastscale.blast.load_model import LoadModel
-from blastscale.rocking import RockingSystem, model_capacity_curve
+from blastscale.analysis.capacity import model_capacity_curve
+from blastscale.rocking import RockingSystem
 from blastscale.scenario import Scenario
 from blastscale.sim3d.contact import ContactSettings
 from blastscale.similitude import design_model, factors
@@ -269,7 +270,7 @@ def test_a_capacity_curve_scales_its_specimen_once(monkeypatch):
     lm = LoadModel(clearing=True, face_width_m=1.0, face_height_m=10.0)
     mcap = model_capacity_curve(block, [2.0, 3.0], 0.01, 0.5, 2.0, load_model=lm)
     assert np.all(np.isfinite(mcap.upscaled_charge_kg))
-    assert scalings == ["blastscale.rocking.capacity"], scalings
+    assert scalings == ["blastscale.analysis.capacity"], scalings
     assert [c[0] for c in rocking] == [SPECIMEN], rocking
     f = rocking[0][2]
     assert (f.length, f.density, f.gravity) == (0.01, 0.5, 2.0)

@@ -12,6 +12,11 @@
 * :mod:`.block3d_similarity` -- the single block's planar view of a 3D run (``block_dataset``,
   ``block_summary``, ``block_similarity``, ``block_view``: rotation about y, sliding of the
   supporting edge, uplift);
+* :mod:`.capacity` -- ``model_capacity_curve``: a reduced-scale model's capacity curve, up-scaled to the
+  prototype (the specimen side of the capacity: the engine gives one body's curve on plain arrays);
+* :mod:`.planar` -- the planar rocking runs outside the Study (planner, odds, sweeps' outcome and fragility
+  modes, reproduced numbers, the CLI's capacity commands): ``first_swing_of``, ``first_swing_under``,
+  ``history_of``, ``critical_of``, ``capacity_of``;
 * :mod:`.systems` -- internal: ``run_system``, one side of a model experiment on the 3D engine.
 
 Many-case studies (sweeps, fragility, similarity maps) live in :mod:`blastscale.sweeps`.

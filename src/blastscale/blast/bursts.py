@@ -37,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive, check_positive_scalar
+from .inverse import charge_for, scaled_distance_for
 from .parameters import BURSTS, DEFAULT_BURST, burst_of, check_burst, get_blast_model, model_for_burst
 
 __all__ = [
@@ -64,27 +65,6 @@ EQUIVALENCE_QUANTITIES = (
     "scaled_incident_impulse",
     "scaled_reflected_impulse",
 )
-
-
-def _solve_z(f_target, model, quantity, z_surface, scaled: bool) -> np.ndarray:
-    """Z_f [m/kg^(1/3)] of the free-air fit with ``q_f(Z_f) (Z_s/Z_f if scaled) = f_target`` (bisection in ln Z)."""
-    lo, hi = model.valid_range(quantity)
-    a = np.full(z_surface.shape, math.log(lo))
-    b = np.full(z_surface.shape, math.log(hi))
-
-    def g(u):
-        z = np.exp(u)
-        v = getattr(model, quantity)(z)
-        return np.log(v * (z_surface / z if scaled else 1.0)) - np.log(f_target)
-
-    ga = g(a)
-    gb = g(b)
-    ok = (ga >= 0.0) & (gb <= 0.0)  # every quantity falls with Z (scaled impulses times 1/Z as well)
-    for _ in range(60):
-        mid = 0.5 * (a + b)
-        gm = g(mid)
-        a, b = np.where(gm > 0.0, mid, a), np.where(gm > 0.0, b, mid)
-    return np.where(ok, np.exp(0.5 * (a + b)), np.nan)
 
 
 def equivalent_free_air_charge_ratio(scaled_distance, quantity: str = "incident_pressure") -> np.ndarray:
@@ -115,8 +95,12 @@ def equivalent_free_air_charge_ratio(scaled_distance, quantity: str = "incident_
     z = np.atleast_1d(check_positive("scaled distance Z", scaled_distance, "m/kg^(1/3)")).astype(float)
     surf, free = get_blast_model("kingery-bulmash"), get_blast_model("kingery-bulmash-free-air")
     target = getattr(surf, quantity)(z)
-    zf = _solve_z(target, free, quantity, z, quantity.startswith("scaled"))
-    k = (z / zf) ** 3
+    # a scaled impulse is the impulse of 1 kg at the distance Z: the free-air charge that gives it there
+    inverted = quantity.removeprefix("scaled_")
+    if quantity.startswith("scaled"):
+        k = charge_for(target, z, inverted, free, outside="nan")
+    else:
+        k = (z / scaled_distance_for(target, inverted, free, outside="nan")) ** 3
     return k if np.ndim(scaled_distance) else float(k[0])
 
 

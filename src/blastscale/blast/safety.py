@@ -52,6 +52,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..roots import scalar_root
 from .._validate import BlastscaleInputError, OutOfRangeError
 from .kingery_bulmash import KingeryBulmash
 
@@ -198,7 +199,8 @@ def overpressure_distance(tnt_kg: float, threshold_Pa: float) -> float:
 
     The root of ``P(Z) = threshold`` in ln Z (:func:`surface_burst_overpressure`), bracketed on a
     geometric grid of 4000 points between 0.2 and 1e7 m/kg^(1/3) from the far end (the last grid
-    point at or above the threshold), then Brent's method to 1e-12 in ln Z; ``R = Z W^(1/3)``.
+    point at or above the threshold), then the package's root finder (:func:`blastscale.roots.scalar_root`,
+    Illinois regula falsi) to double precision in ln Z; ``R = Z W^(1/3)``.
 
     Raises
     ------
@@ -218,8 +220,6 @@ def overpressure_distance(tnt_kg: float, threshold_Pa: float) -> float:
 def _scaled_distance_to(thr: float) -> float:
     """The largest Z [m/kg^(1/3)] where the overpressure is at least ``thr`` [Pa] (cube-root scaling:
     one root per threshold, whatever the charge)."""
-    from scipy.optimize import brentq
-
     top = float(surface_burst_overpressure(_Z_LO))
     if thr > top:
         raise BlastscaleInputError(
@@ -235,7 +235,7 @@ def _scaled_distance_to(thr: float) -> float:
             f"beyond Z = {_Z_MAX:g} m/kg^(1/3)"
         )
     f = lambda x: math.log(float(surface_burst_overpressure(math.exp(x)))) - math.log(thr)  # noqa: E731
-    root = brentq(f, u[k], u[k + 1], xtol=1e-12, rtol=4 * np.finfo(float).eps) if p[k] > thr else u[k]
+    root = scalar_root(f, u[k], u[k + 1]) if p[k] > thr else u[k]
     return math.exp(root)
 
 

@@ -67,7 +67,7 @@ def critical_cmd(
     """Critical charge at a stand-off (largest charge without overturning), or with --charge the
     critical stand-off: the first-swing energy criterion after the pulse (docs/capacity.md),
     searched from the structure's own scale (any size, lab specimens included)."""
-    from ..rocking import RockingSystem, critical_charge, critical_standoff
+    from ..analysis.planar import critical_of, planar_system
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
@@ -79,16 +79,17 @@ def critical_cmd(
             f"standoff = {standoff}, charge = {charge}: give exactly one of --standoff (m, finds the critical charge) "
             "or --charge (kg, finds the critical stand-off)"
         )
-    system = RockingSystem.from_block(block, gravity, restitution)
+    system = planar_system(block, gravity, restitution)
     with one_line_warnings(), activity("searching the critical scenario", quiet=as_json):
-        if standoff is not None:
-            res = critical_charge(
-                system, standoff, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate, load_model=lm
-            )
-        else:
-            res = critical_standoff(
-                system, charge, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate, load_model=lm
-            )
+        res = critical_of(
+            system,
+            standoff=standoff,
+            charge=charge,
+            pulse_shape=pulse_shape,
+            blast_model=fit,
+            extrapolate=extrapolate,
+            load_model=lm,
+        )
     out = {"inputs": _inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
     out.update(res.to_dict())
     out["blast_model"] = blast_model  # the family asked for; the fit used is in load_model
@@ -100,10 +101,10 @@ def critical_cmd(
         "positive_duration_s": bp.positive_duration,
     }
     if lm is not None and lm.negative_phase and standoff is not None:
-        from ..rocking.critical import negative_phase_uncertainty
+        from ..analysis.planar import negative_phase_uncertainty_of
 
         with one_line_warnings(), activity("the critical charge under each negative-phase model", quiet=as_json):
-            out["negative_phase_uncertainty"] = negative_phase_uncertainty(
+            out["negative_phase_uncertainty"] = negative_phase_uncertainty_of(
                 system, standoff, lm, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate
             )
     out["impulsive_critical_impulse_Pa_s"] = system.critical_impulse
@@ -132,15 +133,15 @@ def critical_cmd(
         }
     if plot:
         from ..plots.rocking import plot_pi_diagram
-        from ..rocking import pi_diagram
+        from ..analysis.planar import pi_diagram_of
 
         with activity("computing the P-I diagram", quiet=as_json):
             # the curve for the pulse shape searched (impulsive: the triangular curve, whose
             # high-pressure end is the impulsive limit)
             if pulse_shape == "friedlander":
-                pi = pi_diagram(system, n=30, shape="friedlander", decay=bp.pulse("friedlander").decay)
+                pi = pi_diagram_of(system, n=30, shape="friedlander", decay=bp.pulse("friedlander").decay)
             else:
-                pi = pi_diagram(system, n=30)
+                pi = pi_diagram_of(system, n=30)
 
         def build():
             import matplotlib.pyplot as plt
@@ -224,8 +225,8 @@ def capacity_cmd(
     stand-off of that charge; with --scale also the reduced-scale model's curve, up-scaled to
     prototype charges (paper Eq. 8). First-swing energy criterion, all stand-offs at once."""
 
-    from ..rocking import RockingSystem
-    from ..rocking import capacity_curve, critical_standoff, model_capacity_curve
+    from ..analysis.capacity import model_capacity_curve
+    from ..analysis.planar import capacity_of, critical_of, planar_system
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
@@ -234,19 +235,19 @@ def capacity_cmd(
         raise BlastscaleInputError(f"standoffs = {standoffs!r} is out of range: every stand-off must be > 0 m")
     if charge is not None and not charge > 0:
         raise BlastscaleInputError(f"charge = {charge:g} kg is out of range: must be > 0 kg")
-    system = RockingSystem.from_block(block, gravity, restitution)
+    system = planar_system(block, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
 
     per = 5e-4 * (2 if scale is not None else 1)  # ~0.4-0.5 ms per stand-off (README "Speed"), x2 with the model
     check_budget("--standoffs", R.size, "stand-offs", R.size * 8.0 * 40, R.size * per)
     with one_line_warnings(), activity(f"capacity at {R.size} stand-offs", quiet=as_json):
-        curve = capacity_curve(system, R, **kw)
+        curve = capacity_of(system, R, **kw)
         mcap = None
         if scale is not None:
             mcap = model_capacity_curve(system, R, scale, density_ratio, gravity_ratio, **kw)
         safe = None
         if charge is not None:
-            safe = critical_standoff(system, charge, **kw).standoff_m
+            safe = critical_of(system, charge=charge, **kw).standoff_m
 
     out = {
         "inputs": _inputs(

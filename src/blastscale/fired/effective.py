@@ -2,8 +2,8 @@
 
 The blast model's fits are inverted at the gauge's distance R (Hopkinson-Cranz scaling, Baker et al. 1983):
 the peak ``P(Z)`` and the impulse ``i = W^(1/3) i_hat(Z) = R i_hat(Z) / Z`` both fall monotonically with
-Z = R / W^(1/3) over the fits' ranges, so each has one root in Z, found by Brent's method on ln Z, and
-``W = (R / Z)^3``. A reflected gauge (flush in a rigid plate facing the charge) is read against the
+Z = R / W^(1/3) over the fits' ranges, so each has one root in Z (:func:`blastscale.blast.inverse.charge_for`,
+the package's one inversion of the fits), and ``W = (R / Z)^3``. A reflected gauge (flush in a rigid plate facing the charge) is read against the
 reflected fits, a side-on gauge against the incident ones (Kingery-Bulmash, Swisdak 1994; UFC 3-340-02
 Fig. 2-15 / 2-7). The explosive's TNT equivalence follows from the weighed mass m and the initiator's
 TNT equivalent: ``f = (W_eff - W_init) / m`` (UFC 3-340-02 Table 2-1's definition, per basis).
@@ -14,9 +14,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .._validate import BlastscaleInputError, check_positive_scalar
+from ..blast.inverse import charge_for
 from ..blast.parameters import blast_parameters, model_for_burst
 
 __all__ = ["GAUGE_KINDS", "effective_charge", "predicted_at", "tnt_equivalence"]
@@ -25,6 +25,12 @@ __all__ = ["GAUGE_KINDS", "effective_charge", "predicted_at", "tnt_equivalence"]
 GAUGE_KINDS = {
     "reflected": ("reflected_pressure", "scaled_reflected_impulse"),
     "side-on": ("incident_pressure", "scaled_incident_impulse"),
+}
+
+#: Gauge kind -> (peak, impulse) as :func:`blastscale.blast.inverse.charge_for` names them.
+_INVERTED = {
+    "reflected": ("reflected_pressure", "reflected_impulse"),
+    "side-on": ("incident_pressure", "incident_impulse"),
 }
 
 
@@ -70,27 +76,22 @@ def effective_charge(
             f"gauge kind = {kind!r}: blast model {m.name!r} has no {q} fit (use a "
             "reflected gauge or blast model kingery-bulmash)"
         )
-    lo, hi = m.valid_range(q)
-
-    def value(lnz: float) -> float:
-        z = min(max(math.exp(lnz), lo), hi)  # exp(log(hi)) may round above hi
-        f = float(getattr(m, q)(z))
-        return f * R / z if basis == "impulse" else f
-
-    def g(lnz: float) -> float:
-        return math.log(value(lnz)) - math.log(v)
-
-    a, b = math.log(lo), math.log(hi)
-    ga, gb = g(a), g(b)
-    if ga * gb > 0:
+    W = charge_for(v, R, _INVERTED[kind][basis == "impulse"], m, outside="nan")
+    if not math.isfinite(W):
+        lo, hi = m.valid_range(q)
         unit = "Pa s" if basis == "impulse" else "Pa"
         raise BlastscaleInputError(
             f"measured {basis} = {v:.4g} {unit} at {R:.4g} m is outside what {m.name} gives over its range Z = "
-            f"[{lo:g}, {hi:g}] m/kg^(1/3) ({value(b):.4g} to {value(a):.4g} {unit}): check the gauge, its kind "
-            "and its position"
+            f"[{lo:g}, {hi:g}] m/kg^(1/3) ({_value(m, q, hi, R, basis):.4g} to {_value(m, q, lo, R, basis):.4g} "
+            f"{unit}): check the gauge, its kind and its position"
         )
-    z = min(max(math.exp(brentq(g, a, b, xtol=1e-12, rtol=1e-12)), lo), hi)
-    return float((R / z) ** 3)
+    return W
+
+
+def _value(m, q: str, z: float, R: float, basis: str) -> float:
+    """The fit ``q`` at Z [m/kg^(1/3)], as an impulse at R [m] for ``basis`` "impulse"."""
+    f = float(getattr(m, q)(z))
+    return f * R / z if basis == "impulse" else f
 
 
 def predicted_at(

@@ -28,6 +28,7 @@ import numpy as np
 from scipy.signal import savgol_filter
 
 from .._validate import BlastscaleInputError
+from ..roots import bracketed_root, root_of_bracket
 
 __all__ = [
     "PEAK_BAND",
@@ -134,7 +135,7 @@ def block_rotation(ux, uz, point_x, point_z, half_width):
     """Rocking angle [rad] of a rectangular block from a marker's displacement (inverse of
     :func:`block_marker_displacement`): the turn of the toe-to-marker vector about the toe on the side of
     the motion. With no vertical record (``uz`` None) the horizontal one alone, solved for theta by
-    bisection on the monotone branch."""
+    the package's root finder (:func:`blastscale.roots.bracketed_root`) on the monotone branch."""
     ux = np.asarray(ux, dtype=float)
     side = np.where(ux >= 0, 1.0, -1.0)
     xp = side * half_width
@@ -142,10 +143,23 @@ def block_rotation(ux, uz, point_x, point_z, half_width):
     if uz is not None:
         nx, nz = rx + ux, rz + np.asarray(uz, dtype=float)
         return np.arctan2(rx * nz - rz * nx, rx * nx + rz * nz) * -1.0
-    lo = np.where(side > 0, 0.0, -0.5 * math.pi)
-    hi = np.where(side > 0, 0.5 * math.pi, 0.0)
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        f = block_marker_displacement(mid, point_x, point_z, half_width)[0] - ux
-        lo, hi = np.where(f < 0, mid, lo), np.where(f < 0, hi, mid)
-    return 0.5 * (lo + hi)
+    ux, side = np.broadcast_arrays(ux, side)
+    lo = np.where(side > 0, 0.0, -0.5 * math.pi).ravel()
+    hi = np.where(side > 0, 0.5 * math.pi, 0.0).ravel()
+    uxf, px, pz = ux.ravel(), np.broadcast_to(point_x, ux.shape).ravel(), np.broadcast_to(point_z, ux.shape).ravel()
+    hw = np.broadcast_to(half_width, ux.shape).ravel()
+
+    def f(idx, th):  # the marker's horizontal displacement, increasing in theta on the branch
+        return block_marker_displacement(th, px[idx], pz[idx], hw[idx])[0] - uxf[idx]
+
+    every = np.arange(lo.size)
+    flo, fhi = f(every, lo), f(every, hi)
+    th = np.where(flo > 0.0, lo, hi)  # beyond the branch: its nearer end
+    ok = np.flatnonzero((flo <= 0.0) & (fhi >= 0.0))
+    if ok.size:
+
+        def g(j, t):
+            return f(ok[j], t)
+
+        th[ok] = root_of_bracket(*bracketed_root(g, lo[ok], hi[ok], flo[ok], fhi[ok])[:4])
+    return th.reshape(ux.shape)

@@ -133,8 +133,7 @@ def planar_odds(
     critical : bool
         Search the specimen's critical charge (the weighing precision that keeps the outcome).
     """
-    from ..rocking import critical_charge, first_swing, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking.system import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..analysis.planar import critical_of, first_swing_of, first_swing_under, planar_system  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     n = int(samples)
     W0, R0 = float(charge_kg), float(standoff_m)
@@ -144,7 +143,7 @@ def planar_odds(
     W = w_init + m_tnt * eps
     R = np.maximum(R0 + dR, 0.01 * R0)
     rho = np.maximum(1.0 + drho, 0.01)
-    base = RockingSystem.from_block(specimen, gravity, restitution)
+    base = planar_system(specimen, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model)
 
     zlo, zhi = valid_scaled_distance_range(blast_model)
@@ -159,19 +158,12 @@ def planar_odds(
         warnings.simplefilter("ignore")
         # a homogeneous block: the density changes only the load per unit pressure (q = S l / (m g r cos alpha))
         bp = blast_parameters_unchecked(W, R, blast_model, extrapolate=extrapolate)
-        fs = first_swing_blast(
-            base.alpha,
-            base.coefficient_of_restitution,
-            base.frequency_parameter,
-            base.load_ratio_per_pascal / rho,
-            bp,
-            pulse_shape,
-        )
-        nominal = first_swing(base, np.array([W0 * 0.99, W0, W0 * 1.01]), R0, extrapolate=True, **kw)
+        fs = first_swing_under(base, bp, pulse_shape, density_ratio=rho)
+        nominal = first_swing_of(base, np.array([W0 * 0.99, W0, W0 * 1.01]), R0, extrapolate=True, **kw)
         wc = None
         if critical:
             try:
-                wc = float(critical_charge(base, R0, **kw).charge_kg)
+                wc = float(critical_of(base, standoff=R0, **kw).charge_kg)
             except Exception:  # noqa: BLE001 - no threshold inside the fits' range: the outcome is not at risk
                 wc = None
     agree = fs.collapsed == bool(prototype_collapsed)

@@ -84,17 +84,17 @@ class Plan:
 def _prototype(scenario, block):
     """The prototype's block (or any structure's envelope block), its nominal first swing, timing and
     safety envelope."""
-    from ..rocking import DEFAULT_SOLVER, RockingSystem, first_swing  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..analysis.planar import first_swing_of, history_of, planar_system  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     bl, sim = scenario.blast, scenario.simulation
-    system = RockingSystem.from_block(block, sim.gravity_m_s2, sim.restitution)
+    system = planar_system(block, sim.gravity_m_s2, sim.restitution)
 
     bm = model_for_burst(bl.blast_model, bl.burst)
     bp = blast_parameters(bl.charge_kg, bl.standoff_m, bm, extrapolate=bl.extrapolate)
-    fs = first_swing(
+    fs = first_swing_of(
         system, bl.charge_kg, bl.standoff_m, pulse_shape=bl.pulse_shape, blast_model=bm, extrapolate=bl.extrapolate
     )
-    res = DEFAULT_SOLVER.simulate(system, bp.pulse(bl.pulse_shape), float(sim.duration_s))
+    res = history_of(system, bp.pulse(bl.pulse_shape), float(sim.duration_s))
     collapsed, rot = bool(fs.collapsed[0]), float(fs.max_rotation[0])
     reach = planar_reach(block.width, block.height, rot, collapsed)
     env = safety_envelope(bl.charge_kg, DEFAULT_LAB.safety_threshold)

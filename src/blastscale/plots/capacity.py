@@ -3,7 +3,7 @@ up-scaled model, with the safe stand-off of a given charge.
 
 Every function takes ``ax=`` (a new figure's axes when None) and returns it; matplotlib is
 imported only when a plot is drawn. Inputs are :class:`~blastscale.rocking.capacity.CapacityCurve`
-and :class:`~blastscale.rocking.capacity.ModelCapacity` (SI: charges in kg TNT, stand-offs in m).
+and :class:`~blastscale.analysis.capacity.ModelCapacity` (SI: charges in kg TNT, stand-offs in m).
 """
 
 from __future__ import annotations

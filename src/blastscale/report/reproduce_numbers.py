@@ -101,13 +101,12 @@ def _scaling_factors(folder: Path, quick: bool) -> list:
 
 
 def _critical(folder: Path, quick: bool) -> list:
-    from ..rocking import RockingSystem, critical_charge  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..analysis.planar import critical_of  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
 
-    system = RockingSystem.from_block(block)
-    c = critical_charge(system, 2.0, blast_model="masi2021")
-    neg = critical_charge(system, 2.0, blast_model="masi2021", load_model=LoadModel(negative_phase=True))
+    c = critical_of(block, standoff=2.0, blast_model="masi2021")
+    neg = critical_of(block, standoff=2.0, blast_model="masi2021", load_model=LoadModel(negative_phase=True))
     return [
         Row("critical charge at 2 m (case c)", "79.8 kg", c.charge_kg, "kg"),
         Row(

@@ -12,13 +12,12 @@
 * capacity (first-swing energy criterion, docs/capacity.md): :func:`overturn_margin`,
   :func:`first_swing`, :func:`overturns` (:mod:`.swing`); :func:`first_swing_margin`,
   :func:`first_swing_peak` (the first free swing in closed form, :mod:`.free_swing`); :func:`critical_charge`,
-  :func:`critical_standoff` (:mod:`.critical`); :func:`charge_for_impulse` (:mod:`.blast_inverse`);
-  :func:`capacity_curve`, :func:`model_capacity_curve` (:mod:`.capacity`);
+  :func:`critical_standoff` (:mod:`.critical`); :func:`capacity_curve` (:mod:`.capacity`; a model's
+  curve up-scaled to the prototype: :func:`blastscale.analysis.capacity.model_capacity_curve`);
   :func:`pi_diagram` (:mod:`.pressure_impulse`).
 """
 
-from .capacity import CapacityCurve, ModelCapacity, capacity_curve, model_capacity_curve
-from .blast_inverse import charge_for_impulse
+from .capacity import CapacityCurve, capacity_curve
 from .critical import CriticalResult, critical_charge, critical_standoff
 from .critical_reference import critical_charge_by_bisection
 from .encoding import PULSE_CODES, encode_pulse
@@ -47,13 +46,10 @@ __all__ = [
     "CriticalResult",
     "CapacityCurve",
     "capacity_curve",
-    "ModelCapacity",
-    "model_capacity_curve",
     "PIDiagram",
     "critical_charge",
     "critical_standoff",
     "critical_charge_by_bisection",
-    "charge_for_impulse",
     "FirstSwing",
     "first_swing",
     "first_swing_blast",

@@ -16,8 +16,8 @@ valid range of Z, then the Illinois variant of regula falsi with a bisection saf
 relative tolerance ``xtol_rel`` (default 1e-9). A case whose outcome does not change within the
 range gives NaN in the curves and a one-line error in the scalar functions.
 
-The root finder is :func:`blastscale.rocking._roots.vector_root`, the blast model's inversion
-(starting point, range of Z, :func:`charge_for_impulse`) :mod:`blastscale.rocking.blast_inverse`;
+The root finder is :func:`blastscale.roots.vector_root`, the blast model's inversion (starting
+point, range of Z) :mod:`blastscale.blast.inverse`;
 :func:`critical_charge_by_bisection` (:mod:`blastscale.rocking.critical_reference`) is the slow
 independent reference (full simulations).
 
@@ -38,10 +38,10 @@ from .._validate import BlastscaleInputError, check_positive, check_range
 from ..blast.base import ExtrapolationWarning
 from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL
-from ._roots import vector_root
-from .blast_inverse import _check_extrapolated, _invert_impulse, _model_name, _z_range, charge_for_impulse
+from ..blast.inverse import model_name, scaled_distance_for, scaled_distance_range, warn_if_extrapolated
+from ..roots import vector_root
 from .critical_reference import critical_charge_by_bisection
-from .swing import _first_swing
+from .swing import first_swing_checked
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
 from ..blast.bursts import burst_of
@@ -55,11 +55,11 @@ __all__ = [
     "critical_charge_by_bisection",
     "negative_phase_uncertainty",
     "CriticalResult",
-    "charge_for_impulse",
+    "critical_arrays",
 ]
 
 
-def _critical_arrays(
+def critical_arrays(
     system, searched, fixed, pulse_shape, blast_model, extrapolate, solver, xtol_rel, guess=None, load_model=None
 ):
     """Vectorised critical charge (``searched="charge"``, ``fixed`` stand-offs [m]) or stand-off
@@ -69,24 +69,24 @@ def _critical_arrays(
     check_range("xtol_rel", xtol_rel, 1e-14, 0.1)
     by_charge = searched == "charge"
     fixed = np.atleast_1d(np.asarray(fixed, dtype=float))
-    zlo, zhi = _z_range(blast_model, extrapolate)
+    zlo, zhi = scaled_distance_range(blast_model, extrapolate)
     if by_charge:  # W = (R / Z)^3: large Z, small charge
         ulo, uhi = 3.0 * np.log(fixed / zhi), 3.0 * np.log(fixed / zlo)
     else:  # R = Z W^(1/3): the margin decreases with R, so search in -ln R
         ulo, uhi = -np.log(zhi * np.cbrt(fixed)), -np.log(zlo * np.cbrt(fixed))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        if guess is None:
-            u0 = _invert_impulse(
-                system.critical_impulse,
+        if guess is None:  # the load that delivers the impulsive critical impulse, within the range
+            z0 = scaled_distance_for(
+                np.full(fixed.size, system.critical_impulse),
+                "reflected_impulse",
                 blast_model,
-                by_charge,
-                fixed,
-                ulo if by_charge else -uhi,
-                uhi if by_charge else -ulo,
-                extrapolate,
+                **{"standoff" if by_charge else "charge": fixed},
+                extrapolate=extrapolate,
+                z_range=(zlo, zhi),
+                outside="clip",
             )
-            u0 = u0 if by_charge else -u0
+            u0 = 3.0 * np.log(fixed / z0) if by_charge else -np.log(z0 * np.cbrt(fixed))  # the bounds' own formulas
         else:
             u0 = np.full(fixed.size, math.log(guess) if by_charge else -math.log(guess))
 
@@ -94,11 +94,11 @@ def _critical_arrays(
             x = np.exp(u if by_charge else -u)
             W, R = (x, fixed[idx]) if by_charge else (fixed[idx], x)
             W, R = np.broadcast_arrays(W, R)  # checked once, by the search's caller
-            return _first_swing(system, W, R, pulse_shape, blast_model, extrapolate, solver, load_model).margin
+            return first_swing_checked(system, W, R, pulse_shape, blast_model, extrapolate, solver, load_model).margin
 
         lo, hi, nev, status = vector_root(evaluate, u0, ulo, uhi, xtol_rel)
     # the search visits many points: pass on one warning of each other kind (extrapolation is
-    # reported once for the results, by _check_extrapolated)
+    # reported once for the results, by warn_if_extrapolated)
     seen = set()
     for w in caught:
         if w.category is not ExtrapolationWarning and w.category not in seen:
@@ -286,7 +286,7 @@ def _critical(
 ):
     system = as_rocking_system(body, gravity, restitution)
     by_charge = searched == "charge"
-    x, blo, bhi, nev, status = _critical_arrays(
+    x, blo, bhi, nev, status = critical_arrays(
         system,
         searched,
         fixed,
@@ -299,7 +299,7 @@ def _critical(
         load_model,
     )
     if status[0] != 0:
-        zlo, zhi = _z_range(blast_model, extrapolate)
+        zlo, zhi = scaled_distance_range(blast_model, extrapolate)
         what = ("survives up to" if status[0] == 1 else "overturns down to") + (
             f" Z = {zlo if status[0] == 1 else zhi:.6g} m/kg^(1/3)"
         )
@@ -309,13 +309,13 @@ def _critical(
             + ("" if extrapolate else "; --extrapolate (extrapolate=True) widens the range")
         )
     W, R = (float(x[0]), fixed) if by_charge else (fixed, float(x[0]))
-    _check_extrapolated(blast_model, [R / np.cbrt(W)], extrapolate)
+    warn_if_extrapolated(blast_model, [R / np.cbrt(W)], extrapolate)
     return CriticalResult(
         W,
         R,
         searched,
         pulse_shape,
-        _model_name(blast_model),
+        model_name(blast_model),
         xtol_rel,
         int(nev[0]),
         (float(blo[0]), float(bhi[0])),
@@ -326,7 +326,7 @@ def _critical(
 def _record(blast_model, load_model) -> dict:
     """The load-model record of a capacity result (:func:`blastscale.blast.load_model.load_model_record`)."""
 
-    return load_model_record(_model_name(blast_model), burst_of(blast_model), load_model)
+    return load_model_record(model_name(blast_model), burst_of(blast_model), load_model)
 
 
 def negative_phase_uncertainty(system, standoff: float, load_model, **kw) -> dict:

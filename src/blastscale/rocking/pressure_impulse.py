@@ -2,7 +2,7 @@
 
 For each peak pressure P the critical impulse i_c(P) that just overturns the body is a root
 of the first-swing margin (:mod:`blastscale.rocking.swing`) in ln i, all pressures at
-once (:func:`blastscale.rocking._roots.vector_root`). i_c tends to the impulsive asymptote
+once (:func:`blastscale.roots.vector_root`). i_c tends to the impulsive asymptote
 ``J_o p sqrt(2 (1 - cos alpha)) / (S l)`` as P grows and diverges as P falls to the uplift
 pressure ``m g r sin(alpha) / (S l)``.
 
@@ -19,9 +19,9 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive, check_range
 from ..blast.friedlander import friedlander_impulse_ratio
-from ._roots import vector_root
+from ..roots import vector_root
 from .encoding import PAR_SIZE, PULSE_CODES
-from .swing import _pulse_phase
+from .swing import pulse_phase
 from .solver import DEFAULT_SOLVER, RockingSolver, check_count
 from .system import as_rocking_system
 
@@ -124,7 +124,7 @@ def pi_diagram(
         par[:, 0] = q * P[idx]
         par[:, 1] = pf * np.exp(u) * dur_per_impulse[idx]
         par[:, 2] = d
-        return _pulse_phase(
+        return pulse_phase(
             solver,
             np.full(m, system.alpha),
             np.full(m, system.coefficient_of_restitution),

@@ -14,9 +14,9 @@ import math
 
 import numpy as np
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from .._validate import check_positive
+from ..roots import scalar_root
 from ..blast.pulses import Impulsive, Pulse, Tabulated
 from .results import RockingResult, _none_if_nan
 from .system import RockingSystem, as_rocking_system
@@ -41,7 +41,7 @@ def _lift_time(pulse: Pulse | None, t: float, p_lift: float) -> float:
         a = t
         for b in knots:
             if pulse.pressure(b) > p_lift:
-                r = brentq(lambda x: pulse.pressure(x) - p_lift, a, b, xtol=1e-15, rtol=1e-15)
+                r = scalar_root(lambda x: pulse.pressure(x) - p_lift, a, b)
                 return min(np.nextafter(r, math.inf), b)
             a = b
     return math.inf  # analytical pulses decrease monotonically

@@ -83,6 +83,8 @@ __all__ = [
     "first_swing",
     "first_swing_blast",
     "first_swing_peak",
+    "first_swing_checked",
+    "pulse_phase",
     "FirstSwing",
 ]
 
@@ -103,7 +105,7 @@ class FirstSwing:
 FIRST_SWING_FIELDS = tuple(f.name for f in fields(FirstSwing))
 
 
-def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab_f=None, off=None) -> FirstSwing:
+def pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab_f=None, off=None) -> FirstSwing:
     """Integrate the pulse phase of n encoded cases with the compiled kernel; the first free swing
     from there in closed form.
 
@@ -164,7 +166,7 @@ def overturn_margin(
     system = as_rocking_system(body, gravity, restitution)
     kind, par, tt, tf, dw = encode_pulse(pulse, system)
     off = np.array([0, tt.size], dtype=np.int64)
-    fs = _pulse_phase(
+    fs = pulse_phase(
         solver or DEFAULT_SOLVER,
         np.array([system.alpha]),
         np.array([system.coefficient_of_restitution]),
@@ -231,7 +233,7 @@ def first_swing_blast(
     kind, par, tab_t, tab_f, off, w0 = encode_blast_batch(
         a, p, q, blast, pulse_shape, load_model, extrapolate=extrapolate
     )
-    return _pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par, tab_t, tab_f, off)
+    return pulse_phase(solver or DEFAULT_SOLVER, a, e, w0, kind, par, tab_t, tab_f, off)
 
 
 def first_swing(
@@ -268,14 +270,14 @@ def first_swing(
         np.atleast_1d(check_positive("charge", charge, "kg")).astype(float),
         np.atleast_1d(check_positive("standoff", standoff, "m")).astype(float),
     )
-    return _first_swing(systems, W.ravel(), R.ravel(), pulse_shape, blast_model, extrapolate, solver, load_model)
+    return first_swing_checked(systems, W.ravel(), R.ravel(), pulse_shape, blast_model, extrapolate, solver, load_model)
 
 
-#: Fewest cases a thread of :func:`_first_swing` takes (below, the threads cost more than they save).
+#: Fewest cases a thread of :func:`first_swing_checked` takes (below, the threads cost more than they save).
 MIN_CASES_PER_THREAD = 256
 
 
-def _first_swing(systems, W, R, pulse_shape, blast_model, extrapolate, solver, load_model=None) -> FirstSwing:
+def first_swing_checked(systems, W, R, pulse_shape, blast_model, extrapolate, solver, load_model=None) -> FirstSwing:
     """:func:`first_swing` of checked inputs (1-D arrays of positive charges [kg] and stand-offs [m]
     of one length): the capacity searches check once and evaluate many times. The cases are dealt out
     over the solver's threads, alternately (:func:`~blastscale._threads.map_interleaved`: the blast

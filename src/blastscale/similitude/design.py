@@ -299,7 +299,7 @@ def _design_cases(W, R, lam, gam, sig, law, bm, ms, extrapolate) -> tuple:
         note = "Hopkinson-Cranz with another specimen burst: roots of Eq. (8) with impulse factor lambda"
     else:
         lz = np.asarray(solve_scaled_distance_factors(Z, lam, gam, sig, bm, None if ms is bm else ms), dtype=float)
-        note = f"roots of Eq. (8) on the {ms.name} impulse range (bisection, every case at once)"
+        note = f"roots of Eq. (8) on the {ms.name} impulse range (Illinois, every case at once)"
     ok = (Z >= zr[0]) & (Z <= zr[1]) & np.isfinite(lz) & (Z * lz >= zs[0]) & (Z * lz <= zs[1])
     f = scaling_factors(lam, gam, sig)
     f = replace(f, scaled_distance=np.where(ok, lz, np.nan), charge=np.where(ok, (lam / lz) ** 3, np.nan))

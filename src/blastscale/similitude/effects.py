@@ -30,6 +30,7 @@ from ..structures.assembly import Assembly
 from ..blast.bursts import lab_burst
 from ..blast.load_model import PAPER_LOAD, front_face_clearing, front_face_negative, load_model_record
 from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
+from ..roots import scalar_root
 
 __all__ = [
     "SIMILARITY_TOLERANCE",
@@ -283,14 +284,9 @@ def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = Fa
             "clearing corrected charge: no specimen charge within the fits' range of Z "
             "delivers the required cleared impulse"
         )
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if cleared(mid)[0] > target:
-            hi = mid
-        else:
-            lo = mid
-    W = math.exp(0.5 * (lo + hi))
-    bp = cleared(0.5 * (lo + hi))[1]
+    u = scalar_root(lambda x: cleared(x)[0] - target, lo, hi)  # the cleared impulse grows with the charge
+    W = math.exp(u)
+    bp = cleared(u)[1]
     d = design.specimen
     return {
         "charge_kg": W,

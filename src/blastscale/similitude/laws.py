@@ -40,6 +40,7 @@ from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, c
 from ..blast.base import BlastModel
 from ..blast.masi_fits import MASI2021_COEFFICIENTS, Masi2021
 from ..blast.parameters import DEFAULT_BLAST_MODEL, get_blast_model
+from ..roots import bracketed_root, root_of_bracket
 
 __all__ = [
     "admissible_scales",
@@ -275,9 +276,10 @@ def solve_scaled_distance_factors(
 
     A bracketed root in x = ln lambda_Z on the impulse fit's range of the model Z (the residual
     decreases in x where the law is monotone, so a root is bracketed exactly when the residual
-    changes sign between Z_min and Z_max), found by the Illinois variant of regula falsi (Dowell &
-    Jarratt 1971, BIT 11, 168-174) with a bisection safeguard, to the resolution of double precision
-    (about ten evaluations of the fit).
+    changes sign between Z_min and Z_max), found by the package's root finder
+    (:func:`blastscale.roots.bracketed_root`: the Illinois variant of regula falsi, Dowell & Jarratt 1971,
+    BIT 11, 168-174, with a bisection safeguard) to the resolution of double precision (about ten
+    evaluations of the fit).
 
     Parameters
     ----------
@@ -317,25 +319,16 @@ def solve_scaled_distance_factors(
     a, b = np.log(zmin / zs), np.log(zmax / zs)  # g(a) >= 0 >= g(b) where a root is bracketed
     fa, fb = g(a), g(b)
     ok = inside & (fa >= 0.0) & (fb <= 0.0)
-    side = np.zeros(z.shape, dtype=np.int8)  # the end kept last time (Illinois: halve the other's value)
-    for _ in range(200):
-        live = ok & (fa != 0.0) & (fb != 0.0) & (b - a > 4.0 * np.spacing(np.maximum(np.abs(a), np.abs(b))))
-        if not np.any(live):
-            break
-        with np.errstate(invalid="ignore", divide="ignore"):
-            x = b - fb * (b - a) / (fb - fa)
-        mid = 0.5 * (a + b)
-        x = np.where(np.isfinite(x) & (x > a) & (x < b), x, mid)
-        fx = g(x)
-        right = live & (fx > 0.0)  # too much impulse: the root lies beyond x
-        left = live & (fx <= 0.0)
-        fb = np.where(right & (side == 1), 0.5 * fb, fb)
-        fa = np.where(left & (side == -1), 0.5 * fa, fa)
-        a, fa = np.where(right, x, a), np.where(right, fx, fa)
-        b, fb = np.where(left, x, b), np.where(left, fx, fb)
-        side = np.where(right, 1, np.where(left, -1, side)).astype(np.int8)
-    x = np.where(fa == 0.0, a, np.where(fb == 0.0, b, 0.5 * (a + b)))
-    lz = np.where(ok, np.exp(x), np.nan)
+    x = np.zeros(z.size)
+    idx = np.flatnonzero(ok)
+    if idx.size:  # the package's root finder, on -g (increasing in x)
+        zsf, lnf, af, bf, faf, fbf = (np.ravel(v)[idx] for v in (zs, ln_i0, a, b, fa, fb))
+
+        def minus_g(j, u):
+            return -_residual(m, zsf[j], u, target, lnf[j], ms)
+
+        x[idx] = root_of_bracket(*bracketed_root(minus_g, af, bf, -faf, -fbf)[:4])
+    lz = np.where(ok, np.exp(x.reshape(z.shape)), np.nan)
     return float(lz) if lz.ndim == 0 else lz
 
 

@@ -13,7 +13,7 @@ simulated time become the specimen's (the reduced-scale physical model's).
 * gravity [m/s^2]: x varsigma.
 
 :func:`~.design.design_model` calls it for the design it returns (``ModelDesign.specimen_*``); a
-capacity curve, which sweeps stand-offs without a charge (:func:`blastscale.rocking.model_capacity_curve`),
+capacity curve, which sweeps stand-offs without a charge (:func:`blastscale.analysis.capacity.model_capacity_curve`),
 and a 3D run given a design made without its structure, contact or duration
 (:func:`blastscale.analysis.systems.run_system`) call it too: no other code scales a specimen.
 

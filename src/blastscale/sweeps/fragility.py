@@ -212,8 +212,8 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     The scenario must be a block (planar rocking). Fields that change only the load (charge,
     stand-off) are vectorised over one body; any other field builds the body of each case.
     """
-    from ..rocking import RockingSolver, overturns  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking.system import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..analysis.planar import first_swing_of, planar_system  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking import RockingSolver  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     base = spec.base
     if base.structure.kind != "block":
@@ -227,7 +227,7 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
 
     def system_of(sc):
         sim = sc.simulation
-        return RockingSystem.from_block(from_spec(sc.structure), sim.gravity_m_s2, sim.restitution)
+        return planar_system(from_spec(sc.structure), sim.gravity_m_s2, sim.restitution)
 
     one = None if per_case_body else system_of(base)
     solver = RockingSolver(threads=base.simulation.threads)  # the cases over this process's cores
@@ -240,7 +240,7 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
             for p, v in zip(_LOAD_FIELDS, (bl.charge_kg, bl.standoff_m))
         )
         systems = [system_of(spec.scenario(k)) for k in range(a, b)] if per_case_body else one
-        out[a:b] = overturns(
+        out[a:b] = first_swing_of(
             systems,
             W,
             R,
@@ -248,7 +248,7 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
             blast_model=bl.blast_model,
             extrapolate=bl.extrapolate,
             solver=solver,
-        )
+        ).collapsed
     return out.reshape(spec.shape)
 
 

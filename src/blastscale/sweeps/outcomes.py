@@ -66,8 +66,8 @@ def _outcome_group(sc, W, R, e) -> dict:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
     design (:func:`~blastscale.study.study.design_of` over the arrays, without the blast effects),
     then the first swing of prototype and specimen."""
-    from ..rocking import RockingSolver, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking.system import RockingSystem, housner_restitution  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..analysis.planar import first_swing_under, planar_system  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking import RockingSolver, housner_restitution  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     n = W.size
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
@@ -81,28 +81,24 @@ def _outcome_group(sc, W, R, e) -> dict:
     ok = d.valid
     if not np.any(ok):
         return out
-    proto = RockingSystem.from_block(structure, sim.gravity_m_s2)
-    specimen = RockingSystem.from_block(d.specimen_block, d.specimen_gravity)
+    proto = planar_system(structure, sim.gravity_m_s2)
+    specimen = planar_system(d.specimen_block, d.specimen_gravity)
     e = np.where(np.isnan(e), housner_restitution(proto.alpha), e)[ok]
     solver = RockingSolver(threads=1)  # this share's cases on this thread (the shares: _outcome_group_threaded)
-    fp = first_swing_blast(
-        proto.alpha,
-        e,
-        proto.frequency_parameter,
-        proto.load_ratio_per_pascal,
+    fp = first_swing_under(
+        proto,
         d.prototype.select(ok),
         bl.pulse_shape,
+        restitution=e,
         load_model=d.load_model,  # clearing on the block's front, the negative phase (the Study's)
         extrapolate=bl.extrapolate,
         solver=solver,
     )
-    fm = first_swing_blast(
-        specimen.alpha,
-        e,
-        specimen.frequency_parameter,
-        specimen.load_ratio_per_pascal,
+    fm = first_swing_under(
+        specimen,
         d.specimen.select(ok),
         bl.pulse_shape,
+        restitution=e,
         load_model=d.specimen_load_model,
         extrapolate=bl.extrapolate,
         solver=solver,

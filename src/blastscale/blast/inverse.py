@@ -1,0 +1,302 @@
+"""The blast fits inverted: the scaled distance, charge or stand-off that gives a peak pressure or an impulse.
+
+The one inversion of the package: the fired test's effective charge (:mod:`blastscale.fired.effective`),
+the surface / free-air equivalence (:mod:`blastscale.blast.bursts`), the critical loads' starting point
+(:mod:`blastscale.rocking.critical`) and the up-scaling of a model's capacity curve
+(:mod:`blastscale.analysis.capacity`) all call :func:`scaled_distance_for`, :func:`charge_for` or
+:func:`standoff_for`.
+
+Equation
+--------
+Hopkinson-Cranz (cube-root) scaling with Z = R / W^(1/3) [m/kg^(1/3)], W the TNT charge [kg], R the
+stand-off [m]. A peak pressure is a function of Z alone, ``P = P_hat(Z)``; an impulse is
+``i = W^(1/3) i_hat(Z) = R i_hat(Z) / Z``. Over the fits' ranges every peak and every scaled impulse falls
+with Z, and so does ``i_hat(Z) / Z``, so the value ``v`` is met at one Z, the root in ``u = ln Z`` of
+
+.. math:: f(u) = \\ln v - \\ln\\left[q(e^u)\\, s(e^u)\\right],\\qquad
+          s = 1 \\text{ (peak)},\\ R / Z \\text{ (impulse at a stand-off R)},\\ W^{1/3}
+          \\text{ (impulse of a charge W)},
+
+increasing in u; it is bracketed by the fit's range of Z and found to double precision by the package's
+root finder (:func:`blastscale.roots.bracketed_root`, Illinois regula falsi). Then ``W = (R / Z)^3`` or
+``R = Z W^(1/3)``.
+
+Range
+-----
+Z is sought within the fit's valid range of the quantity (:meth:`BlastModel.valid_range`), or within
+``z_range`` when given (the critical loads use the range where every fit of :func:`blast_parameters` holds,
+:func:`scaled_distance_range`); ``extrapolate=True`` widens either 5x each way (:data:`EXTRAPOLATE_WIDENING`)
+and evaluates the fits outside their ranges. A value no Z of the range gives raises one line naming the
+value and the values the fit gives over the range (``outside="raise"``), or gives NaN (``"nan"``) or the
+nearer end of the range (``"clip"``).
+
+Where a fit is not monotone (the Swisdak polynomials jump at their segments' ends: the incident pressure
+rises by 0.6 % at Z = 23.8 m/kg^(1/3)), a value inside the jump is met at more than one Z; one of them is
+returned.
+
+Fits: Kingery & Bulmash (1984), ARBRL-TR-02555, as polynomials by Swisdak (1994), NSWC IHTR 1997 (surface
+and free-air bursts; UFC 3-340-02 Figs. 2-7, 2-15); the paper's Appendix A fits (``"masi2021"``).
+Scaling: Baker, W. E. et al. (1983), *Explosion Hazards and Evaluation*, ch. 2.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from .._validate import BlastscaleInputError, check_positive
+from ..roots import bracketed_root, root_of_bracket
+from .base import ExtrapolationWarning
+from .parameters import DEFAULT_BLAST_MODEL, get_blast_model, valid_scaled_distance_range
+
+__all__ = [
+    "INVERTED_QUANTITIES",
+    "EXTRAPOLATE_WIDENING",
+    "scaled_distance_for",
+    "charge_for",
+    "standoff_for",
+    "scaled_distance_range",
+    "model_name",
+    "warn_if_extrapolated",
+]
+
+#: Quantity -> (the blast model's fit, unit of the value): peaks [Pa] and impulses [Pa s].
+INVERTED_QUANTITIES = {
+    "reflected_pressure": ("reflected_pressure", "Pa"),
+    "incident_pressure": ("incident_pressure", "Pa"),
+    "reflected_impulse": ("scaled_reflected_impulse", "Pa s"),
+    "incident_impulse": ("scaled_incident_impulse", "Pa s"),
+}
+
+#: Widening of a range of Z with ``extrapolate=True`` (factor each side).
+EXTRAPOLATE_WIDENING = 5.0
+
+_OUTSIDE = ("raise", "nan", "clip")
+
+
+def model_name(blast_model) -> str:
+    """The name of a blast model given by name or as a :class:`BlastModel`."""
+    return blast_model if isinstance(blast_model, str) else getattr(blast_model, "name", str(blast_model))
+
+
+def scaled_distance_range(blast_model=DEFAULT_BLAST_MODEL, extrapolate: bool = False) -> tuple[float, float]:
+    """The range of Z [m/kg^(1/3)] searched by the critical loads: where every fit of
+    :func:`blast_parameters` holds (:func:`valid_scaled_distance_range`), shrunk by 1e-12 relative
+    at each end (the fits' own checks then never see round-off beyond it), or widened
+    :data:`EXTRAPOLATE_WIDENING` times each way with ``extrapolate``."""
+    zlo, zhi = valid_scaled_distance_range(blast_model)
+    if extrapolate:
+        return zlo / EXTRAPOLATE_WIDENING, zhi * EXTRAPOLATE_WIDENING
+    return zlo * (1.0 + 1e-12), zhi * (1.0 - 1e-12)
+
+
+def warn_if_extrapolated(blast_model, scaled_distances, extrapolate: bool, what: str = "critical scenarios") -> None:
+    """One :class:`ExtrapolationWarning` when a finite Z [m/kg^(1/3)] of ``scaled_distances`` lies outside
+    the range where every fit of ``blast_model`` holds (only with ``extrapolate``: without it the fits
+    raise)."""
+    if extrapolate:
+        zlo, zhi = valid_scaled_distance_range(blast_model)
+        z = np.asarray(scaled_distances, dtype=float)
+        z = z[np.isfinite(z)]
+        if np.any((z < zlo) | (z > zhi)):
+            warnings.warn(
+                f"{what} at Z outside the {model_name(blast_model)} fits' range [{zlo:g}, {zhi:g}] m/kg^(1/3): "
+                "extrapolated",
+                ExtrapolationWarning,
+                stacklevel=3,
+            )
+
+
+def scaled_distance_for(
+    value,
+    quantity: str = "reflected_impulse",
+    blast_model=DEFAULT_BLAST_MODEL,
+    *,
+    standoff=None,
+    charge=None,
+    extrapolate: bool = False,
+    z_range=None,
+    outside: str = "raise",
+):
+    """Scaled distance Z [m/kg^(1/3)] at which ``blast_model`` gives ``value`` of ``quantity``.
+
+    Parameters
+    ----------
+    value : float or array_like
+        The peak [Pa] or the impulse [Pa s], > 0.
+    quantity : str
+        One of :data:`INVERTED_QUANTITIES`: ``"reflected_pressure"``, ``"incident_pressure"``,
+        ``"reflected_impulse"``, ``"incident_impulse"``.
+    blast_model : str or BlastModel
+        The fits (module docstring), e.g. ``"kingery-bulmash"``, ``"kingery-bulmash-free-air"``, ``"masi2021"``.
+    standoff, charge : float or array_like, optional
+        For an impulse, exactly one: the stand-off R [m] (``i = R i_hat(Z) / Z``) or the charge W [kg TNT]
+        (``i = W^(1/3) i_hat(Z)``); a peak needs neither (given, they only broadcast).
+    extrapolate : bool
+        Widen the range 5x each way and evaluate the fits outside their ranges (no warning here: the
+        caller reports, :func:`warn_if_extrapolated`).
+    z_range : (float, float), optional
+        The range of Z searched [m/kg^(1/3)]; default the fit's valid range of ``quantity``.
+    outside : {"raise", "nan", "clip"}
+        A value no Z of the range gives: raise :class:`BlastscaleInputError`, give NaN, or give the nearer
+        end of the range (the end whose value is closer to the one asked for).
+
+    Returns
+    -------
+    float or ndarray
+        Z [m/kg^(1/3)], a float for scalar inputs, else an array of the broadcast shape.
+
+    Raises
+    ------
+    BlastscaleInputError
+        An unknown ``quantity`` or ``outside``, a fit the model lacks, a non-positive input, an impulse
+        without (or with both) ``standoff`` and ``charge``, or (``outside="raise"``) a value out of reach,
+        naming it and the values the fit gives over the range.
+
+    Examples
+    --------
+    >>> from blastscale.blast import blast_parameters
+    >>> bp = blast_parameters(2.0, 3.0)
+    >>> round(scaled_distance_for(bp.reflected_pressure, "reflected_pressure"), 12) == round(3.0 / 2.0 ** (1 / 3), 12)
+    True
+    """
+    if quantity not in INVERTED_QUANTITIES:
+        raise BlastscaleInputError(
+            f"quantity = {quantity!r} is not known: valid values are {', '.join(INVERTED_QUANTITIES)}"
+        )
+    if outside not in _OUTSIDE:
+        raise BlastscaleInputError(f"outside = {outside!r} is not known: valid values are {', '.join(_OUTSIDE)}")
+    fit, unit = INVERTED_QUANTITIES[quantity]
+    impulse = unit == "Pa s"
+    m = get_blast_model(blast_model)
+    if not m.provides(fit):
+        raise BlastscaleInputError(f"quantity = {quantity!r}: blast model {m.name!r} has no {fit} fit")
+    if impulse and (standoff is None) == (charge is None):
+        raise BlastscaleInputError(
+            f"quantity = {quantity!r}: give the stand-off [m] or the charge [kg] the impulse is read at (one of them)"
+        )
+    v = check_positive(quantity, value, unit)
+    R = None if standoff is None else check_positive("standoff", standoff, "m")
+    W = None if charge is None else check_positive("charge", charge, "kg")
+    shape = np.broadcast_shapes(*(np.shape(a) for a in (v, R, W) if a is not None))
+    v = np.broadcast_to(v, shape).astype(float).ravel()
+    R = None if R is None else np.broadcast_to(R, shape).astype(float).ravel()
+    W = None if W is None else np.broadcast_to(W, shape).astype(float).ravel()
+    zlo, zhi = m.valid_range(fit) if z_range is None else (float(z_range[0]), float(z_range[1]))
+    if not (0.0 < zlo < zhi and math.isfinite(zhi)):
+        raise BlastscaleInputError(
+            f"z_range = ({zlo!r}, {zhi!r}) m/kg^(1/3) is out of range: must be 0 < Z_min < Z_max"
+        )
+    if extrapolate and z_range is None:
+        zlo, zhi = zlo / EXTRAPOLATE_WIDENING, zhi * EXTRAPOLATE_WIDENING
+    w13 = None if W is None else np.cbrt(W)
+    ln_v = np.log(v)
+
+    def given(idx, z):
+        """The quantity [Pa or Pa s] at Z for the cases ``idx``."""
+        q = getattr(m, fit)(z, extrapolate=extrapolate)
+        if not impulse:
+            return q
+        return q * (R[idx] / z) if R is not None else q * w13[idx]
+
+    def f(idx, u):
+        z = np.clip(np.exp(u), zlo, zhi)  # exp(log(hi)) may round above hi
+        return ln_v[idx] - np.log(given(idx, z))
+
+    n = v.size
+    every = np.arange(n)
+    a, b = np.full(n, math.log(zlo)), np.full(n, math.log(zhi))
+    with warnings.catch_warnings():
+        if extrapolate:
+            warnings.simplefilter("ignore", ExtrapolationWarning)
+        fa, fb = f(every, a), f(every, b)
+        ok = (fa <= 0.0) & (fb >= 0.0)
+        u = np.where(fa > 0.0, a, b)  # out of reach: too much (the nearest Z is Z_min) or too little (Z_max)
+        idx = np.flatnonzero(ok)
+        if idx.size:
+
+            def sub(j, x):
+                return f(idx[j], x)
+
+            u[idx] = root_of_bracket(*bracketed_root(sub, a[idx], b[idx], fa[idx], fb[idx])[:4])
+        if outside == "raise" and not np.all(ok):
+            k = int(np.flatnonzero(~ok)[0])
+            top, bottom = given(np.array([k]), np.array([zlo])), given(np.array([k]), np.array([zhi]))
+            at = "" if R is None and W is None else (f" at {R[k]:.6g} m" if R is not None else f" of {W[k]:.6g} kg")
+            raise BlastscaleInputError(
+                f"{quantity} = {v[k]:.6g} {unit}{at} is out of range: {m.name} gives {float(bottom[0]):.6g} to "
+                f"{float(top[0]):.6g} {unit} over Z = [{zlo:g}, {zhi:g}] m/kg^(1/3)"
+                + ("" if extrapolate else " (extrapolate=True widens the range 5x each way)")
+            )
+    z = np.clip(np.exp(u), zlo, zhi)
+    if outside == "nan":
+        z = np.where(ok, z, np.nan)
+    return z.reshape(shape) if shape else float(z[0])
+
+
+def charge_for(
+    value,
+    standoff,
+    quantity: str = "reflected_impulse",
+    blast_model=DEFAULT_BLAST_MODEL,
+    *,
+    extrapolate: bool = False,
+    z_range=None,
+    outside: str = "raise",
+):
+    """TNT charge W [kg] that gives ``value`` of ``quantity`` at ``standoff`` R [m]: ``W = (R / Z)^3`` with Z
+    of :func:`scaled_distance_for` (same parameters; arrays broadcast, the kind given is returned).
+
+    Used to read an effective charge from a gauge (:func:`blastscale.fired.effective_charge`) and to
+    up-scale a model's critical charge to the prototype (under the paper's general law only the impulse is
+    matched, Eq. 8: the prototype charge delivers the model's impulse over ``gamma sqrt(varsigma lambda^3)``).
+
+    Examples
+    --------
+    >>> from blastscale.blast import blast_parameters
+    >>> round(charge_for(blast_parameters(0.002, 0.8).reflected_impulse, 0.8), 12)
+    0.002
+    """
+    z = scaled_distance_for(
+        value,
+        quantity,
+        blast_model,
+        standoff=standoff,
+        extrapolate=extrapolate,
+        z_range=z_range,
+        outside=outside,
+    )
+    return (np.asarray(standoff, dtype=float) / z) ** 3 if np.ndim(z) else float((float(standoff) / z) ** 3)
+
+
+def standoff_for(
+    value,
+    charge,
+    quantity: str = "reflected_impulse",
+    blast_model=DEFAULT_BLAST_MODEL,
+    *,
+    extrapolate: bool = False,
+    z_range=None,
+    outside: str = "raise",
+):
+    """Stand-off R [m] at which ``charge`` W [kg TNT] gives ``value`` of ``quantity``: ``R = Z W^(1/3)`` with
+    Z of :func:`scaled_distance_for` (same parameters; arrays broadcast, the kind given is returned).
+
+    Examples
+    --------
+    >>> from blastscale.blast import blast_parameters
+    >>> round(standoff_for(blast_parameters(0.002, 0.8).reflected_impulse, 0.002), 12)
+    0.8
+    """
+    z = scaled_distance_for(
+        value,
+        quantity,
+        blast_model,
+        charge=charge,
+        extrapolate=extrapolate,
+        z_range=z_range,
+        outside=outside,
+    )
+    return z * np.cbrt(np.asarray(charge, dtype=float)) if np.ndim(z) else float(z * np.cbrt(float(charge)))
