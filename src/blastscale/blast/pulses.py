@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_finite, check_positive
+from .._validate import BlastscaleInputError, check_choice, check_finite, check_positive
 from .friedlander import friedlander_cumulative, friedlander_decay, friedlander_impulse_ratio
 
 __all__ = [
@@ -66,9 +66,7 @@ def check_pulse_shape(name: str) -> str:
     BlastscaleInputError
         If ``name`` is not one of :data:`PULSE_SHAPES`.
     """
-    if name not in PULSE_SHAPES:
-        raise BlastscaleInputError(f"pulse = {name!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
-    return name
+    return check_choice("pulse", name, PULSE_SHAPES)
 
 
 class Pulse(abc.ABC):
