@@ -17,6 +17,7 @@ __all__ = [
     "check_positive_scalar",
     "check_range",
     "check_finite",
+    "check_choice",
 ]
 
 
@@ -94,3 +95,24 @@ def check_positive_scalar(name: str, value, unit: str = "") -> float:
     if arr.ndim != 0:
         raise BlastscaleInputError(f"{name} has shape {arr.shape}: must be a single number (not an array)")
     return float(arr)
+
+
+def check_choice(name: str, value, choices, hint: str = ""):
+    """Return ``value``; raise unless it is one of ``choices`` (a sequence of names, or a mapping's keys).
+
+    The one message of an unknown name: the parameter, the value, then every valid value in the
+    order of ``choices``, and ``hint`` (e.g. where else a value may come from) in parentheses.
+
+    Examples
+    --------
+    >>> check_choice("incidence model", "ufc", ("ufc", "closed-form"))
+    'ufc'
+    >>> check_choice("incidence model", "UFC", ("ufc", "closed-form"))
+    Traceback (most recent call last):
+    ...
+    blastscale._validate.BlastscaleInputError: incidence model = 'UFC' is not known: valid values are ufc, closed-form
+    """
+    if value not in choices:
+        extra = f" ({hint})" if hint else ""
+        raise BlastscaleInputError(f"{name} = {value!r} is not known: valid values are {', '.join(choices)}{extra}")
+    return value

@@ -31,7 +31,7 @@ import math
 from dataclasses import dataclass
 from typing import Optional
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_choice
 from .initiation import CRITICAL_DIAMETERS_M, min_reliable_charge
 
 __all__ = ["Explosive", "EXPLOSIVES", "UFC_3_340_02_TABLE_2_1", "IATG_01_80", "TNT_ENERGY_J_KG"]
@@ -119,11 +119,8 @@ class Explosive:
 
     def factor(self, basis: str) -> float:
         """The TNT equivalence factor [-] for ``basis`` ("pressure" or "impulse")."""
-        if basis == "pressure":
-            return self.pressure_factor
-        if basis == "impulse":
-            return self.impulse_factor
-        raise BlastscaleInputError(f"basis = {basis!r} is not known: valid values are pressure, impulse")
+        check_choice("basis", basis, ("pressure", "impulse"))
+        return self.pressure_factor if basis == "pressure" else self.impulse_factor
 
     def tnt_equivalent(self, mass_kg: float, basis: str) -> float:
         """TNT-equivalent mass [kg] of ``mass_kg`` of this explosive, ``W = m f`` (UFC 3-340-02 Table 2-1)."""

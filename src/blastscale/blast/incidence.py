@@ -49,7 +49,7 @@ from importlib import resources
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_range
+from .._validate import check_choice, check_range
 
 __all__ = [
     "INCIDENCE_MODELS",
@@ -72,11 +72,7 @@ _HALF_PI = 0.5 * np.pi
 
 def check_incidence(name: str) -> str:
     """Return ``name`` if it is a known incidence model, else raise a one-line error."""
-    if name not in INCIDENCE_MODELS:
-        raise BlastscaleInputError(
-            f"incidence model = {name!r} is not known: valid values are {', '.join(INCIDENCE_MODELS)}"
-        )
-    return name
+    return check_choice("incidence model", name, INCIDENCE_MODELS)
 
 
 def oblique_combination(reflected, incident, cos_incidence):

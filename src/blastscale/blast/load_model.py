@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive_scalar
+from .._validate import BlastscaleInputError, check_choice, check_positive_scalar
 from .clearing import CLEARING_MODEL, Clearing, clearing
 from .negative_phase import (
     CUBIC_IMPULSE_FACTOR,
@@ -82,11 +82,7 @@ class LoadModel:
         for name, v in (("face width", self.face_width_m), ("face height", self.face_height_m)):
             if v is not None and not (float(v) > 0.0):  # > 0, inf allowed (an unbounded face)
                 raise BlastscaleInputError(f"{name} = {v!r} m is out of range: must be > 0 m")
-        if self.negative_phase_model not in NEGATIVE_PHASE_MODELS:
-            raise BlastscaleInputError(
-                f"negative phase model = {self.negative_phase_model!r} is not known: valid "
-                f"values are {', '.join(NEGATIVE_PHASE_MODELS)}"
-            )
+        check_choice("negative phase model", self.negative_phase_model, NEGATIVE_PHASE_MODELS)
 
     def require_face(self) -> "LoadModel":
         """``self`` when clearing has its face (or there is no clearing); one line otherwise."""

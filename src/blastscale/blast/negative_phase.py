@@ -68,9 +68,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_positive
+from .._validate import check_choice, check_positive
 from .base import check_fit_range
-from .._validate import BlastscaleInputError
 from .friedlander import friedlander_decay as decay_of
 from .bursts import check_burst
 
@@ -294,16 +293,13 @@ def face_negative_phase(
     ``scaled_distance`` Z [m/kg^(1/3)] and ``charge`` W [kg] (checked by the caller; the chart's
     range by :func:`negative_phase`); the positive phase's peak [Pa], impulse [Pa s], duration [s]
     and Friedlander decay [-] (computed from the three when None)."""
+    check_choice("negative phase model", model, NEGATIVE_PHASE_MODELS)
     if model == NEGATIVE_PHASE_MODEL:
         neg = negative_phase_unchecked(scaled_distance, charge, burst)
-    elif model == "friedlander-continued":
+    else:  # "friedlander-continued"
         if friedlander_decay is None:
             friedlander_decay = decay_of(reflected_pressure, positive_duration, reflected_impulse)
         neg = friedlander_continued(reflected_pressure, positive_duration, friedlander_decay)
-    else:
-        raise BlastscaleInputError(
-            f"negative phase model = {model!r} is not known: valid values are {', '.join(NEGATIVE_PHASE_MODELS)}"
-        )
     return bounded_by_positive(neg, reflected_impulse)
 
 

@@ -11,7 +11,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive
+from .._validate import BlastscaleInputError, check_choice, check_positive
 from .base import BlastModel
 from .friedlander import friedlander_decay
 from .pulses import Friedlander, Impulsive, Pulse, Triangular, check_pulse_shape
@@ -80,9 +80,7 @@ DEFAULT_BURST = "surface"
 
 def check_burst(burst: str) -> str:
     """``burst`` itself when it is one of :data:`BURSTS`; one line otherwise."""
-    if burst not in BURSTS:
-        raise BlastscaleInputError(f"burst = {burst!r} is not known: valid values are {', '.join(BURSTS)}")
-    return burst
+    return check_choice("burst", burst, BURSTS)
 
 
 def burst_of(blast_model) -> str:

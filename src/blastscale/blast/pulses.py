@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_finite, check_positive
+from .._validate import BlastscaleInputError, check_choice, check_finite, check_positive
 from .friedlander import friedlander_cumulative, friedlander_decay, friedlander_impulse_ratio
 
 __all__ = [
@@ -66,9 +66,7 @@ def check_pulse_shape(name: str) -> str:
     BlastscaleInputError
         If ``name`` is not one of :data:`PULSE_SHAPES`.
     """
-    if name not in PULSE_SHAPES:
-        raise BlastscaleInputError(f"pulse = {name!r} is not known: valid values are {', '.join(PULSE_SHAPES)}")
-    return name
+    return check_choice("pulse", name, PULSE_SHAPES)
 
 
 class Pulse(abc.ABC):
@@ -116,7 +114,22 @@ def _ret(x, t):
 
 
 @dataclass(frozen=True)
-class Friedlander(Pulse):
+class _PeakPulse(Pulse):
+    """A pulse that jumps to its peak overpressure ``peak_pressure`` [Pa] (> 0) at arrival and
+    decays from there (:class:`Friedlander`, :class:`Triangular`)."""
+
+    peak_pressure: float
+
+    def __post_init__(self):
+        check_positive("peak pressure", self.peak_pressure, "Pa")
+
+    @property
+    def peak(self) -> float:
+        return float(self.peak_pressure)
+
+
+@dataclass(frozen=True)
+class Friedlander(_PeakPulse):
     """Modified Friedlander pulse, paper Eq. (1):
 
     .. math:: P(t) = P_{ro}\\,(1 - t/t_o)\\,e^{-d\\,t/t_o}, \\quad 0 \\le t \\le t_o,
@@ -127,13 +140,12 @@ class Friedlander(Pulse):
     Use :meth:`from_impulse` to fit d to a known impulse.
     """
 
-    peak_pressure: float
     positive_duration: float
     decay: float
     kind = "friedlander"
 
     def __post_init__(self):
-        check_positive("peak pressure", self.peak_pressure, "Pa")
+        super().__post_init__()
         check_positive("positive duration", self.positive_duration, "s")
         d = float(check_finite("Friedlander decay", self.decay))
         if d <= -1.0:
@@ -146,10 +158,6 @@ class Friedlander(Pulse):
         """Friedlander pulse of peak [Pa] and duration [s] whose area equals ``impulse`` [Pa*s]."""
         d = friedlander_decay(peak, duration, impulse, allow_negative=allow_negative)
         return cls(float(peak), float(duration), float(d))
-
-    @property
-    def peak(self) -> float:
-        return float(self.peak_pressure)
 
     @property
     def duration(self) -> float:
@@ -174,7 +182,7 @@ class Friedlander(Pulse):
 
 
 @dataclass(frozen=True)
-class Triangular(Pulse):
+class Triangular(_PeakPulse):
     """First-order (triangular) pulse of equal peak and impulse, paper Eq. (3):
 
     .. math:: P(t) = P_{ro}\\,(1 - t/\\bar t_o), \\quad 0 \\le t \\le \\bar t_o = 2\\,i_{ro}/P_{ro}.
@@ -184,17 +192,12 @@ class Triangular(Pulse):
     Attributes: ``peak_pressure`` [Pa], ``total_impulse`` [Pa*s].
     """
 
-    peak_pressure: float
     total_impulse: float
     kind = "triangular"
 
     def __post_init__(self):
-        check_positive("peak pressure", self.peak_pressure, "Pa")
+        super().__post_init__()
         check_positive("impulse", self.total_impulse, "Pa*s")
-
-    @property
-    def peak(self) -> float:
-        return float(self.peak_pressure)
 
     @property
     def duration(self) -> float:

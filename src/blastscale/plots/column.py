@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_choice
 from .sim3d import axes_or_new, drum_outline, finish_side_view, snapshot_times
 from .thinning import minmax_thin
 
@@ -72,10 +72,7 @@ def plot_point_histories(
     -------
     matplotlib Axes
     """
-    if quantity not in POINT_QUANTITIES:
-        raise BlastscaleInputError(
-            f"quantity = {quantity!r} is not known: valid values are {', '.join(POINT_QUANTITIES)}"
-        )
+    check_choice("quantity", quantity, POINT_QUANTITIES)
     names = [str(p) for p in prototype["point"].values]
     points = names if points is None else [str(p) for p in points]
     unknown = [p for p in points if p not in names]

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_finite
+from .._validate import BlastscaleInputError, check_choice, check_finite
 from .thinning import minmax_thin
 
 __all__ = [
@@ -101,10 +101,7 @@ def plot_history(results, quantity: str = "rotation_y", ax=None, labels=None, st
     -------
     matplotlib Axes
     """
-    if quantity not in HISTORY_QUANTITIES:
-        raise BlastscaleInputError(
-            f"quantity = {quantity!r} is not known: valid values are {', '.join(HISTORY_QUANTITIES)}"
-        )
+    check_choice("quantity", quantity, HISTORY_QUANTITIES)
     ax = axes_or_new(ax)
     label, k = HISTORY_QUANTITIES[quantity]
     for j, (name, ds) in enumerate(_as_dict(results, labels).items()):

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive, check_range
+from .._validate import BlastscaleInputError, check_choice, check_positive, check_range
 from ..blast.friedlander import friedlander_impulse_ratio
 from ..roots import vector_root
 from .encoding import PAR_SIZE, PULSE_CODES
@@ -108,14 +108,11 @@ def pi_diagram(
                 f"peak pressure = {float(P[P <= p_up][0]):.6g} Pa is out of range: must exceed the uplift "
                 f"pressure {p_up:.6g} Pa (below it the body never lifts off)"
             )
+    check_choice("P-I pulse shape", shape, ("triangular", "friedlander"))
     if shape == "triangular":
         kind, dur_per_impulse, d = PULSE_CODES[shape], 2.0 / P, 0.0
-    elif shape == "friedlander":
+    else:  # friedlander
         kind, dur_per_impulse, d = PULSE_CODES[shape], 1.0 / (P * float(friedlander_impulse_ratio(decay))), float(decay)
-    else:
-        raise BlastscaleInputError(
-            f"P-I pulse shape = {shape!r} is not known: valid values are triangular, friedlander"
-        )
     pf, q = system.frequency_parameter, system.load_ratio_per_pascal
 
     def evaluate(idx, u):

@@ -4,7 +4,7 @@ model experiment."""
 
 from __future__ import annotations
 
-from .._validate import BlastscaleInputError
+from .._validate import check_choice
 from .face_loads import load_arrival_spread, method_b, method_c
 from .loads import LoadStrategy, method_a
 
@@ -71,8 +71,7 @@ def make_load(
     >>> round(load.first_arrival * 1e3, 3)    # arrival time at 10 m [ms]
     6.928
     """
-    if method not in LOAD_METHODS:
-        raise BlastscaleInputError(f"load method = {method!r} is not known: valid values are {', '.join(LOAD_METHODS)}")
+    check_choice("load method", method, LOAD_METHODS)
     kw = {} if load_model is None or load_model.is_paper else {"load_model": load_model}
     return LOAD_METHODS[method](
         structure, blast, pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate, **kw

@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive, check_positive_scalar, check_range
+from .._validate import BlastscaleInputError, check_choice, check_positive, check_positive_scalar, check_range
 from .base import (
     BoxGeometry,
     Face,
@@ -91,10 +91,7 @@ class MultiDrumColumn:
     extra_points: tuple = ()
 
     def __post_init__(self):
-        if self.section not in SECTIONS:
-            raise BlastscaleInputError(
-                f"section = {self.section!r} is not known: valid values are {', '.join(SECTIONS)}"
-            )
+        check_choice("section", self.section, SECTIONS)
         for name, v, lo, hi in (("drums", self.drums, 1, MAX_DRUMS), ("sides", self.sides, MIN_SIDES, MAX_SIDES)):
             if (
                 isinstance(v, bool)

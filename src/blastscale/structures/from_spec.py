@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from typing import Any, Callable
 
-from .._validate import BlastscaleInputError
+from .._validate import check_choice
 from .block import RectangularBlock
 from .block_files import read_block_model
 from .column import MultiDrumColumn
@@ -95,9 +95,5 @@ def is_block(structure) -> bool:
 
 def from_spec(spec) -> Any:
     """The prototype structure described by a scenario's ``[structure]`` table."""
-    kind = spec.kind
-    if kind not in STRUCTURE_BUILDERS:
-        raise BlastscaleInputError(
-            f"structure.kind = {kind!r} is not known: valid values are {', '.join(STRUCTURE_BUILDERS)}"
-        )
+    kind = check_choice("structure.kind", spec.kind, STRUCTURE_BUILDERS)
     return STRUCTURE_BUILDERS[kind](spec)
