@@ -37,14 +37,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive, check_positive_scalar
-from .parameters import BURSTS, DEFAULT_BURST, burst_of, check_burst, get_blast_model, model_for_burst
+from .parameters import get_blast_model
 
 __all__ = [
-    "BURSTS",
-    "DEFAULT_BURST",
-    "check_burst",
-    "model_for_burst",
-    "burst_of",
     "equivalent_free_air_charge_ratio",
     "LabBurst",
     "lab_burst",

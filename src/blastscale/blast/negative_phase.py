@@ -73,7 +73,7 @@ from .._validate import OutOfRangeError, check_positive
 from .base import ExtrapolationWarning
 from .._validate import BlastscaleInputError
 from .friedlander import friedlander_decay as decay_of
-from .bursts import check_burst
+from .parameters import check_burst
 
 __all__ = [
     "NegativePhase",

@@ -15,15 +15,16 @@ from rich.table import Table
 
 from .. import __version__
 from .._validate import BlastscaleInputError
-from ..blast import blast_parameters
-from ..blast.bursts import model_for_burst
-from ..study import check_budget
+from ..blast.parameters import blast_parameters
+from ..blast.parameters import model_for_burst
+from ..study.memory import check_budget
 from ..sweeps.grids import parse_grid
 from . import blast_flags as bf
 from . import options as opt
-from ._app import activity, app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
+from ._output import activity, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
+from ._app import app
 from .options import block_from_options, check_plot_path
-from .rocking import RESTITUTION_HELP, _inputs
+from .rocking import RESTITUTION_HELP, block_inputs
 
 
 def opt_extrapolate():
@@ -67,7 +68,8 @@ def critical_cmd(
     """Critical charge at a stand-off (largest charge without overturning), or with --charge the
     critical stand-off: the first-swing energy criterion after the pulse (docs/capacity.md),
     searched from the structure's own scale (any size, lab specimens included)."""
-    from ..rocking import RockingSystem, critical_charge, critical_standoff
+    from ..rocking.system import RockingSystem
+    from ..rocking.critical import critical_charge, critical_standoff
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
@@ -89,7 +91,7 @@ def critical_cmd(
             res = critical_standoff(
                 system, charge, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate, load_model=lm
             )
-    out = {"inputs": _inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
+    out = {"inputs": block_inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
     out.update(res.to_dict())
     out["blast_model"] = blast_model  # the family asked for; the fit used is in load_model
     bp = blast_parameters(res.charge_kg, res.standoff_m, fit, extrapolate=extrapolate)
@@ -109,7 +111,7 @@ def critical_cmd(
     out["impulsive_critical_impulse_Pa_s"] = system.critical_impulse
     out["uplift_pressure_Pa"] = system.uplift_pressure
     if scale is not None:
-        from ..similitude import design_model
+        from ..similitude.design import design_model
 
         with one_line_warnings():
             d = design_model(
@@ -132,7 +134,7 @@ def critical_cmd(
         }
     if plot:
         from ..plots.rocking import plot_pi_diagram
-        from ..rocking import pi_diagram
+        from ..rocking.pressure_impulse import pi_diagram
 
         with activity("computing the P-I diagram", quiet=as_json):
             # the curve for the pulse shape searched (impulsive: the triangular curve, whose
@@ -224,8 +226,9 @@ def capacity_cmd(
     stand-off of that charge; with --scale also the reduced-scale model's curve, up-scaled to
     prototype charges (paper Eq. 8). First-swing energy criterion, all stand-offs at once."""
 
-    from ..rocking import RockingSystem
-    from ..rocking import capacity_curve, critical_standoff, model_capacity_curve
+    from ..rocking.system import RockingSystem
+    from ..rocking.capacity import capacity_curve, model_capacity_curve
+    from ..rocking.critical import critical_standoff
 
     block = block_from_options(height, width, alpha_deg, depth, density, required=True)
     check_plot_path(plot)
@@ -249,7 +252,7 @@ def capacity_cmd(
             safe = critical_standoff(system, charge, **kw).standoff_m
 
     out = {
-        "inputs": _inputs(
+        "inputs": block_inputs(
             block,
             pulse_shape=pulse_shape,
             blast_model=blast_model,

@@ -23,7 +23,8 @@ from .._extras import require
 from .._hooks import pause_point, pausing
 from .._validate import BlastscaleInputError
 from ..sweeps.budget import check_sweep_budget
-from .output import Kind, claim, signals_held, write_file
+from .targets import Kind
+from .output import claim, signals_held, write_file
 from ..sweeps.runner import SweepRun, default_chunk, run_chunks
 from ..sweeps.dataset import STORE_VERSION, assemble, metadata
 from ..sweeps.spec import SweepSpec

@@ -30,11 +30,12 @@ from typing import Optional
 
 import numpy as np
 from ..blast.parameters import blast_parameters_unchecked
-from ..blast import valid_scaled_distance_range
-from ..sim3d.threads import default_threads
-from ..sweeps import SweepSpec
+from ..blast.parameters import valid_scaled_distance_range
+from .._threads import default_threads
+from ..sweeps.spec import SweepSpec
 from ..sweeps.grids import Distribution
 from ..sweeps.runner import run_chunks
+from ..rocking.system import RockingSystem
 
 __all__ = ["Tolerances", "Odds", "planar_odds", "ensemble_odds_3d", "Z95", "Z90_ONE_SIDED"]
 
@@ -133,8 +134,8 @@ def planar_odds(
     critical : bool
         Search the specimen's critical charge (the weighing precision that keeps the outcome).
     """
-    from ..rocking import critical_charge, first_swing, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking.system import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking.critical import critical_charge  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
+    from ..rocking.swing import first_swing, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
 
     n = int(samples)
     W0, R0 = float(charge_kg), float(standoff_m)

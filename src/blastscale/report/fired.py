@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .html import _CSS, _e, _img, _table, format_value
+from .markup import PAGE_CSS, escape, figure_html, html_table, format_value
 from ..blast.pulses import Friedlander
 from ..plots.fired import plot_gauge, plot_marker
 from .figures import png_bytes
@@ -118,17 +118,17 @@ def fired_section(result, figures) -> str:
     )
     proto = [(n, *(format_value(p[k]) for k in pkeys)) for n, p in s["prototype_markers"].items()]
     return (
-        f'<p class="lead"><b>{_e(s["verdict"])}</b></p>'
-        + _table(("quantity", "value", "unit"), load)
-        + ("<h3>Gauges (specimen)</h3>" + _table(("gauge",) + gkeys, gauges) if gauges else "")
-        + ("<h3>Markers (specimen)</h3>" + _table(("marker",) + mkeys, markers) if markers else "")
+        f'<p class="lead"><b>{escape(s["verdict"])}</b></p>'
+        + html_table(("quantity", "value", "unit"), load)
+        + ("<h3>Gauges (specimen)</h3>" + html_table(("gauge",) + gkeys, gauges) if gauges else "")
+        + ("<h3>Markers (specimen)</h3>" + html_table(("marker",) + mkeys, markers) if markers else "")
         + (
-            "<h3>What the monument would do (measured, up-scaled; 5-95 %)</h3>" + _table(("marker",) + pkeys, proto)
+            "<h3>What the monument would do (measured, up-scaled; 5-95 %)</h3>" + html_table(("marker",) + pkeys, proto)
             if proto
             else ""
         )
         + _calibration(s.get("calibration"))
-        + "".join(_img(png, title, caption, name) for name, title, caption, png in figures)
+        + "".join(figure_html(png, title, caption, name) for name, title, caption, png in figures)
     )
 
 
@@ -140,7 +140,7 @@ def _calibration(c) -> str:
         rows += (
             [(f"{k} ({n})", format_value(x)) for n, x in v.items()] if isinstance(v, dict) else [(k, format_value(v))]
         )
-    return "<h3>Calibration (the measured response)</h3>" + _table(("quantity", "value"), rows)
+    return "<h3>Calibration (the measured response)</h3>" + html_table(("quantity", "value"), rows)
 
 
 def write_fired(result, scenario, folder) -> list[str]:
@@ -156,9 +156,9 @@ def write_fired(result, scenario, folder) -> list[str]:
     title = scenario.title or "blast experiment"
     page = (
         '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>blastscale: as fired: '
-        f"{_e(title)}</title><style>{_CSS}</style></head><body><header><h1>blastscale: as fired: {_e(title)}</h1>"
+        f"{escape(title)}</title><style>{PAGE_CSS}</style></head><body><header><h1>blastscale: as fired: {escape(title)}</h1>"
         f'</header><main><section id="as_fired"><h2>As fired</h2>{fired_section(result, figures)}</section>'
-        f'<section id="scenario"><h2>Scenario (inputs)</h2><pre>{_e(scenario.to_toml())}</pre></section>'
+        f'<section id="scenario"><h2>Scenario (inputs)</h2><pre>{escape(scenario.to_toml())}</pre></section>'
         "</main></body></html>\n"
     )
     write_atomic(folder / "report.html", page)

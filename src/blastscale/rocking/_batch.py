@@ -21,8 +21,8 @@ import numpy as np
 
 from .._jit import njit
 from .._threads import map_threads, resolve_threads
-from . import _kernel as K
-from ._kernel import N_SUMMARY, solve_case
+from ._events import N_SUMMARY
+from ._kernel import solve_case
 
 __all__ = ["GROUPS_PER_THREAD", "MIN_CASES_PER_THREAD", "solve_batch", "solve_into"]
 
@@ -64,7 +64,7 @@ def solve_batch(
     """
     n = int(np.size(alpha))
     m = tau_eval.shape[1]
-    summ = np.empty((n, K.N_SUMMARY))
+    summ = np.empty((n, N_SUMMARY))
     th_out = np.empty((n, m))
     w_out = np.empty((n, m))
     nt = min(resolve_threads(threads), n // MIN_CASES_PER_THREAD)

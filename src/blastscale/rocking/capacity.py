@@ -24,7 +24,7 @@ from .blast_inverse import _check_extrapolated, _model_name, charge_for_impulse
 from .critical import _critical_arrays
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
-from ..similitude import scaling_factors
+from ..similitude.factors import scaling_factors
 from ..similitude.specimen import specimen_system
 
 __all__ = ["capacity_curve", "CapacityCurve", "model_capacity_curve", "ModelCapacity"]

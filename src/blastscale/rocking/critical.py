@@ -39,24 +39,16 @@ from ..blast.base import ExtrapolationWarning
 from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ._roots import vector_root
-from .blast_inverse import _check_extrapolated, _invert_impulse, _model_name, _z_range, charge_for_impulse
-from .critical_reference import critical_charge_by_bisection
+from .blast_inverse import _check_extrapolated, _invert_impulse, _model_name, _z_range
 from .swing import _first_swing
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
-from ..blast.bursts import burst_of
+from ..blast.parameters import burst_of
 from ..blast.load_model import load_model_record
 from dataclasses import replace
 from ..blast.negative_phase import NEGATIVE_PHASE_MODELS
 
-__all__ = [
-    "critical_charge",
-    "critical_standoff",
-    "critical_charge_by_bisection",
-    "negative_phase_uncertainty",
-    "CriticalResult",
-    "charge_for_impulse",
-]
+__all__ = ["critical_charge", "critical_standoff", "negative_phase_uncertainty", "CriticalResult"]
 
 
 def _critical_arrays(

@@ -25,7 +25,7 @@ from .system import RockingSystem
 from ..blast.load_model import front_face_negative
 from ..blast.load_model import front_face_clearing
 
-__all__ = ["PULSE_CODES", "PAR_SIZE", "encode_pulse", "kernel_pulse_end"]
+__all__ = ["PULSE_CODES", "encode_pulse", "kernel_pulse_end"]
 
 #: The kernel's pulse code of each pulse kind (``Pulse.kind``; an impulsive load exerts no
 #: pressure over time: it enters as an initial angular velocity).

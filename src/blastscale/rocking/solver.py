@@ -36,10 +36,24 @@ from .._threads import resolve_threads
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
 from ..blast.pulses import Pulse
 from ..structures.block import RectangularBlock
-from . import _kernel as K
+from ._events import (
+    S_END_TAU,
+    S_FIRST_IMPACT_TAU,
+    S_FIRST_PEAK,
+    S_MAX_ABS_THETA,
+    S_NREJECT,
+    S_NSTEPS,
+    S_N_IMPACTS,
+    S_OVERTURNED,
+    S_OVERTURN_TAU,
+    S_STATUS,
+    S_W_AT_ALPHA,
+)
+from ._kernel import solve_case
 from ._batch import solve_batch
-from .encoding import PAR_SIZE, encode_pulse
-from .results import RockingBatchResult, RockingResult, _none_if_nan
+from ._load import PAR_SIZE
+from .encoding import encode_pulse
+from .results import RockingBatchResult, RockingResult, none_if_nan
 from .system import RockingSystem, as_rocking_system
 
 __all__ = ["RockingSolver", "DEFAULT_SOLVER", "simulate", "check_count"]
@@ -163,7 +177,7 @@ class RockingSolver:
         )
         mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
         e = system.coefficient_of_restitution
-        summ, the, we, hist, imp, pk = K.solve_case(
+        summ, the, we, hist, imp, pk = solve_case(
             system.alpha,
             e,
             th0,
@@ -182,7 +196,7 @@ class RockingSolver:
             int(self.max_steps),
             True,
         )
-        self._check_status(summ[K.S_STATUS])
+        self._check_status(summ[S_STATUS])
         return RockingResult(
             t=hist[:, 0] / p,
             theta=hist[:, 1].copy(),
@@ -192,15 +206,15 @@ class RockingSolver:
             impact_velocity_after=imp[:, 2] * p,
             peak_times=pk[:, 0] / p,
             peak_angles=pk[:, 1].copy(),
-            collapsed=bool(summ[K.S_OVERTURNED]),
-            collapse_time=_none_if_nan(summ[K.S_OVERTURN_TAU] / p),
-            first_impact_time=_none_if_nan(summ[K.S_FIRST_IMPACT_TAU] / p),
-            max_rotation=float(summ[K.S_MAX_ABS_THETA]),
-            end_time=float(summ[K.S_END_TAU] / p),
-            n_steps=int(summ[K.S_NSTEPS]),
-            n_rejected=int(summ[K.S_NREJECT]),
+            collapsed=bool(summ[S_OVERTURNED]),
+            collapse_time=none_if_nan(summ[S_OVERTURN_TAU] / p),
+            first_impact_time=none_if_nan(summ[S_FIRST_IMPACT_TAU] / p),
+            max_rotation=float(summ[S_MAX_ABS_THETA]),
+            end_time=float(summ[S_END_TAU] / p),
+            n_steps=int(summ[S_NSTEPS]),
+            n_rejected=int(summ[S_NREJECT]),
             restitution=e,
-            angular_velocity_at_tipping=_none_if_nan(summ[K.S_W_AT_ALPHA] * p),
+            angular_velocity_at_tipping=none_if_nan(summ[S_W_AT_ALPHA] * p),
             t_eval=tev,
             theta_eval=None if tev is None else the,
             theta_dot_eval=None if tev is None else we * p,
@@ -311,22 +325,22 @@ class RockingSolver:
             # False inside the kernel would compile a second specialisation of solve_case (~3 s)
             self.threads,
         )
-        bad = summ[:, K.S_STATUS] != 0
+        bad = summ[:, S_STATUS] != 0
         if np.any(bad):
-            self._check_status(summ[np.argmax(bad), K.S_STATUS], int(np.argmax(bad)))
+            self._check_status(summ[np.argmax(bad), S_STATUS], int(np.argmax(bad)))
         return RockingBatchResult(
             t=tev,
             theta=th,
             theta_dot=w * pvec[:, None],
-            collapsed=summ[:, K.S_OVERTURNED].astype(bool),
-            collapse_time=summ[:, K.S_OVERTURN_TAU] / pvec,
-            first_impact_time=summ[:, K.S_FIRST_IMPACT_TAU] / pvec,
-            max_rotation=summ[:, K.S_MAX_ABS_THETA].copy(),
-            first_peak_angle=summ[:, K.S_FIRST_PEAK].copy(),
-            angular_velocity_at_tipping=summ[:, K.S_W_AT_ALPHA] * pvec,
-            n_impacts=summ[:, K.S_N_IMPACTS].astype(np.int64),
-            n_steps=summ[:, K.S_NSTEPS].astype(np.int64),
-            end_time=summ[:, K.S_END_TAU] / pvec,
+            collapsed=summ[:, S_OVERTURNED].astype(bool),
+            collapse_time=summ[:, S_OVERTURN_TAU] / pvec,
+            first_impact_time=summ[:, S_FIRST_IMPACT_TAU] / pvec,
+            max_rotation=summ[:, S_MAX_ABS_THETA].copy(),
+            first_peak_angle=summ[:, S_FIRST_PEAK].copy(),
+            angular_velocity_at_tipping=summ[:, S_W_AT_ALPHA] * pvec,
+            n_impacts=summ[:, S_N_IMPACTS].astype(np.int64),
+            n_steps=summ[:, S_NSTEPS].astype(np.int64),
+            end_time=summ[:, S_END_TAU] / pvec,
         )
 
     # ------------------------------------------------------------------ helpers

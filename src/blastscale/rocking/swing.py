@@ -69,22 +69,14 @@ from .._validate import BlastscaleInputError, check_positive
 from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters_unchecked
 from ..blast.pulses import Pulse
-from . import _kernel as K
+from ._events import S_FINAL_THETA, S_FINAL_W, S_MAX_ABS_THETA, S_OVERTURNED, S_STATUS
 from ._batch import solve_batch
 from .encoding import encode_blast_batch, encode_pulse, kernel_pulse_end
 from .free_swing import first_swing_margin, first_swing_peak
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import RockingSystem, as_rocking_system
 
-__all__ = [
-    "overturn_margin",
-    "first_swing_margin",
-    "overturns",
-    "first_swing",
-    "first_swing_blast",
-    "first_swing_peak",
-    "FirstSwing",
-]
+__all__ = ["overturn_margin", "overturns", "first_swing", "first_swing_blast", "FirstSwing"]
 
 
 @dataclass(frozen=True)
@@ -136,13 +128,13 @@ def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab
         False,
         solver.threads,
     )
-    bad = summ[:, K.S_STATUS] != 0
+    bad = summ[:, S_STATUS] != 0
     if np.any(bad):
-        solver._check_status(summ[np.argmax(bad), K.S_STATUS], int(np.argmax(bad)))
-    th, w = summ[:, K.S_FINAL_THETA], summ[:, K.S_FINAL_W]
-    mu = first_swing_margin(alpha, e, th, w, summ[:, K.S_OVERTURNED] == 1.0)
+        solver._check_status(summ[np.argmax(bad), S_STATUS], int(np.argmax(bad)))
+    th, w = summ[:, S_FINAL_THETA], summ[:, S_FINAL_W]
+    mu = first_swing_margin(alpha, e, th, w, summ[:, S_OVERTURNED] == 1.0)
     over = mu > 0.0
-    peak = first_swing_peak(alpha, e, th, w, summ[:, K.S_MAX_ABS_THETA], float(solver.rest_velocity))
+    peak = first_swing_peak(alpha, e, th, w, summ[:, S_MAX_ABS_THETA], float(solver.rest_velocity))
     return FirstSwing(over, np.where(over, 0.5 * math.pi, peak), mu)
 
 

@@ -2,7 +2,8 @@
 in this process or on Dask, resumable; the outcome mode (a million planar cases a minute);
 fragility curves; the similarity map. Above the Study: every case is a Study (docs/sweeps.md). Files are written by :mod:`blastscale.io`."""
 
-from .cases import VALID_KEY, evaluate_chunk, study_scalars
+from .outcomes import VALID_KEY
+from .cases import evaluate_chunk, study_scalars
 from .grids import Distribution, parse_distribution, parse_grid
 from .layout import StoreLocation, select, store_location
 from .outcomes import OUTCOME_KEYS, planar_outcomes

@@ -39,6 +39,7 @@ from .. import __version__
 from .spec import SweepSpec
 from ..study.memory import check_budget
 from .budget import FIRST_SWING_SECONDS
+from ..rocking.system import RockingSystem
 
 __all__ = ["fragility", "FragilityResult", "fit_lognormal_fragility", "LognormalFit", "overturning_outcomes"]
 
@@ -212,8 +213,8 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     The scenario must be a block (planar rocking). Fields that change only the load (charge,
     stand-off) are vectorised over one body; any other field builds the body of each case.
     """
-    from ..rocking import RockingSolver, overturns  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking.system import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking.solver import RockingSolver  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
+    from ..rocking.swing import overturns  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
 
     base = spec.base
     if base.structure.kind != "block":

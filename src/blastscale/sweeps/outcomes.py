@@ -9,10 +9,11 @@ import numpy as np
 
 from .spec import SweepSpec, _plain
 from .._validate import BlastscaleInputError
-from ..similitude import design_model
+from ..similitude.design import design_model
 from ..structures import from_spec
 from ..study.engines import load_model_of
 from .._threads import interleave, map_interleaved
+from ..rocking.system import RockingSystem, housner_restitution
 import warnings
 
 __all__ = ["OUTCOME_KEYS", "VALID_KEY", "planar_outcomes"]
@@ -67,8 +68,8 @@ def _outcome_group(sc, W, R, e) -> dict:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
     design (:func:`~blastscale.similitude.design_model` over the arrays), then the first swing of
     prototype and specimen."""
-    from ..rocking import RockingSolver, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking.system import RockingSystem, housner_restitution  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
+    from ..rocking.solver import RockingSolver  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
+    from ..rocking.swing import first_swing_blast  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
 
     n = W.size
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}

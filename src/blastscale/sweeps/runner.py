@@ -16,7 +16,7 @@ from .._extras import require
 from .._validate import BlastscaleInputError
 from .cases import evaluate_chunk
 from .spec import SweepSpec
-from ..sim3d.threads import available_cores
+from .._threads import THREADS_ENV, available_cores
 from .dataset import assemble, metadata
 from .budget import check_sweep_budget
 import logging
@@ -133,7 +133,6 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
         # freed block above 64 kB back to the system, and the numpy temporaries of a planar chunk
         # come back as fresh pages each time (measured: +55 % CPU per outcome-mode chunk); the
         # local workers keep glibc's own (dynamic) threshold
-        from ..sim3d.threads import THREADS_ENV, available_cores  # noqa: PLC0415 -- name clash at module level
 
         # each worker's 3D runs share the cores with the other workers: cores // workers threads each;
         # the workers log errors only: a task cancelled while the cluster stops after Ctrl-C is not news (the
