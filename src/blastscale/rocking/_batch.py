@@ -22,7 +22,7 @@ import numpy as np
 from .._jit import njit
 from .._threads import map_threads, resolve_threads
 from ._events import N_SUMMARY
-from ._kernel import solve_case
+from .kernel import solve_case
 
 __all__ = ["GROUPS_PER_THREAD", "MIN_CASES_PER_THREAD", "solve_batch", "solve_into"]
 
@@ -55,7 +55,7 @@ def solve_batch(
 ):
     """Solve n encoded cases (arrays of length n, ``par`` (n, PAR_SIZE), tabulated pulses at
     ``tab_off[i]:tab_off[i+1]`` of ``tab_t``/``tab_f``, ``tau_eval`` (n, m); the arguments of
-    :func:`._kernel.solve_case` otherwise) on up to ``threads`` threads.
+    :func:`.kernel.solve_case` otherwise) on up to ``threads`` threads.
 
     Returns
     -------

@@ -2,7 +2,7 @@
 
 Everything is in the dimensionless time ``tau = p t`` [-] with the state ``(theta [rad],
 w = dtheta/dtau [-])`` and the rocking mode ``s`` (+1 pivot on the rear edge, -1 on the front
-edge, 0 at rest) of :mod:`blastscale.rocking._kernel`. The events of one accepted step are
+edge, 0 at rest) of :mod:`blastscale.rocking.kernel`. The events of one accepted step are
 located on its dense output (:func:`._dopri.dense`) as fractions ``x`` of the step:
 
 * peak (a local maximum of |theta|): ``s w`` goes from > 0 to <= 0;

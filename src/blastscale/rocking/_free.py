@@ -1,7 +1,7 @@
 """Compiled (numba) free rocking after the pulse: event-driven, in closed form between impacts.
 
 Once the pulse (negative phase included) is over, the dimensionless rocking equation of
-:mod:`blastscale.rocking._kernel` is autonomous and conservative between impacts. In the mode
+:mod:`blastscale.rocking.kernel` is autonomous and conservative between impacts. In the mode
 ``s`` (+-1) write ``q = s theta`` [rad] (>= 0 while rocking on that pivot), ``v = s w`` [-] and
 ``phi = alpha - q``: ``q'' = -sin(phi)`` and the energy (units of ``m g r``)
 

@@ -1,7 +1,7 @@
 """Compiled (numba) load of an encoded pulse: the load-to-weight ratio ``f(tau)`` of the kernel.
 
 ``f`` is the right-hand side's load term of the dimensionless rocking equation
-(:mod:`blastscale.rocking._kernel`): ``f = S P(t) l / (m g r cos(alpha))`` [-] (``S P / (m g)``
+(:mod:`blastscale.rocking.kernel`): ``f = S P(t) l / (m g r cos(alpha))`` [-] (``S P / (m g)``
 for a rectangular block), at the dimensionless time ``tau = p t`` [-] (p the frequency
 parameter [rad/s]). :func:`blastscale.rocking.encoding.encode_pulse` turns a
 :class:`~blastscale.blast.pulses.Pulse` into the code and parameters read here.

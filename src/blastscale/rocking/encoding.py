@@ -1,6 +1,6 @@
 """Kernel form of a pressure pulse for a rocking body: pulse codes and :func:`encode_pulse`.
 
-The compiled kernel (:mod:`blastscale.rocking._kernel`) integrates paper Eq. (eq:eom) divided
+The compiled kernel (:mod:`blastscale.rocking.kernel`) integrates paper Eq. (eq:eom) divided
 by ``m g r`` in the dimensionless time ``tau = p t`` (p the frequency parameter [rad/s]); the
 load enters as the load-to-weight ratio ``f = q P(t)`` [-] with ``q = S l / (m g r cos alpha)``
 [1/Pa] (:attr:`RockingSystem.load_ratio_per_pascal`). A pulse is passed as a code

@@ -49,7 +49,7 @@ from ._events import (
     S_STATUS,
     S_W_AT_ALPHA,
 )
-from ._kernel import solve_case
+from .kernel import solve_case
 from ._batch import solve_batch
 from ._load import PAR_SIZE
 from .encoding import encode_pulse
