@@ -71,8 +71,9 @@ def test_the_kernel_is_keyed_on_the_helpers_it_inlines():
         "rocking/_load.py",
         "rocking/_series.py",
         "rocking/kernel.py",
+        "rocking/layout.py",
     ]
-    assert [f.name for f in _jit.kernel_sources(L.__file__)] == ["__init__.py", "_jit.py", "_load.py"]
+    assert [f.name for f in _jit.kernel_sources(L.__file__)] == ["__init__.py", "_jit.py", "_load.py", "layout.py"]
 
 
 def test_a_changed_helper_changes_the_callers_key_and_restoring_it_restores_the_key(tmp_path, monkeypatch):

@@ -36,6 +36,8 @@ from ..sweeps.spec import SweepSpec
 from ..sweeps.grids import Distribution
 from ..sweeps.runner import run_chunks
 from ..rocking.system import RockingSystem
+from ..rocking.critical import critical_charge
+from ..rocking.swing import first_swing, first_swing_blast
 
 __all__ = ["Tolerances", "Odds", "planar_odds", "ensemble_odds_3d", "Z95", "Z90_ONE_SIDED"]
 
@@ -134,8 +136,6 @@ def planar_odds(
     critical : bool
         Search the specimen's critical charge (the weighing precision that keeps the outcome).
     """
-    from ..rocking.critical import critical_charge  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
-    from ..rocking.swing import first_swing, first_swing_blast  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
 
     n = int(samples)
     W0, R0 = float(charge_kg), float(standoff_m)

@@ -46,6 +46,8 @@ from .shot import lab_explosives
 from ..blast.parameters import get_blast_model
 from ..structures import from_spec
 from ..rocking.system import RockingSystem
+from ..rocking.solver import DEFAULT_SOLVER
+from ..rocking.swing import first_swing
 
 __all__ = ["plan", "screen", "Plan", "PlanInfeasible", "QUICK_SAMPLES", "FULL_DESIGNS"]
 
@@ -87,8 +89,6 @@ class Plan:
 def _prototype(scenario, block):
     """The prototype's block (or any structure's envelope block), its nominal first swing, timing and
     safety envelope."""
-    from ..rocking.solver import DEFAULT_SOLVER  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
-    from ..rocking.swing import first_swing  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
 
     bl, sim = scenario.blast, scenario.simulation
     system = RockingSystem.from_block(block, sim.gravity_m_s2, sim.restitution)

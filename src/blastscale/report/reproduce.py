@@ -47,6 +47,7 @@ from ..similitude.design import design_model
 from ..structures.block import RectangularBlock
 from ..blast.load_model import LoadModel
 from ..rocking.system import RockingSystem
+from ..rocking.critical import critical_charge
 
 __all__ = [
     "Item",
@@ -158,8 +159,6 @@ def _scaling_factors(folder: Path, quick: bool) -> list:
 
 
 def _critical(folder: Path, quick: bool) -> list:
-    from ..rocking.critical import critical_charge  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
-
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0), density=2000.0)
 
     system = RockingSystem.from_block(block)

@@ -21,7 +21,7 @@ import numpy as np
 
 from .._jit import njit
 from .._threads import map_threads, resolve_threads
-from ._events import N_SUMMARY
+from .layout import N_SUMMARY
 from .kernel import solve_case
 
 __all__ = ["GROUPS_PER_THREAD", "MIN_CASES_PER_THREAD", "solve_batch", "solve_into"]

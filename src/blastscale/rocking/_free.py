@@ -41,7 +41,8 @@ import numpy as np
 
 from .._jit import njit
 
-from ._events import S_OVERTURN_TAU, S_W_AT_ALPHA, record_impact, record_peak
+from ._events import record_impact, record_peak
+from .layout import S_OVERTURN_TAU, S_W_AT_ALPHA
 
 #: Reach of one Taylor expansion [-] (a tenth of the smallest radius of convergence, pi/2: terms
 #: shrink about 10x per order); the samples within it are read off one expansion.

@@ -20,7 +20,7 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..blast.load_model import PhasedPulse
 from ..blast.pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular
-from ._load import FRIEDLANDER, NO_PULSE, PAR_SIZE, TABULATED, TRIANGULAR
+from .layout import FRIEDLANDER, NO_PULSE, PAR_SIZE, TABULATED, TRIANGULAR
 from .system import RockingSystem
 from ..blast.load_model import front_face_negative
 from ..blast.load_model import front_face_clearing

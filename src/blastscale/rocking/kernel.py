@@ -54,9 +54,6 @@ from ._events import (
     EV_NONE,
     EV_TIPPED,
     HALF_PI,
-    N_SUMMARY,
-    S_OVERTURN_TAU,
-    S_W_AT_ALPHA,
     impact,
     locate_events,
     initial_mode,
@@ -72,6 +69,7 @@ from ._events import (
 from ._free import N_MAX, free_rocking
 from ._series import pulse_piece
 from ._load import lift_time, next_breakpoint, pull_end, pulse_end, tail_lift_time
+from .layout import N_SUMMARY, S_OVERTURN_TAU, S_W_AT_ALPHA
 
 # the summary layout (S_*, N_SUMMARY) lives in ._events, read there by the solver, the first swing and the batch
 __all__ = ["solve_case"]

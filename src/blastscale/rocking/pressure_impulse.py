@@ -20,7 +20,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_positive, check_range
 from ..blast.friedlander import friedlander_impulse_ratio
 from ._roots import vector_root
-from ._load import PAR_SIZE
+from .layout import PAR_SIZE
 from .encoding import PULSE_CODES
 from .swing import _pulse_phase
 from .solver import DEFAULT_SOLVER, RockingSolver, check_count

@@ -36,7 +36,7 @@ from .._threads import resolve_threads
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
 from ..blast.pulses import Pulse
 from ..structures.block import RectangularBlock
-from ._events import (
+from .layout import (
     S_END_TAU,
     S_FIRST_IMPACT_TAU,
     S_FIRST_PEAK,
@@ -49,9 +49,7 @@ from ._events import (
     S_STATUS,
     S_W_AT_ALPHA,
 )
-from .kernel import solve_case
-from ._batch import solve_batch
-from ._load import PAR_SIZE
+from .layout import PAR_SIZE
 from .encoding import encode_pulse
 from .results import RockingBatchResult, RockingResult, none_if_nan
 from .system import RockingSystem, as_rocking_system
@@ -177,6 +175,8 @@ class RockingSolver:
         )
         mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
         e = system.coefficient_of_restitution
+        from .kernel import solve_case  # noqa: PLC0415 -- start-up: numba loads on the first solve, not with `import blastscale.cli`
+
         summ, the, we, hist, imp, pk = solve_case(
             system.alpha,
             e,
@@ -303,6 +303,8 @@ class RockingSolver:
         tab_t = np.concatenate(tabs_t) if off[-1] else np.zeros(0)
         tab_f = np.concatenate(tabs_f) if off[-1] else np.zeros(0)
         mi = -1 if max_impacts is None else check_count("max_impacts", max_impacts, 0)
+        from ._batch import solve_batch  # noqa: PLC0415 -- start-up: numba loads on the first solve, not with `import blastscale.cli`
+
         summ, th, w = solve_batch(
             alpha,
             e,

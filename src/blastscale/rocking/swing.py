@@ -69,8 +69,7 @@ from .._validate import BlastscaleInputError, check_positive
 from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters_unchecked
 from ..blast.pulses import Pulse
-from ._events import S_FINAL_THETA, S_FINAL_W, S_MAX_ABS_THETA, S_OVERTURNED, S_STATUS
-from ._batch import solve_batch
+from .layout import S_FINAL_THETA, S_FINAL_W, S_MAX_ABS_THETA, S_OVERTURNED, S_STATUS
 from .encoding import encode_blast_batch, encode_pulse, kernel_pulse_end
 from .free_swing import first_swing_margin, first_swing_peak
 from .solver import DEFAULT_SOLVER, RockingSolver
@@ -107,6 +106,8 @@ def _pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab
     tab_f = np.zeros(0) if tab_f is None else tab_f
     off = np.zeros(n + 1, dtype=np.int64) if off is None else off
     tau_end = kernel_pulse_end(kind, par, tab_t, off)
+    from ._batch import solve_batch  # noqa: PLC0415 -- start-up: numba loads on the first solve, not with `import blastscale.cli`
+
     summ, _, _ = solve_batch(
         np.ascontiguousarray(alpha, dtype=float),
         np.ascontiguousarray(e, dtype=float),

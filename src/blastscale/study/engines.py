@@ -25,6 +25,8 @@ from ..blast.parameters import model_for_burst
 from ..similitude.effects import front_face
 from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
 from ..rocking.system import RockingSystem
+from ..rocking.solver import DEFAULT_SOLVER
+from ..rocking.critical import critical_charge
 
 __all__ = [
     "Engine",
@@ -80,8 +82,6 @@ def _run_planar(ctx: Context):
     """Planar rocking of the prototype block and, with a design, of its specimen (its block, pulse
     and gravity from the design: the blast parameters are the design's, never recomputed), sampled
     at corresponding times and compared (:func:`~blastscale.analysis.rocking_similarity.compare_rocking`)."""
-
-    from ..rocking.solver import DEFAULT_SOLVER  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
 
     sc, sim, d = ctx.scenario, ctx.scenario.simulation, ctx.design
     shape, dur = sc.blast.pulse_shape, float(sim.duration_s)
@@ -255,8 +255,6 @@ def critical_charge_of(sc: Scenario, structure):
 
 @functools.lru_cache(maxsize=4096)
 def _critical_charge(structure, gravity, restitution, standoff, pulse_shape, blast_model, extrapolate, load_model=None):
-    from ..rocking.critical import critical_charge  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
-
     system = RockingSystem.from_block(structure, gravity, restitution)
     return critical_charge(
         system,

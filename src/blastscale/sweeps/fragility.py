@@ -40,6 +40,8 @@ from .spec import SweepSpec
 from ..study.memory import check_budget
 from .budget import FIRST_SWING_SECONDS
 from ..rocking.system import RockingSystem
+from ..rocking.solver import RockingSolver
+from ..rocking.swing import overturns
 
 __all__ = ["fragility", "FragilityResult", "fit_lognormal_fragility", "LognormalFit", "overturning_outcomes"]
 
@@ -213,8 +215,6 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     The scenario must be a block (planar rocking). Fields that change only the load (charge,
     stand-off) are vectorised over one body; any other field builds the body of each case.
     """
-    from ..rocking.solver import RockingSolver  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
-    from ..rocking.swing import overturns  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
 
     base = spec.base
     if base.structure.kind != "block":

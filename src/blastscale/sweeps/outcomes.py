@@ -15,6 +15,8 @@ from ..study.engines import load_model_of
 from .._threads import interleave, map_interleaved
 from ..rocking.system import RockingSystem, housner_restitution
 import warnings
+from ..rocking.solver import RockingSolver
+from ..rocking.swing import first_swing_blast
 
 __all__ = ["OUTCOME_KEYS", "VALID_KEY", "planar_outcomes"]
 
@@ -68,8 +70,6 @@ def _outcome_group(sc, W, R, e) -> dict:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
     design (:func:`~blastscale.similitude.design_model` over the arrays), then the first swing of
     prototype and specimen."""
-    from ..rocking.solver import RockingSolver  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
-    from ..rocking.swing import first_swing_blast  # noqa: PLC0415 -- start-up: at module top `import blastscale.cli` would load numba (compiled kernels)
 
     n = W.size
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}
