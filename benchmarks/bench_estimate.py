@@ -15,7 +15,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from blastscale.io.output import format_size, tree_size
+from blastscale.units import format_size
+from blastscale.io.output import tree_size
 from blastscale.scenario import Scenario, load_scenario
 from blastscale.study import Study
 from blastscale.study.memory import estimate_run

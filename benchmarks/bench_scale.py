@@ -22,7 +22,7 @@ from blastscale.scenario import Scenario
 from blastscale.sim3d.contact import reference_contact
 from blastscale.sim3d.model import structure_scene
 from blastscale.sim3d.reference import to_reference
-from blastscale.sim3d.threads import available_cores
+from blastscale._threads import available_cores
 from blastscale.structures import MultiDrumColumn, wall
 from blastscale.structures.block import RectangularBlock
 

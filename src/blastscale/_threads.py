@@ -7,8 +7,11 @@ array loops and the compiled kernels release the GIL, and the cost of a case fol
 (the charge order), so alternate cases balance the threads where contiguous halves would not.
 
 The runs must release Python's GIL to gain anything: MuJoCo does inside ``mj_step`` (measured: 4 runs
-of the 10-drum column on 2 threads take 1/1.94 of their serial time; :mod:`blastscale.sim3d.threads`),
-and so do the compiled planar kernels (``nogil=True``, :mod:`blastscale.rocking._kernel`). Each run is
+of the 10-drum column on 2 threads take 1/1.94 of their serial time), and after the pulse the 3D engine
+steps in native chunks (``mj_step(m, d, nstep)``, :mod:`blastscale.sim3d.integrate`), so 3D runs that each
+own their ``MjModel`` and ``MjData`` proceed in parallel, the short Python load phase of one interleaving
+with the native stepping of the others (MuJoCo's own thread pool is not used, so no reduction order
+changes); so do the compiled planar kernels (``nogil=True``, :mod:`blastscale.rocking.kernel`). Each run is
 the same sequence of floating-point operations as in a serial loop (no state is shared), so the
 results are bitwise those of the serial run (tests/integration/test_parallel_members.py,
 tests/unit/rocking/test_batch_threads.py).

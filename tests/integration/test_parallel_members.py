@@ -1,4 +1,4 @@
-"""3D runs in parallel native threads (blastscale.sim3d.threads): ensemble members and the 3D cases of a
+"""3D runs in parallel native threads (blastscale._threads): ensemble members and the 3D cases of a
 sweep chunk give bitwise the histories and scalars of the serial run; the knob is checked."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.sim3d import threads as th
+from blastscale import _threads as th
 
 
 def test_map_threads_keeps_order_and_counts_and_nests_serially():

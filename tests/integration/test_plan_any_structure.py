@@ -10,7 +10,7 @@ import pytest
 
 from blastscale.planning import plan
 from blastscale.planning.build import specimen_mass
-from blastscale.planning.plan3d import specimen_scenario
+from blastscale.study.specimen import specimen_scenario
 from blastscale.scenario import Scenario, load_scenario
 from blastscale.scenario.lab import LabSpec
 from blastscale.structures import from_spec

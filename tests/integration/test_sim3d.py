@@ -32,7 +32,7 @@ from blastscale.sim3d import (
     simulate_structure,
     step_forces,
 )
-from blastscale.structures.block import STANDARD_GRAVITY as G
+from blastscale.constants import STANDARD_GRAVITY as G
 from blastscale.structures.block import RectangularBlock
 
 PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))

@@ -203,7 +203,7 @@ SLENDER = MultiDrumColumn(drums=3, height=3.0, base_width=0.5, top_width=0.45)  
 
 def _lowest_base_point(col, resp):
     """Height of each body's lowest base point above the ground, (time, body) [m]."""
-    from blastscale.sim3d.model import engine_shape
+    from blastscale.sim3d.shapes import engine_shape
 
     rest = np.array([b.com[2] + engine_shape(b.shape, 1.0).base_points()[:, 2].min() for b in col.bodies])
     return resp.dataset["uplift"].values + rest

@@ -1,6 +1,6 @@
 """No stale compiled kernels (issue #30): on a copy of the package, a planar case is run, a helper in
 another module than the compiled caller is changed (the load doubled in ``rocking/_load.py``'s
-``load_ratio``, inlined into ``_kernel.solve_case``), the case is run again, the helper restored and
+``load_ratio``, inlined into ``kernel.solve_case``), the case is run again, the helper restored and
 the case run a third time. Before the fix the second run silently reused the old machine code
 (0.0687 rad, stands); now it compiles and the block falls; the third run gives the first run's
 result bit for bit, loaded from the first run's cache (numba counts a hit and no miss, its index
@@ -36,7 +36,7 @@ CASE = """
 import json, math
 from blastscale.blast import blast_parameters
 from blastscale.rocking import RockingSystem, simulate
-from blastscale.rocking import _kernel as K
+from blastscale.rocking import kernel as K
 from blastscale.structures.block import RectangularBlock
 
 block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
@@ -72,7 +72,7 @@ def test_a_changed_helper_is_compiled_again_and_the_original_comes_back_from_its
     assert Path(first["module"]).resolve().parent == pkg.resolve() / "rocking"  # the copy ran, not this tree
     assert first["max_rotation"] == here.max_rotation.hex() and not first["collapsed"]
     assert float.fromhex(first["max_rotation"]) == pytest.approx(0.0687373, abs=1e-7)  # rock_50.json
-    index = sorted(Path(first["cache_path"]).glob("_kernel.solve_case-*.nbi"))
+    index = sorted(Path(first["cache_path"]).glob("kernel.solve_case-*.nbi"))
     assert len(index) == 1
     stamp = index[0].stat().st_mtime_ns
 

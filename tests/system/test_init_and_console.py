@@ -169,12 +169,12 @@ def test_a_long_job_is_refused_by_its_time_estimate(capsys, tmp_path, monkeypatc
 
 # -- progress: on a terminal only, never with --json -----------------------------------------------------------
 def test_progress_shows_on_a_terminal_and_not_with_json(monkeypatch):
-    from blastscale.cli import _app
+    from blastscale.cli import _output
 
-    monkeypatch.setattr(type(_app.console_err), "is_terminal", property(lambda self: True))
-    assert _app.show_progress() is True and _app.show_progress(quiet=True) is False
-    monkeypatch.setattr(type(_app.console_err), "is_terminal", property(lambda self: False))
-    assert _app.show_progress() is False
+    monkeypatch.setattr(type(_output.console_err), "is_terminal", property(lambda self: True))
+    assert _output.show_progress() is True and _output.show_progress(quiet=True) is False
+    monkeypatch.setattr(type(_output.console_err), "is_terminal", property(lambda self: False))
+    assert _output.show_progress() is False
 
 
 # -- reproduce says what it will cost before it starts ---------------------------------------------------------

@@ -11,7 +11,7 @@ import re
 import pytest
 
 from blastscale.cli import main
-from blastscale.report.html import format_value
+from blastscale.report.markup import format_value
 from blastscale.report.outcomes import ARRIVAL_NOTE
 from blastscale.scenario import load_scenario
 

@@ -16,7 +16,7 @@ import pytest
 SRC = Path(__file__).resolve().parents[2] / "src" / "blastscale"
 
 #: The modules private to blastscale as a whole and shared by every subpackage (validation, test pause points,
-#: the thread share, the compiled kernels' cache keys, the code's fingerprint, optional extras, the forked child).
+#: the thread share, the compiled kernels' cache keys, the code's fingerprint, optional extras).
 SHARED_PRIVATE = {
     "blastscale._validate",
     "blastscale._hooks",
@@ -24,7 +24,6 @@ SHARED_PRIVATE = {
     "blastscale._jit",
     "blastscale._code",
     "blastscale._extras",
-    "blastscale._fork",
 }
 
 
@@ -86,10 +85,16 @@ def test_import_linter_contracts_are_kept():
 #: The largest module the project allows (issue #14: split along physical seams, docs/design.md "Layout").
 MAX_LINES = 400
 
+#: Modules allowed past :data:`MAX_LINES` because a split would cut one concern in two (issue #34: cohesion
+#: instead of a line meter; a split made only for the count is merged back): module -> why.
+COHESIVE = {
+    "report/reproduce.py": "the reproduce page and the paper's numbers it computes (reproduce_numbers merged back)",
+}
+
 
 def test_no_module_over_400_lines():
     big = {str(p.relative_to(SRC)): n for p in SRC.rglob("*.py") if (n := len(p.read_text().splitlines())) > MAX_LINES}
-    assert not big, big
+    assert not set(big) - set(COHESIVE), big
 
 
 def test_every_document_the_code_cites_exists():

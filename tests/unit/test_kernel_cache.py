@@ -16,7 +16,7 @@ from numba.core.caching import CacheImpl
 
 import blastscale
 from blastscale import _jit
-from blastscale.rocking import _kernel as K
+from blastscale.rocking import kernel as K
 from blastscale.rocking import _load as L
 
 SRC = Path(blastscale.__file__).resolve().parent
@@ -49,7 +49,7 @@ def test_every_compiled_function_goes_through_the_keyed_cache():
     bad = [str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if p.name != "_jit.py" and direct.search(p.read_text())]
     assert bad == []
     users = sorted(p.name for p in SRC.rglob("*.py") if "from .._jit import njit" in p.read_text())
-    assert users == ["_batch.py", "_dopri.py", "_events.py", "_free.py", "_kernel.py", "_load.py", "_series.py"]
+    assert users == ["_batch.py", "_dopri.py", "_events.py", "_free.py", "_load.py", "_series.py", "kernel.py"]
 
 
 def test_the_text_scan_finds_every_import_a_parse_finds():
@@ -68,22 +68,23 @@ def test_the_kernel_is_keyed_on_the_helpers_it_inlines():
         "rocking/_dopri.py",
         "rocking/_events.py",
         "rocking/_free.py",
-        "rocking/_kernel.py",
         "rocking/_load.py",
         "rocking/_series.py",
+        "rocking/kernel.py",
+        "rocking/layout.py",
     ]
-    assert [f.name for f in _jit.kernel_sources(L.__file__)] == ["__init__.py", "_jit.py", "_load.py"]
+    assert [f.name for f in _jit.kernel_sources(L.__file__)] == ["__init__.py", "_jit.py", "_load.py", "layout.py"]
 
 
 def test_a_changed_helper_changes_the_callers_key_and_restoring_it_restores_the_key(tmp_path, monkeypatch):
     """On a copy of the package: doubling the load in ``_load`` changes the key of every kernel module
     (each reaches ``_load`` through its imports); back to the original bytes, back to the original
-    keys; a comment added to ``_events`` changes the keys of ``_events`` and ``_kernel`` (its importer)
+    keys; a comment added to ``_events`` changes the keys of ``_events`` and ``kernel`` (its importer)
     only."""
     copy = tmp_path / "blastscale"
     shutil.copytree(SRC, copy, ignore=shutil.ignore_patterns("__pycache__"))
     monkeypatch.setattr(_jit, "_ROOT", Path(os.path.realpath(copy)))
-    files = {n: str(copy / "rocking" / f"{n}.py") for n in ("_kernel", "_load", "_dopri", "_events")}
+    files = {n: str(copy / "rocking" / f"{n}.py") for n in ("kernel", "_load", "_dopri", "_events")}
 
     def keys():
         _jit.source_key.cache_clear()
@@ -101,7 +102,7 @@ def test_a_changed_helper_changes_the_callers_key_and_restoring_it_restores_the_
         Path(files["_events"]).write_text(Path(files["_events"]).read_text() + "\n# a comment\n")
         after_events = keys()
         assert after_events["_load"] == before["_load"] and after_events["_dopri"] == before["_dopri"]
-        assert after_events["_kernel"] != before["_kernel"] and after_events["_events"] != before["_events"]
+        assert after_events["kernel"] != before["kernel"] and after_events["_events"] != before["_events"]
     finally:
         _jit.source_key.cache_clear()
 
@@ -119,7 +120,7 @@ def test_the_locator_is_first_and_keeps_to_blastscale(tmp_path):
 @pytest.mark.skipif(bool(os.environ.get("NUMBA_CACHE_LOCATOR_CLASSES")), reason="the user chose numba's locators")
 def test_the_kernels_cache_folder_is_named_after_its_key():
     path = Path(K.solve_case.stats.cache_path)
-    assert path.name == f"_kernel-{_jit.source_key(os.path.realpath(K.__file__))[:16]}"
+    assert path.name == f"kernel-{_jit.source_key(os.path.realpath(K.__file__))[:16]}"
     assert path.parent.name == "numba"
 
 

@@ -5,7 +5,7 @@
 * :mod:`.upscale` -- ``upscale``, ``upscale_summary``: the one up-scaling rule;
 * :mod:`.structure3d` -- ``compare_structure3d`` (any structure on MuJoCo, any load method; a
   block's summary carries its planar view);
-* :mod:`.prototype3d` -- ``prototype_structure3d`` (the prototype alone; re-exported by :mod:`.structure3d`);
+* :mod:`.prototype3d` -- ``prototype_structure3d`` (the prototype alone);
 * :mod:`.ensemble` -- ``ensemble_compare`` for chaotic structures (circular columns; the
   prototype's ensemble alone without a design);
 * :mod:`.rocking_similarity` -- planar rocking through the same contract (with its overturning figures);

@@ -27,7 +27,7 @@ from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters
 from ..rocking.capacity import CapacityCurve, capacity_curve, finite_or_none
 from ..rocking.solver import RockingSolver
 from ..rocking.system import as_rocking_system
-from ..similitude import scaling_factors
+from ..similitude.factors import scaling_factors
 from ..similitude.specimen import specimen_system
 
 __all__ = ["model_capacity_curve", "ModelCapacity"]

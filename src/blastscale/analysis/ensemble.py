@@ -32,7 +32,7 @@ from .compare import align, upscale_dataset
 from .systems import SYSTEMS, run_system
 from .upscale import upscale_summary
 from ..sim3d.results import MOTION_VARIABLES
-from ..sim3d.threads import map_threads
+from .._threads import map_threads
 
 __all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics"]
 

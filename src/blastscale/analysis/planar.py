@@ -27,23 +27,13 @@ from __future__ import annotations
 import numpy as np
 
 from ..blast.parameters import DEFAULT_BLAST_MODEL
-from ..rocking import (
-    DEFAULT_SOLVER,
-    CapacityCurve,
-    CriticalResult,
-    FirstSwing,
-    PIDiagram,
-    RockingResult,
-    RockingSolver,
-    RockingSystem,
-    as_rocking_system,
-    capacity_curve,
-    critical_charge,
-    critical_standoff,
-    first_swing,
-    first_swing_blast,
-    pi_diagram,
-)
+from ..rocking.solver import DEFAULT_SOLVER, RockingSolver
+from ..rocking.capacity import CapacityCurve, capacity_curve
+from ..rocking.critical import CriticalResult, critical_charge, critical_standoff
+from ..rocking.swing import FirstSwing, first_swing, first_swing_blast
+from ..rocking.pressure_impulse import PIDiagram, pi_diagram
+from ..rocking.results import RockingResult
+from ..rocking.system import RockingSystem, as_rocking_system
 from ..rocking.critical import negative_phase_uncertainty
 from .._validate import BlastscaleInputError
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 from .._validate import check_positive
 from ..constants import STANDARD_GRAVITY
-from ..structures import is_block
+from ..structures.from_spec import is_block
 from .gravity_alone import extended_keys, until_decided
 from .systems import run_system
 from .block3d_similarity import block_view

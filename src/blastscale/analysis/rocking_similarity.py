@@ -45,8 +45,8 @@ from functools import cached_property
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from ..rocking import RockingResult
-from ..similitude import ModelDesign
+from ..rocking.results import RockingResult
+from ..similitude.experiment import ModelDesign
 from .compare import compare_responses, upscale_dataset
 from .upscale import upscale, upscale_summary
 

@@ -28,13 +28,13 @@ from dataclasses import dataclass, field
 
 from .._validate import BlastscaleInputError, check_positive
 from .compare import align, compare_responses, upscale_dataset
-from .prototype3d import Prototype3D, _block_keys, _load_model_setting, _merged, _with_outcome, prototype_structure3d
+from .prototype3d import _block_keys, _load_model_setting, _merged, _with_outcome
 from .systems import SYSTEMS, run_system
 from .upscale import upscale_summary
 from ..sim3d.load_methods import arrival_spread_similarity
-from ..sim3d.threads import map_threads
+from .._threads import map_threads
 
-__all__ = ["Comparison3D", "Prototype3D", "compare_structure3d", "prototype_structure3d"]
+__all__ = ["Comparison3D", "compare_structure3d"]
 
 
 def _top_point(ds) -> str:

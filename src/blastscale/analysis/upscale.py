@@ -7,15 +7,15 @@ sqrt(lambda / varsigma), velocity sqrt(varsigma lambda), angle 1, momentum gamma
 lambda^(7/2), ...); a summary key names its dimension by its unit suffix (:mod:`blastscale.units`).
 Summaries are up-scaled by :func:`upscale_summary`, histories by
 :func:`~blastscale.analysis.compare.upscale_dataset`; both divide by
-:func:`~blastscale.similitude.factors.dimension_factor` (the one factor lookup, re-exported here).
+:func:`~blastscale.similitude.factors.dimension_factor` (the one factor lookup).
 """
 
 from __future__ import annotations
 
-from ..similitude.factors import DIMENSIONLESS, dimension_factor
+from ..similitude.factors import dimension_factor
 from ..units import dimension_of
 
-__all__ = ["DIMENSIONLESS", "dimension_factor", "upscale", "upscale_summary"]
+__all__ = ["upscale", "upscale_summary"]
 
 
 def upscale(value, factors, dimension: str, name: str = "value"):

@@ -2,7 +2,8 @@
 
 from .base import BlastModel, ExtrapolationWarning
 from .face_pulses import FacePulses
-from .faces import FaceLoads, face_loads, face_loads_unchecked, oblique_combination
+from .faces import FaceLoads, face_loads, face_loads_unchecked
+from .incidence import oblique_combination
 from .friedlander import friedlander_decay
 from .incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS
 from .kingery_bulmash import KingeryBulmash

@@ -38,14 +38,9 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive, check_positive_scalar
 from .inverse import charge_for, scaled_distance_for
-from .parameters import BURSTS, DEFAULT_BURST, burst_of, check_burst, get_blast_model, model_for_burst
+from .parameters import get_blast_model
 
 __all__ = [
-    "BURSTS",
-    "DEFAULT_BURST",
-    "check_burst",
-    "model_for_burst",
-    "burst_of",
     "equivalent_free_air_charge_ratio",
     "LabBurst",
     "lab_burst",

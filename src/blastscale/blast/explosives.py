@@ -33,16 +33,11 @@ from dataclasses import dataclass
 from typing import Mapping, Optional
 
 from .._validate import BlastscaleInputError
-from .explosive_library import EXPLOSIVES, IATG_01_80, TNT_ENERGY_J_KG, UFC_3_340_02_TABLE_2_1, Explosive
+from .explosive_library import EXPLOSIVES, Explosive
 from .initiation import INITIATORS
 
 __all__ = [
-    "Explosive",
     "ChargeEquivalence",
-    "EXPLOSIVES",
-    "UFC_3_340_02_TABLE_2_1",
-    "IATG_01_80",
-    "TNT_ENERGY_J_KG",
     "INITIATOR_WARNING_FRACTION",
     "ALIASES",
     "canonical_name",

@@ -50,7 +50,7 @@ from .._validate import BlastscaleInputError, check_finite, check_positive, chec
 from .base import BlastModel
 from .face_pulses import FacePulses
 from .friedlander import MAX_IMPULSE_RATIO, friedlander_decay, friedlander_decay_newton
-from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_combination, oblique_values
+from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_values
 from .parameters import DEFAULT_BLAST_MODEL, get_blast_model
 from .pulses import check_pulse_shape
 
@@ -59,7 +59,6 @@ __all__ = [
     "face_loads",
     "face_loads_unchecked",
     "incident_source",
-    "oblique_combination",
     "MixedModelWarning",
     "UNIT_NORMAL_TOLERANCE",
 ]

@@ -221,7 +221,7 @@ class KingeryBulmashFreeAir(BlastModel):
 
     Everything in SI: P_so, P_r [Pa]; i_s/W^(1/3), i_r/W^(1/3) [Pa s/kg^(1/3)]; t_A/W^(1/3),
     t_o/W^(1/3) [s/kg^(1/3)]; U [m/s] (Rankine-Hugoniot of P_so). Chosen by ``burst = "free-air"``
-    (:func:`blastscale.blast.bursts.model_for_burst`), not by a ``blast_model`` name.
+    (:func:`blastscale.blast.parameters.model_for_burst`), not by a ``blast_model`` name.
 
     References: Kingery & Bulmash (1984); Randers-Pehrson & Bannister (1997), ARL-TR-1310;
     UFC 3-340-02 (2008) Fig. 2-7.

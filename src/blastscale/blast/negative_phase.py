@@ -71,7 +71,7 @@ import numpy as np
 from .._validate import check_choice, check_positive
 from .base import check_fit_range
 from .friedlander import friedlander_decay as decay_of
-from .bursts import check_burst
+from .parameters import check_burst
 
 __all__ = [
     "NegativePhase",

@@ -53,7 +53,7 @@ def _kingery_bulmash_free_air() -> BlastModel:
 #: Names accepted by ``blast_model=`` everywhere; the first is the default.
 BLAST_MODELS = {"kingery-bulmash": _kingery_bulmash, "masi2021": _masi2021}
 DEFAULT_BLAST_MODEL = "kingery-bulmash"
-#: Fits chosen by a burst type rather than by name (:func:`blastscale.blast.bursts.model_for_burst`);
+#: Fits chosen by a burst type rather than by name (:func:`blastscale.blast.parameters.model_for_burst`);
 #: their names are resolved too, so that a result's ``blast_model`` names the fit it came from.
 BURST_VARIANTS = {"kingery-bulmash-free-air": _kingery_bulmash_free_air}
 _CACHE: dict[str, BlastModel] = {}

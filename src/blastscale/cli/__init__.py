@@ -19,7 +19,8 @@ import sys
 
 from .._extras import extra_of, missing_extra_message
 from .._validate import BlastscaleInputError
-from ._app import app, print_error
+from ._app import app
+from ._output import print_error
 
 # command modules register themselves on `app` when imported (in this order: `blastscale --help` lists them so)
 from . import loads as _loads  # noqa: F401,E402

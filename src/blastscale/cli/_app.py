@@ -1,6 +1,7 @@
 """The typer application object, its one-line error handling and the fraction form of ratio options.
 
-What the commands print (consoles, progress, tables, JSON, figures) is in :mod:`._output`, re-exported here.
+What the commands print (consoles, progress, tables, JSON, figures) is in :mod:`._output`; the signal handling
+in :mod:`._signals`; the commands import them from there.
 """
 
 from __future__ import annotations
@@ -8,10 +9,10 @@ from __future__ import annotations
 import os
 import sys
 
-from . import _signals
+from ._signals import at_import
 
 if os.path.basename(sys.argv[0]) == "blastscale":
-    _signals.at_import()  # a signal while importing: one line; a local Dask worker: Ctrl-C ignored
+    at_import()  # a signal while importing: one line; a local Dask worker: Ctrl-C ignored
 
 import errno  # noqa: E402
 import io  # noqa: E402
@@ -23,24 +24,16 @@ import typer  # noqa: E402
 from typer.core import TyperGroup, TyperOption  # noqa: E402
 
 from .._validate import BlastscaleInputError  # noqa: E402
-from ._output import (  # noqa: E402,F401 (re-exported: the commands import these from here)
-    activity,
-    console,
-    console_err,
-    count_progress,
-    fmt_value,
-    one_line_warnings,
-    print_error,
-    print_json,
-    print_written,
-    save_figure,
-    show_progress,
-    stage_progress,
-    styled,
-    table,
+from ._output import print_error  # noqa: E402
+from ._signals import (  # noqa: E402
+    Interrupted,
+    exit_status,
+    install,
+    interrupted_signal,
+    message as signal_message,
+    restore,
+    set_interrupt_note,
 )
-from ._progress import announce_run  # noqa: E402,F401 (re-exported: said on console_err by the commands)
-from ._signals import Interrupted, ignore_interrupts, raise_if_interrupted  # noqa: F401 (re-exported)
 
 
 _display_type_rich = getattr(TyperOption, "display_type_rich", None)
@@ -65,7 +58,7 @@ class OneLineErrorGroup(TyperGroup):
     def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
         if not standalone_mode:
             return super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
-        saved = _signals.install()
+        saved = install()  # the signal handlers
         args = normalise_ratios(list(sys.argv[1:] if args is None else args))
         try:
             _check_stdout()
@@ -80,11 +73,11 @@ class OneLineErrorGroup(TyperGroup):
                     "files written are whole)"
                 )
                 sys.exit(2)
-            signum = _signals.interrupted_signal()
+            signum = interrupted_signal()
             if isinstance(exc, Interrupted) or (signum is not None and not isinstance(exc, SystemExit)):
                 _quiet_after_interrupt()
-                print_error(_signals.message(signum))
-                sys.exit(_signals.exit_status(signum))
+                print_error(signal_message(signum))
+                sys.exit(exit_status(signum))
             if isinstance(exc, BlastscaleInputError):
                 print_error(_adapt_hint(str(exc), self, args))
                 sys.exit(2)
@@ -100,8 +93,8 @@ class OneLineErrorGroup(TyperGroup):
                 sys.exit(1)
             raise
         finally:
-            _signals.restore(saved)
-            _signals.set_interrupt_note(None)
+            restore(saved)
+            set_interrupt_note(None)
         sys.exit(rv if isinstance(rv, int) else 0)
 
 

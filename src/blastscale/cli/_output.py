@@ -3,7 +3,7 @@
 Console text is literal: the consoles read no markup and no emoji codes (``Console(markup=False,
 emoji=False)``), so a title, a path or a grid typed by the user is printed as typed ("[model 2]",
 "[/b]", ":100:"); styles are given as :class:`rich.text.Text` (:func:`styled`). Imported by :mod:`._app`
-after its signal guard (and re-exported there: the commands import these helpers from ``._app``).
+after its signal guard; the commands import these helpers from here.
 """
 
 from __future__ import annotations
@@ -30,7 +30,8 @@ from rich.table import Table
 from rich.text import Text
 
 from .._validate import BlastscaleInputError
-from ..io.output import format_size, tree_size, write_file
+from ..units import format_size
+from ..io.output import tree_size, write_file
 from ..io.results import jsonable, with_legacy_keys
 from ..study.memory import format_duration
 from ._progress import plain_lines, plain_progress, progress_seconds

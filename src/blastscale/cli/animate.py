@@ -20,14 +20,14 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 import math
-from ..io.output import Kind, check_target
+from ..io.targets import Kind, check_target
 from ..plots.motion import VIEWS
 import subprocess
 import tempfile
 from ..io.motion import charge_position, read_motion
 from ..io.output import write_file
 from ..sim3d.replay import frame_count
-from ._app import one_line_warnings, print_json, print_written
+from ._output import one_line_warnings, print_json, print_written
 
 __all__ = ["ANIMATION_SUFFIXES", "MAX_FRAMES", "check_animation", "write_animation"]
 

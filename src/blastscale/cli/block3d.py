@@ -12,9 +12,9 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import (
-    announce_run,
-    app,
+from ._progress import announce_run
+from ._app import app
+from ._output import (
     console,
     console_err,
     fmt_value,
@@ -29,7 +29,7 @@ from .flags import flags_named
 from . import options as opt
 from .options import block_from_options, check_plot_path
 from ..analysis.block3d_similarity import BLOCK_SIMILARITY_KEYS, BLOCK_SUMMARY_KEYS
-from ..study import Study
+from ..study.study import Study
 from .flags import scenario_from_flags
 
 _SUMMARY_ROWS = (

@@ -15,15 +15,16 @@ from rich.table import Table
 
 from .. import __version__
 from .._validate import BlastscaleInputError
-from ..blast import blast_parameters
-from ..blast.bursts import model_for_burst
-from ..study import check_budget
+from ..blast.parameters import blast_parameters
+from ..blast.parameters import model_for_burst
+from ..study.memory import check_budget
 from ..sweeps.grids import parse_grid
 from . import blast_flags as bf
 from . import options as opt
-from ._app import activity, app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
+from ._output import activity, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
+from ._app import app
 from .options import block_from_options, check_plot_path
-from .rocking import RESTITUTION_HELP, _inputs
+from .rocking import RESTITUTION_HELP, block_inputs
 
 
 def opt_extrapolate():
@@ -90,7 +91,7 @@ def critical_cmd(
             extrapolate=extrapolate,
             load_model=lm,
         )
-    out = {"inputs": _inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
+    out = {"inputs": block_inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
     out.update(res.to_dict())
     out["blast_model"] = blast_model  # the family asked for; the fit used is in load_model
     bp = blast_parameters(res.charge_kg, res.standoff_m, fit, extrapolate=extrapolate)
@@ -110,7 +111,7 @@ def critical_cmd(
     out["impulsive_critical_impulse_Pa_s"] = system.critical_impulse
     out["uplift_pressure_Pa"] = system.uplift_pressure
     if scale is not None:
-        from ..similitude import design_model
+        from ..similitude.design import design_model
 
         with one_line_warnings():
             d = design_model(
@@ -250,7 +251,7 @@ def capacity_cmd(
             safe = critical_of(system, charge=charge, **kw).standoff_m
 
     out = {
-        "inputs": _inputs(
+        "inputs": block_inputs(
             block,
             pulse_shape=pulse_shape,
             blast_model=blast_model,

@@ -13,9 +13,9 @@ from typing import Optional
 import typer
 
 from . import options as opt
-from ._app import (
-    announce_run,
-    app,
+from ._progress import announce_run
+from ._app import app
+from ._output import (
     console,
     console_err,
     fmt_value,
@@ -28,7 +28,7 @@ from ._app import (
 )
 from .flags import flags_named
 from .options import check_plot_path, scenario_default
-from ..study import Study
+from ..study.study import Study
 from .flags import scenario_from_flags
 
 _SUMMARY_ROWS = (

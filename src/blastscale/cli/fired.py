@@ -15,21 +15,11 @@ from pathlib import Path
 
 import typer
 
-from ._app import (
-    app,
-    console,
-    fmt_value,
-    ignore_interrupts,
-    one_line_warnings,
-    print_json,
-    print_written,
-    raise_if_interrupted,
-    stage_progress,
-    styled,
-    table,
-)
+from ._app import app
+from ._output import console, fmt_value, one_line_warnings, print_json, print_written, stage_progress, styled, table
+from ._signals import ignore_interrupts, raise_if_interrupted
 from ..io.results import check_output_folder, output_folder
-from ..scenario import load_scenario
+from ..scenario.files import load_scenario
 
 
 def _print(s: dict) -> None:
@@ -134,7 +124,7 @@ def fired_cmd(
 ) -> None:
     """After the shot: the load the specimen got, measured vs predicted vs re-simulated, and what the monument
     would do."""
-    from ..fired import as_fired
+    from ..fired.shot import as_fired
 
     sc = load_scenario(_shipped(scenario))
     markers = ("summary.json",)

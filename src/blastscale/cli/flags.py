@@ -12,7 +12,7 @@ from typing import Optional
 
 import typer
 
-from ..scenario import Scenario
+from ..scenario.scenario import Scenario
 import tomllib
 from .._validate import BlastscaleInputError
 import warnings

@@ -16,11 +16,13 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, console_err, print_written
-from ..scenario import load_scenario
-from ..scenario import library_names, library_text
-from ..io.output import Kind, check_target, claim, write_file
-from ..scenario import EXAMPLE_BLOCKS, template_text
+from ._app import app
+from ._output import console, console_err, print_written
+from ..scenario.files import load_scenario
+from ..scenario.library import library_names, library_text
+from ..io.targets import Kind, check_target
+from ..io.output import claim, write_file
+from ..scenario.library import EXAMPLE_BLOCKS, template_text
 
 #: The first words of every template ``init`` writes.
 HEADER = "# A blastscale scenario"

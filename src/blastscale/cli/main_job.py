@@ -20,33 +20,33 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from ..scenario import Scenario, load_scenario
-from ._app import (
-    announce_run,
-    app,
+from ..scenario.scenario import Scenario
+from ..scenario.files import load_scenario
+from ._progress import announce_run
+from ._app import app
+from ._output import (
     console,
     console_err,
     fmt_value,
-    ignore_interrupts,
     one_line_warnings,
     print_json,
     print_written,
-    raise_if_interrupted,
     stage_progress,
     styled,
     table,
 )
+from ._signals import ignore_interrupts, raise_if_interrupted
 from .flags import SET_VALUES, scenario_with
 from .loads import print_design
-from ..report.html import split_unit_for_tables
+from ..report.markup import split_unit_for_tables
 from ..report.verdict import label
-from ..report.html import format_charge
+from ..report.markup import format_charge
 from ..report.verdict import verdict_line
 from ..report.card import card_of
 from .._hooks import pause_point
 from ..io.results import check_output_folder, output_folder
 from ..report import write_study
-from ..study import Study
+from ..study.study import Study
 
 
 def _compare_table(title: str, prototype: dict, model: dict) -> Table:

@@ -15,8 +15,8 @@ import typer
 from .._validate import BlastscaleInputError
 from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ..constants import STANDARD_GRAVITY
-from ..scenario import SimulationSpec
-from ..structures import RectangularBlock
+from ..scenario.specs import SimulationSpec
+from ..structures.block import RectangularBlock
 
 #: The scenario schema's simulation settings: the CLI's defaults are the scenario's (one default per setting).
 _SIMULATION = SimulationSpec.model_fields
@@ -69,7 +69,7 @@ def check_plot_path(plot: Optional[str]) -> None:
     it is: the folder must exist, the path must not be a folder, and it must name an image file
     (matplotlib would otherwise write ``PLOT.png`` while the command reports ``PLOT``)."""
     if plot:
-        from ..io.output import check_name_lengths
+        from ..io.targets import check_name_lengths
 
         p = Path(plot).expanduser()
         check_name_lengths(p, "plot")
@@ -80,7 +80,7 @@ def check_plot_path(plot: Optional[str]) -> None:
                 f"plot = {plot!r} has no image extension: valid extensions are {', '.join(PLOT_SUFFIXES)} "
                 f"(e.g. {plot}.png)"
             )
-        from ..io.output import Kind, check_target
+        from ..io.targets import Kind, check_target
 
         check_target(p, Kind("an image", lambda q: True, folder=False), name="plot")  # missing folder, a file
 
@@ -115,7 +115,8 @@ JSON = typer.Option(False, "--json", help="Print one JSON object instead of tabl
 # (blastscale.scenario): None when not given, so that the scenario's default applies
 def scenario_default(table: str, key: str):
     """The scenario schema's default of ``[table] key`` (for a help text)."""
-    from ..scenario.specs import KINDS, BlastSpec, SimulationSpec
+    from ..scenario.structure_specs import KINDS
+    from ..scenario.specs import BlastSpec, SimulationSpec
 
     model = {"blast": BlastSpec, "simulation": SimulationSpec}.get(table) or KINDS[table]
     return model.model_fields[key].default

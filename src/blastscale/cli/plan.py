@@ -21,23 +21,16 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from ._app import (
-    app,
-    console,
-    ignore_interrupts,
-    one_line_warnings,
-    print_json,
-    print_written,
-    raise_if_interrupted,
-    stage_progress,
-    styled,
-)
-from ..report.html import format_charge
+from ._app import app
+from ._output import console, one_line_warnings, print_json, print_written, stage_progress, styled
+from ._signals import ignore_interrupts, raise_if_interrupted
+from ..report.markup import format_charge
 from ..io.results import check_output_folder, output_folder
-from ..planning import plan
+from ..planning.planner import plan
 from ..planning.plan3d import ensemble_members
 from ..structures import from_spec
-from ..scenario import Scenario, load_scenario
+from ..scenario.scenario import Scenario
+from ..scenario.files import load_scenario
 from ..scenario.lab import LabSpec
 
 
@@ -177,7 +170,7 @@ def plan_cmd(
             p = plan(sc, workers=workers, scheduler=scheduler, progress=tell)
         else:  # the folder claimed (checked, locked) before any work: a second writer is refused at once
             from ..report.plan_files import write_plan
-            from ..study import Study
+            from ..study.study import Study
 
             with output_folder(
                 out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts, markers=markers

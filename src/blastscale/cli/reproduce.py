@@ -19,14 +19,16 @@ import typer
 from rich.table import Table
 
 from .._validate import BlastscaleInputError
-from ._app import app, console, console_err, one_line_warnings, print_error, print_written, stage_progress
+from ._app import app
+from ._output import console, console_err, one_line_warnings, print_error, print_written, stage_progress
 from ._signals import set_interrupt_note
-from ..io.output import Kind, claim
+from ..io.targets import Kind
+from ..io.output import claim
 from ..io.results import output_folder, provenance, write_atomic, write_json
 from ..report.reproduce import MARKER, item_done, items, render_reproduce_report, run_item, skipped
 from ..report.reproduce_cost import expected_cost, is_reproduce_folder
-from ..study import format_duration
-from ..io.output import format_size
+from ..study.memory import format_duration
+from ..units import format_size
 
 
 @app.command("reproduce")

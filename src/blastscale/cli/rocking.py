@@ -12,14 +12,15 @@ from typing import Optional
 
 import typer
 
-from ._app import activity, app, console, fmt_value, print_json, print_written, save_figure, table
+from ._output import activity, console, fmt_value, print_json, print_written, save_figure, table
+from ._app import app
 from . import blast_flags as bf
 from .flags import flags_named
 from . import options as opt
 from .options import block_from_options, check_plot_path
 from ..blast.load_model import load_model_record
 from ..study.engines import load_model_of
-from ..study import Study
+from ..study.study import Study
 from .flags import scenario_from_flags
 
 
@@ -50,7 +51,9 @@ def _load_model_record(result) -> dict:
     }
 
 
-def _inputs(block, **kw) -> dict:
+def block_inputs(block, **kw) -> dict:
+    """The ``inputs`` record of a command's JSON: the block's height, width, depth [m], density [kg/m^3] and
+    slenderness angle [rad], then ``kw`` (the command's other inputs, keys with their unit)."""
     d = {
         "height_m": block.height,
         "width_m": block.width,
@@ -133,7 +136,7 @@ def rock_cmd(
         },
     )
     out: dict = {
-        "inputs": _inputs(
+        "inputs": block_inputs(
             block,
             charge_kg=charge,
             standoff_m=standoff,

@@ -22,13 +22,16 @@ from typing import Optional
 
 import typer
 
-from ._app import app, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
+from ._app import app
+from ._output import console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
 from .options import check_plot_path
 from .._validate import BlastscaleInputError
-from ..scenario import load_scenario
-from ..structures import from_spec, read_block_model
+from ..scenario.files import load_scenario
+from ..structures import from_spec
+from ..structures.block_files import read_block_model
 from ..structures.block_files import MESH_SUFFIXES
-from ..structures import as_assembly, rest_mass_properties
+from ..structures.assembly import as_assembly
+from ..structures.base import rest_mass_properties
 
 __all__ = ["describe_structure", "load_structure"]
 
@@ -151,7 +154,7 @@ def show_cmd(
         desc = describe_structure(structure)
         if plot is not None:
             from ..plots.assembly import assembly_figure, world_points
-            from ..structures import as_assembly
+            from ..structures.assembly import as_assembly
 
             title = None if sc is None or not sc.title else sc.title
             save_figure(
@@ -164,7 +167,7 @@ def show_cmd(
             import json
 
             from ..io.output import write_file
-            from ..structures import as_assembly
+            from ..structures.assembly import as_assembly
             from ..structures.compas_files import compas_model_data
 
             write_file(

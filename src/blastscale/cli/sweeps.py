@@ -16,15 +16,17 @@ from typing import List, Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import activity, app, console, count_progress, one_line_warnings, print_json, print_written, table
+from ._output import activity, console, count_progress, one_line_warnings, print_json, print_written, table
+from ._app import app
 from ._signals import ignore_interrupts, set_interrupt_note
 from .flags import SET_VALUES, scenario_with
-from ..scenario import Scenario, load_scenario
+from ..scenario.scenario import Scenario
+from ..scenario.files import load_scenario
 from ..sweeps.grids import parse_assignment
 from ..io.sweep_store import unfinished_chunks
 from ..sweeps.grids import parse_distribution, parse_grid
 from ..sweeps.run import run_sweep
-from ..sweeps import SweepSpec
+from ..sweeps.spec import SweepSpec
 from ..sweeps.grids import parse_number
 from ..sweeps.fragility import fragility
 from .options import check_plot_path
@@ -207,7 +209,7 @@ def fragility_cmd(
     out["scenario"] = base.title or "default"
     if plot:
         from ..plots.fragility import plot_fragility
-        from ._app import save_figure
+        from ._output import save_figure
 
         save_figure(lambda: plot_fragility(res).figure, plot)
         out["plot"] = plot
@@ -314,7 +316,7 @@ def similarity_map_cmd(
         res[name] = np.where(np.isfinite(v.astype(float)), v, np.nan).tolist() if v.dtype.kind == "f" else v.tolist()
     if plot:
         from ..plots.similarity_map import plot_similarity_map
-        from ._app import save_figure
+        from ._output import save_figure
 
         save_figure(lambda: plot_similarity_map(ds), plot)
         res["plot"] = plot

@@ -7,7 +7,8 @@ re-simulation under the load as fired goes through the :class:`~blastscale.study
 from .effective import GAUGE_KINDS, effective_charge, predicted_at, tnt_equivalence
 from .gauges import GaugeFit, fit_gauge
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks
-from .shot import OUTCOMES, AsFired, as_fired
+from .refit import OUTCOMES
+from .shot import AsFired, as_fired
 
 __all__ = [
     "GAUGE_KINDS",

@@ -31,8 +31,8 @@ from scipy.optimize import least_squares, minimize_scalar
 
 from .._validate import BlastscaleInputError
 from ..rocking.system import housner_restitution
-from ..scenario import Scenario
-from ..study import Study
+from ..scenario.scenario import Scenario
+from ..study.study import Study
 from .outcome import pose_marker_history
 from .refit import OUTCOMES, marker_history, simulate_specimen
 from .tracks import track_first_peak

@@ -17,13 +17,13 @@ from typing import Any
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from ..scenario import Scenario
-from ..study import Study
+from ..scenario.scenario import Scenario
+from ..study.study import Study
 from ..study.specimen import specimen_scenario
 from .outcome import pose_marker_history
 from .tracks import block_marker_displacement, track_first_peak
 
-__all__ = ["OUTCOMES", "SpecimenRun", "marker_history", "simulate_specimen", "specimen_scenario"]
+__all__ = ["OUTCOMES", "SpecimenRun", "marker_history", "simulate_specimen"]
 
 #: The outcome words (the engines' ``collapsed`` flag in words).
 OUTCOMES = {False: "stands", True: "collapsed"}

@@ -24,9 +24,9 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..analysis.upscale import upscale
 from ..blast.explosives import get_explosive
-from ..scenario import Scenario
+from ..scenario.scenario import Scenario
 from ..structures.from_spec import is_block
-from ..study import Study
+from ..study.study import Study
 from .calibrate import (
     calibrate_friction,
     calibrate_restitution,
@@ -40,7 +40,7 @@ from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks, record_
 from .refit import OUTCOMES, SpecimenRun, marker_history, simulate_specimen
 from .tracks import block_rotation, track_first_peak
 
-__all__ = ["OUTCOMES", "AsFired", "as_fired"]
+__all__ = ["AsFired", "as_fired"]
 
 _Q95 = 1.6448536269514722  # one-sided 95 % normal quantile: the 5-95 % band
 

@@ -40,21 +40,9 @@ from filelock import FileLock, Timeout
 
 from .._hooks import pause_point
 from .._validate import BlastscaleInputError
-from ..units import format_size  # noqa: F401 (re-exported: the words of every "wrote ..." line)
 from .targets import Kind, check_name_lengths, check_target, fault
 
-__all__ = [
-    "Kind",
-    "Claim",
-    "claim",
-    "check_target",
-    "write_file",
-    "signals_held",
-    "fault",
-    "HELD_SIGNALS",
-    "tree_size",
-    "format_size",
-]
+__all__ = ["Claim", "claim", "write_file", "signals_held", "HELD_SIGNALS", "tree_size"]
 
 #: Signals held back while a rename must not be split (delivered right after).
 HELD_SIGNALS = tuple(getattr(signal, s) for s in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, s))

@@ -21,8 +21,8 @@ from typing import Any, Iterator
 from .. import __version__
 from .output import write_file
 import importlib.metadata as md
-from .output import Kind
-from .output import check_target
+from .targets import Kind
+from .targets import check_target
 from .output import claim
 
 __all__ = [

@@ -23,7 +23,8 @@ import numpy as np
 from .._extras import require
 from .._hooks import pause_point, pausing
 from .._validate import BlastscaleInputError
-from .output import Claim, Kind, signals_held, write_file
+from .output import Claim, signals_held, write_file
+from .targets import Kind
 
 __all__ = [
     "SWEEP_STORE",

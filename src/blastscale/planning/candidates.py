@@ -22,7 +22,8 @@ from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displa
 from ..blast.explosives import get_explosive
 from .shot import fireability, lab_charge, lab_explosives, safety_envelope
 from .shot import candidate_materials
-from ..structures import RectangularBlock, is_block
+from ..structures.block import RectangularBlock
+from ..structures.from_spec import is_block
 from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
 
 __all__ = [

@@ -30,9 +30,9 @@ from .shot import (
     threshold_meanings,
     timing_of,
 )
-from ..structures import is_block
-from ..blast import get_blast_model
-from .plan3d import specimen_scenario
+from ..structures.from_spec import is_block
+from ..blast.parameters import get_blast_model
+from ..study.specimen import specimen_scenario
 from pathlib import Path
 import tempfile
 

@@ -30,9 +30,9 @@ from typing import Optional
 
 import numpy as np
 from ..blast.parameters import blast_parameters_unchecked
-from ..blast import valid_scaled_distance_range
-from ..sim3d.threads import default_threads
-from ..sweeps import SweepSpec
+from ..blast.parameters import valid_scaled_distance_range
+from .._threads import default_threads
+from ..sweeps.spec import SweepSpec
 from ..sweeps.grids import Distribution
 from ..sweeps.runner import run_chunks
 

@@ -41,10 +41,10 @@ from .._validate import BlastscaleInputError
 from ..blast.bursts import lab_burst
 from ..similitude.effects import structure_top
 from ..scenario.lab import SAME_MATERIAL
-from ..study import Study
+from ..study.study import Study
 from ..study.specimen import specimen_scenario
-from ..blast import get_blast_model
-from ..structures import is_block
+from ..blast.parameters import get_blast_model
+from ..structures.from_spec import is_block
 from .build import spec_dims
 from .debris import reach_3d
 from .odds import ensemble_odds_3d
@@ -57,7 +57,6 @@ __all__ = [
     "stand_height",
     "front_arrival_spread",
     "screening_error",
-    "specimen_scenario",
     "similarity_3d",
     "planar_path",
     "ensemble_members",

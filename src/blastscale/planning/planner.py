@@ -34,17 +34,19 @@ from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_l
 from .debris import planar_reach
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .pareto import mark_pareto
-from .plan3d import candidate_design, design_scenario, planar_path, specimen_scenario
+from .plan3d import candidate_design, design_scenario, planar_path
+from ..study.specimen import specimen_scenario
 from .plan3d_designs import designs_3d
 from .shot import DEFAULT_LAB, safety_envelope, timing_of
-from ..blast import blast_parameters
-from ..blast.bursts import model_for_burst
-from ..blast.explosives import EXPLOSIVES, get_explosive
+from ..blast.parameters import blast_parameters
+from ..blast.parameters import model_for_burst
+from ..blast.explosive_library import EXPLOSIVES
+from ..blast.explosives import get_explosive
 from .shot import lab_explosives
-from ..blast import get_blast_model
+from ..blast.parameters import get_blast_model
 from ..structures import from_spec
 
-__all__ = ["plan", "screen", "Plan", "PlanInfeasible", "design_scenario", "QUICK_SAMPLES", "FULL_DESIGNS"]
+__all__ = ["plan", "screen", "Plan", "PlanInfeasible", "QUICK_SAMPLES", "FULL_DESIGNS"]
 
 #: Draws per feasible design in the first pass of the odds; the leading :data:`FULL_DESIGNS` (after it)
 #: get the lab's ``samples`` and their weighing precision.

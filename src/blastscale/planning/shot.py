@@ -9,7 +9,8 @@ from typing import Optional
 
 import numpy as np
 
-from ..blast.explosives import Explosive, charge_equivalence
+from ..blast.explosive_library import Explosive
+from ..blast.explosives import charge_equivalence
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
 from ..scenario.lab import LabSpec
 from .._validate import BlastscaleInputError

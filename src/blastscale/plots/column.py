@@ -16,7 +16,6 @@ from .thinning import minmax_thin
 
 __all__ = [
     "POINT_QUANTITIES",
-    "drum_outline",
     "plot_column_comparison",
     "plot_column_snapshots",
     "plot_ensemble_envelope",

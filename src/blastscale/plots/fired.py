@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .rocking import _ax
+from .sim3d import axes_or_new
 
 __all__ = ["plot_gauge", "plot_marker"]
 
@@ -14,7 +14,7 @@ __all__ = ["plot_gauge", "plot_marker"]
 def plot_gauge(t, p, fitted, predicted=None, *, name: str = "gauge", ax=None):
     """A gauge's baselined trace ``p`` [Pa] at ``t`` [s], its fit ``fitted`` [Pa] (same times) and the
     predicted pulse ``predicted`` [Pa] (same times; None: not drawn), in kPa and ms."""
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     t = np.asarray(t) * 1e3
     ax.plot(t, np.asarray(p) / 1e3, color="0.6", lw=0.6, label=f"{name} (record)")
     ax.plot(t, np.asarray(fitted) / 1e3, color="C0", lw=1.4, label="Friedlander fit")
@@ -40,7 +40,7 @@ def plot_marker(
     """A marker's horizontal displacement: ``measured``, ``predicted`` and ``refit``, each ``(t [s], ux [m])``;
     divided by ``length_factor`` and ``time_factor`` (1: the specimen's units; the design's factors: the
     prototype's), shown in mm (specimen) or m (prototype) and s."""
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     k = 1e3 if units == "specimen" else 1.0
     for (t, u), style, label in (
         (measured, {"color": "0.3", "lw": 0.8}, "measured"),

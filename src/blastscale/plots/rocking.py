@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 from .._validate import BlastscaleInputError
+from .sim3d import axes_or_new
 
 __all__ = [
     "plot_angle",
@@ -20,14 +21,6 @@ __all__ = [
     "plot_pi_diagram",
     "rocking_figure",
 ]
-
-
-def _ax(ax):
-    if ax is None:
-        import matplotlib.pyplot as plt
-
-        _, ax = plt.subplots()
-    return ax
 
 
 def _runs(results, labels):
@@ -57,7 +50,7 @@ def _mark_events(ax, res, quantity):
 def _draw_runs(ax, results, labels, x: str, y: str):
     """Plot ``res.<y>`` against ``res.<x>`` ("t", "theta", "theta_dot") for every run, one
     line style per run; events are marked on time plots. Returns the runs."""
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     runs = _runs(results, labels)
     for k, (lab, res) in enumerate(runs):
         ax.plot(getattr(res, x), getattr(res, y), ls=_STYLES[k % len(_STYLES)], label=lab)
@@ -103,7 +96,7 @@ def plot_similarity(sim, quantity: str = "theta", ax=None):
     [rad/s] vs t [s]) or ``"phase"`` (theta_dot vs theta). Model values are already in
     prototype units (t / f.time, theta_dot / f.angular_velocity).
     """
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     lam = sim.design.scale
     lab_m = f"model lambda = 1/{1 / lam:.4g}, up-scaled" if lam < 1 else f"model lambda = {lam:.4g}, up-scaled"
     if quantity == "theta":
@@ -154,7 +147,7 @@ def plot_pi_diagram(pi, ax=None, label: str | None = None, asymptotes: bool = Tr
     impulsive (vertical) and quasi-static (horizontal) limits are drawn dashed. Minor ticks
     are not labelled (see ``_log_ticks``).
     """
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     ax.loglog(pi.critical_impulse, pi.peak_pressure, "-", label=label or f"critical ({pi.shape} pulse)")
     if asymptotes:
         ax.axvline(pi.impulse_asymptote, color="0.4", ls="--", lw=0.8, label="impulsive limit")

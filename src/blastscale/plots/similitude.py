@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import BlastscaleInputError
+from .sim3d import axes_or_new
 
 __all__ = [
     "FACTOR_PLOTS",
@@ -38,14 +39,6 @@ FACTOR_PLOTS = {
 }
 
 _X = {"scale": "geometric scale lambda [-]", "density_ratio": "density ratio gamma [-]"}
-
-
-def _ax(ax):
-    if ax is None:
-        import matplotlib.pyplot as plt
-
-        _, ax = plt.subplots()
-    return ax
 
 
 def _sweep_axis(curves, x: str | None) -> str:
@@ -114,7 +107,7 @@ def plot_scaling_factor(
     """
     if quantity not in FACTOR_PLOTS:
         raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are {', '.join(FACTOR_PLOTS)}")
-    ax = _ax(ax)
+    ax = axes_or_new(ax)
     x = _sweep_axis(curves, x)
     gen, hc, ylabel, logy = FACTOR_PLOTS[quantity]
     xs = np.ravel(getattr(curves, x))

@@ -10,8 +10,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable, Optional
 
-from .figures import FIGURES, FiguresApart, render_figures
-from .html import SECTIONS, format_charge, render_report
+from .figures import FIGURES, render_figures
+from .html import SECTIONS, render_report
+from .markup import format_charge
 from .motion import motion_section
 from .slips import SLIPS, applicable_slips
 from ..io.histories import write_histories_csv, write_netcdf
@@ -69,14 +70,13 @@ def write_study(
     tell = progress or (lambda stage: None)
     meta = provenance()
     tell("histories (NetCDF" + (", CSV)" if csv else ")"))
-    with FiguresApart(result) as drawing:  # drawn beside the histories and the 3D view (Linux)
-        tree = result.to_datatree()
-        write_netcdf(tree, folder / "histories.nc")
-        if csv:
-            write_histories_csv(tree, folder / "histories.csv")
-        motion = motion_section(result, tree)
-        tell("figures")
-        figures = drawing.result()
+    tree = result.to_datatree()
+    write_netcdf(tree, folder / "histories.nc")
+    if csv:
+        write_histories_csv(tree, folder / "histories.csv")
+    motion = motion_section(result, tree)
+    tell("figures")
+    figures = render_figures(result)
     for f, png in figures:
         write_atomic(folder / f"{f.name}.png", png)
     write_atomic(folder / "scenario.toml", result.scenario.to_toml())

@@ -15,7 +15,7 @@ import html
 import math
 import weakref
 from typing import Any
-from ..planning import study_test_card
+from ..planning.card import study_test_card
 
 __all__ = ["card_of", "card_section", "UNITS", "shown"]
 

@@ -11,17 +11,16 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from .._fork import Forked
-from .html import format_charge
+from .markup import format_charge
 from ..plots.rocking import rocking_figure
 from ..plots.column import plot_point_histories, shared_legend
 from ..plots.column import plot_ensemble_envelope
-from ..structures import Assembly
+from ..structures.assembly import Assembly
 from ..plots.assembly import assembly_figure
 from ..plots.assembly import snapshot_figure
 from ..plots.column import plot_column_comparison
 
-__all__ = ["Figure", "FIGURES", "render_figures", "FiguresApart", "png_bytes"]
+__all__ = ["Figure", "FIGURES", "render_figures", "png_bytes"]
 
 
 @dataclass(frozen=True)
@@ -183,26 +182,3 @@ def render_figures(result) -> list[tuple[Figure, bytes]]:
 
     matplotlib.use("Agg")
     return [(f, png_bytes(f.build(result))) for f in FIGURES if f.applies(result)]
-
-
-def _named_pngs(result) -> list[tuple[str, bytes]]:
-    return [(f.name, png) for f, png in render_figures(result)]
-
-
-class FiguresApart:
-    """:func:`render_figures` in a forked child while the caller writes the rest (:class:`~blastscale._fork.Forked`:
-    Linux; elsewhere, or if the child fails, drawn in the caller): ``with FiguresApart(result) as job``, then
-    ``job.result()`` -> the same list."""
-
-    def __init__(self, result):
-        self._job = Forked(_named_pngs, result)
-
-    def result(self) -> list[tuple[Figure, bytes]]:
-        by_name = {f.name: f for f in FIGURES}
-        return [(by_name[name], png) for name, png in self._job.result()]
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self._job.__exit__(*exc)

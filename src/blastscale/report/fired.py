@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .html import _CSS, _e, _img, _table, format_value
+from .markup import PAGE_CSS, escape, figure_html, html_table, format_value
 from ..blast.pulses import Friedlander
 from ..plots.fired import plot_gauge, plot_marker
 from .figures import png_bytes
@@ -115,15 +115,15 @@ def fired_section(result, figures) -> str:
         "first_peak_time_p95_s",
     )
     return (
-        f'<p class="lead"><b>{_e(s["verdict"])}</b></p>'
-        + _table(("quantity", "value", "unit"), load)
+        f'<p class="lead"><b>{escape(s["verdict"])}</b></p>'
+        + html_table(("quantity", "value", "unit"), load)
         + _named_rows("Gauges (specimen)", "gauge", gkeys, s["gauges"])
         + _named_rows("Markers (specimen)", "marker", mkeys, s["markers"])
         + _named_rows(
             "What the monument would do (measured, up-scaled; 5-95 %)", "marker", pkeys, s["prototype_markers"]
         )
         + _calibration(s.get("calibration"))
-        + "".join(_img(png, title, caption, name) for name, title, caption, png in figures)
+        + "".join(figure_html(png, title, caption, name) for name, title, caption, png in figures)
     )
 
 
@@ -131,7 +131,7 @@ def _named_rows(title: str, name: str, keys: tuple, entries: dict) -> str:
     """A heading ``title`` and a table of one row per entry of ``entries`` (its name, then the values of
     ``keys``, formatted); "" when there is none."""
     rows = [(n, *(format_value(x[k]) for k in keys)) for n, x in entries.items()]
-    return f"<h3>{title}</h3>" + _table((name,) + keys, rows) if rows else ""
+    return f"<h3>{title}</h3>" + html_table((name,) + keys, rows) if rows else ""
 
 
 def _calibration(c) -> str:
@@ -142,7 +142,7 @@ def _calibration(c) -> str:
         rows += (
             [(f"{k} ({n})", format_value(x)) for n, x in v.items()] if isinstance(v, dict) else [(k, format_value(v))]
         )
-    return "<h3>Calibration (the measured response)</h3>" + _table(("quantity", "value"), rows)
+    return "<h3>Calibration (the measured response)</h3>" + html_table(("quantity", "value"), rows)
 
 
 def write_fired(result, scenario, folder) -> list[str]:
@@ -158,9 +158,9 @@ def write_fired(result, scenario, folder) -> list[str]:
     title = scenario.title or "blast experiment"
     page = (
         '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>blastscale: as fired: '
-        f"{_e(title)}</title><style>{_CSS}</style></head><body><header><h1>blastscale: as fired: {_e(title)}</h1>"
+        f"{escape(title)}</title><style>{PAGE_CSS}</style></head><body><header><h1>blastscale: as fired: {escape(title)}</h1>"
         f'</header><main><section id="as_fired"><h2>As fired</h2>{fired_section(result, figures)}</section>'
-        f'<section id="scenario"><h2>Scenario (inputs)</h2><pre>{_e(scenario.to_toml())}</pre></section>'
+        f'<section id="scenario"><h2>Scenario (inputs)</h2><pre>{escape(scenario.to_toml())}</pre></section>'
         "</main></body></html>\n"
     )
     write_atomic(folder / "report.html", page)

@@ -15,8 +15,17 @@ from __future__ import annotations
 import math
 from typing import Iterable
 
-from .markup import _CSS, _compare_table, _e, _flat, _img, _table, format_charge, format_value, split_unit_for_tables
-from .markup import ROUND_OFF as ROUND_OFF  # re-exported: report.html.ROUND_OFF
+from .markup import (
+    PAGE_CSS,
+    compare_table,
+    escape,
+    flatten,
+    figure_html,
+    html_table,
+    format_charge,
+    format_value,
+    split_unit_for_tables,
+)
 from .slips import applicable_slips
 from .card import CSS as _CARD_CSS
 from .card import card_section
@@ -24,7 +33,7 @@ from .verdict import label, specimen_rows, verdict
 from .outcomes import ARRIVAL_NOTE, first_peak_rows, stability_lead, timing_rows
 from .motion import motion_section
 
-__all__ = ["SECTIONS", "render_report", "format_charge", "split_unit_for_tables", "format_value"]
+__all__ = ["SECTIONS", "render_report"]
 
 #: Section ids of the report, in order.
 SECTIONS = (
@@ -50,7 +59,7 @@ def _experiment(result) -> str:
             '<p class="lead">Prototype only: this scenario has no <code>[scale]</code> table, so no specimen '
             "is designed and nothing is compared. The sections below give the prototype's blast load and "
             "response (add a <code>[scale]</code> table to design a reduced-scale test).</p>"
-            + _table(("quantity", "unit", "prototype"), [(q, v, u) for q, u, v in rows])
+            + html_table(("quantity", "unit", "prototype"), [(q, v, u) for q, u, v in rows])
         )
     dims = ("height_m", "width_m", "depth_m")
     if kind == "block":
@@ -61,9 +70,9 @@ def _experiment(result) -> str:
     mat = m.get("material", "")
     mat_words = "the prototype's material" if mat == "same as the prototype" else mat
     lead = (
-        f"Build a {_e(kind)} {of}{_e(size)}, {format_value(m.get('mass_kg', float('nan')) * 1e3)} g, "
-        f"in {_e(mat_words)} (density {format_value(m.get('density_kg_m3'))} kg/m^3), and detonate "
-        f"<b>{_e(format_charge(m['charge_kg']))} of TNT</b> (equivalent) at <b>{m['standoff_m'] * 100:.4g} cm</b> "
+        f"Build a {escape(kind)} {of}{escape(size)}, {format_value(m.get('mass_kg', float('nan')) * 1e3)} g, "
+        f"in {escape(mat_words)} (density {format_value(m.get('density_kg_m3'))} kg/m^3), and detonate "
+        f"<b>{escape(format_charge(m['charge_kg']))} of TNT</b> (equivalent) at <b>{m['standoff_m'] * 100:.4g} cm</b> "
         "from its front face."
     )
     keys = [k for k in p if k in m and not isinstance(p[k], str)]
@@ -77,9 +86,9 @@ def _experiment(result) -> str:
         rows.append(("slenderness alpha", math.degrees(p["alpha_rad"]), math.degrees(m["alpha_rad"]), "deg"))
     scales = (
         f"Geometric scale lambda = {exp['scale']:.6g} (1/{1 / exp['scale']:.4g}), density ratio gamma = "
-        f"{exp['density_ratio']:.4g}, gravity ratio = {exp['gravity_ratio']:.4g}, law: {_e(exp['law'])}."
+        f"{exp['density_ratio']:.4g}, gravity ratio = {exp['gravity_ratio']:.4g}, law: {escape(exp['law'])}."
     )
-    return f'<p class="lead">{lead}</p><p>{scales}</p>' + _table(("quantity", "prototype", "model", "unit"), rows)
+    return f'<p class="lead">{lead}</p><p>{scales}</p>' + html_table(("quantity", "prototype", "model", "unit"), rows)
 
 
 def _loads(result) -> str:
@@ -99,9 +108,9 @@ def _loads(result) -> str:
             ("arrival time", b.arrival_time, "s"),
         ]
         return (
-            _table(("quantity", "prototype", "unit"), rows)
-            + f"<p>Blast model: <b>{_e(b.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load "
-            f"method <b>{_e(result.scenario.blast.load)}</b>.</p>" + _load_model(result)
+            html_table(("quantity", "prototype", "unit"), rows)
+            + f"<p>Blast model: <b>{escape(b.blast_model)}</b>, pulse: <b>{escape(result.scenario.blast.pulse_shape)}</b>, load "
+            f"method <b>{escape(result.scenario.blast.load)}</b>.</p>" + _load_model(result)
         )
     p, m, f = d.prototype, d.specimen, d.factors
     rows = [
@@ -114,11 +123,11 @@ def _loads(result) -> str:
     note = (
         "<p>Only the impulse follows the scaling law exactly (delivered = required); the peak pressure and "
         "the duration do not, which is harmless while the load is impulsive (next section). Blast model: "
-        f"<b>{_e(p.blast_model)}</b>, pulse: <b>{_e(result.scenario.blast.pulse_shape)}</b>, load method "
-        f"<b>{_e(result.scenario.blast.load)}</b>. {_e(d.root_note)} {_e(ARRIVAL_NOTE)}</p>"
+        f"<b>{escape(p.blast_model)}</b>, pulse: <b>{escape(result.scenario.blast.pulse_shape)}</b>, load method "
+        f"<b>{escape(result.scenario.blast.load)}</b>. {escape(d.root_note)} {escape(ARRIVAL_NOTE)}</p>"
     )
     return (
-        _table(("quantity", "prototype", "model", "delivered ratio", "required ratio", "unit"), rows)
+        html_table(("quantity", "prototype", "model", "delivered ratio", "required ratio", "unit"), rows)
         + note
         + _load_model(result)
     )
@@ -136,7 +145,7 @@ def _load_model(result) -> str:
     ]
     paper = bl.burst == "surface" and not bl.clearing and not bl.negative_phase and (sb in (None, "surface"))
     note = " (the paper's assumptions)" if paper else ""
-    out = f"<p>Load model: {_e('; '.join(used) + note)}.</p>"
+    out = f"<p>Load model: {escape('; '.join(used) + note)}.</p>"
     e = None if d is None else d.effects
     if not e:
         return out
@@ -157,13 +166,14 @@ def _load_model(result) -> str:
         if "negative_phase" in e:
             rows.append((name, e["negative_phase"]["prototype"][key], e["negative_phase"]["model"][key], unit))
     if rows:
-        out += "<p>What the scaling law does not match (a difference above 5 % is listed under Warnings):</p>" + _table(
-            ("quantity", "prototype", "model", "unit"), rows
+        out += (
+            "<p>What the scaling law does not match (a difference above 5 % is listed under Warnings):</p>"
+            + html_table(("quantity", "prototype", "model", "unit"), rows)
         )
     if "lab_burst" in e:
         lb = e["lab_burst"]
         out += (
-            f"<p>Lab charge {lb['charge_height_m'] * 100:.3g} cm above the floor: <b>{_e(lb['kind'])}</b> burst "
+            f"<p>Lab charge {lb['charge_height_m'] * 100:.3g} cm above the floor: <b>{escape(lb['kind'])}</b> burst "
             f"(the floor's reflection arrives {lb['delay_over_positive_duration']:.2g} positive durations after "
             "the shock).</p>"
         )
@@ -203,37 +213,37 @@ def _similarity(result, figures) -> str:
             out.append(
                 "<h3>What to measure on the specimen</h3><p>The up-scaled model's response brought back to "
                 "the specimen's own size (times the scaling factors): compare a measurement with these "
-                "directly.</p>" + _table(("quantity", "prototype (SI)", "expected on the specimen", "unit"), rows)
+                "directly.</p>" + html_table(("quantity", "prototype (SI)", "expected on the specimen", "unit"), rows)
             )
     if result.planar is not None:
         pl = s["planar"]
         out.append("<h3>Planar rocking (paper Eq. of motion, Housner impacts)</h3>")
-        out.append(_compare_table(pl["prototype"], pl["model"]))
+        out.append(compare_table(pl["prototype"], pl["model"]))
         if pl["similarity"] is not None:
             out.append(
-                _table(
+                html_table(
                     ("similarity figure", "value", "unit"),
                     [(label(k), v, split_unit_for_tables(k)[1]) for k, v in pl["similarity"].items()],
                 )
             )
         if "planar_rocking" in figs:
             f, png = figs["planar_rocking"]
-            out.append(_img(png, f.title, f.caption, f.name))
+            out.append(figure_html(png, f.title, f.caption, f.name))
     if result.response3d is not None:
         r3 = s["3d"]
         out.append(f"<h3>3D rigid bodies (MuJoCo, Coulomb friction {result.scenario.structure.friction:g})</h3>")
         out.append(stability_lead(r3.get("prototype")))
-        out.append(_compare_table(r3["prototype"], r3["model"]))
+        out.append(compare_table(r3["prototype"], r3["model"]))
         peaks = first_peak_rows(r3.get("similarity"))
         if peaks is not None:
-            out.append(peaks[0] + _table(peaks[1], peaks[2]))
+            out.append(peaks[0] + html_table(peaks[1], peaks[2]))
         if r3.get("similarity") is not None:
             out.append(
-                _table(
+                html_table(
                     ("similarity figure", "value", "unit"),
                     [
                         (label(k), v, split_unit_for_tables(k.split(".")[-1])[1])
-                        for k, v in _flat(r3["similarity"])
+                        for k, v in flatten(r3["similarity"])
                         if not isinstance(v, str) and not (peaks is not None and k.startswith("points."))
                     ],
                 )
@@ -241,7 +251,7 @@ def _similarity(result, figures) -> str:
         for name in ("snapshots_3d", "response_3d"):
             if name in figs:
                 f, png = figs[name]
-                out.append(_img(png, f.title, f.caption, f.name))
+                out.append(figure_html(png, f.title, f.caption, f.name))
     if result.ensemble is not None:
         en = s["ensemble"]
         out.append(
@@ -249,18 +259,18 @@ def _similarity(result, figures) -> str:
             f"{en['perturbation']:g})</h3>"
         )
         out.append(
-            _table(
+            html_table(
                 ("quantity", "value", "unit"),
                 [
                     (label(k), v, split_unit_for_tables(k.split(".")[-1])[1])
-                    for k, v in _flat(en)
+                    for k, v in flatten(en)
                     if not isinstance(v, str) and k not in ("n_members", "perturbation")
                 ],
             )
         )
         if "ensemble_envelopes" in figs:
             f, png = figs["ensemble_envelopes"]
-            out.append(_img(png, f.title, f.caption, f.name))
+            out.append(figure_html(png, f.title, f.caption, f.name))
     if result.critical is not None:
         c = result.critical
         out.append(
@@ -277,7 +287,7 @@ def _similarity(result, figures) -> str:
 def _warnings(result) -> str:
     if not result.warnings:
         return "<p>None.</p>"
-    return "<ul>" + "".join(f'<li class="warn">{_e(w)}</li>' for w in result.warnings) + "</ul>"
+    return "<ul>" + "".join(f'<li class="warn">{escape(w)}</li>' for w in result.warnings) + "</ul>"
 
 
 def _slips(result) -> str:
@@ -285,7 +295,7 @@ def _slips(result) -> str:
     return (
         "<p>Where the printed paper is wrong or ambiguous blastscale implements the physics; these items "
         "concern this scenario (details and the tests that hold each: docs/paper_slips.md).</p>"
-        + _table(("#", "where", "what blastscale does"), rows, numeric_from=99)
+        + html_table(("#", "where", "what blastscale does"), rows, numeric_from=99)
     )
 
 
@@ -297,8 +307,8 @@ def _provenance(meta: dict, files: Iterable[str]) -> str:
         ("written (UTC)", str(meta.get("timestamp", ""))),
     ]
     return (
-        _table(("item", "value"), rows, numeric_from=99)
-        + f'<p class="muted">Files next to this report: {_e(", ".join(files))}. Model results are '
+        html_table(("item", "value"), rows, numeric_from=99)
+        + f'<p class="muted">Files next to this report: {escape(", ".join(files))}. Model results are '
         "up-scaled to prototype units; every history carries its unit in histories.nc.</p>"
     )
 
@@ -309,7 +319,7 @@ def _verdict(result) -> str:
         result.summary(), result.scenario.structure.kind, getattr(result.structure, "section", None) == "circular"
     )
     cls = {True: "lead", False: "warn", None: "muted"}[v["similar"]]
-    return f'<p id="verdict" class="{cls}"><b>{_e(v["line"])}</b></p>'
+    return f'<p id="verdict" class="{cls}"><b>{escape(v["line"])}</b></p>'
 
 
 def render_report(
@@ -343,8 +353,8 @@ def render_report(
     pulses = ""
     if "blast_pulses" in figs:
         f, png = figs["blast_pulses"]
-        pulses = _img(png, f.title, f.caption, f.name)
-    drawing = "".join(_img(png, f.title, f.caption, f.name) for f, png in figures if f.name == "assembly")
+        pulses = figure_html(png, f.title, f.caption, f.name)
+    drawing = "".join(figure_html(png, f.title, f.caption, f.name) for f, png in figures if f.name == "assembly")
     body = {
         "experiment": ("1. The experiment to build", _experiment(result) + drawing),
         "test_card": ("Test card", card_section(result)),
@@ -359,7 +369,7 @@ def render_report(
         ),
         "warnings": ("5. Warnings", _warnings(result)),
         "slips": ("6. The paper's slips that apply", _slips(result)),
-        "scenario": ("7. Scenario (inputs)", f"<pre>{_e(sc.to_toml())}</pre>"),
+        "scenario": ("7. Scenario (inputs)", f"<pre>{escape(sc.to_toml())}</pre>"),
         "provenance": ("8. Provenance", _provenance(meta, files)),
     }
     order = list(SECTIONS)
@@ -367,13 +377,13 @@ def render_report(
         body["plan"] = ("The plan: designs the lab can fire, best first", plan_html)
         order.insert(order.index("test_card"), "plan")
     sections = "".join(
-        f'<section id="{sid}"><h2>{_e(h)}</h2>{content}</section>'
+        f'<section id="{sid}"><h2>{escape(h)}</h2>{content}</section>'
         for sid, (h, content) in ((k, body[k]) for k in order)
     )
     return (
         '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">'
-        f'<meta name="viewport" content="width=device-width, initial-scale=1"><title>blastscale: {_e(title)}'
-        f"</title><style>{_CSS}{_CARD_CSS}</style></head><body><header><h1>blastscale report: {_e(title)}</h1>"
+        f'<meta name="viewport" content="width=device-width, initial-scale=1"><title>blastscale: {escape(title)}'
+        f"</title><style>{PAGE_CSS}{_CARD_CSS}</style></head><body><header><h1>blastscale report: {escape(title)}</h1>"
         f"{_verdict(result)}"
         '<p class="muted">Reduced-scale blast experiment designed with the scaling laws of Masi, Stefanou '
         "&amp; Maffi-Berthier (general law), checked by simulating prototype and model. All values SI unless "

@@ -16,9 +16,21 @@ from typing import Any, Iterable
 from ..units import split_unit
 from .verdict import label
 
-__all__ = ["split_unit_for_tables", "format_value", "format_charge", "ROUND_OFF"]
+__all__ = [
+    "PAGE_CSS",
+    "ROUND_OFF",
+    "compare_table",
+    "escape",
+    "figure_html",
+    "flatten",
+    "format_charge",
+    "format_value",
+    "html_table",
+    "split_unit_for_tables",
+]
 
-_CSS = """
+#: The style sheet of every page the report writes (study, "As fired", plan, reproduce).
+PAGE_CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:1100px;margin:2em auto;
 padding:0 1em;color:#1d2329;line-height:1.45}
 h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #d0d7de;padding-bottom:.2em;margin-top:1.8em}
@@ -73,37 +85,41 @@ def format_charge(kg: float) -> str:
     return f"{kg / 1e-9:.4g} µg"
 
 
-def _e(x: Any) -> str:
+def escape(x: Any) -> str:
+    """``str(x)`` escaped for HTML text and attribute values (quotes included)."""
     return html.escape(str(x), quote=True)
 
 
-def _table(header: Iterable[str], rows: Iterable[Iterable[Any]], numeric_from: int = 1) -> str:
-    h = "".join(f"<th>{_e(c)}</th>" for c in header)
+def html_table(header: Iterable[str], rows: Iterable[Iterable[Any]], numeric_from: int = 1) -> str:
+    """A ``<table>`` of ``rows`` under ``header``: strings as given, other cells through :func:`format_value`,
+    right-aligned (class ``n``) from column ``numeric_from`` on."""
+    h = "".join(f"<th>{escape(c)}</th>" for c in header)
     body = []
     for r in rows:
         cells = []
         for i, c in enumerate(r):
             cls = ' class="n"' if i >= numeric_from and not isinstance(c, str) else ""
-            cells.append(f"<td{cls}>{_e(format_value(c) if not isinstance(c, str) else c)}</td>")
+            cells.append(f"<td{cls}>{escape(format_value(c) if not isinstance(c, str) else c)}</td>")
         body.append("<tr>" + "".join(cells) + "</tr>")
     return f"<table><thead><tr>{h}</tr></thead><tbody>{''.join(body)}</tbody></table>"
 
 
-def _flat(d: dict, prefix: str = "") -> list[tuple[str, Any]]:
+def flatten(d: dict, prefix: str = "") -> list[tuple[str, Any]]:
+    """The leaves of a nested dict as ``(dotted key, value)`` pairs, in order (``prefix`` before each key)."""
     out = []
     for k, v in d.items():
         if isinstance(v, dict):
-            out.extend(_flat(v, f"{prefix}{k}."))
+            out.extend(flatten(v, f"{prefix}{k}."))
         else:
             out.append((f"{prefix}{k}", v))
     return out
 
 
-def _compare_table(prototype: dict, model: dict | None) -> str:
+def compare_table(prototype: dict, model: dict | None) -> str:
     """Prototype and up-scaled model side by side (the prototype alone when there is no model)."""
-    mflat = dict(_flat(model or {}))
+    mflat = dict(flatten(model or {}))
     rows = []
-    for k, v in _flat(prototype):
+    for k, v in flatten(prototype):
         if isinstance(v, str):
             continue
         words, unit = label(k), split_unit_for_tables(k.split(".")[-1])[1]
@@ -111,12 +127,13 @@ def _compare_table(prototype: dict, model: dict | None) -> str:
     head = (
         ("quantity", "prototype", "unit") if model is None else ("quantity", "prototype", "model (up-scaled)", "unit")
     )
-    return _table(head, rows)
+    return html_table(head, rows)
 
 
-def _img(png: bytes, title: str, caption: str, name: str) -> str:
+def figure_html(png: bytes, title: str, caption: str, name: str) -> str:
+    """A ``<figure>`` (id ``fig-<name>``) with the PNG embedded as base64, its title and caption."""
     data = base64.b64encode(png).decode("ascii")
     return (
-        f'<figure id="fig-{_e(name)}"><img alt="{_e(title)}" src="data:image/png;base64,{data}">'
-        f"<figcaption><b>{_e(title)}.</b> {_e(caption)}</figcaption></figure>"
+        f'<figure id="fig-{escape(name)}"><img alt="{escape(title)}" src="data:image/png;base64,{data}">'
+        f"<figcaption><b>{escape(title)}.</b> {escape(caption)}</figcaption></figure>"
     )

@@ -3,20 +3,15 @@ test card (:func:`write_plan`), and the plan's section of the report."""
 
 from __future__ import annotations
 
-import html
 from pathlib import Path
-from .html import _table, format_charge
+from .markup import escape, format_charge, html_table
 from ..io.results import jsonable, write_atomic, write_json
 from . import write_study
-from .html import _img
+from .markup import figure_html
 import io
 from ..plots.plan import plot_plan
 
 __all__ = ["write_plan", "plan_section"]
-
-
-def _e(x) -> str:
-    return html.escape(str(x), quote=True)
 
 
 def plan_section(p, top: int = 15) -> str:
@@ -42,11 +37,11 @@ def plan_section(p, top: int = 15) -> str:
     best = p.designs[0]
     rej = [(r["law"], r["scale_fraction"], r["material"], "; ".join(r["reasons"])) for r in p.rejected]
     return (
-        f'<p class="lead">Best design: {_e(best["law"])} law, lambda = {_e(best["scale_fraction"])}, '
-        f"{_e(best['material'])}. "
-        + " ".join(_e(r) + "." for r in best["reasons"])
+        f'<p class="lead">Best design: {escape(best["law"])} law, lambda = {escape(best["scale_fraction"])}, '
+        f"{escape(best['material'])}. "
+        + " ".join(escape(r) + "." for r in best["reasons"])
         + "</p>"
-        + _table(
+        + html_table(
             (
                 "#",
                 "law",
@@ -64,7 +59,7 @@ def plan_section(p, top: int = 15) -> str:
             numeric_from=99,
         )
         + f"<details><summary>{len(rej)} rejected candidates and why</summary>"
-        + _table(("law", "lambda", "material", "reasons"), rej, numeric_from=99)
+        + html_table(("law", "lambda", "material", "reasons"), rej, numeric_from=99)
         + "</details>"
     )
 
@@ -80,7 +75,7 @@ def write_plan(p, result, folder) -> list[str]:
         result,
         folder,
         plan_html=plan_section(p)
-        + _img(
+        + figure_html(
             png,
             "The plan's candidates",
             "Scale against the specimen's charge; feasible designs coloured by the odds "

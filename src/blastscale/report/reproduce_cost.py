@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from ..scenario import load_scenario
-from ..study import Study, estimate_seconds
+from ..scenario.files import load_scenario
+from ..study.study import Study
+from ..study.memory import estimate_seconds
 from .reproduce import MARKER
 
 __all__ = ["MEASURED", "SCRIPT_SECONDS", "expected_cost", "is_reproduce_folder"]

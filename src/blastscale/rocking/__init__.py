@@ -15,20 +15,13 @@
   :func:`critical_standoff` (:mod:`.critical`); :func:`capacity_curve` (:mod:`.capacity`; a model's
   curve up-scaled to the prototype: :func:`blastscale.analysis.capacity.model_capacity_curve`);
   :func:`pi_diagram` (:mod:`.pressure_impulse`).
+
+Each name is imported from its submodule on first access (module ``__getattr__``, PEP 562): importing the
+package, or one of its light submodules (:mod:`.system`, :mod:`.results`), loads neither numba nor scipy.
+Code inside blastscale imports from the defining submodule.
 """
 
-from .capacity import CapacityCurve, capacity_curve
-from .critical import CriticalResult, critical_charge, critical_standoff
-from .critical_reference import critical_charge_by_bisection
-from .encoding import PULSE_CODES, encode_pulse
-from .free_swing import first_swing_margin, first_swing_peak
-from .swing import FirstSwing, first_swing, first_swing_blast, overturn_margin, overturns
-from .frame import frame_frequency_parameter, free_rocking_peak, overturning_angular_velocity
-from .pressure_impulse import PIDiagram, pi_diagram
-from .reference import simulate_reference
-from .results import RockingBatchResult, RockingResult
-from .solver import DEFAULT_SOLVER, RockingSolver, check_count, simulate
-from .system import RockingSystem, as_rocking_system, housner_restitution
+import importlib
 
 __all__ = [
     "RockingSystem",
@@ -62,3 +55,53 @@ __all__ = [
     "free_rocking_peak",
     "overturning_angular_velocity",
 ]
+
+#: The submodule that defines each public name: imported on first access (PEP 562), so that
+#: ``import blastscale.rocking.system`` (or any light submodule) does not load numba and scipy through
+#: the compiled solver and the scipy reference path.
+_HOMES = {
+    "RockingSystem": "system",
+    "as_rocking_system": "system",
+    "housner_restitution": "system",
+    "RockingSolver": "solver",
+    "DEFAULT_SOLVER": "solver",
+    "RockingResult": "results",
+    "RockingBatchResult": "results",
+    "simulate": "solver",
+    "simulate_reference": "reference",
+    "check_count": "solver",
+    "PULSE_CODES": "encoding",
+    "encode_pulse": "encoding",
+    "CriticalResult": "critical",
+    "CapacityCurve": "capacity",
+    "capacity_curve": "capacity",
+    "PIDiagram": "pressure_impulse",
+    "critical_charge": "critical",
+    "critical_standoff": "critical",
+    "critical_charge_by_bisection": "critical_reference",
+    "FirstSwing": "swing",
+    "first_swing": "swing",
+    "first_swing_blast": "swing",
+    "first_swing_margin": "free_swing",
+    "first_swing_peak": "free_swing",
+    "overturn_margin": "swing",
+    "overturns": "swing",
+    "pi_diagram": "pressure_impulse",
+    "frame_frequency_parameter": "frame",
+    "free_rocking_peak": "frame",
+    "overturning_angular_velocity": "frame",
+}
+
+
+def __getattr__(name: str):
+    """The public name ``name`` from its defining submodule (:data:`_HOMES`), imported on first use."""
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{home}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -21,8 +21,8 @@ import numpy as np
 
 from .._jit import njit
 from .._threads import map_threads, resolve_threads
-from . import _kernel as K
-from ._kernel import N_SUMMARY, solve_case
+from .layout import N_SUMMARY
+from .kernel import solve_case
 
 __all__ = ["GROUPS_PER_THREAD", "MIN_CASES_PER_THREAD", "solve_batch", "solve_into"]
 
@@ -41,7 +41,7 @@ def solve_batch(*case, threads=None):
     ``case``: the arguments of :func:`solve_into` between ``idx`` and the outputs, in its order
     (``alpha`` ... ``tab_off``, ``tau_eval`` (n, m), ``rtol`` ... ``record``): arrays of length n,
     ``par`` (n, PAR_SIZE), tabulated pulses at ``tab_off[i]:tab_off[i+1]`` of ``tab_t``/``tab_f``;
-    the settings of :func:`._kernel.solve_case`. They are handed over unchanged to every group.
+    the settings of :func:`.kernel.solve_case`. They are handed over unchanged to every group.
 
     Returns
     -------
@@ -50,7 +50,7 @@ def solve_batch(*case, threads=None):
     """
     n = int(np.size(case[0]))  # alpha
     m = case[_TAU_EVAL].shape[1]
-    summ = np.empty((n, K.N_SUMMARY))
+    summ = np.empty((n, N_SUMMARY))
     th_out = np.empty((n, m))
     w_out = np.empty((n, m))
     nt = min(resolve_threads(threads), n // MIN_CASES_PER_THREAD)

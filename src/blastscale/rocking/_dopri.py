@@ -1,7 +1,7 @@
 """Compiled (numba) Dormand-Prince 5(4) step, dense output, root finding and step-size control.
 
 The system is the dimensionless planar rocking equation (paper Eq. eom divided by ``m g r``,
-see :mod:`blastscale.rocking._kernel`), state ``(theta [rad], w = dtheta/dtau [-])`` at the
+see :mod:`blastscale.rocking.kernel`), state ``(theta [rad], w = dtheta/dtau [-])`` at the
 dimensionless time ``tau = p t`` [-]:
 
 .. math:: \\frac{d^2\\theta}{d\\tau^2} = -\\sin(\\alpha s - \\theta) + f(\\tau)\\cos(\\alpha s - \\theta),

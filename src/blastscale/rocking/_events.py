@@ -2,7 +2,7 @@
 
 Everything is in the dimensionless time ``tau = p t`` [-] with the state ``(theta [rad],
 w = dtheta/dtau [-])`` and the rocking mode ``s`` (+1 pivot on the rear edge, -1 on the front
-edge, 0 at rest) of :mod:`blastscale.rocking._kernel`. The events of one accepted step are
+edge, 0 at rest) of :mod:`blastscale.rocking.kernel`. The events of one accepted step are
 located on its dense output (:func:`._dopri.dense`) as fractions ``x`` of the step:
 
 * peak (a local maximum of |theta|): ``s w`` goes from > 0 to <= 0;
@@ -23,23 +23,20 @@ import numpy as np
 from .._jit import njit
 
 from ._dopri import dense, dense_root, dopri_step
-
-# summary vector layout (float64), shared with solver.py and the capacity modules
-S_STATUS = 0  # 0 ok, 1 step limit reached, 2 step size underflow
-S_OVERTURNED = 1
-S_OVERTURN_TAU = 2  # nan when none
-S_FIRST_IMPACT_TAU = 3  # nan when none
-S_MAX_ABS_THETA = 4
-S_N_IMPACTS = 5
-S_END_TAU = 6  # end of the simulated motion (t_end, lying-down time, or stop)
-S_NSTEPS = 7
-S_W_AT_ALPHA = 8  # |w| when |theta| crossed alpha (overturn), nan otherwise
-S_N_PEAKS = 9
-S_FINAL_THETA = 10
-S_FINAL_W = 11
-S_NREJECT = 12
-S_FIRST_PEAK = 13  # |theta| at the first peak (nan if none)
-N_SUMMARY = 14
+from .layout import (
+    S_END_TAU,
+    S_FINAL_THETA,
+    S_FINAL_W,
+    S_FIRST_IMPACT_TAU,
+    S_FIRST_PEAK,
+    S_MAX_ABS_THETA,
+    S_N_IMPACTS,
+    S_N_PEAKS,
+    S_NREJECT,
+    S_NSTEPS,
+    S_OVERTURNED,
+    S_STATUS,
+)
 
 # event codes of a step (the earliest one ends it)
 EV_NONE = 0

@@ -1,7 +1,7 @@
 """Compiled (numba) free rocking after the pulse: event-driven, in closed form between impacts.
 
 Once the pulse (negative phase included) is over, the dimensionless rocking equation of
-:mod:`blastscale.rocking._kernel` is autonomous and conservative between impacts. In the mode
+:mod:`blastscale.rocking.kernel` is autonomous and conservative between impacts. In the mode
 ``s`` (+-1) write ``q = s theta`` [rad] (>= 0 while rocking on that pivot), ``v = s w`` [-] and
 ``phi = alpha - q``: ``q'' = -sin(phi)`` and the energy (units of ``m g r``)
 
@@ -41,7 +41,8 @@ import numpy as np
 
 from .._jit import njit
 
-from ._events import S_OVERTURN_TAU, S_W_AT_ALPHA, record_impact, record_peak
+from ._events import record_impact, record_peak
+from .layout import S_OVERTURN_TAU, S_W_AT_ALPHA
 
 #: Reach of one Taylor expansion [-] (a tenth of the smallest radius of convergence, pi/2: terms
 #: shrink about 10x per order); the samples within it are read off one expansion.

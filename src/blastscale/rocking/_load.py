@@ -1,12 +1,12 @@
 """Compiled (numba) load of an encoded pulse: the load-to-weight ratio ``f(tau)`` of the kernel.
 
 ``f`` is the right-hand side's load term of the dimensionless rocking equation
-(:mod:`blastscale.rocking._kernel`): ``f = S P(t) l / (m g r cos(alpha))`` [-] (``S P / (m g)``
+(:mod:`blastscale.rocking.kernel`): ``f = S P(t) l / (m g r cos(alpha))`` [-] (``S P / (m g)``
 for a rectangular block), at the dimensionless time ``tau = p t`` [-] (p the frequency
 parameter [rad/s]). :func:`blastscale.rocking.encoding.encode_pulse` turns a
 :class:`~blastscale.blast.pulses.Pulse` into the code and parameters read here.
 
-Pulse codes (the single table; :data:`blastscale.rocking.encoding.PULSE_CODES` names them):
+Pulse codes (the single table, in :mod:`.layout`; :data:`blastscale.rocking.encoding.PULSE_CODES` names them):
 
 * :data:`NO_PULSE` 0: no pressure (an impulsive load enters as an initial velocity);
 * :data:`FRIEDLANDER` 1: ``par = (f0, tau_o, d)``, ``f = f0 (1 - x) exp(-d x)``, ``x = tau / tau_o``
@@ -32,13 +32,7 @@ import math
 import numpy as np
 from .._jit import njit
 
-NO_PULSE = 0
-FRIEDLANDER = 1
-TRIANGULAR = 2
-TABULATED = 3
-#: Entries of an encoded pulse's ``par``: (f0, tau_o, d) of the positive pulse, then the negative
-#: phase's (f_-, tau_-s, tau_-).
-PAR_SIZE = 6
+from .layout import FRIEDLANDER, TABULATED, TRIANGULAR
 
 
 @njit(cache=True, inline="always")

@@ -23,7 +23,8 @@ import math
 from .._jit import njit
 
 from ._free import H_MAX, N_MAX, taylor_coeffs, taylor_eval
-from ._load import FRIEDLANDER, TABULATED, TRIANGULAR, base_ratio
+from ._load import base_ratio
+from .layout import FRIEDLANDER, TABULATED, TRIANGULAR
 
 #: Points across a piece at which the absence of events is checked.
 N_CHECK = 16

@@ -40,23 +40,15 @@ from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ..blast.inverse import model_name, scaled_distance_for, scaled_distance_range, warn_if_extrapolated
 from ..roots import vector_root
-from .critical_reference import critical_charge_by_bisection
 from .swing import first_swing_checked
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import as_rocking_system
-from ..blast.bursts import burst_of
+from ..blast.parameters import burst_of
 from ..blast.load_model import load_model_record
 from dataclasses import replace
 from ..blast.negative_phase import NEGATIVE_PHASE_MODELS
 
-__all__ = [
-    "critical_charge",
-    "critical_standoff",
-    "critical_charge_by_bisection",
-    "negative_phase_uncertainty",
-    "CriticalResult",
-    "critical_arrays",
-]
+__all__ = ["critical_charge", "critical_standoff", "negative_phase_uncertainty", "CriticalResult", "critical_arrays"]
 
 
 def critical_arrays(

@@ -1,6 +1,6 @@
 """Kernel form of a pressure pulse for a rocking body: pulse codes and :func:`encode_pulse`.
 
-The compiled kernel (:mod:`blastscale.rocking._kernel`) integrates paper Eq. (eq:eom) divided
+The compiled kernel (:mod:`blastscale.rocking.kernel`) integrates paper Eq. (eq:eom) divided
 by ``m g r`` in the dimensionless time ``tau = p t`` (p the frequency parameter [rad/s]); the
 load enters as the load-to-weight ratio ``f = q P(t)`` [-] with ``q = S l / (m g r cos alpha)``
 [1/Pa] (:attr:`RockingSystem.load_ratio_per_pascal`). A pulse is passed as a code
@@ -20,12 +20,12 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..blast.load_model import PhasedPulse
 from ..blast.pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular
-from ._load import FRIEDLANDER, NO_PULSE, PAR_SIZE, TABULATED, TRIANGULAR
+from .layout import FRIEDLANDER, NO_PULSE, PAR_SIZE, TABULATED, TRIANGULAR
 from .system import RockingSystem
 from ..blast.load_model import front_face_negative
 from ..blast.load_model import front_face_clearing
 
-__all__ = ["PULSE_CODES", "PAR_SIZE", "encode_pulse", "kernel_pulse_end"]
+__all__ = ["PULSE_CODES", "encode_pulse", "kernel_pulse_end"]
 
 #: The kernel's pulse code of each pulse kind (``Pulse.kind``; an impulsive load exerts no
 #: pressure over time: it enters as an initial angular velocity).

@@ -20,7 +20,8 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_choice, check_positive, check_range
 from ..blast.friedlander import friedlander_impulse_ratio
 from ..roots import vector_root
-from .encoding import PAR_SIZE, PULSE_CODES
+from .layout import PAR_SIZE
+from .encoding import PULSE_CODES
 from .swing import pulse_phase
 from .solver import DEFAULT_SOLVER, RockingSolver, check_count
 from .system import as_rocking_system

@@ -18,7 +18,7 @@ from scipy.integrate import solve_ivp
 from .._validate import check_positive
 from ..roots import scalar_root
 from ..blast.pulses import Impulsive, Pulse, Tabulated
-from .results import RockingResult, _none_if_nan
+from .results import RockingResult, none_if_nan
 from .system import RockingSystem, as_rocking_system
 
 __all__ = ["simulate_reference"]
@@ -189,14 +189,14 @@ def simulate_reference(
         peak_times=pk[:, 0],
         peak_angles=pk[:, 1],
         collapsed=overturned,
-        collapse_time=_none_if_nan(t_over),
+        collapse_time=none_if_nan(t_over),
         first_impact_time=float(imp[0, 0]) if imp.shape[0] else None,
         max_rotation=float(max_abs),
         end_time=float(t),
         n_steps=int(nsteps),
         n_rejected=0,
         restitution=e,
-        angular_velocity_at_tipping=_none_if_nan(om_over),
+        angular_velocity_at_tipping=none_if_nan(om_over),
         t_eval=tev,
         theta_eval=th_ev,
         theta_dot_eval=om_ev,

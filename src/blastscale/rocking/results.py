@@ -137,6 +137,6 @@ class RockingBatchResult:
         return int(self.collapsed.size)
 
 
-def _none_if_nan(x: float) -> float | None:
+def none_if_nan(x: float) -> float | None:
     """``float(x)``, or None where x is NaN or infinite (an absent event time)."""
     return None if not math.isfinite(x) else float(x)

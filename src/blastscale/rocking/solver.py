@@ -36,10 +36,22 @@ from .._threads import resolve_threads
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
 from ..blast.pulses import Pulse
 from ..structures.block import RectangularBlock
-from . import _kernel as K
-from ._batch import solve_batch
-from .encoding import PAR_SIZE, encode_pulse
-from .results import RockingBatchResult, RockingResult, _none_if_nan
+from .layout import (
+    S_END_TAU,
+    S_FIRST_IMPACT_TAU,
+    S_FIRST_PEAK,
+    S_MAX_ABS_THETA,
+    S_NREJECT,
+    S_NSTEPS,
+    S_N_IMPACTS,
+    S_OVERTURNED,
+    S_OVERTURN_TAU,
+    S_STATUS,
+    S_W_AT_ALPHA,
+)
+from .layout import PAR_SIZE
+from .encoding import encode_pulse
+from .results import RockingBatchResult, RockingResult, none_if_nan
 from .system import RockingSystem, as_rocking_system
 
 __all__ = ["RockingSolver", "DEFAULT_SOLVER", "simulate", "check_count"]
@@ -163,7 +175,9 @@ class RockingSolver:
         )
         settings = self._kernel_settings(max_impacts, stop_at_overturn, True)
         e = system.coefficient_of_restitution
-        summ, the, we, hist, imp, pk = K.solve_case(
+        from .kernel import solve_case  # noqa: PLC0415 -- start-up: numba loads on the first solve, not with `import blastscale.cli`
+
+        summ, the, we, hist, imp, pk = solve_case(
             system.alpha,
             e,
             th0,
@@ -176,7 +190,7 @@ class RockingSolver:
             (tev if tev is not None else np.zeros(0)) * p,
             *settings,
         )
-        self._check_status(summ[K.S_STATUS])
+        self._check_status(summ[S_STATUS])
         return RockingResult(
             t=hist[:, 0] / p,
             theta=hist[:, 1].copy(),
@@ -186,15 +200,15 @@ class RockingSolver:
             impact_velocity_after=imp[:, 2] * p,
             peak_times=pk[:, 0] / p,
             peak_angles=pk[:, 1].copy(),
-            collapsed=bool(summ[K.S_OVERTURNED]),
-            collapse_time=_none_if_nan(summ[K.S_OVERTURN_TAU] / p),
-            first_impact_time=_none_if_nan(summ[K.S_FIRST_IMPACT_TAU] / p),
-            max_rotation=float(summ[K.S_MAX_ABS_THETA]),
-            end_time=float(summ[K.S_END_TAU] / p),
-            n_steps=int(summ[K.S_NSTEPS]),
-            n_rejected=int(summ[K.S_NREJECT]),
+            collapsed=bool(summ[S_OVERTURNED]),
+            collapse_time=none_if_nan(summ[S_OVERTURN_TAU] / p),
+            first_impact_time=none_if_nan(summ[S_FIRST_IMPACT_TAU] / p),
+            max_rotation=float(summ[S_MAX_ABS_THETA]),
+            end_time=float(summ[S_END_TAU] / p),
+            n_steps=int(summ[S_NSTEPS]),
+            n_rejected=int(summ[S_NREJECT]),
             restitution=e,
-            angular_velocity_at_tipping=_none_if_nan(summ[K.S_W_AT_ALPHA] * p),
+            angular_velocity_at_tipping=none_if_nan(summ[S_W_AT_ALPHA] * p),
             t_eval=tev,
             theta_eval=None if tev is None else the,
             theta_dot_eval=None if tev is None else we * p,
@@ -283,6 +297,7 @@ class RockingSolver:
         tab_t = np.concatenate(tabs_t) if off[-1] else np.zeros(0)
         tab_f = np.concatenate(tabs_f) if off[-1] else np.zeros(0)
         settings = self._kernel_settings(max_impacts, stop_at_overturn, False)
+        from ._batch import solve_batch  # noqa: PLC0415 -- start-up: numba loads on the first solve, not with `import blastscale.cli`
         summ, th, w = solve_batch(
             alpha,
             e,
@@ -298,27 +313,27 @@ class RockingSolver:
             *settings,
             threads=self.threads,
         )
-        bad = summ[:, K.S_STATUS] != 0
+        bad = summ[:, S_STATUS] != 0
         if np.any(bad):
-            self._check_status(summ[np.argmax(bad), K.S_STATUS], int(np.argmax(bad)))
+            self._check_status(summ[np.argmax(bad), S_STATUS], int(np.argmax(bad)))
         return RockingBatchResult(
             t=tev,
             theta=th,
             theta_dot=w * pvec[:, None],
-            collapsed=summ[:, K.S_OVERTURNED].astype(bool),
-            collapse_time=summ[:, K.S_OVERTURN_TAU] / pvec,
-            first_impact_time=summ[:, K.S_FIRST_IMPACT_TAU] / pvec,
-            max_rotation=summ[:, K.S_MAX_ABS_THETA].copy(),
-            first_peak_angle=summ[:, K.S_FIRST_PEAK].copy(),
-            angular_velocity_at_tipping=summ[:, K.S_W_AT_ALPHA] * pvec,
-            n_impacts=summ[:, K.S_N_IMPACTS].astype(np.int64),
-            n_steps=summ[:, K.S_NSTEPS].astype(np.int64),
-            end_time=summ[:, K.S_END_TAU] / pvec,
+            collapsed=summ[:, S_OVERTURNED].astype(bool),
+            collapse_time=summ[:, S_OVERTURN_TAU] / pvec,
+            first_impact_time=summ[:, S_FIRST_IMPACT_TAU] / pvec,
+            max_rotation=summ[:, S_MAX_ABS_THETA].copy(),
+            first_peak_angle=summ[:, S_FIRST_PEAK].copy(),
+            angular_velocity_at_tipping=summ[:, S_W_AT_ALPHA] * pvec,
+            n_impacts=summ[:, S_N_IMPACTS].astype(np.int64),
+            n_steps=summ[:, S_NSTEPS].astype(np.int64),
+            end_time=summ[:, S_END_TAU] / pvec,
         )
 
     # ------------------------------------------------------------------ helpers
     def _kernel_settings(self, max_impacts, stop_at_overturn, record: bool) -> tuple:
-        """The trailing arguments of the compiled kernel (:func:`._kernel.solve_case`,
+        """The trailing arguments of the compiled kernel (:func:`.kernel.solve_case`,
         :func:`._batch.solve_batch`): ``(rtol, atol, rest_velocity, max_impacts (-1: never),
         stop_at_overturn, max_steps, record)`` as plain Python numbers.
 

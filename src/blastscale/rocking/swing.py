@@ -69,24 +69,13 @@ from .._validate import BlastscaleInputError, check_positive
 from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters_unchecked
 from ..blast.pulses import Pulse
-from . import _kernel as K
-from ._batch import solve_batch
+from .layout import S_FINAL_THETA, S_FINAL_W, S_MAX_ABS_THETA, S_OVERTURNED, S_STATUS
 from .encoding import encode_blast_batch, encode_pulse, kernel_pulse_end
 from .free_swing import first_swing_margin, first_swing_peak
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import RockingSystem, as_rocking_system
 
-__all__ = [
-    "overturn_margin",
-    "first_swing_margin",
-    "overturns",
-    "first_swing",
-    "first_swing_blast",
-    "first_swing_peak",
-    "first_swing_checked",
-    "pulse_phase",
-    "FirstSwing",
-]
+__all__ = ["overturn_margin", "overturns", "first_swing", "first_swing_blast", "first_swing_checked", "pulse_phase", "FirstSwing"]
 
 
 @dataclass(frozen=True)
@@ -117,6 +106,8 @@ def pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab_
     tab_f = np.zeros(0) if tab_f is None else tab_f
     off = np.zeros(n + 1, dtype=np.int64) if off is None else off
     tau_end = kernel_pulse_end(kind, par, tab_t, off)
+    from ._batch import solve_batch  # noqa: PLC0415 -- start-up: numba loads on the first solve, not with `import blastscale.cli`
+
     summ, _, _ = solve_batch(
         np.ascontiguousarray(alpha, dtype=float),
         np.ascontiguousarray(e, dtype=float),
@@ -132,13 +123,13 @@ def pulse_phase(solver: RockingSolver, alpha, e, w0, kind, par, tab_t=None, tab_
         *solver._kernel_settings(None, True, False),
         threads=solver.threads,
     )
-    bad = summ[:, K.S_STATUS] != 0
+    bad = summ[:, S_STATUS] != 0
     if np.any(bad):
-        solver._check_status(summ[np.argmax(bad), K.S_STATUS], int(np.argmax(bad)))
-    th, w = summ[:, K.S_FINAL_THETA], summ[:, K.S_FINAL_W]
-    mu = first_swing_margin(alpha, e, th, w, summ[:, K.S_OVERTURNED] == 1.0)
+        solver._check_status(summ[np.argmax(bad), S_STATUS], int(np.argmax(bad)))
+    th, w = summ[:, S_FINAL_THETA], summ[:, S_FINAL_W]
+    mu = first_swing_margin(alpha, e, th, w, summ[:, S_OVERTURNED] == 1.0)
     over = mu > 0.0
-    peak = first_swing_peak(alpha, e, th, w, summ[:, K.S_MAX_ABS_THETA], float(solver.rest_velocity))
+    peak = first_swing_peak(alpha, e, th, w, summ[:, S_MAX_ABS_THETA], float(solver.rest_velocity))
     return FirstSwing(over, np.where(over, 0.5 * math.pi, peak), mu)
 
 

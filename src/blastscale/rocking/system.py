@@ -33,7 +33,8 @@ import math
 from dataclasses import dataclass
 
 from .._validate import BlastscaleInputError, check_positive, check_range
-from ..structures.block import STANDARD_GRAVITY, RectangularBlock
+from ..constants import STANDARD_GRAVITY
+from ..structures.block import RectangularBlock
 from dataclasses import replace
 
 __all__ = ["RockingSystem", "housner_restitution", "as_rocking_system"]

@@ -40,10 +40,12 @@ the field path, the value and the valid range (:class:`~blastscale._validate.Bla
 See ``docs/scenarios.md`` for every key.
 """
 
-from .files import load_scenario, to_toml
+from .files import load_scenario
+from .text import to_toml
 from .library import EXAMPLE_BLOCKS, TEMPLATE_KINDS, library_names, library_text, template_text
 from .scenario import Scenario
-from .specs import BlastSpec, BlockSpec, ColumnSpec, ContactSpec, ScaleSpec, SimulationSpec, parse_ratio
+from .specs import BlastSpec, ContactSpec, ScaleSpec, SimulationSpec, parse_ratio
+from .structure_specs import BlockSpec, ColumnSpec
 
 __all__ = [
     "Scenario",

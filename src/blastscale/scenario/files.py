@@ -9,9 +9,8 @@ from pathlib import Path
 from .._validate import BlastscaleInputError
 from .library import library_names, library_source, library_text
 from .scenario import Scenario
-from .text import to_toml
 
-__all__ = ["load_scenario", "to_toml"]
+__all__ = ["load_scenario"]
 
 
 def load_scenario(path: "str | Path") -> Scenario:

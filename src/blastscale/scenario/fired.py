@@ -12,7 +12,7 @@ from typing import Annotated, Literal
 
 from pydantic import AfterValidator, BaseModel, Field
 
-from .fields import _CONFIG
+from .fields import SPEC_CONFIG
 
 __all__ = ["FiredSpec", "GaugeSpec", "MarkerSpec"]
 
@@ -30,7 +30,7 @@ Point = Annotated[list[float], AfterValidator(_point)]
 class GaugeSpec(BaseModel):
     """One pressure gauge: where it is and what it sees."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     position_m: Point = Field(description="Gauge position [x, y, z] [m] in the record axes")
     kind: Literal["reflected", "side-on"] = Field(
         "reflected", description="reflected: flush in a rigid plate facing the charge; side-on: incident pressure"
@@ -40,7 +40,7 @@ class GaugeSpec(BaseModel):
 class MarkerSpec(BaseModel):
     """One video marker on the specimen."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     point_m: Point = Field(description="The marker's position [x, y, z] [m] on the specimen at rest")
     px_per_mm: float | None = Field(None, gt=0, le=1e6, description="Image scale for _px track columns [px/mm]")
 
@@ -48,7 +48,7 @@ class MarkerSpec(BaseModel):
 class FiredSpec(BaseModel):
     """What the lab measured: gauge traces, marker tracks, the weighed charge and the measured stand-off."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     gauges: str | None = Field(None, description="Gauge traces, CSV (relative to the scenario file)")
     tracks: str | None = Field(None, description="Marker tracks, CSV (relative to the scenario file)")
     charge_kg: float | None = Field(

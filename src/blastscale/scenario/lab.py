@@ -8,13 +8,14 @@ from typing import Any, Optional
 
 from pydantic import BaseModel, Field, PrivateAttr, field_validator, model_serializer, model_validator
 
-from ..blast.bursts import BURSTS
-from ..blast.explosives import EXPLOSIVES, canonical_name, initiator_tnt_kg
+from ..blast.parameters import BURSTS
+from ..blast.explosive_library import EXPLOSIVES
+from ..blast.explosives import canonical_name, initiator_tnt_kg
 from ..blast.initiation import DEFAULT_INITIATOR, INITIATORS
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS
 from ..structures.materials import MATERIALS
 from .messages import value_in_message
-from .fields import _CONFIG, _check_name
+from .fields import SPEC_CONFIG, check_name
 
 __all__ = ["ExplosiveSpec", "LabSpec", "SAME_MATERIAL"]
 
@@ -27,7 +28,7 @@ class ExplosiveSpec(BaseModel):
     """A user-defined explosive (``[lab.explosives.NAME]``): its TNT equivalence for peak pressure and
     for impulse (as in UFC 3-340-02 Table 2-1), its density and where the numbers come from."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     pressure_factor: float = Field(gt=0, le=10, description="TNT-equivalent mass per unit mass, peak pressure [-]")
     impulse_factor: float = Field(gt=0, le=10, description="TNT-equivalent mass per unit mass, impulse [-]")
     density_kg_m3: Optional[float] = Field(None, gt=0, le=25000, description="Density [kg/m^3]")
@@ -41,7 +42,7 @@ class LabSpec(BaseModel):
     """What the laboratory can make, fire, build and measure, and how precisely (docs/planning.md).
     Every key is optional; the defaults are a university blast laboratory's."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     explosive: str = Field("tnt", description="The explosive of the specimen's charge (library or [lab.explosives])")
     explosives: dict[str, ExplosiveSpec] = Field(default_factory=dict, description="User-defined explosives")
     initiator: str = Field(
@@ -175,7 +176,7 @@ class LabSpec(BaseModel):
         if not v:
             raise ValueError("= [] is empty: give at least one material, or leave the key out for all of them")
         for name in v:
-            _check_name(name, (SAME_MATERIAL,) + tuple(MATERIALS))
+            check_name(name, (SAME_MATERIAL,) + tuple(MATERIALS))
         return v
 
     @field_validator("bursts")
@@ -184,13 +185,13 @@ class LabSpec(BaseModel):
         if not v:
             raise ValueError("= [] is empty: give surface, free-air or both")
         for name in v:
-            _check_name(name, BURSTS)
+            check_name(name, BURSTS)
         return list(dict.fromkeys(v))
 
     @field_validator("safety_threshold")
     @classmethod
     def _threshold(cls, v: str) -> str:
-        return _check_name(v, tuple(t.key for t in SAFETY_THRESHOLDS) + tuple(QD_K_FACTORS))
+        return check_name(v, tuple(t.key for t in SAFETY_THRESHOLDS) + tuple(QD_K_FACTORS))
 
     @model_validator(mode="after")
     def _consistent(self) -> "LabSpec":

@@ -14,7 +14,9 @@ from .messages import one_line, submodels
 from .text import to_toml
 from .fired import FiredSpec
 from .lab import LabSpec
-from .specs import _CONFIG, KINDS, LEGACY_SCENARIO_KEYS, BlastSpec, BlockSpec, ScaleSpec, SimulationSpec, Structure
+from .fields import SPEC_CONFIG
+from .structure_specs import KINDS, BlockSpec, Structure
+from .specs import LEGACY_SCENARIO_KEYS, BlastSpec, ScaleSpec, SimulationSpec
 
 __all__ = ["Scenario"]
 
@@ -46,7 +48,7 @@ class Scenario(BaseModel):
     dimensionless ratio; the unit is in each key's name.
     """
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     title: str = Field(
         "",
         description="A one-line description (tabs and line breaks allowed; no other control "

@@ -22,29 +22,13 @@ from ..blast.incidence import INCIDENCE_MODELS
 from ..blast.negative_phase import NEGATIVE_PHASE_MODEL, NEGATIVE_PHASE_MODELS
 from ..blast.parameters import BLAST_MODELS, BURSTS, DEFAULT_BLAST_MODEL, DEFAULT_BURST
 from ..blast.pulses import PULSE_SHAPES
-from ..sim3d.contact import CONES, JACOBIANS, SOLVERS, STEPS_AFTER_LOAD
+from ..sim3d.contact_ranges import CONES, JACOBIANS, SOLVERS, STEPS_AFTER_LOAD
 from ..sim3d.load_methods import LOAD_METHODS
 from ..structures.materials import MATERIALS
-from .fields import _CONFIG, _at_most_one, _check_name, _limits
+from .fields import SPEC_CONFIG, at_most_one, check_name, engine_limits
 from .messages import value_in_message
-from .structure_specs import KINDS, ArchSpec, AssemblySpec, BlockSpec, ColumnSpec, PortalSpec, Structure, WallSpec
 
-__all__ = [
-    "parse_ratio",
-    "BlockSpec",
-    "ColumnSpec",
-    "WallSpec",
-    "ArchSpec",
-    "PortalSpec",
-    "AssemblySpec",
-    "BlastSpec",
-    "ScaleSpec",
-    "SimulationSpec",
-    "ContactSpec",
-    "Structure",
-    "KINDS",
-    "LEGACY_SCENARIO_KEYS",
-]
+__all__ = ["parse_ratio", "BlastSpec", "ScaleSpec", "SimulationSpec", "ContactSpec", "LEGACY_SCENARIO_KEYS"]
 
 #: Deprecated scenario keys, still accepted when read (files, ``with_values``, ``--set``) and never
 #: written: old dotted path -> new dotted path (CHANGELOG.md, docs/glossary.md).
@@ -95,7 +79,7 @@ class BlastSpec(BaseModel):
     """The prototype's charge, where it stands and how its load is modelled; no charge (the table
     left out, or ``charge_kg = 0``): gravity alone, a stability check."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     charge_kg: float = Field(0.0, ge=0, description="TNT-equivalent charge W [kg]; 0: gravity alone")
     standoff_m: Optional[Pos] = Field(None, description="Stand-off R from the front face [m] (needed with a charge)")
     blast_model: str = Field(
@@ -135,7 +119,7 @@ class BlastSpec(BaseModel):
     @field_validator("blast_model")
     @classmethod
     def _model(cls, v: str) -> str:
-        return _check_name(v, tuple(BLAST_MODELS))
+        return check_name(v, tuple(BLAST_MODELS))
 
     @model_validator(mode="after")
     def _burst_fits(self) -> "BlastSpec":
@@ -149,17 +133,17 @@ class BlastSpec(BaseModel):
     @field_validator("negative_phase_model")
     @classmethod
     def _negative_model(cls, v: str) -> str:
-        return _check_name(v, NEGATIVE_PHASE_MODELS)
+        return check_name(v, NEGATIVE_PHASE_MODELS)
 
     @field_validator("load")
     @classmethod
     def _load(cls, v: str) -> str:
-        return _check_name(v, tuple(LOAD_METHODS))
+        return check_name(v, tuple(LOAD_METHODS))
 
     @field_validator("incidence")
     @classmethod
     def _incidence(cls, v: str) -> str:
-        return _check_name(v, INCIDENCE_MODELS)
+        return check_name(v, INCIDENCE_MODELS)
 
     @model_validator(mode="after")
     def _standoff(self) -> "BlastSpec":
@@ -188,7 +172,7 @@ class BlastSpec(BaseModel):
 class ScaleSpec(BaseModel):
     """The specimen's scales: lambda, the density ratio (or the specimen's material), varsigma."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     length: Annotated[float, at.Gt(0), at.Le(1000)] = Field(
         description='Geometric scale lambda = l_model / l_prototype [-] (a number or a fraction "1/200")'
     )
@@ -230,43 +214,47 @@ class ScaleSpec(BaseModel):
     @field_validator("specimen_material")
     @classmethod
     def _material(cls, v: Optional[str]) -> Optional[str]:
-        return None if v is None else _check_name(v, tuple(MATERIALS))
+        return None if v is None else check_name(v, tuple(MATERIALS))
 
     @model_validator(mode="after")
     def _one_density(self) -> "ScaleSpec":
-        return _at_most_one(self, "density_ratio", "specimen_material")
+        return at_most_one(self, "density_ratio", "specimen_material")
 
 
 class ContactSpec(BaseModel):
     """3D contact settings of the prototype (the model's are scaled from them); each key left
     out takes the engine's default for the structure (docs/sim3d.md). Valid ranges: the engine's
-    own (:data:`blastscale.sim3d.contact.SETTING_RANGES`)."""
+    own (:data:`blastscale.sim3d.contact_ranges.SETTING_RANGES`)."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     time_constant_s: Optional[float] = Field(
-        None, description="Normal contact time constant [s]", **_limits("time_constant")
+        None, description="Normal contact time constant [s]", **engine_limits("time_constant")
     )
     damping_ratio: Optional[float] = Field(
-        None, description="Normal contact damping ratio [-]", **_limits("damping_ratio")
+        None, description="Normal contact damping ratio [-]", **engine_limits("damping_ratio")
     )
     friction_time_constant_s: Optional[float] = Field(
-        None, description="Friction reference time constant [s]", **_limits("friction_time_constant")
+        None, description="Friction reference time constant [s]", **engine_limits("friction_time_constant")
     )
-    impedance_min: Optional[float] = Field(None, description="solimp dmin [-]", **_limits("impedance_min"))
-    impedance_max: Optional[float] = Field(None, description="solimp dmax [-]", **_limits("impedance_max"))
-    impedance_width_m: Optional[float] = Field(None, description="solimp width [m]", **_limits("impedance_width"))
+    impedance_min: Optional[float] = Field(None, description="solimp dmin [-]", **engine_limits("impedance_min"))
+    impedance_max: Optional[float] = Field(None, description="solimp dmax [-]", **engine_limits("impedance_max"))
+    impedance_width_m: Optional[float] = Field(None, description="solimp width [m]", **engine_limits("impedance_width"))
     cone: Optional[Literal[CONES]] = Field(None, description="Friction cone")
-    impratio: Optional[float] = Field(None, description="Friction/normal impedance ratio [-]", **_limits("impratio"))
+    impratio: Optional[float] = Field(
+        None, description="Friction/normal impedance ratio [-]", **engine_limits("impratio")
+    )
     solver: Optional[Literal[SOLVERS]] = Field(None, description="Constraint solver")
-    iterations: Optional[int] = Field(None, description="Solver iterations [-]", **_limits("iterations"))
-    tolerance: Optional[float] = Field(None, description="Solver tolerance [-]", **_limits("tolerance"))
+    iterations: Optional[int] = Field(None, description="Solver iterations [-]", **engine_limits("iterations"))
+    tolerance: Optional[float] = Field(None, description="Solver tolerance [-]", **engine_limits("tolerance"))
     settle_tolerance: Optional[float] = Field(
         None,
         description="Solver tolerance while settling before the first arrival [-] (default 1e-8 above 10 bodies, "
         "else the tolerance; the tolerance itself gives the settling of before issue #28)",
-        **_limits("settle_tolerance"),
+        **engine_limits("settle_tolerance"),
     )
-    noslip_iterations: Optional[int] = Field(None, description="No-slip iterations [-]", **_limits("noslip_iterations"))
+    noslip_iterations: Optional[int] = Field(
+        None, description="No-slip iterations [-]", **engine_limits("noslip_iterations")
+    )
     jacobian: Optional[Literal[JACOBIANS]] = Field(
         None, description="Constraint Jacobian layout (dense by default; sparse is 2.5-3.4x faster on columns)"
     )
@@ -275,11 +263,11 @@ class ContactSpec(BaseModel):
 class SimulationSpec(BaseModel):
     """Which engines run, for how long, and their numerical settings."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     engine: Literal["planar", "3d", "both"] = Field("both", description="Planar rocking, 3D rigid bodies or both")
     duration_s: float = Field(5.0, gt=0, le=1e5, description="Prototype time simulated after the shock arrival [s]")
     timestep_s: Optional[float] = Field(
-        None, description="Prototype 3D time step [s] (default from the structure)", **_limits("timestep")
+        None, description="Prototype 3D time step [s] (default from the structure)", **engine_limits("timestep")
     )
     record_every: Optional[int] = Field(
         None,

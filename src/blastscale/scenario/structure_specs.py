@@ -13,7 +13,7 @@ from pydantic import BaseModel, Field, model_validator
 
 from ..constants import DEFAULT_FRICTION
 from ..structures.column import MAX_DRUMS, MAX_SIDES, MIN_SIDES
-from .fields import _CONFIG, _at_most_one, _limits
+from .fields import SPEC_CONFIG, at_most_one, engine_limits
 
 __all__ = ["BlockSpec", "ColumnSpec", "WallSpec", "ArchSpec", "PortalSpec", "AssemblySpec", "Structure", "KINDS"]
 
@@ -21,7 +21,7 @@ __all__ = ["BlockSpec", "ColumnSpec", "WallSpec", "ArchSpec", "PortalSpec", "Ass
 class BlockSpec(BaseModel):
     """A monolithic rectangular block (paper Sec. "Equations of motion")."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     kind: Literal["block"] = Field(description="Structure kind")
     height_m: float = Field(10.0, gt=0, le=1000, description="Height 2h [m]")
     alpha_deg: Optional[float] = Field(None, gt=0, lt=90, description="Slenderness angle atan(b/h) [deg]")
@@ -29,7 +29,7 @@ class BlockSpec(BaseModel):
     depth_m: float = Field(1.0, gt=0, le=1000, description="Depth 2w across the blast [m]")
     density_kg_m3: float = Field(2000.0, gt=0, le=25000, description="Density [kg/m^3]")
     friction: float = Field(
-        DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-] (3D)", **_limits("friction")
+        DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-] (3D)", **engine_limits("friction")
     )
 
     @model_validator(mode="before")
@@ -41,13 +41,13 @@ class BlockSpec(BaseModel):
 
     @model_validator(mode="after")
     def _one_width(self) -> "BlockSpec":
-        return _at_most_one(self, "alpha_deg", "width_m")
+        return at_most_one(self, "alpha_deg", "width_m")
 
 
 class ColumnSpec(BaseModel):
     """A multi-drum column (paper Sec. "Application to multi-drum masonry columns")."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     kind: Literal["column"] = Field(description="Structure kind")
     section: Literal["square", "circular"] = Field("square", description="Drum cross-section")
     drums: int = Field(10, ge=1, le=MAX_DRUMS, description="Number of drums [-]")
@@ -56,18 +56,20 @@ class ColumnSpec(BaseModel):
     top_width_m: float = Field(1.28, gt=0, le=100, description="Side or diameter at the top [m]")
     sides: int = Field(32, ge=MIN_SIDES, le=MAX_SIDES, description="Polygon sides of a circular drum [-]")
     density_kg_m3: float = Field(2700.0, gt=0, le=25000, description="Density [kg/m^3] (marble)")
-    friction: float = Field(DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-]", **_limits("friction"))
+    friction: float = Field(
+        DEFAULT_FRICTION, description="Coulomb friction coefficient mu [-]", **engine_limits("friction")
+    )
 
 
 _DENSITY = dict(gt=0, le=25000, description="Density [kg/m^3]")
-_FRICTION = dict(description="Coulomb friction coefficient mu [-] at every joint", **_limits("friction"))
+_FRICTION = dict(description="Coulomb friction coefficient mu [-] at every joint", **engine_limits("friction"))
 
 
 class WallSpec(BaseModel):
     """A dry-stone wall facing the blast (plane y-z): courses of equal units, running or stack bond
     (docs/assemblies.md)."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     kind: Literal["wall"] = Field(description="Structure kind")
     length_m: float = Field(4.0, gt=0, le=1000, description="Wall length along y [m]")
     height_m: float = Field(3.0, gt=0, le=1000, description="Wall height [m]")
@@ -84,7 +86,7 @@ class WallSpec(BaseModel):
 class ArchSpec(BaseModel):
     """A circular arch of voussoirs facing the blast (plane y-z), optionally on piers (docs/assemblies.md)."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     kind: Literal["arch"] = Field(description="Structure kind")
     radius_m: float = Field(2.5, gt=0, le=1000, description="Radius of the centreline [m]")
     thickness_m: float = Field(0.5, gt=0, le=1000, description="Radial thickness [m] (< 2 x radius)")
@@ -107,7 +109,7 @@ class ArchSpec(BaseModel):
 class PortalSpec(BaseModel):
     """A trilithon facing the blast: two square columns (monolithic or of drums) and a free lintel."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     kind: Literal["portal"] = Field(description="Structure kind")
     column_height_m: float = Field(4.0, gt=0, le=1000, description="Column height [m]")
     column_width_m: float = Field(0.8, gt=0, le=1000, description="Column side (square), also the depth [m]")
@@ -122,7 +124,7 @@ class PortalSpec(BaseModel):
 class AssemblySpec(BaseModel):
     """Blocks from a block-model file: our JSON, a mesh (OBJ, STL, PLY) or COMPAS JSON (docs/assemblies.md)."""
 
-    model_config = _CONFIG
+    model_config = SPEC_CONFIG
     kind: Literal["assembly"] = Field(description="Structure kind")
     file: str = Field(description="Block-model file, relative to the scenario file")
     density_kg_m3: float = Field(

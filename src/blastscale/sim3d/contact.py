@@ -6,7 +6,7 @@ impedance ``d`` in (0, 1) that ramps from ``dmin`` to ``dmax`` over a penetratio
 (``solimp``). :class:`ContactSettings` states these in SI (seconds, metres) and scales them
 with the geometric factor lambda so that a reduced-scale model run, up-scaled, reproduces the
 prototype run (time x sqrt(lambda / lambda_g), length x lambda). The valid value of every setting is in
-:mod:`.contact_ranges` (re-exported here).
+:mod:`.contact_ranges`.
 
 One setting is ours and not MuJoCo's default: ``friction_time_constant``. MuJoCo gives the
 frictional directions of a contact the same reference damping ``b = 2 / (dmax tau)`` as the
@@ -35,19 +35,14 @@ from dataclasses import dataclass, replace
 
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from .._validate import BlastscaleInputError, check_positive, check_range
-from ..similitude import scaling_factors
-from .contact_ranges import CONES, JACOBIANS, SETTING_RANGES, SOLVERS, STEPS_AFTER_LOAD, Range, check_scalar
+from ..similitude.factors import scaling_factors
+from .contact_ranges import CONES, JACOBIANS, SETTING_RANGES, SOLVERS, STEPS_AFTER_LOAD, check_scalar
 from .solver_choice import default_jacobian
 
 __all__ = [
     "ASSEMBLY_SETTLE_TOLERANCE",
     "LOOSE_SETTLE_ABOVE_BODIES",
     "ContactSettings",
-    "CONES",
-    "SOLVERS",
-    "SETTING_RANGES",
-    "STEPS_AFTER_LOAD",
-    "Range",
     "default_contact",
     "mjcf_number",
     "reference_contact",

@@ -4,7 +4,7 @@ The geometry comes from :mod:`blastscale.structures`. Each body is described by 
 :class:`BodySpec`: a shape that knows how to write its own MJCF ``<geom>`` (and assets), its
 mass, the points of its base (for uplift and sliding recorders) and its loaded front face
 (for the blast force): boxes (:class:`BoxShape`), prisms and convex meshes (:class:`MeshShape`)
-provide the same members (:mod:`.shapes`, re-exported here). An assembly's supports are geoms of the world
+provide the same members (:mod:`.shapes`). An assembly's supports are geoms of the world
 body (the ground).
 
 Conventions (world frame): z up, the ground plane is z = 0, the blast comes from -x and
@@ -26,24 +26,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive
-from ..structures.block import STANDARD_GRAVITY, RectangularBlock
+from ..constants import STANDARD_GRAVITY
+from ..structures.block import RectangularBlock
 from .collision import BROAD_PHASE, body_order, engagement_depth
 from .contact import ContactSettings, mjcf_number
 from .initial import tilt_bodies
-from .shapes import BoxShape, FrontFace, MeshShape, PrismShape, engine_shape
+from .shapes import engine_shape
 
-__all__ = [
-    "BoxShape",
-    "PrismShape",
-    "MeshShape",
-    "FrontFace",
-    "BodySpec",
-    "Scene",
-    "build_scene",
-    "block_scene",
-    "structure_scene",
-    "engine_shape",
-]
+__all__ = ["BodySpec", "Scene", "build_scene", "block_scene", "structure_scene"]
 
 
 @dataclass(frozen=True)

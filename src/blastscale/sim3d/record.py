@@ -16,7 +16,7 @@ from .results import VARIABLES, Response3D, body_heights
 from .rotations import quaternion_to_matrix, tilt_angle
 from importlib.metadata import PackageNotFoundError, version
 
-__all__ = ["collapse_flags", "fallen_flags", "body_heights", "response_from_states"]
+__all__ = ["collapse_flags", "fallen_flags", "response_from_states"]
 
 #: The fall rule (:mod:`blastscale.structures.assembly`): a drop of the centre of mass by more than this
 #: fraction of the body's own height, or a turn by more than this angle [deg], means the body fell.

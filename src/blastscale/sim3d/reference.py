@@ -34,15 +34,7 @@ from .contact import (
 )
 from .model import structure_scene
 
-__all__ = [
-    "REFERENCE_DIGITS",
-    "REFERENCE_GRAVITY",
-    "REFERENCE_LENGTH",
-    "reference_factors",
-    "reference_scene",
-    "reference_settings",
-    "to_reference",
-]
+__all__ = ["REFERENCE_DIGITS", "reference_factors", "reference_scene", "reference_settings", "to_reference"]
 
 
 def reference_factors(structure, gravity: float) -> tuple:

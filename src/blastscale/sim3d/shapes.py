@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from ..structures.assembly import ConvexGeometry
+from ..structures.convex_block import ConvexGeometry
 from ..structures.base import BoxGeometry, PrismGeometry
 from ..structures.block import RectangularBlock
 from .contact import mjcf_number
@@ -104,7 +104,7 @@ class BoxShape:
 
 @dataclass(frozen=True)
 class MeshShape:
-    """A convex mesh of a general block (:class:`~blastscale.structures.assembly.ConvexGeometry`:
+    """A convex mesh of a general block (:class:`~blastscale.structures.convex_block.ConvexGeometry`:
     its hull's vertices in the body frame); MuJoCo takes their convex hull, as the block is."""
 
     geometry: ConvexGeometry

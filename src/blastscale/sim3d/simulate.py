@@ -26,7 +26,7 @@ import warnings
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
-from ..structures.block import STANDARD_GRAVITY
+from ..constants import STANDARD_GRAVITY
 from .contact import (
     MAX_TIMESTEP_FRACTION,
     SOFT_CONTACT_FACTOR,
@@ -36,7 +36,8 @@ from .contact import (
 )
 from .initial import body_velocities, rigid_rocking_velocity
 from .integrate import BLAST_MODES, integrate
-from .model import BoxShape, Scene
+from .shapes import BoxShape
+from .model import Scene
 from .record import response_from_states
 from .reference import reference_scene
 from .results import Response3D

@@ -25,7 +25,7 @@ import numpy as np
 from .._validate import check_positive
 from ..blast.parameters import BlastParameters
 from ..constants import STANDARD_GRAVITY
-from ..structures import is_block
+from ..structures.from_spec import is_block
 from ..structures.block import RectangularBlock
 from .factors import ScalingFactors
 from ..blast.load_model import load_model_record

@@ -11,12 +11,13 @@ from .base import (
     PrismGeometry,
     RestMassProperties,
     RigidBody,
-    frustum_mass_properties,
     rest_mass_properties,
     top_monitoring_point,
 )
-from .assembly import Assembly, ConvexBlock, ConvexGeometry, as_assembly
-from .block import STANDARD_GRAVITY, RectangularBlock
+from .frustum import frustum_mass_properties
+from .assembly import Assembly, as_assembly
+from .convex_block import ConvexBlock, ConvexGeometry
+from .block import RectangularBlock
 from .block_files import read_block_model
 from .generators import arch, portal, wall
 from .polyhedron import polyhedron_faces, polyhedron_mass_properties
@@ -45,7 +46,6 @@ __all__ = [
     "RestMassProperties",
     "rest_mass_properties",
     "SECTIONS",
-    "STANDARD_GRAVITY",
     "frustum_mass_properties",
     "top_monitoring_point",
     "STRUCTURE_BUILDERS",

@@ -35,11 +35,11 @@ import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive_scalar
 from .base import Face, MonitoringPoint, RigidBody, as_vertex_tuple
-from .convex_block import ConvexBlock, ConvexGeometry, _geometry, _given_geometry
+from .convex_block import ConvexBlock, block_geometry, given_block_geometry
 from .interfaces import CONTACT_TOLERANCE, check_assembly, find_interfaces
 from .polyhedron import face_label
 
-__all__ = ["ConvexBlock", "ConvexGeometry", "Assembly", "as_assembly", "FALL_DROP_FRACTION", "FALL_TILT_DEG"]
+__all__ = ["Assembly", "as_assembly", "FALL_DROP_FRACTION", "FALL_TILT_DEG"]
 
 #: A block fell when its centre of mass dropped by more than this fraction of its own height [-].
 FALL_DROP_FRACTION = 0.5
@@ -114,12 +114,12 @@ class Assembly:
     @functools.cached_property
     def _geometries(self) -> list:
         if self.source_bodies:
-            return [_given_geometry(b, body) for b, body in zip(self.blocks, self.source_bodies)]
-        return [_geometry(b) for b in self.blocks]
+            return [given_block_geometry(b, body) for b, body in zip(self.blocks, self.source_bodies)]
+        return [block_geometry(b) for b in self.blocks]
 
     @functools.cached_property
     def _support_geometries(self) -> list:
-        return [_geometry(b) for b in self.supports]
+        return [block_geometry(b) for b in self.supports]
 
     @property
     def size(self) -> float:

@@ -16,8 +16,8 @@ Every structure (:class:`~.block.RectangularBlock`, :class:`~.column.MultiDrumCo
 Frames: world z up, ground z = 0, blast from -x towards +x; each body frame sits at the centre
 of mass with axes along the world axes at rest.
 
-Mass properties of a linearly tapered prism (the solid of a tapered drum): :mod:`.frustum`
-(re-exported here); its faces: :func:`tapered_face`.
+Mass properties of a linearly tapered prism (the solid of a tapered drum): :mod:`.frustum`;
+its faces: :func:`tapered_face`.
 """
 
 from __future__ import annotations
@@ -27,24 +27,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .frustum import FrustumMassProperties, frustum_mass_properties, polygon_section_constants
 
 __all__ = [
     "BoxGeometry",
     "Face",
-    "FrustumMassProperties",
     "MonitoringPoint",
     "PrismGeometry",
     "RigidBody",
     "RestMassProperties",
     "as_vertex_tuple",
     "centred_box_vertices",
-    "frustum_mass_properties",
     "frustum_vertices",
     "polygon_ring",
     "rectangle_ring",
     "rest_mass_properties",
-    "polygon_section_constants",
     "tapered_face",
     "top_monitoring_point",
 ]

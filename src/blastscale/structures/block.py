@@ -13,11 +13,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from ..constants import STANDARD_GRAVITY  # noqa: F401 (re-exported by blastscale.structures)
+from ..constants import STANDARD_GRAVITY
 from .._validate import check_positive_scalar, check_range
 from .base import BoxGeometry, Face, MonitoringPoint, RigidBody, as_vertex_tuple, centred_box_vertices
 
-__all__ = ["RectangularBlock", "STANDARD_GRAVITY"]
+__all__ = ["RectangularBlock"]
 
 
 @dataclass(frozen=True)

@@ -31,13 +31,12 @@ from .base import (
     PrismGeometry,
     RigidBody,
     as_vertex_tuple,
-    frustum_mass_properties,
     frustum_vertices,
     polygon_ring,
-    polygon_section_constants,
     rectangle_ring,
     tapered_face,
 )
+from .frustum import frustum_mass_properties, polygon_section_constants
 
 __all__ = ["MultiDrumColumn", "SECTIONS", "MIN_SIDES", "MAX_SIDES", "TOP_WIDTH_RATIO_RANGE", "MAX_DRUMS"]
 

@@ -19,7 +19,7 @@ from .._validate import check_positive_scalar
 from .base import BoxGeometry, RigidBody, as_vertex_tuple
 from .polyhedron import hull_of, polyhedron_faces, polyhedron_mass_properties
 
-__all__ = ["ConvexBlock", "ConvexGeometry"]
+__all__ = ["BlockGeometry", "ConvexBlock", "ConvexGeometry", "block_geometry", "given_block_geometry"]
 
 
 @dataclass(frozen=True)
@@ -70,8 +70,27 @@ def _is_box(faces) -> bool:
 
 
 @dataclass(frozen=True)
-class _BlockGeometry:
-    """Derived geometry of one block (internal)."""
+class BlockGeometry:
+    """Derived geometry of one block of an assembly (:func:`block_geometry`, :func:`given_block_geometry`).
+
+    Attributes
+    ----------
+    mass : float
+        [kg]
+    volume : float
+        [m^3]
+    com : numpy.ndarray
+        Centre of mass, world frame at rest [m].
+    inertia : tuple
+        About the centre of mass [kg m^2]: the principal diagonal (3 values) or the full tensor (Ixx, Iyy,
+        Izz, Ixy, Ixz, Iyz).
+    faces : list
+        The faces of the block's solid (:func:`~blastscale.structures.polyhedron.polyhedron_faces`).
+    shape : object
+        The contact shape (a box or the convex hull about the centre of mass).
+    height : float
+        Vertical extent [m].
+    """
 
     mass: float
     volume: float
@@ -82,7 +101,10 @@ class _BlockGeometry:
     height: float
 
 
-def _geometry(block: ConvexBlock) -> _BlockGeometry:
+def block_geometry(block: ConvexBlock) -> BlockGeometry:
+    """The mass properties, faces and contact shape of ``block`` from its vertices and density: a box in
+    closed form (its masses bitwise those of earlier releases), any other hull through
+    :func:`~blastscale.structures.polyhedron.polyhedron_mass_properties`."""
     v = block.points
     faces = polyhedron_faces(v, block.name)
     if _is_box(faces):
@@ -105,16 +127,16 @@ def _geometry(block: ConvexBlock) -> _BlockGeometry:
         inertia = tuple(float(x) for x in inertia)
         hull = hull_of(v, block.name)
         shape = ConvexGeometry(as_vertex_tuple(v[hull.vertices] - com))
-    return _BlockGeometry(
+    return BlockGeometry(
         float(m), float(vol), np.asarray(com, dtype=float), inertia, faces, shape, float(np.ptp(v[:, 2]))
     )
 
 
-def _given_geometry(block: ConvexBlock, body: RigidBody) -> _BlockGeometry:
+def given_block_geometry(block: ConvexBlock, body: RigidBody) -> BlockGeometry:
     """The geometry of a block made from a structure's body (:func:`as_assembly`): the body's own mass,
     volume, centre of mass, inertia and contact shape, the faces of its solid."""
     v = block.points
-    return _BlockGeometry(
+    return BlockGeometry(
         body.mass,
         body.volume,
         np.asarray(body.com, dtype=float),

@@ -24,7 +24,8 @@ import math
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive_scalar, check_range
-from .assembly import Assembly, ConvexBlock
+from .assembly import Assembly
+from .convex_block import ConvexBlock
 
 __all__ = ["wall", "arch", "portal", "box_vertices_from_bounds", "BONDS"]
 

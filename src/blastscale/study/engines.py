@@ -9,19 +9,24 @@ from dataclasses import dataclass, replace
 from typing import Any, Callable, Optional
 
 from .._validate import BlastscaleInputError
-from ..scenario import Scenario
-from ..structures import is_block
+from ..scenario.scenario import Scenario
+from ..structures.from_spec import is_block
 from ..blast.load_model import PAPER_LOAD, LoadModel
 import numpy as np
 from ..blast.load_model import front_face_pulse
-from ..sim3d import ContactSettings
+from ..sim3d.contact import ContactSettings
 from ..sim3d.contact import time_constant_for_step
 from ..sim3d.contact import default_contact
 from ..sim3d.contact import reference_contact
-from ..analysis.structure3d import compare_structure3d, prototype_structure3d
+from ..analysis.structure3d import compare_structure3d
+from ..analysis.prototype3d import prototype_structure3d
 from ..analysis.ensemble import ensemble_compare
-from ..blast.bursts import model_for_burst
+from ..blast.parameters import model_for_burst
 from ..similitude.effects import front_face
+from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
+from ..rocking.system import RockingSystem
+from ..rocking.solver import DEFAULT_SOLVER
+from ..rocking.critical import critical_charge
 
 __all__ = [
     "Engine",
@@ -77,10 +82,6 @@ def _run_planar(ctx: Context):
     """Planar rocking of the prototype block and, with a design, of its specimen (its block, pulse
     and gravity from the design: the blast parameters are the design's, never recomputed), sampled
     at corresponding times and compared (:func:`~blastscale.analysis.rocking_similarity.compare_rocking`)."""
-
-    from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking import RockingSystem  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking import DEFAULT_SOLVER  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     sc, sim, d = ctx.scenario, ctx.scenario.simulation, ctx.design
     shape, dur = sc.blast.pulse_shape, float(sim.duration_s)
@@ -173,8 +174,6 @@ def _settings_3d(ctx: Context) -> dict:
         extrapolate=sc.blast.extrapolate,
     )
     if sc.blast.clearing or sc.blast.negative_phase:  # each system's faces are its own (the structure's)
-        from ..blast.load_model import LoadModel  # noqa: PLC0415 -- name clash at module level
-
         out["load_model"] = LoadModel(
             clearing=sc.blast.clearing,
             negative_phase=sc.blast.negative_phase,
@@ -256,8 +255,6 @@ def critical_charge_of(sc: Scenario, structure):
 
 @functools.lru_cache(maxsize=4096)
 def _critical_charge(structure, gravity, restitution, standoff, pulse_shape, blast_model, extrapolate, load_model=None):
-    from ..rocking import RockingSystem, critical_charge  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-
     system = RockingSystem.from_block(structure, gravity, restitution)
     return critical_charge(
         system,

@@ -7,10 +7,11 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..scenario import Scenario
+from ..scenario.scenario import Scenario
 import copy
 from ..analysis.compare import upscale_dataset
 import numpy as np
+from ..analysis.rocking_similarity import rocking_dataset
 
 __all__ = ["StudyResult"]
 
@@ -164,8 +165,6 @@ class StudyResult:
 
         groups = {}
         if self.planar is not None:  # a 3D run alone never loads the planar kernels (numba: 0.27 s)
-            from ..analysis.rocking_similarity import rocking_dataset  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-
             up = (
                 None
                 if self.planar.model is None

@@ -26,7 +26,7 @@ from typing import Optional
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from ..scenario import Scenario
+from ..scenario.scenario import Scenario
 
 __all__ = ["specimen_scenario"]
 

@@ -33,14 +33,14 @@ from dataclasses import dataclass, replace
 from typing import Any, Callable, Optional
 
 from .._validate import BlastscaleInputError
-from ..scenario import Scenario
+from ..scenario.scenario import Scenario
 from ..structures import from_spec
 from .engines import ENGINES, ENSEMBLE, Context, Engine, contact_settings, critical_charge_of, load_model_of
 from .memory import check_study_budget
 from .result import StudyResult
-from ..similitude import design_model
+from ..similitude.design import design_model
 from ..similitude.effects import front_face, structure_top
-from ..blast import blast_parameters
+from ..blast.parameters import blast_parameters
 
 __all__ = ["Study", "StudyPlan", "StudyWarning", "Progress", "design_of"]
 

@@ -4,7 +4,8 @@ fragility curves; the similarity map. Above the Study: every case is a Study (do
 sweep is driven here (:mod:`.run`); files are written by :mod:`blastscale.io` (the chunk store
 :mod:`blastscale.io.sweep_store`, below the sweeps)."""
 
-from .cases import VALID_KEY, evaluate_chunk, study_scalars
+from .outcomes import VALID_KEY
+from .cases import evaluate_chunk, study_scalars
 from .grids import Distribution, parse_distribution, parse_grid
 from .layout import StoreLocation, select, store_location
 from .outcomes import OUTCOME_KEYS, planar_outcomes

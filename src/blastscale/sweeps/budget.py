@@ -15,7 +15,7 @@ from typing import Optional
 
 from .._validate import BlastscaleInputError
 from ..study.memory import check_budget, estimate_seconds
-from ..study import Study
+from ..study.study import Study
 
 __all__ = ["check_sweep_budget", "check_cases_budget", "FIRST_SWING_SECONDS", "PLANAR_STUDY_SECONDS", "VALUES_PER_CASE"]
 

@@ -9,11 +9,11 @@ import math
 from .._validate import BlastscaleInputError
 from .outcomes import VALID_KEY, planar_outcomes
 from .spec import SweepSpec
-from ..study import Study
+from ..study.study import Study
 import warnings
-from ..sim3d.threads import map_threads
+from .._threads import map_threads
 
-__all__ = ["VALID_KEY", "study_scalars", "evaluate_chunk"]
+__all__ = ["study_scalars", "evaluate_chunk"]
 
 
 def _scalars(scenario) -> dict:

@@ -37,8 +37,10 @@ from .grids import Distribution
 from ..structures import from_spec
 from .. import __version__
 from .spec import SweepSpec
+from ..analysis.planar import first_swing_of, planar_system
 from ..study.memory import check_budget
 from .budget import FIRST_SWING_SECONDS
+from ..rocking.solver import RockingSolver
 
 __all__ = ["fragility", "FragilityResult", "fit_lognormal_fragility", "LognormalFit", "overturning_outcomes"]
 
@@ -212,8 +214,6 @@ def overturning_outcomes(spec, *, block_size: int = 20000) -> np.ndarray:
     The scenario must be a block (planar rocking). Fields that change only the load (charge,
     stand-off) are vectorised over one body; any other field builds the body of each case.
     """
-    from ..analysis.planar import first_swing_of, planar_system  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking import RockingSolver  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     base = spec.base
     if base.structure.kind != "block":

@@ -9,10 +9,12 @@ import numpy as np
 
 from .spec import SweepSpec, _plain
 from .._validate import BlastscaleInputError
-from ..study import Study
-from ..study.study import design_of
+from ..analysis.planar import first_swing_under, planar_system
+from ..study.study import Study, design_of
 from .._threads import interleave, map_interleaved
+from ..rocking.system import housner_restitution
 import warnings
+from ..rocking.solver import RockingSolver
 
 __all__ = ["OUTCOME_KEYS", "VALID_KEY", "planar_outcomes"]
 
@@ -66,8 +68,6 @@ def _outcome_group(sc, W, R, e) -> dict:
     Housner's) of one scenario ``sc`` (body, scale, law, blast model and pulse): the Study's own
     design (:func:`~blastscale.study.study.design_of` over the arrays, without the blast effects),
     then the first swing of prototype and specimen."""
-    from ..analysis.planar import first_swing_under, planar_system  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
-    from ..rocking import RockingSolver, housner_restitution  # noqa: PLC0415 -- start-up: at module top `blastscale` would load numba, scipy
 
     n = W.size
     out = {k: np.full(n, np.nan) for k in OUTCOME_KEYS}

@@ -15,7 +15,7 @@ from .._extras import require
 from .._validate import BlastscaleInputError
 from .cases import evaluate_chunk
 from .spec import SweepSpec
-from ..sim3d.threads import THREADS_ENV, available_cores
+from .._threads import THREADS_ENV, available_cores
 import logging
 import warnings
 import signal

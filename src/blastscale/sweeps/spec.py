@@ -20,7 +20,7 @@ from .grids import Distribution
 from .budget import VALUES_PER_CASE, check_cases_budget
 from .. import __version__
 from .._code import code_fingerprint
-from ..scenario import Scenario
+from ..scenario.scenario import Scenario
 
 __all__ = ["SweepAxis", "SweepSample", "SweepSpec", "planar_case"]
 

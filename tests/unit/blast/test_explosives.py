@@ -6,12 +6,9 @@ import math
 import pytest
 
 from blastscale._validate import BlastscaleInputError
+from blastscale.blast.explosive_library import EXPLOSIVES, IATG_01_80, UFC_3_340_02_TABLE_2_1, Explosive
 from blastscale.blast.explosives import (
-    EXPLOSIVES,
-    IATG_01_80,
     INITIATOR_WARNING_FRACTION,
-    UFC_3_340_02_TABLE_2_1,
-    Explosive,
     canonical_name,
     charge_equivalence,
     get_explosive,

@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 
 from blastscale._validate import BlastscaleInputError, OutOfRangeError
 from blastscale.blast import Friedlander, Triangular
-from blastscale.blast.faces import MixedModelWarning, face_loads, oblique_combination
+from blastscale.blast.faces import MixedModelWarning, face_loads
+from blastscale.blast.incidence import oblique_combination
 from blastscale.blast.incidence import INCIDENCE_MODELS
 from blastscale.blast.kingery_bulmash import KingeryBulmash
 from blastscale.blast.masi_fits import Masi2021

@@ -12,7 +12,8 @@ from pathlib import Path
 import pytest
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.io.output import Kind, claim
+from blastscale.io.targets import Kind
+from blastscale.io.output import claim
 
 KIND = Kind("a test output", lambda p: True)
 SRC = Path(__file__).resolve().parents[3] / "src"

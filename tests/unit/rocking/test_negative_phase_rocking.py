@@ -11,7 +11,7 @@ from scipy.integrate import solve_ivp
 from blastscale.blast import Friedlander, Tabulated, blast_parameters
 from blastscale.blast.load_model import LoadModel, PhasedPulse, front_face_pulse
 from blastscale.rocking import DEFAULT_SOLVER, RockingSystem, critical_charge
-from blastscale.rocking.critical import critical_charge_by_bisection
+from blastscale.rocking.critical_reference import critical_charge_by_bisection
 from blastscale.structures import RectangularBlock
 
 BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))

@@ -208,9 +208,10 @@ def test_example_scenarios_validate(path):
 
 
 def test_contact_ranges_are_the_engines_own():
-    """[simulation.contact] takes its bounds from sim3d.contact.SETTING_RANGES: a value just outside an
+    """[simulation.contact] takes its bounds from sim3d.contact_ranges.SETTING_RANGES: a value just outside an
     end is refused by the scenario and by ContactSettings alike, a value at a closed end accepted by both."""
-    from blastscale.sim3d.contact import SETTING_RANGES, ContactSettings
+    from blastscale.sim3d.contact_ranges import SETTING_RANGES
+    from blastscale.sim3d.contact import ContactSettings
 
     keys = {
         "time_constant": "time_constant_s",

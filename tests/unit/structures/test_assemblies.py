@@ -20,7 +20,7 @@ from blastscale.structures import (
     read_block_model,
     wall,
 )
-from blastscale.structures.base import frustum_mass_properties
+from blastscale.structures.frustum import frustum_mass_properties
 from blastscale.structures.generators import box_vertices_from_bounds
 
 

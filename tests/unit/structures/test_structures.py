@@ -10,7 +10,7 @@ import pytest
 from blastscale.similitude import scaling_factors
 from blastscale._validate import BlastscaleInputError
 from blastscale.structures import MonitoringPoint, MultiDrumColumn, RectangularBlock
-from blastscale.structures.base import frustum_mass_properties, polygon_section_constants
+from blastscale.structures.frustum import frustum_mass_properties, polygon_section_constants
 
 
 def _slices(s0, s1, H, rho, a, k, n=20000):

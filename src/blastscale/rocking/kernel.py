@@ -27,9 +27,10 @@ free rocking is followed event by event in closed form (:mod:`._free`); what the
 to the steps.
 
 Modules: this one holds the driver (:func:`solve_case`, releases the GIL; the loop of a batch over
-it, ``solve_into``, is in :mod:`._batch`) and re-exports the summary layout ``S_*`` / ``N_SUMMARY``; :mod:`._load` the pulse load
+it, ``solve_into``, is in :mod:`._batch`); :mod:`._load` the pulse load
 ``f(tau)``; :mod:`._dopri` the Dormand-Prince step, dense output, roots and step-size control;
-:mod:`._events` the impact, peak, tipping and lying-down events and the recording into the output
+:mod:`._events` the impact, peak, tipping and lying-down events, the summary layout (``S_*``,
+``N_SUMMARY``) and the recording into the output
 buffers; :mod:`._batch` splits a batch over threads. ``rhs`` and ``load_ratio`` are inlined into the
 step by numba (``inline="always"``: 1.6x faster per step, bitwise the same).
 Every ``@njit(cache=True)`` here goes through :mod:`blastscale._jit`: its cache is keyed on this
@@ -53,21 +54,6 @@ from ._events import (
     EV_NONE,
     EV_TIPPED,
     HALF_PI,
-    N_SUMMARY,
-    S_END_TAU,
-    S_FINAL_THETA,
-    S_FINAL_W,
-    S_FIRST_IMPACT_TAU,
-    S_FIRST_PEAK,
-    S_MAX_ABS_THETA,
-    S_N_IMPACTS,
-    S_N_PEAKS,
-    S_NREJECT,
-    S_NSTEPS,
-    S_OVERTURN_TAU,
-    S_OVERTURNED,
-    S_STATUS,
-    S_W_AT_ALPHA,
     impact,
     locate_events,
     initial_mode,
@@ -83,26 +69,10 @@ from ._events import (
 from ._free import N_MAX, free_rocking
 from ._series import pulse_piece
 from ._load import lift_time, next_breakpoint, pull_end, pulse_end, tail_lift_time
+from .layout import N_SUMMARY, S_OVERTURN_TAU, S_W_AT_ALPHA
 
-# the summary layout is read as _kernel.S_* by the solver, the capacity modules and analysis.sweeps
-__all__ = [
-    "solve_case",
-    "N_SUMMARY",
-    "S_STATUS",
-    "S_OVERTURNED",
-    "S_OVERTURN_TAU",
-    "S_FIRST_IMPACT_TAU",
-    "S_MAX_ABS_THETA",
-    "S_N_IMPACTS",
-    "S_END_TAU",
-    "S_NSTEPS",
-    "S_W_AT_ALPHA",
-    "S_N_PEAKS",
-    "S_FINAL_THETA",
-    "S_FINAL_W",
-    "S_NREJECT",
-    "S_FIRST_PEAK",
-]
+# the summary layout (S_*, N_SUMMARY) lives in ._events, read there by the solver, the first swing and the batch
+__all__ = ["solve_case"]
 
 
 @njit(cache=True, nogil=True)
