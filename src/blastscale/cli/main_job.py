@@ -20,23 +20,20 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from ..scenario import Scenario, load_scenario
 from ._app import (
     announce_run,
     app,
     console,
     console_err,
     fmt_value,
-    ignore_interrupts,
     one_line_warnings,
     print_json,
     print_written,
-    raise_if_interrupted,
     stage_progress,
     styled,
     table,
 )
-from .flags import SET_VALUES, scenario_with
+from .flags import SET_VALUES
 from .loads import print_design
 from ..report.html import split_unit_for_tables
 from ..report.verdict import label
@@ -44,9 +41,10 @@ from ..report.html import format_charge
 from ..report.verdict import verdict_line
 from ..report.card import card_of
 from .._hooks import pause_point
-from ..io.results import check_output_folder, output_folder
+from ..io.results import check_output_folder
 from ..report import write_study
 from ..study import Study
+from .steps import result_folder, read_scenario
 
 
 def _compare_table(title: str, prototype: dict, model: dict) -> Table:
@@ -202,53 +200,74 @@ def run_cmd(
     """Run a scenario: design the model, simulate prototype and model, compare, write a report."""
 
     pause_point("run:started")
-    with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
-        sc = Scenario.default() if scenario is None else load_scenario(scenario)
-    with one_line_warnings():  # a --set that replaces the key it excludes (width_m beside the file's alpha_deg)
-        sc = scenario_with(
-            sc,
-            values,
-            {
-                "blast.blast_model": blast_model,
-                "blast.charge_kg": charge,
-                "structure.friction": friction,
-                "simulation.duration_s": duration,
-            },
-        )
+    sc = read_scenario(
+        scenario,
+        values,
+        {
+            "blast.blast_model": blast_model,
+            "blast.charge_kg": charge,
+            "structure.friction": friction,
+            "simulation.duration_s": duration,
+        },
+    )
     if out is not None:
         check_output_folder(out, force)  # before any simulation
     study = Study(sc)
     with one_line_warnings():
-        design = study.check().design  # blast-fit and scale ranges, engines, memory: one line before any work
-        if sc.lab is not None:  # the [lab] table's charge (the initiator below it): one line before any work
-            from ..planning.card import check_lab
+        expected = _check(study, writes=out is not None, quiet=as_json)
+        result = _run(study, out, force, csv, expected, as_json)
+    _answer(result, out, csv, as_json)
 
-            check_lab(design, sc.lab)
-        writes = 3 if out is not None else 0  # histories, figures, report
-        expected = announce_run(study, console_err, writes=out is not None, quiet=as_json)  # its size, before it starts
-        with stage_progress(quiet=as_json, expected_s=expected) as tell:
-            state = {"done": 0, "total": 1}
 
-            def on_study(stage: str, done: int, total: int) -> None:
-                state.update(done=done, total=total + writes)
-                tell(stage, done, total + writes)
-                if done == 1:
-                    pause_point("run:simulating")
+def _check(study, writes: bool, quiet: bool) -> float | None:
+    """Everything that can be checked before any work (blast-fit and scale ranges, engines, memory, the
+    ``[lab]`` table's charge), one line each; then the run's size said. Returns its expected seconds."""
+    sc = study.scenario
+    design = study.check().design  # blast-fit and scale ranges, engines, memory: one line before any work
+    if sc.lab is not None:  # the [lab] table's charge (the initiator below it): one line before any work
+        from ..planning.card import check_lab
 
-            def on_write(stage: str) -> None:
-                tell(f"writing {stage}", state["done"], state["total"])
-                if state["done"] == state["total"] - writes:
-                    pause_point("run:writing")
-                state["done"] += 1
+        check_lab(design, sc.lab)
+    return announce_run(study, console_err, writes=writes, quiet=quiet)  # its size, before it starts
 
-            if out is None:
-                result = study.run(progress=on_study)
-            else:
-                with output_folder(
-                    out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts
-                ) as tmp:
-                    result = study.run(progress=on_study)
-                    write_study(result, tmp, progress=on_write, csv=csv)
+
+class _RunProgress:
+    """One progress bar for the study's stages and then the writing of its ``writes`` files; the test pause
+    points at the first simulation and at the first write."""
+
+    def __init__(self, tell, writes: int):
+        self.tell, self.writes = tell, writes
+        self.done, self.total = 0, 1
+
+    def study(self, stage: str, done: int, total: int) -> None:
+        self.done, self.total = done, total + self.writes
+        self.tell(stage, done, total + self.writes)
+        if done == 1:
+            pause_point("run:simulating")
+
+    def write(self, stage: str) -> None:
+        self.tell(f"writing {stage}", self.done, self.total)
+        if self.done == self.total - self.writes:
+            pause_point("run:writing")
+        self.done += 1
+
+
+def _run(study, out: Optional[Path], force: bool, csv: bool, expected: float | None, quiet: bool):
+    """Run the study and, with ``out``, write its result folder (histories, figures, report) through a
+    partial folder renamed into place at the end."""
+    writes = 3 if out is not None else 0  # histories, figures, report
+    with stage_progress(quiet=quiet, expected_s=expected) as tell:
+        progress = _RunProgress(tell, writes)
+        if out is None:
+            return study.run(progress=progress.study)
+        with result_folder(out, force) as tmp:
+            result = study.run(progress=progress.study)
+            write_study(result, tmp, progress=progress.write, csv=csv)
+    return result
+
+
+def _answer(result, out: Optional[Path], csv: bool, as_json: bool) -> None:
+    """The summary as one JSON object or as tables; the folder written."""
     if as_json:
         from ..report import summary_dict
 

@@ -28,6 +28,7 @@ from ..sweeps import SweepSpec
 from ..sweeps.grids import parse_number
 from ..sweeps.fragility import fragility
 from .options import check_plot_path
+from .steps import add_figure, answer
 from rich.table import Table
 import numpy as np
 from ..io.results import legacy_name
@@ -268,7 +269,21 @@ def similarity_map_cmd(
 
     check_plot_path(plot)
     base = _scenario(scenario, values)
-    grids = [
+    grids = _map_grids(scales, density_ratios, charges, standoffs)
+    bar, tick = count_progress(f"similarity map ({engine})", quiet=as_json)
+    if out is not None:
+        _resume_note(out)
+    with one_line_warnings(), bar:
+        run = _map_runner(out, scheduler, workers, chunk, tick)
+        ds = similarity_map(base, *grids, engine=engine, tolerance=tolerance, run=run)
+    res = _map_output(ds, engine)
+    add_figure(res, lambda: _map_figure(ds), plot)
+    answer(res, as_json=as_json, engine=engine, plot=plot, tables=lambda: _print_map(res, ds, out))
+
+
+def _map_grids(scales: str, density_ratios: str, charges: str, standoffs: str) -> list:
+    """The four axes of the map: lambda, gamma [-], charges [kg TNT], stand-offs [m]."""
+    return [
         parse_grid(t, n)
         for t, n in (
             (scales, "scales"),
@@ -277,18 +292,22 @@ def similarity_map_cmd(
             (standoffs, "standoffs"),
         )
     ]
-    bar, tick = count_progress(f"similarity map ({engine})", quiet=as_json)
-    if out is not None:
-        _resume_note(out)
-    with one_line_warnings(), bar:
 
-        def run(spec):
-            if out is None:
-                return run_in_memory(spec, scheduler=scheduler, workers=workers or 0, chunk=chunk, progress=tick)
-            run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, progress=tick)
-            return open_sweep(out)
 
-        ds = similarity_map(base, *grids, engine=engine, tolerance=tolerance, run=run)
+def _map_runner(out: Optional[Path], scheduler: Optional[str], workers: Optional[int], chunk: Optional[int], tick):
+    """How the map's sweep runs: in memory, or into the (resumable) store ``out``."""
+
+    def run(spec):
+        if out is None:
+            return run_in_memory(spec, scheduler=scheduler, workers=workers or 0, chunk=chunk, progress=tick)
+        run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, progress=tick)
+        return open_sweep(out)
+
+    return run
+
+
+def _map_output(ds, engine: str) -> dict:
+    """The ``similarity-map --json`` object: the axes, the counts and each map's values (NaN for invalid)."""
     res = {
         "dims": {k: ds[k].values.tolist() for k in ("length", "density_ratio", "charge_kg", "standoff_m")},
         "engine": engine,
@@ -312,19 +331,21 @@ def similarity_map_cmd(
     ):
         v = ds[name].values
         res[name] = np.where(np.isfinite(v.astype(float)), v, np.nan).tolist() if v.dtype.kind == "f" else v.tolist()
-    if plot:
-        from ..plots.similarity_map import plot_similarity_map
-        from ._app import save_figure
+    return res
 
-        save_figure(lambda: plot_similarity_map(ds), plot)
-        res["plot"] = plot
-    if as_json:
-        print_json(res, engine=engine)
-        return
+
+def _map_figure(ds):
+    from ..plots.similarity_map import plot_similarity_map
+
+    return plot_similarity_map(ds)
+
+
+def _print_map(res: dict, ds, out: Optional[Path]) -> None:
+    """The map's counts and its largest error; the store written."""
     unit = res["error_units"]
     console.print(
         table(
-            f"Similarity map ({engine}, up-scaled model vs prototype)",
+            f"Similarity map ({res['engine']}, up-scaled model vs prototype)",
             [
                 ("cases", str(res["n_cases"]), ""),
                 ("valid designs (model Z inside the blast fits)", str(res["n_valid"]), ""),
@@ -336,5 +357,3 @@ def similarity_map_cmd(
     )
     if out is not None:
         print_written(out, "the underlying sweep")
-    if plot:
-        print_written(plot)
