@@ -76,6 +76,15 @@ def _similarity_table(sim: dict) -> Table:
     )
 
 
+def _print_engine(title: str, engine: dict, note=None) -> None:
+    """One engine's summary: its comparison table, a ``note`` under it, its similarity table (with a model)."""
+    console.print(_compare_table(title, engine["prototype"], engine["model"]))
+    if note is not None:
+        console.print(note)
+    if engine.get("similarity") is not None:
+        console.print(_similarity_table(engine["similarity"]))
+
+
 def _print_result(result) -> None:
     sc, s = result.scenario, result.summary()
     exp = s["experiment"]
@@ -100,16 +109,7 @@ def _print_result(result) -> None:
             )
         )
     if s["planar"] is not None:
-        pl = s["planar"]
-        console.print(
-            _compare_table(
-                f"Planar rocking ({sc.blast.pulse_shape} pulse, {sc.simulation.duration_s:g} s)",
-                pl["prototype"],
-                pl["model"],
-            )
-        )
-        if pl["similarity"] is not None:
-            console.print(_similarity_table(pl["similarity"]))
+        _print_engine(f"Planar rocking ({sc.blast.pulse_shape} pulse, {sc.simulation.duration_s:g} s)", s["planar"])
     if s["critical"] is not None:
         console.print(
             styled(
@@ -120,22 +120,12 @@ def _print_result(result) -> None:
         )
     if s["3d"] is not None:
         r3 = s["3d"]
-        console.print(
-            _compare_table(
-                f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, Method {sc.blast.load})",
-                r3["prototype"],
-                r3["model"],
-            )
-        )
-        stab = (r3.get("prototype") or {}).get("stability")
+        stab, note = (r3.get("prototype") or {}).get("stability"), None
         if stab is not None:
             from ..report.outcomes import STABILITY_RULE, stability_words
 
-            console.print(
-                styled("under gravity alone the structure ", (stability_words(stab), "bold"), f" ({STABILITY_RULE})")
-            )
-        if r3.get("similarity") is not None:
-            console.print(_similarity_table(r3["similarity"]))
+            note = styled("under gravity alone the structure ", (stability_words(stab), "bold"), f" ({STABILITY_RULE})")
+        _print_engine(f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, Method {sc.blast.load})", r3, note)
 
     card = card_of(result)
     if card is not None:
