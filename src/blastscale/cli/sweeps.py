@@ -18,8 +18,7 @@ import typer
 from .._validate import BlastscaleInputError
 from ._app import activity, app, console, count_progress, one_line_warnings, print_json, print_written, table
 from ._signals import ignore_interrupts, set_interrupt_note
-from .flags import SET_VALUES, scenario_with
-from ..scenario import Scenario, load_scenario
+from .flags import SET_VALUES
 from ..sweeps.grids import parse_assignment
 from ..io.sweep_store import unfinished_chunks
 from ..sweeps.grids import parse_distribution, parse_grid
@@ -28,7 +27,7 @@ from ..sweeps import SweepSpec
 from ..sweeps.grids import parse_number
 from ..sweeps.fragility import fragility
 from .options import check_plot_path
-from .steps import add_figure, answer
+from .steps import add_figure, answer, read_scenario
 from rich.table import Table
 import numpy as np
 from ..io.results import legacy_name
@@ -45,15 +44,6 @@ CHUNK = typer.Option(
     help="Cases per task (default: --outcomes ~cases / (2 workers), at most 20000; planar ~cases / (4 workers), at most 2000; else 1).",
 )
 SEED = typer.Option(0, "--seed", help="Seed of the Monte Carlo draws (numpy default_rng).")
-
-
-def _scenario(path: Optional[Path], values: Optional[List[str]] = None):
-    """The scenario file (or the built-in default) with the ``--set KEY=VALUE`` overrides, as ``run`` reads it."""
-
-    with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
-        sc = Scenario.default() if path is None else load_scenario(path)
-    with one_line_warnings():  # a --set that replaces the key it excludes (width_m beside the file's alpha_deg)
-        return scenario_with(sc, values or [])
 
 
 def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
@@ -116,7 +106,7 @@ def sweep_cmd(
     (planar blocks, a \\[scale]): only the first-swing outcomes and largest rotations, about a
     million cases per minute."""
 
-    base = _scenario(scenario, values)
+    base = read_scenario(scenario, values)
     grid = _assignments(vary, "--vary", lambda text, key: parse_grid(text, key, numeric=False))
     dists = _assignments(sample, "--sample", parse_distribution)
     if dists and samples < 1:
@@ -193,7 +183,7 @@ def fragility_cmd(
     decided by the first-swing energy criterion (docs/capacity.md), vectorised."""
 
     check_plot_path(plot)
-    base = _scenario(scenario, values)
+    base = read_scenario(scenario, values)
     W = parse_grid(charges, "charges")
     with activity(f"fragility: {W.size} charges x {samples} draws", quiet=as_json):
         res = fragility(
@@ -268,7 +258,7 @@ def similarity_map_cmd(
     against the prototype (planar rocking or 3D) and whether the outcomes agree (docs/sweeps.md)."""
 
     check_plot_path(plot)
-    base = _scenario(scenario, values)
+    base = read_scenario(scenario, values)
     grids = _map_grids(scales, density_ratios, charges, standoffs)
     bar, tick = count_progress(f"similarity map ({engine})", quiet=as_json)
     if out is not None:
