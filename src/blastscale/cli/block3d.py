@@ -128,9 +128,10 @@ def block3d_cmd(
     """
 
     _check_restitution(restitution)
-    BlockFlags(height, width, alpha_deg, depth, density).block(plot)
+    flags = BlockFlags(height, width, alpha_deg, depth, density)
+    flags.block(plot)
     sc = scenario_from_flags(
-        structure=BlockFlags(height, width, alpha_deg, depth, density).structure_keys(friction=friction),
+        structure=flags.structure_keys(friction=friction),
         blast=blast_keys_3d(charge, standoff, blast_model, pulse_shape, load, incidence),
         scale=scale_keys(scale, density_ratio, gravity_ratio),
         simulation={

@@ -44,7 +44,7 @@ from .._hooks import pause_point
 from ..io.results import check_output_folder
 from ..report import write_study
 from ..study import Study
-from .steps import result_folder, read_scenario
+from .steps import SIMILARITY_TITLE, read_scenario, result_folder
 
 
 def _compare_table(title: str, prototype: dict, model: dict) -> Table:
@@ -67,7 +67,7 @@ def _similarity_table(sim: dict) -> Table:
     """The similarity figures of one engine, in words (the per-point figures are in the report)."""
 
     return table(
-        "Similarity (prototype vs up-scaled model)",
+        SIMILARITY_TITLE,
         [
             (label(k), fmt_value(v, ".3g"), split_unit_for_tables(k)[1])
             for k, v in sim.items()
