@@ -260,18 +260,7 @@ def compare_responses(
         times), ``n_times`` (samples compared).
     """
     peak_fraction = float(check_range("peak_fraction", peak_fraction, 0.0, 1.0))
-    proto, model = align(prototype_ds, upscaled_ds)
-    if start is not None or end is not None:
-        tt = proto["time"].values
-        lo = -np.inf if start is None else float(start)
-        hi = np.inf if end is None else float(end)
-        inside = np.flatnonzero((tt >= lo) & (tt <= hi))
-        if inside.size == 0:
-            raise BlastscaleInputError(
-                f"time window = [{lo:.6g}, {hi:.6g}] s is out of range: the common times are "
-                f"[{tt[0]:.6g}, {tt[-1]:.6g}] s"
-            )
-        proto, model = proto.isel(time=inside), model.isel(time=inside)
+    proto, model = _window(*align(prototype_ds, upscaled_ds), start, end)
     t = proto["time"].values
     components = {} if components is None else components
     if variables is None:
@@ -283,44 +272,7 @@ def compare_responses(
             and n in model.data_vars
             and n not in MOTION_VARIABLES
         ]
-    out_vars: dict = {}
-    for name in variables:
-        if name not in proto.data_vars or name not in model.data_vars:
-            raise BlastscaleInputError(
-                f"variable = {name!r} is not in both responses: valid values are "
-                f"{', '.join(n for n in proto.data_vars if n in model.data_vars)}"
-            )
-        vp, comp = _component(proto[name], name, components)
-        vm, _ = _component(model[name], name, components)
-        others = [d for d in vp.dims if d != "time"]
-        if len(others) > 1:
-            raise BlastscaleInputError(
-                f"variable = {name!r} has dims {vp.dims}: at most one besides time and component"
-            )
-        labels = [str(x) for x in vp[others[0]].values] if others else [name]
-        ap = np.asarray(vp.transpose("time", *others).values, dtype=float).reshape(t.size, -1)
-        am = np.asarray(vm.transpose("time", *others).values, dtype=float).reshape(t.size, -1)
-        per: dict = {}
-        for j, label in enumerate(labels):
-            p, m = ap[:, j], am[:, j]
-            tp1, p1 = _first_peak(t, p, peak_fraction)
-            tm1, m1 = _first_peak(t, m, peak_fraction)
-            peak_p = float(np.max(np.abs(p)))
-            diff = float(np.max(np.abs(p - m)))
-            per[label] = {
-                "component": comp,
-                "first_peak_prototype": p1,
-                "first_peak_model": m1,
-                "first_peak_time_prototype_s": tp1,
-                "first_peak_time_model_s": tm1,
-                "first_peak_ratio": m1 / p1 if p1 != 0.0 else math.nan,
-                "peak_prototype": peak_p,
-                "peak_model": float(np.max(np.abs(m))),
-                "max_abs_diff": diff,
-                "max_abs_diff_rel_peak": diff / peak_p if peak_p > 0.0 else math.nan,
-                "units": proto[name].attrs.get("units", ""),
-            }
-        out_vars[name] = per
+    out_vars = {name: _compare_variable(proto, model, name, components, peak_fraction) for name in variables}
     op, om = _outcome(prototype_ds, outcome), _outcome(upscaled_ds, outcome)
     return {
         "variables": out_vars,
@@ -329,4 +281,63 @@ def compare_responses(
         "outcomes_agree": None if op is None or om is None else op == om,
         "time_compared_s": [float(t[0]), float(t[-1])],
         "n_times": int(t.size),
+    }
+
+
+def _window(proto, model, start: float | None, end: float | None):
+    """The aligned responses restricted to the prototype times in [``start``, ``end``] [s] (None: open)."""
+    if start is None and end is None:
+        return proto, model
+    tt = proto["time"].values
+    lo = -np.inf if start is None else float(start)
+    hi = np.inf if end is None else float(end)
+    inside = np.flatnonzero((tt >= lo) & (tt <= hi))
+    if inside.size == 0:
+        raise BlastscaleInputError(
+            f"time window = [{lo:.6g}, {hi:.6g}] s is out of range: the common times are [{tt[0]:.6g}, {tt[-1]:.6g}] s"
+        )
+    return proto.isel(time=inside), model.isel(time=inside)
+
+
+def _compare_variable(proto, model, name: str, components: dict, peak_fraction: float) -> dict:
+    """One variable's metrics per element (body or point; the variable's name when it has no such dimension),
+    of its component (:func:`_component`)."""
+    if name not in proto.data_vars or name not in model.data_vars:
+        raise BlastscaleInputError(
+            f"variable = {name!r} is not in both responses: valid values are "
+            f"{', '.join(n for n in proto.data_vars if n in model.data_vars)}"
+        )
+    vp, comp = _component(proto[name], name, components)
+    vm, _ = _component(model[name], name, components)
+    others = [d for d in vp.dims if d != "time"]
+    if len(others) > 1:
+        raise BlastscaleInputError(f"variable = {name!r} has dims {vp.dims}: at most one besides time and component")
+    t = proto["time"].values
+    labels = [str(x) for x in vp[others[0]].values] if others else [name]
+    ap = np.asarray(vp.transpose("time", *others).values, dtype=float).reshape(t.size, -1)
+    am = np.asarray(vm.transpose("time", *others).values, dtype=float).reshape(t.size, -1)
+    units = proto[name].attrs.get("units", "")
+    return {
+        label: {"component": comp, **_metrics(t, ap[:, j], am[:, j], peak_fraction), "units": units}
+        for j, label in enumerate(labels)
+    }
+
+
+def _metrics(t: np.ndarray, p: np.ndarray, m: np.ndarray, peak_fraction: float) -> dict:
+    """First peaks (and their ratio), peaks and the largest difference of a prototype history ``p`` and an
+    up-scaled model history ``m`` on the common times ``t`` [s]."""
+    tp1, p1 = _first_peak(t, p, peak_fraction)
+    tm1, m1 = _first_peak(t, m, peak_fraction)
+    peak_p = float(np.max(np.abs(p)))
+    diff = float(np.max(np.abs(p - m)))
+    return {
+        "first_peak_prototype": p1,
+        "first_peak_model": m1,
+        "first_peak_time_prototype_s": tp1,
+        "first_peak_time_model_s": tm1,
+        "first_peak_ratio": m1 / p1 if p1 != 0.0 else math.nan,
+        "peak_prototype": peak_p,
+        "peak_model": float(np.max(np.abs(m))),
+        "max_abs_diff": diff,
+        "max_abs_diff_rel_peak": diff / peak_p if peak_p > 0.0 else math.nan,
     }

@@ -12,25 +12,21 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._progress import announce_run
 from ._app import app
-from ._output import (
-    console,
-    console_err,
-    fmt_value,
-    one_line_warnings,
-    print_json,
-    print_written,
-    save_figure,
-    stage_progress,
-    table,
-)
-from .flags import flags_named
+from ._output import console, fmt_value, table
 from . import options as opt
-from .options import block_from_options, check_plot_path
 from ..analysis.block3d_similarity import BLOCK_SIMILARITY_KEYS, BLOCK_SUMMARY_KEYS
-from ..study.study import Study
 from .flags import scenario_from_flags
+from .steps import (
+    SIMILARITY_TITLE,
+    BlockFlags,
+    add_comparison_3d_figure,
+    answer,
+    blast_keys_3d,
+    print_model_3d,
+    run_checked_3d,
+    scale_keys,
+)
 
 _SUMMARY_ROWS = (
     ("collapsed", "collapsed", "", ".6g"),
@@ -132,34 +128,13 @@ def block3d_cmd(
     up-scaled and compared with the prototype.
     """
 
-    if restitution is not None:
-        raise BlastscaleInputError(
-            f"restitution = {restitution:g} is not applicable to block3d: in 3D the impact loss emerges from "
-            "the inelastic contact (omit --restitution)"
-        )
-    block_from_options(height, width, alpha_deg, depth, density, required=True)
-    check_plot_path(plot)
+    _check_restitution(restitution)
+    flags = BlockFlags(height, width, alpha_deg, depth, density)
+    flags.block(plot)
     sc = scenario_from_flags(
-        structure={
-            "kind": "block",
-            "height_m": height,
-            "width_m": width,
-            "alpha_deg": alpha_deg,
-            "depth_m": depth,
-            "density_kg_m3": density,
-            "friction": friction,
-        },
-        blast={
-            "charge_kg": charge,
-            "standoff_m": standoff,
-            "blast_model": blast_model,
-            "pulse_shape": pulse_shape,
-            "load": load,
-            "incidence": incidence,
-        },
-        scale=None
-        if scale is None
-        else {"length": scale, "density_ratio": density_ratio, "gravity_ratio": gravity_ratio},
+        structure=flags.structure_keys(friction=friction),
+        blast=blast_keys_3d(charge, standoff, blast_model, pulse_shape, load, incidence),
+        scale=scale_keys(scale, density_ratio, gravity_ratio),
         simulation={
             "engine": "3d",
             "duration_s": duration,
@@ -169,24 +144,25 @@ def block3d_cmd(
             "critical_charge": False,
         },
     )
-    study = Study(sc)
-    with one_line_warnings():  # e.g. friction near the pivoting threshold, blast-fit ranges
-        with flags_named():  # a step past the stability bound, too long or too large: before any run
-            contact = study.check().contact
-        expected = announce_run(study, console_err, quiet=as_json)  # its size, before it starts
-        with stage_progress(quiet=as_json, expected_s=expected) as tell:
-            result = study.run(progress=tell)
+    result, contact = run_checked_3d(sc, as_json)
     out = block3d_output(result, contact, incidence)
-    if plot:
-        from ..plots.column import plot_column_comparison
+    add_comparison_3d_figure(out, result, result.response3d.prototype.dataset, plot)
+    answer(out, as_json=as_json, engine="3d", plot=plot, tables=lambda: _print_tables(result, out, scale))
 
-        r3 = result.response3d
-        save_figure(lambda: plot_column_comparison(result.structure, r3.prototype.dataset, r3.upscaled_dataset), plot)
-        out["plot"] = plot
-    if as_json:
-        print_json(out, engine="3d")
-        return
-    block, b = result.structure, sc.blast
+
+def _check_restitution(restitution: Optional[float]) -> None:
+    """``--restitution`` is accepted for compatibility with ``rock`` but has no value in 3D."""
+    if restitution is not None:
+        raise BlastscaleInputError(
+            f"restitution = {restitution:g} is not applicable to block3d: in 3D the impact loss emerges from "
+            "the inelastic contact (omit --restitution)"
+        )
+
+
+def _print_tables(result, out: dict, scale: Optional[float]) -> None:
+    """The prototype's table and, with a model, the up-scaled model's and the similarity's."""
+    block, sc = result.structure, result.scenario
+    b = sc.blast
     console.print(
         table(
             f"Prototype: {block.height:g} x {block.width:.4g} x {block.depth:g} m block, "
@@ -195,24 +171,17 @@ def block3d_cmd(
             _rows(out["prototype"]),
         )
     )
-    if scale is not None:
-        console.print(
-            table(
-                f"Model lambda = {scale:g}, up-scaled to prototype units "
-                f"(model charge {out['model_experiment']['charge_kg']:.4g} kg)",
-                _rows(out["model"]),
-            )
+    if scale is None:
+        return
+    print_model_3d(scale, out, _rows(out["model"]))
+    s = out["similarity"]
+    console.print(
+        table(
+            SIMILARITY_TITLE,
+            [
+                ("max |rotation difference|", f"{s['max_abs_rotation_diff_rad']:.3g}", "rad"),
+                ("max |sliding difference|", f"{s['max_abs_sliding_diff_m']:.3g}", "m"),
+                ("max |uplift difference|", f"{s['max_abs_uplift_diff_m']:.3g}", "m"),
+            ],
         )
-        s = out["similarity"]
-        console.print(
-            table(
-                "Similarity (prototype vs up-scaled model)",
-                [
-                    ("max |rotation difference|", f"{s['max_abs_rotation_diff_rad']:.3g}", "rad"),
-                    ("max |sliding difference|", f"{s['max_abs_sliding_diff_m']:.3g}", "m"),
-                    ("max |uplift difference|", f"{s['max_abs_uplift_diff_m']:.3g}", "m"),
-                ],
-            )
-        )
-    if plot:
-        print_written(plot)
+    )

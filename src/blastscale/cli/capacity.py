@@ -7,6 +7,7 @@ Units at this edge: lengths in m, density in kg/m^3, charge in kg TNT, the slend
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Optional
 
 import numpy as np
@@ -21,9 +22,9 @@ from ..study.memory import check_budget
 from ..sweeps.grids import parse_grid
 from . import blast_flags as bf
 from . import options as opt
-from ._output import activity, console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
+from ._output import activity, console, fmt_value, one_line_warnings, table
 from ._app import app
-from .options import block_from_options, check_plot_path
+from .steps import BlockFlags, add_figure, answer
 from .rocking import RESTITUTION_HELP, block_inputs
 
 
@@ -68,102 +69,145 @@ def critical_cmd(
     """Critical charge at a stand-off (largest charge without overturning), or with --charge the
     critical stand-off: the first-swing energy criterion after the pulse (docs/capacity.md),
     searched from the structure's own scale (any size, lab specimens included)."""
-    from ..analysis.planar import critical_of, planar_system
+    from ..analysis.planar import planar_system
 
-    block = block_from_options(height, width, alpha_deg, depth, density, required=True)
-    check_plot_path(plot)
+    block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
     bf.check_burst_flag(burst)
     lm = bf.load_model_from_flags(clearing, None, None, negative_phase, block, negative_phase_model)
     fit = model_for_burst(blast_model, burst).name
+    search = CriticalSearch(pulse_shape, blast_model, burst, fit, extrapolate, lm)
+    _check_one_target(standoff, charge)
+    system = planar_system(block, gravity, restitution)
+    res = _search_critical(system, standoff, charge, search, as_json)
+    out = {"inputs": block_inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
+    out.update(res.to_dict())
+    out["blast_model"] = blast_model  # the family asked for; the fit used is in load_model
+    bp = blast_parameters(res.charge_kg, res.standoff_m, fit, extrapolate=extrapolate)
+    out["critical_blast"] = _critical_blast(bp)
+    if lm is not None and lm.negative_phase and standoff is not None:
+        out["negative_phase_uncertainty"] = _negative_phase_uncertainty(system, standoff, search, as_json)
+    out["impulsive_critical_impulse_Pa_s"] = system.critical_impulse
+    out["uplift_pressure_Pa"] = system.uplift_pressure
+    if scale is not None:
+        out["model_experiment"] = _model_experiment(res, block, search, scale, density_ratio, gravity)
+    if plot:
+        add_figure(out, _pi_figure(system, res, bp, pulse_shape, as_json), plot)
+    answer(
+        out, as_json=as_json, engine="planar", plot=plot, tables=lambda: _print_critical(out, res, bp, system, block)
+    )
+
+
+@dataclass(frozen=True)
+class CriticalSearch:
+    """What a critical search runs with: the pulse shape, the blast family asked for and its burst, the fit
+    used (the family's fit for that burst), whether to search past the fits' range of Z, and the load model
+    (None: the reflected pulse alone)."""
+
+    pulse_shape: str
+    blast_model: str
+    burst: str
+    fit: str
+    extrapolate: bool
+    load_model: object = None
+
+    def kw(self) -> dict:
+        """The keywords of the rocking package's critical searches."""
+        return {"pulse_shape": self.pulse_shape, "blast_model": self.fit, "extrapolate": self.extrapolate}
+
+
+def _check_one_target(standoff: Optional[float], charge: Optional[float]) -> None:
     if (standoff is None) == (charge is None):
         raise BlastscaleInputError(
             f"standoff = {standoff}, charge = {charge}: give exactly one of --standoff (m, finds the critical charge) "
             "or --charge (kg, finds the critical stand-off)"
         )
-    system = planar_system(block, gravity, restitution)
-    with one_line_warnings(), activity("searching the critical scenario", quiet=as_json):
-        res = critical_of(
-            system,
-            standoff=standoff,
-            charge=charge,
-            pulse_shape=pulse_shape,
-            blast_model=fit,
-            extrapolate=extrapolate,
-            load_model=lm,
-        )
-    out = {"inputs": block_inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
-    out.update(res.to_dict())
-    out["blast_model"] = blast_model  # the family asked for; the fit used is in load_model
-    bp = blast_parameters(res.charge_kg, res.standoff_m, fit, extrapolate=extrapolate)
-    out["critical_blast"] = {
+
+
+def _search_critical(system, standoff: Optional[float], charge: Optional[float], search: CriticalSearch, quiet: bool):
+    """The critical charge at ``standoff`` [m], or the critical stand-off of ``charge`` [kg]."""
+    from ..analysis.planar import critical_of
+
+    with one_line_warnings(), activity("searching the critical scenario", quiet=quiet):
+        return critical_of(system, standoff=standoff, charge=charge, **search.kw(), load_model=search.load_model)
+
+
+def _critical_blast(bp) -> dict:
+    """The blast at the critical point: scaled distance [m/kg^(1/3)], reflected pressure [Pa] and impulse
+    [Pa s], positive-phase duration [s]."""
+    return {
         "scaled_distance_m_per_kg13": bp.scaled_distance,
         "reflected_pressure_Pa": bp.reflected_pressure,
         "reflected_impulse_Pa_s": bp.reflected_impulse,
         "positive_duration_s": bp.positive_duration,
     }
-    if lm is not None and lm.negative_phase and standoff is not None:
-        from ..analysis.planar import negative_phase_uncertainty_of
 
-        with one_line_warnings(), activity("the critical charge under each negative-phase model", quiet=as_json):
-            out["negative_phase_uncertainty"] = negative_phase_uncertainty_of(
-                system, standoff, lm, pulse_shape=pulse_shape, blast_model=fit, extrapolate=extrapolate
-            )
-    out["impulsive_critical_impulse_Pa_s"] = system.critical_impulse
-    out["uplift_pressure_Pa"] = system.uplift_pressure
-    if scale is not None:
-        from ..similitude.design import design_model
 
-        with one_line_warnings():
-            d = design_model(
-                res.charge_kg,
-                res.standoff_m,
-                scale,
-                density_ratio,
-                blast_model=blast_model,
-                geometry=block,
-                gravity=gravity,
-                extrapolate=extrapolate,
-                burst=burst,
-                load_model=lm,
-            )
-        out["model_experiment"] = {
-            "scale": scale,
-            "density_ratio": density_ratio,
-            "critical_charge_kg": d.specimen_charge_kg,
-            "standoff_m": d.specimen_standoff_m,
-        }
-    if plot:
-        from ..plots.rocking import plot_pi_diagram
-        from ..analysis.planar import pi_diagram_of
+def _negative_phase_uncertainty(system, standoff: float, search: CriticalSearch, quiet: bool) -> dict:
+    """The critical charge at ``standoff`` [m] under each negative-phase model."""
+    from ..analysis.planar import negative_phase_uncertainty_of
 
-        with activity("computing the P-I diagram", quiet=as_json):
-            # the curve for the pulse shape searched (impulsive: the triangular curve, whose
-            # high-pressure end is the impulsive limit)
-            if pulse_shape == "friedlander":
-                pi = pi_diagram_of(system, n=30, shape="friedlander", decay=bp.pulse("friedlander").decay)
-            else:
-                pi = pi_diagram_of(system, n=30)
+    with one_line_warnings(), activity("the critical charge under each negative-phase model", quiet=quiet):
+        return negative_phase_uncertainty_of(system, standoff, search.load_model, **search.kw())
 
-        def build():
-            import matplotlib.pyplot as plt
 
-            fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
-            plot_pi_diagram(pi, ax=ax)
-            ax.plot(
-                [bp.reflected_impulse],
-                [bp.reflected_pressure],
-                "o",
-                color="C3",
-                label=f"critical: {res.charge_kg:.4g} kg at {res.standoff_m:.4g} m",
-            )
-            ax.legend(fontsize=8)
-            return fig
+def _model_experiment(res, block, search: CriticalSearch, scale: float, density_ratio: float, gravity: float) -> dict:
+    """The model's charge for the critical scenario, designed by the general law at ``scale``."""
+    from ..similitude.design import design_model
 
-        save_figure(build, plot)
-        out["plot"] = plot
-    if as_json:
-        print_json(out, engine="planar")
-        return
+    with one_line_warnings():
+        d = design_model(
+            res.charge_kg,
+            res.standoff_m,
+            scale,
+            density_ratio,
+            blast_model=search.blast_model,
+            geometry=block,
+            gravity=gravity,
+            extrapolate=search.extrapolate,
+            burst=search.burst,
+            load_model=search.load_model,
+        )
+    return {
+        "scale": scale,
+        "density_ratio": density_ratio,
+        "critical_charge_kg": d.specimen_charge_kg,
+        "standoff_m": d.specimen_standoff_m,
+    }
+
+
+def _pi_figure(system, res, bp, pulse_shape: str, quiet: bool):
+    """The P-I overturning diagram's figure (a function that builds it), with the critical point."""
+    from ..plots.rocking import plot_pi_diagram
+    from ..analysis.planar import pi_diagram_of
+
+    with activity("computing the P-I diagram", quiet=quiet):
+        # the curve for the pulse shape searched (impulsive: the triangular curve, whose
+        # high-pressure end is the impulsive limit)
+        if pulse_shape == "friedlander":
+            pi = pi_diagram_of(system, n=30, shape="friedlander", decay=bp.pulse("friedlander").decay)
+        else:
+            pi = pi_diagram_of(system, n=30)
+
+    def build():
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+        plot_pi_diagram(pi, ax=ax)
+        ax.plot(
+            [bp.reflected_impulse],
+            [bp.reflected_pressure],
+            "o",
+            color="C3",
+            label=f"critical: {res.charge_kg:.4g} kg at {res.standoff_m:.4g} m",
+        )
+        ax.legend(fontsize=8)
+        return fig
+
+    return build
+
+
+def _print_critical(out: dict, res, bp, system, block) -> None:
+    """The critical scenario's table."""
     key, unit = ("critical_charge_kg", "kg") if res.searched == "charge" else ("critical_standoff_m", "m")
     rows = [
         (key.replace("_kg", "").replace("_m", "").replace("_", " "), f"{out[key]:.6g}", unit),
@@ -174,10 +218,9 @@ def critical_cmd(
         ("impulsive-limit critical impulse", f"{system.critical_impulse:.6g}", "Pa s"),
         ("simulations", str(res.evaluations), ""),
     ]
-    if scale is not None:
-        rows.append(
-            (f"model charge (lambda = {scale:g})", f"{out['model_experiment']['critical_charge_kg']:.6g}", "kg")
-        )
+    me = out.get("model_experiment")
+    if me is not None:
+        rows.append((f"model charge (lambda = {me['scale']:g})", f"{me['critical_charge_kg']:.6g}", "kg"))
     for m, v in out.get("negative_phase_uncertainty", {}).items():
         if isinstance(v, dict):  # the model uncertainty of the suction
             rows.append(
@@ -187,11 +230,13 @@ def critical_cmd(
                     "kg",
                 )
             )
+    i = out["inputs"]
     console.print(
-        table(f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})", rows)
+        table(
+            f"Critical scenario: {block.height:g} x {block.width:.4g} m block ({i['blast_model']}, {i['pulse_shape']})",
+            rows,
+        )
     )
-    if plot:
-        print_written(plot)
 
 
 @app.command("capacity")
@@ -226,30 +271,14 @@ def capacity_cmd(
     stand-off of that charge; with --scale also the reduced-scale model's curve, up-scaled to
     prototype charges (paper Eq. 8). First-swing energy criterion, all stand-offs at once."""
 
-    from ..analysis.capacity import model_capacity_curve
-    from ..analysis.planar import capacity_of, critical_of, planar_system
+    from ..analysis.planar import planar_system
 
-    block = block_from_options(height, width, alpha_deg, depth, density, required=True)
-    check_plot_path(plot)
-    R = parse_grid(standoffs, "standoffs")
-    if np.any(R <= 0):
-        raise BlastscaleInputError(f"standoffs = {standoffs!r} is out of range: every stand-off must be > 0 m")
-    if charge is not None and not charge > 0:
-        raise BlastscaleInputError(f"charge = {charge:g} kg is out of range: must be > 0 kg")
+    block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
+    R = _standoff_grid(standoffs, charge)
     system = planar_system(block, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
-
-    per = 5e-4 * (2 if scale is not None else 1)  # ~0.4-0.5 ms per stand-off (README "Speed"), x2 with the model
-    check_budget("--standoffs", R.size, "stand-offs", R.size * 8.0 * 40, R.size * per)
-    with one_line_warnings(), activity(f"capacity at {R.size} stand-offs", quiet=as_json):
-        curve = capacity_of(system, R, **kw)
-        mcap = None
-        if scale is not None:
-            mcap = model_capacity_curve(system, R, scale, density_ratio, gravity_ratio, **kw)
-        safe = None
-        if charge is not None:
-            safe = critical_of(system, charge=charge, **kw).standoff_m
-
+    model = None if scale is None else (scale, density_ratio, gravity_ratio)
+    run = _run_capacity(system, R, kw, model, charge, as_json)
     out = {
         "inputs": block_inputs(
             block,
@@ -262,32 +291,82 @@ def capacity_cmd(
         "blastscale_version": __version__,
         "method": "first-swing energy criterion after the pulse (docs/capacity.md)",
     }
-    out.update(curve.to_dict())
-    if mcap is not None:
-        out["model"] = mcap.to_dict()
-        ratio = mcap.upscaled_charge_kg / curve.critical_charge_kg
-        out["model"]["max_abs_relative_difference"] = (
-            float(np.nanmax(np.abs(ratio - 1.0))) if np.any(np.isfinite(ratio)) else None
-        )
-    if charge is not None:
-        out["safe_standoff"] = {"charge_kg": charge, "standoff_m": safe}
-    if plot:
-        from ..plots.capacity import plot_capacity
+    out.update(run.to_dict(charge))
+    add_figure(out, lambda: _capacity_figure(run, charge), plot)
+    answer(out, as_json=as_json, engine="planar", plot=plot, tables=lambda: _print_capacity(out, block, R, run, charge))
 
-        save_figure(lambda: plot_capacity(curve, mcap, charge=charge, safe_standoff=safe).figure, plot)
-        out["plot"] = plot
-    if as_json:
-        print_json(out, engine="planar")
-        return
 
+@dataclass(frozen=True)
+class CapacityRun:
+    """The capacity curves: the prototype's, the model's (None without ``--scale``) and the safe stand-off
+    [m] of ``--charge`` (None without it)."""
+
+    curve: object
+    model: object = None
+    safe_standoff_m: Optional[float] = None
+
+    def to_dict(self, charge: Optional[float]) -> dict:
+        """The curve's keys, then ``model`` (with the largest relative difference of its up-scaled critical
+        charges) and ``safe_standoff``, each when computed."""
+        out = self.curve.to_dict()
+        if self.model is not None:
+            out["model"] = self.model.to_dict()
+            ratio = self.model.upscaled_charge_kg / self.curve.critical_charge_kg
+            out["model"]["max_abs_relative_difference"] = (
+                float(np.nanmax(np.abs(ratio - 1.0))) if np.any(np.isfinite(ratio)) else None
+            )
+        if charge is not None:
+            out["safe_standoff"] = {"charge_kg": charge, "standoff_m": self.safe_standoff_m}
+        return out
+
+
+def _standoff_grid(standoffs: str, charge: Optional[float]) -> np.ndarray:
+    """The stand-offs [m] of ``--standoffs``, each > 0; ``--charge`` checked too (> 0 kg)."""
+    R = parse_grid(standoffs, "standoffs")
+    if np.any(R <= 0):
+        raise BlastscaleInputError(f"standoffs = {standoffs!r} is out of range: every stand-off must be > 0 m")
+    if charge is not None and not charge > 0:
+        raise BlastscaleInputError(f"charge = {charge:g} kg is out of range: must be > 0 kg")
+    return R
+
+
+def _run_capacity(system, R: np.ndarray, kw: dict, model, charge: Optional[float], quiet: bool) -> CapacityRun:
+    """The capacity curve at the stand-offs ``R`` [m]; with ``model`` = (lambda, gamma, gravity ratio) the
+    model's, up-scaled; with ``charge`` [kg] its safe stand-off. The budget is checked first."""
+    from ..analysis.capacity import model_capacity_curve
+    from ..analysis.planar import capacity_of, critical_of
+
+    per = 5e-4 * (2 if model is not None else 1)  # ~0.4-0.5 ms per stand-off (README "Speed"), x2 with the model
+    check_budget("--standoffs", R.size, "stand-offs", R.size * 8.0 * 40, R.size * per)
+    with one_line_warnings(), activity(f"capacity at {R.size} stand-offs", quiet=quiet):
+        curve = capacity_of(system, R, **kw)
+        mcap = None
+        if model is not None:
+            mcap = model_capacity_curve(system, R, *model, **kw)
+        safe = None
+        if charge is not None:
+            safe = critical_of(system, charge=charge, **kw).standoff_m
+    return CapacityRun(curve, mcap, safe)
+
+
+def _capacity_figure(run: CapacityRun, charge: Optional[float]):
+    from ..plots.capacity import plot_capacity
+
+    return plot_capacity(run.curve, run.model, charge=charge, safe_standoff=run.safe_standoff_m).figure
+
+
+def _print_capacity(out: dict, block, R: np.ndarray, run: CapacityRun, charge: Optional[float]) -> None:
+    """The table of critical charges per stand-off (and the model's), the time per stand-off, the safe
+    stand-off."""
+    mcap, i = run.model, out["inputs"]
     t = Table(
-        title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({blast_model}, {pulse_shape})",
+        title=f"Capacity: {block.height:g} x {block.width:.4g} m block ({i['blast_model']}, {i['pulse_shape']})",
         title_justify="left",
     )
     t.add_column("stand-off R [m]", justify="right")
     t.add_column("critical charge W_c [kg]", justify="right")
     if mcap is not None:
-        t.add_column(f"model R [m] (lambda = {scale:g})", justify="right")
+        t.add_column(f"model R [m] (lambda = {mcap.scale:g})", justify="right")
         t.add_column("model W_c [kg]", justify="right")
         t.add_column("up-scaled W_c [kg]", justify="right")
     for k in range(R.size):
@@ -300,8 +379,8 @@ def capacity_cmd(
             ]
         t.add_row(*row)
     console.print(t)
-    console.print(f"{curve.seconds_per_case * 1e3:.3g} ms per stand-off")
+    console.print(f"{run.curve.seconds_per_case * 1e3:.3g} ms per stand-off")
     if charge is not None:
-        console.print(f"safe stand-off for {charge:g} kg: {safe:.6g} m (it overturns the block closer than that)")
-    if plot:
-        print_written(plot)
+        console.print(
+            f"safe stand-off for {charge:g} kg: {run.safe_standoff_m:.6g} m (it overturns the block closer than that)"
+        )

@@ -13,23 +13,11 @@ from typing import Optional
 import typer
 
 from . import options as opt
-from ._progress import announce_run
 from ._app import app
-from ._output import (
-    console,
-    console_err,
-    fmt_value,
-    one_line_warnings,
-    print_json,
-    print_written,
-    save_figure,
-    stage_progress,
-    table,
-)
-from .flags import flags_named
+from ._output import console, fmt_value, table
 from .options import check_plot_path, scenario_default
-from ..study.study import Study
 from .flags import scenario_from_flags
+from .steps import add_comparison_3d_figure, answer, blast_keys_3d, print_model_3d, run_checked_3d, scale_keys
 
 _SUMMARY_ROWS = (
     ("collapsed", "collapsed", "", ".6g"),
@@ -89,38 +77,72 @@ def column_output(result, contact, incidence: Optional[str] = None, timestep: Op
     return out
 
 
+#: The options of ``column`` alone (the shared ones are in :mod:`.options`).
+SECTION = typer.Option(
+    None,
+    "--section",
+    help="Cross-section: square or circular (a regular polygon, --sides)" + _column_default("section") + ".",
+)
+DRUMS = typer.Option(None, "--drums", help="Number of drums N \\[-]" + _column_default("drums") + ".")
+HEIGHT = typer.Option(
+    None,
+    "--height",
+    help="Total height of the column \\[m] (drums of equal height)" + _column_default("height_m", " m") + ".",
+)
+BASE_WIDTH = typer.Option(
+    None,
+    "--base-width",
+    help="Side (square) or diameter (circular) at the base \\[m]" + _column_default("base_width_m", " m") + ".",
+)
+TOP_WIDTH = typer.Option(
+    None,
+    "--top-width",
+    help="Side or diameter at the top \\[m] (linear "
+    "taper; at most the base width)" + _column_default("top_width_m", " m") + ".",
+)
+SIDES = typer.Option(None, "--sides", help="Polygon sides of a circular drum \\[-]" + _column_default("sides") + ".")
+DENSITY = typer.Option(
+    None, "--density", help="Density rho \\[kg/m^3]" + _column_default("density_kg_m3", " kg/m^3, marble") + "."
+)
+TIMESTEP = typer.Option(
+    None,
+    "--timestep",
+    help="Prototype time step \\[s] (default: derived from the structure's size; the model's "
+    "is x sqrt(lambda)); rejected past the engine's stability bound.",
+)
+JACOBIAN = typer.Option(
+    None,
+    "--jacobian",
+    help="MuJoCo constraint Jacobian: dense or sparse (2.8x faster on the square column, the same history to "
+    "round-off). Default: sparse (MuJoCo 4.0.0's sparse-factorisation bug is not reached by these "
+    "scenes, docs/performance.md).",
+)
+STEP_AFTER_LOAD = typer.Option(
+    None,
+    "--step-after-load",
+    help="The step once every pulse has passed: double (default: twice the step, at most half the contact time "
+    "constant; 1.8x faster, first peaks within 0.3 %) or same (one step throughout, as before issue #28).",
+)
+ENSEMBLE = typer.Option(
+    None,
+    "--ensemble",
+    help="Also run N prototypes (and, with --scale, N models) with the load x (1 + 1e-6 u), u "
+    "in [-1, 1], and report first-peak spreads, noise floor, horizon and collapse "
+    "probabilities (circular columns are chaotic: compare them this way; "
+    "docs/columns.md). 0 (default): off; else 2 to 64.",
+)
+PLOT = typer.Option(None, "--plot", help="Write the monitoring-point histories and pose snapshots to this image file.")
+
+
 @app.command("column")
 def column_cmd(
-    section: Optional[str] = typer.Option(
-        None,
-        "--section",
-        help="Cross-section: square or circular (a regular polygon, --sides)" + _column_default("section") + ".",
-    ),
-    drums: Optional[int] = typer.Option(
-        None, "--drums", help="Number of drums N \\[-]" + _column_default("drums") + "."
-    ),
-    height: Optional[float] = typer.Option(
-        None,
-        "--height",
-        help="Total height of the column \\[m] (drums of equal height)" + _column_default("height_m", " m") + ".",
-    ),
-    base_width: Optional[float] = typer.Option(
-        None,
-        "--base-width",
-        help="Side (square) or diameter (circular) at the base \\[m]" + _column_default("base_width_m", " m") + ".",
-    ),
-    top_width: Optional[float] = typer.Option(
-        None,
-        "--top-width",
-        help="Side or diameter at the top \\[m] (linear "
-        "taper; at most the base width)" + _column_default("top_width_m", " m") + ".",
-    ),
-    sides: Optional[int] = typer.Option(
-        None, "--sides", help="Polygon sides of a circular drum \\[-]" + _column_default("sides") + "."
-    ),
-    density: Optional[float] = typer.Option(
-        None, "--density", help="Density rho \\[kg/m^3]" + _column_default("density_kg_m3", " kg/m^3, marble") + "."
-    ),
+    section: Optional[str] = SECTION,
+    drums: Optional[int] = DRUMS,
+    height: Optional[float] = HEIGHT,
+    base_width: Optional[float] = BASE_WIDTH,
+    top_width: Optional[float] = TOP_WIDTH,
+    sides: Optional[int] = SIDES,
+    density: Optional[float] = DENSITY,
     friction: Optional[float] = opt.FRICTION_3D,
     charge: float = opt.CHARGE,
     standoff: float = opt.STANDOFF,
@@ -131,38 +153,13 @@ def column_cmd(
     scale: Optional[float] = opt.SCALE,
     density_ratio: float = opt.DENSITY_RATIO,
     duration: Optional[float] = opt.DURATION_3D,
-    timestep: Optional[float] = typer.Option(
-        None,
-        "--timestep",
-        help="Prototype time step \\[s] (default: derived from the structure's size; the model's "
-        "is x sqrt(lambda)); rejected past the engine's stability bound.",
-    ),
-    jacobian: Optional[str] = typer.Option(
-        None,
-        "--jacobian",
-        help="MuJoCo constraint Jacobian: dense or sparse (2.8x faster on the square column, the same history to "
-        "round-off). Default: sparse (MuJoCo 4.0.0's sparse-factorisation bug is not reached by these "
-        "scenes, docs/performance.md).",
-    ),
-    step_after_load: Optional[str] = typer.Option(
-        None,
-        "--step-after-load",
-        help="The step once every pulse has passed: double (default: twice the step, at most half the contact time "
-        "constant; 1.8x faster, first peaks within 0.3 %) or same (one step throughout, as before issue #28).",
-    ),
+    timestep: Optional[float] = TIMESTEP,
+    jacobian: Optional[str] = JACOBIAN,
+    step_after_load: Optional[str] = STEP_AFTER_LOAD,
     record_every: Optional[int] = opt.RECORD_EVERY,
-    ensemble: Optional[int] = typer.Option(
-        None,
-        "--ensemble",
-        help="Also run N prototypes (and, with --scale, N models) with the load x (1 + 1e-6 u), u "
-        "in [-1, 1], and report first-peak spreads, noise floor, horizon and collapse "
-        "probabilities (circular columns are chaotic: compare them this way; "
-        "docs/columns.md). 0 (default): off; else 2 to 64.",
-    ),
+    ensemble: Optional[int] = ENSEMBLE,
     threads: Optional[int] = opt.THREADS,
-    plot: Optional[str] = typer.Option(
-        None, "--plot", help="Write the monitoring-point histories and pose snapshots to this image file."
-    ),
+    plot: Optional[str] = PLOT,
     as_json: bool = opt.JSON,
 ) -> None:
     """Rocking, wobbling, sliding and collapse of a multi-drum column under a blast (MuJoCo).
@@ -186,15 +183,8 @@ def column_cmd(
             "density_kg_m3": density,
             "friction": friction,
         },
-        blast={
-            "charge_kg": charge,
-            "standoff_m": standoff,
-            "blast_model": blast_model,
-            "pulse_shape": pulse_shape,
-            "load": load,
-            "incidence": incidence,
-        },
-        scale=None if scale is None else {"length": scale, "density_ratio": density_ratio},
+        blast=blast_keys_3d(charge, standoff, blast_model, pulse_shape, load, incidence),
+        scale=scale_keys(scale, density_ratio),
         simulation={
             "engine": "3d",
             "duration_s": duration,
@@ -207,24 +197,16 @@ def column_cmd(
             "step_after_load": step_after_load,
         },
     )
-    study = Study(sc)
-    with one_line_warnings():
-        with flags_named():  # a step past the stability bound, too long or too large: before any run
-            contact = study.check().contact
-        expected = announce_run(study, console_err, quiet=as_json)  # its size, before it starts
-        with stage_progress(quiet=as_json, expected_s=expected) as tell:
-            result = study.run(progress=tell)
+    result, contact = run_checked_3d(sc, as_json)
     out = column_output(result, contact, incidence, timestep)
-    if plot:
-        from ..plots.column import plot_column_comparison
+    add_comparison_3d_figure(out, result, result.response3d.prototype_dataset, plot)
+    answer(out, as_json=as_json, engine="3d", plot=plot, tables=lambda: _print_tables(result, out, scale))
 
-        r3 = result.response3d
-        save_figure(lambda: plot_column_comparison(result.structure, r3.prototype_dataset, r3.upscaled_dataset), plot)
-        out["plot"] = plot
-    if as_json:
-        print_json(out, engine="3d")
-        return
-    col, b = result.structure, sc.blast
+
+def _print_tables(result, out: dict, scale: Optional[float]) -> None:
+    """The prototype's table; with a model, the up-scaled model's and the similarity's; the ensembles'."""
+    col, sc = result.structure, result.scenario
+    b = sc.blast
     title = (
         f"Prototype: {col.drums}-drum {col.section} column, {col.height:g} m, {col.base_width:g} -> "
         f"{col.top_width:g} m; {b.charge_kg:g} kg TNT at {b.standoff_m:g} m ({b.blast_model}, {b.pulse_shape}, load {b.load}, "
@@ -232,33 +214,30 @@ def column_cmd(
     )
     console.print(table(title, _rows(out["prototype"])))
     if scale is not None:
-        console.print(
-            table(
-                f"Model lambda = {scale:g}, up-scaled to prototype units (model charge "
-                f"{out['model_experiment']['charge_kg']:.4g} kg)",
-                _rows(out["model"]),
-            )
-        )
-        s = out["similarity"]
-        rows = [
-            ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
-            (f"first-peak ratio at the top ({s['top_point']})", fmt_value(s["top_first_peak_ratio"], ".4f"), "-"),
-            ("max |top displacement difference|", fmt_value(s["max_abs_top_displacement_diff_m"], ".3g"), "m"),
-        ]
-        for name, p in s["points"].items():
-            rows.append(
-                (
-                    f"{name}: first-peak ratio / max |diff| rel. peak",
-                    f"{fmt_value(p['first_peak_ratio'], '.4f')} / "
-                    f"{fmt_value(p['max_abs_displacement_diff_rel_peak'], '.3g')}",
-                    "-",
-                )
-            )
-        console.print(table("Similarity (prototype vs up-scaled model, x displacement)", rows))
+        print_model_3d(scale, out, _rows(out["model"]))
+        console.print(table("Similarity (prototype vs up-scaled model, x displacement)", _similarity_rows(out)))
     if "ensemble" in out:
         _print_ensemble(out["ensemble"], result.ensemble.top_point, scale is not None)
-    if plot:
-        print_written(plot)
+
+
+def _similarity_rows(out: dict) -> list[tuple[str, str, str]]:
+    """The similarity's rows: the outcomes, the top point's figures, then each monitoring point's."""
+    s = out["similarity"]
+    rows = [
+        ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
+        (f"first-peak ratio at the top ({s['top_point']})", fmt_value(s["top_first_peak_ratio"], ".4f"), "-"),
+        ("max |top displacement difference|", fmt_value(s["max_abs_top_displacement_diff_m"], ".3g"), "m"),
+    ]
+    for name, p in s["points"].items():
+        rows.append(
+            (
+                f"{name}: first-peak ratio / max |diff| rel. peak",
+                f"{fmt_value(p['first_peak_ratio'], '.4f')} / "
+                f"{fmt_value(p['max_abs_displacement_diff_rel_peak'], '.3g')}",
+                "-",
+            )
+        )
+    return rows
 
 
 def _print_ensemble(e: dict, top_point: str, with_model: bool) -> None:

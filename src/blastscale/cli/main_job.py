@@ -20,8 +20,6 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from ..scenario.scenario import Scenario
-from ..scenario.files import load_scenario
 from ._progress import announce_run
 from ._app import app
 from ._output import (
@@ -35,8 +33,7 @@ from ._output import (
     styled,
     table,
 )
-from ._signals import ignore_interrupts, raise_if_interrupted
-from .flags import SET_VALUES, scenario_with
+from .flags import SET_VALUES
 from .loads import print_design
 from ..report.markup import split_unit_for_tables
 from ..report.verdict import label
@@ -44,9 +41,10 @@ from ..report.markup import format_charge
 from ..report.verdict import verdict_line
 from ..report.card import card_of
 from .._hooks import pause_point
-from ..io.results import check_output_folder, output_folder
+from ..io.results import check_output_folder
 from ..report import write_study
 from ..study.study import Study
+from .steps import SIMILARITY_TITLE, read_scenario, result_folder
 
 
 def _compare_table(title: str, prototype: dict, model: dict) -> Table:
@@ -69,13 +67,22 @@ def _similarity_table(sim: dict) -> Table:
     """The similarity figures of one engine, in words (the per-point figures are in the report)."""
 
     return table(
-        "Similarity (prototype vs up-scaled model)",
+        SIMILARITY_TITLE,
         [
             (label(k), fmt_value(v, ".3g"), split_unit_for_tables(k)[1])
             for k, v in sim.items()
             if not isinstance(v, (dict, list))
         ],
     )
+
+
+def _print_engine(title: str, engine: dict, note=None) -> None:
+    """One engine's summary: its comparison table, a ``note`` under it, its similarity table (with a model)."""
+    console.print(_compare_table(title, engine["prototype"], engine["model"]))
+    if note is not None:
+        console.print(note)
+    if engine.get("similarity") is not None:
+        console.print(_similarity_table(engine["similarity"]))
 
 
 def _print_result(result) -> None:
@@ -102,16 +109,7 @@ def _print_result(result) -> None:
             )
         )
     if s["planar"] is not None:
-        pl = s["planar"]
-        console.print(
-            _compare_table(
-                f"Planar rocking ({sc.blast.pulse_shape} pulse, {sc.simulation.duration_s:g} s)",
-                pl["prototype"],
-                pl["model"],
-            )
-        )
-        if pl["similarity"] is not None:
-            console.print(_similarity_table(pl["similarity"]))
+        _print_engine(f"Planar rocking ({sc.blast.pulse_shape} pulse, {sc.simulation.duration_s:g} s)", s["planar"])
     if s["critical"] is not None:
         console.print(
             styled(
@@ -122,22 +120,12 @@ def _print_result(result) -> None:
         )
     if s["3d"] is not None:
         r3 = s["3d"]
-        console.print(
-            _compare_table(
-                f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, Method {sc.blast.load})",
-                r3["prototype"],
-                r3["model"],
-            )
-        )
-        stab = (r3.get("prototype") or {}).get("stability")
+        stab, note = (r3.get("prototype") or {}).get("stability"), None
         if stab is not None:
             from ..report.outcomes import STABILITY_RULE, stability_words
 
-            console.print(
-                styled("under gravity alone the structure ", (stability_words(stab), "bold"), f" ({STABILITY_RULE})")
-            )
-        if r3.get("similarity") is not None:
-            console.print(_similarity_table(r3["similarity"]))
+            note = styled("under gravity alone the structure ", (stability_words(stab), "bold"), f" ({STABILITY_RULE})")
+        _print_engine(f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, Method {sc.blast.load})", r3, note)
 
     card = card_of(result)
     if card is not None:
@@ -202,53 +190,74 @@ def run_cmd(
     """Run a scenario: design the model, simulate prototype and model, compare, write a report."""
 
     pause_point("run:started")
-    with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
-        sc = Scenario.default() if scenario is None else load_scenario(scenario)
-    with one_line_warnings():  # a --set that replaces the key it excludes (width_m beside the file's alpha_deg)
-        sc = scenario_with(
-            sc,
-            values,
-            {
-                "blast.blast_model": blast_model,
-                "blast.charge_kg": charge,
-                "structure.friction": friction,
-                "simulation.duration_s": duration,
-            },
-        )
+    sc = read_scenario(
+        scenario,
+        values,
+        {
+            "blast.blast_model": blast_model,
+            "blast.charge_kg": charge,
+            "structure.friction": friction,
+            "simulation.duration_s": duration,
+        },
+    )
     if out is not None:
         check_output_folder(out, force)  # before any simulation
     study = Study(sc)
     with one_line_warnings():
-        design = study.check().design  # blast-fit and scale ranges, engines, memory: one line before any work
-        if sc.lab is not None:  # the [lab] table's charge (the initiator below it): one line before any work
-            from ..planning.card import check_lab
+        expected = _check(study, writes=out is not None, quiet=as_json)
+        result = _run(study, out, force, csv, expected, as_json)
+    _answer(result, out, csv, as_json)
 
-            check_lab(design, sc.lab)
-        writes = 3 if out is not None else 0  # histories, figures, report
-        expected = announce_run(study, console_err, writes=out is not None, quiet=as_json)  # its size, before it starts
-        with stage_progress(quiet=as_json, expected_s=expected) as tell:
-            state = {"done": 0, "total": 1}
 
-            def on_study(stage: str, done: int, total: int) -> None:
-                state.update(done=done, total=total + writes)
-                tell(stage, done, total + writes)
-                if done == 1:
-                    pause_point("run:simulating")
+def _check(study, writes: bool, quiet: bool) -> float | None:
+    """Everything that can be checked before any work (blast-fit and scale ranges, engines, memory, the
+    ``[lab]`` table's charge), one line each; then the run's size said. Returns its expected seconds."""
+    sc = study.scenario
+    design = study.check().design  # blast-fit and scale ranges, engines, memory: one line before any work
+    if sc.lab is not None:  # the [lab] table's charge (the initiator below it): one line before any work
+        from ..planning.card import check_lab
 
-            def on_write(stage: str) -> None:
-                tell(f"writing {stage}", state["done"], state["total"])
-                if state["done"] == state["total"] - writes:
-                    pause_point("run:writing")
-                state["done"] += 1
+        check_lab(design, sc.lab)
+    return announce_run(study, console_err, writes=writes, quiet=quiet)  # its size, before it starts
 
-            if out is None:
-                result = study.run(progress=on_study)
-            else:
-                with output_folder(
-                    out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts
-                ) as tmp:
-                    result = study.run(progress=on_study)
-                    write_study(result, tmp, progress=on_write, csv=csv)
+
+class _RunProgress:
+    """One progress bar for the study's stages and then the writing of its ``writes`` files; the test pause
+    points at the first simulation and at the first write."""
+
+    def __init__(self, tell, writes: int):
+        self.tell, self.writes = tell, writes
+        self.done, self.total = 0, 1
+
+    def study(self, stage: str, done: int, total: int) -> None:
+        self.done, self.total = done, total + self.writes
+        self.tell(stage, done, total + self.writes)
+        if done == 1:
+            pause_point("run:simulating")
+
+    def write(self, stage: str) -> None:
+        self.tell(f"writing {stage}", self.done, self.total)
+        if self.done == self.total - self.writes:
+            pause_point("run:writing")
+        self.done += 1
+
+
+def _run(study, out: Optional[Path], force: bool, csv: bool, expected: float | None, quiet: bool):
+    """Run the study and, with ``out``, write its result folder (histories, figures, report) through a
+    partial folder renamed into place at the end."""
+    writes = 3 if out is not None else 0  # histories, figures, report
+    with stage_progress(quiet=quiet, expected_s=expected) as tell:
+        progress = _RunProgress(tell, writes)
+        if out is None:
+            return study.run(progress=progress.study)
+        with result_folder(out, force) as tmp:
+            result = study.run(progress=progress.study)
+            write_study(result, tmp, progress=progress.write, csv=csv)
+    return result
+
+
+def _answer(result, out: Optional[Path], csv: bool, as_json: bool) -> None:
+    """The summary as one JSON object or as tables; the folder written."""
     if as_json:
         from ..report import summary_dict
 

@@ -12,6 +12,8 @@ stated before the first item starts.
 from __future__ import annotations
 
 import fnmatch
+import json
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
@@ -61,82 +63,120 @@ def reproduce_cmd(
     every = items(examples)
     left_out = skipped(examples)
     if list_items:
-        for it in every:
-            console.print(f"{it.name:45s} {it.title}")
-        for why in left_out:
-            console_err.print(f"skipped: {why}")
+        _list(every, left_out)
         return
+    chosen = _chosen(every, only)
+    kind = Kind("a blastscale reproduce folder (no item.json nor reproduce summary.json)", is_reproduce_folder)
+    with claim(out, kind, reuse=lambda p: not any(p.iterdir()) or is_reproduce_folder(p)) as c:
+        folder, created = c.path, not c.path.exists()
+        todo = [it for it in chosen if not item_done(it, folder, quick)]
+        _announce(todo, chosen, quick)
+        if created:
+            folder.mkdir()
+        set_interrupt_note(lambda: _kept(folder, every, created))
+        made = _make(chosen, todo, folder, quick, created)
+        infos = _write_report(folder, every)
+    _print_made(out, chosen, made, len(infos))
+    for why in left_out:
+        console_err.print(f"skipped: {why}")
+    if made.failures:
+        for f in made.failures:
+            print_error(f)
+        raise typer.Exit(1)
+
+
+def _list(every, left_out) -> None:
+    """``--list``: each item's name and title; the items this installation cannot make, on stderr."""
+    for it in every:
+        console.print(f"{it.name:45s} {it.title}")
+    for why in left_out:
+        console_err.print(f"skipped: {why}")
+
+
+def _chosen(every, only: list[str]) -> list:
+    """The items ``--only``'s shell patterns name (all without ``--only``); none is an error."""
     chosen = [it for it in every if not only or any(fnmatch.fnmatch(it.name, pat) for pat in only)]
     if not chosen:
         raise BlastscaleInputError(
             f"only = {' '.join(only)!r} matches no item: valid names are {', '.join(it.name for it in every)}"
         )
-    kind = Kind("a blastscale reproduce folder (no item.json nor reproduce summary.json)", is_reproduce_folder)
-    with claim(out, kind, reuse=lambda p: not any(p.iterdir()) or is_reproduce_folder(p)) as c:
-        folder, created = c.path, not c.path.exists()
-        todo = [it for it in chosen if not item_done(it, folder, quick)]
-        secs, size = expected_cost(todo, quick)
-        console_err.print(
-            f"reproduce: {len(todo)} of {len(chosen)} items to make"
-            + (
-                f", about {format_duration(secs)} and {format_size(size)} on this kind of machine"
-                if todo
-                else " (every one is done)"
-            )
-            + (
-                ""
-                if quick or not todo
-                else "; --quick makes every item in about "
-                f"{format_duration(expected_cost(todo, True)[0])} (a smoke test)"
-            ),
-            soft_wrap=True,
-        )
-        if created:
-            folder.mkdir()
-        set_interrupt_note(lambda: _kept(folder, every, created))
-        status: dict[str, str] = {}
-        failures: list[str] = []
-        try:
-            with one_line_warnings(), stage_progress() as tell:
-                for i, it in enumerate(chosen):
-                    tell(f"{it.name}", i, len(chosen))
-                    if it not in todo:
-                        status[it.name] = "skipped (done)"
-                        continue
-                    try:
-                        info = run_item(it, folder, quick, output_folder)
-                        status[it.name] = f"done in {info['wall_time_s']:.1f} s"
-                    except (BlastscaleInputError, RuntimeError, OSError) as exc:
-                        status[it.name] = "FAILED"
-                        failures.append(f"{it.name}: {' '.join(str(exc).split())}")
-                tell("report", len(chosen), len(chosen))
-        except BaseException:
-            if created and not any(folder.iterdir()):
-                folder.rmdir()  # interrupted before any item: nothing left behind
-            raise
-        import json
+    return chosen
 
-        infos = []
-        for it in every:  # the report covers every item done so far, chosen now or before
-            marker = folder / it.name / MARKER
-            if marker.is_file():
-                infos.append(json.loads(marker.read_text()))
-        meta = provenance()
-        write_atomic(folder / "report.html", render_reproduce_report(folder, infos, meta))
-        write_json(folder / "summary.json", {**meta, "items": infos})
+
+def _announce(todo: list, chosen: list, quick: bool) -> None:
+    """One line on stderr: how many items are left to make, their expected time and size."""
+    secs, size = expected_cost(todo, quick)
+    console_err.print(
+        f"reproduce: {len(todo)} of {len(chosen)} items to make"
+        + (
+            f", about {format_duration(secs)} and {format_size(size)} on this kind of machine"
+            if todo
+            else " (every one is done)"
+        )
+        + (
+            ""
+            if quick or not todo
+            else f"; --quick makes every item in about {format_duration(expected_cost(todo, True)[0])} (a smoke test)"
+        ),
+        soft_wrap=True,
+    )
+
+
+@dataclass
+class _Made:
+    """Each chosen item's status (done in, skipped, FAILED) and the failures' one-line reasons."""
+
+    status: dict[str, str] = field(default_factory=dict)
+    failures: list[str] = field(default_factory=list)
+
+
+def _make(chosen: list, todo: list, folder: Path, quick: bool, created: bool) -> _Made:
+    """Make the items ``todo`` of ``chosen`` into ``folder``, one progress stage each; a failed item is
+    recorded and the next one made. An interrupt before any item removes a folder this run created."""
+    made = _Made()
+    try:
+        with one_line_warnings(), stage_progress() as tell:
+            for i, it in enumerate(chosen):
+                tell(f"{it.name}", i, len(chosen))
+                if it not in todo:
+                    made.status[it.name] = "skipped (done)"
+                    continue
+                try:
+                    info = run_item(it, folder, quick, output_folder)
+                    made.status[it.name] = f"done in {info['wall_time_s']:.1f} s"
+                except (BlastscaleInputError, RuntimeError, OSError) as exc:
+                    made.status[it.name] = "FAILED"
+                    made.failures.append(f"{it.name}: {' '.join(str(exc).split())}")
+            tell("report", len(chosen), len(chosen))
+    except BaseException:
+        if created and not any(folder.iterdir()):
+            folder.rmdir()  # interrupted before any item: nothing left behind
+        raise
+    return made
+
+
+def _write_report(folder: Path, every) -> list[dict]:
+    """report.html and summary.json over every item done so far (chosen now or before); their item records."""
+    infos = []
+    for it in every:  # the report covers every item done so far, chosen now or before
+        marker = folder / it.name / MARKER
+        if marker.is_file():
+            infos.append(json.loads(marker.read_text()))
+    meta = provenance()
+    write_atomic(folder / "report.html", render_reproduce_report(folder, infos, meta))
+    write_json(folder / "summary.json", {**meta, "items": infos})
+    return infos
+
+
+def _print_made(out: Path, chosen: list, made: _Made, n_items: int) -> None:
+    """The status table of the chosen items and the folder written."""
     t = Table(title=f"blastscale reproduce -> {out}", title_justify="left")
     t.add_column("item")
     t.add_column("status")
     for it in chosen:
-        t.add_row(it.name, status[it.name])
+        t.add_row(it.name, made.status[it.name])
     console.print(t)
-    print_written(out, f"report.html, {len(infos)} items")
-    for why in left_out:
-        console_err.print(f"skipped: {why}")
-    if failures:
-        for f in failures:
-            print_error(f)
-        raise typer.Exit(1)
+    print_written(out, f"report.html, {n_items} items")
 
 
 def _kept(folder: Path, every, created: bool) -> str:

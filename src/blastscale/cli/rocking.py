@@ -12,12 +12,12 @@ from typing import Optional
 
 import typer
 
-from ._output import activity, console, fmt_value, print_json, print_written, save_figure, table
+from ._output import activity, console, fmt_value, table
 from ._app import app
 from . import blast_flags as bf
 from .flags import flags_named
 from . import options as opt
-from .options import block_from_options, check_plot_path
+from .steps import SIMILARITY_TITLE, BlockFlags, add_figure, answer, scale_keys
 from ..blast.load_model import load_model_record
 from ..study.engines import load_model_of
 from ..study.study import Study
@@ -101,18 +101,11 @@ def rock_cmd(
     simulated, up-scaled to prototype units and compared with the prototype.
     """
 
-    block = block_from_options(height, width, alpha_deg, depth, density, required=True)
-    check_plot_path(plot)
+    flags = BlockFlags(height, width, alpha_deg, depth, density)
+    block = flags.block(plot)
     bf.check_burst_flag(burst)
     sc = scenario_from_flags(
-        structure={
-            "kind": "block",
-            "height_m": height,
-            "width_m": width,
-            "alpha_deg": alpha_deg,
-            "depth_m": depth,
-            "density_kg_m3": density,
-        },
+        structure=flags.structure_keys(),
         blast={
             "charge_kg": charge,
             "standoff_m": standoff,
@@ -123,9 +116,7 @@ def rock_cmd(
             "negative_phase": negative_phase,
             **bf.negative_phase_model_key(negative_phase, negative_phase_model),
         },
-        scale=None
-        if scale is None
-        else {"length": scale, "density_ratio": density_ratio, "gravity_ratio": gravity_ratio},
+        scale=scale_keys(scale, density_ratio, gravity_ratio),
         simulation={
             "engine": "planar",
             "duration_s": duration,
@@ -135,29 +126,35 @@ def rock_cmd(
             "critical_charge": False,
         },
     )
-    out: dict = {
-        "inputs": block_inputs(
-            block,
-            charge_kg=charge,
-            standoff_m=standoff,
-            duration_s=duration,
-            pulse_shape=pulse_shape,
-            blast_model=blast_model,
-            restitution=restitution,
-            gravity_m_s2=gravity,
-            scale=scale,
-            density_ratio=density_ratio if scale is not None else None,
-            gravity_ratio=gravity_ratio if scale is not None else None,
-        )
-    }
+    inputs = block_inputs(
+        block,
+        charge_kg=charge,
+        standoff_m=standoff,
+        duration_s=duration,
+        pulse_shape=pulse_shape,
+        blast_model=blast_model,
+        restitution=restitution,
+        gravity_m_s2=gravity,
+        scale=scale,
+        density_ratio=density_ratio if scale is not None else None,
+        gravity_ratio=gravity_ratio if scale is not None else None,
+    )
     with flags_named(), activity("simulating the rocking response", quiet=as_json):
         result = Study(sc).run()
+    out = _rock_output(result, block, inputs)
+    add_figure(out, lambda: _rocking_figure(result), plot)
+    answer(out, as_json=as_json, engine="planar", plot=plot, tables=lambda: _print_tables(result, block, out))
+
+
+def _rock_output(result, block, inputs: dict) -> dict:
+    """The ``rock --json`` object: ``inputs``, the planar result's keys and, with a design, the model
+    experiment; the prototype's restitution and the load model used."""
     planar = result.planar
-    res = planar.prototype
-    sim = planar if result.design is not None else None
+    out: dict = {"inputs": inputs}
     out.update({k: v for k, v in planar.to_dict().items() if v is not None})
-    if sim is not None:
-        d = result.design
+    d = result.design
+    if d is not None:
+        scale = inputs["scale"]
         out["model_experiment"] = {
             "charge_kg": d.specimen_charge_kg,
             "standoff_m": d.specimen_standoff_m,
@@ -167,50 +164,53 @@ def rock_cmd(
             "time_factor": d.factors.time,
             "angular_velocity_factor": d.factors.angular_velocity,
         }
-    out["prototype"]["restitution"] = res.restitution
+    out["prototype"]["restitution"] = planar.prototype.restitution
     out["load_model"] = _load_model_record(result)
-    if plot:
-        from ..plots.rocking import rocking_figure
+    return out
 
-        save_figure(lambda: rocking_figure(res, sim), plot)
-        out["plot"] = plot
-    if as_json:
-        print_json(out, engine="planar")
-        return
+
+def _rocking_figure(result):
+    """theta(t), theta_dot(t) and the phase portrait of the prototype (and the up-scaled model)."""
+    from ..plots.rocking import rocking_figure
+
+    planar = result.planar
+    return rocking_figure(planar.prototype, planar if result.design is not None else None)
+
+
+def _print_tables(result, block, out: dict) -> None:
+    """The prototype's table and, with a model, the up-scaled model's and the similarity's."""
+    i = out["inputs"]
     console.print(
         table(
             f"Prototype: {block.height:g} x {block.width:.4g} m block (alpha = {math.degrees(block.alpha):.4g} deg), "
-            f"{charge:g} kg TNT at {standoff:g} m ({blast_model}, {pulse_shape})",
+            f"{i['charge_kg']:g} kg TNT at {i['standoff_m']:g} m ({i['blast_model']}, {i['pulse_shape']})",
             _summary_rows(out["prototype"]),
         )
     )
-    if sim is not None:
-        me = out["model_experiment"]
-        console.print(
-            table(
-                f"Model lambda = {scale:g}, gamma = {density_ratio:g}: {me['charge_kg']:.4g} kg at {me['standoff_m']:.4g} m, "
-                "up-scaled to prototype units",
-                _summary_rows(out["model"]),
-            )
+    if result.design is None:
+        return
+    me = out["model_experiment"]
+    console.print(
+        table(
+            f"Model lambda = {i['scale']:g}, gamma = {i['density_ratio']:g}: {me['charge_kg']:.4g} kg at {me['standoff_m']:.4g} m, "
+            "up-scaled to prototype units",
+            _summary_rows(out["model"]),
         )
-        s = out["similarity"]
-        console.print(
-            table(
-                "Similarity (prototype vs up-scaled model)",
-                [
-                    ("max |rotation difference|", f"{s['max_abs_rotation_diff_rad']:.3g}", "rad"),
-                    ("  up to the tipping point", f"{s['max_abs_rotation_diff_to_tipping_rad']:.3g}", "rad"),
-                    ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
-                    ("overturn time difference (model - prototype)", fmt_value(s["collapse_time_diff_s"], ".3g"), "s"),
-                    (
-                        "fall, |theta_dot difference| / p at equal angle",
-                        fmt_value(s["max_fall_phase_diff_rad"], ".3g"),
-                        "rad",
-                    ),
-                    ("first-peak ratio model/prototype", f"{s['first_peak_ratio']:.6g}", "-"),
-                    ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
-                ],
-            )
-        )
-    if plot:
-        print_written(plot)
+    )
+    console.print(table(SIMILARITY_TITLE, _similarity_rows(out["similarity"])))
+
+
+def _similarity_rows(s: dict) -> list[tuple[str, str, str]]:
+    return [
+        ("max |rotation difference|", f"{s['max_abs_rotation_diff_rad']:.3g}", "rad"),
+        ("  up to the tipping point", f"{s['max_abs_rotation_diff_to_tipping_rad']:.3g}", "rad"),
+        ("max |angular velocity difference|", f"{s['max_abs_angular_velocity_diff_rad_s']:.3g}", "rad/s"),
+        ("overturn time difference (model - prototype)", fmt_value(s["collapse_time_diff_s"], ".3g"), "s"),
+        (
+            "fall, |theta_dot difference| / p at equal angle",
+            fmt_value(s["max_fall_phase_diff_rad"], ".3g"),
+            "rad",
+        ),
+        ("first-peak ratio model/prototype", f"{s['first_peak_ratio']:.6g}", "-"),
+        ("outcomes agree", fmt_value(s["outcomes_agree"]), ""),
+    ]

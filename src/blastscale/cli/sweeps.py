@@ -19,9 +19,7 @@ from .._validate import BlastscaleInputError
 from ._output import activity, console, count_progress, one_line_warnings, print_json, print_written, table
 from ._app import app
 from ._signals import ignore_interrupts, set_interrupt_note
-from .flags import SET_VALUES, scenario_with
-from ..scenario.scenario import Scenario
-from ..scenario.files import load_scenario
+from .flags import SET_VALUES
 from ..sweeps.grids import parse_assignment
 from ..io.sweep_store import unfinished_chunks
 from ..sweeps.grids import parse_distribution, parse_grid
@@ -30,6 +28,7 @@ from ..sweeps.spec import SweepSpec
 from ..sweeps.grids import parse_number
 from ..sweeps.fragility import fragility
 from .options import check_plot_path
+from .steps import add_figure, answer, read_scenario
 from rich.table import Table
 import numpy as np
 from ..io.results import legacy_name
@@ -46,15 +45,6 @@ CHUNK = typer.Option(
     help="Cases per task (default: --outcomes ~cases / (2 workers), at most 20000; planar ~cases / (4 workers), at most 2000; else 1).",
 )
 SEED = typer.Option(0, "--seed", help="Seed of the Monte Carlo draws (numpy default_rng).")
-
-
-def _scenario(path: Optional[Path], values: Optional[List[str]] = None):
-    """The scenario file (or the built-in default) with the ``--set KEY=VALUE`` overrides, as ``run`` reads it."""
-
-    with one_line_warnings():  # e.g. a [lab.explosives] table that redefines a library explosive
-        sc = Scenario.default() if path is None else load_scenario(path)
-    with one_line_warnings():  # a --set that replaces the key it excludes (width_m beside the file's alpha_deg)
-        return scenario_with(sc, values or [])
 
 
 def _assignments(items: Optional[List[str]], option: str, parse) -> dict:
@@ -117,7 +107,7 @@ def sweep_cmd(
     (planar blocks, a \\[scale]): only the first-swing outcomes and largest rotations, about a
     million cases per minute."""
 
-    base = _scenario(scenario, values)
+    base = read_scenario(scenario, values)
     grid = _assignments(vary, "--vary", lambda text, key: parse_grid(text, key, numeric=False))
     dists = _assignments(sample, "--sample", parse_distribution)
     if dists and samples < 1:
@@ -194,7 +184,7 @@ def fragility_cmd(
     decided by the first-swing energy criterion (docs/capacity.md), vectorised."""
 
     check_plot_path(plot)
-    base = _scenario(scenario, values)
+    base = read_scenario(scenario, values)
     W = parse_grid(charges, "charges")
     with activity(f"fragility: {W.size} charges x {samples} draws", quiet=as_json):
         res = fragility(
@@ -269,8 +259,22 @@ def similarity_map_cmd(
     against the prototype (planar rocking or 3D) and whether the outcomes agree (docs/sweeps.md)."""
 
     check_plot_path(plot)
-    base = _scenario(scenario, values)
-    grids = [
+    base = read_scenario(scenario, values)
+    grids = _map_grids(scales, density_ratios, charges, standoffs)
+    bar, tick = count_progress(f"similarity map ({engine})", quiet=as_json)
+    if out is not None:
+        _resume_note(out)
+    with one_line_warnings(), bar:
+        run = _map_runner(out, scheduler, workers, chunk, tick)
+        ds = similarity_map(base, *grids, engine=engine, tolerance=tolerance, run=run)
+    res = _map_output(ds, engine)
+    add_figure(res, lambda: _map_figure(ds), plot)
+    answer(res, as_json=as_json, engine=engine, plot=plot, tables=lambda: _print_map(res, ds, out))
+
+
+def _map_grids(scales: str, density_ratios: str, charges: str, standoffs: str) -> list:
+    """The four axes of the map: lambda, gamma [-], charges [kg TNT], stand-offs [m]."""
+    return [
         parse_grid(t, n)
         for t, n in (
             (scales, "scales"),
@@ -279,18 +283,22 @@ def similarity_map_cmd(
             (standoffs, "standoffs"),
         )
     ]
-    bar, tick = count_progress(f"similarity map ({engine})", quiet=as_json)
-    if out is not None:
-        _resume_note(out)
-    with one_line_warnings(), bar:
 
-        def run(spec):
-            if out is None:
-                return run_in_memory(spec, scheduler=scheduler, workers=workers or 0, chunk=chunk, progress=tick)
-            run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, progress=tick)
-            return open_sweep(out)
 
-        ds = similarity_map(base, *grids, engine=engine, tolerance=tolerance, run=run)
+def _map_runner(out: Optional[Path], scheduler: Optional[str], workers: Optional[int], chunk: Optional[int], tick):
+    """How the map's sweep runs: in memory, or into the (resumable) store ``out``."""
+
+    def run(spec):
+        if out is None:
+            return run_in_memory(spec, scheduler=scheduler, workers=workers or 0, chunk=chunk, progress=tick)
+        run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, progress=tick)
+        return open_sweep(out)
+
+    return run
+
+
+def _map_output(ds, engine: str) -> dict:
+    """The ``similarity-map --json`` object: the axes, the counts and each map's values (NaN for invalid)."""
     res = {
         "dims": {k: ds[k].values.tolist() for k in ("length", "density_ratio", "charge_kg", "standoff_m")},
         "engine": engine,
@@ -314,19 +322,21 @@ def similarity_map_cmd(
     ):
         v = ds[name].values
         res[name] = np.where(np.isfinite(v.astype(float)), v, np.nan).tolist() if v.dtype.kind == "f" else v.tolist()
-    if plot:
-        from ..plots.similarity_map import plot_similarity_map
-        from ._output import save_figure
+    return res
 
-        save_figure(lambda: plot_similarity_map(ds), plot)
-        res["plot"] = plot
-    if as_json:
-        print_json(res, engine=engine)
-        return
+
+def _map_figure(ds):
+    from ..plots.similarity_map import plot_similarity_map
+
+    return plot_similarity_map(ds)
+
+
+def _print_map(res: dict, ds, out: Optional[Path]) -> None:
+    """The map's counts and its largest error; the store written."""
     unit = res["error_units"]
     console.print(
         table(
-            f"Similarity map ({engine}, up-scaled model vs prototype)",
+            f"Similarity map ({res['engine']}, up-scaled model vs prototype)",
             [
                 ("cases", str(res["n_cases"]), ""),
                 ("valid designs (model Z inside the blast fits)", str(res["n_valid"]), ""),
@@ -338,5 +348,3 @@ def similarity_map_cmd(
     )
     if out is not None:
         print_written(out, "the underlying sweep")
-    if plot:
-        print_written(plot)

@@ -168,32 +168,68 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
     """
     t = np.asarray(time_s, dtype=float)
     raw = np.asarray(pressure_Pa, dtype=float)
-    column = column or name
+    where = (source, column or name)
+    pre, base, noise = _baseline(t, raw, where)
+    p = raw - base
+    ia, ta = _arrival(p, t, pre, noise, where)
+    window, sm, k, dt = _positive_window(t, p, ia, where)
+    fit = _fit_friedlander(t[window] - ta, p[window], dt)
+    t_end = ta + fit.duration
+    neg_p, neg_i = _negative_phase(t, p, sm, k, t_end, noise)
+    return GaugeFit(
+        name=name,
+        baseline_Pa=base,
+        noise_Pa=noise,
+        arrival_time_s=float(ta),
+        peak_pressure_Pa=float(fit.peak),
+        positive_duration_s=float(fit.duration),
+        decay=fit.decay,
+        ci95={
+            "peak_pressure_Pa": float(fit.half[0]),
+            "positive_duration_s": float(fit.half[1]),
+            "decay": float(fit.half[2]),
+        },
+        impulse_Pa_s=_positive_impulse(t, p, ta, fit, noise),
+        fit_impulse_Pa_s=float(fit.peak * fit.duration * friedlander_impulse_ratio(fit.decay)),
+        negative_pressure_Pa=neg_p,
+        negative_impulse_Pa_s=neg_i,
+        samples_positive=int(np.count_nonzero((t >= ta) & (t <= t_end))),
+    )
+
+
+def _baseline(t: np.ndarray, raw: np.ndarray, where: tuple) -> tuple[np.ndarray, float, float]:
+    """Step 1: the pre-trigger samples (t < 0), their mean (the offset) [Pa] and standard deviation (the noise)
+    [Pa]; ``where`` = (file, column) for the error of too few of them."""
     pre = t < 0
     if pre.sum() < MIN_PRETRIGGER:
         raise record_fault(
-            source,
-            column,
+            *where,
             2,
             f"{int(pre.sum())} pre-trigger samples (t < 0): at least {MIN_PRETRIGGER} are needed for the baseline",
         )
-    base = float(raw[pre].mean())
-    noise = float(raw[pre].std(ddof=1))
-    p = raw - base
+    return pre, float(raw[pre].mean()), float(raw[pre].std(ddof=1))
+
+
+def _arrival(p: np.ndarray, t: np.ndarray, pre: np.ndarray, noise: float, where: tuple) -> tuple[int, float]:
+    """Step 2: the first sample above the threshold and the arrival time [s], the midpoint between it and the
+    sample before."""
     post = np.flatnonzero(~pre)
     thr = max(ARRIVAL_NOISE_MULTIPLE * noise, ARRIVAL_PEAK_FRACTION * float(p[post].max()))
     above = post[p[post] > thr]
     if above.size == 0 or float(p[post].max()) <= 0:
         raise record_fault(
-            source,
-            column,
+            *where,
             int(post[0]) + 2,
             f"no shock: the trace never rises above {ARRIVAL_NOISE_MULTIPLE:g} x the pre-trigger noise",
         )
     ia = int(above[0])
-    ta = 0.5 * (t[ia] + t[ia - 1])
-    # end of the positive phase: the first zero crossing of the trace smoothed over 1/50 of the samples after
-    # arrival (at least 5), searched after the largest sample
+    return ia, 0.5 * (t[ia] + t[ia - 1])
+
+
+def _positive_window(t: np.ndarray, p: np.ndarray, ia: int, where: tuple):
+    """The samples of the positive phase: from the arrival ``ia`` to the first zero crossing of the trace
+    smoothed over 1/50 of the samples after arrival (at least 5), searched after the largest sample.
+    Returns (the window's indices, the smoothed trace, its width k, the sample interval [s] at arrival)."""
     dt = float(np.median(np.diff(t[ia : ia + 50]))) if t.size > ia + 2 else 0.0
     k = max(5, (t.size - ia) // 50)
     sm = _smooth(p, k)
@@ -203,15 +239,29 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
     window = np.arange(ia, end_i + 1)
     if window.size < MIN_PULSE_SAMPLES:
         raise record_fault(
-            source,
-            column,
+            *where,
             f"{ia + 2}-{end_i + 2}",
             f"{window.size} samples over the pulse: at "
             f"least {MIN_PULSE_SAMPLES} are needed (sample faster or record longer)",
         )
-    tau = t[window] - ta
-    y = p[window]
-    P0 = float(np.max(_smooth(y, 3)[: max(3, window.size // 20)]))
+    return window, sm, k, dt
+
+
+@dataclass(frozen=True)
+class _Fit:
+    """A fitted Friedlander pulse: peak [Pa], positive duration [s], decay [-] and the 95 % half-widths of the
+    three (NaN where the Jacobian is singular)."""
+
+    peak: float
+    duration: float
+    decay: float
+    half: np.ndarray
+
+
+def _fit_friedlander(tau: np.ndarray, y: np.ndarray, dt: float) -> _Fit:
+    """Step 3: the least-squares Friedlander fit of the samples ``y`` [Pa] at ``tau`` [s] after arrival, with
+    its confidence intervals (``cov = s^2 (J^T J)^-1``)."""
+    P0 = float(np.max(_smooth(y, 3)[: max(3, tau.size // 20)]))
     T0 = max(float(tau[-1]), dt)
     x0 = np.array([1.0, 1.0, 1.0])
 
@@ -219,42 +269,34 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
         return (friedlander_trace(tau, q[0] * P0, q[1] * T0, q[2]) - y) / P0
 
     sol = least_squares(resid, x0, bounds=([1e-3, 0.2, -0.99], [100.0, 5.0, 50.0]), method="trf", x_scale="jac")
-    Pf, Tf, df = sol.x[0] * P0, sol.x[1] * T0, float(sol.x[2])
     J = sol.jac * np.array([1.0 / P0, 1.0 / T0, 1.0]) * P0  # d residual[Pa] / d (P, t_o, d)
-    dof = max(window.size - 3, 1)
+    dof = max(tau.size - 3, 1)
     s2 = float(np.sum((sol.fun * P0) ** 2)) / dof
     try:
         cov = np.linalg.inv(J.T @ J) * s2
         half = _Z95 * np.sqrt(np.clip(np.diag(cov), 0.0, None))
     except np.linalg.LinAlgError:
         half = np.full(3, np.nan)
-    t_end = ta + Tf
-    # the samples while the fitted pulse stands above the noise, the fit's own tail after (step 4)
-    fine = np.linspace(0.0, Tf, 2001)
-    low = np.flatnonzero(friedlander_trace(fine, Pf, Tf, df) < noise)
-    tc = float(fine[low[0]]) if low.size else Tf
-    tail = Friedlander(Pf, Tf, df)
-    imp = _impulse(t, p, ta, min(ta + tc, float(t[-1]))) + tail.impulse - float(tail.cumulative_impulse(tc))
-    n_pos = int(np.count_nonzero((t >= ta) & (t <= t_end)))
-    neg_p = neg_i = None
+    return _Fit(sol.x[0] * P0, sol.x[1] * T0, float(sol.x[2]), half)
+
+
+def _positive_impulse(t: np.ndarray, p: np.ndarray, ta: float, fit: _Fit, noise: float) -> float:
+    """Step 4: the samples' impulse [Pa s] while the fitted pulse stands above the noise, the fit's own tail
+    after."""
+    fine = np.linspace(0.0, fit.duration, 2001)
+    low = np.flatnonzero(friedlander_trace(fine, fit.peak, fit.duration, fit.decay) < noise)
+    tc = float(fine[low[0]]) if low.size else fit.duration
+    tail = Friedlander(fit.peak, fit.duration, fit.decay)
+    return _impulse(t, p, ta, min(ta + tc, float(t[-1]))) + tail.impulse - float(tail.cumulative_impulse(tc))
+
+
+def _negative_phase(t: np.ndarray, p: np.ndarray, sm: np.ndarray, k: int, t_end: float, noise: float) -> tuple:
+    """Step 5: the least pressure [Pa] and the impulse [Pa s] of the samples after the positive phase (ending
+    at ``t_end`` [s]) up to the smoothed trace's return to zero or the record's end; (None, None) when the
+    record does not hold a negative phase above the smoothed noise."""
     tail = np.flatnonzero(t > t_end)
     if tail.size >= MIN_PULSE_SAMPLES and float(sm[tail].min()) < -3.0 * noise / np.sqrt(k):
         back = tail[sm[tail] >= 0]
         stop = float(t[back[0]]) if back.size and back[0] > tail[0] + k else float(t[-1])
-        neg_p = float(sm[tail].min())
-        neg_i = _impulse(t, p, t_end, stop)
-    return GaugeFit(
-        name=name,
-        baseline_Pa=base,
-        noise_Pa=noise,
-        arrival_time_s=float(ta),
-        peak_pressure_Pa=float(Pf),
-        positive_duration_s=float(Tf),
-        decay=df,
-        ci95={"peak_pressure_Pa": float(half[0]), "positive_duration_s": float(half[1]), "decay": float(half[2])},
-        impulse_Pa_s=imp,
-        fit_impulse_Pa_s=float(Pf * Tf * friedlander_impulse_ratio(df)),
-        negative_pressure_Pa=neg_p,
-        negative_impulse_Pa_s=neg_i,
-        samples_positive=n_pos,
-    )
+        return float(sm[tail].min()), _impulse(t, p, t_end, stop)
+    return None, None

@@ -234,21 +234,44 @@ def _site_svg(card: dict) -> str:
 
 def card_section(result) -> str:
     """The section's HTML (a hint to add a ``[lab]`` table when there is none)."""
-    card = card_of(result)
-    if card is None:
-        why = (
-            "no specimen (the scenario has no [scale] table)"
-            if result.design is None
-            else "the scenario has no [lab] table"
-        )
-        return (
-            f"<p>No test card: {_e(why)}. Add a <code>[lab]</code> table (docs/planning.md) for the charge in a "
-            "real explosive, the safety envelope, the instruments and the odds, or let <code>blastscale plan"
-            "</code> choose the design.</p>"
-        )
-    c, b, i, p = card, card["build"], "instruments/", "predicted/"
-    charge_unit = "mg" if c["explosive_mass_kg"] < 1e-3 else "g" if c["explosive_mass_kg"] < 1 else "kg"
-    build = _rows(
+    c = card_of(result)
+    if c is None:
+        return _no_card(result)
+    build, shot, safety = _build_table(c), _shot_table(c), _safety_table(c)
+    inst, pred = _instruments_table(c), _predicted_table(c)
+    warn = "".join(f'<li class="warn">{_e(w)}</li>' for w in c["warnings"])
+    return (
+        f'<div class="card"><div class="cols"><div><h3>Build</h3>{build}</div><div><h3>Shot</h3>{shot}</div></div>'
+        f"<h3>Layout: plan and elevation (to scale)</h3>{_plan_svg(c)}{_elevation_svg(c)}"
+        f'<h3>Safety circles (around the charge) and the debris zone</h3><div class="cols">{_site_svg(c)}'
+        f'{safety}</div><div class="cols"><div><h3>Instruments</h3>{inst}</div><div><h3>Predicted response '
+        f"(specimen units)</h3>{pred}</div></div>" + (f"<ul>{warn}</ul>" if warn else "") + "</div>"
+    )
+
+
+def _no_card(result) -> str:
+    """Why there is no card, and how to get one."""
+    why = (
+        "no specimen (the scenario has no [scale] table)"
+        if result.design is None
+        else "the scenario has no [lab] table"
+    )
+    return (
+        f"<p>No test card: {_e(why)}. Add a <code>[lab]</code> table (docs/planning.md) for the charge in a "
+        "real explosive, the safety envelope, the instruments and the odds, or let <code>blastscale plan"
+        "</code> choose the design.</p>"
+    )
+
+
+def _charge_unit(c: dict) -> str:
+    """The unit the charge is weighed in: mg below 1 g, g below 1 kg, else kg."""
+    return "mg" if c["explosive_mass_kg"] < 1e-3 else "g" if c["explosive_mass_kg"] < 1 else "kg"
+
+
+def _build_table(c: dict) -> str:
+    """The specimen to build: its kind, material, size, mass, scale (and one unit of an assembly)."""
+    b = c["build"]
+    return _rows(
         [
             ("specimen", f"{_e(b['kind'])}, {_e(b['material'])}"),
             (
@@ -272,7 +295,12 @@ def card_section(result) -> str:
             ),
         ]
     )
-    shot = _rows(
+
+
+def _shot_table(c: dict) -> str:
+    """The charge to fire: the explosive, its mass and TNT equivalents, where it stands, the weighing precision."""
+    charge_unit = _charge_unit(c)
+    return _rows(
         [
             ("explosive", _e(c["explosive"])),
             ("mass to weigh", _n(c, "explosive_mass_kg", charge_unit)),
@@ -294,7 +322,11 @@ def card_section(result) -> str:
             ("weighing precision (1 sd) to keep the first peak", _n(c, "weighing_precision_kg", charge_unit)),
         ]
     )
-    safety = _rows(
+
+
+def _safety_table(c: dict) -> str:
+    """The safety distance of each threshold, the debris zone, and the prototype event's for scale."""
+    return _rows(
         [(f"{t['key']}: {t['meaning']}", _n(c, f"safety_distances_m/{t['key']}", "m")) for t in c["thresholds"]]
         + [
             (f"debris zone around the specimen (x {c['debris_margin']:g} the reach)", _n(c, "debris_radius_m", "mm")),
@@ -302,7 +334,12 @@ def card_section(result) -> str:
             ("prototype event: debris zone", _n(c, "prototype/debris_radius_m", "m")),
         ]
     )
-    inst = _rows(
+
+
+def _instruments_table(c: dict) -> str:
+    """The gauges' and the camera's ranges, rates and records."""
+    i = "instruments/"
+    return _rows(
         [
             ("reflected gauge range", _n(c, i + "reflected_gauge_range_Pa", "kPa")),
             ("side-on gauge range", _n(c, i + "incident_gauge_range_Pa", "kPa")),
@@ -320,8 +357,13 @@ def card_section(result) -> str:
             ("trigger delay (arrival)", _n(c, i + "trigger_delay_s", "us")),
         ]
     )
+
+
+def _predicted_table(c: dict) -> str:
+    """The specimen's predicted response and load, in its own units, and the odds of the outcome agreeing."""
+    p = "predicted/"
     outcome = "overturns" if p_get(c, "collapsed") else "rocks and stands"
-    pred = _rows(
+    return _rows(
         [
             ("outcome", outcome),
             ("first peak rotation", _n(c, p + "first_peak_rotation_rad", "deg")),
@@ -335,14 +377,6 @@ def card_section(result) -> str:
             ("outcome agrees with the prototype (Monte Carlo)", _n(c, "p_outcome_agree", "%")),
             ("first-peak spread (1 sd, relative)", _n(c, "first_peak_spread", "%")),
         ]
-    )
-    warn = "".join(f'<li class="warn">{_e(w)}</li>' for w in c["warnings"])
-    return (
-        f'<div class="card"><div class="cols"><div><h3>Build</h3>{build}</div><div><h3>Shot</h3>{shot}</div></div>'
-        f"<h3>Layout: plan and elevation (to scale)</h3>{_plan_svg(c)}{_elevation_svg(c)}"
-        f'<h3>Safety circles (around the charge) and the debris zone</h3><div class="cols">{_site_svg(c)}'
-        f'{safety}</div><div class="cols"><div><h3>Instruments</h3>{inst}</div><div><h3>Predicted response '
-        f"(specimen units)</h3>{pred}</div></div>" + (f"<ul>{warn}</ul>" if warn else "") + "</div>"
     )
 
 

@@ -11,6 +11,7 @@ plotly's own JavaScript (~4.7 MB).
 from __future__ import annotations
 
 import base64
+from dataclasses import dataclass
 from html import escape
 
 import numpy as np
@@ -69,19 +70,11 @@ def view_figure(motion, indices, charge=None, title: str = "", view: str = "iso"
     """The plotly figure as plotly's JSON-ready dict (``data``, ``layout``, ``frames``): one 3D scene per
     system, one frame per recorded state in ``indices``, a slider and play / pause buttons (``fps`` frames per
     second of playback)."""
-    import plotly.graph_objects as go
     from plotly.subplots import make_subplots
 
-    tri, ok, body = _mesh(motion)
+    meshes = _Meshes.of(motion)
+    box = _Box.of(motion, charge)
     nsys = len(motion.labels)
-    disp = motion.largest_displacement()
-    cmax = max(float(disp.max()), 1e-12)
-    lo, hi = motion.bounds()
-    if charge is not None:
-        lo, hi = np.minimum(lo, charge), np.maximum(hi, charge)
-    m = 0.6 * float(max(hi - lo))
-    c = 0.5 * (lo + hi)
-    gx, gy = [c[0] - m, c[0] + m, c[0] + m, c[0] - m], [c[1] - m, c[1] - m, c[1] + m, c[1] + m]
     fig = make_subplots(
         rows=1,
         cols=nsys,
@@ -89,79 +82,141 @@ def view_figure(motion, indices, charge=None, title: str = "", view: str = "iso"
         subplot_titles=list(motion.labels),
         horizontal_spacing=0.02,
     )
+    block_traces = [_add_system(fig, meshes, box, s, int(indices[0]), charge) for s in range(nsys)]
+    fig.update_layout(**_layout(motion, indices[0], title, fps, box.scene(view), nsys))
+    return _with_frames(fig.to_dict(), meshes, indices, title, block_traces)
 
-    def blocks(s, index):  # plotly.js typed arrays of float32, as plotly writes numpy arrays
-        v = motion.world(s, [index])[0][ok].astype(np.float32)
+
+@dataclass(frozen=True)
+class _Meshes:
+    """The blocks of a motion as one triangle mesh per system: the triangles, the vertex mask, the body of each
+    vertex (:func:`_mesh`); each body's largest displacement [m] per system and the colour scale's top [m]."""
+
+    motion: object
+    tri: np.ndarray
+    ok: np.ndarray
+    body: np.ndarray
+    disp: np.ndarray
+    cmax: float
+
+    @classmethod
+    def of(cls, motion) -> "_Meshes":
+        tri, ok, body = _mesh(motion)
+        disp = motion.largest_displacement()
+        return cls(motion, tri, ok, body, disp, max(float(disp.max()), 1e-12))
+
+    def blocks(self, s: int, index: int) -> dict:
+        """System ``s``'s vertices at state ``index`` [m]: plotly.js typed arrays of float32, as plotly writes
+        numpy arrays."""
+        v = self.motion.world(s, [index])[0][self.ok].astype(np.float32)
         return {k: _typed(v[:, a]) for a, k in enumerate("xyz")}
 
-    block_traces = []
-    for s in range(nsys):
+
+@dataclass(frozen=True)
+class _Box:
+    """The cube every scene shows [m]: the motion's bounds (and the charge) ``lo``, ``hi``, its centre ``c`` and
+    half-side ``m`` (0.6 of the largest extent)."""
+
+    lo: np.ndarray
+    hi: np.ndarray
+    c: np.ndarray
+    m: float
+
+    @classmethod
+    def of(cls, motion, charge=None) -> "_Box":
+        lo, hi = motion.bounds()
+        if charge is not None:
+            lo, hi = np.minimum(lo, charge), np.maximum(hi, charge)
+        return cls(lo, hi, 0.5 * (lo + hi), 0.6 * float(max(hi - lo)))
+
+    def ground(self) -> dict:
+        """The ground's square (x, y, z) under the scene, float32."""
+        c, m = self.c, self.m
+        gx, gy = [c[0] - m, c[0] + m, c[0] + m, c[0] - m], [c[1] - m, c[1] - m, c[1] + m, c[1] + m]
+        return {k: np.array(gx if k == "x" else gy if k == "y" else [0.0] * 4, np.float32) for k in "xyz"}
+
+    def scene(self, view: str) -> dict:
+        """The layout of one 3D scene seen from ``view`` (:data:`CAMERAS`)."""
+        c, m, lo = self.c, self.m, self.lo
+        return dict(
+            aspectmode="cube",
+            camera=dict(eye=dict(zip("xyz", CAMERAS[view]))),
+            xaxis=dict(range=[c[0] - m, c[0] + m], title="x [m]"),
+            yaxis=dict(range=[c[1] - m, c[1] + m], title="y [m]"),
+            zaxis=dict(range=[min(lo[2], 0.0), min(lo[2], 0.0) + 2 * m], title="z [m]"),
+        )
+
+
+def _add_system(fig, meshes: _Meshes, box: _Box, s: int, first: int, charge=None) -> int:
+    """Add system ``s``'s scene: the ground, its blocks at state ``first`` coloured by their largest
+    displacement, the charge; returns the blocks' trace index (the trace each frame replaces)."""
+    import plotly.graph_objects as go
+
+    fig.add_trace(
+        go.Mesh3d(
+            **box.ground(),
+            i=[0, 0],
+            j=[1, 2],
+            k=[2, 3],
+            color=GROUND,
+            flatshading=True,
+            lighting=dict(ambient=1.0, diffuse=0.0, specular=0.0),
+            hoverinfo="skip",
+            name="ground",
+            showlegend=False,
+        ),
+        row=1,
+        col=s + 1,
+    )
+    index = len(fig.data)
+    tri = meshes.tri
+    fig.add_trace(
+        go.Mesh3d(
+            **meshes.blocks(s, first),
+            i=tri[:, 0],
+            j=tri[:, 1],
+            k=tri[:, 2],
+            intensity=meshes.disp[s][meshes.body].astype(np.float32),
+            intensitymode="vertex",
+            colorscale="Viridis",
+            cmin=0.0,
+            cmax=meshes.cmax,
+            flatshading=True,
+            showscale=s == 0,
+            colorbar=dict(title=dict(text="largest<br>displacement [m]"), len=0.6),
+            lighting=dict(ambient=0.55, diffuse=0.7, specular=0.05),
+            name=meshes.motion.labels[s],
+            hoverinfo="name",
+        ),
+        row=1,
+        col=s + 1,
+    )
+    if charge is not None:
         fig.add_trace(
-            go.Mesh3d(
-                **{k: np.array(gx if k == "x" else gy if k == "y" else [0.0] * 4, np.float32) for k in "xyz"},
-                i=[0, 0],
-                j=[1, 2],
-                k=[2, 3],
-                color=GROUND,
-                flatshading=True,
-                lighting=dict(ambient=1.0, diffuse=0.0, specular=0.0),
-                hoverinfo="skip",
-                name="ground",
+            go.Scatter3d(
+                x=[charge[0]],
+                y=[charge[1]],
+                z=[charge[2]],
+                mode="markers+text",
+                marker=dict(size=6, color="#c0392b", symbol="diamond"),
+                text=["charge"],
+                textposition="top center",
+                name="charge",
                 showlegend=False,
             ),
             row=1,
             col=s + 1,
         )
-        block_traces.append(len(fig.data))
-        fig.add_trace(
-            go.Mesh3d(
-                **blocks(s, int(indices[0])),
-                i=tri[:, 0],
-                j=tri[:, 1],
-                k=tri[:, 2],
-                intensity=disp[s][body].astype(np.float32),
-                intensitymode="vertex",
-                colorscale="Viridis",
-                cmin=0.0,
-                cmax=cmax,
-                flatshading=True,
-                showscale=s == 0,
-                colorbar=dict(title=dict(text="largest<br>displacement [m]"), len=0.6),
-                lighting=dict(ambient=0.55, diffuse=0.7, specular=0.05),
-                name=motion.labels[s],
-                hoverinfo="name",
-            ),
-            row=1,
-            col=s + 1,
-        )
-        if charge is not None:
-            fig.add_trace(
-                go.Scatter3d(
-                    x=[charge[0]],
-                    y=[charge[1]],
-                    z=[charge[2]],
-                    mode="markers+text",
-                    marker=dict(size=6, color="#c0392b", symbol="diamond"),
-                    text=["charge"],
-                    textposition="top center",
-                    name="charge",
-                    showlegend=False,
-                ),
-                row=1,
-                col=s + 1,
-            )
+    return index
+
+
+def _layout(motion, first: int, title: str, fps: float, scene: dict, nsys: int) -> dict:
+    """The figure's layout: the title at state ``first``, one ``scene`` per system, play / pause (``fps``
+    frames per second) and the time slider (its steps added with the frames)."""
     play = dict(frame=dict(duration=1000.0 / fps, redraw=True), fromcurrent=True, transition=dict(duration=0))
     pause = dict(frame=dict(duration=0, redraw=False), mode="immediate", transition=dict(duration=0))
-    eye = dict(zip("xyz", CAMERAS[view]))
-    scene = dict(
-        aspectmode="cube",
-        camera=dict(eye=eye),
-        xaxis=dict(range=[c[0] - m, c[0] + m], title="x [m]"),
-        yaxis=dict(range=[c[1] - m, c[1] + m], title="y [m]"),
-        zaxis=dict(range=[min(lo[2], 0.0), min(lo[2], 0.0) + 2 * m], title="z [m]"),
-    )
-    fig.update_layout(
-        title_text=f"{title}  t = {motion.time[indices[0]]:.3f} s",
+    return dict(
+        title_text=f"{title}  t = {motion.time[first]:.3f} s",
         height=560,
         margin=dict(l=10, r=10, t=60, b=10),
         template="plotly_white",
@@ -185,20 +240,25 @@ def view_figure(motion, indices, charge=None, title: str = "", view: str = "iso"
             dict(active=0, x=0.12, y=0.0, len=0.86, pad=dict(t=30), currentvalue=dict(prefix="time [s, prototype]: "))
         ],
     )
-    out = fig.to_dict()  # the one-off traces and layout checked by plotly; arrays as typed arrays
-    # The frames and the slider's steps (one per frame) written as plotly writes them, without its per-item
-    # checks (0.4 s of a column report's 0.45 s view): only vertex coordinates change from frame to frame.
+
+
+def _with_frames(out: dict, meshes: _Meshes, indices, title: str, block_traces: list[int]) -> dict:
+    """``out`` (the figure's dict) with one frame per state in ``indices`` and the slider's steps.
+
+    The one-off traces and layout were checked by plotly; the frames and the slider's steps (one per frame)
+    are written as plotly writes them, without its per-item checks (0.4 s of a column report's 0.45 s view):
+    only vertex coordinates change from frame to frame."""
+    time = meshes.motion.time
     step = dict(mode="immediate", frame=dict(duration=0, redraw=True), transition=dict(duration=0))
-    steps = [
-        dict(args=[[str(n)], step], label=f"{motion.time[i]:.3f}", method="animate") for n, i in enumerate(indices)
-    ]
+    steps = [dict(args=[[str(n)], step], label=f"{time[i]:.3f}", method="animate") for n, i in enumerate(indices)]
     out["layout"]["sliders"][0] = dict(
         sorted({**out["layout"]["sliders"][0], "steps": steps}.items())
     )  # plotly's order
+    nsys = len(meshes.motion.labels)
     out["frames"] = [
         dict(
-            data=[dict(**blocks(s, int(i)), type="mesh3d") for s in range(nsys)],
-            layout=dict(title=dict(text=f"{title}  t = {motion.time[i]:.3f} s")),
+            data=[dict(**meshes.blocks(s, int(i)), type="mesh3d") for s in range(nsys)],
+            layout=dict(title=dict(text=f"{title}  t = {time[i]:.3f} s")),
             name=str(n),
             traces=block_traces,
         )

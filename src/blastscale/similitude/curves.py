@@ -171,6 +171,30 @@ def scaling_curves(
     W = check_positive_scalar("charge", charge, "kg")
     R = check_positive_scalar("standoff", standoff, "m")
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
+    lam, gam = _broadcast(scale, density_ratio)
+    bm = get_blast_model(blast_model)
+    zr = valid_scaled_distance_range(bm)
+    proto = blast_parameters(W, R, bm)  # raises for a prototype outside the fits
+    z = proto.scaled_distance
+    shape = lam.shape
+    lam, gam = lam.ravel(), gam.ravel()  # work on 1-D; reshaped on return
+    lz = _scaled_distance_factors(z, lam, gam, sig, bm, zr)
+    return ScalingCurves(
+        charge=W,
+        standoff=R,
+        prototype_scaled_distance=z,
+        blast_model=bm.name,
+        gravity_ratio=sig,
+        z_range=zr,
+        scale=lam.reshape(shape),
+        density_ratio=gam.reshape(shape),
+        **_general_law(W, R, lam, lz, proto, bm, zr, shape),
+        **_hopkinson_cranz(lam, sig, shape),
+    )
+
+
+def _broadcast(scale, density_ratio) -> tuple[np.ndarray, np.ndarray]:
+    """lambda and gamma [-], each checked > 0, broadcast together (float copies)."""
     lam_in = check_positive("scale", scale)
     gam_in = check_positive("density ratio", density_ratio)
     try:
@@ -179,18 +203,24 @@ def scaling_curves(
         raise BlastscaleInputError(
             f"scale and density ratio have shapes {lam_in.shape} and {gam_in.shape}, which do not broadcast together"
         ) from None
-    bm = get_blast_model(blast_model)
-    zr = valid_scaled_distance_range(bm)
-    proto = blast_parameters(W, R, bm)  # raises for a prototype outside the fits
-    z = proto.scaled_distance
-    shape = lam.shape
-    lam, gam = lam.ravel(), gam.ravel()  # work on 1-D; reshaped on return
+    return lam, gam
 
+
+def _scaled_distance_factors(z: float, lam: np.ndarray, gam: np.ndarray, sig: float, bm, zr) -> np.ndarray:
+    """The general law's lambda_Z [-] at each (lambda, gamma) of a flat sweep: NaN where lambda lies outside the
+    admissible range of that gamma (design_model's own range check)."""
     lz = np.full(lam.size, np.nan)
-    for k in range(lam.size):  # the root is scalar (Brent); the blast evaluation below is vectorised
+    for k in range(lam.size):  # the root is scalar (Brent); the blast evaluation is vectorised
         lo, hi = admissible_scales(z, gam[k], sig, bm, zr)  # design_model's own range check
         if lo <= lam[k] <= hi:
             lz[k] = solve_scaled_distance_factor(z, lam[k], gam[k], sig, bm).factor
+    return lz
+
+
+def _general_law(W: float, R: float, lam: np.ndarray, lz: np.ndarray, proto, bm, zr, shape: tuple) -> dict:
+    """The general law's fields of :class:`ScalingCurves` (``valid``, the factors and the model / prototype
+    ratios) from the flat lambda and lambda_Z: the model W_m = W (lambda/lambda_Z)^3 at R_m = lambda R, kept
+    where its Z lies inside the fits' range ``zr``; NaN elsewhere, in ``shape``."""
     ok = np.isfinite(lz)
     W_m = W * (lam[ok] / lz[ok]) ** 3  # as design_model: W * factors.charge at R * lambda
     R_m = R * lam[ok]
@@ -210,15 +240,7 @@ def scaling_curves(
         return general(getattr(model_params, field) / getattr(proto, field) if model_params is not None else [])
 
     lz_ok = lz[ok]
-    return ScalingCurves(
-        charge=W,
-        standoff=R,
-        prototype_scaled_distance=z,
-        blast_model=bm.name,
-        gravity_ratio=sig,
-        z_range=zr,
-        scale=lam.reshape(shape),
-        density_ratio=gam.reshape(shape),
+    return dict(
         valid=ok.reshape(shape),
         scaled_distance_factor=general(lz_ok),
         model_scaled_distance=general(z_m[inside]),
@@ -226,6 +248,13 @@ def scaling_curves(
         pressure_ratio=ratio("reflected_pressure"),
         impulse_ratio=ratio("reflected_impulse"),
         duration_ratio=ratio("positive_duration"),
+    )
+
+
+def _hopkinson_cranz(lam: np.ndarray, sig: float, shape: tuple) -> dict:
+    """Hopkinson-Cranz's fields of :class:`ScalingCurves`: lambda_Z = 1, so the pressure ratio is 1, the charge
+    ratio lambda^3, the impulse and duration ratios lambda; and the density ratio the law needs."""
+    return dict(
         hc_scaled_distance_factor=np.ones(shape),
         hc_charge_ratio=(lam**3).reshape(shape),
         hc_pressure_ratio=np.ones(shape),

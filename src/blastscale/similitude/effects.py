@@ -177,70 +177,90 @@ def blast_effects(
             f"{specimen.blast_model})"
         )
     if lm_p.clearing:
-        c = {}
-        for name, bp, lm in (("prototype", prototype, lm_p), ("model", specimen, lm_s)):
-            cl = front_face_clearing(bp, lm)
-            c[name] = {
-                **cl.to_dict(),
-                "positive_duration_s": float(bp.positive_duration),
-                "clearing_time_over_positive_duration": float(cl.clearing_time / bp.positive_duration),
-                "cleared_over_uncleared_impulse": float(cl.impulse / cl.uncleared_impulse),
-            }
-        r_t = _rel(
-            c["model"]["clearing_time_over_positive_duration"], c["prototype"]["clearing_time_over_positive_duration"]
-        )
-        r_i = _rel(c["model"]["cleared_over_uncleared_impulse"], c["prototype"]["cleared_over_uncleared_impulse"])
-        c["relative_difference_clearing_time_over_duration"] = r_t
-        c["relative_difference_cleared_fraction"] = r_i
-        out["clearing"] = c
-        if r_i > SIMILARITY_TOLERANCE:
-            notes.append(
-                f"clearing: the cleared / uncleared impulse is {c['prototype']['cleared_over_uncleared_impulse']:.3g} "
-                f"(prototype) vs {c['model']['cleared_over_uncleared_impulse']:.3g} (model), t_c / t_o "
-                f"{c['prototype']['clearing_time_over_positive_duration']:.3g} vs "
-                f"{c['model']['clearing_time_over_positive_duration']:.3g}: a {100 * r_i:.3g} % difference the "
-                "scaling law does not see"
-            )
-        elif r_t > SIMILARITY_TOLERANCE:
-            fp, fm = c["prototype"]["cleared_over_uncleared_impulse"], c["model"]["cleared_over_uncleared_impulse"]
-            what = (
-                "no clearing in either system (UFC keeps the uncleared pulse)"
-                if fp == 1.0 and fm == 1.0
-                else f"the cleared / uncleared impulse still agrees ({fp:.3g} vs {fm:.3g})"
-            )
-            notes.append(
-                f"clearing: t_c / t_o is {c['prototype']['clearing_time_over_positive_duration']:.3g} (prototype) vs "
-                f"{c['model']['clearing_time_over_positive_duration']:.3g} (model), the relief is not similar; {what}"
-            )
+        out["clearing"] = _clearing(((prototype, lm_p), (specimen, lm_s)), notes)
     if lm_p.negative_phase:
-        n = {}
-        for name, bp, lm in (("prototype", prototype, lm_p), ("model", specimen, lm_s)):
-            neg = front_face_negative(bp, lm, extrapolate=extrapolate)
-            n[name] = {**neg.to_dict(), "negative_over_positive_impulse": float(neg.impulse / bp.reflected_impulse)}
-        r_n = _rel(n["model"]["negative_over_positive_impulse"], n["prototype"]["negative_over_positive_impulse"])
-        n["relative_difference_negative_fraction"] = r_n
-        out["negative_phase"] = n
-        if r_n > SIMILARITY_TOLERANCE:
-            notes.append(
-                f"negative phase: its impulse is {n['prototype']['negative_over_positive_impulse']:.3g} of the positive "
-                f"one in the prototype, {n['model']['negative_over_positive_impulse']:.3g} in the model (a "
-                f"{100 * r_n:.3g} % difference the scaling law does not see)"
-            )
+        out["negative_phase"] = _negative_phase(((prototype, lm_p), (specimen, lm_s)), notes, extrapolate)
     if specimen_charge_height is not None:
         height = lm_s.face_height_m if lm_s.clearing else (None if face is None else lam * float(face[1]))
-        if height is None:
-            raise BlastscaleInputError(
-                "specimen charge height needs the specimen's face height: give the structure (or clearing's face)"
-            )
-        lb = lab_burst(specimen.charge_kg, specimen.standoff_m, specimen_charge_height, height, extrapolate=True)
-        out["lab_burst"] = lb.to_dict()
-        if lb.kind != specimen.burst:
-            notes.append(
-                f"lab charge at {specimen_charge_height:.4g} m is {'neither a surface nor a free-air burst' if lb.kind == 'neither' else 'a ' + lb.kind + ' burst'}: "
-                f"the floor's reflection reaches the face {lb.reflection_delay_s:.3g} s after the shock, "
-                f"{lb.delay_ratio:.2g} of the positive duration (the design assumed a {specimen.burst} burst)"
-            )
+        out["lab_burst"] = _lab_burst(specimen, specimen_charge_height, height, notes)
     return out, tuple(notes)
+
+
+def _clearing(systems, notes: list) -> dict:
+    """The clearing of each system's front face (``systems``: (blast parameters, load model) of the prototype,
+    then of the model): t_c / t_o, the cleared / uncleared impulse and their relative differences; a note
+    appended to ``notes`` where they differ above :data:`SIMILARITY_TOLERANCE`."""
+    c = {}
+    for name, (bp, lm) in zip(("prototype", "model"), systems):
+        cl = front_face_clearing(bp, lm)
+        c[name] = {
+            **cl.to_dict(),
+            "positive_duration_s": float(bp.positive_duration),
+            "clearing_time_over_positive_duration": float(cl.clearing_time / bp.positive_duration),
+            "cleared_over_uncleared_impulse": float(cl.impulse / cl.uncleared_impulse),
+        }
+    r_t = _rel(
+        c["model"]["clearing_time_over_positive_duration"], c["prototype"]["clearing_time_over_positive_duration"]
+    )
+    r_i = _rel(c["model"]["cleared_over_uncleared_impulse"], c["prototype"]["cleared_over_uncleared_impulse"])
+    c["relative_difference_clearing_time_over_duration"] = r_t
+    c["relative_difference_cleared_fraction"] = r_i
+    if r_i > SIMILARITY_TOLERANCE:
+        notes.append(
+            f"clearing: the cleared / uncleared impulse is {c['prototype']['cleared_over_uncleared_impulse']:.3g} "
+            f"(prototype) vs {c['model']['cleared_over_uncleared_impulse']:.3g} (model), t_c / t_o "
+            f"{c['prototype']['clearing_time_over_positive_duration']:.3g} vs "
+            f"{c['model']['clearing_time_over_positive_duration']:.3g}: a {100 * r_i:.3g} % difference the "
+            "scaling law does not see"
+        )
+    elif r_t > SIMILARITY_TOLERANCE:
+        fp, fm = c["prototype"]["cleared_over_uncleared_impulse"], c["model"]["cleared_over_uncleared_impulse"]
+        what = (
+            "no clearing in either system (UFC keeps the uncleared pulse)"
+            if fp == 1.0 and fm == 1.0
+            else f"the cleared / uncleared impulse still agrees ({fp:.3g} vs {fm:.3g})"
+        )
+        notes.append(
+            f"clearing: t_c / t_o is {c['prototype']['clearing_time_over_positive_duration']:.3g} (prototype) vs "
+            f"{c['model']['clearing_time_over_positive_duration']:.3g} (model), the relief is not similar; {what}"
+        )
+    return c
+
+
+def _negative_phase(systems, notes: list, extrapolate: bool) -> dict:
+    """The negative phase on each system's front face (``systems`` as :func:`_clearing`'s): its impulse over the
+    positive one and their relative difference; a note appended to ``notes`` above
+    :data:`SIMILARITY_TOLERANCE`."""
+    n = {}
+    for name, (bp, lm) in zip(("prototype", "model"), systems):
+        neg = front_face_negative(bp, lm, extrapolate=extrapolate)
+        n[name] = {**neg.to_dict(), "negative_over_positive_impulse": float(neg.impulse / bp.reflected_impulse)}
+    r_n = _rel(n["model"]["negative_over_positive_impulse"], n["prototype"]["negative_over_positive_impulse"])
+    n["relative_difference_negative_fraction"] = r_n
+    if r_n > SIMILARITY_TOLERANCE:
+        notes.append(
+            f"negative phase: its impulse is {n['prototype']['negative_over_positive_impulse']:.3g} of the positive "
+            f"one in the prototype, {n['model']['negative_over_positive_impulse']:.3g} in the model (a "
+            f"{100 * r_n:.3g} % difference the scaling law does not see)"
+        )
+    return n
+
+
+def _lab_burst(specimen, charge_height: float, face_height, notes: list) -> dict:
+    """The lab charge at ``charge_height`` [m] classified at the specimen's face of height ``face_height`` [m]
+    (None: unknown, an error); a note appended to ``notes`` when it is not the burst the design assumed."""
+    if face_height is None:
+        raise BlastscaleInputError(
+            "specimen charge height needs the specimen's face height: give the structure (or clearing's face)"
+        )
+    lb = lab_burst(specimen.charge_kg, specimen.standoff_m, charge_height, face_height, extrapolate=True)
+    if lb.kind != specimen.burst:
+        notes.append(
+            f"lab charge at {charge_height:.4g} m is {'neither a surface nor a free-air burst' if lb.kind == 'neither' else 'a ' + lb.kind + ' burst'}: "
+            f"the floor's reflection reaches the face {lb.reflection_delay_s:.3g} s after the shock, "
+            f"{lb.delay_ratio:.2g} of the positive duration (the design assumed a {specimen.burst} burst)"
+        )
+    return lb.to_dict()
 
 
 def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = False) -> dict:
