@@ -27,6 +27,7 @@ the :class:`StudyResult`. Example (the built-in default, shortened):
 
 from __future__ import annotations
 
+import functools
 import time
 import warnings
 from dataclasses import dataclass, replace
@@ -35,8 +36,20 @@ from typing import Any, Callable, Optional
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario
 from ..structures import from_spec
-from .engines import ENGINES, ENSEMBLE, Context, Engine, contact_settings, critical_charge_of, load_model_of
-from .memory import check_study_budget
+from .engines import (
+    ENGINES,
+    ENSEMBLE,
+    Engine,
+    EnsembleSettings,
+    PlanarSettings,
+    contact_settings,
+    critical_charge_of,
+    load_model_of,
+    planar_settings,
+    settings_3d,
+    systems_3d,
+)
+from .memory import RunSize, check_study_budget, contacts_of, estimate_run
 from .result import StudyResult
 from ..similitude import design_model
 from ..similitude.effects import front_face, structure_top
@@ -73,6 +86,22 @@ class StudyPlan:
         The prototype's blast parameters (``design.prototype`` with a design; None under gravity alone).
     contact : ContactSettings or None
         The prototype's 3D contact settings (:func:`~.engines.contact_settings`), when a 3D engine runs.
+    planar : PlanarSettings or None
+        The planar engine's settings (:func:`~.engines.planar_settings`), when it runs.
+    settings3d : Settings3D or None
+        The 3D engine's settings shared by both systems (:func:`~.engines.settings_3d`: load method, pulse
+        shape, incidence, recording interval, extrapolation), when a 3D engine runs.
+    systems3d : Systems3D or None
+        The 3D systems (:func:`~.engines.systems_3d`): the design's prototype and specimen, each with its
+        structure, blast parameters, gravity, contact, duration and load model; or the prototype alone.
+    ensemble : EnsembleSettings or None
+        Members and perturbation of the 3D ensembles, when they run.
+    threads : int or None
+        Runs in flight at once (``simulation.threads``; None: this process's share of the cores).
+    scenario : Scenario or None
+        The scenario checked.
+    contacts : int
+        The prototype's contacts at rest (:func:`~.memory.contacts_of`, counted once; 0 without a 3D engine).
     """
 
     structure: Any
@@ -81,6 +110,19 @@ class StudyPlan:
     design: Any
     blast: Any
     contact: Any = None
+    planar: Optional[PlanarSettings] = None
+    settings3d: Any = None
+    systems3d: Any = None
+    ensemble: Optional[EnsembleSettings] = None
+    threads: Optional[int] = None
+    scenario: Any = None
+    contacts: int = 0
+
+    @functools.cached_property
+    def size(self) -> RunSize:
+        """The run's size, said before it starts (:func:`~.memory.estimate_run`, result folder included), computed
+        once, on first use, from the plan's structure, contact settings and contacts."""
+        return estimate_run(self.scenario, self.structure, self.contact, contacts=self.contacts or None)
 
 
 class Study:
@@ -186,21 +228,13 @@ class Study:
             structure = self.structure()
             engines, skipped = self.engines(structure)
             sc = self.scenario
-            contact = contact_settings(sc, structure) if any(e.name != "planar" for e in engines) else None
-            check_study_budget(sc, structure, contact)
+            has_3d = any(e.name != "planar" for e in engines)
+            contact = contact_settings(sc, structure) if has_3d else None
+            contacts = contacts_of(structure) if has_3d else 0
+            check_study_budget(sc, structure, contact, contacts=contacts or None)
             d = self.design(structure, contact)
-            if sc.blast.gravity_only:  # no charge: the structure under gravity alone
-                blast = None
-            elif d is None:  # the prototype's blast alone (with a design: the design's, never recomputed)
-                blast = blast_parameters(
-                    sc.blast.charge_kg,
-                    sc.blast.standoff_m,
-                    sc.blast.blast_model,
-                    extrapolate=sc.blast.extrapolate,
-                    burst=sc.blast.burst,
-                )
-            else:
-                blast = d.prototype
+            blast = self._blast(d)
+            members = sc.simulation.ensemble_members
             self._checked = StudyPlan(
                 structure=structure,
                 engines=tuple(engines),
@@ -208,8 +242,31 @@ class Study:
                 design=d,
                 blast=blast,
                 contact=contact,
+                planar=planar_settings(sc, structure, d) if any(e.name == "planar" for e in engines) else None,
+                settings3d=settings_3d(sc, structure) if has_3d else None,
+                systems3d=systems_3d(sc, structure, d, blast, contact) if has_3d else None,
+                ensemble=EnsembleSettings(members, sc.simulation.ensemble_perturbation) if members >= 2 else None,
+                threads=sc.simulation.threads,
+                scenario=sc,
+                contacts=contacts,
             )
         return self._checked
+
+    def _blast(self, design):
+        """The prototype's blast parameters: the design's (never recomputed); without a design the scenario's
+        charge and stand-off; None under gravity alone."""
+        sc = self.scenario
+        if sc.blast.gravity_only:  # no charge: the structure under gravity alone
+            return None
+        if design is not None:
+            return design.prototype
+        return blast_parameters(
+            sc.blast.charge_kg,
+            sc.blast.standoff_m,
+            sc.blast.blast_model,
+            extrapolate=sc.blast.extrapolate,
+            burst=sc.blast.burst,
+        )
 
     def run(self, progress: Optional[Progress] = None) -> StudyResult:
         """Run the study.
@@ -235,11 +292,10 @@ class Study:
             step = 1
             timings["design"] = time.perf_counter() - t0
             results: dict = {}
-            ctx = Context(sc, structure, d, blast, plan.contact)
             for eng in engines:
                 _tell(progress, eng.label, step, total)
                 t0 = time.perf_counter()
-                results[eng.name] = eng.run(ctx)
+                results[eng.name] = eng.run(plan)
                 timings[eng.name] = time.perf_counter() - t0
                 step += 1
             crit = None
