@@ -12,7 +12,8 @@
 * :mod:`.block3d_similarity` -- the single block's planar view of a 3D run (``block_dataset``,
   ``block_summary``, ``block_similarity``, ``block_view``: rotation about y, sliding of the
   supporting edge, uplift);
-* :mod:`.systems` -- internal: ``run_system``, one side of a model experiment on the 3D engine.
+* :mod:`.systems` -- ``Settings3D`` (the 3D settings), ``System3D`` / ``Systems3D`` (one system, the design's
+  two: ``Systems3D.of_design``), ``run_system`` (one system on the 3D engine).
 
 Many-case studies (sweeps, fragility, similarity maps) live in :mod:`blastscale.sweeps`.
 """

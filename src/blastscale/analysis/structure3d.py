@@ -2,10 +2,10 @@
 
 :func:`compare_structure3d` runs a structure and its model experiment through the same path:
 
-1. the model system is the one the design carries (:mod:`.systems`): its structure
-   ``design.specimen_structure``, gravity ``varsigma g``, contact settings the engine's
-   scale-consistent defaults (``contact=None``) or ``design.specimen_contact`` (a design made
-   without them: completed by :func:`blastscale.similitude.specimen.specimen_system`, as the design does);
+1. the model system is the one the design carries (:meth:`.systems.Systems3D.of_design`): its structure
+   ``design.specimen_structure``, gravity ``varsigma g``, load model ``design.specimen_load_model``, contact
+   settings ``design.specimen_contact`` or the engine's scale-consistent defaults (None; a design made without
+   them: completed by :func:`blastscale.similitude.specimen.specimen_system`, as the design does);
 2. each is loaded by :func:`blastscale.sim3d.load_methods.make_load` from its own blast
    parameters (``design.prototype``, ``design.specimen``: the design's, never recomputed) and
    simulated by :func:`blastscale.sim3d.simulate_structure` (the model for ``duration *

@@ -23,10 +23,8 @@ met and the value that would relax it.
 from __future__ import annotations
 
 import math
-import tempfile
 import warnings
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Callable, Optional
 
 from .._validate import BlastscaleInputError
@@ -34,7 +32,7 @@ from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_l
 from .debris import planar_reach
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .pareto import mark_pareto
-from .plan3d import candidate_design, design_scenario, planar_path, specimen_scenario
+from .plan3d import candidate_design, design_scenario, planar_path
 from .plan3d_designs import designs_3d
 from .shot import DEFAULT_LAB, safety_envelope, timing_of
 from ..blast import blast_parameters
@@ -293,16 +291,16 @@ def plan(
     best_sc = design_scenario(scenario, best.candidate, lab, best.charge_height_m or None)
     if planar and lab.ensemble_3d:
         tell("3D ensemble of the best design", 0, 1)
-        with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
-            designs[0]["odds_3d"] = ensemble_odds_3d(
-                specimen_scenario(scenario, best.design, folder=Path(tmp)),
-                prototype_collapsed=proto["collapsed"],
-                tolerances=tol,
-                members=lab.ensemble_3d,
-                seed=lab.seed,
-                workers=workers,
-                scheduler=scheduler,
-            )
+        designs[0]["odds_3d"] = ensemble_odds_3d(
+            scenario,
+            best.design,
+            prototype_collapsed=proto["collapsed"],
+            tolerances=tol,
+            members=lab.ensemble_3d,
+            seed=lab.seed,
+            workers=workers,
+            scheduler=scheduler,
+        )
         notes.append("odds_3d: the best design's 3D ensemble (friction and density tolerances included)")
     mark_pareto(designs)
     return Plan(

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
 from ..scenario import Scenario
 import copy
@@ -78,6 +78,14 @@ class StudyResult:
     warnings: tuple = ()
     timings: dict = field(default_factory=dict)
     _summary: dict = field(default_factory=dict, repr=False)  # computed once (the 3D similarity builds loads)
+    _views: dict = field(default_factory=dict, repr=False)  # views of the layers above, computed once (view)
+
+    def view(self, name: str, compute: Callable[["StudyResult"], Any]) -> Any:
+        """A view of this result that a layer above computes (e.g. the planner's test card), computed once, on
+        first use, by ``compute(result)`` and carried by the result (no module memo keyed by the result)."""
+        if name not in self._views:
+            self._views[name] = compute(self)
+        return self._views[name]
 
     # -- views -----------------------------------------------------------------------------
     def experiment(self) -> dict:

@@ -34,7 +34,7 @@ from dataclasses import dataclass, replace
 from typing import Any, Callable, Optional
 
 from .._validate import BlastscaleInputError
-from ..scenario import Scenario
+from ..scenario import Scenario, ScaleSpec
 from ..structures import from_spec
 from .engines import (
     ENGINES,
@@ -54,8 +54,13 @@ from .result import StudyResult
 from ..similitude import design_model
 from ..similitude.effects import front_face, structure_top
 from ..blast import blast_parameters
+from ..analysis.systems import System3D, Systems3D
+from ..similitude.specimen import specimen_system
 
-__all__ = ["Study", "StudyPlan", "StudyWarning", "Progress"]
+__all__ = ["Study", "StudyPlan", "StudyWarning", "Progress", "DesignSystem", "DESIGN_SYSTEMS"]
+
+#: The systems of a design that :meth:`Study.from_design` runs alone.
+DESIGN_SYSTEMS = ("specimen", "prototype")
 
 
 class StudyWarning(UserWarning):
@@ -100,6 +105,8 @@ class StudyPlan:
         Runs in flight at once (``simulation.threads``; None: this process's share of the cores).
     scenario : Scenario or None
         The scenario checked.
+    critical : bool
+        Whether the prototype's critical charge is searched (``simulation.critical_charge`` and the planar engine).
     contacts : int
         The prototype's contacts at rest (:func:`~.memory.contacts_of`, counted once; 0 without a 3D engine).
     """
@@ -117,6 +124,7 @@ class StudyPlan:
     threads: Optional[int] = None
     scenario: Any = None
     contacts: int = 0
+    critical: bool = False
 
     @functools.cached_property
     def size(self) -> RunSize:
@@ -132,27 +140,123 @@ class Study:
     ----------
     scenario : Scenario
         The experiment (see :mod:`blastscale.scenario`).
-    structure : structure, optional
-        The structure already built (e.g. a design's specimen, re-simulated after the shot); by default the
-        scenario's ``[structure]`` table builds it. The caller keeps the table in step with it.
+
+    A study may also start from a design (like pvlib's ``ModelChain.run_model_from_poa``, which starts past a
+    stage): :meth:`from_design` runs one system of a design (the specimen under a load of the caller's: the fired
+    test's prediction and refit, a calibration, the planner's specimen; or the prototype alone) with the
+    scenario's engine settings, never writing a scenario to get back in.
     """
 
-    def __init__(self, scenario: Scenario, *, structure=None):
+    def __init__(self, scenario: Scenario):
         if not isinstance(scenario, Scenario):
             raise BlastscaleInputError(f"scenario must be a Scenario, got {type(scenario).__name__}")
         self.scenario = scenario
-        self._structure = structure
+        self._system: Optional[DesignSystem] = None  # from_design: which system of a design runs alone
         self._checked = None  # the StudyPlan once checked: the structure is built and the design runs once
 
+    @classmethod
+    def from_design(
+        cls,
+        scenario: Scenario,
+        design,
+        *,
+        system: str = "specimen",
+        charge_kg: Optional[float] = None,
+        standoff_m: Optional[float] = None,
+        engine: Optional[str] = None,
+        structure=None,
+        friction: Optional[float] = None,
+        restitution: Optional[float] = None,
+    ) -> "Study":
+        """A study of one system of a design, run alone (no comparison).
+
+        Parameters
+        ----------
+        scenario : Scenario
+            The prototype's scenario: its engine settings (engine, load method, pulse shape, incidence, samples,
+            restitution, friction and ``[simulation.contact]``, recording, ensembles, threads, extrapolation).
+        design : ModelDesign
+            The design (:func:`blastscale.similitude.design_model`, carrying both systems).
+        system : {"specimen", "prototype"}
+            Which system runs: the specimen (the design's structure, gravity, duration and load model; its
+            contact the scenario's for the prototype scaled once by
+            :func:`~blastscale.similitude.specimen.specimen_system`, as the design's own), or the prototype.
+        charge_kg, standoff_m : float, optional
+            The load [kg TNT], [m] (given together); default the design's blast parameters of the system.
+        engine : str, optional
+            ``simulation.engine`` of this run; default the scenario's.
+        structure : structure, optional
+            The system's structure when it is not the design's as built (a perturbed specimen of an ensemble:
+            ``design.specimen_structure.scaled(factors)``); default the design's.
+        friction : float, optional
+            The friction coefficient [-] when not the scenario's (a perturbed member, a calibration).
+        restitution : float, optional
+            The planar coefficient of restitution [-] when not the scenario's (a calibration).
+
+        Returns
+        -------
+        Study
+            Its plan has no design (the system runs alone); ``critical_charge`` is not searched.
+        """
+        if system not in DESIGN_SYSTEMS:
+            raise BlastscaleInputError(
+                f"system = {system!r} is not known: valid values are {', '.join(DESIGN_SYSTEMS)}"
+            )
+        if (charge_kg is None) != (standoff_m is None):
+            raise BlastscaleInputError(
+                f"charge_kg = {charge_kg}, standoff_m = {standoff_m}: give both (the caller's load) or neither "
+                "(the design's)"
+            )
+        if engine is not None and engine not in (*ENGINES, "both"):
+            raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINES)}, both")
+        study = cls(scenario)
+        study._system = DesignSystem(design, system, charge_kg, standoff_m, engine, structure, friction, restitution)
+        return study
+
+    @classmethod
+    def from_candidate(cls, scenario: Scenario, scale: ScaleSpec, *, engine: Optional[str] = None) -> "Study":
+        """The study of a candidate design of the scenario's prototype (the planner's): its ``[scale]`` replaced by
+        ``scale`` (typed; no scenario written and read back).
+
+        Parameters
+        ----------
+        scenario : Scenario
+            The prototype's scenario.
+        scale : ScaleSpec
+            The candidate's scales (lambda, law, density ratio or material, gravity ratio, specimen burst and
+            charge height).
+        engine : str, optional
+            Run this engine alone (the planner's 3D comparison): ``simulation.engine`` replaced, no critical charge
+            searched and no ensemble.
+
+        Returns
+        -------
+        Study
+        """
+        if not isinstance(scale, ScaleSpec):
+            raise BlastscaleInputError(f"scale must be a ScaleSpec, got {type(scale).__name__}")
+        update: dict = {"scale": scale}
+        if engine is not None:
+            if engine not in (*ENGINES, "both"):
+                raise BlastscaleInputError(
+                    f"engine = {engine!r} is not known: valid values are {', '.join(ENGINES)}, both"
+                )
+            update["simulation"] = scenario.simulation.model_copy(
+                update={"engine": engine, "critical_charge": False, "ensemble_members": 0}
+            )
+        return cls(scenario.model_copy(update=update))
+
     def structure(self):
-        """The prototype structure: the one given, or built by the registry entry of its kind
-        (:data:`blastscale.structures.STRUCTURE_BUILDERS`)."""
-        return from_spec(self.scenario.structure) if self._structure is None else self._structure
+        """The structure simulated: the prototype built by the registry entry of its kind
+        (:data:`blastscale.structures.STRUCTURE_BUILDERS`), or the design's system's (:meth:`from_design`)."""
+        if self._system is not None:
+            return self._system.structure()
+        return from_spec(self.scenario.structure)
 
     def engines(self, structure) -> tuple[list[Engine], list[str]]:
         """The engines to run and the reasons for those skipped (``engine = "both"``); a single
         engine asked for that does not support the structure is an error."""
-        asked = self.scenario.simulation.engine
+        asked = self.scenario.simulation.engine if self._system is None else self._system.engine_or(self.scenario)
         names = list(ENGINES) if asked == "both" else [asked]
         run, skipped = [], []
         alone = self.scenario.blast.gravity_only
@@ -194,6 +298,8 @@ class Study:
         settings, is given), gravity and duration, each scaled once."""
 
         sc = self.scenario
+        if self._system is not None:  # a system of a design, run alone
+            return None
         if sc.scale is None or sc.blast.gravity_only:  # gravity alone: no charge to scale
             return None
         structure = self.structure() if structure is None else structure
@@ -224,6 +330,8 @@ class Study:
         design (blast fits' ranges, scale range), the memory and the computing time
         (:func:`~blastscale.study.memory.check_study_budget`), the 3D contact settings. Returns the
         :class:`StudyPlan` (built once per study)."""
+        if self._checked is None and self._system is not None:
+            self._checked = self._system.plan(self)
         if self._checked is None:
             structure = self.structure()
             engines, skipped = self.engines(structure)
@@ -249,6 +357,7 @@ class Study:
                 threads=sc.simulation.threads,
                 scenario=sc,
                 contacts=contacts,
+                critical=bool(sc.simulation.critical_charge) and any(e.name == "planar" for e in engines),
             )
         return self._checked
 
@@ -287,7 +396,7 @@ class Study:
             t0 = time.perf_counter()
             plan = self.check()
             structure, engines, skipped, d, blast = plan.structure, plan.engines, plan.skipped, plan.design, plan.blast
-            want_critical = sc.simulation.critical_charge and any(e.name == "planar" for e in engines)
+            want_critical = plan.critical
             total = 1 + len(engines) + int(want_critical)
             step = 1
             timings["design"] = time.perf_counter() - t0
@@ -330,6 +439,113 @@ class Study:
             warnings.warn(note, StudyWarning, stacklevel=2)
         summary.update(warnings=list(lib + notes), timings_s=dict(timings))
         return replace(partial, warnings=tuple(lib + notes), timings=timings, _summary=summary)
+
+
+@dataclass(frozen=True)
+class DesignSystem:
+    """One system of a design run alone by a study (:meth:`Study.from_design`).
+
+    Attributes
+    ----------
+    design : ModelDesign
+        The design.
+    system : {"specimen", "prototype"}
+        Which system.
+    charge_kg, standoff_m : float or None
+        The caller's load [kg TNT], [m]; None: the design's blast parameters of the system.
+    engine : str or None
+        The engine asked for; None: the scenario's.
+    given_structure : structure or None
+        The system's structure when not the design's (a perturbed member).
+    friction : float or None
+        The friction coefficient [-] when not the scenario's (a perturbed member, a calibration).
+    restitution : float or None
+        The planar coefficient of restitution [-] when not the scenario's (a calibration).
+    """
+
+    design: Any
+    system: str
+    charge_kg: Optional[float] = None
+    standoff_m: Optional[float] = None
+    engine: Optional[str] = None
+    given_structure: Any = None
+    friction: Optional[float] = None
+    restitution: Optional[float] = None
+
+    @property
+    def specimen(self) -> bool:
+        return self.system == "specimen"
+
+    def engine_or(self, scenario: Scenario) -> str:
+        """The engine asked for, else the scenario's."""
+        return scenario.simulation.engine if self.engine is None else self.engine
+
+    def structure(self):
+        """The system's structure (the design's, scaled once there; or the one given)."""
+        d = self.design
+        if self.given_structure is not None:
+            return self.given_structure
+        return d.specimen_structure if self.specimen else d.prototype_structure
+
+    def blast(self, scenario: Scenario):
+        """The system's blast parameters: the design's, or those of the caller's load with the scenario's blast
+        model, extrapolation and the system's burst (the specimen's: the design's specimen burst)."""
+        d = self.design
+        params = d.specimen if self.specimen else d.prototype
+        if self.charge_kg is None:
+            return params
+        bl = scenario.blast
+        burst = bl.burst
+        if self.specimen:
+            burst = getattr(params, "burst", None) or (scenario.scale and scenario.scale.specimen_burst) or bl.burst
+        return blast_parameters(
+            float(self.charge_kg), float(self.standoff_m), bl.blast_model, extrapolate=bl.extrapolate, burst=burst
+        )
+
+    def plan(self, study: "Study") -> StudyPlan:
+        """The plan of the system run alone: the design's structure, gravity, duration and load model, the
+        scenario's contact settings for the prototype (scaled once for the specimen by
+        :func:`~blastscale.similitude.specimen.specimen_system`) and engine settings."""
+        sc, d = study.scenario, self.design
+        structure = self.structure()
+        engines, skipped = study.engines(structure)
+        has_3d = any(e.name != "planar" for e in engines)
+        contact = contacts = None
+        if has_3d:  # the prototype's contact settings from the scenario (its friction), scaled once for the specimen
+            contact = contact_settings(sc, d.prototype_structure)
+            if self.friction is not None:
+                contact = replace(contact, friction=float(self.friction))
+            contacts = contacts_of(structure)  # the specimen's are the prototype's (scaled), counted once
+            check_study_budget(sc, d.prototype_structure, contact, contacts=contacts)
+            if self.specimen:
+                contact = specimen_system(d.factors, contact=contact).contact
+        blast = self.blast(sc)
+        gravity = d.specimen_gravity if self.specimen else d.gravity
+        duration = float(d.specimen_duration if self.specimen else d.duration)
+        load_model = d.specimen_load_model if self.specimen else d.load_model
+        members = sc.simulation.ensemble_members
+        planar = None
+        if any(e.name == "planar" for e in engines):
+            planar = replace(
+                planar_settings(sc, structure, d), duration=duration, gravity=gravity, load_model=load_model
+            )
+            if self.restitution is not None:
+                planar = replace(planar, restitution=float(self.restitution))
+        return StudyPlan(
+            structure=structure,
+            engines=tuple(engines),
+            skipped=tuple(skipped),
+            design=None,
+            blast=blast,
+            contact=contact,
+            planar=planar,
+            settings3d=settings_3d(sc, structure) if has_3d else None,
+            systems3d=Systems3D(System3D(structure, blast, gravity, contact, duration, load_model)) if has_3d else None,
+            ensemble=EnsembleSettings(members, sc.simulation.ensemble_perturbation) if members >= 2 else None,
+            threads=sc.simulation.threads,
+            scenario=sc,
+            contacts=contacts or 0,
+        )
 
 
 def _tell(progress: Optional[Progress], stage: str, done: int, total: int) -> None:
