@@ -184,7 +184,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
     """Design ``c`` and check it against ``lab``.
 
     ``design(c)`` returns the candidate's :class:`~blastscale.similitude.ModelDesign` and the height of
-    its specimen charge [m] (the planner's: the Study's design of the candidate's scenario). ``block``
+    its specimen charge [m] (the planner's: the Study's design of the candidate, :meth:`~blastscale.study.Study.from_candidate`). ``block``
     is the prototype's block, or for any other structure its envelope block (:func:`envelope_block`):
     its t_o p is the impulsive check of every kind. ``timing`` is the prototype's (or the envelope
     block's) :class:`~.shot.Timing`: the specimen's times are its times x the time factor

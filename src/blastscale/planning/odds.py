@@ -1,6 +1,7 @@
 """The odds of a test: the lab's tolerances propagated by Monte Carlo through the fast planar
 kernels (the first-swing criterion and peak of :mod:`blastscale.rocking.swing`, vectorised), or
-through small 3D ensembles (one Study per member, on Dask when asked).
+through small 3D ensembles (one Study of the design's specimen per member,
+:meth:`~blastscale.study.Study.from_design`, on Dask when asked).
 
 Tolerances are one standard deviation (``[lab]``): the explosive's mass relative, lognormal
 (``m eps``, ``ln eps ~ N(0, s_W)``; the initiator is not perturbed); the stand-off absolute, normal

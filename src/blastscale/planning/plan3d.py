@@ -8,9 +8,10 @@ envelope block (:func:`~.candidates.envelope_block`: the impulsive check t_o p, 
 instruments) and on what the design gives in closed form: the lab's limits, the safety radius, the
 blast model's range, and the spread of the shock's arrival over the front at model scale. The best
 ``lab.top_3d`` screened designs (smallest screening error, then safety radius) then get the
-prototype-vs-specimen 3D comparison (one Study of the design's scenario on the 3D engine) and a 3D
-Monte Carlo ensemble of the lab's tolerances (``lab.ensemble_3d`` members, default
-:data:`ENSEMBLE_3D_DEFAULT`; :func:`~.odds.ensemble_odds_3d`, on threads or Dask).
+prototype-vs-specimen 3D comparison (the candidate's Study on the 3D engine,
+:meth:`~blastscale.study.Study.from_candidate`) and a 3D Monte Carlo ensemble of the lab's tolerances
+(``lab.ensemble_3d`` members, default :data:`ENSEMBLE_3D_DEFAULT`; :func:`~.odds.ensemble_odds_3d`: the design's
+specimen through :meth:`~blastscale.study.Study.from_design`, on threads or Dask).
 
 The screening error of a design (lower first) is the larger of two closed-form estimates:
 

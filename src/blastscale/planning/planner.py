@@ -3,8 +3,8 @@
 The planner searches the geometric scale lambda (the fractions of
 :data:`~.candidates.LAMBDA_DENOMINATORS`), the density ratio gamma through the lab's materials, the
 scaling law (general; Hopkinson-Cranz where a material's density allows it) and the specimen's burst
-(``lab.bursts``), designs each candidate (the Study's design of its scenario: the load model as the
-scenario's), rejects those that break a constraint of the lab (each rejection with its reasons,
+(``lab.bursts``), designs each candidate (the Study's design of the candidate, :meth:`~blastscale.study.Study.from_candidate`: the load
+model as the scenario's), rejects those that break a constraint of the lab (each rejection with its reasons,
 :func:`screen`), and for the feasible ones propagates the lab's tolerances by Monte Carlo: a block
 on the paper's load through the planar kernels (:mod:`.odds`), any other structure or load model
 through the 3D stage of its best screened designs (:mod:`.plan3d`, :mod:`.plan3d_designs`). The

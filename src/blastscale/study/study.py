@@ -15,6 +15,13 @@ from small registries, so that a new structure kind or engine needs no change he
   any structure), plus :data:`ENSEMBLE` (:func:`~blastscale.analysis.ensemble.ensemble_compare`)
   when ``simulation.ensemble_members >= 2``.
 
+The plan (:class:`StudyPlan`, :meth:`Study.check`) resolves every engine setting once, as frozen typed objects
+(planar settings, the 3D settings and each system with its load model, the ensembles, the run's size); the
+engines read it, never the scenario. A study may also start from a design (like pvlib's
+``ModelChain.run_model_from_poa``): :meth:`Study.from_design` runs one system of a design alone (the fired
+test's prediction and refit, a calibration, the planner's specimen ensembles) and :meth:`Study.from_candidate`
+a candidate's design (the planner): no scenario is written to get back in.
+
 No CLI code: the ``blastscale run`` command and the sweeps only call :class:`Study` and read
 the :class:`StudyResult`. Example (the built-in default, shortened):
 
