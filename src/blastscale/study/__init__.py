@@ -20,7 +20,8 @@ from .memory import (
     format_duration,
 )
 from .result import StudyResult
-from .study import Progress, Study, StudyPlan, StudyWarning
+from .plan import StudyPlan
+from .study import Progress, Study, StudyWarning
 
 __all__ = [
     "Study",

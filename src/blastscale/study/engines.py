@@ -271,23 +271,24 @@ ENGINES: dict[str, Engine] = {
 ENSEMBLE = Engine("ensemble", "3D ensembles under perturbed loads: prototype and model", _3d_supports, _run_ensemble)
 
 
-def critical_charge_of(sc: Scenario, structure):
-    """The prototype block's critical charge at the scenario's stand-off (planar, first-swing criterion).
+def critical_charge_of(plan):
+    """The prototype block's critical charge at the scenario's stand-off (planar, first-swing criterion), from a
+    study's plan (:class:`~.study.StudyPlan`: its planar settings, the scenario's stand-off and blast model).
 
     A pure function of the block, gravity, restitution, stand-off, pulse shape and blast model: a sweep
-    over charges (or any other field) at one stand-off searches it once per process (memoised)."""
-    sim, bl = sc.simulation, sc.blast
-    lm = load_model_of(sc, structure)
-
+    over charges (or any other field) at one stand-off searches it once per process (memoised on these
+    values, all frozen and hashable)."""
+    ps, bl = plan.planar, plan.scenario.blast
+    lm = ps.load_model
     blast_model = model_for_burst(bl.blast_model, bl.burst).name
     return _critical_charge(
-        structure,
-        sim.gravity_m_s2,
-        sim.restitution,
+        plan.structure,
+        ps.gravity,
+        ps.restitution,
         bl.standoff_m,
-        bl.pulse_shape,
+        ps.pulse_shape,
         blast_model,
-        bl.extrapolate,
+        ps.extrapolate,
         None if lm.is_paper else lm,
     )
 

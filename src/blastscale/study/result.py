@@ -12,7 +12,7 @@ import copy
 from ..analysis.compare import upscale_dataset
 import numpy as np
 
-__all__ = ["StudyResult"]
+__all__ = ["StudyResult", "study_warnings"]
 
 
 #: Summary keys left out of the flat scalars: per-block details, named by the blocks (names are not
@@ -290,3 +290,44 @@ def _system_stack(proto, up=None):
         both[label].attrs.setdefault("units", "1")
     both.attrs = {}
     return both
+
+
+def _is_circular(cmp) -> bool:
+    return getattr(getattr(cmp, "structure", None), "section", None) == "circular"
+
+
+def study_warnings(design, results: dict, skipped: list, summary: dict, scenario=None) -> list:
+    """The study's own warnings, in words for the report (the 3D and ensemble figures read from
+    the study's ``summary``, computed once)."""
+    out = list(skipped)
+    if scenario is not None and scenario.blast.gravity_only and scenario.scale is not None:
+        out.append("gravity alone (no charge): no specimen is designed, the [scale] table is not used")
+    imp = None if design is None else design.impulsive
+    if imp is not None and not imp.impulsive:
+        out.append(
+            f"the load is not impulsive (t_o p = {imp.prototype_ratio:.3g} prototype, {imp.model_ratio:.3g} "
+            f"model, threshold {imp.threshold:g}): the general law's similarity is not guaranteed"
+        )
+    planar = results.get("planar")
+    if planar is not None and planar.outcomes_agree is False:
+        out.append("planar rocking: prototype and model outcomes disagree (one overturns, the other does not)")
+    ens = results.get("ensemble")
+    if ens is None and results.get("3d") is not None and _is_circular(results["3d"]):
+        out.append(
+            "circular drums wobble chaotically: one trajectory after the first impact means little; compare "
+            "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities"
+        )
+    if ens is not None and summary["ensemble"]["collapse_probability_model"] is not None:
+        e = summary["ensemble"]
+        if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
+            out.append(
+                f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
+                f"{e['collapse_probability_model']:.2g} (model)"
+            )
+    s = summary["3d"]
+    if s is not None:
+        p, m = s.get("prototype") or {}, s.get("model") or {}
+        for key in ("collapsed",):
+            if key in p and key in m and bool(p[key]) != bool(m[key]):
+                out.append(f"3D: prototype and model disagree on '{key}' ({p[key]} vs {m[key]})")
+    return out

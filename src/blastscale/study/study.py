@@ -34,11 +34,10 @@ the :class:`StudyResult`. Example (the built-in default, shortened):
 
 from __future__ import annotations
 
-import functools
 import time
 import warnings
-from dataclasses import dataclass, replace
-from typing import Any, Callable, Optional
+from dataclasses import replace
+from typing import Callable, Optional
 
 from .._validate import BlastscaleInputError
 from ..scenario import Scenario, ScaleSpec
@@ -47,27 +46,20 @@ from .engines import (
     ENGINES,
     ENSEMBLE,
     Engine,
-    EnsembleSettings,
-    PlanarSettings,
     contact_settings,
     critical_charge_of,
     load_model_of,
     planar_settings,
-    settings_3d,
     systems_3d,
 )
-from .memory import RunSize, check_study_budget, contacts_of, estimate_run
-from .result import StudyResult
+from .memory import check_study_budget, contacts_of
+from .plan import DESIGN_SYSTEMS, DesignSystem, StudyPlan
+from .result import StudyResult, study_warnings
 from ..similitude import design_model
 from ..similitude.effects import front_face, structure_top
 from ..blast import blast_parameters
-from ..analysis.systems import System3D, Systems3D
-from ..similitude.specimen import specimen_system
 
-__all__ = ["Study", "StudyPlan", "StudyWarning", "Progress", "DesignSystem", "DESIGN_SYSTEMS"]
-
-#: The systems of a design that :meth:`Study.from_design` runs alone.
-DESIGN_SYSTEMS = ("specimen", "prototype")
+__all__ = ["Study", "StudyWarning", "Progress"]
 
 
 class StudyWarning(UserWarning):
@@ -77,67 +69,6 @@ class StudyWarning(UserWarning):
 
 #: Progress callback: ``progress(stage, done, total)`` with a short stage description.
 Progress = Callable[[str, int, int], None]
-
-
-@dataclass(frozen=True)
-class StudyPlan:
-    """What a study checked before simulating (:meth:`Study.check`), every piece built once.
-
-    Attributes
-    ----------
-    structure : structure
-        The prototype structure (:data:`blastscale.structures.STRUCTURE_BUILDERS`).
-    engines : tuple of Engine
-        The engines to run (:data:`~.engines.ENGINES`, plus :data:`~.engines.ENSEMBLE`).
-    skipped : tuple of str
-        Why an engine of ``engine = "both"`` is not run.
-    design : ModelDesign or None
-        The one design (None for a prototype-only scenario or gravity alone): the specimen structure,
-        load model, contact, gravity and duration of both systems.
-    blast : BlastParameters or None
-        The prototype's blast parameters (``design.prototype`` with a design; None under gravity alone).
-    contact : ContactSettings or None
-        The prototype's 3D contact settings (:func:`~.engines.contact_settings`), when a 3D engine runs.
-    planar : PlanarSettings or None
-        The planar engine's settings (:func:`~.engines.planar_settings`), when it runs.
-    settings3d : Settings3D or None
-        The 3D engine's settings shared by both systems (:func:`~.engines.settings_3d`: load method, pulse
-        shape, incidence, recording interval, extrapolation), when a 3D engine runs.
-    systems3d : Systems3D or None
-        The 3D systems (:func:`~.engines.systems_3d`): the design's prototype and specimen, each with its
-        structure, blast parameters, gravity, contact, duration and load model; or the prototype alone.
-    ensemble : EnsembleSettings or None
-        Members and perturbation of the 3D ensembles, when they run.
-    threads : int or None
-        Runs in flight at once (``simulation.threads``; None: this process's share of the cores).
-    scenario : Scenario or None
-        The scenario checked.
-    critical : bool
-        Whether the prototype's critical charge is searched (``simulation.critical_charge`` and the planar engine).
-    contacts : int
-        The prototype's contacts at rest (:func:`~.memory.contacts_of`, counted once; 0 without a 3D engine).
-    """
-
-    structure: Any
-    engines: tuple
-    skipped: tuple
-    design: Any
-    blast: Any
-    contact: Any = None
-    planar: Optional[PlanarSettings] = None
-    settings3d: Any = None
-    systems3d: Any = None
-    ensemble: Optional[EnsembleSettings] = None
-    threads: Optional[int] = None
-    scenario: Any = None
-    contacts: int = 0
-    critical: bool = False
-
-    @functools.cached_property
-    def size(self) -> RunSize:
-        """The run's size, said before it starts (:func:`~.memory.estimate_run`, result folder included), computed
-        once, on first use, from the plan's structure, contact settings and contacts."""
-        return estimate_run(self.scenario, self.structure, self.contact, contacts=self.contacts or None)
 
 
 class Study:
@@ -338,7 +269,7 @@ class Study:
         (:func:`~blastscale.study.memory.check_study_budget`), the 3D contact settings. Returns the
         :class:`StudyPlan` (built once per study)."""
         if self._checked is None and self._system is not None:
-            self._checked = self._system.plan(self)
+            self._checked = self._system.plan(self.scenario, *self.engines(self._system.structure()))
         if self._checked is None:
             structure = self.structure()
             engines, skipped = self.engines(structure)
@@ -349,21 +280,18 @@ class Study:
             check_study_budget(sc, structure, contact, contacts=contacts or None)
             d = self.design(structure, contact)
             blast = self._blast(d)
-            members = sc.simulation.ensemble_members
-            self._checked = StudyPlan(
-                structure=structure,
-                engines=tuple(engines),
-                skipped=tuple(skipped),
+            planar = planar_settings(sc, structure, d) if any(e.name == "planar" for e in engines) else None
+            self._checked = StudyPlan.resolve(
+                sc,
+                structure,
+                engines,
+                skipped,
                 design=d,
                 blast=blast,
                 contact=contact,
-                planar=planar_settings(sc, structure, d) if any(e.name == "planar" for e in engines) else None,
-                settings3d=settings_3d(sc, structure) if has_3d else None,
-                systems3d=systems_3d(sc, structure, d, blast, contact) if has_3d else None,
-                ensemble=EnsembleSettings(members, sc.simulation.ensemble_perturbation) if members >= 2 else None,
-                threads=sc.simulation.threads,
-                scenario=sc,
                 contacts=contacts,
+                planar=planar,
+                systems3d=systems_3d(sc, structure, d, blast, contact) if has_3d else None,
                 critical=bool(sc.simulation.critical_charge) and any(e.name == "planar" for e in engines),
             )
         return self._checked
@@ -418,7 +346,7 @@ class Study:
             if want_critical:
                 _tell(progress, "critical charge of the prototype (planar)", step, total)
                 t0 = time.perf_counter()
-                crit = critical_charge_of(sc, structure)
+                crit = critical_charge_of(plan)
                 timings["critical"] = time.perf_counter() - t0
                 step += 1
             _tell(progress, "done", total, total)
@@ -435,7 +363,7 @@ class Study:
                 ensemble=results.get("ensemble"),
             )
             summary = partial._compute_summary()  # inside the capture: its warnings are the study's
-        notes = _study_warnings(d, results, skipped, summary, sc)
+        notes = study_warnings(d, results, skipped, summary, sc)
         lib = []
         for w in caught:
             msg = " ".join(str(w.message).split())
@@ -448,154 +376,6 @@ class Study:
         return replace(partial, warnings=tuple(lib + notes), timings=timings, _summary=summary)
 
 
-@dataclass(frozen=True)
-class DesignSystem:
-    """One system of a design run alone by a study (:meth:`Study.from_design`).
-
-    Attributes
-    ----------
-    design : ModelDesign
-        The design.
-    system : {"specimen", "prototype"}
-        Which system.
-    charge_kg, standoff_m : float or None
-        The caller's load [kg TNT], [m]; None: the design's blast parameters of the system.
-    engine : str or None
-        The engine asked for; None: the scenario's.
-    given_structure : structure or None
-        The system's structure when not the design's (a perturbed member).
-    friction : float or None
-        The friction coefficient [-] when not the scenario's (a perturbed member, a calibration).
-    restitution : float or None
-        The planar coefficient of restitution [-] when not the scenario's (a calibration).
-    """
-
-    design: Any
-    system: str
-    charge_kg: Optional[float] = None
-    standoff_m: Optional[float] = None
-    engine: Optional[str] = None
-    given_structure: Any = None
-    friction: Optional[float] = None
-    restitution: Optional[float] = None
-
-    @property
-    def specimen(self) -> bool:
-        return self.system == "specimen"
-
-    def engine_or(self, scenario: Scenario) -> str:
-        """The engine asked for, else the scenario's."""
-        return scenario.simulation.engine if self.engine is None else self.engine
-
-    def structure(self):
-        """The system's structure (the design's, scaled once there; or the one given)."""
-        d = self.design
-        if self.given_structure is not None:
-            return self.given_structure
-        return d.specimen_structure if self.specimen else d.prototype_structure
-
-    def blast(self, scenario: Scenario):
-        """The system's blast parameters: the design's, or those of the caller's load with the scenario's blast
-        model, extrapolation and the system's burst (the specimen's: the design's specimen burst)."""
-        d = self.design
-        params = d.specimen if self.specimen else d.prototype
-        if self.charge_kg is None:
-            return params
-        bl = scenario.blast
-        burst = bl.burst
-        if self.specimen:
-            burst = getattr(params, "burst", None) or (scenario.scale and scenario.scale.specimen_burst) or bl.burst
-        return blast_parameters(
-            float(self.charge_kg), float(self.standoff_m), bl.blast_model, extrapolate=bl.extrapolate, burst=burst
-        )
-
-    def plan(self, study: "Study") -> StudyPlan:
-        """The plan of the system run alone: the design's structure, gravity, duration and load model, the
-        scenario's contact settings for the prototype (scaled once for the specimen by
-        :func:`~blastscale.similitude.specimen.specimen_system`) and engine settings."""
-        sc, d = study.scenario, self.design
-        structure = self.structure()
-        engines, skipped = study.engines(structure)
-        has_3d = any(e.name != "planar" for e in engines)
-        contact = contacts = None
-        if has_3d:  # the prototype's contact settings from the scenario (its friction), scaled once for the specimen
-            contact = contact_settings(sc, d.prototype_structure)
-            if self.friction is not None:
-                contact = replace(contact, friction=float(self.friction))
-            contacts = contacts_of(structure)  # the specimen's are the prototype's (scaled), counted once
-            check_study_budget(sc, d.prototype_structure, contact, contacts=contacts)
-            if self.specimen:
-                contact = specimen_system(d.factors, contact=contact).contact
-        blast = self.blast(sc)
-        gravity = d.specimen_gravity if self.specimen else d.gravity
-        duration = float(d.specimen_duration if self.specimen else d.duration)
-        load_model = d.specimen_load_model if self.specimen else d.load_model
-        members = sc.simulation.ensemble_members
-        planar = None
-        if any(e.name == "planar" for e in engines):
-            planar = replace(
-                planar_settings(sc, structure, d), duration=duration, gravity=gravity, load_model=load_model
-            )
-            if self.restitution is not None:
-                planar = replace(planar, restitution=float(self.restitution))
-        return StudyPlan(
-            structure=structure,
-            engines=tuple(engines),
-            skipped=tuple(skipped),
-            design=None,
-            blast=blast,
-            contact=contact,
-            planar=planar,
-            settings3d=settings_3d(sc, structure) if has_3d else None,
-            systems3d=Systems3D(System3D(structure, blast, gravity, contact, duration, load_model)) if has_3d else None,
-            ensemble=EnsembleSettings(members, sc.simulation.ensemble_perturbation) if members >= 2 else None,
-            threads=sc.simulation.threads,
-            scenario=sc,
-            contacts=contacts or 0,
-        )
-
-
 def _tell(progress: Optional[Progress], stage: str, done: int, total: int) -> None:
     if progress is not None:
         progress(stage, done, total)
-
-
-def _is_circular(cmp) -> bool:
-    return getattr(getattr(cmp, "structure", None), "section", None) == "circular"
-
-
-def _study_warnings(design, results: dict, skipped: list, summary: dict, scenario=None) -> list:
-    """The study's own warnings, in words for the report (the 3D and ensemble figures read from
-    the study's ``summary``, computed once)."""
-    out = list(skipped)
-    if scenario is not None and scenario.blast.gravity_only and scenario.scale is not None:
-        out.append("gravity alone (no charge): no specimen is designed, the [scale] table is not used")
-    imp = None if design is None else design.impulsive
-    if imp is not None and not imp.impulsive:
-        out.append(
-            f"the load is not impulsive (t_o p = {imp.prototype_ratio:.3g} prototype, {imp.model_ratio:.3g} "
-            f"model, threshold {imp.threshold:g}): the general law's similarity is not guaranteed"
-        )
-    planar = results.get("planar")
-    if planar is not None and planar.outcomes_agree is False:
-        out.append("planar rocking: prototype and model outcomes disagree (one overturns, the other does not)")
-    ens = results.get("ensemble")
-    if ens is None and results.get("3d") is not None and _is_circular(results["3d"]):
-        out.append(
-            "circular drums wobble chaotically: one trajectory after the first impact means little; compare "
-            "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities"
-        )
-    if ens is not None and summary["ensemble"]["collapse_probability_model"] is not None:
-        e = summary["ensemble"]
-        if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
-            out.append(
-                f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
-                f"{e['collapse_probability_model']:.2g} (model)"
-            )
-    s = summary["3d"]
-    if s is not None:
-        p, m = s.get("prototype") or {}, s.get("model") or {}
-        for key in ("collapsed",):
-            if key in p and key in m and bool(p[key]) != bool(m[key]):
-                out.append(f"3D: prototype and model disagree on '{key}' ({p[key]} vs {m[key]})")
-    return out
