@@ -30,7 +30,7 @@ from .._validate import BlastscaleInputError
 from .compare import align, compare_responses, upscale_dataset
 from .prototype3d import Prototype3D, _block_keys, _load_model_setting, _merged, _with_outcome, prototype_structure3d
 from .systems import Settings3D, Systems3D, run_system
-from .upscale import upscale_summary
+from .upscale import upscale, upscale_summary
 from ..sim3d.load_methods import arrival_spread_similarity
 from ..sim3d.threads import map_threads
 
@@ -226,7 +226,7 @@ def compare_structure3d(systems: Systems3D, settings: Settings3D = Settings3D(),
     p_run, m_run = map_threads(lambda s: run_system(s, settings), (systems.prototype, systems.specimen), threads)
     proto, mod = p_run.response, m_run.response
     # the later of the two loads' ends [s after the first arrival, prototype time]
-    load_end = max(p_run.load_duration_s, m_run.load_duration_s / design.factors.time)
+    load_end = max(p_run.load_duration_s, upscale(m_run.load_duration_s, design.factors, "time"))
     pds, up, cmp = _compared(proto, mod, design.factors, load_end)
     return Comparison3D(
         design=design,

@@ -31,6 +31,7 @@ from scipy.optimize import least_squares, minimize_scalar
 
 from .._validate import BlastscaleInputError
 from ..rocking.system import housner_restitution
+from ..analysis.upscale import upscale
 from ..study import Study
 from .outcome import pose_marker_history
 from .refit import OUTCOMES, marker_history, simulate_specimen
@@ -202,7 +203,9 @@ def calibrate_friction(
     proto, st = _prototype_3d(scenario, design, mu)
     peaks = {}
     for name, (point, _, _) in tracks.items():
-        ux, _ = pose_marker_history(proto.dataset, st, np.asarray(point, dtype=float) / design.factors.length)
+        ux, _ = pose_marker_history(
+            proto.dataset, st, upscale(np.asarray(point, dtype=float), design.factors, "length")
+        )
         t = np.asarray(proto.dataset["time"].values)
         largest = float(np.max(np.abs(ux)))
         peaks[name] = track_first_peak(t, ux, noise=1e-3 * largest, smooth=False).first_peak_m if largest > 0 else None

@@ -292,12 +292,10 @@ def envelope_block(structure):
 
 def envelope_impulsive(envelope, d):
     """The impulsive check t_o p (:func:`~blastscale.similitude.experiment.impulsive_check`) of a design
-    on the envelope block of its prototype and on that block scaled by lambda (the specimen's)."""
+    on the envelope block of its prototype and on that block scaled by the design's factors (the specimen's,
+    ``structure.scaled(factors)``: its frequency parameter depends on its size alone)."""
 
-    lam = float(d.factors.length)
-    spec = RectangularBlock(
-        height=envelope.height * lam, width=envelope.width * lam, depth=envelope.depth * lam, density=envelope.density
-    )
+    spec = envelope.scaled(d.factors)
     return ImpulsiveCheck(
         prototype_ratio=float(d.prototype.positive_duration * envelope.frequency_parameter(d.gravity)),
         model_ratio=float(d.specimen.positive_duration * spec.frequency_parameter(d.specimen_gravity)),
