@@ -111,7 +111,7 @@ def paper_case(section: str, charge: float, method: str, incidence: str, duratio
         cmp = compare_structure3d(
             Systems3D.of_design(design, col, duration=duration), Settings3D(load=method, incidence=incidence)
         )
-    s = cmp.summary()
+    s = cmp.to_dict()
     sim = s["similarity"]  # with the arrival spreads of the two runs' loads
     top = sim["top_point"]
     return {
@@ -196,7 +196,7 @@ def ensembles(n: int = 4, duration: float = 8.0, incidence: str = "ufc") -> list
                 Settings3D(load="B", incidence=incidence),
                 n=n,
             )
-        s = e.summary()
+        s = e.to_dict()
         top = list(s["points"])[-1]
         out.append(
             {

@@ -66,7 +66,7 @@ def test_short_square_ensemble_is_not_chaotic():
     col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54)
     systems = Systems3D.of_design(design_model(250.0, 10.0, 1 / 100), col, duration=0.3)
     e = ensemble_compare(systems, Settings3D(record_every=8), n=2, perturbation=1e-6)
-    s = e.summary()
+    s = e.to_dict()
     assert s["n_members"] == 2 and s["collapse_probability_prototype"] == 0.0 == s["collapse_probability_model"]
     top = s["points"]["P-3"]
     assert top["first_peak_prototype_spread_m"] <= 1e-4 * top["first_peak_prototype_mean_m"]

@@ -156,7 +156,7 @@ class EnsembleComparison:
 
     motion: object = None
 
-    def summary(self) -> dict:
+    def to_dict(self) -> dict:
         """Per point: first-peak mean and spread of each system [m], their ratio, the model's
         first-peak mean offset relative to the prototype's spread, envelope coverage, the
         prototype's noise floor and horizon; collapse probabilities. Without a model (a

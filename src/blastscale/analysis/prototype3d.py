@@ -55,7 +55,7 @@ def _load_model_setting(load_model) -> dict:
 class Prototype3D:
     """The 3D run of a prototype alone (a study without ``[scale]``: no specimen, no comparison).
 
-    The same views as :class:`~.structure3d.Comparison3D` where they apply: ``summary()`` gives the prototype's
+    The same views as :class:`~.structure3d.Comparison3D` where they apply: ``to_dict()`` gives the prototype's
     outcome (with a single block's planar keys) and ``model`` / ``similarity`` None;
     ``upscaled_dataset`` is None.
 
@@ -80,7 +80,7 @@ class Prototype3D:
     model: object = None
     upscaled_dataset: object = None
 
-    def summary(self) -> dict:
+    def to_dict(self) -> dict:
         """``prototype`` (the structure's keys and, for a single block, its planar keys);
         ``model`` and ``similarity`` None."""
         blk = _block_keys(self.structure, self.prototype)

@@ -158,7 +158,7 @@ class Comparison3D:
         from the loads the runs used."""
         return dict(self.arrival_spreads)
 
-    def summary(self) -> dict:
+    def to_dict(self) -> dict:
         """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block; for a
         single block each also carries the block's planar keys (``max_sliding_m``,
         ``max_uplift_m``, ``peak_angular_velocity_rad_s``, ...; similarity ``max_abs_rotation_diff_rad``, ...:

@@ -57,7 +57,7 @@ class StudyResult:
     critical : CriticalResult or None
         Prototype's critical charge at the stand-off (planar), when asked for.
     response3d : object or None
-        3D comparison (``.summary()`` with prototype, model, similarity), when run.
+        3D comparison (``.to_dict()`` with prototype, model, similarity), when run.
     ensemble : EnsembleComparison or None
         3D ensembles of prototype and model under perturbed loads, when asked for.
     warnings : tuple of str
@@ -145,8 +145,8 @@ class StudyResult:
             "design": None if self.design is None else self.design.to_dict(),
             "planar": None if self.planar is None else self.planar.to_dict(),
             "critical": None if self.critical is None else self.critical.to_dict(),
-            "3d": None if self.response3d is None else self.response3d.summary(),
-            "ensemble": None if self.ensemble is None else self.ensemble.summary(),
+            "3d": None if self.response3d is None else self.response3d.to_dict(),
+            "ensemble": None if self.ensemble is None else self.ensemble.to_dict(),
             "warnings": list(self.warnings),
             "timings_s": dict(self.timings),
         }
