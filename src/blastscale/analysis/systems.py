@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from typing import Any, NamedTuple, Optional
 
 from .._validate import BlastscaleInputError, check_positive
+from ..blast.incidence import DEFAULT_INCIDENCE
 from ..constants import STANDARD_GRAVITY
 from ..sim3d.load_methods import make_load
 from ..sim3d.loads import PerturbedLoad
@@ -54,7 +55,7 @@ class Settings3D:
     pulse_shape : {"friedlander", "triangular", "impulsive"}
         Pulse shape.
     incidence : str or None
-        Incidence model passed to ``make_load`` (None: its own default).
+        Incidence model passed to ``make_load`` (None: :data:`~blastscale.blast.incidence.DEFAULT_INCIDENCE`).
     record_every : int
         Recording interval in steps (the same at both scales, so the grids correspond).
     extrapolate : bool
@@ -223,20 +224,32 @@ def run_system(system: System3D, settings: Settings3D, load_factor: float = 1.0)
     SystemRun
     """
     st, bp = system.structure, system.blast
-    run = dict(contact=system.contact, gravity=system.gravity, record_every=settings.record_every)
     if bp is None:  # gravity alone (a stability check)
-        resp = simulate_structure(st, None, system.duration, **run)
+        resp = simulate_structure(
+            st,
+            None,
+            system.duration,
+            contact=system.contact,
+            gravity=system.gravity,
+            record_every=settings.record_every,
+        )
         return SystemRun(st, resp, 0.0, None)
-    inc = {} if settings.incidence is None else {"incidence": settings.incidence}
     ld = make_load(
         settings.load,
         st,
         bp,
         pulse_shape=settings.pulse_shape,
+        incidence=DEFAULT_INCIDENCE if settings.incidence is None else settings.incidence,
         extrapolate=bool(settings.extrapolate),
         load_model=system.load_model,
-        **inc,
     )
     run_load = ld if load_factor == 1.0 else PerturbedLoad(ld, load_factor)
-    resp = simulate_structure(st, run_load, system.duration, **run)
+    resp = simulate_structure(
+        st,
+        run_load,
+        system.duration,
+        contact=system.contact,
+        gravity=system.gravity,
+        record_every=settings.record_every,
+    )
     return SystemRun(st, resp, float(ld.end_time - ld.first_arrival), ld)
