@@ -223,27 +223,18 @@ def run_system(system: System3D, settings: Settings3D, load_factor: float = 1.0)
     -------
     SystemRun
     """
-    st, bp = system.structure, system.blast
-    if bp is None:  # gravity alone (a stability check)
-        resp = simulate_structure(
+    st, ld = system.structure, None
+    if system.blast is not None:  # else gravity alone (a stability check)
+        ld = make_load(
+            settings.load,
             st,
-            None,
-            system.duration,
-            contact=system.contact,
-            gravity=system.gravity,
-            record_every=settings.record_every,
+            system.blast,
+            pulse_shape=settings.pulse_shape,
+            incidence=DEFAULT_INCIDENCE if settings.incidence is None else settings.incidence,
+            extrapolate=bool(settings.extrapolate),
+            load_model=system.load_model,
         )
-        return SystemRun(st, resp, 0.0, None)
-    ld = make_load(
-        settings.load,
-        st,
-        bp,
-        pulse_shape=settings.pulse_shape,
-        incidence=DEFAULT_INCIDENCE if settings.incidence is None else settings.incidence,
-        extrapolate=bool(settings.extrapolate),
-        load_model=system.load_model,
-    )
-    run_load = ld if load_factor == 1.0 else PerturbedLoad(ld, load_factor)
+    run_load = ld if ld is None or load_factor == 1.0 else PerturbedLoad(ld, load_factor)
     resp = simulate_structure(
         st,
         run_load,
@@ -252,4 +243,4 @@ def run_system(system: System3D, settings: Settings3D, load_factor: float = 1.0)
         gravity=system.gravity,
         record_every=settings.record_every,
     )
-    return SystemRun(st, resp, float(ld.end_time - ld.first_arrival), ld)
+    return SystemRun(st, resp, 0.0 if ld is None else float(ld.end_time - ld.first_arrival), ld)
