@@ -250,6 +250,7 @@ def correction_run(charge: float = 1000.0, standoff: float = 40.0, duration: flo
     from dataclasses import replace
 
     from blastscale.analysis.structure3d import compare_structure3d
+    from blastscale.analysis.systems import Settings3D, Systems3D
 
     col = MultiDrumColumn(section="square")
     w, h = front_face(col)
@@ -262,7 +263,8 @@ def correction_run(charge: float = 1000.0, standoff: float = 40.0, duration: flo
             dc = replace(d, specimen=blast_parameters(fix["charge_kg"], d.specimen_standoff_m))
             out = {}
             for tag, des in (("as designed", d), ("corrected", dc)):
-                cmp = compare_structure3d(col, des, load="A", duration=duration, load_model=LoadModel(clearing=True))
+                # the design's load models (clearing on each system's front, the specimen's lambda times the prototype's)
+                cmp = compare_structure3d(Systems3D.of_design(des, col, duration=duration), Settings3D(load="A"))
                 out[tag] = cmp.similarity()["top_first_peak_ratio"]
         emit(
             {

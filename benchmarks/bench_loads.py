@@ -99,6 +99,7 @@ def paper_case(section: str, charge: float, method: str, incidence: str, duratio
     """One prototype vs model comparison (general law, lambda = 1/100, gamma = 1) as a flat dict."""
     import blastscale.sim3d as sim3d
     from blastscale.analysis.structure3d import compare_structure3d
+    from blastscale.analysis.systems import Settings3D, Systems3D
 
     if not hasattr(sim3d, "simulate_structure"):  # the engine's export lands with issue 8
         sim3d.simulate_structure = simulate_structure
@@ -107,8 +108,10 @@ def paper_case(section: str, charge: float, method: str, incidence: str, duratio
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        cmp = compare_structure3d(col, design, load=method, incidence=incidence, duration=duration)
-    s = cmp.summary()
+        cmp = compare_structure3d(
+            Systems3D.of_design(design, col, duration=duration), Settings3D(load=method, incidence=incidence)
+        )
+    s = cmp.to_dict()
     sim = s["similarity"]  # with the arrival spreads of the two runs' loads
     top = sim["top_point"]
     return {
@@ -180,20 +183,20 @@ def ensembles(n: int = 4, duration: float = 8.0, incidence: str = "ufc") -> list
     """Circular columns under Method B (200 and 400 kg), ``n`` members per system with the load
     perturbed by up to 1e-6: first peaks with their spreads and collapse probabilities."""
     from blastscale.analysis.ensemble import ensemble_compare
+    from blastscale.analysis.systems import Settings3D, Systems3D
 
     out = []
     for charge in (200.0, 400.0):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             e = ensemble_compare(
-                MultiDrumColumn(section="circular"),
-                design_model(charge, STANDOFF, SCALE),
+                Systems3D.of_design(
+                    design_model(charge, STANDOFF, SCALE), MultiDrumColumn(section="circular"), duration=duration
+                ),
+                Settings3D(load="B", incidence=incidence),
                 n=n,
-                load="B",
-                incidence=incidence,
-                duration=duration,
             )
-        s = e.summary()
+        s = e.to_dict()
         top = list(s["points"])[-1]
         out.append(
             {

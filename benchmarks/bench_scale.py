@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from blastscale.analysis.ensemble import ensemble_compare
+from blastscale.analysis.systems import Settings3D, System3D, Systems3D
 from blastscale.blast import blast_parameters
 from blastscale.scenario import Scenario
 from blastscale.sim3d.contact import reference_contact
@@ -139,16 +140,16 @@ def ensemble(quick: bool = False) -> dict:
     col = MultiDrumColumn("circular")
     bp = blast_parameters(200.0, 10.0)
     dur = 0.5 if quick else 1.0
-    ensemble_compare(col, None, n=2, blast=bp, duration=0.01, threads=1)  # imports outside the timing
+    ensemble_compare(Systems3D(System3D(col, bp, duration=0.01)), n=2, threads=1)  # imports outside the timing
     out = {"threads": available_cores(), "duration_s": dur}
     for n in (8,) if quick else (8, 64):
         d = dur if n <= 8 else dur / 4
-        kw = dict(n=n, perturbation=1e-6, blast=bp, duration=d, record_every=4)
+        systems, settings = Systems3D(System3D(col, bp, duration=d)), Settings3D(record_every=4)
         t0 = time.perf_counter()
-        s = ensemble_compare(col, None, threads=1, **kw)
+        s = ensemble_compare(systems, settings, n=n, perturbation=1e-6, threads=1)
         ts = time.perf_counter() - t0
         t0 = time.perf_counter()
-        p = ensemble_compare(col, None, **kw)
+        p = ensemble_compare(systems, settings, n=n, perturbation=1e-6)
         tp = time.perf_counter() - t0
         out[f"members_{n}"] = {
             "duration_s": d,
@@ -159,7 +160,7 @@ def ensemble(quick: bool = False) -> dict:
             "identical": bool(np.array_equal(s.prototype_members, p.prototype_members)),
         }
     t0 = time.perf_counter()
-    ensemble_compare(col, None, n=2, blast=bp, duration=dur, threads=1)
+    ensemble_compare(Systems3D(System3D(col, bp, duration=dur)), n=2, threads=1)
     out["members_1"] = {"duration_s": dur, "wall_s_per_member_simulated_s": (time.perf_counter() - t0) / (2 * dur)}
     return out
 

@@ -10,6 +10,7 @@ import pytest
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.analysis.ensemble import ensemble_compare, ensemble_statistics
+from blastscale.analysis.systems import Settings3D, Systems3D
 from blastscale.sim3d.loads import PerturbedLoad
 
 
@@ -63,8 +64,9 @@ def test_short_square_ensemble_is_not_chaotic():
     from blastscale.structures import MultiDrumColumn
 
     col = MultiDrumColumn(drums=3, height=3.0, top_width=1.54)
-    e = ensemble_compare(col, design_model(250.0, 10.0, 1 / 100), n=2, perturbation=1e-6, duration=0.3, record_every=8)
-    s = e.summary()
+    systems = Systems3D.of_design(design_model(250.0, 10.0, 1 / 100), col, duration=0.3)
+    e = ensemble_compare(systems, Settings3D(record_every=8), n=2, perturbation=1e-6)
+    s = e.to_dict()
     assert s["n_members"] == 2 and s["collapse_probability_prototype"] == 0.0 == s["collapse_probability_model"]
     top = s["points"]["P-3"]
     assert top["first_peak_prototype_spread_m"] <= 1e-4 * top["first_peak_prototype_mean_m"]
@@ -79,9 +81,9 @@ def test_ensemble_bad_input():
 
     col, d = MultiDrumColumn(drums=2, height=2.0, top_width=1.6), design_model(250.0, 10.0, 1 / 100)
     with pytest.raises(BlastscaleInputError, match="n = 1"):
-        ensemble_compare(col, d, n=1)
+        ensemble_compare(Systems3D.of_design(d, col), n=1)
     with pytest.raises(BlastscaleInputError, match="perturbation"):
-        ensemble_compare(col, d, perturbation=0.5)
+        ensemble_compare(Systems3D.of_design(d, col), perturbation=0.5)
     with pytest.raises(BlastscaleInputError, match="members shape"):
         ensemble_statistics(np.arange(3.0), np.zeros((3, 2)), [False])
 

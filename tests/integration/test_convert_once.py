@@ -280,10 +280,11 @@ def test_a_capacity_curve_scales_its_specimen_once(monkeypatch):
 
 
 def test_a_3d_run_of_a_design_without_its_specimen_scales_through_the_one_function(monkeypatch):
-    """``run_system`` given a design made without the structure, contact and duration it runs (a user's
-    ``compare_structure3d(column, design_model(W, R, lam))``) completes the specimen by the function the
-    design uses (column x lambda, contact by the factors, duration x lambda_t), not a second path; a design
-    that carries them is read as it is: nothing is scaled again."""
+    """``Systems3D.of_design`` given a design made without the structure, contact and duration it runs (a user's
+    ``compare_structure3d(Systems3D.of_design(design_model(W, R, lam), column))``) completes the specimen by the
+    function the design uses (column x lambda, contact by the factors, duration x lambda_t), not a second path; a
+    design that carries them is read as it is: nothing is scaled again (no identity tests: what the design lacks
+    is what is given)."""
     col = MultiDrumColumn(drums=2, height=2.0, top_width=1.6)
     contact = ContactSettings()
     bare = design_model(250.0, 10.0, 1 / 100)
@@ -292,17 +293,22 @@ def test_a_3d_run_of_a_design_without_its_specimen_scales_through_the_one_functi
     _count_function(monkeypatch, specimen_module.specimen_system, scalings)
     _count_method(monkeypatch, MultiDrumColumn, "scaled", built)
     _count_method(monkeypatch, ContactSettings, "scaled", contacts)
-    struct, bp, dur, g, cont = systems._specimen_system(full, col, contact, 0.5)
-    assert (struct, cont, dur) == (full.specimen_structure, full.specimen_contact, full.specimen_duration)
-    assert struct is full.specimen_structure and cont is full.specimen_contact and bp is full.specimen
+    s = systems.Systems3D.of_design(full).specimen
+    assert (s.structure, s.contact, s.duration) == (
+        full.specimen_structure,
+        full.specimen_contact,
+        full.specimen_duration,
+    )
+    assert s.structure is full.specimen_structure and s.contact is full.specimen_contact and s.blast is full.specimen
+    assert s.load_model is full.specimen_load_model
     assert built == [] and contacts == [], (built, contacts)
-    struct, bp, dur, g, cont = systems._specimen_system(bare, col, contact, 0.5)
+    s = systems.Systems3D.of_design(bare, col, contact=contact, duration=0.5).specimen
     assert scalings[-1] == "blastscale.analysis.systems", scalings
     assert [c[0] for c in built] == [SPECIMEN] and built[0][2] is bare.factors, built
     assert [c[0] for c in contacts] == [SPECIMEN] and contacts[0][2] is bare.factors, contacts
-    assert struct.height == pytest.approx(0.02, rel=1e-15) and dur == pytest.approx(0.5 * 0.1, rel=1e-15)
-    assert cont.timestep == pytest.approx(contact.timestep * 0.1, rel=1e-15) and bp is bare.specimen
-    assert g == pytest.approx(bare.specimen_gravity, rel=1e-15)
+    assert s.structure.height == pytest.approx(0.02, rel=1e-15) and s.duration == pytest.approx(0.5 * 0.1, rel=1e-15)
+    assert s.contact.timestep == pytest.approx(contact.timestep * 0.1, rel=1e-15) and s.blast is bare.specimen
+    assert s.gravity == pytest.approx(bare.specimen_gravity, rel=1e-15)
 
 
 def _definitions(name: str) -> list:

@@ -216,12 +216,13 @@ def test_load_time_correction_moves_arrivals_and_scales_impulses():
 def test_comparison_similarity_reports_the_arrival_spreads():
     # compare_structure3d's similarity block carries the spreads (prototype, model / time factor)
     from blastscale.analysis.structure3d import compare_structure3d
+    from blastscale.analysis.systems import Settings3D, Systems3D
 
     col = MultiDrumColumn(section="square", drums=3, height=3.0)
     design = design_model(50.0, 5.0, 0.1)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        s = compare_structure3d(col, design, load="B", duration=0.05).similarity()
+        s = compare_structure3d(Systems3D.of_design(design, col, duration=0.05), Settings3D(load="B")).similarity()
     ref = _spreads(col, design, "B")
     assert s["arrival_spread_prototype_s"] == ref["arrival_spread_prototype_s"] > 0
     assert s["arrival_spread_model_upscaled_s"] == ref["arrival_spread_model_upscaled_s"] > 0

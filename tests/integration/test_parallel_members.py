@@ -49,13 +49,14 @@ def test_ensemble_members_in_parallel_are_bitwise_the_serial_members():
     """The chaotic circular column (docs/columns.md: 1e-10 on the load moves it by tens of % of its peak),
     4 prototype members under 200 kg at 10 m, 0.3 s: every recorded displacement is the same float."""
     from blastscale.analysis.ensemble import ensemble_compare
+    from blastscale.analysis.systems import Settings3D, System3D, Systems3D
     from blastscale.blast import blast_parameters
     from blastscale.structures import MultiDrumColumn
 
     col = MultiDrumColumn("circular")
-    kw = dict(n=4, perturbation=1e-6, blast=blast_parameters(200.0, 10.0), duration=0.3, record_every=4)
-    serial = ensemble_compare(col, None, threads=1, **kw)
-    parallel = ensemble_compare(col, None, threads=4, **kw)
+    systems = Systems3D(System3D(col, blast_parameters(200.0, 10.0), duration=0.3))
+    serial = ensemble_compare(systems, Settings3D(record_every=4), n=4, perturbation=1e-6, threads=1)
+    parallel = ensemble_compare(systems, Settings3D(record_every=4), n=4, perturbation=1e-6, threads=4)
     assert np.array_equal(serial.prototype_members, parallel.prototype_members)
     assert np.array_equal(serial.time, parallel.time)
     assert np.ptp(serial.prototype_members[:, -1, -1]) > 0.0  # the members do differ from each other
@@ -78,11 +79,12 @@ def test_3d_sweep_chunk_in_threads_equals_the_serial_loop():
 
 def test_prototype_and_model_in_parallel_are_bitwise_the_serial_runs():
     from blastscale.analysis.structure3d import compare_structure3d
+    from blastscale.analysis.systems import Settings3D, Systems3D
     from blastscale.similitude import design_model
     from blastscale.structures import MultiDrumColumn
 
     col = MultiDrumColumn("circular")
-    d = design_model(200.0, 10.0, 0.01)
-    a, b = (compare_structure3d(col, d, duration=0.2, record_every=4, threads=n) for n in (1, 2))
+    systems = Systems3D.of_design(design_model(200.0, 10.0, 0.01), col, duration=0.2)
+    a, b = (compare_structure3d(systems, Settings3D(record_every=4), threads=n) for n in (1, 2))
     for x, y in ((a.prototype_dataset, b.prototype_dataset), (a.upscaled_dataset, b.upscaled_dataset)):
         assert np.array_equal(x["point_displacement"].values, y["point_displacement"].values)

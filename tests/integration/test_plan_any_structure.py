@@ -10,10 +10,10 @@ import pytest
 
 from blastscale.planning import plan
 from blastscale.planning.build import specimen_mass
-from blastscale.study.specimen import specimen_scenario
+from blastscale.planning.odds import Tolerances, specimen_members
+from blastscale.similitude import scaling_factors
 from blastscale.scenario import Scenario, load_scenario
 from blastscale.scenario.lab import LabSpec
-from blastscale.structures import from_spec
 from blastscale.study import Study
 
 LIB = Path(__file__).resolve().parents[2] / "src" / "blastscale" / "scenario" / "library"
@@ -77,12 +77,14 @@ def test_a_block_under_clearing_with_a_stand_plans_in_3d():
 
 
 @pytest.mark.parametrize("name", ["paper_column_square_250kg", "wall_running_bond_lambda20"])
-def test_the_ensembles_specimen_is_the_designs(name, tmp_path):
-    """The specimen scenario's structure (lengths x lambda, density x gamma) is the design's specimen: same
-    mass and height to round-off."""
+def test_the_ensembles_specimen_is_the_designs(name):
+    """An ensemble member runs the design's specimen itself (no scenario written back: its density x the member's
+    draw by ``structure.scaled``): under a factor of 1 the same mass and centres of mass as the design's."""
     sc = load_scenario(LIB / f"{name}.toml")
     d = Study(sc).design()
-    spec = from_spec(specimen_scenario(sc, d, folder=tmp_path).structure)
+    (m,) = specimen_members(sc, d, Tolerances(), 1)
+    assert m.density_factor == pytest.approx(1.0, abs=1e-11) and m.standoff_m == pytest.approx(d.specimen_standoff_m)
+    spec = d.specimen_structure.scaled(scaling_factors(1.0, density_ratio=1.0))
     assert spec.mass == pytest.approx(d.specimen_structure.mass, rel=1e-12)
     assert specimen_mass(d) == pytest.approx(d.specimen_structure.mass, rel=1e-12)  # lambda^3 gamma x the prototype's
     got = np.array([b.com for b in spec.bodies])
@@ -108,9 +110,10 @@ def test_threads_and_dask_give_the_same_odds(tmp_path):
     assert plan(sc, lab=lab).designs[0]["odds_3d"] == plan(sc, lab=lab, workers=1).designs[0]["odds_3d"]
 
 
-def test_a_block_model_with_supports_ranks_on_its_comparison_alone():
-    """A COMPAS arch on two is_support abutments: its specimen cannot be written as a block-model file, so
-    its best design has the 3D comparison and no ensemble (a one-line warning), not a failed plan."""
+def test_a_block_model_with_supports_gets_its_ensemble():
+    """A COMPAS arch on two is_support abutments: its specimen runs as the design carries it (supports included;
+    before, the specimen had to be written as a block-model file, which cannot carry supports, and the design
+    ranked on its comparison alone), so its best design has the 3D comparison and its ensemble."""
     data = Path(__file__).resolve().parents[1] / "data" / "compas_dem_arch_rotated.json"
     sc = Scenario.from_dict(
         {
@@ -120,7 +123,6 @@ def test_a_block_model_with_supports_ranks_on_its_comparison_alone():
         },
         source="test",
     )
-    with pytest.warns(UserWarning, match="no 3D ensemble.*supports"):
-        p = plan(sc, lab=LabSpec(**TINY))
+    p = plan(sc, lab=LabSpec(**TINY))
     d = p.designs[0]
-    assert d["odds_3d"] is None and d["p_outcome_agree"] in (0.0, 1.0) and 0 <= d["similarity_error"] <= 1
+    assert d["odds_3d"]["members"] == TINY["ensemble_3d"] and 0 <= d["similarity_error"] <= 1

@@ -17,6 +17,7 @@ import pytest
 from blastscale.analysis.block3d_similarity import block_dataset, block_similarity, block_summary
 from blastscale.analysis.compare import upscale_dataset
 from blastscale.analysis.structure3d import compare_structure3d
+from blastscale.analysis.systems import Settings3D, Systems3D
 from blastscale.analysis.upscale import upscale_summary
 from blastscale.blast.parameters import blast_parameters
 from blastscale.similitude import design_model, scaling_factors
@@ -55,7 +56,8 @@ def compare_block(
         charge, standoff, scale, density_ratio=density_ratio, law=law, blast_model="masi2021", geometry=block
     )
     c = compare_structure3d(
-        block, design, pulse_shape=pulse_shape, contact=contact, duration=duration, record_every=record_every
+        Systems3D.of_design(design, contact=contact, duration=duration),
+        Settings3D(pulse_shape=pulse_shape, record_every=record_every),
     )
     sim = block_similarity(block_dataset(c.prototype), upscale_dataset(block_dataset(c.model), design.factors))
     return design, c, block_summary(c.prototype), upscale_summary(block_summary(c.model), design.factors), sim

@@ -30,10 +30,12 @@ def short_comparison():
     """The paper's square column, 250 kg at 10 m, and its 1/100 model: the first swing (0.7 s of
     prototype time; the first peak is at ~0.5 s)."""
     from blastscale.analysis.structure3d import compare_structure3d
+    from blastscale.analysis.systems import Settings3D, Systems3D
     from blastscale.similitude import design_model
     from blastscale.structures import MultiDrumColumn
 
-    return compare_structure3d(MultiDrumColumn(), design_model(250.0, 10.0, 1 / 100), duration=0.7, record_every=8)
+    systems = Systems3D.of_design(design_model(250.0, 10.0, 1 / 100), MultiDrumColumn(), duration=0.7)
+    return compare_structure3d(systems, Settings3D(record_every=8))
 
 
 def test_column_json_prototype_model_similarity(capsys, tmp_path):
@@ -301,7 +303,7 @@ def test_run_system_passes_extrapolate_to_the_load(patch_everywhere):
     """compare_structure3d / run_system hand ``extrapolate`` to make_load (E10's scenarios
     with blast.extrapolate = true); the load built is then used as is."""
     import blastscale.sim3d.load_methods as loads
-    from blastscale.analysis.systems import run_system
+    from blastscale.analysis.systems import Settings3D, Systems3D, run_system
     from blastscale.similitude import design_model
     from blastscale.structures import MultiDrumColumn
 
@@ -315,9 +317,8 @@ def test_run_system_passes_extrapolate_to_the_load(patch_everywhere):
     patch_everywhere(loads, "make_load", spy)
     col = MultiDrumColumn(drums=2, height=2.0, top_width=1.6)
     for flag in (False, True):
-        _, r, load_s, _ = run_system(
-            col, design_model(250.0, 10.0, 1 / 100), "model", duration=0.01, record_every=8, extrapolate=flag
-        )
+        specimen = Systems3D.of_design(design_model(250.0, 10.0, 1 / 100), col, duration=0.01).specimen
+        _, r, load_s, _ = run_system(specimen, Settings3D(record_every=8, extrapolate=flag))
         assert r.summary()["collapsed"] is False and 0 < load_s < 0.01
     assert seen == [False, True]
 
@@ -332,11 +333,14 @@ def test_collapsing_column_is_compared_up_to_the_earlier_collapse():
     after the load doubled (issue #28) 0.1577 / 0.1643 s, 1.0049, 0.66 % (the switch to the longer step falls at a
     different moment of each system's fall, and a fall amplifies it); asserted: 0.01 s, 1 % and 2 %."""
     from blastscale.analysis.structure3d import compare_structure3d
+    from blastscale.analysis.systems import Settings3D, Systems3D
     from blastscale.similitude import design_model
     from blastscale.structures import MultiDrumColumn
 
     col = MultiDrumColumn(drums=3, height=3.0, base_width=0.5, top_width=0.45)
-    c = compare_structure3d(col, design_model(100.0, 5.0, 1 / 100), duration=0.6, record_every=8)
+    c = compare_structure3d(
+        Systems3D.of_design(design_model(100.0, 5.0, 1 / 100), col, duration=0.6), Settings3D(record_every=8)
+    )
     s = c.similarity()
     ps = c.prototype.summary()
     assert ps["collapsed"] and s["outcomes_agree"] is True

@@ -330,12 +330,13 @@ def test_block_comparison_through_the_contract_reproduces_the_direct_differences
     from blastscale.analysis.block3d_similarity import block_dataset, block_similarity, block_summary
     from blastscale.analysis.compare import upscale_dataset
     from blastscale.analysis.structure3d import compare_structure3d
+    from blastscale.analysis.systems import Settings3D, Systems3D
     from blastscale.similitude import design_model
     from blastscale.structures.block import RectangularBlock
 
     block = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
     design = design_model(50.0, 2.0, 1 / 20, blast_model="masi2021", geometry=block)
-    c = compare_structure3d(block, design, duration=0.6, record_every=5)
+    c = compare_structure3d(Systems3D.of_design(design, duration=0.6), Settings3D(record_every=5))
     f = design.factors
     p, m = block_dataset(c.prototype), block_dataset(c.model)
     s = block_similarity(p, upscale_dataset(m, f))

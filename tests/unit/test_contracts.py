@@ -27,8 +27,6 @@ NOT_OUTPUT = {
 
 #: module: the write that breaks section 5 today, and what replaces it.
 BROKEN = {
-    "study/specimen.py": "specimen_blocks.json (plain write_text) so a block-model specimen can be re-read as a "
-    "scenario; goes with specimen_scenario: the specimen runs from its design (Study.from_design, issue #34)",
     "report/reproduce.py": "stdout.txt of a gallery script (plain write_text into the claimed folder): "
     "through blastscale.io.output's write_file",
     "cli/reproduce.py": "the reproduce folder made by folder.mkdir() after io's claim: made by io.output",

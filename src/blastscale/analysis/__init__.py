@@ -17,7 +17,8 @@
 * :mod:`.planar` -- the planar rocking runs outside the Study (planner, odds, sweeps' outcome and fragility
   modes, reproduced numbers, the CLI's capacity commands): ``first_swing_of``, ``first_swing_under``,
   ``history_of``, ``critical_of``, ``capacity_of``;
-* :mod:`.systems` -- internal: ``run_system``, one side of a model experiment on the 3D engine.
+* :mod:`.systems` -- ``Settings3D`` (the 3D settings), ``System3D`` / ``Systems3D`` (one system, the design's
+  two: ``Systems3D.of_design``), ``run_system`` (one system on the 3D engine).
 
 Many-case studies (sweeps, fragility, similarity maps) live in :mod:`blastscale.sweeps`.
 """

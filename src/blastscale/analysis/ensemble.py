@@ -26,10 +26,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_range
-from ..constants import STANDARD_GRAVITY
 from .compare import _first_peak
 from .compare import align, upscale_dataset
-from .systems import SYSTEMS, run_system
+from .systems import Settings3D, Systems3D, run_system
 from .upscale import upscale_summary
 from ..sim3d.results import MOTION_VARIABLES
 from .._threads import map_threads
@@ -157,7 +156,7 @@ class EnsembleComparison:
 
     motion: object = None
 
-    def summary(self) -> dict:
+    def to_dict(self) -> dict:
         """Per point: first-peak mean and spread of each system [m], their ratio, the model's
         first-peak mean offset relative to the prototype's spread, envelope coverage, the
         prototype's noise floor and horizon; collapse probabilities. Without a model (a
@@ -215,32 +214,24 @@ class EnsembleComparison:
 
 
 def ensemble_compare(
-    structure,
-    design,
+    systems: Systems3D,
+    settings: Settings3D = Settings3D(),
     *,
     n: int = 8,
     perturbation: float = 1e-6,
-    load: str = "A",
-    pulse_shape: str = "friedlander",
-    incidence: str | None = None,
-    contact=None,
-    duration: float = 8.0,
-    record_every: int = 4,
     horizon_fraction: float = 0.05,
     progress=None,
-    extrapolate: bool = False,
-    blast=None,
-    gravity: float = STANDARD_GRAVITY,
-    load_model=None,
     threads: int | None = None,
 ) -> EnsembleComparison:
     """Ensembles of a structure and of its reduced-scale model under slightly perturbed loads.
 
     Parameters
     ----------
-    structure, design, load, pulse_shape, incidence, contact, duration, record_every, extrapolate
-        As :func:`~.structure3d.compare_structure3d` (duration [s] prototype time). ``design``
-        None: the prototype's ensemble alone (a prototype-only study), from ``blast``.
+    systems : Systems3D
+        The prototype and the specimen of a design (:meth:`~.systems.Systems3D.of_design`), or the prototype
+        alone (``Systems3D(System3D(structure, blast, ...))``: a prototype-only study).
+    settings : Settings3D
+        As :func:`~.structure3d.compare_structure3d`.
     n : int
         Members per system, >= 2.
     perturbation : float
@@ -250,20 +241,14 @@ def ensemble_compare(
         See :func:`ensemble_statistics`.
     progress : callable, optional
         Called as ``progress(k, n)`` after each member (pair).
-    blast : BlastParameters, optional
-        The prototype's blast parameters when ``design`` is None.
-    gravity : float
-        The prototype's gravity [m/s^2] when ``design`` is None.
-    load_model : LoadModel, optional
-        Clearing and the negative phase (as :func:`~.structure3d.compare_structure3d`).
     threads : int, optional
-        Runs in flight at once (:mod:`blastscale.sim3d.threads`; default: the cores this process may
+        Runs in flight at once (:mod:`blastscale._threads`; default: the cores this process may
         use, divided by the local Dask workers). The members' histories do not depend on it (bitwise).
 
     Returns
     -------
     EnsembleComparison
-        Without a design, ``model`` and ``model_members`` are None.
+        Without a specimen, ``model`` and ``model_members`` are None.
     """
 
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
@@ -272,80 +257,78 @@ def ensemble_compare(
     if eps == 0.0:
         raise BlastscaleInputError("perturbation = 0 is out of range: must be in (0, 0.1]")
     factors = tuple(1.0 + eps * u for u in np.linspace(-1.0, 1.0, int(n)))
-    systems = SYSTEMS if design is not None else ("prototype",)
-    q: dict = {s: [] for s in systems}
-    collapsed: dict = {s: [] for s in systems}
-    times: dict = {s: [] for s in systems}
-    poses: dict = {s: [] for s in systems}
-    t = points = top = None
-    kw = dict(
-        blast=blast,
-        gravity=gravity,
-        load=load,
-        pulse_shape=pulse_shape,
-        incidence=incidence,
-        contact=contact,
-        duration=duration,
-        record_every=record_every,
-        extrapolate=extrapolate,
-        load_model=load_model,
-    )
-    tasks = [(k, s) for k in range(len(factors)) for s in systems]
-
-    def member(task):
-        k, s = task
-        return run_system(structure, design, s, load_factor=factors[k], **kw).response
+    runs = systems.runs()
+    names = tuple(name for name, _ in runs)
+    tasks = [(f, system) for f in factors for _, system in runs]  # (load factor, system) of each member run
 
     def tick(done):
-        if progress is not None and done % len(systems) == 0:
-            progress(done // len(systems), len(factors))
+        if progress is not None and done % len(runs) == 0:
+            progress(done // len(runs), len(factors))
 
-    responses = map_threads(member, tasks, threads, done=tick)
+    responses = map_threads(lambda task: run_system(task[1], settings, task[0]).response, tasks, threads, done=tick)
+    members = _Members(names)
     for k in range(len(factors)):
-        runs = {s: responses[k * len(systems) + i] for i, s in enumerate(systems)}
+        members.add({s: responses[k * len(names) + i] for i, s in enumerate(names)}, systems.design)
+    q = {s: np.stack(v) for s, v in members.q.items()}
+    stats = {
+        s: ensemble_statistics(members.t, q[s], members.collapsed[s], horizon_fraction, collapse_times=members.times[s])
+        for s in names
+    }
+    return EnsembleComparison(
+        time=members.t,
+        points=members.points,
+        prototype=stats["prototype"],
+        model=stats.get("model"),
+        factors=factors,
+        prototype_members=q["prototype"],
+        model_members=q.get("model"),
+        settings={
+            "perturbation": eps,
+            "n": int(n),
+            "load_method": settings.load,
+            "pulse_shape": settings.pulse_shape,
+            "duration_s": float(systems.prototype.duration),
+        },
+        top_point=members.top,
+        motion=_cases_motion(members.poses, q["prototype"], members.t.size),
+    )
+
+
+class _Members:
+    """The members' histories gathered on the prototype's common times (the model's up-scaled; a member that
+    ended early shortens the common span for all)."""
+
+    def __init__(self, names: tuple):
+        self.q: dict = {s: [] for s in names}
+        self.collapsed: dict = {s: [] for s in names}
+        self.times: dict = {s: [] for s in names}
+        self.poses: dict = {s: [] for s in names}
+        self.t = self.points = self.top = None
+
+    def add(self, runs: dict, design) -> None:
+        """One member's responses by system (``prototype`` and, with ``design``, ``model``)."""
         ds = {"prototype": runs["prototype"].dataset}
         summ = {"prototype": runs["prototype"].summary()}
-        if design is not None:
+        if "model" in runs:
             ds["prototype"], ds["model"] = align(
                 ds["prototype"], upscale_dataset(runs["model"].dataset, design.factors)
             )
             summ["model"] = upscale_summary(runs["model"].summary(), design.factors)
-        if t is None:
-            t = ds["prototype"]["time"].values
-            points = tuple(str(p) for p in ds["prototype"]["point"].values)
-            top = str(ds["prototype"].attrs.get("top_point", points[-1]))
-        elif ds["prototype"].sizes["time"] != t.size:  # a member ended early: compare on the shortest common span
-            m = min(t.size, ds["prototype"].sizes["time"])
-            t = t[:m]
-            q = {s: [x[:m] for x in v] for s, v in q.items()}
+        if self.t is None:
+            self.t = ds["prototype"]["time"].values
+            self.points = tuple(str(p) for p in ds["prototype"]["point"].values)
+            self.top = str(ds["prototype"].attrs.get("top_point", self.points[-1]))
+        elif ds["prototype"].sizes["time"] != self.t.size:  # a member ended early: the shortest common span
+            m = min(self.t.size, ds["prototype"].sizes["time"])
+            self.t = self.t[:m]
+            self.q = {s: [x[:m] for x in v] for s, v in self.q.items()}
             ds = {s: d.isel(time=slice(0, m)) for s, d in ds.items()}
-        for s in systems:
-            q[s].append(ds[s]["point_displacement"].sel(component="x").transpose("time", "point").values[: t.size])
-            poses[s].append(ds[s][[v for v in MOTION_VARIABLES if v in ds[s]]])
-            collapsed[s].append(bool(summ[s]["collapsed"]))
-            times[s].append(summ[s].get("collapse_time_s"))
-    stats = {
-        s: ensemble_statistics(t, np.stack(q[s]), collapsed[s], horizon_fraction, collapse_times=times[s])
-        for s in systems
-    }
-    return EnsembleComparison(
-        time=t,
-        points=points,
-        prototype=stats["prototype"],
-        model=stats.get("model"),
-        factors=factors,
-        prototype_members=np.stack(q["prototype"]),
-        model_members=np.stack(q["model"]) if design is not None else None,
-        settings={
-            "perturbation": eps,
-            "n": int(n),
-            "load_method": load,
-            "pulse_shape": pulse_shape,
-            "duration_s": float(duration),
-        },
-        top_point=top,
-        motion=_cases_motion(poses, np.stack(q["prototype"]), t.size),
-    )
+        for s in ds:
+            x = ds[s]["point_displacement"].sel(component="x").transpose("time", "point").values
+            self.q[s].append(x[: self.t.size])
+            self.poses[s].append(ds[s][[v for v in MOTION_VARIABLES if v in ds[s]]])
+            self.collapsed[s].append(bool(summ[s]["collapsed"]))
+            self.times[s].append(summ[s].get("collapse_time_s"))
 
 
 def motion_cases(members) -> dict:

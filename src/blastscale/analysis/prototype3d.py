@@ -9,13 +9,11 @@ planar keys, the outcome attribute, the load model's record) serve both results.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
-from .._validate import check_positive
-from ..constants import STANDARD_GRAVITY
 from ..structures.from_spec import is_block
 from .gravity_alone import extended_keys, until_decided
-from .systems import run_system
+from .systems import Settings3D, System3D, run_system
 from .block3d_similarity import block_view
 from ..sim3d.face_loads import load_arrival_spread
 
@@ -57,7 +55,7 @@ def _load_model_setting(load_model) -> dict:
 class Prototype3D:
     """The 3D run of a prototype alone (a study without ``[scale]``: no specimen, no comparison).
 
-    The same views as :class:`~.structure3d.Comparison3D` where they apply: ``summary()`` gives the prototype's
+    The same views as :class:`~.structure3d.Comparison3D` where they apply: ``to_dict()`` gives the prototype's
     outcome (with a single block's planar keys) and ``model`` / ``similarity`` None;
     ``upscaled_dataset`` is None.
 
@@ -82,7 +80,7 @@ class Prototype3D:
     model: object = None
     upscaled_dataset: object = None
 
-    def summary(self) -> dict:
+    def to_dict(self) -> dict:
         """``prototype`` (the structure's keys and, for a single block, its planar keys);
         ``model`` and ``similarity`` None."""
         blk = _block_keys(self.structure, self.prototype)
@@ -90,67 +88,39 @@ class Prototype3D:
         return {"prototype": p, "model": None, "similarity": None}
 
 
-def prototype_structure3d(
-    structure,
-    blast,
-    *,
-    gravity: float = STANDARD_GRAVITY,
-    load: str = "A",
-    pulse_shape: str = "friedlander",
-    incidence: str | None = None,
-    contact=None,
-    duration: float = 8.0,
-    record_every: int = 4,
-    extrapolate: bool = False,
-    load_model=None,
-) -> Prototype3D:
+def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D()) -> Prototype3D:
     """Run a prototype alone in 3D (no model design: a prototype-only study).
 
     Parameters
     ----------
-    structure : structure
-        The prototype.
-    blast : BlastParameters
-        Its blast parameters (:func:`blastscale.blast.blast_parameters` of its charge and stand-off).
-    gravity : float
-        Gravity [m/s^2].
-    load, pulse_shape, incidence, contact, duration, record_every, extrapolate, load_model
-        As :func:`~.structure3d.compare_structure3d` (``contact`` None: the engine's defaults for the structure).
+    system : System3D
+        The prototype: its structure, blast parameters (:func:`blastscale.blast.blast_parameters` of its charge
+        and stand-off; None: gravity alone, run until the stability rule decides), gravity, contact (None: the
+        engine's defaults for the structure), duration [s] and load model.
+    settings : Settings3D
+        As :func:`~.structure3d.compare_structure3d`.
 
     Returns
     -------
     Prototype3D
     """
 
-    asked = float(check_positive("duration", duration, "s"))
-    kw = dict(
-        blast=blast,
-        gravity=gravity,
-        load=load,
-        pulse_shape=pulse_shape,
-        incidence=incidence,
-        contact=contact,
-        record_every=record_every,
-        extrapolate=extrapolate,
-        load_model=load_model,
-    )
+    asked = system.duration
     # gravity alone: run until the stability rule decides (docs/assemblies.md, analysis.gravity_alone)
-    run, dur = until_decided(lambda T: run_system(structure, None, "prototype", duration=T, **kw), asked, blast is None)
+    run, dur = until_decided(lambda T: run_system(replace(system, duration=T), settings), asked, system.blast is None)
     resp = run.response
     return Prototype3D(
-        structure=structure,
+        structure=system.structure,
         prototype=resp,
         prototype_dataset=_with_outcome(resp.dataset, resp.summary()),
         settings={
-            "load_method": load,
-            "pulse_shape": pulse_shape,
-            "incidence": incidence or "default",
+            **settings.record(),
             "duration_s": dur,
             **({"duration_asked_s": asked} if dur != asked else {}),
-            "record_every": int(record_every),
+            "record_every": int(settings.record_every),
             "load_end_s": run.load_duration_s,
-            "extrapolate": bool(extrapolate),
+            "extrapolate": bool(settings.extrapolate),
             "arrival_spread_prototype_s": load_arrival_spread(run.load),
-            **_load_model_setting(load_model),
+            **_load_model_setting(system.load_model),
         },
     )

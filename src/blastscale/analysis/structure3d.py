@@ -2,10 +2,10 @@
 
 :func:`compare_structure3d` runs a structure and its model experiment through the same path:
 
-1. the model system is the one the design carries (:mod:`.systems`): its structure
-   ``design.specimen_structure``, gravity ``varsigma g``, contact settings the engine's
-   scale-consistent defaults (``contact=None``) or ``design.specimen_contact`` (a design made
-   without them: completed by :func:`blastscale.similitude.specimen.specimen_system`, as the design does);
+1. the model system is the one the design carries (:meth:`.systems.Systems3D.of_design`): its structure
+   ``design.specimen_structure``, gravity ``varsigma g``, load model ``design.specimen_load_model``, contact
+   settings ``design.specimen_contact`` or the engine's scale-consistent defaults (None; a design made without
+   them: completed by :func:`blastscale.similitude.specimen.specimen_system`, as the design does);
 2. each is loaded by :func:`blastscale.sim3d.load_methods.make_load` from its own blast
    parameters (``design.prototype``, ``design.specimen``: the design's, never recomputed) and
    simulated by :func:`blastscale.sim3d.simulate_structure` (the model for ``duration *
@@ -26,11 +26,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .._validate import BlastscaleInputError, check_positive
+from .._validate import BlastscaleInputError
 from .compare import align, compare_responses, upscale_dataset
 from .prototype3d import _block_keys, _load_model_setting, _merged, _with_outcome
-from .systems import SYSTEMS, run_system
-from .upscale import upscale_summary
+from .systems import Settings3D, Systems3D, run_system
+from .upscale import upscale, upscale_summary
 from ..sim3d.load_methods import arrival_spread_similarity
 from .._threads import map_threads
 
@@ -158,7 +158,7 @@ class Comparison3D:
         from the loads the runs used."""
         return dict(self.arrival_spreads)
 
-    def summary(self) -> dict:
+    def to_dict(self) -> dict:
         """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block; for a
         single block each also carries the block's planar keys (``max_sliding_m``,
         ``max_uplift_m``, ``peak_angular_velocity_rad_s``, ...; similarity ``max_abs_rotation_diff_rad``, ...:
@@ -197,114 +197,74 @@ class Comparison3D:
         return ds
 
 
-def compare_structure3d(
-    structure,
-    design,
-    *,
-    load: str = "A",
-    pulse_shape: str = "friedlander",
-    incidence: str | None = None,
-    contact=None,
-    duration: float = 8.0,
-    record_every: int = 4,
-    extrapolate: bool = False,
-    load_model=None,
-    threads: int | None = None,
-) -> Comparison3D:
+def compare_structure3d(systems: Systems3D, settings: Settings3D = Settings3D(), *, threads=None) -> Comparison3D:
     """Run a structure and its reduced-scale model in 3D and compare them in prototype units.
 
     Parameters
     ----------
-    structure : MultiDrumColumn or RectangularBlock
-        Prototype structure (the structure interface of :mod:`blastscale.structures`).
-    design : ModelDesign
-        The model experiment, from :func:`blastscale.similitude.design_model` with the
-        prototype's charge and stand-off (its ``factors`` give lambda, gamma, varsigma,
-        lambda_t; ``design.gravity`` the prototype's gravity [m/s^2]).
-    load : str
-        Load method, a key of :data:`blastscale.sim3d.load_methods.LOAD_METHODS` (``"A"``: the paper's
-        Method A, uniform and simultaneous reflected pulse on the front faces).
-    pulse_shape : {"friedlander", "triangular", "impulsive"}
-        Pulse shape.
-    incidence : str, optional
-        Incidence model passed to ``make_load`` (default: its own default).
-    contact : ContactSettings, optional
-        Prototype contact settings; None uses the engine's scale-consistent defaults for each
-        structure, else the model uses ``design.specimen_contact`` (``contact.scaled(factors)``).
-    duration : float
-        Prototype simulated time after the first arrival [s] (the model runs ``duration *
-        lambda_t``).
-    record_every : int
-        Recording interval in steps (the same at both scales, so the grids correspond).
-    extrapolate : bool
-        Let the blast fits run outside their ranges (with a warning), for both loads.
-    load_model : LoadModel, optional
-        Clearing and the negative phase (:class:`~blastscale.blast.load_model.LoadModel`; each
-        system's faces its own); None: the paper's load.
+    systems : Systems3D
+        The prototype and the specimen of a design (:meth:`~.systems.Systems3D.of_design`: the design's
+        specimen structure, blast parameters, load model, gravity, contact and duration ``duration * lambda_t``;
+        ``design.factors`` give lambda, gamma, varsigma, lambda_t).
+    settings : Settings3D
+        Load method, pulse shape, incidence, recording interval (the same at both scales, so the grids
+        correspond), extrapolation (:class:`~.systems.Settings3D`).
     threads : int, optional
-        Prototype and model run at once on up to this many threads (:mod:`blastscale.sim3d.threads`;
+        Prototype and model run at once on up to this many threads (:mod:`blastscale._threads`;
         default: this process's share of the cores); the results do not depend on it (bitwise).
 
     Returns
     -------
     Comparison3D
     """
-    dur = float(check_positive("duration", duration, "s"))
-    if not hasattr(design, "factors") or not hasattr(design, "prototype"):
+    design = systems.design
+    if systems.specimen is None or design is None:
         raise BlastscaleInputError(
-            f"design = {type(design).__name__} is not a model design: give blastscale.similitude.design_model(...)"
+            "systems without a specimen: compare_structure3d needs a design's systems (Systems3D.of_design(design)); "
+            "a prototype alone runs through prototype_structure3d"
         )
-    kw = dict(
-        load=load,
-        pulse_shape=pulse_shape,
-        incidence=incidence,
-        contact=contact,
-        duration=dur,
-        record_every=record_every,
-        extrapolate=extrapolate,
-        load_model=load_model,
-    )
-
-    p_run, m_run = map_threads(lambda system: run_system(structure, design, system, **kw), SYSTEMS, threads)
-    specimen_structure, proto, mod = m_run.structure, p_run.response, m_run.response
+    p_run, m_run = map_threads(lambda s: run_system(s, settings), (systems.prototype, systems.specimen), threads)
+    proto, mod = p_run.response, m_run.response
     # the later of the two loads' ends [s after the first arrival, prototype time]
-    load_end = max(p_run.load_duration_s, m_run.load_duration_s / design.factors.time)
-    ps, ms = proto.summary(), mod.summary()
-    pds = _with_outcome(proto.dataset, ps)
-    up = upscale_dataset(_with_outcome(mod.dataset, ms), design.factors)
-    cmp = compare_responses(pds, up, variables=_COMPARED, outcome="collapsed")
-    if load_end < pds["time"].values[-1]:  # velocities after the load (see compare_responses' start)
-        cmp["after_load"] = compare_responses(pds, up, variables=("point_velocity",), start=load_end)
-        cmp["after_load"]["start_s"] = load_end
-    tc = [
-        x
-        for x in (ps.get("collapse_time_s"), upscale_summary(ms, design.factors).get("collapse_time_s"))
-        if x is not None
-    ]
-    if tc:  # up to the earlier collapse: the fall amplifies any time shift
-        cmp["to_collapse"] = compare_responses(pds, up, variables=("point_displacement",), end=min(tc))
-        cmp["to_collapse"]["end_s"] = min(tc)
+    load_end = max(p_run.load_duration_s, upscale(m_run.load_duration_s, design.factors, "time"))
+    pds, up, cmp = _compared(proto, mod, design.factors, load_end)
     return Comparison3D(
         design=design,
-        structure=structure,
-        specimen_structure=specimen_structure,
+        structure=systems.prototype.structure,
+        specimen_structure=m_run.structure,
         prototype=proto,
         model=mod,
         prototype_dataset=pds,
         upscaled_dataset=up,
         comparison=cmp,
         settings={
-            "load_method": load,
-            "pulse_shape": pulse_shape,
-            "incidence": incidence or "default",
-            "duration_s": dur,
-            "record_every": int(record_every),
+            **settings.record(),
+            "duration_s": systems.prototype.duration,
+            "record_every": int(settings.record_every),
             "load_end_s": load_end,
-            "extrapolate": bool(extrapolate),
-            **_load_model_setting(load_model),
+            "extrapolate": bool(settings.extrapolate),
+            **_load_model_setting(systems.prototype.load_model),
         },
-        arrival_spreads=arrival_spread_similarity(p_run.load, m_run.load, design.factors),
+        arrival_spreads=arrival_spread_similarity(p_run.load, m_run.load, factors=design.factors),
     )
+
+
+def _compared(proto, mod, factors, load_end: float) -> tuple:
+    """(prototype dataset, up-scaled model dataset, comparison) of two runs (:func:`~.compare.compare_responses`):
+    the whole runs; the velocities after the load's end ``load_end`` [s]; the displacements up to the earlier
+    collapse (the fall amplifies any time shift)."""
+    ps, ms = proto.summary(), mod.summary()
+    pds = _with_outcome(proto.dataset, ps)
+    up = upscale_dataset(_with_outcome(mod.dataset, ms), factors)
+    cmp = compare_responses(pds, up, variables=_COMPARED, outcome="collapsed")
+    if load_end < pds["time"].values[-1]:  # velocities after the load (see compare_responses' start)
+        cmp["after_load"] = compare_responses(pds, up, variables=("point_velocity",), start=load_end)
+        cmp["after_load"]["start_s"] = load_end
+    tc = [x for x in (ps.get("collapse_time_s"), upscale_summary(ms, factors).get("collapse_time_s")) if x is not None]
+    if tc:  # up to the earlier collapse: the fall amplifies any time shift
+        cmp["to_collapse"] = compare_responses(pds, up, variables=("point_displacement",), end=min(tc))
+        cmp["to_collapse"]["end_s"] = min(tc)
+    return pds, up, cmp
 
 
 #: Variables compared by :func:`compare_structure3d` (x components; rotation about y).

@@ -1,44 +1,189 @@
-"""Run one side of a model experiment in 3D: the prototype, or the reduced-scale model at its own size.
+"""Run one side of a model experiment in 3D: the prototype, or the reduced-scale specimen at its own size.
 
-The one place where a designed experiment (:func:`blastscale.similitude.design_model`) becomes
-a structure, a load and a run of the 3D engine. The model system is the one the design carries
-(scaled once, by :func:`~blastscale.similitude.design_model`):
+The one place where a system (:class:`System3D`: a structure, its blast parameters, gravity, contact, duration and
+load model) becomes a load and a run of the 3D engine under a study's settings (:class:`Settings3D`: load method,
+pulse shape, incidence, recording interval, extrapolation), both frozen and resolved once by the caller (the
+Study's plan, :class:`blastscale.study.StudyPlan`).
+
+The design produces the two systems (:class:`Systems3D`, :meth:`Systems3D.of_design`): the prototype is the
+structure under ``design.prototype``; the specimen is the one the design carries (scaled once by
+:func:`~blastscale.similitude.design_model`):
 
 * the structure ``design.specimen_structure``;
-* its own load, built by :func:`blastscale.sim3d.load_methods.make_load` from ``design.specimen``
-  (the design's blast parameters of the specimen: never recomputed);
-* gravity ``design.specimen_gravity``, contact ``design.specimen_contact`` (or the engine's
-  scale-consistent defaults for its size when ``contact`` is None);
+* its own blast parameters ``design.specimen`` (never recomputed) and load model ``design.specimen_load_model``;
+* gravity ``design.specimen_gravity``, contact ``design.specimen_contact`` (None: the engine's scale-consistent
+  defaults for its size);
 * run for ``design.specimen_duration``.
 
-A design made without the structure, or with other contact settings or another duration than the
-ones given here, is completed for each run by the function the design itself uses,
-:func:`~blastscale.similitude.specimen.specimen_system` (``structure.scaled(factors)``,
-``contact.scaled(factors)``, ``duration * lambda_t``): there is no second scaling path.
+A design made without the structure, contact or duration (a user's ``design_model(W, R, lam)``) is completed
+by the function the design itself uses, :func:`~blastscale.similitude.specimen.specimen_system`
+(``structure.scaled(factors)``, ``contact.scaled(factors)``, ``duration * lambda_t``): there is no second
+scaling path.
 
-The prototype system is the structure itself, loaded from ``design.prototype`` or, for a
-prototype-only study (no design), from the prototype's own blast parameters.
-
-Used by :func:`~.structure3d.compare_structure3d`, :func:`~.structure3d.prototype_structure3d`
-and :func:`~.ensemble.ensemble_compare` (internal: not part of the package's listed API; the
-Study and the comparisons are the way in).
+Used by :func:`~.structure3d.compare_structure3d`, :func:`~.prototype3d.prototype_structure3d` and
+:func:`~.ensemble.ensemble_compare`.
 """
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from dataclasses import dataclass
+from typing import Any, NamedTuple, Optional
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_positive
+from ..blast.incidence import DEFAULT_INCIDENCE
 from ..constants import STANDARD_GRAVITY
 from ..sim3d.load_methods import make_load
 from ..sim3d.loads import PerturbedLoad
 from ..sim3d.simulate import simulate_structure
-from ..similitude.specimen import specimen_system
+from ..similitude.specimen import SpecimenSystem, specimen_system
 
-__all__ = ["SYSTEMS", "SystemRun", "run_system"]
+__all__ = ["SYSTEMS", "Settings3D", "System3D", "Systems3D", "SystemRun", "run_system"]
 
 #: The two systems of a model experiment.
 SYSTEMS = ("prototype", "model")
+
+
+@dataclass(frozen=True)
+class Settings3D:
+    """The 3D engine's settings shared by both systems of a study (frozen, resolved once).
+
+    Attributes
+    ----------
+    load : str
+        Load method, a key of :data:`blastscale.sim3d.load_methods.LOAD_METHODS` (``"A"``: the paper's Method A,
+        uniform and simultaneous reflected pulse on the front faces).
+    pulse_shape : {"friedlander", "triangular", "impulsive"}
+        Pulse shape.
+    incidence : str or None
+        Incidence model passed to ``make_load`` (None: :data:`~blastscale.blast.incidence.DEFAULT_INCIDENCE`).
+    record_every : int
+        Recording interval in steps (the same at both scales, so the grids correspond).
+    extrapolate : bool
+        Let the blast fits run outside their ranges (with a warning), for every load.
+    """
+
+    load: str = "A"
+    pulse_shape: str = "friedlander"
+    incidence: Optional[str] = None
+    record_every: int = 4
+    extrapolate: bool = False
+
+    def record(self) -> dict:
+        """The first keys of a result's settings record: ``load_method``, ``pulse_shape``, ``incidence``."""
+        return {
+            "load_method": self.load,
+            "pulse_shape": self.pulse_shape,
+            "incidence": self.incidence or "default",
+        }
+
+
+@dataclass(frozen=True)
+class System3D:
+    """One system of a model experiment as it runs, in its own units [SI].
+
+    Attributes
+    ----------
+    structure : structure
+        The structure simulated (:mod:`blastscale.structures`).
+    blast : BlastParameters or None
+        Its blast parameters (a design's ``prototype`` or ``specimen``, never recomputed); None: gravity alone.
+    gravity : float
+        Gravity [m/s^2].
+    contact : ContactSettings or None
+        Its contact settings; None: the engine's scale-consistent defaults for the structure.
+    duration : float
+        Simulated time after the first arrival [s].
+    load_model : LoadModel or None
+        Clearing and the negative phase (:class:`~blastscale.blast.load_model.LoadModel`); None or the paper's:
+        the paper's load.
+    """
+
+    structure: Any
+    blast: Any = None
+    gravity: float = STANDARD_GRAVITY
+    contact: Any = None
+    duration: float = 8.0
+    load_model: Any = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "duration", float(check_positive("duration", self.duration, "s")))
+
+
+class Systems3D(NamedTuple):
+    """The systems of a study: the prototype and, with a design, its specimen.
+
+    Attributes
+    ----------
+    prototype : System3D
+        The prototype.
+    specimen : System3D or None
+        The specimen at its own size (None: a prototype-only study).
+    design : ModelDesign or None
+        The design the specimen comes from (its ``factors`` up-scale the specimen's response).
+    """
+
+    prototype: System3D
+    specimen: Optional[System3D] = None
+    design: Any = None
+
+    @classmethod
+    def of_design(cls, design, structure=None, *, contact=None, duration: Optional[float] = None) -> "Systems3D":
+        """The prototype and specimen systems of a design (module docstring).
+
+        Parameters
+        ----------
+        design : ModelDesign
+            The model experiment (:func:`blastscale.similitude.design_model`).
+        structure : structure, optional
+            The prototype structure; required when the design was made without one (default: the design's).
+        contact : ContactSettings, optional
+            The prototype's contact settings when the design carries none (default: the design's, or the
+            engine's defaults).
+        duration : float, optional
+            The prototype's simulated time [s] when the design carries none (default: the design's, else 8 s).
+
+        Returns
+        -------
+        Systems3D
+            What the design carries is read as it is; the parts it lacks are given here and scaled once by
+            :func:`~blastscale.similitude.specimen.specimen_system`.
+        """
+        if not hasattr(design, "factors") or not hasattr(design, "prototype"):
+            raise BlastscaleInputError(
+                f"design = {type(design).__name__} is not a model design: give blastscale.similitude.design_model(...)"
+            )
+        has_structure = design.prototype_structure is not None
+        has_contact = design.contact is not None
+        has_duration = design.duration is not None
+        if structure is None and not has_structure:
+            raise BlastscaleInputError("structure = None with a design made without one: give the prototype structure")
+        proto_structure = design.prototype_structure if has_structure else structure
+        proto_contact = design.contact if has_contact else contact
+        proto_duration = design.duration if has_duration else (8.0 if duration is None else float(duration))
+        missing = SpecimenSystem()  # what the design lacks, scaled once (nothing when it carries all)
+        if not (has_structure and has_contact and has_duration):
+            missing = specimen_system(
+                design.factors,
+                structure=None if has_structure else structure,
+                contact=None if has_contact else contact,
+                duration=None if has_duration else proto_duration,
+            )
+        prototype = System3D(
+            proto_structure, design.prototype, design.gravity, proto_contact, proto_duration, design.load_model
+        )
+        specimen = System3D(
+            design.specimen_structure if has_structure else missing.structure,
+            design.specimen,
+            design.specimen_gravity,
+            design.specimen_contact if has_contact else missing.contact,
+            design.specimen_duration if has_duration else missing.duration,
+            design.specimen_load_model,
+        )
+        return cls(prototype, specimen, design)
+
+    def runs(self) -> tuple:
+        """``(name, system)`` of each system that runs (:data:`SYSTEMS`)."""
+        return tuple((n, s) for n, s in zip(SYSTEMS, (self.prototype, self.specimen)) if s is not None)
 
 
 class SystemRun(NamedTuple):
@@ -62,98 +207,40 @@ class SystemRun(NamedTuple):
     load: object = None
 
 
-def run_system(
-    structure,
-    design,
-    system: str = "prototype",
-    *,
-    blast=None,
-    gravity: float = STANDARD_GRAVITY,
-    load: str = "A",
-    pulse_shape: str = "friedlander",
-    incidence: str | None = None,
-    contact=None,
-    duration: float = 8.0,
-    record_every: int = 4,
-    load_factor: float = 1.0,
-    extrapolate: bool = False,
-    load_model=None,
-) -> SystemRun:
-    """Simulate the prototype, or the model at its own size (module docstring).
+def run_system(system: System3D, settings: Settings3D, load_factor: float = 1.0) -> SystemRun:
+    """Simulate one system under the study's 3D settings (module docstring).
 
     Parameters
     ----------
-    structure : structure
-        Prototype structure.
-    design : ModelDesign or None
-        The model experiment; None for the prototype alone (then ``blast`` and ``gravity``).
-    system : {"prototype", "model"}
-        Which one.
-    blast : BlastParameters, optional
-        The prototype's blast parameters when there is no design (with a design: ``design.prototype``
-        and ``design.specimen``); None without a design: gravity alone.
-    gravity : float
-        The prototype's gravity [m/s^2] when there is no design (with one: ``design.gravity``).
-    load, pulse_shape, incidence, contact, record_every
-        See :func:`~.structure3d.compare_structure3d`.
-    duration : float
-        Prototype simulated time [s] (the model runs ``duration * lambda_t``).
+    system : System3D
+        The prototype, or the specimen at its own size.
+    settings : Settings3D
+        Load method, pulse shape, incidence, recording interval, extrapolation.
     load_factor : float
         Multiplier of the load's wrenches [-] (ensembles, :class:`~blastscale.sim3d.loads.PerturbedLoad`).
-    extrapolate : bool
-        Let the blast fits run outside their ranges (with a warning), passed to ``make_load``
-        (Methods B and C evaluate the fits at each face's distance).
-    load_model : LoadModel, optional
-        Clearing and the negative phase, passed to ``make_load`` (each system's faces are its own).
 
     Returns
     -------
     SystemRun
     """
-
-    if system not in SYSTEMS:
-        raise BlastscaleInputError(f"system = {system!r} is not known: valid values are {', '.join(SYSTEMS)}")
-    if design is None:
-        if system != "prototype":
-            raise BlastscaleInputError(
-                f"design = None with system = {system!r}: without a model design only the prototype runs, from its "
-                "blast parameters (blast=blast_parameters(W, R)), or under gravity alone (blast=None)"
-            )
-        struct, bp, dur, g, cont = structure, blast, duration, gravity, contact
-    elif system == "prototype":
-        struct, bp, dur, g, cont = structure, design.prototype, duration, design.gravity, contact
-    else:
-        struct, bp, dur, g, cont = _specimen_system(design, structure, contact, duration)
-    if bp is None:  # gravity alone (a stability check)
-        resp = simulate_structure(struct, None, dur, contact=cont, gravity=g, record_every=record_every)
-        return SystemRun(struct, resp, 0.0, None)
-    inc = {} if incidence is None else {"incidence": incidence}
-    ld = make_load(
-        load, struct, bp, pulse_shape=pulse_shape, extrapolate=bool(extrapolate), load_model=load_model, **inc
-    )
-    run_load = ld if load_factor == 1.0 else PerturbedLoad(ld, load_factor)
-    resp = simulate_structure(struct, run_load, dur, contact=cont, gravity=g, record_every=record_every)
-    return SystemRun(struct, resp, float(ld.end_time - ld.first_arrival), ld)
-
-
-def _specimen_system(design, structure, contact, duration: float) -> tuple:
-    """(structure, blast parameters, duration [s], gravity [m/s^2], contact) of the specimen: the design's
-    (a Study's design carries this prototype, contact and duration); the parts it does not carry (a design made
-    without them, or with others) by :func:`~blastscale.similitude.specimen.specimen_system`, the one function
-    that scales a specimen, as the design itself does."""
-
-    same_structure = design.prototype_structure is structure
-    same_contact = contact is None or design.contact is contact
-    same_duration = design.duration == duration
-    other = None
-    if not (same_structure and same_contact and same_duration):  # what the design does not carry, scaled once
-        other = specimen_system(
-            design.factors,
-            structure=None if same_structure else structure,
-            contact=None if same_contact else contact,
-            duration=None if same_duration else duration,
+    st, ld = system.structure, None
+    if system.blast is not None:  # else gravity alone (a stability check)
+        ld = make_load(
+            settings.load,
+            st,
+            system.blast,
+            pulse_shape=settings.pulse_shape,
+            incidence=DEFAULT_INCIDENCE if settings.incidence is None else settings.incidence,
+            extrapolate=bool(settings.extrapolate),
+            load_model=system.load_model,
         )
-    struct = design.specimen_structure if same_structure else other.structure
-    cont = None if contact is None else (design.specimen_contact if same_contact else other.contact)
-    dur = design.specimen_duration if same_duration else other.duration
-    return struct, design.specimen, dur, design.specimen_gravity, cont
+    run_load = ld if ld is None or load_factor == 1.0 else PerturbedLoad(ld, load_factor)
+    resp = simulate_structure(
+        st,
+        run_load,
+        system.duration,
+        contact=system.contact,
+        gravity=system.gravity,
+        record_every=settings.record_every,
+    )
+    return SystemRun(st, resp, 0.0 if ld is None else float(ld.end_time - ld.first_arrival), ld)

@@ -56,7 +56,11 @@ def announce_run(study, console, writes: bool = False, quiet: bool = False) -> f
         return None
 
     plan = study.check()
-    size = estimate_run(study.scenario, plan.structure, plan.contact, writes=writes)
+    size = (
+        plan.size
+        if writes
+        else estimate_run(study.scenario, plan.structure, plan.contact, False, plan.contacts or None)
+    )
     if console.is_terminal or size.seconds >= ANNOUNCE_SECONDS or size.result_bytes >= ANNOUNCE_BYTES:
         console.print(f"this run: {size.line()}", soft_wrap=True)
     return size.seconds

@@ -31,8 +31,8 @@ from scipy.optimize import least_squares, minimize_scalar
 
 from .._validate import BlastscaleInputError
 from ..rocking.system import housner_restitution
-from ..scenario.scenario import Scenario
 from ..study.study import Study
+from ..analysis.upscale import upscale
 from .outcome import pose_marker_history
 from .refit import OUTCOMES, marker_history, simulate_specimen
 from .tracks import track_first_peak
@@ -123,8 +123,10 @@ def calibrate_restitution(
         raise BlastscaleInputError("calibrate needs marker tracks: [fired] tracks is not given")
 
     def residuals(x) -> np.ndarray:
-        sc = scenario.with_values({"simulation.restitution": float(x[1])})
-        return _residuals(simulate_specimen(sc, design, charge_kg * float(x[0]), standoff_m, "planar"), tracks)
+        run = simulate_specimen(
+            scenario, design, charge_kg * float(x[0]), standoff_m, "planar", restitution=float(x[1])
+        )
+        return _residuals(run, tracks)
 
     e0 = scenario.simulation.restitution or housner_restitution(design.specimen_block.alpha)  # the start: the model's
     x0 = [1.0, float(np.clip(e0, *bounds))]
@@ -137,7 +139,9 @@ def calibrate_restitution(
     except np.linalg.LinAlgError:
         sig = np.full(2, math.inf)
     e = float(opt.x[1])
-    proto = Study(scenario.with_values({"simulation.restitution": e, "engine": "planar"})).run().planar.prototype
+    proto = (
+        Study.from_design(scenario, design, system="prototype", engine="planar", restitution=e).run().planar.prototype
+    )
     return {
         "restitution": e,
         "restitution_ci95": _Z95 * float(sig[1]),
@@ -173,8 +177,8 @@ def calibrate_friction(
 
     def residuals(mu: float) -> np.ndarray:
         if mu not in runs:
-            sc = scenario.with_values({"structure.friction": float(mu)})
-            runs[mu] = _residuals(simulate_specimen(sc, design, charge_kg, standoff_m, "3d"), tracks)
+            run = simulate_specimen(scenario, design, charge_kg, standoff_m, "3d", friction=float(mu))
+            runs[mu] = _residuals(run, tracks)
         return runs[mu]
 
     lo, hi = float(bounds[0]), float(bounds[1])
@@ -196,10 +200,12 @@ def calibrate_friction(
     s2 = float(np.sum(r**2)) / max(r.size - 1, 1)
     ok = jtj > 0 and s2 / jtj < (hi - lo) ** 2
     ci = _Z95 * math.sqrt(s2 / jtj) if ok else math.inf
-    proto, st = _prototype_3d(scenario.with_values({"structure.friction": mu}))
+    proto, st = _prototype_3d(scenario, design, mu)
     peaks = {}
     for name, (point, _, _) in tracks.items():
-        ux, _ = pose_marker_history(proto.dataset, st, np.asarray(point, dtype=float) / design.factors.length)
+        ux, _ = pose_marker_history(
+            proto.dataset, st, upscale(np.asarray(point, dtype=float), design.factors, "length")
+        )
         t = np.asarray(proto.dataset["time"].values)
         largest = float(np.max(np.abs(ux)))
         peaks[name] = track_first_peak(t, ux, noise=1e-3 * largest, smooth=False).first_peak_m if largest > 0 else None
@@ -216,11 +222,8 @@ def calibrate_friction(
     }
 
 
-def _prototype_3d(scenario):
-    """The prototype alone on the 3D engine through the Study: (its Response3D, its structure)."""
-    data = scenario.to_dict()
-    for k in ("scale", "fired"):
-        data.pop(k, None)
-    data["simulation"] = {**data["simulation"], "engine": "3d", "critical_charge": False}
-    r = Study(Scenario.from_dict(data, source="prototype")).run()
+def _prototype_3d(scenario, design, friction: float):
+    """The design's prototype alone on the 3D engine with the friction coefficient ``friction`` [-], through the
+    Study's entry from a design (:meth:`~blastscale.study.Study.from_design`): (its Response3D, its structure)."""
+    r = Study.from_design(scenario, design, system="prototype", engine="3d", friction=friction).run()
     return r.response3d.prototype, r.structure

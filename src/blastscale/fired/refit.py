@@ -1,12 +1,11 @@
 """The specimen under a given load, through the Study: the prediction (designed load) and the refit (as fired).
 
-The design carries the specimen system (structure, density, gravity, duration, contact, each scaled once);
-:func:`blastscale.study.specimen.specimen_scenario` writes it as a prototype-only scenario (no ``[scale]``: the specimen *is* the
-system simulated) under a charge and stand-off of the caller's, and :func:`simulate_specimen` runs it
-through :class:`~blastscale.study.Study`, the one door, with the design's specimen structure itself (every
-kind, a block-model file's ``assembly`` included: nothing is rebuilt from the table). The designed load (the design's specimen charge and
-stand-off) gives the prediction (``predicted_*``); the effective charge at the measured stand-off gives the
-refit (``refit_*``). Both follow the same path, so that they differ only by the load.
+The design carries the specimen system (structure, density, gravity, duration, load model, each scaled once);
+:func:`simulate_specimen` runs it alone under a charge and stand-off of the caller's through the Study's entry from
+a design (:meth:`blastscale.study.Study.from_design`, the one door: no scenario is written to get back in; every
+kind, a block-model file's ``assembly`` included). The designed load (the design's specimen charge and stand-off)
+gives the prediction (``predicted_*``); the effective charge at the measured stand-off gives the refit
+(``refit_*``). Both follow the same path, so that they differ only by the load.
 """
 
 from __future__ import annotations
@@ -19,7 +18,6 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..scenario.scenario import Scenario
 from ..study.study import Study
-from ..study.specimen import specimen_scenario
 from .outcome import pose_marker_history
 from .tracks import block_marker_displacement, track_first_peak
 
@@ -40,7 +38,7 @@ class SpecimenRun:
     arrival_time_s : float
         The shock's arrival at the front face [s] (the simulation's time zero).
     result : StudyResult
-        The Study's result of the specimen scenario.
+        The Study's result of the specimen run alone (:meth:`~blastscale.study.Study.from_design`).
     """
 
     charge_kg: float
@@ -64,11 +62,28 @@ class SpecimenRun:
 
 
 def simulate_specimen(
-    scenario: Scenario, design, charge_kg: float, standoff_m: float, engine: str | None = None
+    scenario: Scenario,
+    design,
+    charge_kg: float,
+    standoff_m: float,
+    engine: str | None = None,
+    *,
+    friction: float | None = None,
+    restitution: float | None = None,
 ) -> SpecimenRun:
-    """The specimen under ``charge_kg`` [kg TNT] at ``standoff_m`` [m], through the Study."""
-    sc = specimen_scenario(scenario, design, charge_kg=charge_kg, standoff_m=standoff_m, engine=engine)
-    r = Study(sc, structure=design.specimen_structure).run()
+    """The specimen under ``charge_kg`` [kg TNT] at ``standoff_m`` [m], through the Study's entry from a design
+    (:meth:`~blastscale.study.Study.from_design`; ``scenario``: the prototype's engine settings, ``engine``
+    default its own; ``friction`` and ``restitution`` [-] when not the scenario's: a calibration's trials)."""
+    study = Study.from_design(
+        scenario,
+        design,
+        charge_kg=charge_kg,
+        standoff_m=standoff_m,
+        engine=engine,
+        friction=friction,
+        restitution=restitution,
+    )
+    r = study.run()
     return SpecimenRun(float(charge_kg), float(standoff_m), float(r.blast.arrival_time), r)
 
 

@@ -191,25 +191,11 @@ def as_fired(
     if engine is None:  # blocks rock in the plane (fast, the solver's peak events); every other kind in 3D
         engine = "planar" if is_block(d.specimen_structure) else "3d"
     standoff = float(fs.standoff_m if fs.standoff_m is not None else d.specimen.standoff_m)
-    grec = gauges if gauges is not None else (read_gauges(fs.gauges, names=fs.gauge) if fs.gauges else None)
-    trec = (
-        tracks
-        if tracks is not None
-        else (
-            read_tracks(fs.tracks, names=fs.marker, px_per_mm={n: m.px_per_mm for n, m in fs.marker.items()})
-            if fs.tracks
-            else None
-        )
-    )
+    grec, trec = _records(fs, gauges, tracks)
     fits, gsum = _gauges(scenario, d, grec, standoff) if grec is not None else ({}, {})
     lab = scenario.lab
     w_design = float(d.specimen_charge_kg)
-    w_i = w_p = None
-    if gsum:
-        w_i = float(np.exp(np.mean(np.log([g["effective_charge_tnt_kg"] for g in gsum.values()]))))
-        w_p = float(np.exp(np.mean(np.log([g["effective_charge_from_pressure_tnt_kg"] for g in gsum.values()]))))
-    elif fs.charge_kg is not None:
-        w_i = fs.charge_kg * (_explosive_factor(lab, "impulse") or 1.0) + (lab.initiator_tnt_kg if lab else 0.0)
+    w_i, w_p = _effective_charges(fs, lab, gsum)
     w_refit = w_i if w_i is not None else w_design
     predicted = simulate_specimen(scenario, d, w_design, d.specimen.standoff_m, engine)
     refit = simulate_specimen(scenario, d, w_refit, standoff, engine)
@@ -222,40 +208,12 @@ def as_fired(
         fit = marker_history(refit, fs.marker[name].point_m)
         pk = meas["peak"]
         markers[name] = {"measured": meas, "predicted": pred, "refit": fit}
-        msum[name] = {
-            "first_peak_m": pk.first_peak_m,
-            "first_peak_time_s": pk.first_peak_time_s,
-            "max_displacement_m": pk.max_displacement_m,
-            "noise_m": pk.noise_m,
-            "predicted_first_peak_m": pred["first_peak_m"],
-            "predicted_first_peak_time_s": pred["first_peak_time_s"],
-            "refit_first_peak_m": fit["first_peak_m"],
-            "refit_first_peak_time_s": fit["first_peak_time_s"],
-            "refit_vs_measured": None
-            if pk.first_peak_m is None or fit["first_peak_m"] is None
-            else fit["first_peak_m"] / pk.first_peak_m - 1.0,
-            "outcome_measured": meas["outcome"],
-            "outcome_predicted": OUTCOMES[predicted.collapsed],
-            "outcome_refit": OUTCOMES[refit.collapsed],
-        }
+        msum[name] = _marker_summary(meas, pred, fit, predicted, refit)
         if pk.first_peak_m is None:
             continue
         if sens is None:
             sens = _sensitivity(scenario, d, predicted, refit, standoff, fs.marker[name].point_m)
-        s_p, s_t = sens
-        sig_p = math.hypot(s_p * sig_w, pk.noise_m / abs(pk.first_peak_m))
-        sig_t = abs(s_t) * sig_w
-        f = d.factors
-        up_p, up_t = upscale(pk.first_peak_m, f, "length"), upscale(pk.first_peak_time_s, f, "time")
-        lo, hi = sorted((up_p * math.exp(-_Q95 * sig_p), up_p * math.exp(_Q95 * sig_p)))
-        proto[name] = {
-            "first_peak_m": up_p,
-            "first_peak_time_s": up_t,
-            "first_peak_p05_m": lo,
-            "first_peak_p95_m": hi,
-            "first_peak_time_p05_s": up_t * math.exp(-_Q95 * sig_t),
-            "first_peak_time_p95_s": up_t * math.exp(_Q95 * sig_t),
-        }
+        proto[name] = _prototype_marker(pk, d.factors, sens, sig_w)
     outs = [m["outcome_measured"] for m in msum.values() if m["outcome_measured"] is not None]
     summary = {
         "designed_charge_tnt_kg": w_design,
@@ -292,6 +250,70 @@ def as_fired(
         summary["calibration"] = calibrate_friction(scenario, d, meas, w_refit, standoff)
     summary["verdict"] = as_fired_verdict_line(summary)
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
+
+
+def _records(fs, gauges, tracks) -> tuple:
+    """(gauge record, track record) of the shot: those given, else read from the ``[fired]`` table's paths
+    (None where it names none)."""
+    grec = gauges if gauges is not None else (read_gauges(fs.gauges, names=fs.gauge) if fs.gauges else None)
+    if tracks is not None:
+        return grec, tracks
+    if not fs.tracks:
+        return grec, None
+    return grec, read_tracks(fs.tracks, names=fs.marker, px_per_mm={n: m.px_per_mm for n, m in fs.marker.items()})
+
+
+def _effective_charges(fs, lab, gsum: dict) -> tuple:
+    """(effective TNT charge by impulse, by peak pressure) [kg]: the geometric means over the gauges; without
+    gauges, the weighed charge by its impulse factor plus the initiator (by pressure: None); None without either."""
+    if gsum:
+        w_i = float(np.exp(np.mean(np.log([g["effective_charge_tnt_kg"] for g in gsum.values()]))))
+        w_p = float(np.exp(np.mean(np.log([g["effective_charge_from_pressure_tnt_kg"] for g in gsum.values()]))))
+        return w_i, w_p
+    if fs.charge_kg is not None:
+        return fs.charge_kg * (_explosive_factor(lab, "impulse") or 1.0) + (lab.initiator_tnt_kg if lab else 0.0), None
+    return None, None
+
+
+def _marker_summary(meas: dict, pred: dict, fit: dict, predicted: SpecimenRun, refit: SpecimenRun) -> dict:
+    """One marker's summary: measured, predicted and refit first peaks [m] and times [s], the refit's relative
+    error on the measured first peak, and the three outcomes."""
+    pk = meas["peak"]
+    return {
+        "first_peak_m": pk.first_peak_m,
+        "first_peak_time_s": pk.first_peak_time_s,
+        "max_displacement_m": pk.max_displacement_m,
+        "noise_m": pk.noise_m,
+        "predicted_first_peak_m": pred["first_peak_m"],
+        "predicted_first_peak_time_s": pred["first_peak_time_s"],
+        "refit_first_peak_m": fit["first_peak_m"],
+        "refit_first_peak_time_s": fit["first_peak_time_s"],
+        "refit_vs_measured": None
+        if pk.first_peak_m is None or fit["first_peak_m"] is None
+        else fit["first_peak_m"] / pk.first_peak_m - 1.0,
+        "outcome_measured": meas["outcome"],
+        "outcome_predicted": OUTCOMES[predicted.collapsed],
+        "outcome_refit": OUTCOMES[refit.collapsed],
+    }
+
+
+def _prototype_marker(pk, factors, sens: tuple, sig_w: float) -> dict:
+    """The measured first peak up-scaled (:func:`~blastscale.analysis.upscale.upscale`): what the monument would
+    do [m, s], with its 5-95 % band from the load's uncertainty ``sig_w`` (through the sensitivities ``sens``,
+    :func:`_sensitivity`) and the track's noise."""
+    s_p, s_t = sens
+    sig_p = math.hypot(s_p * sig_w, pk.noise_m / abs(pk.first_peak_m))
+    sig_t = abs(s_t) * sig_w
+    up_p, up_t = upscale(pk.first_peak_m, factors, "length"), upscale(pk.first_peak_time_s, factors, "time")
+    lo, hi = sorted((up_p * math.exp(-_Q95 * sig_p), up_p * math.exp(_Q95 * sig_p)))
+    return {
+        "first_peak_m": up_p,
+        "first_peak_time_s": up_t,
+        "first_peak_p05_m": lo,
+        "first_peak_p95_m": hi,
+        "first_peak_time_p05_s": up_t * math.exp(-_Q95 * sig_t),
+        "first_peak_time_p95_s": up_t * math.exp(_Q95 * sig_t),
+    }
 
 
 def _sensitivity(sc, d, predicted: SpecimenRun, refit: SpecimenRun, standoff: float, point) -> tuple[float, float]:

@@ -185,7 +185,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
     """Design ``c`` and check it against ``lab``.
 
     ``design(c)`` returns the candidate's :class:`~blastscale.similitude.ModelDesign` and the height of
-    its specimen charge [m] (the planner's: the Study's design of the candidate's scenario). ``block``
+    its specimen charge [m] (the planner's: the Study's design of the candidate, :meth:`~blastscale.study.Study.from_candidate`). ``block``
     is the prototype's block, or for any other structure its envelope block (:func:`envelope_block`):
     its t_o p is the impulsive check of every kind. ``timing`` is the prototype's (or the envelope
     block's) :class:`~.shot.Timing`: the specimen's times are its times x the time factor
@@ -293,12 +293,10 @@ def envelope_block(structure):
 
 def envelope_impulsive(envelope, d):
     """The impulsive check t_o p (:func:`~blastscale.similitude.experiment.impulsive_check`) of a design
-    on the envelope block of its prototype and on that block scaled by lambda (the specimen's)."""
+    on the envelope block of its prototype and on that block scaled by the design's factors (the specimen's,
+    ``structure.scaled(factors)``: its frequency parameter depends on its size alone)."""
 
-    lam = float(d.factors.length)
-    spec = RectangularBlock(
-        height=envelope.height * lam, width=envelope.width * lam, depth=envelope.depth * lam, density=envelope.density
-    )
+    spec = envelope.scaled(d.factors)
     return ImpulsiveCheck(
         prototype_ratio=float(d.prototype.positive_duration * envelope.frequency_parameter(d.gravity)),
         model_ratio=float(d.specimen.positive_duration * spec.frequency_parameter(d.specimen_gravity)),

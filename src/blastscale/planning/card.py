@@ -32,9 +32,6 @@ from .shot import (
 )
 from ..structures.from_spec import is_block
 from ..blast.parameters import get_blast_model
-from ..study.specimen import specimen_scenario
-from pathlib import Path
-import tempfile
 
 __all__ = ["study_test_card", "check_lab"]
 
@@ -221,18 +218,11 @@ def study_test_card(result, lab=None) -> dict | None:
     sc = result.scenario
     lab = lab or sc.lab or DEFAULT_LAB
     spec = result.specimen_structure
-    hs, ws, ds = spec_dims(spec)
     ch = card_charge(d.specimen_charge_kg, lab)
     env = safety_envelope(ch.tnt_equivalent_pressure_kg, lab.safety_threshold)
-    env_p = safety_envelope(d.prototype.charge_kg, lab.safety_threshold)
     r = _response(result, spec)
     m = d.specimen
-    kb = get_blast_model(
-        "kingery-bulmash-free-air" if getattr(m, "burst", "surface") == "free-air" else "kingery-bulmash"
-    )
-    z = float(m.scaled_distance)
-    lo, hi = kb.valid_range("incident_pressure")
-    inc = float(kb.incident_pressure(z)) if lo <= z <= hi else math.nan
+    inc = _incident_pressure(m)
     ins = instrument_settings(
         reflected_pressure_Pa=m.reflected_pressure,
         incident_pressure_Pa=inc,
@@ -248,51 +238,19 @@ def study_test_card(result, lab=None) -> dict | None:
     odds = _odds(result, spec, ch, lab, collapsed_p)
     odds3 = None
     if lab.ensemble_3d:
-        with tempfile.TemporaryDirectory(prefix="blastscale-card-") as tmp:
-            odds3 = ensemble_odds_3d(
-                specimen_scenario(sc, d, folder=Path(tmp)),
-                prototype_collapsed=collapsed_p,
-                tolerances=Tolerances.from_lab(lab),
-                members=lab.ensemble_3d,
-                seed=lab.seed,
-            )
-    reach, reach_p = max(r["reach_m"]), max(r["prototype_reach_m"])
+        odds3 = ensemble_odds_3d(
+            sc,
+            d,
+            prototype_collapsed=collapsed_p,
+            tolerances=Tolerances.from_lab(lab),
+            members=lab.ensemble_3d,
+            seed=lab.seed,
+        )
+    reach = max(r["reach_m"])
     hc, burst, shot_notes = _lab_shot(result)
-    notes = list(ch.warnings) + [f[3] for f in fireability(ch, lab)] + shot_notes
-    if env.far_field:
-        many = len(env.far_field) > 1
-        notes.append(
-            f"the {', '.join(env.far_field)} distance{'s lie' if many else ' lies'} beyond the Kingery-Bulmash "
-            "range (Kinney-Graham far field, anchored at Z = 198.5 m/kg^(1/3)): less certain"
-        )
-    if ins.pressure_rise_time_s < _SHORT_RISE_S:
-        notes.append(
-            f"the gauges must rise in {ins.pressure_rise_time_s * 1e9:.3g} ns, faster than the ~1 us of "
-            "piezoelectric blast gauges: the peak will be under-read; the impulse is still measured"
-        )
-    if ins.camera_fps_required > lab.camera_max_fps:
-        notes.append(
-            f"the camera needs {ins.camera_fps_required:.4g} frames/s, above camera_max_fps = {lab.camera_max_fps:g}"
-        )
     tol = None if odds is None else odds.charge_tolerance_needed
-    mat = sc.scale.specimen_material or (
-        "same as the prototype" if abs(d.density_ratio - 1.0) < 1e-12 else f"density ratio {d.density_ratio:.4g}"
-    )
     return {
-        "explosive": ch.explosive.name,
-        "explosive_mass_kg": ch.explosive_mass_kg,
-        "explosive_min_charge_kg": ch.explosive.min_charge_kg,
-        "min_charge_source": ch.explosive.min_charge_source,
-        "initiator": lab.initiator,
-        "initiator_tnt_kg": ch.initiator_tnt_kg,
-        "initiator_fraction": ch.initiator_fraction,
-        "initiator_max_fraction": lab.initiator_max_fraction,
-        "tnt_equivalent_impulse_kg": ch.tnt_equivalent_impulse_kg,
-        "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
-        "pressure_factor": ch.explosive.pressure_factor,
-        "impulse_factor": ch.explosive.impulse_factor,
-        "equivalence_source": ch.explosive.source,
-        "equivalence_uncertainty": ch.explosive.uncertainty,
+        **_shot_keys(ch, lab),
         "standoff_m": d.specimen_standoff_m,
         "charge_height_m": hc,
         "burst": burst,
@@ -310,40 +268,11 @@ def study_test_card(result, lab=None) -> dict | None:
         "first_peak_spread": None if odds is None else odds.first_peak_spread,
         "charge_tolerance_needed": tol,
         "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
-        "build": {
-            "kind": sc.structure.kind,
-            "height_m": hs,
-            "width_m": ws,
-            "depth_m": ds,
-            "mass_kg": float(sum(b.mass for b in spec.bodies)),
-            "material": mat,
-            "density_kg_m3": float(getattr(spec, "density", sc.structure.density_kg_m3 * d.density_ratio)),
-            "scale": d.scale,
-            "density_ratio": d.density_ratio,
-            "law": d.law,
-            "unit": specimen_unit(spec),
-        },
+        "build": _build_keys(sc, d, spec),
         "instruments": ins.to_dict(),
-        "predicted": {
-            "collapsed": r["collapsed"],
-            "first_peak_rotation_rad": r["rotation"],
-            "first_peak_time_s": r["timing"].rise_s,
-            "response_time_s": r["timing"].response_s,
-            "top_displacement_m": r["top_m"],
-            "arrival_time_s": m.arrival_time,
-            "reflected_pressure_Pa": m.reflected_pressure,
-            "incident_pressure_Pa": inc,
-            "reflected_impulse_Pa_s": m.reflected_impulse,
-            "positive_duration_s": m.positive_duration,
-        },
+        "predicted": _predicted_keys(r, m, inc),
         "layout": _layout(spec, ch, ins, d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst),
-        "prototype": {
-            "collapsed": collapsed_p,
-            "charge_kg": d.prototype.charge_kg,
-            "reach_m": reach_p,
-            "debris_radius_m": lab.debris_margin * reach_p,
-            "safety_distances_m": env_p.distances_m,
-        },
+        "prototype": _prototype_keys(d, r, lab, collapsed_p),
         "odds": None if odds is None else odds.to_dict(),
         "odds_3d": odds3,
         "tolerances": {
@@ -354,5 +283,108 @@ def study_test_card(result, lab=None) -> dict | None:
             "samples": lab.samples,
             "seed": lab.seed,
         },
-        "warnings": notes,
+        "warnings": _card_notes(ch, lab, env, ins, shot_notes),
     }
+
+
+def _incident_pressure(m) -> float:
+    """The specimen's side-on (incident) peak pressure [Pa] at its scaled distance, from Kingery-Bulmash for its
+    burst (NaN outside the fit's range)."""
+    kb = get_blast_model(
+        "kingery-bulmash-free-air" if getattr(m, "burst", "surface") == "free-air" else "kingery-bulmash"
+    )
+    z = float(m.scaled_distance)
+    lo, hi = kb.valid_range("incident_pressure")
+    return float(kb.incident_pressure(z)) if lo <= z <= hi else math.nan
+
+
+def _shot_keys(ch, lab) -> dict:
+    """The card's charge keys: the explosive, its mass, the initiator and the TNT equivalences."""
+    return {
+        "explosive": ch.explosive.name,
+        "explosive_mass_kg": ch.explosive_mass_kg,
+        "explosive_min_charge_kg": ch.explosive.min_charge_kg,
+        "min_charge_source": ch.explosive.min_charge_source,
+        "initiator": lab.initiator,
+        "initiator_tnt_kg": ch.initiator_tnt_kg,
+        "initiator_fraction": ch.initiator_fraction,
+        "initiator_max_fraction": lab.initiator_max_fraction,
+        "tnt_equivalent_impulse_kg": ch.tnt_equivalent_impulse_kg,
+        "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+        "pressure_factor": ch.explosive.pressure_factor,
+        "impulse_factor": ch.explosive.impulse_factor,
+        "equivalence_source": ch.explosive.source,
+        "equivalence_uncertainty": ch.explosive.uncertainty,
+    }
+
+
+def _build_keys(sc, d, spec) -> dict:
+    """The card's ``build``: the specimen's kind, dimensions [m], mass [kg], material and scales."""
+    hs, ws, ds = spec_dims(spec)
+    mat = sc.scale.specimen_material or (
+        "same as the prototype" if abs(d.density_ratio - 1.0) < 1e-12 else f"density ratio {d.density_ratio:.4g}"
+    )
+    return {
+        "kind": sc.structure.kind,
+        "height_m": hs,
+        "width_m": ws,
+        "depth_m": ds,
+        "mass_kg": float(sum(b.mass for b in spec.bodies)),
+        "material": mat,
+        "density_kg_m3": float(getattr(spec, "density", sc.structure.density_kg_m3 * d.density_ratio)),
+        "scale": d.scale,
+        "density_ratio": d.density_ratio,
+        "law": d.law,
+        "unit": specimen_unit(spec),
+    }
+
+
+def _predicted_keys(r: dict, m, inc: float) -> dict:
+    """The card's ``predicted``: the specimen's simulated response and its load."""
+    return {
+        "collapsed": r["collapsed"],
+        "first_peak_rotation_rad": r["rotation"],
+        "first_peak_time_s": r["timing"].rise_s,
+        "response_time_s": r["timing"].response_s,
+        "top_displacement_m": r["top_m"],
+        "arrival_time_s": m.arrival_time,
+        "reflected_pressure_Pa": m.reflected_pressure,
+        "incident_pressure_Pa": inc,
+        "reflected_impulse_Pa_s": m.reflected_impulse,
+        "positive_duration_s": m.positive_duration,
+    }
+
+
+def _prototype_keys(d, r: dict, lab, collapsed: bool) -> dict:
+    """The card's ``prototype``: its outcome, charge, reach and safety distances, for reference."""
+    reach_p = max(r["prototype_reach_m"])
+    env_p = safety_envelope(d.prototype.charge_kg, lab.safety_threshold)
+    return {
+        "collapsed": collapsed,
+        "charge_kg": d.prototype.charge_kg,
+        "reach_m": reach_p,
+        "debris_radius_m": lab.debris_margin * reach_p,
+        "safety_distances_m": env_p.distances_m,
+    }
+
+
+def _card_notes(ch, lab, env, ins, shot_notes: list) -> list:
+    """The card's warnings: the charge's, what cannot be fired, the shot's, the far field, gauges too slow for
+    the rise and a camera too slow for the response."""
+    notes = list(ch.warnings) + [f[3] for f in fireability(ch, lab)] + shot_notes
+    if env.far_field:
+        many = len(env.far_field) > 1
+        notes.append(
+            f"the {', '.join(env.far_field)} distance{'s lie' if many else ' lies'} beyond the Kingery-Bulmash "
+            "range (Kinney-Graham far field, anchored at Z = 198.5 m/kg^(1/3)): less certain"
+        )
+    if ins.pressure_rise_time_s < _SHORT_RISE_S:
+        notes.append(
+            f"the gauges must rise in {ins.pressure_rise_time_s * 1e9:.3g} ns, faster than the ~1 us of "
+            "piezoelectric blast gauges: the peak will be under-read; the impulse is still measured"
+        )
+    if ins.camera_fps_required > lab.camera_max_fps:
+        notes.append(
+            f"the camera needs {ins.camera_fps_required:.4g} frames/s, above camera_max_fps = {lab.camera_max_fps:g}"
+        )
+    return notes

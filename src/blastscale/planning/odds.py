@@ -1,6 +1,7 @@
 """The odds of a test: the lab's tolerances propagated by Monte Carlo through the fast planar
 kernels (the first-swing criterion and peak of :mod:`blastscale.rocking.swing`, vectorised), or
-through small 3D ensembles (one Study per member, on Dask when asked).
+through small 3D ensembles (one Study of the design's specimen per member,
+:meth:`~blastscale.study.Study.from_design`, on Dask when asked).
 
 Tolerances are one standard deviation (``[lab]``): the explosive's mass relative, lognormal
 (``m eps``, ``ln eps ~ N(0, s_W)``; the initiator is not perturbed); the stand-off absolute, normal
@@ -31,12 +32,23 @@ from typing import Optional
 import numpy as np
 from ..blast.parameters import blast_parameters_unchecked
 from ..blast.parameters import valid_scaled_distance_range
-from .._threads import default_threads
-from ..sweeps.spec import SweepSpec
+from .._extras import require
+from .._validate import BlastscaleInputError
+from .._threads import map_threads
+from ..similitude.factors import scaling_factors
+from ..study.study import Study
 from ..sweeps.grids import Distribution
-from ..sweeps.runner import run_chunks
 
-__all__ = ["Tolerances", "Odds", "planar_odds", "ensemble_odds_3d", "Z95", "Z90_ONE_SIDED"]
+__all__ = [
+    "Tolerances",
+    "Odds",
+    "planar_odds",
+    "SpecimenMember",
+    "specimen_members",
+    "ensemble_odds_3d",
+    "Z95",
+    "Z90_ONE_SIDED",
+]
 
 Z95 = 1.959963984540054  # two-sided 95 % normal quantile
 Z90_ONE_SIDED = 1.6448536269514722  # one-sided 95 % normal quantile
@@ -146,14 +158,7 @@ def planar_odds(
     base = planar_system(specimen, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model)
 
-    zlo, zhi = valid_scaled_distance_range(blast_model)
-    Z = R / np.cbrt(W)
-    inside = (Z >= zlo) & (Z <= zhi)  # draws the fits do not cover are left out (and counted)
-    outside = int(n - inside.sum())
-    extrapolate = not inside.any()
-    if extrapolate:
-        inside[:] = True  # every draw beyond the fits: evaluate them anyway (extrapolating), counted
-    W, R, rho = W[inside], R[inside], rho[inside]
+    W, R, rho, outside, extrapolate = _inside_fits(W, R, rho, blast_model)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         # a homogeneous block: the density changes only the load per unit pressure (q = S l / (m g r cos alpha))
@@ -168,16 +173,7 @@ def planar_odds(
                 wc = None
     agree = fs.collapsed == bool(prototype_collapsed)
     p = float(np.mean(agree))
-    peak_nom = None if nominal.collapsed[1] else float(nominal.max_rotation[1])
-    sens = spread = p05 = p95 = tol_peak = None
-    surv = fs.max_rotation[~fs.collapsed]
-    if peak_nom is not None and not np.any(nominal.collapsed):
-        sens = float(np.log(nominal.max_rotation[2] / nominal.max_rotation[0]) / (2.0 * math.log(1.01)))
-        if surv.size >= 2:
-            spread = float(np.std(surv, ddof=1) / np.median(surv))
-            p05, p95 = (float(x) for x in np.quantile(surv, [0.05, 0.95]))
-        if sens != 0.0:
-            tol_peak = math.log(1.0 + target) / (Z95 * abs(sens))
+    peak_nom, sens, spread, p05, p95, tol_peak = _peak_figures(nominal, fs, target)
     tol_out = None
     if wc is not None and wc > w_init and m_tnt > 0:
         tol_out = abs(math.log((wc - w_init) / m_tnt)) / Z90_ONE_SIDED
@@ -202,8 +198,107 @@ def planar_odds(
     )
 
 
+def _inside_fits(W, R, rho, blast_model) -> tuple:
+    """(W, R, rho, draws left out, extrapolate) of the drawn charges [kg], stand-offs [m] and density factors:
+    the draws whose scaled distance the blast fits cover (those outside are left out and counted); every draw
+    kept, extrapolating, when none is covered."""
+    zlo, zhi = valid_scaled_distance_range(blast_model)
+    Z = R / np.cbrt(W)
+    inside = (Z >= zlo) & (Z <= zhi)
+    outside = int(W.size - inside.sum())
+    extrapolate = not inside.any()
+    if extrapolate:
+        inside[:] = True
+    return W[inside], R[inside], rho[inside], outside, extrapolate
+
+
+def _peak_figures(nominal, fs, target: float) -> tuple:
+    """(nominal first peak [rad], sensitivity d ln theta / d ln W, relative spread, 5 % and 95 % first peaks [rad],
+    charge tolerance for ``target``) of the first swings: ``nominal`` at 0.99, 1 and 1.01 x the charge, ``fs`` of
+    the draws (None where the nominal specimen overturns)."""
+    peak_nom = None if nominal.collapsed[1] else float(nominal.max_rotation[1])
+    sens = spread = p05 = p95 = tol_peak = None
+    surv = fs.max_rotation[~fs.collapsed]
+    if peak_nom is not None and not np.any(nominal.collapsed):
+        sens = float(np.log(nominal.max_rotation[2] / nominal.max_rotation[0]) / (2.0 * math.log(1.01)))
+        if surv.size >= 2:
+            spread = float(np.std(surv, ddof=1) / np.median(surv))
+            p05, p95 = (float(x) for x in np.quantile(surv, [0.05, 0.95]))
+        if sens != 0.0:
+            tol_peak = math.log(1.0 + target) / (Z95 * abs(sens))
+    return peak_nom, sens, spread, p05, p95, tol_peak
+
+
+@dataclass(frozen=True)
+class SpecimenMember:
+    """One member of a specimen's 3D ensemble: the design's specimen under the lab's tolerances drawn once.
+
+    Attributes
+    ----------
+    charge_kg, standoff_m : float
+        The load [kg TNT], [m].
+    friction : float
+        The friction coefficient [-].
+    density_factor : float
+        The specimen's density relative to the design's [-].
+    """
+
+    charge_kg: float
+    standoff_m: float
+    friction: float
+    density_factor: float
+
+
+def specimen_members(scenario, design, tolerances: Tolerances, members: int, seed: int = 0) -> list:
+    """The members of a specimen's 3D ensemble (:class:`SpecimenMember`): the design's specimen charge, stand-off,
+    the scenario's friction and the specimen's density drawn as in :func:`planar_odds` from
+    ``numpy.random.default_rng(seed)``, in the order stand-off (normal, absolute), friction (normal, absolute),
+    charge (lognormal, relative), density (normal, relative): the draws of the sweeps' samples of that order."""
+    n = int(members)
+    if n < 1:
+        raise BlastscaleInputError(f"members = {members!r} is out of range: must be a whole number >= 1")
+    rng = np.random.default_rng(int(seed))
+    dists = (
+        Distribution("normal", (float(design.specimen_standoff_m), max(tolerances.standoff_m, 1e-12))),
+        Distribution("normal", (float(scenario.structure.friction), max(tolerances.friction, 1e-12))),
+        Distribution("lognormal", (1.0, max(tolerances.charge, 1e-12))),
+        Distribution("normal", (1.0, max(tolerances.density, 1e-12))),
+    )
+    standoff, friction, charge, density = (d.sample(rng, n) for d in dists)
+    w = float(design.specimen_charge_kg)
+    return [
+        SpecimenMember(float(w * charge[k]), float(standoff[k]), float(friction[k]), float(density[k]))
+        for k in range(n)
+    ]
+
+
+def _member_outcome(task) -> tuple:
+    """(collapsed, largest top displacement [m]) of one member (NaN where the Study refuses its inputs): the
+    design's specimen alone on the 3D engine (:meth:`~blastscale.study.Study.from_design`), its density x the
+    member's factor (``structure.scaled(factors)``) and its friction the member's."""
+    scenario, design, m = task
+    factors = scaling_factors(1.0, density_ratio=m.density_factor)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # an ensemble reports results, not one warning per member
+        try:
+            r = Study.from_design(
+                scenario,
+                design,
+                charge_kg=m.charge_kg,
+                standoff_m=m.standoff_m,
+                engine="3d",
+                structure=design.specimen_structure.scaled(factors),
+                friction=m.friction,
+            ).run()
+        except BlastscaleInputError:
+            return math.nan, math.nan
+    s = r.summary()["3d"]["prototype"]
+    return float(bool(s["collapsed"])), float(s["max_top_displacement_m"])
+
+
 def ensemble_odds_3d(
-    specimen_scenario,
+    scenario,
+    design,
     *,
     prototype_collapsed: bool,
     tolerances: Tolerances,
@@ -213,12 +308,11 @@ def ensemble_odds_3d(
     scheduler: Optional[str] = None,
     tick=None,
 ) -> dict:
-    """Odds of a specimen by a small 3D ensemble: ``members`` Studies (3D engine, MuJoCo) of the
-    specimen as a prototype-only scenario, its charge, stand-off, friction and density drawn as in
-    :func:`planar_odds` (the sweeps' samples, common seed), on ``workers`` local Dask processes or a
-    ``scheduler`` (one member per task), or in this process on native threads (0 and None: chunks of
-    as many members as :func:`~blastscale.sim3d.threads.default_threads`). ``tick(done)`` after each
-    chunk (members done so far).
+    """Odds of a specimen by a small 3D ensemble: ``members`` runs (3D engine, MuJoCo) of the design's specimen
+    alone (:meth:`~blastscale.study.Study.from_design`, the scenario's engine settings), its charge, stand-off,
+    friction and density drawn by :func:`specimen_members`, on ``workers`` local Dask processes or a
+    ``scheduler`` (one member per task), or in this process on native threads (0 and None:
+    ``simulation.threads``). ``tick(done)`` after each member (members done so far).
 
     Returns
     -------
@@ -230,31 +324,13 @@ def ensemble_odds_3d(
         ``top_displacement_p95_m`` [m, the specimen's].
     """
 
-    sc = specimen_scenario.with_values({"simulation.engine": "3d", "simulation.critical_charge": False})
-    rel = {"blast.charge_kg": Distribution("lognormal", (1.0, max(tolerances.charge, 1e-12)))}
-    absolute = {
-        "blast.standoff_m": Distribution("normal", (sc.blast.standoff_m, max(tolerances.standoff_m, 1e-12))),
-        "structure.friction": Distribution("normal", (sc.structure.friction, max(tolerances.friction, 1e-12))),
-    }
-    rel["structure.density_kg_m3"] = Distribution("normal", (1.0, max(tolerances.density, 1e-12)))
-    spec = SweepSpec.build(sc, {}, absolute, relative=rel, samples=int(members), seed=int(seed))
-    n = spec.n_cases
-    k = 1 if (workers or scheduler is not None) else max(1, default_threads())
-    done: dict = {}
-    run_chunks(
-        spec.to_payload(),
-        [(i, i, min(i + k, n)) for i in range(0, n, k)],
-        done.__setitem__,
-        scheduler=scheduler,
-        workers=workers,
-        tick=tick,
-    )
-    vals = {key: [] for key in ("3d.prototype.collapsed", "3d.prototype.max_top_displacement_m")}
-    for i in sorted(done):
-        for key in vals:
-            vals[key] += list(done[i]["values"].get(key, [math.nan] * (done[i]["stop"] - done[i]["start"])))
-    col = np.array(vals["3d.prototype.collapsed"], dtype=float)
-    top = np.array(vals["3d.prototype.max_top_displacement_m"], dtype=float)
+    tasks = [(scenario, design, m) for m in specimen_members(scenario, design, tolerances, members, seed)]
+    if workers or scheduler is not None:
+        out = _map_on_dask(_member_outcome, tasks, scheduler, workers, tick)
+    else:
+        out = map_threads(_member_outcome, tasks, scenario.simulation.threads, done=tick)
+    col = np.array([c for c, _ in out], dtype=float)
+    top = np.array([t for _, t in out], dtype=float)
     ok = np.isfinite(col)
     collapsed = col[ok] == 1.0
     p = float(np.mean(collapsed == bool(prototype_collapsed))) if ok.any() else math.nan
@@ -271,3 +347,33 @@ def ensemble_odds_3d(
         "top_displacement_p05_m": p05,
         "top_displacement_p95_m": p95,
     }
+
+
+def _map_on_dask(fn, items: list, scheduler: Optional[str], workers: int, tick=None) -> list:
+    """``[fn(x) for x in items]`` on a Dask ``scheduler`` or, without one, ``workers`` local worker processes (one
+    item per task); ``tick(done)`` as each completes, in order."""
+    distributed = require("dask.distributed", "sweeps", "a 3D ensemble on Dask workers")
+    cluster = None
+    if scheduler is None:
+        with warnings.catch_warnings():  # the scheduler's HTTP (health) server takes another port when 8787 is busy
+            warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
+            cluster = distributed.LocalCluster(
+                n_workers=int(workers), threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+            )
+        client = distributed.Client(cluster)
+    else:
+        try:
+            client = distributed.Client(scheduler, timeout="20s")
+        except (OSError, TimeoutError) as exc:
+            raise BlastscaleInputError(f"scheduler = {scheduler!r} cannot be reached: {exc}") from None
+    try:
+        out = []
+        for fut in client.map(fn, items, pure=False):
+            out.append(fut.result())
+            if tick is not None:
+                tick(len(out))
+        return out
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()

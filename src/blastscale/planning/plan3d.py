@@ -8,9 +8,10 @@ envelope block (:func:`~.candidates.envelope_block`: the impulsive check t_o p, 
 instruments) and on what the design gives in closed form: the lab's limits, the safety radius, the
 blast model's range, and the spread of the shock's arrival over the front at model scale. The best
 ``lab.top_3d`` screened designs (smallest screening error, then safety radius) then get the
-prototype-vs-specimen 3D comparison (one Study of the design's scenario on the 3D engine) and a 3D
-Monte Carlo ensemble of the lab's tolerances (``lab.ensemble_3d`` members, default
-:data:`ENSEMBLE_3D_DEFAULT`; :func:`~.odds.ensemble_odds_3d`, on threads or Dask).
+prototype-vs-specimen 3D comparison (the candidate's Study on the 3D engine,
+:meth:`~blastscale.study.Study.from_candidate`) and a 3D Monte Carlo ensemble of the lab's tolerances
+(``lab.ensemble_3d`` members, default :data:`ENSEMBLE_3D_DEFAULT`; :func:`~.odds.ensemble_odds_3d`: the design's
+specimen through :meth:`~blastscale.study.Study.from_design`, on threads or Dask).
 
 The screening error of a design (lower first) is the larger of two closed-form estimates:
 
@@ -30,9 +31,7 @@ The screening error of a design (lower first) is the larger of two closed-form e
 from __future__ import annotations
 
 import math
-import tempfile
 import warnings
-from pathlib import Path
 from typing import Callable, Optional
 
 import numpy as np
@@ -41,8 +40,8 @@ from .._validate import BlastscaleInputError
 from ..blast.bursts import lab_burst
 from ..similitude.effects import structure_top
 from ..scenario.lab import SAME_MATERIAL
+from ..scenario.specs import ScaleSpec
 from ..study.study import Study
-from ..study.specimen import specimen_scenario
 from ..blast.parameters import get_blast_model
 from ..structures.from_spec import is_block
 from .build import spec_dims
@@ -53,6 +52,7 @@ __all__ = [
     "ENSEMBLE_3D_DEFAULT",
     "STAND_HEIGHTS",
     "design_scenario",
+    "candidate_scale",
     "candidate_design",
     "stand_height",
     "front_arrival_spread",
@@ -101,10 +101,10 @@ def stand_height(design) -> float:
     )
 
 
-def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[float] = None):
-    """The scenario of a planned design: the prototype's, with ``[scale]`` set to the candidate
-    (law, lambda, material or density ratio, the specimen's burst where it is not the prototype's,
-    the charge's height on its stand [m]) and the lab table (``lab_spec``) kept."""
+def candidate_scale(scenario, candidate, charge_height: Optional[float] = None) -> ScaleSpec:
+    """The ``[scale]`` of a planned design (typed): the candidate's law, lambda, material or density ratio, the
+    specimen's burst where it is not the prototype's, the charge's height on its stand [m]; the scenario's
+    gravity ratio."""
 
     scale = {
         "length": candidate.scale,
@@ -119,8 +119,17 @@ def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[
         scale["specimen_material"] = candidate.material
     elif candidate.law == "general":
         scale["density_ratio"] = 1.0
+    return ScaleSpec(**scale)
+
+
+def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[float] = None):
+    """The scenario of a planned design, for the user (the plan's ``best_scenario``, a file to run): the
+    prototype's, with ``[scale]`` set to the candidate (:func:`candidate_scale`) and the lab table (``lab_spec``)
+    kept. The planner's own runs start from the candidate's scale (:meth:`blastscale.study.Study.from_candidate`),
+    never from this scenario."""
+
     data = scenario.model_dump(exclude_none=True)
-    data["scale"] = scale
+    data["scale"] = candidate_scale(scenario, candidate, charge_height).model_dump(exclude_none=True)
     if lab_spec is not None:
         data["lab"] = lab_spec.model_dump(exclude_none=True)
     with warnings.catch_warnings():  # validated once already: its warnings were said
@@ -129,19 +138,19 @@ def design_scenario(scenario, candidate, lab_spec=None, charge_height: Optional[
 
 
 def candidate_design(scenario, structure, lab) -> Callable:
-    """``design(candidate) -> (ModelDesign, charge height [m])``: the Study's design of the candidate's
-    scenario (:func:`~.planner.design_scenario`; the load model, bursts, contact and duration as the
-    Study's, one door), on ``structure`` built once. A free-air candidate stands on the scenario's
+    """``design(candidate) -> (ModelDesign, charge height [m])``: the Study's design of the candidate
+    (:meth:`~blastscale.study.Study.from_candidate` with :func:`candidate_scale`; the load model, bursts, contact
+    and duration as the Study's, one door), on ``structure`` built once. A free-air candidate stands on the scenario's
     ``scale.specimen_charge_height_m`` or, without one, on :func:`stand_height`'s."""
 
     given = scenario.scale.specimen_charge_height_m if scenario.scale is not None else None
 
     def design(c):
         h = given if c.burst != "surface" else None
-        d = Study(design_scenario(scenario, c, lab, h)).design(structure)
+        d = Study.from_candidate(scenario, candidate_scale(scenario, c, h)).design(structure)
         if c.burst != "surface" and h is None:
             h = stand_height(d)
-            d = Study(design_scenario(scenario, c, lab, h)).design(structure)
+            d = Study.from_candidate(scenario, candidate_scale(scenario, c, h)).design(structure)
         return d, float(h or 0.0)
 
     return design
@@ -205,8 +214,9 @@ def run_3d(
     scheduler: Optional[str] = None,
     tick: Optional[Callable[[int], None]] = None,
 ) -> tuple:
-    """The 3D stage of one screened design: the prototype-vs-specimen comparison (a Study of the design's
-    scenario on the 3D engine) and the specimen's ensemble of the lab's tolerances.
+    """The 3D stage of one screened design: the prototype-vs-specimen comparison (the candidate's Study on the
+    3D engine, :meth:`~blastscale.study.Study.from_candidate`) and the specimen's ensemble of the lab's
+    tolerances.
 
     Returns
     -------
@@ -216,12 +226,10 @@ def run_3d(
         ``odds_3d`` (None with 0 members).
     """
 
-    sc3 = design_scenario(scenario, ev.candidate, lab, ev.charge_height_m or None).with_values(
-        {"simulation.engine": "3d", "simulation.critical_charge": False, "simulation.ensemble_members": 0}
-    )
+    scale = candidate_scale(scenario, ev.candidate, ev.charge_height_m or None)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = Study(sc3).run()
+        res = Study.from_candidate(scenario, scale, engine="3d").run()
     s3 = res.summary()["3d"]
     cmp3 = res.response3d
     lam = float(ev.design.factors.length)
@@ -234,20 +242,15 @@ def run_3d(
     }
     odds = None
     if members:
-        with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
-            try:
-                ssc = specimen_scenario(scenario, ev.design, folder=Path(tmp))
-            except BlastscaleInputError as exc:  # a block model with supports: the comparison alone
-                warnings.warn(f"plan: no 3D ensemble: {exc}", UserWarning, stacklevel=2)
-                return s3, sim, None
-            odds = ensemble_odds_3d(
-                ssc,
-                prototype_collapsed=bool(s3["prototype"]["collapsed"]),
-                tolerances=tolerances,
-                members=members,
-                seed=lab.seed,
-                workers=workers,
-                scheduler=scheduler,
-                tick=tick,
-            )
+        odds = ensemble_odds_3d(
+            scenario,
+            ev.design,
+            prototype_collapsed=bool(s3["prototype"]["collapsed"]),
+            tolerances=tolerances,
+            members=members,
+            seed=lab.seed,
+            workers=workers,
+            scheduler=scheduler,
+            tick=tick,
+        )
     return s3, sim, odds

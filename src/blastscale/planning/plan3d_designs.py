@@ -59,15 +59,17 @@ def designs_3d(
 ) -> tuple:
     """(designs best first, the prototype's record with its 3D outcome, notes) of a plan on the 3D path."""
     method = scenario.blast.load
-    scr = {id(e): screening_error(e, method) for e in ok}
-    ok = sorted(ok, key=lambda e: (float(f"{scr[id(e)]:.2g}"), e.safety.radius_m))
+    scored = sorted(
+        ((screening_error(e, method), e) for e in ok), key=lambda se: (float(f"{se[0]:.2g}"), se[1].safety.radius_m)
+    )
+    ok = [e for _, e in scored]
     members = lab.ensemble_3d if lab.ensemble_3d is not None else ENSEMBLE_3D_DEFAULT
     top = ok[: lab.top_3d]
     total = len(top) * (members + 1)
     designs, notes = [], []
-    for k, e in enumerate(ok):
+    for k, (err, e) in enumerate(scored):
         h, w, _ = spec_dims(e.specimen)
-        base = {"screening_error": scr[id(e)], "odds_3d": None, "similarity_3d": None}
+        base = {"screening_error": err, "odds_3d": None, "similarity_3d": None}
         if k >= len(top):
             designs.append(
                 {
@@ -77,7 +79,7 @@ def designs_3d(
                     "p_outcome_agree_se": None,
                     "first_peak_spread": None,
                     "similarity_error": None,
-                    "predicted_first_peak_error": scr[id(e)],
+                    "predicted_first_peak_error": err,
                     "charge_tolerance_needed": None,
                     "weighing_precision_kg": None,
                 }

@@ -3,8 +3,8 @@
 The planner searches the geometric scale lambda (the fractions of
 :data:`~.candidates.LAMBDA_DENOMINATORS`), the density ratio gamma through the lab's materials, the
 scaling law (general; Hopkinson-Cranz where a material's density allows it) and the specimen's burst
-(``lab.bursts``), designs each candidate (the Study's design of its scenario: the load model as the
-scenario's), rejects those that break a constraint of the lab (each rejection with its reasons,
+(``lab.bursts``), designs each candidate (the Study's design of the candidate, :meth:`~blastscale.study.Study.from_candidate`: the load
+model as the scenario's), rejects those that break a constraint of the lab (each rejection with its reasons,
 :func:`screen`), and for the feasible ones propagates the lab's tolerances by Monte Carlo: a block
 on the paper's load through the planar kernels (:mod:`.odds`), any other structure or load model
 through the 3D stage of its best screened designs (:mod:`.plan3d`, :mod:`.plan3d_designs`). The
@@ -23,10 +23,8 @@ met and the value that would relax it.
 from __future__ import annotations
 
 import math
-import tempfile
 import warnings
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Callable, Optional
 
 from .._validate import BlastscaleInputError
@@ -35,7 +33,6 @@ from .debris import planar_reach
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .pareto import mark_pareto
 from .plan3d import candidate_design, design_scenario, planar_path
-from ..study.specimen import specimen_scenario
 from .plan3d_designs import designs_3d
 from .shot import DEFAULT_LAB, safety_envelope, timing_of
 from ..blast.parameters import blast_parameters
@@ -295,16 +292,16 @@ def plan(
     best_sc = design_scenario(scenario, best.candidate, lab, best.charge_height_m or None)
     if planar and lab.ensemble_3d:
         tell("3D ensemble of the best design", 0, 1)
-        with tempfile.TemporaryDirectory(prefix="blastscale-plan-") as tmp:
-            designs[0]["odds_3d"] = ensemble_odds_3d(
-                specimen_scenario(scenario, best.design, folder=Path(tmp)),
-                prototype_collapsed=proto["collapsed"],
-                tolerances=tol,
-                members=lab.ensemble_3d,
-                seed=lab.seed,
-                workers=workers,
-                scheduler=scheduler,
-            )
+        designs[0]["odds_3d"] = ensemble_odds_3d(
+            scenario,
+            best.design,
+            prototype_collapsed=proto["collapsed"],
+            tolerances=tol,
+            members=lab.ensemble_3d,
+            seed=lab.seed,
+            workers=workers,
+            scheduler=scheduler,
+        )
         notes.append("odds_3d: the best design's 3D ensemble (friction and density tolerances included)")
     mark_pareto(designs)
     return Plan(

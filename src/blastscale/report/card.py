@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import html
 import math
-import weakref
 from typing import Any
 from ..planning.card import study_test_card
 
@@ -45,17 +44,13 @@ UNITS = {
     "kg/m3": 1.0,
 }
 
-_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
-
 
 def card_of(result):
-    """The test card of a study (:func:`blastscale.planning.study_test_card`), computed once per result;
-    None without a ``[lab]`` table or without a specimen."""
+    """The test card of a study (:func:`blastscale.planning.study_test_card`), computed once and carried by the
+    result (:meth:`~blastscale.study.StudyResult.view`); None without a ``[lab]`` table or without a specimen."""
     if result.scenario.lab is None or result.design is None:
         return None
-    if result not in _CACHE:
-        _CACHE[result] = study_test_card(result)
-    return _CACHE[result]
+    return result.view("test_card", study_test_card)
 
 
 def shown(value: float, unit: str) -> str:

@@ -265,16 +265,13 @@ class RockingSolver:
                 f"theta0 {th0.size}, theta_dot0 {om0.size} (each must be n or 1)"
             )
         n = lens.pop() if lens else 1
+        # each body given converted (and checked) once, before a single one is broadcast to the n runs
+        consts = [_body_constants(as_rocking_system(b, gravity)) for b in blist]
+        consts = consts * n if len(consts) == 1 else consts
         blist = blist * n if len(blist) == 1 else blist
         plist = plist * n if len(plist) == 1 else plist
         th0 = np.broadcast_to(th0, (n,)).astype(float)
         om0 = np.broadcast_to(om0, (n,)).astype(float)
-        memo = {}  # each distinct body converted (and checked) once: a broadcast body is one object n times
-        for b in blist:
-            if id(b) not in memo:
-                sb = as_rocking_system(b, gravity)
-                memo[id(b)] = (sb, sb.frequency_parameter, sb.alpha, sb.coefficient_of_restitution)
-        consts = [memo[id(b)] for b in blist]
         alpha = np.empty(n)
         e = np.empty(n)
         pvec = np.empty(n)
@@ -298,6 +295,7 @@ class RockingSolver:
         tab_f = np.concatenate(tabs_f) if off[-1] else np.zeros(0)
         settings = self._kernel_settings(max_impacts, stop_at_overturn, False)
         from ._batch import solve_batch  # noqa: PLC0415 -- start-up: numba loads on the first solve, not with `import blastscale.cli`
+
         summ, th, w = solve_batch(
             alpha,
             e,
@@ -384,3 +382,8 @@ DEFAULT_SOLVER = RockingSolver()
 def simulate(body, pulse, duration, **kwargs) -> RockingResult:
     """Shortcut for ``RockingSolver().simulate(body, pulse, duration, **kwargs)``."""
     return DEFAULT_SOLVER.simulate(body, pulse, duration, **kwargs)
+
+
+def _body_constants(system) -> tuple:
+    """(system, frequency parameter p [1/s], alpha [rad], coefficient of restitution [-]) of a rocking system."""
+    return system, system.frequency_parameter, system.alpha, system.coefficient_of_restitution

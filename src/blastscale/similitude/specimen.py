@@ -14,8 +14,10 @@ simulated time become the specimen's (the reduced-scale physical model's).
 
 :func:`~.design.design_model` calls it for the design it returns (``ModelDesign.specimen_*``); a
 capacity curve, which sweeps stand-offs without a charge (:func:`blastscale.analysis.capacity.model_capacity_curve`),
-and a 3D run given a design made without its structure, contact or duration
-(:func:`blastscale.analysis.systems.run_system`) call it too: no other code scales a specimen.
+and the 3D systems of a design made without its structure, contact or duration
+(:meth:`blastscale.analysis.systems.Systems3D.of_design`), and a study of a design's specimen run alone
+(:meth:`blastscale.study.Study.from_design`: its contact settings) call it too: no other code scales a
+specimen.
 
 References: paper Sec. "Problem statement" (the pi-terms, Tables 1-2) for the factors.
 """

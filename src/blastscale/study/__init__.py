@@ -1,7 +1,8 @@
 """The Study: the one door from a scenario to the similarity verdict (like pvlib's ModelChain).
 
 * :class:`Study` (:mod:`.study`) -- design once, run the engines that apply, compare once; :class:`StudyPlan`,
-  what :meth:`Study.check` built before simulating;
+  what :meth:`Study.check` built before simulating (the engine settings resolved once, typed);
+  :meth:`Study.from_design` (one system of a design alone) and :meth:`Study.from_candidate` (the planner's);
 * :data:`ENGINES`, :data:`ENSEMBLE` (:mod:`.engines`) -- planar rocking, 3D rigid bodies, ensembles;
 * :class:`StudyResult` (:mod:`.result`) -- summary, scalars, histories;
 * :func:`estimate_memory`, :func:`estimate_seconds`, :func:`check_budget` (:mod:`.memory`): the one size and
@@ -19,7 +20,8 @@ from .memory import (
     format_duration,
 )
 from .result import StudyResult
-from .study import Progress, Study, StudyPlan, StudyWarning
+from .plan import StudyPlan
+from .study import Progress, Study, StudyWarning
 
 __all__ = [
     "Study",

@@ -21,6 +21,7 @@ from ..sim3d.contact import reference_contact
 from ..analysis.structure3d import compare_structure3d
 from ..analysis.prototype3d import prototype_structure3d
 from ..analysis.ensemble import ensemble_compare
+from ..analysis.systems import Settings3D, System3D, Systems3D
 from ..blast.parameters import model_for_burst
 from ..similitude.effects import front_face
 from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
@@ -32,7 +33,11 @@ __all__ = [
     "Engine",
     "ENGINES",
     "ENSEMBLE",
-    "Context",
+    "PlanarSettings",
+    "EnsembleSettings",
+    "planar_settings",
+    "settings_3d",
+    "systems_3d",
     "contact_settings",
     "critical_charge_of",
     "record_every",
@@ -42,16 +47,81 @@ __all__ = [
 
 
 @dataclass(frozen=True)
-class Context:
-    """What every engine receives: the scenario, the built prototype, the one design (None for a
-    prototype-only scenario; it carries the specimen system), the prototype's blast parameters (the
-    design's when there is one) and the prototype's 3D contact settings (resolved once, by the check)."""
+class PlanarSettings:
+    """The planar rocking engine's settings of a study (frozen, resolved once by :meth:`~.study.Study.check`).
 
-    scenario: Scenario
-    structure: Any
-    design: Any
-    blast: Any
-    contact: Any = None
+    Attributes
+    ----------
+    pulse_shape : str
+        Pulse shape (``blast.pulse_shape``).
+    duration : float
+        Prototype simulated time [s] (the specimen's is the design's).
+    samples : int
+        Samples of each history.
+    gravity : float
+        The prototype's gravity [m/s^2] (the specimen's is the design's).
+    restitution : float or None
+        Coefficient of restitution at impacts (None: Housner's, from the block).
+    extrapolate : bool
+        Let the blast fits run outside their ranges (with a warning).
+    load_model : LoadModel
+        The prototype's load model (the design's, with a design; the specimen's is the design's).
+    """
+
+    pulse_shape: str
+    duration: float
+    samples: int
+    gravity: float
+    restitution: Optional[float]
+    extrapolate: bool
+    load_model: Any
+
+
+@dataclass(frozen=True)
+class EnsembleSettings:
+    """The 3D ensembles' settings (``simulation.ensemble_members``, ``simulation.ensemble_perturbation``)."""
+
+    members: int
+    perturbation: float
+
+
+def planar_settings(scenario: Scenario, structure, design=None) -> PlanarSettings:
+    """The planar settings of a scenario: its simulation table's, the load model the design's (with one) or
+    :func:`load_model_of` the prototype."""
+    sim, bl = scenario.simulation, scenario.blast
+    return PlanarSettings(
+        pulse_shape=bl.pulse_shape,
+        duration=float(sim.duration_s),
+        samples=int(sim.samples),
+        gravity=sim.gravity_m_s2,
+        restitution=sim.restitution,
+        extrapolate=bl.extrapolate,
+        load_model=load_model_of(scenario, structure) if design is None else design.load_model,
+    )
+
+
+def settings_3d(scenario: Scenario, structure) -> Settings3D:
+    """The 3D settings of a scenario shared by both systems (:class:`~blastscale.analysis.systems.Settings3D`):
+    load method, pulse shape, incidence, recording interval (:func:`record_every`), extrapolation."""
+    bl = scenario.blast
+    return Settings3D(
+        load=bl.load,
+        pulse_shape=bl.pulse_shape,
+        incidence=bl.incidence,
+        record_every=record_every(scenario, structure),
+        extrapolate=bl.extrapolate,
+    )
+
+
+def systems_3d(scenario: Scenario, structure, design, blast, contact) -> Systems3D:
+    """The study's 3D systems: the design's prototype and specimen (:meth:`Systems3D.of_design`), or the prototype
+    alone under ``blast`` (None: gravity alone) with the scenario's gravity, ``contact``, duration and
+    :func:`load_model_of` it."""
+    if design is not None:
+        return Systems3D.of_design(design)
+    sim = scenario.simulation
+    lm = load_model_of(scenario, structure)
+    return Systems3D(System3D(structure, blast, sim.gravity_m_s2, contact, sim.duration_s, lm))
 
 
 def load_model_of(scenario: Scenario, structure):
@@ -78,22 +148,22 @@ def _planar_supports(structure) -> Optional[str]:
     return None if is_block(structure) else "planar rocking applies to a single rectangular block"
 
 
-def _run_planar(ctx: Context):
+def _run_planar(plan):
     """Planar rocking of the prototype block and, with a design, of its specimen (its block, pulse
     and gravity from the design: the blast parameters are the design's, never recomputed), sampled
     at corresponding times and compared (:func:`~blastscale.analysis.rocking_similarity.compare_rocking`)."""
 
-    sc, sim, d = ctx.scenario, ctx.scenario.simulation, ctx.design
-    shape, dur = sc.blast.pulse_shape, float(sim.duration_s)
-    lm = load_model_of(sc, ctx.structure) if d is None else d.load_model
-    ex = sc.blast.extrapolate
-    t = np.linspace(0.0, dur, int(sim.samples))
-    sys_p = RockingSystem.from_block(ctx.structure, sim.gravity_m_s2, sim.restitution)
-    res_p = DEFAULT_SOLVER.simulate(sys_p, front_face_pulse(ctx.blast, shape, lm, extrapolate=ex), dur, t_eval=t)
+    ps, d = plan.planar, plan.design
+    shape, dur, ex = ps.pulse_shape, ps.duration, ps.extrapolate
+    t = np.linspace(0.0, dur, ps.samples)
+    sys_p = RockingSystem.from_block(plan.structure, ps.gravity, ps.restitution)
+    res_p = DEFAULT_SOLVER.simulate(
+        sys_p, front_face_pulse(plan.blast, shape, ps.load_model, extrapolate=ex), dur, t_eval=t
+    )
     if d is None:
         return PrototypeRocking(res_p)
     # the specimen system as the design carries it: block, gravity, load model and duration, scaled once there
-    sys_m = RockingSystem.from_block(d.specimen_block, d.specimen_gravity, sim.restitution)
+    sys_m = RockingSystem.from_block(d.specimen_block, d.specimen_gravity, ps.restitution)
     dur_m = d.specimen_duration
     res_m = DEFAULT_SOLVER.simulate(
         sys_m,
@@ -160,65 +230,35 @@ def _3d_supports(structure) -> Optional[str]:
     return None  # every structure of blastscale.structures runs on the 3D engine
 
 
-def _settings_3d(ctx: Context) -> dict:
-    """The 3D settings of a study, shared by the 3D and the ensemble engines."""
-    sc = ctx.scenario
-    contact = contact_settings(sc, ctx.structure) if ctx.contact is None else ctx.contact
-    out = dict(
-        load=sc.blast.load,
-        pulse_shape=sc.blast.pulse_shape,
-        incidence=sc.blast.incidence,
-        contact=contact,
-        duration=sc.simulation.duration_s,
-        record_every=record_every(sc, ctx.structure),
-        extrapolate=sc.blast.extrapolate,
-    )
-    if sc.blast.clearing or sc.blast.negative_phase:  # each system's faces are its own (the structure's)
-        out["load_model"] = LoadModel(
-            clearing=sc.blast.clearing,
-            negative_phase=sc.blast.negative_phase,
-            negative_phase_model=sc.blast.negative_phase_model,
-        )
-    return out
-
-
-def _run_3d(ctx: Context):
-    """Prototype and specimen in 3D from the design's blast parameters, compared
+def _run_3d(plan):
+    """Prototype and specimen in 3D from the plan's systems (the design's), compared
     (:func:`~blastscale.analysis.structure3d.compare_structure3d`); without a design the prototype
-    alone from ``ctx.blast`` (:func:`~blastscale.analysis.structure3d.prototype_structure3d`)."""
+    alone (:func:`~blastscale.analysis.structure3d.prototype_structure3d`)."""
 
-    if ctx.design is None:
-        return prototype_structure3d(
-            ctx.structure, ctx.blast, gravity=ctx.scenario.simulation.gravity_m_s2, **_settings_3d(ctx)
-        )
-    return compare_structure3d(ctx.structure, ctx.design, threads=ctx.scenario.simulation.threads, **_settings_3d(ctx))
+    if plan.design is None:
+        return prototype_structure3d(plan.systems3d.prototype, plan.settings3d)
+    return compare_structure3d(plan.systems3d, plan.settings3d, threads=plan.threads)
 
 
-def _run_ensemble(ctx: Context):
+def _run_ensemble(plan):
     """Ensembles under perturbed loads (:func:`~blastscale.analysis.ensemble.ensemble_compare`):
     prototype and specimen, or the prototype alone without a design."""
 
-    sim = ctx.scenario.simulation
+    e = plan.ensemble
     return ensemble_compare(
-        ctx.structure,
-        ctx.design,
-        n=sim.ensemble_members,
-        perturbation=sim.ensemble_perturbation,
-        blast=ctx.blast,
-        gravity=sim.gravity_m_s2,
-        threads=sim.threads,
-        **_settings_3d(ctx),
+        plan.systems3d, plan.settings3d, n=e.members, perturbation=e.perturbation, threads=plan.threads
     )
 
 
 @dataclass(frozen=True)
 class Engine:
-    """One response engine: ``supports(structure)`` returns None or why not; ``run(ctx)``."""
+    """One response engine: ``supports(structure)`` returns None or why not; ``run(plan)`` runs it from the
+    study's :class:`~.study.StudyPlan` (its settings resolved once)."""
 
     name: str
     label: str
     supports: Callable[[Any], Optional[str]]
-    run: Callable[[Context], Any]
+    run: Callable[[Any], Any]
 
 
 #: engine name -> Engine. ``simulation.engine = "both"`` runs every engine that supports the structure.
@@ -232,23 +272,24 @@ ENGINES: dict[str, Engine] = {
 ENSEMBLE = Engine("ensemble", "3D ensembles under perturbed loads: prototype and model", _3d_supports, _run_ensemble)
 
 
-def critical_charge_of(sc: Scenario, structure):
-    """The prototype block's critical charge at the scenario's stand-off (planar, first-swing criterion).
+def critical_charge_of(plan):
+    """The prototype block's critical charge at the scenario's stand-off (planar, first-swing criterion), from a
+    study's plan (:class:`~.study.StudyPlan`: its planar settings, the scenario's stand-off and blast model).
 
     A pure function of the block, gravity, restitution, stand-off, pulse shape and blast model: a sweep
-    over charges (or any other field) at one stand-off searches it once per process (memoised)."""
-    sim, bl = sc.simulation, sc.blast
-    lm = load_model_of(sc, structure)
-
+    over charges (or any other field) at one stand-off searches it once per process (memoised on these
+    values, all frozen and hashable)."""
+    ps, bl = plan.planar, plan.scenario.blast
+    lm = ps.load_model
     blast_model = model_for_burst(bl.blast_model, bl.burst).name
     return _critical_charge(
-        structure,
-        sim.gravity_m_s2,
-        sim.restitution,
+        plan.structure,
+        ps.gravity,
+        ps.restitution,
         bl.standoff_m,
-        bl.pulse_shape,
+        ps.pulse_shape,
         blast_model,
-        bl.extrapolate,
+        ps.extrapolate,
         None if lm.is_paper else lm,
     )
 

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 import os
-import weakref
 from dataclasses import dataclass
 
 from .._validate import BlastscaleInputError
@@ -159,13 +158,14 @@ def estimate_memory(scenario: Scenario, structure=None, contact=None) -> int:
     return int(total)
 
 
-def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
+def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts: int | None = None) -> float:
     """A rough estimate of a study's computing time on one core [s] (module docstring; docs/performance.md): 3D,
     the steps of every run (prototype and model, ensemble members; the settling before the load included; the
     longer steps after the load counted as such) times
     :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x (bodies + contacts), plus :data:`BODY_SECONDS` x
     bodies^:data:`BODY_EXPONENT`; planar, ~2 us per sample and system plus the critical-charge search (~0.1 s);
-    ``contact`` as in :func:`estimate_memory`."""
+    ``contact`` as in :func:`estimate_memory`; ``contacts``: the structure's contacts at rest when already counted
+    (:func:`contacts_of`, e.g. a :class:`~.study.StudyPlan`'s), else counted here."""
     sim = scenario.simulation
     systems = 1 if scenario.scale is None else 2
     total = 0.0
@@ -183,7 +183,8 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None) -> float:
             factor = step_factor_after_load(resolved, nb)
             steps = sim.duration_s / (dt * factor) + SETTLE_TIME_CONSTANTS * resolved.time_constant / dt
         runs = systems * (1 + sim.ensemble_members)
-        per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * (nb + contacts_of(structure))
+        nc = contacts_of(structure) if contacts is None else contacts
+        per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * (nb + nc)
         total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3) + BODY_SECONDS * nb**BODY_EXPONENT
     return total
 
@@ -198,29 +199,16 @@ def _contact_or_none(scenario: Scenario, structure):
         return None
 
 
-#: contacts_of's answers, by the id of a live structure (structures are immutable; an entry leaves with its
-#: structure): a run's check, estimate and announcement ask for the same structure (0.1 s each for a column).
-_CONTACTS: dict[int, int] = {}
-
-
 def contacts_of(structure) -> int:
     """The contacts of a structure at rest: its interfaces between bodies and with the ground, found by
-    geometry (:func:`~blastscale.structures.as_assembly`) once per structure; 1 without a structure."""
+    geometry (:func:`~blastscale.structures.as_assembly`); 1 without a structure. A study counts them once, in its
+    check (:attr:`~.study.StudyPlan.contacts`), and hands the count to the estimates."""
     if structure is None:
         return 1
-    key = id(structure)
-    if key in _CONTACTS:
-        return _CONTACTS[key]
     try:
-        n = max(1, len(as_assembly(structure).interface_details))
+        return max(1, len(as_assembly(structure).interface_details))
     except (BlastscaleInputError, AttributeError, ValueError):
-        n = _bodies(structure)
-    try:
-        weakref.finalize(structure, _CONTACTS.pop, key, None)
-    except TypeError:  # not weakly referenceable: asked again next time
-        return n
-    _CONTACTS[key] = n
-    return n
+        return _bodies(structure)
 
 
 @dataclass(frozen=True)
@@ -266,21 +254,25 @@ class RunSize:
         )
 
 
-def estimate_run(scenario: Scenario, structure=None, contact=None, writes: bool = True) -> RunSize:
+def estimate_run(
+    scenario: Scenario, structure=None, contact=None, writes: bool = True, contacts: int | None = None
+) -> RunSize:
     """The size of a study's run, before it starts: the start-up and the computing time (:func:`estimate_seconds`)
     plus, when
     ``writes``, the time to write its result folder and that folder's size (histories: per recorded state, run
     and body :data:`STATE_BYTES_PER_BODY`, per monitoring point :data:`STATE_BYTES_PER_POINT`; the report
     :data:`REPORT_BYTES` plus :data:`REPORT_BYTES_PER_BODY` per body). Cost model and its check against
-    measured runs: docs/performance.md."""
+    measured runs: docs/performance.md. ``contacts`` as in :func:`estimate_seconds`."""
     sim = scenario.simulation
     systems = 1 if scenario.scale is None else 2
-    seconds = STARTUP_SECONDS + estimate_seconds(scenario, structure, contact)
+    if contacts is None and sim.engine in ("3d", "both"):
+        contacts = contacts_of(structure)
+    seconds = STARTUP_SECONDS + estimate_seconds(scenario, structure, contact, contacts)
     nb, nc, samples, runs, hist = _bodies(structure), 0, int(sim.samples), systems, 0.0
     if sim.engine in ("planar", "both"):
         hist += systems * sim.samples * 8 * 12
     if sim.engine in ("3d", "both"):
-        nc = contacts_of(structure)
+        nc = contacts
         every = record_every(scenario, structure) if structure is not None else (sim.record_every or 4)
         samples = int(sim.duration_s / _timestep(scenario, structure, contact) / every) + 1
         runs = systems * (1 + sim.ensemble_members)
@@ -361,13 +353,13 @@ def check_budget(
     )
 
 
-def check_study_budget(scenario: Scenario, structure=None, contact=None) -> None:
+def check_study_budget(scenario: Scenario, structure=None, contact=None, contacts: int | None = None) -> None:
     """Refuse, before any work, a study whose histories would not fit in memory or whose computing would
     outlast :func:`max_seconds` (:func:`check_budget`), naming ``simulation.timestep_s`` when a time step
     shorter than the derived one was given, else ``simulation.duration_s``. ``contact``: the study's
-    resolved 3D contact settings, when known (not derived again)."""
+    resolved 3D contact settings, when known (not derived again); ``contacts`` as in :func:`estimate_seconds`."""
     sim = scenario.simulation
-    need, secs = estimate_memory(scenario, structure, contact), estimate_seconds(scenario, structure, contact)
+    need, secs = estimate_memory(scenario, structure, contact), estimate_seconds(scenario, structure, contact, contacts)
     if sim.engine == "planar" and sim.samples * 8 * 40 > MEMORY_FRACTION * _available_memory():
         check_budget("simulation.samples", sim.samples, "", need, secs)
     given_step = sim.timestep_s is not None and sim.engine in ("3d", "both")

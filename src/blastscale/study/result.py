@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
 from ..scenario.scenario import Scenario
 import copy
@@ -13,7 +13,7 @@ from ..analysis.compare import upscale_dataset
 import numpy as np
 from ..analysis.rocking_similarity import rocking_dataset
 
-__all__ = ["StudyResult"]
+__all__ = ["StudyResult", "study_warnings"]
 
 
 #: Summary keys left out of the flat scalars: per-block details, named by the blocks (names are not
@@ -58,7 +58,7 @@ class StudyResult:
     critical : CriticalResult or None
         Prototype's critical charge at the stand-off (planar), when asked for.
     response3d : object or None
-        3D comparison (``.summary()`` with prototype, model, similarity), when run.
+        3D comparison (``.to_dict()`` with prototype, model, similarity), when run.
     ensemble : EnsembleComparison or None
         3D ensembles of prototype and model under perturbed loads, when asked for.
     warnings : tuple of str
@@ -79,6 +79,14 @@ class StudyResult:
     warnings: tuple = ()
     timings: dict = field(default_factory=dict)
     _summary: dict = field(default_factory=dict, repr=False)  # computed once (the 3D similarity builds loads)
+    _views: dict = field(default_factory=dict, repr=False)  # views of the layers above, computed once (view)
+
+    def view(self, name: str, compute: Callable[["StudyResult"], Any]) -> Any:
+        """A view of this result that a layer above computes (e.g. the planner's test card), computed once, on
+        first use, by ``compute(result)`` and carried by the result (no module memo keyed by the result)."""
+        if name not in self._views:
+            self._views[name] = compute(self)
+        return self._views[name]
 
     # -- views -----------------------------------------------------------------------------
     def experiment(self) -> dict:
@@ -138,8 +146,8 @@ class StudyResult:
             "design": None if self.design is None else self.design.to_dict(),
             "planar": None if self.planar is None else self.planar.to_dict(),
             "critical": None if self.critical is None else self.critical.to_dict(),
-            "3d": None if self.response3d is None else self.response3d.summary(),
-            "ensemble": None if self.ensemble is None else self.ensemble.summary(),
+            "3d": None if self.response3d is None else self.response3d.to_dict(),
+            "ensemble": None if self.ensemble is None else self.ensemble.to_dict(),
             "warnings": list(self.warnings),
             "timings_s": dict(self.timings),
         }
@@ -281,3 +289,44 @@ def _system_stack(proto, up=None):
         both[label].attrs.setdefault("units", "1")
     both.attrs = {}
     return both
+
+
+def _is_circular(cmp) -> bool:
+    return getattr(getattr(cmp, "structure", None), "section", None) == "circular"
+
+
+def study_warnings(design, results: dict, skipped: list, summary: dict, scenario=None) -> list:
+    """The study's own warnings, in words for the report (the 3D and ensemble figures read from
+    the study's ``summary``, computed once)."""
+    out = list(skipped)
+    if scenario is not None and scenario.blast.gravity_only and scenario.scale is not None:
+        out.append("gravity alone (no charge): no specimen is designed, the [scale] table is not used")
+    imp = None if design is None else design.impulsive
+    if imp is not None and not imp.impulsive:
+        out.append(
+            f"the load is not impulsive (t_o p = {imp.prototype_ratio:.3g} prototype, {imp.model_ratio:.3g} "
+            f"model, threshold {imp.threshold:g}): the general law's similarity is not guaranteed"
+        )
+    planar = results.get("planar")
+    if planar is not None and planar.outcomes_agree is False:
+        out.append("planar rocking: prototype and model outcomes disagree (one overturns, the other does not)")
+    ens = results.get("ensemble")
+    if ens is None and results.get("3d") is not None and _is_circular(results["3d"]):
+        out.append(
+            "circular drums wobble chaotically: one trajectory after the first impact means little; compare "
+            "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities"
+        )
+    if ens is not None and summary["ensemble"]["collapse_probability_model"] is not None:
+        e = summary["ensemble"]
+        if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
+            out.append(
+                f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
+                f"{e['collapse_probability_model']:.2g} (model)"
+            )
+    s = summary["3d"]
+    if s is not None:
+        p, m = s.get("prototype") or {}, s.get("model") or {}
+        for key in ("collapsed",):
+            if key in p and key in m and bool(p[key]) != bool(m[key]):
+                out.append(f"3D: prototype and model disagree on '{key}' ({p[key]} vs {m[key]})")
+    return out

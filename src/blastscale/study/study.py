@@ -15,6 +15,13 @@ from small registries, so that a new structure kind or engine needs no change he
   any structure), plus :data:`ENSEMBLE` (:func:`~blastscale.analysis.ensemble.ensemble_compare`)
   when ``simulation.ensemble_members >= 2``.
 
+The plan (:class:`StudyPlan`, :meth:`Study.check`) resolves every engine setting once, as frozen typed objects
+(planar settings, the 3D settings and each system with its load model, the ensembles, the run's size); the
+engines read it, never the scenario. A study may also start from a design (like pvlib's
+``ModelChain.run_model_from_poa``): :meth:`Study.from_design` runs one system of a design alone (the fired
+test's prediction and refit, a calibration, the planner's specimen ensembles) and :meth:`Study.from_candidate`
+a candidate's design (the planner): no scenario is written to get back in.
+
 No CLI code: the ``blastscale run`` command and the sweeps only call :class:`Study` and read
 the :class:`StudyResult`. Example (the built-in default, shortened):
 
@@ -29,20 +36,28 @@ from __future__ import annotations
 
 import time
 import warnings
-from dataclasses import dataclass, replace
-from typing import Any, Callable, Optional
+from dataclasses import replace
+from typing import Callable, Optional
 
 from .._validate import BlastscaleInputError
 from ..scenario.scenario import Scenario
 from ..structures import from_spec
-from .engines import ENGINES, ENSEMBLE, Context, Engine, contact_settings, critical_charge_of, load_model_of
+from .engines import ENGINES, ENSEMBLE, Engine, contact_settings, critical_charge_of, load_model_of
 from .memory import check_study_budget
 from .result import StudyResult
 from ..similitude.design import design_model
+from ..scenario.specs import ScaleSpec
+from .engines import (
+    planar_settings,
+    systems_3d,
+)
+from .memory import contacts_of
+from .plan import DESIGN_SYSTEMS, DesignSystem, StudyPlan
+from .result import study_warnings
 from ..similitude.effects import front_face, structure_top
 from ..blast.parameters import blast_parameters
 
-__all__ = ["Study", "StudyPlan", "StudyWarning", "Progress", "design_of"]
+__all__ = ["Study", "StudyWarning", "Progress", "design_of"]
 
 
 class StudyWarning(UserWarning):
@@ -54,35 +69,6 @@ class StudyWarning(UserWarning):
 Progress = Callable[[str, int, int], None]
 
 
-@dataclass(frozen=True)
-class StudyPlan:
-    """What a study checked before simulating (:meth:`Study.check`), every piece built once.
-
-    Attributes
-    ----------
-    structure : structure
-        The prototype structure (:data:`blastscale.structures.STRUCTURE_BUILDERS`).
-    engines : tuple of Engine
-        The engines to run (:data:`~.engines.ENGINES`, plus :data:`~.engines.ENSEMBLE`).
-    skipped : tuple of str
-        Why an engine of ``engine = "both"`` is not run.
-    design : ModelDesign or None
-        The one design (None for a prototype-only scenario or gravity alone): the specimen structure,
-        load model, contact, gravity and duration of both systems.
-    blast : BlastParameters or None
-        The prototype's blast parameters (``design.prototype`` with a design; None under gravity alone).
-    contact : ContactSettings or None
-        The prototype's 3D contact settings (:func:`~.engines.contact_settings`), when a 3D engine runs.
-    """
-
-    structure: Any
-    engines: tuple
-    skipped: tuple
-    design: Any
-    blast: Any
-    contact: Any = None
-
-
 class Study:
     """Design the model of a scenario, run the engines, compare (``Study(scenario).run()``).
 
@@ -90,27 +76,123 @@ class Study:
     ----------
     scenario : Scenario
         The experiment (see :mod:`blastscale.scenario`).
-    structure : structure, optional
-        The structure already built (e.g. a design's specimen, re-simulated after the shot); by default the
-        scenario's ``[structure]`` table builds it. The caller keeps the table in step with it.
+
+    A study may also start from a design (like pvlib's ``ModelChain.run_model_from_poa``, which starts past a
+    stage): :meth:`from_design` runs one system of a design (the specimen under a load of the caller's: the fired
+    test's prediction and refit, a calibration, the planner's specimen; or the prototype alone) with the
+    scenario's engine settings, never writing a scenario to get back in.
     """
 
-    def __init__(self, scenario: Scenario, *, structure=None):
+    def __init__(self, scenario: Scenario):
         if not isinstance(scenario, Scenario):
             raise BlastscaleInputError(f"scenario must be a Scenario, got {type(scenario).__name__}")
         self.scenario = scenario
-        self._structure = structure
+        self._system: Optional[DesignSystem] = None  # from_design: which system of a design runs alone
         self._checked = None  # the StudyPlan once checked: the structure is built and the design runs once
 
+    @classmethod
+    def from_design(
+        cls,
+        scenario: Scenario,
+        design,
+        *,
+        system: str = "specimen",
+        charge_kg: Optional[float] = None,
+        standoff_m: Optional[float] = None,
+        engine: Optional[str] = None,
+        structure=None,
+        friction: Optional[float] = None,
+        restitution: Optional[float] = None,
+    ) -> "Study":
+        """A study of one system of a design, run alone (no comparison).
+
+        Parameters
+        ----------
+        scenario : Scenario
+            The prototype's scenario: its engine settings (engine, load method, pulse shape, incidence, samples,
+            restitution, friction and ``[simulation.contact]``, recording, ensembles, threads, extrapolation).
+        design : ModelDesign
+            The design (:func:`blastscale.similitude.design_model`, carrying both systems).
+        system : {"specimen", "prototype"}
+            Which system runs: the specimen (the design's structure, gravity, duration and load model; its
+            contact the scenario's for the prototype scaled once by
+            :func:`~blastscale.similitude.specimen.specimen_system`, as the design's own), or the prototype.
+        charge_kg, standoff_m : float, optional
+            The load [kg TNT], [m] (given together); default the design's blast parameters of the system.
+        engine : str, optional
+            ``simulation.engine`` of this run; default the scenario's.
+        structure : structure, optional
+            The system's structure when it is not the design's as built (a perturbed specimen of an ensemble:
+            ``design.specimen_structure.scaled(factors)``); default the design's.
+        friction : float, optional
+            The friction coefficient [-] when not the scenario's (a perturbed member, a calibration).
+        restitution : float, optional
+            The planar coefficient of restitution [-] when not the scenario's (a calibration).
+
+        Returns
+        -------
+        Study
+            Its plan has no design (the system runs alone); ``critical_charge`` is not searched.
+        """
+        if system not in DESIGN_SYSTEMS:
+            raise BlastscaleInputError(
+                f"system = {system!r} is not known: valid values are {', '.join(DESIGN_SYSTEMS)}"
+            )
+        if (charge_kg is None) != (standoff_m is None):
+            raise BlastscaleInputError(
+                f"charge_kg = {charge_kg}, standoff_m = {standoff_m}: give both (the caller's load) or neither "
+                "(the design's)"
+            )
+        if engine is not None and engine not in (*ENGINES, "both"):
+            raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINES)}, both")
+        study = cls(scenario)
+        study._system = DesignSystem(design, system, charge_kg, standoff_m, engine, structure, friction, restitution)
+        return study
+
+    @classmethod
+    def from_candidate(cls, scenario: Scenario, scale: ScaleSpec, *, engine: Optional[str] = None) -> "Study":
+        """The study of a candidate design of the scenario's prototype (the planner's): its ``[scale]`` replaced by
+        ``scale`` (typed; no scenario written and read back).
+
+        Parameters
+        ----------
+        scenario : Scenario
+            The prototype's scenario.
+        scale : ScaleSpec
+            The candidate's scales (lambda, law, density ratio or material, gravity ratio, specimen burst and
+            charge height).
+        engine : str, optional
+            Run this engine alone (the planner's 3D comparison): ``simulation.engine`` replaced, no critical charge
+            searched and no ensemble.
+
+        Returns
+        -------
+        Study
+        """
+        if not isinstance(scale, ScaleSpec):
+            raise BlastscaleInputError(f"scale must be a ScaleSpec, got {type(scale).__name__}")
+        update: dict = {"scale": scale}
+        if engine is not None:
+            if engine not in (*ENGINES, "both"):
+                raise BlastscaleInputError(
+                    f"engine = {engine!r} is not known: valid values are {', '.join(ENGINES)}, both"
+                )
+            update["simulation"] = scenario.simulation.model_copy(
+                update={"engine": engine, "critical_charge": False, "ensemble_members": 0}
+            )
+        return cls(scenario.model_copy(update=update))
+
     def structure(self):
-        """The prototype structure: the one given, or built by the registry entry of its kind
-        (:data:`blastscale.structures.STRUCTURE_BUILDERS`)."""
-        return from_spec(self.scenario.structure) if self._structure is None else self._structure
+        """The structure simulated: the prototype built by the registry entry of its kind
+        (:data:`blastscale.structures.STRUCTURE_BUILDERS`), or the design's system's (:meth:`from_design`)."""
+        if self._system is not None:
+            return self._system.structure()
+        return from_spec(self.scenario.structure)
 
     def engines(self, structure) -> tuple[list[Engine], list[str]]:
         """The engines to run and the reasons for those skipped (``engine = "both"``); a single
         engine asked for that does not support the structure is an error."""
-        asked = self.scenario.simulation.engine
+        asked = self.scenario.simulation.engine if self._system is None else self._system.engine_or(self.scenario)
         names = list(ENGINES) if asked == "both" else [asked]
         run, skipped = [], []
         alone = self.scenario.blast.gravity_only
@@ -152,6 +234,8 @@ class Study:
         settings, is given), gravity and duration, each scaled once."""
 
         sc = self.scenario
+        if self._system is not None:  # a system of a design, run alone
+            return None
         if sc.scale is None or sc.blast.gravity_only:  # gravity alone: no charge to scale
             return None
         return design_of(sc, self.structure() if structure is None else structure, contact=contact)
@@ -161,34 +245,49 @@ class Study:
         design (blast fits' ranges, scale range), the memory and the computing time
         (:func:`~blastscale.study.memory.check_study_budget`), the 3D contact settings. Returns the
         :class:`StudyPlan` (built once per study)."""
+        if self._checked is None and self._system is not None:
+            self._checked = self._system.plan(self.scenario, *self.engines(self._system.structure()))
         if self._checked is None:
             structure = self.structure()
             engines, skipped = self.engines(structure)
             sc = self.scenario
-            contact = contact_settings(sc, structure) if any(e.name != "planar" for e in engines) else None
-            check_study_budget(sc, structure, contact)
+            has_3d = any(e.name != "planar" for e in engines)
+            contact = contact_settings(sc, structure) if has_3d else None
+            contacts = contacts_of(structure) if has_3d else 0
+            check_study_budget(sc, structure, contact, contacts=contacts or None)
             d = self.design(structure, contact)
-            if sc.blast.gravity_only:  # no charge: the structure under gravity alone
-                blast = None
-            elif d is None:  # the prototype's blast alone (with a design: the design's, never recomputed)
-                blast = blast_parameters(
-                    sc.blast.charge_kg,
-                    sc.blast.standoff_m,
-                    sc.blast.blast_model,
-                    extrapolate=sc.blast.extrapolate,
-                    burst=sc.blast.burst,
-                )
-            else:
-                blast = d.prototype
-            self._checked = StudyPlan(
-                structure=structure,
-                engines=tuple(engines),
-                skipped=tuple(skipped),
+            blast = self._blast(d)
+            planar = planar_settings(sc, structure, d) if any(e.name == "planar" for e in engines) else None
+            self._checked = StudyPlan.resolve(
+                sc,
+                structure,
+                engines,
+                skipped,
                 design=d,
                 blast=blast,
                 contact=contact,
+                contacts=contacts,
+                planar=planar,
+                systems3d=systems_3d(sc, structure, d, blast, contact) if has_3d else None,
+                critical=bool(sc.simulation.critical_charge) and any(e.name == "planar" for e in engines),
             )
         return self._checked
+
+    def _blast(self, design):
+        """The prototype's blast parameters: the design's (never recomputed); without a design the scenario's
+        charge and stand-off; None under gravity alone."""
+        sc = self.scenario
+        if sc.blast.gravity_only:  # no charge: the structure under gravity alone
+            return None
+        if design is not None:
+            return design.prototype
+        return blast_parameters(
+            sc.blast.charge_kg,
+            sc.blast.standoff_m,
+            sc.blast.blast_model,
+            extrapolate=sc.blast.extrapolate,
+            burst=sc.blast.burst,
+        )
 
     def run(self, progress: Optional[Progress] = None) -> StudyResult:
         """Run the study.
@@ -209,23 +308,22 @@ class Study:
             t0 = time.perf_counter()
             plan = self.check()
             structure, engines, skipped, d, blast = plan.structure, plan.engines, plan.skipped, plan.design, plan.blast
-            want_critical = sc.simulation.critical_charge and any(e.name == "planar" for e in engines)
+            want_critical = plan.critical
             total = 1 + len(engines) + int(want_critical)
             step = 1
             timings["design"] = time.perf_counter() - t0
             results: dict = {}
-            ctx = Context(sc, structure, d, blast, plan.contact)
             for eng in engines:
                 _tell(progress, eng.label, step, total)
                 t0 = time.perf_counter()
-                results[eng.name] = eng.run(ctx)
+                results[eng.name] = eng.run(plan)
                 timings[eng.name] = time.perf_counter() - t0
                 step += 1
             crit = None
             if want_critical:
                 _tell(progress, "critical charge of the prototype (planar)", step, total)
                 t0 = time.perf_counter()
-                crit = critical_charge_of(sc, structure)
+                crit = critical_charge_of(plan)
                 timings["critical"] = time.perf_counter() - t0
                 step += 1
             _tell(progress, "done", total, total)
@@ -242,7 +340,7 @@ class Study:
                 ensemble=results.get("ensemble"),
             )
             summary = partial._compute_summary()  # inside the capture: its warnings are the study's
-        notes = _study_warnings(d, results, skipped, summary, sc)
+        notes = study_warnings(d, results, skipped, summary, sc)
         lib = []
         for w in caught:
             msg = " ".join(str(w.message).split())
@@ -258,47 +356,6 @@ class Study:
 def _tell(progress: Optional[Progress], stage: str, done: int, total: int) -> None:
     if progress is not None:
         progress(stage, done, total)
-
-
-def _is_circular(cmp) -> bool:
-    return getattr(getattr(cmp, "structure", None), "section", None) == "circular"
-
-
-def _study_warnings(design, results: dict, skipped: list, summary: dict, scenario=None) -> list:
-    """The study's own warnings, in words for the report (the 3D and ensemble figures read from
-    the study's ``summary``, computed once)."""
-    out = list(skipped)
-    if scenario is not None and scenario.blast.gravity_only and scenario.scale is not None:
-        out.append("gravity alone (no charge): no specimen is designed, the [scale] table is not used")
-    imp = None if design is None else design.impulsive
-    if imp is not None and not imp.impulsive:
-        out.append(
-            f"the load is not impulsive (t_o p = {imp.prototype_ratio:.3g} prototype, {imp.model_ratio:.3g} "
-            f"model, threshold {imp.threshold:g}): the general law's similarity is not guaranteed"
-        )
-    planar = results.get("planar")
-    if planar is not None and planar.outcomes_agree is False:
-        out.append("planar rocking: prototype and model outcomes disagree (one overturns, the other does not)")
-    ens = results.get("ensemble")
-    if ens is None and results.get("3d") is not None and _is_circular(results["3d"]):
-        out.append(
-            "circular drums wobble chaotically: one trajectory after the first impact means little; compare "
-            "first peaks, or set simulation.ensemble_members >= 2 for envelopes and collapse probabilities"
-        )
-    if ens is not None and summary["ensemble"]["collapse_probability_model"] is not None:
-        e = summary["ensemble"]
-        if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
-            out.append(
-                f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
-                f"{e['collapse_probability_model']:.2g} (model)"
-            )
-    s = summary["3d"]
-    if s is not None:
-        p, m = s.get("prototype") or {}, s.get("model") or {}
-        for key in ("collapsed",):
-            if key in p and key in m and bool(p[key]) != bool(m[key]):
-                out.append(f"3D: prototype and model disagree on '{key}' ({p[key]} vs {m[key]})")
-    return out
 
 
 def design_of(scenario: Scenario, structure, charge_kg=None, standoff_m=None, *, contact=None, effects: bool = True):

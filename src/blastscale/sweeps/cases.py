@@ -36,7 +36,7 @@ def study_scalars(scenario) -> dict:
 
 
 def _chunk_rows(spec: SweepSpec, start: int, stop: int) -> list:
-    """One Study per case; a chunk's 3D cases in parallel native threads (:mod:`blastscale.sim3d.threads`:
+    """One Study per case; a chunk's 3D cases in parallel native threads (:mod:`blastscale._threads`:
     the scenario's ``simulation.threads``, default the process's share of the cores), planar ones in
     order (a planar Study is mostly Python, which holds the GIL; the outcome mode splits its kernel calls
     over the threads instead, :mod:`blastscale.rocking._batch`). Warnings are silenced once, here

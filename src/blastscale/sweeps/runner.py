@@ -27,7 +27,7 @@ __all__ = ["default_chunk", "run_chunks", "payload_hash"]
 
 def default_chunk(spec: SweepSpec, workers: int) -> int:
     """Cases per task: outcome mode ~n / (2 workers), at most 20000; planar ~n / (4 workers), at most
-    2000; else (3D) the threads of one worker, cores // workers (:mod:`blastscale.sim3d.threads`: a
+    2000; else (3D) the threads of one worker, cores // workers (:mod:`blastscale._threads`: a
     chunk's 3D cases run in parallel threads), at most ~n / workers."""
     if spec.outcomes:  # ~70 us per case: 20000 cases are ~1.5 s per task
         return int(max(1, min(20000, math.ceil(spec.n_cases / max(1, 2 * workers)))))
