@@ -162,21 +162,7 @@ def scaled_distance_for(
     >>> round(scaled_distance_for(bp.reflected_pressure, "reflected_pressure"), 12) == round(3.0 / 2.0 ** (1 / 3), 12)
     True
     """
-    if quantity not in INVERTED_QUANTITIES:
-        raise BlastscaleInputError(
-            f"quantity = {quantity!r} is not known: valid values are {', '.join(INVERTED_QUANTITIES)}"
-        )
-    if outside not in _OUTSIDE:
-        raise BlastscaleInputError(f"outside = {outside!r} is not known: valid values are {', '.join(_OUTSIDE)}")
-    fit, unit = INVERTED_QUANTITIES[quantity]
-    impulse = unit == "Pa s"
-    m = get_blast_model(blast_model)
-    if not m.provides(fit):
-        raise BlastscaleInputError(f"quantity = {quantity!r}: blast model {m.name!r} has no {fit} fit")
-    if impulse and (standoff is None) == (charge is None):
-        raise BlastscaleInputError(
-            f"quantity = {quantity!r}: give the stand-off [m] or the charge [kg] the impulse is read at (one of them)"
-        )
+    fit, unit, m = _checked_quantity(quantity, blast_model, outside, standoff, charge)
     v = check_positive(quantity, value, unit)
     R = None if standoff is None else check_positive("standoff", standoff, "m")
     W = None if charge is None else check_positive("charge", charge, "kg")
@@ -184,20 +170,14 @@ def scaled_distance_for(
     v = np.broadcast_to(v, shape).astype(float).ravel()
     R = None if R is None else np.broadcast_to(R, shape).astype(float).ravel()
     W = None if W is None else np.broadcast_to(W, shape).astype(float).ravel()
-    zlo, zhi = m.valid_range(fit) if z_range is None else (float(z_range[0]), float(z_range[1]))
-    if not (0.0 < zlo < zhi and math.isfinite(zhi)):
-        raise BlastscaleInputError(
-            f"z_range = ({zlo!r}, {zhi!r}) m/kg^(1/3) is out of range: must be 0 < Z_min < Z_max"
-        )
-    if extrapolate and z_range is None:
-        zlo, zhi = zlo / EXTRAPOLATE_WIDENING, zhi * EXTRAPOLATE_WIDENING
+    zlo, zhi = _z_bounds(m, fit, z_range, extrapolate)
     w13 = None if W is None else np.cbrt(W)
     ln_v = np.log(v)
 
     def given(idx, z):
         """The quantity [Pa or Pa s] at Z for the cases ``idx``."""
         q = getattr(m, fit)(z, extrapolate=extrapolate)
-        if not impulse:
+        if unit != "Pa s":
             return q
         return q * (R[idx] / z) if R is not None else q * w13[idx]
 
@@ -205,22 +185,10 @@ def scaled_distance_for(
         z = np.clip(np.exp(u), zlo, zhi)  # exp(log(hi)) may round above hi
         return ln_v[idx] - np.log(given(idx, z))
 
-    n = v.size
-    every = np.arange(n)
-    a, b = np.full(n, math.log(zlo)), np.full(n, math.log(zhi))
     with warnings.catch_warnings():
         if extrapolate:
             warnings.simplefilter("ignore", ExtrapolationWarning)
-        fa, fb = f(every, a), f(every, b)
-        ok = (fa <= 0.0) & (fb >= 0.0)
-        u = np.where(fa > 0.0, a, b)  # out of reach: too much (the nearest Z is Z_min) or too little (Z_max)
-        idx = np.flatnonzero(ok)
-        if idx.size:
-
-            def sub(j, x):
-                return f(idx[j], x)
-
-            u[idx] = root_of_bracket(*bracketed_root(sub, a[idx], b[idx], fa[idx], fb[idx])[:4])
+        u, ok = _solve_log_z(f, v.size, zlo, zhi)
         if outside == "raise" and not np.all(ok):
             k = int(np.flatnonzero(~ok)[0])
             top, bottom = given(np.array([k]), np.array([zlo])), given(np.array([k]), np.array([zhi]))
@@ -234,6 +202,58 @@ def scaled_distance_for(
     if outside == "nan":
         z = np.where(ok, z, np.nan)
     return z.reshape(shape) if shape else float(z[0])
+
+
+def _checked_quantity(quantity: str, blast_model, outside: str, standoff, charge):
+    """The fit's name, its unit and the blast model of an inversion of ``quantity``, checked: a known quantity
+    and ``outside``, a fit the model has, and for an impulse exactly one of ``standoff`` and ``charge``."""
+    if quantity not in INVERTED_QUANTITIES:
+        raise BlastscaleInputError(
+            f"quantity = {quantity!r} is not known: valid values are {', '.join(INVERTED_QUANTITIES)}"
+        )
+    if outside not in _OUTSIDE:
+        raise BlastscaleInputError(f"outside = {outside!r} is not known: valid values are {', '.join(_OUTSIDE)}")
+    fit, unit = INVERTED_QUANTITIES[quantity]
+    m = get_blast_model(blast_model)
+    if not m.provides(fit):
+        raise BlastscaleInputError(f"quantity = {quantity!r}: blast model {m.name!r} has no {fit} fit")
+    if unit == "Pa s" and (standoff is None) == (charge is None):
+        raise BlastscaleInputError(
+            f"quantity = {quantity!r}: give the stand-off [m] or the charge [kg] the impulse is read at (one of them)"
+        )
+    return fit, unit, m
+
+
+def _z_bounds(m, fit: str, z_range, extrapolate: bool) -> tuple[float, float]:
+    """The range of Z searched [m/kg^(1/3)]: ``z_range``, else the fit's valid range (widened
+    :data:`EXTRAPOLATE_WIDENING` x each way with ``extrapolate``)."""
+    zlo, zhi = m.valid_range(fit) if z_range is None else (float(z_range[0]), float(z_range[1]))
+    if not (0.0 < zlo < zhi and math.isfinite(zhi)):
+        raise BlastscaleInputError(
+            f"z_range = ({zlo!r}, {zhi!r}) m/kg^(1/3) is out of range: must be 0 < Z_min < Z_max"
+        )
+    if extrapolate and z_range is None:
+        zlo, zhi = zlo / EXTRAPOLATE_WIDENING, zhi * EXTRAPOLATE_WIDENING
+    return zlo, zhi
+
+
+def _solve_log_z(f, n: int, zlo: float, zhi: float):
+    """ln Z of the root of ``f(idx, ln Z)`` (decreasing in the quantity: <= 0 at Z_min, >= 0 at Z_max) for the
+    ``n`` cases, bracketed by ln ``zlo`` and ln ``zhi`` (:func:`blastscale.roots.bracketed_root`); a case out of
+    reach gets the nearer end. Returns ``(u, ok)``: ln Z and whether the root was bracketed."""
+    every = np.arange(n)
+    a, b = np.full(n, math.log(zlo)), np.full(n, math.log(zhi))
+    fa, fb = f(every, a), f(every, b)
+    ok = (fa <= 0.0) & (fb >= 0.0)
+    u = np.where(fa > 0.0, a, b)  # out of reach: too much (the nearest Z is Z_min) or too little (Z_max)
+    idx = np.flatnonzero(ok)
+    if idx.size:
+
+        def sub(j, x):
+            return f(idx[j], x)
+
+        u[idx] = root_of_bracket(*bracketed_root(sub, a[idx], b[idx], fa[idx], fb[idx])[:4])
+    return u, ok
 
 
 def charge_for(
