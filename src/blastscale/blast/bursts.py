@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive, check_positive_scalar
+from .._validate import BlastscaleInputError, check_choice, check_positive, check_positive_scalar
 from .inverse import charge_for, scaled_distance_for
 from .parameters import get_blast_model
 
@@ -83,10 +83,7 @@ def equivalent_free_air_charge_ratio(scaled_distance, quantity: str = "incident_
     float or ndarray
         k [-] (NaN where the free-air fit's range holds no solution).
     """
-    if quantity not in EQUIVALENCE_QUANTITIES:
-        raise BlastscaleInputError(
-            f"quantity = {quantity!r} is not known: valid values are {', '.join(EQUIVALENCE_QUANTITIES)}"
-        )
+    check_choice("quantity", quantity, EQUIVALENCE_QUANTITIES)
     z = np.atleast_1d(check_positive("scaled distance Z", scaled_distance, "m/kg^(1/3)")).astype(float)
     surf, free = get_blast_model("kingery-bulmash"), get_blast_model("kingery-bulmash-free-air")
     target = getattr(surf, quantity)(z)

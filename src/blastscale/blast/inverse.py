@@ -46,7 +46,7 @@ import warnings
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive
+from .._validate import BlastscaleInputError, check_choice, check_positive
 from ..roots import bracketed_root, root_of_bracket
 from .base import ExtrapolationWarning
 from .parameters import DEFAULT_BLAST_MODEL, get_blast_model, valid_scaled_distance_range
@@ -207,12 +207,8 @@ def scaled_distance_for(
 def _checked_quantity(quantity: str, blast_model, outside: str, standoff, charge):
     """The fit's name, its unit and the blast model of an inversion of ``quantity``, checked: a known quantity
     and ``outside``, a fit the model has, and for an impulse exactly one of ``standoff`` and ``charge``."""
-    if quantity not in INVERTED_QUANTITIES:
-        raise BlastscaleInputError(
-            f"quantity = {quantity!r} is not known: valid values are {', '.join(INVERTED_QUANTITIES)}"
-        )
-    if outside not in _OUTSIDE:
-        raise BlastscaleInputError(f"outside = {outside!r} is not known: valid values are {', '.join(_OUTSIDE)}")
+    check_choice("quantity", quantity, INVERTED_QUANTITIES)
+    check_choice("outside", outside, _OUTSIDE)
     fit, unit = INVERTED_QUANTITIES[quantity]
     m = get_blast_model(blast_model)
     if not m.provides(fit):

@@ -64,10 +64,8 @@ def get_blast_model(blast_model: "str | BlastModel" = DEFAULT_BLAST_MODEL) -> Bl
     or ``blast_model`` itself when it already is a :class:`BlastModel` (user-supplied fits)."""
     if isinstance(blast_model, BlastModel):
         return blast_model
-    if blast_model not in BLAST_MODELS and blast_model not in BURST_VARIANTS:
-        raise BlastscaleInputError(
-            f"blast model = {blast_model!r} is not known: valid values are {', '.join(BLAST_MODELS)}"
-        )
+    if blast_model not in BURST_VARIANTS:  # resolved too, but not offered: a burst type chooses them
+        check_choice("blast model", blast_model, BLAST_MODELS)
     if blast_model not in _CACHE:
         _CACHE[blast_model] = {**BLAST_MODELS, **BURST_VARIANTS}[blast_model]()
     return _CACHE[blast_model]

@@ -8,7 +8,7 @@ from typing import Optional
 
 import typer
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_choice
 from ..blast.parameters import BURSTS, DEFAULT_BURST
 from ..blast.load_model import LoadModel
 
@@ -80,8 +80,8 @@ def negative_phase_model_key(negative_phase: bool, model: Optional[str]) -> dict
 
 def check_burst_flag(burst: Optional[str], name: str = "--burst") -> Optional[str]:
     """``burst`` when it is None or one of the burst types; one line naming the flag otherwise."""
-    if burst is not None and burst not in BURSTS:
-        raise BlastscaleInputError(f"{name} = {burst!r} is not known: valid values are {', '.join(BURSTS)}")
+    if burst is not None:
+        check_choice(name, burst, BURSTS)
     return burst
 
 

@@ -29,7 +29,7 @@ import math
 import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_choice
 from ..rocking.system import housner_restitution
 from ..study.study import Study
 from ..analysis.upscale import upscale
@@ -62,8 +62,7 @@ def check_calibrate(names) -> tuple:
     structure: :func:`check_applies`)."""
     out = tuple(n.strip() for n in names if n.strip())
     for n in out:
-        if n not in CALIBRATIONS:
-            raise BlastscaleInputError(f"calibrate = {n!r} is not known: valid values are {', '.join(CALIBRATIONS)}")
+        check_choice("calibrate", n, CALIBRATIONS)
     return out
 
 

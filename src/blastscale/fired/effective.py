@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive_scalar
+from .._validate import BlastscaleInputError, check_choice, check_positive_scalar
 from ..blast.inverse import charge_for
 from ..blast.parameters import blast_parameters, model_for_burst
 
@@ -35,10 +35,8 @@ _INVERTED = {
 
 
 def _quantity(kind: str, basis: str) -> str:
-    if kind not in GAUGE_KINDS:
-        raise BlastscaleInputError(f"gauge kind = {kind!r} is not known: valid values are {', '.join(GAUGE_KINDS)}")
-    if basis not in ("impulse", "pressure"):
-        raise BlastscaleInputError(f"basis = {basis!r} is not known: valid values are impulse, pressure")
+    check_choice("gauge kind", kind, GAUGE_KINDS)
+    check_choice("basis", basis, ("impulse", "pressure"))
     return GAUGE_KINDS[kind][basis == "impulse"]
 
 

@@ -10,7 +10,7 @@ imported only when a plot is drawn. Inputs are :class:`~blastscale.rocking.Rocki
 from __future__ import annotations
 
 import numpy as np
-from .._validate import BlastscaleInputError
+from .._validate import check_choice
 from .sim3d import axes_or_new
 
 __all__ = [
@@ -96,6 +96,7 @@ def plot_similarity(sim, quantity: str = "theta", ax=None):
     [rad/s] vs t [s]) or ``"phase"`` (theta_dot vs theta). Model values are already in
     prototype units (t / f.time, theta_dot / f.angular_velocity).
     """
+    check_choice("quantity", quantity, ("theta", "theta_dot", "phase"))
     ax = axes_or_new(ax)
     lam = sim.design.scale
     lab_m = f"model lambda = 1/{1 / lam:.4g}, up-scaled" if lam < 1 else f"model lambda = {lam:.4g}, up-scaled"
@@ -109,13 +110,11 @@ def plot_similarity(sim, quantity: str = "theta", ax=None):
         ax.plot(sim.t, sim.theta_dot_model, "--", label=lab_m)
         ax.set_xlabel("time after arrival t [s]")
         ax.set_ylabel("angular velocity theta_dot [rad/s]")
-    elif quantity == "phase":
+    else:  # "phase"
         ax.plot(sim.theta_prototype, sim.theta_dot_prototype, "-", label="prototype")
         ax.plot(sim.theta_model, sim.theta_dot_model, "--", label=lab_m)
         ax.set_xlabel("rocking angle theta [rad]")
         ax.set_ylabel("angular velocity theta_dot [rad/s]")
-    else:
-        raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are theta, theta_dot, phase")
     title = f"max |delta theta| = {sim.max_abs_rotation_diff:.2e} rad"
     if sim.collapse_time_diff is not None:  # both overturn: the figures that measure similarity
         fall = "-" if sim.max_fall_phase_diff is None else f"{sim.max_fall_phase_diff:.2e}"

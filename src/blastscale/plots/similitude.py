@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_choice
 from .sim3d import axes_or_new
 
 __all__ = [
@@ -45,9 +45,7 @@ def _sweep_axis(curves, x: str | None) -> str:
     """``"scale"`` or ``"density_ratio"``: the given one, else the one the curves vary in."""
     if x is None:
         x = "scale" if np.ptp(curves.scale) > 0 or np.ptp(curves.density_ratio) == 0 else "density_ratio"
-    if x not in _X:
-        raise BlastscaleInputError(f"x = {x!r} is not known: valid values are {', '.join(_X)}")
-    return x
+    return check_choice("x", x, _X)
 
 
 def _default_label(curves, x: str) -> str:
@@ -105,8 +103,7 @@ def plot_scaling_factor(
     -------
     matplotlib Axes
     """
-    if quantity not in FACTOR_PLOTS:
-        raise BlastscaleInputError(f"quantity = {quantity!r} is not known: valid values are {', '.join(FACTOR_PLOTS)}")
+    check_choice("quantity", quantity, FACTOR_PLOTS)
     ax = axes_or_new(ax)
     x = _sweep_axis(curves, x)
     gen, hc, ylabel, logy = FACTOR_PLOTS[quantity]

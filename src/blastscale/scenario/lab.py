@@ -8,6 +8,7 @@ from typing import Any, Optional
 
 from pydantic import BaseModel, Field, PrivateAttr, field_validator, model_serializer, model_validator
 
+from .._validate import check_choice
 from ..blast.parameters import BURSTS
 from ..blast.explosive_library import EXPLOSIVES
 from ..blast.explosives import canonical_name, initiator_tnt_kg
@@ -143,11 +144,7 @@ class LabSpec(BaseModel):
             data["explosive"] = canonical_name(ex, mine if isinstance(mine, dict) else None) or ex
         ini = data.get("initiator", DEFAULT_INITIATOR)
         if isinstance(ini, str):
-            if ini not in INITIATORS:
-                raise ValueError(
-                    f"initiator = {ini!r} is not known: valid values are {', '.join(INITIATORS)} (or "
-                    "give initiator_tnt_kg)"
-                )
+            check_choice("initiator", ini, INITIATORS, "or give initiator_tnt_kg")
         return data
 
     #: True when ``initiator_tnt_kg`` is the named initiator's (not written back: a new ``initiator`` in
@@ -195,12 +192,12 @@ class LabSpec(BaseModel):
 
     @model_validator(mode="after")
     def _consistent(self) -> "LabSpec":
-        known = tuple(EXPLOSIVES) + tuple(self.explosives)
-        if self.explosive not in known:
-            raise ValueError(
-                f"explosive = {self.explosive!r} is not known: valid values are {', '.join(known)} "
-                "(or define it in a [lab.explosives.NAME] table)"
-            )
+        check_choice(
+            "explosive",
+            self.explosive,
+            (*EXPLOSIVES, *self.explosives),
+            "or define it in a [lab.explosives.NAME] table",
+        )
         if self.charge_min_kg > self.charge_max_kg:
             raise ValueError(
                 f"charge_min_kg = {value_in_message(self.charge_min_kg)} kg is above charge_max_kg = "

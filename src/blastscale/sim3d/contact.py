@@ -34,7 +34,7 @@ import math
 from dataclasses import dataclass, replace
 
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
-from .._validate import BlastscaleInputError, check_positive, check_range
+from .._validate import BlastscaleInputError, check_choice, check_positive, check_range
 from ..similitude.factors import scaling_factors
 from .contact_ranges import CONES, JACOBIANS, SETTING_RANGES, SOLVERS, STEPS_AFTER_LOAD, check_scalar
 from .solver_choice import default_jacobian
@@ -165,19 +165,10 @@ class ContactSettings:
                 f"contact time constant = {self.time_constant:.6g} s is out of range: must be >= 2 x timestep "
                 f"= {2 * self.timestep:.6g} s (MuJoCo clamps softer, stability)"
             )
-        if self.cone not in CONES:
-            raise BlastscaleInputError(f"cone = {self.cone!r} is not known: valid values are {', '.join(CONES)}")
-        if self.solver not in SOLVERS:
-            raise BlastscaleInputError(f"solver = {self.solver!r} is not known: valid values are {', '.join(SOLVERS)}")
-        if self.jacobian not in JACOBIANS:
-            raise BlastscaleInputError(
-                f"jacobian = {self.jacobian!r} is not known: valid values are {', '.join(JACOBIANS)}"
-            )
-        if self.step_after_load not in STEPS_AFTER_LOAD:
-            raise BlastscaleInputError(
-                f"step_after_load = {self.step_after_load!r} is not known: valid values are "
-                f"{', '.join(STEPS_AFTER_LOAD)}"
-            )
+        check_choice("cone", self.cone, CONES)
+        check_choice("solver", self.solver, SOLVERS)
+        check_choice("jacobian", self.jacobian, JACOBIANS)
+        check_choice("step_after_load", self.step_after_load, STEPS_AFTER_LOAD)
 
     # -- derived MuJoCo quantities ----------------------------------------------------
     @property

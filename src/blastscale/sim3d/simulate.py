@@ -25,7 +25,7 @@ import warnings
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
+from .._validate import BlastscaleInputError, check_choice, check_finite, check_positive, check_range
 from ..constants import STANDARD_GRAVITY
 from .contact import (
     MAX_TIMESTEP_FRACTION,
@@ -125,10 +125,8 @@ def _check_common(duration, gravity, record_every, blast_mode):
     check_range("record_every", record_every, 1, math.inf)
     if not float(record_every).is_integer():
         raise BlastscaleInputError(f"record_every = {record_every!r} is out of range: must be a whole number >= 1")
-    if blast_mode is not None and blast_mode not in BLAST_MODES:
-        raise BlastscaleInputError(
-            f"blast_mode = {blast_mode!r} is not known: valid values are {', '.join(BLAST_MODES)}"
-        )
+    if blast_mode is not None:
+        check_choice("blast_mode", blast_mode, BLAST_MODES)
     return T, g
 
 

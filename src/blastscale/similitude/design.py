@@ -15,7 +15,7 @@ from dataclasses import asdict, fields, replace
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, OutOfRangeError, check_positive, check_positive_scalar
+from .._validate import BlastscaleInputError, OutOfRangeError, check_choice, check_positive, check_positive_scalar
 from ..blast.base import BlastModel, ExtrapolationWarning
 from ..blast.load_model import PAPER_LOAD
 from ..blast.parameters import DEFAULT_BURST, model_for_burst
@@ -172,8 +172,7 @@ def design_model(
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
     check_positive_scalar("gravity", gravity, "m/s^2")
     check_positive_scalar("impulsive threshold", impulsive_threshold)
-    if law not in LAWS:
-        raise BlastscaleInputError(f"law = {law!r} is not known: valid values are {', '.join(LAWS)}")
+    check_choice("law", law, LAWS)
     bm = model_for_burst(blast_model, burst)
     ms = bm if specimen_burst is None else model_for_burst(blast_model, specimen_burst)
     gam = _density_ratio(law, density_ratio, lam, sig)

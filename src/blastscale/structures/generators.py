@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive_scalar, check_range
+from .._validate import BlastscaleInputError, check_choice, check_positive_scalar, check_range
 from .assembly import Assembly
 from .convex_block import ConvexBlock
 
@@ -86,8 +86,7 @@ def wall(
     t = check_positive_scalar("wall thickness_m", thickness_m, "m")
     nc = _whole("wall courses", courses, 1)
     nu = _whole("wall units_per_course", units_per_course, 1)
-    if bond not in BONDS:
-        raise BlastscaleInputError(f"wall bond = {bond!r} is not known: valid values are {', '.join(BONDS)}")
+    check_choice("wall bond", bond, BONDS)
     if nc * (nu + 1) > MAX_BLOCKS:
         raise BlastscaleInputError(
             f"wall courses x units_per_course = {nc} x {nu} is out of range: at most {MAX_BLOCKS} blocks"

@@ -39,7 +39,7 @@ import warnings
 from dataclasses import replace
 from typing import Callable, Optional
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_choice
 from ..scenario.scenario import Scenario
 from ..structures import from_spec
 from .engines import ENGINES, ENSEMBLE, Engine, contact_settings, critical_charge_of, load_model_of
@@ -134,17 +134,14 @@ class Study:
         Study
             Its plan has no design (the system runs alone); ``critical_charge`` is not searched.
         """
-        if system not in DESIGN_SYSTEMS:
-            raise BlastscaleInputError(
-                f"system = {system!r} is not known: valid values are {', '.join(DESIGN_SYSTEMS)}"
-            )
+        check_choice("system", system, DESIGN_SYSTEMS)
         if (charge_kg is None) != (standoff_m is None):
             raise BlastscaleInputError(
                 f"charge_kg = {charge_kg}, standoff_m = {standoff_m}: give both (the caller's load) or neither "
                 "(the design's)"
             )
-        if engine is not None and engine not in (*ENGINES, "both"):
-            raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINES)}, both")
+        if engine is not None:
+            check_choice("engine", engine, (*ENGINES, "both"))
         study = cls(scenario)
         study._system = DesignSystem(design, system, charge_kg, standoff_m, engine, structure, friction, restitution)
         return study
@@ -173,10 +170,7 @@ class Study:
             raise BlastscaleInputError(f"scale must be a ScaleSpec, got {type(scale).__name__}")
         update: dict = {"scale": scale}
         if engine is not None:
-            if engine not in (*ENGINES, "both"):
-                raise BlastscaleInputError(
-                    f"engine = {engine!r} is not known: valid values are {', '.join(ENGINES)}, both"
-                )
+            check_choice("engine", engine, (*ENGINES, "both"))
             update["simulation"] = scenario.simulation.model_copy(
                 update={"engine": engine, "critical_charge": False, "ensemble_members": 0}
             )

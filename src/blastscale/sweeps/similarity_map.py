@@ -29,8 +29,7 @@ from typing import Optional
 
 import numpy as np
 
-from .._validate import BlastscaleInputError
-from .._validate import check_positive
+from .._validate import check_choice, check_positive
 from .layout import VALID_NAME, select
 from .run import run_in_memory
 from .spec import SweepSpec
@@ -115,8 +114,7 @@ def similarity_map(
     """
     import xarray as xr
 
-    if engine not in ENGINE_VARIABLES:
-        raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are {', '.join(ENGINE_VARIABLES)}")
+    check_choice("engine", engine, ENGINE_VARIABLES)
     tolerance = DEFAULT_TOLERANCE[engine] if tolerance is None else float(check_positive("tolerance", tolerance))
     grids = dict(zip(MAP_FIELDS, (scales, density_ratios, charges, standoffs)))
     values = {"engine": engine, "critical_charge": False}
