@@ -63,11 +63,11 @@ def test_a_failing_child_gives_the_value_computed_here(fn, why):
 
 
 def test_a_hanging_child_is_killed_and_the_value_computed_here():
-    t0 = time.monotonic()
+    """The wait ended by the timeout (``fell_back`` says so), not by the clock of this test."""
     with Forked(hangs_in_child, "x") as job:
         pid = job._pid
         assert job.result(timeout=0.5) == "x"
-    assert "TimeoutError" in job.fell_back and time.monotonic() - t0 < 30.0
+    assert "TimeoutError" in job.fell_back
     assert _gone(pid)  # killed and reaped: no zombie either
 
 
