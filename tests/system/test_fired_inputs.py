@@ -142,6 +142,13 @@ def test_a_device_a_fifo_a_folder_and_a_sparse_giant_are_one_line_at_once(child,
             assert sorted(p.name for p in shot.iterdir()) == RECORDS  # nothing written
 
 
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="POSIX FIFOs")
+def test_a_fifo_as_the_scenario_is_one_line_at_once(child, tmp_path):
+    os.mkfifo(tmp_path / "shot.toml")
+    r = child("fired", tmp_path / "shot.toml")
+    assert r["code"] == 2 and "cannot be read: not a file (a folder, a FIFO or a device)" in _one_line(r["err"]), r
+
+
 GEOMETRY = [
     (
         {"position_m": "[-0.3, 0.0, 0.05]"},

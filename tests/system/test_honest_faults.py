@@ -235,7 +235,7 @@ def test_a_device_is_not_a_missing_file(capsys, tmp_path, planar):
     assert (
         code == 2
         and one_line(err)
-        and "scenario = '/dev/zero' cannot be read: not a file (a folder or a device)" in err
+        and "scenario = '/dev/zero' cannot be read: not a file (a folder, a FIFO or a device)" in err
     )
     code, _, err = cli(
         capsys,
