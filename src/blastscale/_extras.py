@@ -2,7 +2,7 @@
 
 A plain ``pip install blastscale`` runs the default job (``blastscale run``: both engines, the result
 files, the report); what it does not need is an extra (pyproject.toml): ``sweeps`` (Zarr sweep stores,
-Dask workers) and ``mesh`` (block models from OBJ/STL/PLY meshes). Every import of an extra's module goes
+Dask workers), ``mesh`` (block models from OBJ/STL/PLY meshes) and ``xlsx`` (lab records as .xlsx workbooks). Every import of an extra's module goes
 through :func:`require`, which raises :class:`MissingExtraError` naming the extra and its install command;
 the CLI prints it as one line (``error: blastscale sweep needs the 'sweeps' extra (zarr is not installed):
 pip install 'blastscale[sweeps]'``), exit 2, no traceback.
@@ -17,7 +17,7 @@ from typing import Optional
 __all__ = ["EXTRAS", "MissingExtraError", "require", "extra_of", "install_command", "missing_extra_message"]
 
 #: Top-level module -> the extra that installs it.
-EXTRAS = {"zarr": "sweeps", "dask": "sweeps", "distributed": "sweeps", "trimesh": "mesh", "charset_normalizer": "mesh"}
+EXTRAS = {"zarr": "sweeps", "dask": "sweeps", "distributed": "sweeps", "trimesh": "mesh", "openpyxl": "xlsx"}
 
 
 def install_command(extra: str) -> str:

@@ -125,6 +125,7 @@ def fired_cmd(
     """After the shot: the load the specimen got, measured vs predicted vs re-simulated, and what the monument
     would do."""
     from ..fired.shot import as_fired
+    from ..fired.inputs import shot_inputs
 
     sc = load_scenario(_shipped(scenario))
     markers = ("summary.json",)
@@ -133,8 +134,12 @@ def fired_cmd(
     written = None
     with one_line_warnings(), stage_progress(quiet=as_json) as tell:
         tell("records, gauge fits, prediction and refit", 0, 1)
-        # every record checked before the folder is claimed: a bad one writes nothing
-        result = as_fired(sc, calibrate=calibrate.split(","))
+        # the shot's geometry and every record checked before the engines are imported (a bad value is refused
+        # at once) and before the folder is claimed (a bad one writes nothing)
+        inputs = shot_inputs(sc)
+        from ..fired.shot import as_fired
+
+        result = as_fired(sc, gauges=inputs.gauges, tracks=inputs.tracks, calibrate=calibrate.split(","))
         if out is not None:
             from ..report.fired import write_fired
 

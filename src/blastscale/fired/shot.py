@@ -21,12 +21,10 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import BlastscaleInputError
 from ..analysis.upscale import upscale
 from ..blast.explosives import get_explosive
 from ..scenario.scenario import Scenario
 from ..structures.from_spec import is_block
-from ..study.study import Study
 from .calibrate import (
     calibrate_friction,
     calibrate_restitution,
@@ -36,7 +34,8 @@ from .calibrate import (
 from .effective import effective_charge, predicted_at, tnt_equivalence
 from .gauges import fit_gauge
 from .outcome import body_verdicts, marker_body
-from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks, record_fault
+from .inputs import charge_position, shot_inputs
+from .records import GaugeRecord, TrackRecord, record_fault
 from .refit import OUTCOMES, SpecimenRun, marker_history, simulate_specimen
 from .tracks import block_rotation, track_first_peak
 
@@ -85,9 +84,7 @@ def _gauges(sc: Scenario, d, record: GaugeRecord, standoff: float) -> tuple[dict
             raise record_fault(
                 record.path, "", 1, f"gauge {name!r} of [fired.gauge.{name}] has no column (NAME_kPa, ...)"
             )
-    front = d.specimen_structure.front_x
-    zc = sc.scale.specimen_charge_height_m or 0.0
-    charge_at = np.array([front - standoff, 0.0, zc])
+    charge_at = charge_position(sc, d, standoff)
     model, burst = d.specimen.blast_model, d.specimen.burst
     fits, out = {}, {}
     for name, p in record.pressure_Pa.items():
@@ -178,20 +175,15 @@ def as_fired(
     Raises
     ------
     BlastscaleInputError
-        No ``[fired]`` or ``[scale]`` table, or a bad record (one line naming the file, the column and the row).
+        No ``[fired]`` or ``[scale]`` table, a gauge or marker out of place (:mod:`.inputs`), or a bad record
+        (one line naming the file, the column and the row).
     """
-    fs = scenario.fired
-    if fs is None:
-        raise BlastscaleInputError("scenario has no [fired] table: give the records (docs/fired.md)")
-    if scenario.scale is None or scenario.blast.gravity_only:
-        raise BlastscaleInputError("fired needs a designed specimen: the scenario has no [scale] table or no charge")
+    inputs = shot_inputs(scenario, gauges=gauges, tracks=tracks)  # every input checked before any simulation
+    fs, d, standoff, grec, trec = scenario.fired, inputs.design, inputs.standoff_m, inputs.gauges, inputs.tracks
     calibrate = check_calibrate(calibrate)
-    d = Study(scenario).check().design
     check_applies(calibrate, d, scenario.structure.kind)
     if engine is None:  # blocks rock in the plane (fast, the solver's peak events); every other kind in 3D
         engine = "planar" if is_block(d.specimen_structure) else "3d"
-    standoff = float(fs.standoff_m if fs.standoff_m is not None else d.specimen.standoff_m)
-    grec, trec = _records(fs, gauges, tracks)
     fits, gsum = _gauges(scenario, d, grec, standoff) if grec is not None else ({}, {})
     lab = scenario.lab
     w_design = float(d.specimen_charge_kg)
@@ -250,17 +242,6 @@ def as_fired(
         summary["calibration"] = calibrate_friction(scenario, d, meas, w_refit, standoff)
     summary["verdict"] = as_fired_verdict_line(summary)
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
-
-
-def _records(fs, gauges, tracks) -> tuple:
-    """(gauge record, track record) of the shot: those given, else read from the ``[fired]`` table's paths
-    (None where it names none)."""
-    grec = gauges if gauges is not None else (read_gauges(fs.gauges, names=fs.gauge) if fs.gauges else None)
-    if tracks is not None:
-        return grec, tracks
-    if not fs.tracks:
-        return grec, None
-    return grec, read_tracks(fs.tracks, names=fs.marker, px_per_mm={n: m.px_per_mm for n, m in fs.marker.items()})
 
 
 def _effective_charges(fs, lab, gsum: dict) -> tuple:

@@ -38,9 +38,10 @@ def load_scenario(path: "str | Path") -> Scenario:
     if not _exists(p) and str(path) in (stem, p.name) and stem in shipped:
         return _from_text(library_text(stem), library_source(stem))
     try:
-        if p.is_dir() or p.is_char_device() or p.is_block_device():
+        if p.exists() and not p.is_file():  # checked before opening: a FIFO's open waits for a writer
             raise BlastscaleInputError(
-                f"scenario = {str(p)!r} cannot be read: not a file (a folder or a device); give a .toml scenario file"
+                f"scenario = {str(p)!r} cannot be read: not a file (a folder, a FIFO or a device); give a .toml "
+                "scenario file"
             )
         with open(p, "rb") as f:
             raw = f.read(MAX_SCENARIO_BYTES + 1)

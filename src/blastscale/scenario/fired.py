@@ -55,5 +55,11 @@ class FiredSpec(BaseModel):
         None, gt=0, le=10000, description="The charge as weighed [kg of the [lab] explosive]"
     )
     standoff_m: float | None = Field(None, gt=0, le=1000, description="The stand-off as measured [m]")
+    max_record_mb: float = Field(
+        100.0,
+        gt=0,
+        le=10000,
+        description="Largest record file read [MB]: raise it for a longer or faster record (a record is read whole)",
+    )
     gauge: dict[str, GaugeSpec] = Field(default_factory=dict, description="[fired.gauge.NAME] tables")
     marker: dict[str, MarkerSpec] = Field(default_factory=dict, description="[fired.marker.NAME] tables")

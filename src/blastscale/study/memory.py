@@ -42,6 +42,8 @@ __all__ = [
     "contacts_of",
     "STEP_BASE_SECONDS",
     "CONTACT_STEP_SECONDS",
+    "CONTACT_STEP_UNITS",
+    "CONTACT_STEP_EXPONENT",
     "STATE_BYTES_PER_BODY",
     "STATE_BYTES_PER_POINT",
     "REPORT_BYTES",
@@ -67,6 +69,12 @@ STEP_BASE_SECONDS = 4e-6
 #: constraint solve and collision grow with the contacts (3-8 contact points per interface), the recording and
 #: the loads with the bodies; measured 2.5-3.5 us under a blast ...
 CONTACT_STEP_SECONDS = 3e-6
+#: ... times (u / CONTACT_STEP_UNITS)^CONTACT_STEP_EXPONENT for u = bodies + contacts above CONTACT_STEP_UNITS:
+#: the cost of a contact grows with their number (the constraint solve couples them). Measured (issue #40, CPU
+#: time per step after the load, two durations of one structure differenced): stack-bonded walls of 25, 100,
+#: 200 and 400 blocks under 100 kg at 10 m, 3.4, 9.8, 11.3 and 14.6 us per body or contact at u = 70, 290,
+#: 590 and 1170; the library's running-bond wall of 22 blocks, 6.3 us at u = 75.
+CONTACT_STEP_UNITS, CONTACT_STEP_EXPONENT = 50, 0.45
 #: ... plus, once per run of a structure of n bodies, BODY_SECONDS n^BODY_EXPONENT [s]: the engine's model
 #: built, the histories compared and drawn per body (measured: 13 s for 210 bodies, 290 s for 3000).
 BODY_SECONDS, BODY_EXPONENT = 0.025, 1.17
@@ -162,7 +170,8 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts:
     """A rough estimate of a study's computing time on one core [s] (module docstring; docs/performance.md): 3D,
     the steps of every run (prototype and model, ensemble members; the settling before the load included; the
     longer steps after the load counted as such) times
-    :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x (bodies + contacts), plus :data:`BODY_SECONDS` x
+    :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x u x max(1, u / :data:`CONTACT_STEP_UNITS`)^
+    :data:`CONTACT_STEP_EXPONENT` (u = bodies + contacts), plus :data:`BODY_SECONDS` x
     bodies^:data:`BODY_EXPONENT`; planar, ~2 us per sample and system plus the critical-charge search (~0.1 s);
     ``contact`` as in :func:`estimate_memory`; ``contacts``: the structure's contacts at rest when already counted
     (:func:`contacts_of`, e.g. a :class:`~.study.StudyPlan`'s), else counted here."""
@@ -184,7 +193,10 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts:
             steps = sim.duration_s / (dt * factor) + SETTLE_TIME_CONSTANTS * resolved.time_constant / dt
         runs = systems * (1 + sim.ensemble_members)
         nc = contacts_of(structure) if contacts is None else contacts
-        per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * (nb + nc)
+        units = nb + nc
+        per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * units * max(1.0, units / CONTACT_STEP_UNITS) ** (
+            CONTACT_STEP_EXPONENT
+        )
         total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3) + BODY_SECONDS * nb**BODY_EXPONENT
     return total
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+import sys
 import time
 from typing import Callable, Optional
 
@@ -112,11 +113,13 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
         # come back as fresh pages each time (measured: +55 % CPU per outcome-mode chunk); the
         # local workers keep glibc's own (dynamic) threshold;
         # each worker's 3D runs share the cores with the other workers: cores // workers threads each;
-        # the workers log errors only: a task cancelled while the cluster stops after Ctrl-C is not news (the
-        # main process says what happened in one line); a failing chunk still raises here
+        # the workers log only what is critical: a task cancelled while the cluster stops after Ctrl-C, or a
+        # worker's "Failed to communicate with scheduler during heartbeat" (an error) when the scheduler stopped
+        # first (seen on a loaded machine), is not news (the main process says what happened in one line); a
+        # failing chunk still raises here, a lost worker too (KilledWorker)
         env = {
             "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
-            "distributed.nanny.pre-spawn-environ.DASK_LOGGING__DISTRIBUTED": "error",
+            "distributed.nanny.pre-spawn-environ.DASK_LOGGING__DISTRIBUTED": "critical",
             f"distributed.nanny.pre-spawn-environ.{THREADS_ENV}": str(max(1, available_cores() // max(1, nw))),
         }
         with warnings.catch_warnings(), dask.config.set(env):
@@ -149,19 +152,24 @@ def _run_dask(payload, todo, sink, scheduler, nw: int, tick) -> tuple:
             tick(k)
         return used, time.perf_counter() - t0
     finally:
-        client.close()
-        if cluster is not None:
-            # stopping our own cluster after a signal, the nannies log "Worker process still alive after
-            # 4.0 seconds, killing" in this process: our own teardown, not news (the command says what
-            # happened in one line)
-
-            nanny = logging.getLogger("distributed.nanny")
-            level = nanny.level
-            nanny.setLevel(logging.ERROR)
-            try:
+        # stopping our own cluster, the nannies log "Worker process still alive after 4.0 seconds, killing" in
+        # this process, and after an interrupt (an exception that is not an Exception: Ctrl-C, a signal) the
+        # scheduler, the client and the nannies log their lost connections: our own teardown, not news (the
+        # command says what happened in one line); distributed's loggers say only what is critical meanwhile
+        interrupted = not isinstance(sys.exc_info()[1], (Exception, type(None)))
+        every = [n for n in logging.root.manager.loggerDict if n.split(".")[0] == "distributed"]  # own levels too
+        names = ["distributed", *every] if interrupted else ["distributed.nanny"]
+        quiet = {n: logging.getLogger(n) for n in names}
+        levels = {n: lg.level for n, lg in quiet.items()}
+        for lg in quiet.values():
+            lg.setLevel(logging.CRITICAL if interrupted else logging.ERROR)
+        try:
+            client.close()
+            if cluster is not None:
                 cluster.close()
-            finally:
-                nanny.setLevel(level)
+        finally:
+            for n, lg in quiet.items():
+                lg.setLevel(levels[n])
 
 
 def payload_hash(payload: dict) -> str:

@@ -1,0 +1,154 @@
+"""The shot's inputs, checked before any simulation and before the engines are imported: where the gauges and
+markers of ``[fired]`` stand, and the records read (:mod:`.records`).
+
+Geometry, in the record axes of :mod:`blastscale.scenario.fired` (x along the blast away from the charge,
+z up, origin at the centre of the specimen's footprint at rest; the specimen's bodies at rest, ``com`` +
+``vertices``):
+
+* **The charge** stands at ``c = (front_x - standoff, 0, h_c)``: ``front_x`` the specimen's front,
+  ``standoff`` ``[fired] standoff_m`` (else the designed one), ``h_c`` ``[scale] specimen_charge_height_m``
+  (else 0, on the floor), as :func:`blastscale.fired.shot.as_fired` places it.
+* **A gauge behind the charge**: ``x_gauge < c_x``: on the far side of the charge from the specimen (the
+  plane through the charge normal to the blast axis divides the two sides); a gauge there is a sign or
+  an axis mistake (the records' x points away from the charge).
+* **Distance from the specimen**: the distance from a point to the specimen's bounding box at rest
+  (zero inside it). A gauge farther than :data:`GAUGE_REACH` times the larger of the stand-off and the
+  specimen's height is refused (a unit or an axis mistake: the gauges of a shot stand between the charge
+  and the specimen, beside it or on it).
+* **A marker on a body**: a marker's rest point lies within :data:`MARKER_TOLERANCE` times the specimen's
+  height of some body's solid, the distance to a body measured to the planes of its faces and of its
+  bounding box (exact for a point off a face; never more than the true distance to the solid).
+
+Each fault is one :class:`~blastscale._validate.BlastscaleInputError` line naming the table, the point and
+why.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validate import BlastscaleInputError
+from ..study.study import Study
+from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks
+
+__all__ = ["GAUGE_REACH", "MARKER_TOLERANCE", "ShotInputs", "charge_position", "check_geometry", "shot_inputs"]
+
+#: A gauge lies within this many times max(stand-off, specimen height) of the specimen's bounding box.
+GAUGE_REACH = 2.0
+#: A marker lies within this fraction of the specimen's height of one of its bodies.
+MARKER_TOLERANCE = 0.05
+
+
+@dataclass(frozen=True)
+class ShotInputs:
+    """The shot's checked inputs: the design, the stand-off as fired [m] and the records (None: not given)."""
+
+    design: object
+    standoff_m: float
+    gauges: GaugeRecord | None
+    tracks: TrackRecord | None
+
+
+def charge_position(scenario, design, standoff_m: float) -> np.ndarray:
+    """The charge's centre [x, y, z] [m] in the record axes (module docstring)."""
+    zc = scenario.scale.specimen_charge_height_m or 0.0
+    return np.array([design.specimen_structure.front_x - standoff_m, 0.0, zc])
+
+
+def _body_boxes(structure) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """Per body: its centre of mass, its vertices relative to it, and the unit normals and offsets of the
+    planes bounding its solid (faces and bounding box) [m]."""
+    axes = np.vstack([np.eye(3), -np.eye(3)])
+    out = []
+    for b in structure.bodies:
+        v = np.asarray(b.vertices, dtype=float)
+        n = np.vstack([axes] + [np.asarray(f.normal, dtype=float)[None, :] for f in b.faces])
+        n = n / np.linalg.norm(n, axis=1)[:, None]
+        out.append((np.asarray(b.com, dtype=float), v, n, (v @ n.T).max(axis=0)))
+    return out
+
+
+def _box_distance(p: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> float:
+    return float(np.linalg.norm(np.maximum(np.maximum(lo - p, p - hi), 0.0)))
+
+
+def check_geometry(scenario, design, standoff_m: float) -> None:
+    """Refuse a gauge behind the charge or far from the specimen, and a marker on no body (module docstring).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        With its ``[fired]`` table.
+    design : ModelDesign
+        ``Study(scenario).check().design``: the specimen at rest.
+    standoff_m : float
+        The stand-off as fired [m].
+
+    Raises
+    ------
+    BlastscaleInputError
+        One line naming the gauge or marker, its point and why.
+    """
+    fs = scenario.fired
+    structure = design.specimen_structure
+    bodies = _body_boxes(structure)
+    world = np.vstack([c + v for c, v, _, _ in bodies])
+    lo, hi = world.min(axis=0), world.max(axis=0)
+    height = float(hi[2] - lo[2])
+    charge = charge_position(scenario, design, standoff_m)
+    reach = GAUGE_REACH * max(standoff_m, height)
+    for name, g in fs.gauge.items():
+        p = np.asarray(g.position_m, dtype=float)
+        where = f"[fired.gauge.{name}] position_m = {g.position_m!r}"
+        if p[0] < charge[0]:
+            raise BlastscaleInputError(
+                f"{where} is behind the charge (x {p[0]:g} m < the charge's x {charge[0]:g} m = front "
+                f"{structure.front_x:g} m - stand-off {standoff_m:g} m): x points from the charge to the specimen"
+            )
+        off = _box_distance(p, lo, hi)
+        if off > reach:
+            raise BlastscaleInputError(
+                f"{where} is {off:.3g} m from the specimen: a gauge stands within {reach:.3g} m of it "
+                f"({GAUGE_REACH:g} x max(stand-off, specimen height)); check its units (m) and axes"
+            )
+    tol = MARKER_TOLERANCE * height
+    for name, m in fs.marker.items():
+        p = np.asarray(m.point_m, dtype=float)
+        gaps = [float(np.max(n @ (p - c) - h)) for c, _, n, h in bodies]
+        k = int(np.argmin(gaps))
+        if gaps[k] > tol:
+            raise BlastscaleInputError(
+                f"[fired.marker.{name}] point_m = {m.point_m!r} is not on any body: {gaps[k]:.3g} m from the "
+                f"nearest ({structure.bodies[k].name!r}), {_box_distance(p, lo, hi):.3g} m from the specimen; "
+                f"a marker is on a body within {tol:.3g} m ({MARKER_TOLERANCE:g} x the specimen's height), "
+                "in the record axes (origin at the centre of the footprint, z up)"
+            )
+
+
+def shot_inputs(scenario, *, gauges: GaugeRecord | None = None, tracks: TrackRecord | None = None) -> ShotInputs:
+    """The shot's design made (``Study(scenario).check()``: no simulation), its geometry checked
+    (:func:`check_geometry`) and its records read (:mod:`.records`; those not given as ``gauges`` /
+    ``tracks``), in that order: a bad input is refused before any simulation, and before the engines are
+    imported (this module imports none).
+
+    Raises
+    ------
+    BlastscaleInputError
+        No ``[fired]`` or ``[scale]`` table, or a bad point or record (one line).
+    """
+    fs = scenario.fired
+    if fs is None:
+        raise BlastscaleInputError("scenario has no [fired] table: give the records (docs/fired.md)")
+    if scenario.scale is None or scenario.blast.gravity_only:
+        raise BlastscaleInputError("fired needs a designed specimen: the scenario has no [scale] table or no charge")
+    design = Study(scenario).check().design
+    standoff = float(fs.standoff_m if fs.standoff_m is not None else design.specimen.standoff_m)
+    check_geometry(scenario, design, standoff)
+    if gauges is None and fs.gauges:
+        gauges = read_gauges(fs.gauges, names=fs.gauge, max_mb=fs.max_record_mb)
+    if tracks is None and fs.tracks:
+        px = {n: m.px_per_mm for n, m in fs.marker.items()}
+        tracks = read_tracks(fs.tracks, names=fs.marker, px_per_mm=px, max_mb=fs.max_record_mb)
+    return ShotInputs(design, standoff, gauges, tracks)
