@@ -31,6 +31,7 @@ from ..blast.bursts import lab_burst
 from ..blast.load_model import PAPER_LOAD, front_face_clearing, front_face_negative, load_model_record
 from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
 from ..roots import scalar_root
+from .factors import to_specimen
 
 __all__ = [
     "SIMILARITY_TOLERANCE",
@@ -289,7 +290,7 @@ def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = Fa
     load_model, lm_s = design.load_model, design.specimen_load_model  # the design's, scaled once by it
     if load_model is None or not load_model.clearing:
         raise BlastscaleInputError("clearing corrected charge needs a load model with clearing (and its face)")
-    target = float(front_face_clearing(design.prototype, load_model).impulse) * float(design.factors.impulse)
+    target = to_specimen(float(front_face_clearing(design.prototype, load_model).impulse), design.factors, "impulse")
     ms = get_blast_model(design.specimen.blast_model)
     R = float(design.specimen_standoff_m)
     zlo, zhi = valid_scaled_distance_range(ms)
