@@ -71,7 +71,6 @@ ALLOWED_FUNCTIONS = {
     ("report/html.py", "_experiment"): "a label, '1/20', not a quantity",
     ("plots/rocking.py", "plot_similarity"): "a label, 'lambda = 1/20', not a quantity",
     ("plots/similitude.py", "_default_label"): "a label, 'lambda = 1/200', not a quantity",
-    ("similitude/effects.py", "blast_effects"): "takes lambda (scale) from design_model, not the factors",
 }
 
 _LAMBDA = frozenset({"lam", "scale", "factor"})
