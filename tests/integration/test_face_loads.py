@@ -15,7 +15,8 @@ from blastscale.blast import blast_parameters
 from blastscale.blast.faces import MixedModelWarning
 from blastscale.blast.incidence import INCIDENCE_MODELS
 from blastscale.sim3d.face_loads import FaceLoadStrategy, load_arrival_spread
-from blastscale.sim3d.load_methods import LOAD_METHODS, arrival_spread_similarity, make_load
+from blastscale.analysis.structure3d import arrival_spread_similarity
+from blastscale.sim3d.load_methods import LOAD_METHODS, make_load
 from blastscale.sim3d.loads import LoadStrategy
 from blastscale.similitude import design_model
 from blastscale.structures import MultiDrumColumn, RectangularBlock

@@ -27,8 +27,9 @@ from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters
 from ..rocking.capacity import CapacityCurve, capacity_curve, finite_or_none
 from ..rocking.solver import RockingSolver
 from ..rocking.system import as_rocking_system
-from ..similitude.factors import scaling_factors
+from ..similitude.factors import scaling_factors, to_specimen
 from ..similitude.specimen import specimen_system
+from .upscale import upscale
 
 __all__ = ["model_capacity_curve", "ModelCapacity"]
 
@@ -101,7 +102,7 @@ def model_capacity_curve(
     spec = specimen_system(f, as_rocking_system(body, gravity, restitution), load_model)  # scaled once, there
     curve = capacity_curve(
         spec.structure,
-        lam * R,
+        to_specimen(R, f, "length"),
         pulse_shape=pulse_shape,
         blast_model=blast_model,
         solver=solver,
@@ -113,10 +114,10 @@ def model_capacity_curve(
     up = np.full(R.size, np.nan)
     if np.any(ok):
         im = blast_parameters(
-            curve.critical_charge_kg[ok], lam * R[ok], blast_model, extrapolate=extrapolate
+            curve.critical_charge_kg[ok], to_specimen(R[ok], f, "length"), blast_model, extrapolate=extrapolate
         ).reflected_impulse
         up[ok] = charge_for(
-            im / f.impulse,
+            upscale(im, f, "impulse"),
             R[ok],
             "reflected_impulse",
             blast_model,

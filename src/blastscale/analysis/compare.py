@@ -35,6 +35,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_range
 from ..similitude.factors import DIMENSIONLESS, dimension_factor
 from ..sim3d.results import MOTION_VARIABLES
+from .upscale import upscale
 
 __all__ = [
     "DEFAULT_COMPONENTS",
@@ -100,7 +101,7 @@ def upscale_dataset(ds, factors):
             else:
                 out[name] = (var.dims, var.values / f, attrs)
     if "first_arrival_time_s" in out.attrs:
-        out.attrs["first_arrival_time_s"] = float(out.attrs["first_arrival_time_s"]) / float(factors.time)
+        out.attrs["first_arrival_time_s"] = upscale(float(out.attrs["first_arrival_time_s"]), factors, "time")
     out.attrs["upscaled"] = 1
     out.attrs.update({f"factor_{k}": v for k, v in sorted(used.items())})
     return out

@@ -229,8 +229,8 @@ def compare_rocking(
     t = prototype.t_eval
     # the specimen is sampled at exactly the times that correspond to t: up-scaled, its samples are
     # the prototype's times (no interpolation), so the comparison works on the arrays themselves
-    th_m = model.theta_eval / f.angle
-    om_m = model.theta_dot_eval / f.angular_velocity
+    th_m = upscale(model.theta_eval, f, "angle")
+    om_m = upscale(model.theta_dot_eval, f, "angular_velocity")
     dth = float(np.max(np.abs(th_m - prototype.theta_eval)))
     dom = float(np.max(np.abs(om_m - prototype.theta_dot_eval)))
     tips = [x for x in (prototype.collapse_time, upscale(model.collapse_time, f, "time")) if x is not None]
@@ -238,15 +238,17 @@ def compare_rocking(
     dtip = float(np.max(np.abs(th_m - prototype.theta_eval)[upto]))
     dt_tip = dw_tip = fall = None
     if prototype.collapsed and model.collapsed:
-        dt_tip = model.collapse_time / f.time - prototype.collapse_time
-        dw_tip = model.angular_velocity_at_tipping / f.angular_velocity - prototype.angular_velocity_at_tipping
+        dt_tip = upscale(model.collapse_time, f, "time") - prototype.collapse_time
+        dw_tip = (
+            upscale(model.angular_velocity_at_tipping, f, "angular_velocity") - prototype.angular_velocity_at_tipping
+        )
         fall = _fall_phase_diff(
             t,
             prototype.theta_eval,
             prototype.theta_dot_eval,
             th_m,
             om_m,
-            max(prototype.collapse_time, model.collapse_time / f.time),
+            max(prototype.collapse_time, upscale(model.collapse_time, f, "time")),
             frequency_parameter,
         )
     if prototype.collapsed and model.collapsed:

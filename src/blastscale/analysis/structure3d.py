@@ -31,10 +31,10 @@ from .compare import align, compare_responses, upscale_dataset
 from .prototype3d import _block_keys, _load_model_setting, _merged, _with_outcome
 from .systems import Settings3D, Systems3D, run_system
 from .upscale import upscale, upscale_summary
-from ..sim3d.load_methods import arrival_spread_similarity
+from ..sim3d.face_loads import load_arrival_spread
 from .._threads import map_threads
 
-__all__ = ["Comparison3D", "compare_structure3d"]
+__all__ = ["Comparison3D", "compare_structure3d", "arrival_spread_similarity"]
 
 
 def _top_point(ds) -> str:
@@ -66,7 +66,7 @@ class Comparison3D:
         Load method, pulse shape, incidence, duration [s], record interval.
     arrival_spreads : dict
         ``arrival_spread_prototype_s``, ``arrival_spread_model_upscaled_s`` [s], from the two runs'
-        loads (:func:`blastscale.sim3d.load_methods.arrival_spread_similarity`).
+        loads (:func:`arrival_spread_similarity`).
     """
 
     design: object
@@ -154,7 +154,7 @@ class Comparison3D:
     def _arrival_spreads(self) -> dict:
         """``arrival_spread_prototype_s`` and ``arrival_spread_model_upscaled_s`` [s]: first to last
         shock arrival over the loaded faces, the model's divided by the time factor (issue 9,
-        :func:`blastscale.sim3d.load_methods.arrival_spread_similarity`; 0 for Method A), read
+        :func:`arrival_spread_similarity`; 0 for Method A), read
         from the loads the runs used."""
         return dict(self.arrival_spreads)
 
@@ -269,3 +269,28 @@ def _compared(proto, mod, factors, load_end: float) -> tuple:
 
 #: Variables compared by :func:`compare_structure3d` (x components; rotation about y).
 _COMPARED = ("point_displacement", "point_velocity", "com_displacement", "rotation_y")
+
+
+def arrival_spread_similarity(prototype_load, model_load, factors) -> dict:
+    """Arrival-time spreads of a model experiment, for a comparison's ``similarity`` block, from
+    the loads its two runs used (nothing is rebuilt).
+
+    Parameters
+    ----------
+    prototype_load, model_load : LoadStrategy
+        The prototype's load and the specimen's (at the specimen's size), as run.
+    factors : ScalingFactors
+        Specimen / prototype factors (``factors.time``: lambda_t).
+
+    Returns
+    -------
+    dict
+        ``arrival_spread_prototype_s`` (first to last arrival over the loaded faces [s]) and
+        ``arrival_spread_model_upscaled_s`` (the specimen's, divided by the time factor lambda_t,
+        :func:`~.upscale.upscale`, in prototype seconds [s]). Under exact similarity the two are equal; see
+        ``docs/face_loads.md`` for why the general law's model does not keep them equal.
+    """
+    return {
+        "arrival_spread_prototype_s": load_arrival_spread(prototype_load),
+        "arrival_spread_model_upscaled_s": upscale(load_arrival_spread(model_load), factors, "time"),
+    }

@@ -19,7 +19,10 @@ __all__ = ["upscale", "upscale_summary"]
 
 
 def upscale(value, factors, dimension: str, name: str = "value"):
-    """``value`` (specimen units) in prototype units: ``value / factor(dimension)``; None stays None."""
+    """``value`` (specimen units) in prototype units: ``value / factor(dimension)``; None stays None.
+
+    The inverse of :func:`~blastscale.similitude.factors.to_specimen` (``value * factor``) through the same
+    table, :func:`~blastscale.similitude.factors.dimension_factor`."""
     if value is None:
         return None
     return value / dimension_factor(factors, dimension, name)

@@ -16,6 +16,7 @@ from ._app import app
 from ._output import console, fmt_value, table
 from . import options as opt
 from ..analysis.block3d_similarity import BLOCK_SIMILARITY_KEYS, BLOCK_SUMMARY_KEYS
+from ..similitude.factors import to_specimen
 from .flags import scenario_from_flags
 from .steps import (
     SIMILARITY_TITLE,
@@ -79,7 +80,7 @@ def block3d_output(result, contact, incidence: Optional[str] = None) -> dict:
         out["model_experiment"] = {
             "charge_kg": d.specimen_charge_kg,
             "standoff_m": d.specimen_standoff_m,
-            "height_m": block.height * scale,
+            "height_m": to_specimen(block.height, d.factors, "length"),
         }
     return out
 

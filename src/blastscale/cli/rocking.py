@@ -19,6 +19,7 @@ from .flags import flags_named
 from . import options as opt
 from .steps import SIMILARITY_TITLE, BlockFlags, add_figure, answer, scale_keys
 from ..blast.load_model import load_model_record
+from ..similitude.factors import to_specimen
 from ..study.engines import load_model_of
 from ..study.study import Study
 from .flags import scenario_from_flags
@@ -154,13 +155,12 @@ def _rock_output(result, block, inputs: dict) -> dict:
     out.update({k: v for k, v in planar.to_dict().items() if v is not None})
     d = result.design
     if d is not None:
-        scale = inputs["scale"]
         out["model_experiment"] = {
             "charge_kg": d.specimen_charge_kg,
             "standoff_m": d.specimen_standoff_m,
-            "height_m": block.height * scale,
-            "width_m": block.width * scale,
-            "density_kg_m3": block.density * d.density_ratio,
+            "height_m": to_specimen(block.height, d.factors, "length"),
+            "width_m": to_specimen(block.width, d.factors, "length"),
+            "density_kg_m3": to_specimen(block.density, d.factors, "density"),
             "time_factor": d.factors.time,
             "angular_velocity_factor": d.factors.angular_velocity,
         }

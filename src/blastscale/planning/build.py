@@ -6,6 +6,8 @@ from __future__ import annotations
 import numpy as np
 from collections import Counter
 
+from ..similitude.factors import to_specimen
+
 __all__ = ["spec_dims", "specimen_unit", "specimen_mass", "specimen_density"]
 
 
@@ -47,7 +49,7 @@ def specimen_mass(design) -> float:
     spec, proto = design.specimen_structure, design.prototype_structure
     if hasattr(spec, "width") or proto is None:
         return float(spec.mass)
-    return float(proto.mass) * float(design.factors.length) ** 3 * float(design.density_ratio)
+    return to_specimen(float(proto.mass), design.factors, "mass")
 
 
 def specimen_density(design) -> float:
@@ -55,4 +57,4 @@ def specimen_density(design) -> float:
     spec, proto = design.specimen_structure, design.prototype_structure
     if getattr(spec, "density", None):
         return float(spec.density)
-    return float(proto.mass) / float(proto.volume) * float(design.density_ratio)
+    return to_specimen(float(proto.mass) / float(proto.volume), design.factors, "density")

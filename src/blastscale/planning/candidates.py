@@ -25,6 +25,7 @@ from .shot import candidate_materials
 from ..structures.block import RectangularBlock
 from ..structures.from_spec import is_block
 from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
+from ..similitude.factors import to_specimen
 
 __all__ = [
     "LAMBDA_DENOMINATORS",
@@ -256,8 +257,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
             )
         return ev
     ev.safety = safety_envelope(ev.charge.tnt_equivalent_pressure_kg, lab.safety_threshold)
-    tf = float(d.factors.time)
-    ev.rise_s, ev.response_s = timing.rise_s * tf, timing.response_s * tf
+    ev.rise_s, ev.response_s = (to_specimen(t, d.factors, "time") for t in (timing.rise_s, timing.response_s))
     m = d.specimen
     z = float(m.scaled_distance)
     inc = (

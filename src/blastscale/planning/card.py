@@ -32,6 +32,7 @@ from .shot import (
 )
 from ..structures.from_spec import is_block
 from ..blast.parameters import get_blast_model
+from ..similitude.factors import to_specimen
 
 __all__ = ["study_test_card", "check_lab"]
 
@@ -49,8 +50,9 @@ def check_lab(design, lab) -> None:
             warnings.warn(f"test card: {text}", UserWarning, stacklevel=2)
 
 
-def _timing_3d(result, factor: float, collapsed: bool):
-    """Specimen timing from the up-scaled 3D history of the top point (prototype times x the time factor)."""
+def _timing_3d(result, factors, collapsed: bool):
+    """Specimen timing from the up-scaled 3D history of the top point (prototype times in specimen times,
+    :func:`~blastscale.similitude.factors.to_specimen`; ``factors``: the design's)."""
     cmp3 = result.response3d
     ds = cmp3.upscaled_dataset
     x = np.abs(ds["point_displacement"].sel(point=cmp3.top_point, component="x").values)
@@ -60,7 +62,7 @@ def _timing_3d(result, factor: float, collapsed: bool):
     tm = rocking_timing(t[keep], x[keep], 0.0 if not collapsed else -1.0, False, None)
     if collapsed and summ.get("collapse_time_s") is not None:
         tm = Timing(tm.rise_s, float(summ["collapse_time_s"]) - float(cmp3.design.prototype.arrival_time))
-    return Timing(tm.rise_s * factor, tm.response_s * factor)
+    return Timing(to_specimen(tm.rise_s, factors, "time"), to_specimen(tm.response_s, factors, "time"))
 
 
 def specimen_timing(result) -> "Timing | None":
@@ -73,14 +75,13 @@ def specimen_timing(result) -> "Timing | None":
     if result.planar is not None:
         return timing_of(result.planar.model)
     if result.response3d is not None and getattr(result.response3d, "upscaled_dataset", None) is not None:
-        return _timing_3d(result, float(d.factors.time), bool(result.summary()["3d"]["model"]["collapsed"]))
+        return _timing_3d(result, d.factors, bool(result.summary()["3d"]["model"]["collapsed"]))
     return None
 
 
 def _response(result, spec) -> dict:
     """Collapsed, first peak, timing, top displacement and reach of the specimen and reach of the prototype."""
     d = result.design
-    lam = float(d.factors.length)
     out = {"reach_m": [], "prototype_reach_m": []}
     if result.planar is not None:
         m, p = result.planar.model, result.planar.prototype
@@ -107,18 +108,18 @@ def _response(result, spec) -> dict:
         out["prototype_reach_m"].append(reach_3d(cmp3.prototype_dataset, result.structure))
         up = getattr(cmp3, "upscaled_dataset", None)
         if up is not None:
-            out["reach_m"].append(lam * reach_3d(up, result.structure))
+            out["reach_m"].append(to_specimen(reach_3d(up, result.structure), d.factors, "length"))
         if "timing" not in out:
             col = bool(s3["model"]["collapsed"])
             out.update(
                 collapsed=col,
                 rotation=None if col else float(s3["model"]["max_rotation_rad"]),
-                timing=_timing_3d(result, float(d.factors.time), col),
+                timing=_timing_3d(result, d.factors, col),
                 collapse_time=None
                 if s3["model"]["collapse_time_s"] is None
-                else float(s3["model"]["collapse_time_s"]) * float(d.factors.time),
+                else to_specimen(float(s3["model"]["collapse_time_s"]), d.factors, "time"),
             )
-            out["top_m"] = lam * float(s3["model"]["max_top_displacement_m"])
+            out["top_m"] = to_specimen(float(s3["model"]["max_top_displacement_m"]), d.factors, "length")
     return out
 
 
@@ -331,7 +332,7 @@ def _build_keys(sc, d, spec) -> dict:
         "depth_m": ds,
         "mass_kg": float(sum(b.mass for b in spec.bodies)),
         "material": mat,
-        "density_kg_m3": float(getattr(spec, "density", sc.structure.density_kg_m3 * d.density_ratio)),
+        "density_kg_m3": float(getattr(spec, "density", to_specimen(sc.structure.density_kg_m3, d.factors, "density"))),
         "scale": d.scale,
         "density_ratio": d.density_ratio,
         "law": d.law,

@@ -39,6 +39,7 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..blast.bursts import lab_burst
 from ..similitude.effects import structure_top
+from ..similitude.factors import to_specimen
 from ..scenario.lab import SAME_MATERIAL
 from ..scenario.specs import ScaleSpec
 from ..study.study import Study
@@ -156,13 +157,14 @@ def candidate_design(scenario, structure, lab) -> Callable:
     return design
 
 
-def front_arrival_spread(params, structure, scale: float = 1.0) -> float:
-    """Arrival-time spread [s] over the front of ``structure`` (prototype dimensions, x ``scale`` for
-    the specimen's): from the front's foot (the stand-off) to its top corner (height, half its width
+def front_arrival_spread(params, structure, factors=None) -> float:
+    """Arrival-time spread [s] over the front of ``structure`` (prototype dimensions; with ``factors``, a
+    :class:`~blastscale.similitude.ScalingFactors`, the specimen's: :func:`~blastscale.similitude.factors.to_specimen`): from the front's foot (the stand-off) to its top corner (height, half its width
     across the blast), with the blast model's arrival-time fit at ``params`` (charge, stand-off): an estimate
     before any load is built (a built load's own spread: :func:`blastscale.sim3d.face_loads.load_arrival_spread`)."""
 
-    h, _, dp = (scale * x for x in spec_dims(structure))
+    dims = spec_dims(structure)
+    h, _, dp = dims if factors is None else (to_specimen(x, factors, "length") for x in dims)
     m = get_blast_model(params.blast_model) if isinstance(params.blast_model, str) else params.blast_model
     w13 = float(params.charge_kg) ** (1.0 / 3.0)
     r0 = float(params.standoff_m)
@@ -176,16 +178,17 @@ def front_arrival_spread(params, structure, scale: float = 1.0) -> float:
 def screening_error(ev, load_method: str) -> float:
     """The screening error of an evaluated design [-] (module docstring)."""
     d = ev.design
-    tf = float(d.factors.time)
-    delta = float(d.specimen.positive_duration) / (tf * float(d.prototype.positive_duration)) - 1.0
+    delta = (
+        float(d.specimen.positive_duration) / to_specimen(float(d.prototype.positive_duration), d.factors, "time") - 1.0
+    )
     err = abs(delta) * float(ev.impulsive.prototype_ratio)
     if load_method != "A":
         proto = d.prototype_structure
         dt_p = front_arrival_spread(d.prototype, proto)
-        dt_s = front_arrival_spread(d.specimen, proto, float(d.factors.length))
+        dt_s = front_arrival_spread(d.specimen, proto, d.factors)
         p = float(ev.impulsive.prototype_ratio) / float(d.prototype.positive_duration)  # rad/s
         if dt_p > 0:
-            err = max(err, abs(dt_s / (tf * dt_p) - 1.0) * dt_p * p)
+            err = max(err, abs(dt_s / to_specimen(dt_p, d.factors, "time") - 1.0) * dt_p * p)
     return err
 
 
@@ -232,12 +235,12 @@ def run_3d(
         res = Study.from_candidate(scenario, scale, engine="3d").run()
     s3 = res.summary()["3d"]
     cmp3 = res.response3d
-    lam = float(ev.design.factors.length)
+    f = ev.design.factors
     up = getattr(cmp3, "upscaled_dataset", None)
     sim = {
         "error": similarity_3d(s3),
-        "specimen_top_m": lam * float(s3["model"]["max_top_displacement_m"]),
-        "specimen_reach_m": lam * reach_3d(up, res.structure) if up is not None else math.nan,
+        "specimen_top_m": to_specimen(float(s3["model"]["max_top_displacement_m"]), f, "length"),
+        "specimen_reach_m": to_specimen(reach_3d(up, res.structure), f, "length") if up is not None else math.nan,
         "prototype_reach_m": reach_3d(cmp3.prototype_dataset, res.structure),
     }
     odds = None

@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from .sim3d import axes_or_new
+from ..analysis.upscale import upscale
 
 __all__ = ["plot_gauge", "plot_marker"]
 
@@ -32,14 +33,13 @@ def plot_marker(
     refit,
     *,
     name: str = "marker",
-    length_factor: float = 1.0,
-    time_factor: float = 1.0,
+    factors=None,
     units: str = "specimen",
     ax=None,
 ):
     """A marker's horizontal displacement: ``measured``, ``predicted`` and ``refit``, each ``(t [s], ux [m])``;
-    divided by ``length_factor`` and ``time_factor`` (1: the specimen's units; the design's factors: the
-    prototype's), shown in mm (specimen) or m (prototype) and s."""
+    in the specimen's units, or with ``factors`` (the design's :class:`~blastscale.similitude.ScalingFactors`)
+    up-scaled to the prototype's (:func:`~blastscale.analysis.upscale.upscale`), shown in mm (specimen) or m (prototype) and s."""
     ax = axes_or_new(ax)
     k = 1e3 if units == "specimen" else 1.0
     for (t, u), style, label in (
@@ -47,7 +47,10 @@ def plot_marker(
         (predicted, {"color": "C3", "ls": "--", "lw": 1.2}, "predicted (designed load)"),
         (refit, {"color": "C0", "lw": 1.4}, "re-simulated (as fired)"),
     ):
-        ax.plot(np.asarray(t) / time_factor, k * np.asarray(u) / length_factor, label=label, **style)
+        t, u = np.asarray(t), k * np.asarray(u)
+        if factors is not None:
+            t, u = upscale(t, factors, "time"), upscale(u, factors, "length")
+        ax.plot(t, u, label=label, **style)
     ax.set_xlabel(f"time after firing [s] ({units})")
     ax.set_ylabel(f"{name}: horizontal displacement [{'mm' if units == 'specimen' else 'm'}] ({units})")
     ax.legend(fontsize="small")

@@ -52,7 +52,7 @@ def fired_figures(result) -> list[tuple[str, str, str, bytes]]:
         fig, axes = plt.subplots(1, 2, figsize=(11, 3.6))
         args = ((m["t"], m["ux"]), (pr["t"], pr["ux"]), (rf["t"], rf["ux"]))
         plot_marker(*args, name=name, ax=axes[0])
-        plot_marker(*args, name=name, length_factor=f.length, time_factor=f.time, units="prototype", ax=axes[1])
+        plot_marker(*args, name=name, factors=f, units="prototype", ax=axes[1])
         fig.tight_layout()
         out.append(
             (

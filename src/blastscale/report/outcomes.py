@@ -6,6 +6,7 @@ from __future__ import annotations
 import html
 
 from ..analysis.gravity_alone import STABILITY_EXTENSION_CAP
+from ..analysis.upscale import upscale
 from ..planning.card import specimen_timing
 
 __all__ = ["STABILITY_RULE", "stability_words", "stability_lead", "first_peak_rows", "timing_rows", "ARRIVAL_NOTE"]
@@ -101,9 +102,14 @@ def timing_rows(result) -> list:
     if tm is None:
         return []
     d = result.design
-    ft, arrival = float(d.factors.time), float(d.specimen.arrival_time)
+    arrival = float(d.specimen.arrival_time)
     window = arrival + RECORD_MARGIN * tm.response_s
     return [
-        ("time to the first peak, from the arrival (specimen)", tm.rise_s / ft, tm.rise_s / 1e-3, "ms"),
+        (
+            "time to the first peak, from the arrival (specimen)",
+            upscale(tm.rise_s, d.factors, "time"),
+            tm.rise_s / 1e-3,
+            "ms",
+        ),
         (f"record window: detonation to the arrival plus {RECORD_MARGIN:g} x the response", None, window / 1e-3, "ms"),
     ]

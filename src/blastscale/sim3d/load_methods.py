@@ -5,10 +5,10 @@ model experiment."""
 from __future__ import annotations
 
 from .._validate import check_choice
-from .face_loads import load_arrival_spread, method_b, method_c
+from .face_loads import method_b, method_c
 from .loads import LoadStrategy, method_a
 
-__all__ = ["LOAD_METHODS", "make_load", "register_load_method", "arrival_spread_similarity"]
+__all__ = ["LOAD_METHODS", "make_load", "register_load_method"]
 
 
 #: Load methods by name: factory(structure, blast, *, pulse, incidence, extrapolate) -> LoadStrategy,
@@ -76,28 +76,3 @@ def make_load(
     return LOAD_METHODS[method](
         structure, blast, pulse_shape=pulse_shape, incidence=incidence, extrapolate=extrapolate, **kw
     )
-
-
-def arrival_spread_similarity(prototype_load, model_load, factors) -> dict:
-    """Arrival-time spreads of a model experiment, for a comparison's ``similarity`` block, from
-    the loads its two runs used (nothing is rebuilt).
-
-    Parameters
-    ----------
-    prototype_load, model_load : LoadStrategy
-        The prototype's load and the specimen's (at the specimen's size), as run.
-    factors : ScalingFactors
-        Specimen / prototype factors (``factors.time``: lambda_t).
-
-    Returns
-    -------
-    dict
-        ``arrival_spread_prototype_s`` (first to last arrival over the loaded faces [s]) and
-        ``arrival_spread_model_upscaled_s`` (the specimen's, divided by the time factor lambda_t,
-        in prototype seconds [s]). Under exact similarity the two are equal; see
-        ``docs/face_loads.md`` for why the general law's model does not keep them equal.
-    """
-    return {
-        "arrival_spread_prototype_s": load_arrival_spread(prototype_load),
-        "arrival_spread_model_upscaled_s": load_arrival_spread(model_load) / factors.time,
-    }

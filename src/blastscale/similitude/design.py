@@ -202,7 +202,7 @@ def design_model(
         face = (structure.depth, structure.height) if is_block(structure) else (None, structure_top(structure))
     effects_, notes = None, ()
     if effects and (ms is not bm or not lm.is_paper or specimen_charge_height is not None):
-        effects_, notes = _effects(proto, spec, ok, scalar, lm, lm_s, lam, face, specimen_charge_height, extrapolate)
+        effects_, notes = _effects(proto, spec, ok, scalar, lm, lm_s, f, face, specimen_charge_height, extrapolate)
         for n in notes:
             warnings.warn(n, BlastSimilarityWarning, stacklevel=2)
     return ModelDesign(
@@ -310,12 +310,12 @@ def _design_cases(W, R, lam, gam, sig, law, bm, ms, extrapolate) -> tuple:
     return f, note, ok, proto, spec
 
 
-def _effects(proto, spec, ok, scalar, lm, lm_s, lam, face, specimen_charge_height, extrapolate) -> tuple:
+def _effects(proto, spec, ok, scalar, lm, lm_s, factors, face, specimen_charge_height, extrapolate) -> tuple:
     """(effects, notes) of :func:`~.effects.blast_effects`: of the one case, or of every valid case (the
     numbers then arrays over the cases, NaN where invalid; each note once). None when no case is valid."""
     kw = dict(
         specimen_load_model=lm_s,
-        scale=lam,
+        factors=factors,
         face=face,
         specimen_charge_height=specimen_charge_height,
         extrapolate=extrapolate,

@@ -25,12 +25,13 @@ import math
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_positive_scalar
+from .._validate import BlastscaleInputError
 from ..structures.assembly import Assembly
 from ..blast.bursts import lab_burst
 from ..blast.load_model import PAPER_LOAD, front_face_clearing, front_face_negative, load_model_record
 from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
 from ..roots import scalar_root
+from .factors import to_specimen
 
 __all__ = [
     "SIMILARITY_TOLERANCE",
@@ -125,7 +126,7 @@ def blast_effects(
     load_model=None,
     *,
     specimen_load_model,
-    scale: float,
+    factors,
     face=None,
     specimen_charge_height=None,
     extrapolate: bool = False,
@@ -138,8 +139,8 @@ def blast_effects(
         The design's blast parameters of each system (one charge and stand-off each).
     load_model : LoadModel, optional
         The prototype's load model (its face for clearing; the specimen's face is lambda times it).
-    scale : float
-        lambda [-].
+    factors : ScalingFactors
+        The design's specimen / prototype factors (``length``: lambda, for the specimen's face).
     face : (float, float), optional
         The prototype's loaded face (width, height) [m] (:func:`front_face`), for the lab burst's check
         when the load model has no clearing face.
@@ -160,7 +161,6 @@ def blast_effects(
         neither surface nor free-air).
     """
 
-    lam = check_positive_scalar("scale", scale)
     lm_p = load_model or PAPER_LOAD
     lm_s = PAPER_LOAD if specimen_load_model is None else specimen_load_model  # the design's
     out: dict = {
@@ -181,7 +181,11 @@ def blast_effects(
     if lm_p.negative_phase:
         out["negative_phase"] = _negative_phase(((prototype, lm_p), (specimen, lm_s)), notes, extrapolate)
     if specimen_charge_height is not None:
-        height = lm_s.face_height_m if lm_s.clearing else (None if face is None else lam * float(face[1]))
+        height = (
+            lm_s.face_height_m
+            if lm_s.clearing
+            else (None if face is None else to_specimen(float(face[1]), factors, "length"))
+        )
         out["lab_burst"] = _lab_burst(specimen, specimen_charge_height, height, notes)
     return out, tuple(notes)
 
@@ -289,7 +293,7 @@ def clearing_corrected_charge(design, load_model=None, *, extrapolate: bool = Fa
     load_model, lm_s = design.load_model, design.specimen_load_model  # the design's, scaled once by it
     if load_model is None or not load_model.clearing:
         raise BlastscaleInputError("clearing corrected charge needs a load model with clearing (and its face)")
-    target = float(front_face_clearing(design.prototype, load_model).impulse) * float(design.factors.impulse)
+    target = to_specimen(float(front_face_clearing(design.prototype, load_model).impulse), design.factors, "impulse")
     ms = get_blast_model(design.specimen.blast_model)
     R = float(design.specimen_standoff_m)
     zlo, zhi = valid_scaled_distance_range(ms)

@@ -27,7 +27,7 @@ from ..blast.parameters import BlastParameters
 from ..constants import STANDARD_GRAVITY
 from ..structures.from_spec import is_block
 from ..structures.block import RectangularBlock
-from .factors import ScalingFactors
+from .factors import ScalingFactors, to_specimen
 from ..blast.load_model import load_model_record
 
 __all__ = ["ImpulsiveCheck", "ModelDesign", "impulsive_check", "DEFAULT_IMPULSIVE_THRESHOLD"]
@@ -164,7 +164,7 @@ class ModelDesign:
     @property
     def specimen_gravity(self) -> float:
         """The specimen's gravity [m/s^2] (= varsigma g)."""
-        return self.gravity * self.gravity_ratio
+        return to_specimen(self.gravity, self.factors, "gravity")
 
     @property
     def specimen_charge_kg(self) -> float:

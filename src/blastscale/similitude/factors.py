@@ -27,7 +27,15 @@ from dataclasses import asdict, dataclass
 
 from .._validate import BlastscaleInputError, check_finite, check_positive_scalar, check_range
 
-__all__ = ["ScalingFactors", "scaling_factors", "pi_terms", "FACTOR_UNITS", "DIMENSIONLESS", "dimension_factor"]
+__all__ = [
+    "ScalingFactors",
+    "scaling_factors",
+    "pi_terms",
+    "FACTOR_UNITS",
+    "DIMENSIONLESS",
+    "dimension_factor",
+    "to_specimen",
+]
 
 #: What each factor scales (prototype unit), for tables and metadata.
 FACTOR_UNITS = {
@@ -252,8 +260,10 @@ def dimension_factor(factors, dimension: str, name: str = "variable") -> float:
     """The specimen / prototype factor [-] of a physical ``dimension``: 1 for dimensionless and
     count, else the :class:`ScalingFactors` field of that name (``name`` labels the error).
 
-    The one factor lookup of up-scaling (summaries: :func:`blastscale.analysis.upscale.upscale_summary`;
-    histories: :func:`blastscale.analysis.compare.upscale_dataset`)."""
+    The one factor lookup of both directions: prototype -> specimen (:func:`to_specimen`, ``x * factor``) and
+    specimen -> prototype (:func:`blastscale.analysis.upscale.upscale`, ``x / factor``; summaries:
+    :func:`blastscale.analysis.upscale.upscale_summary`; histories:
+    :func:`blastscale.analysis.compare.upscale_dataset`)."""
     if dimension in DIMENSIONLESS:
         return 1.0
     value = getattr(factors, dimension, None) if isinstance(dimension, str) else None
@@ -264,3 +274,43 @@ def dimension_factor(factors, dimension: str, name: str = "variable") -> float:
             "time, momentum, force, mass, ...)"
         )
     return float(value)
+
+
+def to_specimen(value, factors, dimension: str, name: str = "value"):
+    """``value`` (prototype units) in specimen units: ``value * factor(dimension)``; None stays None.
+
+    The one down-scaling rule, the inverse of :func:`blastscale.analysis.upscale.upscale` (``value /
+    factor``) through the same table, :func:`dimension_factor`: a prototype length x lambda, a time x
+    sqrt(lambda / varsigma), a mass x gamma lambda^3, ... (:class:`ScalingFactors`).
+
+    Parameters
+    ----------
+    value : float or array_like or None
+        A prototype quantity [SI] (a float or a numpy array).
+    factors : ScalingFactors
+        Specimen / prototype factors.
+    dimension : str
+        Its physical dimension: a :class:`ScalingFactors` field (``"length"``, ``"time"``, ``"mass"``,
+        ``"impulse"``, ...) or one of :data:`DIMENSIONLESS`.
+    name : str
+        The quantity's name, for the error message.
+
+    Returns
+    -------
+    float or ndarray or None
+        ``value * dimension_factor(factors, dimension)`` [SI, specimen].
+
+    Raises
+    ------
+    BlastscaleInputError
+        ``dimension`` is not a factor's name, or its factor is not known (``charge`` before a blast law).
+
+    Examples
+    --------
+    >>> f = scaling_factors(0.25)
+    >>> to_specimen(2.0, f, "length"), to_specimen(2.0, f, "time"), to_specimen(None, f, "mass")
+    (0.5, 1.0, None)
+    """
+    if value is None:
+        return None
+    return value * dimension_factor(factors, dimension, name)

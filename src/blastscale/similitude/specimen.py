@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from typing import Any, NamedTuple
 
-from .factors import ScalingFactors
+from .factors import ScalingFactors, to_specimen
 
 __all__ = ["SpecimenSystem", "specimen_system"]
 
@@ -89,6 +89,6 @@ def specimen_system(
         structure=None if structure is None else structure.scaled(factors),
         load_model=None if load_model is None else load_model.scaled(factors),
         contact=None if contact is None else contact.scaled(factors),
-        duration=None if duration is None else float(duration) * factors.time,
-        gravity=None if gravity is None else float(gravity) * factors.gravity,
+        duration=None if duration is None else to_specimen(float(duration), factors, "time", "duration"),
+        gravity=None if gravity is None else to_specimen(float(gravity), factors, "gravity"),
     )

@@ -24,6 +24,7 @@ from ..analysis.ensemble import ensemble_compare
 from ..analysis.systems import Settings3D, System3D, Systems3D
 from ..blast.parameters import model_for_burst
 from ..similitude.effects import front_face
+from ..similitude.factors import to_specimen
 from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
 from ..rocking.system import RockingSystem
 from ..rocking.solver import DEFAULT_SOLVER
@@ -169,7 +170,7 @@ def _run_planar(plan):
         sys_m,
         front_face_pulse(d.specimen, shape, d.specimen_load_model, extrapolate=ex),
         dur_m,
-        t_eval=np.minimum(t * d.factors.time, dur_m),
+        t_eval=np.minimum(to_specimen(t, d.factors, "time"), dur_m),
     )
     return compare_rocking(res_p, res_m, d, sys_p.frequency_parameter)
 

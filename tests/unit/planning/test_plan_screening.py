@@ -167,7 +167,7 @@ def test_arrival_spread_of_a_hopkinson_cranz_specimen_is_the_cube_root_scaled_on
     s = from_spec(_scenario(WALL).structure)
     d = design_model(10.0, 5.0, 1 / 16, None, 1.0, "hopkinson-cranz", "kingery-bulmash", s)
     dt_p = front_arrival_spread(d.prototype, s)
-    dt_s = front_arrival_spread(d.specimen, s, d.factors.length)
+    dt_s = front_arrival_spread(d.specimen, s, d.factors)
     assert 1e-4 < dt_p < 1e-2  # ms over a 2.5 m front at 5 m
     assert dt_s / (d.factors.time * dt_p) == pytest.approx(0.25, rel=1e-9)
 
