@@ -75,7 +75,15 @@ from .free_swing import first_swing_margin, first_swing_peak
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import RockingSystem, as_rocking_system
 
-__all__ = ["overturn_margin", "overturns", "first_swing", "first_swing_blast", "first_swing_checked", "pulse_phase", "FirstSwing"]
+__all__ = [
+    "overturn_margin",
+    "overturns",
+    "first_swing",
+    "first_swing_blast",
+    "first_swing_checked",
+    "pulse_phase",
+    "FirstSwing",
+]
 
 
 @dataclass(frozen=True)
