@@ -75,9 +75,11 @@ def friedlander_impulse_ratio(d):
 #: decreases monotonically from its peak, and no modified Friedlander pulse fits.
 MAX_IMPULSE_RATIO = math.e - 2.0
 
-#: The lower end of the decay's bracket, u = asinh(-1), and k there (as evaluated: ~e - 2).
+#: The lower end of the decay's bracket, u = asinh(-1), and ln k there (k as evaluated: ~e - 2).
 _U_LO = math.asinh(-1.0)
-_K_LO = float(friedlander_impulse_ratio(math.sinh(_U_LO)))
+_LN_K_LO = float(np.log(friedlander_impulse_ratio(np.sinh(_U_LO))))
+#: k at d = 1e-6, where the Newton polish of :func:`friedlander_decay` takes its slope for |d| < 1e-6.
+_K_NEWTON_FLOOR = float(friedlander_impulse_ratio(1e-6))
 
 
 def friedlander_decay(peak, duration, impulse, *, allow_negative: bool = True):
@@ -136,22 +138,26 @@ def friedlander_decay(peak, duration, impulse, *, allow_negative: bool = True):
         if not allow_negative:
             raise BlastscaleInputError(msg + "; valid range for a positive decay is (0, 0.5)")
         warnings.warn(msg + "; using the negative decay in (-1, 0]", NegativeDecayWarning, stacklevel=2)
-    # the root in u = asinh(d) (package root finder): f(u) = k - k(sinh u) increases with u. Bracket:
-    # k(-1) = e - 2 > k, and k(d) < 1/d for every d > 0 (as e^{-d} < 1), so the root lies below d = 1/k.
+    # the root in u = asinh(d) (package root finder) of f(u) = ln k - ln k(sinh u), increasing in u
+    # (k > 0 for every d) and nearly linear for large u (k ~ 1/d = 2 e^-u): a few steps for tiny k.
+    # Bracket: k(-1) = e - 2 > k, and k(d) < 1/d for every d > 0 (as e^{-d} < 1), so the root lies
+    # below d = 1/k.
     kf = k.ravel()
+    lnk = np.log(kf)
     lo = np.full(kf.shape, _U_LO)
     hi = np.arcsinh(1.0 / kf)
 
     def excess(idx, u):
-        return kf[idx] - friedlander_impulse_ratio(np.sinh(u))
+        return lnk[idx] - np.log(friedlander_impulse_ratio(np.sinh(u)))
 
-    bracket = bracketed_root(excess, lo, hi, kf - _K_LO, excess(np.arange(kf.size), hi))
+    bracket = bracketed_root(excess, lo, hi, lnk - _LN_K_LO, excess(np.arange(kf.size), hi))
     d = np.sinh(root_of_bracket(*bracket[:4])).reshape(k.shape)
-    for _ in range(3):  # Newton polish
+    for _ in range(3):  # Newton polish (no step where |d| < 1e-6: the bracket is to double precision there)
+        small = np.abs(d) < 1e-6
+        dsafe = np.where(small, 1e-6, d)
         kd = friedlander_impulse_ratio(d)
-        dsafe = np.where(np.abs(d) < 1e-6, 1e-6, d)
-        dk = _impulse_ratio_slope(dsafe, friedlander_impulse_ratio(dsafe))
-        step = np.where(np.abs(d) < 1e-6, 0.0, (kd - k) / dk)
+        dk = _impulse_ratio_slope(dsafe, np.where(small, _K_NEWTON_FLOOR, kd))  # k(dsafe)
+        step = np.where(small, 0.0, (kd - k) / dk)
         d = d - step
     return d if d.ndim else float(d)
 
