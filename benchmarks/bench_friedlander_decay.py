@@ -3,7 +3,7 @@
 :func:`blastscale.blast.friedlander.friedlander_decay` solves paper Eq. (2) for the decay d in u = asinh(d):
 until issue #34 by its own 90-step vectorised bisection (plus a scalar fast path, ``_bisect_one``, bit for
 bit the array path), now by :func:`blastscale.roots.bracketed_root` (Illinois regula falsi) on the same
-bracket; both end with the same 3-step Newton polish. The old solver is kept below, verbatim, as the
+bracket, as the root of ln k - ln k(sinh u); both end with the same 3-step Newton polish. The old solver is kept below, verbatim, as the
 reference (:func:`bisection_decay`).
 
 ``accuracy``: the largest relative change of d over a dense grid of impulse ratios k in (0, e - 2): tiny k

@@ -87,8 +87,9 @@ def friedlander_decay(peak, duration, impulse, *, allow_negative: bool = True):
 
     Solves paper Eq. (2), :math:`i = P_{ro} t_o (e^{-d} + d - 1)/d^2`, for d. The left side
     is strictly decreasing in d, so the root is unique; it is found in ``u = asinh(d)`` on the
-    bracket ``-1 < d < 1/k`` by the package's root finder (:func:`blastscale.roots.bracketed_root`,
-    vectorised Illinois regula falsi, to double precision), followed by 3 Newton steps in d
+    bracket ``-1 < d < 1/k``, as the root of ``ln k - ln k(sinh u)``, by the package's root finder
+    (:func:`blastscale.roots.bracketed_root`, vectorised Illinois regula falsi, to double
+    precision), followed by 3 Newton steps in d
     (k in (0, e - 2), i.e. d from -1 to beyond 1e12: d to ~1e-15 relative for |d| >= 1; below,
     the rounding of Eq. (2) itself limits d to ~1.3e-15 / d^2 relative, ~7e-16 absolute near 0).
     One decay and an array of decays take the same path (bit for bit the same values).
