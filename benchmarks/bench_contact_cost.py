@@ -21,8 +21,7 @@ from bench_estimate import block_file
 
 from blastscale.scenario import load_scenario
 from blastscale.sim3d.integrate import SETTLE_TIME_CONSTANTS, step_factor_after_load
-from blastscale.study import Study
-from blastscale.study import memory
+from blastscale.study import Study, memory
 
 DEFAULT = ["5x5:0.1:1", "10x10:0.01:0.2", "20x20:0.1:0.2"]
 

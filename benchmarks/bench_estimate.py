@@ -15,11 +15,11 @@ import tempfile
 import time
 from pathlib import Path
 
-from blastscale.units import format_size
 from blastscale.io.output import tree_size
 from blastscale.scenario import Scenario, load_scenario
 from blastscale.study import Study
 from blastscale.study.memory import estimate_run
+from blastscale.units import format_size
 
 
 def block_file(path: Path, courses: int, units: int, unit_m=(0.5, 0.25, 0.15)) -> Path:

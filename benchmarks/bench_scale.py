@@ -16,6 +16,7 @@ import time
 
 import numpy as np
 
+from blastscale._threads import available_cores
 from blastscale.analysis.ensemble import ensemble_compare
 from blastscale.analysis.systems import Settings3D, System3D, Systems3D
 from blastscale.blast import blast_parameters
@@ -23,7 +24,6 @@ from blastscale.scenario import Scenario
 from blastscale.sim3d.contact import reference_contact
 from blastscale.sim3d.model import structure_scene
 from blastscale.sim3d.reference import to_reference
-from blastscale._threads import available_cores
 from blastscale.structures import MultiDrumColumn, wall
 from blastscale.structures.block import RectangularBlock
 

@@ -41,12 +41,12 @@ from dataclasses import replace
 
 import numpy as np
 
-from blastscale.similitude import scaling_factors
+from blastscale.analysis.block3d_similarity import block_dataset, block_summary
 from blastscale.blast.parameters import blast_parameters
 from blastscale.blast.pulses import Triangular
-from blastscale.analysis.block3d_similarity import block_dataset, block_summary
 from blastscale.sim3d import BoxShape, ContactSettings, MethodA, make_load, simulate_structure
 from blastscale.sim3d.contact import default_contact
+from blastscale.similitude import scaling_factors
 from blastscale.structures import MultiDrumColumn
 from blastscale.structures.block import RectangularBlock
 

@@ -20,8 +20,7 @@ import numpy as np
 
 from blastscale.analysis.compare import _first_peak
 from blastscale.blast import blast_parameters
-from blastscale.sim3d import integrate as integrate_module
-from blastscale.sim3d import make_load, simulate_structure
+from blastscale.sim3d import integrate as integrate_module, make_load, simulate_structure
 from blastscale.sim3d.contact import reference_contact
 from blastscale.structures import MultiDrumColumn, wall
 from blastscale.structures.block import RectangularBlock

@@ -81,8 +81,8 @@ def bench_capacity(n: int, n_bisect: int) -> dict:
 
 
 def planar_spec(vary: dict, outcomes: bool = False):
-    from blastscale.sweeps import SweepSpec
     from blastscale.scenario import Scenario
+    from blastscale.sweeps import SweepSpec
 
     base = Scenario.default().with_values({"engine": "planar", "critical_charge": False})
     return SweepSpec.build(base, vary, outcomes=outcomes)
@@ -107,10 +107,10 @@ def timed_sweep(spec, **kw) -> dict:
 def bench_planar(n_side: int) -> dict:
     import warnings
 
+    from blastscale.scenario import Scenario
+    from blastscale.sweeps import SweepSpec
     from blastscale.sweeps.fragility import overturning_outcomes
     from blastscale.sweeps.grids import Distribution
-    from blastscale.sweeps import SweepSpec
-    from blastscale.scenario import Scenario
 
     timed_sweep(planar_spec({"charge_kg": [40.0, 60.0]}), workers=0)  # warm up
     designs = timed_sweep(
@@ -229,8 +229,8 @@ def bench_kernel_only(n: int, duration: float = 5.0) -> dict:
 
 
 def bench_3d(n: int, duration: float) -> dict:
-    from blastscale.sweeps import SweepSpec
     from blastscale.scenario import Scenario
+    from blastscale.sweeps import SweepSpec
 
     base = Scenario.default().with_values({"engine": "3d", "critical_charge": False, "duration_s": duration})
     spec = SweepSpec.build(base, {"charge_kg": np.linspace(30, 120, n)})

@@ -29,7 +29,6 @@ Usage: ``python examples/paper_figure_5_8_scaling_factors.py [OUT]`` (default ./
 from __future__ import annotations
 
 import numpy as np
-
 from _gallery import done, parse_args, save
 
 from blastscale.plots.similitude import scaling_factors_figure

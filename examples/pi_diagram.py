@@ -28,7 +28,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-
 from _gallery import done, parse_args, plt, save
 
 from blastscale.blast import blast_parameters

@@ -23,8 +23,8 @@ import blastscale.sim3d.load_methods as load_methods
 import blastscale.similitude.design as design_module
 import blastscale.similitude.specimen as specimen_module
 from blastscale.analysis import compare, systems, upscale
-from blastscale.blast.load_model import LoadModel
 from blastscale.analysis.capacity import model_capacity_curve
+from blastscale.blast.load_model import LoadModel
 from blastscale.rocking import RockingSystem
 from blastscale.scenario import Scenario
 from blastscale.sim3d.contact import ContactSettings

@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 
 from blastscale._validate import BlastscaleInputError
+from blastscale.analysis.structure3d import arrival_spread_similarity
 from blastscale.blast import blast_parameters
 from blastscale.blast.faces import MixedModelWarning
 from blastscale.blast.incidence import INCIDENCE_MODELS
 from blastscale.sim3d.face_loads import FaceLoadStrategy, load_arrival_spread
-from blastscale.analysis.structure3d import arrival_spread_similarity
 from blastscale.sim3d.load_methods import LOAD_METHODS, make_load
 from blastscale.sim3d.loads import LoadStrategy
 from blastscale.similitude import design_model

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from blastscale.sweeps.fragility import fit_lognormal_fragility, fragility
 from blastscale.cli import main
-from blastscale.scenario import Scenario
 from blastscale.rocking import RockingSystem, critical_charge
+from blastscale.scenario import Scenario
 from blastscale.study import Study
+from blastscale.sweeps.fragility import fit_lognormal_fragility, fragility
 
 BASE = Scenario.default().with_values({"engine": "planar"})  # paper block, 2 m, masi2021, Friedlander
 

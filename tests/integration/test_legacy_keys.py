@@ -94,9 +94,9 @@ def test_a_sweep_store_holds_the_new_names_only(tmp_path):
     no deprecated one (planar and 3D engines, the outcome mode)."""
     pytest.importorskip("zarr")
     from blastscale.io.sweep_store import open_sweep
-    from blastscale.sweeps.run import run_sweep
     from blastscale.scenario import Scenario
     from blastscale.sweeps import SweepSpec
+    from blastscale.sweeps.run import run_sweep
 
     base = Scenario.default().with_values({"duration_s": 0.2, "critical_charge": False})
     names: set[str] = set()

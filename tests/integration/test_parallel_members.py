@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from blastscale._validate import BlastscaleInputError
 from blastscale import _threads as th
+from blastscale._validate import BlastscaleInputError
 
 
 def test_map_threads_keeps_order_and_counts_and_nests_serially():

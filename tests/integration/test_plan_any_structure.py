@@ -11,9 +11,9 @@ import pytest
 from blastscale.planning import plan
 from blastscale.planning.build import specimen_mass
 from blastscale.planning.odds import Tolerances, specimen_members
-from blastscale.similitude import scaling_factors
 from blastscale.scenario import Scenario, load_scenario
 from blastscale.scenario.lab import LabSpec
+from blastscale.similitude import scaling_factors
 from blastscale.study import Study
 
 LIB = Path(__file__).resolve().parents[2] / "src" / "blastscale" / "scenario" / "library"

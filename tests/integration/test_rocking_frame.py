@@ -12,12 +12,11 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from blastscale.constants import STANDARD_GRAVITY as G
 from blastscale.rocking import frame_frequency_parameter, free_rocking_peak, overturning_angular_velocity
 from blastscale.sim3d import simulate_structure
 from blastscale.sim3d.contact import default_contact
 from blastscale.structures import portal
-
-from blastscale.constants import STANDARD_GRAVITY as G
 
 HC, W = 4.0, 0.8  # columns 4 m x 0.8 m: alpha = atan(0.2) = 11.3 deg, R = 2.04 m
 

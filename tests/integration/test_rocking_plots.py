@@ -12,19 +12,19 @@ mpl.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from blastscale._validate import BlastscaleInputError  # noqa: E402
-from blastscale.scenario import Scenario  # noqa: E402
-from blastscale.study import Study  # noqa: E402
 from blastscale.blast import blast_parameters  # noqa: E402
 from blastscale.plots.rocking import (  # noqa: E402
     plot_angle,
-    plot_planar_angular_velocity,
     plot_phase_portrait,
     plot_pi_diagram,
+    plot_planar_angular_velocity,
     plot_similarity,
     rocking_figure,
 )
 from blastscale.rocking import pi_diagram, simulate  # noqa: E402
+from blastscale.scenario import Scenario  # noqa: E402
 from blastscale.structures.block import RectangularBlock  # noqa: E402
+from blastscale.study import Study  # noqa: E402
 
 BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))
 

@@ -22,7 +22,7 @@ from blastscale.analysis.block3d_similarity import block_dataset, block_summary
 from blastscale.analysis.compare import upscale_dataset
 from blastscale.blast.parameters import blast_parameters
 from blastscale.blast.pulses import Friedlander, Impulsive, Triangular
-from blastscale.similitude import scaling_factors
+from blastscale.constants import STANDARD_GRAVITY as G
 from blastscale.sim3d import (
     ContactSettings,
     MethodA,
@@ -32,7 +32,7 @@ from blastscale.sim3d import (
     simulate_structure,
     step_forces,
 )
-from blastscale.constants import STANDARD_GRAVITY as G
+from blastscale.similitude import scaling_factors
 from blastscale.structures.block import RectangularBlock
 
 PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))

@@ -10,7 +10,6 @@ import warnings
 import numpy as np
 import pytest
 
-from blastscale.similitude import scaling_factors
 from blastscale._validate import BlastscaleInputError
 from blastscale.analysis.block3d_similarity import block_dataset, block_summary
 from blastscale.blast import Friedlander
@@ -19,6 +18,7 @@ from blastscale.sim3d import ContactSettings, MethodA, block_scene, make_load
 from blastscale.sim3d.contact import default_contact
 from blastscale.sim3d.results import VARIABLES
 from blastscale.sim3d.simulate import simulate_structure
+from blastscale.similitude import scaling_factors
 from blastscale.structures import MonitoringPoint, MultiDrumColumn, RectangularBlock
 
 SQUARE = MultiDrumColumn("square")  # the paper's: 10 x 1 m drums, 1.65 -> 1.28 m, 2700 kg/m^3

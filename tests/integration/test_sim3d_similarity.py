@@ -20,8 +20,8 @@ from blastscale.analysis.structure3d import compare_structure3d
 from blastscale.analysis.systems import Settings3D, Systems3D
 from blastscale.analysis.upscale import upscale_summary
 from blastscale.blast.parameters import blast_parameters
-from blastscale.similitude import design_model, scaling_factors
 from blastscale.sim3d import ContactSettings, MethodA, simulate_structure
+from blastscale.similitude import design_model, scaling_factors
 from blastscale.structures.block import RectangularBlock
 
 PAPER_BLOCK = RectangularBlock.from_slenderness(10.0, math.radians(15.0))

@@ -10,9 +10,9 @@ import pytest
 
 pytest.importorskip("zarr")
 
-from blastscale.sweeps.similarity_map import similarity_map  # noqa: E402
 from blastscale.cli import main  # noqa: E402
 from blastscale.scenario import Scenario  # noqa: E402
+from blastscale.sweeps.similarity_map import similarity_map  # noqa: E402
 
 BASE = Scenario.default().with_values({"duration_s": 2.0, "samples": 401})
 

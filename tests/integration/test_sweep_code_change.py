@@ -10,9 +10,9 @@ pytest.importorskip("zarr")
 
 import blastscale._code as code
 from blastscale._validate import BlastscaleInputError
-from blastscale.sweeps.run import run_sweep
 from blastscale.scenario import Scenario
 from blastscale.sweeps import SweepSpec
+from blastscale.sweeps.run import run_sweep
 
 # short planar runs of the paper's block (0.5 s, 51 samples), two charges, one case per chunk
 BASE = Scenario.default().with_values({"engine": "planar", "duration_s": 0.5, "samples": 51})

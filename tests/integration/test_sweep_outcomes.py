@@ -16,17 +16,16 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
-from hypothesis import strategies as st
+from hypothesis import HealthCheck, assume, given, settings, strategies as st
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.io.sweep_store import open_sweep
-from blastscale.sweeps.run import run_sweep
-from blastscale.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, select, store_location, study_scalars
 from blastscale.blast import blast_parameters
-from blastscale.scenario import Scenario
+from blastscale.io.sweep_store import open_sweep
 from blastscale.rocking import RockingSystem, critical_charge, first_swing, simulate
+from blastscale.scenario import Scenario
 from blastscale.structures.block import RectangularBlock
+from blastscale.sweeps import OUTCOME_KEYS, SweepSpec, planar_outcomes, select, store_location, study_scalars
+from blastscale.sweeps.run import run_sweep
 
 ANGLE_TOL = 1e-8  # rad (module docstring)
 

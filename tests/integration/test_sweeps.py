@@ -21,13 +21,13 @@ pytest.importorskip("zarr")
 pytest.importorskip("distributed")
 import xarray as xr  # noqa: E402
 
-from blastscale.sweeps.grids import parse_distribution  # noqa: E402
-from blastscale.io.sweep_store import open_sweep  # noqa: E402
-from blastscale.sweeps.run import run_sweep  # noqa: E402
-from blastscale.sweeps import SweepSpec, select, store_location, study_scalars  # noqa: E402
-from blastscale.cli import main  # noqa: E402
-from blastscale.scenario import Scenario  # noqa: E402
 from blastscale._validate import BlastscaleInputError  # noqa: E402
+from blastscale.cli import main  # noqa: E402
+from blastscale.io.sweep_store import open_sweep  # noqa: E402
+from blastscale.scenario import Scenario  # noqa: E402
+from blastscale.sweeps import SweepSpec, select, store_location, study_scalars  # noqa: E402
+from blastscale.sweeps.grids import parse_distribution  # noqa: E402
+from blastscale.sweeps.run import run_sweep  # noqa: E402
 
 BIN = Path(sys.executable).parent
 # short planar runs (the paper's block): 1.5 s, 301 samples; critical charge on (searched once per stand-off)

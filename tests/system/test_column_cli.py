@@ -267,8 +267,8 @@ def test_upscale_summary_by_unit_suffix():
 def test_column_plots_take_ax_and_return_it(short_comparison):
     import matplotlib.pyplot as plt
 
-    from blastscale.plots.sim3d import drum_outline
     from blastscale.plots.column import plot_column_snapshots, plot_point_histories
+    from blastscale.plots.sim3d import drum_outline
 
     c = short_comparison
     fig, axs = plt.subplots(1, 3)

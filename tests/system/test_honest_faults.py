@@ -12,12 +12,11 @@ import signal
 import subprocess
 
 import pytest
+from _spawn import BLASTSCALE, spawn, wait_for_marker
 
 from blastscale.cli import main
 from blastscale.scenario import TEMPLATE_KINDS, load_scenario
 from blastscale.structures.block_files import read_block_model
-
-from _spawn import BLASTSCALE, spawn, wait_for_marker
 
 LONG = "a" * 300
 

@@ -12,11 +12,10 @@ import signal
 from pathlib import Path
 
 import pytest
+from _spawn import run, spawn, wait_for_marker
 
 from blastscale.cli import main
 from blastscale.scenario import load_scenario
-
-from _spawn import run, spawn, wait_for_marker
 
 pytest.importorskip("zarr")
 
@@ -179,8 +178,9 @@ def test_a_read_only_folder_is_one_line(capsys, tmp_path, planar, writer, monkey
 def test_a_full_disk_is_one_line_and_leaves_nothing(capsys, tmp_path, planar, writer, monkeypatch, patch_everywhere):
     """ENOSPC in the middle of writing (the histories of a run; a chunk of a sweep): one line, no partial folder,
     no temporary file."""
-    import blastscale.io.histories as hist
     import numpy as np
+
+    import blastscale.io.histories as hist
 
     def full(*a, **k):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))

@@ -198,10 +198,10 @@ def test_the_docs_commands_name_real_commands_and_files():
     """Every `blastscale COMMAND` in the README's and docs' code blocks is a command of the CLI, and every
     scenario file it reads is shipped, written by an earlier `blastscale init` of the same page, an upper-case
     placeholder or described on the page (DOCS_FILES_DESCRIBED). Cheap: nothing is run."""
+    import typer
+
     from blastscale.cli import app
     from blastscale.scenario import library_names
-
-    import typer
 
     commands = {c.name for c in typer.main.get_command(app).commands.values()}
     shipped = set(library_names())

@@ -8,8 +8,8 @@ from html.parser import HTMLParser
 
 import pytest
 
-from blastscale.scenario import Scenario, load_scenario
 from blastscale.report import SECTIONS, applicable_slips, format_charge, write_study
+from blastscale.scenario import Scenario, load_scenario
 from blastscale.study import Study
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"

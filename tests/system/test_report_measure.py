@@ -41,8 +41,8 @@ def test_what_to_measure_has_the_first_peak_time_and_the_record_window_without_a
     assert unit == "ms"
     # planar similarity is exact to ~1e-4 rad: the specimen's first peak, divided by the time factor sqrt(lambda)
     # (the general law, gamma = 1), is the prototype's first peak in time, here from the planar solver's peaks
-    from blastscale.study import Study
     from blastscale.planning.shot import timing_of
+    from blastscale.study import Study
 
     res = Study(sc).run()
     t_proto = timing_of(res.planar.prototype).rise_s

@@ -107,7 +107,6 @@ def test_unknown_item_and_file_target_are_one_line(capsys, tmp_path):
 
 def test_a_changed_scenario_runs_again(capsys, tmp_path, monkeypatch):
     import blastscale.report.reproduce as rp
-
     import blastscale.scenario.library as lib
 
     scen = tmp_path / "scenarios"

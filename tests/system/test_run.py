@@ -11,10 +11,9 @@ from pathlib import Path
 
 import pytest
 import xarray as xr
+from _spawn import default_signals
 
 from blastscale.cli import main
-
-from _spawn import default_signals
 
 # the console script (as a user runs it), else the same entry point under that name
 _SCRIPT = Path(sys.executable).with_name("blastscale")

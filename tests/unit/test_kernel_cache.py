@@ -16,8 +16,7 @@ from numba.core.caching import CacheImpl
 
 import blastscale
 from blastscale import _jit
-from blastscale.rocking import kernel as K
-from blastscale.rocking import _load as L
+from blastscale.rocking import _load as L, kernel as K
 
 SRC = Path(blastscale.__file__).resolve().parent
 

@@ -36,8 +36,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from .compare import compare_responses
-from .compare import upscale_dataset
+from .compare import compare_responses, upscale_dataset
 from .upscale import upscale_summary
 
 __all__ = [

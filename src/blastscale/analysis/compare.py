@@ -33,8 +33,8 @@ import math
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_range
-from ..similitude.factors import DIMENSIONLESS, dimension_factor
 from ..sim3d.results import MOTION_VARIABLES
+from ..similitude.factors import DIMENSIONLESS, dimension_factor
 from .upscale import upscale
 
 __all__ = [

@@ -25,13 +25,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._threads import map_threads
 from .._validate import BlastscaleInputError, check_range
-from .compare import _first_peak
-from .compare import align, upscale_dataset
+from ..sim3d.results import MOTION_VARIABLES
+from .compare import _first_peak, align, upscale_dataset
 from .systems import Settings3D, Systems3D, run_system
 from .upscale import upscale_summary
-from ..sim3d.results import MOTION_VARIABLES
-from .._threads import map_threads
 
 __all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics"]
 

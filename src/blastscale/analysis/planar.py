@@ -26,16 +26,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._validate import BlastscaleInputError
 from ..blast.parameters import DEFAULT_BLAST_MODEL
-from ..rocking.solver import DEFAULT_SOLVER, RockingSolver
 from ..rocking.capacity import CapacityCurve, capacity_curve
-from ..rocking.critical import CriticalResult, critical_charge, critical_standoff
-from ..rocking.swing import FirstSwing, first_swing, first_swing_blast
+from ..rocking.critical import CriticalResult, critical_charge, critical_standoff, negative_phase_uncertainty
 from ..rocking.pressure_impulse import PIDiagram, pi_diagram
 from ..rocking.results import RockingResult
+from ..rocking.solver import DEFAULT_SOLVER, RockingSolver
+from ..rocking.swing import FirstSwing, first_swing, first_swing_blast
 from ..rocking.system import RockingSystem, as_rocking_system
-from ..rocking.critical import negative_phase_uncertainty
-from .._validate import BlastscaleInputError
 
 __all__ = [
     "planar_system",

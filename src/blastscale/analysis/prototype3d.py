@@ -11,11 +11,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 
+from ..sim3d.face_loads import load_arrival_spread
 from ..structures.from_spec import is_block
+from .block3d_similarity import block_view
 from .gravity_alone import extended_keys, until_decided
 from .systems import Settings3D, System3D, run_system
-from .block3d_similarity import block_view
-from ..sim3d.face_loads import load_arrival_spread
 
 __all__ = ["Prototype3D", "prototype_structure3d"]
 

@@ -26,13 +26,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from .._threads import map_threads
 from .._validate import BlastscaleInputError
+from ..sim3d.face_loads import load_arrival_spread
 from .compare import align, compare_responses, upscale_dataset
 from .prototype3d import _block_keys, _load_model_setting, _merged, _with_outcome
 from .systems import Settings3D, Systems3D, run_system
 from .upscale import upscale, upscale_summary
-from ..sim3d.face_loads import load_arrival_spread
-from .._threads import map_threads
 
 __all__ = ["Comparison3D", "compare_structure3d", "arrival_spread_similarity"]
 

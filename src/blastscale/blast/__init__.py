@@ -3,9 +3,8 @@
 from .base import BlastModel, ExtrapolationWarning
 from .face_pulses import FacePulses
 from .faces import FaceLoads, face_loads, face_loads_unchecked
-from .incidence import oblique_combination
 from .friedlander import friedlander_decay
-from .incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS
+from .incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS, oblique_combination
 from .kingery_bulmash import KingeryBulmash
 from .masi_fits import Masi2021
 from .parameters import (

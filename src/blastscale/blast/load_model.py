@@ -28,15 +28,15 @@ from .clearing import CLEARING_MODEL, Clearing, clearing
 from .negative_phase import (
     CUBIC_IMPULSE_FACTOR,
     NEGATIVE_PHASE_MODEL,
+    NEGATIVE_PHASE_MODELS,
     NegativePhase,
     cubic_cumulative,
     cubic_pressure,
-    NEGATIVE_PHASE_MODELS,
     face_negative_phase,
     negative_phase,
 )
-from .pulses import Impulsive, Pulse
 from .parameters import get_blast_model
+from .pulses import Impulsive, Pulse
 
 __all__ = [
     "LoadModel",

@@ -14,10 +14,10 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_choice, check_positive
 from .base import BlastModel
 from .friedlander import friedlander_decay
-from .pulses import Friedlander, Impulsive, Pulse, Triangular, check_pulse_shape
 from .kingery_bulmash import KingeryBulmash
-from .masi_fits import Masi2021
 from .kingery_bulmash_free_air import KingeryBulmashFreeAir
+from .masi_fits import Masi2021
+from .pulses import Friedlander, Impulsive, Pulse, Triangular, check_pulse_shape
 
 __all__ = [
     "BLAST_MODELS",

@@ -52,8 +52,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..roots import scalar_root
 from .._validate import BlastscaleInputError, OutOfRangeError
+from ..roots import scalar_root
 from .kingery_bulmash import KingeryBulmash
 
 __all__ = [

@@ -23,6 +23,7 @@ from ._app import app
 from ._output import print_error
 
 # command modules register themselves on `app` when imported (in this order: `blastscale --help` lists them so)
+# isort: off
 from . import loads as _loads  # noqa: F401,E402
 from . import rocking as _rocking  # noqa: F401,E402
 from . import capacity as _capacity  # noqa: F401,E402
@@ -35,6 +36,7 @@ from . import plan as _plan  # noqa: F401,E402
 from . import init as _init  # noqa: F401,E402
 from . import show as _show  # noqa: F401,E402
 from . import fired as _fired  # noqa: F401,E402
+# isort: on
 
 __all__ = ["app", "main", "GC_THRESHOLDS"]
 

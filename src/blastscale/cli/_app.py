@@ -35,7 +35,6 @@ from ._signals import (  # noqa: E402
     set_interrupt_note,
 )
 
-
 _display_type_rich = getattr(TyperOption, "display_type_rich", None)
 
 

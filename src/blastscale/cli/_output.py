@@ -30,10 +30,10 @@ from rich.table import Table
 from rich.text import Text
 
 from .._validate import BlastscaleInputError
-from ..units import format_size
 from ..io.output import tree_size, write_file
 from ..io.results import jsonable, with_legacy_keys
 from ..study.memory import format_duration
+from ..units import format_size
 from ._progress import plain_lines, plain_progress, progress_seconds
 from ._signals import raise_if_interrupted
 

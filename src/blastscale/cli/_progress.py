@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import contextlib
 import os
-from ..study.memory import estimate_run
 import threading
 import time
-from ..study.memory import format_duration
+
+from ..study.memory import estimate_run, format_duration
 
 __all__ = [
     "PROGRESS_SECONDS",

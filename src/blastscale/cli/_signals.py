@@ -11,10 +11,10 @@ and says so once.
 from __future__ import annotations
 
 import multiprocessing
+import os
 import signal
 import sys
 from typing import Callable, Optional
-import os
 
 __all__ = [
     "Interrupted",

@@ -13,19 +13,19 @@ A GIF stores each frame's delay in hundredths of a second: 1/fps is rounded to 1
 from __future__ import annotations
 
 import io
+import math
 import shutil
+import subprocess
+import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from .._validate import BlastscaleInputError
-import math
-from ..io.targets import Kind, check_target
-from ..plots.motion import VIEWS
-import subprocess
-import tempfile
 from ..io.motion import charge_position, read_motion
 from ..io.output import write_file
+from ..io.targets import Kind, check_target
+from ..plots.motion import VIEWS
 from ..sim3d.replay import frame_count
 from ._output import one_line_warnings, print_json, print_written
 

@@ -9,8 +9,8 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError, check_choice
-from ..blast.parameters import BURSTS, DEFAULT_BURST
 from ..blast.load_model import LoadModel
+from ..blast.parameters import BURSTS, DEFAULT_BURST
 
 __all__ = [
     "BURST",

@@ -12,11 +12,11 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
-from ._app import app
-from ._output import console, fmt_value, table
-from . import options as opt
 from ..analysis.block3d_similarity import BLOCK_SIMILARITY_KEYS, BLOCK_SUMMARY_KEYS
 from ..similitude.factors import to_specimen
+from . import options as opt
+from ._app import app
+from ._output import console, fmt_value, table
 from .flags import scenario_from_flags
 from .steps import (
     SIMILARITY_TITLE,

@@ -16,16 +16,14 @@ from rich.table import Table
 
 from .. import __version__
 from .._validate import BlastscaleInputError
-from ..blast.parameters import blast_parameters
-from ..blast.parameters import model_for_burst
+from ..blast.parameters import blast_parameters, model_for_burst
 from ..study.memory import check_budget
 from ..sweeps.grids import parse_grid
-from . import blast_flags as bf
-from . import options as opt
-from ._output import activity, console, fmt_value, one_line_warnings, table
+from . import blast_flags as bf, options as opt
 from ._app import app
-from .steps import BlockFlags, add_figure, answer
+from ._output import activity, console, fmt_value, one_line_warnings, table
 from .rocking import RESTITUTION_HELP, block_inputs
+from .steps import BlockFlags, add_figure, answer
 
 
 def opt_extrapolate():
@@ -177,8 +175,8 @@ def _model_experiment(res, block, search: CriticalSearch, scale: float, density_
 
 def _pi_figure(system, res, bp, pulse_shape: str, quiet: bool):
     """The P-I overturning diagram's figure (a function that builds it), with the critical point."""
-    from ..plots.rocking import plot_pi_diagram
     from ..analysis.planar import pi_diagram_of
+    from ..plots.rocking import plot_pi_diagram
 
     with activity("computing the P-I diagram", quiet=quiet):
         # the curve for the pulse shape searched (impulsive: the triangular curve, whose

@@ -15,8 +15,8 @@ import typer
 from . import options as opt
 from ._app import app
 from ._output import console, fmt_value, table
-from .options import check_plot_path, scenario_default
 from .flags import scenario_from_flags
+from .options import check_plot_path, scenario_default
 from .steps import add_comparison_3d_figure, answer, blast_keys_3d, print_model_3d, run_checked_3d, scale_keys
 
 _SUMMARY_ROWS = (

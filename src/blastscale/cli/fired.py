@@ -15,11 +15,11 @@ from pathlib import Path
 
 import typer
 
+from ..io.results import check_output_folder, output_folder
+from ..scenario.files import load_scenario
 from ._app import app
 from ._output import console, fmt_value, one_line_warnings, print_json, print_written, stage_progress, styled, table
 from ._signals import ignore_interrupts, raise_if_interrupted
-from ..io.results import check_output_folder, output_folder
-from ..scenario.files import load_scenario
 
 
 def _print(s: dict) -> None:
@@ -124,8 +124,8 @@ def fired_cmd(
 ) -> None:
     """After the shot: the load the specimen got, measured vs predicted vs re-simulated, and what the monument
     would do."""
-    from ..fired.shot import as_fired
     from ..fired.inputs import shot_inputs
+    from ..fired.shot import as_fired
 
     sc = load_scenario(_shipped(scenario))
     markers = ("summary.json",)

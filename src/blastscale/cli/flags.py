@@ -8,15 +8,14 @@ import contextlib
 import math
 import re
 import sys
+import tomllib
+import warnings
 from typing import Optional
 
 import typer
 
-from ..scenario.scenario import Scenario
-import tomllib
 from .._validate import BlastscaleInputError
-import warnings
-from ..scenario.scenario import EXCLUSIVE_KEYS
+from ..scenario.scenario import EXCLUSIVE_KEYS, Scenario
 
 __all__ = ["FLAG_NAMES", "SET_VALUES", "parse_set", "scenario_with", "scenario_from_flags", "flags_named"]
 

@@ -16,13 +16,12 @@ from typing import Optional
 import typer
 
 from .._validate import BlastscaleInputError
+from ..io.output import claim, write_file
+from ..io.targets import Kind, check_target
+from ..scenario.files import load_scenario
+from ..scenario.library import EXAMPLE_BLOCKS, library_names, library_text, template_text
 from ._app import app
 from ._output import console, console_err, print_written
-from ..scenario.files import load_scenario
-from ..scenario.library import library_names, library_text
-from ..io.targets import Kind, check_target
-from ..io.output import claim, write_file
-from ..scenario.library import EXAMPLE_BLOCKS, template_text
 
 #: The first words of every template ``init`` writes.
 HEADER = "# A blastscale scenario"

@@ -9,16 +9,15 @@ import typer
 from rich.table import Table
 
 from .._validate import BlastscaleInputError, check_range
-from ..blast.parameters import blast_parameters
 from ..blast.faces import face_loads
 from ..blast.incidence import DEFAULT_INCIDENCE, INCIDENCE_MODELS, check_incidence
-from ..blast.parameters import DEFAULT_BLAST_MODEL
+from ..blast.load_model import front_face_clearing, front_face_negative, load_model_record
+from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters
 from ..similitude.design import design_model
 from . import blast_flags as bf
 from ._app import app
 from ._output import console, fmt_value, one_line_warnings, print_json, styled, table
 from .options import MODEL_HELP, block_from_options
-from ..blast.load_model import front_face_clearing, front_face_negative, load_model_record
 
 
 @app.command("blast")

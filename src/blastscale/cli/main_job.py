@@ -20,7 +20,13 @@ from typing import Optional
 import typer
 from rich.table import Table
 
-from ._progress import announce_run
+from .._hooks import pause_point
+from ..io.results import check_output_folder
+from ..report import write_study
+from ..report.card import card_of
+from ..report.markup import format_charge, split_unit_for_tables
+from ..report.verdict import label, verdict_line
+from ..study.study import Study
 from ._app import app
 from ._output import (
     console,
@@ -33,17 +39,9 @@ from ._output import (
     styled,
     table,
 )
+from ._progress import announce_run
 from .flags import SET_VALUES
 from .loads import print_design
-from ..report.markup import split_unit_for_tables
-from ..report.verdict import label
-from ..report.markup import format_charge
-from ..report.verdict import verdict_line
-from ..report.card import card_of
-from .._hooks import pause_point
-from ..io.results import check_output_folder
-from ..report import write_study
-from ..study.study import Study
 from .steps import SIMILARITY_TITLE, read_scenario, result_folder
 
 

@@ -115,8 +115,8 @@ JSON = typer.Option(False, "--json", help="Print one JSON object instead of tabl
 # (blastscale.scenario): None when not given, so that the scenario's default applies
 def scenario_default(table: str, key: str):
     """The scenario schema's default of ``[table] key`` (for a help text)."""
-    from ..scenario.structure_specs import KINDS
     from ..scenario.specs import BlastSpec, SimulationSpec
+    from ..scenario.structure_specs import KINDS
 
     model = {"blast": BlastSpec, "simulation": SimulationSpec}.get(table) or KINDS[table]
     return model.model_fields[key].default

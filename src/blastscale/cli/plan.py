@@ -14,24 +14,23 @@ A lab no design fits: one line naming the constraint and what would relax it, ex
 from __future__ import annotations
 
 import warnings
-
 from pathlib import Path
 from typing import Optional
 
 import typer
 from rich.table import Table
 
+from ..io.results import check_output_folder, output_folder
+from ..planning.plan3d import ensemble_members
+from ..planning.planner import plan
+from ..report.markup import format_charge
+from ..scenario.files import load_scenario
+from ..scenario.lab import LabSpec
+from ..scenario.scenario import Scenario
+from ..structures import from_spec
 from ._app import app
 from ._output import console, one_line_warnings, print_json, print_written, stage_progress, styled
 from ._signals import ignore_interrupts, raise_if_interrupted
-from ..report.markup import format_charge
-from ..io.results import check_output_folder, output_folder
-from ..planning.planner import plan
-from ..planning.plan3d import ensemble_members
-from ..structures import from_spec
-from ..scenario.scenario import Scenario
-from ..scenario.files import load_scenario
-from ..scenario.lab import LabSpec
 
 
 def _print_plan(p, top: int) -> None:

@@ -21,16 +21,16 @@ import typer
 from rich.table import Table
 
 from .._validate import BlastscaleInputError
-from ._app import app
-from ._output import console, console_err, one_line_warnings, print_error, print_written, stage_progress
-from ._signals import set_interrupt_note
-from ..io.targets import Kind
 from ..io.output import claim
 from ..io.results import output_folder, provenance, write_atomic, write_json
+from ..io.targets import Kind
 from ..report.reproduce import MARKER, item_done, items, render_reproduce_report, run_item, skipped
 from ..report.reproduce_cost import expected_cost, is_reproduce_folder
 from ..study.memory import format_duration
 from ..units import format_size
+from ._app import app
+from ._output import console, console_err, one_line_warnings, print_error, print_written, stage_progress
+from ._signals import set_interrupt_note
 
 
 @app.command("reproduce")

@@ -12,18 +12,15 @@ from typing import Optional
 
 import typer
 
-from ._output import activity, console, fmt_value, table
-from ._app import app
-from . import blast_flags as bf
-from .flags import flags_named
-from . import options as opt
-from .steps import SIMILARITY_TITLE, BlockFlags, add_figure, answer, scale_keys
 from ..blast.load_model import load_model_record
 from ..similitude.factors import to_specimen
 from ..study.engines import load_model_of
 from ..study.study import Study
-from .flags import scenario_from_flags
-
+from . import blast_flags as bf, options as opt
+from ._app import app
+from ._output import activity, console, fmt_value, table
+from .flags import flags_named, scenario_from_flags
+from .steps import SIMILARITY_TITLE, BlockFlags, add_figure, answer, scale_keys
 
 RESTITUTION_HELP = "Coefficient of restitution e on the angular velocity at impacts \\[-], in \\[0, 1] (default Housner's 1 - 1.5 sin^2 alpha)."
 

@@ -22,16 +22,15 @@ from typing import Optional
 
 import typer
 
-from ._app import app
-from ._output import console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
-from .options import check_plot_path
 from .._validate import BlastscaleInputError
 from ..scenario.files import load_scenario
 from ..structures import from_spec
-from ..structures.block_files import read_block_model
-from ..structures.block_files import MESH_SUFFIXES
 from ..structures.assembly import as_assembly
 from ..structures.base import rest_mass_properties
+from ..structures.block_files import MESH_SUFFIXES, read_block_model
+from ._app import app
+from ._output import console, fmt_value, one_line_warnings, print_json, print_written, save_figure, table
+from .options import check_plot_path
 
 __all__ = ["describe_structure", "load_structure"]
 

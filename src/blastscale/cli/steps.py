@@ -12,8 +12,8 @@ from dataclasses import dataclass
 from typing import Callable, Iterator, Optional
 
 from ..io.results import output_folder
-from ..scenario.scenario import Scenario
 from ..scenario.files import load_scenario
+from ..scenario.scenario import Scenario
 from ..study.study import Study
 from ._output import (
     console,

@@ -9,32 +9,27 @@ Units at this edge are those of the scenario keys (SI, named in each key); grids
 from __future__ import annotations
 
 import math
-
 from pathlib import Path
 from typing import List, Optional
 
+import numpy as np
 import typer
+from rich.table import Table
 
 from .._validate import BlastscaleInputError
-from ._output import activity, console, count_progress, one_line_warnings, print_json, print_written, table
+from ..io.results import legacy_name
+from ..io.sweep_store import open_sweep, unfinished_chunks
+from ..sweeps.fragility import fragility
+from ..sweeps.grids import parse_assignment, parse_distribution, parse_grid, parse_number
+from ..sweeps.run import run_in_memory, run_sweep
+from ..sweeps.similarity_map import similarity_map
+from ..sweeps.spec import SweepSpec
 from ._app import app
+from ._output import activity, console, count_progress, one_line_warnings, print_json, print_written, table
 from ._signals import ignore_interrupts, set_interrupt_note
 from .flags import SET_VALUES
-from ..sweeps.grids import parse_assignment
-from ..io.sweep_store import unfinished_chunks
-from ..sweeps.grids import parse_distribution, parse_grid
-from ..sweeps.run import run_sweep
-from ..sweeps.spec import SweepSpec
-from ..sweeps.grids import parse_number
-from ..sweeps.fragility import fragility
 from .options import check_plot_path
 from .steps import add_figure, answer, read_scenario
-from rich.table import Table
-import numpy as np
-from ..io.results import legacy_name
-from ..io.sweep_store import open_sweep
-from ..sweeps.run import run_in_memory
-from ..sweeps.similarity_map import similarity_map
 
 SCENARIO_ARG = typer.Argument(None, help="Scenario TOML file (default: the built-in default scenario).")
 SCHEDULER = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (e.g. tcp://127.0.0.1:8786).")

@@ -30,9 +30,9 @@ import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
 from .._validate import BlastscaleInputError, check_choice
+from ..analysis.upscale import upscale
 from ..rocking.system import housner_restitution
 from ..study.study import Study
-from ..analysis.upscale import upscale
 from .outcome import pose_marker_history
 from .refit import OUTCOMES, marker_history, simulate_specimen
 from .tracks import track_first_peak

@@ -33,8 +33,8 @@ from .calibrate import (
 )
 from .effective import effective_charge, predicted_at, tnt_equivalence
 from .gauges import fit_gauge
-from .outcome import body_verdicts, marker_body
 from .inputs import charge_position, shot_inputs
+from .outcome import body_verdicts, marker_body
 from .records import GaugeRecord, TrackRecord, record_fault
 from .refit import OUTCOMES, SpecimenRun, marker_history, simulate_specimen
 from .tracks import block_rotation, track_first_peak

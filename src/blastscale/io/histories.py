@@ -12,8 +12,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .results import write_atomic
 from ..sim3d.results import MOTION_VARIABLES
+from .results import write_atomic
 
 __all__ = ["write_netcdf", "histories_tidy", "write_histories_csv"]
 

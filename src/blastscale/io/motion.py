@@ -6,8 +6,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from .._validate import BlastscaleInputError
 import numpy as np
+
+from .._validate import BlastscaleInputError
 from ..sim3d.replay import motion_of
 
 __all__ = ["read_motion", "charge_position"]

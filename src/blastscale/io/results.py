@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import datetime as _dt
+import importlib.metadata as md
 import json
 import math
 import platform
@@ -19,11 +20,8 @@ from pathlib import Path
 from typing import Any, Iterator
 
 from .. import __version__
-from .output import write_file
-import importlib.metadata as md
-from .targets import Kind
-from .targets import check_target
-from .output import claim
+from .output import claim, write_file
+from .targets import Kind, check_target
 
 __all__ = [
     "jsonable",

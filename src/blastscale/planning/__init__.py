@@ -16,8 +16,8 @@ Above the sweeps (the 3D ensembles run as one), below the report and the files.
 
 from .card import study_test_card
 from .odds import Odds, Tolerances, ensemble_odds_3d, planar_odds
-from .planner import Plan, PlanInfeasible, plan
 from .plan3d import design_scenario
+from .planner import Plan, PlanInfeasible, plan
 
 __all__ = [
     "plan",

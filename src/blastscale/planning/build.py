@@ -3,8 +3,9 @@ voussoir), for the planner and the test card [m, kg]."""
 
 from __future__ import annotations
 
-import numpy as np
 from collections import Counter
+
+import numpy as np
 
 from ..similitude.factors import to_specimen
 

@@ -16,16 +16,15 @@ from fractions import Fraction
 from typing import Optional
 
 from .._validate import BlastscaleInputError
+from ..blast.explosives import get_explosive
+from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
+from ..similitude.factors import to_specimen
+from ..structures.block import RectangularBlock
+from ..structures.from_spec import is_block
 from .build import spec_dims, specimen_density, specimen_mass
 from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
-from ..blast.explosives import get_explosive
-from .shot import fireability, lab_charge, lab_explosives, safety_envelope
-from .shot import candidate_materials
-from ..structures.block import RectangularBlock
-from ..structures.from_spec import is_block
-from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
-from ..similitude.factors import to_specimen
+from .shot import candidate_materials, fireability, lab_charge, lab_explosives, safety_envelope
 
 __all__ = [
     "LAMBDA_DENOMINATORS",

@@ -16,6 +16,9 @@ import warnings
 
 import numpy as np
 
+from ..blast.parameters import get_blast_model
+from ..similitude.factors import to_specimen
+from ..structures.from_spec import is_block
 from .build import spec_dims, specimen_unit
 from .debris import planar_reach, reach_3d
 from .instruments import instrument_settings, top_corner_displacement
@@ -30,9 +33,6 @@ from .shot import (
     threshold_meanings,
     timing_of,
 )
-from ..structures.from_spec import is_block
-from ..blast.parameters import get_blast_model
-from ..similitude.factors import to_specimen
 
 __all__ = ["study_test_card", "check_lab"]
 

@@ -30,11 +30,11 @@ from dataclasses import asdict, dataclass
 from typing import Optional
 
 import numpy as np
-from ..blast.parameters import blast_parameters_unchecked
-from ..blast.parameters import valid_scaled_distance_range
+
 from .._extras import require
-from .._validate import BlastscaleInputError
 from .._threads import map_threads
+from .._validate import BlastscaleInputError
+from ..blast.parameters import blast_parameters_unchecked, valid_scaled_distance_range
 from ..similitude.factors import scaling_factors
 from ..study.study import Study
 from ..sweeps.grids import Distribution

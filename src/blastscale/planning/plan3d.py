@@ -38,13 +38,13 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 from ..blast.bursts import lab_burst
-from ..similitude.effects import structure_top
-from ..similitude.factors import to_specimen
+from ..blast.parameters import get_blast_model
 from ..scenario.lab import SAME_MATERIAL
 from ..scenario.specs import ScaleSpec
-from ..study.study import Study
-from ..blast.parameters import get_blast_model
+from ..similitude.effects import structure_top
+from ..similitude.factors import to_specimen
 from ..structures.from_spec import is_block
+from ..study.study import Study
 from .build import spec_dims
 from .debris import reach_3d
 from .odds import ensemble_odds_3d

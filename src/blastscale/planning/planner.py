@@ -28,20 +28,17 @@ from dataclasses import dataclass, field
 from typing import Callable, Optional
 
 from .._validate import BlastscaleInputError
+from ..blast.explosive_library import EXPLOSIVES
+from ..blast.explosives import get_explosive
+from ..blast.parameters import blast_parameters, get_blast_model, model_for_burst
+from ..structures import from_spec
 from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_label, shot_dict, specimen_displacement
 from .debris import planar_reach
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .pareto import mark_pareto
 from .plan3d import candidate_design, design_scenario, planar_path
 from .plan3d_designs import designs_3d
-from .shot import DEFAULT_LAB, safety_envelope, timing_of
-from ..blast.parameters import blast_parameters
-from ..blast.parameters import model_for_burst
-from ..blast.explosive_library import EXPLOSIVES
-from ..blast.explosives import get_explosive
-from .shot import lab_explosives
-from ..blast.parameters import get_blast_model
-from ..structures import from_spec
+from .shot import DEFAULT_LAB, lab_explosives, safety_envelope, timing_of
 
 __all__ = ["plan", "screen", "Plan", "PlanInfeasible", "QUICK_SAMPLES", "FULL_DESIGNS"]
 

@@ -9,13 +9,11 @@ from typing import Optional
 
 import numpy as np
 
-from ..blast.explosive_library import Explosive
-from ..blast.explosives import charge_equivalence
-from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
-from ..scenario.lab import LabSpec
 from .._validate import BlastscaleInputError
-from ..blast.explosives import ChargeEquivalence, get_explosive
-from ..scenario.lab import SAME_MATERIAL
+from ..blast.explosive_library import Explosive
+from ..blast.explosives import ChargeEquivalence, charge_equivalence, get_explosive
+from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
+from ..scenario.lab import SAME_MATERIAL, LabSpec
 from ..structures.materials import MATERIALS
 
 __all__ = [

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .sim3d import axes_or_new
 from ..analysis.upscale import upscale
+from .sim3d import axes_or_new
 
 __all__ = ["plot_gauge", "plot_marker"]
 

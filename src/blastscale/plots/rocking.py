@@ -10,6 +10,7 @@ imported only when a plot is drawn. Inputs are :class:`~blastscale.rocking.Rocki
 from __future__ import annotations
 
 import numpy as np
+
 from .._validate import check_choice
 from .sim3d import axes_or_new
 

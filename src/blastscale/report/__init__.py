@@ -10,16 +10,15 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable, Optional
 
+from ..io.histories import write_histories_csv, write_netcdf
+from ..io.results import provenance, with_legacy_keys, write_atomic, write_json
+from .card import card_of
 from .figures import FIGURES, render_figures
 from .html import SECTIONS, render_report
 from .markup import format_charge
 from .motion import motion_section
 from .slips import SLIPS, applicable_slips
-from ..io.histories import write_histories_csv, write_netcdf
-from ..io.results import provenance, write_atomic, write_json
-from ..io.results import with_legacy_keys
 from .verdict import verdict
-from .card import card_of
 
 __all__ = [
     "FIGURES",

@@ -14,6 +14,7 @@ from __future__ import annotations
 import html
 import math
 from typing import Any
+
 from ..planning.card import study_test_card
 
 __all__ = ["card_of", "card_section", "UNITS", "shown"]

@@ -11,14 +11,12 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from .markup import format_charge
+
+from ..plots.assembly import assembly_figure, snapshot_figure
+from ..plots.column import plot_column_comparison, plot_ensemble_envelope, plot_point_histories, shared_legend
 from ..plots.rocking import rocking_figure
-from ..plots.column import plot_point_histories, shared_legend
-from ..plots.column import plot_ensemble_envelope
 from ..structures.assembly import Assembly
-from ..plots.assembly import assembly_figure
-from ..plots.assembly import snapshot_figure
-from ..plots.column import plot_column_comparison
+from .markup import format_charge
 
 __all__ = ["Figure", "FIGURES", "render_figures", "png_bytes"]
 

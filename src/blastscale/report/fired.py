@@ -7,11 +7,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .markup import PAGE_CSS, escape, figure_html, html_table, format_value
 from ..blast.pulses import Friedlander
+from ..io.results import jsonable, provenance, write_atomic, write_json
 from ..plots.fired import plot_gauge, plot_marker
 from .figures import png_bytes
-from ..io.results import jsonable, provenance, write_atomic, write_json
+from .markup import PAGE_CSS, escape, figure_html, format_value, html_table
 
 __all__ = ["fired_figures", "fired_section", "write_fired"]
 

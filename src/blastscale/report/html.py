@@ -15,23 +15,22 @@ from __future__ import annotations
 import math
 from typing import Iterable
 
+from .card import CSS as _CARD_CSS, card_section
 from .markup import (
     PAGE_CSS,
     compare_table,
     escape,
-    flatten,
     figure_html,
-    html_table,
+    flatten,
     format_charge,
     format_value,
+    html_table,
     split_unit_for_tables,
 )
-from .slips import applicable_slips
-from .card import CSS as _CARD_CSS
-from .card import card_section
-from .verdict import label, specimen_rows, verdict
-from .outcomes import ARRIVAL_NOTE, first_peak_rows, stability_lead, timing_rows
 from .motion import motion_section
+from .outcomes import ARRIVAL_NOTE, first_peak_rows, stability_lead, timing_rows
+from .slips import applicable_slips
+from .verdict import label, specimen_rows, verdict
 
 __all__ = ["SECTIONS", "render_report"]
 

@@ -15,8 +15,9 @@ from dataclasses import dataclass
 from html import escape
 
 import numpy as np
-from ..sim3d.replay import motion_of
+
 from ..io.motion import charge_position
+from ..sim3d.replay import motion_of
 
 __all__ = [
     "FRAME_BYTES",

@@ -3,13 +3,13 @@ test card (:func:`write_plan`), and the plan's section of the report."""
 
 from __future__ import annotations
 
-from pathlib import Path
-from .markup import escape, format_charge, html_table
-from ..io.results import jsonable, write_atomic, write_json
-from . import write_study
-from .markup import figure_html
 import io
+from pathlib import Path
+
+from ..io.results import jsonable, write_atomic, write_json
 from ..plots.plan import plot_plan
+from . import write_study
+from .markup import escape, figure_html, format_charge, html_table
 
 __all__ = ["write_plan", "plan_section"]
 

@@ -21,32 +21,31 @@ marker: a second run skips the items already done (resumable after Ctrl-C), and
 from __future__ import annotations
 
 import base64
+import hashlib
+import html as _html
 import json
+import math
 import os
 import subprocess
 import sys
+import time
+import tomllib
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Callable, Optional
-import hashlib
+
 from .._code import code_fingerprint
-from ..scenario.files import load_scenario
-from ..study.study import Study
-from . import write_study
-import tomllib
-from ..scenario.library import library_text
-from ..scenario.library import library_names
-import time
+from ..analysis.planar import critical_of
+from ..blast.load_model import LoadModel
 from ..io.results import write_json
-from .markup import format_value
-import html as _html
-from .markup import PAGE_CSS
-from .slips import SLIPS
-import math
+from ..scenario.files import load_scenario
+from ..scenario.library import library_names, library_text
 from ..similitude.design import design_model
 from ..structures.block import RectangularBlock
-from ..blast.load_model import LoadModel
-from ..analysis.planar import critical_of
+from ..study.study import Study
+from . import write_study
+from .markup import PAGE_CSS, format_value
+from .slips import SLIPS
 
 __all__ = [
     "Item",

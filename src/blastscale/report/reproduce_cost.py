@@ -11,9 +11,10 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+
 from ..scenario.files import load_scenario
-from ..study.study import Study
 from ..study.memory import estimate_seconds
+from ..study.study import Study
 from .reproduce import MARKER
 
 __all__ = ["MEASURED", "SCRIPT_SECONDS", "expected_cost", "is_reproduce_folder"]

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from typing import Any, Optional
+
 from ..units import split_unit
 
 __all__ = ["PEAK_TOLERANCE", "verdict", "verdict_line", "label", "LABELS", "specimen_rows"]

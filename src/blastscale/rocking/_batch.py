@@ -21,8 +21,8 @@ import numpy as np
 
 from .._jit import njit
 from .._threads import map_threads, resolve_threads
-from .layout import N_SUMMARY
 from .kernel import solve_case
+from .layout import N_SUMMARY
 
 __all__ = ["GROUPS_PER_THREAD", "MIN_CASES_PER_THREAD", "solve_batch", "solve_into"]
 

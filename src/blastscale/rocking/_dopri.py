@@ -26,8 +26,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from .._jit import njit
 
+from .._jit import njit
 from ._load import load_ratio
 
 # Dormand-Prince 5(4) tableau

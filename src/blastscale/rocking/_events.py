@@ -20,8 +20,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from .._jit import njit
 
+from .._jit import njit
 from ._dopri import dense, dense_root, dopri_step
 from .layout import (
     S_END_TAU,

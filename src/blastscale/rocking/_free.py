@@ -40,7 +40,6 @@ import math
 import numpy as np
 
 from .._jit import njit
-
 from ._events import record_impact, record_peak
 from .layout import S_OVERTURN_TAU, S_W_AT_ALPHA
 

@@ -30,8 +30,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from .._jit import njit
 
+from .._jit import njit
 from .layout import FRIEDLANDER, TABULATED, TRIANGULAR
 
 

@@ -21,7 +21,6 @@ from __future__ import annotations
 import math
 
 from .._jit import njit
-
 from ._free import H_MAX, N_MAX, taylor_coeffs, taylor_eval
 from ._load import base_ratio
 from .layout import FRIEDLANDER, TABULATED, TRIANGULAR

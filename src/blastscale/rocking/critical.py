@@ -30,23 +30,21 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_positive, check_range
 from ..blast.base import ExtrapolationWarning
-from ..blast.pulses import check_pulse_shape
-from ..blast.parameters import DEFAULT_BLAST_MODEL
 from ..blast.inverse import model_name, scaled_distance_for, scaled_distance_range, warn_if_extrapolated
-from ..roots import vector_root
-from .swing import first_swing_checked
-from .solver import DEFAULT_SOLVER, RockingSolver
-from .system import as_rocking_system
-from ..blast.parameters import burst_of
 from ..blast.load_model import load_model_record
-from dataclasses import replace
 from ..blast.negative_phase import NEGATIVE_PHASE_MODELS
+from ..blast.parameters import DEFAULT_BLAST_MODEL, burst_of
+from ..blast.pulses import check_pulse_shape
+from ..roots import vector_root
+from .solver import DEFAULT_SOLVER, RockingSolver
+from .swing import first_swing_checked
+from .system import as_rocking_system
 
 __all__ = ["critical_charge", "critical_standoff", "negative_phase_uncertainty", "CriticalResult", "critical_arrays"]
 

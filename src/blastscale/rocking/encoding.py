@@ -18,12 +18,10 @@ import math
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from ..blast.load_model import PhasedPulse
+from ..blast.load_model import PhasedPulse, front_face_clearing, front_face_negative
 from ..blast.pulses import Friedlander, Impulsive, Pulse, Tabulated, Triangular
 from .layout import FRIEDLANDER, NO_PULSE, PAR_SIZE, TABULATED, TRIANGULAR
 from .system import RockingSystem
-from ..blast.load_model import front_face_negative
-from ..blast.load_model import front_face_clearing
 
 __all__ = ["PULSE_CODES", "encode_pulse", "kernel_pulse_end"]
 

@@ -45,8 +45,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from .._jit import njit
 
+from .._jit import njit
 from ._dopri import dense, dense_coeffs, dopri_step, error_norm, next_step, rejected_step, restart_step, rhs
 from ._events import (
     EV_IMPACT,
@@ -55,8 +55,8 @@ from ._events import (
     EV_TIPPED,
     HALF_PI,
     impact,
-    locate_events,
     initial_mode,
+    locate_events,
     record_impact,
     record_peak,
     record_row,
@@ -67,8 +67,8 @@ from ._events import (
     write_summary,
 )
 from ._free import N_MAX, free_rocking
-from ._series import pulse_piece
 from ._load import lift_time, next_breakpoint, pull_end, pulse_end, tail_lift_time
+from ._series import pulse_piece
 from .layout import N_SUMMARY, S_OVERTURN_TAU, S_W_AT_ALPHA
 
 # the summary layout (S_*, N_SUMMARY) lives in ._events, read there by the solver, the first swing and the batch

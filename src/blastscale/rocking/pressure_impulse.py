@@ -20,10 +20,10 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_choice, check_positive, check_range
 from ..blast.friedlander import friedlander_impulse_ratio
 from ..roots import vector_root
-from .layout import PAR_SIZE
 from .encoding import PULSE_CODES
-from .swing import pulse_phase
+from .layout import PAR_SIZE
 from .solver import DEFAULT_SOLVER, RockingSolver, check_count
+from .swing import pulse_phase
 from .system import as_rocking_system
 
 __all__ = ["pi_diagram", "PIDiagram"]

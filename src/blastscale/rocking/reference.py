@@ -16,8 +16,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .._validate import check_positive
-from ..roots import scalar_root
 from ..blast.pulses import Impulsive, Pulse, Tabulated
+from ..roots import scalar_root
 from .results import RockingResult, none_if_nan
 from .system import RockingSystem, as_rocking_system
 

@@ -36,21 +36,21 @@ from .._threads import resolve_threads
 from .._validate import BlastscaleInputError, check_finite, check_positive, check_range
 from ..blast.pulses import Pulse
 from ..structures.block import RectangularBlock
+from .encoding import encode_pulse
 from .layout import (
+    PAR_SIZE,
     S_END_TAU,
     S_FIRST_IMPACT_TAU,
     S_FIRST_PEAK,
     S_MAX_ABS_THETA,
+    S_N_IMPACTS,
     S_NREJECT,
     S_NSTEPS,
-    S_N_IMPACTS,
-    S_OVERTURNED,
     S_OVERTURN_TAU,
+    S_OVERTURNED,
     S_STATUS,
     S_W_AT_ALPHA,
 )
-from .layout import PAR_SIZE
-from .encoding import encode_pulse
 from .results import RockingBatchResult, RockingResult, none_if_nan
 from .system import RockingSystem, as_rocking_system
 

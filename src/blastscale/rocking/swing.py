@@ -66,12 +66,11 @@ import numpy as np
 
 from .._threads import interleave, map_interleaved
 from .._validate import BlastscaleInputError, check_positive
-from ..blast.pulses import check_pulse_shape
 from ..blast.parameters import DEFAULT_BLAST_MODEL, blast_parameters_unchecked
-from ..blast.pulses import Pulse
-from .layout import S_FINAL_THETA, S_FINAL_W, S_MAX_ABS_THETA, S_OVERTURNED, S_STATUS
+from ..blast.pulses import Pulse, check_pulse_shape
 from .encoding import encode_blast_batch, encode_pulse, kernel_pulse_end
 from .free_swing import first_swing_margin, first_swing_peak
+from .layout import S_FINAL_THETA, S_FINAL_W, S_MAX_ABS_THETA, S_OVERTURNED, S_STATUS
 from .solver import DEFAULT_SOLVER, RockingSolver
 from .system import RockingSystem, as_rocking_system
 

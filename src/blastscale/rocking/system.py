@@ -30,12 +30,11 @@ References
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from .._validate import BlastscaleInputError, check_positive, check_range
 from ..constants import STANDARD_GRAVITY
 from ..structures.block import RectangularBlock
-from dataclasses import replace
 
 __all__ = ["RockingSystem", "housner_restitution", "as_rocking_system"]
 

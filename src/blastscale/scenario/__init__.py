@@ -41,11 +41,11 @@ See ``docs/scenarios.md`` for every key.
 """
 
 from .files import load_scenario
-from .text import to_toml
 from .library import EXAMPLE_BLOCKS, TEMPLATE_KINDS, library_names, library_text, template_text
 from .scenario import Scenario
 from .specs import BlastSpec, ContactSpec, ScaleSpec, SimulationSpec, parse_ratio
 from .structure_specs import BlockSpec, ColumnSpec
+from .text import to_toml
 
 __all__ = [
     "Scenario",

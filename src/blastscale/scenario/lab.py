@@ -9,14 +9,14 @@ from typing import Any, Optional
 from pydantic import BaseModel, Field, PrivateAttr, field_validator, model_serializer, model_validator
 
 from .._validate import check_choice
-from ..blast.parameters import BURSTS
 from ..blast.explosive_library import EXPLOSIVES
 from ..blast.explosives import canonical_name, initiator_tnt_kg
 from ..blast.initiation import DEFAULT_INITIATOR, INITIATORS
+from ..blast.parameters import BURSTS
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS
 from ..structures.materials import MATERIALS
-from .messages import value_in_message
 from .fields import SPEC_CONFIG, check_name
+from .messages import value_in_message
 
 __all__ = ["ExplosiveSpec", "LabSpec", "SAME_MATERIAL"]
 

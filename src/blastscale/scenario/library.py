@@ -5,6 +5,7 @@ cases (``paper_*``) and a planar block for quick studies (``planar_block``), by 
 from __future__ import annotations
 
 from importlib import resources
+
 from .._validate import BlastscaleInputError
 
 __all__ = ["library_names", "library_text", "library_source", "TEMPLATE_KINDS", "template_text", "EXAMPLE_BLOCKS"]

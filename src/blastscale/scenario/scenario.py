@@ -10,13 +10,13 @@ from pydantic import BaseModel, Field, ValidationError, field_validator
 from .._validate import BlastscaleInputError
 from ..constants import DEFAULT_FRICTION
 from ..structures.materials import MATERIALS
-from .messages import one_line, submodels
-from .text import to_toml
+from .fields import SPEC_CONFIG
 from .fired import FiredSpec
 from .lab import LabSpec
-from .fields import SPEC_CONFIG
-from .structure_specs import KINDS, BlockSpec, Structure
+from .messages import one_line, submodels
 from .specs import LEGACY_SCENARIO_KEYS, BlastSpec, ScaleSpec, SimulationSpec
+from .structure_specs import KINDS, BlockSpec, Structure
+from .text import to_toml
 
 __all__ = ["Scenario"]
 

@@ -17,11 +17,11 @@ import annotated_types as at
 from pydantic import AliasChoices, BaseModel, Field, field_validator, model_validator
 
 from .._validate import BlastscaleInputError
-from ..constants import STANDARD_GRAVITY
 from ..blast.incidence import INCIDENCE_MODELS
 from ..blast.negative_phase import NEGATIVE_PHASE_MODEL, NEGATIVE_PHASE_MODELS
 from ..blast.parameters import BLAST_MODELS, BURSTS, DEFAULT_BLAST_MODEL, DEFAULT_BURST
 from ..blast.pulses import PULSE_SHAPES
+from ..constants import STANDARD_GRAVITY
 from ..sim3d.contact_ranges import CONES, JACOBIANS, SOLVERS, STEPS_AFTER_LOAD
 from ..sim3d.load_methods import LOAD_METHODS
 from ..structures.materials import MATERIALS

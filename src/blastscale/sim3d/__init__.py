@@ -24,16 +24,16 @@ MuJoCo is imported lazily, inside the functions that need it.
 """
 
 from .blast_force import step_forces
-from .contact_ranges import CONES, SOLVERS
 from .contact import ContactSettings, default_contact
+from .contact_ranges import CONES, SOLVERS
+from .integrate import BLAST_MODES, SETTLE_TIME_CONSTANTS
 from .load_methods import LOAD_METHODS, make_load, register_load_method
 from .loads import LoadStrategy, MethodA, PerturbedLoad
 from .model import BodySpec, Scene, block_scene, build_scene, structure_scene
-from .shapes import BoxShape, FrontFace, PrismShape
-from .integrate import BLAST_MODES, SETTLE_TIME_CONSTANTS
 from .reference import reference_factors
 from .results import Response3D
 from .rotations import quaternion_to_matrix, tilt_angle
+from .shapes import BoxShape, FrontFace, PrismShape
 from .simulate import check_simulable, pivot_friction_threshold, simulate_structure
 
 __all__ = [

@@ -33,8 +33,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from .._validate import BlastscaleInputError, check_choice, check_positive, check_range
+from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from ..similitude.factors import scaling_factors
 from .contact_ranges import CONES, JACOBIANS, SETTING_RANGES, SOLVERS, STEPS_AFTER_LOAD, check_scalar
 from .solver_choice import default_jacobian

@@ -25,6 +25,7 @@ adds clearing and the negative phase on every face (:mod:`blastscale.blast.face_
 
 from __future__ import annotations
 
+import copy
 from dataclasses import replace
 
 import numpy as np
@@ -35,11 +36,9 @@ from ..blast.faces import face_loads_unchecked, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
 from ..blast.pulses import check_pulse_shape
-from .loads import check_blast, faces_array
-import copy
+from ..similitude.effects import front_geometry, structure_top
 from .exposure import visible_fractions
-from ..similitude.effects import structure_top
-from ..similitude.effects import front_geometry
+from .loads import check_blast, faces_array
 
 __all__ = ["FaceLoadStrategy", "load_arrival_spread", "method_b", "method_c"]
 

@@ -22,15 +22,15 @@ name: :mod:`.load_methods`.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Protocol, runtime_checkable
 
 import numpy as np
 
 from .._validate import BlastscaleInputError, check_finite, check_positive
-from .blast_force import mean_pressures
 from ..blast.load_model import front_face_pulse, load_model_record
-from dataclasses import replace
 from ..similitude.effects import front_face
+from .blast_force import mean_pressures
 
 __all__ = ["LoadStrategy", "MethodA", "PerturbedLoad", "check_blast", "faces_array", "method_a", "with_structure_face"]
 

@@ -7,6 +7,7 @@ Pure numpy on the states :func:`~.integrate.integrate` returns (physical units).
 from __future__ import annotations
 
 import json
+from importlib.metadata import PackageNotFoundError, version
 
 import numpy as np
 
@@ -14,7 +15,6 @@ from ..structures.base import top_monitoring_point
 from .body_mesh import structure_meshes
 from .results import VARIABLES, Response3D, body_heights
 from .rotations import quaternion_to_matrix, tilt_angle
-from importlib.metadata import PackageNotFoundError, version
 
 __all__ = ["collapse_flags", "fallen_flags", "response_from_states"]
 

@@ -14,9 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from ..structures.convex_block import ConvexGeometry
 from ..structures.base import BoxGeometry, PrismGeometry
 from ..structures.block import RectangularBlock
+from ..structures.convex_block import ConvexGeometry
 from .contact import mjcf_number
 
 __all__ = ["BoxShape", "FrontFace", "MeshShape", "PrismShape", "engine_shape"]

@@ -36,11 +36,11 @@ from .contact import (
 )
 from .initial import body_velocities, rigid_rocking_velocity
 from .integrate import BLAST_MODES, integrate
-from .shapes import BoxShape
 from .model import Scene
 from .record import response_from_states
 from .reference import reference_scene
 from .results import Response3D
+from .shapes import BoxShape
 
 __all__ = [
     "ENGINE_LENGTH_RANGE",

@@ -21,8 +21,7 @@ possible in a user's environment) stacks up to :data:`DENSE_JACOBIAN_MAX_BODIES`
 from __future__ import annotations
 
 import functools
-from importlib.metadata import version as _version
-from importlib.metadata import PackageNotFoundError
+from importlib.metadata import PackageNotFoundError, version as _version
 
 __all__ = ["DENSE_JACOBIAN_MAX_BODIES", "SPARSE_FIXED_MUJOCO", "default_jacobian", "sparse_factorisation_fixed"]
 

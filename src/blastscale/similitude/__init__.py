@@ -7,8 +7,8 @@ from .experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign
 from .factors import FACTOR_UNITS, ScalingFactors, pi_terms, scaling_factors
 from .laws import (
     LAWS,
-    admissible_scales,
     ScaledDistanceSolution,
+    admissible_scales,
     hopkinson_cranz_density_ratio,
     masi2021_quadratic_roots,
     solve_scaled_distance_factor,

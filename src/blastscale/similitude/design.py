@@ -18,15 +18,16 @@ import numpy as np
 from .._validate import BlastscaleInputError, OutOfRangeError, check_choice, check_positive, check_positive_scalar
 from ..blast.base import BlastModel, ExtrapolationWarning
 from ..blast.load_model import PAPER_LOAD
-from ..blast.parameters import DEFAULT_BURST, model_for_burst
 from ..blast.parameters import (
     DEFAULT_BLAST_MODEL,
+    DEFAULT_BURST,
     BlastParameters,
     blast_parameters,
+    model_for_burst,
     valid_scaled_distance_range,
 )
-from ..structures.from_spec import is_block
 from ..constants import STANDARD_GRAVITY
+from ..structures.from_spec import is_block
 from .effects import BlastSimilarityWarning, blast_effects, structure_top
 from .experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck, ModelDesign
 from .factors import scaling_factors

@@ -26,11 +26,11 @@ import math
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from ..structures.assembly import Assembly
 from ..blast.bursts import lab_burst
 from ..blast.load_model import PAPER_LOAD, front_face_clearing, front_face_negative, load_model_record
 from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
 from ..roots import scalar_root
+from ..structures.assembly import Assembly
 from .factors import to_specimen
 
 __all__ = [

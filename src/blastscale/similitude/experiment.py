@@ -23,12 +23,12 @@ from typing import Any
 import numpy as np
 
 from .._validate import check_positive
+from ..blast.load_model import load_model_record
 from ..blast.parameters import BlastParameters
 from ..constants import STANDARD_GRAVITY
-from ..structures.from_spec import is_block
 from ..structures.block import RectangularBlock
+from ..structures.from_spec import is_block
 from .factors import ScalingFactors, to_specimen
-from ..blast.load_model import load_model_record
 
 __all__ = ["ImpulsiveCheck", "ModelDesign", "impulsive_check", "DEFAULT_IMPULSIVE_THRESHOLD"]
 

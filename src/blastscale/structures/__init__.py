@@ -4,6 +4,7 @@ faces in the body frame, interfaces and monitoring points. Monolithic blocks and
 :mod:`.convex_block`, their interfaces found by geometry, :mod:`.interfaces`) generated as walls, arches and portals
 (:mod:`.generators`) or read from block-model files (:mod:`.block_files`)."""
 
+from .assembly import Assembly, as_assembly
 from .base import (
     BoxGeometry,
     Face,
@@ -14,16 +15,15 @@ from .base import (
     rest_mass_properties,
     top_monitoring_point,
 )
-from .frustum import frustum_mass_properties
-from .assembly import Assembly, as_assembly
-from .convex_block import ConvexBlock, ConvexGeometry
 from .block import RectangularBlock
 from .block_files import read_block_model
-from .generators import arch, portal, wall
-from .polyhedron import polyhedron_faces, polyhedron_mass_properties
 from .column import SECTIONS, MultiDrumColumn
+from .convex_block import ConvexBlock, ConvexGeometry
 from .from_spec import STRUCTURE_BUILDERS, from_spec, is_block
+from .frustum import frustum_mass_properties
+from .generators import arch, portal, wall
 from .materials import MATERIALS, Material, material_density
+from .polyhedron import polyhedron_faces, polyhedron_mass_properties
 
 __all__ = [
     "Assembly",

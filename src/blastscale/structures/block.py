@@ -13,8 +13,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from ..constants import STANDARD_GRAVITY
 from .._validate import check_positive_scalar, check_range
+from ..constants import STANDARD_GRAVITY
 from .base import BoxGeometry, Face, MonitoringPoint, RigidBody, as_vertex_tuple, centred_box_vertices
 
 __all__ = ["RectangularBlock"]

@@ -43,9 +43,9 @@ import numpy as np
 from .._extras import require
 from .._validate import BlastscaleInputError
 from .assembly import Assembly
-from .convex_block import ConvexBlock
 from .base import MonitoringPoint
 from .compas_files import is_compas_model, mesh_arrays, read_compas_model
+from .convex_block import ConvexBlock
 from .polyhedron import hull_of
 
 __all__ = [

@@ -19,8 +19,8 @@ from .memory import (
     estimate_seconds,
     format_duration,
 )
-from .result import StudyResult
 from .plan import StudyPlan
+from .result import StudyResult
 from .study import Progress, Study, StudyWarning
 
 __all__ = [

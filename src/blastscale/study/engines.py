@@ -8,27 +8,24 @@ import functools
 from dataclasses import dataclass, replace
 from typing import Any, Callable, Optional
 
-from .._validate import BlastscaleInputError
-from ..scenario.scenario import Scenario
-from ..structures.from_spec import is_block
-from ..blast.load_model import PAPER_LOAD, LoadModel
 import numpy as np
-from ..blast.load_model import front_face_pulse
-from ..sim3d.contact import ContactSettings
-from ..sim3d.contact import time_constant_for_step
-from ..sim3d.contact import default_contact
-from ..sim3d.contact import reference_contact
-from ..analysis.structure3d import compare_structure3d
-from ..analysis.prototype3d import prototype_structure3d
+
+from .._validate import BlastscaleInputError
 from ..analysis.ensemble import ensemble_compare
+from ..analysis.prototype3d import prototype_structure3d
+from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
+from ..analysis.structure3d import compare_structure3d
 from ..analysis.systems import Settings3D, System3D, Systems3D
+from ..blast.load_model import PAPER_LOAD, LoadModel, front_face_pulse
 from ..blast.parameters import model_for_burst
+from ..rocking.critical import critical_charge
+from ..rocking.solver import DEFAULT_SOLVER
+from ..rocking.system import RockingSystem
+from ..scenario.scenario import Scenario
+from ..sim3d.contact import ContactSettings, default_contact, reference_contact, time_constant_for_step
 from ..similitude.effects import front_face
 from ..similitude.factors import to_specimen
-from ..analysis.rocking_similarity import PrototypeRocking, compare_rocking
-from ..rocking.system import RockingSystem
-from ..rocking.solver import DEFAULT_SOLVER
-from ..rocking.critical import critical_charge
+from ..structures.from_spec import is_block
 
 __all__ = [
     "Engine",

@@ -19,13 +19,12 @@ import os
 from dataclasses import dataclass
 
 from .._validate import BlastscaleInputError
-from ..units import format_size
 from ..scenario.scenario import Scenario
 from ..sim3d.contact import default_contact
-from .engines import contact_settings
 from ..sim3d.integrate import SETTLE_TIME_CONSTANTS, step_factor_after_load
 from ..structures.assembly import as_assembly
-from .engines import record_every
+from ..units import format_size
+from .engines import contact_settings, record_every
 
 __all__ = [
     "MEMORY_FRACTION",

@@ -3,15 +3,16 @@ comparison, warnings, timings) and its views (nested summary, flat scalars, hist
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
-from ..scenario.scenario import Scenario
-import copy
-from ..analysis.compare import upscale_dataset
 import numpy as np
+
+from ..analysis.compare import upscale_dataset
 from ..analysis.rocking_similarity import rocking_dataset
+from ..scenario.scenario import Scenario
 
 __all__ = ["StudyResult", "study_warnings"]
 

@@ -40,22 +40,25 @@ from dataclasses import replace
 from typing import Callable, Optional
 
 from .._validate import BlastscaleInputError, check_choice
+from ..blast.parameters import blast_parameters
 from ..scenario.scenario import Scenario
-from ..structures import from_spec
-from .engines import ENGINES, ENSEMBLE, Engine, contact_settings, critical_charge_of, load_model_of
-from .memory import check_study_budget
-from .result import StudyResult
-from ..similitude.design import design_model
 from ..scenario.specs import ScaleSpec
+from ..similitude.design import design_model
+from ..similitude.effects import front_face, structure_top
+from ..structures import from_spec
 from .engines import (
+    ENGINES,
+    ENSEMBLE,
+    Engine,
+    contact_settings,
+    critical_charge_of,
+    load_model_of,
     planar_settings,
     systems_3d,
 )
-from .memory import contacts_of
+from .memory import check_study_budget, contacts_of
 from .plan import DESIGN_SYSTEMS, DesignSystem, StudyPlan
-from .result import study_warnings
-from ..similitude.effects import front_face, structure_top
-from ..blast.parameters import blast_parameters
+from .result import StudyResult, study_warnings
 
 __all__ = ["Study", "StudyWarning", "Progress", "design_of"]
 

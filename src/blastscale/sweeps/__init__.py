@@ -4,13 +4,12 @@ fragility curves; the similarity map. Above the Study: every case is a Study (do
 sweep is driven here (:mod:`.run`); files are written by :mod:`blastscale.io` (the chunk store
 :mod:`blastscale.io.sweep_store`, below the sweeps)."""
 
-from .outcomes import VALID_KEY
 from .cases import evaluate_chunk, study_scalars
 from .grids import Distribution, parse_distribution, parse_grid
 from .layout import StoreLocation, select, store_location
-from .outcomes import OUTCOME_KEYS, planar_outcomes
-from .runner import default_chunk, run_chunks
+from .outcomes import OUTCOME_KEYS, VALID_KEY, planar_outcomes
 from .run import SweepRun
+from .runner import default_chunk, run_chunks
 from .spec import SweepAxis, SweepSample, SweepSpec
 
 __all__ = [

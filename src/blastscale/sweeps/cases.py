@@ -5,13 +5,13 @@ worker runs. A case's values never depend on the other cases of its chunk."""
 from __future__ import annotations
 
 import math
+import warnings
 
+from .._threads import map_threads
 from .._validate import BlastscaleInputError
+from ..study.study import Study
 from .outcomes import VALID_KEY, planar_outcomes
 from .spec import SweepSpec
-from ..study.study import Study
-import warnings
-from .._threads import map_threads
 
 __all__ = ["study_scalars", "evaluate_chunk"]
 

@@ -12,17 +12,17 @@ in any order; nothing is written here (:func:`.run.run_sweep` has :mod:`blastsca
 from __future__ import annotations
 
 import json
+import platform
 import time
 
 import numpy as np
 
+from .. import __version__
+from .._code import code_fingerprint
 from ..units import unit_of
 from .layout import CONSTANT_GROUPS, VALID_NAME, coordinate_attrs, label_order, store_location
 from .outcomes import VALID_KEY
 from .spec import SweepSpec
-import platform
-from .. import __version__
-from .._code import code_fingerprint
 
 __all__ = ["assemble", "metadata", "STORE_VERSION"]
 

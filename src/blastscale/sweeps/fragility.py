@@ -32,15 +32,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import BlastscaleInputError
-from .grids import Distribution
-from ..structures import from_spec
 from .. import __version__
-from .spec import SweepSpec
+from .._validate import BlastscaleInputError
 from ..analysis.planar import first_swing_of, planar_system
+from ..rocking.solver import RockingSolver
+from ..structures import from_spec
 from ..study.memory import check_budget
 from .budget import FIRST_SWING_SECONDS
-from ..rocking.solver import RockingSolver
+from .grids import Distribution
+from .spec import SweepSpec
 
 __all__ = ["fragility", "FragilityResult", "fit_lognormal_fragility", "LognormalFit", "overturning_outcomes"]
 

@@ -31,8 +31,9 @@ from __future__ import annotations
 import re
 from typing import NamedTuple, Optional
 
-from ..units import SUFFIXES, unit_of
 import numpy as np
+
+from ..units import SUFFIXES, unit_of
 
 __all__ = [
     "StoreLocation",

@@ -4,17 +4,17 @@ first free swing in closed form)."""
 
 from __future__ import annotations
 
+import warnings
 
 import numpy as np
 
-from .spec import SweepSpec, _plain
+from .._threads import interleave, map_interleaved
 from .._validate import BlastscaleInputError
 from ..analysis.planar import first_swing_under, planar_system
-from ..study.study import Study, design_of
-from .._threads import interleave, map_interleaved
-from ..rocking.system import housner_restitution
-import warnings
 from ..rocking.solver import RockingSolver
+from ..rocking.system import housner_restitution
+from ..study.study import Study, design_of
+from .spec import SweepSpec, _plain
 
 __all__ = ["OUTCOME_KEYS", "VALID_KEY", "planar_outcomes"]
 

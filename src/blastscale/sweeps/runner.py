@@ -7,21 +7,21 @@ from __future__ import annotations
 
 import hashlib
 import json
+import logging
 import math
+import signal
 import sys
+import threading
 import time
+import warnings
+from multiprocessing import resource_tracker
 from typing import Callable, Optional
 
 from .._extras import require
+from .._threads import THREADS_ENV, available_cores
 from .._validate import BlastscaleInputError
 from .cases import evaluate_chunk
 from .spec import SweepSpec
-from .._threads import THREADS_ENV, available_cores
-import logging
-import warnings
-import signal
-import threading
-from multiprocessing import resource_tracker
 
 __all__ = ["default_chunk", "run_chunks", "payload_hash"]
 

@@ -15,12 +15,12 @@ from typing import Optional
 
 import numpy as np
 
-from .._validate import BlastscaleInputError
-from .grids import Distribution
-from .budget import VALUES_PER_CASE, check_cases_budget
 from .. import __version__
 from .._code import code_fingerprint
+from .._validate import BlastscaleInputError
 from ..scenario.scenario import Scenario
+from .budget import VALUES_PER_CASE, check_cases_budget
+from .grids import Distribution
 
 __all__ = ["SweepAxis", "SweepSample", "SweepSpec", "planar_case"]
 

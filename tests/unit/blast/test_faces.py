@@ -9,14 +9,12 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
 from blastscale._validate import BlastscaleInputError, OutOfRangeError
 from blastscale.blast import Friedlander, Triangular
 from blastscale.blast.faces import MixedModelWarning, face_loads
-from blastscale.blast.incidence import oblique_combination
-from blastscale.blast.incidence import INCIDENCE_MODELS
+from blastscale.blast.incidence import INCIDENCE_MODELS, oblique_combination
 from blastscale.blast.kingery_bulmash import KingeryBulmash
 from blastscale.blast.masi_fits import Masi2021
 

@@ -19,8 +19,8 @@ from blastscale._validate import BlastscaleInputError
 from blastscale.blast import blast_parameters, get_blast_model
 from blastscale.blast.air import shock_velocity
 from blastscale.blast.bursts import equivalent_free_air_charge_ratio, lab_burst
-from blastscale.blast.parameters import model_for_burst
 from blastscale.blast.kingery_bulmash_free_air import KB_UNITS, KingeryBulmashFreeAir, kb1984_evaluate
+from blastscale.blast.parameters import model_for_burst
 from blastscale.blast.safety import SURFACE_BURST_FACTOR
 
 DATA = Path(__file__).resolve().parents[2] / "data"

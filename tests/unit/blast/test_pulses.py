@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from blastscale.similitude import scaling_factors
 from blastscale._validate import BlastscaleInputError
 from blastscale.blast import Friedlander, Impulsive, Tabulated, Triangular, blast_parameters, friedlander_decay
 from blastscale.blast.friedlander import NegativeDecayWarning, friedlander_impulse_ratio
+from blastscale.similitude import scaling_factors
 
 
 @pytest.mark.parametrize("d", [-0.9, -0.3, 1e-9, 0.5, 3.377, 20.0, 300.0])

@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 
 from blastscale._validate import BlastscaleInputError
-from blastscale.io.targets import Kind
 from blastscale.io.output import claim
+from blastscale.io.targets import Kind
 
 KIND = Kind("a test output", lambda p: True)
 SRC = Path(__file__).resolve().parents[3] / "src"

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from blastscale.planning.odds import Tolerances, Z90_ONE_SIDED, planar_odds
+from blastscale.planning.odds import Z90_ONE_SIDED, Tolerances, planar_odds
 from blastscale.rocking import RockingSystem, critical_charge
 from blastscale.structures import RectangularBlock
 

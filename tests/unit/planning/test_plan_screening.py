@@ -5,8 +5,7 @@ a lab nothing can satisfy answered in one line naming the binding constraint, fo
 import json
 
 import pytest
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
+from hypothesis import HealthCheck, given, settings, strategies as st
 
 from blastscale.blast.bursts import lab_burst
 from blastscale.planning import PlanInfeasible, plan

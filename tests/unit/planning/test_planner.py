@@ -4,8 +4,7 @@ an infeasible lab gets one line naming the constraint and what would relax it; t
 import math
 
 import pytest
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
+from hypothesis import HealthCheck, given, settings, strategies as st
 
 from blastscale.planning import PlanInfeasible, plan
 from blastscale.planning.planner import _rank_key

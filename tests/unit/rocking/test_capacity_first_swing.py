@@ -12,8 +12,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
-from hypothesis import strategies as st
+from hypothesis import HealthCheck, assume, given, settings, strategies as st
 
 from blastscale.blast import valid_scaled_distance_range
 from blastscale.blast.base import ExtrapolationWarning

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy.special import elliprf, ellipj, ellipk
+from scipy.special import ellipj, ellipk, elliprf
 
 from blastscale.blast import blast_parameters
 from blastscale.blast.load_model import LoadModel, front_face_pulse

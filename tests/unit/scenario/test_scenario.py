@@ -11,9 +11,8 @@ import pytest
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.cli import main
-from blastscale.scenario import Scenario, library_names, load_scenario, parse_ratio
+from blastscale.scenario import Scenario, library_names, load_scenario, parse_ratio, to_toml as _to_toml
 from blastscale.structures.materials import MATERIALS, material_density
-from blastscale.scenario import to_toml as _to_toml
 
 EXAMPLES = library_names()  # the scenarios shipped with blastscale (package data)
 
@@ -210,8 +209,8 @@ def test_example_scenarios_validate(path):
 def test_contact_ranges_are_the_engines_own():
     """[simulation.contact] takes its bounds from sim3d.contact_ranges.SETTING_RANGES: a value just outside an
     end is refused by the scenario and by ContactSettings alike, a value at a closed end accepted by both."""
-    from blastscale.sim3d.contact_ranges import SETTING_RANGES
     from blastscale.sim3d.contact import ContactSettings
+    from blastscale.sim3d.contact_ranges import SETTING_RANGES
 
     keys = {
         "time_constant": "time_constant_s",

@@ -3,8 +3,7 @@
 import math
 
 import pytest
-from hypothesis import assume, given, settings
-from hypothesis import strategies as st
+from hypothesis import assume, given, settings, strategies as st
 
 from blastscale._validate import OutOfRangeError
 from blastscale.blast import get_blast_model, valid_scaled_distance_range

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from blastscale._validate import BlastscaleInputError, OutOfRangeError
+from blastscale.blast.parameters import valid_scaled_distance_range
 from blastscale.similitude import admissible_scales, design_model
 from blastscale.similitude.curves import scaling_curves
-from blastscale.blast.parameters import valid_scaled_distance_range
 
 MODELS = ("masi2021", "kingery-bulmash")
 W, R = 50.0, 2.0  # the paper's case (a): 50 kg at 2 m, Z = 0.5429 m/kg^(1/3)

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from blastscale.similitude import scaling_factors
 from blastscale._validate import BlastscaleInputError
+from blastscale.similitude import scaling_factors
 from blastscale.structures import MonitoringPoint, MultiDrumColumn, RectangularBlock
 from blastscale.structures.frustum import frustum_mass_properties, polygon_section_constants
 
