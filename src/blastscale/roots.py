@@ -3,11 +3,8 @@
 Every search of the package that brackets a root goes through here: the inversion of the blast fits
 (:mod:`blastscale.blast.inverse`: charge, stand-off or scaled distance for a given peak or impulse), the
 general scaling law (:func:`blastscale.similitude.laws.solve_scaled_distance_factors`, paper Eq. 8), the
-critical loads (:mod:`blastscale.rocking.critical`), the pressure-impulse diagram
-(:mod:`blastscale.rocking.pressure_impulse`) and the Friedlander decay
-(:func:`blastscale.blast.friedlander.friedlander_decay`, paper Eq. 2 in ``u = asinh(d)``). The one exception
-is inside the compiled (numba) kernels: ``blastscale.rocking._load._suction_root`` bisects the negative phase's
-suction cubic itself, as an ``@njit`` function cannot call this numpy-level finder.
+critical loads (:mod:`blastscale.rocking.critical`) and the pressure-impulse diagram
+(:mod:`blastscale.rocking.pressure_impulse`).
 
 Method
 ------

@@ -364,10 +364,11 @@ def test_grid_and_distribution_strings():
     assert x.min() >= 1 and x.max() <= 100 and abs(np.log10(x).mean() - 1.0) < 0.01
 
 
-def test_one_friedlander_decay_is_the_array_path_bit_for_bit():
-    """One decay (the planar batch path calls friedlander_decay twice per design) is the array
-    path's value bit for bit (the package's root finder on arrays of one): each scalar call
-    against one array call over all the ratios, across (0, e - 2), near k = 1/2 (d = 0, the
+def test_one_friedlander_decay_is_the_array_bisection_bit_for_bit():
+    """The one-decay path of friedlander_decay (float decisions away from the root, a stop once the
+    bracket cannot move; the planar batch path calls it twice per design) returns the 90-step
+    array bisection's value bit for bit: each scalar call against one array call over all the
+    ratios (the array path is the plain bisection), across (0, e - 2), near k = 1/2 (d = 0, the
     series branch), near e - 2 (d = -1) and for tiny ratios (d up to ~1e12)."""
     import warnings
 
