@@ -4,7 +4,12 @@ Every search of the package that brackets a root goes through here: the inversio
 (:mod:`blastscale.blast.inverse`: charge, stand-off or scaled distance for a given peak or impulse), the
 general scaling law (:func:`blastscale.similitude.laws.solve_scaled_distance_factors`, paper Eq. 8), the
 critical loads (:mod:`blastscale.rocking.critical`) and the pressure-impulse diagram
-(:mod:`blastscale.rocking.pressure_impulse`).
+(:mod:`blastscale.rocking.pressure_impulse`). Two searches keep their own bisection, each for a stated reason:
+the compiled rocking kernels' suction root (``rocking._load._suction_root``: an ``@njit`` function cannot call
+this numpy code) and the Friedlander decay (:func:`blastscale.blast.friedlander.friedlander_decay`: moved onto
+this finder it changed decays near d = 0 by up to 1e-9 relative and tipped the series-vs-DOP853 check of the
+tabulated pulse phase (tests/unit/rocking/test_free_rocking.py) past its 1e-11 bound, and its one-decay call
+took 1.44x as long; measured in issue #34, kept as it was).
 
 Method
 ------
