@@ -37,6 +37,14 @@ def _string_annotations(tree):
     return out
 
 
+def _literal_or_none(node):
+    """The value of a literal ``__all__``, or None when it is computed (a lazy package derives it)."""
+    try:
+        return list(ast.literal_eval(node))
+    except ValueError:
+        return None
+
+
 class _Module:
     def __init__(self, path: Path):
         rel = path.relative_to(SRC).with_suffix("").parts
@@ -46,6 +54,8 @@ class _Module:
         self.tree = ast.parse(path.read_text(encoding="utf-8"))
         self.defs, self.imports, self.all, self.lazy = set(), {}, None, {}
         self._top(self.tree.body)
+        if self.all is None and self.lazy:  # `__all__ = list(_HOMES)`: the names the lazy package maps
+            self.all = list(self.lazy)
         self.used = {n.id for n in ast.walk(self.tree) if isinstance(n, ast.Name) and not isinstance(n.ctx, ast.Store)}
         self.used |= {n.id for s in _string_annotations(self.tree) for n in ast.walk(s) if isinstance(n, ast.Name)}
 
@@ -66,7 +76,8 @@ class _Module:
                         if isinstance(n, ast.Name):
                             self.defs.add(n.id)
                             if n.id == "__all__" and st.value is not None:
-                                self.all = list(ast.literal_eval(st.value))
+                                # a literal list, or a lazy package's `list(_HOMES)` (its keys, below)
+                                self.all = _literal_or_none(st.value)
                             elif n.id == "_HOMES" and self.is_pkg:  # a lazy package: name -> submodule
                                 self.lazy = ast.literal_eval(st.value)
             elif isinstance(st, ast.ImportFrom):

@@ -23,39 +23,6 @@ Code inside blastscale imports from the defining submodule.
 
 import importlib
 
-__all__ = [
-    "RockingSystem",
-    "as_rocking_system",
-    "housner_restitution",
-    "RockingSolver",
-    "DEFAULT_SOLVER",
-    "RockingResult",
-    "RockingBatchResult",
-    "simulate",
-    "simulate_reference",
-    "check_count",
-    "PULSE_CODES",
-    "encode_pulse",
-    "CriticalResult",
-    "CapacityCurve",
-    "capacity_curve",
-    "PIDiagram",
-    "critical_charge",
-    "critical_standoff",
-    "critical_charge_by_bisection",
-    "FirstSwing",
-    "first_swing",
-    "first_swing_blast",
-    "first_swing_margin",
-    "first_swing_peak",
-    "overturn_margin",
-    "overturns",
-    "pi_diagram",
-    "frame_frequency_parameter",
-    "free_rocking_peak",
-    "overturning_angular_velocity",
-]
-
 #: The submodule that defines each public name: imported on first access (PEP 562), so that
 #: ``import blastscale.rocking.system`` (or any light submodule) does not load numba and scipy through
 #: the compiled solver and the scipy reference path.
@@ -91,6 +58,9 @@ _HOMES = {
     "free_rocking_peak": "frame",
     "overturning_angular_velocity": "frame",
 }
+
+#: The public names: those :data:`_HOMES` maps to their submodule (one list, so the two cannot drift).
+__all__ = list(_HOMES)
 
 
 def __getattr__(name: str):
