@@ -8,6 +8,8 @@
 * :mod:`.prototype3d` -- ``prototype_structure3d`` (the prototype alone);
 * :mod:`.ensemble` -- ``ensemble_compare`` for chaotic structures (circular columns; the
   prototype's ensemble alone without a design);
+* :mod:`.intervals` -- ``wilson_interval``, ``odds_text``: the binomial interval of k of n (an ensemble's
+  odds, honest for small n);
 * :mod:`.rocking_similarity` -- planar rocking through the same contract (with its overturning figures);
 * :mod:`.block3d_similarity` -- the single block's planar view of a 3D run (``block_dataset``,
   ``block_summary``, ``block_similarity``, ``block_view``: rotation about y, sliding of the
