@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from blastscale.analysis.intervals import wilson_interval
 from blastscale.planning import plan
 from blastscale.planning.build import specimen_mass
 from blastscale.planning.odds import Tolerances, specimen_members
@@ -24,7 +25,15 @@ def _check(p, lab):
     assert p.designs and p.prototype["collapsed"] is not None
     top = p.designs[0]
     o = top["odds_3d"]
-    assert o["members"] == lab.ensemble_3d and 0.0 <= o["p_outcome_agree"] <= 1.0 and o["p_outcome_agree_se"] >= 0
+    assert o["members"] == o["trials"] == lab.ensemble_3d and o["p_outcome_agree"] == o["agree_count"] / o["trials"]
+    # the Wilson interval of agree_count of trials (tests/unit/analysis/test_intervals.py), never "+- 0"
+    assert (o["p_outcome_agree_low"], o["p_outcome_agree_high"]) == wilson_interval(o["agree_count"], o["trials"])
+    assert (
+        top["p_outcome_agree_low"]
+        == o["p_outcome_agree_low"]
+        < o["p_outcome_agree_high"]
+        == top["p_outcome_agree_high"]
+    )
     assert 0 < o["top_displacement_p05_m"] <= o["top_displacement_p95_m"]
     assert top["p_outcome_agree"] == o["p_outcome_agree"] and top["pareto"] is True  # alone with odds: on the front
     for d in p.designs:

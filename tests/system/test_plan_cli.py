@@ -6,6 +6,7 @@ import math
 
 import pytest
 
+from blastscale.analysis.intervals import wilson_interval
 from blastscale.cli import main
 
 PROTOTYPE = """
@@ -79,6 +80,8 @@ def test_plan_json_has_the_issues_keys(capsys, tmp_path):
             "safety_distances_m",
             "camera_fps",
             "p_outcome_agree",
+            "p_outcome_agree_low",
+            "p_outcome_agree_high",
             "explosive_min_charge_kg",
             "initiator_tnt_kg",
             "initiator_fraction",
@@ -193,7 +196,15 @@ def test_run_of_an_arch_with_a_lab_gives_its_card(capsys, tmp_path):
     code, out, err = cli(capsys, "run", str(s), "--out", str(tmp_path / "o"))
     assert code == 0, err
     card = json.loads((tmp_path / "o" / "summary.json").read_text())["test_card"]
-    assert card["odds_3d"]["members"] == 2  # the 3D ensemble of an arch's specimen (was: blocks only)
+    o3 = card["odds_3d"]
+    assert o3["members"] == 2  # the 3D ensemble of an arch's specimen (was: blocks only)
+    # no planar path: the card's odds are the 3D ensemble's, with their Wilson interval (was: "-")
+    assert (card["p_outcome_agree"], card["p_outcome_agree_low"], card["p_outcome_agree_high"]) == (
+        o3["p_outcome_agree"],
+        *wilson_interval(o3["agree_count"], 2),
+    )
+    html = (tmp_path / "o" / "report.html").read_text()
+    assert f"(95 %, {o3['agree_count']} of 2)" in html  # the card row "outcome agrees ... (3D ensemble)"
     b = card["build"]
     assert b["kind"] == "arch" and b["height_m"] == pytest.approx(0.275 * math.cos(math.pi / 18), rel=1e-9)
     assert b["width_m"] == pytest.approx(0.1, rel=1e-9) and b["unit"]["bodies"] == 9

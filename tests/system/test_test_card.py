@@ -10,6 +10,7 @@ from html.parser import HTMLParser
 
 import pytest
 
+from blastscale.planning.odds import outcome_odds_text
 from blastscale.report import write_study
 from blastscale.report.card import shown
 from blastscale.scenario import Scenario
@@ -25,6 +26,8 @@ KEYS = (
     "camera_fps",
     "pressure_sampling_hz",
     "p_outcome_agree",
+    "p_outcome_agree_low",
+    "p_outcome_agree_high",
     "first_peak_spread",
 )
 FLAGS = [
@@ -132,7 +135,10 @@ def test_card_renders_in_chromium_and_every_number_matches_summary(card_dir, tmp
     for key, unit, prefix, text in p.numbers:
         assert text == prefix + shown(_get(card, key), unit), (key, unit, text)
     # digits in the value cells outside the tagged numbers: only units and names
-    assert set(p.loose) <= {" kg/m3", card["explosive"]}, p.loose
+    # the odds in words are the summary's counts with their Wilson interval (not a tagged number)
+    odds = {outcome_odds_text(card["odds"]), outcome_odds_text(card["odds_3d"])}
+    assert set(p.loose) <= {" kg/m3", card["explosive"], *odds}, p.loose
+    assert outcome_odds_text(card["odds"]) in p.loose
     shot = tmp_path / "shot.png"
     r = subprocess.run(
         [

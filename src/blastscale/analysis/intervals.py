@@ -102,7 +102,8 @@ def odds_text(k: int, n: int, confidence: float = 0.95) -> str:
     """The odds of ``k`` of ``n`` in words, with their Wilson interval (:func:`wilson_interval`).
 
     One-sided where the ensemble is unanimous: ``k == n`` bounds the probability only from below,
-    ``k == 0`` only from above; never "+- 0". Probabilities to 2 decimals.
+    ``k == 0`` only from above; never "+- 0". Probabilities to 2 decimals, more where 2 would print a
+    value strictly inside (0, 1) as 0 or 1 (2000 of 2000: "P >= 0.998", not "P >= 1.00").
 
     Parameters
     ----------
@@ -121,11 +122,21 @@ def odds_text(k: int, n: int, confidence: float = 0.95) -> str:
     'P <= 0.32 (95 %, 0 of 8)'
     >>> odds_text(4, 8)
     'P 0.50 (0.22-0.78, 95 %, 4 of 8)'
+    >>> odds_text(2000, 2000)
+    'P >= 0.998 (95 %, 2000 of 2000)'
     """
     lo, hi = wilson_interval(k, n, confidence)
     level = f"{100 * float(confidence):g} %"
     if k == n:
-        return f"P >= {lo:.2f} ({level}, {k} of {n})"
+        return f"P >= {_prob(lo)} ({level}, {k} of {n})"
     if k == 0:
-        return f"P <= {hi:.2f} ({level}, {k} of {n})"
-    return f"P {k / n:.2f} ({lo:.2f}-{hi:.2f}, {level}, {k} of {n})"
+        return f"P <= {_prob(hi)} ({level}, {k} of {n})"
+    return f"P {_prob(k / n)} ({_prob(lo)}-{_prob(hi)}, {level}, {k} of {n})"
+
+
+def _prob(x: float) -> str:
+    """A probability to 2 decimals, or to as many more (up to 6) as keep a value inside (0, 1) off 0 and 1."""
+    digits = 2
+    while 0.0 < x < 1.0 and round(x, digits) in (0.0, 1.0) and digits < 6:
+        digits += 1
+    return f"{x:.{digits}f}"

@@ -22,6 +22,7 @@ from rich.table import Table
 
 from .._hooks import pause_point
 from ..io.results import check_output_folder
+from ..planning.odds import outcome_odds_text
 from ..report import write_study
 from ..report.card import card_of
 from ..report.markup import format_charge, split_unit_for_tables
@@ -127,7 +128,7 @@ def _print_result(result) -> None:
 
     card = card_of(result)
     if card is not None:
-        p = card["p_outcome_agree"]
+        p = outcome_odds_text(card["odds"] or card["odds_3d"])
         console.print(
             styled(
                 ("Test card:", "bold"),
@@ -135,7 +136,7 @@ def _print_result(result) -> None:
                 f"{card['standoff_m'] * 1e3:.4g} mm; safety radius ({card['safety_threshold']}) "
                 f"{card['safety_radius_m']:.3g} m, debris zone {card['debris_radius_m'] * 1e3:.4g} mm; camera "
                 f"{card['camera_fps']:g} frames/s, gauges sampled at {card['pressure_sampling_hz']:g} Hz"
-                + ("" if p is None else f"; P(outcome agrees) {p:.3f}")
+                + ("" if p == "-" else f"; outcome agrees with the prototype's: {p}")
                 + " (report.html: the printable card)",
             )
         )

@@ -21,6 +21,7 @@ import typer
 from rich.table import Table
 
 from ..io.results import check_output_folder, output_folder
+from ..planning.odds import outcome_odds_text
 from ..planning.plan3d import ensemble_members
 from ..planning.planner import plan
 from ..report.markup import format_charge
@@ -48,7 +49,7 @@ def _print_plan(p, top: int) -> None:
         "specimen",
         "safety radius",
         "camera",
-        "P(outcome agrees)",
+        "P(outcome agrees) (95 %)",
         "first-peak error",
         "Pareto",
     ):
@@ -65,7 +66,9 @@ def _print_plan(p, top: int) -> None:
             f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
             f"{d['safety_radius_m']:.3g} m",
             f"{d['camera_fps']:g}/s",
-            "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
+            "-"
+            if d["p_outcome_agree"] is None
+            else f"{d['p_outcome_agree']:.2f} ({d['p_outcome_agree_low']:.2f}-{d['p_outcome_agree_high']:.2f})",
             f"{100 * d['predicted_first_peak_error']:.2g} %",
             {True: "yes", False: "", None: "-"}[d["pareto"]],
         )
@@ -95,8 +98,8 @@ def _print_plan(p, top: int) -> None:
     o3 = b.get("odds_3d")
     if o3:
         console.print(
-            f"  - 3D ensemble: {o3['members']} members, P(outcome agrees) {o3['p_outcome_agree']:.3f} "
-            f"+- {o3['p_outcome_agree_se']:.2g}, largest top displacement 5-95 %: "
+            f"  - 3D ensemble: {o3['members']} members, outcome agrees: {outcome_odds_text(o3)}, "
+            f"largest top displacement 5-95 %: "
             f"{1e3 * o3['top_displacement_p05_m']:.3g}-{1e3 * o3['top_displacement_p95_m']:.3g} mm"
         )
     for w in b.get("warnings", []):

@@ -203,14 +203,20 @@ def _lab_shot(result) -> tuple:
     return (0.0 if h is None else float(h)) if burst == "surface" or h is not None else None, burst, notes
 
 
-def study_test_card(result, lab=None) -> dict | None:
+def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | None:
     """The test card of ``result`` (module docstring); None for a prototype-only study (no specimen).
+
+    The odds: ``p_outcome_agree`` and its 95 % Wilson interval ``p_outcome_agree_low``, ``p_outcome_agree_high``
+    are the planar Monte Carlo's (a block), else the 3D ensemble's (``odds_3d``), else None.
 
     Parameters
     ----------
     result : StudyResult
     lab : LabSpec, optional
         Default: the scenario's ``[lab]``, or every key's default.
+    odds_3d : dict, optional
+        The design's 3D ensemble odds already run (:func:`~.odds.ensemble_odds_3d`, the plan's), carried as
+        they are; without them the card runs ``lab.ensemble_3d`` members (none when unset).
     """
 
     d = result.design
@@ -237,8 +243,8 @@ def study_test_card(result, lab=None) -> dict | None:
     )
     collapsed_p = _prototype_collapsed(result)
     odds = _odds(result, spec, ch, lab, collapsed_p)
-    odds3 = None
-    if lab.ensemble_3d:
+    odds3 = odds_3d
+    if odds3 is None and lab.ensemble_3d:
         odds3 = ensemble_odds_3d(
             sc,
             d,
@@ -265,7 +271,7 @@ def study_test_card(result, lab=None) -> dict | None:
         "specimen_reach_m": reach,
         "camera_fps": ins.camera_fps,
         "pressure_sampling_hz": ins.pressure_sampling_hz,
-        "p_outcome_agree": None if odds is None else odds.p_outcome_agree,
+        **_agree_keys(None if odds is None else odds.to_dict(), odds3),
         "first_peak_spread": None if odds is None else odds.first_peak_spread,
         "charge_tolerance_needed": tol,
         "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
@@ -286,6 +292,12 @@ def study_test_card(result, lab=None) -> dict | None:
         },
         "warnings": _card_notes(ch, lab, env, ins, shot_notes),
     }
+
+
+def _agree_keys(planar: dict | None, odds3: dict | None) -> dict:
+    """``p_outcome_agree`` with its interval ``_low``, ``_high``: the planar odds', else the 3D ensemble's."""
+    o = planar or odds3 or {}
+    return {k: o.get(k) for k in ("p_outcome_agree", "p_outcome_agree_low", "p_outcome_agree_high")}
 
 
 def _incident_pressure(m) -> float:

@@ -11,7 +11,9 @@ sliding, friction plays no part in it). The draws come from numpy's ``default_rn
 order (charge, stand-off, density, friction), so a seed reproduces the odds exactly.
 
 What comes out (:class:`Odds`): the probability that the specimen's outcome (overturns or not, at
-any time) equals the prototype's, its binomial standard error, the spread of the specimen's first
+any time) equals the prototype's, with its Wilson interval (95 %,
+:func:`~blastscale.analysis.intervals.wilson_interval`: right for small ensembles, where a binomial
+standard error reads "+- 0" at k = n; ``agree_count`` of ``trials``), the spread of the specimen's first
 peak (the largest rotation of a block that survives), and the weighing precision: the relative
 standard deviation of the charge that keeps the first peak within ``target`` with 95 %
 probability, ``s_W = ln(1 + target) / (1.96 |d ln theta / d ln W|)`` (the sensitivity by central
@@ -34,6 +36,7 @@ import numpy as np
 from .._extras import require
 from .._threads import map_threads
 from .._validate import BlastscaleInputError
+from ..analysis.intervals import odds_text, wilson_interval
 from ..blast.parameters import blast_parameters_unchecked, valid_scaled_distance_range
 from ..similitude.factors import scaling_factors
 from ..study.study import Study
@@ -46,6 +49,7 @@ __all__ = [
     "SpecimenMember",
     "specimen_members",
     "ensemble_odds_3d",
+    "outcome_odds_text",
     "Z95",
     "Z90_ONE_SIDED",
 ]
@@ -78,7 +82,8 @@ class Odds:
     seed: int
     prototype_collapsed: bool
     p_outcome_agree: float
-    p_outcome_agree_se: float
+    p_outcome_agree_low: float
+    p_outcome_agree_high: float
     specimen_collapse_probability: float
     first_peak_nominal_rad: Optional[float]
     first_peak_spread: Optional[float]
@@ -89,6 +94,8 @@ class Odds:
     charge_tolerance_for_peak: Optional[float]
     charge_tolerance_for_outcome: Optional[float]
     samples_outside_fits: int = 0  # draws whose scaled distance leaves the blast fits: left out of the odds
+    agree_count: int = 0  # draws whose outcome agrees with the prototype's
+    trials: int = 0  # draws counted in the odds (inside the blast fits)
 
     @property
     def charge_tolerance_needed(self) -> Optional[float]:
@@ -173,18 +180,20 @@ def planar_odds(
                 wc = None
     agree = fs.collapsed == bool(prototype_collapsed)
     p = float(np.mean(agree))
+    k = int(W.size)
+    lo, hi = wilson_interval(int(agree.sum()), k)
     peak_nom, sens, spread, p05, p95, tol_peak = _peak_figures(nominal, fs, target)
     tol_out = None
     if wc is not None and wc > w_init and m_tnt > 0:
         tol_out = abs(math.log((wc - w_init) / m_tnt)) / Z90_ONE_SIDED
-    k = int(W.size)
     return Odds(
         "planar",
         n,
         int(seed),
         bool(prototype_collapsed),
         p,
-        math.sqrt(max(p * (1 - p), 0.0) / k),
+        lo,
+        hi,
         float(np.mean(fs.collapsed)),
         peak_nom,
         spread,
@@ -195,6 +204,8 @@ def planar_odds(
         tol_peak,
         tol_out,
         outside,
+        int(agree.sum()),
+        k,
     )
 
 
@@ -317,8 +328,10 @@ def ensemble_odds_3d(
     Returns
     -------
     dict
-        ``members``, ``p_outcome_agree`` (3D collapse vs the prototype's outcome), its binomial
-        ``p_outcome_agree_se``, ``specimen_collapse_probability``, ``first_peak_spread`` (relative
+        ``members`` and ``trials`` (the members that ran), ``agree_count`` (those whose outcome, collapse or not,
+        is the prototype's), ``p_outcome_agree`` (their fraction), its 95 % Wilson interval
+        ``p_outcome_agree_low``, ``p_outcome_agree_high`` (None without a member),
+        ``specimen_collapse_probability``, ``first_peak_spread`` (relative
         standard deviation of the largest top displacement of the members that stand) [-], and the
         5-95 % band of the largest top displacement of every member, ``top_displacement_p05_m`` and
         ``top_displacement_p95_m`` [m, the specimen's].
@@ -333,20 +346,34 @@ def ensemble_odds_3d(
     top = np.array([t for _, t in out], dtype=float)
     ok = np.isfinite(col)
     collapsed = col[ok] == 1.0
-    p = float(np.mean(collapsed == bool(prototype_collapsed))) if ok.any() else math.nan
+    k = int(np.sum(collapsed == bool(prototype_collapsed)))
+    p = k / int(ok.sum()) if ok.any() else math.nan
+    lo, hi = wilson_interval(k, int(ok.sum())) if ok.any() else (None, None)
     stand = top[ok][~collapsed]
     spread = float(np.std(stand, ddof=1) / np.median(stand)) if stand.size >= 2 else None
     tops = top[ok & np.isfinite(top)]
     p05, p95 = (float(x) for x in np.quantile(tops, [0.05, 0.95])) if tops.size else (None, None)
     return {
         "members": int(ok.sum()),
+        "trials": int(ok.sum()),
+        "agree_count": k,
         "p_outcome_agree": p,
-        "p_outcome_agree_se": math.sqrt(max(p * (1 - p), 0.0) / max(int(ok.sum()), 1)),
+        "p_outcome_agree_low": lo,
+        "p_outcome_agree_high": hi,
         "specimen_collapse_probability": float(np.mean(collapsed)) if ok.any() else math.nan,
         "first_peak_spread": spread,
         "top_displacement_p05_m": p05,
         "top_displacement_p95_m": p95,
     }
+
+
+def outcome_odds_text(odds, confidence: float = 0.95) -> str:
+    """The odds that the outcome agrees, in words with their Wilson interval
+    (:func:`~blastscale.analysis.intervals.odds_text`, e.g. "P >= 0.68 (95 %, 8 of 8)"), of an :class:`Odds`'
+    dict or an :func:`ensemble_odds_3d` dict (``agree_count`` of ``trials``); "-" for None or no trial."""
+    if not odds or not odds.get("trials"):
+        return "-"
+    return odds_text(int(odds["agree_count"]), int(odds["trials"]), confidence)
 
 
 def _map_on_dask(fn, items: list, scheduler: Optional[str], workers: int, tick=None) -> list:

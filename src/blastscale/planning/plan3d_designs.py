@@ -8,10 +8,12 @@ from __future__ import annotations
 import math
 from typing import Optional
 
+from ..analysis.intervals import wilson_interval
 from .build import spec_dims
 from .candidates import shot_dict
 from .debris import planar_reach
 from .instruments import top_corner_displacement
+from .odds import outcome_odds_text
 from .plan3d import ENSEMBLE_3D_DEFAULT, run_3d, screening_error
 
 __all__ = ["designs_3d", "rank_key_3d"]
@@ -30,10 +32,9 @@ def _reasons(d: dict, best: dict) -> list:
             f"screened only (no 3D run; lab.top_3d designs get it): screening error {100 * d['screening_error']:.2g} %",
             f"safety radius ({d['safety_threshold']}) {d['safety_radius_m']:.3g} m",
         ]
-    o = d["odds_3d"]
+    o = d["odds_3d"] or {"agree_count": int(d["p_outcome_agree"]), "trials": 1}
     out = [
-        f"outcome agrees with the prototype's in {100 * d['p_outcome_agree']:.1f} % of "
-        f"{o['members'] if o else 1} 3D run(s) of the lab's tolerances",
+        f"outcome agrees with the prototype's (3D runs of the lab's tolerances): {outcome_odds_text(o)}",
         f"predicted error {100 * d['predicted_first_peak_error']:.2g} % (3D similarity "
         f"{100 * d['similarity_error']:.2g} %, tolerances "
         f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %)",
@@ -76,7 +77,8 @@ def designs_3d(
                     **shot_dict(e, lab, top_corner_displacement(w, h, 0.0), planar_reach(w, h, 0.0, False)),
                     **base,
                     "p_outcome_agree": None,
-                    "p_outcome_agree_se": None,
+                    "p_outcome_agree_low": None,
+                    "p_outcome_agree_high": None,
                     "first_peak_spread": None,
                     "similarity_error": None,
                     "predicted_first_peak_error": err,
@@ -110,13 +112,15 @@ def designs_3d(
         reach = sim["specimen_reach_m"] if math.isfinite(sim["specimen_reach_m"]) else planar_reach(w, h, 0.0, True)
         agree = 1.0 if s3["similarity"].get("outcomes_agree", True) else 0.0
         p = odds["p_outcome_agree"] if odds else agree
+        lo, hi = wilson_interval(int(agree), 1)  # no ensemble: the one 3D comparison, 1 trial
         spread = odds["first_peak_spread"] if odds else None
         designs.append(
             {
                 **shot_dict(e, lab, sim["specimen_top_m"], reach),
                 **base,
                 "p_outcome_agree": p,
-                "p_outcome_agree_se": odds["p_outcome_agree_se"] if odds else None,
+                "p_outcome_agree_low": odds["p_outcome_agree_low"] if odds else lo,
+                "p_outcome_agree_high": odds["p_outcome_agree_high"] if odds else hi,
                 "first_peak_spread": spread,
                 "similarity_error": sim["error"],
                 "predicted_first_peak_error": math.hypot(sim["error"], spread or 0.0),

@@ -34,7 +34,7 @@ from ..blast.parameters import blast_parameters, get_blast_model, model_for_burs
 from ..structures import from_spec
 from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_label, shot_dict, specimen_displacement
 from .debris import planar_reach
-from .odds import Tolerances, ensemble_odds_3d, planar_odds
+from .odds import Tolerances, ensemble_odds_3d, outcome_odds_text, planar_odds
 from .pareto import mark_pareto
 from .plan3d import candidate_design, design_scenario, planar_path
 from .plan3d_designs import designs_3d
@@ -135,7 +135,8 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
     return {
         **shot_dict(ev, lab, top, reach),
         "p_outcome_agree": odds.p_outcome_agree,
-        "p_outcome_agree_se": odds.p_outcome_agree_se,
+        "p_outcome_agree_low": odds.p_outcome_agree_low,
+        "p_outcome_agree_high": odds.p_outcome_agree_high,
         "first_peak_spread": odds.first_peak_spread,
         "similarity_error": err,
         "predicted_first_peak_error": math.hypot(err, spread),
@@ -147,8 +148,7 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
 
 def _reasons(d: dict, best: Optional[dict]) -> list:
     out = [
-        f"outcome agrees with the prototype's in {100 * d['p_outcome_agree']:.1f} % of {d['odds']['samples']} "
-        f"draws of the lab's tolerances",
+        f"outcome agrees with the prototype's (draws of the lab's tolerances): {outcome_odds_text(d['odds'])}",
         f"predicted first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
         f"{100 * d['similarity_error']:.2g} %, tolerances "
         f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %)",

@@ -16,6 +16,7 @@ import math
 from typing import Any
 
 from ..planning.card import study_test_card
+from ..planning.odds import outcome_odds_text
 
 __all__ = ["card_of", "card_section", "UNITS", "shown"]
 
@@ -370,7 +371,8 @@ def _predicted_table(c: dict) -> str:
             ("reflected peak pressure", _n(c, p + "reflected_pressure_Pa", "kPa")),
             ("reflected impulse", _n(c, p + "reflected_impulse_Pa_s", "Pa s")),
             ("positive duration", _n(c, p + "positive_duration_s", "us")),
-            ("outcome agrees with the prototype (Monte Carlo)", _n(c, "p_outcome_agree", "%")),
+            ("outcome agrees with the prototype (planar Monte Carlo)", _e(outcome_odds_text(c["odds"]))),
+            ("outcome agrees with the prototype (3D ensemble)", _e(outcome_odds_text(c["odds_3d"]))),
             ("first-peak spread (1 sd, relative)", _n(c, "first_peak_spread", "%")),
         ]
     )

@@ -7,6 +7,7 @@ import io
 from pathlib import Path
 
 from ..io.results import jsonable, write_atomic, write_json
+from ..planning.card import study_test_card
 from ..plots.plan import plot_plan
 from . import write_study
 from .markup import escape, figure_html, format_charge, html_table
@@ -28,7 +29,9 @@ def plan_section(p, top: int = 15) -> str:
             f"{d['standoff_m'] * 1e3:.4g} mm",
             f"{d['specimen_height_m'] * 1e3:.4g} mm",
             f"{d['safety_radius_m']:.3g} m",
-            "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
+            "-"
+            if d["p_outcome_agree"] is None
+            else f"{d['p_outcome_agree']:.2f} ({d['p_outcome_agree_low']:.2f}-{d['p_outcome_agree_high']:.2f})",
             f"{100 * d['predicted_first_peak_error']:.2g} %",
             {True: "yes", False: "", None: "-"}[d.get("pareto")],
         )
@@ -51,7 +54,7 @@ def plan_section(p, top: int = 15) -> str:
                 "stand-off",
                 "specimen height",
                 "safety radius",
-                "P(outcome agrees)",
+                "P(outcome agrees) (95 %)",
                 "first-peak error",
                 "Pareto",
             ),
@@ -71,6 +74,9 @@ def write_plan(p, result, folder) -> list[str]:
 
     folder = Path(folder)
     png = plan_figure(p)
+    # the card carries the best design's 3D odds the plan ran (none on the planar path without lab.ensemble_3d)
+    if result.scenario.lab is not None and result.design is not None:
+        result.view("test_card", lambda r: study_test_card(r, odds_3d=p.designs[0].get("odds_3d")))
     files = write_study(
         result,
         folder,

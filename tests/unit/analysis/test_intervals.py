@@ -85,6 +85,10 @@ def test_odds_text():
     assert odds_text(4, 8) == "P 0.50 (0.22-0.78, 95 %, 4 of 8)"
     assert odds_text(3, 4, 0.9) == "P 0.75 (0.36-0.94, 90 %, 3 of 4)"
     assert "+-" not in odds_text(16, 16)
+    # a large unanimous sample: a bound inside (0, 1) is never printed as 1 or 0
+    assert odds_text(2000, 2000) == "P >= 0.998 (95 %, 2000 of 2000)"
+    assert odds_text(1999, 2000) == "P 0.9995 (0.997-0.9999, 95 %, 1999 of 2000)"
+    assert odds_text(0, 2000) == "P <= 0.002 (95 %, 0 of 2000)"
 
 
 @pytest.mark.parametrize(

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from blastscale.planning.odds import Z90_ONE_SIDED, Tolerances, planar_odds
+from blastscale.analysis.intervals import wilson_interval
+from blastscale.planning.odds import Z90_ONE_SIDED, Tolerances, outcome_odds_text, planar_odds
 from blastscale.rocking import RockingSystem, critical_charge
 from blastscale.structures import RectangularBlock
 
@@ -39,6 +40,9 @@ def test_charge_alone_matches_the_lognormal_closed_form(wc, ratio, beta):
     se = math.sqrt(p * (1 - p) / n)
     assert abs(o.specimen_collapse_probability - p) < 4 * se
     assert o.p_outcome_agree == pytest.approx(1.0 - o.specimen_collapse_probability)
+    assert o.p_outcome_agree == o.agree_count / o.trials and o.trials == n
+    assert (o.p_outcome_agree_low, o.p_outcome_agree_high) == wilson_interval(o.agree_count, n)
+    assert o.p_outcome_agree_low < o.p_outcome_agree < o.p_outcome_agree_high
     # and exactly the draws beyond the threshold (the same generator, the same order)
     eps = np.exp(beta * np.random.default_rng(7).standard_normal((4, n))[0])
     assert o.specimen_collapse_probability == pytest.approx(np.mean(ratio * wc * eps > wc), abs=2.0 / n)
@@ -75,5 +79,9 @@ def test_first_peak_spread_and_weighing_precision(wc):
         target=0.05,
     )
     assert o.p_outcome_agree == 1.0
+    # 2000 of 2000 agree: P >= 0.998 at 95 % (Wilson), not P = 1 +- 0; upper bound exactly 1
+    assert (o.agree_count, o.trials, o.p_outcome_agree_high) == (2000, 2000, 1.0)
+    assert o.p_outcome_agree_low == pytest.approx(2000 / (2000 + 1.959963984540054**2), abs=1e-12)
+    assert outcome_odds_text(o.to_dict()) == "P >= 0.998 (95 %, 2000 of 2000)"
     assert o.first_peak_spread == pytest.approx(abs(o.first_peak_sensitivity) * beta, rel=0.1)
     assert o.charge_tolerance_for_peak == pytest.approx(math.log(1.05) / (1.959963984540054 * o.first_peak_sensitivity))

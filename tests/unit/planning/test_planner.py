@@ -142,6 +142,8 @@ def test_paper_block_in_a_half_metre_lab():
         "safety_distances_m",
         "camera_fps",
         "p_outcome_agree",
+        "p_outcome_agree_low",
+        "p_outcome_agree_high",
         "explosive_min_charge_kg",
         "initiator_tnt_kg",
         "initiator_fraction",
