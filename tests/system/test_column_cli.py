@@ -111,6 +111,9 @@ def test_column_ensemble_option(capsys):
         "horizon_prototype_s",
     } <= e["points"]["P-3"].keys()
     assert 0.0 <= e["collapse_probability_prototype"] <= 1.0
+    assert e["collapse_probability_prototype_low"] <= e["collapse_probability_prototype"]
+    assert e["collapse_probability_prototype"] <= e["collapse_probability_prototype_high"]
+    assert e["points"]["P-3"]["first_peak_model_p05_m"] <= e["points"]["P-3"]["first_peak_model_p95_m"]
 
 
 def test_column_ensemble_of_the_prototype_alone(capsys):
@@ -142,6 +145,7 @@ def test_column_ensemble_of_the_prototype_alone(capsys):
     code, out = run(capsys, *argv)
     assert code in (0, None), out.err
     assert "collapse probability, prototype" in out.out and "model mean" not in out.out
+    assert "of 2)" in out.out  # the collapse odds in words, k of 2 members with their interval
 
 
 def test_column_tables(capsys):

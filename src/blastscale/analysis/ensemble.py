@@ -11,7 +11,12 @@ over [-1, 1]) and compares the ensembles:
   the members, prototype and up-scaled model (a collapsed member's up to its collapse);
 * the envelope (min, max over the members at each prototype time) of each point's x
   displacement, and how much of the prototype's envelope the model's covers;
-* the collapse probability (fraction of members that collapse) and the collapse times;
+* the medians and 5-95 % bands over the members (:data:`QUANTILES`, ``numpy.percentile`` with linear
+  interpolation between the order statistics) of each point's first peak and largest |x displacement|,
+  and of each body's residual displacement and rotation (the damage; the model's up-scaled);
+* the collapse probability (fraction of members that collapse), each body's fall probability, both with
+  their Wilson interval (:func:`~.intervals.wilson_interval`, 95 % unless ``confidence`` says: honest for
+  an ensemble of a few members), and the collapse times;
 * the noise floor: the largest spread of the prototype ensemble over time relative to the
   peak, and the *predictability horizon*: the first time the prototype ensemble's spread at
   the top point exceeds ``horizon_fraction`` of its peak (trajectory comparison is
@@ -29,14 +34,46 @@ from .._threads import map_threads
 from .._validate import BlastscaleInputError, check_range
 from ..sim3d.results import MOTION_VARIABLES
 from .compare import _first_peak, align, upscale_dataset
+from .intervals import wilson_interval
 from .systems import Settings3D, Systems3D, run_system
 from .upscale import upscale_summary
 
-__all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics"]
+__all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics", "QUANTILES"]
+
+#: The ensembles' quantiles: (name, percentile [%]), by ``numpy.percentile`` with linear interpolation
+#: (``method="linear"``: between the order statistics, Hyndman & Fan 1996's definition 7).
+QUANTILES = (("p05", 5.0), ("median", 50.0), ("p95", 95.0))
+
+
+def _quantiles(x, axis: int = 0) -> dict:
+    """``{"p05", "median", "p95"}`` of ``x`` along ``axis`` (:data:`QUANTILES`)."""
+    q = np.percentile(np.asarray(x, dtype=float), [p for _, p in QUANTILES], axis=axis, method="linear")
+    return {name: q[i] for i, (name, _) in enumerate(QUANTILES)}
+
+
+def _body_statistics(bodies) -> dict:
+    """Per body of ``bodies`` (one dict per member: name -> ``residual_displacement_m`` [m],
+    ``residual_rotation_rad`` [rad], ``fallen``): the quantiles of the residuals and the count of falls."""
+    out = {}
+    for name in bodies[0]:
+        res = [b[name]["residual_displacement_m"] for b in bodies]
+        rot = [b[name]["residual_rotation_rad"] for b in bodies]
+        out[name] = {
+            **{f"residual_displacement_{k}": float(v) for k, v in _quantiles(res).items()},
+            **{f"residual_rotation_{k}": float(v) for k, v in _quantiles(rot).items()},
+            "fall_count": int(sum(bool(b[name]["fallen"]) for b in bodies)),
+        }
+    return out
 
 
 def ensemble_statistics(
-    time, members, collapsed, horizon_fraction: float = 0.05, peak_fraction: float = 0.1, collapse_times=None
+    time,
+    members,
+    collapsed,
+    horizon_fraction: float = 0.05,
+    peak_fraction: float = 0.1,
+    collapse_times=None,
+    bodies=None,
 ) -> dict:
     """Statistics of an ensemble of histories of one quantity at several points.
 
@@ -56,16 +93,24 @@ def ensemble_statistics(
         Collapse time of each member [s] (nan or None: it stands); a collapsed member's first
         peak is taken up to its collapse (after it the drums fall, and the engine's contacts,
         ground-base and adjacent drums only, no longer describe the motion).
+    bodies : list of dict, optional
+        Per member, its bodies (name -> ``residual_displacement_m`` [m], ``residual_rotation_rad`` [rad],
+        ``fallen``: a 3D run's ``bodies`` summary, :meth:`~blastscale.sim3d.results.SimulationResult.bodies_summary`).
 
     Returns
     -------
     dict
         ``first_peak_mean``, ``first_peak_spread`` (max - min over members), ``first_peak_std``
-        (p,) [unit]; ``envelope_min``, ``envelope_max`` (n, p); ``peak`` (p,) (largest |q| of
+        (p,) [unit]; ``first_peak_median``, ``first_peak_p05``, ``first_peak_p95`` and
+        ``max_displacement_median``, ``max_displacement_p05``, ``max_displacement_p95`` (p,) [unit]: the
+        quantiles (:data:`QUANTILES`) over the members of the first peak and of the largest |q| of each
+        member's whole history; ``envelope_min``, ``envelope_max`` (n, p); ``peak`` (p,) (largest |q| of
         all members); ``spread`` (n, p) (max - min over members); ``max_spread_rel_peak`` (p,);
         ``horizon_s`` (p,) first time spread > ``horizon_fraction`` x peak (nan: never);
-        ``collapse_probability``; ``collapse_time_mean``, ``collapse_time_spread`` [s] over the
-        collapsed members (nan when none).
+        ``collapse_probability``, ``collapse_count`` and ``members`` (k); ``collapse_time_mean``,
+        ``collapse_time_spread`` [s] over the collapsed members (nan when none); ``bodies`` (with ``bodies``;
+        else None): per body ``residual_displacement_{p05,median,p95}`` [m],
+        ``residual_rotation_{p05,median,p95}`` [rad] and ``fall_count`` (members in which it fell).
     """
 
     q = np.asarray(members, dtype=float)
@@ -88,25 +133,33 @@ def ensemble_statistics(
     )
     spread = q.max(axis=0) - q.min(axis=0)
     peak = np.max(np.abs(q), axis=(0, 1))
+    if bodies is not None and len(bodies) != q.shape[0]:
+        raise BlastscaleInputError(f"bodies has {len(bodies)} members, members has {q.shape[0]}: one per member")
     safe = np.where(peak > 0, peak, np.inf)
     horizon = np.full(q.shape[2], math.nan)
     for j in range(q.shape[2]):
         idx = np.flatnonzero(spread[:, j] > frac * peak[j])
         if idx.size and peak[j] > 0:
             horizon[j] = t[idx[0]]
+    col = np.asarray(collapsed, dtype=bool)
     return {
         "first_peak_mean": fp.mean(axis=0),
         "first_peak_spread": fp.max(axis=0) - fp.min(axis=0),
         "first_peak_std": fp.std(axis=0),
+        **{f"first_peak_{k}": v for k, v in _quantiles(fp).items()},
+        **{f"max_displacement_{k}": v for k, v in _quantiles(np.max(np.abs(q), axis=1)).items()},
         "envelope_min": q.min(axis=0),
         "envelope_max": q.max(axis=0),
         "peak": peak,
         "spread": spread,
         "max_spread_rel_peak": spread.max(axis=0) / safe,
         "horizon_s": horizon,
-        "collapse_probability": float(np.mean(np.asarray(collapsed, dtype=bool))),
+        "collapse_probability": float(np.mean(col)),
+        "collapse_count": int(col.sum()),
+        "members": int(q.shape[0]),
         "collapse_time_mean": float(np.nanmean(tc)) if np.any(np.isfinite(tc)) else math.nan,
         "collapse_time_spread": float(np.nanmax(tc) - np.nanmin(tc)) if np.any(np.isfinite(tc)) else math.nan,
+        "bodies": None if bodies is None else _body_statistics(bodies),
     }
 
 
@@ -129,7 +182,7 @@ class EnsembleComparison:
         The members' x displacements [m] (model up-scaled, on the prototype's times; None
         without a model).
     settings : dict
-        Inputs (perturbation, n, load method, duration).
+        Inputs (perturbation, n, load method, duration; ``confidence``, the intervals' level, when given).
     top_point : str
         The point reported as the top: the highest at rest (the recorder's), else the last.
     motion : xarray.Dataset or None
@@ -156,18 +209,25 @@ class EnsembleComparison:
     motion: object = None
 
     def to_dict(self) -> dict:
-        """Per point: first-peak mean and spread of each system [m], their ratio, the model's
-        first-peak mean offset relative to the prototype's spread, envelope coverage, the
-        prototype's noise floor and horizon; collapse probabilities. Without a model (a
-        prototype-only ensemble) the model's figures are None."""
+        """Per point (``points``): first-peak mean and spread of each system [m], their ratio, envelope
+        coverage, the prototype's noise floor and horizon, and the median and 5-95 % band of each system's
+        first peak and largest |x displacement| (``first_peak_{prototype,model}_{median,p05,p95}_m``,
+        ``max_displacement_{prototype,model}_{median,p05,p95}_m``); per body (``bodies``, when the members
+        kept their bodies): the median and band of the residual displacement [m] and rotation [rad] and the
+        fall probability with its interval (``fall_probability_{prototype,model}`` and ``_low``, ``_high``);
+        the collapse probabilities with theirs (``collapse_probability_{prototype,model}_low``, ``_high``).
+        Quantiles: :data:`QUANTILES`; intervals: Wilson's at ``settings["confidence"]`` (95 % when absent).
+        Without a model (a prototype-only ensemble) the model's figures are None."""
         p, m = self.prototype, self.model
         pts = {}
         for j, name in enumerate(self.points):
             pts[name] = {
                 "first_peak_prototype_mean_m": float(p["first_peak_mean"][j]),
                 "first_peak_prototype_spread_m": float(p["first_peak_spread"][j]),
+                **_point_quantiles(p, "prototype", j),
                 "first_peak_model_mean_m": None,
                 "first_peak_model_spread_m": None,
+                **_point_quantiles(m, "model", j),
                 "first_peak_ratio": None,
                 "peak_prototype_m": float(p["peak"][j]),
                 "peak_model_m": None,
@@ -199,17 +259,66 @@ class EnsembleComparison:
                     "horizon_model_s": float(m["horizon_s"][j]),
                 }
             )
+        lo_p, hi_p = self._interval(p["collapse_count"], p["members"])
+        lo_m, hi_m = (None, None) if m is None else self._interval(m["collapse_count"], m["members"])
         return {
             "n_members": len(self.factors),
             "perturbation": self.settings.get("perturbation"),
             "collapse_probability_prototype": p["collapse_probability"],
+            "collapse_probability_prototype_low": lo_p,
+            "collapse_probability_prototype_high": hi_p,
             "collapse_probability_model": None if m is None else m["collapse_probability"],
+            "collapse_probability_model_low": lo_m,
+            "collapse_probability_model_high": hi_m,
             "collapse_time_prototype_mean_s": p["collapse_time_mean"],
             "collapse_time_prototype_spread_s": p["collapse_time_spread"],
             "collapse_time_model_mean_s": None if m is None else m["collapse_time_mean"],
             "collapse_time_model_spread_s": None if m is None else m["collapse_time_spread"],
             "points": pts,
+            "bodies": self._bodies(),
         }
+
+    def _interval(self, k: int, n: int) -> tuple:
+        """Wilson's interval of ``k`` of ``n`` at ``settings["confidence"]`` (its default when absent)."""
+        c = self.settings.get("confidence")
+        return wilson_interval(k, n) if c is None else wilson_interval(k, n, c)
+
+    def _bodies(self) -> dict | None:
+        """The ``bodies`` block of :meth:`to_dict` (None when the members kept no bodies)."""
+        p, m = self.prototype, self.model
+        if p.get("bodies") is None:
+            return None
+        out = {}
+        for name, b in p["bodies"].items():
+            mb = None if m is None or m.get("bodies") is None else m["bodies"].get(name)
+            out[name] = {}
+            for system, s, n in (("prototype", b, p["members"]), ("model", mb, None if m is None else m["members"])):
+                out[name].update(
+                    {
+                        f"residual_{q}_{system}_{k}_{u}": None if s is None else s[f"residual_{q}_{k}"]
+                        for q, u in (("displacement", "m"), ("rotation", "rad"))
+                        for k, _ in QUANTILES
+                    }
+                )
+                lo, hi = (None, None) if s is None else self._interval(s["fall_count"], n)
+                out[name].update(
+                    {
+                        f"fall_probability_{system}": None if s is None else s["fall_count"] / n,
+                        f"fall_probability_{system}_low": lo,
+                        f"fall_probability_{system}_high": hi,
+                    }
+                )
+        return out
+
+
+def _point_quantiles(stats: dict | None, system: str, j: int) -> dict:
+    """The median and 5-95 % band of point ``j``'s first peak and largest |x displacement| [m] of one system's
+    :func:`ensemble_statistics` (None without it)."""
+    return {
+        f"{q}_{system}_{k}_m": None if stats is None else float(stats[f"{q}_{k}"][j])
+        for q in ("first_peak", "max_displacement")
+        for k, _ in QUANTILES
+    }
 
 
 def ensemble_compare(
@@ -221,6 +330,7 @@ def ensemble_compare(
     horizon_fraction: float = 0.05,
     progress=None,
     threads: int | None = None,
+    confidence: float | None = None,
 ) -> EnsembleComparison:
     """Ensembles of a structure and of its reduced-scale model under slightly perturbed loads.
 
@@ -243,6 +353,9 @@ def ensemble_compare(
     threads : int, optional
         Runs in flight at once (:mod:`blastscale._threads`; default: the cores this process may
         use, divided by the local Dask workers). The members' histories do not depend on it (bitwise).
+    confidence : float, optional
+        Level of the collapse and fall probabilities' intervals [-], in (0, 1) (the study's
+        ``verdict.confidence``; None: :func:`~.intervals.wilson_interval`'s default, 95 %).
 
     Returns
     -------
@@ -255,6 +368,9 @@ def ensemble_compare(
     eps = float(check_range("perturbation", perturbation, 0.0, 0.1))
     if eps == 0.0:
         raise BlastscaleInputError("perturbation = 0 is out of range: must be in (0, 0.1]")
+    level = {} if confidence is None else {"confidence": confidence}
+    if confidence is not None:  # checked before the runs
+        check_range("confidence", confidence, 0.0, 1.0, lo_open=True, hi_open=True)
     factors = tuple(1.0 + eps * u for u in np.linspace(-1.0, 1.0, int(n)))
     runs = systems.runs()
     names = tuple(name for name, _ in runs)
@@ -270,7 +386,14 @@ def ensemble_compare(
         members.add({s: responses[k * len(names) + i] for i, s in enumerate(names)}, systems.design)
     q = {s: np.stack(v) for s, v in members.q.items()}
     stats = {
-        s: ensemble_statistics(members.t, q[s], members.collapsed[s], horizon_fraction, collapse_times=members.times[s])
+        s: ensemble_statistics(
+            members.t,
+            q[s],
+            members.collapsed[s],
+            horizon_fraction,
+            collapse_times=members.times[s],
+            bodies=members.bodies[s],
+        )
         for s in names
     }
     return EnsembleComparison(
@@ -287,6 +410,7 @@ def ensemble_compare(
             "load_method": settings.load,
             "pulse_shape": settings.pulse_shape,
             "duration_s": float(systems.prototype.duration),
+            **level,
         },
         top_point=members.top,
         motion=_cases_motion(members.poses, q["prototype"], members.t.size),
@@ -302,6 +426,7 @@ class _Members:
         self.collapsed: dict = {s: [] for s in names}
         self.times: dict = {s: [] for s in names}
         self.poses: dict = {s: [] for s in names}
+        self.bodies: dict = {s: [] for s in names}
         self.t = self.points = self.top = None
 
     def add(self, runs: dict, design) -> None:
@@ -328,6 +453,12 @@ class _Members:
             self.poses[s].append(ds[s][[v for v in MOTION_VARIABLES if v in ds[s]]])
             self.collapsed[s].append(bool(summ[s]["collapsed"]))
             self.times[s].append(summ[s].get("collapse_time_s"))
+            self.bodies[s].append(
+                {
+                    n: {k: b[k] for k in ("residual_displacement_m", "residual_rotation_rad", "fallen")}
+                    for n, b in summ[s]["bodies"].items()
+                }
+            )
 
 
 def motion_cases(members) -> dict:

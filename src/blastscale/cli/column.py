@@ -12,6 +12,7 @@ from typing import Optional
 
 import typer
 
+from ..analysis.intervals import odds_text
 from . import options as opt
 from ._app import app
 from ._output import console, fmt_value, table
@@ -267,11 +268,16 @@ def _print_ensemble(e: dict, top_point: str, with_model: bool) -> None:
         ),
         (
             "collapse probability, prototype / model" if with_model else "collapse probability, prototype",
-            f"{e['collapse_probability_prototype']:.2f}"
-            + (f" / {e['collapse_probability_model']:.2f}" if with_model else ""),
+            _collapse_odds(e, "prototype") + (f" / {_collapse_odds(e, 'model')}" if with_model else ""),
             "-",
         ),
     ]
     console.print(
         table(f"Ensembles of {e['n_members']} (load x (1 +- {e['perturbation']:g})), top point ({top_point})", rows)
     )
+
+
+def _collapse_odds(e: dict, system: str) -> str:
+    """An ensemble's collapse probability of ``system`` in words with its Wilson interval (k of n members)."""
+    n = int(e["n_members"])
+    return odds_text(round(e[f"collapse_probability_{system}"] * n), n)

@@ -11,6 +11,7 @@ from typing import Any, Callable
 import numpy as np
 
 from ..analysis.compare import upscale_dataset
+from ..analysis.intervals import odds_text
 from ..analysis.rocking_similarity import rocking_dataset
 from ..scenario.scenario import Scenario
 
@@ -320,10 +321,9 @@ def study_warnings(design, results: dict, skipped: list, summary: dict, scenario
     if ens is not None and summary["ensemble"]["collapse_probability_model"] is not None:
         e = summary["ensemble"]
         if (e["collapse_probability_prototype"] > 0) != (e["collapse_probability_model"] > 0):
-            out.append(
-                f"ensembles: collapse probability {e['collapse_probability_prototype']:.2g} (prototype) vs "
-                f"{e['collapse_probability_model']:.2g} (model)"
-            )
+            n = int(e["n_members"])
+            pp, pm = (round(e[f"collapse_probability_{s}"] * n) for s in ("prototype", "model"))
+            out.append(f"ensembles: collapse {odds_text(pp, n)} (prototype) vs {odds_text(pm, n)} (model)")
     s = summary["3d"]
     if s is not None:
         p, m = s.get("prototype") or {}, s.get("model") or {}
