@@ -26,7 +26,7 @@ from statistics import NormalDist
 
 from .._validate import BlastscaleInputError, check_range
 
-__all__ = ["wilson_interval", "odds_text"]
+__all__ = ["wilson_interval", "odds_text", "probability_text"]
 
 
 def _count(name: str, value, lo: int, hi: float) -> int:
@@ -128,14 +128,20 @@ def odds_text(k: int, n: int, confidence: float = 0.95) -> str:
     lo, hi = wilson_interval(k, n, confidence)
     level = f"{100 * float(confidence):g} %"
     if k == n:
-        return f"P >= {_prob(lo)} ({level}, {k} of {n})"
+        return f"P >= {probability_text(lo)} ({level}, {k} of {n})"
     if k == 0:
-        return f"P <= {_prob(hi)} ({level}, {k} of {n})"
-    return f"P {_prob(k / n)} ({_prob(lo)}-{_prob(hi)}, {level}, {k} of {n})"
+        return f"P <= {probability_text(hi)} ({level}, {k} of {n})"
+    return f"P {probability_text(k / n)} ({probability_text(lo)}-{probability_text(hi)}, {level}, {k} of {n})"
 
 
-def _prob(x: float) -> str:
-    """A probability to 2 decimals, or to as many more (up to 6) as keep a value inside (0, 1) off 0 and 1."""
+def probability_text(x: float) -> str:
+    """A probability [-] to 2 decimals, or to as many more (up to 6) as keep a value inside (0, 1) off 0 and 1.
+
+    Examples
+    --------
+    >>> probability_text(0.6756), probability_text(0.99808), probability_text(1.0)
+    ('0.68', '0.998', '1.00')
+    """
     digits = 2
     while 0.0 < x < 1.0 and round(x, digits) in (0.0, 1.0) and digits < 6:
         digits += 1

@@ -20,6 +20,7 @@ from typing import Optional
 import typer
 from rich.table import Table
 
+from ..analysis.intervals import probability_text
 from ..io.results import check_output_folder, output_folder
 from ..planning.odds import outcome_odds_text
 from ..planning.plan3d import ensemble_members
@@ -68,7 +69,8 @@ def _print_plan(p, top: int) -> None:
             f"{d['camera_fps']:g}/s",
             "-"
             if d["p_outcome_agree"] is None
-            else f"{d['p_outcome_agree']:.2f} ({d['p_outcome_agree_low']:.2f}-{d['p_outcome_agree_high']:.2f})",
+            else f"{probability_text(d['p_outcome_agree'])} ({probability_text(d['p_outcome_agree_low'])}-"
+            f"{probability_text(d['p_outcome_agree_high'])})",
             f"{100 * d['predicted_first_peak_error']:.2g} %",
             {True: "yes", False: "", None: "-"}[d["pareto"]],
         )

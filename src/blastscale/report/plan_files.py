@@ -6,6 +6,7 @@ from __future__ import annotations
 import io
 from pathlib import Path
 
+from ..analysis.intervals import probability_text
 from ..io.results import jsonable, write_atomic, write_json
 from ..planning.card import study_test_card
 from ..plots.plan import plot_plan
@@ -31,7 +32,8 @@ def plan_section(p, top: int = 15) -> str:
             f"{d['safety_radius_m']:.3g} m",
             "-"
             if d["p_outcome_agree"] is None
-            else f"{d['p_outcome_agree']:.2f} ({d['p_outcome_agree_low']:.2f}-{d['p_outcome_agree_high']:.2f})",
+            else f"{probability_text(d['p_outcome_agree'])} ({probability_text(d['p_outcome_agree_low'])}-"
+            f"{probability_text(d['p_outcome_agree_high'])})",
             f"{100 * d['predicted_first_peak_error']:.2g} %",
             {True: "yes", False: "", None: "-"}[d.get("pareto")],
         )
