@@ -69,19 +69,19 @@ def _print(s: dict) -> None:
         )
     c = s.get("calibration")
     if c is not None and "restitution" in c:
-        rows += [
-            ("calibrated restitution (95 %)", f"{c['restitution']:.4g} +- {c['restitution_ci95']:.2g}", "-"),
-            (
-                "prototype with it: max rotation, outcome",
-                (f"{fmt_value(c['prototype_max_rotation_rad'])}, {c['prototype_outcome']}"),
-                "rad",
-            ),
-        ]
+        rows.append(("calibrated restitution", c["line"], "-"))
+        if c["identifiable"]:
+            rows.append(
+                (
+                    "prototype with it: max rotation, outcome",
+                    f"{fmt_value(c['prototype_max_rotation_rad'])}, {c['prototype_outcome']}",
+                    "rad",
+                )
+            )
     if c is not None and "friction" in c:
-        rows += [
-            ("calibrated friction (95 %)", f"{c['friction']:.4g} +- {c['friction_ci95']:.2g}", "-"),
-            ("prototype with it: outcome", c["prototype_outcome"], ""),
-        ]
+        rows.append(("calibrated friction", c["line"], "-"))
+        if c["identifiable"]:
+            rows.append(("prototype with it: outcome", c["prototype_outcome"], ""))
     console.print(table("The shot as fired", rows))
 
 

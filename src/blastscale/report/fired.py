@@ -135,14 +135,23 @@ def _named_rows(title: str, name: str, keys: tuple, entries: dict) -> str:
 
 
 def _calibration(c) -> str:
+    """The calibration's line, then its values (one row per marker for a per-marker value) and its misfit
+    profile (parameter, RMS misfit)."""
     if c is None:
         return ""
     rows = []
     for k, v in c.items():  # a value per marker (friction's prototype first peaks): one row each
+        if k in ("line", "profile"):
+            continue
         rows += (
             [(f"{k} ({n})", format_value(x)) for n, x in v.items()] if isinstance(v, dict) else [(k, format_value(v))]
         )
-    return "<h3>Calibration (the measured response)</h3>" + html_table(("quantity", "value"), rows)
+    profile = "; ".join(f"{x:.4g}: {1e3 * m:.3g} mm" for x, m in c.get("profile", ()))
+    return (
+        f"<h3>Calibration (the measured response)</h3><p>{escape(c['line'])}</p>"
+        + html_table(("quantity", "value"), rows)
+        + (f"<p>Misfit profile (value: RMS misfit): {escape(profile)}</p>" if profile else "")
+    )
 
 
 def write_fired(result, scenario, folder) -> list[str]:
