@@ -3,7 +3,8 @@
 ``blastscale fired SCENARIO.toml [--out DIR] [--json]`` reads the scenario's ``[fired]`` table (gauge traces,
 marker tracks, the charge as weighed, the stand-off as measured; docs/fired.md), fits the gauges, finds the
 effective charge, re-simulates the specimen under the designed load and under the load as fired (through the
-Study), up-scales the measured response and prints the verdict line. ``--out DIR`` writes ``summary.json``
+Study), up-scales the measured response and prints the as-fired line and the similarity verdict (the prototype
+under the design's event against the specimen as fired, by the one criterion: docs/verdict.md). ``--out DIR`` writes ``summary.json``
 (key ``as_fired``), ``scenario.toml``, the figures and ``report.html`` into a new folder, all at once (a run
 interrupted or refused leaves nothing). A bad record: one line naming the file, the column and the row, exit
 status 2, nothing written.
@@ -24,6 +25,7 @@ from ._signals import ignore_interrupts, raise_if_interrupted
 
 def _print(s: dict) -> None:
     console.print(styled(("As fired", "bold"), ": " + s["verdict"].removeprefix("As fired: ")))
+    console.print(styled((s["similarity_verdict"]["line"], "bold")), soft_wrap=True)  # the specimen as fired
     rows = [
         ("effective charge (impulse)", fmt_value(s["effective_charge_tnt_kg"]), "kg TNT"),
         ("effective charge (peak)", fmt_value(s["effective_charge_from_pressure_tnt_kg"]), "kg TNT"),

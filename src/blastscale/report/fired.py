@@ -116,6 +116,7 @@ def fired_section(result, figures) -> str:
     )
     return (
         f'<p class="lead"><b>{escape(s["verdict"])}</b></p>'
+        + _similarity(s.get("similarity_verdict"))
         + html_table(("quantity", "value", "unit"), load)
         + _named_rows("Gauges (specimen)", "gauge", gkeys, s["gauges"])
         + _named_rows("Markers (specimen)", "marker", mkeys, s["markers"])
@@ -132,6 +133,15 @@ def _named_rows(title: str, name: str, keys: tuple, entries: dict) -> str:
     ``keys``, formatted); "" when there is none."""
     rows = [(n, *(format_value(x[k]) for k in keys)) for n, x in entries.items()]
     return f"<h3>{title}</h3>" + html_table((name,) + keys, rows) if rows else ""
+
+
+def _similarity(v) -> str:
+    """The similarity verdict of the specimen as fired against the prototype under the design's event (the one
+    criterion, :func:`blastscale.study.criterion.judge`): its line, which names the worst quantity and where."""
+    if v is None:
+        return ""
+    cls = {True: "lead", False: "warn", None: "muted"}[v["similar"]]
+    return f'<p id="similarity_verdict" class="{cls}"><b>{escape(v["line"])}</b></p>'
 
 
 def _calibration(c) -> str:
