@@ -163,13 +163,34 @@ def test_column_friction_is_the_truth_within_its_interval():
 
 
 @pytest.mark.slow
-def test_chaotic_column_friction_is_fitted_to_the_first_peak():
-    """The issue's case on a short column: circular drums (chaotic) tracked with the default friction 0.7 and
-    0.1 mm noise: fitted up to the measured first peak only; the truth within the interval or "not
-    identifiable" (never a value whose interval excludes it)."""
-    sc, d, tracks, W, R = column_shot("circular", 0.7, 1.2)
-    c = calibrate_friction(sc, d, tracks, W, R)
-    holds_the_truth_or_says_not(c, "friction", 0.7)
+@pytest.mark.parametrize("truth", [0.7, 0.63])
+def test_chaotic_column_friction_through_fired(tmp_path, capsys, truth):
+    """The issue's acceptance on a short column, through ``blastscale fired --calibrate friction --json``:
+    circular drums (chaotic) tracked with the default friction 0.7 (a grid value) and with 0.63 (off the grid),
+    0.1 mm noise, the scenario saying 0.7; fitted up to the measured first peak only; the truth within the
+    interval or "not identifiable" (never a value whose interval excludes it)."""
+    import json
+
+    from blastscale.cli import main
+
+    text = COLUMN.format(section="circular", friction=0.7, duration=1.2)
+    sc, d, tracks, W, R = column_shot("circular", truth, 1.2)
+    _, t, ux = tracks["top"]
+    np.savetxt(
+        tmp_path / "tracks.csv",
+        np.column_stack([t * 1e3, ux * 1e3]),
+        delimiter=",",
+        header="time_ms,top_x_mm",
+        comments="",
+    )
+    path = tmp_path / "shot.toml"
+    path.write_text(text + '[fired]\ntracks = "tracks.csv"\n[fired.marker.top]\npoint_m = [0.0, 0.0, 0.3]\n')
+    with pytest.raises(SystemExit) as e:
+        main(["fired", str(path), "--calibrate", "friction", "--json"])
+    out = capsys.readouterr().out
+    assert e.value.code in (0, None)
+    c = json.loads(out)["as_fired"]["calibration"]
+    holds_the_truth_or_says_not(c, "friction", truth)
     assert c["window"] == "first peak"
 
 
