@@ -39,8 +39,12 @@ def test_example_json_has_the_issues_keys(capsys):
         "markers",
         "prototype_markers",
         "verdict",
+        "similarity_verdict",
     ):
         assert k in s
+    # fired 17 % over its design: the specimen's first peak 36 % over the prototype's under the design's event
+    v = s["similarity_verdict"]
+    assert v["similar"] is False and v["worst"]["quantity"] == "first peak" and v["worst"]["where"] == "planar"
     g = s["gauges"]["g1"]
     for k in (
         "peak_pressure_Pa",

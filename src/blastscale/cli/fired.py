@@ -3,7 +3,8 @@
 ``blastscale fired SCENARIO.toml [--out DIR] [--json]`` reads the scenario's ``[fired]`` table (gauge traces,
 marker tracks, the charge as weighed, the stand-off as measured; docs/fired.md), fits the gauges, finds the
 effective charge, re-simulates the specimen under the designed load and under the load as fired (through the
-Study), up-scales the measured response and prints the verdict line. ``--out DIR`` writes ``summary.json``
+Study), up-scales the measured response and prints the as-fired line and the similarity verdict (the prototype
+under the design's event against the specimen as fired, by the one criterion: docs/verdict.md). ``--out DIR`` writes ``summary.json``
 (key ``as_fired``), ``scenario.toml``, the figures and ``report.html`` into a new folder, all at once (a run
 interrupted or refused leaves nothing). A bad record: one line naming the file, the column and the row, exit
 status 2, nothing written.
@@ -24,6 +25,7 @@ from ._signals import ignore_interrupts, raise_if_interrupted
 
 def _print(s: dict) -> None:
     console.print(styled(("As fired", "bold"), ": " + s["verdict"].removeprefix("As fired: ")))
+    console.print(styled((s["similarity_verdict"]["line"], "bold")), soft_wrap=True)  # the specimen as fired
     rows = [
         ("effective charge (impulse)", fmt_value(s["effective_charge_tnt_kg"]), "kg TNT"),
         ("effective charge (peak)", fmt_value(s["effective_charge_from_pressure_tnt_kg"]), "kg TNT"),
@@ -69,19 +71,19 @@ def _print(s: dict) -> None:
         )
     c = s.get("calibration")
     if c is not None and "restitution" in c:
-        rows += [
-            ("calibrated restitution (95 %)", f"{c['restitution']:.4g} +- {c['restitution_ci95']:.2g}", "-"),
-            (
-                "prototype with it: max rotation, outcome",
-                (f"{fmt_value(c['prototype_max_rotation_rad'])}, {c['prototype_outcome']}"),
-                "rad",
-            ),
-        ]
+        rows.append(("calibrated restitution", c["line"], "-"))
+        if c["identifiable"]:
+            rows.append(
+                (
+                    "prototype with it: max rotation, outcome",
+                    f"{fmt_value(c['prototype_max_rotation_rad'])}, {c['prototype_outcome']}",
+                    "rad",
+                )
+            )
     if c is not None and "friction" in c:
-        rows += [
-            ("calibrated friction (95 %)", f"{c['friction']:.4g} +- {c['friction_ci95']:.2g}", "-"),
-            ("prototype with it: outcome", c["prototype_outcome"], ""),
-        ]
+        rows.append(("calibrated friction", c["line"], "-"))
+        if c["identifiable"]:
+            rows.append(("prototype with it: outcome", c["prototype_outcome"], ""))
     console.print(table("The shot as fired", rows))
 
 

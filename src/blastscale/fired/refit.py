@@ -38,26 +38,42 @@ class SpecimenRun:
     arrival_time_s : float
         The shock's arrival at the front face [s] (the simulation's time zero).
     result : StudyResult
-        The Study's result of the specimen run alone (:meth:`~blastscale.study.Study.from_design`).
+        The Study's result (:meth:`~blastscale.study.Study.from_design`): the specimen run alone, or, when
+        ``compared``, the prototype under the design's event and the specimen under this load, compared (its
+        summary's ``verdict``: the shot's similarity verdict).
+    compared : bool
+        Whether ``result`` compares both systems (the specimen is then its ``model``).
     """
 
     charge_kg: float
     standoff_m: float
     arrival_time_s: float
     result: Any
+    compared: bool = False
 
     @property
     def rocking(self):
-        """The planar run (RockingResult) or None."""
+        """The specimen's planar run (RockingResult) or None."""
         p = self.result.planar
-        return None if p is None else p.prototype
+        return None if p is None else (p.model if self.compared else p.prototype)
+
+    @property
+    def structure(self):
+        """The specimen's structure."""
+        return self.result.specimen_structure if self.compared else self.result.structure
+
+    @property
+    def response3d(self):
+        """The specimen's 3D run (Response3D, in its own units) or None."""
+        r = self.result.response3d
+        return None if r is None else (r.model if self.compared else r.prototype)
 
     @property
     def collapsed(self) -> bool:
         r = self.rocking
         if r is not None:
             return bool(r.collapsed)
-        s = (self.result.summary().get("3d") or {}).get("prototype") or {}
+        s = (self.result.summary().get("3d") or {}).get("model" if self.compared else "prototype") or {}
         return bool(s.get("collapsed", False))
 
 
@@ -70,21 +86,26 @@ def simulate_specimen(
     *,
     friction: float | None = None,
     restitution: float | None = None,
+    compare: bool = False,
 ) -> SpecimenRun:
     """The specimen under ``charge_kg`` [kg TNT] at ``standoff_m`` [m], through the Study's entry from a design
     (:meth:`~blastscale.study.Study.from_design`; ``scenario``: the prototype's engine settings, ``engine``
-    default its own; ``friction`` and ``restitution`` [-] when not the scenario's: a calibration's trials)."""
+    default its own; ``friction`` and ``restitution`` [-] when not the scenario's: a calibration's trials).
+    ``compare``: the Study of both systems (``system = "both"``: the prototype under the design's event, the
+    specimen under this load, compared; its summary's ``verdict`` is the shot's)."""
+    kw = {} if compare else {"friction": friction, "restitution": restitution}
     study = Study.from_design(
         scenario,
         design,
+        system="both" if compare else "specimen",
         charge_kg=charge_kg,
         standoff_m=standoff_m,
         engine=engine,
-        friction=friction,
-        restitution=restitution,
+        **kw,
     )
     r = study.run()
-    return SpecimenRun(float(charge_kg), float(standoff_m), float(r.blast.arrival_time), r)
+    arrival = (r.design.specimen if compare else r.blast).arrival_time
+    return SpecimenRun(float(charge_kg), float(standoff_m), float(arrival), r, compare)
 
 
 def marker_history(run: SpecimenRun, point_m) -> dict:
@@ -100,7 +121,7 @@ def marker_history(run: SpecimenRun, point_m) -> dict:
     x0, z0 = float(point_m[0]), float(point_m[2])
     if r is None:
         return _marker_history_3d(run, np.asarray(point_m, dtype=float))
-    b = run.result.structure.b
+    b = run.structure.b
     t = r.t_eval if r.t_eval is not None else r.t
     th = r.theta_eval if r.theta_eval is not None else r.theta
     ux, uz = block_marker_displacement(th, x0, z0, b)
@@ -119,11 +140,11 @@ def marker_history(run: SpecimenRun, point_m) -> dict:
 
 
 def _marker_history_3d(run: SpecimenRun, point: np.ndarray) -> dict:
-    resp = run.result.response3d
+    resp = run.response3d
     if resp is None:
         raise BlastscaleInputError("the re-simulation ran no engine with marker histories (planar or 3d)")
-    ds = resp.prototype.dataset
-    ux, uz = pose_marker_history(ds, run.result.structure, point)
+    ds = resp.dataset
+    ux, uz = pose_marker_history(ds, run.structure, point)
     t = np.asarray(ds["time"].values) + run.arrival_time_s
     largest = float(np.max(np.abs(ux)))
     pk = track_first_peak(t, ux, noise=1e-3 * largest, smooth=False)

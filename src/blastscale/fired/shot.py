@@ -190,7 +190,7 @@ def as_fired(
     w_i, w_p = _effective_charges(fs, lab, gsum)
     w_refit = w_i if w_i is not None else w_design
     predicted = simulate_specimen(scenario, d, w_design, d.specimen.standoff_m, engine)
-    refit = simulate_specimen(scenario, d, w_refit, standoff, engine)
+    refit = simulate_specimen(scenario, d, w_refit, standoff, engine, compare=True)  # with the prototype: the verdict
     sig_w = _load_sigma(scenario, gsum)
     sens = None
     markers, msum, proto = {}, {}, {}
@@ -241,6 +241,7 @@ def as_fired(
     if "friction" in calibrate:
         summary["calibration"] = calibrate_friction(scenario, d, meas, w_refit, standoff)
     summary["verdict"] = as_fired_verdict_line(summary)
+    summary["similarity_verdict"] = refit.result.summary()["verdict"]
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
 
 
@@ -317,7 +318,7 @@ def _sensitivity(sc, d, predicted: SpecimenRun, refit: SpecimenRun, standoff: fl
 
 def as_fired_verdict_line(s: dict) -> str:
     """The as-fired summary's verdict: the one line at the top of its report (docs/fired.md; a study's verdict
-    is :func:`blastscale.report.verdict.verdict`)."""
+    is :func:`blastscale.study.criterion.judge`)."""
     parts = []
     if s["charge_ratio_impulse"] is not None:
         parts.append(f"As fired: {s['charge_ratio_impulse']:.3g} x the designed charge by impulse")

@@ -116,6 +116,7 @@ def fired_section(result, figures) -> str:
     )
     return (
         f'<p class="lead"><b>{escape(s["verdict"])}</b></p>'
+        + _similarity(s.get("similarity_verdict"))
         + html_table(("quantity", "value", "unit"), load)
         + _named_rows("Gauges (specimen)", "gauge", gkeys, s["gauges"])
         + _named_rows("Markers (specimen)", "marker", mkeys, s["markers"])
@@ -134,15 +135,33 @@ def _named_rows(title: str, name: str, keys: tuple, entries: dict) -> str:
     return f"<h3>{title}</h3>" + html_table((name,) + keys, rows) if rows else ""
 
 
+def _similarity(v) -> str:
+    """The similarity verdict of the specimen as fired against the prototype under the design's event (the one
+    criterion, :func:`blastscale.study.criterion.judge`): its line, which names the worst quantity and where."""
+    if v is None:
+        return ""
+    cls = {True: "lead", False: "warn", None: "muted"}[v["similar"]]
+    return f'<p id="similarity_verdict" class="{cls}"><b>{escape(v["line"])}</b></p>'
+
+
 def _calibration(c) -> str:
+    """The calibration's line, then its values (one row per marker for a per-marker value) and its misfit
+    profile (parameter, RMS misfit)."""
     if c is None:
         return ""
     rows = []
     for k, v in c.items():  # a value per marker (friction's prototype first peaks): one row each
+        if k in ("line", "profile"):
+            continue
         rows += (
             [(f"{k} ({n})", format_value(x)) for n, x in v.items()] if isinstance(v, dict) else [(k, format_value(v))]
         )
-    return "<h3>Calibration (the measured response)</h3>" + html_table(("quantity", "value"), rows)
+    profile = "; ".join(f"{x:.4g}: {1e3 * m:.3g} mm" for x, m in c.get("profile", ()))
+    return (
+        f"<h3>Calibration (the measured response)</h3><p>{escape(c['line'])}</p>"
+        + html_table(("quantity", "value"), rows)
+        + (f"<p>Misfit profile (value: RMS misfit): {escape(profile)}</p>" if profile else "")
+    )
 
 
 def write_fired(result, scenario, folder) -> list[str]:

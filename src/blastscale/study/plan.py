@@ -17,8 +17,9 @@ from .memory import RunSize, check_study_budget, contacts_of, estimate_run
 
 __all__ = ["StudyPlan", "DesignSystem", "DESIGN_SYSTEMS"]
 
-#: The systems of a design that :meth:`Study.from_design` runs alone.
-DESIGN_SYSTEMS = ("specimen", "prototype")
+#: The systems of a design that :meth:`Study.from_design` runs: alone (``specimen``, ``prototype``), or both
+#: compared (``both``: the prototype under the design's event, the specimen under the caller's load).
+DESIGN_SYSTEMS = ("specimen", "prototype", "both")
 
 
 @dataclass(frozen=True)
@@ -120,14 +121,15 @@ class StudyPlan:
 
 @dataclass(frozen=True)
 class DesignSystem:
-    """One system of a design run alone by a study (:meth:`Study.from_design`).
+    """One system of a design run alone by a study, or both compared (:meth:`Study.from_design`).
 
     Attributes
     ----------
     design : ModelDesign
         The design.
-    system : {"specimen", "prototype"}
-        Which system.
+    system : {"specimen", "prototype", "both"}
+        Which system (``both``: the prototype under the design's event and the specimen under the caller's
+        load, compared).
     charge_kg, standoff_m : float or None
         The caller's load [kg TNT], [m]; None: the design's blast parameters of the system.
     engine : str or None
@@ -157,8 +159,13 @@ class DesignSystem:
         """The engine asked for, else the scenario's."""
         return scenario.simulation.engine if self.engine is None else self.engine
 
+    @property
+    def both(self) -> bool:
+        return self.system == "both"
+
     def structure(self):
-        """The system's structure (the design's, scaled once there; or the one given)."""
+        """The system's structure (the design's, scaled once there; or the one given); for ``both`` the
+        prototype's."""
         d = self.design
         if self.given_structure is not None:
             return self.given_structure
@@ -166,18 +173,37 @@ class DesignSystem:
 
     def blast(self, scenario: Scenario):
         """The system's blast parameters: the design's, or those of the caller's load with the scenario's blast
-        model, extrapolation and the system's burst (the specimen's: the design's specimen burst)."""
+        model, extrapolation and the system's burst (the specimen's: the design's specimen burst); for ``both``
+        the specimen's."""
         d = self.design
-        params = d.specimen if self.specimen else d.prototype
-        if self.charge_kg is None:
-            return params
+        to_specimen = self.specimen or self.both
+        params = d.specimen if to_specimen else d.prototype
+        own = (float(self.charge_kg or 0.0), float(self.standoff_m or 0.0)) == (
+            d.specimen_charge_kg,
+            d.specimen_standoff_m,
+        )
+        if self.charge_kg is None or (self.both and own):
+            return params  # the design's own load, compared: its parameters, never recomputed (the study's own)
         bl = scenario.blast
         burst = bl.burst
-        if self.specimen:
+        if to_specimen:
             burst = getattr(params, "burst", None) or (scenario.scale and scenario.scale.specimen_burst) or bl.burst
         return blast_parameters(
             float(self.charge_kg), float(self.standoff_m), bl.blast_model, extrapolate=bl.extrapolate, burst=burst
         )
+
+    def compared_design(self, scenario: Scenario, contact):
+        """For ``both``: the design with the specimen's blast parameters those of the caller's load
+        (:meth:`blast`; the design itself at its own load) and, when the 3D engine runs and the design was made
+        without them, the prototype's contact settings ``contact`` and the specimen's (scaled once by
+        :func:`~blastscale.similitude.specimen.specimen_system`)."""
+        d = self.design
+        spec = self.blast(scenario)
+        if spec is not d.specimen:
+            d = replace(d, specimen=spec)
+        if contact is not None and d.contact is None:
+            d = replace(d, contact=contact, specimen_contact=specimen_system(d.factors, contact=contact).contact)
+        return d
 
     def plan(self, scenario: Scenario, engines: list, skipped: list) -> StudyPlan:
         """The plan of the system run alone: the design's structure, gravity, duration and load model, the

@@ -107,7 +107,7 @@ class Study:
         friction: Optional[float] = None,
         restitution: Optional[float] = None,
     ) -> "Study":
-        """A study of one system of a design, run alone (no comparison).
+        """A study of one system of a design run alone (no comparison), or of both compared (``system = "both"``).
 
         Parameters
         ----------
@@ -116,12 +116,17 @@ class Study:
             restitution, friction and ``[simulation.contact]``, recording, ensembles, threads, extrapolation).
         design : ModelDesign
             The design (:func:`blastscale.similitude.design_model`, carrying both systems).
-        system : {"specimen", "prototype"}
+        system : {"specimen", "prototype", "both"}
             Which system runs: the specimen (the design's structure, gravity, duration and load model; its
             contact the scenario's for the prototype scaled once by
-            :func:`~blastscale.similitude.specimen.specimen_system`, as the design's own), or the prototype.
+            :func:`~blastscale.similitude.specimen.specimen_system`, as the design's own), or the prototype;
+            or ``both``: the prototype under the design's event and the specimen under ``charge_kg`` at
+            ``standoff_m`` (a shot as fired), compared like a study of the scenario (the similarity blocks and
+            the ``verdict`` of its summary; at the design's own load it is that study, its critical charge not
+            searched).
         charge_kg, standoff_m : float, optional
-            The load [kg TNT], [m] (given together); default the design's blast parameters of the system.
+            The load [kg TNT], [m] (given together); default the design's blast parameters of the system (for
+            ``both``: the specimen's load).
         engine : str, optional
             ``simulation.engine`` of this run; default the scenario's.
         structure : structure, optional
@@ -135,9 +140,15 @@ class Study:
         Returns
         -------
         Study
-            Its plan has no design (the system runs alone); ``critical_charge`` is not searched.
+            Its plan has no design when one system runs alone (``both``: the design, with the specimen's load
+            the caller's); ``critical_charge`` is not searched.
         """
         check_choice("system", system, DESIGN_SYSTEMS)
+        if system == "both" and (friction is not None or restitution is not None or structure is not None):
+            raise BlastscaleInputError(
+                "system = 'both' compares the design's two systems as designed: friction, restitution and structure "
+                "are for one system run alone (valid with system = 'specimen' or 'prototype')"
+            )
         if (charge_kg is None) != (standoff_m is None):
             raise BlastscaleInputError(
                 f"charge_kg = {charge_kg}, standoff_m = {standoff_m}: give both (the caller's load) or neither "
@@ -242,8 +253,9 @@ class Study:
         design (blast fits' ranges, scale range), the memory and the computing time
         (:func:`~blastscale.study.memory.check_study_budget`), the 3D contact settings. Returns the
         :class:`StudyPlan` (built once per study)."""
-        if self._checked is None and self._system is not None:
-            self._checked = self._system.plan(self.scenario, *self.engines(self._system.structure()))
+        system = self._system
+        if self._checked is None and system is not None and not system.both:
+            self._checked = system.plan(self.scenario, *self.engines(system.structure()))
         if self._checked is None:
             structure = self.structure()
             engines, skipped = self.engines(structure)
@@ -252,7 +264,7 @@ class Study:
             contact = contact_settings(sc, structure) if has_3d else None
             contacts = contacts_of(structure) if has_3d else 0
             check_study_budget(sc, structure, contact, contacts=contacts or None)
-            d = self.design(structure, contact)
+            d = self.design(structure, contact) if system is None else system.compared_design(sc, contact)
             blast = self._blast(d)
             planar = planar_settings(sc, structure, d) if any(e.name == "planar" for e in engines) else None
             self._checked = StudyPlan.resolve(
@@ -266,7 +278,9 @@ class Study:
                 contacts=contacts,
                 planar=planar,
                 systems3d=systems_3d(sc, structure, d, blast, contact) if has_3d else None,
-                critical=bool(sc.simulation.critical_charge) and any(e.name == "planar" for e in engines),
+                critical=system is None
+                and bool(sc.simulation.critical_charge)
+                and any(e.name == "planar" for e in engines),
             )
         return self._checked
 
