@@ -43,7 +43,7 @@ from __future__ import annotations
 import math
 from typing import Any, Iterable, Optional
 
-__all__ = ["judge", "QUANTITIES", "structure_height"]
+__all__ = ["judge", "describe", "QUANTITIES", "structure_height"]
 
 #: The quantities judged (the fixed vocabulary of a verdict's ``quantity``).
 QUANTITIES = (
