@@ -43,7 +43,7 @@ from __future__ import annotations
 import math
 from typing import Any, Iterable, Optional
 
-__all__ = ["judge", "describe", "QUANTITIES", "structure_height"]
+__all__ = ["judge", "describe", "shown", "QUANTITIES", "STATES", "structure_height"]
 
 #: The quantities judged (the fixed vocabulary of a verdict's ``quantity``).
 QUANTITIES = (
@@ -60,8 +60,8 @@ QUANTITIES = (
 #: (|1.05 - 1| = 0.05 + 4e-17 in binary) passes; 1e-9 over it fails.
 _ROUNDING = 1e-12
 
-#: A body's outcome as a number (the ``prototype``/``model`` of an outcome entry) and in words.
-_STATES = ("stands", "moved", "fell")
+#: A body's outcome in words, by its number (the ``prototype``/``model`` of an outcome entry: 0, 1, 2).
+STATES = ("stands", "moved", "fell")
 
 #: How many reasons the verdict line lists before "and N more".
 _LINE_REASONS = 3
@@ -387,6 +387,17 @@ def _fmt(v: Optional[float], unit: str) -> str:
     return f"{v:.4g}"
 
 
+def shown(e: dict, system: str) -> str:
+    """A judged entry's ``system`` value (``"prototype"`` or ``"model"``) in words and readable units: an
+    outcome as stands / moved / fell (the structure: collapses or stands), a length in mm below 1 m."""
+    v, unit = e[system], e["unit"]
+    if unit == "outcome":
+        return STATES[int(v)]
+    if unit == "collapsed":
+        return "collapses" if v else "stands"
+    return _fmt(v, unit)
+
+
 def _place(e: dict) -> str:
     w = e["where"]
     if w == "planar":
@@ -407,7 +418,7 @@ def describe(e: dict, structure_kind: str = "block") -> str:
     (prototype), 58.3 % off (tolerance 20 %)``."""
     q, unit = e["quantity"], e["unit"]
     if q == "outcome" and unit == "outcome":
-        p, m = _STATES[int(e["prototype"])], _STATES[int(e["model"])]
+        p, m = STATES[int(e["prototype"])], STATES[int(e["model"])]
         return f"the outcomes disagree at {e['where']}: the prototype's {p}, the model's {m}"
     if q == "outcome" and unit == "collapsed":
         eng = "planar" if e["where"] == "planar" else "3D"
