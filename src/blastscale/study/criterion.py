@@ -100,6 +100,8 @@ def structure_height(summary: dict) -> Optional[float]:
 def _entry(quantity, where, p, m, error, tolerance, unit, basis, **extra) -> dict:
     ok = bool(error <= tolerance * (1.0 + _ROUNDING))
     ratio = 0.0 if error == 0.0 else (error / tolerance if tolerance > 0.0 and math.isfinite(error) else math.inf)
+    if ok:
+        ratio = min(ratio, 1.0)  # within the rounding slack: a pass reads <= 1
     return {
         "quantity": quantity,
         "where": where,
@@ -558,6 +560,19 @@ def judge(summary: dict, tolerances, *, structure_kind: str = "block", circular:
         judged: ``quantity``, ``where``, ``prototype``, ``model`` [SI, prototype units], ``error``,
         ``tolerance`` [-], ``ratio`` = error / tolerance, ``unit``, ``basis`` (single or ensemble), ``ok``)
         and ``rest`` (the at-rest check, None when the 3D runs have none).
+
+    Examples
+    --------
+    A planar comparison whose first swing is 10 % short:
+
+    >>> from blastscale.scenario import VerdictSpec
+    >>> rot = {"collapsed": False, "max_rotation_rad": 0.1}
+    >>> s = {"design": {}, "planar": {"prototype": rot, "model": rot, "similarity": {"first_peak_ratio": 0.9}}}
+    >>> v = judge(s, VerdictSpec())
+    >>> v["line"]
+    'Verdict: NOT similar: first peak (planar), ratio 0.9 (up-scaled model / prototype), 10 % off (tolerance 5 %).'
+    >>> round(v["worst"]["ratio"], 12), len(v["judged"])
+    (2.0, 3)
     """
     if summary.get("design") is None:
         return _unscaled(summary, structure_kind, tolerances)
