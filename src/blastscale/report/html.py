@@ -238,8 +238,7 @@ def _similarity(result, figures) -> str:
     out = []
     s = result.summary()
     figs = {f.name: (f, png) for f, png in figures}
-    if s["verdict"]["judged"]:
-        out.append(_judged(s["verdict"]))
+    out.append(_judged(s["verdict"]))  # "" when nothing is judged
     if result.design is not None:
         rows = specimen_rows(s, result.design.factors.to_dict()) + timing_rows(result)
         if rows:
@@ -312,7 +311,7 @@ def _similarity(result, figures) -> str:
             f"({c.evaluations} simulations). The scenario's charge is "
             f"{result.scenario.blast.charge_kg / c.charge_kg:.3g} of it.</p>"
         )
-    if not out:
+    if not "".join(out):
         out.append("<p>No engine was run.</p>")
     return "".join(out)
 
