@@ -220,6 +220,14 @@ def test_not_at_rest_before_the_blast_is_a_reason():
     s["3d"]["model"]["rest"]["equilibrium"] = False
     v = judge(s, TOL, structure_kind="column")
     assert "the specimen is not at rest before the blast: not in equilibrium" in v["line"]
+    # first on the line, before any quantity (four quantities off here: the line shows three reasons)
+    s["3d"]["model"]["bodies"]["D-1"]["residual_displacement_m"] = 0.010
+    s["3d"]["model"]["points"]["P-1"]["max_displacement_m"] = 0.5
+    s["3d"]["similarity"]["points"]["P-1"]["first_peak_model_m"] = 0.5
+    v = judge(s, TOL, structure_kind="column")
+    assert v["line"].startswith("Verdict: NOT similar: the prototype is not at rest before the blast: it creeps")
+    assert len(v["reasons"]) == 5 and v["line"].endswith("; and 2 more.")
+    assert v["worst"]["where"] == "P-1"  # the worst quantity judged is still the worst
 
 
 def test_planar_and_impulsive_and_nothing_compared():

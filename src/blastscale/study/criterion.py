@@ -580,9 +580,9 @@ def judge(summary: dict, tolerances, *, structure_kind: str = "block", circular:
         summary.get("3d"), summary.get("ensemble"), tolerances, structure_height(summary)
     )
     failing = sorted((e for e in judged if not e["ok"]), key=lambda e: -e["ratio"])
-    reasons = [describe(e, structure_kind) for e in failing]
     rest, rest_reasons = _rest(summary.get("3d"), tolerances)
-    reasons += rest_reasons
+    # not at rest first: a response to a blast on a structure still moving is not the blast's
+    reasons = rest_reasons + [describe(e, structure_kind) for e in failing]
     imp = (summary.get("design") or {}).get("impulsive")
     if isinstance(imp, dict) and imp.get("impulsive") is False:
         reasons.append("the load is not impulsive, so the general law does not guarantee similarity")
