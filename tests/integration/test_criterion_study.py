@@ -120,3 +120,14 @@ def test_loosened_tolerances_make_the_same_column_similar(column):
     v = judge(s, loose, structure_kind="column")
     assert v["similar"] is True and v["line"].startswith("Verdict: similar: prototype and up-scaled model both stand")
     assert v["worst"]["ratio"] == pytest.approx(s["verdict"]["worst"]["ratio"] / 3, rel=1e-12)
+
+
+def test_the_test_card_shows_the_studys_verdict(column):
+    """The card (summary.json's test_card, the report's card) carries the Study's verdict line, NOT similar here,
+    and shows it first (issue #35: the card's word is the criterion's)."""
+    from blastscale.planning import study_test_card
+
+    card = study_test_card(column)
+    v = column.summary()["verdict"]
+    assert card["verdict"] == {"similar": False, "line": v["line"]}
+    assert v["line"].startswith("Verdict: NOT similar: first peak at P-1")

@@ -164,6 +164,12 @@ def test_the_report_opens_with_its_verdict_labels_in_words_and_the_specimen_in_m
     assert s["verdict"]["similar"] is True and s["verdict"]["line"].startswith("Verdict: similar")
     assert s["verdict"]["line"] in text  # the page's line is summary.json's (the Study's verdict)
     assert s["verdict"]["worst"]["ratio"] <= 1.0 and all(e["ok"] for e in s["verdict"]["judged"])
+    # section 4 opens with the verdict quantity by quantity, the worst first (its where and tolerance in words)
+    table = page[page.index("The verdict, quantity by quantity") :]
+    w = s["verdict"]["worst"]
+    first = re.findall(r"<td>([^<]*)</td>", table)[:7]
+    assert first[:2] == [w["quantity"], w["where"]] and first[5] == f"{w['tolerance'] * 100:g} %" and first[6] == "yes"
+    assert f"{len(s['verdict']['judged'])} quantities judged over the whole structure" in text
 
 
 def test_a_failed_similarity_is_the_first_line(tmp_path):

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from typing import Iterable
 
+from ..study.criterion import shown
 from .card import CSS as _CARD_CSS, card_section
 from .labels import label, specimen_rows
 from .markup import (
@@ -202,10 +203,42 @@ def _impulsive(result) -> str:
     )
 
 
+#: Rows of the verdict's table: every quantity outside its tolerance, and the closest of the others up to this many.
+_VERDICT_ROWS = 12
+
+
+def _judged(verdict: dict) -> str:
+    """The verdict quantity by quantity: the worst first (every failing one, then the closest to their limits)."""
+    judged = sorted(verdict["judged"], key=lambda e: -e["ratio"])
+    if not judged:
+        return ""
+    rows = [e for e in judged if not e["ok"]]
+    rows += [e for e in judged if e["ok"]][: max(0, _VERDICT_ROWS - len(rows))]
+    body = [
+        (
+            e["quantity"] + (" (ensemble medians)" if e["basis"] == "ensemble" else ""),
+            e["where"],
+            shown(e, "prototype"),
+            shown(e, "model"),
+            "differs" if math.isinf(e["error"]) else f"{e['error'] * 100:.3g} %",
+            "-" if e["tolerance"] == 0 else f"{e['tolerance'] * 100:g} %",
+            "yes" if e["ok"] else "NO",
+        )
+        for e in rows
+    ]
+    return (
+        f"<h3>The verdict, quantity by quantity</h3><p>{len(judged)} quantities judged over the whole structure "
+        f"(docs/verdict.md), the worst first; {len(rows)} shown ({len(judged) - len(rows)} more within their "
+        "tolerances in summary.json, <code>verdict.judged</code>).</p>"
+        + html_table(("quantity", "where", "prototype", "up-scaled model", "off", "tolerance", "within"), body)
+    )
+
+
 def _similarity(result, figures) -> str:
     out = []
     s = result.summary()
     figs = {f.name: (f, png) for f, png in figures}
+    out.append(_judged(s["verdict"]))  # "" when nothing is judged
     if result.design is not None:
         rows = specimen_rows(s, result.design.factors.to_dict()) + timing_rows(result)
         if rows:
@@ -278,7 +311,7 @@ def _similarity(result, figures) -> str:
             f"({c.evaluations} simulations). The scenario's charge is "
             f"{result.scenario.blast.charge_kg / c.charge_kg:.3g} of it.</p>"
         )
-    if not out:
+    if not "".join(out):
         out.append("<p>No engine was run.</p>")
     return "".join(out)
 

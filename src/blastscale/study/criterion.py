@@ -43,7 +43,7 @@ from __future__ import annotations
 import math
 from typing import Any, Iterable, Optional
 
-__all__ = ["judge", "QUANTITIES", "structure_height"]
+__all__ = ["judge", "describe", "shown", "QUANTITIES", "STATES", "structure_height"]
 
 #: The quantities judged (the fixed vocabulary of a verdict's ``quantity``).
 QUANTITIES = (
@@ -60,8 +60,8 @@ QUANTITIES = (
 #: (|1.05 - 1| = 0.05 + 4e-17 in binary) passes; 1e-9 over it fails.
 _ROUNDING = 1e-12
 
-#: A body's outcome as a number (the ``prototype``/``model`` of an outcome entry) and in words.
-_STATES = ("stands", "moved", "fell")
+#: A body's outcome in words, by its number (the ``prototype``/``model`` of an outcome entry: 0, 1, 2).
+STATES = ("stands", "moved", "fell")
 
 #: How many reasons the verdict line lists before "and N more".
 _LINE_REASONS = 3
@@ -100,6 +100,8 @@ def structure_height(summary: dict) -> Optional[float]:
 def _entry(quantity, where, p, m, error, tolerance, unit, basis, **extra) -> dict:
     ok = bool(error <= tolerance * (1.0 + _ROUNDING))
     ratio = 0.0 if error == 0.0 else (error / tolerance if tolerance > 0.0 and math.isfinite(error) else math.inf)
+    if ok:
+        ratio = min(ratio, 1.0)  # within the rounding slack: a pass reads <= 1
     return {
         "quantity": quantity,
         "where": where,
@@ -387,6 +389,17 @@ def _fmt(v: Optional[float], unit: str) -> str:
     return f"{v:.4g}"
 
 
+def shown(e: dict, system: str) -> str:
+    """A judged entry's ``system`` value (``"prototype"`` or ``"model"``) in words and readable units: an
+    outcome as stands / moved / fell (the structure: collapses or stands), a length in mm below 1 m."""
+    v, unit = e[system], e["unit"]
+    if unit == "outcome":
+        return STATES[int(v)]
+    if unit == "collapsed":
+        return "collapses" if v else "stands"
+    return _fmt(v, unit)
+
+
 def _place(e: dict) -> str:
     w = e["where"]
     if w == "planar":
@@ -407,7 +420,7 @@ def describe(e: dict, structure_kind: str = "block") -> str:
     (prototype), 58.3 % off (tolerance 20 %)``."""
     q, unit = e["quantity"], e["unit"]
     if q == "outcome" and unit == "outcome":
-        p, m = _STATES[int(e["prototype"])], _STATES[int(e["model"])]
+        p, m = STATES[int(e["prototype"])], STATES[int(e["model"])]
         return f"the outcomes disagree at {e['where']}: the prototype's {p}, the model's {m}"
     if q == "outcome" and unit == "collapsed":
         eng = "planar" if e["where"] == "planar" else "3D"
@@ -547,6 +560,19 @@ def judge(summary: dict, tolerances, *, structure_kind: str = "block", circular:
         judged: ``quantity``, ``where``, ``prototype``, ``model`` [SI, prototype units], ``error``,
         ``tolerance`` [-], ``ratio`` = error / tolerance, ``unit``, ``basis`` (single or ensemble), ``ok``)
         and ``rest`` (the at-rest check, None when the 3D runs have none).
+
+    Examples
+    --------
+    A planar comparison whose first swing is 10 % short:
+
+    >>> from blastscale.scenario import VerdictSpec
+    >>> rot = {"collapsed": False, "max_rotation_rad": 0.1}
+    >>> s = {"design": {}, "planar": {"prototype": rot, "model": rot, "similarity": {"first_peak_ratio": 0.9}}}
+    >>> v = judge(s, VerdictSpec())
+    >>> v["line"]
+    'Verdict: NOT similar: first peak (planar), ratio 0.9 (up-scaled model / prototype), 10 % off (tolerance 5 %).'
+    >>> round(v["worst"]["ratio"], 12), len(v["judged"])
+    (2.0, 3)
     """
     if summary.get("design") is None:
         return _unscaled(summary, structure_kind, tolerances)
@@ -554,9 +580,9 @@ def judge(summary: dict, tolerances, *, structure_kind: str = "block", circular:
         summary.get("3d"), summary.get("ensemble"), tolerances, structure_height(summary)
     )
     failing = sorted((e for e in judged if not e["ok"]), key=lambda e: -e["ratio"])
-    reasons = [describe(e, structure_kind) for e in failing]
     rest, rest_reasons = _rest(summary.get("3d"), tolerances)
-    reasons += rest_reasons
+    # not at rest first: a response to a blast on a structure still moving is not the blast's
+    reasons = rest_reasons + [describe(e, structure_kind) for e in failing]
     imp = (summary.get("design") or {}).get("impulsive")
     if isinstance(imp, dict) and imp.get("impulsive") is False:
         reasons.append("the load is not impulsive, so the general law does not guarantee similarity")
