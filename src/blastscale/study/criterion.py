@@ -182,6 +182,25 @@ def _state(body: dict, moved_m: Optional[float]) -> int:
     return 1 if (moved_m is not None and r is not None and r > moved_m) else 0
 
 
+def _body_outcome(name: str, p: dict, m: dict, moved_m: Optional[float], tolerance: float) -> dict:
+    """A body's outcome entry: stands / moved / fell in each system. Stands against moved is a disagreement
+    only when the two residual displacements lie on either side of the band [s0 / (1 + tol), s0 (1 + tol)]
+    around the moved height s0 (``moved_m``), tol the residual tolerance: 2.9 mm against 3.1 mm about a 3 mm
+    threshold is one outcome seen twice (the residual entry judges how far apart), 2.4 mm against 3.7 mm
+    is not. Fell against not fell always counts."""
+    ps, ms = _state(p, moved_m), _state(m, moved_m)
+    if {ps, ms} == {0, 1}:
+        rs = _num((p if ps == 0 else m).get("residual_displacement_m"))
+        rm = _num((m if ps == 0 else p).get("residual_displacement_m"))
+        if (
+            rs is not None
+            and rm is not None
+            and not (rs < moved_m / (1.0 + tolerance) and rm > moved_m * (1.0 + tolerance))
+        ):
+            return _entry("outcome", name, float(ps), float(ms), 0.0, 0.0, "outcome", "single", borderline=True)
+    return _outcome(name, ps, ms)
+
+
 def _outcome(where, p_state, m_state, unit="outcome") -> dict:
     same = p_state == m_state
     return _entry("outcome", where, float(p_state), float(m_state), 0.0 if same else math.inf, 0.0, unit, "single")
@@ -232,7 +251,7 @@ def _three_d(sec: Optional[dict], ens: Optional[dict], tol, height: Optional[flo
         if name not in mb:
             continue
         fall = _fall_probability(name, e_bodies.get(name) or {})
-        out.append(fall if fall is not None else _outcome(name, _state(pb[name], moved_m), _state(mb[name], moved_m)))
+        out.append(fall if fall is not None else _body_outcome(name, pb[name], mb[name], moved_m, tol.residual))
 
     # first peak and largest displacement at every monitoring point
     points = sim.get("points") or {}
