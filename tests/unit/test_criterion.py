@@ -118,10 +118,17 @@ def test_the_floor_judges_small_values_on_the_structures_scale():
 
 def test_residuals_below_the_moved_height_are_judged_on_it():
     """Residual displacements of 0.1 mm and 0.2 mm (100 % apart) in a 3 m column that barely moved: judged on
-    the 'moved' scale 1e-3 H = 3 mm (3.3 %), not as a 100 % difference of noise."""
+    s0 / residual, s0 = 1e-3 H = 3 mm the moved height: 0.1 mm / 15 mm (0.67 %), not as a 100 % difference of
+    noise. The edge: two residuals exactly s0 apart pass (ratio 1), 1e-9 more fails; a residual rotation is
+    judged on 1e-3 rad / 0.2 the same way."""
     v = judge(column(res_p=(1e-4, 1e-4, 1e-4), res_m=(2e-4, 2e-4, 2e-4)), TOL, structure_kind="column")
-    assert entry(v, "residual displacement", "D-1")["error"] == pytest.approx(1e-4 / 3e-3, rel=1e-12)
+    assert entry(v, "residual displacement", "D-1")["error"] == pytest.approx(1e-4 / 15e-3, rel=1e-12)
     assert v["similar"] is True
+    res = (0.0338, 0.0300, 0.0020)  # D-3: 2 mm, far below the floor 0.1 x 33.8 mm and s0 / 0.2 = 15 mm
+    at = judge(column(res_p=res, res_m=(0.0338, 0.0300, 0.0020 + 0.2 * 0.015)), TOL, structure_kind="column")
+    assert entry(at, "residual displacement", "D-3")["ok"] is True
+    over = judge(column(res_p=res, res_m=(0.0338, 0.0300, 0.0020 + 0.2 * 0.015 * (1 + 1e-9))), TOL)
+    assert entry(over, "residual displacement", "D-3")["ok"] is False
 
 
 def test_a_body_that_moved_in_one_system_only_is_an_outcome_disagreement():

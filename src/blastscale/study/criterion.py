@@ -14,13 +14,16 @@ already up-scaled to prototype units) and the scenario's ``[verdict]`` tolerance
 
 Each quantity's relative error is
 
-.. math:: e = \\frac{|m - p|}{\\max(|p|,\\ f \\max_k |p_k|,\\ s_0)}
+.. math:: e = \\frac{|m - p|}{\\max(|p|,\\ f \\max_k |p_k|,\\ s)}
 
 with p the prototype's value, m the up-scaled model's, f = ``floor`` and the maximum over the structure's
-values of that quantity (a value small beside the structure's largest is judged on the structure's scale),
-and s_0 the scale below which a body did not move (``moved_rel_height`` x H for displacements,
-``moved_rel_height`` rad for rotations: a rotation of 1e-3 rad moves no point of the structure more than
-1e-3 H). The quantity passes when e <= its tolerance (``peak``, ``displacement``, ``residual``); its
+values of that quantity (a value small beside the structure's largest is judged on the structure's scale).
+s = 0 for first peaks and largest displacements; for the residuals (the damage) s = s_0 / r, with s_0 the
+scale below which a body did not move (``moved_rel_height`` x H for displacements, ``moved_rel_height`` rad
+for rotations: a rotation of 1e-3 rad moves no point of the structure more than 1e-3 H) and r = ``residual``,
+so that two residuals closer than s_0 always pass: a difference smaller than "did not move" is no
+difference of damage (the default block's residual rotations, 0.71 against 0.89 mrad). The quantity passes when e <= its
+tolerance (``peak``, ``displacement``, ``residual``); its
 ``ratio`` is e / tolerance. An outcome that differs has ratio = inf.
 
 A chaotic structure (the summary has an ``ensemble`` section: wobbling circular drums) is judged between
@@ -286,11 +289,13 @@ def _three_d(sec: Optional[dict], ens: Optional[dict], tol, height: Optional[flo
             quantity, [(n, *single(n)) for n in names if n not in banded], tolerance, "m", tol.floor, 0.0
         )
 
-    # the damage: residual displacement and rotation of every body that did not fall
+    # the damage: residual displacement and rotation of every body that did not fall; a difference below the
+    # moved height s0 (H x moved_rel_height; moved_rel_height rad) is no difference of damage: the scale is at
+    # least s0 / residual, so |m - p| <= s0 always passes
     standing = [n for n in pb if n in mb and not (pb[n].get("fallen") or mb[n].get("fallen"))]
     for quantity, key, stem, unit, abs_floor in (
-        ("residual displacement", "residual_displacement_m", "residual_displacement", "m", disp_floor),
-        ("residual rotation", "residual_rotation_rad", "residual_rotation", "rad", tol.moved_rel_height),
+        ("residual displacement", "residual_displacement_m", "residual_displacement", "m", disp_floor / tol.residual),
+        ("residual rotation", "residual_rotation_rad", "residual_rotation", "rad", tol.moved_rel_height / tol.residual),
     ):
         bands = [
             (
