@@ -28,6 +28,10 @@ u_e e^{1.645 sigma}]``; the terms (each in ``band_terms``, with its source):
 * ``load``: ``s sigma_ln W``, the effective charge's uncertainty (the gauges' spread and noise, the stand-off
   tolerance; :mod:`.shot`) through the correction;
 * ``track``: ``sigma_track / |u|`` (the track's noise, :mod:`.tracks`);
+* ``refit``: ``|ln(u_refit / u)|``, the re-simulation under the load as fired against the measurement: the
+  correction ``u_pred / u_refit`` assumes the engine under the effective charge is the shot, and misses by what
+  the stated load error does not cover (an effective charge off by more than its sigma, the engine's own
+  error); taken as one standard uncertainty (RSSu, below);
 * ``similarity``: ``|ln(m / p)|``, the design's own similarity error at the marker's point: the up-scaled
   specimen's first peak m against the prototype's p under the designed event, from the study's verdict
   (:func:`blastscale.study.criterion.judge`, its ``judged`` entry "first peak" at the monitoring point on the
@@ -72,7 +76,7 @@ Q95 = 1.6448536269514722
 
 #: The band's rule in words (``designed_event.band_rule``).
 BAND_RULE = (
-    "independent log-normal errors: sigma_ln^2 = load^2 + track^2 + similarity^2 + ensemble^2; "
+    "independent log-normal errors: sigma_ln^2 = load^2 + track^2 + refit^2 + similarity^2 + ensemble^2; "
     "5-95 % = first peak x exp(-+1.645 sigma_ln)"
 )
 
@@ -244,6 +248,11 @@ def designed_event_marker(
             "source": "the effective charge's sigma_ln W x dln(first peak)/dln(W) (prediction and refit)",
         },
         "track": {"sigma_ln": float(pk.noise_m) / abs(u), "source": "the track's noise / the measured first peak"},
+        "refit": {
+            "sigma_ln": abs(math.log(abs(refit["first_peak_m"] / u))) if refit.get("first_peak_m") else None,
+            "source": "|ln(refit / measured first peak)|: the re-simulation under the load as fired misses the "
+            "measurement by it (the load or the engine), and the correction to the designed load inherits it",
+        },
         "similarity": {
             "sigma_ln": sim,
             "source": f"|ln(up-scaled model / prototype)| of the design's first peak at {where} (study verdict)",
@@ -302,6 +311,10 @@ def _residual(meas, pred, refit, noise, u, c, body, judged, ens, chaotic, f, not
         "track": {
             "sigma_ln": None if not res else se / res,
             "source": "the track's noise / sqrt(frames averaged) / the measured residual",
+        },
+        "refit": {
+            "sigma_ln": abs(math.log(rr / res)) if res and rr else None,
+            "source": "|ln(refit / measured residual)|",
         },
         "similarity": {
             "sigma_ln": _bias(_entry(judged, "residual displacement", body)),
