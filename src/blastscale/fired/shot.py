@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from .._validate import BlastscaleInputError
 from ..analysis.upscale import upscale
 from ..blast.explosives import get_explosive
 from ..scenario.scenario import Scenario
@@ -197,7 +198,11 @@ def as_fired(
     sens = _Sensitivity(scenario, d, predicted, refit, standoff)
     design_summary = predicted.result.summary()
     chaotic = getattr(d.prototype_structure, "section", None) == "circular"
-    w_similar, r_similar = similar_prototype_charge(d, w_refit, standoff)
+    try:
+        w_similar, r_similar = similar_prototype_charge(d, w_refit, standoff)
+        similar_note = None
+    except BlastscaleInputError as exc:  # the prototype's fits do not reach it: said, the rest still read
+        w_similar, r_similar, similar_note = None, standoff / d.factors.length, str(exc)
     markers, msum, proto, event = {}, {}, {}, {}
     measured = _measured_markers(scenario, d, trec) if trec is not None else {}
     for name, meas in measured.items():
@@ -245,6 +250,7 @@ def as_fired(
         "sigma_ln_charge": sig_w,
         "similar_prototype_charge_tnt_kg": w_similar,
         "similar_prototype_standoff_m": r_similar,
+        "similar_prototype_charge_note": similar_note,
         "designed_event": {
             "charge_tnt_kg": float(d.prototype.charge_kg),
             "standoff_m": float(d.prototype.standoff_m),
@@ -361,7 +367,7 @@ def _designed_word(s: dict) -> str:
     load bounds the designed one on its side (stood under more, or collapsed under less), else the
     prediction's (the specimen under the designed load)."""
     seen = s["outcome_measured"] or s["outcome_refit"]  # no marker judged (no z column): the refit's outcome
-    hotter = s["similar_prototype_charge_tnt_kg"] >= s["designed_event"]["charge_tnt_kg"]
+    hotter = (s["charge_ratio_impulse"] or 1.0) >= 1.0
     if (seen == "stands") == hotter:
         return "collapse" if seen == "collapsed" else "stand"
     return "collapse" if s["outcome_predicted"] == "collapsed" else "stand"
@@ -387,10 +393,11 @@ def as_fired_verdict_line(s: dict) -> str:
         e = (s.get("designed_event") or {}).get("markers", {}).get(name)
         if p is not None and e is not None:
             ev = s["designed_event"]
+            ws = s["similar_prototype_charge_tnt_kg"]
+            represents = "no charge of the fits" if ws is None else f"{ws:.3g} kg TNT"
             parts.append(
-                f"the shot represents {s['similar_prototype_charge_tnt_kg']:.3g} kg TNT at "
-                f"{s['similar_prototype_standoff_m']:.3g} m on the monument ({name} first peak "
-                f"{p['first_peak_m']:.3g} m up-scaled)"
+                f"the shot represents {represents} at {s['similar_prototype_standoff_m']:.3g} m on the monument "
+                f"({name} first peak {p['first_peak_m']:.3g} m up-scaled)"
             )
             parts.append(
                 f"under the designed {ev['charge_tnt_kg']:.3g} kg at {ev['standoff_m']:.3g} m the monument would "
