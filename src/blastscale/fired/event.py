@@ -52,7 +52,8 @@ logarithm as the measurand).
 from __future__ import annotations
 
 import math
-from typing import Optional
+from dataclasses import dataclass
+from typing import Any, Optional
 
 import numpy as np
 
@@ -63,6 +64,7 @@ from .outcome import marker_body
 
 __all__ = [
     "BAND_RULE",
+    "DesignedEvent",
     "RESIDUAL_CORRECTION_NOISE",
     "RESIDUAL_FRACTION",
     "REST_FRACTION",
@@ -163,18 +165,33 @@ def _band(value: float, terms: dict) -> tuple[float, float, float]:
     return sig, value * math.exp(-Q95 * sig), value * math.exp(Q95 * sig)
 
 
+@dataclass(frozen=True)
+class DesignedEvent:
+    """The shot's inputs to the designed-event step, common to its markers.
+
+    Attributes
+    ----------
+    design : ModelDesign
+    design_summary : dict
+        The design's study at its own load (the prototype under the designed event and the specimen under the
+        designed load: ``summary()`` with ``verdict`` and, when run, ``ensemble``).
+    chaotic : bool
+        A chaotic structure (circular drums): the ensemble term applies.
+    sigma_ln_charge : float
+        The effective charge's sigma of ln W [-].
+    log_charge_ratio : float
+        ln(W_designed / W_as_fired) of the prediction's and the refit's charges [-].
+    """
+
+    design: Any
+    design_summary: dict
+    chaotic: bool
+    sigma_ln_charge: float
+    log_charge_ratio: float
+
+
 def designed_event_marker(
-    meas: dict,
-    pred: dict,
-    refit: dict,
-    *,
-    point_m,
-    sensitivity: float,
-    log_charge_ratio: float,
-    sigma_ln_charge: float,
-    design,
-    design_summary: dict,
-    chaotic: bool,
+    meas: dict, pred: dict, refit: dict, point_m, sensitivity: float, event: DesignedEvent
 ) -> dict:
     """What the monument would do at one marker under the designed event (module docstring) [m, s].
 
@@ -189,16 +206,8 @@ def designed_event_marker(
         The marker at rest [m] (specimen, record axes).
     sensitivity : float
         s = dln(first peak)/dln(W) at the marker [-] (the load term).
-    log_charge_ratio : float
-        ln(W_designed / W_as_fired) of the two runs [-].
-    sigma_ln_charge : float
-        The effective charge's sigma of ln W [-].
-    design : ModelDesign
-    design_summary : dict
-        The design's study at its own load (the prototype under the designed event and the specimen under the
-        designed load: ``summary()`` with ``verdict`` and, when run, ``ensemble``).
-    chaotic : bool
-        A chaotic structure (circular drums): the ensemble term applies.
+    event : DesignedEvent
+        The design, its study's summary, whether chaotic, the charge's uncertainty and the runs' charge ratio.
 
     Returns
     -------
@@ -209,11 +218,11 @@ def designed_event_marker(
         ``residual_correction``, ``sensitivity``, ``point``, ``body``, ``sigma_ln`` and ``band_terms`` (first
         peak) and ``residual_band_terms``, ``notes``.
     """
-    f = design.factors
+    sigma_ln_charge, log_charge_ratio = event.sigma_ln_charge, event.log_charge_ratio
+    f = event.design.factors
     pk = meas["peak"]
-    structure = design.specimen_structure
-    judged = (design_summary.get("verdict") or {}).get("judged") or []
-    ens = design_summary.get("ensemble") or {}
+    structure = event.design.specimen_structure
+    judged = (event.design_summary.get("verdict") or {}).get("judged") or []
     planar = any(e["where"] == "planar" for e in judged)
     where = "planar" if planar else _point_of(structure, point_m)
     body = structure.bodies[marker_body(structure, point_m)].name
@@ -230,44 +239,11 @@ def designed_event_marker(
         ct = pred["first_peak_time_s"] / refit["first_peak_time_s"]
     value = upscale(abs(u) * c, f, "length")
 
-    sim = _bias(_entry(judged, "first peak", where))
-    ens_sig = None
-    if chaotic:
-        pt = (ens.get("points") or {}).get(where) or {}
-        ens_sig = _spread((pt.get("first_peak_prototype_p05_m"), pt.get("first_peak_prototype_p95_m")))
-        if ens_sig is None:
-            notes.append(
-                "a chaotic structure without an ensemble: its spread is not in the band "
-                "(set simulation.ensemble_members >= 2)"
-            )
-    if sim is None:
-        notes.append(f"no similarity error judged at {where}: not in the band")
-    terms = {
-        "load": {
-            "sigma_ln": abs(sensitivity) * sigma_ln_charge,
-            "source": "the effective charge's sigma_ln W x dln(first peak)/dln(W) (prediction and refit)",
-        },
-        "track": {"sigma_ln": float(pk.noise_m) / abs(u), "source": "the track's noise / the measured first peak"},
-        "refit": {
-            "sigma_ln": abs(math.log(abs(refit["first_peak_m"] / u))) if refit.get("first_peak_m") else None,
-            "source": "|ln(refit / measured first peak)|: the re-simulation under the load as fired misses the "
-            "measurement by it (the load or the engine), and the correction to the designed load inherits it",
-        },
-        "similarity": {
-            "sigma_ln": sim,
-            "source": f"|ln(up-scaled model / prototype)| of the design's first peak at {where} (study verdict)",
-        },
-        "ensemble": {
-            "sigma_ln": ens_sig,
-            "source": f"ln(p95 / p05) / 3.29 of the prototype ensemble's first peak at {where}"
-            if chaotic
-            else "not chaotic: none",
-        },
-    }
+    terms = _first_peak_terms(u, pk.noise_m, refit, sensitivity * sigma_ln_charge, where, event, notes)
     sig, lo, hi = _band(value, terms)
 
     # the damage: the residual displacement, corrected by the runs' residuals when both are clear of the noise
-    res = _residual(meas, pred, refit, float(pk.noise_m), u, c, body, judged, ens, chaotic, f, notes)
+    res = _residual(meas, pred, refit, c, body, event, notes)
     res["terms"]["load"]["sigma_ln"] = _residual_load(res["rc"], log_charge_ratio, sigma_ln_charge, terms)
     res.update(zip(("sigma_ln", "p05", "p95"), _residual_band(res, f, notes)))
     return {
@@ -293,8 +269,11 @@ def designed_event_marker(
     }
 
 
-def _residual(meas, pred, refit, noise, u, c, body, judged, ens, chaotic, f, notes) -> dict:
+def _residual(meas, pred, refit, c: float, body: str, event: DesignedEvent, notes: list) -> dict:
     """The residual displacement under the designed event [m] (prototype units), before its band."""
+    noise, u, f = float(meas["peak"].noise_m), float(meas["peak"].first_peak_m), event.design.factors
+    judged = (event.design_summary.get("verdict") or {}).get("judged") or []
+    ens, chaotic = event.design_summary.get("ensemble") or {}, event.chaotic
     res, se = marker_residual(meas["ux"], meas.get("uz"), noise, u)
     rp = marker_residual(pred["ux"], pred.get("uz"), 0.0, pred.get("first_peak_m") or u * c)[0]
     rr = marker_residual(refit["ux"], refit.get("uz"), 0.0, refit.get("first_peak_m") or u)[0]
@@ -351,3 +330,45 @@ def _residual_band(res: dict, f, notes: list) -> tuple:
         return _band(res["value"], res["terms"])
     notes.append("the residual displacement is within the track's noise: its band is [0, the 95 % bound]")
     return None, 0.0, upscale(res["measured"] * (res["rc"] or 1.0) + 2.0 * Q95 * res["se"], f, "length")
+
+
+def _first_peak_terms(u: float, noise: float, refit, load: float, where, event: DesignedEvent, notes: list) -> dict:
+    """The first peak's band terms (module docstring): ``load`` = s sigma_ln W, ``track``, ``refit``,
+    ``similarity`` at ``where`` and ``ensemble``."""
+    judged = (event.design_summary.get("verdict") or {}).get("judged") or []
+    ens, chaotic = event.design_summary.get("ensemble") or {}, event.chaotic
+    sim = _bias(_entry(judged, "first peak", where))
+    ens_sig = None
+    if chaotic:
+        pt = (ens.get("points") or {}).get(where) or {}
+        ens_sig = _spread((pt.get("first_peak_prototype_p05_m"), pt.get("first_peak_prototype_p95_m")))
+        if ens_sig is None:
+            notes.append(
+                "a chaotic structure without an ensemble: its spread is not in the band "
+                "(set simulation.ensemble_members >= 2)"
+            )
+    if sim is None:
+        notes.append(f"no similarity error judged at {where}: not in the band")
+    terms = {
+        "load": {
+            "sigma_ln": abs(load),
+            "source": "the effective charge's sigma_ln W x dln(first peak)/dln(W) (prediction and refit)",
+        },
+        "track": {"sigma_ln": float(noise) / abs(u), "source": "the track's noise / the measured first peak"},
+        "refit": {
+            "sigma_ln": abs(math.log(abs(refit["first_peak_m"] / u))) if refit.get("first_peak_m") else None,
+            "source": "|ln(refit / measured first peak)|: the re-simulation under the load as fired misses the "
+            "measurement by it (the load or the engine), and the correction to the designed load inherits it",
+        },
+        "similarity": {
+            "sigma_ln": sim,
+            "source": f"|ln(up-scaled model / prototype)| of the design's first peak at {where} (study verdict)",
+        },
+        "ensemble": {
+            "sigma_ln": ens_sig,
+            "source": f"ln(p95 / p05) / 3.29 of the prototype ensemble's first peak at {where}"
+            if chaotic
+            else "not chaotic: none",
+        },
+    }
+    return terms

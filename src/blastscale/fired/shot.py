@@ -33,7 +33,7 @@ from .calibrate import (
     check_calibrate,
 )
 from .effective import effective_charge, predicted_at, tnt_equivalence
-from .event import BAND_RULE, designed_event_marker, similar_prototype_charge
+from .event import BAND_RULE, DesignedEvent, designed_event_marker, similar_prototype_charge
 from .gauges import fit_gauge
 from .inputs import charge_position, shot_inputs
 from .outcome import body_verdicts, marker_body
@@ -198,12 +198,8 @@ def as_fired(
     sens = _Sensitivity(scenario, d, predicted, refit, standoff)
     design_summary = predicted.result.summary()
     chaotic = getattr(d.prototype_structure, "section", None) == "circular"
-    try:
-        w_similar, r_similar = similar_prototype_charge(d, w_refit, standoff)
-        similar_note = None
-    except BlastscaleInputError as exc:  # the prototype's fits do not reach it: said, the rest still read
-        w_similar, r_similar, similar_note = None, standoff / d.factors.length, str(exc)
     markers, msum, proto, event = {}, {}, {}, {}
+    shot_event = DesignedEvent(d, design_summary, chaotic, sig_w, math.log(w_design / w_refit))
     measured = _measured_markers(scenario, d, trec) if trec is not None else {}
     for name, meas in measured.items():
         pred = marker_history(predicted, fs.marker[name].point_m)
@@ -215,18 +211,7 @@ def as_fired(
             continue
         s_m = sens.at(fs.marker[name].point_m)
         proto[name] = _prototype_marker(pk, d.factors, s_m, sig_w)
-        event[name] = designed_event_marker(
-            meas,
-            pred,
-            fit,
-            point_m=fs.marker[name].point_m,
-            sensitivity=s_m[0],
-            log_charge_ratio=math.log(w_design / w_refit),
-            sigma_ln_charge=sig_w,
-            design=d,
-            design_summary=design_summary,
-            chaotic=chaotic,
-        )
+        event[name] = designed_event_marker(meas, pred, fit, fs.marker[name].point_m, s_m[0], shot_event)
     outs = [m["outcome_measured"] for m in msum.values() if m["outcome_measured"] is not None]
     summary = {
         "designed_charge_tnt_kg": w_design,
@@ -248,16 +233,8 @@ def as_fired(
         "explosive_pressure_factor": _explosive_factor(lab, "pressure"),
         "refit_charge_tnt_kg": w_refit,
         "sigma_ln_charge": sig_w,
-        "similar_prototype_charge_tnt_kg": w_similar,
-        "similar_prototype_standoff_m": r_similar,
-        "similar_prototype_charge_note": similar_note,
-        "designed_event": {
-            "charge_tnt_kg": float(d.prototype.charge_kg),
-            "standoff_m": float(d.prototype.standoff_m),
-            "band_rule": BAND_RULE,
-            "design_verdict": design_summary["verdict"]["line"],
-            "markers": event,
-        },
+        **_similar(d, w_refit, standoff),
+        "designed_event": _designed_event(d, design_summary, event),
         "gauges": gsum,
         "markers": msum,
         "prototype_markers": proto,
@@ -274,6 +251,33 @@ def as_fired(
     summary["verdict"] = as_fired_verdict_line(summary)
     summary["similarity_verdict"] = refit.result.summary()["verdict"]
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
+
+
+def _similar(d, w_refit: float, standoff: float) -> dict:
+    """The similar prototype charge and stand-off (:func:`~.event.similar_prototype_charge`); a load the
+    prototype's fits do not reach is said in ``similar_prototype_charge_note`` (the rest is still read)."""
+    try:
+        w, r = similar_prototype_charge(d, w_refit, standoff)
+        note = None
+    except BlastscaleInputError as exc:
+        w, r, note = None, standoff / d.factors.length, str(exc)
+    return {
+        "similar_prototype_charge_tnt_kg": w,
+        "similar_prototype_standoff_m": r,
+        "similar_prototype_charge_note": note,
+    }
+
+
+def _designed_event(d, design_summary: dict, markers: dict) -> dict:
+    """The summary's ``designed_event``: the design's prototype event, the band's rule, the design's own verdict
+    line and each marker's (:func:`~.event.designed_event_marker`)."""
+    return {
+        "charge_tnt_kg": float(d.prototype.charge_kg),
+        "standoff_m": float(d.prototype.standoff_m),
+        "band_rule": BAND_RULE,
+        "design_verdict": design_summary["verdict"]["line"],
+        "markers": markers,
+    }
 
 
 def _effective_charges(fs, lab, gsum: dict) -> tuple:

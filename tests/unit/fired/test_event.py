@@ -14,6 +14,7 @@ from blastscale._validate import BlastscaleInputError
 from blastscale.fired.event import (
     Q95,
     REST_FRACTION,
+    DesignedEvent,
     designed_event_marker,
     marker_residual,
     similar_prototype_charge,
@@ -135,16 +136,7 @@ def test_band_is_the_independent_log_normal_terms():
     d = _design()
     meas, pred, refit = _histories()
     e = designed_event_marker(
-        meas,
-        pred,
-        refit,
-        point_m=(0.0, 0.0, 0.3),
-        sensitivity=2.0,
-        log_charge_ratio=math.log(1 / 1.1),
-        sigma_ln_charge=0.01,
-        design=d,
-        design_summary=_summary(),
-        chaotic=True,
+        meas, pred, refit, (0.0, 0.0, 0.3), 2.0, DesignedEvent(d, _summary(), True, 0.01, -math.log(1.1))
     )
     u = 10.0 * 0.030 * 0.024 / 0.0306
     terms = {
@@ -180,11 +172,14 @@ def test_a_chaotic_structure_without_an_ensemble_says_so():
     """No ensemble for circular drums: the term is null and a note says how to get it; not chaotic: no note."""
     d = _design()
     meas, pred, refit = _histories()
-    kw = dict(point_m=(0.0, 0.0, 0.3), sensitivity=2.0, log_charge_ratio=-0.1, sigma_ln_charge=0.01, design=d)
-    e = designed_event_marker(meas, pred, refit, design_summary=_summary(False), chaotic=True, **kw)
+    e = designed_event_marker(
+        meas, pred, refit, (0.0, 0.0, 0.3), 2.0, DesignedEvent(d, _summary(False), True, 0.01, -0.1)
+    )
     assert e["band_terms"]["ensemble"]["sigma_ln"] is None
     assert any("ensemble_members >= 2" in n for n in e["notes"])
-    e = designed_event_marker(meas, pred, refit, design_summary=_summary(False), chaotic=False, **kw)
+    e = designed_event_marker(
+        meas, pred, refit, (0.0, 0.0, 0.3), 2.0, DesignedEvent(d, _summary(False), False, 0.01, -0.1)
+    )
     assert e["band_terms"]["ensemble"]["sigma_ln"] is None and e["notes"] == []
 
 
@@ -193,18 +188,7 @@ def test_a_residual_within_the_noise_has_a_band_from_zero():
     bound], said in the notes."""
     d = _design()
     meas, pred, refit = _histories(u_end_meas=1e-6)
-    e = designed_event_marker(
-        meas,
-        pred,
-        refit,
-        point_m=(0.0, 0.0, 0.3),
-        sensitivity=2.0,
-        log_charge_ratio=-0.1,
-        sigma_ln_charge=0.01,
-        design=d,
-        design_summary=_summary(),
-        chaotic=False,
-    )
+    e = designed_event_marker(meas, pred, refit, (0.0, 0.0, 0.3), 2.0, DesignedEvent(d, _summary(), False, 0.01, -0.1))
     assert e["residual_displacement_p05_m"] == 0.0 and e["residual_sigma_ln"] is None
     assert e["residual_displacement_p95_m"] > e["residual_displacement_m"]
     assert any("within the track's noise" in n for n in e["notes"])
