@@ -399,12 +399,14 @@ def as_fired_verdict_line(s: dict) -> str:
             ev = s["designed_event"]
             ws = s["similar_prototype_charge_tnt_kg"]
             represents = "no charge of the fits" if ws is None else f"{ws:.3g} kg TNT"
+            seen = s["outcome_measured"] or s["outcome_refit"]  # no marker judged (no z column): the refit's
             parts.append(
-                f"the shot represents {represents} at {s['similar_prototype_standoff_m']:.3g} m on the monument "
-                f"({name} first peak {p['first_peak_m']:.3g} m up-scaled)"
+                f"the shot represents {represents} at {s['similar_prototype_standoff_m']:.3g} m on the monument, "
+                f"which would {'collapse' if seen == 'collapsed' else 'stand'} ({name} first peak "
+                f"{p['first_peak_m']:.3g} m up-scaled)"
             )
             parts.append(
-                f"under the designed {ev['charge_tnt_kg']:.3g} kg at {ev['standoff_m']:.3g} m the monument would "
+                f"under the designed {ev['charge_tnt_kg']:.3g} kg at {ev['standoff_m']:.3g} m it would "
                 f"{_designed_word(s)}, {name} first peak {e['first_peak_m']:.3g} m "
                 f"({e['first_peak_p05_m']:.3g}-{e['first_peak_p95_m']:.3g}) at {e['first_peak_time_s']:.3g} s"
             )
