@@ -10,7 +10,10 @@ sensitivity to the charge (from the two runs, or a third at 1.1 W when the two l
 sigma_W the effective charge's: the gauges' spread (their standard error), the integrated noise of each
 impulse, and the lab's stand-off tolerance (``[lab] standoff_tolerance_m``, through dln W/dln R at the
 measured impulse); without gauges the weighed charge's tolerance (``[lab] charge_tolerance``) and 10 % on
-the explosive's equivalence (Cooper 1996, ch. 23).
+the explosive's equivalence (Cooper 1996, ch. 23). That is the monument under the *similar* charge (the prototype
+event the shot represents); the monument under the designed event, with the design's similarity error and a
+chaotic structure's spread in its band, is :mod:`.event`'s (``similar_prototype_charge_tnt_kg``,
+``designed_event``).
 """
 
 from __future__ import annotations
