@@ -1,4 +1,4 @@
-"""The monument under the designed event, from the shot as fired (docs/fired.md, "The monument under the event").
+"""The monument under the designed event, from the shot as fired (docs/fired.md, "The monument under the designed event").
 
 A shot fired off its design is a similar model of *another* prototype event: the **similar charge**. Under the
 design's law the specimen's reflected impulse is the prototype's times the impulse factor
@@ -46,7 +46,14 @@ u_e e^{1.645 sigma}]``; the terms (each in ``band_terms``, with its source):
 Why log-normal and independent: each term multiplies the response (a charge factor through a power law, a
 relative noise, a relative bias, a relative spread), the response is positive, and their sources (gauges,
 camera, the engine's scaling, the structure's chaos) share nothing (JCGM 100:2008 (GUM) 5.1.2 with the
-logarithm as the measurand).
+logarithm as the measurand). One overlap is kept on purpose: the ``refit`` miss holds the part of the charge's
+error that ``load`` states; counting both widens the band (the conservative side).
+
+The residual displacement's band has the same terms (``residual_band_terms``: the runs' dln(residual)/dln(W),
+the residual's standard error, the refit's residual against the measured one, the design's "residual
+displacement" of the marker's body, the ensemble's spread of that body's residual); a measured residual within
+:data:`RESIDUAL_CORRECTION_NOISE` x its standard error has the band [0, its 95 % bound]; a marker still moving at
+the record's end (:func:`marker_residual`) has none.
 """
 
 from __future__ import annotations
