@@ -127,7 +127,8 @@ def test_assembly_that_collapses_is_judged_collapsed_from_its_markers(tmp_path):
     assert truth["collapsed"]
     assert s["outcome_measured"] == s["markers"]["face"]["outcome_measured"] == "collapsed"
     assert s["outcome_refit"] == "collapsed" and s["outcome_predicted"] == "stands"
-    assert "the monument would collapse" in s["verdict"]
+    assert "on the monument, which would collapse" in s["verdict"]  # under the similar charge (8 x)
+    assert "under the designed 20 kg at 5 m it would stand" in s["verdict"]  # the prediction's word (#36 item 5)
 
 
 SLAB = """

@@ -61,7 +61,7 @@ def _print(s: dict) -> None:
     for name, p in s["prototype_markers"].items():
         rows.append(
             (
-                f"monument {name}: first peak (5-95 %)",
+                f"monument {name} under the shot's event: first peak (5-95 %)",
                 (
                     f"{fmt_value(p['first_peak_m'], '.4g')} ("
                     f"{fmt_value(p['first_peak_p05_m'], '.3g')}-{fmt_value(p['first_peak_p95_m'], '.3g')})"
@@ -69,6 +69,38 @@ def _print(s: dict) -> None:
                 "m",
             )
         )
+    ev = s.get("designed_event") or {}
+    if ev.get("markers"):
+        rows.append(
+            (
+                "similar prototype charge (the shot's event)",
+                f"{fmt_value(s['similar_prototype_charge_tnt_kg'], '.4g')} at {fmt_value(s['similar_prototype_standoff_m'])}",
+                "kg TNT, m",
+            )
+        )
+    for name, e in (ev.get("markers") or {}).items():
+        rows.append(
+            (
+                f"monument {name} under the designed {fmt_value(ev['charge_tnt_kg'], '.4g')} kg: first peak (5-95 %)",
+                (
+                    f"{fmt_value(e['first_peak_m'], '.4g')} ("
+                    f"{fmt_value(e['first_peak_p05_m'], '.3g')}-{fmt_value(e['first_peak_p95_m'], '.3g')})"
+                ),
+                "m",
+            )
+        )
+        if e["residual_displacement_m"] is not None:
+            rows.append(
+                (
+                    f"monument {name} under the designed event: residual displacement (5-95 %)",
+                    (
+                        f"{fmt_value(e['residual_displacement_m'], '.4g')} ("
+                        f"{fmt_value(e['residual_displacement_p05_m'], '.3g')}-"
+                        f"{fmt_value(e['residual_displacement_p95_m'], '.3g')})"
+                    ),
+                    "m",
+                )
+            )
     c = s.get("calibration")
     if c is not None and "restitution" in c:
         rows.append(("calibrated restitution", c["line"], "-"))

@@ -5,7 +5,9 @@ The design carries the specimen system (structure, density, gravity, duration, l
 a design (:meth:`blastscale.study.Study.from_design`, the one door: no scenario is written to get back in; every
 kind, a block-model file's ``assembly`` included). The designed load (the design's specimen charge and stand-off)
 gives the prediction (``predicted_*``); the effective charge at the measured stand-off gives the refit
-(``refit_*``). Both follow the same path, so that they differ only by the load.
+(``refit_*``). Both follow the same path, so that they differ only by the load; :mod:`.shot` runs each with the
+prototype under the design's event beside it (``compare=True``): the prediction is then the design's own study
+(its verdict: the similarity error of the designed event, :mod:`.event`), the refit the shot's.
 """
 
 from __future__ import annotations

@@ -10,7 +10,10 @@ sensitivity to the charge (from the two runs, or a third at 1.1 W when the two l
 sigma_W the effective charge's: the gauges' spread (their standard error), the integrated noise of each
 impulse, and the lab's stand-off tolerance (``[lab] standoff_tolerance_m``, through dln W/dln R at the
 measured impulse); without gauges the weighed charge's tolerance (``[lab] charge_tolerance``) and 10 % on
-the explosive's equivalence (Cooper 1996, ch. 23).
+the explosive's equivalence (Cooper 1996, ch. 23). That is the monument under the *similar* charge (the prototype
+event the shot represents); the monument under the designed event, with the design's similarity error and a
+chaotic structure's spread in its band, is :mod:`.event`'s (``similar_prototype_charge_tnt_kg``,
+``designed_event``).
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from .._validate import BlastscaleInputError
 from ..analysis.upscale import upscale
 from ..blast.explosives import get_explosive
 from ..scenario.scenario import Scenario
@@ -32,6 +36,7 @@ from .calibrate import (
     check_calibrate,
 )
 from .effective import effective_charge, predicted_at, tnt_equivalence
+from .event import BAND_RULE, DesignedEvent, designed_event_marker, similar_prototype_charge
 from .gauges import fit_gauge
 from .inputs import charge_position, shot_inputs
 from .outcome import body_verdicts, marker_body
@@ -189,11 +194,15 @@ def as_fired(
     w_design = float(d.specimen_charge_kg)
     w_i, w_p = _effective_charges(fs, lab, gsum)
     w_refit = w_i if w_i is not None else w_design
-    predicted = simulate_specimen(scenario, d, w_design, d.specimen.standoff_m, engine)
+    # the design's own study (its verdict: the similarity error at each point) and the shot's (the verdict as fired)
+    predicted = simulate_specimen(scenario, d, w_design, d.specimen.standoff_m, engine, compare=True)
     refit = simulate_specimen(scenario, d, w_refit, standoff, engine, compare=True)  # with the prototype: the verdict
     sig_w = _load_sigma(scenario, gsum)
-    sens = None
-    markers, msum, proto = {}, {}, {}
+    sens = _Sensitivity(scenario, d, predicted, refit, standoff)
+    design_summary = predicted.result.summary()
+    chaotic = getattr(d.prototype_structure, "section", None) == "circular"
+    markers, msum, proto, event = {}, {}, {}, {}
+    shot_event = DesignedEvent(d, design_summary, chaotic, sig_w, math.log(w_design / w_refit))
     measured = _measured_markers(scenario, d, trec) if trec is not None else {}
     for name, meas in measured.items():
         pred = marker_history(predicted, fs.marker[name].point_m)
@@ -203,9 +212,9 @@ def as_fired(
         msum[name] = _marker_summary(meas, pred, fit, predicted, refit)
         if pk.first_peak_m is None:
             continue
-        if sens is None:
-            sens = _sensitivity(scenario, d, predicted, refit, standoff, fs.marker[name].point_m)
-        proto[name] = _prototype_marker(pk, d.factors, sens, sig_w)
+        s_m = sens.at(fs.marker[name].point_m)
+        proto[name] = _prototype_marker(pk, d.factors, s_m, sig_w)
+        event[name] = designed_event_marker(meas, pred, fit, fs.marker[name].point_m, s_m[0], shot_event)
     outs = [m["outcome_measured"] for m in msum.values() if m["outcome_measured"] is not None]
     summary = {
         "designed_charge_tnt_kg": w_design,
@@ -227,6 +236,8 @@ def as_fired(
         "explosive_pressure_factor": _explosive_factor(lab, "pressure"),
         "refit_charge_tnt_kg": w_refit,
         "sigma_ln_charge": sig_w,
+        **_similar(d, w_refit, standoff),
+        "designed_event": _designed_event(d, design_summary, event),
         "gauges": gsum,
         "markers": msum,
         "prototype_markers": proto,
@@ -243,6 +254,33 @@ def as_fired(
     summary["verdict"] = as_fired_verdict_line(summary)
     summary["similarity_verdict"] = refit.result.summary()["verdict"]
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
+
+
+def _similar(d, w_refit: float, standoff: float) -> dict:
+    """The similar prototype charge and stand-off (:func:`~.event.similar_prototype_charge`); a load the
+    prototype's fits do not reach is said in ``similar_prototype_charge_note`` (the rest is still read)."""
+    try:
+        w, r = similar_prototype_charge(d, w_refit, standoff)
+        note = None
+    except BlastscaleInputError as exc:
+        w, r, note = None, standoff / d.factors.length, str(exc)
+    return {
+        "similar_prototype_charge_tnt_kg": w,
+        "similar_prototype_standoff_m": r,
+        "similar_prototype_charge_note": note,
+    }
+
+
+def _designed_event(d, design_summary: dict, markers: dict) -> dict:
+    """The summary's ``designed_event``: the design's prototype event, the band's rule, the design's own verdict
+    line and each marker's (:func:`~.event.designed_event_marker`)."""
+    return {
+        "charge_tnt_kg": float(d.prototype.charge_kg),
+        "standoff_m": float(d.prototype.standoff_m),
+        "band_rule": BAND_RULE,
+        "design_verdict": design_summary["verdict"]["line"],
+        "markers": markers,
+    }
 
 
 def _effective_charges(fs, lab, gsum: dict) -> tuple:
@@ -282,7 +320,7 @@ def _marker_summary(meas: dict, pred: dict, fit: dict, predicted: SpecimenRun, r
 def _prototype_marker(pk, factors, sens: tuple, sig_w: float) -> dict:
     """The measured first peak up-scaled (:func:`~blastscale.analysis.upscale.upscale`): what the monument would
     do [m, s], with its 5-95 % band from the load's uncertainty ``sig_w`` (through the sensitivities ``sens``,
-    :func:`_sensitivity`) and the track's noise."""
+    :class:`_Sensitivity`) and the track's noise."""
     s_p, s_t = sens
     sig_p = math.hypot(s_p * sig_w, pk.noise_m / abs(pk.first_peak_m))
     sig_t = abs(s_t) * sig_w
@@ -298,22 +336,48 @@ def _prototype_marker(pk, factors, sens: tuple, sig_w: float) -> dict:
     }
 
 
-def _sensitivity(sc, d, predicted: SpecimenRun, refit: SpecimenRun, standoff: float, point) -> tuple[float, float]:
-    """dln(first peak)/dln(W) and dln(first-peak time)/dln(W) of the marker at ``point``, at the refit's load."""
-    a, b = marker_history(predicted, point), marker_history(refit, point)
-    ratio = refit.charge_kg / predicted.charge_kg
-    if abs(math.log(ratio)) < 0.02 or predicted.standoff_m != refit.standoff_m:  # a third run at 1.1 W
-        other = simulate_specimen(
-            sc, d, 1.1 * refit.charge_kg, standoff, "planar" if refit.rocking is not None else None
+class _Sensitivity:
+    """dln(first peak)/dln(W) and dln(first-peak time)/dln(W) at a marker, at the refit's load: from the
+    prediction and the refit, or from the refit and a third run at 1.1 W (run once, when first asked) when the
+    two loads are within 2 % or at different stand-offs."""
+
+    def __init__(self, sc, d, predicted: SpecimenRun, refit: SpecimenRun, standoff: float):
+        self.sc, self.d, self.predicted, self.refit, self.standoff = sc, d, predicted, refit, standoff
+        self.ratio = refit.charge_kg / predicted.charge_kg
+        self.third = abs(math.log(self.ratio)) < 0.02 or predicted.standoff_m != refit.standoff_m
+        self._other = None
+
+    def at(self, point) -> tuple[float, float]:
+        a, b = marker_history(self.predicted, point), marker_history(self.refit, point)
+        ratio = self.ratio
+        if self.third:  # a third run at 1.1 W
+            if self._other is None:
+                self._other = simulate_specimen(
+                    self.sc,
+                    self.d,
+                    1.1 * self.refit.charge_kg,
+                    self.standoff,
+                    "planar" if self.refit.rocking is not None else None,
+                )
+            a, b, ratio = b, marker_history(self._other, point), 1.1
+        if not (a["first_peak_m"] and b["first_peak_m"]):
+            return 0.0, 0.0
+        lr = math.log(ratio)
+        return (
+            math.log(abs(b["first_peak_m"] / a["first_peak_m"])) / lr,
+            math.log((b["first_peak_time_s"]) / (a["first_peak_time_s"])) / lr,
         )
-        a, b, ratio = b, marker_history(other, point), 1.1
-    if not (a["first_peak_m"] and b["first_peak_m"]):
-        return 0.0, 0.0
-    lr = math.log(ratio)
-    return (
-        math.log(abs(b["first_peak_m"] / a["first_peak_m"])) / lr,
-        math.log((b["first_peak_time_s"]) / (a["first_peak_time_s"])) / lr,
-    )
+
+
+def _designed_word(s: dict) -> str:
+    """ "stand" or "collapse" under the designed event: the measured outcome (else the refit's) when the shot's
+    load bounds the designed one on its side (stood under more, or collapsed under less), else the
+    prediction's (the specimen under the designed load)."""
+    seen = s["outcome_measured"] or s["outcome_refit"]  # no marker judged (no z column): the refit's outcome
+    hotter = (s["charge_ratio_impulse"] or 1.0) >= 1.0
+    if (seen == "stands") == hotter:
+        return "collapse" if seen == "collapsed" else "stand"
+    return "collapse" if s["outcome_predicted"] == "collapsed" else "stand"
 
 
 def as_fired_verdict_line(s: dict) -> str:
@@ -333,11 +397,20 @@ def as_fired_verdict_line(s: dict) -> str:
         if v["refit_vs_measured"] is not None:
             parts.append(f"the re-simulation under that load agrees within {100 * abs(v['refit_vs_measured']):.2g} %")
         p = s["prototype_markers"].get(name)
-        seen = s["outcome_measured"] or s["outcome_refit"]  # no marker judged (no z column): the refit's outcome
-        word = "collapse" if seen == "collapsed" else "stand"
-        if p is not None:
+        e = (s.get("designed_event") or {}).get("markers", {}).get(name)
+        if p is not None and e is not None:
+            ev = s["designed_event"]
+            ws = s["similar_prototype_charge_tnt_kg"]
+            represents = "no charge of the fits" if ws is None else f"{ws:.3g} kg TNT"
+            seen = s["outcome_measured"] or s["outcome_refit"]  # no marker judged (no z column): the refit's
             parts.append(
-                f"the monument would {word}, {name} first peak {p['first_peak_m']:.3g} m "
-                f"({p['first_peak_p05_m']:.3g}-{p['first_peak_p95_m']:.3g}) at {p['first_peak_time_s']:.3g} s"
+                f"the shot represents {represents} at {s['similar_prototype_standoff_m']:.3g} m on the monument, "
+                f"which would {'collapse' if seen == 'collapsed' else 'stand'} ({name} first peak "
+                f"{p['first_peak_m']:.3g} m up-scaled)"
+            )
+            parts.append(
+                f"under the designed {ev['charge_tnt_kg']:.3g} kg at {ev['standoff_m']:.3g} m it would "
+                f"{_designed_word(s)}, {name} first peak {e['first_peak_m']:.3g} m "
+                f"({e['first_peak_p05_m']:.3g}-{e['first_peak_p95_m']:.3g}) at {e['first_peak_time_s']:.3g} s"
             )
     return "; ".join(parts)
