@@ -15,7 +15,7 @@ from ..sim3d.face_loads import load_arrival_spread
 from ..structures.from_spec import is_block
 from .block3d_similarity import block_view
 from .gravity_alone import extended_keys, until_decided
-from .systems import Settings3D, System3D, run_system
+from .systems import Settings3D, System3D, rest_of, run_system
 
 __all__ = ["Prototype3D", "prototype_structure3d"]
 
@@ -69,6 +69,8 @@ class Prototype3D:
         Its response (with the outcome ``collapsed`` as an attribute).
     settings : dict
         Load method, pulse shape, incidence, duration [s], record interval, load end [s], arrival spread [s].
+    rest : dict or None
+        The prototype at rest before the blast (:func:`~.systems.rest_of`); None under gravity alone.
     """
 
     structure: object
@@ -79,12 +81,15 @@ class Prototype3D:
     specimen_structure: object = None
     model: object = None
     upscaled_dataset: object = None
+    rest: object = None
 
     def to_dict(self) -> dict:
-        """``prototype`` (the structure's keys and, for a single block, its planar keys);
+        """``prototype`` (the structure's keys and, for a single block, its planar keys; ``rest`` under a blast);
         ``model`` and ``similarity`` None."""
         blk = _block_keys(self.structure, self.prototype)
         p = {**_merged(self.prototype.summary(), blk["prototype"]), **extended_keys(self.settings)}
+        if self.rest is not None:
+            p["rest"] = dict(self.rest)
         return {"prototype": p, "model": None, "similarity": None}
 
 
@@ -110,6 +115,7 @@ def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D())
     run, dur = until_decided(lambda T: run_system(replace(system, duration=T), settings), asked, system.blast is None)
     resp = run.response
     return Prototype3D(
+        rest=rest_of(system),
         structure=system.structure,
         prototype=resp,
         prototype_dataset=_with_outcome(resp.dataset, resp.summary()),

@@ -1,0 +1,95 @@
+"""At rest before the blast (issue #35, deliverable 5; docs/sim3d.md, "At rest before the blast"): every 3D run
+checks the prototype and the specimen under gravity alone over the structure's rest time, 3 sqrt(H / g)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from blastscale.scenario import Scenario
+from blastscale.sim3d.contact import default_contact, length_time_factors
+from blastscale.sim3d.rest import REST_NATURAL_TIMES, rest_check, rest_time
+from blastscale.structures import MultiDrumColumn, RectangularBlock, arch
+from blastscale.study import Study
+
+#: The keys of the ``rest`` block (SPEC35.md).
+REST_KEYS = {"creep_m", "creep_rel_height", "final_speed_rel_sqrt_gh", "equilibrium", "duration_s"}
+
+
+def _arch(t_over_r: float):
+    """The semicircular arch of docs/assemblies.md: R = 5 m, 20 voussoirs, 1 m deep, friction 0.8."""
+    a = arch(radius_m=5.0, thickness_m=t_over_r * 5.0, depth_m=1.0, voussoirs=20)
+    return a, default_contact(a, friction=0.8)
+
+
+def test_rest_time_is_three_natural_times_at_every_size():
+    """T_rest = 3 sqrt(H / g): 3.0289 s for a 10 m block under 9.81 m/s^2 (closed form, 1e-12); a 1/20 specimen's
+    is the prototype's x sqrt(1/20) (the time factor of the same gravity); g enters as 1/sqrt(g)."""
+    blk = RectangularBlock.from_slenderness(10.0, math.radians(15))
+    assert REST_NATURAL_TIMES == 3.0
+    assert rest_time(blk) == pytest.approx(3.0 * math.sqrt(10.0 / 9.81), rel=1e-12)
+    spec = blk.scaled(length_time_factors(1 / 20, math.sqrt(1 / 20)))
+    assert rest_time(spec) == pytest.approx(rest_time(blk) * math.sqrt(1 / 20), rel=1e-12)
+    assert rest_time(blk, gravity=4 * 9.81) == pytest.approx(rest_time(blk) / 2, rel=1e-12)
+
+
+@pytest.mark.parametrize("structure", [RectangularBlock.from_slenderness(10.0, math.radians(15)), MultiDrumColumn()])
+def test_a_block_and_a_column_on_flat_ground_are_at_rest(structure):
+    """A block and the paper's 10-drum column on flat ground: in equilibrium, creep ~0 (measured 4e-13 H and 7e-10 H;
+    bound 1e-8 H, four decades below the 1e-4 H tolerance), final speed ~0 (measured 1e-13 and 3e-13 sqrt(g H);
+    bound 1e-8, below the 1e-4 of "at rest")."""
+    r = rest_check(structure)
+    assert set(r) == REST_KEYS
+    assert r["equilibrium"] is True
+    assert r["creep_rel_height"] < 1e-8 and r["final_speed_rel_sqrt_gh"] < 1e-8
+    h = structure.describe()["height_m"]
+    assert r["creep_m"] == pytest.approx(r["creep_rel_height"] * h, rel=1e-12)
+    assert r["duration_s"] == pytest.approx(rest_time(structure), rel=1e-12)
+
+
+def test_an_arch_below_its_minimum_thickness_is_not_at_rest():
+    """t/R = 0.105, below the minimum thickness 0.1075 of a semicircular arch with radial joints (Milankovitch 1907):
+    not in equilibrium. Shortened to 0.5 natural times (0.37 s): it keeps accelerating (its largest displacement grows
+    3.5x as much in the second half as in the first, > 2x; 1.1e-2 sqrt(g H) at the end); the answer is the same from
+    0.1 natural times to the full rest time, 3 (fallen by then: 0.9 H), docs/sim3d.md. The edge: the same arch at
+    t/R = 0.16 over the same time is in equilibrium (and at every duration from 0.25 to 6.8 natural times)."""
+    thin, c = _arch(0.105)
+    r = rest_check(thin, c, natural_times=0.5)
+    assert r["equilibrium"] is False and r["final_speed_rel_sqrt_gh"] > 1e-3
+    thick, c = _arch(0.16)
+    r = rest_check(thick, c, natural_times=0.5)
+    assert r["equilibrium"] is True and r["creep_rel_height"] < 1e-4
+
+
+def test_the_studys_3d_summaries_carry_the_rest_block_the_models_upscaled():
+    """A study under a blast: ``3d.prototype.rest`` and ``3d.model.rest`` (the model's in prototype units). The 1/20
+    specimen in the same material is the prototype's exact model (the same engine model): its up-scaled rest block
+    equals the prototype's (creep and rest time to 1e-12, equilibrium the same)."""
+    sc = Scenario.from_dict(
+        {
+            "structure": {"kind": "block", "height_m": 2.0, "alpha_deg": 15.0},
+            "blast": {"charge_kg": 0.5, "standoff_m": 5.0},
+            "scale": {"length": "1/20"},
+            "simulation": {"engine": "3d", "duration_s": 0.2},
+        }
+    )
+    s = Study(sc).run().summary()["3d"]
+    p, m = s["prototype"]["rest"], s["model"]["rest"]
+    assert set(p) == set(m) == REST_KEYS
+    assert p["equilibrium"] is m["equilibrium"] is True
+    assert p["duration_s"] == pytest.approx(3.0 * math.sqrt(2.0 / 9.81), rel=1e-12)  # scenario gravity 9.81
+    for k in ("creep_m", "duration_s", "creep_rel_height", "final_speed_rel_sqrt_gh"):
+        assert m[k] == pytest.approx(p[k], rel=1e-12, abs=1e-300), k
+
+
+def test_gravity_alone_has_no_rest_block():
+    """Under gravity alone the run itself is the check (its ``stability``): no ``rest`` block."""
+    sc = Scenario.from_dict(
+        {
+            "structure": {"kind": "block", "height_m": 2.0, "alpha_deg": 15.0},
+            "simulation": {"engine": "3d", "duration_s": 0.1},
+        }
+    )
+    s = Study(sc).run().summary()["3d"]["prototype"]
+    assert "rest" not in s and s["stability"] == "stands"
