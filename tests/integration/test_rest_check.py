@@ -4,12 +4,13 @@ checks the prototype and the specimen under gravity alone over the structure's r
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import pytest
 
 from blastscale.scenario import Scenario
 from blastscale.sim3d.contact import default_contact, length_time_factors
-from blastscale.sim3d.rest import REST_NATURAL_TIMES, rest_check, rest_time
+from blastscale.sim3d.rest import REST_NATURAL_TIMES, rest_check, rest_state, rest_time
 from blastscale.structures import MultiDrumColumn, RectangularBlock, arch
 from blastscale.study import Study
 
@@ -93,3 +94,52 @@ def test_gravity_alone_has_no_rest_block():
     )
     s = Study(sc).run().summary()["3d"]["prototype"]
     assert "rest" not in s and s["stability"] == "stands"
+
+
+def _motion(x, v):
+    """A one-body response of the 10 m block moving along x over 3 s: displacement x(t) [m], speed v(t) [m/s]."""
+    import numpy as np
+    import xarray as xr
+
+    z = np.zeros_like(x)
+    ds = xr.Dataset(
+        {
+            "com_displacement": (("time", "body", "component"), np.stack([x, z, z], axis=1)[:, None, :]),
+            "com_velocity": (("time", "body", "component"), np.stack([v, z, z], axis=1)[:, None, :]),
+            "angular_velocity": (("time", "body", "component"), np.zeros((x.size, 1, 3))),
+            "residual_displacement": (("body",), np.array([abs(x[-1])])),
+            "fallen": (("time", "body"), np.zeros((x.size, 1), dtype=bool)),
+        },
+        coords={"time": np.linspace(0.0, 3.0, x.size)},
+        attrs={"collapsed": 0},
+    )
+    resp = SimpleNamespace(dataset=ds, structure=RectangularBlock.from_slenderness(10.0, math.radians(15)))
+    return rest_state(resp, 10.0, 9.81)
+
+
+@pytest.mark.parametrize(
+    "power, equilibrium",
+    [(1.0, True), (2.0, False), (1.5, True), (1.7, False), (0.5, True)],
+)
+def test_keeps_accelerating_tells_a_mechanism_from_creep_and_settling(power, equilibrium):
+    """x = c t^p over [0, T]: the second half's growth over the first's is 2^p - 1 (closed form): 1 for a creep at
+    constant speed (p = 1), 3 from rest at constant acceleration (p = 2), < 1 for a settling (p = 0.5); the rule's
+    edge 2 is p = log2(3) = 1.585, bracketed by p = 1.5 (1.83: in equilibrium) and 1.7 (2.25: not). The speed at
+    the end is 1.5e-4 sqrt(g H) (still moving) in every case."""
+    import numpy as np
+
+    t = np.linspace(0.0, 3.0, 301)
+    v_end = 1.5e-4 * math.sqrt(9.81 * 10.0)
+    c = v_end / (power * 3.0 ** (power - 1.0))  # x' = c p t^(p-1) = v_end at t = 3 s
+    r = _motion(c * t**power, c * power * np.maximum(t, 1e-9) ** (power - 1.0))
+    assert r["final_speed_rel_sqrt_gh"] > 1e-4
+    assert r["equilibrium"] is equilibrium
+
+
+def test_a_motion_that_has_stopped_is_in_equilibrium():
+    """Accelerating displacement, but slower than 1e-4 sqrt(g H) at the end (at rest): in equilibrium."""
+    import numpy as np
+
+    t = np.linspace(0.0, 3.0, 301)
+    r = _motion(1e-6 * t**2, np.full_like(t, 0.5e-4 * math.sqrt(9.81 * 10.0)))
+    assert r["final_speed_rel_sqrt_gh"] < 1e-4 and r["equilibrium"] is True
