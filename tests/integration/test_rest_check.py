@@ -37,8 +37,8 @@ def test_rest_time_is_three_natural_times_at_every_size():
 
 @pytest.mark.parametrize("structure", [RectangularBlock.from_slenderness(10.0, math.radians(15)), MultiDrumColumn()])
 def test_a_block_and_a_column_on_flat_ground_are_at_rest(structure):
-    """A block and the paper's 10-drum column on flat ground: in equilibrium, creep ~0 (measured 4e-13 H and 7e-10 H;
-    bound 1e-8 H, four decades below the 1e-4 H tolerance), final speed ~0 (measured 1e-13 and 3e-13 sqrt(g H);
+    """A block and the paper's 10-drum column on flat ground: in equilibrium, creep ~0 (measured 4e-13 H and 3.5e-10 H;
+    bound 1e-8 H, four decades below the 1e-4 H tolerance), final speed ~0 (measured 1e-13 and 8e-14 sqrt(g H);
     bound 1e-8, below the 1e-4 of "at rest")."""
     r = rest_check(structure)
     assert set(r) == REST_KEYS
@@ -53,8 +53,8 @@ def test_an_arch_below_its_minimum_thickness_is_not_at_rest():
     """t/R = 0.105, below the minimum thickness 0.1075 of a semicircular arch with radial joints (Milankovitch 1907):
     not in equilibrium. Shortened to 0.5 natural times (0.37 s): it keeps accelerating (its largest displacement grows
     3.5x as much in the second half as in the first, > 2x; 1.1e-2 sqrt(g H) at the end); the answer is the same from
-    0.1 natural times to the full rest time, 3 (fallen by then: 0.9 H), docs/sim3d.md. The edge: the same arch at
-    t/R = 0.16 over the same time is in equilibrium (and at every duration from 0.25 to 6.8 natural times)."""
+    0.25 natural times to the full rest time, 3 (fallen by then: 0.9 H), docs/sim3d.md. The edge: the same arch at
+    t/R = 0.16 over the same time is in equilibrium (and at every duration from 0.25 to 3 natural times)."""
     thin, c = _arch(0.105)
     r = rest_check(thin, c, natural_times=0.5)
     assert r["equilibrium"] is False and r["final_speed_rel_sqrt_gh"] > 1e-3

@@ -8,12 +8,12 @@ contact settings, same gravity) under gravity alone for its **rest time**
 .. math:: T_{rest} = N_{rest} \\sqrt{H / g},\\qquad N_{rest} = 3
 
 (:data:`REST_NATURAL_TIMES`; H the structure's height, ``describe()["height_m"]``: 2.2 s for a 5.3 m
-arch, 3.0 s for a 10 m column, 0.15 s for its 1/20 specimen). A rest time in natural units is the same
+arch, 3.0 s for a 10 m column, 0.68 s for its 1/20 specimen). A rest time in natural units is the same
 number of engine steps at every size (the steps scale with sqrt(H/g), docs/sim3d.md), so it needs no floor
 or cap in seconds: a prototype and its specimen are checked over corresponding times. Three natural
 times take a mechanism well into its motion (an arch at t/R = 0.105, below the minimum thickness 0.1075,
-is falling at 0.1 sqrt(g H) after 1.2 natural times and has fallen after 2.2) and keep the engine's own
-creep (the soft contacts: 2-4e-5 sqrt(g H) on standing arches, docs/assemblies.md) at 0.6-1.2e-4 H.
+moves at 5e-2 sqrt(g H) after one natural time and has fallen after three) and keep the engine's own creep
+(the soft contacts, on standing arches at t/R 0.12-0.16: docs/assemblies.md) at 5-6e-5 H.
 
 The check gives (:func:`rest_state`, the ``rest`` block of a 3D summary):
 
