@@ -165,3 +165,26 @@ def test_the_settling_rule_does_not_move_the_t_r_016_arch():
     d = [r.dataset["com_displacement"].values for r in runs]
     assert np.array_equal(d[0], d[1])
     assert 0.05e-3 < runs[0].summary()["max_residual_displacement_m"] < 0.2e-3  # measured 0.119 mm
+
+
+def test_the_check_is_shared_by_exact_models_and_by_other_materials_only():
+    """The cache key (sim3d.rest.model_key): the paper's column, its exact 1/20 specimen (scale-consistent contact) and
+    a copy 1.35x denser (marble for limestone: gravity alone does not see a uniform density factor) share one key;
+    a column one drum shorter (another geometry) and one with friction 0.8 (other contact settings) do not."""
+    import dataclasses
+
+    from blastscale.sim3d.reference import reference_scene
+    from blastscale.sim3d.rest import model_key
+    from blastscale.similitude.factors import scaling_factors
+
+    def key(s, friction=0.7):
+        c = default_contact(s, friction=friction)
+        return model_key(reference_scene(s, c, 9.81)[0])
+
+    col = MultiDrumColumn()
+    lam = 1 / 20
+    spec = col.scaled(length_time_factors(lam, math.sqrt(lam)))
+    dense = col.scaled(dataclasses.replace(scaling_factors(1.0, 1.35, 1.0), length=1.0, time=1.0))
+    assert key(col) == key(spec) == key(dense)
+    assert key(MultiDrumColumn(drums=9, height=9.0)) != key(col)
+    assert key(col, 0.8) != key(col)

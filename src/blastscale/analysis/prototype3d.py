@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 
+from .._threads import map_threads
 from ..sim3d.face_loads import load_arrival_spread
 from ..structures.from_spec import is_block
 from .block3d_similarity import block_view
@@ -93,7 +94,7 @@ class Prototype3D:
         return {"prototype": p, "model": None, "similarity": None}
 
 
-def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D()) -> Prototype3D:
+def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D(), *, threads=None) -> Prototype3D:
     """Run a prototype alone in 3D (no model design: a prototype-only study).
 
     Parameters
@@ -104,6 +105,9 @@ def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D())
         engine's defaults for the structure), duration [s] and load model.
     settings : Settings3D
         As :func:`~.structure3d.compare_structure3d`.
+    threads : int, optional
+        The run and its check at rest (:func:`~.systems.rest_of`) at once on up to this many threads
+        (:mod:`blastscale._threads`; default: this process's share of the cores); the results do not depend on it.
 
     Returns
     -------
@@ -111,11 +115,21 @@ def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D())
     """
 
     asked = system.duration
-    # gravity alone: run until the stability rule decides (docs/assemblies.md, analysis.gravity_alone)
-    run, dur = until_decided(lambda T: run_system(replace(system, duration=T), settings), asked, system.blast is None)
+    # gravity alone: run until the stability rule decides (docs/assemblies.md, analysis.gravity_alone); under a
+    # blast the run and the check at rest before it at once
+    (run, dur), rest = map_threads(
+        lambda f: f(),
+        (
+            lambda: until_decided(
+                lambda T: run_system(replace(system, duration=T), settings), asked, system.blast is None
+            ),
+            lambda: rest_of(system),
+        ),
+        threads,
+    )
     resp = run.response
     return Prototype3D(
-        rest=rest_of(system),
+        rest=rest,
         structure=system.structure,
         prototype=resp,
         prototype_dataset=_with_outcome(resp.dataset, resp.summary()),

@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import re
 import threading
 from dataclasses import replace
 
@@ -53,13 +54,21 @@ import numpy as np
 
 from .._validate import check_positive
 from ..constants import STANDARD_GRAVITY
-from .contact import ContactSettings, default_contact, structure_length
+from .contact import MAX_TIMESTEP_FRACTION, ContactSettings, default_contact, structure_length
 from .integrate import step_factor_after_load
 from .reference import reference_scene
 from .results import REST_SPEED_FRACTION, REST_WINDOW_FRACTION, body_heights
 from .simulate import simulate_structure
 
-__all__ = ["ACCELERATING_RATIO", "REST_NATURAL_TIMES", "REST_RECORDS", "rest_check", "rest_state", "rest_time"]
+__all__ = [
+    "ACCELERATING_RATIO",
+    "REST_NATURAL_TIMES",
+    "REST_RECORDS",
+    "model_key",
+    "rest_check",
+    "rest_state",
+    "rest_time",
+]
 
 #: The rest time in natural times sqrt(H / g) of the structure [-] (module docstring).
 REST_NATURAL_TIMES = 3.0
@@ -74,6 +83,21 @@ _CACHE: dict = {}
 _CACHE_MAX = 256
 _LOCKS: dict = {}
 _LOCKS_GUARD = threading.Lock()
+#: The MJCF attributes that carry a mass (normalised out of the cache key, :func:`model_key`).
+_MASSIVE = re.compile(r'\b(mass|density|diaginertia|fullinertia)="([^"]*)"')
+
+
+def model_key(scene) -> str:
+    """The cache key of an engine model under gravity alone: the SHA-256 of its MJCF text with every mass, density
+    and inertia divided by the total mass (12 significant digits). Under gravity alone a uniform factor on the
+    densities changes no motion (MuJoCo's contacts are mass-normalised: the contact forces scale with the masses,
+    the accelerations do not), so a specimen of another material at its prototype's exact scale shares the check."""
+    total = sum(b.mass for b in scene.bodies if b.mass) or 1.0
+
+    def norm(m):
+        return f'{m.group(1)}="{" ".join(f"{float(x) / total:.12g}" for x in m.group(2).split())}"'
+
+    return hashlib.sha256(_MASSIVE.sub(norm, scene.xml).encode()).hexdigest()
 
 
 def rest_time(structure, gravity: float = STANDARD_GRAVITY, natural_times: float = REST_NATURAL_TIMES) -> float:
@@ -162,9 +186,13 @@ def rest_check(
     T = rest_time(structure, g, natural_times)
     h = structure_length(structure)
     c = default_contact(structure, gravity=g) if contact is None else contact
-    c = replace(c, timestep=c.timestep * step_factor_after_load(c, len(structure.bodies)))  # the free-motion step
+    # the free-motion step, within the engine's bound on the step (a user's coarse step stays as it is there)
+    longer = min(
+        step_factor_after_load(c, len(structure.bodies)), MAX_TIMESTEP_FRACTION * math.sqrt(h / g) / c.timestep
+    )
+    c = replace(c, timestep=c.timestep * max(1.0, longer))
     scene, (_, b) = reference_scene(structure, c, g)
-    key = (hashlib.sha256(scene.xml.encode()).hexdigest(), float(natural_times))
+    key = (model_key(scene), float(natural_times))
     with _lock(key):
         figures = _CACHE.get(key)
         if figures is None:
