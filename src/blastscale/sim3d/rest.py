@@ -36,9 +36,9 @@ creep over the rest time is 4.695e-5 H against 4.690e-5 H at the run's step (+0.
 not in equilibrium either way, at a third of the wall time (2.9 s against 8.9 s).
 
 Prototype and specimen: a specimen and its prototype compile to the same MuJoCo model in the engine's
-reference units (:mod:`.reference`), so the check is cached on that model (the SHA-256 of its MJCF
-text, :func:`rest_check`): the second system, every point of a sweep or an ensemble over the same
-structure and contact settings, and a repeated run in the same process reuse the first run's
+reference units (:mod:`.reference`; up to a uniform density factor, which gravity alone does not see), so the
+check is cached on that model (:func:`model_key`): the second system, every point of a sweep or an ensemble
+over the same structure and contact settings, and a repeated run in the same process reuse the first run's
 dimensionless figures.
 """
 
