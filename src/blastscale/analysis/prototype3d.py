@@ -11,11 +11,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 
+from .._threads import map_threads
 from ..sim3d.face_loads import load_arrival_spread
 from ..structures.from_spec import is_block
 from .block3d_similarity import block_view
 from .gravity_alone import extended_keys, until_decided
-from .systems import Settings3D, System3D, run_system
+from .systems import Settings3D, System3D, rest_of, run_system
 
 __all__ = ["Prototype3D", "prototype_structure3d"]
 
@@ -69,6 +70,8 @@ class Prototype3D:
         Its response (with the outcome ``collapsed`` as an attribute).
     settings : dict
         Load method, pulse shape, incidence, duration [s], record interval, load end [s], arrival spread [s].
+    rest : dict or None
+        The prototype at rest before the blast (:func:`~.systems.rest_of`); None under gravity alone.
     """
 
     structure: object
@@ -79,16 +82,19 @@ class Prototype3D:
     specimen_structure: object = None
     model: object = None
     upscaled_dataset: object = None
+    rest: object = None
 
     def to_dict(self) -> dict:
-        """``prototype`` (the structure's keys and, for a single block, its planar keys);
+        """``prototype`` (the structure's keys and, for a single block, its planar keys; ``rest`` under a blast);
         ``model`` and ``similarity`` None."""
         blk = _block_keys(self.structure, self.prototype)
         p = {**_merged(self.prototype.summary(), blk["prototype"]), **extended_keys(self.settings)}
+        if self.rest is not None:
+            p["rest"] = dict(self.rest)
         return {"prototype": p, "model": None, "similarity": None}
 
 
-def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D()) -> Prototype3D:
+def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D(), *, threads=None) -> Prototype3D:
     """Run a prototype alone in 3D (no model design: a prototype-only study).
 
     Parameters
@@ -99,6 +105,9 @@ def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D())
         engine's defaults for the structure), duration [s] and load model.
     settings : Settings3D
         As :func:`~.structure3d.compare_structure3d`.
+    threads : int, optional
+        The run and its check at rest (:func:`~.systems.rest_of`) at once on up to this many threads
+        (:mod:`blastscale._threads`; default: this process's share of the cores); the results do not depend on it.
 
     Returns
     -------
@@ -106,10 +115,21 @@ def prototype_structure3d(system: System3D, settings: Settings3D = Settings3D())
     """
 
     asked = system.duration
-    # gravity alone: run until the stability rule decides (docs/assemblies.md, analysis.gravity_alone)
-    run, dur = until_decided(lambda T: run_system(replace(system, duration=T), settings), asked, system.blast is None)
+    # gravity alone: run until the stability rule decides (docs/assemblies.md, analysis.gravity_alone); under a
+    # blast the run and the check at rest before it at once
+    (run, dur), rest = map_threads(
+        lambda f: f(),
+        (
+            lambda: until_decided(
+                lambda T: run_system(replace(system, duration=T), settings), asked, system.blast is None
+            ),
+            lambda: rest_of(system),
+        ),
+        threads,
+    )
     resp = run.response
     return Prototype3D(
+        rest=rest,
         structure=system.structure,
         prototype=resp,
         prototype_dataset=_with_outcome(resp.dataset, resp.summary()),

@@ -31,7 +31,7 @@ from .._validate import BlastscaleInputError
 from ..sim3d.face_loads import load_arrival_spread
 from .compare import align, compare_responses, upscale_dataset
 from .prototype3d import _block_keys, _load_model_setting, _merged, _with_outcome
-from .systems import Settings3D, Systems3D, run_system
+from .systems import Settings3D, Systems3D, rest_of, run_system
 from .upscale import upscale, upscale_summary
 
 __all__ = ["Comparison3D", "compare_structure3d", "arrival_spread_similarity"]
@@ -67,6 +67,9 @@ class Comparison3D:
     arrival_spreads : dict
         ``arrival_spread_prototype_s``, ``arrival_spread_model_upscaled_s`` [s], from the two runs'
         loads (:func:`arrival_spread_similarity`).
+    rest : dict
+        ``prototype`` and ``model``: each system at rest before the blast (:func:`~.systems.rest_of`), in its
+        own units (the model's up-scaled in :meth:`to_dict`); None under gravity alone.
     """
 
     design: object
@@ -79,6 +82,7 @@ class Comparison3D:
     comparison: dict
     settings: dict = field(default_factory=dict)
     arrival_spreads: dict = field(default_factory=dict)
+    rest: dict = field(default_factory=dict)
 
     @property
     def top_point(self) -> str:
@@ -162,11 +166,13 @@ class Comparison3D:
         """``prototype`` and ``model`` (up-scaled) outcomes and the ``similarity`` block; for a
         single block each also carries the block's planar keys (``max_sliding_m``,
         ``max_uplift_m``, ``peak_angular_velocity_rad_s``, ...; similarity ``max_abs_rotation_diff_rad``, ...:
-        :func:`~.block3d_similarity.block_view`), added next to the structure's keys."""
+        :func:`~.block3d_similarity.block_view`), added next to the structure's keys; each carries ``rest`` (the
+        system at rest before the blast, :func:`~.systems.rest_of`; the model's up-scaled) when it was checked."""
         blk = _block_keys(self.structure, self.prototype, self.model, self.specimen_structure, self.design.factors)
+        rest_p, rest_m = (_rest_keys(self.rest.get(k)) for k in ("prototype", "model"))
         return {
-            "prototype": _merged(self.prototype.summary(), blk["prototype"]),
-            "model": _merged(upscale_summary(self.model.summary(), self.design.factors), blk["model"]),
+            "prototype": {**_merged(self.prototype.summary(), blk["prototype"]), **rest_p},
+            "model": _merged(upscale_summary({**self.model.summary(), **rest_m}, self.design.factors), blk["model"]),
             "similarity": _merged(self.similarity(), blk["similarity"]),
         }
 
@@ -223,7 +229,17 @@ def compare_structure3d(systems: Systems3D, settings: Settings3D = Settings3D(),
             "systems without a specimen: compare_structure3d needs a design's systems (Systems3D.of_design(design)); "
             "a prototype alone runs through prototype_structure3d"
         )
-    p_run, m_run = map_threads(lambda s: run_system(s, settings), (systems.prototype, systems.specimen), threads)
+    # the two blast runs and the prototype at rest at once; the specimen's rest check is then (mostly) the
+    # prototype's, cached (an exactly scaled specimen is the same engine model, sim3d.rest)
+    p_run, m_run, p_rest = map_threads(
+        lambda f: f(),
+        (
+            lambda: run_system(systems.prototype, settings),
+            lambda: run_system(systems.specimen, settings),
+            lambda: rest_of(systems.prototype),
+        ),
+        threads,
+    )
     proto, mod = p_run.response, m_run.response
     # the later of the two loads' ends [s after the first arrival, prototype time]
     load_end = max(p_run.load_duration_s, upscale(m_run.load_duration_s, design.factors, "time"))
@@ -246,7 +262,13 @@ def compare_structure3d(systems: Systems3D, settings: Settings3D = Settings3D(),
             **_load_model_setting(systems.prototype.load_model),
         },
         arrival_spreads=arrival_spread_similarity(p_run.load, m_run.load, factors=design.factors),
+        rest={"prototype": p_rest, "model": rest_of(systems.specimen)},
     )
+
+
+def _rest_keys(rest) -> dict:
+    """``{"rest": rest}``, or nothing when the system was not checked (gravity alone)."""
+    return {} if rest is None else {"rest": dict(rest)}
 
 
 def _compared(proto, mod, factors, load_end: float) -> tuple:

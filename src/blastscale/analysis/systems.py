@@ -34,10 +34,11 @@ from ..blast.incidence import DEFAULT_INCIDENCE
 from ..constants import STANDARD_GRAVITY
 from ..sim3d.load_methods import make_load
 from ..sim3d.loads import PerturbedLoad
+from ..sim3d.rest import rest_check
 from ..sim3d.simulate import simulate_structure
 from ..similitude.specimen import SpecimenSystem, specimen_system
 
-__all__ = ["SYSTEMS", "Settings3D", "System3D", "Systems3D", "SystemRun", "run_system"]
+__all__ = ["SYSTEMS", "Settings3D", "System3D", "Systems3D", "SystemRun", "rest_of", "run_system"]
 
 #: The two systems of a model experiment.
 SYSTEMS = ("prototype", "model")
@@ -244,3 +245,20 @@ def run_system(system: System3D, settings: Settings3D, load_factor: float = 1.0)
         record_every=settings.record_every,
     )
     return SystemRun(st, resp, 0.0 if ld is None else float(ld.end_time - ld.first_arrival), ld)
+
+
+def rest_of(system: System3D):
+    """The system at rest before its blast (:func:`blastscale.sim3d.rest.rest_check`: under gravity alone over
+    its rest time, its own contact settings and gravity; cached on the engine's model, so a specimen that is
+    its prototype's exact model and every repeated run cost nothing); None under gravity alone (the run itself
+    is the check: its ``stability``).
+
+    Returns
+    -------
+    dict or None
+        ``creep_m`` [m], ``creep_rel_height`` [-], ``final_speed_rel_sqrt_gh`` [-], ``equilibrium``,
+        ``duration_s`` [s], in the system's own units.
+    """
+    if system.blast is None:
+        return None
+    return rest_check(system.structure, system.contact, system.gravity)

@@ -234,7 +234,7 @@ def _run_3d(plan):
     alone (:func:`~blastscale.analysis.structure3d.prototype_structure3d`)."""
 
     if plan.design is None:
-        return prototype_structure3d(plan.systems3d.prototype, plan.settings3d)
+        return prototype_structure3d(plan.systems3d.prototype, plan.settings3d, threads=plan.threads)
     return compare_structure3d(plan.systems3d, plan.settings3d, threads=plan.threads)
 
 
