@@ -60,13 +60,13 @@ def _ratios(s: dict, tol) -> dict:
             for n, b in p3["bodies"].items()
         },
         tol.residual,
-        tol.moved_rel_height * H,
+        tol.moved_rel_height * H / tol.residual,  # two residuals closer than the moved height always pass
     )
     judge(
         "residual rotation",
         {n: (b["residual_rotation_rad"], m3["bodies"][n]["residual_rotation_rad"]) for n, b in p3["bodies"].items()},
         tol.residual,
-        tol.moved_rel_height,
+        tol.moved_rel_height / tol.residual,
     )
 
     def state(b):
@@ -76,8 +76,14 @@ def _ratios(s: dict, tol) -> dict:
             else ("moved" if b["residual_displacement_m"] > tol.moved_rel_height * H else "stands")
         )
 
+    s0, band = tol.moved_rel_height * H, 1.0 + tol.residual
     for n, b in p3["bodies"].items():
-        out[("outcome", n)] = 0.0 if state(b) == state(m3["bodies"][n]) else math.inf
+        m = m3["bodies"][n]
+        same = state(b) == state(m)
+        if {state(b), state(m)} == {"stands", "moved"}:  # either side of the band about s0 only
+            lo, hi = sorted((b["residual_displacement_m"], m["residual_displacement_m"]))
+            same = not (lo < s0 / band and hi > s0 * band)
+        out[("outcome", n)] = 0.0 if same else math.inf
     out[("outcome", "structure")] = 0.0 if p3["collapsed"] == m3["collapsed"] else math.inf
     return out
 
