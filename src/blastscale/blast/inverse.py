@@ -30,6 +30,25 @@ and evaluates the fits outside their ranges. A value no Z of the range gives rai
 value and the values the fit gives over the range (``outside="raise"``), or gives NaN (``"nan"``) or the
 nearer end of the range (``"clip"``).
 
+Oblique faces
+-------------
+``incidence_deg`` (a reflected quantity only) inverts the value on a face whose outward normal makes that
+angle a with the direction to the charge (a gauge flush in a surface, :mod:`blastscale.fired.effective`): the
+fits at Z are combined by the incidence model (:func:`blastscale.blast.incidence.oblique_values`, UFC 3-340-02
+Figs. 2-193 / 2-194 by default, as the face loads of :mod:`blastscale.blast.faces`),
+
+.. math:: P(a) = P_{so} + (P_r - P_{so})\\,\\frac{C_{r\\alpha}(a) - 1}{C_{r\\alpha}(0) - 1},\\qquad
+          \\hat i(a) = \\hat i_s + (\\hat i_r - \\hat i_s)\\,g(a),
+
+with the side-on values of :func:`blastscale.blast.faces.incident_source` (Kingery-Bulmash beside
+``masi2021``), and the same root in ln Z is sought over the range where the reflected and the side-on fits
+hold. a = 0 gives the normally reflected inversion exactly, a = 90 deg the side-on one. The charts cover
+a in [0, 90] deg (:data:`INCIDENCE_RANGE_DEG`: a surface turned away from the charge is not charted) and
+their incident pressures (Fig. 2-193: 1.38 kPa-34.5 MPa, Fig. 2-194: 4.83 kPa-41.4 MPa,
+:func:`blastscale.blast.incidence.ufc_pressure_range`): an angle outside, or a root whose side-on pressure
+lies outside the chart used (0 < a < 90 deg, the ``"ufc"`` model), is refused in one line naming it and the
+range, whatever ``outside`` says.
+
 Where a fit is not monotone (the Swisdak polynomials jump at their segments' ends: the incident pressure
 rises by 0.6 % at Z = 23.8 m/kg^(1/3)), a value inside the jump is met at more than one Z; one of them is
 returned.
@@ -46,14 +65,17 @@ import warnings
 
 import numpy as np
 
-from .._validate import BlastscaleInputError, check_choice, check_positive
+from .._validate import BlastscaleInputError, check_choice, check_finite, check_positive
 from ..roots import bracketed_root, root_of_bracket
 from .base import ExtrapolationWarning
+from .faces import incident_source
+from .incidence import DEFAULT_INCIDENCE, check_incidence, oblique_values, ufc_pressure_range
 from .parameters import DEFAULT_BLAST_MODEL, get_blast_model, valid_scaled_distance_range
 
 __all__ = [
     "INVERTED_QUANTITIES",
     "EXTRAPOLATE_WIDENING",
+    "INCIDENCE_RANGE_DEG",
     "scaled_distance_for",
     "charge_for",
     "standoff_for",
@@ -68,6 +90,16 @@ INVERTED_QUANTITIES = {
     "incident_pressure": ("incident_pressure", "Pa"),
     "reflected_impulse": ("scaled_reflected_impulse", "Pa s"),
     "incident_impulse": ("scaled_incident_impulse", "Pa s"),
+}
+
+#: Angles of incidence [deg] the oblique inversion covers (UFC 3-340-02 Figs. 2-193, 2-194: 0 = normal, 90 =
+#: grazing); a face turned away from the charge is not charted.
+INCIDENCE_RANGE_DEG = (0.0, 90.0)
+
+#: Reflected quantity -> (the UFC chart its oblique value is read on, the side-on fit beside it).
+_OBLIQUE = {
+    "reflected_pressure": ("2-193", "incident_pressure"),
+    "reflected_impulse": ("2-194", "scaled_incident_impulse"),
 }
 
 #: Widening of a range of Z with ``extrapolate=True`` (factor each side).
@@ -119,6 +151,8 @@ def scaled_distance_for(
     extrapolate: bool = False,
     z_range=None,
     outside: str = "raise",
+    incidence_deg=None,
+    incidence: str = DEFAULT_INCIDENCE,
 ):
     """Scaled distance Z [m/kg^(1/3)] at which ``blast_model`` gives ``value`` of ``quantity``.
 
@@ -142,6 +176,11 @@ def scaled_distance_for(
     outside : {"raise", "nan", "clip"}
         A value no Z of the range gives: raise :class:`BlastscaleInputError`, give NaN, or give the nearer
         end of the range (the end whose value is closer to the one asked for).
+    incidence_deg : float or array_like, optional
+        Angle of incidence a [deg] of the face the value is measured on (module docstring, "Oblique
+        faces"), in :data:`INCIDENCE_RANGE_DEG`; reflected quantities only. None: normal reflection.
+    incidence : str
+        The incidence model with ``incidence_deg`` (:data:`blastscale.blast.incidence.INCIDENCE_MODELS`).
 
     Returns
     -------
@@ -153,7 +192,8 @@ def scaled_distance_for(
     BlastscaleInputError
         An unknown ``quantity`` or ``outside``, a fit the model lacks, a non-positive input, an impulse
         without (or with both) ``standoff`` and ``charge``, or (``outside="raise"``) a value out of reach,
-        naming it and the values the fit gives over the range.
+        naming it and the values the fit gives over the range; an angle of incidence outside
+        :data:`INCIDENCE_RANGE_DEG` or a root outside the UFC chart's incident pressures.
 
     Examples
     --------
@@ -166,17 +206,36 @@ def scaled_distance_for(
     v = check_positive(quantity, value, unit)
     R = None if standoff is None else check_positive("standoff", standoff, "m")
     W = None if charge is None else check_positive("charge", charge, "kg")
-    shape = np.broadcast_shapes(*(np.shape(a) for a in (v, R, W) if a is not None))
+    a = None if incidence_deg is None else _checked_incidence(quantity, incidence_deg, incidence)
+    shape = np.broadcast_shapes(*(np.shape(x) for x in (v, R, W, a) if x is not None))
     v = np.broadcast_to(v, shape).astype(float).ravel()
     R = None if R is None else np.broadcast_to(R, shape).astype(float).ravel()
     W = None if W is None else np.broadcast_to(W, shape).astype(float).ravel()
     zlo, zhi = _z_bounds(m, fit, z_range, extrapolate)
+    mi = None
+    if a is not None:
+        mi = incident_source(m)
+        cos_a = np.cos(np.radians(np.broadcast_to(a, shape).astype(float).ravel()))
+        if z_range is None:  # where the side-on fit beside it holds too
+            slo, shi = _z_bounds(mi, _OBLIQUE[quantity][1], None, extrapolate)
+            zlo, zhi = max(zlo, slo), min(zhi, shi)
     w13 = None if W is None else np.cbrt(W)
     ln_v = np.log(v)
 
+    def fitted(idx, z):
+        """The fit at Z, as the face at the angle of incidence sees it (the normal fit without one)."""
+        q = getattr(m, fit)(z, extrapolate=extrapolate)
+        if mi is None:
+            return q
+        side = getattr(mi, _OBLIQUE[quantity][1])(z, extrapolate=extrapolate)
+        pso = mi.incident_pressure(z, extrapolate=extrapolate) if unit == "Pa s" else side
+        pr = m.reflected_pressure(z, extrapolate=extrapolate) if unit == "Pa s" else q
+        p_face, i_face = oblique_values(incidence, cos_a[idx], pr, pso, q, side)
+        return i_face if unit == "Pa s" else p_face
+
     def given(idx, z):
         """The quantity [Pa or Pa s] at Z for the cases ``idx``."""
-        q = getattr(m, fit)(z, extrapolate=extrapolate)
+        q = fitted(idx, z)
         if unit != "Pa s":
             return q
         return q * (R[idx] / z) if R is not None else q * w13[idx]
@@ -199,9 +258,51 @@ def scaled_distance_for(
                 + ("" if extrapolate else " (extrapolate=True widens the range 5x each way)")
             )
     z = np.clip(np.exp(u), zlo, zhi)
+    if mi is not None and incidence == "ufc":
+        _check_charted(quantity, mi, z, ok, cos_a, extrapolate)
     if outside == "nan":
         z = np.where(ok, z, np.nan)
     return z.reshape(shape) if shape else float(z[0])
+
+
+def _checked_incidence(quantity: str, incidence_deg, incidence: str) -> np.ndarray:
+    """The angle of incidence [deg], checked: a reflected ``quantity``, a known model, an angle the charts
+    cover (:data:`INCIDENCE_RANGE_DEG`)."""
+    if quantity not in _OBLIQUE:
+        raise BlastscaleInputError(
+            f"incidence_deg with quantity = {quantity!r}: an angle of incidence applies to a reflected quantity "
+            f"({' or '.join(_OBLIQUE)})"
+        )
+    check_incidence(incidence)
+    lo, hi = INCIDENCE_RANGE_DEG
+    a = check_finite("angle of incidence", incidence_deg, "deg")
+    bad = (a < lo) | (a > hi)
+    if np.any(bad):
+        raise BlastscaleInputError(
+            f"angle of incidence = {float(a[bad].ravel()[0]):.4g} deg is out of range: valid range is [{lo:g}, {hi:g}] "
+            "deg, what UFC 3-340-02 Figs. 2-193 and 2-194 chart (a surface turned away from the charge is not charted)"
+        )
+    return a
+
+
+def _check_charted(quantity: str, mi, z: np.ndarray, ok: np.ndarray, cos_a: np.ndarray, extrapolate: bool) -> None:
+    """Refuse a root at an oblique angle (0 < a < 90 deg) whose side-on pressure lies outside the UFC chart's
+    curves (the chart's end curve would be read there: not charted)."""
+    figure = _OBLIQUE[quantity][0]
+    lo, hi = ufc_pressure_range(figure)
+    oblique = ok & (cos_a < 1.0) & (cos_a > 0.0)
+    if not np.any(oblique):
+        return
+    pso = np.asarray(mi.incident_pressure(z[oblique], extrapolate=extrapolate), dtype=float)
+    bad = (pso < lo) | (pso > hi)
+    if np.any(bad):
+        k = int(np.flatnonzero(bad)[0])
+        angle = float(np.degrees(np.arccos(cos_a[oblique][k])))
+        raise BlastscaleInputError(
+            f"side-on pressure at the face = {pso[k]:.4g} Pa (Z = {z[oblique][k]:.4g} m/kg^(1/3), angle of incidence "
+            f"{angle:.3g} deg) is out of range: valid range is [{lo:.4g}, {hi:.4g}] Pa, the curves of UFC 3-340-02 "
+            f"Fig. {figure}: the oblique {'impulse' if figure == '2-194' else 'peak'} is not charted there"
+        )
 
 
 def _checked_quantity(quantity: str, blast_model, outside: str, standoff, charge):
@@ -261,11 +362,14 @@ def charge_for(
     extrapolate: bool = False,
     z_range=None,
     outside: str = "raise",
+    incidence_deg=None,
+    incidence: str = DEFAULT_INCIDENCE,
 ):
     """TNT charge W [kg] that gives ``value`` of ``quantity`` at ``standoff`` R [m]: ``W = (R / Z)^3`` with Z
     of :func:`scaled_distance_for` (same parameters; arrays broadcast, the kind given is returned).
 
-    Used to read an effective charge from a gauge (:func:`blastscale.fired.effective_charge`) and to
+    Used to read an effective charge from a gauge (:func:`blastscale.fired.effective_charge`, at the gauge's
+    angle of incidence with ``incidence_deg``) and to
     up-scale a model's critical charge to the prototype (under the paper's general law only the impulse is
     matched, Eq. 8: the prototype charge delivers the model's impulse over ``gamma sqrt(varsigma lambda^3)``).
 
@@ -283,6 +387,8 @@ def charge_for(
         extrapolate=extrapolate,
         z_range=z_range,
         outside=outside,
+        incidence_deg=incidence_deg,
+        incidence=incidence,
     )
     return (np.asarray(standoff, dtype=float) / z) ** 3 if np.ndim(z) else float((float(standoff) / z) ** 3)
 
@@ -296,6 +402,8 @@ def standoff_for(
     extrapolate: bool = False,
     z_range=None,
     outside: str = "raise",
+    incidence_deg=None,
+    incidence: str = DEFAULT_INCIDENCE,
 ):
     """Stand-off R [m] at which ``charge`` W [kg TNT] gives ``value`` of ``quantity``: ``R = Z W^(1/3)`` with
     Z of :func:`scaled_distance_for` (same parameters; arrays broadcast, the kind given is returned).
@@ -314,5 +422,7 @@ def standoff_for(
         extrapolate=extrapolate,
         z_range=z_range,
         outside=outside,
+        incidence_deg=incidence_deg,
+        incidence=incidence,
     )
     return z * np.cbrt(np.asarray(charge, dtype=float)) if np.ndim(z) else float(z * np.cbrt(float(charge)))
