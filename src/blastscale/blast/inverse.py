@@ -32,8 +32,8 @@ nearer end of the range (``"clip"``).
 
 Oblique faces
 -------------
-``incidence_deg`` (a reflected quantity only) inverts the value on a face whose outward normal makes that
-angle a with the direction to the charge (a gauge flush in a surface, :mod:`blastscale.fired.effective`): the
+A quantity :class:`OnFace` (a reflected one, with its angle ``incidence_deg``) inverts the value on a face
+whose outward normal makes that angle a with the direction to the charge (a gauge flush in a surface, :mod:`blastscale.fired.effective`): the
 fits at Z are combined by the incidence model (:func:`blastscale.blast.incidence.oblique_values`, UFC 3-340-02
 Figs. 2-193 / 2-194 by default, as the face loads of :mod:`blastscale.blast.faces`),
 
@@ -62,6 +62,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -76,6 +77,7 @@ __all__ = [
     "INVERTED_QUANTITIES",
     "EXTRAPOLATE_WIDENING",
     "INCIDENCE_RANGE_DEG",
+    "OnFace",
     "scaled_distance_for",
     "charge_for",
     "standoff_for",
@@ -143,7 +145,7 @@ def warn_if_extrapolated(blast_model, scaled_distances, extrapolate: bool, what:
 
 def scaled_distance_for(
     value,
-    quantity: str = "reflected_impulse",
+    quantity: "str | OnFace" = "reflected_impulse",
     blast_model=DEFAULT_BLAST_MODEL,
     *,
     standoff=None,
@@ -151,8 +153,6 @@ def scaled_distance_for(
     extrapolate: bool = False,
     z_range=None,
     outside: str = "raise",
-    incidence_deg=None,
-    incidence: str = DEFAULT_INCIDENCE,
 ):
     """Scaled distance Z [m/kg^(1/3)] at which ``blast_model`` gives ``value`` of ``quantity``.
 
@@ -160,9 +160,10 @@ def scaled_distance_for(
     ----------
     value : float or array_like
         The peak [Pa] or the impulse [Pa s], > 0.
-    quantity : str
+    quantity : str or OnFace
         One of :data:`INVERTED_QUANTITIES`: ``"reflected_pressure"``, ``"incident_pressure"``,
-        ``"reflected_impulse"``, ``"incident_impulse"``.
+        ``"reflected_impulse"``, ``"incident_impulse"``; or a reflected one on a face at an angle of incidence,
+        :class:`OnFace` (module docstring, "Oblique faces").
     blast_model : str or BlastModel
         The fits (module docstring), e.g. ``"kingery-bulmash"``, ``"kingery-bulmash-free-air"``, ``"masi2021"``.
     standoff, charge : float or array_like, optional
@@ -176,11 +177,6 @@ def scaled_distance_for(
     outside : {"raise", "nan", "clip"}
         A value no Z of the range gives: raise :class:`BlastscaleInputError`, give NaN, or give the nearer
         end of the range (the end whose value is closer to the one asked for).
-    incidence_deg : float or array_like, optional
-        Angle of incidence a [deg] of the face the value is measured on (module docstring, "Oblique
-        faces"), in :data:`INCIDENCE_RANGE_DEG`; reflected quantities only. None: normal reflection.
-    incidence : str
-        The incidence model with ``incidence_deg`` (:data:`blastscale.blast.incidence.INCIDENCE_MODELS`).
 
     Returns
     -------
@@ -202,43 +198,25 @@ def scaled_distance_for(
     >>> round(scaled_distance_for(bp.reflected_pressure, "reflected_pressure"), 12) == round(3.0 / 2.0 ** (1 / 3), 12)
     True
     """
+    face = quantity if isinstance(quantity, OnFace) else None
+    quantity = face.quantity if face is not None else quantity
     fit, unit, m = _checked_quantity(quantity, blast_model, outside, standoff, charge)
     v = check_positive(quantity, value, unit)
     R = None if standoff is None else check_positive("standoff", standoff, "m")
     W = None if charge is None else check_positive("charge", charge, "kg")
-    a = None if incidence_deg is None else _checked_incidence(quantity, incidence_deg, incidence)
+    a = None if face is None else _checked_incidence(face)
     shape = np.broadcast_shapes(*(np.shape(x) for x in (v, R, W, a) if x is not None))
     v = np.broadcast_to(v, shape).astype(float).ravel()
     R = None if R is None else np.broadcast_to(R, shape).astype(float).ravel()
     W = None if W is None else np.broadcast_to(W, shape).astype(float).ravel()
     zlo, zhi = _z_bounds(m, fit, z_range, extrapolate)
-    mi = None
-    if a is not None:
-        mi = incident_source(m)
-        cos_a = np.cos(np.radians(np.broadcast_to(a, shape).astype(float).ravel()))
+    given = _Given(m, fit, unit, extrapolate, R, None if W is None else np.cbrt(W))
+    if face is not None:
+        given = given.on_face(face, np.cos(np.radians(np.broadcast_to(a, shape).astype(float).ravel())))
         if z_range is None:  # where the side-on fit beside it holds too
-            slo, shi = _z_bounds(mi, _OBLIQUE[quantity][1], None, extrapolate)
+            slo, shi = _z_bounds(given.side, _OBLIQUE[quantity][1], None, extrapolate)
             zlo, zhi = max(zlo, slo), min(zhi, shi)
-    w13 = None if W is None else np.cbrt(W)
     ln_v = np.log(v)
-
-    def fitted(idx, z):
-        """The fit at Z, as the face at the angle of incidence sees it (the normal fit without one)."""
-        q = getattr(m, fit)(z, extrapolate=extrapolate)
-        if mi is None:
-            return q
-        side = getattr(mi, _OBLIQUE[quantity][1])(z, extrapolate=extrapolate)
-        pso = mi.incident_pressure(z, extrapolate=extrapolate) if unit == "Pa s" else side
-        pr = m.reflected_pressure(z, extrapolate=extrapolate) if unit == "Pa s" else q
-        p_face, i_face = oblique_values(incidence, cos_a[idx], pr, pso, q, side)
-        return i_face if unit == "Pa s" else p_face
-
-    def given(idx, z):
-        """The quantity [Pa or Pa s] at Z for the cases ``idx``."""
-        q = fitted(idx, z)
-        if unit != "Pa s":
-            return q
-        return q * (R[idx] / z) if R is not None else q * w13[idx]
 
     def f(idx, u):
         z = np.clip(np.exp(u), zlo, zhi)  # exp(log(hi)) may round above hi
@@ -258,24 +236,92 @@ def scaled_distance_for(
                 + ("" if extrapolate else " (extrapolate=True widens the range 5x each way)")
             )
     z = np.clip(np.exp(u), zlo, zhi)
-    if mi is not None and incidence == "ufc":
-        _check_charted(quantity, mi, z, ok, cos_a, extrapolate)
+    if face is not None and face.incidence == "ufc":
+        _check_charted(quantity, given.side, z, ok, given.cos_a, extrapolate)
     if outside == "nan":
         z = np.where(ok, z, np.nan)
     return z.reshape(shape) if shape else float(z[0])
 
 
-def _checked_incidence(quantity: str, incidence_deg, incidence: str) -> np.ndarray:
-    """The angle of incidence [deg], checked: a reflected ``quantity``, a known model, an angle the charts
-    cover (:data:`INCIDENCE_RANGE_DEG`)."""
-    if quantity not in _OBLIQUE:
+@dataclass(frozen=True)
+class OnFace:
+    """A reflected quantity on a face at an angle of incidence (module docstring, "Oblique faces"): what a gauge
+    flush in that face measures.
+
+    Attributes
+    ----------
+    quantity : str
+        ``"reflected_pressure"`` or ``"reflected_impulse"``.
+    incidence_deg : float or array_like
+        The angle of incidence a [deg] between the face's outward normal and the direction to the charge, in
+        :data:`INCIDENCE_RANGE_DEG` (broadcast with the values).
+    incidence : str
+        The incidence model (:data:`blastscale.blast.incidence.INCIDENCE_MODELS`), ``"ufc"`` by default.
+
+    Examples
+    --------
+    >>> from blastscale.blast.faces import face_loads
+    >>> f = face_loads(0.1, [0, 0, 0], [1.0, 0, 0], [-0.8, 0.6, 0])  # a face at 36.87 deg
+    >>> a = 36.86989764584402
+    >>> round(charge_for(float(f.impulse), 1.0, OnFace("reflected_impulse", a)), 9)
+    0.1
+    """
+
+    quantity: str
+    incidence_deg: object
+    incidence: str = DEFAULT_INCIDENCE
+
+
+@dataclass(frozen=True)
+class _Given:
+    """The quantity [Pa or Pa s] the fits give at Z for the cases ``idx``: the fit ``fit`` of ``m`` (an impulse at
+    the stand-off ``R`` or of the charge of cube root ``w13``); on a face (:meth:`on_face`), the face's value by the
+    incidence model, with the side-on values of ``side`` (:func:`blastscale.blast.faces.incident_source`)."""
+
+    m: object
+    fit: str
+    unit: str
+    extrapolate: bool
+    R: np.ndarray | None
+    w13: np.ndarray | None
+    side: object = None
+    cos_a: np.ndarray | None = None
+    incidence: str = DEFAULT_INCIDENCE
+
+    def on_face(self, face: OnFace, cos_a: np.ndarray) -> "_Given":
+        return replace(self, side=incident_source(self.m), cos_a=cos_a, incidence=face.incidence)
+
+    def fitted(self, idx, z):
+        """The fit at Z, as the face at its angle of incidence sees it (the normal fit without one)."""
+        ex = self.extrapolate
+        q = getattr(self.m, self.fit)(z, extrapolate=ex)
+        if self.side is None:
+            return q
+        impulse = self.unit == "Pa s"
+        side = getattr(self.side, "scaled_incident_impulse" if impulse else "incident_pressure")(z, extrapolate=ex)
+        pso = self.side.incident_pressure(z, extrapolate=ex) if impulse else side
+        pr = self.m.reflected_pressure(z, extrapolate=ex) if impulse else q
+        p_face, i_face = oblique_values(self.incidence, self.cos_a[idx], pr, pso, q, side)
+        return i_face if impulse else p_face
+
+    def __call__(self, idx, z):
+        q = self.fitted(idx, z)
+        if self.unit != "Pa s":
+            return q
+        return q * (self.R[idx] / z) if self.R is not None else q * self.w13[idx]
+
+
+def _checked_incidence(face: OnFace) -> np.ndarray:
+    """The angle of incidence [deg] of ``face``, checked: a reflected quantity, a known model, an angle the
+    charts cover (:data:`INCIDENCE_RANGE_DEG`)."""
+    if face.quantity not in _OBLIQUE:
         raise BlastscaleInputError(
-            f"incidence_deg with quantity = {quantity!r}: an angle of incidence applies to a reflected quantity "
+            f"OnFace quantity = {face.quantity!r}: an angle of incidence applies to a reflected quantity "
             f"({' or '.join(_OBLIQUE)})"
         )
-    check_incidence(incidence)
+    check_incidence(face.incidence)
     lo, hi = INCIDENCE_RANGE_DEG
-    a = check_finite("angle of incidence", incidence_deg, "deg")
+    a = check_finite("angle of incidence", face.incidence_deg, "deg")
     bad = (a < lo) | (a > hi)
     if np.any(bad):
         raise BlastscaleInputError(
@@ -362,14 +408,12 @@ def charge_for(
     extrapolate: bool = False,
     z_range=None,
     outside: str = "raise",
-    incidence_deg=None,
-    incidence: str = DEFAULT_INCIDENCE,
 ):
     """TNT charge W [kg] that gives ``value`` of ``quantity`` at ``standoff`` R [m]: ``W = (R / Z)^3`` with Z
     of :func:`scaled_distance_for` (same parameters; arrays broadcast, the kind given is returned).
 
     Used to read an effective charge from a gauge (:func:`blastscale.fired.effective_charge`, at the gauge's
-    angle of incidence with ``incidence_deg``) and to
+    angle of incidence with a quantity :class:`OnFace`) and to
     up-scale a model's critical charge to the prototype (under the paper's general law only the impulse is
     matched, Eq. 8: the prototype charge delivers the model's impulse over ``gamma sqrt(varsigma lambda^3)``).
 
@@ -387,8 +431,6 @@ def charge_for(
         extrapolate=extrapolate,
         z_range=z_range,
         outside=outside,
-        incidence_deg=incidence_deg,
-        incidence=incidence,
     )
     return (np.asarray(standoff, dtype=float) / z) ** 3 if np.ndim(z) else float((float(standoff) / z) ** 3)
 
@@ -402,8 +444,6 @@ def standoff_for(
     extrapolate: bool = False,
     z_range=None,
     outside: str = "raise",
-    incidence_deg=None,
-    incidence: str = DEFAULT_INCIDENCE,
 ):
     """Stand-off R [m] at which ``charge`` W [kg TNT] gives ``value`` of ``quantity``: ``R = Z W^(1/3)`` with
     Z of :func:`scaled_distance_for` (same parameters; arrays broadcast, the kind given is returned).
@@ -422,7 +462,5 @@ def standoff_for(
         extrapolate=extrapolate,
         z_range=z_range,
         outside=outside,
-        incidence_deg=incidence_deg,
-        incidence=incidence,
     )
     return z * np.cbrt(np.asarray(charge, dtype=float)) if np.ndim(z) else float(z * np.cbrt(float(charge)))

@@ -22,7 +22,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_choice, check_positive_scalar
 from ..blast.faces import MixedModelWarning, face_loads
 from ..blast.incidence import DEFAULT_INCIDENCE
-from ..blast.inverse import charge_for
+from ..blast.inverse import OnFace, charge_for
 from ..blast.parameters import blast_parameters, model_for_burst
 
 __all__ = ["GAUGE_KINDS", "effective_charge", "predicted_at", "tnt_equivalence"]
@@ -88,15 +88,8 @@ def effective_charge(
     oblique = kind == "reflected" and incidence_deg != 0.0
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", MixedModelWarning)  # the convention is stated above and in docs/fired.md
-        W = charge_for(
-            v,
-            R,
-            _INVERTED[kind][basis == "impulse"],
-            m,
-            outside="nan",
-            incidence_deg=incidence_deg if oblique else None,
-            incidence=incidence,
-        )
+        q = _INVERTED[kind][basis == "impulse"]
+        W = charge_for(v, R, OnFace(q, incidence_deg, incidence) if oblique else q, m, outside="nan")
     if not math.isfinite(W):
         lo, hi = m.valid_range(q)
         unit = "Pa s" if basis == "impulse" else "Pa"

@@ -202,21 +202,21 @@ def _face_normal(structure, p: np.ndarray, where: str) -> tuple[np.ndarray, str]
     bodies = _body_boxes(structure)
     world = np.vstack([c + v for c, v, _, _ in bodies])
     tol = GAUGE_FACE_TOLERANCE * float(world[:, 2].max() - world[:, 2].min())
-    near, nearest = [], (np.inf, "")
+    near, nearest = [], (np.inf, "no face")
     for body, (com, _, planes, offsets) in zip(structure.bodies, bodies):
-        inside = float(np.max(planes @ (p - com) - offsets)) <= tol
+        outside = max(float(np.max(planes @ (p - com) - offsets)), 0.0)
         for f in body.faces:
             n = np.asarray(f.normal, dtype=float)
             gap = abs(float(n @ (p - com - np.asarray(f.centre, dtype=float))))
             label = f"face {f.label!r} of {body.name!r}"
-            if inside and gap <= tol:
+            if outside <= tol and gap <= tol:
                 near.append((gap, n, label))
-            elif gap < nearest[0] and inside:
-                nearest = (gap, label)
+            elif max(gap, outside) < nearest[0]:
+                nearest = (max(gap, outside), label)
     if not near:
-        off = f"{nearest[0]:.3g} m from {nearest[1]}" if nearest[1] else "outside every body"
         raise BlastscaleInputError(
-            f"{where} is in no face of the specimen ({off}; a gauge is in a face within {tol:.3g} m, "
+            f"{where} is in no face of the specimen ({nearest[0]:.3g} m from the nearest, {nearest[1]}; a gauge "
+            f"is in a face within {tol:.3g} m, "
             f"{GAUGE_FACE_TOLERANCE:g} x its height): give normal = [x, y, z], the outward normal of the surface "
             "it is flush in"
         )

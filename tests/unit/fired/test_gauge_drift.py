@@ -9,9 +9,10 @@ runs well past the pulse: here 10 positive durations after the arrival (~10 ms),
 
 Tolerances (the issue's): with a drift of 0.3 % of the peak per ms, the impulse within 1 % and the effective
 charge within 2 % over 8 seeds. Without the fitted baseline (the pre-trigger's mean, the reader before #36)
-the same records give +1.2 to +1.9 % on the impulse (the drift integrated over the pulse) and, on a record of
-3 positive durations (no tail), the warning names the gauge: the pre-trigger alone resolves the slope to
-+-0.25 %/ms of the peak (95 %), which moves the impulse by several %.
+the same records give +3.4 to +4.7 % on the impulse (the drift integrated over the pulse) and +4.7 % on the
+charge facing the charge. On a record of 3 positive durations (no tail) with 2 % noise, the warning names the
+gauge: the pre-trigger alone resolves the slope to +-0.3 %/ms of the peak (95 %), which moves the impulse by
+several %.
 """
 
 from __future__ import annotations
@@ -58,9 +59,7 @@ def test_without_the_fitted_baseline_the_drift_enters_the_impulse():
     t, p, truth, _ = record(0, 26.0, 0.003)
     g = fit_gauge(t, p, "g1")
     pre = t < 0
-    drift_in = g.impulse_Pa_s + g.drift_impulse_Pa_s + g.drift_Pa_per_s * 0.0  # the removed drift's impulse
-    assert g.drift_impulse_Pa_s > 0.01 * truth["impulse"]
-    assert drift_in / truth["impulse"] - 1.0 > 0.01
+    assert g.drift_impulse_Pa_s > 0.01 * truth["impulse"]  # the removed drift's impulse over the pulse
     # the line's offset at the firing signal is the pre-trigger's level there, not its mean
     assert g.baseline_Pa == pytest.approx(np.mean(p[pre]) + g.drift_Pa_per_s * 0.5e-3, rel=0.02)
 
