@@ -161,3 +161,19 @@ def test_a_side_on_gauge_takes_no_normal():
         shot(s={"position_m": [FRONT_X - 0.3, 0.5, 0.05], "kind": "side-on", "normal": [0.0, -1.0, 0.0]})
     sc, d = shot(s={"position_m": [FRONT_X - 0.3, 0.5, 0.05], "kind": "side-on"})
     assert gauge_incidence(sc, d, STANDOFF, "s") is None
+
+
+def test_the_generator_shares_no_code_with_the_reader():
+    """The records' generator imports from blastscale only the blast model's fits (the known answers' normal and
+    side-on values): nothing of the gauge reading, the incidence models or the inversion."""
+    import ast
+    from pathlib import Path
+
+    tree = ast.parse((Path(__file__).parents[2] / "_fired_synthetic.py").read_text())
+    used = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("blastscale"):
+            used |= {f"{node.module}.{a.name}" for a in node.names}
+        elif isinstance(node, ast.Import):
+            used |= {a.name for a in node.names if a.name.startswith("blastscale")}
+    assert used == {"blastscale.blast.blast_parameters"}, used
