@@ -8,8 +8,10 @@ kinematics, with 0.05 mm noise at 2000 frames per second.
 
 Tolerances (the issue's): the measured first peak within 2 % of the track's own (the simulation's first
 peak event; the noise is 0.05 mm on a ~45 mm peak and the parabola over ~60 frames averages it), the
-re-simulation within 5 % of the measurement (the effective charge is within ~1 % of 1.15 x: the first peak
-goes as ~W^1.9 here), the designed prediction visibly below (at least 10 % below: 15 % less charge gives
+re-simulation within 6 % of the measurement (the first peak goes as ~W^1.9 here; the gauge, flush in the front
+face at 26.6 deg from the charge on the floor (issue #36), gives W within ~2.6 %: its impulse's noise, 1.4 %
+for seed 0, moves W by 1.3 x at that angle, and the generator's own reading of UFC Fig. 2-194 differs from the
+package's by 0.6 % in W there; #25's 5 % was sized for a gauge read as facing the charge), the designed prediction visibly below (at least 10 % below: 15 % less charge gives
 ~24 % less first peak).
 """
 
@@ -72,8 +74,17 @@ def write_shot(folder, factor=FACTOR, seed=0, restitution=None):
     R = d.specimen.standoff_m
     charge_at = np.array([block.front_x - R, 0.0, 0.0])
     gauge = np.array([block.front_x, 0.0, 0.05])
+    # flush in the front face (normal -x), the charge on the floor: the angle of incidence from the geometry
+    to_charge = charge_at - gauge
+    angle = float(np.degrees(np.arccos(-to_charge[0] / np.linalg.norm(to_charge))))
     t, p, _ = synthetic_trace(
-        seed, W, float(np.linalg.norm(gauge - charge_at)), blast_model="masi2021", rate_hz=4e6, pre_s=1e-3
+        seed,
+        W,
+        float(np.linalg.norm(to_charge)),
+        blast_model="masi2021",
+        rate_hz=4e6,
+        pre_s=1e-3,
+        incidence_deg=angle,
     )
     np.savetxt(
         folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",", header="time_us,g1_kPa", comments=""
@@ -121,9 +132,13 @@ def test_block_fired_15_percent_above_the_design(tmp_path):
     assert m["first_peak_time_s"] == pytest.approx(truth["first_peak_time_s"], rel=0.02)
     assert s["effective_charge_tnt_kg"] == pytest.approx(truth["charge_tnt_kg"], rel=0.05)
     assert s["charge_ratio_impulse"] == pytest.approx(FACTOR, rel=0.05)
-    assert m["refit_first_peak_m"] == pytest.approx(m["first_peak_m"], rel=0.05)
+    assert m["refit_first_peak_m"] == pytest.approx(m["first_peak_m"], rel=0.06)
     assert m["predicted_first_peak_m"] < 0.90 * m["first_peak_m"]
     assert m["outcome_measured"] == m["outcome_refit"] == "stands"
+    # the gauge is read at its angle of incidence, the normal of the face it is flush in
+    g = s["gauges"]["g1"]
+    assert g["incidence_deg"] == pytest.approx(np.degrees(np.arctan2(0.05, 0.1)), abs=1e-9)
+    assert g["normal_from"] == "face 'front' of 'block'" and g["warnings"] == []
     # the implied TNT equivalence of the C-4 as weighed: 1.19 (UFC 3-340-02 Table 2-1, impulse)
     assert s["tnt_equivalence_impulse"] == pytest.approx(1.19, rel=0.05)
     # the monument: the measured first peak up-scaled (lambda = 1/20, time sqrt(1/20)), inside its band
@@ -189,7 +204,7 @@ def test_column_in_3d_end_to_end(tmp_path):
     R = d.specimen.standoff_m
     front = d.specimen_structure.front_x
     dist = float(np.hypot(R, 0.05))
-    t, p, _ = synthetic_trace(1, W, dist, rate_hz=4e6, pre_s=1e-3)
+    t, p, _ = synthetic_trace(1, W, dist, rate_hz=4e6, pre_s=1e-3, incidence_deg=float(np.degrees(np.arctan2(0.05, R))))
     np.savetxt(
         tmp_path / "gauges.csv",
         np.column_stack([t * 1e6, p / 1e3]),

@@ -76,7 +76,8 @@ def write_assembly_shot(folder, duration=1.0, factor=FACTOR):
     d = Study(base).check().design
     W = factor * d.specimen_charge_kg
     R = d.specimen.standoff_m
-    t, p, _ = synthetic_trace(1, W, float(np.hypot(R, 0.05)), rate_hz=4e6, pre_s=1e-3)
+    angle = float(np.degrees(np.arctan2(0.05, R)))  # flush in the front face, the charge on the floor
+    t, p, _ = synthetic_trace(1, W, float(np.hypot(R, 0.05)), rate_hz=4e6, pre_s=1e-3, incidence_deg=angle)
     np.savetxt(
         folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",", header="time_us,g1_kPa", comments=""
     )

@@ -61,6 +61,7 @@ __all__ = [
     "ufc_impulse_fraction",
     "UFCChart",
     "ufc_chart",
+    "ufc_pressure_range",
 ]
 
 #: Names accepted by ``incidence=`` everywhere; the first is the default.
@@ -192,6 +193,13 @@ def ufc_chart(figure: str) -> UFCChart:
         lines = [ln for ln in fh if ln.strip() and not ln.startswith("#")]
     data = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]])  # lines[0]: column names
     return UFCChart.from_points(data[:, 0], data[:, 1], data[:, 2], peaked=peaked)
+
+
+def ufc_pressure_range(figure: str) -> tuple[float, float]:
+    """The incident pressures [Pa] of the first and last curves of the UFC chart ``"2-193"`` or ``"2-194"``
+    (1.38 kPa-34.5 MPa and 4.83 kPa-41.4 MPa): what the chart covers (outside it, the end curve is read)."""
+    lp = ufc_chart(figure).log_pressure
+    return float(np.exp(lp[0])), float(np.exp(lp[-1]))
 
 
 def ufc_reflection_coefficient(angle, incident_pressure):

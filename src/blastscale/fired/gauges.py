@@ -2,8 +2,21 @@
 
 The steps (docs/fired.md), on plain arrays in SI:
 
-1. **Baseline**: the mean of the pre-trigger samples (t < 0) is the gauge's offset; their standard deviation
-   sigma is the noise. Both are removed / used below.
+1. **Baseline**: a straight line ``b0 + b1 t`` fitted by least squares to the pre-trigger samples (t < 0)
+   is the gauge's offset and drift (a charge amplifier's leakage, a thermal drift: linear over a record's
+   milliseconds); it is removed from the whole record, and the residuals' standard deviation sigma is the
+   noise. The line's covariance ``s^2 (X^T X)^-1`` (X = [1, t]) gives the drift's interval and, integrated over
+   the positive phase, the baseline's part of the impulse's uncertainty. The slope is kept when it differs
+   from zero at 95 % (``|b1| > 1.96 sigma_b1``), else the line is the samples' mean (a slope the record does
+   not resolve would add its noise, not remove a drift), and the covariance is the line's plus the left-out
+   slope's error (``u u^T``, u = b1 [-t_mean, 1]: the mean-squared error of the baseline). **The
+   record's tail** (its last :data:`TAIL_FRACTION` in time), when it lies :data:`TAIL_AFTER` positive
+   durations past the arrival (the pulse found on the trace baselined by the line through the pre-trigger and
+   the tail), checks the pre-trigger's line: the tail's mean offset from it within :data:`TAIL_AGREEMENT`
+   standard errors (the noise's and the line's at the tail), the line through the pre-trigger and the tail
+   together is the baseline (the tail's lever arm pins the slope); beyond, the drift is not linear, the
+   pre-trigger's line is kept, the tail's offset enters the uncertainty (as a drift growing linearly from
+   the firing signal to the tail) and a warning names the gauge.
 2. **Arrival**: the first sample after the firing signal whose baselined value exceeds the threshold
    ``max(ARRIVAL_NOISE_MULTIPLE sigma, ARRIVAL_PEAK_FRACTION max)``; the shock lies between it and the
    sample before, and the arrival time is their midpoint (error <= half a sample interval). A shock is a
@@ -21,10 +34,19 @@ The steps (docs/fired.md), on plain arrays in SI:
    determined while d/t_o is not).
 5. **Negative phase** (when the record holds it): the least pressure and the integral of the samples
    after the positive phase up to the smoothed trace's return to zero or the record's end.
+6. **The impulse's uncertainty**: the 95 % half-width of the impulse from the samples' noise integrated over
+   the samples' part of step 4 (``sigma dt sqrt(n)``, white noise) and the baseline line's error integrated
+   over it
+   (``g^T C g``, g = [t2 - t1, (t2^2 - t1^2)/2], C the line's covariance), in quadrature. A record whose
+   baseline alone makes the impulse uncertain by more than :data:`DRIFT_WARNING_FRACTION` (95 %), or whose
+   tail disagrees with its line, gets a warning naming the gauge: 2 % on the impulse is ~3 % on the effective
+   charge (W ~ i^(3/2) at Z ~ 1-10: i ~ W^(2/3) at a fixed distance... the inversion's own slope) and ~6 %
+   on a rocking first peak (~W^2), beyond what the charge's other errors add.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,6 +57,11 @@ from ..blast.pulses import Friedlander
 from .records import record_fault
 
 __all__ = [
+    "DRIFT_WARNING_FRACTION",
+    "GaugeDriftWarning",
+    "TAIL_AFTER",
+    "TAIL_FRACTION",
+    "TAIL_AGREEMENT",
     "ARRIVAL_NOISE_MULTIPLE",
     "ARRIVAL_PEAK_FRACTION",
     "MIN_PRETRIGGER",
@@ -51,6 +78,21 @@ ARRIVAL_PEAK_FRACTION = 0.25
 #: Fewest pre-trigger samples for a baseline; fewest samples over the positive phase for a fit.
 MIN_PRETRIGGER = 10
 MIN_PULSE_SAMPLES = 20
+
+
+class GaugeDriftWarning(UserWarning):
+    """A gauge whose baseline (its drift) makes the impulse unreliable (:data:`DRIFT_WARNING_FRACTION`)."""
+
+
+#: A warning names a gauge whose baseline alone makes its impulse uncertain by more than this fraction (95 %).
+DRIFT_WARNING_FRACTION = 0.02
+#: The record's tail is its last tenth in time ...
+TAIL_FRACTION = 0.1
+#: ... when it starts this many positive durations after the arrival (past the negative phase: its duration is
+#: 1-4 positive durations over Z = 1-40 m/kg^(1/3), UFC 3-340-02 Figs. 2-7 and 2-16) ...
+TAIL_AFTER = 5.0
+#: ... and agrees with the pre-trigger's baseline line within this many standard errors.
+TAIL_AGREEMENT = 3.0
 #: 95 % two-sided normal quantile for the confidence intervals.
 _Z95 = 1.959963984540054
 
@@ -87,6 +129,19 @@ class GaugeFit:
         ends before it.
     samples_positive : int
         Samples over the fitted positive phase.
+    drift_Pa_per_s, ci95_drift_Pa_per_s : float
+        The baseline line's slope b1 [Pa/s] (removed) and its 95 % half-width.
+    drift_impulse_Pa_s : float
+        The impulse the removed drift would have added over the positive phase, ``b1 (t2^2 - t1^2)/2`` [Pa s]
+        (t from the firing signal).
+    ci95_impulse_Pa_s : float
+        95 % half-width of the impulse [Pa s]: the samples' noise and the baseline's error (step 6).
+    baseline_from : str
+        ``"pre-trigger"`` or ``"pre-trigger and tail"`` (the line's samples).
+    tail_offset_Pa : float or None
+        The record's tail's mean offset from the pre-trigger's line [Pa]; None without a tail.
+    warnings : tuple of str
+        One line per reason the impulse is unreliable (each naming the gauge).
     """
 
     name: str
@@ -102,6 +157,13 @@ class GaugeFit:
     negative_pressure_Pa: float | None
     negative_impulse_Pa_s: float | None
     samples_positive: int
+    drift_Pa_per_s: float = 0.0
+    ci95_drift_Pa_per_s: float = 0.0
+    drift_impulse_Pa_s: float = 0.0
+    ci95_impulse_Pa_s: float = 0.0
+    baseline_from: str = "pre-trigger"
+    tail_offset_Pa: float | None = None
+    warnings: tuple = ()
 
     def pressure(self, t):
         """The fitted pulse [Pa] at times ``t`` [s] after the firing signal (0 outside the positive phase)."""
@@ -125,6 +187,13 @@ class GaugeFit:
             "ci95_positive_duration_s": self.ci95["positive_duration_s"],
             "ci95_decay": self.ci95["decay"],
             "samples_positive": self.samples_positive,
+            "drift_Pa_per_s": self.drift_Pa_per_s,
+            "ci95_drift_Pa_per_s": self.ci95_drift_Pa_per_s,
+            "drift_impulse_Pa_s": self.drift_impulse_Pa_s,
+            "ci95_impulse_Pa_s": self.ci95_impulse_Pa_s,
+            "baseline_from": self.baseline_from,
+            "tail_offset_Pa": self.tail_offset_Pa,
+            "warnings": list(self.warnings),
         }
 
 
@@ -169,17 +238,52 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
     t = np.asarray(time_s, dtype=float)
     raw = np.asarray(pressure_Pa, dtype=float)
     where = (source, column or name)
-    pre, base, noise = _baseline(t, raw, where)
-    p = raw - base
-    ia, ta = _arrival(p, t, pre, noise, where)
-    window, sm, k, dt = _positive_window(t, p, ia, where)
-    fit = _fit_friedlander(t[window] - ta, p[window], dt)
+    pre = _pretrigger(t, where)
+    line = _Line.fit(t, raw, pre)
+    steps, tail, offset, se, agrees = None, _tail(t), None, 0.0, False
+    if tail is not None:
+        both = _Line.fit(t, raw, pre | tail, "pre-trigger and tail")
+        trial = _steps(t, raw - both(t), pre, both.noise, where)
+        if t[tail][0] > trial[1] + TAIL_AFTER * trial[2].duration:  # the tail lies past the pulse: it checks
+            offset = float((raw[tail] - line(t[tail])).mean())
+            se = math.hypot(line.noise / math.sqrt(int(tail.sum())), line.sigma_at(float(t[tail].mean())))
+            agrees = abs(offset) <= TAIL_AGREEMENT * se
+            if agrees:  # the line holds to the tail: the line through both (the tail's lever arm pins the slope)
+                line, steps = both, trial
+        else:
+            tail = None
+    if steps is None:
+        steps = _steps(t, raw - line(t), pre, line.noise, where)
+    ia, ta, fit, neg_p, neg_i, _, (impulse, sampled_end) = steps
     t_end = ta + fit.duration
-    neg_p, neg_i = _negative_phase(t, p, sm, k, t_end, noise)
+    window = (ta, sampled_end)
+    dt = float(np.median(np.diff(t[ia : ia + 50]))) if t.size > ia + 2 else 0.0
+    n_pos = int(np.count_nonzero((t >= ta) & (t <= t_end)))
+    n_sampled = int(np.count_nonzero((t >= ta) & (t <= sampled_end)))
+    s_noise = line.noise * dt * math.sqrt(max(n_sampled, 1))
+    s_base = line.integral_sigma(*window)
+    s_tail = 0.0
+    notes = []
+    if offset is not None and not agrees:
+        t_tail = float(t[tail].mean())
+        s_tail = abs(offset) * (window[1] ** 2 - window[0] ** 2) / (2.0 * t_tail)
+        notes.append(
+            f"gauge {name!r}: the record's tail sits {offset:.4g} Pa off the pre-trigger's baseline line "
+            f"({abs(offset) / se:.3g} standard errors, more than {TAIL_AGREEMENT:g}): the drift is not linear and "
+            "the impulse is unreliable"
+        )
+    half = _Z95 * math.sqrt(s_noise**2 + s_base**2 + s_tail**2)
+    base_half = _Z95 * math.hypot(s_base, s_tail)
+    if base_half > DRIFT_WARNING_FRACTION * impulse:
+        notes.append(
+            f"gauge {name!r}: the baseline (drift {line.slope:.4g} +- {_Z95 * line.slope_sigma:.3g} Pa/s from the "
+            f"{line.source}) makes the impulse uncertain by {100 * base_half / impulse:.2g} % (95 %), more than "
+            f"{100 * DRIFT_WARNING_FRACTION:g} %: the impulse is unreliable (record a longer pre-trigger or tail)"
+        )
     return GaugeFit(
         name=name,
-        baseline_Pa=base,
-        noise_Pa=noise,
+        baseline_Pa=line.offset,
+        noise_Pa=line.noise,
         arrival_time_s=float(ta),
         peak_pressure_Pa=float(fit.peak),
         positive_duration_s=float(fit.duration),
@@ -189,17 +293,88 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
             "positive_duration_s": float(fit.half[1]),
             "decay": float(fit.half[2]),
         },
-        impulse_Pa_s=_positive_impulse(t, p, ta, fit, noise),
+        impulse_Pa_s=impulse,
         fit_impulse_Pa_s=float(fit.peak * fit.duration * friedlander_impulse_ratio(fit.decay)),
         negative_pressure_Pa=neg_p,
         negative_impulse_Pa_s=neg_i,
-        samples_positive=int(np.count_nonzero((t >= ta) & (t <= t_end))),
+        samples_positive=n_pos,
+        drift_Pa_per_s=line.slope,
+        ci95_drift_Pa_per_s=_Z95 * line.slope_sigma,
+        drift_impulse_Pa_s=line.slope * (window[1] ** 2 - window[0] ** 2) / 2.0,
+        ci95_impulse_Pa_s=half,
+        baseline_from=line.source,
+        tail_offset_Pa=offset,
+        warnings=tuple(notes),
     )
 
 
-def _baseline(t: np.ndarray, raw: np.ndarray, where: tuple) -> tuple[np.ndarray, float, float]:
-    """Step 1: the pre-trigger samples (t < 0), their mean (the offset) [Pa] and standard deviation (the noise)
-    [Pa]; ``where`` = (file, column) for the error of too few of them."""
+def _steps(t: np.ndarray, p: np.ndarray, pre: np.ndarray, noise: float, where: tuple):
+    """Steps 2-5 on the baselined trace ``p`` [Pa]: (arrival index, arrival [s], the fit, the negative phase's
+    least pressure [Pa], impulse [Pa s] and end [s] (None: it runs to the record's end), (the positive impulse
+    [Pa s], the end of its sampled part [s]))."""
+    ia, ta = _arrival(p, t, pre, noise, where)
+    window, sm, k, dt = _positive_window(t, p, ia, where)
+    fit = _fit_friedlander(t[window] - ta, p[window], dt)
+    neg_p, neg_i, neg_end = _negative_phase(t, p, sm, k, ta + fit.duration, noise)
+    return ia, ta, fit, neg_p, neg_i, neg_end, _positive_impulse(t, p, ta, fit, noise)
+
+
+def _tail(t: np.ndarray) -> np.ndarray | None:
+    """The record's tail: its last :data:`TAIL_FRACTION` in time (a mask), None when fewer than
+    :data:`MIN_PRETRIGGER` samples."""
+    tail = t >= t[-1] - TAIL_FRACTION * (t[-1] - t[0])
+    return tail if int(tail.sum()) >= MIN_PRETRIGGER else None
+
+
+@dataclass(frozen=True)
+class _Line:
+    """The baseline ``b0 + b1 t`` [Pa] and its covariance; ``noise`` the residuals' standard deviation [Pa]."""
+
+    offset: float
+    slope: float
+    cov: np.ndarray
+    noise: float
+    source: str
+
+    @classmethod
+    def fit(cls, t: np.ndarray, raw: np.ndarray, mask: np.ndarray, source: str = "pre-trigger") -> "_Line":
+        """The least-squares line through the samples ``mask``; its slope kept when it differs from zero at 95 %
+        (``|b1| > 1.96 sigma_b1``), else the samples' mean (a slope the record does not resolve would add
+        its noise, not remove a drift), its covariance then the line's plus the left-out slope's error
+        ``u u^T``, u = b1 [-t_mean, 1] (the drift the record cannot exclude enters the impulse's uncertainty)."""
+        X = np.column_stack([np.ones(int(mask.sum())), t[mask]])
+        coef, *_ = np.linalg.lstsq(X, raw[mask], rcond=None)
+        resid = raw[mask] - X @ coef
+        s2 = float(resid @ resid) / max(resid.size - 2, 1)
+        cov = np.linalg.inv(X.T @ X) * s2
+        if abs(coef[1]) <= _Z95 * math.sqrt(max(float(cov[1, 1]), 0.0)):
+            # the mean is the line of slope 0 through the samples' mean time: it leaves out the fitted slope b1,
+            # whose error e(t) = b1 (t - t_mean) joins the covariance (the mean-squared error matrix)
+            u = np.array([-coef[1] * float(t[mask].mean()), coef[1]])
+            mean = float(raw[mask].mean())
+            return cls(mean, 0.0, cov + np.outer(u, u), math.sqrt(s2), source + " (no resolved drift: its mean)")
+        return cls(float(coef[0]), float(coef[1]), cov, math.sqrt(s2), source)
+
+    def __call__(self, t):
+        return self.offset + self.slope * np.asarray(t, dtype=float)
+
+    @property
+    def slope_sigma(self) -> float:
+        return math.sqrt(max(float(self.cov[1, 1]), 0.0))
+
+    def sigma_at(self, t: float) -> float:
+        """Standard error of the line at ``t`` [s] [Pa]."""
+        g = np.array([1.0, t])
+        return math.sqrt(max(float(g @ self.cov @ g), 0.0))
+
+    def integral_sigma(self, t1: float, t2: float) -> float:
+        """Standard error of the line's integral over [t1, t2] [s] [Pa s]."""
+        g = np.array([t2 - t1, 0.5 * (t2**2 - t1**2)])
+        return math.sqrt(max(float(g @ self.cov @ g), 0.0))
+
+
+def _pretrigger(t: np.ndarray, where: tuple) -> np.ndarray:
+    """Step 1's samples: the pre-trigger (t < 0); ``where`` = (file, column) for the error of too few."""
     pre = t < 0
     if pre.sum() < MIN_PRETRIGGER:
         raise record_fault(
@@ -207,7 +382,7 @@ def _baseline(t: np.ndarray, raw: np.ndarray, where: tuple) -> tuple[np.ndarray,
             2,
             f"{int(pre.sum())} pre-trigger samples (t < 0): at least {MIN_PRETRIGGER} are needed for the baseline",
         )
-    return pre, float(raw[pre].mean()), float(raw[pre].std(ddof=1))
+    return pre
 
 
 def _arrival(p: np.ndarray, t: np.ndarray, pre: np.ndarray, noise: float, where: tuple) -> tuple[int, float]:
@@ -280,23 +455,26 @@ def _fit_friedlander(tau: np.ndarray, y: np.ndarray, dt: float) -> _Fit:
     return _Fit(sol.x[0] * P0, sol.x[1] * T0, float(sol.x[2]), half)
 
 
-def _positive_impulse(t: np.ndarray, p: np.ndarray, ta: float, fit: _Fit, noise: float) -> float:
+def _positive_impulse(t: np.ndarray, p: np.ndarray, ta: float, fit: _Fit, noise: float) -> tuple[float, float]:
     """Step 4: the samples' impulse [Pa s] while the fitted pulse stands above the noise, the fit's own tail
-    after."""
+    after; and the end of the samples' part [s] (what the baseline's error is integrated over)."""
     fine = np.linspace(0.0, fit.duration, 2001)
     low = np.flatnonzero(friedlander_trace(fine, fit.peak, fit.duration, fit.decay) < noise)
     tc = float(fine[low[0]]) if low.size else fit.duration
     tail = Friedlander(fit.peak, fit.duration, fit.decay)
-    return _impulse(t, p, ta, min(ta + tc, float(t[-1]))) + tail.impulse - float(tail.cumulative_impulse(tc))
+    end = min(ta + tc, float(t[-1]))
+    return _impulse(t, p, ta, end) + tail.impulse - float(tail.cumulative_impulse(tc)), end
 
 
 def _negative_phase(t: np.ndarray, p: np.ndarray, sm: np.ndarray, k: int, t_end: float, noise: float) -> tuple:
     """Step 5: the least pressure [Pa] and the impulse [Pa s] of the samples after the positive phase (ending
-    at ``t_end`` [s]) up to the smoothed trace's return to zero or the record's end; (None, None) when the
-    record does not hold a negative phase above the smoothed noise."""
+    at ``t_end`` [s]) up to the smoothed trace's return to zero or the record's end, and that return [s] (None
+    at the record's end); (None, None, None) when the record does not hold a negative phase above the smoothed
+    noise."""
     tail = np.flatnonzero(t > t_end)
     if tail.size >= MIN_PULSE_SAMPLES and float(sm[tail].min()) < -3.0 * noise / np.sqrt(k):
         back = tail[sm[tail] >= 0]
-        stop = float(t[back[0]]) if back.size and back[0] > tail[0] + k else float(t[-1])
-        return float(sm[tail].min()), _impulse(t, p, t_end, stop)
-    return None, None
+        returned = bool(back.size and back[0] > tail[0] + k)
+        stop = float(t[back[0]]) if returned else float(t[-1])
+        return float(sm[tail].min()), _impulse(t, p, t_end, stop), stop if returned else None
+    return None, None, None

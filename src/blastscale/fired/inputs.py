@@ -15,6 +15,13 @@ z up, origin at the centre of the specimen's footprint at rest; the specimen's b
   (zero inside it). A gauge farther than :data:`GAUGE_REACH` times the larger of the stand-off and the
   specimen's height is refused (a unit or an axis mistake: the gauges of a shot stand between the charge
   and the specimen, beside it or on it).
+* **A reflected gauge's surface**: its ``normal`` as given, else the outward normal of the specimen's face it
+  is flush in (:func:`gauge_incidence`): among the faces of the bodies at rest, those whose plane passes within
+  :data:`GAUGE_FACE_TOLERANCE` times the specimen's height of the gauge and whose body's solid (the planes of
+  its faces and of its bounding box) holds the gauge within that tolerance; the nearest plane. A gauge in no
+  face, or at an edge (two such faces of different normals), is refused: give its ``normal``. The angle of
+  incidence ``a``, ``cos a = n . (c - g) / |c - g|`` (the charge c, the gauge g), must lie in what the UFC
+  charts cover, [0, 90] deg (:data:`blastscale.blast.inverse.INCIDENCE_RANGE_DEG`).
 * **A marker on a body**: a marker's rest point lies within :data:`MARKER_TOLERANCE` times the specimen's
   height of some body's solid, the distance to a body measured to the planes of its faces and of its
   bounding box (exact for a point off a face; never more than the true distance to the solid).
@@ -30,15 +37,29 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import BlastscaleInputError
+from ..blast.inverse import INCIDENCE_RANGE_DEG
 from ..study.study import Study
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks
 
-__all__ = ["GAUGE_REACH", "MARKER_TOLERANCE", "ShotInputs", "charge_position", "check_geometry", "shot_inputs"]
+__all__ = [
+    "GAUGE_FACE_TOLERANCE",
+    "GAUGE_REACH",
+    "MARKER_TOLERANCE",
+    "GaugeIncidence",
+    "ShotInputs",
+    "charge_position",
+    "check_geometry",
+    "gauge_incidence",
+    "shot_inputs",
+]
 
 #: A gauge lies within this many times max(stand-off, specimen height) of the specimen's bounding box.
 GAUGE_REACH = 2.0
 #: A marker lies within this fraction of the specimen's height of one of its bodies.
 MARKER_TOLERANCE = 0.05
+#: A gauge is in a face when the face's plane passes within this fraction of the specimen's height of it (a
+#: flush gauge's position is measured to a few mm: 5 mm on a 0.5 m specimen).
+GAUGE_FACE_TOLERANCE = 0.01
 
 
 @dataclass(frozen=True)
@@ -113,6 +134,7 @@ def check_geometry(scenario, design, standoff_m: float) -> None:
                 f"{where} is {off:.3g} m from the specimen: a gauge stands within {reach:.3g} m of it "
                 f"({GAUGE_REACH:g} x max(stand-off, specimen height)); check its units (m) and axes"
             )
+        gauge_incidence(scenario, design, standoff_m, name)
     tol = MARKER_TOLERANCE * height
     for name, m in fs.marker.items():
         p = np.asarray(m.point_m, dtype=float)
@@ -125,6 +147,88 @@ def check_geometry(scenario, design, standoff_m: float) -> None:
                 f"a marker is on a body within {tol:.3g} m ({MARKER_TOLERANCE:g} x the specimen's height), "
                 "in the record axes (origin at the centre of the footprint, z up)"
             )
+
+
+@dataclass(frozen=True)
+class GaugeIncidence:
+    """Where a reflected gauge looks: the outward unit normal of its surface [-], how it was found (``"given"``
+    or the face and body it is in) and the angle of incidence from the charge [deg]."""
+
+    normal: tuple
+    found: str
+    angle_deg: float
+
+
+def gauge_incidence(scenario, design, standoff_m: float, name: str) -> GaugeIncidence | None:
+    """The surface and angle of incidence of the reflected gauge ``name`` (module docstring); None for a
+    side-on gauge.
+
+    Raises
+    ------
+    BlastscaleInputError
+        A gauge in no face of the specimen or at an edge, without a ``normal``; an angle of incidence outside
+        what the UFC charts cover (one line naming the gauge, the angle and the range).
+    """
+    g = scenario.fired.gauge[name]
+    if g.kind != "reflected":
+        return None
+    p = np.asarray(g.position_m, dtype=float)
+    where = f"[fired.gauge.{name}] position_m = {g.position_m!r}"
+    if g.normal is not None:
+        n, found = np.asarray(g.normal, dtype=float), "given"
+    else:
+        n, found = _face_normal(design.specimen_structure, p, where)
+    c = charge_position(scenario, design, standoff_m)
+    to_charge = c - p
+    cos_a = float(np.clip(n @ to_charge / np.linalg.norm(to_charge), -1.0, 1.0))
+    angle = float(np.degrees(np.arccos(cos_a)))
+    lo, hi = INCIDENCE_RANGE_DEG
+    if not lo <= angle <= hi:
+        raise BlastscaleInputError(
+            f"{where}: angle of incidence = {angle:.4g} deg (normal {_vec(n)} {found}, charge at {_vec(c)}) is out of "
+            f"range: valid range is [{lo:g}, {hi:g}] deg, what UFC 3-340-02 Figs. 2-193 and 2-194 chart (the "
+            "surface is turned away from the charge)"
+        )
+    return GaugeIncidence(tuple(float(x) for x in n), found, angle)
+
+
+def _vec(v) -> str:
+    return "[" + ", ".join(f"{float(x):.4g}" for x in v) + "]"
+
+
+def _face_normal(structure, p: np.ndarray, where: str) -> tuple[np.ndarray, str]:
+    """The outward normal of the face of ``structure`` (at rest) that the point ``p`` [m] is flush in, and
+    ``"face LABEL of BODY"`` (module docstring)."""
+    bodies = _body_boxes(structure)
+    world = np.vstack([c + v for c, v, _, _ in bodies])
+    tol = GAUGE_FACE_TOLERANCE * float(world[:, 2].max() - world[:, 2].min())
+    near, nearest = [], (np.inf, "no face")
+    for body, (com, _, planes, offsets) in zip(structure.bodies, bodies):
+        outside = max(float(np.max(planes @ (p - com) - offsets)), 0.0)
+        for f in body.faces:
+            n = np.asarray(f.normal, dtype=float)
+            gap = abs(float(n @ (p - com - np.asarray(f.centre, dtype=float))))
+            label = f"face {f.label!r} of {body.name!r}"
+            if outside <= tol and gap <= tol:
+                near.append((gap, n, label))
+            elif max(gap, outside) < nearest[0]:
+                nearest = (max(gap, outside), label)
+    if not near:
+        raise BlastscaleInputError(
+            f"{where} is in no face of the specimen ({nearest[0]:.3g} m from the nearest, {nearest[1]}; a gauge "
+            f"is in a face within {tol:.3g} m, "
+            f"{GAUGE_FACE_TOLERANCE:g} x its height): give normal = [x, y, z], the outward normal of the surface "
+            "it is flush in"
+        )
+    near.sort(key=lambda x: x[0])
+    gap, n, label = near[0]
+    other = [lab for _, m, lab in near[1:] if float(m @ n) < 1.0 - 1e-9]
+    if other:
+        raise BlastscaleInputError(
+            f"{where} is at an edge, within {tol:.3g} m of {label} and {other[0]}: give normal = [x, y, z], the "
+            "outward normal of the surface it is flush in"
+        )
+    return n, label
 
 
 def shot_inputs(scenario, *, gauges: GaugeRecord | None = None, tracks: TrackRecord | None = None) -> ShotInputs:

@@ -19,6 +19,7 @@ chaotic structure's spread in its band, is :mod:`.event`'s (``similar_prototype_
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -37,8 +38,8 @@ from .calibrate import (
 )
 from .effective import effective_charge, predicted_at, tnt_equivalence
 from .event import BAND_RULE, DesignedEvent, designed_event_marker, similar_prototype_charge
-from .gauges import fit_gauge
-from .inputs import charge_position, shot_inputs
+from .gauges import GaugeDriftWarning, fit_gauge
+from .inputs import charge_position, gauge_incidence, shot_inputs
 from .outcome import body_verdicts, marker_body
 from .records import GaugeRecord, TrackRecord, record_fault
 from .refit import OUTCOMES, SpecimenRun, marker_history, simulate_specimen
@@ -90,30 +91,37 @@ def _gauges(sc: Scenario, d, record: GaugeRecord, standoff: float) -> tuple[dict
                 record.path, "", 1, f"gauge {name!r} of [fired.gauge.{name}] has no column (NAME_kPa, ...)"
             )
     charge_at = charge_position(sc, d, standoff)
-    model, burst = d.specimen.blast_model, d.specimen.burst
+    model, burst, incidence = d.specimen.blast_model, d.specimen.burst, sc.blast.incidence
     fits, out = {}, {}
     for name, p in record.pressure_Pa.items():
         g = fs.gauge[name]
         fit = fit_gauge(record.time_s, p, name, source=record.path, column=record.columns[name])
+        for line in fit.warnings:
+            warnings.warn(line, GaugeDriftWarning, stacklevel=2)
         R = float(np.linalg.norm(np.asarray(g.position_m) - charge_at))
-        pp, pi, pa = predicted_at(d.specimen_charge_kg, R, g.kind, model, burst)
-        wi = effective_charge(fit.impulse_Pa_s, R, g.kind, "impulse", model, burst)
-        wp = effective_charge(fit.peak_pressure_Pa, R, g.kind, "pressure", model, burst)
-        # sigma of ln W: the impulse's integrated noise and the stand-off tolerance, through the inversion
-        dt = float(np.median(np.diff(record.time_s)))
-        s_i = fit.noise_Pa * dt * math.sqrt(max(fit.samples_positive, 1)) / fit.impulse_Pa_s
-        k_i = math.log(effective_charge(fit.impulse_Pa_s * 1.01, R, g.kind, "impulse", model, burst) / wi) / math.log(
-            1.01
-        )
-        k_r = math.log(effective_charge(fit.impulse_Pa_s, R * 1.01, g.kind, "impulse", model, burst) / wi) / math.log(
-            1.01
-        )
+        look = gauge_incidence(sc, d, standoff, name)
+        a = 0.0 if look is None else look.angle_deg
+
+        def inverted(value, distance, basis="impulse"):
+            return effective_charge(value, distance, g.kind, basis, model, burst, a, incidence)
+
+        pp, pi, pa = predicted_at(d.specimen_charge_kg, R, g.kind, model, burst, a, incidence)
+        wi = inverted(fit.impulse_Pa_s, R)
+        wp = inverted(fit.peak_pressure_Pa, R, "pressure")
+        # sigma of ln W: the impulse's (noise and baseline, the fit's 95 % half-width) and the stand-off
+        # tolerance, through the inversion
+        s_i = fit.ci95_impulse_Pa_s / 1.959963984540054 / fit.impulse_Pa_s
+        k_i = math.log(inverted(fit.impulse_Pa_s * 1.01, R) / wi) / math.log(1.01)
+        k_r = math.log(inverted(fit.impulse_Pa_s, R * 1.01) / wi) / math.log(1.01)
         tol = (sc.lab.standoff_tolerance_m if sc.lab is not None else 0.0) / R
-        fits[name] = (fit, record.time_s, p - fit.baseline_Pa)
+        fits[name] = (fit, record.time_s, p - fit.baseline_Pa - fit.drift_Pa_per_s * record.time_s)
         out[name] = {
             **fit.to_dict(),
             "kind": g.kind,
             "distance_m": R,
+            "incidence_deg": a,
+            "normal": None if look is None else list(look.normal),
+            "normal_from": None if look is None else look.found,
             "predicted_peak_pressure_Pa": pp,
             "predicted_impulse_Pa_s": pi,
             "predicted_arrival_time_s": pa,

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import AfterValidator, BaseModel, Field
+from pydantic import AfterValidator, BaseModel, Field, model_validator
 
 from .fields import SPEC_CONFIG
 
@@ -27,14 +27,41 @@ def _point(v: list) -> list:
 Point = Annotated[list[float], AfterValidator(_point)]
 
 
+def _direction(v: list) -> list:
+    p = _point(v)
+    n = math.sqrt(sum(x * x for x in p))
+    if not n > 0:
+        raise ValueError(f"= {v!r} is not a direction: give [x, y, z], not all zero")
+    return [x / n for x in p]
+
+
+#: A direction [x, y, z] [-] in the record axes, made a unit vector.
+Direction = Annotated[list[float], AfterValidator(_direction)]
+
+
 class GaugeSpec(BaseModel):
     """One pressure gauge: where it is and what it sees."""
 
     model_config = SPEC_CONFIG
     position_m: Point = Field(description="Gauge position [x, y, z] [m] in the record axes")
     kind: Literal["reflected", "side-on"] = Field(
-        "reflected", description="reflected: flush in a rigid plate facing the charge; side-on: incident pressure"
+        "reflected",
+        description="reflected: flush in a surface (its normal below); side-on: the incident pressure (a pencil gauge)",
     )
+    normal: Direction | None = Field(
+        None,
+        description="Outward normal [x, y, z] of the surface a reflected gauge is flush in (made a unit vector); "
+        "default: the normal of the specimen's face the gauge is in",
+    )
+
+    @model_validator(mode="after")
+    def _normal_of_a_reflected_gauge(self):
+        if self.normal is not None and self.kind != "reflected":
+            raise ValueError(
+                f"normal = {self.normal!r} with kind = {self.kind!r}: a normal is the surface a reflected gauge is "
+                "flush in (a side-on gauge reads the incident pressure whatever its orientation)"
+            )
+        return self
 
 
 class MarkerSpec(BaseModel):
