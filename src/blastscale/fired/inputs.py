@@ -5,9 +5,11 @@ Geometry, in the record axes of :mod:`blastscale.scenario.fired` (x along the bl
 z up, origin at the centre of the specimen's footprint at rest; the specimen's bodies at rest, ``com`` +
 ``vertices``):
 
-* **The charge** stands at ``c = (front_x - standoff, 0, h_c)``: ``front_x`` the specimen's front,
-  ``standoff`` ``[fired] standoff_m`` (else the designed one), ``h_c`` ``[scale] specimen_charge_height_m``
-  (else 0, on the floor), as :func:`blastscale.fired.shot.as_fired` places it.
+* **The charge** stands at ``c = (front_x - standoff, 0, h_c)`` (the one frame's
+  :func:`blastscale.similitude.effects.charge_position`, as the engine places it): ``front_x`` the
+  specimen's front, ``standoff`` ``[fired] standoff_m`` (else the designed one), ``h_c``
+  :func:`shot_charge_height`: ``[scale] specimen_charge_height_m``, else half the specimen's top for a
+  free-air specimen burst, else 0 (on the floor).
 * **A gauge behind the charge**: ``x_gauge < c_x``: on the far side of the charge from the specimen (the
   plane through the charge normal to the blast axis divides the two sides); a gauge there is a sign or
   an axis mistake (the records' x points away from the charge).
@@ -30,10 +32,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import BlastscaleInputError
+from ..similitude.effects import charge_height, charge_position
 from ..study.study import Study
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks
 
-__all__ = ["GAUGE_REACH", "MARKER_TOLERANCE", "ShotInputs", "charge_position", "check_geometry", "shot_inputs"]
+__all__ = [
+    "GAUGE_REACH",
+    "MARKER_TOLERANCE",
+    "ShotInputs",
+    "body_gaps",
+    "check_geometry",
+    "shot_charge_height",
+    "shot_inputs",
+]
 
 #: A gauge lies within this many times max(stand-off, specimen height) of the specimen's bounding box.
 GAUGE_REACH = 2.0
@@ -51,10 +62,12 @@ class ShotInputs:
     tracks: TrackRecord | None
 
 
-def charge_position(scenario, design, standoff_m: float) -> np.ndarray:
-    """The charge's centre [x, y, z] [m] in the record axes (module docstring)."""
-    zc = scenario.scale.specimen_charge_height_m or 0.0
-    return np.array([design.specimen_structure.front_x - standoff_m, 0.0, zc])
+def shot_charge_height(scenario, design) -> float:
+    """Height of the shot's charge above the floor [m] (:func:`blastscale.similitude.effects.charge_height`):
+    ``[scale] specimen_charge_height_m`` where given, else the specimen burst's (half the specimen's top for
+    a free-air burst, as the engine places it; 0 on the floor)."""
+    given = scenario.scale.specimen_charge_height_m if scenario.scale is not None else None
+    return charge_height(design.specimen_structure, getattr(design.specimen, "burst", "surface"), given)
 
 
 def _body_boxes(structure) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
@@ -68,6 +81,14 @@ def _body_boxes(structure) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.
         n = n / np.linalg.norm(n, axis=1)[:, None]
         out.append((np.asarray(b.com, dtype=float), v, n, (v @ n.T).max(axis=0)))
     return out
+
+
+def body_gaps(structure, point_m) -> np.ndarray:
+    """Per body of ``structure`` at rest, the distance [m] from ``point_m`` to its solid measured to the planes
+    of its faces and of its bounding box, ``max_k (n_k . (p - c) - h_k)``: <= 0 inside or on the solid, exact
+    for a point off a face, never more than the true distance (module docstring)."""
+    p = np.asarray(point_m, dtype=float)
+    return np.array([float(np.max(n @ (p - c) - h)) for c, _, n, h in _body_boxes(structure)])
 
 
 def _box_distance(p: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> float:
@@ -97,7 +118,7 @@ def check_geometry(scenario, design, standoff_m: float) -> None:
     world = np.vstack([c + v for c, v, _, _ in bodies])
     lo, hi = world.min(axis=0), world.max(axis=0)
     height = float(hi[2] - lo[2])
-    charge = charge_position(scenario, design, standoff_m)
+    charge = charge_position(structure.front_x, standoff_m, shot_charge_height(scenario, design))
     reach = GAUGE_REACH * max(standoff_m, height)
     for name, g in fs.gauge.items():
         p = np.asarray(g.position_m, dtype=float)
@@ -116,7 +137,7 @@ def check_geometry(scenario, design, standoff_m: float) -> None:
     tol = MARKER_TOLERANCE * height
     for name, m in fs.marker.items():
         p = np.asarray(m.point_m, dtype=float)
-        gaps = [float(np.max(n @ (p - c) - h)) for c, _, n, h in bodies]
+        gaps = body_gaps(structure, p)
         k = int(np.argmin(gaps))
         if gaps[k] > tol:
             raise BlastscaleInputError(
