@@ -111,5 +111,5 @@ def _from_text(text: str, source: str, folder: "Path | None" = None) -> Scenario
         }
     sc = Scenario.from_dict(data, source=source)
     if sc.fired is not None:  # as written, so that a scenario written again keeps them relative
-        sc.fired._as_written.update(written)
+        sc.fired._as_written.update({k: (v, getattr(sc.fired, k)) for k, v in written.items()})
     return sc

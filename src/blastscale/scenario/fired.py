@@ -67,8 +67,8 @@ class FiredSpec(BaseModel):
     )
     gauge: dict[str, GaugeSpec] = Field(default_factory=dict, description="[fired.gauge.NAME] tables")
     marker: dict[str, MarkerSpec] = Field(default_factory=dict, description="[fired.marker.NAME] tables")
-    #: The record paths as the scenario file wrote them (``gauges``, ``tracks``), before they were resolved
-    #: against its folder (:func:`blastscale.scenario.files.load_scenario`); empty for a scenario made in Python.
+    #: The record paths as the scenario file wrote them: key (``gauges``, ``tracks``) -> (as written, as resolved
+    #: against its folder) (:func:`blastscale.scenario.files.load_scenario`); empty for a scenario made in Python.
     _as_written: dict = PrivateAttr(default_factory=dict)
 
     def record_paths_in(self, folder) -> dict[str, str]:
@@ -81,7 +81,8 @@ class FiredSpec(BaseModel):
             path = getattr(self, key)
             if path is None:
                 continue
-            if Path(self._as_written.get(key, path)).is_absolute():
+            written, resolved = self._as_written.get(key, (path, path))
+            if Path(written if resolved == path else path).is_absolute():  # as the file wrote this very path
                 out[key] = path
                 continue
             try:
