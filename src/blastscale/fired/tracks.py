@@ -13,7 +13,9 @@ marker's rest point ``point_m``. Steps (docs/fired.md):
    Savitzky-Golay filter ``SMOOTH_FRACTION t_e`` wide (Savitzky & Golay 1964; none when that is under 5
    frames), and the first peak is the first sample of the smoothed history that exceeds ``PEAK_NOISE_MULTIPLE``
    sigma and is its largest (or, for a negative peak, its least) over ``+- PEAK_NEIGHBOURHOOD t_e``, with the
-   record running that far past it (a rise still under way at the record's end is no peak). A noise wiggle
+   record running that far past it or falling back from it by more than that threshold before it ends (a
+   block that hits the floor 12 ms before the record's end); a rise still under way at the record's end is
+   no peak. A noise wiggle
    during the rise is a local extremum over a few frames, never over a quarter of the rise: the rise gains
    more than the noise in that time. It is refined by a least-squares parabola through the raw samples
    whose smoothed value lies within ``PEAK_BAND`` of it: its vertex is the first peak and its time, and the
@@ -169,7 +171,9 @@ def track_first_peak(t, u, response_s: float, *, noise: float | None = None) -> 
     top = (us >= maximum_filter1d(us, size, mode="nearest")) & (us > big)
     bottom = (us <= minimum_filter1d(us, size, mode="nearest")) & (us < -big)
     cand = np.flatnonzero(top | bottom)
-    cand = cand[cand + half < t.size]  # the record runs the neighbourhood past the peak
+    # the record runs the neighbourhood past the peak, or falls back from it by more than the threshold
+    back = np.array([abs(us[k] - (us[k:].min() if us[k] > 0 else us[k:].max())) for k in cand])
+    cand = cand[(cand + half < t.size) | (back > big)]
     if cand.size == 0:
         return TrackPeak(None, None, largest, sigma, None, w * dt if smoothed else 0.0)
     peak, when, se = _vertex(t, u, us, int(cand[0]), sigma)

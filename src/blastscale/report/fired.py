@@ -11,7 +11,7 @@ from ..blast.pulses import Friedlander
 from ..io.results import jsonable, provenance, write_atomic, write_json
 from ..plots.fired import plot_gauge, plot_marker
 from .figures import png_bytes
-from .markup import PAGE_CSS, escape, figure_html, format_value, html_table
+from .markup import PAGE_CSS, escape, figure_html, format_value, html_table, split_unit_for_tables
 
 __all__ = ["fired_figures", "fired_section", "write_fired"]
 
@@ -164,22 +164,46 @@ def _similarity(v) -> str:
     return f'<p id="similarity_verdict" class="{cls}"><b>{escape(v["line"])}</b></p>'
 
 
+#: The calibration's rows in words (summary key -> label); any other key by its words and unit suffix.
+CALIBRATION_LABELS = {
+    "restitution": "restitution (calibrated)",
+    "restitution_low": "restitution, interval low",
+    "restitution_high": "restitution, interval high",
+    "best_restitution": "restitution of least misfit",
+    "friction": "friction coefficient (calibrated)",
+    "friction_low": "friction, interval low",
+    "friction_high": "friction, interval high",
+    "best_friction": "friction of least misfit",
+    "identifiable": "identified by the record",
+    "misfit_noise_multiple": "accepted misfit, x the noise",
+    "charge_factor": "factor on the charge as fired",
+    "charge_factor_ci95": "its 95 % half-width",
+    "samples": "frames fitted",
+    "evaluations": "re-simulations run",
+    "window": "frames fitted over",
+    "prototype_outcome": "the prototype with that value",
+}
+
+
 def _calibration(c) -> str:
-    """The calibration's line, then its values (one row per marker for a per-marker value) and its misfit
-    profile (parameter, RMS misfit)."""
+    """The calibration's line, then its values in words with their units (one row per marker for a per-marker
+    value) and its misfit profile (parameter, RMS misfit)."""
     if c is None:
         return ""
     rows = []
     for k, v in c.items():  # a value per marker (friction's prototype first peaks): one row each
         if k in ("line", "profile"):
             continue
-        rows += (
-            [(f"{k} ({n})", format_value(x)) for n, x in v.items()] if isinstance(v, dict) else [(k, format_value(v))]
-        )
+        label, unit = split_unit_for_tables(k)
+        label = CALIBRATION_LABELS.get(k, label)
+        if isinstance(v, dict):
+            rows += [(f"{label} ({n})", format_value(x), unit) for n, x in v.items()]
+        else:
+            rows.append((label, format_value(v), unit))
     profile = "; ".join(f"{x:.4g}: {1e3 * m:.3g} mm" for x, m in c.get("profile", ()))
     return (
         f"<h3>Calibration (the measured response)</h3><p>{escape(c['line'])}</p>"
-        + html_table(("quantity", "value"), rows)
+        + html_table(("quantity", "value", "unit"), rows)
         + (f"<p>Misfit profile (value: RMS misfit): {escape(profile)}</p>" if profile else "")
     )
 

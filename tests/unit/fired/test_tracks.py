@@ -99,6 +99,21 @@ def test_no_peak_in_the_noise_nor_in_a_rise_cut_by_the_record():
     )
 
 
+@pytest.mark.parametrize(("drop", "found"), [(2e-3, True), (3e-4, False)])
+def test_a_peak_the_record_cuts_short_counts_when_it_falls_back(drop, found):
+    """A rise to 0.1 s, then a fall (a block landing) of 2 mm or 0.3 mm by the record's end 6 ms after the
+    peak (short of its +-25 ms neighbourhood): a peak when the fall exceeds 10 sigma (0.5 mm), else none.
+    Tolerance: 1 % on the peak (the top is lopsided: the parabola's vertex is biased by the fall's curvature,
+    0.3 % here), 6 ms on its time (the record holds 6 ms after it)."""
+    t = np.arange(0.0, 0.106, 5e-4)
+    u = np.where(t <= 0.1, 0.05 * np.sin(0.5 * np.pi * t / 0.1), 0.05 - drop * ((t - 0.1) / 0.006) ** 2)
+    pk = track_first_peak(t, u, 0.1, noise=5e-5)
+    if found:
+        assert pk.first_peak_m == pytest.approx(0.05, rel=0.01) and pk.first_peak_time_s == pytest.approx(0.1, abs=6e-3)
+    else:
+        assert pk.first_peak_m is None
+
+
 def test_the_edge_of_the_noise():
     """A clean half-sine bump of 1.05 x and 0.95 x the threshold (PEAK_NOISE_MULTIPLE x the given noise): the
     first is a peak (exactly its height: a clean parabola-like top), the second is not."""
