@@ -113,8 +113,8 @@ def marker_history(run: SpecimenRun, point_m) -> dict:
     ``first_peak_m``, ``first_peak_time_s``, ``max_displacement_m``.
 
     Planar (a block): the marker's displacement at the solver's first peak angle (an event of the solver, not
-    a sample). 3D (any kind): the marker's point fixed on the body whose rest centre of mass is nearest to it,
-    moved by that body's recorded pose (position and orientation: translation, rocking and the turn out of the
+    a sample). 3D (any kind): the marker's point fixed on the body whose solid at rest carries it
+    (:func:`~.outcome.marker_body`), moved by that body's recorded pose (position and orientation: translation, rocking and the turn out of the
     blast's plane; :func:`~.outcome.pose_marker_history`); the first peak by :func:`~.tracks.history_first_peak` on the
     recorded history (unsmoothed)."""
     r = run.rocking

@@ -19,8 +19,11 @@ call (the Friedlander decays refined by Newton from the previous step's).
 
 The charge stands on the ground at ``(front_x - standoff, 0, 0)`` for a surface burst; a free-air
 burst's charge is placed at the height of the front's mid-height (``(front_x - standoff, 0, H/2)``,
-H the structure's top), as on a stand. A load model (:class:`~blastscale.blast.load_model.LoadModel`)
-adds clearing and the negative phase on every face (:mod:`blastscale.blast.face_effects`).
+H the structure's top), as on a stand (the one frame's
+:func:`~blastscale.similitude.effects.charge_position` and
+:func:`~blastscale.similitude.effects.charge_height`). A load model
+(:class:`~blastscale.blast.load_model.LoadModel`) adds clearing and the negative phase on every face
+(:mod:`blastscale.blast.face_effects`).
 """
 
 from __future__ import annotations
