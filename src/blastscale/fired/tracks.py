@@ -10,17 +10,17 @@ marker's rest point ``point_m``. Steps (docs/fired.md):
 2. **First peak**, set in seconds of specimen time, never in frames, so that a faster camera never gives a
    worse answer: with ``t_e`` the expected time from the firing signal to the first peak (the caller's: the
    prediction's, :func:`blastscale.fired.shot.as_fired`), the displacement is smoothed by a quadratic
-   Savitzky-Golay filter ``SMOOTH_FRACTION t_e`` wide (Savitzky & Golay 1964; none when that is under 5
-   frames), and the first peak is the first sample of the smoothed history that exceeds ``PEAK_NOISE_MULTIPLE``
-   sigma and is its largest (or, for a negative peak, its least) over ``+- PEAK_NEIGHBOURHOOD t_e``, with the
-   record running that far past it or falling back from it by more than that threshold before it ends (a
-   block that hits the floor 12 ms before the record's end); a rise still under way at the record's end is
-   no peak. A noise wiggle
-   during the rise is a local extremum over a few frames, never over a quarter of the rise: the rise gains
-   more than the noise in that time. It is refined by a least-squares parabola through the raw samples
-   whose smoothed value lies within ``PEAK_BAND`` of it: its vertex is the first peak and its time, and the
-   vertex's standard error ``sqrt(g^T C g)`` (``C = sigma^2 (A^T A)^-1`` the coefficients' covariance for
-   the known noise, g the vertex's gradient in them) is the peak's own uncertainty.
+   Savitzky-Golay filter ``SMOOTH_FRACTION t_e`` wide (Savitzky & Golay 1964; the nearest odd number of
+   frames, at least ``SMOOTH_MIN_FRAMES``), and the first peak is the first sample of the smoothed history
+   that exceeds ``PEAK_NOISE_MULTIPLE`` sigma and is its largest (or, for a negative peak, its least) over
+   ``+- PEAK_NEIGHBOURHOOD t_e``, with the record running that far past it or falling back from it by more
+   than that threshold before it ends (a block that hits the floor 12 ms before the record's end); a rise
+   still under way at the record's end is no peak. A noise wiggle during the rise is a local extremum over a
+   few frames, never over a quarter of the rise: the rise gains more than the noise in that time. It is
+   refined by a least-squares parabola through the raw samples whose smoothed value lies within
+   ``PEAK_BAND`` of it: its vertex is the first peak and its time, and the vertex's standard error
+   ``sqrt(g^T C g)`` (``C = sigma^2 (A^T A)^-1`` the coefficients' covariance for the known noise, g the
+   vertex's gradient in them) is the peak's own uncertainty.
 3. **Largest displacement**: the largest |smoothed displacement| over the record.
 
 For a rectangular block rocking in the plane (:func:`block_marker_displacement`): a point at (x0, z0) turns
@@ -46,6 +46,7 @@ __all__ = [
     "PEAK_NEIGHBOURHOOD",
     "PEAK_NOISE_MULTIPLE",
     "SMOOTH_FRACTION",
+    "SMOOTH_MIN_FRAMES",
     "TrackPeak",
     "block_marker_displacement",
     "block_rotation",
@@ -61,6 +62,10 @@ PEAK_NOISE_MULTIPLE = 10.0
 PEAK_BAND = 0.05
 #: Width of the Savitzky-Golay smoothing window, as a fraction of the expected time to the first peak.
 SMOOTH_FRACTION = 0.1
+#: The fewest frames smoothed (the quadratic filter's least useful width): a slow camera's window is this
+#: wide when a tenth of the expected time holds fewer frames (unsmoothed, the samples kept for the parabola
+#: would be chosen by their own noise, and the peak biased up).
+SMOOTH_MIN_FRAMES = 5
 #: The first peak is the extremum over +- this fraction of the expected time to the first peak.
 PEAK_NEIGHBOURHOOD = 0.25
 
@@ -160,9 +165,9 @@ def track_first_peak(t, u, response_s: float, *, noise: float | None = None) -> 
         raise BlastscaleInputError(f"a track of {t.size} frames: at least 5 are needed for a first peak")
     sigma = track_noise(u) if noise is None else float(noise)
     dt = float(np.median(np.diff(t)))
-    w = int(round(SMOOTH_FRACTION * response_s / dt)) // 2 * 2 + 1  # odd, in frames
-    w = min(w, (t.size - 1) // 2 * 2 + 1)
-    smoothed = sigma > 0 and w >= 5
+    w = 2 * int(round((SMOOTH_FRACTION * response_s / dt - 1.0) / 2.0)) + 1  # the nearest odd number of frames
+    w = min(max(w, SMOOTH_MIN_FRAMES), (t.size - 1) // 2 * 2 + 1)
+    smoothed = sigma > 0 and w >= SMOOTH_MIN_FRAMES
     us = savgol_filter(u, w, 2) if smoothed else u
     largest = float(np.max(np.abs(us)))
     half = max(int(round(PEAK_NEIGHBOURHOOD * response_s / dt)), 1)
