@@ -20,7 +20,7 @@ marker's rest point ``point_m``. Steps (docs/fired.md):
    refined by a least-squares parabola through the raw samples whose smoothed value lies within
    ``PEAK_BAND`` of it: its vertex is the first peak and its time, and the vertex's standard error
    ``sqrt(g^T C g)`` (``C = sigma^2 (A^T A)^-1`` the coefficients' covariance for the known noise, g the
-   vertex's gradient in them) is the peak's own uncertainty.
+   vertex's gradient in them: the delta method, Bates & Watts 1988, ch. 1-2) is the peak's own uncertainty.
 3. **Largest displacement**: the largest |smoothed displacement| over the record.
 
 For a rectangular block rocking in the plane (:func:`block_marker_displacement`): a point at (x0, z0) turns
