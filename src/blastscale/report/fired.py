@@ -11,7 +11,7 @@ from ..blast.pulses import Friedlander
 from ..io.results import jsonable, provenance, write_atomic, write_json
 from ..plots.fired import plot_gauge, plot_marker
 from .figures import png_bytes
-from .markup import PAGE_CSS, escape, figure_html, format_value, html_table, split_unit_for_tables
+from .markup import PAGE_CSS, escape, figure_html, format_charge, format_value, html_table, split_unit_for_tables
 
 __all__ = ["fired_figures", "fired_section", "write_fired"]
 
@@ -110,10 +110,10 @@ def fired_section(result, figures) -> str:
     """The "As fired" section as HTML: the verdict, the load, the gauges, the markers, the monument, the figures."""
     s = result.summary
     load = [
-        ("effective charge, by impulse", format_value(s["effective_charge_tnt_kg"]), "kg TNT"),
-        ("effective charge, by peak", format_value(s["effective_charge_from_pressure_tnt_kg"]), "kg TNT"),
-        ("designed charge", format_value(s["designed_charge_tnt_kg"]), "kg TNT"),
-        ("charge as weighed", format_value(s["charge_kg"]), f"kg {s['explosive'] or ''}"),
+        ("effective charge, by impulse", _charge(s["effective_charge_tnt_kg"]), "TNT"),
+        ("effective charge, by peak", _charge(s["effective_charge_from_pressure_tnt_kg"]), "TNT"),
+        ("designed charge", _charge(s["designed_charge_tnt_kg"]), "TNT"),
+        ("charge as weighed", _charge(s["charge_kg"]), s["explosive"] or ""),
         (
             "TNT equivalence implied (impulse / peak)",
             (f"{format_value(s['tnt_equivalence_impulse'])} / {format_value(s['tnt_equivalence_pressure'])}"),
@@ -148,6 +148,11 @@ def _named_rows(title: str, name: str, columns: tuple, entries: dict) -> str:
     to 4 significant digits; text as given); "" when there is none."""
     rows = [(n, *(_cell(x.get(k), f) for _, k, f in columns)) for n, x in entries.items()]
     return f"<h3>{title}</h3>" + html_table((name,) + tuple(h for h, _, _ in columns), rows) if rows else ""
+
+
+def _charge(kg) -> str:
+    """A charge in the unit it is weighed in (:func:`~.markup.format_charge`: kg, g, mg), "-" when None."""
+    return "-" if kg is None else format_charge(kg)
 
 
 def _cell(v, factor: float):
