@@ -313,3 +313,47 @@ def synthetic_track(seed: int, frames_s, theta, point_x, point_z, half_width, no
     z = -(point_x - px) * s + point_z * c
     rng = np.random.default_rng(seed)
     return x + noise_m * rng.standard_normal(th.size), z + noise_m * rng.standard_normal(th.size)
+
+
+def rocking_block_track(
+    seed: int,
+    fps: float,
+    *,
+    half_width=0.02,
+    half_height=0.1,
+    omega0=0.96,
+    arrival_s=0.5e-3,
+    duration_s=0.4,
+    noise_m=5e-5,
+    g=9.81,
+):
+    """(t [s], ux [m], truth) of a marker at the top front corner of a rectangular block (half-width b,
+    half-height h) thrown into rocking about its rear toe with angular velocity ``omega0`` [rad/s] at
+    ``arrival_s``, sampled at ``fps`` frames per second from 5 ms before the firing signal, with white noise.
+
+    Housner's (1963) linearised rocking about the toe, written out here: theta'' = p^2 (theta - alpha),
+    p^2 = 3 g / (4 R) (a solid block, R = sqrt(b^2 + h^2), alpha = atan(b/h)), theta(0) = 0,
+    theta'(0) = omega0: ``theta = alpha (1 - cosh p tau) + (omega0 / p) sinh p tau``; its first peak at
+    ``tanh(p tau*) = omega0 / (alpha p)`` is ``alpha (1 - sqrt(1 - r^2))``, r = omega0 / (alpha p). The
+    marker's horizontal displacement by rigid rotation about the rear toe (x = +b): the front top corner
+    (-b, 2h) moves by ``2b (cos theta - 1) + 2h sin theta`` (increasing in theta below the tipping angle).
+    The truth is that closed form at tau*."""
+    b, h = half_width, half_height
+    R = math.hypot(b, h)
+    alpha = math.atan2(b, h)
+    p = math.sqrt(3.0 * g / (4.0 * R))
+    r = omega0 / (alpha * p)
+    assert r < 1.0, "the block would overturn"
+    t = np.arange(-5e-3, duration_s, 1.0 / fps)
+    tau = np.clip(t - arrival_s, 0.0, None)
+    theta = np.where(t > arrival_s, alpha * (1 - np.cosh(p * tau)) + omega0 / p * np.sinh(p * tau), 0.0)
+    tau_star = math.atanh(r) / p
+    theta_star = alpha * (1.0 - math.sqrt(1.0 - r * r))
+    theta = np.where(tau > tau_star, np.clip(theta, 0.0, None), theta)  # no impact: it rests again after
+
+    def ux(th):
+        return 2 * b * (np.cos(th) - 1.0) + 2 * h * np.sin(th)
+
+    rng = np.random.default_rng(seed)
+    truth = {"first_peak_m": float(ux(theta_star)), "first_peak_time_s": arrival_s + tau_star}
+    return t, ux(theta) + noise_m * rng.standard_normal(t.size), truth

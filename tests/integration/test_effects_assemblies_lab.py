@@ -111,7 +111,11 @@ def test_the_test_card_puts_a_free_air_lab_charge_on_its_stand():
     card = study_test_card(res)
     assert card["burst"] == "free-air" and card["charge_height_m"] == 0.025
     lay = card["layout"]
-    assert lay["charge"] == [0.0, 0.0, 0.025]
+    # the one frame (origin at the specimen's footprint centre): the stand-off in front of the front face
+    front = res.design.specimen_structure.front_x
+    assert lay["specimen_front_x_m"] == front and front < 0.0
+    assert lay["charge"] == pytest.approx([front - card["standoff_m"], 0.0, 0.025], abs=1e-15)
+    assert lay["specimen_centre"] == pytest.approx([0.0, 0.0, 0.0], abs=1e-12)
     m = card["explosive_mass_kg"]
     # a sphere of the explosive's mass (a surface charge is a hemisphere of the same mass)
     rho = get_explosive("tnt").density_kg_m3

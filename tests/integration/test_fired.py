@@ -65,8 +65,9 @@ point_m = [0.0, 0.0, 0.5]
 """
 
 
-def write_shot(folder, factor=FACTOR, seed=0, restitution=None):
-    """The scenario, its gauge and track files in ``folder``; returns (path, truth)."""
+def write_shot(folder, factor=FACTOR, seed=0, restitution=None, fps=FPS):
+    """The scenario, its gauge and track files (a camera at ``fps`` frames per second) in ``folder``; returns
+    (path, truth)."""
     base = load_scenario_text(SCENARIO.format(charge=1e-3, gx=-0.05))
     d = Study(base).check().design
     block = d.specimen_block
@@ -91,7 +92,7 @@ def write_shot(folder, factor=FACTOR, seed=0, restitution=None):
     )
     bp = blast_parameters(W, R, "masi2021")
     system = RockingSystem.from_block(block, d.specimen_gravity, restitution)
-    frames = np.arange(-0.01, d.specimen_duration, 1.0 / FPS)
+    frames = np.arange(-0.01, d.specimen_duration, 1.0 / fps)
     after = np.clip(frames - bp.arrival_time, 0.0, None)
     res = DEFAULT_SOLVER.simulate(system, bp.pulse("friedlander"), d.specimen_duration, t_eval=after)
     x, z = synthetic_track(seed, frames, res.theta_eval, 0.0, 0.5, block.b)
@@ -147,6 +148,24 @@ def test_block_fired_15_percent_above_the_design(tmp_path):
     assert p["first_peak_time_s"] == pytest.approx(m["first_peak_time_s"] * np.sqrt(20.0), rel=1e-12)
     assert p["first_peak_p05_m"] < p["first_peak_m"] < p["first_peak_p95_m"]
     assert s["verdict"].startswith("As fired: 1.1")
+
+
+def test_one_shot_filmed_at_four_frame_rates(tmp_path):
+    """Issue #36 item 3's acceptance through ``as_fired``: the same shot (the same gauge trace, the same rocking)
+    filmed at 500, 1000, 2000 and 5000 frames per second with 0.05 mm noise: the measured first peaks within 2 %
+    of each other and of the truth, and every 5-95 % band of the monument holds the truth up-scaled (x 20)."""
+    peaks = []
+    for fps in (500.0, 1000.0, 2000.0, 5000.0):
+        folder = tmp_path / f"{fps:g}"
+        folder.mkdir()
+        path, truth = write_shot(folder, fps=fps)
+        s = as_fired(load_scenario(path)).summary
+        m, p = s["markers"]["top"], s["prototype_markers"]["top"]
+        assert m["first_peak_m"] == pytest.approx(truth["first_peak_m"], rel=0.02), fps
+        assert p["first_peak_p05_m"] <= 20.0 * truth["first_peak_m"] <= p["first_peak_p95_m"], fps
+        assert m["smoothing_s"] == pytest.approx(0.1 * m["predicted_first_peak_time_s"], abs=1.0 / fps + 1e-12)
+        peaks.append(m["first_peak_m"])
+    assert (max(peaks) - min(peaks)) / truth["first_peak_m"] < 0.02
 
 
 def test_refit_at_the_designed_load_is_the_studys_specimen(tmp_path):

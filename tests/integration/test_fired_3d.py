@@ -205,7 +205,8 @@ def test_calibrated_friction_is_the_tracks(tmp_path, capsys):
 
     _print(s)  # the table's friction rows
     assert "calibrated friction" in capsys.readouterr().out
-    assert "prototype_first_peak_m (front)" in _calibration(c)
+    html = _calibration(c)  # rows in words with their units, no summary key (issue #36 item 6)
+    assert "<td>prototype first peak (front)</td>" in html and "prototype_first_peak_m" not in html
     block = Study(Scenario.default()).check().design
     with pytest.raises(BlastscaleInputError, match="calibrate = 'friction' does not apply to a block"):
         calibrate_friction(None, block, {"m": None}, 1.0, 1.0)

@@ -127,6 +127,7 @@ gauges = "gauges.csv"
 tracks = "tracks.csv"
 [fired.gauge.g1]
 position_m = [{gx}, 0.0, 0.05]
+normal = [-1.0, 0.0, 0.0]   # on the faceted drum's front, between two facets: its normal given
 [fired.marker.face]
 point_m = [{x}, 0.0, {z}]
 """

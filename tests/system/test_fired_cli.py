@@ -71,10 +71,19 @@ def test_example_json_has_the_issues_keys(capsys):
     assert s["charge_ratio_impulse"] == pytest.approx(1.15, rel=0.05)
 
 
-def test_out_writes_the_folder(capsys, tmp_path):
-    out = tmp_path / "res"
-    code, _, err = cli(capsys, "fired", str(_copy(tmp_path)), "--out", str(out))
-    assert code in (0, None), err
+@pytest.fixture(scope="module")
+def example_out(tmp_path_factory):
+    """The shipped example copied to a folder and read with ``fired --out res`` (once for this module)."""
+    folder = tmp_path_factory.mktemp("shot")
+    out = folder / "res"
+    with pytest.raises(SystemExit) as e:
+        main(["fired", str(_copy(folder)), "--out", str(out)])
+    assert e.value.code in (0, None)
+    return out
+
+
+def test_out_writes_the_folder(example_out):
+    out = example_out
     names = sorted(p.name for p in out.iterdir())
     assert names == sorted(
         ["summary.json", "scenario.toml", "report.html", "fired_gauge_g1.png", "fired_marker_top.png"]
@@ -82,6 +91,87 @@ def test_out_writes_the_folder(capsys, tmp_path):
     s = json.loads((out / "summary.json").read_text())
     assert "blastscale" in s["versions"] and s["as_fired"]["verdict"].startswith("As fired: ")
     assert "As fired" in (out / "report.html").read_text()
+
+
+def test_the_written_scenario_keeps_relative_paths(example_out):
+    """Issue #36 item 4: the records given relative ("gauges.csv" beside shot.toml) are written relative to the
+    written scenario ("../gauges.csv" from res/), which reads the same files back; an absolute one stays."""
+    import tomllib
+
+    from blastscale.scenario import load_scenario
+
+    written = tomllib.loads((example_out / "scenario.toml").read_text())["fired"]
+    assert written["gauges"] == "../gauges.csv" and written["tracks"] == "../tracks.csv"
+    again = load_scenario(example_out / "scenario.toml").fired
+    assert Path(again.gauges).resolve() == (example_out.parent / "gauges.csv").resolve()
+    absolute = again.model_copy(update={"gauges": str((example_out.parent / "gauges.csv").resolve())})
+    assert absolute.record_paths_in(example_out)["gauges"] == str((example_out.parent / "gauges.csv").resolve())
+
+
+def test_the_as_fired_tables_speak_words_and_units(example_out):
+    """Issue #36 item 6: no summary key as a header; every numeric column names its unit."""
+    import re
+
+    page = (example_out / "report.html").read_text()
+    section = page[page.index('<section id="as_fired">') : page.index('<section id="scenario">')]
+    headers = re.findall(r"<th>([^<]*)</th>", section)
+    assert "first peak [mm]" in headers and "peak pressure [kPa]" in headers and "5 % [m]" in headers
+    assert not [h for h in headers if re.fullmatch(r"[a-z0-9]+(_[a-z0-9]+)+", h)], headers  # no raw keys
+
+
+def _chromium():
+    return next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None)
+
+
+#: Headless Chromium as tests/system/test_report.py runs it.
+CHROMIUM_FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--hide-scrollbars",
+]
+
+#: Measures, after layout, the right edge of every table of the "As fired" section and the page's width [px].
+_MEASURE = (
+    "<script>const s=document.getElementById('as_fired');"
+    "document.body.dataset.tables=[...s.querySelectorAll('table')].map(t=>Math.ceil(t.getBoundingClientRect()"
+    ".right)).join(',');document.body.dataset.page=document.documentElement.scrollWidth;</script>"
+)
+
+
+@pytest.mark.skipif(_chromium() is None, reason="Chromium not found (Debian: apt-get install -y chromium)")
+def test_the_as_fired_tables_fit_1280_px_in_chromium(example_out, tmp_path):
+    """Issue #36 item 6: in a 1280 px wide window every table of the section ends within it and the page does
+    not scroll sideways (before: the gauge table ran to 1643 px)."""
+    import os
+    import re
+    import subprocess
+
+    page = (example_out / "report.html").read_text().replace("</body>", _MEASURE + "</body>")
+    probe = tmp_path / "probe.html"
+    probe.write_text(page)
+    dom = subprocess.run(
+        [
+            _chromium(),
+            *CHROMIUM_FLAGS,
+            f"--user-data-dir={tmp_path / 'p'}",
+            "--window-size=1280,2000",
+            "--dump-dom",
+            probe.resolve().as_uri(),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env={**os.environ, "HOME": str(tmp_path)},
+    )
+    assert dom.returncode == 0, dom.stderr[-2000:]
+    tables = [int(x) for x in re.search(r'data-tables="([^"]*)"', dom.stdout).group(1).split(",")]
+    assert len(tables) >= 4 and max(tables) <= 1280, tables
+    assert int(re.search(r'data-page="(\d+)"', dom.stdout).group(1)) <= 1280
 
 
 BAD = [

@@ -22,11 +22,12 @@ from pathlib import Path
 import numpy as np
 
 from .._validate import BlastscaleInputError
-from ..io.motion import charge_position, read_motion
+from ..io.motion import read_motion
 from ..io.output import write_file
 from ..io.targets import Kind, check_target
 from ..plots.motion import VIEWS
 from ..sim3d.replay import frame_count
+from ..similitude.effects import charge_position
 from ._output import one_line_warnings, print_json, print_written
 
 __all__ = ["ANIMATION_SUFFIXES", "MAX_FRAMES", "check_animation", "write_animation"]
@@ -142,7 +143,7 @@ def write_animation(source: str, out: str, view: str = "iso", fps: float = 20.0,
             f"fps = {fps:g} with speed = {speed:g} over {motion.duration:.3g} s gives {n} "
             f"frames: at most {MAX_FRAMES} (lower --fps or raise --speed)"
         )
-    charge = None if info["standoff_m"] is None else charge_position(motion, info["standoff_m"])
+    charge = None if info["standoff_m"] is None else charge_position(motion.front_x, info["standoff_m"])
     indices, _ = motion.frame_indices(fps, speed)
     kind = target.suffix.lower()
     if kind == ".html":

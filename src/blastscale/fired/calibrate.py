@@ -68,7 +68,7 @@ from ..rocking.system import housner_restitution
 from ..study.study import Study
 from .outcome import pose_marker_history
 from .refit import OUTCOMES, marker_history, simulate_specimen
-from .tracks import track_first_peak, track_noise
+from .tracks import history_first_peak, track_first_peak, track_noise
 
 __all__ = [
     "CALIBRATIONS",
@@ -151,15 +151,21 @@ def _chaotic(design) -> bool:
     return getattr(design.specimen_structure, "section", None) == "circular"
 
 
-def _fit_window(tracks: dict, chaotic: bool) -> dict:
+def _fit_window(tracks: dict, chaotic: bool, response_s: dict | None) -> dict:
     """The frames fitted: every one (the residuals keep those after the firing signal), or for a chaotic
-    structure those up to each marker's measured first peak (:func:`~.tracks.track_first_peak`; the whole
-    track when it has none: it never leaves the noise)."""
+    structure those up to each marker's measured first peak (:func:`~.tracks.track_first_peak`, over the
+    marker's expected time to its first peak ``response_s[name]`` [s]; the whole track when it has none: it
+    never leaves the noise)."""
     if not chaotic:
         return tracks
+    if response_s is None or set(response_s) < set(tracks):
+        raise BlastscaleInputError(
+            "calibrate_friction on a chaotic structure fits each marker up to its first peak: give response_s, "
+            "each marker's expected time to its first peak [s]"
+        )
     out = {}
     for name, (point, t, ux) in tracks.items():
-        pk = track_first_peak(t, ux).first_peak_time_s
+        pk = track_first_peak(t, ux, response_s[name]).first_peak_time_s
         keep = slice(None) if pk is None else t <= pk
         out[name] = (point, t[keep], ux[keep])
     return out
@@ -369,12 +375,21 @@ def calibrate_restitution(
 
 
 def calibrate_friction(
-    scenario, design, tracks: dict, charge_kg: float, standoff_m: float, bounds=FRICTION_BOUNDS
+    scenario,
+    design,
+    tracks: dict,
+    charge_kg: float,
+    standoff_m: float,
+    bounds=FRICTION_BOUNDS,
+    *,
+    response_s: dict | None = None,
 ) -> dict:
     """The friction coefficient [-] that best matches the measured response, when the record identifies it
     (module docstring).
 
-    Parameters as :func:`calibrate_restitution` (``scenario`` of any kind but a block).
+    Parameters as :func:`calibrate_restitution` (``scenario`` of any kind but a block); ``response_s``: marker
+    name -> its expected time to the first peak [s] (the prediction's), which sets the first-peak search of a
+    chaotic structure's fit window (required there; unused otherwise).
 
     Returns
     -------
@@ -390,7 +405,7 @@ def calibrate_friction(
     if not tracks:
         raise BlastscaleInputError("calibrate needs marker tracks: [fired] tracks is not given")
     chaotic = _chaotic(design)
-    fitted = _fit_window(tracks, chaotic)
+    fitted = _fit_window(tracks, chaotic, response_s)
     samples: dict = {}
 
     def misfit(mu: float) -> float:
@@ -414,7 +429,7 @@ def calibrate_friction(
         )
         largest = float(np.max(np.abs(ux)))
         out["prototype_first_peak_m"][name] = (
-            track_first_peak(t, ux, noise=1e-3 * largest, smooth=False).first_peak_m if largest > 0 else None
+            history_first_peak(t, ux, noise=1e-3 * largest).first_peak_m if largest > 0 else None
         )
     out["prototype_outcome"] = OUTCOMES[bool(proto.dataset.attrs["collapsed"])]
     return out

@@ -246,7 +246,8 @@ def designed_event_marker(
         ct = pred["first_peak_time_s"] / refit["first_peak_time_s"]
     value = upscale(abs(u) * c, f, "length")
 
-    terms = _first_peak_terms(u, pk.noise_m, refit, sensitivity * sigma_ln_charge, where, event, notes)
+    track_sigma = pk.first_peak_sigma_m if pk.first_peak_sigma_m is not None else pk.noise_m
+    terms = _first_peak_terms(u, track_sigma, refit, sensitivity * sigma_ln_charge, where, event, notes)
     sig, lo, hi = _band(value, terms)
 
     # the damage: the residual displacement, corrected by the runs' residuals when both are clear of the noise
@@ -361,7 +362,11 @@ def _first_peak_terms(u: float, noise: float, refit, load: float, where, event: 
             "sigma_ln": abs(load),
             "source": "the effective charge's sigma_ln W x dln(first peak)/dln(W) (prediction and refit)",
         },
-        "track": {"sigma_ln": float(noise) / abs(u), "source": "the track's noise / the measured first peak"},
+        "track": {
+            "sigma_ln": float(noise) / abs(u),
+            "source": "the first peak's standard error (fired.tracks: the parabola through the raw samples; else the "
+            "track's noise) / the measured first peak",
+        },
         "refit": {
             "sigma_ln": abs(math.log(abs(refit["first_peak_m"] / u))) if refit.get("first_peak_m") else None,
             "source": "|ln(refit / measured first peak)|: the re-simulation under the load as fired misses the "

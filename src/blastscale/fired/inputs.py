@@ -5,9 +5,11 @@ Geometry, in the record axes of :mod:`blastscale.scenario.fired` (x along the bl
 z up, origin at the centre of the specimen's footprint at rest; the specimen's bodies at rest, ``com`` +
 ``vertices``):
 
-* **The charge** stands at ``c = (front_x - standoff, 0, h_c)``: ``front_x`` the specimen's front,
-  ``standoff`` ``[fired] standoff_m`` (else the designed one), ``h_c`` ``[scale] specimen_charge_height_m``
-  (else 0, on the floor), as :func:`blastscale.fired.shot.as_fired` places it.
+* **The charge** stands at ``c = (front_x - standoff, 0, h_c)`` (the one frame's
+  :func:`blastscale.similitude.effects.charge_position`, as the engine places it): ``front_x`` the
+  specimen's front, ``standoff`` ``[fired] standoff_m`` (else the designed one), ``h_c``
+  :func:`shot_charge_height`: ``[scale] specimen_charge_height_m``, else half the specimen's top for a
+  free-air specimen burst, else 0 (on the floor).
 * **A gauge behind the charge**: ``x_gauge < c_x``: on the far side of the charge from the specimen (the
   plane through the charge normal to the blast axis divides the two sides); a gauge there is a sign or
   an axis mistake (the records' x points away from the charge).
@@ -38,6 +40,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 from ..blast.inverse import INCIDENCE_RANGE_DEG
+from ..similitude.effects import charge_height, charge_position
 from ..study.study import Study
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks
 
@@ -47,9 +50,10 @@ __all__ = [
     "MARKER_TOLERANCE",
     "GaugeIncidence",
     "ShotInputs",
-    "charge_position",
+    "body_gaps",
     "check_geometry",
     "gauge_incidence",
+    "shot_charge_height",
     "shot_inputs",
 ]
 
@@ -72,10 +76,12 @@ class ShotInputs:
     tracks: TrackRecord | None
 
 
-def charge_position(scenario, design, standoff_m: float) -> np.ndarray:
-    """The charge's centre [x, y, z] [m] in the record axes (module docstring)."""
-    zc = scenario.scale.specimen_charge_height_m or 0.0
-    return np.array([design.specimen_structure.front_x - standoff_m, 0.0, zc])
+def shot_charge_height(scenario, design) -> float:
+    """Height of the shot's charge above the floor [m] (:func:`blastscale.similitude.effects.charge_height`):
+    ``[scale] specimen_charge_height_m`` where given, else the specimen burst's (half the specimen's top for
+    a free-air burst, as the engine places it; 0 on the floor)."""
+    given = scenario.scale.specimen_charge_height_m if scenario.scale is not None else None
+    return charge_height(design.specimen_structure, getattr(design.specimen, "burst", "surface"), given)
 
 
 def _body_boxes(structure) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
@@ -89,6 +95,14 @@ def _body_boxes(structure) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.
         n = n / np.linalg.norm(n, axis=1)[:, None]
         out.append((np.asarray(b.com, dtype=float), v, n, (v @ n.T).max(axis=0)))
     return out
+
+
+def body_gaps(structure, point_m) -> np.ndarray:
+    """Per body of ``structure`` at rest, the distance [m] from ``point_m`` to its solid measured to the planes
+    of its faces and of its bounding box, ``max_k (n_k . (p - c) - h_k)``: <= 0 inside or on the solid, exact
+    for a point off a face, never more than the true distance (module docstring)."""
+    p = np.asarray(point_m, dtype=float)
+    return np.array([float(np.max(n @ (p - c) - h)) for c, _, n, h in _body_boxes(structure)])
 
 
 def _box_distance(p: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> float:
@@ -118,7 +132,7 @@ def check_geometry(scenario, design, standoff_m: float) -> None:
     world = np.vstack([c + v for c, v, _, _ in bodies])
     lo, hi = world.min(axis=0), world.max(axis=0)
     height = float(hi[2] - lo[2])
-    charge = charge_position(scenario, design, standoff_m)
+    charge = charge_position(structure.front_x, standoff_m, shot_charge_height(scenario, design))
     reach = GAUGE_REACH * max(standoff_m, height)
     for name, g in fs.gauge.items():
         p = np.asarray(g.position_m, dtype=float)
@@ -138,7 +152,7 @@ def check_geometry(scenario, design, standoff_m: float) -> None:
     tol = MARKER_TOLERANCE * height
     for name, m in fs.marker.items():
         p = np.asarray(m.point_m, dtype=float)
-        gaps = [float(np.max(n @ (p - c) - h)) for c, _, n, h in bodies]
+        gaps = body_gaps(structure, p)
         k = int(np.argmin(gaps))
         if gaps[k] > tol:
             raise BlastscaleInputError(
@@ -178,7 +192,7 @@ def gauge_incidence(scenario, design, standoff_m: float, name: str) -> GaugeInci
         n, found = np.asarray(g.normal, dtype=float), "given"
     else:
         n, found = _face_normal(design.specimen_structure, p, where)
-    c = charge_position(scenario, design, standoff_m)
+    c = charge_position(design.specimen_structure.front_x, standoff_m, shot_charge_height(scenario, design))
     to_charge = c - p
     cos_a = float(np.clip(n @ to_charge / np.linalg.norm(to_charge), -1.0, 1.0))
     angle = float(np.degrees(np.arccos(cos_a)))

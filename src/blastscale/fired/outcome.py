@@ -1,9 +1,11 @@
 """Markers on the 3D bodies: which body carries a marker, its simulated history from the body's pose, and the
 outcome judged from the measured tracks by the rule the 3D engine uses for the kind (plain arrays, SI).
 
-* **The body** of a marker: the one whose centre of mass at rest is nearest to the marker's rest point
-  (:func:`marker_body`; a marker on a face of a block is nearer to that block's centre than to a neighbour's
-  unless the blocks are very unequal).
+* **The body** of a marker, anywhere on it (a top, a face, the side of a drum where a side camera sees it):
+  the body whose solid at rest the marker's rest point is on or nearest to (:func:`marker_body`, the
+  distance to the planes of its faces, :func:`blastscale.fired.inputs.body_gaps`); on a face two bodies share,
+  the one whose centre of mass is nearer. (The nearest centre of mass alone gives a marker near the top of a
+  tall drum to a short drum above it.)
 * **A simulated marker** (:func:`pose_marker_history`): the marker's point fixed on its body, moved by the
   body's recorded pose (``body_position``, ``body_quaternion``: :func:`blastscale.sim3d.replay.point_positions`),
   so that translation, rocking and the turn out of the blast's plane all move it; its displacement along x
@@ -34,14 +36,24 @@ import numpy as np
 from ..sim3d.record import FALL_DROP_FRACTION, FALL_TILT_DEG
 from ..sim3d.replay import point_positions, rotations
 from ..sim3d.results import body_heights
+from .inputs import body_gaps
 
-__all__ = ["body_verdicts", "marker_body", "measured_outcome", "pose_marker_history"]
+__all__ = ["MARKER_SHARED", "body_verdicts", "marker_body", "measured_outcome", "pose_marker_history"]
+
+#: Two bodies whose distances to a marker's rest point differ by less than this [m] (x (1 + |p| / 1 m)): the
+#: point is on both (a shared face) and goes to the body whose centre of mass is nearer.
+MARKER_SHARED = 1e-9
 
 
 def marker_body(structure, point_m) -> int:
-    """Index of the body whose rest centre of mass is nearest to ``point_m`` [m] (module docstring)."""
+    """Index of the body that carries a marker at rest at ``point_m`` [m], anywhere on it (module docstring):
+    the body whose solid it is on or nearest to (:func:`~.inputs.body_gaps`); a point on the face two bodies
+    share (a bed joint), or equally near two, goes to the one whose centre of mass is nearer."""
     p = np.asarray(point_m, dtype=float)
-    return int(np.argmin([np.linalg.norm(np.asarray(b.com, dtype=float) - p) for b in structure.bodies]))
+    gaps = body_gaps(structure, p)
+    near = np.flatnonzero(gaps <= gaps.min() + MARKER_SHARED * (1.0 + float(np.max(np.abs(p)))))
+    com = [np.linalg.norm(np.asarray(structure.bodies[k].com, dtype=float) - p) for k in near]
+    return int(near[int(np.argmin(com))])
 
 
 def pose_marker_history(ds, structure, point_m) -> tuple[np.ndarray, np.ndarray]:

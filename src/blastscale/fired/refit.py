@@ -21,7 +21,7 @@ from .._validate import BlastscaleInputError
 from ..scenario.scenario import Scenario
 from ..study.study import Study
 from .outcome import pose_marker_history
-from .tracks import block_marker_displacement, track_first_peak
+from .tracks import block_marker_displacement, history_first_peak
 
 __all__ = ["OUTCOMES", "SpecimenRun", "marker_history", "simulate_specimen"]
 
@@ -115,9 +115,9 @@ def marker_history(run: SpecimenRun, point_m) -> dict:
     ``first_peak_m``, ``first_peak_time_s``, ``max_displacement_m``.
 
     Planar (a block): the marker's displacement at the solver's first peak angle (an event of the solver, not
-    a sample). 3D (any kind): the marker's point fixed on the body whose rest centre of mass is nearest to it,
-    moved by that body's recorded pose (position and orientation: translation, rocking and the turn out of the
-    blast's plane; :func:`~.outcome.pose_marker_history`); the first peak by :func:`~.tracks.track_first_peak` on the
+    a sample). 3D (any kind): the marker's point fixed on the body whose solid at rest carries it
+    (:func:`~.outcome.marker_body`), moved by that body's recorded pose (position and orientation: translation, rocking and the turn out of the
+    blast's plane; :func:`~.outcome.pose_marker_history`); the first peak by :func:`~.tracks.history_first_peak` on the
     recorded history (unsmoothed)."""
     r = run.rocking
     x0, z0 = float(point_m[0]), float(point_m[2])
@@ -149,7 +149,7 @@ def _marker_history_3d(run: SpecimenRun, point: np.ndarray) -> dict:
     ux, uz = pose_marker_history(ds, run.structure, point)
     t = np.asarray(ds["time"].values) + run.arrival_time_s
     largest = float(np.max(np.abs(ux)))
-    pk = track_first_peak(t, ux, noise=1e-3 * largest, smooth=False)
+    pk = history_first_peak(t, ux, noise=1e-3 * largest)
     return {
         "t": t,
         "ux": ux,

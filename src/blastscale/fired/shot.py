@@ -29,6 +29,7 @@ from .._validate import BlastscaleInputError
 from ..analysis.upscale import upscale
 from ..blast.explosives import get_explosive
 from ..scenario.scenario import Scenario
+from ..similitude.effects import charge_position
 from ..structures.from_spec import is_block
 from .calibrate import (
     calibrate_friction,
@@ -39,13 +40,13 @@ from .calibrate import (
 from .effective import effective_charge, predicted_at, tnt_equivalence
 from .event import BAND_RULE, DesignedEvent, designed_event_marker, similar_prototype_charge
 from .gauges import GaugeDriftWarning, fit_gauge
-from .inputs import charge_position, gauge_incidence, shot_inputs
+from .inputs import gauge_incidence, shot_charge_height, shot_inputs
 from .outcome import body_verdicts, marker_body
 from .records import GaugeRecord, TrackRecord, record_fault
 from .refit import OUTCOMES, SpecimenRun, marker_history, simulate_specimen
-from .tracks import block_rotation, track_first_peak
+from .tracks import block_rotation, expected_response_s, track_first_peak
 
-__all__ = ["AsFired", "as_fired"]
+__all__ = ["AsFired", "as_fired", "worst_marker"]
 
 _Q95 = 1.6448536269514722  # one-sided 95 % normal quantile: the 5-95 % band
 
@@ -90,7 +91,7 @@ def _gauges(sc: Scenario, d, record: GaugeRecord, standoff: float) -> tuple[dict
             raise record_fault(
                 record.path, "", 1, f"gauge {name!r} of [fired.gauge.{name}] has no column (NAME_kPa, ...)"
             )
-    charge_at = charge_position(sc, d, standoff)
+    charge_at = charge_position(d.specimen_structure.front_x, standoff, shot_charge_height(sc, d))
     model, burst, incidence = d.specimen.blast_model, d.specimen.burst, sc.blast.incidence
     fits, out = {}, {}
     for name, p in record.pressure_Pa.items():
@@ -143,10 +144,11 @@ def _load_sigma(sc: Scenario, gauges: dict) -> float:
     return math.hypot(tol, 0.10)
 
 
-def _measured_markers(sc, d, rec: TrackRecord) -> dict:
-    """Each marker's measured displacement, first peak and outcome: a block's by the planar tipping rule from
-    the marker alone; every other kind's by the 3D rule for its kind on the body that carries the marker
-    (:func:`~.outcome.body_verdicts`: two markers on one body give its turn)."""
+def _measured_markers(sc, d, rec: TrackRecord, response_s: dict) -> dict:
+    """Each marker's measured displacement, first peak (searched over its expected time to the first peak
+    ``response_s[name]`` [s], :func:`~.tracks.track_first_peak`) and outcome: a block's by the planar tipping
+    rule from the marker alone; every other kind's by the 3D rule for its kind on the body that carries the
+    marker (:func:`~.outcome.body_verdicts`: two markers on one body give its turn)."""
     structure = d.specimen_structure
     out = {}
     for name, pos in rec.position_m.items():
@@ -157,7 +159,13 @@ def _measured_markers(sc, d, rec: TrackRecord) -> dict:
         if is_block(structure):
             th = block_rotation(ux, uz, spec.point_m[0], spec.point_m[2], structure.b)
             outcome = OUTCOMES[bool(np.max(np.abs(th)) >= structure.alpha)]
-        out[name] = {"t": rec.time_s, "ux": ux, "uz": uz, "peak": track_first_peak(rec.time_s, ux), "outcome": outcome}
+        out[name] = {
+            "t": rec.time_s,
+            "ux": ux,
+            "uz": uz,
+            "peak": track_first_peak(rec.time_s, ux, response_s[name]),
+            "outcome": outcome,
+        }
     if not is_block(structure):
         verdicts = body_verdicts(structure, {n: (sc.fired.marker[n].point_m, m["ux"], m["uz"]) for n, m in out.items()})
         for n, m in out.items():
@@ -211,10 +219,19 @@ def as_fired(
     chaotic = getattr(d.prototype_structure, "section", None) == "circular"
     markers, msum, proto, event = {}, {}, {}, {}
     shot_event = DesignedEvent(d, design_summary, chaotic, sig_w, math.log(w_design / w_refit))
-    measured = _measured_markers(scenario, d, trec) if trec is not None else {}
+    sims = {}  # each tracked marker's simulated histories: the prediction's first-peak time sets the search
+    for name in trec.position_m if trec is not None else ():
+        sims[name] = (
+            marker_history(predicted, fs.marker[name].point_m),
+            marker_history(refit, fs.marker[name].point_m),
+        )
+    response = {
+        n: expected_response_s(p["first_peak_time_s"], f["first_peak_time_s"], trec.time_s[-1])
+        for n, (p, f) in sims.items()
+    }
+    measured = _measured_markers(scenario, d, trec, response) if trec is not None else {}
     for name, meas in measured.items():
-        pred = marker_history(predicted, fs.marker[name].point_m)
-        fit = marker_history(refit, fs.marker[name].point_m)
+        pred, fit = sims[name]
         pk = meas["peak"]
         markers[name] = {"measured": meas, "predicted": pred, "refit": fit}
         msum[name] = _marker_summary(meas, pred, fit, predicted, refit)
@@ -258,7 +275,7 @@ def as_fired(
     if "restitution" in calibrate:
         summary["calibration"] = calibrate_restitution(scenario, d, meas, w_refit, standoff)
     if "friction" in calibrate:
-        summary["calibration"] = calibrate_friction(scenario, d, meas, w_refit, standoff)
+        summary["calibration"] = calibrate_friction(scenario, d, meas, w_refit, standoff, response_s=response)
     summary["verdict"] = as_fired_verdict_line(summary)
     summary["similarity_verdict"] = refit.result.summary()["verdict"]
     return AsFired(summary=summary, gauges=fits, markers=markers, design=d, predicted=predicted, refit=refit)
@@ -312,6 +329,8 @@ def _marker_summary(meas: dict, pred: dict, fit: dict, predicted: SpecimenRun, r
         "first_peak_time_s": pk.first_peak_time_s,
         "max_displacement_m": pk.max_displacement_m,
         "noise_m": pk.noise_m,
+        "first_peak_sigma_m": pk.first_peak_sigma_m,
+        "smoothing_s": pk.smoothing_s,
         "predicted_first_peak_m": pred["first_peak_m"],
         "predicted_first_peak_time_s": pred["first_peak_time_s"],
         "refit_first_peak_m": fit["first_peak_m"],
@@ -330,7 +349,7 @@ def _prototype_marker(pk, factors, sens: tuple, sig_w: float) -> dict:
     do [m, s], with its 5-95 % band from the load's uncertainty ``sig_w`` (through the sensitivities ``sens``,
     :class:`_Sensitivity`) and the track's noise."""
     s_p, s_t = sens
-    sig_p = math.hypot(s_p * sig_w, pk.noise_m / abs(pk.first_peak_m))
+    sig_p = math.hypot(s_p * sig_w, pk.first_peak_sigma_m / abs(pk.first_peak_m))
     sig_t = abs(s_t) * sig_w
     up_p, up_t = upscale(pk.first_peak_m, factors, "length"), upscale(pk.first_peak_time_s, factors, "time")
     lo, hi = sorted((up_p * math.exp(-_Q95 * sig_p), up_p * math.exp(_Q95 * sig_p)))
@@ -388,6 +407,23 @@ def _designed_word(s: dict) -> str:
     return "collapse" if s["outcome_predicted"] == "collapsed" else "stand"
 
 
+def worst_marker(markers: dict) -> str | None:
+    """The marker whose measured and re-simulated first peaks disagree most: the largest
+    ``|refit_vs_measured|``; a marker with a measured first peak and none re-simulated counts as the worst
+    (an infinite disagreement); among markers with no measured first peak, the first. None without markers.
+    Every marker enters the as-fired verdict through it (the line names it)."""
+    if not markers:
+        return None
+
+    def badness(v: dict) -> float:
+        if v["first_peak_m"] is None:
+            return -1.0
+        r = v["refit_vs_measured"]
+        return math.inf if r is None else abs(r)
+
+    return max(markers, key=lambda n: badness(markers[n]))
+
+
 def as_fired_verdict_line(s: dict) -> str:
     """The as-fired summary's verdict: the one line at the top of its report (docs/fired.md; a study's verdict
     is :func:`blastscale.study.criterion.judge`)."""
@@ -396,14 +432,20 @@ def as_fired_verdict_line(s: dict) -> str:
         parts.append(f"As fired: {s['charge_ratio_impulse']:.3g} x the designed charge by impulse")
     else:
         parts.append("As fired: the designed charge (no gauge, no weighed charge)")
-    m = next(iter(s["markers"].items()), None)
-    if m is not None and m[1]["first_peak_m"] is not None:
-        name, v = m
+    m = worst_marker(s["markers"])
+    if m is not None and s["markers"][m]["first_peak_m"] is not None:
+        name, v = m, s["markers"][m]
         parts.append(
             f"the specimen rocked to {1e3 * v['first_peak_m']:.3g} mm at {v['first_peak_time_s']:.3g} s ({name})"
         )
+        every = " at every marker" if len(s["markers"]) > 1 else ""
+        worst = f" (worst: {name})" if len(s["markers"]) > 1 else ""
         if v["refit_vs_measured"] is not None:
-            parts.append(f"the re-simulation under that load agrees within {100 * abs(v['refit_vs_measured']):.2g} %")
+            parts.append(
+                f"the re-simulation under that load agrees within {100 * abs(v['refit_vs_measured']):.2g} %{every}{worst}"
+            )
+        elif v["refit_first_peak_m"] is None:
+            parts.append(f"the re-simulation under that load has no first peak at {name}")
         p = s["prototype_markers"].get(name)
         e = (s.get("designed_event") or {}).get("markers", {}).get(name)
         if p is not None and e is not None:

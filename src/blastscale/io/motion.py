@@ -6,21 +6,10 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import numpy as np
-
 from .._validate import BlastscaleInputError
 from ..sim3d.replay import motion_of
 
-__all__ = ["read_motion", "charge_position"]
-
-
-def charge_position(motion, standoff_m: float):
-    """The charge's position (3,) [m] for drawing: on the ground, ``standoff_m`` in front (-x) of the
-    structure's front at time 0, centred across it (the blast comes from -x, docs/sim3d.md)."""
-
-    v = motion.world(0, [0])[0].reshape(-1, 3)
-    lo, hi = np.nanmin(v, axis=0), np.nanmax(v, axis=0)
-    return np.array([lo[0] - float(standoff_m), 0.5 * (lo[1] + hi[1]), 0.0])
+__all__ = ["read_motion"]
 
 
 def read_motion(folder, name: str = "RESULT_DIR"):

@@ -17,6 +17,7 @@ import warnings
 import numpy as np
 
 from ..blast.parameters import get_blast_model
+from ..similitude.effects import FRAME, charge_position
 from ..similitude.factors import to_specimen
 from ..structures.from_spec import is_block
 from .build import spec_dims, specimen_unit
@@ -155,25 +156,31 @@ def _prototype_collapsed(result) -> bool:
 
 
 def _layout(spec, ch, ins, standoff: float, density, charge_height: float = 0.0, burst: str = "surface") -> dict:
-    """Positions [m] in the lab frame: the charge above the origin (on the floor for a surface burst, at
-    ``charge_height`` on a stand for a free-air one), the blast along +x."""
+    """Positions [m] in the one frame of blastscale (:func:`blastscale.similitude.effects.charge_position`;
+    the ``[fired]`` records' too): x along the blast, from the charge to the specimen; y across; z up; the
+    origin at the centre of the specimen's footprint on the floor. The charge ``standoff`` in front of the
+    specimen's front, on the floor for a surface burst, at ``charge_height`` on a stand for a free-air one."""
     hs, ws, ds = spec_dims(spec)
+    front = float(spec.front_x)
+    charge = charge_position(front, standoff, charge_height)
     m = ch.explosive_mass_kg
     rho = density or 1600.0
     # the charge's shape is the blast fits': a hemisphere on the floor, a sphere in free air
     radius = (3.0 * m / ((2.0 if burst == "surface" else 4.0) * math.pi * rho)) ** (1.0 / 3.0)
     cam = 4.0 * (hs + ins.displacement_range_m)
+    back = front + ws
     return {
-        "charge": [0.0, 0.0, charge_height],
+        "frame": FRAME,
+        "charge": charge.tolist(),
         "charge_height_m": charge_height,
         "charge_radius_m": radius,
-        "specimen_front_x_m": standoff,
-        "specimen_centre": [standoff + 0.5 * ws, 0.0, 0.0],
-        "reflected_gauge": [standoff, -(0.5 * ds + 0.2 * standoff), 0.5 * hs],
-        "incident_gauge": [0.0, -standoff, 0.5 * hs],
-        "camera": [standoff + 0.5 * ws, cam, 0.5 * hs],
+        "specimen_front_x_m": front,
+        "specimen_centre": [0.5 * (front + back), 0.0, 0.0],
+        "reflected_gauge": [front, -(0.5 * ds + 0.2 * standoff), 0.5 * hs],
+        "incident_gauge": [float(charge[0]), -standoff, 0.5 * hs],
+        "camera": [0.5 * (front + back), cam, 0.5 * hs],
         "camera_distance_m": cam,
-        "displacement_sensor": [standoff + ws + 0.5 * hs + ins.displacement_range_m, 0.0, hs],
+        "displacement_sensor": [back + 0.5 * hs + ins.displacement_range_m, 0.0, hs],
     }
 
 

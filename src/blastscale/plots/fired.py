@@ -35,13 +35,25 @@ def plot_marker(
     name: str = "marker",
     factors=None,
     units: str = "specimen",
+    peak=None,
     ax=None,
 ):
     """A marker's horizontal displacement: ``measured``, ``predicted`` and ``refit``, each ``(t [s], ux [m])``;
     in the specimen's units, or with ``factors`` (the design's :class:`~blastscale.similitude.ScalingFactors`)
-    up-scaled to the prototype's (:func:`~blastscale.analysis.upscale.upscale`), shown in mm (specimen) or m (prototype) and s."""
+    up-scaled to the prototype's (:func:`~blastscale.analysis.upscale.upscale`), shown in mm (specimen) or m (prototype) and s.
+    ``peak``: the detected first peak of the measured track ``(t [s], u [m])`` (None: none found), marked with a
+    cross and its value."""
     ax = axes_or_new(ax)
     k = 1e3 if units == "specimen" else 1.0
+    if peak is not None:
+        tp, up = float(peak[0]), k * float(peak[1])
+        if factors is not None:
+            tp, up = float(upscale(tp, factors, "time")), float(upscale(up, factors, "length"))
+        unit = "mm" if units == "specimen" else "m"
+        ax.plot(
+            [tp], [up], "x", color="k", ms=9, mew=2, zorder=5, label=f"first peak found: {up:.4g} {unit} at {tp:.3g} s"
+        )
+        ax.axvline(tp, color="k", lw=0.5, ls=":")
     for (t, u), style, label in (
         (measured, {"color": "0.3", "lw": 0.8}, "measured"),
         (predicted, {"color": "C3", "ls": "--", "lw": 1.2}, "predicted (designed load)"),

@@ -118,9 +118,11 @@ def _plan_svg(card: dict) -> str:
     def P(x, y):
         return x0 + x * k, y0 - y * k
 
+    ox = L["charge"][0]  # the layout's frame (origin at the footprint's centre) drawn from the charge
     cx, cy = P(0, 0)
     sx, sy = P(R, d / 2)
-    rg, ig = P(*L["reflected_gauge"][:2]), P(*L["incident_gauge"][:2])
+    rg = P(L["reflected_gauge"][0] - ox, L["reflected_gauge"][1])
+    ig = P(L["incident_gauge"][0] - ox, L["incident_gauge"][1])
     out = [
         f'<svg class="draw" viewBox="0 0 {W:.0f} {H:.0f}" width="{W:.0f}" height="{H:.0f}">{_DEFS}',
         f'<circle cx="{cx:.1f}" cy="{cy:.1f}" r="{max(3.0, L["charge_radius_m"] * k):.1f}" class="charge"/>',
@@ -307,6 +309,8 @@ def _shot_table(c: dict) -> str:
             ("TNT equivalent, pressure (safety)", _n(c, "tnt_equivalent_pressure_kg", charge_unit)),
             ("initiator (TNT equivalent)", _n(c, "initiator_tnt_kg", charge_unit)),
             ("stand-off to the front face", _n(c, "standoff_m", "mm")),
+            ("positions (this card, the plan and [fired])", _e(c["layout"]["frame"])),
+            ("the specimen's front face at x", _n(c, "layout/specimen_front_x_m", "mm")),
             *(
                 [
                     ("charge height (on the floor: surface burst)", _n(c, "charge_height_m", "mm")),

@@ -11,9 +11,43 @@ from ..blast.pulses import Friedlander
 from ..io.results import jsonable, provenance, write_atomic, write_json
 from ..plots.fired import plot_gauge, plot_marker
 from .figures import png_bytes
-from .markup import PAGE_CSS, escape, figure_html, format_value, html_table
+from .markup import PAGE_CSS, escape, figure_html, format_charge, format_value, html_table, split_unit_for_tables
 
 __all__ = ["fired_figures", "fired_section", "write_fired"]
+
+
+#: The gauge table's columns: (header in words and unit, summary key, factor from SI).
+GAUGE_COLUMNS = (
+    ("peak pressure [kPa]", "peak_pressure_Pa", 1e-3),
+    ("predicted peak [kPa]", "predicted_peak_pressure_Pa", 1e-3),
+    ("impulse [kPa ms]", "impulse_Pa_s", 1.0),
+    ("predicted impulse [kPa ms]", "predicted_impulse_Pa_s", 1.0),
+    ("arrival [ms]", "arrival_time_s", 1e3),
+    ("positive phase [ms]", "positive_duration_s", 1e3),
+    ("decay [-]", "decay", 1.0),
+    ("effective charge [g TNT]", "effective_charge_tnt_kg", 1e3),
+)
+#: The marker table's columns (specimen units: mm, s).
+MARKER_COLUMNS = (
+    ("first peak [mm]", "first_peak_m", 1e3),
+    ("its 1-sigma [mm]", "first_peak_sigma_m", 1e3),
+    ("at [s]", "first_peak_time_s", 1.0),
+    ("predicted [mm]", "predicted_first_peak_m", 1e3),
+    ("re-simulated [mm]", "refit_first_peak_m", 1e3),
+    ("re-simulated vs measured [%]", "refit_vs_measured", 1e2),
+    ("largest [mm]", "max_displacement_m", 1e3),
+    ("outcome (measured)", "outcome_measured", 1.0),
+    ("outcome (re-simulated)", "outcome_refit", 1.0),
+)
+#: The monument's table's columns (prototype units: m, s).
+PROTOTYPE_COLUMNS = (
+    ("first peak [m]", "first_peak_m", 1.0),
+    ("5 % [m]", "first_peak_p05_m", 1.0),
+    ("95 % [m]", "first_peak_p95_m", 1.0),
+    ("at [s]", "first_peak_time_s", 1.0),
+    ("5 % [s]", "first_peak_time_p05_s", 1.0),
+    ("95 % [s]", "first_peak_time_p95_s", 1.0),
+)
 
 
 def fired_figures(result) -> list[tuple[str, str, str, bytes]]:
@@ -51,8 +85,10 @@ def fired_figures(result) -> list[tuple[str, str, str, bytes]]:
         m, pr, rf = h["measured"], h["predicted"], h["refit"]
         fig, axes = plt.subplots(1, 2, figsize=(11, 3.6))
         args = ((m["t"], m["ux"]), (pr["t"], pr["ux"]), (rf["t"], rf["ux"]))
-        plot_marker(*args, name=name, ax=axes[0])
-        plot_marker(*args, name=name, factors=f, units="prototype", ax=axes[1])
+        pk = m["peak"]
+        found = None if pk.first_peak_m is None else (pk.first_peak_time_s, pk.first_peak_m)
+        plot_marker(*args, name=name, peak=found, ax=axes[0])
+        plot_marker(*args, name=name, factors=f, units="prototype", peak=found, ax=axes[1])
         fig.tight_layout()
         out.append(
             (
@@ -60,7 +96,9 @@ def fired_figures(result) -> list[tuple[str, str, str, bytes]]:
                 f"Marker {name}",
                 (
                     "Measured, predicted for the designed load and "
-                    "re-simulated under the load as fired; left the specimen, right up-scaled to the prototype."
+                    "re-simulated under the load as fired; left the specimen, right up-scaled to the prototype; "
+                    "the cross is the first peak found in the track (docs/fired.md: smoothed and searched over "
+                    "spans set in seconds from the predicted time to the first peak)."
                 ),
                 png_bytes(fig),
             )
@@ -72,10 +110,10 @@ def fired_section(result, figures) -> str:
     """The "As fired" section as HTML: the verdict, the load, the gauges, the markers, the monument, the figures."""
     s = result.summary
     load = [
-        ("effective charge, by impulse", format_value(s["effective_charge_tnt_kg"]), "kg TNT"),
-        ("effective charge, by peak", format_value(s["effective_charge_from_pressure_tnt_kg"]), "kg TNT"),
-        ("designed charge", format_value(s["designed_charge_tnt_kg"]), "kg TNT"),
-        ("charge as weighed", format_value(s["charge_kg"]), f"kg {s['explosive'] or ''}"),
+        ("effective charge, by impulse", _charge(s["effective_charge_tnt_kg"]), "TNT"),
+        ("effective charge, by peak", _charge(s["effective_charge_from_pressure_tnt_kg"]), "TNT"),
+        ("designed charge", _charge(s["designed_charge_tnt_kg"]), "TNT"),
+        ("charge as weighed", _charge(s["charge_kg"]), s["explosive"] or ""),
         (
             "TNT equivalence implied (impulse / peak)",
             (f"{format_value(s['tnt_equivalence_impulse'])} / {format_value(s['tnt_equivalence_pressure'])}"),
@@ -87,52 +125,39 @@ def fired_section(result, figures) -> str:
             "m",
         ),
     ]
-    gkeys = (
-        "peak_pressure_Pa",
-        "predicted_peak_pressure_Pa",
-        "impulse_Pa_s",
-        "predicted_impulse_Pa_s",
-        "arrival_time_s",
-        "positive_duration_s",
-        "decay",
-        "effective_charge_tnt_kg",
-    )
-    mkeys = (
-        "first_peak_m",
-        "predicted_first_peak_m",
-        "refit_first_peak_m",
-        "first_peak_time_s",
-        "max_displacement_m",
-        "outcome_measured",
-        "outcome_refit",
-    )
-    pkeys = (
-        "first_peak_m",
-        "first_peak_p05_m",
-        "first_peak_p95_m",
-        "first_peak_time_s",
-        "first_peak_time_p05_s",
-        "first_peak_time_p95_s",
-    )
     return (
         f'<p class="lead"><b>{escape(s["verdict"])}</b></p>'
         + _similarity(s.get("similarity_verdict"))
         + html_table(("quantity", "value", "unit"), load)
-        + _named_rows("Gauges (specimen)", "gauge", gkeys, s["gauges"])
-        + _named_rows("Markers (specimen)", "marker", mkeys, s["markers"])
+        + _named_rows("Gauges (specimen)", "gauge", GAUGE_COLUMNS, s["gauges"])
+        + _named_rows("Markers (specimen)", "marker", MARKER_COLUMNS, s["markers"])
         + _named_rows(
-            "What the monument would do (measured, up-scaled; 5-95 %)", "marker", pkeys, s["prototype_markers"]
+            "What the monument would do (measured, up-scaled; 5-95 %)",
+            "marker",
+            PROTOTYPE_COLUMNS,
+            s["prototype_markers"],
         )
         + _calibration(s.get("calibration"))
         + "".join(figure_html(png, title, caption, name) for name, title, caption, png in figures)
     )
 
 
-def _named_rows(title: str, name: str, keys: tuple, entries: dict) -> str:
-    """A heading ``title`` and a table of one row per entry of ``entries`` (its name, then the values of
-    ``keys``, formatted); "" when there is none."""
-    rows = [(n, *(format_value(x[k]) for k in keys)) for n, x in entries.items()]
-    return f"<h3>{title}</h3>" + html_table((name,) + keys, rows) if rows else ""
+def _named_rows(title: str, name: str, columns: tuple, entries: dict) -> str:
+    """A heading ``title`` and a table of one row per entry of ``entries``: its name under the header ``name``,
+    then one column per ``(header, key, factor)`` of ``columns`` (the summary's SI value times ``factor``, shown
+    to 4 significant digits; text as given); "" when there is none."""
+    rows = [(n, *(_cell(x.get(k), f) for _, k, f in columns)) for n, x in entries.items()]
+    return f"<h3>{title}</h3>" + html_table((name,) + tuple(h for h, _, _ in columns), rows) if rows else ""
+
+
+def _charge(kg) -> str:
+    """A charge in the unit it is weighed in (:func:`~.markup.format_charge`: kg, g, mg), "-" when None."""
+    return "-" if kg is None else format_charge(kg)
+
+
+def _cell(v, factor: float):
+    """A summary value in the column's unit: a number times ``factor``, anything else as it is."""
+    return v * factor if isinstance(v, (int, float)) and not isinstance(v, bool) else v
 
 
 def _similarity(v) -> str:
@@ -144,22 +169,46 @@ def _similarity(v) -> str:
     return f'<p id="similarity_verdict" class="{cls}"><b>{escape(v["line"])}</b></p>'
 
 
+#: The calibration's rows in words (summary key -> label); any other key by its words and unit suffix.
+CALIBRATION_LABELS = {
+    "restitution": "restitution (calibrated)",
+    "restitution_low": "restitution, interval low",
+    "restitution_high": "restitution, interval high",
+    "best_restitution": "restitution of least misfit",
+    "friction": "friction coefficient (calibrated)",
+    "friction_low": "friction, interval low",
+    "friction_high": "friction, interval high",
+    "best_friction": "friction of least misfit",
+    "identifiable": "identified by the record",
+    "misfit_noise_multiple": "accepted misfit, x the noise",
+    "charge_factor": "factor on the charge as fired",
+    "charge_factor_ci95": "its 95 % half-width",
+    "samples": "frames fitted",
+    "evaluations": "re-simulations run",
+    "window": "frames fitted over",
+    "prototype_outcome": "the prototype with that value",
+}
+
+
 def _calibration(c) -> str:
-    """The calibration's line, then its values (one row per marker for a per-marker value) and its misfit
-    profile (parameter, RMS misfit)."""
+    """The calibration's line, then its values in words with their units (one row per marker for a per-marker
+    value) and its misfit profile (parameter, RMS misfit)."""
     if c is None:
         return ""
     rows = []
     for k, v in c.items():  # a value per marker (friction's prototype first peaks): one row each
         if k in ("line", "profile"):
             continue
-        rows += (
-            [(f"{k} ({n})", format_value(x)) for n, x in v.items()] if isinstance(v, dict) else [(k, format_value(v))]
-        )
+        label, unit = split_unit_for_tables(k)
+        label = CALIBRATION_LABELS.get(k, label)
+        if isinstance(v, dict):
+            rows += [(f"{label} ({n})", format_value(x), unit) for n, x in v.items()]
+        else:
+            rows.append((label, format_value(v), unit))
     profile = "; ".join(f"{x:.4g}: {1e3 * m:.3g} mm" for x, m in c.get("profile", ()))
     return (
         f"<h3>Calibration (the measured response)</h3><p>{escape(c['line'])}</p>"
-        + html_table(("quantity", "value"), rows)
+        + html_table(("quantity", "value", "unit"), rows)
         + (f"<p>Misfit profile (value: RMS misfit): {escape(profile)}</p>" if profile else "")
     )
 
@@ -173,6 +222,8 @@ def write_fired(result, scenario, folder) -> list[str]:
     figures = fired_figures(result)
     for name, _, _, png in figures:
         write_atomic(folder / f"{name}.png", png)
+    if scenario.fired is not None:  # a record path given relative stays relative (to the written file)
+        scenario = scenario.with_values({f"fired.{k}": v for k, v in scenario.fired.record_paths_in(folder).items()})
     write_atomic(folder / "scenario.toml", scenario.to_toml())
     title = scenario.title or "blast experiment"
     page = (

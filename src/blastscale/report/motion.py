@@ -16,8 +16,8 @@ from html import escape
 
 import numpy as np
 
-from ..io.motion import charge_position
 from ..sim3d.replay import motion_of
+from ..similitude.effects import charge_position
 
 __all__ = [
     "FRAME_BYTES",
@@ -357,7 +357,7 @@ def motion_section(result, tree=None) -> str:
 
 def _view(motion, standoff, div_id: str, include_plotlyjs: bool, lead: str) -> str:
 
-    charge = None if standoff is None else charge_position(motion, standoff)
+    charge = None if standoff is None else charge_position(motion.front_x, standoff)
     indices, asked = view_frames(motion, REPORT_FPS)
     step_ms = 1e3 * motion.duration / max(len(indices) - 1, 1)
     div = motion_div(

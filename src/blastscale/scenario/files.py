@@ -102,13 +102,14 @@ def _from_text(text: str, source: str, folder: "Path | None" = None) -> Scenario
     ):  # a block-model file is relative to its scenario file
         data["structure"] = {**st, "file": str(folder / st["file"])}
     fired = data.get("fired")
+    written = {}
     if folder is not None and isinstance(fired, dict):  # the records are relative to their scenario file
+        written = {k: fired[k] for k in ("gauges", "tracks") if isinstance(fired.get(k), str)}
         data["fired"] = {
             **fired,
-            **{
-                k: str(folder / fired[k])
-                for k in ("gauges", "tracks")
-                if isinstance(fired.get(k), str) and not Path(fired[k]).is_absolute()
-            },
+            **{k: str(folder / v) for k, v in written.items() if not Path(v).is_absolute()},
         }
-    return Scenario.from_dict(data, source=source)
+    sc = Scenario.from_dict(data, source=source)
+    if sc.fired is not None:  # as written, so that a scenario written again keeps them relative
+        sc.fired._as_written.update({k: (v, getattr(sc.fired, k)) for k, v in written.items()})
+    return sc

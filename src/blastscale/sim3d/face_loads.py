@@ -19,8 +19,11 @@ call (the Friedlander decays refined by Newton from the previous step's).
 
 The charge stands on the ground at ``(front_x - standoff, 0, 0)`` for a surface burst; a free-air
 burst's charge is placed at the height of the front's mid-height (``(front_x - standoff, 0, H/2)``,
-H the structure's top), as on a stand. A load model (:class:`~blastscale.blast.load_model.LoadModel`)
-adds clearing and the negative phase on every face (:mod:`blastscale.blast.face_effects`).
+H the structure's top), as on a stand (the one frame's
+:func:`~blastscale.similitude.effects.charge_position` and
+:func:`~blastscale.similitude.effects.charge_height`). A load model
+(:class:`~blastscale.blast.load_model.LoadModel`) adds clearing and the negative phase on every face
+(:mod:`blastscale.blast.face_effects`).
 """
 
 from __future__ import annotations
@@ -36,7 +39,7 @@ from ..blast.faces import face_loads_unchecked, incident_source
 from ..blast.incidence import check_incidence
 from ..blast.parameters import get_blast_model
 from ..blast.pulses import check_pulse_shape
-from ..similitude.effects import front_geometry, structure_top
+from ..similitude.effects import charge_height, charge_position, front_geometry
 from .exposure import visible_fractions
 from .loads import check_blast, faces_array
 
@@ -271,12 +274,11 @@ def load_arrival_spread(load) -> float:
     return float(getattr(load, "arrival_spread", 0.0))
 
 
-def _charge_position(structure, standoff_m, burst: str = "surface") -> np.ndarray:
-    R = float(check_positive("standoff", standoff_m, "m"))
-    z = 0.0
-    if burst == "free-air":  # on a stand at the front's mid-height (module docstring)
-        z = 0.5 * structure_top(structure)
-    return np.array([float(structure.front_x) - R, 0.0, z])
+def _charge_at(structure, bp) -> np.ndarray:
+    """The charge's centre [m] for blast parameters ``bp``: the one frame's
+    (:func:`~blastscale.similitude.effects.charge_position`), at its burst's height (module docstring)."""
+    burst = getattr(bp, "burst", "surface")
+    return charge_position(structure.front_x, bp.standoff_m, charge_height(structure, burst))
 
 
 def _face_load(
@@ -289,7 +291,7 @@ def _face_load(
         structure,
         faces,
         charge_kg=bp.charge_kg,
-        charge_position=_charge_position(structure, bp.standoff_m, getattr(bp, "burst", "surface")),
+        charge_position=_charge_at(structure, bp),
         blast_model=bp.blast_model,
         pulse_shape=pulse_shape,
         incidence=incidence,
@@ -322,7 +324,5 @@ def method_c(
 
     faces = [(i, f) for i, b in enumerate(structure.bodies) for f in b.faces if not f.in_contact and f.area > 0.0]
     bp = check_blast(blast)
-    seen = visible_fractions(
-        structure, faces, _charge_position(structure, bp.standoff_m, getattr(bp, "burst", "surface"))
-    )
+    seen = visible_fractions(structure, faces, _charge_at(structure, bp))
     return _face_load(structure, faces, blast, pulse_shape, incidence, extrapolate, "C", load_model, seen)

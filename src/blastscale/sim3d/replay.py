@@ -117,6 +117,13 @@ class Motion:
         idx = np.where(np.abs(self.time[idx - 1] - want) <= np.abs(self.time[idx] - want), idx - 1, idx)
         return idx, self.time[idx]
 
+    @property
+    def front_x(self) -> float:
+        """The structure's front at the first record [m]: the smallest x of any vertex of the first system
+        (the charge stands ``standoff`` in front of it:
+        :func:`blastscale.similitude.effects.charge_position`)."""
+        return float(np.nanmin(self.world(0, [0])[0][..., 0]))
+
     def world(self, system: int, indices) -> np.ndarray:
         """World vertices (len(indices), nbody, nvertex, 3) [m] of system ``system`` at recorded ``indices``."""
         return world_vertices(self.position[system, indices], self.quaternion[system, indices], self.vertices)

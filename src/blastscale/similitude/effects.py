@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_positive_scalar
 from ..blast.bursts import lab_burst
 from ..blast.load_model import PAPER_LOAD, front_face_clearing, front_face_negative, load_model_record
 from ..blast.parameters import blast_parameters, get_blast_model, valid_scaled_distance_range
@@ -34,15 +34,24 @@ from ..structures.assembly import Assembly
 from .factors import to_specimen
 
 __all__ = [
+    "FRAME",
     "SIMILARITY_TOLERANCE",
     "CONTINUOUS_FRONT",
     "front_geometry",
     "structure_top",
+    "charge_height",
+    "charge_position",
     "front_face",
     "blast_effects",
     "clearing_corrected_charge",
     "BlastSimilarityWarning",
 ]
+
+#: The one frame of blastscale's positions, in words (:func:`charge_position`; the test card states it).
+FRAME = (
+    "x along the blast, from the charge to the structure; y across; z up; origin at the centre of the "
+    "structure's footprint on the floor at rest"
+)
 
 #: Relative difference between prototype and specimen above which a design notes a violation [-].
 SIMILARITY_TOLERANCE = 0.05
@@ -87,6 +96,35 @@ def structure_top(structure) -> float:
     if isinstance(structure, Assembly):
         return float(max(b.points[:, 2].max() for b in structure.blocks))
     return float(front_geometry(structure)[1])
+
+
+def charge_height(structure, burst: str = "surface", height_m: float | None = None) -> float:
+    """Height of the charge's centre above the floor [m]: ``height_m`` where the scenario sets it (the lab's
+    stand, ``scale.specimen_charge_height_m``), else half the structure's top (:func:`structure_top`) for a
+    ``"free-air"`` burst (a stand at the front's mid-height, as the 3D engine places it), else 0 (a surface
+    burst: on the floor)."""
+    if height_m is not None:
+        return float(height_m)
+    return 0.5 * structure_top(structure) if burst == "free-air" else 0.0
+
+
+def charge_position(front_x_m: float, standoff_m: float, height_m: float = 0.0) -> np.ndarray:
+    """The charge's centre [x, y, z] [m] in the one frame of blastscale: the 3D engine's loads, the test
+    card's layout, the plan and the ``[fired]`` records share it. x horizontal along the blast, from the
+    charge to the structure; y across; z up; the origin at the centre of the structure's footprint on the
+    floor at rest (a block's front face at x = -width/2). The charge stands ``standoff_m`` in front of the
+    structure's front ``front_x_m`` (its smallest x: ``structure.front_x``), on the blast axis (y = 0), at
+    ``height_m`` (:func:`charge_height`): ``(front_x - standoff, 0, height)``.
+
+    Raises
+    ------
+    BlastscaleInputError
+        A stand-off that is not > 0, or a height below 0.
+    """
+    R = check_positive_scalar("standoff_m", standoff_m, "m")
+    if not height_m >= 0.0:
+        raise BlastscaleInputError(f"charge height = {height_m!r} m is out of range: must be >= 0 m")
+    return np.array([float(front_x_m) - R, 0.0, float(height_m)])
 
 
 def _assembly_front(structure) -> tuple:

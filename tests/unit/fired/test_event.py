@@ -104,7 +104,7 @@ def _histories(u_end_meas=0.002, u_end_pred=0.0016, u_end_refit=0.0021):
     n = 400
     ramp = np.linspace(0.0, 1.0, n)
     meas = {
-        "peak": SimpleNamespace(first_peak_m=0.030, first_peak_time_s=0.15, noise_m=5e-5),
+        "peak": SimpleNamespace(first_peak_m=0.030, first_peak_time_s=0.15, noise_m=5e-5, first_peak_sigma_m=4e-5),
         "ux": np.where(ramp < 0.5, 0.03 * ramp, u_end_meas),
         "uz": None,
     }
@@ -130,7 +130,7 @@ def _summary(ensemble=True):
 
 def test_band_is_the_independent_log_normal_terms():
     """The closed form: u_e = 10 u (u_pred / u_refit) (lambda = 1/10), sigma^2 the sum of the terms' squares
-    (load s sigma_W, track noise / u, refit |ln(u_refit / u)|, similarity |ln(m / p)| at the marker's point
+    (load s sigma_W, track: the first peak's standard error / u, refit |ln(u_refit / u)|, similarity |ln(m / p)| at the marker's point
     P-3, ensemble ln(p95 / p05) / 3.29), the band u_e exp(-+1.645 sigma), to 1e-12; the residual likewise,
     corrected by the runs' residuals (1.6 / 2.1) and up-scaled."""
     d = _design()
@@ -141,7 +141,7 @@ def test_band_is_the_independent_log_normal_terms():
     u = 10.0 * 0.030 * 0.024 / 0.0306
     terms = {
         "load": 2.0 * 0.01,
-        "track": 5e-5 / 0.030,
+        "track": 4e-5 / 0.030,  # the first peak's standard error, not the single-sample noise (5e-5)
         "refit": math.log(0.0306 / 0.030),
         "similarity": math.log(0.21 / 0.20),
         "ensemble": math.log(0.25 / 0.18) / (2 * Q95),

@@ -28,7 +28,8 @@ B, H = 0.2, 0.5  # half-width, half-height [m]
 
 
 def one_block(rule: str):
-    body = SimpleNamespace(com=(0.0, 0.0, H), toppling_angle=math.atan(B / H), base_height=-H)
+    box = [[x, y, z] for x in (-B, B) for y in (-B, B) for z in (-H, H)]  # about the centre of mass
+    body = SimpleNamespace(com=(0.0, 0.0, H), vertices=box, faces=(), toppling_angle=math.atan(B / H), base_height=-H)
     return SimpleNamespace(bodies=[body], heights=[2 * H], collapse_rule=rule)
 
 
@@ -102,6 +103,23 @@ def test_one_marker_sees_a_drop_but_no_turn():
     assert measured_outcome(st, {"a": ((0.0, 0.0, H), 0 * t, None)}) is None
 
 
-def test_marker_body_is_the_nearest_centre():
-    st = SimpleNamespace(bodies=[SimpleNamespace(com=(0, 0, 0.5)), SimpleNamespace(com=(0, 0, 1.5))])
-    assert marker_body(st, (-0.3, 0.0, 1.1)) == 1 and marker_body(st, (0.0, 0.0, 0.9)) == 0
+def test_a_marker_is_on_the_body_whose_solid_carries_it():
+    """A 2 m block under a 0.5 m one (0.6 m square): a marker on the side of the lower block 0.1 m below the
+    joint is nearer to the upper block's centre of mass (0.35 m against 0.9 m) but on the lower block's solid:
+    the lower block carries it (issue #36 item 4: the nearest centre of mass gave it to the wrong block). On
+    the joint itself (both solids), the nearer centre of mass: the upper one. Off every body, the nearest."""
+    from blastscale.structures import Assembly, ConvexBlock
+    from blastscale.structures.generators import box_vertices_from_bounds
+
+    st = Assembly(
+        (
+            ConvexBlock("low", box_vertices_from_bounds(-0.3, 0.3, -0.3, 0.3, 0.0, 2.0), 2000.0),
+            ConvexBlock("high", box_vertices_from_bounds(-0.3, 0.3, -0.3, 0.3, 2.0, 2.5), 2000.0),
+        )
+    )
+    side = (0.0, 0.3, 1.9)  # on the side face y = +0.3, where a side camera sees it
+    d = [np.linalg.norm(np.subtract(b.com, side)) for b in st.bodies]
+    assert d[1] < d[0]  # the old rule's answer would be the upper block
+    assert marker_body(st, side) == 0
+    assert marker_body(st, (0.0, 0.3, 2.0)) == 1  # on the joint: the nearer centre (2.25 m vs 1.0 m)
+    assert marker_body(st, (0.0, 0.0, 2.6)) == 1 and marker_body(st, (0.0, 0.0, -0.05)) == 0
