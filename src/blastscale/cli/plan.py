@@ -24,6 +24,7 @@ from ..io.results import check_output_folder, output_folder
 from ..planning.plan3d import ensemble_members
 from ..planning.planner import plan
 from ..report.markup import format_charge
+from ..report.plan_files import error_cells
 from ..scenario.files import load_scenario
 from ..scenario.lab import LabSpec
 from ..scenario.scenario import Scenario
@@ -49,7 +50,8 @@ def _print_plan(p, top: int) -> None:
         "safety radius",
         "camera",
         "P(outcome agrees)",
-        "first-peak error",
+        "screened error",
+        "simulated error",
         "Pareto",
     ):
         t.add_column(c, justify="left" if c in ("law", "material") else "right")
@@ -66,7 +68,7 @@ def _print_plan(p, top: int) -> None:
             f"{d['safety_radius_m']:.3g} m",
             f"{d['camera_fps']:g}/s",
             "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
-            f"{100 * d['predicted_first_peak_error']:.2g} %",
+            *error_cells(d),
             {True: "yes", False: "", None: "-"}[d["pareto"]],
         )
     console.print(t)

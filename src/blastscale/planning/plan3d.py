@@ -6,8 +6,9 @@ A structure without a planar path (a column, a wall, an arch, a portal, a block-
 block under a load model the planar kernels lack: clearing, the negative phase) is screened on its
 envelope block (:func:`~.candidates.envelope_block`: the impulsive check t_o p, the timing of the
 instruments) and on what the design gives in closed form: the lab's limits, the safety radius, the
-blast model's range, and the spread of the shock's arrival over the front at model scale. The best
-``lab.top_3d`` screened designs (smallest screening error, then safety radius) then get the
+blast model's range, and the spread of the shock's arrival over the front at model scale. The designs
+chosen for 3D (:func:`~.plan3d_designs.choose_3d`: the best ``lab.top_3d`` screened, by screening error then
+safety radius; the best screened of each material; the best at the largest admissible scale) then get the
 prototype-vs-specimen 3D comparison (the candidate's Study on the 3D engine,
 :meth:`~blastscale.study.Study.from_candidate`) and a 3D Monte Carlo ensemble of the lab's tolerances
 (``lab.ensemble_3d`` members, default :data:`ENSEMBLE_3D_DEFAULT`; :func:`~.odds.ensemble_odds_3d`: the design's

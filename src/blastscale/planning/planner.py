@@ -36,7 +36,7 @@ from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_l
 from .debris import planar_reach
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .pareto import mark_pareto
-from .plan3d import candidate_design, design_scenario, planar_path
+from .plan3d import candidate_design, design_scenario, planar_path, screening_error
 from .plan3d_designs import designs_3d
 from .shot import DEFAULT_LAB, lab_explosives, safety_envelope, timing_of
 
@@ -70,9 +70,10 @@ class Plan:
             "rejected": self.rejected,
             "prototype": self.prototype,
             "lab": self.lab,
-            "ranking": "p_outcome_agree (0.01), then predicted first-peak error (2 significant digits), then "
-            "safety_radius_m; designs screened only (no 3D run, p_outcome_agree null) after them, by "
-            "screening_error; pareto: optimal over odds, predicted error, safety radius and charge",
+            "ranking": "designs simulated (simulated_by planar or 3d) first: p_outcome_agree (0.01), then the "
+            "simulated error predicted_first_peak_error (2 significant digits), then safety_radius_m; designs "
+            "screened only (simulated_by null) after them, by screening_error (2 significant digits), then "
+            "safety_radius_m; pareto: optimal over odds, simulated error, safety radius and charge",
             "notes": list(self.notes),
         }
 
@@ -134,6 +135,8 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
     tol = odds.charge_tolerance_needed
     return {
         **shot_dict(ev, lab, top, reach),
+        "screening_error": screening_error(ev, scenario.blast.load),
+        "simulated_by": "planar",
         "p_outcome_agree": odds.p_outcome_agree,
         "p_outcome_agree_se": odds.p_outcome_agree_se,
         "first_peak_spread": odds.first_peak_spread,
@@ -149,9 +152,10 @@ def _reasons(d: dict, best: Optional[dict]) -> list:
     out = [
         f"outcome agrees with the prototype's in {100 * d['p_outcome_agree']:.1f} % of {d['odds']['samples']} "
         f"draws of the lab's tolerances",
-        f"predicted first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
+        f"simulated (planar) first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
         f"{100 * d['similarity_error']:.2g} %, tolerances "
-        f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %)",
+        f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %; "
+        f"screening error {100 * d['screening_error']:.2g} %)",
         f"safety radius ({d['safety_threshold']}) {d['safety_radius_m']:.3g} m",
     ]
     if best is not None and d is not best:
@@ -160,7 +164,7 @@ def _reasons(d: dict, best: Optional[dict]) -> list:
             + (
                 "better odds"
                 if round(best["p_outcome_agree"], 2) > round(d["p_outcome_agree"], 2)
-                else "a smaller predicted error"
+                else "a smaller simulated error"
                 if _rank_key(best)[1] < _rank_key(d)[1]
                 else "a smaller safety radius"
             )

@@ -11,7 +11,19 @@ from ..plots.plan import plot_plan
 from . import write_study
 from .markup import escape, figure_html, format_charge, html_table
 
-__all__ = ["write_plan", "plan_section"]
+__all__ = ["write_plan", "plan_section", "error_cells"]
+
+
+def error_cells(d: dict) -> tuple:
+    """The two error cells of a design's row, never one mixed column: the screening error (closed form, no
+    simulation: ``screening_error``) and the simulated error labelled by its engine (``predicted_first_peak_error``,
+    ``simulated_by`` planar or 3D; "-" for a design screened only)."""
+    scr = d.get("screening_error")
+    sim = d.get("predicted_first_peak_error") if d.get("simulated_by") else None
+    return (
+        "-" if scr is None else f"{100 * scr:.2g} %",
+        "-" if sim is None else f"{100 * sim:.2g} % ({'3D' if d['simulated_by'] == '3d' else 'planar'})",
+    )
 
 
 def plan_section(p, top: int = 15) -> str:
@@ -29,7 +41,7 @@ def plan_section(p, top: int = 15) -> str:
             f"{d['specimen_height_m'] * 1e3:.4g} mm",
             f"{d['safety_radius_m']:.3g} m",
             "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
-            f"{100 * d['predicted_first_peak_error']:.2g} %",
+            *error_cells(d),
             {True: "yes", False: "", None: "-"}[d.get("pareto")],
         )
         for i, d in enumerate(p.designs[:top], 1)
@@ -52,7 +64,8 @@ def plan_section(p, top: int = 15) -> str:
                 "specimen height",
                 "safety radius",
                 "P(outcome agrees)",
-                "first-peak error",
+                "screened error",
+                "simulated error",
                 "Pareto",
             ),
             rows,
