@@ -35,6 +35,9 @@ paper's default. The paper's 10 m block at 1/200::
     [simulation.contact]    # 3D contact (optional; defaults derived from the structure)
     time_constant_s = 0.002
 
+    [verdict]               # the similarity criterion's tolerances (optional; docs/verdict.md)
+    residual = 0.2
+
 Unknown keys, wrong types, NaN and values out of range are refused with one line that names
 the field path, the value and the valid range (:class:`~blastscale._validate.BlastscaleInputError`).
 See ``docs/scenarios.md`` for every key.
@@ -43,7 +46,7 @@ See ``docs/scenarios.md`` for every key.
 from .files import load_scenario
 from .library import EXAMPLE_BLOCKS, TEMPLATE_KINDS, library_names, library_text, template_text
 from .scenario import Scenario
-from .specs import BlastSpec, ContactSpec, ScaleSpec, SimulationSpec, parse_ratio
+from .specs import BlastSpec, ContactSpec, ScaleSpec, SimulationSpec, VerdictSpec, parse_ratio
 from .structure_specs import BlockSpec, ColumnSpec
 from .text import to_toml
 
@@ -63,4 +66,5 @@ __all__ = [
     "ScaleSpec",
     "SimulationSpec",
     "ContactSpec",
+    "VerdictSpec",
 ]

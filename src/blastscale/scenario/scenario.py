@@ -14,7 +14,7 @@ from .fields import SPEC_CONFIG
 from .fired import FiredSpec
 from .lab import LabSpec
 from .messages import one_line, submodels
-from .specs import LEGACY_SCENARIO_KEYS, BlastSpec, ScaleSpec, SimulationSpec
+from .specs import LEGACY_SCENARIO_KEYS, BlastSpec, ScaleSpec, SimulationSpec, VerdictSpec
 from .structure_specs import KINDS, BlockSpec, Structure
 from .text import to_toml
 
@@ -63,6 +63,10 @@ class Scenario(BaseModel):
         None, description="The specimen's scales; absent: the prototype alone (no design, no comparison)"
     )
     simulation: SimulationSpec = Field(default_factory=SimulationSpec)
+    verdict: VerdictSpec = Field(
+        default_factory=VerdictSpec,
+        description="The similarity criterion's tolerances (docs/verdict.md); absent: the defaults",
+    )
     lab: Optional[LabSpec] = Field(
         None,
         description="What the laboratory can fire, build and measure: a test card "

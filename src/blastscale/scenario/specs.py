@@ -28,7 +28,15 @@ from ..structures.materials import MATERIALS
 from .fields import SPEC_CONFIG, at_most_one, check_name, engine_limits
 from .messages import value_in_message
 
-__all__ = ["parse_ratio", "BlastSpec", "ScaleSpec", "SimulationSpec", "ContactSpec", "LEGACY_SCENARIO_KEYS"]
+__all__ = [
+    "parse_ratio",
+    "BlastSpec",
+    "ScaleSpec",
+    "SimulationSpec",
+    "ContactSpec",
+    "VerdictSpec",
+    "LEGACY_SCENARIO_KEYS",
+]
 
 #: Deprecated scenario keys, still accepted when read (files, ``with_values``, ``--set``) and never
 #: written: old dotted path -> new dotted path (CHANGELOG.md, docs/glossary.md).
@@ -313,3 +321,53 @@ class SimulationSpec(BaseModel):
         if v == 1:
             raise ValueError("= 1 is out of range: valid values are 0 (no ensemble) or 2 to 64 members")
         return v
+
+
+class VerdictSpec(BaseModel):
+    """The similarity criterion's tolerances (:func:`blastscale.study.criterion.judge`, docs/verdict.md):
+    relative errors of the up-scaled model against the prototype, and the thresholds of its outcomes."""
+
+    model_config = SPEC_CONFIG
+    peak: float = Field(
+        0.05,
+        gt=0,
+        le=10,
+        description="First peaks (3D points, planar rotation): largest relative error [-] "
+        "(the first swing, before contacts and friction accumulate differences)",
+    )
+    displacement: float = Field(
+        0.10,
+        gt=0,
+        le=10,
+        description="Largest displacement at each point (planar: largest rotation): largest relative error [-]",
+    )
+    residual: float = Field(
+        0.20,
+        gt=0,
+        le=10,
+        description="Residual displacement and rotation of each body (the damage): largest relative error [-] "
+        "(looser: they integrate the whole history)",
+    )
+    floor: float = Field(
+        0.10,
+        ge=0,
+        le=1,
+        description="A value is judged on at least this fraction of the structure's largest value of its quantity [-]",
+    )
+    moved_rel_height: float = Field(
+        1e-3,
+        gt=0,
+        le=1,
+        description="A body moved when its residual displacement exceeds this fraction of the structure's "
+        "height [-] (also the scale below which a residual is not judged: H x this, and this in rad)",
+    )
+    creep_rel_height: float = Field(
+        1e-4,
+        gt=0,
+        le=1,
+        description="At rest before the blast: largest residual drift under gravity alone over the rest "
+        "time, over the structure's height [-]",
+    )
+    confidence: float = Field(
+        0.95, gt=0, lt=1, description="Confidence level of the probabilities' intervals (two-sided) [-]"
+    )

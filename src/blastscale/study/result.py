@@ -13,6 +13,7 @@ import numpy as np
 from ..analysis.compare import upscale_dataset
 from ..analysis.rocking_similarity import rocking_dataset
 from ..scenario.scenario import Scenario
+from .criterion import judge
 
 __all__ = ["StudyResult", "study_warnings"]
 
@@ -129,8 +130,8 @@ class StudyResult:
     def summary(self) -> dict:
         """Nested dict of every result (JSON-ready apart from NaN/inf): ``experiment``,
         ``design``, ``planar``, ``critical``, ``3d``, ``ensemble`` (None where not run),
-        ``warnings``, ``timings_s``. The scenario is under ``scenario``. Computed once (a copy
-        is returned)."""
+        ``warnings``, ``timings_s`` and ``verdict`` (:func:`~blastscale.study.criterion.judge`). The
+        scenario is under ``scenario``. Computed once (a copy is returned)."""
 
         return copy.deepcopy(self._cached_summary())
 
@@ -141,7 +142,7 @@ class StudyResult:
         return self._summary
 
     def _compute_summary(self) -> dict:
-        return {
+        out = {
             "scenario": self.scenario.to_dict(),
             "experiment": self.experiment(),
             "design": None if self.design is None else self.design.to_dict(),
@@ -152,14 +153,26 @@ class StudyResult:
             "warnings": list(self.warnings),
             "timings_s": dict(self.timings),
         }
+        out["verdict"] = judge(
+            out,
+            self.scenario.verdict,
+            structure_kind=self.scenario.structure.kind,
+            circular=getattr(self.structure, "section", None) == "circular",
+        )
+        return out
 
     def scalars(self) -> dict:
         """Flat dict of the scalar results (dotted keys, stable for a given scenario layout):
-        str -> float / int / bool; None (not applicable) -> NaN. Inputs and timings are left out."""
+        str -> float / int / bool; None (not applicable) -> NaN. Inputs and timings are left out; of the
+        verdict, ``verdict.similar`` (NaN when nothing is compared) and ``verdict.worst_ratio`` (its worst
+        quantity's error / tolerance; NaN when none)."""
         s = self._cached_summary()  # _flatten only reads it
         out: dict = {}
         for key in ("experiment", "design", "planar", "critical", "3d", "ensemble"):
             _flatten(s[key], key, out)
+        v = s["verdict"]
+        out["verdict.similar"] = math.nan if v["similar"] is None else bool(v["similar"])
+        out["verdict.worst_ratio"] = math.nan if v["worst"] is None else float(v["worst"]["ratio"])
         return out
 
     def to_datatree(self):
