@@ -24,7 +24,7 @@ from ..io.results import check_output_folder, output_folder
 from ..planning.plan3d import ensemble_members
 from ..planning.planner import plan
 from ..report.markup import format_charge
-from ..report.plan_files import error_cells
+from ..report.plan_files import error_cells, first_design_label, verdict_cell
 from ..scenario.files import load_scenario
 from ..scenario.lab import LabSpec
 from ..scenario.scenario import Scenario
@@ -49,6 +49,7 @@ def _print_plan(p, top: int) -> None:
         "specimen",
         "safety radius",
         "camera",
+        "verdict",
         "P(outcome agrees)",
         "screened error",
         "simulated error",
@@ -67,6 +68,7 @@ def _print_plan(p, top: int) -> None:
             f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
             f"{d['safety_radius_m']:.3g} m",
             f"{d['camera_fps']:g}/s",
+            verdict_cell(d),
             "-" if d["p_outcome_agree"] is None else f"{d['p_outcome_agree']:.3f}",
             *error_cells(d),
             {True: "yes", False: "", None: "-"}[d["pareto"]],
@@ -78,9 +80,10 @@ def _print_plan(p, top: int) -> None:
         if b.get("charge_height_m")
         else ""
     )
+    console.print(styled((p.recommendation["line"], "bold")))
     console.print(
         styled(
-            ("Best design:", "bold"),
+            (f"{first_design_label(p)}:", "bold"),
             f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
             f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"
             f"{stand}",
@@ -177,8 +180,11 @@ def plan_cmd(
                 out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts, markers=markers
             ) as tmp:
                 p = plan(sc, workers=workers, scheduler=scheduler, progress=tell)
-                tell("the best design's study", 0, 1)
-                result = Study(p.best_scenario).run()
+                if p.best_result is not None:  # the Study that judged it: the report's verdict is the plan's
+                    result = p.best_result
+                else:
+                    tell("the best design's study", 0, 1)
+                    result = Study(p.best_scenario).run()
                 written = write_plan(p, result, tmp)
     if as_json:
         print_json(p.to_dict())

@@ -224,16 +224,21 @@ def run_3d(
 
     Returns
     -------
-    (dict, dict, dict or None)
-        The 3D summary of the comparison (``prototype``, ``model``, ``similarity``), the similarity
-        (``error``, ``specimen_top_m`` [m], ``specimen_reach_m`` [m], ``prototype_reach_m`` [m]) and
-        ``odds_3d`` (None with 0 members).
+    (StudyResult, dict, dict or None)
+        The comparison's Study result (its ``summary()``: ``3d`` with ``prototype``, ``model``,
+        ``similarity``; ``verdict``, the criterion's, :func:`~blastscale.study.criterion.judge`, under the
+        scenario's ``[verdict]``), the similarity (``error``, ``specimen_top_m`` [m], ``specimen_reach_m``
+        [m], ``prototype_reach_m`` [m]) and ``odds_3d`` (None with 0 members). The Study runs the scenario
+        on the 3D engine alone (no critical charge searched; its ``simulation.ensemble_members`` kept: a chaotic
+        structure is judged between ensembles) with ``lab`` as its ``[lab]``; its result is the one
+        ``plan --out`` writes, test card included.
     """
 
     scale = candidate_scale(scenario, ev.candidate, ev.charge_height_m or None)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = Study.from_candidate(scenario, scale, engine="3d").run()
+        sim3 = scenario.simulation.model_copy(update={"engine": "3d", "critical_charge": False})
+        res = Study.from_candidate(scenario.model_copy(update={"lab": lab, "simulation": sim3}), scale).run()
     s3 = res.summary()["3d"]
     cmp3 = res.response3d
     f = ev.design.factors
@@ -257,4 +262,4 @@ def run_3d(
             scheduler=scheduler,
             tick=tick,
         )
-    return s3, sim, odds
+    return res, sim, odds

@@ -4,7 +4,8 @@ ranking's two error columns (screened and simulated, never one mixed column)."""
 import math
 
 from blastscale.planning.candidates import Candidate, Evaluated
-from blastscale.planning.plan3d_designs import choose_3d, rank_key_3d
+from blastscale.planning.plan3d_designs import choose_3d
+from blastscale.planning.recommend import rank_key
 from blastscale.report.plan_files import error_cells
 
 
@@ -62,9 +63,9 @@ def test_a_design_simulated_ranks_before_one_screened_whatever_the_two_errors():
     two columns; simulated designs first, then screened ones by their screening error."""
     sim = _design("3d", 1.0, 0.16, 0.02)
     scr_a, scr_b = _design(None, None, None, 0.017), _design(None, None, None, 0.0125, radius=9.0)
-    ranked = sorted([scr_a, sim, scr_b], key=rank_key_3d)
+    ranked = sorted([scr_a, sim, scr_b], key=rank_key)
     assert ranked == [sim, scr_b, scr_a]  # 1.2 % before 1.7 % despite the larger safety radius
     assert error_cells(sim) == ("2 %", "16 % (3D)")
     assert error_cells(scr_a) == ("1.7 %", "-")
     assert error_cells(_design("planar", 1.0, 0.064, 0.0007)) == ("0.07 %", "6.4 % (planar)")
-    assert math.isinf(rank_key_3d(_design(None, None, None, math.nan))[2])
+    assert math.isinf(rank_key(_design(None, None, None, math.nan))[1])  # no estimate: last of the screened
