@@ -64,12 +64,25 @@ def test_similarity_map_cli(tmp_path, capsys):
 
 def test_3d_map_on_a_coarse_grid():
     """The 3D engine (MuJoCo, paper block, 0.3 s): the model at lambda = 0.1 follows the prototype
-    within the 5 % default tolerance (a rocking start; the 3D comparison is documented in
-    docs/sim3d.md), and the map carries the 3D definition of its error."""
-    ds = similarity_map(BASE.with_values({"duration_s": 0.3}), [0.1], [1.0], [50.0], [2.0], engine="3d").squeeze()
+    (a rocking start; the 3D comparison is documented in docs/sim3d.md), the map carries the 3D definition
+    of its error, and its trustworthy cell is that design's Study verdict (issue #35: one criterion), with
+    the verdict's worst ratio."""
+    from blastscale.study import Study
+
+    base = BASE.with_values({"duration_s": 0.3})
+    ds = similarity_map(base, [0.1], [1.0], [50.0], [2.0], engine="3d").squeeze()
     assert ds.attrs["engine"] == "3d" and ds.attrs["error_units"] == "-"
     assert bool(ds["valid"]) and bool(ds["outcomes_agree"])
     assert 0.0 <= float(ds["error"]) < 0.05 and bool(ds["trustworthy"])
+    case = base.with_values(
+        {"engine": "3d", "critical_charge": False, "length": 0.1, "density_ratio": 1.0, "charge_kg": 50.0}
+    )
+    v = Study(case).run().summary()["verdict"]
+    assert bool(ds["trustworthy"]) is v["similar"] is True
+    assert float(ds["worst_ratio"]) == pytest.approx(v["worst"]["ratio"], rel=1e-12) and v["worst"]["ratio"] <= 1.0
+    # a [verdict] table tighter than this design's worst error: the same map calls it untrustworthy
+    tight = base.with_values({"verdict.peak": 1e-6, "verdict.displacement": 1e-6, "verdict.residual": 1e-6})
+    assert not bool(similarity_map(tight, [0.1], [1.0], [50.0], [2.0], engine="3d").squeeze()["trustworthy"])
 
 
 def test_map_through_a_store_and_of_a_prototype_only_scenario(tmp_path, capsys):

@@ -42,6 +42,11 @@ CHANGED: dict = {
         "not reached, tests/integration/test_sparse_factorisation.py)"
         for case in ("column_sq", "column_circ_ens")
     },
+    (
+        "simmap",
+        "tolerance",
+    ): "issue #35: the map's trustworthy cells are the Study's verdict (one criterion, docs/verdict.md); its "
+    "tolerances are the scenario's [verdict] table (the key `tolerances`), no longer one map tolerance",
 }
 
 #: Chaotic runs: {(case, key prefix): reason}. A circular column is chaotic (docs/design.md: 1e-10 on the load

@@ -24,8 +24,8 @@ from .._hooks import pause_point
 from ..io.results import check_output_folder
 from ..report import write_study
 from ..report.card import card_of
+from ..report.labels import label
 from ..report.markup import format_charge, split_unit_for_tables
-from ..report.verdict import label, verdict_line
 from ..study.study import Study
 from ._app import app
 from ._output import (
@@ -88,7 +88,7 @@ def _print_result(result) -> None:
     exp = s["experiment"]
 
     console.rule(styled(("blastscale run", "bold"), f" — {sc.title or 'scenario'}"))
-    console.print(styled((verdict_line(result), "bold")), soft_wrap=True)
+    console.print(styled((s["verdict"]["line"], "bold")), soft_wrap=True)
     m = exp["model"]
     if m is None and sc.blast.gravity_only:
         console.print(styled(("Gravity alone", "bold"), " (no charge): no specimen, no comparison."))

@@ -8,6 +8,7 @@ Units at this edge are those of the scenario keys (SI, named in each key); grids
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 from typing import List, Optional
@@ -236,11 +237,6 @@ def similarity_map_cmd(
     engine: str = typer.Option(
         "planar", "--engine", help="planar (rocking, ~2 ms per case) or 3d (MuJoCo, one Study per case: a coarse grid)."
     ),
-    tolerance: Optional[float] = typer.Option(
-        None,
-        "--tolerance",
-        help="Error below which an agreeing model is trustworthy (default 5e-4 rad planar, 0.05 relative 3D).",
-    ),
     out: Optional[Path] = typer.Option(
         None, "--out", help="Zarr store of the underlying sweep (resumable; its parent folder must exist)."
     ),
@@ -250,8 +246,10 @@ def similarity_map_cmd(
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the map (one panel per charge and stand-off)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
-    """Where in (lambda, gamma, charge, stand-off) the up-scaled model is trustworthy: its error
-    against the prototype (planar rocking or 3D) and whether the outcomes agree (docs/sweeps.md)."""
+    """Where in (lambda, gamma, charge, stand-off) the up-scaled model is trustworthy: the Study's verdict
+    (the one criterion, its tolerances the scenario's [verdict] table: --set verdict.peak=0.05; docs/verdict.md),
+    its worst ratio, its error against the prototype (planar rocking or 3D) and whether the outcomes agree
+    (docs/sweeps.md)."""
 
     check_plot_path(plot)
     base = read_scenario(scenario, values)
@@ -261,7 +259,7 @@ def similarity_map_cmd(
         _resume_note(out)
     with one_line_warnings(), bar:
         run = _map_runner(out, scheduler, workers, chunk, tick)
-        ds = similarity_map(base, *grids, engine=engine, tolerance=tolerance, run=run)
+        ds = similarity_map(base, *grids, engine=engine, run=run)
     res = _map_output(ds, engine)
     add_figure(res, lambda: _map_figure(ds), plot)
     answer(res, as_json=as_json, engine=engine, plot=plot, tables=lambda: _print_map(res, ds, out))
@@ -297,7 +295,7 @@ def _map_output(ds, engine: str) -> dict:
     res = {
         "dims": {k: ds[k].values.tolist() for k in ("length", "density_ratio", "charge_kg", "standoff_m")},
         "engine": engine,
-        "tolerance": ds.attrs["tolerance"],
+        "tolerances": json.loads(ds.attrs["tolerances"]),
         "error_units": ds.attrs["error_units"],
         "error_definition": legacy_name(ds.attrs["error_definition"]),  # deprecated: the key's old name
         "error_key": ds.attrs["error_definition"],
@@ -311,6 +309,7 @@ def _map_output(ds, engine: str) -> dict:
         "first_peak_ratio_error",
         "outcomes_agree",
         "trustworthy",
+        "worst_ratio",
         "valid",
         "model_to_p",
         "model_charge_kg",
@@ -336,7 +335,7 @@ def _print_map(res: dict, ds, out: Optional[Path]) -> None:
                 ("cases", str(res["n_cases"]), ""),
                 ("valid designs (model Z inside the blast fits)", str(res["n_valid"]), ""),
                 ("outcomes agree", str(res["n_outcomes_agree"]), ""),
-                (f"trustworthy (agree, error <= {res['tolerance']:g} {unit})", str(res["n_trustworthy"]), ""),
+                ("trustworthy (the verdict: similar; docs/verdict.md)", str(res["n_trustworthy"]), ""),
                 ("largest error where valid", f"{float(np.nanmax(ds['error'].values)):.3g}", unit),
             ],
         )

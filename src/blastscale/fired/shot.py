@@ -317,7 +317,7 @@ def _sensitivity(sc, d, predicted: SpecimenRun, refit: SpecimenRun, standoff: fl
 
 def as_fired_verdict_line(s: dict) -> str:
     """The as-fired summary's verdict: the one line at the top of its report (docs/fired.md; a study's verdict
-    is :func:`blastscale.report.verdict.verdict`)."""
+    is :func:`blastscale.study.criterion.judge`)."""
     parts = []
     if s["charge_ratio_impulse"] is not None:
         parts.append(f"As fired: {s['charge_ratio_impulse']:.3g} x the designed charge by impulse")

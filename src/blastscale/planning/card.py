@@ -250,7 +250,9 @@ def study_test_card(result, lab=None) -> dict | None:
     reach = max(r["reach_m"])
     hc, burst, shot_notes = _lab_shot(result)
     tol = None if odds is None else odds.charge_tolerance_needed
+    v = result.summary()["verdict"]
     return {
+        "verdict": {"similar": v["similar"], "line": v["line"]},
         **_shot_keys(ch, lab),
         "standoff_m": d.specimen_standoff_m,
         "charge_height_m": hc,

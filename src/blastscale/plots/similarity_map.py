@@ -16,7 +16,7 @@ __all__ = ["plot_similarity_map"]
 def plot_similarity_map(ds, fig=None):
     """One panel per (charge, stand-off): the model's error (log colour scale; planar: angle [rad],
     3D: relative top displacement [-]) against lambda (x) and gamma (y); x: outcomes disagree;
-    grey: no valid design; white contour: the tolerance."""
+    grey: no valid design; white contour: the verdict's limit (worst ratio = 1, docs/verdict.md)."""
     import matplotlib.pyplot as plt
     from matplotlib.colors import LogNorm
 
@@ -28,7 +28,6 @@ def plot_similarity_map(ds, fig=None):
     err = ds["error"].values
     finite = err[np.isfinite(err) & (err > 0)]
     norm = LogNorm(vmin=max(finite.min(), 1e-16), vmax=finite.max()) if finite.size else None
-    tol = ds.attrs.get("tolerance", 5e-4)
     unit = ds.attrs.get("error_units", "rad")
     im = None
     for i, w in enumerate(W):
@@ -44,7 +43,8 @@ def plot_similarity_map(ds, fig=None):
             gg, ll = np.meshgrid(gam, lam, indexing="ij")
             ax.plot(ll[bad], gg[bad], "x", color="C3", ms=7, mew=1.5)
             if np.any(valid) and lam.size > 1 and gam.size > 1:
-                ax.contour(lam, gam, np.where(valid, e, np.nan), levels=[tol], colors="w", linewidths=1.0)
+                worst = ds["worst_ratio"].values[:, :, i, j].T
+                ax.contour(lam, gam, np.where(valid, worst, np.nan), levels=[1.0], colors="w", linewidths=1.0)
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.set_title(f"W = {w:g} kg, R = {r:g} m", fontsize=9)
@@ -57,7 +57,7 @@ def plot_similarity_map(ds, fig=None):
         fig.colorbar(im, ax=axes, label=what, shrink=0.8)
     fig.suptitle(
         f"Similarity map ({ds.attrs.get('engine', 'planar')}): x outcome differs, grey no design, "
-        f"white line {tol:g} {unit}",
+        "white line: the verdict's limit (worst ratio 1)",
         fontsize=10,
     )
     return fig

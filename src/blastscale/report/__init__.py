@@ -18,7 +18,6 @@ from .html import SECTIONS, render_report
 from .markup import format_charge
 from .motion import motion_section
 from .slips import SLIPS, applicable_slips
-from .verdict import verdict
 
 __all__ = [
     "FIGURES",
@@ -95,13 +94,12 @@ def write_study(
 
 def summary_dict(result, meta: Optional[dict] = None) -> dict:
     """The content of ``summary.json``: provenance (versions, git commit, timestamp), units, the
-    study's nested summary (scenario included), its flat ``scalars``, the report's ``verdict``
-    (:func:`blastscale.report.verdict.verdict`: similar, reasons, limits, the line) and, with a ``[lab]``
+    study's nested summary (scenario included, and its ``verdict``: :func:`blastscale.study.criterion.judge`),
+    its flat ``scalars`` and, with a ``[lab]``
     table, the ``test_card`` (:func:`blastscale.planning.study_test_card`), each renamed key with its
     deprecated name beside it (:func:`blastscale.io.results.with_legacy_keys`)."""
 
     s = result.summary()
-    v = verdict(s, result.scenario.structure.kind, getattr(result.structure, "section", None) == "circular")
     card = card_of(result)
     extra = {} if card is None else {"test_card": card}
     return with_legacy_keys(
@@ -110,7 +108,6 @@ def summary_dict(result, meta: Optional[dict] = None) -> dict:
             "units": UNITS,
             **s,
             "scalars": result.scalars(),
-            "verdict": v,
             **extra,
         }
     )

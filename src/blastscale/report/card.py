@@ -236,8 +236,10 @@ def card_section(result) -> str:
     build, shot, safety = _build_table(c), _shot_table(c), _safety_table(c)
     inst, pred = _instruments_table(c), _predicted_table(c)
     warn = "".join(f'<li class="warn">{_e(w)}</li>' for w in c["warnings"])
+    v = c["verdict"]
     return (
-        f'<div class="card"><div class="cols"><div><h3>Build</h3>{build}</div><div><h3>Shot</h3>{shot}</div></div>'
+        f'<div class="card"><p class="{"lead" if v["similar"] else "warn"}"><b>{_e(v["line"])}</b></p>'
+        f'<div class="cols"><div><h3>Build</h3>{build}</div><div><h3>Shot</h3>{shot}</div></div>'
         f"<h3>Layout: plan and elevation (to scale)</h3>{_plan_svg(c)}{_elevation_svg(c)}"
         f'<h3>Safety circles (around the charge) and the debris zone</h3><div class="cols">{_site_svg(c)}'
         f'{safety}</div><div class="cols"><div><h3>Instruments</h3>{inst}</div><div><h3>Predicted response '

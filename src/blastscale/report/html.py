@@ -16,6 +16,7 @@ import math
 from typing import Iterable
 
 from .card import CSS as _CARD_CSS, card_section
+from .labels import label, specimen_rows
 from .markup import (
     PAGE_CSS,
     compare_table,
@@ -30,7 +31,6 @@ from .markup import (
 from .motion import motion_section
 from .outcomes import ARRIVAL_NOTE, first_peak_rows, stability_lead, timing_rows
 from .slips import applicable_slips
-from .verdict import label, specimen_rows, verdict
 
 __all__ = ["SECTIONS", "render_report"]
 
@@ -313,10 +313,9 @@ def _provenance(meta: dict, files: Iterable[str]) -> str:
 
 
 def _verdict(result) -> str:
-    """The page's first statement: ``Verdict: ...`` (:mod:`.verdict`), before the build instructions."""
-    v = verdict(
-        result.summary(), result.scenario.structure.kind, getattr(result.structure, "section", None) == "circular"
-    )
+    """The page's first statement: the study's ``Verdict: ...`` (:func:`blastscale.study.criterion.judge`),
+    before the build instructions."""
+    v = result.summary()["verdict"]
     cls = {True: "lead", False: "warn", None: "muted"}[v["similar"]]
     return f'<p id="verdict" class="{cls}"><b>{escape(v["line"])}</b></p>'
 

@@ -14,7 +14,7 @@ import math
 from typing import Any, Iterable
 
 from ..units import split_unit
-from .verdict import label
+from .labels import label
 
 __all__ = [
     "PAGE_CSS",

@@ -56,6 +56,7 @@ GROUPS = {
     "critical": "critical",
     "3d": "sim3d",
     "ensemble": "ensemble",
+    "verdict": "verdict",
 }
 
 #: Labels of the ``system`` dimension, in store order.
@@ -83,6 +84,7 @@ _CONTEXT = {
     "critical": "critical charge of the prototype, planar",
     "sim3d": "3D engine",
     "ensemble": "3D ensemble",
+    "verdict": "the similarity verdict, docs/verdict.md",
     "design/factors": "scaling factor, specimen / prototype",
     "design/impulsive": "impulsive check",
 }

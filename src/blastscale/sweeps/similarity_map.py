@@ -17,32 +17,29 @@ or 3D Study per case; on Dask when asked) and returns, per case:
 * ``model_to_p``: the model's t_o p (the a priori impulsive check of ``design_model``),
 * ``model_charge_kg``, ``prototype_collapsed``,
 * ``valid``: False where the model's scaled distance leaves the blast fits (no design),
-* ``trustworthy``: valid, outcomes agree and ``error <= tolerance`` (default 5e-4 rad planar, the
-  acceptance level of the paper's comparisons; 5 % 3D).
+* ``trustworthy``: valid and the Study's verdict similar (the one criterion,
+  :func:`blastscale.study.criterion.judge`, with the scenario's ``[verdict]`` tolerances: outcomes, first
+  peaks, largest displacements and residuals over the whole structure; docs/verdict.md),
+* ``worst_ratio``: the verdict's worst quantity's error over its tolerance (<= 1 passes).
 
 References: paper Secs. "Scaling laws" (Eq. 8) and "Equations of motion" (Figs. 6-9).
 """
 
 from __future__ import annotations
 
-from typing import Optional
+import json
 
 import numpy as np
 
-from .._validate import check_choice, check_positive
+from .._validate import check_choice
 from .layout import VALID_NAME, select
 from .run import run_in_memory
 from .spec import SweepSpec
 
-__all__ = ["similarity_map", "MAP_FIELDS", "DEFAULT_TOLERANCE", "ENGINE_VARIABLES"]
+__all__ = ["similarity_map", "MAP_FIELDS", "ENGINE_VARIABLES"]
 
 #: The scenario fields of the map's axes, in order.
 MAP_FIELDS = ("length", "density_ratio", "charge_kg", "standoff_m")
-
-#: Error below which an agreeing model is called trustworthy, per engine: planar, the angle error
-#: [rad] (the paper's acceptance level); 3d, the top-displacement difference relative to the
-#: prototype's peak [-].
-DEFAULT_TOLERANCE = {"planar": 5e-4, "3d": 0.05}
 
 _COMMON = {
     "model_to_p": ("design.impulsive.model_to_p", "-"),
@@ -50,6 +47,8 @@ _COMMON = {
     "model_charge_kg": ("design.model_charge_kg", "kg"),
     "model_standoff_m": ("design.model_standoff_m", "m"),
     "valid": ("sweep.valid", "-"),
+    "similar": ("verdict.similar", "-"),
+    "worst_ratio": ("verdict.worst_ratio", "-"),
 }
 
 #: map variable -> (Study scalar key, unit), per engine
@@ -81,7 +80,6 @@ def similarity_map(
     standoffs,
     *,
     engine: str = "planar",
-    tolerance: Optional[float] = None,
     run=None,
 ):
     """The similarity map of a scenario (module docstring).
@@ -97,9 +95,6 @@ def similarity_map(
     engine : {"planar", "3d"}
         Planar rocking (a block; about 2 ms per case) or the 3D engine (any structure; one Study per
         case: use a coarse grid).
-    tolerance : float, optional
-        Error below which an agreeing model counts as trustworthy (default
-        :data:`DEFAULT_TOLERANCE`: 5e-4 rad planar, 0.05 relative 3D).
     run : callable, optional
         ``run(spec) -> xarray.DataTree``: the sweep's store (e.g. the resumable store of
         :func:`blastscale.sweeps.run.run_sweep` read back by ``open_sweep``, on Dask); default
@@ -109,13 +104,13 @@ def similarity_map(
     -------
     xarray.Dataset
         Dims ``length``, ``density_ratio``, ``charge_kg``, ``standoff_m``; the variables of
-        :data:`ENGINE_VARIABLES` plus ``first_peak_ratio_error`` and ``trustworthy``; attrs
-        ``engine``, ``tolerance``, ``error_units``.
+        :data:`ENGINE_VARIABLES` plus ``first_peak_ratio_error`` and ``trustworthy`` (valid and the
+        Study's verdict similar); attrs ``engine``, ``tolerances`` (the ``[verdict]`` table, JSON),
+        ``error_units``.
     """
     import xarray as xr
 
     check_choice("engine", engine, ENGINE_VARIABLES)
-    tolerance = DEFAULT_TOLERANCE[engine] if tolerance is None else float(check_positive("tolerance", tolerance))
     grids = dict(zip(MAP_FIELDS, (scales, density_ratios, charges, standoffs)))
     values = {"engine": engine, "critical_charge": False}
     if scenario.scale is None:  # a prototype-only scenario: every case has its own scale (the map's axes)
@@ -130,16 +125,15 @@ def similarity_map(
             v = xr.full_like(src[VALID_NAME], np.nan, dtype=float)
         out[name] = v.drop_attrs().assign_attrs(units=unit, source=key)
     valid = out["valid"].astype(bool)
-    agree = out["outcomes_agree"].where(valid, False).astype(bool)
     out["first_peak_ratio_error"] = np.abs(out["first_peak_ratio"] - 1.0).assign_attrs(units="-")
     unit = out["error"].attrs["units"]
-    out["trustworthy"] = (valid & agree & (out["error"] <= tolerance)).assign_attrs(
-        units="-", definition=f"valid, outcomes agree, error <= {tolerance:g} {unit}"
+    out["trustworthy"] = (valid & (out["similar"].where(valid, 0.0) == 1)).assign_attrs(
+        units="-", definition="valid, and the Study's verdict similar (docs/verdict.md)"
     )
     out.attrs.update(
         {
             "engine": engine,
-            "tolerance": float(tolerance),
+            "tolerances": json.dumps(scenario.verdict.model_dump()),
             "error_units": unit,
             "error_definition": ENGINE_VARIABLES[engine]["error"][0],
             "title": f"blastscale similarity map ({engine})",
