@@ -144,7 +144,7 @@ def designs_3d(
     members = lab.ensemble_3d if lab.ensemble_3d is not None else ENSEMBLE_3D_DEFAULT
     chosen = choose_3d(scored, lab.top_3d)
     total = len(chosen) * (members + 1)
-    designs, notes, results = [], [], {}
+    designs, notes, results = [], [], []
     for k, (err, e) in enumerate(scored):
         if k not in chosen:
             designs.append(_screened(e, err, lab))
@@ -173,7 +173,7 @@ def designs_3d(
                 "reach_m": sim["prototype_reach_m"],
             }
         designs.append(_simulated(e, err, chosen[k], lab, summary, sim, odds))
-        results[id(designs[-1])] = res
+        results.append((designs[-1], res))
     designs.sort(key=rank_key)
     words = verdict_tolerances(scenario.verdict)
     for d in designs:
@@ -183,4 +183,4 @@ def designs_3d(
         f"{members} ensemble members each): the best {min(lab.top_3d, len(scored))} screened, the best screened "
         f"of each material and the best at the largest admissible scale; the others are screened only"
     )
-    return designs, proto, notes, results.get(id(designs[0]))
+    return designs, proto, notes, next((r for d, r in results if d is designs[0]), None)

@@ -417,18 +417,18 @@ def _judge_leaders(scenario, designs: list, lab, tell):
     """Judge the leading planar designs (``designs``: (dict, Evaluated) pairs, ranked by their odds) in rank order
     by the Study of each (its scenario as ``plan --out`` writes it: :func:`design_scenario`, the scenario's own
     engines) until the criterion passes one, at most :data:`FULL_DESIGNS`; each judged design gets ``verdict``
-    (the others None). Returns the Study result of the one it passes (None when none passes)."""
+    (the others None). Returns the Study result of the one it passes, else of the closest judged (None: none
+    judged)."""
     for d, _ in designs:
         d["verdict"] = None
-    results = {}
+    results = []
     for i, (d, e) in enumerate(designs[:FULL_DESIGNS]):
         tell("the similarity criterion on the leading designs", i, min(FULL_DESIGNS, len(designs)))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             res = Study(design_scenario(scenario, e.candidate, lab, e.charge_height_m or None)).run()
         d["verdict"] = verdict_of(res.summary())
-        results[id(d)] = res
+        results.append((d, res))
         if d["verdict"]["similar"] is True:
             return res
-    closest = min((d for d, _ in designs if d["verdict"] is not None), key=rank_key, default=None)
-    return None if closest is None else results[id(closest)]
+    return min(results, key=lambda dr: rank_key(dr[0]))[1] if results else None
