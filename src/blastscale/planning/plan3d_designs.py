@@ -15,6 +15,7 @@ from .build import spec_dims
 from .candidates import scale_label, shot_dict
 from .debris import planar_reach
 from .instruments import top_corner_displacement
+from .odds import ensemble_odds_3d
 from .plan3d import ENSEMBLE_3D_DEFAULT, run_3d, screening_error
 from .recommend import rank_key, ranked_after, verdict_of, verdict_tolerances
 
@@ -153,16 +154,29 @@ def designs_3d(
         done0 = n * (members + 1)
         stage = f"3D comparison and ensemble of design {n + 1} of {len(chosen)}"
         tell(stage, done0, total)
+        lead = k < lab.top_3d  # a screening leader: its ensemble always; any other chosen design: if it passes
         res, sim, odds = run_3d(
             scenario,
             e,
             lab,
-            members=members,
+            members=members if lead else 0,
             tolerances=tol,
             workers=workers,
             scheduler=scheduler,
             tick=lambda i, d0=done0, st=stage: tell(st, d0 + 1 + i, total),
         )
+        if not lead and members and res.summary()["verdict"]["similar"] is True:
+            odds = ensemble_odds_3d(
+                scenario,
+                e.design,
+                prototype_collapsed=bool(res.summary()["3d"]["prototype"]["collapsed"]),
+                tolerances=tol,
+                members=members,
+                seed=lab.seed,
+                workers=workers,
+                scheduler=scheduler,
+                tick=lambda i, d0=done0, st=stage: tell(st, d0 + 1 + i, total),
+            )
         summary = res.summary()
         if proto["collapsed"] is None:
             p3 = summary["3d"]["prototype"]
@@ -179,8 +193,9 @@ def designs_3d(
     for d in designs:
         d["reasons"] = _reasons(d, designs[0], words)
     notes.append(
-        f"{len(chosen)} of {len(scored)} screened designs ran in 3D (the prototype-vs-specimen comparison and "
-        f"{members} ensemble members each): the best {min(lab.top_3d, len(scored))} screened, the best screened "
-        f"of each material and the best at the largest admissible scale; the others are screened only"
+        f"{len(chosen)} of {len(scored)} screened designs ran in 3D (the prototype-vs-specimen comparison, judged "
+        f"by the criterion): the best {min(lab.top_3d, len(scored))} screened (with {members} ensemble members "
+        f"each), the best screened of each material and the best at the largest admissible scale (with the "
+        f"ensemble when the criterion passes them); the others are screened only"
     )
     return designs, proto, notes, next((r for d, r in results if d is designs[0]), None)

@@ -116,7 +116,7 @@ def write_plan(p, result, folder) -> list[str]:
             "The plan's candidates",
             "Scale against the specimen's charge; feasible designs coloured by the odds "
             "that the outcome agrees (hollow: screened only), rejected ones grey by their first reason, the Pareto-optimal "
-            "designs ringed, the best starred",
+            "designs ringed, the first starred (recommended, or the closest when the criterion passes none)",
             "plan_candidates",
         ),
     )
