@@ -8,13 +8,13 @@ model as the scenario's), rejects those that break a constraint of the lab (each
 :func:`screen`), and for the feasible ones propagates the lab's tolerances by Monte Carlo: a block
 on the paper's load through the planar kernels (:mod:`.odds`), any other structure or load model
 through the 3D stage of its best screened designs (:mod:`.plan3d`, :mod:`.plan3d_designs`). The
-Pareto-optimal designs are marked (:mod:`.pareto`). Ranking (docs/planning.md):
-
-1. trustworthiness: the probability that the specimen's outcome equals the prototype's, rounded to
-   0.01 (higher first); then the predicted first-peak error, the specimen's nominal first-peak
-   error against the prototype's combined in quadrature with its Monte Carlo spread (one standard
-   deviation, relative), rounded to two significant digits (lower first);
-2. safety: the safety radius (the lab's ``safety_threshold`` distance; smaller first).
+Pareto-optimal designs are marked (:mod:`.pareto`). Ranking and recommendation (:mod:`.recommend`,
+docs/planning.md): the designs are judged by the one similarity criterion (their Study's ``verdict``:
+the 3D path's comparisons; the planar path's leaders in rank order until one passes); the designs it
+passes rank first (by the odds that the outcome agrees, to 0.01, then the simulated error, then the
+safety radius), then those it rejects, closest first (the worst judged quantity's ratio), then the
+designs not judged, then those screened only. A design the criterion rejects is never recommended:
+``Plan.recommendation`` says so in one line, with the closest design and the binding quantity.
 
 A lab no design fits raises :class:`PlanInfeasible`: one line naming the constraint that cannot be
 met and the value that would relax it.
