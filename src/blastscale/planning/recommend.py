@@ -8,7 +8,9 @@ tolerances). The ranking puts, in this order:
 0. the designs the criterion passes (``verdict.similar`` true), by their odds (``p_outcome_agree`` to
    0.01, higher first), then the simulated error (two significant digits), then the safety radius;
 1. the designs it rejects or cannot establish, closest first: by the worst judged quantity's ratio
-   (error / tolerance; an outcome that differs: inf), then the simulated error, then the safety radius;
+   (error / tolerance; an outcome that differs: inf), then the comparison's own error
+   (``similarity_error``, two significant digits: the same basis whether the design had an ensemble or
+   not), then the safety radius;
 2. the designs simulated but not judged (the planar path's designs after the first that passes), by
    their odds, simulated error and safety radius;
 3. the designs screened only, by screening error, then safety radius.
@@ -59,7 +61,7 @@ def rank_key(d: dict) -> tuple:
         return (2, odds, err, r)
     if v["similar"] is True:
         return (0, odds, err, r)
-    return (1, worst_ratio(d), err, r)
+    return (1, worst_ratio(d), _two_digits(d.get("similarity_error")), r)
 
 
 def ranked_after(best: dict, d: dict) -> str:
@@ -80,7 +82,7 @@ def ranked_after(best: dict, d: dict) -> str:
             }[kb[0]]
         )
     if kb[2] < kd[2]:
-        return "ranked after a design with a smaller simulated error"
+        return "ranked after a design with a smaller " + ("similarity error" if kb[0] == 1 else "simulated error")
     return "ranked after a design with a smaller safety radius"
 
 

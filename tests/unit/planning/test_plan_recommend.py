@@ -33,6 +33,7 @@ def _d(similar, ratio, p=1.0, err=0.1, radius=5.0, scale=0.25, material="sandsto
         "simulated_by": "3d",
         "p_outcome_agree": p,
         "predicted_first_peak_error": err,
+        "similarity_error": err,
         "screening_error": 0.01,
         "safety_radius_m": radius,
         "verdict": None
@@ -120,3 +121,15 @@ def test_the_edges_no_larger_specimen_unjudged_and_not_established():
     rec = recommend(ranked, [])
     assert rec["design"] is None and rec["binding_limit"] is None and "(nothing compared)" in rec["line"]
     assert ranked_after(unjudged, screened) == "ranked after the designs simulated (this one is screened only)"
+
+
+def test_rejected_designs_tie_on_their_comparison_not_on_an_ensembles_spread():
+    """Two designs rejected alike (an outcome differs: ratio inf) with the same comparison (0.81 %): the one with an
+    ensemble (4.3 % with its spread) and the one without (0.81 %) tie; ranked by the simulated error, the one without
+    an ensemble would look closer for lack of a spread."""
+    with_ensemble, without = _d(False, math.inf, err=0.043), _d(False, math.inf, err=0.0081)
+    with_ensemble["similarity_error"] = without["similarity_error"] = 0.0081
+    assert rank_key(with_ensemble) == rank_key(without)
+    nearer = {**without, "similarity_error": 0.005}
+    assert rank_key(nearer) < rank_key(with_ensemble)
+    assert ranked_after(nearer, with_ensemble) == "ranked after a design with a smaller similarity error"
