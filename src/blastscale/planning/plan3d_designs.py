@@ -145,7 +145,7 @@ def designs_3d(
     members = lab.ensemble_3d if lab.ensemble_3d is not None else ENSEMBLE_3D_DEFAULT
     chosen = choose_3d(scored, lab.top_3d)
     total = len(chosen) * (members + 1)
-    designs, notes, results = [], [], []
+    designs, notes, kept = [], [], None  # kept: (design, its Study result), the best ranked so far
     for k, (err, e) in enumerate(scored):
         if k not in chosen:
             designs.append(_screened(e, err, lab))
@@ -187,7 +187,8 @@ def designs_3d(
                 "reach_m": sim["prototype_reach_m"],
             }
         designs.append(_simulated(e, err, chosen[k], lab, summary, sim, odds))
-        results.append((designs[-1], res))
+        if kept is None or rank_key(designs[-1]) < rank_key(kept[0]):  # one result held, not all
+            kept = (designs[-1], res)
     designs.sort(key=rank_key)
     words = verdict_tolerances(scenario.verdict)
     for d in designs:
@@ -198,4 +199,4 @@ def designs_3d(
         f"each), the best screened of each material and the best at the largest admissible scale (with the "
         f"ensemble when the criterion passes them); the others are screened only"
     )
-    return designs, proto, notes, next((r for d, r in results if d is designs[0]), None)
+    return designs, proto, notes, kept[1] if kept is not None and kept[0] is designs[0] else None

@@ -421,14 +421,15 @@ def _judge_leaders(scenario, designs: list, lab, tell):
     judged)."""
     for d, _ in designs:
         d["verdict"] = None
-    results = []
+    kept = None  # (design, its Study result), the closest so far: one result held, not all
     for i, (d, e) in enumerate(designs[:FULL_DESIGNS]):
         tell("the similarity criterion on the leading designs", i, min(FULL_DESIGNS, len(designs)))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             res = Study(design_scenario(scenario, e.candidate, lab, e.charge_height_m or None)).run()
         d["verdict"] = verdict_of(res.summary())
-        results.append((d, res))
         if d["verdict"]["similar"] is True:
             return res
-    return min(results, key=lambda dr: rank_key(dr[0]))[1] if results else None
+        if kept is None or rank_key(d) < rank_key(kept[0]):
+            kept = (d, res)
+    return None if kept is None else kept[1]
