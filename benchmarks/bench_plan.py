@@ -76,8 +76,12 @@ def main() -> None:
                 "safety_radius_m",
                 "pareto",
                 "odds_3d",
+                "verdict",
+                "chosen_3d_for",
             )
         },
+        "recommendation": p.recommendation,
+        "designs_3d": sum(1 for d in p.designs if d.get("simulated_by") == "3d"),
         "cpu_count": os.cpu_count(),
         "python": platform.python_version(),
         "target_s": 900.0,
@@ -89,6 +93,7 @@ def main() -> None:
             f"plan of the column: {wall:.1f} s (target 900 s); best {b['scale_fraction']} {b['material']}, "
             f"P(outcome agrees) {b['p_outcome_agree']}"
         )
+        print(p.recommendation["line"])
 
 
 if __name__ == "__main__":

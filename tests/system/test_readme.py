@@ -190,6 +190,7 @@ def test_the_readme_commands_print_what_it_shows(tmp_path):
 DOCS_FILES_DESCRIBED = {
     "bad.toml": "docs/scenarios.md: an illustration of the error lines, one per kind of mistake",
     "lab05.toml": "docs/planning.md: its content is given in the text above the command",
+    "arch_lab.toml": "docs/planning.md: its content is the TOML block above the command",
     "wall.toml": "docs/assemblies.md: its content is the TOML block above the command",
 }
 

@@ -26,6 +26,7 @@ from ..planning.odds import outcome_odds_text
 from ..planning.plan3d import ensemble_members
 from ..planning.planner import plan
 from ..report.markup import format_charge
+from ..report.plan_files import error_cells, first_design_label, verdict_cell
 from ..scenario.files import load_scenario
 from ..scenario.lab import LabSpec
 from ..scenario.scenario import Scenario
@@ -33,6 +34,10 @@ from ..structures import from_spec
 from ._app import app
 from ._output import console, one_line_warnings, print_json, print_written, stage_progress, styled
 from ._signals import ignore_interrupts, raise_if_interrupted
+
+#: Columns whose cells are short (a number and its unit, on two lines at most), held narrow so that, at 160
+#: columns, rich's even shrinking of the widest columns leaves the odds' interval ("1.00 (0.998-1.00)") whole.
+_NARROW = {"specimen": 8, "safety radius": 7, "screened error": 8, "simulated error": 9}
 
 
 def _print_plan(p, top: int) -> None:
@@ -50,11 +55,13 @@ def _print_plan(p, top: int) -> None:
         "specimen",
         "safety radius",
         "camera",
+        "verdict",
         "P(outcome agrees) (95 %)",
-        "first-peak error",
+        "screened error",
+        "simulated error",
         "Pareto",
     ):
-        t.add_column(c, justify="left" if c in ("law", "material") else "right")
+        t.add_column(c, justify="left" if c in ("law", "material") else "right", max_width=_NARROW.get(c))
     for i, d in enumerate(p.designs[:top], 1):
         stand = f" on a {d['charge_height_m'] * 100:.3g} cm stand" if d.get("charge_height_m") else ""
         t.add_row(
@@ -67,11 +74,12 @@ def _print_plan(p, top: int) -> None:
             f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
             f"{d['safety_radius_m']:.3g} m",
             f"{d['camera_fps']:g}/s",
+            verdict_cell(d),
             "-"
             if d["p_outcome_agree"] is None
             else f"{probability_text(d['p_outcome_agree'])} ({probability_text(d['p_outcome_agree_low'])}-"
             f"{probability_text(d['p_outcome_agree_high'])})",
-            f"{100 * d['predicted_first_peak_error']:.2g} %",
+            *error_cells(d),
             {True: "yes", False: "", None: "-"}[d["pareto"]],
         )
     console.print(t)
@@ -81,9 +89,10 @@ def _print_plan(p, top: int) -> None:
         if b.get("charge_height_m")
         else ""
     )
+    console.print(styled((p.recommendation["line"], "bold")))
     console.print(
         styled(
-            ("Best design:", "bold"),
+            (f"{first_design_label(p)}:", "bold"),
             f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
             f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"
             f"{stand}",
@@ -180,8 +189,11 @@ def plan_cmd(
                 out, force, before_commit=raise_if_interrupted, after_commit=ignore_interrupts, markers=markers
             ) as tmp:
                 p = plan(sc, workers=workers, scheduler=scheduler, progress=tell)
-                tell("the best design's study", 0, 1)
-                result = Study(p.best_scenario).run()
+                if p.best_result is not None:  # the Study that judged it: the report's verdict is the plan's
+                    result = p.best_result
+                else:
+                    tell("the best design's study", 0, 1)
+                    result = Study(p.best_scenario).run()
                 written = write_plan(p, result, tmp)
     if as_json:
         print_json(p.to_dict())

@@ -6,8 +6,9 @@ A structure without a planar path (a column, a wall, an arch, a portal, a block-
 block under a load model the planar kernels lack: clearing, the negative phase) is screened on its
 envelope block (:func:`~.candidates.envelope_block`: the impulsive check t_o p, the timing of the
 instruments) and on what the design gives in closed form: the lab's limits, the safety radius, the
-blast model's range, and the spread of the shock's arrival over the front at model scale. The best
-``lab.top_3d`` screened designs (smallest screening error, then safety radius) then get the
+blast model's range, and the spread of the shock's arrival over the front at model scale. The designs
+chosen for 3D (:func:`~.plan3d_designs.choose_3d`: the best ``lab.top_3d`` screened, by screening error then
+safety radius; the best screened of each material; the best at the largest admissible scale) then get the
 prototype-vs-specimen 3D comparison (the candidate's Study on the 3D engine,
 :meth:`~blastscale.study.Study.from_candidate`) and a 3D Monte Carlo ensemble of the lab's tolerances
 (``lab.ensemble_3d`` members, default :data:`ENSEMBLE_3D_DEFAULT`; :func:`~.odds.ensemble_odds_3d`: the design's
@@ -223,16 +224,21 @@ def run_3d(
 
     Returns
     -------
-    (dict, dict, dict or None)
-        The 3D summary of the comparison (``prototype``, ``model``, ``similarity``), the similarity
-        (``error``, ``specimen_top_m`` [m], ``specimen_reach_m`` [m], ``prototype_reach_m`` [m]) and
-        ``odds_3d`` (None with 0 members).
+    (StudyResult, dict, dict or None)
+        The comparison's Study result (its ``summary()``: ``3d`` with ``prototype``, ``model``,
+        ``similarity``; ``verdict``, the criterion's, :func:`~blastscale.study.criterion.judge`, under the
+        scenario's ``[verdict]``), the similarity (``error``, ``specimen_top_m`` [m], ``specimen_reach_m``
+        [m], ``prototype_reach_m`` [m]) and ``odds_3d`` (None with 0 members). The Study runs the scenario
+        on the 3D engine alone (no critical charge searched; its ``simulation.ensemble_members`` kept: a chaotic
+        structure is judged between ensembles) with ``lab`` as its ``[lab]``; its result is the one
+        ``plan --out`` writes, test card included.
     """
 
     scale = candidate_scale(scenario, ev.candidate, ev.charge_height_m or None)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = Study.from_candidate(scenario, scale, engine="3d").run()
+        sim3 = scenario.simulation.model_copy(update={"engine": "3d", "critical_charge": False})
+        res = Study.from_candidate(scenario.model_copy(update={"lab": lab, "simulation": sim3}), scale).run()
     s3 = res.summary()["3d"]
     cmp3 = res.response3d
     f = ev.design.factors
@@ -256,4 +262,4 @@ def run_3d(
             scheduler=scheduler,
             tick=tick,
         )
-    return s3, sim, odds
+    return res, sim, odds

@@ -8,13 +8,13 @@ model as the scenario's), rejects those that break a constraint of the lab (each
 :func:`screen`), and for the feasible ones propagates the lab's tolerances by Monte Carlo: a block
 on the paper's load through the planar kernels (:mod:`.odds`), any other structure or load model
 through the 3D stage of its best screened designs (:mod:`.plan3d`, :mod:`.plan3d_designs`). The
-Pareto-optimal designs are marked (:mod:`.pareto`). Ranking (docs/planning.md):
-
-1. trustworthiness: the probability that the specimen's outcome equals the prototype's, rounded to
-   0.01 (higher first); then the predicted first-peak error, the specimen's nominal first-peak
-   error against the prototype's combined in quadrature with its Monte Carlo spread (one standard
-   deviation, relative), rounded to two significant digits (lower first);
-2. safety: the safety radius (the lab's ``safety_threshold`` distance; smaller first).
+Pareto-optimal designs are marked (:mod:`.pareto`). Ranking and recommendation (:mod:`.recommend`,
+docs/planning.md): the designs are judged by the one similarity criterion (their Study's ``verdict``:
+the 3D path's comparisons; the planar path's leaders in rank order until one passes); the designs it
+passes rank first (by the odds that the outcome agrees, to 0.01, then the simulated error, then the
+safety radius), then those it rejects, closest first (the worst judged quantity's ratio), then the
+designs not judged, then those screened only. A design the criterion rejects is never recommended:
+``Plan.recommendation`` says so in one line, with the closest design and the binding quantity.
 
 A lab no design fits raises :class:`PlanInfeasible`: one line naming the constraint that cannot be
 met and the value that would relax it.
@@ -32,12 +32,14 @@ from ..blast.explosive_library import EXPLOSIVES
 from ..blast.explosives import get_explosive
 from ..blast.parameters import blast_parameters, get_blast_model, model_for_burst
 from ..structures import from_spec
+from ..study.study import Study
 from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_label, shot_dict, specimen_displacement
 from .debris import planar_reach
 from .odds import Tolerances, ensemble_odds_3d, outcome_odds_text, planar_odds
 from .pareto import mark_pareto
-from .plan3d import candidate_design, design_scenario, planar_path
+from .plan3d import candidate_design, design_scenario, planar_path, screening_error
 from .plan3d_designs import designs_3d
+from .recommend import rank_key, ranked_after, recommend, verdict_of, verdict_tolerances
 from .shot import DEFAULT_LAB, lab_explosives, safety_envelope, timing_of
 
 __all__ = ["plan", "screen", "Plan", "PlanInfeasible", "QUICK_SAMPLES", "FULL_DESIGNS"]
@@ -55,7 +57,11 @@ class PlanInfeasible(BlastscaleInputError):
 @dataclass(frozen=True)
 class Plan:
     """The planner's answer: ``designs`` (dicts, best first), ``rejected`` (dicts with ``reasons``),
-    the ``prototype`` reference, the ``lab`` used and the best design's scenario (``best_scenario``)."""
+    the ``prototype`` reference, the ``lab`` used, the first design's scenario (``best_scenario``: the
+    recommended design, or the closest when the criterion passes none), ``recommendation``
+    (:func:`~.recommend.recommend`: ``design`` 0 or None, ``line``, the binding quantity and limit) and
+    ``best_result``, the Study result that judged the first design (None when none did; ``plan --out``
+    writes it, so the report's verdict is the plan's)."""
 
     designs: list
     rejected: list
@@ -63,6 +69,8 @@ class Plan:
     lab: dict
     best_scenario: object = None
     notes: list = field(default_factory=list)
+    recommendation: dict = field(default_factory=dict)
+    best_result: object = None
 
     def to_dict(self) -> dict:
         return {
@@ -70,10 +78,15 @@ class Plan:
             "rejected": self.rejected,
             "prototype": self.prototype,
             "lab": self.lab,
-            "ranking": "p_outcome_agree (0.01), then predicted first-peak error (2 significant digits), then "
-            "safety_radius_m; designs screened only (no 3D run, p_outcome_agree null) after them, by "
-            "screening_error; pareto: optimal over odds, predicted error, safety radius and charge",
+            "ranking": "designs the criterion passes (verdict.similar true) first, by p_outcome_agree (0.01), "
+            "the simulated error predicted_first_peak_error (2 significant digits), safety_radius_m; then the "
+            "designs it rejects or cannot establish, by verdict.worst.ratio (closest first), simulated error, "
+            "safety_radius_m; then designs simulated but not judged (simulated_by set, verdict null), by odds, "
+            "simulated error, safety_radius_m; then designs screened only (simulated_by null), by screening_error "
+            "(2 significant digits), safety_radius_m; pareto: optimal over odds, simulated error, safety radius "
+            "and charge",
             "notes": list(self.notes),
+            "recommendation": dict(self.recommendation),
         }
 
 
@@ -134,6 +147,8 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
     tol = odds.charge_tolerance_needed
     return {
         **shot_dict(ev, lab, top, reach),
+        "screening_error": screening_error(ev, scenario.blast.load),
+        "simulated_by": "planar",
         "p_outcome_agree": odds.p_outcome_agree,
         "p_outcome_agree_low": odds.p_outcome_agree_low,
         "p_outcome_agree_high": odds.p_outcome_agree_high,
@@ -146,25 +161,21 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
     }
 
 
-def _reasons(d: dict, best: Optional[dict]) -> list:
+def _reasons(d: dict, best: Optional[dict], tolerances: str) -> list:
+    v = d.get("verdict")
     out = [
+        "not judged by the similarity criterion (a design ranked before it passes)"
+        if v is None
+        else v["line"].removesuffix(".") + f" (tolerances [verdict]: {tolerances})",
         f"outcome agrees with the prototype's (draws of the lab's tolerances): {outcome_odds_text(d['odds'])}",
-        f"predicted first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
-        f"{100 * d['similarity_error']:.2g} %, tolerances "
-        f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %)",
+        f"simulated (planar) first-peak error {100 * d['predicted_first_peak_error']:.2g} % (similarity "
+        f"{100 * d['similarity_error']:.2g} %, spread under the lab's tolerances "
+        f"{'-' if d['first_peak_spread'] is None else format(100 * d['first_peak_spread'], '.2g')} %; "
+        f"screening error {100 * d['screening_error']:.2g} %)",
         f"safety radius ({d['safety_threshold']}) {d['safety_radius_m']:.3g} m",
     ]
     if best is not None and d is not best:
-        out.append(
-            "ranked after a design with "
-            + (
-                "better odds"
-                if round(best["p_outcome_agree"], 2) > round(d["p_outcome_agree"], 2)
-                else "a smaller predicted error"
-                if _rank_key(best)[1] < _rank_key(d)[1]
-                else "a smaller safety radius"
-            )
-        )
+        out.append(ranked_after(best, d))
     return out
 
 
@@ -282,11 +293,18 @@ def plan(
         raise PlanInfeasible(_infeasible(evs, lab))
     tol = Tolerances.from_lab(lab)
     if planar:
-        designs, notes = _planar_designs(scenario, ok, proto, lab, tol, tell)
+        designs, notes, result = _planar_designs(scenario, ok, proto, lab, tol, tell)
     else:
-        designs, proto, notes = designs_3d(scenario, ok, proto, lab, tol, tell, workers=workers, scheduler=scheduler)
+        designs, proto, notes, result = designs_3d(
+            scenario, ok, proto, lab, tol, tell, workers=workers, scheduler=scheduler
+        )
     best = next(e for e in ok if e.candidate.describe() == {k: designs[0][k] for k in e.candidate.describe()})
-    best_sc = design_scenario(scenario, best.candidate, lab, best.charge_height_m or None)
+    best_sc = (
+        result.scenario
+        if result is not None
+        else design_scenario(scenario, best.candidate, lab, best.charge_height_m or None)
+    )
+    rec = recommend(designs, rejected)
     if planar and lab.ensemble_3d:
         tell("3D ensemble of the best design", 0, 1)
         designs[0]["odds_3d"] = ensemble_odds_3d(
@@ -308,6 +326,8 @@ def plan(
         {**lab.model_dump(mode="json"), "initiator_tnt_kg": lab.initiator_tnt_kg},
         best_sc,
         notes,
+        rec,
+        result,
     )
 
 
@@ -383,8 +403,33 @@ def _planar_designs(scenario, ok: list, proto: dict, lab, tol, tell) -> tuple:
     for i, (_, e) in enumerate(designs[:FULL_DESIGNS]):
         tell("Monte Carlo odds of the leading designs", len(ok) + i, len(ok) + FULL_DESIGNS)
         designs[i] = (_design_dict(e, odds_of(e, lab.samples, True), proto, lab, scenario), e)
+    designs.sort(key=lambda de: _rank_key(de[0]))
+    result = _judge_leaders(scenario, designs, lab, tell)
+    designs.sort(key=lambda de: rank_key(de[0]))
     designs = [d for d, _ in designs]
-    designs.sort(key=_rank_key)
+    words = verdict_tolerances(scenario.verdict)
     for d in designs:
-        d["reasons"] = _reasons(d, designs[0])
-    return designs, []
+        d["reasons"] = _reasons(d, designs[0], words)
+    return designs, [], result
+
+
+def _judge_leaders(scenario, designs: list, lab, tell):
+    """Judge the leading planar designs (``designs``: (dict, Evaluated) pairs, ranked by their odds) in rank order
+    by the Study of each (its scenario as ``plan --out`` writes it: :func:`design_scenario`, the scenario's own
+    engines) until the criterion passes one, at most :data:`FULL_DESIGNS`; each judged design gets ``verdict``
+    (the others None). Returns the Study result of the one it passes, else of the closest judged (None: none
+    judged)."""
+    for d, _ in designs:
+        d["verdict"] = None
+    kept = None  # (design, its Study result), the closest so far: one result held, not all
+    for i, (d, e) in enumerate(designs[:FULL_DESIGNS]):
+        tell("the similarity criterion on the leading designs", i, min(FULL_DESIGNS, len(designs)))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            res = Study(design_scenario(scenario, e.candidate, lab, e.charge_height_m or None)).run()
+        d["verdict"] = verdict_of(res.summary())
+        if d["verdict"]["similar"] is True:
+            return res
+        if kept is None or rank_key(d) < rank_key(kept[0]):
+            kept = (d, res)
+    return None if kept is None else kept[1]

@@ -65,7 +65,10 @@ def plot_plan(p, ax=None):
             zorder=4,
             label=f"Pareto-optimal ({len(front)})",
         )
-    _scatter_designs(ax, [p.designs[0]], marker="*", color="C3", s=140, zorder=5, label="best design")
+    first = (
+        "recommended design" if p.recommendation.get("design") == 0 else "closest design (the criterion passes none)"
+    )
+    _scatter_designs(ax, [p.designs[0]], marker="*", color="C3", s=140, zorder=5, label=first)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("scale lambda [-]")

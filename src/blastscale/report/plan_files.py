@@ -13,7 +13,39 @@ from ..plots.plan import plot_plan
 from . import write_study
 from .markup import escape, figure_html, format_charge, html_table
 
-__all__ = ["write_plan", "plan_section"]
+__all__ = ["write_plan", "plan_section", "error_cells", "verdict_cell", "first_design_label"]
+
+
+def error_cells(d: dict) -> tuple:
+    """The two error cells of a design's row, never one mixed column: the screening error (closed form, no
+    simulation: ``screening_error``) and the simulated error labelled by its engine (``predicted_first_peak_error``,
+    ``simulated_by`` planar or 3D; "-" for a design screened only)."""
+    scr = d.get("screening_error")
+    sim = d.get("predicted_first_peak_error") if d.get("simulated_by") else None
+    return (
+        "-" if scr is None else f"{100 * scr:.2g} %",
+        "-" if sim is None else f"{100 * sim:.2g} % ({'3D' if d['simulated_by'] == '3d' else 'planar'})",
+    )
+
+
+def verdict_cell(d: dict) -> str:
+    """A design's verdict in a cell: ``similar``, ``NOT (ratio 1.8)`` (its worst quantity's error / tolerance),
+    ``not established``, or ``-`` (not judged)."""
+    v = d.get("verdict")
+    if v is None:
+        return "-"
+    if v["similar"] is None:
+        return "not established"
+    r = None if v["worst"] is None else v["worst"]["ratio"]
+    if v["similar"]:
+        return "similar" if r is None else f"similar ({r:.2g})"
+    return "NOT" if r is None else f"NOT ({r:.2g})"
+
+
+def first_design_label(p) -> str:
+    """``Recommended design`` when the criterion passes the plan's first design, else ``Closest design (not
+    recommended)``."""
+    return "Recommended design" if p.recommendation.get("design") == 0 else "Closest design (not recommended)"
 
 
 def plan_section(p, top: int = 15) -> str:
@@ -30,11 +62,12 @@ def plan_section(p, top: int = 15) -> str:
             f"{d['standoff_m'] * 1e3:.4g} mm",
             f"{d['specimen_height_m'] * 1e3:.4g} mm",
             f"{d['safety_radius_m']:.3g} m",
+            verdict_cell(d),
             "-"
             if d["p_outcome_agree"] is None
             else f"{probability_text(d['p_outcome_agree'])} ({probability_text(d['p_outcome_agree_low'])}-"
             f"{probability_text(d['p_outcome_agree_high'])})",
-            f"{100 * d['predicted_first_peak_error']:.2g} %",
+            *error_cells(d),
             {True: "yes", False: "", None: "-"}[d.get("pareto")],
         )
         for i, d in enumerate(p.designs[:top], 1)
@@ -42,8 +75,9 @@ def plan_section(p, top: int = 15) -> str:
     best = p.designs[0]
     rej = [(r["law"], r["scale_fraction"], r["material"], "; ".join(r["reasons"])) for r in p.rejected]
     return (
-        f'<p class="lead">Best design: {escape(best["law"])} law, lambda = {escape(best["scale_fraction"])}, '
-        f"{escape(best['material'])}. "
+        f'<p class="lead"><b>{escape(p.recommendation.get("line", ""))}</b></p>'
+        f'<p class="lead">{first_design_label(p)}: {escape(best["law"])} law, lambda = '
+        f"{escape(best['scale_fraction'])}, {escape(best['material'])}. "
         + " ".join(escape(r) + "." for r in best["reasons"])
         + "</p>"
         + html_table(
@@ -56,8 +90,10 @@ def plan_section(p, top: int = 15) -> str:
                 "stand-off",
                 "specimen height",
                 "safety radius",
+                "verdict (worst ratio)",
                 "P(outcome agrees) (95 %)",
-                "first-peak error",
+                "screened error",
+                "simulated error",
                 "Pareto",
             ),
             rows,
@@ -88,7 +124,7 @@ def write_plan(p, result, folder) -> list[str]:
             "The plan's candidates",
             "Scale against the specimen's charge; feasible designs coloured by the odds "
             "that the outcome agrees (hollow: screened only), rejected ones grey by their first reason, the Pareto-optimal "
-            "designs ringed, the best starred",
+            "designs ringed, the first starred (recommended, or the closest when the criterion passes none)",
             "plan_candidates",
         ),
     )

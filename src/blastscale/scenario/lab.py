@@ -112,8 +112,9 @@ class LabSpec(BaseModel):
         3,
         ge=1,
         le=50,
-        description="Designs of a structure without a planar path (or a load model "
-        "the planar kernels lack) that get the 3D comparison and ensemble, best screened first [-]",
+        description="Screening leaders of a structure without a planar path (or a load model "
+        "the planar kernels lack) that get the 3D comparison and ensemble; the best screened design of each "
+        "material and the one at the largest admissible scale get them too [-]",
     )
     bursts: list[str] = Field(
         default_factory=lambda: ["surface"],

@@ -126,6 +126,8 @@ def test_paper_block_in_a_half_metre_lab():
     assert best["explosive_mass_kg"] >= best["explosive_min_charge_kg"] == pytest.approx(7.238e-4, rel=1e-3)
     assert best["initiator_fraction"] <= 0.5 and best["initiator_tnt_kg"] == pytest.approx(2.2287e-4, rel=1e-12)
     assert (best["law"], best["scale_fraction"], best["material"]) == ("general", "1/20", "same")
+    assert p.recommendation["design"] == 0 and best["verdict"]["similar"] is True  # its own Study passes it
+    assert p.best_result.summary()["verdict"]["line"] == best["verdict"]["line"]  # the Study plan --out writes
     assert best["p_outcome_agree"] == 1.0 and best["odds"]["samples"] == 2000
     assert best["explosive_mass_kg"] == pytest.approx(7.816e-4, rel=1e-3) and best["standoff_m"] == pytest.approx(0.1)
     assert best["initiator_fraction"] == pytest.approx(0.2219, rel=1e-3)
