@@ -82,7 +82,12 @@ def test_effective_charge_of_a_gauge_flush_in_the_face(angle):
     look = gauge_incidence(sc, d, STANDOFF, "g")
     assert look.found == "face 'front' of 'block'" and look.normal == (-1.0, 0.0, 0.0)
     assert look.angle_deg == pytest.approx(angle, abs=1e-9)
-    R = float(np.linalg.norm(np.asarray(sc.fired.gauge["g"].position_m) - charge_position(d.specimen_structure.front_x, STANDOFF, shot_charge_height(sc, d))))
+    R = float(
+        np.linalg.norm(
+            np.asarray(sc.fired.gauge["g"].position_m)
+            - charge_position(d.specimen_structure.front_x, STANDOFF, shot_charge_height(sc, d))
+        )
+    )
     errors, facing = [], []
     for seed in SEEDS:
         t, p, _ = synthetic_trace(seed, W_TRUE, R, rate_hz=2e6, pre_s=1e-3, incidence_deg=angle, record_to=10)
