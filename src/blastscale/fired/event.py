@@ -113,8 +113,8 @@ def similar_prototype_charge(design, charge_kg: float, standoff_m: float) -> tup
     """
     sp, pr, f = design.specimen, design.prototype, design.factors
     i_m = blast_parameters(charge_kg, standoff_m, sp.blast_model, burst=sp.burst).reflected_impulse
-    r_s = float(standoff_m) / f.length
-    w_s = charge_for(i_m / f.impulse, r_s, "reflected_impulse", model_for_burst(pr.blast_model, pr.burst))
+    r_s = upscale(float(standoff_m), f, "length")
+    w_s = charge_for(upscale(i_m, f, "impulse"), r_s, "reflected_impulse", model_for_burst(pr.blast_model, pr.burst))
     return float(w_s), r_s
 
 

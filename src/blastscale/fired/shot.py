@@ -288,7 +288,7 @@ def _similar(d, w_refit: float, standoff: float) -> dict:
         w, r = similar_prototype_charge(d, w_refit, standoff)
         note = None
     except BlastscaleInputError as exc:
-        w, r, note = None, standoff / d.factors.length, str(exc)
+        w, r, note = None, upscale(standoff, d.factors, "length"), str(exc)
     return {
         "similar_prototype_charge_tnt_kg": w,
         "similar_prototype_standoff_m": r,

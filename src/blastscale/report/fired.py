@@ -155,9 +155,9 @@ def _charge(kg) -> str:
     return "-" if kg is None else format_charge(kg)
 
 
-def _cell(v, factor: float):
-    """A summary value in the column's unit: a number times ``factor``, anything else as it is."""
-    return v * factor if isinstance(v, (int, float)) and not isinstance(v, bool) else v
+def _cell(v, unit_size: float):
+    """A summary value in the column's unit: a number (SI) times ``unit_size`` (1e3 for mm), anything else as it is."""
+    return v * unit_size if isinstance(v, (int, float)) and not isinstance(v, bool) else v
 
 
 def _similarity(v) -> str:
