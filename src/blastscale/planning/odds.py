@@ -329,7 +329,7 @@ def ensemble_odds_3d(
     -------
     dict
         ``members`` and ``trials`` (the members that ran), ``agree_count`` (those whose outcome, collapse or not,
-        is the prototype's), ``p_outcome_agree`` (their fraction), its 95 % Wilson interval
+        is the prototype's), ``p_outcome_agree`` (their fraction), its Wilson interval at ``[verdict] confidence``
         ``p_outcome_agree_low``, ``p_outcome_agree_high`` (None without a member),
         ``specimen_collapse_probability``, ``first_peak_spread`` (relative
         standard deviation of the largest top displacement of the members that stand) [-], and the
@@ -348,7 +348,7 @@ def ensemble_odds_3d(
     collapsed = col[ok] == 1.0
     k = int(np.sum(collapsed == bool(prototype_collapsed)))
     p = k / int(ok.sum()) if ok.any() else math.nan
-    lo, hi = wilson_interval(k, int(ok.sum())) if ok.any() else (None, None)
+    lo, hi = wilson_interval(k, int(ok.sum()), scenario.verdict.confidence) if ok.any() else (None, None)
     stand = top[ok][~collapsed]
     spread = float(np.std(stand, ddof=1) / np.median(stand)) if stand.size >= 2 else None
     tops = top[ok & np.isfinite(top)]

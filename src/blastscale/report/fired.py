@@ -50,6 +50,33 @@ PROTOTYPE_COLUMNS = (
 )
 
 
+#: The designed event's table's columns (prototype units: m, s).
+EVENT_COLUMNS = (
+    ("first peak [m]", "first_peak_m", 1.0),
+    ("5 % [m]", "first_peak_p05_m", 1.0),
+    ("95 % [m]", "first_peak_p95_m", 1.0),
+    ("at [s]", "first_peak_time_s", 1.0),
+    ("residual [m]", "residual_displacement_m", 1.0),
+    ("residual 5 % [m]", "residual_displacement_p05_m", 1.0),
+    ("residual 95 % [m]", "residual_displacement_p95_m", 1.0),
+)
+
+
+def _event_titles(s: dict) -> tuple[str, str]:
+    """The two monument tables' titles: under the shot's event (the similar charge) and under the designed event,
+    each naming its charge and stand-off (docs/fired.md)."""
+    ws, rs = s.get("similar_prototype_charge_tnt_kg"), s.get("similar_prototype_standoff_m")
+    shot = "the charge the shot represents" if ws is None else f"{format_value(ws)} kg TNT at {format_value(rs)} m"
+    ev = s.get("designed_event") or {}
+    wd, rd = ev.get("charge_tnt_kg"), ev.get("standoff_m")
+    designed = "the designed event" if wd is None else f"the designed {format_value(wd)} kg TNT at {format_value(rd)} m"
+    return (
+        f"The monument under the shot's event ({shot}: the measurement up-scaled; 5-95 %)",
+        f"The monument under {designed} (the measurement corrected by its sensitivity to the charge, up-scaled; "
+        "5-95 % with the gauge, track, refit, similarity and ensemble terms)",
+    )
+
+
 def fired_figures(result) -> list[tuple[str, str, str, bytes]]:
     """(name, title, caption, PNG) of the gauge traces over their fits and the predicted pulse, and of the
     marker histories over the prediction and the re-simulation, in the specimen's and the prototype's units."""
@@ -113,6 +140,11 @@ def fired_section(result, figures) -> str:
         ("effective charge, by impulse", _charge(s["effective_charge_tnt_kg"]), "TNT"),
         ("effective charge, by peak", _charge(s["effective_charge_from_pressure_tnt_kg"]), "TNT"),
         ("designed charge", _charge(s["designed_charge_tnt_kg"]), "TNT"),
+        (
+            "prototype charge the shot represents (its similar charge)",
+            _charge(s.get("similar_prototype_charge_tnt_kg")),
+            "TNT",
+        ),
         ("charge as weighed", _charge(s["charge_kg"]), s["explosive"] or ""),
         (
             "TNT equivalence implied (impulse / peak)",
@@ -131,11 +163,9 @@ def fired_section(result, figures) -> str:
         + html_table(("quantity", "value", "unit"), load)
         + _named_rows("Gauges (specimen)", "gauge", GAUGE_COLUMNS, s["gauges"])
         + _named_rows("Markers (specimen)", "marker", MARKER_COLUMNS, s["markers"])
+        + _named_rows(_event_titles(s)[0], "marker", PROTOTYPE_COLUMNS, s["prototype_markers"])
         + _named_rows(
-            "What the monument would do (measured, up-scaled; 5-95 %)",
-            "marker",
-            PROTOTYPE_COLUMNS,
-            s["prototype_markers"],
+            _event_titles(s)[1], "marker", EVENT_COLUMNS, (s.get("designed_event") or {}).get("markers") or {}
         )
         + _calibration(s.get("calibration"))
         + "".join(figure_html(png, title, caption, name) for name, title, caption, png in figures)

@@ -243,8 +243,14 @@ def _run_ensemble(plan):
     prototype and specimen, or the prototype alone without a design."""
 
     e = plan.ensemble
+    confidence = None if plan.scenario is None else plan.scenario.verdict.confidence  # [verdict] confidence
     return ensemble_compare(
-        plan.systems3d, plan.settings3d, n=e.members, perturbation=e.perturbation, threads=plan.threads
+        plan.systems3d,
+        plan.settings3d,
+        n=e.members,
+        perturbation=e.perturbation,
+        threads=plan.threads,
+        confidence=confidence,
     )
 
 
