@@ -57,7 +57,7 @@ from ..constants import STANDARD_GRAVITY
 from .contact import MAX_TIMESTEP_FRACTION, ContactSettings, default_contact, structure_length
 from .integrate import step_factor_after_load
 from .reference import reference_scene
-from .results import REST_SPEED_FRACTION, REST_WINDOW_FRACTION, body_heights
+from .results import REST_SPEED_FRACTION, body_heights, final_speed_rel
 from .simulate import simulate_structure
 
 __all__ = [
@@ -128,13 +128,7 @@ def rest_state(response, structure_height: float, gravity: float) -> dict:
     """
     ds = response.dataset
     h = float(structure_height)
-    heights = body_heights(response.structure)
-    speed = (
-        np.linalg.norm(ds["com_velocity"].values, axis=2)
-        + np.linalg.norm(ds["angular_velocity"].values, axis=2) * 0.5 * heights[None, :]
-    )
-    n = speed.shape[0]
-    v_rel = float(speed[min(int((1.0 - REST_WINDOW_FRACTION) * n), n - 1) :].max() / math.sqrt(gravity * h))
+    v_rel = final_speed_rel(ds, body_heights(response.structure), h, gravity)
     disp = np.linalg.norm(ds["com_displacement"].values, axis=2).max(axis=1)  # largest over the bodies, per time
     t = ds["time"].values
     mid = disp[int(np.searchsorted(t, 0.5 * t[-1]))]

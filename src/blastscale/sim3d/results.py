@@ -24,6 +24,7 @@ __all__ = [
     "STANDS_FRACTION",
     "REST_SPEED_FRACTION",
     "REST_WINDOW_FRACTION",
+    "final_speed_rel",
     "stability_of",
     "body_heights",
 ]
@@ -127,6 +128,19 @@ def body_heights(structure) -> np.ndarray:
     return np.array([-2.0 * b.base_height for b in bodies])
 
 
+def final_speed_rel(ds, heights, structure_height: float, gravity: float) -> float:
+    """The largest speed of any body over the run's last :data:`REST_WINDOW_FRACTION`, over sqrt(g H) [-]: a body's
+    speed is its centre of mass's plus its angular speed times half its own height ``heights`` [m] (the fastest
+    point of a rocking block); H = ``structure_height`` [m], g = ``gravity`` [m/s^2]. The one rest-speed figure
+    of :func:`stability_of` and of the at-rest check (:func:`blastscale.sim3d.rest.rest_state`)."""
+    speed = (
+        np.linalg.norm(ds["com_velocity"].values, axis=2)
+        + np.linalg.norm(ds["angular_velocity"].values, axis=2) * 0.5 * np.asarray(heights)[None, :]
+    )
+    n = speed.shape[0]
+    return float(speed[min(int((1.0 - REST_WINDOW_FRACTION) * n), n - 1) :].max() / np.sqrt(gravity * structure_height))
+
+
 def stability_of(ds, heights, structure_height: float, gravity: float) -> tuple:
     """The outcome of a run under gravity alone, with the two figures it rests on.
 
@@ -155,13 +169,7 @@ def stability_of(ds, heights, structure_height: float, gravity: float) -> tuple:
     """
     h = max(float(structure_height), 1e-300)
     fallen = ds["fallen"].values.astype(bool)
-    speed = (
-        np.linalg.norm(ds["com_velocity"].values, axis=2)
-        + np.linalg.norm(ds["angular_velocity"].values, axis=2) * 0.5 * np.asarray(heights)[None, :]
-    )
-    n = speed.shape[0]
-    tail = speed[min(int((1.0 - REST_WINDOW_FRACTION) * n), n - 1) :]
-    v_rel = float(tail.max() / np.sqrt(gravity * h))
+    v_rel = final_speed_rel(ds, heights, h, gravity)
     d_rel = float(ds["residual_displacement"].values.max() / h)
     if bool(ds.attrs["collapsed"]) or fallen.any():
         return "collapses", v_rel, d_rel
