@@ -357,3 +357,33 @@ def rocking_block_track(
     rng = np.random.default_rng(seed)
     truth = {"first_peak_m": float(ux(theta_star)), "first_peak_time_s": arrival_s + tau_star}
     return t, ux(theta) + noise_m * rng.standard_normal(t.size), truth
+
+
+def camera_track(history: dict, *, fps: float, seed: int, noise_m: float, start_s: float = -0.01, components=("x",)):
+    """A simulated marker history sampled as a camera films it: frames [s after the firing signal] from ``start_s``
+    to the history's end at ``fps`` frames per second, and per component of ``components`` ("x", "z") the
+    displacement ``history["u" + c]`` [m] interpolated there (0 before the history starts) plus white noise of
+    ``noise_m`` [m], drawn from one generator seeded ``seed`` in the components' order."""
+    frames = np.arange(start_s, history["t"][-1], 1.0 / fps)
+    rng = np.random.default_rng(seed)
+    return frames, {
+        c: np.interp(frames, history["t"], history["u" + c], left=0.0) + noise_m * rng.standard_normal(frames.size)
+        for c in components
+    }
+
+
+def write_gauge_csv(path, t, p, name: str = "g1") -> None:
+    """A gauge record as a lab's acquisition writes it: ``time_us``, ``NAME_kPa`` (``t`` [s], ``p`` [Pa])."""
+    np.savetxt(path, np.column_stack([t * 1e6, p / 1e3]), delimiter=",", header=f"time_us,{name}_kPa", comments="")
+
+
+def write_track_csv(path, frames, columns: dict) -> None:
+    """A track record as video-tracking software writes it: ``time_ms`` (``frames`` [s]) and one column ``NAME_mm``
+    per entry of ``columns`` (``"top_x"`` -> positions [m])."""
+    np.savetxt(
+        path,
+        np.column_stack([frames * 1e3, *(1e3 * np.asarray(v) for v in columns.values())]),
+        delimiter=",",
+        header=",".join(["time_ms", *(f"{n}_mm" for n in columns)]),
+        comments="",
+    )

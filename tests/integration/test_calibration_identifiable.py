@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 import pytest
+from _fired_synthetic import camera_track, write_track_csv
 
 from blastscale.fired.calibrate import (
     MISFIT_NOISE_MULTIPLE,
@@ -63,10 +64,8 @@ def scenario(text: str) -> Scenario:
 def track(run, point, seed=1) -> tuple:
     """(point, t, ux): the run's marker history at 2000 frames per second from 10 ms before the firing signal,
     with ``NOISE`` of white noise."""
-    h = marker_history(run, point)
-    t = np.arange(-0.01, h["t"][-1], 1.0 / FPS)
-    ux = np.interp(t, h["t"], h["ux"], left=0.0) + NOISE * np.random.default_rng(seed).standard_normal(t.size)
-    return point, t, ux
+    frames, u = camera_track(marker_history(run, point), fps=FPS, seed=seed, noise_m=NOISE)
+    return point, frames, u["x"]
 
 
 def column_shot(section: str, friction: float, duration: float):
@@ -176,13 +175,7 @@ def test_chaotic_column_friction_through_fired(tmp_path, capsys, truth):
     text = COLUMN.format(section="circular", friction=0.7, duration=1.2)
     sc, d, tracks, W, R = column_shot("circular", truth, 1.2)
     _, t, ux = tracks["top"]
-    np.savetxt(
-        tmp_path / "tracks.csv",
-        np.column_stack([t * 1e3, ux * 1e3]),
-        delimiter=",",
-        header="time_ms,top_x_mm",
-        comments="",
-    )
+    write_track_csv(tmp_path / "tracks.csv", t, {"top_x": ux})
     path = tmp_path / "shot.toml"
     path.write_text(text + '[fired]\ntracks = "tracks.csv"\n[fired.marker.top]\npoint_m = [0.0, 0.0, 0.3]\n')
     with pytest.raises(SystemExit) as e:

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from _fired_synthetic import synthetic_trace, synthetic_track
+from _fired_synthetic import camera_track, synthetic_trace, synthetic_track, write_gauge_csv, write_track_csv
 
 from blastscale.blast import blast_parameters
 from blastscale.fired.shot import as_fired
@@ -87,22 +87,14 @@ def write_shot(folder, factor=FACTOR, seed=0, restitution=None, fps=FPS):
         pre_s=1e-3,
         incidence_deg=angle,
     )
-    np.savetxt(
-        folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",", header="time_us,g1_kPa", comments=""
-    )
+    write_gauge_csv(folder / "gauges.csv", t, p)
     bp = blast_parameters(W, R, "masi2021")
     system = RockingSystem.from_block(block, d.specimen_gravity, restitution)
     frames = np.arange(-0.01, d.specimen_duration, 1.0 / fps)
     after = np.clip(frames - bp.arrival_time, 0.0, None)
     res = DEFAULT_SOLVER.simulate(system, bp.pulse("friedlander"), d.specimen_duration, t_eval=after)
     x, z = synthetic_track(seed, frames, res.theta_eval, 0.0, 0.5, block.b)
-    np.savetxt(
-        folder / "tracks.csv",
-        np.column_stack([frames * 1e3, x * 1e3, z * 1e3]),
-        delimiter=",",
-        header="time_ms,top_x_mm,top_z_mm",
-        comments="",
-    )
+    write_track_csv(folder / "tracks.csv", frames, {"top_x": x, "top_z": z})
     th0 = float(res.peak_angles[0])
     true_peak = block.b * (1 - np.cos(th0)) + 0.5 * np.sin(th0)  # the top centre, about the rear toe
     sc_path = folder / "shot.toml"
@@ -224,25 +216,10 @@ def test_column_in_3d_end_to_end(tmp_path):
     front = d.specimen_structure.front_x
     dist = float(np.hypot(R, 0.05))
     t, p, _ = synthetic_trace(1, W, dist, rate_hz=4e6, pre_s=1e-3, incidence_deg=float(np.degrees(np.arctan2(0.05, R))))
-    np.savetxt(
-        tmp_path / "gauges.csv",
-        np.column_stack([t * 1e6, p / 1e3]),
-        delimiter=",",
-        header="time_us,g1_kPa",
-        comments="",
-    )
+    write_gauge_csv(tmp_path / "gauges.csv", t, p)
     truth = marker_history(simulate_specimen(base, d, W, R, "3d"), (0.0, 0.0, 0.3))
-    frames = np.arange(-0.01, truth["t"][-1], 1.0 / FPS)
-    rng = np.random.default_rng(1)
-    x = np.interp(frames, truth["t"], truth["ux"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    z = 0.3 + np.interp(frames, truth["t"], truth["uz"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    np.savetxt(
-        tmp_path / "tracks.csv",
-        np.column_stack([frames * 1e3, x * 1e3, z * 1e3]),
-        delimiter=",",
-        header="time_ms,top_x_mm,top_z_mm",
-        comments="",
-    )
+    frames, u = camera_track(truth, fps=FPS, seed=1, noise_m=5e-5, components=("x", "z"))
+    write_track_csv(tmp_path / "tracks.csv", frames, {"top_x": u["x"], "top_z": 0.3 + u["z"]})
     path = tmp_path / "shot.toml"
     path.write_text(COLUMN.format(gx=front))
     s = as_fired(load_scenario(path)).summary

@@ -12,7 +12,7 @@ import json
 
 import numpy as np
 import pytest
-from _fired_synthetic import synthetic_trace
+from _fired_synthetic import camera_track, synthetic_trace, write_gauge_csv, write_track_csv
 
 from blastscale.fired.refit import marker_history, simulate_specimen
 from blastscale.fired.shot import as_fired
@@ -78,9 +78,7 @@ def write_assembly_shot(folder, duration=1.0, factor=FACTOR):
     R = d.specimen.standoff_m
     angle = float(np.degrees(np.arctan2(0.05, R)))  # flush in the front face, the charge on the floor
     t, p, _ = synthetic_trace(1, W, float(np.hypot(R, 0.05)), rate_hz=4e6, pre_s=1e-3, incidence_deg=angle)
-    np.savetxt(
-        folder / "gauges.csv", np.column_stack([t * 1e6, p / 1e3]), delimiter=",", header="time_us,g1_kPa", comments=""
-    )
+    write_gauge_csv(folder / "gauges.csv", t, p)
     run = simulate_specimen(base, d, W, R, "3d")
     truth = {n: marker_history(run, p) for n, p in MARKERS.items()}
     frames = np.arange(-0.01, truth["top"]["t"][-1], 1.0 / FPS)
@@ -177,16 +175,8 @@ def test_calibrated_friction_is_the_tracks(tmp_path, capsys):
     h = marker_history(
         simulate_specimen(true, d, d.specimen_charge_kg, d.specimen.standoff_m, "3d"), (-0.03, 0.0, 0.025)
     )
-    frames = np.arange(-0.01, h["t"][-1], 1.0 / FPS)
-    rng = np.random.default_rng(2)
-    x = -0.03 + np.interp(frames, h["t"], h["ux"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    np.savetxt(
-        tmp_path / "tracks.csv",
-        np.column_stack([frames * 1e3, x * 1e3]),
-        delimiter=",",
-        header="time_ms,front_x_mm",
-        comments="",
-    )
+    frames, u = camera_track(h, fps=FPS, seed=2, noise_m=5e-5)
+    write_track_csv(tmp_path / "tracks.csv", frames, {"front_x": -0.03 + u["x"]})
     path.write_text(SLAB.format(friction=0.7))
     s = as_fired(load_scenario(path), calibrate=["friction"]).summary
     c = s["calibration"]

@@ -18,7 +18,7 @@ import tomllib
 
 import numpy as np
 import pytest
-from _fired_synthetic import synthetic_trace
+from _fired_synthetic import camera_track, synthetic_trace, write_gauge_csv, write_track_csv
 
 from blastscale.fired.refit import SpecimenRun, marker_history, simulate_specimen
 from blastscale.fired.shot import as_fired
@@ -68,25 +68,10 @@ def test_column_fired_hot_names_the_similar_charge_and_holds_the_designed_event(
     d = Study(base).check().design
     W, R = FACTOR * d.specimen_charge_kg, d.specimen.standoff_m
     t, p, _ = synthetic_trace(2, W, float(np.hypot(R, 0.05)), rate_hz=4e6, pre_s=1e-3)
-    np.savetxt(
-        tmp_path / "gauges.csv",
-        np.column_stack([t * 1e6, p / 1e3]),
-        delimiter=",",
-        header="time_us,g1_kPa",
-        comments="",
-    )
+    write_gauge_csv(tmp_path / "gauges.csv", t, p)
     shot = marker_history(simulate_specimen(base, d, W, R, "3d"), (0.0, 0.0, 0.3))
-    frames = np.arange(-0.01, shot["t"][-1], 1.0 / FPS)
-    rng = np.random.default_rng(2)
-    x = np.interp(frames, shot["t"], shot["ux"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    z = 0.3 + np.interp(frames, shot["t"], shot["uz"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    np.savetxt(
-        tmp_path / "tracks.csv",
-        np.column_stack([frames * 1e3, x * 1e3, z * 1e3]),
-        delimiter=",",
-        header="time_ms,top_x_mm,top_z_mm",
-        comments="",
-    )
+    frames, u = camera_track(shot, fps=FPS, seed=2, noise_m=5e-5, components=("x", "z"))
+    write_track_csv(tmp_path / "tracks.csv", frames, {"top_x": u["x"], "top_z": 0.3 + u["z"]})
     (tmp_path / "shot.toml").write_text(COLUMN + FIRED.format(gx=d.specimen_structure.front_x))
     s = as_fired(load_scenario(tmp_path / "shot.toml")).summary
 
@@ -145,24 +130,10 @@ def test_a_chaotic_column_carries_its_ensemble_spread(tmp_path):
     x, _, z = np.asarray(st.bodies[mp.body].com) + np.asarray(mp.position)
     W, R = FACTOR * d.specimen_charge_kg, d.specimen.standoff_m
     t, p, _ = synthetic_trace(3, W, float(np.hypot(R, 0.05)), rate_hz=4e6, pre_s=1e-3)
-    np.savetxt(
-        tmp_path / "gauges.csv",
-        np.column_stack([t * 1e6, p / 1e3]),
-        delimiter=",",
-        header="time_us,g1_kPa",
-        comments="",
-    )
+    write_gauge_csv(tmp_path / "gauges.csv", t, p)
     shot = marker_history(simulate_specimen(base, d, W, R, "3d"), (x, 0.0, z))
-    frames = np.arange(-0.01, shot["t"][-1], 1.0 / FPS)
-    rng = np.random.default_rng(3)
-    ux = np.interp(frames, shot["t"], shot["ux"], left=0.0) + 5e-5 * rng.standard_normal(frames.size)
-    np.savetxt(
-        tmp_path / "tracks.csv",
-        np.column_stack([frames * 1e3, (x + ux) * 1e3]),
-        delimiter=",",
-        header="time_ms,face_x_mm",
-        comments="",
-    )
+    frames, u = camera_track(shot, fps=FPS, seed=3, noise_m=5e-5)
+    write_track_csv(tmp_path / "tracks.csv", frames, {"face_x": x + u["x"]})
     (tmp_path / "shot.toml").write_text(CIRCULAR + MARKED.format(gx=st.front_x, x=x, z=z))
     r = as_fired(load_scenario(tmp_path / "shot.toml"))
     e = r.summary["designed_event"]["markers"]["face"]

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import tomllib
 
-import numpy as np
 import pytest
+from _fired_synthetic import camera_track, write_track_csv
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.fired.refit import marker_history, simulate_specimen
@@ -117,15 +117,8 @@ def test_fired_as_designed_carries_runs_verdict(tmp_path, capsys):
     sc = scenario(BLOCK)
     d = Study(sc).check().design
     h = marker_history(simulate_specimen(sc, d, d.specimen_charge_kg, d.specimen.standoff_m, "planar"), (0, 0, 0.5))
-    t = np.arange(-0.01, h["t"][-1], 1 / 2000.0)
-    x = np.interp(t, h["t"], h["ux"], left=0.0) + 5e-5 * np.random.default_rng(0).standard_normal(t.size)
-    np.savetxt(
-        tmp_path / "tracks.csv",
-        np.column_stack([t * 1e3, x * 1e3]),
-        delimiter=",",
-        header="time_ms,top_x_mm",
-        comments="",
-    )
+    frames, u = camera_track(h, fps=2000.0, seed=0, noise_m=5e-5)
+    write_track_csv(tmp_path / "tracks.csv", frames, {"top_x": u["x"]})
     path = tmp_path / "shot.toml"
     path.write_text(BLOCK + FIRED.format(z=0.5))
     shot = load_scenario(path)

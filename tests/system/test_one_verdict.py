@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import tomllib
 
-import numpy as np
 import pytest
+from _fired_synthetic import camera_track, write_track_csv
 
 from blastscale.fired.refit import marker_history, simulate_specimen
 from blastscale.fired.shot import as_fired
@@ -97,15 +97,8 @@ def test_fired_as_designed_gives_the_same_verdict(run, tmp_path):
     d = run.design
     top = (0.0, 0.0, float(d.specimen_structure.describe()["height_m"]))
     h = marker_history(simulate_specimen(sc, d, d.specimen_charge_kg, d.specimen.standoff_m, "3d"), top)
-    t = np.arange(-0.005, h["t"][-1], 1 / 2000.0)
-    x = np.interp(t, h["t"], h["ux"], left=0.0) + 2e-6 * np.random.default_rng(0).standard_normal(t.size)
-    np.savetxt(
-        tmp_path / "tracks.csv",
-        np.column_stack([t * 1e3, x * 1e3]),
-        delimiter=",",
-        header="time_ms,top_x_mm",
-        comments="",
-    )
+    frames, u = camera_track(h, fps=2000.0, seed=0, noise_m=2e-6, start_s=-0.005)
+    write_track_csv(tmp_path / "tracks.csv", frames, {"top_x": u["x"]})
     path = tmp_path / "shot.toml"
     path.write_text(
         COLUMN + f'\n[fired]\ntracks = "tracks.csv"\n[fired.marker.top]\npoint_m = [0.0, 0.0, {top[2]!r}]\n'
