@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from typing import Iterable
 
-from ..study.criterion import shown
+from ..study.criterion import entry_value
 from .card import CSS as _CARD_CSS, card_section
 from .labels import label, specimen_rows
 from .markup import (
@@ -218,8 +218,8 @@ def _judged(verdict: dict) -> str:
         (
             e["quantity"] + (" (ensemble medians)" if e["basis"] == "ensemble" else ""),
             e["where"],
-            shown(e, "prototype"),
-            shown(e, "model"),
+            entry_value(e, "prototype"),
+            entry_value(e, "model"),
             "differs" if math.isinf(e["error"]) else f"{e['error'] * 100:.3g} %",
             "-" if e["tolerance"] == 0 else f"{e['tolerance'] * 100:g} %",
             "yes" if e["ok"] else "NO",

@@ -46,7 +46,7 @@ from __future__ import annotations
 import math
 from typing import Any, Iterable, Optional
 
-__all__ = ["judge", "describe", "shown", "QUANTITIES", "STATES", "structure_height"]
+__all__ = ["judge", "describe", "entry_value", "QUANTITIES", "STATES", "structure_height"]
 
 #: The quantities judged (the fixed vocabulary of a verdict's ``quantity``).
 QUANTITIES = (
@@ -413,7 +413,7 @@ def _fmt(v: Optional[float], unit: str) -> str:
     return f"{v:.4g}"
 
 
-def shown(e: dict, system: str) -> str:
+def entry_value(e: dict, system: str) -> str:
     """A judged entry's ``system`` value (``"prototype"`` or ``"model"``) in words and readable units: an
     outcome as stands / moved / fell (the structure: collapses or stands), a length in mm below 1 m."""
     v, unit = e[system], e["unit"]
