@@ -157,16 +157,15 @@ def fired_section(result, figures) -> str:
             "m",
         ),
     ]
+    shot_title, designed_title = _event_titles(s)
     return (
         f'<p class="lead"><b>{escape(s["verdict"])}</b></p>'
         + _similarity(s.get("similarity_verdict"))
         + html_table(("quantity", "value", "unit"), load)
         + _named_rows("Gauges (specimen)", "gauge", GAUGE_COLUMNS, s["gauges"])
         + _named_rows("Markers (specimen)", "marker", MARKER_COLUMNS, s["markers"])
-        + _named_rows(_event_titles(s)[0], "marker", PROTOTYPE_COLUMNS, s["prototype_markers"])
-        + _named_rows(
-            _event_titles(s)[1], "marker", EVENT_COLUMNS, (s.get("designed_event") or {}).get("markers") or {}
-        )
+        + _named_rows(shot_title, "marker", PROTOTYPE_COLUMNS, s["prototype_markers"])
+        + _named_rows(designed_title, "marker", EVENT_COLUMNS, (s.get("designed_event") or {}).get("markers") or {})
         + _calibration(s.get("calibration"))
         + "".join(figure_html(png, title, caption, name) for name, title, caption, png in figures)
     )
