@@ -3,7 +3,7 @@
 Each command lives in its own module and registers itself on :data:`app`:
 ``blast``/``design`` (:mod:`.loads`), ``rock`` (:mod:`.rocking`), ``critical``/``capacity`` (:mod:`.capacity`),
 ``block3d`` (:mod:`.block3d`), ``run`` (:mod:`.main_job`), ``reproduce`` (:mod:`.reproduce`), ``plan``
-(:mod:`.plan`), ``init`` (:mod:`.init`), ``show`` (:mod:`.show`), ``fired`` (:mod:`.fired`). Units at this
+(:mod:`.plan`), ``init`` (:mod:`.init`), ``show`` (:mod:`.show`), ``fired`` (:mod:`.fired`), ``source`` (:mod:`.source`: ``source calibrate``). Units at this
 edge are those named in each option's help text; everything is converted to SI before calling the library.
 
 Bad input raises :class:`~blastscale._validate.BlastscaleInputError` in the library; ``main``
@@ -36,6 +36,7 @@ from . import plan as _plan  # noqa: F401,E402
 from . import init as _init  # noqa: F401,E402
 from . import show as _show  # noqa: F401,E402
 from . import fired as _fired  # noqa: F401,E402
+from . import source as _source  # noqa: F401,E402
 # isort: on
 
 __all__ = ["app", "main", "GC_THRESHOLDS"]
