@@ -260,9 +260,11 @@ class CalibratedSource:
             return f"charge the bank to {text}"
         return f"set {self.control} to {float(x):.4g} {self.control_unit}"
 
-    def shot(self, tnt_kg: float) -> SourceShot:
+    def shot(self, tnt_kg: float, blast_model: str | None = None, scaled_distance: float | None = None) -> SourceShot:
         """The shot that gives ``tnt_kg`` [kg TNT, impulse basis]: its control value, both equivalents, one shot's
-        uncertainty, and the source's limits checked (:class:`SourceShot`)."""
+        uncertainty, and the source's limits checked (:class:`SourceShot`). A warning when the design's
+        ``blast_model`` (a name) is not the one the source was calibrated against, or its ``scaled_distance``
+        [m/kg^(1/3)] lies outside the calibrated records' (self-similarity extrapolated)."""
         W = check_positive_scalar("charge (TNT, impulse basis)", tnt_kg, "kg")
         x = float(self.impulse.control_for(W))
         bad, notes = [], []
@@ -290,6 +292,17 @@ class CalibratedSource:
             notes.append(
                 f"{self.control} {x:.4g} {u} is outside the calibrated {lo:.4g}-{hi:.4g} {u}: the power law is "
                 "extrapolated"
+            )
+        if blast_model is not None and blast_model != self.blast_model:
+            notes.append(
+                f"the design's blast model {blast_model!r} is not the source's ({self.blast_model!r}, its "
+                "equivalence is read against it): calibrate the source against the design's model"
+            )
+        zlo, zhi = self.calibrated_scaled_distance
+        if scaled_distance is not None and not zlo <= scaled_distance <= zhi:
+            notes.append(
+                f"scaled distance {scaled_distance:.3g} m/kg^(1/3) is outside the calibrated {zlo:.3g}-{zhi:.3g}: "
+                "the source's self-similarity is extrapolated"
             )
         if self.synthetic:
             notes.append(f"source {self.name!r} is a synthetic calibration: not a real source")

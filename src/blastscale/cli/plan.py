@@ -25,7 +25,7 @@ from ..io.results import check_output_folder, output_folder
 from ..planning.odds import outcome_odds_text
 from ..planning.plan3d import ensemble_members
 from ..planning.planner import plan
-from ..report.markup import format_charge
+from ..report.markup import charge_text, format_charge
 from ..report.plan_files import error_cells, first_design_label, verdict_cell
 from ..scenario.files import load_scenario
 from ..scenario.lab import LabSpec
@@ -69,7 +69,7 @@ def _print_plan(p, top: int) -> None:
             d["law"],
             d["scale_fraction"],
             d["material"],
-            f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}{stand}",
+            f"{charge_text(d)}{stand}",
             f"{d['standoff_m'] * 100:.3g} cm",
             f"{d['specimen_height_m'] * 100:.3g} cm, {d['specimen_mass_kg']:.3g} kg",
             f"{d['safety_radius_m']:.3g} m",
@@ -94,18 +94,26 @@ def _print_plan(p, top: int) -> None:
         styled(
             (f"{first_design_label(p)}:", "bold"),
             f" {b['law']} law, lambda = {b['scale_fraction']}, {b['material']}: "
-            f"{format_charge(b['explosive_mass_kg'])} of {b['explosive']} at {b['standoff_m'] * 100:.3g} cm"
+            f"{charge_text(b)} at {b['standoff_m'] * 100:.3g} cm"
             f"{stand}",
         )
     )
     for r in b["reasons"]:
         console.print(f"  - {r}")
-    console.print(
-        f"  - fireable: above {b['explosive']}'s minimum reliable charge "
-        f"{format_charge(b['explosive_min_charge_kg'])}; initiator {format_charge(b['initiator_tnt_kg'])} TNT, "
-        f"{100 * b['initiator_fraction']:.3g} % of the charge's impulse (at most "
-        f"{100 * p.lab['initiator_max_fraction']:g} %)"
-    )
+    if b.get("source"):
+        src = b["source"]
+        console.print(
+            f"  - fireable: {src['control']} {src['control_value']:.4g} {src['control_unit']} within the source's "
+            f"limits {src['control_min']:.4g}-{src['control_max']:.4g} {src['control_unit']}; one shot's scatter "
+            f"{100 * src['sigma_ln_impulse']:.2g} % (repeatability and fit, in place of charge_tolerance)"
+        )
+    else:
+        console.print(
+            f"  - fireable: above {b['explosive']}'s minimum reliable charge "
+            f"{format_charge(b['explosive_min_charge_kg'])}; initiator {format_charge(b['initiator_tnt_kg'])} TNT, "
+            f"{100 * b['initiator_fraction']:.3g} % of the charge's impulse (at most "
+            f"{100 * p.lab['initiator_max_fraction']:g} %)"
+        )
     o3 = b.get("odds_3d")
     if o3:
         console.print(

@@ -17,6 +17,8 @@ from typing import Optional
 
 from .._validate import BlastscaleInputError
 from ..blast.explosives import get_explosive
+from ..blast.inverse import model_name
+from ..blast.sources import SourceShot
 from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
 from ..similitude.factors import to_specimen
 from ..structures.block import RectangularBlock
@@ -24,7 +26,7 @@ from ..structures.from_spec import is_block
 from .build import spec_dims, specimen_density, specimen_mass
 from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
-from .shot import candidate_materials, fireability, lab_charge, lab_explosives, safety_envelope
+from .shot import candidate_materials, fireability, lab_charge, lab_explosives, lab_source, safety_envelope
 
 __all__ = [
     "LAMBDA_DENOMINATORS",
@@ -138,6 +140,8 @@ def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
         )
     if ev.charge is None:
         return out
+    if isinstance(ev.charge, SourceShot):  # a calibrated source: its limits in place of the explosive's
+        return out + [Violation(*v) for v in ev.charge.violations] + _space_and_camera(ev, lab)
     out += [Violation(*f) for f in fireability(ev.charge, lab)]
     m = ev.charge.explosive_mass_kg
     if m < lab.charge_min_kg:
@@ -158,6 +162,12 @@ def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
                 f"{m:.4g} kg of {lab.explosive} > charge_max_kg = {lab.charge_max_kg:g} kg",
             )
         )
+    return out + _space_and_camera(ev, lab)
+
+
+def _space_and_camera(ev: Evaluated, lab) -> list:
+    """The safety radius against the lab's space and the camera rate against its camera (any source)."""
+    out = []
     if ev.safety.radius_m > lab.space_radius_m:
         out.append(
             Violation(
@@ -212,8 +222,15 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
                 f"not impulsive: t_o p = {ev.impulsive.model_ratio:.3g} > {ev.impulsive.threshold:g}",
             )
         )
+    source = lab_source(lab)
     try:
-        ev.charge = lab_charge(d.specimen_charge_kg, lab)
+        ev.charge = (
+            lab_charge(d.specimen_charge_kg, lab)
+            if source is None
+            else source.shot(
+                d.specimen_charge_kg, model_name(d.specimen.blast_model), float(d.specimen.scaled_distance)
+            )
+        )
     except BlastscaleInputError:
         ev.violations.append(
             Violation(
@@ -324,14 +341,16 @@ def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
     c, d, spec, ch, env = ev.candidate, ev.design, ev.specimen, ev.charge, ev.safety
     h, w, dp = spec_dims(spec)
     ins = instrument_settings(**{**_ins_inputs(ev), "top_displacement_m": top_m, "camera_max_fps": lab.camera_max_fps})
+    source = isinstance(ch, SourceShot)
     return {
         **c.describe(),
-        "explosive": ch.explosive.name,
-        "explosive_mass_kg": ch.explosive_mass_kg,
+        "explosive": ch.source.name if source else ch.explosive.name,
+        "explosive_mass_kg": None if source else ch.explosive_mass_kg,
+        "source": ch.to_dict() if source else None,
         "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg,
         "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
-        "explosive_min_charge_kg": ch.explosive.min_charge_kg,
-        "min_charge_source": ch.explosive.min_charge_source,
+        "explosive_min_charge_kg": None if source else ch.explosive.min_charge_kg,
+        "min_charge_source": None if source else ch.explosive.min_charge_source,
         "initiator_tnt_kg": ch.initiator_tnt_kg,
         "initiator_fraction": ch.initiator_fraction,
         "standoff_m": d.specimen_standoff_m,

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from typing import Optional
 
 import numpy as np
@@ -71,6 +71,15 @@ class Tolerances:
     @classmethod
     def from_lab(cls, lab) -> "Tolerances":
         return cls(lab.charge_tolerance, lab.standoff_tolerance_m, lab.density_tolerance, lab.friction_tolerance)
+
+    def for_shot(self, charge) -> "Tolerances":
+        """These tolerances for one design's charge: a calibrated source's shot
+        (:class:`~blastscale.blast.sources.SourceShot`) draws its charge with its own log-normal standard deviation,
+        the source's repeatability and its fit's uncertainty at the shot's control value in quadrature, in place of
+        ``[lab] charge_tolerance`` (the calibration's shot-to-shot scatter holds the bank's charging precision;
+        docs/planning.md, "Sources"); a chemical charge keeps them."""
+        s = getattr(charge, "sigma_ln_impulse", None)
+        return self if s is None else replace(self, charge=float(s))
 
 
 @dataclass(frozen=True)

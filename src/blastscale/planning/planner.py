@@ -156,7 +156,9 @@ def _design_dict(ev: Evaluated, odds, proto: dict, lab, scenario) -> dict:
         "similarity_error": err,
         "predicted_first_peak_error": math.hypot(err, spread),
         "charge_tolerance_needed": tol,
-        "weighing_precision_kg": None if tol is None else tol * ev.charge.explosive_mass_kg,
+        "weighing_precision_kg": None
+        if tol is None or getattr(ev.charge, "explosive_mass_kg", None) is None
+        else tol * ev.charge.explosive_mass_kg,
         "odds": odds.to_dict(),
     }
 
@@ -311,7 +313,7 @@ def plan(
             scenario,
             best.design,
             prototype_collapsed=proto["collapsed"],
-            tolerances=tol,
+            tolerances=tol.for_shot(best.charge),
             members=lab.ensemble_3d,
             seed=lab.seed,
             workers=workers,
@@ -387,7 +389,7 @@ def _planar_designs(scenario, ok: list, proto: dict, lab, tol, tell) -> tuple:
             restitution=sim.restitution,
             pulse_shape=bl.pulse_shape,
             blast_model=e.design.specimen.blast_model,
-            tolerances=tol,
+            tolerances=tol.for_shot(e.charge),
             samples=n,
             seed=lab.seed,
             target=lab.first_peak_target,

@@ -13,12 +13,16 @@ from .._validate import BlastscaleInputError
 from ..blast.explosive_library import Explosive
 from ..blast.explosives import ChargeEquivalence, charge_equivalence, get_explosive
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
+from ..blast.sources import SourceShot
+from ..io.source_file import read_source
 from ..scenario.lab import SAME_MATERIAL, LabSpec
 from ..structures.materials import MATERIALS
 
 __all__ = [
     "lab_explosives",
     "lab_charge",
+    "lab_source",
+    "lab_shot",
     "card_charge",
     "fireability",
     "SafetyEnvelope",
@@ -61,6 +65,21 @@ def lab_explosives(lab) -> dict:
 def lab_charge(tnt_kg: float, lab):
     """The specimen's charge in the lab's explosive (:func:`~blastscale.blast.explosives.charge_equivalence`)."""
     return charge_equivalence(tnt_kg, lab.explosive, lab.initiator_tnt_kg, lab_explosives(lab))
+
+
+def lab_source(lab):
+    """The lab's calibrated source (``[lab] source``: :func:`blastscale.io.source_file.read_source`), None for a
+    chemical explosive."""
+    path = getattr(lab, "source", None)
+    return None if path is None else read_source(path)
+
+
+def lab_shot(tnt_kg: float, lab) -> "SourceShot | ChargeEquivalence":
+    """The shot that delivers ``tnt_kg`` [kg TNT, impulse basis] in the lab: with ``[lab] source`` the calibrated
+    source's (:meth:`~blastscale.blast.sources.CalibratedSource.shot`: the control value to set, its limits and
+    uncertainty; no initiator), else the chemical charge (:func:`lab_charge`)."""
+    src = lab_source(lab)
+    return lab_charge(tnt_kg, lab) if src is None else src.shot(tnt_kg)
 
 
 def card_charge(tnt_kg: float, lab):

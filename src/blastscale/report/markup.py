@@ -24,6 +24,7 @@ __all__ = [
     "figure_html",
     "flatten",
     "format_charge",
+    "charge_text",
     "format_value",
     "html_table",
     "split_unit_for_tables",
@@ -83,6 +84,15 @@ def format_charge(kg: float) -> str:
         if kg >= 0.1 * f:
             return f"{kg / f:.4g} {unit}"
     return f"{kg / 1e-9:.4g} µg"
+
+
+def charge_text(d: dict) -> str:
+    """A planned design's charge as the lab sets it: ``"1.004 g c-4"``, or a calibrated source's setting
+    (``"charge the bank to 1.85 kJ"``: the design's ``source``, docs/planning.md, "Sources")."""
+    src = d.get("source")
+    if src:
+        return f"{src['setting']} ({format_charge(d['tnt_equivalent_kg'])} TNT by impulse)"
+    return f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}"
 
 
 def escape(x: Any) -> str:

@@ -11,7 +11,7 @@ from ..io.results import jsonable, write_atomic, write_json
 from ..planning.card import study_test_card
 from ..plots.plan import plot_plan
 from . import write_study
-from .markup import escape, figure_html, format_charge, html_table
+from .markup import charge_text, escape, figure_html, html_table
 
 __all__ = ["write_plan", "plan_section", "error_cells", "verdict_cell", "first_design_label"]
 
@@ -58,7 +58,7 @@ def plan_section(p, top: int = 15) -> str:
             d["law"],
             d["scale_fraction"],
             d["material"],
-            f"{format_charge(d['explosive_mass_kg'])} {d['explosive']}",
+            charge_text(d),
             f"{d['standoff_m'] * 1e3:.4g} mm",
             f"{d['specimen_height_m'] * 1e3:.4g} mm",
             f"{d['safety_radius_m']:.3g} m",

@@ -101,6 +101,10 @@ def _from_text(text: str, source: str, folder: "Path | None" = None) -> Scenario
         and not Path(st["file"]).is_absolute()
     ):  # a block-model file is relative to its scenario file
         data["structure"] = {**st, "file": str(folder / st["file"])}
+    lab = data.get("lab")
+    if folder is not None and isinstance(lab, dict) and isinstance(lab.get("source"), str):
+        if not Path(lab["source"]).is_absolute():  # a source file is relative to its scenario file
+            data["lab"] = {**lab, "source": str(folder / lab["source"])}
     fired = data.get("fired")
     written = {}
     if folder is not None and isinstance(fired, dict):  # the records are relative to their scenario file

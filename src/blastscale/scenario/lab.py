@@ -46,6 +46,12 @@ class LabSpec(BaseModel):
     model_config = SPEC_CONFIG
     explosive: str = Field("tnt", description="The explosive of the specimen's charge (library or [lab.explosives])")
     explosives: dict[str, ExplosiveSpec] = Field(default_factory=dict, description="User-defined explosives")
+    source: Optional[str] = Field(
+        None,
+        description="A calibrated source's file (written by `blastscale source calibrate`; relative to the scenario "
+        "file): the planner plans in its control value (an exploding-wire bank's stored energy); default: the "
+        "chemical explosive",
+    )
     initiator: str = Field(
         DEFAULT_INITIATOR,
         description="The initiator (detonator) by name: rp-80 (Teledyne RISI EBW, 80 mg PETN + 123 mg RDX) or none",
