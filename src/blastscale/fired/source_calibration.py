@@ -16,14 +16,16 @@ noise). The law's 95 % interval at x uses Student's t with n - 2 degrees of free
 (:class:`blastscale.blast.sources.PowerLaw`). At least three shots at two control values or more.
 
 **Self-similarity.** Blasts of one source collapse on the scaled distance Z = R / W^(1/3) (Hopkinson-Cranz) when
-the equivalence is a property of the source alone (arXiv:2410.07221). Each record's residual
-``r = ln W_record - ln W(x)`` is regressed on ``ln Z`` (Z with the law's W at the shot's control value) by a
-quadratic, ``r = c0 + c1 ln Z + c2 ln^2 Z``, and tested against a constant by the F test of the nested fits,
-``F = ((RSS_0 - RSS_2) / 2) / (RSS_2 / (m - 3))`` on (2, m - 3) degrees of freedom (m records; Draper & Smith
-1998, *Applied Regression Analysis*, 3rd ed., sec. 6.1). Below :data:`SELF_SIMILARITY_P` the records do not
-collapse (a trend with Z, or one distance off the others) and the result says so in one line; the source is
-written still (marked ``self_similar = false``). With fewer than :data:`MIN_RECORDS_FOR_TREND` records the test
-is not made (said so).
+the equivalence is a property of the source alone (arXiv:2410.07221): a record's effective charge then depends on
+the control value only, not on where it was measured. Each record's residual ``r = ln W_record - ln W(x)`` is
+regressed on the control and the scaled distance (Z with the law's W at the shot's control value),
+``r = c0 + c1 ln x + c2 ln Z + c3 ln^2 Z``, and the scaled distance's terms are tested against the fit without
+them (``r = c0 + c1 ln x``) by the F test of the nested fits, ``F = ((RSS_0 - RSS_1) / 2) / (RSS_1 / (m - 4))`` on
+(2, m - 4) degrees of freedom (m records; Draper & Smith 1998, *Applied Regression Analysis*, 3rd ed., sec. 6.1):
+at a given control value ln Z is ln R less a constant, so a trend with Z or one distance off the others is caught
+alike. Below :data:`SELF_SIMILARITY_P` the records do not collapse and the result says so in one line; the
+source is written still (marked ``self_similar = false``). With fewer than :data:`MIN_RECORDS_FOR_TREND` records
+the test is not made (said so).
 """
 
 from __future__ import annotations
@@ -61,8 +63,8 @@ __all__ = [
 #: The F test's level below which the records do not collapse on Z (1 %: a clean campaign is flagged once in a
 #: hundred, a bias of a tenth on one distance's impulse over 12 records with 3 % scatter almost always).
 SELF_SIMILARITY_P = 0.01
-#: Fewest records for the self-similarity test (a quadratic and its residual need m - 3 >= 3).
-MIN_RECORDS_FOR_TREND = 6
+#: Fewest records for the self-similarity test (four terms and a residual of m - 4 >= 3 degrees of freedom).
+MIN_RECORDS_FOR_TREND = 7
 
 
 class WireSpec(BaseModel):
@@ -186,6 +188,12 @@ def read_calibration_set(path) -> CalibrationSet:
             else s
             for s in shots
         ]
+    for i, shot in enumerate(shots if isinstance(shots, list) else []):  # each shot alone: its own key path
+        try:
+            ShotSpec.model_validate(shot)
+        except ValidationError as exc:
+            name = f" ({shot['name']})" if isinstance(shot, dict) and isinstance(shot.get("name"), str) else ""
+            raise BlastscaleInputError(f"{p.name}: [[shot]] {i + 1}{name}: {one_line(exc, ShotSpec, {})}") from None
     try:
         return CalibrationSet.model_validate(data)
     except ValidationError as exc:
@@ -311,14 +319,13 @@ def _self_similarity(records: list, laws: dict) -> dict:
         x = np.array([r["control"] for r in records])
         z = np.array([r["distance_m"] for r in records]) / np.cbrt(law.tnt_kg(x))
         r = np.log([rec[f"tnt_kg_{basis}"] for rec in records]) - np.log(law.tnt_kg(x))
-        lz = np.log(z)
-        rss0 = float(np.sum((r - r.mean()) ** 2))
-        X = np.column_stack([np.ones(m), lz, lz * lz])
-        coef, *_ = np.linalg.lstsq(X, r, rcond=None)
-        rss2 = float(np.sum((r - X @ coef) ** 2))
-        F = ((rss0 - rss2) / 2.0) / max(rss2 / (m - 3), 1e-300)
-        p = float(f_dist.sf(F, 2, m - 3))
-        slope = float(np.polyfit(lz, r, 1)[0])
+        lz, lx = np.log(z), np.log(x)
+        X0 = np.column_stack([np.ones(m), lx])
+        X1 = np.column_stack([X0, lz, lz * lz])
+        rss0, rss1 = (float(np.sum((r - X @ np.linalg.lstsq(X, r, rcond=None)[0]) ** 2)) for X in (X0, X1))
+        F = ((rss0 - rss1) / 2.0) / max(rss1 / (m - 4), 1e-300)
+        p = float(f_dist.sf(F, 2, m - 4))
+        slope = float(np.linalg.lstsq(np.column_stack([X0, lz]), r, rcond=None)[0][2])  # at a given control
         tests[basis] = {
             "F": F,
             "p": p,

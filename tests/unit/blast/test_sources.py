@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy.stats import t as student_t
+from scipy.stats import f as f_dist
 
 from blastscale._validate import BlastscaleInputError
 from blastscale.blast.sources import CalibratedSource, PowerLaw, source_from_dict, source_to_dict
@@ -44,13 +44,15 @@ def test_the_law_and_its_inverse_are_the_closed_form():
     np.testing.assert_allclose(LAW.control_for(w), x, rtol=1e-13)
 
 
-def test_the_interval_is_the_delta_method_with_students_t():
-    # sigma^2 = C00 + 2 C01 u + C11 u^2 at u = ln 2; half-width t_{0.975, 8} sigma in ln W
+def test_the_interval_is_the_working_hotelling_band():
+    # sigma^2 = C00 + 2 C01 u + C11 u^2 at u = ln 2; half-width sqrt(2 F_0.95(2, 8)) sigma in ln W (F_0.95(2, 8) =
+    # 4.459, the F table's value: Draper & Smith 1998, Table D)
     u = math.log(2.0)
     sigma = math.sqrt(4e-4 + 2e-4 * u + 9e-4 * u * u)
     assert float(LAW.sigma_fit(2000.0)) == pytest.approx(sigma, rel=1e-12)
     lo, hi = LAW.interval(2000.0)
-    h = student_t.ppf(0.975, 8) * sigma
+    h = math.sqrt(2.0 * f_dist.ppf(0.95, 2, 8)) * sigma
+    assert f_dist.ppf(0.95, 2, 8) == pytest.approx(4.459, abs=5e-4)
     w = 1e-7 * 2.0**1.2
     assert (float(lo), float(hi)) == pytest.approx((w * math.exp(-h), w * math.exp(h)), rel=1e-12)
     # at the reference the fit's sigma is the intercept's alone; one shot adds the repeatability in quadrature
