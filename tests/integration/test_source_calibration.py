@@ -158,3 +158,19 @@ def test_a_scenario_names_its_source_relative_to_itself(calibrated, tmp_path):
     sc = load_scenario(tmp_path / "sub" / "s.toml")
     assert Path(sc.lab.source).resolve() == (tmp_path / "bank.toml").resolve()
     assert read_source(sc.lab.source) == cal.source
+
+
+def test_the_test_card_carries_the_source_setting(calibrated, tmp_path):
+    from blastscale.planning.shot import source_card
+    from blastscale.study.study import Study
+
+    _, cal = calibrated
+    path = write_source(tmp_path / "source.toml", cal.source)
+    sc = Scenario.default()  # the paper's 1/200 specimen: 0.2332 mg TNT at 1 cm
+    design = Study(sc).check().design
+    card = source_card(design, LabSpec(source=str(path)))
+    x = float(cal.source.impulse.control_for(design.specimen_charge_kg))
+    assert card["control_value"] == pytest.approx(x, rel=1e-12)
+    assert card["setting"] == f"charge the bank to {x / 1e3:.3g} kJ" and card["violations"] == []
+    assert any("self-similarity is extrapolated" in w for w in card["warnings"])  # Z 1.62 < the calibrated 2.75
+    assert source_card(design, LabSpec()) is None

@@ -192,6 +192,8 @@ DOCS_FILES_DESCRIBED = {
     "lab05.toml": "docs/planning.md: its content is given in the text above the command",
     "arch_lab.toml": "docs/planning.md: its content is the TOML block above the command",
     "wall.toml": "docs/assemblies.md: its content is the TOML block above the command",
+    "source.toml": "docs/planning.md: the source file the `source calibrate` command above it writes",
+    "wires_lab.toml": "docs/planning.md: the paper's block with [lab] source, described above the command",
 }
 
 

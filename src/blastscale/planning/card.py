@@ -31,6 +31,7 @@ from .shot import (
     fireability,
     rocking_timing,
     safety_envelope,
+    source_card,
     threshold_meanings,
     timing_of,
 )
@@ -267,6 +268,7 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
     return {
         "verdict": {"similar": v["similar"], "line": v["line"]},
         **_shot_keys(ch, lab),
+        "source": source_card(d, lab),  # [lab] source: the shot in its control value (docs/planning.md, "Sources")
         "standoff_m": d.specimen_standoff_m,
         "charge_height_m": hc,
         "burst": burst,

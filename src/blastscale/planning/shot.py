@@ -12,6 +12,7 @@ import numpy as np
 from .._validate import BlastscaleInputError
 from ..blast.explosive_library import Explosive
 from ..blast.explosives import ChargeEquivalence, charge_equivalence, get_explosive
+from ..blast.inverse import model_name
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
 from ..blast.sources import SourceShot
 from ..io.source_file import read_source
@@ -23,6 +24,7 @@ __all__ = [
     "lab_charge",
     "lab_source",
     "lab_shot",
+    "source_card",
     "card_charge",
     "fireability",
     "SafetyEnvelope",
@@ -80,6 +82,18 @@ def lab_shot(tnt_kg: float, lab) -> "SourceShot | ChargeEquivalence":
     uncertainty; no initiator), else the chemical charge (:func:`lab_charge`)."""
     src = lab_source(lab)
     return lab_charge(tnt_kg, lab) if src is None else src.shot(tnt_kg)
+
+
+def source_card(design, lab) -> "dict | None":
+    """The test card's ``source`` block: the calibrated source's shot of the design (:meth:`SourceShot.to_dict`: the
+    control value to set and the line the lab reads, both TNT equivalents, the law's band, one shot's scatter, its
+    limits checked in ``violations``), None for a chemical explosive."""
+    src = lab_source(lab)
+    if src is None or design is None:
+        return None
+    m = design.specimen
+    shot = src.shot(design.specimen_charge_kg, model_name(m.blast_model), float(m.scaled_distance))
+    return {**shot.to_dict(), "violations": [v[3] for v in shot.violations]}
 
 
 def card_charge(tnt_kg: float, lab):

@@ -301,8 +301,10 @@ def _build_table(c: dict) -> str:
 def _shot_table(c: dict) -> str:
     """The charge to fire: the explosive, its mass and TNT equivalents, where it stands, the weighing precision."""
     charge_unit = _charge_unit(c)
+    src = c.get("source")  # a calibrated source: its setting first (docs/planning.md, "Sources")
     return _rows(
         [
+            *([("source (its setting)", _e(f"{src['name']}: {src['setting']}"))] if src else []),
             ("explosive", _e(c["explosive"])),
             ("mass to weigh", _n(c, "explosive_mass_kg", charge_unit)),
             ("TNT equivalent, impulse (the design)", _n(c, "tnt_equivalent_impulse_kg", charge_unit)),
