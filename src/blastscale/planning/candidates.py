@@ -222,15 +222,8 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
                 f"not impulsive: t_o p = {ev.impulsive.model_ratio:.3g} > {ev.impulsive.threshold:g}",
             )
         )
-    source = lab_source(lab)
     try:
-        ev.charge = (
-            lab_charge(d.specimen_charge_kg, lab)
-            if source is None
-            else source.shot(
-                d.specimen_charge_kg, model_name(d.specimen.blast_model), float(d.specimen.scaled_distance)
-            )
-        )
+        ev.charge = _shot_of(d, lab)
     except BlastscaleInputError:
         ev.violations.append(
             Violation(
@@ -294,6 +287,16 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
     )
     ev.violations += _violations(ev, lab, spec_h, spec_m)
     return ev
+
+
+def _shot_of(d, lab):
+    """The design's shot in the lab: its charge in the lab's explosive (:func:`~.shot.lab_charge`), or with
+    ``[lab] source`` the calibrated source's shot (its control value, limits and uncertainty, warned of a blast
+    model other than the source's or a scaled distance outside its calibration)."""
+    source = lab_source(lab)
+    if source is None:
+        return lab_charge(d.specimen_charge_kg, lab)
+    return source.shot(d.specimen_charge_kg, model_name(d.specimen.blast_model), float(d.specimen.scaled_distance))
 
 
 def envelope_block(structure):
