@@ -174,3 +174,32 @@ def test_the_test_card_carries_the_source_setting(calibrated, tmp_path):
     assert card["setting"] == f"charge the bank to {x / 1e3:.3g} kJ" and card["violations"] == []
     assert any("self-similarity is extrapolated" in w for w in card["warnings"])  # Z 1.62 < the calibrated 2.75
     assert source_card(design, LabSpec()) is None
+
+
+def test_bad_sets_are_refused_in_one_line_before_any_fit(calibrated, tmp_path):
+    from blastscale._validate import BlastscaleInputError
+
+    shots, _ = calibrated
+    text = shots.read_text(encoding="utf-8")
+    cases = {
+        # the edge: a minimum above the shots' largest control value when no maximum is given
+        "min": (
+            text.replace("control_min = 250.0", "control_min = 4500.0").replace("control_max = 5000.0\n", ""),
+            "source.control_min = 4500 J is above control_max = 4000 J",
+        ),
+        "one energy": (
+            "\n".join(line if not line.startswith("control = ") else "control = 1000.0" for line in text.splitlines()),
+            "every shot has control = 1000: give shots at 2 control values or more",
+        ),
+        "gauge name": (
+            text.replace("[shot.gauge.g1]", "[shot.gauge.g2]", 1),
+            "gauge 'g2' of [shot.gauge.g2] has no column",
+        ),
+        "wire": (text.replace("[source.wire]", "[source.bank]", 1), "source.bank = "),
+    }
+    for name, (body, words) in cases.items():
+        path = shots.parent / f"bad_{name.replace(' ', '_')}.toml"
+        path.write_text(body, encoding="utf-8")
+        with pytest.raises(BlastscaleInputError) as e:
+            calibrate_source(read_calibration_set(path))
+        assert words in " ".join(str(e.value).split()), (name, str(e.value))

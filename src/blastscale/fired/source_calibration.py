@@ -254,10 +254,15 @@ def _records(cs: CalibrationSet) -> tuple[list, list]:
     model, burst = cs.source.blast_model, cs.source.burst
     for i, shot in enumerate(cs.shot):
         name = shot.name or f"shot {i + 1}"
-        rec = read_gauges(shot.gauges, names=shot.gauge, max_mb=shot.max_record_mb)
+        rec = read_gauges(shot.gauges, max_mb=shot.max_record_mb)
         for g in shot.gauge:
             if g not in rec.pressure_Pa:
                 raise record_fault(rec.path, "", 1, f"gauge {g!r} of [shot.gauge.{g}] has no column (NAME_kPa, ...)")
+        for g, col in rec.columns.items():
+            if g not in shot.gauge:
+                raise record_fault(
+                    rec.path, col, 1, f"gauge {g!r} has no [shot.gauge.{g}] table in {name} (give its distance_m)"
+                )
         for g, p in rec.pressure_Pa.items():
             spec = shot.gauge[g]
             fit = fit_gauge(rec.time_s, p, g, source=rec.path, column=rec.columns[g])
@@ -303,6 +308,26 @@ def _fit(x: np.ndarray, y: np.ndarray, reference: float) -> PowerLaw:
         int(dof),
         math.sqrt(s2),
     )
+
+
+def _laws(x: np.ndarray, records: list) -> tuple[dict, list]:
+    """({basis: PowerLaw}, [ln W per shot, per basis]) of the shots at control values ``x`` from their records
+    (a shot's ln W the mean over its gauges), about the geometric mean control value (module docstring)."""
+    ref = float(np.exp(np.mean(np.log(x))))
+    laws, shots = {}, []
+    for basis in ("impulse", "pressure"):
+        y = np.array(
+            [np.mean([np.log(r[f"tnt_kg_{basis}"]) for r in records if r["shot_index"] == i]) for i in range(x.size)]
+        )
+        laws[basis] = _fit(x, y, ref)
+        shots.append(y)
+    k = min(law.exponent for law in laws.values())
+    if not k > 0:
+        raise BlastscaleInputError(
+            f"the fitted exponent = {k:.3g} is out of range: valid range is > 0 (a source whose blast grows with its "
+            "control value); check the shots' control values and records"
+        )
+    return laws, shots
 
 
 def _self_similarity(records: list, laws: dict) -> dict:
@@ -371,29 +396,22 @@ def calibrate_source(cs: CalibrationSet) -> SourceCalibration:
         fit that cannot be made (one line each).
     """
     model_for_burst(cs.source.blast_model, cs.source.burst)  # a burst the model has a fit for, before any record
+    src, (control, unit) = cs.source, cs.control
+    lo, hi = float(min(s.control for s in cs.shot)), float(max(s.control for s in cs.shot))
+    c_min = src.control_min if src.control_min is not None else lo
+    c_max = src.control_max if src.control_max is not None else hi
+    if c_min > c_max:
+        raise BlastscaleInputError(
+            f"source.control_min = {c_min:g} {unit} is above control_max = {c_max:g} {unit} (the shots' largest "
+            "control value unless given): give a minimum at or below the maximum"
+        )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         records, notes = _records(cs)
     n = len(cs.shot)
     x = np.array([s.control for s in cs.shot], dtype=float)
-    ref = float(np.exp(np.mean(np.log(x))))
-    laws, shots = {}, []
-    for basis in ("impulse", "pressure"):
-        y = np.array(
-            [np.mean([np.log(r[f"tnt_kg_{basis}"]) for r in records if r["shot_index"] == i]) for i in range(n)]
-        )
-        laws[basis] = _fit(x, y, ref)
-        shots.append(y)
-    if not laws["impulse"].exponent > 0 or not laws["pressure"].exponent > 0:
-        k = min(laws["impulse"].exponent, laws["pressure"].exponent)
-        raise BlastscaleInputError(
-            f"the fitted exponent = {k:.3g} is out of range: valid range is > 0 (a source whose blast grows with its "
-            "control value); check the shots' control values and records"
-        )
+    laws, shots = _laws(x, records)
     similarity = _self_similarity(records, laws)
-    control, unit = cs.control
-    src = cs.source
-    lo, hi = float(x.min()), float(x.max())
     z_all = [r["distance_m"] / float(np.cbrt(laws["impulse"].tnt_kg(r["control"]))) for r in records]
     details = {} if src.wire is None else {f"wire_{k}": v for k, v in src.wire.model_dump().items() if v is not None}
     if src.notes:
@@ -403,8 +421,8 @@ def calibrate_source(cs: CalibrationSet) -> SourceCalibration:
         kind=src.kind,
         control=control,
         control_unit=unit,
-        control_min=src.control_min if src.control_min is not None else lo,
-        control_max=src.control_max if src.control_max is not None else hi,
+        control_min=c_min,
+        control_max=c_max,
         impulse=laws["impulse"],
         pressure=laws["pressure"],
         blast_model=src.blast_model,
