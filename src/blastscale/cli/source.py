@@ -14,6 +14,7 @@ from pathlib import Path
 import typer
 
 from .._validate import BlastscaleInputError
+from ..report.markup import format_charge
 from ._app import OneLineErrorGroup, app
 from ._output import console, fmt_value, one_line_warnings, print_json, print_written, styled, table
 
@@ -59,9 +60,9 @@ def _print(s: dict) -> None:
         rows.append(
             (
                 f"by {basis}: W = W_ref (x / {fmt_value(law['reference'], '.4g')} {unit})^k",
-                f"W_ref {fmt_value(law['tnt_kg_at_reference'], '.4g')} kg, k {law['exponent']:.4g} "
+                f"W_ref {format_charge(law['tnt_kg_at_reference'])}, k {law['exponent']:.4g} "
                 f"+- {law['ci95_exponent']:.2g}, repeatability {100 * law['repeatability']:.2g} %",
-                "kg TNT",
+                "TNT",
             )
         )
         for a in law["at_control"]:
@@ -69,8 +70,8 @@ def _print(s: dict) -> None:
             rows.append(
                 (
                     f"  at {fmt_value(a['control'], '.4g')} {unit}",
-                    f"{fmt_value(a['tnt_kg'], '.4g')} ({fmt_value(lo, '.3g')}-{fmt_value(hi, '.3g')})",
-                    "kg TNT (95 %)",
+                    f"{format_charge(a['tnt_kg'])} ({format_charge(lo)}-{format_charge(hi)})",
+                    "TNT (95 % band)",
                 )
             )
     console.print(table("The source's TNT equivalence", rows))
