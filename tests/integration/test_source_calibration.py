@@ -203,3 +203,13 @@ def test_bad_sets_are_refused_in_one_line_before_any_fit(calibrated, tmp_path):
         with pytest.raises(BlastscaleInputError) as e:
             calibrate_source(read_calibration_set(path))
         assert words in " ".join(str(e.value).split()), (name, str(e.value))
+
+
+def test_a_missing_or_broken_source_file_is_one_line_not_a_rejection(tmp_path):
+    from blastscale._validate import BlastscaleInputError
+
+    with pytest.raises(BlastscaleInputError, match=r"\[lab\] source = '.*nosuch.toml': cannot be read"):
+        screen(Scenario.default(), LabSpec(source=str(tmp_path / "nosuch.toml")))
+    (tmp_path / "broken.toml").write_text('[source]\nname = "x"\n', encoding="utf-8")
+    with pytest.raises(BlastscaleInputError, match=r"broken.toml: source.kind is missing"):
+        screen(Scenario.default(), LabSpec(source=str(tmp_path / "broken.toml")))

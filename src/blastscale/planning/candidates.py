@@ -222,8 +222,9 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
                 f"not impulsive: t_o p = {ev.impulsive.model_ratio:.3g} > {ev.impulsive.threshold:g}",
             )
         )
+    source = lab_source(lab)  # a bad source file is one line of its own, not a rejected candidate
     try:
-        ev.charge = _shot_of(d, lab)
+        ev.charge = _shot_of(d, lab, source)
     except BlastscaleInputError:
         ev.violations.append(
             Violation(
@@ -289,11 +290,11 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
     return ev
 
 
-def _shot_of(d, lab):
+def _shot_of(d, lab, source):
     """The design's shot in the lab: its charge in the lab's explosive (:func:`~.shot.lab_charge`), or with
-    ``[lab] source`` the calibrated source's shot (its control value, limits and uncertainty, warned of a blast
-    model other than the source's or a scaled distance outside its calibration)."""
-    source = lab_source(lab)
+    ``[lab] source`` (``source``, :func:`~.shot.lab_source`) the calibrated source's shot (its control value,
+    limits and uncertainty, warned of a blast model other than the source's or a scaled distance outside its
+    calibration)."""
     if source is None:
         return lab_charge(d.specimen_charge_kg, lab)
     return source.shot(d.specimen_charge_kg, model_name(d.specimen.blast_model), float(d.specimen.scaled_distance))

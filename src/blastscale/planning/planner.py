@@ -40,7 +40,7 @@ from .pareto import mark_pareto
 from .plan3d import candidate_design, design_scenario, planar_path, screening_error
 from .plan3d_designs import designs_3d
 from .recommend import rank_key, ranked_after, recommend, verdict_of, verdict_tolerances
-from .shot import DEFAULT_LAB, lab_explosives, safety_envelope, timing_of
+from .shot import DEFAULT_LAB, lab_explosives, lab_source, safety_envelope, timing_of
 
 __all__ = ["plan", "screen", "Plan", "PlanInfeasible", "QUICK_SAMPLES", "FULL_DESIGNS"]
 
@@ -346,6 +346,7 @@ def screen(scenario, lab, tell=None) -> tuple:
 
     tell = tell or (lambda *a: None)
     sc = scenario
+    lab_source(lab)  # [lab] source read (and checked) once, before any candidate
     structure = from_spec(sc.structure)
     planar = planar_path(sc, structure)
     block, _, timing, proto = _prototype(scenario, envelope_block(structure))
