@@ -16,7 +16,7 @@ parameter covariance C_b of (alpha_b, k_b) and its degrees of freedom n - 2 (n s
           W_b(x)\\,\\exp\\left(\\pm \\sqrt{2 F_{0.95}(2, n-2)}\\,\\sigma_{fit}(x)\\right),
 
 the 95 % Working-Hotelling band of the law: it holds the true law at every control value at once, with 95 %
-confidence (Working & Hotelling 1929; Draper & Smith 1998, *Applied Regression Analysis*, 3rd ed., sec. 3.12),
+confidence (Working & Hotelling 1929; Draper & Smith 1998, *Applied Regression Analysis*, 3rd ed.: the confidence band of a straight-line fit),
 what "the equivalence within its interval at every energy" asks of it (a pointwise Student's t interval, narrower
 by t_{0.975, n-2} / sqrt(2 F), covers each control value alone: 82 % of 40 synthetic campaigns held the truth at all
 four energies with it);
@@ -41,8 +41,8 @@ convention (1 ton of TNT = 4.184e9 J, NIST SP 811 (2008) App. B.8).
 
 References
 ----------
-.. [1] Morsel, A., Masi, F., Marche, E., Racineux, G., Kotronis, P. & Stefanou, I. (2024). miniBLAST: a
-       laboratory source of blasts from exploding wires. arXiv:2408.01586.
+.. [1] Morsel, A., Masi, F., Marche, E., Racineux, G., Kotronis, P. & Stefanou, I. (2024). miniBLAST, a
+       laboratory source of blasts from exploding wires driven by a capacitor bank. arXiv:2408.01586.
 .. [2] Measurement, self-similarity, and TNT equivalence of blasts from exploding wires. arXiv:2410.07221.
 .. [3] Hopkinson-Cranz scaling: Baker, W. E. et al. (1983), *Explosion Hazards and Evaluation*, ch. 2.
 """

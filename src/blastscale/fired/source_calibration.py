@@ -21,7 +21,7 @@ the control value only, not on where it was measured. Each record's residual ``r
 regressed on the control and the scaled distance (Z with the law's W at the shot's control value),
 ``r = c0 + c1 ln x + c2 ln Z + c3 ln^2 Z``, and the scaled distance's terms are tested against the fit without
 them (``r = c0 + c1 ln x``) by the F test of the nested fits, ``F = ((RSS_0 - RSS_1) / 2) / (RSS_1 / (m - 4))`` on
-(2, m - 4) degrees of freedom (m records; Draper & Smith 1998, *Applied Regression Analysis*, 3rd ed., sec. 6.1):
+(2, m - 4) degrees of freedom (m records; Draper & Smith 1998, *Applied Regression Analysis*, 3rd ed.: the extra sum of squares):
 at a given control value ln Z is ln R less a constant, so a trend with Z or one distance off the others is caught
 alike. Below :data:`SELF_SIMILARITY_P` the records do not collapse and the result says so in one line; the
 source is written still (marked ``self_similar = false``). With fewer than :data:`MIN_RECORDS_FOR_TREND` records

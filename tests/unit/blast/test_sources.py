@@ -46,7 +46,7 @@ def test_the_law_and_its_inverse_are_the_closed_form():
 
 def test_the_interval_is_the_working_hotelling_band():
     # sigma^2 = C00 + 2 C01 u + C11 u^2 at u = ln 2; half-width sqrt(2 F_0.95(2, 8)) sigma in ln W (F_0.95(2, 8) =
-    # 4.459, the F table's value: Draper & Smith 1998, Table D)
+    # 4.459, the tabulated 95 % point of F with 2 and 8 degrees of freedom)
     u = math.log(2.0)
     sigma = math.sqrt(4e-4 + 2e-4 * u + 9e-4 * u * u)
     assert float(LAW.sigma_fit(2000.0)) == pytest.approx(sigma, rel=1e-12)
