@@ -95,6 +95,12 @@ class PowerLaw:
         The fit's degrees of freedom, n - 2 (n shots).
     repeatability : float
         s, one shot's standard deviation of ln W about the law [-].
+
+    Examples
+    --------
+    >>> law = PowerLaw(1000.0, 1e-7, 1.2, ((4e-4, 0.0), (0.0, 9e-4)), 8, 0.03)
+    >>> round(float(law.control_for(law.tnt_kg(1850.0))), 9), round(float(law.sigma_shot(1000.0)), 4)
+    (1850.0, 0.0361)
     """
 
     reference: float
