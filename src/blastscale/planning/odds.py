@@ -43,6 +43,7 @@ from ..study.study import Study
 from ..sweeps.grids import Distribution
 
 __all__ = [
+    "specimen_friction",
     "Tolerances",
     "Odds",
     "planar_odds",
@@ -260,9 +261,15 @@ class SpecimenMember:
     density_factor: float
 
 
+def specimen_friction(scenario, design) -> float:
+    """The specimen's nominal friction coefficient [-]: the prototype's (``structure.friction``) x the design's
+    friction factor lambda_mu (its material's joint friction, :mod:`blastscale.structures.materials`)."""
+    return float(scenario.structure.friction) * float(design.factors.friction)
+
+
 def specimen_members(scenario, design, tolerances: Tolerances, members: int, seed: int = 0) -> list:
     """The members of a specimen's 3D ensemble (:class:`SpecimenMember`): the design's specimen charge, stand-off,
-    the scenario's friction and the specimen's density drawn as in :func:`planar_odds` from
+    the specimen's friction (:func:`specimen_friction`: its material's) and its density drawn as in :func:`planar_odds` from
     ``numpy.random.default_rng(seed)``, in the order stand-off (normal, absolute), friction (normal, absolute),
     charge (lognormal, relative), density (normal, relative): the draws of the sweeps' samples of that order."""
     n = int(members)
@@ -271,7 +278,7 @@ def specimen_members(scenario, design, tolerances: Tolerances, members: int, see
     rng = np.random.default_rng(int(seed))
     dists = (
         Distribution("normal", (float(design.specimen_standoff_m), max(tolerances.standoff_m, 1e-12))),
-        Distribution("normal", (float(scenario.structure.friction), max(tolerances.friction, 1e-12))),
+        Distribution("normal", (specimen_friction(scenario, design), max(tolerances.friction, 1e-12))),
         Distribution("lognormal", (1.0, max(tolerances.charge, 1e-12))),
         Distribution("normal", (1.0, max(tolerances.density, 1e-12))),
     )
