@@ -14,7 +14,7 @@ from ..blast.explosive_library import Explosive
 from ..blast.explosives import ChargeEquivalence, charge_equivalence, get_explosive
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
 from ..scenario.lab import SAME_MATERIAL, LabSpec
-from ..structures.materials import MATERIALS
+from ..structures.materials import MATERIALS, friction_card_line, prototype_material, specimen_material
 
 __all__ = [
     "lab_explosives",
@@ -25,6 +25,7 @@ __all__ = [
     "safety_envelope",
     "threshold_meanings",
     "candidate_materials",
+    "specimen_friction_line",
     "Timing",
     "rocking_timing",
     "timing_of",
@@ -174,6 +175,17 @@ def candidate_materials(lab, prototype_density: float) -> list:
 
     names = list(lab.materials) if lab.materials is not None else [SAME_MATERIAL] + list(MATERIALS)
     return [(n, 1.0 if n == SAME_MATERIAL else MATERIALS[n].density / prototype_density) for n in names]
+
+
+def specimen_friction_line(scenario, lab) -> str:
+    """The test card's friction line (:func:`~blastscale.structures.materials.friction_card_line`) of
+    ``scenario``'s specimen: its material's joint friction (``scale.specimen_material``; the prototype's own
+    without one, ``structure.friction``) against the prototype's, to be measured by a tilt test."""
+    sc = scenario
+    proto = prototype_material(sc.structure.density_kg_m3, sc.structure.friction, lab.prototype_material)
+    name = None if sc.scale is None else sc.scale.specimen_material
+    label = "the prototype's material on itself" if name is None else None
+    return friction_card_line(specimen_material(name, proto), proto.friction, label)
 
 
 @dataclass(frozen=True)

@@ -283,6 +283,7 @@ def _build_table(c: dict) -> str:
             ("density", _n(c, "build/density_kg_m3", "kg/m3")),
             ("scale lambda", _n(c, "build/scale", "")),
             ("density ratio gamma", _n(c, "build/density_ratio", "")),
+            ("joint friction", _e(b["friction"])),
             *(
                 [
                     (

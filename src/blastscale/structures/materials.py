@@ -77,6 +77,7 @@ __all__ = [
     "material_density",
     "get_material",
     "prototype_material",
+    "specimen_material",
     "friction_card_line",
 ]
 
@@ -414,23 +415,28 @@ def prototype_material(density: float, friction: float, name: str | None = None)
     )
 
 
-def friction_card_line(material: Material, prototype_friction: float | None = None) -> str:
-    """The test card's friction line of a specimen made of ``material``: its nominal joint friction
-    with the range and source, the prototype's friction it should match, and the instruction to
-    measure it by a tilt test (mu = tan of the tilt angle at the first slip of one piece on
-    another of the same finish).
+def specimen_material(name: str | None, prototype: Material) -> Material:
+    """The specimen's material: the library entry ``name``, or the prototype's own (``prototype``) for
+    None or ``"same"`` (the planner's name for it)."""
+    return prototype if name in (None, "same") else get_material(name)
+
+
+def friction_card_line(material: Material, prototype_friction: float | None = None, label: str | None = None) -> str:
+    """The test card's friction line of a specimen made of ``material``: its nominal joint friction [-]
+    with the range its sources give, the prototype's friction it stands for, and the instruction to
+    measure it by a tilt test (mu = tan of the tilt angle at the first slip of one piece on another of
+    the same finish). ``label`` names the pair (default ``"NAME on NAME"``).
 
     Examples
     --------
     >>> print(friction_card_line(MATERIALS["lead"], 0.7))  # doctest: +NORMALIZE_WHITESPACE
-    friction: lead on lead 0.9 nominal (0.5-1.5: BT1950 (soft metals on themselves, about 1 and above);
-    DUBBEL (steel-lead 0.5)); the prototype: 0.7; measure by tilt test (mu = tan of the tilt angle at the
-    first slip, on the specimen's own joint finish)
+    friction: lead on lead 0.9 nominal (0.5-1.5), the prototype's 0.7: measure by tilt test (mu = tan of
+    the tilt angle at the first slip, on the specimen's own joint finish)
     """
     m = material
-    proto = "" if prototype_friction is None else f"; the prototype: {prototype_friction:.3g}"
+    pair = label or f"{m.name} on {m.name}"
+    proto = "" if prototype_friction is None else f", the prototype's {prototype_friction:.3g}"
     return (
-        f"friction: {m.name} on {m.name} {m.friction:.3g} nominal ({m.friction_low:.3g}-{m.friction_high:.3g}: "
-        f"{m.friction_source}){proto}; measure by tilt test (mu = tan of the tilt angle at the first slip, on "
-        f"the specimen's own joint finish)"
+        f"friction: {pair} {m.friction:.3g} nominal ({m.friction_low:.3g}-{m.friction_high:.3g}){proto}: measure by "
+        f"tilt test (mu = tan of the tilt angle at the first slip, on the specimen's own joint finish)"
     )
