@@ -218,7 +218,9 @@ def material_checks(c: Candidate, factors, prototype, block=None) -> tuple:
     return rig, fr
 
 
-def _material_violations(ev: Evaluated) -> list:
+def _material_violations(ev: Evaluated, factors, prototype, block) -> list:
+    """Set ``ev.rigidity`` and ``ev.friction`` (:func:`material_checks`) and return their violations."""
+    ev.rigidity, ev.friction = material_checks(ev.candidate, factors, prototype, block)
     out = []
     r, f = ev.rigidity, ev.friction
     if not r.ok:
@@ -253,8 +255,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design, protot
     ev.design, ev.specimen = d, spec
     spec_h, spec_m = spec_dims(spec)[0], specimen_mass(d)
     if prototype is not None:
-        ev.rigidity, ev.friction = material_checks(c, d.factors, prototype, block if planar else None)
-        ev.violations += _material_violations(ev)
+        ev.violations += _material_violations(ev, d.factors, prototype, block if planar else None)
     ev.impulsive = d.impulsive if d.impulsive is not None else envelope_impulsive(block, d)
     if not ev.impulsive.impulsive:
         ev.violations.append(
