@@ -31,7 +31,7 @@ from .shot import (
     fireability,
     rocking_timing,
     safety_envelope,
-    specimen_friction_line,
+    specimen_friction_card,
     threshold_meanings,
     timing_of,
 )
@@ -285,7 +285,7 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
         "first_peak_spread": None if odds is None else odds.first_peak_spread,
         "charge_tolerance_needed": tol,
         "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
-        "build": {**_build_keys(sc, d, spec), "friction": specimen_friction_line(sc, lab)},
+        "build": {**_build_keys(sc, d, spec), "friction": specimen_friction_card(sc, lab)},
         "instruments": ins.to_dict(),
         "predicted": _predicted_keys(r, m, inc),
         "layout": _layout(spec, ch, ins, d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst),

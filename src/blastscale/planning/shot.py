@@ -25,7 +25,7 @@ __all__ = [
     "safety_envelope",
     "threshold_meanings",
     "candidate_materials",
-    "specimen_friction_line",
+    "specimen_friction_card",
     "Timing",
     "rocking_timing",
     "timing_of",
@@ -177,15 +177,25 @@ def candidate_materials(lab, prototype_density: float) -> list:
     return [(n, 1.0 if n == SAME_MATERIAL else MATERIALS[n].density / prototype_density) for n in names]
 
 
-def specimen_friction_line(scenario, lab) -> str:
-    """The test card's friction line (:func:`~blastscale.structures.materials.friction_card_line`) of
-    ``scenario``'s specimen: its material's joint friction (``scale.specimen_material``; the prototype's own
-    without one, ``structure.friction``) against the prototype's, to be measured by a tilt test."""
+def specimen_friction_card(scenario, lab) -> dict:
+    """The test card's friction of ``scenario``'s specimen: its material's joint friction
+    (``scale.specimen_material``; the prototype's own without one, ``structure.friction``) against the
+    prototype's, to be measured by a tilt test. Keys: ``pair`` (``"lead on lead"``), ``nominal``, ``low``,
+    ``high`` (the range its sources give), ``prototype`` [-], and ``line``, the whole sentence
+    (:func:`~blastscale.structures.materials.friction_card_line`)."""
     sc = scenario
     proto = prototype_material(sc.structure.density_kg_m3, sc.structure.friction, lab.prototype_material)
     name = None if sc.scale is None else sc.scale.specimen_material
-    label = "the prototype's material on itself" if name is None else None
-    return friction_card_line(specimen_material(name, proto), proto.friction, label)
+    m = specimen_material(name, proto)
+    pair = "the prototype's material on itself" if name is None else f"{m.name} on {m.name}"
+    return {
+        "pair": pair,
+        "nominal": m.friction,
+        "low": m.friction_low,
+        "high": m.friction_high,
+        "prototype": proto.friction,
+        "line": friction_card_line(m, proto.friction, pair),
+    }
 
 
 @dataclass(frozen=True)

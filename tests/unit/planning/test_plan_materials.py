@@ -10,7 +10,7 @@ import pytest
 from blastscale.planning import plan
 from blastscale.planning.candidates import Candidate, material_checks
 from blastscale.planning.odds import specimen_friction
-from blastscale.planning.shot import specimen_friction_line
+from blastscale.planning.shot import specimen_friction_card
 from blastscale.scenario import Scenario
 from blastscale.scenario.lab import LabSpec
 from blastscale.sim3d.contact import ContactSettings
@@ -89,8 +89,17 @@ def test_the_specimens_friction_follows_its_material():
         50.0, 2.0, 0.05, blast_model="masi2021", contact=ContactSettings(friction=0.7), friction_ratio=9 / 7
     )
     assert dc.specimen_contact.friction == pytest.approx(0.9, rel=1e-15) and dc.contact.friction == 0.7
-    line = specimen_friction_line(sc, LabSpec())
-    assert line.startswith("friction: lead on lead 0.9 nominal (0.5-1.5), the prototype's 0.7: measure by tilt test")
+    card = specimen_friction_card(sc, LabSpec())
+    assert (card["pair"], card["nominal"], card["low"], card["high"], card["prototype"]) == (
+        "lead on lead",
+        0.9,
+        0.5,
+        1.5,
+        0.7,
+    )
+    assert card["line"].startswith(
+        "friction: lead on lead 0.9 nominal (0.5-1.5), the prototype's 0.7: measure by tilt test"
+    )
     same = Scenario.default()
     assert same.friction_ratio == 1.0 and Study(same).design().factors.friction == 1.0
-    assert "the prototype's material on itself 0.7" in specimen_friction_line(same, LabSpec())
+    assert "the prototype's material on itself 0.7" in specimen_friction_card(same, LabSpec())["line"]
