@@ -71,7 +71,7 @@ class LabSpec(BaseModel):
     specimen_max_mass_kg: float = Field(500.0, gt=0, le=1e7, description="Heaviest specimen the lab can handle [kg]")
     materials: Optional[list[str]] = Field(
         None,
-        description="Candidate specimen materials from the density library "
+        description="Candidate specimen materials from the materials library "
         '("same": the prototype\'s); default: all of them',
     )
     prototype_material: Optional[str] = Field(
