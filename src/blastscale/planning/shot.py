@@ -14,6 +14,7 @@ from ..blast.explosive_library import Explosive
 from ..blast.explosives import ChargeEquivalence, charge_equivalence, get_explosive
 from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_distances
 from ..scenario.lab import SAME_MATERIAL, LabSpec
+from ..similitude.rigidity import rigidity_check
 from ..structures.materials import MATERIALS, friction_card_line, prototype_material, specimen_material
 
 __all__ = [
@@ -26,6 +27,7 @@ __all__ = [
     "threshold_meanings",
     "candidate_materials",
     "specimen_friction_card",
+    "specimen_rigidity",
     "Timing",
     "rocking_timing",
     "timing_of",
@@ -196,6 +198,17 @@ def specimen_friction_card(scenario, lab) -> dict:
         "prototype": proto.friction,
         "line": friction_card_line(m, proto.friction, pair),
     }
+
+
+def specimen_rigidity(scenario, design, lab):
+    """The rigidity check (:func:`~blastscale.similitude.rigidity.rigidity_check`) of ``scenario``'s specimen
+    material (the prototype's own without ``scale.specimen_material``) in ``design``'s scaled motion (its
+    ``factors.pressure``), against the prototype's (``lab.prototype_material``, or the library stone nearest its
+    density): for the card of a scale the user chose, where the planner would have refused it."""
+    sc = scenario
+    proto = prototype_material(sc.structure.density_kg_m3, sc.structure.friction, lab.prototype_material)
+    name = None if sc.scale is None else sc.scale.specimen_material
+    return rigidity_check(float(design.factors.pressure), specimen_material(name, proto), proto)
 
 
 @dataclass(frozen=True)

@@ -103,3 +103,26 @@ def test_the_specimens_friction_follows_its_material():
     same = Scenario.default()
     assert same.friction_ratio == 1.0 and Study(same).design().factors.friction == 1.0
     assert "the prototype's material on itself 0.7" in specimen_friction_card(same, LabSpec())["line"]
+
+
+def test_the_card_of_a_chosen_lead_specimen_says_it_is_not_rigid():
+    """A scale the user chose (not the planner's): the card's build carries the rigidity check, and a failing
+    one is among its warnings. Lead for marble under Hopkinson-Cranz: r_b = 4.31 (as the planner's); the
+    prototype's own material at 1/20: r_b = r_d = 0.05, r_i = sqrt(0.05)."""
+    from blastscale.planning.shot import specimen_rigidity
+
+    lead = MARBLE.with_values(
+        {
+            "scale.law": "hopkinson-cranz",
+            "scale.length": (2700.0 / 11400.0) ** 2,  # lambda = 1 / gamma^2
+            "scale.density_ratio": None,
+            "scale.specimen_material": "lead",
+        }
+    )
+    lab = LabSpec(prototype_material="marble")
+    r = specimen_rigidity(lead, Study(lead).design(), lab)
+    assert not r.ok and r.bearing_ratio == pytest.approx(2700.0 / 11400.0 * 100 / 5.5, rel=1e-9)
+    same = MARBLE.with_values({"scale.length": 0.05})
+    s = specimen_rigidity(same, Study(same).design(), lab)
+    assert s.ok and s.bearing_ratio == pytest.approx(0.05, rel=1e-12)
+    assert s.impact_ratio == pytest.approx(math.sqrt(0.05), rel=1e-12)
