@@ -6,8 +6,9 @@ through small 3D ensembles (one Study of the design's specimen per member,
 Tolerances are one standard deviation (``[lab]``): the explosive's mass relative, lognormal
 (``m eps``, ``ln eps ~ N(0, s_W)``; the initiator is not perturbed); the stand-off absolute, normal
 (``R + s_R z``, kept above 1 % of R); the specimen's density relative, normal (``rho (1 + s_rho z)``,
-kept above 1 %); the friction coefficient absolute, normal (3D only: the planar block rocks without
-sliding, friction plays no part in it). The draws come from numpy's ``default_rng(seed)`` in that
+kept above 1 %); the friction coefficient absolute, normal, around the specimen's own (its material's,
+:func:`specimen_friction`; 3D only: the planar block rocks without sliding, friction plays no part in
+it, and the planner checks its regime in closed form, :mod:`blastscale.similitude.friction`). The draws come from numpy's ``default_rng(seed)`` in that
 order (charge, stand-off, density, friction), so a seed reproduces the odds exactly.
 
 What comes out (:class:`Odds`): the probability that the specimen's outcome (overturns or not, at
