@@ -34,10 +34,11 @@ material at full scale, each above 1 where the specimen is the more loaded):
 
 A specimen passes when all three are at most :data:`RIGIDITY_FACTOR` (2). The prototype is itself
 assumed rigid (the paper's hypothesis), so the check asks only that the specimen be no less rigid
-than the prototype beyond the scatter of the prototype's own material: stone strengths scatter
-with a coefficient of variation of about 0.3 (the R4-R5 classes of Hoek 2007, 50-250 MPa, span a
-factor 5 over which the library's nominal values sit), and a lognormal strength with that scatter
-puts its 1 % fractile a factor exp(2.33 x 0.3) = 2.0 below its median: a utilisation within 2 x
+than the prototype beyond the scatter of the prototype's own material. Taking for the strength of
+one stone a coefficient of variation of 0.3 (an assumption stated here, not a code value: the upper end
+of the scatter between specimens of one source; the rock classes of Hoek 2007 span a factor 5, 50-250
+MPa, across sources), a lognormal strength puts its 1 % fractile a factor exp(2.33 x 0.3) = 2.0 below
+its median: a utilisation within 2 x
 the prototype's is one the prototype's own weakest blocks reach. Above it the specimen yields or
 crushes at the pivots where the prototype stays rigid.
 
