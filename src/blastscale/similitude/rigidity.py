@@ -38,8 +38,8 @@ than the prototype beyond the scatter of the prototype's own material. Taking fo
 one stone a coefficient of variation of 0.3 (an assumption stated here, not a code value: the upper end
 of the scatter between specimens of one source; the rock classes of Hoek 2007 span a factor 5, 50-250
 MPa, across sources), a lognormal strength puts its 1 % fractile a factor exp(2.33 x 0.3) = 2.0 below
-its median: a utilisation within 2 x the prototype's is one the prototype's own weakest blocks reach. Above it the specimen yields or
-crushes at the pivots where the prototype stays rigid.
+its median: a utilisation within 2 x the prototype's is one the prototype's own weakest blocks
+reach. Above it the specimen yields or crushes at the pivots where the prototype stays rigid.
 
 Lead in place of marble (Hopkinson-Cranz, lambda = 1 / gamma^2 = 1/17.8): lambda_sigma = 1 / gamma
 = 0.237, r_b = 0.237 x 100 / 5.5 = 4.3 (the pivot's stress-to-strength 4.3 x the marble
