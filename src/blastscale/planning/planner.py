@@ -287,6 +287,7 @@ def plan(
             "constraints": [v.key for v in e.violations],
             "reasons": [v.text for v in e.violations],
             "tnt_equivalent_kg": None if e.design is None else float(e.design.specimen_charge_kg),
+            "rigidity": None if e.rigidity is None else e.rigidity.to_dict(),
         }
         for e in evs
         if e.violations

@@ -39,6 +39,7 @@ def test_lead_for_marble_is_refused_with_the_rigidity_reason(marble_plan):
     hc = [r for r in marble_plan.rejected if r["law"] == "hopkinson-cranz" and r["material"] == "lead"]
     assert len(hc) == 1 and hc[0]["constraints"] == ["rigidity"]  # every lab limit met: the material alone
     r_b = 2700.0 / 11400.0 * 100e6 / 5.5e6
+    assert hc[0]["rigidity"]["bearing_ratio"] == pytest.approx(2700.0 / 11400.0 * 100e6 / 5.5e6, rel=1e-12)
     assert hc[0]["reasons"][0].startswith(
         f"not rigid: lead in place of marble: stress-to-strength at the pivots and joints {r_b:.3g} x the "
         "prototype's > 2"
