@@ -5,7 +5,11 @@ density over the prototype's; the Hopkinson-Cranz law imposes gamma = 1/sqrt(var
 material fixes lambda = 1 / (varsigma gamma^2)). :func:`evaluate` designs it
 (:func:`~blastscale.similitude.design_model`), turns the TNT charge into the lab's explosive, sizes the
 safety envelope and the instruments, and lists every constraint it breaks, each with the value that
-would admit it (docs/planning.md, "Constraints").
+would admit it (docs/planning.md, "Constraints"). The material's own constraints
+(:func:`material_checks`, docs/planning.md "Materials"): its stresses and elastic deflection in the
+prototype's scaled motion against its strength and stiffness (``"rigidity"``,
+:func:`~blastscale.similitude.rigidity.rigidity_check`) and, for a block on the planar path, its joint
+friction's regime against the prototype's (``"friction"``, :func:`~blastscale.similitude.friction.friction_check`).
 """
 
 from __future__ import annotations
@@ -19,10 +23,14 @@ from .._validate import BlastscaleInputError
 from ..blast.explosives import get_explosive
 from ..blast.inverse import model_name
 from ..blast.sources import SourceShot
+from ..scenario.lab import SAME_MATERIAL
 from ..similitude.experiment import DEFAULT_IMPULSIVE_THRESHOLD, ImpulsiveCheck
 from ..similitude.factors import to_specimen
+from ..similitude.friction import friction_check
+from ..similitude.rigidity import rigidity_check
 from ..structures.block import RectangularBlock
 from ..structures.from_spec import is_block
+from ..structures.materials import get_material
 from .build import spec_dims, specimen_density, specimen_mass
 from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
@@ -35,6 +43,7 @@ __all__ = [
     "Evaluated",
     "candidates",
     "evaluate",
+    "material_checks",
     "scale_label",
     "envelope_block",
     "envelope_impulsive",
@@ -100,6 +109,8 @@ class Evaluated:
     response_s: float = math.nan
     charge_height_m: float = 0.0  # the specimen charge's centre above the floor [m] (0: on it)
     impulsive: object = None  # the design's t_o p check (a block's own; any other kind's envelope block's)
+    rigidity: object = None  # the material's RigidityCheck against the prototype's
+    friction: object = None  # the material's FrictionCheck (a block on the planar path; None elsewhere)
 
 
 def candidates(
@@ -191,7 +202,46 @@ def _space_and_camera(ev: Evaluated, lab) -> list:
     return out
 
 
-def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Evaluated:
+def material_checks(c: Candidate, factors, prototype, block=None) -> tuple:
+    """(rigidity, friction) checks of a candidate's material against the prototype's.
+
+    Parameters
+    ----------
+    c : Candidate
+        Its ``material`` (``"same"``: the prototype's own, ``prototype``).
+    factors : ScalingFactors
+        The design's factors: ``pressure`` = gamma varsigma lambda is the stress factor.
+    prototype : Material
+        The prototype's material (:func:`~blastscale.structures.materials.prototype_material`: its friction the
+        scenario's).
+    block : RectangularBlock, optional
+        The prototype block of the planar path, whose rocking model has no friction: the friction regimes are
+        checked on it (None: not checked, the 3D engine carries the specimen's friction).
+
+    Returns
+    -------
+    (RigidityCheck, FrictionCheck or None)
+    """
+    spec = prototype if c.material == SAME_MATERIAL else get_material(c.material)
+    rig = rigidity_check(float(factors.pressure), spec, prototype)
+    fr = None if block is None else friction_check(prototype.friction, spec.friction, block.width, block.height)
+    return rig, fr
+
+
+def _material_violations(ev: Evaluated, factors, prototype, block) -> list:
+    """Set ``ev.rigidity`` and ``ev.friction`` (:func:`material_checks`) and return their violations."""
+    ev.rigidity, ev.friction = material_checks(ev.candidate, factors, prototype, block)
+    out = []
+    r, f = ev.rigidity, ev.friction
+    if not r.ok:
+        worst = max(r.bearing_ratio, r.impact_ratio, r.deflection_ratio)
+        out.append(Violation("rigidity", worst, r.threshold, r.reason))
+    if f is not None and not f.ok:
+        out.append(Violation("friction", f.specimen_friction, f.prototype_friction, f.reason))
+    return out
+
+
+def evaluate(c: Candidate, *, lab, block, timing, incident_model, design, prototype=None, planar=False) -> Evaluated:
     """Design ``c`` and check it against ``lab``.
 
     ``design(c)`` returns the candidate's :class:`~blastscale.similitude.ModelDesign` and the height of
@@ -200,7 +250,9 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
     its t_o p is the impulsive check of every kind. ``timing`` is the prototype's (or the envelope
     block's) :class:`~.shot.Timing`: the specimen's times are its times x the time factor
     sqrt(lambda / varsigma); ``incident_model`` the blast model of the side-on gauge (Kingery-Bulmash:
-    the paper's fits have no incident pressure).
+    the paper's fits have no incident pressure). ``prototype`` is the prototype's
+    :class:`~blastscale.structures.materials.Material` (None: the material is not checked); ``planar``
+    checks the friction regime on ``block`` too (:func:`material_checks`).
     """
 
     ev = Evaluated(c)
@@ -212,6 +264,8 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
     spec = d.specimen_structure  # the design's specimen (scaled once, there)
     ev.design, ev.specimen = d, spec
     spec_h, spec_m = spec_dims(spec)[0], specimen_mass(d)
+    if prototype is not None:
+        ev.violations += _material_violations(ev, d.factors, prototype, block if planar else None)
     ev.impulsive = d.impulsive if d.impulsive is not None else envelope_impulsive(block, d)
     if not ev.impulsive.impulsive:
         ev.violations.append(
@@ -375,6 +429,9 @@ def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
         "pressure_sampling_hz": ins.pressure_sampling_hz,
         "instruments": ins.to_dict(),
         "impulsive_ratio": ev.impulsive.model_ratio,
+        "friction_ratio": float(d.factors.friction),
+        "rigidity": None if ev.rigidity is None else ev.rigidity.to_dict(),
+        "friction_regime": None if ev.friction is None else ev.friction.to_dict(),
         "warnings": list(ch.warnings),
     }
 

@@ -32,6 +32,8 @@ from .shot import (
     rocking_timing,
     safety_envelope,
     source_card,
+    specimen_friction_card,
+    specimen_rigidity,
     threshold_meanings,
     timing_of,
 )
@@ -265,6 +267,7 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
     hc, burst, shot_notes = _lab_shot(result)
     tol = None if odds is None else odds.charge_tolerance_needed
     v = result.summary()["verdict"]
+    rig = specimen_rigidity(sc, d, lab)
     return {
         "verdict": {"similar": v["similar"], "line": v["line"]},
         **_shot_keys(ch, lab),
@@ -286,7 +289,7 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
         "first_peak_spread": None if odds is None else odds.first_peak_spread,
         "charge_tolerance_needed": tol,
         "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
-        "build": _build_keys(sc, d, spec),
+        "build": {**_build_keys(sc, d, spec), "friction": specimen_friction_card(sc, lab), "rigidity": rig.to_dict()},
         "instruments": ins.to_dict(),
         "predicted": _predicted_keys(r, m, inc),
         "layout": _layout(spec, ch, ins, d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst),
@@ -301,7 +304,7 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
             "samples": lab.samples,
             "seed": lab.seed,
         },
-        "warnings": _card_notes(ch, lab, env, ins, shot_notes),
+        "warnings": _card_notes(ch, lab, env, ins, shot_notes) + ([] if rig.ok else [rig.reason]),
     }
 
 

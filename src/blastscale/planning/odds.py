@@ -6,8 +6,9 @@ through small 3D ensembles (one Study of the design's specimen per member,
 Tolerances are one standard deviation (``[lab]``): the explosive's mass relative, lognormal
 (``m eps``, ``ln eps ~ N(0, s_W)``; the initiator is not perturbed); the stand-off absolute, normal
 (``R + s_R z``, kept above 1 % of R); the specimen's density relative, normal (``rho (1 + s_rho z)``,
-kept above 1 %); the friction coefficient absolute, normal (3D only: the planar block rocks without
-sliding, friction plays no part in it). The draws come from numpy's ``default_rng(seed)`` in that
+kept above 1 %); the friction coefficient absolute, normal, around the specimen's own (its material's,
+:func:`specimen_friction`; 3D only: the planar block rocks without sliding, friction plays no part in
+it, and the planner checks its regime in closed form, :mod:`blastscale.similitude.friction`). The draws come from numpy's ``default_rng(seed)`` in that
 order (charge, stand-off, density, friction), so a seed reproduces the odds exactly.
 
 What comes out (:class:`Odds`): the probability that the specimen's outcome (overturns or not, at
@@ -43,6 +44,7 @@ from ..study.study import Study
 from ..sweeps.grids import Distribution
 
 __all__ = [
+    "specimen_friction",
     "Tolerances",
     "Odds",
     "planar_odds",
@@ -269,9 +271,15 @@ class SpecimenMember:
     density_factor: float
 
 
+def specimen_friction(scenario, design) -> float:
+    """The specimen's nominal friction coefficient [-]: the prototype's (``structure.friction``) x the design's
+    friction factor lambda_mu (its material's joint friction, :mod:`blastscale.structures.materials`)."""
+    return float(scenario.structure.friction) * float(design.factors.friction)
+
+
 def specimen_members(scenario, design, tolerances: Tolerances, members: int, seed: int = 0) -> list:
     """The members of a specimen's 3D ensemble (:class:`SpecimenMember`): the design's specimen charge, stand-off,
-    the scenario's friction and the specimen's density drawn as in :func:`planar_odds` from
+    the specimen's friction (:func:`specimen_friction`: its material's) and its density drawn as in :func:`planar_odds` from
     ``numpy.random.default_rng(seed)``, in the order stand-off (normal, absolute), friction (normal, absolute),
     charge (lognormal, relative), density (normal, relative): the draws of the sweeps' samples of that order."""
     n = int(members)
@@ -280,7 +288,7 @@ def specimen_members(scenario, design, tolerances: Tolerances, members: int, see
     rng = np.random.default_rng(int(seed))
     dists = (
         Distribution("normal", (float(design.specimen_standoff_m), max(tolerances.standoff_m, 1e-12))),
-        Distribution("normal", (float(scenario.structure.friction), max(tolerances.friction, 1e-12))),
+        Distribution("normal", (specimen_friction(scenario, design), max(tolerances.friction, 1e-12))),
         Distribution("lognormal", (1.0, max(tolerances.charge, 1e-12))),
         Distribution("normal", (1.0, max(tolerances.density, 1e-12))),
     )

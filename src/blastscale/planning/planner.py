@@ -4,8 +4,9 @@ The planner searches the geometric scale lambda (the fractions of
 :data:`~.candidates.LAMBDA_DENOMINATORS`), the density ratio gamma through the lab's materials, the
 scaling law (general; Hopkinson-Cranz where a material's density allows it) and the specimen's burst
 (``lab.bursts``), designs each candidate (the Study's design of the candidate, :meth:`~blastscale.study.Study.from_candidate`: the load
-model as the scenario's), rejects those that break a constraint of the lab (each rejection with its reasons,
-:func:`screen`), and for the feasible ones propagates the lab's tolerances by Monte Carlo: a block
+model as the scenario's), rejects those that break a constraint of the lab or of the material (not rigid
+enough, a friction regime other than the prototype's: docs/planning.md "Materials"; each rejection with its
+reasons, :func:`screen`), and for the feasible ones propagates the lab's tolerances by Monte Carlo: a block
 on the paper's load through the planar kernels (:mod:`.odds`), any other structure or load model
 through the 3D stage of its best screened designs (:mod:`.plan3d`, :mod:`.plan3d_designs`). The
 Pareto-optimal designs are marked (:mod:`.pareto`). Ranking and recommendation (:mod:`.recommend`,
@@ -32,6 +33,7 @@ from ..blast.explosive_library import EXPLOSIVES
 from ..blast.explosives import get_explosive
 from ..blast.parameters import blast_parameters, get_blast_model, model_for_burst
 from ..structures import from_spec
+from ..structures.materials import prototype_material
 from ..study.study import Study
 from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_label, shot_dict, specimen_displacement
 from .debris import planar_reach
@@ -196,7 +198,7 @@ def _infeasible(evs: list, lab) -> str:
             + "; ".join(v.text for v in ev.violations)
         )
     key, group = max(alone.items(), key=lambda kv: len(kv[1]))
-    if key in ("blast fits", "impulsive"):
+    if key in ("blast fits", "impulsive", "rigidity", "friction"):
         return f"no design fits the lab: {group[0].violations[0].text}"
     if key in _RELAXERS:
         return _RELAXERS[key](group, len(evs), lab)
@@ -287,6 +289,7 @@ def plan(
             "constraints": [v.key for v in e.violations],
             "reasons": [v.text for v in e.violations],
             "tnt_equivalent_kg": None if e.design is None else float(e.design.specimen_charge_kg),
+            "rigidity": None if e.rigidity is None else e.rigidity.to_dict(),
         }
         for e in evs
         if e.violations
@@ -366,12 +369,25 @@ def screen(scenario, lab, tell=None) -> tuple:
         lab, sc.structure.density_kg_m3, block.height, sc.scale.gravity_ratio if sc.scale is not None else 1.0, bursts
     )
     design = candidate_design(scenario, structure, lab)
+    proto_mat = prototype_material(sc.structure.density_kg_m3, sc.structure.friction, lab.prototype_material)
+    proto = {**proto, "material": proto_mat.name, "friction": proto_mat.friction}
     evs = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for i, c in enumerate(cands):
             tell("designing the candidates", i, len(cands))
-            evs.append(evaluate(c, lab=lab, block=block, timing=timing, incident_model=kb, design=design))
+            evs.append(
+                evaluate(
+                    c,
+                    lab=lab,
+                    block=block,
+                    timing=timing,
+                    incident_model=kb,
+                    design=design,
+                    prototype=proto_mat,
+                    planar=planar,
+                )
+            )
     return planar, evs, proto
 
 

@@ -17,7 +17,8 @@ from ..blast.safety import QD_K_FACTORS, SAFETY_THRESHOLDS, far_field, safety_di
 from ..blast.sources import SourceShot
 from ..io.source_file import read_source
 from ..scenario.lab import SAME_MATERIAL, LabSpec
-from ..structures.materials import MATERIALS
+from ..similitude.rigidity import rigidity_check
+from ..structures.materials import MATERIALS, friction_card_line, prototype_material, specimen_material
 
 __all__ = [
     "lab_explosives",
@@ -31,6 +32,8 @@ __all__ = [
     "safety_envelope",
     "threshold_meanings",
     "candidate_materials",
+    "specimen_friction_card",
+    "specimen_rigidity",
     "Timing",
     "rocking_timing",
     "timing_of",
@@ -207,6 +210,38 @@ def candidate_materials(lab, prototype_density: float) -> list:
 
     names = list(lab.materials) if lab.materials is not None else [SAME_MATERIAL] + list(MATERIALS)
     return [(n, 1.0 if n == SAME_MATERIAL else MATERIALS[n].density / prototype_density) for n in names]
+
+
+def specimen_friction_card(scenario, lab) -> dict:
+    """The test card's friction of ``scenario``'s specimen: its material's joint friction
+    (``scale.specimen_material``; the prototype's own without one, ``structure.friction``) against the
+    prototype's, to be measured by a tilt test. Keys: ``pair`` (``"lead on lead"``), ``nominal``, ``low``,
+    ``high`` (the range its sources give), ``prototype`` [-], and ``line``, the whole sentence
+    (:func:`~blastscale.structures.materials.friction_card_line`)."""
+    sc = scenario
+    proto = prototype_material(sc.structure.density_kg_m3, sc.structure.friction, lab.prototype_material)
+    name = None if sc.scale is None else sc.scale.specimen_material
+    m = specimen_material(name, proto)
+    pair = "the prototype's material on itself" if name is None else f"{m.name} on {m.name}"
+    return {
+        "pair": pair,
+        "nominal": m.friction,
+        "low": m.friction_low,
+        "high": m.friction_high,
+        "prototype": proto.friction,
+        "line": friction_card_line(m, proto.friction, pair),
+    }
+
+
+def specimen_rigidity(scenario, design, lab):
+    """The rigidity check (:func:`~blastscale.similitude.rigidity.rigidity_check`) of ``scenario``'s specimen
+    material (the prototype's own without ``scale.specimen_material``) in ``design``'s scaled motion (its
+    ``factors.pressure``), against the prototype's (``lab.prototype_material``, or the library stone nearest its
+    density): for the card of a scale the user chose, where the planner would have refused it."""
+    sc = scenario
+    proto = prototype_material(sc.structure.density_kg_m3, sc.structure.friction, lab.prototype_material)
+    name = None if sc.scale is None else sc.scale.specimen_material
+    return rigidity_check(float(design.factors.pressure), specimen_material(name, proto), proto)
 
 
 @dataclass(frozen=True)

@@ -283,6 +283,13 @@ def _build_table(c: dict) -> str:
             ("density", _n(c, "build/density_kg_m3", "kg/m3")),
             ("scale lambda", _n(c, "build/scale", "")),
             ("density ratio gamma", _n(c, "build/density_ratio", "")),
+            (
+                "joint friction",
+                f"{_e(b['friction']['pair'])} {_n(c, 'build/friction/nominal', '')} nominal "
+                f"({_n(c, 'build/friction/low', '')}-{_n(c, 'build/friction/high', '')}), the prototype's "
+                f"{_n(c, 'build/friction/prototype', '')}: measure by tilt test (mu = tan of the tilt angle at the "
+                "first slip)",
+            ),
             *(
                 [
                     (

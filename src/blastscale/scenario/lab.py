@@ -77,8 +77,13 @@ class LabSpec(BaseModel):
     specimen_max_mass_kg: float = Field(500.0, gt=0, le=1e7, description="Heaviest specimen the lab can handle [kg]")
     materials: Optional[list[str]] = Field(
         None,
-        description="Candidate specimen materials from the density library "
+        description="Candidate specimen materials from the materials library "
         '("same": the prototype\'s); default: all of them',
+    )
+    prototype_material: Optional[str] = Field(
+        None,
+        description="The prototype's material in the materials library, for the rigidity check (its compressive "
+        "strength and Young's modulus); default: the library stone or masonry nearest the prototype's density",
     )
     charge_tolerance: float = Field(
         0.02, ge=0, le=1, description="Charge mass, one standard deviation, relative (lognormal) [-]"
@@ -182,6 +187,11 @@ class LabSpec(BaseModel):
         for name in v:
             check_name(name, (SAME_MATERIAL,) + tuple(MATERIALS))
         return v
+
+    @field_validator("prototype_material")
+    @classmethod
+    def _prototype_material(cls, v: Optional[str]) -> Optional[str]:
+        return v if v is None else check_name(v, tuple(MATERIALS))
 
     @field_validator("bursts")
     @classmethod

@@ -245,6 +245,22 @@ class Scenario(BaseModel):
             return sc.density_ratio
         return None if sc.law == "hopkinson-cranz" else 1.0
 
+    @property
+    def friction_ratio(self) -> float:
+        """lambda_mu = mu_specimen / mu_prototype [-]: the library friction of ``scale.specimen_material``
+        (its joint against itself, :mod:`blastscale.structures.materials`) over ``structure.friction``; 1
+        without a named material (the prototype's own, or a density ratio alone) or without ``[scale]``."""
+        sc = self.scale
+        if sc is None or sc.specimen_material is None:
+            return 1.0
+        mu = MATERIALS[sc.specimen_material].friction
+        if self.structure.friction <= 0.0:
+            raise BlastscaleInputError(
+                f"structure.friction = 0 with scale.specimen_material = {sc.specimen_material!r} (friction {mu:g}): "
+                "a frictionless prototype has no friction ratio; give scale.density_ratio instead of the material"
+            )
+        return mu / self.structure.friction
+
     def to_dict(self) -> dict:
         """Plain JSON-able dict (None for keys left to the engine's defaults)."""
         return self.model_dump(mode="json")

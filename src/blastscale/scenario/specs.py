@@ -190,7 +190,7 @@ class ScaleSpec(BaseModel):
     specimen_material: Optional[str] = Field(
         None,
         validation_alias=_renamed("scale.specimen_material"),
-        description="The specimen's material from the density library; deprecated key: model_material",
+        description="The specimen's material from the materials library (its density and joint friction); deprecated key: model_material",
     )
     gravity_ratio: float = Field(1.0, gt=0, le=1000, description="varsigma = g_model / g_prototype [-]")
     law: Literal["general", "hopkinson-cranz"] = Field("general", description="Scaling law")

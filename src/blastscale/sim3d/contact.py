@@ -200,17 +200,20 @@ class ContactSettings:
         ----------
         factors : ScalingFactors
             Model / prototype factors (:func:`blastscale.similitude.scaling_factors`): ``length``
-            lambda and ``time`` lambda_t [-] are used.
+            lambda, ``time`` lambda_t and ``friction`` lambda_mu [-] are used.
 
         Returns
         -------
         ContactSettings
-            Times x lambda_t, ``impedance_width`` x lambda, the rest unchanged.
+            Times x lambda_t, ``impedance_width`` x lambda, ``friction`` x lambda_mu (the specimen
+            material's own, :mod:`blastscale.structures.materials`), the rest unchanged.
         """
         lam = float(check_positive("scale", factors.length))
         lt = float(check_positive("time factor", factors.time))
+        fr = float(check_positive("friction factor", factors.friction))
         return replace(
             self,
+            friction=self.friction * fr,
             time_constant=self.time_constant * lt,
             friction_time_constant=None if self.friction_time_constant is None else self.friction_time_constant * lt,
             impedance_width=self.impedance_width * lam,

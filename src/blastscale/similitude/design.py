@@ -64,6 +64,7 @@ def design_model(
     contact=None,
     duration: float | None = None,
     effects: bool = True,
+    friction_ratio: float = 1.0,
 ) -> ModelDesign:
     """Design the reduced-scale model of a blast scenario.
 
@@ -122,6 +123,9 @@ def design_model(
         Evaluate the blast effects and their notes (default); False for a caller that needs the
         systems only (a sweep's outcome mode: ~3 ms per case with clearing): ``effects`` is then None
         and ``notes`` empty, the load models are carried all the same.
+    friction_ratio : float
+        lambda_mu = mu_specimen / mu_prototype [-] (default 1): the specimen's contact settings carry the
+        prototype's friction times it (a specimen of another material, :mod:`blastscale.structures.materials`).
 
     Returns
     -------
@@ -180,11 +184,12 @@ def design_model(
     if scalar:  # one case: an invalid one raises, the law's closed-form root
         proto = blast_parameters(W, R, bm, extrapolate=extrapolate)
         lz, note = _solve_one(proto.scaled_distance, lam, gam, sig, law, bm, ms, extrapolate)
-        f = scaling_factors(lam, gam, sig, lz)
+        f = scaling_factors(lam, gam, sig, lz, friction_ratio)
         spec = blast_parameters(W * f.charge, R * lam, ms, extrapolate=extrapolate)
         ok = True
     else:  # every case at once, NaN where a case cannot be designed
         f, note, ok, proto, spec = _design_cases(W, R, lam, gam, sig, law, bm, ms, extrapolate)
+        f = replace(f, friction=check_positive_scalar("friction ratio", friction_ratio))
     structure = geometry
     lm = PAPER_LOAD if load_model is None else load_model
     spec_sys = specimen_system(f, structure, lm, contact, duration, gravity)  # the specimen system, once, here

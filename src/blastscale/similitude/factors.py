@@ -85,7 +85,7 @@ class ScalingFactors:
     impulse (specific, Pa s)      gamma sqrt(varsigma lambda^3)
     momentum (N s)                gamma sqrt(varsigma) lambda^(7/2)
     energy                        gamma varsigma lambda^4
-    friction                      1
+    friction                      lambda_mu (1 for the prototype's own material)
     scaled_distance               lambda_Z (None until a blast law fixes it)
     charge                        (lambda / lambda_Z)^3 (None likewise)
     ============================  =================================
@@ -126,6 +126,7 @@ def scaling_factors(
     density_ratio: float = 1.0,
     gravity_ratio: float = 1.0,
     scaled_distance_factor: float | None = None,
+    friction_ratio: float = 1.0,
 ) -> ScalingFactors:
     """Every scaling factor of the rigid-body response (paper Tables 1-2).
 
@@ -140,6 +141,10 @@ def scaling_factors(
     scaled_distance_factor : float, optional
         lambda_Z = Z_model / Z_prototype, when a blast law has fixed it; then the charge
         factor (lambda / lambda_Z)^3 is filled in too.
+    friction_ratio : float
+        lambda_mu = mu_model / mu_prototype [-], > 0: 1 for rigid-body similitude (pi_21 = mu); a
+        specimen of another material has its own joint friction (:mod:`blastscale.structures.materials`,
+        checked by :mod:`.friction`), and its 3D contacts carry the prototype's mu x lambda_mu.
 
     Returns
     -------
@@ -148,6 +153,7 @@ def scaling_factors(
     lam = check_positive_scalar("scale", scale)
     gam = check_positive_scalar("density ratio", density_ratio)
     sig = check_positive_scalar("gravity ratio", gravity_ratio)
+    fr = check_positive_scalar("friction ratio", friction_ratio)
     lz = (
         None
         if scaled_distance_factor is None
@@ -171,7 +177,7 @@ def scaling_factors(
         impulse=gam * math.sqrt(sig * lam**3),
         momentum=gam * math.sqrt(sig) * lam**3.5,
         energy=gam * sig * lam**4,
-        friction=1.0,
+        friction=fr,
         scaled_distance=lz,
         charge=None if lz is None else (lam / lz) ** 3,
     )

@@ -8,7 +8,8 @@ simulated time become the specimen's (the reduced-scale physical model's).
   density x gamma; a rocking system also carries its gravity, x varsigma);
 * the load model (clearing on the loaded face, the negative phase): ``load_model.scaled(factors)`` (the
   specimen's face is lambda times the prototype's);
-* the 3D contact settings: ``contact.scaled(factors)`` (times x lambda_t, lengths x lambda);
+* the 3D contact settings: ``contact.scaled(factors)`` (times x lambda_t, lengths x lambda, the
+  friction x lambda_mu: the specimen material's own, :mod:`blastscale.structures.materials`);
 * the simulated time [s]: x lambda_t;
 * gravity [m/s^2]: x varsigma.
 
@@ -41,7 +42,7 @@ class SpecimenSystem(NamedTuple):
     load_model : LoadModel or None
         The specimen's load model (its face lambda times the prototype's).
     contact : ContactSettings or None
-        The specimen's 3D contact settings (times x lambda_t, lengths x lambda).
+        The specimen's 3D contact settings (times x lambda_t, lengths x lambda, friction x lambda_mu).
     duration : float or None
         The specimen's simulated time [s] (x lambda_t).
     gravity : float or None

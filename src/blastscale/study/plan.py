@@ -137,7 +137,8 @@ class DesignSystem:
     given_structure : structure or None
         The system's structure when not the design's (a perturbed member).
     friction : float or None
-        The friction coefficient [-] when not the scenario's (a perturbed member, a calibration).
+        The system's own friction coefficient [-] when not the scenario's (for the specimen: in place of the
+        prototype's x lambda_mu; a perturbed member, a calibration).
     restitution : float or None
         The planar coefficient of restitution [-] when not the scenario's (a calibration).
     """
@@ -215,12 +216,12 @@ class DesignSystem:
         contact = contacts = None
         if has_3d:  # the prototype's contact settings from the scenario (its friction), scaled once for the specimen
             contact = contact_settings(sc, d.prototype_structure)
-            if self.friction is not None:
-                contact = replace(contact, friction=float(self.friction))
             contacts = contacts_of(structure)  # the specimen's are the prototype's (scaled), counted once
             check_study_budget(sc, d.prototype_structure, contact, contacts=contacts)
-            if self.specimen:
+            if self.specimen:  # its friction x lambda_mu: the specimen material's
                 contact = specimen_system(d.factors, contact=contact).contact
+            if self.friction is not None:  # the run's own (the specimen's when it runs alone)
+                contact = replace(contact, friction=float(self.friction))
         blast = self.blast(sc)
         gravity = d.specimen_gravity if self.specimen else d.gravity
         duration = float(d.specimen_duration if self.specimen else d.duration)

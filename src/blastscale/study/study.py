@@ -372,7 +372,7 @@ def _tell(progress: Optional[Progress], stage: str, done: int, total: int) -> No
 def design_of(scenario: Scenario, structure, charge_kg=None, standoff_m=None, *, contact=None, effects: bool = True):
     """The one mapping from a scenario to its model experiment (:func:`~blastscale.similitude.design_model`),
     for :meth:`Study.design` and the sweeps' outcome mode: the scenario's scale, density and gravity
-    ratios, law, blast model, bursts, gravity, load model (:func:`~.engines.load_model_of`), loaded face
+    ratios, the friction ratio of its specimen's material, law, blast model, bursts, gravity, load model (:func:`~.engines.load_model_of`), loaded face
     (the structure's front with clearing, else its top: the lab burst), lab charge height and duration.
 
     Parameters
@@ -415,4 +415,5 @@ def design_of(scenario: Scenario, structure, charge_kg=None, standoff_m=None, *,
         contact=contact,
         duration=sc.simulation.duration_s,
         effects=effects,
+        friction_ratio=sc.friction_ratio,
     )

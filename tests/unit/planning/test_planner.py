@@ -28,6 +28,7 @@ def _check_design(d: dict, lab: LabSpec) -> None:
     assert lab.materials is None or d["material"] in lab.materials
     assert d["impulsive_ratio"] is None or d["impulsive_ratio"] < 0.4
     assert 0.0 <= d["p_outcome_agree"] <= 1.0
+    assert d["rigidity"]["ok"] and (d["friction_regime"] is None or d["friction_regime"]["ok"])  # the material's
 
 
 @st.composite

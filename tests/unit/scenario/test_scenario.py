@@ -192,7 +192,7 @@ def test_fractions_are_exact_ratios():
 def test_material_library_is_cited_and_in_range():
     assert material_density("balsa") == 140.0  # the paper's balsa (gamma = 0.07 for 2000 kg/m^3)
     for m in MATERIALS.values():
-        assert m.low <= m.density <= m.high and m.source
+        assert m.density_low <= m.density <= m.density_high and m.density_source
     with pytest.raises(BlastscaleInputError, match="valid values are marble"):
         material_density("cheese")
 
