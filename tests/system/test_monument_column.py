@@ -160,3 +160,21 @@ def test_the_column_with_a_capital_runs_in_3d_and_stands_at_rest(tmp_path):
     assert set(d["bodies"]) >= {"echinus", "abacus"}
     top = d["points"]["P-12"]["max_displacement_m"]  # the abacus's front point
     assert 0.0 < top < 0.2 and math.isfinite(top)
+
+
+def test_the_scaled_monument_column_is_geometrically_similar(tmp_path):
+    """The specimen of a design: lengths x lambda (drums, profile, capital), density x gamma, so the mass x
+    gamma lambda^3 and every centre of mass x lambda (to round-off: 1e-12)."""
+    from blastscale.scenario.files import load_scenario
+    from blastscale.similitude.factors import scaling_factors
+    from blastscale.structures import from_spec
+
+    p = tmp_path / "column.toml"
+    p.write_text(scenario("circular"))
+    col = from_spec(load_scenario(p).structure)
+    lam, gam = 0.05, 0.8
+    sm = col.scaled(scaling_factors(lam, gam, 1.0))
+    assert sm.capital.abacus_width == pytest.approx(lam * 2.0, rel=1e-15)
+    assert sm.mass == pytest.approx(gam * lam**3 * col.mass, rel=1e-12)
+    for a, b in zip(col.bodies, sm.bodies):
+        assert b.name == a.name and b.com[2] == pytest.approx(lam * a.com[2], rel=1e-12)

@@ -109,10 +109,6 @@ class Capital:
         """Echinus and abacus together [m]."""
         return self.echinus_height + self.abacus_height
 
-    def scaled(self, length: float) -> "Capital":
-        """Lengths x ``length`` [-]."""
-        return Capital(self.abacus_width * length, self.abacus_height * length, self.echinus_height * length)
-
 
 @dataclass(frozen=True)
 class MultiDrumColumn:
@@ -311,7 +307,11 @@ class MultiDrumColumn:
             drum_heights=None if self.drum_heights is None else tuple(h * L for h in self.drum_heights),
             extra_points=tuple(replace(p, position=tuple(x * L for x in p.position)) for p in self.extra_points),
             width_profile=None if self.width_profile is None else tuple((z, w * L) for z, w in self.width_profile),
-            capital=None if self.capital is None else self.capital.scaled(L),
+            capital=None
+            if self.capital is None
+            else Capital(
+                self.capital.abacus_width * L, self.capital.abacus_height * L, self.capital.echinus_height * L
+            ),
         )
 
 

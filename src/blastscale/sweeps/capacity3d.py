@@ -52,7 +52,7 @@ from ..analysis.intervals import wilson_interval
 from ..analysis.systems import run_system
 from ..blast.inverse import scaled_distance_range
 from ..blast.parameters import blast_parameters, model_for_burst
-from ..study import Study
+from ..study.study import Study
 from .fragility import fit_lognormal_fragility
 
 __all__ = [
