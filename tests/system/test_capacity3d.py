@@ -17,7 +17,7 @@ from blastscale.blast.parameters import blast_parameters
 from blastscale.cli import main
 from blastscale.scenario.files import load_scenario
 from blastscale.study import Study
-from blastscale.sweeps.capacity3d import critical_charges_3d
+from blastscale.sweeps.capacity3d import critical_charges_3d, planned_probes
 
 COLUMN = """title = "two-drum column, 3 m"
 [structure]
@@ -102,6 +102,7 @@ def test_the_search_states_its_bracket_and_probes(capacity):
         assert [p["charge_kg"] for p in first] == [4.0, 80.0]
         assert first[0]["fell"] == 0 and first[1]["fell"] == 2
         assert s["runs"] == 2 * len(s["probes"])
+        assert len(s["probes"]) == planned_probes((4.0, 80.0), 0.04) == 9  # 2 + ceil(log2(ln 20 / ln 1.04))
         assert s["interval_basis"] in ("bisection bracket", "lognormal fit, 95 %")
 
 

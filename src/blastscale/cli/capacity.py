@@ -538,13 +538,13 @@ def _bracket_of(text: Optional[str]) -> Optional[tuple]:
 
 def _inputs_3d(sc, three_d: ThreeD) -> dict:
     """The ``inputs`` record of a 3D capacity: the scenario, its structure and the search's settings."""
-    from ..sweeps.capacity3d import DEFAULT_TOLERANCE, _members
+    from ..sweeps.capacity3d import DEFAULT_TOLERANCE, members_of
 
     sim, bl = sc.simulation, sc.blast
     return {
         "scenario": sc.title or "untitled",
         "structure_kind": sc.structure.kind,
-        "members": _members(sc, three_d.members),
+        "members": members_of(sc, three_d.members),
         "perturbation": sim.ensemble_perturbation,
         "tolerance": DEFAULT_TOLERANCE if three_d.tolerance is None else three_d.tolerance,
         "duration_s": sim.duration_s,
@@ -563,10 +563,13 @@ METHOD_3D = (
 
 def _run_3d(sc, R: np.ndarray, three_d: ThreeD, quiet: bool) -> tuple:
     """The 3D critical charges at the stand-offs ``R`` [m], under one activity line."""
-    from ..sweeps.capacity3d import critical_charges_3d
+    from ..sweeps.capacity3d import DEFAULT_TOLERANCE, critical_charges_3d, members_of, planned_probes
 
     n = len(R)
-    with one_line_warnings(), activity(f"3D critical charge at {n} stand-off{'s' * (n > 1)}", quiet=quiet):
+    tol = DEFAULT_TOLERANCE if three_d.tolerance is None else three_d.tolerance
+    runs = n * planned_probes(three_d.bracket, tol) * members_of(sc, three_d.members)
+    size = f"{'' if three_d.bracket else 'at least '}{runs} 3D runs of {sc.simulation.duration_s:g} s"
+    with one_line_warnings(), activity(f"3D critical charge at {n} stand-off{'s' * (n > 1)}: {size}", quiet=quiet):
         return critical_charges_3d(sc, R, **three_d.kw())
 
 

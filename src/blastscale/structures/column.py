@@ -268,7 +268,9 @@ class MultiDrumColumn:
         return pts + tuple(self.extra_points)
 
     def describe(self) -> dict:
-        """Geometry and material, SI keys (``height_m`` the shaft's; the capital's keys None without one)."""
+        """Geometry and material, SI scalar keys and the drum heights (``height_m`` the shaft's; the capital's keys
+        with one). The width profile is not among them (its ends are ``base_width_m`` and ``top_width_m``): a sweep
+        store names every key's place in a fixed layout, and the scenario file keeps the profile."""
         cap = self.capital
         out = {
             "kind": "multi-drum column",
@@ -282,8 +284,6 @@ class MultiDrumColumn:
             "drum_heights_m": list(self.drum_heights_m),
             "mass_kg": self.mass,
         }
-        if self.width_profile is not None:
-            out["width_profile"] = [list(p) for p in self.width_profile]
         if cap is not None:
             out.update(
                 abacus_width_m=cap.abacus_width,

@@ -322,7 +322,7 @@ def critical_charges_3d(
     """
     R = np.atleast_1d(check_positive("standoffs", standoffs, "m")).astype(float)
     check_range("tolerance", tolerance, 1e-4, 1.0)
-    n = _members(scenario, members)
+    n = members_of(scenario, members)
     if bracket is not None:
         lo, hi = (float(x) for x in check_positive("bracket", bracket, "kg"))
         if not lo < hi:
@@ -340,18 +340,18 @@ def critical_charges_3d(
     threads = threads if threads is not None else base.simulation.threads
     done_runs, rounds = 0, 0
     while True:
-        asked = [(s, w) for s in searches for w in s.pending()]
+        asked = [(j, w) for j, s in enumerate(searches) for w in s.pending()]
         if not asked:
             break
-        systems = {(s.standoff, w): _system(base, w, s.standoff) for s, w in asked}
+        systems = {(j, w): _system(base, w, searches[j].standoff) for j, w in asked}
         tasks = [(key, f) for key in systems for f in factors]
         fell = map_threads(lambda t: _fell(systems[t[0]], t[1]), tasks, threads)
         counts: dict = {}
         for (key, _), f in zip(tasks, fell):
             k, m = counts.get(key, (0, 0))
             counts[key] = (k + int(f), m + 1)
-        for s in {id(s): s for s, _ in asked}.values():
-            s.tell({w: counts[(s.standoff, w)] for w in s._next})
+        for j in sorted({j for j, _ in asked}):
+            searches[j].tell({w: counts[(j, w)] for w in searches[j]._next})
         done_runs += len(tasks)
         rounds += 1
         if progress is not None:
@@ -359,7 +359,18 @@ def critical_charges_3d(
     return tuple(s.result() for s in searches)
 
 
-def _members(scenario, members: Optional[int]) -> int:
+def planned_probes(bracket: Optional[tuple] = None, tolerance: float = DEFAULT_TOLERANCE) -> int:
+    """Probed charges per stand-off [-]: exactly, with a ``bracket`` [kg] (its two ends, then the bisection of
+    ln(HI / LO) down to ln(1 + ``tolerance``)); without one, the fewest (two steps of x2 that bracket, then the
+    bisection of ln 2), the size said before a search starts."""
+    width = math.log(bracket[1] / bracket[0]) if bracket is not None else math.log(STEP_FACTOR)
+    halvings = max(0, math.ceil(math.log2(width / math.log1p(tolerance)))) if width > math.log1p(tolerance) else 0
+    return 2 + halvings
+
+
+def members_of(scenario, members: Optional[int]) -> int:
+    """Ensemble members per probed charge [-]: ``members`` (checked, 1-64), else the scenario's
+    ``simulation.ensemble_members`` when >= 2, else :data:`DEFAULT_MEMBERS`."""
     if members is None:
         given = scenario.simulation.ensemble_members
         return int(given) if given >= 2 else DEFAULT_MEMBERS
