@@ -144,3 +144,5 @@ def test_a_block_scenario_is_the_planar_instance_of_the_same_command(capsys, tmp
     assert by_scenario["critical_charge_kg"] == pytest.approx(79.87, abs=0.01)  # paper: 79.8 kg
     code, _, err = cli(capsys, "critical", p, "--height", "5", "--json")
     assert code == 2 and "--height" in err and "--set" in err
+    code, _, err = cli(capsys, "critical", p, "--members", "3", "--json")  # the 3D search's flag, not ignored
+    assert code == 2 and "--members" in err and "3D" in err

@@ -129,6 +129,7 @@ def critical_cmd(
     if _engine_of(sc, engine) == "3d":
         three_d = ThreeD(members, _bracket_of(bracket), tolerance)
         return _critical_3d(sc, standoff, charge, three_d, plot, as_json)
+    _planar_only(members, bracket, tolerance)
     if sc is None:
         block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
     else:  # a block's scenario: its keys are the flags
@@ -357,6 +358,7 @@ def capacity_cmd(
                 "--charge and --scale apply to a block's planar capacity: the 3D capacity gives W_c(R) and the P-I diagram"
             )
         return _capacity_3d(sc, R, ThreeD(members, _bracket_of(bracket), tolerance), plot, as_json)
+    _planar_only(members, bracket, tolerance)
     if sc is None:
         block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
     else:  # a block's scenario: its keys are the flags
@@ -524,6 +526,16 @@ def _engine_of(sc, engine: Optional[str]) -> str:
             f"engine = 'planar' applies to a single block: structure.kind = {sc.structure.kind!r} runs in 3D (--engine 3d)"
         )
     return engine or ("planar" if block else "3d")
+
+
+def _planar_only(members, bracket, tolerance) -> None:
+    """Refuse the 3D search's flags on the planar path (they would be ignored)."""
+    for flag, v in (("--members", members), ("--bracket", bracket), ("--tolerance", tolerance)):
+        if v is not None:
+            raise BlastscaleInputError(
+                f"{flag} = {v}: applies to the 3D search (a scenario's structure other than a block, or --engine 3d); "
+                "a block's first-swing search needs none"
+            )
 
 
 def _bracket_of(text: Optional[str]) -> Optional[tuple]:
