@@ -178,3 +178,18 @@ def test_the_scaled_monument_column_is_geometrically_similar(tmp_path):
     assert sm.mass == pytest.approx(gam * lam**3 * col.mass, rel=1e-12)
     for a, b in zip(col.bodies, sm.bodies):
         assert b.name == a.name and b.com[2] == pytest.approx(lam * a.com[2], rel=1e-12)
+
+
+def test_the_front_of_a_column_with_a_capital_reaches_the_abacus(tmp_path):
+    """Clearing and a free-air charge's height read the front: each body's width and the top, the echinus (a
+    convex mesh) included: the top is shaft + echinus + abacus, 10.75 m (1e-12), the abacus's width 2 m."""
+    from blastscale.scenario.files import load_scenario
+    from blastscale.similitude.effects import front_geometry
+    from blastscale.structures import from_spec
+
+    p = tmp_path / "column.toml"
+    p.write_text(scenario("square"))
+    widths, top = front_geometry(from_spec(load_scenario(p).structure))
+    assert top == pytest.approx(10.75, rel=1e-12)
+    assert widths[-1] == pytest.approx(2.0, rel=1e-12)  # the abacus
+    assert 1.45 < widths[-2] < 2.0  # the echinus: its mean front width between the shaft's top and the abacus
