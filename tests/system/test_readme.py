@@ -55,6 +55,8 @@ NOT_CHEAP = {
     "plan paper_column_square_250kg": "3 x 33 3D runs of a column, minutes (benchmarks/bench_plan.py; "
     "tests/integration/test_plan_any_structure.py runs it short)",
     "plan wall_running_bond_lambda20": "3 x 33 3D runs of a wall, minutes (tests/system/test_plan_cli.py runs it short)",
+    "capacity paper_column_square_250kg": "38 3D runs of a column, ~1 min of CPU (benchmarks/bench_capacity3d.py; "
+    "tests/system/test_capacity3d.py runs a short column)",
     "--samples 2000": "26,000 draws with a body per draw, ~10 s (test_fragility.py runs it with fewer draws)",
     "run my_scenario.toml --out mine": "a planar and a 3D block, ~10 s of CPU (tests/system/test_run.py runs the "
     "main job; tests/system/test_init_and_console.py the templates of init)",

@@ -38,7 +38,7 @@ from .intervals import wilson_interval
 from .systems import Settings3D, Systems3D, run_system
 from .upscale import upscale_summary
 
-__all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics", "QUANTILES"]
+__all__ = ["EnsembleComparison", "ensemble_compare", "ensemble_statistics", "member_factors", "QUANTILES"]
 
 #: The ensembles' quantiles: (name, percentile [%]), by ``numpy.percentile`` with linear interpolation
 #: (``method="linear"``: between the order statistics, Hyndman & Fan 1996's definition 7).
@@ -321,6 +321,14 @@ def _point_quantiles(stats: dict | None, system: str, j: int) -> dict:
     }
 
 
+def member_factors(n: int, perturbation: float) -> tuple:
+    """The load factors of ``n`` ensemble members: ``1 + perturbation * u_k``, u_k evenly spread over [-1, 1]
+    (one member: the load itself) [-]."""
+    if int(n) == 1:
+        return (1.0,)
+    return tuple(1.0 + perturbation * u for u in np.linspace(-1.0, 1.0, int(n)))
+
+
 def ensemble_compare(
     systems: Systems3D,
     settings: Settings3D = Settings3D(),
@@ -371,7 +379,7 @@ def ensemble_compare(
     level = {} if confidence is None else {"confidence": confidence}
     if confidence is not None:  # checked before the runs
         check_range("confidence", confidence, 0.0, 1.0, lo_open=True, hi_open=True)
-    factors = tuple(1.0 + eps * u for u in np.linspace(-1.0, 1.0, int(n)))
+    factors = member_factors(n, eps)
     runs = systems.runs()
     names = tuple(name for name, _ in runs)
     tasks = [(f, system) for f in factors for _, system in runs]  # (load factor, system) of each member run

@@ -1,5 +1,10 @@
-"""``blastscale critical`` and ``blastscale capacity``: the planar block's capacity under blast, by the
-first-swing energy criterion after the pulse (docs/capacity.md).
+"""``blastscale critical`` and ``blastscale capacity``: a structure's capacity under blast (docs/capacity.md).
+
+One command for every structure. A block (given by its flags, or a scenario whose structure is a block) is
+judged by the first-swing energy criterion after the pulse (planar, exact and fast); any other structure (a
+scenario: column, wall, arch, portal, block model), or a block with ``--engine 3d``, by bisection on ensembles
+of 3D runs (:mod:`blastscale.sweeps.capacity3d`: the charge at which the collapse probability crosses 50 %,
+with its interval).
 
 Units at this edge: lengths in m, density in kg/m^3, charge in kg TNT, the slenderness angle in degrees
 (``--alpha-deg``); results are SI (kg, m, Pa, Pa s).
@@ -8,7 +13,8 @@ Units at this edge: lengths in m, density in kg/m^3, charge in kg TNT, the slend
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
+from pathlib import Path
+from typing import List, Optional
 
 import numpy as np
 import typer
@@ -17,13 +23,55 @@ from rich.table import Table
 from .. import __version__
 from .._validate import BlastscaleInputError
 from ..blast.parameters import blast_parameters, model_for_burst
+from ..structures.from_spec import from_spec, is_block
 from ..study.memory import check_budget
-from ..sweeps.grids import parse_grid
+from ..sweeps.grids import parse_grid, parse_number
 from . import blast_flags as bf, options as opt
 from ._app import app
 from ._output import activity, console, fmt_value, one_line_warnings, table
+from .flags import SET_VALUES
+from .options import check_plot_path
 from .rocking import RESTITUTION_HELP, block_inputs
-from .steps import BlockFlags, add_figure, answer
+from .steps import BlockFlags, add_figure, answer, read_scenario
+
+SCENARIO_ARG = typer.Argument(
+    None,
+    help="Scenario TOML file of any structure (a column, a wall, ...: 3D ensembles); without it, the block of the flags.",
+)
+ENGINE = typer.Option(
+    None,
+    "--engine",
+    help="planar (a block: first-swing criterion) or 3d (any structure: bisection on 3D ensembles); "
+    "default: planar for a block, 3d otherwise.",
+)
+MEMBERS = typer.Option(
+    None, "--members", help="3D: ensemble members per probed charge, 1-64 (default: the scenario's, else 4)."
+)
+BRACKET = typer.Option(
+    None,
+    "--bracket",
+    help="3D: charges LO:HI \\[kg] bracketing the critical charge (default: searched by steps of x2).",
+)
+TOLERANCE = typer.Option(
+    None, "--tolerance", help="3D: relative width of the final bracket HI/LO - 1 \\[-] (default 0.02)."
+)
+#: The flags that describe a block or its planar load: refused beside a scenario (its keys say them; --set).
+_BLOCK_FLAGS = (
+    "height",
+    "width",
+    "alpha_deg",
+    "depth",
+    "density",
+    "pulse_shape",
+    "restitution",
+    "gravity",
+    "blast_model",
+    "burst",
+    "clearing",
+    "negative_phase",
+    "negative_phase_model",
+    "extrapolate",
+)
 
 
 def opt_extrapolate():
@@ -35,6 +83,9 @@ def opt_extrapolate():
 
 @app.command("critical")
 def critical_cmd(
+    ctx: typer.Context,
+    scenario: Optional[Path] = SCENARIO_ARG,
+    values: List[str] = SET_VALUES,
     height: float = opt.HEIGHT,
     width: Optional[float] = opt.WIDTH,
     alpha_deg: Optional[float] = opt.ALPHA_DEG,
@@ -62,14 +113,33 @@ def critical_cmd(
     plot: Optional[str] = typer.Option(
         None, "--plot", help="Write the P-I overturning diagram (with the critical point) to this image file."
     ),
+    engine: Optional[str] = ENGINE,
+    members: Optional[int] = MEMBERS,
+    bracket: Optional[str] = BRACKET,
+    tolerance: Optional[float] = TOLERANCE,
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
-    """Critical charge at a stand-off (largest charge without overturning), or with --charge the
-    critical stand-off: the first-swing energy criterion after the pulse (docs/capacity.md),
-    searched from the structure's own scale (any size, lab specimens included)."""
+    """Critical charge at a stand-off. A block: the largest charge without overturning (or with --charge the
+    critical stand-off), by the first-swing energy criterion after the pulse, searched from the structure's own
+    scale (any size, lab specimens included). Any structure (a scenario): the charge at which the collapse
+    probability (a body fell) crosses 50 %, with its interval, by bisection on 3D ensembles (docs/capacity.md)."""
     from ..analysis.planar import planar_system
 
-    block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
+    sc = _scenario_of(ctx, scenario, values)
+    if _engine_of(sc, engine) == "3d":
+        three_d = ThreeD(members, _bracket_of(bracket), tolerance)
+        return _critical_3d(sc, standoff, charge, three_d, plot, as_json)
+    _planar_only(members, bracket, tolerance)
+    if sc is None:
+        block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
+    else:  # a block's scenario: its keys are the flags
+        check_plot_path(plot)
+        block, bl = from_spec(sc.structure), sc.blast
+        pulse_shape, blast_model, burst, extrapolate = bl.pulse_shape, bl.blast_model, bl.burst, bl.extrapolate
+        clearing, negative_phase = bl.clearing, bl.negative_phase
+        negative_phase_model = bl.negative_phase_model if negative_phase else None
+        gravity, restitution = sc.simulation.gravity_m_s2, sc.simulation.restitution
+        standoff = bl.standoff_m if standoff is None and charge is None else standoff
     bf.check_burst_flag(burst)
     lm = bf.load_model_from_flags(clearing, None, None, negative_phase, block, negative_phase_model)
     fit = model_for_burst(blast_model, burst).name
@@ -239,6 +309,9 @@ def _print_critical(out: dict, res, bp, system, block) -> None:
 
 @app.command("capacity")
 def capacity_cmd(
+    ctx: typer.Context,
+    scenario: Optional[Path] = SCENARIO_ARG,
+    values: List[str] = SET_VALUES,
     height: float = opt.HEIGHT,
     width: Optional[float] = opt.WIDTH,
     alpha_deg: Optional[float] = opt.ALPHA_DEG,
@@ -263,16 +336,36 @@ def capacity_cmd(
     blast_model: str = opt.MODEL,
     extrapolate: bool = opt_extrapolate(),
     plot: Optional[str] = typer.Option(None, "--plot", help="Write the capacity curve W_c(R) to this image file."),
+    engine: Optional[str] = ENGINE,
+    members: Optional[int] = MEMBERS,
+    bracket: Optional[str] = BRACKET,
+    tolerance: Optional[float] = TOLERANCE,
     as_json: bool = opt.JSON,
 ) -> None:
     """Capacity curve: the critical charge W_c(R) at every stand-off and, with --charge, the safe
     stand-off of that charge; with --scale also the reduced-scale model's curve, up-scaled to
-    prototype charges (paper Eq. 8). First-swing energy criterion, all stand-offs at once."""
+    prototype charges (paper Eq. 8). A block: first-swing energy criterion, all stand-offs at once. Any
+    structure (a scenario): W_c(R) with its interval by bisection on 3D ensembles, all stand-offs in parallel,
+    and the pressure-impulse diagram (docs/capacity.md)."""
 
     from ..analysis.planar import planar_system
 
-    block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
+    sc = _scenario_of(ctx, scenario, values)
     R = _standoff_grid(standoffs, charge)
+    if _engine_of(sc, engine) == "3d":
+        if charge is not None or scale is not None:
+            raise BlastscaleInputError(
+                "--charge and --scale apply to a block's planar capacity: the 3D capacity gives W_c(R) and the P-I diagram"
+            )
+        return _capacity_3d(sc, R, ThreeD(members, _bracket_of(bracket), tolerance), plot, as_json)
+    _planar_only(members, bracket, tolerance)
+    if sc is None:
+        block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
+    else:  # a block's scenario: its keys are the flags
+        check_plot_path(plot)
+        block, bl = from_spec(sc.structure), sc.blast
+        pulse_shape, blast_model, extrapolate = bl.pulse_shape, bl.blast_model, bl.extrapolate
+        gravity, restitution = sc.simulation.gravity_m_s2, sc.simulation.restitution
     system = planar_system(block, gravity, restitution)
     kw = dict(pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
     model = None if scale is None else (scale, density_ratio, gravity_ratio)
@@ -382,3 +475,177 @@ def _print_capacity(out: dict, block, R: np.ndarray, run: CapacityRun, charge: O
         console.print(
             f"safe stand-off for {charge:g} kg: {run.safe_standoff_m:.6g} m (it overturns the block closer than that)"
         )
+
+
+# any structure: 3D ensembles -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ThreeD:
+    """The 3D search's flags: ``--members``, ``--bracket`` (LO, HI) [kg], ``--tolerance`` [-] (None: defaults)."""
+
+    members: Optional[int] = None
+    bracket: Optional[tuple] = None
+    tolerance: Optional[float] = None
+
+    def kw(self) -> dict:
+        """The keywords of :func:`~blastscale.sweeps.capacity3d.critical_charges_3d` given."""
+        return {
+            k: v
+            for k, v in (("members", self.members), ("bracket", self.bracket), ("tolerance", self.tolerance))
+            if v is not None
+        }
+
+
+def _scenario_of(ctx: typer.Context, scenario: Optional[Path], values: List[str]):
+    """The scenario of the argument with its ``--set`` values (None: the block of the flags); beside a scenario the
+    block's flags are refused (its keys say them)."""
+    if scenario is None:
+        if values:
+            raise BlastscaleInputError("--set applies to a scenario: give the scenario file (SCENARIO.toml)")
+        return None
+    # by the source's name: typer vendors its own click (typer._click), whose enum is not click's
+    given = [n for n in _BLOCK_FLAGS if getattr(ctx.get_parameter_source(n), "name", "") == "COMMANDLINE"]
+    if given:
+        flag = "--" + given[0].replace("_", "-")
+        raise BlastscaleInputError(
+            f"{flag} describes the block of the flags: with a scenario, set its key instead (--set KEY=VALUE)"
+        )
+    return read_scenario(scenario, values)
+
+
+def _engine_of(sc, engine: Optional[str]) -> str:
+    """ "planar" or "3d": ``--engine``, else planar for a block (of the flags or a scenario's) and 3d otherwise."""
+    if engine is not None and engine not in ("planar", "3d"):
+        raise BlastscaleInputError(f"engine = {engine!r} is not known: valid values are planar, 3d")
+    block = sc is None or is_block(from_spec(sc.structure))
+    if engine == "3d" and sc is None:
+        raise BlastscaleInputError("--engine 3d needs a scenario (SCENARIO.toml): its structure, contact and duration")
+    if engine == "planar" and not block:
+        raise BlastscaleInputError(
+            f"engine = 'planar' applies to a single block: structure.kind = {sc.structure.kind!r} runs in 3D (--engine 3d)"
+        )
+    return engine or ("planar" if block else "3d")
+
+
+def _planar_only(members, bracket, tolerance) -> None:
+    """Refuse the 3D search's flags on the planar path (they would be ignored)."""
+    for flag, v in (("--members", members), ("--bracket", bracket), ("--tolerance", tolerance)):
+        if v is not None:
+            raise BlastscaleInputError(
+                f"{flag} = {v}: applies to the 3D search (a scenario's structure other than a block, or --engine 3d); "
+                "a block's first-swing search needs none"
+            )
+
+
+def _bracket_of(text: Optional[str]) -> Optional[tuple]:
+    """``--bracket LO:HI`` as (LO, HI) [kg]."""
+    if text is None:
+        return None
+    lo, sep, hi = text.partition(":")
+    if not sep:
+        raise BlastscaleInputError(f"bracket = {text!r} is not LO:HI (charges in kg)")
+    return parse_number(lo, "bracket", "LO"), parse_number(hi, "bracket", "HI")
+
+
+def _inputs_3d(sc, three_d: ThreeD) -> dict:
+    """The ``inputs`` record of a 3D capacity: the scenario, its structure and the search's settings."""
+    from ..sweeps.capacity3d import DEFAULT_TOLERANCE, members_of
+
+    sim, bl = sc.simulation, sc.blast
+    return {
+        "scenario": sc.title or "untitled",
+        "structure_kind": sc.structure.kind,
+        "members": members_of(sc, three_d.members),
+        "perturbation": sim.ensemble_perturbation,
+        "tolerance": DEFAULT_TOLERANCE if three_d.tolerance is None else three_d.tolerance,
+        "duration_s": sim.duration_s,
+        "blast_model": bl.blast_model,
+        "burst": bl.burst,
+        "pulse_shape": bl.pulse_shape,
+        "load_method": bl.load,
+    }
+
+
+METHOD_3D = (
+    "3D ensembles: the charge at which the collapse probability (a body fell) crosses 50 %, by bisection in ln W "
+    "with a lognormal fit of the probes (docs/capacity.md)"
+)
+
+
+def _run_3d(sc, R: np.ndarray, three_d: ThreeD, quiet: bool) -> tuple:
+    """The 3D critical charges at the stand-offs ``R`` [m], under one activity line."""
+    from ..sweeps.capacity3d import DEFAULT_TOLERANCE, critical_charges_3d, members_of, planned_probes
+
+    n = len(R)
+    tol = DEFAULT_TOLERANCE if three_d.tolerance is None else three_d.tolerance
+    runs = n * planned_probes(three_d.bracket, tol) * members_of(sc, three_d.members)
+    size = f"{'' if three_d.bracket else 'at least '}{runs} 3D runs of {sc.simulation.duration_s:g} s"
+    with one_line_warnings(), activity(f"3D critical charge at {n} stand-off{'s' * (n > 1)}: {size}", quiet=quiet):
+        return critical_charges_3d(sc, R, **three_d.kw())
+
+
+def _critical_3d(sc, standoff: Optional[float], charge: Optional[float], three_d: ThreeD, plot, quiet: bool) -> None:
+    """``critical`` of any structure in 3D (module docstring)."""
+    if charge is not None:
+        raise BlastscaleInputError(
+            "--charge (the critical stand-off) is a block's planar search: in 3D give --standoff (or the scenario's)"
+        )
+    check_plot_path(plot)
+    R = sc.blast.standoff_m if standoff is None else float(standoff)
+    (res,) = _run_3d(sc, np.array([R]), three_d, quiet)
+    out = {"inputs": _inputs_3d(sc, three_d), "method": METHOD_3D, **res.to_dict()}
+    if res.critical_charge_kg is not None:
+        bl = sc.blast
+        bp = blast_parameters(
+            res.critical_charge_kg, R, model_for_burst(bl.blast_model, bl.burst).name, extrapolate=bl.extrapolate
+        )
+        out["critical_blast"] = _critical_blast(bp)
+    add_figure(out, lambda: _capacity_3d_figure(sc, (res,)), plot)
+    answer(out, as_json=quiet, engine="3d", plot=plot, tables=lambda: _print_3d(sc, (res,)))
+
+
+def _capacity_3d(sc, R: np.ndarray, three_d: ThreeD, plot, quiet: bool) -> None:
+    """``capacity`` of any structure in 3D: W_c(R) with intervals, and the P-I points (module docstring)."""
+    from ..sweeps.capacity3d import pressure_impulse_points
+
+    check_plot_path(plot)
+    res = _run_3d(sc, R, three_d, quiet)
+    out = {
+        "inputs": _inputs_3d(sc, three_d),
+        "blastscale_version": __version__,
+        "method": METHOD_3D,
+        "standoff_m": [float(r) for r in R],
+        "critical_charge_kg": [c.critical_charge_kg for c in res],
+        "interval_kg": [None if c.interval_kg is None else list(c.interval_kg) for c in res],
+        "pressure_impulse": pressure_impulse_points(sc, res),
+        "searches": [c.to_dict() for c in res],
+    }
+    add_figure(out, lambda: _capacity_3d_figure(sc, res), plot)
+    answer(out, as_json=quiet, engine="3d", plot=plot, tables=lambda: _print_3d(sc, res))
+
+
+def _capacity_3d_figure(sc, res):
+    from ..plots.capacity import plot_capacity_3d
+    from ..sweeps.capacity3d import pressure_impulse_points
+
+    return plot_capacity_3d(res, pressure_impulse_points(sc, res)).figure
+
+
+def _print_3d(sc, res) -> None:
+    """The table of the 3D critical charges: per stand-off the charge, its interval and basis, the runs."""
+    t = Table(
+        title=f"3D critical charge: {sc.title or sc.structure.kind} (collapse probability crosses 50 %)",
+        title_justify="left",
+    )
+    for c in ("stand-off R [m]", "critical charge W_c [kg]", "interval [kg]", "interval from", "3D runs"):
+        t.add_column(c, justify="right")
+    for c in res:
+        iv = "-" if c.interval_kg is None else f"{c.interval_kg[0]:.5g} - {c.interval_kg[1]:.5g}"
+        t.add_row(
+            f"{c.standoff_m:.6g}", fmt_value(c.critical_charge_kg, ".6g"), iv, c.interval_basis or "-", str(c.runs)
+        )
+    console.print(t)
+    for c in res:
+        if c.note:
+            console.print(f"R = {c.standoff_m:g} m: {c.note}")

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["plot_capacity"]
+__all__ = ["plot_capacity", "plot_capacity_3d"]
 
 
 def plot_capacity(curve, model=None, *, charge=None, safe_standoff=None, ax=None, label: str = "prototype"):
@@ -53,3 +53,61 @@ def plot_capacity(curve, model=None, *, charge=None, safe_standoff=None, ax=None
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     return ax
+
+
+def _errors(centre, interval) -> np.ndarray:
+    """Asymmetric error bars (2, n) from centres and [lo, hi] intervals (NaN where absent)."""
+    c = np.array([np.nan if x is None else x for x in centre], dtype=float)
+    iv = np.array([[np.nan, np.nan] if x is None else x for x in interval], dtype=float).reshape(-1, 2)
+    return c, np.vstack([c - iv[:, 0], iv[:, 1] - c])
+
+
+def plot_capacity_3d(results, pressure_impulse, *, ax=None):
+    """The 3D capacity of any structure: W_c(R) with its intervals, and the pressure-impulse diagram.
+
+    Parameters
+    ----------
+    results : sequence of Critical3D
+        The critical charge [kg] at each stand-off [m] with its interval
+        (:func:`blastscale.sweeps.capacity3d.critical_charges_3d`).
+    pressure_impulse : dict
+        Their reflected pressures [Pa] and impulses [Pa s], with the intervals' ends
+        (:func:`blastscale.sweeps.capacity3d.pressure_impulse_points`).
+    ax : sequence of two Axes, optional
+        The W_c(R) and the P-I axes (a new figure's when None).
+
+    Returns
+    -------
+    Axes
+        The W_c(R) axes (``.figure`` the figure).
+    """
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots(1, 2, figsize=(10, 4.2), layout="constrained")
+    a1, a2 = ax
+    R = np.array([c.standoff_m for c in results], dtype=float)
+    W, eW = _errors([c.critical_charge_kg for c in results], [c.interval_kg for c in results])
+    a1.errorbar(R, W, yerr=eW, fmt="o-", color="C0", capsize=3, label="critical charge, interval")
+    a1.set_xscale("log")
+    a1.set_yscale("log")
+    a1.set_xlabel("stand-off R [m]")
+    a1.set_ylabel("critical charge W_c [kg TNT]")
+    a1.set_title("Charge at which half the runs collapse", fontsize=10)
+    a1.grid(True, which="both", alpha=0.3)
+    a1.legend(fontsize=8)
+    pi = pressure_impulse
+    i, ei = _errors(pi["reflected_impulse_Pa_s"], pi["interval_impulse_Pa_s"])
+    p, ep = _errors(pi["reflected_pressure_Pa"], pi["interval_pressure_Pa"])
+    a2.errorbar(i, p, xerr=ei, yerr=ep, fmt="s-", color="C3", capsize=3, label="collapse threshold")
+    for r, x, y in zip(R, i, p):
+        if np.isfinite(x):
+            a2.annotate(f"{r:g} m", (x, y), textcoords="offset points", xytext=(5, 4), fontsize=7)
+    a2.set_xscale("log")
+    a2.set_yscale("log")
+    a2.set_xlabel("reflected impulse i_r [Pa s]")
+    a2.set_ylabel("reflected pressure P_r [Pa]")
+    a2.set_title("Pressure-impulse diagram (collapse above and right)", fontsize=10)
+    a2.grid(True, which="both", alpha=0.3)
+    a2.legend(fontsize=8)
+    return a1

@@ -82,12 +82,23 @@ def front_geometry(structure) -> tuple:
         return _assembly_front(structure)
     widths, top = [], 0.0
     for b in structure.bodies:
-        sh = b.shape
-        h = 2.0 * float(sh.half_height)
+        h, body_top = _height_and_top(b)
         f = b.load_face
         widths.append(float(f.area) * abs(float(f.normal[0])) / h)
-        top = max(top, float(b.com[2]) + float(getattr(sh, "centre_z", 0.0)) + float(sh.half_height))
+        top = max(top, body_top)
     return np.array(widths), top
+
+
+def _height_and_top(body) -> tuple:
+    """A body's height [m] and its top above the ground [m]: from its contact box or prism, or (a convex mesh:
+    a column's echinus) from its solid's vertices."""
+    sh = body.shape
+    if hasattr(sh, "half_height"):
+        return 2.0 * float(sh.half_height), float(body.com[2]) + float(getattr(sh, "centre_z", 0.0)) + float(
+            sh.half_height
+        )
+    z = np.asarray(body.vertices, dtype=float)[:, 2]
+    return float(z.max() - z.min()), float(body.com[2]) + float(z.max())
 
 
 def structure_top(structure) -> float:

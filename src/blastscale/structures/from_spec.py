@@ -9,7 +9,7 @@ from typing import Any, Callable
 from .._validate import check_choice
 from .block import RectangularBlock
 from .block_files import read_block_model
-from .column import MultiDrumColumn
+from .column import Capital, MultiDrumColumn
 from .generators import arch, portal, wall
 
 __all__ = ["STRUCTURE_BUILDERS", "from_spec", "is_block"]
@@ -26,6 +26,7 @@ def _build_block(spec) -> RectangularBlock:
 
 
 def _build_column(spec) -> MultiDrumColumn:
+    cap, prof, hs = spec.capital, spec.width_profile_m, spec.drum_heights_m
     return MultiDrumColumn(
         section=spec.section,
         drums=spec.drums,
@@ -34,6 +35,9 @@ def _build_column(spec) -> MultiDrumColumn:
         top_width=spec.top_width_m,
         sides=spec.sides,
         density=spec.density_kg_m3,
+        drum_heights=None if hs is None else tuple(hs),
+        width_profile=None if prof is None else tuple(tuple(p) for p in prof),
+        capital=None if cap is None else Capital(cap.abacus_width_m, cap.abacus_height_m, cap.echinus_height_m),
     )
 
 
