@@ -168,6 +168,7 @@ def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
                 f"{lab.space_radius_m:g} m",
             )
         )
+    out += _window_violations(ev, lab)
     need = ev.instruments.camera_fps_required
     if need > lab.camera_max_fps:
         out.append(
@@ -179,6 +180,46 @@ def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
             )
         )
     return out
+
+
+def _standoff_violations(standoff: float, lab) -> list:
+    """The stand-off [m] outside the lab's window ``standoff_min_m`` - ``standoff_max_m``."""
+    out = []
+    if lab.standoff_min_m is not None and standoff < lab.standoff_min_m:
+        out.append(
+            Violation(
+                "standoff_min_m",
+                standoff,
+                lab.standoff_min_m,
+                f"stand-off {standoff:.4g} m < standoff_min_m = {lab.standoff_min_m:g} m",
+            )
+        )
+    if lab.standoff_max_m is not None and standoff > lab.standoff_max_m:
+        out.append(
+            Violation(
+                "standoff_max_m",
+                standoff,
+                lab.standoff_max_m,
+                f"stand-off {standoff:.4g} m > standoff_max_m = {lab.standoff_max_m:g} m",
+            )
+        )
+    return out
+
+
+def _window_violations(ev: Evaluated, lab) -> list:
+    """The lab's gauges too slow to resolve the pulse (``gauge_rate_max_hz``, :func:`~.instruments.gauge_rate_needed_hz`)."""
+    need = ev.instruments.pressure_sampling_needed_hz
+    if lab.gauge_rate_max_hz is not None and need > lab.gauge_rate_max_hz:
+        return [
+            Violation(
+                "gauge_rate_max_hz",
+                need,
+                lab.gauge_rate_max_hz,
+                f"the gauges must sample at {need:.4g} Hz (10 (1 + d) samples over the {1e6 * ev.design.specimen.positive_duration:.3g} us "
+                f"positive phase) > gauge_rate_max_hz = {lab.gauge_rate_max_hz:g} Hz: the peak would be read low by more than 10 %",
+            )
+        ]
+    return []
 
 
 def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Evaluated:
@@ -201,6 +242,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
         return ev
     spec = d.specimen_structure  # the design's specimen (scaled once, there)
     ev.design, ev.specimen = d, spec
+    ev.violations += _standoff_violations(d.specimen_standoff_m, lab)
     spec_h, spec_m = spec_dims(spec)[0], specimen_mass(d)
     ev.impulsive = d.impulsive if d.impulsive is not None else envelope_impulsive(block, d)
     if not ev.impulsive.impulsive:
@@ -242,7 +284,17 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
                     f"no {ex.name} left beside the initiator < charge_min_kg = {lab.charge_min_kg:g} kg",
                 )
             )
-        r = safety_envelope(lab.initiator_tnt_kg, lab.safety_threshold).radius_m  # the initiator alone
+        w0 = max(lab.initiator_tnt_kg, lab.initiator_tnt_pressure_kg)  # the initiator alone, stricter basis
+        if lab.tnt_max_kg is not None and w0 > lab.tnt_max_kg:
+            ev.violations.append(
+                Violation(
+                    "tnt_max_kg",
+                    w0,
+                    lab.tnt_max_kg,
+                    f"the initiator alone is {w0:.4g} kg TNT > the licence limit tnt_max_kg = {lab.tnt_max_kg:g} kg",
+                )
+            )
+        r = safety_envelope(w0, lab.safety_threshold).radius_m
         if r > lab.space_radius_m:
             ev.violations.append(
                 Violation(
@@ -255,7 +307,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
                 )
             )
         return ev
-    ev.safety = safety_envelope(ev.charge.tnt_equivalent_pressure_kg, lab.safety_threshold)
+    ev.safety = safety_envelope(ev.charge.tnt_equivalent_safety_kg, lab.safety_threshold)
     ev.rise_s, ev.response_s = (to_specimen(t, d.factors, "time") for t in (timing.rise_s, timing.response_s))
     m = d.specimen
     z = float(m.scaled_distance)
@@ -274,6 +326,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
         response_time_s=ev.response_s,
         top_displacement_m=top_corner_displacement(*spec_dims(spec)[1::-1], 0.0),
         camera_max_fps=lab.camera_max_fps,
+        gauge_rate_max_hz=lab.gauge_rate_max_hz,
     )
     ev.violations += _violations(ev, lab, spec_h, spec_m)
     return ev
@@ -317,19 +370,31 @@ def frames_needed(rise_s: float) -> float:
     return FRAMES_PER_RISE / rise_s
 
 
-def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
+def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float, timing=None) -> dict:
     """What every planned design says, whatever its odds: the candidate, the charge in the lab's explosive,
     the stand-off and the charge's height, the specimen, the safety envelope, the debris zone (from the
-    specimen's ``reach_m``) and the instruments (for a top displacement ``top_m``) [SI]."""
+    specimen's ``reach_m``) and the instruments (for a top displacement ``top_m``) [SI]. ``timing`` (a
+    :class:`~.shot.Timing`, the specimen's simulated one: :func:`~.card.specimen_timing`) replaces the screening's
+    for a design that was simulated, so that its camera rate is the test card's (one figure, one function)."""
     c, d, spec, ch, env = ev.candidate, ev.design, ev.specimen, ev.charge, ev.safety
     h, w, dp = spec_dims(spec)
-    ins = instrument_settings(**{**_ins_inputs(ev), "top_displacement_m": top_m, "camera_max_fps": lab.camera_max_fps})
+    times = {} if timing is None else {"rise_time_s": timing.rise_s, "response_time_s": timing.response_s}
+    ins = instrument_settings(
+        **{
+            **_ins_inputs(ev),
+            **times,
+            "top_displacement_m": top_m,
+            "camera_max_fps": lab.camera_max_fps,
+            "gauge_rate_max_hz": lab.gauge_rate_max_hz,
+        }
+    )
     return {
         **c.describe(),
         "explosive": ch.explosive.name,
         "explosive_mass_kg": ch.explosive_mass_kg,
         "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg,
         "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+        "tnt_equivalent_safety_kg": ch.tnt_equivalent_safety_kg,
         "explosive_min_charge_kg": ch.explosive.min_charge_kg,
         "min_charge_source": ch.explosive.min_charge_source,
         "initiator_tnt_kg": ch.initiator_tnt_kg,
