@@ -120,7 +120,7 @@ def gurney_sandwich(sqrt2e: float, metal_kg: float, explosive_kg: float) -> floa
 
 def _ranges(mass: float, density: float, v0: float, angles: np.ndarray, cd: float) -> np.ndarray:
     """Landing distances [m] for each launch angle [rad]: classical RK4 on all angles at once, the step a
-    twentieth of the fastest drag or gravity time scale (at most 20 ms), the landing interpolated linearly."""
+    tenth of the fastest drag or gravity time scale (at most 50 ms), the landing interpolated linearly."""
     k = _AIR * cd * (mass / density) ** (2.0 / 3.0) / (2.0 * mass)
     y = np.zeros((4, angles.size))
     y[2], y[3] = v0 * np.cos(angles), v0 * np.sin(angles)
@@ -133,7 +133,7 @@ def _ranges(mass: float, density: float, v0: float, angles: np.ndarray, cd: floa
     live = np.ones(angles.size, bool)
     for _ in range(200000):
         s = float(np.max(np.hypot(y[2, live], y[3, live])))
-        dt = min(0.02, 0.05 / (k * s + _G / max(s, 1e-9)))
+        dt = min(0.05, 0.1 / (k * s + _G / max(s, 1e-9)))
         k1 = f(y)
         k2 = f(y + 0.5 * dt * k1)
         k3 = f(y + 0.5 * dt * k2)

@@ -18,7 +18,7 @@ from typing import Any
 from ..planning.card import study_test_card
 from ..planning.odds import outcome_odds_text
 
-__all__ = ["card_of", "card_section", "UNITS", "shown"]
+__all__ = ["card_of", "card_section", "UNITS", "shown", "mass_unit"]
 
 #: Display unit -> factor from the card's SI value (m, s, Pa, kg, Hz, rad, ratios).
 UNITS = {
@@ -264,9 +264,21 @@ def _no_card(result) -> str:
     )
 
 
-def _charge_unit(c: dict) -> str:
-    """The unit the charge is weighed in: mg below 1 g, g below 1 kg, else kg."""
-    return "mg" if c["explosive_mass_kg"] < 1e-3 else "g" if c["explosive_mass_kg"] < 1 else "kg"
+def mass_unit(kg) -> str:
+    """The unit a mass [kg] reads in: mg below 1 g, g below 1 kg, else kg (no "5.592e+04 g").
+
+    >>> mass_unit(55.92), mass_unit(7.816e-4), mass_unit(2.2e-4)
+    ('kg', 'g', 'mg')
+    """
+    if kg is None or not math.isfinite(kg) or kg >= 1.0:
+        return "kg"
+    return "g" if kg >= 1e-3 else "mg"
+
+
+def _m(c: dict, key: str) -> str:
+    """A mass of the card in the unit it reads in (:func:`mass_unit`)."""
+    v = _get(c, key)
+    return _n(c, key, mass_unit(v if isinstance(v, (int, float)) else None))
 
 
 def _build_table(c: dict) -> str:
@@ -279,7 +291,7 @@ def _build_table(c: dict) -> str:
                 "height x width x depth",
                 f"{_n(c, 'build/height_m', 'mm')} x {_n(c, 'build/width_m', 'mm')} x {_n(c, 'build/depth_m', 'mm')}",
             ),
-            ("mass", _n(c, "build/mass_kg", "g")),
+            ("mass", _m(c, "build/mass_kg")),
             ("density", _n(c, "build/density_kg_m3", "kg/m3")),
             ("scale lambda", _n(c, "build/scale", "")),
             ("density ratio gamma", _n(c, "build/density_ratio", "")),
@@ -288,7 +300,7 @@ def _build_table(c: dict) -> str:
                     (
                         f"one unit ({_e(b['unit']['name'])}, of {b['unit']['bodies']}), x x y x z",
                         " x ".join(_n(c, f"build/unit/size_{a}_m", "mm") for a in "xyz")
-                        + f", {_n(c, 'build/unit/mass_kg', 'g')}",
+                        + f", {_m(c, 'build/unit/mass_kg')}",
                     )
                 ]
                 if b.get("unit")
@@ -299,15 +311,21 @@ def _build_table(c: dict) -> str:
 
 
 def _shot_table(c: dict) -> str:
-    """The charge to fire: the explosive, its mass and TNT equivalents, where it stands, the weighing precision."""
-    charge_unit = _charge_unit(c)
+    """The charge to fire: the explosive, its mass to weigh, its TNT equivalents (each on its own line), the
+    initiator, where it stands, the weighing precision."""
     return _rows(
         [
             ("explosive", _e(c["explosive"])),
-            ("mass to weigh", _n(c, "explosive_mass_kg", charge_unit)),
-            ("TNT equivalent, impulse (the design)", _n(c, "tnt_equivalent_impulse_kg", charge_unit)),
-            ("TNT equivalent, pressure (safety)", _n(c, "tnt_equivalent_pressure_kg", charge_unit)),
-            ("initiator (TNT equivalent)", _n(c, "initiator_tnt_kg", charge_unit)),
+            ("to weigh", _m(c, "explosive_mass_kg")),
+            ("TNT equivalent, impulse (the design)", _m(c, "tnt_equivalent_impulse_kg")),
+            ("TNT equivalent, pressure", _m(c, "tnt_equivalent_pressure_kg")),
+            ("TNT equivalent, safety (the stricter basis; the licence limit)", _m(c, "tnt_equivalent_safety_kg")),
+            (f"initiator: {c['initiator_used']}", ""),
+            ("initiator, TNT equivalent by impulse", _m(c, "detonator/tnt_impulse_kg")),
+            ("initiator, TNT equivalent by pressure", _m(c, "detonator/tnt_pressure_kg")),
+            (f"detonator placement: {c['detonator']['placement']}", ""),
+            ("detonator inserted to the charge's centre, depth", _n(c, "detonator/insertion_depth_m", "mm")),
+            (c["detonator"]["counted"], ""),
             ("stand-off to the front face", _n(c, "standoff_m", "mm")),
             ("positions (this card, the plan and [fired])", _e(c["layout"]["frame"])),
             ("the specimen's front face at x", _n(c, "layout/specimen_front_x_m", "mm")),
@@ -322,7 +340,7 @@ def _shot_table(c: dict) -> str:
                     ("charge radius (sphere)", _n(c, "layout/charge_radius_m", "mm")),
                 ]
             ),
-            ("weighing precision (1 sd) to keep the first peak", _n(c, "weighing_precision_kg", charge_unit)),
+            ("weighing precision (1 sd) to keep the first peak", _m(c, "weighing_precision_kg")),
         ]
     )
 
@@ -335,6 +353,14 @@ def _safety_table(c: dict) -> str:
             (f"debris zone around the specimen (x {c['debris_margin']:g} the reach)", _n(c, "debris_radius_m", "mm")),
             ("prototype event: 6.9 kPa", _n(c, "prototype/safety_distances_m/6.9 kPa", "m")),
             ("prototype event: debris zone", _n(c, "prototype/debris_radius_m", "m")),
+            (f"fragment hazard distance (keep-out): {c['fragments']['method']}", _n(c, "fragments/distance_m", "m")),
+            *(
+                (f"fragments: {f['source']}, {f['method']}", _n(c, f"fragments/sources/{i}/distance_m", "m"))
+                for i, f in enumerate(c["fragments"]["sources"])
+            ),
+            (f"pad fragments: {c['fragments']['pad_fragments']}", ""),
+            (f"pad: {c['pad']['material']}, thickness ({c['pad']['why']})", _n(c, "pad/thickness_m", "mm")),
+            ("pad plan, along x across", f"{_n(c, 'pad/length_m', 'mm')} x {_n(c, 'pad/width_m', 'mm')}"),
         ]
     )
 
@@ -374,11 +400,22 @@ def _predicted_table(c: dict) -> str:
             ("top corner displacement", _n(c, p + "top_displacement_m", "mm")),
             ("whole response", _n(c, p + "response_time_s", "ms")),
             ("arrival time", _n(c, p + "arrival_time_s", "us")),
-            ("reflected peak pressure", _n(c, p + "reflected_pressure_Pa", "kPa")),
-            ("reflected impulse", _n(c, p + "reflected_impulse_Pa_s", "Pa s")),
+            ("reflected peak pressure, the specimen's face", _n(c, p + "reflected_pressure_Pa", "kPa")),
+            ("reflected impulse, the specimen's face", _n(c, p + "reflected_impulse_Pa_s", "Pa s")),
+            ("reflected gauge: slant distance", _n(c, p + "reflected_gauge_distance_m", "mm")),
+            ("reflected gauge: angle of incidence (deg)", _n(c, p + "reflected_gauge_angle_deg", "")),
+            ("reflected gauge: its peak pressure", _n(c, p + "reflected_gauge_pressure_Pa", "kPa")),
+            ("reflected gauge: its impulse", _n(c, p + "reflected_gauge_impulse_Pa_s", "Pa s")),
+            ("side-on gauge: its peak pressure", _n(c, p + "incident_gauge_pressure_Pa", "kPa")),
+            ("side-on gauge: its impulse", _n(c, p + "incident_gauge_impulse_Pa_s", "Pa s")),
             ("positive duration", _n(c, p + "positive_duration_s", "us")),
             ("outcome agrees with the prototype (planar Monte Carlo)", _e(outcome_odds_text(c["odds"]))),
-            ("outcome agrees with the prototype (3D ensemble)", _e(outcome_odds_text(c["odds_3d"]))),
+            (
+                "outcome agrees with the prototype (3D: "
+                + ("the one comparison" if (c["odds_3d"] or {}).get("members") == 0 else "ensemble")
+                + ")",
+                _e(outcome_odds_text(c["odds_3d"])),
+            ),
             ("first-peak spread (1 sd, relative)", _n(c, "first_peak_spread", "%")),
         ]
     )
@@ -390,7 +427,7 @@ def p_get(card: dict, key: str):
 
 #: Styles of the card (added to the report's).
 CSS = """
-.card table{font-size:.92em}.card .cols{display:flex;flex-wrap:wrap;gap:1.2em}.card h3{margin:.6em 0 .2em}
+.card table{font-size:.92em;max-width:100%}.card th{overflow-wrap:anywhere;font-weight:normal;text-align:left}.card .cols{display:flex;flex-wrap:wrap;gap:1.2em}.card h3{margin:.6em 0 .2em}
 svg.draw{border:1px solid #d0d7de;margin:.3em .6em .3em 0;font-size:10px;background:#fff}
 svg .spec{fill:#c9b79c;stroke:#333}svg .peak{fill:none;stroke:#b02a2a;stroke-dasharray:4 3}
 svg .charge{fill:#d08a00;stroke:#333}svg .gauge{fill:#2b6cb0}svg .floor{stroke:#333;stroke-width:2}

@@ -197,6 +197,12 @@ class LabSpec(BaseModel):
         return initiator_tnt_kg(self.initiator, "pressure") if self._derived_tnt else float(self.initiator_tnt_kg)
 
     @property
+    def initiator_named(self) -> Optional[str]:
+        """The name of the initiator whose figures are used (:data:`~blastscale.blast.initiation.INITIATORS`), or
+        None when only its TNT equivalent is stated (``initiator_tnt_kg`` without ``initiator``)."""
+        return self.initiator if self._derived_tnt or "initiator" in self.model_fields_set else None
+
+    @property
     def initiator_used(self) -> str:
         """The initiator actually used, in words: the named one (its contents), or the stated TNT equivalent."""
         if self._derived_tnt:
