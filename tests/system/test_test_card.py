@@ -14,6 +14,7 @@ import pytest
 
 from blastscale.blast.faces import face_loads
 from blastscale.blast.initiation import INITIATORS
+from blastscale.planning.fragments import gurney_constant, gurney_sandwich
 from blastscale.planning.odds import outcome_odds_text
 from blastscale.report import write_study
 from blastscale.report.card import shown
@@ -195,9 +196,12 @@ def test_the_card_a_range_safety_officer_signs(which, request):
     folder = request.getfixturevalue(which)
     c = _card(folder)
     f = c["fragments"]
-    assert f["distance_m"] == max(x["distance_m"] for x in f["sources"]) > 10.0
-    assert all(x["velocity_m_s"] > 100.0 and x["distance_m"] > 0 for x in f["sources"])
+    assert f["distance_m"] == max(x["distance_m"] for x in f["sources"]) > 0.0
     named = c["initiator"] if which == "column_dir" else None  # the block's initiator is a stated TNT figure
+    bare = next(x for x in f["sources"] if x["source"].startswith("bare charge"))
+    explosive = c["explosive_mass_kg"] + (INITIATORS[named].explosive_mass_kg if named else 0.0)
+    v = gurney_sandwich(gurney_constant(c["explosive"]), 1e-3, explosive)  # a 1 g stone on the charge
+    assert bare["velocity_m_s"] == pytest.approx(v, rel=1e-12) and bare["distance_m"] < v * v / 9.81
     assert any("shell" in x["source"] for x in f["sources"]) == (named is not None)
     assert c["pad"]["thickness_m"] >= max(0.01, 4 * c["pad"]["cut_thickness_m"]) and "steel" in c["pad"]["material"]
     assert c["pad"]["length_m"] > c["standoff_m"] and "none" in f["pad_fragments"]
@@ -208,7 +212,11 @@ def test_the_card_a_range_safety_officer_signs(which, request):
     assert c["camera_fps"] == c["instruments"]["camera_fps"]
     p, L = c["predicted"], c["layout"]
     g = face_loads(
-        c["tnt_equivalent_impulse_kg"], L["charge"], [L["reflected_gauge"]], [[-1.0, 0.0, 0.0]], "kingery-bulmash"
+        c["tnt_equivalent_impulse_kg"],
+        L["charge"],
+        [L["reflected_gauge"]],
+        [[-1.0, 0.0, 0.0]],
+        blast_model="kingery-bulmash",
     )
     assert p["reflected_gauge_pressure_Pa"] == pytest.approx(float(g.pressure[0]), rel=1e-12)
     assert p["reflected_gauge_impulse_Pa_s"] == pytest.approx(float(g.impulse[0]), rel=1e-12)
@@ -229,7 +237,7 @@ _OVERFLOW = """<script>window.addEventListener("load", () => {
   const s = document.getElementById("test_card"), w = window.innerWidth;
   const wide = [...s.querySelectorAll("*")].filter(e => e.getBoundingClientRect().right > w + 1);
   document.body.setAttribute("data-overflow", JSON.stringify({page: document.documentElement.scrollWidth, w: w,
-    wide: wide.map(e => e.tagName + "." + e.className).slice(0, 5)}));
+    wide: wide.map(e => e.tagName + "." + (e.getAttribute("class") || "")).slice(0, 5)}));
 });</script>"""
 
 

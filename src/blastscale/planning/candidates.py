@@ -222,6 +222,61 @@ def _window_violations(ev: Evaluated, lab) -> list:
     return []
 
 
+def _initiator_alone(ev: Evaluated, lab, d, spec_h: float, spec_m: float) -> None:
+    """The violations of a candidate whose whole TNT charge the initiator alone delivers (no explosive to weigh):
+    the initiator's share, the other limits, no explosive above its minimum, the initiator's own licence mass and
+    safety radius (stricter basis)."""
+    ev.violations.append(
+        Violation(
+            "initiator_max_fraction",
+            lab.initiator_tnt_kg / d.specimen_charge_kg,
+            lab.initiator_max_fraction,
+            f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge {d.specimen_charge_kg:.4g} kg TNT",
+        )
+    )
+    ev.violations += _violations(ev, lab, spec_h, spec_m)
+    ex = get_explosive(lab.explosive, lab_explosives(lab))  # no explosive left to weigh: below every minimum
+    ev.violations.append(
+        Violation(
+            "explosive_min_charge_kg",
+            0.0,
+            ex.min_charge_kg,
+            f"no {ex.name} left beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)",
+        )
+    )
+    if lab.charge_min_kg > 0:
+        ev.violations.append(
+            Violation(
+                "charge_min_kg",
+                0.0,
+                lab.charge_min_kg,
+                f"no {ex.name} left beside the initiator < charge_min_kg = {lab.charge_min_kg:g} kg",
+            )
+        )
+    w0 = max(lab.initiator_tnt_kg, lab.initiator_tnt_pressure_kg)  # the initiator alone, stricter basis
+    if lab.tnt_max_kg is not None and w0 > lab.tnt_max_kg:
+        ev.violations.append(
+            Violation(
+                "tnt_max_kg",
+                w0,
+                lab.tnt_max_kg,
+                f"the initiator alone is {w0:.4g} kg TNT > the licence limit tnt_max_kg = {lab.tnt_max_kg:g} kg",
+            )
+        )
+    r = safety_envelope(w0, lab.safety_threshold).radius_m
+    if r > lab.space_radius_m:
+        ev.violations.append(
+            Violation(
+                "space_radius_m",
+                r,
+                lab.space_radius_m,
+                f"safety radius of the initiator "
+                f"alone ({lab.safety_threshold}) {r:.4g} m > space_radius_m = "
+                f"{lab.space_radius_m:g} m",
+            )
+        )
+
+
 def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Evaluated:
     """Design ``c`` and check it against ``lab``.
 
@@ -257,55 +312,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design) -> Eva
     try:
         ev.charge = lab_charge(d.specimen_charge_kg, lab)
     except BlastscaleInputError:
-        ev.violations.append(
-            Violation(
-                "initiator_max_fraction",
-                lab.initiator_tnt_kg / d.specimen_charge_kg,
-                lab.initiator_max_fraction,
-                f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge {d.specimen_charge_kg:.4g} kg TNT",
-            )
-        )
-        ev.violations += _violations(ev, lab, spec_h, spec_m)
-        ex = get_explosive(lab.explosive, lab_explosives(lab))  # no explosive left to weigh: below every minimum
-        ev.violations.append(
-            Violation(
-                "explosive_min_charge_kg",
-                0.0,
-                ex.min_charge_kg,
-                f"no {ex.name} left beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)",
-            )
-        )
-        if lab.charge_min_kg > 0:
-            ev.violations.append(
-                Violation(
-                    "charge_min_kg",
-                    0.0,
-                    lab.charge_min_kg,
-                    f"no {ex.name} left beside the initiator < charge_min_kg = {lab.charge_min_kg:g} kg",
-                )
-            )
-        w0 = max(lab.initiator_tnt_kg, lab.initiator_tnt_pressure_kg)  # the initiator alone, stricter basis
-        if lab.tnt_max_kg is not None and w0 > lab.tnt_max_kg:
-            ev.violations.append(
-                Violation(
-                    "tnt_max_kg",
-                    w0,
-                    lab.tnt_max_kg,
-                    f"the initiator alone is {w0:.4g} kg TNT > the licence limit tnt_max_kg = {lab.tnt_max_kg:g} kg",
-                )
-            )
-        r = safety_envelope(w0, lab.safety_threshold).radius_m
-        if r > lab.space_radius_m:
-            ev.violations.append(
-                Violation(
-                    "space_radius_m",
-                    r,
-                    lab.space_radius_m,
-                    f"safety radius of the initiator "
-                    f"alone ({lab.safety_threshold}) {r:.4g} m > space_radius_m = "
-                    f"{lab.space_radius_m:g} m",
-                )
-            )
+        _initiator_alone(ev, lab, d, spec_h, spec_m)
         return ev
     ev.safety = safety_envelope(ev.charge.tnt_equivalent_safety_kg, lab.safety_threshold)
     ev.rise_s, ev.response_s = (to_specimen(t, d.factors, "time") for t in (timing.rise_s, timing.response_s))

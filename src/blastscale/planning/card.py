@@ -270,13 +270,6 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
     reach = max(r["reach_m"])
     hc, burst, shot_notes = _lab_shot(result)
     layout = _layout(spec, ch, ins, d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst)
-    pad = pad_spec(
-        ch.tnt_equivalent_safety_kg,
-        layout["charge_radius_m"],
-        d.specimen_standoff_m,
-        spec_dims(spec)[1],
-        spec_dims(spec)[2],
-    )
     tol = None if odds is None else odds.charge_tolerance_needed
     v = result.summary()["verdict"]
     return {
@@ -303,9 +296,7 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
         "instruments": ins.to_dict(),
         "predicted": {**_predicted_keys(r, m, inc), **_gauge_keys(d, ch, layout)},
         "layout": layout,
-        "fragments": fragment_hazard(ch, lab.initiator_named or "none", ch.explosive.name, pad),
-        "pad": pad,
-        "detonator": detonator_placement(lab.initiator, lab.initiator_used, burst, layout["charge_radius_m"], ch),
+        **_range_keys(ch, lab, layout, burst, spec, d.specimen_standoff_m),
         "prototype": _prototype_keys(d, r, lab, collapsed_p),
         "odds": None if odds is None else odds.to_dict(),
         "odds_3d": odds3,
@@ -318,6 +309,17 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
             "seed": lab.seed,
         },
         "warnings": _card_notes(ch, lab, env, ins, shot_notes),
+    }
+
+
+def _range_keys(ch, lab, layout: dict, burst: str, spec, standoff: float) -> dict:
+    """The card's ``fragments``, ``pad`` and ``detonator`` (:mod:`.fragments`): what the range safety officer
+    signs beyond the blast."""
+    pad = pad_spec(ch.tnt_equivalent_safety_kg, layout["charge_radius_m"], standoff, *spec_dims(spec)[1:])
+    return {
+        "fragments": fragment_hazard(ch, lab.initiator_named or "none", ch.explosive.name, pad),
+        "pad": pad,
+        "detonator": detonator_placement(lab.initiator, lab.initiator_used, burst, layout["charge_radius_m"], ch),
     }
 
 

@@ -111,8 +111,8 @@ def gurney_sandwich(sqrt2e: float, metal_kg: float, explosive_kg: float) -> floa
     """Velocity [m/s] of a flyer of mass M on one face of a charge C (open-faced sandwich):
     ``sqrt(2E) [((1 + 2 M/C)^3 + 1) / (6 (1 + M/C)) + M/C]^(-1/2)``.
 
-    >>> round(gurney_sandwich(2440.0, 1.0, 1.0), 1)
-    1183.2
+    >>> round(gurney_sandwich(2440.0, 1.0, 1.0), 1)  # M = C: sqrt(2E) / sqrt(28/12 + 1)
+    1336.4
     """
     r = float(metal_kg) / float(explosive_kg)
     return float(sqrt2e) / math.sqrt(((1.0 + 2.0 * r) ** 3 + 1.0) / (6.0 * (1.0 + r)) + r)

@@ -267,7 +267,7 @@ def _no_card(result) -> str:
 def mass_unit(kg) -> str:
     """The unit a mass [kg] reads in: mg below 1 g, g below 1 kg, else kg (no "5.592e+04 g").
 
-    >>> mass_unit(55.92), mass_unit(7.816e-4), mass_unit(2.2e-4)
+    >>> mass_unit(55.92), mass_unit(0.0559), mass_unit(7.816e-4)
     ('kg', 'g', 'mg')
     """
     if kg is None or not math.isfinite(kg) or kg >= 1.0:
