@@ -414,7 +414,9 @@ def _predicted_table(c: dict) -> str:
                 "outcome agrees with the prototype (3D: "
                 + ("the one comparison" if (c["odds_3d"] or {}).get("members") == 0 else "ensemble")
                 + ")",
-                _e(outcome_odds_text(c["odds_3d"])),
+                _e(outcome_odds_text(c["odds_3d"]))
+                if c["odds_3d"]
+                else "not run in 3D (set lab.ensemble_3d for an ensemble)",
             ),
             ("first-peak spread (1 sd, relative)", _n(c, "first_peak_spread", "%")),
         ]
