@@ -164,10 +164,11 @@ def throw_distance(
 
 @dataclass(frozen=True)
 class Fragment:
-    """One source's fragment (SI): what, its mass, density, launch velocity, the distance it lands at most and
-    at what launch angle, and how the velocity was found."""
+    """One source's fragment (SI): what (``source``, short, and ``note``), its mass, density, launch velocity, the
+    distance it lands at most and at what launch angle, and how the velocity was found."""
 
     source: str
+    note: str
     mass_kg: float
     density_kg_m3: float
     velocity_m_s: float
@@ -179,9 +180,9 @@ class Fragment:
         return asdict(self)
 
 
-def _thrown(source, mass, density, v0, method) -> Fragment:
+def _thrown(source, note, mass, density, v0, method) -> Fragment:
     d, a = throw_distance(mass, density, v0)
-    return Fragment(source, mass, density, v0, d, math.degrees(a), method)
+    return Fragment(source, note, mass, density, v0, d, math.degrees(a), method)
 
 
 def pad_spec(
@@ -220,7 +221,8 @@ def fragment_hazard(ch, initiator: str, explosive: str, pad: dict) -> dict:
         v = gurney_cylinder(max(gurney_constant(n) for n, _ in ini.contents), ini.shell_mass_kg, c)
         out.append(
             _thrown(
-                f"{initiator} shell ({ini.shell_material}, whole, {ini.shell_source})",
+                f"{initiator} shell",
+                f"{ini.shell_material}, whole: {ini.shell_source}",
                 ini.shell_mass_kg,
                 ini.shell_density_kg_m3,
                 v,
@@ -232,7 +234,8 @@ def fragment_hazard(ch, initiator: str, explosive: str, pad: dict) -> dict:
         v = gurney_sandwich(gurney_constant(explosive), STRAY_FRAGMENT_KG, c)
         out.append(
             _thrown(
-                "bare charge: a 1 g stone left in contact (the minimum distance of a bare charge)",
+                "bare charge",
+                "a 1 g stone left in contact: the minimum distance of a bare charge (sweep the pad)",
                 STRAY_FRAGMENT_KG,
                 _STONE,
                 v,
@@ -242,9 +245,8 @@ def fragment_hazard(ch, initiator: str, explosive: str, pad: dict) -> dict:
     if pad["thickness_m"] < pad["cut_thickness_m"]:  # a plate the charge cuts: its piece under the charge flies
         r = 0.5 * pad["cut_thickness_m"]
         m = _STEEL * math.pi * r * r * pad["thickness_m"]
-        out.append(
-            _thrown("pad plate", m, _STEEL, gurney_sandwich(gurney_constant(explosive), m, c), "Gurney sandwich")
-        )
+        v = gurney_sandwich(gurney_constant(explosive), m, c)
+        out.append(_thrown("pad plate", "the piece under the charge, cut out", m, _STEEL, v, "Gurney sandwich"))
     far = max((f.distance_m for f in out), default=0.0)
     return {
         "distance_m": far,

@@ -245,7 +245,8 @@ def card_section(result) -> str:
         f'<div class="cols"><div><h3>Build</h3>{build}</div><div><h3>Shot</h3>{shot}</div></div>'
         f"<h3>Layout: plan and elevation (to scale)</h3>{_plan_svg(c)}{_elevation_svg(c)}"
         f'<h3>Safety circles (around the charge) and the debris zone</h3><div class="cols">{_site_svg(c)}'
-        f'{safety}</div><div class="cols"><div><h3>Instruments</h3>{inst}</div><div><h3>Predicted response '
+        f"{safety}</div><h3>Range safety: fragments, pad, detonator</h3>{_range_section(c)}"
+        f'<div class="cols"><div><h3>Instruments</h3>{inst}</div><div><h3>Predicted response '
         f"(specimen units)</h3>{pred}</div></div>" + (f"<ul>{warn}</ul>" if warn else "") + "</div>"
     )
 
@@ -320,12 +321,14 @@ def _shot_table(c: dict) -> str:
             ("TNT equivalent, impulse (the design)", _m(c, "tnt_equivalent_impulse_kg")),
             ("TNT equivalent, pressure", _m(c, "tnt_equivalent_pressure_kg")),
             ("TNT equivalent, safety (the stricter basis; the licence limit)", _m(c, "tnt_equivalent_safety_kg")),
-            (f"initiator: {c['initiator_used']}", ""),
-            ("initiator, TNT equivalent by impulse", _m(c, "detonator/tnt_impulse_kg")),
-            ("initiator, TNT equivalent by pressure", _m(c, "detonator/tnt_pressure_kg")),
-            (f"detonator placement: {c['detonator']['placement']}", ""),
-            ("detonator inserted to the charge's centre, depth", _n(c, "detonator/insertion_depth_m", "mm")),
-            (c["detonator"]["counted"], ""),
+            (
+                f"initiator ({c['detonator']['initiator']}), TNT equivalent by impulse",
+                _m(c, "detonator/tnt_impulse_kg"),
+            ),
+            (
+                f"initiator ({c['detonator']['initiator']}), TNT equivalent by pressure",
+                _m(c, "detonator/tnt_pressure_kg"),
+            ),
             ("stand-off to the front face", _n(c, "standoff_m", "mm")),
             ("positions (this card, the plan and [fired])", _e(c["layout"]["frame"])),
             ("the specimen's front face at x", _n(c, "layout/specimen_front_x_m", "mm")),
@@ -353,16 +356,34 @@ def _safety_table(c: dict) -> str:
             (f"debris zone around the specimen (x {c['debris_margin']:g} the reach)", _n(c, "debris_radius_m", "mm")),
             ("prototype event: 6.9 kPa", _n(c, "prototype/safety_distances_m/6.9 kPa", "m")),
             ("prototype event: debris zone", _n(c, "prototype/debris_radius_m", "m")),
-            (f"fragment hazard distance (keep-out): {c['fragments']['method']}", _n(c, "fragments/distance_m", "m")),
-            *(
-                (f"fragments: {f['source']}, {f['method']}", _n(c, f"fragments/sources/{i}/distance_m", "m"))
-                for i, f in enumerate(c["fragments"]["sources"])
-            ),
-            (f"pad fragments: {c['fragments']['pad_fragments']}", ""),
-            (f"pad: {c['pad']['material']}, thickness ({c['pad']['why']})", _n(c, "pad/thickness_m", "mm")),
-            ("pad plan, along x across", f"{_n(c, 'pad/length_m', 'mm')} x {_n(c, 'pad/width_m', 'mm')}"),
         ]
     )
+
+
+def _range_section(c: dict) -> str:
+    """What the range safety officer signs beyond the blast: the fragment hazard distance and each source's, the pad,
+    the detonator (the numbers tagged; the methods and sources in words below them)."""
+    f, pad, det = c["fragments"], c["pad"], c["detonator"]
+    table = _rows(
+        [
+            ("fragment hazard distance (keep-out)", _n(c, "fragments/distance_m", "m")),
+            *(
+                (f"fragments: {s['source']} (lands at most)", _n(c, f"fragments/sources/{i}/distance_m", "m"))
+                for i, s in enumerate(f["sources"])
+            ),
+            ("pad: steel plate on concrete, thickness", _n(c, "pad/thickness_m", "mm")),
+            ("pad plan, along x across", f"{_n(c, 'pad/length_m', 'mm')} x {_n(c, 'pad/width_m', 'mm')}"),
+            ("detonator inserted to the charge's centre, depth", _n(c, "detonator/insertion_depth_m", "mm")),
+        ]
+    )
+    notes = [
+        f"Fragments: {f['method']}. "
+        + " ".join(f"{s['source']}: {s['note']}; {s['method']}." for s in f["sources"])
+        + f" The pad: {f['pad_fragments']}.",
+        f"Pad: {pad['material']}: {pad['why']}.",
+        f"Detonator: {det['used']}; {det['placement']}. {det['counted'][0].upper()}{det['counted'][1:]}.",
+    ]
+    return table + "".join(f'<p class="muted">{_e(n)}</p>' for n in notes)
 
 
 def _instruments_table(c: dict) -> str:
