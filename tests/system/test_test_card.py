@@ -221,6 +221,13 @@ def test_the_card_a_range_safety_officer_signs(which, request):
     assert p["reflected_gauge_pressure_Pa"] == pytest.approx(float(g.pressure[0]), rel=1e-12)
     assert p["reflected_gauge_impulse_Pa_s"] == pytest.approx(float(g.impulse[0]), rel=1e-12)
     assert p["reflected_gauge_pressure_Pa"] < p["reflected_pressure_Pa"] and 0 < p["reflected_gauge_angle_deg"] < 90
+    # the gauges' ranges: 1.5 x their own predicted peaks (was the face's: 37 x too wide for the block at 1/20)
+    assert c["instruments"]["reflected_gauge_range_Pa"] == pytest.approx(
+        1.5 * p["reflected_gauge_pressure_Pa"], rel=1e-12
+    )
+    assert c["instruments"]["incident_gauge_range_Pa"] == pytest.approx(
+        1.5 * p["incident_gauge_pressure_Pa"], rel=1e-12
+    )
     o3 = c["odds_3d"]
     assert o3["trials"] == 2 and o3["p_outcome_agree_low"] < o3["p_outcome_agree_high"]
     assert c["tnt_equivalent_safety_kg"] == max(c["tnt_equivalent_pressure_kg"], c["tnt_equivalent_impulse_kg"])

@@ -241,18 +241,12 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
     r = _response(result, spec)
     m = d.specimen
     inc = _incident_pressure(m)
-    ins = instrument_settings(
-        reflected_pressure_Pa=m.reflected_pressure,
-        incident_pressure_Pa=inc,
-        positive_duration_s=m.positive_duration,
-        friedlander_decay=m.friedlander_decay,
-        arrival_time_s=m.arrival_time,
-        rise_time_s=r["timing"].rise_s,
-        response_time_s=r["timing"].response_s,
-        top_displacement_m=r["top_m"],
-        camera_max_fps=lab.camera_max_fps,
-        gauge_rate_max_hz=lab.gauge_rate_max_hz,
+    hc, burst, shot_notes = _lab_shot(result)
+    layout = _layout(
+        spec, ch, _instruments(m, r, lab), d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst
     )
+    gauges = _gauge_keys(d, ch, layout)
+    ins = _instruments(m, r, lab, gauges)  # the gauges' ranges on their own predicted peaks
     collapsed_p = _prototype_collapsed(result)
     odds = _odds(result, spec, ch, lab, collapsed_p)
     odds3 = odds_3d
@@ -268,8 +262,6 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
     if odds3 is None and result.response3d is not None and "3d" in (result.summary() or {}):
         odds3 = _one_comparison(result.summary()["3d"])
     reach = max(r["reach_m"])
-    hc, burst, shot_notes = _lab_shot(result)
-    layout = _layout(spec, ch, ins, d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst)
     tol = None if odds is None else odds.charge_tolerance_needed
     v = result.summary()["verdict"]
     return {
@@ -294,7 +286,7 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
         "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
         "build": _build_keys(sc, d, spec),
         "instruments": ins.to_dict(),
-        "predicted": {**_predicted_keys(r, m, inc), **_gauge_keys(d, ch, layout)},
+        "predicted": {**_predicted_keys(r, m, inc), **gauges},
         "layout": layout,
         **_range_keys(ch, lab, layout, burst, spec, d.specimen_standoff_m),
         "prototype": _prototype_keys(d, r, lab, collapsed_p),
@@ -310,6 +302,26 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
         },
         "warnings": _card_notes(ch, lab, env, ins, shot_notes),
     }
+
+
+def _instruments(m, r: dict, lab, gauges: dict | None = None):
+    """The card's :func:`~.instruments.instrument_settings` for the specimen's pulse ``m`` and response ``r``: the
+    gauges' ranges on their own predicted peaks (``gauges``: :func:`_gauge_keys`) where the fits give them, else on
+    the face's reflected peak and the side-on peak at the specimen (the planner's, an upper bound)."""
+    g = gauges or {}
+    refl, side = g.get("reflected_gauge_pressure_Pa", math.nan), g.get("incident_gauge_pressure_Pa", math.nan)
+    return instrument_settings(
+        reflected_pressure_Pa=refl if math.isfinite(refl) else m.reflected_pressure,
+        incident_pressure_Pa=side if math.isfinite(side) else _incident_pressure(m),
+        positive_duration_s=m.positive_duration,
+        friedlander_decay=m.friedlander_decay,
+        arrival_time_s=m.arrival_time,
+        rise_time_s=r["timing"].rise_s,
+        response_time_s=r["timing"].response_s,
+        top_displacement_m=r["top_m"],
+        camera_max_fps=lab.camera_max_fps,
+        gauge_rate_max_hz=lab.gauge_rate_max_hz,
+    )
 
 
 def _range_keys(ch, lab, layout: dict, burst: str, spec, standoff: float) -> dict:
