@@ -44,7 +44,7 @@ def _scenario(tmp_path, lab: str, scale: str = "") -> str:
         ("standoff_tolerance_m = -1.0", "lab.standoff_tolerance_m = -1 is out of range"),
         ("charge_min_kg = 2.0\ncharge_max_kg = 1.0", "charge_min_kg = 2 kg is above charge_max_kg = 1 kg"),
         ('explosive = "dynamite"', "explosive = 'dynamite' is not known: valid values are tnt, c-4"),
-        ('initiator = "no8"', "initiator = 'no8' is not known: valid values are rp-80, none"),
+        ('initiator = "no8"', "initiator = 'no8' is not known: valid values are rp-80, rp-83, no-8, none"),
         ("initiator_max_fraction = 1.5", "lab.initiator_max_fraction = 1.5 is out of range: valid range is (0, 1]"),
         ('materials = ["marble", "unobtainium"]', "lab.materials = 'unobtainium' is not known"),
         ("seed = 1.5", "lab.seed = 1.5 has the wrong type"),

@@ -9,12 +9,16 @@ replaced by the TNT mass that produces the same peak overpressure (``m f_P``) or
   so the mass of the chosen explosive is the one whose *impulse* TNT equivalent equals the design's
   TNT charge, ``m = (W_TNT - W_init) / f_I``;
 * **pressure** for the safety distances: the overpressure thresholds are peak pressures, so the
-  charge that sets them is ``W_P = m f_P + W_init``.
+  charge that sets them is ``W_P = m f_P + W_init,P`` (the initiator by pressure; below).
 
-The initiator (detonator, exploding bridgewire, primer) adds its own TNT-equivalent mass ``W_init``
-(the same for both bases: a detonator's equivalence is known to no better than its nominal TNT
-figure); a design warns when it exceeds :data:`INITIATOR_WARNING_FRACTION` of the charge, because
-the initiator's own blast (and its casing's fragments) then shape the load and its uncertainty.
+The initiator (detonator, exploding bridgewire, primer) adds its own TNT-equivalent mass, by impulse
+``W_init`` (the design's) and by pressure ``W_init,P`` (:func:`initiator_tnt_kg` of a named one: its
+contents times their factors; a stated ``initiator_tnt_kg`` is both). Safety takes the **stricter
+basis**: ``W_P = m f_P + max(W_init,P, W_init)`` and the safety mass
+``W_S = max(W_P, W)`` (:attr:`ChargeEquivalence.tnt_equivalent_safety_kg`): the safety distances and
+the licence limit never rest on the smaller equivalent. A design warns when the initiator exceeds
+:data:`INITIATOR_WARNING_FRACTION` of the charge, because the initiator's own blast (and its casing's
+fragments) then shape the load and its uncertainty.
 
 The library of explosives (:data:`EXPLOSIVES`), its tables and the sources of every factor (UFC
 3-340-02 (2008) Table 2-1, IATG 01.80, Meyer, Koehler & Homburg 2007, Cooper 1996, Bogosian et al. 2016):
@@ -32,7 +36,7 @@ import re
 from dataclasses import dataclass
 from typing import Mapping, Optional
 
-from .._validate import BlastscaleInputError
+from .._validate import BlastscaleInputError, check_choice
 from .explosive_library import EXPLOSIVES, Explosive
 from .initiation import INITIATORS
 
@@ -44,6 +48,7 @@ __all__ = [
     "get_explosive",
     "charge_equivalence",
     "initiator_tnt_kg",
+    "BASES",
 ]
 
 #: Above this fraction of the charge's TNT equivalent (impulse basis) the initiator gets a warning.
@@ -93,10 +98,23 @@ def canonical_name(name: str, custom: Optional[Mapping[str, object]] = None) -> 
     return ALIASES.get(key)
 
 
-def initiator_tnt_kg(name: str) -> float:
-    """TNT-equivalent mass [kg] (impulse basis) of the initiator ``name`` of
-    :data:`~.initiation.INITIATORS`: the sum of its contents' masses times their impulse factors."""
-    return float(sum(m * EXPLOSIVES[ex].impulse_factor for ex, m in INITIATORS[name].contents))
+#: The bases of a TNT equivalence: by peak pressure, by impulse, and the stricter (larger) of the two.
+BASES = ("pressure", "impulse", "strict")
+
+
+def initiator_tnt_kg(name: str, basis: str = "impulse") -> float:
+    """TNT-equivalent mass [kg] of the initiator ``name`` of :data:`~.initiation.INITIATORS`: the sum of
+    its contents' masses times their factors for ``basis`` (``"impulse"``, ``"pressure"``, or
+    ``"strict"``: the larger of the two, what safety uses).
+
+    >>> round(initiator_tnt_kg("rp-80") * 1e6, 2), round(initiator_tnt_kg("rp-80", "pressure") * 1e6, 2)
+    (222.87, 241.82)
+    """
+    check_choice("basis", basis, BASES)
+    if basis == "strict":
+        return max(initiator_tnt_kg(name, "pressure"), initiator_tnt_kg(name, "impulse"))
+    attr = "impulse_factor" if basis == "impulse" else "pressure_factor"
+    return float(sum(m * getattr(EXPLOSIVES[ex], attr) for ex, m in INITIATORS[name].contents))
 
 
 def get_explosive(name: str, custom: Optional[Mapping[str, Explosive]] = None) -> Explosive:
@@ -126,10 +144,13 @@ class ChargeEquivalence:
     tnt_equivalent_impulse_kg : float
         TNT equivalent of explosive + initiator for impulse [kg] (= the design's TNT charge).
     tnt_equivalent_pressure_kg : float
-        TNT equivalent of explosive + initiator for peak pressure [kg] (sets the safety distances).
+        TNT equivalent of explosive + initiator for peak pressure [kg], the initiator on its stricter
+        basis.
     initiator_fraction : float
         Initiator / total TNT equivalent (impulse basis) [-].
     warnings : tuple of str
+    initiator_tnt_pressure_kg : float, optional
+        The initiator's TNT-equivalent mass by pressure [kg] (None: as ``initiator_tnt_kg``).
     """
 
     explosive: Explosive
@@ -139,6 +160,13 @@ class ChargeEquivalence:
     tnt_equivalent_pressure_kg: float
     initiator_fraction: float
     warnings: tuple = ()
+    initiator_tnt_pressure_kg: Optional[float] = None
+
+    @property
+    def tnt_equivalent_safety_kg(self) -> float:
+        """The charge's TNT equivalent on the stricter basis [kg], initiator included: the larger of the
+        pressure and impulse equivalents (the safety distances, the licence limit ``tnt_max_kg``)."""
+        return max(self.tnt_equivalent_pressure_kg, self.tnt_equivalent_impulse_kg)
 
     def to_dict(self) -> dict:
         return {
@@ -147,6 +175,8 @@ class ChargeEquivalence:
             "initiator_tnt_kg": self.initiator_tnt_kg,
             "tnt_equivalent_impulse_kg": self.tnt_equivalent_impulse_kg,
             "tnt_equivalent_pressure_kg": self.tnt_equivalent_pressure_kg,
+            "tnt_equivalent_safety_kg": self.tnt_equivalent_safety_kg,
+            "initiator_tnt_pressure_kg": self._initiator_p,
             "pressure_factor": self.explosive.pressure_factor,
             "impulse_factor": self.explosive.impulse_factor,
             "initiator_fraction": self.initiator_fraction,
@@ -157,16 +187,21 @@ class ChargeEquivalence:
             "warnings": list(self.warnings),
         }
 
+    @property
+    def _initiator_p(self) -> float:
+        return self.initiator_tnt_kg if self.initiator_tnt_pressure_kg is None else self.initiator_tnt_pressure_kg
+
 
 def charge_equivalence(
     tnt_kg: float,
     explosive: "str | Explosive" = "tnt",
     initiator_tnt_kg: float = 0.0,
     custom: Optional[Mapping[str, Explosive]] = None,
+    initiator_tnt_pressure_kg: Optional[float] = None,
 ) -> ChargeEquivalence:
     """The mass of ``explosive`` that, with the initiator, delivers the impulse of ``tnt_kg`` of TNT.
 
-    .. math:: m = \\frac{W - W_{init}}{f_I}, \\qquad W_P = m f_P + W_{init}
+    .. math:: m = \\frac{W - W_{init}}{f_I}, \\qquad W_P = m f_P + \\max(W_{init,P}, W_{init})
 
     (UFC 3-340-02 Table 2-1: ``f_I`` and ``f_P`` the explosive's impulse and pressure factors).
 
@@ -180,6 +215,9 @@ def charge_equivalence(
         The initiator's TNT-equivalent mass W_init [kg], >= 0 and < W.
     custom : mapping, optional
         User-defined explosives by name.
+    initiator_tnt_pressure_kg : float, optional
+        The initiator's TNT-equivalent mass by pressure W_init,P [kg] (default: ``initiator_tnt_kg``);
+        the pressure equivalent takes the larger of the two (the stricter basis).
 
     Returns
     -------
@@ -217,4 +255,11 @@ def charge_equivalence(
             f"the initiator is {100 * frac:.3g} % of the charge (TNT equivalent, above "
             f"{100 * INITIATOR_WARNING_FRACTION:g} %): its own blast and its uncertainty shape the load"
         )
-    return ChargeEquivalence(ex, m, w0, W, m * ex.pressure_factor + w0, frac, tuple(notes))
+    w0p = w0 if initiator_tnt_pressure_kg is None else float(initiator_tnt_pressure_kg)
+    if not (math.isfinite(w0p) and w0p >= 0):
+        raise BlastscaleInputError(
+            f"initiator_tnt_pressure_kg = {initiator_tnt_pressure_kg!r} is out of range: must be >= 0 kg"
+        )
+    return ChargeEquivalence(
+        ex, m, w0, W, m * ex.pressure_factor + max(w0p, w0), frac, tuple(notes), None if w0p == w0 else w0p
+    )

@@ -32,6 +32,22 @@ References
        tetryl 5-7 mm; its primary source was not checked here.
 .. [4] Teledyne RISI, *RP-80 EBW detonator* data sheet: initiating pellet 80 mg PETN, output pellet
        123 mg RDX, aluminium cup.
+.. [5] Teledyne RISI, *RP-83 EBW detonator* data sheet: initiating pellet 80 mg PETN, output pellet
+       1031 mg RDX, aluminium cup (the figures as quoted in issue #37; the sheet itself was not at hand
+       here: check the lot's sheet).
+.. [6] Dyno Nobel, *NONEL user's manual*, p. 8: a detonator of strength No. 8 (Prior test) holds
+       "approx. 1 g" of explosive in all (a PETN initiation element and the base charge) in an aluminium
+       shell; Meyer, Koehler & Homburg (2007), *Explosives*, 6th ed., "Cap sensitivity": the European
+       test detonator's secondary charge is 0.6 g PETN. blastscale's ``"no-8"`` is 0.8 g PETN base
+       charge and 0.2 g lead azide primer (1.0 g in all, the upper end of both figures: a safety
+       figure errs large); a lab that knows its detonator's contents states ``initiator_tnt_kg``.
+
+**TNT equivalents of an initiator.** Each content's mass times its factor for peak pressure (``f_P``)
+and for impulse (``f_I``), summed (:func:`blastscale.blast.explosives.initiator_tnt_kg`): the RP-80
+is 80 x 1.27 + 123 x 1.14 = 241.8 mg TNT by pressure and 80 x 1.11 + 123 x 1.09 = 222.9 mg by
+impulse. The design (the impulse the specimen must receive) uses the impulse basis; everything about
+safety (the safety distances, the licence limit ``[lab] tnt_max_kg``) uses the *stricter* (larger)
+of the two, so that no basis under-states the hazard.
 """
 
 from __future__ import annotations
@@ -120,20 +136,63 @@ def min_reliable_charge(critical_diameter_m: float, density_kg_m3: float) -> flo
 
 @dataclass(frozen=True)
 class Initiator:
-    """A detonator: its explosive contents ``((explosive name, mass [kg]), ...)`` and its source."""
+    """A detonator: its explosive contents ``((explosive name, mass [kg]), ...)``, its source, and its
+    shell (the metal cup whose fragments the test card's fragment distance throws: material, density
+    [kg/m^3] and mass [kg]; nominal, to be checked by weighing one of the lot)."""
 
     name: str
     contents: tuple
     source: str
+    shell_material: str = ""
+    shell_density_kg_m3: float = 0.0
+    shell_mass_kg: float = 0.0
+    shell_source: str = ""
+    description: str = ""
+
+    @property
+    def explosive_mass_kg(self) -> float:
+        """The explosive in the initiator, all contents together [kg]."""
+        return float(sum(m for _, m in self.contents))
 
 
-#: Real initiators by name (their explosive contents from the makers' data sheets).
+_ALUMINIUM = 2700.0  # kg/m^3
+_SHELL_NOMINAL = "nominal, not from the data sheet: weigh one shell of the lot (the fragment distance grows with it)"
+
+#: Real initiators by name (their explosive contents from the makers' data sheets; module docstring).
 INITIATORS: dict[str, Initiator] = {
     "rp-80": Initiator(
         "rp-80",
         (("petn", 80e-6), ("rdx", 123e-6)),
         "Teledyne RISI RP-80 exploding-bridgewire detonator data sheet: 80 mg PETN initiating pellet, "
         "123 mg RDX output pellet",
+        "aluminium",
+        _ALUMINIUM,
+        0.5e-3,
+        _SHELL_NOMINAL,
+        "Teledyne RISI RP-80 EBW detonator (80 mg PETN + 123 mg RDX)",
+    ),
+    "rp-83": Initiator(
+        "rp-83",
+        (("petn", 80e-6), ("rdx", 1031e-6)),
+        "Teledyne RISI RP-83 exploding-bridgewire detonator data sheet: 80 mg PETN initiating pellet, "
+        "1031 mg RDX output pellet (as quoted in issue #37; check the lot's sheet)",
+        "aluminium",
+        _ALUMINIUM,
+        1.0e-3,
+        _SHELL_NOMINAL,
+        "Teledyne RISI RP-83 EBW detonator (80 mg PETN + 1031 mg RDX)",
+    ),
+    "no-8": Initiator(
+        "no-8",
+        (("petn", 0.8e-3), ("lead-azide", 0.2e-3)),
+        "a commercial No. 8 detonator: about 1 g of explosive in all (Dyno Nobel NONEL user's manual p. 8); "
+        "taken as 0.8 g PETN base charge and 0.2 g lead azide primer (Meyer, Koehler & Homburg 2007: "
+        "the European test detonator holds 0.6 g PETN); state initiator_tnt_kg for your own",
+        "aluminium",
+        _ALUMINIUM,
+        1.5e-3,
+        _SHELL_NOMINAL,
+        "a commercial No. 8 detonator (0.8 g PETN base charge + 0.2 g lead azide)",
     ),
     "none": Initiator("none", (), "no initiator (a laser or the charge's own bridgewire): state it"),
 }

@@ -180,6 +180,12 @@ class SourceShot:
     initiator_fraction: float = 0.0
 
     @property
+    def tnt_equivalent_safety_kg(self) -> float:
+        """The shot's TNT equivalent on the stricter basis [kg]: the larger of the pressure and impulse
+        equivalents (the safety distances, the licence limit ``tnt_max_kg``), as for a chemical charge."""
+        return max(self.tnt_equivalent_pressure_kg, self.tnt_equivalent_impulse_kg)
+
+    @property
     def setting(self) -> str:
         """The line the lab reads: ``"charge the bank to 1.85 kJ"`` (``"set stored_energy to ..."`` for another
         kind)."""

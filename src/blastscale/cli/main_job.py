@@ -134,7 +134,8 @@ def _print_result(result) -> None:
                 ("Test card:", "bold"),
                 f" {format_charge(card['explosive_mass_kg'])} of {card['explosive']} at "
                 f"{card['standoff_m'] * 1e3:.4g} mm; safety radius ({card['safety_threshold']}) "
-                f"{card['safety_radius_m']:.3g} m, debris zone {card['debris_radius_m'] * 1e3:.4g} mm; camera "
+                f"{card['safety_radius_m']:.3g} m, fragments {card['fragments']['distance_m']:.3g} m, debris zone "
+                f"{card['debris_radius_m'] * 1e3:.4g} mm; camera "
                 f"{card['camera_fps']:g} frames/s, gauges sampled at {card['pressure_sampling_hz']:g} Hz"
                 + ("" if p == "-" else f"; outcome agrees with the prototype's: {p}")
                 + " (report.html: the printable card)",

@@ -256,7 +256,7 @@ def as_fired(
         else float(tnt_equivalence(w_i, fs.charge_kg, lab.initiator_tnt_kg if lab else 0.0)),
         "tnt_equivalence_pressure": None
         if w_p is None or fs.charge_kg is None
-        else float(tnt_equivalence(w_p, fs.charge_kg, lab.initiator_tnt_kg if lab else 0.0)),
+        else float(tnt_equivalence(w_p, fs.charge_kg, lab.initiator_tnt_pressure_kg if lab else 0.0)),
         "explosive_impulse_factor": _explosive_factor(lab, "impulse"),
         "explosive_pressure_factor": _explosive_factor(lab, "pressure"),
         "refit_charge_tnt_kg": w_refit,

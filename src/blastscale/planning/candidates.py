@@ -34,7 +34,15 @@ from ..structures.materials import get_material
 from .build import spec_dims, specimen_density, specimen_mass
 from .debris import planar_reach
 from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
-from .shot import candidate_materials, fireability, lab_charge, lab_explosives, lab_source, safety_envelope
+from .shot import (
+    candidate_materials,
+    fireability,
+    lab_charge,
+    lab_explosives,
+    lab_source,
+    licence_limit,
+    safety_envelope,
+)
 
 __all__ = [
     "LAMBDA_DENOMINATORS",
@@ -152,7 +160,8 @@ def _violations(ev: Evaluated, lab, spec_h: float, spec_m: float) -> list:
     if ev.charge is None:
         return out
     if isinstance(ev.charge, SourceShot):  # a calibrated source: its limits in place of the explosive's
-        return out + [Violation(*v) for v in ev.charge.violations] + _space_and_camera(ev, lab)
+        limits = [*ev.charge.violations, *licence_limit(ev.charge, lab)]
+        return out + [Violation(*v) for v in limits] + _space_and_camera(ev, lab)
     out += [Violation(*f) for f in fireability(ev.charge, lab)]
     m = ev.charge.explosive_mass_kg
     if m < lab.charge_min_kg:
@@ -189,6 +198,7 @@ def _space_and_camera(ev: Evaluated, lab) -> list:
                 f"{lab.space_radius_m:g} m",
             )
         )
+    out += _window_violations(ev, lab)
     need = ev.instruments.camera_fps_required
     if need > lab.camera_max_fps:
         out.append(
@@ -241,6 +251,101 @@ def _material_violations(ev: Evaluated, factors, prototype, block) -> list:
     return out
 
 
+def _standoff_violations(standoff: float, lab) -> list:
+    """The stand-off [m] outside the lab's window ``standoff_min_m`` - ``standoff_max_m``."""
+    out = []
+    if lab.standoff_min_m is not None and standoff < lab.standoff_min_m:
+        out.append(
+            Violation(
+                "standoff_min_m",
+                standoff,
+                lab.standoff_min_m,
+                f"stand-off {standoff:.4g} m < standoff_min_m = {lab.standoff_min_m:g} m",
+            )
+        )
+    if lab.standoff_max_m is not None and standoff > lab.standoff_max_m:
+        out.append(
+            Violation(
+                "standoff_max_m",
+                standoff,
+                lab.standoff_max_m,
+                f"stand-off {standoff:.4g} m > standoff_max_m = {lab.standoff_max_m:g} m",
+            )
+        )
+    return out
+
+
+def _window_violations(ev: Evaluated, lab) -> list:
+    """The lab's gauges too slow to resolve the pulse (``gauge_rate_max_hz``, :func:`~.instruments.gauge_rate_needed_hz`)."""
+    need = ev.instruments.pressure_sampling_needed_hz
+    if lab.gauge_rate_max_hz is not None and need > lab.gauge_rate_max_hz:
+        return [
+            Violation(
+                "gauge_rate_max_hz",
+                need,
+                lab.gauge_rate_max_hz,
+                f"the gauges must sample at {need:.4g} Hz (10 (1 + d) samples over the {1e6 * ev.design.specimen.positive_duration:.3g} us "
+                f"positive phase) > gauge_rate_max_hz = {lab.gauge_rate_max_hz:g} Hz: the peak would be read low by more than 10 %",
+            )
+        ]
+    return []
+
+
+def _initiator_alone(ev: Evaluated, lab, d, spec_h: float, spec_m: float) -> None:
+    """The violations of a candidate whose whole TNT charge the initiator alone delivers (no explosive to weigh):
+    the initiator's share, the other limits, no explosive above its minimum, the initiator's own licence mass and
+    safety radius (stricter basis)."""
+    ev.violations.append(
+        Violation(
+            "initiator_max_fraction",
+            lab.initiator_tnt_kg / d.specimen_charge_kg,
+            lab.initiator_max_fraction,
+            f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge {d.specimen_charge_kg:.4g} kg TNT",
+        )
+    )
+    ev.violations += _violations(ev, lab, spec_h, spec_m)
+    ex = get_explosive(lab.explosive, lab_explosives(lab))  # no explosive left to weigh: below every minimum
+    ev.violations.append(
+        Violation(
+            "explosive_min_charge_kg",
+            0.0,
+            ex.min_charge_kg,
+            f"no {ex.name} left beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)",
+        )
+    )
+    if lab.charge_min_kg > 0:
+        ev.violations.append(
+            Violation(
+                "charge_min_kg",
+                0.0,
+                lab.charge_min_kg,
+                f"no {ex.name} left beside the initiator < charge_min_kg = {lab.charge_min_kg:g} kg",
+            )
+        )
+    w0 = max(lab.initiator_tnt_kg, lab.initiator_tnt_pressure_kg)  # the initiator alone, stricter basis
+    if lab.tnt_max_kg is not None and w0 > lab.tnt_max_kg:
+        ev.violations.append(
+            Violation(
+                "tnt_max_kg",
+                w0,
+                lab.tnt_max_kg,
+                f"the initiator alone is {w0:.4g} kg TNT > the licence limit tnt_max_kg = {lab.tnt_max_kg:g} kg",
+            )
+        )
+    r = safety_envelope(w0, lab.safety_threshold).radius_m
+    if r > lab.space_radius_m:
+        ev.violations.append(
+            Violation(
+                "space_radius_m",
+                r,
+                lab.space_radius_m,
+                f"safety radius of the initiator "
+                f"alone ({lab.safety_threshold}) {r:.4g} m > space_radius_m = "
+                f"{lab.space_radius_m:g} m",
+            )
+        )
+
+
 def evaluate(c: Candidate, *, lab, block, timing, incident_model, design, prototype=None, planar=False) -> Evaluated:
     """Design ``c`` and check it against ``lab``.
 
@@ -263,6 +368,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design, protot
         return ev
     spec = d.specimen_structure  # the design's specimen (scaled once, there)
     ev.design, ev.specimen = d, spec
+    ev.violations += _standoff_violations(d.specimen_standoff_m, lab)
     spec_h, spec_m = spec_dims(spec)[0], specimen_mass(d)
     if prototype is not None:
         ev.violations += _material_violations(ev, d.factors, prototype, block if planar else None)
@@ -280,47 +386,9 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design, protot
     try:
         ev.charge = _shot_of(d, lab, source)
     except BlastscaleInputError:
-        ev.violations.append(
-            Violation(
-                "initiator_max_fraction",
-                lab.initiator_tnt_kg / d.specimen_charge_kg,
-                lab.initiator_max_fraction,
-                f"initiator_tnt_kg = {lab.initiator_tnt_kg:g} kg >= the whole charge {d.specimen_charge_kg:.4g} kg TNT",
-            )
-        )
-        ev.violations += _violations(ev, lab, spec_h, spec_m)
-        ex = get_explosive(lab.explosive, lab_explosives(lab))  # no explosive left to weigh: below every minimum
-        ev.violations.append(
-            Violation(
-                "explosive_min_charge_kg",
-                0.0,
-                ex.min_charge_kg,
-                f"no {ex.name} left beside the initiator (its minimum reliable charge: {ex.min_charge_kg:.4g} kg)",
-            )
-        )
-        if lab.charge_min_kg > 0:
-            ev.violations.append(
-                Violation(
-                    "charge_min_kg",
-                    0.0,
-                    lab.charge_min_kg,
-                    f"no {ex.name} left beside the initiator < charge_min_kg = {lab.charge_min_kg:g} kg",
-                )
-            )
-        r = safety_envelope(lab.initiator_tnt_kg, lab.safety_threshold).radius_m  # the initiator alone
-        if r > lab.space_radius_m:
-            ev.violations.append(
-                Violation(
-                    "space_radius_m",
-                    r,
-                    lab.space_radius_m,
-                    f"safety radius of the initiator "
-                    f"alone ({lab.safety_threshold}) {r:.4g} m > space_radius_m = "
-                    f"{lab.space_radius_m:g} m",
-                )
-            )
+        _initiator_alone(ev, lab, d, spec_h, spec_m)
         return ev
-    ev.safety = safety_envelope(ev.charge.tnt_equivalent_pressure_kg, lab.safety_threshold)
+    ev.safety = safety_envelope(ev.charge.tnt_equivalent_safety_kg, lab.safety_threshold)
     ev.rise_s, ev.response_s = (to_specimen(t, d.factors, "time") for t in (timing.rise_s, timing.response_s))
     m = d.specimen
     z = float(m.scaled_distance)
@@ -339,6 +407,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design, protot
         response_time_s=ev.response_s,
         top_displacement_m=top_corner_displacement(*spec_dims(spec)[1::-1], 0.0),
         camera_max_fps=lab.camera_max_fps,
+        gauge_rate_max_hz=lab.gauge_rate_max_hz,
     )
     ev.violations += _violations(ev, lab, spec_h, spec_m)
     return ev
@@ -392,13 +461,24 @@ def frames_needed(rise_s: float) -> float:
     return FRAMES_PER_RISE / rise_s
 
 
-def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
+def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float, timing=None) -> dict:
     """What every planned design says, whatever its odds: the candidate, the charge in the lab's explosive,
     the stand-off and the charge's height, the specimen, the safety envelope, the debris zone (from the
-    specimen's ``reach_m``) and the instruments (for a top displacement ``top_m``) [SI]."""
+    specimen's ``reach_m``) and the instruments (for a top displacement ``top_m``) [SI]. ``timing`` (a
+    :class:`~.shot.Timing`, the specimen's simulated one: :func:`~.card.specimen_timing`) replaces the screening's
+    for a design that was simulated, so that its camera rate is the test card's (one figure, one function)."""
     c, d, spec, ch, env = ev.candidate, ev.design, ev.specimen, ev.charge, ev.safety
     h, w, dp = spec_dims(spec)
-    ins = instrument_settings(**{**_ins_inputs(ev), "top_displacement_m": top_m, "camera_max_fps": lab.camera_max_fps})
+    times = {} if timing is None else {"rise_time_s": timing.rise_s, "response_time_s": timing.response_s}
+    ins = instrument_settings(
+        **{
+            **_ins_inputs(ev),
+            **times,
+            "top_displacement_m": top_m,
+            "camera_max_fps": lab.camera_max_fps,
+            "gauge_rate_max_hz": lab.gauge_rate_max_hz,
+        }
+    )
     source = isinstance(ch, SourceShot)
     return {
         **c.describe(),
@@ -407,6 +487,7 @@ def shot_dict(ev: Evaluated, lab, top_m: float, reach_m: float) -> dict:
         "source": ch.to_dict() if source else None,
         "tnt_equivalent_kg": ch.tnt_equivalent_impulse_kg,
         "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+        "tnt_equivalent_safety_kg": ch.tnt_equivalent_safety_kg,
         "explosive_min_charge_kg": None if source else ch.explosive.min_charge_kg,
         "min_charge_source": None if source else ch.explosive.min_charge_source,
         "initiator_tnt_kg": ch.initiator_tnt_kg,

@@ -16,12 +16,16 @@ import warnings
 
 import numpy as np
 
+from .._validate import BlastscaleInputError
+from ..analysis.intervals import wilson_interval
+from ..blast.faces import face_loads
 from ..blast.parameters import get_blast_model
 from ..similitude.effects import FRAME, charge_position
 from ..similitude.factors import to_specimen
 from ..structures.from_spec import is_block
 from .build import spec_dims, specimen_unit
 from .debris import planar_reach, reach_3d
+from .fragments import detonator_placement, fragment_hazard, pad_spec
 from .instruments import instrument_settings, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .shot import (
@@ -236,21 +240,16 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
     lab = lab or sc.lab or DEFAULT_LAB
     spec = result.specimen_structure
     ch = card_charge(d.specimen_charge_kg, lab)
-    env = safety_envelope(ch.tnt_equivalent_pressure_kg, lab.safety_threshold)
+    env = safety_envelope(ch.tnt_equivalent_safety_kg, lab.safety_threshold)
     r = _response(result, spec)
     m = d.specimen
     inc = _incident_pressure(m)
-    ins = instrument_settings(
-        reflected_pressure_Pa=m.reflected_pressure,
-        incident_pressure_Pa=inc,
-        positive_duration_s=m.positive_duration,
-        friedlander_decay=m.friedlander_decay,
-        arrival_time_s=m.arrival_time,
-        rise_time_s=r["timing"].rise_s,
-        response_time_s=r["timing"].response_s,
-        top_displacement_m=r["top_m"],
-        camera_max_fps=lab.camera_max_fps,
+    hc, burst, shot_notes = _lab_shot(result)
+    layout = _layout(
+        spec, ch, _instruments(m, r, lab), d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst
     )
+    gauges = _gauge_keys(d, ch, layout)
+    ins = _instruments(m, r, lab, gauges)  # the gauges' ranges on their own predicted peaks
     collapsed_p = _prototype_collapsed(result)
     odds = _odds(result, spec, ch, lab, collapsed_p)
     odds3 = odds_3d
@@ -263,8 +262,9 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
             members=lab.ensemble_3d,
             seed=lab.seed,
         )
+    if odds3 is None and result.response3d is not None and "3d" in (result.summary() or {}):
+        odds3 = _one_comparison(result.summary()["3d"])
     reach = max(r["reach_m"])
-    hc, burst, shot_notes = _lab_shot(result)
     tol = None if odds is None else odds.charge_tolerance_needed
     v = result.summary()["verdict"]
     rig = specimen_rigidity(sc, d, lab)
@@ -291,8 +291,9 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
         "weighing_precision_kg": None if tol is None else tol * ch.explosive_mass_kg,
         "build": {**_build_keys(sc, d, spec), "friction": specimen_friction_card(sc, lab), "rigidity": rig.to_dict()},
         "instruments": ins.to_dict(),
-        "predicted": _predicted_keys(r, m, inc),
-        "layout": _layout(spec, ch, ins, d.specimen_standoff_m, ch.explosive.density_kg_m3, hc or 0.0, burst),
+        "predicted": {**_predicted_keys(r, m, inc), **gauges},
+        "layout": layout,
+        **_range_keys(ch, lab, layout, burst, spec, d.specimen_standoff_m),
         "prototype": _prototype_keys(d, r, lab, collapsed_p),
         "odds": None if odds is None else odds.to_dict(),
         "odds_3d": odds3,
@@ -306,6 +307,93 @@ def study_test_card(result, lab=None, odds_3d: dict | None = None) -> dict | Non
         },
         "warnings": _card_notes(ch, lab, env, ins, shot_notes) + ([] if rig.ok else [rig.reason]),
     }
+
+
+def _instruments(m, r: dict, lab, gauges: dict | None = None):
+    """The card's :func:`~.instruments.instrument_settings` for the specimen's pulse ``m`` and response ``r``: the
+    gauges' ranges on their own predicted peaks (``gauges``: :func:`_gauge_keys`) where the fits give them, else on
+    the face's reflected peak and the side-on peak at the specimen (the planner's, an upper bound)."""
+    g = gauges or {}
+    refl, side = g.get("reflected_gauge_pressure_Pa", math.nan), g.get("incident_gauge_pressure_Pa", math.nan)
+    return instrument_settings(
+        reflected_pressure_Pa=refl if math.isfinite(refl) else m.reflected_pressure,
+        incident_pressure_Pa=side if math.isfinite(side) else _incident_pressure(m),
+        positive_duration_s=m.positive_duration,
+        friedlander_decay=m.friedlander_decay,
+        arrival_time_s=m.arrival_time,
+        rise_time_s=r["timing"].rise_s,
+        response_time_s=r["timing"].response_s,
+        top_displacement_m=r["top_m"],
+        camera_max_fps=lab.camera_max_fps,
+        gauge_rate_max_hz=lab.gauge_rate_max_hz,
+    )
+
+
+def _range_keys(ch, lab, layout: dict, burst: str, spec, standoff: float) -> dict:
+    """The card's ``fragments``, ``pad`` and ``detonator`` (:mod:`.fragments`): what the range safety officer
+    signs beyond the blast."""
+    pad = pad_spec(ch.tnt_equivalent_safety_kg, layout["charge_radius_m"], standoff, *spec_dims(spec)[1:])
+    return {
+        "fragments": fragment_hazard(ch, lab.initiator_named or "none", ch.explosive.name, pad),
+        "pad": pad,
+        "detonator": detonator_placement(lab.initiator, lab.initiator_used, burst, layout["charge_radius_m"], ch),
+    }
+
+
+def _one_comparison(s3: dict) -> dict:
+    """The 3D odds of a card without an ensemble: the one prototype-vs-specimen 3D comparison, 1 trial, with its
+    Wilson interval (:func:`~blastscale.analysis.intervals.wilson_interval`); ``members`` 0 says it."""
+    agree = int(bool(s3.get("similarity", {}).get("outcomes_agree", True)))
+    lo, hi = wilson_interval(agree, 1)
+    return {
+        "p_outcome_agree": float(agree),
+        "p_outcome_agree_low": lo,
+        "p_outcome_agree_high": hi,
+        "agree_count": agree,
+        "trials": 1,
+        "members": 0,
+        "note": "the one 3D comparison (no ensemble: lab.ensemble_3d for one)",
+    }
+
+
+def _gauge_keys(d, ch, layout: dict) -> dict:
+    """The reflected gauge's own predicted load: peak pressure [Pa] and impulse [Pa s] at its slant distance [m]
+    and angle of incidence [deg] (flush in a rigid wall beside the specimen, facing the charge: normal -x;
+    :func:`~blastscale.blast.faces.face_loads` on the design's TNT charge, its blast model where it gives oblique
+    loads, else Kingery-Bulmash), and the side-on gauge's incident peak and impulse. NaN outside the fits."""
+    keys = (
+        "reflected_gauge_pressure_Pa",
+        "reflected_gauge_impulse_Pa_s",
+        "reflected_gauge_distance_m",
+        "reflected_gauge_angle_deg",
+        "incident_gauge_pressure_Pa",
+        "incident_gauge_impulse_Pa_s",
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            f = face_loads(
+                float(d.specimen_charge_kg),
+                layout["charge"],
+                np.array([layout["reflected_gauge"], layout["incident_gauge"]]),
+                np.array([[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]),
+                blast_model="kingery-bulmash",
+            )
+        except BlastscaleInputError:
+            return dict.fromkeys(keys, math.nan)
+    return dict(
+        zip(
+            keys,
+            (
+                float(f.pressure[0]),
+                float(f.impulse[0]),
+                float(f.distance[0]),
+                math.degrees(float(f.angle_of_incidence[0])),
+                float(f.incident_pressure[1]),
+                float(f.incident_impulse[1]),
+            ),
+        )
+    )
 
 
 def _agree_keys(planar: dict | None, odds3: dict | None) -> dict:
@@ -338,6 +426,8 @@ def _shot_keys(ch, lab) -> dict:
         "initiator_max_fraction": lab.initiator_max_fraction,
         "tnt_equivalent_impulse_kg": ch.tnt_equivalent_impulse_kg,
         "tnt_equivalent_pressure_kg": ch.tnt_equivalent_pressure_kg,
+        "tnt_equivalent_safety_kg": ch.tnt_equivalent_safety_kg,
+        "initiator_used": lab.initiator_used,
         "pressure_factor": ch.explosive.pressure_factor,
         "impulse_factor": ch.explosive.impulse_factor,
         "equivalence_source": ch.explosive.source,
@@ -409,6 +499,11 @@ def _card_notes(ch, lab, env, ins, shot_notes: list) -> list:
         notes.append(
             f"the gauges must rise in {ins.pressure_rise_time_s * 1e9:.3g} ns, faster than the ~1 us of "
             "piezoelectric blast gauges: the peak will be under-read; the impulse is still measured"
+        )
+    if ins.pressure_sampling_hz < ins.pressure_sampling_needed_hz:
+        notes.append(
+            f"the gauges sample at {ins.pressure_sampling_hz:.4g} Hz, below the {ins.pressure_sampling_needed_hz:.4g} Hz "
+            "that resolves the pulse (10 (1 + d) samples over the positive phase): the peak will be read low"
         )
     if ins.camera_fps_required > lab.camera_max_fps:
         notes.append(

@@ -14,6 +14,7 @@ from typing import Optional
 from ..analysis.intervals import wilson_interval
 from .build import spec_dims
 from .candidates import scale_label, shot_dict
+from .card import specimen_timing
 from .debris import planar_reach
 from .instruments import top_corner_displacement
 from .odds import ensemble_odds_3d, outcome_odds_text
@@ -101,8 +102,9 @@ def _screened(e, err: float, lab) -> dict:
     }
 
 
-def _simulated(e, err: float, why: list, lab, summary: dict, sim: dict, odds) -> dict:
-    """A design run in 3D: its screening error and, separately, its simulated error, odds and verdict."""
+def _simulated(e, err: float, why: list, lab, summary: dict, sim: dict, odds, timing=None) -> dict:
+    """A design run in 3D: its screening error and, separately, its simulated error, odds and verdict; its
+    instruments from its simulated ``timing`` (:func:`~.card.specimen_timing`: the test card's)."""
     s3 = summary["3d"]
     h, w, _ = spec_dims(e.specimen)
     reach = sim["specimen_reach_m"] if math.isfinite(sim["specimen_reach_m"]) else planar_reach(w, h, 0.0, True)
@@ -110,7 +112,7 @@ def _simulated(e, err: float, why: list, lab, summary: dict, sim: dict, odds) ->
     lo, hi = wilson_interval(int(agree), 1)  # no ensemble: the one 3D comparison, 1 trial
     spread = odds["first_peak_spread"] if odds else None
     return {
-        **shot_dict(e, lab, sim["specimen_top_m"], reach),
+        **shot_dict(e, lab, sim["specimen_top_m"], reach, timing),
         "screening_error": err,
         "simulated_by": "3d",
         "chosen_3d_for": why,
@@ -190,7 +192,7 @@ def designs_3d(
                 "max_top_displacement_m": float(p3["max_top_displacement_m"]),
                 "reach_m": sim["prototype_reach_m"],
             }
-        designs.append(_simulated(e, err, chosen[k], lab, summary, sim, odds))
+        designs.append(_simulated(e, err, chosen[k], lab, summary, sim, odds, specimen_timing(res)))
         if kept is None or rank_key(designs[-1]) < rank_key(kept[0]):  # one result held, not all
             kept = (designs[-1], res)
     designs.sort(key=rank_key)

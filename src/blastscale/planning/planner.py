@@ -36,7 +36,9 @@ from ..structures import from_spec
 from ..structures.materials import prototype_material
 from ..study.study import Study
 from .candidates import Evaluated, candidates, envelope_block, evaluate, scale_label, shot_dict, specimen_displacement
+from .card import specimen_timing
 from .debris import planar_reach
+from .instruments import GAUGE_HEADROOM
 from .odds import Tolerances, ensemble_odds_3d, outcome_odds_text, planar_odds
 from .pareto import mark_pareto
 from .plan3d import candidate_design, design_scenario, planar_path, screening_error
@@ -202,7 +204,7 @@ def _infeasible(evs: list, lab) -> str:
         return f"no design fits the lab: {group[0].violations[0].text}"
     if key in _RELAXERS:
         return _RELAXERS[key](group, len(evs), lab)
-    lower = key in ("charge_min_kg",)
+    lower = key in ("charge_min_kg", "standoff_min_m")
     pick = (max if lower else min)(group, key=lambda e: e.violations[0].value)
     v, c = pick.violations[0], pick.candidate
     rel = "at most" if lower else "at least"
@@ -432,6 +434,16 @@ def _planar_designs(scenario, ok: list, proto: dict, lab, tol, tell) -> tuple:
     return designs, [], result
 
 
+def _timed(d: dict, e, lab, res) -> None:
+    """A judged design's instruments from its Study's simulated timing (:func:`~.card.specimen_timing`, the
+    test card's), in place of the screening's: the plan table's camera rate is the card's."""
+    timing = specimen_timing(res)
+    if timing is not None:
+        top = d["instruments"]["displacement_range_m"] / GAUGE_HEADROOM
+        new = shot_dict(e, lab, top, d["specimen_reach_m"], timing)
+        d.update({k: new[k] for k in ("camera_fps", "camera_fps_required", "pressure_sampling_hz", "instruments")})
+
+
 def _judge_leaders(scenario, designs: list, lab, tell):
     """Judge the leading planar designs (``designs``: (dict, Evaluated) pairs, ranked by their odds) in rank order
     by the Study of each (its scenario as ``plan --out`` writes it: :func:`design_scenario`, the scenario's own
@@ -447,6 +459,7 @@ def _judge_leaders(scenario, designs: list, lab, tell):
             warnings.simplefilter("ignore")
             res = Study(design_scenario(scenario, e.candidate, lab, e.charge_height_m or None)).run()
         d["verdict"] = verdict_of(res.summary())
+        _timed(d, e, lab, res)
         if d["verdict"]["similar"] is True:
             return res
         if kept is None or rank_key(d) < rank_key(kept[0]):

@@ -28,6 +28,7 @@ __all__ = [
     "source_card",
     "card_charge",
     "fireability",
+    "licence_limit",
     "SafetyEnvelope",
     "safety_envelope",
     "threshold_meanings",
@@ -68,8 +69,11 @@ def lab_explosives(lab) -> dict:
 
 
 def lab_charge(tnt_kg: float, lab):
-    """The specimen's charge in the lab's explosive (:func:`~blastscale.blast.explosives.charge_equivalence`)."""
-    return charge_equivalence(tnt_kg, lab.explosive, lab.initiator_tnt_kg, lab_explosives(lab))
+    """The specimen's charge in the lab's explosive (:func:`~blastscale.blast.explosives.charge_equivalence`),
+    the initiator on both bases (its pressure equivalent in the safety mass)."""
+    return charge_equivalence(
+        tnt_kg, lab.explosive, lab.initiator_tnt_kg, lab_explosives(lab), lab.initiator_tnt_pressure_kg
+    )
 
 
 def lab_source(lab):
@@ -111,12 +115,13 @@ def card_charge(tnt_kg: float, lab):
         if not (w0 >= float(tnt_kg) > 0):
             raise
     ex = get_explosive(lab.explosive, lab_explosives(lab))
+    w0p = max(float(lab.initiator_tnt_pressure_kg), w0)
     return ChargeEquivalence(
         ex,
         0.0,
         w0,
         w0,
-        w0,
+        w0p,
         w0 / float(tnt_kg),
         (
             f"the initiator alone ({w0:.4g} kg TNT) delivers more than the design's whole charge "
@@ -124,7 +129,26 @@ def card_charge(tnt_kg: float, lab):
             f"{w0 / float(tnt_kg):.3g} x the design's; use a smaller initiator (initiator_tnt_kg; "
             'initiator = "none" for a laser) or a larger scale',
         ),
+        None if w0p == w0 else w0p,
     )
+
+
+def licence_limit(ch, lab) -> list:
+    """The licence limit ``lab.tnt_max_kg`` [kg TNT] against the shot's TNT equivalent on the stricter basis
+    (initiator included; a chemical charge or a calibrated source's shot): ``(key, value, limit, sentence)``."""
+    w = ch.tnt_equivalent_safety_kg
+    if lab.tnt_max_kg is None or w <= lab.tnt_max_kg:
+        return []
+    return [
+        (
+            "tnt_max_kg",
+            w,
+            lab.tnt_max_kg,
+            f"the charge with its initiator is {w:.4g} kg TNT on the stricter basis (pressure "
+            f"{ch.tnt_equivalent_pressure_kg:.4g}, impulse {ch.tnt_equivalent_impulse_kg:.4g}) > the licence "
+            f"limit tnt_max_kg = {lab.tnt_max_kg:g} kg",
+        )
+    ]
 
 
 def fireability(ch, lab) -> list:
@@ -132,8 +156,10 @@ def fireability(ch, lab) -> list:
     the lab cannot rely on: ``(key, value, limit, sentence)`` for an explosive mass below the
     explosive's minimum reliable charge [kg] (:mod:`blastscale.blast.initiation`) and for an
     initiator whose share of the TNT-equivalent impulse exceeds ``lab.initiator_max_fraction`` [-].
-    The planner rejects such designs; the test card of a scale the user chose warns."""
-    out = []
+    The planner rejects such designs; the test card of a scale the user chose warns. Also the licence limit
+    (:func:`licence_limit`).
+    """
+    out = licence_limit(ch, lab)
     ex, m = ch.explosive, ch.explosive_mass_kg
     if m < ex.min_charge_kg:
         out.append(

@@ -18,7 +18,7 @@ from typing import Any
 from ..planning.card import study_test_card
 from ..planning.odds import outcome_odds_text
 
-__all__ = ["card_of", "card_section", "UNITS", "shown"]
+__all__ = ["card_of", "card_section", "UNITS", "shown", "mass_unit"]
 
 #: Display unit -> factor from the card's SI value (m, s, Pa, kg, Hz, rad, ratios).
 UNITS = {
@@ -245,7 +245,8 @@ def card_section(result) -> str:
         f'<div class="cols"><div><h3>Build</h3>{build}</div><div><h3>Shot</h3>{shot}</div></div>'
         f"<h3>Layout: plan and elevation (to scale)</h3>{_plan_svg(c)}{_elevation_svg(c)}"
         f'<h3>Safety circles (around the charge) and the debris zone</h3><div class="cols">{_site_svg(c)}'
-        f'{safety}</div><div class="cols"><div><h3>Instruments</h3>{inst}</div><div><h3>Predicted response '
+        f"{safety}</div><h3>Range safety: fragments, pad, detonator</h3>{_range_section(c)}"
+        f'<div class="cols"><div><h3>Instruments</h3>{inst}</div><div><h3>Predicted response '
         f"(specimen units)</h3>{pred}</div></div>" + (f"<ul>{warn}</ul>" if warn else "") + "</div>"
     )
 
@@ -264,9 +265,21 @@ def _no_card(result) -> str:
     )
 
 
-def _charge_unit(c: dict) -> str:
-    """The unit the charge is weighed in: mg below 1 g, g below 1 kg, else kg."""
-    return "mg" if c["explosive_mass_kg"] < 1e-3 else "g" if c["explosive_mass_kg"] < 1 else "kg"
+def mass_unit(kg) -> str:
+    """The unit a mass [kg] reads in: mg below 1 g, g below 1 kg, else kg (no "5.592e+04 g").
+
+    >>> mass_unit(55.92), mass_unit(0.0559), mass_unit(7.816e-4)
+    ('kg', 'g', 'mg')
+    """
+    if kg is None or not math.isfinite(kg) or kg >= 1.0:
+        return "kg"
+    return "g" if kg >= 1e-3 else "mg"
+
+
+def _m(c: dict, key: str) -> str:
+    """A mass of the card in the unit it reads in (:func:`mass_unit`)."""
+    v = _get(c, key)
+    return _n(c, key, mass_unit(v if isinstance(v, (int, float)) else None))
 
 
 def _build_table(c: dict) -> str:
@@ -279,7 +292,7 @@ def _build_table(c: dict) -> str:
                 "height x width x depth",
                 f"{_n(c, 'build/height_m', 'mm')} x {_n(c, 'build/width_m', 'mm')} x {_n(c, 'build/depth_m', 'mm')}",
             ),
-            ("mass", _n(c, "build/mass_kg", "g")),
+            ("mass", _m(c, "build/mass_kg")),
             ("density", _n(c, "build/density_kg_m3", "kg/m3")),
             ("scale lambda", _n(c, "build/scale", "")),
             ("density ratio gamma", _n(c, "build/density_ratio", "")),
@@ -295,7 +308,7 @@ def _build_table(c: dict) -> str:
                     (
                         f"one unit ({_e(b['unit']['name'])}, of {b['unit']['bodies']}), x x y x z",
                         " x ".join(_n(c, f"build/unit/size_{a}_m", "mm") for a in "xyz")
-                        + f", {_n(c, 'build/unit/mass_kg', 'g')}",
+                        + f", {_m(c, 'build/unit/mass_kg')}",
                     )
                 ]
                 if b.get("unit")
@@ -306,17 +319,25 @@ def _build_table(c: dict) -> str:
 
 
 def _shot_table(c: dict) -> str:
-    """The charge to fire: the explosive, its mass and TNT equivalents, where it stands, the weighing precision."""
-    charge_unit = _charge_unit(c)
+    """The charge to fire: a calibrated source's setting, or the explosive, its mass to weigh, its TNT equivalents
+    (each on its own line), the initiator, where it stands, the weighing precision."""
     src = c.get("source")  # a calibrated source: its setting first (docs/planning.md, "Sources")
     return _rows(
         [
             *([("source (its setting)", _e(f"{src['name']}: {src['setting']}"))] if src else []),
             ("explosive", _e(c["explosive"])),
-            ("mass to weigh", _n(c, "explosive_mass_kg", charge_unit)),
-            ("TNT equivalent, impulse (the design)", _n(c, "tnt_equivalent_impulse_kg", charge_unit)),
-            ("TNT equivalent, pressure (safety)", _n(c, "tnt_equivalent_pressure_kg", charge_unit)),
-            ("initiator (TNT equivalent)", _n(c, "initiator_tnt_kg", charge_unit)),
+            ("to weigh", _m(c, "explosive_mass_kg")),
+            ("TNT equivalent, impulse (the design)", _m(c, "tnt_equivalent_impulse_kg")),
+            ("TNT equivalent, pressure", _m(c, "tnt_equivalent_pressure_kg")),
+            ("TNT equivalent, safety (the stricter basis; the licence limit)", _m(c, "tnt_equivalent_safety_kg")),
+            (
+                f"initiator ({c['detonator']['initiator']}), TNT equivalent by impulse",
+                _m(c, "detonator/tnt_impulse_kg"),
+            ),
+            (
+                f"initiator ({c['detonator']['initiator']}), TNT equivalent by pressure",
+                _m(c, "detonator/tnt_pressure_kg"),
+            ),
             ("stand-off to the front face", _n(c, "standoff_m", "mm")),
             ("positions (this card, the plan and [fired])", _e(c["layout"]["frame"])),
             ("the specimen's front face at x", _n(c, "layout/specimen_front_x_m", "mm")),
@@ -331,7 +352,7 @@ def _shot_table(c: dict) -> str:
                     ("charge radius (sphere)", _n(c, "layout/charge_radius_m", "mm")),
                 ]
             ),
-            ("weighing precision (1 sd) to keep the first peak", _n(c, "weighing_precision_kg", charge_unit)),
+            ("weighing precision (1 sd) to keep the first peak", _m(c, "weighing_precision_kg")),
         ]
     )
 
@@ -346,6 +367,32 @@ def _safety_table(c: dict) -> str:
             ("prototype event: debris zone", _n(c, "prototype/debris_radius_m", "m")),
         ]
     )
+
+
+def _range_section(c: dict) -> str:
+    """What the range safety officer signs beyond the blast: the fragment hazard distance and each source's, the pad,
+    the detonator (the numbers tagged; the methods and sources in words below them)."""
+    f, pad, det = c["fragments"], c["pad"], c["detonator"]
+    table = _rows(
+        [
+            ("fragment hazard distance (keep-out)", _n(c, "fragments/distance_m", "m")),
+            *(
+                (f"fragments: {s['source']} (lands at most)", _n(c, f"fragments/sources/{i}/distance_m", "m"))
+                for i, s in enumerate(f["sources"])
+            ),
+            ("pad: steel plate on concrete, thickness", _n(c, "pad/thickness_m", "mm")),
+            ("pad plan, along x across", f"{_n(c, 'pad/length_m', 'mm')} x {_n(c, 'pad/width_m', 'mm')}"),
+            ("detonator inserted to the charge's centre, depth", _n(c, "detonator/insertion_depth_m", "mm")),
+        ]
+    )
+    notes = [
+        f"Fragments: {f['method']}. "
+        + " ".join(f"{s['source']}: {s['note']}; {s['method']}." for s in f["sources"])
+        + f" The pad: {f['pad_fragments']}.",
+        f"Pad: {pad['material']}: {pad['why']}.",
+        f"Detonator: {det['used']}; {det['placement']}. {det['counted'][0].upper()}{det['counted'][1:]}.",
+    ]
+    return table + "".join(f'<p class="muted">{_e(n)}</p>' for n in notes)
 
 
 def _instruments_table(c: dict) -> str:
@@ -383,11 +430,24 @@ def _predicted_table(c: dict) -> str:
             ("top corner displacement", _n(c, p + "top_displacement_m", "mm")),
             ("whole response", _n(c, p + "response_time_s", "ms")),
             ("arrival time", _n(c, p + "arrival_time_s", "us")),
-            ("reflected peak pressure", _n(c, p + "reflected_pressure_Pa", "kPa")),
-            ("reflected impulse", _n(c, p + "reflected_impulse_Pa_s", "Pa s")),
+            ("reflected peak pressure, the specimen's face", _n(c, p + "reflected_pressure_Pa", "kPa")),
+            ("reflected impulse, the specimen's face", _n(c, p + "reflected_impulse_Pa_s", "Pa s")),
+            ("reflected gauge: slant distance", _n(c, p + "reflected_gauge_distance_m", "mm")),
+            ("reflected gauge: angle of incidence (deg)", _n(c, p + "reflected_gauge_angle_deg", "")),
+            ("reflected gauge: its peak pressure", _n(c, p + "reflected_gauge_pressure_Pa", "kPa")),
+            ("reflected gauge: its impulse", _n(c, p + "reflected_gauge_impulse_Pa_s", "Pa s")),
+            ("side-on gauge: its peak pressure", _n(c, p + "incident_gauge_pressure_Pa", "kPa")),
+            ("side-on gauge: its impulse", _n(c, p + "incident_gauge_impulse_Pa_s", "Pa s")),
             ("positive duration", _n(c, p + "positive_duration_s", "us")),
             ("outcome agrees with the prototype (planar Monte Carlo)", _e(outcome_odds_text(c["odds"]))),
-            ("outcome agrees with the prototype (3D ensemble)", _e(outcome_odds_text(c["odds_3d"]))),
+            (
+                "outcome agrees with the prototype (3D: "
+                + ("the one comparison" if (c["odds_3d"] or {}).get("members") == 0 else "ensemble")
+                + ")",
+                _e(outcome_odds_text(c["odds_3d"]))
+                if c["odds_3d"]
+                else "not run in 3D (set lab.ensemble_3d for an ensemble)",
+            ),
             ("first-peak spread (1 sd, relative)", _n(c, "first_peak_spread", "%")),
         ]
     )
@@ -399,7 +459,7 @@ def p_get(card: dict, key: str):
 
 #: Styles of the card (added to the report's).
 CSS = """
-.card table{font-size:.92em}.card .cols{display:flex;flex-wrap:wrap;gap:1.2em}.card h3{margin:.6em 0 .2em}
+.card table{font-size:.92em;max-width:100%}.card th{overflow-wrap:anywhere;font-weight:normal;text-align:left}.card .cols{display:flex;flex-wrap:wrap;gap:1.2em}.card h3{margin:.6em 0 .2em}
 svg.draw{border:1px solid #d0d7de;margin:.3em .6em .3em 0;font-size:10px;background:#fff}
 svg .spec{fill:#c9b79c;stroke:#333}svg .peak{fill:none;stroke:#b02a2a;stroke-dasharray:4 3}
 svg .charge{fill:#d08a00;stroke:#333}svg .gauge{fill:#2b6cb0}svg .floor{stroke:#333;stroke-width:2}

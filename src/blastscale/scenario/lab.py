@@ -54,13 +54,15 @@ class LabSpec(BaseModel):
     )
     initiator: str = Field(
         DEFAULT_INITIATOR,
-        description="The initiator (detonator) by name: rp-80 (Teledyne RISI EBW, 80 mg PETN + 123 mg RDX) or none",
+        description="The initiator (detonator) by name: rp-80 (Teledyne RISI EBW, 80 mg PETN + 123 mg RDX), "
+        "rp-83 (80 mg PETN + 1031 mg RDX), no-8 (a commercial No. 8 detonator, 1 g) or none",
     )
     initiator_tnt_kg: Optional[float] = Field(
         None,
         ge=0,
         le=1000,
-        description="The initiator's TNT-equivalent mass [kg] (default: the named initiator's, impulse basis)",
+        description="The initiator's TNT-equivalent mass [kg] (default: the named initiator's, impulse basis; "
+        "given: it stands for both bases)",
     )
     initiator_max_fraction: float = Field(
         0.5,
@@ -95,6 +97,26 @@ class LabSpec(BaseModel):
     )
     samples: int = Field(2000, ge=10, le=1_000_000, description="Monte Carlo samples per design [-]")
     seed: int = Field(0, ge=0, le=2**63 - 1, description="Seed of the Monte Carlo draws [-]")
+    standoff_min_m: Optional[float] = Field(
+        None, gt=0, le=1e4, description="Shortest stand-off the lab can set up [m] (None: no limit)"
+    )
+    standoff_max_m: Optional[float] = Field(
+        None, gt=0, le=1e4, description="Longest stand-off the lab can set up [m] (None: no limit)"
+    )
+    gauge_rate_max_hz: Optional[float] = Field(
+        None,
+        gt=0,
+        le=1e10,
+        description="Fastest sampling rate of the lab's pressure gauges [1/s]: a design whose positive phase it samples "
+        "fewer than 10 (1 + d) times is rejected (planning.instruments.gauge_rate_needed_hz; None: no limit)",
+    )
+    tnt_max_kg: Optional[float] = Field(
+        None,
+        gt=0,
+        le=1e6,
+        description="Licence limit of the range in TNT equivalent [kg]: the charge with its initiator, on the "
+        "stricter of the pressure and impulse bases (None: no limit)",
+    )
     camera_max_fps: float = Field(100000.0, gt=0, le=1e9, description="Fastest frame rate of the lab's camera [1/s]")
     space_radius_m: float = Field(20.0, gt=0, le=1e5, description="Radius of the cleared space around the charge [m]")
     safety_threshold: str = Field(
@@ -175,7 +197,29 @@ class LabSpec(BaseModel):
         d = handler(self)
         if self._derived_tnt and isinstance(d, dict):
             d.pop("initiator_tnt_kg", None)
+        elif isinstance(d, dict) and "initiator" not in self.model_fields_set:
+            d.pop("initiator", None)  # a stated initiator_tnt_kg: the written file names no detonator it did not use
         return d
+
+    @property
+    def initiator_tnt_pressure_kg(self) -> float:
+        """The initiator's TNT-equivalent mass by peak pressure [kg]: the named initiator's, or the stated
+        ``initiator_tnt_kg`` (one figure for both bases)."""
+        return initiator_tnt_kg(self.initiator, "pressure") if self._derived_tnt else float(self.initiator_tnt_kg)
+
+    @property
+    def initiator_named(self) -> Optional[str]:
+        """The name of the initiator whose figures are used (:data:`~blastscale.blast.initiation.INITIATORS`), or
+        None when only its TNT equivalent is stated (``initiator_tnt_kg`` without ``initiator``)."""
+        return self.initiator if self._derived_tnt or "initiator" in self.model_fields_set else None
+
+    @property
+    def initiator_used(self) -> str:
+        """The initiator actually used, in words: the named one (its contents), or the stated TNT equivalent."""
+        if self._derived_tnt:
+            return INITIATORS[self.initiator].description or INITIATORS[self.initiator].source
+        named = f" ({self.initiator})" if "initiator" in self.model_fields_set else ""
+        return f"stated: initiator_tnt_kg = {self.initiator_tnt_kg:g} kg TNT{named}"
 
     @field_validator("materials")
     @classmethod
@@ -215,6 +259,15 @@ class LabSpec(BaseModel):
             (*EXPLOSIVES, *self.explosives),
             "or define it in a [lab.explosives.NAME] table",
         )
+        if (
+            self.standoff_min_m is not None
+            and self.standoff_max_m is not None
+            and self.standoff_min_m > self.standoff_max_m
+        ):
+            raise ValueError(
+                f"standoff_min_m = {value_in_message(self.standoff_min_m)} m is above standoff_max_m = "
+                f"{value_in_message(self.standoff_max_m)} m: give a minimum at or below the maximum"
+            )
         if self.charge_min_kg > self.charge_max_kg:
             raise ValueError(
                 f"charge_min_kg = {value_in_message(self.charge_min_kg)} kg is above charge_max_kg = "

@@ -57,10 +57,14 @@ def test_petn_impulse_factor_is_iatgs_not_its_pressure_factor():
     assert c.tnt_equivalent_pressure_kg == pytest.approx(1e-3 * 1.27 / 1.11, rel=1e-15)
 
 
-@pytest.mark.parametrize("name,factors", [("rdx", (1.14, 1.09)), ("hmx", (1.02, 1.03))])
+@pytest.mark.parametrize("name,factors", [("rdx", (1.14, 1.09)), ("hmx", (1.14, 1.09))])
 def test_rdx_and_hmx_are_iatgs(name, factors):
+    """HMX takes RDX's factors (issue #37): the transcribed 1.02 / 1.03, 10 % below RDX's, is ruled out by the
+    nitramines' equal composition (CH2N2O2)n and heats of detonation; HMX is never below RDX."""
     ex = get_explosive(name.upper())
     assert (ex.pressure_factor, ex.impulse_factor) == factors and "IATG 01.80" in ex.source
+    assert EXPLOSIVES["hmx"].pressure_factor >= EXPLOSIVES["rdx"].pressure_factor
+    assert EXPLOSIVES["hmx"].impulse_factor >= EXPLOSIVES["rdx"].impulse_factor
 
 
 @pytest.mark.parametrize(
@@ -97,6 +101,44 @@ def test_minimum_charge_is_the_hemisphere_of_radius_the_critical_diameter():
 def test_default_initiator_is_an_ebw_detonator():
     assert initiator_tnt_kg("rp-80") == pytest.approx(80e-6 * 1.11 + 123e-6 * 1.09, rel=1e-12)
     assert initiator_tnt_kg("none") == 0.0 and "RP-80" in INITIATORS["rp-80"].source
+
+
+@pytest.mark.parametrize(
+    "name,pressure,impulse",
+    [
+        # contents x UFC / IATG factors, by hand: PETN 1.27 / 1.11, RDX 1.14 / 1.09, lead azide 1536/4184 (both)
+        ("rp-80", 80e-6 * 1.27 + 123e-6 * 1.14, 80e-6 * 1.11 + 123e-6 * 1.09),  # 241.82 mg / 222.87 mg
+        ("rp-83", 80e-6 * 1.27 + 1031e-6 * 1.14, 80e-6 * 1.11 + 1031e-6 * 1.09),
+        ("no-8", 0.8e-3 * 1.27 + 0.2e-3 * 1536 / 4184, 0.8e-3 * 1.11 + 0.2e-3 * 1536 / 4184),
+        ("none", 0.0, 0.0),
+    ],
+)
+def test_named_initiators_on_both_bases(name, pressure, impulse):
+    """Each named initiator's TNT equivalents by pressure and by impulse (to 1e-12: the same sums), the
+    stricter the larger (the RP-80: 241.8 mg by pressure, 8.5 % above its 222.9 mg by impulse), and a source."""
+    assert initiator_tnt_kg(name, "pressure") == pytest.approx(pressure, rel=1e-12, abs=1e-18)
+    assert initiator_tnt_kg(name, "impulse") == pytest.approx(impulse, rel=1e-12, abs=1e-18)
+    assert initiator_tnt_kg(name, "strict") == pytest.approx(max(pressure, impulse), rel=1e-12, abs=1e-18)
+    assert INITIATORS[name].source
+    if name != "none":
+        assert INITIATORS[name].shell_mass_kg > 0 and INITIATORS[name].description
+
+
+def test_safety_takes_the_initiators_stricter_basis():
+    """W_P = m f_P + max(W_init,P, W_init); the safety mass max(W_P, W): with the RP-80 in TNT the pressure
+    equivalent carries its 241.82 mg, not the 222.87 mg by impulse (the 1.8 % of issue #37); ANFO (f_P = f_I =
+    0.82) with an initiator heavier by pressure: the safety mass is the pressure one. No initiator: as before."""
+    wi, wp = initiator_tnt_kg("rp-80"), initiator_tnt_kg("rp-80", "pressure")
+    c = charge_equivalence(1e-3, "tnt", wi, None, wp)
+    assert c.explosive_mass_kg == pytest.approx(1e-3 - wi, rel=1e-15)
+    assert c.tnt_equivalent_pressure_kg == pytest.approx(1e-3 - wi + wp, rel=1e-15)
+    assert c.tnt_equivalent_safety_kg == c.tnt_equivalent_pressure_kg > c.tnt_equivalent_impulse_kg == 1e-3
+    bare = charge_equivalence(1e-3, "tnt")
+    assert bare.tnt_equivalent_safety_kg == bare.tnt_equivalent_pressure_kg == 1e-3
+    low = charge_equivalence(1e-3, "composition-b", 1e-4, None, 5e-5)  # f_P 1.11 > f_I 0.98; W_init,P < W_init
+    assert low.tnt_equivalent_pressure_kg == pytest.approx(9e-4 / 0.98 * 1.11 + 1e-4, rel=1e-15)  # max: W_init
+    hmx = charge_equivalence(1e-3, "tnt", 1e-4, None, 2e-4)
+    assert hmx.to_dict()["initiator_tnt_pressure_kg"] == 2e-4 and hmx.to_dict()["tnt_equivalent_safety_kg"] > 1e-3
 
 
 def test_lead_azide_by_its_heat_of_explosion():

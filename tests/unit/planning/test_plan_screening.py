@@ -3,6 +3,7 @@ random lab (a property), the impulsive check and the stand of a free-air charge 
 a lab nothing can satisfy answered in one line naming the binding constraint, for every kind."""
 
 import json
+import math
 
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
@@ -78,7 +79,11 @@ def labs(draw):
     lo, hi = sorted((draw(st.sampled_from([0.0, 1e-4, 1e-2])), draw(st.floats(1e-3, 10.0))))
     return LabSpec(
         explosive=draw(st.sampled_from(["tnt", "c-4", "petn"])),
-        initiator=draw(st.sampled_from(["rp-80", "none"])),
+        initiator=draw(st.sampled_from(["rp-80", "rp-83", "no-8", "none"])),
+        standoff_min_m=draw(st.sampled_from([None, 0.05, 0.5])),
+        standoff_max_m=draw(st.sampled_from([None, 1.0, 10.0])),
+        gauge_rate_max_hz=draw(st.sampled_from([None, 1e5, 1e6])),
+        tnt_max_kg=draw(st.sampled_from([None, 0.01, 1.5])),
         initiator_max_fraction=draw(st.sampled_from([0.05, 0.5, 1.0])),
         charge_min_kg=lo,
         charge_max_kg=max(hi, 1e-3),
@@ -112,6 +117,13 @@ def test_every_screened_design_is_within_every_limit(lab, kind):
         assert e.safety.radius_m <= lab.space_radius_m and e.instruments.camera_fps_required <= lab.camera_max_fps
         assert max(e.impulsive.prototype_ratio, e.impulsive.model_ratio) < 0.4
         assert c.burst in lab.bursts
+        # issue #37's limits: the stand-off window, the gauges, the licence (stricter basis, initiator included)
+        assert (lab.standoff_min_m or 0.0) <= d.specimen_standoff_m <= (lab.standoff_max_m or math.inf)
+        assert e.instruments.pressure_sampling_needed_hz <= (lab.gauge_rate_max_hz or math.inf)
+        assert (
+            ch.tnt_equivalent_safety_kg <= (lab.tnt_max_kg or math.inf)
+            and e.safety.tnt_kg == ch.tnt_equivalent_safety_kg
+        )
         if c.burst == "free-air":  # a stand the planner chose: the floor's reflection after the positive phase
             s = d.specimen
             top = structure_top(d.specimen_structure)

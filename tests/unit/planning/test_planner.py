@@ -6,6 +6,7 @@ import math
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
+from blastscale.blast.safety import safety_distances
 from blastscale.planning import PlanInfeasible, plan
 from blastscale.planning.planner import _rank_key
 from blastscale.scenario import Scenario
@@ -29,14 +30,29 @@ def _check_design(d: dict, lab: LabSpec) -> None:
     assert d["impulsive_ratio"] is None or d["impulsive_ratio"] < 0.4
     assert 0.0 <= d["p_outcome_agree"] <= 1.0
     assert d["rigidity"]["ok"] and (d["friction_regime"] is None or d["friction_regime"]["ok"])  # the material's
+    # the new keys of issue #37: the stand-off window, the gauges, the licence (stricter basis, initiator in)
+    assert (lab.standoff_min_m or 0.0) <= d["standoff_m"] <= (lab.standoff_max_m or math.inf)
+    assert d["instruments"]["pressure_sampling_needed_hz"] <= (lab.gauge_rate_max_hz or math.inf)
+    assert d["tnt_equivalent_safety_kg"] == max(d["tnt_equivalent_pressure_kg"], d["tnt_equivalent_kg"])
+    assert d["tnt_equivalent_safety_kg"] <= (lab.tnt_max_kg or math.inf)
+    assert d["safety_distances_m"] == pytest.approx(safety_distances(d["tnt_equivalent_safety_kg"]), rel=1e-12)
 
 
 @st.composite
 def labs(draw):
     lo, hi = sorted((draw(st.sampled_from([0.0, 1e-6, 1e-4, 1e-2])), draw(st.floats(1e-3, 10.0))))
+    s_lo = draw(st.sampled_from([None, 0.02, 0.1, 1.0]))
+    s_hi = draw(st.sampled_from([None, 0.1, 1.0, 10.0]))
+    if s_lo is not None and s_hi is not None and s_hi < s_lo:
+        s_lo, s_hi = s_hi, s_lo
+    ini = draw(st.sampled_from([{"initiator": n} for n in ("rp-80", "rp-83", "no-8", "none")] + [{}]))
     return LabSpec(
-        explosive=draw(st.sampled_from(["tnt", "c-4", "pentolite", "anfo", "lead-azide"])),
-        initiator_tnt_kg=draw(st.sampled_from([0.0, 1e-6, 1e-4, 2.2287e-4])),
+        explosive=draw(st.sampled_from(["tnt", "c-4", "pentolite", "anfo", "lead-azide", "pe4", "hmx"])),
+        **(ini or {"initiator_tnt_kg": draw(st.sampled_from([0.0, 1e-6, 1e-4, 2.2287e-4]))}),
+        standoff_min_m=s_lo,
+        standoff_max_m=s_hi,
+        gauge_rate_max_hz=draw(st.sampled_from([None, 1e5, 1e6, 1e7])),
+        tnt_max_kg=draw(st.sampled_from([None, 1e-3, 0.05, 1.5])),
         initiator_max_fraction=draw(st.sampled_from([0.05, 0.5, 1.0])),
         charge_min_kg=lo,
         charge_max_kg=max(hi, 1e-3),

@@ -44,7 +44,7 @@ def test_defaults_are_stated():
             "lab.explosives.x.pressure_factor = 0 is out of range: valid range is (0, 10]",
         ),
         ({"bogus": 1}, "lab.bogus = 1 is not a known key: valid keys of [lab] are explosive"),
-        ({"initiator": "no8"}, "initiator = 'no8' is not known: valid values are rp-80, none"),
+        ({"initiator": "no8"}, "initiator = 'no8' is not known: valid values are rp-80, rp-83, no-8, none"),
         ({"initiator_max_fraction": 0.0}, "lab.initiator_max_fraction = 0 is out of range: valid range is (0, 1]"),
         ({"initiator_max_fraction": 1.5}, "lab.initiator_max_fraction = 1.5 is out of range"),
         ({"initiator_tnt_kg": -1e-3}, "lab.initiator_tnt_kg = -0.001 is out of range"),
