@@ -11,7 +11,7 @@ and plan with the interfaces shaded (:func:`blastscale.plots.assembly.assembly_f
 (:func:`blastscale.io.output.write_file`). A bad file or parameter is one ``error:`` line, exit
 status 2, nothing written.
 
-``blastscale show RESULT_DIR --animate FILE.gif|FILE.mp4|FILE.html [--view] [--fps] [--speed]``: the
+``blastscale show RESULT_DIR --animate FILE.gif|FILE.mp4|FILE.html [--view] [--fps] [--speed] [--magnification]``: the
 result folder's stored motion (:mod:`.animate`).
 """
 
@@ -136,13 +136,20 @@ def show_cmd(
     view: str = typer.Option("iso", "--view", help="--animate's camera: front, side, top or iso."),
     fps: float = typer.Option(20.0, "--fps", help="--animate's frames per second of playback, in [1, 120]."),
     speed: float = typer.Option(1.0, "--speed", help="--animate's playback speed x real (prototype) time."),
+    magnification: Optional[float] = typer.Option(
+        None,
+        "--magnification",
+        show_default=False,
+        help="--animate's displacement magnification, in [1, 1e4] (default: automatic, the largest motion drawn "
+        "as 10 % of the height; stated on the animation).",
+    ),
 ) -> None:
     """Describe and draw a structure (scenario or block-model file) without simulating it; animate a result
     folder's motion (--animate)."""
     if animate is not None:
         from .animate import show_animation
 
-        return show_animation(source, animate, view, fps, speed, as_json)
+        return show_animation(source, animate, view, fps, speed, as_json, magnification)
 
     if plot is not None:
         check_plot_path(str(plot))  # before any work
