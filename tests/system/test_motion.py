@@ -152,6 +152,8 @@ def test_show_animate_speed_divides_the_frames(results, capsys, tmp_path):
         (["--animate", "{tmp}/a.gif", "--fps", "0"], "fps"),
         (["--animate", "{tmp}/a.gif", "--speed", "-1"], "speed"),
         (["--animate", "{tmp}/a.gif", "--fps", "120", "--speed", "0.01"], "at most 1000"),  # 2400 frames
+        (["--animate", "{tmp}/a.gif", "--magnification", "0.5"], "magnification"),
+        (["--animate", "{tmp}/a.gif", "--magnification", "nan"], "magnification"),
     ],
 )
 def test_show_animate_bad_path_or_option_is_one_line_exit_2(results, capsys, tmp_path, argv, word):
@@ -161,6 +163,58 @@ def test_show_animate_bad_path_or_option_is_one_line_exit_2(results, capsys, tmp
     lines = [x for x in err.splitlines() if x.strip()]
     assert len(lines) == 1 and lines[0].startswith("error:") and word in lines[0], err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_gif_frames_are_magnified_coloured_at_their_time_and_not_dithered(results):
+    """Issue 39 on the column (4 drums, 0.2 s): the animation's default magnification is the automatic one (> 1
+    here, in each panel's title); at the first frame every block has not moved, so every face has the colour of
+    a zero displacement (shaded: the same ratio in the three channels), and at the last frame they do not (the
+    colour is the displacement at the frame shown, not the run's largest); the end-on axis of the side view has
+    no ticks, the iso view's three axes have; the GIF maps each colour of a frame to one colour (no dithering:
+    a dithered GIF gives one colour several), within 48 levels of it (256-colour palette)."""
+    import io
+
+    import matplotlib.pyplot as plt
+    from matplotlib import colormaps
+    from PIL import Image
+
+    from blastscale.cli.animate import _gif
+    from blastscale.io.motion import read_motion
+    from blastscale.plots.motion import COLORMAP, auto_magnification, motion_figure, render_frames
+
+    motion, _ = read_motion(results["column"])
+    idx, _ = motion.frame_indices(20.0)
+    m = auto_magnification(motion)
+    assert m > 1.0
+    fig, update = motion_figure(motion, "side")
+    try:
+        assert all(f"motion drawn x {m:g}" in ax.get_title() for ax in fig.axes[: len(motion.labels)])
+        assert len(fig.axes[0].get_yticks()) == 0 and len(fig.axes[0].get_zticks()) > 1
+        coll = fig.axes[0].collections[1]
+        update(int(idx[0]))
+        fig.canvas.draw()  # the faces' colours as drawn (projected and sorted)
+        ratio = coll.get_facecolor()[:, :3] / np.asarray(colormaps[COLORMAP](0.0)[:3])
+        assert np.ptp(ratio, axis=1).max() < 1e-9
+        update(int(idx[-1]))
+        fig.canvas.draw()
+        ratio = coll.get_facecolor()[:, :3] / np.asarray(colormaps[COLORMAP](0.0)[:3])
+        assert np.ptp(ratio, axis=1).max() > 0.1
+    finally:
+        plt.close(fig)
+    fig, _ = motion_figure(motion, "iso")
+    assert all(len(t) > 1 for t in (fig.axes[0].get_xticks(), fig.axes[0].get_yticks(), fig.axes[0].get_zticks()))
+    plt.close(fig)
+
+    frames = list(render_frames(motion, idx, "iso"))
+    with Image.open(io.BytesIO(_gif(iter(frames), 20.0))) as im:
+        for k, src in enumerate(frames):
+            im.seek(k)
+            out = np.asarray(im.convert("RGB"))
+            key = src.reshape(-1, 3).astype(np.int64) @ [65536, 256, 1]
+            got = out.reshape(-1, 3).astype(np.int64) @ [65536, 256, 1]
+            pairs = np.unique(np.stack([key, got]), axis=1)
+            assert len(np.unique(pairs[0])) == pairs.shape[1]  # one colour out for each colour in
+            assert np.abs(out.astype(int) - src).max() <= 48
 
 
 def test_show_animate_of_a_folder_without_motion_is_one_line(capsys, tmp_path):

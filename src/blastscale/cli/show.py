@@ -182,27 +182,32 @@ def show_cmd(
     if as_json:
         print_json(desc)
     else:
-        names = desc["monitoring_point_names"]
-        shown = ", ".join(names[:6]) + (f", ... ({len(names)})" if len(names) > 6 else "")
-        rows = [
-            ("kind", desc["kind"], ""),
-            ("blocks", str(desc["blocks"]), ""),
-            ("mass", fmt_value(desc["mass_kg"], ".5g"), "kg"),
-            ("volume", fmt_value(desc["volume_m3"], ".5g"), "m^3"),
-            ("density", fmt_value(desc["density_kg_m3"], ".5g"), "kg/m^3"),
-            ("centre of mass (x, y, z)", ", ".join(fmt_value(x, ".4g") for x in desc["centre_of_mass_m"]), "m"),
-            (
-                "height x length x thickness",
-                " x ".join(fmt_value(desc[k], ".4g") for k in ("height_m", "length_m", "thickness_m")),
-                "m",
-            ),
-            ("interfaces between blocks", str(desc["interfaces_between_blocks"]), ""),
-            ("  their area", fmt_value(desc["interface_area_between_blocks_m2"], ".5g"), "m^2"),
-            ("interfaces on the ground", str(desc["interfaces_on_ground"]), ""),
-            ("  their area", fmt_value(desc["contact_area_on_ground_m2"], ".5g"), "m^2"),
-            ("monitoring points", shown, ""),
-        ]
-        console.print(table(f"Structure: {source}", rows))
+        _print_description(source, desc)
     for written in (plot, to_compas):
         if written is not None:
             print_written(written)
+
+
+def _print_description(source: str, desc: dict) -> None:
+    """The structure's description (:func:`describe_structure`) as a table."""
+    names = desc["monitoring_point_names"]
+    shown = ", ".join(names[:6]) + (f", ... ({len(names)})" if len(names) > 6 else "")
+    rows = [
+        ("kind", desc["kind"], ""),
+        ("blocks", str(desc["blocks"]), ""),
+        ("mass", fmt_value(desc["mass_kg"], ".5g"), "kg"),
+        ("volume", fmt_value(desc["volume_m3"], ".5g"), "m^3"),
+        ("density", fmt_value(desc["density_kg_m3"], ".5g"), "kg/m^3"),
+        ("centre of mass (x, y, z)", ", ".join(fmt_value(x, ".4g") for x in desc["centre_of_mass_m"]), "m"),
+        (
+            "height x length x thickness",
+            " x ".join(fmt_value(desc[k], ".4g") for k in ("height_m", "length_m", "thickness_m")),
+            "m",
+        ),
+        ("interfaces between blocks", str(desc["interfaces_between_blocks"]), ""),
+        ("  their area", fmt_value(desc["interface_area_between_blocks_m2"], ".5g"), "m^2"),
+        ("interfaces on the ground", str(desc["interfaces_on_ground"]), ""),
+        ("  their area", fmt_value(desc["contact_area_on_ground_m2"], ".5g"), "m^2"),
+        ("monitoring points", shown, ""),
+    ]
+    console.print(table(f"Structure: {source}", rows))
