@@ -290,8 +290,6 @@ def column_shots(results, tmp_path_factory):
     a page that requests a file and prints an error (the detector's check), then the report's 3D view at the
     first and the last slider time at the default magnification and at magnification 1. Each
     opening: (screenshot, the page's console lines, the page's requests)."""
-    import re
-
     if _chromium() is None:
         pytest.skip("Chromium not found (Debian: apt-get install -y chromium)")
     tmp = tmp_path_factory.mktemp("shots")
@@ -406,8 +404,6 @@ def test_motion_cases_are_the_median_and_the_largest_peak():
 
 
 def test_show_animate_html_is_the_report_view_alone_and_self_contained(results, capsys, tmp_path):
-    import re
-
     page = tmp_path / "arch.html"
     code, out, err = cli(capsys, "show", results["arch"], "--animate", page, "--fps", 20, "--json")
     assert code == 0, err
@@ -468,7 +464,6 @@ def test_the_views_data_is_the_surfaces_once_and_the_poses_per_frame(results):
     in base64 (x 4/3) and nothing else of size. Replaying the page's poses gives the stored vertices (float32:
     1e-6 of the height). (The default report's size: tests/system/test_report.py.)"""
     import base64
-    import re
 
     import xarray as xr
 
