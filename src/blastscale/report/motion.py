@@ -214,8 +214,9 @@ var mn=Math.hypot(m[0],m[1])||1;m=[m[0]/mn,m[1]/mn];
 for(var v=Math.ceil(lo/stp)*stp;v<=hi+1e-9*stp;v+=stp){var pt=A[1].slice();pt[i]=v;var s2=pr(pt);
 g.beginPath();g.moveTo(s2[0],s2[1]);g.lineTo(s2[0]+4*m[0],s2[1]+4*m[1]);g.stroke();
 g.fillText(fmt(v,stp),s2[0]+16*m[0],s2[1]+14*m[1]);}
+var c=(lo+hi)/2,a=Math.floor(c/stp)*stp,tp=A[1].slice();tp[i]=Math.max(lo,Math.min(hi,a+stp/2));tp=pr(tp);
 g.font="italic 11px sans-serif";
-g.fillText(A[0],i===2?q[0]:(p[0]+q[0])/2+34*m[0],i===2?q[1]-12:(p[1]+q[1])/2+32*m[1]);g.font="11px sans-serif";});}
+g.fillText(A[0],i===2?q[0]:tp[0]+30*m[0],i===2?q[1]-12:tp[1]+28*m[1]);g.font="11px sans-serif";});}
 function colourbar(g,x,y,w,h){for(var i=0;i<h;i++){var c=vir(1-i/h);g.fillStyle="rgb("+(c[0]|0)+","+(c[1]|0)+
 ","+(c[2]|0)+")";g.fillRect(x,y+i,w,1);}g.fillStyle="#222";g.font="11px sans-serif";g.textAlign="left";
 g.textBaseline="middle";var top=D.colour_max_m,stp=nice(top,4);
