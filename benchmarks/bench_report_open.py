@@ -4,8 +4,8 @@ Two figures per run, each from a fresh browser profile, in Chromium without a GP
 
 * ``load_s``: the page's load event (``PerformanceNavigationTiming.loadEventEnd``, from navigation start);
 * ``view_s``: opened at its 3D view (the address ending in ``#frame=0``: the view put at the top), the time
-  until the view has drawn its frame (its ``data-frame`` attribute set), polled every 20 ms through the DevTools
-  protocol.
+  until the view has drawn its frame (its ``data-frame`` attribute set; in an earlier commit's report, plotly's
+  plot holds its frames), polled every 20 ms through the DevTools protocol.
 
 With ``psutil`` installed, also the CPU seconds Chromium's processes spent from the navigation to each of these
 moments (``load_cpu_s``, ``view_cpu_s``): what the opening costs whatever else the machine is doing (its wall time
@@ -40,7 +40,13 @@ FLAGS = [
     "--hide-scrollbars",
     "--window-size=1200,700",
 ]
-DRAWN = "(function(){var d=document.querySelector('.bs-view');return !!(d && d.hasAttribute('data-frame'));})()"
+#: The view drawn: its ``data-frame`` attribute set (or, in a report of an earlier commit, plotly's plot holding its
+#: frames and a canvas).
+DRAWN = (
+    "(function(){var d=document.querySelector('.bs-view');if(d)return d.hasAttribute('data-frame');"
+    "var p=document.querySelector('.js-plotly-plot');return !!(p && p._transitionData && p._transitionData._frames"
+    " && p._transitionData._frames.length && p.querySelector('canvas'));})()"
+)
 LOADED = (
     "(function(){var n=performance.getEntriesByType('navigation')[0];return n && n.loadEventEnd>0?n.loadEventEnd:0;})()"
 )
