@@ -224,7 +224,11 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
             ax.text(*charge, "  charge", color="#c0392b", fontsize=8, zorder=3)
         for set_lim, a, b in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), lo, hi):
             set_lim(a, b)
-        ax.set_box_aspect(tuple(hi - lo), zoom=0.9)  # one scale on the three axes; room for the labels
+        aspect = hi - lo  # one scale on the three axes, but the one seen end-on: matplotlib fits the whole box,
+        if view in END_ON:  # so its length would shrink the other two for nothing
+            k = "xyz".index(END_ON[view])
+            aspect[k] = min(np.delete(aspect, k))
+        ax.set_box_aspect(tuple(aspect), zoom=0.8)  # room for the labels
         ax.view_init(elev=elev, azim=azim)
         for a in "xyz":
             axis = getattr(ax, f"{a}axis")
@@ -235,7 +239,7 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
                 axis.set_label_text("")
             else:
                 axis.set_label_text(f"{a} [m]")
-                axis.labelpad = 24 if a == "z" else 8  # clear of the tick labels in every view
+                axis.labelpad = 16 if a == "z" else 12 if view in END_ON else 8  # clear of the tick labels
         ax.set_title(f"{label}, {words}", fontsize=9)
     fig.colorbar(
         cm.ScalarMappable(norm=norm, cmap=cmap),
