@@ -91,9 +91,10 @@ def main(argv=None) -> dict:
                 runs[name]["view"].append(view(src, a.result))
                 if a.gif:
                     runs[name]["gif"].append(gif(src, a.gif, tmp / f"{name}.gif"))
+                print(name, runs[name]["view"][-1], runs[name]["gif"][-1:], file=sys.stderr)  # as it goes
     for name, r in runs.items():
         out[name] = {k: v for k, v in r.items() if v}
-        for k, v in out[name].items():
+        for k, v in list(out[name].items()):
             out[name][f"{k}_median_cpu_s"] = statistics.median(x["cpu_s"] for x in v)
     out["load_average_after"] = os.getloadavg()[0]
     print(json.dumps(out, indent=1))
