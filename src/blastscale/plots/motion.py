@@ -1,5 +1,6 @@
 """Frames of the stored motion drawn with matplotlib (3D axes): the prototype and the up-scaled specimen side
-by side in prototype units, blocks coloured by their largest displacement, the ground and the charge.
+by side in prototype units at one displacement magnification (:func:`auto_magnification`, stated), blocks
+coloured by their displacement at the frame shown, the ground and the charge.
 
 The frames feed ``blastscale show RESULT_DIR --animate FILE.gif|FILE.mp4`` (GIF through Pillow, MP4 through
 ffmpeg where installed); the interactive HTML view is :mod:`blastscale.report.motion`.
@@ -18,6 +19,7 @@ __all__ = [
     "VIEWS",
     "COLORMAP",
     "VISIBLE_FRACTION",
+    "END_ON",
     "peak_motion",
     "structure_height",
     "magnification_for",
@@ -174,8 +176,9 @@ def _limits(motion, magnification: float, charge=None) -> tuple[np.ndarray, np.n
     lo[2] = min(lo[2], 0.0)
     pad = 0.08 * float(max(hi - lo))
     lo, hi = lo - [pad, pad, 0.0], hi + [pad, pad, 0.0]
-    widen = np.maximum(0.0, 0.35 * float(max(hi - lo)) - (hi - lo)) / 2  # no axis under 35 % of the longest:
-    return lo - widen, hi + widen  # room for its ticks (a slender column's y)
+    widen = np.maximum(0.0, 0.35 * float(max(hi - lo)) - (hi - lo))  # no axis under 35 % of the longest: room
+    lo, hi = lo - widen * [0.5, 0.5, 0.0], hi + widen * [0.5, 0.5, 1.0]  # for its ticks; z from the ground up
+    return lo, hi
 
 
 def motion_figure(motion, view: str = "iso", charge=None, width_in: float = 5.0, magnification=None):
