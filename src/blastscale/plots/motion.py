@@ -211,7 +211,7 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
     cmap = plt.get_cmap(COLORMAP)
     ntri = [int((f >= 0).all(axis=1).sum()) for f in motion.faces]
     colls = []
-    words = f"motion drawn x {mag:g}" + (f" (largest {peak:.2g} m, height {height:.3g} m)" if mag != 1.0 else "")
+    why = f"; largest motion {peak:.2g} m, height {height:.3g} m" if mag != 1.0 else ""  # what M was chosen from
     title = fig.suptitle("", fontsize=10)
     for s, label in enumerate(motion.labels):
         ax = fig.add_subplot(1, nsys, s + 1, projection="3d", proj_type="ortho" if view != "iso" else "persp")
@@ -243,7 +243,7 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
             else:
                 axis.set_label_text(f"{a} [m]")
                 axis.labelpad = 16 if a == "z" else 12 if view in END_ON else 8  # clear of the tick labels
-        ax.set_title(f"{label}, {words}", fontsize=9)
+        ax.set_title(f"{label}, motion drawn x {mag:g}", fontsize=9)
     fig.colorbar(
         cm.ScalarMappable(norm=norm, cmap=cmap),
         ax=fig.axes,
@@ -259,7 +259,7 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
             coll.set_verts(tri)
             coll.set_facecolor(face)
             coll.set_edgecolor(face)  # no seams, no lines across a face split in triangles
-        title.set_text(f"t = {motion.time[index]:.3f} s (prototype time)")
+        title.set_text(f"t = {motion.time[index]:.3f} s (prototype time){why}")
 
     return fig, update, [*colls, title]
 
