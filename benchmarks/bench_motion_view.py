@@ -13,7 +13,8 @@ Two figures per tree, each in a fresh interpreter on the package of that tree (`
 Usage: ``python benchmarks/bench_motion_view.py results/default [--gif results/column] [--baseline cad6f0c]
 [--repeat 3]``; prints JSON. ``--baseline`` defaults to cad6f0c (main before this work: plotly's view, the GIF
 redrawn whole each frame). ``make run`` against the commit before the 3D view (c99d612~1):
-``benchmarks/bench_run_end_to_end.py --baseline c99d612~1 --scenario SCENARIO``. Not a test.
+``benchmarks/bench_run_end_to_end.py --baseline c99d612~1 --scenario results/default/scenario.toml``. Not a
+test.
 """
 
 from __future__ import annotations
