@@ -11,7 +11,7 @@ and plan with the interfaces shaded (:func:`blastscale.plots.assembly.assembly_f
 (:func:`blastscale.io.output.write_file`). A bad file or parameter is one ``error:`` line, exit
 status 2, nothing written.
 
-``blastscale show RESULT_DIR --animate FILE.gif|FILE.mp4|FILE.html [--view] [--fps] [--speed]``: the
+``blastscale show RESULT_DIR --animate FILE.gif|FILE.mp4|FILE.html [--view] [--fps] [--speed] [--magnification]``: the
 result folder's stored motion (:mod:`.animate`).
 """
 
@@ -136,13 +136,20 @@ def show_cmd(
     view: str = typer.Option("iso", "--view", help="--animate's camera: front, side, top or iso."),
     fps: float = typer.Option(20.0, "--fps", help="--animate's frames per second of playback, in [1, 120]."),
     speed: float = typer.Option(1.0, "--speed", help="--animate's playback speed x real (prototype) time."),
+    magnification: Optional[float] = typer.Option(
+        None,
+        "--magnification",
+        show_default=False,
+        help="--animate's displacement magnification, in [1, 1e4] (default: automatic, the largest motion drawn "
+        "as 10 % of the height; stated on the animation).",
+    ),
 ) -> None:
     """Describe and draw a structure (scenario or block-model file) without simulating it; animate a result
     folder's motion (--animate)."""
     if animate is not None:
         from .animate import show_animation
 
-        return show_animation(source, animate, view, fps, speed, as_json)
+        return show_animation(source, animate, view, fps, speed, as_json, magnification)
 
     if plot is not None:
         check_plot_path(str(plot))  # before any work
@@ -175,27 +182,32 @@ def show_cmd(
     if as_json:
         print_json(desc)
     else:
-        names = desc["monitoring_point_names"]
-        shown = ", ".join(names[:6]) + (f", ... ({len(names)})" if len(names) > 6 else "")
-        rows = [
-            ("kind", desc["kind"], ""),
-            ("blocks", str(desc["blocks"]), ""),
-            ("mass", fmt_value(desc["mass_kg"], ".5g"), "kg"),
-            ("volume", fmt_value(desc["volume_m3"], ".5g"), "m^3"),
-            ("density", fmt_value(desc["density_kg_m3"], ".5g"), "kg/m^3"),
-            ("centre of mass (x, y, z)", ", ".join(fmt_value(x, ".4g") for x in desc["centre_of_mass_m"]), "m"),
-            (
-                "height x length x thickness",
-                " x ".join(fmt_value(desc[k], ".4g") for k in ("height_m", "length_m", "thickness_m")),
-                "m",
-            ),
-            ("interfaces between blocks", str(desc["interfaces_between_blocks"]), ""),
-            ("  their area", fmt_value(desc["interface_area_between_blocks_m2"], ".5g"), "m^2"),
-            ("interfaces on the ground", str(desc["interfaces_on_ground"]), ""),
-            ("  their area", fmt_value(desc["contact_area_on_ground_m2"], ".5g"), "m^2"),
-            ("monitoring points", shown, ""),
-        ]
-        console.print(table(f"Structure: {source}", rows))
+        _print_description(source, desc)
     for written in (plot, to_compas):
         if written is not None:
             print_written(written)
+
+
+def _print_description(source: str, desc: dict) -> None:
+    """The structure's description (:func:`describe_structure`) as a table."""
+    names = desc["monitoring_point_names"]
+    shown = ", ".join(names[:6]) + (f", ... ({len(names)})" if len(names) > 6 else "")
+    rows = [
+        ("kind", desc["kind"], ""),
+        ("blocks", str(desc["blocks"]), ""),
+        ("mass", fmt_value(desc["mass_kg"], ".5g"), "kg"),
+        ("volume", fmt_value(desc["volume_m3"], ".5g"), "m^3"),
+        ("density", fmt_value(desc["density_kg_m3"], ".5g"), "kg/m^3"),
+        ("centre of mass (x, y, z)", ", ".join(fmt_value(x, ".4g") for x in desc["centre_of_mass_m"]), "m"),
+        (
+            "height x length x thickness",
+            " x ".join(fmt_value(desc[k], ".4g") for k in ("height_m", "length_m", "thickness_m")),
+            "m",
+        ),
+        ("interfaces between blocks", str(desc["interfaces_between_blocks"]), ""),
+        ("  their area", fmt_value(desc["interface_area_between_blocks_m2"], ".5g"), "m^2"),
+        ("interfaces on the ground", str(desc["interfaces_on_ground"]), ""),
+        ("  their area", fmt_value(desc["contact_area_on_ground_m2"], ".5g"), "m^2"),
+        ("monitoring points", shown, ""),
+    ]
+    console.print(table(f"Structure: {source}", rows))

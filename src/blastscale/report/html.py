@@ -1,7 +1,7 @@
 """A self-contained HTML report of a study, for someone who never ran the tool.
 
 One file, no external resources: the figures are embedded as base64 PNG, the interactive 3D view of the motion
-(:mod:`.motion`) with plotly's JavaScript inline. Sections (each a
+(:mod:`.motion`) with its script and data inline. Sections (each a
 ``<section id=...>``): ``experiment`` (what to build and detonate), ``test_card`` (the printable
 card of a scenario with a ``[lab]`` table: :mod:`.card`), ``loads`` (blast loads of
 both systems, delivered vs required ratios), ``impulsive`` (the a-posteriori check),

@@ -82,8 +82,9 @@ STARTUP_SECONDS = 2.0
 #: Bytes of histories per recorded state, run and body (19 doubles: displacement, velocity, angular velocity,
 #: tilt, rotation, uplift, position, quaternion) and per monitoring point (6 doubles).
 STATE_BYTES_PER_BODY, STATE_BYTES_PER_POINT = 19 * 8, 6 * 8
-#: The report, figures and summary of a result folder [bytes]: plotly's JavaScript (~4.7 MB) and the 3D view's
-#: frames (at most 3 MB, :data:`blastscale.report.motion.FRAME_BYTES`) besides the figures ...
+#: The report, figures and summary of a result folder [bytes]: an upper bound: the 3D view's poses (at most 1 MB,
+#: :data:`blastscale.report.motion.FRAME_BYTES`) besides the figures (the view drew on plotly, 4.7 MB, until
+#: issue 41: the default report is 0.4 MB since) ...
 REPORT_BYTES = 6.5e6
 #: ... plus this per body (the summary's and the report's rows of each body) [bytes].
 REPORT_BYTES_PER_BODY = 7e3
