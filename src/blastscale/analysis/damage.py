@@ -177,7 +177,8 @@ def damage_summary(summary: dict, limits, height_m: Optional[float], ensemble=No
             out[system], out["engine"] = s.to_dict(), "3d"
         elif planar.get(system) is not None and "collapsed" in planar[system]:
             s = damage_state(None, height_m, limits, collapsed=bool(planar[system]["collapsed"]))
-            out[system], out.setdefault("engine", "planar")
+            out[system] = s.to_dict()
+            out.setdefault("engine", "planar")
         else:
             out[system] = None
     if out["prototype"] is None:

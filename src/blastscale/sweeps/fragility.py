@@ -171,7 +171,8 @@ def _profile_bounds(nll, x: np.ndarray, best: float, which: int) -> tuple:
             y[which], y[other] = v, u
             return nll(y)
 
-        r = minimize_scalar(at, bracket=(x[other] - 0.1, x[other] + 0.1), tol=1e-10)
+        with np.errstate(all="ignore"):  # Brent's parabolic steps meet an infinite likelihood far out: no news
+            r = minimize_scalar(at, bracket=(x[other] - 0.1, x[other] + 0.1), tol=1e-10)
         return min(float(r.fun), at(x[other])) - best - _CHI2_95_HALF
 
     span = math.log(OPEN_FACTOR)
