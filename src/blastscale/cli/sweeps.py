@@ -208,15 +208,14 @@ def fragility_cmd(
         _resume_note(out)
     bar, tick = count_progress("fragility", quiet=as_json)
 
-    def run(spec):
+    def run(spec):  # the damage criterion's sweep, its size said first
+        if not as_json:
+            where = f"{workers} workers" if workers else "this process" if scheduler is None else scheduler
+            console_err.print(f"fragility: {spec.n_cases} cases, one Study each, on {where}")
         if out is None:
             return run_in_memory(spec, scheduler=scheduler, workers=workers or 0, chunk=chunk, progress=tick)
         run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, force=force, progress=tick)
         return open_sweep(out)
-
-    def announce(line: str) -> None:
-        if not as_json:
-            console_err.print(line)
 
     with one_line_warnings(), bar:
         res = fragility(
@@ -228,7 +227,6 @@ def fragility_cmd(
             seed=seed,
             criterion=criterion,
             run=run,
-            announce=announce,
         )
     out_json = res.to_dict()
     out_json["scenario"] = base.title or "default"

@@ -157,6 +157,42 @@ def _separated(W: np.ndarray, k: np.ndarray, n: np.ndarray) -> "tuple | None":
     return float(ws[first - 1]), float(ws[first])
 
 
+def _separated_fit(lo: float, hi: float, reached: str, not_reached: str) -> LognormalFit:
+    """The fit of completely separated counts (every draw below ``lo`` [kg] short of the state, every draw from
+    ``hi`` [kg] reaching it): no maximum; the median bracketed by the two charges, beta open."""
+    return LognormalFit(
+        median_charge_kg=math.sqrt(lo * hi),
+        beta=None,
+        median_ci_kg=(lo, hi),
+        beta_ci=(0.0, math.inf),
+        se_ln_median=math.nan,
+        se_ln_beta=math.nan,
+        log_likelihood=0.0,
+        bounded=False,
+        note=(
+            f"every draw {not_reached} at W <= {lo:.6g} kg and {reached} at W >= {hi:.6g} kg: the median lies "
+            f"between them and beta cannot be estimated (open bounds; add charges between {lo:.6g} and "
+            f"{hi:.6g} kg)"
+        ),
+    )
+
+
+def _observed_covariance(nll, x: np.ndarray) -> tuple:
+    """(covariance, standard errors) of the parameters ``x`` from the observed information: the inverse of the
+    central-difference Hessian of the negative log-likelihood (step 1e-4); NaN when it cannot be inverted."""
+    h = 1e-4
+    H = np.empty((2, 2))
+    for i in range(2):
+        for j in range(2):
+            e_i, e_j = np.eye(2)[i] * h, np.eye(2)[j] * h
+            H[i, j] = (nll(x + e_i + e_j) - nll(x + e_i - e_j) - nll(x - e_i + e_j) + nll(x - e_i - e_j)) / (4 * h * h)
+    try:
+        cov = np.linalg.inv(H)
+        return cov, np.sqrt(np.maximum(np.diag(cov), 0.0))
+    except np.linalg.LinAlgError:
+        return np.full((2, 2), math.nan), np.array([math.nan, math.nan])
+
+
 def _profile_bounds(nll, x: np.ndarray, best: float, which: int) -> tuple:
     """95 % profile-likelihood bounds of ``exp(x[which])``: where ``min over the other parameter of nll``
     exceeds ``best`` by :data:`_CHI2_95_HALF`, searched within a factor :data:`OPEN_FACTOR` either side (open:
@@ -230,22 +266,7 @@ def fit_lognormal_fragility(
         )
     cut = _separated(W, k, n)
     if cut is not None:
-        lo, hi = cut
-        return LognormalFit(
-            median_charge_kg=math.sqrt(lo * hi),
-            beta=None,
-            median_ci_kg=(lo, hi),
-            beta_ci=(0.0, math.inf),
-            se_ln_median=math.nan,
-            se_ln_beta=math.nan,
-            log_likelihood=0.0,
-            bounded=False,
-            note=(
-                f"every draw {not_reached} at W <= {lo:.6g} kg and {reached} at W >= {hi:.6g} kg: the median lies "
-                f"between them and beta cannot be estimated (open bounds; add charges between {lo:.6g} and "
-                f"{hi:.6g} kg)"
-            ),
-        )
+        return _separated_fit(*cut, reached, not_reached)
     lw = np.log(W)
 
     def nll(x):
@@ -262,18 +283,7 @@ def fit_lognormal_fragility(
         options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000},
     )
     x = res.x
-    # observed information: central-difference Hessian of the negative log-likelihood
-    h = 1e-4
-    H = np.empty((2, 2))
-    for i in range(2):
-        for j in range(2):
-            e_i, e_j = np.eye(2)[i] * h, np.eye(2)[j] * h
-            H[i, j] = (nll(x + e_i + e_j) - nll(x + e_i - e_j) - nll(x - e_i + e_j) + nll(x - e_i - e_j)) / (4 * h * h)
-    try:
-        cov = np.linalg.inv(H)
-        se = np.sqrt(np.maximum(np.diag(cov), 0.0))
-    except np.linalg.LinAlgError:
-        cov, se = np.full((2, 2), math.nan), np.array([math.nan, math.nan])
+    cov, se = _observed_covariance(nll, x)
     theta, beta = math.exp(x[0]), math.exp(x[1])
     best = float(res.fun)
     m_ci, b_ci = _profile_bounds(nll, x, best, 0), _profile_bounds(nll, x, best, 1)
@@ -533,6 +543,24 @@ def _levels(spec: SweepSpec, criterion: str, run) -> tuple:
     return np.where(decided, np.nan_to_num(level, nan=-1.0), -1.0).astype(int), decided
 
 
+def _state_fits(W: np.ndarray, level: np.ndarray, decided: np.ndarray, criterion: str) -> dict:
+    """name -> :class:`StateFragility` of every state ``criterion`` knows: the draws (rows: charges) whose
+    ``level`` reaches it, over those ``decided``, and the lognormal fit."""
+    trials = decided.sum(axis=1).astype(np.int64)
+    states = {}
+    for name in CRITERIA[criterion]:
+        k = (level >= LEVELS.index(name)).sum(axis=1).astype(np.int64)
+        words = (
+            {} if criterion == "first-swing" else {"reached": f"reaches {name}", "not_reached": f"stays below {name}"}
+        )
+        try:
+            fit = fit_lognormal_fragility(W[trials > 0], k[trials > 0], trials[trials > 0], **words)
+        except BlastscaleInputError:
+            fit = None
+        states[name] = StateFragility(name, k, trials, fit)
+    return states
+
+
 def fragility(
     scenario,
     charges,
@@ -543,7 +571,6 @@ def fragility(
     seed: int = 0,
     criterion: Optional[str] = None,
     run: Optional[Callable] = None,
-    announce: Optional[Callable[[str], None]] = None,
 ) -> FragilityResult:
     """Probability of reaching each damage state against the charge, with a lognormal fit per state (module
     docstring).
@@ -569,9 +596,7 @@ def fragility(
     run : callable, optional
         ``run(spec) -> tree``: how the damage criterion's sweep runs (default
         :func:`blastscale.sweeps.run.run_in_memory`, in this process; :func:`~blastscale.sweeps.run.run_sweep`
-        into a store for Dask and resuming).
-    announce : callable, optional
-        Told the size of the job in one line before any work.
+        into a store for Dask and resuming); it is given the spec, whose ``n_cases`` it may say first.
 
     Returns
     -------
@@ -609,27 +634,11 @@ def fragility(
             'set engine = "3d" (or use the first-swing criterion)'
         )
     spec = SweepSpec.build(base, {"charge_kg": W}, absolute, relative=rel, samples=samples, seed=seed)
-    if announce is not None:
-        how = "first-swing criterion, vectorised" if criterion == "first-swing" else "one Study per case"
-        announce(f"fragility: {W.size} charges x {samples} draws = {spec.n_cases} cases ({how})")
     run = run_in_memory if run is None else run
     t0 = time.perf_counter()
     level, decided = _levels(spec, criterion, run)
     dt = time.perf_counter() - t0
-    trials = decided.sum(axis=1).astype(np.int64)
-    states = {}
-    for name in CRITERIA[criterion]:
-        k = (level >= LEVELS.index(name)).sum(axis=1).astype(np.int64)
-        try:
-            words = (
-                {}
-                if criterion == "first-swing"
-                else {"reached": f"reaches {name}", "not_reached": f"stays below {name}"}
-            )
-            fit = fit_lognormal_fragility(W[trials > 0], k[trials > 0], trials[trials > 0], **words)
-        except BlastscaleInputError:
-            fit = None
-        states[name] = StateFragility(name, k, trials, fit)
+    states = _state_fits(W, level, decided, criterion)
     col = states["collapse"]
     fields = {
         s.name: {
@@ -641,7 +650,7 @@ def fragility(
         for s in spec.sampled
     }
     with np.errstate(invalid="ignore", divide="ignore"):
-        p = col.exceeded / trials
+        p = col.exceeded / col.trials
     return FragilityResult(
         W, col.exceeded, int(samples), p, col.fit, fields, int(seed), dt, criterion=criterion, states=states
     )
