@@ -56,6 +56,8 @@ NOT_CHEAP = {
     "tests/integration/test_plan_any_structure.py runs it short)",
     "plan wall_running_bond_lambda20": "3 x 33 3D runs of a wall, minutes (tests/system/test_plan_cli.py runs it short)",
     "--samples 2000": "26,000 draws with a body per draw, ~10 s (test_fragility.py runs it with fewer draws)",
+    "--samples 40 --workers 2": "200 3D runs of a column, minutes (benchmarks/bench_fragility.py; "
+    "tests/integration/test_fragility_any_structure.py runs a three-drum column short)",
     "run my_scenario.toml --out mine": "a planar and a 3D block, ~10 s of CPU (tests/system/test_run.py runs the "
     "main job; tests/system/test_init_and_console.py the templates of init)",
     "run portal_lambda20 --out": "a 3D portal, ~9 s of CPU (tests/integration/test_assembly_similarity.py)",

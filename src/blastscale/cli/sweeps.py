@@ -251,7 +251,8 @@ def _print_fragility(res, samples: int, seed: int) -> None:
     t = Table(title=f"Fragility ({samples} draws per charge, seed {seed}, {res.criterion})", title_justify="left")
     t.add_column("charge W [kg]", justify="right")
     for name in res.states:
-        t.add_column(f"P({name})" if name != "collapse" or res.criterion != "first-swing" else "P(overturn)")
+        said = "overturns" if res.criterion == "first-swing" else f"reaches {name}"
+        t.add_column(f"{said}: n (P)", justify="right")
     t.add_column("draws", justify="right")
     first = next(iter(res.states.values()))
     for j, w in enumerate(res.charge_kg):

@@ -16,6 +16,7 @@ from ..sweeps.fragility import field_words
 
 __all__ = ["plot_fragility"]
 
+
 #: What a state means, in the legend.
 _WORDS = {
     "slight": "damaged (slight) or worse",
@@ -29,13 +30,14 @@ def _state_label(name: str, criterion: str) -> str:
     return "overturns" if (criterion == "first-swing" and name == "collapse") else _WORDS.get(name, name)
 
 
-def _draw_state(ax, W, st, color, label: str) -> None:
-    """One state: points with Wilson bars, the fit and its band (or the median's bracket when beta is open)."""
+def _draw_state(ax, W, st, color, label: str, dodge: float = 1.0) -> None:
+    """One state: points with Wilson bars (at ``W x dodge``, so that the states' points sit side by side), the fit
+    and its band (the band only where the fit is bounded; the median's bracket when beta is open)."""
     ok = st.trials > 0
     p = st.probability[ok]
     bounds = np.array([wilson_interval(int(k), int(n)) for k, n in zip(st.exceeded[ok], st.trials[ok])])
     yerr = np.vstack([p - bounds[:, 0], bounds[:, 1] - p]) if bounds.size else None
-    ax.errorbar(W[ok], p, yerr=yerr, fmt="o", ms=4, capsize=2, color=color, label=f"{label}: observed")
+    ax.errorbar(W[ok] * dodge, p, yerr=yerr, fmt="o", ms=4, capsize=2, color=color, label=f"{label}: observed")
     f = st.fit
     if f is not None and f.beta is None:  # complete separation: only the bracket of the median is known
         ax.axvspan(
@@ -47,7 +49,7 @@ def _draw_state(ax, W, st, color, label: str) -> None:
         )
     elif f is not None:
         x = np.geomspace(W.min() / 1.2, W.max() * 1.2, 300)
-        band = f.band(x)
+        band = f.band(x) if f.bounded else None
         if band is not None:
             ax.fill_between(x, band[0], band[1], color=color, alpha=0.15, lw=0)
         ax.plot(
@@ -77,10 +79,16 @@ def plot_fragility(result, ax=None):
         import matplotlib.pyplot as plt
 
         _, ax = plt.subplots(figsize=(7.5, 5.0), layout="constrained")
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
     W = np.asarray(result.charge_kg, dtype=float)
+    n = len(result.states)
     for i, (name, st) in enumerate(result.states.items()):
-        _draw_state(ax, W, st, f"C{i}", _state_label(name, result.criterion))
+        _draw_state(ax, W, st, f"C{i}", _state_label(name, result.criterion), 1.0 + 0.012 * (i - (n - 1) / 2))
     ax.set_xscale("log")
+    ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(NullFormatter())  # plain numbers at 1, 2, 5 x 10^k, not 2 x 10^0
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel("charge W [kg TNT]")
     ax.set_ylabel("probability of reaching the state")
