@@ -67,7 +67,9 @@ def test_study_summary_damage_planar_block_prototype_and_model():
     the first-swing median of about 80 kg, tests/integration/test_fragility.py). The model is up-scaled: the
     same state."""
     for charge, name in ((50.0, "intact"), (130.0, "collapse")):
-        r = Study(Scenario.default().with_values({"engine": "planar", "charge_kg": charge, "critical_charge": False})).run()
+        r = Study(
+            Scenario.default().with_values({"engine": "planar", "charge_kg": charge, "critical_charge": False})
+        ).run()
         d = r.summary()["damage"]
         assert d["engine"] == "planar" and d["prototype"]["name"] == name and d["model"]["name"] == name
         assert r.scalars()["damage.prototype.level"] == LEVELS.index(name)
