@@ -539,7 +539,10 @@ def _levels(spec: SweepSpec, criterion: str, run) -> tuple:
         return np.where(over, len(LEVELS) - 1, 0), np.ones(over.shape, dtype=bool)
     tree = run(spec)
     decided = np.asarray(tree["valid"].values, dtype=bool).reshape(spec.shape)
-    level = np.asarray(select(tree, "damage.prototype.level").values, dtype=float).reshape(spec.shape)
+    try:
+        level = np.asarray(select(tree, "damage.prototype.level").values, dtype=float).reshape(spec.shape)
+    except KeyError:  # the Study refused every case: nothing decided
+        level = np.full(spec.shape, np.nan)
     return np.where(decided, np.nan_to_num(level, nan=-1.0), -1.0).astype(int), decided
 
 
@@ -554,7 +557,11 @@ def _state_fits(W: np.ndarray, level: np.ndarray, decided: np.ndarray, criterion
             {} if criterion == "first-swing" else {"reached": f"reaches {name}", "not_reached": f"stays below {name}"}
         )
         try:
-            fit = fit_lognormal_fragility(W[trials > 0], k[trials > 0], trials[trials > 0], **words)
+            fit = (
+                fit_lognormal_fragility(W[trials > 0], k[trials > 0], trials[trials > 0], **words)
+                if trials.any()
+                else None
+            )
         except BlastscaleInputError:
             fit = None
         states[name] = StateFragility(name, k, trials, fit)
