@@ -158,6 +158,8 @@ def test_block_first_swing_fragility_is_todays_bitwise():
             "cannot enter the damage",
         ),
         (["--criterion", "nonsense"], "criterion = 'nonsense' is not known"),
+        # the first-swing criterion runs in this process: no store, no workers
+        (["--workers", "2"], "--workers: the first-swing criterion runs vectorised in this process"),
     ],
 )
 def test_inputs_that_cannot_enter_the_criterion_are_refused_in_one_line(capsys, argv, words):

@@ -20,7 +20,7 @@ from rich.table import Table
 from .._validate import BlastscaleInputError
 from ..io.results import legacy_name
 from ..io.sweep_store import open_sweep, unfinished_chunks
-from ..sweeps.fragility import fragility
+from ..sweeps.fragility import default_criterion, fragility
 from ..sweeps.grids import parse_assignment, parse_distribution, parse_grid, parse_number
 from ..sweeps.run import run_in_memory, run_sweep
 from ..sweeps.similarity_map import similarity_map
@@ -204,6 +204,12 @@ def fragility_cmd(
     check_plot_path(plot)
     base = read_scenario(scenario, values)
     W = parse_grid(charges, "charges")
+    given = [f for f, v in (("--out", out), ("--scheduler", scheduler), ("--workers", workers)) if v]
+    if given and (criterion or default_criterion(base)) == "first-swing":
+        raise BlastscaleInputError(
+            f"{', '.join(given)}: the first-swing criterion runs vectorised in this process and writes no store "
+            "(a million draws a minute); these options go with --criterion damage"
+        )
     if out is not None:
         _resume_note(out)
     bar, tick = count_progress("fragility", quiet=as_json)
