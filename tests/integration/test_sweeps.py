@@ -573,7 +573,10 @@ def test_every_store_is_xarray_ready_with_the_right_units(tmp_path):
         if label == "both":
             assert tree["ensemble"]["first_peak_ratio"].dims == ("standoff_m", "point")
             assert tree["design"]["shock_front_velocity"].attrs["units"] == "m/s"
-            assert set(tree.children) == {"experiment", "design", "planar", "sim3d", "ensemble", "verdict"}
+            assert set(tree.children) == {"experiment", "design", "planar", "sim3d", "ensemble", "verdict", "damage"}
+            # issue #38: every case's damage state (0 intact .. 4 collapse), prototype and up-scaled model
+            level = tree["damage"]["level"]
+            assert level.dims == ("standoff_m", "system") and set(np.unique(level.values)) <= set(range(5))
             # issue #35: every case's verdict (the one criterion), the worst ratio a ratio ("1")
             assert tree["verdict"]["worst_ratio"].attrs["units"] == "1" and tree["verdict"]["similar"].size == 2
 
@@ -598,7 +601,7 @@ def test_prototype_only_sweep_through_the_cli_holds_the_prototype_alone(tmp_path
     assert out["n_cases"] == 2 and out["chunks_run"] >= 1
     spec = SweepSpec.build(prototype_only(BASE), {"charge_kg": [40.0, 120.0]})
     tree = assert_store_equals_loop(tmp_path / "p.zarr", spec)
-    assert set(tree.children) == {"experiment", "planar", "critical", "verdict"}
+    assert set(tree.children) == {"experiment", "planar", "critical", "verdict", "damage"}
     # nothing compared: the verdict is NaN (null) in every case (issue #35: the scalars always carry it)
     assert np.isnan(tree["verdict"]["similar"].values).all() and np.isnan(tree["verdict"]["worst_ratio"].values).all()
     for group in ("experiment", "planar"):

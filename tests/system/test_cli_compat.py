@@ -42,6 +42,12 @@ CHANGED: dict = {
         "not reached, tests/integration/test_sparse_factorisation.py)"
         for case in ("column_sq", "column_circ_ens")
     },
+    **{
+        ("fragility", k): "issue #38: the 95 % bounds of the lognormal fit are profile-likelihood bounds (Venzon & "
+        "Moolgavkar 1988) instead of the observed information's symmetric ones in log space; the counts, median, "
+        "beta and log-likelihood are unchanged (bitwise)"
+        for k in ("median_charge_ci_kg", "beta_ci")
+    },
     (
         "simmap",
         "tolerance",

@@ -58,6 +58,8 @@ NOT_CHEAP = {
     "capacity paper_column_square_250kg": "38 3D runs of a column, ~1 min of CPU (benchmarks/bench_capacity3d.py; "
     "tests/system/test_capacity3d.py runs a short column)",
     "--samples 2000": "26,000 draws with a body per draw, ~10 s (test_fragility.py runs it with fewer draws)",
+    "--samples 40 --workers 2": "200 3D runs of a column, minutes (benchmarks/bench_fragility.py; "
+    "tests/integration/test_fragility_any_structure.py runs a three-drum column short)",
     "run my_scenario.toml --out mine": "a planar and a 3D block, ~10 s of CPU (tests/system/test_run.py runs the "
     "main job; tests/system/test_init_and_console.py the templates of init)",
     "run portal_lambda20 --out": "a 3D portal, ~9 s of CPU (tests/integration/test_assembly_similarity.py)",

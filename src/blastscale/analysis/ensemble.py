@@ -110,7 +110,9 @@ def ensemble_statistics(
         ``collapse_probability``, ``collapse_count`` and ``members`` (k); ``collapse_time_mean``,
         ``collapse_time_spread`` [s] over the collapsed members (nan when none); ``bodies`` (with ``bodies``;
         else None): per body ``residual_displacement_{p05,median,p95}`` [m],
-        ``residual_rotation_{p05,median,p95}`` [rad] and ``fall_count`` (members in which it fell).
+        ``residual_rotation_{p05,median,p95}`` [rad] and ``fall_count`` (members in which it fell);
+        ``member_collapsed`` (k,) and ``member_bodies`` (``bodies`` as given, None without): each member's
+        outcome and bodies, for its damage state (:func:`blastscale.analysis.damage.damage_state`).
     """
 
     q = np.asarray(members, dtype=float)
@@ -160,6 +162,8 @@ def ensemble_statistics(
         "collapse_time_mean": float(np.nanmean(tc)) if np.any(np.isfinite(tc)) else math.nan,
         "collapse_time_spread": float(np.nanmax(tc) - np.nanmin(tc)) if np.any(np.isfinite(tc)) else math.nan,
         "bodies": None if bodies is None else _body_statistics(bodies),
+        "member_collapsed": col.tolist(),
+        "member_bodies": None if bodies is None else list(bodies),
     }
 
 

@@ -84,6 +84,20 @@ def _print_engine(title: str, engine: dict, note=None) -> None:
         console.print(_similarity_table(engine["similarity"]))
 
 
+def _damage_words(d: dict) -> str:
+    """The damage states of the prototype and of the up-scaled model in words (docs/sweeps.md, "Damage states")."""
+
+    def one(st: dict) -> str:
+        name = st["name"] if st["state"] != "damaged" else f"damaged ({st['band']})"
+        drift = st["residual_drift"]
+        return name + ("" if drift is None or drift != drift else f", residual drift {drift * 100:.3g} %")
+
+    said = [f"the prototype {one(d['prototype'])}"]
+    if d.get("model") is not None:
+        said.append(f"the up-scaled model {one(d['model'])}")
+    return "; ".join(said) + f" ({d['engine']}; limits: [damage])"
+
+
 def _print_result(result) -> None:
     sc, s = result.scenario, result.summary()
     exp = s["experiment"]
@@ -125,6 +139,8 @@ def _print_result(result) -> None:
 
             note = styled("under gravity alone the structure ", (stability_words(stab), "bold"), f" ({STABILITY_RULE})")
         _print_engine(f"3D rigid bodies, MuJoCo (friction {sc.structure.friction:g}, Method {sc.blast.load})", r3, note)
+    if s.get("damage") is not None:
+        console.print(styled(("Damage:", "bold"), " " + _damage_words(s["damage"])), soft_wrap=True)
 
     card = card_of(result)
     if card is not None:

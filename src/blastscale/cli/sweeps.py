@@ -20,13 +20,13 @@ from rich.table import Table
 from .._validate import BlastscaleInputError
 from ..io.results import legacy_name
 from ..io.sweep_store import open_sweep, unfinished_chunks
-from ..sweeps.fragility import fragility
+from ..sweeps.fragility import default_criterion, fragility
 from ..sweeps.grids import parse_assignment, parse_distribution, parse_grid, parse_number
 from ..sweeps.run import run_in_memory, run_sweep
 from ..sweeps.similarity_map import similarity_map
 from ..sweeps.spec import SweepSpec
 from ._app import app
-from ._output import activity, console, count_progress, one_line_warnings, print_json, print_written, table
+from ._output import console, console_err, count_progress, one_line_warnings, print_json, print_written, table
 from ._signals import ignore_interrupts, set_interrupt_note
 from .flags import SET_VALUES
 from .options import check_plot_path
@@ -165,24 +165,65 @@ def fragility_cmd(
     values: List[str] = SET_VALUES,
     charges: str = typer.Option(..., "--charges", help="Charges W \\[kg TNT]: start:stop:n[:log] or a,b,c."),
     lognormal: Optional[List[str]] = typer.Option(
-        None, "--lognormal", help="FIELD=beta: the field times a lognormal factor (median 1, log-sd beta) (repeatable)."
+        None,
+        "--lognormal",
+        help="FIELD=beta: the field times a lognormal factor (median 1, log-sd beta); charge_kg=beta: the charge "
+        "and its TNT equivalence (repeatable).",
     ),
     uniform: Optional[List[str]] = typer.Option(
-        None, "--uniform", help="FIELD=lo:hi: uniform values in the field's unit (repeatable)."
+        None,
+        "--uniform",
+        help="FIELD=lo:hi: uniform values in the field's unit: stand-off, friction, geometric tolerances (repeatable).",
     ),
     samples: int = typer.Option(1000, "--samples", help="Monte Carlo draws per charge."),
     seed: int = SEED,
-    plot: Optional[str] = typer.Option(None, "--plot", help="Write the fragility curve to this image file."),
+    criterion: Optional[str] = typer.Option(
+        None,
+        "--criterion",
+        help="first-swing (blocks: planar rocking, vectorised; state collapse) or damage (any structure: one Study "
+        "per case, damage states slight, moderate, severe, collapse). Default: first-swing for a block, else damage.",
+    ),
+    out: Optional[Path] = typer.Option(
+        None, "--out", help="Damage criterion: Zarr store of the underlying sweep (resumable; its parent must exist)."
+    ),
+    scheduler: Optional[str] = SCHEDULER,
+    workers: Optional[int] = typer.Option(
+        0, "--workers", help="Damage criterion: local worker processes (default 0: in this process)."
+    ),
+    chunk: Optional[int] = CHUNK,
+    force: bool = typer.Option(False, "--force", help="Replace a store (or unfinished chunks) of another sweep."),
+    plot: Optional[str] = typer.Option(None, "--plot", help="Write the fragility curves to this image file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
-    """Probability that the prototype block overturns against the charge, under uncertain fields,
-    with a maximum-likelihood lognormal fit (median charge, beta, 95 % bounds). Each draw is
-    decided by the first-swing energy criterion (docs/capacity.md), vectorised."""
+    """Probability that the prototype reaches each damage state against the charge, under uncertain fields,
+    with a maximum-likelihood lognormal fit per state (median charge, beta, 95 % profile-likelihood bounds).
+    A block: each draw decided by the first-swing energy criterion (docs/capacity.md), vectorised; any
+    structure: one Study per draw (3D; on Dask with --workers, resumable with --out), judged by the damage
+    states of the scenario's [damage] table (docs/sweeps.md)."""
 
     check_plot_path(plot)
     base = read_scenario(scenario, values)
     W = parse_grid(charges, "charges")
-    with activity(f"fragility: {W.size} charges x {samples} draws", quiet=as_json):
+    given = [f for f, v in (("--out", out), ("--scheduler", scheduler), ("--workers", workers)) if v]
+    if given and (criterion or default_criterion(base)) == "first-swing":
+        raise BlastscaleInputError(
+            f"{', '.join(given)}: the first-swing criterion runs vectorised in this process and writes no store "
+            "(a million draws a minute); these options go with --criterion damage"
+        )
+    if out is not None:
+        _resume_note(out)
+    bar, tick = count_progress("fragility", quiet=as_json)
+
+    def run(spec):  # the damage criterion's sweep, its size said first
+        if not as_json:
+            where = f"{workers} workers" if workers else "this process" if scheduler is None else scheduler
+            console_err.print(f"fragility: {spec.n_cases} cases, one Study each, on {where}")
+        if out is None:
+            return run_in_memory(spec, scheduler=scheduler, workers=workers or 0, chunk=chunk, progress=tick)
+        run_sweep(spec, out, scheduler=scheduler, workers=workers, chunk=chunk, force=force, progress=tick)
+        return open_sweep(out)
+
+    with one_line_warnings(), bar:
         res = fragility(
             base,
             W,
@@ -190,38 +231,52 @@ def fragility_cmd(
             uniform=_assignments(uniform, "--uniform", _uniform_range),
             samples=samples,
             seed=seed,
+            criterion=criterion,
+            run=run,
         )
-    out = res.to_dict()
-    out["scenario"] = base.title or "default"
+    out_json = res.to_dict()
+    out_json["scenario"] = base.title or "default"
     if plot:
         from ..plots.fragility import plot_fragility
         from ._output import save_figure
 
         save_figure(lambda: plot_fragility(res).figure, plot)
-        out["plot"] = plot
+        out_json["plot"] = plot
     if as_json:
-        print_json(out, engine="planar")
+        print_json(out_json, engine="planar" if res.criterion == "first-swing" else "3d")
         return
-
-    t = Table(title=f"Fragility ({samples} draws per charge, seed {seed})", title_justify="left")
-    for c in ("charge W [kg]", "collapsed", "P(overturn)", "binomial s.e."):
-        t.add_column(c, justify="right")
-    for w, k, p, s in zip(out["charge_kg"], out["collapsed"], out["probability"], out["binomial_standard_error"]):
-        t.add_row(f"{w:.6g}", str(k), f"{p:.4f}", f"{s:.4f}")
-    console.print(t)
-    if res.fit is None:
-        console.print("no transition in the charge range: no lognormal fit (widen --charges)")
-    elif res.fit.beta is None:
-        console.print(f"lognormal fit: not bounded: {res.fit.note}")
-    else:
-        f = res.fit
-        console.print(
-            f"lognormal fit: median {f.median_charge_kg:.6g} kg (95 %: {f.median_ci_kg[0]:.6g} - "
-            f"{f.median_ci_kg[1]:.6g}), beta {f.beta:.4g} (95 %: {f.beta_ci[0]:.4g} - {f.beta_ci[1]:.4g})"
-            + (f"; {f.note}" if f.note else "")
-        )
+    _print_fragility(res, samples, seed)
+    if out is not None:
+        print_written(out, "the underlying sweep")
     if plot:
         print_written(plot)
+
+
+def _print_fragility(res, samples: int, seed: int) -> None:
+    """The counts per charge and state, and each state's lognormal fit."""
+    t = Table(title=f"Fragility ({samples} draws per charge, seed {seed}, {res.criterion})", title_justify="left")
+    t.add_column("charge W [kg]", justify="right")
+    for name in res.states:
+        said = "overturns" if res.criterion == "first-swing" else f"reaches {name}"
+        t.add_column(f"{said}: n (P)", justify="right")
+    t.add_column("draws", justify="right")
+    first = next(iter(res.states.values()))
+    for j, w in enumerate(res.charge_kg):
+        cells = [f"{st.exceeded[j]} ({st.probability[j]:.3f})" for st in res.states.values()]
+        t.add_row(f"{w:.6g}", *cells, str(first.trials[j]))
+    console.print(t)
+    for name, st in res.states.items():
+        f = st.fit
+        if f is None:
+            console.print(f"{name}: no transition in the charge range: no lognormal fit (widen --charges)")
+        elif f.beta is None:
+            console.print(f"{name}: lognormal fit: not bounded: {f.note}")
+        else:
+            console.print(
+                f"{name}: lognormal fit: median {f.median_charge_kg:.6g} kg (95 %: {f.median_ci_kg[0]:.6g} - "
+                f"{f.median_ci_kg[1]:.6g}), beta {f.beta:.4g} (95 %: {f.beta_ci[0]:.4g} - {f.beta_ci[1]:.4g})"
+                + (f"; {f.note}" if f.note else "")
+            )
 
 
 @app.command("similarity-map")

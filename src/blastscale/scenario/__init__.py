@@ -38,6 +38,9 @@ paper's default. The paper's 10 m block at 1/200::
     [verdict]               # the similarity criterion's tolerances (optional; docs/verdict.md)
     residual = 0.2
 
+    [damage]                # the damage states' limits (optional; docs/sweeps.md)
+    severe_drift = 0.01
+
 Unknown keys, wrong types, NaN and values out of range are refused with one line that names
 the field path, the value and the valid range (:class:`~blastscale._validate.BlastscaleInputError`).
 See ``docs/scenarios.md`` for every key.
@@ -46,7 +49,7 @@ See ``docs/scenarios.md`` for every key.
 from .files import load_scenario
 from .library import EXAMPLE_BLOCKS, TEMPLATE_KINDS, library_names, library_text, template_text
 from .scenario import Scenario
-from .specs import BlastSpec, ContactSpec, ScaleSpec, SimulationSpec, VerdictSpec, parse_ratio
+from .specs import BlastSpec, ContactSpec, DamageSpec, ScaleSpec, SimulationSpec, VerdictSpec, parse_ratio
 from .structure_specs import BlockSpec, ColumnSpec
 from .text import to_toml
 
@@ -67,4 +70,5 @@ __all__ = [
     "SimulationSpec",
     "ContactSpec",
     "VerdictSpec",
+    "DamageSpec",
 ]

@@ -14,7 +14,7 @@ from .fields import SPEC_CONFIG
 from .fired import FiredSpec
 from .lab import LabSpec
 from .messages import one_line, submodels
-from .specs import LEGACY_SCENARIO_KEYS, BlastSpec, ScaleSpec, SimulationSpec, VerdictSpec
+from .specs import LEGACY_SCENARIO_KEYS, BlastSpec, DamageSpec, ScaleSpec, SimulationSpec, VerdictSpec
 from .structure_specs import KINDS, BlockSpec, Structure
 from .text import to_toml
 
@@ -66,6 +66,11 @@ class Scenario(BaseModel):
     verdict: VerdictSpec = Field(
         default_factory=VerdictSpec,
         description="The similarity criterion's tolerances (docs/verdict.md); absent: the defaults",
+    )
+    damage: DamageSpec = Field(
+        default_factory=DamageSpec,
+        description="The damage states' limits (intact, damaged slight / moderate / severe, collapse; "
+        "docs/sweeps.md); absent: the defaults",
     )
     lab: Optional[LabSpec] = Field(
         None,

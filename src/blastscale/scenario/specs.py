@@ -35,6 +35,7 @@ __all__ = [
     "SimulationSpec",
     "ContactSpec",
     "VerdictSpec",
+    "DamageSpec",
     "LEGACY_SCENARIO_KEYS",
 ]
 
@@ -371,3 +372,48 @@ class VerdictSpec(BaseModel):
     confidence: float = Field(
         0.95, gt=0, lt=1, description="Confidence level of the probabilities' intervals (two-sided) [-]"
     )
+
+
+class DamageSpec(BaseModel):
+    """The damage states' limits (:func:`blastscale.analysis.damage.damage_state`, docs/sweeps.md "Damage
+    states"): on the verdict's judged quantities, the residual drift (the largest residual displacement of a
+    body over the structure's height H) and the largest residual rotation of a body; a body that fell is a
+    collapse. Intact: drift <= ``intact_drift`` and rotation <= ``intact_rotation_rad``; damaged: slight from
+    there, moderate from ``moderate_drift``, severe from ``severe_drift``. Defaults after the permanent drifts
+    of unreinforced masonry in FEMA 356 (2000), Table C1-3, and the residual-dislocation performance levels of
+    classical columns of Psycharis, Fragiadakis & Stefanou (2013), EESD 42(14), 2061-2079 (docs/sweeps.md)."""
+
+    model_config = SPEC_CONFIG
+    intact_drift: float = Field(
+        1e-3,
+        gt=0,
+        lt=1,
+        description="Intact up to this residual drift: largest residual displacement of a body / H [-] "
+        "(FEMA 356 Table C1-3: 'negligible' permanent drift at Immediate Occupancy)",
+    )
+    intact_rotation_rad: float = Field(
+        1e-3, gt=0, lt=1, description="Intact up to this residual rotation of every body [rad]"
+    )
+    moderate_drift: float = Field(
+        6e-3,
+        gt=0,
+        lt=1,
+        description="Damaged, moderate from this residual drift [-] (FEMA 356 Table C1-3, unreinforced "
+        "masonry walls: 0.6 % permanent drift at Life Safety)",
+    )
+    severe_drift: float = Field(
+        1e-2,
+        gt=0,
+        lt=1,
+        description="Damaged, severe from this residual drift [-] (FEMA 356 Table C1-3, unreinforced masonry "
+        "walls: 1 % permanent drift at Collapse Prevention)",
+    )
+
+    @model_validator(mode="after")
+    def _ascending(self) -> "DamageSpec":
+        if not self.intact_drift < self.moderate_drift < self.severe_drift:
+            raise ValueError(
+                f"intact_drift = {self.intact_drift:g}, moderate_drift = {self.moderate_drift:g}, severe_drift = "
+                f"{self.severe_drift:g}: the limits must increase in that order"
+            )
+        return self

@@ -11,10 +11,11 @@ from typing import Any, Callable
 import numpy as np
 
 from ..analysis.compare import upscale_dataset
+from ..analysis.damage import damage_summary
 from ..analysis.intervals import odds_text
 from ..analysis.rocking_similarity import rocking_dataset
 from ..scenario.scenario import Scenario
-from .criterion import judge
+from .criterion import judge, structure_height
 
 __all__ = ["StudyResult", "study_warnings"]
 
@@ -131,7 +132,8 @@ class StudyResult:
     def summary(self) -> dict:
         """Nested dict of every result (JSON-ready apart from NaN/inf): ``experiment``,
         ``design``, ``planar``, ``critical``, ``3d``, ``ensemble`` (None where not run),
-        ``warnings``, ``timings_s`` and ``verdict`` (:func:`~blastscale.study.criterion.judge`). The
+        ``damage`` (:func:`~blastscale.analysis.damage.damage_summary`: the damage states of the prototype,
+        the up-scaled model and each ensemble member), ``warnings``, ``timings_s`` and ``verdict`` (:func:`~blastscale.study.criterion.judge`). The
         scenario is under ``scenario``. Computed once (a copy is returned)."""
 
         return copy.deepcopy(self._cached_summary())
@@ -154,6 +156,9 @@ class StudyResult:
             "warnings": list(self.warnings),
             "timings_s": dict(self.timings),
         }
+        out["damage"] = damage_summary(
+            out, self.scenario.damage, structure_height(out), self.ensemble
+        )  # the prototype's and the up-scaled model's damage states (docs/sweeps.md)
         out["verdict"] = judge(
             out,
             self.scenario.verdict,
@@ -164,12 +169,14 @@ class StudyResult:
 
     def scalars(self) -> dict:
         """Flat dict of the scalar results (dotted keys, stable for a given scenario layout):
-        str -> float / int / bool; None (not applicable) -> NaN. Inputs and timings are left out; of the
+        str -> float / int / bool; None (not applicable) -> NaN. Inputs and timings are left out; of the damage
+        states, their levels (``damage.prototype.level``: 0 intact to 4 collapse,
+        :data:`~blastscale.analysis.damage.LEVELS`) and the quantities judged; of the
         verdict, ``verdict.similar`` (NaN when nothing is compared) and ``verdict.worst_ratio`` (its worst
         quantity's error / tolerance; NaN when none)."""
         s = self._cached_summary()  # _flatten only reads it
         out: dict = {}
-        for key in ("experiment", "design", "planar", "critical", "3d", "ensemble"):
+        for key in ("experiment", "design", "planar", "critical", "3d", "ensemble", "damage"):
             _flatten(s[key], key, out)
         v = s["verdict"]
         out["verdict.similar"] = math.nan if v["similar"] is None else bool(v["similar"])

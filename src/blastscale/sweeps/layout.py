@@ -57,6 +57,7 @@ GROUPS = {
     "3d": "sim3d",
     "ensemble": "ensemble",
     "verdict": "verdict",
+    "damage": "damage",
 }
 
 #: Labels of the ``system`` dimension, in store order.
@@ -85,6 +86,8 @@ _CONTEXT = {
     "sim3d": "3D engine",
     "ensemble": "3D ensemble",
     "verdict": "the similarity verdict, docs/verdict.md",
+    "damage": "damage state, 0 intact, 1-3 damaged slight to severe, 4 collapse",
+    "damage/ensemble/counts": "ensemble members in this damage state",
     "design/factors": "scaling factor, specimen / prototype",
     "design/impulsive": "impulsive check",
 }
