@@ -39,7 +39,7 @@ from .._threads import map_threads
 from .._validate import BlastscaleInputError
 from ..analysis.intervals import odds_text, wilson_interval
 from ..blast.parameters import blast_parameters_unchecked, valid_scaled_distance_range
-from ..similitude.factors import scaling_factors
+from ..similitude.factors import scaling_factors, to_specimen
 from ..study.study import Study
 from ..sweeps.grids import Distribution
 
@@ -274,7 +274,7 @@ class SpecimenMember:
 def specimen_friction(scenario, design) -> float:
     """The specimen's nominal friction coefficient [-]: the prototype's (``structure.friction``) x the design's
     friction factor lambda_mu (its material's joint friction, :mod:`blastscale.structures.materials`)."""
-    return float(scenario.structure.friction) * float(design.factors.friction)
+    return float(to_specimen(float(scenario.structure.friction), design.factors, "friction", "structure.friction"))
 
 
 def specimen_members(scenario, design, tolerances: Tolerances, members: int, seed: int = 0) -> list:
