@@ -104,6 +104,94 @@ def under_blast(clock=time.perf_counter, repeat: int = 1) -> dict:
     return {"column_square_10_drums": colb, "200": big, "ratio_200_over_column": big / colb}
 
 
+#: The walls of the cost-against-blocks exponent (issue #41): the benchmark's 200-block stack-bonded wall (20 courses
+#: of 10 units, 5 x 2.5 x 0.5 m) and the same blocks in a wall twice as long (20 courses of 20, 10 x 2.5 x 0.5 m),
+#: both 10 kg at 5 m for 0.25 s; ``--exponent-tall``: twice as high instead (40 courses of 10, 5 x 5 x 0.5 m).
+WALL_200 = dict(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=20, units_per_course=10, bond="stack")
+WALL_400 = dict(WALL_200, length_m=10.0, units_per_course=20)
+WALL_400_TALL = dict(WALL_200, height_m=5.0, courses=40)
+
+
+def _new_wall(kw: dict):
+    """A new wall object (nothing derived yet) from generator keywords."""
+    return wall(**kw)
+
+
+def _costs(structure, charge: float, standoff: float, seconds: float, fresh: bool) -> dict:
+    """CPU s (this process) of one run of ``structure`` under Method A of ``charge`` [kg] at ``standoff`` [m]:
+    ``first`` a run of one recorded interval (0.005 s) on a new object with every cache cleared (``fresh``: the fixed
+    cost, geometry, model and settling, and that interval), ``short`` the same again (from the caches), ``long`` a
+    run of ``seconds`` (from the caches); marginal cost per reference second = (long - short) / (reference seconds
+    between them)."""
+    from blastscale.sim3d import make_load, simulate_structure
+    from blastscale.sim3d.reference import clear_scene_cache, reference_factors
+
+    short = 0.005
+    out = {}
+    if fresh:
+        clear_scene_cache()
+        t0 = _cpu()
+        load = make_load("A", structure, blast_parameters(charge, standoff))
+        simulate_structure(structure, load, short, record_every=20)
+        out["first"] = _cpu() - t0
+    else:
+        load = make_load("A", structure, blast_parameters(charge, standoff))
+        simulate_structure(structure, load, short, record_every=20)
+    t0 = _cpu()
+    simulate_structure(structure, load, short, record_every=20)
+    out["short"] = _cpu() - t0
+    t0 = _cpu()
+    r = simulate_structure(structure, load, seconds, record_every=20)
+    out["long"] = _cpu() - t0
+    _, b = reference_factors(structure, 9.81)
+    out["marginal_per_reference_s"] = (out["long"] - out["short"]) / ((seconds - short) * b)
+    s = r.summary()
+    out["outcome"] = {
+        "stability": s.get("stability"),
+        "fallen_blocks": s.get("fallen_blocks"),
+        "max_displacement_m": s.get("max_displacement_m"),
+    }
+    return out
+
+
+def walls(pairs: int = 3, tall: bool = False) -> dict:
+    """Issue #41's figures of the walls, CPU seconds of this process, measured interleaved (column, wall 200,
+    wall 400, again ``pairs`` times; medians): ``fixed_s`` the 200-block wall's fixed cost (a new wall object, caches
+    cleared: geometry, interfaces, model, settling; minus the same short run from the caches), its
+    ``marginal_over_column`` (marginal CPU s per reference second under the blast, 10 kg at 5 m, against the square
+    column's, 250 kg at 10 m), and ``exponent_200_400`` = log2 of the 400-block wall's marginal cost over the
+    200-block wall's."""
+    col = MultiDrumColumn("square")
+    big = WALL_400_TALL if tall else WALL_400
+    rows = {"column": [], "200": [], "400": []}
+    for _ in range(pairs):
+        rows["column"].append(_costs(col, 250.0, 10.0, 1.0, fresh=False))
+        rows["200"].append(_costs(_new_wall(WALL_200), 10.0, 5.0, 0.25, fresh=True))
+        rows["400"].append(_costs(_new_wall(big), 10.0, 5.0, 0.25, fresh=True))
+
+    def med(key, what):
+        return float(np.median([r[what] for r in rows[key]]))
+
+    m_col, m200, m400 = (med(k, "marginal_per_reference_s") for k in ("column", "200", "400"))
+    fixed = [r["first"] - r["short"] for r in rows["200"]]
+    return {
+        "fixed_s": float(np.median(fixed)),
+        "fixed_s_runs": fixed,
+        "fixed_s_400": float(np.median([r["first"] - r["short"] for r in rows["400"]])),
+        "cached_short_run_s": med("200", "short"),
+        "marginal_cpu_s_per_reference_s": {"column": m_col, "200": m200, "400": m400},
+        "marginal_over_column": m200 / m_col,
+        "marginal_over_column_runs": [
+            a["marginal_per_reference_s"] / c["marginal_per_reference_s"] for a, c in zip(rows["200"], rows["column"])
+        ],
+        "exponent_200_400": math.log2(m400 / m200),
+        "wall_400": big,
+        "outcomes": {k: rows[k][-1]["outcome"] for k in rows},
+        "clock": "CPU s (user + sys) of this process; medians of the interleaved runs",
+        "load_average": os.getloadavg(),
+    }
+
+
 def blocks(quick: bool = False) -> dict:
     """Cost against the number of blocks at rest, default settings: 1 (the paper's block), stack-bonded walls
     of 10, 50, 200 blocks and running-bond walls of 11, 52, 210; the 10-drum square column beside them; ratios
@@ -263,8 +351,16 @@ def main() -> None:
         blast = {"under_blast": under_blast(_cpu, 3), "clock": "CPU s (user + sys), best of 3"}
         print(json.dumps({"blocks": blast, "load_average": os.getloadavg()}, indent=2))
         return
+    if "--walls" in sys.argv:  # issue #41's figures alone
+        print(json.dumps({"walls": walls(tall="--exponent-tall" in sys.argv)}, indent=2))
+        return
     quick = "--quick" in sys.argv
-    out = {"blocks": blocks(quick), "ensemble": ensemble(quick), "sweep3d": sweep3d(quick)}
+    out = {
+        "blocks": blocks(quick),
+        "walls": walls(1 if quick else 3),
+        "ensemble": ensemble(quick),
+        "sweep3d": sweep3d(quick),
+    }
     print(json.dumps(out, indent=2))
 
 
