@@ -47,7 +47,9 @@ def _stepping_stats():
             ni = max(1, min(int(d.nisland), len(d.solver_niter)))
             rows.append((float(d.time), int(np.sum(d.solver_niter[:ni])), ni, int(d.ncon), int(d.nefc)))
             if len(rows) % 500 == 0:  # progress on stderr: reference time, CPU s so far
-                print(f"step {len(rows)}: t = {d.time:.4f} s (reference), CPU {_cpu():.1f} s", file=sys.stderr, flush=True)
+                print(
+                    f"step {len(rows)}: t = {d.time:.4f} s (reference), CPU {_cpu():.1f} s", file=sys.stderr, flush=True
+                )
 
     mujoco.mj_step = step
 
