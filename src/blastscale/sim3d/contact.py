@@ -312,8 +312,8 @@ ASSEMBLY_SETTLE_TOLERANCE = 1e-8
 #: ``impratio``; 10 for the others). A sticking joint of MuJoCo's soft contact creeps at a speed proportional to
 #: 1 / impratio (the frictional rows' regularisation is the normal one's over impratio): the arch R = 5 m, t/R = 0.16,
 #: 20 voussoirs, friction 0.8 creeps 0.569, 0.284, 0.187, 0.125 mm in 5 s under gravity alone at 10, 20, 30, 50
-#: (issue #35's limit 0.5 mm); 20 keeps the cost (the arch 6.2 vs 6.8 CPU s, the 200-block wall under its blast
-#: within 5 %), the wall's largest displacement (+0.01 %, its spread over the geometry 0.9 %), the outcomes and the
+#: (issue #35's limit 0.5 mm); 20 keeps the cost (the arch 6.2 vs 6.8 CPU s; the 200-block wall under its blast
+#: within this machine's noise), the wall's largest displacement (+0.01 %, its spread over the geometry 0.9 %), the outcomes and the
 #: 14-block wall's sparse against dense Jacobian (5.6e-13 of the peak), where 12 leaves them 4.3e-3 apart and the
 #: arch at t/R = 0.14 "moving" at 1 s, and 30 the t/R = 0.16 arch "moving" at 5 s (docs/performance.md, "Assembly
 #: contact defaults").
