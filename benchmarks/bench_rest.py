@@ -1,8 +1,9 @@
 """At rest before the blast (issue #35, deliverable 5; docs/sim3d.md, "At rest before the blast").
 
 The full-length figures the tests shorten: the semicircular arch R = 5 m, 20 voussoirs, friction 0.8 under gravity
-alone for 5 s at t/R = 0.16 (residual displacement and wall time, settled at the assemblies' tolerance 1e-8 and at the
-run's 1e-10, and at impratio 10, 15, 20), the rest check (3 sqrt(H/g)) of t/R = 0.16, 0.12 and 0.105 over 0.25-3
+alone for 5 s at t/R = 0.16 (residual displacement and wall time with the assemblies' defaults, impratio 20 and settling
+at 1e-8; settled at the run's 1e-10; the convergence study of issue #41: impratio 10, 12, 30, 50, 100, no-slip, tolerance
+1e-12, the pyramidal cone; docs/performance.md, "Assembly contact defaults"), the rest check (3 sqrt(H/g)) of t/R = 0.16, 0.12 and 0.105 over 0.25-3
 natural times, and its cost on the paper's block and column. Not a test:
 ``python benchmarks/bench_rest.py [--json] [--quick]`` (--quick: the rest checks only).
 """
@@ -64,8 +65,10 @@ def main():
         out["arch_5s"] = [
             five_seconds(),
             five_seconds(settle_tolerance=1e-10),
-            five_seconds(impratio=15.0),
-            five_seconds(impratio=20.0),
+            *(five_seconds(impratio=x) for x in (10.0, 12.0, 30.0, 50.0, 100.0)),
+            five_seconds(noslip_iterations=1),
+            five_seconds(tolerance=1e-12),
+            five_seconds(cone="pyramidal"),
         ]
     if "--json" in sys.argv:
         print(json.dumps(out, indent=1))

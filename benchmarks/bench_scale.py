@@ -2,7 +2,9 @@
 against the number of blocks (1, 10, 50, 200), against ensemble members (1, 8, 64; serial vs parallel
 threads) and against Dask workers (1, 2) on a 3D sweep, each with its ratio to the serial baseline
 measured in the same run. Run alone: ``python benchmarks/bench_scale.py [--json] [--quick]``; ``--blast``: only the blast case
-(``blocks.under_blast``) in CPU seconds, best of 3.
+(``blocks.under_blast``) in CPU seconds, best of 3; ``--walls [--quick]``: only issue #41's figures (``walls.fixed_s``,
+``walls.marginal_over_column``, ``walls.exponent_200_400``; :func:`walls`), which the full run also gives;
+``--walls-profile``: where the cost grows from 200 to 400 blocks (:func:`walls_profile`).
 """
 
 from __future__ import annotations
@@ -102,6 +104,124 @@ def under_blast(clock=time.perf_counter, repeat: int = 1) -> dict:
         repeat,
     )
     return {"column_square_10_drums": colb, "200": big, "ratio_200_over_column": big / colb}
+
+
+#: The walls of the cost-against-blocks exponent (issue #41): the benchmark's 200-block stack-bonded wall (20 courses
+#: of 10 units, 5 x 2.5 x 0.5 m) and the same blocks in a wall twice as long (20 courses of 20, 10 x 2.5 x 0.5 m),
+#: and twice as high (40 courses of 10, 5 x 5 x 0.5 m), all 10 kg at 5 m for 0.25 s.
+WALL_200 = dict(length_m=5.0, height_m=2.5, thickness_m=0.5, courses=20, units_per_course=10, bond="stack")
+WALL_400 = dict(WALL_200, length_m=10.0, units_per_course=20)
+WALL_400_TALL = dict(WALL_200, height_m=5.0, courses=40)
+
+
+def _new_wall(kw: dict):
+    """A new wall object (nothing derived yet) from generator keywords."""
+    return wall(**kw)
+
+
+def _costs(structure, charge: float, standoff: float, seconds: float, fresh: bool) -> dict:
+    """CPU s (this process) of one run of ``structure`` under Method A of ``charge`` [kg] at ``standoff`` [m]:
+    ``first`` a run of one recorded interval (0.005 s) on a new object with every cache cleared (``fresh``: the fixed
+    cost, geometry, model and settling, and that interval), ``short`` the same again (from the caches), ``long`` a
+    run of ``seconds`` (from the caches); marginal cost per reference second = (long - short) / (reference seconds
+    between them)."""
+    from blastscale.sim3d import make_load, simulate_structure
+    from blastscale.sim3d.reference import clear_scene_cache, reference_factors
+
+    short = 0.005
+    out = {}
+    if fresh:
+        clear_scene_cache()
+        t0 = _cpu()
+        load = make_load("A", structure, blast_parameters(charge, standoff))
+        simulate_structure(structure, load, short, record_every=20)
+        out["first"] = _cpu() - t0
+    else:
+        load = make_load("A", structure, blast_parameters(charge, standoff))
+        simulate_structure(structure, load, short, record_every=20)
+    t0 = _cpu()
+    simulate_structure(structure, load, short, record_every=20)
+    out["short"] = _cpu() - t0
+    t0 = _cpu()
+    r = simulate_structure(structure, load, seconds, record_every=20)
+    out["long"] = _cpu() - t0
+    _, b = reference_factors(structure, 9.81)
+    out["marginal_per_reference_s"] = (out["long"] - out["short"]) / ((seconds - short) * b)
+    s = r.summary()
+    out["outcome"] = {k: s.get(k) for k in ("collapsed", "fallen_blocks", "max_residual_displacement_m")}
+    return out
+
+
+def walls(pairs: int = 3) -> dict:
+    """Issue #41's figures of the walls, CPU seconds of this process, measured interleaved (the column, the 200-block
+    wall, the 400-block walls long and tall, again ``pairs`` times; medians): ``fixed_s`` the 200-block wall's fixed
+    cost (a new wall object, caches cleared: geometry, interfaces, model, settling; minus the same short run from
+    the caches), ``marginal_over_column`` (the wall's marginal CPU s per reference second under its blast, 10 kg at
+    5 m, over the square column's, 250 kg at 10 m), ``exponent_200_400`` = log2 of the marginal cost of the wall twice
+    as long (:data:`WALL_400`) over the 200-block wall's, ``exponent_200_400_tall`` the same for the wall twice as
+    high (:data:`WALL_400_TALL`)."""
+    col = MultiDrumColumn("square")
+    rows = {"column": [], "200": [], "400": [], "400_tall": []}
+    for _ in range(pairs):
+        rows["column"].append(_costs(col, 250.0, 10.0, 1.0, fresh=False))
+        rows["200"].append(_costs(_new_wall(WALL_200), 10.0, 5.0, 0.25, fresh=True))
+        rows["400"].append(_costs(_new_wall(WALL_400), 10.0, 5.0, 0.25, fresh=True))
+        rows["400_tall"].append(_costs(_new_wall(WALL_400_TALL), 10.0, 5.0, 0.25, fresh=True))
+
+    def med(key, what):
+        return float(np.median([r[what] for r in rows[key]]))
+
+    marginal = {k: med(k, "marginal_per_reference_s") for k in rows}
+    fixed = [r["first"] - r["short"] for r in rows["200"]]
+    return {
+        "fixed_s": float(np.median(fixed)),
+        "fixed_s_runs": fixed,
+        "first_run_s": med("200", "first"),
+        "cached_short_run_s": med("200", "short"),
+        "fixed_s_400": float(np.median([r["first"] - r["short"] for r in rows["400"]])),
+        "marginal_cpu_s_per_reference_s": marginal,
+        "marginal_over_column": marginal["200"] / marginal["column"],
+        "marginal_over_column_runs": [
+            a["marginal_per_reference_s"] / c["marginal_per_reference_s"] for a, c in zip(rows["200"], rows["column"])
+        ],
+        "exponent_200_400": math.log2(marginal["400"] / marginal["200"]),
+        "exponent_200_400_tall": math.log2(marginal["400_tall"] / marginal["200"]),
+        "walls": {"200": WALL_200, "400": WALL_400, "400_tall": WALL_400_TALL},
+        "outcomes": {k: rows[k][-1]["outcome"] for k in rows},
+        "clock": "CPU s (user + sys) of this process; medians of the interleaved runs",
+        "load_average": os.getloadavg(),
+    }
+
+
+def walls_profile() -> dict:
+    """Where the cost grows from 200 to 400 blocks (issue #41, deliverable 2): for each wall of :func:`walls` under
+    10 kg at 5 m for 0.25 s, the per-step solver statistics after the load (``bench_walls_newton.profile``: Newton
+    iterations summed over the islands and in the largest, islands, contacts, constraint rows) and the profile of the
+    interface graph in the engine's body order (:func:`blastscale.sim3d.collision.profile`: the band the Newton
+    solver's factorisation fills)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import bench_walls_newton as bw
+
+    from blastscale.sim3d import make_load
+    from blastscale.sim3d.collision import _graph, body_order, profile
+
+    out = {}
+    for name, kw in (("200", WALL_200), ("400", WALL_400), ("400_tall", WALL_400_TALL)):
+        w = wall(**kw)
+        n = len(w.bodies)
+        p = profile(body_order(w.interfaces, n), _graph(w.interfaces, n))
+        prof = bw.profile(w, make_load("A", w, blast_parameters(10.0, 5.0)), 0.25)
+        a = prof["after_load"]
+        out[name] = {
+            "bodies": n,
+            "interfaces": len(w.interfaces),
+            "profile": p,
+            "profile_per_body": p / n,
+            "contacts_per_body": a["contacts"] / n,
+            "after_load": a,
+            "during_load": prof["during_load"],
+        }
+    return out
 
 
 def blocks(quick: bool = False) -> dict:
@@ -263,8 +383,19 @@ def main() -> None:
         blast = {"under_blast": under_blast(_cpu, 3), "clock": "CPU s (user + sys), best of 3"}
         print(json.dumps({"blocks": blast, "load_average": os.getloadavg()}, indent=2))
         return
+    if "--walls-profile" in sys.argv:  # issue #41: where the cost grows
+        print(json.dumps({"walls_profile": walls_profile()}, indent=2))
+        return
+    if "--walls" in sys.argv:  # issue #41's figures alone
+        print(json.dumps({"walls": walls(1 if "--quick" in sys.argv else 3)}, indent=2))
+        return
     quick = "--quick" in sys.argv
-    out = {"blocks": blocks(quick), "ensemble": ensemble(quick), "sweep3d": sweep3d(quick)}
+    out = {
+        "blocks": blocks(quick),
+        "walls": walls(1 if quick else 3),
+        "ensemble": ensemble(quick),
+        "sweep3d": sweep3d(quick),
+    }
     print(json.dumps(out, indent=2))
 
 

@@ -37,9 +37,13 @@ def test_wall_and_portal_model_reproduces_the_prototype(name, duration, top, pea
     # measured (full runs): top 1.0031 (wall), 1.0040 (portal); every point 1.003-1.023 and 1.004-1.009
     assert sim["top_first_peak_ratio"] == pytest.approx(1.0, abs=0.02)
     big = max(abs(p["first_peak_prototype_m"]) for p in pts.values())
+    # every point within 4 %; the arch within 6 %: its own spread over voussoirs 1e-6 apart (radius x (1 +- 1e-6))
+    # is 1.033-1.050 at impratio 10, 1.029-1.047 at the assemblies' 20 (its largest ratio: V15 or V1, the springers;
+    # docs/performance.md, "Assembly contact defaults")
+    tol = 0.06 if name.startswith("arch") else 0.04
     for p in pts.values():
         if abs(p["first_peak_prototype_m"]) > 0.1 * big:
-            assert p["first_peak_ratio"] == pytest.approx(1.0, abs=0.04)
+            assert p["first_peak_ratio"] == pytest.approx(1.0, abs=tol)
     if name.startswith("portal"):  # the report: the drawing, the snapshots, the first-peak ratios
         written = write_study(r, tmp_path)
         assert {"assembly.png", "snapshots_3d.png"} <= set(written)

@@ -145,26 +145,32 @@ def test_a_motion_that_has_stopped_is_in_equilibrium():
     assert r["final_speed_rel_sqrt_gh"] < 1e-4 and r["equilibrium"] is True
 
 
-def test_the_settling_rule_does_not_move_the_t_r_016_arch():
-    """The settling tolerance of assemblies (1e-8 above 10 bodies, ASSEMBLY_SETTLE_TOLERANCE) against the settling of
-    before (1e-10, the run's tolerance) on the arch t/R = 0.16 under gravity alone: the same run, bitwise (shortened
-    to 1 s: 0.119 mm; over 5 s both give 0.5688 mm, docs/sim3d.md); the rule is harmless here."""
+def test_the_t_r_016_arch_settles_and_creeps_within_the_limit():
+    """Issue #35's acceptance on the arch t/R = 0.16 under gravity alone. (1) The settling tolerance of assemblies
+    (1e-8 above 10 bodies, ASSEMBLY_SETTLE_TOLERANCE) against the settling of before (1e-10, the run's tolerance): the
+    same run to round-off (5e-9 of the largest displacement; bitwise at impratio 10); the rule is harmless here. (2) The creep: <= 0.5 mm over 5 s (the issue's limit, about 1e-4 of
+    the arch's height, 5.4 m). Shortened to 1 s: the creep grows linearly in time (impratio 10: 0.119 mm at
+    1 s, 0.569 mm at 5 s; 20: 0.057 mm and 0.284 mm), so the bound is 0.1 mm at 1 s. It falls as 1 / impratio
+    (ASSEMBLY_IMPRATIO = 20 against the columns' 10: half, within 10 %); the answer "no": impratio 10, the default
+    before, creeps more than the bound (0.119 mm)."""
     import dataclasses
 
     import numpy as np
 
     from blastscale.sim3d import simulate_structure
-    from blastscale.sim3d.contact import ASSEMBLY_SETTLE_TOLERANCE
+    from blastscale.sim3d.contact import ASSEMBLY_IMPRATIO, ASSEMBLY_SETTLE_TOLERANCE
 
     a, c = _arch(0.16)
-    assert c.settle_tolerance == ASSEMBLY_SETTLE_TOLERANCE
+    assert c.settle_tolerance == ASSEMBLY_SETTLE_TOLERANCE and c.impratio == ASSEMBLY_IMPRATIO == 20.0
     runs = [
-        simulate_structure(a, None, 1.0, record_every=100, contact=dataclasses.replace(c, settle_tolerance=tol))
-        for tol in (ASSEMBLY_SETTLE_TOLERANCE, 1e-10)
+        simulate_structure(a, None, 1.0, record_every=100, contact=dataclasses.replace(c, **ch))
+        for ch in ({}, {"settle_tolerance": 1e-10}, {"impratio": 10.0})
     ]
-    d = [r.dataset["com_displacement"].values for r in runs]
-    assert np.array_equal(d[0], d[1])
-    assert 0.05e-3 < runs[0].summary()["max_residual_displacement_m"] < 0.2e-3  # measured 0.119 mm
+    d = [r.dataset["com_displacement"].values for r in runs[:2]]
+    assert np.abs(d[0] - d[1]).max() <= 1e-6 * np.abs(d[0]).max()  # measured 5e-9 (bitwise at impratio 10)
+    creep = [r.summary()["max_residual_displacement_m"] for r in runs]
+    assert creep[0] <= 0.1e-3 < creep[2], creep  # 0.5 mm over 5 s at the linear rate
+    assert creep[2] / creep[0] == pytest.approx(2.0, rel=0.1)  # 1 / impratio
 
 
 def test_the_check_is_shared_by_exact_models_and_by_other_materials_only():

@@ -40,6 +40,7 @@ from .contact_ranges import CONES, JACOBIANS, SETTING_RANGES, SOLVERS, STEPS_AFT
 from .solver_choice import default_jacobian
 
 __all__ = [
+    "ASSEMBLY_IMPRATIO",
     "ASSEMBLY_SETTLE_TOLERANCE",
     "LOOSE_SETTLE_ABOVE_BODIES",
     "ContactSettings",
@@ -94,7 +95,9 @@ class ContactSettings:
         Friction-cone model.
     impratio : float
         Ratio of frictional to normal constraint impedance (elliptic cone only) [-], >= 1
-        makes friction stiffer than contact (less creep of a "sticking" pivot).
+        makes friction stiffer than contact (less creep of a "sticking" pivot: the creep speed is proportional to
+        1 / impratio). A structure of more than :data:`LOOSE_SETTLE_ABOVE_BODIES` bodies gets
+        :data:`ASSEMBLY_IMPRATIO` by default (:func:`reference_contact`).
     solver : {"Newton", "CG", "PGS"}
         Constraint solver.
     iterations : int
@@ -301,12 +304,23 @@ BLOCK_REFERENCE = ContactSettings()
 #: Full-scale defaults of a stack of bodies (column): contact 1 ms, no separate friction time
 #: constant (20 ms does not converge for columns), dt 0.25 ms, solimp width 1 mm.
 STACK_REFERENCE = ContactSettings(time_constant=1e-3, friction_time_constant=None, timestep=2.5e-4)
-#: Structures of more bodies than this settle at :data:`ASSEMBLY_SETTLE_TOLERANCE` (walls, arches: their settled state
-#: is a knife edge that the settling tolerance picks; the columns, 10 drums, and single blocks keep theirs).
+#: Structures of more bodies than this settle at :data:`ASSEMBLY_SETTLE_TOLERANCE` and run at :data:`ASSEMBLY_IMPRATIO`
+#: (walls, arches: their settled state is a knife edge that the settling tolerance picks, their joints creep; the
+#: columns, 10 drums, and single blocks keep their settings).
 LOOSE_SETTLE_ABOVE_BODIES = 10
 #: Solver tolerance of an assembly's settling (MuJoCo's default): the 200-block wall's response over block lengths
 #: 1e-6 apart keeps its mean and narrows its spread 4x, at 1.8x less cost (docs/performance.md).
 ASSEMBLY_SETTLE_TOLERANCE = 1e-8
+#: Friction-to-normal impedance ratio of a structure of more than :data:`LOOSE_SETTLE_ABOVE_BODIES` bodies (MuJoCo's
+#: ``impratio``; 10 for the others). A sticking joint of MuJoCo's soft contact creeps at a speed proportional to
+#: 1 / impratio (the frictional rows' regularisation is the normal one's over impratio): the arch R = 5 m, t/R = 0.16,
+#: 20 voussoirs, friction 0.8 creeps 0.569, 0.284, 0.187, 0.125 mm in 5 s under gravity alone at 10, 20, 30, 50
+#: (issue #35's limit 0.5 mm); 20 keeps the cost (the arch 6.2 vs 6.8 CPU s; the 200-block wall under its blast
+#: within this machine's noise), the wall's largest displacement (+0.01 %, its spread over the geometry 0.9 %), the outcomes and the
+#: 14-block wall's sparse against dense Jacobian (5.6e-13 of the peak), where 12 leaves them 4.3e-3 apart and the
+#: arch at t/R = 0.14 "moving" at 1 s, and 30 the t/R = 0.16 arch "moving" at 5 s (docs/performance.md, "Assembly
+#: contact defaults").
+ASSEMBLY_IMPRATIO = 20.0
 #: Largest time step as a fraction of the structure's gravity time sqrt(L / g).
 MAX_TIMESTEP_FRACTION = 0.01
 #: An explicit contact time constant above this many times max(pulse duration, scale-consistent
@@ -323,12 +337,14 @@ def reference_contact(structure, friction: float = DEFAULT_FRICTION) -> ContactS
     """The full-scale (10 m, 9.81 m/s^2) settings of ``structure`` with friction mu [-]:
     :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several, with the Jacobian of
     :func:`~.solver_choice.default_jacobian` (by size and MuJoCo version) and, above
-    :data:`LOOSE_SETTLE_ABOVE_BODIES` bodies, the settling tolerance :data:`ASSEMBLY_SETTLE_TOLERANCE`."""
+    :data:`LOOSE_SETTLE_ABOVE_BODIES` bodies, the settling tolerance :data:`ASSEMBLY_SETTLE_TOLERANCE` and the
+    impedance ratio :data:`ASSEMBLY_IMPRATIO`."""
 
     n = len(structure.bodies)
     base = BLOCK_REFERENCE if n == 1 else STACK_REFERENCE
-    settle = ASSEMBLY_SETTLE_TOLERANCE if n > LOOSE_SETTLE_ABOVE_BODIES else None
-    return replace(base, friction=friction, jacobian=default_jacobian(n), settle_tolerance=settle)
+    if n > LOOSE_SETTLE_ABOVE_BODIES:
+        base = replace(base, settle_tolerance=ASSEMBLY_SETTLE_TOLERANCE, impratio=ASSEMBLY_IMPRATIO)
+    return replace(base, friction=friction, jacobian=default_jacobian(n))
 
 
 #: Contact time constants per time step kept when a user coarsens the step (MuJoCo needs >= 2).

@@ -21,7 +21,7 @@ unchanged) and engage after a small overlap; the bodies are numbered for the sol
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -33,7 +33,7 @@ from .contact import ContactSettings, mjcf_number
 from .initial import tilt_bodies
 from .shapes import engine_shape
 
-__all__ = ["BodySpec", "Scene", "build_scene", "block_scene", "structure_scene"]
+__all__ = ["BodySpec", "Scene", "build_scene", "block_scene", "compile_scene", "structure_scene"]
 
 
 @dataclass(frozen=True)
@@ -79,6 +79,9 @@ class Scene:
         MuJoCo's body id of each of ``bodies`` (:func:`~.collision.body_order`; 1, 2, ... unless the
         bodies were renumbered for the solver). Per-body MuJoCo arrays are read as ``d.xpos[body_ids]``
         and free-joint state as :meth:`qpos_index` / :meth:`qvel_index`.
+    settled : dict or None
+        Where :func:`~.integrate.integrate` keeps the state at the end of settling, shared by every scene of the
+        same model (:func:`~.reference.reference_scene`'s cache); None: settled on every run.
     """
 
     xml: str
@@ -87,6 +90,7 @@ class Scene:
     contact: ContactSettings
     gravity: float
     body_ids: np.ndarray = field(default=None, repr=False)
+    settled: dict | None = field(default=None, repr=False)
 
     def __post_init__(self):
         if self.body_ids is None:
@@ -103,7 +107,9 @@ class Scene:
         return ((self.body_ids[:, None] - 1) * 6 + np.arange(6)).ravel()
 
 
-def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None, fixed=()) -> Scene:
+def build_scene(
+    bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None, fixed=(), compile: bool = True
+) -> Scene:
     """Compile free rigid bodies on a rigid ground plane into a MuJoCo model.
 
     Parameters
@@ -121,6 +127,8 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     fixed : sequence of BodySpec
         Supports welded to the ground (no joint: geoms of MuJoCo's world body, placed at ``position``,
         unrotated); part of the ground (-1) in ``pairs`` and in the collision rules.
+    compile : bool
+        Compile the MJCF (:func:`compile_scene`); False: ``mj_model`` is None (the text alone, a cache key).
 
     Returns
     -------
@@ -135,8 +143,6 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
     (:func:`~.solver_choice.default_jacobian`: dense for one body, sparse for a stack; MuJoCo 4.0.0's
     sparse-factorisation bug, fixed in 4.0.1, is not reached by our scenes, docs/performance.md).
     """
-    import mujoco  # imported here: the rest of blastscale works without MuJoCo installed
-
     g = float(check_positive("gravity", gravity, "m/s^2"))
     bodies = tuple(bodies)
     if not bodies:
@@ -191,16 +197,24 @@ def build_scene(bodies, contact: ContactSettings, gravity: float = STANDARD_GRAV
         f"{contact.mjcf_option(g)}{size}<default><geom {default}/></default>{asset_block}"
         f"<worldbody>{''.join(worldbody)}</worldbody><contact>{''.join(contacts)}</contact></mujoco>"
     )
-    mj_model = mujoco.MjModel.from_xml_string(xml)
-    if mj_model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_MULTICCD:
-        raise RuntimeError("MuJoCo multiccd is disabled: flat drum-on-drum contacts would get one point")
     ids = np.empty(n, dtype=int)
     ids[order] = np.arange(1, n + 1)
-    return Scene(xml=xml, mj_model=mj_model, bodies=bodies, contact=contact, gravity=g, body_ids=ids)
+    scene = Scene(xml=xml, mj_model=None, bodies=bodies, contact=contact, gravity=g, body_ids=ids)
+    return compile_scene(scene) if compile else scene
+
+
+def compile_scene(scene: Scene) -> Scene:
+    """``scene`` with its MJCF compiled into ``mj_model`` (multi-point convex collision checked on)."""
+    import mujoco
+
+    mj_model = mujoco.MjModel.from_xml_string(scene.xml)
+    if mj_model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_MULTICCD:
+        raise RuntimeError("MuJoCo multiccd is disabled: flat drum-on-drum contacts would get one point")
+    return replace(scene, mj_model=mj_model)
 
 
 def structure_scene(
-    structure, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, *, rotation: float = 0.0
+    structure, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, *, rotation: float = 0.0, compile=True
 ) -> Scene:
     """The MuJoCo model of any structure of :mod:`blastscale.structures` at rest: one free body
     per ``structure.bodies`` entry with its exact mass and inertia, its contact geometry
@@ -220,6 +234,8 @@ def structure_scene(
     rotation : float
         Initial tilt theta_0 [rad] of the whole structure about its lowest body's base edge
         (:func:`tilt_bodies`); 0: standing upright.
+    compile : bool
+        Compile the model (:func:`build_scene`).
 
     Returns
     -------
@@ -233,7 +249,7 @@ def structure_scene(
     fixed = [
         BodySpec(name, engine_shape(shape, density), com) for name, shape, com in getattr(structure, "fixed_shapes", ())
     ]
-    return build_scene(tilt_bodies(specs, rotation), contact, gravity, structure.interfaces, fixed)
+    return build_scene(tilt_bodies(specs, rotation), contact, gravity, structure.interfaces, fixed, compile)
 
 
 def block_scene(

@@ -21,7 +21,11 @@ loop (:func:`~.integrate.integrate`) converts wrenches in and states out with th
 
 from __future__ import annotations
 
+import copy
 import math
+import threading
+import weakref
+from collections import OrderedDict
 from dataclasses import fields, is_dataclass, replace
 
 from .contact import (
@@ -32,9 +36,17 @@ from .contact import (
     reference_contact,
     structure_length,
 )
-from .model import structure_scene
+from .model import compile_scene, structure_scene
 
-__all__ = ["REFERENCE_DIGITS", "reference_factors", "reference_scene", "reference_settings", "to_reference"]
+__all__ = [
+    "REFERENCE_DIGITS",
+    "SCENE_CACHE_SIZE",
+    "clear_scene_cache",
+    "reference_factors",
+    "reference_scene",
+    "reference_settings",
+    "to_reference",
+]
 
 
 def reference_factors(structure, gravity: float) -> tuple:
@@ -92,6 +104,64 @@ def reference_settings(contact: ContactSettings | None, structure, a: float, b: 
     return contact if (a == 1.0 and b == 1.0) else contact.scaled(length_time_factors(a, b))
 
 
+#: Compiled models kept (:func:`reference_scene`), each with its settled state: the structures most recently run.
+SCENE_CACHE_SIZE = 8
+
+_LOCK = threading.Lock()
+_SCENES: OrderedDict = OrderedDict()  # (MJCF text, settings) -> Scene (the compiled model and its settled state)
+_REFERENCES: dict = {}  # id(structure) -> {a: reference structure}, dropped with the structure
+
+
+def clear_scene_cache() -> None:
+    """Forget every cached reference structure, compiled model and settled state (:func:`reference_scene`)."""
+    with _LOCK:
+        _SCENES.clear()
+        _REFERENCES.clear()
+
+
+def _reference_structure(structure, a: float):
+    """:func:`to_reference` of ``structure``, computed once per structure object and factor: the reference
+    structure keeps its derived geometry (hulls, faces, interfaces, bodies: ``functools.cached_property`` of an
+    assembly), so every later run of the same object skips it. Objects that cannot be weakly referenced are not
+    cached."""
+    key = id(structure)
+    with _LOCK:
+        ref = _REFERENCES.get(key, {}).get(a)
+    if ref is not None:
+        return ref
+    ref = to_reference(structure, a)
+    try:
+        with _LOCK:
+            if key not in _REFERENCES:
+                weakref.finalize(structure, _REFERENCES.pop, key, None)
+                _REFERENCES[key] = {}
+            _REFERENCES[key][a] = ref
+    except TypeError:  # no weak references to it (slots): computed on every run
+        pass
+    return ref
+
+
+def _cached_scene(ref, settings: ContactSettings, rotation: float):
+    """The scene of ``ref`` (:func:`~.model.structure_scene`), compiled once per MJCF text and settings and
+    shared by every run that builds the same model (a structure and its exactly scaled specimen, the members of a
+    load ensemble, the cases of a sweep): each caller gets its own copy of the MuJoCo model (the loop changes
+    its step and tolerance) and the shared ``settled`` store (:func:`~.integrate.integrate` keeps the state at
+    the end of settling there, the same for every run of the model)."""
+    scene = structure_scene(ref, settings, REFERENCE_GRAVITY, rotation=rotation, compile=False)
+    key = (scene.xml, settings)
+    with _LOCK:
+        hit = _SCENES.get(key)
+        if hit is not None:
+            _SCENES.move_to_end(key)
+    if hit is None:
+        hit = replace(compile_scene(scene), settled={})
+        with _LOCK:
+            hit = _SCENES.setdefault(key, hit)
+            while len(_SCENES) > SCENE_CACHE_SIZE:
+                _SCENES.popitem(last=False)
+    return replace(hit, mj_model=copy.copy(hit.mj_model), settled=hit.settled)
+
+
 def reference_scene(structure, contact: ContactSettings | None, gravity: float, rotation: float = 0.0) -> tuple:
     """The MuJoCo model the engine integrates for ``structure`` and the factors (a, b) to it.
 
@@ -112,10 +182,16 @@ def reference_scene(structure, contact: ContactSettings | None, gravity: float, 
         The scene of :func:`to_reference` of the structure under ``REFERENCE_GRAVITY``
         (:func:`~.model.structure_scene`: each body's exact mass and inertia, masses in it x a^3 and
         lengths x a), and the length and time factors of :func:`reference_factors`.
+
+    Notes
+    -----
+    The fixed cost of a run (issue #41: the reference structure's hulls, faces and interfaces, the MJCF text, the
+    compiled model, the settling) is paid once: the reference structure is kept per structure object, the compiled
+    model and its settled state per MJCF text and settings (:data:`SCENE_CACHE_SIZE` models,
+    :func:`clear_scene_cache`). A run from the cache gives bitwise the states of a run without it
+    (tests/integration/test_scene_cache.py).
     """
 
     a, b = reference_factors(structure, gravity)
-    scene = structure_scene(
-        to_reference(structure, a), reference_settings(contact, structure, a, b), REFERENCE_GRAVITY, rotation=rotation
-    )
-    return scene, (a, b)
+    ref = _reference_structure(structure, a)
+    return _cached_scene(ref, reference_settings(contact, ref, a, b), float(rotation)), (a, b)

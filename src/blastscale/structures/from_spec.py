@@ -4,6 +4,8 @@
 from __future__ import annotations
 
 import math
+import threading
+from collections import OrderedDict
 from typing import Any, Callable
 
 from .._validate import check_choice
@@ -12,7 +14,7 @@ from .block_files import read_block_model
 from .column import Capital, MultiDrumColumn
 from .generators import arch, portal, wall
 
-__all__ = ["STRUCTURE_BUILDERS", "from_spec", "is_block"]
+__all__ = ["FROM_SPEC_CACHE_SIZE", "STRUCTURE_BUILDERS", "from_spec", "is_block"]
 
 
 def _build_block(spec) -> RectangularBlock:
@@ -97,7 +99,41 @@ def is_block(structure) -> bool:
     return isinstance(structure, RectangularBlock)
 
 
+#: Generated structures kept by :func:`from_spec` (the most recent ones).
+FROM_SPEC_CACHE_SIZE = 8
+#: Kinds whose structure is a function of the table alone (an "assembly" reads a file, which may change).
+_GENERATED = ("block", "column", "wall", "arch", "portal")
+_BUILT: OrderedDict = OrderedDict()
+_BUILT_LOCK = threading.Lock()
+
+
+def _spec_key(spec):
+    """The table as text (a pydantic model's JSON, else its attributes), or None when it cannot be written."""
+    try:
+        return spec.model_dump_json() if hasattr(spec, "model_dump_json") else repr(sorted(vars(spec).items()))
+    except (TypeError, ValueError):
+        return None
+
+
 def from_spec(spec) -> Any:
-    """The prototype structure described by a scenario's ``[structure]`` table."""
+    """The prototype structure described by a scenario's ``[structure]`` table.
+
+    A generated structure (:data:`_GENERATED` kinds; structures are immutable) is built once per table and the same
+    object returned for an equal table (:data:`FROM_SPEC_CACHE_SIZE` kept): its derived geometry (hulls, faces,
+    interfaces) and the engine's model and settled state (:func:`~blastscale.sim3d.reference.reference_scene`) are
+    then shared by every run of a study, ensemble, sweep or plan in the process (issue #41)."""
     kind = check_choice("structure.kind", spec.kind, STRUCTURE_BUILDERS)
-    return STRUCTURE_BUILDERS[kind](spec)
+    key = (kind, _spec_key(spec)) if kind in _GENERATED else None
+    if key is None or key[1] is None:
+        return STRUCTURE_BUILDERS[kind](spec)
+    with _BUILT_LOCK:
+        hit = _BUILT.get(key)
+        if hit is not None:
+            _BUILT.move_to_end(key)
+            return hit
+    built = STRUCTURE_BUILDERS[kind](spec)
+    with _BUILT_LOCK:
+        built = _BUILT.setdefault(key, built)
+        while len(_BUILT) > FROM_SPEC_CACHE_SIZE:
+            _BUILT.popitem(last=False)
+    return built
