@@ -79,6 +79,7 @@ def plan_section(p, top: int = 15) -> str:
         f'<p class="lead">{first_design_label(p)}: {escape(best["law"])} law, lambda = '
         f"{escape(best['scale_fraction'])}, {escape(best['material'])}. "
         + " ".join(escape(r) + "." for r in best["reasons"])
+        + (f" Assumed {escape(p.prototype['load_assumed'])}." if p.prototype.get("load_assumed") else "")
         + "</p>"
         + html_table(
             (
