@@ -15,7 +15,7 @@ new public figure function in plots/ fails ``test_every_figure_function_is_cover
   (``column --plot``), ``plots.sim3d.plot_comparison``, ``plots.similitude.scaling_factors_figure``
   (``plot_scaling_factor``),
   ``plots.assembly.assembly_figure`` (``show --plot``, with a title), ``plots.motion.motion_figure`` (the
-  GIF's frames, ``render_frames``; every view).
+  GIF's frames, ``render_frames``; the iso and side views).
 
 One small input per type, built once per module (three short studies: a planar block, a 3-drum column with
 a 2-member ensemble, a 4-unit wall; 0.05 s simulated in 3D; a block's 3D datasets). Tolerance: two texts overlap when their boxes
@@ -305,7 +305,6 @@ FIGURE_TYPES = {
     "similarity_map": lambda s: __import__("blastscale.plots.similarity_map", fromlist=["x"]).plot_similarity_map(
         similarity_map_dataset()
     ),
-    "plan": lambda s: __import__("blastscale.plots.plan", fromlist=["x"]).plot_plan(plan_input((1.0,))),
     "plan_odds_vary": lambda s: __import__("blastscale.plots.plan", fromlist=["x"]).plot_plan(
         plan_input((0.4, 0.9, 1.0))
     ),
@@ -314,7 +313,7 @@ FIGURE_TYPES = {
     "pi_diagram": lambda s: _pi_figure(),
     "scaling_factors": lambda s: __import__("blastscale.plots.similitude", fromlist=["x"]).scaling_factors_figure(
         __import__("blastscale.similitude.curves", fromlist=["x"]).scaling_curves(
-            50.0, 2.0, np.geomspace(0.005, 1.0, 30)
+            50.0, 2.0, np.geomspace(0.005, 1.0, 8)
         )
     ),
 }
@@ -356,7 +355,7 @@ def test_fired_figures_text(studies, monkeypatch):
     reason="plots/motion.py (owner: view, #39.1): the 3D axes' tick labels run into each other, z label clipped",
     strict=False,
 )
-@pytest.mark.parametrize("view", ["iso", "side", "front", "top"])
+@pytest.mark.parametrize("view", ["iso", "side"])
 def test_motion_frames_text(view, studies):
     from blastscale.plots.motion import motion_figure
     from blastscale.sim3d.replay import motion_of
