@@ -8,8 +8,9 @@ paper's block, planar and 3D), the paper's square and circular columns, the arch
 The estimate is of one core's work; the measured CPU time of the child (user + system, ``getrusage``) is the
 fair comparison on a shared machine (the development machine: 2 cores shared by 8 engineers: the wall clock
 there is 2-4 x the CPU time and says more about the neighbours than about blastscale); both are printed. Not
-a test (no clocks in tests): ``python benchmarks/bench_first_use.py [--json] [--quick] [--only NAME]``
-(``--quick``: without the 3000-block file and the circular column).
+a test (no clocks in tests): ``python benchmarks/bench_first_use.py [--json] [--quick] [--only NAME] [--cold-only]``
+(``--quick``: without the 3000-block file and the circular column; ``--cold-only``: the cold run alone, e.g.
+for the 3000-block file, whose 3D-only run compiles nothing: its warm run repeats the cold one).
 """
 
 from __future__ import annotations
@@ -78,7 +79,7 @@ def measure(name: str, sc, folder: Path) -> list:
     toml.write_text(sc.to_toml())
     cache = folder / f"numba_{tag}"
     rows = []
-    for state in ("cold", "warm"):
+    for state in ("cold",) if "--cold-only" in sys.argv else ("cold", "warm"):
         est = estimate(sc, cache)
         cpu, wall = run_once(toml, folder / f"{tag}_{state}", cache)
         row = {

@@ -68,9 +68,7 @@ def finish_side_view(ax):
     at most 4 x ticks."""
     from matplotlib.ticker import MaxNLocator
 
-    xs = ax.get_xlim()
-    ax.axhline(0.0, color="k", lw=1)
-    ax.set_xlim(xs)
+    ax.axhline(0.0, color="k", lw=1)  # spans the axes in x: the x limits stay the data's
     ax.set_aspect("equal", adjustable="datalim")
     ax.xaxis.set_major_locator(MaxNLocator(nbins=4))
     ax.set_xlabel("x [m] (blast from -x)")
