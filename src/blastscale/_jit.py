@@ -45,7 +45,7 @@ from numba.misc.appdirs import AppDirs
 
 from . import __version__
 
-__all__ = ["KEEP", "SourceKeyedLocator", "kernel_sources", "njit", "source_key"]
+__all__ = ["KEEP", "SourceKeyedLocator", "is_cached", "kernel_sources", "njit", "source_key"]
 
 #: Key folders kept per module (the most recently used); older ones are removed when a new one is made.
 KEEP = 4
@@ -185,3 +185,32 @@ class SourceKeyedLocator(_CacheLocator):
 
 if SourceKeyedLocator not in CacheImpl._locator_classes:
     CacheImpl._locator_classes.insert(0, SourceKeyedLocator)
+
+
+def is_cached(py_file) -> bool:
+    """Whether the kernels of the blastscale module ``py_file`` have compiled machine code on disk for its
+    current :func:`source_key` (an index file in its key folder, at any of the places numba would look:
+    ``NUMBA_CACHE_DIR``, beside the source, the user-wide folder). Compiles nothing and creates no folder;
+    ``False`` means the first call compiles (minutes for the rocking kernels on a shared 2-core machine:
+    :func:`blastscale.study.memory.compile_seconds`). A signature not yet compiled in a warm folder still
+    compiles: this says the folder is warm, not that every signature is."""
+    real = Path(os.path.realpath(py_file))
+    stem, key = real.stem, source_key(str(real))[:16]
+    for base, _ in SourceKeyedLocator._places(real):
+        folder = base / _FOLDER / f"{stem}-{key}"
+        try:
+            if any(folder.glob("*.nbi")):
+                return True
+        except OSError:
+            pass
+        if _writable(folder):  # the place numba would use (SourceKeyedLocator.from_function): cold there
+            return False
+    return False
+
+
+def _writable(folder: Path) -> bool:
+    """Whether ``folder`` exists writable or could be made (its nearest existing parent is writable)."""
+    p = folder
+    while not p.exists() and p != p.parent:
+        p = p.parent
+    return os.access(p, os.W_OK)

@@ -43,7 +43,9 @@ _NARROW = {"specimen": 8, "safety radius": 7, "screened error": 8, "simulated er
 def _print_plan(p, top: int) -> None:
 
     t = Table(
-        title=f"Feasible designs, best first ({len(p.designs)}; {len(p.rejected)} rejected)", title_justify="left"
+        title=f"Feasible designs, best first ({len(p.designs)}; {len(p.rejected)} rejected; "
+        f"{p.prototype['load_assumed']})",
+        title_justify="left",
     )
     for c in (
         "#",

@@ -94,6 +94,22 @@ class Plan:
         }
 
 
+def load_assumed(scenario, planar: bool) -> dict:
+    """The load the plan assumed, for its table, card and JSON (issue #39): ``load_method`` ("A", "B", "C"),
+    ``load_clearing`` (bool) and ``load_assumed`` in words. The planar path loads the block's front with the
+    reflected pulse, uniform and simultaneous: Method A's load, whatever ``blast.load`` says (a 3D key);
+    the 3D path runs ``blast.load``. docs/face_loads.md ("Which load method") says when each fits."""
+    bl = scenario.blast
+    method = "A" if planar else bl.load
+    how = "planar rocking: the reflected pulse on the front" if planar else "3D"
+    clear = " with clearing" if bl.clearing else ""
+    return {
+        "load_method": method,
+        "load_clearing": bool(bl.clearing),
+        "load_assumed": f"load: Method {method}{clear} ({how}; docs/face_loads.md, 'Which load method')",
+    }
+
+
 def _prototype(scenario, block):
     """The prototype's block (or any structure's envelope block), its nominal first swing, timing and
     safety envelope."""
@@ -305,6 +321,7 @@ def plan(
         designs, proto, notes, result = designs_3d(
             scenario, ok, proto, lab, tol, tell, workers=workers, scheduler=scheduler
         )
+    proto = {**proto, **load_assumed(scenario, planar)}
     best = next(e for e in ok if e.candidate.describe() == {k: designs[0][k] for k in e.candidate.describe()})
     best_sc = (
         result.scenario

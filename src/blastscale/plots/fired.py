@@ -64,6 +64,9 @@ def plot_marker(
             t, u = upscale(t, factors, "time"), upscale(u, factors, "length")
         ax.plot(t, u, label=label, **style)
     ax.set_xlabel(f"time after firing [s] ({units})")
-    ax.set_ylabel(f"{name}: horizontal displacement [{'mm' if units == 'specimen' else 'm'}] ({units})")
+    # the marker and the units in the title: a label "M1: horizontal displacement [mm] (specimen)" is longer
+    # than the figure is high (issue #39)
+    ax.set_ylabel(f"horizontal displacement [{'mm' if units == 'specimen' else 'm'}]")
+    ax.set_title(f"{name} ({units})", fontsize=9)
     ax.legend(fontsize="small")
     return ax

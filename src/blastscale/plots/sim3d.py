@@ -62,11 +62,15 @@ def snapshot_times(t, times=None, n: int = 6):
 
 
 def finish_side_view(ax):
-    """Ground line, equal axes, x-z labels and legend of a side view (blast from -x)."""
-    xs = ax.get_xlim()
-    ax.axhline(0.0, color="k", lw=1)
-    ax.set_xlim(xs)
-    ax.set_aspect("equal")
+    """Ground line, equal axes, x-z labels and legend of a side view (blast from -x). The axes keep their
+    box and the x range widens to make the scales equal (``adjustable="datalim"``): a tall structure in a
+    narrow box would otherwise shrink the axes until its x tick labels run into each other (issue #39);
+    at most 4 x ticks."""
+    from matplotlib.ticker import MaxNLocator
+
+    ax.axhline(0.0, color="k", lw=1)  # spans the axes in x: the x limits stay the data's
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.xaxis.set_major_locator(MaxNLocator(nbins=4))
     ax.set_xlabel("x [m] (blast from -x)")
     ax.set_ylabel("z [m]")
     ax.legend(fontsize="small")

@@ -79,6 +79,7 @@ def plan_section(p, top: int = 15) -> str:
         f'<p class="lead">{first_design_label(p)}: {escape(best["law"])} law, lambda = '
         f"{escape(best['scale_fraction'])}, {escape(best['material'])}. "
         + " ".join(escape(r) + "." for r in best["reasons"])
+        + (f" Assumed {escape(p.prototype['load_assumed'])}." if p.prototype.get("load_assumed") else "")
         + "</p>"
         + html_table(
             (
@@ -122,9 +123,10 @@ def write_plan(p, result, folder) -> list[str]:
         + figure_html(
             png,
             "The plan's candidates",
-            "Scale against the specimen's charge; feasible designs coloured by the odds "
-            "that the outcome agrees (hollow: screened only), rejected ones grey by their first reason, the Pareto-optimal "
-            "designs ringed, the first starred (recommended, or the closest when the criterion passes none)",
+            "Scale against the specimen's charge, one panel per material; feasible designs coloured by the odds "
+            "that the outcome agrees (hollow: screened only; equal odds written in the legend), rejected ones grey "
+            "by their first reason, the Pareto-optimal designs ringed, the first starred behind its marker "
+            "(recommended, or the closest when the criterion passes none)",
             "plan_candidates",
         ),
     )
@@ -141,8 +143,8 @@ def plan_figure(p) -> bytes:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    ax = plot_plan(p)
+    fig = plot_plan(p)
     buf = io.BytesIO()
-    ax.figure.savefig(buf, format="png", dpi=110)
-    plt.close(ax.figure)
+    fig.savefig(buf, format="png", dpi=110)
+    plt.close(fig)
     return buf.getvalue()

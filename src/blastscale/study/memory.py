@@ -4,8 +4,9 @@ valid range).
 
 Rule (:func:`check_budget`): a job may plan at most :data:`MEMORY_FRACTION` of the available memory
 and at most :func:`max_seconds` of computing (24 h by default, ``BLASTSCALE_MAX_HOURS`` to change it).
-The estimates are deliberately rough (within a factor of about 2 on the 2-core development machine):
-their purpose is to refuse a run that would exhaust the memory or never end, not to predict its time.
+The estimates are deliberately rough (within a factor of 2 of the CPU time on the 2-core development machine,
+cold and warm: ``benchmarks/bench_first_use.py``): their purpose is to refuse a run that would exhaust the memory
+or never end and to say how long to wait, compiling on first use included (:func:`compile_seconds`).
 
 Every run says its size before it starts (:func:`estimate_run`, :class:`RunSize`: one line, "about 40 s and
 12 MB: 210 bodies, 1719 contacts, ..."), from the cost model of docs/performance.md ("The size of a run, said
@@ -18,6 +19,7 @@ import math
 import os
 from dataclasses import dataclass
 
+from .._jit import is_cached
 from .._validate import BlastscaleInputError
 from ..scenario.scenario import Scenario
 from ..sim3d.contact import default_contact
@@ -52,6 +54,9 @@ __all__ = [
     "BODY_SECONDS",
     "BODY_EXPONENT",
     "STARTUP_SECONDS",
+    "COMPILE_SECONDS",
+    "KERNEL_MODULES",
+    "compile_seconds",
 ]
 
 #: Fraction of the available memory a job may plan to use.
@@ -77,8 +82,17 @@ CONTACT_STEP_UNITS, CONTACT_STEP_EXPONENT = 50, 0.45
 #: ... plus, once per run of a structure of n bodies, BODY_SECONDS n^BODY_EXPONENT [s]: the engine's model
 #: built, the histories compared and drawn per body (measured: 13 s for 210 bodies, 290 s for 3000).
 BODY_SECONDS, BODY_EXPONENT = 0.025, 1.17
-#: Start-up of a command that simulates (Python, MuJoCo, xarray, the design) [s].
-STARTUP_SECONDS = 2.0
+#: Start-up of a command that simulates (Python, MuJoCo, xarray, the design, the check, the tables printed) [s]:
+#: measured 1.2-1.3 s of imports and 0.4-0.5 s of check in-process, ~3 s of CPU by the CLI (issue #39,
+#: ``benchmarks/bench_first_use.py``; it was 2 s).
+STARTUP_SECONDS = 3.0
+#: Compiling the rocking kernels (:data:`KERNEL_MODULES`: the planar engine and the critical-charge search) on
+#: first use, when numba's on-disk cache of the current sources is cold [s of one core]: measured 47 s of CPU
+#: (the default run, 56 s cold against 9 s warm, ``benchmarks/bench_first_use.py``, a shared 2-core machine).
+#: The 3D engine (MuJoCo) compiles nothing. Each cold module counts its share.
+COMPILE_SECONDS = 47.0
+#: The compiled modules of the planar path (:mod:`blastscale._jit`: each keyed on its sources).
+KERNEL_MODULES = ("kernel", "_load", "_events", "_free", "_dopri", "_batch", "_series")
 #: Bytes of histories per recorded state, run and body (19 doubles: displacement, velocity, angular velocity,
 #: tilt, rotation, uplift, position, quaternion) and per monitoring point (6 doubles).
 STATE_BYTES_PER_BODY, STATE_BYTES_PER_POINT = 19 * 8, 6 * 8
@@ -88,8 +102,10 @@ STATE_BYTES_PER_BODY, STATE_BYTES_PER_POINT = 19 * 8, 6 * 8
 REPORT_BYTES = 6.5e6
 #: ... plus this per body (the summary's and the report's rows of each body) [bytes].
 REPORT_BYTES_PER_BODY = 7e3
-#: Writing a result folder: a fixed time (figures, report) [s] and a rate [s per byte of histories].
-WRITE_SECONDS, WRITE_SECONDS_PER_BYTE = 1.3, 2e-8
+#: Writing a result folder: a fixed time (figures, report) [s] and a rate [s per byte of histories]. The fixed
+#: time measured 3.7 s of CPU for the default run's folder and 3.9 s for the square column's (issue #39: the
+#: report's figures and its 3D view have grown since the 1.3 s of issue #27).
+WRITE_SECONDS, WRITE_SECONDS_PER_BYTE = 3.5, 2e-8
 
 
 def max_seconds() -> float:
@@ -201,6 +217,20 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts:
     return total
 
 
+def compile_seconds(scenario: Scenario, structure=None) -> float:
+    """The compiling a run will do first [s of one core]: :data:`COMPILE_SECONDS` times the share of
+    :data:`KERNEL_MODULES` whose on-disk cache is cold (:func:`blastscale._jit.is_cached`), when the run uses the
+    planar engine (a block: ``planar`` or ``both``); 0 when warm, or for a 3D-only run (MuJoCo compiles nothing).
+    Said apart in the run's size line ("compiling kernels, first use only, ~N s")."""
+    if scenario.simulation.engine not in ("planar", "both"):
+        return 0.0
+    if structure is not None and getattr(structure, "bodies", None) is not None and len(structure.bodies) != 1:
+        return 0.0  # planar rocking applies to a single block: skipped here
+    folder = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rocking")
+    cold = [m for m in KERNEL_MODULES if not is_cached(os.path.join(folder, f"{m}.py"))]
+    return COMPILE_SECONDS * len(cold) / len(KERNEL_MODULES)
+
+
 def _contact_or_none(scenario: Scenario, structure):
     """The study's contact settings (:func:`~.engines.contact_settings`), or None where the engine's own check
     will report why there are none; the settling before the load lasts
@@ -243,6 +273,8 @@ class RunSize:
         Recorded states (3D) or samples (planar) per run.
     runs : int
         Simulations (prototype and specimen, ensemble members).
+    compile_s : float
+        Of ``seconds``, compiling the kernels on first use [s] (:func:`compile_seconds`; 0: the cache is warm).
     """
 
     seconds: float
@@ -253,10 +285,14 @@ class RunSize:
     duration_s: float
     samples: int
     runs: int
+    compile_s: float = 0.0
 
     def line(self) -> str:
-        """One line: ``about 40 s and 12 MB: 210 bodies, 1719 contacts, 0.5 s simulated, ...``."""
+        """One line: ``about 40 s and 12 MB: 210 bodies, 1719 contacts, 0.5 s simulated, ...``; on first use
+        ``about 56 s (compiling kernels, first use only, ~47 s) and 8.9 MB: ...``."""
         size = f" and {format_size(self.result_bytes)}" if self.result_bytes else ""
+        if self.compile_s > 0:
+            size = f" (compiling kernels, first use only, ~{format_duration(self.compile_s)}){size}"
         what = f"{self.bodies} bod{'y' if self.bodies == 1 else 'ies'}"
         if self.contacts:
             what += f", {self.contacts} contact{'' if self.contacts == 1 else 's'}"
@@ -279,7 +315,8 @@ def estimate_run(
     systems = 1 if scenario.scale is None else 2
     if contacts is None and sim.engine in ("3d", "both"):
         contacts = contacts_of(structure)
-    seconds = STARTUP_SECONDS + estimate_seconds(scenario, structure, contact, contacts)
+    compiling = compile_seconds(scenario, structure)
+    seconds = STARTUP_SECONDS + compiling + estimate_seconds(scenario, structure, contact, contacts)
     nb, nc, samples, runs, hist = _bodies(structure), 0, int(sim.samples), systems, 0.0
     if sim.engine in ("planar", "both"):
         hist += systems * sim.samples * 8 * 12
@@ -303,6 +340,7 @@ def estimate_run(
         duration_s=float(sim.duration_s),
         samples=samples,
         runs=runs,
+        compile_s=compiling,
     )
 
 

@@ -56,6 +56,7 @@ from .engines import (
     planar_settings,
     systems_3d,
 )
+from .load_choice import load_choice
 from .memory import check_study_budget, contacts_of
 from .plan import DESIGN_SYSTEMS, DesignSystem, StudyPlan
 from .result import StudyResult, study_warnings
@@ -352,6 +353,12 @@ class Study:
             )
             summary = partial._compute_summary()  # inside the capture: its warnings are the study's
         notes = study_warnings(d, results, skipped, summary, sc)
+        # the load method's and clearing's weight against the verdict's tolerance (a scenario's own 3D run only:
+        # a design's system run, e.g. the planner's candidates, shares its scenario's choice)
+        choice = load_choice(sc, structure, blast, d) if self._system is None and "3d" in results else None
+        if choice is not None:
+            notes += list(choice.notes)
+            summary["load_choice"] = choice.to_dict()
         lib = []
         for w in caught:
             msg = " ".join(str(w.message).split())
