@@ -5,6 +5,7 @@ structure or other settings never do; a scenario table builds one structure obje
 
 import dataclasses
 import gc
+import weakref
 
 import numpy as np
 import pytest
@@ -12,7 +13,7 @@ import pytest
 from blastscale.blast import blast_parameters
 from blastscale.sim3d import make_load, simulate_structure
 from blastscale.sim3d.contact import default_contact
-from blastscale.sim3d.reference import _REFERENCES, clear_scene_cache, reference_scene
+from blastscale.sim3d.reference import _REFERENCES_ATTR, clear_scene_cache, reference_scene
 from blastscale.similitude import scaling_factors
 from blastscale.structures import wall
 from blastscale.structures.from_spec import from_spec
@@ -68,13 +69,15 @@ def test_another_geometry_or_other_settings_never_share(runs):
 
 
 def test_the_cache_forgets_a_structure_that_is_gone():
+    """The reference structure is carried by its structure object (no module memo): it goes with it."""
     w = wall(**dict(KW, courses=2))
     reference_scene(w, None, 9.81)
-    key = id(w)
-    assert key in _REFERENCES
-    del w
+    refs = getattr(w, _REFERENCES_ATTR)
+    assert len(refs) == 1
+    gone = weakref.ref(next(iter(refs.values())))
+    del w, refs
     gc.collect()
-    assert key not in _REFERENCES
+    assert gone() is None
 
 
 def test_one_scenario_table_builds_one_structure_object():

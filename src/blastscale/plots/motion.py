@@ -231,18 +231,27 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
         if view in END_ON:  # so its length would shrink the other two for nothing
             k = "xyz".index(END_ON[view])
             aspect[k] = min(np.delete(aspect, k))
-        ax.set_box_aspect(tuple(aspect), zoom=0.8)  # room for the labels
+        ax.set_box_aspect(tuple(aspect), zoom=0.72)  # room for the labels (checked by tests/unit/test_figure_text.py)
         ax.view_init(elev=elev, azim=azim)
         for a in "xyz":
             axis = getattr(ax, f"{a}axis")
             span = (hi - lo)["xyz".index(a)] / max(hi - lo)
-            axis.set_major_locator(plt.MaxNLocator(max(2, round(5 * span))))  # ~ one tick per 20 % of the box
+            # ~ one tick per 20 % of the box; in a perspective view the horizontal axes meet at a corner where their
+            # end labels would fall on each other: ticks within 10 % of either end are left out there
+            k = "xyz".index(a)
+            corner = view not in END_ON and a != "z"
+            loc = plt.MaxNLocator(max(4 if corner else 2, round(5 * span)))
+            if corner:
+                ends, edge = (lo[k], hi[k]), 0.1 * (hi[k] - lo[k])
+                ticks = [v for v in loc.tick_values(*ends) if ends[0] + edge < v < ends[1] - edge]
+                loc = plt.FixedLocator(ticks)
+            axis.set_major_locator(loc)
             if END_ON.get(view) == a:  # seen end-on: its ticks would fall on one point
                 axis.set_ticks([])
                 axis.set_label_text("")
             else:
                 axis.set_label_text(f"{a} [m]")
-                axis.labelpad = 16 if a == "z" else 12 if view in END_ON else 8  # clear of the tick labels
+                axis.labelpad = 16 if a == "z" else 12 if view in END_ON else 14  # clear of the tick labels
         ax.set_title(f"{label}, motion drawn x {mag:g}", fontsize=9)
     fig.colorbar(
         cm.ScalarMappable(norm=norm, cmap=cmap),

@@ -12,8 +12,6 @@ time are ``position + R(quaternion) @ vertex``. Stored with every 3D result
 
 from __future__ import annotations
 
-import weakref
-
 import numpy as np
 
 from ..structures.polyhedron import hull_of
@@ -34,21 +32,21 @@ def hull_triangles(vertices, name: str = "block") -> np.ndarray:
     return tri
 
 
-_MESHES: dict = {}  # id(structure) -> (V, F), dropped with the structure (issue #41: once per structure)
+#: The attribute a structure object carries its meshes in (issue #41: once per structure; no module memo).
+_MESHES_ATTR = "_blastscale_meshes"
 
 
 def structure_meshes(structure) -> tuple[np.ndarray, np.ndarray]:
     """Every body's solid, padded to the largest: vertices (nbody, nvertex, 3) [m] in the body frame
     (``RigidBody.vertices`` as they are, NaN past a body's own count) and triangles (nbody, nface, 3) of
-    vertex indices (-1 past its count). Computed once per structure object (a hull per body: 0.2-0.7 s for a
-    200-block wall, on every run before issue #41); each call returns its own copies."""
-    hit = _MESHES.get(id(structure))
+    vertex indices (-1 past its count). Computed once per structure object and carried by it (a hull per body:
+    0.2-0.7 s for a 200-block wall, on every run before issue #41); each call returns its own copies."""
+    hit = getattr(structure, _MESHES_ATTR, None)
     if hit is None:
         hit = _meshes(structure)
         try:
-            weakref.finalize(structure, _MESHES.pop, id(structure), None)
-            _MESHES[id(structure)] = hit
-        except TypeError:  # no weak references to it: computed on every call
+            object.__setattr__(structure, _MESHES_ATTR, hit)
+        except (AttributeError, TypeError):  # an object without a __dict__ (slots): computed on every call
             pass
     return hit[0].copy(), hit[1].copy()
 

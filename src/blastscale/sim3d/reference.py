@@ -24,7 +24,6 @@ from __future__ import annotations
 import copy
 import math
 import threading
-import weakref
 from collections import OrderedDict
 from dataclasses import fields, is_dataclass, replace
 
@@ -109,34 +108,32 @@ SCENE_CACHE_SIZE = 8
 
 _LOCK = threading.Lock()
 _SCENES: OrderedDict = OrderedDict()  # (MJCF text, settings) -> Scene (the compiled model and its settled state)
-_REFERENCES: dict = {}  # id(structure) -> {a: reference structure}, dropped with the structure
+#: The attribute a structure object carries its reference structures in ({a: reference structure}).
+_REFERENCES_ATTR = "_blastscale_references"
 
 
 def clear_scene_cache() -> None:
-    """Forget every cached reference structure, compiled model and settled state (:func:`reference_scene`)."""
+    """Forget every compiled model and settled state (:func:`reference_scene`; a reference structure goes with
+    the structure object that carries it)."""
     with _LOCK:
         _SCENES.clear()
-        _REFERENCES.clear()
 
 
 def _reference_structure(structure, a: float):
-    """:func:`to_reference` of ``structure``, computed once per structure object and factor: the reference
+    """:func:`to_reference` of ``structure``, computed once per structure object and factor and carried by it: the reference
     structure keeps its derived geometry (hulls, faces, interfaces, bodies: ``functools.cached_property`` of an
-    assembly), so every later run of the same object skips it. Objects that cannot be weakly referenced are not
-    cached."""
-    key = id(structure)
+    assembly), so every later run of the same object skips it. Objects without a ``__dict__`` are not cached."""
     with _LOCK:
-        ref = _REFERENCES.get(key, {}).get(a)
+        ref = getattr(structure, _REFERENCES_ATTR, {}).get(a)
     if ref is not None:
         return ref
     ref = to_reference(structure, a)
     try:
         with _LOCK:
-            if key not in _REFERENCES:
-                weakref.finalize(structure, _REFERENCES.pop, key, None)
-                _REFERENCES[key] = {}
-            _REFERENCES[key][a] = ref
-    except TypeError:  # no weak references to it (slots): computed on every run
+            if getattr(structure, _REFERENCES_ATTR, None) is None:
+                object.__setattr__(structure, _REFERENCES_ATTR, {})
+            getattr(structure, _REFERENCES_ATTR)[a] = ref
+    except (AttributeError, TypeError):  # an object without a __dict__ (slots): computed on every run
         pass
     return ref
 

@@ -122,19 +122,21 @@ def systems_3d(scenario: Scenario, structure, design, blast, contact) -> Systems
     return Systems3D(System3D(structure, blast, sim.gravity_m_s2, contact, sim.duration_s, lm))
 
 
-def load_model_of(scenario: Scenario, structure):
+def load_model_of(scenario: Scenario, structure, *, clearing: Optional[bool] = None):
     """The prototype's load model of a scenario (:class:`~blastscale.blast.load_model.LoadModel`):
-    ``blast.clearing`` on the structure's front (:func:`~blastscale.similitude.effects.front_face`)
-    and ``blast.negative_phase``; the paper's load when neither is asked for."""
+    ``blast.clearing`` (or ``clearing`` where given: the load-choice check's other choice) on the structure's
+    front (:func:`~blastscale.similitude.effects.front_face`) and ``blast.negative_phase``; the paper's load
+    when neither is asked for."""
 
     bl = scenario.blast
-    if not (bl.clearing or bl.negative_phase):
+    clearing = bl.clearing if clearing is None else bool(clearing)
+    if not (clearing or bl.negative_phase):
         return PAPER_LOAD
     face = (None, None)
-    if bl.clearing:
+    if clearing:
         face = front_face(structure)
     return LoadModel(
-        clearing=bl.clearing,
+        clearing=clearing,
         face_width_m=face[0],
         face_height_m=face[1],
         negative_phase=bl.negative_phase,

@@ -189,7 +189,7 @@ def _clearing_factor(scenario: Scenario, structure, blast, uncleared: float | No
     """H with clearing over H without under the scenario's method (None: clearing does not apply, e.g. an
     arch's open front)."""
     try:
-        cleared = load_model_of(scenario.with_values({"blast.clearing": True}), structure)
+        cleared = load_model_of(scenario, structure, clearing=True)
         hc = overturning_impulse(_build(scenario.blast.load, structure, blast, scenario, cleared), structure)
         if uncleared is None:
             lm = load_model_of(scenario, structure)
@@ -210,7 +210,7 @@ def _clearing_note(method: str, prototype: float | None, specimen: float | None,
     )
 
 
-def _method_note(method: str, ref: str, factor: float, tol: float, structure) -> str:
+def _method_note(method: str, ref: str, ratio: float, tol: float, structure) -> str:
     """The warning that the load method matters more than the verdict's tolerance."""
     why = {
         "C": "every exposed face with its own distance, arrival and incidence, rear and top included: the "
@@ -219,8 +219,8 @@ def _method_note(method: str, ref: str, factor: float, tol: float, structure) ->
         f"more than {C_MAX_BODIES} bodies)",
     }[ref]
     note = (
-        f"load method {method} gives this structure x{factor:.3g} the overturning impulse of Method {ref} ({why}); "
-        f"a rocking first peak grows about as its square (x{factor**2:.3g}), far beyond the verdict's {tol:.3g} "
+        f"load method {method} gives this structure x{ratio:.3g} the overturning impulse of Method {ref} ({why}); "
+        f"a rocking first peak grows about as its square (x{ratio**2:.3g}), far beyond the verdict's {tol:.3g} "
         "tolerance on first peaks: the method changes the answer more than the scaling does"
     )
     if getattr(structure, "section", "") == "circular":

@@ -19,7 +19,6 @@ import math
 import os
 from dataclasses import dataclass
 
-from .._jit import is_cached
 from .._validate import BlastscaleInputError
 from ..scenario.scenario import Scenario
 from ..sim3d.contact import default_contact
@@ -226,6 +225,8 @@ def compile_seconds(scenario: Scenario, structure=None) -> float:
         return 0.0
     if structure is not None and getattr(structure, "bodies", None) is not None and len(structure.bodies) != 1:
         return 0.0  # planar rocking applies to a single block: skipped here
+    from .._jit import is_cached  # noqa: PLC0415 -- numba loads only for a run of the planar kernels (tests/system/test_run.py)
+
     folder = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rocking")
     cold = [m for m in KERNEL_MODULES if not is_cached(os.path.join(folder, f"{m}.py"))]
     return COMPILE_SECONDS * len(cold) / len(KERNEL_MODULES)

@@ -46,6 +46,7 @@ from ..scenario.specs import ScaleSpec
 from ..similitude.design import design_model
 from ..similitude.effects import front_face, structure_top
 from ..structures import from_spec
+from ..structures.from_spec import is_block
 from .engines import (
     ENGINES,
     ENSEMBLE,
@@ -353,9 +354,11 @@ class Study:
             )
             summary = partial._compute_summary()  # inside the capture: its warnings are the study's
         notes = study_warnings(d, results, skipped, summary, sc)
-        # the load method's and clearing's weight against the verdict's tolerance (a scenario's own 3D run only:
-        # a design's system run, e.g. the planner's candidates, shares its scenario's choice)
-        choice = load_choice(sc, structure, blast, d) if self._system is None and "3d" in results else None
+        # the load method's and clearing's weight against the verdict's tolerance (a scenario's own 3D run of a
+        # structure other than a single block only: a design's system run, e.g. the planner's candidates, shares
+        # its scenario's choice; a block's Method A is the paper's planar load, its factor in docs/face_loads.md)
+        checked = self._system is None and "3d" in results and not is_block(structure)
+        choice = load_choice(sc, structure, blast, d) if checked else None
         if choice is not None:
             notes += list(choice.notes)
             summary["load_choice"] = choice.to_dict()

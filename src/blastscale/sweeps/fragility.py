@@ -52,6 +52,7 @@ from .._validate import BlastscaleInputError
 from ..analysis.damage import LEVELS
 from ..analysis.planar import first_swing_of, planar_system
 from ..rocking.solver import RockingSolver
+from ..roots import scalar_root
 from ..scenario.scenario import Scenario
 from ..structures import from_spec
 from ..study.memory import check_budget
@@ -197,7 +198,7 @@ def _profile_bounds(nll, x: np.ndarray, best: float, which: int) -> tuple:
     """95 % profile-likelihood bounds of ``exp(x[which])``: where ``min over the other parameter of nll``
     exceeds ``best`` by :data:`_CHI2_95_HALF`, searched within a factor :data:`OPEN_FACTOR` either side (open:
     0 or inf beyond)."""
-    from scipy.optimize import brentq, minimize_scalar
+    from scipy.optimize import minimize_scalar
 
     other = 1 - which
 
@@ -219,7 +220,7 @@ def _profile_bounds(nll, x: np.ndarray, best: float, which: int) -> tuple:
             if not excess(edge) > 0.0:
                 out.append(0.0 if side < 0 else math.inf)
                 continue
-            out.append(math.exp(brentq(excess, *sorted((x[which], edge)), xtol=1e-12, rtol=1e-12)))
+            out.append(math.exp(scalar_root(excess, x[which], edge, xtol=1e-12)))
         except (ValueError, FloatingPointError, OverflowError):
             out.append(0.0 if side < 0 else math.inf)
     return tuple(out)
