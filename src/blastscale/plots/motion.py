@@ -233,25 +233,7 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
             aspect[k] = min(np.delete(aspect, k))
         ax.set_box_aspect(tuple(aspect), zoom=0.72)  # room for the labels (checked by tests/unit/test_figure_text.py)
         ax.view_init(elev=elev, azim=azim)
-        for a in "xyz":
-            axis = getattr(ax, f"{a}axis")
-            span = (hi - lo)["xyz".index(a)] / max(hi - lo)
-            # ~ one tick per 20 % of the box; in a perspective view the horizontal axes meet at a corner where their
-            # end labels would fall on each other: ticks within 10 % of either end are left out there
-            k = "xyz".index(a)
-            corner = view not in END_ON and a != "z"
-            loc = plt.MaxNLocator(max(4 if corner else 2, round(5 * span)))
-            if corner:
-                ends, edge = (lo[k], hi[k]), 0.1 * (hi[k] - lo[k])
-                ticks = [v for v in loc.tick_values(*ends) if ends[0] + edge < v < ends[1] - edge]
-                loc = plt.FixedLocator(ticks)
-            axis.set_major_locator(loc)
-            if END_ON.get(view) == a:  # seen end-on: its ticks would fall on one point
-                axis.set_ticks([])
-                axis.set_label_text("")
-            else:
-                axis.set_label_text(f"{a} [m]")
-                axis.labelpad = 16 if a == "z" else 12 if view in END_ON else 14  # clear of the tick labels
+        _axes_ticks(ax, view, lo, hi)
         ax.set_title(f"{label}, motion drawn x {mag:g}", fontsize=9)
     fig.colorbar(
         cm.ScalarMappable(norm=norm, cmap=cmap),
@@ -271,6 +253,31 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
         title.set_text(f"t = {motion.time[index]:.3f} s (prototype time){why}")
 
     return fig, update, [*colls, title]
+
+
+def _axes_ticks(ax, view: str, lo, hi) -> None:
+    """The 3D axes' ticks and labels of one panel: about one tick per 20 % of the box (the axis seen end-on none);
+    in a perspective view the horizontal axes meet at a corner where their end labels would fall on each other:
+    ticks within 10 % of either end are left out there (tests/unit/test_figure_text.py)."""
+    import matplotlib.pyplot as plt
+
+    for a in "xyz":
+        axis = getattr(ax, f"{a}axis")
+        k = "xyz".index(a)
+        span = (hi - lo)[k] / max(hi - lo)
+        corner = view not in END_ON and a != "z"
+        loc = plt.MaxNLocator(max(4 if corner else 2, round(5 * span)))
+        if corner:
+            ends, edge = (lo[k], hi[k]), 0.1 * (hi[k] - lo[k])
+            ticks = [v for v in loc.tick_values(*ends) if ends[0] + edge < v < ends[1] - edge]
+            loc = plt.FixedLocator(ticks)
+        axis.set_major_locator(loc)
+        if END_ON.get(view) == a:  # seen end-on: its ticks would fall on one point
+            axis.set_ticks([])
+            axis.set_label_text("")
+        else:
+            axis.set_label_text(f"{a} [m]")
+            axis.labelpad = 16 if a == "z" else 12 if view in END_ON else 14  # clear of the tick labels
 
 
 def render_frames(motion, indices, view: str = "iso", charge=None, dpi: int = 80, magnification=None):
