@@ -31,7 +31,6 @@ the test is not made (said so).
 from __future__ import annotations
 
 import math
-import tomllib
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,6 +44,7 @@ from .._validate import BlastscaleInputError
 from ..blast.inverse import INCIDENCE_RANGE_DEG
 from ..blast.parameters import BLAST_MODELS, BURSTS, DEFAULT_BLAST_MODEL, model_for_burst
 from ..blast.sources import SOURCE_KINDS, TNT_ENERGY_J_PER_KG, CalibratedSource, PowerLaw, source_to_dict
+from ..io.source_file import read_toml
 from ..scenario.fields import SPEC_CONFIG
 from ..scenario.messages import one_line
 from .effective import effective_charge
@@ -172,14 +172,7 @@ def read_calibration_set(path) -> CalibrationSet:
         An unreadable file, a TOML error or a bad key (one line: the file, the key, its value and valid range).
     """
     p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise BlastscaleInputError(f"calibration set {str(p)!r}: cannot be read ({exc.strerror or exc})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise BlastscaleInputError(f"{p.name}: TOML syntax error: {exc}") from None
+    data = read_toml(p, "calibration set")
     shots = data.get("shot")
     if isinstance(shots, list):
         data["shot"] = [

@@ -18,7 +18,7 @@ from .._validate import BlastscaleInputError
 from ..blast.sources import CalibratedSource, source_from_dict, source_to_dict
 from .output import write_file
 
-__all__ = ["read_source", "source_text", "write_source"]
+__all__ = ["read_toml", "read_source", "source_text", "write_source"]
 
 
 def source_text(source: CalibratedSource, written_by: str = "blastscale source calibrate") -> str:
@@ -38,18 +38,23 @@ def write_source(path, source: CalibratedSource) -> Path:
     return write_file(path, source_text(source), what="--out")
 
 
-@functools.lru_cache(maxsize=16)
-def _read(path: str, mtime_ns: int, size: int) -> CalibratedSource:
+def read_toml(path, what: str) -> dict:
+    """The TOML file ``path`` as a dict (UTF-8, a byte-order mark allowed): a source file or a calibration set
+    (``what`` names it in the one-line error of an unreadable file; a syntax error names the file)."""
     p = Path(path)
     try:
         text = p.read_text(encoding="utf-8-sig")
     except OSError as exc:
-        raise BlastscaleInputError(f"source file {path!r}: cannot be read ({exc.strerror or exc})") from None
+        raise BlastscaleInputError(f"{what} {str(p)!r}: cannot be read ({exc.strerror or exc})") from None
     try:
-        data = tomllib.loads(text)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise BlastscaleInputError(f"{p.name}: TOML syntax error: {exc}") from None
-    return source_from_dict(data, p.name)
+
+
+@functools.lru_cache(maxsize=16)
+def _read(path: str, mtime_ns: int, size: int) -> CalibratedSource:
+    return source_from_dict(read_toml(path, "source file"), Path(path).name)
 
 
 def read_source(path) -> CalibratedSource:
