@@ -22,6 +22,21 @@ from blastscale.study.memory import estimate_run
 from blastscale.units import format_size
 
 
+def wall_3000_scenario(folder):
+    """The 3000-block stack-bonded wall (50 x 60 blocks, a block-model file written in ``folder``) under 100 kg
+    at 10 m, 3D only, 0.01 s simulated, as a loaded scenario."""
+    from blastscale.scenario import load_scenario
+
+    f = block_file(folder / "wall_3000.json", 50, 60)
+    toml = folder / "wall_3000.toml"
+    toml.write_text(
+        f'title = "3000-block file"\n[structure]\nkind = "assembly"\nfile = "{f.name}"\n'
+        "[blast]\ncharge_kg = 100.0\nstandoff_m = 10.0\n[scale]\nlength = 0.05\n"
+        '[simulation]\nengine = "3d"\nduration_s = 0.01\n'
+    )
+    return load_scenario(toml)
+
+
 def block_file(path: Path, courses: int, units: int, unit_m=(0.5, 0.25, 0.15)) -> Path:
     """A stack-bonded wall of ``courses`` x ``units`` boxes (thickness along x, length along y) as our JSON."""
     tx, ly, hz = unit_m
@@ -72,14 +87,7 @@ def cases(folder: Path, quick: bool) -> list:
         ),
     ]
     if not quick:
-        f = block_file(folder / "wall_3000.json", 50, 60)
-        toml = folder / "wall_3000.toml"
-        toml.write_text(
-            f'title = "3000-block file"\n[structure]\nkind = "assembly"\nfile = "{f.name}"\n'
-            "[blast]\ncharge_kg = 100.0\nstandoff_m = 10.0\n[scale]\nlength = 0.05\n"
-            '[simulation]\nengine = "3d"\nduration_s = 0.01\n'
-        )
-        out.append(("stack-bonded wall file 3000", load_scenario(toml)))
+        out.append(("stack-bonded wall file 3000", wall_3000_scenario(folder)))
     return out
 
 

@@ -25,7 +25,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from bench_estimate import block_file  # noqa: E402
+from bench_estimate import wall_3000_scenario  # noqa: E402
 
 
 def cases(folder: Path, quick: bool) -> list:
@@ -38,14 +38,7 @@ def cases(folder: Path, quick: bool) -> list:
     ]
     if not quick:
         out.append(("circular column (4-member ensembles)", load_scenario("paper_column_circular_200kg")))
-        f = block_file(folder / "wall_3000.json", 50, 60)
-        toml = folder / "wall_3000.toml"
-        toml.write_text(
-            f'title = "3000-block file"\n[structure]\nkind = "assembly"\nfile = "{f.name}"\n'
-            "[blast]\ncharge_kg = 100.0\nstandoff_m = 10.0\n[scale]\nlength = 0.05\n"
-            '[simulation]\nengine = "3d"\nduration_s = 0.01\n'
-        )
-        out.append(("3000-block file", load_scenario(toml)))
+        out.append(("3000-block file", wall_3000_scenario(folder)))
     return out
 
 
