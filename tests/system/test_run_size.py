@@ -47,7 +47,7 @@ def test_the_estimate_is_said_before_the_run_starts(tmp_path):
     lines = err.splitlines()
     assert p.returncode == 143 and lines[-1].startswith("error: terminated"), err
     m = re.fullmatch(
-        r"this run: about (.+) and ([\d.]+) (MB|GB): 22 bodies, (\d+) contacts, 20 s simulated, "
+        r"this run: about (.+) and ([\d.]+) (MB|GB): 22 bodies, (\d+) contacts, 20 s simulated \(and [\d.]+ s at rest before the blast\), "
         r"(\d+) samples x 2 runs",
         lines[0],
     )

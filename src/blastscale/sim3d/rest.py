@@ -66,6 +66,7 @@ __all__ = [
     "REST_RECORDS",
     "model_key",
     "rest_check",
+    "rest_contact",
     "rest_state",
     "rest_time",
 ]
@@ -105,6 +106,22 @@ def rest_time(structure, gravity: float = STANDARD_GRAVITY, natural_times: float
     h = float(check_positive("structure height", structure_length(structure), "m"))
     g = float(check_positive("gravity", gravity, "m/s^2"))
     return float(check_positive("natural_times", natural_times)) * math.sqrt(h / g)
+
+
+def rest_contact(
+    structure, contact: ContactSettings | None = None, gravity: float = STANDARD_GRAVITY
+) -> ContactSettings:
+    """The contact settings of the check at rest: ``contact`` (None: the engine's scale-consistent defaults) at the
+    run's step after the load (:func:`~.integrate.step_factor_after_load`: x2 for a stack), within the engine's
+    bound on the step (``MAX_TIMESTEP_FRACTION`` sqrt(H / g); a user's coarse step stays as it is); its
+    ``timestep`` [s] is the step of the check (:func:`rest_check`; the run's size, :mod:`blastscale.study.memory`)."""
+    g = float(check_positive("gravity", gravity, "m/s^2"))
+    c = default_contact(structure, gravity=g) if contact is None else contact
+    h = structure_length(structure)
+    longer = min(
+        step_factor_after_load(c, len(structure.bodies)), MAX_TIMESTEP_FRACTION * math.sqrt(h / g) / c.timestep
+    )
+    return replace(c, timestep=c.timestep * max(1.0, longer))
 
 
 def rest_state(response, structure_height: float, gravity: float) -> dict:
@@ -179,12 +196,7 @@ def rest_check(
     g = float(check_positive("gravity", gravity, "m/s^2"))
     T = rest_time(structure, g, natural_times)
     h = structure_length(structure)
-    c = default_contact(structure, gravity=g) if contact is None else contact
-    # the free-motion step, within the engine's bound on the step (a user's coarse step stays as it is there)
-    longer = min(
-        step_factor_after_load(c, len(structure.bodies)), MAX_TIMESTEP_FRACTION * math.sqrt(h / g) / c.timestep
-    )
-    c = replace(c, timestep=c.timestep * max(1.0, longer))
+    c = rest_contact(structure, contact, g)
     scene, (_, b) = reference_scene(structure, c, g)
     key = (model_key(scene), float(natural_times))
     with _lock(key):

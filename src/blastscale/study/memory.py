@@ -23,6 +23,7 @@ from .._validate import BlastscaleInputError
 from ..scenario.scenario import Scenario
 from ..sim3d.contact import default_contact
 from ..sim3d.integrate import SETTLE_TIME_CONSTANTS, step_factor_after_load
+from ..sim3d.rest import rest_contact, rest_time
 from ..structures.assembly import as_assembly
 from ..units import format_size
 from .engines import contact_settings, record_every
@@ -52,6 +53,8 @@ __all__ = [
     "WRITE_SECONDS_PER_BYTE",
     "BODY_SECONDS",
     "BODY_EXPONENT",
+    "REST_CHECK_SECONDS",
+    "rest_check_size",
     "STARTUP_SECONDS",
     "COMPILE_SECONDS",
     "KERNEL_MODULES",
@@ -81,6 +84,12 @@ CONTACT_STEP_UNITS, CONTACT_STEP_EXPONENT = 50, 0.45
 #: ... plus, once per run of a structure of n bodies, BODY_SECONDS n^BODY_EXPONENT [s]: the engine's model
 #: built, the histories compared and drawn per body (measured: 13 s for 210 bodies, 290 s for 3000).
 BODY_SECONDS, BODY_EXPONENT = 0.025, 1.17
+#: The check at rest before the blast (:func:`blastscale.sim3d.rest.rest_check`: every 3D run under a charge, the
+#: structure under gravity alone for its rest time, 3 sqrt(H / g), at the step after the load) costs its steps at
+#: the per-step cost above (the 200-block stack-bonded wall at rest: 26.2 CPU s measured, 31.8 s by the model)
+#: plus this once per check [s]: a second engine model compiled and settled (the 10-drum columns: 1.04-1.09 CPU s
+#: measured, 0.39 s of steps by the model). A specimen that is its prototype's exact model reuses the check.
+REST_CHECK_SECONDS = 0.65
 #: Start-up of a command that simulates (Python, MuJoCo, xarray, the design, the check, the tables printed) [s]:
 #: measured 1.2-1.3 s of imports and 0.4-0.5 s of check in-process, ~3 s of CPU by the CLI (issue #39,
 #: ``benchmarks/bench_first_use.py``; it was 2 s).
@@ -212,8 +221,31 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts:
         per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * units * max(1.0, units / CONTACT_STEP_UNITS) ** (
             CONTACT_STEP_EXPONENT
         )
-        total += runs * steps * per_step * max(1.0, sides / 4) ** (1 / 3) + BODY_SECONDS * nb**BODY_EXPONENT
+        shape = max(1.0, sides / 4) ** (1 / 3)
+        total += runs * steps * per_step * shape + BODY_SECONDS * nb**BODY_EXPONENT
+        checks, rest_steps, _ = rest_check_size(scenario, structure, resolved)
+        total += checks * (rest_steps * per_step * shape + REST_CHECK_SECONDS)
     return total
+
+
+def rest_check_size(scenario: Scenario, structure=None, contact=None) -> tuple:
+    """The checks at rest a 3D run makes before its blast (:func:`blastscale.sim3d.rest.rest_check`):
+    ``(checks, steps, rest_s)``: how many (0 under gravity alone or without a structure, where the run itself is
+    the check; 1 for a prototype, and for a specimen that is its exact model, sharing the check; 2 for a specimen of
+    another friction, ``scale.specimen_material``), the engine's steps of each (its rest time at the step after the
+    load, the settling included) and the rest time [s] of the prototype. ``contact``: the study's resolved contact
+    settings (None: derived)."""
+    if structure is None or not scenario.blast.charge_kg or scenario.simulation.engine not in ("3d", "both"):
+        return 0, 0.0, 0.0
+    g = scenario.simulation.gravity_m_s2
+    resolved = contact if contact is not None else _contact_or_none(scenario, structure)
+    if resolved is None:
+        return 0, 0.0, 0.0
+    c = rest_contact(structure, resolved, g)
+    T = rest_time(structure, g)
+    steps = T / c.timestep + SETTLE_TIME_CONSTANTS * c.time_constant / c.timestep
+    checks = 1 if scenario.scale is None or scenario.friction_ratio == 1.0 else 2
+    return checks, steps, T
 
 
 def compile_seconds(scenario: Scenario, structure=None) -> float:
@@ -276,6 +308,9 @@ class RunSize:
         Simulations (prototype and specimen, ensemble members).
     compile_s : float
         Of ``seconds``, compiling the kernels on first use [s] (:func:`compile_seconds`; 0: the cache is warm).
+    rest_s : float
+        The prototype's time under gravity alone in the check at rest before the blast [s] (:func:`rest_check_size`;
+        0: none).
     """
 
     seconds: float
@@ -287,9 +322,11 @@ class RunSize:
     samples: int
     runs: int
     compile_s: float = 0.0
+    rest_s: float = 0.0
 
     def line(self) -> str:
-        """One line: ``about 40 s and 12 MB: 210 bodies, 1719 contacts, 0.5 s simulated, ...``; on first use
+        """One line: ``about 40 s and 12 MB: 210 bodies, 1719 contacts, 0.5 s simulated (and 2.2 s at rest before the
+        blast), ...``; on first use
         ``about 56 s (compiling kernels, first use only, ~47 s) and 8.9 MB: ...``."""
         size = f" and {format_size(self.result_bytes)}" if self.result_bytes else ""
         if self.compile_s > 0:
@@ -298,7 +335,9 @@ class RunSize:
         if self.contacts:
             what += f", {self.contacts} contact{'' if self.contacts == 1 else 's'}"
         return (
-            f"about {format_duration(self.seconds)}{size}: {what}, {self.duration_s:g} s simulated, "
+            f"about {format_duration(self.seconds)}{size}: {what}, {self.duration_s:g} s simulated"
+            + (f" (and {self.rest_s:.2g} s at rest before the blast)" if self.rest_s else "")
+            + ", "
             f"{self.samples} samples x {self.runs} run{'' if self.runs == 1 else 's'}"
         )
 
@@ -342,6 +381,7 @@ def estimate_run(
         samples=samples,
         runs=runs,
         compile_s=compiling,
+        rest_s=rest_check_size(scenario, structure, contact)[2],
     )
 
 

@@ -18,7 +18,7 @@ CONTACT = ContactSettings()
 
 def _per_step(n: int) -> float:
     """Seconds per step [s] of a stand-in of n bodies (no interfaces found: its contacts are its bodies)."""
-    structure = SimpleNamespace(bodies=[None] * n)
+    structure = SimpleNamespace(bodies=[None] * n, describe=lambda: {"height_m": 10.0})
     sc = Scenario.default().with_values({"simulation.engine": "3d", "scale.length": 0.1})
 
     def seconds(duration):
