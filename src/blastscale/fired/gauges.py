@@ -234,6 +234,16 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
     BlastscaleInputError
         Too few pre-trigger samples, no arrival above the threshold, or too few samples over the positive
         phase (one line naming the file, the column and the rows).
+
+    Notes
+    -----
+    A noiseless record (a synthetic one: zero residual scatter about the baseline) is fitted like any other.
+    Its uncertainties are what the data say, zero where there is no scatter: the noise's and the baseline's
+    parts of ``ci95_impulse_Pa_s`` are 0 (no floor is added: the samples carry no error to propagate), and
+    the fit's intervals are those of its residuals alone. Only the tail check (step 1), which compares the
+    tail's offset with its standard error, floors that standard error at the samples' resolution (one unit
+    in the last place of the largest sample, :func:`numpy.spacing`): an offset below it cannot be told from
+    rounding, and a ratio to a zero error has no meaning.
     """
     t = np.asarray(time_s, dtype=float)
     raw = np.asarray(pressure_Pa, dtype=float)
@@ -247,6 +257,7 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
         if t[tail][0] > trial[1] + TAIL_AFTER * trial[2].duration:  # the tail lies past the pulse: it checks
             offset = float((raw[tail] - line(t[tail])).mean())
             se = math.hypot(line.noise / math.sqrt(int(tail.sum())), line.sigma_at(float(t[tail].mean())))
+            se = max(se, _resolution(raw))  # a noiseless record: the numbers' own rounding, never 0
             agrees = abs(offset) <= TAIL_AGREEMENT * se
             if agrees:  # the line holds to the tail: the line through both (the tail's lever arm pins the slope)
                 line, steps = both, trial
@@ -317,6 +328,14 @@ def _steps(t: np.ndarray, p: np.ndarray, pre: np.ndarray, noise: float, where: t
     fit = _fit_friedlander(t[window] - ta, p[window], dt)
     neg_p, neg_i, neg_end = _negative_phase(t, p, sm, k, ta + fit.duration, noise)
     return ia, ta, fit, neg_p, neg_i, neg_end, _positive_impulse(t, p, ta, fit, noise)
+
+
+def _resolution(raw: np.ndarray) -> float:
+    """The resolution of the record's samples [Pa]: one unit in the last place of its largest magnitude
+    (float64, ``np.spacing``). The floor of the tail check's standard error: on a noiseless record (zero
+    residual scatter) the noise's and the line's errors are 0, and an offset within a few of these units is
+    the samples' rounding, not a drift."""
+    return float(np.spacing(float(np.max(np.abs(raw)))))
 
 
 def _tail(t: np.ndarray) -> np.ndarray | None:
