@@ -13,10 +13,11 @@ The steps (docs/fired.md), on plain arrays in SI:
    record's tail** (its last :data:`TAIL_FRACTION` in time), when it lies :data:`TAIL_AFTER` positive
    durations past the arrival (the pulse found on the trace baselined by the line through the pre-trigger and
    the tail), checks the pre-trigger's line: the tail's mean offset from it within :data:`TAIL_AGREEMENT`
-   standard errors (the noise's and the line's at the tail), the line through the pre-trigger and the tail
-   together is the baseline (the tail's lever arm pins the slope); beyond, the drift is not linear, the
-   pre-trigger's line is kept, the tail's offset enters the uncertainty (as a drift growing linearly from
-   the firing signal to the tail) and a warning names the gauge.
+   standard errors (the noise's and the line's at the tail, floored at the samples' resolution, one unit in
+   the last place of the largest sample: a noiseless record has neither), the line through the pre-trigger
+   and the tail together is the baseline (the tail's lever arm pins the slope); beyond, the drift is not
+   linear, the pre-trigger's line is kept, the tail's offset enters the uncertainty (as a drift growing
+   linearly from the firing signal to the tail) and a warning names the gauge.
 2. **Arrival**: the first sample after the firing signal whose baselined value exceeds the threshold
    ``max(ARRIVAL_NOISE_MULTIPLE sigma, ARRIVAL_PEAK_FRACTION max)``; the shock lies between it and the
    sample before, and the arrival time is their midpoint (error <= half a sample interval). A shock is a
@@ -237,13 +238,8 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
 
     Notes
     -----
-    A noiseless record (a synthetic one: zero residual scatter about the baseline) is fitted like any other.
-    Its uncertainties are what the data say, zero where there is no scatter: the noise's and the baseline's
-    parts of ``ci95_impulse_Pa_s`` are 0 (no floor is added: the samples carry no error to propagate), and
-    the fit's intervals are those of its residuals alone. Only the tail check (step 1), which compares the
-    tail's offset with its standard error, floors that standard error at the samples' resolution (one unit
-    in the last place of the largest sample, :func:`numpy.spacing`): an offset below it cannot be told from
-    rounding, and a ratio to a zero error has no meaning.
+    A noiseless record (zero scatter) gets the uncertainties its data give: 0 from the noise and the baseline,
+    no floor added; only the tail check's standard error is floored, at the samples' resolution (step 1).
     """
     t = np.asarray(time_s, dtype=float)
     raw = np.asarray(pressure_Pa, dtype=float)
@@ -256,8 +252,7 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
         trial = _steps(t, raw - both(t), pre, both.noise, where)
         if t[tail][0] > trial[1] + TAIL_AFTER * trial[2].duration:  # the tail lies past the pulse: it checks
             offset = float((raw[tail] - line(t[tail])).mean())
-            se = math.hypot(line.noise / math.sqrt(int(tail.sum())), line.sigma_at(float(t[tail].mean())))
-            se = max(se, _resolution(raw))  # a noiseless record: the numbers' own rounding, never 0
+            se = _tail_error(line, t, tail, raw)
             agrees = abs(offset) <= TAIL_AGREEMENT * se
             if agrees:  # the line holds to the tail: the line through both (the tail's lever arm pins the slope)
                 line, steps = both, trial
@@ -328,6 +323,14 @@ def _steps(t: np.ndarray, p: np.ndarray, pre: np.ndarray, noise: float, where: t
     fit = _fit_friedlander(t[window] - ta, p[window], dt)
     neg_p, neg_i, neg_end = _negative_phase(t, p, sm, k, ta + fit.duration, noise)
     return ia, ta, fit, neg_p, neg_i, neg_end, _positive_impulse(t, p, ta, fit, noise)
+
+
+def _tail_error(line: "_Line", t: np.ndarray, tail: np.ndarray, raw: np.ndarray) -> float:
+    """The standard error of the tail's mean offset from ``line`` [Pa]: the noise's over the tail's samples and
+    the line's at the tail, in quadrature, floored at the samples' resolution (:func:`_resolution`; on a
+    noiseless record both are 0, and a ratio to 0 is no answer)."""
+    se = math.hypot(line.noise / math.sqrt(int(tail.sum())), line.sigma_at(float(t[tail].mean())))
+    return max(se, _resolution(raw))
 
 
 def _resolution(raw: np.ndarray) -> float:
