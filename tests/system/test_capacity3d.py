@@ -146,3 +146,32 @@ def test_a_block_scenario_is_the_planar_instance_of_the_same_command(capsys, tmp
     assert code == 2 and "--height" in err and "--set" in err
     code, _, err = cli(capsys, "critical", p, "--members", "3", "--json")  # the 3D search's flag, not ignored
     assert code == 2 and "--members" in err and "3D" in err
+
+
+def test_a_block_scenario_gives_its_keys_to_both_planar_commands(capsys, tmp_path):
+    """``critical`` and ``capacity`` read a block's scenario by one helper: its keys (restitution, gravity, the
+    negative phase, the stand-off) give the numbers of the same flags, bitwise; a different key, different
+    numbers (the answer "no": the keys are not ignored)."""
+    p = tmp_path / "block.toml"
+    keys = (
+        '[structure]\nkind = "block"\nheight_m = 10.0\nalpha_deg = 15.0\n[blast]\ncharge_kg = 50.0\nstandoff_m = 2.0\n'
+    )
+    p.write_text(keys + "negative_phase = true\n[simulation]\nrestitution = 0.6\ngravity_m_s2 = 9.5\n")
+    block = ["--height", "10", "--alpha-deg", "15", "--density", "2000", "--restitution", "0.6", "--gravity", "9.5"]
+    by = {}
+    for name, argv in (
+        ("scenario", ["capacity", p, "--standoffs", "2,4"]),
+        ("flags", ["capacity", *block, "--standoffs", "2,4"]),
+        ("critical scenario", ["critical", p]),  # the scenario's stand-off
+        ("critical flags", ["critical", *block, "--standoff", "2", "--negative-phase"]),
+        ("critical other", ["critical", p, "--set", "blast.negative_phase=false"]),
+    ):
+        code, out, err = cli(capsys, *argv, "--json")
+        assert code == 0, err
+        by[name] = json.loads(out)
+    assert by["scenario"]["critical_charge_kg"] == by["flags"]["critical_charge_kg"]
+    assert by["scenario"]["inputs"] == by["flags"]["inputs"] and by["scenario"]["inputs"]["restitution"] == 0.6
+    crit, flags = by["critical scenario"], by["critical flags"]
+    assert crit["critical_charge_kg"] == flags["critical_charge_kg"] and crit["standoff_m"] == 2.0
+    assert crit["negative_phase_uncertainty"] == flags["negative_phase_uncertainty"]
+    assert "negative_phase_uncertainty" not in by["critical other"]

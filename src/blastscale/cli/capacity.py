@@ -130,39 +130,84 @@ def critical_cmd(
         three_d = ThreeD(members, _bracket_of(bracket), tolerance)
         return _critical_3d(sc, standoff, charge, three_d, plot, as_json)
     _planar_only(members, bracket, tolerance)
-    if sc is None:
-        block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
-    else:  # a block's scenario: its keys are the flags
-        check_plot_path(plot)
-        block, bl = from_spec(sc.structure), sc.blast
-        pulse_shape, blast_model, burst, extrapolate = bl.pulse_shape, bl.blast_model, bl.burst, bl.extrapolate
-        clearing, negative_phase = bl.clearing, bl.negative_phase
-        negative_phase_model = bl.negative_phase_model if negative_phase else None
-        gravity, restitution = sc.simulation.gravity_m_s2, sc.simulation.restitution
-        standoff = bl.standoff_m if standoff is None and charge is None else standoff
-    bf.check_burst_flag(burst)
-    lm = bf.load_model_from_flags(clearing, None, None, negative_phase, block, negative_phase_model)
-    fit = model_for_burst(blast_model, burst).name
-    search = CriticalSearch(pulse_shape, blast_model, burst, fit, extrapolate, lm)
+    given = _PlanarFlags(
+        pulse_shape,
+        blast_model,
+        extrapolate,
+        gravity,
+        restitution,
+        burst,
+        clearing,
+        negative_phase,
+        negative_phase_model,
+    )
+    block, f = _planar_block(sc, BlockFlags(height, width, alpha_deg, depth, density), plot, given)
+    if sc is not None and standoff is None and charge is None:
+        standoff = sc.blast.standoff_m
+    bf.check_burst_flag(f.burst)
+    lm = bf.load_model_from_flags(f.clearing, None, None, f.negative_phase, block, f.negative_phase_model)
+    fit = model_for_burst(f.blast_model, f.burst).name
+    search = CriticalSearch(f.pulse_shape, f.blast_model, f.burst, fit, f.extrapolate, lm)
     _check_one_target(standoff, charge)
-    system = planar_system(block, gravity, restitution)
+    system = planar_system(block, f.gravity, f.restitution)
     res = _search_critical(system, standoff, charge, search, as_json)
-    out = {"inputs": block_inputs(block, pulse_shape=pulse_shape, blast_model=blast_model, gravity_m_s2=gravity)}
+    inputs = block_inputs(block, pulse_shape=f.pulse_shape, blast_model=f.blast_model, gravity_m_s2=f.gravity)
+    out = {"inputs": inputs}
     out.update(res.to_dict())
-    out["blast_model"] = blast_model  # the family asked for; the fit used is in load_model
-    bp = blast_parameters(res.charge_kg, res.standoff_m, fit, extrapolate=extrapolate)
+    out["blast_model"] = f.blast_model  # the family asked for; the fit used is in load_model
+    bp = blast_parameters(res.charge_kg, res.standoff_m, fit, extrapolate=f.extrapolate)
     out["critical_blast"] = _critical_blast(bp)
     if lm is not None and lm.negative_phase and standoff is not None:
         out["negative_phase_uncertainty"] = _negative_phase_uncertainty(system, standoff, search, as_json)
     out["impulsive_critical_impulse_Pa_s"] = system.critical_impulse
     out["uplift_pressure_Pa"] = system.uplift_pressure
     if scale is not None:
-        out["model_experiment"] = _model_experiment(res, block, search, scale, density_ratio, gravity)
+        out["model_experiment"] = _model_experiment(res, block, search, scale, density_ratio, f.gravity)
     if plot:
-        add_figure(out, _pi_figure(system, res, bp, pulse_shape, as_json), plot)
+        add_figure(out, _pi_figure(system, res, bp, f.pulse_shape, as_json), plot)
     answer(
         out, as_json=as_json, engine="planar", plot=plot, tables=lambda: _print_critical(out, res, bp, system, block)
     )
+
+
+@dataclass(frozen=True)
+class _PlanarFlags:
+    """A block's planar load and motion, by the flags or by a block scenario's keys that say them: the pulse
+    shape, the blast family, whether to search past the fits' range of Z, gravity [m/s^2], the restitution
+    [-] (None: the block's impact model), then, for ``critical`` alone, the burst, the clearing, the negative
+    phase and its model (None: not a flag of the command)."""
+
+    pulse_shape: str
+    blast_model: str
+    extrapolate: bool
+    gravity: float
+    restitution: Optional[float]
+    burst: Optional[str] = None
+    clearing: Optional[bool] = None
+    negative_phase: Optional[bool] = None
+    negative_phase_model: Optional[str] = None
+
+
+def _planar_block(sc, flags: BlockFlags, plot: Optional[str], given: _PlanarFlags) -> tuple:
+    """The block and its planar flags (:class:`_PlanarFlags`) of the planar ``critical`` and ``capacity``: without a scenario
+    (``sc`` None) the block of the geometry ``flags`` and the flags ``given``; with a block's scenario its
+    structure and its keys (they are the flags). The ``--plot`` path is checked either way."""
+    if sc is None:
+        return flags.block(plot), given
+    check_plot_path(plot)
+    bl, sim = sc.blast, sc.simulation
+    from_keys = _PlanarFlags(
+        bl.pulse_shape,
+        bl.blast_model,
+        bl.extrapolate,
+        sim.gravity_m_s2,
+        sim.restitution,
+        bl.burst,
+        bl.clearing,
+        bl.negative_phase,
+        bl.negative_phase_model if bl.negative_phase else None,
+    )
+    return from_spec(sc.structure), from_keys
 
 
 @dataclass(frozen=True)
@@ -359,25 +404,20 @@ def capacity_cmd(
             )
         return _capacity_3d(sc, R, ThreeD(members, _bracket_of(bracket), tolerance), plot, as_json)
     _planar_only(members, bracket, tolerance)
-    if sc is None:
-        block = BlockFlags(height, width, alpha_deg, depth, density).block(plot)
-    else:  # a block's scenario: its keys are the flags
-        check_plot_path(plot)
-        block, bl = from_spec(sc.structure), sc.blast
-        pulse_shape, blast_model, extrapolate = bl.pulse_shape, bl.blast_model, bl.extrapolate
-        gravity, restitution = sc.simulation.gravity_m_s2, sc.simulation.restitution
-    system = planar_system(block, gravity, restitution)
-    kw = dict(pulse_shape=pulse_shape, blast_model=blast_model, extrapolate=extrapolate)
+    given = _PlanarFlags(pulse_shape, blast_model, extrapolate, gravity, restitution)
+    block, f = _planar_block(sc, BlockFlags(height, width, alpha_deg, depth, density), plot, given)
+    system = planar_system(block, f.gravity, f.restitution)
+    kw = dict(pulse_shape=f.pulse_shape, blast_model=f.blast_model, extrapolate=f.extrapolate)
     model = None if scale is None else (scale, density_ratio, gravity_ratio)
     run = _run_capacity(system, R, kw, model, charge, as_json)
     out = {
         "inputs": block_inputs(
             block,
-            pulse_shape=pulse_shape,
-            blast_model=blast_model,
-            gravity_m_s2=gravity,
-            restitution=restitution,
-            extrapolate=extrapolate,
+            pulse_shape=f.pulse_shape,
+            blast_model=f.blast_model,
+            gravity_m_s2=f.gravity,
+            restitution=f.restitution,
+            extrapolate=f.extrapolate,
         ),
         "blastscale_version": __version__,
         "method": "first-swing energy criterion after the pulse (docs/capacity.md)",

@@ -13,10 +13,11 @@ The steps (docs/fired.md), on plain arrays in SI:
    record's tail** (its last :data:`TAIL_FRACTION` in time), when it lies :data:`TAIL_AFTER` positive
    durations past the arrival (the pulse found on the trace baselined by the line through the pre-trigger and
    the tail), checks the pre-trigger's line: the tail's mean offset from it within :data:`TAIL_AGREEMENT`
-   standard errors (the noise's and the line's at the tail), the line through the pre-trigger and the tail
-   together is the baseline (the tail's lever arm pins the slope); beyond, the drift is not linear, the
-   pre-trigger's line is kept, the tail's offset enters the uncertainty (as a drift growing linearly from
-   the firing signal to the tail) and a warning names the gauge.
+   standard errors (the noise's and the line's at the tail, floored at the samples' resolution, one unit in
+   the last place of the largest sample: a noiseless record has neither), the line through the pre-trigger
+   and the tail together is the baseline (the tail's lever arm pins the slope); beyond, the drift is not
+   linear, the pre-trigger's line is kept, the tail's offset enters the uncertainty (as a drift growing
+   linearly from the firing signal to the tail) and a warning names the gauge.
 2. **Arrival**: the first sample after the firing signal whose baselined value exceeds the threshold
    ``max(ARRIVAL_NOISE_MULTIPLE sigma, ARRIVAL_PEAK_FRACTION max)``; the shock lies between it and the
    sample before, and the arrival time is their midpoint (error <= half a sample interval). A shock is a
@@ -234,6 +235,11 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
     BlastscaleInputError
         Too few pre-trigger samples, no arrival above the threshold, or too few samples over the positive
         phase (one line naming the file, the column and the rows).
+
+    Notes
+    -----
+    A noiseless record (zero scatter) gets the uncertainties its data give: 0 from the noise and the baseline,
+    no floor added; only the tail check's standard error is floored, at the samples' resolution (step 1).
     """
     t = np.asarray(time_s, dtype=float)
     raw = np.asarray(pressure_Pa, dtype=float)
@@ -246,7 +252,7 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
         trial = _steps(t, raw - both(t), pre, both.noise, where)
         if t[tail][0] > trial[1] + TAIL_AFTER * trial[2].duration:  # the tail lies past the pulse: it checks
             offset = float((raw[tail] - line(t[tail])).mean())
-            se = math.hypot(line.noise / math.sqrt(int(tail.sum())), line.sigma_at(float(t[tail].mean())))
+            se = _tail_error(line, t, tail, raw)
             agrees = abs(offset) <= TAIL_AGREEMENT * se
             if agrees:  # the line holds to the tail: the line through both (the tail's lever arm pins the slope)
                 line, steps = both, trial
@@ -317,6 +323,22 @@ def _steps(t: np.ndarray, p: np.ndarray, pre: np.ndarray, noise: float, where: t
     fit = _fit_friedlander(t[window] - ta, p[window], dt)
     neg_p, neg_i, neg_end = _negative_phase(t, p, sm, k, ta + fit.duration, noise)
     return ia, ta, fit, neg_p, neg_i, neg_end, _positive_impulse(t, p, ta, fit, noise)
+
+
+def _tail_error(line: "_Line", t: np.ndarray, tail: np.ndarray, raw: np.ndarray) -> float:
+    """The standard error of the tail's mean offset from ``line`` [Pa]: the noise's over the tail's samples and
+    the line's at the tail, in quadrature, floored at the samples' resolution (:func:`_resolution`; on a
+    noiseless record both are 0, and a ratio to 0 is no answer)."""
+    se = math.hypot(line.noise / math.sqrt(int(tail.sum())), line.sigma_at(float(t[tail].mean())))
+    return max(se, _resolution(raw))
+
+
+def _resolution(raw: np.ndarray) -> float:
+    """The resolution of the record's samples [Pa]: one unit in the last place of its largest magnitude
+    (float64, ``np.spacing``). The floor of the tail check's standard error: on a noiseless record (zero
+    residual scatter) the noise's and the line's errors are 0, and an offset within a few of these units is
+    the samples' rounding, not a drift."""
+    return float(np.spacing(float(np.max(np.abs(raw)))))
 
 
 def _tail(t: np.ndarray) -> np.ndarray | None:

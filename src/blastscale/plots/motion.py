@@ -21,7 +21,7 @@ __all__ = [
     "VISIBLE_FRACTION",
     "END_ON",
     "peak_motion",
-    "structure_height",
+    "record_height",
     "magnification_for",
     "auto_magnification",
     "magnified_world",
@@ -59,8 +59,10 @@ def peak_motion(motion, indices=None) -> float:
     return peak
 
 
-def structure_height(motion) -> float:
-    """The structure's height at the first record [m]: the vertical extent of the first system's vertices."""
+def record_height(motion) -> float:
+    """The height of a motion record at its first state [m]: the vertical extent of the first system's
+    vertices, from the ground (z = 0) or the lowest vertex if lower, to the highest. Not
+    :func:`blastscale.study.criterion.structure_height` (a run summary's height)."""
     z = motion.world(0, [0])[0][..., 2]
     return float(np.nanmax(z) - min(float(np.nanmin(z)), 0.0))
 
@@ -85,8 +87,8 @@ def magnification_for(peak: float, height: float) -> float:
 
 def auto_magnification(motion, indices=None) -> float:
     """:func:`magnification_for` the motion's :func:`peak_motion` over ``indices`` and its
-    :func:`structure_height`."""
-    return magnification_for(peak_motion(motion, indices), structure_height(motion))
+    :func:`record_height`."""
+    return magnification_for(peak_motion(motion, indices), record_height(motion))
 
 
 def _qmul(a, b):
@@ -199,7 +201,7 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
     import matplotlib.pyplot as plt
     from matplotlib import cm, colors
 
-    peak, height = peak_motion(motion), structure_height(motion)
+    peak, height = peak_motion(motion), record_height(motion)
     mag = magnification_for(peak, height) if magnification is None else float(magnification)
     elev, azim = VIEWS[view]
     eye = _eye(elev, azim)

@@ -77,7 +77,7 @@ def write_study(
     figures = render_figures(result)
     for f, png in figures:
         write_atomic(folder / f"{f.name}.png", png)
-    write_atomic(folder / "scenario.toml", result.scenario.to_toml())
+    write_atomic(folder / "scenario.toml", result.scenario.to_toml(folder))  # a source beside it: relative
     files = (
         ["summary.json", "histories.nc"]
         + (["histories.csv"] if csv else [])

@@ -253,7 +253,7 @@ def write_fired(result, scenario, folder) -> list[str]:
         write_atomic(folder / f"{name}.png", png)
     if scenario.fired is not None:  # a record path given relative stays relative (to the written file)
         scenario = scenario.with_values({f"fired.{k}": v for k, v in scenario.fired.record_paths_in(folder).items()})
-    write_atomic(folder / "scenario.toml", scenario.to_toml())
+    write_atomic(folder / "scenario.toml", scenario.to_toml(folder))
     title = scenario.title or "blast experiment"
     page = (
         '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>blastscale: as fired: '

@@ -20,7 +20,7 @@ from html import escape
 
 import numpy as np
 
-from ..plots.motion import VIEWS, VISIBLE_FRACTION, auto_magnification, peak_motion, structure_height
+from ..plots.motion import VIEWS, VISIBLE_FRACTION, auto_magnification, peak_motion, record_height
 from ..sim3d.replay import motion_of
 from ..similitude.effects import charge_position
 
@@ -97,7 +97,7 @@ def view_data(motion, indices, charge=None, view: str = "iso", fps: float = 20.0
         "magnification": float(auto if magnification is None else magnification),
         "auto_magnification": auto,
         "peak_m": peak_motion(motion, idx),
-        "height_m": structure_height(motion),
+        "height_m": record_height(motion),
         "visible_fraction": VISIBLE_FRACTION,
         "colour_max_m": max(float(np.linalg.norm(pos - pos[:, :1], axis=-1).max()), 1e-12),
     }

@@ -270,6 +270,12 @@ class Scenario(BaseModel):
         """Plain JSON-able dict (None for keys left to the engine's defaults)."""
         return self.model_dump(mode="json")
 
-    def to_toml(self) -> str:
-        """The scenario as TOML text (keys left to defaults omitted); ``load_scenario`` reads it back."""
-        return to_toml(self.model_dump(mode="json", exclude_none=True))
+    def to_toml(self, folder=None) -> str:
+        """The scenario as TOML text (keys left to defaults omitted); ``load_scenario`` reads it back. With
+        ``folder``, the text of a file written into that folder: ``[lab] source`` relative to it when the
+        source lies under it or next to it (:meth:`~blastscale.scenario.lab.LabSpec.source_path_in`), so that
+        the folder can be moved with its neighbours."""
+        data = self.model_dump(mode="json", exclude_none=True)
+        if folder is not None and self.lab is not None and self.lab.source is not None:
+            data["lab"]["source"] = self.lab.source_path_in(folder)
+        return to_toml(data)

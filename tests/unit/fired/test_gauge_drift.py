@@ -23,6 +23,7 @@ import numpy as np
 import pytest
 from _fired_synthetic import synthetic_trace
 
+from blastscale._validate import BlastscaleInputError
 from blastscale.fired import effective_charge, fit_gauge
 from blastscale.fired.gauges import DRIFT_WARNING_FRACTION
 
@@ -100,3 +101,51 @@ def test_no_drift_no_slope():
         g = fit_gauge(t, p, "g1")
         assert abs(g.drift_Pa_per_s) <= 1.5 * g.ci95_drift_Pa_per_s
         assert g.impulse_Pa_s == pytest.approx(truth["impulse"], rel=0.01)
+
+
+#: The triangle the trapezoid leaves out across the noiseless record's jump at the arrival, P dt / 8 [Pa s].
+JUMP = 50e3 * 1e-6 / 8
+
+
+def noiseless(decay, durations, baseline=0.0):
+    """A noiseless record (no scatter, no ringing): 0.5 ms of pre-trigger at ``baseline`` [Pa], a Friedlander
+    pulse of 50 kPa and 1 ms (paper Eq. 1, written here, its negative phase continued) arriving at 0.5 ms
+    between two samples, 1 MHz, ``durations`` positive durations after the arrival; and its closed-form
+    impulse ``P t_o (e^-d + d - 1)/d^2`` (paper Eq. 2)."""
+    P, to, ta = 50e3, 1e-3, 0.5e-3 + 0.5e-6
+    t = np.arange(-0.5e-3, ta + durations * to, 1e-6)
+    x = np.clip(t - ta, 0.0, None) / to
+    p = baseline + np.where(t >= ta, P * (1.0 - x) * np.exp(-decay * x), 0.0)
+    return t, p, P * to * (math.exp(-decay) + decay - 1.0) / decay**2
+
+
+def test_a_noiseless_record_with_a_tail_is_fitted_without_uncertainty():
+    """Zero scatter: the pulse's numbers exact and the impulse's interval the rounding's alone (no noise to
+    propagate, no floor added: < 1e-15 of the impulse), no warning: the tail (past 14 positive durations of
+    d = 3) sits at the baseline within the samples' rounding (the form's remnant there, ~3e-14 Pa, is below
+    one unit in the last place of 50 kPa, 7e-12 Pa), to which the tail check's standard error is floored (it
+    was 0: a ZeroDivisionError). The sampled impulse is Eq. 2 less the triangle the trapezoid leaves out across
+    the jump at the arrival, P dt / 8 (the value interpolated at the arrival is P / 2), within 1e-6 (the
+    trapezoid's error on the smooth part); the fit within 1e-6 (exact data, least squares to its tolerance)."""
+    t, p, impulse = noiseless(3.0, 16.0)
+    g = fit_gauge(t, p, "g1")
+    assert g.warnings == () and g.noise_Pa < 1e-12 and g.ci95_impulse_Pa_s < 1e-15 * impulse
+    assert g.baseline_from.startswith("pre-trigger and tail") and abs(g.tail_offset_Pa) < 7e-12
+    assert g.impulse_Pa_s == pytest.approx(impulse - JUMP, rel=1e-6)
+    assert (g.peak_pressure_Pa, g.positive_duration_s, g.decay) == pytest.approx((50e3, 1e-3, 3.0), rel=1e-6)
+    assert g.arrival_time_s == pytest.approx(0.5e-3 + 0.5e-6, abs=0.5e-6)
+
+
+def test_a_noiseless_tail_that_still_holds_the_pulse_is_named_and_a_flat_record_is_refused():
+    """The answers "no": with d = 1.5 the form's negative phase still holds the tail at -1.2e-4 Pa (50 kPa x
+    (1 - x) e^-1.5x at x = 14.5-16), 1e7 units of the samples' resolution off the baseline: the tail's note names the gauge with a finite ratio (no
+    ZeroDivisionError), the impulse's interval stays negligible (< 1e-6 of it). A record with no pulse at all
+    cannot be fitted: a BlastscaleInputError naming the file and the column."""
+    t, p, impulse = noiseless(1.5, 16.0)
+    g = fit_gauge(t, p, "g1")
+    assert -3e-4 < g.tail_offset_Pa < -5e-5
+    assert len(g.warnings) == 1 and "standard errors" in g.warnings[0] and "inf" not in g.warnings[0]
+    assert g.warnings[0].startswith("gauge 'g1': the record's tail sits")
+    assert g.impulse_Pa_s == pytest.approx(impulse - JUMP, rel=1e-6) and g.ci95_impulse_Pa_s < 1e-6 * impulse
+    with pytest.raises(BlastscaleInputError, match=r"shot\.csv: column 'g1_kPa', row .*no shock"):
+        fit_gauge(t, np.zeros_like(t), "g1", source="shot.csv", column="g1_kPa")

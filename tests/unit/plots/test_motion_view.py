@@ -13,7 +13,7 @@ from blastscale.plots.motion import (
     magnification_for,
     magnified_world,
     peak_motion,
-    structure_height,
+    record_height,
 )
 from blastscale.sim3d.replay import Motion
 
@@ -99,9 +99,19 @@ def test_magnification_is_the_largest_1_2_5_step_that_keeps_the_motion_a_tenth_o
     assert magnification_for(0.0, 10.0) == 1.0
     th = 0.004  # the top's far corner moves 2 r sin(th / 2) = 0.0165 m: 0.4 / 0.0165 = 24.3 -> x 20
     mo = rocking(np.linspace(0.0, th, 5))
-    assert structure_height(mo) == pytest.approx(H, rel=1e-12)
+    assert record_height(mo) == pytest.approx(H, rel=1e-12)
     assert peak_motion(mo) == pytest.approx(2 * np.hypot(B, H) * np.sin(th / 2), rel=1e-9)
     assert auto_magnification(mo) == 20.0
+
+
+def test_record_height_is_the_one_name_for_a_records_height():
+    """A motion record's vertical extent is ``record_height``; ``structure_height`` is the run summary's
+    (``blastscale.study.criterion``) alone: no second public name with other logic, no alias."""
+    import blastscale.plots.motion as pm
+    import blastscale.study.criterion as crit
+
+    assert not hasattr(pm, "structure_height") and "structure_height" not in pm.__all__
+    assert "record_height" in pm.__all__ and crit.structure_height is not pm.record_height
 
 
 def test_view_data_carries_the_surfaces_once_and_only_poses_per_frame():

@@ -119,3 +119,32 @@ def test_a_new_initiator_brings_its_own_tnt_equivalent():
     stated = _with_lab({"initiator_tnt_kg": 0.0})
     assert stated.with_values({"lab.samples": 50}).lab.initiator_tnt_kg == 0.0
     assert "initiator_tnt_kg" not in sc.to_toml() and 'initiator = "rp-80"' in sc.to_toml()
+
+
+def test_a_written_scenario_names_a_source_beside_it_relative_so_the_folder_moves(tmp_path):
+    """``to_toml(folder)`` (the scenario.toml of ``plan --out`` and ``run --out``): a source file next to the
+    written folder (under its parent) or under it is named relative to the folder, so that the project moved
+    elsewhere still reads it; the answer "no": a source elsewhere stays as given (absolute), and without a
+    folder the text is as before."""
+    import tomllib
+    from pathlib import Path
+
+    project = tmp_path / "project"
+    (project / "sources").mkdir(parents=True)
+    (project / "out" / "data").mkdir(parents=True)
+    beside, under = project / "sources" / "bank.toml", project / "out" / "data" / "bank.toml"
+    for f in (beside, under):
+        f.write_text("# a calibrated source's file\n", encoding="utf-8")
+    out = project / "out"
+    for source, written in ((beside, "../sources/bank.toml"), (under, "data/bank.toml")):
+        sc = _with_lab({"source": str(source)})
+        assert tomllib.loads(sc.to_toml(out))["lab"]["source"] == written
+        assert tomllib.loads(sc.to_toml())["lab"]["source"] == str(source)
+    (out / "scenario.toml").write_text(_with_lab({"source": str(beside)}).to_toml(out), encoding="utf-8")
+    moved = tmp_path / "moved"
+    project.rename(moved)
+    back = load_scenario(moved / "out" / "scenario.toml")
+    assert Path(back.lab.source).resolve() == (moved / "sources" / "bank.toml").resolve()
+    assert Path(back.lab.source).is_file()
+    far = tmp_path / "elsewhere" / "bank.toml"  # not under the written folder's parent
+    assert tomllib.loads(_with_lab({"source": str(far)}).to_toml(moved / "out"))["lab"]["source"] == str(far)
