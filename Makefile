@@ -27,12 +27,14 @@ run: install
 
 # lint and format (ruff, pyproject.toml), the architecture (import-linter contracts), then the whole suite on
 # every core (pytest-xdist; a test file stays on one worker, so its module fixtures are built once): on the
-# project's 2-core machine 7 min 44 s instead of 13 min 39 s in one process
+# project's 2-core machine 7 min 44 s instead of 13 min 39 s in one process. --no-loadscope-reorder: the files
+# in the order tests/conftest.py gives (the longest first), not xdist's (most tests first, which left the wheel's
+# 2 long tests for last, one worker idle)
 test: install
 	$(BIN)/ruff check src tests benchmarks examples
 	$(BIN)/ruff format --check src tests benchmarks examples
 	$(BIN)/lint-imports --no-cache
-	MPLBACKEND=Agg $(BIN)/python -m pytest -q -n auto --dist loadfile
+	MPLBACKEND=Agg $(BIN)/python -m pytest -q -n auto --dist loadfile --no-loadscope-reorder
 
 # the unit tier only (tests/unit, under a minute): the quick check while editing one package
 test-fast: install
