@@ -27,9 +27,7 @@ run: install
 
 # lint and format (ruff, pyproject.toml), the architecture (import-linter contracts), then the whole suite on
 # every core (pytest-xdist; a test file stays on one worker, so its module fixtures are built once): on the
-# project's 2-core machine 7 min 44 s instead of 13 min 39 s in one process. --no-loadscope-reorder: the files
-# in the order tests/conftest.py gives (the longest first), not xdist's (most tests first, which left the wheel's
-# 2 long tests for last, one worker idle)
+# project's 2-core machine 7 min 44 s instead of 13 min 39 s in one process
 test: install
 	$(BIN)/ruff check src tests benchmarks examples
 	$(BIN)/ruff format --check src tests benchmarks examples
