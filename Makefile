@@ -32,7 +32,7 @@ test: install
 	$(BIN)/ruff check src tests benchmarks examples
 	$(BIN)/ruff format --check src tests benchmarks examples
 	$(BIN)/lint-imports --no-cache
-	MPLBACKEND=Agg $(BIN)/python -m pytest -q -n auto --dist loadfile
+	MPLBACKEND=Agg $(BIN)/python -m pytest -q -n auto --dist loadfile --no-loadscope-reorder
 
 # the unit tier only (tests/unit, under a minute): the quick check while editing one package
 test-fast: install

@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 from ..sim3d.replay import world_vertices
 
@@ -200,6 +199,7 @@ def _motion_figure(motion, view: str, charge, width_in: float, magnification):
     """:func:`motion_figure` and the artists its updater changes (the blocks of each system, the title)."""
     import matplotlib.pyplot as plt
     from matplotlib import cm, colors
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     peak, height = peak_motion(motion), record_height(motion)
     mag = magnification_for(peak, height) if magnification is None else float(magnification)
