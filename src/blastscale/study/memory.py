@@ -58,6 +58,7 @@ __all__ = [
     "STARTUP_SECONDS",
     "COMPILE_SECONDS",
     "KERNEL_MODULES",
+    "SEARCH_KERNEL_MODULES",
     "compile_seconds",
 ]
 
@@ -101,6 +102,10 @@ STARTUP_SECONDS = 3.0
 COMPILE_SECONDS = 47.0
 #: The compiled modules of the planar path (:mod:`blastscale._jit`: each keyed on its sources).
 KERNEL_MODULES = ("kernel", "_load", "_events", "_free", "_dopri", "_batch", "_series")
+#: Of :data:`KERNEL_MODULES`, those only the critical-charge search loads (``simulation.critical_charge``): a planar
+#: run without the search compiles the other six (measured: an empty ``NUMBA_CACHE_DIR`` after ``blastscale run`` of
+#: the default scenario, planar, ``critical_charge = false``, holds every module but ``_batch``).
+SEARCH_KERNEL_MODULES = ("_batch",)
 #: Bytes of histories per recorded state, run and body (19 doubles: displacement, velocity, angular velocity,
 #: tilt, rotation, uplift, position, quaternion) and per monitoring point (6 doubles).
 STATE_BYTES_PER_BODY, STATE_BYTES_PER_POINT = 19 * 8, 6 * 8
@@ -250,7 +255,8 @@ def rest_check_size(scenario: Scenario, structure=None, contact=None) -> tuple:
 
 def compile_seconds(scenario: Scenario, structure=None) -> float:
     """The compiling a run will do first [s of one core]: :data:`COMPILE_SECONDS` times the share of
-    :data:`KERNEL_MODULES` whose on-disk cache is cold (:func:`blastscale._jit.is_cached`), when the run uses the
+    :data:`KERNEL_MODULES` it loads (without the critical-charge search, not :data:`SEARCH_KERNEL_MODULES`) whose
+    on-disk cache is cold (:func:`blastscale._jit.is_cached`), when the run uses the
     planar engine (a block: ``planar`` or ``both``); 0 when warm, or for a 3D-only run (MuJoCo compiles nothing).
     Said apart in the run's size line ("compiling kernels, first use only, ~N s")."""
     if scenario.simulation.engine not in ("planar", "both"):
@@ -260,7 +266,9 @@ def compile_seconds(scenario: Scenario, structure=None) -> float:
     from .._jit import is_cached  # noqa: PLC0415 -- numba loads only for a run of the planar kernels (tests/system/test_run.py)
 
     folder = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rocking")
-    cold = [m for m in KERNEL_MODULES if not is_cached(os.path.join(folder, f"{m}.py"))]
+    search = scenario.simulation.critical_charge
+    used = [m for m in KERNEL_MODULES if search or m not in SEARCH_KERNEL_MODULES]
+    cold = [m for m in used if not is_cached(os.path.join(folder, f"{m}.py"))]
     return COMPILE_SECONDS * len(cold) / len(KERNEL_MODULES)
 
 

@@ -59,3 +59,20 @@ def test_a_3d_only_run_compiles_nothing(cache):
     assert compile_seconds(sc) == 0.0
     both = sc.with_values({"simulation.engine": "both"})  # planar rocking is skipped for a column
     assert compile_seconds(both, Study(both).structure()) == 0.0
+
+
+def test_a_run_without_the_search_counts_only_the_kernels_it_loads(cache):
+    """A planar run without the critical-charge search never loads SEARCH_KERNEL_MODULES (measured: a cold cache
+    after such a run holds every module but ``_batch``): a fresh tree says 6/7 of COMPILE_SECONDS, not 7/7, and a
+    cache warm but for ``_batch`` says nothing; with the search, ``_batch`` counts."""
+    from blastscale.study.memory import SEARCH_KERNEL_MODULES
+
+    search = Scenario.default().with_values({"simulation.engine": "planar"})
+    plain = search.with_values({"simulation.critical_charge": False})
+    assert search.simulation.critical_charge  # the default searches
+    n, k = len(KERNEL_MODULES), len(SEARCH_KERNEL_MODULES)
+    assert compile_seconds(plain) == pytest.approx(COMPILE_SECONDS * (n - k) / n)
+    assert compile_seconds(search) == COMPILE_SECONDS
+    _warm(cache, [m for m in KERNEL_MODULES if m not in SEARCH_KERNEL_MODULES])
+    assert compile_seconds(plain) == 0.0
+    assert compile_seconds(search) == pytest.approx(COMPILE_SECONDS * k / n)
