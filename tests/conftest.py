@@ -31,7 +31,7 @@ _TIERS = ("unit", "integration", "system")
 # worker busy while the other has nothing left (xdist's own order, by number of tests per file, put the wheel's
 # 2 tests, 190 s, at the very end: one worker idle for minutes). Longest first, short ones last, the two
 # workers end within about the shortest files' time of each other. The files below, longest first (seconds of
-# one worker, 2-core machine, load average 3-4 with the whole suite, fresh kernel caches: changes/testtime.md);
+# one worker, 2-core machine, load average 3-4 with the whole suite, fresh kernel caches: CHANGELOG.md, "The suite's wall time");
 # then every file with a test marked slow (most slow tests first), then the rest (most tests first). Only the
 # order changes: a test within its file keeps its place, and a file still runs whole on one worker.
 LONGEST_FIRST = (

@@ -49,8 +49,9 @@ def warm_kernels(tmp_path_factory):
     lines a run writes on stderr, and on a cold kernel cache (a fresh clone) a run also says its size ("this run:
     about 13 s (compiling kernels, first use only ...)": the compile pushes it over the announce threshold):
     without this, a test here failed or passed by whether another test had compiled the kernels before it (make
-    test runs this file among the first). The size line counts every kernel module (study.memory.KERNEL_MODULES),
-    so the run here searches the critical charge too. Warm: one 1 s planar run and its search, a few seconds."""
+    test runs this file among the first). The size line counts the kernel modules a run loads
+    (study.memory.compile_seconds); the run here searches the critical charge too, so every module is compiled,
+    whatever a test's command loads. Warm: one 1 s planar run and its search, a few seconds."""
     folder = tmp_path_factory.mktemp("warm")
     warm = folder / "warm.toml"  # with the critical charge search: its batch kernel (_batch) is compiled too
     warm.write_text(load_scenario("planar_block").with_values({"duration_s": 1.0}).to_toml())

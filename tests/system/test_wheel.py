@@ -5,10 +5,11 @@ The wheel is built from this checkout and installed WITHOUT extras into a fresh 
 temporary folder (pip's cache makes the dependencies quick; needs pip's package index, as ``make install``
 does). The environment is made without pip of its own and this environment's pip installs into it
 (``pip --python``), without compiling the installed files to bytecode (``--no-compile``; Python compiles what
-it imports): 16 s instead of 88 s on the project's 2-core machine, and the same files and dependencies in it. There, from another temporary folder: ``blastscale run --out r`` (the default scenario, both engines)
-exits 0 and writes the report; a command that needs an extra (``sweep``: Zarr, Dask) says so in one line,
-exit 2; and ``blastscale reproduce --quick`` runs every paper scenario shipped as package data and says
-what it skipped (the figure gallery ships with the source tree, not the wheel).
+it imports): 16 s instead of 88 s on the project's 2-core machine, and the same files and dependencies in it.
+There, from another temporary folder: ``blastscale run --out r`` (the default scenario, both engines) exits 0
+and writes the report; a command that needs an extra (``sweep``: Zarr, Dask) says so in one line, exit 2; and
+``blastscale reproduce --quick`` runs every paper scenario shipped as package data and says what it skipped
+(the figure gallery ships with the source tree, not the wheel).
 """
 
 from __future__ import annotations

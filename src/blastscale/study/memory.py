@@ -201,7 +201,9 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts:
     longer steps after the load counted as such) times
     :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x u x max(1, u / :data:`CONTACT_STEP_UNITS`)^
     :data:`CONTACT_STEP_EXPONENT` (u = bodies + contacts), plus :data:`BODY_SECONDS` x
-    bodies^:data:`BODY_EXPONENT`; planar, ~2 us per sample and system plus the critical-charge search (~0.1 s);
+    bodies^:data:`BODY_EXPONENT`, plus the checks at rest before the blast (:func:`rest_check_size`: their steps at the
+    same cost per step, plus :data:`REST_CHECK_SECONDS` each); planar, ~2 us per sample and system plus the
+    critical-charge search (~0.1 s);
     ``contact`` as in :func:`estimate_memory`; ``contacts``: the structure's contacts at rest when already counted
     (:func:`contacts_of`, e.g. a :class:`~.study.StudyPlan`'s), else counted here."""
     sim = scenario.simulation
