@@ -2,8 +2,18 @@
 (docs/sim3d.md, "Contacts and body order").
 
 1. **Interfaces** (faces in contact at rest, ``structure.interfaces``; the ground is -1) are explicit
-   MuJoCo ``<pair>`` elements that engage at contact (margin 0), listed first so that their contacts
-   keep their order in the solver.
+   MuJoCo ``<pair>`` elements, listed first so that their contacts keep their order in the solver. A
+   **bed joint** engages at contact (margin 0). A **side joint** (:func:`side_joints`: every face of the pair
+   in a vertical plane, between blocks that rest on level beds only) carries no weight at rest: its faces
+   touch at zero overlap, and at margin 0 MuJoCo counts them a contact or not by round-off, the solver's
+   active set changes from step to step and the wall never rests (a 50 x 60 stack-bonded wall "at rest" kept
+   its bodies at 2-6e-2 m/s in the 10 m reference with 6-30 Newton iterations and 1.6 CPU s a step; a 40 x 5
+   wall 1e-2 m/s, where 40 x 1 to 40 x 3, without side contacts at rest, decay to 1e-11 m/s). A side joint
+   therefore engages as rule 2 does, once its faces overlap by :func:`engagement_depth`: both walls rest
+   (1e-11 m/s; one Newton iteration and 32 ms a step on the 3000-block wall; docs/performance.md, "Side
+   joints"). A vertical joint between blocks on inclined joints (the crown joint of an arch of an even number
+   of voussoirs) carries the thrust at rest and keeps engaging at contact: engaging it late lets the arch move
+   before the joint bears.
 2. **Every other two surfaces** (two bodies, or a body and the ground) may touch once the structure
    moves (falling drums, blocks thrown onto others). They collide through MuJoCo's broad phase
    (sort-and-prune, ~N log N) with the same contact settings, instead of N (N + 1) / 2 explicit pairs
@@ -30,12 +40,43 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["BROAD_PHASE", "body_order", "engagement_depth", "profile"]
+__all__ = ["BROAD_PHASE", "SIDE_JOINT_TILT", "body_order", "engagement_depth", "profile", "side_joints"]
 
 #: The geom attributes that put every body and the ground in MuJoCo's broad phase (rule 2).
 BROAD_PHASE = 'contype="1" conaffinity="1"'
+
+
+#: Tilt [rad] within which a joint's plane counts as vertical (a side joint) or horizontal (a level bed): the largest
+#: vertical, resp. horizontal, component of its unit normal (rule 1; the 1e-6 of the geometry spread a wall's outcomes
+#: are read against, docs/performance.md).
+SIDE_JOINT_TILT = 1e-6
+
+
+def side_joints(details) -> frozenset:
+    """The unloaded side joints among an assembly's interfaces (rule 1): the pairs ``(first, second)`` whose every
+    :class:`~blastscale.structures.interfaces.Interface` lies in a vertical plane and whose blocks rest on level beds
+    only (every other interface of each block horizontal), all within :data:`SIDE_JOINT_TILT`. Such a block is held
+    up by its beds: gravity puts no force on its side faces at rest (the head joints of a wall of rectangular blocks).
+    A vertical joint between blocks on inclined joints (the crown joint of an arch of an even number of voussoirs)
+    carries the thrust at rest and is not one. ``details``: the interfaces with their normals
+    (``interface_details``; a structure without them, a block or a column, has beds only: pass ())."""
+    vertical: dict = {}
+    for itf in details:
+        pair = (int(itf.first), int(itf.second))
+        vertical[pair] = vertical.get(pair, True) and abs(float(itf.normal[2])) <= SIDE_JOINT_TILT
+    level: dict = {}
+    for itf in details:
+        pair = (int(itf.first), int(itf.second))
+        if vertical[pair]:
+            continue
+        flat = math.hypot(float(itf.normal[0]), float(itf.normal[1])) <= SIDE_JOINT_TILT
+        for k in pair:
+            level[k] = level.get(k, True) and flat
+    return frozenset(p for p, v in vertical.items() if v and all(level.get(k, False) for k in p if k >= 0))
 
 
 def engagement_depth(time_constant: float, gravity: float) -> float:

@@ -28,7 +28,7 @@ import numpy as np
 from .._validate import BlastscaleInputError, check_positive
 from ..constants import STANDARD_GRAVITY
 from ..structures.block import RectangularBlock
-from .collision import BROAD_PHASE, body_order, engagement_depth
+from .collision import BROAD_PHASE, body_order, engagement_depth, side_joints
 from .contact import ContactSettings, mjcf_number
 from .initial import tilt_bodies
 from .shapes import engine_shape
@@ -107,8 +107,18 @@ class Scene:
         return ((self.body_ids[:, None] - 1) * 6 + np.arange(6)).ravel()
 
 
+def _free_body_xml(b: BodySpec) -> str:
+    """The ``<body>`` element of a free body: its pose, free joint, inertial and geoms."""
+    pos = " ".join(mjcf_number(float(v)) for v in b.position)
+    quat = " ".join(mjcf_number(float(v)) for v in b.quaternion)
+    return (
+        f'<body name="{b.name}" pos="{pos}" quat="{quat}">'
+        f'<freejoint name="{b.name}_free"/>{b.mjcf_inertial()}{b.shape.mjcf_geom(f"{b.name}_geom")}</body>'
+    )
+
+
 def build_scene(
-    bodies, contact: ContactSettings, gravity: float = STANDARD_GRAVITY, pairs=None, fixed=(), compile: bool = True
+    bodies, contact: ContactSettings, gravity=STANDARD_GRAVITY, pairs=None, fixed=(), compile=True, side_pairs=()
 ) -> Scene:
     """Compile free rigid bodies on a rigid ground plane into a MuJoCo model.
 
@@ -129,6 +139,10 @@ def build_scene(
         unrotated); part of the ground (-1) in ``pairs`` and in the collision rules.
     compile : bool
         Compile the MJCF (:func:`compile_scene`); False: ``mj_model`` is None (the text alone, a cache key).
+    side_pairs : collection of (int, int)
+        The interfaces among ``pairs`` that are side joints (:func:`~.collision.side_joints`): they engage once
+        their faces overlap by :func:`~.collision.engagement_depth`, the others at contact (:mod:`.collision`,
+        rule 1).
 
     Returns
     -------
@@ -159,13 +173,7 @@ def build_scene(
         for b in fixed
     ]
     ground = ["ground"] + [g for b in fixed for g in b.shape.contact_geoms(f"{b.name}_geom")]
-    for b in (bodies[k] for k in order):
-        px, py, pz = (float(v) for v in b.position)
-        qw, qx, qy, qz = (float(v) for v in b.quaternion)
-        worldbody.append(
-            f'<body name="{b.name}" pos="{mjcf_number(px)} {mjcf_number(py)} {mjcf_number(pz)}" quat="{mjcf_number(qw)} {mjcf_number(qx)} {mjcf_number(qy)} {mjcf_number(qz)}">'
-            f'<freejoint name="{b.name}_free"/>{b.mjcf_inertial()}{b.shape.mjcf_geom(f"{b.name}_geom")}</body>'
-        )
+    worldbody += [_free_body_xml(bodies[k]) for k in order]
 
     def geoms(i):
         return ground if i < 0 else bodies[i].shape.contact_geoms(f"{bodies[i].name}_geom")
@@ -173,11 +181,16 @@ def build_scene(
     def body(i):
         return "world" if i < 0 else bodies[i].name
 
-    def xml_pairs(which, margin):
-        attrs = contact.mjcf_pair_attributes(margin)
-        return [f'<pair geom1="{g1}" geom2="{g2}" {attrs}/>' for i, j in which for g1 in geoms(i) for g2 in geoms(j)]
+    def xml_pairs(which, margin, side=frozenset()):  # margin [m]: 0 at contact; side pairs at -depth (.collision)
+        attrs = {False: contact.mjcf_pair_attributes(margin), True: contact.mjcf_pair_attributes(-depth)}
+        return [
+            f'<pair geom1="{a}" geom2="{b}" {attrs[(i, j) in side]}/>'
+            for i, j in which
+            for a in geoms(i)
+            for b in geoms(j)
+        ]
 
-    contacts = xml_pairs(pairs, 0.0)  # rule 1 of .collision: interfaces, engaging at contact
+    contacts = xml_pairs(pairs, 0.0, {tuple(p) for p in side_pairs})  # rule 1 of .collision: interfaces, in order
     seen = {tuple(sorted(p)) for p in pairs}
     if len(seen) == n * (n + 1) // 2:
         default = 'contype="0" conaffinity="0"'  # every two surfaces are an interface: nothing else can touch
@@ -249,7 +262,8 @@ def structure_scene(
     fixed = [
         BodySpec(name, engine_shape(shape, density), com) for name, shape, com in getattr(structure, "fixed_shapes", ())
     ]
-    return build_scene(tilt_bodies(specs, rotation), contact, gravity, structure.interfaces, fixed, compile)
+    side = side_joints(getattr(structure, "interface_details", ()))
+    return build_scene(tilt_bodies(specs, rotation), contact, gravity, structure.interfaces, fixed, compile, side)
 
 
 def block_scene(
