@@ -1,9 +1,10 @@
 """The cost of a contact per step, measured (issue #40 item 6): CPU time per step after the load of stack-bonded
 walls (block-model files, 100 kg at 10 m, 1/20), from two durations of one structure differenced (the
-once-per-run work cancels), against the estimate's per-step cost (:mod:`blastscale.study.memory`:
+once-per-run work cancels), against the estimate's per-step cost under a blast (:func:`blastscale.study.memory.step_seconds`:
 ``CONTACT_STEP_SECONDS`` x u x max(1, u / ``CONTACT_STEP_UNITS``)^``CONTACT_STEP_EXPONENT``, u = bodies +
 contacts); reported as ratios. Measured 28 Nov 2026 (one core's CPU time, MuJoCo 4.0.0, loaded 2-core machine):
-u = 70, 290, 590, 1170: 3.4, 9.8, 11.3, 14.6 us per body or contact. Not a test:
+u = 70, 290, 590, 1170: 3.4, 9.8, 11.3, 14.6 us per body or contact; since side joints engage at the collision depth
+(issue #39, the same day, load 1-2): 3.75, 10.95, 5.63 us at u = 70, 290, 1180. Not a test:
 ``python benchmarks/bench_contact_cost.py [--json] [COURSESxUNITS:D1:D2 ...]`` (default 5x5:0.1:1 10x10:0.01:0.2
 20x20:0.1:0.2; about 4 min of CPU).
 """
@@ -53,8 +54,7 @@ def measure(base, d1: float, d2: float) -> dict:
         cpu[d] = time.process_time() - t
     u = nb + memory.contacts_of(plan.structure)
     measured = (cpu[d2] - cpu[d1]) / (steps[d2] - steps[d1])
-    model = memory.CONTACT_STEP_SECONDS * u * max(1.0, u / memory.CONTACT_STEP_UNITS) ** memory.CONTACT_STEP_EXPONENT
-    estimated = memory.STEP_BASE_SECONDS + model
+    estimated = memory.step_seconds(u)
     return {
         "bodies": nb,
         "units": u,

@@ -55,6 +55,7 @@ __all__ = [
     "BODY_EXPONENT",
     "REST_CHECK_SECONDS",
     "rest_check_size",
+    "step_seconds",
     "STARTUP_SECONDS",
     "COMPILE_SECONDS",
     "KERNEL_MODULES",
@@ -77,17 +78,21 @@ STEP_BASE_SECONDS = 4e-6
 #: the loads with the bodies; measured 2.5-3.5 us under a blast ...
 CONTACT_STEP_SECONDS = 3e-6
 #: ... times (u / CONTACT_STEP_UNITS)^CONTACT_STEP_EXPONENT for u = bodies + contacts above CONTACT_STEP_UNITS:
-#: the cost of a contact grows with their number (the constraint solve couples them). Measured (issue #40, CPU
-#: time per step after the load, two durations of one structure differenced): stack-bonded walls of 25, 100,
-#: 200 and 400 blocks under 100 kg at 10 m, 3.4, 9.8, 11.3 and 14.6 us per body or contact at u = 70, 290,
-#: 590 and 1170; the library's running-bond wall of 22 blocks, 6.3 us at u = 75.
-CONTACT_STEP_UNITS, CONTACT_STEP_EXPONENT = 50, 0.45
+#: the cost of a contact grows with their number under a blast (the constraint solve couples them, the contacts
+#: that change state cost Newton iterations). Measured (``benchmarks/bench_contact_cost.py``: CPU time per step
+#: after the load, two durations of one structure differenced) on stack-bonded walls of 25, 100 and 400 blocks under
+#: 100 kg at 10 m: 3.75, 10.95 and 5.63 us per body or contact at u = 70, 290 and 1180 since their side joints engage
+#: at the collision depth (issue #39: 3.4, 9.8 and 14.6 us before, 0.45), the least-squares exponent of the three
+#: 0.33, taken 0.35: the model 0.90, 0.51 and 1.60 of them.
+CONTACT_STEP_UNITS, CONTACT_STEP_EXPONENT = 50, 0.35
 #: ... plus, once per run of a structure of n bodies, BODY_SECONDS n^BODY_EXPONENT [s]: the engine's model
 #: built, the histories compared and drawn per body (measured: 13 s for 210 bodies, 290 s for 3000).
 BODY_SECONDS, BODY_EXPONENT = 0.025, 1.17
 #: The check at rest before the blast (:func:`blastscale.sim3d.rest.rest_check`: every 3D run under a charge, the
 #: structure under gravity alone for its rest time, 3 sqrt(H / g), at the step after the load) costs its steps at
-#: the per-step cost above (the 200-block stack-bonded wall at rest: 26.2 CPU s measured, 31.8 s by the model)
+#: the cost of a step at rest, STEP_BASE_SECONDS + CONTACT_STEP_SECONDS u (:func:`step_seconds`: no growth with u;
+#: a structure at rest changes no contact state, its Newton solve takes one iteration a step: the 3000-block
+#: stack-bonded wall 26 ms a step measured by py-spy, 27 ms by the model, where the growth factor would say 277 ms)
 #: plus this once per check [s]: a second engine model compiled and settled (the 10-drum columns: 1.04-1.09 CPU s
 #: measured, 0.39 s of steps by the model). A specimen that is its prototype's exact model reuses the check.
 REST_CHECK_SECONDS = 0.65
@@ -202,7 +207,7 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts:
     :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x u x max(1, u / :data:`CONTACT_STEP_UNITS`)^
     :data:`CONTACT_STEP_EXPONENT` (u = bodies + contacts), plus :data:`BODY_SECONDS` x
     bodies^:data:`BODY_EXPONENT`, plus the checks at rest before the blast (:func:`rest_check_size`: their steps at the
-    same cost per step, plus :data:`REST_CHECK_SECONDS` each); planar, ~2 us per sample and system plus the
+    cost of a step at rest, :func:`step_seconds`, plus :data:`REST_CHECK_SECONDS` each); planar, ~2 us per sample and system plus the
     critical-charge search (~0.1 s);
     ``contact`` as in :func:`estimate_memory`; ``contacts``: the structure's contacts at rest when already counted
     (:func:`contacts_of`, e.g. a :class:`~.study.StudyPlan`'s), else counted here."""
@@ -225,14 +230,21 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts:
         runs = systems * (1 + sim.ensemble_members)
         nc = contacts_of(structure) if contacts is None else contacts
         units = nb + nc
-        per_step = STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * units * max(1.0, units / CONTACT_STEP_UNITS) ** (
-            CONTACT_STEP_EXPONENT
-        )
         shape = max(1.0, sides / 4) ** (1 / 3)
-        total += runs * steps * per_step * shape + BODY_SECONDS * nb**BODY_EXPONENT
+        total += runs * steps * step_seconds(units) * shape + BODY_SECONDS * nb**BODY_EXPONENT
         checks, rest_steps, _ = rest_check_size(scenario, structure, resolved)
-        total += checks * (rest_steps * per_step * shape + REST_CHECK_SECONDS)
+        total += checks * (rest_steps * step_seconds(units, at_rest=True) * shape + REST_CHECK_SECONDS)
     return total
+
+
+def step_seconds(units: int, at_rest: bool = False) -> float:
+    """One engine step of a structure of ``units`` bodies + contacts [s of one core] (module constants): under a
+    blast :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x u x max(1, u / :data:`CONTACT_STEP_UNITS`)^
+    :data:`CONTACT_STEP_EXPONENT` (contacts changing state cost Newton iterations); at rest (``at_rest``, the check
+    before the blast) without the growth factor (one iteration a step, :data:`REST_CHECK_SECONDS`)."""
+    u = float(units)
+    growth = 1.0 if at_rest else max(1.0, u / CONTACT_STEP_UNITS) ** CONTACT_STEP_EXPONENT
+    return STEP_BASE_SECONDS + CONTACT_STEP_SECONDS * u * growth
 
 
 def rest_check_size(scenario: Scenario, structure=None, contact=None) -> tuple:
