@@ -114,12 +114,15 @@ SEARCH_KERNEL_MODULES = ("_batch",)
 #: Bytes of histories per recorded state, run and body (19 doubles: displacement, velocity, angular velocity,
 #: tilt, rotation, uplift, position, quaternion) and per monitoring point (6 doubles).
 STATE_BYTES_PER_BODY, STATE_BYTES_PER_POINT = 19 * 8, 6 * 8
-#: The report, figures and summary of a result folder [bytes]: an upper bound: the 3D view's poses (at most 1 MB,
-#: :data:`blastscale.report.motion.FRAME_BYTES`) besides the figures (the view drew on plotly, 4.7 MB, until
-#: issue 41: the default report is 0.4 MB since) ...
-REPORT_BYTES = 6.5e6
-#: ... plus this per body (the summary's and the report's rows of each body) [bytes].
-REPORT_BYTES_PER_BODY = 7e3
+#: The report, figures and summary of a result folder [bytes] (the 3D view's poses at most 1 MB,
+#: :data:`blastscale.report.motion.FRAME_BYTES`; no plotting library in the page since issue 41, where plotly's 4.7 MB
+#: made this 6.5 MB) ...
+REPORT_BYTES = 0.6e6
+#: ... plus this per body (the summary's and the report's rows of each body, their figures) [bytes]. Fitted to
+#: ``benchmarks/bench_estimate.py`` (28 Nov 2026, evening): the folders besides the histories measured 0.41 MB (the
+#: block), 0.94 (the 10-drum column), 0.95, 1.34, 2.48 MB (running-bond walls of 22, 55, 210 blocks); the whole
+#: folder then estimated at 0.92-1.25 times its measured size, the 3000-block file 42.0 MB against 38.6 (1.09).
+REPORT_BYTES_PER_BODY = 9e3
 #: Writing a result folder: a fixed time (figures, report) [s] and a rate [s per byte of histories]. The fixed
 #: time measured 3.7 s of CPU for the default run's folder and 3.9 s for the square column's (issue #39: the
 #: report's figures and its 3D view have grown since the 1.3 s of issue #27).
