@@ -66,15 +66,13 @@ def side_joints(details) -> frozenset:
     (``interface_details``; a structure without them, a block or a column, has beds only: pass ())."""
     vertical: dict = {}
     for itf in details:
-        pair = (int(itf.first), int(itf.second))
-        vertical[pair] = vertical.get(pair, True) and abs(float(itf.normal[2])) <= SIDE_JOINT_TILT
+        vertical[itf.pair] = vertical.get(itf.pair, True) and abs(float(itf.normal[2])) <= SIDE_JOINT_TILT
     level: dict = {}
     for itf in details:
-        pair = (int(itf.first), int(itf.second))
-        if vertical[pair]:
+        if vertical[itf.pair]:
             continue
         flat = math.hypot(float(itf.normal[0]), float(itf.normal[1])) <= SIDE_JOINT_TILT
-        for k in pair:
+        for k in itf.pair:
             level[k] = level.get(k, True) and flat
     return frozenset(p for p, v in vertical.items() if v and all(level.get(k, False) for k in p if k >= 0))
 

@@ -92,7 +92,7 @@ BODY_SECONDS, BODY_EXPONENT = 0.025, 1.17
 #: structure under gravity alone for its rest time, 3 sqrt(H / g), at the step after the load) costs its steps at
 #: the cost of a step at rest, STEP_BASE_SECONDS + CONTACT_STEP_SECONDS u (:func:`step_seconds`: no growth with u;
 #: a structure at rest changes no contact state, its Newton solve takes one iteration a step: the 3000-block
-#: stack-bonded wall 26 ms a step measured by py-spy, 27 ms by the model, where the growth factor would say 277 ms)
+#: stack-bonded wall 26 ms a step measured by py-spy, 27 ms by the model, where the growth factor would say 165 ms)
 #: plus this once per check [s]: a second engine model compiled and settled (the 10-drum columns: 1.04-1.09 CPU s
 #: measured, 0.39 s of steps by the model). A specimen that is its prototype's exact model reuses the check.
 REST_CHECK_SECONDS = 0.65
@@ -206,12 +206,10 @@ def estimate_memory(scenario: Scenario, structure=None, contact=None) -> int:
 def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts: int | None = None) -> float:
     """A rough estimate of a study's computing time on one core [s] (module docstring; docs/performance.md): 3D,
     the steps of every run (prototype and model, ensemble members; the settling before the load included; the
-    longer steps after the load counted as such) times
-    :data:`STEP_BASE_SECONDS` + :data:`CONTACT_STEP_SECONDS` x u x max(1, u / :data:`CONTACT_STEP_UNITS`)^
-    :data:`CONTACT_STEP_EXPONENT` (u = bodies + contacts), plus :data:`BODY_SECONDS` x
-    bodies^:data:`BODY_EXPONENT`, plus the checks at rest before the blast (:func:`rest_check_size`: their steps at the
-    cost of a step at rest, :func:`step_seconds`, plus :data:`REST_CHECK_SECONDS` each); planar, ~2 us per sample and system plus the
-    critical-charge search (~0.1 s);
+    longer steps after the load counted as such) times the cost of a step under a blast (:func:`step_seconds`, u =
+    bodies + contacts), plus :data:`BODY_SECONDS` x bodies^:data:`BODY_EXPONENT`, plus the checks at rest before the
+    blast (:func:`rest_check_size`: their steps at the cost of a step at rest, plus :data:`REST_CHECK_SECONDS` each);
+    planar, ~2 us per sample and system plus the critical-charge search (~0.1 s);
     ``contact`` as in :func:`estimate_memory`; ``contacts``: the structure's contacts at rest when already counted
     (:func:`contacts_of`, e.g. a :class:`~.study.StudyPlan`'s), else counted here."""
     sim = scenario.simulation
