@@ -22,7 +22,7 @@ from ..blast.negative_phase import NEGATIVE_PHASE_MODEL, NEGATIVE_PHASE_MODELS
 from ..blast.parameters import BLAST_MODELS, BURSTS, DEFAULT_BLAST_MODEL, DEFAULT_BURST
 from ..blast.pulses import PULSE_SHAPES
 from ..constants import STANDARD_GRAVITY
-from ..sim3d.contact_ranges import CONES, JACOBIANS, SOLVERS, STEPS_AFTER_LOAD
+from ..sim3d.contact_ranges import CONES, JACOBIANS, SETTLINGS, SOLVERS, STEPS_AFTER_LOAD
 from ..sim3d.load_methods import LOAD_METHODS
 from ..structures.materials import MATERIALS
 from .fields import SPEC_CONFIG, at_most_one, check_name, engine_limits
@@ -260,6 +260,11 @@ class ContactSpec(BaseModel):
         description="Solver tolerance while settling before the first arrival [-] (default 1e-8 above 10 bodies, "
         "else the tolerance; the tolerance itself gives the settling of before issue #28)",
         **engine_limits("settle_tolerance"),
+    )
+    settling: Optional[Literal[SETTLINGS]] = Field(
+        None,
+        description='How the structure settles before the first arrival: "plain" (20 contact time constants) or '
+        '"kinetic" (80, kinetic damping: a tall stack at its static state; the default above 10 bodies)',
     )
     noslip_iterations: Optional[int] = Field(
         None, description="No-slip iterations [-]", **engine_limits("noslip_iterations")

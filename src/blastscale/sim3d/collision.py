@@ -44,7 +44,7 @@ import math
 
 import numpy as np
 
-__all__ = ["BROAD_PHASE", "SIDE_JOINT_TILT", "body_order", "engagement_depth", "profile", "side_joints"]
+__all__ = ["BROAD_PHASE", "SIDE_JOINT_TILT", "body_order", "engagement_depth", "level_stack", "profile", "side_joints"]
 
 #: The geom attributes that put every body and the ground in MuJoCo's broad phase (rule 2).
 BROAD_PHASE = 'contype="1" conaffinity="1"'
@@ -75,6 +75,18 @@ def side_joints(details) -> frozenset:
         for k in itf.pair:
             level[k] = level.get(k, True) and flat
     return frozenset(p for p, v in vertical.items() if v and all(level.get(k, False) for k in p if k >= 0))
+
+
+def level_stack(details) -> bool:
+    """Whether an assembly is a stack on level beds: every interface horizontal or a side joint
+    (:func:`side_joints`), all within :data:`SIDE_JOINT_TILT` (the walls of rectangular blocks in any bond, a
+    portal's posts and lintel; not an arch, whose joints are inclined). ``details``: ``interface_details`` (empty:
+    False). Such a stack settles kinetically (:attr:`~.contact.ContactSettings.settling`)."""
+    details = tuple(details)
+    side = side_joints(details)
+    return bool(details) and all(
+        itf.pair in side or math.hypot(float(itf.normal[0]), float(itf.normal[1])) <= SIDE_JOINT_TILT for itf in details
+    )
 
 
 def engagement_depth(time_constant: float, gravity: float) -> float:

@@ -36,7 +36,8 @@ from dataclasses import dataclass, replace
 from .._validate import BlastscaleInputError, check_choice, check_positive, check_range
 from ..constants import DEFAULT_FRICTION, STANDARD_GRAVITY
 from ..similitude.factors import scaling_factors
-from .contact_ranges import CONES, JACOBIANS, SETTING_RANGES, SOLVERS, STEPS_AFTER_LOAD, check_scalar
+from .collision import level_stack
+from .contact_ranges import CONES, JACOBIANS, SETTING_RANGES, SETTLINGS, SOLVERS, STEPS_AFTER_LOAD, check_scalar
 from .solver_choice import default_jacobian
 
 __all__ = [
@@ -117,6 +118,13 @@ class ContactSettings:
         (:func:`~.solver_choice.default_jacobian`: sparse for stacks; MuJoCo 4.0.0's
         sparse-factorisation bug, issue 3767, is not reached by our scenes). "sparse" is 2.8x faster on the square
         10-drum column and gives the dense histories to 1.4e-12 of the peak (docs/performance.md).
+    settling : {"plain", "kinetic"}
+        How the structure settles on its soft contacts before the first arrival
+        (:func:`~.integrate.settle_time_constants`): "plain" (default) for 20 contact time constants, the velocities
+        zeroed at the end; "kinetic" (kinetic damping) for 80, the velocities zeroed at every peak of the kinetic
+        energy, which brings a tall stack to its static state (docs/performance.md, "What the settling leaves in a
+        tall stack"). A stack on level beds of more than :data:`LOOSE_SETTLE_ABOVE_BODIES` bodies (a wall) settles
+        "kinetic" by default (:func:`reference_contact`).
     step_after_load : {"double", "same"}
         The step once every pulse has passed: "double" (default) up to 2 ``timestep``, at most half of every contact
         time constant, a whole number of steps between recorded states (:func:`~.integrate.step_factor_after_load`,
@@ -149,6 +157,7 @@ class ContactSettings:
     noslip_iterations: int = 0
     jacobian: str = "dense"
     step_after_load: str = "double"
+    settling: str = "plain"
 
     def __post_init__(self):
         for name in SETTING_RANGES:
@@ -172,6 +181,7 @@ class ContactSettings:
         check_choice("solver", self.solver, SOLVERS)
         check_choice("jacobian", self.jacobian, JACOBIANS)
         check_choice("step_after_load", self.step_after_load, STEPS_AFTER_LOAD)
+        check_choice("settling", self.settling, SETTLINGS)
 
     # -- derived MuJoCo quantities ----------------------------------------------------
     @property
@@ -280,6 +290,7 @@ class ContactSettings:
             "noslip_iterations": self.noslip_iterations,
             "jacobian": self.jacobian,
             "step_after_load": self.step_after_load,
+            "settling": self.settling,
         }
 
 
@@ -337,13 +348,17 @@ def reference_contact(structure, friction: float = DEFAULT_FRICTION) -> ContactS
     """The full-scale (10 m, 9.81 m/s^2) settings of ``structure`` with friction mu [-]:
     :data:`BLOCK_REFERENCE` for one body, :data:`STACK_REFERENCE` for several, with the Jacobian of
     :func:`~.solver_choice.default_jacobian` (by size and MuJoCo version) and, above
-    :data:`LOOSE_SETTLE_ABOVE_BODIES` bodies, the settling tolerance :data:`ASSEMBLY_SETTLE_TOLERANCE` and the
-    impedance ratio :data:`ASSEMBLY_IMPRATIO`."""
+    :data:`LOOSE_SETTLE_ABOVE_BODIES` bodies, the settling tolerance :data:`ASSEMBLY_SETTLE_TOLERANCE`, the
+    impedance ratio :data:`ASSEMBLY_IMPRATIO` and, for a stack on level beds (:func:`~.collision.level_stack`: a
+    wall, a portal), the kinetic settling (``settling = "kinetic"``: a tall stack settles to its static state; an
+    arch keeps the plain one, docs/performance.md)."""
 
     n = len(structure.bodies)
     base = BLOCK_REFERENCE if n == 1 else STACK_REFERENCE
     if n > LOOSE_SETTLE_ABOVE_BODIES:
         base = replace(base, settle_tolerance=ASSEMBLY_SETTLE_TOLERANCE, impratio=ASSEMBLY_IMPRATIO)
+        if level_stack(getattr(structure, "interface_details", ())):
+            base = replace(base, settling="kinetic")
     return replace(base, friction=friction, jacobian=default_jacobian(n))
 
 

@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 from .._validate import BlastscaleInputError
 
-__all__ = ["CONES", "JACOBIANS", "SETTING_RANGES", "SOLVERS", "STEPS_AFTER_LOAD", "Range", "check_scalar"]
+__all__ = ["CONES", "JACOBIANS", "SETTING_RANGES", "SETTLINGS", "SOLVERS", "STEPS_AFTER_LOAD", "Range", "check_scalar"]
 
 #: Friction-cone types accepted by MuJoCo.
 CONES = ("elliptic", "pyramidal")
@@ -23,6 +23,10 @@ SOLVERS = ("Newton", "CG", "PGS")
 JACOBIANS = ("dense", "sparse", "auto")
 #: The time step once every pulse has passed (:func:`~.integrate.step_factor_after_load`).
 STEPS_AFTER_LOAD = ("double", "same")
+#: How a structure settles before the first arrival (:func:`~.integrate.settle_time_constants`): "plain" for
+#: :data:`~.integrate.SETTLE_TIME_CONSTANTS` contact time constants, "kinetic" (kinetic damping) for
+#: :data:`~.integrate.KINETIC_SETTLE_TIME_CONSTANTS`.
+SETTLINGS = ("plain", "kinetic")
 
 
 def check_scalar(name: str, value) -> None:

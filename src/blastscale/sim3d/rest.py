@@ -1,7 +1,7 @@
 """At rest before the blast: a structure under gravity alone over its own rest time.
 
 A 3D run starts the blast on a structure that has settled on its soft contacts for
-:data:`~.integrate.SETTLE_TIME_CONSTANTS` contact time constants (milliseconds): whether it would
+:func:`~.integrate.settle_time_constants` contact time constants (milliseconds): whether it would
 *stay* at rest without the blast is not seen there. :func:`rest_check` runs the structure (same
 contact settings, same gravity) under gravity alone for its **rest time**
 

@@ -171,7 +171,7 @@ def simulate_structure(
         "force" for several. A block in "auto" mode with mu within 10 % of its pivoting
         threshold (:func:`pivot_friction_threshold`) gets a one-line RuntimeWarning.
     settle : bool
-        Let the structure settle on its soft contacts for :data:`~.integrate.SETTLE_TIME_CONSTANTS` time
+        Let the structure settle on its soft contacts for :func:`~.integrate.settle_time_constants` time
         constants before the first arrival (not when it starts tilted).
     initial_rotation : float
         Initial tilt theta_0 [rad], |theta_0| < pi/2: the whole structure turned rigidly about
