@@ -70,7 +70,7 @@ BLAST_MODES = ("auto", "force", "kick")
 #: transient has decayed by exp(-20) after 20 tau. It scales with the time constant, so
 #: prototype and model settle identically.
 SETTLE_TIME_CONSTANTS = 20.0
-#: Kinetic settling (``ContactSettings.settling = "kinetic"``, assemblies of more than 10 bodies), in contact time
+#: Kinetic settling (``ContactSettings.settling = "kinetic"``, stacks on level beds of more than 10 bodies), in contact time
 #: constants. A tall stack's lowest (axial) mode is lightly damped by contacts critically damped one by one: plainly
 #: settled for 20 time constants the 40-course wall still moves at 8.7e-3 m/s (reference) and its outcome under a
 #: blast is 1.07 % off its settled stack's (which it reaches after 400). Zeroing the velocities at every peak of the
