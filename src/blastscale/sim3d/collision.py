@@ -56,6 +56,11 @@ BROAD_PHASE = 'contype="1" conaffinity="1"'
 SIDE_JOINT_TILT = 1e-6
 
 
+def _level(itf) -> bool:
+    """Whether an interface's plane is horizontal within :data:`SIDE_JOINT_TILT` (its unit normal's horizontal part)."""
+    return math.hypot(float(itf.normal[0]), float(itf.normal[1])) <= SIDE_JOINT_TILT
+
+
 def side_joints(details) -> frozenset:
     """The unloaded side joints among an assembly's interfaces (rule 1): the pairs ``(first, second)`` whose every
     :class:`~blastscale.structures.interfaces.Interface` lies in a vertical plane and whose blocks rest on level beds
@@ -71,7 +76,7 @@ def side_joints(details) -> frozenset:
     for itf in details:
         if vertical[itf.pair]:
             continue
-        flat = math.hypot(float(itf.normal[0]), float(itf.normal[1])) <= SIDE_JOINT_TILT
+        flat = _level(itf)
         for k in itf.pair:
             level[k] = level.get(k, True) and flat
     return frozenset(p for p, v in vertical.items() if v and all(level.get(k, False) for k in p if k >= 0))
@@ -84,9 +89,7 @@ def level_stack(details) -> bool:
     False). Such a stack settles kinetically (:attr:`~.contact.ContactSettings.settling`)."""
     details = tuple(details)
     side = side_joints(details)
-    return bool(details) and all(
-        itf.pair in side or math.hypot(float(itf.normal[0]), float(itf.normal[1])) <= SIDE_JOINT_TILT for itf in details
-    )
+    return bool(details) and all(itf.pair in side or _level(itf) for itf in details)
 
 
 def engagement_depth(time_constant: float, gravity: float) -> float:

@@ -188,7 +188,7 @@ def _settled(scene: Scene):
     else:
         mujoco.mj_step(m, d, steps)  # native loop
     m.opt.tolerance = run_tolerance
-    d.qvel[:] = 0.0  # remove the (exp(-20)-small) residual transient exactly
+    d.qvel[:] = 0.0  # remove the residual transient exactly (exp(-20)-small plainly; below a peak kinetically)
     if store is not None:
         store.setdefault("data", copy.copy(d))
     return d
