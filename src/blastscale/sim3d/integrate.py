@@ -58,6 +58,7 @@ __all__ = [
     "MAX_STEP_FACTOR_AFTER_LOAD",
     "SETTLE_TIME_CONSTANTS",
     "integrate",
+    "settle_steps",
     "settle_time_constants",
     "step_factor_after_load",
 ]
@@ -83,6 +84,13 @@ def settle_time_constants(c: ContactSettings) -> float:
     """Contact time constants of ``c``'s settling before the first arrival [-]: :data:`SETTLE_TIME_CONSTANTS`
     ("plain"), :data:`KINETIC_SETTLE_TIME_CONSTANTS` ("kinetic")."""
     return KINETIC_SETTLE_TIME_CONSTANTS if c.settling == "kinetic" else SETTLE_TIME_CONSTANTS
+
+
+def settle_steps(c: ContactSettings, timestep: float | None = None) -> float:
+    """Steps of ``c``'s settling before the first arrival [-]: :func:`settle_time_constants` x the contact time
+    constant [s] over ``timestep`` [s] (default ``c.timestep``; a size estimate may step otherwise). Not rounded:
+    the engine takes its ceiling, an estimate the value."""
+    return settle_time_constants(c) * c.time_constant / (c.timestep if timestep is None else timestep)
 
 
 #: The longest step after the load, in time steps (``step_after_load = "double"``), chosen by the convergence study of
@@ -182,7 +190,7 @@ def _settled(scene: Scene):
     run_tolerance = m.opt.tolerance
     if c.settle_tolerance is not None:  # an assembly's settling tolerance (ContactSettings.settle_tolerance)
         m.opt.tolerance = c.settle_tolerance
-    steps = int(math.ceil(settle_time_constants(c) * c.time_constant / c.timestep - 1e-9))
+    steps = int(math.ceil(settle_steps(c) - 1e-9))
     if c.settling == "kinetic":
         _kinetic_settle(m, d, steps)
     else:

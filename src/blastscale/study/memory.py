@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from .._validate import BlastscaleInputError
 from ..scenario.scenario import Scenario
 from ..sim3d.contact import default_contact
-from ..sim3d.integrate import settle_time_constants, step_factor_after_load
+from ..sim3d.integrate import settle_steps, step_factor_after_load
 from ..sim3d.rest import rest_contact, rest_time
 from ..structures.assembly import as_assembly
 from ..units import format_size
@@ -227,7 +227,7 @@ def estimate_seconds(scenario: Scenario, structure=None, contact=None, contacts:
             steps = sim.duration_s / dt
         else:
             factor = step_factor_after_load(resolved, nb)
-            steps = sim.duration_s / (dt * factor) + settle_time_constants(resolved) * resolved.time_constant / dt
+            steps = sim.duration_s / (dt * factor) + settle_steps(resolved, dt)
         runs = systems * (1 + sim.ensemble_members)
         nc = contacts_of(structure) if contacts is None else contacts
         units = nb + nc
@@ -263,7 +263,7 @@ def rest_check_size(scenario: Scenario, structure=None, contact=None) -> tuple:
         return 0, 0.0, 0.0
     c = rest_contact(structure, resolved, g)
     T = rest_time(structure, g)
-    steps = T / c.timestep + settle_time_constants(c) * c.time_constant / c.timestep
+    steps = T / c.timestep + settle_steps(c)
     checks = 1 if scenario.scale is None or scenario.friction_ratio == 1.0 else 2
     return checks, steps, T
 
@@ -290,7 +290,7 @@ def compile_seconds(scenario: Scenario, structure=None) -> float:
 def _contact_or_none(scenario: Scenario, structure):
     """The study's contact settings (:func:`~.engines.contact_settings`), or None where the engine's own check
     will report why there are none; the settling before the load lasts
-    :func:`blastscale.sim3d.integrate.settle_time_constants` of their time constants."""
+    :func:`blastscale.sim3d.integrate.settle_steps` steps."""
     try:
         return contact_settings(scenario, structure)
     except BlastscaleInputError:
@@ -376,8 +376,11 @@ def estimate_run(
     measured runs: docs/performance.md. ``contacts`` as in :func:`estimate_seconds`."""
     sim = scenario.simulation
     systems = 1 if scenario.scale is None else 2
-    if contacts is None and sim.engine in ("3d", "both"):
-        contacts = contacts_of(structure)
+    if sim.engine in ("3d", "both"):
+        if contacts is None:
+            contacts = contacts_of(structure)
+        if contact is None and structure is not None:  # resolved once for the time, memory and rest check below
+            contact = _contact_or_none(scenario, structure)
     compiling = compile_seconds(scenario, structure)
     seconds = STARTUP_SECONDS + compiling + estimate_seconds(scenario, structure, contact, contacts)
     nb, nc, samples, runs, hist = _bodies(structure), 0, int(sim.samples), systems, 0.0
