@@ -251,9 +251,7 @@ def write_fired(result, scenario, folder) -> list[str]:
     figures = fired_figures(result)
     for name, _, _, png in figures:
         write_atomic(folder / f"{name}.png", png)
-    if scenario.fired is not None:  # a record path given relative stays relative (to the written file)
-        scenario = scenario.with_values({f"fired.{k}": v for k, v in scenario.fired.record_paths_in(folder).items()})
-    write_atomic(folder / "scenario.toml", scenario.to_toml(folder))
+    write_atomic(folder / "scenario.toml", scenario.to_toml(folder))  # a record path given relative stays so
     title = scenario.title or "blast experiment"
     page = (
         '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>blastscale: as fired: '

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from .._validate import BlastscaleInputError
 from .library import library_names, library_source, library_text
+from .paths import resolve_against
 from .scenario import Scenario
 
 __all__ = ["load_scenario"]
@@ -93,27 +94,7 @@ def _from_text(text: str, source: str, folder: "Path | None" = None) -> Scenario
             f"{source}: arrays or tables nested {_nesting(text)} deep: too deep for the "
             "TOML reader (a scenario nests 3 deep)"
         ) from None
-    st = data.get("structure")
-    if (
-        folder is not None
-        and isinstance(st, dict)
-        and isinstance(st.get("file"), str)
-        and not Path(st["file"]).is_absolute()
-    ):  # a block-model file is relative to its scenario file
-        data["structure"] = {**st, "file": str(folder / st["file"])}
-    lab = data.get("lab")
-    if folder is not None and isinstance(lab, dict) and isinstance(lab.get("source"), str):
-        if not Path(lab["source"]).is_absolute():  # a source file is relative to its scenario file
-            data["lab"] = {**lab, "source": str(folder / lab["source"])}
-    fired = data.get("fired")
-    written = {}
-    if folder is not None and isinstance(fired, dict):  # the records are relative to their scenario file
-        written = {k: fired[k] for k in ("gauges", "tracks") if isinstance(fired.get(k), str)}
-        data["fired"] = {
-            **fired,
-            **{k: str(folder / v) for k, v in written.items() if not Path(v).is_absolute()},
-        }
+    written = resolve_against(data, folder) if folder is not None else {}  # relative to the scenario file
     sc = Scenario.from_dict(data, source=source)
-    if sc.fired is not None:  # as written, so that a scenario written again keeps them relative
-        sc.fired._as_written.update({k: (v, getattr(sc.fired, k)) for k, v in written.items()})
+    sc._as_written.update(written)  # so that a scenario written again names them as its file did
     return sc

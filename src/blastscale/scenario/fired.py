@@ -4,17 +4,15 @@ Axes of the records: x horizontal along the blast, away from the charge; z up; t
 the specimen's footprint on the ground at rest (for a block, its front face at x = -width/2): the one frame
 of the test card's layout, the plan and ``[fired]``. Paths are relative to the scenario file; a scenario
 written again (``blastscale fired --out``) keeps a relative path relative (to the written file:
-:meth:`FiredSpec.record_paths_in`).
+:func:`~blastscale.scenario.paths.path_in`).
 """
 
 from __future__ import annotations
 
 import math
-import os
-from pathlib import Path
 from typing import Annotated, Literal
 
-from pydantic import AfterValidator, BaseModel, Field, PrivateAttr, model_validator
+from pydantic import AfterValidator, BaseModel, Field, model_validator
 
 from .fields import SPEC_CONFIG
 
@@ -94,26 +92,3 @@ class FiredSpec(BaseModel):
     )
     gauge: dict[str, GaugeSpec] = Field(default_factory=dict, description="[fired.gauge.NAME] tables")
     marker: dict[str, MarkerSpec] = Field(default_factory=dict, description="[fired.marker.NAME] tables")
-    #: The record paths as the scenario file wrote them: key (``gauges``, ``tracks``) -> (as written, as resolved
-    #: against its folder) (:func:`blastscale.scenario.files.load_scenario`); empty for a scenario made in Python.
-    _as_written: dict = PrivateAttr(default_factory=dict)
-
-    def record_paths_in(self, folder) -> dict[str, str]:
-        """The record paths (``gauges``, ``tracks``: those given) for a scenario file written into ``folder``:
-        one the scenario gave relative stays relative, now to ``folder`` (``os.path.relpath``: the written file
-        reads the same records); an absolute one stays absolute (so does a relative one where no relative path
-        exists, another drive on Windows)."""
-        out = {}
-        for key in ("gauges", "tracks"):
-            path = getattr(self, key)
-            if path is None:
-                continue
-            written, resolved = self._as_written.get(key, (path, path))
-            if Path(written if resolved == path else path).is_absolute():  # as the file wrote this very path
-                out[key] = path
-                continue
-            try:
-                out[key] = Path(os.path.relpath(Path(path).resolve(), Path(folder).resolve())).as_posix()
-            except ValueError:  # another drive
-                out[key] = str(Path(path).resolve())
-        return out

@@ -3,9 +3,7 @@ precisely (the test planner's constraints, docs/planning.md), and user-defined e
 
 from __future__ import annotations
 
-import os
 import warnings
-from pathlib import Path
 from typing import Any, Optional
 
 from pydantic import BaseModel, Field, PrivateAttr, field_validator, model_serializer, model_validator
@@ -202,23 +200,6 @@ class LabSpec(BaseModel):
         elif isinstance(d, dict) and "initiator" not in self.model_fields_set:
             d.pop("initiator", None)  # a stated initiator_tnt_kg: the written file names no detonator it did not use
         return d
-
-    def source_path_in(self, folder) -> Optional[str]:
-        """``source`` for a scenario file written into ``folder``: relative to ``folder`` (POSIX,
-        ``os.path.relpath``) when the source file lies under ``folder`` or next to it (under its parent folder),
-        so that the folder, moved with its neighbours, still reads it (a scenario file's relative ``source`` is
-        relative to the file, :func:`~blastscale.scenario.files.load_scenario`); else as it is (an absolute
-        path, or a relative one where no relative path exists: another drive on Windows). None without a
-        source."""
-        if self.source is None:
-            return None
-        path, here = Path(self.source).resolve(), Path(folder).resolve()
-        if not path.is_relative_to(here.parent):
-            return self.source
-        try:
-            return Path(os.path.relpath(path, here)).as_posix()
-        except ValueError:  # another drive
-            return self.source
 
     @property
     def initiator_tnt_pressure_kg(self) -> float:

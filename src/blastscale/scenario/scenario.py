@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping, Optional
 
-from pydantic import BaseModel, Field, ValidationError, field_validator
+from pydantic import BaseModel, Field, PrivateAttr, ValidationError, field_validator
 
 from .._validate import BlastscaleInputError
 from ..constants import DEFAULT_FRICTION
@@ -14,6 +14,7 @@ from .fields import SPEC_CONFIG
 from .fired import FiredSpec
 from .lab import LabSpec
 from .messages import one_line, submodels
+from .paths import PATH_KEYS, path_in
 from .specs import LEGACY_SCENARIO_KEYS, BlastSpec, DamageSpec, ScaleSpec, SimulationSpec, VerdictSpec
 from .structure_specs import KINDS, BlockSpec, Structure
 from .text import to_toml
@@ -82,6 +83,10 @@ class Scenario(BaseModel):
         description="What the lab recorded after the shot: gauge traces, "
         "marker tracks, the charge as weighed, the stand-off as measured (docs/fired.md)",
     )
+
+    #: The file paths as the scenario's file wrote them: "table.key" -> (as written, as resolved against its
+    #: folder) (:func:`~.paths.resolve_against`); empty for a scenario made in Python.
+    _as_written: dict = PrivateAttr(default_factory=dict)
 
     @field_validator("title")
     @classmethod
@@ -233,7 +238,16 @@ class Scenario(BaseModel):
                 for p in op:
                     onode = onode.get(p, {})
                 onode.pop(ol, None)
-        return type(self).from_dict(data, source=None)
+        out = type(self).from_dict(data, source=None)
+        out._as_written.update(
+            {k: w for k, w in self._as_written.items() if out.file_path(k) == w[1]}
+        )  # unchanged ones
+        return out
+
+    def file_path(self, key: str) -> Optional[str]:
+        """The file path at ``"table.key"`` (:data:`~.paths.PATH_KEYS`), None when not given."""
+        table, name = key.split(".")
+        return getattr(getattr(self, table, None), name, None)
 
     # -- derived values ----------------------------------------------------------------
     @property
@@ -272,10 +286,14 @@ class Scenario(BaseModel):
 
     def to_toml(self, folder=None) -> str:
         """The scenario as TOML text (keys left to defaults omitted); ``load_scenario`` reads it back. With
-        ``folder``, the text of a file written into that folder: ``[lab] source`` relative to it when the
-        source lies under it or next to it (:meth:`~blastscale.scenario.lab.LabSpec.source_path_in`), so that
-        the folder can be moved with its neighbours."""
+        ``folder``, the text of a file written into that folder: the files it names (block model, source,
+        records) named by the one rule of :func:`~.paths.path_in` (as the scenario's file wrote them, relative
+        to ``folder`` where they were relative), so that the folder can be moved with its neighbours."""
         data = self.model_dump(mode="json", exclude_none=True)
-        if folder is not None and self.lab is not None and self.lab.source is not None:
-            data["lab"]["source"] = self.lab.source_path_in(folder)
+        if folder is not None:
+            for table, name in PATH_KEYS:
+                path = self.file_path(f"{table}.{name}")
+                if path is not None:
+                    written, resolved = self._as_written.get(f"{table}.{name}", (None, None))
+                    data[table][name] = path_in(folder, path, written if resolved == path else None)
         return to_toml(data)
