@@ -125,7 +125,10 @@ def test_block_fired_15_percent_above_the_design(tmp_path):
     assert m["first_peak_time_s"] == pytest.approx(truth["first_peak_time_s"], rel=0.02)
     assert s["effective_charge_tnt_kg"] == pytest.approx(truth["charge_tnt_kg"], rel=0.05)
     assert s["charge_ratio_impulse"] == pytest.approx(FACTOR, rel=0.05)
-    assert m["refit_first_peak_m"] == pytest.approx(m["first_peak_m"], rel=0.06)
+    # the refit carries the effective charge's own error (the gauge's impulse read within its interval), about
+    # doubled on a first peak (~W^2, fired/gauges.py): bounded by it, plus 1 % for the rest of the chain
+    charge_error = abs(s["effective_charge_tnt_kg"] / truth["charge_tnt_kg"] - 1.0)
+    assert m["refit_first_peak_m"] == pytest.approx(m["first_peak_m"], rel=2.0 * charge_error + 0.01)
     assert m["predicted_first_peak_m"] < 0.90 * m["first_peak_m"]
     assert m["outcome_measured"] == m["outcome_refit"] == "stands"
     # the gauge is read at its angle of incidence, the normal of the face it is flush in
