@@ -26,7 +26,7 @@ from ..structures.from_spec import is_block
 from .build import spec_dims, specimen_unit
 from .debris import planar_reach, reach_3d
 from .fragments import detonator_placement, fragment_hazard, pad_spec
-from .instruments import instrument_settings, top_corner_displacement
+from .instruments import IMPULSE_ARRIVAL_ERROR, instrument_settings, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .shot import (
     DEFAULT_LAB,
@@ -504,6 +504,13 @@ def _card_notes(ch, lab, env, ins, shot_notes: list) -> list:
         notes.append(
             f"the gauges sample at {ins.pressure_sampling_hz:.4g} Hz, below the {ins.pressure_sampling_needed_hz:.4g} Hz "
             "that resolves the pulse (10 (1 + d) samples over the positive phase): the peak will be read low"
+        )
+    if ins.pressure_impulse_arrival_error > IMPULSE_ARRIVAL_ERROR * (1.0 + 1e-9):
+        notes.append(
+            f"at {ins.pressure_sampling_hz:.4g} Hz the shock's position between two samples leaves the gauges' impulse "
+            f"uncertain by {100 * ins.pressure_impulse_arrival_error:.2g} % (95 %), more than the "
+            f"{100 * IMPULSE_ARRIVAL_ERROR:g} % the setting aims at: the effective charge read from them about 1.5 "
+            "times that"
         )
     if ins.camera_fps_required > lab.camera_max_fps:
         notes.append(

@@ -14,19 +14,30 @@ Rules
 * **Gauge rise time**: ``t_r <= 0.1 t_o / (1 + d)``. The Friedlander pressure falls from its peak at
   the rate ``P (1 + d) / t_o``, so a gauge that needs t_r to respond reads the peak low by about
   ``(1 + d) t_r / t_o``: at most 10 %.
-* **Sampling rate**: ``f_s >= max(2 / t_r, 50 / t_o)``: two samples within the allowed rise time (the
-  peak is caught within one rise) and 50 over the positive phase (the impulse by the trapezoidal rule
-  within 0.5 % for d <= 10), rounded up to the 1-2-5 series; capped at the lab's ``gauge_rate_max_hz``.
+* **Sampling rate**: ``f_s >= max(2 / t_r, 50 / t_o, f_i)``: two samples within the allowed rise time (the
+  peak is caught within one rise), 50 over the positive phase (the impulse by the trapezoidal rule
+  within 0.5 % for d <= 10) and ``f_i`` (:func:`impulse_rate_needed_hz`), at which the shock's position between
+  two samples leaves the impulse uncertain by at most :data:`IMPULSE_ARRIVAL_ERROR` (95 %), rounded up to the
+  1-2-5 series; capped at the lab's ``gauge_rate_max_hz`` (the impulse's error at the setting is stated:
+  ``pressure_impulse_arrival_error``). The shock lies anywhere between the last sample before it and the first
+  after (uniformly over ``1 / f``), and the samples after it are the same wherever it lies: the area
+  ``P x (its position)`` is unknown, standard deviation ``P / (f sqrt 12)``, against the impulse
+  ``P t_o k(d)`` (``k(d) = (d - 1 + e^-d) / d^2``, paper Eq. 2): the 95 % error
+  ``1.96 / (sqrt 12 f t_o k(d))``, so ``f_i = 1.96 / (sqrt 12 IMPULSE_ARRIVAL_ERROR t_o k(d))``: 154 samples over the
+  positive phase for d = 1, 629 for d = 10 (the reader of fired gauges states the same term in its
+  interval: :mod:`blastscale.fired.gauges`).
 * **Gauge resolves the pulse** (``[lab] gauge_rate_max_hz``; :func:`gauge_rate_needed_hz`): at least one
   sample per allowed rise time, ``f_max >= 1 / t_r = 10 (1 + d) / t_o``, i.e. at least
   ``10 (1 + d)`` samples over the positive phase (20 for d = 1). Why that many: the first sample after
   the shock falls at worst one interval ``1 / f`` late, and the Friedlander pressure has then fallen by
   ``(1 + d) / (f t_o)`` of its peak: at most :data:`RISE_PEAK_ERROR` (10 %), the same bound as the
-  rise time's. The impulse is then within 0.1 % too: the trapezoidal rule's relative error on
-  ``(1 - t/t_o) e^{-d t / t_o}`` is ``(1 + d - e^{-d}) d^2 / (12 N^2 (d - 1 + e^{-d}))`` for N samples
-  (0.09 % for d = 1, N = 20; 0.08 % for d = 10, N = 110). A lab gauge slower than that cannot read the
-  peak: the planner rejects the design (``gauge_rate_max_hz``); a gauge between it and the setting
-  above is a warning (the peak read low by up to ``(1 + d) / (f t_o)``).
+  rise time's. The trapezoidal rule's relative error on ``(1 - t/t_o) e^{-d t / t_o}`` is then small,
+  ``(1 + d - e^{-d}) d^2 / (12 N^2 (d - 1 + e^{-d}))`` for N samples (0.09 % for d = 1, N = 20; 0.08 % for
+  d = 10, N = 110), but the shock's position between two samples is not: at that rate it leaves the impulse
+  uncertain by 7.7 % (d = 1) and 5.7 % (d = 10) (95 %, "Sampling rate" above): a gauge that resolves the peak
+  does not yet weigh the charge. A lab gauge slower than that cannot read the peak: the planner rejects the
+  design (``gauge_rate_max_hz``); a gauge between it and the setting above is a warning (the peak read low by
+  up to ``(1 + d) / (f t_o)``, or the impulse uncertain by more than :data:`IMPULSE_ARRIVAL_ERROR`).
 * **Camera frame rate**: ``20 / t_rise`` (20 frames between the shock and the first peak: the peak is
   missed by at most ``1 - cos(pi / 40)`` = 0.3 % of its value on a sine-like rise), rounded up to the
   1-2-5 series; the frames over the pulse, over the rise and over the whole response are reported.
@@ -45,6 +56,8 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Optional
 
+from ..blast.friedlander import friedlander_impulse_ratio
+
 __all__ = [
     "InstrumentSettings",
     "instrument_settings",
@@ -55,6 +68,9 @@ __all__ = [
     "SAMPLES_PER_PULSE",
     "FRAMES_PER_RISE",
     "gauge_rate_needed_hz",
+    "impulse_arrival_error",
+    "impulse_rate_needed_hz",
+    "IMPULSE_ARRIVAL_ERROR",
 ]
 
 #: Factor of a gauge's or a sensor's range on the peak it will see [-].
@@ -63,6 +79,11 @@ GAUGE_HEADROOM = 1.5
 RISE_PEAK_ERROR = 0.1
 #: Samples over the positive phase (impulse by the trapezoidal rule) [-].
 SAMPLES_PER_PULSE = 50
+#: Largest 95 % error of a gauge's impulse from the shock's position between two samples [-]: 1 % (a third of the
+#: 3 % on the effective charge that ~2 % on the impulse makes, :mod:`blastscale.fired.gauges`).
+IMPULSE_ARRIVAL_ERROR = 0.01
+#: 95 % two-sided normal quantile.
+_Z95 = 1.959963984540054
 #: Camera frames between the shock's arrival and the first peak of the rotation [-].
 FRAMES_PER_RISE = 20
 
@@ -76,6 +97,28 @@ def gauge_rate_needed_hz(positive_duration_s: float, friedlander_decay: float) -
     20000.0
     """
     return (1.0 + max(float(friedlander_decay), 0.0)) / (RISE_PEAK_ERROR * float(positive_duration_s))
+
+
+def impulse_arrival_error(rate_hz: float, positive_duration_s: float, friedlander_decay: float) -> float:
+    """The 95 % relative error of a gauge's impulse [-] from the shock's position between two samples at
+    ``rate_hz`` [1/s], for a pulse of positive duration t_o [s] and Friedlander decay d [-]:
+    ``1.96 / (sqrt 12 f t_o k(d))`` (module docstring, "Sampling rate").
+
+    >>> round(impulse_arrival_error(20e3, 1e-3, 1.0), 4)
+    0.0769
+    """
+    k = float(friedlander_impulse_ratio(max(float(friedlander_decay), 0.0)))
+    return _Z95 / (math.sqrt(12.0) * float(rate_hz) * float(positive_duration_s) * k)
+
+
+def impulse_rate_needed_hz(positive_duration_s: float, friedlander_decay: float) -> float:
+    """The slowest gauge sampling rate [1/s] at which the shock's position between two samples leaves the
+    impulse within :data:`IMPULSE_ARRIVAL_ERROR` (95 %) (:func:`impulse_arrival_error`).
+
+    >>> round(impulse_rate_needed_hz(1e-3, 1.0) * 1e-3, 1), round(impulse_rate_needed_hz(1e-3, 10.0) * 1e-3, 1)
+    (153.8, 628.7)
+    """
+    return impulse_arrival_error(1.0, positive_duration_s, friedlander_decay) / IMPULSE_ARRIVAL_ERROR
 
 
 def round_up_125(x: float) -> float:
@@ -109,6 +152,7 @@ class InstrumentSettings:
     pressure_rise_time_s: float
     pressure_sampling_hz: float
     pressure_sampling_needed_hz: float
+    pressure_impulse_arrival_error: float
     pressure_record_s: float
     camera_fps_required: float
     camera_fps: float
@@ -167,7 +211,7 @@ def instrument_settings(
     """
     to, d = float(positive_duration_s), float(friedlander_decay)
     tr = RISE_PEAK_ERROR * to / (1.0 + max(d, 0.0))
-    fs = round_up_125(max(2.0 / tr, SAMPLES_PER_PULSE / to))
+    fs = round_up_125(max(2.0 / tr, SAMPLES_PER_PULSE / to, impulse_rate_needed_hz(to, d)))
     if gauge_rate_max_hz is not None:
         fs = min(fs, float(gauge_rate_max_hz))
     need = FRAMES_PER_RISE / float(rise_time_s)
@@ -179,6 +223,7 @@ def instrument_settings(
         pressure_rise_time_s=tr,
         pressure_sampling_hz=fs,
         pressure_sampling_needed_hz=gauge_rate_needed_hz(to, d),
+        pressure_impulse_arrival_error=impulse_arrival_error(fs, to, d),
         pressure_record_s=float(arrival_time_s) + 3.0 * to,
         camera_fps_required=need,
         camera_fps=fps,

@@ -404,6 +404,10 @@ def _instruments_table(c: dict) -> str:
             ("side-on gauge range", _n(c, i + "incident_gauge_range_Pa", "kPa")),
             ("gauge rise time at most", _n(c, i + "pressure_rise_time_s", "us")),
             ("sampling rate", _n(c, "pressure_sampling_hz", "MHz")),
+            (
+                "impulse error from the shock between two samples (95 %)",
+                _n(c, i + "pressure_impulse_arrival_error", "%"),
+            ),
             ("pressure record", _n(c, i + "pressure_record_s", "ms")),
             ("camera frame rate", _n(c, "camera_fps", "fps") + " frames/s"),
             ("camera record", _n(c, i + "camera_record_s", "ms")),
