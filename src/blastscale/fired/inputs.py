@@ -40,6 +40,7 @@ import numpy as np
 
 from .._validate import BlastscaleInputError
 from ..blast.inverse import INCIDENCE_RANGE_DEG
+from ..io.source_file import read_source
 from ..similitude.effects import charge_height, charge_position
 from ..study.study import Study
 from .records import GaugeRecord, TrackRecord, read_gauges, read_tracks
@@ -74,6 +75,7 @@ class ShotInputs:
     standoff_m: float
     gauges: GaugeRecord | None
     tracks: TrackRecord | None
+    source: object = None  #: the lab's calibrated source (``[lab] source``), None for a chemical charge
 
 
 def shot_charge_height(scenario, design) -> float:
@@ -261,6 +263,7 @@ def shot_inputs(scenario, *, gauges: GaugeRecord | None = None, tracks: TrackRec
         raise BlastscaleInputError("scenario has no [fired] table: give the records (docs/fired.md)")
     if scenario.scale is None or scenario.blast.gravity_only:
         raise BlastscaleInputError("fired needs a designed specimen: the scenario has no [scale] table or no charge")
+    source = _shot_source(scenario)
     design = Study(scenario).check().design
     standoff = float(fs.standoff_m if fs.standoff_m is not None else design.specimen.standoff_m)
     check_geometry(scenario, design, standoff)
@@ -269,4 +272,26 @@ def shot_inputs(scenario, *, gauges: GaugeRecord | None = None, tracks: TrackRec
     if tracks is None and fs.tracks:
         px = {n: m.px_per_mm for n, m in fs.marker.items()}
         tracks = read_tracks(fs.tracks, names=fs.marker, px_per_mm=px, max_mb=fs.max_record_mb)
-    return ShotInputs(design, standoff, gauges, tracks)
+    return ShotInputs(design, standoff, gauges, tracks, source)
+
+
+def _shot_source(scenario):
+    """The lab's calibrated source for a shot fired with it (``[lab] source``: its control value as set,
+    ``[fired] control``), None for a chemical charge; a control without a source, or a weighed charge with one,
+    refused (one line naming the keys)."""
+    fs, lab = scenario.fired, scenario.lab
+    path = getattr(lab, "source", None)
+    if path is None:
+        if fs.control is not None:
+            raise BlastscaleInputError(
+                f"fired.control = {fs.control:g} needs a calibrated source ([lab] source = SOURCE.toml): the control "
+                "value is read through the source's law; a chemical charge is fired.charge_kg"
+            )
+        return None
+    if fs.charge_kg is not None:
+        raise BlastscaleInputError(
+            f"fired.charge_kg = {fs.charge_kg:g} with [lab] source = {path!r}: a source's shot has no weighed charge; "
+            "give the control value as set (fired.control, in the source's unit), or drop [lab] source for a "
+            "chemical charge"
+        )
+    return read_source(path)

@@ -133,15 +133,68 @@ def _gauges(sc: Scenario, d, record: GaugeRecord, standoff: float) -> tuple[dict
     return fits, out
 
 
-def _load_sigma(sc: Scenario, gauges: dict) -> float:
-    """sigma of ln W_eff (module docstring)."""
+def _load_sigma(sc: Scenario, gauges: dict, source=None) -> float:
+    """sigma of ln W_eff (module docstring); without gauges, a source's shot has its law's one-shot scatter at the
+    control value as set (repeatability and fit, :meth:`~blastscale.blast.sources.PowerLaw.sigma_shot`)."""
     if gauges:
         w = np.log([g["effective_charge_tnt_kg"] for g in gauges.values()])
         spread = float(np.std(w, ddof=1) / math.sqrt(w.size)) if w.size > 1 else 0.0
         own = math.sqrt(sum(g["sigma_ln_charge"] ** 2 for g in gauges.values())) / len(gauges)
         return math.hypot(spread, own)
+    if source is not None and sc.fired.control is not None:
+        return float(source.impulse.sigma_shot(sc.fired.control))
     tol = sc.lab.charge_tolerance if sc.lab is not None else 0.02
     return math.hypot(tol, 0.10)
+
+
+def _charge_keys(fs, lab, source, charges: tuple, w_design: float, gauged: bool) -> dict:
+    """The summary's charge keys: the charge as weighed (or the source's control), the effective charges
+    ``charges`` (by impulse, by peak) [kg TNT] and their ratios to the designed ``w_design`` [kg TNT], the implied
+    TNT equivalences of a weighed explosive and its tables' factors (None for a source's shot), and the source's
+    keys (:func:`_source_summary`)."""
+    w_i, w_p = charges
+    init_i, init_p = (lab.initiator_tnt_kg, lab.initiator_tnt_pressure_kg) if lab else (0.0, 0.0)
+    weighed = fs.charge_kg is not None
+    return {
+        "charge_kg": fs.charge_kg,
+        "explosive": lab.explosive if lab else None,
+        "effective_charge_tnt_kg": w_i,
+        "effective_charge_from_pressure_tnt_kg": w_p,
+        "charge_ratio_impulse": _ratio(w_i, w_design),
+        "charge_ratio_pressure": _ratio(w_p, w_design),
+        "tnt_equivalence_impulse": float(tnt_equivalence(w_i, fs.charge_kg, init_i))
+        if weighed and gauged and w_i is not None
+        else None,
+        "tnt_equivalence_pressure": float(tnt_equivalence(w_p, fs.charge_kg, init_p))
+        if weighed and w_p is not None
+        else None,
+        "explosive_impulse_factor": None if source else _explosive_factor(lab, "impulse"),
+        "explosive_pressure_factor": None if source else _explosive_factor(lab, "pressure"),
+        **_source_summary(fs, source, w_i, gauged),
+    }
+
+
+def _source_summary(fs, source, w_i: float | None, gauged: bool) -> dict:
+    """A source's shot: the control value as set, the law's charges there (by impulse, by pressure) and one shot's
+    scatter; with gauges, what the source delivered against its law (``source_yield_impulse``, the gauges' charge
+    over the law's) and whether that lies within one shot's 95 % scatter (``source_yield_within``). Empty for a
+    chemical charge."""
+    if source is None or fs.control is None:
+        return {}
+    x = float(fs.control)
+    law_i, s = float(source.impulse.tnt_kg(x)), float(source.impulse.sigma_shot(x))
+    ratio = w_i / law_i if gauged and w_i is not None else None
+    return {
+        "source": source.name,
+        "control": x,
+        "control_unit": source.control_unit,
+        "control_setting": f"{source.control} {x:.4g} {source.control_unit}",
+        "source_law_tnt_kg": law_i,
+        "source_law_pressure_tnt_kg": float(source.pressure.tnt_kg(x)),
+        "source_sigma_ln_shot": s,
+        "source_yield_impulse": ratio,
+        "source_yield_within": None if ratio is None else bool(abs(math.log(ratio)) <= 1.959963984540054 * s),
+    }
 
 
 def _measured_markers(sc, d, rec: TrackRecord, response_s: dict) -> dict:
@@ -208,12 +261,12 @@ def as_fired(
     fits, gsum = _gauges(scenario, d, grec, standoff) if grec is not None else ({}, {})
     lab = scenario.lab
     w_design = float(d.specimen_charge_kg)
-    w_i, w_p = _effective_charges(fs, lab, gsum)
+    w_i, w_p = _effective_charges(fs, lab, gsum, inputs.source)
     w_refit = w_i if w_i is not None else w_design
     # the design's own study (its verdict: the similarity error at each point) and the shot's (the verdict as fired)
     predicted = simulate_specimen(scenario, d, w_design, d.specimen.standoff_m, engine, compare=True)
     refit = simulate_specimen(scenario, d, w_refit, standoff, engine, compare=True)  # with the prototype: the verdict
-    sig_w = _load_sigma(scenario, gsum)
+    sig_w = _load_sigma(scenario, gsum, inputs.source)
     sens = _Sensitivity(scenario, d, predicted, refit, standoff)
     design_summary = predicted.result.summary()
     chaotic = getattr(d.prototype_structure, "section", None) == "circular"
@@ -245,20 +298,7 @@ def as_fired(
         "designed_charge_tnt_kg": w_design,
         "designed_standoff_m": float(d.specimen.standoff_m),
         "standoff_m": standoff,
-        "charge_kg": fs.charge_kg,
-        "explosive": lab.explosive if lab else None,
-        "effective_charge_tnt_kg": w_i,
-        "effective_charge_from_pressure_tnt_kg": w_p,
-        "charge_ratio_impulse": _ratio(w_i, w_design),
-        "charge_ratio_pressure": _ratio(w_p, d.specimen_charge_kg),
-        "tnt_equivalence_impulse": None
-        if w_i is None or fs.charge_kg is None or not gsum
-        else float(tnt_equivalence(w_i, fs.charge_kg, lab.initiator_tnt_kg if lab else 0.0)),
-        "tnt_equivalence_pressure": None
-        if w_p is None or fs.charge_kg is None
-        else float(tnt_equivalence(w_p, fs.charge_kg, lab.initiator_tnt_pressure_kg if lab else 0.0)),
-        "explosive_impulse_factor": _explosive_factor(lab, "impulse"),
-        "explosive_pressure_factor": _explosive_factor(lab, "pressure"),
+        **_charge_keys(fs, lab, inputs.source, (w_i, w_p), w_design, bool(gsum)),
         "refit_charge_tnt_kg": w_refit,
         "sigma_ln_charge": sig_w,
         **_similar(d, w_refit, standoff),
@@ -308,13 +348,16 @@ def _designed_event(d, design_summary: dict, markers: dict) -> dict:
     }
 
 
-def _effective_charges(fs, lab, gsum: dict) -> tuple:
+def _effective_charges(fs, lab, gsum: dict, source=None) -> tuple:
     """(effective TNT charge by impulse, by peak pressure) [kg]: the geometric means over the gauges; without
-    gauges, the weighed charge by its impulse factor plus the initiator (by pressure: None); None without either."""
+    gauges, a source's law at the control value as set (both bases), or the weighed charge by its impulse factor
+    plus the initiator (by pressure: None); None without either."""
     if gsum:
         w_i = float(np.exp(np.mean(np.log([g["effective_charge_tnt_kg"] for g in gsum.values()]))))
         w_p = float(np.exp(np.mean(np.log([g["effective_charge_from_pressure_tnt_kg"] for g in gsum.values()]))))
         return w_i, w_p
+    if source is not None and fs.control is not None:
+        return float(source.impulse.tnt_kg(fs.control)), float(source.pressure.tnt_kg(fs.control))
     if fs.charge_kg is not None:
         return fs.charge_kg * (_explosive_factor(lab, "impulse") or 1.0) + (lab.initiator_tnt_kg if lab else 0.0), None
     return None, None
@@ -428,10 +471,22 @@ def as_fired_verdict_line(s: dict) -> str:
     """The as-fired summary's verdict: the one line at the top of its report (docs/fired.md; a study's verdict
     is :func:`blastscale.study.criterion.judge`)."""
     parts = []
-    if s["charge_ratio_impulse"] is not None:
+    by_law = s.get("control") is not None and not s["gauges"]
+    if s["charge_ratio_impulse"] is not None and by_law:
+        parts.append(
+            f"As fired: {s['charge_ratio_impulse']:.3g} x the designed charge by the source's law "
+            f"({s['control_setting']}; no gauge: one shot's scatter {100 * s['source_sigma_ln_shot']:.2g} %)"
+        )
+    elif s["charge_ratio_impulse"] is not None:
         parts.append(f"As fired: {s['charge_ratio_impulse']:.3g} x the designed charge by impulse")
     else:
         parts.append("As fired: the designed charge (no gauge, no weighed charge)")
+    if s.get("source_yield_impulse") is not None:
+        within = "within" if s["source_yield_within"] else "outside"
+        parts.append(
+            f"the source gave {s['source_yield_impulse']:.3g} x its law ({s['control_setting']}; {within} one "
+            f"shot's 95 % scatter, {100 * 1.96 * s['source_sigma_ln_shot']:.2g} %)"
+        )
     m = worst_marker(s["markers"])
     if m is not None and s["markers"][m]["first_peak_m"] is not None:
         name, v = m, s["markers"][m]

@@ -84,6 +84,14 @@ class FiredSpec(BaseModel):
         None, gt=0, le=10000, description="The charge as weighed [kg of the [lab] explosive]"
     )
     standoff_m: float | None = Field(None, gt=0, le=1000, description="The stand-off as measured [m]")
+    control: float | None = Field(
+        None,
+        gt=0,
+        le=1e12,
+        description="The calibrated source's control value as set, with [lab] source (an exploding-wire bank's "
+        "stored energy, in the source's unit): the shot's charge by the source's law; a source shot has no "
+        "weighed charge",
+    )
     max_record_mb: float = Field(
         100.0,
         gt=0,
