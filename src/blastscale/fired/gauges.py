@@ -30,8 +30,9 @@ The steps (docs/fired.md), on plain arrays in SI:
 3. **Friedlander fit**: ``p(tau) = P (1 - tau/t_o) exp(-d tau/t_o)``, tau = t - t_a (paper Eq. 1; Baker
    et al. 1983), by least squares (scipy ``least_squares``, trust-region reflective) on the samples from
    the arrival to the first zero crossing of the smoothed trace (smoothed over a fiftieth of the record after
-   the arrival, then again over a twentieth of the pulse so found: a long record's wide smoothing crosses zero
-   late, by ~0.15 of its width where the suction is shallower than the pulse's fall), the fit's parameters with 95 %
+   the arrival, then again over a twentieth of the pulse so found, within half the first width before the first
+   crossing: a long record's wide smoothing crosses zero late, by ~0.15 of its width where the suction is
+   shallower than the pulse's fall), the fit's parameters with 95 %
    confidence intervals from the Jacobian: ``cov = s^2 (J^T J)^-1``, ``s^2`` the residual variance
    (independent residuals assumed: gauge ringing makes them correlated and the intervals optimistic;
    Rigby et al. 2014, "Friedlander fits to near-field records", discuss the bias of fitting near the front).
@@ -119,7 +120,7 @@ def friedlander_trace(tau, peak, duration, decay):
     """The Friedlander form ``P (1 - tau/t_o) exp(-d tau/t_o)`` [Pa] at tau [s] after arrival (0 before;
     continued past t_o, where it is negative: the fit's model). Paper Eq. (1)."""
     tau = np.asarray(tau, dtype=float)
-    x = tau / duration
+    x = np.clip(tau, 0.0, None) / duration  # before the arrival the form is not evaluated (exp would overflow)
     return np.where(tau >= 0, peak * (1.0 - x) * np.exp(-decay * x), 0.0)
 
 
@@ -481,12 +482,15 @@ def _positive_window(t: np.ndarray, p: np.ndarray, ia: int, where: tuple):
     # a record long against its pulse smooths over a good part of it, and the centred average crosses zero late
     # where the suction after the pulse is shallower than the pulse's fall (by ~0.15 k: 10 % of t_o for a record
     # of 30 t_o): once more with the smoothing a twentieth of the first pulse's samples, so the fit's window ends
-    # within ~1 % of the pulse's end
+    # within ~1 % of the pulse's end; sought only within the half-width k / 2 the first crossing can be late by (a
+    # steep pulse that has sunk into the noise long before crosses zero anywhere there) and kept only with the
+    # samples a fit needs
     k2 = max(5, min(k, (end_i - ia) // 20))
     if k2 < k:
-        sm2 = _smooth(p, k2)
-        neg = after[sm2[after] < 0]
-        end_i = int(neg[0]) if neg.size else t.size - 1
+        near = np.arange(max(int(after[0]), end_i - k // 2 - 1), end_i + 1)
+        sooner = near[_smooth(p, k2)[near] < 0]
+        if sooner.size and sooner[0] - ia + 1 >= MIN_PULSE_SAMPLES:
+            end_i = int(sooner[0])
     window = np.arange(ia, end_i + 1)
     if window.size < MIN_PULSE_SAMPLES:
         raise record_fault(

@@ -32,7 +32,7 @@ def shot(rng, P, to, d, noise, neg_durations=10.0, record_to=30.0):
     ta = 1e-3 + rng.uniform(0.0, 1.0) / FS  # the shock anywhere between two samples
     t = np.arange(-1e-3, ta + record_to * to, 1.0 / FS)
     tau = t - ta
-    x = tau / to
+    x = np.clip(tau, 0.0, None) / to
     p = np.where((tau >= 0) & (tau <= to), P * (1 - x) * np.exp(-d * x), 0.0)
     y = (tau - to) / (neg_durations * to)
     suction = 0.1 * P  # peak suction; Granstrom's cubic -P- (27/4) y (1 - y)^2, 0 <= y <= 1
@@ -86,3 +86,18 @@ def test_a_tail_in_the_negative_phase_is_not_a_drift_and_one_past_it_checks():
     g = fit_gauge(t, p, "g")
     assert g.warnings == () and g.baseline_from.startswith("pre-trigger and tail")
     assert g.negative_impulse_Pa_s == pytest.approx(-0.1 * P * 10 * to * 9 / 16, rel=0.05)
+
+
+def test_a_steep_noisy_pulse_of_few_samples_is_still_read_and_its_interval_holds():
+    """The window's second smoothing must not cut a steep pulse where it has sunk into the noise: d = 15 and 30 over
+    40-60 samples at 1 % noise, with no negative phase, 20 shock positions each. Every record is read (a first
+    version of the second smoothing refused 15 of 20: "20 samples over the pulse"), and the impulse's interval
+    holds the truth in >= 17 of 20 (the binomial's 1 % tail at 95 %); the reader before held it in 3-5 of 20."""
+    rng = np.random.default_rng(0)
+    for to, d in ((40e-6, 15.0), (60e-6, 30.0)):
+        inside = 0
+        for _ in range(20):
+            t, p, impulse = shot(rng, 1e5, to, d, 0.01, neg_durations=1e-9, record_to=60.0)
+            g = fit_gauge(t, p, "g")
+            inside += abs(g.impulse_Pa_s - impulse) <= g.ci95_impulse_Pa_s
+        assert inside >= 17, (to, d, inside)
