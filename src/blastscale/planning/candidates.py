@@ -33,7 +33,7 @@ from ..structures.from_spec import is_block
 from ..structures.materials import get_material
 from .build import spec_dims, specimen_density, specimen_mass
 from .debris import planar_reach
-from .instruments import FRAMES_PER_RISE, instrument_settings, top_corner_displacement
+from .instruments import FRAMES_PER_RISE, instrument_settings, negative_duration_s, top_corner_displacement
 from .shot import (
     candidate_materials,
     fireability,
@@ -408,6 +408,7 @@ def evaluate(c: Candidate, *, lab, block, timing, incident_model, design, protot
         top_displacement_m=top_corner_displacement(*spec_dims(spec)[1::-1], 0.0),
         camera_max_fps=lab.camera_max_fps,
         gauge_rate_max_hz=lab.gauge_rate_max_hz,
+        negative_duration_s=negative_duration_s(z, m.charge_kg, m.burst),
     )
     ev.violations += _violations(ev, lab, spec_h, spec_m)
     return ev
@@ -528,4 +529,5 @@ def _ins_inputs(ev: Evaluated) -> dict:
         "arrival_time_s": m.arrival_time,
         "rise_time_s": ev.rise_s,
         "response_time_s": ev.response_s,
+        "negative_duration_s": negative_duration_s(m.scaled_distance, m.charge_kg, m.burst),
     }

@@ -26,7 +26,7 @@ from ..structures.from_spec import is_block
 from .build import spec_dims, specimen_unit
 from .debris import planar_reach, reach_3d
 from .fragments import detonator_placement, fragment_hazard, pad_spec
-from .instruments import IMPULSE_ARRIVAL_ERROR, instrument_settings, top_corner_displacement
+from .instruments import IMPULSE_ARRIVAL_ERROR, instrument_settings, negative_duration_s, top_corner_displacement
 from .odds import Tolerances, ensemble_odds_3d, planar_odds
 from .shot import (
     DEFAULT_LAB,
@@ -326,6 +326,7 @@ def _instruments(m, r: dict, lab, gauges: dict | None = None):
         top_displacement_m=r["top_m"],
         camera_max_fps=lab.camera_max_fps,
         gauge_rate_max_hz=lab.gauge_rate_max_hz,
+        negative_duration_s=negative_duration_s(m.scaled_distance, m.charge_kg, m.burst),
     )
 
 

@@ -41,8 +41,13 @@ Rules
 * **Camera frame rate**: ``20 / t_rise`` (20 frames between the shock and the first peak: the peak is
   missed by at most ``1 - cos(pi / 40)`` = 0.3 % of its value on a sine-like rise), rounded up to the
   1-2-5 series; the frames over the pulse, over the rise and over the whole response are reported.
-* **Record length**: the whole response (to rest, or to the collapse) plus 10 % and a pre-trigger of
-  the arrival time.
+* **Record length**: the camera's, the whole response (to rest, or to the collapse) plus 10 % and a
+  pre-trigger of the arrival time. The gauges': the positive and the negative phase twice over after the arrival,
+  ``t_A + max(3 t_o, 2 (t_o + t_o-))`` (:func:`negative_duration_s`; at least the old ``t_A + 3 t_o``), so
+  that the record holds the negative phase and a tail after it that checks the baseline: the fired reader's
+  tail is the record's last tenth, and checks only past the negative phase (:mod:`blastscale.fired.gauges`; a
+  record of ``t_A + 3 t_o``, which the rule was, ends inside the negative phase: it lasts 2.5-5.4 positive
+  durations at Z = 1-30 and ~38 at Z = 0.5).
 * **Displacement range**: 1.5 x the largest horizontal displacement of the top corner facing the
   charge, ``u = 2b (1 - cos theta) + 2h sin theta`` (the block rotates about its far edge), or
   the whole block (2b + 2h) when it overturns.
@@ -57,6 +62,7 @@ from dataclasses import asdict, dataclass
 from typing import Optional
 
 from ..blast.friedlander import friedlander_impulse_ratio
+from ..blast.negative_phase import NEGATIVE_PHASE_RANGE, negative_phase_unchecked
 
 __all__ = [
     "InstrumentSettings",
@@ -70,6 +76,7 @@ __all__ = [
     "gauge_rate_needed_hz",
     "impulse_arrival_error",
     "impulse_rate_needed_hz",
+    "negative_duration_s",
     "IMPULSE_ARRIVAL_ERROR",
 ]
 
@@ -119,6 +126,19 @@ def impulse_rate_needed_hz(positive_duration_s: float, friedlander_decay: float)
     (153.8, 628.7)
     """
     return impulse_arrival_error(1.0, positive_duration_s, friedlander_decay) / IMPULSE_ARRIVAL_ERROR
+
+
+def negative_duration_s(scaled_distance: float, charge_kg: float, burst: str = "surface") -> float:
+    """The negative phase's duration t_o- [s] of a charge W [kg TNT] at the scaled distance Z [m/kg^(1/3)]:
+    Rigby's calibration of UFC 3-340-02 Fig. 2-16 (:mod:`blastscale.blast.negative_phase`), Z held to its range
+    (0.07-37.6 m/kg^(1/3), where the duration lies between ~9 and ~17 ms/kg^(1/3)): a record's length, not a load.
+
+    >>> round(negative_duration_s(1.0, 1.0) * 1e3, 2), round(negative_duration_s(100.0, 1.0) * 1e3, 2)
+    (9.26, 17.3)
+    """
+    lo, hi = NEGATIVE_PHASE_RANGE
+    z = min(max(float(scaled_distance), lo), hi)
+    return float(negative_phase_unchecked(z, float(charge_kg), burst).duration)
 
 
 def round_up_125(x: float) -> float:
@@ -182,6 +202,7 @@ def instrument_settings(
     top_displacement_m: float,
     camera_max_fps: float = math.inf,
     gauge_rate_max_hz: Optional[float] = None,
+    negative_duration_s: float = 0.0,
 ) -> InstrumentSettings:
     """The instruments for a specimen's pulse and rocking (module docstring rules).
 
@@ -208,6 +229,9 @@ def instrument_settings(
     gauge_rate_max_hz : float, optional
         The lab gauges' fastest sampling rate [1/s] (None: no limit): the setting is capped at it;
         ``pressure_sampling_needed_hz`` is the rate below which the pulse is not resolved.
+    negative_duration_s : float
+        The negative phase's duration t_o- [s] (:func:`negative_duration_s`): the gauges' record holds it and a
+        tail after it (module docstring); 0: the positive phase alone (``t_A + 3 t_o``).
     """
     to, d = float(positive_duration_s), float(friedlander_decay)
     tr = RISE_PEAK_ERROR * to / (1.0 + max(d, 0.0))
@@ -224,7 +248,7 @@ def instrument_settings(
         pressure_sampling_hz=fs,
         pressure_sampling_needed_hz=gauge_rate_needed_hz(to, d),
         pressure_impulse_arrival_error=impulse_arrival_error(fs, to, d),
-        pressure_record_s=float(arrival_time_s) + 3.0 * to,
+        pressure_record_s=float(arrival_time_s) + max(3.0 * to, 2.0 * (to + float(negative_duration_s))),
         camera_fps_required=need,
         camera_fps=fps,
         camera_record_s=record,
