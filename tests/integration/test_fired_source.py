@@ -31,31 +31,16 @@ from blastscale._validate import BlastscaleInputError  # noqa: E402
 from blastscale.fired.shot import as_fired  # noqa: E402
 from blastscale.fired.source_calibration import calibrate_source, read_calibration_set  # noqa: E402
 from blastscale.io.source_file import write_source  # noqa: E402
-from blastscale.scenario import load_scenario  # noqa: E402
+from blastscale.scenario import Scenario, load_scenario  # noqa: E402
 from blastscale.study import Study  # noqa: E402
 
-SCENARIO = """
-title = "a wire shot"
-[structure]
-kind = "block"
-height_m = 10.0
-alpha_deg = 15.0
-depth_m = 1.0
-density_kg_m3 = 2000.0
-[blast]
-charge_kg = 50.0
-standoff_m = 2.0
-blast_model = "masi2021"
-[scale]
-length = "1/200"
-[simulation]
-engine = "planar"
-duration_s = 0.3
-critical_charge = false
-[lab]
-source = "source.toml"
-{fired}
-"""
+#: The built-in default (the paper's block at 1/200, masi2021), planar for 0.3 s, with the lab's source.
+BASE = Scenario.default().with_values({"engine": "planar", "duration_s": 0.3, "critical_charge": False}).to_toml()
+
+
+def _text(fired: str) -> str:
+    """The scenario's text with the shot's ``[fired]`` table."""
+    return BASE + '\n[lab]\nsource = "source.toml"\n' + fired
 
 
 @pytest.fixture(scope="module")
@@ -64,7 +49,7 @@ def lab(tmp_path_factory):
     folder = tmp_path_factory.mktemp("wires")
     cal = calibrate_source(read_calibration_set(write_campaign(folder / "campaign", campaign(0))))
     write_source(folder / "source.toml", cal.source)
-    (folder / "design.toml").write_text(SCENARIO.format(fired=""))
+    (folder / "design.toml").write_text(_text(""))
     design = Study(load_scenario(folder / "design.toml")).check().design
     return folder, cal.source, design
 
@@ -74,7 +59,7 @@ def _shot(folder: Path, control: float, gauge: str = "", extra: str = "") -> Pat
     if gauge:
         fired += f'gauges = "{gauge}"\n[fired.gauge.g1]\nposition_m = {{pos}}\nkind = "reflected"\n'
     path = folder / f"shot_{len(list(folder.glob('shot_*.toml')))}.toml"
-    path.write_text(SCENARIO.format(fired=fired))
+    path.write_text(_text(fired))
     return path
 
 
