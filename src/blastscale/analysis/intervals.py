@@ -26,7 +26,11 @@ from statistics import NormalDist
 
 from .._validate import BlastscaleInputError, check_range
 
-__all__ = ["wilson_interval", "odds_text", "probability_text"]
+__all__ = ["wilson_interval", "odds_text", "probability_text", "Z95"]
+
+#: The two-sided 95 % quantile of the standard normal distribution, ``NormalDist().inv_cdf(0.975)`` [-]: the
+#: package's one 95 % multiplier (normal intervals of fits, records and tolerances).
+Z95 = 1.959963984540054
 
 
 def _count(name: str, value, lo: int, hi: float) -> int:

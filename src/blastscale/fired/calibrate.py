@@ -63,6 +63,7 @@ import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
 from .._validate import BlastscaleInputError, check_choice
+from ..analysis.intervals import Z95
 from ..analysis.upscale import upscale
 from ..rocking.system import housner_restitution
 from ..study.study import Study
@@ -87,7 +88,6 @@ __all__ = [
 
 #: What ``--calibrate`` accepts.
 CALIBRATIONS = ("restitution", "friction")
-_Z95 = 1.959963984540054
 #: A value is reported only when the RMS misfit is at most this multiple of the tracks' noise (module docstring).
 MISFIT_NOISE_MULTIPLE = 2.0
 #: ... and the profile rises to at least this multiple of its minimum RMS on both sides within the range.
@@ -360,7 +360,7 @@ def calibrate_restitution(
     profile[float(opt.x[1])] = min(profile.get(float(opt.x[1]), math.inf), _rms(opt.fun))
     res = identify(profile, sigma, bounds, "restitution")
     out = _keys("restitution", res, profile)
-    out |= {"charge_factor": float(opt.x[0]), "charge_factor_ci95": _Z95 * float(sig[0]), "samples": n}
+    out |= {"charge_factor": float(opt.x[0]), "charge_factor_ci95": Z95 * float(sig[0]), "samples": n}
     out |= {"prototype_first_peak_rad": None, "prototype_max_rotation_rad": None, "prototype_outcome": None}
     if res["identifiable"]:
         proto = (

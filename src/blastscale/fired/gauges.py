@@ -69,6 +69,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
+from ..analysis.intervals import Z95
 from ..blast.friedlander import friedlander_impulse_ratio
 from ..blast.pulses import Friedlander
 from .records import record_fault
@@ -112,8 +113,6 @@ TAIL_FRACTION = 0.1
 TAIL_AFTER = 5.0
 #: ... and agrees with the pre-trigger's baseline line within this many standard errors.
 TAIL_AGREEMENT = 3.0
-#: 95 % two-sided normal quantile for the confidence intervals.
-_Z95 = 1.959963984540054
 
 
 def friedlander_trace(tau, peak, duration, decay):
@@ -288,11 +287,11 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
     h = float(t[ia] - t[ia - 1]) / math.sqrt(12.0)  # the arrival's standard error [s]
     s_front = fit.peak * h
     s_front_peak = fit.peak * (1.0 + fit.decay) / fit.duration * h
-    half = _Z95 * math.sqrt(s_noise**2 + s_base**2 + s_tail**2 + s_front**2)
-    base_half = _Z95 * math.hypot(s_base, s_tail)
+    half = Z95 * math.sqrt(s_noise**2 + s_base**2 + s_tail**2 + s_front**2)
+    base_half = Z95 * math.hypot(s_base, s_tail)
     if base_half > DRIFT_WARNING_FRACTION * impulse:
         notes.append(
-            f"gauge {name!r}: the baseline (drift {line.slope:.4g} +- {_Z95 * line.slope_sigma:.3g} Pa/s from the "
+            f"gauge {name!r}: the baseline (drift {line.slope:.4g} +- {Z95 * line.slope_sigma:.3g} Pa/s from the "
             f"{line.source}) makes the impulse uncertain by {100 * base_half / impulse:.2g} % (95 %), more than "
             f"{100 * DRIFT_WARNING_FRACTION:g} %: the impulse is unreliable (record a longer pre-trigger or tail)"
         )
@@ -305,7 +304,7 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
         positive_duration_s=float(fit.duration),
         decay=fit.decay,
         ci95={
-            "peak_pressure_Pa": float(math.hypot(fit.half[0], _Z95 * s_front_peak)),
+            "peak_pressure_Pa": float(math.hypot(fit.half[0], Z95 * s_front_peak)),
             "positive_duration_s": float(fit.half[1]),
             "decay": float(fit.half[2]),
         },
@@ -315,7 +314,7 @@ def fit_gauge(time_s, pressure_Pa, name: str = "gauge", *, source: str = "gauges
         negative_impulse_Pa_s=neg_i,
         samples_positive=n_pos,
         drift_Pa_per_s=line.slope,
-        ci95_drift_Pa_per_s=_Z95 * line.slope_sigma,
+        ci95_drift_Pa_per_s=Z95 * line.slope_sigma,
         drift_impulse_Pa_s=line.slope * (window[1] ** 2 - window[0] ** 2) / 2.0,
         ci95_impulse_Pa_s=half,
         baseline_from=line.source,
@@ -366,7 +365,7 @@ def _still_negative(t: np.ndarray, p: np.ndarray, steps: tuple, noise: float, t_
     (:func:`_steps`), holds a negative phase that has not come back within ``tolerance`` [Pa] of zero (the tail
     check's own: the line's error grows away from the pre-trigger) by ``t_tail`` [s]."""
     ia, ta, fit = steps[0], steps[1], steps[2]
-    k = max(5, (t.size - ia) // 50)  # the smoothing of step 3 (_positive_window)
+    k = _smoothing_width(t, ia)
     least, _, back = _negative_phase(t, p, _smooth(p, k), k, ta + fit.duration, noise, -tolerance)
     return least is not None and least < -tolerance and (back is None or back > t_tail)
 
@@ -415,7 +414,7 @@ class _Line:
         resid = raw[mask] - X @ coef
         s2 = float(resid @ resid) / max(resid.size - 2, 1)
         cov = np.linalg.inv(X.T @ X) * s2
-        if abs(coef[1]) <= _Z95 * math.sqrt(max(float(cov[1, 1]), 0.0)):
+        if abs(coef[1]) <= Z95 * math.sqrt(max(float(cov[1, 1]), 0.0)):
             # the mean is the line of slope 0 through the samples' mean time: it leaves out the fitted slope b1,
             # whose error e(t) = b1 (t - t_mean) joins the covariance (the mean-squared error matrix)
             u = np.array([-coef[1] * float(t[mask].mean()), coef[1]])
@@ -469,12 +468,18 @@ def _arrival(p: np.ndarray, t: np.ndarray, pre: np.ndarray, noise: float, where:
     return ia, 0.5 * (t[ia] + t[ia - 1])
 
 
+def _smoothing_width(t: np.ndarray, ia: int) -> int:
+    """The first smoothing's width of step 3 [samples]: a fiftieth of the samples after the arrival ``ia``, at
+    least 5."""
+    return max(5, (t.size - ia) // 50)
+
+
 def _positive_window(t: np.ndarray, p: np.ndarray, ia: int, where: tuple):
     """The samples of the positive phase: from the arrival ``ia`` to the first zero crossing of the trace
     smoothed over 1/50 of the samples after arrival (at least 5), searched after the largest sample.
     Returns (the window's indices, the smoothed trace, its width k, the sample interval [s] at arrival)."""
     dt = float(np.median(np.diff(t[ia : ia + 50]))) if t.size > ia + 2 else 0.0
-    k = max(5, (t.size - ia) // 50)
+    k = _smoothing_width(t, ia)
     sm = _smooth(p, k)
     after = np.arange(ia + int(np.argmax(p[ia : ia + max(k, 3)])), t.size)
     neg = after[sm[after] < 0]
@@ -529,7 +534,7 @@ def _fit_friedlander(tau: np.ndarray, y: np.ndarray, dt: float) -> _Fit:
     s2 = float(np.sum((sol.fun * P0) ** 2)) / dof
     try:
         cov = np.linalg.inv(J.T @ J) * s2
-        half = _Z95 * np.sqrt(np.clip(np.diag(cov), 0.0, None))
+        half = Z95 * np.sqrt(np.clip(np.diag(cov), 0.0, None))
     except np.linalg.LinAlgError:
         half = np.full(3, np.nan)
     return _Fit(sol.x[0] * P0, sol.x[1] * T0, float(sol.x[2]), half)
@@ -548,12 +553,13 @@ def _positive_impulse(t: np.ndarray, p: np.ndarray, ia: int, ta: float, fit: _Fi
     end = min(ta + tc, float(t[-1]))
     first = min(float(t[ia]), end)
     front = float(pulse.cumulative_impulse(first - ta))
+    upto_end = float(pulse.cumulative_impulse(end - ta))
     on_grid = friedlander_trace(t - ta, fit.peak, fit.duration, fit.decay)
     # the trapezoid's error on the curved pulse ((1 + d - e^-d) d^2 / (12 N^2 (d - 1 + e^-d)) of it for N samples
     # over t_o: planning/instruments.py), taken from the fitted pulse sampled on the same times, off the samples'
-    curvature = _impulse(t, on_grid, first, end) - float(pulse.cumulative_impulse(end - ta) - front)
+    curvature = _impulse(t, on_grid, first, end) - (upto_end - front)
     sampled = _impulse(t, p, first, end) - curvature
-    return front + sampled + pulse.impulse - float(pulse.cumulative_impulse(end - ta)), end
+    return front + sampled + pulse.impulse - upto_end, end
 
 
 def _negative_phase(
@@ -562,8 +568,9 @@ def _negative_phase(
     """Step 5: the least pressure [Pa] and the impulse [Pa s] of the samples after the positive phase (ending
     at ``t_end`` [s]) up to the smoothed trace's return to zero after its least value (the smoothing spreads the
     positive phase past its end, and the noise crosses zero where the suction is shallow: the return is sought
-    after the deepest point; zero within the smoothed noise, or above ``zero`` [Pa] when given) or the record's end, and that return [s] (None at the record's end); (None, None,
-    None) when the record does not hold a negative phase above the smoothed noise."""
+    after the deepest point; zero within the smoothed noise, or above ``zero`` [Pa] when given) or the record's
+    end, and that return [s] (None at the record's end); (None, None, None) when the record does not hold a
+    negative phase above the smoothed noise."""
     tail = np.flatnonzero(t > t_end)
     if tail.size >= MIN_PULSE_SAMPLES and float(sm[tail].min()) < -3.0 * noise / np.sqrt(k):
         deepest = tail[int(np.argmin(sm[tail]))]

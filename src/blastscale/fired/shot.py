@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from .._validate import BlastscaleInputError
+from ..analysis.intervals import Z95
 from ..analysis.upscale import upscale
 from ..blast.explosives import get_explosive
 from ..scenario.scenario import Scenario
@@ -111,7 +112,7 @@ def _gauges(sc: Scenario, d, record: GaugeRecord, standoff: float) -> tuple[dict
         wp = inverted(fit.peak_pressure_Pa, R, "pressure")
         # sigma of ln W: the impulse's (noise and baseline, the fit's 95 % half-width) and the stand-off
         # tolerance, through the inversion
-        s_i = fit.ci95_impulse_Pa_s / 1.959963984540054 / fit.impulse_Pa_s
+        s_i = fit.ci95_impulse_Pa_s / Z95 / fit.impulse_Pa_s
         k_i = math.log(inverted(fit.impulse_Pa_s * 1.01, R) / wi) / math.log(1.01)
         k_r = math.log(inverted(fit.impulse_Pa_s, R * 1.01) / wi) / math.log(1.01)
         tol = (sc.lab.standoff_tolerance_m if sc.lab is not None else 0.0) / R
@@ -133,25 +134,35 @@ def _gauges(sc: Scenario, d, record: GaugeRecord, standoff: float) -> tuple[dict
     return fits, out
 
 
-def _load_sigma(sc: Scenario, gauges: dict, source=None) -> float:
-    """sigma of ln W_eff (module docstring); without gauges, a source's shot has its law's one-shot scatter at the
-    control value as set (repeatability and fit, :meth:`~blastscale.blast.sources.PowerLaw.sigma_shot`)."""
+def _source_law(fs, source) -> tuple | None:
+    """A source's law at the shot's control value as set (``[fired] control``): (its charge by impulse, by peak
+    [kg TNT], one shot's sigma of ln W [-]: repeatability and fit,
+    :meth:`~blastscale.blast.sources.PowerLaw.sigma_shot`); None for a chemical charge."""
+    if source is None or fs.control is None:
+        return None
+    x = float(fs.control)
+    return float(source.impulse.tnt_kg(x)), float(source.pressure.tnt_kg(x)), float(source.impulse.sigma_shot(x))
+
+
+def _load_sigma(sc: Scenario, gauges: dict, law: tuple | None = None) -> float:
+    """sigma of ln W_eff (module docstring); without gauges, a source's shot has its ``law``'s one-shot scatter
+    (:func:`_source_law`)."""
     if gauges:
         w = np.log([g["effective_charge_tnt_kg"] for g in gauges.values()])
         spread = float(np.std(w, ddof=1) / math.sqrt(w.size)) if w.size > 1 else 0.0
         own = math.sqrt(sum(g["sigma_ln_charge"] ** 2 for g in gauges.values())) / len(gauges)
         return math.hypot(spread, own)
-    if source is not None and sc.fired.control is not None:
-        return float(source.impulse.sigma_shot(sc.fired.control))
+    if law is not None:
+        return law[2]
     tol = sc.lab.charge_tolerance if sc.lab is not None else 0.02
     return math.hypot(tol, 0.10)
 
 
-def _charge_keys(fs, lab, source, charges: tuple, w_design: float, gauged: bool) -> dict:
+def _charge_keys(fs, lab, source, law: tuple | None, charges: tuple, w_design: float, gauged: bool) -> dict:
     """The summary's charge keys: the charge as weighed (or the source's control), the effective charges
     ``charges`` (by impulse, by peak) [kg TNT] and their ratios to the designed ``w_design`` [kg TNT], the implied
     TNT equivalences of a weighed explosive and its tables' factors (None for a source's shot), and the source's
-    keys (:func:`_source_summary`)."""
+    keys (:func:`_source_summary`; ``law``: :func:`_source_law`)."""
     w_i, w_p = charges
     init_i, init_p = (lab.initiator_tnt_kg, lab.initiator_tnt_pressure_kg) if lab else (0.0, 0.0)
     weighed = fs.charge_kg is not None
@@ -170,19 +181,19 @@ def _charge_keys(fs, lab, source, charges: tuple, w_design: float, gauged: bool)
         else None,
         "explosive_impulse_factor": None if source else _explosive_factor(lab, "impulse"),
         "explosive_pressure_factor": None if source else _explosive_factor(lab, "pressure"),
-        **_source_summary(fs, source, w_i, gauged),
+        **_source_summary(fs, source, law, w_i, gauged),
     }
 
 
-def _source_summary(fs, source, w_i: float | None, gauged: bool) -> dict:
-    """A source's shot: the control value as set, the law's charges there (by impulse, by pressure) and one shot's
-    scatter; with gauges, what the source delivered against its law (``source_yield_impulse``, the gauges' charge
-    over the law's) and whether that lies within one shot's 95 % scatter (``source_yield_within``). Empty for a
-    chemical charge."""
-    if source is None or fs.control is None:
+def _source_summary(fs, source, law: tuple | None, w_i: float | None, gauged: bool) -> dict:
+    """A source's shot: the control value as set, the ``law``'s charges there (by impulse, by pressure) and one
+    shot's scatter (:func:`_source_law`); with gauges, what the source delivered against its law
+    (``source_yield_impulse``, the gauges' charge over the law's) and whether that lies within one shot's 95 %
+    scatter (``source_yield_within``). Empty for a chemical charge."""
+    if law is None:
         return {}
     x = float(fs.control)
-    law_i, s = float(source.impulse.tnt_kg(x)), float(source.impulse.sigma_shot(x))
+    law_i, law_p, s = law
     ratio = w_i / law_i if gauged and w_i is not None else None
     return {
         "source": source.name,
@@ -190,10 +201,10 @@ def _source_summary(fs, source, w_i: float | None, gauged: bool) -> dict:
         "control_unit": source.control_unit,
         "control_setting": f"{source.control} {x:.4g} {source.control_unit}",
         "source_law_tnt_kg": law_i,
-        "source_law_pressure_tnt_kg": float(source.pressure.tnt_kg(x)),
+        "source_law_pressure_tnt_kg": law_p,
         "source_sigma_ln_shot": s,
         "source_yield_impulse": ratio,
-        "source_yield_within": None if ratio is None else bool(abs(math.log(ratio)) <= 1.959963984540054 * s),
+        "source_yield_within": None if ratio is None else bool(abs(math.log(ratio)) <= Z95 * s),
     }
 
 
@@ -261,12 +272,13 @@ def as_fired(
     fits, gsum = _gauges(scenario, d, grec, standoff) if grec is not None else ({}, {})
     lab = scenario.lab
     w_design = float(d.specimen_charge_kg)
-    w_i, w_p = _effective_charges(fs, lab, gsum, inputs.source)
+    law = _source_law(fs, inputs.source)
+    w_i, w_p = _effective_charges(fs, lab, gsum, law)
     w_refit = w_i if w_i is not None else w_design
     # the design's own study (its verdict: the similarity error at each point) and the shot's (the verdict as fired)
     predicted = simulate_specimen(scenario, d, w_design, d.specimen.standoff_m, engine, compare=True)
     refit = simulate_specimen(scenario, d, w_refit, standoff, engine, compare=True)  # with the prototype: the verdict
-    sig_w = _load_sigma(scenario, gsum, inputs.source)
+    sig_w = _load_sigma(scenario, gsum, law)
     sens = _Sensitivity(scenario, d, predicted, refit, standoff)
     design_summary = predicted.result.summary()
     chaotic = getattr(d.prototype_structure, "section", None) == "circular"
@@ -298,7 +310,7 @@ def as_fired(
         "designed_charge_tnt_kg": w_design,
         "designed_standoff_m": float(d.specimen.standoff_m),
         "standoff_m": standoff,
-        **_charge_keys(fs, lab, inputs.source, (w_i, w_p), w_design, bool(gsum)),
+        **_charge_keys(fs, lab, inputs.source, law, (w_i, w_p), w_design, bool(gsum)),
         "refit_charge_tnt_kg": w_refit,
         "sigma_ln_charge": sig_w,
         **_similar(d, w_refit, standoff),
@@ -348,16 +360,16 @@ def _designed_event(d, design_summary: dict, markers: dict) -> dict:
     }
 
 
-def _effective_charges(fs, lab, gsum: dict, source=None) -> tuple:
+def _effective_charges(fs, lab, gsum: dict, law: tuple | None = None) -> tuple:
     """(effective TNT charge by impulse, by peak pressure) [kg]: the geometric means over the gauges; without
-    gauges, a source's law at the control value as set (both bases), or the weighed charge by its impulse factor
-    plus the initiator (by pressure: None); None without either."""
+    gauges, a source's ``law`` at the control value as set (both bases, :func:`_source_law`), or the weighed
+    charge by its impulse factor plus the initiator (by pressure: None); None without either."""
     if gsum:
         w_i = float(np.exp(np.mean(np.log([g["effective_charge_tnt_kg"] for g in gsum.values()]))))
         w_p = float(np.exp(np.mean(np.log([g["effective_charge_from_pressure_tnt_kg"] for g in gsum.values()]))))
         return w_i, w_p
-    if source is not None and fs.control is not None:
-        return float(source.impulse.tnt_kg(fs.control)), float(source.pressure.tnt_kg(fs.control))
+    if law is not None:
+        return law[0], law[1]
     if fs.charge_kg is not None:
         return fs.charge_kg * (_explosive_factor(lab, "impulse") or 1.0) + (lab.initiator_tnt_kg if lab else 0.0), None
     return None, None
@@ -485,7 +497,7 @@ def as_fired_verdict_line(s: dict) -> str:
         within = "within" if s["source_yield_within"] else "outside"
         parts.append(
             f"the source gave {s['source_yield_impulse']:.3g} x its law ({s['control_setting']}; {within} one "
-            f"shot's 95 % scatter, {100 * 1.96 * s['source_sigma_ln_shot']:.2g} %)"
+            f"shot's 95 % scatter, {100 * Z95 * s['source_sigma_ln_shot']:.2g} %)"
         )
     m = worst_marker(s["markers"])
     if m is not None and s["markers"][m]["first_peak_m"] is not None:

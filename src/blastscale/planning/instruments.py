@@ -61,6 +61,7 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Optional
 
+from ..analysis.intervals import Z95
 from ..blast.friedlander import friedlander_impulse_ratio
 from ..blast.negative_phase import NEGATIVE_PHASE_RANGE, negative_phase_unchecked
 
@@ -89,8 +90,6 @@ SAMPLES_PER_PULSE = 50
 #: Largest 95 % error of a gauge's impulse from the shock's position between two samples [-]: 1 % (a third of the
 #: 3 % on the effective charge that ~2 % on the impulse makes, :mod:`blastscale.fired.gauges`).
 IMPULSE_ARRIVAL_ERROR = 0.01
-#: 95 % two-sided normal quantile.
-_Z95 = 1.959963984540054
 #: Camera frames between the shock's arrival and the first peak of the rotation [-].
 FRAMES_PER_RISE = 20
 
@@ -115,7 +114,7 @@ def impulse_arrival_error(rate_hz: float, positive_duration_s: float, friedlande
     0.0769
     """
     k = float(friedlander_impulse_ratio(max(float(friedlander_decay), 0.0)))
-    return _Z95 / (math.sqrt(12.0) * float(rate_hz) * float(positive_duration_s) * k)
+    return Z95 / (math.sqrt(12.0) * float(rate_hz) * float(positive_duration_s) * k)
 
 
 def impulse_rate_needed_hz(positive_duration_s: float, friedlander_decay: float) -> float:

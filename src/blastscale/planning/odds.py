@@ -37,7 +37,7 @@ import numpy as np
 from .._extras import require
 from .._threads import map_threads
 from .._validate import BlastscaleInputError
-from ..analysis.intervals import odds_text, wilson_interval
+from ..analysis.intervals import Z95, odds_text, wilson_interval
 from ..blast.parameters import blast_parameters_unchecked, valid_scaled_distance_range
 from ..similitude.factors import scaling_factors, to_specimen
 from ..study.study import Study
@@ -52,11 +52,9 @@ __all__ = [
     "specimen_members",
     "ensemble_odds_3d",
     "outcome_odds_text",
-    "Z95",
     "Z90_ONE_SIDED",
 ]
 
-Z95 = 1.959963984540054  # two-sided 95 % normal quantile
 Z90_ONE_SIDED = 1.6448536269514722  # one-sided 95 % normal quantile
 
 
